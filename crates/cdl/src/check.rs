@@ -1,0 +1,435 @@
+//! The checking stage: a syntax tree becomes a [`Theory`], or diagnostics that say what is wrong
+//! and where (duplicate and undefined labels, priority cycles, contradicting facts, misused
+//! input and output declarations).
+
+use crate::closure::{close, normalize, ClosureOutcome, MAX_CLOSURE};
+use crate::literal::{Atom, Lit, RuleId};
+use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
+use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, ParsedTheory, Span};
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+
+/// A theory, or everything wrong with it. Warnings come with a theory too.
+#[derive(Debug)]
+pub struct Checked {
+    pub theory: Option<Theory>,
+    /// Parse and check diagnostics, in file order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Checks a parsed file against its source text. Parse errors are kept; a theory is built only
+/// when there are no errors at all.
+pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
+    let mut checker = Checker {
+        source,
+        theory: Theory::default(),
+        names: FxHashMap::default(),
+        diagnostics: parsed.diagnostics,
+        labels: FxHashMap::default(),
+        input_spans: FxHashMap::default(),
+    };
+    checker.lower(parsed.items);
+    let has_errors = checker.diagnostics.iter().any(Diagnostic::is_error);
+    let mut diagnostics = checker.diagnostics;
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    Checked {
+        theory: (!has_errors).then_some(checker.theory),
+        diagnostics,
+    }
+}
+
+struct Checker<'s> {
+    source: &'s str,
+    theory: Theory,
+    names: FxHashMap<&'s str, Atom>,
+    diagnostics: Vec<Diagnostic>,
+    labels: FxHashMap<&'s str, (RuleId, Span)>,
+    input_spans: FxHashMap<Atom, Span>,
+}
+
+impl<'s> Checker<'s> {
+    fn atom(&mut self, span: Span) -> Atom {
+        let name = span.text(self.source);
+        if let Some(&atom) = self.names.get(name) {
+            return atom;
+        }
+        let atom = Atom(self.theory.atom_names.len() as u32);
+        let shared: Arc<str> = Arc::from(name);
+        self.theory.atom_names.push(shared.clone());
+        self.theory.atom_index.insert(shared, atom);
+        self.names.insert(name, atom);
+        atom
+    }
+
+    fn lit(&mut self, lit: &ast::Lit) -> Lit {
+        Lit::new(self.atom(lit.atom), lit.negated)
+    }
+
+    fn lower(&mut self, items: Vec<Item>) {
+        let mut priorities = Vec::new();
+        let mut name_span: Option<Span> = None;
+        self.theory.body_start.push(0);
+        for item in items {
+            match item {
+                Item::Rule(rule) => self.add_rule(rule),
+                Item::Fact { clause, span } => {
+                    let lits = clause.iter().map(|l| self.lit(l)).collect::<Vec<_>>();
+                    if normalize(lits.clone()).is_none() {
+                        self.diagnostics.push(
+                            Diagnostic::warning(span, "this clause holds a literal and its complement, so it says nothing")
+                                .with_label("a tautology"),
+                        );
+                    }
+                    self.theory.axioms.push(Clause {
+                        lits,
+                        span: Some(span),
+                    });
+                }
+                Item::Priority { labels, span } => priorities.push((labels, span)),
+                Item::Name { name, span } => {
+                    if let Some(first) = name_span {
+                        self.diagnostics.push(
+                            Diagnostic::error(span, "the theory is named twice")
+                                .with_related(first, "first named here"),
+                        );
+                    } else {
+                        name_span = Some(span);
+                        self.theory.name = Some(name.text(self.source).to_string());
+                    }
+                }
+                Item::Input { atoms, span } => self.add_input(atoms, span),
+                Item::Ignore {
+                    at_least,
+                    lits,
+                    span,
+                } => {
+                    let lits = self.filter_lits(&lits);
+                    let at_least = at_least.map_or(lits.len(), |k| k as usize);
+                    if at_least == 0 || at_least > lits.len() {
+                        self.diagnostics.push(
+                            Diagnostic::error(span, format!("`ignore {at_least} of` names only {} literals", lits.len()))
+                                .with_hint("the count must be between 1 and the number of literals"),
+                        );
+                    }
+                    self.theory.filters.push(RowFilter::Ignore { at_least, lits });
+                }
+                Item::Assert { lits, span } => {
+                    let lits = self.filter_lits(&lits);
+                    if lits.is_empty() {
+                        self.diagnostics.push(
+                            Diagnostic::error(span, "`assert{}` names no literal")
+                                .with_hint("an empty assert would leave out every row of the truth table"),
+                        );
+                    }
+                    self.theory.filters.push(RowFilter::Assert { lits });
+                }
+                Item::Output { parts, span } => self.add_outputs(parts, span),
+            }
+        }
+        self.theory.written_rules = self.theory.heads.len();
+        for (labels, span) in priorities {
+            self.add_priority(&labels, span);
+        }
+        self.check_priority_cycles();
+        self.check_filters_name_inputs();
+        self.close_axioms();
+    }
+
+    fn add_rule(&mut self, rule: ast::RuleItem) {
+        let id = self.theory.heads.len() as RuleId;
+        let mut label_text = None;
+        if let Some(label) = rule.label {
+            let text = label.text(self.source);
+            if let Some(&(_, first)) = self.labels.get(text) {
+                self.diagnostics.push(
+                    Diagnostic::error(label, format!("rule label `{text}` is used twice"))
+                        .with_label("second use")
+                        .with_related(first, "first used here")
+                        .with_hint("labels name rules in priorities, so each must be unique"),
+                );
+            } else {
+                self.labels.insert(text, (id, label));
+            }
+            label_text = Some(text.into());
+        }
+        for lit in &rule.body {
+            let lit = self.lit(lit);
+            self.theory.bodies.push(lit);
+        }
+        let head = self.lit(&rule.head);
+        self.theory.heads.push(head);
+        self.theory.kinds.push(match rule.arrow {
+            ast::Arrow::Strict => RuleKind::Strict,
+            ast::Arrow::Defeasible => RuleKind::Defeasible,
+            ast::Arrow::Warning => RuleKind::Warning,
+        });
+        self.theory.body_start.push(self.theory.bodies.len() as u32);
+        self.theory.labels.push(label_text);
+        self.theory.origins.push(Origin::Written(rule.span));
+    }
+
+    fn add_input(&mut self, atoms: Vec<ast::Lit>, span: Span) {
+        let mut group = Vec::new();
+        for lit in &atoms {
+            if lit.negated {
+                self.diagnostics.push(
+                    Diagnostic::error(lit.span, "inputs are atoms, not negated literals")
+                        .with_hint(format!("write `input{{{}}}`: the input can then be true or false", lit.atom.text(self.source))),
+                );
+                continue;
+            }
+            let atom = self.atom(lit.atom);
+            if let Some(&first) = self.input_spans.get(&atom) {
+                self.diagnostics.push(
+                    Diagnostic::error(lit.span, format!("`{}` is declared as an input twice", lit.atom.text(self.source)))
+                        .with_related(first, "first declared here"),
+                );
+                continue;
+            }
+            self.input_spans.insert(atom, lit.span);
+            group.push(atom);
+        }
+        if atoms.is_empty() {
+            self.diagnostics.push(Diagnostic::error(span, "`input{}` names no atom"));
+        }
+        if !group.is_empty() {
+            self.theory.inputs.push(InputGroup { atoms: group, span });
+        }
+    }
+
+    fn filter_lits(&mut self, lits: &[ast::Lit]) -> Vec<Lit> {
+        lits.iter().map(|l| self.lit(l)).collect()
+    }
+
+    fn add_outputs(&mut self, parts: Vec<ast::OutputPart>, span: Span) {
+        let description = parts.iter().find_map(|p| match p {
+            ast::OutputPart::Description(d) => Some(d.clone()),
+            ast::OutputPart::Lit { .. } => None,
+        });
+        let mut any = false;
+        for part in parts {
+            if let ast::OutputPart::Lit { algorithm, lit } = part {
+                any = true;
+                let lowered = self.lit(&lit);
+                self.theory.outputs.push(Output {
+                    lit: lowered,
+                    algorithm: algorithm.map_or(Algorithm::Beta, |(a, _)| a),
+                    description: description.clone(),
+                    span: lit.span,
+                });
+            }
+        }
+        if !any {
+            self.diagnostics.push(
+                Diagnostic::error(span, "`output{}` names no literal")
+                    .with_hint("write `output{beta offside, \"description\"}`"),
+            );
+        }
+    }
+
+    fn add_priority(&mut self, labels: &[Span], span: Span) {
+        let mut ids = Vec::with_capacity(labels.len());
+        for &label in labels {
+            let text = label.text(self.source);
+            match self.labels.get(text) {
+                Some(&(id, _)) => ids.push(Some(id)),
+                None => {
+                    let mut d = Diagnostic::error(label, format!("no rule is labelled `{text}`"))
+                        .with_label("undefined label");
+                    if let Some(similar) = self.similar_label(text) {
+                        d = d.with_hint(format!("did you mean `{similar}`?"));
+                    } else {
+                        d = d.with_hint("priorities name rules by their labels, as in `R1: a => b.`");
+                    }
+                    self.diagnostics.push(d);
+                    ids.push(None);
+                }
+            }
+        }
+        for pair in ids.windows(2) {
+            if let [Some(winner), Some(loser)] = *pair {
+                if winner == loser {
+                    self.diagnostics.push(
+                        Diagnostic::error(span, format!("rule `{}` is given priority over itself", label_of(&self.theory, winner)))
+                            .with_hint("priorities must be acyclic"),
+                    );
+                } else {
+                    self.theory.priorities.push((winner, loser));
+                }
+            }
+        }
+    }
+
+    fn similar_label(&self, text: &str) -> Option<&'s str> {
+        self.labels
+            .keys()
+            .copied()
+            .filter(|l| l.eq_ignore_ascii_case(text))
+            .min()
+    }
+
+    /// Tarjan over the priority graph; every strongly connected component with more than one
+    /// rule is a cycle.
+    fn check_priority_cycles(&mut self) {
+        let n = self.theory.heads.len();
+        let mut succ: Vec<Vec<RuleId>> = vec![Vec::new(); n];
+        for &(w, l) in &self.theory.priorities {
+            succ[w as usize].push(l);
+        }
+        for component in strongly_connected(&succ) {
+            if component.len() < 2 {
+                continue;
+            }
+            let mut names: Vec<String> = component.iter().map(|&r| label_of(&self.theory, r)).collect();
+            names.sort();
+            let first = component[0] as usize;
+            let span = match self.theory.origins[first] {
+                Origin::Written(s) => s,
+                Origin::Clause(_) => Span::default(),
+            };
+            let mut d = Diagnostic::error(span, format!("priorities form a cycle among rules {}", names.join(", ")))
+                .with_label("this rule is on the cycle")
+                .with_hint("the priority relation must be acyclic: remove one of these priorities");
+            for &r in &component[1..] {
+                if let Origin::Written(s) = self.theory.origins[r as usize] {
+                    d = d.with_related(s, "also on the cycle");
+                }
+            }
+            self.diagnostics.push(d);
+        }
+    }
+
+    fn check_filters_name_inputs(&mut self) {
+        let inputs: Vec<Atom> = self.theory.input_atoms().collect();
+        for output in &self.theory.outputs {
+            let atom = output.lit.atom();
+            let used = self.theory.heads.iter().chain(self.theory.bodies.iter()).any(|l| l.atom() == atom)
+                || self.theory.axioms.iter().any(|c| c.lits.iter().any(|l| l.atom() == atom))
+                || inputs.contains(&atom);
+            if !used {
+                self.diagnostics.push(
+                    Diagnostic::warning(output.span, format!("output `{}` appears in no rule, fact or input", self.theory.atom_name(atom)))
+                        .with_label("it can never be proved")
+                        .with_hint("check the spelling against the rules"),
+                );
+            }
+        }
+    }
+
+    fn close_axioms(&mut self) {
+        let axioms: Vec<Vec<Lit>> = self.theory.axioms.iter().map(|c| c.lits.clone()).collect();
+        let span_of = |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
+        match close(&axioms) {
+            ClosureOutcome::Closed { clauses, given } => {
+                for (index, (lits, given)) in clauses.into_iter().zip(given).enumerate() {
+                    for (i, &head) in lits.iter().enumerate() {
+                        for (j, &other) in lits.iter().enumerate() {
+                            if i != j {
+                                self.theory.bodies.push(other.complement());
+                            }
+                        }
+                        self.theory.heads.push(head);
+                        self.theory.kinds.push(RuleKind::Strict);
+                        self.theory.body_start.push(self.theory.bodies.len() as u32);
+                        self.theory.labels.push(None);
+                        self.theory.origins.push(Origin::Clause(index as u32));
+                    }
+                    let span = span_of(&self.theory, given);
+                    self.theory.closure.push(Clause { lits, span });
+                }
+            }
+            ClosureOutcome::Inconsistent { first, second } => {
+                let show = |lits: &[Lit]| {
+                    let parts: Vec<String> = lits.iter().map(|&l| self.theory.show(l).to_string()).collect();
+                    parts.join(", ")
+                };
+                let message = if first.0.is_empty() {
+                    "the axioms hold the empty clause, which is always false".to_string()
+                } else {
+                    format!(
+                        "the facts are inconsistent: they prove both `{}` and `{}`",
+                        show(&first.0),
+                        show(&second.0)
+                    )
+                };
+                let place = span_of(&self.theory, first.1).or_else(|| span_of(&self.theory, second.1));
+                let mut d = Diagnostic::error(place.unwrap_or_default(), message)
+                    .with_label("contradicted")
+                    .with_hint("remove one of the contradicting facts, or make one of them a defeasible rule `=> l.`");
+                if let Some(other) = span_of(&self.theory, second.1).filter(|s| Some(*s) != place) {
+                    d = d.with_related(other, "contradicts this");
+                }
+                if first.1.is_none() || second.1.is_none() {
+                    d = d.with_hint("the clash is derived by resolution from the clause axioms `\\/{…}`");
+                }
+                self.diagnostics.push(d);
+            }
+            ClosureOutcome::TooLarge => {
+                let span = self.theory.axioms.iter().find(|c| c.lits.len() > 1).and_then(|c| c.span);
+                self.diagnostics.push(
+                    Diagnostic::error(span.unwrap_or_default(), format!("the resolution closure of the clause axioms exceeds {MAX_CLOSURE} clauses"))
+                        .with_hint("write fewer or shorter clause axioms `\\/{…}`, or state them as rules"),
+                );
+            }
+        }
+    }
+}
+
+fn label_of(theory: &Theory, rule: RuleId) -> String {
+    theory.labels[rule as usize].as_deref().unwrap_or("?").to_string()
+}
+
+/// Strongly connected components of a small explicit graph (iterative Tarjan).
+pub(crate) fn strongly_connected(succ: &[Vec<RuleId>]) -> Vec<Vec<RuleId>> {
+    let n = succ.len();
+    let mut index = vec![u32::MAX; n];
+    let mut low = vec![0u32; n];
+    let mut on_stack = vec![false; n];
+    let mut stack = Vec::new();
+    let mut components = Vec::new();
+    let mut next = 0u32;
+    for root in 0..n {
+        if index[root] != u32::MAX || succ[root].is_empty() {
+            continue;
+        }
+        let mut frames: Vec<(usize, usize)> = vec![(root, 0)];
+        index[root] = next;
+        low[root] = next;
+        next += 1;
+        stack.push(root);
+        on_stack[root] = true;
+        while let Some(&mut (v, ref mut cursor)) = frames.last_mut() {
+            if let Some(&w) = succ[v].get(*cursor) {
+                *cursor += 1;
+                let w = w as usize;
+                if index[w] == u32::MAX {
+                    index[w] = next;
+                    low[w] = next;
+                    next += 1;
+                    stack.push(w);
+                    on_stack[w] = true;
+                    frames.push((w, 0));
+                } else if on_stack[w] {
+                    low[v] = low[v].min(index[w]);
+                }
+            } else {
+                frames.pop();
+                if let Some(&(parent, _)) = frames.last() {
+                    low[parent] = low[parent].min(low[v]);
+                }
+                if low[v] == index[v] {
+                    let mut component = Vec::new();
+                    while let Some(w) = stack.pop() {
+                        on_stack[w] = false;
+                        component.push(w as RuleId);
+                        if w == v {
+                            break;
+                        }
+                    }
+                    components.push(component);
+                }
+            }
+        }
+    }
+    components
+}

@@ -1,0 +1,222 @@
+//! Why an algorithm proves or refutes a literal: the supporting rule, each attacker and what
+//! became of it (discounted, beaten, standing), loops cut, and optionally the same for the
+//! antecedents, as a tree people can read.
+
+use crate::goal::{goal, successors, Goal, ATTACK, BETA, PI};
+use crate::literal::Lit;
+use crate::session::Session;
+use crate::theory::RuleKind;
+use proclaim_syntax::Algorithm;
+use std::collections::HashSet;
+use std::fmt;
+
+/// One line of an explanation with the lines that justify it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Explanation {
+    pub text: String,
+    pub children: Vec<Explanation>,
+}
+
+impl Explanation {
+    fn leaf(text: impl Into<String>) -> Explanation {
+        Explanation {
+            text: text.into(),
+            children: Vec::new(),
+        }
+    }
+
+    fn write(&self, f: &mut fmt::Formatter<'_>, depth: usize) -> fmt::Result {
+        writeln!(f, "{}{}", "  ".repeat(depth), self.text)?;
+        self.children.iter().try_for_each(|c| c.write(f, depth + 1))
+    }
+}
+
+impl fmt::Display for Explanation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write(f, 0)
+    }
+}
+
+impl Session {
+    /// Explains `±alg lit`, following antecedents down to `depth` levels (each literal once).
+    pub fn explain(&mut self, alg: Algorithm, lit: Lit, depth: usize) -> Explanation {
+        let mut seen = HashSet::new();
+        self.explain_at(alg, lit, depth, &mut seen)
+    }
+
+    fn explain_at(
+        &mut self,
+        alg: Algorithm,
+        lit: Lit,
+        depth: usize,
+        seen: &mut HashSet<(Algorithm, Lit)>,
+    ) -> Explanation {
+        let proved = self.prove(alg, lit);
+        let engine = self.engine().clone();
+        let theory = engine.theory();
+        let head = format!("{}{} {}", if proved { '+' } else { '-' }, alg, theory.show(lit));
+        if !seen.insert((alg, lit)) {
+            return Explanation::leaf(format!("{head} (explained above)"));
+        }
+        let mut node = Explanation::leaf(head);
+        match alg {
+            Algorithm::Mu => {
+                node.children.push(Explanation::leaf(if proved {
+                    "follows from the facts and strict rules alone"
+                } else {
+                    "no chain of facts and strict rules leads to it"
+                }));
+                if proved && depth > 0 {
+                    if let Some(r) = engine.rules_for(lit).iter().copied().find(|&r| {
+                        engine.kind(r) == RuleKind::Strict
+                            && engine.body(r).iter().all(|a| self.mu()[a.index()])
+                    }) {
+                        let mut by = Explanation::leaf(format!("by {}", theory.show_rule(r)));
+                        for &a in engine.body(r) {
+                            by.children.push(self.explain_at(Algorithm::Mu, a, depth - 1, seen));
+                        }
+                        node.children.push(by);
+                    }
+                }
+            }
+            Algorithm::Alpha | Algorithm::Delta => {
+                let word = if alg == Algorithm::Alpha { "both" } else { "either" };
+                node.children.push(Explanation::leaf(format!("{alg} needs {word} pi and beta")));
+                for part in [Algorithm::Pi, Algorithm::Beta] {
+                    node.children.push(self.explain_at(part, lit, depth, seen));
+                }
+            }
+            Algorithm::Beta | Algorithm::Pi => {
+                self.explain_defeasible(alg, lit, depth, seen, &mut node);
+            }
+        }
+        node
+    }
+
+    fn explain_defeasible(
+        &mut self,
+        alg: Algorithm,
+        q: Lit,
+        depth: usize,
+        seen: &mut HashSet<(Algorithm, Lit)>,
+        node: &mut Explanation,
+    ) {
+        let engine = self.engine().clone();
+        let theory = engine.theory();
+        let show = |l: Lit| theory.show(l).to_string();
+        if self.mu()[q.index()] {
+            node.children.push(Explanation::leaf(format!("+mu {}: definitely proved", show(q))));
+            return;
+        }
+        if self.mu()[q.complement().index()] {
+            node.children.push(Explanation::leaf(format!(
+                "+mu {}: the complement is definitely proved",
+                show(q.complement())
+            )));
+            return;
+        }
+        // The algorithm that decides whether an attacker counts.
+        let attack_alg = if alg == Algorithm::Beta { Algorithm::Beta } else { Algorithm::Pi };
+        let attack_word = if alg == Algorithm::Beta { "proved" } else { "supported" };
+        let applicable = |s: &mut Session, r: u32, a: Algorithm| -> Option<Lit> {
+            engine.body(r).iter().copied().find(|&x| !s.prove(a, x))
+        };
+        let mut supporter = None;
+        let mut failed = Vec::new();
+        for &r in engine.rules_for(q) {
+            if !engine.kind(r).supports() {
+                continue;
+            }
+            match applicable(self, r, alg) {
+                None => {
+                    supporter = Some(r);
+                    break;
+                }
+                Some(a) => failed.push((r, a)),
+            }
+        }
+        let Some(r) = supporter else {
+            if failed.is_empty() {
+                node.children.push(Explanation::leaf(format!("no strict or defeasible rule has {} as consequent", show(q))));
+            }
+            for (r, a) in failed {
+                let mut line = Explanation::leaf(format!(
+                    "{} does not apply: antecedent {} is not proved",
+                    theory.rule_name(r),
+                    show(a)
+                ));
+                if depth > 0 {
+                    line.children.push(self.explain_at(alg, a, depth - 1, seen));
+                }
+                node.children.push(line);
+            }
+            self.note_loop(alg, q, node);
+            return;
+        };
+        let mut line = Explanation::leaf(format!("supported by {}", theory.show_rule(r)));
+        if depth > 0 {
+            for &a in engine.body(r) {
+                line.children.push(self.explain_at(alg, a, depth - 1, seen));
+            }
+        }
+        node.children.push(line);
+        for &s in engine.rules_for(q.complement()) {
+            let name = theory.rule_name(s);
+            let counted = if alg == Algorithm::Beta {
+                applicable(self, s, attack_alg)
+            } else {
+                engine.body(s).iter().copied().find(|&x| !self.supported(x))
+            };
+            if let Some(a) = counted {
+                node.children.push(Explanation::leaf(format!(
+                    "attacker {name} is discounted: its antecedent {} is not {attack_word}",
+                    show(a)
+                )));
+                continue;
+            }
+            let beaten_by = engine.superiors_of(s).iter().copied().find(|&t| {
+                engine.head(t) == q && engine.kind(t).supports() && applicable(self, t, alg).is_none()
+            });
+            node.children.push(Explanation::leaf(match beaten_by {
+                Some(t) => format!("attacker {name} is beaten by {}", theory.rule_name(t)),
+                None => format!("attacker {name} stands: its antecedent is {attack_word} and no applicable rule for {} beats it", show(q)),
+            }));
+        }
+        self.note_loop(alg, q, node);
+    }
+
+    /// Whether the support goal (used by π for attackers) holds.
+    fn supported(&mut self, lit: Lit) -> bool {
+        self.support_value(lit)
+    }
+
+    /// Adds a line when the goal lies on a cycle of the goal graph, where a goal met again on the
+    /// proof path fails (cdl.md §4).
+    fn note_loop(&mut self, alg: Algorithm, q: Lit, node: &mut Explanation) {
+        let kind = if alg == Algorithm::Beta { BETA } else { PI };
+        if self.on_cycle(goal(q, kind)) {
+            node.children.push(Explanation::leaf(
+                "it lies on a loop of the goal graph: a goal met again on its own proof path fails",
+            ));
+        }
+    }
+
+    /// Whether `start` reaches itself in the goal graph (bounded search; explanations only).
+    fn on_cycle(&self, start: Goal) -> bool {
+        let engine = self.engine().clone();
+        let mut seen = HashSet::new();
+        let mut work = Vec::new();
+        successors(&engine, self.mu(), start, &mut work, |_| true);
+        while let Some(g) = work.pop() {
+            let g = g & !ATTACK;
+            if g == start {
+                return true;
+            }
+            if seen.len() > 10_000 || !seen.insert(g) {
+                continue;
+            }
+            successors(&engine, self.mu(), g, &mut work, |_| true);
+        }
+        false
+    }
+}

@@ -1,0 +1,45 @@
+//! Clausal defeasible logic (`../shared/spec/cdl.md`): a syntax tree is checked into a
+//! [`Theory`], compiled into an [`Engine`], and asked through a [`Session`] that holds input
+//! values and re-proves only what an input change reaches. No I/O happens here.
+//!
+//! ```
+//! use proclaim_cdl::{load, Algorithm, Language, Session};
+//! let theory = load("bird. R2: bird => fly. R3: penguin => ~fly. R3 > R2.", Language::Dl).unwrap();
+//! let fly = theory.lit("fly").unwrap();
+//! let mut session = Session::new(proclaim_cdl::Engine::new(theory));
+//! assert!(session.prove(Algorithm::Beta, fly));
+//! ```
+
+mod check;
+mod closure;
+mod engine;
+mod explain;
+mod goal;
+mod literal;
+mod query;
+mod reference;
+mod session;
+mod table;
+mod theory;
+
+pub use check::{check, Checked};
+pub use closure::MAX_CLOSURE;
+pub use engine::Engine;
+pub use explain::Explanation;
+pub use literal::{Atom, Lit, RuleId};
+pub use proclaim_syntax::{Algorithm, Diagnostic, Language};
+pub use query::Formula;
+pub use reference::ReferenceProver;
+pub use session::{InputConflict, Session};
+pub use table::{truth_table, Column, Row, Table, TableError, MAX_ROWS};
+pub use theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, RuleRef, Theory};
+
+/// Parses and checks a theory text: the theory, or every error (warnings are dropped here; use
+/// [`check`] to see them).
+pub fn load(source: &str, language: Language) -> Result<Theory, Vec<Diagnostic>> {
+    let checked = check(proclaim_syntax::parse(source, language), source);
+    match checked.theory {
+        Some(theory) => Ok(theory),
+        None => Err(checked.diagnostics.into_iter().filter(Diagnostic::is_error).collect()),
+    }
+}

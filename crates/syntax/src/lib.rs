@@ -1,0 +1,50 @@
+//! The languages theories are written in: `.dl` (clausal defeasible logic with Rock's DPL
+//! input/output statements) and SPINdle's `.dfl`, parsed to one syntax tree with diagnostics.
+//!
+//! Parsing never fails: it returns the statements that parsed and a diagnostic for each problem.
+//! This crate knows nothing of meaning (labels, priorities, consistency): see `proclaim-cdl`.
+
+pub mod ast;
+mod dfl;
+pub mod diagnostic;
+pub mod lexer;
+mod parse;
+pub mod span;
+
+lalrpop_util::lalrpop_mod!(
+    #[allow(clippy::all, clippy::pedantic, unused)]
+    grammar
+);
+
+pub use ast::{Algorithm, Arrow, Item, Lit, OutputPart, Query, RuleItem};
+pub use dfl::parse_dfl;
+pub use diagnostic::{render, Diagnostic, Severity};
+pub use parse::{parse_dl, parse_query, NameTok, ParsedTheory, UserError};
+pub use span::{line_column, Span};
+
+/// The two theory languages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Language {
+    /// `.dl`, this project's language.
+    Dl,
+    /// `.dfl`, SPINdle's defeasible logic format.
+    Dfl,
+}
+
+impl Language {
+    /// `.dfl` files are SPINdle's; everything else is read as `.dl`.
+    pub fn from_path(path: &std::path::Path) -> Language {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(ext) if ext.eq_ignore_ascii_case("dfl") => Language::Dfl,
+            _ => Language::Dl,
+        }
+    }
+}
+
+/// Parses a text in the given language.
+pub fn parse(source: &str, language: Language) -> ParsedTheory {
+    match language {
+        Language::Dl => parse_dl(source),
+        Language::Dfl => parse_dfl(source),
+    }
+}

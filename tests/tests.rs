@@ -1,0 +1,14 @@
+//! The one integration-test binary: one module per area.
+
+mod cli;
+mod properties;
+mod reasoner;
+mod syntax;
+mod theories;
+
+/// Where the shared corpus and specs live, when present beside the project.
+#[allow(dead_code)]
+pub fn shared_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
+    dir.is_dir().then_some(dir)
+}
