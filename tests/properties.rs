@@ -1,1 +1,182 @@
-//! placeholder
+//! cdl.md §5 over random theories: the fast engine agrees with the reference prover on every
+//! literal and algorithm; the hierarchy and consistency hold; parsing never panics.
+
+use proclaim_cdl::{load, Algorithm, Engine, Language, Lit, ReferenceProver, Session};
+use proptest::prelude::*;
+
+const ATOMS: usize = 5;
+
+fn lit() -> impl Strategy<Value = String> {
+    (0..ATOMS, any::<bool>()).prop_map(|(a, neg)| format!("{}a{a}", if neg { "~" } else { "" }))
+}
+
+/// A random theory as text: rules of every kind (with loops, since any atom may lead to any),
+/// facts, clause facts and acyclic priorities, plus random input values.
+fn theory() -> impl Strategy<Value = (String, Vec<(usize, Option<bool>)>)> {
+    let rule = (
+        prop::collection::vec(lit(), 0..3),
+        prop_oneof![3 => Just("=>"), 1 => Just("->"), 1 => Just("~>")],
+        lit(),
+    );
+    (
+        prop::collection::vec(rule, 1..9),
+        prop::collection::vec(lit(), 0..3),
+        prop::collection::vec(prop::collection::vec(lit(), 2..4), 0..2),
+        prop::collection::vec((0..9usize, 0..9usize), 0..6),
+        prop::collection::vec((0..ATOMS, prop::option::of(any::<bool>())), 0..3),
+    )
+        .prop_map(|(rules, facts, clauses, priorities, inputs)| {
+            let mut text = String::new();
+            for (i, (body, arrow, head)) in rules.iter().enumerate() {
+                text += &format!("r{i}: {} {arrow} {head}.\n", body.join(", "));
+            }
+            for f in facts {
+                text += &format!("{f}.\n");
+            }
+            for c in clauses {
+                text += &format!("\\/{{{}}}.\n", c.join(", "));
+            }
+            for (a, b) in priorities {
+                // Higher index beats lower: always acyclic.
+                let (w, l) = (a.max(b), a.min(b));
+                if w != l && w < rules.len() {
+                    text += &format!("r{w} > r{l}.\n");
+                }
+            }
+            (text, inputs)
+        })
+}
+
+fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseError> {
+    let Ok(theory) = load(text, Language::Dl) else {
+        return Ok(()); // inconsistent facts: a load error, nothing to prove
+    };
+    let mut session = Session::new(Engine::new(theory.clone()));
+    let mut facts = Vec::new();
+    for &(a, value) in inputs {
+        let Some(atom) = theory.atom(&format!("a{a}")) else { continue };
+        if session.set_input(atom, value).is_err() {
+            continue;
+        }
+    }
+    for atom in 0..theory.atom_count() as u32 {
+        if let Some(v) = session.input(proclaim_cdl::Atom(atom)) {
+            facts.push(Lit::new(proclaim_cdl::Atom(atom), !v));
+        }
+    }
+    let reference = ReferenceProver::new(&theory, &facts).expect("session accepted these inputs");
+    let lits = theory.atom_count() as u32 * 2;
+    for alg in Algorithm::ALL {
+        for l in (0..lits).map(Lit) {
+            let fast = session.prove(alg, l);
+            let slow = reference.prove(alg, l);
+            prop_assert_eq!(fast, slow, "{} {} on\n{}", alg, theory.show(l), text);
+        }
+    }
+    // Hierarchy: +μ ⇒ +α ⇒ (+π ∧ +β), (+π ∨ +β) ⇒ +δ.
+    let strict_consistent = (0..lits / 2).all(|a| {
+        !(session.prove(Algorithm::Mu, Lit(2 * a)) && session.prove(Algorithm::Mu, Lit(2 * a + 1)))
+    });
+    for l in (0..lits).map(Lit) {
+        let [mu, pi, beta, alpha, delta] = Algorithm::ALL.map(|a| session.prove(a, l));
+        prop_assert!(!mu || alpha, "mu without alpha: {}\n{}", theory.show(l), text);
+        prop_assert!(!alpha || (pi && beta));
+        prop_assert!(!(pi || beta) || delta);
+        // cdl.md §5.3 as stated fails for atoms on a dependency cycle under the literal reading of
+        // §4 (see `consistency_fails_on_a_self_attacking_loop` in reasoner.rs); it is checked for
+        // the atoms no cycle passes through, where standard defeasible logic guarantees it.
+        if strict_consistent && !on_cycle(&theory, l.atom()) {
+            for alg in [Algorithm::Mu, Algorithm::Pi, Algorithm::Beta, Algorithm::Alpha] {
+                let both = session.prove(alg, l) && session.prove(alg, l.complement());
+                prop_assert!(!both, "{} proves {} and its complement\n{}", alg, theory.show(l), text);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether an atom lies on a cycle of the atom dependency graph (an atom depends on the atoms
+/// of the antecedents of every rule for it or its complement).
+fn on_cycle(theory: &proclaim_cdl::Theory, start: proclaim_cdl::Atom) -> bool {
+    let deps = |a: proclaim_cdl::Atom| -> Vec<proclaim_cdl::Atom> {
+        theory.rules().filter(|r| r.head.atom() == a).flat_map(|r| r.body.iter().map(|l| l.atom())).collect()
+    };
+    let mut seen = std::collections::HashSet::new();
+    let mut work = deps(start);
+    while let Some(a) = work.pop() {
+        if a == start {
+            return true;
+        }
+        if seen.insert(a) {
+            work.extend(deps(a));
+        }
+    }
+    false
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1500))]
+
+    #[test]
+    fn engine_agrees_with_the_reference_prover((text, inputs) in theory()) {
+        agree(&text, &inputs)?;
+    }
+
+    #[test]
+    fn input_changes_agree_with_a_fresh_session(
+        (text, first) in theory(),
+        second in prop::collection::vec((0..ATOMS, prop::option::of(any::<bool>())), 1..4),
+    ) {
+        let Ok(theory) = load(&text, Language::Dl) else { return Ok(()) };
+        let engine = std::sync::Arc::new(Engine::new(theory.clone()));
+        let mut incremental = Session::new(engine.clone());
+        let set = |s: &mut Session, values: &[(usize, Option<bool>)]| {
+            for &(a, v) in values {
+                if let Some(atom) = theory.atom(&format!("a{a}")) {
+                    let _ = s.set_input(atom, v);
+                }
+            }
+        };
+        set(&mut incremental, &first);
+        let lits = theory.atom_count() as u32 * 2;
+        for alg in Algorithm::ALL {
+            for l in (0..lits).map(Lit) {
+                incremental.prove(alg, l);
+            }
+        }
+        set(&mut incremental, &second);
+        let mut fresh = Session::new(engine);
+        for atom in 0..theory.atom_count() as u32 {
+            let atom = proclaim_cdl::Atom(atom);
+            fresh.set_input(atom, incremental.input(atom)).unwrap();
+        }
+        for alg in Algorithm::ALL {
+            for l in (0..lits).map(Lit) {
+                prop_assert_eq!(incremental.prove(alg, l), fresh.prove(alg, l), "{} {}\n{}", alg, theory.show(l), text);
+            }
+        }
+    }
+
+    #[test]
+    fn parsing_random_bytes_never_panics(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
+        let text = String::from_utf8_lossy(&bytes);
+        let parsed = proclaim_syntax::parse_dl(&text);
+        let _ = proclaim_cdl::check(parsed, &text);
+        let _ = proclaim_syntax::parse_dfl(&text);
+        let _ = proclaim_syntax::parse_query(&text);
+    }
+
+    #[test]
+    fn parsing_random_token_soup_never_panics(
+        parts in prop::collection::vec(prop::sample::select(vec![
+            "a", "~", "b", ".", ",", ":", "{", "}", "\\/", "/\\", "=>", "->", "~>", ">", "R1", "input",
+            "output", "ignore", "assert", "name", "2", "of", "\"d\"", "beta", " ", "\n", "%c\n", "/*", "*/",
+        ]), 0..60)
+    ) {
+        let text: String = parts.concat();
+        let parsed = proclaim_syntax::parse_dl(&text);
+        let checked = proclaim_cdl::check(parsed, &text);
+        let rendered = proclaim_syntax::render(&checked.diagnostics, "soup.dl", &text, false);
+        prop_assert!(checked.theory.is_some() || !rendered.is_empty());
+    }
+}

@@ -192,3 +192,14 @@ fn explanations_name_supporters_and_attackers() {
     let text = s.explain(Algorithm::Beta, fly.complement(), 0).to_string();
     assert!(text.contains("attacker R3 stands"), "{text}");
 }
+
+#[test]
+fn consistency_fails_on_a_self_attacking_loop() {
+    // Found by the property test. Read literally, cdl.md §4 proves both a2 and ~a2 by β:
+    // r4's attack on ~a2 needs ~a2, which is met again on its own proof path and fails, while
+    // a2's proof needs ~a2 from a fresh history. This pins the normative reading (engine and
+    // reference agree) until the spec decides otherwise; §5.3 holds off dependency cycles.
+    let theory = "r3: => ~a2. r4: ~a2 => a2. r4 > r3.";
+    check(theory, "a2", "--+-+");
+    check(theory, "~a2", "--+-+");
+}

@@ -292,22 +292,23 @@ impl Session {
         for &l in &region {
             self.mu[l.index()] = false;
         }
+        // Count first, with the whole region false, then seed: a literal that becomes true is
+        // counted down exactly once, by propagation.
+        for &h in &region {
+            for &r in engine.rules_for(h) {
+                if engine.kind(r) == RuleKind::Strict {
+                    self.counters[r as usize] =
+                        engine.body(r).iter().filter(|a| !self.mu[a.index()]).count() as u32;
+                }
+            }
+        }
         self.queue.clear();
         for &h in &region {
             let input_fact = self.inputs[h.atom().0 as usize] == Some(!h.is_negated());
-            let mut derived = input_fact;
-            for &r in engine.rules_for(h) {
-                if engine.kind(r) != RuleKind::Strict {
-                    continue;
-                }
-                let missing = engine
-                    .body(r)
-                    .iter()
-                    .filter(|a| !self.mu[a.index()])
-                    .count() as u32;
-                self.counters[r as usize] = missing;
-                derived |= missing == 0;
-            }
+            let derived = input_fact
+                || engine.rules_for(h).iter().any(|&r| {
+                    engine.kind(r) == RuleKind::Strict && self.counters[r as usize] == 0
+                });
             if derived && !self.mu[h.index()] {
                 self.mu[h.index()] = true;
                 self.queue.push(h);
