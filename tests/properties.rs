@@ -54,7 +54,9 @@ fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseErr
     let mut session = Session::new(Engine::new(theory.clone()));
     let mut facts = Vec::new();
     for &(a, value) in inputs {
-        let Some(atom) = theory.atom(&format!("a{a}")) else { continue };
+        let Some(atom) = theory.atom(&format!("a{a}")) else {
+            continue;
+        };
         if session.set_input(atom, value).is_err() {
             continue;
         }
@@ -79,16 +81,32 @@ fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseErr
     });
     for l in (0..lits).map(Lit) {
         let [mu, pi, beta, alpha, delta] = Algorithm::ALL.map(|a| session.prove(a, l));
-        prop_assert!(!mu || alpha, "mu without alpha: {}\n{}", theory.show(l), text);
+        prop_assert!(
+            !mu || alpha,
+            "mu without alpha: {}\n{}",
+            theory.show(l),
+            text
+        );
         prop_assert!(!alpha || (pi && beta));
         prop_assert!(!(pi || beta) || delta);
         // cdl.md §5.3 as stated fails for atoms on a dependency cycle under the literal reading of
         // §4 (see `consistency_fails_on_a_self_attacking_loop` in reasoner.rs); it is checked for
         // the atoms no cycle passes through, where standard defeasible logic guarantees it.
         if strict_consistent && !on_cycle(&theory, l.atom()) {
-            for alg in [Algorithm::Mu, Algorithm::Pi, Algorithm::Beta, Algorithm::Alpha] {
+            for alg in [
+                Algorithm::Mu,
+                Algorithm::Pi,
+                Algorithm::Beta,
+                Algorithm::Alpha,
+            ] {
                 let both = session.prove(alg, l) && session.prove(alg, l.complement());
-                prop_assert!(!both, "{} proves {} and its complement\n{}", alg, theory.show(l), text);
+                prop_assert!(
+                    !both,
+                    "{} proves {} and its complement\n{}",
+                    alg,
+                    theory.show(l),
+                    text
+                );
             }
         }
     }
@@ -99,7 +117,11 @@ fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseErr
 /// of the antecedents of every rule for it or its complement).
 fn on_cycle(theory: &proclaim_cdl::Theory, start: proclaim_cdl::Atom) -> bool {
     let deps = |a: proclaim_cdl::Atom| -> Vec<proclaim_cdl::Atom> {
-        theory.rules().filter(|r| r.head.atom() == a).flat_map(|r| r.body.iter().map(|l| l.atom())).collect()
+        theory
+            .rules()
+            .filter(|r| r.head.atom() == a)
+            .flat_map(|r| r.body.iter().map(|l| l.atom()))
+            .collect()
     };
     let mut seen = std::collections::HashSet::new();
     let mut work = deps(start);

@@ -10,8 +10,18 @@ fn check(theory: &str, query: &str, expect: &str) {
     let mut session = Session::new(Engine::new(theory));
     let mut got = String::new();
     let mut oracle = String::new();
-    for alg in [Algorithm::Mu, Algorithm::Pi, Algorithm::Beta, Algorithm::Alpha, Algorithm::Delta] {
-        got.push(if session.prove_formula(alg, &formula) { '+' } else { '-' });
+    for alg in [
+        Algorithm::Mu,
+        Algorithm::Pi,
+        Algorithm::Beta,
+        Algorithm::Alpha,
+        Algorithm::Delta,
+    ] {
+        got.push(if session.prove_formula(alg, &formula) {
+            '+'
+        } else {
+            '-'
+        });
         if let Formula::Lit(l) = formula {
             oracle.push(if reference.prove(alg, l) { '+' } else { '-' });
         }
@@ -81,7 +91,11 @@ fn positive_loop() {
 
 #[test]
 fn loop_under_attack() {
-    check("R0: => p. R1: a => ~p. R2: b => a. R3: a => b.", "p", "-++++");
+    check(
+        "R0: => p. R1: a => ~p. R2: b => a. R3: a => b.",
+        "p",
+        "-++++",
+    );
 }
 
 #[test]
@@ -156,10 +170,16 @@ fn inputs_re_prove_only_what_depends_on_them() {
     assert!(s.prove(Algorithm::Beta, light));
     assert!(s.prove(Algorithm::Beta, busy), "untouched by the door");
     let after_door = s.evaluations() - before;
-    assert!(after_door > 0 && after_door < 12, "re-proved {after_door} goals");
+    assert!(
+        after_door > 0 && after_door < 12,
+        "re-proved {after_door} goals"
+    );
     s.set_input(time, None).unwrap();
     s.set_input(door, Some(false)).unwrap();
-    assert!(!s.prove(Algorithm::Beta, cook), "unknown time left is not time left");
+    assert!(
+        !s.prove(Algorithm::Beta, cook),
+        "unknown time left is not time left"
+    );
     assert!(!s.prove(Algorithm::Beta, light));
     assert!(s.prove(Algorithm::Beta, light.complement()));
 }

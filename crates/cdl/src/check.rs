@@ -7,7 +7,6 @@ use crate::literal::{Atom, Lit, RuleId};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, ParsedTheory, Span};
 use rustc_hash::FxHashMap;
-use std::sync::Arc;
 
 /// A theory, or everything wrong with it. Warnings come with a theory too.
 #[derive(Debug)]
@@ -23,7 +22,6 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
     let mut checker = Checker {
         source,
         theory: Theory::default(),
-        names: FxHashMap::default(),
         diagnostics: parsed.diagnostics,
         labels: FxHashMap::default(),
         input_spans: FxHashMap::default(),
@@ -41,7 +39,6 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
 struct Checker<'s> {
     source: &'s str,
     theory: Theory,
-    names: FxHashMap<&'s str, Atom>,
     diagnostics: Vec<Diagnostic>,
     labels: FxHashMap<&'s str, (RuleId, Span)>,
     input_spans: FxHashMap<Atom, Span>,
@@ -49,16 +46,7 @@ struct Checker<'s> {
 
 impl<'s> Checker<'s> {
     fn atom(&mut self, span: Span) -> Atom {
-        let name = span.text(self.source);
-        if let Some(&atom) = self.names.get(name) {
-            return atom;
-        }
-        let atom = Atom(self.theory.atom_names.len() as u32);
-        let shared: Arc<str> = Arc::from(name);
-        self.theory.atom_names.push(shared.clone());
-        self.theory.atom_index.insert(shared, atom);
-        self.names.insert(name, atom);
-        atom
+        self.theory.atoms.intern(span.text(self.source))
     }
 
     fn lit(&mut self, lit: &ast::Lit) -> Lit {
@@ -66,6 +54,15 @@ impl<'s> Checker<'s> {
     }
 
     fn lower(&mut self, items: Vec<Item>) {
+        // Sizes from the statements, so no table regrows while millions of rules go in.
+        let rules = items.iter().filter(|i| matches!(i, Item::Rule(_))).count();
+        self.labels.reserve(rules);
+        self.theory.atoms.reserve(rules + 1);
+        self.theory.heads.reserve(rules);
+        self.theory.kinds.reserve(rules);
+        self.theory.body_start.reserve(rules + 1);
+        self.theory.labels.reserve(rules);
+        self.theory.origins.reserve(rules);
         let mut priorities = Vec::new();
         let mut name_span: Option<Span> = None;
         self.theory.body_start.push(0);
@@ -107,18 +104,27 @@ impl<'s> Checker<'s> {
                     let at_least = at_least.map_or(lits.len(), |k| k as usize);
                     if at_least == 0 || at_least > lits.len() {
                         self.diagnostics.push(
-                            Diagnostic::error(span, format!("`ignore {at_least} of` names only {} literals", lits.len()))
-                                .with_hint("the count must be between 1 and the number of literals"),
+                            Diagnostic::error(
+                                span,
+                                format!(
+                                    "`ignore {at_least} of` names only {} literals",
+                                    lits.len()
+                                ),
+                            )
+                            .with_hint("the count must be between 1 and the number of literals"),
                         );
                     }
-                    self.theory.filters.push(RowFilter::Ignore { at_least, lits });
+                    self.theory
+                        .filters
+                        .push(RowFilter::Ignore { at_least, lits });
                 }
                 Item::Assert { lits, span } => {
                     let lits = self.filter_lits(&lits);
                     if lits.is_empty() {
                         self.diagnostics.push(
-                            Diagnostic::error(span, "`assert{}` names no literal")
-                                .with_hint("an empty assert would leave out every row of the truth table"),
+                            Diagnostic::error(span, "`assert{}` names no literal").with_hint(
+                                "an empty assert would leave out every row of the truth table",
+                            ),
                         );
                     }
                     self.theory.filters.push(RowFilter::Assert { lits });
@@ -137,7 +143,7 @@ impl<'s> Checker<'s> {
 
     fn add_rule(&mut self, rule: ast::RuleItem) {
         let id = self.theory.heads.len() as RuleId;
-        let mut label_text = None;
+        let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
             if let Some(&(_, first)) = self.labels.get(text) {
@@ -150,7 +156,9 @@ impl<'s> Checker<'s> {
             } else {
                 self.labels.insert(text, (id, label));
             }
-            label_text = Some(text.into());
+            let start = self.theory.label_text.len() as u32;
+            self.theory.label_text.push_str(text);
+            label_range = (start, self.theory.label_text.len() as u32);
         }
         for lit in &rule.body {
             let lit = self.lit(lit);
@@ -164,7 +172,7 @@ impl<'s> Checker<'s> {
             ast::Arrow::Warning => RuleKind::Warning,
         });
         self.theory.body_start.push(self.theory.bodies.len() as u32);
-        self.theory.labels.push(label_text);
+        self.theory.labels.push(label_range);
         self.theory.origins.push(Origin::Written(rule.span));
     }
 
@@ -174,15 +182,24 @@ impl<'s> Checker<'s> {
             if lit.negated {
                 self.diagnostics.push(
                     Diagnostic::error(lit.span, "inputs are atoms, not negated literals")
-                        .with_hint(format!("write `input{{{}}}`: the input can then be true or false", lit.atom.text(self.source))),
+                        .with_hint(format!(
+                            "write `input{{{}}}`: the input can then be true or false",
+                            lit.atom.text(self.source)
+                        )),
                 );
                 continue;
             }
             let atom = self.atom(lit.atom);
             if let Some(&first) = self.input_spans.get(&atom) {
                 self.diagnostics.push(
-                    Diagnostic::error(lit.span, format!("`{}` is declared as an input twice", lit.atom.text(self.source)))
-                        .with_related(first, "first declared here"),
+                    Diagnostic::error(
+                        lit.span,
+                        format!(
+                            "`{}` is declared as an input twice",
+                            lit.atom.text(self.source)
+                        ),
+                    )
+                    .with_related(first, "first declared here"),
                 );
                 continue;
             }
@@ -190,7 +207,8 @@ impl<'s> Checker<'s> {
             group.push(atom);
         }
         if atoms.is_empty() {
-            self.diagnostics.push(Diagnostic::error(span, "`input{}` names no atom"));
+            self.diagnostics
+                .push(Diagnostic::error(span, "`input{}` names no atom"));
         }
         if !group.is_empty() {
             self.theory.inputs.push(InputGroup { atoms: group, span });
@@ -239,7 +257,9 @@ impl<'s> Checker<'s> {
                     if let Some(similar) = self.similar_label(text) {
                         d = d.with_hint(format!("did you mean `{similar}`?"));
                     } else {
-                        d = d.with_hint("priorities name rules by their labels, as in `R1: a => b.`");
+                        d = d.with_hint(
+                            "priorities name rules by their labels, as in `R1: a => b.`",
+                        );
                     }
                     self.diagnostics.push(d);
                     ids.push(None);
@@ -250,8 +270,14 @@ impl<'s> Checker<'s> {
             if let [Some(winner), Some(loser)] = *pair {
                 if winner == loser {
                     self.diagnostics.push(
-                        Diagnostic::error(span, format!("rule `{}` is given priority over itself", label_of(&self.theory, winner)))
-                            .with_hint("priorities must be acyclic"),
+                        Diagnostic::error(
+                            span,
+                            format!(
+                                "rule `{}` is given priority over itself",
+                                label_of(&self.theory, winner)
+                            ),
+                        )
+                        .with_hint("priorities must be acyclic"),
                     );
                 } else {
                     self.theory.priorities.push((winner, loser));
@@ -280,16 +306,22 @@ impl<'s> Checker<'s> {
             if component.len() < 2 {
                 continue;
             }
-            let mut names: Vec<String> = component.iter().map(|&r| label_of(&self.theory, r)).collect();
+            let mut names: Vec<String> = component
+                .iter()
+                .map(|&r| label_of(&self.theory, r))
+                .collect();
             names.sort();
             let first = component[0] as usize;
             let span = match self.theory.origins[first] {
                 Origin::Written(s) => s,
                 Origin::Clause(_) => Span::default(),
             };
-            let mut d = Diagnostic::error(span, format!("priorities form a cycle among rules {}", names.join(", ")))
-                .with_label("this rule is on the cycle")
-                .with_hint("the priority relation must be acyclic: remove one of these priorities");
+            let mut d = Diagnostic::error(
+                span,
+                format!("priorities form a cycle among rules {}", names.join(", ")),
+            )
+            .with_label("this rule is on the cycle")
+            .with_hint("the priority relation must be acyclic: remove one of these priorities");
             for &r in &component[1..] {
                 if let Origin::Written(s) = self.theory.origins[r as usize] {
                     d = d.with_related(s, "also on the cycle");
@@ -303,14 +335,29 @@ impl<'s> Checker<'s> {
         let inputs: Vec<Atom> = self.theory.input_atoms().collect();
         for output in &self.theory.outputs {
             let atom = output.lit.atom();
-            let used = self.theory.heads.iter().chain(self.theory.bodies.iter()).any(|l| l.atom() == atom)
-                || self.theory.axioms.iter().any(|c| c.lits.iter().any(|l| l.atom() == atom))
+            let used = self
+                .theory
+                .heads
+                .iter()
+                .chain(self.theory.bodies.iter())
+                .any(|l| l.atom() == atom)
+                || self
+                    .theory
+                    .axioms
+                    .iter()
+                    .any(|c| c.lits.iter().any(|l| l.atom() == atom))
                 || inputs.contains(&atom);
             if !used {
                 self.diagnostics.push(
-                    Diagnostic::warning(output.span, format!("output `{}` appears in no rule, fact or input", self.theory.atom_name(atom)))
-                        .with_label("it can never be proved")
-                        .with_hint("check the spelling against the rules"),
+                    Diagnostic::warning(
+                        output.span,
+                        format!(
+                            "output `{}` appears in no rule, fact or input",
+                            self.theory.atom_name(atom)
+                        ),
+                    )
+                    .with_label("it can never be proved")
+                    .with_hint("check the spelling against the rules"),
                 );
             }
         }
@@ -318,7 +365,8 @@ impl<'s> Checker<'s> {
 
     fn close_axioms(&mut self) {
         let axioms: Vec<Vec<Lit>> = self.theory.axioms.iter().map(|c| c.lits.clone()).collect();
-        let span_of = |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
+        let span_of =
+            |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
         match close(&axioms) {
             ClosureOutcome::Closed { clauses, given } => {
                 for (index, (lits, given)) in clauses.into_iter().zip(given).enumerate() {
@@ -331,7 +379,7 @@ impl<'s> Checker<'s> {
                         self.theory.heads.push(head);
                         self.theory.kinds.push(RuleKind::Strict);
                         self.theory.body_start.push(self.theory.bodies.len() as u32);
-                        self.theory.labels.push(None);
+                        self.theory.labels.push((0, 0));
                         self.theory.origins.push(Origin::Clause(index as u32));
                     }
                     let span = span_of(&self.theory, given);
@@ -340,7 +388,10 @@ impl<'s> Checker<'s> {
             }
             ClosureOutcome::Inconsistent { first, second } => {
                 let show = |lits: &[Lit]| {
-                    let parts: Vec<String> = lits.iter().map(|&l| self.theory.show(l).to_string()).collect();
+                    let parts: Vec<String> = lits
+                        .iter()
+                        .map(|&l| self.theory.show(l).to_string())
+                        .collect();
                     parts.join(", ")
                 };
                 let message = if first.0.is_empty() {
@@ -352,7 +403,8 @@ impl<'s> Checker<'s> {
                         show(&second.0)
                     )
                 };
-                let place = span_of(&self.theory, first.1).or_else(|| span_of(&self.theory, second.1));
+                let place =
+                    span_of(&self.theory, first.1).or_else(|| span_of(&self.theory, second.1));
                 let mut d = Diagnostic::error(place.unwrap_or_default(), message)
                     .with_label("contradicted")
                     .with_hint("remove one of the contradicting facts, or make one of them a defeasible rule `=> l.`");
@@ -360,12 +412,19 @@ impl<'s> Checker<'s> {
                     d = d.with_related(other, "contradicts this");
                 }
                 if first.1.is_none() || second.1.is_none() {
-                    d = d.with_hint("the clash is derived by resolution from the clause axioms `\\/{…}`");
+                    d = d.with_hint(
+                        "the clash is derived by resolution from the clause axioms `\\/{…}`",
+                    );
                 }
                 self.diagnostics.push(d);
             }
             ClosureOutcome::TooLarge => {
-                let span = self.theory.axioms.iter().find(|c| c.lits.len() > 1).and_then(|c| c.span);
+                let span = self
+                    .theory
+                    .axioms
+                    .iter()
+                    .find(|c| c.lits.len() > 1)
+                    .and_then(|c| c.span);
                 self.diagnostics.push(
                     Diagnostic::error(span.unwrap_or_default(), format!("the resolution closure of the clause axioms exceeds {MAX_CLOSURE} clauses"))
                         .with_hint("write fewer or shorter clause axioms `\\/{…}`, or state them as rules"),
@@ -376,7 +435,7 @@ impl<'s> Checker<'s> {
 }
 
 fn label_of(theory: &Theory, rule: RuleId) -> String {
-    theory.labels[rule as usize].as_deref().unwrap_or("?").to_string()
+    theory.label(rule).unwrap_or("?").to_string()
 }
 
 /// Strongly connected components of a small explicit graph (iterative Tarjan).

@@ -54,7 +54,12 @@ impl Session {
         let proved = self.prove(alg, lit);
         let engine = self.engine().clone();
         let theory = engine.theory();
-        let head = format!("{}{} {}", if proved { '+' } else { '-' }, alg, theory.show(lit));
+        let head = format!(
+            "{}{} {}",
+            if proved { '+' } else { '-' },
+            alg,
+            theory.show(lit)
+        );
         if !seen.insert((alg, lit)) {
             return Explanation::leaf(format!("{head} (explained above)"));
         }
@@ -73,15 +78,21 @@ impl Session {
                     }) {
                         let mut by = Explanation::leaf(format!("by {}", theory.show_rule(r)));
                         for &a in engine.body(r) {
-                            by.children.push(self.explain_at(Algorithm::Mu, a, depth - 1, seen));
+                            by.children
+                                .push(self.explain_at(Algorithm::Mu, a, depth - 1, seen));
                         }
                         node.children.push(by);
                     }
                 }
             }
             Algorithm::Alpha | Algorithm::Delta => {
-                let word = if alg == Algorithm::Alpha { "both" } else { "either" };
-                node.children.push(Explanation::leaf(format!("{alg} needs {word} pi and beta")));
+                let word = if alg == Algorithm::Alpha {
+                    "both"
+                } else {
+                    "either"
+                };
+                node.children
+                    .push(Explanation::leaf(format!("{alg} needs {word} pi and beta")));
                 for part in [Algorithm::Pi, Algorithm::Beta] {
                     node.children.push(self.explain_at(part, lit, depth, seen));
                 }
@@ -105,7 +116,10 @@ impl Session {
         let theory = engine.theory();
         let show = |l: Lit| theory.show(l).to_string();
         if self.mu()[q.index()] {
-            node.children.push(Explanation::leaf(format!("+mu {}: definitely proved", show(q))));
+            node.children.push(Explanation::leaf(format!(
+                "+mu {}: definitely proved",
+                show(q)
+            )));
             return;
         }
         if self.mu()[q.complement().index()] {
@@ -116,8 +130,16 @@ impl Session {
             return;
         }
         // The algorithm that decides whether an attacker counts.
-        let attack_alg = if alg == Algorithm::Beta { Algorithm::Beta } else { Algorithm::Pi };
-        let attack_word = if alg == Algorithm::Beta { "proved" } else { "supported" };
+        let attack_alg = if alg == Algorithm::Beta {
+            Algorithm::Beta
+        } else {
+            Algorithm::Pi
+        };
+        let attack_word = if alg == Algorithm::Beta {
+            "proved"
+        } else {
+            "supported"
+        };
         let applicable = |s: &mut Session, r: u32, a: Algorithm| -> Option<Lit> {
             engine.body(r).iter().copied().find(|&x| !s.prove(a, x))
         };
@@ -137,7 +159,10 @@ impl Session {
         }
         let Some(r) = supporter else {
             if failed.is_empty() {
-                node.children.push(Explanation::leaf(format!("no strict or defeasible rule has {} as consequent", show(q))));
+                node.children.push(Explanation::leaf(format!(
+                    "no strict or defeasible rule has {} as consequent",
+                    show(q)
+                )));
             }
             for (r, a) in failed {
                 let mut line = Explanation::leaf(format!(
@@ -175,7 +200,9 @@ impl Session {
                 continue;
             }
             let beaten_by = engine.superiors_of(s).iter().copied().find(|&t| {
-                engine.head(t) == q && engine.kind(t).supports() && applicable(self, t, alg).is_none()
+                engine.head(t) == q
+                    && engine.kind(t).supports()
+                    && applicable(self, t, alg).is_none()
             });
             node.children.push(Explanation::leaf(match beaten_by {
                 Some(t) => format!("attacker {name} is beaten by {}", theory.rule_name(t)),

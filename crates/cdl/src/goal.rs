@@ -43,7 +43,10 @@ pub(crate) fn condition(
     let nq = q.complement();
     let kind = kind_of(goal);
     let applicable = |rule: u32, kind: u32, value: &mut dyn FnMut(Goal) -> bool| {
-        engine.body(rule).iter().all(|&a| value(self::goal(a, kind)))
+        engine
+            .body(rule)
+            .iter()
+            .all(|&a| value(self::goal(a, kind)))
     };
     match kind {
         BETA | PI => {

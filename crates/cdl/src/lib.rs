@@ -10,6 +10,7 @@
 //! assert!(session.prove(Algorithm::Beta, fly));
 //! ```
 
+mod atoms;
 mod check;
 mod closure;
 mod engine;
@@ -40,6 +41,10 @@ pub fn load(source: &str, language: Language) -> Result<Theory, Vec<Diagnostic>>
     let checked = check(proclaim_syntax::parse(source, language), source);
     match checked.theory {
         Some(theory) => Ok(theory),
-        None => Err(checked.diagnostics.into_iter().filter(Diagnostic::is_error).collect()),
+        None => Err(checked
+            .diagnostics
+            .into_iter()
+            .filter(Diagnostic::is_error)
+            .collect()),
     }
 }

@@ -25,8 +25,9 @@ impl Formula {
             match theory.atom(name) {
                 Some(atom) => Lit::new(atom, lit.negated),
                 None => {
-                    let mut d = Diagnostic::error(lit.atom, format!("the theory has no atom `{name}`"))
-                        .with_label("unknown atom");
+                    let mut d =
+                        Diagnostic::error(lit.atom, format!("the theory has no atom `{name}`"))
+                            .with_label("unknown atom");
                     if let Some(close) = closest_atom(theory, name) {
                         d = d.with_hint(format!("did you mean `{close}`?"));
                     }
@@ -81,20 +82,27 @@ pub(crate) fn closest_atom<'t>(theory: &'t Theory, name: &str) -> Option<&'t str
         return None;
     }
     theory
-        .atom_names
-        .iter()
-        .map(|n| &**n)
+        .atoms
+        .names()
         .filter(|candidate| candidate.eq_ignore_ascii_case(name) || one_edit_apart(candidate, name))
         .min()
 }
 
 fn one_edit_apart(a: &str, b: &str) -> bool {
     let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
-    let (short, long) = if a.len() <= b.len() { (&a, &b) } else { (&b, &a) };
+    let (short, long) = if a.len() <= b.len() {
+        (&a, &b)
+    } else {
+        (&b, &a)
+    };
     if long.len() - short.len() > 1 {
         return false;
     }
-    let prefix = short.iter().zip(long.iter()).take_while(|(x, y)| x == y).count();
+    let prefix = short
+        .iter()
+        .zip(long.iter())
+        .take_while(|(x, y)| x == y)
+        .count();
     if short.len() == long.len() {
         short[prefix + 1.min(short.len() - prefix)..] == long[prefix + 1.min(long.len() - prefix)..]
     } else {

@@ -60,7 +60,11 @@ impl ReferenceProver {
                 rules.push(Rule {
                     label: None,
                     kind: RuleKind::Strict,
-                    body: clause.iter().filter(|&&l| l != head).map(|l| l.complement()).collect(),
+                    body: clause
+                        .iter()
+                        .filter(|&&l| l != head)
+                        .map(|l| l.complement())
+                        .collect(),
                     head,
                 });
             }
@@ -100,7 +104,9 @@ impl ReferenceProver {
     }
 
     fn supports(&self, q: Lit) -> impl Iterator<Item = &Rule> + '_ {
-        self.rules.iter().filter(move |r| r.head == q && r.kind != RuleKind::Warning)
+        self.rules
+            .iter()
+            .filter(move |r| r.head == q && r.kind != RuleKind::Warning)
     }
 
     fn attacks(&self, q: Lit) -> impl Iterator<Item = &Rule> + '_ {
@@ -135,10 +141,16 @@ impl ReferenceProver {
         if !self.supports(q).any(|r| self.app(tag, r, h)) {
             return false;
         }
-        let attacker_tag = if tag == Tag::Beta { Tag::Beta } else { Tag::Sup };
+        let attacker_tag = if tag == Tag::Beta {
+            Tag::Beta
+        } else {
+            Tag::Sup
+        };
         self.attacks(q).all(|s| {
             !self.app(attacker_tag, s, h)
-                || self.supports(q).any(|t| self.beats(t, s) && self.app(tag, t, h))
+                || self
+                    .supports(q)
+                    .any(|t| self.beats(t, s) && self.app(tag, t, h))
         })
     }
 

@@ -148,12 +148,8 @@ impl Session {
             Algorithm::Mu => self.mu[lit.index()],
             Algorithm::Beta => self.goal_value(goal(lit, BETA)),
             Algorithm::Pi => self.goal_value(goal(lit, PI)),
-            Algorithm::Alpha => {
-                self.goal_value(goal(lit, PI)) && self.goal_value(goal(lit, BETA))
-            }
-            Algorithm::Delta => {
-                self.goal_value(goal(lit, PI)) || self.goal_value(goal(lit, BETA))
-            }
+            Algorithm::Alpha => self.goal_value(goal(lit, PI)) && self.goal_value(goal(lit, BETA)),
+            Algorithm::Delta => self.goal_value(goal(lit, PI)) || self.goal_value(goal(lit, BETA)),
         }
     }
 
@@ -173,10 +169,12 @@ impl Session {
                 self.mu_clause(clause) || clause.iter().any(|&l| self.prove(alg, l))
             }
             Algorithm::Alpha => {
-                self.prove_clause(Algorithm::Pi, clause) && self.prove_clause(Algorithm::Beta, clause)
+                self.prove_clause(Algorithm::Pi, clause)
+                    && self.prove_clause(Algorithm::Beta, clause)
             }
             Algorithm::Delta => {
-                self.prove_clause(Algorithm::Pi, clause) || self.prove_clause(Algorithm::Beta, clause)
+                self.prove_clause(Algorithm::Pi, clause)
+                    || self.prove_clause(Algorithm::Beta, clause)
             }
         }
     }
@@ -297,8 +295,11 @@ impl Session {
         for &h in &region {
             for &r in engine.rules_for(h) {
                 if engine.kind(r) == RuleKind::Strict {
-                    self.counters[r as usize] =
-                        engine.body(r).iter().filter(|a| !self.mu[a.index()]).count() as u32;
+                    self.counters[r as usize] = engine
+                        .body(r)
+                        .iter()
+                        .filter(|a| !self.mu[a.index()])
+                        .count() as u32;
                 }
             }
         }
@@ -306,9 +307,10 @@ impl Session {
         for &h in &region {
             let input_fact = self.inputs[h.atom().0 as usize] == Some(!h.is_negated());
             let derived = input_fact
-                || engine.rules_for(h).iter().any(|&r| {
-                    engine.kind(r) == RuleKind::Strict && self.counters[r as usize] == 0
-                });
+                || engine
+                    .rules_for(h)
+                    .iter()
+                    .any(|&r| engine.kind(r) == RuleKind::Strict && self.counters[r as usize] == 0);
             if derived && !self.mu[h.index()] {
                 self.mu[h.index()] = true;
                 self.queue.push(h);
@@ -364,7 +366,8 @@ impl Session {
                 .iter()
                 .all(|&x| x == fact.complement() || self.input_falsifies(x));
             if falsified {
-                let parts: Vec<String> = clause.iter().map(|&l| theory.show(l).to_string()).collect();
+                let parts: Vec<String> =
+                    clause.iter().map(|&l| theory.show(l).to_string()).collect();
                 return Err(InputConflict {
                     input: theory.show(fact).to_string(),
                     clause: match parts.len() {
@@ -496,7 +499,9 @@ impl Session {
         for (from, &g) in members.iter().enumerate() {
             buffer.clear();
             let values = &self.values;
-            successors(engine, &self.mu, g, &mut buffer, |s| values[s as usize] == PENDING);
+            successors(engine, &self.mu, g, &mut buffer, |s| {
+                values[s as usize] == PENDING
+            });
             for &s in &buffer {
                 internal_attack |= s & ATTACK != 0;
                 edges.push((self.low[(s & !ATTACK) as usize], from as u32));
@@ -544,10 +549,18 @@ impl Session {
             if condition(engine, &self.mu, g, &mut |s| values[s as usize] == TRUE) {
                 self.values[g as usize] = TRUE;
                 let start = edges.partition_point(|&(to, _)| to < i);
-                work.extend(edges[start..].iter().take_while(|&&(to, _)| to == i).map(|&(_, from)| from));
+                work.extend(
+                    edges[start..]
+                        .iter()
+                        .take_while(|&&(to, _)| to == i)
+                        .map(|&(_, from)| from),
+                );
             }
         }
-        members.iter().map(|&g| self.values[g as usize] == TRUE).collect()
+        members
+            .iter()
+            .map(|&g| self.values[g as usize] == TRUE)
+            .collect()
     }
 }
 

@@ -95,7 +95,10 @@ pub fn truth_table(engine: Arc<Engine>) -> Result<Table, TableError> {
             .collect()
     };
     let filters = theory.row_filters().to_vec();
-    let inputs = atoms.iter().map(|&a| theory.atom_name(a).to_string()).collect();
+    let inputs = atoms
+        .iter()
+        .map(|&a| theory.atom_name(a).to_string())
+        .collect();
     let mut session = Session::new(engine.clone());
     let mut rows = Vec::new();
     let mut choice = vec![0usize; groups.len()];
@@ -141,7 +144,11 @@ pub fn truth_table(engine: Arc<Engine>) -> Result<Table, TableError> {
 /// then true.
 fn advance(choice: &mut [usize], groups: &[Vec<Atom>]) {
     for i in (0..choice.len()).rev() {
-        let size = if groups[i].len() == 1 { 2 } else { groups[i].len() };
+        let size = if groups[i].len() == 1 {
+            2
+        } else {
+            groups[i].len()
+        };
         choice[i] += 1;
         if choice[i] < size {
             return;
@@ -158,7 +165,9 @@ fn keep(filters: &[RowFilter], atoms: &[Atom], values: &[bool]) -> bool {
             .is_some_and(|i| values[i] != l.is_negated())
     };
     filters.iter().all(|f| match f {
-        RowFilter::Ignore { at_least, lits } => lits.iter().filter(|l| holds(l)).count() < *at_least,
+        RowFilter::Ignore { at_least, lits } => {
+            lits.iter().filter(|l| holds(l)).count() < *at_least
+        }
         RowFilter::Assert { lits } => lits.iter().any(holds),
     })
 }

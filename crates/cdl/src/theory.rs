@@ -1,11 +1,10 @@
 //! The checked theory: interned atoms, rules in flat arrays, priorities, axioms and their
 //! resolution closure, and the declared inputs and outputs. Immutable once built by `check`.
 
+use crate::atoms::AtomTable;
 use crate::literal::{Atom, Lit, RuleId};
 use proclaim_syntax::{Algorithm, Span};
-use rustc_hash::FxHashMap;
 use std::fmt;
-use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RuleKind {
@@ -91,13 +90,14 @@ pub struct RuleRef<'t> {
 #[derive(Clone, Debug, Default)]
 pub struct Theory {
     pub(crate) name: Option<String>,
-    pub(crate) atom_names: Vec<Arc<str>>,
-    pub(crate) atom_index: FxHashMap<Arc<str>, Atom>,
+    pub(crate) atoms: AtomTable,
     pub(crate) heads: Vec<Lit>,
     pub(crate) kinds: Vec<RuleKind>,
     pub(crate) body_start: Vec<u32>,
     pub(crate) bodies: Vec<Lit>,
-    pub(crate) labels: Vec<Option<Box<str>>>,
+    /// Each rule's label as a range of `label_text`; empty for none (labels are never empty).
+    pub(crate) labels: Vec<(u32, u32)>,
+    pub(crate) label_text: String,
     pub(crate) origins: Vec<Origin>,
     pub(crate) written_rules: usize,
     pub(crate) priorities: Vec<(RuleId, RuleId)>,
@@ -115,15 +115,20 @@ impl Theory {
     }
 
     pub fn atom_count(&self) -> usize {
-        self.atom_names.len()
+        self.atoms.len()
     }
 
     pub fn atom(&self, name: &str) -> Option<Atom> {
-        self.atom_index.get(name).copied()
+        self.atoms.get(name)
     }
 
     pub fn atom_name(&self, atom: Atom) -> &str {
-        &self.atom_names[atom.0 as usize]
+        self.atoms.name(atom)
+    }
+
+    pub(crate) fn label(&self, id: RuleId) -> Option<&str> {
+        let (start, end) = self.labels[id as usize];
+        (start < end).then(|| &self.label_text[start as usize..end as usize])
     }
 
     /// A literal of this theory by its written form, `a` or `~a`.
@@ -153,7 +158,7 @@ impl Theory {
         let i = id as usize;
         RuleRef {
             id,
-            label: self.labels[i].as_deref(),
+            label: self.label(id),
             kind: self.kinds[i],
             body: &self.bodies[self.body_start[i] as usize..self.body_start[i + 1] as usize],
             head: self.heads[i],
@@ -200,8 +205,17 @@ impl Theory {
     /// A rule printed as it would be written: `R1: a, ~b => c`.
     pub fn show_rule(&self, id: RuleId) -> String {
         let rule = self.rule(id);
-        let body: Vec<String> = rule.body.iter().map(|&l| self.show(l).to_string()).collect();
-        let text = format!("{} {} {}", body.join(", "), rule.kind.arrow(), self.show(rule.head));
+        let body: Vec<String> = rule
+            .body
+            .iter()
+            .map(|&l| self.show(l).to_string())
+            .collect();
+        let text = format!(
+            "{} {} {}",
+            body.join(", "),
+            rule.kind.arrow(),
+            self.show(rule.head)
+        );
         let text = text.trim_start();
         match rule.label {
             Some(label) => format!("{label}: {text}"),

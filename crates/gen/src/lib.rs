@@ -1,1 +1,353 @@
-//! placeholder
+//! The standard scalable defeasible-logic theories of `spec/benchmarks.md` (Maher, Rock,
+//! Antoniou, Billington and Miller, 2001), written in `.dl` or SPINdle's `.dfl` so the same
+//! files can be timed here and by other reasoners, with the answer each must give.
+
+use std::fmt;
+use std::io::{self, Write};
+
+/// One benchmark theory with its size parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    Chain(u64),
+    Chains(u64),
+    Circle(u64),
+    Circles(u64),
+    Levels(u64),
+    LevelsMinus(u64),
+    Teams(u64),
+    Tree(u64, u64),
+    Dag(u64, u64),
+    Mix(u64, u64, u64),
+}
+
+/// The output language.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Dl,
+    Dfl,
+}
+
+/// What a correct reasoner answers on a family: `+alg lit` when `proved`, else `-alg lit`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Expectation {
+    pub algorithm: &'static str,
+    pub literal: String,
+    pub proved: bool,
+}
+
+impl fmt::Display for Expectation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let sign = if self.proved { '+' } else { '-' };
+        write!(f, "{sign}{} {}", self.algorithm, self.literal)
+    }
+}
+
+/// A family name or its parameters were wrong.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FamilyError(pub String);
+
+impl fmt::Display for FamilyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for FamilyError {}
+
+pub const NAMES: [&str; 10] = [
+    "chain", "chains", "circle", "circles", "levels", "levels-", "teams", "tree", "dag", "mix",
+];
+
+impl Family {
+    /// `chain 1000`, `tree 12 3`, `mix 10 5 4` as on the command line.
+    pub fn parse(name: &str, args: &[u64]) -> Result<Family, FamilyError> {
+        let want = |n: usize| -> Result<(), FamilyError> {
+            if args.len() == n {
+                Ok(())
+            } else {
+                Err(FamilyError(format!(
+                    "`{name}` takes {n} number{}, got {}",
+                    if n == 1 { "" } else { "s" },
+                    args.len()
+                )))
+            }
+        };
+        let family = match name {
+            "chain" | "chains" | "circle" | "circles" | "levels" | "levels-" | "teams" => {
+                want(1)?;
+                let n = args[0];
+                match name {
+                    "chain" => Family::Chain(n),
+                    "chains" => Family::Chains(n),
+                    "circle" => Family::Circle(n),
+                    "circles" => Family::Circles(n),
+                    "levels" => Family::Levels(n),
+                    "levels-" => Family::LevelsMinus(n),
+                    _ => Family::Teams(n),
+                }
+            }
+            "tree" | "dag" => {
+                want(2)?;
+                if args[1] < 2 && name == "tree" {
+                    return Err(FamilyError("a tree needs k of at least 2".into()));
+                }
+                if name == "tree" {
+                    Family::Tree(args[0], args[1])
+                } else {
+                    Family::Dag(args[0], args[1])
+                }
+            }
+            "mix" => {
+                want(3)?;
+                Family::Mix(args[0], args[1], args[2])
+            }
+            _ => {
+                return Err(FamilyError(format!(
+                    "unknown family `{name}`; the families are {}",
+                    NAMES.join(", ")
+                )))
+            }
+        };
+        match family {
+            Family::Circle(0) | Family::Circles(0) => {
+                Err(FamilyError("a circle needs at least one rule".into()))
+            }
+            _ if family.rule_count() > 1 << 32 => Err(FamilyError(format!(
+                "{family} would have {} rules, more than this generator writes",
+                family.rule_count()
+            ))),
+            _ => Ok(family),
+        }
+    }
+
+    /// Rules the theory has (facts not counted, as in the literature).
+    pub fn rule_count(&self) -> u128 {
+        let pow = |k: u64, n: u64| (k as u128).checked_pow(n as u32).unwrap_or(u128::MAX / 8);
+        match *self {
+            Family::Chain(n) | Family::Chains(n) | Family::Circle(n) | Family::Circles(n) => {
+                n as u128
+            }
+            Family::Levels(n) | Family::LevelsMinus(n) => 4 * n as u128 + 5,
+            Family::Teams(n) => 4 * (0..=n).map(|i| pow(4, i)).sum::<u128>(),
+            Family::Tree(n, k) => (pow(k, n) - 1) / (k as u128 - 1),
+            Family::Dag(n, k) => n as u128 * k as u128 + 1,
+            Family::Mix(m, n, k) => 2 * m as u128 + 2 * (m * n * k) as u128,
+        }
+    }
+
+    /// The answers a correct reasoner gives.
+    pub fn expected(&self) -> Vec<Expectation> {
+        let e = |algorithm, literal: String, proved| Expectation {
+            algorithm,
+            literal,
+            proved,
+        };
+        match *self {
+            Family::Chain(n) => vec![
+                e("beta", format!("a{n}"), true),
+                e("pi", format!("a{n}"), true),
+            ],
+            Family::Chains(n) => vec![e("mu", format!("a{n}"), true)],
+            Family::Circle(_) => vec![e("beta", "a0".into(), false), e("pi", "a0".into(), false)],
+            Family::Circles(_) => vec![e("mu", "a0".into(), false)],
+            Family::Levels(_) | Family::Teams(_) | Family::Tree(..) | Family::Dag(..) => {
+                vec![e("beta", "a0".into(), true), e("pi", "a0".into(), true)]
+            }
+            Family::LevelsMinus(_) => {
+                vec![e("beta", "a0".into(), true), e("pi", "a0".into(), false)]
+            }
+            Family::Mix(..) => vec![e("beta", "p".into(), false), e("pi", "p".into(), false)],
+        }
+    }
+
+    /// Writes the theory.
+    pub fn write(&self, out: &mut impl Write, format: Format) -> io::Result<()> {
+        let mut w = Writer { out, format };
+        match *self {
+            Family::Chain(n) | Family::Chains(n) => {
+                let arrow = if matches!(self, Family::Chain(_)) {
+                    "=>"
+                } else {
+                    "->"
+                };
+                w.fact("a0")?;
+                for i in 1..=n {
+                    w.rule(i, &[&format!("a{}", i - 1)], arrow, &format!("a{i}"))?;
+                }
+            }
+            Family::Circle(n) | Family::Circles(n) => {
+                let arrow = if matches!(self, Family::Circle(_)) {
+                    "=>"
+                } else {
+                    "->"
+                };
+                for i in 0..n {
+                    w.rule(i, &[&format!("a{i}")], arrow, &format!("a{}", (i + 1) % n))?;
+                }
+            }
+            Family::Levels(n) | Family::LevelsMinus(n) => {
+                w.rule(0, &[], "=>", "a0")?;
+                for i in 0..=n {
+                    let (even, odd, next) = (2 * i, 2 * i + 1, 2 * i + 2);
+                    w.rule(
+                        4 * i + 1,
+                        &[&format!("a{odd}")],
+                        "=>",
+                        &w.neg(&format!("a{even}")),
+                    )?;
+                    w.rule(4 * i + 2, &[], "=>", &format!("a{odd}"))?;
+                    w.rule(
+                        4 * i + 3,
+                        &[&format!("a{next}")],
+                        "=>",
+                        &w.neg(&format!("a{odd}")),
+                    )?;
+                    w.rule(4 * i + 4, &[], "=>", &format!("a{next}"))?;
+                    if matches!(self, Family::Levels(_)) {
+                        w.priority(4 * i + 3, 4 * i + 2)?;
+                    }
+                }
+            }
+            Family::Teams(n) => {
+                // Breadth first: block k's atom is a(k); its four fresh b's are the next atoms.
+                let mut next_atom = 1u64;
+                let mut rule = 0u64;
+                let mut level = vec![0u64];
+                for depth in (0..=n).rev() {
+                    let mut below = Vec::new();
+                    for p in level {
+                        let p = format!("a{p}");
+                        let np = w.neg(&p);
+                        let heads = [&p, &p, &np, &np];
+                        for (j, head) in heads.into_iter().enumerate() {
+                            if depth == 0 {
+                                w.rule(rule + j as u64, &[], "=>", head)?;
+                            } else {
+                                let b = next_atom + j as u64;
+                                below.push(b);
+                                w.rule(rule + j as u64, &[&format!("a{b}")], "=>", head)?;
+                            }
+                        }
+                        if depth > 0 {
+                            next_atom += 4;
+                        }
+                        w.priority(rule, rule + 2)?;
+                        w.priority(rule + 1, rule + 3)?;
+                        rule += 4;
+                    }
+                    level = below;
+                }
+            }
+            Family::Tree(n, k) => {
+                let internal = ((k as u128).pow(n as u32) - 1) / (k as u128 - 1);
+                let internal = internal as u64;
+                for i in 0..internal {
+                    let children: Vec<String> =
+                        (1..=k).map(|c| format!("a{}", k * i + c)).collect();
+                    let refs: Vec<&str> = children.iter().map(String::as_str).collect();
+                    w.rule(i, &refs, "=>", &format!("a{i}"))?;
+                }
+                let leaves = (k as u128).pow(n as u32) as u64;
+                for leaf in internal..internal + leaves {
+                    w.fact(&format!("a{leaf}"))?;
+                }
+            }
+            Family::Dag(n, k) => {
+                for i in k * n + 1..=k * n + k {
+                    w.fact(&format!("a{i}"))?;
+                }
+                for i in 0..=n * k {
+                    let body: Vec<String> = (1..=k).map(|j| format!("a{}", i + j)).collect();
+                    let refs: Vec<&str> = body.iter().map(String::as_str).collect();
+                    w.rule(i, &refs, "=>", &format!("a{i}"))?;
+                }
+            }
+            Family::Mix(m, n, k) => {
+                let mut rule = 0u64;
+                for i in 1..=2 * m {
+                    let body: Vec<String> = (1..=n).map(|j| format!("a{i}_{j}")).collect();
+                    let refs: Vec<&str> = body.iter().map(String::as_str).collect();
+                    let (arrow, head) = if i <= m {
+                        ("=>", "p".to_string())
+                    } else {
+                        ("~>", w.neg("p"))
+                    };
+                    w.rule(rule, &refs, arrow, &head)?;
+                    rule += 1;
+                    for j in 1..=n {
+                        // A strict chain of length k from a fact to a(i, j).
+                        let link = |l: u64| {
+                            if l == k {
+                                format!("a{i}_{j}")
+                            } else {
+                                format!("a{i}_{j}_{l}")
+                            }
+                        };
+                        w.fact(&link(0))?;
+                        for l in 1..=k {
+                            w.rule(rule, &[&link(l - 1)], "->", &link(l))?;
+                            rule += 1;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Family {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Family::Chain(n) => write!(f, "chain({n})"),
+            Family::Chains(n) => write!(f, "chains({n})"),
+            Family::Circle(n) => write!(f, "circle({n})"),
+            Family::Circles(n) => write!(f, "circles({n})"),
+            Family::Levels(n) => write!(f, "levels({n})"),
+            Family::LevelsMinus(n) => write!(f, "levels-({n})"),
+            Family::Teams(n) => write!(f, "teams({n})"),
+            Family::Tree(n, k) => write!(f, "tree({n}, {k})"),
+            Family::Dag(n, k) => write!(f, "dag({n}, {k})"),
+            Family::Mix(m, n, k) => write!(f, "mix({m}, {n}, {k})"),
+        }
+    }
+}
+
+struct Writer<'w, W: Write> {
+    out: &'w mut W,
+    format: Format,
+}
+
+impl<W: Write> Writer<'_, W> {
+    fn neg(&self, atom: &str) -> String {
+        match self.format {
+            Format::Dl => format!("~{atom}"),
+            Format::Dfl => format!("-{atom}"),
+        }
+    }
+
+    fn fact(&mut self, lit: &str) -> io::Result<()> {
+        match self.format {
+            Format::Dl => writeln!(self.out, "{lit}."),
+            Format::Dfl => writeln!(self.out, ">> {lit}"),
+        }
+    }
+
+    fn rule(&mut self, label: u64, body: &[&str], arrow: &str, head: &str) -> io::Result<()> {
+        let end = if self.format == Format::Dl { "." } else { "" };
+        if body.is_empty() {
+            writeln!(self.out, "r{label}: {arrow} {head}{end}")
+        } else {
+            writeln!(
+                self.out,
+                "r{label}: {} {arrow} {head}{end}",
+                body.join(", ")
+            )
+        }
+    }
+
+    fn priority(&mut self, winner: u64, loser: u64) -> io::Result<()> {
+        let end = if self.format == Format::Dl { "." } else { "" };
+        writeln!(self.out, "r{winner} > r{loser}{end}")
+    }
+}

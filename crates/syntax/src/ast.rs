@@ -83,14 +83,26 @@ pub enum OutputPart {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Item {
     /// `a.`, `~a.` or `\/{a, ~b}.`: an axiom clause.
-    Fact { clause: Vec<Lit>, span: Span },
+    Fact {
+        clause: Vec<Lit>,
+        span: Span,
+    },
     Rule(RuleItem),
     /// `R1 > R2.` (or a chain `R1 > R2 > R3.`, meaning each beats the next).
-    Priority { labels: Vec<Span>, span: Span },
+    Priority {
+        labels: Vec<Span>,
+        span: Span,
+    },
     /// `name{N}.`
-    Name { name: Span, span: Span },
+    Name {
+        name: Span,
+        span: Span,
+    },
     /// `input{a}.` one binary input; `input{a, b, c}.` mutually exclusive, exactly one true.
-    Input { atoms: Vec<Lit>, span: Span },
+    Input {
+        atoms: Vec<Lit>,
+        span: Span,
+    },
     /// `ignore{a, ~b}.` (all of them) or `ignore K of {…}.` (at least K of them): input
     /// combinations the truth table leaves out.
     Ignore {
@@ -99,9 +111,15 @@ pub enum Item {
         span: Span,
     },
     /// `assert{a, ~b}.`: the truth table keeps only input combinations where one of these holds.
-    Assert { lits: Vec<Lit>, span: Span },
+    Assert {
+        lits: Vec<Lit>,
+        span: Span,
+    },
     /// `output{beta offside, "description"}.`
-    Output { parts: Vec<OutputPart>, span: Span },
+    Output {
+        parts: Vec<OutputPart>,
+        span: Span,
+    },
 }
 
 impl Item {

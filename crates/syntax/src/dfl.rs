@@ -26,7 +26,10 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
     let mut items = Vec::new();
     let mut sink = Sink::default();
     if source.len() > u32::MAX as usize {
-        sink.push(Diagnostic::error(Span::new(0, 0), "file is larger than 4 GiB"));
+        sink.push(Diagnostic::error(
+            Span::new(0, 0),
+            "file is larger than 4 GiB",
+        ));
         return ParsedTheory {
             items,
             diagnostics: sink.finish(0),
@@ -142,8 +145,9 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
         [(T::Facts, _), lits @ ..] => {
             let lits = literals(lits, whole, source)?;
             if lits.is_empty() {
-                return Err(Diagnostic::error(whole, "`>>` names no fact")
-                    .with_hint("write `>> a`"));
+                return Err(
+                    Diagnostic::error(whole, "`>>` names no fact").with_hint("write `>> a`")
+                );
             }
             Ok(Item::Fact {
                 clause: lits,
@@ -193,10 +197,15 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
                     head: *head,
                     span: whole,
                 })),
-                [] => Err(Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
-                    .with_label("a literal must follow the arrow")),
-                [_, second, ..] => Err(Diagnostic::error(second.span, "rule has more than one consequent")
-                    .with_hint("write one rule for each consequent")),
+                [] => Err(
+                    Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
+                        .with_label("a literal must follow the arrow"),
+                ),
+                [_, second, ..] => Err(Diagnostic::error(
+                    second.span,
+                    "rule has more than one consequent",
+                )
+                .with_hint("write one rule for each consequent")),
             }
         }
     }
@@ -220,8 +229,10 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
                 return Err(Diagnostic::error(span, "expected a literal").with_label("here"))
             }
             None => {
-                return Err(Diagnostic::error(tokens[i].1, "expected an atom after the negation")
-                    .with_related(whole, "in this statement"))
+                return Err(
+                    Diagnostic::error(tokens[i].1, "expected an atom after the negation")
+                        .with_related(whole, "in this statement"),
+                )
             }
         }
         i = at + 1;
@@ -229,7 +240,9 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
             None => {}
             Some((T::Comma, _)) => i += 1,
             Some(&(_, span)) => {
-                return Err(Diagnostic::error(span, "expected `,` between literals").with_label("here"))
+                return Err(
+                    Diagnostic::error(span, "expected `,` between literals").with_label("here")
+                )
             }
         }
     }

@@ -160,5 +160,11 @@ fn to_codespan(diagnostic: &Diagnostic, source_len: usize) -> Rendered<()> {
     rendered
         .with_message(diagnostic.message.clone())
         .with_labels(labels)
-        .with_notes(diagnostic.hint.iter().map(|h| format!("hint: {h}")).collect())
+        .with_notes(
+            diagnostic
+                .hint
+                .iter()
+                .map(|h| format!("hint: {h}"))
+                .collect(),
+        )
 }

@@ -85,9 +85,36 @@ pub struct Token<'a> {
 
 /// Lexes the whole text. Comments (`%` to end of line, `/* … */`) and white space are dropped.
 pub fn lex(source: &str) -> Vec<Token<'_>> {
-    let bytes = source.as_bytes();
-    let mut tokens = Vec::with_capacity(source.len() / 4);
-    let mut i = 0;
+    Lexer::new(source).collect()
+}
+
+/// Tokens on demand, so a file of millions of statements never holds all its tokens at once.
+pub struct Lexer<'a> {
+    source: &'a str,
+    at: usize,
+}
+
+impl<'a> Lexer<'a> {
+    pub fn new(source: &'a str) -> Lexer<'a> {
+        Lexer { source, at: 0 }
+    }
+}
+
+impl<'a> Iterator for Lexer<'a> {
+    type Item = Token<'a>;
+
+    fn next(&mut self) -> Option<Token<'a>> {
+        let source = self.source;
+        let bytes = source.as_bytes();
+        let mut i = self.at;
+        let token = scan(source, bytes, &mut i);
+        self.at = i;
+        token
+    }
+}
+
+fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'a>> {
+    let mut i = *cursor;
     while i < bytes.len() {
         let start = i;
         let b = bytes[i];
@@ -186,12 +213,14 @@ pub fn lex(source: &str) -> Vec<Token<'_>> {
                 Tok::Error
             }
         };
-        tokens.push(Token {
+        *cursor = i;
+        return Some(Token {
             tok,
             span: Span::new(start, i),
         });
     }
-    tokens
+    *cursor = i;
+    None
 }
 
 fn single<'a>(i: &mut usize, tok: Tok<'a>) -> Tok<'a> {

@@ -1,0 +1,121 @@
+//! The command-line interface: every subcommand and option, as clap reads them.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "proclaim",
+    version,
+    about = "Clausal defeasible logic for robot behaviour: prove, table, explain and check theories",
+    after_help = "THEORY is a .dl or .dfl file, or an embedded theory: offside, microwave, tweety, nixon, team-defeat, blocking, defeater, loops.\nExit status: 0 done (whatever the answers), 1 `check` found errors, 2 bad input or usage."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AlgArg {
+    Mu,
+    Pi,
+    Beta,
+    Alpha,
+    Delta,
+    All,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    Text,
+    Csv,
+    Json,
+    Markdown,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TheoryFormat {
+    Dl,
+    Dfl,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Prove queries: one line per answer, `+beta offside` or `-beta offside`
+    Prove {
+        theory: String,
+        /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`)
+        #[arg(required = true)]
+        queries: Vec<String>,
+        #[arg(long, value_enum, default_value = "beta")]
+        alg: AlgArg,
+        /// Input values, `atom=true|false|unknown` (repeatable)
+        #[arg(long = "set", value_name = "ATOM=VALUE")]
+        set: Vec<String>,
+        /// Print a JSON array instead of lines
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print the truth table of the declared outputs over the declared inputs
+    Table {
+        theory: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: TableFormat,
+    },
+    /// Explain why a query is proved or not: supporters, attackers, loops
+    Explain {
+        theory: String,
+        query: String,
+        #[arg(long, value_enum, default_value = "beta")]
+        alg: AlgArg,
+        #[arg(long = "set", value_name = "ATOM=VALUE")]
+        set: Vec<String>,
+        /// How many levels of antecedents to explain
+        #[arg(long, default_value_t = 1)]
+        depth: usize,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Check theories and report every problem (exit 1 when there are errors)
+    Check {
+        #[arg(required = true)]
+        theories: Vec<String>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write a standard benchmark theory: chain N, chains N, circle N, circles N, levels N,
+    /// levels- N, teams N, tree N K, dag N K, mix M N K (the expected answer goes to stderr)
+    Gen {
+        family: String,
+        #[arg(required = true, num_args = 1..=3)]
+        sizes: Vec<u64>,
+        #[arg(long, value_enum, default_value = "dl")]
+        format: TheoryFormat,
+        /// Write to this file instead of stdout
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Time the benchmark families end to end (parse + all conclusions for beta, then for pi),
+    /// each in its own process so peak memory is its own
+    Bench {
+        /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3`; default: the suite of
+        /// spec/benchmarks.md
+        cases: Vec<String>,
+        /// Smaller sizes (10^3 to 10^5) for a quick look
+        #[arg(long)]
+        quick: bool,
+        /// Repeat each case and keep the fastest
+        #[arg(long, default_value_t = 1)]
+        repeat: u32,
+        #[arg(long)]
+        json: bool,
+    },
+    /// (internal) Run one benchmark file and print its timings as JSON
+    #[command(hide = true)]
+    BenchRun {
+        file: PathBuf,
+        /// Expected answers, `+beta a0`
+        #[arg(long = "expect")]
+        expect: Vec<String>,
+    },
+}

@@ -1,0 +1,61 @@
+//! One module per subcommand; `run` dispatches.
+
+mod bench;
+mod check;
+mod explain;
+mod gen;
+mod inputs;
+mod prove;
+mod table;
+
+use crate::cli::{AlgArg, Cli, Command};
+use crate::failure::Failure;
+use proclaim_cdl::Algorithm;
+use std::process::ExitCode;
+
+pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
+    match cli.command {
+        Command::Prove {
+            theory,
+            queries,
+            alg,
+            set,
+            json,
+        } => prove::run(&theory, &queries, alg, &set, json),
+        Command::Table { theory, format } => table::run(&theory, format),
+        Command::Explain {
+            theory,
+            query,
+            alg,
+            set,
+            depth,
+            json,
+        } => explain::run(&theory, &query, alg, &set, depth, json),
+        Command::Check { theories, json } => check::run(&theories, json),
+        Command::Gen {
+            family,
+            sizes,
+            format,
+            output,
+        } => gen::run(&family, &sizes, format, output.as_deref()),
+        Command::Bench {
+            cases,
+            quick,
+            repeat,
+            json,
+        } => bench::run(&cases, quick, repeat, json),
+        Command::BenchRun { file, expect } => bench::run_one(&file, &expect),
+    }
+}
+
+/// The algorithms an `--alg` value names.
+pub fn algorithms(alg: AlgArg) -> Vec<Algorithm> {
+    match alg {
+        AlgArg::Mu => vec![Algorithm::Mu],
+        AlgArg::Pi => vec![Algorithm::Pi],
+        AlgArg::Beta => vec![Algorithm::Beta],
+        AlgArg::Alpha => vec![Algorithm::Alpha],
+        AlgArg::Delta => vec![Algorithm::Delta],
+        AlgArg::All => Algorithm::ALL.to_vec(),
+    }
+}

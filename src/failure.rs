@@ -1,0 +1,51 @@
+//! Why a command could not do its job, each variant saying what went wrong; printed once, then
+//! the process exits with status 2.
+
+use std::fmt;
+use std::io::Write;
+use std::path::PathBuf;
+
+pub enum Failure {
+    /// The file could not be read.
+    Read {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+    /// The output could not be written.
+    Write {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+    /// The theory has errors; `rendered` already says where and why.
+    Invalid { rendered: String, errors: usize },
+    /// A command-line argument is wrong (an unknown atom, a malformed `--set`).
+    Argument(String),
+    /// A benchmark child process failed.
+    Bench(String),
+}
+
+impl Failure {
+    pub fn report(&self) {
+        let mut err = std::io::stderr().lock();
+        let _ = match self {
+            Failure::Invalid { rendered, errors } => write!(
+                err,
+                "{rendered}error: the theory has {errors} error{}\n",
+                if *errors == 1 { "" } else { "s" }
+            ),
+            other => writeln!(err, "error: {other}"),
+        };
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Failure::Read { path, error } => write!(f, "cannot read {}: {error}", path.display()),
+            Failure::Write { path, error } => write!(f, "cannot write {}: {error}", path.display()),
+            Failure::Invalid { errors, .. } => write!(f, "the theory has {errors} errors"),
+            Failure::Argument(message) => f.write_str(message),
+            Failure::Bench(message) => write!(f, "benchmark failed: {message}"),
+        }
+    }
+}
