@@ -25,7 +25,11 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
         diagnostics: parsed.diagnostics,
         labels: FxHashMap::default(),
         input_spans: FxHashMap::default(),
+        broken_labels: Default::default(),
     };
+    for span in &parsed.broken_labels {
+        checker.broken_labels.insert(span.text(source));
+    }
     checker.lower(parsed.items);
     let has_errors = checker.diagnostics.iter().any(Diagnostic::is_error);
     let mut diagnostics = checker.diagnostics;
@@ -42,6 +46,8 @@ struct Checker<'s> {
     diagnostics: Vec<Diagnostic>,
     labels: FxHashMap<&'s str, (RuleId, Span)>,
     input_spans: FxHashMap<Atom, Span>,
+    /// Labels of rules that did not parse: priorities naming them are not reported again.
+    broken_labels: rustc_hash::FxHashSet<&'s str>,
 }
 
 impl<'s> Checker<'s> {
@@ -251,6 +257,7 @@ impl<'s> Checker<'s> {
             let text = label.text(self.source);
             match self.labels.get(text) {
                 Some(&(id, _)) => ids.push(Some(id)),
+                None if self.broken_labels.contains(text) => ids.push(None),
                 None => {
                     let mut d = Diagnostic::error(label, format!("no rule is labelled `{text}`"))
                         .with_label("undefined label");
@@ -302,10 +309,11 @@ impl<'s> Checker<'s> {
         for &(w, l) in &self.theory.priorities {
             succ[w as usize].push(l);
         }
-        for component in strongly_connected(&succ) {
+        for mut component in strongly_connected(&succ) {
             if component.len() < 2 {
                 continue;
             }
+            component.sort_unstable();
             let mut names: Vec<String> = component
                 .iter()
                 .map(|&r| label_of(&self.theory, r))

@@ -33,10 +33,12 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
         return ParsedTheory {
             items,
             diagnostics: sink.finish(0),
+            broken_labels: Vec::new(),
         };
     }
     let mut offset = 0;
     let mut tokens = Vec::new();
+    let mut broken_labels = Vec::new();
     for line in source.split_inclusive('\n') {
         let start = offset;
         offset += line.len();
@@ -48,12 +50,18 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
         }
         match statement(&tokens, source) {
             Ok(item) => items.push(item),
-            Err(d) => sink.push(d),
+            Err(d) => {
+                if let [(T::Word, label), (T::Colon, _), ..] = tokens[..] {
+                    broken_labels.push(label);
+                }
+                sink.push(d)
+            }
         }
     }
     ParsedTheory {
         items,
         diagnostics: sink.finish(source.len()),
+        broken_labels,
     }
 }
 

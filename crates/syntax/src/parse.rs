@@ -14,6 +14,9 @@ use lalrpop_util::ParseError;
 pub struct ParsedTheory {
     pub items: Vec<Item>,
     pub diagnostics: Vec<Diagnostic>,
+    /// Labels of rules whose statement did not parse (`R1: a b => c.`), so that later stages do
+    /// not report them again as undefined.
+    pub broken_labels: Vec<Span>,
 }
 
 impl ParsedTheory {
@@ -57,6 +60,7 @@ pub fn parse_dl(source: &str) -> ParsedTheory {
     // About 25 bytes a statement in generated theories; a guess that saves regrowing.
     let mut items = Vec::with_capacity(source.len() / 32);
     let mut sink = Sink::default();
+    let mut broken_labels = Vec::new();
     let mut statement: Vec<Token<'_>> = Vec::new();
     loop {
         statement.clear();
@@ -72,6 +76,11 @@ pub fn parse_dl(source: &str) -> ParsedTheory {
             break;
         }
         let statement = &statement[..];
+        if let [Token { tok: Tok::Ident(_), span }, Token { tok: Tok::Colon, .. }, ..] = statement {
+            // Remembered in case the statement fails; dropped again below when it parses.
+            broken_labels.push(*span);
+        }
+        let labelled = broken_labels.last().is_some_and(|s| *s == statement[0].span);
         if report_bad_tokens(statement, &mut sink) {
             continue;
         }
@@ -88,13 +97,19 @@ pub fn parse_dl(source: &str) -> ParsedTheory {
             continue;
         }
         match parser.parse(triples(statement)) {
-            Ok(item) => items.push(item),
+            Ok(item) => {
+                if labelled {
+                    broken_labels.pop();
+                }
+                items.push(item)
+            }
             Err(error) => sink.push(to_diagnostic(error, source, statement)),
         }
     }
     ParsedTheory {
         items,
         diagnostics: sink.finish(source.len()),
+        broken_labels,
     }
 }
 
@@ -127,11 +142,11 @@ fn triples<'a, 's>(
 
 fn too_large() -> ParsedTheory {
     ParsedTheory {
-        items: Vec::new(),
         diagnostics: vec![
             Diagnostic::error(Span::new(0, 0), "file is larger than 4 GiB")
                 .with_hint("split the theory into several files"),
         ],
+        ..ParsedTheory::default()
     }
 }
 
