@@ -28,9 +28,9 @@ impl Failure {
     pub fn report(&self) {
         let mut err = std::io::stderr().lock();
         let _ = match self {
-            Failure::Invalid { rendered, errors } => write!(
+            Failure::Invalid { rendered, errors } => writeln!(
                 err,
-                "{rendered}error: the theory has {errors} error{}\n",
+                "{rendered}error: the theory has {errors} error{}",
                 if *errors == 1 { "" } else { "s" }
             ),
             other => writeln!(err, "error: {other}"),
