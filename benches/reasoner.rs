@@ -14,9 +14,19 @@ fn theory_text(path: &str) -> String {
 fn query_after_input_change(c: &mut Criterion) {
     let mut group = c.benchmark_group("query after one input change");
     for (name, path, input, output) in [
-        ("offside", "theories/offside.dl", "fewerThanTwoOpponentsBetween", "offside"),
+        (
+            "offside",
+            "theories/offside.dl",
+            "fewerThanTwoOpponentsBetween",
+            "offside",
+        ),
         ("microwave", "theories/microwave.dl", "doorOpen", "light"),
-        ("microwave cook", "theories/microwave.dl", "timeLeft", "cook"),
+        (
+            "microwave cook",
+            "theories/microwave.dl",
+            "timeLeft",
+            "cook",
+        ),
     ] {
         let theory = load(&theory_text(path), Language::Dl).unwrap();
         let atom = theory.atom(input).unwrap();
@@ -59,7 +69,9 @@ fn end_to_end(c: &mut Criterion) {
         ("tree", vec![8, 3]),
     ] {
         let text = family_text(name, &sizes);
-        let rules = proclaim_gen::Family::parse(name, &sizes).unwrap().rule_count();
+        let rules = proclaim_gen::Family::parse(name, &sizes)
+            .unwrap()
+            .rule_count();
         group.throughput(Throughput::Elements(rules as u64));
         group.bench_with_input(BenchmarkId::new(name, rules), &text, |b, text| {
             b.iter(|| {
@@ -76,17 +88,31 @@ fn end_to_end(c: &mut Criterion) {
 fn reasoning_only(c: &mut Criterion) {
     let mut group = c.benchmark_group("all beta and pi conclusions");
     group.sample_size(10);
-    for (name, sizes) in [("chain", vec![100_000]), ("teams", vec![7]), ("levels", vec![1_000])] {
-        let engine = Arc::new(Engine::new(load(&family_text(name, &sizes), Language::Dl).unwrap()));
+    for (name, sizes) in [
+        ("chain", vec![100_000]),
+        ("teams", vec![7]),
+        ("levels", vec![1_000]),
+    ] {
+        let engine = Arc::new(Engine::new(
+            load(&family_text(name, &sizes), Language::Dl).unwrap(),
+        ));
         group.bench_function(name, |b| {
             b.iter(|| {
                 let mut session = Session::new(engine.clone());
-                black_box(session.count_conclusions(Algorithm::Beta) + session.count_conclusions(Algorithm::Pi))
+                black_box(
+                    session.count_conclusions(Algorithm::Beta)
+                        + session.count_conclusions(Algorithm::Pi),
+                )
             })
         });
     }
     group.finish();
 }
 
-criterion_group!(benches, query_after_input_change, end_to_end, reasoning_only);
+criterion_group!(
+    benches,
+    query_after_input_change,
+    end_to_end,
+    reasoning_only
+);
 criterion_main!(benches);

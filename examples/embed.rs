@@ -9,7 +9,10 @@ fn main() {
     let theory = match load(MICROWAVE, Language::Dl) {
         Ok(theory) => theory,
         Err(errors) => {
-            eprint!("{}", proclaim_syntax::render(&errors, "microwave.dl", MICROWAVE, false));
+            eprint!(
+                "{}",
+                proclaim_syntax::render(&errors, "microwave.dl", MICROWAVE, false)
+            );
             std::process::exit(2);
         }
     };
@@ -21,8 +24,12 @@ fn main() {
     let mut session = Session::new(Engine::new(theory));
     // Sensor postings arrive one at a time; unknown inputs stay unknown until posted.
     for (door_open, time_left) in [(false, false), (false, true), (true, true), (false, true)] {
-        session.set_input(door, Some(door_open)).expect("consistent");
-        session.set_input(time, Some(time_left)).expect("consistent");
+        session
+            .set_input(door, Some(door_open))
+            .expect("consistent");
+        session
+            .set_input(time, Some(time_left))
+            .expect("consistent");
         println!(
             "door open {door_open:<5}  time left {time_left:<5}  ->  cook {:<5}  light {}",
             session.prove(Algorithm::Beta, cook),

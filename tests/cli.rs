@@ -23,50 +23,106 @@ fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("proclaim-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
-    std::fs::File::create(&path).unwrap().write_all(text).unwrap();
+    std::fs::File::create(&path)
+        .unwrap()
+        .write_all(text)
+        .unwrap();
     path
 }
 
 /// `args` → (exit code, stdout) with stdout compared exactly.
 fn check(args: &[&str], code: i32, expect: &str) {
     let o = proclaim(args);
-    assert_eq!(o.status.code(), Some(code), "{args:?}\nstderr: {}", stderr(&o));
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "{args:?}\nstderr: {}",
+        stderr(&o)
+    );
     assert_eq!(stdout(&o), expect, "{args:?}");
 }
 
 #[test]
 fn prove_prints_one_line_per_answer() {
-    check(&["prove", "tweety", "fly", "~fly"], 0, "+beta fly\n-beta ~fly\n");
     check(
-        &["prove", "tweety", "fly", "--alg", "all", "--set", "penguin=true"],
+        &["prove", "tweety", "fly", "~fly"],
+        0,
+        "+beta fly\n-beta ~fly\n",
+    );
+    check(
+        &[
+            "prove",
+            "tweety",
+            "fly",
+            "--alg",
+            "all",
+            "--set",
+            "penguin=true",
+        ],
         0,
         "-mu fly\n-pi fly\n-beta fly\n-alpha fly\n-delta fly\n",
     );
     check(&["prove", "blocking", "e", "--alg", "pi"], 0, "-pi e\n");
-    check(&["prove", "microwave", "\\/{cook, light}", "--set", "doorOpen=true"], 0, "+beta \\/{cook, light}\n");
+    check(
+        &[
+            "prove",
+            "microwave",
+            "\\/{cook, light}",
+            "--set",
+            "doorOpen=true",
+        ],
+        0,
+        "+beta \\/{cook, light}\n",
+    );
 }
 
 #[test]
 fn prove_json() {
-    let o = proclaim(&["prove", "offside", "offside", "--set", "fewerThanTwoOpponentsBetween=true", "--json"]);
+    let o = proclaim(&[
+        "prove",
+        "offside",
+        "offside",
+        "--set",
+        "fewerThanTwoOpponentsBetween=true",
+        "--json",
+    ]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v, serde_json::json!([{"algorithm": "beta", "query": "offside", "proved": true}]));
+    assert_eq!(
+        v,
+        serde_json::json!([{"algorithm": "beta", "query": "offside", "proved": true}])
+    );
 }
 
 #[test]
 fn bad_input_exits_2_and_says_why() {
     let o = proclaim(&["prove", "tweety", "flyy"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("the theory has no atom `flyy`"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("the theory has no atom `flyy`"),
+        "{}",
+        stderr(&o)
+    );
     assert!(stderr(&o).contains("did you mean `fly`?"), "{}", stderr(&o));
     let o = proclaim(&["prove", "microwave", "cook", "--set", "door=true"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("its inputs are doorOpen, timeLeft"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("its inputs are doorOpen, timeLeft"),
+        "{}",
+        stderr(&o)
+    );
     let o = proclaim(&["prove", "microwave", "cook", "--set", "doorOpen=maybe"]);
-    assert!(stderr(&o).contains("use true, false or unknown"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("use true, false or unknown"),
+        "{}",
+        stderr(&o)
+    );
     let o = proclaim(&["prove", "/no/such/theory.dl", "a"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("cannot read /no/such/theory.dl"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("cannot read /no/such/theory.dl"),
+        "{}",
+        stderr(&o)
+    );
     let o = proclaim(&["prove"]);
     assert_eq!(o.status.code(), Some(2));
 }
@@ -86,7 +142,11 @@ fn check_reports_every_error_and_exits_1() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v.as_array().unwrap().len(), 3);
     assert_eq!(v[0]["line"], 2);
-    check(&["check", "offside"], 0, "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 outputs)\n");
+    check(
+        &["check", "offside"],
+        0,
+        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 outputs)\n",
+    );
 }
 
 #[test]
@@ -94,7 +154,11 @@ fn a_theory_with_errors_is_refused_by_prove() {
     let bad = temp_file("refused.dl", b"a => b\nc.\n");
     let o = proclaim(&["prove", bad.to_str().unwrap(), "b"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("did you forget the `.`"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("did you forget the `.`"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -108,7 +172,11 @@ fn table_formats() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["rows"][1]["outputs"]["beta cook"], true);
     let o = proclaim(&["table", "offside"]);
-    assert!(stdout(&o).starts_with("fewerThanTwoOpponentsBetween  inOwnHalf"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).starts_with("fewerThanTwoOpponentsBetween  inOwnHalf"),
+        "{}",
+        stdout(&o)
+    );
 }
 
 #[test]
@@ -124,14 +192,30 @@ fn explain_tree() {
 #[test]
 fn gen_writes_the_family_and_its_expected_answer() {
     let o = proclaim(&["gen", "chain", "3"]);
-    assert_eq!(stdout(&o), "a0.\nr1: a0 => a1.\nr2: a1 => a2.\nr3: a2 => a3.\n");
-    assert!(stderr(&o).contains("expected: +beta a3 +pi a3"), "{}", stderr(&o));
+    assert_eq!(
+        stdout(&o),
+        "a0.\nr1: a0 => a1.\nr2: a1 => a2.\nr3: a2 => a3.\n"
+    );
+    assert!(
+        stderr(&o).contains("expected: +beta a3 +pi a3"),
+        "{}",
+        stderr(&o)
+    );
     let o = proclaim(&["gen", "levels", "0", "--format", "dfl"]);
-    assert_eq!(stdout(&o), "r0: => a0\nr1: a1 => -a0\nr2: => a1\nr3: a2 => -a1\nr4: => a2\nr3 > r2\n");
+    assert_eq!(
+        stdout(&o),
+        "r0: => a0\nr1: a1 => -a0\nr2: => a1\nr3: a2 => -a1\nr4: => a2\nr3 > r2\n"
+    );
     let o = proclaim(&["gen", "tree", "2", "2"]);
-    assert_eq!(stdout(&o), "r0: a1, a2 => a0.\nr1: a3, a4 => a1.\nr2: a5, a6 => a2.\na3.\na4.\na5.\na6.\n");
+    assert_eq!(
+        stdout(&o),
+        "r0: a1, a2 => a0.\nr1: a3, a4 => a1.\nr2: a5, a6 => a2.\na3.\na4.\na5.\na6.\n"
+    );
     let o = proclaim(&["gen", "teams", "0"]);
-    assert_eq!(stdout(&o), "r0: => a0.\nr1: => a0.\nr2: => ~a0.\nr3: => ~a0.\nr0 > r2.\nr1 > r3.\n");
+    assert_eq!(
+        stdout(&o),
+        "r0: => a0.\nr1: => a0.\nr2: => ~a0.\nr3: => ~a0.\nr0 > r2.\nr1 > r3.\n"
+    );
     let o = proclaim(&["gen", "bogus", "3"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("unknown family `bogus`"));
@@ -140,21 +224,37 @@ fn gen_writes_the_family_and_its_expected_answer() {
 #[test]
 fn generated_families_give_their_expected_answers() {
     for (family, sizes) in [
-        ("chain", vec![50]), ("chains", vec![50]), ("circle", vec![50]), ("circles", vec![50]),
-        ("levels", vec![20]), ("levels-", vec![20]), ("teams", vec![3]), ("tree", vec![4, 3]),
-        ("dag", vec![10, 3]), ("mix", vec![3, 2, 4]),
+        ("chain", vec![50]),
+        ("chains", vec![50]),
+        ("circle", vec![50]),
+        ("circles", vec![50]),
+        ("levels", vec![20]),
+        ("levels-", vec![20]),
+        ("teams", vec![3]),
+        ("tree", vec![4, 3]),
+        ("dag", vec![10, 3]),
+        ("mix", vec![3, 2, 4]),
     ] {
         let f = proclaim_gen::Family::parse(family, &sizes).unwrap();
         let mut text = Vec::new();
         f.write(&mut text, proclaim_gen::Format::Dl).unwrap();
         let path = temp_file(&format!("{family}.dl"), &text);
-        let expect: Vec<String> = f.expected().iter().map(|e| format!("--expect={e}")).collect();
+        let expect: Vec<String> = f
+            .expected()
+            .iter()
+            .map(|e| format!("--expect={e}"))
+            .collect();
         let mut args = vec!["bench-run", path.to_str().unwrap()];
         args.extend(expect.iter().map(String::as_str));
         let o = proclaim(&args);
-        let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{family}: {}", stderr(&o)));
+        let m: serde_json::Value = serde_json::from_slice(&o.stdout)
+            .unwrap_or_else(|_| panic!("{family}: {}", stderr(&o)));
         assert_eq!(m["answers_ok"], true, "{family}");
-        assert_eq!(m["rules"].as_u64().unwrap() as u128, f.rule_count() + facts(&f), "{family}");
+        assert_eq!(
+            m["rules"].as_u64().unwrap() as u128,
+            f.rule_count() + facts(&f),
+            "{family}"
+        );
     }
 }
 
@@ -185,7 +285,11 @@ fn a_hundred_megabytes_of_garbage_is_refused_cleanly() {
     let path = temp_file("garbage.dl", &garbage);
     let o = proclaim(&["check", path.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("more problems not shown"), "{}", &stderr(&o)[..2000.min(stderr(&o).len())]);
+    assert!(
+        stderr(&o).contains("more problems not shown"),
+        "{}",
+        &stderr(&o)[..2000.min(stderr(&o).len())]
+    );
     let binary = temp_file("binary.dl", &[0xff, 0xfe, 0x00, 0x41]);
     let o = proclaim(&["check", binary.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

@@ -15,11 +15,19 @@ fn diagnostics(input: &str, language: Language) -> String {
 }
 
 fn check(input: &str, expect: &str) {
-    assert_eq!(diagnostics(input, Language::Dl), expect, "for input:\n{input}");
+    assert_eq!(
+        diagnostics(input, Language::Dl),
+        expect,
+        "for input:\n{input}"
+    );
 }
 
 fn check_dfl(input: &str, expect: &str) {
-    assert_eq!(diagnostics(input, Language::Dfl), expect, "for input:\n{input}");
+    assert_eq!(
+        diagnostics(input, Language::Dfl),
+        expect,
+        "for input:\n{input}"
+    );
 }
 
 #[test]
@@ -53,15 +61,24 @@ fn every_problem_is_reported_at_once() {
 
 #[test]
 fn lexical_errors() {
-    check("a $$ b.\nc.\n\"open\n", "1:3: error: unexpected characters\n3:1: error: string has no closing `\"`\n");
-    check("a. /* never closed", "1:4: error: comment has no closing `*/`\n");
+    check(
+        "a $$ b.\nc.\n\"open\n",
+        "1:3: error: unexpected characters\n3:1: error: string has no closing `\"`\n",
+    );
+    check(
+        "a. /* never closed",
+        "1:4: error: comment has no closing `*/`\n",
+    );
     check("2abc => d.", "1:1: error: unexpected characters\n");
     check("é => d.", "1:1: error: unexpected characters\n");
 }
 
 #[test]
 fn missing_final_dot() {
-    check("a. b => c", "1:10: error: missing `.` at the end of the statement\n");
+    check(
+        "a. b => c",
+        "1:10: error: missing `.` at the end of the statement\n",
+    );
 }
 
 #[test]
@@ -70,24 +87,51 @@ fn priority_cycles_name_their_rules() {
         "R1: => a. R2: => ~a. R3: => b.\nR1 > R2. R2 > R3. R3 > R1.\n",
         "1:1: error: priorities form a cycle among rules R1, R2, R3\n",
     );
-    check("R1: => a. R1 > R1.", "1:11: error: rule `R1` is given priority over itself\n");
+    check(
+        "R1: => a. R1 > R1.",
+        "1:11: error: rule `R1` is given priority over itself\n",
+    );
 }
 
 #[test]
 fn inconsistent_facts() {
-    check("a.\nb.\n~a.\n", "1:1: error: the facts are inconsistent: they prove both `a` and `~a`\n");
-    check("\\/{a, b}.\n~a.\n~b.\n", "2:1: error: the facts are inconsistent: they prove both `~a` and `a`\n");
+    check(
+        "a.\nb.\n~a.\n",
+        "1:1: error: the facts are inconsistent: they prove both `a` and `~a`\n",
+    );
+    check(
+        "\\/{a, b}.\n~a.\n~b.\n",
+        "2:1: error: the facts are inconsistent: they prove both `~a` and `a`\n",
+    );
 }
 
 #[test]
 fn declarations_are_checked() {
     check("input{~a}. input{b}. input{b}.", "1:7: error: inputs are atoms, not negated literals\n1:28: error: `b` is declared as an input twice\n");
-    check("output{gamma a}. a.", "1:8: error: unknown algorithm `gamma` in output\n");
-    check("output{beta zz}. a.", "1:13: warning: output `zz` appears in no rule, fact or input\n");
-    check("input{a}. ignore 3 of {a}.", "1:11: error: `ignore 3 of` names only 1 literals\n");
-    check("input{a}. ignore 2 off {a}.", "1:20: error: expected `of` after `ignore 2`, found `off`\n");
-    check("name{a}. name{b}.", "1:10: error: the theory is named twice\n");
-    check("\\/{a, ~a}.", "1:1: warning: this clause holds a literal and its complement, so it says nothing\n");
+    check(
+        "output{gamma a}. a.",
+        "1:8: error: unknown algorithm `gamma` in output\n",
+    );
+    check(
+        "output{beta zz}. a.",
+        "1:13: warning: output `zz` appears in no rule, fact or input\n",
+    );
+    check(
+        "input{a}. ignore 3 of {a}.",
+        "1:11: error: `ignore 3 of` names only 1 literals\n",
+    );
+    check(
+        "input{a}. ignore 2 off {a}.",
+        "1:20: error: expected `of` after `ignore 2`, found `off`\n",
+    );
+    check(
+        "name{a}. name{b}.",
+        "1:10: error: the theory is named twice\n",
+    );
+    check(
+        "\\/{a, ~a}.",
+        "1:1: warning: this clause holds a literal and its complement, so it says nothing\n",
+    );
 }
 
 #[test]
@@ -106,7 +150,11 @@ fn rendered_errors_show_the_line_a_caret_and_a_hint() {
 fn a_flood_of_errors_is_capped() {
     let garbage = "$ ".repeat(100_000);
     let report = diagnostics(&garbage, Language::Dl);
-    assert!(report.lines().count() <= 201, "{} lines", report.lines().count());
+    assert!(
+        report.lines().count() <= 201,
+        "{} lines",
+        report.lines().count()
+    );
 }
 
 #[test]
@@ -116,7 +164,11 @@ fn spindle_dfl() {
         "",
     );
     check_dfl("r1: a =>\nr2 >\nr3: a b => c\n", "1:7: error: rule has no consequent\n2:1: error: malformed superiority relation\n3:7: error: expected `,` between literals\n");
-    let theory = load(">> bird\nr2: bird => fly\nr3: penguin => -fly\nr3 > r2\n", Language::Dfl).unwrap();
+    let theory = load(
+        ">> bird\nr2: bird => fly\nr3: penguin => -fly\nr3 > r2\n",
+        Language::Dfl,
+    )
+    .unwrap();
     assert_eq!(theory.rule_count(), 3);
     assert_eq!(theory.priorities().len(), 1);
 }
@@ -130,7 +182,11 @@ fn dl_and_dfl_of_a_benchmark_are_the_same_theory() {
     family.write(&mut dfl, proclaim_gen::Format::Dfl).unwrap();
     let a = load(std::str::from_utf8(&dl).unwrap(), Language::Dl).unwrap();
     let b = load(std::str::from_utf8(&dfl).unwrap(), Language::Dfl).unwrap();
-    let show = |t: &proclaim_cdl::Theory| (0..t.rule_count() as u32).map(|r| t.show_rule(r)).collect::<Vec<_>>();
+    let show = |t: &proclaim_cdl::Theory| {
+        (0..t.rule_count() as u32)
+            .map(|r| t.show_rule(r))
+            .collect::<Vec<_>>()
+    };
     assert_eq!(show(&a), show(&b));
     assert_eq!(a.priorities(), b.priorities());
 }

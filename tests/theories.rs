@@ -4,7 +4,9 @@ use proclaim_cdl::{load, truth_table, Engine, Language, Table};
 use std::sync::Arc;
 
 fn table(path: &str) -> Table {
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("theories").join(path);
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("theories")
+        .join(path);
     let text = std::fs::read_to_string(&file).unwrap();
     let theory = load(&text, Language::Dl).unwrap_or_else(|e| panic!("{path}: {e:?}"));
     truth_table(Arc::new(Engine::new(theory))).unwrap()
@@ -16,7 +18,13 @@ fn check(path: &str, expect: impl Fn(&[bool]) -> Vec<bool>) {
     assert!(!table.rows.is_empty());
     for row in &table.rows {
         let outputs = row.outputs.as_ref().expect("consistent inputs");
-        assert_eq!(outputs, &expect(&row.inputs), "{path}: inputs {:?} ({:?})", row.inputs, table.inputs);
+        assert_eq!(
+            outputs,
+            &expect(&row.inputs),
+            "{path}: inputs {:?} ({:?})",
+            row.inputs,
+            table.inputs
+        );
     }
 }
 
@@ -25,7 +33,12 @@ fn offside() {
     let table = table("offside.dl");
     assert_eq!(
         table.inputs,
-        ["fewerThanTwoOpponentsBetween", "inOwnHalf", "behindBall", "fromThrowIn"]
+        [
+            "fewerThanTwoOpponentsBetween",
+            "inOwnHalf",
+            "behindBall",
+            "fromThrowIn"
+        ]
     );
     assert_eq!(table.rows.len(), 16);
     check("offside.dl", |i| vec![i[0] && !i[1] && !i[2] && !i[3]]);
@@ -63,7 +76,9 @@ fn team_defeat() {
 #[test]
 fn blocking() {
     // mu pi beta alpha delta of e
-    check("classics/blocking.dl", |_| vec![false, false, true, false, true]);
+    check("classics/blocking.dl", |_| {
+        vec![false, false, true, false, true]
+    });
 }
 
 #[test]
@@ -108,8 +123,15 @@ fn the_embedding_example_runs() {
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("door open false  time left true   ->  cook true   light true"), "{text}");
+    assert!(
+        text.contains("door open false  time left true   ->  cook true   light true"),
+        "{text}"
+    );
     assert!(text.contains("+beta cook"), "{text}");
 }

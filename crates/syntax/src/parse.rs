@@ -76,11 +76,19 @@ pub fn parse_dl(source: &str) -> ParsedTheory {
             break;
         }
         let statement = &statement[..];
-        if let [Token { tok: Tok::Ident(_), span }, Token { tok: Tok::Colon, .. }, ..] = statement {
+        if let [Token {
+            tok: Tok::Ident(_),
+            span,
+        }, Token {
+            tok: Tok::Colon, ..
+        }, ..] = statement
+        {
             // Remembered in case the statement fails; dropped again below when it parses.
             broken_labels.push(*span);
         }
-        let labelled = broken_labels.last().is_some_and(|s| *s == statement[0].span);
+        let labelled = broken_labels
+            .last()
+            .is_some_and(|s| *s == statement[0].span);
         if report_bad_tokens(statement, &mut sink) {
             continue;
         }
