@@ -352,7 +352,7 @@ fn decode_v18(bytes: &[u8]) -> Result<ControlPacket, DecodeError> {
     let kicking_team = Some(r.u8()).filter(|&t| t != 255);
     let secs_remaining = r.u16() as i16 as i32;
     let secondary_time = r.u16() as i16;
-    let mut team = |r: &mut Reader<'_>| TeamInfo {
+    let team = |r: &mut Reader<'_>| TeamInfo {
         team_number: r.u8(),
         field_player_colour: Colour::from_code(r.u8()),
         goalkeeper_colour: Colour::from_code(r.u8()),
@@ -401,7 +401,7 @@ fn decode_v7(bytes: &[u8]) -> Result<ControlPacket, DecodeError> {
     let _drop_in_team = r.u8();
     let secondary_time = r.u16() as i16;
     let secs_remaining = r.u32() as i32;
-    let mut team = |r: &mut Reader<'_>| {
+    let team = |r: &mut Reader<'_>| {
         let team_number = r.u8();
         let colour = Colour::from_code(r.u8());
         let goal_colour = Colour::from_code(r.u8());
