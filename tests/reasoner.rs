@@ -223,3 +223,21 @@ fn consistency_fails_on_a_self_attacking_loop() {
     check(theory, "a2", "--+-+");
     check(theory, "~a2", "--+-+");
 }
+
+#[test]
+fn a_long_loop_with_an_attack_inside_is_settled_without_search() {
+    // A 20,000-goal cycle with a default and an exception inside it: exact answers, in linear
+    // time (top-down search alone is quadratic here), and no stack overflow.
+    let mut text = String::from("rd: => a0. rx: a5 => ~a0.\n");
+    for i in 0..20_000 {
+        text += &format!("r{i}: a{i} => a{}.\n", (i + 1) % 20_000);
+    }
+    let theory = load(&text, Language::Dl).unwrap();
+    let lits: Vec<_> = ["a0", "a7", "a19999", "~a0"]
+        .iter()
+        .map(|l| theory.lit(l).unwrap())
+        .collect();
+    let mut s = Session::new(Engine::new(theory));
+    let answers: Vec<bool> = lits.iter().map(|&l| s.prove(Algorithm::Beta, l)).collect();
+    assert_eq!(answers, [true, true, true, false]);
+}

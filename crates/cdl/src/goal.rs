@@ -31,23 +31,31 @@ pub(crate) fn kind_of(goal: Goal) -> u32 {
     goal % 3
 }
 
-/// The proof condition of `goal`, reading the values of its sub-goals through `value`.
-/// `mu` is the monotonic closure, which never depends on a history.
+/// How a condition reads a sub-goal: as support (read positively) or through an attacker's
+/// antecedent (read negatively: a true sub-goal makes the condition harder to meet).
+pub(crate) type Read = bool;
+pub(crate) const SUPPORT_READ: Read = false;
+pub(crate) const ATTACK_READ: Read = true;
+
+/// The proof condition of `goal`, reading the values of its sub-goals through `value`, which is
+/// told whether each read is a support or an attack read. `mu` is the monotonic closure, which
+/// never depends on a history.
 pub(crate) fn condition(
     engine: &Engine,
     mu: &[bool],
     goal: Goal,
-    value: &mut dyn FnMut(Goal) -> bool,
+    value: &mut dyn FnMut(Goal, Read) -> bool,
 ) -> bool {
     let q = lit_of(goal);
     let nq = q.complement();
     let kind = kind_of(goal);
-    let applicable = |rule: u32, kind: u32, value: &mut dyn FnMut(Goal) -> bool| {
-        engine
-            .body(rule)
-            .iter()
-            .all(|&a| value(self::goal(a, kind)))
-    };
+    let applicable =
+        |rule: u32, kind: u32, read: Read, value: &mut dyn FnMut(Goal, Read) -> bool| {
+            engine
+                .body(rule)
+                .iter()
+                .all(|&a| value(self::goal(a, kind), read))
+        };
     match kind {
         BETA | PI => {
             if mu[q.index()] {
@@ -59,18 +67,20 @@ pub(crate) fn condition(
             let supporters = engine.rules_for(q);
             let supported = supporters
                 .iter()
-                .any(|&r| engine.kind(r).supports() && applicable(r, kind, value));
+                .any(|&r| engine.kind(r).supports() && applicable(r, kind, SUPPORT_READ, value));
             if !supported {
                 return false;
             }
             // An attacker counts when its antecedent is proved (β) or merely supported (π).
             let attacker_kind = if kind == BETA { BETA } else { SUP };
             for &s in engine.rules_for(nq) {
-                if !applicable(s, attacker_kind, value) {
+                if !applicable(s, attacker_kind, ATTACK_READ, value) {
                     continue;
                 }
                 let beaten = engine.superiors_of(s).iter().any(|&t| {
-                    engine.head(t) == q && engine.kind(t).supports() && applicable(t, kind, value)
+                    engine.head(t) == q
+                        && engine.kind(t).supports()
+                        && applicable(t, kind, SUPPORT_READ, value)
                 });
                 if !beaten {
                     return false;
@@ -84,11 +94,11 @@ pub(crate) fn condition(
             }
             engine.rules_for(q).iter().any(|&r| {
                 engine.kind(r).supports()
-                    && applicable(r, SUP, value)
+                    && applicable(r, SUP, SUPPORT_READ, value)
                     && engine
                         .superiors_of(r)
                         .iter()
-                        .all(|&s| engine.head(s) != nq || !applicable(s, PI, value))
+                        .all(|&s| engine.head(s) != nq || !applicable(s, PI, ATTACK_READ, value))
             })
         }
     }

@@ -3,7 +3,9 @@
 //! reaches.
 
 use crate::engine::Engine;
-use crate::goal::{condition, goal, successors, Goal, ATTACK, BETA, KINDS, PI, SUP};
+use crate::goal::{
+    condition, goal, successors, Goal, Read, ATTACK, ATTACK_READ, BETA, KINDS, PI, SUP,
+};
 use crate::literal::{Atom, Lit};
 use crate::query::Formula;
 use crate::theory::RuleKind;
@@ -475,7 +477,7 @@ impl Session {
                 .any(|&s| s & !ATTACK == g);
             if !self_loop {
                 let values = &self.values;
-                let v = condition(&engine, &self.mu, g, &mut |s| values[s as usize] == TRUE);
+                let v = condition(&engine, &self.mu, g, &mut |s, _| values[s as usize] == TRUE);
                 self.values[g as usize] = if v { TRUE } else { FALSE };
                 return;
             }
@@ -485,16 +487,23 @@ impl Session {
 
     /// A component with a cycle. With only support edges inside it the condition is monotone in
     /// the component's goals, and the answer is the least fixpoint (loops fail, cdl.md §5.5).
-    /// With an attack inside, answers depend on the history, so it is proved top-down exactly as
-    /// cdl.md §4 reads, the history restricted to the component.
+    ///
+    /// With an attack inside, answers depend on the history. Least fixpoints bound them exactly:
+    /// `up` reads every internal attack as failing, so a goal outside it fails under any history.
+    /// `low` reads an internal attack on `x` by goal `g` as `x`'s upper bound computed with `g`
+    /// removed (`g` is on the history whenever it reads `x`), so a goal inside `low` holds from
+    /// the empty history: its minimal derivation never meets a goal twice on a path. Only goals
+    /// between the bounds are proved top-down, as cdl.md §4 reads, with the history restricted to
+    /// the component.
     fn evaluate_cycle(&mut self, engine: &Engine) {
         let members = std::mem::take(&mut self.component);
         for (position, &g) in members.iter().enumerate() {
             self.values[g as usize] = PENDING;
             self.low[g as usize] = position as u32;
         }
-        let mut edges: Vec<(u32, u32)> = Vec::new();
-        let mut internal_attack = false;
+        // (read member, reading member) pairs, and the internal attack reads by reader.
+        let mut readers: Vec<(u32, u32)> = Vec::new();
+        let mut attacks: Vec<(u32, u32)> = Vec::new();
         let mut buffer = Vec::new();
         for (from, &g) in members.iter().enumerate() {
             buffer.clear();
@@ -503,64 +512,130 @@ impl Session {
                 values[s as usize] == PENDING
             });
             for &s in &buffer {
-                internal_attack |= s & ATTACK != 0;
-                edges.push((self.low[(s & !ATTACK) as usize], from as u32));
+                let to = self.low[(s & !ATTACK) as usize];
+                readers.push((to, from as u32));
+                if s & ATTACK != 0 {
+                    attacks.push((from as u32, to));
+                }
             }
         }
-        let results: Vec<bool> = if internal_attack {
+        readers.sort_unstable();
+        readers.dedup();
+        attacks.sort_unstable();
+        attacks.dedup();
+        let fixpoint = Fixpoint {
+            engine,
+            mu: &self.mu,
+            values: &self.values,
+            position: &self.low,
+            members: &members,
+            readers: &readers,
+        };
+        let results: Vec<bool> = if attacks.is_empty() {
+            fixpoint.least(|_, _| false, None)
+        } else {
+            let up = fixpoint.least(|_, _| false, None);
+            // Which internal attack reads can hold while their reader is on the history. One
+            // fixpoint per attacking goal: bounded, falling back to the plain upper bound.
+            let attackers = attacks.iter().map(|&(g, _)| g).filter(|&g| up[g as usize]);
+            let mut distinct: Vec<u32> = attackers.collect();
+            distinct.dedup();
+            let refine = distinct.len().saturating_mul(members.len()) <= REFINE_LIMIT;
+            let mut holds: FxHashMap<(u32, u32), bool> = FxHashMap::default();
+            if refine {
+                for &g in &distinct {
+                    let without = fixpoint.least(|_, _| false, Some(g));
+                    let start = attacks.partition_point(|&(r, _)| r < g);
+                    for &(_, x) in attacks[start..].iter().take_while(|&&(r, _)| r == g) {
+                        holds.insert((g, x), without[x as usize]);
+                    }
+                }
+            }
+            let low = fixpoint.least(
+                |reader, x| {
+                    if refine {
+                        holds.get(&(reader, x)).copied().unwrap_or(false)
+                    } else {
+                        up[x as usize]
+                    }
+                },
+                None,
+            );
             let mut top_down = TopDown {
                 engine,
                 mu: &self.mu,
                 values: &self.values,
                 position: &self.low,
+                up: &up,
                 in_history: vec![false; members.len()],
                 history: 0,
                 memo: FxHashMap::default(),
                 memoise: members.len() <= MEMO_LIMIT,
             };
-            members.iter().map(|&g| top_down.prove(g)).collect()
-        } else {
-            self.least_fixpoint(engine, &members, &mut edges)
+            members
+                .iter()
+                .enumerate()
+                .map(|(i, &g)| low[i] || (up[i] && top_down.prove(g)))
+                .collect()
         };
         for (&g, v) in members.iter().zip(results) {
             self.values[g as usize] = if v { TRUE } else { FALSE };
         }
         self.component = members;
     }
+}
 
-    fn least_fixpoint(
-        &mut self,
-        engine: &Engine,
-        members: &[Goal],
-        edges: &mut [(u32, u32)],
-    ) -> Vec<bool> {
-        // Readers of each member, so a member that becomes true wakes only those.
-        edges.sort_unstable();
-        for &g in members {
-            self.values[g as usize] = FALSE;
-        }
-        let mut work: Vec<u32> = (0..members.len() as u32).collect();
+/// Bounds the work of refining the lower bound: attacking goals times component size.
+const REFINE_LIMIT: usize = 50_000_000;
+
+/// Least fixpoints over the members of one component.
+struct Fixpoint<'a> {
+    engine: &'a Engine,
+    mu: &'a [bool],
+    values: &'a [u8],
+    /// A member's position in `members`, by goal.
+    position: &'a [u32],
+    members: &'a [Goal],
+    /// (read member, reading member), sorted: a member that turns true wakes only its readers.
+    readers: &'a [(u32, u32)],
+}
+
+impl Fixpoint<'_> {
+    /// Support reads of members take the current approximation; an attack read of member `x` by
+    /// member `r` takes `attack(r, x)`; `excluded` is held false; settled goals are read as they
+    /// are.
+    fn least(&self, attack: impl Fn(u32, u32) -> bool, excluded: Option<u32>) -> Vec<bool> {
+        let mut current = vec![false; self.members.len()];
+        let mut work: Vec<u32> = (0..self.members.len() as u32)
+            .filter(|&i| Some(i) != excluded)
+            .collect();
         while let Some(i) = work.pop() {
-            let g = members[i as usize];
-            if self.values[g as usize] == TRUE {
+            if current[i as usize] || Some(i) == excluded {
                 continue;
             }
-            let values = &self.values;
-            if condition(engine, &self.mu, g, &mut |s| values[s as usize] == TRUE) {
-                self.values[g as usize] = TRUE;
-                let start = edges.partition_point(|&(to, _)| to < i);
+            let mut read = |s: Goal, how: Read| match self.values[s as usize] {
+                PENDING => {
+                    let p = self.position[s as usize];
+                    if how == ATTACK_READ {
+                        attack(i, p)
+                    } else {
+                        current[p as usize]
+                    }
+                }
+                v => v == TRUE,
+            };
+            if condition(self.engine, self.mu, self.members[i as usize], &mut read) {
+                current[i as usize] = true;
+                let start = self.readers.partition_point(|&(to, _)| to < i);
                 work.extend(
-                    edges[start..]
+                    self.readers[start..]
                         .iter()
                         .take_while(|&&(to, _)| to == i)
                         .map(|&(_, from)| from),
                 );
             }
         }
-        members
-            .iter()
-            .map(|&g| self.values[g as usize] == TRUE)
-            .collect()
+        current
     }
 }
 
@@ -571,6 +646,8 @@ struct TopDown<'a> {
     mu: &'a [bool],
     values: &'a [u8],
     position: &'a [u32],
+    /// Members outside the upper bound fail under every history.
+    up: &'a [bool],
     in_history: Vec<bool>,
     /// The history as a set of positions, for the memo key (small components only).
     history: u64,
@@ -586,7 +663,7 @@ impl TopDown<'_> {
             _ => {}
         }
         let p = self.position[g as usize];
-        if self.in_history[p as usize] {
+        if self.in_history[p as usize] || !self.up[p as usize] {
             return false;
         }
         if self.memoise {
@@ -600,7 +677,11 @@ impl TopDown<'_> {
             self.history |= 1 << p;
         }
         let (engine, mu) = (self.engine, self.mu);
-        let v = condition(engine, mu, g, &mut |s| self.prove(s));
+        // The path can be as long as the component: grow the stack on the heap rather than
+        // overflow it.
+        let v = stacker::maybe_grow(64 * 1024, 4 * 1024 * 1024, || {
+            condition(engine, mu, g, &mut |s, _| self.prove(s))
+        });
         self.in_history[p as usize] = false;
         if self.memoise {
             self.history &= !(1 << p);
