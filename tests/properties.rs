@@ -10,10 +10,6 @@ fn lit_over(atoms: usize) -> impl Strategy<Value = String> {
     (0..atoms, any::<bool>()).prop_map(|(a, neg)| format!("{}a{a}", if neg { "~" } else { "" }))
 }
 
-fn lit() -> impl Strategy<Value = String> {
-    lit_over(ATOMS)
-}
-
 /// A random theory as text: rules of every kind (with loops, since any atom may lead to any),
 /// facts, clause facts and acyclic priorities, plus random input values.
 fn theory() -> impl Strategy<Value = (String, Vec<(usize, Option<bool>)>)> {
