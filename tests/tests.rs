@@ -6,6 +6,7 @@ mod properties;
 mod reasoner;
 mod syntax;
 mod theories;
+mod whiteboard;
 
 /// Where the shared corpus and specs live, when present beside the project.
 #[allow(dead_code)]

@@ -1,0 +1,143 @@
+//! The handle modules hold, and the query protocol of behaviour.md §2: post a query for an atom,
+//! wait for its expert's answer, time out as false.
+
+use crate::local::LocalBoard;
+use crate::message::{Kind, Message};
+use crate::pattern::Pattern;
+use crate::registry::{ModuleDecl, Registry};
+use crate::transport::{Stats, Subscription, Transport};
+use crate::value::Value;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// The message type of a query; its content is the atom (the original's name).
+pub const QUERY_TYPE: &str = "updateProofsForOutput";
+
+/// How a query ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum QueryOutcome {
+    /// An expert proclaimed the atom.
+    Answered {
+        value: bool,
+        by: Arc<str>,
+        after: Duration,
+    },
+    /// No answer in time: the label counts as false.
+    TimedOut,
+    /// No registered module answers the atom: false at once, never a hang.
+    NoExpert,
+}
+
+impl QueryOutcome {
+    /// The label's truth: the answer, or false when there was none.
+    pub fn truth(&self) -> bool {
+        matches!(self, QueryOutcome::Answered { value: true, .. })
+    }
+}
+
+/// A clonable handle on a whiteboard.
+#[derive(Clone)]
+pub struct Whiteboard {
+    transport: Arc<dyn Transport>,
+}
+
+impl Whiteboard {
+    /// A new in-process whiteboard.
+    pub fn local() -> Whiteboard {
+        Whiteboard::new(Arc::new(LocalBoard::new()))
+    }
+
+    pub fn new(transport: Arc<dyn Transport>) -> Whiteboard {
+        let board = Whiteboard { transport };
+        board.declare(QUERY_TYPE, Kind::Data);
+        board
+    }
+
+    pub fn declare(&self, ty: &str, kind: Kind) {
+        self.transport.declare(ty, kind);
+    }
+
+    pub fn post(&self, module: &str, ty: &str, value: impl Into<Value>) -> Message {
+        self.transport.post(module, ty, value.into())
+    }
+
+    pub fn latest(&self, ty: &str) -> Option<Message> {
+        self.transport.latest(ty)
+    }
+
+    /// The current value of a state used as a proposition (truthiness rule), if ever posted.
+    pub fn truth(&self, ty: &str) -> Option<bool> {
+        self.transport.latest(ty).map(|m| m.value.truthy())
+    }
+
+    pub async fn wait_for(&self, ty: &str, after: u64, timeout: Duration) -> Option<Message> {
+        self.transport.wait_for(ty, after, timeout).await
+    }
+
+    /// The data message nearest `time` on either side.
+    pub fn nearest(&self, ty: &str, time: Duration) -> Option<Message> {
+        self.transport.nearest(ty, time, std::cmp::Ordering::Equal)
+    }
+
+    /// The nearest data message at or after `time`.
+    pub fn nearest_not_older(&self, ty: &str, time: Duration) -> Option<Message> {
+        self.transport
+            .nearest(ty, time, std::cmp::Ordering::Greater)
+    }
+
+    /// The nearest data message at or before `time`.
+    pub fn nearest_not_newer(&self, ty: &str, time: Duration) -> Option<Message> {
+        self.transport.nearest(ty, time, std::cmp::Ordering::Less)
+    }
+
+    /// Messages whose type matches `pattern` (`LEDS`, `*Received`, `*`).
+    pub fn subscribe(&self, pattern: &str) -> Subscription {
+        self.transport.subscribe(Pattern::parse(pattern))
+    }
+
+    pub fn register(&self, decl: ModuleDecl) {
+        self.transport.register(decl);
+    }
+
+    pub fn registry(&self) -> Registry {
+        self.transport.registry()
+    }
+
+    pub fn stats(&self) -> Stats {
+        self.transport.stats()
+    }
+
+    pub fn now(&self) -> Duration {
+        self.transport.now()
+    }
+
+    /// Asks for a proclamation of `atom` and waits at most `timeout` for it. A query for an atom
+    /// no registered module answers ends at once with [`QueryOutcome::NoExpert`]; a timeout is
+    /// a warning, and the label counts as false.
+    pub async fn query(&self, module: &str, atom: &str, timeout: Duration) -> QueryOutcome {
+        if self.transport.registry().answerers(atom).is_empty() {
+            self.transport.count_query(false, true);
+            tracing::warn!(module, atom, "query for an atom no module answers");
+            return QueryOutcome::NoExpert;
+        }
+        let asked = self.post(module, QUERY_TYPE, atom);
+        let answer = self.wait_for(atom, asked.seq, timeout).await;
+        self.transport.count_query(answer.is_none(), false);
+        match answer {
+            Some(m) => QueryOutcome::Answered {
+                value: m.value.truthy(),
+                after: m.time.saturating_sub(asked.time),
+                by: m.module,
+            },
+            None => {
+                tracing::warn!(
+                    module,
+                    atom,
+                    ?timeout,
+                    "query timed out; the label counts as false"
+                );
+                QueryOutcome::TimedOut
+            }
+        }
+    }
+}
