@@ -253,13 +253,7 @@ impl Transport for LocalBoard {
                 Ordering::Less => m.time <= time,
                 Ordering::Equal => true,
             })
-            .min_by_key(|m| {
-                if m.time > time {
-                    m.time - time
-                } else {
-                    time - m.time
-                }
-            })
+            .min_by_key(|m| m.time.abs_diff(time))
             .cloned()
     }
 
