@@ -95,6 +95,10 @@ impl Whiteboard {
         self.transport.subscribe(Pattern::parse(pattern))
     }
 
+    pub fn subscribe_pattern(&self, pattern: Pattern) -> Subscription {
+        self.transport.subscribe(pattern)
+    }
+
     pub fn register(&self, decl: ModuleDecl) {
         self.transport.register(decl);
     }

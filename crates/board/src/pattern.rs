@@ -4,6 +4,8 @@
 pub enum Pattern {
     Type(String),
     Glob(String),
+    /// Any of these types.
+    Any(Vec<String>),
     All,
 }
 
@@ -22,6 +24,7 @@ impl Pattern {
             Pattern::All => true,
             Pattern::Type(t) => t == ty,
             Pattern::Glob(g) => glob(g.as_bytes(), ty.as_bytes()),
+            Pattern::Any(types) => types.iter().any(|t| t == ty),
         }
     }
 }

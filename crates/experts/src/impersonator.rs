@@ -1,0 +1,176 @@
+//! The impersonator (the original `testcdl`): answers atoms from a script, from Rust, or from a
+//! person at a terminal prompt, through the same protocol as any expert.
+
+use crate::script::{Script, When};
+use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use rustc_hash::FxHashMap;
+use std::sync::{Arc, Mutex};
+use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};
+
+type Person = (
+    Box<dyn AsyncBufRead + Unpin + Send>,
+    Box<dyn AsyncWrite + Unpin + Send>,
+);
+
+/// A clonable handle: clones share the answers, so a test can change them while it runs.
+#[derive(Clone)]
+pub struct Impersonator {
+    name: String,
+    atoms: Vec<String>,
+    answers: Arc<Mutex<FxHashMap<String, bool>>>,
+    script: Script,
+    person: Arc<tokio::sync::Mutex<Option<Person>>>,
+    board: Arc<Mutex<Option<Whiteboard>>>,
+}
+
+impl Impersonator {
+    /// Impersonates the experts of `atoms` (plus every atom the script names).
+    pub fn new<S: Into<String>>(
+        name: impl Into<String>,
+        atoms: impl IntoIterator<Item = S>,
+        script: Script,
+    ) -> Impersonator {
+        let mut all: Vec<String> = atoms.into_iter().map(Into::into).collect();
+        for a in script.atoms() {
+            if !all.contains(&a) {
+                all.push(a);
+            }
+        }
+        Impersonator {
+            name: name.into(),
+            atoms: all,
+            answers: Arc::default(),
+            script,
+            person: Arc::default(),
+            board: Arc::default(),
+        }
+    }
+
+    /// Asks a person for atoms with no scripted value: `readyReceived? [y/n]`.
+    pub fn with_person(
+        self,
+        input: impl AsyncBufRead + Unpin + Send + 'static,
+        output: impl AsyncWrite + Unpin + Send + 'static,
+    ) -> Impersonator {
+        *self.person.try_lock().expect("not yet running") =
+            Some((Box::new(input), Box::new(output)));
+        self
+    }
+
+    pub fn declaration(&self) -> ModuleDecl {
+        ModuleDecl::new(&self.name)
+            .reads([QUERY_TYPE])
+            .posts(self.atoms.clone())
+            .answers(self.atoms.clone())
+    }
+
+    /// Sets an answer from Rust; posted at once when running (an unprompted proclamation).
+    pub fn set(&self, atom: &str, value: bool) {
+        self.answers
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(atom.to_string(), value);
+        if let Some(board) = self
+            .board
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .as_ref()
+        {
+            board.post(&self.name, atom, value);
+        }
+    }
+
+    fn current(&self, atom: &str) -> Option<bool> {
+        self.answers
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(atom)
+            .copied()
+    }
+
+    /// Registers and answers queries until the whiteboard is gone.
+    pub async fn run(self, board: Whiteboard) {
+        let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
+        board.register(self.declaration());
+        *self.board.lock().unwrap_or_else(|e| e.into_inner()) = Some(board.clone());
+        for step in self.script.steps.iter().filter(|s| s.when == When::Start) {
+            self.set(&step.atom, step.value);
+        }
+        let start = tokio::time::Instant::now();
+        let mut timed: Vec<_> = self
+            .script
+            .steps
+            .iter()
+            .filter_map(|s| match s.when {
+                When::At(t) => Some((t, s.atom.clone(), s.value)),
+                _ => None,
+            })
+            .collect();
+        timed.sort_by_key(|(t, _, _)| *t);
+        let mut timed = timed.into_iter().peekable();
+        let mut step = 0u64;
+        loop {
+            let next_time = timed.peek().map(|(t, _, _)| start + *t);
+            let query = match next_time {
+                Some(at) => tokio::select! {
+                    q = queries.next() => q,
+                    _ = tokio::time::sleep_until(at) => {
+                        let (_, atom, value) = timed.next().expect("peeked");
+                        self.set(&atom, value);
+                        continue;
+                    }
+                },
+                None => queries.next().await,
+            };
+            let Some(query) = query else { return };
+            let Value::Str(atom) = &query.value else {
+                continue;
+            };
+            if !self.atoms.contains(atom) {
+                continue;
+            }
+            step += 1;
+            for s in self
+                .script
+                .steps
+                .iter()
+                .filter(|s| s.when == When::Step(step))
+            {
+                self.answers
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .insert(s.atom.clone(), s.value);
+            }
+            let answer = match self.current(atom) {
+                Some(v) => Some(v),
+                None => self.ask_person(atom).await,
+            };
+            if let Some(v) = answer {
+                board.post(&self.name, atom, v);
+            }
+        }
+    }
+
+    async fn ask_person(&self, atom: &str) -> Option<bool> {
+        let mut guard = self.person.lock().await;
+        let (input, output) = guard.as_mut()?;
+        loop {
+            output
+                .write_all(format!("{atom}? [y/n] ").as_bytes())
+                .await
+                .ok()?;
+            output.flush().await.ok()?;
+            let mut line = String::new();
+            if input.read_line(&mut line).await.ok()? == 0 {
+                return None; // the person left: no more answers, queries time out
+            }
+            match line.trim().to_ascii_lowercase().as_str() {
+                "y" | "yes" | "t" | "true" | "1" => return Some(true),
+                "n" | "no" | "f" | "false" | "0" => return Some(false),
+                _ => {
+                    output.write_all(b"please answer y or n\n").await.ok()?;
+                }
+            }
+        }
+    }
+}

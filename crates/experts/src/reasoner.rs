@@ -1,0 +1,158 @@
+//! The reasoner expert: a CDL theory on the whiteboard. Its declared inputs are read from
+//! messages (of the same name unless mapped), its declared outputs are the atoms it answers,
+//! each with the algorithm its `output{}` names.
+
+use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use proclaim_cdl::{Algorithm, Atom, Engine, Lit, Session, Theory};
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+
+struct OutputSlot {
+    name: String,
+    lit: Lit,
+    algorithm: Algorithm,
+    last: Option<bool>,
+}
+
+pub struct ReasonerExpert {
+    name: String,
+    session: Session,
+    /// Message type → input atom.
+    inputs: FxHashMap<String, Atom>,
+    outputs: Vec<OutputSlot>,
+}
+
+impl ReasonerExpert {
+    /// An expert for `theory`; `mapping` renames input atoms to message types (atom → type).
+    /// A theory that declares no outputs answers every atom of its rules with β.
+    pub fn new(
+        name: impl Into<String>,
+        theory: Theory,
+        mapping: &FxHashMap<String, String>,
+    ) -> ReasonerExpert {
+        let inputs = theory
+            .input_atoms()
+            .map(|a| {
+                let atom = theory.atom_name(a);
+                (
+                    mapping
+                        .get(atom)
+                        .cloned()
+                        .unwrap_or_else(|| atom.to_string()),
+                    a,
+                )
+            })
+            .collect();
+        let mut outputs: Vec<OutputSlot> = theory
+            .outputs()
+            .iter()
+            .map(|o| OutputSlot {
+                name: theory.show(o.lit).to_string(),
+                lit: o.lit,
+                algorithm: o.algorithm,
+                last: None,
+            })
+            .collect();
+        if outputs.is_empty() {
+            let input_atoms: Vec<Atom> = theory.input_atoms().collect();
+            outputs = (0..theory.atom_count() as u32)
+                .map(Atom)
+                .filter(|a| !input_atoms.contains(a))
+                .map(|a| OutputSlot {
+                    name: theory.atom_name(a).to_string(),
+                    lit: Lit::positive(a),
+                    algorithm: Algorithm::Beta,
+                    last: None,
+                })
+                .collect();
+        }
+        ReasonerExpert {
+            name: name.into(),
+            session: Session::new(Arc::new(Engine::new(theory))),
+            inputs,
+            outputs,
+        }
+    }
+
+    /// What it posts, reads and answers, for the registry.
+    pub fn declaration(&self) -> ModuleDecl {
+        let mut reads: Vec<&String> = self.inputs.keys().collect();
+        reads.sort();
+        ModuleDecl::new(&self.name)
+            .reads(reads.into_iter().cloned().chain([QUERY_TYPE.to_string()]))
+            .posts(self.outputs.iter().map(|o| o.name.clone()))
+            .answers(self.outputs.iter().map(|o| o.name.clone()))
+    }
+
+    /// Applies one input message: true, false (truthiness), or unknown for the string `unknown`.
+    /// Returns false when the type is not an input of this theory. An input that contradicts the
+    /// axioms is refused, logged, and changes nothing.
+    pub fn apply(&mut self, ty: &str, value: &Value) -> bool {
+        let Some(&atom) = self.inputs.get(ty) else {
+            return false;
+        };
+        let v = match value {
+            Value::Str(s) if s.eq_ignore_ascii_case("unknown") => None,
+            other => Some(other.truthy()),
+        };
+        if let Err(conflict) = self.session.set_input(atom, v) {
+            tracing::warn!(expert = %self.name, %conflict, "input refused");
+        }
+        true
+    }
+
+    /// The outputs whose value changed since last asked (all of them the first time).
+    pub fn changed_outputs(&mut self) -> Vec<(String, bool)> {
+        let mut changed = Vec::new();
+        for o in &mut self.outputs {
+            let v = self.session.prove(o.algorithm, o.lit);
+            if o.last != Some(v) {
+                o.last = Some(v);
+                changed.push((o.name.clone(), v));
+            }
+        }
+        changed
+    }
+
+    /// The answer for one output, if this expert owns it.
+    pub fn answer(&mut self, atom: &str) -> Option<bool> {
+        let o = self.outputs.iter().position(|o| o.name == atom)?;
+        let (lit, alg) = (self.outputs[o].lit, self.outputs[o].algorithm);
+        Some(self.session.prove(alg, lit))
+    }
+
+    /// Registers, posts the initial outputs, then follows its inputs and answers queries until
+    /// the whiteboard is gone.
+    pub async fn run(mut self, board: Whiteboard) {
+        // Subscribed before registering, so no query sent once it is registered is missed.
+        let mut types: Vec<String> = self.inputs.keys().cloned().collect();
+        types.push(QUERY_TYPE.to_string());
+        let mut messages = board.subscribe_pattern(Pattern::Any(types));
+        board.register(self.declaration());
+        // Inputs posted before the expert started count too.
+        let current: Vec<(String, Value)> = self
+            .inputs
+            .keys()
+            .filter_map(|ty| board.latest(ty).map(|m| (ty.clone(), m.value)))
+            .collect();
+        for (ty, value) in current {
+            self.apply(&ty, &value);
+        }
+        for (name, v) in self.changed_outputs() {
+            board.post(&self.name, &name, v);
+        }
+        while let Some(m) = messages.next().await {
+            if &*m.ty == QUERY_TYPE {
+                if let Value::Str(atom) = &m.value {
+                    if let Some(v) = self.answer(atom) {
+                        board.post(&self.name, atom, v);
+                    }
+                }
+            } else if self.apply(&m.ty, &m.value) {
+                for (name, v) in self.changed_outputs() {
+                    board.post(&self.name, &name, v);
+                }
+            }
+        }
+    }
+}

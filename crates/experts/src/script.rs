@@ -1,0 +1,136 @@
+//! The impersonator's script: what to answer for which atom, from the start, at a time, or at a
+//! query step. One statement a line, `#` comments:
+//!
+//! ```text
+//! readyReceived = false          # from the start
+//! at 2s readyReceived = true     # two seconds after the start
+//! at 500ms setReceived = yes     # values follow the whiteboard's truthiness rule
+//! step 3: playingReceived = true # when the third query arrives, before it is answered
+//! ```
+
+use proclaim_board::Value;
+use std::fmt;
+use std::time::Duration;
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum When {
+    Start,
+    At(Duration),
+    /// The n-th query (1-based) the impersonator receives.
+    Step(u64),
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScriptStep {
+    pub when: When,
+    pub atom: String,
+    pub value: bool,
+    pub line: usize,
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Script {
+    pub steps: Vec<ScriptStep>,
+}
+
+impl Script {
+    /// Every atom the script speaks of, in first-mention order.
+    pub fn atoms(&self) -> Vec<String> {
+        let mut atoms: Vec<String> = Vec::new();
+        for s in &self.steps {
+            if !atoms.contains(&s.atom) {
+                atoms.push(s.atom.clone());
+            }
+        }
+        atoms
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScriptError {
+    pub line: usize,
+    pub message: String,
+}
+
+impl fmt::Display for ScriptError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+impl std::error::Error for ScriptError {}
+
+/// Parses a script; every bad line is reported.
+pub fn parse_script(text: &str) -> Result<Script, Vec<ScriptError>> {
+    let mut steps = Vec::new();
+    let mut errors = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        let code = raw.split('#').next().unwrap_or("").trim();
+        if code.is_empty() {
+            continue;
+        }
+        let error = |message: String| ScriptError { line, message };
+        let (when, assignment) = if let Some(rest) = code.strip_prefix("at ") {
+            let rest = rest.trim_start();
+            let (time, assignment) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
+            match crate::parse_duration(time) {
+                Some(d) => (When::At(d), assignment),
+                None => {
+                    errors.push(error(format!(
+                        "`{time}` is not a time; write `at 2s` or `at 500ms`"
+                    )));
+                    continue;
+                }
+            }
+        } else if let Some(rest) = code.strip_prefix("step ") {
+            let Some((n, assignment)) = rest.split_once(':') else {
+                errors.push(error("expected `step N: atom = value`".into()));
+                continue;
+            };
+            match n.trim().parse::<u64>() {
+                Ok(n) if n > 0 => (When::Step(n), assignment),
+                _ => {
+                    errors.push(error(format!(
+                        "`{}` is not a step number (1, 2, …)",
+                        n.trim()
+                    )));
+                    continue;
+                }
+            }
+        } else {
+            (When::Start, code)
+        };
+        let Some((atom, value)) = assignment.split_once('=') else {
+            errors.push(error(format!(
+                "expected `atom = value`, found `{}`",
+                assignment.trim()
+            )));
+            continue;
+        };
+        let atom = atom.trim();
+        if atom.is_empty()
+            || !atom
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '~')
+        {
+            errors.push(error(format!("`{atom}` is not an atom")));
+            continue;
+        }
+        if value.trim().is_empty() {
+            errors.push(error(format!("`{atom}` has no value")));
+            continue;
+        }
+        steps.push(ScriptStep {
+            when,
+            atom: atom.to_string(),
+            value: Value::parse(value).truthy(),
+            line,
+        });
+    }
+    if errors.is_empty() {
+        Ok(Script { steps })
+    } else {
+        Err(errors)
+    }
+}
