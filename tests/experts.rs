@@ -138,7 +138,10 @@ async fn the_impersonator_asks_a_person() {
     let imp = Impersonator::new("testcdl", ["readyReceived"], Default::default())
         .with_person(tokio::io::BufReader::new(read), write);
     tokio::spawn(imp.run(board.clone()));
-    tokio::time::sleep(Duration::from_millis(20)).await;
+    eventually("registration", || {
+        !board.registry().answerers("readyReceived").is_empty()
+    })
+    .await;
     let b = board.clone();
     let query =
         tokio::spawn(async move { b.query("m", "readyReceived", Duration::from_secs(2)).await });
@@ -148,6 +151,18 @@ async fn the_impersonator_asks_a_person() {
     assert_eq!(&prompt[..n], b"readyReceived? [y/n] ");
     person.write_all(b"maybe\ny\n").await.unwrap();
     assert!(query.await.unwrap().truth());
+}
+
+/// Waits (bounded) until `done` holds: robust under a loaded CI machine, quick otherwise.
+async fn eventually(what: &str, done: impl Fn() -> bool) {
+    let deadline = tokio::time::Instant::now() + Duration::from_secs(5);
+    while !done() {
+        assert!(
+            tokio::time::Instant::now() < deadline,
+            "timed out waiting for {what}"
+        );
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
 }
 
 async fn receiver(team: Option<u8>, player: u8) -> (GameControllerReceiver, std::net::SocketAddr) {
@@ -180,7 +195,10 @@ async fn simulator_to_receiver_over_loopback_udp() {
         ..Default::default()
     };
     let sent = simulator::play(&script, &config, |_| {}).await.unwrap();
-    tokio::time::sleep(Duration::from_millis(50)).await;
+    eventually("every packet", || {
+        counters.accepted.load(Ordering::Relaxed) == sent
+    })
+    .await;
     let mut seen = Vec::new();
     while let Some(m) = states.try_next() {
         seen.push(m.value.to_string());
@@ -207,7 +225,6 @@ async fn simulator_to_receiver_over_loopback_udp() {
         "the simulator's home team wears blue"
     );
     assert_eq!(board.truth("finishedReceived"), Some(true));
-    assert_eq!(counters.accepted.load(Ordering::Relaxed), sent);
     assert!(board.registry().answerers("readyReceived") == ["gamecontroller"]);
 }
 
@@ -243,7 +260,10 @@ async fn malformed_and_foreign_packets_are_counted_and_ignored() {
     ] {
         socket.send_to(datagram, addr).await.unwrap();
     }
-    tokio::time::sleep(Duration::from_millis(100)).await;
+    eventually("seven datagrams", || {
+        counters.received.load(Ordering::Relaxed) == 7
+    })
+    .await;
     let load = |c: &std::sync::atomic::AtomicU64| c.load(Ordering::Relaxed);
     assert_eq!(load(&counters.received), 7);
     assert_eq!(load(&counters.wrong_length), 2);
@@ -272,6 +292,7 @@ async fn the_real_capture_over_udp() {
     let text = std::fs::read_to_string(dir.join("corpus/gamecontroller/gc3-capture.hex")).unwrap();
     let board = Whiteboard::local();
     let (receiver, addr) = receiver(Some(5), 2).await;
+    let counters = receiver.counters();
     let mut states = board.subscribe("gameState");
     let mut penalties = board.subscribe("penaltyReceived");
     tokio::spawn(receiver.run(board.clone()));
@@ -285,7 +306,10 @@ async fn the_real_capture_over_udp() {
         socket.send_to(&bytes, addr).await.unwrap();
         tokio::time::sleep(Duration::from_millis(2)).await;
     }
-    tokio::time::sleep(Duration::from_millis(50)).await;
+    eventually("49 packets", || {
+        counters.accepted.load(Ordering::Relaxed) == 49
+    })
+    .await;
     let mut seen = Vec::new();
     while let Some(m) = states.try_next() {
         seen.push(m.value.to_string());
