@@ -40,6 +40,30 @@ pub enum TheoryFormat {
 }
 
 #[derive(Subcommand)]
+pub enum Sensor {
+    /// The RoboCup SPL GameController receiver (UDP)
+    Gamecontroller {
+        #[arg(long, default_value_t = 3838)]
+        port: u16,
+        /// Address to listen on
+        #[arg(long, default_value = "0.0.0.0")]
+        bind: std::net::IpAddr,
+        /// Our team number (default: the first team of each packet)
+        #[arg(long)]
+        team: Option<u8>,
+        /// Our player number
+        #[arg(long, default_value_t = 1)]
+        player: u8,
+        /// Send RGrt status packets back to the GameController once a second
+        #[arg(long)]
+        status: bool,
+        /// Stop after this long (`30s`, `500ms`) and print the packet counts
+        #[arg(long = "for", value_name = "DURATION")]
+        duration: Option<String>,
+    },
+}
+
+#[derive(Subcommand)]
 pub enum Command {
     /// Prove queries: one line per answer, `+beta offside` or `-beta offside`
     Prove {
@@ -109,6 +133,29 @@ pub enum Command {
         repeat: u32,
         #[arg(long)]
         json: bool,
+    },
+    /// Run a sensor wrapper alone and print every change it posts, one line each
+    Sensor {
+        #[command(subcommand)]
+        sensor: Sensor,
+    },
+    /// Play a game to robots: real GameController packets over UDP following a script
+    GcSim {
+        /// Game script (`TIME EVENT [key=value]` lines); default: a short game in 8 seconds
+        #[arg(long)]
+        script: Option<PathBuf>,
+        /// Where to send the packets
+        #[arg(long, default_value = "127.0.0.1:3838")]
+        to: std::net::SocketAddr,
+        /// Milliseconds between packets (the real GameController: 500)
+        #[arg(long, default_value_t = 250)]
+        interval: u64,
+        /// Home team number (kicks off in the default game)
+        #[arg(long, default_value_t = 18)]
+        home: u8,
+        /// Away team number
+        #[arg(long, default_value_t = 5)]
+        away: u8,
     },
     /// (internal) Run one benchmark file and print its timings as JSON
     #[command(hide = true)]

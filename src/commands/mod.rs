@@ -3,12 +3,13 @@
 mod bench;
 mod check;
 mod explain;
+mod gamecontroller;
 mod gen;
 mod inputs;
 mod prove;
 mod table;
 
-use crate::cli::{AlgArg, Cli, Command};
+use crate::cli::{AlgArg, Cli, Command, Sensor};
 use crate::failure::Failure;
 use proclaim_cdl::Algorithm;
 use std::process::ExitCode;
@@ -45,6 +46,30 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             json,
         } => bench::run(&cases, quick, repeat, json),
         Command::BenchRun { file, expect } => bench::run_one(&file, &expect),
+        Command::Sensor {
+            sensor:
+                Sensor::Gamecontroller {
+                    port,
+                    bind,
+                    team,
+                    player,
+                    status,
+                    duration,
+                },
+        } => gamecontroller::sensor(
+            std::net::SocketAddr::new(bind, port),
+            team,
+            player,
+            status,
+            duration.as_deref(),
+        ),
+        Command::GcSim {
+            script,
+            to,
+            interval,
+            home,
+            away,
+        } => gamecontroller::simulate(script.as_deref(), to, interval, home, away),
     }
 }
 

@@ -317,12 +317,13 @@ pub async fn play(
     let mut ticker = tokio::time::interval(config.interval);
     let mut sent = 0u64;
     // Seconds spent PLAYING: the game clock and penalties run only then.
-    let mut played = 0.0f64;
+    let mut played_ms = 0u128;
     let mut penalties: Vec<(u8, u8, f64)> = Vec::new();
     loop {
         ticker.tick().await;
         let now = start.elapsed();
         while next < script.events.len() && script.events[next].0 <= now {
+            let played = played_ms as f64 / 1000.0;
             apply(&mut packet, &script.events[next].1, played, &mut penalties);
             next += 1;
         }
@@ -335,7 +336,8 @@ pub async fn play(
         }
         packet.packet_number = packet.packet_number.wrapping_add(1);
         if packet.state == GameState::Playing {
-            played += config.interval.as_secs_f64();
+            played_ms += config.interval.as_millis();
+            let played = played_ms as f64 / 1000.0;
             packet.secs_remaining = config.half_secs as i32 - played.floor() as i32;
             for &(team, player, until) in &penalties {
                 if let Some(p) = slot(&mut packet, team, player) {
