@@ -119,7 +119,7 @@ impl Whiteboard {
     /// no registered module answers ends at once with [`QueryOutcome::NoExpert`]; a timeout is
     /// a warning, and the label counts as false.
     pub async fn query(&self, module: &str, atom: &str, timeout: Duration) -> QueryOutcome {
-        if self.transport.registry().answerers(atom).is_empty() {
+        if !self.transport.is_answered(atom) {
             self.transport.count_query(false, true);
             tracing::warn!(module, atom, "query for an atom no module answers");
             return QueryOutcome::NoExpert;

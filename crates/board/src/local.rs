@@ -271,6 +271,10 @@ impl Transport for LocalBoard {
         self.lock().registry.clone()
     }
 
+    fn is_answered(&self, atom: &str) -> bool {
+        self.lock().registry.answers(atom)
+    }
+
     fn stats(&self) -> Stats {
         self.lock().stats
     }

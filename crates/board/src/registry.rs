@@ -73,6 +73,12 @@ impl Registry {
         all
     }
 
+    pub fn answers(&self, atom: &str) -> bool {
+        self.modules
+            .values()
+            .any(|m| m.answers.iter().any(|a| a == atom))
+    }
+
     /// The modules that answer `atom`, in name order.
     pub fn answerers(&self, atom: &str) -> Vec<&str> {
         let mut names: Vec<&str> = self

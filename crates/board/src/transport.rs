@@ -66,6 +66,8 @@ pub trait Transport: Send + Sync + 'static {
     fn subscribe(&self, pattern: Pattern) -> Subscription;
     fn register(&self, decl: ModuleDecl);
     fn registry(&self) -> Registry;
+    /// Whether any registered module answers `atom` (asked on every query: no copying).
+    fn is_answered(&self, atom: &str) -> bool;
     fn stats(&self) -> Stats;
     /// Counts a query and its outcome (the protocol lives above the transport).
     fn count_query(&self, timed_out: bool, unanswerable: bool);

@@ -4,6 +4,7 @@
 use proclaim_board::{ModuleDecl, Pattern, Whiteboard};
 use std::time::Duration;
 use tokio::time::Instant;
+use tracing::Instrument;
 
 /// A raw boolean posting, debounced: a change counts once it has held for `rise` (to true) or
 /// `fall` (to false). Returns the next settled value, or `None` when the board is gone.
@@ -87,6 +88,11 @@ impl ButtonWrapper {
     }
 
     pub async fn run(self, board: Whiteboard) {
+        let span = tracing::info_span!("button", name = %self.name);
+        self.serve(board).instrument(span).await
+    }
+
+    async fn serve(self, board: Whiteboard) {
         let sub = board.subscribe_pattern(Pattern::Type(self.raw.clone()));
         board.register(self.declaration());
         board.post(&self.name, &self.label, false);
@@ -161,6 +167,11 @@ impl FallWrapper {
     }
 
     pub async fn run(self, board: Whiteboard) {
+        let span = tracing::info_span!("fall_detector", name = %self.name);
+        self.serve(board).instrument(span).await
+    }
+
+    async fn serve(self, board: Whiteboard) {
         let sub = board.subscribe_pattern(Pattern::Type(self.raw.clone()));
         board.register(self.declaration());
         board.post(&self.name, &self.label, false);

@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::net::UdpSocket;
+use tracing::Instrument;
 
 #[derive(Clone, Debug)]
 pub struct ReceiverConfig {
@@ -113,6 +114,11 @@ impl GameControllerReceiver {
 
     /// Receives until the socket fails; posts every change.
     pub async fn run(self, board: Whiteboard) -> io::Result<()> {
+        let span = tracing::info_span!("gamecontroller", name = %self.config.name);
+        self.serve(board).instrument(span).await
+    }
+
+    async fn serve(self, board: Whiteboard) -> io::Result<()> {
         board.register(self.declaration());
         let mut last: FxHashMap<&'static str, Value> = FxHashMap::default();
         let mut buffer = [0u8; 2048];

@@ -6,6 +6,7 @@ use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use rustc_hash::FxHashMap;
 use std::sync::{Arc, Mutex};
 use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};
+use tracing::Instrument;
 
 type Person = (
     Box<dyn AsyncBufRead + Unpin + Send>,
@@ -90,6 +91,11 @@ impl Impersonator {
 
     /// Registers and answers queries until the whiteboard is gone.
     pub async fn run(self, board: Whiteboard) {
+        let span = tracing::info_span!("impersonator", name = %self.name);
+        self.serve(board).instrument(span).await
+    }
+
+    async fn serve(self, board: Whiteboard) {
         let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
         board.register(self.declaration());
         *self.board.lock().unwrap_or_else(|e| e.into_inner()) = Some(board.clone());

@@ -6,6 +6,7 @@ use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_cdl::{Algorithm, Atom, Engine, Lit, Session, Theory};
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
+use tracing::Instrument;
 
 struct OutputSlot {
     name: String,
@@ -123,7 +124,12 @@ impl ReasonerExpert {
 
     /// Registers, posts the initial outputs, then follows its inputs and answers queries until
     /// the whiteboard is gone.
-    pub async fn run(mut self, board: Whiteboard) {
+    pub async fn run(self, board: Whiteboard) {
+        let span = tracing::info_span!("reasoner_expert", name = %self.name);
+        self.serve(board).instrument(span).await
+    }
+
+    async fn serve(mut self, board: Whiteboard) {
         // Subscribed before registering, so no query sent once it is registered is missed.
         let mut types: Vec<String> = self.inputs.keys().cloned().collect();
         types.push(QUERY_TYPE.to_string());
