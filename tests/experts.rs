@@ -396,3 +396,36 @@ async fn a_stumble_is_not_a_fall() {
     ms(400).await;
     assert_eq!(board.truth("fallen"), Some(false));
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_receiver_sends_rgrt_status_back_once_a_second() {
+    let controller = tokio::net::UdpSocket::bind("127.0.0.1:0").await.unwrap();
+    let status_port = controller.local_addr().unwrap().port();
+    let config = ReceiverConfig {
+        bind: "127.0.0.1:0".parse().unwrap(),
+        team: Some(18),
+        player: 3,
+        send_status: true,
+        status_port,
+        ..Default::default()
+    };
+    let receiver = GameControllerReceiver::bind(config).await.unwrap();
+    let addr = receiver.local_addr().unwrap();
+    let counters = receiver.counters();
+    let board = Whiteboard::local();
+    board.post("imu", "fallen", true);
+    tokio::spawn(receiver.run(board.clone()));
+    let packet = proclaim_gc::encode(&simulator::initial_packet(&SimConfig::default()));
+    controller.send_to(&packet, addr).await.unwrap();
+    let mut buffer = [0u8; 64];
+    let (len, _) = tokio::time::timeout(Duration::from_secs(3), controller.recv_from(&mut buffer))
+        .await
+        .expect("a status packet within a second or two")
+        .unwrap();
+    let status = proclaim_gc::StatusPacket::decode(&buffer[..len]).expect("an RGrt packet");
+    assert_eq!(
+        (status.team_number, status.player_number, status.fallen),
+        (18, 3, true)
+    );
+    assert!(counters.status_sent.load(Ordering::Relaxed) >= 1);
+}
