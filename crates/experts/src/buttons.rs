@@ -16,6 +16,26 @@ struct Debounced {
 }
 
 impl Debounced {
+    /// Subscribes to `raw`, registers the wrapper, and posts the label's first value (false).
+    fn start(
+        board: &Whiteboard,
+        decl: ModuleDecl,
+        raw: &str,
+        label: &str,
+        rise: Duration,
+        fall: Duration,
+    ) -> Debounced {
+        let sub = board.subscribe_pattern(Pattern::Type(raw.to_string()));
+        board.post(&decl.name, label, false);
+        board.register(decl);
+        Debounced {
+            sub,
+            settled: false,
+            rise,
+            fall,
+        }
+    }
+
     async fn next(&mut self) -> Option<(bool, Instant)> {
         let mut pending: Option<(bool, Instant)> = None;
         loop {
@@ -81,10 +101,7 @@ impl ButtonWrapper {
     }
 
     pub fn declaration(&self) -> ModuleDecl {
-        ModuleDecl::new(&self.name)
-            .reads([self.raw.clone()])
-            .posts([self.label.clone()])
-            .answers([self.label.clone()])
+        wrapper_declaration(&self.name, &self.raw, &self.label)
     }
 
     pub async fn run(self, board: Whiteboard) {
@@ -93,15 +110,14 @@ impl ButtonWrapper {
     }
 
     async fn serve(self, board: Whiteboard) {
-        let sub = board.subscribe_pattern(Pattern::Type(self.raw.clone()));
-        board.register(self.declaration());
-        board.post(&self.name, &self.label, false);
-        let mut contact = Debounced {
-            sub,
-            settled: false,
-            rise: self.debounce,
-            fall: self.debounce,
-        };
+        let mut contact = Debounced::start(
+            &board,
+            self.declaration(),
+            &self.raw,
+            &self.label,
+            self.debounce,
+            self.debounce,
+        );
         let mut pressed_at: Option<Instant> = None;
         let mut clear_at: Option<Instant> = None;
         loop {
@@ -160,10 +176,7 @@ impl Default for FallWrapper {
 
 impl FallWrapper {
     pub fn declaration(&self) -> ModuleDecl {
-        ModuleDecl::new(&self.name)
-            .reads([self.raw.clone()])
-            .posts([self.label.clone()])
-            .answers([self.label.clone()])
+        wrapper_declaration(&self.name, &self.raw, &self.label)
     }
 
     pub async fn run(self, board: Whiteboard) {
@@ -172,17 +185,24 @@ impl FallWrapper {
     }
 
     async fn serve(self, board: Whiteboard) {
-        let sub = board.subscribe_pattern(Pattern::Type(self.raw.clone()));
-        board.register(self.declaration());
-        board.post(&self.name, &self.label, false);
-        let mut detector = Debounced {
-            sub,
-            settled: false,
-            rise: self.confirm,
-            fall: self.recover,
-        };
+        let mut detector = Debounced::start(
+            &board,
+            self.declaration(),
+            &self.raw,
+            &self.label,
+            self.confirm,
+            self.recover,
+        );
         while let Some((fallen, _)) = detector.next().await {
             board.post(&self.name, &self.label, fallen);
         }
     }
+}
+
+/// A wrapper reads its raw posting and answers its label.
+fn wrapper_declaration(name: &str, raw: &str, label: &str) -> ModuleDecl {
+    ModuleDecl::new(name)
+        .reads([raw])
+        .posts([label])
+        .answers([label])
 }

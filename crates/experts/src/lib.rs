@@ -14,6 +14,7 @@
 mod buttons;
 mod gamecontroller;
 mod impersonator;
+mod lines;
 mod mapping;
 mod reasoner;
 mod script;
@@ -22,9 +23,10 @@ pub mod simulator;
 pub use buttons::{ButtonWrapper, FallWrapper};
 pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounters};
 pub use impersonator::Impersonator;
-pub use mapping::{parse_mapping, MappingError};
+pub use lines::LineError;
+pub use mapping::parse_mapping;
 pub use reasoner::ReasonerExpert;
-pub use script::{parse_script, Script, ScriptError, ScriptStep, When};
+pub use script::{parse_script, Script, ScriptStep, When};
 
 /// Parses a duration written `250ms`, `2s`, `1.5s` or `3` (seconds).
 pub fn parse_duration(text: &str) -> Option<std::time::Duration> {

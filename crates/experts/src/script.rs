@@ -8,8 +8,8 @@
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
 //! ```
 
+use crate::lines::{code_lines, LineError};
 use proclaim_board::Value;
-use std::fmt;
 use std::time::Duration;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -46,31 +46,12 @@ impl Script {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ScriptError {
-    pub line: usize,
-    pub message: String,
-}
-
-impl fmt::Display for ScriptError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "line {}: {}", self.line, self.message)
-    }
-}
-
-impl std::error::Error for ScriptError {}
-
 /// Parses a script; every bad line is reported.
-pub fn parse_script(text: &str) -> Result<Script, Vec<ScriptError>> {
+pub fn parse_script(text: &str) -> Result<Script, Vec<LineError>> {
     let mut steps = Vec::new();
     let mut errors = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let code = raw.split('#').next().unwrap_or("").trim();
-        if code.is_empty() {
-            continue;
-        }
-        let error = |message: String| ScriptError { line, message };
+    for (line, code) in code_lines(text) {
+        let error = |message: String| LineError { line, message };
         let (when, assignment) = if let Some(rest) = code.strip_prefix("at ") {
             let rest = rest.trim_start();
             let (time, assignment) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));

@@ -14,7 +14,7 @@
 //! 8s    finished
 //! ```
 
-use crate::script::ScriptError;
+use crate::lines::{code_lines, LineError};
 use proclaim_gc::{
     encode, Colour, ControlPacket, GamePhase, GameState, RobotInfo, SetPlay, TeamInfo,
 };
@@ -95,25 +95,20 @@ pub fn default_game(home: u8, away: u8) -> GameScript {
 }
 
 /// Parses a game script; every bad line is reported.
-pub fn parse_game(text: &str) -> Result<GameScript, Vec<ScriptError>> {
+pub fn parse_game(text: &str) -> Result<GameScript, Vec<LineError>> {
     let mut events = Vec::new();
     let mut errors = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        let code = raw.split('#').next().unwrap_or("").trim();
-        if code.is_empty() {
-            continue;
-        }
+    for (line, code) in code_lines(text) {
         let mut words = code.split_whitespace();
         let (Some(time), Some(event)) = (words.next(), words.next()) else {
-            errors.push(ScriptError {
+            errors.push(LineError {
                 line,
                 message: "expected `TIME EVENT`, as in `3s playing`".into(),
             });
             continue;
         };
         let Some(time) = crate::parse_duration(time) else {
-            errors.push(ScriptError {
+            errors.push(LineError {
                 line,
                 message: format!("`{time}` is not a time"),
             });
@@ -159,7 +154,7 @@ pub fn parse_game(text: &str) -> Result<GameScript, Vec<ScriptError>> {
                 if let (Event::State(_), Some(k)) = (&e, args.iter().find(|(k, _)| *k == "kick")) {
                     match k.1.parse::<u8>() {
                         Ok(team) => events.push((time, Event::Kick(team))),
-                        Err(_) => errors.push(ScriptError {
+                        Err(_) => errors.push(LineError {
                             line,
                             message: format!("kick={} is not a team number", k.1),
                         }),
@@ -167,7 +162,7 @@ pub fn parse_game(text: &str) -> Result<GameScript, Vec<ScriptError>> {
                 }
                 events.push((time, e));
             }
-            Err(message) => errors.push(ScriptError { line, message }),
+            Err(message) => errors.push(LineError { line, message }),
         }
     }
     events.sort_by_key(|(t, _)| *t);
