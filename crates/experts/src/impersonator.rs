@@ -53,8 +53,13 @@ impl Impersonator {
         input: impl AsyncBufRead + Unpin + Send + 'static,
         output: impl AsyncWrite + Unpin + Send + 'static,
     ) -> Impersonator {
-        *self.person.try_lock().expect("not yet running") =
-            Some((Box::new(input), Box::new(output)));
+        match self.person.try_lock() {
+            Ok(mut person) => *person = Some((Box::new(input), Box::new(output))),
+            // Only while a running clone is asking its person; keep that one.
+            Err(_) => {
+                tracing::warn!(name = %self.name, "a person is already answering; the new one was not attached")
+            }
+        }
         self
     }
 

@@ -112,6 +112,7 @@ impl Family {
             Family::Circle(0) | Family::Circles(0) => {
                 Err(FamilyError("a circle needs at least one rule".into()))
             }
+            _ if !family.is_valid() => Err(FamilyError(format!("{family} is too large to write"))),
             _ if family.rule_count() > 1 << 32 => Err(FamilyError(format!(
                 "{family} would have {} rules, more than this generator writes",
                 family.rule_count()
@@ -129,6 +130,7 @@ impl Family {
             }
             Family::Levels(n) | Family::LevelsMinus(n) => 4 * n as u128 + 5,
             Family::Teams(n) => 4 * (0..=n).map(|i| pow(4, i)).sum::<u128>(),
+            Family::Tree(n, _) if !self.is_valid() => n as u128,
             Family::Tree(n, k) => (pow(k, n) - 1) / (k as u128 - 1),
             Family::Dag(n, k) => n as u128 * k as u128 + 1,
             Family::Mix(m, n, k) => 2 * m as u128 + 2 * (m * n * k) as u128,
@@ -160,8 +162,28 @@ impl Family {
         }
     }
 
-    /// Writes the theory.
+    /// Whether the sizes make a theory (`parse` only builds such families).
+    pub fn is_valid(&self) -> bool {
+        match *self {
+            Family::Tree(n, k) => {
+                k >= 2
+                    && (k as u128)
+                        .checked_pow(n as u32)
+                        .is_some_and(|l| l < 1 << 40)
+            }
+            Family::Circle(n) | Family::Circles(n) => n > 0,
+            _ => true,
+        }
+    }
+
+    /// Writes the theory; sizes that make none are an `InvalidInput` error.
     pub fn write(&self, out: &mut impl Write, format: Format) -> io::Result<()> {
+        if !self.is_valid() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!("{self} is not a theory"),
+            ));
+        }
         let mut w = Writer { out, format };
         match *self {
             Family::Chain(n) | Family::Chains(n) => {
