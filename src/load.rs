@@ -3,7 +3,7 @@
 
 use crate::embedded;
 use crate::failure::Failure;
-use proclaim_cdl::{check, Diagnostic, Language, Theory};
+use proclaim_cdl::{check_source, Diagnostic, Language, Theory};
 use proclaim_syntax::{line_column, render, Severity};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -59,10 +59,7 @@ pub fn read(theory: &str) -> Result<Source, Failure> {
 
 /// The checked theory and its warnings, or every error rendered.
 pub fn checked(source: &Source) -> Result<(Theory, Vec<Diagnostic>), Failure> {
-    let result = check(
-        proclaim_syntax::parse(&source.text, source.language),
-        &source.text,
-    );
+    let result = check_source(&source.text, source.language);
     let (errors, warnings): (Vec<_>, Vec<_>) = result
         .diagnostics
         .into_iter()

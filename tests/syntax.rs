@@ -190,3 +190,38 @@ fn dl_and_dfl_of_a_benchmark_are_the_same_theory() {
     assert_eq!(show(&a), show(&b));
     assert_eq!(a.priorities(), b.priorities());
 }
+
+#[test]
+fn large_files_checked_in_a_pipeline_match_the_sequential_check() {
+    // Over 1 MiB, so `check_source` parses on a second thread while it checks.
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("levels", &[60_000])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    let mut text = String::from_utf8(text).unwrap();
+    assert!(text.len() > 1 << 20);
+    let sequential = |t: &str| check_theory(parse(t, Language::Dl), t);
+    let good = proclaim_cdl::check_source(&text, Language::Dl);
+    let expected = sequential(&text);
+    let (a, b) = (good.theory.unwrap(), expected.theory.unwrap());
+    assert_eq!(a.rule_count(), b.rule_count());
+    assert_eq!(a.priorities(), b.priorities());
+    assert_eq!(a.show_rule(12345), b.show_rule(12345));
+    // Errors anywhere (a broken labelled rule, a priority naming it, an undefined label) are
+    // reported the same way.
+    text.insert_str(
+        text.len() / 2,
+        "Broken: a b => c.\nBroken > r1.\nr1 > Nowhere.\n",
+    );
+    let pipelined = proclaim_cdl::check_source(&text, Language::Dl);
+    let expected = sequential(&text);
+    assert!(pipelined.theory.is_none());
+    assert_eq!(pipelined.diagnostics, expected.diagnostics);
+    assert_eq!(
+        pipelined.diagnostics.len(),
+        2,
+        "{:?}",
+        pipelined.diagnostics
+    );
+}

@@ -2,7 +2,7 @@
 
 use crate::failure::Failure;
 use crate::load::{self, color, diagnostic_json};
-use proclaim_cdl::check;
+use proclaim_cdl::check_source;
 use proclaim_syntax::render;
 use std::process::ExitCode;
 
@@ -11,10 +11,7 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     let mut report = Vec::new();
     for name in theories {
         let source = load::read(name)?;
-        let checked = check(
-            proclaim_syntax::parse(&source.text, source.language),
-            &source.text,
-        );
+        let checked = check_source(&source.text, source.language);
         errors += checked.diagnostics.iter().filter(|d| d.is_error()).count();
         if json {
             report.extend(

@@ -5,7 +5,7 @@
 use crate::closure::{close, normalize, ClosureOutcome, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
-use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, ParsedTheory, Span};
+use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
 use rustc_hash::FxHashMap;
 
 /// A theory, or everything wrong with it. Warnings come with a theory too.
@@ -19,25 +19,55 @@ pub struct Checked {
 /// Checks a parsed file against its source text. Parse errors are kept; a theory is built only
 /// when there are no errors at all.
 pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
-    let mut checker = Checker {
-        source,
-        theory: Theory::default(),
-        diagnostics: parsed.diagnostics,
-        labels: FxHashMap::default(),
-        input_spans: FxHashMap::default(),
-        broken_labels: Default::default(),
-    };
-    for span in &parsed.broken_labels {
-        checker.broken_labels.insert(span.text(source));
+    let rules = parsed
+        .items
+        .iter()
+        .filter(|i| matches!(i, Item::Rule(_)))
+        .count();
+    let mut checker = Checker::new(source, rules);
+    for item in parsed.items {
+        checker.item(item);
     }
-    checker.lower(parsed.items);
-    let has_errors = checker.diagnostics.iter().any(Diagnostic::is_error);
-    let mut diagnostics = checker.diagnostics;
-    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-    Checked {
-        theory: (!has_errors).then_some(checker.theory),
-        diagnostics,
+    checker.finish(parsed.diagnostics, &parsed.broken_labels)
+}
+
+/// Files at least this large are parsed and checked at the same time, on two threads.
+const PIPELINE_BYTES: usize = 1 << 20;
+
+/// Parses and checks a source text. A large `.dl` file is parsed on a second thread that hands
+/// statements over in batches while this one checks them: the two stages overlap.
+pub fn check_source(source: &str, language: Language) -> Checked {
+    if language != Language::Dl || source.len() < PIPELINE_BYTES {
+        return check(proclaim_syntax::parse(source, language), source);
     }
+    const BATCH: usize = 4096;
+    let (sender, batches) = std::sync::mpsc::sync_channel::<Vec<Item>>(16);
+    std::thread::scope(|scope| {
+        let parser = scope.spawn(move || {
+            let mut batch = Vec::with_capacity(BATCH);
+            let parsed = proclaim_syntax::parse_dl_each(source, |item| {
+                batch.push(item);
+                if batch.len() == BATCH {
+                    // The checker only stops receiving when it is gone; nothing to do then.
+                    let _ = sender.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                }
+            });
+            let _ = sender.send(batch);
+            parsed
+        });
+        // About 25 bytes a rule in large generated theories.
+        let mut checker = Checker::new(source, source.len() / 25);
+        for batch in batches {
+            for item in batch {
+                checker.item(item);
+            }
+        }
+        match parser.join() {
+            Ok(parsed) => checker.finish(parsed.diagnostics, &parsed.broken_labels),
+            // The parser never panics (it is fuzzed); should it, parse again here to report.
+            Err(_) => check(proclaim_syntax::parse(source, language), source),
+        }
+    })
 }
 
 struct Checker<'s> {
@@ -48,6 +78,9 @@ struct Checker<'s> {
     input_spans: FxHashMap<Atom, Span>,
     /// Labels of rules that did not parse: priorities naming them are not reported again.
     broken_labels: rustc_hash::FxHashSet<&'s str>,
+    /// Resolved once every label is known.
+    priorities: Vec<(Vec<Span>, Span)>,
+    name_span: Option<Span>,
 }
 
 impl<'s> Checker<'s> {
@@ -59,92 +92,119 @@ impl<'s> Checker<'s> {
         Lit::new(self.atom(lit.atom), lit.negated)
     }
 
-    fn lower(&mut self, items: Vec<Item>) {
-        // Sizes from the statements, so no table regrows while millions of rules go in.
-        let rules = items.iter().filter(|i| matches!(i, Item::Rule(_))).count();
-        self.labels.reserve(rules);
-        self.theory.atoms.reserve(rules + 1);
-        self.theory.heads.reserve(rules);
-        self.theory.kinds.reserve(rules);
-        self.theory.body_start.reserve(rules + 1);
-        self.theory.labels.reserve(rules);
-        self.theory.origins.reserve(rules);
-        let mut priorities = Vec::new();
-        let mut name_span: Option<Span> = None;
-        self.theory.body_start.push(0);
-        for item in items {
-            match item {
-                Item::Rule(rule) => self.add_rule(rule),
-                Item::Fact { clause, span } => {
-                    let lits = clause.iter().map(|l| self.lit(l)).collect::<Vec<_>>();
-                    if normalize(lits.clone()).is_none() {
-                        self.diagnostics.push(
-                            Diagnostic::warning(span, "this clause holds a literal and its complement, so it says nothing")
-                                .with_label("a tautology"),
-                        );
-                    }
-                    self.theory.axioms.push(Clause {
-                        lits,
-                        span: Some(span),
-                    });
+    /// A checker expecting about `rules` rules (tables are sized for them up front).
+    fn new(source: &'s str, rules: usize) -> Checker<'s> {
+        let mut checker = Checker {
+            source,
+            theory: Theory::default(),
+            diagnostics: Vec::new(),
+            labels: FxHashMap::default(),
+            input_spans: FxHashMap::default(),
+            broken_labels: Default::default(),
+            priorities: Vec::new(),
+            name_span: None,
+        };
+        checker.labels.reserve(rules);
+        let t = &mut checker.theory;
+        t.atoms.reserve(rules + 1);
+        t.heads.reserve(rules);
+        t.kinds.reserve(rules);
+        t.body_start.reserve(rules + 1);
+        t.labels.reserve(rules);
+        t.origins.reserve(rules);
+        t.body_start.push(0);
+        checker
+    }
+
+    /// Takes in one statement, in file order.
+    fn item(&mut self, item: Item) {
+        match item {
+            Item::Rule(rule) => self.add_rule(rule),
+            Item::Fact { clause, span } => {
+                let lits = clause.iter().map(|l| self.lit(l)).collect::<Vec<_>>();
+                if normalize(lits.clone()).is_none() {
+                    self.diagnostics.push(
+                        Diagnostic::warning(
+                            span,
+                            "this clause holds a literal and its complement, so it says nothing",
+                        )
+                        .with_label("a tautology"),
+                    );
                 }
-                Item::Priority { labels, span } => priorities.push((labels, span)),
-                Item::Name { name, span } => {
-                    if let Some(first) = name_span {
-                        self.diagnostics.push(
-                            Diagnostic::error(span, "the theory is named twice")
-                                .with_related(first, "first named here"),
-                        );
-                    } else {
-                        name_span = Some(span);
-                        self.theory.name = Some(name.text(self.source).to_string());
-                    }
-                }
-                Item::Input { atoms, span } => self.add_input(atoms, span),
-                Item::Ignore {
-                    at_least,
+                self.theory.axioms.push(Clause {
                     lits,
-                    span,
-                } => {
-                    let lits = self.filter_lits(&lits);
-                    let at_least = at_least.map_or(lits.len(), |k| k as usize);
-                    if at_least == 0 || at_least > lits.len() {
-                        self.diagnostics.push(
-                            Diagnostic::error(
-                                span,
-                                format!(
-                                    "`ignore {at_least} of` names only {} literals",
-                                    lits.len()
-                                ),
-                            )
-                            .with_hint("the count must be between 1 and the number of literals"),
-                        );
-                    }
-                    self.theory
-                        .filters
-                        .push(RowFilter::Ignore { at_least, lits });
-                }
-                Item::Assert { lits, span } => {
-                    let lits = self.filter_lits(&lits);
-                    if lits.is_empty() {
-                        self.diagnostics.push(
-                            Diagnostic::error(span, "`assert{}` names no literal").with_hint(
-                                "an empty assert would leave out every row of the truth table",
-                            ),
-                        );
-                    }
-                    self.theory.filters.push(RowFilter::Assert { lits });
-                }
-                Item::Output { parts, span } => self.add_outputs(parts, span),
+                    span: Some(span),
+                });
             }
+            Item::Priority { labels, span } => self.priorities.push((labels, span)),
+            Item::Name { name, span } => {
+                if let Some(first) = self.name_span {
+                    self.diagnostics.push(
+                        Diagnostic::error(span, "the theory is named twice")
+                            .with_related(first, "first named here"),
+                    );
+                } else {
+                    self.name_span = Some(span);
+                    self.theory.name = Some(name.text(self.source).to_string());
+                }
+            }
+            Item::Input { atoms, span } => self.add_input(atoms, span),
+            Item::Ignore {
+                at_least,
+                lits,
+                span,
+            } => {
+                let lits = self.filter_lits(&lits);
+                let at_least = at_least.map_or(lits.len(), |k| k as usize);
+                if at_least == 0 || at_least > lits.len() {
+                    self.diagnostics.push(
+                        Diagnostic::error(
+                            span,
+                            format!("`ignore {at_least} of` names only {} literals", lits.len()),
+                        )
+                        .with_hint("the count must be between 1 and the number of literals"),
+                    );
+                }
+                self.theory
+                    .filters
+                    .push(RowFilter::Ignore { at_least, lits });
+            }
+            Item::Assert { lits, span } => {
+                let lits = self.filter_lits(&lits);
+                if lits.is_empty() {
+                    self.diagnostics.push(
+                        Diagnostic::error(span, "`assert{}` names no literal").with_hint(
+                            "an empty assert would leave out every row of the truth table",
+                        ),
+                    );
+                }
+                self.theory.filters.push(RowFilter::Assert { lits });
+            }
+            Item::Output { parts, span } => self.add_outputs(parts, span),
+        }
+    }
+
+    /// Every statement is in: resolves priorities, runs the whole-theory checks and closes the
+    /// axioms. `parse_diagnostics` come first in the merged, position-sorted list.
+    fn finish(mut self, parse_diagnostics: Vec<Diagnostic>, broken_labels: &[Span]) -> Checked {
+        for span in broken_labels {
+            self.broken_labels.insert(span.text(self.source));
         }
         self.theory.written_rules = self.theory.heads.len();
-        for (labels, span) in priorities {
+        for (labels, span) in std::mem::take(&mut self.priorities) {
             self.add_priority(&labels, span);
         }
         self.check_priority_cycles();
         self.check_filters_name_inputs();
         self.close_axioms();
+        let mut diagnostics = parse_diagnostics;
+        diagnostics.append(&mut self.diagnostics);
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        let has_errors = diagnostics.iter().any(Diagnostic::is_error);
+        Checked {
+            theory: (!has_errors).then_some(self.theory),
+            diagnostics,
+        }
     }
 
     fn add_rule(&mut self, rule: ast::RuleItem) {

@@ -23,7 +23,7 @@ mod session;
 mod table;
 mod theory;
 
-pub use check::{check, Checked};
+pub use check::{check, check_source, Checked};
 pub use closure::MAX_CLOSURE;
 pub use engine::Engine;
 pub use explain::Explanation;
@@ -38,7 +38,7 @@ pub use theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, RuleRe
 /// Parses and checks a theory text: the theory, or every error (warnings are dropped here; use
 /// [`check`] to see them).
 pub fn load(source: &str, language: Language) -> Result<Theory, Vec<Diagnostic>> {
-    let checked = check(proclaim_syntax::parse(source, language), source);
+    let checked = check_source(source, language);
     match checked.theory {
         Some(theory) => Ok(theory),
         None => Err(checked

@@ -19,7 +19,7 @@ lalrpop_util::lalrpop_mod!(
 pub use ast::{Algorithm, Arrow, Item, Lit, OutputPart, Query, RuleItem};
 pub use dfl::parse_dfl;
 pub use diagnostic::{render, Diagnostic, Severity};
-pub use parse::{parse_dl, parse_query, NameTok, ParsedTheory, UserError};
+pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
 pub use span::{line_column, Span};
 
 /// The two theory languages.

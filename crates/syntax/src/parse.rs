@@ -52,13 +52,21 @@ pub struct NameTok<'a> {
 
 /// Parses a whole `.dl` text.
 pub fn parse_dl(source: &str) -> ParsedTheory {
+    // About 25 bytes a statement in generated theories; a guess that saves regrowing.
+    let mut items = Vec::with_capacity(source.len() / 32);
+    let mut parsed = parse_dl_each(source, |item| items.push(item));
+    parsed.items = items;
+    parsed
+}
+
+/// Parses a whole `.dl` text, handing each statement to `on_item` as soon as it is parsed (so a
+/// later stage can work at the same time); the result holds the diagnostics and no items.
+pub fn parse_dl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheory {
     if source.len() > u32::MAX as usize {
         return too_large();
     }
     let mut lexer = Lexer::new(source);
     let parser = StatementParser::new();
-    // About 25 bytes a statement in generated theories; a guess that saves regrowing.
-    let mut items = Vec::with_capacity(source.len() / 32);
     let mut sink = Sink::default();
     let mut broken_labels = Vec::new();
     let mut statement: Vec<Token<'_>> = Vec::new();
@@ -109,13 +117,13 @@ pub fn parse_dl(source: &str) -> ParsedTheory {
                 if labelled {
                     broken_labels.pop();
                 }
-                items.push(item)
+                on_item(item)
             }
             Err(error) => sink.push(to_diagnostic(error, source, statement)),
         }
     }
     ParsedTheory {
-        items,
+        items: Vec::new(),
         diagnostics: sink.finish(source.len()),
         broken_labels,
     }
