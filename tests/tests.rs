@@ -3,6 +3,7 @@
 mod cli;
 mod experts;
 mod gamecontroller;
+mod machines;
 mod properties;
 mod reasoner;
 mod syntax;

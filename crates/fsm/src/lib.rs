@@ -1,0 +1,36 @@
+//! Behaviour machines (`../shared/spec/behaviour.md` §3–4): the model the interpreter will run,
+//! the label expressions transitions wait on, and importers for the formats robot teams already
+//! have: the original T/A tables and Qfsm `.fsm` XML. Pure: texts in, machines and diagnostics
+//! out. Importing never fails: a file yields what could be read and a diagnostic, with its line,
+//! for everything that could not.
+//!
+//! Not here yet (issue 4): the native machine format, the interpreter and `proclaim run`.
+
+mod activity;
+mod diagnostic;
+mod label;
+mod model;
+mod qfsm;
+mod ta;
+
+pub use activity::{parse_gufsm_activities, parse_ta_items};
+pub use diagnostic::{FileDiagnostic, Severity};
+pub use label::{parse_label, CmpOp, Label, LabelError, Operand};
+pub use model::{Action, Argument, Machine, State, StateId, Transition};
+pub use qfsm::import_qfsm;
+pub use ta::{import_ta, partner_of};
+
+/// What an importer read from one file, with everything it could not read.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Imported {
+    pub machines: Vec<Machine>,
+    pub diagnostics: Vec<FileDiagnostic>,
+}
+
+impl Imported {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics
+            .iter()
+            .any(|d| d.severity == Severity::Error)
+    }
+}

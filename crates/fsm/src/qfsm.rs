@@ -1,0 +1,367 @@
+//! Qfsm `.fsm` XML, as the team drew its machines: `<state code=… description=ACTIVITIES>NAME`,
+//! `<transition><from/><to/><inputs>LABEL</inputs><outputs>PRIORITY</outputs>`, larger priority
+//! tried first. Traps handled: link files (a path instead of XML), missing `<from>`/`<to>`,
+//! several machines in one file, no DTD, escaped labels (`&amp;&amp;`).
+
+use crate::activity::parse_gufsm_activities;
+use crate::diagnostic::FileDiagnostic;
+use crate::label::{parse_label, Label};
+use crate::model::{Machine, State, StateId, Transition};
+use crate::Imported;
+use quick_xml::events::{BytesStart, Event};
+use quick_xml::{Reader, XmlVersion};
+
+#[derive(Default)]
+struct TransitionDraft {
+    from: Option<String>,
+    to: Option<String>,
+    inputs: String,
+    invert: bool,
+    any: bool,
+    outputs: String,
+    line: usize,
+}
+
+struct MachineDraft {
+    name: String,
+    initial: Option<String>,
+    states: Vec<State>,
+    transitions: Vec<(i64, usize, Transition)>,
+    line: usize,
+}
+
+/// Imports every machine of a Qfsm file. `fallback_name` names a machine without a `name`.
+pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
+    let mut out = Imported::default();
+    let trimmed = text.trim();
+    if !trimmed.starts_with('<') {
+        let first = trimmed.lines().next().unwrap_or("");
+        let message = if first.ends_with(".fsm") && !first.contains(char::is_whitespace) {
+            format!("this file only names another file, `{first}` (a link saved as text); import that file instead")
+        } else {
+            "not a Qfsm file: it does not start with XML".to_string()
+        };
+        out.diagnostics
+            .push(FileDiagnostic::error(file, 1, message));
+        return out;
+    }
+    let line_of = |offset: u64| {
+        text[..(offset as usize).min(text.len())]
+            .matches('\n')
+            .count()
+            + 1
+    };
+    let mut reader = Reader::from_str(text);
+    let mut machine: Option<MachineDraft> = None;
+    let mut state: Option<(Option<String>, String, String, usize)> = None; // code, description, name, line
+    let mut transition: Option<TransitionDraft> = None;
+    let mut field: Option<&'static str> = None;
+    let mut order = 0usize;
+    loop {
+        let position = reader.buffer_position();
+        let event = match reader.read_event() {
+            Ok(e) => e,
+            Err(e) => {
+                out.diagnostics.push(FileDiagnostic::error(
+                    file,
+                    line_of(reader.error_position()),
+                    format!("malformed XML: {e}"),
+                ));
+                break;
+            }
+        };
+        let line = line_of(position);
+        match event {
+            Event::Start(e) | Event::Empty(e) if e.local_name().as_ref() == "machine" => {
+                machine = Some(MachineDraft {
+                    name: attribute(&e, "name")
+                        .filter(|n| !n.is_empty())
+                        .unwrap_or_else(|| fallback_name.to_string()),
+                    initial: attribute(&e, "initialstate"),
+                    states: Vec::new(),
+                    transitions: Vec::new(),
+                    line,
+                });
+            }
+            Event::Start(e) if e.local_name().as_ref() == "state" => {
+                state = Some((
+                    attribute(&e, "code"),
+                    attribute(&e, "description").unwrap_or_default(),
+                    String::new(),
+                    line,
+                ));
+                field = Some("state");
+            }
+            Event::Start(e) if e.local_name().as_ref() == "transition" => {
+                transition = Some(TransitionDraft {
+                    line,
+                    ..Default::default()
+                });
+            }
+            Event::Start(e) if transition.is_some() => {
+                let name = e.local_name();
+                field = match name.as_ref() {
+                    "from" => Some("from"),
+                    "to" => Some("to"),
+                    "inputs" => {
+                        if let Some(t) = transition.as_mut() {
+                            t.invert = attribute(&e, "invert").as_deref() == Some("1");
+                            t.any = attribute(&e, "any").as_deref() == Some("1")
+                                || attribute(&e, "default").as_deref() == Some("1");
+                        }
+                        Some("inputs")
+                    }
+                    "outputs" => Some("outputs"),
+                    _ => None,
+                };
+            }
+            Event::Text(t) => append(&mut state, &mut transition, field, &t.xml10_content()),
+            Event::CData(t) => append(&mut state, &mut transition, field, &t),
+            Event::GeneralRef(r) => append(
+                &mut state,
+                &mut transition,
+                field,
+                &entity(&r.xml10_content()),
+            ),
+            Event::End(e) => match e.local_name().as_ref() {
+                "state" => {
+                    field = None;
+                    let (Some((code, description, name, at)), Some(m)) =
+                        (state.take(), machine.as_mut())
+                    else {
+                        continue;
+                    };
+                    let Some(id) = code
+                        .as_deref()
+                        .and_then(|c| c.trim().parse::<StateId>().ok())
+                    else {
+                        out.diagnostics.push(FileDiagnostic::error(
+                            file,
+                            at,
+                            format!("state `{}` has no numeric code", name.trim()),
+                        ));
+                        continue;
+                    };
+                    let ([on_entry, on_exit, internal], warnings) =
+                        parse_gufsm_activities(&description);
+                    out.diagnostics.extend(warnings.into_iter().map(|w| {
+                        FileDiagnostic::warning(file, at, format!("state `{}`: {w}", name.trim()))
+                    }));
+                    if m.states.iter().any(|s| s.id == id) {
+                        out.diagnostics.push(FileDiagnostic::error(
+                            file,
+                            at,
+                            format!("state code {id} is used twice"),
+                        ));
+                        continue;
+                    }
+                    m.states.push(State {
+                        id,
+                        name: name.trim().to_string(),
+                        on_entry,
+                        on_exit,
+                        internal,
+                        line: at,
+                    });
+                }
+                "from" | "to" | "inputs" | "outputs" => field = None,
+                "transition" => {
+                    let (Some(t), Some(m)) = (transition.take(), machine.as_mut()) else {
+                        continue;
+                    };
+                    let (Some(from), Some(to)) = (t.from.as_deref(), t.to.as_deref()) else {
+                        out.diagnostics.push(FileDiagnostic::warning(file, t.line, "a transition without `<from>` or `<to>` (drawn but not attached) is skipped"));
+                        continue;
+                    };
+                    let (Ok(source), Ok(target)) =
+                        (from.trim().parse::<StateId>(), to.trim().parse::<StateId>())
+                    else {
+                        out.diagnostics.push(FileDiagnostic::error(
+                            file,
+                            t.line,
+                            format!("`{}` → `{}` are not state codes", from.trim(), to.trim()),
+                        ));
+                        continue;
+                    };
+                    let label = if t.any {
+                        Ok(Label::True)
+                    } else {
+                        parse_label(&t.inputs).map(|l| {
+                            if t.invert {
+                                Label::Not(Box::new(l))
+                            } else {
+                                l
+                            }
+                        })
+                    };
+                    let label = match label {
+                        Ok(l) => l,
+                        Err(e) => {
+                            out.diagnostics.push(FileDiagnostic::error(
+                                file,
+                                t.line,
+                                format!("label `{}`: {e}", t.inputs.trim()),
+                            ));
+                            continue;
+                        }
+                    };
+                    let priority = if t.outputs.trim().is_empty() {
+                        0
+                    } else {
+                        match t.outputs.trim().parse::<i64>() {
+                            Ok(p) => p,
+                            Err(_) => {
+                                out.diagnostics.push(FileDiagnostic::warning(
+                                    file,
+                                    t.line,
+                                    format!(
+                                        "priority `{}` is not a number; 0 is used",
+                                        t.outputs.trim()
+                                    ),
+                                ));
+                                0
+                            }
+                        }
+                    };
+                    order += 1;
+                    m.transitions.push((
+                        priority,
+                        order,
+                        Transition {
+                            source,
+                            target,
+                            label,
+                            line: t.line,
+                        },
+                    ));
+                }
+                "machine" => {
+                    if let Some(m) = machine.take() {
+                        finish(m, file, &mut out);
+                    }
+                }
+                _ => {}
+            },
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    if let Some(m) = machine.take() {
+        out.diagnostics.push(FileDiagnostic::error(
+            file,
+            m.line,
+            format!("machine `{}` is not closed", m.name),
+        ));
+        finish(m, file, &mut out);
+    }
+    if out.machines.is_empty() && !out.has_errors() {
+        out.diagnostics
+            .push(FileDiagnostic::error(file, 1, "no <machine> in this file"));
+    }
+    out
+}
+
+fn finish(mut m: MachineDraft, file: &str, out: &mut Imported) {
+    let initial = match m
+        .initial
+        .as_deref()
+        .map(str::trim)
+        .and_then(|c| c.parse::<StateId>().ok())
+    {
+        Some(code) if m.states.iter().any(|s| s.id == code) => code,
+        Some(code) => {
+            out.diagnostics.push(FileDiagnostic::error(
+                file,
+                m.line,
+                format!(
+                    "initial state {code} of `{}` is not one of its states",
+                    m.name
+                ),
+            ));
+            return;
+        }
+        None => {
+            out.diagnostics.push(FileDiagnostic::error(
+                file,
+                m.line,
+                format!("machine `{}` names no initial state", m.name),
+            ));
+            return;
+        }
+    };
+    let known = |id: StateId| m.states.iter().any(|s| s.id == id);
+    let mut transitions = Vec::new();
+    for (priority, order, t) in std::mem::take(&mut m.transitions) {
+        if known(t.source) && known(t.target) {
+            transitions.push((priority, order, t));
+        } else {
+            out.diagnostics.push(FileDiagnostic::error(
+                file,
+                t.line,
+                format!(
+                    "transition {} → {} names a state that does not exist",
+                    t.source, t.target
+                ),
+            ));
+        }
+    }
+    // Per source state: larger <outputs> first; equal priorities keep the file's order.
+    transitions.sort_by(|a, b| {
+        a.2.source
+            .cmp(&b.2.source)
+            .then(b.0.cmp(&a.0))
+            .then(a.1.cmp(&b.1))
+    });
+    out.machines.push(Machine {
+        name: m.name,
+        states: m.states,
+        transitions: transitions.into_iter().map(|(_, _, t)| t).collect(),
+        initial,
+    });
+}
+
+fn attribute(e: &BytesStart<'_>, name: &str) -> Option<String> {
+    e.attributes()
+        .flatten()
+        .find(|a| a.key.local_name().as_ref() == name)
+        .map(|a| {
+            a.normalized_value(XmlVersion::Implicit1_0)
+                .map(|v| v.into_owned())
+                .unwrap_or_else(|_| a.value.to_string())
+        })
+}
+
+/// The text of an entity reference (`amp`, `#xa`, `#10`).
+fn entity(name: &str) -> String {
+    match name {
+        "amp" => "&".into(),
+        "lt" => "<".into(),
+        "gt" => ">".into(),
+        "quot" => "\"".into(),
+        "apos" => "'".into(),
+        _ => {
+            let code = name
+                .strip_prefix("#x")
+                .and_then(|h| u32::from_str_radix(h, 16).ok())
+                .or_else(|| name.strip_prefix('#').and_then(|d| d.parse().ok()));
+            code.and_then(char::from_u32)
+                .map_or_else(|| format!("&{name};"), String::from)
+        }
+    }
+}
+
+fn append(
+    state: &mut Option<(Option<String>, String, String, usize)>,
+    transition: &mut Option<TransitionDraft>,
+    field: Option<&'static str>,
+    text: &str,
+) {
+    match (field, state.as_mut(), transition.as_mut()) {
+        (Some("state"), Some(s), _) => s.2.push_str(text),
+        (Some("from"), _, Some(t)) => t.from.get_or_insert_with(String::new).push_str(text),
+        (Some("to"), _, Some(t)) => t.to.get_or_insert_with(String::new).push_str(text),
+        (Some("inputs"), _, Some(t)) => t.inputs.push_str(text),
+        (Some("outputs"), _, Some(t)) => t.outputs.push_str(text),
+        _ => {}
+    }
+}

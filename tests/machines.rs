@@ -1,0 +1,333 @@
+//! Machines: label expressions as data, the T/A and Qfsm importers on the seed paper's
+//! GameController, and every file of the Griffith team's corpus.
+
+use proclaim_fsm::{import_qfsm, import_ta, parse_label, partner_of, Action, Argument, Severity};
+
+/// `expect` is the canonical form, or `error: …` with the message.
+fn check(label: &str, expect: &str) {
+    let got = match parse_label(label) {
+        Ok(l) => {
+            let again = parse_label(&l.to_string()).expect("the canonical form parses");
+            assert_eq!(
+                again, l,
+                "canonical form of `{label}` reads back differently"
+            );
+            l.to_string()
+        }
+        Err(e) => format!("error: {e}"),
+    };
+    assert_eq!(got, expect, "label `{label}`");
+}
+
+#[test]
+fn labels() {
+    check("TRUE", "TRUE");
+    check("", "TRUE");
+    check("1", "TRUE");
+    check("0", "FALSE");
+    check("readyReceived", "readyReceived");
+    check("~fallen", "~fallen");
+    check("!NaoMotionPlayerIsRunning", "~NaoMotionPlayerIsRunning");
+    check("a && b || c", "a && b || c");
+    check("a && (b || c)", "a && (b || c)");
+    check("!(a || b)", "~(a || b)");
+    check("timeout(500000)", "timeout(500000)");
+    check("timeout(period)", "timeout(period)");
+    check("x==0", "x == 0");
+    check("((rot>-1) && (rot<180))", "rot > -1 && rot < 180");
+    check(
+        "(GoalIsVisible && (GoalDistance>250) && UseGoal)",
+        "GoalIsVisible && GoalDistance > 250 && UseGoal",
+    );
+    check("rot==fwdAngle", "rot == fwdAngle");
+    check("a !=b", "a != b");
+    check("a &&", "error: the label ends too early (at column 5)");
+    check("(a", "error: missing `)` (at column 3)");
+    check(
+        "abs(x)",
+        "error: `abs(…)` is a number, not a label; compare it, as in `abs(x) > 4` (at column 1)",
+    );
+    check("abs(ballX)>4", "abs(ballX) > 4");
+    check("timeout(", "error: the label ends too early (at column 9)");
+    check("timeout(delay*1000)", "timeout(delay * 1000)");
+    check(
+        "a + b * (c - 1) > 2",
+        "error: expected an atom, a number or `(`, found `(` (at column 9)",
+    );
+    check("x - y - 1 < 0", "x - y - 1 < 0");
+    check("a b", "error: unexpected `b` (at column 3)");
+}
+
+fn corpus() -> Option<std::path::PathBuf> {
+    Some(crate::shared_dir()?.join("corpus/mipal"))
+}
+
+#[test]
+fn the_seed_papers_game_controller_from_its_t_a_pair() {
+    let Some(dir) = corpus() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let t = dir.join("testfiles/TGameController.txt");
+    assert_eq!(
+        partner_of(&t).unwrap(),
+        dir.join("testfiles/AGameController.txt")
+    );
+    let read = |p: &std::path::Path| std::fs::read_to_string(p).unwrap();
+    let a = partner_of(&t).unwrap();
+    let imported = import_ta(
+        "GameController",
+        "TGameController.txt",
+        &read(&t),
+        "AGameController.txt",
+        &read(&a),
+    );
+    assert!(
+        imported.diagnostics.is_empty(),
+        "{:?}",
+        imported.diagnostics
+    );
+    let m = &imported.machines[0];
+    assert_eq!(m.states.len(), 21);
+    assert_eq!(
+        m.state(m.initial).unwrap().name,
+        "INITIAL",
+        "the last A line is the initial state"
+    );
+    // State 2 (PLAYING): the last T line of a state is tried first.
+    let labels: Vec<String> = m.outgoing(2).map(|t| t.label.to_string()).collect();
+    assert_eq!(
+        labels,
+        [
+            "finishedReceived",
+            "readyReceived",
+            "shortChestButtonPressed",
+            "fallen",
+            "penaltyReceived",
+            "ReadyTheirGoal",
+            "ReadyOurGoal"
+        ]
+    );
+    let playing = m.state(2).unwrap();
+    assert_eq!(
+        playing.on_entry[0],
+        Action::Post {
+            ty: "NaoWalk".into(),
+            content: "walk 0 0 0".into()
+        }
+    );
+    assert!(playing.on_entry.contains(&Action::Call {
+        function: "postTeamI_AmPlaying".into(),
+        argument: None
+    }));
+    assert_eq!(
+        playing.on_exit,
+        [
+            Action::Post {
+                ty: "SMHeadBallTracker".into(),
+                content: "Off".into()
+            },
+            Action::Post {
+                ty: "SMPlayer".into(),
+                content: "Off".into()
+            }
+        ]
+    );
+    assert!(playing.internal.contains(&Action::Call {
+        function: "msleep".into(),
+        argument: Some(Argument::Int(1000))
+    }));
+    assert_eq!(m.state(7).unwrap().on_exit, [], "no OnExit section");
+}
+
+#[test]
+fn every_t_a_pair_of_the_corpus_imports() {
+    let Some(dir) = corpus() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let mut pairs = 0;
+    let mut broken = Vec::new();
+    for entry in std::fs::read_dir(dir.join("testfiles")).unwrap() {
+        let t = entry.unwrap().path();
+        let name = t.file_name().unwrap().to_str().unwrap().to_string();
+        let Some(machine) = name.strip_prefix('T').and_then(|n| n.strip_suffix(".txt")) else {
+            continue;
+        };
+        let a = partner_of(&t).unwrap();
+        let a_name = a.file_name().unwrap().to_str().unwrap().to_string();
+        let imported = import_ta(
+            machine,
+            &name,
+            &std::fs::read_to_string(&t).unwrap(),
+            &a_name,
+            &std::fs::read_to_string(&a).unwrap(),
+        );
+        broken.extend(
+            imported
+                .diagnostics
+                .iter()
+                .filter(|d| d.severity == Severity::Error)
+                .map(ToString::to_string),
+        );
+        let m = &imported.machines[0];
+        assert!(m.state(m.initial).is_some(), "{name}");
+        pairs += 1;
+    }
+    broken.sort();
+    // The truly broken lines of the corpus: both misspell OnEntry.
+    assert_eq!(
+        broken,
+        [
+            "APhysicalTester.txt:7: error: `OnEnrtry` is not a section keyword (OnEntry or OnExit); its items are read as Internal",
+            "ASensorsTester.txt:12: error: `OnEnrtry` is not a section keyword (OnEntry or OnExit); its items are read as Internal",
+        ]
+    );
+    assert_eq!(pairs, 55);
+}
+
+#[test]
+fn every_qfsm_file_of_the_corpus_imports_or_says_why_not() {
+    let Some(dir) = corpus() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let (mut machines, mut links, mut code_warnings) = (0, 0, 0);
+    for entry in std::fs::read_dir(dir.join("machines")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_str().unwrap().to_string();
+        let imported = import_qfsm(
+            &name,
+            &std::fs::read_to_string(&path).unwrap(),
+            name.trim_end_matches(".fsm"),
+        );
+        let errors: Vec<_> = imported
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .collect();
+        if imported.machines.is_empty() {
+            // The only files that do not import are links saved as text; they say so on line 1.
+            assert_eq!(errors.len(), 1, "{name}: {errors:?}");
+            assert_eq!(errors[0].line, 1);
+            assert!(
+                errors[0].message.contains("only names another file"),
+                "{name}: {}",
+                errors[0]
+            );
+            links += 1;
+            continue;
+        }
+        assert!(errors.is_empty(), "{name}: {errors:?}");
+        for m in &imported.machines {
+            assert!(m.state(m.initial).is_some(), "{name}");
+            machines += 1;
+        }
+        code_warnings += imported.diagnostics.len();
+    }
+    assert_eq!((machines, links), (43, 35));
+    assert!(
+        code_warnings > 0,
+        "gufsm code that does not run is reported"
+    );
+}
+
+#[test]
+fn qfsm_traps() {
+    let two = r#"<?xml version='1.0'?>
+<qfsmproject>
+  <machine name="A" initialstate="0">
+    <state code="0" description="OnEntry { post(&quot;Say&quot;, &quot;hi&quot;); suspend(&quot;B&quot;); msleep(10); x = y + 1; }&#xa;OnExit { }&#xa;{ }">Start</state>
+    <state code="1" description="">End</state>
+    <transition><from>0</from><to>1</to><inputs default="0" any="0" invert="0">a &amp;&amp; b</inputs><outputs>1</outputs></transition>
+    <transition><from>0</from><to>1</to><inputs default="0" any="0" invert="1">c</inputs><outputs>2</outputs></transition>
+    <transition><from>0</from><inputs>d</inputs><outputs>3</outputs></transition>
+    <transition><from>1</from><to>0</to><inputs></inputs><outputs></outputs></transition>
+  </machine>
+  <machine name="B" initialstate="4"><state code="4" description="">Only</state></machine>
+</qfsmproject>"#;
+    let imported = import_qfsm("two.fsm", two, "two");
+    assert_eq!(imported.machines.len(), 2);
+    let a = &imported.machines[0];
+    let labels: Vec<String> = a.outgoing(0).map(|t| t.label.to_string()).collect();
+    assert_eq!(
+        labels,
+        ["~c", "a && b"],
+        "larger <outputs> first; the unattached transition skipped"
+    );
+    assert_eq!(a.outgoing(1).next().unwrap().label.to_string(), "TRUE");
+    let start = a.state(0).unwrap();
+    assert_eq!(
+        start.on_entry,
+        [
+            Action::Post {
+                ty: "Say".into(),
+                content: "hi".into()
+            },
+            Action::Post {
+                ty: "B".into(),
+                content: "suspend".into()
+            },
+            Action::Call {
+                function: "msleep".into(),
+                argument: Some(Argument::Int(10))
+            },
+            Action::Code("x = y + 1".into()),
+        ]
+    );
+    let messages: Vec<String> = imported
+        .diagnostics
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    assert_eq!(
+        messages,
+        [
+            "two.fsm:4: warning: state `Start`: `x = y + 1` is kept as code and will not run",
+            "two.fsm:8: warning: a transition without `<from>` or `<to>` (drawn but not attached) is skipped",
+        ]
+    );
+    let broken = import_qfsm("bad.fsm", "<qfsmproject><machine name=\"M\" initialstate=\"9\"><state code=\"1\">S</state></machine></qfsmproject>", "bad");
+    assert_eq!(
+        broken.diagnostics[0].to_string(),
+        "bad.fsm:1: error: initial state 9 of `M` is not one of its states"
+    );
+    let truncated = import_qfsm(
+        "cut.fsm",
+        "<qfsmproject>\n<machine name=\"M\" initialstate=\"1\">\n<state code=\"1\">S</sta",
+        "cut",
+    );
+    assert!(truncated.has_errors());
+    let link = import_qfsm("l.fsm", "../DefaultMachines/SMGetUp.fsm\n", "l");
+    assert!(link.diagnostics[0]
+        .message
+        .contains("`../DefaultMachines/SMGetUp.fsm`"));
+}
+
+#[test]
+fn t_a_errors_name_file_and_line() {
+    let imported = import_ta(
+        "M",
+        "TM.txt",
+        "1\tgo\t2\n1\ta &&\t1\n3\tgo\t1\nbad line\n",
+        "AM.txt",
+        "2\tB|OnEntry Say: hi;/\n1\tA|OnEntry nonsense; C++: f(1);/ OnExit /\n",
+    );
+    let messages: Vec<String> = imported
+        .diagnostics
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    assert_eq!(
+        messages,
+        [
+            "AM.txt:2: error: `nonsense` is not `Type: content`",
+            "TM.txt:4: error: expected `source<TAB>label<TAB>target`",
+            "TM.txt:3: error: state 3 is not in AM.txt",
+            "TM.txt:2: error: label `a &&`: the label ends too early (at column 5)",
+        ]
+    );
+    let m = &imported.machines[0];
+    assert_eq!(m.initial, 1);
+    assert_eq!(m.outgoing(1).count(), 1);
+}
