@@ -100,7 +100,7 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Check theories and report every problem (exit 1 when there are errors)
+    /// Check theories and machines (T/A pairs, Qfsm .fsm) and report every problem (exit 1 on errors)
     Check {
         #[arg(required = true)]
         theories: Vec<String>,

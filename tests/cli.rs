@@ -380,3 +380,28 @@ fn gc_sim_reports_script_errors_by_line() {
         "{err}"
     );
 }
+
+#[test]
+fn check_reads_t_a_pairs_and_qfsm_files() {
+    let Some(dir) = crate::shared_dir() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let corpus = dir.join("corpus/mipal");
+    let a = corpus.join("testfiles/AGameController.txt");
+    let fsm = corpus.join("machines/SMGetUp.fsm");
+    let o = proclaim(&["check", a.to_str().unwrap(), fsm.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o)
+            .contains("AGameController.txt: ok (1 machine, 21 states, 51 transitions, 0 warnings)"),
+        "{}",
+        stdout(&o)
+    );
+    let broken = corpus.join("testfiles/TSensorsTester.txt");
+    let o = proclaim(&["check", broken.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v[0]["line"], 12);
+    assert!(v[0]["message"].as_str().unwrap().contains("OnEnrtry"));
+}

@@ -237,7 +237,7 @@ fn qfsm_traps() {
     let two = r#"<?xml version='1.0'?>
 <qfsmproject>
   <machine name="A" initialstate="0">
-    <state code="0" description="OnEntry { post(&quot;Say&quot;, &quot;hi&quot;); suspend(&quot;B&quot;); msleep(10); x = y + 1; }&#xa;OnExit { }&#xa;{ }">Start</state>
+    <state code="0" description="OnEntry { post(&quot;Say&quot;, &quot;hi&quot;); suspend(&quot;B&quot;); msleep(10); x = y + 1; postv(&quot;walk&quot;, 0, -35, 100); }&#xa;OnExit { }&#xa;{ }">Start</state>
     <state code="1" description="">End</state>
     <transition><from>0</from><to>1</to><inputs default="0" any="0" invert="0">a &amp;&amp; b</inputs><outputs>1</outputs></transition>
     <transition><from>0</from><to>1</to><inputs default="0" any="0" invert="1">c</inputs><outputs>2</outputs></transition>
@@ -273,6 +273,10 @@ fn qfsm_traps() {
                 argument: Some(Argument::Int(10))
             },
             Action::Code("x = y + 1".into()),
+            Action::Post {
+                ty: "walk".into(),
+                content: "0 -35 100".into()
+            },
         ]
     );
     let messages: Vec<String> = imported
@@ -330,4 +334,17 @@ fn t_a_errors_name_file_and_line() {
     let m = &imported.machines[0];
     assert_eq!(m.initial, 1);
     assert_eq!(m.outgoing(1).count(), 1);
+}
+
+#[test]
+#[ignore = "prints the corpus warnings for a person to read"]
+fn print_corpus_warnings() {
+    let dir = corpus().unwrap();
+    for entry in std::fs::read_dir(dir.join("machines")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_str().unwrap().to_string();
+        for d in import_qfsm(&name, &std::fs::read_to_string(&path).unwrap(), "x").diagnostics {
+            println!("{d}");
+        }
+    }
 }

@@ -3,13 +3,19 @@
 use crate::failure::Failure;
 use crate::load::{self, color, diagnostic_json};
 use proclaim_cdl::check_source;
+use proclaim_fsm::{import_qfsm, import_ta, partner_of, Imported, Severity};
 use proclaim_syntax::render;
+use std::path::Path;
 use std::process::ExitCode;
 
 pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     let mut errors = 0;
     let mut report = Vec::new();
     for name in theories {
+        if let Some(imported) = machine_file(name)? {
+            errors += machines(name, &imported, json, &mut report);
+            continue;
+        }
         let source = load::read(name)?;
         let checked = check_source(&source.text, source.language);
         errors += checked.diagnostics.iter().filter(|d| d.is_error()).count();
@@ -51,4 +57,89 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// A Qfsm file, or either file of a T/A pair (its partner is found beside it); `None` for
+/// anything else (a theory).
+fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
+    let path = Path::new(name);
+    let file_name = path
+        .file_name()
+        .and_then(|f| f.to_str())
+        .unwrap_or_default();
+    let read = |p: &Path| {
+        std::fs::read_to_string(p).map_err(|error| Failure::Read {
+            path: p.to_path_buf(),
+            error,
+        })
+    };
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("fsm"))
+    {
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("machine");
+        return Ok(Some(import_qfsm(name, &read(path)?, stem)));
+    }
+    let is_table =
+        file_name.ends_with(".txt") && (file_name.starts_with('T') || file_name.starts_with('A'));
+    let Some(partner) = partner_of(path).filter(|p| is_table && p.exists()) else {
+        return Ok(None);
+    };
+    let (t, a) = if file_name.starts_with('T') {
+        (path.to_path_buf(), partner)
+    } else {
+        (partner, path.to_path_buf())
+    };
+    let machine = file_name[1..].trim_end_matches(".txt");
+    let show = |p: &Path| p.display().to_string();
+    Ok(Some(import_ta(
+        machine,
+        &show(&t),
+        &read(&t)?,
+        &show(&a),
+        &read(&a)?,
+    )))
+}
+
+/// Reports an imported machine file; returns its error count.
+fn machines(
+    name: &str,
+    imported: &Imported,
+    json: bool,
+    report: &mut Vec<serde_json::Value>,
+) -> usize {
+    let errors = imported
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
+    if json {
+        report.extend(imported.diagnostics.iter().map(|d| {
+            serde_json::json!({
+                "file": d.file,
+                "line": d.line,
+                "severity": if d.severity == Severity::Error { "error" } else { "warning" },
+                "message": d.message,
+            })
+        }));
+    } else {
+        for d in &imported.diagnostics {
+            eprintln!("{d}");
+        }
+        let states: usize = imported.machines.iter().map(|m| m.states.len()).sum();
+        let transitions: usize = imported.machines.iter().map(|m| m.transitions.len()).sum();
+        if !imported.machines.is_empty() {
+            println!(
+                "{name}: {} ({} machine{}, {states} states, {transitions} transitions, {} warnings)",
+                if errors == 0 { "ok" } else { "imported with errors" },
+                imported.machines.len(),
+                if imported.machines.len() == 1 { "" } else { "s" },
+                imported.diagnostics.len() - errors
+            );
+        }
+    }
+    errors
 }

@@ -170,6 +170,11 @@ fn split_top_level(text: &str, separator: char) -> Vec<&str> {
     parts
 }
 
+/// A number or a string literal.
+fn literal(text: &str) -> bool {
+    text.parse::<f64>().is_ok() || (text.len() >= 2 && text.starts_with('"') && text.ends_with('"'))
+}
+
 fn gufsm_statement(statement: &str) -> Action {
     let code = || Action::Code(statement.to_string());
     let Some(open) = statement.find('(') else {
@@ -201,6 +206,22 @@ fn gufsm_statement(statement: &str) -> Action {
                     content: content.to_string(),
                 },
                 _ => code(),
+            }
+        }
+        // `postv("T", 0, 0, 35, 100)`: several literal values, posted space-separated.
+        ("postv" | "post_v", [ty, values @ ..])
+            if values.len() > 1 && values.iter().all(|v| literal(v)) =>
+        {
+            match string(ty) {
+                Some(ty) => Action::Post {
+                    ty,
+                    content: values
+                        .iter()
+                        .map(|v| string(v).unwrap_or_else(|| v.to_string()))
+                        .collect::<Vec<_>>()
+                        .join(" "),
+                },
+                None => code(),
             }
         }
         ("suspend" | "resume" | "restart", [machine]) => match string(machine) {
