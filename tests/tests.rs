@@ -6,6 +6,7 @@ mod gamecontroller;
 mod machines;
 mod properties;
 mod reasoner;
+mod runner;
 mod syntax;
 mod theories;
 mod whiteboard;

@@ -1,0 +1,16 @@
+//! Runs machines on the whiteboard (`../shared/spec/behaviour.md` §3): one ring at a time, OnEntry
+//! on arrival, transitions tried in priority order with each label proved by its expert, OnExit
+//! on leaving, Internal when nothing fired; between rings, wait for a message a label of the
+//! state depends on, or the ring period. Sub-machines obey `Name: On/Off/suspend/resume/restart`
+//! and post `NameIsRunning`. What happens is reported as [`Event`]s, data a trace can record.
+//!
+//! Not here yet (issue 4): the native format, behaviour manifests, reload and `proclaim run`.
+
+mod event;
+mod host;
+mod label;
+mod machine;
+
+pub use event::Event;
+pub use host::{HostFunction, Hosts};
+pub use machine::{MachineRunner, RunOptions};

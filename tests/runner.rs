@@ -1,0 +1,188 @@
+//! Machines running on the whiteboard: the seed paper's GameController (its real T/A pair)
+//! played through a game by the impersonator, sub-machine control, `timeout()` and comparison
+//! labels. All on a paused clock, so the traces are deterministic.
+
+use proclaim_board::Whiteboard;
+use proclaim_experts::{parse_script, Impersonator};
+use proclaim_fsm::{import_ta, Machine};
+use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
+use std::time::Duration;
+
+fn ta(name: &str, t: &str, a: &str) -> Machine {
+    let imported = import_ta(name, "T", t, "A", a);
+    assert!(!imported.has_errors(), "{:?}", imported.diagnostics);
+    imported.machines.into_iter().next().unwrap()
+}
+
+/// The states entered, in order, until `stop` is entered or `limit` passes.
+async fn entered(
+    events: &mut tokio::sync::mpsc::UnboundedReceiver<Event>,
+    stop: &str,
+    limit: Duration,
+) -> Vec<(String, u64)> {
+    let mut seen = Vec::new();
+    let deadline = tokio::time::Instant::now() + limit;
+    while let Ok(Some(event)) = tokio::time::timeout_at(deadline, events.recv()).await {
+        if let Event::Entered { state, at, .. } = event {
+            seen.push((state.clone(), at.as_secs()));
+            if state == stop {
+                break;
+            }
+        }
+    }
+    seen
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_seed_papers_game_controller_plays_a_game() {
+    let Some(dir) = crate::shared_dir() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let read =
+        |f: &str| std::fs::read_to_string(dir.join("corpus/mipal/testfiles").join(f)).unwrap();
+    let machine = ta(
+        "GameController",
+        &read("TGameController.txt"),
+        &read("AGameController.txt"),
+    );
+    let board = Whiteboard::local();
+    let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
+    let atoms = runner.declaration().waits_on;
+    let mut events = runner.events();
+    let script = parse_script(
+        "at 1s readyReceived = true\n\
+         at 2s readyReceived = false\nat 2s setReceived = true\n\
+         at 3s setReceived = false\nat 3s playingReceived = true\n\
+         at 4s playingReceived = false\nat 4s penaltyReceived = true\n\
+         at 5s penaltyReceived = false\nat 5s playingReceived = true\n\
+         at 25s finishedReceived = true\n",
+    )
+    .unwrap();
+    let imp = Impersonator::new("testcdl", atoms.clone(), script);
+    for atom in &atoms {
+        imp.set(atom, false);
+    }
+    tokio::spawn(imp.run(board.clone()));
+    tokio::task::yield_now().await;
+    tokio::spawn(runner.run(board.clone()));
+    let trace = entered(&mut events, "FINISHED", Duration::from_secs(120)).await;
+    let states: Vec<&str> = trace.iter().map(|(s, _)| s.as_str()).collect();
+    assert_eq!(
+        states,
+        [
+            "INITIAL",
+            "READY",
+            "SET",
+            "PLAYING",
+            "PENALIZED",
+            "PLAYING",
+            "FINISHED"
+        ],
+        "{trace:?}"
+    );
+    // Leaving PENALIZED runs its OnExit, which walks for 14 s (C++: msleep(14000)).
+    assert!(trace[5].1 >= 19, "{trace:?}");
+    assert_eq!(
+        board.latest("Say").unwrap().value.to_string(),
+        "\"Game over\"",
+        "FINISHED's OnEntry ran"
+    );
+    assert_eq!(
+        board.latest("LEDS").unwrap().value.to_string(),
+        "\"Face Green\"",
+        "to its last posting"
+    );
+    assert_eq!(
+        board.latest("SMPlayer").unwrap().value.to_string(),
+        "\"Off\"",
+        "PLAYING's OnExit stopped the player"
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn sub_machines_are_started_and_stopped_by_messages() {
+    let parent = ta(
+        "Parent",
+        "0\ttimeout(2000000)\t1\n",
+        "1\tDone|OnEntry Child: Off;/ OnExit /\n0\tStart|OnEntry Child: On;/ OnExit /\n",
+    );
+    let child = ta(
+        "Child",
+        "",
+        "0\tTick|OnEntry /OnExit / tick: 1; C++: msleep(100);\n",
+    );
+    let board = Whiteboard::local();
+    let mut child_runner = MachineRunner::new(
+        child,
+        Hosts::default(),
+        RunOptions {
+            start_running: false,
+            ..Default::default()
+        },
+    );
+    let mut child_events = child_runner.events();
+    tokio::spawn(child_runner.run(board.clone()));
+    tokio::task::yield_now().await;
+    assert_eq!(
+        board.truth("ChildIsRunning"),
+        Some(false),
+        "dormant until told"
+    );
+    let mut parent_runner = MachineRunner::new(parent, Hosts::default(), RunOptions::default());
+    let mut parent_events = parent_runner.events();
+    tokio::spawn(parent_runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    assert_eq!(board.truth("ChildIsRunning"), Some(true));
+    assert_eq!(board.truth("tick"), Some(true), "the child's Internal runs");
+    let trace = entered(&mut parent_events, "Done", Duration::from_secs(5)).await;
+    assert_eq!(
+        trace,
+        [("Start".to_string(), 0), ("Done".to_string(), 2)],
+        "timeout(2000000) is two seconds in the state"
+    );
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    assert_eq!(board.truth("ChildIsRunning"), Some(false));
+    let mut commands = Vec::new();
+    while let Ok(e) = child_events.try_recv() {
+        if let Event::Control { command, .. } = e {
+            commands.push(command);
+        }
+    }
+    assert_eq!(commands, ["On", "Off"]);
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_comparison_label_wakes_on_the_value_it_reads() {
+    let m = ta(
+        "Watcher",
+        "0\tdistance<300 && ~stop\t1\n",
+        "1\tClose|OnEntry Say: close;/\n0\tFar|OnEntry /\n",
+    );
+    let board = Whiteboard::local();
+    let mut hosts = Hosts::default();
+    hosts.register("unused", |_| {});
+    let mut runner = MachineRunner::new(
+        m,
+        hosts,
+        RunOptions {
+            ring_period: Duration::from_secs(60),
+            answer_timeout: Duration::from_millis(50),
+            ..Default::default()
+        },
+    );
+    let mut events = runner.events();
+    let imp = Impersonator::new("testcdl", ["stop"], Default::default());
+    imp.set("stop", false);
+    tokio::spawn(imp.run(board.clone()));
+    tokio::task::yield_now().await;
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    board.post("vision", "distance", 500i64);
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    board.post("vision", "distance", 250i64);
+    let trace = entered(&mut events, "Close", Duration::from_secs(5)).await;
+    // Woken by the posting of `distance`, not by the 60 s ring period.
+    assert_eq!(trace, [("Far".to_string(), 0), ("Close".to_string(), 2)]);
+    assert_eq!(board.latest("Say").unwrap().value.to_string(), "\"close\"");
+}
