@@ -243,3 +243,24 @@ async fn queries_are_answered_time_out_or_find_no_expert() {
         (3, 1, 1)
     );
 }
+
+#[tokio::test]
+async fn dropped_subscriptions_do_not_pile_up() {
+    // A machine re-subscribes on every state change; dropped subscriptions to types nobody posts
+    // to must not accumulate (every post walks the list).
+    let board = Whiteboard::local();
+    let mut kept = board.subscribe("kept");
+    for _ in 0..100_000 {
+        drop(board.subscribe("never_posted"));
+    }
+    assert!(
+        board.stats().subscribers <= 256,
+        "{} subscriptions held",
+        board.stats().subscribers
+    );
+    board.post("m", "kept", 1i64);
+    assert!(
+        kept.try_next().is_some(),
+        "live subscriptions survive pruning"
+    );
+}

@@ -70,6 +70,8 @@ struct Inner {
     types: FxHashMap<Arc<str>, Entry>,
     modules: FxHashMap<String, Arc<str>>,
     subscribers: Vec<Subscriber>,
+    /// Subscriber count at which closed subscriptions are next pruned.
+    prune_at: usize,
     registry: Registry,
     stats: Stats,
 }
@@ -259,7 +261,14 @@ impl Transport for LocalBoard {
 
     fn subscribe(&self, pattern: Pattern) -> Subscription {
         let (tx, rx) = mpsc::channel(self.retention.subscriber_queue);
-        self.lock().subscribers.push(Subscriber { pattern, tx });
+        let mut inner = self.lock();
+        // Dropped subscriptions are otherwise removed only when a message for them is posted;
+        // pruning whenever the list doubles keeps it bounded at amortised constant cost.
+        if inner.subscribers.len() >= inner.prune_at {
+            inner.subscribers.retain(|s| !s.tx.is_closed());
+            inner.prune_at = (inner.subscribers.len() * 2).max(64);
+        }
+        inner.subscribers.push(Subscriber { pattern, tx });
         Subscription::new(rx)
     }
 
@@ -276,7 +285,11 @@ impl Transport for LocalBoard {
     }
 
     fn stats(&self) -> Stats {
-        self.lock().stats
+        let inner = self.lock();
+        Stats {
+            subscribers: inner.subscribers.len(),
+            ..inner.stats
+        }
     }
 
     fn count_query(&self, timed_out: bool, unanswerable: bool) {

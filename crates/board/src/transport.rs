@@ -44,6 +44,8 @@ pub struct Stats {
     pub timeouts: u64,
     /// Queries for atoms no registered module answers.
     pub unanswerable: u64,
+    /// Subscriptions the board holds now (dropped ones linger until pruned, boundedly).
+    pub subscribers: usize,
 }
 
 /// What a whiteboard transport does. Every method is cheap and never blocks a thread; the waits

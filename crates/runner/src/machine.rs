@@ -114,6 +114,7 @@ impl MachineRunner {
         let running_type = format!("{name}IsRunning");
         board.post(&name, &running_type, running);
         let mut watch = self.subscribe(&board, current);
+        let mut watched = current;
         // A command taken while dormant, applied on the next turn of the loop.
         let mut woken_by: Option<proclaim_board::Message> = None;
         loop {
@@ -153,7 +154,10 @@ impl MachineRunner {
             if just_entered {
                 just_entered = false;
                 entered_at = Instant::now();
-                watch = self.subscribe(&board, current);
+                if watched != current {
+                    watch = self.subscribe(&board, current);
+                    watched = current;
+                }
                 let Some(state) = self.machine.state(current) else {
                     return;
                 };
@@ -196,7 +200,7 @@ impl MachineRunner {
             };
             match fired {
                 Some((target, label)) => {
-                    self.act(&board, &state.on_exit.clone(), &mut unknown).await;
+                    self.act(&board, &state.on_exit, &mut unknown).await;
                     self.emit(Event::Fired {
                         machine: name.clone(),
                         from: current,
