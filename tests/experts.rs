@@ -20,6 +20,19 @@ fn microwave() -> proclaim_cdl::Theory {
     load(&text, Language::Dl).unwrap()
 }
 
+/// Every message already waiting on a subscription, as its value's text (or truth).
+fn drain_text(sub: &mut proclaim_board::Subscription) -> Vec<String> {
+    std::iter::from_fn(|| sub.try_next())
+        .map(|m| m.value.to_string())
+        .collect()
+}
+
+fn drain_truth(sub: &mut proclaim_board::Subscription) -> Vec<bool> {
+    std::iter::from_fn(|| sub.try_next())
+        .map(|m| m.value.truthy())
+        .collect()
+}
+
 /// The value of `ty` once it is posted after `after`, or panics after a second.
 async fn next_value(board: &Whiteboard, ty: &str, after: u64) -> (bool, u64) {
     let m = board
@@ -199,10 +212,7 @@ async fn simulator_to_receiver_over_loopback_udp() {
         counters.accepted.load(Ordering::Relaxed) == sent
     })
     .await;
-    let mut seen = Vec::new();
-    while let Some(m) = states.try_next() {
-        seen.push(m.value.to_string());
-    }
+    let seen = drain_text(&mut states);
     assert_eq!(
         seen,
         [
@@ -213,10 +223,7 @@ async fn simulator_to_receiver_over_loopback_udp() {
             "\"FINISHED\""
         ]
     );
-    let mut penalty = Vec::new();
-    while let Some(m) = penalties.try_next() {
-        penalty.push(m.value.truthy());
-    }
+    let penalty = drain_truth(&mut penalties);
     assert_eq!(penalty, [false, true, false]);
     assert_eq!(board.truth("weKickOff"), Some(true));
     assert_eq!(
@@ -310,10 +317,7 @@ async fn the_real_capture_over_udp() {
         counters.accepted.load(Ordering::Relaxed) == 49
     })
     .await;
-    let mut seen = Vec::new();
-    while let Some(m) = states.try_next() {
-        seen.push(m.value.to_string());
-    }
+    let seen = drain_text(&mut states);
     assert_eq!(
         seen,
         [
@@ -324,10 +328,7 @@ async fn the_real_capture_over_udp() {
             "\"FINISHED\""
         ]
     );
-    let mut penalty = Vec::new();
-    while let Some(m) = penalties.try_next() {
-        penalty.push(m.value.truthy());
-    }
+    let penalty = drain_truth(&mut penalties);
     assert_eq!(penalty.first(), Some(&false));
     assert!(
         penalty.contains(&true),
@@ -365,10 +366,7 @@ async fn a_short_chest_press_is_a_command_a_bounce_is_not() {
     ms(3000).await;
     board.post("sensors", "ChestButton", false);
     ms(200).await;
-    let mut values = Vec::new();
-    while let Some(m) = label.try_next() {
-        values.push(m.value.truthy());
-    }
+    let values = drain_truth(&mut label);
     assert_eq!(
         values,
         [false, true, false],

@@ -299,33 +299,29 @@ impl Parser<'_> {
 
     /// `a + b * c`, left-associative, `*` and `/` binding tighter.
     fn operand(&mut self) -> Result<Operand, LabelError> {
-        let mut left = self.product()?;
-        loop {
-            self.skip_space();
-            let op = match self.text[self.at..].chars().next() {
-                Some(c @ ('+' | '-')) => c,
-                _ => return Ok(left),
-            };
-            self.at += 1;
-            let right = self.product()?;
-            left = Operand::Arith {
-                left: Box::new(left),
-                op,
-                right: Box::new(right),
-            };
-        }
+        self.arithmetic(['+', '-'], |p| {
+            p.arithmetic(['*', '/'], Parser::atom_operand)
+        })
     }
 
-    fn product(&mut self) -> Result<Operand, LabelError> {
-        let mut left = self.atom_operand()?;
+    /// One precedence level: `next (op next)*` for the two operators of the level.
+    fn arithmetic(
+        &mut self,
+        ops: [char; 2],
+        next: impl Fn(&mut Self) -> Result<Operand, LabelError>,
+    ) -> Result<Operand, LabelError> {
+        let mut left = next(self)?;
         loop {
             self.skip_space();
-            let op = match self.text[self.at..].chars().next() {
-                Some(c @ ('*' | '/')) => c,
-                _ => return Ok(left),
+            let Some(op) = self.text[self.at..]
+                .chars()
+                .next()
+                .filter(|c| ops.contains(c))
+            else {
+                return Ok(left);
             };
             self.at += 1;
-            let right = self.atom_operand()?;
+            let right = next(self)?;
             left = Operand::Arith {
                 left: Box::new(left),
                 op,
