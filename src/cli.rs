@@ -107,6 +107,16 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Draw a machine (T/A pair or Qfsm file) as a diagram: DOT, or SVG/PNG/PDF through Graphviz
+    Draw {
+        machine: String,
+        /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout)
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Which machine, when the file holds several
+        #[arg(long = "machine", value_name = "NAME")]
+        name: Option<String>,
+    },
     /// Write a standard benchmark theory: chain N, chains N, circle N, circles N, levels N,
     /// levels- N, teams N, tree N K, dag N K, mix M N K (the expected answer goes to stderr)
     Gen {

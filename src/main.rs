@@ -7,6 +7,7 @@ mod commands;
 mod embedded;
 mod failure;
 mod load;
+mod machines;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -405,3 +405,42 @@ fn check_reads_t_a_pairs_and_qfsm_files() {
     assert_eq!(v[0]["line"], 12);
     assert!(v[0]["message"].as_str().unwrap().contains("OnEnrtry"));
 }
+
+#[test]
+fn draw_writes_dot_and_renders_through_graphviz() {
+    let t = temp_file("TDoor.txt", b"0\topen\t1\n1\t~open\t0\n");
+    temp_file(
+        "ADoor.txt",
+        b"1\tOpen|OnEntry Light: On;/\n0\tShut|OnEntry /\n",
+    );
+    let o = proclaim(&["draw", t.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).starts_with("digraph \"Door\" {"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(stdout(&o).contains("s0 -> s1 [label=\"1: open\"];"));
+    let svg = t.with_file_name("door.svg");
+    let o = proclaim(&["draw", t.to_str().unwrap(), "-o", svg.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let graphviz = std::process::Command::new("dot").arg("-V").output().is_ok();
+    if graphviz {
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("<svg") && text.contains("Open (1)"), "{text}");
+    } else {
+        assert!(
+            stderr(&o).contains("Render it with `dot -Tsvg"),
+            "{}",
+            stderr(&o)
+        );
+        assert!(svg.with_extension("dot").exists());
+    }
+    let o = proclaim(&["draw", "tweety"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("is not a machine file"),
+        "{}",
+        stderr(&o)
+    );
+}

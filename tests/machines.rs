@@ -348,3 +348,34 @@ fn print_corpus_warnings() {
         }
     }
 }
+
+#[test]
+fn a_machine_as_dot() {
+    let imported = import_ta(
+        "Door",
+        "T",
+        "0\topen\t1\n0\ttimeout(5000000)\t0\n1\t~open\t0\n",
+        "A",
+        "1\tOpen|OnEntry Light: On; Alarm: On;/ OnExit C++: beep(2);/\n0\tShut \"quiet\"|OnEntry /\n",
+    );
+    assert_eq!(
+        proclaim_fsm::to_dot(&imported.machines[0]),
+        r#"digraph "Door" {
+  rankdir=LR;
+  node [shape=box, style=rounded, fontname="Helvetica", fontsize=10];
+  edge [fontname="Helvetica", fontsize=9];
+  start [shape=point, width=0.15];
+  start -> s0;
+  s1 [label="Open (1)\nentry: Light: On\lentry: Alarm: On\lexit: beep(2)\l"];
+  "Light" [shape=component, style=dashed];
+  s1 -> "Light" [style=dashed, arrowhead=odot, label="starts"];
+  "Alarm" [shape=component, style=dashed];
+  s1 -> "Alarm" [style=dashed, arrowhead=odot, label="starts"];
+  s0 [label="Shut \"quiet\" (0)\n", peripheries=2];
+  s1 -> s0 [label="1: ~open"];
+  s0 -> s0 [label="1: timeout(5000000)"];
+  s0 -> s1 [label="2: open"];
+}
+"#
+    );
+}

@@ -1,11 +1,11 @@
-//! `proclaim check`: every problem in every theory, exit 1 when any is an error.
+//! `proclaim check`: every problem in every theory and machine file, exit 1 when any is an error.
 
 use crate::failure::Failure;
 use crate::load::{self, color, diagnostic_json};
+use crate::machines::machine_file;
 use proclaim_cdl::check_source;
-use proclaim_fsm::{import_qfsm, import_ta, partner_of, Imported, Severity};
+use proclaim_fsm::{Imported, Severity};
 use proclaim_syntax::render;
-use std::path::Path;
 use std::process::ExitCode;
 
 pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
@@ -57,51 +57,6 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     } else {
         ExitCode::SUCCESS
     })
-}
-
-/// A Qfsm file, or either file of a T/A pair (its partner is found beside it); `None` for
-/// anything else (a theory).
-fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
-    let path = Path::new(name);
-    let file_name = path
-        .file_name()
-        .and_then(|f| f.to_str())
-        .unwrap_or_default();
-    let read = |p: &Path| {
-        std::fs::read_to_string(p).map_err(|error| Failure::Read {
-            path: p.to_path_buf(),
-            error,
-        })
-    };
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("fsm"))
-    {
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("machine");
-        return Ok(Some(import_qfsm(name, &read(path)?, stem)));
-    }
-    let is_table =
-        file_name.ends_with(".txt") && (file_name.starts_with('T') || file_name.starts_with('A'));
-    let Some(partner) = partner_of(path).filter(|p| is_table && p.exists()) else {
-        return Ok(None);
-    };
-    let (t, a) = if file_name.starts_with('T') {
-        (path.to_path_buf(), partner)
-    } else {
-        (partner, path.to_path_buf())
-    };
-    let machine = file_name[1..].trim_end_matches(".txt");
-    let show = |p: &Path| p.display().to_string();
-    Ok(Some(import_ta(
-        machine,
-        &show(&t),
-        &read(&t)?,
-        &show(&a),
-        &read(&a)?,
-    )))
 }
 
 /// Reports an imported machine file; returns its error count.

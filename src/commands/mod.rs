@@ -2,6 +2,7 @@
 
 mod bench;
 mod check;
+mod draw;
 mod explain;
 mod gamecontroller;
 mod gen;
@@ -33,6 +34,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             json,
         } => explain::run(&theory, &query, alg, &set, depth, json),
         Command::Check { theories, json } => check::run(&theories, json),
+        Command::Draw {
+            machine,
+            output,
+            name,
+        } => draw::run(&machine, output.as_deref(), name.as_deref()),
         Command::Gen {
             family,
             sizes,

@@ -8,6 +8,7 @@
 
 mod activity;
 mod diagnostic;
+mod dot;
 mod label;
 mod model;
 mod qfsm;
@@ -15,6 +16,7 @@ mod ta;
 
 pub use activity::{parse_gufsm_activities, parse_ta_items};
 pub use diagnostic::{FileDiagnostic, Severity};
+pub use dot::to_dot;
 pub use label::{parse_label, CmpOp, Label, LabelError, Operand};
 pub use model::{Action, Argument, Machine, State, StateId, Transition};
 pub use qfsm::import_qfsm;

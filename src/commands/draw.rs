@@ -1,0 +1,114 @@
+//! `proclaim draw`: a machine as a diagram. DOT is written directly; SVG, PNG and PDF go
+//! through Graphviz's `dot`, and without it the DOT is written with a note on how to render it.
+
+use crate::failure::Failure;
+use crate::machines::machine_file;
+use proclaim_fsm::{to_dot, Severity};
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, ExitCode, Stdio};
+
+pub fn run(file: &str, output: Option<&Path>, name: Option<&str>) -> Result<ExitCode, Failure> {
+    let Some(imported) = machine_file(file)? else {
+        return Err(Failure::Argument(format!(
+            "{file} is not a machine file (a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
+        )));
+    };
+    for d in &imported.diagnostics {
+        eprintln!("{d}");
+    }
+    if imported
+        .diagnostics
+        .iter()
+        .any(|d| d.severity == Severity::Error)
+        && imported.machines.is_empty()
+    {
+        return Err(Failure::Argument(format!(
+            "{file} holds no machine that could be read"
+        )));
+    }
+    let names: Vec<&str> = imported.machines.iter().map(|m| m.name.as_str()).collect();
+    let machine = match (name, imported.machines.as_slice()) {
+        (None, [only]) => only,
+        (Some(n), machines) => machines.iter().find(|m| m.name == n).ok_or_else(|| {
+            Failure::Argument(format!(
+                "{file} has no machine `{n}`; it has {}",
+                names.join(", ")
+            ))
+        })?,
+        (None, _) => {
+            return Err(Failure::Argument(format!(
+                "{file} holds several machines ({}); choose one with --machine NAME",
+                names.join(", ")
+            )))
+        }
+    };
+    let dot = to_dot(machine);
+    let Some(output) = output else {
+        print!("{dot}");
+        return Ok(ExitCode::SUCCESS);
+    };
+    let format = output
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("dot")
+        .to_ascii_lowercase();
+    let write = |path: &Path, bytes: &[u8]| {
+        std::fs::write(path, bytes).map_err(|error| Failure::Write {
+            path: path.to_path_buf(),
+            error,
+        })
+    };
+    if format == "dot" || format == "gv" {
+        write(output, dot.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    if !matches!(format.as_str(), "svg" | "png" | "pdf") {
+        return Err(Failure::Argument(format!(
+            "-o {}: write .dot, .svg, .png or .pdf",
+            output.display()
+        )));
+    }
+    match render(&dot, &format, output) {
+        Ok(()) => Ok(ExitCode::SUCCESS),
+        Err(why) => {
+            let dot_path = output.with_extension("dot");
+            write(&dot_path, dot.as_bytes())?;
+            eprintln!(
+                "note: {why}; wrote {} instead. Render it with `dot -T{format} {} -o {}` (Debian: apt-get install graphviz)",
+                dot_path.display(),
+                dot_path.display(),
+                output.display()
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+/// Runs Graphviz; the error says why it could not.
+fn render(dot: &str, format: &str, output: &Path) -> Result<(), String> {
+    let mut child = Command::new("dot")
+        .arg(format!("-T{format}"))
+        .arg("-o")
+        .arg(output)
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("Graphviz's `dot` could not be started ({e})"))?;
+    if let Some(mut stdin) = child.stdin.take() {
+        stdin
+            .write_all(dot.as_bytes())
+            .map_err(|e| format!("Graphviz did not take the diagram ({e})"))?;
+    }
+    let result = child
+        .wait_with_output()
+        .map_err(|e| format!("Graphviz failed ({e})"))?;
+    if result.status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "Graphviz failed: {}",
+            String::from_utf8_lossy(&result.stderr).trim()
+        ))
+    }
+}
