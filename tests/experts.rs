@@ -232,6 +232,24 @@ async fn simulator_to_receiver_over_loopback_udp() {
         "the simulator's home team wears blue"
     );
     assert_eq!(board.truth("finishedReceived"), Some(true));
+    // A machine asks: the receiver answers queries with its current values, unchanged or not.
+    let asked = board
+        .query("machine", "finishedReceived", Duration::from_secs(1))
+        .await;
+    assert!(
+        matches!(&asked, proclaim_board::QueryOutcome::Answered { value: true, by, .. } if by.as_ref() == "gamecontroller"),
+        "{asked:?}"
+    );
+    let asked = board
+        .query("machine", "readyReceived", Duration::from_secs(1))
+        .await;
+    assert!(
+        matches!(
+            asked,
+            proclaim_board::QueryOutcome::Answered { value: false, .. }
+        ),
+        "{asked:?}"
+    );
     assert!(board.registry().answerers("readyReceived") == ["gamecontroller"]);
 }
 
@@ -344,6 +362,16 @@ async fn a_short_chest_press_is_a_command_a_bounce_is_not() {
     let mut label = board.subscribe("shortChestButtonPressed");
     tokio::task::yield_now().await;
     let ms = |n| tokio::time::sleep(Duration::from_millis(n));
+    let asked = board
+        .query("machine", "shortChestButtonPressed", Duration::from_secs(1))
+        .await;
+    assert!(
+        matches!(
+            asked,
+            proclaim_board::QueryOutcome::Answered { value: false, .. }
+        ),
+        "{asked:?}"
+    );
     // A 10 ms bounce: nothing.
     board.post("sensors", "ChestButton", true);
     ms(10).await;
@@ -369,8 +397,8 @@ async fn a_short_chest_press_is_a_command_a_bounce_is_not() {
     let values = drain_truth(&mut label);
     assert_eq!(
         values,
-        [false, true, false],
-        "initial, the command, its clearing"
+        [false, false, true, false],
+        "initial, the answer to the query, the command, its clearing"
     );
 }
 
@@ -388,6 +416,16 @@ async fn a_stumble_is_not_a_fall() {
     board.post("imu", "FallDetected", 1i64);
     ms(150).await;
     assert_eq!(board.truth("fallen"), Some(true));
+    let asked = board
+        .query("machine", "fallen", Duration::from_secs(1))
+        .await;
+    assert!(
+        matches!(
+            asked,
+            proclaim_board::QueryOutcome::Answered { value: true, .. }
+        ),
+        "{asked:?}"
+    );
     board.post("imu", "FallDetected", 0i64);
     ms(200).await;
     assert_eq!(board.truth("fallen"), Some(true), "still getting up");

@@ -58,6 +58,15 @@ fn labels() {
     check("a b", "error: unexpected `b` (at column 3)");
 }
 
+/// Every diagnostic of an import, as `file:line: severity: message`.
+fn messages(imported: &proclaim_fsm::Imported) -> Vec<String> {
+    imported
+        .diagnostics
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
 fn corpus() -> Option<std::path::PathBuf> {
     Some(crate::shared_dir()?.join("corpus/mipal"))
 }
@@ -279,11 +288,7 @@ fn qfsm_traps() {
             },
         ]
     );
-    let messages: Vec<String> = imported
-        .diagnostics
-        .iter()
-        .map(ToString::to_string)
-        .collect();
+    let messages = messages(&imported);
     assert_eq!(
         messages,
         [
@@ -317,11 +322,7 @@ fn t_a_errors_name_file_and_line() {
         "AM.txt",
         "2\tB|OnEntry Say: hi;/\n1\tA|OnEntry nonsense; C++: f(1);/ OnExit /\n",
     );
-    let messages: Vec<String> = imported
-        .diagnostics
-        .iter()
-        .map(ToString::to_string)
-        .collect();
+    let messages = messages(&imported);
     assert_eq!(
         messages,
         [

@@ -16,7 +16,8 @@ struct Debounced {
 }
 
 impl Debounced {
-    /// Subscribes to `raw`, registers the wrapper, and posts the label's first value (false).
+    /// Subscribes to `raw` and to queries for the label, registers the wrapper, and posts the
+    /// label's first value (false). The second result answers queries; run it beside the wrapper.
     fn start(
         board: &Whiteboard,
         decl: ModuleDecl,
@@ -24,16 +25,21 @@ impl Debounced {
         label: &str,
         rise: Duration,
         fall: Duration,
-    ) -> Debounced {
+    ) -> (Debounced, impl std::future::Future<Output = ()>) {
         let sub = board.subscribe_pattern(Pattern::Type(raw.to_string()));
+        let answering =
+            crate::answers::answer_from_latest(board, &decl.name, vec![label.to_string()]);
         board.post(&decl.name, label, false);
         board.register(decl);
-        Debounced {
-            sub,
-            settled: false,
-            rise,
-            fall,
-        }
+        (
+            Debounced {
+                sub,
+                settled: false,
+                rise,
+                fall,
+            },
+            answering,
+        )
     }
 
     async fn next(&mut self) -> Option<(bool, Instant)> {
@@ -110,7 +116,7 @@ impl ButtonWrapper {
     }
 
     async fn serve(self, board: Whiteboard) {
-        let mut contact = Debounced::start(
+        let (contact, answering) = Debounced::start(
             &board,
             self.declaration(),
             &self.raw,
@@ -118,6 +124,13 @@ impl ButtonWrapper {
             self.debounce,
             self.debounce,
         );
+        tokio::select! {
+            () = self.follow(&board, contact) => {}
+            () = answering => {}
+        }
+    }
+
+    async fn follow(&self, board: &Whiteboard, mut contact: Debounced) {
         let mut pressed_at: Option<Instant> = None;
         let mut clear_at: Option<Instant> = None;
         loop {
@@ -185,7 +198,7 @@ impl FallWrapper {
     }
 
     async fn serve(self, board: Whiteboard) {
-        let mut detector = Debounced::start(
+        let (mut detector, answering) = Debounced::start(
             &board,
             self.declaration(),
             &self.raw,
@@ -193,8 +206,14 @@ impl FallWrapper {
             self.confirm,
             self.recover,
         );
-        while let Some((fallen, _)) = detector.next().await {
-            board.post(&self.name, &self.label, fallen);
+        let follow = async {
+            while let Some((fallen, _)) = detector.next().await {
+                board.post(&self.name, &self.label, fallen);
+            }
+        };
+        tokio::select! {
+            () = follow => {}
+            () = answering => {}
         }
     }
 }

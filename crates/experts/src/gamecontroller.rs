@@ -119,7 +119,19 @@ impl GameControllerReceiver {
     }
 
     async fn serve(self, board: Whiteboard) -> io::Result<()> {
+        let answering = crate::answers::answer_from_latest(
+            &board,
+            &self.config.name,
+            LABELS.iter().map(|l| l.to_string()).collect(),
+        );
         board.register(self.declaration());
+        tokio::select! {
+            result = self.receive(&board) => result,
+            () = answering => Ok(()),
+        }
+    }
+
+    async fn receive(&self, board: &Whiteboard) -> io::Result<()> {
         let mut last: FxHashMap<&'static str, Value> = FxHashMap::default();
         let mut buffer = [0u8; 2048];
         let mut status = tokio::time::interval(Duration::from_secs(1));
@@ -130,7 +142,7 @@ impl GameControllerReceiver {
             tokio::select! {
                 received = self.socket.recv_from(&mut buffer) => {
                     let (len, from) = received?;
-                    if let Some(team) = self.accept(&buffer[..len]).and_then(|p| self.post_changes(&board, &p, &mut last)) {
+                    if let Some(team) = self.accept(&buffer[..len]).and_then(|p| self.post_changes(board, &p, &mut last)) {
                         controller = Some(from);
                         team_seen = Some(team);
                     }

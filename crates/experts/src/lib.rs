@@ -11,6 +11,7 @@
 //! Scripts and mapping files are parsed purely (`script`, `mapping`); sockets and the terminal
 //! are touched only by the `run` methods.
 
+mod answers;
 mod buttons;
 mod gamecontroller;
 mod impersonator;
