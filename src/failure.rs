@@ -16,8 +16,12 @@ pub enum Failure {
         path: PathBuf,
         error: std::io::Error,
     },
-    /// The theory has errors; `rendered` already says where and why.
-    Invalid { rendered: String, errors: usize },
+    /// A theory or a query has errors; `rendered` already says where and why; `what` names it.
+    Invalid {
+        what: &'static str,
+        rendered: String,
+        errors: usize,
+    },
     /// A command-line argument is wrong (an unknown atom, a malformed `--set`).
     Argument(String),
     /// A benchmark child process failed.
@@ -28,9 +32,13 @@ impl Failure {
     pub fn report(&self) {
         let mut err = std::io::stderr().lock();
         let _ = match self {
-            Failure::Invalid { rendered, errors } => writeln!(
+            Failure::Invalid {
+                what,
+                rendered,
+                errors,
+            } => writeln!(
                 err,
-                "{rendered}error: the theory has {errors} error{}",
+                "{rendered}error: {what} has {errors} error{}",
                 if *errors == 1 { "" } else { "s" }
             ),
             other => writeln!(err, "error: {other}"),
@@ -43,7 +51,7 @@ impl fmt::Display for Failure {
         match self {
             Failure::Read { path, error } => write!(f, "cannot read {}: {error}", path.display()),
             Failure::Write { path, error } => write!(f, "cannot write {}: {error}", path.display()),
-            Failure::Invalid { errors, .. } => write!(f, "the theory has {errors} errors"),
+            Failure::Invalid { what, errors, .. } => write!(f, "{what} has {errors} errors"),
             Failure::Argument(message) => f.write_str(message),
             Failure::Bench(message) => write!(f, "benchmark failed: {message}"),
         }

@@ -67,6 +67,7 @@ pub fn checked(source: &Source) -> Result<(Theory, Vec<Diagnostic>), Failure> {
     match result.theory {
         Some(theory) => Ok((theory, warnings)),
         None => Err(Failure::Invalid {
+            what: "the theory",
             rendered: render(&errors, &source.name, &source.text, color()),
             errors: errors.len(),
         }),

@@ -444,3 +444,14 @@ fn draw_writes_dot_and_renders_through_graphviz() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_bad_query_is_called_a_query() {
+    let o = proclaim(&["prove", "tweety", "fly ~"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("error: the query has 1 error"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -135,3 +135,23 @@ fn the_embedding_example_runs() {
     );
     assert!(text.contains("+beta cook"), "{text}");
 }
+
+#[test]
+fn rows_whose_inputs_contradict_the_axioms_are_marked() {
+    let theory = load("input{a}. input{b}. \\/{~a, ~b}. R1: a => c.", Language::Dl).unwrap();
+    let table = truth_table(Arc::new(Engine::new(theory))).unwrap();
+    let outputs: Vec<_> = table
+        .rows
+        .iter()
+        .map(|r| (r.inputs.clone(), r.outputs.is_some()))
+        .collect();
+    assert_eq!(
+        outputs,
+        [
+            (vec![false, false], true),
+            (vec![false, true], true),
+            (vec![true, false], true),
+            (vec![true, true], false)
+        ]
+    );
+}

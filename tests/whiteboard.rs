@@ -264,3 +264,12 @@ async fn dropped_subscriptions_do_not_pile_up() {
         "live subscriptions survive pruning"
     );
 }
+
+#[tokio::test]
+async fn a_command_posted_before_its_type_is_a_signal_is_kept() {
+    let board = Whiteboard::local();
+    board.post("parent", "Child", "On");
+    board.declare("Child", Kind::Signal);
+    assert_eq!(board.latest("Child").unwrap().value, Value::from("On"));
+    assert!(board.latest("Child").is_none(), "consumed once");
+}

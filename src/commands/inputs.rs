@@ -46,6 +46,7 @@ pub fn apply(session: &mut Session, theory: &Theory, sets: &[String]) -> Result<
 /// Parses a query against the theory, rendering any error against the query text.
 pub fn formula(query: &str, theory: &Theory, source: &Source) -> Result<Formula, Failure> {
     Formula::parse(query, theory).map_err(|diagnostics| Failure::Invalid {
+        what: "the query",
         rendered: render(
             &diagnostics,
             &format!("query (for {})", source.name),

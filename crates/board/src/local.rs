@@ -134,7 +134,16 @@ impl Default for LocalBoard {
 
 impl Transport for LocalBoard {
     fn declare(&self, ty: &str, kind: Kind) {
-        self.lock().entry(ty).kind = kind;
+        let mut inner = self.lock();
+        let entry = inner.entry(ty);
+        // A command posted before its reader declared the type a signal (a parent starting a
+        // sub-machine that is still loading) is kept as one unread signal, not lost.
+        if kind == Kind::Signal && entry.kind != Kind::Signal {
+            if let Some(pending) = entry.latest.take() {
+                entry.signals.push_back(pending);
+            }
+        }
+        entry.kind = kind;
     }
 
     fn kind(&self, ty: &str) -> Kind {

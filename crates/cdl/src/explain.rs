@@ -190,7 +190,11 @@ impl Session {
             let counted = if alg == Algorithm::Beta {
                 applicable(self, s, attack_alg)
             } else {
-                engine.body(s).iter().copied().find(|&x| !self.supported(x))
+                engine
+                    .body(s)
+                    .iter()
+                    .copied()
+                    .find(|&x| !self.support_value(x))
             };
             if let Some(a) = counted {
                 node.children.push(Explanation::leaf(format!(
@@ -210,11 +214,6 @@ impl Session {
             }));
         }
         self.note_loop(alg, q, node);
-    }
-
-    /// Whether the support goal (used by π for attackers) holds.
-    fn supported(&mut self, lit: Lit) -> bool {
-        self.support_value(lit)
     }
 
     /// Adds a line when the goal lies on a cycle of the goal graph, where a goal met again on the
