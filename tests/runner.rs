@@ -186,3 +186,52 @@ async fn a_comparison_label_wakes_on_the_value_it_reads() {
     assert_eq!(trace, [("Far".to_string(), 0), ("Close".to_string(), 2)]);
     assert_eq!(board.latest("Say").unwrap().value.to_string(), "\"close\"");
 }
+
+#[tokio::test(start_paused = true)]
+async fn suspend_keeps_the_state_resume_continues_and_unknown_hosts_are_reported() {
+    let m = ta(
+        "Stepper",
+        "0\ttimeout(1000000)\t1\n1\ttimeout(1000000)\t2\n",
+        "2\tThird|OnEntry /\n1\tSecond|OnEntry C++: blink(3);/\n0\tFirst|OnEntry /\n",
+    );
+    let board = Whiteboard::local();
+    let mut hosts = Hosts::default();
+    let calls = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let seen = calls.clone();
+    hosts.register("blink", move |arg| {
+        seen.lock().unwrap().push(format!("{arg:?}"))
+    });
+    let mut runner = MachineRunner::new(m.clone(), hosts, RunOptions::default());
+    let mut events = runner.events();
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_millis(1500)).await; // in Second since 1 s
+    board.post("ops", "Stepper", "suspend");
+    tokio::time::sleep(Duration::from_secs(5)).await;
+    assert_eq!(board.truth("StepperIsRunning"), Some(false));
+    board.post("ops", "Stepper", "resume");
+    let trace = entered(&mut events, "Third", Duration::from_secs(5)).await;
+    let states: Vec<&str> = trace.iter().map(|(s, _)| s.as_str()).collect();
+    assert_eq!(
+        states,
+        ["First", "Second", "Third"],
+        "resumed in Second, not restarted"
+    );
+    assert_eq!(
+        *calls.lock().unwrap(),
+        ["Some(Int(3))"],
+        "registered host function called with its argument"
+    );
+    // The same machine without the host function: reported once, as an event.
+    let mut runner = MachineRunner::new(m, Hosts::default(), RunOptions::default());
+    let mut events = runner.events();
+    let board = Whiteboard::local();
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_secs(3)).await;
+    let unknown: Vec<String> = std::iter::from_fn(|| events.try_recv().ok())
+        .filter_map(|e| match e {
+            Event::UnknownFunction { function, .. } => Some(function),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(unknown, ["blink"]);
+}
