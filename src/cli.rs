@@ -100,14 +100,23 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Check theories and machines (T/A pairs, Qfsm .fsm) and report every problem (exit 1 on errors)
+    /// Write machines (T/A pairs, Qfsm .fsm) as native .machine files, one per machine
+    Import {
+        /// Qfsm .fsm files, or either file of a T/A pair (its partner is found beside it)
+        #[arg(required = true)]
+        files: Vec<String>,
+        /// The folder to write into (created if missing)
+        #[arg(short, long, value_name = "DIR")]
+        output: PathBuf,
+    },
+    /// Check theories and machines (native .machine, T/A pairs, Qfsm .fsm) and report every problem (exit 1 on errors)
     Check {
         #[arg(required = true)]
         theories: Vec<String>,
         #[arg(long)]
         json: bool,
     },
-    /// Draw a machine (T/A pair or Qfsm file) as a diagram: DOT, or SVG/PNG/PDF through Graphviz
+    /// Draw a machine (native, T/A pair or Qfsm file) as a diagram: DOT, or SVG/PNG/PDF through Graphviz
     Draw {
         machine: String,
         /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout)

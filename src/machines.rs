@@ -1,11 +1,12 @@
-//! Machine files named on the command line: Qfsm `.fsm`, or either file of a T/A pair.
+//! Machine files named on the command line: native `.machine`, Qfsm `.fsm`, or either file of
+//! a T/A pair.
 
 use crate::failure::Failure;
-use proclaim_fsm::{import_qfsm, import_ta, partner_of, Imported};
+use proclaim_fsm::{import_qfsm, import_ta, is_native, parse_machine, partner_of, Imported};
 use std::path::Path;
 
-/// A Qfsm file, or either file of a T/A pair (its partner is found beside it); `None` for
-/// anything else (a theory).
+/// A native or Qfsm file, or either file of a T/A pair (its partner is found beside it); `None`
+/// for anything else (a theory).
 pub fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
     let path = Path::new(name);
     let file_name = path
@@ -18,6 +19,9 @@ pub fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
             error,
         })
     };
+    if is_native(name) {
+        return Ok(Some(parse_machine(name, &read(path)?)));
+    }
     if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("fsm"))

@@ -455,3 +455,66 @@ fn a_bad_query_is_called_a_query() {
         stderr(&o)
     );
 }
+
+#[test]
+fn import_writes_native_files_that_check_and_import_again_unchanged() {
+    let t = temp_file(
+        "TBlink.txt",
+        b"1\tTRUE\t2\n2\tstop\t1\n2\ttimeout(500000)\t1\n",
+    );
+    temp_file(
+        "ABlink.txt",
+        b"2\tOn|OnEntry LEDS: Chest On;/ OnExit LEDS: Chest Off;/\n1\tOff|OnEntry C++: msleep(100);/\n",
+    );
+    let out = t.with_file_name("imported");
+    let o = proclaim(&["import", t.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let file = out.join("Blink.machine");
+    let first = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        first.contains("initial Off\n")
+            && first.contains("when timeout(500000) -> Off\n    when stop -> Off"),
+        "{first}"
+    );
+    check(
+        &["check", file.to_str().unwrap()],
+        0,
+        &format!(
+            "{}: ok (1 machine, 2 states, 3 transitions, 0 warnings)\n",
+            file.display()
+        ),
+    );
+    // Importing the native file again writes the same machine.
+    let again = t.with_file_name("again");
+    let o = proclaim(&[
+        "import",
+        file.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let second = std::fs::read_to_string(again.join("Blink.machine")).unwrap();
+    let body = |text: &str| text.lines().skip(1).collect::<Vec<_>>().join("\n");
+    assert_eq!(body(&second), body(&first));
+
+    let bad = temp_file("bad.machine", b"machine M\nstate A {\n  when -> A\n}\n");
+    let o = proclaim(&[
+        "import",
+        bad.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("bad.machine:3: error: a transition needs a label"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["import", "offside", "-o", again.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("offside is not a machine file"),
+        "{}",
+        stderr(&o)
+    );
+}

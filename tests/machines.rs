@@ -1,7 +1,10 @@
 //! Machines: label expressions as data, the T/A and Qfsm importers on the seed paper's
 //! GameController, and every file of the Griffith team's corpus.
 
-use proclaim_fsm::{import_qfsm, import_ta, parse_label, partner_of, Action, Argument, Severity};
+use proclaim_fsm::{
+    import_qfsm, import_ta, parse_label, parse_machine, partner_of, to_native, Action, Argument,
+    Machine, Severity,
+};
 
 /// `expect` is the canonical form, or `error: …` with the message.
 fn check(label: &str, expect: &str) {
@@ -65,6 +68,80 @@ fn messages(imported: &proclaim_fsm::Imported) -> Vec<String> {
         .iter()
         .map(ToString::to_string)
         .collect()
+}
+
+/// Written as a native file and read back, a machine is the same (but for the lines it was
+/// found on), and writing it again gives the same text.
+fn round_trip(machine: &Machine, from: &str) {
+    let text = to_native(machine);
+    let back = parse_machine("exported.machine", &text);
+    assert_eq!(messages(&back), Vec::<String>::new(), "{from}:\n{text}");
+    let mut again = back.machines[0].clone();
+    let mut original = machine.clone();
+    for m in [&mut again, &mut original] {
+        m.states.iter_mut().for_each(|s| s.line = 0);
+        m.transitions.iter_mut().for_each(|t| t.line = 0);
+        // Only the order among one state's transitions means anything.
+        m.transitions.sort_by_key(|t| t.source);
+    }
+    assert_eq!(again, original, "{from} reads back differently:\n{text}");
+    assert_eq!(to_native(&again), text, "{from}: a second export differs");
+}
+
+/// The native reader: `expect` is the machine written back, or its diagnostics one a line.
+fn native(input: &str, expect: &str) {
+    let imported = parse_machine("m.machine", input);
+    let got = if imported.diagnostics.is_empty() {
+        to_native(&imported.machines[0])
+    } else {
+        messages(&imported).join("\n") + "\n"
+    };
+    assert_eq!(got, expect, "input:\n{input}");
+}
+
+#[test]
+fn the_native_format() {
+    native(
+        "// a comment\nmachine Blink\n\nstate Off {\n  entry {\n    LEDS: ChestBoard Off // kept\n    call msleep(100)\n  }\n  when TRUE -> On\n}\nstate On { when timeout(500000) && !stop -> Off\n when stop -> \"On\" }\n",
+        "machine Blink\ninitial Off\n\nstate Off {\n    entry {\n        LEDS: ChestBoard Off // kept\n        call msleep(100)\n    }\n    when TRUE -> On\n}\n\nstate On {\n    when timeout(500000) && ~stop -> Off\n    when stop -> On\n}\n",
+    );
+    // Ids kept where they are not 1, 2, 3…; repeated names are referred to by id.
+    native(
+        "machine M\ninitial #7\nstate GetUp #7 { when a -> #9 }\nstate GetUp #9 {\n exit { Say: up\n }\n internal { call f(\"x y\") code int i = 0;\n }\n when TRUE -> #7 }\n",
+        "machine M\ninitial #7\n\nstate GetUp #7 {\n    when a -> #9\n}\n\nstate GetUp #9 {\n    exit {\n        Say: up\n    }\n    internal {\n        call f(\"x y\")\n        code int i = 0;\n    }\n    when TRUE -> #7\n}\n",
+    );
+    native(
+        "machine M\nstate A { when a -> B }\nstate A { when a ->A }\n",
+        "m.machine:2: error: there is no state named `B`\nm.machine:3: error: `A` names 2 states (#1, #2); name the one meant by its id, as in `-> #1`\n",
+    );
+    native(
+        "machine M\nstate A {\n  when a && -> A\n}\n",
+        "m.machine:3: error: bad label: the label ends too early\n",
+    );
+    native(
+        "machine M\nstate A {\n  when a -> A\n",
+        "m.machine:4: error: the file ends too early; expected one of `entry`, `exit`, `internal`, `when`, `}`\n",
+    );
+    native(
+        "machine M\nstate A {\n  entry { call }\n}\n",
+        "m.machine:3: error: unexpected `}`; expected one of a name, a quoted string\n",
+    );
+    native(
+        "machine M\nstate A {\n  when a\n}\n",
+        "m.machine:4: error: unexpected `}`; expected `->`\n",
+    );
+    native(
+        "machine M\nstate A #2 {}\nstate B #2 {}\n",
+        "m.machine:3: error: state id #2 is used twice\n",
+    );
+    native(
+        "machine M\n",
+        "m.machine:1: error: machine `M` has no states\n",
+    );
+    native(
+        "machine M\nstate A { entry { Say: \"a posting's content needs no quotes\n} }\nstate B { when x -> \"B }\n",
+        "m.machine:4: error: string has no closing `\"` on its line\n",
+    );
 }
 
 fn corpus() -> Option<std::path::PathBuf> {
@@ -181,6 +258,7 @@ fn every_t_a_pair_of_the_corpus_imports() {
         );
         let m = &imported.machines[0];
         assert!(m.state(m.initial).is_some(), "{name}");
+        round_trip(m, &name);
         pairs += 1;
     }
     broken.sort();
@@ -230,6 +308,7 @@ fn every_qfsm_file_of_the_corpus_imports_or_says_why_not() {
         assert!(errors.is_empty(), "{name}: {errors:?}");
         for m in &imported.machines {
             assert!(m.state(m.initial).is_some(), "{name}");
+            round_trip(m, &name);
             machines += 1;
         }
         code_warnings += imported.diagnostics.len();

@@ -11,7 +11,7 @@ use std::process::{Command, ExitCode, Stdio};
 pub fn run(file: &str, output: Option<&Path>, name: Option<&str>) -> Result<ExitCode, Failure> {
     let Some(imported) = machine_file(file)? else {
         return Err(Failure::Argument(format!(
-            "{file} is not a machine file (a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
+            "{file} is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
         )));
     };
     for d in &imported.diagnostics {

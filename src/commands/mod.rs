@@ -6,6 +6,7 @@ mod draw;
 mod explain;
 mod gamecontroller;
 mod gen;
+mod import;
 mod inputs;
 mod prove;
 mod table;
@@ -39,6 +40,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             output,
             name,
         } => draw::run(&machine, output.as_deref(), name.as_deref()),
+        Command::Import { files, output } => import::run(&files, &output),
         Command::Gen {
             family,
             sizes,

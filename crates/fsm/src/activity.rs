@@ -200,7 +200,11 @@ fn gufsm_statement(statement: &str) -> Action {
     match (name, args.as_slice()) {
         ("post" | "postv" | "post_v" | "post_int", [ty, content]) => {
             match (string(ty), string(content)) {
-                (Some(ty), Some(content)) => Action::Post { ty, content },
+                // Spaces around a value are not part of it (and a native file could not keep them).
+                (Some(ty), Some(content)) => Action::Post {
+                    ty,
+                    content: content.trim().to_string(),
+                },
                 (Some(ty), None) => Action::Post {
                     ty,
                     content: content.to_string(),

@@ -1,16 +1,17 @@
 //! Behaviour machines (`../shared/spec/behaviour.md` §3–4): the model the interpreter will run,
 //! the label expressions transitions wait on, and importers for the formats robot teams already
-//! have: the original T/A tables and Qfsm `.fsm` XML. Pure: texts in, machines and diagnostics
+//! have: the original T/A tables and Qfsm `.fsm` XML, and the native format ([`parse_machine`],
+//! [`to_native`]). Pure: texts in, machines and diagnostics
 //! out. Importing never fails: a file yields what could be read and a diagnostic, with its line,
 //! for everything that could not.
 //!
-//! Not here yet (issue 4): the native machine format, the interpreter and `proclaim run`.
 
 mod activity;
 mod diagnostic;
 mod dot;
 mod label;
 mod model;
+mod native;
 mod qfsm;
 mod ta;
 
@@ -19,6 +20,7 @@ pub use diagnostic::{FileDiagnostic, Severity};
 pub use dot::to_dot;
 pub use label::{parse_label, CmpOp, Label, LabelError, Operand};
 pub use model::{Action, Argument, Machine, State, StateId, Transition};
+pub use native::{is_native, parse_machine, to_native, EXTENSION};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};
 

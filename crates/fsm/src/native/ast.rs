@@ -1,0 +1,49 @@
+//! What the native grammar reads, before names are resolved to states.
+
+use crate::model::Action;
+
+pub struct FileAst {
+    pub name: String,
+    pub name_at: usize,
+    pub items: Vec<TopItem>,
+}
+
+pub enum TopItem {
+    Initial(Ref, usize),
+    State(StateAst),
+}
+
+/// A state named by its name, or by `#id` where names repeat.
+#[derive(Clone, Debug)]
+pub enum Ref {
+    Name(String),
+    Id(i64),
+}
+
+pub struct StateAst {
+    pub name: String,
+    pub id: Option<i64>,
+    pub at: usize,
+    pub members: Vec<Member>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Section {
+    Entry,
+    Exit,
+    Internal,
+}
+
+pub enum Member {
+    Activity {
+        section: Section,
+        actions: Vec<(Action, usize)>,
+        at: usize,
+    },
+    When {
+        label: String,
+        label_at: usize,
+        target: Ref,
+        at: usize,
+    },
+}

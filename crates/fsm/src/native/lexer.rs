@@ -1,0 +1,258 @@
+//! Tokens of the native machine format. Line-aware where the format is: the text after a
+//! posting's `:`, after `code`, and a label between `when` and `->` are taken raw, so they need
+//! no quoting and read like the original tables.
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Tok<'a> {
+    Machine,
+    Initial,
+    State,
+    Entry,
+    Exit,
+    Internal,
+    When,
+    Call,
+    Code,
+    Word(&'a str),
+    Str(String),
+    Int(i64),
+    Hash,
+    LBrace,
+    RBrace,
+    LParen,
+    RParen,
+    Arrow,
+    /// The rest of a line after `:` or `code`, trimmed.
+    Text(&'a str),
+    /// A label as written between `when` and `->`.
+    LabelText(&'a str),
+}
+
+impl std::fmt::Display for Tok<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Tok::Machine => f.write_str("`machine`"),
+            Tok::Initial => f.write_str("`initial`"),
+            Tok::State => f.write_str("`state`"),
+            Tok::Entry => f.write_str("`entry`"),
+            Tok::Exit => f.write_str("`exit`"),
+            Tok::Internal => f.write_str("`internal`"),
+            Tok::When => f.write_str("`when`"),
+            Tok::Call => f.write_str("`call`"),
+            Tok::Code => f.write_str("`code`"),
+            Tok::Word(w) => write!(f, "`{w}`"),
+            Tok::Str(s) => write!(f, "{s:?}"),
+            Tok::Int(i) => write!(f, "`{i}`"),
+            Tok::Hash => f.write_str("`#`"),
+            Tok::LBrace => f.write_str("`{`"),
+            Tok::RBrace => f.write_str("`}`"),
+            Tok::LParen => f.write_str("`(`"),
+            Tok::RParen => f.write_str("`)`"),
+            Tok::Arrow => f.write_str("`->`"),
+            Tok::Text(t) => write!(f, "`: {t}`"),
+            Tok::LabelText(t) => write!(f, "label `{t}`"),
+        }
+    }
+}
+
+/// Where and why the text is not a token.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LexError {
+    pub at: usize,
+    pub message: String,
+}
+
+pub type Spanned<'a> = Result<(usize, Tok<'a>, usize), LexError>;
+
+pub struct Lexer<'a> {
+    text: &'a str,
+    at: usize,
+    /// Tokens already cut that come before anything else (a label's `->`).
+    pending: Vec<(usize, Tok<'a>, usize)>,
+}
+
+impl<'a> Lexer<'a> {
+    pub fn new(text: &'a str) -> Lexer<'a> {
+        Lexer {
+            text,
+            at: 0,
+            pending: Vec::new(),
+        }
+    }
+
+    fn rest(&self) -> &'a str {
+        &self.text[self.at..]
+    }
+
+    fn skip_space_and_comments(&mut self) {
+        loop {
+            let rest = self.rest();
+            let trimmed = rest.trim_start();
+            self.at += rest.len() - trimmed.len();
+            if trimmed.starts_with("//") {
+                let end = trimmed.find('\n').unwrap_or(trimmed.len());
+                self.at += end;
+            } else {
+                return;
+            }
+        }
+    }
+
+    /// The rest of the current line from `self.at`, trimmed, as one token.
+    fn line_text(&mut self, make: fn(&'a str) -> Tok<'a>) -> (usize, Tok<'a>, usize) {
+        let rest = self.rest();
+        let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
+        let start = self.at + (line.len() - line.trim_start().len());
+        let text = line.trim();
+        self.at += line.len();
+        (start, make(text), start + text.len())
+    }
+
+    fn next_token(&mut self) -> Option<Spanned<'a>> {
+        if let Some(t) = self.pending.pop() {
+            return Some(Ok(t));
+        }
+        self.skip_space_and_comments();
+        let start = self.at;
+        let rest = self.rest();
+        let c = rest.chars().next()?;
+        let one = |tok| Some(Ok((start, tok, start + 1)));
+        match c {
+            '{' => {
+                self.at += 1;
+                one(Tok::LBrace)
+            }
+            '}' => {
+                self.at += 1;
+                one(Tok::RBrace)
+            }
+            '(' => {
+                self.at += 1;
+                one(Tok::LParen)
+            }
+            ')' => {
+                self.at += 1;
+                one(Tok::RParen)
+            }
+            '#' => {
+                self.at += 1;
+                one(Tok::Hash)
+            }
+            ':' => {
+                self.at += 1;
+                Some(Ok(self.line_text(Tok::Text)))
+            }
+            '-' if rest.starts_with("->") => {
+                self.at += 2;
+                Some(Ok((start, Tok::Arrow, start + 2)))
+            }
+            '"' => Some(self.string()),
+            c if c.is_ascii_digit() || c == '-' => {
+                let len = rest[1..]
+                    .find(|c: char| !c.is_ascii_digit())
+                    .map_or(rest.len(), |n| n + 1);
+                self.at += len;
+                match rest[..len].parse() {
+                    Ok(n) => Some(Ok((start, Tok::Int(n), start + len))),
+                    Err(_) => Some(Err(LexError {
+                        at: start,
+                        message: format!("`{}` is not a whole number", &rest[..len]),
+                    })),
+                }
+            }
+            c if c.is_alphabetic() || c == '_' => {
+                let len = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+                    .unwrap_or(rest.len());
+                let word = &rest[..len];
+                self.at += len;
+                let end = start + len;
+                let tok = match word {
+                    "machine" => Tok::Machine,
+                    "initial" => Tok::Initial,
+                    "state" => Tok::State,
+                    "entry" => Tok::Entry,
+                    "exit" => Tok::Exit,
+                    "internal" => Tok::Internal,
+                    "call" => Tok::Call,
+                    "code" => {
+                        let text = self.line_text(Tok::Text);
+                        self.pending.push(text);
+                        Tok::Code
+                    }
+                    "when" => {
+                        let label = self.label();
+                        self.pending.extend(label);
+                        Tok::When
+                    }
+                    _ => Tok::Word(word),
+                };
+                Some(Ok((start, tok, end)))
+            }
+            other => {
+                self.at += other.len_utf8();
+                Some(Err(LexError {
+                    at: start,
+                    message: format!("`{other}` cannot start anything here"),
+                }))
+            }
+        }
+    }
+
+    /// The label after `when`, up to `->` on the same line; the tokens come back in reverse
+    /// order (they are popped from `pending`).
+    fn label(&mut self) -> Vec<(usize, Tok<'a>, usize)> {
+        let rest = self.rest();
+        let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
+        match line.find("->") {
+            Some(arrow) => {
+                let raw = &line[..arrow];
+                let start = self.at + (raw.len() - raw.trim_start().len());
+                let label = raw.trim();
+                let arrow_at = self.at + arrow;
+                self.at = arrow_at + 2;
+                vec![
+                    (arrow_at, Tok::Arrow, arrow_at + 2),
+                    (start, Tok::LabelText(label), start + label.len()),
+                ]
+            }
+            None => vec![self.line_text(Tok::LabelText)],
+        }
+    }
+
+    fn string(&mut self) -> Spanned<'a> {
+        let start = self.at;
+        let mut out = String::new();
+        let mut chars = self.rest()[1..].char_indices();
+        while let Some((i, c)) = chars.next() {
+            match c {
+                '"' => {
+                    self.at = start + 1 + i + 1;
+                    return Ok((start, Tok::Str(out), self.at));
+                }
+                '\\' => match chars.next() {
+                    Some((_, 'n')) => out.push('\n'),
+                    Some((_, 't')) => out.push('\t'),
+                    Some((_, c)) => out.push(c),
+                    None => break,
+                },
+                '\n' => break,
+                c => out.push(c),
+            }
+        }
+        let line_end = self.rest().find('\n').unwrap_or(self.rest().len());
+        self.at += line_end;
+        Err(LexError {
+            at: start,
+            message: "string has no closing `\"` on its line".into(),
+        })
+    }
+}
+
+impl<'a> Iterator for Lexer<'a> {
+    type Item = Spanned<'a>;
+
+    fn next(&mut self) -> Option<Spanned<'a>> {
+        self.next_token()
+    }
+}
