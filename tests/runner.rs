@@ -235,3 +235,111 @@ async fn suspend_keeps_the_state_resume_continues_and_unknown_hosts_are_reported
         .collect();
     assert_eq!(unknown, ["blink"]);
 }
+
+fn native(text: &str) -> Machine {
+    let imported = proclaim_fsm::parse_machine("m.machine", text);
+    assert!(
+        imported.diagnostics.is_empty(),
+        "{:?}",
+        imported.diagnostics
+    );
+    imported.machines.into_iter().next().unwrap()
+}
+
+/// Every event but the answers, as `at machine what`, compact for exact comparison.
+fn compact(events: &mut tokio::sync::mpsc::UnboundedReceiver<Event>) -> Vec<String> {
+    std::iter::from_fn(|| events.try_recv().ok())
+        .filter_map(|e| {
+            let at = e.at().map_or(0, |d| d.as_millis());
+            let what = match e {
+                Event::Entered { state, .. } => format!("enter {state}"),
+                Event::Control { command, .. } => format!("control {command}"),
+                Event::Reloaded { state, .. } => format!("reloaded in {state}"),
+                Event::ReloadFailed { error, .. } => format!("reload failed: {error}"),
+                Event::Halted { reason, .. } => format!("halted: {reason}"),
+                Event::Posted { ty, content, .. } => format!("post {ty}: {content}"),
+                _ => return None,
+            };
+            Some(format!("{at}ms {what}"))
+        })
+        .collect()
+}
+
+#[tokio::test(start_paused = true)]
+async fn reload_and_reread_replace_a_running_machine_and_a_bad_file_changes_nothing() {
+    let v1 = "machine M\nstate A {\n when timeout(1000000) -> B\n}\nstate B {\n entry {\n  Say: v1\n }\n}\n";
+    let v2 = "machine M\nstate Z {\n}\nstate B {\n entry {\n  Say: v2\n }\n when timeout(1000000) -> Z\n}\n";
+    let file: std::sync::Arc<std::sync::Mutex<String>> =
+        std::sync::Arc::new(std::sync::Mutex::new(v1.to_string()));
+    let source = file.clone();
+    let loader: proclaim_runner::Loader = std::sync::Arc::new(move || {
+        let imported = proclaim_fsm::parse_machine("m.machine", &source.lock().unwrap());
+        match imported.machines.into_iter().next() {
+            Some(m) if imported.diagnostics.is_empty() => Ok(m),
+            _ => Err(imported
+                .diagnostics
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ")),
+        }
+    });
+    let board = Whiteboard::local();
+    let mut runner =
+        MachineRunner::new(native(v1), Hosts::default(), RunOptions::default()).with_loader(loader);
+    let mut events = runner.events();
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_millis(1500)).await; // in B
+    *file.lock().unwrap() = "machine M\nstate A {\n when -> B\n}\n".to_string();
+    board.post("ops", "M", "reread");
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    *file.lock().unwrap() = v2.to_string();
+    board.post("ops", "M", "reread");
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    board.post("ops", "M", "reload");
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    assert_eq!(
+        compact(&mut events),
+        [
+            "0ms enter A",
+            "1000ms enter B",
+            "1000ms post Say: v1",
+            "1500ms control reread",
+            "1500ms reload failed: m.machine:3: error: a transition needs a label; write `when TRUE -> …` for one that always fires",
+            "2000ms control reread",
+            "2000ms reloaded in B",
+            // B kept its time in state: its new `timeout(1000000)` was already due.
+            "2000ms enter Z",
+            "3500ms control reload",
+            "3500ms reloaded in Z",
+            "3500ms enter Z",
+        ]
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn halt_on_timeout_stops_the_machine_and_says_why() {
+    let board = Whiteboard::local();
+    // An expert that claims `ready` and never answers.
+    board.register(proclaim_board::ModuleDecl::new("mute").answers(["ready"]));
+    let mut runner = MachineRunner::new(
+        native("machine M\nstate A {\n when ready -> B\n}\nstate B {\n}\n"),
+        Hosts::default(),
+        RunOptions {
+            halt_on_timeout: true,
+            ..Default::default()
+        },
+    );
+    let mut events = runner.events();
+    let task = tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_secs(3)).await;
+    assert!(task.is_finished());
+    assert_eq!(
+        compact(&mut events),
+        [
+            "0ms enter A",
+            "1000ms halted: no expert answered `ready` within 1s (in state A)"
+        ]
+    );
+    assert_eq!(board.truth("MIsRunning"), Some(false));
+}

@@ -1,21 +1,26 @@
-//! What a running machine reports: the trace of a behaviour, as data.
+//! What a running machine reports: the trace of a behaviour, as data. Events serialise one per
+//! line as JSON (`at_us` is microseconds since the machine started), so a trace file replays.
 
+use serde::{Deserialize, Serialize};
 use std::time::Duration;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "event", rename_all = "snake_case")]
 pub enum Event {
     Entered {
         machine: String,
         state: String,
         id: i64,
+        #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
-    /// A label's atom was answered (or counted false after a timeout / for want of an expert).
+    /// A label's atom was answered, or counted false for want of an answer.
     Answered {
         machine: String,
         atom: String,
         value: bool,
-        by: Option<String>,
+        by: Answerer,
+        #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
     Fired {
@@ -23,13 +28,101 @@ pub enum Event {
         from: i64,
         to: i64,
         label: String,
+        #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
-    /// A host function the embedding program did not register; it is skipped.
+    /// A posting of an activity (sub-machine control included).
+    Posted {
+        machine: String,
+        #[serde(rename = "type")]
+        ty: String,
+        content: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// A host function the embedding program did not register; it is skipped (reported once).
     UnknownFunction { machine: String, function: String },
     Control {
         machine: String,
         command: String,
+        #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
+    /// The machine's file was read again and replaced the running machine; `state` is where it
+    /// goes on (the current state kept by `reread`, else the initial state).
+    Reloaded {
+        machine: String,
+        state: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// The machine's file could not be read again; the machine runs on unchanged.
+    ReloadFailed {
+        machine: String,
+        error: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// The machine stopped for good (`RunOptions::halt_on_timeout`), saying why.
+    Halted {
+        machine: String,
+        reason: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+}
+
+/// Who settled an atom's value.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Answerer {
+    Expert(String),
+    /// An expert is registered but did not answer in time; counted false.
+    TimedOut,
+    /// No module answers the atom; counted false at once.
+    NoExpert,
+}
+
+impl Event {
+    pub fn machine(&self) -> &str {
+        match self {
+            Event::Entered { machine, .. }
+            | Event::Answered { machine, .. }
+            | Event::Fired { machine, .. }
+            | Event::Posted { machine, .. }
+            | Event::UnknownFunction { machine, .. }
+            | Event::Control { machine, .. }
+            | Event::Reloaded { machine, .. }
+            | Event::ReloadFailed { machine, .. }
+            | Event::Halted { machine, .. } => machine,
+        }
+    }
+
+    /// When it happened, for the events that carry a time.
+    pub fn at(&self) -> Option<Duration> {
+        match self {
+            Event::Entered { at, .. }
+            | Event::Answered { at, .. }
+            | Event::Fired { at, .. }
+            | Event::Posted { at, .. }
+            | Event::Control { at, .. }
+            | Event::Reloaded { at, .. }
+            | Event::ReloadFailed { at, .. }
+            | Event::Halted { at, .. } => Some(*at),
+            Event::UnknownFunction { .. } => None,
+        }
+    }
+}
+
+mod micros {
+    use serde::{Deserialize, Deserializer, Serializer};
+    use std::time::Duration;
+
+    pub fn serialize<S: Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_u64(d.as_micros().min(u128::from(u64::MAX)) as u64)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Duration, D::Error> {
+        Ok(Duration::from_micros(u64::deserialize(d)?))
+    }
 }

@@ -1,6 +1,7 @@
 //! Proving a label: atoms by the query protocol, `timeout()` against the time in the state,
 //! comparisons against whiteboard values.
 
+use crate::event::Answerer;
 use proclaim_board::{QueryOutcome, Whiteboard};
 use proclaim_fsm::{CmpOp, Label, Operand};
 use std::time::Duration;
@@ -11,7 +12,7 @@ pub(crate) struct Context<'a> {
     pub module: &'a str,
     pub in_state: Duration,
     pub answer_timeout: Duration,
-    pub answered: &'a mut Vec<(String, bool, Option<String>)>,
+    pub answered: &'a mut Vec<(String, bool, Answerer)>,
 }
 
 pub(crate) fn value(board: &Whiteboard, operand: &Operand) -> Option<f64> {
@@ -56,8 +57,11 @@ pub(crate) fn prove<'a>(
             Label::Atom(atom) => {
                 let outcome = cx.board.query(cx.module, atom, cx.answer_timeout).await;
                 let (value, by) = match &outcome {
-                    QueryOutcome::Answered { value, by, .. } => (*value, Some(by.to_string())),
-                    _ => (false, None),
+                    QueryOutcome::Answered { value, by, .. } => {
+                        (*value, Answerer::Expert(by.to_string()))
+                    }
+                    QueryOutcome::TimedOut => (false, Answerer::TimedOut),
+                    QueryOutcome::NoExpert => (false, Answerer::NoExpert),
                 };
                 cx.answered.push((atom.clone(), value, by));
                 value
