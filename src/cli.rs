@@ -100,6 +100,38 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run a behaviour (a folder with a behaviour.toml, machines/NAME, or a built-in one:
+    /// game_controller, microwave) on the in-process whiteboard, printing a live trace
+    Run {
+        behaviour: String,
+        /// Stop after this long (`30s`, `500ms`); default: when every machine that started is in
+        /// a final state
+        #[arg(long = "for", value_name = "DURATION")]
+        duration: Option<String>,
+        /// Also write every event as JSON lines (read back by `proclaim replay`)
+        #[arg(long, value_name = "FILE.jsonl")]
+        trace: Option<PathBuf>,
+        /// Answer labels from this impersonator script instead (experts answering the same
+        /// labels are left out)
+        #[arg(long, value_name = "FILE")]
+        script: Option<PathBuf>,
+        /// Reread a machine when its file changes (a file that does not parse changes nothing)
+        #[arg(long)]
+        watch: bool,
+        /// Listen for a real GameController instead of playing the built-in simulator
+        #[arg(long)]
+        no_simulator: bool,
+        /// Halt a machine whose label gets no answer in time, instead of counting it false
+        #[arg(long)]
+        halt_on_timeout: bool,
+    },
+    /// Print a trace written by `proclaim run --trace` as the live trace was
+    Replay {
+        trace: PathBuf,
+        /// Replay at this many times the recorded pace (default: all at once)
+        #[arg(long)]
+        speed: Option<f64>,
+    },
     /// Write machines (T/A pairs, Qfsm .fsm) as native .machine files, one per machine
     Import {
         /// Qfsm .fsm files, or either file of a T/A pair (its partner is found beside it)

@@ -58,3 +58,61 @@ pub fn names() -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+/// Behaviours built into the binary, so `proclaim run game_controller` works anywhere:
+/// `(name, [(path relative to the behaviour, text)])`.
+pub const BEHAVIOURS: [(&str, &[(&str, &str)]); 2] = [
+    (
+        "game_controller",
+        &[
+            (
+                "behaviour.toml",
+                include_str!("../machines/game_controller/behaviour.toml"),
+            ),
+            (
+                "GameController.machine",
+                include_str!("../machines/game_controller/GameController.machine"),
+            ),
+            (
+                "Placer.machine",
+                include_str!("../machines/game_controller/Placer.machine"),
+            ),
+        ],
+    ),
+    (
+        "microwave",
+        &[
+            (
+                "behaviour.toml",
+                include_str!("../machines/microwave/behaviour.toml"),
+            ),
+            (
+                "Microwave.machine",
+                include_str!("../machines/microwave/Microwave.machine"),
+            ),
+            (
+                "kitchen.script",
+                include_str!("../machines/microwave/kitchen.script"),
+            ),
+            (
+                "../../theories/microwave.dl",
+                include_str!("../theories/microwave.dl"),
+            ),
+        ],
+    ),
+];
+
+pub fn behaviour(name: &str) -> Option<&'static [(&'static str, &'static str)]> {
+    BEHAVIOURS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, files)| *files)
+}
+
+pub fn behaviour_names() -> String {
+    BEHAVIOURS
+        .iter()
+        .map(|(n, _)| *n)
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -26,6 +26,8 @@ pub enum Failure {
     Argument(String),
     /// A benchmark child process failed.
     Bench(String),
+    /// A behaviour could not be started (a socket could not be opened).
+    Start(String),
 }
 
 impl Failure {
@@ -54,6 +56,7 @@ impl fmt::Display for Failure {
             Failure::Invalid { what, errors, .. } => write!(f, "{what} has {errors} errors"),
             Failure::Argument(message) => f.write_str(message),
             Failure::Bench(message) => write!(f, "benchmark failed: {message}"),
+            Failure::Start(message) => write!(f, "cannot start the behaviour: {message}"),
         }
     }
 }

@@ -1,5 +1,5 @@
 //! `proclaim`: the command line of the clausal defeasible logic reasoner (prove, table, explain,
-//! check, gen, bench). Exit codes: 0 done (whatever the answers), 1 `check` found errors, 2 bad
+//! check, gen, bench) and of the behaviour interpreter (run, replay, import, draw). Exit codes: 0 done (whatever the answers), 1 `check` found errors, 2 bad
 //! input or usage.
 
 mod cli;
@@ -13,6 +13,14 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    // Like other command-line tools, stop quietly when the reader of our output goes away
+    // (`proclaim replay t.jsonl | head`) instead of failing to print. Sockets are unaffected:
+    // tokio sends with MSG_NOSIGNAL.
+    #[cfg(unix)]
+    // SAFETY: called first thing, before any thread exists; SIG_DFL is a valid disposition.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = cli::Cli::parse();
     match commands::run(cli) {
         Ok(code) => code,

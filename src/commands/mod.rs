@@ -9,6 +9,7 @@ mod gen;
 mod import;
 mod inputs;
 mod prove;
+mod run;
 mod table;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};
@@ -40,6 +41,24 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             output,
             name,
         } => draw::run(&machine, output.as_deref(), name.as_deref()),
+        Command::Run {
+            behaviour,
+            duration,
+            trace,
+            script,
+            watch,
+            no_simulator,
+            halt_on_timeout,
+        } => run::run(run::RunArgs {
+            behaviour,
+            duration,
+            trace,
+            script,
+            watch,
+            no_simulator,
+            halt_on_timeout,
+        }),
+        Command::Replay { trace, speed } => run::replay(&trace, speed),
         Command::Import { files, output } => import::run(&files, &output),
         Command::Gen {
             family,

@@ -78,6 +78,11 @@ impl MachineRunner {
         rx
     }
 
+    /// Sends this machine's events into a channel shared with others (a behaviour's trace).
+    pub fn events_into(&mut self, sender: mpsc::UnboundedSender<Event>) {
+        self.events = Some(sender);
+    }
+
     /// What it posts, reads and waits on, for the registry.
     pub fn declaration(&self) -> ModuleDecl {
         declaration(&self.machine, &self.machine.name)
@@ -223,8 +228,6 @@ impl MachineRunner {
             }
             match fired {
                 Some((target, label)) => {
-                    self.act(&board, &name, &state.on_exit, &mut unknown, start)
-                        .await;
                     self.emit(Event::Fired {
                         machine: name.clone(),
                         from: at.current,
@@ -232,6 +235,8 @@ impl MachineRunner {
                         label,
                         at: start.elapsed(),
                     });
+                    self.act(&board, &name, &state.on_exit, &mut unknown, start)
+                        .await;
                     at.current = target;
                     at.just_entered = true;
                 }

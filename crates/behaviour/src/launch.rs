@@ -1,0 +1,317 @@
+//! Starting a loaded behaviour on a whiteboard: experts and sensor wrappers first (so every
+//! label has its expert before the first ring), then the machines; their events merged into one
+//! trace.
+
+use crate::load::Behaviour;
+use crate::manifest::{SensorKind, Simulator};
+use proclaim_board::Whiteboard;
+use proclaim_experts::simulator::{default_game, play, Event as SimEvent, SimConfig};
+use proclaim_experts::{
+    ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
+    ReceiverConfig, Script,
+};
+use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::future::Future;
+use std::net::SocketAddr;
+use std::pin::Pin;
+use std::time::Duration;
+use tokio::sync::mpsc;
+use tokio::task::JoinSet;
+
+#[derive(Clone, Default)]
+pub struct LaunchOptions {
+    /// Answer from this script instead of the manifest's impersonator. Experts and sensor
+    /// wrappers that answer an atom the script names are left out, so the machines cannot
+    /// tell the impersonator from them.
+    pub script: Option<Script>,
+    /// Never start the GameController simulator (listen for a real GameController).
+    pub no_simulator: bool,
+    pub halt_on_timeout: bool,
+    pub hosts: Hosts,
+}
+
+/// A behaviour running: its trace, and what it takes for it to be over.
+pub struct Running {
+    pub events: mpsc::UnboundedReceiver<Event>,
+    /// What was started or left out, and where sockets listen, for the person running it.
+    pub notes: Vec<String>,
+    tasks: JoinSet<()>,
+    /// Machine → its final states (those with no way out).
+    finals: FxHashMap<String, FxHashSet<i64>>,
+    /// The machines running from the start, and the state each is in.
+    top: FxHashMap<String, Option<i64>>,
+    halted: FxHashSet<String>,
+}
+
+impl Running {
+    /// Follows an event; true once every top-level machine is in a final state or halted.
+    pub fn observe(&mut self, event: &Event) -> bool {
+        match event {
+            Event::Entered { machine, id, .. } => {
+                if let Some(at) = self.top.get_mut(machine) {
+                    *at = Some(*id);
+                }
+            }
+            Event::Halted { machine, .. } => {
+                self.halted.insert(machine.clone());
+            }
+            _ => {}
+        }
+        self.is_over()
+    }
+
+    pub fn is_over(&self) -> bool {
+        self.top.iter().all(|(machine, at)| {
+            self.halted.contains(machine)
+                || at.is_some_and(|id| self.finals.get(machine).is_some_and(|f| f.contains(&id)))
+        })
+    }
+
+    /// The top-level machines and the states they are in, by name.
+    pub fn positions(&self) -> Vec<(String, Option<i64>)> {
+        let mut all: Vec<_> = self.top.iter().map(|(m, s)| (m.clone(), *s)).collect();
+        all.sort();
+        all
+    }
+
+    /// Stops everything it started.
+    pub async fn stop(mut self) {
+        self.tasks.abort_all();
+        while self.tasks.join_next().await.is_some() {}
+    }
+}
+
+type Task = Pin<Box<dyn Future<Output = ()> + Send>>;
+
+/// One module to start, with the atoms it answers.
+struct Module {
+    name: String,
+    answers: Vec<String>,
+    task: Task,
+}
+
+/// Starts the behaviour on `board`. Fails (saying why) only when a socket cannot be opened.
+pub async fn launch(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    options: LaunchOptions,
+) -> Result<Running, String> {
+    let mut notes = Vec::new();
+    let mut sim_note = None;
+    let mut modules: Vec<Module> = Vec::new();
+    for t in &behaviour.theories {
+        let expert = ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping);
+        modules.push(Module {
+            name: t.name.clone(),
+            answers: expert.declaration().answers,
+            task: Box::pin(expert.run(board.clone())),
+        });
+    }
+    for sensor in &behaviour.sensors {
+        let e = &sensor.entry;
+        match e.kind {
+            SensorKind::Gamecontroller => {
+                let simulate = !options.no_simulator && e.simulator != Some(Simulator::On(false));
+                let bind: SocketAddr = match (simulate, e.port) {
+                    (true, None) => ([127, 0, 0, 1], 0).into(),
+                    (true, Some(port)) => ([127, 0, 0, 1], port).into(),
+                    (false, port) => ([0, 0, 0, 0], port.unwrap_or(3838)).into(),
+                };
+                let home = 18;
+                let receiver = GameControllerReceiver::bind(ReceiverConfig {
+                    bind,
+                    team: e.team.or(simulate.then_some(home)),
+                    player: e.player.unwrap_or(1),
+                    ..ReceiverConfig::default()
+                })
+                .await
+                .map_err(|error| {
+                    format!("cannot listen for the GameController on {bind}: {error}")
+                })?;
+                let at = receiver
+                    .local_addr()
+                    .map_err(|e| format!("the GameController socket has no address: {e}"))?;
+                let answers = receiver.declaration().answers;
+                let board = board.clone();
+                modules.push(Module {
+                    name: "gamecontroller".into(),
+                    answers,
+                    task: Box::pin(async move {
+                        if let Err(error) = receiver.run(board).await {
+                            tracing::error!(%error, "the GameController receiver stopped");
+                        }
+                    }),
+                });
+                if simulate {
+                    let player = e.player.unwrap_or(1);
+                    let game = sensor.game.clone().unwrap_or_else(|| {
+                        // The built-in game's penalty is for this robot, so it is seen.
+                        let mut game = default_game(home, 5);
+                        for (_, event) in &mut game.events {
+                            if let SimEvent::Penalise { player: p, .. }
+                            | SimEvent::Unpenalise { player: p, .. } = event
+                            {
+                                *p = player;
+                            }
+                        }
+                        game
+                    });
+                    let config = SimConfig {
+                        to: at,
+                        home,
+                        ..SimConfig::default()
+                    };
+                    sim_note = Some(format!(
+                        "GameController simulator: a {:.0} s game to {at}",
+                        game.length().as_secs_f64()
+                    ));
+                    modules.push(Module {
+                        name: "gc-sim".into(),
+                        answers: Vec::new(),
+                        task: Box::pin(async move {
+                            if let Err(error) = play(&game, &config, |_| {}).await {
+                                tracing::error!(%error, "the GameController simulator stopped");
+                            }
+                        }),
+                    });
+                } else {
+                    notes.push(format!("listening for the GameController on {at}"));
+                }
+            }
+            SensorKind::ChestButton => {
+                let b = ButtonWrapper::chest();
+                modules.push(Module {
+                    name: b.name.clone(),
+                    answers: b.declaration().answers,
+                    task: Box::pin(b.run(board.clone())),
+                });
+            }
+            SensorKind::FootBumpers => {
+                for left in [true, false] {
+                    let b = ButtonWrapper::foot(left);
+                    modules.push(Module {
+                        name: b.name.clone(),
+                        answers: b.declaration().answers,
+                        task: Box::pin(b.run(board.clone())),
+                    });
+                }
+            }
+            SensorKind::Fall => {
+                let f = FallWrapper::default();
+                modules.push(Module {
+                    name: f.name.clone(),
+                    answers: f.declaration().answers,
+                    task: Box::pin(f.run(board.clone())),
+                });
+            }
+        }
+    }
+    let script = options.script.clone().or_else(|| behaviour.script.clone());
+    if let Some(script) = script {
+        let scripted = script.atoms();
+        modules.retain(|m| {
+            let overlap: Vec<&String> = m.answers.iter().filter(|a| scripted.contains(a)).collect();
+            if overlap.is_empty() {
+                return true;
+            }
+            notes.push(format!(
+                "left out {}: the script impersonates {}",
+                m.name,
+                overlap
+                    .iter()
+                    .map(|a| a.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+            false
+        });
+        let imp = Impersonator::new("impersonator", Vec::<String>::new(), script.clone());
+        // An atom the script sets only later is false until then.
+        for atom in &scripted {
+            if !script
+                .steps
+                .iter()
+                .any(|s| s.atom == *atom && s.when == proclaim_experts::When::Start)
+            {
+                imp.set(atom, false);
+            }
+        }
+        modules.push(Module {
+            name: "impersonator".into(),
+            answers: scripted,
+            task: Box::pin(imp.run(board.clone())),
+        });
+    }
+    // A simulator with no receiver left to listen plays to nobody.
+    if !modules.iter().any(|m| m.name == "gamecontroller") {
+        modules.retain(|m| m.name != "gc-sim");
+    } else {
+        notes.extend(sim_note);
+    }
+
+    let mut tasks = JoinSet::new();
+    let experts: Vec<String> = modules
+        .iter()
+        .filter(|m| !m.answers.is_empty())
+        .map(|m| m.name.clone())
+        .collect();
+    for m in modules {
+        tasks.spawn(m.task);
+    }
+    wait_registered(board, &experts).await;
+
+    let (tx, events) = mpsc::unbounded_channel();
+    let mut finals = FxHashMap::default();
+    let mut top = FxHashMap::default();
+    for loaded in &behaviour.machines {
+        let m = &loaded.machine;
+        let dead_ends: FxHashSet<i64> = m
+            .states
+            .iter()
+            .filter(|s| m.outgoing(s.id).next().is_none())
+            .map(|s| s.id)
+            .collect();
+        finals.insert(m.name.clone(), dead_ends);
+        if loaded.start {
+            top.insert(m.name.clone(), None);
+        }
+        let mut runner = MachineRunner::new(
+            m.clone(),
+            options.hosts.clone(),
+            RunOptions {
+                ring_period: behaviour.ring_period,
+                answer_timeout: behaviour.answer_timeout,
+                start_running: loaded.start,
+                halt_on_timeout: options.halt_on_timeout,
+            },
+        )
+        .with_loader(loaded.loader.clone());
+        runner.events_into(tx.clone());
+        tasks.spawn(runner.run(board.clone()));
+    }
+    Ok(Running {
+        events,
+        notes,
+        tasks,
+        finals,
+        top,
+        halted: FxHashSet::default(),
+    })
+}
+
+/// Waits (briefly, bounded) until every expert has registered: they subscribe to queries first,
+/// so from then on no query is missed.
+async fn wait_registered(board: &Whiteboard, experts: &[String]) {
+    for _ in 0..1000 {
+        for _ in 0..8 {
+            let registry = board.registry();
+            if experts.iter().all(|e| registry.get(e).is_some()) {
+                return;
+            }
+            tokio::task::yield_now().await;
+        }
+        tokio::time::sleep(Duration::from_millis(1)).await;
+    }
+    tracing::warn!("some experts did not register within a second");
+}

@@ -1,0 +1,23 @@
+//! Behaviours: a folder under `machines/` whose `behaviour.toml` names its machines, theories,
+//! sensor wrappers and impersonator script. [`load`] reads and checks every file (every problem
+//! reported with file and line; a behaviour with errors never starts), [`launch`] starts it on a
+//! whiteboard, experts before machines, and merges the machines' events into one trace, which
+//! [`TraceView`] prints for people and [`read_trace`] reads back from JSON lines.
+//!
+//! Reads files (through [`Files`]: a folder, or texts built into the program) and opens the
+//! sockets its sensors need; it does not watch files or print: the binary does.
+
+mod files;
+mod launch;
+mod load;
+mod manifest;
+mod trace;
+
+pub use files::{Embedded, Files, Folder};
+pub use launch::{launch, LaunchOptions, Running};
+pub use load::{load, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory};
+pub use manifest::{
+    parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, SensorEntry, SensorKind, Simulator,
+    TheoryEntry, MANIFEST,
+};
+pub use trace::{read_trace, TraceView};

@@ -1,0 +1,372 @@
+//! Loading a behaviour: its manifest, then every file it names, each checked. Every problem of
+//! every file is reported, with file and line; a behaviour with errors is not started.
+
+use crate::files::Files;
+use crate::manifest::{parse_manifest, Manifest, SensorEntry, Simulator, MANIFEST};
+use proclaim_cdl::{check_source, Language, Theory};
+use proclaim_experts::simulator::{parse_game, GameScript};
+use proclaim_experts::{parse_duration, parse_mapping, parse_script, Script};
+use proclaim_fsm::{import_qfsm, import_ta, is_native, parse_machine, Imported, Machine, Severity};
+use proclaim_runner::Loader;
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// A behaviour ready to start.
+pub struct Behaviour {
+    pub name: String,
+    pub manifest: Manifest,
+    pub machines: Vec<LoadedMachine>,
+    pub theories: Vec<LoadedTheory>,
+    pub sensors: Vec<LoadedSensor>,
+    pub script: Option<Script>,
+    pub ring_period: Duration,
+    pub answer_timeout: Duration,
+    pub run_for: Option<Duration>,
+    /// Warnings of its files, `file:line: warning: …`.
+    pub warnings: Vec<String>,
+    pub files: Arc<dyn Files>,
+}
+
+pub struct LoadedMachine {
+    pub machine: Machine,
+    pub file: String,
+    pub start: bool,
+    /// Reads the file again (for `reload`, `reread` and `--watch`).
+    pub loader: Loader,
+}
+
+pub struct LoadedTheory {
+    pub name: String,
+    pub file: String,
+    pub theory: Theory,
+    /// Input atom → message type.
+    pub mapping: FxHashMap<String, String>,
+}
+
+pub struct LoadedSensor {
+    pub entry: SensorEntry,
+    /// The game the simulator plays, when it plays one.
+    pub game: Option<GameScript>,
+}
+
+/// Loads the behaviour `name` from `files`. `Err` holds every error (and warning), one a line.
+pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<String>> {
+    let mut problems = Problems::default();
+    let manifest_text = files.read(MANIFEST).map_err(|e| vec![e])?;
+    let manifest = match parse_manifest(&manifest_text) {
+        Ok(m) => m,
+        Err((line, message)) => {
+            return Err(vec![format!(
+                "{}:{line}: error: {message}",
+                files.show(MANIFEST)
+            )])
+        }
+    };
+    let manifest_file = files.show(MANIFEST);
+    let duration = |field: &str, value: &Option<String>, problems: &mut Problems| {
+        let text = value.as_ref()?;
+        let parsed = parse_duration(text).filter(|d| !d.is_zero());
+        if parsed.is_none() {
+            problems.error(format!(
+                "{manifest_file}: error: {field} = \"{text}\" is not a duration (write 100ms, 2s or 1.5s)"
+            ));
+        }
+        parsed
+    };
+    let ring_period = duration("ring_period", &manifest.ring_period, &mut problems)
+        .unwrap_or(Duration::from_millis(100));
+    let answer_timeout = duration("answer_timeout", &manifest.answer_timeout, &mut problems)
+        .unwrap_or(Duration::from_secs(1));
+    let run_for = duration("run_for", &manifest.run_for, &mut problems);
+    if manifest.machines.is_empty() {
+        problems.error(format!(
+            "{manifest_file}: error: the behaviour names no [[machine]]"
+        ));
+    }
+
+    let mut machines: Vec<LoadedMachine> = Vec::new();
+    for entry in &manifest.machines {
+        let loader = machine_loader(files.clone(), entry.file.clone(), entry.name.clone());
+        let imported = read_machines(files.as_ref(), &entry.file);
+        problems.file(&imported);
+        match pick(imported, &entry.file, entry.name.as_deref(), files.as_ref()) {
+            Ok(Some(machine)) => {
+                if let Some(other) = machines.iter().find(|m| m.machine.name == machine.name) {
+                    problems.error(format!(
+                        "{manifest_file}: error: two machines are named `{}` ({} and {}); a machine's name is its control message type, so names must differ",
+                        machine.name, other.file, entry.file
+                    ));
+                }
+                machines.push(LoadedMachine {
+                    machine,
+                    file: entry.file.clone(),
+                    start: entry.start,
+                    loader,
+                });
+            }
+            Ok(None) => {}
+            Err(message) => problems.error(message),
+        }
+    }
+    if !manifest.machines.is_empty() && manifest.machines.iter().all(|m| !m.start) {
+        problems.error(format!(
+            "{manifest_file}: error: every machine has `start = false`; nothing would run"
+        ));
+    }
+
+    let mut theories = Vec::new();
+    for entry in &manifest.theories {
+        let Ok(text) = files.read(&entry.file).map_err(|e| problems.error(e)) else {
+            continue;
+        };
+        let shown = files.show(&entry.file);
+        let checked = check_source(
+            &text,
+            Language::from_path(std::path::Path::new(&entry.file)),
+        );
+        let rendered = proclaim_syntax::render(&checked.diagnostics, &shown, &text, false);
+        let Some(theory) = checked.theory else {
+            problems.error(rendered.trim_end().to_string());
+            continue;
+        };
+        if !rendered.is_empty() {
+            problems.warnings.push(rendered.trim_end().to_string());
+        }
+        let mapping = match &entry.mapping {
+            None => FxHashMap::default(),
+            Some(file) => match files.read(file).map(|t| parse_mapping(&t)) {
+                Ok(Ok(mapping)) => mapping,
+                Ok(Err(errors)) => {
+                    for e in errors {
+                        problems.error(format!(
+                            "{}:{}: error: {}",
+                            files.show(file),
+                            e.line,
+                            e.message
+                        ));
+                    }
+                    continue;
+                }
+                Err(e) => {
+                    problems.error(e);
+                    continue;
+                }
+            },
+        };
+        let name = entry
+            .name
+            .clone()
+            .or_else(|| theory.name().map(str::to_string))
+            .unwrap_or_else(|| stem(&entry.file));
+        theories.push(LoadedTheory {
+            name,
+            file: entry.file.clone(),
+            theory,
+            mapping,
+        });
+    }
+
+    let mut sensors = Vec::new();
+    for entry in &manifest.sensors {
+        let game = match &entry.simulator {
+            Some(Simulator::Script(file)) => match files.read(file).map(|t| parse_game(&t)) {
+                Ok(Ok(game)) => Some(game),
+                Ok(Err(errors)) => {
+                    for e in errors {
+                        problems.error(format!(
+                            "{}:{}: error: {}",
+                            files.show(file),
+                            e.line,
+                            e.message
+                        ));
+                    }
+                    None
+                }
+                Err(e) => {
+                    problems.error(e);
+                    None
+                }
+            },
+            _ => None,
+        };
+        sensors.push(LoadedSensor {
+            entry: entry.clone(),
+            game,
+        });
+    }
+
+    let script = match &manifest.impersonator {
+        None => None,
+        Some(i) => match files.read(&i.script).map(|t| parse_script(&t)) {
+            Ok(Ok(script)) => Some(script),
+            Ok(Err(errors)) => {
+                for e in errors {
+                    problems.error(format!(
+                        "{}:{}: error: {}",
+                        files.show(&i.script),
+                        e.line,
+                        e.message
+                    ));
+                }
+                None
+            }
+            Err(e) => {
+                problems.error(e);
+                None
+            }
+        },
+    };
+
+    if problems.errors > 0 {
+        let mut all = problems.lines;
+        all.extend(problems.warnings);
+        return Err(all);
+    }
+    let mut warnings = problems.lines;
+    warnings.extend(problems.warnings);
+    Ok(Behaviour {
+        name: name.to_string(),
+        manifest,
+        machines,
+        theories,
+        sensors,
+        script,
+        ring_period,
+        answer_timeout,
+        run_for,
+        warnings,
+        files,
+    })
+}
+
+#[derive(Default)]
+struct Problems {
+    lines: Vec<String>,
+    warnings: Vec<String>,
+    errors: usize,
+}
+
+impl Problems {
+    fn error(&mut self, line: String) {
+        self.errors += 1;
+        self.lines.push(line);
+    }
+
+    fn file(&mut self, imported: &Imported) {
+        for d in &imported.diagnostics {
+            if d.severity == Severity::Error {
+                self.errors += 1;
+            }
+            self.lines.push(d.to_string());
+        }
+    }
+}
+
+fn stem(file: &str) -> String {
+    std::path::Path::new(file)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or(file)
+        .to_string()
+}
+
+/// The machines of one file: native `.machine`, Qfsm `.fsm`, or either file of a T/A pair
+/// (`TName.txt` / `AName.txt`, its partner beside it).
+pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
+    let shown = files.show(relative);
+    let unreadable = |message: String| Imported {
+        machines: Vec::new(),
+        diagnostics: vec![proclaim_fsm::FileDiagnostic::error(&shown, 1, message)],
+    };
+    let path = std::path::Path::new(relative);
+    let file_name = path
+        .file_name()
+        .and_then(|f| f.to_str())
+        .unwrap_or_default();
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or_default()
+        .to_ascii_lowercase();
+    if is_native(relative) || extension == "fsm" {
+        let text = match files.read(relative) {
+            Ok(t) => t,
+            Err(e) => return unreadable(e),
+        };
+        return if extension == "fsm" {
+            import_qfsm(&shown, &text, &stem(relative))
+        } else {
+            parse_machine(&shown, &text)
+        };
+    }
+    let (Some(kind @ ('T' | 'A')), true) = (file_name.chars().next(), extension == "txt") else {
+        return unreadable(format!(
+            "`{relative}` is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
+        ));
+    };
+    let partner = proclaim_fsm::partner_of(path)
+        .map(|p| p.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let (t, a) = if kind == 'T' {
+        (relative.to_string(), partner)
+    } else {
+        (partner, relative.to_string())
+    };
+    let (t_text, a_text) = match (files.read(&t), files.read(&a)) {
+        (Ok(t), Ok(a)) => (t, a),
+        (Err(e), _) | (_, Err(e)) => return unreadable(e),
+    };
+    let name = file_name[1..].trim_end_matches(".txt");
+    import_ta(name, &files.show(&t), &t_text, &files.show(&a), &a_text)
+}
+
+/// The one machine an entry names, or why not (`None` when the file's own diagnostics said so).
+fn pick(
+    imported: Imported,
+    file: &str,
+    name: Option<&str>,
+    files: &dyn Files,
+) -> Result<Option<Machine>, String> {
+    let names: Vec<String> = imported.machines.iter().map(|m| m.name.clone()).collect();
+    let has_errors = imported.has_errors();
+    let mut machines = imported.machines;
+    match (name, machines.len()) {
+        (_, 0) => Ok(None),
+        (None, 1) => Ok((!has_errors).then(|| machines.remove(0))),
+        (None, _) => Err(format!(
+            "{}: error: the file holds several machines ({}); say which with `name = \"…\"`",
+            files.show(file),
+            names.join(", ")
+        )),
+        (Some(n), _) => match machines.iter().position(|m| m.name == n) {
+            Some(i) => Ok((!has_errors).then(|| machines.remove(i))),
+            None => Err(format!(
+                "{}: error: the file has no machine `{n}`; it has {}",
+                files.show(file),
+                names.join(", ")
+            )),
+        },
+    }
+}
+
+/// Reads the machine of a manifest entry again; errors come back as one text.
+fn machine_loader(files: Arc<dyn Files>, file: String, name: Option<String>) -> Loader {
+    Arc::new(move || {
+        let imported = read_machines(files.as_ref(), &file);
+        let errors: Vec<String> = imported
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .map(ToString::to_string)
+            .collect();
+        if !errors.is_empty() {
+            return Err(errors.join("\n"));
+        }
+        match pick(imported, &file, name.as_deref(), files.as_ref()) {
+            Ok(Some(m)) => Ok(m),
+            Ok(None) => Err(format!("{}: no machine could be read", files.show(&file))),
+            Err(e) => Err(e),
+        }
+    })
+}

@@ -1,0 +1,132 @@
+//! `behaviour.toml`: which machines, theories, sensor wrappers and impersonator make up a
+//! behaviour, and how it runs.
+//!
+//! ```toml
+//! description = "The seed paper's guGameController"
+//! ring_period = "100ms"       # optional, the longest wait between rings
+//! answer_timeout = "1s"       # optional, how long a label waits for its expert
+//!
+//! [[machine]]
+//! file = "GameController.machine"      # native, Qfsm .fsm, or either file of a T/A pair
+//!
+//! [[machine]]
+//! file = "Placer.machine"
+//! start = false                        # a sub-machine: dormant until `Placer: On`
+//!
+//! [[theory]]
+//! file = "microwave.dl"                # a reasoner expert; its outputs are the labels it answers
+//! mapping = "inputs.map"               # optional: input atom → message type
+//!
+//! [[sensor]]
+//! kind = "gamecontroller"              # also: chest_button, foot_bumpers, fall
+//! simulator = true                     # or a game script file, or false for a real one
+//!
+//! [impersonator]
+//! script = "kitchen.script"            # answers from a script (testcdl)
+//! ```
+
+use serde::Deserialize;
+
+/// The manifest's file name inside a behaviour's folder.
+pub const MANIFEST: &str = "behaviour.toml";
+
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    #[serde(default)]
+    pub description: Option<String>,
+    #[serde(default)]
+    pub ring_period: Option<String>,
+    #[serde(default)]
+    pub answer_timeout: Option<String>,
+    /// How long `proclaim run` runs when not told (a behaviour that never ends by itself).
+    #[serde(default)]
+    pub run_for: Option<String>,
+    #[serde(default, rename = "machine")]
+    pub machines: Vec<MachineEntry>,
+    #[serde(default, rename = "theory")]
+    pub theories: Vec<TheoryEntry>,
+    #[serde(default, rename = "sensor")]
+    pub sensors: Vec<SensorEntry>,
+    #[serde(default)]
+    pub impersonator: Option<ImpersonatorEntry>,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MachineEntry {
+    pub file: String,
+    /// Running from the start; `false` for a sub-machine another machine turns on.
+    #[serde(default = "yes")]
+    pub start: bool,
+    /// Which machine, when the file holds several (Qfsm).
+    #[serde(default)]
+    pub name: Option<String>,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TheoryEntry {
+    pub file: String,
+    /// The expert's name on the whiteboard (default: the theory's `name{}`, else the file stem).
+    #[serde(default)]
+    pub name: Option<String>,
+    #[serde(default)]
+    pub mapping: Option<String>,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SensorEntry {
+    pub kind: SensorKind,
+    /// GameController: the UDP port (default 3838; an ephemeral loopback port with the
+    /// simulator).
+    #[serde(default)]
+    pub port: Option<u16>,
+    /// GameController: our team number (default: the first team of each packet).
+    #[serde(default)]
+    pub team: Option<u8>,
+    /// GameController: our player number.
+    #[serde(default)]
+    pub player: Option<u8>,
+    /// GameController: `true` plays the built-in short game to the receiver, a file name plays
+    /// that game script, `false` listens for a real GameController.
+    #[serde(default)]
+    pub simulator: Option<Simulator>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum SensorKind {
+    Gamecontroller,
+    ChestButton,
+    FootBumpers,
+    Fall,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq, Eq)]
+#[serde(untagged)]
+pub enum Simulator {
+    On(bool),
+    Script(String),
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ImpersonatorEntry {
+    pub script: String,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Reads a manifest; an error says where (1-based line) and why.
+pub fn parse_manifest(text: &str) -> Result<Manifest, (usize, String)> {
+    toml::from_str(text).map_err(|e| {
+        let line = e.span().map_or(1, |s| {
+            text[..s.start.min(text.len())].matches('\n').count() + 1
+        });
+        (line, e.message().to_string())
+    })
+}

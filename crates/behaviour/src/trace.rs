@@ -1,0 +1,85 @@
+//! The trace of a run for people: one line per state change, posting, control command and
+//! changed answer (with who answered), time first. The JSON-lines trace keeps every event; this
+//! view leaves out answers that repeat the previous one, which would drown the rest.
+
+use proclaim_runner::{Answerer, Event};
+use rustc_hash::FxHashMap;
+use std::fmt::Write;
+
+#[derive(Default)]
+pub struct TraceView {
+    last_answer: FxHashMap<(String, String), bool>,
+    width: usize,
+}
+
+impl TraceView {
+    /// `width`: the machine-name column's width (the longest name of the behaviour).
+    pub fn new(width: usize) -> TraceView {
+        TraceView {
+            last_answer: FxHashMap::default(),
+            width,
+        }
+    }
+
+    /// The event as a line, or `None` when it says nothing new.
+    pub fn line(&mut self, event: &Event) -> Option<String> {
+        let what = match event {
+            Event::Entered { state, .. } => format!("→ {state}"),
+            Event::Fired { label, .. } => format!("fires on {label}"),
+            Event::Posted { ty, content, .. } => format!("posts {ty}: {content}"),
+            Event::Control { command, .. } => format!("told {command}"),
+            Event::Answered {
+                machine,
+                atom,
+                value,
+                by,
+                ..
+            } => {
+                let key = (machine.clone(), atom.clone());
+                let changed = self.last_answer.insert(key, *value) != Some(*value);
+                match by {
+                    Answerer::Expert(who) if changed => format!("{atom} = {value}  ({who})"),
+                    Answerer::Expert(_) => return None,
+                    Answerer::TimedOut => format!("{atom}: no answer in time, counted false"),
+                    Answerer::NoExpert if changed => {
+                        format!("{atom}: no expert answers it, counted false")
+                    }
+                    Answerer::NoExpert => return None,
+                }
+            }
+            Event::UnknownFunction { function, .. } => {
+                format!("host function {function} is not registered; skipped")
+            }
+            Event::Reloaded { state, .. } => format!("reloaded, in {state}"),
+            Event::ReloadFailed { error, .. } => {
+                format!("reload failed, runs on unchanged: {error}")
+            }
+            Event::Halted { reason, .. } => format!("halted: {reason}"),
+        };
+        let mut line = String::new();
+        match event.at() {
+            Some(at) => {
+                let _ = write!(line, "{:>8.3}s ", at.as_secs_f64());
+            }
+            None => line.push_str("          "),
+        }
+        let _ = write!(
+            line,
+            "{:<width$}  {what}",
+            event.machine(),
+            width = self.width
+        );
+        Some(line)
+    }
+}
+
+/// Reads a JSON-lines trace; a bad line is reported with its number.
+pub fn read_trace(text: &str) -> Result<Vec<Event>, String> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, l)| {
+            serde_json::from_str(l).map_err(|e| format!("line {}: not a trace event: {e}", i + 1))
+        })
+        .collect()
+}

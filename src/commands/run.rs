@@ -1,0 +1,311 @@
+//! `proclaim run`: a behaviour on the in-process whiteboard, with a live trace for people, a
+//! JSON-lines trace for programs (and `proclaim replay`), and file watching that rereads a
+//! machine when its file changes.
+
+use crate::embedded;
+use crate::failure::Failure;
+use proclaim_behaviour::{
+    launch, load, read_trace, Behaviour, Embedded, Files, Folder, LaunchOptions, TraceView,
+    MANIFEST,
+};
+use proclaim_board::Whiteboard;
+use proclaim_experts::{parse_duration, parse_script};
+use proclaim_runner::Event;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Duration;
+
+pub struct RunArgs {
+    pub behaviour: String,
+    pub duration: Option<String>,
+    pub trace: Option<PathBuf>,
+    pub script: Option<PathBuf>,
+    pub watch: bool,
+    pub no_simulator: bool,
+    pub halt_on_timeout: bool,
+}
+
+/// A behaviour named on the command line: a folder holding `behaviour.toml`, the manifest
+/// itself, `machines/NAME` under the current folder, or a behaviour built into the binary.
+fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
+    let path = Path::new(name);
+    let folder = if path.is_dir() {
+        Some(path.to_path_buf())
+    } else if path.file_name().is_some_and(|f| f == MANIFEST) {
+        Some(path.parent().unwrap_or(Path::new(".")).to_path_buf())
+    } else {
+        let local = Path::new("machines").join(name);
+        local.join(MANIFEST).is_file().then_some(local)
+    };
+    if let Some(folder) = folder {
+        if !folder.join(MANIFEST).is_file() {
+            return Err(Failure::Argument(format!(
+                "{} is not a behaviour: it has no {MANIFEST}",
+                folder.display()
+            )));
+        }
+        let label = folder
+            .canonicalize()
+            .ok()
+            .and_then(|p| p.file_name().map(|f| f.to_string_lossy().into_owned()))
+            .unwrap_or_else(|| name.to_string());
+        return Ok((label, Arc::new(Folder::new(folder))));
+    }
+    match embedded::behaviour(name) {
+        Some(files) => {
+            let name: &'static str = embedded::BEHAVIOURS
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(n, _)| *n)
+                .unwrap_or("behaviour");
+            Ok((name.to_string(), Arc::new(Embedded { name, files })))
+        }
+        None => Err(Failure::Argument(format!(
+            "no behaviour `{name}`: not a folder with a {MANIFEST}, not machines/{name}, and not a built-in one ({})",
+            embedded::behaviour_names()
+        ))),
+    }
+}
+
+pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
+    let (label, files) = resolve(name)?;
+    let behaviour = load(&label, files).map_err(|lines| Failure::Invalid {
+        what: "the behaviour",
+        errors: lines.iter().filter(|l| l.contains("error")).count().max(1),
+        rendered: lines.join("\n") + "\n",
+    })?;
+    for w in &behaviour.warnings {
+        eprintln!("{w}");
+    }
+    Ok(behaviour)
+}
+
+pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
+    let behaviour = load_behaviour(&args.behaviour)?;
+    let script = match &args.script {
+        None => None,
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+                path: path.clone(),
+                error,
+            })?;
+            Some(parse_script(&text).map_err(|errors| {
+                Failure::Invalid {
+                    what: "the script",
+                    errors: errors.len(),
+                    rendered: errors
+                        .iter()
+                        .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
+                        .collect(),
+                }
+            })?)
+        }
+    };
+    let limit = match &args.duration {
+        Some(text) => Some(parse_duration(text).ok_or_else(|| {
+            Failure::Argument(format!(
+                "--for {text}: not a duration (write 30s, 500ms or 1.5s)"
+            ))
+        })?),
+        None => behaviour.run_for,
+    };
+    let mut trace_file = match &args.trace {
+        None => None,
+        Some(path) => Some(std::io::BufWriter::new(
+            std::fs::File::create(path).map_err(|error| Failure::Write {
+                path: path.clone(),
+                error,
+            })?,
+        )),
+    };
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .map_err(|e| Failure::Start(format!("no async runtime: {e}")))?;
+    let options = LaunchOptions {
+        script,
+        no_simulator: args.no_simulator,
+        halt_on_timeout: args.halt_on_timeout,
+        hosts: proclaim_runner::Hosts::default(),
+    };
+    let outcome = runtime.block_on(async {
+        let board = Whiteboard::local();
+        let mut running = launch(&behaviour, &board, options)
+            .await
+            .map_err(Failure::Start)?;
+        let machines: Vec<&str> = behaviour
+            .machines
+            .iter()
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        println!(
+            "running {}: {} ({} machine{}{})",
+            behaviour.name,
+            behaviour.manifest.description.as_deref().unwrap_or(""),
+            machines.len(),
+            if machines.len() == 1 { "" } else { "s" },
+            match limit {
+                Some(d) => format!(", for {d:?} at most"),
+                None => String::new(),
+            }
+        );
+        for note in &running.notes {
+            println!("  {note}");
+        }
+        let mut view = TraceView::new(machines.iter().map(|m| m.len()).max().unwrap_or(8));
+        let mut changed = watch(&behaviour, args.watch);
+        let deadline = limit.map(|d| tokio::time::Instant::now() + d);
+        let started = tokio::time::Instant::now();
+        let mut halted = false;
+        let why = loop {
+            let sleep = async {
+                match deadline {
+                    Some(at) => tokio::time::sleep_until(at).await,
+                    None => std::future::pending().await,
+                }
+            };
+            tokio::select! {
+                event = running.events.recv() => {
+                    let Some(event) = event else { break "every machine stopped".to_string() };
+                    if let Some(line) = view.line(&event) {
+                        println!("{line}");
+                    }
+                    if let Some(file) = trace_file.as_mut() {
+                        let json = serde_json::to_string(&event).unwrap_or_default();
+                        if let Err(e) = writeln!(file, "{json}") {
+                            eprintln!("warning: the trace file could not be written: {e}");
+                            trace_file = None;
+                        }
+                    }
+                    halted |= matches!(event, Event::Halted { .. });
+                    if running.observe(&event) {
+                        break format!(
+                            "every machine that started is in a final state or halted, after {:.3} s",
+                            started.elapsed().as_secs_f64()
+                        );
+                    }
+                }
+                () = sleep => break format!("ran for {:?}", limit.unwrap_or_default()),
+                _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
+                Some(machine) = changed.recv() => {
+                    println!("          {machine}: its file changed; rereading");
+                    board.post("watch", &machine, "reread");
+                }
+            }
+        };
+        let stats = board.stats();
+        println!("stopped: {why}");
+        println!(
+            "  {} postings, {} queries ({} timed out, {} unanswerable)",
+            stats.posts, stats.queries, stats.timeouts, stats.unanswerable
+        );
+        running.stop().await;
+        Ok::<bool, Failure>(halted)
+    })?;
+    if let Some(mut file) = trace_file {
+        let _ = file.flush();
+    }
+    Ok(if outcome {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// With `--watch` and a behaviour on disk: the names of machines whose files change.
+fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceiver<String> {
+    let (tx, rx) = tokio::sync::mpsc::unbounded_channel();
+    let Some(folder) = behaviour.files.folder().filter(|_| on) else {
+        if on {
+            eprintln!("note: --watch watches files on disk; a built-in behaviour has none (run it from its folder, machines/NAME)");
+        }
+        return rx;
+    };
+    // File name → machine names (a T/A pair is watched through both files).
+    let mut by_file: Vec<(String, String)> = Vec::new();
+    for m in &behaviour.machines {
+        let path = folder.join(&m.file);
+        let partner = proclaim_fsm::partner_of(&path);
+        for p in std::iter::once(path).chain(partner) {
+            if let Some(name) = p.file_name().and_then(|f| f.to_str()) {
+                by_file.push((name.to_string(), m.machine.name.clone()));
+            }
+        }
+    }
+    let watcher = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
+        let Ok(event) = event else { return };
+        if !(event.kind.is_modify() || event.kind.is_create()) {
+            return;
+        }
+        let mut machines: Vec<&String> = Vec::new();
+        for path in &event.paths {
+            let name = path
+                .file_name()
+                .and_then(|f| f.to_str())
+                .unwrap_or_default();
+            for (file, machine) in &by_file {
+                if file == name && !machines.contains(&machine) {
+                    machines.push(machine);
+                }
+            }
+        }
+        for m in machines {
+            let _ = tx.send(m.clone());
+        }
+    });
+    match watcher {
+        Ok(mut w) => {
+            use notify::Watcher;
+            // Watch the folders: editors often replace a file rather than write it in place.
+            let mut folders: Vec<PathBuf> = behaviour
+                .machines
+                .iter()
+                .filter_map(|m| folder.join(&m.file).parent().map(Path::to_path_buf))
+                .collect();
+            folders.dedup();
+            for f in &folders {
+                if let Err(e) = w.watch(f, notify::RecursiveMode::NonRecursive) {
+                    eprintln!("warning: cannot watch {}: {e}", f.display());
+                }
+            }
+            // The watcher lives as long as the process.
+            std::mem::forget(w);
+        }
+        Err(e) => eprintln!("warning: file watching is not available here: {e}"),
+    }
+    rx
+}
+
+/// `proclaim replay`: a JSON-lines trace printed as the live trace was, at `speed` times its
+/// real pace (`None`: at once).
+pub fn replay(file: &Path, speed: Option<f64>) -> Result<ExitCode, Failure> {
+    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+        path: file.to_path_buf(),
+        error,
+    })?;
+    let events =
+        read_trace(&text).map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
+    if speed.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
+        return Err(Failure::Argument(
+            "--speed must be a positive number".into(),
+        ));
+    }
+    let width = events.iter().map(|e| e.machine().len()).max().unwrap_or(8);
+    let mut view = TraceView::new(width);
+    let start = std::time::Instant::now();
+    for event in &events {
+        if let (Some(speed), Some(at)) = (speed, event.at()) {
+            let due = at.div_f64(speed);
+            if let Some(wait) = due.checked_sub(start.elapsed()) {
+                std::thread::sleep(wait.min(Duration::from_secs(3600)));
+            }
+        }
+        if let Some(line) = view.line(event) {
+            println!("{line}");
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

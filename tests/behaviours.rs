@@ -1,0 +1,271 @@
+//! Whole behaviours from `machines/`, loaded from their manifests and run on a paused clock with
+//! the impersonator standing in for the GameController and the kitchen, so every trace is
+//! exact. Also what loading says about a broken behaviour.
+
+use proclaim_behaviour::{launch, load, Folder, LaunchOptions, TraceView};
+use proclaim_board::Whiteboard;
+use proclaim_experts::parse_script;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Duration;
+
+fn behaviour_dir(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("machines")
+        .join(name)
+}
+
+/// Runs a behaviour until every started machine is in a final state, or `limit`; returns the
+/// readable trace with answers that repeat left out (as `proclaim run` prints it).
+async fn run(name: &str, script: Option<&str>, limit: Duration) -> (Vec<String>, Whiteboard) {
+    let behaviour = load(name, Arc::new(Folder::new(behaviour_dir(name))))
+        .unwrap_or_else(|e| panic!("{name} loads: {e:#?}"));
+    let board = Whiteboard::local();
+    let options = LaunchOptions {
+        script: script.map(|s| parse_script(s).expect("script parses")),
+        ..Default::default()
+    };
+    let mut running = launch(&behaviour, &board, options).await.expect("starts");
+    let mut view = TraceView::new(0);
+    let mut lines = running.notes.clone();
+    let deadline = tokio::time::Instant::now() + limit;
+    while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+        if let Some(line) = view.line(&event) {
+            lines.push(line.split_whitespace().collect::<Vec<_>>().join(" "));
+        }
+        if running.observe(&event) {
+            break;
+        }
+    }
+    running.stop().await;
+    (lines, board)
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_game_controller_plays_a_scripted_game_to_finished() {
+    let script = "\
+        at 1s readyReceived = true
+        at 2s readyReceived = false
+        at 2s setReceived = true
+        at 3s setReceived = false
+        at 3s playingReceived = true
+        at 4s penaltyReceived = true
+        at 6s penaltyReceived = false
+        at 9s playingReceived = false
+        at 9s finishedReceived = true
+    ";
+    let (trace, board) = run("game_controller", Some(script), Duration::from_secs(30)).await;
+    let states: Vec<&str> = trace
+        .iter()
+        .filter(|l| l.contains('→'))
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "0.000s GameController → INITIAL",
+            "1.000s GameController → READY",
+            "1.000s Placer → LOOK",
+            "1.300s Placer → WALK",
+            "1.800s Placer → IN_POSITION",
+            "2.000s GameController → SET",
+            "3.000s GameController → PLAYING",
+            "4.000s GameController → PENALIZED",
+            "6.000s GameController → PLAYING",
+            "9.000s GameController → FINISHED",
+        ],
+        "{trace:#?}"
+    );
+    // The receiver and its simulator stand down for the script; the chest button still answers.
+    assert_eq!(
+        trace[0],
+        "left out gamecontroller: the script impersonates readyReceived, setReceived, playingReceived, finishedReceived, penaltyReceived"
+    );
+    assert!(
+        trace.contains(
+            &"0.000s GameController shortChestButtonPressed = false (chestButton)".to_string()
+        ),
+        "{trace:#?}"
+    );
+    assert!(
+        trace.contains(&"4.000s GameController penaltyReceived = true (impersonator)".to_string())
+    );
+    assert!(trace.contains(&"2.000s Placer told Off".to_string()));
+    assert!(trace.contains(
+        &"6.000s GameController fires on ~penaltyReceived && playingReceived".to_string()
+    ));
+    assert_eq!(
+        board.latest("Say").unwrap().value.to_string(),
+        "\"game over\""
+    );
+    assert_eq!(board.truth("PlacerIsRunning"), Some(false));
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_chest_button_penalises_by_hand_before_kick_off() {
+    let (trace, board) = {
+        let behaviour = load(
+            "game_controller",
+            Arc::new(Folder::new(behaviour_dir("game_controller"))),
+        )
+        .unwrap();
+        let board = Whiteboard::local();
+        let options = LaunchOptions {
+            script: Some(
+                parse_script("at 5s finishedReceived = true\npenaltyReceived = false\n").unwrap(),
+            ),
+            ..Default::default()
+        };
+        let mut running = launch(&behaviour, &board, options).await.unwrap();
+        // The raw contact, as the robot's button driver posts it: a 200 ms press.
+        tokio::time::sleep(Duration::from_secs(1)).await;
+        board.post("sensors", "ChestButton", true);
+        tokio::time::sleep(Duration::from_millis(200)).await;
+        board.post("sensors", "ChestButton", false);
+        let mut view = TraceView::new(0);
+        let mut lines = Vec::new();
+        let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
+        while let Ok(Some(e)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+            if let Some(l) = view.line(&e) {
+                lines.push(l.split_whitespace().collect::<Vec<_>>().join(" "));
+            }
+            if running.observe(&e) {
+                break;
+            }
+        }
+        running.stop().await;
+        (lines, board)
+    };
+    let states: Vec<&str> = trace
+        .iter()
+        .filter(|l| l.contains('→'))
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "0.000s GameController → INITIAL",
+            "1.230s GameController → PENALIZED",
+            "5.000s GameController → FINISHED",
+        ],
+        "{trace:#?}"
+    );
+    assert_eq!(
+        board.latest("LEDS").unwrap().value.to_string(),
+        "\"ChestBoard Off\""
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_microwave_cooks_for_a_minute_as_its_theory_decides() {
+    // The kitchen script of the behaviour itself: door open at 1 s, shut at 3 s, button at 4 s.
+    let (trace, board) = run("microwave", None, Duration::from_secs(120)).await;
+    let interesting: Vec<&str> = trace
+        .iter()
+        .filter(|l| l.contains('→') || l.contains("(microwave)"))
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        interesting,
+        [
+            "0.000s Microwave → IDLE",
+            "0.000s Microwave cook = false (microwave)",
+            "0.000s Microwave light = false (microwave)",
+            "1.000s Microwave light = true (microwave)",
+            "1.000s Microwave → OPEN",
+            "3.000s Microwave light = false (microwave)",
+            "3.000s Microwave → IDLE",
+            "4.000s Microwave cook = true (microwave)",
+            "4.000s Microwave → COOKING",
+            "64.000s Microwave → DONE",
+        ],
+        "{trace:#?}"
+    );
+    assert_eq!(
+        board.latest("Magnetron").unwrap().value.to_string(),
+        "\"off\""
+    );
+    assert_eq!(board.truth("timeLeft"), Some(false));
+}
+
+#[tokio::test(start_paused = true)]
+async fn opening_the_door_stops_the_magnetron_at_once() {
+    let script =
+        "doorOpen = false\ntimeLeft = false\nat 1s timeLeft = true\nat 10s doorOpen = true\n";
+    let (trace, board) = run("microwave", Some(script), Duration::from_secs(12)).await;
+    let states: Vec<&str> = trace
+        .iter()
+        .filter(|l| l.contains('→'))
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "0.000s Microwave → IDLE",
+            "1.000s Microwave → COOKING",
+            "10.000s Microwave → OPEN",
+        ],
+        "{trace:#?}"
+    );
+    assert!(
+        trace.contains(&"10.000s Microwave posts Magnetron: off".to_string()),
+        "{trace:#?}"
+    );
+    assert_eq!(board.latest("Light").unwrap().value.to_string(), "\"on\"");
+}
+
+fn temp_behaviour(files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "proclaim-behaviour-{}-{}",
+        std::process::id(),
+        files.len() * 31 + files[0].1.len()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    dir
+}
+
+#[test]
+fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
+    let dir = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"A.machine\"\n\n[[machine]]\nfile = \"B.machine\"\nstart = false\n\n[[theory]]\nfile = \"t.dl\"\n",
+        ),
+        ("A.machine", "machine A\nstate S {\n  when x -> Nowhere\n}\n"),
+        ("B.machine", "machine B\nstate S {\n  entry {\n"),
+        ("t.dl", "a => b\n"),
+    ]);
+    let errors = match load("broken", Arc::new(Folder::new(&dir))) {
+        Ok(_) => panic!("a broken behaviour must not load"),
+        Err(e) => e,
+    };
+    let shown = |f: &str| dir.join(f).display().to_string();
+    assert_eq!(
+        errors[0],
+        format!(
+            "{}:3: error: there is no state named `Nowhere`",
+            shown("A.machine")
+        )
+    );
+    assert_eq!(
+        errors[1],
+        format!("{}:4: error: the file ends too early; expected one of `call`, `code`, a name, a quoted string, `}}`", shown("B.machine"))
+    );
+    assert!(
+        errors[2].contains("t.dl") && errors[2].contains("error"),
+        "{errors:#?}"
+    );
+
+    let dir = temp_behaviour(&[(
+        "behaviour.toml",
+        "[[machine]]\nfile = \"A.machine\"\nstrat = false\n",
+    )]);
+    let errors = load("typo", Arc::new(Folder::new(&dir))).err().unwrap();
+    assert!(
+        errors[0].ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`"),
+        "{errors:#?}"
+    );
+}
