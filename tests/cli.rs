@@ -518,3 +518,131 @@ fn import_writes_native_files_that_check_and_import_again_unchanged() {
         stderr(&o)
     );
 }
+
+#[test]
+fn run_plays_the_built_in_game_over_udp_to_finished_and_the_trace_replays() {
+    let trace = temp_file("game.jsonl", b"");
+    let o = proclaim(&[
+        "run",
+        "game_controller",
+        "--for",
+        "60s",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    let states: Vec<&str> = out
+        .lines()
+        .filter(|l| l.contains("GameController  →"))
+        .map(|l| l.rsplit(' ').next().unwrap())
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "INITIAL",
+            "READY",
+            "SET",
+            "PLAYING",
+            "PENALIZED",
+            "PLAYING",
+            "FINISHED"
+        ],
+        "{out}"
+    );
+    assert!(
+        out.contains("stopped: every machine that started is in a final state"),
+        "{out}"
+    );
+    assert!(
+        out.contains("readyReceived = true  (gamecontroller)"),
+        "{out}"
+    );
+    // The replay prints the same trace lines.
+    let replayed = proclaim(&["replay", trace.to_str().unwrap()]);
+    assert_eq!(replayed.status.code(), Some(0), "{}", stderr(&replayed));
+    let timed = |l: &&str| {
+        let first = l.split_whitespace().next().unwrap_or("");
+        first
+            .strip_suffix('s')
+            .is_some_and(|t| t.parse::<f64>().is_ok())
+    };
+    let live: Vec<&str> = out.lines().filter(timed).collect();
+    let replayed = stdout(&replayed);
+    let again: Vec<&str> = replayed.lines().collect();
+    assert_eq!(again, live);
+}
+
+#[test]
+fn run_refuses_what_it_cannot_run() {
+    let o = proclaim(&["run", "no_such_behaviour"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("no behaviour `no_such_behaviour`: not a folder with a behaviour.toml, not machines/no_such_behaviour, and not a built-in one (game_controller, microwave)"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["run", "microwave", "--for", "soon"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--for soon: not a duration"),
+        "{}",
+        stderr(&o)
+    );
+    let bad = temp_file("bad.jsonl", b"{\"event\":\"entered\"}\n");
+    let o = proclaim(&["replay", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.jsonl: line 1: not a trace event: missing field `machine`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
+    let dir = std::env::temp_dir().join(format!("proclaim-watch-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"W.machine\"\n",
+    )
+    .unwrap();
+    let machine = dir.join("W.machine");
+    std::fs::write(
+        &machine,
+        "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+    )
+    .unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", dir.to_str().unwrap(), "--watch", "--for", "20s"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    std::fs::write(&machine, "machine W\nstate Wait {\n  when -> Done\n}\n").unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    std::fs::write(
+        &machine,
+        "machine W\nstate Wait {\n  when TRUE -> Done\n}\nstate Done {\n}\n",
+    )
+    .unwrap();
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    assert!(
+        out.contains("W  reload failed, runs on unchanged:"),
+        "{out}"
+    );
+    assert!(
+        out.contains("W.machine:3: error: a transition needs a label"),
+        "{out}"
+    );
+    assert!(out.contains("W  reloaded, in Wait"), "{out}");
+    assert!(out.contains("W  → Done"), "{out}");
+    assert!(
+        out.contains("stopped: every machine that started is in a final state"),
+        "{out}"
+    );
+}
