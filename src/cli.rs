@@ -141,7 +141,7 @@ pub enum Command {
         #[arg(short, long, value_name = "DIR")]
         output: PathBuf,
     },
-    /// Check theories and machines (native .machine, T/A pairs, Qfsm .fsm) and report every problem (exit 1 on errors)
+    /// Check theories, machines (native .machine, T/A pairs, Qfsm .fsm) and behaviours, and report every problem (exit 1 on errors)
     Check {
         #[arg(required = true)]
         theories: Vec<String>,

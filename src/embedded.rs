@@ -77,6 +77,7 @@ pub const BEHAVIOURS: [(&str, &[(&str, &str)]); 2] = [
                 "Placer.machine",
                 include_str!("../machines/game_controller/Placer.machine"),
             ),
+            ("../nao.toml", include_str!("../machines/nao.toml")),
         ],
     ),
     (

@@ -2,7 +2,8 @@
 //! a T/A pair.
 
 use crate::failure::Failure;
-use proclaim_fsm::{import_qfsm, import_ta, is_native, parse_machine, partner_of, Imported};
+use proclaim_behaviour::{read_machines, Folder};
+use proclaim_fsm::{is_native, partner_of, Imported};
 use std::path::Path;
 
 /// A native or Qfsm file, or either file of a T/A pair (its partner is found beside it); `None`
@@ -13,42 +14,23 @@ pub fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
         .file_name()
         .and_then(|f| f.to_str())
         .unwrap_or_default();
-    let read = |p: &Path| {
-        std::fs::read_to_string(p).map_err(|error| Failure::Read {
-            path: p.to_path_buf(),
-            error,
-        })
-    };
-    if is_native(name) {
-        return Ok(Some(parse_machine(name, &read(path)?)));
-    }
-    if path
+    let qfsm = path
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("fsm"))
-    {
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("machine");
-        return Ok(Some(import_qfsm(name, &read(path)?, stem)));
-    }
-    let is_table =
+        .is_some_and(|e| e.eq_ignore_ascii_case("fsm"));
+    let table =
         file_name.ends_with(".txt") && (file_name.starts_with('T') || file_name.starts_with('A'));
-    let Some(partner) = partner_of(path).filter(|p| is_table && p.exists()) else {
+    let is_machine = is_native(name)
+        || qfsm
+        || table && partner_of(path).is_some_and(|partner| partner.exists());
+    if !is_machine {
         return Ok(None);
-    };
-    let (t, a) = if file_name.starts_with('T') {
-        (path.to_path_buf(), partner)
-    } else {
-        (partner, path.to_path_buf())
-    };
-    let machine = file_name[1..].trim_end_matches(".txt");
-    let show = |p: &Path| p.display().to_string();
-    Ok(Some(import_ta(
-        machine,
-        &show(&t),
-        &read(&t)?,
-        &show(&a),
-        &read(&a)?,
-    )))
+    }
+    if let Err(error) = std::fs::metadata(path) {
+        return Err(Failure::Read {
+            path: path.to_path_buf(),
+            error,
+        });
+    }
+    let folder = path.parent().unwrap_or(Path::new(""));
+    Ok(Some(read_machines(&Folder::new(folder), file_name)))
 }

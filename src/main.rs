@@ -2,6 +2,7 @@
 //! check, gen, bench) and of the behaviour interpreter (run, replay, import, draw). Exit codes: 0 done (whatever the answers), 1 `check` found errors, 2 bad
 //! input or usage.
 
+mod behaviours;
 mod cli;
 mod commands;
 mod embedded;

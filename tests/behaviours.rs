@@ -269,3 +269,42 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
         "{errors:#?}"
     );
 }
+
+#[test]
+fn check_finds_what_only_the_whole_behaviour_shows() {
+    let dir = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"Main.machine\"\n\n[[machine]]\nfile = \"Helper.machine\"\nstart = false\n\n[[theory]]\nfile = \"t.dl\"\n\n[[module]]\nname = \"leds\"\nreads = [\"LEDS\"]\n",
+        ),
+        (
+            "Main.machine",
+            "machine Main\nstate A {\n  entry {\n    Helper: On\n    Ghost: On\n    LEDS: red\n    Beep: twice\n  }\n  when TRUE -> B\n  when cook -> B\n  when mystery -> B\n}\nstate B {\n  when ~HelperIsRunning -> A\n  when ~HelperIsRunning -> B\n}\nstate Lost {\n}\n",
+        ),
+        ("Helper.machine", "machine Helper\nstate H {\n}\n"),
+        (
+            "t.dl",
+            "input{door}.\ninput{timer}.\nR1: timer => cook.\nR2: door => ~cook.\nR2 > R1.\nR3: door => light.\noutput{beta cook}.\noutput{beta light}.\n",
+        ),
+    ]);
+    let behaviour = load("whole", Arc::new(Folder::new(&dir))).unwrap();
+    let findings: Vec<String> = proclaim_behaviour::check_behaviour(&behaviour)
+        .iter()
+        .map(|d| d.to_string().replace(&format!("{}/", dir.display()), ""))
+        .collect();
+    assert_eq!(
+        findings,
+        [
+            "Main.machine:10: warning: `cook` is never tried: `TRUE` above it (line 9) always fires first",
+            "Main.machine:11: warning: `mystery` is never tried: `TRUE` above it (line 9) always fires first",
+            "Main.machine:15: warning: `~HelperIsRunning` never fires: the same label above it (line 14) is tried first",
+            "Main.machine:17: warning: state Lost is never reached from the initial state A",
+            "Main.machine:11: error: label `mystery` is answered by no expert and posted by no module",
+            "Main.machine:2: error: `Ghost: On` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)",
+            "Main.machine:2: warning: nobody listens to `Beep` postings (name the module that does in the manifest's [[module]] or dictionary)",
+            "t.dl:1: warning: output `light` of theory t is queried by no machine",
+            "t.dl:1: warning: input `door` of theory t is posted by no module",
+            "t.dl:1: warning: input `timer` of theory t is posted by no module",
+        ]
+    );
+}

@@ -1,10 +1,12 @@
-//! `proclaim check`: every problem in every theory and machine file, exit 1 when any is an error.
+//! `proclaim check`: every problem in every theory, machine file and behaviour, exit 1 when any
+//! is an error.
 
+use crate::behaviours::{is_behaviour, load_behaviour};
 use crate::failure::Failure;
 use crate::load::{self, color, diagnostic_json};
 use crate::machines::machine_file;
 use proclaim_cdl::check_source;
-use proclaim_fsm::{Imported, Severity};
+use proclaim_fsm::{lint, FileDiagnostic, Imported, Severity};
 use proclaim_syntax::render;
 use std::process::ExitCode;
 
@@ -12,7 +14,21 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     let mut errors = 0;
     let mut report = Vec::new();
     for name in theories {
-        if let Some(imported) = machine_file(name)? {
+        if is_behaviour(name) {
+            errors += behaviour(name, json, &mut report)?;
+            continue;
+        }
+        if let Some(mut imported) = machine_file(name)? {
+            let file = imported
+                .diagnostics
+                .first()
+                .map_or_else(|| name.clone(), |d| d.file.clone());
+            let lints: Vec<FileDiagnostic> = imported
+                .machines
+                .iter()
+                .flat_map(|m| lint(m, &file))
+                .collect();
+            imported.diagnostics.extend(lints);
             errors += machines(name, &imported, json, &mut report);
             continue;
         }
@@ -59,6 +75,62 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
     })
 }
 
+/// Checks a behaviour as a whole; returns its error count. A behaviour whose files have errors
+/// reports those (it cannot be checked further).
+fn behaviour(
+    name: &str,
+    json: bool,
+    report: &mut Vec<serde_json::Value>,
+) -> Result<usize, Failure> {
+    let loaded = match load_behaviour(name) {
+        Ok(b) => b,
+        Err(Failure::Invalid {
+            rendered, errors, ..
+        }) => {
+            if json {
+                report.push(serde_json::json!({
+                    "file": name, "line": 0, "severity": "error", "message": rendered.trim_end(),
+                }));
+            } else {
+                eprint!("{rendered}");
+            }
+            return Ok(errors);
+        }
+        Err(other) => return Err(other),
+    };
+    let findings = proclaim_behaviour::check_behaviour(&loaded);
+    let errors = findings
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
+    if json {
+        report.extend(findings.iter().map(diagnostic_of_file_json));
+    } else {
+        for d in &findings {
+            eprintln!("{d}");
+        }
+        println!(
+            "{name}: {} ({} machines, {} theories, {} sensors; {} errors, {} warnings)",
+            if errors == 0 { "ok" } else { "has errors" },
+            loaded.machines.len(),
+            loaded.theories.len(),
+            loaded.sensors.len(),
+            errors,
+            findings.len() - errors
+        );
+    }
+    Ok(errors)
+}
+
+fn diagnostic_of_file_json(d: &FileDiagnostic) -> serde_json::Value {
+    serde_json::json!({
+        "file": d.file,
+        "line": d.line,
+        "severity": if d.severity == Severity::Error { "error" } else { "warning" },
+        "message": d.message,
+    })
+}
+
 /// Reports an imported machine file; returns its error count.
 fn machines(
     name: &str,
@@ -72,14 +144,7 @@ fn machines(
         .filter(|d| d.severity == Severity::Error)
         .count();
     if json {
-        report.extend(imported.diagnostics.iter().map(|d| {
-            serde_json::json!({
-                "file": d.file,
-                "line": d.line,
-                "severity": if d.severity == Severity::Error { "error" } else { "warning" },
-                "message": d.message,
-            })
-        }));
+        report.extend(imported.diagnostics.iter().map(diagnostic_of_file_json));
     } else {
         for d in &imported.diagnostics {
             eprintln!("{d}");

@@ -2,19 +2,15 @@
 //! JSON-lines trace for programs (and `proclaim replay`), and file watching that rereads a
 //! machine when its file changes.
 
-use crate::embedded;
+use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
-use proclaim_behaviour::{
-    launch, load, read_trace, Behaviour, Embedded, Files, Folder, LaunchOptions, TraceView,
-    MANIFEST,
-};
+use proclaim_behaviour::{launch, read_trace, Behaviour, LaunchOptions, TraceView};
 use proclaim_board::Whiteboard;
 use proclaim_experts::{parse_duration, parse_script};
 use proclaim_runner::Event;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 use std::time::Duration;
 
 pub struct RunArgs {
@@ -25,61 +21,6 @@ pub struct RunArgs {
     pub watch: bool,
     pub no_simulator: bool,
     pub halt_on_timeout: bool,
-}
-
-/// A behaviour named on the command line: a folder holding `behaviour.toml`, the manifest
-/// itself, `machines/NAME` under the current folder, or a behaviour built into the binary.
-fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
-    let path = Path::new(name);
-    let folder = if path.is_dir() {
-        Some(path.to_path_buf())
-    } else if path.file_name().is_some_and(|f| f == MANIFEST) {
-        Some(path.parent().unwrap_or(Path::new(".")).to_path_buf())
-    } else {
-        let local = Path::new("machines").join(name);
-        local.join(MANIFEST).is_file().then_some(local)
-    };
-    if let Some(folder) = folder {
-        if !folder.join(MANIFEST).is_file() {
-            return Err(Failure::Argument(format!(
-                "{} is not a behaviour: it has no {MANIFEST}",
-                folder.display()
-            )));
-        }
-        let label = folder
-            .canonicalize()
-            .ok()
-            .and_then(|p| p.file_name().map(|f| f.to_string_lossy().into_owned()))
-            .unwrap_or_else(|| name.to_string());
-        return Ok((label, Arc::new(Folder::new(folder))));
-    }
-    match embedded::behaviour(name) {
-        Some(files) => {
-            let name: &'static str = embedded::BEHAVIOURS
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map(|(n, _)| *n)
-                .unwrap_or("behaviour");
-            Ok((name.to_string(), Arc::new(Embedded { name, files })))
-        }
-        None => Err(Failure::Argument(format!(
-            "no behaviour `{name}`: not a folder with a {MANIFEST}, not machines/{name}, and not a built-in one ({})",
-            embedded::behaviour_names()
-        ))),
-    }
-}
-
-pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
-    let (label, files) = resolve(name)?;
-    let behaviour = load(&label, files).map_err(|lines| Failure::Invalid {
-        what: "the behaviour",
-        errors: lines.iter().filter(|l| l.contains("error")).count().max(1),
-        rendered: lines.join("\n") + "\n",
-    })?;
-    for w in &behaviour.warnings {
-        eprintln!("{w}");
-    }
-    Ok(behaviour)
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {

@@ -7,12 +7,15 @@
 //! Reads files (through [`Files`]: a folder, or texts built into the program) and opens the
 //! sockets its sensors need; it does not watch files or print: the binary does.
 
+mod analysis;
 mod files;
 mod launch;
 mod load;
 mod manifest;
+mod modules;
 mod trace;
 
+pub use analysis::check_behaviour;
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
 pub use load::{load, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory};
@@ -20,4 +23,5 @@ pub use manifest::{
     parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, SensorEntry, SensorKind, Simulator,
     TheoryEntry, MANIFEST,
 };
+pub use modules::{modules, Module, ModuleKind};
 pub use trace::{read_trace, TraceView};

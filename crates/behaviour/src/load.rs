@@ -2,7 +2,9 @@
 //! every file is reported, with file and line; a behaviour with errors is not started.
 
 use crate::files::Files;
-use crate::manifest::{parse_manifest, Manifest, SensorEntry, Simulator, MANIFEST};
+use crate::manifest::{
+    parse_dictionary, parse_manifest, Manifest, ModuleEntry, SensorEntry, Simulator, MANIFEST,
+};
 use proclaim_cdl::{check_source, Language, Theory};
 use proclaim_experts::simulator::{parse_game, GameScript};
 use proclaim_experts::{parse_duration, parse_mapping, parse_script, Script};
@@ -23,6 +25,8 @@ pub struct Behaviour {
     pub ring_period: Duration,
     pub answer_timeout: Duration,
     pub run_for: Option<Duration>,
+    /// Modules outside the behaviour (the manifest's `[[module]]` and its dictionary's).
+    pub outside: Vec<ModuleEntry>,
     /// Warnings of its files, `file:line: warning: …`.
     pub warnings: Vec<String>,
     pub files: Arc<dyn Files>,
@@ -218,6 +222,17 @@ pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<String>>
         },
     };
 
+    let mut outside = manifest.modules.clone();
+    if let Some(file) = &manifest.dictionary {
+        match files.read(file).map(|t| parse_dictionary(&t)) {
+            Ok(Ok(d)) => outside.extend(d.modules),
+            Ok(Err((line, message))) => {
+                problems.error(format!("{}:{line}: error: {message}", files.show(file)))
+            }
+            Err(e) => problems.error(e),
+        }
+    }
+
     if problems.errors > 0 {
         let mut all = problems.lines;
         all.extend(problems.warnings);
@@ -235,6 +250,7 @@ pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<String>>
         ring_period,
         answer_timeout,
         run_for,
+        outside,
         warnings,
         files,
     })

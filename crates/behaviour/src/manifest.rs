@@ -23,6 +23,11 @@
 //!
 //! [impersonator]
 //! script = "kitchen.script"            # answers from a script (testcdl)
+//!
+//! dictionary = "../nao.toml"           # modules outside the behaviour, as [[module]] entries
+//! [[module]]                           # one such module here
+//! name = "leds"
+//! reads = ["LEDS"]                     # also posts = […], answers = […]
 //! ```
 
 use serde::Deserialize;
@@ -50,6 +55,33 @@ pub struct Manifest {
     pub sensors: Vec<SensorEntry>,
     #[serde(default)]
     pub impersonator: Option<ImpersonatorEntry>,
+    /// A file of `[[module]]` entries: modules outside the behaviour (actuators, other
+    /// programs), so the dependency diagram and `check` know who listens and who answers.
+    #[serde(default)]
+    pub dictionary: Option<String>,
+    #[serde(default, rename = "module")]
+    pub modules: Vec<ModuleEntry>,
+}
+
+/// A module outside the behaviour: what it posts, reads and answers.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ModuleEntry {
+    pub name: String,
+    #[serde(default)]
+    pub posts: Vec<String>,
+    #[serde(default)]
+    pub reads: Vec<String>,
+    #[serde(default)]
+    pub answers: Vec<String>,
+}
+
+/// A dictionary file: only `[[module]]` entries.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Dictionary {
+    #[serde(default, rename = "module")]
+    pub modules: Vec<ModuleEntry>,
 }
 
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -123,6 +155,15 @@ fn yes() -> bool {
 
 /// Reads a manifest; an error says where (1-based line) and why.
 pub fn parse_manifest(text: &str) -> Result<Manifest, (usize, String)> {
+    parse_toml(text)
+}
+
+/// Reads a dictionary of outside modules; an error says where (1-based line) and why.
+pub fn parse_dictionary(text: &str) -> Result<Dictionary, (usize, String)> {
+    parse_toml(text)
+}
+
+fn parse_toml<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, (usize, String)> {
     toml::from_str(text).map_err(|e| {
         let line = e.span().map_or(1, |s| {
             text[..s.start.min(text.len())].matches('\n').count() + 1

@@ -40,6 +40,10 @@ impl TraceView {
                 match by {
                     Answerer::Expert(who) if changed => format!("{atom} = {value}  ({who})"),
                     Answerer::Expert(_) => return None,
+                    Answerer::Posted(who) if changed => {
+                        format!("{atom} = {value}  (as posted by {who})")
+                    }
+                    Answerer::Posted(_) => return None,
                     Answerer::TimedOut => format!("{atom}: no answer in time, counted false"),
                     Answerer::NoExpert if changed => {
                         format!("{atom}: no expert answers it, counted false")

@@ -102,10 +102,15 @@ impl GameControllerReceiver {
     }
 
     pub fn declaration(&self) -> ModuleDecl {
-        ModuleDecl::new(&self.config.name)
+        GameControllerReceiver::declaration_for(&self.config)
+    }
+
+    /// What a receiver with this configuration posts, reads and answers (no socket needed).
+    pub fn declaration_for(config: &ReceiverConfig) -> ModuleDecl {
+        ModuleDecl::new(&config.name)
             .posts(VALUES.iter().chain(&LABELS).copied())
             .answers(LABELS)
-            .reads(if self.config.send_status {
+            .reads(if config.send_status {
                 vec!["fallen"]
             } else {
                 vec![]

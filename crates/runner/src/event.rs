@@ -79,7 +79,10 @@ pub enum Answerer {
     Expert(String),
     /// An expert is registered but did not answer in time; counted false.
     TimedOut,
-    /// No module answers the atom; counted false at once.
+    /// No expert answers the atom, but a module posted it (a machine's `NameIsRunning`, a
+    /// sensor value): its latest value.
+    Posted(String),
+    /// No module answers or posts the atom; counted false at once.
     NoExpert,
 }
 

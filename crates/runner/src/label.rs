@@ -61,7 +61,12 @@ pub(crate) fn prove<'a>(
                         (*value, Answerer::Expert(by.to_string()))
                     }
                     QueryOutcome::TimedOut => (false, Answerer::TimedOut),
-                    QueryOutcome::NoExpert => (false, Answerer::NoExpert),
+                    // No expert, but a module posts it as a state (`PlacerIsRunning`, a
+                    // sensor value): its current value is the answer.
+                    QueryOutcome::NoExpert => match cx.board.latest(atom) {
+                        Some(m) => (m.value.truthy(), Answerer::Posted(m.module.to_string())),
+                        None => (false, Answerer::NoExpert),
+                    },
                 };
                 cx.answered.push((atom.clone(), value, by));
                 value

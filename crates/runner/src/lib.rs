@@ -13,4 +13,4 @@ mod machine;
 
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
-pub use machine::{Loader, MachineRunner, RunOptions};
+pub use machine::{declaration, Loader, MachineRunner, RunOptions};

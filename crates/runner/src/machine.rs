@@ -355,8 +355,9 @@ impl MachineRunner {
     }
 }
 
-/// What a machine posts, reads and waits on, registered under `name`.
-fn declaration(m: &Machine, name: &str) -> ModuleDecl {
+/// What a machine posts, reads and waits on, registered under `name` (its own name, unless it
+/// was renamed by a reload).
+pub fn declaration(m: &Machine, name: &str) -> ModuleDecl {
     let mut posts: Vec<String> = vec![format!("{name}IsRunning")];
     for s in &m.states {
         for a in s.on_entry.iter().chain(&s.on_exit).chain(&s.internal) {

@@ -1,0 +1,129 @@
+//! `proclaim check` for a whole behaviour: each machine's own problems (states never reached,
+//! transitions never tried), then what only the whole shows: labels nobody answers, postings
+//! nobody listens to, sub-machines that do not exist, theory outputs nobody queries and inputs
+//! nobody posts. Each finding names the file and line it is about.
+
+use crate::load::Behaviour;
+use crate::modules::{modules, Module, ModuleKind};
+use proclaim_fsm::{lint, Action, FileDiagnostic};
+
+/// Contents of a posting that control a machine named by its type.
+const CONTROL: [&str; 9] = [
+    "On", "on", "Off", "off", "suspend", "resume", "restart", "reload", "reread",
+];
+
+pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
+    let all = modules(behaviour);
+    let files = behaviour.files.as_ref();
+    let mut out = Vec::new();
+    let answered = |atom: &str| all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom));
+    let posted_by_other = |ty: &str, me: &str| {
+        all.iter()
+            .any(|m| m.decl.name != me && m.decl.posts.iter().any(|p| p == ty))
+    };
+    let read_by = |ty: &str, me: &str| {
+        all.iter().any(|m| {
+            m.decl.name != me
+                && (m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty))
+        })
+    };
+    let is_machine = |name: &str| behaviour.machines.iter().any(|m| m.machine.name == name);
+    for loaded in &behaviour.machines {
+        let m = &loaded.machine;
+        let file = files.show(&loaded.file);
+        out.extend(lint(m, &file));
+        let mut reported: Vec<String> = Vec::new();
+        for t in &m.transitions {
+            for atom in t.label.atoms() {
+                let own_status =
+                    is_machine(atom.trim_end_matches("IsRunning")) && atom.ends_with("IsRunning");
+                if answered(atom) || own_status || posted_by_other(atom, &m.name) {
+                    continue;
+                }
+                if !reported.iter().any(|r| r == atom) {
+                    reported.push(atom.to_string());
+                    out.push(FileDiagnostic::error(
+                        &file,
+                        t.line,
+                        format!("label `{atom}` is answered by no expert and posted by no module"),
+                    ));
+                }
+            }
+        }
+        for state in &m.states {
+            for action in state
+                .on_entry
+                .iter()
+                .chain(&state.on_exit)
+                .chain(&state.internal)
+            {
+                let Action::Post { ty, content } = action else {
+                    continue;
+                };
+                if reported.iter().any(|r| r == ty) {
+                    continue;
+                }
+                if CONTROL.contains(&content.as_str()) && !is_machine(ty) && !read_by(ty, &m.name) {
+                    reported.push(ty.clone());
+                    out.push(FileDiagnostic::error(
+                        &file,
+                        state.line,
+                        format!(
+                            "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
+                        ),
+                    ));
+                } else if !is_machine(ty) && !read_by(ty, &m.name) {
+                    reported.push(ty.clone());
+                    out.push(FileDiagnostic::warning(
+                        &file,
+                        state.line,
+                        format!(
+                            "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary)"
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    for module in &all {
+        let ModuleKind::Theory { file } = &module.kind else {
+            continue;
+        };
+        let shown = files.show(file);
+        for output in &module.decl.answers {
+            if !queried(&all, output) {
+                out.push(FileDiagnostic::warning(
+                    &shown,
+                    1,
+                    format!(
+                        "output `{output}` of theory {} is queried by no machine",
+                        module.decl.name
+                    ),
+                ));
+            }
+        }
+        for input in module
+            .decl
+            .reads
+            .iter()
+            .filter(|r| *r != proclaim_board::QUERY_TYPE)
+        {
+            if !posted_by_other(input, &module.decl.name) {
+                out.push(FileDiagnostic::warning(
+                    &shown,
+                    1,
+                    format!(
+                        "input `{input}` of theory {} is posted by no module",
+                        module.decl.name
+                    ),
+                ));
+            }
+        }
+    }
+    out
+}
+
+fn queried(all: &[Module], atom: &str) -> bool {
+    all.iter()
+        .any(|m| m.decl.waits_on.iter().any(|w| w == atom))
+}

@@ -1,0 +1,67 @@
+//! What can be seen wrong in one machine without running it: states never reached, and
+//! transitions never tried (below a `TRUE`) or never fired (below the same label).
+
+use crate::diagnostic::FileDiagnostic;
+use crate::label::Label;
+use crate::model::{Machine, StateId};
+
+/// Warnings about `machine`, read from `file`, in state order.
+pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
+    let mut out = Vec::new();
+    let reached = reachable(machine);
+    for state in &machine.states {
+        if !reached.contains(&state.id) {
+            out.push(FileDiagnostic::warning(
+                file,
+                state.line,
+                format!(
+                    "state {} is never reached from the initial state {}",
+                    state.name,
+                    machine
+                        .state(machine.initial)
+                        .map_or("?", |s| s.name.as_str())
+                ),
+            ));
+        }
+        let outgoing: Vec<_> = machine.outgoing(state.id).collect();
+        for (i, t) in outgoing.iter().enumerate() {
+            let above = &outgoing[..i];
+            if let Some(always) = above.iter().find(|a| a.label == Label::True) {
+                out.push(FileDiagnostic::warning(
+                    file,
+                    t.line,
+                    format!(
+                        "`{}` is never tried: `TRUE` above it (line {}) always fires first",
+                        t.label, always.line
+                    ),
+                ));
+            } else if let Some(same) = above.iter().find(|a| a.label == t.label) {
+                out.push(FileDiagnostic::warning(
+                    file,
+                    t.line,
+                    format!(
+                        "`{}` never fires: the same label above it (line {}) is tried first",
+                        t.label, same.line
+                    ),
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// The states reachable from the initial state.
+pub fn reachable(machine: &Machine) -> Vec<StateId> {
+    let mut seen = vec![machine.initial];
+    let mut next = 0;
+    while next < seen.len() {
+        let at = seen[next];
+        next += 1;
+        for t in machine.outgoing(at) {
+            if !seen.contains(&t.target) {
+                seen.push(t.target);
+            }
+        }
+    }
+    seen
+}
