@@ -3,24 +3,41 @@
 
 use crate::embedded;
 use crate::failure::Failure;
-use proclaim_behaviour::{load, Behaviour, Embedded, Files, Folder, MANIFEST};
+use proclaim_behaviour::{load_manifest, Behaviour, Embedded, Files, Folder, MANIFEST};
 use std::path::Path;
 use std::sync::Arc;
 
-/// A behaviour named on the command line: a folder holding `behaviour.toml`, the manifest
-/// itself, `machines/NAME` under the current folder, or a behaviour built into the binary.
-pub fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
+/// A behaviour named on the command line: a folder holding `behaviour.toml`, a manifest file
+/// (`launch-Placer.toml`), `machines/NAME` under the current folder, or one built into the binary.
+/// A behaviour found: its name, its files, and its manifest's file name.
+pub struct Found {
+    pub label: String,
+    pub files: Arc<dyn Files>,
+    pub manifest: String,
+}
+
+pub fn resolve(name: &str) -> Result<Found, Failure> {
     let path = Path::new(name);
-    let folder = if path.is_dir() {
-        Some(path.to_path_buf())
-    } else if path.file_name().is_some_and(|f| f == MANIFEST) {
-        Some(path.parent().unwrap_or(Path::new(".")).to_path_buf())
+    let is_manifest = path.is_file() && path.extension().is_some_and(|e| e == "toml");
+    let (folder, manifest) = if path.is_dir() {
+        (Some(path.to_path_buf()), MANIFEST.to_string())
+    } else if is_manifest {
+        let file = path
+            .file_name()
+            .map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+        (
+            Some(path.parent().unwrap_or(Path::new(".")).to_path_buf()),
+            file,
+        )
     } else {
         let local = Path::new("machines").join(name);
-        local.join(MANIFEST).is_file().then_some(local)
+        (
+            local.join(MANIFEST).is_file().then_some(local),
+            MANIFEST.to_string(),
+        )
     };
     if let Some(folder) = folder {
-        if !folder.join(MANIFEST).is_file() {
+        if !folder.join(&manifest).is_file() {
             return Err(Failure::Argument(format!(
                 "{} is not a behaviour: it has no {MANIFEST}",
                 folder.display()
@@ -31,7 +48,11 @@ pub fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
             .ok()
             .and_then(|p| p.file_name().map(|f| f.to_string_lossy().into_owned()))
             .unwrap_or_else(|| name.to_string());
-        return Ok((label, Arc::new(Folder::new(folder))));
+        return Ok(Found {
+            label,
+            files: Arc::new(Folder::new(folder)),
+            manifest,
+        });
     }
     match embedded::behaviour(name) {
         Some(files) => {
@@ -40,7 +61,11 @@ pub fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
                 .find(|(n, _)| *n == name)
                 .map(|(n, _)| *n)
                 .unwrap_or("behaviour");
-            Ok((name.to_string(), Arc::new(Embedded { name, files })))
+            Ok(Found {
+                label: name.to_string(),
+                files: Arc::new(Embedded { name, files }),
+                manifest: MANIFEST.to_string(),
+            })
         }
         None => Err(Failure::Argument(format!(
             "no behaviour `{name}`: not a folder with a {MANIFEST}, not machines/{name}, and not a built-in one ({})",
@@ -50,11 +75,13 @@ pub fn resolve(name: &str) -> Result<(String, Arc<dyn Files>), Failure> {
 }
 
 pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
-    let (label, files) = resolve(name)?;
-    let behaviour = load(&label, files).map_err(|lines| Failure::Invalid {
-        what: "the behaviour",
-        errors: lines.iter().filter(|l| l.contains("error")).count().max(1),
-        rendered: lines.join("\n") + "\n",
+    let found = resolve(name)?;
+    let behaviour = load_manifest(&found.label, found.files, &found.manifest).map_err(|lines| {
+        Failure::Invalid {
+            what: "the behaviour",
+            errors: lines.iter().filter(|l| l.contains("error")).count().max(1),
+            rendered: lines.join("\n") + "\n",
+        }
     })?;
     for w in &behaviour.warnings {
         eprintln!("{w}");
@@ -66,7 +93,7 @@ pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
 pub fn is_behaviour(name: &str) -> bool {
     let path = Path::new(name);
     path.is_dir()
-        || path.file_name().is_some_and(|f| f == MANIFEST)
+        || path.is_file() && path.extension().is_some_and(|e| e == "toml")
         || !path.exists()
             && embedded::find(name).is_none()
             && (Path::new("machines").join(name).join(MANIFEST).is_file()

@@ -132,6 +132,22 @@ pub enum Command {
         #[arg(long)]
         speed: Option<f64>,
     },
+    /// Draw a behaviour's module dependencies: for one module, the experts it queries above it
+    /// (green), the modules hearing its postings below it (black), and a red `unknown` for a
+    /// label nobody answers or a posting nobody hears
+    Deps {
+        behaviour: String,
+        /// The module at the centre (default: every module and link)
+        #[arg(long)]
+        module: Option<String>,
+        /// Instead, write the smallest manifest that runs this machine with exactly the modules
+        /// it needs (put it beside the behaviour's own, then `proclaim run FILE.toml`)
+        #[arg(long, value_name = "MACHINE", conflicts_with = "module")]
+        launch: Option<String>,
+        /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout); with --launch, .toml
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Write machines (T/A pairs, Qfsm .fsm) as native .machine files, one per machine
     Import {
         /// Qfsm .fsm files, or either file of a T/A pair (its partner is found beside it)
@@ -148,8 +164,9 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Draw a machine (native, T/A pair or Qfsm file) as a diagram: DOT, or SVG/PNG/PDF through Graphviz
+    /// Draw a machine (native, T/A pair or Qfsm file) or a behaviour as a diagram: DOT, or SVG/PNG/PDF through Graphviz
     Draw {
+        /// A machine file, or a behaviour (its machines in boxes, sub-machines linked)
         machine: String,
         /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout)
         #[arg(short, long)]

@@ -308,3 +308,81 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
         ]
     );
 }
+
+fn repo_behaviour(name: &str) -> proclaim_behaviour::Behaviour {
+    load(name, Arc::new(Folder::new(behaviour_dir(name)))).expect("loads")
+}
+
+#[test]
+fn behaviour_diagrams_are_stable() {
+    for name in ["game_controller", "microwave"] {
+        let b = repo_behaviour(name);
+        let machines: Vec<(&proclaim_fsm::Machine, bool)> =
+            b.machines.iter().map(|m| (&m.machine, m.start)).collect();
+        insta::assert_snapshot!(
+            format!("{name}_machines"),
+            proclaim_fsm::behaviour_to_dot(name, &machines)
+        );
+        let modules = proclaim_behaviour::modules(&b);
+        let centre = &b.machines[0].machine.name;
+        insta::assert_snapshot!(
+            format!("{name}_deps"),
+            proclaim_behaviour::module_diagram(&modules, centre).unwrap()
+        );
+    }
+}
+
+#[test]
+fn a_posting_nobody_hears_and_a_label_nobody_answers_go_to_unknown() {
+    let dir = temp_behaviour(&[
+        ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+        (
+            "M.machine",
+            "machine M\nstate A {\n  entry {\n    Beep: twice\n  }\n  when ghost -> A\n}\n",
+        ),
+    ]);
+    let b = load("faulty", Arc::new(Folder::new(&dir))).unwrap();
+    let dot = proclaim_behaviour::module_diagram(&proclaim_behaviour::modules(&b), "M").unwrap();
+    assert!(
+        dot.contains("unknown -> \"M\" [color=red, fontcolor=red, label=\"ghost\"];"),
+        "{dot}"
+    );
+    assert!(
+        dot.contains("\"M\" -> unknown [color=red, fontcolor=red, label=\"Beep\"];"),
+        "{dot}"
+    );
+    let err =
+        proclaim_behaviour::module_diagram(&proclaim_behaviour::modules(&b), "N").unwrap_err();
+    assert_eq!(err, "no module `N`; the behaviour has M");
+}
+
+#[test]
+fn launch_manifests_start_exactly_what_a_machine_needs() {
+    let b = repo_behaviour("game_controller");
+    let modules = proclaim_behaviour::modules(&b);
+    assert_eq!(
+        proclaim_behaviour::launch_manifest(&b, &modules, "Placer").unwrap(),
+        "# The smallest behaviour that runs Placer: written by `proclaim deps --launch Placer`.\n\
+         dictionary = \"../nao.toml\"\n\n[[machine]]\nfile = \"Placer.machine\"\n"
+    );
+    let m = repo_behaviour("microwave");
+    let text =
+        proclaim_behaviour::launch_manifest(&m, &proclaim_behaviour::modules(&m), "Microwave")
+            .unwrap();
+    assert!(
+        text.contains("[[theory]]\nfile = \"../../theories/microwave.dl\"\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("[impersonator]\nscript = \"kitchen.script\"\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("[[module]]\nname = \"magnetron\"\n"),
+        "{text}"
+    );
+    // The manifest loads beside the original.
+    let parsed = proclaim_behaviour::parse_manifest(&text).unwrap();
+    assert_eq!(parsed.machines.len(), 1);
+    assert_eq!(parsed.theories.len(), 1);
+}

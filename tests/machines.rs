@@ -447,14 +447,14 @@ fn a_machine_as_dot() {
   start [shape=point, width=0.15];
   start -> s0;
   s1 [label="Open (1)\nentry: Light: On\lentry: Alarm: On\lexit: beep(2)\l"];
-  "Light" [shape=component, style=dashed];
-  s1 -> "Light" [style=dashed, arrowhead=odot, label="starts"];
-  "Alarm" [shape=component, style=dashed];
-  s1 -> "Alarm" [style=dashed, arrowhead=odot, label="starts"];
   s0 [label="Shut \"quiet\" (0)\n", peripheries=2];
   s1 -> s0 [label="1: ~open"];
   s0 -> s0 [label="1: timeout(5000000)"];
   s0 -> s1 [label="2: open"];
+  "Light" [shape=component, style=dashed];
+  s1 -> "Light" [style=dashed, arrowhead=odot, label="starts"];
+  "Alarm" [shape=component, style=dashed];
+  s1 -> "Alarm" [style=dashed, arrowhead=odot, label="starts"];
 }
 "#
     );

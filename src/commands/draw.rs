@@ -1,14 +1,31 @@
-//! `proclaim draw`: a machine as a diagram. DOT is written directly; SVG, PNG and PDF go
+//! `proclaim draw`: a machine, or a behaviour's machines, as a diagram. DOT is written directly; SVG, PNG and PDF go
 //! through Graphviz's `dot`, and without it the DOT is written with a note on how to render it.
 
+use crate::behaviours::{is_behaviour, load_behaviour};
 use crate::failure::Failure;
 use crate::machines::machine_file;
-use proclaim_fsm::{to_dot, Severity};
+use proclaim_fsm::{behaviour_to_dot, to_dot, Machine, Severity};
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};
 
 pub fn run(file: &str, output: Option<&Path>, name: Option<&str>) -> Result<ExitCode, Failure> {
+    let dot = if is_behaviour(file) {
+        let behaviour = load_behaviour(file)?;
+        let machines: Vec<(&Machine, bool)> = behaviour
+            .machines
+            .iter()
+            .map(|m| (&m.machine, m.start))
+            .collect();
+        behaviour_to_dot(&behaviour.name, &machines)
+    } else {
+        machine_dot(file, name)?
+    };
+    write_diagram(&dot, output)
+}
+
+/// A machine file's diagram (`name` chooses one when the file holds several).
+fn machine_dot(file: &str, name: Option<&str>) -> Result<String, Failure> {
     let Some(imported) = machine_file(file)? else {
         return Err(Failure::Argument(format!(
             "{file} is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
@@ -43,7 +60,11 @@ pub fn run(file: &str, output: Option<&Path>, name: Option<&str>) -> Result<Exit
             )))
         }
     };
-    let dot = to_dot(machine);
+    Ok(to_dot(machine))
+}
+
+/// Writes DOT to stdout or a .dot file, or renders it through Graphviz.
+pub fn write_diagram(dot: &str, output: Option<&Path>) -> Result<ExitCode, Failure> {
     let Some(output) = output else {
         print!("{dot}");
         return Ok(ExitCode::SUCCESS);
@@ -69,7 +90,7 @@ pub fn run(file: &str, output: Option<&Path>, name: Option<&str>) -> Result<Exit
             output.display()
         )));
     }
-    match render(&dot, &format, output) {
+    match render(dot, &format, output) {
         Ok(()) => Ok(ExitCode::SUCCESS),
         Err(why) => {
             let dot_path = output.with_extension("dot");

@@ -2,7 +2,8 @@
 
 mod bench;
 mod check;
-mod draw;
+mod deps;
+pub mod draw;
 mod explain;
 mod gamecontroller;
 mod gen;
@@ -59,6 +60,17 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             halt_on_timeout,
         }),
         Command::Replay { trace, speed } => run::replay(&trace, speed),
+        Command::Deps {
+            behaviour,
+            module,
+            launch,
+            output,
+        } => deps::run(
+            &behaviour,
+            module.as_deref(),
+            launch.as_deref(),
+            output.as_deref(),
+        ),
         Command::Import { files, output } => import::run(&files, &output),
         Command::Gen {
             family,

@@ -8,6 +8,7 @@
 //! sockets its sensors need; it does not watch files or print: the binary does.
 
 mod analysis;
+mod deps;
 mod files;
 mod launch;
 mod load;
@@ -16,9 +17,12 @@ mod modules;
 mod trace;
 
 pub use analysis::check_behaviour;
+pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
-pub use load::{load, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory};
+pub use load::{
+    load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
+};
 pub use manifest::{
     parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, SensorEntry, SensorKind, Simulator,
     TheoryEntry, MANIFEST,

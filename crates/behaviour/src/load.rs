@@ -56,18 +56,28 @@ pub struct LoadedSensor {
 
 /// Loads the behaviour `name` from `files`. `Err` holds every error (and warning), one a line.
 pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<String>> {
+    load_manifest(name, files, MANIFEST)
+}
+
+/// Loads a behaviour whose manifest has another name than `behaviour.toml` (one written by
+/// `proclaim deps --launch`, beside the original).
+pub fn load_manifest(
+    name: &str,
+    files: Arc<dyn Files>,
+    manifest_name: &str,
+) -> Result<Behaviour, Vec<String>> {
     let mut problems = Problems::default();
-    let manifest_text = files.read(MANIFEST).map_err(|e| vec![e])?;
+    let manifest_text = files.read(manifest_name).map_err(|e| vec![e])?;
     let manifest = match parse_manifest(&manifest_text) {
         Ok(m) => m,
         Err((line, message)) => {
             return Err(vec![format!(
                 "{}:{line}: error: {message}",
-                files.show(MANIFEST)
+                files.show(manifest_name)
             )])
         }
     };
-    let manifest_file = files.show(MANIFEST);
+    let manifest_file = files.show(manifest_name);
     let duration = |field: &str, value: &Option<String>, problems: &mut Problems| {
         let text = value.as_ref()?;
         let parsed = parse_duration(text).filter(|d| !d.is_zero());

@@ -30,7 +30,7 @@
 //! reads = ["LEDS"]                     # also posts = […], answers = […]
 //! ```
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The manifest's file name inside a behaviour's folder.
 pub const MANIFEST: &str = "behaviour.toml";
@@ -64,15 +64,15 @@ pub struct Manifest {
 }
 
 /// A module outside the behaviour: what it posts, reads and answers.
-#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ModuleEntry {
     pub name: String,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub posts: Vec<String>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub reads: Vec<String>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub answers: Vec<String>,
 }
 
@@ -107,27 +107,27 @@ pub struct TheoryEntry {
     pub mapping: Option<String>,
 }
 
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SensorEntry {
     pub kind: SensorKind,
     /// GameController: the UDP port (default 3838; an ephemeral loopback port with the
     /// simulator).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub port: Option<u16>,
     /// GameController: our team number (default: the first team of each packet).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub team: Option<u8>,
     /// GameController: our player number.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub player: Option<u8>,
     /// GameController: `true` plays the built-in short game to the receiver, a file name plays
     /// that game script, `false` listens for a real GameController.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simulator: Option<Simulator>,
 }
 
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
 pub enum SensorKind {
     Gamecontroller,
@@ -136,7 +136,7 @@ pub enum SensorKind {
     Fall,
 }
 
-#[derive(Clone, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(untagged)]
 pub enum Simulator {
     On(bool),

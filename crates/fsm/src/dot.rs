@@ -9,13 +9,89 @@ use std::fmt::Write;
 pub fn to_dot(machine: &Machine) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "digraph {} {{", quote(&machine.name));
+    header(&mut out);
+    let started = body(&mut out, machine, "", "  ");
+    let mut drawn: Vec<&str> = Vec::new();
+    for (from, target) in &started {
+        if !drawn.contains(&target.as_str()) {
+            let _ = writeln!(out, "  {} [shape=component, style=dashed];", quote(target));
+            drawn.push(target);
+        }
+        let _ = writeln!(
+            out,
+            "  {from} -> {} [style=dashed, arrowhead=odot, label=\"starts\"];",
+            quote(target)
+        );
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// DOT text for the machines of a behaviour, each in its own box (sub-machines, those not
+/// started at first, dashed), a state that starts a sub-machine linked to that machine's box.
+/// A machine started that the behaviour does not have is drawn red.
+pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "digraph {} {{", quote(name));
+    out.push_str("  compound=true;\n");
+    header(&mut out);
+    let mut links = Vec::new();
+    for (i, (machine, start)) in machines.iter().enumerate() {
+        let _ = writeln!(out, "  subgraph cluster_{i} {{");
+        let _ = writeln!(
+            out,
+            "    label={}; fontname=\"Helvetica\"; style={};",
+            quote(&machine.name),
+            if *start { "solid" } else { "dashed" }
+        );
+        let started = body(&mut out, machine, &format!("m{i}_"), "    ");
+        out.push_str("  }\n");
+        links.extend(started);
+    }
+    let mut missing: Vec<&str> = Vec::new();
+    for (from, target) in &links {
+        match machines.iter().position(|(m, _)| m.name == *target) {
+            Some(k) => {
+                let _ = writeln!(
+                    out,
+                    "  {from} -> m{k}_start [lhead=cluster_{k}, style=dashed, arrowhead=odot, label=\"starts\"];"
+                );
+            }
+            None => {
+                if !missing.contains(&target.as_str()) {
+                    let _ = writeln!(
+                        out,
+                        "  {} [shape=component, style=dashed, color=red, fontcolor=red];",
+                        quote(target)
+                    );
+                    missing.push(target);
+                }
+                let _ = writeln!(
+                    out,
+                    "  {from} -> {} [style=dashed, arrowhead=odot, color=red, label=\"starts (unknown)\"];",
+                    quote(target)
+                );
+            }
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+fn header(out: &mut String) {
     out.push_str(
         "  rankdir=LR;\n  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n",
     );
     out.push_str("  edge [fontname=\"Helvetica\", fontsize=9];\n");
-    out.push_str("  start [shape=point, width=0.15];\n");
-    let _ = writeln!(out, "  start -> s{};", node(machine.initial));
-    let mut started: Vec<String> = Vec::new();
+}
+
+/// The states and transitions of one machine, node names prefixed; returns the (node, machine)
+/// pairs of the sub-machines its states start.
+fn body(out: &mut String, machine: &Machine, prefix: &str, indent: &str) -> Vec<(String, String)> {
+    let id = |state: i64| format!("{prefix}s{}", node(state));
+    let _ = writeln!(out, "{indent}{prefix}start [shape=point, width=0.15];");
+    let _ = writeln!(out, "{indent}{prefix}start -> {};", id(machine.initial));
+    let mut started = Vec::new();
     for state in &machine.states {
         let mut label = format!("{} ({})\\n", escape(&state.name), state.id);
         for (section, actions) in [
@@ -34,22 +110,13 @@ pub fn to_dot(machine: &Machine) -> String {
         };
         let _ = writeln!(
             out,
-            "  s{} [label=\"{label}\"{peripheries}];",
-            node(state.id)
+            "{indent}{} [label=\"{label}\"{peripheries}];",
+            id(state.id)
         );
         for action in &state.on_entry {
             if let Action::Post { ty, content } = action {
                 if matches!(content.as_str(), "On" | "restart") {
-                    if !started.contains(ty) {
-                        let _ = writeln!(out, "  {} [shape=component, style=dashed];", quote(ty));
-                        started.push(ty.clone());
-                    }
-                    let _ = writeln!(
-                        out,
-                        "  s{} -> {} [style=dashed, arrowhead=odot, label=\"starts\"];",
-                        node(state.id),
-                        quote(ty)
-                    );
+                    started.push((id(state.id), ty.clone()));
                 }
             }
         }
@@ -58,16 +125,15 @@ pub fn to_dot(machine: &Machine) -> String {
         for (priority, t) in machine.outgoing(state.id).enumerate() {
             let _ = writeln!(
                 out,
-                "  s{} -> s{} [label=\"{}: {}\"];",
-                node(t.source),
-                node(t.target),
+                "{indent}{} -> {} [label=\"{}: {}\"];",
+                id(t.source),
+                id(t.target),
                 priority + 1,
                 escape(&t.label.to_string())
             );
         }
     }
-    out.push_str("}\n");
-    out
+    started
 }
 
 /// State ids may be negative; node names may not start with `-`.

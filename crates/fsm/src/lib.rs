@@ -18,7 +18,7 @@ mod ta;
 
 pub use activity::{parse_gufsm_activities, parse_ta_items};
 pub use diagnostic::{FileDiagnostic, Severity};
-pub use dot::to_dot;
+pub use dot::{behaviour_to_dot, to_dot};
 pub use label::{parse_label, CmpOp, Label, LabelError, Operand};
 pub use lint::{lint, reachable};
 pub use model::{Action, Argument, Machine, State, StateId, Transition};

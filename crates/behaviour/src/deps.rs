@@ -1,0 +1,298 @@
+//! The module-dependency diagram of the seed paper (Section III, Figure 4), and the smallest
+//! behaviour that runs one machine with exactly the modules it needs (the seed's generated test
+//! script).
+
+use crate::load::Behaviour;
+use crate::modules::{Module, ModuleKind};
+use std::fmt::Write;
+
+/// One module at the centre: the experts it queries above it (green arrows, blocking: they
+/// proclaim its labels), the modules that listen to its postings below it (black arrows,
+/// non-blocking), and a red **unknown** for a label nobody answers or a posting nobody hears.
+pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String> {
+    let Some(me) = modules.iter().find(|m| m.decl.name == centre) else {
+        return Err(format!(
+            "no module `{centre}`; the behaviour has {}",
+            names(modules)
+        ));
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "digraph {} {{",
+        quote(&format!("dependencies of {centre}"))
+    );
+    out.push_str("  rankdir=TB;\n  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=9];\n");
+    let _ = writeln!(
+        out,
+        "  {} [style=\"rounded,bold\", penwidth=2];",
+        quote(centre)
+    );
+    let mut above: Vec<String> = Vec::new();
+    let mut below: Vec<String> = Vec::new();
+    let mut unknown = false;
+    for atom in &me.decl.waits_on {
+        let experts: Vec<&Module> = modules
+            .iter()
+            .filter(|m| m.decl.name != centre && m.decl.answers.contains(atom))
+            .collect();
+        if experts.is_empty() {
+            unknown = true;
+            let _ = writeln!(
+                out,
+                "  unknown -> {} [color=red, fontcolor=red, label={}];",
+                quote(centre),
+                quote(atom)
+            );
+        }
+        for e in experts {
+            if !above.contains(&e.decl.name) {
+                above.push(e.decl.name.clone());
+            }
+            let _ = writeln!(
+                out,
+                "  {} -> {} [color=green4, label={}];",
+                quote(&e.decl.name),
+                quote(centre),
+                quote(atom)
+            );
+        }
+    }
+    for ty in me
+        .decl
+        .posts
+        .iter()
+        .filter(|t| **t != format!("{centre}IsRunning"))
+    {
+        let listeners: Vec<&Module> = modules
+            .iter()
+            .filter(|m| {
+                m.decl.name != centre && (m.decl.reads.contains(ty) || m.decl.waits_on.contains(ty))
+            })
+            .collect();
+        if listeners.is_empty() {
+            unknown = true;
+            let _ = writeln!(
+                out,
+                "  {} -> unknown [color=red, fontcolor=red, label={}];",
+                quote(centre),
+                quote(ty)
+            );
+        }
+        for l in listeners {
+            if !below.contains(&l.decl.name) && !above.contains(&l.decl.name) {
+                below.push(l.decl.name.clone());
+            }
+            let _ = writeln!(
+                out,
+                "  {} -> {} [label={}];",
+                quote(centre),
+                quote(&l.decl.name),
+                quote(ty)
+            );
+        }
+    }
+    if unknown {
+        out.push_str("  unknown [shape=plaintext, fontcolor=red, label=\"unknown\"];\n");
+    }
+    for (rank, group) in [("min", &above), ("max", &below)] {
+        if !group.is_empty() {
+            let members: Vec<String> = group.iter().map(|n| quote(n)).collect();
+            let _ = writeln!(out, "  {{ rank={rank}; {}; }}", members.join("; "));
+        }
+    }
+    out.push_str("}\n");
+    Ok(out)
+}
+
+/// Every module and every provider → listener link: green where a label is proclaimed, black
+/// where a posting is heard, red to **unknown** where nobody answers or hears.
+pub fn overall_diagram(modules: &[Module], name: &str) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "digraph {} {{", quote(&format!("modules of {name}")));
+    out.push_str("  rankdir=TB;\n  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=9];\n");
+    for m in modules {
+        let style = match m.kind {
+            ModuleKind::Machine { .. } => "rounded,bold",
+            ModuleKind::Outside => "rounded,dashed",
+            _ => "rounded",
+        };
+        let _ = writeln!(out, "  {} [style=\"{style}\"];", quote(&m.decl.name));
+    }
+    let mut unknown = false;
+    for m in modules {
+        for atom in &m.decl.waits_on {
+            let experts: Vec<&Module> = modules
+                .iter()
+                .filter(|e| e.decl.name != m.decl.name && e.decl.answers.contains(atom))
+                .collect();
+            unknown |= experts.is_empty();
+            if experts.is_empty() {
+                let _ = writeln!(
+                    out,
+                    "  unknown -> {} [color=red, fontcolor=red, label={}];",
+                    quote(&m.decl.name),
+                    quote(atom)
+                );
+            }
+            for e in experts {
+                let _ = writeln!(
+                    out,
+                    "  {} -> {} [color=green4, label={}];",
+                    quote(&e.decl.name),
+                    quote(&m.decl.name),
+                    quote(atom)
+                );
+            }
+        }
+        for ty in m.decl.posts.iter().filter(|t| !m.decl.answers.contains(t)) {
+            for l in modules
+                .iter()
+                .filter(|l| l.decl.name != m.decl.name && l.decl.reads.contains(ty))
+            {
+                let _ = writeln!(
+                    out,
+                    "  {} -> {} [label={}];",
+                    quote(&m.decl.name),
+                    quote(&l.decl.name),
+                    quote(ty)
+                );
+            }
+        }
+    }
+    if unknown {
+        out.push_str("  unknown [shape=plaintext, fontcolor=red, label=\"unknown\"];\n");
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// The manifest of the smallest behaviour that runs machine `centre`: it, the sub-machines it
+/// starts (and theirs), the experts and sensor wrappers that answer their labels, and the
+/// behaviour's outside modules. Paths stay relative to the behaviour's folder, so the file
+/// belongs beside its `behaviour.toml`.
+pub fn launch_manifest(
+    behaviour: &Behaviour,
+    modules: &[Module],
+    centre: &str,
+) -> Result<String, String> {
+    if !behaviour.machines.iter().any(|m| m.machine.name == centre) {
+        return Err(format!(
+            "no machine `{centre}`; the behaviour's machines are {}",
+            behaviour
+                .machines
+                .iter()
+                .map(|m| m.machine.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    // The machine and every machine it starts, transitively.
+    let mut wanted: Vec<String> = vec![centre.to_string()];
+    let mut next = 0;
+    while next < wanted.len() {
+        let name = wanted[next].clone();
+        next += 1;
+        if let Some(m) = modules.iter().find(|m| m.decl.name == name) {
+            for ty in &m.decl.posts {
+                if behaviour.machines.iter().any(|x| x.machine.name == *ty) && !wanted.contains(ty)
+                {
+                    wanted.push(ty.clone());
+                }
+            }
+        }
+    }
+    // Then every expert, sensor wrapper or impersonator that answers a label of what is
+    // needed, or posts what it reads (a theory's inputs), until nothing more is needed.
+    let mut needed: Vec<&str> = wanted.iter().map(String::as_str).collect();
+    loop {
+        let before = needed.len();
+        for m in modules {
+            if matches!(m.kind, ModuleKind::Machine { .. } | ModuleKind::Outside)
+                || needed.contains(&m.decl.name.as_str())
+            {
+                continue;
+            }
+            let serves = modules
+                .iter()
+                .filter(|n| needed.contains(&n.decl.name.as_str()))
+                .any(|n| {
+                    m.decl.answers.iter().any(|a| n.decl.waits_on.contains(a))
+                        || m.decl
+                            .posts
+                            .iter()
+                            .any(|p| p != proclaim_board::QUERY_TYPE && n.decl.reads.contains(p))
+                });
+            if serves {
+                needed.push(&m.decl.name);
+            }
+        }
+        if needed.len() == before {
+            break;
+        }
+    }
+    let is_needed = |m: &Module| needed.contains(&m.decl.name.as_str());
+    let mut out = format!(
+        "# The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`.\n"
+    );
+    if let Some(d) = &behaviour.manifest.dictionary {
+        let _ = writeln!(out, "dictionary = {}", quote(d));
+    }
+    for m in &behaviour.machines {
+        if wanted.contains(&m.machine.name) {
+            let _ = write!(out, "\n[[machine]]\nfile = {}\n", quote(&m.file));
+            if m.machine.name != centre {
+                out.push_str("start = false\n");
+            }
+        }
+    }
+    for (entry, t) in behaviour.manifest.theories.iter().zip(&behaviour.theories) {
+        if modules
+            .iter()
+            .any(|m| m.decl.name == t.name && is_needed(m))
+        {
+            let _ = write!(out, "\n[[theory]]\nfile = {}\n", quote(&entry.file));
+            if let Some(n) = &entry.name {
+                let _ = writeln!(out, "name = {}", quote(n));
+            }
+            if let Some(map) = &entry.mapping {
+                let _ = writeln!(out, "mapping = {}", quote(map));
+            }
+        }
+    }
+    for s in &behaviour.manifest.sensors {
+        let needed = modules
+            .iter()
+            .any(|m| m.kind == ModuleKind::Sensor(s.kind) && is_needed(m));
+        if needed {
+            let text = toml::to_string(s).unwrap_or_default();
+            let _ = write!(out, "\n[[sensor]]\n{text}");
+        }
+    }
+    if let Some(i) = &behaviour.manifest.impersonator {
+        if modules
+            .iter()
+            .any(|m| m.kind == ModuleKind::Impersonator && is_needed(m))
+        {
+            let _ = write!(out, "\n[impersonator]\nscript = {}\n", quote(&i.script));
+        }
+    }
+    for o in &behaviour.manifest.modules {
+        let text = toml::to_string(o).unwrap_or_default();
+        let _ = write!(out, "\n[[module]]\n{text}");
+    }
+    Ok(out)
+}
+
+fn names(modules: &[Module]) -> String {
+    modules
+        .iter()
+        .map(|m| m.decl.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn quote(text: &str) -> String {
+    let escaped = text.replace('\\', "\\\\").replace('"', "\\\"");
+    format!("\"{escaped}\"")
+}

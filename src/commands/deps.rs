@@ -1,0 +1,45 @@
+//! `proclaim deps`: who a module depends on and who depends on it (the seed paper's Figure 4),
+//! or the smallest behaviour that runs one machine (`--launch`).
+
+use crate::behaviours::load_behaviour;
+use crate::commands::draw::write_diagram;
+use crate::failure::Failure;
+use proclaim_behaviour::{launch_manifest, module_diagram, modules, overall_diagram};
+use std::path::Path;
+use std::process::ExitCode;
+
+pub fn run(
+    behaviour: &str,
+    module: Option<&str>,
+    launch: Option<&str>,
+    output: Option<&Path>,
+) -> Result<ExitCode, Failure> {
+    let loaded = load_behaviour(behaviour)?;
+    let all = modules(&loaded);
+    if let Some(machine) = launch {
+        let text = launch_manifest(&loaded, &all, machine).map_err(Failure::Argument)?;
+        return match output {
+            None => {
+                print!("{text}");
+                Ok(ExitCode::SUCCESS)
+            }
+            Some(path) => {
+                std::fs::write(path, text).map_err(|error| Failure::Write {
+                    path: path.to_path_buf(),
+                    error,
+                })?;
+                println!(
+                    "wrote {}: run it with `proclaim run {}`",
+                    path.display(),
+                    path.display()
+                );
+                Ok(ExitCode::SUCCESS)
+            }
+        };
+    }
+    let dot = match module {
+        Some(m) => module_diagram(&all, m).map_err(Failure::Argument)?,
+        None => overall_diagram(&all, &loaded.name),
+    };
+    write_diagram(&dot, output)
+}
