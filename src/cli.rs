@@ -148,6 +148,15 @@ pub enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Turn liveness formulas (Gaia operators: `A.B`, `A|B`, `A||B`, `A*`, `A+`, `A~`, `[A]`) into a
+    /// skeleton behaviour of native machines; `proclaim check DIR` then lists the open labels
+    Liveness {
+        /// One formula a line: `TestBehavior = (Play | NoPlay)+`
+        file: PathBuf,
+        /// The folder to write the behaviour into (created if missing)
+        #[arg(short, long, value_name = "DIR")]
+        output: PathBuf,
+    },
     /// Write machines (T/A pairs, Qfsm .fsm) as native .machine files, one per machine
     Import {
         /// Qfsm .fsm files, or either file of a T/A pair (its partner is found beside it)

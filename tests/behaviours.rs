@@ -386,3 +386,148 @@ fn launch_manifests_start_exactly_what_a_machine_needs() {
     assert_eq!(parsed.machines.len(), 1);
     assert_eq!(parsed.theories.len(), 1);
 }
+
+/// The Kouretes paper's formulas, written as a skeleton behaviour into a fresh folder.
+fn skeleton(formulas: &str) -> (PathBuf, Vec<String>) {
+    let (defs, errors) = proclaim_fsm::parse_liveness("f.liveness", formulas);
+    assert!(errors.is_empty(), "{errors:?}");
+    let (machines, warnings) = proclaim_fsm::liveness_machines("f.liveness", &defs);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let mut files: Vec<(String, String)> = machines
+        .iter()
+        .map(|(m, _)| (format!("{}.machine", m.name), proclaim_fsm::to_native(m)))
+        .collect();
+    let mut manifest = String::new();
+    for (m, start) in &machines {
+        manifest.push_str(&format!(
+            "[[machine]]\nfile = \"{}.machine\"\nstart = {start}\n",
+            m.name
+        ));
+    }
+    files.push(("behaviour.toml".into(), manifest));
+    let refs: Vec<(&str, &str)> = files
+        .iter()
+        .map(|(a, b)| (a.as_str(), b.as_str()))
+        .collect();
+    let names = files.iter().map(|(f, _)| f.clone()).collect();
+    (temp_behaviour(&refs), names)
+}
+
+#[test]
+fn liveness_formulas_of_the_test_behaviour_become_a_skeleton_machine() {
+    let (dir, files) = skeleton(
+        "TestBehavior = (Play | NoPlay)+\nPlay = SitDownAndStare | StandUpAndScan  # refined\n",
+    );
+    assert_eq!(files, ["TestBehavior.machine", "behaviour.toml"]);
+    let text = std::fs::read_to_string(dir.join("TestBehavior.machine")).unwrap();
+    assert_eq!(
+        text,
+        "machine TestBehavior\ninitial Choose\n\n\
+         state Choose {\n    when choosePlay -> Choose2\n    when chooseNoPlay -> NoPlay\n}\n\n\
+         state Choose2 {\n    when chooseSitDownAndStare -> SitDownAndStare\n    when chooseStandUpAndScan -> StandUpAndScan\n}\n\n\
+         state NoPlay {\n    entry {\n        call NoPlay\n    }\n    when NoPlayDone -> Repeat\n}\n\n\
+         state SitDownAndStare {\n    entry {\n        call SitDownAndStare\n    }\n    when SitDownAndStareDone -> Repeat\n}\n\n\
+         state StandUpAndScan {\n    entry {\n        call StandUpAndScan\n    }\n    when StandUpAndScanDone -> Repeat\n}\n\n\
+         state Repeat {\n    when againPlay -> Choose\n    when TRUE -> End\n}\n\n\
+         state End {\n}\n"
+    );
+    let b = load("test", Arc::new(Folder::new(&dir))).unwrap();
+    let open: Vec<String> = proclaim_behaviour::check_behaviour(&b)
+        .iter()
+        .filter(|d| d.severity == proclaim_fsm::Severity::Error)
+        .map(|d| d.message.clone())
+        .collect();
+    assert_eq!(open.len(), 8, "{open:#?}");
+    assert_eq!(
+        open[0],
+        "label `choosePlay` is answered by no expert and posted by no module"
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_done() {
+    let (dir, files) = skeleton("attack = center || center-for || center-for\n");
+    assert_eq!(
+        files,
+        [
+            "attack.machine",
+            "center.machine",
+            "center_for.machine",
+            "center_for_2.machine",
+            "behaviour.toml"
+        ]
+    );
+    let b = load("attack", Arc::new(Folder::new(&dir))).unwrap();
+    let open: Vec<String> = proclaim_behaviour::check_behaviour(&b)
+        .iter()
+        .map(|d| d.message.clone())
+        .collect();
+    assert_eq!(
+        open,
+        [
+            "label `centerDone` is answered by no expert and posted by no module",
+            "label `center_forDone` is answered by no expert and posted by no module",
+            "label `center_forDone` is answered by no expert and posted by no module",
+        ]
+    );
+    // Filled in by a script: the roles finish at 1 s and 2 s, and the protocol ends then.
+    let board = Whiteboard::local();
+    let options = LaunchOptions {
+        script: Some(
+            parse_script("at 1s centerDone = true\nat 2s center_forDone = true\n").unwrap(),
+        ),
+        ..Default::default()
+    };
+    let mut running = launch(&b, &board, options).await.unwrap();
+    let mut entered = Vec::new();
+    let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
+    while let Ok(Some(e)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+        if let proclaim_runner::Event::Entered {
+            machine, state, at, ..
+        } = &e
+        {
+            entered.push(format!("{:.1}s {machine} {state}", at.as_secs_f64()));
+        }
+        if running.observe(&e) {
+            break;
+        }
+    }
+    running.stop().await;
+    entered.sort();
+    assert_eq!(
+        entered,
+        [
+            "0.0s attack Parallel",
+            "0.0s center center",
+            "0.0s center_for center_for",
+            "0.0s center_for_2 center_for",
+            "1.0s center End",
+            "2.0s attack End",
+            "2.0s center_for End",
+            "2.0s center_for_2 End",
+        ]
+    );
+    assert_eq!(
+        board.truth("centerIsRunning"),
+        Some(false),
+        "a finished role turns itself off"
+    );
+}
+
+#[test]
+fn liveness_errors_name_their_lines() {
+    let (_, errors) = proclaim_fsm::parse_liveness(
+        "f.liveness",
+        "A = B . (C | D\nno equals here\nA = B\nE = [F\nG = H ||\n",
+    );
+    let got: Vec<String> = errors.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        got,
+        [
+            "f.liveness:1: error: in the formula of `A`: missing `)`",
+            "f.liveness:2: error: a formula is `Name = activities` (no `=` here)",
+            "f.liveness:4: error: in the formula of `E`: missing `]`",
+            "f.liveness:5: error: in the formula of `G`: the formula ends too early",
+        ]
+    );
+}

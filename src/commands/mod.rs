@@ -9,6 +9,7 @@ mod gamecontroller;
 mod gen;
 mod import;
 mod inputs;
+mod liveness;
 mod prove;
 mod run;
 mod table;
@@ -71,6 +72,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             launch.as_deref(),
             output.as_deref(),
         ),
+        Command::Liveness { file, output } => liveness::run(&file, &output),
         Command::Import { files, output } => import::run(&files, &output),
         Command::Gen {
             family,

@@ -21,10 +21,10 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
         all.iter()
             .any(|m| m.decl.name != me && m.decl.posts.iter().any(|p| p == ty))
     };
-    let read_by = |ty: &str, me: &str| {
+    // A machine may read back what it posts itself.
+    let read_by = |ty: &str| {
         all.iter().any(|m| {
-            m.decl.name != me
-                && (m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty))
+            m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty)
         })
     };
     let is_machine = |name: &str| behaviour.machines.iter().any(|m| m.machine.name == name);
@@ -63,7 +63,7 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
                 if reported.iter().any(|r| r == ty) {
                     continue;
                 }
-                if CONTROL.contains(&content.as_str()) && !is_machine(ty) && !read_by(ty, &m.name) {
+                if CONTROL.contains(&content.as_str()) && !is_machine(ty) && !read_by(ty) {
                     reported.push(ty.clone());
                     out.push(FileDiagnostic::error(
                         &file,
@@ -72,7 +72,7 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
                             "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
                         ),
                     ));
-                } else if !is_machine(ty) && !read_by(ty, &m.name) {
+                } else if !is_machine(ty) && !read_by(ty) {
                     reported.push(ty.clone());
                     out.push(FileDiagnostic::warning(
                         &file,
