@@ -124,6 +124,10 @@ pub enum Command {
         /// Halt a machine whose label gets no answer in time, instead of counting it false
         #[arg(long)]
         halt_on_timeout: bool,
+        /// One ring at a time at a prompt, showing every machine's state and the whiteboard;
+        /// `ATOM=true` answers a label no expert answers
+        #[arg(long, conflicts_with_all = ["watch", "duration"])]
+        step: bool,
     },
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay {

@@ -646,3 +646,161 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
         "{out}"
     );
 }
+
+#[test]
+fn run_step_rings_once_per_enter_and_reads_answers_typed_at_the_prompt() {
+    let dir = std::env::temp_dir().join(format!("proclaim-step-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("M.machine"),
+        "machine M\nstate A {\n  entry {\n    Say: hello\n  }\n  when go -> B\n}\nstate B {\n}\n",
+    )
+    .unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", dir.to_str().unwrap(), "--step"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"\n\ngo=true\n\n\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    // Each prompt (`step N> `) is followed by what that step printed, on the same line.
+    let shown: Vec<String> = out
+        .lines()
+        .map(|l| match l.find("> ") {
+            Some(i) if l.starts_with("step ") => &l[i + 2..],
+            _ => l,
+        })
+        .map(|l| {
+            let words: Vec<&str> = l.split_whitespace().collect();
+            match words.first() {
+                Some(w) if w.ends_with('s') && w[..w.len() - 1].parse::<f64>().is_ok() => {
+                    words[1..].join(" ")
+                }
+                _ => words.join(" "),
+            }
+        })
+        .filter(|l| l.starts_with("M"))
+        .collect();
+    assert_eq!(
+        shown,
+        [
+            "M: A (running)",
+            "M → A",
+            "M posts Say: hello",
+            "M go: no expert answers it, counted false",
+            "M: A (running)",
+            "M: A (running)",
+            "M: A (running)",
+            "M go = true (as posted by you)",
+            "M fires on go",
+            "M: B (running)",
+            "M → B",
+            "M: B (running)",
+        ],
+        "{out}"
+    );
+    assert!(
+        out.contains("whiteboard: MIsRunning=true, Say=\"hello\", go=true"),
+        "{out}"
+    );
+    assert!(
+        out.ends_with("stopped: every machine that started is in a final state or halted\n"),
+        "{out}"
+    );
+}
+
+#[test]
+fn check_draw_deps_and_liveness_on_behaviours() {
+    let repo = env!("CARGO_MANIFEST_DIR");
+    let gc = format!("{repo}/machines/game_controller");
+    check(
+        &["check", &gc],
+        0,
+        &format!("{gc}: ok (2 machines, 0 theories, 2 sensors; 0 errors, 0 warnings)\n"),
+    );
+    // Built-in behaviours are found by name too.
+    let o = proclaim(&["deps", "game_controller", "--module", "GameController"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains(
+            "\"gamecontroller\" -> \"GameController\" [color=green4, label=\"readyReceived\"];"
+        ),
+        "{}",
+        stdout(&o)
+    );
+    let o = proclaim(&["deps", "game_controller", "--module", "Nobody"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains(
+            "no module `Nobody`; the behaviour has GameController, Placer, gamecontroller"
+        ),
+        "{}",
+        stderr(&o)
+    );
+
+    let svg = temp_file("gc.svg", b"");
+    let o = proclaim(&["draw", "game_controller", "-o", svg.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let has_graphviz = Command::new("dot").arg("-V").output().is_ok();
+    if has_graphviz {
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("<svg") && text.contains("Placer"), "{text}");
+    } else {
+        let dot = std::fs::read_to_string(svg.with_extension("dot")).unwrap();
+        assert!(dot.contains("subgraph cluster_1"), "{dot}");
+    }
+
+    let formulas = temp_file(
+        "test.liveness",
+        b"TestBehavior = (Play | NoPlay)+\nPlay = SitDownAndStare | StandUpAndScan\n",
+    );
+    let out = formulas.with_file_name("skeleton");
+    let o = proclaim(&[
+        "liveness",
+        formulas.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = proclaim(&["check", out.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1), "open labels are errors");
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let messages: Vec<&str> = report
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["message"].as_str().unwrap())
+        .collect();
+    assert_eq!(messages.len(), 8, "{messages:#?}");
+    assert!(
+        messages.contains(&"label `againPlay` is answered by no expert and posted by no module")
+    );
+
+    let bad = temp_file("bad.liveness", b"A = (B | C\n");
+    let o = proclaim(&[
+        "liveness",
+        bad.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.liveness:1: error: in the formula of `A`: missing `)`"),
+        "{}",
+        stderr(&o)
+    );
+}

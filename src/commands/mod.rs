@@ -51,6 +51,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             watch,
             no_simulator,
             halt_on_timeout,
+            step,
         } => run::run(run::RunArgs {
             behaviour,
             duration,
@@ -59,6 +60,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             watch,
             no_simulator,
             halt_on_timeout,
+            step,
         }),
         Command::Replay { trace, speed } => run::replay(&trace, speed),
         Command::Deps {

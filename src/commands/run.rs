@@ -7,7 +7,7 @@ use crate::failure::Failure;
 use proclaim_behaviour::{launch, read_trace, Behaviour, LaunchOptions, TraceView};
 use proclaim_board::Whiteboard;
 use proclaim_experts::{parse_duration, parse_script};
-use proclaim_runner::Event;
+use proclaim_runner::{Event, Stepper};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -21,6 +21,7 @@ pub struct RunArgs {
     pub watch: bool,
     pub no_simulator: bool,
     pub halt_on_timeout: bool,
+    pub step: bool,
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
@@ -71,7 +72,9 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         no_simulator: args.no_simulator,
         halt_on_timeout: args.halt_on_timeout,
         hosts: proclaim_runner::Hosts::default(),
+        stepper: args.step.then(Stepper::default),
     };
+    let stepper = options.stepper.clone();
     let outcome = runtime.block_on(async {
         let board = Whiteboard::local();
         let mut running = launch(&behaviour, &board, options)
@@ -83,9 +86,14 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             .map(|m| m.machine.name.as_str())
             .collect();
         println!(
-            "running {}: {} ({} machine{}{})",
+            "running {}{} ({} machine{}{})",
             behaviour.name,
-            behaviour.manifest.description.as_deref().unwrap_or(""),
+            behaviour
+                .manifest
+                .description
+                .as_deref()
+                .map(|d| format!(": {d}"))
+                .unwrap_or_default(),
             machines.len(),
             if machines.len() == 1 { "" } else { "s" },
             match limit {
@@ -97,6 +105,12 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             println!("  {note}");
         }
         let mut view = TraceView::new(machines.iter().map(|m| m.len()).max().unwrap_or(8));
+        if let Some(stepper) = stepper {
+            let why = stepping(&behaviour, &board, &mut running, &stepper, &mut view).await;
+            println!("stopped: {why}");
+            running.stop().await;
+            return Ok(false);
+        }
         let mut changed = watch(&behaviour, args.watch);
         let deadline = limit.map(|d| tokio::time::Instant::now() + d);
         let started = tokio::time::Instant::now();
@@ -154,6 +168,145 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+const STEP_HELP: &str = "Enter: one ring of every running machine · ATOM=true|false: post an answer (labels no expert answers read it) · post TYPE VALUE · q: quit";
+
+/// `--step`: one ring at a time at a prompt, showing where every machine is and what the
+/// whiteboard holds. Returns why it stopped.
+async fn stepping(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    running: &mut proclaim_behaviour::Running,
+    stepper: &Stepper,
+    view: &mut TraceView,
+) -> String {
+    use tokio::io::AsyncBufReadExt;
+    let mut everything = board.subscribe("*");
+    let mut values: std::collections::BTreeMap<String, String> = Default::default();
+    let mut states: std::collections::BTreeMap<String, String> = behaviour
+        .machines
+        .iter()
+        .filter_map(|m| {
+            let initial = m.machine.state(m.machine.initial)?;
+            Some((m.machine.name.clone(), initial.name.clone()))
+        })
+        .collect();
+    let names: Vec<String> = behaviour
+        .machines
+        .iter()
+        .map(|m| m.machine.name.clone())
+        .collect();
+    let mut lines = tokio::io::BufReader::new(tokio::io::stdin()).lines();
+    let limit = behaviour.answer_timeout * 4 + Duration::from_secs(1);
+    // Let every machine say whether it runs before the first picture (bounded).
+    for _ in 0..200 {
+        if names
+            .iter()
+            .all(|n| board.truth(&format!("{n}IsRunning")).is_some())
+        {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    println!("{STEP_HELP}");
+    let mut step = 0;
+    loop {
+        let mut over = false;
+        while let Ok(event) = running.events.try_recv() {
+            if let Some(line) = view.line(&event) {
+                println!("{line}");
+            }
+            match &event {
+                Event::Entered { machine, state, .. } => {
+                    states.insert(machine.clone(), state.clone());
+                }
+                // Where it goes; its OnEntry runs at the start of its next ring.
+                Event::Fired { machine, to, .. } => {
+                    if let Some(s) = behaviour
+                        .machines
+                        .iter()
+                        .find(|m| m.machine.name == *machine)
+                        .and_then(|m| m.machine.state(*to))
+                    {
+                        states.insert(machine.clone(), s.name.clone());
+                    }
+                }
+                _ => {}
+            }
+            over |= running.observe(&event);
+        }
+        while let Some(m) = everything.try_next() {
+            if &*m.ty != proclaim_board::QUERY_TYPE {
+                values.insert(m.ty.to_string(), m.value.to_string());
+            }
+        }
+        // Posted before this view subscribed.
+        for name in &names {
+            let ty = format!("{name}IsRunning");
+            if let Some(v) = board.truth(&ty) {
+                values.insert(ty, v.to_string());
+            }
+        }
+        for name in &names {
+            let mode = match board.truth(&format!("{name}IsRunning")) {
+                Some(true) => "running",
+                Some(false) => "dormant",
+                None => "starting",
+            };
+            let at = states.get(name).map_or("-", String::as_str);
+            println!("  {name}: {at} ({mode})");
+        }
+        let board_line: Vec<String> = values.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        println!("  whiteboard: {}", board_line.join(", "));
+        if over {
+            return "every machine that started is in a final state or halted".into();
+        }
+        print!("step {}> ", step + 1);
+        let _ = std::io::stdout().flush();
+        let Ok(Some(line)) = lines.next_line().await else {
+            return "the input ended".into();
+        };
+        let command = line.trim();
+        match command {
+            "" | "n" | "next" => {
+                step = stepper.advance();
+                // Running, or about to (a machine whose task has not begun yet has not said).
+                let active: Vec<String> = behaviour
+                    .machines
+                    .iter()
+                    .filter(|m| {
+                        board
+                            .truth(&format!("{}IsRunning", m.machine.name))
+                            .unwrap_or(m.start)
+                    })
+                    .map(|m| m.machine.name.clone())
+                    .collect();
+                let busy = stepper.settled(&active, step, limit).await;
+                if !busy.is_empty() {
+                    println!(
+                        "  still in their ring (waiting on an expert?): {}",
+                        busy.join(", ")
+                    );
+                }
+            }
+            "q" | "quit" | "exit" => return "quit at the prompt".into(),
+            "?" | "help" => println!("{STEP_HELP}"),
+            _ => {
+                let posting = command
+                    .strip_prefix("post ")
+                    .and_then(|rest| rest.trim().split_once(char::is_whitespace))
+                    .or_else(|| command.split_once('='));
+                match posting {
+                    Some((ty, value)) if !ty.trim().is_empty() => {
+                        let value = proclaim_board::Value::parse(value.trim());
+                        board.post("you", ty.trim(), value);
+                    }
+                    _ => println!("  ? {STEP_HELP}"),
+                }
+            }
+        }
+    }
 }
 
 /// With `--watch` and a behaviour on disk: the names of machines whose files change.

@@ -10,7 +10,7 @@ use proclaim_experts::{
     ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
     ReceiverConfig, Script,
 };
-use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
+use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions, Stepper};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
 use std::net::SocketAddr;
@@ -29,6 +29,8 @@ pub struct LaunchOptions {
     pub no_simulator: bool,
     pub halt_on_timeout: bool,
     pub hosts: Hosts,
+    /// Ring only when stepped (`proclaim run --step`).
+    pub stepper: Option<Stepper>,
 }
 
 /// A behaviour running: its trace, and what it takes for it to be over.
@@ -284,6 +286,7 @@ pub async fn launch(
                 answer_timeout: behaviour.answer_timeout,
                 start_running: loaded.start,
                 halt_on_timeout: options.halt_on_timeout,
+                stepper: options.stepper.clone(),
             },
         )
         .with_loader(loaded.loader.clone());

@@ -10,7 +10,9 @@ mod event;
 mod host;
 mod label;
 mod machine;
+mod step;
 
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
 pub use machine::{declaration, Loader, MachineRunner, RunOptions};
+pub use step::Stepper;

@@ -3,6 +3,7 @@
 use crate::event::{Answerer, Event};
 use crate::host::Hosts;
 use crate::label::{dependencies, prove, value, Context};
+use crate::step::Stepper;
 use proclaim_board::{Kind, ModuleDecl, Pattern, Value, Whiteboard};
 use proclaim_fsm::{Action, Argument, Label, Machine, StateId};
 use rustc_hash::FxHashSet;
@@ -22,6 +23,9 @@ pub struct RunOptions {
     /// Stop the machine for good when an expert fails to answer in time, instead of counting the
     /// label false (for tests and bring-up, where a silent expert is a bug).
     pub halt_on_timeout: bool,
+    /// Ring only when stepped (model simulation); between rings, wait for the next step instead
+    /// of a message or the ring period.
+    pub stepper: Option<Stepper>,
 }
 
 impl Default for RunOptions {
@@ -31,6 +35,7 @@ impl Default for RunOptions {
             answer_timeout: Duration::from_secs(1),
             start_running: true,
             halt_on_timeout: false,
+            stepper: None,
         }
     }
 }
@@ -120,6 +125,7 @@ impl MachineRunner {
         let mut watched = Some(at.current);
         // A command taken while dormant, applied on the next turn of the loop.
         let mut woken_by: Option<proclaim_board::Message> = None;
+        let mut last_step = 0;
         loop {
             // Control commands: consumed here, between rings, in order.
             while let Some(command) = woken_by.take().or_else(|| board.latest(&name)) {
@@ -165,6 +171,16 @@ impl MachineRunner {
                 // Dormant: only a control command wakes the machine.
                 woken_by = board.wait_for(&name, 0, Duration::from_secs(3600)).await;
                 continue;
+            }
+            if let Some(stepper) = &self.options.stepper {
+                // A command may arrive while waiting; it is applied before the ring.
+                tokio::select! {
+                    step = stepper.wait(last_step) => last_step = step,
+                    command = board.wait_for(&name, 0, Duration::from_secs(3600)) => {
+                        woken_by = command;
+                        continue;
+                    }
+                }
             }
             if watched != Some(at.current) {
                 watch = subscribe(&machine, &name, &board, at.current);
@@ -239,10 +255,17 @@ impl MachineRunner {
                         .await;
                     at.current = target;
                     at.just_entered = true;
+                    if let Some(stepper) = &self.options.stepper {
+                        stepper.ring_done(&name, last_step);
+                    }
                 }
                 None => {
                     self.act(&board, &name, &state.internal, &mut unknown, start)
                         .await;
+                    if let Some(stepper) = &self.options.stepper {
+                        stepper.ring_done(&name, last_step);
+                        continue;
+                    }
                     // Answers to this ring's own queries are not news.
                     while watch.try_next().is_some() {}
                     let wait = until_next_timeout(&machine, &board, at.current, at.entered_at)
