@@ -1,5 +1,6 @@
 //! The command-line interface: every subcommand and option, as clap reads them.
 
+use crate::network::Network;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -60,6 +61,8 @@ pub enum Sensor {
         /// Stop after this long (`30s`, `500ms`) and print the packet counts
         #[arg(long = "for", value_name = "DURATION")]
         duration: Option<String>,
+        #[command(flatten)]
+        network: Network,
     },
 }
 
@@ -128,6 +131,45 @@ pub enum Command {
         /// `ATOM=true` answers a label no expert answers
         #[arg(long, conflicts_with_all = ["watch", "duration"])]
         step: bool,
+        #[command(flatten)]
+        network: Network,
+    },
+    /// Run a theory as an expert on a whiteboard (usually one held by another process:
+    /// `--connect tcp/127.0.0.1:7447`), answering its outputs until stopped
+    Expert {
+        theory: String,
+        /// Its name on the whiteboard (default: the theory's name{})
+        #[arg(long)]
+        name: Option<String>,
+        /// Input atom → message type, one `atom = type` a line
+        #[arg(long, value_name = "FILE")]
+        mapping: Option<PathBuf>,
+        /// Stop after this long (default: at Ctrl-C)
+        #[arg(long = "for", value_name = "DURATION")]
+        duration: Option<String>,
+        #[command(flatten)]
+        network: Network,
+    },
+    /// Post one message on a whiteboard: `proclaim post doorOpen true --connect …`
+    Post {
+        #[arg(value_name = "TYPE")]
+        ty: String,
+        value: String,
+        /// The posting module's name
+        #[arg(long, default_value = "terminal")]
+        module: String,
+        #[command(flatten)]
+        network: Network,
+    },
+    /// Print every message of a whiteboard as it is posted (PATTERN: a type, or a glob like `gc*`)
+    Watch {
+        #[arg(default_value = "*")]
+        pattern: String,
+        /// Stop after this long (default: at Ctrl-C)
+        #[arg(long = "for", value_name = "DURATION")]
+        duration: Option<String>,
+        #[command(flatten)]
+        network: Network,
     },
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay {
@@ -246,4 +288,14 @@ pub enum Command {
         #[arg(long = "expect")]
         expect: Vec<String>,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    /// Clap's own consistency checks (names, conflicts, defaults) for every subcommand.
+    #[test]
+    fn the_command_line_is_consistent() {
+        use clap::CommandFactory;
+        super::Cli::command().debug_assert();
+    }
 }

@@ -9,6 +9,7 @@ mod embedded;
 mod failure;
 mod load;
 mod machines;
+mod network;
 
 use clap::Parser;
 use std::process::ExitCode;

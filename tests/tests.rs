@@ -5,6 +5,8 @@ mod cli;
 mod experts;
 mod gamecontroller;
 mod machines;
+#[cfg(feature = "zenoh")]
+mod network;
 mod properties;
 mod reasoner;
 mod runner;

@@ -2,7 +2,7 @@
 //! `proclaim gc-sim` (the simulator, printing each state it sends).
 
 use crate::failure::Failure;
-use proclaim_board::Whiteboard;
+use crate::network::{whiteboard, Network};
 use proclaim_experts::simulator::{self, default_game, parse_game, SimConfig};
 use proclaim_experts::{parse_duration, GameControllerReceiver, ReceiverConfig};
 use std::net::SocketAddr;
@@ -24,6 +24,7 @@ pub fn sensor(
     player: u8,
     status: bool,
     duration: Option<&str>,
+    network: &Network,
 ) -> Result<ExitCode, Failure> {
     let duration = match duration {
         Some(text) => Some(parse_duration(text).ok_or_else(|| {
@@ -43,7 +44,7 @@ pub fn sensor(
             Failure::Argument(format!("cannot listen on UDP {bind}: {error}"))
         })?;
         let counters = receiver.counters();
-        let board = Whiteboard::local();
+        let board = whiteboard(network).await?;
         let mut postings = board.subscribe("*");
         eprintln!(
             "listening for GameController packets on UDP {}{}",

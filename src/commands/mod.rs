@@ -1,6 +1,7 @@
 //! One module per subcommand; `run` dispatches.
 
 mod bench;
+mod board;
 mod check;
 mod deps;
 pub mod draw;
@@ -52,6 +53,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             no_simulator,
             halt_on_timeout,
             step,
+            network,
         } => run::run(run::RunArgs {
             behaviour,
             duration,
@@ -61,7 +63,32 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             no_simulator,
             halt_on_timeout,
             step,
+            network,
         }),
+        Command::Expert {
+            theory,
+            name,
+            mapping,
+            duration,
+            network,
+        } => board::expert(
+            &theory,
+            name.as_deref(),
+            mapping.as_deref(),
+            &network,
+            duration.as_deref(),
+        ),
+        Command::Post {
+            ty,
+            value,
+            module,
+            network,
+        } => board::post(&ty, &value, &module, &network),
+        Command::Watch {
+            pattern,
+            duration,
+            network,
+        } => board::watch(&pattern, &network, duration.as_deref()),
         Command::Replay { trace, speed } => run::replay(&trace, speed),
         Command::Deps {
             behaviour,
@@ -98,6 +125,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
                     player,
                     status,
                     duration,
+                    network,
                 },
         } => gamecontroller::sensor(
             std::net::SocketAddr::new(bind, port),
@@ -105,6 +133,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             player,
             status,
             duration.as_deref(),
+            &network,
         ),
         Command::GcSim {
             script,

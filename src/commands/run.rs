@@ -22,6 +22,7 @@ pub struct RunArgs {
     pub no_simulator: bool,
     pub halt_on_timeout: bool,
     pub step: bool,
+    pub network: crate::network::Network,
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
@@ -76,7 +77,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     };
     let stepper = options.stepper.clone();
     let outcome = runtime.block_on(async {
-        let board = Whiteboard::local();
+        let board = crate::network::whiteboard(&args.network).await?;
+        if !args.network.is_local() {
+            println!("  {}", args.network.describe());
+        }
         let mut running = launch(&behaviour, &board, options)
             .await
             .map_err(Failure::Start)?;

@@ -1,6 +1,7 @@
 //! The trace of a run for people: one line per state change, posting, control command and
 //! changed answer (with who answered), time first. The JSON-lines trace keeps every event; this
-//! view leaves out answers that repeat the previous one, which would drown the rest.
+//! view leaves out answers that repeat the previous one (same value, same answerer), which would
+//! drown the rest.
 
 use proclaim_runner::{Answerer, Event};
 use rustc_hash::FxHashMap;
@@ -8,7 +9,7 @@ use std::fmt::Write;
 
 #[derive(Default)]
 pub struct TraceView {
-    last_answer: FxHashMap<(String, String), bool>,
+    last_answer: FxHashMap<(String, String), (bool, Answerer)>,
     width: usize,
 }
 
@@ -35,20 +36,18 @@ impl TraceView {
                 by,
                 ..
             } => {
+                // Shown when the answer or who gave it changes.
                 let key = (machine.clone(), atom.clone());
-                let changed = self.last_answer.insert(key, *value) != Some(*value);
+                let now = (*value, by.clone());
+                if self.last_answer.get(&key) == Some(&now) {
+                    return None;
+                }
+                self.last_answer.insert(key, now);
                 match by {
-                    Answerer::Expert(who) if changed => format!("{atom} = {value}  ({who})"),
-                    Answerer::Expert(_) => return None,
-                    Answerer::Posted(who) if changed => {
-                        format!("{atom} = {value}  (as posted by {who})")
-                    }
-                    Answerer::Posted(_) => return None,
+                    Answerer::Expert(who) => format!("{atom} = {value}  ({who})"),
+                    Answerer::Posted(who) => format!("{atom} = {value}  (as posted by {who})"),
                     Answerer::TimedOut => format!("{atom}: no answer in time, counted false"),
-                    Answerer::NoExpert if changed => {
-                        format!("{atom}: no expert answers it, counted false")
-                    }
-                    Answerer::NoExpert => return None,
+                    Answerer::NoExpert => format!("{atom}: no expert answers it, counted false"),
                 }
             }
             Event::UnknownFunction { function, .. } => {

@@ -57,6 +57,11 @@ impl Whiteboard {
         self.transport.declare(ty, kind);
     }
 
+    /// How a type's messages are kept.
+    pub fn kind(&self, ty: &str) -> Kind {
+        self.transport.kind(ty)
+    }
+
     pub fn post(&self, module: &str, ty: &str, value: impl Into<Value>) -> Message {
         self.transport.post(module, ty, value.into())
     }

@@ -77,6 +77,18 @@ struct Inner {
 }
 
 impl Inner {
+    /// The module's name, shared by all its messages.
+    fn module_name(&mut self, module: &str) -> Arc<str> {
+        match self.modules.get(module) {
+            Some(m) => m.clone(),
+            None => {
+                let m: Arc<str> = Arc::from(module);
+                self.modules.insert(module.to_string(), m.clone());
+                m
+            }
+        }
+    }
+
     fn entry(&mut self, ty: &str) -> &mut Entry {
         if !self.types.contains_key(ty) {
             let name: Arc<str> = Arc::from(ty);
@@ -110,6 +122,135 @@ impl LocalBoard {
         // A panic while holding the lock leaves the table consistent (every update is a whole
         // assignment), so a poisoned lock is still usable.
         self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Posts with a new sequence number. `consumable`: whether a signal may be taken here (a
+    /// networked board keeps a signal consumable only in the process that owns its type; the
+    /// others observe it).
+    pub fn post_as(&self, module: &str, ty: &str, value: Value, consumable: bool) -> Message {
+        let time = self.now();
+        let mut inner = self.lock();
+        inner.seq += 1;
+        let seq = inner.seq;
+        let module = inner.module_name(module);
+        let ty_name = inner.entry(ty).name.clone();
+        let message = Message {
+            ty: ty_name,
+            value,
+            module,
+            seq,
+            time,
+        };
+        self.insert(inner, message.clone(), consumable);
+        message
+    }
+
+    /// Takes a message sequenced elsewhere (a networked board's replica): kept with its own
+    /// sequence number and time. One already seen (by sequence number) is ignored, except that a
+    /// signal handed over to this process as its owner becomes consumable.
+    pub fn apply(&self, message: Message, consumable: bool) {
+        let mut inner = self.lock();
+        if message.seq <= inner.seq {
+            let entry = inner.entry(&message.ty);
+            if consumable
+                && entry.kind == Kind::Signal
+                && !entry.signals.iter().any(|m| m.seq == message.seq)
+            {
+                entry.signals.push_back(message);
+                let notify = entry.notify.clone();
+                drop(inner);
+                notify.notify_waiters();
+            }
+            return;
+        }
+        inner.seq = message.seq;
+        self.insert(inner, message, consumable);
+    }
+
+    /// Declares a type's kind as another process did, without taking a pending state value as
+    /// a signal of this process.
+    pub fn declare_observed(&self, ty: &str, kind: Kind) {
+        self.lock().entry(ty).kind = kind;
+    }
+
+    /// Takes a state's current value out (a networked board handing a command posted before
+    /// its type became a signal to the process that consumes it).
+    pub fn take_latest(&self, ty: &str) -> Option<Message> {
+        self.lock().types.get_mut(ty)?.latest.take()
+    }
+
+    /// The highest sequence number seen.
+    pub fn last_seq(&self) -> u64 {
+        self.lock().seq
+    }
+
+    /// Every type with its kind and what it holds now (a state's value, a data history, unread
+    /// signals), in sequence order: what a process joining a networked board starts from.
+    pub fn snapshot(&self) -> (Vec<(String, Kind)>, Vec<Message>) {
+        let inner = self.lock();
+        let mut kinds = Vec::new();
+        let mut messages = Vec::new();
+        for entry in inner.types.values() {
+            kinds.push((entry.name.to_string(), entry.kind));
+            messages.extend(entry.latest.iter().cloned());
+            messages.extend(entry.history.iter().cloned());
+            messages.extend(entry.signals.iter().cloned());
+        }
+        kinds.sort_by(|a, b| a.0.cmp(&b.0));
+        messages.sort_by_key(|m| m.seq);
+        (kinds, messages)
+    }
+
+    /// Stores a message and tells waiters and subscribers; takes the lock and releases it.
+    fn insert(&self, mut inner: MutexGuard<'_, Inner>, message: Message, consumable: bool) {
+        let retention = self.retention;
+        inner.stats.posts += 1;
+        let (ty, seq, time) = (message.ty.clone(), message.seq, message.time);
+        let mut dropped = 0;
+        let entry = inner.entry(&ty);
+        match entry.kind {
+            Kind::State => entry.latest = Some(message.clone()),
+            Kind::Signal if consumable => {
+                entry.signals.push_back(message.clone());
+                if entry.signals.len() > retention.signals {
+                    entry.signals.pop_front();
+                    dropped += 1;
+                }
+            }
+            Kind::Signal => {}
+            Kind::Data => {
+                entry.history.push_back(message.clone());
+                while entry.history.len() > retention.count
+                    || entry
+                        .history
+                        .front()
+                        .is_some_and(|m| time.saturating_sub(m.time) > retention.age)
+                {
+                    entry.history.pop_front();
+                }
+            }
+        }
+        let notify = entry.notify.clone();
+        inner.subscribers.retain(|s| {
+            if !s.pattern.matches(&ty) {
+                return true;
+            }
+            match s.tx.try_send(message.clone()) {
+                Ok(()) => true,
+                Err(mpsc::error::TrySendError::Full(_)) => {
+                    dropped += 1;
+                    true
+                }
+                Err(mpsc::error::TrySendError::Closed(_)) => false,
+            }
+        });
+        inner.stats.drops += dropped;
+        drop(inner);
+        notify.notify_waiters();
+        tracing::trace!(ty = &*ty, seq, "post");
+        if dropped > 0 {
+            tracing::debug!(ty = &*ty, dropped, "messages dropped");
+        }
     }
 
     /// The first message of `ty` after `after`, taking it if a signal.
@@ -151,72 +292,7 @@ impl Transport for LocalBoard {
     }
 
     fn post(&self, module: &str, ty: &str, value: Value) -> Message {
-        let time = self.now();
-        let retention = self.retention;
-        let mut inner = self.lock();
-        inner.seq += 1;
-        inner.stats.posts += 1;
-        let module = match inner.modules.get(module) {
-            Some(m) => m.clone(),
-            None => {
-                let m: Arc<str> = Arc::from(module);
-                inner.modules.insert(module.to_string(), m.clone());
-                m
-            }
-        };
-        let seq = inner.seq;
-        let mut dropped = 0;
-        let entry = inner.entry(ty);
-        let message = Message {
-            ty: entry.name.clone(),
-            value,
-            module,
-            seq,
-            time,
-        };
-        match entry.kind {
-            Kind::State => entry.latest = Some(message.clone()),
-            Kind::Signal => {
-                entry.signals.push_back(message.clone());
-                if entry.signals.len() > retention.signals {
-                    entry.signals.pop_front();
-                    dropped += 1;
-                }
-            }
-            Kind::Data => {
-                entry.history.push_back(message.clone());
-                while entry.history.len() > retention.count
-                    || entry
-                        .history
-                        .front()
-                        .is_some_and(|m| time.saturating_sub(m.time) > retention.age)
-                {
-                    entry.history.pop_front();
-                }
-            }
-        }
-        let notify = entry.notify.clone();
-        inner.subscribers.retain(|s| {
-            if !s.pattern.matches(ty) {
-                return true;
-            }
-            match s.tx.try_send(message.clone()) {
-                Ok(()) => true,
-                Err(mpsc::error::TrySendError::Full(_)) => {
-                    dropped += 1;
-                    true
-                }
-                Err(mpsc::error::TrySendError::Closed(_)) => false,
-            }
-        });
-        inner.stats.drops += dropped;
-        drop(inner);
-        notify.notify_waiters();
-        tracing::trace!(ty, seq, "post");
-        if dropped > 0 {
-            tracing::debug!(ty, dropped, "messages dropped");
-        }
-        message
+        self.post_as(module, ty, value, true)
     }
 
     fn latest(&self, ty: &str) -> Option<Message> {

@@ -1,0 +1,136 @@
+//! The whiteboard across processes (needs `--features zenoh`): a label query answered by a
+//! reasoner expert in another process, and messages per second from one process to another,
+//! on loopback. The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
+//!
+//! `cargo bench --features zenoh --bench network`
+
+use proclaim_board::Whiteboard;
+use proclaim_zenoh::{whiteboard, Role};
+use std::io::{BufRead, BufReader, Write};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const THEORY: &str = include_str!("../theories/microwave.dl");
+const MESSAGES: u64 = 50_000;
+
+fn main() {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .unwrap();
+    match std::env::var("PROCLAIM_BENCH_ROLE") {
+        Ok(role) => runtime.block_on(child(&role)),
+        Err(_) => runtime.block_on(parent()),
+    }
+}
+
+async fn join(endpoint: &str) -> Whiteboard {
+    whiteboard(&Role::Connect(endpoint.to_string()), "bench", None)
+        .await
+        .expect("joins the bench board")
+}
+
+/// The other process: an expert, or a sink that counts `tick`s.
+async fn child(role: &str) {
+    let (what, endpoint) = role.split_once(' ').expect("ROLE ENDPOINT");
+    let board = join(endpoint).await;
+    match what {
+        "expert" => {
+            let theory = proclaim_cdl::check_source(THEORY, proclaim_cdl::Language::Dl)
+                .theory
+                .expect("the microwave theory checks");
+            proclaim_experts::ReasonerExpert::new("microwave", theory, &Default::default())
+                .run(board)
+                .await
+        }
+        _ => {
+            let mut ticks = board.subscribe("tick");
+            println!("ready");
+            let mut n = 0;
+            while n < MESSAGES {
+                if ticks.next().await.is_none() {
+                    break;
+                }
+                n += 1;
+            }
+            println!("received {n}");
+            let stats = board.stats();
+            println!("dropped {}", stats.drops);
+        }
+    }
+}
+
+fn spawn(role: &str) -> std::process::Child {
+    Command::new(std::env::current_exe().unwrap())
+        .env("PROCLAIM_BENCH_ROLE", role)
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("the bench runs itself")
+}
+
+fn percentiles(name: &str, mut samples: Vec<Duration>) {
+    samples.sort();
+    let at = |q: f64| samples[((samples.len() as f64 - 1.0) * q) as usize].as_secs_f64() * 1e6;
+    println!(
+        "{name:<48} n={:<6} p50 {:>8.1} µs   p90 {:>8.1} µs   p99 {:>8.1} µs",
+        samples.len(),
+        at(0.5),
+        at(0.9),
+        at(0.99)
+    );
+}
+
+async fn parent() {
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let board = whiteboard(&Role::Listen(endpoint.clone()), "bench", None)
+        .await
+        .expect("listens");
+
+    let mut expert = spawn(&format!("expert {endpoint}"));
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while !board.registry().answers("cook") {
+        assert!(Instant::now() < deadline, "the expert process did not join");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    board.post("sensors", "doorOpen", false);
+    board.post("sensors", "timeLeft", true);
+    tokio::time::sleep(Duration::from_millis(200)).await;
+    let mut samples = Vec::new();
+    for _ in 0..3000 {
+        let t = Instant::now();
+        let answer = board.query("bench", "cook", Duration::from_secs(1)).await;
+        samples.push(t.elapsed());
+        assert!(answer.truth(), "{answer:?}");
+    }
+    percentiles("query -> reasoner expert in another process", samples);
+    let _ = expert.kill();
+    let _ = expert.wait();
+
+    let mut sink = spawn(&format!("sink {endpoint}"));
+    let mut out = BufReader::new(sink.stdout.take().unwrap()).lines();
+    assert_eq!(out.next().unwrap().unwrap(), "ready");
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let t = Instant::now();
+    for i in 0..MESSAGES {
+        board.post("bench", "tick", i as i64);
+        if i % 1000 == 0 {
+            tokio::task::yield_now().await;
+        }
+    }
+    let received = out.next().unwrap().unwrap();
+    let elapsed = t.elapsed();
+    let dropped = out.next().unwrap().unwrap();
+    println!(
+        "{:<48} {:.0} messages/s ({received}, {dropped} by its full queue)",
+        "holder -> other process",
+        MESSAGES as f64 / elapsed.as_secs_f64()
+    );
+    let _ = std::io::stdout().flush();
+    let _ = sink.wait();
+}

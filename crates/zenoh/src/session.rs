@@ -1,0 +1,61 @@
+//! Opening a Zenoh session the safe way: exactly the endpoints given (a listening process on
+//! loopback unless told otherwise), no multicast scouting, no other transport than TCP; the
+//! rest (TLS, access control) from Zenoh's own configuration file when one is given.
+
+use std::path::Path;
+
+/// How a process joins a whiteboard.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// Holds the board and listens on this endpoint (`tcp/127.0.0.1:7447`).
+    Listen(String),
+    /// Joins the board held by the process listening on this endpoint.
+    Connect(String),
+}
+
+pub(crate) async fn open(
+    role: &Role,
+    config_file: Option<&Path>,
+) -> Result<zenoh::Session, String> {
+    let mut config = match config_file {
+        Some(path) => zenoh::Config::from_file(path).map_err(|e| {
+            format!(
+                "cannot read the Zenoh configuration {}: {e}",
+                path.display()
+            )
+        })?,
+        None => zenoh::Config::default(),
+    };
+    let (listen, connect) = match role {
+        Role::Listen(e) => (vec![e.clone()], Vec::new()),
+        Role::Connect(e) => (Vec::new(), vec![e.clone()]),
+    };
+    for e in listen.iter().chain(&connect) {
+        if !e.contains('/') {
+            return Err(format!(
+                "`{e}` is not a Zenoh endpoint; write it as tcp/HOST:PORT (tcp/127.0.0.1:7447)"
+            ));
+        }
+    }
+    let set = |config: &mut zenoh::Config, key: &str, value: String| {
+        config
+            .insert_json5(key, &value)
+            .map_err(|e| format!("Zenoh refused {key} = {value}: {e}"))
+    };
+    set(&mut config, "mode", "\"peer\"".into())?;
+    set(&mut config, "listen/endpoints", json_list(&listen))?;
+    set(&mut config, "connect/endpoints", json_list(&connect))?;
+    set(&mut config, "scouting/multicast/enabled", "false".into())?;
+    // A process joining must find the board, or say so, not wait for ever.
+    set(&mut config, "connect/exit_on_failure", "true".into())?;
+    set(&mut config, "connect/timeout_ms", "5000".into())?;
+    zenoh::open(config).await.map_err(|e| match role {
+        Role::Listen(e2) => format!("cannot listen on {e2}: {e}"),
+        Role::Connect(e2) => format!("cannot reach a whiteboard at {e2}: {e}"),
+    })
+}
+
+fn json_list(items: &[String]) -> String {
+    let quoted: Vec<String> = items.iter().map(|i| format!("{i:?}")).collect();
+    format!("[{}]", quoted.join(","))
+}
