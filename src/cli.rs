@@ -1,7 +1,7 @@
 //! The command-line interface: every subcommand and option, as clap reads them.
 
 use crate::network::Network;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -105,35 +105,7 @@ pub enum Command {
     },
     /// Run a behaviour (a folder with a behaviour.toml, machines/NAME, or a built-in one:
     /// game_controller, microwave) on the in-process whiteboard, printing a live trace
-    Run {
-        behaviour: String,
-        /// Stop after this long (`30s`, `500ms`); default: when every machine that started is in
-        /// a final state
-        #[arg(long = "for", value_name = "DURATION")]
-        duration: Option<String>,
-        /// Also write every event as JSON lines (read back by `proclaim replay`)
-        #[arg(long, value_name = "FILE.jsonl")]
-        trace: Option<PathBuf>,
-        /// Answer labels from this impersonator script instead (experts answering the same
-        /// labels are left out)
-        #[arg(long, value_name = "FILE")]
-        script: Option<PathBuf>,
-        /// Reread a machine when its file changes (a file that does not parse changes nothing)
-        #[arg(long)]
-        watch: bool,
-        /// Listen for a real GameController instead of playing the built-in simulator
-        #[arg(long)]
-        no_simulator: bool,
-        /// Halt a machine whose label gets no answer in time, instead of counting it false
-        #[arg(long)]
-        halt_on_timeout: bool,
-        /// One ring at a time at a prompt, showing every machine's state and the whiteboard;
-        /// `ATOM=true` answers a label no expert answers
-        #[arg(long, conflicts_with_all = ["watch", "duration"])]
-        step: bool,
-        #[command(flatten)]
-        network: Network,
-    },
+    Run(RunArgs),
     /// Run a theory as an expert on a whiteboard (usually one held by another process:
     /// `--connect tcp/127.0.0.1:7447`), answering its outputs until stopped
     Expert {
@@ -288,6 +260,38 @@ pub enum Command {
         #[arg(long = "expect")]
         expect: Vec<String>,
     },
+}
+
+/// What `proclaim run` is told.
+#[derive(Args, Clone, Debug)]
+pub struct RunArgs {
+    pub behaviour: String,
+    /// Stop after this long (`30s`, `500ms`); default: when every machine that started is in
+    /// a final state
+    #[arg(long = "for", value_name = "DURATION")]
+    pub duration: Option<String>,
+    /// Also write every event as JSON lines (read back by `proclaim replay`)
+    #[arg(long, value_name = "FILE.jsonl")]
+    pub trace: Option<PathBuf>,
+    /// Answer labels from this impersonator script instead (experts answering the same
+    /// labels are left out)
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// Reread a machine when its file changes (a file that does not parse changes nothing)
+    #[arg(long)]
+    pub watch: bool,
+    /// Listen for a real GameController instead of playing the built-in simulator
+    #[arg(long)]
+    pub no_simulator: bool,
+    /// Halt a machine whose label gets no answer in time, instead of counting it false
+    #[arg(long)]
+    pub halt_on_timeout: bool,
+    /// One ring at a time at a prompt, showing every machine's state and the whiteboard;
+    /// `ATOM=true` answers a label no expert answers
+    #[arg(long, conflicts_with_all = ["watch", "duration"])]
+    pub step: bool,
+    #[command(flatten)]
+    pub network: Network,
 }
 
 #[cfg(test)]

@@ -18,6 +18,17 @@ fn behaviour_dir(name: &str) -> PathBuf {
 /// Runs a behaviour until every started machine is in a final state, or `limit`; returns the
 /// readable trace with answers that repeat left out (as `proclaim run` prints it).
 async fn run(name: &str, script: Option<&str>, limit: Duration) -> (Vec<String>, Whiteboard) {
+    run_with(name, script, limit, &[]).await
+}
+
+/// The same, with raw sensor postings `(when, type, value)` made while it runs, as a robot's
+/// drivers would.
+async fn run_with(
+    name: &str,
+    script: Option<&str>,
+    limit: Duration,
+    sensors: &[(Duration, &str, bool)],
+) -> (Vec<String>, Whiteboard) {
     let behaviour = load(name, Arc::new(Folder::new(behaviour_dir(name))))
         .unwrap_or_else(|e| panic!("{name} loads: {e:#?}"));
     let board = Whiteboard::local();
@@ -26,6 +37,18 @@ async fn run(name: &str, script: Option<&str>, limit: Duration) -> (Vec<String>,
         ..Default::default()
     };
     let mut running = launch(&behaviour, &board, options).await.expect("starts");
+    let drivers = board.clone();
+    let postings: Vec<(Duration, String, bool)> = sensors
+        .iter()
+        .map(|(t, ty, v)| (*t, ty.to_string(), *v))
+        .collect();
+    let start = tokio::time::Instant::now();
+    tokio::spawn(async move {
+        for (at, ty, value) in postings {
+            tokio::time::sleep_until(start + at).await;
+            drivers.post("sensors", &ty, value);
+        }
+    });
     let mut view = TraceView::new(0);
     let mut lines = running.notes.clone();
     let deadline = tokio::time::Instant::now() + limit;
@@ -103,39 +126,17 @@ async fn the_game_controller_plays_a_scripted_game_to_finished() {
 
 #[tokio::test(start_paused = true)]
 async fn the_chest_button_penalises_by_hand_before_kick_off() {
-    let (trace, board) = {
-        let behaviour = load(
-            "game_controller",
-            Arc::new(Folder::new(behaviour_dir("game_controller"))),
-        )
-        .unwrap();
-        let board = Whiteboard::local();
-        let options = LaunchOptions {
-            script: Some(
-                parse_script("at 5s finishedReceived = true\npenaltyReceived = false\n").unwrap(),
-            ),
-            ..Default::default()
-        };
-        let mut running = launch(&behaviour, &board, options).await.unwrap();
-        // The raw contact, as the robot's button driver posts it: a 200 ms press.
-        tokio::time::sleep(Duration::from_secs(1)).await;
-        board.post("sensors", "ChestButton", true);
-        tokio::time::sleep(Duration::from_millis(200)).await;
-        board.post("sensors", "ChestButton", false);
-        let mut view = TraceView::new(0);
-        let mut lines = Vec::new();
-        let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
-        while let Ok(Some(e)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
-            if let Some(l) = view.line(&e) {
-                lines.push(l.split_whitespace().collect::<Vec<_>>().join(" "));
-            }
-            if running.observe(&e) {
-                break;
-            }
-        }
-        running.stop().await;
-        (lines, board)
-    };
+    // The raw contact, as the robot's button driver posts it: a 200 ms press at 1 s.
+    let (trace, board) = run_with(
+        "game_controller",
+        Some("at 5s finishedReceived = true\npenaltyReceived = false\n"),
+        Duration::from_secs(10),
+        &[
+            (Duration::from_secs(1), "ChestButton", true),
+            (Duration::from_millis(1200), "ChestButton", false),
+        ],
+    )
+    .await;
     let states: Vec<&str> = trace
         .iter()
         .filter(|l| l.contains('→'))

@@ -601,19 +601,17 @@ fn run_refuses_what_it_cannot_run() {
 
 #[test]
 fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
-    let dir = std::env::temp_dir().join(format!("proclaim-watch-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"W.machine\"\n",
-    )
-    .unwrap();
+    let dir = crate::behaviour_folder(
+        "watch",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
+            (
+                "W.machine",
+                "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
     let machine = dir.join("W.machine");
-    std::fs::write(
-        &machine,
-        "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
-    )
-    .unwrap();
     let child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args(["run", dir.to_str().unwrap(), "--watch", "--for", "20s"])
         .stdout(std::process::Stdio::piped())
@@ -649,18 +647,13 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
 
 #[test]
 fn run_step_rings_once_per_enter_and_reads_answers_typed_at_the_prompt() {
-    let dir = std::env::temp_dir().join(format!("proclaim-step-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("M.machine"),
-        "machine M\nstate A {\n  entry {\n    Say: hello\n  }\n  when go -> B\n}\nstate B {\n}\n",
-    )
-    .unwrap();
+    let dir = crate::behaviour_folder(
+        "step",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+            ("M.machine", "machine M\nstate A {\n  entry {\n    Say: hello\n  }\n  when go -> B\n}\nstate B {\n}\n"),
+        ],
+    );
     let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args(["run", dir.to_str().unwrap(), "--step"])
         .stdin(std::process::Stdio::piped())

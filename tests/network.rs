@@ -229,20 +229,19 @@ fn wait_line(rx: &std::sync::mpsc::Receiver<String>, text: &str, limit: Duration
     );
 }
 
-#[test]
-fn a_behaviour_split_over_processes_loses_a_dead_expert_and_gets_it_back() {
-    let dir = std::env::temp_dir().join(format!("proclaim-net-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "answer_timeout = \"300ms\"\n[[machine]]\nfile = \"Oven.machine\"\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("Oven.machine"),
-        "machine Oven\nstate IDLE {\n  when cook -> COOKING\n}\nstate COOKING {\n  when ~cook -> IDLE\n}\n",
-    )
-    .unwrap();
+/// `proclaim run` of a one-machine behaviour (its manifest and the machine the manifest's
+/// `file` names) holding the board on a free loopback port: the process, its output, the
+/// endpoint.
+fn listening(
+    tag: &str,
+    manifest: &str,
+    machine: &str,
+) -> (Process, std::sync::mpsc::Receiver<String>, String) {
+    let file = manifest
+        .split('"')
+        .find(|p| p.ends_with(".machine"))
+        .expect("the manifest names a .machine file");
+    let dir = crate::behaviour_folder(tag, &[("behaviour.toml", manifest), (file, machine)]);
     let endpoint = free_endpoint();
     let mut run = proclaim(&[
         "run",
@@ -254,6 +253,16 @@ fn a_behaviour_split_over_processes_loses_a_dead_expert_and_gets_it_back() {
     ]);
     let trace = lines(&mut run);
     wait_line(&trace, "holding whiteboard", Duration::from_secs(10));
+    (run, trace, endpoint)
+}
+
+#[test]
+fn a_behaviour_split_over_processes_loses_a_dead_expert_and_gets_it_back() {
+    let (_run, trace, endpoint) = listening(
+        "net",
+        "answer_timeout = \"300ms\"\n[[machine]]\nfile = \"Oven.machine\"\n",
+        "machine Oven\nstate IDLE {\n  when cook -> COOKING\n}\nstate COOKING {\n  when ~cook -> IDLE\n}\n",
+    );
     // Nobody answers `cook` yet.
     wait_line(
         &trace,
@@ -290,29 +299,11 @@ fn a_behaviour_split_over_processes_loses_a_dead_expert_and_gets_it_back() {
 
 #[test]
 fn post_and_watch_poke_at_a_live_whiteboard() {
-    let endpoint = free_endpoint();
-    let dir = std::env::temp_dir().join(format!("proclaim-watch-net-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
+    let (_run, trace, endpoint) = listening(
+        "watch-net",
         "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("M.machine"),
         "machine M\nstate A {\n  when go -> B\n}\nstate B {\n}\n",
-    )
-    .unwrap();
-    let mut run = proclaim(&[
-        "run",
-        dir.to_str().unwrap(),
-        "--listen",
-        &endpoint,
-        "--for",
-        "30s",
-    ]);
-    let trace = lines(&mut run);
-    wait_line(&trace, "holding whiteboard", Duration::from_secs(10));
+    );
     let mut watch = proclaim(&["watch", "go*", "--connect", &endpoint, "--for", "20s"]);
     let watched = lines(&mut watch);
     std::thread::sleep(Duration::from_millis(500));

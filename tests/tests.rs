@@ -20,3 +20,15 @@ pub fn shared_dir() -> Option<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
     dir.is_dir().then_some(dir)
 }
+
+/// A fresh folder holding a behaviour's files (`behaviour.toml` and its machines), unique to
+/// this test process and `tag`.
+#[allow(dead_code)]
+pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("proclaim-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    dir
+}

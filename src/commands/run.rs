@@ -3,6 +3,7 @@
 //! machine when its file changes.
 
 use crate::behaviours::load_behaviour;
+use crate::cli::RunArgs;
 use crate::failure::Failure;
 use proclaim_behaviour::{launch, read_trace, Behaviour, LaunchOptions, TraceView};
 use proclaim_board::Whiteboard;
@@ -12,18 +13,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
-
-pub struct RunArgs {
-    pub behaviour: String,
-    pub duration: Option<String>,
-    pub trace: Option<PathBuf>,
-    pub script: Option<PathBuf>,
-    pub watch: bool,
-    pub no_simulator: bool,
-    pub halt_on_timeout: bool,
-    pub step: bool,
-    pub network: crate::network::Network,
-}
 
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     let behaviour = load_behaviour(&args.behaviour)?;

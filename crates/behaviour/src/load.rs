@@ -149,23 +149,9 @@ pub fn load_manifest(
         }
         let mapping = match &entry.mapping {
             None => FxHashMap::default(),
-            Some(file) => match files.read(file).map(|t| parse_mapping(&t)) {
-                Ok(Ok(mapping)) => mapping,
-                Ok(Err(errors)) => {
-                    for e in errors {
-                        problems.error(format!(
-                            "{}:{}: error: {}",
-                            files.show(file),
-                            e.line,
-                            e.message
-                        ));
-                    }
-                    continue;
-                }
-                Err(e) => {
-                    problems.error(e);
-                    continue;
-                }
+            Some(file) => match read_lines(files.as_ref(), file, parse_mapping, &mut problems) {
+                Some(mapping) => mapping,
+                None => continue,
             },
         };
         let name = entry
@@ -184,24 +170,9 @@ pub fn load_manifest(
     let mut sensors = Vec::new();
     for entry in &manifest.sensors {
         let game = match &entry.simulator {
-            Some(Simulator::Script(file)) => match files.read(file).map(|t| parse_game(&t)) {
-                Ok(Ok(game)) => Some(game),
-                Ok(Err(errors)) => {
-                    for e in errors {
-                        problems.error(format!(
-                            "{}:{}: error: {}",
-                            files.show(file),
-                            e.line,
-                            e.message
-                        ));
-                    }
-                    None
-                }
-                Err(e) => {
-                    problems.error(e);
-                    None
-                }
-            },
+            Some(Simulator::Script(file)) => {
+                read_lines(files.as_ref(), file, parse_game, &mut problems)
+            }
             _ => None,
         };
         sensors.push(LoadedSensor {
@@ -212,24 +183,7 @@ pub fn load_manifest(
 
     let script = match &manifest.impersonator {
         None => None,
-        Some(i) => match files.read(&i.script).map(|t| parse_script(&t)) {
-            Ok(Ok(script)) => Some(script),
-            Ok(Err(errors)) => {
-                for e in errors {
-                    problems.error(format!(
-                        "{}:{}: error: {}",
-                        files.show(&i.script),
-                        e.line,
-                        e.message
-                    ));
-                }
-                None
-            }
-            Err(e) => {
-                problems.error(e);
-                None
-            }
-        },
+        Some(i) => read_lines(files.as_ref(), &i.script, parse_script, &mut problems),
     };
 
     let mut outside = manifest.modules.clone();
@@ -264,6 +218,34 @@ pub fn load_manifest(
         warnings,
         files,
     })
+}
+
+/// A file in one of the small line formats (scripts, game scripts, mappings), or `None` with
+/// its problems, each with file and line.
+fn read_lines<T>(
+    files: &dyn Files,
+    file: &str,
+    parse: fn(&str) -> Result<T, Vec<proclaim_experts::LineError>>,
+    problems: &mut Problems,
+) -> Option<T> {
+    match files.read(file).map(|text| parse(&text)) {
+        Ok(Ok(parsed)) => Some(parsed),
+        Ok(Err(errors)) => {
+            for e in errors {
+                problems.error(format!(
+                    "{}:{}: error: {}",
+                    files.show(file),
+                    e.line,
+                    e.message
+                ));
+            }
+            None
+        }
+        Err(e) => {
+            problems.error(e);
+            None
+        }
+    }
 }
 
 #[derive(Default)]
