@@ -1,6 +1,7 @@
 //! The whiteboard across processes (needs `--features zenoh`): a label query answered by a
-//! reasoner expert in another process, and messages per second from one process to another,
-//! on loopback. The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
+//! reasoner expert in another process, against the bare Zenoh request/reply round trip between
+//! the same two kinds of process in the same run; and messages per second from one process to
+//! another, on loopback. The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
 //!
 //! `cargo bench --features zenoh --bench network`
 
@@ -12,6 +13,7 @@ use std::time::{Duration, Instant};
 
 const THEORY: &str = include_str!("../theories/microwave.dl");
 const MESSAGES: u64 = 50_000;
+const SAMPLES: usize = 3000;
 
 fn main() {
     let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -25,15 +27,32 @@ fn main() {
     }
 }
 
-async fn join(endpoint: &str) -> Whiteboard {
-    whiteboard(&Role::Connect(endpoint.to_string()), "bench", None)
-        .await
-        .expect("joins the bench board")
+/// Zenoh's own configuration for both processes, from `PROCLAIM_BENCH_ZENOH_CONFIG` (to
+/// compare transports' settings).
+fn zenoh_config() -> Option<std::path::PathBuf> {
+    std::env::var_os("PROCLAIM_BENCH_ZENOH_CONFIG").map(Into::into)
 }
 
-/// The other process: an expert, or a sink that counts `tick`s.
+async fn join(endpoint: &str) -> Whiteboard {
+    whiteboard(
+        &Role::Connect(endpoint.to_string()),
+        "bench",
+        zenoh_config().as_deref(),
+    )
+    .await
+    .expect("joins the bench board")
+}
+
+/// The other process: an expert, a sink that counts `tick`s, or a pinger.
 async fn child(role: &str) {
     let (what, endpoint) = role.split_once(' ').expect("ROLE ENDPOINT");
+    if what == "ping" {
+        let samples = proclaim_zenoh::ping(endpoint, "bench", zenoh_config().as_deref(), SAMPLES)
+            .await
+            .expect("the holder answers pings");
+        percentiles("bare Zenoh round trip (request, reply)", samples);
+        return;
+    }
     let board = join(endpoint).await;
     match what {
         "expert" => {
@@ -45,18 +64,20 @@ async fn child(role: &str) {
                 .await
         }
         _ => {
+            // Counts what reached this process's replica: the last tick's number is how many
+            // were posted, and the sink reports how many of them it saw.
             let mut ticks = board.subscribe("tick");
             println!("ready");
-            let mut n = 0;
-            while n < MESSAGES {
-                if ticks.next().await.is_none() {
+            let mut n = 0u64;
+            let patience = Duration::from_secs(10);
+            while let Ok(Some(tick)) = tokio::time::timeout(patience, ticks.next()).await {
+                n += 1;
+                if tick.value == proclaim_board::Value::Int(MESSAGES as i64 - 1) {
                     break;
                 }
-                n += 1;
             }
             println!("received {n}");
-            let stats = board.stats();
-            println!("dropped {}", stats.drops);
+            println!("dropped {}", board.stats().drops);
         }
     }
 }
@@ -69,7 +90,7 @@ fn spawn(role: &str) -> std::process::Child {
         .expect("the bench runs itself")
 }
 
-fn percentiles(name: &str, mut samples: Vec<Duration>) {
+fn percentiles(name: &str, mut samples: Vec<Duration>) -> f64 {
     samples.sort();
     let at = |q: f64| samples[((samples.len() as f64 - 1.0) * q) as usize].as_secs_f64() * 1e6;
     println!(
@@ -79,6 +100,7 @@ fn percentiles(name: &str, mut samples: Vec<Duration>) {
         at(0.9),
         at(0.99)
     );
+    at(0.5)
 }
 
 async fn parent() {
@@ -88,9 +110,13 @@ async fn parent() {
         .unwrap()
         .port();
     let endpoint = format!("tcp/127.0.0.1:{port}");
-    let board = whiteboard(&Role::Listen(endpoint.clone()), "bench", None)
-        .await
-        .expect("listens");
+    let board = whiteboard(
+        &Role::Listen(endpoint.clone()),
+        "bench",
+        zenoh_config().as_deref(),
+    )
+    .await
+    .expect("listens");
 
     let mut expert = spawn(&format!("expert {endpoint}"));
     let deadline = Instant::now() + Duration::from_secs(20);
@@ -102,15 +128,35 @@ async fn parent() {
     board.post("sensors", "timeLeft", true);
     tokio::time::sleep(Duration::from_millis(200)).await;
     let mut samples = Vec::new();
-    for _ in 0..3000 {
+    for _ in 0..SAMPLES {
         let t = Instant::now();
         let answer = board.query("bench", "cook", Duration::from_secs(1)).await;
         samples.push(t.elapsed());
         assert!(answer.truth(), "{answer:?}");
     }
-    percentiles("query -> reasoner expert in another process", samples);
+    let query_p50 = percentiles("query -> reasoner expert in another process", samples);
     let _ = expert.kill();
     let _ = expert.wait();
+
+    let mut pinger = spawn(&format!("ping {endpoint}"));
+    let line = BufReader::new(pinger.stdout.take().expect("piped"))
+        .lines()
+        .next()
+        .expect("the pinger reports")
+        .unwrap();
+    println!("{line}");
+    let ping_p50: f64 = line
+        .split("p50")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .expect("a p50 figure");
+    println!(
+        "{:<48} {:.2}x the bare round trip (p50)",
+        "query / bare Zenoh",
+        query_p50 / ping_p50
+    );
+    let _ = pinger.wait();
 
     let mut sink = spawn(&format!("sink {endpoint}"));
     let mut out = BufReader::new(sink.stdout.take().unwrap()).lines();

@@ -143,6 +143,15 @@ pub enum Command {
         #[command(flatten)]
         network: Network,
     },
+    /// Time round trips to the process holding a whiteboard (`--connect ENDPOINT`): what the
+    /// link costs every query, before any expert thinks
+    Ping {
+        /// How many round trips, one after another
+        #[arg(long, default_value_t = 1000)]
+        count: usize,
+        #[command(flatten)]
+        network: Network,
+    },
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay {
         trace: PathBuf,

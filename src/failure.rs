@@ -28,6 +28,9 @@ pub enum Failure {
     Bench(String),
     /// A behaviour could not be started (a socket could not be opened).
     Start(String),
+    /// A whiteboard across processes could not be held or joined; the message names the
+    /// endpoint and why.
+    Network(String),
 }
 
 impl Failure {
@@ -57,6 +60,7 @@ impl fmt::Display for Failure {
             Failure::Argument(message) => f.write_str(message),
             Failure::Bench(message) => write!(f, "benchmark failed: {message}"),
             Failure::Start(message) => write!(f, "cannot start the behaviour: {message}"),
+            Failure::Network(message) => f.write_str(message),
         }
     }
 }

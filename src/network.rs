@@ -6,6 +6,7 @@ use crate::failure::Failure;
 use clap::Args;
 use proclaim_board::Whiteboard;
 use std::path::PathBuf;
+use std::time::Duration;
 
 /// The endpoint `--listen` uses when given none.
 pub const DEFAULT_ENDPOINT: &str = "tcp/127.0.0.1:7447";
@@ -59,12 +60,40 @@ async fn shared(network: &Network) -> Result<Whiteboard, Failure> {
     };
     proclaim_zenoh::whiteboard(&role, &network.board, network.zenoh_config.as_deref())
         .await
-        .map_err(Failure::Start)
+        .map_err(Failure::Network)
+}
+
+/// `count` round trips to the process holding the whiteboard `network` joins.
+#[cfg(feature = "zenoh")]
+pub async fn round_trips(network: &Network, count: usize) -> Result<Vec<Duration>, Failure> {
+    let Some(endpoint) = &network.connect else {
+        return Err(Failure::Argument(
+            "ping needs --connect ENDPOINT: the process holding the whiteboard".into(),
+        ));
+    };
+    proclaim_zenoh::ping(
+        endpoint,
+        &network.board,
+        network.zenoh_config.as_deref(),
+        count,
+    )
+    .await
+    .map_err(Failure::Network)
 }
 
 #[cfg(not(feature = "zenoh"))]
 async fn shared(_: &Network) -> Result<Whiteboard, Failure> {
-    Err(Failure::Argument(
+    Err(without_zenoh())
+}
+
+#[cfg(not(feature = "zenoh"))]
+pub async fn round_trips(_: &Network, _: usize) -> Result<Vec<Duration>, Failure> {
+    Err(without_zenoh())
+}
+
+#[cfg(not(feature = "zenoh"))]
+fn without_zenoh() -> Failure {
+    Failure::Network(
         "this proclaim was built without the whiteboard across processes; build it with `cargo build --release --features zenoh`".into(),
-    ))
+    )
 }

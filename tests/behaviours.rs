@@ -64,6 +64,15 @@ async fn run_with(
     (lines, board)
 }
 
+/// The trace's lines that say a machine entered a state.
+fn transitions(trace: &[String]) -> Vec<&str> {
+    trace
+        .iter()
+        .filter(|l| l.contains('→'))
+        .map(String::as_str)
+        .collect()
+}
+
 #[tokio::test(start_paused = true)]
 async fn the_game_controller_plays_a_scripted_game_to_finished() {
     let script = "\
@@ -78,11 +87,7 @@ async fn the_game_controller_plays_a_scripted_game_to_finished() {
         at 9s finishedReceived = true
     ";
     let (trace, board) = run("game_controller", Some(script), Duration::from_secs(30)).await;
-    let states: Vec<&str> = trace
-        .iter()
-        .filter(|l| l.contains('→'))
-        .map(String::as_str)
-        .collect();
+    let states = transitions(&trace);
     assert_eq!(
         states,
         [
@@ -137,11 +142,7 @@ async fn the_chest_button_penalises_by_hand_before_kick_off() {
         ],
     )
     .await;
-    let states: Vec<&str> = trace
-        .iter()
-        .filter(|l| l.contains('→'))
-        .map(String::as_str)
-        .collect();
+    let states = transitions(&trace);
     assert_eq!(
         states,
         [
@@ -194,11 +195,7 @@ async fn opening_the_door_stops_the_magnetron_at_once() {
     let script =
         "doorOpen = false\ntimeLeft = false\nat 1s timeLeft = true\nat 10s doorOpen = true\n";
     let (trace, board) = run("microwave", Some(script), Duration::from_secs(12)).await;
-    let states: Vec<&str> = trace
-        .iter()
-        .filter(|l| l.contains('→'))
-        .map(String::as_str)
-        .collect();
+    let states = transitions(&trace);
     assert_eq!(
         states,
         [

@@ -1,9 +1,10 @@
 //! Commands that work on a whiteboard, usually one shared by other processes: `expert` (a
-//! theory answering labels), `post` (one message) and `watch` (every message, as it comes).
+//! theory answering labels), `post` (one message), `watch` (every message, as it comes) and
+//! `ping` (what the link to its holder costs).
 
 use crate::failure::Failure;
 use crate::load;
-use crate::network::{whiteboard, Network};
+use crate::network::{round_trips, whiteboard, Network};
 use proclaim_board::{Value, Whiteboard};
 use proclaim_experts::{parse_duration, parse_mapping, ReasonerExpert};
 use std::path::Path;
@@ -128,4 +129,23 @@ pub fn watch(pattern: &str, network: &Network, limit: Option<&str>) -> Result<Ex
         }
         Ok(ExitCode::SUCCESS)
     })
+}
+
+pub fn ping(count: usize, network: &Network) -> Result<ExitCode, Failure> {
+    if count == 0 {
+        return Err(Failure::Argument("--count 0: nothing to time".into()));
+    }
+    let mut samples = runtime()?.block_on(round_trips(network, count))?;
+    samples.sort();
+    let at = |q: f64| samples[((samples.len() - 1) as f64 * q) as usize].as_secs_f64() * 1e6;
+    println!(
+        "{} round trips to the holder of `{}`: p50 {:.1} µs, p90 {:.1} µs, p99 {:.1} µs, max {:.1} µs",
+        samples.len(),
+        network.board,
+        at(0.5),
+        at(0.9),
+        at(0.99),
+        at(1.0)
+    );
+    Ok(ExitCode::SUCCESS)
 }

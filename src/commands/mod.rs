@@ -69,6 +69,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             duration,
             network,
         } => board::watch(&pattern, &network, duration.as_deref()),
+        Command::Ping { count, network } => board::ping(count, &network),
         Command::Replay { trace, speed } => run::replay(&trace, speed),
         Command::Deps {
             behaviour,

@@ -60,28 +60,29 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
                 let Action::Post { ty, content } = action else {
                     continue;
                 };
-                if reported.iter().any(|r| r == ty) {
+                if reported.iter().any(|r| r == ty) || is_machine(ty) || read_by(ty) {
                     continue;
                 }
-                if CONTROL.contains(&content.as_str()) && !is_machine(ty) && !read_by(ty) {
-                    reported.push(ty.clone());
-                    out.push(FileDiagnostic::error(
+                reported.push(ty.clone());
+                // A control word to nobody is a machine that is missing; any other posting
+                // nobody hears may be for a module outside the behaviour.
+                out.push(if CONTROL.contains(&content.as_str()) {
+                    FileDiagnostic::error(
                         &file,
                         state.line,
                         format!(
                             "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
                         ),
-                    ));
-                } else if !is_machine(ty) && !read_by(ty) {
-                    reported.push(ty.clone());
-                    out.push(FileDiagnostic::warning(
+                    )
+                } else {
+                    FileDiagnostic::warning(
                         &file,
                         state.line,
                         format!(
                             "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary)"
                         ),
-                    ));
-                }
+                    )
+                });
             }
         }
     }

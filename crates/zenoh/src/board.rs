@@ -13,9 +13,59 @@ use proclaim_board::{
 };
 use rustc_hash::FxHashMap;
 use std::path::Path;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 use std::time::Duration;
-use tokio::sync::mpsc;
+use zenoh::pubsub::Subscriber;
+use zenoh::qos::CongestionControl;
+use zenoh::query::Queryable;
+use zenoh::Wait;
+
+/// What every process serves from its own board, holder or replica alike: reads, waits,
+/// subscriptions, the registry and the counters.
+macro_rules! served_locally {
+    ($board:ident) => {
+        fn kind(&self, ty: &str) -> Kind {
+            self.$board.kind(ty)
+        }
+
+        fn latest(&self, ty: &str) -> Option<Message> {
+            self.$board.latest(ty)
+        }
+
+        fn wait_for(
+            &self,
+            ty: &str,
+            after: u64,
+            timeout: Duration,
+        ) -> BoxFuture<'_, Option<Message>> {
+            self.$board.wait_for(ty, after, timeout)
+        }
+
+        fn nearest(&self, ty: &str, time: Duration, side: std::cmp::Ordering) -> Option<Message> {
+            self.$board.nearest(ty, time, side)
+        }
+
+        fn subscribe(&self, pattern: Pattern) -> Subscription {
+            self.$board.subscribe(pattern)
+        }
+
+        fn registry(&self) -> Registry {
+            self.$board.registry()
+        }
+
+        fn is_answered(&self, atom: &str) -> bool {
+            self.$board.is_answered(atom)
+        }
+
+        fn stats(&self) -> Stats {
+            self.$board.stats()
+        }
+
+        fn count_query(&self, timed_out: bool, unanswerable: bool) {
+            self.$board.count_query(timed_out, unanswerable)
+        }
+    };
+}
 
 /// Key expressions of one board, under its name.
 #[derive(Clone)]
@@ -23,6 +73,7 @@ struct Keys {
     up: String,
     down: String,
     snapshot: String,
+    ping: String,
 }
 
 impl Keys {
@@ -31,6 +82,7 @@ impl Keys {
             up: format!("proclaim/{board}/up"),
             down: format!("proclaim/{board}/down"),
             snapshot: format!("proclaim/{board}/snapshot"),
+            ping: crate::probe::key(board),
         }
     }
 }
@@ -62,20 +114,66 @@ fn encode<T: serde::Serialize>(value: &T) -> Vec<u8> {
     serde_json::to_vec(value).unwrap_or_default()
 }
 
-/// Sends each item, in order, as one Zenoh put on `key`.
-fn publisher<T: serde::Serialize + Send + 'static>(
-    session: zenoh::Session,
-    key: String,
-) -> mpsc::UnboundedSender<T> {
-    let (tx, mut rx) = mpsc::unbounded_channel::<T>();
-    tokio::spawn(async move {
-        while let Some(item) = rx.recv().await {
-            if let Err(e) = session.put(&key, encode(&item)).await {
-                tracing::warn!(%key, error = %e, "whiteboard message not sent");
-            }
-        }
-    });
-    tx
+fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Where one side's messages go: in order, by a thread of their own, so a full or dying link
+/// slows that thread, never a poster nor Zenoh's receiving threads. Puts block when the link is
+/// full (Zenoh's default for a put is to drop): the whiteboard loses nothing. Not express: Zenoh
+/// batches only under back-pressure, and measured, express cost 5-15x the messages per second
+/// for no gain in a query's latency.
+struct Outbox<T>(std::sync::mpsc::Sender<T>);
+
+impl<T: serde::Serialize + Send + 'static> Outbox<T> {
+    async fn open(session: &zenoh::Session, key: &str) -> Result<Outbox<T>, String> {
+        let publisher = session
+            .declare_publisher(key.to_string())
+            .congestion_control(CongestionControl::Block)
+            .express(false)
+            .await
+            .map_err(|e| format!("cannot publish on {key}: {e}"))?;
+        let (tx, rx) = std::sync::mpsc::channel::<T>();
+        std::thread::Builder::new()
+            .name("proclaim-zenoh-out".into())
+            .spawn(move || {
+                // Ends when the board's last handle (and with it the sender) is dropped.
+                for item in rx {
+                    if let Err(e) = publisher.put(encode(&item)).wait() {
+                        tracing::warn!(key = %publisher.key_expr(), error = %e, "whiteboard message not sent");
+                    }
+                }
+            })
+            .map_err(|e| format!("cannot start the thread sending on {key}: {e}"))?;
+        Ok(Outbox(tx))
+    }
+
+    fn send(&self, item: T) {
+        let _ = self.0.send(item);
+    }
+}
+
+/// Runs `handle` on every message arriving on `key`, on Zenoh's receiving thread: applying a
+/// message to a board never blocks, and no task hop stands between the socket and the waiter.
+async fn on_every<T, F>(
+    session: &zenoh::Session,
+    key: &str,
+    handle: F,
+) -> Result<Subscriber<()>, String>
+where
+    T: serde::de::DeserializeOwned,
+    F: Fn(T) + Send + Sync + 'static,
+{
+    session
+        .declare_subscriber(key.to_string())
+        .callback(
+            move |sample| match serde_json::from_slice::<T>(&sample.payload().to_bytes()) {
+                Ok(item) => handle(item),
+                Err(e) => tracing::warn!(error = %e, "unreadable whiteboard message ignored"),
+            },
+        )
+        .await
+        .map_err(|e| format!("cannot subscribe to {key}: {e}"))
 }
 
 /// The process that holds the board.
@@ -84,7 +182,11 @@ struct Holder {
     id: String,
     /// Signal type → the process that consumes it.
     owners: Mutex<FxHashMap<String, String>>,
-    down: mpsc::UnboundedSender<Down>,
+    /// Numbering a posting and queueing it happen under this lock, so replicas receive postings
+    /// in sequence order whichever threads post at once.
+    down: Mutex<Outbox<Down>>,
+    /// The requests, snapshot queries and pings served; dropping them undeclares them.
+    serving: OnceLock<(Subscriber<()>, Queryable<()>, Queryable<()>)>,
     _session: zenoh::Session,
 }
 
@@ -94,41 +196,35 @@ impl Holder {
             core: LocalBoard::new(),
             id: process_id(),
             owners: Mutex::default(),
-            down: publisher(session.clone(), keys.down.clone()),
+            down: Mutex::new(Outbox::open(&session, &keys.down).await?),
+            serving: OnceLock::new(),
             _session: session.clone(),
         });
-        let requests = session
-            .declare_subscriber(&keys.up)
-            .await
-            .map_err(|e| format!("cannot subscribe to {}: {e}", keys.up))?;
-        let snapshots = session
-            .declare_queryable(&keys.snapshot)
-            .await
-            .map_err(|e| format!("cannot serve {}: {e}", keys.snapshot))?;
-        // The tasks hold the holder weakly: the board ends when its last handle is dropped.
+        // The callbacks hold the holder weakly: the board ends when its last handle is dropped.
         let weak = Arc::downgrade(&holder);
-        tokio::spawn(async move {
-            while let Ok(sample) = requests.recv_async().await {
-                let Some(holder) = weak.upgrade() else { return };
-                match serde_json::from_slice::<Up>(&sample.payload().to_bytes()) {
-                    Ok(up) => holder.handle(up),
-                    Err(e) => tracing::warn!(error = %e, "unreadable whiteboard request ignored"),
-                }
+        let requests = on_every(&session, &keys.up, move |up: Up| {
+            if let Some(holder) = weak.upgrade() {
+                holder.handle(up);
             }
-        });
+        })
+        .await?;
         let weak = Arc::downgrade(&holder);
-        tokio::spawn(async move {
-            while let Ok(query) = snapshots.recv_async().await {
+        let snapshots = session
+            .declare_queryable(keys.snapshot.clone())
+            .callback(move |query| {
                 let Some(holder) = weak.upgrade() else { return };
                 let snapshot = holder.snapshot();
                 if let Err(e) = query
                     .reply(query.key_expr().clone(), encode(&snapshot))
-                    .await
+                    .wait()
                 {
                     tracing::warn!(error = %e, "snapshot not sent");
                 }
-            }
-        });
+            })
+            .await
+            .map_err(|e| format!("cannot serve {}: {e}", keys.snapshot))?;
+        let pings = crate::probe::answer(&session, &keys.ping).await?;
+        let _ = holder.serving.set((requests, snapshots, pings));
         Ok(holder)
     }
 
@@ -143,11 +239,7 @@ impl Holder {
     }
 
     fn owner(&self, ty: &str) -> Option<String> {
-        self.owners
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .get(ty)
-            .cloned()
+        lock(&self.owners).get(ty).cloned()
     }
 
     fn post_here(&self, module: &str, ty: &str, value: Value) -> Message {
@@ -155,8 +247,9 @@ impl Holder {
         let owner = if signal { self.owner(ty) } else { None };
         // Unowned signals wait here until a process declares the type.
         let consumable = owner.as_ref().is_none_or(|o| *o == self.id);
+        let down = lock(&self.down);
         let message = self.core.post_as(module, ty, value, consumable);
-        let _ = self.down.send(Down::Posted {
+        down.send(Down::Posted {
             message: WireMessage::from(&message),
             owner,
         });
@@ -164,11 +257,11 @@ impl Holder {
     }
 
     fn declare_for(&self, ty: &str, kind: Kind, process: &str) {
+        let down = lock(&self.down);
         let was = self.core.kind(ty);
         if kind == Kind::Signal {
             let owner = {
-                let mut owners = self.owners.lock().unwrap_or_else(|e| e.into_inner());
-                owners
+                lock(&self.owners)
                     .entry(ty.to_string())
                     .or_insert_with(|| process.to_string())
                     .clone()
@@ -193,7 +286,7 @@ impl Holder {
                 }
                 self.core.declare_observed(ty, kind);
                 for message in pending {
-                    let _ = self.down.send(Down::Posted {
+                    down.send(Down::Posted {
                         message: WireMessage::from(&message),
                         owner: Some(owner.clone()),
                     });
@@ -202,7 +295,7 @@ impl Holder {
         } else {
             self.core.declare(ty, kind);
         }
-        let _ = self.down.send(Down::Declared {
+        down.send(Down::Declared {
             ty: ty.to_string(),
             kind: kind.into(),
         });
@@ -210,7 +303,7 @@ impl Holder {
 
     fn snapshot(&self) -> Snapshot {
         let (kinds, messages) = self.core.snapshot();
-        let owners = self.owners.lock().unwrap_or_else(|e| e.into_inner());
+        let owners = lock(&self.owners);
         Snapshot {
             kinds: kinds.into_iter().map(|(t, k)| (t, k.into())).collect(),
             messages: messages.iter().map(WireMessage::from).collect(),
@@ -228,55 +321,22 @@ impl Holder {
 }
 
 impl Transport for Holder {
+    served_locally!(core);
+
     fn declare(&self, ty: &str, kind: Kind) {
         let id = self.id.clone();
         self.declare_for(ty, kind, &id);
-    }
-
-    fn kind(&self, ty: &str) -> Kind {
-        self.core.kind(ty)
     }
 
     fn post(&self, module: &str, ty: &str, value: Value) -> Message {
         self.post_here(module, ty, value)
     }
 
-    fn latest(&self, ty: &str) -> Option<Message> {
-        self.core.latest(ty)
-    }
-
-    fn wait_for(&self, ty: &str, after: u64, timeout: Duration) -> BoxFuture<'_, Option<Message>> {
-        self.core.wait_for(ty, after, timeout)
-    }
-
-    fn nearest(&self, ty: &str, time: Duration, side: std::cmp::Ordering) -> Option<Message> {
-        self.core.nearest(ty, time, side)
-    }
-
-    fn subscribe(&self, pattern: Pattern) -> Subscription {
-        self.core.subscribe(pattern)
-    }
-
     fn register(&self, decl: ModuleDecl) {
         let wire = WireDecl::from(&decl);
+        let down = lock(&self.down);
         self.core.register(decl);
-        let _ = self.down.send(Down::Registered(wire));
-    }
-
-    fn registry(&self) -> Registry {
-        self.core.registry()
-    }
-
-    fn is_answered(&self, atom: &str) -> bool {
-        self.core.is_answered(atom)
-    }
-
-    fn stats(&self) -> Stats {
-        self.core.stats()
-    }
-
-    fn count_query(&self, timed_out: bool, unanswerable: bool) {
-        self.core.count_query(timed_out, unanswerable)
+        down.send(Down::Registered(wire));
     }
 
     fn now(&self) -> Duration {
@@ -288,9 +348,12 @@ impl Transport for Holder {
 struct Replica {
     mirror: LocalBoard,
     id: String,
-    up: mpsc::UnboundedSender<Up>,
+    up: Outbox<Up>,
     /// The holder's clock when the replica's began, so times compare across processes.
-    clock_offset: Duration,
+    clock_offset: OnceLock<Duration>,
+    /// What arrives from the holder before the snapshot is applied waits here (`None` after).
+    early: Mutex<Option<Vec<Down>>>,
+    stream: OnceLock<Subscriber<()>>,
     _session: zenoh::Session,
 }
 
@@ -300,16 +363,35 @@ impl Replica {
         keys: Keys,
         endpoint: &str,
     ) -> Result<Arc<Replica>, String> {
+        let replica = Arc::new(Replica {
+            mirror: LocalBoard::new(),
+            id: process_id(),
+            up: Outbox::open(&session, &keys.up).await?,
+            clock_offset: OnceLock::new(),
+            early: Mutex::new(Some(Vec::new())),
+            stream: OnceLock::new(),
+            _session: session.clone(),
+        });
         // Subscribe first, so nothing posted between the snapshot and the stream is lost
         // (what arrives twice is recognised by its sequence number).
-        let stream = session
-            .declare_subscriber(&keys.down)
-            .await
-            .map_err(|e| format!("cannot subscribe to {}: {e}", keys.down))?;
+        let weak = Arc::downgrade(&replica);
+        let stream = on_every(&session, &keys.down, move |down: Down| {
+            if let Some(replica) = weak.upgrade() {
+                replica.receive(down);
+            }
+        })
+        .await?;
+        let _ = replica.stream.set(stream);
         let snapshot = fetch_snapshot(&session, &keys, endpoint).await?;
-        let mirror = LocalBoard::new();
-        let local_start = mirror.now();
-        let id = process_id();
+        replica.start_from(snapshot);
+        Ok(replica)
+    }
+
+    fn start_from(&self, snapshot: Snapshot) {
+        let mirror = &self.mirror;
+        let _ = self
+            .clock_offset
+            .set(Duration::from_micros(snapshot.now_us).saturating_sub(mirror.now()));
         for (ty, kind) in &snapshot.kinds {
             mirror.declare_observed(ty, (*kind).into());
         }
@@ -319,26 +401,21 @@ impl Replica {
         for d in snapshot.registry {
             mirror.register(d.into());
         }
-        let replica = Arc::new(Replica {
-            mirror,
-            id,
-            up: publisher(session.clone(), keys.up.clone()),
-            clock_offset: Duration::from_micros(snapshot.now_us).saturating_sub(local_start),
-            _session: session.clone(),
-        });
-        let weak = Arc::downgrade(&replica);
-        tokio::spawn(async move {
-            while let Ok(sample) = stream.recv_async().await {
-                let Some(replica) = weak.upgrade() else {
-                    return;
-                };
-                match serde_json::from_slice::<Down>(&sample.payload().to_bytes()) {
-                    Ok(down) => replica.apply(down),
-                    Err(e) => tracing::warn!(error = %e, "unreadable whiteboard message ignored"),
-                }
+        let mut early = lock(&self.early);
+        for down in early.take().unwrap_or_default() {
+            self.apply(down);
+        }
+    }
+
+    fn receive(&self, down: Down) {
+        let mut early = lock(&self.early);
+        match early.as_mut() {
+            Some(waiting) => waiting.push(down),
+            None => {
+                drop(early);
+                self.apply(down);
             }
-        });
-        Ok(replica)
+        }
     }
 
     fn apply(&self, down: Down) {
@@ -384,6 +461,8 @@ async fn fetch_snapshot(
 }
 
 impl Transport for Replica {
+    served_locally!(mirror);
+
     fn declare(&self, ty: &str, kind: Kind) {
         // A signal type's pending command comes from the holder, which alone knows whether
         // another process consumes the type already.
@@ -391,22 +470,20 @@ impl Transport for Replica {
             Kind::Signal => self.mirror.declare_observed(ty, kind),
             _ => self.mirror.declare(ty, kind),
         }
-        let _ = self.up.send(Up::Declare {
+        self.up.send(Up::Declare {
             ty: ty.to_string(),
             kind: WireKind::from(kind),
             process: self.id.clone(),
         });
     }
 
-    fn kind(&self, ty: &str) -> Kind {
-        self.mirror.kind(ty)
-    }
-
     /// Sent to the holder, which numbers it; the message comes back to this replica like any
     /// other. The one returned carries the highest sequence number seen here: the posting is
     /// numbered after it (what a query waits beyond).
     fn post(&self, module: &str, ty: &str, value: Value) -> Message {
-        let _ = self.up.send(Up::Post {
+        // Read before sending: the answer to a query can be back before `send` returns.
+        let seen = self.mirror.last_seq();
+        self.up.send(Up::Post {
             module: module.to_string(),
             ty: ty.to_string(),
             value: WireValue::from(&value),
@@ -415,49 +492,17 @@ impl Transport for Replica {
             ty: Arc::from(ty),
             value,
             module: Arc::from(module),
-            seq: self.mirror.last_seq(),
+            seq: seen,
             time: self.now(),
         }
     }
 
-    fn latest(&self, ty: &str) -> Option<Message> {
-        self.mirror.latest(ty)
-    }
-
-    fn wait_for(&self, ty: &str, after: u64, timeout: Duration) -> BoxFuture<'_, Option<Message>> {
-        self.mirror.wait_for(ty, after, timeout)
-    }
-
-    fn nearest(&self, ty: &str, time: Duration, side: std::cmp::Ordering) -> Option<Message> {
-        self.mirror.nearest(ty, time, side)
-    }
-
-    fn subscribe(&self, pattern: Pattern) -> Subscription {
-        self.mirror.subscribe(pattern)
-    }
-
     fn register(&self, decl: ModuleDecl) {
-        let _ = self.up.send(Up::Register(WireDecl::from(&decl)));
+        self.up.send(Up::Register(WireDecl::from(&decl)));
         self.mirror.register(decl);
     }
 
-    fn registry(&self) -> Registry {
-        self.mirror.registry()
-    }
-
-    fn is_answered(&self, atom: &str) -> bool {
-        self.mirror.is_answered(atom)
-    }
-
-    fn stats(&self) -> Stats {
-        self.mirror.stats()
-    }
-
-    fn count_query(&self, timed_out: bool, unanswerable: bool) {
-        self.mirror.count_query(timed_out, unanswerable)
-    }
-
     fn now(&self) -> Duration {
-        self.mirror.now() + self.clock_offset
+        self.mirror.now() + self.clock_offset.get().copied().unwrap_or_default()
     }
 }

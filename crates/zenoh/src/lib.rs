@@ -9,8 +9,10 @@
 //! scouting is off; TLS and access control come from Zenoh's own configuration file.
 
 mod board;
+mod probe;
 mod session;
 mod wire;
 
 pub use board::whiteboard;
+pub use probe::ping;
 pub use session::Role;

@@ -76,7 +76,7 @@ pub struct WireMessage {
     pub value: WireValue,
     pub module: String,
     pub seq: u64,
-    pub time_us: u64,
+    pub time_ns: u64,
 }
 
 impl From<&Message> for WireMessage {
@@ -86,7 +86,7 @@ impl From<&Message> for WireMessage {
             value: WireValue::from(&m.value),
             module: m.module.to_string(),
             seq: m.seq,
-            time_us: m.time.as_micros().min(u128::from(u64::MAX)) as u64,
+            time_ns: m.time.as_nanos().min(u128::from(u64::MAX)) as u64,
         }
     }
 }
@@ -98,7 +98,7 @@ impl From<WireMessage> for Message {
             value: m.value.into(),
             module: Arc::from(m.module),
             seq: m.seq,
-            time: Duration::from_micros(m.time_us),
+            time: Duration::from_nanos(m.time_ns),
         }
     }
 }
