@@ -1,12 +1,13 @@
 //! The whiteboard across processes (needs `--features zenoh`): a label query answered by a
 //! reasoner expert in another process, against the bare Zenoh request/reply round trip between
 //! the same two kinds of process in the same run; and messages per second from one process to
-//! another, on loopback. The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
+//! another, on loopback. Both on Zenoh's default transport and on its low-latency one
+//! (`--low-latency`). The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
 //!
 //! `cargo bench --features zenoh --bench network`
 
 use proclaim_board::Whiteboard;
-use proclaim_zenoh::{whiteboard, Role};
+use proclaim_zenoh::{whiteboard, Role, Settings};
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -16,6 +17,8 @@ const MESSAGES: u64 = 50_000;
 const SAMPLES: usize = 3000;
 
 fn main() {
+    // What `proclaim` runs with (before any thread exists).
+    proclaim_zenoh::prefer_few_threads();
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -23,31 +26,33 @@ fn main() {
         .unwrap();
     match std::env::var("PROCLAIM_BENCH_ROLE") {
         Ok(role) => runtime.block_on(child(&role)),
-        Err(_) => runtime.block_on(parent()),
+        Err(_) => {
+            for low_latency in [false, true] {
+                runtime.block_on(parent(low_latency));
+            }
+        }
     }
 }
 
-/// Zenoh's own configuration for both processes, from `PROCLAIM_BENCH_ZENOH_CONFIG` (to
-/// compare transports' settings).
-fn zenoh_config() -> Option<std::path::PathBuf> {
-    std::env::var_os("PROCLAIM_BENCH_ZENOH_CONFIG").map(Into::into)
+/// The transport a child uses: the parent's, passed down in `PROCLAIM_BENCH_LOW_LATENCY`.
+fn settings() -> Settings {
+    Settings {
+        config_file: None,
+        low_latency: std::env::var_os("PROCLAIM_BENCH_LOW_LATENCY").is_some(),
+    }
 }
 
 async fn join(endpoint: &str) -> Whiteboard {
-    whiteboard(
-        &Role::Connect(endpoint.to_string()),
-        "bench",
-        zenoh_config().as_deref(),
-    )
-    .await
-    .expect("joins the bench board")
+    whiteboard(&Role::Connect(endpoint.to_string()), "bench", &settings())
+        .await
+        .expect("joins the bench board")
 }
 
 /// The other process: an expert, a sink that counts `tick`s, or a pinger.
 async fn child(role: &str) {
     let (what, endpoint) = role.split_once(' ').expect("ROLE ENDPOINT");
     if what == "ping" {
-        let samples = proclaim_zenoh::ping(endpoint, "bench", zenoh_config().as_deref(), SAMPLES)
+        let samples = proclaim_zenoh::ping(endpoint, "bench", &settings(), SAMPLES)
             .await
             .expect("the holder answers pings");
         percentiles("bare Zenoh round trip (request, reply)", samples);
@@ -82,8 +87,12 @@ async fn child(role: &str) {
     }
 }
 
-fn spawn(role: &str) -> std::process::Child {
-    Command::new(std::env::current_exe().unwrap())
+fn spawn(role: &str, low_latency: bool) -> std::process::Child {
+    let mut command = Command::new(std::env::current_exe().unwrap());
+    if low_latency {
+        command.env("PROCLAIM_BENCH_LOW_LATENCY", "1");
+    }
+    command
         .env("PROCLAIM_BENCH_ROLE", role)
         .stdout(Stdio::piped())
         .spawn()
@@ -103,22 +112,30 @@ fn percentiles(name: &str, mut samples: Vec<Duration>) -> f64 {
     at(0.5)
 }
 
-async fn parent() {
+async fn parent(low_latency: bool) {
+    println!(
+        "-- {} transport",
+        if low_latency {
+            "low-latency"
+        } else {
+            "default"
+        }
+    );
     let port = std::net::TcpListener::bind("127.0.0.1:0")
         .unwrap()
         .local_addr()
         .unwrap()
         .port();
     let endpoint = format!("tcp/127.0.0.1:{port}");
-    let board = whiteboard(
-        &Role::Listen(endpoint.clone()),
-        "bench",
-        zenoh_config().as_deref(),
-    )
-    .await
-    .expect("listens");
+    let settings = Settings {
+        config_file: None,
+        low_latency,
+    };
+    let board = whiteboard(&Role::Listen(endpoint.clone()), "bench", &settings)
+        .await
+        .expect("listens");
 
-    let mut expert = spawn(&format!("expert {endpoint}"));
+    let mut expert = spawn(&format!("expert {endpoint}"), low_latency);
     let deadline = Instant::now() + Duration::from_secs(20);
     while !board.registry().answers("cook") {
         assert!(Instant::now() < deadline, "the expert process did not join");
@@ -138,7 +155,7 @@ async fn parent() {
     let _ = expert.kill();
     let _ = expert.wait();
 
-    let mut pinger = spawn(&format!("ping {endpoint}"));
+    let mut pinger = spawn(&format!("ping {endpoint}"), low_latency);
     let line = BufReader::new(pinger.stdout.take().expect("piped"))
         .lines()
         .next()
@@ -158,7 +175,7 @@ async fn parent() {
     );
     let _ = pinger.wait();
 
-    let mut sink = spawn(&format!("sink {endpoint}"));
+    let mut sink = spawn(&format!("sink {endpoint}"), low_latency);
     let mut out = BufReader::new(sink.stdout.take().unwrap()).lines();
     assert_eq!(out.next().unwrap().unwrap(), "ready");
     tokio::time::sleep(Duration::from_millis(300)).await;

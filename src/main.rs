@@ -23,6 +23,9 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    // Before any thread exists, as it requires.
+    #[cfg(feature = "zenoh")]
+    proclaim_zenoh::prefer_few_threads();
     let cli = cli::Cli::parse();
     match commands::run(cli) {
         Ok(code) => code,

@@ -26,6 +26,10 @@ pub struct Network {
     /// The whiteboard's name, when several share a network
     #[arg(long = "board", value_name = "NAME", default_value = "proclaim")]
     pub board: String,
+    /// Zenoh's low-latency transport (every process of the board must say so): faster round
+    /// trips, fewer messages per second, no message over 60 KiB
+    #[arg(long)]
+    pub low_latency: bool,
 }
 
 impl Network {
@@ -58,9 +62,17 @@ async fn shared(network: &Network) -> Result<Whiteboard, Failure> {
         (_, Some(e)) => proclaim_zenoh::Role::Connect(e.clone()),
         _ => unreachable!("a local board is handled by the caller"),
     };
-    proclaim_zenoh::whiteboard(&role, &network.board, network.zenoh_config.as_deref())
+    proclaim_zenoh::whiteboard(&role, &network.board, &settings(network))
         .await
         .map_err(Failure::Network)
+}
+
+#[cfg(feature = "zenoh")]
+fn settings(network: &Network) -> proclaim_zenoh::Settings {
+    proclaim_zenoh::Settings {
+        config_file: network.zenoh_config.clone(),
+        low_latency: network.low_latency,
+    }
 }
 
 /// `count` round trips to the process holding the whiteboard `network` joins.
@@ -71,14 +83,9 @@ pub async fn round_trips(network: &Network, count: usize) -> Result<Vec<Duration
             "ping needs --connect ENDPOINT: the process holding the whiteboard".into(),
         ));
     };
-    proclaim_zenoh::ping(
-        endpoint,
-        &network.board,
-        network.zenoh_config.as_deref(),
-        count,
-    )
-    .await
-    .map_err(Failure::Network)
+    proclaim_zenoh::ping(endpoint, &network.board, &settings(network), count)
+        .await
+        .map_err(Failure::Network)
 }
 
 #[cfg(not(feature = "zenoh"))]

@@ -4,7 +4,8 @@
 //! the whiteboard suite, `whiteboard::over_zenoh`.)
 //! Everything is on 127.0.0.1, on free ports, bounded in count and time.
 
-use proclaim_zenoh::{whiteboard, Role};
+use proclaim_board::{Kind, Value};
+use proclaim_zenoh::{whiteboard, Role, Settings};
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
@@ -22,16 +23,55 @@ pub fn free_endpoint() -> String {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn joining_a_board_nobody_holds_says_so() {
     let endpoint = free_endpoint();
-    let error = whiteboard(&Role::Connect(endpoint.clone()), "test", None)
-        .await
-        .err()
-        .expect("nobody listens there");
+    let error = whiteboard(
+        &Role::Connect(endpoint.clone()),
+        "test",
+        &Settings::default(),
+    )
+    .await
+    .err()
+    .expect("nobody listens there");
     assert!(error.contains(&endpoint), "{error}");
-    let error = whiteboard(&Role::Listen("127.0.0.1:7447".into()), "test", None)
+    let error = whiteboard(
+        &Role::Listen("127.0.0.1:7447".into()),
+        "test",
+        &Settings::default(),
+    )
+    .await
+    .err()
+    .unwrap();
+    assert!(error.contains("write it as tcp/HOST:PORT"), "{error}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_low_latency_transport_refuses_what_it_cannot_carry_and_says_why() {
+    let endpoint = free_endpoint();
+    let settings = Settings {
+        config_file: None,
+        low_latency: true,
+    };
+    let holder = whiteboard(&Role::Listen(endpoint.clone()), "big", &settings)
+        .await
+        .unwrap();
+    let replica = whiteboard(&Role::Connect(endpoint.clone()), "big", &settings)
+        .await
+        .unwrap();
+    // A posting over the limit is not sent (the log says so); the link stays up for the rest.
+    replica.post("camera", "image", Value::Bytes(vec![7; 100 * 1024]));
+    replica.post("camera", "seen", true);
+    let seen = holder.wait_for("seen", 0, Duration::from_secs(2)).await;
+    assert!(seen.is_some(), "the link survived");
+    assert!(holder.latest("image").is_none());
+    // A board whose snapshot is over the limit cannot be joined, and the joiner is told why.
+    holder.declare("odometry", Kind::Data);
+    for i in 0..100 {
+        holder.post("walk", "odometry", format!("{i:01000}"));
+    }
+    let error = whiteboard(&Role::Connect(endpoint.clone()), "big", &settings)
         .await
         .err()
-        .unwrap();
-    assert!(error.contains("write it as tcp/HOST:PORT"), "{error}");
+        .expect("too big to join");
+    assert!(error.contains("--low-latency"), "{error}");
 }
 
 /// A child process, killed when dropped.

@@ -23,7 +23,16 @@ macro_rules! on_every_transport {
             $(
                 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
                 async fn $test() {
-                    super::$test(super::Transport::Zenoh).await
+                    super::$test(super::Transport::Zenoh { low_latency: false }).await
+                }
+            )*
+        }
+        #[cfg(feature = "zenoh")]
+        mod over_zenoh_low_latency {
+            $(
+                #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+                async fn $test() {
+                    super::$test(super::Transport::Zenoh { low_latency: true }).await
                 }
             )*
         }
@@ -47,7 +56,9 @@ on_every_transport!(
 enum Transport {
     InProcess,
     #[cfg(feature = "zenoh")]
-    Zenoh,
+    Zenoh {
+        low_latency: bool,
+    },
 }
 
 /// Three handles on one whiteboard: the same board three times in process; over Zenoh, the
@@ -59,15 +70,23 @@ async fn boards(transport: Transport) -> [Whiteboard; 3] {
             [board.clone(), board.clone(), board]
         }
         #[cfg(feature = "zenoh")]
-        Transport::Zenoh => {
-            use proclaim_zenoh::{whiteboard, Role};
+        Transport::Zenoh { low_latency } => {
+            use proclaim_zenoh::{whiteboard, Role, Settings};
+            let settings = Settings {
+                config_file: None,
+                low_latency,
+            };
             let endpoint = crate::network::free_endpoint();
-            let holder = whiteboard(&Role::Listen(endpoint.clone()), "suite", None)
+            let holder = whiteboard(&Role::Listen(endpoint.clone()), "suite", &settings)
                 .await
                 .expect("listens");
             let replica = Role::Connect(endpoint);
-            let a = whiteboard(&replica, "suite", None).await.expect("connects");
-            let b = whiteboard(&replica, "suite", None).await.expect("connects");
+            let a = whiteboard(&replica, "suite", &settings)
+                .await
+                .expect("connects");
+            let b = whiteboard(&replica, "suite", &settings)
+                .await
+                .expect("connects");
             [holder, a, b]
         }
     }

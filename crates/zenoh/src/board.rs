@@ -5,17 +5,17 @@
 //! signal (a machine, for its own name); the others observe its signals. Reads, waits and
 //! subscriptions are served from the local replica, so they cost what they cost in process.
 
-use crate::session::{open, Role};
+use crate::session::{open, Role, Settings};
 use crate::wire::{Down, Snapshot, Up, WireDecl, WireKind, WireMessage, WireValue};
 use proclaim_board::{
     BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Stats, Subscription,
     Transport, Value, Whiteboard,
 };
 use rustc_hash::FxHashMap;
-use std::path::Path;
+use std::marker::PhantomData;
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 use std::time::Duration;
-use zenoh::pubsub::Subscriber;
+use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::qos::CongestionControl;
 use zenoh::query::Queryable;
 use zenoh::Wait;
@@ -92,13 +92,15 @@ impl Keys {
 pub async fn whiteboard(
     role: &Role,
     board: &str,
-    config_file: Option<&Path>,
+    settings: &Settings,
 ) -> Result<Whiteboard, String> {
-    let session = open(role, config_file).await?;
+    let session = open(role, settings).await?;
     let keys = Keys::new(board);
     let transport: Arc<dyn Transport> = match role {
-        Role::Listen(_) => Holder::start(session, keys).await?,
-        Role::Connect(endpoint) => Replica::start(session, keys, endpoint).await?,
+        Role::Listen(_) => Holder::start(session, keys, settings.message_limit()).await?,
+        Role::Connect(endpoint) => {
+            Replica::start(session, keys, endpoint, settings.message_limit()).await?
+        }
     };
     Ok(Whiteboard::new(transport))
 }
@@ -118,38 +120,85 @@ fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
     mutex.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Where one side's messages go: in order, by a thread of their own, so a full or dying link
-/// slows that thread, never a poster nor Zenoh's receiving threads. Puts block when the link is
-/// full (Zenoh's default for a put is to drop): the whiteboard loses nothing. Not express: Zenoh
-/// batches only under back-pressure, and measured, express cost 5-15x the messages per second
-/// for no gain in a query's latency.
-struct Outbox<T>(std::sync::mpsc::Sender<T>);
+/// Where one side's messages go, in order. Puts block when the link is full (Zenoh's default
+/// for a put is to drop): the whiteboard loses nothing, it slows the poster down. Not express:
+/// Zenoh batches only under back-pressure, and measured, express cost 5-15x the messages per
+/// second for no gain in a query's latency.
+enum Outbox<T> {
+    /// Put from the poster's own thread: a replica's postings (none comes from Zenoh's threads).
+    Direct(Publisher<'static>, Limit, PhantomData<fn(T)>),
+    /// Put by a thread of its own: the holder's, many sent from Zenoh's receiving callback,
+    /// which must never wait for a link (with few threads, it is the thread that drains it).
+    Queued(std::sync::mpsc::Sender<T>),
+}
+
+/// The largest message a transport carries, if it has a limit.
+type Limit = Option<usize>;
 
 impl<T: serde::Serialize + Send + 'static> Outbox<T> {
-    async fn open(session: &zenoh::Session, key: &str) -> Result<Outbox<T>, String> {
-        let publisher = session
+    async fn publisher(session: &zenoh::Session, key: &str) -> Result<Publisher<'static>, String> {
+        session
             .declare_publisher(key.to_string())
             .congestion_control(CongestionControl::Block)
             .express(false)
             .await
-            .map_err(|e| format!("cannot publish on {key}: {e}"))?;
+            .map_err(|e| format!("cannot publish on {key}: {e}"))
+    }
+
+    async fn direct(
+        session: &zenoh::Session,
+        key: &str,
+        limit: Limit,
+    ) -> Result<Outbox<T>, String> {
+        Ok(Outbox::Direct(
+            Self::publisher(session, key).await?,
+            limit,
+            PhantomData,
+        ))
+    }
+
+    async fn queued(
+        session: &zenoh::Session,
+        key: &str,
+        limit: Limit,
+    ) -> Result<Outbox<T>, String> {
+        let publisher = Self::publisher(session, key).await?;
         let (tx, rx) = std::sync::mpsc::channel::<T>();
         std::thread::Builder::new()
             .name("proclaim-zenoh-out".into())
             .spawn(move || {
                 // Ends when the board's last handle (and with it the sender) is dropped.
                 for item in rx {
-                    if let Err(e) = publisher.put(encode(&item)).wait() {
-                        tracing::warn!(key = %publisher.key_expr(), error = %e, "whiteboard message not sent");
-                    }
+                    put(&publisher, &item, limit);
                 }
             })
             .map_err(|e| format!("cannot start the thread sending on {key}: {e}"))?;
-        Ok(Outbox(tx))
+        Ok(Outbox::Queued(tx))
     }
 
     fn send(&self, item: T) {
-        let _ = self.0.send(item);
+        match self {
+            Outbox::Direct(publisher, limit, _) => put(publisher, &item, *limit),
+            Outbox::Queued(tx) => {
+                let _ = tx.send(item);
+            }
+        }
+    }
+}
+
+fn put<T: serde::Serialize>(publisher: &Publisher<'static>, item: &T, limit: Limit) {
+    let bytes = encode(item);
+    if let Some(limit) = limit.filter(|l| bytes.len() > *l) {
+        tracing::error!(
+            key = %publisher.key_expr(),
+            bytes = bytes.len(),
+            limit,
+            "whiteboard message too large for the low-latency transport, not sent (run every process without --low-latency)"
+        );
+        return;
+    }
+    if let Err(e) = publisher.put(bytes).wait() {
+        tracing::warn!(key = %publisher.key_expr(), error = %e, "whiteboard message not sent");
     }
 }
 
@@ -191,12 +240,16 @@ struct Holder {
 }
 
 impl Holder {
-    async fn start(session: zenoh::Session, keys: Keys) -> Result<Arc<Holder>, String> {
+    async fn start(
+        session: zenoh::Session,
+        keys: Keys,
+        limit: Limit,
+    ) -> Result<Arc<Holder>, String> {
         let holder = Arc::new(Holder {
             core: LocalBoard::new(),
             id: process_id(),
             owners: Mutex::default(),
-            down: Mutex::new(Outbox::open(&session, &keys.down).await?),
+            down: Mutex::new(Outbox::queued(&session, &keys.down, limit).await?),
             serving: OnceLock::new(),
             _session: session.clone(),
         });
@@ -213,11 +266,19 @@ impl Holder {
             .declare_queryable(keys.snapshot.clone())
             .callback(move |query| {
                 let Some(holder) = weak.upgrade() else { return };
-                let snapshot = holder.snapshot();
-                if let Err(e) = query
-                    .reply(query.key_expr().clone(), encode(&snapshot))
-                    .wait()
-                {
+                let snapshot = encode(&holder.snapshot());
+                let sent = match limit.filter(|l| snapshot.len() > *l) {
+                    None => query.reply(query.key_expr().clone(), snapshot).wait(),
+                    Some(limit) => {
+                        let why = format!(
+                            "its snapshot is {} bytes, over the low-latency transport's {limit}; run every process without --low-latency",
+                            snapshot.len()
+                        );
+                        tracing::error!("a process could not join: {why}");
+                        query.reply_err(why).wait()
+                    }
+                };
+                if let Err(e) = sent {
                     tracing::warn!(error = %e, "snapshot not sent");
                 }
             })
@@ -362,11 +423,12 @@ impl Replica {
         session: zenoh::Session,
         keys: Keys,
         endpoint: &str,
+        limit: Limit,
     ) -> Result<Arc<Replica>, String> {
         let replica = Arc::new(Replica {
             mirror: LocalBoard::new(),
             id: process_id(),
-            up: Outbox::open(&session, &keys.up).await?,
+            up: Outbox::direct(&session, &keys.up, limit).await?,
             clock_offset: OnceLock::new(),
             early: Mutex::new(Some(Vec::new())),
             stream: OnceLock::new(),
@@ -443,12 +505,18 @@ async fn fetch_snapshot(
     let deadline = tokio::time::Instant::now() + Duration::from_secs(5);
     loop {
         if let Ok(replies) = session.get(&keys.snapshot).await {
-            while let Ok(reply) = replies.recv_async().await {
-                if let Ok(sample) = reply.result() {
-                    return serde_json::from_slice(&sample.payload().to_bytes()).map_err(|e| {
-                        format!("the whiteboard at {endpoint} sent an unreadable snapshot: {e}")
-                    });
-                }
+            if let Ok(reply) = replies.recv_async().await {
+                return match reply.result() {
+                    Ok(sample) => {
+                        serde_json::from_slice(&sample.payload().to_bytes()).map_err(|e| {
+                            format!("the whiteboard at {endpoint} sent an unreadable snapshot: {e}")
+                        })
+                    }
+                    Err(refused) => Err(format!(
+                        "the whiteboard at {endpoint} cannot be joined: {}",
+                        String::from_utf8_lossy(&refused.payload().to_bytes())
+                    )),
+                };
             }
         }
         if tokio::time::Instant::now() >= deadline {

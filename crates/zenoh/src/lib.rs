@@ -11,8 +11,10 @@
 mod board;
 mod probe;
 mod session;
+mod threads;
 mod wire;
 
 pub use board::whiteboard;
 pub use probe::ping;
-pub use session::Role;
+pub use session::{Role, Settings};
+pub use threads::{prefer_few_threads, FEW_THREADS};

@@ -1,8 +1,7 @@
 //! The link's own round trip, without the whiteboard: the holder answers pings, and a process
 //! measures what one Zenoh request and reply to it cost. A query's latency is judged against it.
 
-use crate::session::{open, Role};
-use std::path::Path;
+use crate::session::{open, Role, Settings};
 use std::time::{Duration, Instant};
 use zenoh::query::Queryable;
 use zenoh::Wait;
@@ -31,10 +30,10 @@ pub(crate) async fn answer(session: &zenoh::Session, key: &str) -> Result<Querya
 pub async fn ping(
     endpoint: &str,
     board: &str,
-    config_file: Option<&Path>,
+    settings: &Settings,
     count: usize,
 ) -> Result<Vec<Duration>, String> {
-    let session = open(&Role::Connect(endpoint.to_string()), config_file).await?;
+    let session = open(&Role::Connect(endpoint.to_string()), settings).await?;
     let key = key(board);
     let deadline = Instant::now() + Duration::from_secs(5);
     while once(&session, &key).await.is_none() {
