@@ -74,6 +74,143 @@ async fn the_low_latency_transport_refuses_what_it_cannot_carry_and_says_why() {
     assert!(error.contains("--low-latency"), "{error}");
 }
 
+/// TLS through Zenoh's own configuration: a CA, a certificate for 127.0.0.1 signed by it, the
+/// holder listening on `tls/…` with them, a replica that trusts the CA joining, one that does not
+/// refused. Certificates are made with the `openssl` command; without it the test says so and
+/// checks nothing.
+#[cfg(feature = "zenoh-tls")]
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn tls_is_switched_on_through_zenohs_own_configuration() {
+    let dir = crate::behaviour_folder(
+        "tls",
+        &[(
+            "server.ext",
+            "subjectAltName=DNS:localhost,IP:127.0.0.1\nbasicConstraints=CA:FALSE\nextendedKeyUsage=serverAuth\n",
+        )],
+    );
+    let openssl = |args: &[&str]| {
+        Command::new("openssl")
+            .args(args)
+            .current_dir(&dir)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .map(|s| s.success())
+    };
+    let ec = [
+        "-newkey",
+        "ec",
+        "-pkeyopt",
+        "ec_paramgen_curve:prime256v1",
+        "-nodes",
+    ];
+    let made = [
+        [
+            &["req", "-x509"][..],
+            &ec[..],
+            &[
+                "-keyout",
+                "ca.key",
+                "-out",
+                "ca.pem",
+                "-days",
+                "2",
+                "-subj",
+                "/CN=proclaim test CA",
+            ][..],
+        ]
+        .concat(),
+        [
+            &["req"][..],
+            &ec[..],
+            &[
+                "-keyout",
+                "key.pem",
+                "-out",
+                "server.csr",
+                "-subj",
+                "/CN=127.0.0.1",
+            ][..],
+        ]
+        .concat(),
+        vec![
+            "x509",
+            "-req",
+            "-in",
+            "server.csr",
+            "-CA",
+            "ca.pem",
+            "-CAkey",
+            "ca.key",
+            "-CAcreateserial",
+            "-out",
+            "cert.pem",
+            "-days",
+            "2",
+            "-extfile",
+            "server.ext",
+        ],
+    ]
+    .iter()
+    .map(|args| openssl(args))
+    .collect::<Result<Vec<bool>, _>>();
+    match made {
+        Err(_) => {
+            eprintln!("no `openssl` command: TLS not checked");
+            return;
+        }
+        Ok(ok) => assert!(
+            ok.iter().all(|b| *b),
+            "openssl could not make the certificates"
+        ),
+    }
+    let config = |name: &str, tls: String| {
+        let path = dir.join(name);
+        std::fs::write(
+            &path,
+            format!("{{ transport: {{ link: {{ tls: {{ {tls} }} }} }} }}"),
+        )
+        .unwrap();
+        Settings {
+            config_file: Some(path),
+            low_latency: false,
+        }
+    };
+    let file = |f: &str| dir.join(f).display().to_string();
+    let holder_settings = config(
+        "holder.json5",
+        format!(
+            "listen_private_key: {:?}, listen_certificate: {:?}",
+            file("key.pem"),
+            file("cert.pem")
+        ),
+    );
+    let trusting = config(
+        "trusting.json5",
+        format!("root_ca_certificate: {:?}", file("ca.pem")),
+    );
+    let endpoint = free_endpoint().replace("tcp/", "tls/");
+    let holder = whiteboard(&Role::Listen(endpoint.clone()), "tls", &holder_settings)
+        .await
+        .expect("listens over TLS");
+    let replica = whiteboard(&Role::Connect(endpoint.clone()), "tls", &trusting)
+        .await
+        .expect("a replica that trusts the CA joins");
+    replica.post("vision", "ballSeen", true);
+    let seen = holder.wait_for("ballSeen", 0, Duration::from_secs(5)).await;
+    assert_eq!(seen.map(|m| m.value), Some(Value::Bool(true)));
+    // Trusting nobody in particular (the system's roots), the certificate is refused.
+    let error = whiteboard(
+        &Role::Connect(endpoint.clone()),
+        "tls",
+        &Settings::default(),
+    )
+    .await
+    .err()
+    .expect("a replica without the CA is refused");
+    assert!(error.contains(&endpoint), "{error}");
+}
+
 /// A child process, killed when dropped.
 struct Process(Child);
 
