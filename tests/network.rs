@@ -20,17 +20,18 @@ pub fn free_endpoint() -> String {
     format!("tcp/127.0.0.1:{port}")
 }
 
+/// Why joining `board` at `endpoint` with default settings fails (it must).
+async fn join_error(endpoint: &str, board: &str) -> String {
+    whiteboard(&Role::Connect(endpoint.into()), board, &Settings::default())
+        .await
+        .err()
+        .expect("joining fails")
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn joining_a_board_nobody_holds_says_so() {
     let endpoint = free_endpoint();
-    let error = whiteboard(
-        &Role::Connect(endpoint.clone()),
-        "test",
-        &Settings::default(),
-    )
-    .await
-    .err()
-    .expect("nobody listens there");
+    let error = join_error(&endpoint, "test").await;
     assert!(error.contains(&endpoint), "{error}");
     let error = whiteboard(
         &Role::Listen("127.0.0.1:7447".into()),
@@ -200,14 +201,7 @@ async fn tls_is_switched_on_through_zenohs_own_configuration() {
     let seen = holder.wait_for("ballSeen", 0, Duration::from_secs(5)).await;
     assert_eq!(seen.map(|m| m.value), Some(Value::Bool(true)));
     // Trusting nobody in particular (the system's roots), the certificate is refused.
-    let error = whiteboard(
-        &Role::Connect(endpoint.clone()),
-        "tls",
-        &Settings::default(),
-    )
-    .await
-    .err()
-    .expect("a replica without the CA is refused");
+    let error = join_error(&endpoint, "tls").await;
     assert!(error.contains(&endpoint), "{error}");
 }
 
@@ -384,4 +378,10 @@ fn post_watch_and_ping_poke_at_a_live_whiteboard() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("tcp/127.0.0.1:"));
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["ping", "--count", "0", "--connect", &endpoint])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--count 0"));
 }

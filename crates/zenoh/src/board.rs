@@ -225,6 +225,21 @@ where
         .map_err(|e| format!("cannot subscribe to {key}: {e}"))
 }
 
+/// `handle` on `board` for as long as it lives: a callback holds its board weakly, so the board
+/// ends when its last handle is dropped.
+fn while_alive<B, T>(board: &Arc<B>, handle: fn(&B, T)) -> impl Fn(T) + Send + Sync + 'static
+where
+    B: Send + Sync + 'static,
+    T: 'static,
+{
+    let weak = Arc::downgrade(board);
+    move |item| {
+        if let Some(board) = weak.upgrade() {
+            handle(&board, item);
+        }
+    }
+}
+
 /// The process that holds the board.
 struct Holder {
     core: LocalBoard,
@@ -253,14 +268,7 @@ impl Holder {
             serving: OnceLock::new(),
             _session: session.clone(),
         });
-        // The callbacks hold the holder weakly: the board ends when its last handle is dropped.
-        let weak = Arc::downgrade(&holder);
-        let requests = on_every(&session, &keys.up, move |up: Up| {
-            if let Some(holder) = weak.upgrade() {
-                holder.handle(up);
-            }
-        })
-        .await?;
+        let requests = on_every(&session, &keys.up, while_alive(&holder, Holder::handle)).await?;
         let weak = Arc::downgrade(&holder);
         let snapshots = session
             .declare_queryable(keys.snapshot.clone())
@@ -436,12 +444,11 @@ impl Replica {
         });
         // Subscribe first, so nothing posted between the snapshot and the stream is lost
         // (what arrives twice is recognised by its sequence number).
-        let weak = Arc::downgrade(&replica);
-        let stream = on_every(&session, &keys.down, move |down: Down| {
-            if let Some(replica) = weak.upgrade() {
-                replica.receive(down);
-            }
-        })
+        let stream = on_every(
+            &session,
+            &keys.down,
+            while_alive(&replica, Replica::receive),
+        )
         .await?;
         let _ = replica.stream.set(stream);
         let snapshot = fetch_snapshot(&session, &keys, endpoint).await?;

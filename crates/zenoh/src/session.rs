@@ -1,6 +1,7 @@
 //! Opening a Zenoh session the safe way: exactly the endpoints given (a listening process on
-//! loopback unless told otherwise), no multicast scouting, no other transport than TCP; the
-//! rest (TLS, access control) from Zenoh's own configuration file when one is given.
+//! loopback unless told otherwise), no multicast scouting, TCP (and TLS, with the `tls` feature)
+//! only; the rest (certificates, access control) from Zenoh's own configuration file when one is
+//! given.
 
 use std::path::PathBuf;
 
