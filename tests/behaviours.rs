@@ -250,7 +250,7 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
     );
     assert_eq!(
         errors[1],
-        format!("{}:4: error: the file ends too early; expected one of `call`, `code`, a name, a quoted string, `}}`", shown("B.machine"))
+        format!("{}:4: error: the file ends too early; expected one of `call`, `code`, a name, a quoted string, `}}`, a statement", shown("B.machine"))
     );
     assert!(
         errors[2].contains("t.dl") && errors[2].contains("error"),

@@ -702,6 +702,7 @@ fn run_step_rings_once_per_enter_and_reads_answers_typed_at_the_prompt() {
             "M fires on go",
             "M: B (running)",
             "M → B",
+            "M finished in B",
             "M: B (running)",
         ],
         "{out}"

@@ -188,7 +188,7 @@ async fn a_comparison_label_wakes_on_the_value_it_reads() {
 }
 
 #[tokio::test(start_paused = true)]
-async fn suspend_keeps_the_state_resume_continues_and_unknown_hosts_are_reported() {
+async fn suspend_keeps_the_state_resume_enters_it_again_and_unknown_hosts_are_reported() {
     let m = ta(
         "Stepper",
         "0\ttimeout(1000000)\t1\n1\ttimeout(1000000)\t2\n",
@@ -213,13 +213,13 @@ async fn suspend_keeps_the_state_resume_continues_and_unknown_hosts_are_reported
     let states: Vec<&str> = trace.iter().map(|(s, _)| s.as_str()).collect();
     assert_eq!(
         states,
-        ["First", "Second", "Third"],
-        "resumed in Second, not restarted"
+        ["First", "Second", "Second", "Third"],
+        "resumed by entering Second again (gufsm's SuspensibleMachine), not restarted"
     );
     assert_eq!(
         *calls.lock().unwrap(),
-        ["Some(Int(3))"],
-        "registered host function called with its argument"
+        ["Some(Int(3))", "Some(Int(3))"],
+        "registered host function called with its argument, on each entry"
     );
     // The same machine without the host function: reported once, as an event.
     let mut runner = MachineRunner::new(m, Hosts::default(), RunOptions::default());

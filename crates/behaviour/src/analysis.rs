@@ -28,13 +28,14 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
         })
     };
     let is_machine = |name: &str| behaviour.machines.iter().any(|m| m.machine.name == name);
+    let shared = behaviour.shared_variables();
     for loaded in &behaviour.machines {
         let m = &loaded.machine;
         let file = files.show(&loaded.file);
         out.extend(lint(m, &file));
         let mut reported: Vec<String> = Vec::new();
         for t in &m.transitions {
-            for atom in t.label.atoms() {
+            for atom in proclaim_runner::asked(&t.label, m, &shared) {
                 let own_status =
                     is_machine(atom.trim_end_matches("IsRunning")) && atom.ends_with("IsRunning");
                 if answered(atom) || own_status || posted_by_other(atom, &m.name) {

@@ -44,6 +44,8 @@ pub struct Running {
     /// The machines running from the start, and the state each is in.
     top: FxHashMap<String, Option<i64>>,
     halted: FxHashSet<String>,
+    /// Machines whose final state's OnEntry has run.
+    finished: FxHashSet<String>,
 }
 
 impl Running {
@@ -54,6 +56,9 @@ impl Running {
                 if let Some(at) = self.top.get_mut(machine) {
                     *at = Some(*id);
                 }
+            }
+            Event::Finished { machine, .. } => {
+                self.finished.insert(machine.clone());
             }
             Event::Halted { machine, .. } => {
                 self.halted.insert(machine.clone());
@@ -66,7 +71,10 @@ impl Running {
     pub fn is_over(&self) -> bool {
         self.top.iter().all(|(machine, at)| {
             self.halted.contains(machine)
-                || at.is_some_and(|id| self.finals.get(machine).is_some_and(|f| f.contains(&id)))
+                || (self.finished.contains(machine)
+                    && at.is_some_and(|id| {
+                        self.finals.get(machine).is_some_and(|f| f.contains(&id))
+                    }))
         })
     }
 
@@ -264,6 +272,8 @@ pub async fn launch(
     wait_registered(board, &experts).await;
 
     let (tx, events) = mpsc::unbounded_channel();
+    let shared = behaviour.shared_variables();
+    let epoch = tokio::time::Instant::now();
     let mut finals = FxHashMap::default();
     let mut top = FxHashMap::default();
     for loaded in &behaviour.machines {
@@ -287,6 +297,8 @@ pub async fn launch(
                 start_running: loaded.start,
                 halt_on_timeout: options.halt_on_timeout,
                 stepper: options.stepper.clone(),
+                shared: Some(shared.clone()),
+                epoch: Some(epoch),
             },
         )
         .with_loader(loaded.loader.clone());
@@ -300,6 +312,7 @@ pub async fn launch(
         finals,
         top,
         halted: FxHashSet::default(),
+        finished: FxHashSet::default(),
     })
 }
 

@@ -32,6 +32,13 @@ pub struct Behaviour {
     pub files: Arc<dyn Files>,
 }
 
+impl Behaviour {
+    /// The variables its machines share: globals and externs, from every machine's activities.
+    pub fn shared_variables(&self) -> std::sync::Arc<proclaim_runner::Shared> {
+        proclaim_runner::Shared::for_machines(self.machines.iter().map(|m| &m.machine))
+    }
+}
+
 pub struct LoadedMachine {
     pub machine: Machine,
     pub file: String,

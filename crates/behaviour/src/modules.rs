@@ -33,9 +33,10 @@ pub struct Module {
 /// The modules of `behaviour`, machines first, in manifest order.
 pub fn modules(behaviour: &Behaviour) -> Vec<Module> {
     let mut out = Vec::new();
+    let shared = behaviour.shared_variables();
     for m in &behaviour.machines {
         out.push(Module {
-            decl: proclaim_runner::declaration(&m.machine, &m.machine.name),
+            decl: proclaim_runner::declaration(&m.machine, &m.machine.name, &shared),
             kind: ModuleKind::Machine {
                 file: m.file.clone(),
                 start: m.start,

@@ -58,6 +58,9 @@ impl TraceView {
                 format!("reload failed, runs on unchanged: {error}")
             }
             Event::Halted { reason, .. } => format!("halted: {reason}"),
+            Event::Finished { state, .. } => format!("finished in {state}"),
+            Event::Printed { text, .. } => format!("prints {text}"),
+            Event::Warned { message, .. } => format!("warning: {message}"),
         };
         let mut line = String::new();
         match event.at() {

@@ -1,6 +1,8 @@
 //! Activities as written in the two imported formats: T/A items (`Type: content; C++: f(12)`)
-//! and gufsm's C-like blocks (`OnEntry { post("Say", "hi"); msleep(100); } OnExit { } { }`).
+//! and gufsm's blocks of activity-language statements (`OnEntry { post("Say", "hi"); x = x + 1; }
+//! OnExit { } { }`).
 
+use crate::code::{parse_statements, Expr, Statement};
 use crate::diagnostic::Severity;
 use crate::model::{Action, Argument};
 
@@ -77,18 +79,22 @@ fn argument(text: &str) -> Option<Argument> {
     }
 }
 
-/// The three activities of a gufsm description, and a warning for each statement kept as code.
-pub fn parse_gufsm_activities(text: &str) -> ([Vec<Action>; 3], Vec<String>) {
+/// The three activities of a gufsm description (OnEntry, OnExit, Internal), and a problem for
+/// each statement that could not be read (kept as [`Action::Code`]) or block that is not one of
+/// the three.
+pub fn parse_gufsm_activities(text: &str) -> ([Vec<Action>; 3], Vec<(Severity, String)>) {
     let mut sections: [Vec<Action>; 3] = Default::default();
-    let mut warnings = Vec::new();
+    let mut problems = Vec::new();
     let mut rest = text;
     let mut unnamed = 0;
     while let Some(open) = rest.find('{') {
         let keyword = rest[..open].replace('$', "");
         let keyword = keyword.trim();
         let Some(close) = matching_brace(&rest[open..]) else {
-            warnings
-                .push("a `{` is never closed; the rest of the description is ignored".to_string());
+            problems.push((
+                Severity::Error,
+                "a `{` is never closed; the rest of the description is ignored".to_string(),
+            ));
             break;
         };
         let body = &rest[open + 1..open + close];
@@ -101,31 +107,138 @@ pub fn parse_gufsm_activities(text: &str) -> ([Vec<Action>; 3], Vec<String>) {
                 2
             }
             other => {
-                warnings.push(format!(
-                    "`{other}` is not OnEntry, OnExit or Internal; its block is read as Internal"
+                problems.push((
+                    Severity::Warning,
+                    format!("`{other}` is not OnEntry, OnExit or Internal; its block is read as Internal"),
                 ));
                 2
             }
         };
-        for statement in split_top_level(body, ';') {
-            let statement = statement.trim();
-            if statement.is_empty() {
-                continue;
-            }
-            let action = gufsm_statement(statement);
-            if let Action::Code(code) = &action {
-                warnings.push(format!("`{code}` is kept as code and will not run"));
-            }
-            sections[section].push(action);
-        }
+        sections[section].extend(block_actions(body, &mut problems));
         rest = &rest[open + close + 1..];
     }
     if unnamed > 1 {
-        warnings.push(format!(
-            "{unnamed} unnamed blocks; all were read as Internal"
+        problems.push((
+            Severity::Warning,
+            format!("{unnamed} unnamed blocks; all were read as Internal"),
         ));
     }
-    (sections, warnings)
+    (sections, problems)
+}
+
+/// The statements of one block as actions. When the block does not parse as a whole, each
+/// `;`-separated piece is read alone, so one bad statement keeps only itself as code.
+fn block_actions(body: &str, problems: &mut Vec<(Severity, String)>) -> Vec<Action> {
+    if let Ok(statements) = parse_statements(body) {
+        return statements.into_iter().map(action).collect();
+    }
+    let mut out = Vec::new();
+    for piece in split_top_level(body, ';') {
+        let piece = piece.trim();
+        if piece.is_empty() {
+            continue;
+        }
+        match parse_statements(piece) {
+            Ok(statements) => out.extend(statements.into_iter().map(action)),
+            Err(e) => {
+                problems.push((
+                    Severity::Error,
+                    format!(
+                        "`{piece}` is not a statement: {e}; it is kept as code and does nothing"
+                    ),
+                ));
+                out.push(Action::Code(piece.to_string()));
+            }
+        }
+    }
+    out
+}
+
+/// The plainest action for a statement: a posting of a literal (`post("Say", "hi")` is
+/// `Say: hi`), sub-machine control (`suspend("M")` is `M: suspend`), a host call with a literal
+/// argument; anything else stays a statement.
+fn action(statement: Statement) -> Action {
+    let Statement::Expr(Expr::Call {
+        function,
+        arguments,
+    }) = &statement
+    else {
+        return Action::Statement(statement);
+    };
+    let literal = |e: &Expr| match e {
+        Expr::Str(s) => Some(s.trim().to_string()),
+        Expr::Int(i) => Some(i.to_string()),
+        _ => None,
+    };
+    match (function.as_str(), arguments.as_slice()) {
+        ("post" | "post_int", [Expr::Str(ty), content]) => match literal(content) {
+            // Spaces around a value are not part of it (and a native file could not keep them).
+            Some(content) if !content.is_empty() => Action::Post {
+                ty: ty.clone(),
+                content,
+            },
+            _ => Action::Statement(statement),
+        },
+        ("suspend" | "resume" | "restart" | "start" | "stop", [Expr::Str(machine)]) => {
+            let command = match function.as_str() {
+                "start" => "On",
+                "stop" => "Off",
+                other => other,
+            };
+            Action::Post {
+                ty: machine.clone(),
+                content: command.to_string(),
+            }
+        }
+        (f, []) if !is_builtin(f) => Action::Call {
+            function: f.to_string(),
+            argument: None,
+        },
+        (f, [Expr::Int(i)]) if !is_builtin(f) || f == "msleep" || f == "sleep" => Action::Call {
+            function: f.to_string(),
+            argument: Some(Argument::Int(*i)),
+        },
+        (f, [Expr::Str(s)]) if !is_builtin(f) => Action::Call {
+            function: f.to_string(),
+            argument: Some(Argument::Str(s.clone())),
+        },
+        _ => Action::Statement(statement),
+    }
+}
+
+/// Functions the interpreter itself provides to activities (see the runner); a call of any
+/// other name is a host function.
+pub const BUILTIN_FUNCTIONS: [&str; 26] = [
+    "post",
+    "post_int",
+    "postv",
+    "post_v",
+    "suspend",
+    "resume",
+    "restart",
+    "start",
+    "stop",
+    "say",
+    "speech",
+    "say_state_name",
+    "speak_state_name",
+    "print",
+    "print_int",
+    "print_fixed",
+    "print_state_name",
+    "msleep",
+    "sleep",
+    "abs",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "atan",
+    "atan2",
+];
+
+fn is_builtin(function: &str) -> bool {
+    BUILTIN_FUNCTIONS.contains(&function)
 }
 
 /// Byte offset of the `}` matching the `{` that starts `text`, skipping strings.
@@ -168,92 +281,4 @@ fn split_top_level(text: &str, separator: char) -> Vec<&str> {
     }
     parts.push(&text[start..]);
     parts
-}
-
-/// A number or a string literal.
-fn literal(text: &str) -> bool {
-    text.parse::<f64>().is_ok() || (text.len() >= 2 && text.starts_with('"') && text.ends_with('"'))
-}
-
-fn gufsm_statement(statement: &str) -> Action {
-    let code = || Action::Code(statement.to_string());
-    let Some(open) = statement.find('(') else {
-        return code();
-    };
-    let name = statement[..open].trim();
-    if name.is_empty()
-        || !name.chars().all(|c| c.is_alphanumeric() || c == '_')
-        || !statement.ends_with(')')
-    {
-        return code();
-    }
-    let args: Vec<&str> = split_top_level(&statement[open + 1..statement.len() - 1], ',')
-        .into_iter()
-        .map(str::trim)
-        .filter(|a| !a.is_empty())
-        .collect();
-    let string = |a: &str| {
-        a.strip_prefix('"')
-            .and_then(|s| s.strip_suffix('"'))
-            .map(str::to_string)
-    };
-    match (name, args.as_slice()) {
-        ("post" | "postv" | "post_v" | "post_int", [ty, content]) => {
-            match (string(ty), string(content)) {
-                // Spaces around a value are not part of it (and a native file could not keep them).
-                (Some(ty), Some(content)) => Action::Post {
-                    ty,
-                    content: content.trim().to_string(),
-                },
-                (Some(ty), None) => Action::Post {
-                    ty,
-                    content: content.to_string(),
-                },
-                _ => code(),
-            }
-        }
-        // `postv("T", 0, 0, 35, 100)`: several literal values, posted space-separated.
-        ("postv" | "post_v", [ty, values @ ..])
-            if values.len() > 1 && values.iter().all(|v| literal(v)) =>
-        {
-            match string(ty) {
-                Some(ty) => Action::Post {
-                    ty,
-                    content: values
-                        .iter()
-                        .map(|v| string(v).unwrap_or_else(|| v.to_string()))
-                        .collect::<Vec<_>>()
-                        .join(" "),
-                },
-                None => code(),
-            }
-        }
-        ("suspend" | "resume" | "restart", [machine]) => match string(machine) {
-            Some(machine) => Action::Post {
-                ty: machine,
-                content: name.to_string(),
-            },
-            None => code(),
-        },
-        ("start" | "stop", [machine]) => match string(machine) {
-            Some(machine) => Action::Post {
-                ty: machine,
-                content: if name == "start" { "On" } else { "Off" }.into(),
-            },
-            None => code(),
-        },
-        (_, []) => Action::Call {
-            function: name.to_string(),
-            argument: None,
-        },
-        (_, [one])
-            if !one.contains(|c: char| "+-*/<>=".contains(c)) || one.parse::<i64>().is_ok() =>
-        {
-            Action::Call {
-                function: name.to_string(),
-                argument: argument(one),
-            }
-        }
-        _ => code(),
-    }
 }

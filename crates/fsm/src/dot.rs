@@ -164,6 +164,7 @@ fn show(action: &Action) -> String {
             function,
             argument: Some(Argument::Word(w)),
         } => format!("{function}({w})"),
+        Action::Statement(statement) => statement.to_string(),
         Action::Code(code) => format!("code: {code}"),
     }
 }

@@ -7,6 +7,7 @@
 //!
 
 mod activity;
+pub mod code;
 mod diagnostic;
 mod dot;
 mod label;
@@ -17,13 +18,14 @@ mod native;
 mod qfsm;
 mod ta;
 
-pub use activity::{parse_gufsm_activities, parse_ta_items};
+pub use activity::{parse_gufsm_activities, parse_ta_items, BUILTIN_FUNCTIONS};
+pub use code::{BinOp, Expr, Statement, UnOp, VarType};
 pub use diagnostic::{FileDiagnostic, Severity};
 pub use dot::{behaviour_to_dot, to_dot};
-pub use label::{parse_label, CmpOp, Label, LabelError, Operand};
+pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use lint::{lint, reachable};
 pub use liveness::{liveness_machines, parse_liveness, Definition, Formula};
-pub use model::{Action, Argument, Machine, State, StateId, Transition};
+pub use model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
 pub use native::{is_native, parse_machine, to_native, EXTENSION};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};

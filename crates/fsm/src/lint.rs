@@ -26,7 +26,7 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
         let outgoing: Vec<_> = machine.outgoing(state.id).collect();
         for (i, t) in outgoing.iter().enumerate() {
             let above = &outgoing[..i];
-            if let Some(always) = above.iter().find(|a| a.label == Label::True) {
+            if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
                 out.push(FileDiagnostic::warning(
                     file,
                     t.line,

@@ -14,6 +14,7 @@
 //! `SitDownAndStareDone`, `againPlay`), which `proclaim check` lists. `A || B` becomes a state
 //! that starts sub-machines `A` and `B` and waits until both post `AFinished` / `BFinished`.
 
+use crate::code::BinOp;
 use crate::diagnostic::FileDiagnostic;
 use crate::label::Label;
 use crate::model::{Action, Machine, State, StateId, Transition};
@@ -321,6 +322,7 @@ impl Draft {
             states,
             transitions,
             initial: 1,
+            ..Machine::default()
         }
     }
 }
@@ -368,7 +370,7 @@ impl Generator<'_> {
     /// Builds `f`'s states into `draft`, every way out leading to `next`; returns the state
     /// where `f` begins.
     fn compile(&mut self, draft: &mut Draft, f: &Formula, next: StateId) -> StateId {
-        let atom = |s: String| Label::Atom(s);
+        let atom = Label::Name;
         match f {
             Formula::Activity(name) => {
                 if let Some(def) = self.defs.iter().find(|d| d.name == *name) {
@@ -421,27 +423,27 @@ impl Generator<'_> {
                 let l = draft.state("Repeat", Vec::new());
                 let start = self.compile(draft, inner, l);
                 draft.go(l, atom(format!("again{}", first_activity(inner))), start);
-                draft.go(l, Label::True, next);
+                draft.go(l, Label::TRUE, next);
                 l
             }
             Formula::OneOrMore(inner) => {
                 let l = draft.state("Repeat", Vec::new());
                 let start = self.compile(draft, inner, l);
                 draft.go(l, atom(format!("again{}", first_activity(inner))), start);
-                draft.go(l, Label::True, next);
+                draft.go(l, Label::TRUE, next);
                 start
             }
             Formula::Forever(inner) => {
                 let l = draft.state("Again", Vec::new());
                 let start = self.compile(draft, inner, l);
-                draft.go(l, Label::True, start);
+                draft.go(l, Label::TRUE, start);
                 start
             }
             Formula::Optional(inner) => {
                 let m = draft.state("Maybe", Vec::new());
                 let start = self.compile(draft, inner, next);
                 draft.go(m, atom(format!("do{}", first_activity(inner))), start);
-                draft.go(m, Label::True, next);
+                draft.go(m, Label::TRUE, next);
                 m
             }
             Formula::Parallel(branches) => {
@@ -465,7 +467,11 @@ impl Generator<'_> {
                     done.push(atom(format!("{name}Finished")));
                 }
                 let p = draft.state("Parallel", entry);
-                draft.go(p, Label::And(done), next);
+                draft.go(
+                    p,
+                    Label::fold(BinOp::And, done).unwrap_or(Label::TRUE),
+                    next,
+                );
                 p
             }
         }

@@ -1,21 +1,57 @@
 //! The machine model: states with three activities, transitions in priority order, labels.
 
+use crate::code::Statement;
 use crate::label::Label;
 
 /// A state's identifier as written in its file (T/A ids, Qfsm codes). Names may repeat; ids do
 /// not.
 pub type StateId = i64;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Machine {
     pub name: String,
+    /// What the file said of the machine beyond its name (a Qfsm `name` attribute that is not
+    /// the file's name); empty when nothing.
+    pub description: String,
     pub states: Vec<State>,
     /// Every transition; those of one source state are in priority order (first = tried first).
     pub transitions: Vec<Transition>,
     pub initial: StateId,
+    /// Transitions of the original file whose label could not be read: not run, but kept so
+    /// that an import can write them down (as comments) instead of losing them.
+    pub unread: Vec<UnreadTransition>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnreadTransition {
+    pub source: StateId,
+    pub target: StateId,
+    /// The label as written.
+    pub label: String,
+    /// Why it could not be read.
+    pub reason: String,
+    pub line: usize,
 }
 
 impl Machine {
+    /// Every action of every state, in file order.
+    pub fn actions(&self) -> impl Iterator<Item = &Action> + '_ {
+        self.states
+            .iter()
+            .flat_map(|s| s.on_entry.iter().chain(&s.on_exit).chain(&s.internal))
+    }
+
+    /// Every statement of every activity, nested ones included, outermost first.
+    pub fn statements(&self) -> Vec<&Statement> {
+        let mut out = Vec::new();
+        for action in self.actions() {
+            if let Action::Statement(s) = action {
+                s.visit(&mut |inner| out.push(inner));
+            }
+        }
+        out
+    }
+
     pub fn state(&self, id: StateId) -> Option<&State> {
         self.states.iter().find(|s| s.id == id)
     }
@@ -46,7 +82,7 @@ pub struct Transition {
 }
 
 /// One thing an activity does.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Action {
     /// `Type: content`: a whiteboard posting. Sub-machine control is a posting to the machine's
     /// name (`SMPlayer: On`, and gufsm's `suspend("M")` becomes `M: suspend`).
@@ -56,8 +92,11 @@ pub enum Action {
         function: String,
         argument: Option<Argument>,
     },
-    /// A statement of gufsm's C-like code that is kept as written but not run (assignments with
-    /// expressions, arithmetic); importers warn about each.
+    /// A statement of the activity language: a declaration, an assignment, a computed posting
+    /// (`post("T", x + 1)`), a call, a block or a `for` loop.
+    Statement(Statement),
+    /// Text that could not be read as a statement, kept as written so nothing is lost; the
+    /// reader reports it as an error and it does nothing when run.
     Code(String),
 }
 

@@ -4,9 +4,10 @@
 //! several machines in one file, no DTD, escaped labels (`&amp;&amp;`).
 
 use crate::activity::parse_gufsm_activities;
-use crate::diagnostic::FileDiagnostic;
-use crate::label::{parse_label, Label};
-use crate::model::{Machine, State, StateId, Transition};
+use crate::code::Expr;
+use crate::diagnostic::{FileDiagnostic, Severity};
+use crate::label::parse_label;
+use crate::model::{Machine, State, StateId, Transition, UnreadTransition};
 use crate::Imported;
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::{Reader, XmlVersion};
@@ -23,15 +24,20 @@ struct TransitionDraft {
 }
 
 struct MachineDraft {
-    name: String,
+    /// The `name` attribute, which qfsm2gu and gufsm ignored (it is often `FSM`, or copied
+    /// from another machine): the file's name names the machine.
+    attribute_name: String,
     initial: Option<String>,
     states: Vec<State>,
     transitions: Vec<(i64, usize, Transition)>,
+    unread: Vec<UnreadTransition>,
     line: usize,
 }
 
-/// Imports every machine of a Qfsm file. `fallback_name` names a machine without a `name`.
-pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
+/// Imports every machine of a Qfsm file. A file's one machine is named `file_name` (the file's
+/// name without `.fsm`, as qfsm2gu and gufsm named it); its `name` attribute, when it differs,
+/// becomes the description. Several machines in one file keep their `name` attributes.
+pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
     let mut out = Imported::default();
     let trimmed = text.trim();
     if !trimmed.starts_with('<') {
@@ -74,12 +80,11 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
         match event {
             Event::Start(e) | Event::Empty(e) if e.local_name().as_ref() == "machine" => {
                 machine = Some(MachineDraft {
-                    name: attribute(&e, "name")
-                        .filter(|n| !n.is_empty())
-                        .unwrap_or_else(|| fallback_name.to_string()),
+                    attribute_name: attribute(&e, "name").unwrap_or_default(),
                     initial: attribute(&e, "initialstate"),
                     states: Vec::new(),
                     transitions: Vec::new(),
+                    unread: Vec::new(),
                     line,
                 });
             }
@@ -142,11 +147,16 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
                         ));
                         continue;
                     };
-                    let ([on_entry, on_exit, internal], warnings) =
+                    let ([on_entry, on_exit, internal], problems) =
                         parse_gufsm_activities(&description);
-                    out.diagnostics.extend(warnings.into_iter().map(|w| {
-                        FileDiagnostic::warning(file, at, format!("state `{}`: {w}", name.trim()))
-                    }));
+                    out.diagnostics
+                        .extend(problems.into_iter().map(|(severity, problem)| {
+                            let message = format!("state `{}`: {problem}", name.trim());
+                            match severity {
+                                Severity::Error => FileDiagnostic::error(file, at, message),
+                                Severity::Warning => FileDiagnostic::warning(file, at, message),
+                            }
+                        }));
                     if m.states.iter().any(|s| s.id == id) {
                         out.diagnostics.push(FileDiagnostic::error(
                             file,
@@ -169,7 +179,13 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
                     let (Some(t), Some(m)) = (transition.take(), machine.as_mut()) else {
                         continue;
                     };
-                    let (Some(from), Some(to)) = (t.from.as_deref(), t.to.as_deref()) else {
+                    // Qfsm writes `-1` for an end it could not attach, or leaves the end out.
+                    fn attached(end: Option<&str>) -> Option<&str> {
+                        end.map(str::trim).filter(|e| *e != "-1")
+                    }
+                    let (Some(from), Some(to)) =
+                        (attached(t.from.as_deref()), attached(t.to.as_deref()))
+                    else {
                         out.diagnostics.push(FileDiagnostic::warning(file, t.line, "a transition without `<from>` or `<to>` (drawn but not attached) is skipped"));
                         continue;
                     };
@@ -184,15 +200,9 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
                         continue;
                     };
                     let label = if t.any {
-                        Ok(Label::True)
+                        Ok(Expr::TRUE)
                     } else {
-                        parse_label(&t.inputs).map(|l| {
-                            if t.invert {
-                                Label::Not(Box::new(l))
-                            } else {
-                                l
-                            }
-                        })
+                        parse_label(&t.inputs).map(|l| if t.invert { Expr::negation(l) } else { l })
                     };
                     let label = match label {
                         Ok(l) => l,
@@ -202,6 +212,13 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
                                 t.line,
                                 format!("label `{}`: {e}", t.inputs.trim()),
                             ));
+                            m.unread.push(UnreadTransition {
+                                source,
+                                target,
+                                label: t.inputs.trim().to_string(),
+                                reason: e.to_string(),
+                                line: t.line,
+                            });
                             continue;
                         }
                     };
@@ -237,7 +254,7 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
                 }
                 "machine" => {
                     if let Some(m) = machine.take() {
-                        finish(m, file, &mut out);
+                        finish(m, file, file_name, &mut out);
                     }
                 }
                 _ => {}
@@ -250,9 +267,14 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
         out.diagnostics.push(FileDiagnostic::error(
             file,
             m.line,
-            format!("machine `{}` is not closed", m.name),
+            format!("machine `{}` is not closed", m.attribute_name),
         ));
-        finish(m, file, &mut out);
+        finish(m, file, file_name, &mut out);
+    }
+    if let [only] = out.machines.as_mut_slice() {
+        if only.name != file_name {
+            only.description = std::mem::replace(&mut only.name, file_name.to_string());
+        }
     }
     if out.machines.is_empty() && !out.has_errors() {
         out.diagnostics
@@ -261,7 +283,7 @@ pub fn import_qfsm(file: &str, text: &str, fallback_name: &str) -> Imported {
     out
 }
 
-fn finish(mut m: MachineDraft, file: &str, out: &mut Imported) {
+fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) {
     let initial = match m
         .initial
         .as_deref()
@@ -275,7 +297,7 @@ fn finish(mut m: MachineDraft, file: &str, out: &mut Imported) {
                 m.line,
                 format!(
                     "initial state {code} of `{}` is not one of its states",
-                    m.name
+                    m.attribute_name
                 ),
             ));
             return;
@@ -284,7 +306,7 @@ fn finish(mut m: MachineDraft, file: &str, out: &mut Imported) {
             out.diagnostics.push(FileDiagnostic::error(
                 file,
                 m.line,
-                format!("machine `{}` names no initial state", m.name),
+                format!("machine `{}` names no initial state", m.attribute_name),
             ));
             return;
         }
@@ -312,11 +334,18 @@ fn finish(mut m: MachineDraft, file: &str, out: &mut Imported) {
             .then(b.0.cmp(&a.0))
             .then(a.1.cmp(&b.1))
     });
+    let name = if m.attribute_name.trim().is_empty() {
+        format!("{file_name}_{}", out.machines.len() + 1)
+    } else {
+        m.attribute_name.trim().to_string()
+    };
     out.machines.push(Machine {
-        name: m.name,
+        name,
         states: m.states,
         transitions: transitions.into_iter().map(|(_, _, t)| t).collect(),
         initial,
+        unread: m.unread,
+        ..Machine::default()
     });
 }
 

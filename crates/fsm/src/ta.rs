@@ -5,7 +5,7 @@
 use crate::activity::parse_ta_items;
 use crate::diagnostic::{FileDiagnostic, Severity};
 use crate::label::parse_label;
-use crate::model::{Machine, State, StateId, Transition};
+use crate::model::{Machine, State, StateId, Transition, UnreadTransition};
 use crate::Imported;
 use std::path::{Path, PathBuf};
 
@@ -108,6 +108,7 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
         };
     };
     let mut transitions = Vec::new();
+    let mut unread = Vec::new();
     for (i, raw) in t_text
         .lines()
         .enumerate()
@@ -143,25 +144,34 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
                 Err(format!("state {id} is not in {a_file}"))
             }
         };
-        let label = match parse_label(label) {
-            Ok(l) => l,
+        let (source, target) = match (id(source), id(target)) {
+            (Ok(source), Ok(target)) => (source, target),
+            (Err(e), _) | (_, Err(e)) => {
+                diagnostics.push(FileDiagnostic::error(t_file, line, e));
+                continue;
+            }
+        };
+        match parse_label(label) {
+            Ok(label) => transitions.push(Transition {
+                source,
+                target,
+                label,
+                line,
+            }),
             Err(e) => {
                 diagnostics.push(FileDiagnostic::error(
                     t_file,
                     line,
                     format!("label `{}`: {e}", label.trim()),
                 ));
-                continue;
+                unread.push(UnreadTransition {
+                    source,
+                    target,
+                    label: label.trim().to_string(),
+                    reason: e.to_string(),
+                    line,
+                });
             }
-        };
-        match (id(source), id(target)) {
-            (Ok(source), Ok(target)) => transitions.push(Transition {
-                source,
-                target,
-                label,
-                line,
-            }),
-            (Err(e), _) | (_, Err(e)) => diagnostics.push(FileDiagnostic::error(t_file, line, e)),
         }
     }
     // Reading T backwards put each state's transitions in priority order; keep it per state.
@@ -171,6 +181,8 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
         states,
         transitions,
         initial,
+        unread,
+        ..Machine::default()
     };
     Imported {
         machines: vec![machine],

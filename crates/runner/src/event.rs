@@ -3,6 +3,30 @@
 
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
+use tokio::sync::mpsc;
+use tokio::time::Instant;
+
+/// Where a machine's events go, and the moment their times count from (one moment for every
+/// machine of a behaviour, so a merged trace is in time order).
+#[derive(Clone)]
+pub(crate) struct Reporter {
+    pub sender: Option<mpsc::UnboundedSender<Event>>,
+    pub epoch: Instant,
+}
+
+impl Reporter {
+    /// Time since the epoch.
+    pub fn now(&self) -> Duration {
+        self.epoch.elapsed()
+    }
+
+    /// Sends the event made for the time now.
+    pub fn emit(&self, event: impl FnOnce(Duration) -> Event) {
+        if let Some(tx) = &self.sender {
+            let _ = tx.send(event(self.now()));
+        }
+    }
+}
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
@@ -63,6 +87,28 @@ pub enum Event {
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
+    /// The machine reached a state with no way out, and that state's OnEntry has run.
+    Finished {
+        machine: String,
+        state: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// `print(…)`, `print_state_name()` and their kin.
+    Printed {
+        machine: String,
+        text: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// Something in an activity went wrong but the machine runs on (a `for` loop stopped at
+    /// its limit, a value that is not a number where one was needed).
+    Warned {
+        machine: String,
+        message: String,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
     /// The machine stopped for good (`RunOptions::halt_on_timeout`), saying why.
     Halted {
         machine: String,
@@ -97,6 +143,9 @@ impl Event {
             | Event::Control { machine, .. }
             | Event::Reloaded { machine, .. }
             | Event::ReloadFailed { machine, .. }
+            | Event::Finished { machine, .. }
+            | Event::Printed { machine, .. }
+            | Event::Warned { machine, .. }
             | Event::Halted { machine, .. } => machine,
         }
     }
@@ -111,6 +160,9 @@ impl Event {
             | Event::Control { at, .. }
             | Event::Reloaded { at, .. }
             | Event::ReloadFailed { at, .. }
+            | Event::Finished { at, .. }
+            | Event::Printed { at, .. }
+            | Event::Warned { at, .. }
             | Event::Halted { at, .. } => Some(*at),
             Event::UnknownFunction { .. } => None,
         }

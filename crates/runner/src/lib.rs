@@ -1,18 +1,27 @@
 //! Runs machines on the whiteboard (`../shared/spec/behaviour.md` §3): one ring at a time, OnEntry
-//! on arrival, transitions tried in priority order with each label proved by its expert, OnExit
-//! on leaving, Internal when nothing fired; between rings, wait for a message a label of the
-//! state depends on, or the ring period. Sub-machines obey `Name: On/Off/suspend/resume/restart`
-//! and post `NameIsRunning`; `Name: reload` / `Name: reread` read the machine's file again
-//! through a [`Loader`] (a failure leaves the machine untouched). What happens is reported as
+//! on arrival, transitions tried in priority order with each label proved (conditions by their
+//! expert, variables and values on the spot), OnExit on leaving, Internal when nothing fired;
+//! between rings, wait for a message or global a label of the state reads, its next time test,
+//! or the ring period. Activities run gufsm's activity language over variables with gufsm's
+//! scoping ([`Shared`], [`Locals`]). Sub-machines obey the [`Command`]s posted to their name
+//! and post `NameIsRunning`; `reload` / `reread` read the machine's file again through a
+//! [`Loader`] (a failure leaves the machine untouched). What happens is reported as
 //! [`Event`]s, data a trace can record. No file I/O of its own: loaders come from the caller.
 
+mod activity;
+mod control;
+mod eval;
 mod event;
 mod host;
 mod label;
 mod machine;
 mod step;
+mod variables;
 
+pub use activity::LOOP_LIMIT;
+pub use control::{machine_of_running_type, running_type, Command};
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
-pub use machine::{declaration, Loader, MachineRunner, RunOptions};
+pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions};
 pub use step::Stepper;
+pub use variables::{Locals, Shared};

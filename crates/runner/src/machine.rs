@@ -1,18 +1,22 @@
 //! One machine running on the whiteboard: its rings, its control commands, its reloads.
 
-use crate::event::{Answerer, Event};
+use crate::activity::Doer;
+use crate::control::{running_type, Command};
+use crate::eval::Env;
+use crate::event::{Answerer, Event, Reporter};
 use crate::host::Hosts;
-use crate::label::{dependencies, prove, value, Context};
+use crate::label::{dependencies, next_time_test, prove, reads_globals, Context};
 use crate::step::Stepper;
-use proclaim_board::{Kind, ModuleDecl, Pattern, Value, Whiteboard};
-use proclaim_fsm::{Action, Argument, Label, Machine, StateId};
+use crate::variables::{Locals, Scope, Shared};
+use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
+use proclaim_fsm::{Action, Label, Machine, StateId};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 use std::time::Duration;
-use tokio::sync::mpsc;
+use tokio::sync::{mpsc, watch};
 use tokio::time::Instant;
 
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct RunOptions {
     /// The longest wait between rings when no message a label depends on arrives.
     pub ring_period: Duration,
@@ -26,6 +30,12 @@ pub struct RunOptions {
     /// Ring only when stepped (model simulation); between rings, wait for the next step instead
     /// of a message or the ring period.
     pub stepper: Option<Stepper>,
+    /// The variables this machine shares with the others of its behaviour
+    /// ([`Shared::for_machines`]); a machine given none shares with nobody.
+    pub shared: Option<Arc<Shared>>,
+    /// The moment event times count from, the same for every machine of a behaviour so that
+    /// their merged trace is in time order; the machine's start when not given.
+    pub epoch: Option<Instant>,
 }
 
 impl Default for RunOptions {
@@ -36,6 +46,8 @@ impl Default for RunOptions {
             start_running: true,
             halt_on_timeout: false,
             stepper: None,
+            shared: None,
+            epoch: None,
         }
     }
 }
@@ -51,12 +63,22 @@ pub struct MachineRunner {
     events: Option<mpsc::UnboundedSender<Event>>,
 }
 
-/// Where a running machine is.
-struct Position {
-    running: bool,
-    current: StateId,
-    just_entered: bool,
-    entered_at: Instant,
+/// Whether a machine rings: gufsm's `SuspensibleMachine` states.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Status {
+    Running,
+    /// Parked by `suspend`; the current state is where `resume` goes back to.
+    Suspended,
+    /// Not started, or stopped by `Off`: `On` starts from the initial state.
+    Dormant,
+}
+
+/// What one ring did.
+enum Ring {
+    Moved,
+    Stayed,
+    /// The machine stopped for good, or its state vanished.
+    Over,
 }
 
 impl MachineRunner {
@@ -90,13 +112,15 @@ impl MachineRunner {
 
     /// What it posts, reads and waits on, for the registry.
     pub fn declaration(&self) -> ModuleDecl {
-        declaration(&self.machine, &self.machine.name)
+        let shared = self.shared();
+        declaration(&self.machine, &self.machine.name, &shared)
     }
 
-    fn emit(&self, event: Event) {
-        if let Some(tx) = &self.events {
-            let _ = tx.send(event);
-        }
+    fn shared(&self) -> Arc<Shared> {
+        self.options
+            .shared
+            .clone()
+            .unwrap_or_else(|| Shared::for_machines([&self.machine]))
     }
 
     /// Runs until the whiteboard is gone or the machine halts (abort the task to stop it).
@@ -106,206 +130,340 @@ impl MachineRunner {
     }
 
     async fn serve(self, board: Whiteboard) {
-        // The name it answers to stays the one it started with, whatever a reload says.
-        let name = self.machine.name.clone();
-        let mut machine = self.machine.clone();
-        board.declare(&name, Kind::Signal);
-        board.register(self.declaration());
-        let start = Instant::now();
-        let mut at = Position {
-            running: self.options.start_running,
-            current: machine.initial,
-            just_entered: true,
-            entered_at: Instant::now(),
-        };
-        let mut unknown: FxHashSet<String> = FxHashSet::default();
-        let running_type = format!("{name}IsRunning");
-        board.post(&name, &running_type, at.running);
-        let mut watch = subscribe(&machine, &name, &board, at.current);
-        let mut watched = Some(at.current);
-        // A command taken while dormant, applied on the next turn of the loop.
-        let mut woken_by: Option<proclaim_board::Message> = None;
-        let mut last_step = 0;
+        let mut run = Run::new(&self, board);
+        // A command taken while waiting, applied on the next turn of the loop.
+        let mut woken_by: Option<Message> = None;
         loop {
             // Control commands: consumed here, between rings, in order.
-            while let Some(command) = woken_by.take().or_else(|| board.latest(&name)) {
-                let command = match &command.value {
-                    Value::Str(s) => s.clone(),
-                    other => other.to_string(),
-                };
-                self.emit(Event::Control {
-                    machine: name.clone(),
-                    command: command.clone(),
-                    at: start.elapsed(),
-                });
-                let was = at.running;
-                match command.as_str() {
-                    "On" | "on" | "restart" => {
-                        at.running = true;
-                        at.current = machine.initial;
-                        at.just_entered = true;
-                    }
-                    "Off" | "off" | "suspend" => at.running = false,
-                    "resume" => at.running = true,
-                    "reload" | "reread" => {
-                        if self.reload(
-                            &mut machine,
-                            &mut at,
-                            command == "reread",
-                            &board,
-                            &name,
-                            start,
-                        ) {
-                            watched = None;
-                        }
-                    }
-                    other => {
-                        tracing::warn!(machine = %name, command = other, "unknown control command")
-                    }
-                }
-                if at.running != was {
-                    board.post(&name, &running_type, at.running);
-                }
+            while let Some(command) = woken_by.take().or_else(|| run.board.latest(&run.name)) {
+                run.control(&command);
             }
-            if !at.running {
-                // Dormant: only a control command wakes the machine.
-                woken_by = board.wait_for(&name, 0, Duration::from_secs(3600)).await;
+            if run.status != Status::Running {
+                woken_by = run
+                    .board
+                    .wait_for(&run.name, 0, Duration::from_secs(3600))
+                    .await;
                 continue;
             }
             if let Some(stepper) = &self.options.stepper {
                 // A command may arrive while waiting; it is applied before the ring.
                 tokio::select! {
-                    step = stepper.wait(last_step) => last_step = step,
-                    command = board.wait_for(&name, 0, Duration::from_secs(3600)) => {
+                    step = stepper.wait(run.last_step) => run.last_step = step,
+                    command = run.board.wait_for(&run.name, 0, Duration::from_secs(3600)) => {
                         woken_by = command;
                         continue;
                     }
                 }
             }
-            if watched != Some(at.current) {
-                watch = subscribe(&machine, &name, &board, at.current);
-                watched = Some(at.current);
+            match run.ring().await {
+                Ring::Over => return,
+                Ring::Moved => {
+                    if let Some(stepper) = &self.options.stepper {
+                        stepper.ring_done(&run.name, run.last_step);
+                    }
+                }
+                Ring::Stayed => {
+                    if let Some(stepper) = &self.options.stepper {
+                        stepper.ring_done(&run.name, run.last_step);
+                    } else {
+                        run.wait_between_rings().await;
+                    }
+                }
             }
-            let Some(state) = machine.state(at.current) else {
-                return;
-            };
-            if at.just_entered {
-                at.just_entered = false;
-                at.entered_at = Instant::now();
-                self.emit(Event::Entered {
-                    machine: name.clone(),
+        }
+    }
+}
+
+/// A machine while it runs: where it is and what it holds.
+struct Run<'r> {
+    runner: &'r MachineRunner,
+    board: Whiteboard,
+    /// The name it answers to: the one it started with, whatever a reload says.
+    name: String,
+    running_type: String,
+    machine: Machine,
+    status: Status,
+    current: StateId,
+    just_entered: bool,
+    entered_at: Instant,
+    locals: Locals,
+    shared: Arc<Shared>,
+    globals_changed: watch::Receiver<u64>,
+    unknown: FxHashSet<String>,
+    reporter: Reporter,
+    /// What the current state's labels read (messages), and whether they read globals.
+    watch: Option<(StateId, Subscription, bool)>,
+    last_step: u64,
+}
+
+impl<'r> Run<'r> {
+    fn new(runner: &'r MachineRunner, board: Whiteboard) -> Run<'r> {
+        let name = runner.machine.name.clone();
+        let shared = runner.shared();
+        board.declare(&name, Kind::Signal);
+        board.register(declaration(&runner.machine, &name, &shared));
+        let status = if runner.options.start_running {
+            Status::Running
+        } else {
+            Status::Dormant
+        };
+        let running_type = running_type(&name);
+        board.post(&name, &running_type, status == Status::Running);
+        Run {
+            runner,
+            name,
+            running_type,
+            machine: runner.machine.clone(),
+            status,
+            current: runner.machine.initial,
+            just_entered: true,
+            entered_at: Instant::now(),
+            locals: Locals::declared(&runner.machine),
+            globals_changed: shared.changes(),
+            shared,
+            unknown: FxHashSet::default(),
+            reporter: Reporter {
+                sender: runner.events.clone(),
+                epoch: runner.options.epoch.unwrap_or_else(Instant::now),
+            },
+            watch: None,
+            last_step: 0,
+            board,
+        }
+    }
+
+    fn env(&self) -> Env<'_> {
+        Env {
+            board: &self.board,
+            locals: &self.locals,
+            shared: &self.shared,
+            in_state: self.entered_at.elapsed(),
+        }
+    }
+
+    fn control(&mut self, message: &Message) {
+        let word = match &message.value {
+            Value::Str(s) => s.clone(),
+            other => other.to_string(),
+        };
+        self.reporter.emit(|at| Event::Control {
+            machine: self.name.clone(),
+            command: word.clone(),
+            at,
+        });
+        let Some(command) = Command::parse(&word) else {
+            tracing::warn!(machine = %self.name, command = %word, "unknown control command");
+            return;
+        };
+        let was = self.status;
+        match (command, self.status) {
+            (Command::On | Command::Resume, Status::Running) => {}
+            (Command::Restart, _) | (Command::On | Command::Resume, Status::Dormant) => {
+                self.status = Status::Running;
+                self.current = self.machine.initial;
+                self.just_entered = true;
+            }
+            // Back into the state it left, as a transition would enter it.
+            (Command::On | Command::Resume, Status::Suspended) => {
+                self.status = Status::Running;
+                self.just_entered = true;
+            }
+            (Command::Suspend, Status::Running) => self.status = Status::Suspended,
+            (Command::Suspend, _) => {}
+            (Command::Off, _) => self.status = Status::Dormant,
+            (Command::Reload | Command::Reread, _) => {
+                self.reload(command == Command::Reread);
+            }
+        }
+        if (was == Status::Running) != (self.status == Status::Running) {
+            self.board.post(
+                &self.name,
+                &self.running_type,
+                self.status == Status::Running,
+            );
+        }
+    }
+
+    /// One ring: OnEntry if just entered, the transitions in priority order, OnExit and a
+    /// move on the first proved, Internal when none was.
+    async fn ring(&mut self) -> Ring {
+        let Some(state) = self.machine.state(self.current).cloned() else {
+            return Ring::Over;
+        };
+        // Changes of globals from here on wake the wait after this ring.
+        self.globals_changed.borrow_and_update();
+        if self.just_entered {
+            self.just_entered = false;
+            self.entered_at = Instant::now();
+            let id = self.current;
+            self.reporter.emit(|at| Event::Entered {
+                machine: self.name.clone(),
+                state: state.name.clone(),
+                id,
+                at,
+            });
+            self.act(&state.name, &state.on_entry).await;
+            if self.machine.outgoing(self.current).next().is_none() {
+                self.reporter.emit(|at| Event::Finished {
+                    machine: self.name.clone(),
                     state: state.name.clone(),
-                    id: at.current,
-                    at: start.elapsed(),
+                    at,
                 });
-                self.act(&board, &name, &state.on_entry, &mut unknown, start)
-                    .await;
             }
-            let mut fired = None;
-            for t in machine.outgoing(at.current) {
-                let mut answered = Vec::new();
+        }
+        let mut fired = None;
+        let transitions: Vec<_> = self.machine.outgoing(self.current).cloned().collect();
+        for t in &transitions {
+            let mut answered = Vec::new();
+            let proved = {
                 let mut cx = Context {
-                    board: &board,
-                    module: &name,
-                    in_state: at.entered_at.elapsed(),
-                    answer_timeout: self.options.answer_timeout,
+                    env: self.env(),
+                    module: &self.name,
+                    answer_timeout: self.runner.options.answer_timeout,
                     answered: &mut answered,
                 };
-                let proved = prove(&t.label, &mut cx).await;
-                let mut silent = None;
-                for (atom, value, by) in answered {
-                    if by == Answerer::TimedOut && silent.is_none() {
-                        silent = Some(atom.clone());
-                    }
-                    self.emit(Event::Answered {
-                        machine: name.clone(),
-                        atom,
-                        value,
-                        by,
-                        at: start.elapsed(),
-                    });
-                }
-                if let Some(atom) = silent.filter(|_| self.options.halt_on_timeout) {
-                    self.emit(Event::Halted {
-                        machine: name.clone(),
-                        reason: format!(
-                            "no expert answered `{atom}` within {:?} (in state {})",
-                            self.options.answer_timeout, state.name
-                        ),
-                        at: start.elapsed(),
-                    });
-                    board.post(&name, &running_type, false);
-                    return;
-                }
-                if proved {
-                    fired = Some((t.target, t.label.to_string()));
-                    break;
-                }
+                prove(&t.label, &mut cx).await
+            };
+            if let Some(atom) = self.report_answers(answered) {
+                self.reporter.emit(|at| Event::Halted {
+                    machine: self.name.clone(),
+                    reason: format!(
+                        "no expert answered `{atom}` within {:?} (in state {})",
+                        self.runner.options.answer_timeout, state.name
+                    ),
+                    at,
+                });
+                self.board.post(&self.name, &self.running_type, false);
+                return Ring::Over;
             }
-            match fired {
-                Some((target, label)) => {
-                    self.emit(Event::Fired {
-                        machine: name.clone(),
-                        from: at.current,
-                        to: target,
-                        label,
-                        at: start.elapsed(),
-                    });
-                    self.act(&board, &name, &state.on_exit, &mut unknown, start)
-                        .await;
-                    at.current = target;
-                    at.just_entered = true;
-                    if let Some(stepper) = &self.options.stepper {
-                        stepper.ring_done(&name, last_step);
-                    }
-                }
-                None => {
-                    self.act(&board, &name, &state.internal, &mut unknown, start)
-                        .await;
-                    if let Some(stepper) = &self.options.stepper {
-                        stepper.ring_done(&name, last_step);
-                        continue;
-                    }
-                    // Answers to this ring's own queries are not news.
-                    while watch.try_next().is_some() {}
-                    let wait = until_next_timeout(&machine, &board, at.current, at.entered_at)
-                        .min(self.options.ring_period);
-                    let _ = tokio::time::timeout(wait, watch.next()).await;
-                }
+            if proved {
+                fired = Some(t);
+                break;
             }
+        }
+        match fired {
+            Some(t) => {
+                let (from, to, label) = (self.current, t.target, t.label.to_string());
+                self.reporter.emit(|at| Event::Fired {
+                    machine: self.name.clone(),
+                    from,
+                    to,
+                    label,
+                    at,
+                });
+                self.act(&state.name, &state.on_exit).await;
+                self.current = t.target;
+                self.just_entered = true;
+                Ring::Moved
+            }
+            None => {
+                self.act(&state.name, &state.internal).await;
+                Ring::Stayed
+            }
+        }
+    }
+
+    /// Reports a ring's answers; the first atom no expert answered in time, when that halts
+    /// the machine.
+    fn report_answers(&self, answered: Vec<(String, bool, Answerer)>) -> Option<String> {
+        let mut silent = None;
+        for (atom, value, by) in answered {
+            if by == Answerer::TimedOut && silent.is_none() {
+                silent = Some(atom.clone());
+            }
+            self.reporter.emit(|at| Event::Answered {
+                machine: self.name.clone(),
+                atom,
+                value,
+                by,
+                at,
+            });
+        }
+        silent.filter(|_| self.runner.options.halt_on_timeout)
+    }
+
+    async fn act(&mut self, state: &str, actions: &[Action]) {
+        Doer {
+            board: &self.board,
+            machine: &self.name,
+            state,
+            entered_at: self.entered_at,
+            hosts: &self.runner.hosts,
+            shared: &self.shared,
+            locals: &mut self.locals,
+            unknown: &mut self.unknown,
+            reporter: &self.reporter,
+        }
+        .run(actions)
+        .await
+    }
+
+    /// Waits until a message a label of the state reads arrives, a global it reads changes,
+    /// its next time test comes due, or the ring period passes.
+    async fn wait_between_rings(&mut self) {
+        if self
+            .watch
+            .as_ref()
+            .is_none_or(|(s, _, _)| *s != self.current)
+        {
+            let mut types = vec![self.name.clone()];
+            let mut globals = false;
+            let scope = Scope {
+                locals: &self.locals,
+                shared: &self.shared,
+            };
+            for t in self.machine.outgoing(self.current) {
+                dependencies(&t.label, scope, &mut types);
+                globals |= reads_globals(&t.label, scope);
+            }
+            let subscription = self.board.subscribe_pattern(Pattern::Any(types));
+            self.watch = Some((self.current, subscription, globals));
+        }
+        let env = self.env();
+        let wait = self
+            .machine
+            .outgoing(self.current)
+            .filter_map(|t| next_time_test(&t.label, &env))
+            .min()
+            .unwrap_or(self.runner.options.ring_period)
+            .min(self.runner.options.ring_period);
+        let Some((_, watch, reads_globals)) = self.watch.as_mut() else {
+            return;
+        };
+        // Answers to this ring's own queries are not news.
+        while watch.try_next().is_some() {}
+        let globals = &mut self.globals_changed;
+        let reads_globals = *reads_globals;
+        tokio::select! {
+            _ = tokio::time::sleep(wait) => {}
+            _ = watch.next() => {}
+            _ = globals.changed(), if reads_globals => {}
         }
     }
 
     /// Reads the machine again. `reread` keeps the current state when the new machine still
     /// has it (by name when the name is unique, else by id); otherwise the machine starts again
-    /// from its initial state. A failure changes nothing. Returns whether the machine changed.
-    fn reload(
-        &self,
-        machine: &mut Machine,
-        at: &mut Position,
-        keep_state: bool,
-        board: &Whiteboard,
-        name: &str,
-        start: Instant,
-    ) -> bool {
-        let loaded = match &self.loader {
+    /// from its initial state. Variables it still declares keep their values. A failure changes
+    /// nothing.
+    fn reload(&mut self, keep_state: bool) {
+        let loaded = match &self.runner.loader {
             Some(load) => load(),
             None => Err("the machine has no file to read again".to_string()),
         };
         let new = match loaded {
             Ok(new) => new,
             Err(error) => {
-                tracing::warn!(machine = %name, %error, "reload failed; the machine runs on unchanged");
-                self.emit(Event::ReloadFailed {
-                    machine: name.to_string(),
+                tracing::warn!(machine = %self.name, %error, "reload failed; the machine runs on unchanged");
+                self.reporter.emit(|at| Event::ReloadFailed {
+                    machine: self.name.clone(),
                     error,
-                    at: start.elapsed(),
+                    at,
                 });
-                return false;
+                return;
             }
         };
         let kept = keep_state
-            .then(|| machine.state(at.current))
+            .then(|| self.machine.state(self.current))
             .flatten()
             .and_then(|old| {
                 let same_name: Vec<_> = new.states.iter().filter(|s| s.name == old.name).collect();
@@ -315,78 +473,60 @@ impl MachineRunner {
                 }
             });
         match kept {
-            Some(id) => at.current = id,
+            Some(id) => self.current = id,
             None => {
-                at.current = new.initial;
-                at.just_entered = true;
+                self.current = new.initial;
+                self.just_entered = true;
             }
         }
-        *machine = new;
-        board.register(declaration(machine, name));
-        self.emit(Event::Reloaded {
-            machine: name.to_string(),
-            state: machine
-                .state(at.current)
-                .map_or_else(String::new, |s| s.name.clone()),
-            at: start.elapsed(),
+        self.shared.register(&new);
+        self.locals = self.locals.reloaded(&new);
+        self.machine = new;
+        self.watch = None;
+        self.board
+            .register(declaration(&self.machine, &self.name, &self.shared));
+        let state = self
+            .machine
+            .state(self.current)
+            .map_or_else(String::new, |s| s.name.clone());
+        self.reporter.emit(|at| Event::Reloaded {
+            machine: self.name.clone(),
+            state,
+            at,
         });
-        true
-    }
-
-    async fn act(
-        &self,
-        board: &Whiteboard,
-        name: &str,
-        actions: &[Action],
-        unknown: &mut FxHashSet<String>,
-        start: Instant,
-    ) {
-        for action in actions {
-            match action {
-                Action::Post { ty, content } => {
-                    board.post(name, ty, Value::parse(content));
-                    self.emit(Event::Posted {
-                        machine: name.to_string(),
-                        ty: ty.clone(),
-                        content: content.clone(),
-                        at: start.elapsed(),
-                    });
-                }
-                Action::Call { function, argument } => match (function.as_str(), argument) {
-                    ("msleep", Some(Argument::Int(ms))) => {
-                        tokio::time::sleep(Duration::from_millis((*ms).max(0) as u64)).await
-                    }
-                    ("sleep", Some(Argument::Int(s))) => {
-                        tokio::time::sleep(Duration::from_secs((*s).max(0) as u64)).await
-                    }
-                    _ => match self.hosts.get(function) {
-                        Some(f) => f(argument.as_ref()),
-                        None => {
-                            if unknown.insert(function.clone()) {
-                                tracing::warn!(machine = %name, function = %function, "host function not registered; skipped");
-                                self.emit(Event::UnknownFunction {
-                                    machine: name.to_string(),
-                                    function: function.clone(),
-                                });
-                            }
-                        }
-                    },
-                },
-                Action::Code(_) => {}
-            }
-        }
     }
 }
 
 /// What a machine posts, reads and waits on, registered under `name` (its own name, unless it
-/// was renamed by a reload).
-pub fn declaration(m: &Machine, name: &str) -> ModuleDecl {
-    let mut posts: Vec<String> = vec![format!("{name}IsRunning")];
-    for s in &m.states {
-        for a in s.on_entry.iter().chain(&s.on_exit).chain(&s.internal) {
-            if let Action::Post { ty, .. } = a {
-                if !posts.contains(ty) {
-                    posts.push(ty.clone());
+/// was renamed by a reload). Labels' conditions that are no variable are waited on (asked of
+/// experts); other names they read are read.
+pub fn declaration(m: &Machine, name: &str, shared: &Shared) -> ModuleDecl {
+    let locals = Locals::declared(m);
+    let scope = Scope {
+        locals: &locals,
+        shared,
+    };
+    let mut posts: Vec<String> = vec![running_type(name)];
+    let add = |list: &mut Vec<String>, ty: &str| {
+        if !list.iter().any(|t| t == ty) {
+            list.push(ty.to_string());
+        }
+    };
+    for a in m.actions() {
+        if let Action::Post { ty, .. } = a {
+            add(&mut posts, ty);
+        }
+    }
+    for s in m.statements() {
+        if let proclaim_fsm::Statement::Extern { name, .. } = s {
+            add(&mut posts, name);
+        }
+        for e in s.expressions() {
+            for (function, arguments) in e.calls() {
+                if let (true, Some(proclaim_fsm::Expr::Str(ty))) =
+                    (posting_function(function), arguments.first())
+                {
+                    add(&mut posts, ty);
                 }
             }
         }
@@ -394,16 +534,14 @@ pub fn declaration(m: &Machine, name: &str) -> ModuleDecl {
     let mut waits: Vec<String> = Vec::new();
     let mut reads: Vec<String> = vec![name.to_string()];
     for t in &m.transitions {
-        for atom in t.label.atoms() {
-            if !waits.iter().any(|w| w == atom) {
-                waits.push(atom.to_string());
-            }
+        for atom in asked(&t.label, m, shared) {
+            add(&mut waits, atom);
         }
         let mut deps = Vec::new();
-        dependencies(&t.label, &mut deps);
+        dependencies(&t.label, scope, &mut deps);
         for d in deps {
-            if !waits.contains(&d) && !reads.contains(&d) {
-                reads.push(d);
+            if !waits.contains(&d) {
+                add(&mut reads, &d);
             }
         }
     }
@@ -413,46 +551,33 @@ pub fn declaration(m: &Machine, name: &str) -> ModuleDecl {
         .waits_on(waits)
 }
 
-/// Messages a label of `state` depends on, and the machine's own control type.
-fn subscribe(
-    machine: &Machine,
-    name: &str,
-    board: &Whiteboard,
-    state: StateId,
-) -> proclaim_board::Subscription {
-    let mut types = vec![name.to_string()];
-    for t in machine.outgoing(state) {
-        dependencies(&t.label, &mut types);
-    }
-    board.subscribe_pattern(Pattern::Any(types))
+/// The propositions a label of `machine` asks experts about: names standing as conditions
+/// that are no variable of the machine or its behaviour.
+pub fn asked<'a>(label: &'a Label, machine: &Machine, shared: &Shared) -> Vec<&'a str> {
+    let locals = Locals::declared(machine);
+    let scope = Scope {
+        locals: &locals,
+        shared,
+    };
+    label
+        .condition_names()
+        .into_iter()
+        .filter(|n| !scope.is_variable(n))
+        .collect()
 }
 
-/// How long until a `timeout()` label of the state comes due (long when none).
-fn until_next_timeout(
-    machine: &Machine,
-    board: &Whiteboard,
-    state: StateId,
-    entered_at: Instant,
-) -> Duration {
-    fn timeouts<'a>(label: &'a Label, out: &mut Vec<&'a proclaim_fsm::Operand>) {
-        match label {
-            Label::Timeout(t) => out.push(t),
-            Label::Not(l) => timeouts(l, out),
-            Label::And(ls) | Label::Or(ls) => ls.iter().for_each(|l| timeouts(l, out)),
-            _ => {}
-        }
-    }
-    let mut limits = Vec::new();
-    for t in machine.outgoing(state) {
-        timeouts(&t.label, &mut limits);
-    }
-    let elapsed = entered_at.elapsed();
-    limits
-        .into_iter()
-        .filter_map(|l| value(board, l))
-        .map(|us| Duration::from_secs_f64(us.max(0.0) / 1e6))
-        .filter(|due| *due > elapsed)
-        .map(|due| due - elapsed)
-        .min()
-        .unwrap_or(Duration::from_secs(3600))
+/// Built-ins whose first argument is the type they post to.
+fn posting_function(function: &str) -> bool {
+    matches!(
+        function,
+        "post"
+            | "post_int"
+            | "postv"
+            | "post_v"
+            | "suspend"
+            | "resume"
+            | "restart"
+            | "start"
+            | "stop"
+    )
 }

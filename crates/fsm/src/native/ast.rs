@@ -10,6 +10,7 @@ pub struct FileAst {
 
 pub enum TopItem {
     Initial(Ref, usize),
+    Description(String, usize),
     State(StateAst),
 }
 
@@ -37,7 +38,7 @@ pub enum Section {
 pub enum Member {
     Activity {
         section: Section,
-        actions: Vec<(Action, usize)>,
+        actions: Vec<(ActionAst, usize)>,
         at: usize,
     },
     When {
@@ -46,4 +47,10 @@ pub enum Member {
         target: Ref,
         at: usize,
     },
+}
+
+/// An action as read: complete, or a statement still to be parsed.
+pub enum ActionAst {
+    Done(Action),
+    Statement(String),
 }

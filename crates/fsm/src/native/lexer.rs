@@ -1,10 +1,13 @@
 //! Tokens of the native machine format. Line-aware where the format is: the text after a
 //! posting's `:`, after `code`, and a label between `when` and `->` are taken raw, so they need
-//! no quoting and read like the original tables.
+//! no quoting and read like the original tables. Inside an activity (`entry { … }`), anything
+//! that is not a posting (`Type: content`), a `call` or `code` is a statement of the activity
+//! language, taken raw up to its `;` (or the `}` of its block) and parsed later.
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Tok<'a> {
     Machine,
+    Description,
     Initial,
     State,
     Entry,
@@ -26,12 +29,15 @@ pub enum Tok<'a> {
     Text(&'a str),
     /// A label as written between `when` and `->`.
     LabelText(&'a str),
+    /// A statement of the activity language as written, with its `;`.
+    Statement(&'a str),
 }
 
 impl std::fmt::Display for Tok<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Tok::Machine => f.write_str("`machine`"),
+            Tok::Description => f.write_str("`description`"),
             Tok::Initial => f.write_str("`initial`"),
             Tok::State => f.write_str("`state`"),
             Tok::Entry => f.write_str("`entry`"),
@@ -51,6 +57,7 @@ impl std::fmt::Display for Tok<'_> {
             Tok::Arrow => f.write_str("`->`"),
             Tok::Text(t) => write!(f, "`: {t}`"),
             Tok::LabelText(t) => write!(f, "label `{t}`"),
+            Tok::Statement(t) => write!(f, "statement `{t}`"),
         }
     }
 }
@@ -69,6 +76,10 @@ pub struct Lexer<'a> {
     at: usize,
     /// Tokens already cut that come before anything else (a label's `->`).
     pending: Vec<(usize, Tok<'a>, usize)>,
+    /// How many `{` are open: 2 and more is inside an activity.
+    depth: usize,
+    /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
+    plain_until: usize,
 }
 
 impl<'a> Lexer<'a> {
@@ -77,6 +88,8 @@ impl<'a> Lexer<'a> {
             text,
             at: 0,
             pending: Vec::new(),
+            depth: 0,
+            plain_until: 0,
         }
     }
 
@@ -116,14 +129,21 @@ impl<'a> Lexer<'a> {
         let start = self.at;
         let rest = self.rest();
         let c = rest.chars().next()?;
+        if self.depth >= 2 && self.at >= self.plain_until {
+            if let Some(token) = self.activity_item(c) {
+                return Some(Ok(token));
+            }
+        }
         let one = |tok| Some(Ok((start, tok, start + 1)));
         match c {
             '{' => {
                 self.at += 1;
+                self.depth += 1;
                 one(Tok::LBrace)
             }
             '}' => {
                 self.at += 1;
+                self.depth = self.depth.saturating_sub(1);
                 one(Tok::RBrace)
             }
             '(' => {
@@ -169,6 +189,7 @@ impl<'a> Lexer<'a> {
                 let end = start + len;
                 let tok = match word {
                     "machine" => Tok::Machine,
+                    "description" if self.depth == 0 => Tok::Description,
                     "initial" => Tok::Initial,
                     "state" => Tok::State,
                     "entry" => Tok::Entry,
@@ -197,6 +218,35 @@ impl<'a> Lexer<'a> {
                 }))
             }
         }
+    }
+
+    /// Inside an activity: a statement, or `None` where the item starts as anywhere else (a
+    /// posting's type, `call`, `code`, the activity's closing `}`).
+    fn activity_item(&mut self, first: char) -> Option<(usize, Tok<'a>, usize)> {
+        let rest = self.rest();
+        if matches!(first, '}' | '"' | ':') {
+            return None;
+        }
+        if first.is_alphabetic() || first == '_' {
+            let len = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+                .unwrap_or(rest.len());
+            let after = rest[len..].trim_start_matches([' ', '\t']);
+            match &rest[..len] {
+                "call" => {
+                    self.plain_until = self.at + rest.find('\n').unwrap_or(rest.len());
+                    return None;
+                }
+                "code" => return None,
+                _ if after.starts_with(':') => return None,
+                _ => {}
+            }
+        }
+        let len = statement_length(rest);
+        let start = self.at;
+        self.at += len;
+        let text = rest[..len].trim_end();
+        Some((start, Tok::Statement(text), start + text.len()))
     }
 
     /// The label after `when`, up to `->` on the same line; the tokens come back in reverse
@@ -255,4 +305,47 @@ impl<'a> Iterator for Lexer<'a> {
     fn next(&mut self) -> Option<Spanned<'a>> {
         self.next_token()
     }
+}
+
+/// The length of the statement that starts `text`: up to and with its `;`, or the `}` that
+/// closes a block it opened, or up to (without) a `}` it did not open, or the end.
+fn statement_length(text: &str) -> usize {
+    let (mut parens, mut braces) = (0i32, 0i32);
+    let mut chars = text.char_indices().peekable();
+    while let Some((i, c)) = chars.next() {
+        match c {
+            '"' | '\'' => {
+                let mut escaped = false;
+                for (_, inner) in chars.by_ref() {
+                    match inner {
+                        _ if escaped => escaped = false,
+                        '\\' => escaped = true,
+                        '\n' => break,
+                        q if q == c => break,
+                        _ => {}
+                    }
+                }
+            }
+            '/' if chars.peek().is_some_and(|(_, n)| *n == '/') => {
+                for (_, inner) in chars.by_ref() {
+                    if inner == '\n' {
+                        break;
+                    }
+                }
+            }
+            '(' | '[' => parens += 1,
+            ')' | ']' => parens -= 1,
+            '{' => braces += 1,
+            '}' if braces == 0 => return i,
+            '}' => {
+                braces -= 1;
+                if braces == 0 && parens <= 0 {
+                    return i + 1;
+                }
+            }
+            ';' if parens <= 0 && braces == 0 => return i + 1,
+            _ => {}
+        }
+    }
+    text.len()
 }

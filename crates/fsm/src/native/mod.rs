@@ -27,19 +27,21 @@
 //! ```
 //!
 //! A posting is `Type: content` (the content is the rest of the line), a host call is
-//! `call f`, `call f(12)`, `call f("text")`, and `code …` keeps a statement of gufsm's C-like
-//! code as written. States may carry their original id (`state GetUp #14`); where names repeat,
+//! `call f`, `call f(12)`, `call f("text")`; anything else in an activity is a statement of the
+//! activity language ending in `;` (`count = count + 1;`, `post("Say", count);`, `int n;`), and
+//! `code …` keeps text that an importer could not read, as written. States may carry their original id (`state GetUp #14`); where names repeat,
 //! a transition names its target by id (`-> #14`).
 
 mod ast;
 mod lexer;
 mod write;
 
+use crate::code::parse_statements;
 use crate::diagnostic::FileDiagnostic;
 use crate::label::parse_label;
-use crate::model::{Machine, State, StateId, Transition};
+use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
-use ast::{FileAst, Member, Ref, Section, TopItem};
+use ast::{ActionAst, FileAst, Member, Ref, Section, TopItem};
 use lalrpop_util::ParseError;
 use lexer::{LexError, Lexer, Tok};
 
@@ -104,6 +106,7 @@ fn friendly(terminal: &str) -> String {
         "Int" => "a whole number".into(),
         "Text" => "`:` and the posting's content".into(),
         "LabelText" => "a label".into(),
+        "Statement" => "a statement".into(),
         quoted => format!("`{}`", quoted.trim_matches('"')),
     }
 }
@@ -131,9 +134,16 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
         diagnostics.push(FileDiagnostic::error(file, lines.line(at), message));
     };
     let mut initial_ref = None;
+    let mut description = String::new();
     let mut parsed = Vec::new();
     for item in ast.items {
         match item {
+            TopItem::Description(text, at) => {
+                if !description.is_empty() {
+                    error(at, "the description is given twice".into());
+                }
+                description = text;
+            }
             TopItem::Initial(target, at) => {
                 if initial_ref.is_some() {
                     error(at, "the initial state is given twice".into());
@@ -233,7 +243,19 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
                         Section::Exit => &mut state.on_exit,
                         Section::Internal => &mut state.internal,
                     };
-                    list.extend(actions.into_iter().map(|(a, _)| a));
+                    for (action, at) in actions {
+                        match action {
+                            ActionAst::Done(action) => list.push(action),
+                            ActionAst::Statement(text) => match parse_statements(&text) {
+                                Ok(statements) => {
+                                    list.extend(statements.into_iter().map(Action::Statement))
+                                }
+                                Err(e) => {
+                                    error(at + e.offset, format!("bad statement: {}", e.message))
+                                }
+                            },
+                        }
+                    }
                 }
                 Member::When {
                     label,
@@ -282,9 +304,11 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
     let machines = match initial {
         Some(initial) => vec![Machine {
             name: ast.name,
+            description,
             states,
             transitions,
             initial,
+            unread: Vec::new(),
         }],
         None if states.is_empty() => {
             error(ast.name_at, format!("machine `{}` has no states", ast.name));

@@ -3,8 +3,17 @@
 use crate::model::{Action, Argument, Machine, State, StateId};
 use std::fmt::Write;
 
-const KEYWORDS: [&str; 9] = [
-    "machine", "initial", "state", "entry", "exit", "internal", "when", "call", "code",
+const KEYWORDS: [&str; 10] = [
+    "machine",
+    "description",
+    "initial",
+    "state",
+    "entry",
+    "exit",
+    "internal",
+    "when",
+    "call",
+    "code",
 ];
 
 /// The machine as a native file. Ids are written only when they are not the ones the reader
@@ -18,6 +27,9 @@ pub fn to_native(machine: &Machine) -> String {
         .enumerate()
         .all(|(i, s)| s.id == i as StateId + 1);
     let _ = writeln!(out, "machine {}", name(&machine.name));
+    if !machine.description.is_empty() {
+        let _ = writeln!(out, "description {}", quoted(&machine.description));
+    }
     let _ = writeln!(out, "initial {}", reference(machine, machine.initial));
     for state in &machine.states {
         out.push('\n');
@@ -56,6 +68,17 @@ fn write_state(out: &mut String, machine: &Machine, state: &State, implicit_ids:
             reference(machine, t.target)
         );
     }
+    // Kept so nothing of the original is lost; a comment, so the file still reads.
+    for u in machine.unread.iter().filter(|u| u.source == state.id) {
+        let _ = writeln!(
+            out,
+            "    // not read (line {}: {}): when {} -> {}",
+            u.line,
+            one_line(&u.reason),
+            one_line(&u.label),
+            reference(machine, u.target)
+        );
+    }
     out.push_str("}\n");
 }
 
@@ -81,6 +104,9 @@ fn write_action(out: &mut String, action: &Action) {
                     let _ = write!(out, "({})", quoted(w));
                 }
             }
+        }
+        Action::Statement(statement) => {
+            let _ = write!(out, "{statement}");
         }
         Action::Code(code) => {
             let _ = write!(out, "code {}", one_line(code));

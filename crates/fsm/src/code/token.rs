@@ -1,0 +1,213 @@
+//! Tokens of the activity language, cut on demand with their byte offsets.
+
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Token {
+    Name(String),
+    Int(i64),
+    Float(f64),
+    Str(String),
+    /// Punctuation and operators, longest first: `== != <= >= && || ( ) { } , ; = + - * / % < > ! ~`.
+    Punct(&'static str),
+}
+
+impl fmt::Display for Token {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Token::Name(n) => write!(f, "`{n}`"),
+            Token::Int(i) => write!(f, "the number `{i}`"),
+            Token::Float(x) => write!(f, "the number `{x:?}`"),
+            Token::Str(s) => write!(f, "the string {s:?}"),
+            Token::Punct(p) => write!(f, "`{p}`"),
+        }
+    }
+}
+
+const PUNCTUATION: [&str; 24] = [
+    "==", "!=", "<=", ">=", "&&", "||", "(", ")", "{", "}", ",", ";", "=", "+", "-", "*", "/", "%",
+    "<", ">", "!", "~", "[", "]",
+];
+
+/// Where and why the text is not a token (`at` in bytes).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LexError {
+    pub at: usize,
+    pub message: String,
+}
+
+/// Every token of `text` with its start and end offsets.
+pub fn tokenize(text: &str) -> Result<Vec<(usize, Token, usize)>, LexError> {
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    let mut at = 0;
+    while at < text.len() {
+        let rest = &text[at..];
+        let c = rest.chars().next().unwrap_or(' ');
+        if c.is_whitespace() {
+            at += c.len_utf8();
+            continue;
+        }
+        if rest.starts_with("//") {
+            at += rest.find('\n').unwrap_or(rest.len());
+            continue;
+        }
+        if rest.starts_with("/*") {
+            at += rest.find("*/").map_or(rest.len(), |end| end + 2);
+            continue;
+        }
+        let start = at;
+        if c.is_ascii_digit() || (c == '.' && bytes.get(at + 1).is_some_and(u8::is_ascii_digit)) {
+            let (token, len) = number(rest).map_err(|message| LexError { at, message })?;
+            at += len;
+            out.push((start, token, at));
+        } else if c.is_alphabetic() || c == '_' {
+            let len = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            at += len;
+            out.push((start, Token::Name(rest[..len].to_string()), at));
+        } else if c == '"' || c == '\'' {
+            let (s, len) = string(rest, c).ok_or_else(|| LexError {
+                at,
+                message: format!("this string has no closing `{c}`"),
+            })?;
+            at += len;
+            out.push((start, Token::Str(s), at));
+        } else if let Some(p) = PUNCTUATION.iter().find(|p| rest.starts_with(**p)) {
+            at += p.len();
+            out.push((start, Token::Punct(p), at));
+        } else {
+            return Err(LexError {
+                at,
+                message: format!("`{c}` has no meaning here"),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// `12`, `0.3`, `.5`, `1e-3`, `2.5E4`: an integer unless it has a point or an exponent.
+fn number(text: &str) -> Result<(Token, usize), String> {
+    let b = text.as_bytes();
+    let mut len = 0;
+    while len < b.len() && b[len].is_ascii_digit() {
+        len += 1;
+    }
+    let mut float = false;
+    if len < b.len() && b[len] == b'.' {
+        float = true;
+        len += 1;
+        while len < b.len() && b[len].is_ascii_digit() {
+            len += 1;
+        }
+    }
+    if len < b.len() && (b[len] == b'e' || b[len] == b'E') {
+        let mut exp = len + 1;
+        if exp < b.len() && (b[exp] == b'+' || b[exp] == b'-') {
+            exp += 1;
+        }
+        if exp < b.len() && b[exp].is_ascii_digit() {
+            float = true;
+            len = exp;
+            while len < b.len() && b[len].is_ascii_digit() {
+                len += 1;
+            }
+        }
+    }
+    let digits = &text[..len];
+    if b.get(len)
+        .is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_')
+    {
+        let word_end = text[len..]
+            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .map_or(text.len(), |e| e + len);
+        return Err(format!(
+            "`{}` is neither a number nor a name",
+            &text[..word_end]
+        ));
+    }
+    if float {
+        digits
+            .parse()
+            .map(|x| (Token::Float(x), len))
+            .map_err(|_| format!("`{digits}` is not a number"))
+    } else {
+        digits
+            .parse()
+            .map(|i| (Token::Int(i), len))
+            .map_err(|_| format!("`{digits}` is too large for a whole number"))
+    }
+}
+
+/// A quoted string with gufsm's escapes (`\n \t \b \f \r \; \" \' \\`); its text and length.
+fn string(text: &str, quote: char) -> Option<(String, usize)> {
+    let mut out = String::new();
+    let mut chars = text.char_indices().skip(1);
+    while let Some((i, c)) = chars.next() {
+        match c {
+            c if c == quote => return Some((out, i + 1)),
+            '\\' => {
+                let (_, e) = chars.next()?;
+                out.push(match e {
+                    'n' => '\n',
+                    't' => '\t',
+                    'r' => '\r',
+                    'b' => '\u{8}',
+                    'f' => '\u{c}',
+                    other => other,
+                });
+            }
+            c => out.push(c),
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn kinds(text: &str) -> Vec<Token> {
+        tokenize(text)
+            .expect("tokens")
+            .into_iter()
+            .map(|(_, t, _)| t)
+            .collect()
+    }
+
+    #[test]
+    fn operators_are_cut_longest_first_and_a_minus_after_less_stays_apart() {
+        assert_eq!(
+            kinds("HeadYaw<-b"),
+            vec![
+                Token::Name("HeadYaw".into()),
+                Token::Punct("<"),
+                Token::Punct("-"),
+                Token::Name("b".into())
+            ]
+        );
+        assert_eq!(kinds("a<=b")[1], Token::Punct("<="));
+    }
+
+    #[test]
+    fn numbers_strings_and_comments() {
+        assert_eq!(
+            kinds(r#"12 0.3 .5 1e-3 "a\"b" /* x */ // y"#),
+            vec![
+                Token::Int(12),
+                Token::Float(0.3),
+                Token::Float(0.5),
+                Token::Float(0.001),
+                Token::Str("a\"b".into())
+            ]
+        );
+    }
+
+    #[test]
+    fn bad_text_is_an_error_with_its_place() {
+        assert_eq!(tokenize("a $ b").unwrap_err().at, 2);
+        assert_eq!(tokenize("\"open").unwrap_err().at, 0);
+        assert!(tokenize("12abc").unwrap_err().message.contains("12abc"));
+    }
+}

@@ -1,0 +1,266 @@
+//! Running activities: postings, host calls and statements of the activity language, with the
+//! built-in functions gufsm gave its machines (`post`, `postv`, `suspend`, `say`, `print`,
+//! `msleep`, …).
+
+use crate::control::Command;
+use crate::eval::Env;
+use crate::event::{Event, Reporter};
+use crate::host::Hosts;
+use crate::variables::{Locals, Shared};
+use proclaim_board::{Value, Whiteboard};
+use proclaim_fsm::{Action, Argument, Expr, Statement};
+use rustc_hash::FxHashSet;
+use std::future::Future;
+use std::pin::Pin;
+use std::time::Duration;
+use tokio::time::Instant;
+
+/// A `for` loop stops after this many rounds in one activity (with a warning): a ring must end.
+pub const LOOP_LIMIT: u64 = 100_000;
+
+/// What an activity runs with.
+pub(crate) struct Doer<'a> {
+    pub board: &'a Whiteboard,
+    /// The machine's name: who posts.
+    pub machine: &'a str,
+    pub state: &'a str,
+    pub entered_at: Instant,
+    pub hosts: &'a Hosts,
+    pub shared: &'a Shared,
+    pub locals: &'a mut Locals,
+    /// Host functions already reported missing (each is reported once).
+    pub unknown: &'a mut FxHashSet<String>,
+    pub reporter: &'a Reporter,
+}
+
+impl Doer<'_> {
+    pub async fn run(&mut self, actions: &[Action]) {
+        for action in actions {
+            match action {
+                Action::Post { ty, content } => {
+                    self.post(ty, Value::parse(content));
+                }
+                Action::Call { function, argument } => self.host_call(function, argument).await,
+                Action::Statement(s) => self.exec(s).await,
+                // Reported when the machine was read; it does nothing.
+                Action::Code(_) => {}
+            }
+        }
+    }
+
+    fn env(&self) -> Env<'_> {
+        Env {
+            board: self.board,
+            locals: self.locals,
+            shared: self.shared,
+            in_state: self.entered_at.elapsed(),
+        }
+    }
+
+    fn value(&self, e: &Expr) -> Value {
+        self.env().value(e).unwrap_or(Value::Int(0))
+    }
+
+    fn text(&self, e: &Expr) -> String {
+        text(&self.value(e))
+    }
+
+    fn post(&self, ty: &str, value: Value) {
+        let content = text(&value);
+        self.board.post(self.machine, ty, value);
+        self.reporter.emit(|at| Event::Posted {
+            machine: self.machine.to_string(),
+            ty: ty.to_string(),
+            content,
+            at,
+        });
+    }
+
+    fn warn(&self, message: String) {
+        tracing::warn!(machine = %self.machine, "{message}");
+        self.reporter.emit(|at| Event::Warned {
+            machine: self.machine.to_string(),
+            message,
+            at,
+        });
+    }
+
+    /// Assigns as gufsm did: the machine's own variable, else an extern (posted), else a global.
+    fn assign(&mut self, name: &str, value: Value) {
+        if self.locals.set(name, value.clone()) {
+            return;
+        }
+        if self.shared.is_extern(name) {
+            self.post(name, value);
+        } else {
+            self.shared.set_global(name, value);
+        }
+    }
+
+    fn exec<'s>(
+        &'s mut self,
+        statement: &'s Statement,
+    ) -> Pin<Box<dyn Future<Output = ()> + Send + 's>> {
+        Box::pin(async move {
+            match statement {
+                Statement::Declare {
+                    name,
+                    value: Some(value),
+                    ..
+                }
+                | Statement::Assign { name, value } => {
+                    let v = self.value(value);
+                    self.assign(name, v);
+                }
+                Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
+                Statement::Expr(Expr::Call {
+                    function,
+                    arguments,
+                }) => self.call(function, arguments).await,
+                Statement::Expr(other) => {
+                    self.value(other);
+                }
+                Statement::Block(body) => {
+                    for s in body {
+                        self.exec(s).await;
+                    }
+                }
+                Statement::For {
+                    init,
+                    condition,
+                    step,
+                    body,
+                } => {
+                    if let Some(init) = init {
+                        self.exec(init).await;
+                    }
+                    let mut rounds = 0;
+                    while condition.as_ref().is_none_or(|c| self.env().truth(c)) {
+                        if rounds == LOOP_LIMIT {
+                            self.warn(format!(
+                                "a `for` loop in state {} stopped after {LOOP_LIMIT} rounds",
+                                self.state
+                            ));
+                            break;
+                        }
+                        rounds += 1;
+                        self.exec(body).await;
+                        if let Some(step) = step {
+                            self.exec(step).await;
+                        }
+                    }
+                }
+            }
+        })
+    }
+
+    /// A call standing as a statement: a built-in, or a host function.
+    async fn call(&mut self, function: &str, arguments: &[Expr]) {
+        let arg = |i: usize| arguments.get(i);
+        match (function, arguments.len()) {
+            ("post", 2) => {
+                let value = self.value(&arguments[1]);
+                self.post(&self.text(&arguments[0]), value);
+            }
+            // `post("Say", "", "Hello")`: the two parts joined by a space, empty ones left out.
+            ("post", 3) => {
+                let parts: Vec<String> = arguments[1..]
+                    .iter()
+                    .map(|a| self.text(a))
+                    .filter(|t| !t.is_empty())
+                    .collect();
+                self.post(&self.text(&arguments[0]), Value::Str(parts.join(" ")));
+            }
+            ("post_int", 2) => {
+                let value = match self.value(&arguments[1]) {
+                    Value::Int(i) => Value::Int(i),
+                    other => Value::Int(other.as_f64().unwrap_or(0.0) as i64),
+                };
+                self.post(&self.text(&arguments[0]), value);
+            }
+            ("postv" | "post_v", n) if n >= 2 => {
+                let values = arguments[1..].iter().map(|a| self.value(a)).collect();
+                self.post(&self.text(&arguments[0]), Value::List(values));
+            }
+            ("suspend" | "resume" | "restart" | "start" | "stop", 1) => {
+                let command = match function {
+                    "suspend" => Command::Suspend,
+                    "resume" => Command::Resume,
+                    "restart" => Command::Restart,
+                    "start" => Command::On,
+                    _ => Command::Off,
+                };
+                self.post(&self.text(&arguments[0]), Value::Str(command.word().into()));
+            }
+            ("say", 1) => self.post("Say", Value::Str(self.text(&arguments[0]))),
+            ("speech", 1) => self.post("Speech", Value::Str(self.text(&arguments[0]))),
+            ("say_state_name", 0) => self.post("Say", Value::Str(self.state.to_string())),
+            ("speak_state_name", 0) => self.post("Speech", Value::Str(self.state.to_string())),
+            ("print" | "print_int" | "print_fixed", 1) => {
+                let text = self.text(&arguments[0]);
+                self.print(text);
+            }
+            ("print_state_name", 0) => self.print(self.state.to_string()),
+            ("msleep", 1) => sleep_ms(self.value(&arguments[0]), 1.0).await,
+            ("sleep", 1) => sleep_ms(self.value(&arguments[0]), 1000.0).await,
+            _ if self.env().call(function, arguments).is_some() => {}
+            _ => {
+                let argument = arg(0).map(|a| match self.value(a) {
+                    Value::Int(i) => Argument::Int(i),
+                    Value::Str(s) => Argument::Str(s),
+                    other => Argument::Word(other.to_string()),
+                });
+                self.host(function, argument.as_ref());
+            }
+        }
+    }
+
+    async fn host_call(&mut self, function: &str, argument: &Option<Argument>) {
+        match (function, argument) {
+            ("msleep", Some(Argument::Int(ms))) => sleep_ms(Value::Int(*ms), 1.0).await,
+            ("sleep", Some(Argument::Int(s))) => sleep_ms(Value::Int(*s), 1000.0).await,
+            _ => self.host(function, argument.as_ref()),
+        }
+    }
+
+    fn host(&mut self, function: &str, argument: Option<&Argument>) {
+        match self.hosts.get(function) {
+            Some(f) => f(argument),
+            None => {
+                if self.unknown.insert(function.to_string()) {
+                    tracing::warn!(machine = %self.machine, function = %function, "host function not registered; skipped");
+                    self.reporter.emit(|_| Event::UnknownFunction {
+                        machine: self.machine.to_string(),
+                        function: function.to_string(),
+                    });
+                }
+            }
+        }
+    }
+
+    fn print(&self, text: String) {
+        tracing::info!(machine = %self.machine, "{text}");
+        self.reporter.emit(|at| Event::Printed {
+            machine: self.machine.to_string(),
+            text,
+            at,
+        });
+    }
+}
+
+async fn sleep_ms(amount: Value, ms_per_unit: f64) {
+    let ms = amount.as_f64().unwrap_or(0.0) * ms_per_unit;
+    if ms > 0.0 {
+        tokio::time::sleep(Duration::from_secs_f64(ms / 1e3)).await;
+    }
+}
+
+/// A value as a person reads it: text without quotes, lists space-separated (the form
+/// postings had in the original tables).
+pub(crate) fn text(value: &Value) -> String {
+    match value {
+        Value::Str(s) => s.clone(),
+        Value::List(items) => items.iter().map(text).collect::<Vec<_>>().join(" "),
+        other => other.to_string(),
+    }
+}

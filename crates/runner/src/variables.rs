@@ -1,0 +1,234 @@
+//! Variables with gufsm's scoping. A name declared in a machine (`int n;`) is that machine's
+//! own; `extern x` binds `x` to the whiteboard message of that type for every machine of the
+//! behaviour (reading gives its latest value, assigning posts it); any other name some
+//! activity assigns is a global, shared by every machine of the behaviour and starting at 0.
+//! gufsm kept the three in one table per machine vector (`M<id>$$name`, `E$$name`, `name`);
+//! lookups go in that order: own, extern, global.
+
+use proclaim_board::Value;
+use proclaim_fsm::{Machine, Statement, VarType};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::{Arc, RwLock};
+use tokio::sync::watch;
+
+/// What the machines of one behaviour share: globals and the names bound to the whiteboard.
+pub struct Shared {
+    globals: RwLock<FxHashMap<String, Value>>,
+    externs: RwLock<FxHashSet<String>>,
+    /// Counts changes of globals, so a machine whose label reads one wakes when it changes.
+    changes: watch::Sender<u64>,
+}
+
+impl Shared {
+    /// The variables the machines of a behaviour share, from what their activities declare
+    /// and assign.
+    pub fn for_machines<'a>(machines: impl IntoIterator<Item = &'a Machine>) -> Arc<Shared> {
+        let shared = Arc::new(Shared {
+            globals: RwLock::default(),
+            externs: RwLock::default(),
+            changes: watch::channel(0).0,
+        });
+        let machines: Vec<&Machine> = machines.into_iter().collect();
+        // Externs first: a name some machine binds to the whiteboard is no global anywhere.
+        for m in &machines {
+            shared.add_externs(m);
+        }
+        for m in &machines {
+            shared.add_globals(m);
+        }
+        shared
+    }
+
+    /// Adds what a (re)loaded machine declares and assigns; values already held stay.
+    pub fn register(&self, machine: &Machine) {
+        self.add_externs(machine);
+        self.add_globals(machine);
+    }
+
+    fn add_externs(&self, machine: &Machine) {
+        let mut externs = self.externs.write().unwrap_or_else(|e| e.into_inner());
+        for s in machine.statements() {
+            if let Statement::Extern { name, .. } = s {
+                externs.insert(name.clone());
+            }
+        }
+    }
+
+    fn add_globals(&self, machine: &Machine) {
+        let own = Locals::declared(machine);
+        let externs = self.externs.read().unwrap_or_else(|e| e.into_inner());
+        let mut globals = self.globals.write().unwrap_or_else(|e| e.into_inner());
+        for s in machine.statements() {
+            if let Statement::Assign { name, .. } = s {
+                if !own.types.contains_key(name) && !externs.contains(name) {
+                    globals.entry(name.clone()).or_insert(Value::Int(0));
+                }
+            }
+        }
+    }
+
+    pub fn is_extern(&self, name: &str) -> bool {
+        self.externs
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .contains(name)
+    }
+
+    pub fn global(&self, name: &str) -> Option<Value> {
+        self.globals
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(name)
+            .cloned()
+    }
+
+    pub fn is_global(&self, name: &str) -> bool {
+        self.globals
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .contains_key(name)
+    }
+
+    /// Sets a global (creating it); machines waiting on globals wake when the value changed.
+    pub fn set_global(&self, name: &str, value: Value) {
+        let changed = {
+            let mut globals = self.globals.write().unwrap_or_else(|e| e.into_inner());
+            match globals.get_mut(name) {
+                Some(old) if *old == value => false,
+                Some(old) => {
+                    *old = value;
+                    true
+                }
+                None => {
+                    globals.insert(name.to_string(), value);
+                    true
+                }
+            }
+        };
+        if changed {
+            self.changes.send_modify(|n| *n = n.wrapping_add(1));
+        }
+    }
+
+    /// Every global and its value, sorted by name (for a person looking at a run).
+    pub fn globals(&self) -> Vec<(String, Value)> {
+        let mut all: Vec<_> = self
+            .globals
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        all.sort_by(|a, b| a.0.cmp(&b.0));
+        all
+    }
+
+    pub(crate) fn changes(&self) -> watch::Receiver<u64> {
+        self.changes.subscribe()
+    }
+}
+
+/// The names a machine's expressions see: its own variables and those of its behaviour.
+#[derive(Clone, Copy)]
+pub(crate) struct Scope<'a> {
+    pub locals: &'a Locals,
+    pub shared: &'a Shared,
+}
+
+impl Scope<'_> {
+    /// Whether `name` is a variable (the machine's own, an extern, or a global) rather than a
+    /// proposition to ask an expert about or a whiteboard value.
+    pub fn is_variable(&self, name: &str) -> bool {
+        self.locals.contains(name) || self.shared.is_extern(name) || self.shared.is_global(name)
+    }
+
+    /// Whether reading `name` reads a whiteboard message (an extern, or no variable at all).
+    pub fn is_message(&self, name: &str) -> bool {
+        !self.locals.contains(name) && !self.shared.is_global(name)
+    }
+}
+
+/// One machine's own variables: declared types and current values.
+#[derive(Clone, Debug, Default)]
+pub struct Locals {
+    types: FxHashMap<String, VarType>,
+    values: FxHashMap<String, Value>,
+}
+
+impl Locals {
+    /// Every variable the machine declares, at its type's zero (gufsm made them when it read
+    /// the machine, wherever the declaration stood).
+    pub fn declared(machine: &Machine) -> Locals {
+        let mut locals = Locals::default();
+        for s in machine.statements() {
+            if let Statement::Declare { ty, name, .. } = s {
+                locals
+                    .values
+                    .entry(name.clone())
+                    .or_insert_with(|| zero(ty));
+                locals.types.insert(name.clone(), ty.clone());
+            }
+        }
+        locals
+    }
+
+    /// The variables of a reloaded machine: values of names it still declares are kept.
+    pub fn reloaded(&self, machine: &Machine) -> Locals {
+        let mut new = Locals::declared(machine);
+        for (name, value) in &self.values {
+            if let Some(ty) = new.types.get(name) {
+                new.values.insert(name.clone(), convert(ty, value.clone()));
+            }
+        }
+        new
+    }
+
+    pub fn get(&self, name: &str) -> Option<&Value> {
+        self.values.get(name)
+    }
+
+    pub fn contains(&self, name: &str) -> bool {
+        self.types.contains_key(name)
+    }
+
+    /// Sets a declared variable, converting the value to its type as C would (`int n = 2.7`
+    /// holds 2). False when the machine declares no such variable.
+    pub fn set(&mut self, name: &str, value: Value) -> bool {
+        match self.types.get(name) {
+            Some(ty) => {
+                let value = convert(ty, value);
+                self.values.insert(name.to_string(), value);
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+fn zero(ty: &VarType) -> Value {
+    match ty {
+        VarType::Bool => Value::Bool(false),
+        VarType::Float | VarType::Double => Value::Float(0.0),
+        VarType::Int | VarType::Char | VarType::Named(_) => Value::Int(0),
+    }
+}
+
+fn convert(ty: &VarType, value: Value) -> Value {
+    match ty {
+        VarType::Int | VarType::Char => match value {
+            Value::Float(x) => Value::Int(x as i64),
+            Value::Bool(b) => Value::Int(i64::from(b)),
+            Value::Str(ref s) => s
+                .trim()
+                .parse::<f64>()
+                .map_or(Value::Int(0), |x| Value::Int(x as i64)),
+            other => other,
+        },
+        VarType::Float | VarType::Double => match value.as_f64() {
+            Some(x) => Value::Float(x),
+            None => Value::Float(0.0),
+        },
+        VarType::Bool => Value::Bool(value.truthy()),
+        VarType::Named(_) => value,
+    }
+}
