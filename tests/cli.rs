@@ -554,6 +554,15 @@ fn run_plays_the_built_in_game_over_udp_to_finished_and_the_trace_replays() {
         out.contains("stopped: every machine that started is in a final state"),
         "{out}"
     );
+    // FINISHED's entry runs before the run ends: the robot says so and sits.
+    let tail: Vec<&str> = out.lines().rev().take(8).collect();
+    for said in [
+        "posts Say: game over",
+        "posts NaoMotionPlayer: play sit",
+        "finished in FINISHED",
+    ] {
+        assert!(tail.iter().any(|l| l.ends_with(said)), "{said}:\n{out}");
+    }
     assert!(
         out.contains("readyReceived = true  (gamecontroller)"),
         "{out}"

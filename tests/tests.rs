@@ -1,5 +1,6 @@
 //! The one integration-test binary: one module per area.
 
+mod activities;
 mod behaviours;
 mod cli;
 mod experts;
