@@ -299,6 +299,10 @@ pub struct RunArgs {
     /// `ATOM=true` answers a label no expert answers
     #[arg(long, conflicts_with_all = ["watch", "duration"])]
     pub step: bool,
+    /// Run even when `proclaim check` finds errors in the behaviour (a label no expert
+    /// answers, a sub-machine that does not exist); they are printed as warnings
+    #[arg(long)]
+    pub force: bool,
     #[command(flatten)]
     pub network: Network,
 }

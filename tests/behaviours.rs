@@ -39,8 +39,8 @@ async fn run_folder(
     limit: Duration,
     sensors: &[(Duration, &str, bool)],
 ) -> (Vec<String>, Whiteboard) {
-    let behaviour = load(name, Arc::new(Folder::new(dir)))
-        .unwrap_or_else(|e| panic!("{name} loads: {e:#?}"));
+    let behaviour =
+        load(name, Arc::new(Folder::new(dir))).unwrap_or_else(|e| panic!("{name} loads: {e:#?}"));
     let board = Whiteboard::local();
     let options = LaunchOptions {
         script: script.map(|s| parse_script(s).expect("script parses")),
@@ -566,7 +566,10 @@ async fn the_teams_gufsm_microwave_runs_on_variables_alone() {
         .map(|(f, _)| format!("[[machine]]\nfile = \"{f}\"\n"))
         .collect();
     files.push(("behaviour.toml".into(), manifest));
-    let borrowed: Vec<(&str, &str)> = files.iter().map(|(f, t)| (f.as_str(), t.as_str())).collect();
+    let borrowed: Vec<(&str, &str)> = files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
     let dir = crate::behaviour_folder("gufsm-microwave", &borrowed);
     let script = "\
         buttonPushed = false
@@ -576,7 +579,14 @@ async fn the_teams_gufsm_microwave_runs_on_variables_alone() {
         at 10s doorOpen = true
         at 12s doorOpen = false
     ";
-    let (trace, board) = run_folder("microwave", &dir, Some(script), Duration::from_secs(40), &[]).await;
+    let (trace, board) = run_folder(
+        "microwave",
+        &dir,
+        Some(script),
+        Duration::from_secs(40),
+        &[],
+    )
+    .await;
     let mut said: Vec<&str> = trace
         .iter()
         .map(String::as_str)
@@ -585,7 +595,11 @@ async fn the_teams_gufsm_microwave_runs_on_variables_alone() {
     // Machines woken by the same change run in no set order: compare each instant's lines
     // by machine.
     let time = |l: &str| l.split('s').next().unwrap().parse::<f64>().unwrap();
-    said.sort_by(|a, b| time(a).total_cmp(&time(b)).then(a.split(' ').nth(1).cmp(&b.split(' ').nth(1))));
+    said.sort_by(|a, b| {
+        time(a)
+            .total_cmp(&time(b))
+            .then(a.split(' ').nth(1).cmp(&b.split(' ').nth(1)))
+    });
     assert_eq!(
         said,
         [
@@ -611,6 +625,9 @@ async fn the_teams_gufsm_microwave_runs_on_variables_alone() {
         "{trace:#?}"
     );
     // Nothing was asked of an expert: every label is over variables.
-    assert!(!trace.iter().any(|l| l.contains("no expert answers")), "{trace:#?}");
+    assert!(
+        !trace.iter().any(|l| l.contains("no expert answers")),
+        "{trace:#?}"
+    );
     assert_eq!(board.stats().queries, 0);
 }

@@ -622,7 +622,15 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
     );
     let machine = dir.join("W.machine");
     let child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(["run", dir.to_str().unwrap(), "--watch", "--for", "20s"])
+        // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
+        .args([
+            "run",
+            dir.to_str().unwrap(),
+            "--watch",
+            "--for",
+            "20s",
+            "--force",
+        ])
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -647,6 +655,17 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
         "{out}"
     );
     assert!(out.contains("W  reloaded, in Wait"), "{out}");
+    // Each save is read once, however many file events it makes.
+    assert_eq!(
+        out.matches("its file changed; rereading").count(),
+        2,
+        "{out}"
+    );
+    assert!(
+        stderr(&o).contains("W.machine:3: warning: label `go` is answered by no expert"),
+        "--force shows what check found as warnings: {}",
+        stderr(&o)
+    );
     assert!(out.contains("W  → Done"), "{out}");
     assert!(
         out.contains("stopped: every machine that started is in a final state"),
@@ -806,4 +825,127 @@ fn check_draw_deps_and_liveness_on_behaviours() {
         "{}",
         stderr(&o)
     );
+}
+
+#[test]
+fn a_behaviour_check_finds_errors_in_is_refused_by_run_and_checked_file_by_file() {
+    let broken = crate::behaviour_folder(
+        "check-files",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"B.machine\"\n",
+            ),
+            ("A.machine", "machine A\nstate S {\n when x && -> S\n}\n"),
+            ("B.machine", "machine B\nstate S {\n entry {\n"),
+        ],
+    );
+    // Every file's problems, each with its own file and line.
+    let o = proclaim(&["check", broken.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let places: Vec<(String, u64)> = report
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let file = r["file"].as_str().unwrap();
+            let file = file.rsplit('/').next().unwrap().to_string();
+            (file, r["line"].as_u64().unwrap())
+        })
+        .collect();
+    assert_eq!(
+        places,
+        [("A.machine".to_string(), 3), ("B.machine".to_string(), 4)]
+    );
+
+    let unanswered = crate::behaviour_folder(
+        "check-refuse",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"Idle.machine\"\nstart = false\n",
+            ),
+            ("A.machine", "machine A\nstate S {\n when ready -> T\n}\nstate T {\n}\n"),
+            ("Idle.machine", "machine Idle\nstate S {\n}\n"),
+        ],
+    );
+    let o = proclaim(&["check", unanswered.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("Idle.machine:1: warning: sub-machine `Idle` has `start = false` and no module posts `Idle: On`, so it never runs"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["run", unanswered.to_str().unwrap(), "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("A.machine:3: error: label `ready` is answered by no expert")
+            && stderr(&o).contains("run it anyway with --force"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&[
+        "run",
+        unanswered.to_str().unwrap(),
+        "--for",
+        "1s",
+        "--force",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // A script that answers the label is as good as an expert.
+    let script = temp_file("ready.script", b"at 100ms ready = true\n");
+    let o = proclaim(&[
+        "run",
+        unanswered.to_str().unwrap(),
+        "--script",
+        script.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("→ T"), "{}", stdout(&o));
+}
+
+#[test]
+fn import_writes_a_label_it_cannot_read_as_a_comment_and_fails() {
+    let fsm = temp_file(
+        "Kicker.fsm",
+        br#"<qfsmproject><machine name="FSM" initialstate="0">
+<state code="0" description="OnEntry { int n; n = n + 1; postv(&quot;walk&quot;, n, -n); }">Start</state>
+<state code="1" description="">End</state>
+<transition><from>0</from><to>1</to><inputs>ball &amp;&amp; </inputs></transition>
+<transition><from>0</from><to>-1</to><inputs>x</inputs></transition>
+<transition><from>0</from><to>1</to><inputs>n &gt; 2</inputs></transition>
+</machine></qfsmproject>"#,
+    );
+    let out_dir = std::env::temp_dir().join(format!("proclaim-import-bad-{}", std::process::id()));
+    let o = proclaim(&[
+        "import",
+        fsm.to_str().unwrap(),
+        "-o",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("Kicker.fsm:4: error: label `ball &&`"),
+        "{err}"
+    );
+    assert!(
+        err.contains("Kicker.fsm:5: warning: a transition without `<from>` or `<to>`"),
+        "{err}"
+    );
+    // Named after its file, not its `name="FSM"`; the unread label kept as a comment.
+    let text = std::fs::read_to_string(out_dir.join("Kicker.machine")).unwrap();
+    assert!(
+        text.contains("machine Kicker\ndescription \"FSM\"\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("    // not read (line 4: expected a name, a number, a string, `(`, `!` or `-`, found the end (at column 9)): when ball && -> End\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("        n = n + 1;\n        postv(\"walk\", n, -n);\n"),
+        "{text}"
+    );
+    assert!(text.contains("    when n > 2 -> End\n"), "{text}");
 }

@@ -88,9 +88,7 @@ fn behaviour(
             rendered, errors, ..
         }) => {
             if json {
-                report.push(serde_json::json!({
-                    "file": name, "line": 0, "severity": "error", "message": rendered.trim_end(),
-                }));
+                report.extend(problems_json(name, &rendered));
             } else {
                 eprint!("{rendered}");
             }
@@ -162,4 +160,32 @@ fn machines(
         }
     }
     errors
+}
+
+/// The problems of a behaviour that did not load, one record each with its own file and line.
+/// They come as `file:line: severity: message` lines (a theory's problems add lines that show
+/// the source under them, which stay with the problem above).
+fn problems_json(behaviour: &str, rendered: &str) -> Vec<serde_json::Value> {
+    let mut out: Vec<serde_json::Value> = Vec::new();
+    for line in rendered.lines().filter(|l| !l.trim().is_empty()) {
+        let located = ["error", "warning"].iter().find_map(|severity| {
+            let (place, message) = line.split_once(&format!(": {severity}: "))?;
+            let (file, number) = place.rsplit_once(':')?;
+            let number: usize = number.parse().ok()?;
+            Some(serde_json::json!({
+                "file": file, "line": number, "severity": severity, "message": message,
+            }))
+        });
+        match (located, out.last_mut()) {
+            (Some(record), _) => out.push(record),
+            (None, Some(last)) => {
+                let message = format!("{}\n{line}", last["message"].as_str().unwrap_or(""));
+                last["message"] = serde_json::Value::String(message);
+            }
+            (None, None) => out.push(serde_json::json!({
+                "file": behaviour, "line": 0, "severity": "error", "message": line,
+            })),
+        }
+    }
+    out
 }

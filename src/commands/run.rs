@@ -14,6 +14,35 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 
+/// What `check` finds stops a run, unless `--force` (or `--step`, where a person answers what
+/// no expert does): a machine that asks what nobody answers would only ever count it false.
+fn refuse_unchecked(
+    behaviour: &Behaviour,
+    script: Option<&proclaim_experts::Script>,
+    args: &RunArgs,
+) -> Result<(), Failure> {
+    let findings = proclaim_behaviour::check_behaviour_with(behaviour, script);
+    let errors: Vec<String> = findings
+        .iter()
+        .filter(|d| d.severity == proclaim_fsm::Severity::Error)
+        .map(ToString::to_string)
+        .collect();
+    if errors.is_empty() {
+        return Ok(());
+    }
+    if args.force || args.step {
+        for e in &errors {
+            eprintln!("{}", e.replacen(": error: ", ": warning: ", 1));
+        }
+        return Ok(());
+    }
+    Err(Failure::Invalid {
+        what: "the behaviour (run it anyway with --force)",
+        errors: errors.len(),
+        rendered: errors.join("\n") + "\n",
+    })
+}
+
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     let behaviour = load_behaviour(&args.behaviour)?;
     let script = match &args.script {
@@ -35,6 +64,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             })?)
         }
     };
+    refuse_unchecked(&behaviour, script.as_ref(), &args)?;
     let limit = match &args.duration {
         Some(text) => Some(parse_duration(text).ok_or_else(|| {
             Failure::Argument(format!(
@@ -138,9 +168,26 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
                 }
                 () = sleep => break format!("ran for {:?}", limit.unwrap_or_default()),
                 _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
-                Some(machine) = changed.recv() => {
-                    println!("          {machine}: its file changed; rereading");
-                    board.post("watch", &machine, "reread");
+                Some(first) = changed.recv() => {
+                    // One save is several file events (create, write, metadata): gather those
+                    // of the next moments and reread each machine once.
+                    let mut machines = vec![first];
+                    let settle = tokio::time::sleep(WATCH_SETTLE);
+                    tokio::pin!(settle);
+                    loop {
+                        tokio::select! {
+                            _ = &mut settle => break,
+                            Some(more) = changed.recv() => {
+                                if !machines.contains(&more) {
+                                    machines.push(more);
+                                }
+                            }
+                        }
+                    }
+                    for machine in machines {
+                        println!("          {machine}: its file changed; rereading");
+                        board.post("watch", &machine, "reread");
+                    }
                 }
             }
         };
@@ -196,7 +243,7 @@ async fn stepping(
     for _ in 0..200 {
         if names
             .iter()
-            .all(|n| board.truth(&format!("{n}IsRunning")).is_some())
+            .all(|n| board.truth(&proclaim_runner::running_type(n)).is_some())
         {
             break;
         }
@@ -236,13 +283,13 @@ async fn stepping(
         }
         // Posted before this view subscribed.
         for name in &names {
-            let ty = format!("{name}IsRunning");
+            let ty = proclaim_runner::running_type(name);
             if let Some(v) = board.truth(&ty) {
                 values.insert(ty, v.to_string());
             }
         }
         for name in &names {
-            let mode = match board.truth(&format!("{name}IsRunning")) {
+            let mode = match board.truth(&proclaim_runner::running_type(name)) {
                 Some(true) => "running",
                 Some(false) => "dormant",
                 None => "starting",
@@ -270,7 +317,7 @@ async fn stepping(
                     .iter()
                     .filter(|m| {
                         board
-                            .truth(&format!("{}IsRunning", m.machine.name))
+                            .truth(&proclaim_runner::running_type(&m.machine.name))
                             .unwrap_or(m.start)
                     })
                     .map(|m| m.machine.name.clone())
@@ -303,6 +350,9 @@ async fn stepping(
 }
 
 /// With `--watch` and a behaviour on disk: the names of machines whose files change.
+/// How long `--watch` gathers the file events of one save before it rereads.
+const WATCH_SETTLE: Duration = Duration::from_millis(150);
+
 fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceiver<String> {
     let (tx, rx) = tokio::sync::mpsc::unbounded_channel();
     let Some(folder) = behaviour.files.folder().filter(|_| on) else {

@@ -1,22 +1,28 @@
 //! `proclaim check` for a whole behaviour: each machine's own problems (states never reached,
 //! transitions never tried), then what only the whole shows: labels nobody answers, postings
 //! nobody listens to, sub-machines that do not exist, theory outputs nobody queries and inputs
-//! nobody posts. Each finding names the file and line it is about.
+//! nobody posts, sub-machines nothing starts. Each finding names the file and line it is about.
 
 use crate::load::Behaviour;
 use crate::modules::{modules, Module, ModuleKind};
+use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
-
-/// Contents of a posting that control a machine named by its type.
-const CONTROL: [&str; 9] = [
-    "On", "on", "Off", "off", "suspend", "resume", "restart", "reload", "reread",
-];
+use proclaim_runner::{machine_of_running_type, Command};
 
 pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
+    check_behaviour_with(behaviour, None)
+}
+
+/// The same, for a run whose labels a script also answers (`proclaim run --script`).
+pub fn check_behaviour_with(behaviour: &Behaviour, script: Option<&Script>) -> Vec<FileDiagnostic> {
     let all = modules(behaviour);
     let files = behaviour.files.as_ref();
     let mut out = Vec::new();
-    let answered = |atom: &str| all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom));
+    let scripted = script.map(Script::atoms).unwrap_or_default();
+    let answered = |atom: &str| {
+        scripted.iter().any(|a| a == atom)
+            || all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom))
+    };
     let posted_by_other = |ty: &str, me: &str| {
         all.iter()
             .any(|m| m.decl.name != me && m.decl.posts.iter().any(|p| p == ty))
@@ -36,8 +42,7 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
         let mut reported: Vec<String> = Vec::new();
         for t in &m.transitions {
             for atom in proclaim_runner::asked(&t.label, m, &shared) {
-                let own_status =
-                    is_machine(atom.trim_end_matches("IsRunning")) && atom.ends_with("IsRunning");
+                let own_status = machine_of_running_type(atom).is_some_and(is_machine);
                 if answered(atom) || own_status || posted_by_other(atom, &m.name) {
                     continue;
                 }
@@ -67,7 +72,7 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
                 reported.push(ty.clone());
                 // A control word to nobody is a machine that is missing; any other posting
                 // nobody hears may be for a module outside the behaviour.
-                out.push(if CONTROL.contains(&content.as_str()) {
+                out.push(if Command::parse(content).is_some() {
                     FileDiagnostic::error(
                         &file,
                         state.line,
@@ -85,6 +90,21 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
                     )
                 });
             }
+        }
+    }
+    for loaded in behaviour.machines.iter().filter(|m| !m.start) {
+        let name = &loaded.machine.name;
+        let started = all
+            .iter()
+            .any(|m| m.decl.name != *name && m.decl.posts.iter().any(|p| p == name));
+        if !started {
+            out.push(FileDiagnostic::warning(
+                &files.show(&loaded.file),
+                1,
+                format!(
+                    "sub-machine `{name}` has `start = false` and no module posts `{name}: On`, so it never runs"
+                ),
+            ));
         }
     }
     for module in &all {

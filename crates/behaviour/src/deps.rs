@@ -62,7 +62,7 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
         .decl
         .posts
         .iter()
-        .filter(|t| **t != format!("{centre}IsRunning"))
+        .filter(|t| **t != proclaim_runner::running_type(centre))
     {
         let listeners: Vec<&Module> = modules
             .iter()
