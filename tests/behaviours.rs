@@ -369,13 +369,13 @@ fn launch_manifests_start_exactly_what_a_machine_needs() {
     let b = repo_behaviour("game_controller");
     let modules = proclaim_behaviour::modules(&b);
     assert_eq!(
-        proclaim_behaviour::launch_manifest(&b, &modules, "Placer").unwrap(),
+        proclaim_behaviour::launch_manifest(&b, &modules, "Placer", &str::to_string).unwrap(),
         "# The smallest behaviour that runs Placer: written by `proclaim deps --launch Placer`.\n\
          dictionary = \"../nao.toml\"\n\n[[machine]]\nfile = \"Placer.machine\"\n"
     );
     let m = repo_behaviour("microwave");
     let text =
-        proclaim_behaviour::launch_manifest(&m, &proclaim_behaviour::modules(&m), "Microwave")
+        proclaim_behaviour::launch_manifest(&m, &proclaim_behaviour::modules(&m), "Microwave", &str::to_string)
             .unwrap();
     assert!(
         text.contains("[[theory]]\nfile = \"../../theories/microwave.dl\"\n"),

@@ -949,3 +949,22 @@ fn import_writes_a_label_it_cannot_read_as_a_comment_and_fails() {
     );
     assert!(text.contains("    when n > 2 -> End\n"), "{text}");
 }
+
+#[test]
+fn deps_launch_writes_a_manifest_that_runs_from_where_it_is_written() {
+    let elsewhere = std::env::temp_dir().join(format!("proclaim-launch-{}", std::process::id()));
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let manifest = elsewhere.join("placer.toml");
+    let o = proclaim(&[
+        "deps",
+        "machines/game_controller",
+        "--launch",
+        "Placer",
+        "-o",
+        manifest.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = proclaim(&["run", manifest.to_str().unwrap(), "--for", "5s"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("Placer  finished in IN_POSITION"), "{}", stdout(&o));
+}

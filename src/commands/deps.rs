@@ -17,7 +17,8 @@ pub fn run(
     let loaded = load_behaviour(behaviour)?;
     let all = modules(&loaded);
     if let Some(machine) = launch {
-        let text = launch_manifest(&loaded, &all, machine).map_err(Failure::Argument)?;
+        let place = |file: &str| placed(loaded.files.folder(), output, file);
+        let text = launch_manifest(&loaded, &all, machine, &place).map_err(Failure::Argument)?;
         return match output {
             None => {
                 print!("{text}");
@@ -42,4 +43,29 @@ pub fn run(
         None => overall_diagram(&all, &loaded.name),
     };
     write_diagram(&dot, output)
+}
+
+/// A file of the behaviour as the manifest written to `output` must name it: as it is when
+/// the manifest goes into the behaviour's folder (or to standard output), else by its full
+/// path, which works from anywhere.
+fn placed(folder: Option<&Path>, output: Option<&Path>, file: &str) -> String {
+    let (Some(folder), Some(output)) = (folder, output) else {
+        return file.to_string();
+    };
+    let out_dir = match output.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => Path::new(".").to_path_buf(),
+    };
+    let same = match (folder.canonicalize(), out_dir.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return file.to_string();
+    }
+    let full = folder.join(file);
+    full.canonicalize()
+        .unwrap_or(full)
+        .to_string_lossy()
+        .into_owned()
 }

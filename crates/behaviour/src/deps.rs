@@ -3,6 +3,7 @@
 //! script).
 
 use crate::load::Behaviour;
+use crate::manifest::Simulator;
 use crate::modules::{Module, ModuleKind};
 use std::fmt::Write;
 
@@ -171,10 +172,14 @@ pub fn overall_diagram(modules: &[Module], name: &str) -> String {
 /// starts (and theirs), the experts and sensor wrappers that answer their labels, and the
 /// behaviour's outside modules. Paths stay relative to the behaviour's folder, so the file
 /// belongs beside its `behaviour.toml`.
+///
+/// `place` says how to write a file of the behaviour so that it is found from where the
+/// manifest goes (the file as named in the behaviour, when the manifest goes beside it).
 pub fn launch_manifest(
     behaviour: &Behaviour,
     modules: &[Module],
     centre: &str,
+    place: &dyn Fn(&str) -> String,
 ) -> Result<String, String> {
     if !behaviour.machines.iter().any(|m| m.machine.name == centre) {
         return Err(format!(
@@ -236,11 +241,11 @@ pub fn launch_manifest(
         "# The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`.\n"
     );
     if let Some(d) = &behaviour.manifest.dictionary {
-        let _ = writeln!(out, "dictionary = {}", quote(d));
+        let _ = writeln!(out, "dictionary = {}", quote(&place(d)));
     }
     for m in &behaviour.machines {
         if wanted.contains(&m.machine.name) {
-            let _ = write!(out, "\n[[machine]]\nfile = {}\n", quote(&m.file));
+            let _ = write!(out, "\n[[machine]]\nfile = {}\n", quote(&place(&m.file)));
             if m.machine.name != centre {
                 out.push_str("start = false\n");
             }
@@ -251,12 +256,12 @@ pub fn launch_manifest(
             .iter()
             .any(|m| m.decl.name == t.name && is_needed(m))
         {
-            let _ = write!(out, "\n[[theory]]\nfile = {}\n", quote(&entry.file));
+            let _ = write!(out, "\n[[theory]]\nfile = {}\n", quote(&place(&entry.file)));
             if let Some(n) = &entry.name {
                 let _ = writeln!(out, "name = {}", quote(n));
             }
             if let Some(map) = &entry.mapping {
-                let _ = writeln!(out, "mapping = {}", quote(map));
+                let _ = writeln!(out, "mapping = {}", quote(&place(map)));
             }
         }
     }
@@ -265,7 +270,11 @@ pub fn launch_manifest(
             .iter()
             .any(|m| m.kind == ModuleKind::Sensor(s.kind) && is_needed(m));
         if needed {
-            let text = toml::to_string(s).unwrap_or_default();
+            let mut s = s.clone();
+            if let Some(Simulator::Script(file)) = &mut s.simulator {
+                *file = place(file);
+            }
+            let text = toml::to_string(&s).unwrap_or_default();
             let _ = write!(out, "\n[[sensor]]\n{text}");
         }
     }
@@ -274,7 +283,7 @@ pub fn launch_manifest(
             .iter()
             .any(|m| m.kind == ModuleKind::Impersonator && is_needed(m))
         {
-            let _ = write!(out, "\n[impersonator]\nscript = {}\n", quote(&i.script));
+            let _ = write!(out, "\n[impersonator]\nscript = {}\n", quote(&place(&i.script)));
         }
     }
     for o in &behaviour.manifest.modules {
