@@ -61,7 +61,7 @@ pub fn names() -> String {
 
 /// Behaviours built into the binary, so `proclaim run game_controller` works anywhere:
 /// `(name, [(path relative to the behaviour, text)])`.
-pub const BEHAVIOURS: [(&str, &[(&str, &str)]); 2] = [
+pub const BEHAVIOURS: [(&str, &[(&str, &str)]); 3] = [
     (
         "game_controller",
         &[
@@ -99,6 +99,28 @@ pub const BEHAVIOURS: [(&str, &[(&str, &str)]); 2] = [
                 "../../theories/microwave.dl",
                 include_str!("../theories/microwave.dl"),
             ),
+        ],
+    ),
+    (
+        "shootout",
+        &[
+            (
+                "behaviour.toml",
+                include_str!("../machines/shootout/behaviour.toml"),
+            ),
+            (
+                "Kicker.machine",
+                include_str!("../machines/shootout/Kicker.machine"),
+            ),
+            (
+                "Keeper.machine",
+                include_str!("../machines/shootout/Keeper.machine"),
+            ),
+            (
+                "Scoreboard.machine",
+                include_str!("../machines/shootout/Scoreboard.machine"),
+            ),
+            ("../nao.toml", include_str!("../machines/nao.toml")),
         ],
     ),
 ];

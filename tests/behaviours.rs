@@ -374,9 +374,13 @@ fn launch_manifests_start_exactly_what_a_machine_needs() {
          dictionary = \"../nao.toml\"\n\n[[machine]]\nfile = \"Placer.machine\"\n"
     );
     let m = repo_behaviour("microwave");
-    let text =
-        proclaim_behaviour::launch_manifest(&m, &proclaim_behaviour::modules(&m), "Microwave", &str::to_string)
-            .unwrap();
+    let text = proclaim_behaviour::launch_manifest(
+        &m,
+        &proclaim_behaviour::modules(&m),
+        "Microwave",
+        &str::to_string,
+    )
+    .unwrap();
     assert!(
         text.contains("[[theory]]\nfile = \"../../theories/microwave.dl\"\n"),
         "{text}"
@@ -630,4 +634,53 @@ async fn the_teams_gufsm_microwave_runs_on_variables_alone() {
         "{trace:#?}"
     );
     assert_eq!(board.stats().queries, 0);
+}
+
+/// `machines/shootout`: three machines that cooperate through variables alone: counters (the
+/// kicker's own `kicks`, the keeper's own `seen`), remembered values (`best` run of goals) and
+/// computed postings (`post("NaoMotionPlayer", "kick " + aim)`, `postv("Score", goals, dived)`).
+#[tokio::test(start_paused = true)]
+async fn the_shootout_keeps_score_through_variables() {
+    let (trace, board) = run("shootout", None, Duration::from_secs(30)).await;
+    let shown: Vec<&str> = trace
+        .iter()
+        .map(String::as_str)
+        .filter(|l| {
+            l.contains("posts NaoMotionPlayer")
+                || l.contains("posts KeeperDive")
+                || l.contains("posts Score:")
+                || l.contains("posts Say")
+                || l.contains("finished")
+        })
+        .collect();
+    assert_eq!(
+        shown,
+        [
+            "2.000s Kicker posts NaoMotionPlayer: kick 2",
+            "2.000s Keeper posts KeeperDive: 2",
+            "2.000s Scoreboard posts Score: 0 1",
+            "4.000s Kicker posts NaoMotionPlayer: kick 1",
+            "4.000s Keeper posts KeeperDive: 0",
+            "4.000s Scoreboard posts Score: 1 2",
+            "6.000s Kicker posts NaoMotionPlayer: kick 0",
+            "6.000s Keeper posts KeeperDive: 1",
+            "6.000s Scoreboard posts Score: 2 3",
+            "8.000s Kicker posts NaoMotionPlayer: kick 2",
+            "8.000s Keeper posts KeeperDive: 2",
+            "8.000s Scoreboard posts Score: 2 4",
+            "10.000s Kicker posts NaoMotionPlayer: kick 1",
+            "10.000s Keeper posts KeeperDive: 0",
+            "10.000s Scoreboard posts Score: 3 5",
+            "10.000s Kicker posts Say: five kicks, 3 goals, best run 2",
+            "10.000s Kicker finished in DONE",
+        ],
+        "{trace:#?}"
+    );
+    use proclaim_board::Value;
+    assert_eq!(
+        board.latest("Score").unwrap().value,
+        Value::List(vec![Value::Int(3), Value::Int(5)])
+    );
+    assert_eq!(board.stats().queries, 0, "labels over variables ask nobody");
+    assert_eq!(board.truth("KeeperIsRunning"), Some(false));
 }

@@ -966,5 +966,9 @@ fn deps_launch_writes_a_manifest_that_runs_from_where_it_is_written() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let o = proclaim(&["run", manifest.to_str().unwrap(), "--for", "5s"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stdout(&o).contains("Placer  finished in IN_POSITION"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("Placer  finished in IN_POSITION"),
+        "{}",
+        stdout(&o)
+    );
 }

@@ -283,7 +283,11 @@ pub fn launch_manifest(
             .iter()
             .any(|m| m.kind == ModuleKind::Impersonator && is_needed(m))
         {
-            let _ = write!(out, "\n[impersonator]\nscript = {}\n", quote(&place(&i.script)));
+            let _ = write!(
+                out,
+                "\n[impersonator]\nscript = {}\n",
+                quote(&place(&i.script))
+            );
         }
     }
     for o in &behaviour.manifest.modules {
