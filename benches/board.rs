@@ -170,23 +170,66 @@ async fn query_to_fire(samples: usize) -> Vec<Duration> {
 }
 
 /// 1,000 machines each ringing at 100 Hz (a `timeout(10000)` self-loop, so every ring fires and
-/// re-enters): CPU time used per wall second, from /proc/self/stat.
-async fn thousand_machines(seconds: u64) -> Option<f64> {
-    use proclaim_runner::{Hosts, MachineRunner, RunOptions};
+/// re-enters).
+fn thousand_ringers() -> Vec<proclaim_fsm::Machine> {
+    (0..1000)
+        .map(|i| {
+            proclaim_fsm::import_ta(
+                &format!("M{i}"),
+                "T",
+                "0\ttimeout(10000)\t0\n",
+                "A",
+                "0\tTick|OnEntry /OnExit /\n",
+            )
+            .machines
+            .remove(0)
+        })
+        .collect()
+}
+
+/// A machine whose labels read only its own variable (`n > 0`): every ring fires, and nothing
+/// goes to the whiteboard but the machine's own events. The samples are the times between
+/// firings, as for `query_to_fire`; also the queries the board saw (none, if the label is
+/// decided on the spot).
+async fn variable_to_fire(samples: usize) -> (Vec<Duration>, u64) {
+    use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
+    let machine = proclaim_fsm::parse_machine(
+        "v.machine",
+        "machine Flip\nstate A {\n entry { int n; n = n + 1; }\n when n > 0 && n % 1 == 0 -> B\n}\nstate B {\n entry { n = n + 1; }\n when n > 0 -> A\n}\n",
+    )
+    .machines
+    .remove(0);
     let board = Whiteboard::local();
+    let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
+    let mut events = runner.events();
+    let task = tokio::spawn(runner.run(board.clone()));
+    let mut last: Option<Duration> = None;
+    let mut out = Vec::with_capacity(samples);
+    while out.len() < samples {
+        if let Some(Event::Fired { at, .. }) = events.recv().await {
+            if let Some(before) = last {
+                out.push(at - before);
+            }
+            last = Some(at);
+        }
+    }
+    task.abort();
+    (out, board.stats().queries)
+}
+
+/// CPU seconds per wall second while `machines` run for `seconds` (after one to settle).
+async fn cores_busy(machines: Vec<proclaim_fsm::Machine>, seconds: u64) -> Option<f64> {
+    use proclaim_runner::{Hosts, MachineRunner, RunOptions, Shared};
+    let board = Whiteboard::local();
+    let shared = Shared::for_machines(&machines);
     let mut tasks = Vec::new();
-    for i in 0..1000 {
-        let machine = proclaim_fsm::import_ta(
-            &format!("M{i}"),
-            "T",
-            "0\ttimeout(10000)\t0\n",
-            "A",
-            "0\tTick|OnEntry /OnExit /\n",
-        )
-        .machines
-        .remove(0);
+    for machine in machines {
+        let options = RunOptions {
+            shared: Some(shared.clone()),
+            ..RunOptions::default()
+        };
         tasks.push(tokio::spawn(
-            MachineRunner::new(machine, Hosts::default(), RunOptions::default()).run(board.clone()),
+            MachineRunner::new(machine, Hosts::default(), options).run(board.clone()),
         ));
     }
     tokio::time::sleep(Duration::from_secs(1)).await;
@@ -204,6 +247,20 @@ async fn thousand_machines(seconds: u64) -> Option<f64> {
         t.abort();
     }
     Some(used)
+}
+
+/// 1,000 machines each counting in a variable of its own and posting the count at 100 Hz.
+fn thousand_counters() -> Vec<proclaim_fsm::Machine> {
+    (0..1000)
+        .map(|i| {
+            let text = format!(
+                "machine C{i}\nstate Tick {{\n entry {{ int count; count = count + 1; post(\"Count{i}\", count); }}\n when timeout(10000) -> Tick\n}}\n"
+            );
+            proclaim_fsm::parse_machine("c.machine", &text)
+                .machines
+                .remove(0)
+        })
+        .collect()
 }
 
 fn main() {
@@ -236,10 +293,20 @@ fn main() {
             "label query -> expert -> transition fired",
             query_to_fire(if quick { 500 } else { 20_000 }).await,
         );
-        if let Some(cores) = thousand_machines(if quick { 1 } else { 5 }).await {
+        if let Some(cores) = cores_busy(thousand_ringers(), if quick { 1 } else { 5 }).await {
             println!(
                 "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
                 "1,000 machines ringing at 100 Hz"
+            );
+        }
+        let _ = variable_to_fire(1_000).await;
+        let (samples, queries) = variable_to_fire(if quick { 1_000 } else { 100_000 }).await;
+        percentiles("label over variables -> transition fired", samples);
+        println!("{:<44} {queries} queries to the whiteboard", "");
+        if let Some(cores) = cores_busy(thousand_counters(), if quick { 1 } else { 5 }).await {
+            println!(
+                "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
+                "1,000 machines counting, posting at 100 Hz"
             );
         }
     });

@@ -587,7 +587,7 @@ fn run_refuses_what_it_cannot_run() {
     let o = proclaim(&["run", "no_such_behaviour"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("no behaviour `no_such_behaviour`: not a folder with a behaviour.toml, not machines/no_such_behaviour, and not a built-in one (game_controller, microwave)"),
+        stderr(&o).contains("no behaviour `no_such_behaviour`: not a folder with a behaviour.toml, not machines/no_such_behaviour, and not a built-in one (game_controller, microwave, shootout)"),
         "{}",
         stderr(&o)
     );

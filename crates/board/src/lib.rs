@@ -11,6 +11,7 @@ mod local;
 mod message;
 mod pattern;
 mod registry;
+mod subscribers;
 mod transport;
 mod value;
 

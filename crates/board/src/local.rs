@@ -4,6 +4,7 @@
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
+use crate::subscribers::Subscribers;
 use crate::transport::{BoxFuture, Stats, Subscription, Transport};
 use crate::value::Value;
 use rustc_hash::FxHashMap;
@@ -59,19 +60,12 @@ impl Entry {
     }
 }
 
-struct Subscriber {
-    pattern: Pattern,
-    tx: mpsc::Sender<Message>,
-}
-
 #[derive(Default)]
 struct Inner {
     seq: u64,
     types: FxHashMap<Arc<str>, Entry>,
     modules: FxHashMap<String, Arc<str>>,
-    subscribers: Vec<Subscriber>,
-    /// Subscriber count at which closed subscriptions are next pruned.
-    prune_at: usize,
+    subscribers: Subscribers,
     registry: Registry,
     stats: Stats,
 }
@@ -231,19 +225,7 @@ impl LocalBoard {
             }
         }
         let notify = entry.notify.clone();
-        inner.subscribers.retain(|s| {
-            if !s.pattern.matches(&ty) {
-                return true;
-            }
-            match s.tx.try_send(message.clone()) {
-                Ok(()) => true,
-                Err(mpsc::error::TrySendError::Full(_)) => {
-                    dropped += 1;
-                    true
-                }
-                Err(mpsc::error::TrySendError::Closed(_)) => false,
-            }
-        });
+        dropped += inner.subscribers.deliver(&message);
         inner.stats.drops += dropped;
         drop(inner);
         notify.notify_waiters();
@@ -346,14 +328,7 @@ impl Transport for LocalBoard {
 
     fn subscribe(&self, pattern: Pattern) -> Subscription {
         let (tx, rx) = mpsc::channel(self.retention.subscriber_queue);
-        let mut inner = self.lock();
-        // Dropped subscriptions are otherwise removed only when a message for them is posted;
-        // pruning whenever the list doubles keeps it bounded at amortised constant cost.
-        if inner.subscribers.len() >= inner.prune_at {
-            inner.subscribers.retain(|s| !s.tx.is_closed());
-            inner.prune_at = (inner.subscribers.len() * 2).max(64);
-        }
-        inner.subscribers.push(Subscriber { pattern, tx });
+        self.lock().subscribers.add(pattern, tx);
         Subscription::new(rx)
     }
 

@@ -66,12 +66,11 @@ impl Doer<'_> {
     }
 
     fn post(&self, ty: &str, value: Value) {
-        let content = text(&value);
-        self.board.post(self.machine, ty, value);
+        let message = self.board.post(self.machine, ty, value);
         self.reporter.emit(|at| Event::Posted {
             machine: self.machine.to_string(),
             ty: ty.to_string(),
-            content,
+            content: text(&message.value),
             at,
         });
     }

@@ -161,6 +161,9 @@ impl MachineRunner {
                     if let Some(stepper) = &self.options.stepper {
                         stepper.ring_done(&run.name, run.last_step);
                     }
+                    // A machine whose labels are all true at once (over variables, `TRUE`)
+                    // would otherwise never give the other machines a turn, nor stop when told.
+                    tokio::task::yield_now().await;
                 }
                 Ring::Stayed => {
                     if let Some(stepper) = &self.options.stepper {
@@ -181,7 +184,8 @@ struct Run<'r> {
     /// The name it answers to: the one it started with, whatever a reload says.
     name: String,
     running_type: String,
-    machine: Machine,
+    /// Shared with the ring that runs it, so a ring borrows no copy of its state.
+    machine: Arc<Machine>,
     status: Status,
     current: StateId,
     just_entered: bool,
@@ -213,7 +217,7 @@ impl<'r> Run<'r> {
             runner,
             name,
             running_type,
-            machine: runner.machine.clone(),
+            machine: Arc::new(runner.machine.clone()),
             status,
             current: runner.machine.initial,
             just_entered: true,
@@ -287,7 +291,8 @@ impl<'r> Run<'r> {
     /// One ring: OnEntry if just entered, the transitions in priority order, OnExit and a
     /// move on the first proved, Internal when none was.
     async fn ring(&mut self) -> Ring {
-        let Some(state) = self.machine.state(self.current).cloned() else {
+        let machine = self.machine.clone();
+        let Some(state) = machine.state(self.current) else {
             return Ring::Over;
         };
         // Changes of globals from here on wake the wait after this ring.
@@ -312,8 +317,7 @@ impl<'r> Run<'r> {
             }
         }
         let mut fired = None;
-        let transitions: Vec<_> = self.machine.outgoing(self.current).cloned().collect();
-        for t in &transitions {
+        for t in machine.outgoing(self.current) {
             let mut answered = Vec::new();
             let proved = {
                 let mut cx = Context {
@@ -481,7 +485,7 @@ impl<'r> Run<'r> {
         }
         self.shared.register(&new);
         self.locals = self.locals.reloaded(&new);
-        self.machine = new;
+        self.machine = Arc::new(new);
         self.watch = None;
         self.board
             .register(declaration(&self.machine, &self.name, &self.shared));
