@@ -220,3 +220,35 @@ proptest! {
         prop_assert!(checked.theory.is_some() || !rendered.is_empty());
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// The machine readers (labels, statements, native files, Qfsm XML, T/A pairs) never panic,
+    /// and what they print reads back the same.
+    #[test]
+    fn machine_readers_never_panic(
+        parts in prop::collection::vec(prop::sample::select(vec![
+            "machine", "M", "state", "S", "T", "{", "}", "entry", "exit", "internal", "when", "->",
+            "call", "code", "#", "7", "-", "x", "=", "==", "<", "(", ")", "&&", "||", "!", "~", ";",
+            ",", "\"s\"", ":", " ", "\n", "\t", "int", "extern", "for", "post", "1.5", "/", "*",
+            "<state code=\"1\">", "</state>", "<machine initialstate=\"1\">", "<transition>",
+            "<from>1</from>", "<to>-1</to>", "<inputs>", "</inputs>", "&amp;", "|", "OnEntry",
+        ]), 0..50)
+    ) {
+        let text: String = parts.concat();
+        if let Ok(label) = proclaim_fsm::parse_label(&text) {
+            prop_assert_eq!(proclaim_fsm::parse_label(&label.to_string()), Ok(label));
+        }
+        if let Ok(statements) = proclaim_fsm::code::parse_statements(&text) {
+            let printed: Vec<String> = statements.iter().map(ToString::to_string).collect();
+            prop_assert_eq!(proclaim_fsm::code::parse_statements(&printed.join(" ")), Ok(statements));
+        }
+        for m in proclaim_fsm::parse_machine("p.machine", &text).machines {
+            let again = proclaim_fsm::parse_machine("p.machine", &proclaim_fsm::to_native(&m));
+            prop_assert!(again.diagnostics.is_empty(), "{:?}", again.diagnostics);
+        }
+        let _ = proclaim_fsm::import_qfsm("p.fsm", &format!("<qfsmproject>{text}</qfsmproject>"), "p");
+        let _ = proclaim_fsm::import_ta("p", "T", &text, "A", &text);
+    }
+}
