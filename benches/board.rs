@@ -122,7 +122,6 @@ async fn fan_out(messages: usize, subscribers: usize) -> (f64, u64) {
 /// A two-state machine whose labels the reasoner expert answers: A --cook--> B --light--> A. Each
 /// transition is one query answered and one firing; the samples are the times between firings.
 async fn query_to_fire(samples: usize) -> Vec<Duration> {
-    use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/theories/microwave.dl"
@@ -151,10 +150,20 @@ async fn query_to_fire(samples: usize) -> Vec<Duration> {
     )
     .machines
     .remove(0);
+    firing_intervals(machine, &board, samples).await
+}
+
+/// Runs `machine` on `board` until it has fired `samples + 1` times; the times between its
+/// firings, by the machine's own timestamps (events are read in bursts, long after they happen).
+async fn firing_intervals(
+    machine: proclaim_fsm::Machine,
+    board: &Whiteboard,
+    samples: usize,
+) -> Vec<Duration> {
+    use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
     let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
     let mut events = runner.events();
     let task = tokio::spawn(runner.run(board.clone()));
-    // The machine's own timestamps: events are read in bursts, long after they happen.
     let mut last: Option<Duration> = None;
     let mut out = Vec::with_capacity(samples);
     while out.len() < samples {
@@ -192,7 +201,6 @@ fn thousand_ringers() -> Vec<proclaim_fsm::Machine> {
 /// firings, as for `query_to_fire`; also the queries the board saw (none, if the label is
 /// decided on the spot).
 async fn variable_to_fire(samples: usize) -> (Vec<Duration>, u64) {
-    use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
     let machine = proclaim_fsm::parse_machine(
         "v.machine",
         "machine Flip\nstate A {\n entry { int n; n = n + 1; }\n when n > 0 && n % 1 == 0 -> B\n}\nstate B {\n entry { n = n + 1; }\n when n > 0 -> A\n}\n",
@@ -200,20 +208,7 @@ async fn variable_to_fire(samples: usize) -> (Vec<Duration>, u64) {
     .machines
     .remove(0);
     let board = Whiteboard::local();
-    let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
-    let mut events = runner.events();
-    let task = tokio::spawn(runner.run(board.clone()));
-    let mut last: Option<Duration> = None;
-    let mut out = Vec::with_capacity(samples);
-    while out.len() < samples {
-        if let Some(Event::Fired { at, .. }) = events.recv().await {
-            if let Some(before) = last {
-                out.push(at - before);
-            }
-            last = Some(at);
-        }
-    }
-    task.abort();
+    let out = firing_intervals(machine, &board, samples).await;
     (out, board.stats().queries)
 }
 
