@@ -453,7 +453,7 @@ fn t_a_errors_name_file_and_line() {
         "TM.txt",
         "1\tgo\t2\n1\ta &&\t1\n3\tgo\t1\nbad line\n",
         "AM.txt",
-        "2\tB|OnEntry Say: hi;/\n1\tA|OnEntry nonsense; C++: f(1);/ OnExit /\n",
+        "2\tB|OnEntry Say: hi; count = count + 1; post(\"Count\", count);/\n1\tA|OnEntry nonsense; C++: f(1);/ OnExit /\n",
     );
     let messages = messages(&imported);
     assert_eq!(
@@ -468,6 +468,14 @@ fn t_a_errors_name_file_and_line() {
     let m = &imported.machines[0];
     assert_eq!(m.initial, 1);
     assert_eq!(m.outgoing(1).count(), 1);
+    // Statements of the activity language stand among T/A items too.
+    assert_eq!(
+        m.state(2).unwrap().on_entry[1..],
+        [
+            Action::Statement(statement("count = count + 1;")),
+            Action::Statement(statement("post(\"Count\", count);")),
+        ]
+    );
     // The unreadable transition is kept for the import to write down, not lost.
     assert_eq!(m.unread.len(), 1);
     assert_eq!((m.unread[0].label.as_str(), m.unread[0].line), ("a &&", 2));

@@ -6,8 +6,9 @@ use crate::code::{parse_statements, Expr, Statement};
 use crate::diagnostic::Severity;
 use crate::model::{Action, Argument};
 
-/// Parses `;`-separated T/A items, with a problem for each item that is not `C++: call` or
-/// `Type: content` (a bare `f(12)` is read as a call, with a warning).
+/// Parses `;`-separated T/A items, with a problem for each item that is not `C++: call`,
+/// `Type: content` or a statement of the activity language (a bare `f(12)` is read as a call,
+/// with a warning).
 pub fn parse_ta_items(text: &str) -> (Vec<Action>, Vec<(Severity, String)>) {
     let mut actions = Vec::new();
     let mut errors: Vec<(Severity, String)> = Vec::new();
@@ -34,18 +35,33 @@ pub fn parse_ta_items(text: &str) -> (Vec<Action>, Vec<(Severity, String)>) {
                     content: content.trim().to_string(),
                 });
             }
-        } else if let Some((function, argument)) = parse_call(item).filter(|_| item.ends_with(')'))
+        } else if let Some((function, argument)) =
+            parse_call(item).filter(|(f, _)| item.ends_with(')') && !is_builtin(f))
         {
             errors.push((
                 Severity::Warning,
                 format!("`{item}` has no `C++:`; it is read as a call"),
             ));
             actions.push(Action::Call { function, argument });
+        } else if let Some(statements) = ta_statements(item) {
+            actions.extend(statements.into_iter().map(action));
         } else {
             errors.push((Severity::Error, format!("`{item}` is not `Type: content`")));
         }
     }
     (actions, errors)
+}
+
+/// An item of the activity language in a T/A table (`count = count + 1`, `int n`): statements
+/// that do something, not a lone name or number. (Items are cut at every `;`, so a `for` loop,
+/// whose head holds `;`, cannot be written in a T/A table.)
+fn ta_statements(item: &str) -> Option<Vec<Statement>> {
+    let statements = parse_statements(item).ok()?;
+    let does_something = |s: &Statement| match s {
+        Statement::Expr(e) => matches!(e, Expr::Call { .. }),
+        _ => true,
+    };
+    (!statements.is_empty() && statements.iter().all(does_something)).then_some(statements)
 }
 
 /// `f`, `f()`, `f(12)`, `f("s")`, `f(word)`.
