@@ -184,6 +184,22 @@ fn the_native_format() {
     );
 }
 
+#[test]
+fn what_does_nothing_is_said() {
+    let imported = parse_machine(
+        "m.machine",
+        "machine M\nstate A {\n  entry {\n    code x := 1\n  }\n}\n",
+    );
+    let lints: Vec<String> = proclaim_fsm::lint(&imported.machines[0], "m.machine")
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    assert_eq!(
+        lints,
+        ["m.machine:2: warning: state A: `x := 1` is kept as code and does nothing"]
+    );
+}
+
 fn corpus() -> Option<std::path::PathBuf> {
     Some(crate::shared_dir()?.join("corpus/mipal"))
 }

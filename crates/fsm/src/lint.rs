@@ -1,9 +1,10 @@
-//! What can be seen wrong in one machine without running it: states never reached, and
-//! transitions never tried (below a `TRUE`) or never fired (below the same label).
+//! What can be seen wrong in one machine without running it: states never reached,
+//! transitions never tried (below a `TRUE`) or never fired (below the same label), text kept as
+//! code that does nothing, and transitions whose label was never read.
 
 use crate::diagnostic::FileDiagnostic;
 use crate::label::Label;
-use crate::model::{Machine, StateId};
+use crate::model::{Action, Machine, StateId};
 
 /// Warnings about `machine`, read from `file`, in state order.
 pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
@@ -21,6 +22,30 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
                         .state(machine.initial)
                         .map_or("?", |s| s.name.as_str())
                 ),
+            ));
+        }
+        for action in state
+            .on_entry
+            .iter()
+            .chain(&state.on_exit)
+            .chain(&state.internal)
+        {
+            if let Action::Code(code) = action {
+                out.push(FileDiagnostic::warning(
+                    file,
+                    state.line,
+                    format!(
+                        "state {}: `{code}` is kept as code and does nothing",
+                        state.name
+                    ),
+                ));
+            }
+        }
+        for u in machine.unread.iter().filter(|u| u.source == state.id) {
+            out.push(FileDiagnostic::warning(
+                file,
+                u.line,
+                format!("the transition on `{}` is not run: {}", u.label, u.reason),
             ));
         }
         let outgoing: Vec<_> = machine.outgoing(state.id).collect();
