@@ -162,8 +162,9 @@ impl MachineRunner {
                         stepper.ring_done(&run.name, run.last_step);
                     }
                     // A machine whose labels are all true at once (over variables, `TRUE`)
-                    // would otherwise never give the other machines a turn, nor stop when told.
-                    tokio::task::yield_now().await;
+                    // would otherwise never give the other machines a turn, nor stop when told;
+                    // this yields once the task has used up its share (tokio's budget).
+                    tokio::task::consume_budget().await;
                 }
                 Ring::Stayed => {
                     if let Some(stepper) = &self.options.stepper {
