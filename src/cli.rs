@@ -299,6 +299,11 @@ pub struct RunArgs {
     /// `ATOM=true` answers a label no expert answers
     #[arg(long, conflicts_with_all = ["watch", "duration"])]
     pub step: bool,
+    /// Run on a virtual clock that jumps to the next timer whenever every machine waits: a
+    /// scripted run takes no time and is the same every time (local board only; sensors that
+    /// listen on real sockets hear little)
+    #[arg(long, conflicts_with_all = ["watch", "step"])]
+    pub virtual_clock: bool,
     /// Run even when `proclaim check` finds errors in the behaviour (a label no expert
     /// answers, a sub-machine that does not exist); they are printed as warnings
     #[arg(long)]

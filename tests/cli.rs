@@ -972,3 +972,48 @@ fn deps_launch_writes_a_manifest_that_runs_from_where_it_is_written() {
         stdout(&o)
     );
 }
+
+#[test]
+fn a_virtual_clock_runs_a_minute_of_microwave_at_once_and_the_same_every_time() {
+    let run = || {
+        let started = std::time::Instant::now();
+        let o = proclaim(&["run", "microwave", "--virtual-clock"]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        (stdout(&o), started.elapsed())
+    };
+    let (first, took) = run();
+    let states: Vec<String> = first
+        .lines()
+        .filter(|l| l.contains('→'))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "0.000s Microwave → IDLE",
+            "1.000s Microwave → OPEN",
+            "3.000s Microwave → IDLE",
+            "4.000s Microwave → COOKING",
+            "64.000s Microwave → DONE",
+        ],
+        "{first}"
+    );
+    assert!(
+        took < std::time::Duration::from_secs(20),
+        "64 s of behaviour on the virtual clock took {took:?}"
+    );
+    assert_eq!(run().0, first, "the same trace every time");
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--connect",
+        "tcp/127.0.0.1:1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("cannot --listen or --connect"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -84,11 +84,25 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             })?,
         )),
     };
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .map_err(|e| Failure::Start(format!("no async runtime: {e}")))?;
+    if args.virtual_clock && !args.network.is_local() {
+        return Err(Failure::Argument(
+            "--virtual-clock runs on a board of its own: it cannot --listen or --connect".into(),
+        ));
+    }
+    let runtime = if args.virtual_clock {
+        // One thread and tokio's paused clock: when every task waits, time jumps to the next
+        // timer, so a minute of behaviour passes at once and in the same order every time.
+        tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+    } else {
+        tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+    }
+    .map_err(|e| Failure::Start(format!("no async runtime: {e}")))?;
     let options = LaunchOptions {
         script,
         no_simulator: args.no_simulator,

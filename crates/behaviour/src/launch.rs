@@ -107,6 +107,9 @@ pub async fn launch(
     board: &Whiteboard,
     options: LaunchOptions,
 ) -> Result<Running, String> {
+    // The trace's times count from here, as the impersonator's script times do, so `at 1s`
+    // shows as 1.000 s.
+    let epoch = tokio::time::Instant::now();
     let mut notes = Vec::new();
     let mut sim_note = None;
     let mut modules: Vec<Module> = Vec::new();
@@ -273,7 +276,6 @@ pub async fn launch(
 
     let (tx, events) = mpsc::unbounded_channel();
     let shared = behaviour.shared_variables();
-    let epoch = tokio::time::Instant::now();
     let mut finals = FxHashMap::default();
     let mut top = FxHashMap::default();
     for loaded in &behaviour.machines {
