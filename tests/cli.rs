@@ -893,7 +893,10 @@ fn a_behaviour_check_finds_errors_in_is_refused_by_run_and_checked_file_by_file(
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     // A script that answers the label is as good as an expert.
-    let script = temp_file("ready.script", b"at 100ms ready = true\n");
+    let script = temp_file(
+        "ready.script",
+        b"at 100ms ready = true\nat 200ms redy = true\n",
+    );
     let o = proclaim(&[
         "run",
         unanswered.to_str().unwrap(),
@@ -902,6 +905,13 @@ fn a_behaviour_check_finds_errors_in_is_refused_by_run_and_checked_file_by_file(
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("→ T"), "{}", stdout(&o));
+    assert!(
+        stderr(&o).contains(
+            "ready.script:2: warning: `redy` is asked by no machine and read by no module; did you mean `ready`?"
+        ),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

@@ -131,14 +131,19 @@ async fn the_impersonator_answers_from_its_script() {
 
 #[test]
 fn script_errors_name_their_lines() {
-    let errors = parse_script("at soon x = true\nstep 0: y = 1\nz true\nok = true\n").unwrap_err();
+    let errors = parse_script(
+        "at soon x = true\nstep 0: y = 1\nz true\nok = true\npenalised = maybe\nballSeen == true\nfine = Off\n",
+    )
+    .unwrap_err();
     let lines: Vec<String> = errors.iter().map(ToString::to_string).collect();
     assert_eq!(
         lines,
         [
             "line 1: `soon` is not a time; write `at 2s` or `at 500ms`",
             "line 2: `0` is not a step number (1, 2, …)",
-            "line 3: expected `atom = value`, found `z true`"
+            "line 3: expected `atom = value`, found `z true`",
+            "line 5: `maybe` is not a truth value: write true or false (or yes/no, on/off, 1/0)",
+            "line 6: write `ballSeen = true`, with one `=`",
         ]
     );
 }

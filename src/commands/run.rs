@@ -22,6 +22,16 @@ fn refuse_unchecked(
     script: Option<&proclaim_experts::Script>,
     args: &RunArgs,
 ) -> Result<(), Failure> {
+    let shown = args
+        .script
+        .as_ref()
+        .map(|p| p.display().to_string())
+        .unwrap_or_default();
+    let script = script.map(|s| (shown.as_str(), s));
+    // What a script sets that nobody hears is only a warning, but one a person should see.
+    for w in proclaim_behaviour::script_warnings(behaviour, script) {
+        eprintln!("{w}");
+    }
     let findings = proclaim_behaviour::check_behaviour_with(behaviour, script);
     let errors: Vec<String> = findings
         .iter()

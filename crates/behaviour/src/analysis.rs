@@ -13,12 +13,16 @@ pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
     check_behaviour_with(behaviour, None)
 }
 
-/// The same, for a run whose labels a script also answers (`proclaim run --script`).
-pub fn check_behaviour_with(behaviour: &Behaviour, script: Option<&Script>) -> Vec<FileDiagnostic> {
+/// The same, for a run whose labels a script also answers (`proclaim run --script FILE`):
+/// `(FILE as shown, the script)`.
+pub fn check_behaviour_with(
+    behaviour: &Behaviour,
+    script: Option<(&str, &Script)>,
+) -> Vec<FileDiagnostic> {
     let all = modules(behaviour);
     let files = behaviour.files.as_ref();
     let mut out = Vec::new();
-    let scripted = script.map(Script::atoms).unwrap_or_default();
+    let scripted = script.map(|(_, s)| s.atoms()).unwrap_or_default();
     let answered = |atom: &str| {
         scripted.iter().any(|a| a == atom)
             || all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom))
@@ -92,6 +96,7 @@ pub fn check_behaviour_with(behaviour: &Behaviour, script: Option<&Script>) -> V
             }
         }
     }
+    out.extend(script_warnings_of(behaviour, &all, script));
     for loaded in behaviour.machines.iter().filter(|m| !m.start) {
         let name = &loaded.machine.name;
         let started = all
@@ -148,4 +153,57 @@ pub fn check_behaviour_with(behaviour: &Behaviour, script: Option<&Script>) -> V
 fn queried(all: &[Module], atom: &str) -> bool {
     all.iter()
         .any(|m| m.decl.waits_on.iter().any(|w| w == atom))
+}
+
+/// What the script a run uses sets that no machine asks and no module reads: the one given
+/// (`(FILE as shown, script)`, from `run --script`), else the manifest's impersonator's.
+pub fn script_warnings(
+    behaviour: &Behaviour,
+    script: Option<(&str, &Script)>,
+) -> Vec<FileDiagnostic> {
+    script_warnings_of(behaviour, &modules(behaviour), script)
+}
+
+fn script_warnings_of(
+    behaviour: &Behaviour,
+    all: &[Module],
+    script: Option<(&str, &Script)>,
+) -> Vec<FileDiagnostic> {
+    let manifest_script = behaviour
+        .script
+        .as_ref()
+        .zip(behaviour.manifest.impersonator.as_ref())
+        .map(|(s, i)| (behaviour.files.show(&i.script), s));
+    match (script, &manifest_script) {
+        (Some((file, s)), _) => unheard(all, file, s),
+        (None, Some((file, s))) => unheard(all, file, s),
+        (None, None) => Vec::new(),
+    }
+}
+
+/// Atoms a script sets that no machine asks and no module reads: a typo, most likely.
+fn unheard(all: &[Module], file: &str, script: &Script) -> Vec<FileDiagnostic> {
+    let heard: Vec<&str> = all
+        .iter()
+        .flat_map(|m| m.decl.waits_on.iter().chain(&m.decl.reads))
+        .map(String::as_str)
+        .collect();
+    let mut out = Vec::new();
+    let mut said: Vec<&str> = Vec::new();
+    for step in &script.steps {
+        let atom = step.atom.trim_start_matches('~');
+        if heard.contains(&atom) || said.contains(&atom) {
+            continue;
+        }
+        said.push(atom);
+        let hint = proclaim_syntax::nearest(heard.iter().copied(), atom)
+            .map(|n| format!("; did you mean `{n}`?"))
+            .unwrap_or_default();
+        out.push(FileDiagnostic::warning(
+            file,
+            step.line,
+            format!("`{atom}` is asked by no machine and read by no module{hint}"),
+        ));
+    }
+    out
 }

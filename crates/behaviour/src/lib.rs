@@ -16,7 +16,7 @@ mod manifest;
 mod modules;
 mod trace;
 
-pub use analysis::{check_behaviour, check_behaviour_with};
+pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};

@@ -81,31 +81,5 @@ pub(crate) fn closest_atom<'t>(theory: &'t Theory, name: &str) -> Option<&'t str
     if theory.atom_count() > 100_000 {
         return None;
     }
-    theory
-        .atoms
-        .names()
-        .filter(|candidate| candidate.eq_ignore_ascii_case(name) || one_edit_apart(candidate, name))
-        .min()
-}
-
-fn one_edit_apart(a: &str, b: &str) -> bool {
-    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
-    let (short, long) = if a.len() <= b.len() {
-        (&a, &b)
-    } else {
-        (&b, &a)
-    };
-    if long.len() - short.len() > 1 {
-        return false;
-    }
-    let prefix = short
-        .iter()
-        .zip(long.iter())
-        .take_while(|(x, y)| x == y)
-        .count();
-    if short.len() == long.len() {
-        short[prefix + 1.min(short.len() - prefix)..] == long[prefix + 1.min(long.len() - prefix)..]
-    } else {
-        short[prefix..] == long[prefix + 1..]
-    }
+    proclaim_syntax::nearest(theory.atoms.names(), name)
 }

@@ -4,12 +4,11 @@
 //! ```text
 //! readyReceived = false          # from the start
 //! at 2s readyReceived = true     # two seconds after the start
-//! at 500ms setReceived = yes     # values follow the whiteboard's truthiness rule
+//! at 500ms setReceived = yes     # true/false, yes/no, on/off or 1/0
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
 //! ```
 
 use crate::lines::{code_lines, LineError};
-use proclaim_board::Value;
 use std::time::Duration;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -43,6 +42,15 @@ impl Script {
             }
         }
         atoms
+    }
+}
+
+/// A truth value as a script may write it.
+fn truth_word(text: &str) -> Option<bool> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "true" | "yes" | "on" | "1" => Some(true),
+        "false" | "no" | "off" | "0" => Some(false),
+        _ => None,
     }
 }
 
@@ -102,10 +110,24 @@ pub fn parse_script(text: &str) -> Result<Script, Vec<LineError>> {
             errors.push(error(format!("`{atom}` has no value")));
             continue;
         }
+        let Some(value) = truth_word(value) else {
+            let value = value.trim();
+            errors.push(error(if value.starts_with('=') {
+                format!(
+                    "write `{atom} = {}`, with one `=`",
+                    value.trim_start_matches('=').trim()
+                )
+            } else {
+                format!(
+                    "`{value}` is not a truth value: write true or false (or yes/no, on/off, 1/0)"
+                )
+            }));
+            continue;
+        };
         steps.push(ScriptStep {
             when,
             atom: atom.to_string(),
-            value: Value::parse(value).truthy(),
+            value,
             line,
         });
     }
