@@ -299,6 +299,10 @@ pub struct RunArgs {
     /// `ATOM=true` answers a label no expert answers
     #[arg(long, conflicts_with_all = ["watch", "duration"])]
     pub step: bool,
+    /// Ask a person at this terminal for these atoms (`ready? [y/n]`), as the original
+    /// `testcdl` did; experts answering them are left out, and machines wait for the answer
+    #[arg(long, value_name = "ATOM", value_delimiter = ',', conflicts_with_all = ["step", "virtual_clock"])]
+    pub ask: Vec<String>,
     /// Run on a virtual clock that jumps to the next timer whenever every machine waits: a
     /// scripted run takes no time and is the same every time (local board only; sensors that
     /// listen on real sockets hear little)

@@ -1027,3 +1027,43 @@ fn a_virtual_clock_runs_a_minute_of_microwave_at_once_and_the_same_every_time() 
         stderr(&o)
     );
 }
+
+#[test]
+fn run_ask_puts_a_person_in_place_of_the_experts() {
+    let dir = crate::behaviour_folder(
+        "ask",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n"),
+            (
+                "A.machine",
+                "machine A\nstate S {\n  when ready -> T\n}\nstate T {\n}\n",
+            ),
+        ],
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", dir.to_str().unwrap(), "--ask", "ready"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    {
+        use std::io::Write;
+        let stdin = child.stdin.as_mut().unwrap();
+        writeln!(stdin, "maybe").unwrap();
+        writeln!(stdin, "n").unwrap();
+        writeln!(stdin, "y").unwrap();
+    }
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    assert!(out.contains("please answer y or n"), "{out}");
+    assert!(out.contains("ready = false  (person)"), "{out}");
+    assert!(out.contains("ready = true  (person)"), "{out}");
+    assert!(out.contains("finished in T"), "{out}");
+    assert!(
+        !stderr(&o).contains("answered by no expert"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -32,7 +32,7 @@ fn refuse_unchecked(
     for w in proclaim_behaviour::script_warnings(behaviour, script) {
         eprintln!("{w}");
     }
-    let findings = proclaim_behaviour::check_behaviour_with(behaviour, script);
+    let findings = proclaim_behaviour::check_behaviour_with(behaviour, script, &args.ask);
     let errors: Vec<String> = findings
         .iter()
         .filter(|d| d.severity == proclaim_fsm::Severity::Error)
@@ -56,7 +56,11 @@ fn refuse_unchecked(
 }
 
 pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
-    let behaviour = load_behaviour(&args.behaviour)?;
+    let mut behaviour = load_behaviour(&args.behaviour)?;
+    if !args.ask.is_empty() {
+        // A person answers at their own pace.
+        behaviour.answer_timeout = behaviour.answer_timeout.max(PERSON_TIMEOUT);
+    }
     let script = match &args.script {
         None => None,
         Some(path) => {
@@ -119,6 +123,17 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         halt_on_timeout: args.halt_on_timeout,
         hosts: proclaim_runner::Hosts::default(),
         stepper: args.step.then(Stepper::default),
+        person: (!args.ask.is_empty()).then(|| {
+            proclaim_experts::Impersonator::new(
+                "person",
+                args.ask.clone(),
+                proclaim_experts::Script::default(),
+            )
+            .with_person(
+                tokio::io::BufReader::new(tokio::io::stdin()),
+                tokio::io::stdout(),
+            )
+        }),
     };
     let stepper = options.stepper.clone();
     let outcome = runtime.block_on(async {
@@ -376,6 +391,9 @@ async fn stepping(
 }
 
 /// With `--watch` and a behaviour on disk: the names of machines whose files change.
+/// How long a machine waits for the answer of a person at the prompt (`--ask`).
+const PERSON_TIMEOUT: Duration = Duration::from_secs(600);
+
 /// How long `--watch` gathers the file events of one save before it rereads.
 const WATCH_SETTLE: Duration = Duration::from_millis(150);
 

@@ -10,19 +10,21 @@ use proclaim_fsm::{lint, Action, FileDiagnostic};
 use proclaim_runner::{machine_of_running_type, Command};
 
 pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
-    check_behaviour_with(behaviour, None)
+    check_behaviour_with(behaviour, None, &[])
 }
 
-/// The same, for a run whose labels a script also answers (`proclaim run --script FILE`):
-/// `(FILE as shown, the script)`.
+/// The same, for a run whose labels a script also answers (`proclaim run --script FILE`:
+/// `(FILE as shown, the script)`) and a person answers `asked` (`proclaim run --ask`).
 pub fn check_behaviour_with(
     behaviour: &Behaviour,
     script: Option<(&str, &Script)>,
+    asked: &[String],
 ) -> Vec<FileDiagnostic> {
     let all = modules(behaviour);
     let files = behaviour.files.as_ref();
     let mut out = Vec::new();
-    let scripted = script.map(|(_, s)| s.atoms()).unwrap_or_default();
+    let mut scripted = script.map(|(_, s)| s.atoms()).unwrap_or_default();
+    scripted.extend(asked.iter().cloned());
     let answered = |atom: &str| {
         scripted.iter().any(|a| a == atom)
             || all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom))

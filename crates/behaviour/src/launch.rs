@@ -31,6 +31,9 @@ pub struct LaunchOptions {
     pub hosts: Hosts,
     /// Ring only when stepped (`proclaim run --step`).
     pub stepper: Option<Stepper>,
+    /// An impersonator that asks a person (`proclaim run --ask`); experts and sensor wrappers
+    /// answering its atoms are left out, as for a script.
+    pub person: Option<Impersonator>,
 }
 
 /// A behaviour running: its trace, and what it takes for it to be over.
@@ -221,24 +224,23 @@ pub async fn launch(
         }
     }
     let script = options.script.clone().or_else(|| behaviour.script.clone());
+    if let Some(person) = &options.person {
+        let asked = person.declaration().answers;
+        leave_out(&mut modules, &asked, "a person answers", &mut notes);
+        modules.push(Module {
+            name: person.declaration().name,
+            answers: asked,
+            task: Box::pin(person.clone().run(board.clone())),
+        });
+    }
     if let Some(script) = script {
         let scripted = script.atoms();
-        modules.retain(|m| {
-            let overlap: Vec<&String> = m.answers.iter().filter(|a| scripted.contains(a)).collect();
-            if overlap.is_empty() {
-                return true;
-            }
-            notes.push(format!(
-                "left out {}: the script impersonates {}",
-                m.name,
-                overlap
-                    .iter()
-                    .map(|a| a.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-            false
-        });
+        leave_out(
+            &mut modules,
+            &scripted,
+            "the script impersonates",
+            &mut notes,
+        );
         let imp = Impersonator::new("impersonator", Vec::<String>::new(), script.clone());
         // An atom the script sets only later is false until then.
         for atom in &scripted {
@@ -316,6 +318,24 @@ pub async fn launch(
         halted: FxHashSet::default(),
         finished: FxHashSet::default(),
     })
+}
+
+/// Leaves out the modules that answer any of `atoms` (someone else answers them now), noting
+/// each with `why` and the atoms.
+fn leave_out(modules: &mut Vec<Module>, atoms: &[String], why: &str, notes: &mut Vec<String>) {
+    modules.retain(|m| {
+        let overlap: Vec<&str> = m
+            .answers
+            .iter()
+            .filter(|a| atoms.contains(a))
+            .map(String::as_str)
+            .collect();
+        if overlap.is_empty() {
+            return true;
+        }
+        notes.push(format!("left out {}: {why} {}", m.name, overlap.join(", ")));
+        false
+    });
 }
 
 /// Waits (briefly, bounded) until every expert has registered: they subscribe to queries first,
