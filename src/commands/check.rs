@@ -152,7 +152,7 @@ fn machines(
         if !imported.machines.is_empty() {
             println!(
                 "{name}: {} ({} machine{}, {states} states, {transitions} transitions, {} warnings)",
-                if errors == 0 { "ok" } else { "imported with errors" },
+                if errors == 0 { "ok" } else { "has errors" },
                 imported.machines.len(),
                 if imported.machines.len() == 1 { "" } else { "s" },
                 imported.diagnostics.len() - errors
