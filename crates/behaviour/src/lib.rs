@@ -14,6 +14,7 @@ mod launch;
 mod load;
 mod manifest;
 mod modules;
+pub mod testing;
 mod trace;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
@@ -29,3 +30,8 @@ pub use manifest::{
 };
 pub use modules::{modules, Module, ModuleKind};
 pub use trace::{read_trace, TraceView};
+
+/// The README's Rust snippets, compiled (and run) as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

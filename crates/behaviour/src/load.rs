@@ -232,7 +232,7 @@ pub fn load_manifest(
 fn read_lines<T>(
     files: &dyn Files,
     file: &str,
-    parse: fn(&str) -> Result<T, Vec<proclaim_experts::LineError>>,
+    parse: fn(&str) -> Result<T, proclaim_experts::LineErrors>,
     problems: &mut Problems,
 ) -> Option<T> {
     match files.read(file).map(|text| parse(&text)) {

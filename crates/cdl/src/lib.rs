@@ -28,7 +28,7 @@ pub use closure::MAX_CLOSURE;
 pub use engine::Engine;
 pub use explain::Explanation;
 pub use literal::{Atom, Lit, RuleId};
-pub use proclaim_syntax::{Algorithm, Diagnostic, Language};
+pub use proclaim_syntax::{render, Algorithm, Diagnostic, Language, Severity};
 pub use query::Formula;
 pub use reference::ReferenceProver;
 pub use session::{InputConflict, Session};
@@ -36,15 +36,55 @@ pub use table::{truth_table, Column, Row, Table, TableError, MAX_ROWS};
 pub use theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, RuleRef, Theory};
 
 /// Parses and checks a theory text: the theory, or every error (warnings are dropped here; use
-/// [`check`] to see them).
-pub fn load(source: &str, language: Language) -> Result<Theory, Vec<Diagnostic>> {
+/// [`check`] to see them). The error renders each problem with its line, a caret and a hint.
+pub fn load(source: &str, language: Language) -> Result<Theory, LoadError> {
+    load_named("theory", source, language)
+}
+
+/// [`load`], naming the text (a file name) in the errors.
+pub fn load_named(name: &str, source: &str, language: Language) -> Result<Theory, LoadError> {
     let checked = check_source(source, language);
     match checked.theory {
         Some(theory) => Ok(theory),
-        None => Err(checked
-            .diagnostics
-            .into_iter()
-            .filter(Diagnostic::is_error)
-            .collect()),
+        None => Err(LoadError {
+            name: name.to_string(),
+            rendered: render(&checked.diagnostics, name, source, false),
+            diagnostics: checked
+                .diagnostics
+                .into_iter()
+                .filter(Diagnostic::is_error)
+                .collect(),
+        }),
     }
 }
+
+/// Why a theory did not load: every error, with where it is.
+#[derive(Clone, Debug)]
+pub struct LoadError {
+    name: String,
+    rendered: String,
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl LoadError {
+    /// The errors as data (spans into the text, messages, hints).
+    pub fn diagnostics(&self) -> &[Diagnostic] {
+        &self.diagnostics
+    }
+}
+
+/// Every problem as `proclaim check` shows it: file, line, the line itself with a caret, hint.
+impl std::fmt::Display for LoadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} does not load ({} error{}):\n{}",
+            self.name,
+            self.diagnostics.len(),
+            if self.diagnostics.len() == 1 { "" } else { "s" },
+            self.rendered.trim_end()
+        )
+    }
+}
+
+impl std::error::Error for LoadError {}

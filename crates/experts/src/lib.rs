@@ -24,7 +24,7 @@ pub mod simulator;
 pub use buttons::{ButtonWrapper, FallWrapper};
 pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounters};
 pub use impersonator::Impersonator;
-pub use lines::LineError;
+pub use lines::{LineError, LineErrors};
 pub use mapping::parse_mapping;
 pub use reasoner::ReasonerExpert;
 pub use script::{parse_script, Script, ScriptStep, When};

@@ -18,6 +18,42 @@ impl fmt::Display for LineError {
 
 impl std::error::Error for LineError {}
 
+/// Every bad line of a file, an error in itself (one line each when shown), so `?` works on
+/// `parse_script`, `parse_mapping` and `parse_game` in a function returning `Box<dyn Error>`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LineErrors(pub Vec<LineError>);
+
+impl std::ops::Deref for LineErrors {
+    type Target = [LineError];
+
+    fn deref(&self) -> &[LineError] {
+        &self.0
+    }
+}
+
+impl IntoIterator for LineErrors {
+    type Item = LineError;
+    type IntoIter = std::vec::IntoIter<LineError>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        self.0.into_iter()
+    }
+}
+
+impl fmt::Display for LineErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, e) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str("\n")?;
+            }
+            write!(f, "{e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for LineErrors {}
+
 /// The non-blank lines with their comments removed, numbered from 1.
 pub(crate) fn code_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     text.lines().enumerate().filter_map(|(i, raw)| {

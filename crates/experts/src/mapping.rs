@@ -1,11 +1,11 @@
 //! The mapping file of a reasoner expert: which whiteboard message feeds which input atom, one
 //! `atom = MessageType` a line, `#` comments.
 
-use crate::lines::{code_lines, LineError};
+use crate::lines::{code_lines, LineError, LineErrors};
 use rustc_hash::FxHashMap;
 
 /// Reads a mapping: input atom → message type. Every bad line is reported.
-pub fn parse_mapping(text: &str) -> Result<FxHashMap<String, String>, Vec<LineError>> {
+pub fn parse_mapping(text: &str) -> Result<FxHashMap<String, String>, LineErrors> {
     let mut map = FxHashMap::default();
     let mut errors = Vec::new();
     for (line, code) in code_lines(text) {
@@ -30,6 +30,6 @@ pub fn parse_mapping(text: &str) -> Result<FxHashMap<String, String>, Vec<LineEr
     if errors.is_empty() {
         Ok(map)
     } else {
-        Err(errors)
+        Err(LineErrors(errors))
     }
 }

@@ -8,7 +8,7 @@
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
 //! ```
 
-use crate::lines::{code_lines, LineError};
+use crate::lines::{code_lines, LineError, LineErrors};
 use std::time::Duration;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -55,7 +55,7 @@ fn truth_word(text: &str) -> Option<bool> {
 }
 
 /// Parses a script; every bad line is reported.
-pub fn parse_script(text: &str) -> Result<Script, Vec<LineError>> {
+pub fn parse_script(text: &str) -> Result<Script, LineErrors> {
     let mut steps = Vec::new();
     let mut errors = Vec::new();
     for (line, code) in code_lines(text) {
@@ -134,6 +134,6 @@ pub fn parse_script(text: &str) -> Result<Script, Vec<LineError>> {
     if errors.is_empty() {
         Ok(Script { steps })
     } else {
-        Err(errors)
+        Err(LineErrors(errors))
     }
 }

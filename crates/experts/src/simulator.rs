@@ -14,7 +14,7 @@
 //! 8s    finished
 //! ```
 
-use crate::lines::{code_lines, LineError};
+use crate::lines::{code_lines, LineError, LineErrors};
 use proclaim_gc::{
     encode, Colour, ControlPacket, GamePhase, GameState, RobotInfo, SetPlay, TeamInfo,
 };
@@ -95,7 +95,7 @@ pub fn default_game(home: u8, away: u8) -> GameScript {
 }
 
 /// Parses a game script; every bad line is reported.
-pub fn parse_game(text: &str) -> Result<GameScript, Vec<LineError>> {
+pub fn parse_game(text: &str) -> Result<GameScript, LineErrors> {
     let mut events = Vec::new();
     let mut errors = Vec::new();
     for (line, code) in code_lines(text) {
@@ -169,7 +169,7 @@ pub fn parse_game(text: &str) -> Result<GameScript, Vec<LineError>> {
     if errors.is_empty() {
         Ok(GameScript { events })
     } else {
-        Err(errors)
+        Err(LineErrors(errors))
     }
 }
 
