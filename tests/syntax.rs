@@ -38,7 +38,11 @@ fn the_whole_language_parses() {
          Off: a => Offside. R2: {a, b} -> x. {} => y. => z. w ~> ~z. R4: a, b => {Offside}.\n\
          f. ~g. \\/{h, ~i}.\nOff > R2 > R4.\n\
          output{beta Offside, \"is off-side\"}. output{mu x}. output{y}.\n",
-        "",
+        // What a declared theory shows of itself: inputs nobody reads, a condition nothing
+        // concludes.
+        "5:20: warning: input `c` is read by no rule\n\
+         5:23: warning: input `d` is read by no rule\n\
+         7:52: warning: `w` is concluded by no rule and is no input or fact\n",
     );
 }
 

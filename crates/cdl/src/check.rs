@@ -76,6 +76,8 @@ struct Checker<'s> {
     diagnostics: Vec<Diagnostic>,
     labels: FxHashMap<&'s str, (RuleId, Span)>,
     input_spans: FxHashMap<Atom, Span>,
+    /// Where each body literal was written (parallel to the theory's `bodies`).
+    body_spans: Vec<Span>,
     /// Labels of rules that did not parse: priorities naming them are not reported again.
     broken_labels: rustc_hash::FxHashSet<&'s str>,
     /// Resolved once every label is known.
@@ -100,6 +102,7 @@ impl<'s> Checker<'s> {
             diagnostics: Vec::new(),
             labels: FxHashMap::default(),
             input_spans: FxHashMap::default(),
+            body_spans: Vec::new(),
             broken_labels: Default::default(),
             priorities: Vec::new(),
             name_span: None,
@@ -196,6 +199,15 @@ impl<'s> Checker<'s> {
         }
         self.check_priority_cycles();
         self.check_filters_name_inputs();
+        // Only in a theory that says what its inputs are (so an undeclared condition is a slip,
+        // not a value from outside), and that has no errors to fix first.
+        let errors = parse_diagnostics
+            .iter()
+            .chain(&self.diagnostics)
+            .any(Diagnostic::is_error);
+        if !self.theory.inputs.is_empty() && !errors {
+            self.check_conditions_can_hold();
+        }
         self.close_axioms();
         let mut diagnostics = parse_diagnostics;
         diagnostics.append(&mut self.diagnostics);
@@ -226,9 +238,10 @@ impl<'s> Checker<'s> {
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
         }
-        for lit in &rule.body {
-            let lit = self.lit(lit);
+        for written in &rule.body {
+            let lit = self.lit(written);
             self.theory.bodies.push(lit);
+            self.body_spans.push(written.span);
         }
         let head = self.lit(&rule.head);
         self.theory.heads.push(head);
@@ -429,6 +442,82 @@ impl<'s> Checker<'s> {
                 );
             }
         }
+    }
+
+    /// A condition whose atom no rule concludes, no fact states and no input sets can never
+    /// hold: most often a typo (`cornerkick` for the input `cornerKick`), which otherwise would
+    /// pass silently. The input it was meant to be is then read by no rule; both are said.
+    fn check_conditions_can_hold(&mut self) {
+        let theory = &self.theory;
+        let mut grounded = vec![false; theory.atom_count()];
+        let mut mark = |a: Atom| grounded[a.0 as usize] = true;
+        theory.heads.iter().for_each(|l| mark(l.atom()));
+        theory.input_atoms().for_each(&mut mark);
+        theory
+            .axioms
+            .iter()
+            .flat_map(|c| &c.lits)
+            .for_each(|l| mark(l.atom()));
+        let grounded_names: Vec<&str> = (0..theory.atom_count())
+            .filter(|&i| grounded[i])
+            .map(|i| theory.atom_name(Atom(i as u32)))
+            .collect();
+        let mut reported = vec![false; theory.atom_count()];
+        let mut found = Vec::new();
+        for (lit, span) in theory.bodies.iter().zip(&self.body_spans) {
+            let a = lit.atom();
+            if grounded[a.0 as usize] || reported[a.0 as usize] {
+                continue;
+            }
+            reported[a.0 as usize] = true;
+            let name = theory.atom_name(a);
+            let hint = match proclaim_syntax::nearest(grounded_names.iter().copied(), name) {
+                Some(near) => format!("did you mean `{near}`?"),
+                None => format!("declare it an input (`input{{{name}}}.`) or give it a rule"),
+            };
+            found.push(
+                Diagnostic::warning(
+                    *span,
+                    format!("`{name}` is concluded by no rule and is no input or fact"),
+                )
+                .with_label("so this condition never holds")
+                .with_hint(hint),
+            );
+        }
+        let mut read = vec![false; theory.atom_count()];
+        theory
+            .bodies
+            .iter()
+            .for_each(|l| read[l.atom().0 as usize] = true);
+        theory
+            .heads
+            .iter()
+            .for_each(|l| read[l.atom().0 as usize] = true);
+        theory
+            .axioms
+            .iter()
+            .flat_map(|c| &c.lits)
+            .for_each(|l| read[l.atom().0 as usize] = true);
+        theory
+            .outputs
+            .iter()
+            .for_each(|o| read[o.lit.atom().0 as usize] = true);
+        for a in theory.input_atoms() {
+            if read[a.0 as usize] {
+                continue;
+            }
+            let Some(&span) = self.input_spans.get(&a) else {
+                continue;
+            };
+            found.push(
+                Diagnostic::warning(
+                    span,
+                    format!("input `{}` is read by no rule", theory.atom_name(a)),
+                )
+                .with_label("its value changes nothing"),
+            );
+        }
+        self.diagnostics.extend(found);
     }
 
     fn close_axioms(&mut self) {
