@@ -1067,3 +1067,52 @@ fn run_ask_puts_a_person_in_place_of_the_experts() {
         stderr(&o)
     );
 }
+
+#[test]
+fn set_takes_declared_inputs_only_and_one_of_a_group() {
+    let theory = temp_file(
+        "group.dl",
+        b"input{throwIn, goalKick, openPlay}.\nR1: openPlay => restartFree.\nR2: throwIn => handsAllowed.\nR3: goalKick => ~handsAllowed.\noutput{restartFree}.\noutput{handsAllowed}.\n",
+    );
+    let path = theory.to_str().unwrap();
+    let o = proclaim(&["prove", path, "restartFree", "--set", "restartFree=true"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("`restartFree` is not an input of the theory, so it is concluded, not set (its inputs are throwIn, goalKick, openPlay)"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&[
+        "prove",
+        path,
+        "restartFree",
+        "--set",
+        "throwIn=true",
+        "--set",
+        "goalKick=true",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o)
+            .contains("`goalKick` and `throwIn` are one input group, of which exactly one is true"),
+        "{}",
+        stderr(&o)
+    );
+    // One of the group true makes the others false.
+    let o = proclaim(&[
+        "prove",
+        path,
+        "~openPlay",
+        "~goalKick",
+        "--alg",
+        "mu",
+        "--set",
+        "throwIn=true",
+    ]);
+    assert_eq!(
+        stdout(&o),
+        "+mu ~openPlay\n+mu ~goalKick\n",
+        "{}",
+        stderr(&o)
+    );
+}

@@ -120,7 +120,44 @@ impl Session {
     /// Sets an input to true, false or unknown (`None`). Only what depends on it is re-proved, and
     /// only when next asked. Refused, leaving everything as it was, when the new value together
     /// with the other inputs contradicts the axioms.
+    ///
+    /// An atom of an input group (`input{throwIn, goalKick, openPlay}`: exactly one is true) set
+    /// true makes the others of its group false, as a sensor moving from one to another means.
     pub fn set_input(&mut self, atom: Atom, value: Option<bool>) -> Result<(), InputConflict> {
+        let mut changes = vec![(atom, value)];
+        if value == Some(true) {
+            let engine = self.engine.clone();
+            if let Some(group) = engine
+                .theory()
+                .inputs()
+                .iter()
+                .find(|g| g.atoms.len() > 1 && g.atoms.contains(&atom))
+            {
+                changes.extend(
+                    group
+                        .atoms
+                        .iter()
+                        .filter(|&&other| other != atom)
+                        .map(|&other| (other, Some(false))),
+                );
+            }
+        }
+        let mut done: Vec<(Atom, Option<bool>)> = Vec::new();
+        for (atom, value) in changes {
+            let before = self.inputs[atom.0 as usize];
+            if let Err(conflict) = self.set_one_input(atom, value) {
+                // A refused change leaves the session as it was.
+                for (atom, before) in done.into_iter().rev() {
+                    let _ = self.set_one_input(atom, before);
+                }
+                return Err(conflict);
+            }
+            done.push((atom, before));
+        }
+        Ok(())
+    }
+
+    fn set_one_input(&mut self, atom: Atom, value: Option<bool>) -> Result<(), InputConflict> {
         let a = atom.0 as usize;
         if self.inputs[a] == value {
             return Ok(());
