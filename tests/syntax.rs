@@ -42,7 +42,9 @@ fn the_whole_language_parses() {
         // concludes.
         "5:20: warning: input `c` is read by no rule\n\
          5:23: warning: input `d` is read by no rule\n\
-         7:52: warning: `w` is concluded by no rule and is no input or fact\n",
+         7:52: warning: `w` is concluded by no rule and is no input or fact\n\
+         9:1: warning: `Off > R2` changes nothing: they conclude `Offside` and `x`, which do not conflict\n\
+         9:1: warning: `R2 > R4` changes nothing: they conclude `x` and `Offside`, which do not conflict\n",
     );
 }
 
@@ -89,7 +91,9 @@ fn missing_final_dot() {
 fn priority_cycles_name_their_rules() {
     check(
         "R1: => a. R2: => ~a. R3: => b.\nR1 > R2. R2 > R3. R3 > R1.\n",
-        "1:1: error: priorities form a cycle among rules R1, R2, R3\n",
+        "1:1: error: priorities form a cycle among rules R1, R2, R3\n\
+         2:10: warning: `R2 > R3` changes nothing: they conclude `~a` and `b`, which do not conflict\n\
+         2:19: warning: `R3 > R1` changes nothing: they conclude `b` and `a`, which do not conflict\n",
     );
     check(
         "R1: => a. R1 > R1.",
@@ -227,5 +231,14 @@ fn large_files_checked_in_a_pipeline_match_the_sequential_check() {
         2,
         "{:?}",
         pipelined.diagnostics
+    );
+}
+
+#[test]
+fn a_missing_dot_is_one_error_not_a_cascade() {
+    // Before, the priority below also said "no rule is labelled `Doubt`".
+    check(
+        "Sure: a => b\nDoubt: c => ~b.\nDoubt > Sure.\n",
+        "2:1: error: unexpected `Doubt`\n",
     );
 }

@@ -360,6 +360,25 @@ impl<'s> Checker<'s> {
                         .with_hint("priorities must be acyclic"),
                     );
                 } else {
+                    let (w, l) = (
+                        self.theory.heads[winner as usize],
+                        self.theory.heads[loser as usize],
+                    );
+                    if w != l.complement() {
+                        self.diagnostics.push(
+                            Diagnostic::warning(
+                                span,
+                                format!(
+                                    "`{} > {}` changes nothing: they conclude `{}` and `{}`, which do not conflict",
+                                    label_of(&self.theory, winner),
+                                    label_of(&self.theory, loser),
+                                    self.theory.show(w),
+                                    self.theory.show(l)
+                                ),
+                            )
+                            .with_hint("a priority decides between rules for a literal and its negation"),
+                        );
+                    }
                     self.theory.priorities.push((winner, loser));
                 }
             }
@@ -397,12 +416,28 @@ impl<'s> Checker<'s> {
                 Origin::Written(s) => s,
                 Origin::Clause(_) => Span::default(),
             };
+            let on_cycle: Vec<String> = self
+                .theory
+                .priorities
+                .iter()
+                .filter(|(w, l)| component.contains(w) && component.contains(l))
+                .map(|&(w, l)| {
+                    format!(
+                        "`{} > {}`",
+                        label_of(&self.theory, w),
+                        label_of(&self.theory, l)
+                    )
+                })
+                .collect();
             let mut d = Diagnostic::error(
                 span,
                 format!("priorities form a cycle among rules {}", names.join(", ")),
             )
             .with_label("this rule is on the cycle")
-            .with_hint("the priority relation must be acyclic: remove one of these priorities");
+            .with_hint(format!(
+                "the priority relation must be acyclic: remove one of {}",
+                on_cycle.join(", ")
+            ));
             for &r in &component[1..] {
                 if let Origin::Written(s) = self.theory.origins[r as usize] {
                     d = d.with_related(s, "also on the cycle");

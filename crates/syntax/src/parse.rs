@@ -119,7 +119,20 @@ pub fn parse_dl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheor
                 }
                 on_item(item)
             }
-            Err(error) => sink.push(to_diagnostic(error, source, statement)),
+            Err(error) => {
+                // A missing `.` runs two statements together (`R1: a => b  Doubt: c => d.`):
+                // the labels inside are broken too, so priorities naming them stay quiet.
+                broken_labels.extend(statement.windows(2).skip(1).filter_map(|pair| match pair {
+                    [Token {
+                        tok: Tok::Ident(_),
+                        span,
+                    }, Token {
+                        tok: Tok::Colon, ..
+                    }] => Some(*span),
+                    _ => None,
+                }));
+                sink.push(to_diagnostic(error, source, statement))
+            }
         }
     }
     ParsedTheory {
