@@ -1116,3 +1116,31 @@ fn set_takes_declared_inputs_only_and_one_of_a_group() {
         stderr(&o)
     );
 }
+
+#[test]
+fn check_says_why_a_negated_output_is_not_queried_and_where_it_is_declared() {
+    let dir = crate::behaviour_folder(
+        "negated-output",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"M.machine\"\n[[theory]]\nfile = \"ref.dl\"\n[impersonator]\nscript = \"s.script\"\n",
+            ),
+            (
+                "M.machine",
+                "machine M\nstate A {\n  when ~expectPenalty -> B\n}\nstate B {\n}\n",
+            ),
+            (
+                "ref.dl",
+                "input{foul}.\nR: foul => expectPenalty.\n\noutput{~expectPenalty}.\n",
+            ),
+            ("s.script", "foul = false\nexpectPenalty = false\n"),
+        ],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("ref.dl:4: warning: output `~expectPenalty` of theory ref is queried by no machine; a label `~expectPenalty` asks for `expectPenalty` and negates its answer, so declare `output{expectPenalty}` for it"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -119,17 +119,22 @@ pub fn check_behaviour_with(
             continue;
         };
         let shown = files.show(file);
+        let line_of = output_lines(behaviour, file);
         for output in &module.decl.answers {
-            if !queried(&all, output) {
-                out.push(FileDiagnostic::warning(
-                    &shown,
-                    1,
-                    format!(
-                        "output `{output}` of theory {} is queried by no machine",
-                        module.decl.name
-                    ),
+            if queried(&all, output) {
+                continue;
+            }
+            let mut message = format!(
+                "output `{output}` of theory {} is queried by no machine",
+                module.decl.name
+            );
+            // `~x` in a label asks for `x` and negates the answer: it never asks for `~x`.
+            if let Some(atom) = output.strip_prefix('~').filter(|a| queried(&all, a)) {
+                message.push_str(&format!(
+                    "; a label `~{atom}` asks for `{atom}` and negates its answer, so declare `output{{{atom}}}` for it"
                 ));
             }
+            out.push(FileDiagnostic::warning(&shown, line_of(output), message));
         }
         for input in module
             .decl
@@ -150,6 +155,24 @@ pub fn check_behaviour_with(
         }
     }
     out
+}
+
+/// The line of each output's declaration in a theory file of the behaviour (1 when unknown).
+fn output_lines<'b>(behaviour: &'b Behaviour, file: &str) -> impl Fn(&str) -> usize + 'b {
+    let text = behaviour.files.read(file).unwrap_or_default();
+    let theory = behaviour.theories.iter().find(|t| t.file == file);
+    move |output: &str| {
+        theory
+            .and_then(|t| {
+                t.theory
+                    .outputs()
+                    .iter()
+                    .find(|o| t.theory.show(o.lit).to_string() == output)
+            })
+            .map_or(1, |o| {
+                proclaim_syntax::line_column(&text, o.span.start as usize).0
+            })
+    }
 }
 
 fn queried(all: &[Module], atom: &str) -> bool {
