@@ -70,6 +70,7 @@ pub enum Sensor {
 pub enum Command {
     /// Prove queries: one line per answer, `+beta offside` or `-beta offside`
     Prove {
+        /// A .dl or .dfl file, or an embedded theory (offside, microwave, tweety, …)
         theory: String,
         /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`)
         #[arg(required = true)]
@@ -85,26 +86,31 @@ pub enum Command {
     },
     /// Print the truth table of the declared outputs over the declared inputs
     Table {
+        /// A .dl or .dfl file, or an embedded theory
         theory: String,
         #[arg(long, value_enum, default_value = "text")]
         format: TableFormat,
     },
     /// Explain why a query is proved or not: supporters, attackers, loops
     Explain {
+        /// A .dl or .dfl file, or an embedded theory
         theory: String,
+        /// A literal: `offside` or `~offside`
         query: String,
         #[arg(long, value_enum, default_value = "beta")]
         alg: AlgArg,
+        /// Input values, `atom=true|false|unknown` (repeatable)
         #[arg(long = "set", value_name = "ATOM=VALUE")]
         set: Vec<String>,
         /// How many levels of antecedents to explain
         #[arg(long, default_value_t = 1)]
         depth: usize,
+        /// Print the explanation as JSON (each node: its goal, rule, status and reasons)
         #[arg(long)]
         json: bool,
     },
     /// Run a behaviour (a folder with a behaviour.toml, machines/NAME, or a built-in one:
-    /// game_controller, microwave) on the in-process whiteboard, printing a live trace
+    /// game_controller, microwave, shootout) on the in-process whiteboard, printing a live trace
     Run(RunArgs),
     /// Run a theory as an expert on a whiteboard (usually one held by another process:
     /// `--connect tcp/127.0.0.1:7447`), answering its outputs until stopped
@@ -195,8 +201,10 @@ pub enum Command {
     },
     /// Check theories, machines (native .machine, T/A pairs, Qfsm .fsm) and behaviours, and report every problem (exit 1 on errors)
     Check {
-        #[arg(required = true)]
+        /// Theories (.dl, .dfl), machines (.machine, .fsm, TName.txt / AName.txt) or behaviours
+        #[arg(required = true, value_name = "FILE|BEHAVIOUR")]
         theories: Vec<String>,
+        /// Print every problem as JSON (file, line, severity, message)
         #[arg(long)]
         json: bool,
     },

@@ -310,9 +310,9 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
             "Main.machine:11: error: label `mystery` is answered by no expert and posted by no module",
             "Main.machine:2: error: `Ghost: On` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)",
             "Main.machine:2: warning: nobody listens to `Beep` postings (name the module that does in the manifest's [[module]] or dictionary)",
-            "t.dl:1: warning: output `light` of theory t is queried by no machine",
+            "t.dl:8: warning: output `light` of theory t is queried by no machine",
             "t.dl:1: warning: input `door` of theory t is posted by no module",
-            "t.dl:1: warning: input `timer` of theory t is posted by no module",
+            "t.dl:2: warning: input `timer` of theory t is posted by no module",
         ]
     );
 }

@@ -145,7 +145,7 @@ fn check_reports_every_error_and_exits_1() {
     check(
         &["check", "offside"],
         0,
-        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 outputs)\n",
+        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 output)\n",
     );
 }
 

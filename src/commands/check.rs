@@ -49,13 +49,13 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
             );
             if let Some(theory) = &checked.theory {
                 println!(
-                    "{}: ok ({} atoms, {} rules, {} priorities, {} inputs, {} outputs)",
+                    "{}: ok ({}, {}, {}, {}, {})",
                     source.name,
-                    theory.atom_count(),
-                    theory.rule_count(),
-                    theory.priorities().len(),
-                    theory.input_atoms().count(),
-                    theory.outputs().len()
+                    count(theory.atom_count(), "atom"),
+                    count(theory.rule_count(), "rule"),
+                    count(theory.priorities().len(), "priority"),
+                    count(theory.input_atoms().count(), "input"),
+                    count(theory.outputs().len(), "output")
                 );
             }
         }
@@ -108,13 +108,13 @@ fn behaviour(
             eprintln!("{d}");
         }
         println!(
-            "{name}: {} ({} machines, {} theories, {} sensors; {} errors, {} warnings)",
+            "{name}: {} ({}, {}, {}; {}, {})",
             if errors == 0 { "ok" } else { "has errors" },
-            loaded.machines.len(),
-            loaded.theories.len(),
-            loaded.sensors.len(),
-            errors,
-            findings.len() - errors
+            count(loaded.machines.len(), "machine"),
+            count(loaded.theories.len(), "theory"),
+            count(loaded.sensors.len(), "sensor"),
+            count(errors, "error"),
+            count(findings.len() - errors, "warning")
         );
     }
     Ok(errors)
@@ -151,11 +151,12 @@ fn machines(
         let transitions: usize = imported.machines.iter().map(|m| m.transitions.len()).sum();
         if !imported.machines.is_empty() {
             println!(
-                "{name}: {} ({} machine{}, {states} states, {transitions} transitions, {} warnings)",
+                "{name}: {} ({}, {}, {}, {})",
                 if errors == 0 { "ok" } else { "has errors" },
-                imported.machines.len(),
-                if imported.machines.len() == 1 { "" } else { "s" },
-                imported.diagnostics.len() - errors
+                count(imported.machines.len(), "machine"),
+                count(states, "state"),
+                count(transitions, "transition"),
+                count(imported.diagnostics.len() - errors, "warning")
             );
         }
     }
@@ -188,4 +189,14 @@ fn problems_json(behaviour: &str, rendered: &str) -> Vec<serde_json::Value> {
         }
     }
     out
+}
+
+/// `1 rule`, `2 rules`, `1 priority`, `2 priorities`.
+fn count(n: usize, one: &str) -> String {
+    let many = match one {
+        "priority" => "priorities".to_string(),
+        "theory" => "theories".to_string(),
+        other => format!("{other}s"),
+    };
+    format!("{n} {}", if n == 1 { one } else { &many })
 }

@@ -119,7 +119,7 @@ pub fn check_behaviour_with(
             continue;
         };
         let shown = files.show(file);
-        let line_of = output_lines(behaviour, file);
+        let line_of = declared_lines(behaviour, file);
         for output in &module.decl.answers {
             if queried(&all, output) {
                 continue;
@@ -145,7 +145,7 @@ pub fn check_behaviour_with(
             if !posted_by_other(input, &module.decl.name) {
                 out.push(FileDiagnostic::warning(
                     &shown,
-                    1,
+                    line_of(input),
                     format!(
                         "input `{input}` of theory {} is posted by no module",
                         module.decl.name
@@ -157,21 +157,29 @@ pub fn check_behaviour_with(
     out
 }
 
-/// The line of each output's declaration in a theory file of the behaviour (1 when unknown).
-fn output_lines<'b>(behaviour: &'b Behaviour, file: &str) -> impl Fn(&str) -> usize + 'b {
+/// The line where a theory file of the behaviour declares an output or an input (1 when
+/// unknown).
+fn declared_lines<'b>(behaviour: &'b Behaviour, file: &str) -> impl Fn(&str) -> usize + 'b {
     let text = behaviour.files.read(file).unwrap_or_default();
     let theory = behaviour.theories.iter().find(|t| t.file == file);
-    move |output: &str| {
-        theory
-            .and_then(|t| {
-                t.theory
-                    .outputs()
-                    .iter()
-                    .find(|o| t.theory.show(o.lit).to_string() == output)
-            })
-            .map_or(1, |o| {
-                proclaim_syntax::line_column(&text, o.span.start as usize).0
-            })
+    move |name: &str| {
+        let Some(t) = theory else { return 1 };
+        let theory = &t.theory;
+        let output = theory
+            .outputs()
+            .iter()
+            .find(|o| theory.show(o.lit).to_string() == name)
+            .map(|o| o.span);
+        let input = || {
+            theory
+                .inputs()
+                .iter()
+                .find(|g| g.atoms.iter().any(|&a| theory.atom_name(a) == name))
+                .map(|g| g.span)
+        };
+        output.or_else(input).map_or(1, |span| {
+            proclaim_syntax::line_column(&text, span.start as usize).0
+        })
     }
 }
 

@@ -179,7 +179,7 @@ pub async fn launch(
                         ..SimConfig::default()
                     };
                     sim_note = Some(format!(
-                        "GameController simulator: a {:.0} s game to {at}",
+                        "GameController simulator: a game of {:.0} s to {at}",
                         game.length().as_secs_f64()
                     ));
                     modules.push(Module {
