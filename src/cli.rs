@@ -9,7 +9,7 @@ use std::path::PathBuf;
     name = "proclaim",
     version,
     about = "Clausal defeasible logic for robot behaviour: prove, table, explain and check theories",
-    after_help = "THEORY is a .dl or .dfl file, or an embedded theory: offside, microwave, tweety, nixon, team-defeat, blocking, defeater, loops.\nExit status: 0 done (whatever the answers), 1 `check` found errors, 2 bad input or usage."
+    after_help = "THEORY is a .dl or .dfl file, or an embedded theory: offside, microwave, kickoff, tweety, nixon, team-defeat, blocking, defeater, loops.\nExit status: 0 done (whatever the answers), 1 `check` found errors, 2 bad input or usage."
 )]
 pub struct Cli {
     #[command(subcommand)]

@@ -1,7 +1,7 @@
 //! Theories built into the binary, so the quick start runs with no files: `proclaim table offside`.
 
 /// `(name, file name, text)`
-pub const THEORIES: [(&str, &str, &str); 8] = [
+pub const THEORIES: [(&str, &str, &str); 9] = [
     (
         "offside",
         "offside.dl",
@@ -11,6 +11,11 @@ pub const THEORIES: [(&str, &str, &str); 8] = [
         "microwave",
         "microwave.dl",
         include_str!("../theories/microwave.dl"),
+    ),
+    (
+        "kickoff",
+        "kickoff.dl",
+        include_str!("../theories/kickoff.dl"),
     ),
     (
         "tweety",

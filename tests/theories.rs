@@ -55,6 +55,19 @@ fn microwave() {
 }
 
 #[test]
+fn kickoff() {
+    assert_eq!(
+        table("kickoff.dl").inputs,
+        ["ready", "set", "playing", "weKickOff", "ballMoved", "tenSecondsPassed", "holdingLong"]
+    );
+    check("kickoff.dl", |i| {
+        let (playing, we, moved, late, holding) = (i[2], i[3], i[4], i[5], i[6]);
+        let may_play = playing && (we || moved || late);
+        vec![may_play, may_play && !holding]
+    });
+}
+
+#[test]
 fn tweety() {
     // Columns: beta fly, beta ~fly, pi fly, mu fly; input: penguin.
     check("classics/tweety.dl", |i| {
