@@ -1144,3 +1144,46 @@ fn check_says_why_a_negated_output_is_not_queried_and_where_it_is_declared() {
         stderr(&o)
     );
 }
+
+#[test]
+fn explain_json_names_goals_rules_and_their_roles() {
+    let o = proclaim(&[
+        "explain",
+        "offside",
+        "offside",
+        "--set",
+        "fewerThanTwoOpponentsBetween=true",
+        "--set",
+        "behindBall=true",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let root = &json[0];
+    assert_eq!(
+        root["goal"],
+        serde_json::json!({"algorithm": "beta", "literal": "offside", "proved": false})
+    );
+    let roles: Vec<(String, String)> = root["because"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|n| {
+            Some((
+                n["rule"].as_str()?.to_string(),
+                n["role"].as_str()?.to_string(),
+            ))
+        })
+        .collect();
+    assert_eq!(
+        roles,
+        [
+            ("Exposed".to_string(), "supports".to_string()),
+            ("Usually".to_string(), "beaten".to_string()),
+            ("OwnHalf".to_string(), "discounted".to_string()),
+            ("Behind".to_string(), "stands".to_string()),
+            ("ThrowIn".to_string(), "discounted".to_string()),
+        ]
+    );
+    assert_eq!(root["because"][1]["beaten_by"], "Exposed");
+}

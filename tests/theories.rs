@@ -58,7 +58,15 @@ fn microwave() {
 fn kickoff() {
     assert_eq!(
         table("kickoff.dl").inputs,
-        ["ready", "set", "playing", "weKickOff", "ballMoved", "tenSecondsPassed", "holdingLong"]
+        [
+            "ready",
+            "set",
+            "playing",
+            "weKickOff",
+            "ballMoved",
+            "tenSecondsPassed",
+            "holdingLong"
+        ]
     );
     check("kickoff.dl", |i| {
         let (playing, we, moved, late, holding) = (i[2], i[3], i[4], i[5], i[6]);

@@ -4,7 +4,7 @@ use super::{algorithms, inputs};
 use crate::cli::AlgArg;
 use crate::failure::Failure;
 use crate::load;
-use proclaim_cdl::{Engine, Explanation, Formula, Session};
+use proclaim_cdl::{About, Engine, Explanation, Formula, Session};
 use std::process::ExitCode;
 
 pub fn run(
@@ -39,9 +39,31 @@ pub fn run(
     Ok(ExitCode::SUCCESS)
 }
 
+/// A node: its text, what it is about (`goal` with algorithm, literal and whether proved; or
+/// `rule` with its role), and the nodes that explain it.
 fn to_json(e: &Explanation) -> serde_json::Value {
-    serde_json::json!({
+    let mut node = serde_json::json!({
         "text": e.text,
         "because": e.children.iter().map(to_json).collect::<Vec<_>>(),
-    })
+    });
+    match &e.about {
+        About::Note => {}
+        About::Goal {
+            algorithm,
+            literal,
+            proved,
+        } => {
+            node["goal"] = serde_json::json!({
+                "algorithm": algorithm.to_string(), "literal": literal, "proved": proved,
+            });
+        }
+        About::Rule { rule, role, by } => {
+            node["rule"] = serde_json::json!(rule);
+            node["role"] = serde_json::json!(role);
+            if let Some(by) = by {
+                node["beaten_by"] = serde_json::json!(by);
+            }
+        }
+    }
+    node
 }

@@ -14,14 +14,48 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Explanation {
     pub text: String,
+    /// What the line speaks of, as data (for `--json` and programs).
+    pub about: About,
     pub children: Vec<Explanation>,
+}
+
+/// What a line of an explanation speaks of.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum About {
+    /// A remark (no rule for the literal, a loop, definitely proved, …).
+    Note,
+    /// A goal: `±alg literal`.
+    Goal {
+        algorithm: Algorithm,
+        literal: String,
+        proved: bool,
+    },
+    /// A rule and its part: `supports`, `does_not_apply`, `strict_chain`, and for attackers
+    /// `discounted`, `beaten` (by `by`) or `stands`.
+    Rule {
+        rule: String,
+        role: &'static str,
+        by: Option<String>,
+    },
 }
 
 impl Explanation {
     fn leaf(text: impl Into<String>) -> Explanation {
         Explanation {
             text: text.into(),
+            about: About::Note,
             children: Vec::new(),
+        }
+    }
+
+    fn rule(text: impl Into<String>, rule: String, role: &'static str) -> Explanation {
+        Explanation {
+            about: About::Rule {
+                rule,
+                role,
+                by: None,
+            },
+            ..Explanation::leaf(text)
         }
     }
 
@@ -63,7 +97,14 @@ impl Session {
         if !seen.insert((alg, lit)) {
             return Explanation::leaf(format!("{head} (explained above)"));
         }
-        let mut node = Explanation::leaf(head);
+        let mut node = Explanation {
+            about: About::Goal {
+                algorithm: alg,
+                literal: theory.show(lit).to_string(),
+                proved,
+            },
+            ..Explanation::leaf(head)
+        };
         match alg {
             Algorithm::Mu => {
                 node.children.push(Explanation::leaf(if proved {
@@ -76,7 +117,11 @@ impl Session {
                         engine.kind(r) == RuleKind::Strict
                             && engine.body(r).iter().all(|a| self.mu()[a.index()])
                     }) {
-                        let mut by = Explanation::leaf(format!("by {}", theory.show_rule(r)));
+                        let mut by = Explanation::rule(
+                            format!("by {}", theory.show_rule(r)),
+                            theory.rule_name(r),
+                            "strict_chain",
+                        );
                         for &a in engine.body(r) {
                             by.children
                                 .push(self.explain_at(Algorithm::Mu, a, depth - 1, seen));
@@ -165,11 +210,15 @@ impl Session {
                 )));
             }
             for (r, a) in failed {
-                let mut line = Explanation::leaf(format!(
-                    "{} does not apply: antecedent {} is not proved",
+                let mut line = Explanation::rule(
+                    format!(
+                        "{} does not apply: antecedent {} is not proved",
+                        theory.rule_name(r),
+                        show(a)
+                    ),
                     theory.rule_name(r),
-                    show(a)
-                ));
+                    "does_not_apply",
+                );
                 if depth > 0 {
                     line.children.push(self.explain_at(alg, a, depth - 1, seen));
                 }
@@ -178,7 +227,11 @@ impl Session {
             self.note_loop(alg, q, node);
             return;
         };
-        let mut line = Explanation::leaf(format!("supported by {}", theory.show_rule(r)));
+        let mut line = Explanation::rule(
+            format!("supported by {}", theory.show_rule(r)),
+            theory.rule_name(r),
+            "supports",
+        );
         if depth > 0 {
             for &a in engine.body(r) {
                 line.children.push(self.explain_at(alg, a, depth - 1, seen));
@@ -197,10 +250,14 @@ impl Session {
                     .find(|&x| !self.support_value(x))
             };
             if let Some(a) = counted {
-                node.children.push(Explanation::leaf(format!(
-                    "attacker {name} is discounted: its antecedent {} is not {attack_word}",
-                    show(a)
-                )));
+                node.children.push(Explanation::rule(
+                    format!(
+                        "attacker {name} is discounted: its antecedent {} is not {attack_word}",
+                        show(a)
+                    ),
+                    name,
+                    "discounted",
+                ));
                 continue;
             }
             let beaten_by = engine.superiors_of(s).iter().copied().find(|&t| {
@@ -208,10 +265,24 @@ impl Session {
                     && engine.kind(t).supports()
                     && applicable(self, t, alg).is_none()
             });
-            node.children.push(Explanation::leaf(match beaten_by {
-                Some(t) => format!("attacker {name} is beaten by {}", theory.rule_name(t)),
-                None => format!("attacker {name} stands: its antecedent is {attack_word} and no applicable rule for {} beats it", show(q)),
-            }));
+            node.children.push(match beaten_by {
+                Some(t) => Explanation {
+                    about: About::Rule {
+                        rule: name.clone(),
+                        role: "beaten",
+                        by: Some(theory.rule_name(t)),
+                    },
+                    ..Explanation::leaf(format!(
+                        "attacker {name} is beaten by {}",
+                        theory.rule_name(t)
+                    ))
+                },
+                None => Explanation::rule(
+                    format!("attacker {name} stands: its antecedent is {attack_word} and no applicable rule for {} beats it", show(q)),
+                    name,
+                    "stands",
+                ),
+            });
         }
         self.note_loop(alg, q, node);
     }

@@ -26,7 +26,7 @@ mod theory;
 pub use check::{check, check_source, Checked};
 pub use closure::MAX_CLOSURE;
 pub use engine::Engine;
-pub use explain::Explanation;
+pub use explain::{About, Explanation};
 pub use literal::{Atom, Lit, RuleId};
 pub use proclaim_syntax::{render, Algorithm, Diagnostic, Language, Severity};
 pub use query::Formula;
