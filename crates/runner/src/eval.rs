@@ -49,6 +49,8 @@ impl Env<'_> {
             Expr::Int(i) => Some(Value::Int(*i)),
             Expr::Float(x) => Some(Value::Float(*x)),
             Expr::Str(s) => Some(Value::Str(s.clone())),
+            // A duration read as a number is its microseconds (gufsm's unit of time).
+            Expr::Duration(us) => Some(Value::Int(*us as i64)),
             Expr::Name(n) => self.read(n),
             Expr::Unary {
                 op: UnOp::Not,
@@ -121,6 +123,10 @@ impl Env<'_> {
         let [argument] = arguments else {
             return Some(None);
         };
+        // A duration says its own unit: `after(2s)` and `timeout(2s)` are the same test.
+        if let Expr::Duration(us) = argument {
+            return Some(Some(Duration::from_micros(*us)));
+        }
         Some(
             self.value(argument)
                 .and_then(|v| v.as_f64())
@@ -280,6 +286,11 @@ mod tests {
                 Some(Value::Bool(true)),
             ),
             ("timeout(g * 1000000)", Some(Value::Bool(false))),
+            (
+                "timeout(1500ms) && after(1s) && !after_ms(2s)",
+                Some(Value::Bool(true)),
+            ),
+            ("timeout(2s) + 500ms", Some(Value::Int(500_000))),
         ] {
             assert_eq!(eval(text), expect, "{text}");
         }

@@ -8,6 +8,8 @@ pub enum Expr {
     Int(i64),
     Float(f64),
     Str(String),
+    /// A duration (`500ms`, `2s`), in microseconds: `timeout(500ms)`, `after(2s)`.
+    Duration(u64),
     /// A variable, a whiteboard value, or (where a truth value is wanted and no variable has the
     /// name) a proposition an expert proclaims. Which one is decided where it runs.
     Name(String),
@@ -186,7 +188,7 @@ impl Expr {
             Expr::Call { arguments, .. } => {
                 arguments.iter().for_each(|a| a.visit_names_at(false, f));
             }
-            Expr::Bool(_) | Expr::Int(_) | Expr::Float(_) | Expr::Str(_) => {}
+            Expr::Bool(_) | Expr::Int(_) | Expr::Float(_) | Expr::Str(_) | Expr::Duration(_) => {}
         }
     }
 
@@ -235,6 +237,9 @@ impl Expr {
             Expr::Int(i) => write!(f, "{i}"),
             Expr::Float(x) => write!(f, "{x:?}"),
             Expr::Str(s) => write_quoted(f, s),
+            Expr::Duration(us) if us % 1_000_000 == 0 => write!(f, "{}s", us / 1_000_000),
+            Expr::Duration(us) if us % 1_000 == 0 => write!(f, "{}ms", us / 1_000),
+            Expr::Duration(us) => write!(f, "{us}us"),
             Expr::Name(n) => f.write_str(n),
             Expr::Unary { op, operand } => {
                 f.write_str(match op {

@@ -197,6 +197,10 @@ impl Parser {
                 self.at += 1;
                 Ok(Expr::Str(s))
             }
+            Some(Token::Duration(us)) => {
+                self.at += 1;
+                Ok(Expr::Duration(us))
+            }
             Some(Token::Name(n)) => {
                 self.at += 1;
                 if self.eat("(") {
@@ -394,6 +398,11 @@ mod tests {
             ("TRUE", "TRUE"),
             ("- -x", "--x"),
             ("-(-1)", "--1"),
+            (
+                "timeout(500ms) || after(2s) || after_ms(1.5s)",
+                "timeout(500ms) || after(2s) || after_ms(1500ms)",
+            ),
+            ("timeout(250us)", "timeout(250us)"),
             ("x > -1 && abs(a - b) >= 0.5", "x > -1 && abs(a - b) >= 0.5"),
             ("f(1, \"two\", g())", "f(1, \"two\", g())"),
         ] {

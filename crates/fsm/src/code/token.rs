@@ -8,6 +8,8 @@ pub enum Token {
     Int(i64),
     Float(f64),
     Str(String),
+    /// A duration with its unit (`500ms`, `2s`, `1.5s`, `250us`), in microseconds.
+    Duration(u64),
     /// Punctuation and operators, longest first: `== != <= >= && || ( ) { } , ; = + - * / % < > ! ~`.
     Punct(&'static str),
 }
@@ -19,6 +21,7 @@ impl fmt::Display for Token {
             Token::Int(i) => write!(f, "the number `{i}`"),
             Token::Float(x) => write!(f, "the number `{x:?}`"),
             Token::Str(s) => write!(f, "the string {s:?}"),
+            Token::Duration(us) => write!(f, "the duration `{us}us`"),
             Token::Punct(p) => write!(f, "`{p}`"),
         }
     }
@@ -116,6 +119,22 @@ fn number(text: &str) -> Result<(Token, usize), String> {
         }
     }
     let digits = &text[..len];
+    // A unit right after the number makes it a duration: `500ms`, `2s`, `250us`.
+    for (unit, micros) in [("us", 1.0), ("ms", 1e3), ("s", 1e6)] {
+        let rest = &text[len..];
+        let ends = rest
+            .get(unit.len()..)
+            .is_none_or(|after| !after.starts_with(|c: char| c.is_alphanumeric() || c == '_'));
+        if rest.starts_with(unit) && ends {
+            let amount: f64 = digits
+                .parse()
+                .map_err(|_| format!("`{digits}` is not a number"))?;
+            return Ok((
+                Token::Duration((amount * micros).round() as u64),
+                len + unit.len(),
+            ));
+        }
+    }
     if b.get(len)
         .is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_')
     {
