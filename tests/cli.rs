@@ -1008,6 +1008,12 @@ fn a_virtual_clock_runs_a_minute_of_microwave_at_once_and_the_same_every_time() 
         ],
         "{first}"
     );
+    // What the script sets shows in the trace, once each time it changes.
+    assert!(
+        first.contains("   1.000s impersonator  posts doorOpen: true\n"),
+        "{first}"
+    );
+    assert_eq!(first.matches("posts doorOpen").count(), 3, "{first}");
     assert!(
         took < std::time::Duration::from_secs(20),
         "64 s of behaviour on the virtual clock took {took:?}"

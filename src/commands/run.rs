@@ -117,6 +117,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             .build()
     }
     .map_err(|e| Failure::Start(format!("no async runtime: {e}")))?;
+    let script_used = script.is_some() || behaviour.script.is_some();
     let options = LaunchOptions {
         script,
         no_simulator: args.no_simulator,
@@ -168,7 +169,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         for note in &running.notes {
             println!("  {note}");
         }
-        let mut view = TraceView::new(machines.iter().map(|m| m.len()).max().unwrap_or(8));
+        // The script's postings show under the name `impersonator`.
+        let scripted = (script_used).then_some("impersonator");
+        let width = machines.iter().copied().chain(scripted).map(str::len).max();
+        let mut view = TraceView::new(width.unwrap_or(8));
         if let Some(stepper) = stepper {
             let why = stepping(&behaviour, &board, &mut running, &stepper, &mut view).await;
             println!("stopped: {why}");

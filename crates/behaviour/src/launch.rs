@@ -4,7 +4,7 @@
 
 use crate::load::Behaviour;
 use crate::manifest::{SensorKind, Simulator};
-use proclaim_board::Whiteboard;
+use proclaim_board::{Pattern, Whiteboard};
 use proclaim_experts::simulator::{default_game, play, Event as SimEvent, SimConfig};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
@@ -113,6 +113,7 @@ pub async fn launch(
     // The trace's times count from here, as the impersonator's script times do, so `at 1s`
     // shows as 1.000 s.
     let epoch = tokio::time::Instant::now();
+    let (tx, events) = mpsc::unbounded_channel();
     let mut notes = Vec::new();
     let mut sim_note = None;
     let mut modules: Vec<Module> = Vec::new();
@@ -252,6 +253,14 @@ pub async fn launch(
                 imp.set(atom, false);
             }
         }
+        // What the script sets shows in the trace (a theory's inputs change no machine's state,
+        // yet explain why an answer changed).
+        let said = board.subscribe_pattern(Pattern::Any(scripted.clone()));
+        modules.push(Module {
+            name: "script".into(),
+            answers: Vec::new(),
+            task: Box::pin(show_script(said, tx.clone(), epoch)),
+        });
         modules.push(Module {
             name: "impersonator".into(),
             answers: scripted,
@@ -276,7 +285,6 @@ pub async fn launch(
     }
     wait_registered(board, &experts).await;
 
-    let (tx, events) = mpsc::unbounded_channel();
     let shared = behaviour.shared_variables();
     let mut finals = FxHashMap::default();
     let mut top = FxHashMap::default();
@@ -318,6 +326,31 @@ pub async fn launch(
         halted: FxHashSet::default(),
         finished: FxHashSet::default(),
     })
+}
+
+/// Turns the impersonator's postings into trace events, each value once when it changes (it
+/// also posts its answer to every query, which is no news).
+async fn show_script(
+    mut said: proclaim_board::Subscription,
+    trace: mpsc::UnboundedSender<Event>,
+    epoch: tokio::time::Instant,
+) {
+    let mut last: FxHashMap<String, proclaim_board::Value> = FxHashMap::default();
+    while let Some(m) = said.next().await {
+        if &*m.module != "impersonator" || last.get(&*m.ty) == Some(&m.value) {
+            continue;
+        }
+        last.insert(m.ty.to_string(), m.value.clone());
+        let event = Event::Posted {
+            machine: "impersonator".into(),
+            ty: m.ty.to_string(),
+            content: m.value.to_string(),
+            at: epoch.elapsed(),
+        };
+        if trace.send(event).is_err() {
+            return;
+        }
+    }
 }
 
 /// Leaves out the modules that answer any of `atoms` (someone else answers them now), noting
