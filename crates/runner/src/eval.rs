@@ -182,8 +182,9 @@ fn as_float(n: Number) -> f64 {
     }
 }
 
-/// A binary operator other than `&&` and `||`. A comparison with a value never posted is
-/// false; arithmetic with one has no value.
+/// A binary operator on two values (`&&` and `||` read them as truth values; `Env::value`
+/// short-circuits those itself). A comparison with a value never posted is false; arithmetic
+/// with one has no value.
 pub(crate) fn binary(op: BinOp, left: Option<Value>, right: Option<Value>) -> Option<Value> {
     let ordering = |want: fn(Ordering) -> bool| {
         Some(Value::Bool(match (&left, &right) {
