@@ -1193,3 +1193,23 @@ fn explain_json_names_goals_rules_and_their_roles() {
     );
     assert_eq!(root["because"][1]["beaten_by"], "Exposed");
 }
+
+#[test]
+fn a_machine_files_errors_show_the_line_a_caret_and_a_near_name() {
+    let machine = temp_file(
+        "Typo.machine",
+        b"machine M\nstate READY {\n  when go -> REDY\n}\n",
+    );
+    let o = proclaim(&["check", machine.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(
+        err.contains("error: there is no state named `REDY`; did you mean `READY`?"),
+        "{err}"
+    );
+    assert!(err.contains("Typo.machine:3:14"), "{err}");
+    assert!(
+        err.contains("3 │   when go -> REDY\n  │              ^^^^"),
+        "{err}"
+    );
+}

@@ -14,7 +14,11 @@ pub struct FileDiagnostic {
     pub file: String,
     /// 1-based.
     pub line: usize,
+    /// 1-based, in characters, where the reader knows it (the native format).
+    pub column: Option<usize>,
     pub message: String,
+    /// How to fix it, where there is something to say.
+    pub hint: Option<String>,
 }
 
 impl FileDiagnostic {
@@ -23,7 +27,9 @@ impl FileDiagnostic {
             severity: Severity::Error,
             file: file.to_string(),
             line,
+            column: None,
             message: message.into(),
+            hint: None,
         }
     }
 
@@ -35,6 +41,20 @@ impl FileDiagnostic {
     }
 }
 
+impl FileDiagnostic {
+    pub fn at_column(mut self, column: usize) -> FileDiagnostic {
+        self.column = Some(column);
+        self
+    }
+
+    pub fn with_hint(mut self, hint: impl Into<String>) -> FileDiagnostic {
+        self.hint = Some(hint.into());
+        self
+    }
+}
+
+/// `file:line: severity: message` (the hint and the column are for renderers that show the
+/// line itself).
 impl fmt::Display for FileDiagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let severity = match self.severity {

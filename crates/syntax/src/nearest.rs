@@ -1,11 +1,15 @@
 //! "Did you mean …?": the known name nearest to a misspelt one.
 
 /// The candidate equal to `name` but for case, or one edit (insert, delete, change) away; the
-/// least such in sort order, so the answer does not depend on the candidates' order.
+/// least such in sort order, so the answer does not depend on the candidates' order. Names of
+/// fewer than three characters are matched by case only (every `b` is one edit from `a`).
 pub fn nearest<'a>(candidates: impl IntoIterator<Item = &'a str>, name: &str) -> Option<&'a str> {
+    let editable = name.chars().count() >= 3;
     candidates
         .into_iter()
-        .filter(|c| *c != name && (c.eq_ignore_ascii_case(name) || one_edit_apart(c, name)))
+        .filter(|c| {
+            *c != name && (c.eq_ignore_ascii_case(name) || editable && one_edit_apart(c, name))
+        })
         .min()
 }
 
@@ -43,5 +47,6 @@ mod tests {
         assert_eq!(nearest(known, "goals"), Some("goal"));
         assert_eq!(nearest(known, "offside"), None);
         assert_eq!(nearest(known, "goal"), None);
+        assert_eq!(nearest(["a"], "b"), None);
     }
 }

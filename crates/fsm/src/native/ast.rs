@@ -45,6 +45,7 @@ pub enum Member {
         label: String,
         label_at: usize,
         target: Ref,
+        target_at: usize,
         at: usize,
     },
 }

@@ -67,7 +67,7 @@ pub fn parse_machine(file: &str, text: &str) -> Imported {
             let (at, message) = describe(error, text.len());
             Imported {
                 machines: Vec::new(),
-                diagnostics: vec![FileDiagnostic::error(file, lines.line(at), message)],
+                diagnostics: vec![lines.error(file, at, message)],
             }
         }
     }
@@ -111,27 +111,39 @@ fn friendly(terminal: &str) -> String {
     }
 }
 
-struct LineIndex {
+struct LineIndex<'t> {
+    text: &'t str,
     starts: Vec<usize>,
 }
 
-impl LineIndex {
-    fn new(text: &str) -> LineIndex {
+impl LineIndex<'_> {
+    fn new(text: &str) -> LineIndex<'_> {
         let mut starts = vec![0];
         starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        LineIndex { starts }
+        LineIndex { text, starts }
     }
 
     /// 1-based.
     fn line(&self, offset: usize) -> usize {
         self.starts.partition_point(|&s| s <= offset)
     }
+
+    /// An error at a byte offset, with its line and column.
+    fn error(&self, file: &str, offset: usize, message: String) -> FileDiagnostic {
+        let line = self.line(offset);
+        let start = self.starts[line - 1];
+        let column = self
+            .text
+            .get(start..offset.min(self.text.len()))
+            .map_or(1, |before| before.chars().count() + 1);
+        FileDiagnostic::error(file, line, message).at_column(column)
+    }
 }
 
-fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
+fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
     let mut diagnostics = Vec::new();
     let mut error = |at: usize, message: String| {
-        diagnostics.push(FileDiagnostic::error(file, lines.line(at), message));
+        diagnostics.push(lines.error(file, at, message));
     };
     let mut initial_ref = None;
     let mut description = String::new();
@@ -194,7 +206,10 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
                     .collect();
                 match found.as_slice() {
                     [id] => Ok(*id),
-                    [] => Err(format!("there is no state named `{name}`")),
+                    [] => Err(match proclaim_syntax::nearest(names.iter().map(|(n, _)| n.as_str()), name) {
+                        Some(near) => format!("there is no state named `{name}`; did you mean `{near}`?"),
+                        None => format!("there is no state named `{name}`"),
+                    }),
                     many => Err(format!(
                         "`{name}` names {} states ({}); name the one meant by its id, as in `-> #{}`",
                         many.len(),
@@ -261,6 +276,7 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
                     label,
                     label_at,
                     target,
+                    target_at,
                     at,
                 } => {
                     if label.is_empty() {
@@ -284,7 +300,7 @@ fn lower(file: &str, lines: &LineIndex, ast: FileAst) -> Imported {
                             label,
                             line: lines.line(at),
                         }),
-                        Err(message) => error(at, message),
+                        Err(message) => error(target_at, message),
                     }
                 }
             }
