@@ -290,6 +290,10 @@ pub struct RunArgs {
     /// Also write every event as JSON lines (read back by `proclaim replay`)
     #[arg(long, value_name = "FILE.jsonl")]
     pub trace: Option<PathBuf>,
+    /// Record every whiteboard message (type, value, who posted it, when) as JSON lines, as a
+    /// ROS bag does; `proclaim replay FILE` prints it again
+    #[arg(long, value_name = "FILE.jsonl")]
+    pub record: Option<PathBuf>,
     /// Answer labels from this impersonator script instead (experts answering the same
     /// labels are left out)
     #[arg(long, value_name = "FILE")]

@@ -1213,3 +1213,40 @@ fn a_machine_files_errors_show_the_line_a_caret_and_a_near_name() {
         "{err}"
     );
 }
+
+#[test]
+fn record_keeps_every_whiteboard_message_and_replay_prints_it() {
+    let record = temp_file("microwave-record.jsonl", b"");
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--record",
+        record.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    let posted: usize = out
+        .lines()
+        .find_map(|l| l.trim().strip_suffix(" unanswerable)"))
+        .and_then(|l| l.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the postings count");
+    let text = std::fs::read_to_string(&record).unwrap();
+    assert_eq!(text.lines().count(), posted, "every posting recorded");
+    assert!(
+        out.contains(&format!("{posted} messages recorded in")),
+        "{out}"
+    );
+    assert!(
+        text.contains(r#"{"at_us":1000000,"module":"impersonator","seq":"#),
+        "the script's posting at 1 s"
+    );
+    let o = proclaim(&["replay", record.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("   1.000s #") && stdout(&o).contains("impersonator   doorOpen = true"),
+        "{}",
+        stdout(&o)
+    );
+}

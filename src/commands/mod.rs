@@ -12,6 +12,7 @@ mod import;
 mod inputs;
 mod liveness;
 mod prove;
+mod record;
 mod run;
 mod table;
 

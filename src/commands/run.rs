@@ -2,6 +2,7 @@
 //! JSON-lines trace for programs (and `proclaim replay`), and file watching that rereads a
 //! machine when its file changes.
 
+use super::record;
 use crate::behaviours::load_behaviour;
 use crate::cli::RunArgs;
 use crate::failure::Failure;
@@ -142,6 +143,11 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         if !args.network.is_local() {
             println!("  {}", args.network.describe());
         }
+        // Subscribed before anything starts, so the record misses nothing.
+        let recorder = match &args.record {
+            Some(path) => Some(record::start(&board, path)?),
+            None => None,
+        };
         let mut running = launch(&behaviour, &board, options)
             .await
             .map_err(Failure::Start)?;
@@ -243,6 +249,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             stats.posts, stats.queries, stats.timeouts, stats.unanswerable
         );
         running.stop().await;
+        if let Some(recorder) = recorder {
+            let (written, path) = recorder.finish().await;
+            println!("  {written} messages recorded in {}", path.display());
+        }
         Ok::<bool, Failure>(halted)
     })?;
     if let Some(mut file) = trace_file {
@@ -466,18 +476,63 @@ fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceive
 
 /// `proclaim replay`: a JSON-lines trace printed as the live trace was, at `speed` times its
 /// real pace (`None`: at once).
+/// The lines of a `--record` file (`None` when the file is a trace instead), or the first line
+/// that is not a recorded message.
+fn read_record(text: &str) -> Option<Result<Vec<(u64, String)>, String>> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let first: serde_json::Value = serde_json::from_str(lines.clone().next()?.1).ok()?;
+    first.get("seq")?;
+    Some(
+        lines
+            .try_fold(Vec::new(), |mut out, (i, l)| -> Result<_, usize> {
+                let value: serde_json::Value = serde_json::from_str(l).map_err(|_| i + 1)?;
+                let shown = record::shown(&value).ok_or(i + 1)?;
+                out.push((value["at_us"].as_u64().unwrap_or(0), shown));
+                Ok(out)
+            })
+            .map_err(|line| format!("line {line}: not a recorded message")),
+    )
+}
+
+fn replay_record(
+    file: &Path,
+    recorded: &Result<Vec<(u64, String)>, String>,
+    speed: Option<f64>,
+) -> Result<ExitCode, Failure> {
+    let recorded = recorded
+        .as_ref()
+        .map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
+    let start = std::time::Instant::now();
+    for (at, line) in recorded {
+        if let Some(speed) = speed {
+            let due = Duration::from_micros(*at).div_f64(speed);
+            if let Some(wait) = due.checked_sub(start.elapsed()) {
+                std::thread::sleep(wait.min(Duration::from_secs(3600)));
+            }
+        }
+        println!("{line}");
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 pub fn replay(file: &Path, speed: Option<f64>) -> Result<ExitCode, Failure> {
     let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
         path: file.to_path_buf(),
         error,
     })?;
-    let events =
-        read_trace(&text).map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
     if speed.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
         return Err(Failure::Argument(
             "--speed must be a positive number".into(),
         ));
     }
+    if let Some(recorded) = read_record(&text) {
+        return replay_record(file, &recorded, speed);
+    }
+    let events =
+        read_trace(&text).map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
     let width = events.iter().map(|e| e.machine().len()).max().unwrap_or(8);
     let mut view = TraceView::new(width);
     let start = std::time::Instant::now();

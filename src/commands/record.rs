@@ -1,0 +1,100 @@
+//! `run --record`: every whiteboard message as one JSON line (`seq`, `at_us`, `module`, `type`,
+//! `value`), written while the behaviour runs, and read back by `proclaim replay`.
+
+use crate::failure::Failure;
+use proclaim_board::{Message, Pattern, Value, Whiteboard};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A record being written.
+pub struct Recorder {
+    task: tokio::task::JoinHandle<u64>,
+    stop: tokio::sync::oneshot::Sender<()>,
+    path: PathBuf,
+}
+
+/// Subscribes to everything on `board` and writes it to `path` until told to finish.
+pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
+    let file = std::fs::File::create(path).map_err(|error| Failure::Write {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let mut out = std::io::BufWriter::new(file);
+    let mut all = board.subscribe_pattern(Pattern::All);
+    let (stop, mut stopped) = tokio::sync::oneshot::channel();
+    let task = tokio::spawn(async move {
+        let mut written = 0u64;
+        let mut write = |m: &Message| {
+            if writeln!(out, "{}", line(m)).is_ok() {
+                written += 1;
+            }
+        };
+        loop {
+            tokio::select! {
+                biased;
+                message = all.next() => match message {
+                    Some(m) => write(&m),
+                    None => break,
+                },
+                _ = &mut stopped => {
+                    // What is already queued belongs to the run too.
+                    while let Some(m) = all.try_next() {
+                        write(&m);
+                    }
+                    break;
+                }
+            }
+        }
+        let _ = out.flush();
+        written
+    });
+    Ok(Recorder {
+        task,
+        stop,
+        path: path.to_path_buf(),
+    })
+}
+
+impl Recorder {
+    /// Stops recording; how many messages were written, and where.
+    pub async fn finish(self) -> (u64, PathBuf) {
+        let _ = self.stop.send(());
+        (self.task.await.unwrap_or(0), self.path)
+    }
+}
+
+/// One message as a JSON line.
+pub fn line(m: &Message) -> String {
+    serde_json::json!({
+        "seq": m.seq,
+        "at_us": m.time.as_micros() as u64,
+        "module": &*m.module,
+        "type": &*m.ty,
+        "value": json(&m.value),
+    })
+    .to_string()
+}
+
+fn json(value: &Value) -> serde_json::Value {
+    match value {
+        Value::Bool(b) => serde_json::json!(b),
+        Value::Int(i) => serde_json::json!(i),
+        Value::Float(x) => serde_json::json!(x),
+        Value::Str(s) => serde_json::json!(s),
+        Value::Bytes(b) => serde_json::json!({ "bytes": b }),
+        Value::List(items) => serde_json::Value::Array(items.iter().map(json).collect()),
+    }
+}
+
+/// A recorded message as `replay` prints it, or `None` when the line is not one.
+pub fn shown(line: &serde_json::Value) -> Option<String> {
+    let at = line.get("at_us")?.as_u64()?;
+    let module = line.get("module")?.as_str()?;
+    let ty = line.get("type")?.as_str()?;
+    let value = line.get("value")?;
+    Some(format!(
+        "{:>8.3}s #{:<6} {module:<14} {ty} = {value}",
+        at as f64 / 1e6,
+        line.get("seq")?.as_u64()?
+    ))
+}
