@@ -290,8 +290,9 @@ async fn malformed_and_foreign_packets_are_counted_and_ignored() {
     ] {
         socket.send_to(datagram, addr).await.unwrap();
     }
-    eventually("seven datagrams", || {
-        counters.received.load(Ordering::Relaxed) == 7
+    // The receiver counts a datagram before it posts what it means: wait for both.
+    eventually("seven datagrams, the good one posted", || {
+        counters.received.load(Ordering::Relaxed) == 7 && board.truth("initialReceived").is_some()
     })
     .await;
     let load = |c: &std::sync::atomic::AtomicU64| c.load(Ordering::Relaxed);

@@ -65,6 +65,9 @@ impl TraceView {
         let mut line = String::new();
         match event.at() {
             Some(at) => {
+                // In whole microseconds, as the JSON trace keeps it, so a replay prints the
+                // same digits.
+                let at = std::time::Duration::from_micros(at.as_micros() as u64);
                 let _ = write!(line, "{:>8.3}s ", at.as_secs_f64());
             }
             None => line.push_str("          "),
