@@ -72,8 +72,8 @@ pub enum Command {
     Prove {
         /// A .dl or .dfl file, or an embedded theory (offside, microwave, tweety, …)
         theory: String,
-        /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`)
-        #[arg(required = true)]
+        /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`); none:
+        /// every conclusion (`+beta a` a line)
         queries: Vec<String>,
         #[arg(long, value_enum, default_value = "beta")]
         alg: AlgArg,

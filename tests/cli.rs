@@ -95,14 +95,27 @@ fn prove_json() {
 
 #[test]
 fn bad_input_exits_2_and_says_why() {
-    let o = proclaim(&["prove", "tweety", "flyy"]);
-    assert_eq!(o.status.code(), Some(2));
+    // An atom the theory never mentions is not provable (as SPINdle and Deimos answer it):
+    // `-` under every algorithm, a warning with a did-you-mean, exit 0.
+    let o = proclaim(&["prove", "tweety", "flyy", "--alg", "all"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        stdout(&o),
+        "-mu flyy\n-pi flyy\n-beta flyy\n-alpha flyy\n-delta flyy\n"
+    );
     assert!(
-        stderr(&o).contains("the theory has no atom `flyy`"),
+        stderr(&o).contains("warning: the theory has no atom `flyy`"),
         "{}",
         stderr(&o)
     );
     assert!(stderr(&o).contains("did you mean `fly`?"), "{}", stderr(&o));
+    // Inside a clause it is still an error: the clause means something else than was written.
+    let o = proclaim(&["prove", "tweety", "\\/{flyy, fly}"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // No query: every conclusion.
+    let o = proclaim(&["prove", "tweety"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(stdout(&o), "+beta bird\n+beta fly\n");
     let o = proclaim(&["prove", "microwave", "cook", "--set", "door=true"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(

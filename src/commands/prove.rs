@@ -15,18 +15,45 @@ pub fn run(
     json: bool,
 ) -> Result<ExitCode, Failure> {
     let (source, theory) = load::theory(theory_name)?;
-    let formulas = queries
-        .iter()
-        .map(|q| inputs::formula(q, &theory, &source))
-        .collect::<Result<Vec<_>, _>>()?;
+    // A literal whose atom the theory lacks is not provable: answered `-`, with a warning, as
+    // SPINdle and Deimos answer it. Any other bad query is an error.
+    let mut formulas = Vec::new();
+    for q in queries {
+        match inputs::formula(q, &theory, &source) {
+            Ok(f) => formulas.push(Some(f)),
+            Err(Failure::Invalid { rendered, .. }) if unknown_literal(q, &theory) => {
+                // The same words and caret, as a warning: the answer is `-`, not a failure.
+                eprint!("{}", rendered.replacen("error", "warning", 1));
+                eprintln!(
+                    "warning: `{}` is not provable: the theory never mentions it",
+                    q.trim()
+                );
+                formulas.push(None);
+            }
+            Err(failure) => return Err(failure),
+        }
+    }
     let mut session = Session::new(Engine::new(theory));
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
     let mut answers = Vec::new();
-    for formula in &formulas {
+    for (formula, query) in formulas.iter().zip(queries) {
         for alg in algorithms(alg) {
-            let proved = session.prove_formula(alg, formula);
-            answers.push((alg, formula.show(engine.theory()), proved));
+            match formula {
+                Some(f) => {
+                    let proved = session.prove_formula(alg, f);
+                    answers.push((alg, f.show(engine.theory()), proved));
+                }
+                None => answers.push((alg, query.trim().to_string(), false)),
+            }
+        }
+    }
+    // No query: every conclusion of each algorithm asked for.
+    if queries.is_empty() {
+        for alg in algorithms(alg) {
+            for lit in session.conclusions(alg) {
+                answers.push((alg, engine.theory().show(lit).to_string(), true));
+            }
         }
     }
     if json {
@@ -43,4 +70,12 @@ pub fn run(
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Whether `query` is a plain literal (`a`, `~a`) naming an atom the theory does not have.
+fn unknown_literal(query: &str, theory: &proclaim_cdl::Theory) -> bool {
+    match proclaim_syntax::parse_query(query) {
+        Ok(proclaim_syntax::Query::Lit(l)) => theory.atom(l.atom.text(query)).is_none(),
+        _ => false,
+    }
 }
