@@ -27,6 +27,12 @@ pub enum AlgArg {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ProveFormat {
+    Text,
+    Spindle,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum TableFormat {
     Text,
     Csv,
@@ -83,6 +89,10 @@ pub enum Command {
         /// Print a JSON array instead of lines
         #[arg(long)]
         json: bool,
+        /// `spindle`: SPINdle's conclusions, `+D`/`-D` (definite, μ) and `+d`/`-d` (defeasible,
+        /// β) for every literal (or each query), negation written `-a`, to diff against SPINdle
+        #[arg(long, value_enum, default_value = "text")]
+        format: ProveFormat,
     },
     /// Print the truth table of the declared outputs over the declared inputs
     Table {

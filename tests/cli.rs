@@ -1263,3 +1263,24 @@ fn record_keeps_every_whiteboard_message_and_replay_prints_it() {
         stdout(&o)
     );
 }
+
+#[test]
+fn prove_in_spindles_form() {
+    let o = proclaim(&["prove", "tweety", "fly", "~fly", "--format", "spindle"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(stdout(&o), "-D fly\n+d fly\n-D -fly\n-d -fly\n");
+    let o = proclaim(&[
+        "prove",
+        "tweety",
+        "--format",
+        "spindle",
+        "--set",
+        "penguin=true",
+    ]);
+    assert!(
+        stdout(&o).contains("+D penguin\n+d penguin\n"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(stdout(&o).contains("-D fly\n-d fly\n"), "{}", stdout(&o));
+}

@@ -29,7 +29,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             alg,
             set,
             json,
-        } => prove::run(&theory, &queries, alg, &set, json),
+            format,
+        } => match format {
+            crate::cli::ProveFormat::Spindle => prove::spindle(&theory, &queries, &set),
+            crate::cli::ProveFormat::Text => prove::run(&theory, &queries, alg, &set, json),
+        },
         Command::Table { theory, format } => table::run(&theory, format),
         Command::Explain {
             theory,

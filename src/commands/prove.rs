@@ -79,3 +79,54 @@ fn unknown_literal(query: &str, theory: &proclaim_cdl::Theory) -> bool {
         _ => false,
     }
 }
+
+/// SPINdle's form of the conclusions: `+D`/`-D` for μ (definitely), `+d`/`-d` for β
+/// (defeasibly, ambiguity blocking, SPINdle's default), for every literal of the theory in
+/// atom order (or each literal queried), negation written `-a` as in `.dfl`.
+pub fn spindle(
+    theory_name: &str,
+    queries: &[String],
+    sets: &[String],
+) -> Result<ExitCode, Failure> {
+    let (source, theory) = load::theory(theory_name)?;
+    let mut lits = Vec::new();
+    for q in queries {
+        match inputs::formula(q, &theory, &source)? {
+            proclaim_cdl::Formula::Lit(l) => lits.push(l),
+            _ => {
+                return Err(Failure::Argument(format!(
+                    "{q}: --format spindle answers literals only"
+                )))
+            }
+        }
+    }
+    if queries.is_empty() {
+        let mut atoms: Vec<u32> = (0..theory.atom_count() as u32).collect();
+        atoms.sort_by_key(|&a| theory.atom_name(proclaim_cdl::Atom(a)).to_string());
+        for a in atoms {
+            let atom = proclaim_cdl::Atom(a);
+            lits.push(proclaim_cdl::Lit::new(atom, false));
+            lits.push(proclaim_cdl::Lit::new(atom, true));
+        }
+    }
+    let mut session = Session::new(Engine::new(theory));
+    let engine = session.engine().clone();
+    inputs::apply(&mut session, engine.theory(), sets)?;
+    let theory = engine.theory();
+    for lit in lits {
+        let name = theory.atom_name(lit.atom());
+        let shown = if lit.is_negated() {
+            format!("-{name}")
+        } else {
+            name.to_string()
+        };
+        for (tag, alg) in [
+            ('D', proclaim_cdl::Algorithm::Mu),
+            ('d', proclaim_cdl::Algorithm::Beta),
+        ] {
+            let sign = if session.prove(alg, lit) { '+' } else { '-' };
+            println!("{sign}{tag} {shown}");
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
