@@ -64,22 +64,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     }
     let script = match &args.script {
         None => None,
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-                path: path.clone(),
-                error,
-            })?;
-            Some(parse_script(&text).map_err(|errors| {
-                Failure::Invalid {
-                    what: "the script",
-                    errors: errors.len(),
-                    rendered: errors
-                        .iter()
-                        .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
-                        .collect(),
-                }
-            })?)
-        }
+        Some(path) => Some(read_script(path)?),
     };
     refuse_unchecked(&behaviour, script.as_ref(), &args)?;
     let limit = match &args.duration {
@@ -99,25 +84,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             })?,
         )),
     };
-    if args.virtual_clock && !args.network.is_local() {
-        return Err(Failure::Argument(
-            "--virtual-clock runs on a board of its own: it cannot --listen or --connect".into(),
-        ));
-    }
-    let runtime = if args.virtual_clock {
-        // One thread and tokio's paused clock: when every task waits, time jumps to the next
-        // timer, so a minute of behaviour passes at once and in the same order every time.
-        tokio::runtime::Builder::new_current_thread()
-            .enable_all()
-            .start_paused(true)
-            .build()
-    } else {
-        tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(2)
-            .enable_all()
-            .build()
-    }
-    .map_err(|e| Failure::Start(format!("no async runtime: {e}")))?;
+    let runtime = runtime(&args)?;
     let script_used = script.is_some() || behaviour.script.is_some();
     let options = LaunchOptions {
         script,
@@ -125,17 +92,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         halt_on_timeout: args.halt_on_timeout,
         hosts: proclaim_runner::Hosts::default(),
         stepper: args.step.then(Stepper::default),
-        person: (!args.ask.is_empty()).then(|| {
-            proclaim_experts::Impersonator::new(
-                "person",
-                args.ask.clone(),
-                proclaim_experts::Script::default(),
-            )
-            .with_person(
-                tokio::io::BufReader::new(tokio::io::stdin()),
-                tokio::io::stdout(),
-            )
-        }),
+        person: person(&args.ask),
     };
     let stepper = options.stepper.clone();
     let outcome = runtime.block_on(async {
@@ -156,27 +113,9 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             .iter()
             .map(|m| m.machine.name.as_str())
             .collect();
-        println!(
-            "running {}{} ({} machine{}{})",
-            behaviour.name,
-            behaviour
-                .manifest
-                .description
-                .as_deref()
-                .map(|d| format!(": {d}"))
-                .unwrap_or_default(),
-            machines.len(),
-            if machines.len() == 1 { "" } else { "s" },
-            match limit {
-                Some(d) => format!(", for {d:?} at most"),
-                None => String::new(),
-            }
-        );
-        for note in &running.notes {
-            println!("  {note}");
-        }
+        announce(&behaviour, machines.len(), limit, &running.notes);
         // The script's postings show under the name `impersonator`.
-        let scripted = (script_used).then_some("impersonator");
+        let scripted = script_used.then_some("impersonator");
         let width = machines.iter().copied().chain(scripted).map(str::len).max();
         let mut view = TraceView::new(width.unwrap_or(8));
         if let Some(stepper) = stepper {
@@ -185,63 +124,13 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             running.stop().await;
             return Ok(false);
         }
-        let mut changed = watch(&behaviour, args.watch);
-        let deadline = limit.map(|d| tokio::time::Instant::now() + d);
-        let started = tokio::time::Instant::now();
-        let mut halted = false;
-        let why = loop {
-            let sleep = async {
-                match deadline {
-                    Some(at) => tokio::time::sleep_until(at).await,
-                    None => std::future::pending().await,
-                }
-            };
-            tokio::select! {
-                event = running.events.recv() => {
-                    let Some(event) = event else { break "every machine stopped".to_string() };
-                    if let Some(line) = view.line(&event) {
-                        println!("{line}");
-                    }
-                    if let Some(file) = trace_file.as_mut() {
-                        let json = serde_json::to_string(&event).unwrap_or_default();
-                        if let Err(e) = writeln!(file, "{json}") {
-                            eprintln!("warning: the trace file could not be written: {e}");
-                            trace_file = None;
-                        }
-                    }
-                    halted |= matches!(event, Event::Halted { .. });
-                    if running.observe(&event) {
-                        break format!(
-                            "every machine that started is in a final state or halted, after {:.3} s",
-                            started.elapsed().as_secs_f64()
-                        );
-                    }
-                }
-                () = sleep => break format!("ran for {:?}", limit.unwrap_or_default()),
-                _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
-                Some(first) = changed.recv() => {
-                    // One save is several file events (create, write, metadata): gather those
-                    // of the next moments and reread each machine once.
-                    let mut machines = vec![first];
-                    let settle = tokio::time::sleep(WATCH_SETTLE);
-                    tokio::pin!(settle);
-                    loop {
-                        tokio::select! {
-                            _ = &mut settle => break,
-                            Some(more) = changed.recv() => {
-                                if !machines.contains(&more) {
-                                    machines.push(more);
-                                }
-                            }
-                        }
-                    }
-                    for machine in machines {
-                        println!("          {machine}: its file changed; rereading");
-                        board.post("watch", &machine, "reread");
-                    }
-                }
-            }
+        let changed = watch(&behaviour, args.watch);
+        let live = Live {
+            view,
+            trace_file: &mut trace_file,
+            changed,
         };
+        let (why, halted) = live.follow(&board, &mut running, limit).await;
         let stats = board.stats();
         println!("stopped: {why}");
         println!(
@@ -263,6 +152,160 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    parse_script(&text).map_err(|errors| Failure::Invalid {
+        what: "the script",
+        errors: errors.len(),
+        rendered: errors
+            .iter()
+            .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
+            .collect(),
+    })
+}
+
+/// Two worker threads; or, for `--virtual-clock`, one thread and tokio's paused clock: when
+/// every task waits, time jumps to the next timer, so a minute of behaviour passes at once and
+/// in the same order every time.
+fn runtime(args: &RunArgs) -> Result<tokio::runtime::Runtime, Failure> {
+    if args.virtual_clock && !args.network.is_local() {
+        return Err(Failure::Argument(
+            "--virtual-clock runs on a board of its own: it cannot --listen or --connect".into(),
+        ));
+    }
+    if args.virtual_clock {
+        tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+    } else {
+        tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+    }
+    .map_err(|e| Failure::Start(format!("no async runtime: {e}")))
+}
+
+/// `--ask`: an impersonator that asks the person at this terminal.
+fn person(atoms: &[String]) -> Option<proclaim_experts::Impersonator> {
+    (!atoms.is_empty()).then(|| {
+        proclaim_experts::Impersonator::new("person", atoms.to_vec(), Default::default())
+            .with_person(
+                tokio::io::BufReader::new(tokio::io::stdin()),
+                tokio::io::stdout(),
+            )
+    })
+}
+
+fn announce(behaviour: &Behaviour, machines: usize, limit: Option<Duration>, notes: &[String]) {
+    println!(
+        "running {}{} ({} machine{}{})",
+        behaviour.name,
+        behaviour
+            .manifest
+            .description
+            .as_deref()
+            .map(|d| format!(": {d}"))
+            .unwrap_or_default(),
+        machines,
+        if machines == 1 { "" } else { "s" },
+        match limit {
+            Some(d) => format!(", for {d:?} at most"),
+            None => String::new(),
+        }
+    );
+    for note in notes {
+        println!("  {note}");
+    }
+}
+
+/// What a live run prints and writes as it goes.
+struct Live<'t> {
+    view: TraceView,
+    trace_file: &'t mut Option<std::io::BufWriter<std::fs::File>>,
+    /// Machines whose files changed (`--watch`).
+    changed: tokio::sync::mpsc::UnboundedReceiver<String>,
+}
+
+impl Live<'_> {
+    /// Prints and records events until the run is over, the limit passes or Ctrl-C; why it
+    /// stopped, and whether a machine halted.
+    async fn follow(
+        mut self,
+        board: &Whiteboard,
+        running: &mut proclaim_behaviour::Running,
+        limit: Option<Duration>,
+    ) -> (String, bool) {
+        let deadline = limit.map(|d| tokio::time::Instant::now() + d);
+        let started = tokio::time::Instant::now();
+        let mut halted = false;
+        let why = loop {
+            let sleep = async {
+                match deadline {
+                    Some(at) => tokio::time::sleep_until(at).await,
+                    None => std::future::pending().await,
+                }
+            };
+            tokio::select! {
+                event = running.events.recv() => {
+                    let Some(event) = event else { break "every machine stopped".to_string() };
+                    self.show(&event);
+                    halted |= matches!(event, Event::Halted { .. });
+                    if running.observe(&event) {
+                        break format!(
+                            "every machine that started is in a final state or halted, after {:.3} s",
+                            started.elapsed().as_secs_f64()
+                        );
+                    }
+                }
+                () = sleep => break format!("ran for {:?}", limit.unwrap_or_default()),
+                _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
+                Some(first) = self.changed.recv() => self.reread(first, board).await,
+            }
+        };
+        (why, halted)
+    }
+
+    fn show(&mut self, event: &Event) {
+        if let Some(line) = self.view.line(event) {
+            println!("{line}");
+        }
+        if let Some(file) = self.trace_file.as_mut() {
+            let json = serde_json::to_string(event).unwrap_or_default();
+            if let Err(e) = writeln!(file, "{json}") {
+                eprintln!("warning: the trace file could not be written: {e}");
+                *self.trace_file = None;
+            }
+        }
+    }
+
+    /// One save is several file events (create, write, metadata): gathers those of the next
+    /// moments and rereads each machine once.
+    async fn reread(&mut self, first: String, board: &Whiteboard) {
+        let mut machines = vec![first];
+        let settle = tokio::time::sleep(WATCH_SETTLE);
+        tokio::pin!(settle);
+        loop {
+            tokio::select! {
+                _ = &mut settle => break,
+                Some(more) = self.changed.recv() => {
+                    if !machines.contains(&more) {
+                        machines.push(more);
+                    }
+                }
+            }
+        }
+        for machine in machines {
+            println!("          {machine}: its file changed; rereading");
+            board.post("watch", &machine, "reread");
+        }
+    }
 }
 
 const STEP_HELP: &str = "Enter: one ring of every running machine · ATOM=true|false: post an answer (labels no expert answers read it) · post TYPE VALUE · q: quit";

@@ -3,7 +3,7 @@
 //! nobody listens to, sub-machines that do not exist, theory outputs nobody queries and inputs
 //! nobody posts, sub-machines nothing starts. Each finding names the file and line it is about.
 
-use crate::load::Behaviour;
+use crate::load::{Behaviour, LoadedMachine};
 use crate::modules::{modules, Module, ModuleKind};
 use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
@@ -20,46 +20,89 @@ pub fn check_behaviour_with(
     script: Option<(&str, &Script)>,
     asked: &[String],
 ) -> Vec<FileDiagnostic> {
-    let all = modules(behaviour);
-    let files = behaviour.files.as_ref();
+    let mut answered_elsewhere = script.map(|(_, s)| s.atoms()).unwrap_or_default();
+    answered_elsewhere.extend(asked.iter().cloned());
+    let whole = Whole {
+        behaviour,
+        all: modules(behaviour),
+        answered_elsewhere,
+        shared: behaviour.shared_variables(),
+    };
     let mut out = Vec::new();
-    let mut scripted = script.map(|(_, s)| s.atoms()).unwrap_or_default();
-    scripted.extend(asked.iter().cloned());
-    let answered = |atom: &str| {
-        scripted.iter().any(|a| a == atom)
-            || all.iter().any(|m| m.decl.answers.iter().any(|a| a == atom))
-    };
-    let posted_by_other = |ty: &str, me: &str| {
-        all.iter()
+    for loaded in &behaviour.machines {
+        out.extend(whole.machine_findings(loaded));
+    }
+    out.extend(script_warnings_of(behaviour, &whole.all, script));
+    out.extend(whole.unstarted());
+    for module in &whole.all {
+        if let ModuleKind::Theory { file } = &module.kind {
+            out.extend(whole.theory_findings(module, file));
+        }
+    }
+    out
+}
+
+/// A behaviour and every module's declaration: what only the whole shows.
+struct Whole<'b> {
+    behaviour: &'b Behaviour,
+    all: Vec<Module>,
+    /// Atoms a script or a person answers.
+    answered_elsewhere: Vec<String>,
+    /// The machines' shared variables (a label's names that are variables ask nobody).
+    shared: std::sync::Arc<proclaim_runner::Shared>,
+}
+
+impl Whole<'_> {
+    fn answered(&self, atom: &str) -> bool {
+        self.answered_elsewhere.iter().any(|a| a == atom)
+            || self
+                .all
+                .iter()
+                .any(|m| m.decl.answers.iter().any(|a| a == atom))
+    }
+
+    fn posted_by_other(&self, ty: &str, me: &str) -> bool {
+        self.all
+            .iter()
             .any(|m| m.decl.name != me && m.decl.posts.iter().any(|p| p == ty))
-    };
-    // A machine may read back what it posts itself.
-    let read_by = |ty: &str| {
-        all.iter().any(|m| {
+    }
+
+    /// A machine may read back what it posts itself.
+    fn read_by(&self, ty: &str) -> bool {
+        self.all.iter().any(|m| {
             m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty)
         })
-    };
-    let is_machine = |name: &str| behaviour.machines.iter().any(|m| m.machine.name == name);
-    let shared = behaviour.shared_variables();
-    for loaded in &behaviour.machines {
+    }
+
+    fn is_machine(&self, name: &str) -> bool {
+        self.behaviour
+            .machines
+            .iter()
+            .any(|m| m.machine.name == name)
+    }
+
+    /// One machine's own problems, then labels nobody answers and postings nobody hears.
+    fn machine_findings(&self, loaded: &LoadedMachine) -> Vec<FileDiagnostic> {
         let m = &loaded.machine;
-        let file = files.show(&loaded.file);
-        out.extend(lint(m, &file));
+        let file = self.behaviour.files.show(&loaded.file);
+        let mut out = lint(m, &file);
         let mut reported: Vec<String> = Vec::new();
         for t in &m.transitions {
-            for atom in proclaim_runner::asked(&t.label, m, &shared) {
-                let own_status = machine_of_running_type(atom).is_some_and(is_machine);
-                if answered(atom) || own_status || posted_by_other(atom, &m.name) {
+            for atom in proclaim_runner::asked(&t.label, m, &self.shared) {
+                let own_status = machine_of_running_type(atom).is_some_and(|n| self.is_machine(n));
+                if self.answered(atom)
+                    || own_status
+                    || self.posted_by_other(atom, &m.name)
+                    || reported.iter().any(|r| r == atom)
+                {
                     continue;
                 }
-                if !reported.iter().any(|r| r == atom) {
-                    reported.push(atom.to_string());
-                    out.push(FileDiagnostic::error(
-                        &file,
-                        t.line,
-                        format!("label `{atom}` is answered by no expert and posted by no module"),
-                    ));
-                }
+                reported.push(atom.to_string());
+                out.push(FileDiagnostic::error(
+                    &file,
+                    t.line,
+                    format!("label `{atom}` is answered by no expert and posted by no module"),
+                ));
             }
         }
         for state in &m.states {
@@ -72,7 +115,7 @@ pub fn check_behaviour_with(
                 let Action::Post { ty, content } = action else {
                     continue;
                 };
-                if reported.iter().any(|r| r == ty) || is_machine(ty) || read_by(ty) {
+                if reported.iter().any(|r| r == ty) || self.is_machine(ty) || self.read_by(ty) {
                     continue;
                 }
                 reported.push(ty.clone());
@@ -97,31 +140,34 @@ pub fn check_behaviour_with(
                 });
             }
         }
+        out
     }
-    out.extend(script_warnings_of(behaviour, &all, script));
-    for loaded in behaviour.machines.iter().filter(|m| !m.start) {
-        let name = &loaded.machine.name;
-        let started = all
-            .iter()
-            .any(|m| m.decl.name != *name && m.decl.posts.iter().any(|p| p == name));
-        if !started {
-            out.push(FileDiagnostic::warning(
-                &files.show(&loaded.file),
-                1,
-                format!(
-                    "sub-machine `{name}` has `start = false` and no module posts `{name}: On`, so it never runs"
-                ),
-            ));
+
+    /// Sub-machines with `start = false` that no module posts `On` to.
+    fn unstarted(&self) -> Vec<FileDiagnostic> {
+        let mut out = Vec::new();
+        for loaded in self.behaviour.machines.iter().filter(|m| !m.start) {
+            let name = &loaded.machine.name;
+            if !self.posted_by_other(name, name) {
+                out.push(FileDiagnostic::warning(
+                    &self.behaviour.files.show(&loaded.file),
+                    1,
+                    format!(
+                        "sub-machine `{name}` has `start = false` and no module posts `{name}: On`, so it never runs"
+                    ),
+                ));
+            }
         }
+        out
     }
-    for module in &all {
-        let ModuleKind::Theory { file } = &module.kind else {
-            continue;
-        };
-        let shown = files.show(file);
-        let line_of = declared_lines(behaviour, file);
+
+    /// A theory's outputs nobody queries and inputs nobody posts, at their declarations.
+    fn theory_findings(&self, module: &Module, file: &str) -> Vec<FileDiagnostic> {
+        let shown = self.behaviour.files.show(file);
+        let line_of = declared_lines(self.behaviour, file);
+        let mut out = Vec::new();
         for output in &module.decl.answers {
-            if queried(&all, output) {
+            if queried(&self.all, output) {
                 continue;
             }
             let mut message = format!(
@@ -129,7 +175,7 @@ pub fn check_behaviour_with(
                 module.decl.name
             );
             // `~x` in a label asks for `x` and negates the answer: it never asks for `~x`.
-            if let Some(atom) = output.strip_prefix('~').filter(|a| queried(&all, a)) {
+            if let Some(atom) = output.strip_prefix('~').filter(|a| queried(&self.all, a)) {
                 message.push_str(&format!(
                     "; a label `~{atom}` asks for `{atom}` and negates its answer, so declare `output{{{atom}}}` for it"
                 ));
@@ -142,7 +188,7 @@ pub fn check_behaviour_with(
             .iter()
             .filter(|r| *r != proclaim_board::QUERY_TYPE)
         {
-            if !posted_by_other(input, &module.decl.name) {
+            if !self.posted_by_other(input, &module.decl.name) {
                 out.push(FileDiagnostic::warning(
                     &shown,
                     line_of(input),
@@ -153,8 +199,8 @@ pub fn check_behaviour_with(
                 ));
             }
         }
+        out
     }
-    out
 }
 
 /// The line where a theory file of the behaviour declares an output or an input (1 when
