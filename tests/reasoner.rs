@@ -200,6 +200,25 @@ fn an_input_that_contradicts_the_axioms_is_refused_and_nothing_changes() {
 }
 
 #[test]
+fn one_of_an_input_group_true_makes_the_others_false_or_changes_nothing() {
+    let theory = load("input{a, b, c}. input{e}. \\/{b, e}.", Language::Dl).unwrap();
+    let [a, b, c, e] = ["a", "b", "c", "e"].map(|n| theory.atom(n).unwrap());
+    let mut s = Session::new(Engine::new(theory));
+    s.set_input(b, Some(true)).unwrap();
+    s.set_input(c, Some(true)).unwrap();
+    assert_eq!((s.input(b), s.input(c)), (Some(false), Some(true)));
+    s.set_input(e, Some(false)).unwrap_err(); // `\/{b, e}` with b false
+    s.set_input(b, Some(true)).unwrap();
+    s.set_input(e, Some(false)).unwrap();
+    // a true would make b false, which the axiom forbids with e false: all or nothing.
+    s.set_input(a, Some(true)).unwrap_err();
+    assert_eq!(
+        (s.input(a), s.input(b), s.input(c)),
+        (Some(false), Some(true), Some(false))
+    );
+}
+
+#[test]
 fn explanations_name_supporters_and_attackers() {
     let theory = load(&format!("bird. penguin. {TWEETY}"), Language::Dl).unwrap();
     let fly = theory.lit("~fly").unwrap();

@@ -51,11 +51,6 @@ impl Command {
             .into_iter()
             .find(|c| c.word() == word || c.word().eq_ignore_ascii_case(word))
     }
-
-    /// Whether the command starts a machine that is not running.
-    pub fn starts(self) -> bool {
-        matches!(self, Command::On | Command::Resume | Command::Restart)
-    }
 }
 
 impl fmt::Display for Command {

@@ -110,19 +110,6 @@ impl Shared {
         }
     }
 
-    /// Every global and its value, sorted by name (for a person looking at a run).
-    pub fn globals(&self) -> Vec<(String, Value)> {
-        let mut all: Vec<_> = self
-            .globals
-            .read()
-            .unwrap_or_else(|e| e.into_inner())
-            .iter()
-            .map(|(k, v)| (k.clone(), v.clone()))
-            .collect();
-        all.sort_by(|a, b| a.0.cmp(&b.0));
-        all
-    }
-
     pub(crate) fn changes(&self) -> watch::Receiver<u64> {
         self.changes.subscribe()
     }

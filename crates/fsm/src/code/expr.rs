@@ -116,10 +116,6 @@ const UNARY_PRECEDENCE: u8 = 7;
 impl Expr {
     pub const TRUE: Expr = Expr::Bool(true);
 
-    pub fn name(name: &str) -> Expr {
-        Expr::Name(name.to_string())
-    }
-
     pub fn negation(operand: Expr) -> Expr {
         Expr::Unary {
             op: UnOp::Not,
@@ -140,24 +136,6 @@ impl Expr {
         parts
             .into_iter()
             .reduce(|left, right| Expr::binary(op, left, right))
-    }
-
-    pub fn call(function: &str, arguments: Vec<Expr>) -> Expr {
-        Expr::Call {
-            function: function.to_string(),
-            arguments,
-        }
-    }
-
-    /// Every name read, in order, once each (not the names of called functions).
-    pub fn names(&self) -> Vec<&str> {
-        let mut out = Vec::new();
-        self.visit_names(&mut |name, _| {
-            if !out.contains(&name) {
-                out.push(name);
-            }
-        });
-        out
     }
 
     /// Names standing where a truth value is wanted (the whole label, or an operand of `!`,
