@@ -93,6 +93,10 @@ pub enum Command {
         /// β) for every literal (or each query), negation written `-a`, to diff against SPINdle
         #[arg(long, value_enum, default_value = "text")]
         format: ProveFormat,
+        /// Search steps allowed inside one attack cycle (default 10,000,000); an answer not
+        /// decided within them prints as `?beta q  (undecided: …)` and the exit status is 3
+        #[arg(long, value_name = "STEPS")]
+        budget: Option<u64>,
     },
     /// Print the truth table of the declared outputs over the declared inputs
     Table {

@@ -1284,3 +1284,70 @@ fn prove_in_spindles_form() {
     );
     assert!(stdout(&o).contains("-D fly\n-d fly\n"), "{}", stdout(&o));
 }
+
+fn generated(family: &str, size: u64) -> std::path::PathBuf {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse(family, &[size])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    temp_file(&format!("{family}-{size}.dl"), &text)
+}
+
+#[test]
+fn prove_prints_an_undecided_answer_and_exits_3() {
+    let ladder = generated("ladder", 6);
+    let path = ladder.to_str().unwrap();
+    check(
+        &["prove", path, "t0", "~t0", "--budget", "1000"],
+        3,
+        "?beta t0  (undecided: search budget of 1000 steps spent in an attack cycle of 24 goals; raise it with --budget)\n-beta ~t0\n",
+    );
+    check(&["prove", path, "t0"], 0, "+beta t0\n");
+    let o = proclaim(&["prove", path, "t0", "--json", "--budget", "1000"]);
+    let answers: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(answers[0]["proved"], serde_json::Value::Null);
+    assert!(answers[0]["undecided"]
+        .as_str()
+        .unwrap()
+        .contains("24 goals"));
+    let o = proclaim(&[
+        "prove", path, "t0", "--format", "spindle", "--budget", "1000",
+    ]);
+    assert_eq!(
+        (o.status.code(), stdout(&o).as_str()),
+        (Some(3), "-D t0\n?d t0\n")
+    );
+    assert!(
+        stderr(&o).contains("`beta t0` is undecided"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
+    let ladder = generated("ladder", 6);
+    let o = proclaim(&["check", ladder.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(
+        stderr(&o).contains(
+            "warning: rules attack each other in a cycle of 24 goals that only a search decides"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    // Structure decides a clique: nothing to warn of.
+    let clique = generated("clique", 30);
+    let o = proclaim(&["check", clique.to_str().unwrap()]);
+    assert_eq!(stderr(&o), "");
+    let path = temp_file("self.dl", b"r3: => ~a2.\nr4: ~a2 => a2.\nr4 > r3.\n");
+    let o = proclaim(&["check", path.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains(
+            "warning: beta proves both `a2` and `~a2`, through a self-attacking loop: r4"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}

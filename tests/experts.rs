@@ -471,3 +471,29 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
     );
     assert!(counters.status_sent.load(Ordering::Relaxed) >= 1);
 }
+
+#[test]
+fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("ladder", &[6])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    let theory = proclaim_cdl::load(
+        std::str::from_utf8(&text).unwrap(),
+        proclaim_cdl::Language::Dl,
+    )
+    .unwrap();
+    let tight = proclaim_cdl::SearchLimits {
+        steps: 1000,
+        ..Default::default()
+    };
+    let mut expert =
+        proclaim_experts::ReasonerExpert::new("ladder", theory.clone(), &Default::default())
+            .with_limits(tight);
+    let count = expert.undecided();
+    assert_eq!(expert.answer("t0"), Some(false));
+    assert_eq!(count.load(std::sync::atomic::Ordering::Relaxed), 1);
+    let mut roomy = proclaim_experts::ReasonerExpert::new("ladder", theory, &Default::default());
+    assert_eq!(roomy.answer("t0"), Some(true));
+}

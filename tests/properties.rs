@@ -60,6 +60,94 @@ fn theory_over(
         })
 }
 
+/// Theories shaped like the attack-cycle families (benchmarks.md): every atom has a default,
+/// and atoms attack each other, often both ways (cliques, pairs), around a ring (one attack
+/// each) or through a chain of support, with defeaters and priorities mixed in, so that the
+/// structural shortcuts are taken, and refused when the shape is almost but not quite theirs.
+fn attack_shaped_theory() -> impl Strategy<Value = (String, Vec<(usize, Option<bool>)>)> {
+    let atoms = 2..7usize;
+    atoms
+        .prop_flat_map(|n| {
+            let edge = (0..n, 0..n, 0..8u8);
+            (
+                Just(n),
+                prop::collection::vec(edge, 1..3 * n),
+                prop::collection::vec(any::<bool>(), n),
+                prop::collection::vec((0..4 * n, 0..4 * n), 0..3),
+                prop::collection::vec((0..n, prop::option::of(any::<bool>())), 0..2),
+            )
+        })
+        .prop_map(|(n, edges, defaults, priorities, inputs)| {
+            let mut text = String::new();
+            let mut label = 0;
+            let mut rule = |text: &mut String, body: &str, arrow: &str, head: String| {
+                *text += &format!("r{label}: {body} {arrow} {head}.\n");
+                label += 1;
+            };
+            for (i, &default) in defaults.iter().enumerate() {
+                if default || i == 0 {
+                    rule(&mut text, "", "=>", format!("a{i}"));
+                }
+            }
+            for (from, to, shape) in edges {
+                let (a, b) = (format!("a{from}"), format!("a{to}"));
+                match shape {
+                    // A mutual attack, the clique's and the pair's edge.
+                    0..=2 => {
+                        rule(&mut text, &a, "=>", format!("~{b}"));
+                        rule(&mut text, &b, "=>", format!("~{a}"));
+                    }
+                    // One attack, as around a ring.
+                    3 | 4 => rule(&mut text, &a, "=>", format!("~{b}")),
+                    5 => rule(&mut text, &a, "~>", format!("~{b}")),
+                    6 => rule(&mut text, &a, "=>", b),
+                    _ => rule(
+                        &mut text,
+                        &format!("{a}, a{}", (to + 1) % n),
+                        "=>",
+                        format!("~{b}"),
+                    ),
+                }
+            }
+            for (x, y) in priorities {
+                let (w, l) = (x.max(y), x.min(y));
+                if w != l && w < label {
+                    text += &format!("r{w} > r{l}.\n");
+                }
+            }
+            (text, inputs)
+        })
+}
+
+/// The attack-cycle families at sizes the reference prover can still enumerate.
+#[test]
+fn attack_families_agree_with_the_reference_prover() {
+    for (family, sizes) in [
+        ("attack-ring", 3..=9),
+        ("pairs-ring", 3..=5),
+        ("priority-ring", 3..=5),
+        ("defeater-ring", 3..=7),
+        ("clique", 1..=7),
+        ("ladder", 1..=2),
+        ("clause-chain", 1..=6),
+    ] {
+        for size in sizes {
+            let f = proclaim_gen::Family::parse(family, &[size]).unwrap();
+            let mut text = Vec::new();
+            f.write(&mut text, proclaim_gen::Format::Dl).unwrap();
+            let text = String::from_utf8(text).unwrap();
+            agree(&text, &[]).unwrap_or_else(|e| panic!("{f}: {e}"));
+            let theory = load(&text, Language::Dl).unwrap();
+            let mut session = Session::new(Engine::new(theory.clone()));
+            for e in f.expected() {
+                let alg = Algorithm::from_name(e.algorithm).unwrap();
+                let lit = theory.lit(&e.literal).unwrap();
+                assert_eq!(session.prove(alg, lit), e.proved, "{f}: {e}");
+            }
+        }
+    }
+}
+
 fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseError> {
     let Ok(theory) = load(text, Language::Dl) else {
         return Ok(()); // inconsistent facts: a load error, nothing to prove
@@ -159,6 +247,11 @@ proptest! {
 
     #[test]
     fn engine_agrees_with_the_reference_prover_on_dense_theories((text, inputs) in dense_theory()) {
+        agree(&text, &inputs)?;
+    }
+
+    #[test]
+    fn engine_agrees_with_the_reference_prover_on_attack_cycles((text, inputs) in attack_shaped_theory()) {
         agree(&text, &inputs)?;
     }
 

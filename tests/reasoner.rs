@@ -260,3 +260,79 @@ fn a_long_loop_with_an_attack_inside_is_settled_without_search() {
     let answers: Vec<bool> = lits.iter().map(|&l| s.prove(Algorithm::Beta, l)).collect();
     assert_eq!(answers, [true, true, true, false]);
 }
+
+fn family(name: &str, size: u64) -> proclaim_cdl::Theory {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse(name, &[size])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    load(std::str::from_utf8(&text).unwrap(), Language::Dl).unwrap()
+}
+
+#[test]
+fn a_search_past_its_budget_is_undecided_and_says_where() {
+    let theory = family("ladder", 6);
+    let t0 = theory.lit("t0").unwrap();
+    let not_t0 = theory.lit("~t0").unwrap();
+    let tight = proclaim_cdl::SearchLimits {
+        steps: 1000,
+        ..Default::default()
+    };
+    let mut s = Session::with_limits(Engine::new(theory), tight);
+    let undecided = s.decide(Algorithm::Beta, t0).unwrap_err();
+    assert_eq!(
+        undecided.to_string(),
+        "`beta t0` is undecided: its component of 24 goals, where rules attack each other in a \
+         cycle, was not decided within the search budget of 1000 steps"
+    );
+    // Not proved, for whoever asks for a boolean; decided answers outside the cycle stay exact;
+    // α is undecided with it, δ too (π does not prove t0 either).
+    assert!(!s.prove(Algorithm::Beta, t0));
+    assert_eq!(s.decide(Algorithm::Beta, not_t0), Ok(false));
+    assert!(
+        s.decide(Algorithm::Alpha, t0).is_ok(),
+        "π refutes t0, so α is decided"
+    );
+    assert!(s.decide(Algorithm::Delta, t0).is_err());
+    assert!(s
+        .searched()
+        .iter()
+        .any(|c| c.undecided && c.goals.len() == 24));
+    // A larger budget decides it, as the reference prover does.
+    s.set_limits(proclaim_cdl::SearchLimits::default());
+    assert_eq!(s.decide(Algorithm::Beta, t0), Ok(true));
+}
+
+#[test]
+fn cliques_and_rings_are_decided_by_their_structure_without_search() {
+    for (name, size, proved) in [
+        ("clique", 41, true),
+        ("clique", 40, false),
+        ("attack-ring", 10_001, true),
+        ("attack-ring", 10_000, false),
+    ] {
+        let theory = family(name, size);
+        let a0 = theory.lit("a0").unwrap();
+        let mut s = Session::new(Engine::new(theory));
+        assert_eq!(s.decide(Algorithm::Beta, a0), Ok(proved), "{name}({size})");
+        s.conclusions(Algorithm::Beta);
+        assert_eq!(s.searched(), [], "{name}({size}) needed no search");
+    }
+    // Almost a clique: one attack taken away makes the graph asymmetric, and the search decides.
+    let theory = load(
+        "=> a0. => a1. => a2. a1 => ~a0. a2 => ~a0. a0 => ~a1. a2 => ~a1. a0 => ~a2.",
+        Language::Dl,
+    )
+    .unwrap();
+    let reference = ReferenceProver::new(&theory, &[]).unwrap();
+    let mut s = Session::new(Engine::new(theory.clone()));
+    for l in (0..theory.atom_count() as u32 * 2).map(proclaim_cdl::Lit) {
+        assert_eq!(
+            s.prove(Algorithm::Beta, l),
+            reference.prove(Algorithm::Beta, l),
+            "{}",
+            theory.show(l)
+        );
+    }
+}

@@ -33,7 +33,20 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
             continue;
         }
         let source = load::read(name)?;
-        let checked = check_source(&source.text, source.language);
+        let mut checked = check_source(&source.text, source.language);
+        if let Some(theory) = checked.theory.take() {
+            let theory = std::sync::Arc::new(theory);
+            checked
+                .diagnostics
+                .extend(proclaim_cdl::attack_cycle_warnings(
+                    &theory,
+                    proclaim_cdl::SearchLimits::default(),
+                ));
+            checked
+                .diagnostics
+                .sort_by_key(|d| (d.span.start, d.span.end));
+            checked.theory = Some(std::sync::Arc::unwrap_or_clone(theory));
+        }
         errors += checked.diagnostics.iter().filter(|d| d.is_error()).count();
         if json {
             report.extend(

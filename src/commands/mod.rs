@@ -30,9 +30,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             set,
             json,
             format,
+            budget,
         } => match format {
-            crate::cli::ProveFormat::Spindle => prove::spindle(&theory, &queries, &set),
-            crate::cli::ProveFormat::Text => prove::run(&theory, &queries, alg, &set, json),
+            crate::cli::ProveFormat::Spindle => prove::spindle(&theory, &queries, &set, budget),
+            crate::cli::ProveFormat::Text => prove::run(&theory, &queries, alg, &set, json, budget),
         },
         Command::Table { theory, format } => table::run(&theory, format),
         Command::Explain {

@@ -4,8 +4,29 @@ use super::{algorithms, inputs};
 use crate::cli::AlgArg;
 use crate::failure::Failure;
 use crate::load;
-use proclaim_cdl::{Engine, Session};
+use proclaim_cdl::{Engine, SearchLimits, Session, Undecided};
 use std::process::ExitCode;
+
+/// The exit status when some answer was undecided within the search budget (README).
+const UNDECIDED_EXIT: u8 = 3;
+
+/// A session with the `--budget` given (search steps per attack cycle), or the default.
+fn session(theory: proclaim_cdl::Theory, budget: Option<u64>) -> Session {
+    let defaults = SearchLimits::default();
+    let limits = SearchLimits {
+        steps: budget.unwrap_or(defaults.steps),
+        ..defaults
+    };
+    Session::with_limits(Engine::new(theory), limits)
+}
+
+fn exit(any_undecided: bool) -> ExitCode {
+    if any_undecided {
+        ExitCode::from(UNDECIDED_EXIT)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
 
 pub fn run(
     theory_name: &str,
@@ -13,6 +34,7 @@ pub fn run(
     alg: AlgArg,
     sets: &[String],
     json: bool,
+    budget: Option<u64>,
 ) -> Result<ExitCode, Failure> {
     let (source, theory) = load::theory(theory_name)?;
     // A literal whose atom the theory lacks is not provable: answered `-`, with a warning, as
@@ -33,43 +55,69 @@ pub fn run(
             Err(failure) => return Err(failure),
         }
     }
-    let mut session = Session::new(Engine::new(theory));
+    let mut session = session(theory, budget);
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
-    let mut answers = Vec::new();
+    let mut answers: Vec<(_, String, Result<bool, Undecided>)> = Vec::new();
     for (formula, query) in formulas.iter().zip(queries) {
         for alg in algorithms(alg) {
             match formula {
                 Some(f) => {
-                    let proved = session.prove_formula(alg, f);
-                    answers.push((alg, f.show(engine.theory()), proved));
+                    let answer = session.decide_formula(alg, f);
+                    answers.push((alg, f.show(engine.theory()), answer));
                 }
-                None => answers.push((alg, query.trim().to_string(), false)),
+                None => answers.push((alg, query.trim().to_string(), Ok(false))),
             }
         }
     }
-    // No query: every conclusion of each algorithm asked for.
+    // No query: every conclusion of each algorithm asked for, and every literal left undecided.
     if queries.is_empty() {
         for alg in algorithms(alg) {
-            for lit in session.conclusions(alg) {
-                answers.push((alg, engine.theory().show(lit).to_string(), true));
+            for lit in (0..engine.theory().atom_count() as u32 * 2).map(proclaim_cdl::Lit) {
+                let answer = session.decide(alg, lit);
+                if answer != Ok(false) {
+                    answers.push((alg, engine.theory().show(lit).to_string(), answer));
+                }
             }
         }
     }
+    let any_undecided = answers.iter().any(|(_, _, a)| a.is_err());
     if json {
         let list: Vec<_> = answers
             .iter()
-            .map(|(alg, query, proved)| {
-                serde_json::json!({"algorithm": alg.name(), "query": query, "proved": proved})
+            .map(|(alg, query, answer)| match answer {
+                Ok(proved) => {
+                    serde_json::json!({"algorithm": alg.name(), "query": query, "proved": proved})
+                }
+                Err(undecided) => serde_json::json!({
+                    "algorithm": alg.name(), "query": query, "proved": null,
+                    "undecided": undecided.to_string(),
+                }),
             })
             .collect();
         println!("{}", serde_json::Value::Array(list));
     } else {
-        for (alg, query, proved) in answers {
-            println!("{}{alg} {query}", if proved { '+' } else { '-' });
+        for (alg, query, answer) in answers {
+            match answer {
+                Ok(proved) => println!("{}{alg} {query}", if proved { '+' } else { '-' }),
+                Err(undecided) => println!("?{alg} {query}  (undecided: {})", reason(&undecided)),
+            }
         }
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(exit(any_undecided))
+}
+
+/// The undecided answer's reason, short enough for the end of an answer line.
+fn reason(undecided: &Undecided) -> String {
+    let origin = if undecided.stalled_at == undecided.goal {
+        String::new()
+    } else {
+        format!(" through `{}`", undecided.stalled_at)
+    };
+    format!(
+        "search budget of {} steps spent in an attack cycle of {} goals{origin}; raise it with --budget",
+        undecided.steps, undecided.component
+    )
 }
 
 /// Whether `query` is a plain literal (`a`, `~a`) naming an atom the theory does not have.
@@ -87,6 +135,7 @@ pub fn spindle(
     theory_name: &str,
     queries: &[String],
     sets: &[String],
+    budget: Option<u64>,
 ) -> Result<ExitCode, Failure> {
     let (source, theory) = load::theory(theory_name)?;
     let mut lits = Vec::new();
@@ -109,10 +158,11 @@ pub fn spindle(
             lits.push(proclaim_cdl::Lit::new(atom, true));
         }
     }
-    let mut session = Session::new(Engine::new(theory));
+    let mut session = session(theory, budget);
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
     let theory = engine.theory();
+    let mut any_undecided = false;
     for lit in lits {
         let name = theory.atom_name(lit.atom());
         let shown = if lit.is_negated() {
@@ -124,9 +174,18 @@ pub fn spindle(
             ('D', proclaim_cdl::Algorithm::Mu),
             ('d', proclaim_cdl::Algorithm::Beta),
         ] {
-            let sign = if session.prove(alg, lit) { '+' } else { '-' };
+            // SPINdle has no undecided answer: `?` marks one, explained on stderr.
+            let sign = match session.decide(alg, lit) {
+                Ok(true) => '+',
+                Ok(false) => '-',
+                Err(undecided) => {
+                    any_undecided = true;
+                    eprintln!("warning: {undecided}");
+                    '?'
+                }
+            };
             println!("{sign}{tag} {shown}");
         }
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(exit(any_undecided))
 }

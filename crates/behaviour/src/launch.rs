@@ -118,7 +118,8 @@ pub async fn launch(
     let mut sim_note = None;
     let mut modules: Vec<Module> = Vec::new();
     for t in &behaviour.theories {
-        let expert = ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping);
+        let expert =
+            ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
         modules.push(Module {
             name: t.name.clone(),
             answers: expert.declaration().answers,

@@ -53,6 +53,8 @@ pub struct LoadedTheory {
     pub theory: Theory,
     /// Input atom → message type.
     pub mapping: FxHashMap<String, String>,
+    /// Bounds on the search inside attack cycles (the manifest's `budget`).
+    pub limits: proclaim_cdl::SearchLimits,
 }
 
 pub struct LoadedSensor {
@@ -171,6 +173,12 @@ pub fn load_manifest(
             file: entry.file.clone(),
             theory,
             mapping,
+            limits: proclaim_cdl::SearchLimits {
+                steps: entry
+                    .budget
+                    .unwrap_or(proclaim_cdl::SearchLimits::default().steps),
+                ..proclaim_cdl::SearchLimits::default()
+            },
         });
     }
 

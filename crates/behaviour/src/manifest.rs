@@ -16,6 +16,7 @@
 //! [[theory]]
 //! file = "microwave.dl"                # a reasoner expert; its outputs are the labels it answers
 //! mapping = "inputs.map"               # optional: input atom → message type
+//! budget = 1000000                     # optional: search steps per attack cycle (README)
 //!
 //! [[sensor]]
 //! kind = "gamecontroller"              # also: chest_button, foot_bumpers, fall
@@ -105,6 +106,10 @@ pub struct TheoryEntry {
     pub name: Option<String>,
     #[serde(default)]
     pub mapping: Option<String>,
+    /// Steps the search may take inside one attack cycle before an answer is undecided
+    /// (answered false, with a warning); default 10,000,000.
+    #[serde(default)]
+    pub budget: Option<u64>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]

@@ -13,10 +13,13 @@
 mod atoms;
 mod check;
 mod closure;
+mod cycle;
 mod engine;
 mod explain;
 mod goal;
+mod hard;
 mod literal;
+mod matching;
 mod query;
 mod reference;
 mod session;
@@ -25,13 +28,15 @@ mod theory;
 
 pub use check::{check, check_source, Checked};
 pub use closure::MAX_CLOSURE;
+pub use cycle::SearchLimits;
 pub use engine::Engine;
 pub use explain::{About, Explanation};
+pub use hard::attack_cycle_warnings;
 pub use literal::{Atom, Lit, RuleId};
 pub use proclaim_syntax::{render, Algorithm, Diagnostic, Language, Severity};
 pub use query::Formula;
 pub use reference::ReferenceProver;
-pub use session::{InputConflict, Session};
+pub use session::{InputConflict, Searched, Session, Undecided};
 pub use table::{truth_table, Column, Row, Table, TableError, MAX_ROWS};
 pub use theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, RuleRef, Theory};
 

@@ -2,9 +2,10 @@
 //! answer, computed on demand component by component and re-proved only where an input change
 //! reaches.
 
+use crate::cycle::{Component, Method, SearchLimits};
 use crate::engine::Engine;
 use crate::goal::{
-    condition, goal, successors, Goal, Read, ATTACK, ATTACK_READ, BETA, KINDS, PI, SUP,
+    condition, goal, kind_of, lit_of, successors, Goal, ATTACK, ATTACK_READ, BETA, KINDS, PI, SUP,
 };
 use crate::literal::{Atom, Lit};
 use crate::query::Formula;
@@ -15,14 +16,12 @@ use std::fmt;
 use std::sync::Arc;
 
 const UNKNOWN: u8 = 0;
-const FALSE: u8 = 1;
-const TRUE: u8 = 2;
+pub(crate) const FALSE: u8 = 1;
+pub(crate) const TRUE: u8 = 2;
 /// A member of the component being evaluated.
-const PENDING: u8 = 3;
-
-/// Components larger than this are evaluated top-down without memoising on the history (the
-/// memo key is a 64-bit set of the component's goals).
-const MEMO_LIMIT: usize = 64;
+pub(crate) const PENDING: u8 = 3;
+/// The search ran out of budget before deciding the goal, or the goal reads one that did.
+pub(crate) const UNDECIDED: u8 = 4;
 
 #[derive(Clone, Copy, Debug)]
 struct Frame {
@@ -54,6 +53,49 @@ impl fmt::Display for InputConflict {
 
 impl std::error::Error for InputConflict {}
 
+/// A goal the search could not decide within its [`SearchLimits`]: neither proved nor refuted.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Undecided {
+    /// The goal asked, as `beta a0`.
+    pub goal: String,
+    /// The undecided goal of an attack cycle this one depends on (itself when it lies on it),
+    /// as `beta a7`.
+    pub stalled_at: String,
+    /// Goals in that component.
+    pub component: usize,
+    /// The step budget that was spent.
+    pub steps: u64,
+}
+
+impl fmt::Display for Undecided {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "`{}` is undecided: ", self.goal)?;
+        if self.stalled_at != self.goal {
+            write!(f, "it depends on `{}`, whose ", self.stalled_at)?;
+        } else {
+            write!(f, "its ")?;
+        }
+        write!(
+            f,
+            "component of {} goals, where rules attack each other in a cycle, was not decided within the search budget of {} steps",
+            self.component, self.steps
+        )
+    }
+}
+
+impl std::error::Error for Undecided {}
+
+/// A component the search decided (or gave up on), for `check`'s warnings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Searched {
+    /// Its goals.
+    pub goals: Vec<(Algorithm, Lit)>,
+    /// Goals the search expanded.
+    pub steps: u64,
+    /// Whether the budget ran out.
+    pub undecided: bool,
+}
+
 /// Proving state for one engine: holds input values (true, false or unknown) and caches every
 /// answer until an input it depends on changes.
 pub struct Session {
@@ -75,6 +117,12 @@ pub struct Session {
     queue: Vec<Lit>,
     /// How many goals were evaluated since the session began (for tests and benchmarks).
     evaluated: u64,
+    limits: SearchLimits,
+    /// For each undecided goal, the undecided member of an attack cycle it depends on (itself
+    /// when it is one) and the size of that cycle's component.
+    stalls: FxHashMap<Goal, (Goal, usize)>,
+    /// Components that needed the top-down search, kept for `check`.
+    searched: Vec<Searched>,
 }
 
 impl Session {
@@ -98,10 +146,44 @@ impl Session {
             counters: vec![0; engine.theory.rule_count()],
             queue: Vec::new(),
             evaluated: 0,
+            limits: SearchLimits::default(),
+            stalls: FxHashMap::default(),
+            searched: Vec::new(),
             engine,
         };
         session.compute_mu();
         session
+    }
+
+    /// A session with its own bounds on the search inside attack cycles.
+    pub fn with_limits(engine: impl Into<Arc<Engine>>, limits: SearchLimits) -> Session {
+        let mut session = Session::new(engine);
+        session.limits = limits;
+        session
+    }
+
+    pub fn limits(&self) -> SearchLimits {
+        self.limits
+    }
+
+    /// Changes the search bounds; goals left undecided under the old ones are asked again.
+    pub fn set_limits(&mut self, limits: SearchLimits) {
+        self.limits = limits;
+        for (value, index) in self.values.iter_mut().zip(&mut self.index) {
+            if *value == UNDECIDED {
+                *value = UNKNOWN;
+                *index = 0;
+            }
+        }
+        self.stalls.clear();
+    }
+
+    /// The components decided by searching so far (those the bounds and the structure did not
+    /// settle), largest first.
+    pub fn searched(&self) -> Vec<Searched> {
+        let mut all = self.searched.clone();
+        all.sort_by_key(|s| std::cmp::Reverse(s.goals.len()));
+        all
     }
 
     pub fn engine(&self) -> &Arc<Engine> {
@@ -181,40 +263,94 @@ impl Session {
             .try_for_each(|(atom, value)| self.set_input(atom, value))
     }
 
-    /// Whether `alg` proves the literal.
+    /// Whether `alg` proves the literal. A goal the search could not decide within its limits
+    /// counts as not proved; [`Session::decide`] tells the two apart.
     pub fn prove(&mut self, alg: Algorithm, lit: Lit) -> bool {
-        match alg {
-            Algorithm::Mu => self.mu[lit.index()],
-            Algorithm::Beta => self.goal_value(goal(lit, BETA)),
-            Algorithm::Pi => self.goal_value(goal(lit, PI)),
-            Algorithm::Alpha => self.goal_value(goal(lit, PI)) && self.goal_value(goal(lit, BETA)),
-            Algorithm::Delta => self.goal_value(goal(lit, PI)) || self.goal_value(goal(lit, BETA)),
-        }
+        self.truth(alg, lit) == Truth::True
     }
 
-    /// Whether `alg` proves a formula (cdl.md §4, clauses as queries).
+    /// Whether `alg` proves the literal, or why it is undecided.
+    pub fn decide(&mut self, alg: Algorithm, lit: Lit) -> Result<bool, Undecided> {
+        let truth = self.truth(alg, lit);
+        self.answer(alg, &self.engine.theory.show(lit).to_string(), truth)
+    }
+
+    /// Whether `alg` proves a formula (cdl.md §4, clauses as queries); undecided goals count as
+    /// not proved.
     pub fn prove_formula(&mut self, alg: Algorithm, formula: &Formula) -> bool {
-        match formula {
-            Formula::Lit(l) => self.prove(alg, *l),
-            Formula::Clause(c) => self.prove_clause(alg, c),
-            Formula::Conjunction(cs) => cs.iter().all(|c| self.prove_clause(alg, c)),
+        self.formula_truth(alg, formula) == Truth::True
+    }
+
+    /// Whether `alg` proves a formula, or why it is undecided.
+    pub fn decide_formula(&mut self, alg: Algorithm, formula: &Formula) -> Result<bool, Undecided> {
+        let truth = self.formula_truth(alg, formula);
+        let shown = formula.show(&self.engine.theory);
+        self.answer(alg, &shown, truth)
+    }
+
+    fn answer(&self, alg: Algorithm, shown: &str, truth: Truth) -> Result<bool, Undecided> {
+        match truth {
+            Truth::True => Ok(true),
+            Truth::False => Ok(false),
+            Truth::Undecided(g) => {
+                let (stalled, component) = self.stalls.get(&g).copied().unwrap_or((g, 0));
+                Err(Undecided {
+                    goal: format!("{alg} {shown}"),
+                    stalled_at: self.show_goal(stalled),
+                    component,
+                    steps: self.limits.steps,
+                })
+            }
         }
     }
 
-    fn prove_clause(&mut self, alg: Algorithm, clause: &[Lit]) -> bool {
+    fn show_goal(&self, g: Goal) -> String {
+        let kind = match kind_of(g) {
+            BETA => "beta",
+            PI => "pi",
+            _ => "support",
+        };
+        format!("{kind} {}", self.engine.theory.show(lit_of(g)))
+    }
+
+    fn truth(&mut self, alg: Algorithm, lit: Lit) -> Truth {
         match alg {
-            Algorithm::Mu => self.mu_clause(clause),
-            Algorithm::Beta | Algorithm::Pi => {
-                self.mu_clause(clause) || clause.iter().any(|&l| self.prove(alg, l))
-            }
-            Algorithm::Alpha => {
-                self.prove_clause(Algorithm::Pi, clause)
-                    && self.prove_clause(Algorithm::Beta, clause)
-            }
-            Algorithm::Delta => {
-                self.prove_clause(Algorithm::Pi, clause)
-                    || self.prove_clause(Algorithm::Beta, clause)
-            }
+            Algorithm::Mu => Truth::from(self.mu[lit.index()]),
+            Algorithm::Beta => self.goal_truth(goal(lit, BETA)),
+            Algorithm::Pi => self.goal_truth(goal(lit, PI)),
+            Algorithm::Alpha => self
+                .goal_truth(goal(lit, PI))
+                .and(|| self.goal_truth(goal(lit, BETA))),
+            Algorithm::Delta => self
+                .goal_truth(goal(lit, PI))
+                .or(|| self.goal_truth(goal(lit, BETA))),
+        }
+    }
+
+    fn formula_truth(&mut self, alg: Algorithm, formula: &Formula) -> Truth {
+        match formula {
+            Formula::Lit(l) => self.truth(alg, *l),
+            Formula::Clause(c) => self.clause_truth(alg, c),
+            Formula::Conjunction(cs) => cs
+                .iter()
+                .fold(Truth::True, |t, c| t.and(|| self.clause_truth(alg, c))),
+        }
+    }
+
+    fn clause_truth(&mut self, alg: Algorithm, clause: &[Lit]) -> Truth {
+        match alg {
+            Algorithm::Mu => Truth::from(self.mu_clause(clause)),
+            Algorithm::Beta | Algorithm::Pi => clause
+                .iter()
+                .fold(Truth::from(self.mu_clause(clause)), |t, &l| {
+                    t.or(|| self.truth(alg, l))
+                }),
+            Algorithm::Alpha => self
+                .clause_truth(Algorithm::Pi, clause)
+                .and(|| self.clause_truth(Algorithm::Beta, clause)),
+            Algorithm::Delta => self
+                .clause_truth(Algorithm::Pi, clause)
+                .or(|| self.clause_truth(Algorithm::Beta, clause)),
         }
     }
 
@@ -422,10 +558,18 @@ impl Session {
     // ---- β, π and support: components of the goal graph, on demand -----------------------------
 
     fn goal_value(&mut self, g: Goal) -> bool {
+        self.goal_truth(g) == Truth::True
+    }
+
+    fn goal_truth(&mut self, g: Goal) -> Truth {
         if self.values[g as usize] == UNKNOWN {
             self.solve(g);
         }
-        self.values[g as usize] == TRUE
+        match self.values[g as usize] {
+            TRUE => Truth::True,
+            UNDECIDED => Truth::Undecided(g),
+            _ => Truth::False,
+        }
     }
 
     pub(crate) fn mu(&self) -> &[bool] {
@@ -513,217 +657,158 @@ impl Session {
                 .iter()
                 .any(|&s| s & !ATTACK == g);
             if !self_loop {
-                let values = &self.values;
-                let v = condition(&engine, &self.mu, g, &mut |s, _| values[s as usize] == TRUE);
-                self.values[g as usize] = if v { TRUE } else { FALSE };
+                self.values[g as usize] = self.evaluate_single(&engine, g);
                 return;
             }
         }
         self.evaluate_cycle(&engine);
     }
 
-    /// A component with a cycle. With only support edges inside it the condition is monotone in
-    /// the component's goals, and the answer is the least fixpoint (loops fail, cdl.md §5.5).
-    ///
-    /// With an attack inside, answers depend on the history. Least fixpoints bound them exactly:
-    /// `up` reads every internal attack as failing, so a goal outside it fails under any history.
-    /// `low` reads an internal attack on `x` by goal `g` as `x`'s upper bound computed with `g`
-    /// removed (`g` is on the history whenever it reads `x`), so a goal inside `low` holds from
-    /// the empty history: its minimal derivation never meets a goal twice on a path. Only goals
-    /// between the bounds are proved top-down, as cdl.md §4 reads, with the history restricted to
-    /// the component.
+    /// A goal on no cycle: its condition over settled goals. A read of an undecided goal is taken
+    /// both ways (against the goal, then for it); when the two disagree the goal is undecided too.
+    fn evaluate_single(&mut self, engine: &Engine, g: Goal) -> u8 {
+        let mut stalled = None;
+        let values = &self.values;
+        let read = |optimistic: bool| {
+            let mut stalled_read = None;
+            let v = condition(
+                engine,
+                &self.mu,
+                g,
+                &mut |s, how| match values[s as usize] {
+                    TRUE => true,
+                    UNDECIDED => {
+                        stalled_read = Some(s);
+                        // A support read helps when true; an attack read helps when false.
+                        optimistic != (how == ATTACK_READ)
+                    }
+                    _ => false,
+                },
+            );
+            (v, stalled_read)
+        };
+        let (pessimistic, first) = read(false);
+        let v = if first.is_none() {
+            pessimistic
+        } else {
+            let (optimistic, _) = read(true);
+            if optimistic != pessimistic {
+                stalled = first;
+            }
+            pessimistic
+        };
+        match stalled {
+            Some(s) => {
+                let origin = self.stalls.get(&s).copied().unwrap_or((s, 0));
+                self.stalls.insert(g, origin);
+                UNDECIDED
+            }
+            None if v => TRUE,
+            None => FALSE,
+        }
+    }
+
+    /// A component with a cycle ([`crate::cycle`]). A component that reads an undecided goal is
+    /// left undecided as a whole.
     fn evaluate_cycle(&mut self, engine: &Engine) {
         let members = std::mem::take(&mut self.component);
         for (position, &g) in members.iter().enumerate() {
             self.values[g as usize] = PENDING;
             self.low[g as usize] = position as u32;
         }
-        // (read member, reading member) pairs, and the internal attack reads by reader.
-        let mut readers: Vec<(u32, u32)> = Vec::new();
-        let mut attacks: Vec<(u32, u32)> = Vec::new();
-        let mut buffer = Vec::new();
-        for (from, &g) in members.iter().enumerate() {
-            buffer.clear();
+        let mut reads = Vec::new();
+        let undecided_read = members.iter().find_map(|&g| {
+            reads.clear();
             let values = &self.values;
-            successors(engine, &self.mu, g, &mut buffer, |s| {
-                values[s as usize] == PENDING
+            successors(engine, &self.mu, g, &mut reads, |s| {
+                values[s as usize] == UNDECIDED
             });
-            for &s in &buffer {
-                let to = self.low[(s & !ATTACK) as usize];
-                readers.push((to, from as u32));
-                if s & ATTACK != 0 {
-                    attacks.push((from as u32, to));
-                }
+            reads.first().map(|&s| s & !ATTACK)
+        });
+        if let Some(s) = undecided_read {
+            let origin = self.stalls.get(&s).copied().unwrap_or((s, 0));
+            for &g in &members {
+                self.values[g as usize] = UNDECIDED;
+                self.stalls.insert(g, origin);
             }
+            self.component = members;
+            return;
         }
-        readers.sort_unstable();
-        readers.dedup();
-        attacks.sort_unstable();
-        attacks.dedup();
-        let fixpoint = Fixpoint {
+        let component = Component {
             engine,
             mu: &self.mu,
             values: &self.values,
             position: &self.low,
             members: &members,
-            readers: &readers,
         };
-        let results: Vec<bool> = if attacks.is_empty() {
-            fixpoint.least(|_, _| false, None)
-        } else {
-            let up = fixpoint.least(|_, _| false, None);
-            // Which internal attack reads can hold while their reader is on the history. One
-            // fixpoint per attacking goal: bounded, falling back to the plain upper bound.
-            let attackers = attacks.iter().map(|&(g, _)| g).filter(|&g| up[g as usize]);
-            let mut distinct: Vec<u32> = attackers.collect();
-            distinct.dedup();
-            let refine = distinct.len().saturating_mul(members.len()) <= REFINE_LIMIT;
-            let mut holds: FxHashMap<(u32, u32), bool> = FxHashMap::default();
-            if refine {
-                for &g in &distinct {
-                    let without = fixpoint.least(|_, _| false, Some(g));
-                    let start = attacks.partition_point(|&(r, _)| r < g);
-                    for &(_, x) in attacks[start..].iter().take_while(|&&(r, _)| r == g) {
-                        holds.insert((g, x), without[x as usize]);
-                    }
-                }
-            }
-            let low = fixpoint.least(
-                |reader, x| {
-                    if refine {
-                        holds.get(&(reader, x)).copied().unwrap_or(false)
-                    } else {
-                        up[x as usize]
-                    }
-                },
-                None,
-            );
-            let mut top_down = TopDown {
-                engine,
-                mu: &self.mu,
-                values: &self.values,
-                position: &self.low,
-                up: &up,
-                in_history: vec![false; members.len()],
-                history: 0,
-                memo: FxHashMap::default(),
-                memoise: members.len() <= MEMO_LIMIT,
+        let evaluated = component.evaluate(&self.limits);
+        if evaluated.method == Method::Search {
+            let undecided = evaluated.values.contains(&UNDECIDED);
+            let algorithm = |g: Goal| match kind_of(g) {
+                BETA => Algorithm::Beta,
+                PI => Algorithm::Pi,
+                _ => Algorithm::Delta,
             };
-            members
-                .iter()
-                .enumerate()
-                .map(|(i, &g)| low[i] || (up[i] && top_down.prove(g)))
-                .collect()
-        };
-        for (&g, v) in members.iter().zip(results) {
-            self.values[g as usize] = if v { TRUE } else { FALSE };
+            self.searched.push(Searched {
+                goals: members
+                    .iter()
+                    .filter(|&&g| kind_of(g) != SUP)
+                    .map(|&g| (algorithm(g), lit_of(g)))
+                    .collect(),
+                steps: evaluated.steps,
+                undecided,
+            });
+        }
+        for (&g, &v) in members.iter().zip(&evaluated.values) {
+            self.values[g as usize] = v;
+            if v == UNDECIDED {
+                self.stalls.insert(g, (g, members.len()));
+            }
         }
         self.component = members;
     }
 }
 
-/// Bounds the work of refining the lower bound: attacking goals times component size.
-const REFINE_LIMIT: usize = 50_000_000;
-
-/// Least fixpoints over the members of one component.
-struct Fixpoint<'a> {
-    engine: &'a Engine,
-    mu: &'a [bool],
-    values: &'a [u8],
-    /// A member's position in `members`, by goal.
-    position: &'a [u32],
-    members: &'a [Goal],
-    /// (read member, reading member), sorted: a member that turns true wakes only its readers.
-    readers: &'a [(u32, u32)],
+/// A three-valued answer: proved, not proved, or undecided (naming the goal that is).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Truth {
+    True,
+    False,
+    Undecided(Goal),
 }
 
-impl Fixpoint<'_> {
-    /// Support reads of members take the current approximation; an attack read of member `x` by
-    /// member `r` takes `attack(r, x)`; `excluded` is held false; settled goals are read as they
-    /// are.
-    fn least(&self, attack: impl Fn(u32, u32) -> bool, excluded: Option<u32>) -> Vec<bool> {
-        let mut current = vec![false; self.members.len()];
-        let mut work: Vec<u32> = (0..self.members.len() as u32)
-            .filter(|&i| Some(i) != excluded)
-            .collect();
-        while let Some(i) = work.pop() {
-            if current[i as usize] || Some(i) == excluded {
-                continue;
-            }
-            let mut read = |s: Goal, how: Read| match self.values[s as usize] {
-                PENDING => {
-                    let p = self.position[s as usize];
-                    if how == ATTACK_READ {
-                        attack(i, p)
-                    } else {
-                        current[p as usize]
-                    }
-                }
-                v => v == TRUE,
-            };
-            if condition(self.engine, self.mu, self.members[i as usize], &mut read) {
-                current[i as usize] = true;
-                let start = self.readers.partition_point(|&(to, _)| to < i);
-                work.extend(
-                    self.readers[start..]
-                        .iter()
-                        .take_while(|&&(to, _)| to == i)
-                        .map(|&(_, from)| from),
-                );
-            }
+impl From<bool> for Truth {
+    fn from(b: bool) -> Truth {
+        if b {
+            Truth::True
+        } else {
+            Truth::False
         }
-        current
     }
 }
 
-/// Top-down proof inside one component, with the history of cdl.md §4 (a goal met again on the
-/// current path fails). Goals outside the component are settled and read from `values`.
-struct TopDown<'a> {
-    engine: &'a Engine,
-    mu: &'a [bool],
-    values: &'a [u8],
-    position: &'a [u32],
-    /// Members outside the upper bound fail under every history.
-    up: &'a [bool],
-    in_history: Vec<bool>,
-    /// The history as a set of positions, for the memo key (small components only).
-    history: u64,
-    memo: FxHashMap<(u32, u64), bool>,
-    memoise: bool,
-}
+impl Truth {
+    /// Kleene's conjunction, asking the right side only when the left does not decide it.
+    fn and(self, right: impl FnOnce() -> Truth) -> Truth {
+        match self {
+            Truth::False => Truth::False,
+            Truth::True => right(),
+            Truth::Undecided(g) => match right() {
+                Truth::False => Truth::False,
+                _ => Truth::Undecided(g),
+            },
+        }
+    }
 
-impl TopDown<'_> {
-    fn prove(&mut self, g: Goal) -> bool {
-        match self.values[g as usize] {
-            TRUE => return true,
-            FALSE | UNKNOWN => return false,
-            _ => {}
+    /// Kleene's disjunction.
+    fn or(self, right: impl FnOnce() -> Truth) -> Truth {
+        match self {
+            Truth::True => Truth::True,
+            Truth::False => right(),
+            Truth::Undecided(g) => match right() {
+                Truth::True => Truth::True,
+                _ => Truth::Undecided(g),
+            },
         }
-        let p = self.position[g as usize];
-        if self.in_history[p as usize] || !self.up[p as usize] {
-            return false;
-        }
-        if self.memoise {
-            if let Some(&v) = self.memo.get(&(p, self.history)) {
-                return v;
-            }
-        }
-        let key = (p, self.history);
-        self.in_history[p as usize] = true;
-        if self.memoise {
-            self.history |= 1 << p;
-        }
-        let (engine, mu) = (self.engine, self.mu);
-        // The path can be as long as the component: grow the stack on the heap rather than
-        // overflow it.
-        let v = stacker::maybe_grow(64 * 1024, 4 * 1024 * 1024, || {
-            condition(engine, mu, g, &mut |s, _| self.prove(s))
-        });
-        self.in_history[p as usize] = false;
-        if self.memoise {
-            self.history &= !(1 << p);
-            self.memo.insert(key, v);
-        }
-        v
     }
 }

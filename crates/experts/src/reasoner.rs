@@ -3,8 +3,9 @@
 //! each with the algorithm its `output{}` names.
 
 use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
-use proclaim_cdl::{Algorithm, Atom, Engine, Lit, Session, Theory};
+use proclaim_cdl::{Algorithm, Atom, Engine, Lit, SearchLimits, Session, Theory};
 use rustc_hash::FxHashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use tracing::Instrument;
 
@@ -21,6 +22,8 @@ pub struct ReasonerExpert {
     /// Message type → input atom.
     inputs: FxHashMap<String, Atom>,
     outputs: Vec<OutputSlot>,
+    /// Answers the search could not decide within its limits (answered false).
+    undecided: Arc<AtomicU64>,
 }
 
 impl ReasonerExpert {
@@ -72,6 +75,33 @@ impl ReasonerExpert {
             session: Session::new(Arc::new(Engine::new(theory))),
             inputs,
             outputs,
+            undecided: Arc::default(),
+        }
+    }
+
+    /// Bounds the search inside attack cycles (the manifest's `budget`); an answer not decided
+    /// within them is false, with a warning, and counted.
+    pub fn with_limits(mut self, limits: SearchLimits) -> ReasonerExpert {
+        self.session.set_limits(limits);
+        self
+    }
+
+    /// How many answers were undecided within the search limits so far (shared: it keeps
+    /// counting while the expert runs).
+    pub fn undecided(&self) -> Arc<AtomicU64> {
+        self.undecided.clone()
+    }
+
+    /// The answer to one output: an undecided one is false, with a warning, as a timed-out
+    /// query is.
+    fn decide(&mut self, algorithm: Algorithm, lit: Lit) -> bool {
+        match self.session.decide(algorithm, lit) {
+            Ok(v) => v,
+            Err(undecided) => {
+                self.undecided.fetch_add(1, Ordering::Relaxed);
+                tracing::warn!(expert = %self.name, %undecided, "answered false");
+                false
+            }
         }
     }
 
@@ -105,8 +135,10 @@ impl ReasonerExpert {
     /// The outputs whose value changed since last asked (all of them the first time).
     pub fn changed_outputs(&mut self) -> Vec<(String, bool)> {
         let mut changed = Vec::new();
-        for o in &mut self.outputs {
-            let v = self.session.prove(o.algorithm, o.lit);
+        for i in 0..self.outputs.len() {
+            let (algorithm, lit) = (self.outputs[i].algorithm, self.outputs[i].lit);
+            let v = self.decide(algorithm, lit);
+            let o = &mut self.outputs[i];
             if o.last != Some(v) {
                 o.last = Some(v);
                 changed.push((o.name.clone(), v));
@@ -119,7 +151,7 @@ impl ReasonerExpert {
     pub fn answer(&mut self, atom: &str) -> Option<bool> {
         let o = self.outputs.iter().position(|o| o.name == atom)?;
         let (lit, alg) = (self.outputs[o].lit, self.outputs[o].algorithm);
-        Some(self.session.prove(alg, lit))
+        Some(self.decide(alg, lit))
     }
 
     /// Registers, posts the initial outputs, then follows its inputs and answers queries until

@@ -18,6 +18,20 @@ pub enum Family {
     Tree(u64, u64),
     Dag(u64, u64),
     Mix(u64, u64, u64),
+    /// `Di: => ai`, `Ai: a(i+1 mod n) => ~ai`: a simple cycle of attacks.
+    AttackRing(u64),
+    /// `=> ai`, `=> bi`, `ai => ~bi`, `bi => ~ai`, `bi => ~a(i+1 mod n)`.
+    PairsRing(u64),
+    /// Support and attack around a ring, decided by priorities (benchmarks.md).
+    PriorityRing(u64),
+    /// `=> a0`; `ai => a(i+1 mod n)`; `a(i+2 mod n) ~> ~ai`.
+    DefeaterRing(u64),
+    /// `=> ai` for each i; `aj => ~ai` for every i ≠ j.
+    Clique(u64),
+    /// 2k layers closed in a cycle, alternating attack layers and support-and-attack layers.
+    Ladder(u64),
+    /// `=> c0`; clause facts `\/{~ci, c(i+1)}` for i < n; query `cn`.
+    ClauseChain(u64),
 }
 
 /// The output language.
@@ -54,8 +68,24 @@ impl fmt::Display for FamilyError {
 
 impl std::error::Error for FamilyError {}
 
-pub const NAMES: [&str; 10] = [
-    "chain", "chains", "circle", "circles", "levels", "levels-", "teams", "tree", "dag", "mix",
+pub const NAMES: [&str; 17] = [
+    "chain",
+    "chains",
+    "circle",
+    "circles",
+    "levels",
+    "levels-",
+    "teams",
+    "tree",
+    "dag",
+    "mix",
+    "attack-ring",
+    "pairs-ring",
+    "priority-ring",
+    "defeater-ring",
+    "clique",
+    "ladder",
+    "clause-chain",
 ];
 
 impl Family {
@@ -73,10 +103,19 @@ impl Family {
             }
         };
         let family = match name {
-            "chain" | "chains" | "circle" | "circles" | "levels" | "levels-" | "teams" => {
+            "chain" | "chains" | "circle" | "circles" | "levels" | "levels-" | "teams"
+            | "attack-ring" | "pairs-ring" | "priority-ring" | "defeater-ring" | "clique"
+            | "ladder" | "clause-chain" => {
                 want(1)?;
                 let n = args[0];
                 match name {
+                    "attack-ring" => Family::AttackRing(n),
+                    "pairs-ring" => Family::PairsRing(n),
+                    "priority-ring" => Family::PriorityRing(n),
+                    "defeater-ring" => Family::DefeaterRing(n),
+                    "clique" => Family::Clique(n),
+                    "ladder" => Family::Ladder(n),
+                    "clause-chain" => Family::ClauseChain(n),
                     "chain" => Family::Chain(n),
                     "chains" => Family::Chains(n),
                     "circle" => Family::Circle(n),
@@ -112,6 +151,17 @@ impl Family {
             Family::Circle(0) | Family::Circles(0) => {
                 Err(FamilyError("a circle needs at least one rule".into()))
             }
+            Family::AttackRing(n)
+            | Family::PairsRing(n)
+            | Family::PriorityRing(n)
+            | Family::DefeaterRing(n)
+                if n < 3 =>
+            {
+                Err(FamilyError(format!("{family} needs a ring of at least 3")))
+            }
+            Family::Clique(n) | Family::Ladder(n) if n < 1 => {
+                Err(FamilyError(format!("{family} needs a size of at least 1")))
+            }
             _ if !family.is_valid() => Err(FamilyError(format!("{family} is too large to write"))),
             _ if family.rule_count() > 1 << 32 => Err(FamilyError(format!(
                 "{family} would have {} rules, more than this generator writes",
@@ -134,6 +184,21 @@ impl Family {
             Family::Tree(n, k) => (pow(k, n) - 1) / (k as u128 - 1),
             Family::Dag(n, k) => n as u128 * k as u128 + 1,
             Family::Mix(m, n, k) => 2 * m as u128 + 2 * (m * n * k) as u128,
+            Family::AttackRing(n) => 2 * n as u128,
+            Family::PairsRing(n) => 5 * n as u128,
+            Family::PriorityRing(n) => 1 + 4 * n as u128,
+            Family::DefeaterRing(n) => 1 + 2 * n as u128,
+            Family::Clique(n) => n as u128 * n as u128,
+            Family::Ladder(k) => 10 * k as u128,
+            Family::ClauseChain(_) => 1,
+        }
+    }
+
+    /// Clause facts the theory has (each becomes two strict rules of the checked theory).
+    pub fn clause_count(&self) -> u128 {
+        match *self {
+            Family::ClauseChain(n) => n as u128,
+            _ => 0,
         }
     }
 
@@ -159,6 +224,15 @@ impl Family {
                 vec![e("beta", "a0".into(), true), e("pi", "a0".into(), false)]
             }
             Family::Mix(..) => vec![e("beta", "p".into(), false), e("pi", "p".into(), false)],
+            Family::AttackRing(n) | Family::Clique(n) => vec![e("beta", "a0".into(), n % 2 == 1)],
+            Family::PairsRing(_) => vec![e("beta", "a0".into(), false)],
+            Family::PriorityRing(_) | Family::DefeaterRing(_) => vec![e("beta", "a0".into(), true)],
+            Family::Ladder(_) => vec![e("beta", "t0".into(), true)],
+            Family::ClauseChain(n) => vec![
+                e("beta", format!("c{n}"), true),
+                e("pi", format!("c{n}"), true),
+                e("mu", format!("c{n}"), false),
+            ],
         }
     }
 
@@ -172,6 +246,12 @@ impl Family {
                         .is_some_and(|l| l < 1 << 40)
             }
             Family::Circle(n) | Family::Circles(n) => n > 0,
+            Family::AttackRing(n)
+            | Family::PairsRing(n)
+            | Family::PriorityRing(n)
+            | Family::DefeaterRing(n) => n >= 3,
+            Family::Clique(n) => (1..=1 << 16).contains(&n),
+            Family::Ladder(k) => k >= 1,
             _ => true,
         }
     }
@@ -182,6 +262,12 @@ impl Family {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidInput,
                 format!("{self} is not a theory"),
+            ));
+        }
+        if format == Format::Dfl && self.clause_count() > 0 {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!("{self} is written with clause facts, which SPINdle's .dfl cannot say"),
             ));
         }
         let mut w = Writer { out, format };
@@ -313,6 +399,93 @@ impl Family {
                     }
                 }
             }
+            _ => self.write_attack_family(&mut w)?,
+        }
+        Ok(())
+    }
+
+    /// The attack-cycle families of benchmarks.md ("Attack cycles").
+    fn write_attack_family<W: Write>(&self, w: &mut Writer<'_, W>) -> io::Result<()> {
+        let a = |i: u64| format!("a{i}");
+        let mut label = 0u64;
+        let mut rule = |w: &mut Writer<'_, W>, body: &[&str], arrow: &str, head: &str| {
+            label += 1;
+            w.rule(label - 1, body, arrow, head).map(|_| label - 1)
+        };
+        match *self {
+            Family::AttackRing(n) => {
+                for i in 0..n {
+                    rule(w, &[], "=>", &a(i))?;
+                    rule(w, &[&a((i + 1) % n)], "=>", &w.neg(&a(i)))?;
+                }
+            }
+            Family::PairsRing(n) => {
+                for i in 0..n {
+                    let (ai, bi) = (a(i), format!("b{i}"));
+                    rule(w, &[], "=>", &ai)?;
+                    rule(w, &[], "=>", &bi)?;
+                    rule(w, &[&ai], "=>", &w.neg(&bi))?;
+                    rule(w, &[&bi], "=>", &w.neg(&ai))?;
+                    rule(w, &[&bi], "=>", &w.neg(&a((i + 1) % n)))?;
+                }
+            }
+            Family::PriorityRing(n) => {
+                rule(w, &[], "=>", &a(0))?;
+                for i in 0..n {
+                    let (next, after) = (a((i + 1) % n), a((i + 2) % n));
+                    let bi = format!("b{i}");
+                    let p = rule(w, &[&a(i)], "=>", &next)?;
+                    let m = rule(w, &[&bi], "=>", &w.neg(&next))?;
+                    let b = rule(w, &[&next], "=>", &bi)?;
+                    let c = rule(w, &[&after], "=>", &w.neg(&bi))?;
+                    w.priority(p, m)?;
+                    if i % 2 == 0 {
+                        w.priority(b, c)?;
+                    } else {
+                        w.priority(c, b)?;
+                    }
+                }
+            }
+            Family::DefeaterRing(n) => {
+                rule(w, &[], "=>", &a(0))?;
+                for i in 0..n {
+                    rule(w, &[&a(i)], "=>", &a((i + 1) % n))?;
+                    rule(w, &[&a((i + 2) % n)], "~>", &w.neg(&a(i)))?;
+                }
+            }
+            Family::Clique(n) => {
+                for i in 0..n {
+                    rule(w, &[], "=>", &a(i))?;
+                    for j in (0..n).filter(|&j| j != i) {
+                        rule(w, &[&a(j)], "=>", &w.neg(&a(i)))?;
+                    }
+                }
+            }
+            Family::Ladder(k) => {
+                let layers = 2 * k;
+                let at = |name: &str, i: u64| format!("{name}{}", i % layers);
+                for i in 0..layers {
+                    if i % 2 == 0 {
+                        for x in ["t", "u"] {
+                            rule(w, &[], "=>", &at(x, i))?;
+                            rule(w, &[&at("f", i + 1)], "=>", &w.neg(&at(x, i)))?;
+                            rule(w, &[&at("g", i + 1)], "=>", &w.neg(&at(x, i)))?;
+                        }
+                    } else {
+                        for x in ["f", "g"] {
+                            rule(w, &[&at("t", i + 1)], "=>", &at(x, i))?;
+                            rule(w, &[&at("u", i + 1)], "=>", &w.neg(&at(x, i)))?;
+                        }
+                    }
+                }
+            }
+            Family::ClauseChain(n) => {
+                rule(w, &[], "=>", "c0")?;
+                for i in 0..n {
+                    writeln!(w.out, "\\/{{~c{i}, c{}}}.", i + 1)?;
+                }
+            }
+            _ => unreachable!("write handles the other families"),
         }
         Ok(())
     }
@@ -331,6 +504,13 @@ impl fmt::Display for Family {
             Family::Tree(n, k) => write!(f, "tree({n}, {k})"),
             Family::Dag(n, k) => write!(f, "dag({n}, {k})"),
             Family::Mix(m, n, k) => write!(f, "mix({m}, {n}, {k})"),
+            Family::AttackRing(n) => write!(f, "attack-ring({n})"),
+            Family::PairsRing(n) => write!(f, "pairs-ring({n})"),
+            Family::PriorityRing(n) => write!(f, "priority-ring({n})"),
+            Family::DefeaterRing(n) => write!(f, "defeater-ring({n})"),
+            Family::Clique(n) => write!(f, "clique({n})"),
+            Family::Ladder(k) => write!(f, "ladder({k})"),
+            Family::ClauseChain(n) => write!(f, "clause-chain({n})"),
         }
     }
 }

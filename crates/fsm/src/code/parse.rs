@@ -174,9 +174,15 @@ impl Parser {
                 }
                 _ => {}
             }
-            return Ok(Expr::Unary {
-                op: UnOp::Neg,
-                operand: Box::new(self.unary()?),
+            // So is a sign before a signed or bracketed number (`-+6`, `-(6)`): the tree is the
+            // one its printed form reads back as.
+            return Ok(match self.unary()? {
+                Expr::Int(i) if i.checked_neg().is_some() => Expr::Int(-i),
+                Expr::Float(x) => Expr::Float(-x),
+                operand => Expr::Unary {
+                    op: UnOp::Neg,
+                    operand: Box::new(operand),
+                },
             });
         }
         self.primary()
@@ -397,7 +403,10 @@ mod tests {
             ("1", "1"),
             ("TRUE", "TRUE"),
             ("- -x", "--x"),
-            ("-(-1)", "--1"),
+            ("-(-1)", "1"),
+            // Found by the fuzzer: `-+6` printed as `-6`, which read back as another tree.
+            ("-+6", "-6"),
+            ("-(2.5)", "-2.5"),
             (
                 "timeout(500ms) || after(2s) || after_ms(1.5s)",
                 "timeout(500ms) || after(2s) || after_ms(1500ms)",

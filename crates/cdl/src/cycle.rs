@@ -1,0 +1,432 @@
+//! Evaluating one strongly connected component of the goal graph that holds a cycle: a least
+//! fixpoint when only support runs through it; with attacks inside, the structure cdl.md §4
+//! ("Cost") names (a simple cycle in closed form, mutual attacks as undirected vertex geography
+//! through maximum matchings), then bounds, then a top-down search under a budget.
+
+use crate::engine::Engine;
+use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
+use crate::matching::uncovered_by_some_maximum_matching;
+use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
+use rustc_hash::FxHashMap;
+
+/// Bounds on the search inside one component (cdl.md §4: no algorithm is polynomial on every
+/// theory, so the search is bounded and says when the bound was hit).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SearchLimits {
+    /// Goals the top-down search may expand inside one component before its remaining members
+    /// are left undecided.
+    pub steps: u64,
+    /// Memory the search's memo of answers under a history may take, in bytes.
+    pub memo_bytes: usize,
+}
+
+impl Default for SearchLimits {
+    fn default() -> SearchLimits {
+        SearchLimits {
+            steps: 10_000_000,
+            memo_bytes: 256 << 20,
+        }
+    }
+}
+
+/// How a component was decided (for `check`'s warnings and the tests).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Method {
+    /// Support only inside: the least fixpoint.
+    Fixpoint,
+    /// Every member reads exactly one other: composed around the cycle.
+    SimpleCycle,
+    /// Members attack each other symmetrically and nothing else: maximum matchings.
+    Geography,
+    /// Bounds, then a top-down search for the members between them.
+    Search,
+}
+
+/// What evaluating a component gave: each member's value (`TRUE`, `FALSE` or `UNDECIDED`).
+pub(crate) struct Evaluated {
+    pub values: Vec<u8>,
+    pub method: Method,
+    /// Goals the search expanded.
+    pub steps: u64,
+}
+
+/// One component to evaluate. Its members are `PENDING` in `values`; every other goal it reads
+/// is settled.
+pub(crate) struct Component<'a> {
+    pub engine: &'a Engine,
+    pub mu: &'a [bool],
+    pub values: &'a [u8],
+    /// A member's position in `members`, by goal.
+    pub position: &'a [u32],
+    pub members: &'a [Goal],
+}
+
+/// Components larger than this are not tried as geography (the blossom search is cubic).
+const GEOGRAPHY_LIMIT: usize = 2048;
+
+/// Bounds the work of refining the lower bound: attacking goals times component size.
+const REFINE_LIMIT: usize = 50_000_000;
+
+/// An internal read: (reader, read member, through an attacker).
+type Edge = (u32, u32, bool);
+
+impl Component<'_> {
+    pub fn evaluate(&self, limits: &SearchLimits) -> Evaluated {
+        let edges = self.edges();
+        let decided = |values: Vec<bool>, method| Evaluated {
+            values: values
+                .into_iter()
+                .map(|v| if v { TRUE } else { FALSE })
+                .collect(),
+            method,
+            steps: 0,
+        };
+        let mut readers: Vec<(u32, u32)> = edges.iter().map(|&(r, m, _)| (m, r)).collect();
+        readers.sort_unstable();
+        readers.dedup();
+        let fixpoint = Fixpoint {
+            component: self,
+            readers: &readers,
+        };
+        if edges.iter().all(|&(_, _, attack)| !attack) {
+            return decided(fixpoint.least(|_, _| false, None), Method::Fixpoint);
+        }
+        if let Some(values) = self.simple_cycle(&edges) {
+            return decided(values, Method::SimpleCycle);
+        }
+        if let Some(values) = self.geography(&edges) {
+            return decided(values, Method::Geography);
+        }
+        self.search(&edges, &fixpoint, limits)
+    }
+
+    /// Every internal read, deduplicated, sorted by reader.
+    fn edges(&self) -> Vec<Edge> {
+        let mut edges = Vec::new();
+        let mut buffer = Vec::new();
+        for (from, &g) in self.members.iter().enumerate() {
+            buffer.clear();
+            successors(self.engine, self.mu, g, &mut buffer, |s| {
+                self.values[s as usize] == PENDING
+            });
+            for &s in &buffer {
+                let to = self.position[(s & !ATTACK) as usize];
+                edges.push((from as u32, to, s & ATTACK != 0));
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        edges
+    }
+
+    /// A member's condition with the members in `true_members` read as true and the others as
+    /// false.
+    fn condition_with(&self, member: u32, is_true: impl Fn(u32) -> bool) -> bool {
+        let mut read = |s: Goal, _: Read| match self.values[s as usize] {
+            PENDING => is_true(self.position[s as usize]),
+            v => v == TRUE,
+        };
+        condition(
+            self.engine,
+            self.mu,
+            self.members[member as usize],
+            &mut read,
+        )
+    }
+
+    /// A component in which every member reads exactly one other member is one cycle: from any
+    /// member the search walks it once round and meets the start, which fails. Each member is a
+    /// function of its one read; the value of member `i` is the composition of the functions
+    /// from `i` round to `i - 1`, applied to false.
+    fn simple_cycle(&self, edges: &[Edge]) -> Option<Vec<bool>> {
+        let n = self.members.len();
+        let mut next = vec![u32::MAX; n];
+        for &(from, to, _) in edges {
+            let slot = &mut next[from as usize];
+            if *slot != u32::MAX && *slot != to {
+                return None;
+            }
+            *slot = to;
+        }
+        // Strongly connected with one successor each: a single cycle through every member.
+        let mut order = Vec::with_capacity(n);
+        let mut seen = vec![false; n];
+        let mut at = 0u32;
+        for _ in 0..n {
+            if at == u32::MAX || seen[at as usize] {
+                return None;
+            }
+            seen[at as usize] = true;
+            order.push(at);
+            at = next[at as usize];
+        }
+        if at != 0 {
+            return None;
+        }
+        // A function of one boolean as (value at false, value at true).
+        type Function = (bool, bool);
+        let apply = |f: Function, x: bool| if x { f.1 } else { f.0 };
+        // (f ∘ g)(x) = f(g(x))
+        let compose = |f: Function, g: Function| (apply(f, g.0), apply(f, g.1));
+        let functions: Vec<Function> = order
+            .iter()
+            .map(|&m| {
+                let read = next[m as usize];
+                (
+                    self.condition_with(m, |_| false),
+                    self.condition_with(m, |x| x == read),
+                )
+            })
+            .collect();
+        let identity: Function = (false, true);
+        // prefix[i] = f0 ∘ … ∘ f(i-1); suffix[i] = fi ∘ … ∘ f(n-1).
+        let mut prefix = vec![identity; n + 1];
+        for i in 0..n {
+            prefix[i + 1] = compose(prefix[i], functions[i]);
+        }
+        let mut suffix = vec![identity; n + 1];
+        for i in (0..n).rev() {
+            suffix[i] = compose(functions[i], suffix[i + 1]);
+        }
+        let mut values = vec![false; n];
+        for (i, &m) in order.iter().enumerate() {
+            values[m as usize] = apply(compose(suffix[i], prefix[i]), false);
+        }
+        Some(values)
+    }
+
+    /// Members that read each other only through attackers, symmetrically, and each hold exactly
+    /// when no member it reads does: `beta(v, H)` is then the undirected vertex geography game on
+    /// the attack graph, and holds from the empty history iff some maximum matching leaves `v`
+    /// uncovered.
+    fn geography(&self, edges: &[Edge]) -> Option<Vec<bool>> {
+        let n = self.members.len();
+        if n > GEOGRAPHY_LIMIT || edges.iter().any(|&(_, _, attack)| !attack) {
+            return None;
+        }
+        let mut adjacency = vec![Vec::new(); n];
+        for &(from, to, _) in edges {
+            if from == to || edges.binary_search(&(to, from, true)).is_err() {
+                return None;
+            }
+            adjacency[from as usize].push(to);
+        }
+        // The condition must be "no member I read holds": true with none, false with any one.
+        for (m, read) in adjacency.iter().enumerate() {
+            let m = m as u32;
+            if !self.condition_with(m, |_| false)
+                || read.iter().any(|&r| self.condition_with(m, |x| x == r))
+            {
+                return None;
+            }
+        }
+        Some(uncovered_by_some_maximum_matching(&adjacency))
+    }
+
+    /// Least fixpoints bound the answers exactly: `up` reads every internal attack as failing,
+    /// so a goal outside it fails under any history. `low` reads an internal attack on `x` by
+    /// goal `g` as `x`'s upper bound computed with `g` removed (`g` is on the history whenever it
+    /// reads `x`), so a goal inside `low` holds from the empty history: its minimal derivation
+    /// never meets a goal twice on a path. Only goals between the bounds are proved top-down, as
+    /// cdl.md §4 reads, with the history restricted to the component, until the budget is spent.
+    fn search(&self, edges: &[Edge], fixpoint: &Fixpoint, limits: &SearchLimits) -> Evaluated {
+        let members = self.members;
+        let up = fixpoint.least(|_, _| false, None);
+        let attacks: Vec<(u32, u32)> = edges
+            .iter()
+            .filter(|&&(_, _, attack)| attack)
+            .map(|&(from, to, _)| (from, to))
+            .collect();
+        let mut distinct: Vec<u32> = attacks
+            .iter()
+            .map(|&(g, _)| g)
+            .filter(|&g| up[g as usize])
+            .collect();
+        distinct.dedup();
+        let refine = distinct.len().saturating_mul(members.len()) <= REFINE_LIMIT;
+        let mut holds: FxHashMap<(u32, u32), bool> = FxHashMap::default();
+        if refine {
+            for &g in &distinct {
+                let without = fixpoint.least(|_, _| false, Some(g));
+                let start = attacks.partition_point(|&(r, _)| r < g);
+                for &(_, x) in attacks[start..].iter().take_while(|&&(r, _)| r == g) {
+                    holds.insert((g, x), without[x as usize]);
+                }
+            }
+        }
+        let low = fixpoint.least(
+            |reader, x| {
+                if refine {
+                    holds.get(&(reader, x)).copied().unwrap_or(false)
+                } else {
+                    up[x as usize]
+                }
+            },
+            None,
+        );
+        let mut top_down = TopDown::new(self, &up, limits);
+        let values = members
+            .iter()
+            .enumerate()
+            .map(|(i, &g)| {
+                if low[i] {
+                    TRUE
+                } else if !up[i] {
+                    FALSE
+                } else {
+                    let v = top_down.prove(g);
+                    if top_down.exhausted {
+                        UNDECIDED
+                    } else if v {
+                        TRUE
+                    } else {
+                        FALSE
+                    }
+                }
+            })
+            .collect();
+        Evaluated {
+            values,
+            method: Method::Search,
+            steps: top_down.steps,
+        }
+    }
+}
+
+/// Least fixpoints over the members of one component.
+struct Fixpoint<'a> {
+    component: &'a Component<'a>,
+    /// (read member, reading member), sorted: a member that turns true wakes only its readers.
+    readers: &'a [(u32, u32)],
+}
+
+impl Fixpoint<'_> {
+    /// Support reads of members take the current approximation; an attack read of member `x` by
+    /// member `r` takes `attack(r, x)`; `excluded` is held false; settled goals are read as they
+    /// are.
+    fn least(&self, attack: impl Fn(u32, u32) -> bool, excluded: Option<u32>) -> Vec<bool> {
+        let c = self.component;
+        let mut current = vec![false; c.members.len()];
+        let mut work: Vec<u32> = (0..c.members.len() as u32)
+            .filter(|&i| Some(i) != excluded)
+            .collect();
+        while let Some(i) = work.pop() {
+            if current[i as usize] || Some(i) == excluded {
+                continue;
+            }
+            let mut read = |s: Goal, how: Read| match c.values[s as usize] {
+                PENDING => {
+                    let p = c.position[s as usize];
+                    if how == ATTACK_READ {
+                        attack(i, p)
+                    } else {
+                        current[p as usize]
+                    }
+                }
+                v => v == TRUE,
+            };
+            if condition(c.engine, c.mu, c.members[i as usize], &mut read) {
+                current[i as usize] = true;
+                let start = self.readers.partition_point(|&(to, _)| to < i);
+                work.extend(
+                    self.readers[start..]
+                        .iter()
+                        .take_while(|&&(to, _)| to == i)
+                        .map(|&(_, from)| from),
+                );
+            }
+        }
+        current
+    }
+}
+
+/// Bytes one memo entry costs, key, value and the table's share.
+const MEMO_ENTRY_BYTES: usize = 48;
+
+/// Top-down proof inside one component, with the history of cdl.md §4 (a goal met again on the
+/// current path fails). Goals outside the component are settled and read from `values`.
+struct TopDown<'a> {
+    component: &'a Component<'a>,
+    /// Members outside the upper bound fail under every history.
+    up: &'a [bool],
+    in_history: Vec<bool>,
+    /// The history as a key: the set itself for components of up to 128 members, else a 128-bit
+    /// Zobrist hash of it.
+    history: u128,
+    zobrist: Vec<u128>,
+    memo: FxHashMap<(u32, u128), bool>,
+    memo_capacity: usize,
+    steps: u64,
+    step_limit: u64,
+    /// The budget ran out: every answer from here on is meaningless.
+    exhausted: bool,
+}
+
+impl<'a> TopDown<'a> {
+    fn new(component: &'a Component<'a>, up: &'a [bool], limits: &SearchLimits) -> TopDown<'a> {
+        let n = component.members.len();
+        let zobrist = if n <= 128 {
+            (0..n).map(|p| 1u128 << p).collect()
+        } else {
+            let mut state = 0x243F_6A88_85A3_08D3u64;
+            let mut next = move || {
+                // splitmix64: fixed seed, so runs are reproducible.
+                state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+                let mut z = state;
+                z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+                z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+                z ^ (z >> 31)
+            };
+            (0..n)
+                .map(|_| (next() as u128) << 64 | next() as u128)
+                .collect()
+        };
+        TopDown {
+            component,
+            up,
+            in_history: vec![false; n],
+            history: 0,
+            zobrist,
+            memo: FxHashMap::default(),
+            memo_capacity: limits.memo_bytes / MEMO_ENTRY_BYTES,
+            steps: 0,
+            step_limit: limits.steps,
+            exhausted: false,
+        }
+    }
+
+    fn prove(&mut self, g: Goal) -> bool {
+        let c = self.component;
+        match c.values[g as usize] {
+            TRUE => return true,
+            PENDING => {}
+            _ => return false,
+        }
+        let p = c.position[g as usize];
+        if self.exhausted || self.in_history[p as usize] || !self.up[p as usize] {
+            return false;
+        }
+        let key = (p, self.history);
+        if let Some(&v) = self.memo.get(&key) {
+            return v;
+        }
+        self.steps += 1;
+        if self.steps > self.step_limit {
+            self.exhausted = true;
+            return false;
+        }
+        self.in_history[p as usize] = true;
+        self.history ^= self.zobrist[p as usize];
+        // The path can be as long as the component: grow the stack on the heap rather than
+        // overflow it.
+        let v = stacker::maybe_grow(64 * 1024, 4 * 1024 * 1024, || {
+            condition(c.engine, c.mu, g, &mut |s, _| self.prove(s))
+        });
+        self.in_history[p as usize] = false;
+        self.history ^= self.zobrist[p as usize];
+        if !self.exhausted && self.memo.len() < self.memo_capacity {
+            self.memo.insert(key, v);
+        }
+        v
+    }
+}

@@ -1,0 +1,22 @@
+//! Fuzz target: any bytes through the machine readers (native `.machine`, Qfsm XML, T/A pairs,
+//! labels, activity code) must not panic, and a machine read from native text must write back
+//! to text that reads again without diagnostics.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    if let Ok(label) = proclaim_fsm::parse_label(&text) {
+        assert_eq!(proclaim_fsm::parse_label(&label.to_string()), Ok(label));
+    }
+    let _ = proclaim_fsm::code::parse_statements(&text);
+    for machine in proclaim_fsm::parse_machine("f.machine", &text).machines {
+        let again = proclaim_fsm::parse_machine("f.machine", &proclaim_fsm::to_native(&machine));
+        assert!(again.diagnostics.is_empty(), "{:?}", again.diagnostics);
+    }
+    let _ = proclaim_fsm::import_qfsm("f.fsm", &text, "f");
+    // Split anywhere so the transitions file and the activities file both vary.
+    let cut = text.char_indices().map(|(i, _)| i).nth(text.chars().count() / 2).unwrap_or(0);
+    let _ = proclaim_fsm::import_ta("f", "T", &text[..cut], "A", &text[cut..]);
+});
