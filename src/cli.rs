@@ -248,7 +248,8 @@ pub enum Command {
     /// Time the benchmark families end to end (parse + all conclusions for beta, then for pi),
     /// each in its own process so peak memory is its own
     Bench {
-        /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3`; default: the suite of
+        /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3 clique:200`, or your
+        /// own theory files (`.dl`, `.dfl`), timed the same way; default: the suite of
         /// spec/benchmarks.md
         cases: Vec<String>,
         /// Smaller sizes (10^3 to 10^5) for a quick look

@@ -247,6 +247,12 @@ fn generated_families_give_their_expected_answers() {
         ("tree", vec![4, 3]),
         ("dag", vec![10, 3]),
         ("mix", vec![3, 2, 4]),
+        ("attack-ring", vec![1001]),
+        ("pairs-ring", vec![40]),
+        ("priority-ring", vec![40]),
+        ("defeater-ring", vec![200]),
+        ("clique", vec![31]),
+        ("ladder", vec![4]),
     ] {
         let f = proclaim_gen::Family::parse(family, &sizes).unwrap();
         let mut text = Vec::new();
@@ -1350,4 +1356,18 @@ fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
         "{}",
         stderr(&o)
     );
+}
+
+#[test]
+fn bench_times_the_users_own_files() {
+    let ladder = generated("ladder", 3);
+    let o = proclaim(&["bench", ladder.to_str().unwrap(), "clique:9", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let rows: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(rows[0]["case"], "ladder-3.dl");
+    assert_eq!(rows[0]["rules"], 30);
+    assert_eq!(rows[0]["undecided"], 0);
+    assert_eq!(rows[1]["case"], "clique(9)");
+    assert_eq!(rows[1]["answers_ok"], true);
+    check(&["bench", "no-such-theory.dl"], 2, "");
 }

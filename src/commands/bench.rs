@@ -7,7 +7,7 @@ use proclaim_cdl::{check_source, Algorithm, Engine, Session};
 use proclaim_gen::{Family, Format};
 use serde::{Deserialize, Serialize};
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -26,9 +26,34 @@ pub struct Measurement {
     pub total_ms: f64,
     pub beta_conclusions: usize,
     pub pi_conclusions: usize,
+    /// Literals β or π left undecided within the search budget (counted once per algorithm).
+    #[serde(default)]
+    pub undecided: usize,
     pub peak_rss_mb: Option<f64>,
-    /// Every expected answer held.
+    /// Every expected answer held (an undecided one does not).
     pub answers_ok: bool,
+}
+
+/// What one case times: a generated family (with its expected answers) or the user's own file.
+#[derive(Clone, Debug)]
+enum Case {
+    Family(Family),
+    File(PathBuf),
+}
+
+impl std::fmt::Display for Case {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Case::Family(family) => write!(f, "{family}"),
+            Case::File(path) => write!(
+                f,
+                "{}",
+                path.file_name()
+                    .map_or(path.as_os_str(), |n| n)
+                    .to_string_lossy()
+            ),
+        }
+    }
 }
 
 const SUITE: [&str; 7] = [
@@ -51,7 +76,21 @@ const QUICK: [&str; 7] = [
     "tree:9:3",
 ];
 
-fn parse_case(case: &str) -> Result<Family, Failure> {
+/// A theory file (`.dl` or `.dfl`) that exists is timed as it is; anything else names a family.
+fn parse_case(case: &str) -> Result<Case, Failure> {
+    let path = Path::new(case);
+    if path.is_file() {
+        return Ok(Case::File(path.to_path_buf()));
+    }
+    if case.ends_with(".dl") || case.ends_with(".dfl") {
+        return Err(Failure::Argument(format!(
+            "bench case `{case}`: no such file"
+        )));
+    }
+    parse_family(case).map(Case::Family)
+}
+
+fn parse_family(case: &str) -> Result<Family, Failure> {
     let mut parts = case.split(':');
     let name = parts.next().unwrap_or_default();
     let sizes = parts
@@ -70,7 +109,7 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     } else {
         cases.to_vec()
     };
-    let families = names
+    let cases = names
         .iter()
         .map(|c| parse_case(c))
         .collect::<Result<Vec<_>, _>>()?;
@@ -79,38 +118,28 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
         path: dir.clone(),
         error,
     })?;
-    let progress = ProgressBar::new(families.len() as u64 * repeat.max(1) as u64);
+    let progress = ProgressBar::new(cases.len() as u64 * repeat.max(1) as u64);
     progress.set_style(
         ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} ({elapsed})")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let mut results = Vec::new();
     let outcome = (|| {
-        for family in &families {
-            progress.set_message(family.to_string());
-            let file = dir.join("theory.dl");
-            let out = std::fs::File::create(&file).map_err(|error| Failure::Write {
-                path: file.clone(),
-                error,
-            })?;
-            let mut out = BufWriter::with_capacity(1 << 20, out);
-            family
-                .write(&mut out, Format::Dl)
-                .and_then(|_| out.flush())
-                .map_err(|error| Failure::Write {
-                    path: file.clone(),
-                    error,
-                })?;
-            drop(out);
+        for case in &cases {
+            progress.set_message(case.to_string());
+            let (file, expected) = match case {
+                Case::File(path) => (path.clone(), Vec::new()),
+                Case::Family(family) => (write_family(&dir, family)?, family.expected()),
+            };
             let mut best: Option<(Measurement, f64)> = None;
             for _ in 0..repeat.max(1) {
-                let (m, wall) = child(&file, family)?;
+                let (m, wall) = child(&file, case, &expected)?;
                 if best.as_ref().is_none_or(|(b, _)| m.total_ms < b.total_ms) {
                     best = Some((m, wall));
                 }
                 progress.inc(1);
             }
-            results.push((*family, best.expect("at least one run")));
+            results.push((case.clone(), best.expect("at least one run")));
         }
         Ok::<(), Failure>(())
     })();
@@ -120,9 +149,9 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     if json {
         let list: Vec<_> = results
             .iter()
-            .map(|(f, (m, wall))| {
+            .map(|(case, (m, wall))| {
                 let mut v = serde_json::to_value(m).unwrap_or_default();
-                v["case"] = f.to_string().into();
+                v["case"] = case.to_string().into();
                 v["process_wall_ms"] = (*wall).into();
                 v
             })
@@ -141,10 +170,10 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
             "ns/rule",
             "peak MB"
         );
-        for (family, (m, wall)) in &results {
+        for (case, (m, wall)) in &results {
             println!(
                 "{:<18} {:>9} {:>10.1} {:>9.1} {:>9.1} {:>9.1} {:>10.1} {:>10.0} {:>8}  {}",
-                family.to_string(),
+                case.to_string(),
                 m.rules,
                 m.read_ms + m.parse_check_ms,
                 m.beta_ms,
@@ -153,7 +182,15 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
                 wall,
                 m.total_ms * 1e6 / m.rules.max(1) as f64,
                 m.peak_rss_mb.map_or("?".into(), |p| format!("{p:.0}")),
-                if m.answers_ok { "ok" } else { "WRONG" }
+                if m.undecided > 0 {
+                    format!("{} undecided", m.undecided)
+                } else if !m.answers_ok {
+                    "WRONG".to_string()
+                } else if matches!(case, Case::File(_)) {
+                    "-".to_string()
+                } else {
+                    "ok".to_string()
+                }
             );
         }
     }
@@ -165,12 +202,34 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     })
 }
 
-fn child(file: &Path, family: &Family) -> Result<(Measurement, f64), Failure> {
+/// Writes a family's theory into `dir` for the child to read.
+fn write_family(dir: &Path, family: &Family) -> Result<PathBuf, Failure> {
+    let file = dir.join("theory.dl");
+    let out = std::fs::File::create(&file).map_err(|error| Failure::Write {
+        path: file.clone(),
+        error,
+    })?;
+    let mut out = BufWriter::with_capacity(1 << 20, out);
+    family
+        .write(&mut out, Format::Dl)
+        .and_then(|_| out.flush())
+        .map_err(|error| Failure::Write {
+            path: file.clone(),
+            error,
+        })?;
+    Ok(file)
+}
+
+fn child(
+    file: &Path,
+    case: &Case,
+    expected: &[proclaim_gen::Expectation],
+) -> Result<(Measurement, f64), Failure> {
     let exe = std::env::current_exe()
         .map_err(|e| Failure::Bench(format!("cannot find this program: {e}")))?;
     let mut command = std::process::Command::new(exe);
     command.arg("bench-run").arg(file);
-    for e in family.expected() {
+    for e in expected {
         command.arg(format!("--expect={e}"));
     }
     let start = Instant::now();
@@ -180,13 +239,13 @@ fn child(file: &Path, family: &Family) -> Result<(Measurement, f64), Failure> {
     let wall = start.elapsed().as_secs_f64() * 1e3;
     if !output.status.success() {
         return Err(Failure::Bench(format!(
-            "{family}: the benchmark process failed ({}): {}",
+            "{case}: the benchmark process failed ({}): {}",
             output.status,
             String::from_utf8_lossy(&output.stderr).trim()
         )));
     }
     let m = serde_json::from_slice(&output.stdout)
-        .map_err(|e| Failure::Bench(format!("{family}: unreadable measurement: {e}")))?;
+        .map_err(|e| Failure::Bench(format!("{case}: unreadable measurement: {e}")))?;
     Ok((m, wall))
 }
 
@@ -220,13 +279,22 @@ pub fn run_one(file: &Path, expect: &[String]) -> Result<ExitCode, Failure> {
     let pi_ms = ms(t);
     let total_ms = ms(start);
     let engine = session.engine().clone();
+    let lits = (0..engine.theory().atom_count() as u32 * 2).map(proclaim_cdl::Lit);
+    let undecided = [Algorithm::Beta, Algorithm::Pi]
+        .into_iter()
+        .map(|alg| {
+            lits.clone()
+                .filter(|&l| session.decide(alg, l).is_err())
+                .count()
+        })
+        .sum();
     let answers_ok = expect.iter().all(|e| {
         let (sign, rest) = e.split_at(1);
         let Some((alg, lit)) = rest.split_once(' ') else {
             return false;
         };
         match (Algorithm::from_name(alg), engine.theory().lit(lit)) {
-            (Some(alg), Some(lit)) => session.prove(alg, lit) == (sign == "+"),
+            (Some(alg), Some(lit)) => session.decide(alg, lit) == Ok(sign == "+"),
             _ => false,
         }
     });
@@ -241,6 +309,7 @@ pub fn run_one(file: &Path, expect: &[String]) -> Result<ExitCode, Failure> {
         total_ms,
         beta_conclusions,
         pi_conclusions,
+        undecided,
         peak_rss_mb: peak_rss_mb(),
         answers_ok,
     };
