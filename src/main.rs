@@ -8,6 +8,7 @@ mod commands;
 mod embedded;
 mod failure;
 mod load;
+mod logs;
 mod machines;
 mod network;
 
@@ -27,6 +28,7 @@ fn main() -> ExitCode {
     #[cfg(feature = "zenoh")]
     proclaim_zenoh::prefer_few_threads();
     let cli = cli::Cli::parse();
+    logs::install(cli.verbose, cli.quiet, cli.log_format);
     match commands::run(cli) {
         Ok(code) => code,
         Err(failure) => {

@@ -1371,3 +1371,51 @@ fn bench_times_the_users_own_files() {
     assert_eq!(rows[1]["answers_ok"], true);
     check(&["bench", "no-such-theory.dl"], 2, "");
 }
+
+#[test]
+fn logs_show_the_crates_spans_with_v_and_as_json() {
+    // Nothing extra by default: the trace is the output.
+    let quiet = proclaim(&["run", "microwave", "--for", "300ms"]);
+    assert!(
+        !stderr(&quiet).contains("query answered"),
+        "{}",
+        stderr(&quiet)
+    );
+    let o = proclaim(&["run", "microwave", "--for", "300ms", "-vv"]);
+    let log = stderr(&o);
+    assert!(
+        log.contains("machine{name=Microwave}") && log.contains("query answered"),
+        "{log}"
+    );
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--for",
+        "300ms",
+        "-vv",
+        "--log-format",
+        "json",
+    ]);
+    let line = stderr(&o)
+        .lines()
+        .find(|l| l.contains("query answered"))
+        .map(str::to_string)
+        .unwrap_or_else(|| panic!("{}", stderr(&o)));
+    let event: serde_json::Value = serde_json::from_str(&line).unwrap();
+    assert_eq!(event["level"], "DEBUG");
+    assert_eq!(
+        event["fields"]["atom"]
+            .as_str()
+            .map(|a| a == "cook" || a == "light"),
+        Some(true)
+    );
+    assert_eq!(event["span"]["name"], "machine");
+    // RUST_LOG decides when set.
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", "microwave", "--for", "300ms"])
+        .env("NO_COLOR", "1")
+        .env("RUST_LOG", "proclaim_board=debug")
+        .output()
+        .unwrap();
+    assert!(stderr(&o).contains("query answered"), "{}", stderr(&o));
+}

@@ -133,11 +133,15 @@ impl Whiteboard {
         let answer = self.wait_for(atom, asked.seq, timeout).await;
         self.transport.count_query(answer.is_none(), false);
         match answer {
-            Some(m) => QueryOutcome::Answered {
-                value: m.value.truthy(),
-                after: m.time.saturating_sub(asked.time),
-                by: m.module,
-            },
+            Some(m) => {
+                let value = m.value.truthy();
+                tracing::debug!(module, atom, value, by = %m.module, "query answered");
+                QueryOutcome::Answered {
+                    value,
+                    after: m.time.saturating_sub(asked.time),
+                    by: m.module,
+                }
+            }
             None => {
                 tracing::warn!(
                     module,

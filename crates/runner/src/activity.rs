@@ -76,7 +76,8 @@ impl Doer<'_> {
     }
 
     fn warn(&self, message: String) {
-        tracing::warn!(machine = %self.machine, "{message}");
+        // The event reaches whoever runs the machine; a warning here would say it twice.
+        tracing::debug!(machine = %self.machine, "{message}");
         self.reporter.emit(|at| Event::Warned {
             machine: self.machine.to_string(),
             message,
@@ -227,7 +228,7 @@ impl Doer<'_> {
             Some(f) => f(argument),
             None => {
                 if self.unknown.insert(function.to_string()) {
-                    tracing::warn!(machine = %self.machine, function = %function, "host function not registered; skipped");
+                    tracing::debug!(machine = %self.machine, function = %function, "host function not registered; skipped");
                     self.reporter.emit(|_| Event::UnknownFunction {
                         machine: self.machine.to_string(),
                         function: function.to_string(),

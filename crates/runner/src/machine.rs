@@ -349,6 +349,7 @@ impl<'r> Run<'r> {
         match fired {
             Some(t) => {
                 let (from, to, label) = (self.current, t.target, t.label.to_string());
+                tracing::debug!(from = %state.name, to, %label, "transition fired");
                 self.reporter.emit(|at| Event::Fired {
                     machine: self.name.clone(),
                     from,
@@ -458,7 +459,8 @@ impl<'r> Run<'r> {
         let new = match loaded {
             Ok(new) => new,
             Err(error) => {
-                tracing::warn!(machine = %self.name, %error, "reload failed; the machine runs on unchanged");
+                // The event reaches whoever runs the machine; a warning here would say it twice.
+                tracing::debug!(machine = %self.name, %error, "reload failed; the machine runs on unchanged");
                 self.reporter.emit(|at| Event::ReloadFailed {
                     machine: self.name.clone(),
                     error,
