@@ -2,7 +2,7 @@
 //! and where (duplicate and undefined labels, priority cycles, contradicting facts, misused
 //! input and output declarations).
 
-use crate::closure::{close, normalize, ClosureOutcome, MAX_CLOSURE};
+use crate::closure::{close, normalize, ClosureOutcome, Resolvents, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
@@ -559,7 +559,7 @@ impl<'s> Checker<'s> {
         let axioms: Vec<Vec<Lit>> = self.theory.axioms.iter().map(|c| c.lits.clone()).collect();
         let span_of =
             |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
-        match close(&axioms) {
+        match close(&axioms, Resolvents::ImplicationsImplicit) {
             ClosureOutcome::Closed { clauses, given } => {
                 for (index, (lits, given)) in clauses.into_iter().zip(given).enumerate() {
                     for (i, &head) in lits.iter().enumerate() {

@@ -1,4 +1,9 @@
 //! The closure of a set of clauses under resolution (cdl.md §2, step 1), tautologies dropped.
+//! Two-literal clauses are implications (`\\/{~a, b}` is `a → b` and `~b → ~a`); resolving two of
+//! them only chains implications, so the engine's closure leaves those resolvents implicit, as
+//! paths of its implication graph, and keeps what they imply: the units (`l` when `~l` implies
+//! `l`) and every resolvent with a unit or a longer clause. The reference prover materialises
+//! them all.
 
 use crate::literal::Lit;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -37,9 +42,18 @@ pub fn normalize(mut clause: Vec<Lit>) -> Option<Vec<Lit>> {
     }
 }
 
+/// Which resolvents a closure materialises.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Resolvents {
+    /// Every one (the reference prover).
+    All,
+    /// All but those of two two-literal clauses, which stay paths of the implication graph.
+    ImplicationsImplicit,
+}
+
 /// Closes `clauses` under resolution. Indexing clauses by literal keeps the common case (many
 /// unit facts, few real clauses) linear.
-pub fn close(input: &[Vec<Lit>]) -> ClosureOutcome {
+pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
     let mut all: Vec<Vec<Lit>> = Vec::new();
     let mut given: Vec<Option<usize>> = Vec::new();
     let mut seen: FxHashSet<Vec<Lit>> = FxHashSet::default();
@@ -63,7 +77,34 @@ pub fn close(input: &[Vec<Lit>]) -> ClosureOutcome {
         }
     }
     let mut next = 0;
-    while next < all.len() {
+    loop {
+        if next == all.len() {
+            // Resolved out; with the implications implicit, the units they force come next.
+            if resolvents == Resolvents::All {
+                break;
+            }
+            match forced_units(&all, &seen) {
+                Forced::None => break,
+                Forced::Units(units) => {
+                    if all.len() + units.len() > MAX_CLOSURE {
+                        return ClosureOutcome::TooLarge;
+                    }
+                    for unit in units {
+                        by_lit.entry(unit).or_default().push(all.len());
+                        seen.insert(vec![unit]);
+                        all.push(vec![unit]);
+                        given.push(None);
+                    }
+                }
+                Forced::Both(l) => {
+                    return ClosureOutcome::Inconsistent {
+                        first: (vec![l], None),
+                        second: (vec![l.complement()], None),
+                    }
+                }
+            }
+            continue;
+        }
         let current = all[next].clone();
         for &l in &current {
             let Some(partners) = by_lit.get(&l.complement()) else {
@@ -71,6 +112,12 @@ pub fn close(input: &[Vec<Lit>]) -> ClosureOutcome {
             };
             for p in partners.clone() {
                 let other = &all[p];
+                if resolvents == Resolvents::ImplicationsImplicit
+                    && current.len() == 2
+                    && other.len() == 2
+                {
+                    continue;
+                }
                 if current.len() == 1 && other.len() == 1 {
                     return ClosureOutcome::Inconsistent {
                         first: (current, given[next]),
@@ -105,5 +152,85 @@ pub fn close(input: &[Vec<Lit>]) -> ClosureOutcome {
     ClosureOutcome::Closed {
         clauses: all,
         given,
+    }
+}
+
+enum Forced {
+    None,
+    /// New units: literals `l` with a path from `~l` to `l`.
+    Units(Vec<Lit>),
+    /// `l` and `~l` imply each other: the clauses are inconsistent.
+    Both(Lit),
+}
+
+/// The units the two-literal clauses force and the closure does not hold yet: `l` whenever `~l`
+/// implies `l` (resolving along that path ends in `{l}`). A path can only join literals of one
+/// weakly connected part of the graph, so only literals whose complement lies in their part are
+/// searched.
+fn forced_units(all: &[Vec<Lit>], seen: &FxHashSet<Vec<Lit>>) -> Forced {
+    let mut succ: FxHashMap<Lit, Vec<Lit>> = FxHashMap::default();
+    for clause in all.iter().filter(|c| c.len() == 2) {
+        let (a, b) = (clause[0], clause[1]);
+        succ.entry(a.complement()).or_default().push(b);
+        succ.entry(b.complement()).or_default().push(a);
+    }
+    let mut part: FxHashMap<Lit, Lit> = FxHashMap::default();
+    fn find(part: &mut FxHashMap<Lit, Lit>, l: Lit) -> Lit {
+        let mut root = l;
+        while let Some(&up) = part.get(&root).filter(|&&up| up != root) {
+            root = up;
+        }
+        let mut at = l;
+        while at != root {
+            let up = part[&at];
+            part.insert(at, root);
+            at = up;
+        }
+        root
+    }
+    for (&from, tos) in &succ {
+        part.entry(from).or_insert(from);
+        for &to in tos {
+            part.entry(to).or_insert(to);
+            let (a, b) = (find(&mut part, from), find(&mut part, to));
+            if a != b {
+                part.insert(a, b);
+            }
+        }
+    }
+    let mut literals: Vec<Lit> = part.keys().copied().collect();
+    literals.sort_unstable();
+    let mut units = Vec::new();
+    let mut visited: FxHashSet<Lit> = FxHashSet::default();
+    for l in literals {
+        if seen.contains(&vec![l]) || !part.contains_key(&l.complement()) {
+            continue;
+        }
+        if find(&mut part, l) != find(&mut part, l.complement()) {
+            continue;
+        }
+        visited.clear();
+        let mut work = vec![l.complement()];
+        let mut forced = false;
+        while let Some(x) = work.pop() {
+            if x == l {
+                forced = true;
+                break;
+            }
+            if visited.insert(x) {
+                work.extend(succ.get(&x).into_iter().flatten().copied());
+            }
+        }
+        if forced {
+            if units.contains(&l.complement()) {
+                return Forced::Both(l);
+            }
+            units.push(l);
+        }
+    }
+    if units.is_empty() {
+        Forced::None
+    } else {
+        Forced::Units(units)
     }
 }

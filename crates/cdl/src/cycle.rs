@@ -140,6 +140,10 @@ impl Component<'_> {
     /// from `i` round to `i - 1`, applied to false.
     fn simple_cycle(&self, edges: &[Edge]) -> Option<Vec<bool>> {
         let n = self.members.len();
+        // An aggregate never enters the history, so meeting one again does not fail.
+        if self.members.iter().any(|&g| self.engine.is_aggregate(g)) {
+            return None;
+        }
         let mut next = vec![u32::MAX; n];
         for &(from, to, _) in edges {
             let slot = &mut next[from as usize];
@@ -201,7 +205,10 @@ impl Component<'_> {
     /// uncovered.
     fn geography(&self, edges: &[Edge]) -> Option<Vec<bool>> {
         let n = self.members.len();
-        if n > GEOGRAPHY_LIMIT || edges.iter().any(|&(_, _, attack)| !attack) {
+        if n > GEOGRAPHY_LIMIT
+            || edges.iter().any(|&(_, _, attack)| !attack)
+            || self.members.iter().any(|&g| self.engine.is_aggregate(g))
+        {
             return None;
         }
         let mut adjacency = vec![Vec::new(); n];
@@ -237,6 +244,16 @@ impl Component<'_> {
             .filter(|&&(_, _, attack)| attack)
             .map(|&(from, to, _)| (from, to))
             .collect();
+        // First the cheap lower bound (an internal attack holds wherever its target can): when
+        // it meets the upper bound, nothing is left to refine or search.
+        let coarse = fixpoint.least(|_, x| up[x as usize], None);
+        if coarse == up {
+            return Evaluated {
+                values: up.iter().map(|&v| if v { TRUE } else { FALSE }).collect(),
+                method: Method::Search,
+                steps: 0,
+            };
+        }
         let mut distinct: Vec<u32> = attacks
             .iter()
             .map(|&(g, _)| g)
@@ -254,16 +271,14 @@ impl Component<'_> {
                 }
             }
         }
-        let low = fixpoint.least(
-            |reader, x| {
-                if refine {
-                    holds.get(&(reader, x)).copied().unwrap_or(false)
-                } else {
-                    up[x as usize]
-                }
-            },
-            None,
-        );
+        let low = if refine {
+            fixpoint.least(
+                |reader, x| holds.get(&(reader, x)).copied().unwrap_or(false),
+                None,
+            )
+        } else {
+            coarse
+        };
         let mut top_down = TopDown::new(self, &up, limits);
         let values = members
             .iter()
@@ -406,6 +421,9 @@ impl<'a> TopDown<'a> {
         if self.exhausted || self.in_history[p as usize] || !self.up[p as usize] {
             return false;
         }
+        // Aggregates stand for many rules at once and are no goals of cdl.md §4: they never
+        // enter the history (their own reads are acyclic, so this ends).
+        let transparent = c.engine.is_aggregate(g);
         let key = (p, self.history);
         if let Some(&v) = self.memo.get(&key) {
             return v;
@@ -415,15 +433,19 @@ impl<'a> TopDown<'a> {
             self.exhausted = true;
             return false;
         }
-        self.in_history[p as usize] = true;
-        self.history ^= self.zobrist[p as usize];
+        if !transparent {
+            self.in_history[p as usize] = true;
+            self.history ^= self.zobrist[p as usize];
+        }
         // The path can be as long as the component: grow the stack on the heap rather than
         // overflow it.
         let v = stacker::maybe_grow(64 * 1024, 4 * 1024 * 1024, || {
             condition(c.engine, c.mu, g, &mut |s, _| self.prove(s))
         });
-        self.in_history[p as usize] = false;
-        self.history ^= self.zobrist[p as usize];
+        if !transparent {
+            self.in_history[p as usize] = false;
+            self.history ^= self.zobrist[p as usize];
+        }
         if !self.exhausted && self.memo.len() < self.memo_capacity {
             self.memo.insert(key, v);
         }

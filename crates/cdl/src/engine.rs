@@ -58,6 +58,127 @@ pub struct Engine {
     pub(crate) strict_body_len: Vec<u32>,
     /// For each literal, the clauses of the axioms' closure that hold it.
     pub(crate) closure_by_lit: Csr,
+    /// The implication graph of the closure's two-literal clauses, whose resolvents the closure
+    /// leaves implicit ([`crate::closure::Resolvents`]).
+    pub(crate) implications: Implications,
+}
+
+/// `\/{~x, y}` makes `x → y`; a path `x ⇝ y` (x ≠ y) is the strict rule `x -> y` of a resolvent
+/// the closure did not write. A goal about `y` reads those rules as: the other members of `y`'s
+/// strongly connected part of the graph (when it is a cycle), each read as its own rule, and one
+/// aggregate goal per part, "some literal outside the part with a path into it is proved by λ",
+/// which the parts before it share. A chain of n clauses costs n goals, not n² rules. The
+/// aggregates read each other along the condensation, which is acyclic, and never enter a
+/// proof's history: they are not goals of cdl.md §4, only a shared way to read many rules.
+#[derive(Debug, Default)]
+pub(crate) struct Implications {
+    /// `x → y` edges by `x`.
+    pub(crate) forward: Csr,
+    /// For each literal of the graph, the literal standing for its part; `NO_PART` elsewhere.
+    pub(crate) representative: Vec<u32>,
+    /// For each representative of a part that is a cycle, its members.
+    pub(crate) members: Csr,
+    /// For each representative whose part has an aggregate: the literals outside the part its
+    /// aggregate reads the goal of (the members' predecessors, and the whole of a predecessor's
+    /// part when that is a cycle).
+    pub(crate) direct: Csr,
+    /// For each representative, the representatives whose aggregates its aggregate reads.
+    pub(crate) chained: Csr,
+    /// Whether the part of each representative has an aggregate (something outside leads in).
+    pub(crate) has_aggregate: Vec<bool>,
+}
+
+pub(crate) const NO_PART: u32 = u32::MAX;
+
+impl Implications {
+    fn new(lit_count: usize, theory: &Theory) -> Implications {
+        let edges: Vec<(u32, u32)> = theory
+            .closure
+            .iter()
+            .filter(|c| c.lits.len() == 2)
+            .flat_map(|c| {
+                let (a, b) = (c.lits[0], c.lits[1]);
+                [(a.complement().0, b.0), (b.complement().0, a.0)]
+            })
+            .collect();
+        if edges.is_empty() {
+            return Implications::default();
+        }
+        let forward = Csr::build(lit_count, edges.iter().copied());
+        let backward = Csr::build(lit_count, edges.iter().map(|&(x, y)| (y, x)));
+        let succ: Vec<Vec<u32>> = (0..lit_count).map(|l| forward.row(l).to_vec()).collect();
+        let mut representative = vec![NO_PART; lit_count];
+        let mut cyclic = vec![false; lit_count];
+        // Tarjan lists parts successors first; every literal with an edge is in one.
+        let parts = crate::check::strongly_connected(&succ);
+        for component in &parts {
+            let rep = component[0];
+            for &l in component {
+                representative[l as usize] = rep;
+            }
+            cyclic[rep as usize] = component.len() > 1 || succ[rep as usize].contains(&rep);
+        }
+        let part_of_rep: rustc_hash::FxHashMap<u32, usize> =
+            parts.iter().enumerate().map(|(i, c)| (c[0], i)).collect();
+        let mut members: Vec<(u32, u32)> = Vec::new();
+        let mut direct: Vec<(u32, u32)> = Vec::new();
+        let mut chained: Vec<(u32, u32)> = Vec::new();
+        let mut has_aggregate = vec![false; lit_count];
+        // Predecessors' parts first, so their aggregates are known when a part reads them.
+        for component in parts.iter().rev() {
+            let rep = component[0];
+            if cyclic[rep as usize] {
+                members.extend(component.iter().map(|&m| (rep, m)));
+            }
+            let mut reads: Vec<u32> = Vec::new();
+            let mut chains: Vec<u32> = Vec::new();
+            for &m in component {
+                for &p in backward.row(m as usize) {
+                    let their = representative[p as usize];
+                    if their == rep {
+                        continue;
+                    }
+                    if cyclic[their as usize] {
+                        reads.extend(&parts[part_of_rep[&their]]);
+                    } else {
+                        reads.push(p);
+                    }
+                    if has_aggregate[their as usize] {
+                        chains.push(their);
+                    }
+                }
+            }
+            reads.sort_unstable();
+            reads.dedup();
+            chains.sort_unstable();
+            chains.dedup();
+            has_aggregate[rep as usize] = !reads.is_empty();
+            direct.extend(reads.iter().map(|&x| (rep, x)));
+            chained.extend(chains.iter().map(|&r| (rep, r)));
+        }
+        Implications {
+            forward,
+            representative,
+            members: Csr::build(lit_count, members.into_iter()),
+            direct: Csr::build(lit_count, direct.into_iter()),
+            chained: Csr::build(lit_count, chained.into_iter()),
+            has_aggregate,
+        }
+    }
+
+    pub(crate) fn any(&self) -> bool {
+        !self.representative.is_empty()
+    }
+
+    /// The other members of `lit`'s part when it is a cycle: each `x -> lit` is a rule.
+    #[inline]
+    pub(crate) fn cycle_mates(&self, lit: Lit) -> impl Iterator<Item = Lit> + '_ {
+        let row = match self.representative.get(lit.index()) {
+            Some(&rep) if rep != NO_PART => self.members.row(rep as usize),
+            _ => &[],
+        };
+        row.iter().map(|&x| Lit(x)).filter(move |&x| x != lit)
+    }
 }
 
 impl Engine {
@@ -102,7 +223,9 @@ impl Engine {
                 .enumerate()
                 .flat_map(|(i, c)| c.lits.iter().map(move |l| (l.0, i as u32))),
         );
+        let implications = Implications::new(lit_count, &theory);
         Engine {
+            implications,
             closure_by_lit,
             lit_count,
             by_head,
@@ -141,5 +264,47 @@ impl Engine {
 
     pub(crate) fn superiors_of(&self, rule: RuleId) -> &[RuleId] {
         self.superiors.row(rule as usize)
+    }
+
+    /// Goals of the literals themselves: `literal * 3 + kind`; the implication aggregates come
+    /// after them.
+    #[inline]
+    pub(crate) fn aggregate_base(&self) -> u32 {
+        self.lit_count as u32 * 3
+    }
+
+    /// How many goals a session keeps a value for.
+    pub(crate) fn goal_count(&self) -> usize {
+        let base = self.aggregate_base() as usize;
+        if self.implications.any() {
+            2 * base
+        } else {
+            base
+        }
+    }
+
+    /// The aggregate "some literal outside `lit`'s part with a path to it is proved by `kind`",
+    /// when one leads there.
+    #[inline]
+    pub(crate) fn aggregate_for(&self, lit: Lit, kind: u32) -> Option<u32> {
+        let i = &self.implications;
+        match i.representative.get(lit.index()) {
+            Some(&rep) if rep != NO_PART && i.has_aggregate[rep as usize] => {
+                Some(self.aggregate_base() + rep * 3 + kind)
+            }
+            _ => None,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn is_aggregate(&self, goal: u32) -> bool {
+        goal >= self.aggregate_base()
+    }
+
+    /// The representative literal and kind of an aggregate goal.
+    #[inline]
+    pub(crate) fn aggregate_parts(&self, goal: u32) -> (u32, u32) {
+        let g = goal - self.aggregate_base();
+        (g / 3, g % 3)
     }
 }

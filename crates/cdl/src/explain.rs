@@ -202,6 +202,27 @@ impl Session {
                 Some(a) => failed.push((r, a)),
             }
         }
+        if supporter.is_none() {
+            // A resolvent of the clause axioms the closure left implicit (`x -> q` for a path
+            // of implications from `x`), proved.
+            let implicit = implicit_sources(&engine, q)
+                .into_iter()
+                .find(|&x| self.prove(alg, x));
+            if let Some(x) = implicit {
+                let mut line = Explanation::leaf(format!(
+                    "supported by {} -> {}, a resolvent of the clause axioms",
+                    show(x),
+                    show(q)
+                ));
+                if depth > 0 {
+                    line.children.push(self.explain_at(alg, x, depth - 1, seen));
+                }
+                node.children.push(line);
+                self.explain_implicit_attackers(alg, q, node);
+                self.note_loop(alg, q, node);
+                return;
+            }
+        }
         let Some(r) = supporter else {
             if failed.is_empty() {
                 node.children.push(Explanation::leaf(format!(
@@ -238,6 +259,7 @@ impl Session {
             }
         }
         node.children.push(line);
+        self.explain_implicit_attackers(alg, q, node);
         for &s in engine.rules_for(q.complement()) {
             let name = theory.rule_name(s);
             let counted = if alg == Algorithm::Beta {
@@ -287,6 +309,34 @@ impl Session {
         self.note_loop(alg, q, node);
     }
 
+    /// The first standing attacker among the clause axioms' implicit resolvents `x -> ~q` (they
+    /// are unlabelled, so nothing beats them); the discounted ones are too many to list.
+    fn explain_implicit_attackers(&mut self, alg: Algorithm, q: Lit, node: &mut Explanation) {
+        let engine = self.engine().clone();
+        let standing = implicit_sources(&engine, q.complement())
+            .into_iter()
+            .find(|&x| {
+                if alg == Algorithm::Beta {
+                    self.prove(Algorithm::Beta, x)
+                } else {
+                    self.support_value(x)
+                }
+            });
+        if let Some(x) = standing {
+            let theory = engine.theory();
+            node.children.push(Explanation::leaf(format!(
+                "attacker {} -> {}, a resolvent of the clause axioms, stands: its antecedent is {}",
+                theory.show(x),
+                theory.show(q.complement()),
+                if alg == Algorithm::Beta {
+                    "proved"
+                } else {
+                    "supported"
+                }
+            )));
+        }
+    }
+
     /// Adds a line when the goal lies on a cycle of the goal graph, where a goal met again on the
     /// proof path fails (cdl.md §4).
     fn note_loop(&mut self, alg: Algorithm, q: Lit, node: &mut Explanation) {
@@ -316,4 +366,29 @@ impl Session {
         }
         false
     }
+}
+
+/// The literals with a path of two or more implications to `q`: the antecedents of the strict
+/// rules the closure left implicit (a path of one is a written clause's own rule).
+fn implicit_sources(engine: &crate::Engine, q: Lit) -> Vec<Lit> {
+    let i = &engine.implications;
+    let mut sources: Vec<Lit> = i.cycle_mates(q).collect();
+    let mut parts: Vec<u32> = engine
+        .aggregate_for(q, 0)
+        .map(|a| engine.aggregate_parts(a).0)
+        .into_iter()
+        .collect();
+    let mut seen_parts: HashSet<u32> = parts.iter().copied().collect();
+    while let Some(r) = parts.pop() {
+        sources.extend(i.direct.row(r as usize).iter().map(|&x| Lit(x)));
+        for &c in i.chained.row(r as usize) {
+            if seen_parts.insert(c) {
+                parts.push(c);
+            }
+        }
+    }
+    sources.sort_unstable();
+    sources.dedup();
+    sources.retain(|&x| x != q && !i.forward.row(x.index()).contains(&q.0));
+    sources
 }

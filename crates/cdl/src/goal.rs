@@ -1,5 +1,7 @@
 //! Goals (an algorithm's question about one literal), their proof conditions (cdl.md §4) and
 //! their successors in the goal graph, shared by every evaluation strategy of the session.
+//! Besides the literals' goals there are the implication aggregates of
+//! [`crate::engine::Implications`], which stand for the strict rules of implicit resolvents.
 
 use crate::engine::Engine;
 use crate::literal::Lit;
@@ -46,6 +48,19 @@ pub(crate) fn condition(
     goal: Goal,
     value: &mut dyn FnMut(Goal, Read) -> bool,
 ) -> bool {
+    if engine.is_aggregate(goal) {
+        let (rep, kind) = engine.aggregate_parts(goal);
+        let i = &engine.implications;
+        return i
+            .direct
+            .row(rep as usize)
+            .iter()
+            .any(|&x| value(self::goal(Lit(x), kind), SUPPORT_READ))
+            || i.chained
+                .row(rep as usize)
+                .iter()
+                .any(|&r| value(engine.aggregate_base() + r * 3 + kind, SUPPORT_READ));
+    }
     let q = lit_of(goal);
     let nq = q.complement();
     let kind = kind_of(goal);
@@ -67,12 +82,17 @@ pub(crate) fn condition(
             let supporters = engine.rules_for(q);
             let supported = supporters
                 .iter()
-                .any(|&r| engine.kind(r).supports() && applicable(r, kind, SUPPORT_READ, value));
+                .any(|&r| engine.kind(r).supports() && applicable(r, kind, SUPPORT_READ, value))
+                || implied(engine, q, kind, SUPPORT_READ, value);
             if !supported {
                 return false;
             }
             // An attacker counts when its antecedent is proved (β) or merely supported (π).
             let attacker_kind = if kind == BETA { BETA } else { SUP };
+            // The strict rules of implicit resolvents are unlabelled: no priority beats them.
+            if implied(engine, nq, attacker_kind, ATTACK_READ, value) {
+                return false;
+            }
             for &s in engine.rules_for(nq) {
                 if !applicable(s, attacker_kind, ATTACK_READ, value) {
                     continue;
@@ -92,6 +112,10 @@ pub(crate) fn condition(
             if mu[q.index()] {
                 return true;
             }
+            // Implicit resolvents' rules have no superiors to stand against them.
+            if implied(engine, q, SUP, SUPPORT_READ, value) {
+                return true;
+            }
             engine.rules_for(q).iter().any(|&r| {
                 engine.kind(r).supports()
                     && applicable(r, SUP, SUPPORT_READ, value)
@@ -100,6 +124,41 @@ pub(crate) fn condition(
                         .iter()
                         .all(|&s| engine.head(s) != nq || !applicable(s, PI, ATTACK_READ, value))
             })
+        }
+    }
+}
+
+/// Whether some implicit resolvent's rule `x -> lit` applies: `x` is another member of `lit`'s
+/// cycle of implications, or the aggregate of what leads into the cycle holds.
+fn implied(
+    engine: &Engine,
+    lit: Lit,
+    kind: u32,
+    read: Read,
+    value: &mut dyn FnMut(Goal, Read) -> bool,
+) -> bool {
+    engine
+        .implications
+        .cycle_mates(lit)
+        .any(|x| value(goal(x, kind), read))
+        || engine
+            .aggregate_for(lit, kind)
+            .is_some_and(|a| value(a, read))
+}
+
+/// The goals [`implied`] may read, flagged with `flag`.
+fn push_implied(
+    engine: &Engine,
+    lit: Lit,
+    kind: u32,
+    flag: u32,
+    out: &mut Vec<u32>,
+    keep: &impl Fn(Goal) -> bool,
+) {
+    let mates = engine.implications.cycle_mates(lit).map(|x| goal(x, kind));
+    for g in mates.chain(engine.aggregate_for(lit, kind)) {
+        if keep(g) {
+            out.push(g | flag);
         }
     }
 }
@@ -113,6 +172,22 @@ pub(crate) fn successors(
     out: &mut Vec<u32>,
     keep: impl Fn(Goal) -> bool,
 ) {
+    if engine.is_aggregate(goal) {
+        let (rep, kind) = engine.aggregate_parts(goal);
+        let i = &engine.implications;
+        let reads = i
+            .direct
+            .row(rep as usize)
+            .iter()
+            .map(|&x| self::goal(Lit(x), kind));
+        let chained = i
+            .chained
+            .row(rep as usize)
+            .iter()
+            .map(|&r| engine.aggregate_base() + r * 3 + kind);
+        out.extend(reads.chain(chained).filter(|&g| keep(g)));
+        return;
+    }
     let q = lit_of(goal);
     let nq = q.complement();
     let kind = kind_of(goal);
@@ -138,6 +213,8 @@ pub(crate) fn successors(
             for &s in engine.rules_for(nq) {
                 push_body(s, attacker_kind, ATTACK);
             }
+            push_implied(engine, q, kind, 0, out, &keep);
+            push_implied(engine, nq, attacker_kind, ATTACK, out, &keep);
         }
         _ => {
             if mu[q.index()] {
@@ -154,6 +231,7 @@ pub(crate) fn successors(
                     }
                 }
             }
+            push_implied(engine, q, SUP, 0, out, &keep);
         }
     }
 }

@@ -34,7 +34,9 @@ pub fn attack_cycle_warnings(theory: &Arc<Theory>, limits: SearchLimits) -> Vec<
     }
     let mut warnings = Vec::new();
     for searched in session.searched() {
-        if searched.goals.len() < SEARCHED_WARNING_GOALS && !searched.undecided {
+        let small = searched.goals.len() < SEARCHED_WARNING_GOALS;
+        // Decided by its bounds alone (no step of search): cheap however large.
+        if !searched.undecided && (small || searched.steps == 0) {
             continue;
         }
         let atoms: FxHashSet<Atom> = searched.goals.iter().map(|(_, l)| l.atom()).collect();

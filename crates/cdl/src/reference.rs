@@ -2,11 +2,12 @@
 //! the written theory. Exponential in the worst case and kept simple on purpose: it is the oracle
 //! the fast engine is tested against, not a tool for large theories.
 
-use crate::closure::{close, ClosureOutcome};
+use crate::closure::{close, ClosureOutcome, Resolvents};
 use crate::literal::{Lit, RuleId};
 use crate::theory::{RuleKind, Theory};
 use proclaim_syntax::Algorithm;
-use std::collections::HashSet;
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum Tag {
@@ -28,7 +29,11 @@ pub struct ReferenceProver {
     /// `(winner, loser)` by written rule id.
     priorities: HashSet<(RuleId, RuleId)>,
     mu: HashSet<Lit>,
+    memo: RefCell<Memo>,
 }
+
+/// Answers by goal and history (as a sorted set).
+type Memo = HashMap<(Tag, Lit, Vec<(Tag, Lit)>), bool>;
 
 impl ReferenceProver {
     /// Builds the prover for `theory` with the input facts `facts` (true inputs as `a`, false as
@@ -52,7 +57,7 @@ impl ReferenceProver {
             .map(|c| c.lits.clone())
             .chain(facts.iter().map(|&f| vec![f]))
             .collect();
-        let ClosureOutcome::Closed { clauses, .. } = close(&clauses) else {
+        let ClosureOutcome::Closed { clauses, .. } = close(&clauses, Resolvents::All) else {
             return None;
         };
         for clause in clauses {
@@ -85,6 +90,7 @@ impl ReferenceProver {
             rules,
             priorities: theory.priorities().iter().copied().collect(),
             mu,
+            memo: RefCell::default(),
         })
     }
 
@@ -117,10 +123,18 @@ impl ReferenceProver {
         r.body.iter().all(|&a| self.run(tag, a, h))
     }
 
-    /// One goal with history `h` (the goals on the current path).
+    /// One goal with history `h` (the goals on the current path). The answer is a function of
+    /// the goal and the history as a set, so it is remembered under both: the same literal
+    /// reading, without walking every order of the same goals again.
     fn run(&self, tag: Tag, q: Lit, h: &mut Vec<(Tag, Lit)>) -> bool {
         if h.contains(&(tag, q)) {
             return false;
+        }
+        let mut key = h.clone();
+        key.sort_unstable_by_key(|&(t, l)| (t as u8, l));
+        let key = (tag, q, key);
+        if let Some(&known) = self.memo.borrow().get(&key) {
+            return known;
         }
         h.push((tag, q));
         let result = match tag {
@@ -128,6 +142,7 @@ impl ReferenceProver {
             Tag::Sup => self.support(q, h),
         };
         h.pop();
+        self.memo.borrow_mut().insert(key, result);
         result
     }
 

@@ -133,9 +133,9 @@ impl Session {
         let mut session = Session {
             inputs: vec![None; lits / 2],
             mu: vec![false; lits],
-            values: vec![UNKNOWN; lits * KINDS],
-            index: vec![0; lits * KINDS],
-            low: vec![0; lits * KINDS],
+            values: vec![UNKNOWN; engine.goal_count()],
+            index: vec![0; engine.goal_count()],
+            low: vec![0; engine.goal_count()],
             next_index: 1,
             stack: Vec::new(),
             frames: Vec::new(),
@@ -305,6 +305,14 @@ impl Session {
     }
 
     fn show_goal(&self, g: Goal) -> String {
+        if self.engine.is_aggregate(g) {
+            let (rep, kind) = self.engine.aggregate_parts(g);
+            return format!(
+                "{} of what implies {}",
+                ["beta", "pi", "support"][kind as usize],
+                self.engine.theory.show(Lit(rep))
+            );
+        }
         let kind = match kind_of(g) {
             BETA => "beta",
             PI => "pi",
@@ -364,14 +372,39 @@ impl Session {
             return true;
         }
         let closure = self.engine.theory.closure();
-        clause.iter().any(|&l| {
+        let written = clause.iter().any(|&l| {
             self.engine.closure_by_lit.row(l.index()).iter().any(|&c| {
                 closure[c as usize]
                     .lits
                     .iter()
                     .all(|&x| clause.contains(&x) || self.input_falsifies(x))
             })
-        })
+        });
+        // An implicit resolvent `\/{a, b}` inside the clause: a path from `~a` to `b`. (One with
+        // a literal the inputs make false holds by μ already: the path carries the input.)
+        written
+            || clause
+                .iter()
+                .any(|&a| self.implied(a.complement(), |b| b != a && clause.contains(&b)))
+    }
+
+    /// Whether a literal `found` accepts lies on an implication path from `from` (length ≥ 1).
+    fn implied(&self, from: Lit, found: impl Fn(Lit) -> bool) -> bool {
+        let forward = &self.engine.implications.forward;
+        if self.engine.implications.representative.is_empty() {
+            return false;
+        }
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut work: Vec<Lit> = forward.row(from.index()).iter().map(|&x| Lit(x)).collect();
+        while let Some(x) = work.pop() {
+            if found(x) {
+                return true;
+            }
+            if seen.insert(x) {
+                work.extend(forward.row(x.index()).iter().map(|&y| Lit(y)));
+            }
+        }
+        false
     }
 
     fn input_falsifies(&self, lit: Lit) -> bool {
@@ -521,9 +554,11 @@ impl Session {
         }
         while let Some(y) = work.pop() {
             for kind in 0..KINDS as u32 {
-                let g = goal(y, kind) as usize;
-                self.values[g] = UNKNOWN;
-                self.index[g] = 0;
+                let goals = [Some(goal(y, kind)), engine.aggregate_for(y, kind)];
+                for g in goals.into_iter().flatten() {
+                    self.values[g as usize] = UNKNOWN;
+                    self.index[g as usize] = 0;
+                }
             }
             for &z in engine.dependents.row(y.index()) {
                 mark(Lit(z), &mut self.stamp, &mut work);
@@ -548,6 +583,23 @@ impl Session {
                     clause: match parts.len() {
                         1 => parts[0].clone(),
                         _ => format!("\\/{{{}}}", parts.join(", ")),
+                    },
+                });
+            }
+        }
+        // An implicit resolvent `\/{~fact, z}` the inputs falsify: a path from the fact to a
+        // literal they make false. Found the long way round, so the clause can be named.
+        if self.implied(fact, |z| self.input_falsifies(z)) {
+            let z = (0..self.engine.lit_count as u32)
+                .map(Lit)
+                .find(|&z| self.input_falsifies(z) && self.implied(fact, |x| x == z));
+            if let Some(z) = z {
+                return Err(InputConflict {
+                    input: theory.show(fact).to_string(),
+                    clause: {
+                        let mut lits = [fact.complement(), z];
+                        lits.sort_unstable();
+                        format!("\\/{{{}, {}}}", theory.show(lits[0]), theory.show(lits[1]))
                     },
                 });
             }
@@ -752,7 +804,7 @@ impl Session {
             self.searched.push(Searched {
                 goals: members
                     .iter()
-                    .filter(|&&g| kind_of(g) != SUP)
+                    .filter(|&&g| !engine.is_aggregate(g) && kind_of(g) != SUP)
                     .map(|&g| (algorithm(g), lit_of(g)))
                     .collect(),
                 steps: evaluated.steps,
