@@ -303,7 +303,7 @@ impl Live<'_> {
         }
         for machine in machines {
             println!("          {machine}: its file changed; rereading");
-            board.post("watch", &machine, "reread");
+            board.post("watch", &machine, proclaim_runner::Command::Reread.word());
         }
     }
 }

@@ -3,6 +3,7 @@
 //! OnExit { } { }`).
 
 use crate::code::{parse_statements, Expr, Statement};
+use crate::control::Command;
 use crate::diagnostic::Severity;
 use crate::model::{Action, Argument};
 
@@ -195,17 +196,10 @@ fn action(statement: Statement) -> Action {
             },
             _ => Action::Statement(statement),
         },
-        ("suspend" | "resume" | "restart" | "start" | "stop", [Expr::Str(machine)]) => {
-            let command = match function.as_str() {
-                "start" => "On",
-                "stop" => "Off",
-                other => other,
-            };
-            Action::Post {
-                ty: machine.clone(),
-                content: command.to_string(),
-            }
-        }
+        (f, [Expr::Str(machine)]) if Command::from_function(f).is_some() => Action::Post {
+            ty: machine.clone(),
+            content: Command::from_function(f).map_or_else(String::new, |c| c.word().to_string()),
+        },
         (f, []) if !is_builtin(f) => Action::Call {
             function: f.to_string(),
             argument: None,

@@ -2,6 +2,7 @@
 //! and priority numbers (1 = tried first), the initial state marked, sub-machines a state starts
 //! linked to it.
 
+use crate::control::Command;
 use crate::model::{Action, Argument, Machine};
 use std::fmt::Write;
 
@@ -115,7 +116,11 @@ fn body(out: &mut String, machine: &Machine, prefix: &str, indent: &str) -> Vec<
         );
         for action in &state.on_entry {
             if let Action::Post { ty, content } = action {
-                if matches!(content.as_str(), "On" | "restart") {
+                // Spelled exactly: `Light: on` is a lamp's state, not a command.
+                if [Command::On, Command::Restart]
+                    .iter()
+                    .any(|c| c.word() == content)
+                {
                     started.push((id(state.id), ty.clone()));
                 }
             }

@@ -8,6 +8,7 @@
 
 mod activity;
 pub mod code;
+pub mod control;
 mod diagnostic;
 mod dot;
 mod label;
@@ -20,6 +21,7 @@ mod ta;
 
 pub use activity::{parse_gufsm_activities, parse_ta_items, BUILTIN_FUNCTIONS};
 pub use code::{BinOp, Expr, Statement, UnOp, VarType};
+pub use control::{finished_type, machine_of_running_type, running_type, Command};
 pub use diagnostic::{FileDiagnostic, Severity};
 pub use dot::{behaviour_to_dot, to_dot};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};

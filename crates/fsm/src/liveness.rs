@@ -15,6 +15,7 @@
 //! that starts sub-machines `A` and `B` and waits until both post `AFinished` / `BFinished`.
 
 use crate::code::BinOp;
+use crate::control::{finished_type, Command};
 use crate::diagnostic::FileDiagnostic;
 use crate::label::Label;
 use crate::model::{Action, Machine, State, StateId, Transition};
@@ -457,14 +458,14 @@ impl Generator<'_> {
                     let name = self.machine_name(&base);
                     self.branch_machine(&name, branch);
                     entry.push(Action::Post {
-                        ty: format!("{name}Finished"),
+                        ty: finished_type(&name),
                         content: "false".into(),
                     });
                     entry.push(Action::Post {
                         ty: name.clone(),
-                        content: "On".into(),
+                        content: Command::On.word().into(),
                     });
-                    done.push(atom(format!("{name}Finished")));
+                    done.push(atom(finished_type(&name)));
                 }
                 let p = draft.state("Parallel", entry);
                 draft.go(
@@ -484,12 +485,12 @@ impl Generator<'_> {
             "End",
             vec![
                 Action::Post {
-                    ty: format!("{name}Finished"),
+                    ty: finished_type(name),
                     content: "true".into(),
                 },
                 Action::Post {
                     ty: name.to_string(),
-                    content: "Off".into(),
+                    content: Command::Off.word().into(),
                 },
             ],
         );

@@ -2,12 +2,12 @@
 //! built-in functions gufsm gave its machines (`post`, `postv`, `suspend`, `say`, `print`,
 //! `msleep`, …).
 
-use crate::control::Command;
 use crate::eval::Env;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
 use crate::variables::{Locals, Shared};
 use proclaim_board::{Value, Whiteboard};
+use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Argument, Expr, Statement};
 use rustc_hash::FxHashSet;
 use std::future::Future;
@@ -182,14 +182,8 @@ impl Doer<'_> {
                 let values = arguments[1..].iter().map(|a| self.value(a)).collect();
                 self.post(&self.text(&arguments[0]), Value::List(values));
             }
-            ("suspend" | "resume" | "restart" | "start" | "stop", 1) => {
-                let command = match function {
-                    "suspend" => Command::Suspend,
-                    "resume" => Command::Resume,
-                    "restart" => Command::Restart,
-                    "start" => Command::On,
-                    _ => Command::Off,
-                };
+            (f, 1) if Command::from_function(f).is_some() => {
+                let command = Command::from_function(f).unwrap_or(Command::On);
                 self.post(&self.text(&arguments[0]), Value::Str(command.word().into()));
             }
             ("say", 1) => self.post("Say", Value::Str(self.text(&arguments[0]))),

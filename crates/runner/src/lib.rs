@@ -9,7 +9,6 @@
 //! [`Event`]s, data a trace can record. No file I/O of its own: loaders come from the caller.
 
 mod activity;
-mod control;
 mod eval;
 mod event;
 mod host;
@@ -19,9 +18,9 @@ mod step;
 mod variables;
 
 pub use activity::LOOP_LIMIT;
-pub use control::{machine_of_running_type, running_type, Command};
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
 pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions};
+pub use proclaim_fsm::control::{machine_of_running_type, running_type, Command};
 pub use step::Stepper;
 pub use variables::{Locals, Shared};

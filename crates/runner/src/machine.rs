@@ -1,7 +1,6 @@
 //! One machine running on the whiteboard: its rings, its control commands, its reloads.
 
 use crate::activity::Doer;
-use crate::control::{running_type, Command};
 use crate::eval::Env;
 use crate::event::{Answerer, Event, Reporter};
 use crate::host::Hosts;
@@ -9,6 +8,7 @@ use crate::label::{dependencies, next_time_test, prove, reads_globals, Context};
 use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
+use proclaim_fsm::control::{running_type, Command};
 use proclaim_fsm::{Action, Label, Machine, StateId};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
@@ -575,16 +575,6 @@ pub fn asked<'a>(label: &'a Label, machine: &Machine, shared: &Shared) -> Vec<&'
 
 /// Built-ins whose first argument is the type they post to.
 fn posting_function(function: &str) -> bool {
-    matches!(
-        function,
-        "post"
-            | "post_int"
-            | "postv"
-            | "post_v"
-            | "suspend"
-            | "resume"
-            | "restart"
-            | "start"
-            | "stop"
-    )
+    matches!(function, "post" | "post_int" | "postv" | "post_v")
+        || Command::from_function(function).is_some()
 }

@@ -1,5 +1,7 @@
-//! The control protocol of machines: the words posted to a machine's name, and the message
-//! types a machine posts about itself. The one place these words are spelled.
+//! The control protocol of machines: the words posted to a machine's name, the activity
+//! functions that post them, and the message types a machine posts about itself. The one place
+//! these words are spelled; the readers, the drawing, the liveness compiler and the runner all
+//! use it.
 
 use std::fmt;
 
@@ -44,6 +46,19 @@ impl Command {
         }
     }
 
+    /// The activity function that posts the command (`suspend("Placer")`; `start`/`stop` for
+    /// `On`/`Off`), as gufsm's activity language spells them.
+    pub fn from_function(function: &str) -> Option<Command> {
+        match function {
+            "start" => Some(Command::On),
+            "stop" => Some(Command::Off),
+            "suspend" => Some(Command::Suspend),
+            "resume" => Some(Command::Resume),
+            "restart" => Some(Command::Restart),
+            _ => None,
+        }
+    }
+
     /// Reads a posted word; `on`/`off` in any case, as the team wrote them.
     pub fn parse(word: &str) -> Option<Command> {
         let word = word.trim();
@@ -62,6 +77,12 @@ impl fmt::Display for Command {
 /// The type a machine posts its running state to (`PlacerIsRunning`: true or false).
 pub fn running_type(machine: &str) -> String {
     format!("{machine}IsRunning")
+}
+
+/// The type a machine compiled from a liveness formula posts when its formula is met
+/// (`TestBehaviorFinished: true`).
+pub fn finished_type(machine: &str) -> String {
+    format!("{machine}Finished")
 }
 
 /// The machine a `NameIsRunning` type speaks of.
