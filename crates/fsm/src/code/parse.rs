@@ -421,6 +421,11 @@ mod tests {
 
     #[test]
     fn errors_say_what_was_expected_and_what_was_found() {
+        assert!(
+            error("2E999 != 1").contains("`2E999` is too large for a number"),
+            "{}",
+            error("2E999 != 1")
+        );
         assert_eq!(
             error("a && "),
             "expected a name, a number, a string, `(`, `!` or `-`, found the end (at column 6)"

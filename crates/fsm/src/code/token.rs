@@ -147,10 +147,12 @@ fn number(text: &str) -> Result<(Token, usize), String> {
         ));
     }
     if float {
-        digits
-            .parse()
-            .map(|x| (Token::Float(x), len))
-            .map_err(|_| format!("`{digits}` is not a number"))
+        match digits.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok((Token::Float(x), len)),
+            // Found by the fuzzer: `2E999` would be infinity, which prints as a name.
+            Ok(_) => Err(format!("`{digits}` is too large for a number")),
+            Err(_) => Err(format!("`{digits}` is not a number")),
+        }
     } else {
         digits
             .parse()
