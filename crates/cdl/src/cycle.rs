@@ -254,6 +254,16 @@ impl Component<'_> {
                 steps: 0,
             };
         }
+        // When every member's support reads at most one member per way (a graph of ORs), "`x`
+        // without `g`" is "`g` does not dominate `x`" from the settled support: one dominator
+        // tree instead of a fixpoint per attacker.
+        if let Some(tree) = SupportDominators::new(self, &up) {
+            let low = fixpoint.least(
+                |reader, x| up[x as usize] && !tree.dominates(reader, x),
+                None,
+            );
+            return self.top_down(&up, &low, limits);
+        }
         let mut distinct: Vec<u32> = attacks
             .iter()
             .map(|&(g, _)| g)
@@ -279,7 +289,13 @@ impl Component<'_> {
         } else {
             coarse
         };
-        let mut top_down = TopDown::new(self, &up, limits);
+        self.top_down(&up, &low, limits)
+    }
+
+    /// Proves the members between the bounds top-down, until the budget is spent.
+    fn top_down(&self, up: &[bool], low: &[bool], limits: &SearchLimits) -> Evaluated {
+        let members = self.members;
+        let mut top_down = TopDown::new(self, up, limits);
         let values = members
             .iter()
             .enumerate()
@@ -305,6 +321,158 @@ impl Component<'_> {
             method: Method::Search,
             steps: top_down.steps,
         }
+    }
+}
+
+/// Dominators of the upper bound's support graph, when it is a graph of ORs: a root stands for
+/// everything settled, a member hangs from each member one of its ways to be supported reads
+/// alone. `g` dominates `x` when every derivation of `x` passes through `g`.
+struct SupportDominators {
+    /// Each member's interval in a depth-first numbering of the dominator tree; none for
+    /// members the root does not reach.
+    enter: Vec<u32>,
+    leave: Vec<u32>,
+}
+
+impl SupportDominators {
+    fn new(c: &Component, up: &[bool]) -> Option<SupportDominators> {
+        let n = c.members.len();
+        let root = n as u32;
+        // Predecessors in the support graph, and successors for the depth-first order.
+        let mut edges: Vec<(u32, u32)> = Vec::new();
+        let mut or_graph = true;
+        for (x, &g) in c.members.iter().enumerate() {
+            if !up[x] {
+                continue;
+            }
+            let settled = |s: Goal| match c.values[s as usize] {
+                PENDING => None,
+                v => Some(v == TRUE),
+            };
+            let structure = crate::goal::supporters(c.engine, c.mu, g, &settled, &mut |reads| {
+                let mut internal = None;
+                let mut holds = true;
+                for s in reads {
+                    match c.values[s as usize] {
+                        PENDING => {
+                            let p = c.position[s as usize];
+                            if internal.is_some_and(|q| q != p) {
+                                or_graph = false;
+                            }
+                            internal = Some(p);
+                        }
+                        v => holds &= v == TRUE,
+                    }
+                }
+                match internal {
+                    _ if !holds => {}
+                    None => edges.push((root, x as u32)),
+                    Some(p) if up[p as usize] => edges.push((p, x as u32)),
+                    Some(_) => {}
+                }
+            });
+            if structure.is_err() || !or_graph {
+                return None;
+            }
+        }
+        let nodes = n + 1;
+        let successors = crate::engine::Csr::build(nodes, edges.iter().copied());
+        let predecessors = crate::engine::Csr::build(nodes, edges.iter().map(|&(a, b)| (b, a)));
+        // Reverse postorder from the root, iteratively.
+        let mut order: Vec<u32> = Vec::with_capacity(nodes);
+        let mut seen = vec![false; nodes];
+        let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
+        seen[root as usize] = true;
+        while let Some(&mut (v, ref mut next)) = stack.last_mut() {
+            let row = successors.row(v as usize);
+            if let Some(&w) = row.get(*next as usize) {
+                *next += 1;
+                if !seen[w as usize] {
+                    seen[w as usize] = true;
+                    stack.push((w, 0));
+                }
+            } else {
+                order.push(v);
+                stack.pop();
+            }
+        }
+        order.reverse();
+        let mut rank = vec![u32::MAX; nodes];
+        for (i, &v) in order.iter().enumerate() {
+            rank[v as usize] = i as u32;
+        }
+        // Cooper, Harvey and Kennedy's iteration: immediate dominators by intersecting the
+        // predecessors' dominator chains, in reverse postorder, until nothing changes.
+        const UNDEFINED: u32 = u32::MAX;
+        let mut idom = vec![UNDEFINED; nodes];
+        idom[root as usize] = root;
+        let mut changed = true;
+        while changed {
+            changed = false;
+            for &v in order.iter().skip(1) {
+                let mut new = UNDEFINED;
+                for &p in predecessors.row(v as usize) {
+                    if idom[p as usize] == UNDEFINED {
+                        continue;
+                    }
+                    new = if new == UNDEFINED {
+                        p
+                    } else {
+                        let (mut a, mut b) = (p, new);
+                        while a != b {
+                            while rank[a as usize] > rank[b as usize] {
+                                a = idom[a as usize];
+                            }
+                            while rank[b as usize] > rank[a as usize] {
+                                b = idom[b as usize];
+                            }
+                        }
+                        a
+                    };
+                }
+                if new != idom[v as usize] {
+                    idom[v as usize] = new;
+                    changed = true;
+                }
+            }
+        }
+        // Intervals of the dominator tree, for constant-time "dominates".
+        let children = crate::engine::Csr::build(
+            nodes,
+            order
+                .iter()
+                .skip(1)
+                .map(|&v| (idom[v as usize], v))
+                .collect::<Vec<_>>()
+                .into_iter(),
+        );
+        let mut enter = vec![u32::MAX; nodes];
+        let mut leave = vec![0u32; nodes];
+        let mut clock = 0u32;
+        let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
+        enter[root as usize] = clock;
+        while let Some(&mut (v, ref mut next)) = stack.last_mut() {
+            if let Some(&w) = children.row(v as usize).get(*next as usize) {
+                *next += 1;
+                clock += 1;
+                enter[w as usize] = clock;
+                stack.push((w, 0));
+            } else {
+                leave[v as usize] = clock;
+                stack.pop();
+            }
+        }
+        Some(SupportDominators { enter, leave })
+    }
+
+    /// Whether every derivation of member `x` in the upper bound passes through member `g` (so
+    /// that `x` fails while `g` is on the history).
+    fn dominates(&self, g: u32, x: u32) -> bool {
+        let (g, x) = (g as usize, x as usize);
+        self.enter[x] == u32::MAX
+            || (self.enter[g] != u32::MAX
+                && self.enter[g] <= self.enter[x]
+                && self.leave[x] <= self.leave[g])
     }
 }
 

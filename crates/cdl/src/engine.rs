@@ -15,7 +15,7 @@ pub(crate) struct Csr {
 
 impl Csr {
     /// Builds rows for `keys` keys from `(key, item)` pairs, keeping each row in pair order.
-    fn build(keys: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
+    pub(crate) fn build(keys: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
         let mut start = vec![0u32; keys + 1];
         for (k, _) in pairs.clone() {
             start[k as usize + 1] += 1;

@@ -235,3 +235,100 @@ pub(crate) fn successors(
         }
     }
 }
+
+/// The goal's ways to be supported when every internal attack fails (the reading of the upper
+/// bound): each call of `supporter` gives the goals one way reads, all of which must hold (an
+/// empty list holds outright). `settled` gives a settled goal's value, `None` for a member of the
+/// component being evaluated. `Err` when the goal also needs a member through a team of
+/// superior rules (an AND the caller cannot read as ways of support). Mirrors `condition`.
+pub(crate) fn supporters(
+    engine: &Engine,
+    mu: &[bool],
+    goal: Goal,
+    settled: &dyn Fn(Goal) -> Option<bool>,
+    supporter: &mut dyn FnMut(&mut dyn Iterator<Item = Goal>),
+) -> Result<(), ()> {
+    if engine.is_aggregate(goal) {
+        let (rep, kind) = engine.aggregate_parts(goal);
+        let i = &engine.implications;
+        for &x in i.direct.row(rep as usize) {
+            supporter(&mut std::iter::once(self::goal(Lit(x), kind)));
+        }
+        for &r in i.chained.row(rep as usize) {
+            supporter(&mut std::iter::once(engine.aggregate_base() + r * 3 + kind));
+        }
+        return Ok(());
+    }
+    let q = lit_of(goal);
+    let nq = q.complement();
+    let kind = kind_of(goal);
+    // A rule whose antecedent is settled and proved, and one that reads a member.
+    let all_settled_true = |rule: u32, kind: u32| {
+        engine
+            .body(rule)
+            .iter()
+            .all(|&a| settled(self::goal(a, kind)) == Some(true))
+    };
+    let reads_member = |rule: u32, kind: u32| {
+        engine
+            .body(rule)
+            .iter()
+            .any(|&a| settled(self::goal(a, kind)).is_none())
+    };
+    if mu[q.index()] {
+        supporter(&mut std::iter::empty());
+        return Ok(());
+    }
+    if kind == SUP {
+        for &r in engine.rules_for(q) {
+            if !engine.kind(r).supports() {
+                continue;
+            }
+            // A superior attacker applicable outside the component blocks this way.
+            let blocked = engine
+                .superiors_of(r)
+                .iter()
+                .any(|&s| engine.head(s) == nq && all_settled_true(s, PI));
+            if !blocked {
+                supporter(&mut engine.body(r).iter().map(|&a| self::goal(a, SUP)));
+            }
+        }
+    } else {
+        if mu[nq.index()] {
+            return Ok(());
+        }
+        let attacker_kind = if kind == BETA { BETA } else { SUP };
+        for &s in engine.rules_for(nq) {
+            if !all_settled_true(s, attacker_kind) {
+                continue; // fails in the upper bound, or outside it
+            }
+            let team = engine
+                .superiors_of(s)
+                .iter()
+                .filter(|&&t| engine.head(t) == q && engine.kind(t).supports());
+            let mut beaten = false;
+            for &t in team {
+                if all_settled_true(t, kind) {
+                    beaten = true;
+                } else if reads_member(t, kind) {
+                    return Err(());
+                }
+            }
+            if !beaten {
+                return Ok(()); // no way to hold at all
+            }
+        }
+        for &r in engine.rules_for(q) {
+            if engine.kind(r).supports() {
+                supporter(&mut engine.body(r).iter().map(|&a| self::goal(a, kind)));
+            }
+        }
+    }
+    for x in engine.implications.cycle_mates(q) {
+        supporter(&mut std::iter::once(self::goal(x, kind)));
+    }
+    if let Some(a) = engine.aggregate_for(q, kind) {
+        supporter(&mut std::iter::once(a));
+    }
+    Ok(())
+}
