@@ -119,8 +119,8 @@ impl Component<'_> {
         edges
     }
 
-    /// A member's condition with the members in `true_members` read as true and the others as
-    /// false.
+    /// A member's condition with the members `is_true` accepts (by position) read as true and
+    /// the other members as false.
     fn condition_with(&self, member: u32, is_true: impl Fn(u32) -> bool) -> bool {
         let mut read = |s: Goal, _: Read| match self.values[s as usize] {
             PENDING => is_true(self.position[s as usize]),
@@ -523,8 +523,10 @@ impl Fixpoint<'_> {
     }
 }
 
-/// Bytes one memo entry costs, key, value and the table's share.
-const MEMO_ENTRY_BYTES: usize = 48;
+/// Bytes one memo entry may cost: 48 for the key and value as stored, with room for the
+/// table's control bytes, its load factor and the doubling when it grows (measured: a 256 MiB
+/// cap at 48 bytes an entry let the process peak near 600 MB).
+const MEMO_ENTRY_BYTES: usize = 112;
 
 /// Top-down proof inside one component, with the history of cdl.md §4 (a goal met again on the
 /// current path fails). Goals outside the component are settled and read from `values`.
