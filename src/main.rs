@@ -1,6 +1,7 @@
 //! `proclaim`: the command line of the clausal defeasible logic reasoner (prove, table, explain,
-//! check, gen, bench) and of the behaviour interpreter (run, replay, import, draw). Exit codes: 0 done (whatever the answers), 1 `check` found errors, 2 bad
-//! input or usage.
+//! check, gen, bench) and of the behaviour interpreter (run, replay, import, draw). Exit codes:
+//! 0 done (whatever the answers), 1 `check` found errors, 2 bad input or usage, 3 some answer
+//! undecided within the search budget.
 
 mod behaviours;
 mod cli;
