@@ -72,7 +72,7 @@ type Edge = (u32, u32, bool);
 
 impl Component<'_> {
     pub fn evaluate(&self, limits: &SearchLimits) -> Evaluated {
-        let edges = self.edges();
+        let mut edges = self.edges();
         let decided = |values: Vec<bool>, method| Evaluated {
             values: values
                 .into_iter()
@@ -91,6 +91,9 @@ impl Component<'_> {
         if edges.iter().all(|&(_, _, attack)| !attack) {
             return decided(fixpoint.least(|_, _| false, None), Method::Fixpoint);
         }
+        // Sorted by reader, without repeats: what the structural tests look edges up in.
+        edges.sort_unstable();
+        edges.dedup();
         if let Some(values) = self.simple_cycle(&edges) {
             return decided(values, Method::SimpleCycle);
         }
@@ -100,7 +103,7 @@ impl Component<'_> {
         self.search(&edges, &fixpoint, limits)
     }
 
-    /// Every internal read, deduplicated, sorted by reader.
+    /// Every internal read, in member order (repeats possible).
     fn edges(&self) -> Vec<Edge> {
         let mut edges = Vec::new();
         let mut buffer = Vec::new();
@@ -114,8 +117,6 @@ impl Component<'_> {
                 edges.push((from as u32, to, s & ATTACK != 0));
             }
         }
-        edges.sort_unstable();
-        edges.dedup();
         edges
     }
 

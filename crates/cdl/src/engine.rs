@@ -166,6 +166,7 @@ impl Implications {
         }
     }
 
+    #[inline]
     pub(crate) fn any(&self) -> bool {
         !self.representative.is_empty()
     }

@@ -48,18 +48,8 @@ pub(crate) fn condition(
     goal: Goal,
     value: &mut dyn FnMut(Goal, Read) -> bool,
 ) -> bool {
-    if engine.is_aggregate(goal) {
-        let (rep, kind) = engine.aggregate_parts(goal);
-        let i = &engine.implications;
-        return i
-            .direct
-            .row(rep as usize)
-            .iter()
-            .any(|&x| value(self::goal(Lit(x), kind), SUPPORT_READ))
-            || i.chained
-                .row(rep as usize)
-                .iter()
-                .any(|&r| value(engine.aggregate_base() + r * 3 + kind, SUPPORT_READ));
+    if engine.implications.any() && engine.is_aggregate(goal) {
+        return aggregate_condition(engine, goal, value);
     }
     let q = lit_of(goal);
     let nq = q.complement();
@@ -128,9 +118,66 @@ pub(crate) fn condition(
     }
 }
 
+/// An aggregate's condition: some literal it stands for is proved (out of line: the common
+/// theory has none, and the literals' conditions stay small enough to inline).
+#[cold]
+#[inline(never)]
+fn aggregate_condition(
+    engine: &Engine,
+    goal: Goal,
+    value: &mut dyn FnMut(Goal, Read) -> bool,
+) -> bool {
+    let (rep, kind) = engine.aggregate_parts(goal);
+    let i = &engine.implications;
+    i.direct
+        .row(rep as usize)
+        .iter()
+        .any(|&x| value(self::goal(Lit(x), kind), SUPPORT_READ))
+        || i.chained
+            .row(rep as usize)
+            .iter()
+            .any(|&r| value(engine.aggregate_base() + r * 3 + kind, SUPPORT_READ))
+}
+
+#[cold]
+#[inline(never)]
+fn aggregate_successors(
+    engine: &Engine,
+    goal: Goal,
+    out: &mut Vec<u32>,
+    keep: &impl Fn(Goal) -> bool,
+) {
+    let (rep, kind) = engine.aggregate_parts(goal);
+    let i = &engine.implications;
+    let reads = i
+        .direct
+        .row(rep as usize)
+        .iter()
+        .map(|&x| self::goal(Lit(x), kind));
+    let chained = i
+        .chained
+        .row(rep as usize)
+        .iter()
+        .map(|&r| engine.aggregate_base() + r * 3 + kind);
+    out.extend(reads.chain(chained).filter(|&g| keep(g)));
+}
+
 /// Whether some implicit resolvent's rule `x -> lit` applies: `x` is another member of `lit`'s
 /// cycle of implications, or the aggregate of what leads into the cycle holds.
+#[inline]
 fn implied(
+    engine: &Engine,
+    lit: Lit,
+    kind: u32,
+    read: Read,
+    value: &mut dyn FnMut(Goal, Read) -> bool,
+) -> bool {
+    engine.implications.any() && implied_through_clauses(engine, lit, kind, read, value)
+}
+
+#[cold]
+#[inline(never)]
+fn implied_through_clauses(
     engine: &Engine,
     lit: Lit,
     kind: u32,
@@ -147,7 +194,23 @@ fn implied(
 }
 
 /// The goals [`implied`] may read, flagged with `flag`.
+#[inline]
 fn push_implied(
+    engine: &Engine,
+    lit: Lit,
+    kind: u32,
+    flag: u32,
+    out: &mut Vec<u32>,
+    keep: &impl Fn(Goal) -> bool,
+) {
+    if engine.implications.any() {
+        push_implied_through_clauses(engine, lit, kind, flag, out, keep);
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn push_implied_through_clauses(
     engine: &Engine,
     lit: Lit,
     kind: u32,
@@ -172,20 +235,8 @@ pub(crate) fn successors(
     out: &mut Vec<u32>,
     keep: impl Fn(Goal) -> bool,
 ) {
-    if engine.is_aggregate(goal) {
-        let (rep, kind) = engine.aggregate_parts(goal);
-        let i = &engine.implications;
-        let reads = i
-            .direct
-            .row(rep as usize)
-            .iter()
-            .map(|&x| self::goal(Lit(x), kind));
-        let chained = i
-            .chained
-            .row(rep as usize)
-            .iter()
-            .map(|&r| engine.aggregate_base() + r * 3 + kind);
-        out.extend(reads.chain(chained).filter(|&g| keep(g)));
+    if engine.implications.any() && engine.is_aggregate(goal) {
+        aggregate_successors(engine, goal, out, &keep);
         return;
     }
     let q = lit_of(goal);

@@ -272,7 +272,7 @@ impl Session {
     /// Whether `alg` proves the literal, or why it is undecided.
     pub fn decide(&mut self, alg: Algorithm, lit: Lit) -> Result<bool, Undecided> {
         let truth = self.truth(alg, lit);
-        self.answer(alg, &self.engine.theory.show(lit).to_string(), truth)
+        self.answer(alg, || self.engine.theory.show(lit).to_string(), truth)
     }
 
     /// Whether `alg` proves a formula (cdl.md §4, clauses as queries); undecided goals count as
@@ -284,18 +284,23 @@ impl Session {
     /// Whether `alg` proves a formula, or why it is undecided.
     pub fn decide_formula(&mut self, alg: Algorithm, formula: &Formula) -> Result<bool, Undecided> {
         let truth = self.formula_truth(alg, formula);
-        let shown = formula.show(&self.engine.theory);
-        self.answer(alg, &shown, truth)
+        self.answer(alg, || formula.show(&self.engine.theory), truth)
     }
 
-    fn answer(&self, alg: Algorithm, shown: &str, truth: Truth) -> Result<bool, Undecided> {
+    /// The answer as `decide` gives it; `shown` is asked only for an undecided one.
+    fn answer(
+        &self,
+        alg: Algorithm,
+        shown: impl FnOnce() -> String,
+        truth: Truth,
+    ) -> Result<bool, Undecided> {
         match truth {
             Truth::True => Ok(true),
             Truth::False => Ok(false),
             Truth::Undecided(g) => {
                 let (stalled, component) = self.stalls.get(&g).copied().unwrap_or((g, 0));
                 Err(Undecided {
-                    goal: format!("{alg} {shown}"),
+                    goal: format!("{alg} {}", shown()),
                     stalled_at: self.show_goal(stalled),
                     component,
                     steps: self.limits.steps,
