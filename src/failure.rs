@@ -31,6 +31,8 @@ pub enum Failure {
     /// A whiteboard across processes could not be held or joined; the message names the
     /// endpoint and why.
     Network(String),
+    /// The async runtime could not be built (out of threads or file descriptors).
+    Runtime(std::io::Error),
 }
 
 impl Failure {
@@ -61,6 +63,7 @@ impl fmt::Display for Failure {
             Failure::Bench(message) => write!(f, "benchmark failed: {message}"),
             Failure::Start(message) => write!(f, "cannot start the behaviour: {message}"),
             Failure::Network(message) => f.write_str(message),
+            Failure::Runtime(error) => write!(f, "cannot start the async runtime: {error}"),
         }
     }
 }

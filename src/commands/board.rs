@@ -2,6 +2,7 @@
 //! theory answering labels), `post` (one message), `watch` (every message, as it comes) and
 //! `ping` (what the link to its holder costs).
 
+use super::runtime::{runtime, Shape};
 use crate::failure::Failure;
 use crate::load;
 use crate::network::{round_trips, whiteboard, Network};
@@ -10,14 +11,6 @@ use proclaim_experts::{parse_duration, parse_mapping, ReasonerExpert};
 use std::path::Path;
 use std::process::ExitCode;
 use std::time::Duration;
-
-fn runtime() -> Result<tokio::runtime::Runtime, Failure> {
-    tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .map_err(|e| Failure::Start(format!("no async runtime: {e}")))
-}
 
 fn duration(text: Option<&str>) -> Result<Option<Duration>, Failure> {
     text.map(|t| {
@@ -70,7 +63,7 @@ pub fn expert(
         .map(str::to_string)
         .or_else(|| checked.name().map(str::to_string))
         .unwrap_or_else(|| "expert".into());
-    runtime()?.block_on(async {
+    runtime(Shape::TwoThreads)?.block_on(async {
         let board = whiteboard(network).await?;
         let expert = ReasonerExpert::new(&name, checked, &mapping);
         let decl = expert.declaration();
@@ -88,7 +81,7 @@ pub fn expert(
 }
 
 pub fn post(ty: &str, value: &str, module: &str, network: &Network) -> Result<ExitCode, Failure> {
-    runtime()?.block_on(async {
+    runtime(Shape::TwoThreads)?.block_on(async {
         let board = whiteboard(network).await?;
         // Seen coming back through the whiteboard: then it has been delivered.
         let mut echo = board.subscribe(ty);
@@ -107,7 +100,7 @@ pub fn post(ty: &str, value: &str, module: &str, network: &Network) -> Result<Ex
 
 pub fn watch(pattern: &str, network: &Network, limit: Option<&str>) -> Result<ExitCode, Failure> {
     let limit = duration(limit)?;
-    runtime()?.block_on(async {
+    runtime(Shape::TwoThreads)?.block_on(async {
         let board: Whiteboard = whiteboard(network).await?;
         let mut messages = board.subscribe(pattern);
         eprintln!("watching {pattern} ({})", network.describe());
@@ -135,7 +128,7 @@ pub fn ping(count: usize, network: &Network) -> Result<ExitCode, Failure> {
     if count == 0 {
         return Err(Failure::Argument("--count 0: nothing to time".into()));
     }
-    let mut samples = runtime()?.block_on(round_trips(network, count))?;
+    let mut samples = runtime(Shape::TwoThreads)?.block_on(round_trips(network, count))?;
     samples.sort();
     let at = |q: f64| samples[((samples.len() - 1) as f64 * q) as usize].as_secs_f64() * 1e6;
     println!(

@@ -1,6 +1,7 @@
 //! `proclaim sensor gamecontroller` (the receiver alone, printing what it posts) and
 //! `proclaim gc-sim` (the simulator, printing each state it sends).
 
+use super::runtime::{runtime, Shape};
 use crate::failure::Failure;
 use crate::network::{whiteboard, Network};
 use proclaim_experts::simulator::{self, default_game, parse_game, SimConfig};
@@ -10,13 +11,6 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
-
-fn runtime() -> Result<tokio::runtime::Runtime, Failure> {
-    tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .map_err(|e| Failure::Argument(format!("cannot start the async runtime: {e}")))
-}
 
 pub fn sensor(
     bind: SocketAddr,
@@ -32,7 +26,7 @@ pub fn sensor(
         })?),
         None => None,
     };
-    runtime()?.block_on(async move {
+    runtime(Shape::OneThread)?.block_on(async move {
         let config = ReceiverConfig {
             bind,
             team,
@@ -119,7 +113,7 @@ pub fn simulate(
         away,
         ..SimConfig::default()
     };
-    runtime()?.block_on(async move {
+    runtime(Shape::OneThread)?.block_on(async move {
         let start = tokio::time::Instant::now();
         let mut last = None;
         let sent = simulator::play(&game, &config, |p| {

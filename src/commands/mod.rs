@@ -14,6 +14,7 @@ mod liveness;
 mod prove;
 mod record;
 mod run;
+mod runtime;
 mod table;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};

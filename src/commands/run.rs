@@ -169,27 +169,18 @@ fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
     })
 }
 
-/// Two worker threads; or, for `--virtual-clock`, one thread and tokio's paused clock: when
-/// every task waits, time jumps to the next timer, so a minute of behaviour passes at once and
-/// in the same order every time.
+/// Two worker threads; or, for `--virtual-clock`, one thread and tokio's paused clock.
 fn runtime(args: &RunArgs) -> Result<tokio::runtime::Runtime, Failure> {
     if args.virtual_clock && !args.network.is_local() {
         return Err(Failure::Argument(
             "--virtual-clock runs on a board of its own: it cannot --listen or --connect".into(),
         ));
     }
-    if args.virtual_clock {
-        tokio::runtime::Builder::new_current_thread()
-            .enable_all()
-            .start_paused(true)
-            .build()
+    super::runtime::runtime(if args.virtual_clock {
+        super::runtime::Shape::VirtualClock
     } else {
-        tokio::runtime::Builder::new_multi_thread()
-            .worker_threads(2)
-            .enable_all()
-            .build()
-    }
-    .map_err(|e| Failure::Start(format!("no async runtime: {e}")))
+        super::runtime::Shape::TwoThreads
+    })
 }
 
 /// `--ask`: an impersonator that asks the person at this terminal.
