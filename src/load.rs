@@ -84,6 +84,27 @@ pub fn theory(name: &str) -> Result<(Source, Theory), Failure> {
     Ok((source, theory))
 }
 
+/// A file in one of the small line formats (scripts, game scripts, mappings), parsed; every bad
+/// line is reported as `file:line: error: …`, all at once.
+pub fn line_file<T>(
+    path: &Path,
+    what: &'static str,
+    parse: impl FnOnce(&str) -> Result<T, proclaim_experts::LineErrors>,
+) -> Result<T, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    parse(&text).map_err(|errors| Failure::Invalid {
+        what,
+        errors: errors.len(),
+        rendered: errors
+            .iter()
+            .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
+            .collect(),
+    })
+}
+
 /// Whether stderr wants colour.
 pub fn color() -> bool {
     std::env::var_os("NO_COLOR").is_none() && std::io::stderr().is_terminal()

@@ -391,11 +391,11 @@ fn gc_sim_reports_script_errors_by_line() {
     assert_eq!(o.status.code(), Some(2));
     let err = stderr(&o);
     assert!(
-        err.contains("bad-game.txt:line 2: unknown event `dance`"),
+        err.contains("bad-game.txt:2: error: unknown event `dance`"),
         "{err}"
     );
     assert!(
-        err.contains("bad-game.txt:line 3: `soon` is not a time"),
+        err.contains("bad-game.txt:3: error: `soon` is not a time"),
         "{err}"
     );
 }

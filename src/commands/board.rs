@@ -43,20 +43,7 @@ pub fn expert(
     let (_, checked) = load::theory(theory)?;
     let mapping = match mapping {
         None => Default::default(),
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-                path: path.to_path_buf(),
-                error,
-            })?;
-            parse_mapping(&text).map_err(|errors| Failure::Invalid {
-                what: "the mapping file",
-                errors: errors.len(),
-                rendered: errors
-                    .iter()
-                    .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
-                    .collect(),
-            })?
-        }
+        Some(path) => load::line_file(path, "the mapping file", parse_mapping)?,
     };
     let limit = duration(limit)?;
     let name = name

@@ -7,7 +7,7 @@ use crate::network::{whiteboard, Network};
 use proclaim_experts::simulator::{self, default_game, parse_game, SimConfig};
 use proclaim_experts::{parse_duration, GameControllerReceiver, ReceiverConfig};
 use std::net::SocketAddr;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
@@ -88,19 +88,7 @@ pub fn simulate(
     away: u8,
 ) -> Result<ExitCode, Failure> {
     let game = match script {
-        Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-                path: PathBuf::from(path),
-                error,
-            })?;
-            parse_game(&text).map_err(|errors| {
-                let lines: Vec<String> = errors
-                    .iter()
-                    .map(|e| format!("{}:{}", path.display(), e))
-                    .collect();
-                Failure::Argument(format!("the game script has errors:\n{}", lines.join("\n")))
-            })?
-        }
+        Some(path) => crate::load::line_file(path, "the game script", parse_game)?,
         None => default_game(home, away),
     };
     if interval == 0 {

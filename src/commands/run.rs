@@ -155,18 +155,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
 }
 
 fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    parse_script(&text).map_err(|errors| Failure::Invalid {
-        what: "the script",
-        errors: errors.len(),
-        rendered: errors
-            .iter()
-            .map(|e| format!("{}:{}: error: {}\n", path.display(), e.line, e.message))
-            .collect(),
-    })
+    crate::load::line_file(path, "the script", parse_script)
 }
 
 /// Two worker threads; or, for `--virtual-clock`, one thread and tokio's paused clock.
