@@ -337,132 +337,16 @@ struct SupportDominators {
 
 impl SupportDominators {
     fn new(c: &Component, up: &[bool]) -> Option<SupportDominators> {
-        let n = c.members.len();
-        let root = n as u32;
-        // Predecessors in the support graph, and successors for the depth-first order.
-        let mut edges: Vec<(u32, u32)> = Vec::new();
-        let mut or_graph = true;
-        for (x, &g) in c.members.iter().enumerate() {
-            if !up[x] {
-                continue;
-            }
-            let settled = |s: Goal| match c.values[s as usize] {
-                PENDING => None,
-                v => Some(v == TRUE),
-            };
-            let structure = crate::goal::supporters(c.engine, c.mu, g, &settled, &mut |reads| {
-                let mut internal = None;
-                let mut holds = true;
-                for s in reads {
-                    match c.values[s as usize] {
-                        PENDING => {
-                            let p = c.position[s as usize];
-                            if internal.is_some_and(|q| q != p) {
-                                or_graph = false;
-                            }
-                            internal = Some(p);
-                        }
-                        v => holds &= v == TRUE,
-                    }
-                }
-                match internal {
-                    _ if !holds => {}
-                    None => edges.push((root, x as u32)),
-                    Some(p) if up[p as usize] => edges.push((p, x as u32)),
-                    Some(_) => {}
-                }
-            });
-            if structure.is_err() || !or_graph {
-                return None;
-            }
-        }
-        let nodes = n + 1;
+        let root = c.members.len() as u32;
+        let edges = support_graph(c, up, root)?;
+        let nodes = c.members.len() + 1;
         let successors = crate::engine::Csr::build(nodes, edges.iter().copied());
         let predecessors = crate::engine::Csr::build(nodes, edges.iter().map(|&(a, b)| (b, a)));
-        // Reverse postorder from the root, iteratively.
-        let mut order: Vec<u32> = Vec::with_capacity(nodes);
-        let mut seen = vec![false; nodes];
-        let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
-        seen[root as usize] = true;
-        while let Some(&mut (v, ref mut next)) = stack.last_mut() {
-            let row = successors.row(v as usize);
-            if let Some(&w) = row.get(*next as usize) {
-                *next += 1;
-                if !seen[w as usize] {
-                    seen[w as usize] = true;
-                    stack.push((w, 0));
-                }
-            } else {
-                order.push(v);
-                stack.pop();
-            }
-        }
-        order.reverse();
-        let mut rank = vec![u32::MAX; nodes];
-        for (i, &v) in order.iter().enumerate() {
-            rank[v as usize] = i as u32;
-        }
-        // Cooper, Harvey and Kennedy's iteration: immediate dominators by intersecting the
-        // predecessors' dominator chains, in reverse postorder, until nothing changes.
-        const UNDEFINED: u32 = u32::MAX;
-        let mut idom = vec![UNDEFINED; nodes];
-        idom[root as usize] = root;
-        let mut changed = true;
-        while changed {
-            changed = false;
-            for &v in order.iter().skip(1) {
-                let mut new = UNDEFINED;
-                for &p in predecessors.row(v as usize) {
-                    if idom[p as usize] == UNDEFINED {
-                        continue;
-                    }
-                    new = if new == UNDEFINED {
-                        p
-                    } else {
-                        let (mut a, mut b) = (p, new);
-                        while a != b {
-                            while rank[a as usize] > rank[b as usize] {
-                                a = idom[a as usize];
-                            }
-                            while rank[b as usize] > rank[a as usize] {
-                                b = idom[b as usize];
-                            }
-                        }
-                        a
-                    };
-                }
-                if new != idom[v as usize] {
-                    idom[v as usize] = new;
-                    changed = true;
-                }
-            }
-        }
-        // Intervals of the dominator tree, for constant-time "dominates".
-        let children = crate::engine::Csr::build(
-            nodes,
-            order
-                .iter()
-                .skip(1)
-                .map(|&v| (idom[v as usize], v))
-                .collect::<Vec<_>>()
-                .into_iter(),
-        );
-        let mut enter = vec![u32::MAX; nodes];
-        let mut leave = vec![0u32; nodes];
-        let mut clock = 0u32;
-        let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
-        enter[root as usize] = clock;
-        while let Some(&mut (v, ref mut next)) = stack.last_mut() {
-            if let Some(&w) = children.row(v as usize).get(*next as usize) {
-                *next += 1;
-                clock += 1;
-                enter[w as usize] = clock;
-                stack.push((w, 0));
-            } else {
-                leave[v as usize] = clock;
-                stack.pop();
-            }
-        }
+        let order = reverse_postorder(&successors, root, nodes);
+        let idom = immediate_dominators(&predecessors, &order, nodes);
+        let children =
+            crate::engine::Csr::build(nodes, order.iter().skip(1).map(|&v| (idom[v as usize], v)));
+        let (enter, leave) = intervals(&children, root, nodes);
         Some(SupportDominators { enter, leave })
     }
 
@@ -475,6 +359,140 @@ impl SupportDominators {
                 && self.enter[g] <= self.enter[x]
                 && self.leave[x] <= self.leave[g])
     }
+}
+
+/// The upper bound's support as edges `(p, x)`: some way of supporting `x` reads member `p`
+/// alone (`root` for the ways that read no member). `None` when some way reads two members, or
+/// a team of superiors reads one: not a graph of ORs.
+fn support_graph(c: &Component, up: &[bool], root: u32) -> Option<Vec<(u32, u32)>> {
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    let mut or_graph = true;
+    for (x, &g) in c.members.iter().enumerate() {
+        if !up[x] {
+            continue;
+        }
+        let settled = |s: Goal| match c.values[s as usize] {
+            PENDING => None,
+            v => Some(v == TRUE),
+        };
+        let structure = crate::goal::supporters(c.engine, c.mu, g, &settled, &mut |reads| {
+            let mut internal = None;
+            let mut holds = true;
+            for s in reads {
+                match c.values[s as usize] {
+                    PENDING => {
+                        let p = c.position[s as usize];
+                        if internal.is_some_and(|q| q != p) {
+                            or_graph = false;
+                        }
+                        internal = Some(p);
+                    }
+                    v => holds &= v == TRUE,
+                }
+            }
+            match internal {
+                _ if !holds => {}
+                None => edges.push((root, x as u32)),
+                Some(p) if up[p as usize] => edges.push((p, x as u32)),
+                Some(_) => {}
+            }
+        });
+        if structure.is_err() || !or_graph {
+            return None;
+        }
+    }
+    Some(edges)
+}
+
+/// The nodes `root` reaches, in reverse postorder of a depth-first walk (iterative).
+fn reverse_postorder(successors: &crate::engine::Csr, root: u32, nodes: usize) -> Vec<u32> {
+    let mut order = Vec::new();
+    let mut seen = vec![false; nodes];
+    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
+    seen[root as usize] = true;
+    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
+        if let Some(&w) = successors.row(v as usize).get(*next as usize) {
+            *next += 1;
+            if !std::mem::replace(&mut seen[w as usize], true) {
+                stack.push((w, 0));
+            }
+        } else {
+            order.push(v);
+            stack.pop();
+        }
+    }
+    order.reverse();
+    order
+}
+
+/// Cooper, Harvey and Kennedy's iteration: each node's immediate dominator, by intersecting its
+/// predecessors' dominator chains in reverse postorder until nothing changes (`u32::MAX` for
+/// nodes the root does not reach).
+fn immediate_dominators(
+    predecessors: &crate::engine::Csr,
+    order: &[u32],
+    nodes: usize,
+) -> Vec<u32> {
+    const UNDEFINED: u32 = u32::MAX;
+    let mut rank = vec![u32::MAX; nodes];
+    for (i, &v) in order.iter().enumerate() {
+        rank[v as usize] = i as u32;
+    }
+    let mut idom = vec![UNDEFINED; nodes];
+    idom[order[0] as usize] = order[0];
+    let mut changed = true;
+    while changed {
+        changed = false;
+        for &v in order.iter().skip(1) {
+            let mut new = UNDEFINED;
+            for &p in predecessors.row(v as usize) {
+                if idom[p as usize] == UNDEFINED {
+                    continue;
+                }
+                new = if new == UNDEFINED {
+                    p
+                } else {
+                    let (mut a, mut b) = (p, new);
+                    while a != b {
+                        while rank[a as usize] > rank[b as usize] {
+                            a = idom[a as usize];
+                        }
+                        while rank[b as usize] > rank[a as usize] {
+                            b = idom[b as usize];
+                        }
+                    }
+                    a
+                };
+            }
+            if new != idom[v as usize] {
+                idom[v as usize] = new;
+                changed = true;
+            }
+        }
+    }
+    idom
+}
+
+/// Each node's interval in a depth-first numbering of the tree (`u32::MAX` on entry for nodes
+/// outside it), so that "`g` is an ancestor of `x`" is two comparisons.
+fn intervals(children: &crate::engine::Csr, root: u32, nodes: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut enter = vec![u32::MAX; nodes];
+    let mut leave = vec![0u32; nodes];
+    let mut clock = 0u32;
+    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
+    enter[root as usize] = clock;
+    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
+        if let Some(&w) = children.row(v as usize).get(*next as usize) {
+            *next += 1;
+            clock += 1;
+            enter[w as usize] = clock;
+            stack.push((w, 0));
+        } else {
+            leave[v as usize] = clock;
+            stack.pop();
+        }
+    }
+    (enter, leave)
 }
 
 /// Least fixpoints over the members of one component.
