@@ -6,7 +6,7 @@
 use crate::cycle::SearchLimits;
 use crate::engine::Engine;
 use crate::literal::{Atom, Lit, RuleId};
-use crate::session::Session;
+use crate::session::{Searched, Session};
 use crate::theory::{Origin, Theory};
 use proclaim_syntax::{Algorithm, Diagnostic, Span};
 use rustc_hash::FxHashSet;
@@ -32,66 +32,81 @@ pub fn attack_cycle_warnings(theory: &Arc<Theory>, limits: SearchLimits) -> Vec<
             }
         }
     }
-    let mut warnings = Vec::new();
-    for searched in session.searched() {
-        let small = searched.goals.len() < SEARCHED_WARNING_GOALS;
-        // Decided by its bounds alone (no step of search): cheap however large.
-        if !searched.undecided && (small || searched.steps == 0) {
-            continue;
-        }
-        let atoms: FxHashSet<Atom> = searched.goals.iter().map(|(_, l)| l.atom()).collect();
-        let mut rules: Vec<RuleId> = atoms
-            .iter()
-            .flat_map(|&a| rules_about(&engine, a))
-            .collect();
-        rules.sort_unstable();
-        let Some(span) = first_written(theory, &rules) else {
-            continue;
-        };
-        let (message, hint) = if searched.undecided {
-            (
-                format!(
-                    "rules attack each other in a cycle of {} goals that the search did not decide within its budget of {} steps: {}",
-                    searched.goals.len(),
-                    limits.steps,
-                    names(theory, &rules)
-                ),
-                "its answers are undecided (`?` in `prove`, false in a running behaviour); raise the budget (`--budget`, or `budget` in behaviour.toml) or break the cycle",
-            )
-        } else {
-            (
-                format!(
-                    "rules attack each other in a cycle of {} goals that only a search decides ({} steps): {}",
-                    searched.goals.len(),
-                    searched.steps,
-                    names(theory, &rules)
-                ),
-                "inside such a cycle an answer can cost time exponential in its size (cdl.md §4); a priority that decides the conflict, or breaking the cycle, makes it cheap",
-            )
-        };
-        warnings.push(Diagnostic::warning(span, message).with_hint(hint));
-    }
-    for (alg, atom) in both {
-        let rules = self_attacking_loop(&engine, atom);
-        let Some(span) = first_written(theory, &rules) else {
-            continue;
-        };
-        let name = theory.atom_name(atom);
-        warnings.push(
-            Diagnostic::warning(
-                span,
-                format!(
-                    "{alg} proves both `{name}` and `~{name}`, through a self-attacking loop: {}",
-                    names(theory, &rules)
-                ),
-            )
-            .with_hint(
-                "an attacker whose antecedent depends on what it attacks fails on the history, so proving each side discounts the other's attacker (cdl.md §5.3); rewrite the loop if one side should win",
-            ),
-        );
-    }
+    let mut warnings: Vec<Diagnostic> = session
+        .searched()
+        .iter()
+        .filter_map(|searched| searched_warning(theory, &engine, searched, limits))
+        .collect();
+    warnings.extend(
+        both.into_iter()
+            .filter_map(|(alg, atom)| loop_warning(theory, &engine, alg, atom)),
+    );
     warnings.sort_by_key(|d| (d.span.start, d.span.end));
     warnings
+}
+
+/// The warning for a component the search had to work on: large, or left undecided.
+fn searched_warning(
+    theory: &Theory,
+    engine: &Engine,
+    searched: &Searched,
+    limits: SearchLimits,
+) -> Option<Diagnostic> {
+    let small = searched.goals.len() < SEARCHED_WARNING_GOALS;
+    // Decided by its bounds alone (no step of search): cheap however large.
+    if !searched.undecided && (small || searched.steps == 0) {
+        return None;
+    }
+    let atoms: FxHashSet<Atom> = searched.goals.iter().map(|(_, l)| l.atom()).collect();
+    let mut rules: Vec<RuleId> = atoms.iter().flat_map(|&a| rules_about(engine, a)).collect();
+    rules.sort_unstable();
+    let span = first_written(theory, &rules)?;
+    let (message, hint) = if searched.undecided {
+        (
+            format!(
+                "rules attack each other in a cycle of {} goals that the search did not decide within its budget of {} steps: {}",
+                searched.goals.len(),
+                limits.steps,
+                names(theory, &rules)
+            ),
+            "its answers are undecided (`?` in `prove`, false in a running behaviour); raise the budget (`--budget`, or `budget` in behaviour.toml) or break the cycle",
+        )
+    } else {
+        (
+            format!(
+                "rules attack each other in a cycle of {} goals that only a search decides ({} steps): {}",
+                searched.goals.len(),
+                searched.steps,
+                names(theory, &rules)
+            ),
+            "inside such a cycle an answer can cost time exponential in its size (cdl.md §4); a priority that decides the conflict, or breaking the cycle, makes it cheap",
+        )
+    };
+    Some(Diagnostic::warning(span, message).with_hint(hint))
+}
+
+/// The warning for a literal `alg` proves together with its complement.
+fn loop_warning(
+    theory: &Theory,
+    engine: &Engine,
+    alg: Algorithm,
+    atom: Atom,
+) -> Option<Diagnostic> {
+    let rules = self_attacking_loop(engine, atom);
+    let span = first_written(theory, &rules)?;
+    let name = theory.atom_name(atom);
+    Some(
+        Diagnostic::warning(
+            span,
+            format!(
+                "{alg} proves both `{name}` and `~{name}`, through a self-attacking loop: {}",
+                names(theory, &rules)
+            ),
+        )
+        .with_hint(
+            "an attacker whose antecedent depends on what it attacks fails on the history, so proving each side discounts the other's attacker (cdl.md §5.3); rewrite the loop if one side should win",
+        ),
+    )
 }
 
 /// The rules for `atom` and for its complement.
