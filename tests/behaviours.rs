@@ -684,3 +684,30 @@ async fn the_shootout_keeps_score_through_variables() {
     assert_eq!(board.stats().queries, 0, "labels over variables ask nobody");
     assert_eq!(board.truth("KeeperIsRunning"), Some(false));
 }
+
+#[test]
+fn a_theory_entry_sets_its_experts_search_budget() {
+    let dir = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"A.machine\"\n\n[[theory]]\nfile = \"t.dl\"\nbudget = 1000\n",
+        ),
+        ("A.machine", "machine A\nstate S {\n  when b -> S\n}\n"),
+        ("t.dl", "=> b.\n"),
+    ]);
+    let behaviour = load("budgeted", Arc::new(Folder::new(&dir))).unwrap();
+    assert_eq!(behaviour.theories[0].limits.steps, 1000);
+    let unbudgeted = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"A.machine\"\n\n[[theory]]\nfile = \"t.dl\"\n",
+        ),
+        ("A.machine", "machine A\nstate S {\n  when b -> S\n}\n"),
+        ("t.dl", "=> b.\n"),
+    ]);
+    let behaviour = load("default", Arc::new(Folder::new(&unbudgeted))).unwrap();
+    assert_eq!(
+        behaviour.theories[0].limits,
+        proclaim_cdl::SearchLimits::default()
+    );
+}
