@@ -5,6 +5,7 @@ use crate::local::LocalBoard;
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
+use crate::snapshot::Snapshot;
 use crate::transport::{Stats, Subscription, Transport};
 use crate::value::Value;
 use std::sync::Arc;
@@ -114,6 +115,11 @@ impl Whiteboard {
 
     pub fn stats(&self) -> Stats {
         self.transport.stats()
+    }
+
+    /// The whole board as it is now, in O(1); reading it never holds the board up.
+    pub fn snapshot(&self) -> Snapshot {
+        self.transport.snapshot()
     }
 
     pub fn now(&self) -> Duration {

@@ -4,12 +4,12 @@
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
+use crate::snapshot::{Slot, Snapshot, Table};
 use crate::subscribers::Subscribers;
 use crate::transport::{BoxFuture, Stats, Subscription, Transport};
 use crate::value::Value;
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
-use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::Duration;
 use tokio::sync::{mpsc, Notify};
@@ -37,33 +37,13 @@ impl Default for Retention {
     }
 }
 
-struct Entry {
-    /// The type's name, shared by all its messages.
-    name: Arc<str>,
-    kind: Kind,
-    latest: Option<Message>,
-    history: VecDeque<Message>,
-    signals: VecDeque<Message>,
-    notify: Arc<Notify>,
-}
-
-impl Entry {
-    fn new(name: Arc<str>, kind: Kind) -> Entry {
-        Entry {
-            name,
-            kind,
-            latest: None,
-            history: VecDeque::new(),
-            signals: VecDeque::new(),
-            notify: Arc::new(Notify::new()),
-        }
-    }
-}
-
 #[derive(Default)]
 struct Inner {
     seq: u64,
-    types: FxHashMap<Arc<str>, Entry>,
+    /// Persistent, so a snapshot is a reference count (`snapshot.rs`).
+    table: Table,
+    /// Waiters of each type, woken by every posting of it.
+    notifies: FxHashMap<Arc<str>, Arc<Notify>>,
     modules: FxHashMap<String, Arc<str>>,
     subscribers: Subscribers,
     registry: Registry,
@@ -83,13 +63,23 @@ impl Inner {
         }
     }
 
-    fn entry(&mut self, ty: &str) -> &mut Entry {
-        if !self.types.contains_key(ty) {
-            let name: Arc<str> = Arc::from(ty);
-            self.types
-                .insert(name.clone(), Entry::new(name, Kind::State));
+    /// The type's slot, made a state if it is new.
+    fn slot(&mut self, ty: &str) -> &mut Slot {
+        if !self.table.contains_key(ty) {
+            self.table.insert(Arc::from(ty), Slot::new(Kind::State));
         }
-        self.types.get_mut(ty).expect("inserted above")
+        self.table.get_mut(ty).expect("inserted above")
+    }
+
+    /// The type's name as the table shares it.
+    fn name(&mut self, ty: &str) -> Arc<str> {
+        self.slot(ty);
+        let (name, _) = self.table.get_key_value(ty).expect("made above");
+        name.clone()
+    }
+
+    fn notify(&mut self, ty: &Arc<str>) -> Arc<Notify> {
+        self.notifies.entry(ty.clone()).or_default().clone()
     }
 }
 
@@ -127,7 +117,7 @@ impl LocalBoard {
         inner.seq += 1;
         let seq = inner.seq;
         let module = inner.module_name(module);
-        let ty_name = inner.entry(ty).name.clone();
+        let ty_name = inner.name(ty);
         let message = Message {
             ty: ty_name,
             value,
@@ -145,13 +135,14 @@ impl LocalBoard {
     pub fn apply(&self, message: Message, consumable: bool) {
         let mut inner = self.lock();
         if message.seq <= inner.seq {
-            let entry = inner.entry(&message.ty);
+            let ty = inner.name(&message.ty);
+            let slot = inner.slot(&ty);
             if consumable
-                && entry.kind == Kind::Signal
-                && !entry.signals.iter().any(|m| m.seq == message.seq)
+                && slot.kind == Kind::Signal
+                && !slot.signals.iter().any(|m| m.seq == message.seq)
             {
-                entry.signals.push_back(message);
-                let notify = entry.notify.clone();
+                slot.signals.push_back(message);
+                let notify = inner.notify(&ty);
                 drop(inner);
                 notify.notify_waiters();
             }
@@ -164,35 +155,18 @@ impl LocalBoard {
     /// Declares a type's kind as another process did, without taking a pending state value as
     /// a signal of this process.
     pub fn declare_observed(&self, ty: &str, kind: Kind) {
-        self.lock().entry(ty).kind = kind;
+        self.lock().slot(ty).kind = kind;
     }
 
     /// Takes a state's current value out (a networked board handing a command posted before
     /// its type became a signal to the process that consumes it).
     pub fn take_latest(&self, ty: &str) -> Option<Message> {
-        self.lock().types.get_mut(ty)?.latest.take()
+        self.lock().table.get_mut(ty)?.latest.take()
     }
 
     /// The highest sequence number seen.
     pub fn last_seq(&self) -> u64 {
         self.lock().seq
-    }
-
-    /// Every type with its kind and what it holds now (a state's value, a data history, unread
-    /// signals), in sequence order: what a process joining a networked board starts from.
-    pub fn snapshot(&self) -> (Vec<(String, Kind)>, Vec<Message>) {
-        let inner = self.lock();
-        let mut kinds = Vec::new();
-        let mut messages = Vec::new();
-        for entry in inner.types.values() {
-            kinds.push((entry.name.to_string(), entry.kind));
-            messages.extend(entry.latest.iter().cloned());
-            messages.extend(entry.history.iter().cloned());
-            messages.extend(entry.signals.iter().cloned());
-        }
-        kinds.sort_by(|a, b| a.0.cmp(&b.0));
-        messages.sort_by_key(|m| m.seq);
-        (kinds, messages)
     }
 
     /// Stores a message and tells waiters and subscribers; takes the lock and releases it.
@@ -201,30 +175,33 @@ impl LocalBoard {
         inner.stats.posts += 1;
         let (ty, seq, time) = (message.ty.clone(), message.seq, message.time);
         let mut dropped = 0;
-        let entry = inner.entry(&ty);
-        match entry.kind {
-            Kind::State => entry.latest = Some(message.clone()),
-            Kind::Signal if consumable => {
-                entry.signals.push_back(message.clone());
-                if entry.signals.len() > retention.signals {
-                    entry.signals.pop_front();
-                    dropped += 1;
+        let slot = inner.slot(&ty);
+        slot.posts += 1;
+        match slot.kind {
+            Kind::State => slot.latest = Some(message.clone()),
+            Kind::Signal => {
+                slot.last_signal = Some(message.clone());
+                if consumable {
+                    slot.signals.push_back(message.clone());
+                    if slot.signals.len() > retention.signals {
+                        slot.signals.pop_front();
+                        dropped += 1;
+                    }
                 }
             }
-            Kind::Signal => {}
             Kind::Data => {
-                entry.history.push_back(message.clone());
-                while entry.history.len() > retention.count
-                    || entry
+                slot.history.push_back(message.clone());
+                while slot.history.len() > retention.count
+                    || slot
                         .history
                         .front()
                         .is_some_and(|m| time.saturating_sub(m.time) > retention.age)
                 {
-                    entry.history.pop_front();
+                    slot.history.pop_front();
                 }
             }
         }
-        let notify = entry.notify.clone();
+        let notify = inner.notify(&ty);
         dropped += inner.subscribers.deliver(&message);
         inner.stats.drops += dropped;
         drop(inner);
@@ -237,13 +214,13 @@ impl LocalBoard {
 
     /// The first message of `ty` after `after`, taking it if a signal.
     fn find_after(inner: &mut Inner, ty: &str, after: u64) -> Option<Message> {
-        let entry = inner.types.get_mut(ty)?;
-        match entry.kind {
-            Kind::State => entry.latest.clone().filter(|m| m.seq > after),
-            Kind::Data => entry.history.iter().find(|m| m.seq > after).cloned(),
+        let slot = inner.table.get_mut(ty)?;
+        match slot.kind {
+            Kind::State => slot.latest.clone().filter(|m| m.seq > after),
+            Kind::Data => slot.history.iter().find(|m| m.seq > after).cloned(),
             Kind::Signal => {
-                let at = entry.signals.iter().position(|m| m.seq > after)?;
-                entry.signals.remove(at)
+                let at = slot.signals.iter().position(|m| m.seq > after)?;
+                Some(slot.signals.remove(at))
             }
         }
     }
@@ -258,19 +235,20 @@ impl Default for LocalBoard {
 impl Transport for LocalBoard {
     fn declare(&self, ty: &str, kind: Kind) {
         let mut inner = self.lock();
-        let entry = inner.entry(ty);
+        let slot = inner.slot(ty);
         // A command posted before its reader declared the type a signal (a parent starting a
         // sub-machine that is still loading) is kept as one unread signal, not lost.
-        if kind == Kind::Signal && entry.kind != Kind::Signal {
-            if let Some(pending) = entry.latest.take() {
-                entry.signals.push_back(pending);
+        if kind == Kind::Signal && slot.kind != Kind::Signal {
+            if let Some(pending) = slot.latest.take() {
+                slot.last_signal = Some(pending.clone());
+                slot.signals.push_back(pending);
             }
         }
-        entry.kind = kind;
+        slot.kind = kind;
     }
 
     fn kind(&self, ty: &str) -> Kind {
-        self.lock().types.get(ty).map_or(Kind::State, |e| e.kind)
+        self.lock().table.get(ty).map_or(Kind::State, |s| s.kind)
     }
 
     fn post(&self, module: &str, ty: &str, value: Value) -> Message {
@@ -279,11 +257,11 @@ impl Transport for LocalBoard {
 
     fn latest(&self, ty: &str) -> Option<Message> {
         let mut inner = self.lock();
-        let entry = inner.types.get_mut(ty)?;
-        match entry.kind {
-            Kind::State => entry.latest.clone(),
-            Kind::Data => entry.history.back().cloned(),
-            Kind::Signal => entry.signals.pop_front(),
+        let slot = inner.table.get_mut(ty)?;
+        match slot.kind {
+            Kind::State => slot.latest.clone(),
+            Kind::Data => slot.history.back().cloned(),
+            Kind::Signal => slot.signals.pop_front(),
         }
     }
 
@@ -292,7 +270,11 @@ impl Transport for LocalBoard {
         Box::pin(async move {
             let deadline = Instant::now() + timeout;
             loop {
-                let notify = self.lock().entry(&ty).notify.clone();
+                let notify = {
+                    let mut inner = self.lock();
+                    let name = inner.name(&ty);
+                    inner.notify(&name)
+                };
                 let notified = notify.notified();
                 tokio::pin!(notified);
                 // Registered before looking, so a post between the look and the wait still
@@ -310,11 +292,11 @@ impl Transport for LocalBoard {
 
     fn nearest(&self, ty: &str, time: Duration, side: Ordering) -> Option<Message> {
         let inner = self.lock();
-        let entry = inner.types.get(ty)?;
-        let candidates: Box<dyn Iterator<Item = &Message>> = match entry.kind {
-            Kind::Data => Box::new(entry.history.iter()),
-            Kind::State => Box::new(entry.latest.iter()),
-            Kind::Signal => Box::new(entry.signals.iter()),
+        let slot = inner.table.get(ty)?;
+        let candidates: Box<dyn Iterator<Item = &Message>> = match slot.kind {
+            Kind::Data => Box::new(slot.history.iter()),
+            Kind::State => Box::new(slot.latest.iter()),
+            Kind::Signal => Box::new(slot.signals.iter()),
         };
         candidates
             .filter(|m| match side {
@@ -361,5 +343,16 @@ impl Transport for LocalBoard {
 
     fn now(&self) -> Duration {
         Instant::now().saturating_duration_since(self.start)
+    }
+
+    /// Consistent (taken under the lock) and read without it.
+    fn snapshot(&self) -> Snapshot {
+        let time = self.now();
+        let inner = self.lock();
+        Snapshot {
+            table: inner.table.clone(),
+            seq: inner.seq,
+            time,
+        }
     }
 }

@@ -4,6 +4,7 @@
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
+use crate::snapshot::Snapshot;
 use crate::value::Value;
 use std::future::Future;
 use std::pin::Pin;
@@ -75,4 +76,6 @@ pub trait Transport: Send + Sync + 'static {
     fn count_query(&self, timed_out: bool, unanswerable: bool);
     /// The board's clock.
     fn now(&self) -> Duration;
+    /// The whole board as it is now, in O(1) (a persistent table shared with the live one).
+    fn snapshot(&self) -> Snapshot;
 }

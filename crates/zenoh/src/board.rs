@@ -64,6 +64,10 @@ macro_rules! served_locally {
         fn count_query(&self, timed_out: bool, unanswerable: bool) {
             self.$board.count_query(timed_out, unanswerable)
         }
+
+        fn snapshot(&self) -> proclaim_board::Snapshot {
+            self.$board.snapshot()
+        }
     };
 }
 
@@ -371,7 +375,7 @@ impl Holder {
     }
 
     fn snapshot(&self) -> Snapshot {
-        let (kinds, messages) = self.core.snapshot();
+        let (kinds, messages) = self.core.snapshot().contents();
         let owners = lock(&self.owners);
         Snapshot {
             kinds: kinds.into_iter().map(|(t, k)| (t, k.into())).collect(),
