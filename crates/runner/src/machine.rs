@@ -166,13 +166,15 @@ impl MachineRunner {
                     // this yields once the task has used up its share (tokio's budget).
                     tokio::task::consume_budget().await;
                 }
-                Ring::Stayed => {
-                    if let Some(stepper) = &self.options.stepper {
+                Ring::Stayed => match &self.options.stepper {
+                    Some(stepper) => {
                         stepper.ring_done(&run.name, run.last_step);
-                    } else {
-                        run.wait_between_rings().await;
+                        if !stepper.is_paused() {
+                            run.wait_between_rings().await;
+                        }
                     }
-                }
+                    None => run.wait_between_rings().await,
+                },
             }
         }
     }

@@ -1,13 +1,21 @@
 //! Running machines one ring at a time (model simulation): each machine waits before each ring
 //! until the stepper's count passes the last ring it took, and reports when the ring is done.
+//! A stepper may also let the machines run freely and be paused later (the monitor's controls).
 
 use std::sync::{Arc, Mutex};
 use tokio::sync::{watch, Notify};
 
+/// The count of steps, and whether machines ring freely meanwhile.
+#[derive(Clone, Copy, Debug, Default)]
+struct Clock {
+    step: u64,
+    free: bool,
+}
+
 /// Shared by every machine of a behaviour and by whoever steps them. Clones share the count.
 #[derive(Clone)]
 pub struct Stepper {
-    step: Arc<watch::Sender<u64>>,
+    step: Arc<watch::Sender<Clock>>,
     /// Machine → the last step whose ring it finished.
     done: Arc<Mutex<Vec<(String, u64)>>>,
     finished: Arc<Notify>,
@@ -15,14 +23,16 @@ pub struct Stepper {
 
 impl std::fmt::Debug for Stepper {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Stepper(step {})", *self.step.borrow())
+        let clock = *self.step.borrow();
+        write!(f, "Stepper(step {}, free {})", clock.step, clock.free)
     }
 }
 
+/// Paused: nothing rings until [`Stepper::advance`].
 impl Default for Stepper {
     fn default() -> Stepper {
         Stepper {
-            step: Arc::new(watch::channel(0).0),
+            step: Arc::new(watch::channel(Clock::default()).0),
             done: Arc::default(),
             finished: Arc::default(),
         }
@@ -30,14 +40,44 @@ impl Default for Stepper {
 }
 
 impl Stepper {
-    /// Lets every running machine take one ring; returns the new step number.
+    /// Machines ring freely until [`Stepper::pause`].
+    pub fn free() -> Stepper {
+        let stepper = Stepper::default();
+        stepper.resume();
+        stepper
+    }
+
+    /// Lets every running machine take one ring; returns the new step number. Pauses first if
+    /// the machines ran freely.
     pub fn advance(&self) -> u64 {
         let mut next = 0;
-        self.step.send_modify(|s| {
-            *s += 1;
-            next = *s;
+        self.step.send_modify(|c| {
+            c.free = false;
+            c.step += 1;
+            next = c.step;
         });
         next
+    }
+
+    /// Each machine stops before its next ring.
+    pub fn pause(&self) {
+        self.step
+            .send_if_modified(|c| std::mem::replace(&mut c.free, false));
+    }
+
+    /// Every machine rings freely again.
+    pub fn resume(&self) {
+        self.step
+            .send_if_modified(|c| !std::mem::replace(&mut c.free, true));
+    }
+
+    pub fn is_paused(&self) -> bool {
+        !self.step.borrow().free
+    }
+
+    /// The last step given.
+    pub fn step(&self) -> u64 {
+        self.step.borrow().step
     }
 
     /// Waits until each of `machines` finished its ring of `step`, or `limit` passes (a ring
@@ -65,10 +105,17 @@ impl Stepper {
         }
     }
 
-    /// Before a ring: waits for a step after `last`; returns it.
+    /// Before a ring: waits for a step after `last`, or for free running; returns the step.
     pub(crate) async fn wait(&self, last: u64) -> u64 {
+        let clock = *self.step.borrow();
+        if clock.free {
+            return clock.step.max(last);
+        }
         let mut rx = self.step.subscribe();
-        let reached = rx.wait_for(|s| *s > last).await.map(|s| *s);
+        let reached = rx
+            .wait_for(|c| c.free || c.step > last)
+            .await
+            .map(|c| c.step.max(last));
         match reached {
             Ok(s) => s,
             // The stepper is gone: nobody will step again.
