@@ -191,8 +191,16 @@ pub enum Command {
     Replay {
         trace: PathBuf,
         /// Replay at this many times the recorded pace (default: all at once)
-        #[arg(long)]
+        #[arg(long, conflicts_with = "monitor")]
         speed: Option<f64>,
+        /// Show the trace in the browser with a time slider over every moment (at
+        /// 127.0.0.1:7480 unless given), until Ctrl-C
+        #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR)]
+        monitor: Option<String>,
+        /// The behaviour that made the trace, to draw its machines whole (without it, each
+        /// machine is drawn from the states and transitions the trace shows)
+        #[arg(long, value_name = "BEHAVIOUR", requires = "monitor")]
+        behaviour: Option<String>,
     },
     /// Draw a behaviour's module dependencies: for one module, the experts it queries above it
     /// (green), the modules hearing its postings below it (black), and a red `unknown` for a
@@ -354,6 +362,11 @@ pub struct RunArgs {
     /// answers, a sub-machine that does not exist); they are printed as warnings
     #[arg(long)]
     pub force: bool,
+    /// Show the run in the browser: each machine's diagram lit as it moves, the whiteboard,
+    /// the answers, pause / step / resume and posting from the page (at 127.0.0.1:7480 unless
+    /// given; port 0 takes any free port). The page stays open after the run until Ctrl-C
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR, conflicts_with_all = ["step", "virtual_clock"])]
+    pub monitor: Option<String>,
     #[command(flatten)]
     pub network: Network,
 }

@@ -6,6 +6,7 @@ mod cli;
 mod experts;
 mod gamecontroller;
 mod machines;
+mod monitor;
 #[cfg(feature = "zenoh")]
 mod network;
 mod properties;

@@ -11,6 +11,7 @@ mod gen;
 mod import;
 mod inputs;
 mod liveness;
+pub mod monitor;
 mod prove;
 mod record;
 mod run;
@@ -77,7 +78,18 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             network,
         } => board::watch(&pattern, &network, duration.as_deref()),
         Command::Ping { count, network } => board::ping(count, &network),
-        Command::Replay { trace, speed } => run::replay(&trace, speed),
+        Command::Replay {
+            trace,
+            speed,
+            monitor: None,
+            ..
+        } => run::replay(&trace, speed),
+        Command::Replay {
+            trace,
+            monitor: Some(addr),
+            behaviour,
+            ..
+        } => monitor::replay(&trace, &addr, behaviour.as_deref()),
         Command::Deps {
             behaviour,
             module,

@@ -91,7 +91,12 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         no_simulator: args.no_simulator,
         halt_on_timeout: args.halt_on_timeout,
         hosts: proclaim_runner::Hosts::default(),
-        stepper: args.step.then(Stepper::default),
+        // The page's pause and step buttons; machines run freely until pressed.
+        stepper: if args.step {
+            Some(Stepper::default())
+        } else {
+            args.monitor.as_ref().map(|_| Stepper::free())
+        },
         person: person(&args.ask),
     };
     let stepper = options.stepper.clone();
@@ -118,7 +123,20 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         let scripted = script_used.then_some("impersonator");
         let width = machines.iter().copied().chain(scripted).map(str::len).max();
         let mut view = TraceView::new(width.unwrap_or(8));
-        if let Some(stepper) = stepper {
+        let monitor = match &args.monitor {
+            Some(addr) => {
+                let monitor = proclaim_monitor::Monitor::live(
+                    behaviour.name.clone(),
+                    super::monitor::charts(&behaviour),
+                    board.clone(),
+                    stepper.clone(),
+                );
+                super::monitor::open(&monitor, addr).await?;
+                Some(monitor)
+            }
+            None => None,
+        };
+        if let Some(stepper) = stepper.filter(|_| args.step) {
             let why = stepping(&behaviour, &board, &mut running, &stepper, &mut view).await;
             println!("stopped: {why}");
             running.stop().await;
@@ -129,6 +147,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             view,
             trace_file: &mut trace_file,
             changed,
+            monitor: monitor.clone(),
         };
         let (why, halted) = live.follow(&board, &mut running, limit).await;
         let stats = board.stats();
@@ -141,6 +160,11 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         if let Some(recorder) = recorder {
             let (written, path) = recorder.finish().await;
             println!("  {written} messages recorded in {}", path.display());
+        }
+        if monitor.is_some() && why != "interrupted" {
+            // The page shows where everything ended until the person is done looking.
+            println!("  the monitor page stays open; Ctrl-C to close it");
+            let _ = tokio::signal::ctrl_c().await;
         }
         Ok::<bool, Failure>(halted)
     })?;
@@ -211,6 +235,8 @@ struct Live<'t> {
     trace_file: &'t mut Option<std::io::BufWriter<std::fs::File>>,
     /// Machines whose files changed (`--watch`).
     changed: tokio::sync::mpsc::UnboundedReceiver<String>,
+    /// The browser page (`--monitor`).
+    monitor: Option<proclaim_monitor::Monitor>,
 }
 
 impl Live<'_> {
@@ -253,6 +279,9 @@ impl Live<'_> {
     }
 
     fn show(&mut self, event: &Event) {
+        if let Some(monitor) = &self.monitor {
+            monitor.observe(event);
+        }
         if let Some(line) = self.view.line(event) {
             println!("{line}");
         }

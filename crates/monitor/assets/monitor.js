@@ -1,0 +1,270 @@
+// The proclaim monitor page: draws each machine once, then lights its current state and the
+// transition that just fired from each frame (a live run's stream, or a replay's moment).
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+let model = null;
+// Machine name -> { section, nodes: Map(node title -> <g>), edges: Map("sA->sB" -> [<g>]), nodeOf: Map(state id -> title) }
+const drawn = new Map();
+let boardSeqs = new Map();
+
+function seconds(us) {
+  return (us / 1e6).toFixed(3);
+}
+
+function text(tag, content, cls) {
+  const el = document.createElement(tag);
+  el.textContent = content;
+  if (cls) el.className = cls;
+  return el;
+}
+
+function drawMachines() {
+  const holder = $("machines");
+  for (const chart of model.charts) {
+    const section = document.createElement("section");
+    section.className = "machine";
+    section.dataset.machine = chart.name;
+    const title = document.createElement("h3");
+    title.append(text("span", chart.name, "name"), text("span", "", "mode"), text("span", "", "state-name"), text("span", "", "fired"));
+    section.append(title);
+    const figure = document.createElement("div");
+    figure.className = "diagram";
+    // The SVG is made by the binary (Graphviz or its own layout) from the behaviour's files.
+    figure.innerHTML = chart.svg;
+    section.append(figure);
+    holder.append(section);
+    const nodes = new Map();
+    const edges = new Map();
+    for (const g of figure.querySelectorAll("g.node")) {
+      const t = g.querySelector("title");
+      if (t) nodes.set(t.textContent.trim(), g);
+    }
+    for (const g of figure.querySelectorAll("g.edge")) {
+      const t = g.querySelector("title");
+      if (!t) continue;
+      const key = t.textContent.trim();
+      if (!edges.has(key)) edges.set(key, []);
+      edges.get(key).push(g);
+    }
+    const nodeOf = new Map(chart.states.map((s) => [s.id, s.node]));
+    drawn.set(chart.name, { section, nodes, edges, nodeOf, current: null, fired: [] });
+  }
+}
+
+function renderMachine(m) {
+  const d = drawn.get(m.name);
+  if (!d) return;
+  d.section.className = "machine mode-" + m.mode;
+  d.section.dataset.mode = m.mode;
+  d.section.dataset.state = m.state_name || "";
+  d.section.querySelector(".mode").textContent = m.mode + (m.halted ? ": " + m.halted : "");
+  d.section.querySelector(".state-name").textContent = m.state_name || "";
+  d.section.querySelector(".fired").textContent = m.fired ? "after " + m.fired.label : "";
+  const node = m.state === null ? null : d.nodeOf.get(m.state);
+  if (d.current !== node) {
+    if (d.current && d.nodes.get(d.current)) d.nodes.get(d.current).classList.remove("current");
+    if (node && d.nodes.get(node)) d.nodes.get(node).classList.add("current");
+    d.current = node;
+  }
+  for (const g of d.fired) g.classList.remove("fired");
+  d.fired = [];
+  if (m.fired) {
+    const key = d.nodeOf.get(m.fired.from) + "->" + d.nodeOf.get(m.fired.to);
+    for (const g of d.edges.get(key) || []) {
+      g.classList.add("fired");
+      d.fired.push(g);
+    }
+  }
+}
+
+function renderBoard(frame) {
+  const filter = $("board-filter").value.trim().toLowerCase();
+  const body = document.createElement("tbody");
+  const seqs = new Map();
+  let shown = 0;
+  for (const row of frame.board) {
+    seqs.set(row.type, row.seq);
+    if (filter && !(row.type.toLowerCase().includes(filter) || row.value.toLowerCase().includes(filter) || row.by.toLowerCase().includes(filter))) continue;
+    shown++;
+    const tr = document.createElement("tr");
+    tr.dataset.type = row.type;
+    if (boardSeqs.size && boardSeqs.get(row.type) !== row.seq) tr.className = "fresh";
+    tr.append(text("td", row.type, "type"), text("td", row.kind, "kind"), text("td", row.value, "value"), text("td", row.by, "by"), text("td", seconds(row.at_us), "at"), text("td", row.seq, "seq"), text("td", row.posts, "posts"));
+    body.append(tr);
+  }
+  boardSeqs = seqs;
+  $("board").replaceChild(body, $("board").tBodies[0]);
+  const more = frame.board_more ? ` (+${frame.board_more} not shown)` : "";
+  $("board-count").textContent = `${shown} of ${frame.board.length} types${more}`;
+}
+
+const HOW = { expert: "", posted: "posted by ", timed_out: "timed out", no_expert: "no expert" };
+
+function renderAnswers(frame) {
+  const body = document.createElement("tbody");
+  // The labels whose answer changed last come first.
+  for (const a of [...frame.answers].sort((x, y) => y.changed_us - x.changed_us)) {
+    const tr = document.createElement("tr");
+    tr.className = a.how;
+    tr.dataset.atom = a.atom;
+    tr.append(text("td", seconds(a.changed_us)), text("td", a.machine), text("td", a.atom, "atom"), text("td", String(a.value), "value"), text("td", HOW[a.how] + a.by, "by"), text("td", a.asked, "asked"));
+    // Answering a label by hand: fill the post form with it.
+    tr.addEventListener("click", () => {
+      $("post-type").value = a.atom;
+      $("post-value").value = String(!a.value);
+      $("post-value").focus();
+    });
+    body.append(tr);
+  }
+  $("answers").replaceChild(body, $("answers").tBodies[0]);
+}
+
+function describe(e) {
+  switch (e.event) {
+    case "entered": return `${e.machine} entered ${e.state}`;
+    case "fired": return `${e.machine} fired ${e.label}`;
+    case "answered": return `${e.machine} ${e.atom} = ${e.value}`;
+    case "posted": return `${e.machine} posted ${e.type}: ${e.content}`;
+    case "control": return `${e.machine} told ${e.command}`;
+    case "finished": return `${e.machine} finished in ${e.state}`;
+    case "halted": return `${e.machine} halted: ${e.reason}`;
+    case "printed": return `${e.machine} printed ${e.text}`;
+    case "warned": return `${e.machine} warning: ${e.message}`;
+    case "reloaded": return `${e.machine} reloaded, in ${e.state}`;
+    case "reload_failed": return `${e.machine} could not reload: ${e.error}`;
+    default: return `${e.machine} ${e.event}`;
+  }
+}
+
+function renderEvents(frame) {
+  const list = $("events");
+  const first = frame.events_seen - frame.events.length + 1;
+  list.start = first;
+  list.replaceChildren(...frame.events.map((e) => {
+    const li = text("li", (e.at_us !== undefined ? seconds(e.at_us) + "  " : "") + describe(e), e.event);
+    return li;
+  }));
+  list.scrollTop = list.scrollHeight;
+}
+
+let lastFrame = null;
+
+function render(frame) {
+  lastFrame = frame;
+  for (const m of frame.machines) renderMachine(m);
+  renderBoard(frame);
+  renderAnswers(frame);
+  renderEvents(frame);
+  const status = $("status");
+  if (frame.stepping) {
+    status.className = frame.stepping.paused ? "status paused" : "status";
+    status.textContent = frame.stepping.paused ? `paused at step ${frame.stepping.step}` : `running · ${seconds(frame.time_us)} s`;
+    status.dataset.paused = String(frame.stepping.paused);
+  } else if (model.mode === "live") {
+    status.className = "status";
+    status.textContent = `running · ${seconds(frame.time_us)} s`;
+  }
+  document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);
+}
+
+async function send(path, body) {
+  const response = await fetch(path, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) });
+  if (!response.ok) throw new Error(await response.text());
+  return response;
+}
+
+function live() {
+  $("post").hidden = false;
+  if (model.can_step) {
+    $("controls").hidden = false;
+    for (const action of ["pause", "step", "resume"]) {
+      $(action).addEventListener("click", () => send("/api/control", { action }).catch((e) => { $("status").textContent = e.message; }));
+    }
+  }
+  $("post").addEventListener("submit", async (event) => {
+    event.preventDefault();
+    const type = $("post-type").value.trim();
+    const value = $("post-value").value.trim();
+    try {
+      const response = await send("/api/post", { type, value });
+      const { seq } = await response.json();
+      $("post-result").textContent = `posted ${type} = ${value} (#${seq})`;
+    } catch (e) {
+      $("post-result").textContent = e.message;
+    }
+  });
+  const stream = new EventSource("/api/frames");
+  stream.addEventListener("frame", (e) => render(JSON.parse(e.data)));
+  // The browser reconnects by itself; only a closed stream is the end.
+  stream.onerror = () => {
+    const closed = stream.readyState === EventSource.CLOSED;
+    $("status").className = "status lost";
+    $("status").textContent = closed ? "the run is over or the connection was lost" : "reconnecting…";
+  };
+}
+
+function replay() {
+  const slider = $("slider");
+  const times = model.times;
+  $("timeline").hidden = false;
+  slider.max = String(times.length - 1);
+  let wanted = null;
+  let busy = false;
+  // One request at a time; moving the slider faster only asks for where it is now.
+  async function show(at) {
+    wanted = at;
+    if (busy) return;
+    busy = true;
+    while (wanted !== null) {
+      const now = wanted;
+      wanted = null;
+      const frame = await (await fetch(`/api/frame?at=${now}`)).json();
+      render(frame);
+      $("moment").textContent = `event ${now} of ${times.length - 1} · ${seconds(times[now])} s`;
+      $("status").textContent = "replay";
+    }
+    busy = false;
+  }
+  slider.addEventListener("input", () => show(Number(slider.value)));
+  let playing = null;
+  $("play").addEventListener("click", () => {
+    if (playing) {
+      clearInterval(playing);
+      playing = null;
+      $("play").textContent = "▶";
+      return;
+    }
+    $("play").textContent = "⏸";
+    const started = performance.now();
+    const from = times[Number(slider.value)];
+    playing = setInterval(() => {
+      const now = from + (performance.now() - started) * 1000;
+      let at = Number(slider.value);
+      while (at < times.length - 1 && times[at + 1] <= now) at++;
+      if (at !== Number(slider.value)) {
+        slider.value = String(at);
+        show(at);
+      }
+      if (at >= times.length - 1) $("play").click();
+    }, 50);
+  });
+  slider.value = String(times.length - 1);
+  show(times.length - 1);
+}
+
+async function start() {
+  model = await (await fetch("/api/model")).json();
+  document.title = `${model.name} · proclaim monitor`;
+  $("name").textContent = model.name;
+  $("mode").textContent = model.mode;
+  drawMachines();
+  $("board-filter").addEventListener("input", () => lastFrame && renderBoard(lastFrame));
+  if (model.mode === "replay") replay();
+  else live();
+}
+
+start().catch((e) => {
+  $("status").className = "status lost";
+  $("status").textContent = "the monitor could not start: " + e.message;
+});

@@ -1,0 +1,20 @@
+//! A running behaviour as a picture in the browser (`proclaim run --monitor`, `proclaim replay
+//! --monitor`): every machine's diagram with its current state lit and the transition that
+//! just fired marked, the whiteboard as a live table, the labels' answers, pause / one ring /
+//! resume, posting from the page, and for a replay a slider over every moment.
+//!
+//! The page costs the behaviour nothing it needs: machines never wait on it. Events are folded
+//! into a bounded [`Picture`] by whoever reads the run's events; the whiteboard is read as an
+//! O(1) [`proclaim_board::Snapshot`] when a frame is made; frames go to a page at most every
+//! [`FRAME_GAP`], each one the state of things then, so a slow page sees fewer frames and
+//! nothing queues up for it.
+
+mod diagram;
+mod picture;
+mod replay;
+mod server;
+
+pub use diagram::{node, Chart, ChartState, ChartTransition};
+pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
+pub use replay::Timeline;
+pub use server::{Monitor, FRAME_GAP};

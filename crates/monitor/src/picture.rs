@@ -1,0 +1,331 @@
+//! Where every machine is and what it last did, folded from the runner's events; with a
+//! whiteboard snapshot, it is one frame of the page. Bounded whatever the run's length.
+
+use crate::diagram::Chart;
+use proclaim_board::{Kind, Snapshot};
+use proclaim_runner::{Answerer, Command, Event};
+use serde::Serialize;
+use std::collections::VecDeque;
+use std::time::Duration;
+
+/// How many events a frame carries at most (the newest).
+pub const RECENT: usize = 200;
+/// How many labels' answers are kept (the behaviour's labels, unless atoms are made up as it
+/// runs: then those asked longest ago give way).
+pub const LABELS: usize = 2000;
+/// How many whiteboard rows a frame carries at most (by name; the page says how many more).
+pub const BOARD_ROWS: usize = 2000;
+
+/// The page's model of a running (or replayed) behaviour, apart from the whiteboard.
+#[derive(Clone, Debug)]
+pub struct Picture {
+    machines: Vec<MachineView>,
+    /// The last answer of each (machine, label).
+    answers: VecDeque<AnswerView>,
+    /// The newest events, an answer only when it differs from that label's last one (a
+    /// machine asks its labels at every ring).
+    events: VecDeque<Event>,
+    /// Events folded in so far.
+    pub count: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct MachineView {
+    pub name: String,
+    /// The state it is in (or going to: its OnEntry runs at its next ring).
+    pub state: Option<i64>,
+    pub state_name: Option<String>,
+    /// The transition that moved it last.
+    pub fired: Option<Fired>,
+    /// Its last control command (`suspend`, `Off`, …), which tells suspended from dormant.
+    pub control: Option<String>,
+    pub finished: bool,
+    pub halted: Option<String>,
+    #[serde(skip)]
+    start: bool,
+    #[serde(skip)]
+    states: Vec<(i64, String)>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Fired {
+    pub from: i64,
+    pub to: i64,
+    pub label: String,
+    pub at_us: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct AnswerView {
+    pub machine: String,
+    pub atom: String,
+    pub value: bool,
+    /// The expert's or poster's name; empty for `timed out` and `no expert`.
+    pub by: String,
+    /// `expert`, `posted`, `timed_out` or `no_expert`.
+    pub how: &'static str,
+    /// When it was last asked.
+    pub at_us: u64,
+    /// When its value or who answered last changed.
+    pub changed_us: u64,
+    /// How often it was asked.
+    pub asked: u64,
+}
+
+/// One frame as the page receives it.
+#[derive(Debug, Serialize)]
+pub struct Frame<'p> {
+    pub machines: Vec<MachineFrame<'p>>,
+    pub answers: &'p VecDeque<AnswerView>,
+    pub events: &'p VecDeque<Event>,
+    pub events_seen: u64,
+    pub board: Vec<BoardRow>,
+    /// Types left out beyond [`BOARD_ROWS`].
+    pub board_more: usize,
+    pub board_seq: u64,
+    pub time_us: u64,
+}
+
+#[derive(Debug, Serialize)]
+pub struct MachineFrame<'p> {
+    #[serde(flatten)]
+    pub view: &'p MachineView,
+    /// `running`, `suspended`, `dormant`, `finished` or `halted`.
+    pub mode: &'static str,
+}
+
+#[derive(Debug, Serialize)]
+pub struct BoardRow {
+    #[serde(rename = "type")]
+    pub ty: String,
+    pub kind: &'static str,
+    pub value: String,
+    pub by: String,
+    pub seq: u64,
+    pub at_us: u64,
+    pub posts: u64,
+}
+
+impl Picture {
+    /// The machines as the page draws them, each in its initial state.
+    pub fn new(charts: &[Chart]) -> Picture {
+        Picture {
+            machines: charts
+                .iter()
+                .map(|chart| {
+                    let states: Vec<(i64, String)> = chart
+                        .states
+                        .iter()
+                        .map(|s| (s.id, s.name.clone()))
+                        .collect();
+                    let initial = states.iter().find(|(id, _)| *id == chart.initial);
+                    MachineView {
+                        name: chart.name.clone(),
+                        state: initial.map(|(id, _)| *id),
+                        state_name: initial.map(|(_, n)| n.clone()),
+                        fired: None,
+                        control: None,
+                        finished: false,
+                        halted: None,
+                        start: chart.start,
+                        states,
+                    }
+                })
+                .collect(),
+            answers: VecDeque::new(),
+            events: VecDeque::new(),
+            count: 0,
+        }
+    }
+
+    /// Folds one event in: O(machines) at worst, and bounded memory.
+    pub fn observe(&mut self, event: &Event) {
+        self.count += 1;
+        if let Event::Answered {
+            machine,
+            atom,
+            value,
+            by,
+            at,
+        } = event
+        {
+            if !self.answer(machine, atom, *value, by, *at) {
+                return;
+            }
+        }
+        push_bounded(&mut self.events, event.clone());
+        let Some(view) = self.machines.iter_mut().find(|m| m.name == event.machine()) else {
+            return;
+        };
+        match event {
+            Event::Entered { state, id, .. } => {
+                view.state = Some(*id);
+                view.state_name = Some(state.clone());
+                view.finished = false;
+            }
+            Event::Reloaded { state, .. } => {
+                view.state = view
+                    .states
+                    .iter()
+                    .find(|(_, n)| n == state)
+                    .map(|(id, _)| *id);
+                view.state_name = Some(state.clone());
+                view.finished = false;
+            }
+            Event::Fired {
+                from,
+                to,
+                label,
+                at,
+                ..
+            } => {
+                view.state = Some(*to);
+                view.state_name = view
+                    .states
+                    .iter()
+                    .find(|(id, _)| id == to)
+                    .map(|(_, n)| n.clone());
+                view.fired = Some(Fired {
+                    from: *from,
+                    to: *to,
+                    label: label.clone(),
+                    at_us: micros(*at),
+                });
+            }
+            Event::Control { command, .. } => {
+                view.control = Some(command.clone());
+                if matches!(
+                    Command::parse(command),
+                    Some(Command::On | Command::Restart)
+                ) {
+                    view.finished = false;
+                    view.halted = None;
+                }
+            }
+            Event::Finished { .. } => view.finished = true,
+            Event::Halted { reason, .. } => view.halted = Some(reason.clone()),
+            _ => {}
+        }
+    }
+
+    /// Keeps a label's answer; whether it is news (a new label, value or answerer).
+    fn answer(
+        &mut self,
+        machine: &str,
+        atom: &str,
+        value: bool,
+        by: &Answerer,
+        at: Duration,
+    ) -> bool {
+        let (how, by) = match by {
+            Answerer::Expert(e) => ("expert", e.as_str()),
+            Answerer::Posted(p) => ("posted", p.as_str()),
+            Answerer::TimedOut => ("timed_out", ""),
+            Answerer::NoExpert => ("no_expert", ""),
+        };
+        let at_us = micros(at);
+        if let Some(row) = self
+            .answers
+            .iter_mut()
+            .find(|a| a.machine == machine && a.atom == atom)
+        {
+            row.asked += 1;
+            row.at_us = at_us;
+            if row.value == value && row.how == how && row.by == by {
+                return false;
+            }
+            row.value = value;
+            row.how = how;
+            row.by = by.to_string();
+            row.changed_us = at_us;
+            return true;
+        }
+        if self.answers.len() == LABELS {
+            // The label asked longest ago.
+            if let Some(oldest) = (0..self.answers.len()).min_by_key(|&i| self.answers[i].at_us) {
+                self.answers.remove(oldest);
+            }
+        }
+        self.answers.push_back(AnswerView {
+            machine: machine.to_string(),
+            atom: atom.to_string(),
+            value,
+            by: by.to_string(),
+            how,
+            at_us,
+            changed_us: at_us,
+            asked: 1,
+        });
+        true
+    }
+
+    /// The frame of this picture over `board`. `running` says, for a machine, whether its
+    /// `NameIsRunning` reads true on the board (`None`: not said yet).
+    pub fn frame<'p>(&'p self, board: &Snapshot) -> Frame<'p> {
+        let machines = self
+            .machines
+            .iter()
+            .map(|view| MachineFrame {
+                view,
+                mode: mode(view, board),
+            })
+            .collect();
+        let rows = board.rows();
+        let board_more = rows.len().saturating_sub(BOARD_ROWS);
+        let board_rows = rows
+            .into_iter()
+            .filter(|r| r.ty != proclaim_board::QUERY_TYPE)
+            .take(BOARD_ROWS)
+            .map(|r| BoardRow {
+                ty: r.ty.to_string(),
+                kind: match r.kind {
+                    Kind::State => "state",
+                    Kind::Signal => "signal",
+                    Kind::Data => "data",
+                },
+                value: r.newest.value.to_string(),
+                by: r.newest.module.to_string(),
+                seq: r.newest.seq,
+                at_us: micros(r.newest.time),
+                posts: r.posts,
+            })
+            .collect();
+        Frame {
+            machines,
+            answers: &self.answers,
+            events: &self.events,
+            events_seen: self.count,
+            board: board_rows,
+            board_more,
+            board_seq: board.seq,
+            time_us: micros(board.time),
+        }
+    }
+}
+
+fn mode(view: &MachineView, board: &Snapshot) -> &'static str {
+    if view.halted.is_some() {
+        return "halted";
+    }
+    let running = board
+        .newest(&proclaim_runner::running_type(&view.name))
+        .map(|m| m.value.truthy())
+        .unwrap_or(view.start);
+    match (running, view.control.as_deref().and_then(Command::parse)) {
+        (true, _) if view.finished => "finished",
+        (true, _) => "running",
+        (false, Some(Command::Suspend)) => "suspended",
+        (false, _) => "dormant",
+    }
+}
+
+fn push_bounded<T>(queue: &mut VecDeque<T>, item: T) {
+    if queue.len() == RECENT {
+        queue.pop_front();
+    }
+    queue.push_back(item);
+}
+
+fn micros(d: Duration) -> u64 {
+    u64::try_from(d.as_micros()).unwrap_or(u64::MAX)
+}

@@ -1,0 +1,346 @@
+//! The page's HTTP side (axum): the assets built into the binary, the machines' diagrams, a
+//! stream of frames for a live run (server-sent events, at most [`FRAME_GAP`] apart whatever
+//! the posting rate), a frame at any moment of a replay, and the controls.
+
+use crate::diagram::Chart;
+use crate::picture::Picture;
+use crate::replay::Timeline;
+use axum::extract::{Query, State};
+use axum::http::{header, StatusCode};
+use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use proclaim_board::{Value, Whiteboard};
+use proclaim_runner::{Event, Stepper};
+use serde::{Deserialize, Serialize};
+use std::net::SocketAddr;
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::Duration;
+use tokio::sync::watch;
+
+/// The least time between two frames sent to one page: the page keeps up with any posting
+/// rate by seeing the board as it is at each frame.
+pub const FRAME_GAP: Duration = Duration::from_millis(100);
+/// With nothing new from the machines, the board is still looked at this often.
+const IDLE_LOOK: Duration = Duration::from_millis(250);
+
+const INDEX_HTML: &str = include_str!("../assets/index.html");
+const MONITOR_JS: &str = include_str!("../assets/monitor.js");
+const MONITOR_CSS: &str = include_str!("../assets/monitor.css");
+
+/// A behaviour as the page shows it. Clones share it.
+#[derive(Clone)]
+pub struct Monitor {
+    shared: Arc<Shared>,
+}
+
+struct Shared {
+    name: String,
+    charts: Vec<Chart>,
+    picture: Mutex<Picture>,
+    /// Bumped by every event folded in; frame streams wait on it.
+    version: watch::Sender<u64>,
+    source: Source,
+}
+
+enum Source {
+    Live {
+        board: Whiteboard,
+        /// Pause, one ring, resume.
+        stepper: Option<Stepper>,
+    },
+    Replay(Timeline),
+}
+
+impl Monitor {
+    /// A running behaviour on `board`; `stepper` (given to its machines at launch) makes the
+    /// page's pause and step buttons work.
+    pub fn live(
+        name: impl Into<String>,
+        charts: Vec<Chart>,
+        board: Whiteboard,
+        stepper: Option<Stepper>,
+    ) -> Monitor {
+        let picture = Picture::new(&charts);
+        Monitor::with(
+            name.into(),
+            charts,
+            picture,
+            Source::Live { board, stepper },
+        )
+    }
+
+    /// A recorded run, shown at any of its moments.
+    pub fn replay(name: impl Into<String>, charts: Vec<Chart>, events: Vec<Event>) -> Monitor {
+        let timeline = Timeline::new(&charts, events);
+        let picture = Picture::new(&charts);
+        Monitor::with(name.into(), charts, picture, Source::Replay(timeline))
+    }
+
+    fn with(name: String, charts: Vec<Chart>, picture: Picture, source: Source) -> Monitor {
+        Monitor {
+            shared: Arc::new(Shared {
+                name,
+                charts,
+                picture: Mutex::new(picture),
+                version: watch::channel(0).0,
+                source,
+            }),
+        }
+    }
+
+    /// Folds an event of the live run in. Cheap, and never waits on a page.
+    pub fn observe(&self, event: &Event) {
+        self.shared.picture().observe(event);
+        self.shared.changed();
+    }
+
+    /// Serves the page on `addr` (port 0: any free port) until the runtime ends; returns the
+    /// address it listens on.
+    pub async fn serve(&self, addr: SocketAddr) -> std::io::Result<SocketAddr> {
+        let listener = tokio::net::TcpListener::bind(addr).await?;
+        let bound = listener.local_addr()?;
+        let app = self.router();
+        tokio::spawn(async move {
+            if let Err(e) = axum::serve(listener, app).await {
+                tracing::warn!(error = %e, "the monitor page stopped serving");
+            }
+        });
+        Ok(bound)
+    }
+
+    /// The routes, for serving elsewhere (tests, a program embedding the runner).
+    pub fn router(&self) -> Router {
+        Router::new()
+            .route(
+                "/",
+                get(|| async { asset("text/html; charset=utf-8", INDEX_HTML) }),
+            )
+            .route(
+                "/monitor.js",
+                get(|| async { asset("text/javascript; charset=utf-8", MONITOR_JS) }),
+            )
+            .route(
+                "/monitor.css",
+                get(|| async { asset("text/css; charset=utf-8", MONITOR_CSS) }),
+            )
+            .route("/api/model", get(model))
+            .route("/api/frame", get(frame))
+            .route("/api/frames", get(frames))
+            .route("/api/control", post(control))
+            .route("/api/post", post(post_message))
+            .with_state(self.shared.clone())
+    }
+}
+
+impl Shared {
+    /// Wakes the frame streams.
+    fn changed(&self) {
+        self.version.send_modify(|v| *v = v.wrapping_add(1));
+    }
+
+    fn picture(&self) -> MutexGuard<'_, Picture> {
+        // Folding an event leaves the picture whole even if a panic interrupted it elsewhere.
+        self.picture.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The live frame as JSON text, with the board as it is now.
+    fn live_frame(&self, board: &Whiteboard, stepper: Option<&Stepper>) -> String {
+        let snapshot = board.snapshot();
+        let picture = self.picture();
+        let frame = picture.frame(&snapshot);
+        let stepping = stepper.map(|s| Stepping {
+            paused: s.is_paused(),
+            step: s.step(),
+        });
+        serde_json::to_string(&Framed {
+            frame,
+            stepping,
+            at: None,
+        })
+        .unwrap_or_default()
+    }
+}
+
+fn asset(content_type: &'static str, body: &'static str) -> Response {
+    ([(header::CONTENT_TYPE, content_type)], body).into_response()
+}
+
+#[derive(Serialize)]
+struct Framed<'p> {
+    #[serde(flatten)]
+    frame: crate::picture::Frame<'p>,
+    /// Live runs with a stepper: whether paused, and the step count.
+    stepping: Option<Stepping>,
+    /// Replays: the event this frame shows the run after.
+    at: Option<usize>,
+}
+
+#[derive(Serialize)]
+struct Stepping {
+    paused: bool,
+    step: u64,
+}
+
+#[derive(Serialize)]
+struct Model<'s> {
+    name: &'s str,
+    /// `live` or `replay`.
+    mode: &'static str,
+    charts: &'s [Chart],
+    /// Replays: how many events, and the time of each (microseconds).
+    times: Option<Vec<u64>>,
+    /// Live runs: whether the page can pause and step.
+    can_step: bool,
+}
+
+async fn model(State(shared): State<Arc<Shared>>) -> Response {
+    let (mode, times, can_step) = match &shared.source {
+        Source::Live { stepper, .. } => ("live", None, stepper.is_some()),
+        Source::Replay(timeline) => ("replay", Some(timeline.times()), false),
+    };
+    Json(Model {
+        name: &shared.name,
+        mode,
+        charts: &shared.charts,
+        times,
+        can_step,
+    })
+    .into_response()
+}
+
+#[derive(Deserialize)]
+struct At {
+    /// Replays: after how many events (the whole run when absent).
+    at: Option<usize>,
+}
+
+/// One frame: a live run's now, or a replay's moment `at`.
+async fn frame(State(shared): State<Arc<Shared>>, Query(query): Query<At>) -> Response {
+    let json = match &shared.source {
+        Source::Live { board, stepper } => shared.live_frame(board, stepper.as_ref()),
+        Source::Replay(timeline) => {
+            let at = query.at.unwrap_or(usize::MAX).min(timeline.len());
+            let (picture, board) = timeline.at(at);
+            serde_json::to_string(&Framed {
+                frame: picture.frame(&board),
+                stepping: None,
+                at: Some(at),
+            })
+            .unwrap_or_default()
+        }
+    };
+    ([(header::CONTENT_TYPE, "application/json")], json).into_response()
+}
+
+/// The live frames: one at once, then one whenever something changed, at most one per
+/// [`FRAME_GAP`]. A page that reads slowly gets fewer frames; nothing queues up for it.
+async fn frames(State(shared): State<Arc<Shared>>) -> Response {
+    if !matches!(shared.source, Source::Live { .. }) {
+        return (
+            StatusCode::NOT_FOUND,
+            "a replay has no live frames; ask /api/frame?at=N",
+        )
+            .into_response();
+    }
+    let changes = shared.version.subscribe();
+    let state = (shared, changes, None::<(u64, u64, bool, u64)>);
+    let stream =
+        futures_util::stream::unfold(state, |(shared, mut changes, mut sent)| async move {
+            let Source::Live { board, stepper } = &shared.source else {
+                return None;
+            };
+            loop {
+                if sent.is_some() {
+                    tokio::time::sleep(FRAME_GAP).await;
+                }
+                let seen = (
+                    *changes.borrow_and_update(),
+                    board.snapshot().seq,
+                    stepper.as_ref().is_some_and(Stepper::is_paused),
+                    stepper.as_ref().map_or(0, Stepper::step),
+                );
+                if sent != Some(seen) {
+                    sent = Some(seen);
+                    let json = shared.live_frame(board, stepper.as_ref());
+                    let event = SseEvent::default().event("frame").data(json);
+                    return Some((
+                        Ok::<_, std::convert::Infallible>(event),
+                        (shared.clone(), changes, sent),
+                    ));
+                }
+                // Nothing new: wait for an event, or look at the board again a little later.
+                let _ = tokio::time::timeout(IDLE_LOOK, changes.changed()).await;
+            }
+        });
+    Sse::new(stream)
+        .keep_alive(KeepAlive::default())
+        .into_response()
+}
+
+#[derive(Deserialize)]
+struct ControlRequest {
+    /// `pause`, `step` or `resume`.
+    action: String,
+}
+
+async fn control(
+    State(shared): State<Arc<Shared>>,
+    Json(request): Json<ControlRequest>,
+) -> Response {
+    let Source::Live {
+        stepper: Some(stepper),
+        ..
+    } = &shared.source
+    else {
+        return (StatusCode::CONFLICT, "this run cannot be paused or stepped").into_response();
+    };
+    match request.action.as_str() {
+        "pause" => stepper.pause(),
+        "resume" => stepper.resume(),
+        "step" => {
+            stepper.advance();
+        }
+        other => {
+            return (
+                StatusCode::BAD_REQUEST,
+                format!("unknown action `{other}`: pause, step or resume"),
+            )
+                .into_response()
+        }
+    }
+    tracing::debug!(action = %request.action, "monitor control");
+    // Tell the frame streams at once: the buttons show the new mode without waiting.
+    shared.changed();
+    StatusCode::NO_CONTENT.into_response()
+}
+
+#[derive(Deserialize)]
+struct PostRequest {
+    #[serde(rename = "type")]
+    ty: String,
+    value: String,
+}
+
+/// A message posted by the person at the page, under the name `monitor` (an answer to a label
+/// no expert answers is posted this way too: `doorOpen = true`).
+async fn post_message(
+    State(shared): State<Arc<Shared>>,
+    Json(request): Json<PostRequest>,
+) -> Response {
+    let Source::Live { board, .. } = &shared.source else {
+        return (StatusCode::CONFLICT, "a replay cannot be posted to").into_response();
+    };
+    let ty = request.ty.trim();
+    if ty.is_empty() || ty.contains(char::is_whitespace) {
+        return (
+            StatusCode::BAD_REQUEST,
+            format!("`{ty}` is not a message type (one word, such as doorOpen)"),
+        )
+            .into_response();
+    }
+    let message = board.post("monitor", ty, Value::parse(request.value.trim()));
+    tracing::debug!(ty, seq = message.seq, "posted from the monitor page");
+    Json(serde_json::json!({ "seq": message.seq })).into_response()
+}

@@ -1,0 +1,153 @@
+//! `--monitor`: the browser page of `proclaim run` and `proclaim replay` (the page itself is the
+//! `proclaim-monitor` crate); where it listens, and the machines it draws.
+
+use crate::behaviours::load_behaviour;
+use crate::failure::Failure;
+use proclaim_behaviour::{read_trace, Behaviour};
+use proclaim_monitor::{Chart, Monitor};
+use proclaim_runner::Event;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Loopback: a page that steps and posts to the robot's whiteboard is not for the whole
+/// network unless asked (`--monitor 0.0.0.0:7480`).
+pub const DEFAULT_ADDR: &str = "127.0.0.1:7480";
+
+/// `7480`, `127.0.0.1:7480`, `[::1]:7480` or `0.0.0.0:8080`.
+pub fn parse_addr(text: &str) -> Result<SocketAddr, Failure> {
+    let text = text.trim();
+    if let Ok(port) = text.parse::<u16>() {
+        return Ok(SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), port));
+    }
+    text.parse().map_err(|_| {
+        Failure::Argument(format!(
+            "--monitor {text}: not an address to listen on (write 127.0.0.1:7480, or a port alone)"
+        ))
+    })
+}
+
+/// Every machine of a behaviour as `proclaim draw` draws it.
+pub fn charts(behaviour: &Behaviour) -> Vec<Chart> {
+    behaviour
+        .machines
+        .iter()
+        .map(|m| Chart::of_machine(&m.machine, m.start))
+        .collect()
+}
+
+/// Serves the page and says where. The default port, when taken, gives way to any free one
+/// (a second run beside the first); an address given is kept to or refused.
+pub async fn open(monitor: &Monitor, addr: &str) -> Result<SocketAddr, Failure> {
+    let wanted = parse_addr(addr)?;
+    let bound = match monitor.serve(wanted).await {
+        Ok(bound) => bound,
+        Err(e) if addr == DEFAULT_ADDR && e.kind() == std::io::ErrorKind::AddrInUse => monitor
+            .serve(SocketAddr::new(wanted.ip(), 0))
+            .await
+            .map_err(|e| Failure::Argument(format!("--monitor: cannot listen ({e})")))?,
+        Err(e) => {
+            return Err(Failure::Argument(format!(
+                "--monitor {addr}: cannot listen there ({e})"
+            )))
+        }
+    };
+    println!("  monitor: http://{bound}/");
+    Ok(bound)
+}
+
+/// `proclaim replay TRACE --monitor`: the trace at any of its moments, until Ctrl-C.
+pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitCode, Failure> {
+    let text = std::fs::read_to_string(trace).map_err(|error| Failure::Read {
+        path: trace.to_path_buf(),
+        error,
+    })?;
+    let events = read_trace(&text).map_err(|e| {
+        Failure::Argument(format!(
+            "{}: {e} (the monitor replays traces written by `proclaim run --trace`)",
+            trace.display()
+        ))
+    })?;
+    let (name, charts) = match behaviour {
+        Some(b) => {
+            let behaviour = load_behaviour(b)?;
+            (behaviour.name.clone(), charts(&behaviour))
+        }
+        None => (
+            trace
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "trace".into()),
+            charts_of_trace(&events),
+        ),
+    };
+    let count = events.len();
+    let runtime = super::runtime::runtime(super::runtime::Shape::OneThread)?;
+    runtime.block_on(async {
+        let monitor = Monitor::replay(name, charts, events);
+        println!("replaying {} ({count} events)", trace.display());
+        open(&monitor, addr).await?;
+        println!("  Ctrl-C to stop");
+        let _ = tokio::signal::ctrl_c().await;
+        Ok(ExitCode::SUCCESS)
+    })
+}
+
+/// Each machine of a trace as far as the trace shows it: the states it entered, the
+/// transitions it fired, its first state as the initial one.
+fn charts_of_trace(events: &[Event]) -> Vec<Chart> {
+    struct Seen {
+        name: String,
+        initial: Option<i64>,
+        states: Vec<(i64, String)>,
+        transitions: Vec<(i64, i64, String)>,
+    }
+    let mut machines: Vec<Seen> = Vec::new();
+    for event in events {
+        let name = event.machine();
+        let index = match machines.iter().position(|m| m.name == name) {
+            Some(i) => i,
+            None => {
+                machines.push(Seen {
+                    name: name.to_string(),
+                    initial: None,
+                    states: Vec::new(),
+                    transitions: Vec::new(),
+                });
+                machines.len() - 1
+            }
+        };
+        let seen = &mut machines[index];
+        match event {
+            Event::Entered { state, id, .. } => {
+                seen.initial.get_or_insert(*id);
+                if !seen.states.iter().any(|(s, _)| s == id) {
+                    seen.states.push((*id, state.clone()));
+                }
+            }
+            Event::Fired {
+                from, to, label, ..
+            } => {
+                let t = (*from, *to, label.clone());
+                if !seen.transitions.contains(&t) {
+                    seen.transitions.push(t);
+                }
+            }
+            _ => {}
+        }
+    }
+    machines
+        .into_iter()
+        .map(|mut m| {
+            // A transition fired into a state not yet entered when the trace ends.
+            for (from, to, _) in &m.transitions {
+                for id in [*from, *to] {
+                    if !m.states.iter().any(|(s, _)| *s == id) {
+                        m.states.push((id, format!("state {id}")));
+                    }
+                }
+            }
+            Chart::of_trace(m.name, m.initial.unwrap_or(0), m.states, m.transitions)
+        })
+        .collect()
+}

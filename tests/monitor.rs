@@ -1,0 +1,319 @@
+//! The monitor page in a real browser (Chromium driven by chromedriver over WebDriver): a live
+//! `microwave` lit as it moves, stepped and posted to from the page, and a replayed trace
+//! moved with its slider. Without a browser a local run skips with a message; CI never skips.
+
+use fantoccini::{Client, ClientBuilder, Locator};
+use serde_json::{json, Value as Json};
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A child process killed when the test ends, however it ends.
+struct Running(Child);
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn on_path(program: &str) -> Option<std::path::PathBuf> {
+    std::env::var_os("PATH")?
+        .to_str()?
+        .split(':')
+        .map(|dir| std::path::Path::new(dir).join(program))
+        .find(|p| p.is_file())
+}
+
+/// chromedriver and the browser, or why not (an error on CI, where `.ci/run` installs them).
+fn browser() -> Option<(std::path::PathBuf, Option<std::path::PathBuf>)> {
+    let driver = on_path("chromedriver");
+    let chromium = ["chromium", "chromium-browser", "google-chrome"]
+        .iter()
+        .find_map(|b| on_path(b));
+    match driver {
+        Some(driver) => Some((driver, chromium)),
+        None if std::env::var_os("CI").is_some() => {
+            panic!("CI must test the monitor in a browser: install chromium and chromium-driver")
+        }
+        None => {
+            eprintln!("skipped: no chromedriver on PATH (Debian: apt-get install chromium chromium-driver)");
+            None
+        }
+    }
+}
+
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port")
+}
+
+/// Starts `proclaim ARGS` and reads its output up to the monitor's URL.
+fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .expect("proclaim starts");
+    let stdout = child.stdout.take().expect("stdout");
+    let running = Running(child);
+    let mut lines = BufReader::new(stdout).lines();
+    let url = loop {
+        let line = lines
+            .next()
+            .expect("proclaim printed the monitor's URL before ending")
+            .expect("readable output");
+        if let Some(url) = line.trim().strip_prefix("monitor: ") {
+            break url.to_string();
+        }
+    };
+    // Keep reading, so a full pipe never holds the run up.
+    std::thread::spawn(move || for _ in lines {});
+    (running, url)
+}
+
+async fn open_browser() -> Option<(Running, Client)> {
+    let (driver, chromium) = browser()?;
+    let port = free_port();
+    let driver = Running(
+        Command::new(driver)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver starts"),
+    );
+    let mut options = json!({
+        "args": ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,900"]
+    });
+    if let Some(chromium) = chromium {
+        options["binary"] = json!(chromium);
+    }
+    let mut capabilities = serde_json::Map::new();
+    capabilities.insert("goog:chromeOptions".into(), options);
+    let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        match ClientBuilder::new(connector.clone())
+            .capabilities(capabilities.clone())
+            .connect(&format!("http://127.0.0.1:{port}"))
+            .await
+        {
+            Ok(client) => return Some((driver, client)),
+            Err(e) if Instant::now() > deadline => {
+                panic!("chromedriver did not start a browser: {e}")
+            }
+            Err(_) => tokio::time::sleep(Duration::from_millis(200)).await,
+        }
+    }
+}
+
+async fn eval(client: &Client, script: &str) -> Json {
+    client
+        .execute(script, vec![])
+        .await
+        .expect("the script runs")
+}
+
+/// Waits until `script` returns `want`, failing with what it returned last.
+async fn until(client: &Client, script: &str, want: Json, within: Duration) {
+    let deadline = Instant::now() + within;
+    loop {
+        let got = eval(client, script).await;
+        if got == want {
+            return;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "`{script}` stayed {got} instead of {want} for {within:?}"
+        );
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+const STATE: &str =
+    "return document.querySelector('[data-machine=\"Microwave\"]')?.dataset.state ?? null";
+const LIT: &str = "return document.querySelector('[data-machine=\"Microwave\"] g.node.current title')?.textContent ?? null";
+const FIRED: &str = "return document.querySelector('[data-machine=\"Microwave\"] g.edge.fired title')?.textContent ?? null";
+
+fn board_value(ty: &str) -> String {
+    format!("return document.querySelector('#board tr[data-type=\"{ty}\"] td.value')?.textContent ?? null")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "90s",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    let second = Duration::from_secs(1);
+    // The kitchen script opens the door at 1 s and shuts it at 3 s.
+    until(&client, STATE, json!("IDLE"), 5 * second).await;
+    until(&client, STATE, json!("OPEN"), 5 * second).await;
+    until(&client, LIT, json!("s2"), second).await;
+    until(&client, FIRED, json!("s1->s2"), second).await;
+    until(&client, &board_value("doorOpen"), json!("true"), second).await;
+    until(&client, STATE, json!("IDLE"), 5 * second).await;
+    // The minute starts at 4 s.
+    until(&client, STATE, json!("COOKING"), 5 * second).await;
+    until(
+        &client,
+        "return document.querySelectorAll('#answers tbody tr').length > 0",
+        json!(true),
+        second,
+    )
+    .await;
+
+    client
+        .find(Locator::Id("pause"))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+    until(
+        &client,
+        "return document.getElementById('status').dataset.paused ?? null",
+        json!("true"),
+        2 * second,
+    )
+    .await;
+    // Opening the door while paused: the theory sees it, the machine does not move yet.
+    client
+        .find(Locator::Id("post-type"))
+        .await
+        .unwrap()
+        .send_keys("doorOpen")
+        .await
+        .unwrap();
+    client
+        .find(Locator::Id("post-value"))
+        .await
+        .unwrap()
+        .send_keys("true")
+        .await
+        .unwrap();
+    client
+        .find(Locator::Id("post-send"))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+    until(&client, &board_value("doorOpen"), json!("true"), 2 * second).await;
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    assert_eq!(
+        eval(&client, STATE).await,
+        json!("COOKING"),
+        "a paused machine moved"
+    );
+    // One ring: ~cook && light holds now.
+    client
+        .find(Locator::Id("step"))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+    until(&client, STATE, json!("OPEN"), 3 * second).await;
+    until(&client, FIRED, json!("s3->s2"), second).await;
+    client
+        .find(Locator::Id("resume"))
+        .await
+        .unwrap()
+        .click()
+        .await
+        .unwrap();
+    until(
+        &client,
+        "return document.getElementById('status').dataset.paused ?? null",
+        json!("false"),
+        2 * second,
+    )
+    .await;
+    let _ = client.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_replayed_trace_shows_any_moment_with_its_slider() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = std::env::temp_dir().join(format!("proclaim-monitor-{}.jsonl", std::process::id()));
+    let trace_arg = trace.to_str().unwrap();
+    let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args([
+            "run",
+            "microwave",
+            "--virtual-clock",
+            "--for",
+            "10s",
+            "--trace",
+            trace_arg,
+        ])
+        .output()
+        .expect("proclaim runs");
+    assert!(
+        ran.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let events: Vec<Json> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    // The moment just after the machine entered OPEN and switched the light on.
+    let entered = events
+        .iter()
+        .position(|e| e["event"] == "entered" && e["state"] == "OPEN")
+        .expect("the run opened the door");
+    let open = 1
+        + entered
+        + events[entered..]
+            .iter()
+            .position(|e| e["event"] == "posted" && e["type"] == "Light")
+            .expect("OPEN switches the light on");
+    let (_replay, url) = proclaim_with_monitor(&[
+        "replay",
+        trace_arg,
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "microwave",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    let second = Duration::from_secs(1);
+    // It opens at the end of the run.
+    until(&client, STATE, json!("COOKING"), 5 * second).await;
+    let slide = |to: usize| {
+        format!("const s = document.getElementById('slider'); s.value = '{to}'; s.dispatchEvent(new Event('input')); return true")
+    };
+    eval(&client, &slide(open)).await;
+    until(&client, STATE, json!("OPEN"), 3 * second).await;
+    until(&client, LIT, json!("s2"), second).await;
+    until(&client, &board_value("Light"), json!("\"on\""), second).await;
+    eval(&client, &slide(0)).await;
+    until(&client, STATE, json!("IDLE"), 3 * second).await;
+    until(
+        &client,
+        "return document.querySelectorAll('#board tbody tr').length",
+        json!(0),
+        second,
+    )
+    .await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
