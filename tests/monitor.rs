@@ -175,6 +175,11 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
         second,
     )
     .await;
+    // README's picture: `PROCLAIM_SCREENSHOT=$PWD/docs/monitor.png cargo nextest run -E 'test(a_live_run)'`.
+    if let Some(path) = std::env::var_os("PROCLAIM_SCREENSHOT") {
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        std::fs::write(path, client.screenshot().await.expect("a screenshot")).expect("written");
+    }
 
     client
         .find(Locator::Id("pause"))
@@ -316,4 +321,116 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
     .await;
     let _ = client.close().await;
     let _ = std::fs::remove_file(&trace);
+}
+
+/// One HTTP/1.1 request over a plain socket: the status code and the body.
+fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+    use std::io::{Read, Write};
+    let host = url.trim_start_matches("http://").trim_end_matches('/');
+    let mut stream = std::net::TcpStream::connect(host).expect("the monitor listens");
+    let body = body.unwrap_or("");
+    write!(
+        stream,
+        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    let mut response = String::new();
+    stream.read_to_string(&mut response).unwrap();
+    let status = response
+        .split_whitespace()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    let body = response.split_once("\r\n\r\n").map_or("", |(_, b)| b);
+    (status, body.to_string())
+}
+
+#[test]
+fn the_page_api_serves_the_run_and_refuses_bad_requests() {
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "60s",
+    ]);
+    let (status, page) = http(&url, "GET", "/", None);
+    assert_eq!(status, 200);
+    assert!(page.contains("<title>proclaim monitor</title>"), "{page}");
+    let (status, model) = http(&url, "GET", "/api/model", None);
+    assert_eq!(status, 200);
+    let model: Json = serde_json::from_str(&model).unwrap();
+    assert_eq!(model["mode"], "live");
+    assert_eq!(model["charts"][0]["name"], "Microwave");
+    assert!(model["charts"][0]["svg"]
+        .as_str()
+        .unwrap()
+        .contains("<title>s1</title>"));
+    let (status, why) = http(&url, "POST", "/api/control", Some(r#"{"action":"jump"}"#));
+    assert_eq!(
+        (status, why.as_str()),
+        (400, "unknown action `jump`: pause, step or resume")
+    );
+    let (status, why) = http(
+        &url,
+        "POST",
+        "/api/post",
+        Some(r#"{"type":"door open","value":"1"}"#),
+    );
+    assert_eq!(status, 400, "{why}");
+    assert!(why.contains("not a message type"), "{why}");
+    let (status, _) = http(
+        &url,
+        "POST",
+        "/api/post",
+        Some(r#"{"type":"visitor","value":"42"}"#),
+    );
+    assert_eq!(status, 200);
+    let (_, frame) = http(&url, "GET", "/api/frame", None);
+    let frame: Json = serde_json::from_str(&frame).unwrap();
+    let row = frame["board"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["type"] == "visitor")
+        .cloned()
+        .expect("the posting is on the board");
+    assert_eq!(
+        (row["value"].as_str(), row["by"].as_str()),
+        (Some("42"), Some("monitor"))
+    );
+    assert_eq!(frame["machines"][0]["name"], "Microwave");
+    assert_eq!(frame["stepping"]["paused"], false);
+}
+
+#[test]
+fn bad_monitor_arguments_say_what_is_wrong() {
+    let run = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", "microwave", "--monitor", "the-kitchen"])
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("--monitor the-kitchen: not an address to listen on"),
+        "{stderr}"
+    );
+    let not_a_trace =
+        std::env::temp_dir().join(format!("proclaim-not-a-trace-{}.jsonl", std::process::id()));
+    std::fs::write(&not_a_trace, "{\"event\": \"entered\"}\n").unwrap();
+    let replay = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args([
+            "replay",
+            not_a_trace.to_str().unwrap(),
+            "--monitor",
+            "127.0.0.1:0",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&replay.stderr);
+    assert!(!replay.status.success());
+    assert!(stderr.contains("line 1: not a trace event"), "{stderr}");
+    let _ = std::fs::remove_file(&not_a_trace);
 }

@@ -50,6 +50,7 @@ on_every_transport!(
     queries_are_answered_time_out_or_find_no_expert,
     dropped_subscriptions_do_not_pile_up,
     a_command_posted_before_its_type_is_a_signal_is_kept,
+    a_snapshot_is_the_board_at_one_moment,
 );
 
 #[derive(Clone, Copy)]
@@ -432,6 +433,48 @@ async fn a_command_posted_before_its_type_is_a_signal_is_kept(transport: Transpo
     let command = child.wait_for("Child", 0, Duration::from_secs(2)).await;
     assert_eq!(command.unwrap().value, Value::from("On"));
     assert!(child.latest("Child").is_none(), "consumed once");
+}
+
+async fn a_snapshot_is_the_board_at_one_moment(transport: Transport) {
+    let boards = boards(transport).await;
+    let [poster, _, reader] = &boards;
+    reader.declare("kick", Kind::Signal);
+    reader.declare("ballDistance", Kind::Data);
+    settle(reader, &boards).await;
+    poster.post("vision", "ballSeen", true);
+    poster.post("coach", "kick", "left");
+    for d in [90i64, 80, 70] {
+        poster.post("vision", "ballDistance", d);
+    }
+    settle(poster, &boards).await;
+    let before = reader.snapshot();
+    poster.post("vision", "ballSeen", false);
+    poster.post("vision", "ballDistance", 60i64);
+    settle(poster, &boards).await;
+    assert_eq!(
+        reader.latest("kick").map(|m| m.value),
+        Some(Value::from("left"))
+    );
+    let after = reader.snapshot();
+    let newest = |s: &proclaim_board::Snapshot, ty: &str| s.newest(ty).map(|m| m.value.clone());
+    // The earlier snapshot is untouched by what came after it.
+    assert_eq!(newest(&before, "ballSeen"), Some(Value::Bool(true)));
+    assert_eq!(newest(&before, "ballDistance"), Some(Value::Int(70)));
+    assert_eq!(newest(&after, "ballSeen"), Some(Value::Bool(false)));
+    assert_eq!(newest(&after, "ballDistance"), Some(Value::Int(60)));
+    // A signal shows its last posting whether read or not; only the unread are contents.
+    assert_eq!(newest(&after, "kick"), Some(Value::from("left")));
+    let unread =
+        |s: &proclaim_board::Snapshot| s.contents().1.iter().filter(|m| &*m.ty == "kick").count();
+    assert_eq!((unread(&before), unread(&after)), (1, 0));
+    assert!(after.seq > before.seq);
+    let rows: Vec<(&str, u64)> = after
+        .rows()
+        .into_iter()
+        .filter(|r| ["ballSeen", "ballDistance", "kick"].contains(&r.ty))
+        .map(|r| (r.ty, r.posts))
+        .collect();
+    assert_eq!(rows, [("ballDistance", 4), ("ballSeen", 2), ("kick", 1)]);
 }
 
 #[tokio::test(start_paused = true)]

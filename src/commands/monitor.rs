@@ -62,6 +62,17 @@ pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitC
         path: trace.to_path_buf(),
         error,
     })?;
+    let first: Option<serde_json::Value> = text
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .and_then(|l| serde_json::from_str(l).ok());
+    if first.is_some_and(|f| f.get("seq").is_some() && f.get("event").is_none()) {
+        return Err(Failure::Argument(format!(
+            "{} is a `--record` file of whiteboard messages; the monitor replays traces written by `proclaim run --trace` (print this one with `proclaim replay {}`)",
+            trace.display(),
+            trace.display()
+        )));
+    }
     let events = read_trace(&text).map_err(|e| {
         Failure::Argument(format!(
             "{}: {e} (the monitor replays traces written by `proclaim run --trace`)",

@@ -329,8 +329,6 @@ async fn stepping(
     view: &mut TraceView,
 ) -> String {
     use tokio::io::AsyncBufReadExt;
-    let mut everything = board.subscribe("*");
-    let mut values: std::collections::BTreeMap<String, String> = Default::default();
     let mut states: std::collections::BTreeMap<String, String> = behaviour
         .machines
         .iter()
@@ -383,18 +381,7 @@ async fn stepping(
             }
             over |= running.observe(&event);
         }
-        while let Some(m) = everything.try_next() {
-            if &*m.ty != proclaim_board::QUERY_TYPE {
-                values.insert(m.ty.to_string(), m.value.to_string());
-            }
-        }
-        // Posted before this view subscribed.
-        for name in &names {
-            let ty = proclaim_runner::running_type(name);
-            if let Some(v) = board.truth(&ty) {
-                values.insert(ty, v.to_string());
-            }
-        }
+        let snapshot = board.snapshot();
         for name in &names {
             let mode = match board.truth(&proclaim_runner::running_type(name)) {
                 Some(true) => "running",
@@ -404,7 +391,12 @@ async fn stepping(
             let at = states.get(name).map_or("-", String::as_str);
             println!("  {name}: {at} ({mode})");
         }
-        let board_line: Vec<String> = values.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let board_line: Vec<String> = snapshot
+            .rows()
+            .iter()
+            .filter(|row| row.ty != proclaim_board::QUERY_TYPE)
+            .map(|row| format!("{}={}", row.ty, row.newest.value))
+            .collect();
         println!("  whiteboard: {}", board_line.join(", "));
         if over {
             return "every machine that started is in a final state or halted".into();

@@ -139,7 +139,7 @@ function describe(e) {
 
 function renderEvents(frame) {
   const list = $("events");
-  const first = frame.events_seen - frame.events.length + 1;
+  const first = frame.events_listed - frame.events.length + 1;
   list.start = first;
   list.replaceChildren(...frame.events.map((e) => {
     const li = text("li", (e.at_us !== undefined ? seconds(e.at_us) + "  " : "") + describe(e), e.event);
@@ -194,6 +194,8 @@ function live() {
       $("post-result").textContent = e.message;
     }
   });
+  // The picture at once; the stream follows.
+  fetch("/api/frame").then((r) => r.json()).then((frame) => lastFrame || render(frame)).catch(() => {});
   const stream = new EventSource("/api/frames");
   stream.addEventListener("frame", (e) => render(JSON.parse(e.data)));
   // The browser reconnects by itself; only a closed stream is the end.

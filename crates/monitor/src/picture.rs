@@ -27,6 +27,8 @@ pub struct Picture {
     events: VecDeque<Event>,
     /// Events folded in so far.
     pub count: u64,
+    /// Events listed so far (the repeated answers are not).
+    listed: u64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -78,7 +80,9 @@ pub struct Frame<'p> {
     pub machines: Vec<MachineFrame<'p>>,
     pub answers: &'p VecDeque<AnswerView>,
     pub events: &'p VecDeque<Event>,
-    pub events_seen: u64,
+    /// How many events were listed since the start (the first of `events` is number
+    /// `events_listed - events.len() + 1`).
+    pub events_listed: u64,
     pub board: Vec<BoardRow>,
     /// Types left out beyond [`BOARD_ROWS`].
     pub board_more: usize,
@@ -135,6 +139,7 @@ impl Picture {
             answers: VecDeque::new(),
             events: VecDeque::new(),
             count: 0,
+            listed: 0,
         }
     }
 
@@ -153,6 +158,7 @@ impl Picture {
                 return;
             }
         }
+        self.listed += 1;
         push_bounded(&mut self.events, event.clone());
         let Some(view) = self.machines.iter_mut().find(|m| m.name == event.machine()) else {
             return;
@@ -294,7 +300,7 @@ impl Picture {
             machines,
             answers: &self.answers,
             events: &self.events,
-            events_seen: self.count,
+            events_listed: self.listed,
             board: board_rows,
             board_more,
             board_seq: board.seq,
