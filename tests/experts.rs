@@ -494,6 +494,49 @@ fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
     let count = expert.undecided();
     assert_eq!(expert.answer("t0"), Some(false));
     assert_eq!(count.load(std::sync::atomic::Ordering::Relaxed), 1);
+    assert_eq!(expert.undecided_changes(), [("t0".to_string(), true)]);
+    assert_eq!(expert.answer("t0"), Some(false));
+    assert!(
+        expert.undecided_changes().is_empty(),
+        "posted once, not per answer"
+    );
     let mut roomy = proclaim_experts::ReasonerExpert::new("ladder", theory, &Default::default());
     assert_eq!(roomy.answer("t0"), Some(true));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_undecided_answer_is_marked_on_the_board_before_it_is_posted() {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("ladder", &[6])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    let theory = proclaim_cdl::load(
+        std::str::from_utf8(&text).unwrap(),
+        proclaim_cdl::Language::Dl,
+    )
+    .unwrap();
+    let tight = proclaim_cdl::SearchLimits {
+        steps: 1000,
+        ..Default::default()
+    };
+    let board = Whiteboard::local();
+    let expert = proclaim_experts::ReasonerExpert::new("ladder", theory, &Default::default())
+        .with_limits(tight);
+    tokio::spawn(expert.run(board.clone()));
+    while board.registry().answerers("t0").is_empty() {
+        tokio::task::yield_now().await;
+    }
+    let outcome = board.query("machine", "t0", Duration::from_secs(2)).await;
+    assert!(
+        matches!(
+            outcome,
+            proclaim_board::QueryOutcome::Answered { value: false, .. }
+        ),
+        "{outcome:?}"
+    );
+    assert_eq!(
+        board.truth(&proclaim_board::undecided_type("t0")),
+        Some(true)
+    );
 }

@@ -14,6 +14,13 @@ use std::time::Duration;
 /// The message type of a query; its content is the atom (the original's name).
 pub const QUERY_TYPE: &str = "updateProofsForOutput";
 
+/// The type an expert posts `true` on when it could not decide `atom` within its limits (and
+/// answered it false), and `false` on once it decides it again: how a page, a log or a machine
+/// tells a false answer from an undecided one without a third truth value on the wire.
+pub fn undecided_type(atom: &str) -> String {
+    format!("{atom}Undecided")
+}
+
 /// How a query ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum QueryOutcome {

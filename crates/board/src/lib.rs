@@ -16,7 +16,7 @@ mod subscribers;
 mod transport;
 mod value;
 
-pub use board::{QueryOutcome, Whiteboard, QUERY_TYPE};
+pub use board::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};
 pub use local::{LocalBoard, Retention};
 pub use message::{Kind, Message};
 pub use pattern::Pattern;

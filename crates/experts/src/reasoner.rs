@@ -2,7 +2,7 @@
 //! messages (of the same name unless mapped), its declared outputs are the atoms it answers,
 //! each with the algorithm its `output{}` names.
 
-use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use proclaim_board::{undecided_type, ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_cdl::{Algorithm, Atom, Engine, Lit, SearchLimits, Session, Theory};
 use rustc_hash::FxHashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -14,6 +14,8 @@ struct OutputSlot {
     lit: Lit,
     algorithm: Algorithm,
     last: Option<bool>,
+    /// Whether its last answer was undecided (answered false).
+    undecided: bool,
 }
 
 pub struct ReasonerExpert {
@@ -24,6 +26,8 @@ pub struct ReasonerExpert {
     outputs: Vec<OutputSlot>,
     /// Answers the search could not decide within its limits (answered false).
     undecided: Arc<AtomicU64>,
+    /// Outputs that became undecided or decided again since last posted (`NameUndecided`).
+    undecided_changes: Vec<(String, bool)>,
 }
 
 impl ReasonerExpert {
@@ -55,6 +59,7 @@ impl ReasonerExpert {
                 lit: o.lit,
                 algorithm: o.algorithm,
                 last: None,
+                undecided: false,
             })
             .collect();
         if outputs.is_empty() {
@@ -67,6 +72,7 @@ impl ReasonerExpert {
                     lit: Lit::positive(a),
                     algorithm: Algorithm::Beta,
                     last: None,
+                    undecided: false,
                 })
                 .collect();
         }
@@ -76,6 +82,7 @@ impl ReasonerExpert {
             inputs,
             outputs,
             undecided: Arc::default(),
+            undecided_changes: Vec::new(),
         }
     }
 
@@ -92,17 +99,29 @@ impl ReasonerExpert {
         self.undecided.clone()
     }
 
-    /// The answer to one output: an undecided one is false, with a warning, as a timed-out
-    /// query is.
-    fn decide(&mut self, algorithm: Algorithm, lit: Lit) -> bool {
-        match self.session.decide(algorithm, lit) {
-            Ok(v) => v,
+    /// The answer to output `o`: an undecided one is false, with a warning, as a timed-out
+    /// query is, and its `NameUndecided` is due to change when it was decided before.
+    fn decide(&mut self, o: usize) -> bool {
+        let (algorithm, lit) = (self.outputs[o].algorithm, self.outputs[o].lit);
+        let (value, undecided) = match self.session.decide(algorithm, lit) {
+            Ok(v) => (v, false),
             Err(undecided) => {
                 self.undecided.fetch_add(1, Ordering::Relaxed);
                 tracing::warn!(expert = %self.name, %undecided, "answered false");
-                false
+                (false, true)
             }
+        };
+        let slot = &mut self.outputs[o];
+        if slot.undecided != undecided {
+            slot.undecided = undecided;
+            self.undecided_changes.push((slot.name.clone(), undecided));
         }
+        value
+    }
+
+    /// Outputs whose being undecided changed since last asked: (name, undecided now).
+    pub fn undecided_changes(&mut self) -> Vec<(String, bool)> {
+        std::mem::take(&mut self.undecided_changes)
     }
 
     /// What it posts, reads and answers, for the registry.
@@ -136,8 +155,7 @@ impl ReasonerExpert {
     pub fn changed_outputs(&mut self) -> Vec<(String, bool)> {
         let mut changed = Vec::new();
         for i in 0..self.outputs.len() {
-            let (algorithm, lit) = (self.outputs[i].algorithm, self.outputs[i].lit);
-            let v = self.decide(algorithm, lit);
+            let v = self.decide(i);
             let o = &mut self.outputs[i];
             if o.last != Some(v) {
                 o.last = Some(v);
@@ -150,8 +168,7 @@ impl ReasonerExpert {
     /// The answer for one output, if this expert owns it.
     pub fn answer(&mut self, atom: &str) -> Option<bool> {
         let o = self.outputs.iter().position(|o| o.name == atom)?;
-        let (lit, alg) = (self.outputs[o].lit, self.outputs[o].algorithm);
-        Some(self.decide(alg, lit))
+        Some(self.decide(o))
     }
 
     /// Registers, posts the initial outputs, then follows its inputs and answers queries until
@@ -159,6 +176,12 @@ impl ReasonerExpert {
     pub async fn run(self, board: Whiteboard) {
         let span = tracing::info_span!("reasoner_expert", name = %self.name);
         self.serve(board).instrument(span).await
+    }
+
+    fn post_undecided(&mut self, board: &Whiteboard) {
+        for (name, undecided) in self.undecided_changes() {
+            board.post(&self.name, &undecided_type(&name), undecided);
+        }
     }
 
     async fn serve(mut self, board: Whiteboard) {
@@ -176,18 +199,24 @@ impl ReasonerExpert {
         for (ty, value) in current {
             self.apply(&ty, &value);
         }
-        for (name, v) in self.changed_outputs() {
+        let initial = self.changed_outputs();
+        self.post_undecided(&board);
+        for (name, v) in initial {
             board.post(&self.name, &name, v);
         }
         while let Some(m) = messages.next().await {
             if &*m.ty == QUERY_TYPE {
                 if let Value::Str(atom) = &m.value {
                     if let Some(v) = self.answer(atom) {
+                        // Before the answer: whoever reads the answer finds it marked.
+                        self.post_undecided(&board);
                         board.post(&self.name, atom, v);
                     }
                 }
             } else if self.apply(&m.ty, &m.value) {
-                for (name, v) in self.changed_outputs() {
+                let changed = self.changed_outputs();
+                self.post_undecided(&board);
+                for (name, v) in changed {
                     board.post(&self.name, &name, v);
                 }
             }

@@ -106,9 +106,9 @@ function renderAnswers(frame) {
   // The labels whose answer changed last come first.
   for (const a of [...frame.answers].sort((x, y) => y.changed_us - x.changed_us)) {
     const tr = document.createElement("tr");
-    tr.className = a.how;
+    tr.className = a.undecided ? "undecided" : a.how;
     tr.dataset.atom = a.atom;
-    tr.append(text("td", seconds(a.changed_us)), text("td", a.machine), text("td", a.atom, "atom"), text("td", String(a.value), "value"), text("td", HOW[a.how] + a.by, "by"), text("td", a.asked, "asked"));
+    tr.append(text("td", seconds(a.changed_us)), text("td", a.machine), text("td", a.atom, "atom"), text("td", String(a.value), "value"), text("td", (a.undecided ? "undecided, answered false by " : HOW[a.how]) + a.by, "by"), text("td", a.asked, "asked"));
     // Answering a label by hand: fill the post form with it.
     tr.addEventListener("click", () => {
       $("post-type").value = a.atom;

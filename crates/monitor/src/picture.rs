@@ -2,7 +2,7 @@
 //! whiteboard snapshot, it is one frame of the page. Bounded whatever the run's length.
 
 use crate::diagram::Chart;
-use proclaim_board::{Kind, Snapshot};
+use proclaim_board::{undecided_type, Kind, Snapshot};
 use proclaim_runner::{Answerer, Command, Event};
 use serde::Serialize;
 use std::collections::VecDeque;
@@ -78,7 +78,7 @@ pub struct AnswerView {
 #[derive(Debug, Serialize)]
 pub struct Frame<'p> {
     pub machines: Vec<MachineFrame<'p>>,
-    pub answers: &'p VecDeque<AnswerView>,
+    pub answers: Vec<AnswerFrame<'p>>,
     pub events: &'p VecDeque<Event>,
     /// How many events were listed since the start (the first of `events` is number
     /// `events_listed - events.len() + 1`).
@@ -88,6 +88,15 @@ pub struct Frame<'p> {
     pub board_more: usize,
     pub board_seq: u64,
     pub time_us: u64,
+}
+
+#[derive(Debug, Serialize)]
+pub struct AnswerFrame<'p> {
+    #[serde(flatten)]
+    pub view: &'p AnswerView,
+    /// Its expert could not decide it within its search limits and answered false
+    /// (`NameUndecided` on the board).
+    pub undecided: bool,
 }
 
 #[derive(Debug, Serialize)]
@@ -296,9 +305,21 @@ impl Picture {
                 posts: r.posts,
             })
             .collect();
+        let answers = self
+            .answers
+            .iter()
+            .map(|view| AnswerFrame {
+                view,
+                undecided: view.how == "expert"
+                    && !view.value
+                    && board
+                        .newest(&undecided_type(&view.atom))
+                        .is_some_and(|m| m.value.truthy()),
+            })
+            .collect();
         Frame {
             machines,
-            answers: &self.answers,
+            answers,
             events: &self.events,
             events_listed: self.listed,
             board: board_rows,
@@ -334,4 +355,124 @@ fn push_bounded<T>(queue: &mut VecDeque<T>, item: T) {
 
 fn micros(d: Duration) -> u64 {
     u64::try_from(d.as_micros()).unwrap_or(u64::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagram::{node, ChartState};
+    use proclaim_board::{LocalBoard, Transport};
+
+    fn chart(name: &str, start: bool) -> Chart {
+        Chart {
+            name: name.into(),
+            start,
+            initial: 0,
+            states: ["A", "B"]
+                .iter()
+                .enumerate()
+                .map(|(i, n)| ChartState {
+                    id: i as i64,
+                    name: n.to_string(),
+                    node: node(i as i64),
+                })
+                .collect(),
+            transitions: Vec::new(),
+            svg: String::new(),
+            drawn_by: "built-in",
+        }
+    }
+
+    fn answered(atom: &str, value: bool, by: Answerer, ms: u64) -> Event {
+        Event::Answered {
+            machine: "M".into(),
+            atom: atom.into(),
+            value,
+            by,
+            at: Duration::from_millis(ms),
+        }
+    }
+
+    #[test]
+    fn answers_are_one_row_per_label_and_undecided_ones_are_marked() {
+        let mut picture = Picture::new(&[chart("M", true)]);
+        let oven = || Answerer::Expert("oven".into());
+        picture.observe(&answered("cook", false, oven(), 1));
+        picture.observe(&answered("cook", false, oven(), 2));
+        picture.observe(&answered("ready", false, Answerer::TimedOut, 3));
+        picture.observe(&answered("cook", true, oven(), 4));
+        picture.observe(&answered("t0", false, oven(), 5));
+        let board = LocalBoard::new();
+        board.post("oven", &undecided_type("t0"), true.into());
+        let frame = picture.frame(&board.snapshot());
+        let rows: Vec<(&str, bool, &str, u64, u64, bool)> = frame
+            .answers
+            .iter()
+            .map(|a| {
+                let v = a.view;
+                (
+                    v.atom.as_str(),
+                    v.value,
+                    v.how,
+                    v.asked,
+                    v.changed_us,
+                    a.undecided,
+                )
+            })
+            .collect();
+        assert_eq!(
+            rows,
+            [
+                ("cook", true, "expert", 3, 4000, false),
+                ("ready", false, "timed_out", 1, 3000, false),
+                ("t0", false, "expert", 1, 5000, true),
+            ]
+        );
+        // The repeated answer is not listed again.
+        assert_eq!(frame.events.len(), 4);
+    }
+
+    #[test]
+    fn a_machine_shows_where_it_is_and_whether_it_runs() {
+        let mut picture = Picture::new(&[chart("M", true), chart("Sub", false)]);
+        let board = LocalBoard::new();
+        let mode = |p: &Picture, b: &LocalBoard| -> Vec<(Option<String>, &'static str)> {
+            p.frame(&b.snapshot())
+                .machines
+                .iter()
+                .map(|m| (m.view.state_name.clone(), m.mode))
+                .collect()
+        };
+        assert_eq!(
+            mode(&picture, &board),
+            [(Some("A".into()), "running"), (Some("A".into()), "dormant")]
+        );
+        picture.observe(&Event::Fired {
+            machine: "M".into(),
+            from: 0,
+            to: 1,
+            label: "go".into(),
+            at: Duration::ZERO,
+        });
+        board.post("Sub", "SubIsRunning", true.into());
+        picture.observe(&Event::Control {
+            machine: "Sub".into(),
+            command: "suspend".into(),
+            at: Duration::ZERO,
+        });
+        board.post("Sub", "SubIsRunning", false.into());
+        assert_eq!(
+            mode(&picture, &board),
+            [
+                (Some("B".into()), "running"),
+                (Some("A".into()), "suspended")
+            ]
+        );
+        picture.observe(&Event::Halted {
+            machine: "M".into(),
+            reason: "no answer".into(),
+            at: Duration::ZERO,
+        });
+        assert_eq!(mode(&picture, &board)[0].1, "halted");
+    }
 }
