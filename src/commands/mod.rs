@@ -16,6 +16,7 @@ mod prove;
 mod record;
 mod run;
 mod runtime;
+mod step;
 mod table;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};

@@ -85,8 +85,25 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         )),
     };
     let runtime = runtime(&args)?;
-    let script_used = script.is_some() || behaviour.script.is_some();
-    let options = LaunchOptions {
+    let halted = runtime.block_on(run_on_board(
+        &behaviour,
+        script,
+        &args,
+        limit,
+        &mut trace_file,
+    ))?;
+    if let Some(mut file) = trace_file {
+        let _ = file.flush();
+    }
+    Ok(if halted {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn launch_options(args: &RunArgs, script: Option<proclaim_experts::Script>) -> LaunchOptions {
+    LaunchOptions {
         script,
         no_simulator: args.no_simulator,
         halt_on_timeout: args.halt_on_timeout,
@@ -98,84 +115,87 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
             args.monitor.as_ref().map(|_| Stepper::free())
         },
         person: person(&args.ask),
-    };
-    let stepper = options.stepper.clone();
-    let outcome = runtime.block_on(async {
-        let board = crate::network::whiteboard(&args.network).await?;
-        if !args.network.is_local() {
-            println!("  {}", args.network.describe());
-        }
-        // Subscribed before anything starts, so the record misses nothing.
-        let recorder = match &args.record {
-            Some(path) => Some(record::start(&board, path)?),
-            None => None,
-        };
-        let mut running = launch(&behaviour, &board, options)
-            .await
-            .map_err(Failure::Start)?;
-        let machines: Vec<&str> = behaviour
-            .machines
-            .iter()
-            .map(|m| m.machine.name.as_str())
-            .collect();
-        announce(&behaviour, machines.len(), limit, &running.notes);
-        // The script's postings show under the name `impersonator`.
-        let scripted = script_used.then_some("impersonator");
-        let width = machines.iter().copied().chain(scripted).map(str::len).max();
-        let mut view = TraceView::new(width.unwrap_or(8));
-        let monitor = match &args.monitor {
-            Some(addr) => {
-                let monitor = proclaim_monitor::Monitor::live(
-                    behaviour.name.clone(),
-                    super::monitor::charts(&behaviour),
-                    board.clone(),
-                    stepper.clone(),
-                );
-                super::monitor::open(&monitor, addr).await?;
-                Some(monitor)
-            }
-            None => None,
-        };
-        if let Some(stepper) = stepper.filter(|_| args.step) {
-            let why = stepping(&behaviour, &board, &mut running, &stepper, &mut view).await;
-            println!("stopped: {why}");
-            running.stop().await;
-            return Ok(false);
-        }
-        let changed = watch(&behaviour, args.watch);
-        let live = Live {
-            view,
-            trace_file: &mut trace_file,
-            changed,
-            monitor: monitor.clone(),
-        };
-        let (why, halted) = live.follow(&board, &mut running, limit).await;
-        let stats = board.stats();
-        println!("stopped: {why}");
-        println!(
-            "  {} postings, {} queries ({} timed out, {} unanswerable)",
-            stats.posts, stats.queries, stats.timeouts, stats.unanswerable
-        );
-        running.stop().await;
-        if let Some(recorder) = recorder {
-            let (written, path) = recorder.finish().await;
-            println!("  {written} messages recorded in {}", path.display());
-        }
-        if monitor.is_some() && why != "interrupted" {
-            // The page shows where everything ended until the person is done looking.
-            println!("  the monitor page stays open; Ctrl-C to close it");
-            let _ = tokio::signal::ctrl_c().await;
-        }
-        Ok::<bool, Failure>(halted)
-    })?;
-    if let Some(mut file) = trace_file {
-        let _ = file.flush();
     }
-    Ok(if outcome {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+}
+
+/// Launches the behaviour on its whiteboard and follows it (or steps it) to the end; whether
+/// a machine halted.
+async fn run_on_board(
+    behaviour: &Behaviour,
+    script: Option<proclaim_experts::Script>,
+    args: &RunArgs,
+    limit: Option<Duration>,
+    trace_file: &mut Option<std::io::BufWriter<std::fs::File>>,
+) -> Result<bool, Failure> {
+    let script_used = script.is_some() || behaviour.script.is_some();
+    let options = launch_options(args, script);
+    let stepper = options.stepper.clone();
+    let board = crate::network::whiteboard(&args.network).await?;
+    if !args.network.is_local() {
+        println!("  {}", args.network.describe());
+    }
+    // Subscribed before anything starts, so the record misses nothing.
+    let recorder = match &args.record {
+        Some(path) => Some(record::start(&board, path)?),
+        None => None,
+    };
+    let mut running = launch(behaviour, &board, options)
+        .await
+        .map_err(Failure::Start)?;
+    let machines: Vec<&str> = behaviour
+        .machines
+        .iter()
+        .map(|m| m.machine.name.as_str())
+        .collect();
+    announce(behaviour, machines.len(), limit, &running.notes);
+    // The script's postings show under the name `impersonator`.
+    let scripted = script_used.then_some("impersonator");
+    let width = machines.iter().copied().chain(scripted).map(str::len).max();
+    let mut view = TraceView::new(width.unwrap_or(8));
+    let monitor = match &args.monitor {
+        Some(addr) => {
+            let charts = super::monitor::charts(behaviour);
+            let monitor = proclaim_monitor::Monitor::live(
+                behaviour.name.clone(),
+                charts,
+                board.clone(),
+                stepper.clone(),
+            );
+            super::monitor::open(&monitor, addr).await?;
+            Some(monitor)
+        }
+        None => None,
+    };
+    if let Some(stepper) = stepper.filter(|_| args.step) {
+        let why = super::step::prompt(behaviour, &board, &mut running, &stepper, &mut view).await;
+        println!("stopped: {why}");
+        running.stop().await;
+        return Ok(false);
+    }
+    let live = Live {
+        view,
+        trace_file,
+        changed: watch(behaviour, args.watch),
+        monitor: monitor.clone(),
+    };
+    let (why, halted) = live.follow(&board, &mut running, limit).await;
+    let stats = board.stats();
+    println!("stopped: {why}");
+    println!(
+        "  {} postings, {} queries ({} timed out, {} unanswerable)",
+        stats.posts, stats.queries, stats.timeouts, stats.unanswerable
+    );
+    running.stop().await;
+    if let Some(recorder) = recorder {
+        let (written, path) = recorder.finish().await;
+        println!("  {written} messages recorded in {}", path.display());
+    }
+    if monitor.is_some() && why != "interrupted" {
+        // The page shows where everything ended until the person is done looking.
+        println!("  the monitor page stays open; Ctrl-C to close it");
+        let _ = tokio::signal::ctrl_c().await;
+    }
+    Ok(halted)
 }
 
 fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
@@ -317,144 +337,13 @@ impl Live<'_> {
     }
 }
 
-const STEP_HELP: &str = "Enter: one ring of every running machine · ATOM=true|false: post an answer (labels no expert answers read it) · post TYPE VALUE · q: quit";
-
-/// `--step`: one ring at a time at a prompt, showing where every machine is and what the
-/// whiteboard holds. Returns why it stopped.
-async fn stepping(
-    behaviour: &Behaviour,
-    board: &Whiteboard,
-    running: &mut proclaim_behaviour::Running,
-    stepper: &Stepper,
-    view: &mut TraceView,
-) -> String {
-    use tokio::io::AsyncBufReadExt;
-    let mut states: std::collections::BTreeMap<String, String> = behaviour
-        .machines
-        .iter()
-        .filter_map(|m| {
-            let initial = m.machine.state(m.machine.initial)?;
-            Some((m.machine.name.clone(), initial.name.clone()))
-        })
-        .collect();
-    let names: Vec<String> = behaviour
-        .machines
-        .iter()
-        .map(|m| m.machine.name.clone())
-        .collect();
-    let mut lines = tokio::io::BufReader::new(tokio::io::stdin()).lines();
-    let limit = behaviour.answer_timeout * 4 + Duration::from_secs(1);
-    // Let every machine say whether it runs before the first picture (bounded).
-    for _ in 0..200 {
-        if names
-            .iter()
-            .all(|n| board.truth(&proclaim_runner::running_type(n)).is_some())
-        {
-            break;
-        }
-        tokio::time::sleep(Duration::from_millis(5)).await;
-    }
-    println!("{STEP_HELP}");
-    let mut step = 0;
-    loop {
-        let mut over = false;
-        while let Ok(event) = running.events.try_recv() {
-            if let Some(line) = view.line(&event) {
-                println!("{line}");
-            }
-            match &event {
-                Event::Entered { machine, state, .. } => {
-                    states.insert(machine.clone(), state.clone());
-                }
-                // Where it goes; its OnEntry runs at the start of its next ring.
-                Event::Fired { machine, to, .. } => {
-                    if let Some(s) = behaviour
-                        .machines
-                        .iter()
-                        .find(|m| m.machine.name == *machine)
-                        .and_then(|m| m.machine.state(*to))
-                    {
-                        states.insert(machine.clone(), s.name.clone());
-                    }
-                }
-                _ => {}
-            }
-            over |= running.observe(&event);
-        }
-        let snapshot = board.snapshot();
-        for name in &names {
-            let mode = match board.truth(&proclaim_runner::running_type(name)) {
-                Some(true) => "running",
-                Some(false) => "dormant",
-                None => "starting",
-            };
-            let at = states.get(name).map_or("-", String::as_str);
-            println!("  {name}: {at} ({mode})");
-        }
-        let board_line: Vec<String> = snapshot
-            .rows()
-            .iter()
-            .filter(|row| row.ty != proclaim_board::QUERY_TYPE)
-            .map(|row| format!("{}={}", row.ty, row.newest.value))
-            .collect();
-        println!("  whiteboard: {}", board_line.join(", "));
-        if over {
-            return "every machine that started is in a final state or halted".into();
-        }
-        print!("step {}> ", step + 1);
-        let _ = std::io::stdout().flush();
-        let Ok(Some(line)) = lines.next_line().await else {
-            return "the input ended".into();
-        };
-        let command = line.trim();
-        match command {
-            "" | "n" | "next" => {
-                step = stepper.advance();
-                // Running, or about to (a machine whose task has not begun yet has not said).
-                let active: Vec<String> = behaviour
-                    .machines
-                    .iter()
-                    .filter(|m| {
-                        board
-                            .truth(&proclaim_runner::running_type(&m.machine.name))
-                            .unwrap_or(m.start)
-                    })
-                    .map(|m| m.machine.name.clone())
-                    .collect();
-                let busy = stepper.settled(&active, step, limit).await;
-                if !busy.is_empty() {
-                    println!(
-                        "  still in their ring (waiting on an expert?): {}",
-                        busy.join(", ")
-                    );
-                }
-            }
-            "q" | "quit" | "exit" => return "quit at the prompt".into(),
-            "?" | "help" => println!("{STEP_HELP}"),
-            _ => {
-                let posting = command
-                    .strip_prefix("post ")
-                    .and_then(|rest| rest.trim().split_once(char::is_whitespace))
-                    .or_else(|| command.split_once('='));
-                match posting {
-                    Some((ty, value)) if !ty.trim().is_empty() => {
-                        let value = proclaim_board::Value::parse(value.trim());
-                        board.post("you", ty.trim(), value);
-                    }
-                    _ => println!("  ? {STEP_HELP}"),
-                }
-            }
-        }
-    }
-}
-
-/// With `--watch` and a behaviour on disk: the names of machines whose files change.
 /// How long a machine waits for the answer of a person at the prompt (`--ask`).
 const PERSON_TIMEOUT: Duration = Duration::from_secs(600);
 
 /// How long `--watch` gathers the file events of one save before it rereads.
 const WATCH_SETTLE: Duration = Duration::from_millis(150);
 
+/// With `--watch` and a behaviour on disk: the names of machines whose files change.
 fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceiver<String> {
     let (tx, rx) = tokio::sync::mpsc::unbounded_channel();
     let Some(folder) = behaviour.files.folder().filter(|_| on) else {

@@ -3,6 +3,7 @@
 
 use crate::diagram::Chart;
 use proclaim_board::{undecided_type, Kind, Snapshot};
+use proclaim_fsm::Machine;
 use proclaim_runner::{Answerer, Command, Event};
 use serde::Serialize;
 use std::collections::VecDeque;
@@ -122,25 +123,40 @@ pub struct BoardRow {
 impl Picture {
     /// The machines as the page draws them, each in its initial state.
     pub fn new(charts: &[Chart]) -> Picture {
-        Picture {
-            machines: charts
+        Picture::of(charts.iter().map(|chart| {
+            let states = chart
+                .states
                 .iter()
-                .map(|chart| {
-                    let states: Vec<(i64, String)> = chart
-                        .states
-                        .iter()
-                        .map(|s| (s.id, s.name.clone()))
-                        .collect();
-                    let initial = states.iter().find(|(id, _)| *id == chart.initial);
+                .map(|s| (s.id, s.name.clone()))
+                .collect();
+            (chart.name.clone(), chart.start, chart.initial, states)
+        }))
+    }
+
+    /// Machines with whether each starts with the behaviour, without drawing them (`run
+    /// --step` prints where each one is).
+    pub fn of_machines<'m>(machines: impl IntoIterator<Item = (&'m Machine, bool)>) -> Picture {
+        Picture::of(machines.into_iter().map(|(m, start)| {
+            let states = m.states.iter().map(|s| (s.id, s.name.clone())).collect();
+            (m.name.clone(), start, m.initial, states)
+        }))
+    }
+
+    /// (name, starts, initial state, states) of each machine.
+    fn of(machines: impl Iterator<Item = (String, bool, i64, Vec<(i64, String)>)>) -> Picture {
+        Picture {
+            machines: machines
+                .map(|(name, start, initial, states)| {
+                    let first = states.iter().find(|(id, _)| *id == initial);
                     MachineView {
-                        name: chart.name.clone(),
-                        state: initial.map(|(id, _)| *id),
-                        state_name: initial.map(|(_, n)| n.clone()),
+                        name,
+                        state: first.map(|(id, _)| *id),
+                        state_name: first.map(|(_, n)| n.clone()),
                         fired: None,
                         control: None,
                         finished: false,
                         halted: None,
-                        start: chart.start,
+                        start,
                         states,
                     }
                 })
@@ -150,6 +166,13 @@ impl Picture {
             count: 0,
             listed: 0,
         }
+    }
+
+    /// Each machine's name and the name of the state it is in (or going to).
+    pub fn states(&self) -> impl Iterator<Item = (&str, Option<&str>)> {
+        self.machines
+            .iter()
+            .map(|m| (m.name.as_str(), m.state_name.as_deref()))
     }
 
     /// Folds one event in: O(machines) at worst, and bounded memory.
