@@ -36,16 +36,19 @@ pub struct LaunchOptions {
     pub person: Option<Impersonator>,
 }
 
+/// Machine → its final states (those with no way out).
+type Finals = FxHashMap<String, FxHashSet<i64>>;
+/// The machines running from the start, and the state each is in.
+type Positions = FxHashMap<String, Option<i64>>;
+
 /// A behaviour running: its trace, and what it takes for it to be over.
 pub struct Running {
     pub events: mpsc::UnboundedReceiver<Event>,
     /// What was started or left out, and where sockets listen, for the person running it.
     pub notes: Vec<String>,
     tasks: JoinSet<()>,
-    /// Machine → its final states (those with no way out).
-    finals: FxHashMap<String, FxHashSet<i64>>,
-    /// The machines running from the start, and the state each is in.
-    top: FxHashMap<String, Option<i64>>,
+    finals: Finals,
+    top: Positions,
     halted: FxHashSet<String>,
     /// Machines whose final state's OnEntry has run.
     finished: FxHashSet<String>,
@@ -115,87 +118,77 @@ pub async fn launch(
     let epoch = tokio::time::Instant::now();
     let (tx, events) = mpsc::unbounded_channel();
     let mut notes = Vec::new();
-    let mut sim_note = None;
-    let mut modules: Vec<Module> = Vec::new();
-    for t in &behaviour.theories {
-        let expert =
-            ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
-        modules.push(Module {
-            name: t.name.clone(),
-            answers: expert.declaration().answers,
-            task: Box::pin(expert.run(board.clone())),
-        });
+    let mut modules = experts(behaviour, board);
+    let sim_note = sensors(behaviour, board, &options, &mut modules, &mut notes).await?;
+    impersonators(
+        behaviour,
+        board,
+        &options,
+        &tx,
+        epoch,
+        &mut modules,
+        &mut notes,
+    );
+    // A simulator with no receiver left to listen plays to nobody.
+    if !modules.iter().any(|m| m.name == "gamecontroller") {
+        modules.retain(|m| m.name != "gc-sim");
+    } else {
+        notes.extend(sim_note);
     }
+
+    let mut tasks = JoinSet::new();
+    let experts: Vec<String> = modules
+        .iter()
+        .filter(|m| !m.answers.is_empty())
+        .map(|m| m.name.clone())
+        .collect();
+    for m in modules {
+        tasks.spawn(m.task);
+    }
+    wait_registered(board, &experts).await;
+    let (finals, top) = start_machines(behaviour, board, &options, &tx, epoch, &mut tasks);
+    Ok(Running {
+        events,
+        notes,
+        tasks,
+        finals,
+        top,
+        halted: FxHashSet::default(),
+        finished: FxHashSet::default(),
+    })
+}
+
+/// A reasoner expert per theory.
+fn experts(behaviour: &Behaviour, board: &Whiteboard) -> Vec<Module> {
+    behaviour
+        .theories
+        .iter()
+        .map(|t| {
+            let expert =
+                ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
+            Module {
+                name: t.name.clone(),
+                answers: expert.declaration().answers,
+                task: Box::pin(expert.run(board.clone())),
+            }
+        })
+        .collect()
+}
+
+/// The sensor wrappers of the manifest; what the GameController simulator will play, if it
+/// plays.
+async fn sensors(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    modules: &mut Vec<Module>,
+    notes: &mut Vec<String>,
+) -> Result<Option<String>, String> {
+    let mut sim_note = None;
     for sensor in &behaviour.sensors {
-        let e = &sensor.entry;
-        match e.kind {
+        match sensor.entry.kind {
             SensorKind::Gamecontroller => {
-                let simulate = !options.no_simulator && e.simulator != Some(Simulator::On(false));
-                let bind: SocketAddr = match (simulate, e.port) {
-                    (true, None) => ([127, 0, 0, 1], 0).into(),
-                    (true, Some(port)) => ([127, 0, 0, 1], port).into(),
-                    (false, port) => ([0, 0, 0, 0], port.unwrap_or(3838)).into(),
-                };
-                let home = 18;
-                let receiver = GameControllerReceiver::bind(ReceiverConfig {
-                    bind,
-                    team: e.team.or(simulate.then_some(home)),
-                    player: e.player.unwrap_or(1),
-                    ..ReceiverConfig::default()
-                })
-                .await
-                .map_err(|error| {
-                    format!("cannot listen for the GameController on {bind}: {error}")
-                })?;
-                let at = receiver
-                    .local_addr()
-                    .map_err(|e| format!("the GameController socket has no address: {e}"))?;
-                let answers = receiver.declaration().answers;
-                let board = board.clone();
-                modules.push(Module {
-                    name: "gamecontroller".into(),
-                    answers,
-                    task: Box::pin(async move {
-                        if let Err(error) = receiver.run(board).await {
-                            tracing::error!(%error, "the GameController receiver stopped");
-                        }
-                    }),
-                });
-                if simulate {
-                    let player = e.player.unwrap_or(1);
-                    let game = sensor.game.clone().unwrap_or_else(|| {
-                        // The built-in game's penalty is for this robot, so it is seen.
-                        let mut game = default_game(home, 5);
-                        for (_, event) in &mut game.events {
-                            if let SimEvent::Penalise { player: p, .. }
-                            | SimEvent::Unpenalise { player: p, .. } = event
-                            {
-                                *p = player;
-                            }
-                        }
-                        game
-                    });
-                    let config = SimConfig {
-                        to: at,
-                        home,
-                        ..SimConfig::default()
-                    };
-                    sim_note = Some(format!(
-                        "GameController simulator: a game of {:.0} s to {at}",
-                        game.length().as_secs_f64()
-                    ));
-                    modules.push(Module {
-                        name: "gc-sim".into(),
-                        answers: Vec::new(),
-                        task: Box::pin(async move {
-                            if let Err(error) = play(&game, &config, |_| {}).await {
-                                tracing::error!(%error, "the GameController simulator stopped");
-                            }
-                        }),
-                    });
-                } else {
-                    notes.push(format!("listening for the GameController on {at}"));
-                }
+                sim_note = gamecontroller(sensor, board, options, modules, notes).await?;
             }
             SensorKind::ChestButton => {
                 let b = ButtonWrapper::chest();
@@ -225,10 +218,102 @@ pub async fn launch(
             }
         }
     }
+    Ok(sim_note)
+}
+
+/// The GameController receiver on its socket, and the simulator playing to it unless a real
+/// GameController is listened for; the simulator's note.
+async fn gamecontroller(
+    sensor: &crate::load::LoadedSensor,
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    modules: &mut Vec<Module>,
+    notes: &mut Vec<String>,
+) -> Result<Option<String>, String> {
+    let e = &sensor.entry;
+    let mut sim_note = None;
+    let simulate = !options.no_simulator && e.simulator != Some(Simulator::On(false));
+    let bind: SocketAddr = match (simulate, e.port) {
+        (true, None) => ([127, 0, 0, 1], 0).into(),
+        (true, Some(port)) => ([127, 0, 0, 1], port).into(),
+        (false, port) => ([0, 0, 0, 0], port.unwrap_or(3838)).into(),
+    };
+    let home = 18;
+    let receiver = GameControllerReceiver::bind(ReceiverConfig {
+        bind,
+        team: e.team.or(simulate.then_some(home)),
+        player: e.player.unwrap_or(1),
+        ..ReceiverConfig::default()
+    })
+    .await
+    .map_err(|error| format!("cannot listen for the GameController on {bind}: {error}"))?;
+    let at = receiver
+        .local_addr()
+        .map_err(|e| format!("the GameController socket has no address: {e}"))?;
+    let answers = receiver.declaration().answers;
+    let board = board.clone();
+    modules.push(Module {
+        name: "gamecontroller".into(),
+        answers,
+        task: Box::pin(async move {
+            if let Err(error) = receiver.run(board).await {
+                tracing::error!(%error, "the GameController receiver stopped");
+            }
+        }),
+    });
+    if simulate {
+        let player = e.player.unwrap_or(1);
+        let game = sensor.game.clone().unwrap_or_else(|| {
+            // The built-in game's penalty is for this robot, so it is seen.
+            let mut game = default_game(home, 5);
+            for (_, event) in &mut game.events {
+                if let SimEvent::Penalise { player: p, .. }
+                | SimEvent::Unpenalise { player: p, .. } = event
+                {
+                    *p = player;
+                }
+            }
+            game
+        });
+        let config = SimConfig {
+            to: at,
+            home,
+            ..SimConfig::default()
+        };
+        sim_note = Some(format!(
+            "GameController simulator: a game of {:.0} s to {at}",
+            game.length().as_secs_f64()
+        ));
+        modules.push(Module {
+            name: "gc-sim".into(),
+            answers: Vec::new(),
+            task: Box::pin(async move {
+                if let Err(error) = play(&game, &config, |_| {}).await {
+                    tracing::error!(%error, "the GameController simulator stopped");
+                }
+            }),
+        });
+    } else {
+        notes.push(format!("listening for the GameController on {at}"));
+    }
+    Ok(sim_note)
+}
+
+/// A person at the terminal and the script, each leaving out the modules that answer what it
+/// answers.
+fn impersonators(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    tx: &mpsc::UnboundedSender<Event>,
+    epoch: tokio::time::Instant,
+    modules: &mut Vec<Module>,
+    notes: &mut Vec<String>,
+) {
     let script = options.script.clone().or_else(|| behaviour.script.clone());
     if let Some(person) = &options.person {
         let asked = person.declaration().answers;
-        leave_out(&mut modules, &asked, "a person answers", &mut notes);
+        leave_out(modules, &asked, "a person answers", notes);
         modules.push(Module {
             name: person.declaration().name,
             answers: asked,
@@ -237,12 +322,7 @@ pub async fn launch(
     }
     if let Some(script) = script {
         let scripted = script.atoms();
-        leave_out(
-            &mut modules,
-            &scripted,
-            "the script impersonates",
-            &mut notes,
-        );
+        leave_out(modules, &scripted, "the script impersonates", notes);
         let imp = Impersonator::new("impersonator", Vec::<String>::new(), script.clone());
         // An atom the script sets only later is false until then.
         for atom in &scripted {
@@ -268,24 +348,18 @@ pub async fn launch(
             task: Box::pin(imp.run(board.clone())),
         });
     }
-    // A simulator with no receiver left to listen plays to nobody.
-    if !modules.iter().any(|m| m.name == "gamecontroller") {
-        modules.retain(|m| m.name != "gc-sim");
-    } else {
-        notes.extend(sim_note);
-    }
+}
 
-    let mut tasks = JoinSet::new();
-    let experts: Vec<String> = modules
-        .iter()
-        .filter(|m| !m.answers.is_empty())
-        .map(|m| m.name.clone())
-        .collect();
-    for m in modules {
-        tasks.spawn(m.task);
-    }
-    wait_registered(board, &experts).await;
-
+/// Every machine, each on its own task; each machine's final states, and the machines running
+/// from the start.
+fn start_machines(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    tx: &mpsc::UnboundedSender<Event>,
+    epoch: tokio::time::Instant,
+    tasks: &mut JoinSet<()>,
+) -> (Finals, Positions) {
     let shared = behaviour.shared_variables();
     let mut finals = FxHashMap::default();
     let mut top = FxHashMap::default();
@@ -318,15 +392,7 @@ pub async fn launch(
         runner.events_into(tx.clone());
         tasks.spawn(runner.run(board.clone()));
     }
-    Ok(Running {
-        events,
-        notes,
-        tasks,
-        finals,
-        top,
-        halted: FxHashSet::default(),
-        finished: FxHashSet::default(),
-    })
+    (finals, top)
 }
 
 /// Turns the impersonator's postings into trace events, each value once when it changes (it
