@@ -258,6 +258,82 @@ fn agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseErr
     Ok(())
 }
 
+/// `explain` gives the reasons `prove` decides by: for β and π off any cycle (where the local
+/// proof condition is the whole story), a goal is proved exactly when the explanation names a
+/// supporting rule (or an implicit resolvent) and no attacker that stands; α and δ are proved
+/// exactly when both (either) of the explained π and β parts are.
+fn explanations_agree(text: &str, inputs: &[(usize, Option<bool>)]) -> Result<(), TestCaseError> {
+    use proclaim_cdl::About;
+    let Ok(theory) = load(text, Language::Dl) else {
+        return Ok(());
+    };
+    let mut session = Session::new(Engine::new(theory.clone()));
+    for &(a, value) in inputs {
+        if let Some(atom) = theory.atom(&format!("a{a}")) {
+            let _ = session.set_input(atom, value);
+        }
+    }
+    let proved_goal = |e: &proclaim_cdl::Explanation| match e.about {
+        About::Goal { proved, .. } => Some(proved),
+        _ => None,
+    };
+    for l in (0..theory.atom_count() as u32 * 2).map(Lit) {
+        for alg in Algorithm::ALL {
+            let proved = session.prove(alg, l);
+            let e = session.explain(alg, l, 1);
+            prop_assert_eq!(
+                proved_goal(&e),
+                Some(proved),
+                "{} {}\n{}",
+                alg,
+                theory.show(l),
+                text
+            );
+            let decided_by_mu = e.children.iter().any(|c| c.text.starts_with("+mu"));
+            match alg {
+                Algorithm::Alpha | Algorithm::Delta => {
+                    let parts: Vec<bool> = e.children.iter().filter_map(proved_goal).collect();
+                    let want = if alg == Algorithm::Alpha {
+                        parts.iter().all(|&p| p)
+                    } else {
+                        parts.iter().any(|&p| p)
+                    };
+                    prop_assert_eq!(parts.len(), 2);
+                    prop_assert_eq!(proved, want, "{} {}\n{}\n{}", alg, theory.show(l), e, text);
+                }
+                Algorithm::Beta | Algorithm::Pi
+                    if !decided_by_mu && !on_cycle(&theory, l.atom()) =>
+                {
+                    let supported = e.children.iter().any(|c| {
+                        matches!(
+                            c.about,
+                            About::Rule {
+                                role: "supports",
+                                ..
+                            }
+                        ) || c.text.starts_with("supported by")
+                    });
+                    let standing = e.children.iter().any(|c| {
+                        matches!(c.about, About::Rule { role: "stands", .. })
+                            || (c.text.starts_with("attacker") && c.text.contains(" stands"))
+                    });
+                    prop_assert_eq!(
+                        proved,
+                        supported && !standing,
+                        "{} {}\n{}\n{}",
+                        alg,
+                        theory.show(l),
+                        e,
+                        text
+                    );
+                }
+                _ => {}
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Whether an atom lies on a cycle of the atom dependency graph (an atom depends on the atoms
 /// of the antecedents of every rule for it or its complement).
 fn on_cycle(theory: &proclaim_cdl::Theory, start: proclaim_cdl::Atom) -> bool {
@@ -337,6 +413,11 @@ proptest! {
                 prop_assert_eq!(incremental.prove(alg, l), fresh.prove(alg, l), "{} {}\n{}", alg, theory.show(l), text);
             }
         }
+    }
+
+    #[test]
+    fn explanations_give_the_reasons_prove_decides_by((text, inputs) in theory()) {
+        explanations_agree(&text, &inputs)?;
     }
 
     #[test]
