@@ -3,7 +3,7 @@
 
 use crate::failure::Failure;
 use proclaim_behaviour::{read_machines, Folder};
-use proclaim_fsm::{is_native, partner_of, Imported};
+use proclaim_fsm::{machine_format, Imported, MachineFormat};
 use std::path::Path;
 
 /// A native or Qfsm file, or either file of a T/A pair (its partner is found beside it); `None`
@@ -14,14 +14,12 @@ pub fn machine_file(name: &str) -> Result<Option<Imported>, Failure> {
         .file_name()
         .and_then(|f| f.to_str())
         .unwrap_or_default();
-    let qfsm = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("fsm"));
-    let table =
-        file_name.ends_with(".txt") && (file_name.starts_with('T') || file_name.starts_with('A'));
-    let is_machine = is_native(name)
-        || qfsm
-        || table && partner_of(path).is_some_and(|partner| partner.exists());
+    let is_machine = match machine_format(path) {
+        None => false,
+        // A `T…txt` without its partner is more likely a text file than half a machine.
+        Some(MachineFormat::TablePair { t, a, .. }) => if t == path { a } else { t }.exists(),
+        Some(_) => true,
+    };
     if !is_machine {
         return Ok(None);
     }

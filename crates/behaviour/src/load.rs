@@ -8,7 +8,10 @@ use crate::manifest::{
 use proclaim_cdl::{check_source, Language, Theory};
 use proclaim_experts::simulator::{parse_game, GameScript};
 use proclaim_experts::{parse_duration, parse_mapping, parse_script, Script};
-use proclaim_fsm::{import_qfsm, import_ta, is_native, parse_machine, Imported, Machine, Severity};
+use proclaim_fsm::{
+    import_qfsm, import_ta, machine_format, parse_machine, Imported, Machine, MachineFormat,
+    Severity,
+};
 use proclaim_runner::Loader;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
@@ -302,46 +305,29 @@ pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
         machines: Vec::new(),
         diagnostics: vec![proclaim_fsm::FileDiagnostic::error(&shown, 1, message)],
     };
-    let path = std::path::Path::new(relative);
-    let file_name = path
-        .file_name()
-        .and_then(|f| f.to_str())
-        .unwrap_or_default();
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or_default()
-        .to_ascii_lowercase();
-    if is_native(relative) || extension == "fsm" {
-        let text = match files.read(relative) {
-            Ok(t) => t,
-            Err(e) => return unreadable(e),
-        };
-        return if extension == "fsm" {
-            import_qfsm(&shown, &text, &stem(relative))
-        } else {
-            parse_machine(&shown, &text)
-        };
-    }
-    let (Some(kind @ ('T' | 'A')), true) = (file_name.chars().next(), extension == "txt") else {
-        return unreadable(format!(
+    let read = |file: &str| files.read(file);
+    match machine_format(std::path::Path::new(relative)) {
+        Some(MachineFormat::Native) => match read(relative) {
+            Ok(text) => parse_machine(&shown, &text),
+            Err(e) => unreadable(e),
+        },
+        Some(MachineFormat::Qfsm { stem }) => match read(relative) {
+            Ok(text) => import_qfsm(&shown, &text, &stem),
+            Err(e) => unreadable(e),
+        },
+        Some(MachineFormat::TablePair { t, a, name }) => {
+            let (t, a) = (t.to_string_lossy(), a.to_string_lossy());
+            match (read(&t), read(&a)) {
+                (Ok(t_text), Ok(a_text)) => {
+                    import_ta(&name, &files.show(&t), &t_text, &files.show(&a), &a_text)
+                }
+                (Err(e), _) | (_, Err(e)) => unreadable(e),
+            }
+        }
+        None => unreadable(format!(
             "`{relative}` is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
-        ));
-    };
-    let partner = proclaim_fsm::partner_of(path)
-        .map(|p| p.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let (t, a) = if kind == 'T' {
-        (relative.to_string(), partner)
-    } else {
-        (partner, relative.to_string())
-    };
-    let (t_text, a_text) = match (files.read(&t), files.read(&a)) {
-        (Ok(t), Ok(a)) => (t, a),
-        (Err(e), _) | (_, Err(e)) => return unreadable(e),
-    };
-    let name = file_name[1..].trim_end_matches(".txt");
-    import_ta(name, &files.show(&t), &t_text, &files.show(&a), &a_text)
+        )),
+    }
 }
 
 /// The one machine an entry names, or why not (`None` when the file's own diagnostics said so).
