@@ -329,7 +329,7 @@ fn behaviour_diagrams_are_stable() {
             b.machines.iter().map(|m| (&m.machine, m.start)).collect();
         insta::assert_snapshot!(
             format!("{name}_machines"),
-            proclaim_fsm::behaviour_to_dot(name, &machines)
+            proclaim_behaviour::behaviour_to_dot(name, &machines)
         );
         let modules = proclaim_behaviour::modules(&b);
         let centre = &b.machines[0].machine.name;
@@ -401,9 +401,9 @@ fn launch_manifests_start_exactly_what_a_machine_needs() {
 
 /// The Kouretes paper's formulas, written as a skeleton behaviour into a fresh folder.
 fn skeleton(formulas: &str) -> (PathBuf, Vec<String>) {
-    let (defs, errors) = proclaim_fsm::parse_liveness("f.liveness", formulas);
+    let (defs, errors) = proclaim_behaviour::parse_liveness("f.liveness", formulas);
     assert!(errors.is_empty(), "{errors:?}");
-    let (machines, warnings) = proclaim_fsm::liveness_machines("f.liveness", &defs);
+    let (machines, warnings) = proclaim_behaviour::liveness_machines("f.liveness", &defs);
     assert!(warnings.is_empty(), "{warnings:?}");
     let mut files: Vec<(String, String)> = machines
         .iter()
@@ -528,7 +528,7 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
 
 #[test]
 fn liveness_errors_name_their_lines() {
-    let (_, errors) = proclaim_fsm::parse_liveness(
+    let (_, errors) = proclaim_behaviour::parse_liveness(
         "f.liveness",
         "A = B . (C | D\nno equals here\nA = B\nE = [F\nG = H ||\n",
     );

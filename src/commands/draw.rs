@@ -4,7 +4,8 @@
 use crate::behaviours::{is_behaviour, load_behaviour};
 use crate::failure::Failure;
 use crate::machines::machine_file;
-use proclaim_fsm::{behaviour_to_dot, to_dot, Machine, Severity};
+use proclaim_behaviour::behaviour_to_dot;
+use proclaim_fsm::{to_dot, Machine, Severity};
 use std::io::Write;
 use std::path::Path;
 use std::process::{Command, ExitCode, Stdio};

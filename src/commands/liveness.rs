@@ -2,7 +2,8 @@
 //! the native format, for `proclaim check` to list what is left open.
 
 use crate::failure::Failure;
-use proclaim_fsm::{liveness_machines, parse_liveness, to_native, Severity, EXTENSION};
+use proclaim_behaviour::{liveness_machines, parse_liveness};
+use proclaim_fsm::{to_native, Severity, EXTENSION};
 use std::fmt::Write;
 use std::path::Path;
 use std::process::ExitCode;

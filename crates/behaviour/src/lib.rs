@@ -9,8 +9,10 @@
 
 mod analysis;
 mod deps;
+mod draw;
 mod files;
 mod launch;
+mod liveness;
 mod load;
 mod manifest;
 mod modules;
@@ -19,8 +21,10 @@ mod trace;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
+pub use draw::behaviour_to_dot;
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
+pub use liveness::{liveness_machines, parse_liveness, Definition, Formula};
 pub use load::{
     load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
 };

@@ -28,58 +28,8 @@ pub fn to_dot(machine: &Machine) -> String {
     out
 }
 
-/// DOT text for the machines of a behaviour, each in its own box (sub-machines, those not
-/// started at first, dashed), a state that starts a sub-machine linked to that machine's box.
-/// A machine started that the behaviour does not have is drawn red.
-pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
-    let mut out = String::new();
-    let _ = writeln!(out, "digraph {} {{", quote(name));
-    out.push_str("  compound=true;\n");
-    header(&mut out);
-    let mut links = Vec::new();
-    for (i, (machine, start)) in machines.iter().enumerate() {
-        let _ = writeln!(out, "  subgraph cluster_{i} {{");
-        let _ = writeln!(
-            out,
-            "    label={}; fontname=\"Helvetica\"; style={};",
-            quote(&machine.name),
-            if *start { "solid" } else { "dashed" }
-        );
-        let started = body(&mut out, machine, &format!("m{i}_"), "    ");
-        out.push_str("  }\n");
-        links.extend(started);
-    }
-    let mut missing: Vec<&str> = Vec::new();
-    for (from, target) in &links {
-        match machines.iter().position(|(m, _)| m.name == *target) {
-            Some(k) => {
-                let _ = writeln!(
-                    out,
-                    "  {from} -> m{k}_start [lhead=cluster_{k}, style=dashed, arrowhead=odot, label=\"starts\"];"
-                );
-            }
-            None => {
-                if !missing.contains(&target.as_str()) {
-                    let _ = writeln!(
-                        out,
-                        "  {} [shape=component, style=dashed, color=red, fontcolor=red];",
-                        quote(target)
-                    );
-                    missing.push(target);
-                }
-                let _ = writeln!(
-                    out,
-                    "  {from} -> {} [style=dashed, arrowhead=odot, color=red, label=\"starts (unknown)\"];",
-                    quote(target)
-                );
-            }
-        }
-    }
-    out.push_str("}\n");
-    out
-}
-
-fn header(out: &mut String) {
+/// The graph attributes every diagram starts with (left to right, rounded boxes).
+pub fn header(out: &mut String) {
     out.push_str(
         "  rankdir=LR;\n  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n",
     );
@@ -87,8 +37,13 @@ fn header(out: &mut String) {
 }
 
 /// The states and transitions of one machine, node names prefixed; returns the (node, machine)
-/// pairs of the sub-machines its states start.
-fn body(out: &mut String, machine: &Machine, prefix: &str, indent: &str) -> Vec<(String, String)> {
+/// pairs of the sub-machines its states start. A behaviour's diagram draws each machine so.
+pub fn body(
+    out: &mut String,
+    machine: &Machine,
+    prefix: &str,
+    indent: &str,
+) -> Vec<(String, String)> {
     let id = |state: i64| format!("{prefix}s{}", node(state));
     let _ = writeln!(out, "{indent}{prefix}start [shape=point, width=0.15];");
     let _ = writeln!(out, "{indent}{prefix}start -> {};", id(machine.initial));
@@ -180,6 +135,7 @@ fn escape(text: &str) -> String {
         .replace('\n', " ")
 }
 
-fn quote(text: &str) -> String {
+/// A DOT string literal.
+pub fn quote(text: &str) -> String {
     format!("\"{}\"", escape(text))
 }

@@ -14,11 +14,11 @@
 //! `SitDownAndStareDone`, `againPlay`), which `proclaim check` lists. `A || B` becomes a state
 //! that starts sub-machines `A` and `B` and waits until both post `AFinished` / `BFinished`.
 
-use crate::code::BinOp;
-use crate::control::{finished_type, Command};
-use crate::diagnostic::FileDiagnostic;
-use crate::label::Label;
-use crate::model::{Action, Machine, State, StateId, Transition};
+use proclaim_fsm::BinOp;
+use proclaim_fsm::FileDiagnostic;
+use proclaim_fsm::Label;
+use proclaim_fsm::{finished_type, Command};
+use proclaim_fsm::{Action, Machine, State, StateId, Transition};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Formula {
