@@ -2,9 +2,8 @@
 //! the native format, for `proclaim check` to list what is left open.
 
 use crate::failure::Failure;
-use proclaim_behaviour::{liveness_machines, parse_liveness};
+use proclaim_behaviour::{liveness_machines, parse_liveness, MachineEntry, Manifest};
 use proclaim_fsm::{to_native, Severity, EXTENSION};
-use std::fmt::Write;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -47,12 +46,10 @@ pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
             error,
         })
     };
-    let mut manifest = format!(
-        "# Generated from {shown} by `proclaim liveness`: a skeleton to fill in.\n\
-         # `proclaim check` lists the labels still open; basic activities call host functions.\n\
-         description = \"{} (from liveness formulas)\"\n",
-        defs[0].name
-    );
+    let mut manifest = Manifest {
+        description: Some(format!("{} (from liveness formulas)", defs[0].name)),
+        ..Manifest::default()
+    };
     for (machine, start) in &machines {
         let path = dir.join(format!("{}.{EXTENSION}", machine.name));
         let text = format!(
@@ -62,15 +59,16 @@ pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
         );
         write(&path, &text)?;
         println!("{}", path.display());
-        let _ = write!(
-            manifest,
-            "\n[[machine]]\nfile = \"{}.{EXTENSION}\"\n",
-            machine.name
-        );
-        if !start {
-            manifest.push_str("start = false\n");
-        }
+        manifest.machines.push(MachineEntry {
+            file: format!("{}.{EXTENSION}", machine.name),
+            start: *start,
+            name: None,
+        });
     }
+    let manifest = manifest.to_toml(&format!(
+        "Generated from {shown} by `proclaim liveness`: a skeleton to fill in.\n\
+         `proclaim check` lists the labels still open; basic activities call host functions."
+    ));
     let path = dir.join("behaviour.toml");
     write(&path, &manifest)?;
     println!("{}", path.display());

@@ -3,7 +3,7 @@
 //! script).
 
 use crate::load::Behaviour;
-use crate::manifest::Simulator;
+use crate::manifest::{ImpersonatorEntry, MachineEntry, Manifest, Simulator, TheoryEntry};
 use crate::modules::{Module, ModuleKind};
 use std::fmt::Write;
 
@@ -237,64 +237,57 @@ pub fn launch_manifest(
         }
     }
     let is_needed = |m: &Module| needed.contains(&m.decl.name.as_str());
-    let mut out = format!(
-        "# The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`.\n"
-    );
-    if let Some(d) = &behaviour.manifest.dictionary {
-        let _ = writeln!(out, "dictionary = {}", quote(&place(d)));
-    }
-    for m in &behaviour.machines {
-        if wanted.contains(&m.machine.name) {
-            let _ = write!(out, "\n[[machine]]\nfile = {}\n", quote(&place(&m.file)));
-            if m.machine.name != centre {
-                out.push_str("start = false\n");
-            }
-        }
-    }
-    for (entry, t) in behaviour.manifest.theories.iter().zip(&behaviour.theories) {
-        if modules
+    let manifest = &behaviour.manifest;
+    let needs = |kind: ModuleKind| modules.iter().any(|m| m.kind == kind && is_needed(m));
+    let needs_named = |name: &str| modules.iter().any(|m| m.decl.name == name && is_needed(m));
+    let smallest = Manifest {
+        dictionary: manifest.dictionary.as_deref().map(place),
+        machines: behaviour
+            .machines
             .iter()
-            .any(|m| m.decl.name == t.name && is_needed(m))
-        {
-            let _ = write!(out, "\n[[theory]]\nfile = {}\n", quote(&place(&entry.file)));
-            if let Some(n) = &entry.name {
-                let _ = writeln!(out, "name = {}", quote(n));
-            }
-            if let Some(map) = &entry.mapping {
-                let _ = writeln!(out, "mapping = {}", quote(&place(map)));
-            }
-        }
-    }
-    for s in &behaviour.manifest.sensors {
-        let needed = modules
+            .filter(|m| wanted.contains(&m.machine.name))
+            .map(|m| MachineEntry {
+                file: place(&m.file),
+                start: m.machine.name == centre,
+                name: None,
+            })
+            .collect(),
+        theories: manifest
+            .theories
             .iter()
-            .any(|m| m.kind == ModuleKind::Sensor(s.kind) && is_needed(m));
-        if needed {
-            let mut s = s.clone();
-            if let Some(Simulator::Script(file)) = &mut s.simulator {
-                *file = place(file);
-            }
-            let text = toml::to_string(&s).unwrap_or_default();
-            let _ = write!(out, "\n[[sensor]]\n{text}");
-        }
-    }
-    if let Some(i) = &behaviour.manifest.impersonator {
-        if modules
+            .zip(&behaviour.theories)
+            .filter(|(_, t)| needs_named(&t.name))
+            .map(|(entry, _)| TheoryEntry {
+                file: place(&entry.file),
+                mapping: entry.mapping.as_deref().map(place),
+                ..entry.clone()
+            })
+            .collect(),
+        sensors: manifest
+            .sensors
             .iter()
-            .any(|m| m.kind == ModuleKind::Impersonator && is_needed(m))
-        {
-            let _ = write!(
-                out,
-                "\n[impersonator]\nscript = {}\n",
-                quote(&place(&i.script))
-            );
-        }
-    }
-    for o in &behaviour.manifest.modules {
-        let text = toml::to_string(o).unwrap_or_default();
-        let _ = write!(out, "\n[[module]]\n{text}");
-    }
-    Ok(out)
+            .filter(|s| needs(ModuleKind::Sensor(s.kind)))
+            .map(|s| {
+                let mut s = s.clone();
+                if let Some(Simulator::Script(file)) = &mut s.simulator {
+                    *file = place(file);
+                }
+                s
+            })
+            .collect(),
+        impersonator: manifest
+            .impersonator
+            .as_ref()
+            .filter(|_| needs(ModuleKind::Impersonator))
+            .map(|i| ImpersonatorEntry {
+                script: place(&i.script),
+            }),
+        modules: manifest.modules.clone(),
+        ..Manifest::default()
+    };
+    Ok(smallest.to_toml(&format!(
+        "The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`."
+    )))
 }
 
 fn names(modules: &[Module]) -> String {

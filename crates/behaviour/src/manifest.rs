@@ -36,32 +36,43 @@ use serde::{Deserialize, Serialize};
 /// The manifest's file name inside a behaviour's folder.
 pub const MANIFEST: &str = "behaviour.toml";
 
-#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Default, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ring_period: Option<String>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub answer_timeout: Option<String>,
     /// How long `proclaim run` runs when not told (a behaviour that never ends by itself).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run_for: Option<String>,
-    #[serde(default, rename = "machine")]
-    pub machines: Vec<MachineEntry>,
-    #[serde(default, rename = "theory")]
-    pub theories: Vec<TheoryEntry>,
-    #[serde(default, rename = "sensor")]
-    pub sensors: Vec<SensorEntry>,
-    #[serde(default)]
-    pub impersonator: Option<ImpersonatorEntry>,
     /// A file of `[[module]]` entries: modules outside the behaviour (actuators, other
     /// programs), so the dependency diagram and `check` know who listens and who answers.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dictionary: Option<String>,
-    #[serde(default, rename = "module")]
+    #[serde(default, rename = "machine", skip_serializing_if = "Vec::is_empty")]
+    pub machines: Vec<MachineEntry>,
+    #[serde(default, rename = "theory", skip_serializing_if = "Vec::is_empty")]
+    pub theories: Vec<TheoryEntry>,
+    #[serde(default, rename = "sensor", skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorEntry>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impersonator: Option<ImpersonatorEntry>,
+    #[serde(default, rename = "module", skip_serializing_if = "Vec::is_empty")]
     pub modules: Vec<ModuleEntry>,
+}
+
+impl Manifest {
+    /// The manifest as `behaviour.toml` text, after `comment` (each of its lines as a `#`
+    /// comment): what `deps --launch` and `liveness` write, read back by `parse_manifest`.
+    pub fn to_toml(&self, comment: &str) -> String {
+        let mut out: String = comment.lines().map(|l| format!("# {l}\n")).collect();
+        // Every field is a string, a number, a bool or a table of them: nothing fails here.
+        out.push_str(&toml::to_string(self).unwrap_or_default());
+        out
+    }
 }
 
 /// A module outside the behaviour: what it posts, reads and answers.
@@ -85,30 +96,30 @@ pub struct Dictionary {
     pub modules: Vec<ModuleEntry>,
 }
 
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct MachineEntry {
     pub file: String,
     /// Running from the start; `false` for a sub-machine another machine turns on.
-    #[serde(default = "yes")]
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub start: bool,
     /// Which machine, when the file holds several (Qfsm).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
 }
 
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TheoryEntry {
     pub file: String,
     /// The expert's name on the whiteboard (default: the theory's `name{}`, else the file stem).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mapping: Option<String>,
     /// Steps the search may take inside one attack cycle before an answer is undecided
     /// (answered false, with a warning); default 10,000,000.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub budget: Option<u64>,
 }
 
@@ -148,7 +159,7 @@ pub enum Simulator {
     Script(String),
 }
 
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ImpersonatorEntry {
     pub script: String,
@@ -156,6 +167,10 @@ pub struct ImpersonatorEntry {
 
 fn yes() -> bool {
     true
+}
+
+fn is_true(value: &bool) -> bool {
+    *value
 }
 
 /// Reads a manifest; an error says where (1-based line) and why.
