@@ -39,16 +39,8 @@ struct MachineDraft {
 /// becomes the description. Several machines in one file keep their `name` attributes.
 pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
     let mut out = Imported::default();
-    let trimmed = text.trim();
-    if !trimmed.starts_with('<') {
-        let first = trimmed.lines().next().unwrap_or("");
-        let message = if first.ends_with(".fsm") && !first.contains(char::is_whitespace) {
-            format!("this file only names another file, `{first}` (a link saved as text); import that file instead")
-        } else {
-            "not a Qfsm file: it does not start with XML".to_string()
-        };
-        out.diagnostics
-            .push(FileDiagnostic::error(file, 1, message));
+    if !text.trim().starts_with('<') {
+        out.diagnostics.push(not_xml(file, text));
         return out;
     }
     let line_of = |offset: u64| {
@@ -59,7 +51,7 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
     };
     let mut reader = Reader::from_str(text);
     let mut machine: Option<MachineDraft> = None;
-    let mut state: Option<(Option<String>, String, String, usize)> = None; // code, description, name, line
+    let mut state: Option<StateDraft> = None;
     let mut transition: Option<TransitionDraft> = None;
     let mut field: Option<&'static str> = None;
     let mut order = 0usize;
@@ -89,12 +81,12 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
                 });
             }
             Event::Start(e) if e.local_name().as_ref() == "state" => {
-                state = Some((
-                    attribute(&e, "code"),
-                    attribute(&e, "description").unwrap_or_default(),
-                    String::new(),
+                state = Some(StateDraft {
+                    code: attribute(&e, "code"),
+                    description: attribute(&e, "description").unwrap_or_default(),
+                    name: String::new(),
                     line,
-                ));
+                });
                 field = Some("state");
             }
             Event::Start(e) if e.local_name().as_ref() == "transition" => {
@@ -131,126 +123,16 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
             Event::End(e) => match e.local_name().as_ref() {
                 "state" => {
                     field = None;
-                    let (Some((code, description, name, at)), Some(m)) =
-                        (state.take(), machine.as_mut())
-                    else {
-                        continue;
-                    };
-                    let Some(id) = code
-                        .as_deref()
-                        .and_then(|c| c.trim().parse::<StateId>().ok())
-                    else {
-                        out.diagnostics.push(FileDiagnostic::error(
-                            file,
-                            at,
-                            format!("state `{}` has no numeric code", name.trim()),
-                        ));
-                        continue;
-                    };
-                    let ([on_entry, on_exit, internal], problems) =
-                        parse_gufsm_activities(&description);
-                    out.diagnostics
-                        .extend(problems.into_iter().map(|(severity, problem)| {
-                            let message = format!("state `{}`: {problem}", name.trim());
-                            match severity {
-                                Severity::Error => FileDiagnostic::error(file, at, message),
-                                Severity::Warning => FileDiagnostic::warning(file, at, message),
-                            }
-                        }));
-                    if m.states.iter().any(|s| s.id == id) {
-                        out.diagnostics.push(FileDiagnostic::error(
-                            file,
-                            at,
-                            format!("state code {id} is used twice"),
-                        ));
-                        continue;
+                    if let (Some(draft), Some(m)) = (state.take(), machine.as_mut()) {
+                        end_state(draft, m, file, &mut out.diagnostics);
                     }
-                    m.states.push(State {
-                        id,
-                        name: name.trim().to_string(),
-                        on_entry,
-                        on_exit,
-                        internal,
-                        line: at,
-                    });
                 }
                 "from" | "to" | "inputs" | "outputs" => field = None,
                 "transition" => {
-                    let (Some(t), Some(m)) = (transition.take(), machine.as_mut()) else {
-                        continue;
-                    };
-                    // Qfsm writes `-1` for an end it could not attach, or leaves the end out.
-                    fn attached(end: Option<&str>) -> Option<&str> {
-                        end.map(str::trim).filter(|e| *e != "-1")
+                    if let (Some(t), Some(m)) = (transition.take(), machine.as_mut()) {
+                        order += 1;
+                        end_transition(t, order, m, file, &mut out.diagnostics);
                     }
-                    let (Some(from), Some(to)) =
-                        (attached(t.from.as_deref()), attached(t.to.as_deref()))
-                    else {
-                        out.diagnostics.push(FileDiagnostic::warning(file, t.line, "a transition without `<from>` or `<to>` (drawn but not attached) is skipped"));
-                        continue;
-                    };
-                    let (Ok(source), Ok(target)) =
-                        (from.trim().parse::<StateId>(), to.trim().parse::<StateId>())
-                    else {
-                        out.diagnostics.push(FileDiagnostic::error(
-                            file,
-                            t.line,
-                            format!("`{}` → `{}` are not state codes", from.trim(), to.trim()),
-                        ));
-                        continue;
-                    };
-                    let label = if t.any {
-                        Ok(Expr::TRUE)
-                    } else {
-                        parse_label(&t.inputs).map(|l| if t.invert { Expr::negation(l) } else { l })
-                    };
-                    let label = match label {
-                        Ok(l) => l,
-                        Err(e) => {
-                            out.diagnostics.push(FileDiagnostic::error(
-                                file,
-                                t.line,
-                                format!("label `{}`: {e}", t.inputs.trim()),
-                            ));
-                            m.unread.push(UnreadTransition {
-                                source,
-                                target,
-                                label: t.inputs.trim().to_string(),
-                                reason: e.to_string(),
-                                line: t.line,
-                            });
-                            continue;
-                        }
-                    };
-                    let priority = if t.outputs.trim().is_empty() {
-                        0
-                    } else {
-                        match t.outputs.trim().parse::<i64>() {
-                            Ok(p) => p,
-                            Err(_) => {
-                                out.diagnostics.push(FileDiagnostic::warning(
-                                    file,
-                                    t.line,
-                                    format!(
-                                        "priority `{}` is not a number; 0 is used",
-                                        t.outputs.trim()
-                                    ),
-                                ));
-                                0
-                            }
-                        }
-                    };
-                    order += 1;
-                    m.transitions.push((
-                        priority,
-                        order,
-                        Transition {
-                            source,
-                            target,
-                            label,
-                            line: t.line,
-                        },
-                    ));
                 }
                 "machine" => {
                     if let Some(m) = machine.take() {
@@ -281,6 +163,150 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
             .push(FileDiagnostic::error(file, 1, "no <machine> in this file"));
     }
     out
+}
+
+/// Why a file that does not start with XML is not read.
+fn not_xml(file: &str, text: &str) -> FileDiagnostic {
+    let first = text.trim().lines().next().unwrap_or("");
+    let message = if first.ends_with(".fsm") && !first.contains(char::is_whitespace) {
+        format!("this file only names another file, `{first}` (a link saved as text); import that file instead")
+    } else {
+        "not a Qfsm file: it does not start with XML".to_string()
+    };
+    FileDiagnostic::error(file, 1, message)
+}
+
+/// A `<state>` as read, until its end.
+struct StateDraft {
+    code: Option<String>,
+    description: String,
+    name: String,
+    line: usize,
+}
+
+/// A state read whole: its code checked, its activities parsed, added to the machine.
+fn end_state(
+    draft: StateDraft,
+    m: &mut MachineDraft,
+    file: &str,
+    diagnostics: &mut Vec<FileDiagnostic>,
+) {
+    let StateDraft {
+        code,
+        description,
+        name,
+        line: at,
+    } = draft;
+    let Some(id) = code
+        .as_deref()
+        .and_then(|c| c.trim().parse::<StateId>().ok())
+    else {
+        diagnostics.push(FileDiagnostic::error(
+            file,
+            at,
+            format!("state `{}` has no numeric code", name.trim()),
+        ));
+        return;
+    };
+    let ([on_entry, on_exit, internal], problems) = parse_gufsm_activities(&description);
+    diagnostics.extend(problems.into_iter().map(|(severity, problem)| {
+        let message = format!("state `{}`: {problem}", name.trim());
+        match severity {
+            Severity::Error => FileDiagnostic::error(file, at, message),
+            Severity::Warning => FileDiagnostic::warning(file, at, message),
+        }
+    }));
+    if m.states.iter().any(|s| s.id == id) {
+        diagnostics.push(FileDiagnostic::error(
+            file,
+            at,
+            format!("state code {id} is used twice"),
+        ));
+        return;
+    }
+    m.states.push(State {
+        id,
+        name: name.trim().to_string(),
+        on_entry,
+        on_exit,
+        internal,
+        line: at,
+    });
+}
+
+/// A transition read whole: its ends attached, its label parsed (kept unread when it does not
+/// parse), its priority read; added to the machine as the `order`th.
+fn end_transition(
+    t: TransitionDraft,
+    order: usize,
+    m: &mut MachineDraft,
+    file: &str,
+    diagnostics: &mut Vec<FileDiagnostic>,
+) {
+    // Qfsm writes `-1` for an end it could not attach, or leaves the end out.
+    fn attached(end: Option<&str>) -> Option<&str> {
+        end.map(str::trim).filter(|e| *e != "-1")
+    }
+    let (Some(from), Some(to)) = (attached(t.from.as_deref()), attached(t.to.as_deref())) else {
+        diagnostics.push(FileDiagnostic::warning(
+            file,
+            t.line,
+            "a transition without `<from>` or `<to>` (drawn but not attached) is skipped",
+        ));
+        return;
+    };
+    let (Ok(source), Ok(target)) = (from.parse::<StateId>(), to.parse::<StateId>()) else {
+        diagnostics.push(FileDiagnostic::error(
+            file,
+            t.line,
+            format!("`{from}` → `{to}` are not state codes"),
+        ));
+        return;
+    };
+    let label = if t.any {
+        Ok(Expr::TRUE)
+    } else {
+        parse_label(&t.inputs).map(|l| if t.invert { Expr::negation(l) } else { l })
+    };
+    let label = match label {
+        Ok(l) => l,
+        Err(e) => {
+            diagnostics.push(FileDiagnostic::error(
+                file,
+                t.line,
+                format!("label `{}`: {e}", t.inputs.trim()),
+            ));
+            m.unread.push(UnreadTransition {
+                source,
+                target,
+                label: t.inputs.trim().to_string(),
+                reason: e.to_string(),
+                line: t.line,
+            });
+            return;
+        }
+    };
+    let priority = match t.outputs.trim() {
+        "" => 0,
+        written => written.parse::<i64>().unwrap_or_else(|_| {
+            diagnostics.push(FileDiagnostic::warning(
+                file,
+                t.line,
+                format!("priority `{written}` is not a number; 0 is used"),
+            ));
+            0
+        }),
+    };
+    m.transitions.push((
+        priority,
+        order,
+        Transition {
+            source,
+            target,
+            label,
+            line: t.line,
+        },
+    ));
 }
 
 fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) {
@@ -380,13 +406,13 @@ fn entity(name: &str) -> String {
 }
 
 fn append(
-    state: &mut Option<(Option<String>, String, String, usize)>,
+    state: &mut Option<StateDraft>,
     transition: &mut Option<TransitionDraft>,
     field: Option<&'static str>,
     text: &str,
 ) {
     match (field, state.as_mut(), transition.as_mut()) {
-        (Some("state"), Some(s), _) => s.2.push_str(text),
+        (Some("state"), Some(s), _) => s.name.push_str(text),
         (Some("from"), _, Some(t)) => t.from.get_or_insert_with(String::new).push_str(text),
         (Some("to"), _, Some(t)) => t.to.get_or_insert_with(String::new).push_str(text),
         (Some("inputs"), _, Some(t)) => t.inputs.push_str(text),

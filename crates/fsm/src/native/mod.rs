@@ -41,7 +41,7 @@ use crate::diagnostic::FileDiagnostic;
 use crate::label::parse_label;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
-use ast::{ActionAst, FileAst, Member, Ref, Section, TopItem};
+use ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
 use lalrpop_util::ParseError;
 use lexer::{LexError, Lexer, Tok};
 
@@ -141,177 +141,31 @@ impl LineIndex<'_> {
 }
 
 fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
-    let mut diagnostics = Vec::new();
-    let mut error = |at: usize, message: String| {
-        diagnostics.push(lines.error(file, at, message));
+    let mut lowering = Lowering {
+        file,
+        lines,
+        diagnostics: Vec::new(),
     };
-    let mut initial_ref = None;
-    let mut description = String::new();
-    let mut parsed = Vec::new();
-    for item in ast.items {
-        match item {
-            TopItem::Description(text, at) => {
-                if !description.is_empty() {
-                    error(at, "the description is given twice".into());
-                }
-                description = text;
-            }
-            TopItem::Initial(target, at) => {
-                if initial_ref.is_some() {
-                    error(at, "the initial state is given twice".into());
-                } else {
-                    initial_ref = Some((target, at));
-                }
-            }
-            TopItem::State(s) => parsed.push(s),
-        }
-    }
-    // Ids as written; the others numbered from 1, skipping those taken.
-    let mut taken: Vec<StateId> = Vec::new();
-    for s in &parsed {
-        if let Some(id) = s.id {
-            if taken.contains(&id) {
-                error(s.at, format!("state id #{id} is used twice"));
-            }
-            taken.push(id);
-        }
-    }
-    let mut next = 1;
-    let ids: Vec<StateId> = parsed
-        .iter()
-        .map(|s| {
-            s.id.unwrap_or_else(|| {
-                while taken.contains(&next) {
-                    next += 1;
-                }
-                taken.push(next);
-                next
-            })
-        })
-        .collect();
-    let names: Vec<(String, StateId)> = parsed
-        .iter()
-        .zip(&ids)
-        .map(|(s, &id)| (s.name.clone(), id))
-        .collect();
-    let resolve = |target: &Ref| -> Result<StateId, String> {
-        match target {
-            Ref::Id(id) if ids.contains(id) => Ok(*id),
-            Ref::Id(id) => Err(format!("there is no state #{id}")),
-            Ref::Name(name) => {
-                let found: Vec<StateId> = names
-                    .iter()
-                    .filter(|(n, _)| n == name)
-                    .map(|(_, id)| *id)
-                    .collect();
-                match found.as_slice() {
-                    [id] => Ok(*id),
-                    [] => Err(match proclaim_syntax::nearest(names.iter().map(|(n, _)| n.as_str()), name) {
-                        Some(near) => format!("there is no state named `{name}`; did you mean `{near}`?"),
-                        None => format!("there is no state named `{name}`"),
-                    }),
-                    many => Err(format!(
-                        "`{name}` names {} states ({}); name the one meant by its id, as in `-> #{}`",
-                        many.len(),
-                        many.iter()
-                            .map(|id| format!("#{id}"))
-                            .collect::<Vec<_>>()
-                            .join(", "),
-                        many[0]
-                    )),
-                }
-            }
-        }
+    let (description, initial_ref, parsed) = lowering.header(ast.items);
+    let ids = lowering.number(&parsed);
+    let names = StateNames {
+        ids: ids.clone(),
+        names: parsed
+            .iter()
+            .zip(&ids)
+            .map(|(s, &id)| (s.name.clone(), id))
+            .collect(),
     };
     let mut states = Vec::new();
     let mut transitions = Vec::new();
     for (s, &id) in parsed.into_iter().zip(&ids) {
-        let mut state = State {
-            id,
-            name: s.name,
-            on_entry: Vec::new(),
-            on_exit: Vec::new(),
-            internal: Vec::new(),
-            line: lines.line(s.at),
-        };
-        let mut seen: Vec<Section> = Vec::new();
-        for member in s.members {
-            match member {
-                Member::Activity {
-                    section,
-                    actions,
-                    at,
-                } => {
-                    if seen.contains(&section) {
-                        error(
-                            at,
-                            format!(
-                                "state `{}` has two {} blocks; put their items in one",
-                                state.name,
-                                section_name(section)
-                            ),
-                        );
-                    }
-                    seen.push(section);
-                    let list = match section {
-                        Section::Entry => &mut state.on_entry,
-                        Section::Exit => &mut state.on_exit,
-                        Section::Internal => &mut state.internal,
-                    };
-                    for (action, at) in actions {
-                        match action {
-                            ActionAst::Done(action) => list.push(action),
-                            ActionAst::Statement(text) => match parse_statements(&text) {
-                                Ok(statements) => {
-                                    list.extend(statements.into_iter().map(Action::Statement))
-                                }
-                                Err(e) => {
-                                    error(at + e.offset, format!("bad statement: {}", e.message))
-                                }
-                            },
-                        }
-                    }
-                }
-                Member::When {
-                    label,
-                    label_at,
-                    target,
-                    target_at,
-                    at,
-                } => {
-                    if label.is_empty() {
-                        error(
-                            at,
-                            "a transition needs a label; write `when TRUE -> …` for one that always fires".into(),
-                        );
-                        continue;
-                    }
-                    let label = match parse_label(&label) {
-                        Ok(l) => l,
-                        Err(e) => {
-                            error(label_at + e.offset, format!("bad label: {}", e.message));
-                            continue;
-                        }
-                    };
-                    match resolve(&target) {
-                        Ok(to) => transitions.push(Transition {
-                            source: id,
-                            target: to,
-                            label,
-                            line: lines.line(at),
-                        }),
-                        Err(message) => error(target_at, message),
-                    }
-                }
-            }
-        }
-        states.push(state);
+        states.push(lowering.state(s, id, &names, &mut transitions));
     }
     let initial = match initial_ref {
-        Some((target, at)) => match resolve(&target) {
+        Some((target, at)) => match names.resolve(&target) {
             Ok(id) => Some(id),
             Err(message) => {
-                error(at, message);
+                lowering.error(at, message);
                 None
             }
         },
@@ -327,15 +181,244 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
             unread: Vec::new(),
         }],
         None if states.is_empty() => {
-            error(ast.name_at, format!("machine `{}` has no states", ast.name));
+            lowering.error(ast.name_at, format!("machine `{}` has no states", ast.name));
             Vec::new()
         }
         None => Vec::new(),
     };
     Imported {
         machines,
-        diagnostics,
+        diagnostics: lowering.diagnostics,
     }
+}
+
+/// The syntax tree of one file becoming its machine, with every problem found on the way.
+struct Lowering<'a> {
+    file: &'a str,
+    lines: &'a LineIndex<'a>,
+    diagnostics: Vec<FileDiagnostic>,
+}
+
+/// The states' ids, and their names, for resolving `-> NAME` and `-> #id`.
+struct StateNames {
+    ids: Vec<StateId>,
+    names: Vec<(String, StateId)>,
+}
+
+impl StateNames {
+    fn resolve(&self, target: &Ref) -> Result<StateId, String> {
+        match target {
+            Ref::Id(id) if self.ids.contains(id) => Ok(*id),
+            Ref::Id(id) => Err(format!("there is no state #{id}")),
+            Ref::Name(name) => {
+                let found: Vec<StateId> = self
+                    .names
+                    .iter()
+                    .filter(|(n, _)| n == name)
+                    .map(|(_, id)| *id)
+                    .collect();
+                match found.as_slice() {
+                    [id] => Ok(*id),
+                    [] => Err(match proclaim_syntax::nearest(self.names.iter().map(|(n, _)| n.as_str()), name) {
+                        Some(near) => format!("there is no state named `{name}`; did you mean `{near}`?"),
+                        None => format!("there is no state named `{name}`"),
+                    }),
+                    many => Err(format!(
+                        "`{name}` names {} states ({}); name the one meant by its id, as in `-> #{}`",
+                        many.len(),
+                        many.iter()
+                            .map(|id| format!("#{id}"))
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        many[0]
+                    )),
+                }
+            }
+        }
+    }
+}
+
+impl Lowering<'_> {
+    fn error(&mut self, at: usize, message: String) {
+        self.diagnostics
+            .push(self.lines.error(self.file, at, message));
+    }
+
+    /// The description, the initial state as written, and the states, each said once.
+    fn header(&mut self, items: Vec<TopItem>) -> (String, Option<(Ref, usize)>, Vec<StateAst>) {
+        let mut initial_ref = None;
+        let mut description = String::new();
+        let mut parsed = Vec::new();
+        for item in items {
+            match item {
+                TopItem::Description(text, at) => {
+                    if !description.is_empty() {
+                        self.error(at, "the description is given twice".into());
+                    }
+                    description = text;
+                }
+                TopItem::Initial(target, at) => {
+                    if initial_ref.is_some() {
+                        self.error(at, "the initial state is given twice".into());
+                    } else {
+                        initial_ref = Some((target, at));
+                    }
+                }
+                TopItem::State(s) => parsed.push(s),
+            }
+        }
+        (description, initial_ref, parsed)
+    }
+
+    /// Ids as written; the others numbered from 1, skipping those taken.
+    fn number(&mut self, parsed: &[StateAst]) -> Vec<StateId> {
+        let mut taken: Vec<StateId> = Vec::new();
+        for s in parsed {
+            if let Some(id) = s.id {
+                if taken.contains(&id) {
+                    self.error(s.at, format!("state id #{id} is used twice"));
+                }
+                taken.push(id);
+            }
+        }
+        let mut next = 1;
+        parsed
+            .iter()
+            .map(|s| {
+                s.id.unwrap_or_else(|| {
+                    while taken.contains(&next) {
+                        next += 1;
+                    }
+                    taken.push(next);
+                    next
+                })
+            })
+            .collect()
+    }
+
+    /// One state, its transitions added to `transitions`.
+    fn state(
+        &mut self,
+        s: StateAst,
+        id: StateId,
+        names: &StateNames,
+        transitions: &mut Vec<Transition>,
+    ) -> State {
+        let mut state = State {
+            id,
+            name: s.name,
+            on_entry: Vec::new(),
+            on_exit: Vec::new(),
+            internal: Vec::new(),
+            line: self.lines.line(s.at),
+        };
+        let mut seen: Vec<Section> = Vec::new();
+        for member in s.members {
+            match member {
+                Member::Activity {
+                    section,
+                    actions,
+                    at,
+                } => {
+                    if seen.contains(&section) {
+                        self.error(
+                            at,
+                            format!(
+                                "state `{}` has two {} blocks; put their items in one",
+                                state.name,
+                                section_name(section)
+                            ),
+                        );
+                    }
+                    seen.push(section);
+                    let list = match section {
+                        Section::Entry => &mut state.on_entry,
+                        Section::Exit => &mut state.on_exit,
+                        Section::Internal => &mut state.internal,
+                    };
+                    self.actions(actions, list);
+                }
+                Member::When {
+                    label,
+                    label_at,
+                    target,
+                    target_at,
+                    at,
+                } => {
+                    let when = When {
+                        label,
+                        label_at,
+                        target,
+                        target_at,
+                        at,
+                    };
+                    if let Some(t) = self.transition(id, when, names) {
+                        transitions.push(t);
+                    }
+                }
+            }
+        }
+        state
+    }
+
+    fn actions(&mut self, actions: Vec<(ActionAst, usize)>, list: &mut Vec<Action>) {
+        for (action, at) in actions {
+            match action {
+                ActionAst::Done(action) => list.push(action),
+                ActionAst::Statement(text) => match parse_statements(&text) {
+                    Ok(statements) => list.extend(statements.into_iter().map(Action::Statement)),
+                    Err(e) => self.error(at + e.offset, format!("bad statement: {}", e.message)),
+                },
+            }
+        }
+    }
+
+    fn transition(
+        &mut self,
+        source: StateId,
+        when: When,
+        names: &StateNames,
+    ) -> Option<Transition> {
+        if when.label.is_empty() {
+            self.error(
+                when.at,
+                "a transition needs a label; write `when TRUE -> …` for one that always fires"
+                    .into(),
+            );
+            return None;
+        }
+        let label = match parse_label(&when.label) {
+            Ok(l) => l,
+            Err(e) => {
+                self.error(
+                    when.label_at + e.offset,
+                    format!("bad label: {}", e.message),
+                );
+                return None;
+            }
+        };
+        match names.resolve(&when.target) {
+            Ok(target) => Some(Transition {
+                source,
+                target,
+                label,
+                line: self.lines.line(when.at),
+            }),
+            Err(message) => {
+                self.error(when.target_at, message);
+                None
+            }
+        }
+    }
+}
+
+/// A `when LABEL -> TARGET` as parsed, with where each part was written.
+struct When {
+    label: String,
+    label_at: usize,
+    target: Ref,
+    target_at: usize,
+    at: usize,
 }
 
 fn section_name(section: Section) -> &'static str {
