@@ -26,75 +26,12 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
     let mut diagnostics = Vec::new();
     let mut states: Vec<State> = Vec::new();
     for (i, raw) in a_text.lines().enumerate() {
-        let line = i + 1;
         if raw.trim().is_empty() {
             continue;
         }
-        let (id_text, rest) = raw
-            .trim_start()
-            .split_once(|c: char| c.is_whitespace())
-            .unwrap_or((raw.trim(), ""));
-        let Ok(id) = id_text.parse::<StateId>() else {
-            diagnostics.push(FileDiagnostic::error(
-                a_file,
-                line,
-                format!("`{id_text}` is not a state id (a whole number)"),
-            ));
-            continue;
-        };
-        if states.iter().any(|s| s.id == id) {
-            diagnostics.push(FileDiagnostic::error(
-                a_file,
-                line,
-                format!("state id {id} is used twice"),
-            ));
-            continue;
+        if let Some(state) = a_line(raw, i + 1, &states, a_file, &mut diagnostics) {
+            states.push(state);
         }
-        let (state_name, activities) = rest.split_once('|').unwrap_or((rest, ""));
-        let state_name = state_name.trim();
-        if state_name.is_empty() {
-            diagnostics.push(FileDiagnostic::error(
-                a_file,
-                line,
-                format!("state {id} has no name"),
-            ));
-            continue;
-        }
-        // A misspelt section keyword (`OnEnrtry`) would silently move the items to Internal.
-        if let Some(word) = activities.split(|c: char| !c.is_alphanumeric()).find(|w| {
-            w.starts_with("On")
-                && w.len() > 3
-                && *w != "OnEntry"
-                && *w != "OnExit"
-                && !activities.contains("OnEntry")
-        }) {
-            diagnostics.push(FileDiagnostic::error(
-                a_file,
-                line,
-                format!("`{word}` is not a section keyword (OnEntry or OnExit); its items are read as Internal"),
-            ));
-        }
-        let [entry, exit, internal] = sections(activities);
-        let mut read = |text: &str| {
-            // A lone `/` ends a section that has no keyword; it is not an item.
-            let (actions, problems) = parse_ta_items(text.trim_end_matches('/'));
-            for (severity, message) in problems {
-                diagnostics.push(match severity {
-                    Severity::Error => FileDiagnostic::error(a_file, line, message),
-                    Severity::Warning => FileDiagnostic::warning(a_file, line, message),
-                });
-            }
-            actions
-        };
-        states.push(State {
-            id,
-            name: state_name.to_string(),
-            on_entry: read(&entry),
-            on_exit: read(&exit),
-            // Internal text can hold more `/`-ended chunks (`…/ C++: f(1);/ C++: g;`): separators too.
-            internal: read(&internal.replace('/', ";")),
-            line,
-        });
     }
     let Some(initial) = states.last().map(|s| s.id) else {
         diagnostics.push(FileDiagnostic::error(
@@ -107,8 +44,13 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
             diagnostics,
         };
     };
-    let mut transitions = Vec::new();
-    let mut unread = Vec::new();
+    let mut machine = Machine {
+        name: name.to_string(),
+        states,
+        initial,
+        ..Machine::default()
+    };
+    let files = (t_file, a_file);
     for (i, raw) in t_text
         .lines()
         .enumerate()
@@ -116,77 +58,156 @@ pub fn import_ta(name: &str, t_file: &str, t_text: &str, a_file: &str, a_text: &
         .into_iter()
         .rev()
     {
-        let line = i + 1;
-        if raw.trim().is_empty() {
-            continue;
-        }
-        let fields: Vec<&str> = if raw.matches('\t').count() == 2 {
-            raw.split('\t').collect()
-        } else {
-            raw.split_whitespace().collect()
-        };
-        let [source, label, target] = fields[..] else {
-            diagnostics.push(FileDiagnostic::error(
-                t_file,
-                line,
-                "expected `source<TAB>label<TAB>target`",
-            ));
-            continue;
-        };
-        let id = |text: &str| -> Result<StateId, String> {
-            let id = text
-                .trim()
-                .parse::<StateId>()
-                .map_err(|_| format!("`{}` is not a state id", text.trim()))?;
-            if states.iter().any(|s| s.id == id) {
-                Ok(id)
-            } else {
-                Err(format!("state {id} is not in {a_file}"))
-            }
-        };
-        let (source, target) = match (id(source), id(target)) {
-            (Ok(source), Ok(target)) => (source, target),
-            (Err(e), _) | (_, Err(e)) => {
-                diagnostics.push(FileDiagnostic::error(t_file, line, e));
-                continue;
-            }
-        };
-        match parse_label(label) {
-            Ok(label) => transitions.push(Transition {
-                source,
-                target,
-                label,
-                line,
-            }),
-            Err(e) => {
-                diagnostics.push(FileDiagnostic::error(
-                    t_file,
-                    line,
-                    format!("label `{}`: {e}", label.trim()),
-                ));
-                unread.push(UnreadTransition {
-                    source,
-                    target,
-                    label: label.trim().to_string(),
-                    reason: e.to_string(),
-                    line,
-                });
-            }
+        if !raw.trim().is_empty() {
+            t_line(raw, i + 1, &mut machine, files, &mut diagnostics);
         }
     }
     // Reading T backwards put each state's transitions in priority order; keep it per state.
-    transitions.sort_by_key(|t| t.source);
-    let machine = Machine {
-        name: name.to_string(),
-        states,
-        transitions,
-        initial,
-        unread,
-        ..Machine::default()
-    };
+    machine.transitions.sort_by_key(|t| t.source);
     Imported {
         machines: vec![machine],
         diagnostics,
+    }
+}
+
+/// One line of the A file (`ID NAME|OnEntry …/ OnExit …/ internal`): the state, or `None` with
+/// a diagnostic saying why not.
+fn a_line(
+    raw: &str,
+    line: usize,
+    states: &[State],
+    a_file: &str,
+    diagnostics: &mut Vec<FileDiagnostic>,
+) -> Option<State> {
+    let (id_text, rest) = raw
+        .trim_start()
+        .split_once(|c: char| c.is_whitespace())
+        .unwrap_or((raw.trim(), ""));
+    let Ok(id) = id_text.parse::<StateId>() else {
+        diagnostics.push(FileDiagnostic::error(
+            a_file,
+            line,
+            format!("`{id_text}` is not a state id (a whole number)"),
+        ));
+        return None;
+    };
+    if states.iter().any(|s| s.id == id) {
+        diagnostics.push(FileDiagnostic::error(
+            a_file,
+            line,
+            format!("state id {id} is used twice"),
+        ));
+        return None;
+    }
+    let (state_name, activities) = rest.split_once('|').unwrap_or((rest, ""));
+    let state_name = state_name.trim();
+    if state_name.is_empty() {
+        diagnostics.push(FileDiagnostic::error(
+            a_file,
+            line,
+            format!("state {id} has no name"),
+        ));
+        return None;
+    }
+    // A misspelt section keyword (`OnEnrtry`) would silently move the items to Internal.
+    if let Some(word) = activities.split(|c: char| !c.is_alphanumeric()).find(|w| {
+        w.starts_with("On")
+            && w.len() > 3
+            && *w != "OnEntry"
+            && *w != "OnExit"
+            && !activities.contains("OnEntry")
+    }) {
+        diagnostics.push(FileDiagnostic::error(
+            a_file,
+            line,
+            format!("`{word}` is not a section keyword (OnEntry or OnExit); its items are read as Internal"),
+        ));
+    }
+    let [entry, exit, internal] = sections(activities);
+    let mut read = |text: &str| {
+        // A lone `/` ends a section that has no keyword; it is not an item.
+        let (actions, problems) = parse_ta_items(text.trim_end_matches('/'));
+        for (severity, message) in problems {
+            diagnostics.push(match severity {
+                Severity::Error => FileDiagnostic::error(a_file, line, message),
+                Severity::Warning => FileDiagnostic::warning(a_file, line, message),
+            });
+        }
+        actions
+    };
+    Some(State {
+        id,
+        name: state_name.to_string(),
+        on_entry: read(&entry),
+        on_exit: read(&exit),
+        // Internal text can hold more `/`-ended chunks (`…/ C++: f(1);/ C++: g;`): separators too.
+        internal: read(&internal.replace('/', ";")),
+        line,
+    })
+}
+
+/// One line of the T file (`SOURCE<TAB>LABEL<TAB>TARGET`): a transition of `machine`, kept
+/// unread when its label does not parse.
+fn t_line(
+    raw: &str,
+    line: usize,
+    machine: &mut Machine,
+    (t_file, a_file): (&str, &str),
+    diagnostics: &mut Vec<FileDiagnostic>,
+) {
+    let states = &machine.states;
+    let fields: Vec<&str> = if raw.matches('\t').count() == 2 {
+        raw.split('\t').collect()
+    } else {
+        raw.split_whitespace().collect()
+    };
+    let [source, label, target] = fields[..] else {
+        diagnostics.push(FileDiagnostic::error(
+            t_file,
+            line,
+            "expected `source<TAB>label<TAB>target`",
+        ));
+        return;
+    };
+    let id = |text: &str| -> Result<StateId, String> {
+        let id = text
+            .trim()
+            .parse::<StateId>()
+            .map_err(|_| format!("`{}` is not a state id", text.trim()))?;
+        if states.iter().any(|s| s.id == id) {
+            Ok(id)
+        } else {
+            Err(format!("state {id} is not in {a_file}"))
+        }
+    };
+    let (source, target) = match (id(source), id(target)) {
+        (Ok(source), Ok(target)) => (source, target),
+        (Err(e), _) | (_, Err(e)) => {
+            diagnostics.push(FileDiagnostic::error(t_file, line, e));
+            return;
+        }
+    };
+    match parse_label(label) {
+        Ok(label) => machine.transitions.push(Transition {
+            source,
+            target,
+            label,
+            line,
+        }),
+        Err(e) => {
+            diagnostics.push(FileDiagnostic::error(
+                t_file,
+                line,
+                format!("label `{}`: {e}", label.trim()),
+            ));
+            machine.unread.push(UnreadTransition {
+                source,
+                target,
+                label: label.trim().to_string(),
+                reason: e.to_string(),
+                line,
+            });
+        }
     }
 }
 
