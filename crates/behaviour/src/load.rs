@@ -3,7 +3,8 @@
 
 use crate::files::Files;
 use crate::manifest::{
-    parse_dictionary, parse_manifest, Manifest, ModuleEntry, SensorEntry, Simulator, MANIFEST,
+    parse_dictionary, parse_manifest, Manifest, ModuleEntry, SensorEntry, Simulator, TheoryEntry,
+    MANIFEST,
 };
 use proclaim_cdl::{check_source, Language, Theory};
 use proclaim_experts::simulator::{parse_game, GameScript};
@@ -111,79 +112,12 @@ pub fn load_manifest(
         ));
     }
 
-    let mut machines: Vec<LoadedMachine> = Vec::new();
-    for entry in &manifest.machines {
-        let loader = machine_loader(files.clone(), entry.file.clone(), entry.name.clone());
-        let imported = read_machines(files.as_ref(), &entry.file);
-        problems.file(&imported);
-        match pick(imported, &entry.file, entry.name.as_deref(), files.as_ref()) {
-            Ok(Some(machine)) => {
-                if let Some(other) = machines.iter().find(|m| m.machine.name == machine.name) {
-                    problems.error(format!(
-                        "{manifest_file}: error: two machines are named `{}` ({} and {}); a machine's name is its control message type, so names must differ",
-                        machine.name, other.file, entry.file
-                    ));
-                }
-                machines.push(LoadedMachine {
-                    machine,
-                    file: entry.file.clone(),
-                    start: entry.start,
-                    loader,
-                });
-            }
-            Ok(None) => {}
-            Err(message) => problems.error(message),
-        }
-    }
-    if !manifest.machines.is_empty() && manifest.machines.iter().all(|m| !m.start) {
-        problems.error(format!(
-            "{manifest_file}: error: every machine has `start = false`; nothing would run"
-        ));
-    }
-
-    let mut theories = Vec::new();
-    for entry in &manifest.theories {
-        let Ok(text) = files.read(&entry.file).map_err(|e| problems.error(e)) else {
-            continue;
-        };
-        let shown = files.show(&entry.file);
-        let checked = check_source(
-            &text,
-            Language::from_path(std::path::Path::new(&entry.file)),
-        );
-        let rendered = proclaim_syntax::render(&checked.diagnostics, &shown, &text, false);
-        let Some(theory) = checked.theory else {
-            problems.error(rendered.trim_end().to_string());
-            continue;
-        };
-        if !rendered.is_empty() {
-            problems.warnings.push(rendered.trim_end().to_string());
-        }
-        let mapping = match &entry.mapping {
-            None => FxHashMap::default(),
-            Some(file) => match read_lines(files.as_ref(), file, parse_mapping, &mut problems) {
-                Some(mapping) => mapping,
-                None => continue,
-            },
-        };
-        let name = entry
-            .name
-            .clone()
-            .or_else(|| theory.name().map(str::to_string))
-            .unwrap_or_else(|| stem(&entry.file));
-        theories.push(LoadedTheory {
-            name,
-            file: entry.file.clone(),
-            theory,
-            mapping,
-            limits: proclaim_cdl::SearchLimits {
-                steps: entry
-                    .budget
-                    .unwrap_or(proclaim_cdl::SearchLimits::default().steps),
-                ..proclaim_cdl::SearchLimits::default()
-            },
-        });
-    }
+    let machines = load_machines(&files, &manifest, &manifest_file, &mut problems);
+    let theories: Vec<LoadedTheory> = manifest
+        .theories
+        .iter()
+        .filter_map(|entry| load_theory(files.as_ref(), entry, &mut problems))
+        .collect();
 
     let mut sensors = Vec::new();
     for entry in &manifest.sensors {
@@ -235,6 +169,91 @@ pub fn load_manifest(
         outside,
         warnings,
         files,
+    })
+}
+
+/// The machines the manifest names, each from its file; two of one name, or none that
+/// starts, are errors.
+fn load_machines(
+    files: &Arc<dyn Files>,
+    manifest: &Manifest,
+    manifest_file: &str,
+    problems: &mut Problems,
+) -> Vec<LoadedMachine> {
+    let mut machines: Vec<LoadedMachine> = Vec::new();
+    for entry in &manifest.machines {
+        let loader = machine_loader(files.clone(), entry.file.clone(), entry.name.clone());
+        let imported = read_machines(files.as_ref(), &entry.file);
+        problems.file(&imported);
+        match pick(imported, &entry.file, entry.name.as_deref(), files.as_ref()) {
+            Ok(Some(machine)) => {
+                if let Some(other) = machines.iter().find(|m| m.machine.name == machine.name) {
+                    problems.error(format!(
+                        "{manifest_file}: error: two machines are named `{}` ({} and {}); a machine's name is its control message type, so names must differ",
+                        machine.name, other.file, entry.file
+                    ));
+                }
+                machines.push(LoadedMachine {
+                    machine,
+                    file: entry.file.clone(),
+                    start: entry.start,
+                    loader,
+                });
+            }
+            Ok(None) => {}
+            Err(message) => problems.error(message),
+        }
+    }
+    if !manifest.machines.is_empty() && manifest.machines.iter().all(|m| !m.start) {
+        problems.error(format!(
+            "{manifest_file}: error: every machine has `start = false`; nothing would run"
+        ));
+    }
+    machines
+}
+
+/// One `[[theory]]`: checked (its warnings kept), its mapping read, its expert named.
+fn load_theory(
+    files: &dyn Files,
+    entry: &TheoryEntry,
+    problems: &mut Problems,
+) -> Option<LoadedTheory> {
+    let Ok(text) = files.read(&entry.file).map_err(|e| problems.error(e)) else {
+        return None;
+    };
+    let shown = files.show(&entry.file);
+    let checked = check_source(
+        &text,
+        Language::from_path(std::path::Path::new(&entry.file)),
+    );
+    let rendered = proclaim_syntax::render(&checked.diagnostics, &shown, &text, false);
+    let Some(theory) = checked.theory else {
+        problems.error(rendered.trim_end().to_string());
+        return None;
+    };
+    if !rendered.is_empty() {
+        problems.warnings.push(rendered.trim_end().to_string());
+    }
+    let mapping = match &entry.mapping {
+        None => FxHashMap::default(),
+        Some(file) => read_lines(files, file, parse_mapping, problems)?,
+    };
+    let name = entry
+        .name
+        .clone()
+        .or_else(|| theory.name().map(str::to_string))
+        .unwrap_or_else(|| stem(&entry.file));
+    Some(LoadedTheory {
+        name,
+        file: entry.file.clone(),
+        theory,
+        mapping,
+        limits: proclaim_cdl::SearchLimits {
+            steps: entry
+                .budget
+                .unwrap_or(proclaim_cdl::SearchLimits::default().steps),
+            ..proclaim_cdl::SearchLimits::default()
+        },
     })
 }
 
