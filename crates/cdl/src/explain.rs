@@ -174,17 +174,6 @@ impl Session {
             )));
             return;
         }
-        // The algorithm that decides whether an attacker counts.
-        let attack_alg = if alg == Algorithm::Beta {
-            Algorithm::Beta
-        } else {
-            Algorithm::Pi
-        };
-        let attack_word = if alg == Algorithm::Beta {
-            "proved"
-        } else {
-            "supported"
-        };
         let applicable = |s: &mut Session, r: u32, a: Algorithm| -> Option<Lit> {
             engine.body(r).iter().copied().find(|&x| !s.prove(a, x))
         };
@@ -224,28 +213,7 @@ impl Session {
             }
         }
         let Some(r) = supporter else {
-            if failed.is_empty() {
-                node.children.push(Explanation::leaf(format!(
-                    "no strict or defeasible rule has {} as consequent",
-                    show(q)
-                )));
-            }
-            for (r, a) in failed {
-                let mut line = Explanation::rule(
-                    format!(
-                        "{} does not apply: antecedent {} is not proved",
-                        theory.rule_name(r),
-                        show(a)
-                    ),
-                    theory.rule_name(r),
-                    "does_not_apply",
-                );
-                if depth > 0 {
-                    line.children.push(self.explain_at(alg, a, depth - 1, seen));
-                }
-                node.children.push(line);
-            }
-            self.note_loop(alg, q, node);
+            self.explain_unsupported(alg, q, failed, depth, seen, node);
             return;
         };
         let mut line = Explanation::rule(
@@ -260,10 +228,65 @@ impl Session {
         }
         node.children.push(line);
         self.explain_implicit_attackers(alg, q, node);
+        self.explain_attackers(alg, q, node);
+        self.note_loop(alg, q, node);
+    }
+
+    /// Why no rule supports `q`: each rule for it that does not apply, and the antecedent that
+    /// is not proved.
+    fn explain_unsupported(
+        &mut self,
+        alg: Algorithm,
+        q: Lit,
+        failed: Vec<(u32, Lit)>,
+        depth: usize,
+        seen: &mut HashSet<(Algorithm, Lit)>,
+        node: &mut Explanation,
+    ) {
+        let engine = self.engine().clone();
+        let theory = engine.theory();
+        if failed.is_empty() {
+            node.children.push(Explanation::leaf(format!(
+                "no strict or defeasible rule has {} as consequent",
+                theory.show(q)
+            )));
+        }
+        for (r, a) in failed {
+            let mut line = Explanation::rule(
+                format!(
+                    "{} does not apply: antecedent {} is not proved",
+                    theory.rule_name(r),
+                    theory.show(a)
+                ),
+                theory.rule_name(r),
+                "does_not_apply",
+            );
+            if depth > 0 {
+                line.children.push(self.explain_at(alg, a, depth - 1, seen));
+            }
+            node.children.push(line);
+        }
+        self.note_loop(alg, q, node);
+    }
+
+    /// Each rule for the complement of a supported `q`: discounted (an antecedent not proved,
+    /// or for π not supported), beaten by a superior applicable rule for `q`, or standing.
+    fn explain_attackers(&mut self, alg: Algorithm, q: Lit, node: &mut Explanation) {
+        let engine = self.engine().clone();
+        let theory = engine.theory();
+        let show = |l: Lit| theory.show(l).to_string();
+        let attack_word = if alg == Algorithm::Beta {
+            "proved"
+        } else {
+            "supported"
+        };
+        let applicable = |s: &mut Session, r: u32, a: Algorithm| -> Option<Lit> {
+            engine.body(r).iter().copied().find(|&x| !s.prove(a, x))
+        };
         for &s in engine.rules_for(q.complement()) {
             let name = theory.rule_name(s);
             let counted = if alg == Algorithm::Beta {
-                applicable(self, s, attack_alg)
+                applicable(self, s, Algorithm::Beta)
             } else {
                 engine
                     .body(s)
@@ -306,7 +329,6 @@ impl Session {
                 ),
             });
         }
-        self.note_loop(alg, q, node);
     }
 
     /// The first standing attacker among the clause axioms' implicit resolvents `x -> ~q` (they
