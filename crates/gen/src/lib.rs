@@ -294,111 +294,12 @@ impl Family {
                 }
             }
             Family::Levels(n) | Family::LevelsMinus(n) => {
-                w.rule(0, &[], "=>", "a0")?;
-                for i in 0..=n {
-                    let (even, odd, next) = (2 * i, 2 * i + 1, 2 * i + 2);
-                    w.rule(
-                        4 * i + 1,
-                        &[&format!("a{odd}")],
-                        "=>",
-                        &w.neg(&format!("a{even}")),
-                    )?;
-                    w.rule(4 * i + 2, &[], "=>", &format!("a{odd}"))?;
-                    w.rule(
-                        4 * i + 3,
-                        &[&format!("a{next}")],
-                        "=>",
-                        &w.neg(&format!("a{odd}")),
-                    )?;
-                    w.rule(4 * i + 4, &[], "=>", &format!("a{next}"))?;
-                    if matches!(self, Family::Levels(_)) {
-                        w.priority(4 * i + 3, 4 * i + 2)?;
-                    }
-                }
+                write_levels(&mut w, n, matches!(self, Family::Levels(_)))?
             }
-            Family::Teams(n) => {
-                // Breadth first: block k's atom is a(k); its four fresh b's are the next atoms.
-                let mut next_atom = 1u64;
-                let mut rule = 0u64;
-                let mut level = vec![0u64];
-                for depth in (0..=n).rev() {
-                    let mut below = Vec::new();
-                    for p in level {
-                        let p = format!("a{p}");
-                        let np = w.neg(&p);
-                        let heads = [&p, &p, &np, &np];
-                        for (j, head) in heads.into_iter().enumerate() {
-                            if depth == 0 {
-                                w.rule(rule + j as u64, &[], "=>", head)?;
-                            } else {
-                                let b = next_atom + j as u64;
-                                below.push(b);
-                                w.rule(rule + j as u64, &[&format!("a{b}")], "=>", head)?;
-                            }
-                        }
-                        if depth > 0 {
-                            next_atom += 4;
-                        }
-                        w.priority(rule, rule + 2)?;
-                        w.priority(rule + 1, rule + 3)?;
-                        rule += 4;
-                    }
-                    level = below;
-                }
-            }
-            Family::Tree(n, k) => {
-                let internal = ((k as u128).pow(n as u32) - 1) / (k as u128 - 1);
-                let internal = internal as u64;
-                for i in 0..internal {
-                    let children: Vec<String> =
-                        (1..=k).map(|c| format!("a{}", k * i + c)).collect();
-                    let refs: Vec<&str> = children.iter().map(String::as_str).collect();
-                    w.rule(i, &refs, "=>", &format!("a{i}"))?;
-                }
-                let leaves = (k as u128).pow(n as u32) as u64;
-                for leaf in internal..internal + leaves {
-                    w.fact(&format!("a{leaf}"))?;
-                }
-            }
-            Family::Dag(n, k) => {
-                for i in k * n + 1..=k * n + k {
-                    w.fact(&format!("a{i}"))?;
-                }
-                for i in 0..=n * k {
-                    let body: Vec<String> = (1..=k).map(|j| format!("a{}", i + j)).collect();
-                    let refs: Vec<&str> = body.iter().map(String::as_str).collect();
-                    w.rule(i, &refs, "=>", &format!("a{i}"))?;
-                }
-            }
-            Family::Mix(m, n, k) => {
-                let mut rule = 0u64;
-                for i in 1..=2 * m {
-                    let body: Vec<String> = (1..=n).map(|j| format!("a{i}_{j}")).collect();
-                    let refs: Vec<&str> = body.iter().map(String::as_str).collect();
-                    let (arrow, head) = if i <= m {
-                        ("=>", "p".to_string())
-                    } else {
-                        ("~>", w.neg("p"))
-                    };
-                    w.rule(rule, &refs, arrow, &head)?;
-                    rule += 1;
-                    for j in 1..=n {
-                        // A strict chain of length k from a fact to a(i, j).
-                        let link = |l: u64| {
-                            if l == k {
-                                format!("a{i}_{j}")
-                            } else {
-                                format!("a{i}_{j}_{l}")
-                            }
-                        };
-                        w.fact(&link(0))?;
-                        for l in 1..=k {
-                            w.rule(rule, &[&link(l - 1)], "->", &link(l))?;
-                            rule += 1;
-                        }
-                    }
-                }
-            }
+            Family::Teams(n) => write_teams(&mut w, n)?,
+            Family::Tree(n, k) => write_tree(&mut w, n, k)?,
+            Family::Dag(n, k) => write_dag(&mut w, n, k)?,
+            Family::Mix(m, n, k) => write_mix(&mut w, m, n, k)?,
             _ => self.write_attack_family(&mut w)?,
         }
         Ok(())
@@ -513,6 +414,127 @@ impl fmt::Display for Family {
             Family::ClauseChain(n) => write!(f, "clause-chain({n})"),
         }
     }
+}
+
+/// Levels of mutual defeat, each level's attack beaten by a priority (`Levels`) or not.
+fn write_levels<W: Write>(w: &mut Writer<'_, W>, n: u64, with_priorities: bool) -> io::Result<()> {
+    w.rule(0, &[], "=>", "a0")?;
+    for i in 0..=n {
+        let (even, odd, next) = (2 * i, 2 * i + 1, 2 * i + 2);
+        w.rule(
+            4 * i + 1,
+            &[&format!("a{odd}")],
+            "=>",
+            &w.neg(&format!("a{even}")),
+        )?;
+        w.rule(4 * i + 2, &[], "=>", &format!("a{odd}"))?;
+        w.rule(
+            4 * i + 3,
+            &[&format!("a{next}")],
+            "=>",
+            &w.neg(&format!("a{odd}")),
+        )?;
+        w.rule(4 * i + 4, &[], "=>", &format!("a{next}"))?;
+        if with_priorities {
+            w.priority(4 * i + 3, 4 * i + 2)?;
+        }
+    }
+    Ok(())
+}
+
+/// Team defeat: a complete tree of blocks of four rules, two for each side.
+fn write_teams<W: Write>(w: &mut Writer<'_, W>, n: u64) -> io::Result<()> {
+    // Breadth first: block k's atom is a(k); its four fresh b's are the next atoms.
+    let mut next_atom = 1u64;
+    let mut rule = 0u64;
+    let mut level = vec![0u64];
+    for depth in (0..=n).rev() {
+        let mut below = Vec::new();
+        for p in level {
+            let p = format!("a{p}");
+            let np = w.neg(&p);
+            let heads = [&p, &p, &np, &np];
+            for (j, head) in heads.into_iter().enumerate() {
+                if depth == 0 {
+                    w.rule(rule + j as u64, &[], "=>", head)?;
+                } else {
+                    let b = next_atom + j as u64;
+                    below.push(b);
+                    w.rule(rule + j as u64, &[&format!("a{b}")], "=>", head)?;
+                }
+            }
+            if depth > 0 {
+                next_atom += 4;
+            }
+            w.priority(rule, rule + 2)?;
+            w.priority(rule + 1, rule + 3)?;
+            rule += 4;
+        }
+        level = below;
+    }
+    Ok(())
+}
+
+/// A complete `k`-ary tree of depth `n`: each rule needs its `k` children; leaves are facts.
+fn write_tree<W: Write>(w: &mut Writer<'_, W>, n: u64, k: u64) -> io::Result<()> {
+    let internal = ((k as u128).pow(n as u32) - 1) / (k as u128 - 1);
+    let internal = internal as u64;
+    for i in 0..internal {
+        let children: Vec<String> = (1..=k).map(|c| format!("a{}", k * i + c)).collect();
+        let refs: Vec<&str> = children.iter().map(String::as_str).collect();
+        w.rule(i, &refs, "=>", &format!("a{i}"))?;
+    }
+    let leaves = (k as u128).pow(n as u32) as u64;
+    for leaf in internal..internal + leaves {
+        w.fact(&format!("a{leaf}"))?;
+    }
+    Ok(())
+}
+
+/// Each atom needs the next `k`; the last `k` are facts.
+fn write_dag<W: Write>(w: &mut Writer<'_, W>, n: u64, k: u64) -> io::Result<()> {
+    for i in k * n + 1..=k * n + k {
+        w.fact(&format!("a{i}"))?;
+    }
+    for i in 0..=n * k {
+        let body: Vec<String> = (1..=k).map(|j| format!("a{}", i + j)).collect();
+        let refs: Vec<&str> = body.iter().map(String::as_str).collect();
+        w.rule(i, &refs, "=>", &format!("a{i}"))?;
+    }
+    Ok(())
+}
+
+/// `m` defeasible rules for `p` and `m` defeaters against it, each antecedent at the end of a
+/// strict chain of length `k` from a fact.
+fn write_mix<W: Write>(w: &mut Writer<'_, W>, m: u64, n: u64, k: u64) -> io::Result<()> {
+    let mut rule = 0u64;
+    for i in 1..=2 * m {
+        let body: Vec<String> = (1..=n).map(|j| format!("a{i}_{j}")).collect();
+        let refs: Vec<&str> = body.iter().map(String::as_str).collect();
+        let (arrow, head) = if i <= m {
+            ("=>", "p".to_string())
+        } else {
+            ("~>", w.neg("p"))
+        };
+        w.rule(rule, &refs, arrow, &head)?;
+        rule += 1;
+        for j in 1..=n {
+            // A strict chain of length k from a fact to a(i, j).
+            let link = |l: u64| {
+                if l == k {
+                    format!("a{i}_{j}")
+                } else {
+                    format!("a{i}_{j}_{l}")
+                }
+            };
+            w.fact(&link(0))?;
+            for l in 1..=k {
+                w.rule(rule, &[&link(l - 1)], "->", &link(l))?;
+                rule += 1;
+            }
+        }
+    }
+    Ok(())
 }
 
 struct Writer<'w, W: Write> {
