@@ -95,22 +95,10 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
                     ..Default::default()
                 });
             }
-            Event::Start(e) if transition.is_some() => {
-                let name = e.local_name();
-                field = match name.as_ref() {
-                    "from" => Some("from"),
-                    "to" => Some("to"),
-                    "inputs" => {
-                        if let Some(t) = transition.as_mut() {
-                            t.invert = attribute(&e, "invert").as_deref() == Some("1");
-                            t.any = attribute(&e, "any").as_deref() == Some("1")
-                                || attribute(&e, "default").as_deref() == Some("1");
-                        }
-                        Some("inputs")
-                    }
-                    "outputs" => Some("outputs"),
-                    _ => None,
-                };
+            Event::Start(e) => {
+                if let Some(t) = transition.as_mut() {
+                    field = transition_field(&e, t);
+                }
             }
             Event::Text(t) => append(&mut state, &mut transition, field, &t.xml10_content()),
             Event::CData(t) => append(&mut state, &mut transition, field, &t),
@@ -145,13 +133,37 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
             _ => {}
         }
     }
-    if let Some(m) = machine.take() {
+    end_of_file(machine, file, file_name, &mut out);
+    out
+}
+
+/// Which part of a `<transition>` an element starts (`<inputs>` also says whether the label
+/// is inverted or the default).
+fn transition_field(e: &BytesStart<'_>, t: &mut TransitionDraft) -> Option<&'static str> {
+    match e.local_name().as_ref() {
+        "from" => Some("from"),
+        "to" => Some("to"),
+        "inputs" => {
+            t.invert = attribute(e, "invert").as_deref() == Some("1");
+            t.any = attribute(e, "any").as_deref() == Some("1")
+                || attribute(e, "default").as_deref() == Some("1");
+            Some("inputs")
+        }
+        "outputs" => Some("outputs"),
+        _ => None,
+    }
+}
+
+/// A machine left open is still read (with an error); a file's one machine is named after the
+/// file, as qfsm2gu did; a file with none says so.
+fn end_of_file(machine: Option<MachineDraft>, file: &str, file_name: &str, out: &mut Imported) {
+    if let Some(m) = machine {
         out.diagnostics.push(FileDiagnostic::error(
             file,
             m.line,
             format!("machine `{}` is not closed", m.attribute_name),
         ));
-        finish(m, file, file_name, &mut out);
+        finish(m, file, file_name, out);
     }
     if let [only] = out.machines.as_mut_slice() {
         if only.name != file_name {
@@ -162,7 +174,6 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
         out.diagnostics
             .push(FileDiagnostic::error(file, 1, "no <machine> in this file"));
     }
-    out
 }
 
 /// Why a file that does not start with XML is not read.
