@@ -192,50 +192,8 @@ pub fn launch_manifest(
                 .join(", ")
         ));
     }
-    // The machine and every machine it starts, transitively.
-    let mut wanted: Vec<String> = vec![centre.to_string()];
-    let mut next = 0;
-    while next < wanted.len() {
-        let name = wanted[next].clone();
-        next += 1;
-        if let Some(m) = modules.iter().find(|m| m.decl.name == name) {
-            for ty in &m.decl.posts {
-                if behaviour.machines.iter().any(|x| x.machine.name == *ty) && !wanted.contains(ty)
-                {
-                    wanted.push(ty.clone());
-                }
-            }
-        }
-    }
-    // Then every expert, sensor wrapper or impersonator that answers a label of what is
-    // needed, or posts what it reads (a theory's inputs), until nothing more is needed.
-    let mut needed: Vec<&str> = wanted.iter().map(String::as_str).collect();
-    loop {
-        let before = needed.len();
-        for m in modules {
-            if matches!(m.kind, ModuleKind::Machine { .. } | ModuleKind::Outside)
-                || needed.contains(&m.decl.name.as_str())
-            {
-                continue;
-            }
-            let serves = modules
-                .iter()
-                .filter(|n| needed.contains(&n.decl.name.as_str()))
-                .any(|n| {
-                    m.decl.answers.iter().any(|a| n.decl.waits_on.contains(a))
-                        || m.decl
-                            .posts
-                            .iter()
-                            .any(|p| p != proclaim_board::QUERY_TYPE && n.decl.reads.contains(p))
-                });
-            if serves {
-                needed.push(&m.decl.name);
-            }
-        }
-        if needed.len() == before {
-            break;
-        }
-    }
+    let wanted = started_from(behaviour, modules, centre);
+    let needed = serving(modules, &wanted);
     let is_needed = |m: &Module| needed.contains(&m.decl.name.as_str());
     let manifest = &behaviour.manifest;
     let needs = |kind: ModuleKind| modules.iter().any(|m| m.kind == kind && is_needed(m));
@@ -288,6 +246,58 @@ pub fn launch_manifest(
     Ok(smallest.to_toml(&format!(
         "The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`."
     )))
+}
+
+/// The machine and every machine it starts, transitively.
+fn started_from(behaviour: &Behaviour, modules: &[Module], centre: &str) -> Vec<String> {
+    let mut wanted: Vec<String> = vec![centre.to_string()];
+    let mut next = 0;
+    while next < wanted.len() {
+        let name = wanted[next].clone();
+        next += 1;
+        if let Some(m) = modules.iter().find(|m| m.decl.name == name) {
+            for ty in &m.decl.posts {
+                if behaviour.machines.iter().any(|x| x.machine.name == *ty) && !wanted.contains(ty)
+                {
+                    wanted.push(ty.clone());
+                }
+            }
+        }
+    }
+    wanted
+}
+
+/// The modules `wanted` needs: every expert, sensor wrapper or impersonator that answers a
+/// label of what is needed, or posts what it reads (a theory's inputs), to a fixpoint.
+fn serving<'m>(modules: &'m [Module], wanted: &'m [String]) -> Vec<&'m str> {
+    let mut needed: Vec<&str> = wanted.iter().map(String::as_str).collect();
+    loop {
+        let before = needed.len();
+        for m in modules {
+            if matches!(m.kind, ModuleKind::Machine { .. } | ModuleKind::Outside)
+                || needed.contains(&m.decl.name.as_str())
+            {
+                continue;
+            }
+            let serves = modules
+                .iter()
+                .filter(|n| needed.contains(&n.decl.name.as_str()))
+                .any(|n| {
+                    m.decl.answers.iter().any(|a| n.decl.waits_on.contains(a))
+                        || m.decl
+                            .posts
+                            .iter()
+                            .any(|p| p != proclaim_board::QUERY_TYPE && n.decl.reads.contains(p))
+                });
+            if serves {
+                needed.push(&m.decl.name);
+            }
+        }
+        if needed.len() == before {
+            break;
+        }
+    }
+    needed
 }
 
 fn names(modules: &[Module]) -> String {
