@@ -24,6 +24,8 @@ use crate::failure::Failure;
 use proclaim_cdl::Algorithm;
 use std::process::ExitCode;
 
+/// Runs one subcommand. Long by design: one arm a subcommand, each only unpacking its
+/// arguments for the command's own file, so the whole command line reads in one place.
 pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
     match cli.command {
         Command::Prove {

@@ -37,6 +37,9 @@ struct MachineDraft {
 /// Imports every machine of a Qfsm file. A file's one machine is named `file_name` (the file's
 /// name without `.fsm`, as qfsm2gu and gufsm named it); its `name` attribute, when it differs,
 /// becomes the description. Several machines in one file keep their `name` attributes.
+///
+/// Longer than most: one arm per XML event, around the drafts being filled; each element's end
+/// is its own step (`end_state`, `end_transition`, `finish`).
 pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
     let mut out = Imported::default();
     if !text.trim().starts_with('<') {

@@ -305,7 +305,7 @@ impl Family {
         Ok(())
     }
 
-    /// The attack-cycle families of benchmarks.md ("Attack cycles").
+    /// The attack-cycle families of benchmarks.md ("Attack cycles"). Long by design: one short arm per family, each arm that family's definition.
     fn write_attack_family<W: Write>(&self, w: &mut Writer<'_, W>) -> io::Result<()> {
         let a = |i: u64| format!("a{i}");
         let mut label = 0u64;

@@ -113,6 +113,8 @@ impl<'a> Iterator for Lexer<'a> {
     }
 }
 
+/// The next token at `cursor`. Long by design: one arm per token shape, the lexer's whole
+/// table in one match (split up, the order of the arms, which decides, would be scattered).
 fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'a>> {
     let mut i = *cursor;
     while i < bytes.len() {

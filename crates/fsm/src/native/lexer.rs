@@ -121,6 +121,8 @@ impl<'a> Lexer<'a> {
         (start, make(text), start + text.len())
     }
 
+    /// Long by design: one arm per token shape and per raw-text mode, the lexer's whole table
+    /// in one match (split up, the order of the arms, which decides, would be scattered).
     fn next_token(&mut self) -> Option<Spanned<'a>> {
         if let Some(t) = self.pending.pop() {
             return Some(Ok(t));
