@@ -147,52 +147,9 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     let _ = std::fs::remove_dir_all(&dir);
     outcome?;
     if json {
-        let list: Vec<_> = results
-            .iter()
-            .map(|(case, (m, wall))| {
-                let mut v = serde_json::to_value(m).unwrap_or_default();
-                v["case"] = case.to_string().into();
-                v["process_wall_ms"] = (*wall).into();
-                v
-            })
-            .collect();
-        println!("{}", serde_json::Value::Array(list));
+        print_json(&results);
     } else {
-        println!(
-            "{:<18} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}  answers",
-            "case",
-            "rules",
-            "parse ms",
-            "beta ms",
-            "pi ms",
-            "total ms",
-            "wall ms",
-            "ns/rule",
-            "peak MB"
-        );
-        for (case, (m, wall)) in &results {
-            println!(
-                "{:<18} {:>9} {:>10.1} {:>9.1} {:>9.1} {:>9.1} {:>10.1} {:>10.0} {:>8}  {}",
-                case.to_string(),
-                m.rules,
-                m.read_ms + m.parse_check_ms,
-                m.beta_ms,
-                m.pi_ms,
-                m.total_ms,
-                wall,
-                m.total_ms * 1e6 / m.rules.max(1) as f64,
-                m.peak_rss_mb.map_or("?".into(), |p| format!("{p:.0}")),
-                if m.undecided > 0 {
-                    format!("{} undecided", m.undecided)
-                } else if !m.answers_ok {
-                    "WRONG".to_string()
-                } else if matches!(case, Case::File(_)) {
-                    "-".to_string()
-                } else {
-                    "ok".to_string()
-                }
-            );
-        }
+        print_table(&results);
     }
     let all_ok = results.iter().all(|(_, (m, _))| m.answers_ok);
     Ok(if all_ok {
@@ -200,6 +157,59 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     } else {
         ExitCode::from(2)
     })
+}
+
+type Results = [(Case, (Measurement, f64))];
+
+fn print_json(results: &Results) {
+    let list: Vec<_> = results
+        .iter()
+        .map(|(case, (m, wall))| {
+            let mut v = serde_json::to_value(m).unwrap_or_default();
+            v["case"] = case.to_string().into();
+            v["process_wall_ms"] = (*wall).into();
+            v
+        })
+        .collect();
+    println!("{}", serde_json::Value::Array(list));
+}
+
+fn print_table(results: &Results) {
+    println!(
+        "{:<18} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}  answers",
+        "case",
+        "rules",
+        "parse ms",
+        "beta ms",
+        "pi ms",
+        "total ms",
+        "wall ms",
+        "ns/rule",
+        "peak MB"
+    );
+    for (case, (m, wall)) in results {
+        println!(
+            "{:<18} {:>9} {:>10.1} {:>9.1} {:>9.1} {:>9.1} {:>10.1} {:>10.0} {:>8}  {}",
+            case.to_string(),
+            m.rules,
+            m.read_ms + m.parse_check_ms,
+            m.beta_ms,
+            m.pi_ms,
+            m.total_ms,
+            wall,
+            m.total_ms * 1e6 / m.rules.max(1) as f64,
+            m.peak_rss_mb.map_or("?".into(), |p| format!("{p:.0}")),
+            if m.undecided > 0 {
+                format!("{} undecided", m.undecided)
+            } else if !m.answers_ok {
+                "WRONG".to_string()
+            } else if matches!(case, Case::File(_)) {
+                "-".to_string()
+            } else {
+                "ok".to_string()
+            }
+        );
+    }
 }
 
 /// Writes a family's theory into `dir` for the child to read.
