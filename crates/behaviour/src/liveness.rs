@@ -373,32 +373,7 @@ impl Generator<'_> {
     fn compile(&mut self, draft: &mut Draft, f: &Formula, next: StateId) -> StateId {
         let atom = Label::Name;
         match f {
-            Formula::Activity(name) => {
-                if let Some(def) = self.defs.iter().find(|d| d.name == *name) {
-                    if !self.expanding.contains(name) {
-                        self.expanding.push(name.clone());
-                        let formula = def.formula.clone();
-                        let start = self.compile(draft, &formula, next);
-                        self.expanding.pop();
-                        return start;
-                    }
-                    self.diagnostics.push(FileDiagnostic::warning(
-                        &self.file,
-                        def.line,
-                        format!("`{name}` is defined in terms of itself; its inner use is a basic activity"),
-                    ));
-                }
-                let id = ident(name);
-                let s = draft.state(
-                    &id,
-                    vec![Action::Call {
-                        function: id.clone(),
-                        argument: None,
-                    }],
-                );
-                draft.go(s, atom(format!("{id}Done")), next);
-                s
-            }
+            Formula::Activity(name) => self.activity(draft, name, next),
             Formula::Sequence(parts) => {
                 let mut at = next;
                 for part in parts.iter().rev() {
@@ -406,20 +381,7 @@ impl Generator<'_> {
                 }
                 at
             }
-            Formula::Choice(options) => {
-                let c = draft.state("Choose", Vec::new());
-                let mut named: Vec<String> = Vec::new();
-                for option in options {
-                    let start = self.compile(draft, option, next);
-                    let mut label = format!("choose{}", first_activity(option));
-                    while named.contains(&label) {
-                        label.push('_');
-                    }
-                    named.push(label.clone());
-                    draft.go(c, atom(label), start);
-                }
-                c
-            }
+            Formula::Choice(options) => self.choice(draft, options, next),
             Formula::Many(inner) => {
                 let l = draft.state("Repeat", Vec::new());
                 let start = self.compile(draft, inner, l);
@@ -447,35 +409,88 @@ impl Generator<'_> {
                 draft.go(m, Label::TRUE, next);
                 m
             }
-            Formula::Parallel(branches) => {
-                let mut entry = Vec::new();
-                let mut done = Vec::new();
-                for (k, branch) in branches.iter().enumerate() {
-                    let base = match branch {
-                        Formula::Activity(a) => a.clone(),
-                        _ => format!("{}Branch{}", draft.name, k + 1),
-                    };
-                    let name = self.machine_name(&base);
-                    self.branch_machine(&name, branch);
-                    entry.push(Action::Post {
-                        ty: finished_type(&name),
-                        content: "false".into(),
-                    });
-                    entry.push(Action::Post {
-                        ty: name.clone(),
-                        content: Command::On.word().into(),
-                    });
-                    done.push(atom(finished_type(&name)));
-                }
-                let p = draft.state("Parallel", entry);
-                draft.go(
-                    p,
-                    Label::fold(BinOp::And, done).unwrap_or(Label::TRUE),
-                    next,
-                );
-                p
-            }
+            Formula::Parallel(branches) => self.parallel(draft, branches, next),
         }
+    }
+
+    /// A defined activity expanded in place (once: a definition in terms of itself is a basic
+    /// activity inside), or a basic one: a state calling its host function until `NameDone`.
+    fn activity(&mut self, draft: &mut Draft, name: &str, next: StateId) -> StateId {
+        let atom = Label::Name;
+        if let Some(def) = self.defs.iter().find(|d| d.name == *name) {
+            if !self.expanding.iter().any(|e| e == name) {
+                self.expanding.push(name.to_string());
+                let formula = def.formula.clone();
+                let start = self.compile(draft, &formula, next);
+                self.expanding.pop();
+                return start;
+            }
+            self.diagnostics.push(FileDiagnostic::warning(
+                &self.file,
+                def.line,
+                format!(
+                    "`{name}` is defined in terms of itself; its inner use is a basic activity"
+                ),
+            ));
+        }
+        let id = ident(name);
+        let s = draft.state(
+            &id,
+            vec![Action::Call {
+                function: id.clone(),
+                argument: None,
+            }],
+        );
+        draft.go(s, atom(format!("{id}Done")), next);
+        s
+    }
+
+    /// A state choosing among the options by labels nobody answers yet (`chooseA`).
+    fn choice(&mut self, draft: &mut Draft, options: &[Formula], next: StateId) -> StateId {
+        let atom = Label::Name;
+        let c = draft.state("Choose", Vec::new());
+        let mut named: Vec<String> = Vec::new();
+        for option in options {
+            let start = self.compile(draft, option, next);
+            let mut label = format!("choose{}", first_activity(option));
+            while named.contains(&label) {
+                label.push('_');
+            }
+            named.push(label.clone());
+            draft.go(c, atom(label), start);
+        }
+        c
+    }
+
+    /// A state starting one sub-machine per branch and waiting for all their `NameFinished`.
+    fn parallel(&mut self, draft: &mut Draft, branches: &[Formula], next: StateId) -> StateId {
+        let atom = Label::Name;
+        let mut entry = Vec::new();
+        let mut done = Vec::new();
+        for (k, branch) in branches.iter().enumerate() {
+            let base = match branch {
+                Formula::Activity(a) => a.clone(),
+                _ => format!("{}Branch{}", draft.name, k + 1),
+            };
+            let name = self.machine_name(&base);
+            self.branch_machine(&name, branch);
+            entry.push(Action::Post {
+                ty: finished_type(&name),
+                content: "false".into(),
+            });
+            entry.push(Action::Post {
+                ty: name.clone(),
+                content: Command::On.word().into(),
+            });
+            done.push(atom(finished_type(&name)));
+        }
+        let p = draft.state("Parallel", entry);
+        draft.go(
+            p,
+            Label::fold(BinOp::And, done).unwrap_or(Label::TRUE),
+            next,
+        );
+        p
     }
 
     /// A sub-machine running `f` once, then posting `NameFinished` and turning itself off.
