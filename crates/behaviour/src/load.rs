@@ -91,21 +91,11 @@ pub fn load_manifest(
         }
     };
     let manifest_file = files.show(manifest_name);
-    let duration = |field: &str, value: &Option<String>, problems: &mut Problems| {
-        let text = value.as_ref()?;
-        let parsed = parse_duration(text).filter(|d| !d.is_zero());
-        if parsed.is_none() {
-            problems.error(format!(
-                "{manifest_file}: error: {field} = \"{text}\" is not a duration (write 100ms, 2s or 1.5s)"
-            ));
-        }
-        parsed
-    };
-    let ring_period = duration("ring_period", &manifest.ring_period, &mut problems)
-        .unwrap_or(Duration::from_millis(100));
-    let answer_timeout = duration("answer_timeout", &manifest.answer_timeout, &mut problems)
-        .unwrap_or(Duration::from_secs(1));
-    let run_for = duration("run_for", &manifest.run_for, &mut problems);
+    let Timing {
+        ring_period,
+        answer_timeout,
+        run_for,
+    } = timing(&manifest, &manifest_file, &mut problems);
     if manifest.machines.is_empty() {
         problems.error(format!(
             "{manifest_file}: error: the behaviour names no [[machine]]"
@@ -138,16 +128,7 @@ pub fn load_manifest(
         Some(i) => read_lines(files.as_ref(), &i.script, parse_script, &mut problems),
     };
 
-    let mut outside = manifest.modules.clone();
-    if let Some(file) = &manifest.dictionary {
-        match files.read(file).map(|t| parse_dictionary(&t)) {
-            Ok(Ok(d)) => outside.extend(d.modules),
-            Ok(Err((line, message))) => {
-                problems.error(format!("{}:{line}: error: {message}", files.show(file)))
-            }
-            Err(e) => problems.error(e),
-        }
-    }
+    let outside = outside_modules(files.as_ref(), &manifest, &mut problems);
 
     if problems.errors > 0 {
         let mut all = problems.lines;
@@ -170,6 +151,55 @@ pub fn load_manifest(
         warnings,
         files,
     })
+}
+
+/// The manifest's times, each a duration or an error saying what to write.
+struct Timing {
+    ring_period: Duration,
+    answer_timeout: Duration,
+    run_for: Option<Duration>,
+}
+
+fn timing(manifest: &Manifest, manifest_file: &str, problems: &mut Problems) -> Timing {
+    let duration = |field: &str, value: &Option<String>, problems: &mut Problems| {
+        let text = value.as_ref()?;
+        let parsed = parse_duration(text).filter(|d| !d.is_zero());
+        if parsed.is_none() {
+            problems.error(format!(
+                "{manifest_file}: error: {field} = \"{text}\" is not a duration (write 100ms, 2s or 1.5s)"
+            ));
+        }
+        parsed
+    };
+    let ring_period = duration("ring_period", &manifest.ring_period, problems)
+        .unwrap_or(Duration::from_millis(100));
+    let answer_timeout = duration("answer_timeout", &manifest.answer_timeout, problems)
+        .unwrap_or(Duration::from_secs(1));
+    let run_for = duration("run_for", &manifest.run_for, problems);
+    Timing {
+        ring_period,
+        answer_timeout,
+        run_for,
+    }
+}
+
+/// The modules outside the behaviour: the manifest's `[[module]]`s and its dictionary's.
+fn outside_modules(
+    files: &dyn Files,
+    manifest: &Manifest,
+    problems: &mut Problems,
+) -> Vec<ModuleEntry> {
+    let mut outside = manifest.modules.clone();
+    if let Some(file) = &manifest.dictionary {
+        match files.read(file).map(|t| parse_dictionary(&t)) {
+            Ok(Ok(d)) => outside.extend(d.modules),
+            Ok(Err((line, message))) => {
+                problems.error(format!("{}:{line}: error: {message}", files.show(file)))
+            }
+            Err(e) => problems.error(e),
+        }
+    }
+    outside
 }
 
 /// The machines the manifest names, each from its file; two of one name, or none that
