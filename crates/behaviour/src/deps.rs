@@ -31,6 +31,31 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
     );
     let mut above: Vec<String> = Vec::new();
     let mut below: Vec<String> = Vec::new();
+    let experts_missing = experts_above(modules, me, &mut above, &mut out);
+    let listeners_missing = listeners_below(modules, me, &above, &mut below, &mut out);
+    let unknown = experts_missing || listeners_missing;
+    if unknown {
+        out.push_str("  unknown [shape=plaintext, fontcolor=red, label=\"unknown\"];\n");
+    }
+    for (rank, group) in [("min", &above), ("max", &below)] {
+        if !group.is_empty() {
+            let members: Vec<String> = group.iter().map(|n| quote(n)).collect();
+            let _ = writeln!(out, "  {{ rank={rank}; {}; }}", members.join("; "));
+        }
+    }
+    out.push_str("}\n");
+    Ok(out)
+}
+
+/// The experts answering what `me` waits on, linked green above it (a label nobody answers
+/// from `unknown`, red); whether any was missing.
+fn experts_above(
+    modules: &[Module],
+    me: &Module,
+    above: &mut Vec<String>,
+    out: &mut String,
+) -> bool {
+    let centre = me.decl.name.as_str();
     let mut unknown = false;
     for atom in &me.decl.waits_on {
         let experts: Vec<&Module> = modules
@@ -59,6 +84,20 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
             );
         }
     }
+    unknown
+}
+
+/// The modules hearing what `me` posts, linked below it (a posting nobody hears to `unknown`,
+/// red); whether any was missing.
+fn listeners_below(
+    modules: &[Module],
+    me: &Module,
+    above: &[String],
+    below: &mut Vec<String>,
+    out: &mut String,
+) -> bool {
+    let centre = me.decl.name.as_str();
+    let mut unknown = false;
     for ty in me
         .decl
         .posts
@@ -93,17 +132,7 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
             );
         }
     }
-    if unknown {
-        out.push_str("  unknown [shape=plaintext, fontcolor=red, label=\"unknown\"];\n");
-    }
-    for (rank, group) in [("min", &above), ("max", &below)] {
-        if !group.is_empty() {
-            let members: Vec<String> = group.iter().map(|n| quote(n)).collect();
-            let _ = writeln!(out, "  {{ rank={rank}; {}; }}", members.join("; "));
-        }
-    }
-    out.push_str("}\n");
-    Ok(out)
+    unknown
 }
 
 /// Every module and every provider → listener link: green where a label is proclaimed, black
