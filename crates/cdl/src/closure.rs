@@ -54,10 +54,7 @@ pub enum Resolvents {
 /// Closes `clauses` under resolution. Indexing clauses by literal keeps the common case (many
 /// unit facts, few real clauses) linear.
 pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
-    let mut all: Vec<Vec<Lit>> = Vec::new();
-    let mut given: Vec<Option<usize>> = Vec::new();
-    let mut seen: FxHashSet<Vec<Lit>> = FxHashSet::default();
-    let mut by_lit: FxHashMap<Lit, Vec<usize>> = FxHashMap::default();
+    let mut closure = Closure::default();
     for (i, clause) in input.iter().enumerate() {
         let Some(clause) = normalize(clause.clone()) else {
             continue;
@@ -68,32 +65,25 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
                 second: (Vec::new(), Some(i)),
             };
         }
-        if seen.insert(clause.clone()) {
-            for &l in &clause {
-                by_lit.entry(l).or_default().push(all.len());
-            }
-            all.push(clause);
-            given.push(Some(i));
+        if !closure.seen.contains(&clause) {
+            closure.add(clause, Some(i));
         }
     }
     let mut next = 0;
     loop {
-        if next == all.len() {
+        if next == closure.all.len() {
             // Resolved out; with the implications implicit, the units they force come next.
             if resolvents == Resolvents::All {
                 break;
             }
-            match forced_units(&all, &seen) {
+            match forced_units(&closure.all, &closure.seen) {
                 Forced::None => break,
                 Forced::Units(units) => {
-                    if all.len() + units.len() > MAX_CLOSURE {
+                    if closure.all.len() + units.len() > MAX_CLOSURE {
                         return ClosureOutcome::TooLarge;
                     }
                     for unit in units {
-                        by_lit.entry(unit).or_default().push(all.len());
-                        seen.insert(vec![unit]);
-                        all.push(vec![unit]);
-                        given.push(None);
+                        closure.add(vec![unit], None);
                     }
                 }
                 Forced::Both(l) => {
@@ -105,13 +95,46 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
             }
             continue;
         }
-        let current = all[next].clone();
+        if let Err(stopped) = closure.resolve(next, resolvents) {
+            return stopped;
+        }
+        next += 1;
+    }
+    ClosureOutcome::Closed {
+        clauses: closure.all,
+        given: closure.given,
+    }
+}
+
+/// The clauses so far, indexed by literal, each with the input clause it is (if one).
+#[derive(Default)]
+struct Closure {
+    all: Vec<Vec<Lit>>,
+    given: Vec<Option<usize>>,
+    seen: FxHashSet<Vec<Lit>>,
+    by_lit: FxHashMap<Lit, Vec<usize>>,
+}
+
+impl Closure {
+    fn add(&mut self, clause: Vec<Lit>, given: Option<usize>) {
+        for &l in &clause {
+            self.by_lit.entry(l).or_default().push(self.all.len());
+        }
+        self.seen.insert(clause.clone());
+        self.all.push(clause);
+        self.given.push(given);
+    }
+
+    /// Adds every new resolvent of clause `next` with the clauses before it and after; stops
+    /// with the outcome when two units contradict or the closure grows too large.
+    fn resolve(&mut self, next: usize, resolvents: Resolvents) -> Result<(), ClosureOutcome> {
+        let current = self.all[next].clone();
         for &l in &current {
-            let Some(partners) = by_lit.get(&l.complement()) else {
+            let Some(partners) = self.by_lit.get(&l.complement()) else {
                 continue;
             };
             for p in partners.clone() {
-                let other = &all[p];
+                let other = &self.all[p];
                 if resolvents == Resolvents::ImplicationsImplicit
                     && current.len() == 2
                     && other.len() == 2
@@ -119,10 +142,10 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
                     continue;
                 }
                 if current.len() == 1 && other.len() == 1 {
-                    return ClosureOutcome::Inconsistent {
-                        first: (current, given[next]),
-                        second: (other.clone(), given[p]),
-                    };
+                    return Err(ClosureOutcome::Inconsistent {
+                        first: (current, self.given[next]),
+                        second: (other.clone(), self.given[p]),
+                    });
                 }
                 let resolvent: Vec<Lit> = current
                     .iter()
@@ -133,25 +156,16 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
                 let Some(resolvent) = normalize(resolvent) else {
                     continue;
                 };
-                if seen.contains(&resolvent) {
+                if self.seen.contains(&resolvent) {
                     continue;
                 }
-                if all.len() >= MAX_CLOSURE {
-                    return ClosureOutcome::TooLarge;
+                if self.all.len() >= MAX_CLOSURE {
+                    return Err(ClosureOutcome::TooLarge);
                 }
-                for &x in &resolvent {
-                    by_lit.entry(x).or_default().push(all.len());
-                }
-                seen.insert(resolvent.clone());
-                all.push(resolvent);
-                given.push(None);
+                self.add(resolvent, None);
             }
         }
-        next += 1;
-    }
-    ClosureOutcome::Closed {
-        clauses: all,
-        given,
+        Ok(())
     }
 }
 
