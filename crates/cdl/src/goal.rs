@@ -290,6 +290,74 @@ pub(crate) fn successors(
     }
 }
 
+/// An aggregate goal's ways: each literal with a direct implication into the part, each part
+/// chained into it.
+fn aggregate_supporters(
+    engine: &Engine,
+    goal: Goal,
+    supporter: &mut dyn FnMut(&mut dyn Iterator<Item = Goal>),
+) {
+    let (rep, kind) = engine.aggregate_parts(goal);
+    let i = &engine.implications;
+    for &x in i.direct.row(rep as usize) {
+        supporter(&mut std::iter::once(self::goal(Lit(x), kind)));
+    }
+    for &r in i.chained.row(rep as usize) {
+        supporter(&mut std::iter::once(engine.aggregate_base() + r * 3 + kind));
+    }
+}
+
+/// Whether a rule's antecedent is settled and proved.
+fn all_settled_true(
+    engine: &Engine,
+    settled: &dyn Fn(Goal) -> Option<bool>,
+    rule: u32,
+    kind: u32,
+) -> bool {
+    engine
+        .body(rule)
+        .iter()
+        .all(|&a| settled(goal(a, kind)) == Some(true))
+}
+
+/// Whether an attacker on `q`, applicable outside the component, stands unbeaten by any team
+/// of superiors settled outside it. `Err` when a superior reads a member (an AND of ways).
+fn an_attacker_stands(
+    engine: &Engine,
+    q: Lit,
+    kind: u32,
+    settled: &dyn Fn(Goal) -> Option<bool>,
+) -> Result<bool, ()> {
+    let reads_member = |rule: u32| {
+        engine
+            .body(rule)
+            .iter()
+            .any(|&a| settled(goal(a, kind)).is_none())
+    };
+    let attacker_kind = if kind == BETA { BETA } else { SUP };
+    for &s in engine.rules_for(q.complement()) {
+        if !all_settled_true(engine, settled, s, attacker_kind) {
+            continue; // fails in the upper bound, or outside it
+        }
+        let team = engine
+            .superiors_of(s)
+            .iter()
+            .filter(|&&t| engine.head(t) == q && engine.kind(t).supports());
+        let mut beaten = false;
+        for &t in team {
+            if all_settled_true(engine, settled, t, kind) {
+                beaten = true;
+            } else if reads_member(t) {
+                return Err(());
+            }
+        }
+        if !beaten {
+            return Ok(true);
+        }
+    }
+    Ok(false)
+}
+
 /// The goal's ways to be supported when every internal attack fails (the reading of the upper
 /// bound): each call of `supporter` gives the goals one way reads, all of which must hold (an
 /// empty list holds outright). `settled` gives a settled goal's value, `None` for a member of the
@@ -303,32 +371,13 @@ pub(crate) fn supporters(
     supporter: &mut dyn FnMut(&mut dyn Iterator<Item = Goal>),
 ) -> Result<(), ()> {
     if engine.is_aggregate(goal) {
-        let (rep, kind) = engine.aggregate_parts(goal);
-        let i = &engine.implications;
-        for &x in i.direct.row(rep as usize) {
-            supporter(&mut std::iter::once(self::goal(Lit(x), kind)));
-        }
-        for &r in i.chained.row(rep as usize) {
-            supporter(&mut std::iter::once(engine.aggregate_base() + r * 3 + kind));
-        }
+        aggregate_supporters(engine, goal, supporter);
         return Ok(());
     }
     let q = lit_of(goal);
     let nq = q.complement();
     let kind = kind_of(goal);
-    // A rule whose antecedent is settled and proved, and one that reads a member.
-    let all_settled_true = |rule: u32, kind: u32| {
-        engine
-            .body(rule)
-            .iter()
-            .all(|&a| settled(self::goal(a, kind)) == Some(true))
-    };
-    let reads_member = |rule: u32, kind: u32| {
-        engine
-            .body(rule)
-            .iter()
-            .any(|&a| settled(self::goal(a, kind)).is_none())
-    };
+    let proved_outside = |rule: u32, kind: u32| all_settled_true(engine, settled, rule, kind);
     if mu[q.index()] {
         supporter(&mut std::iter::empty());
         return Ok(());
@@ -342,7 +391,7 @@ pub(crate) fn supporters(
             let blocked = engine
                 .superiors_of(r)
                 .iter()
-                .any(|&s| engine.head(s) == nq && all_settled_true(s, PI));
+                .any(|&s| engine.head(s) == nq && proved_outside(s, PI));
             if !blocked {
                 supporter(&mut engine.body(r).iter().map(|&a| self::goal(a, SUP)));
             }
@@ -351,26 +400,8 @@ pub(crate) fn supporters(
         if mu[nq.index()] {
             return Ok(());
         }
-        let attacker_kind = if kind == BETA { BETA } else { SUP };
-        for &s in engine.rules_for(nq) {
-            if !all_settled_true(s, attacker_kind) {
-                continue; // fails in the upper bound, or outside it
-            }
-            let team = engine
-                .superiors_of(s)
-                .iter()
-                .filter(|&&t| engine.head(t) == q && engine.kind(t).supports());
-            let mut beaten = false;
-            for &t in team {
-                if all_settled_true(t, kind) {
-                    beaten = true;
-                } else if reads_member(t, kind) {
-                    return Err(());
-                }
-            }
-            if !beaten {
-                return Ok(()); // no way to hold at all
-            }
+        if an_attacker_stands(engine, q, kind, settled)? {
+            return Ok(()); // no way to hold at all
         }
         for &r in engine.rules_for(q) {
             if engine.kind(r).supports() {
