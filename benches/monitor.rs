@@ -121,44 +121,45 @@ fn open_page(
     })
 }
 
-/// Events as a run folds them in, `rate` a second, until `stop` (the answers of a machine's
-/// labels, as the run's event loop hands them to the page).
-fn fold_events(monitor: Monitor, rate: u64, stop: Arc<AtomicU64>) -> tokio::task::JoinHandle<u64> {
+/// Calls `act` with 0, 1, 2, … `rate` times a second until `stop`; how many calls.
+fn at_rate(
+    rate: u64,
+    stop: Arc<AtomicU64>,
+    mut act: impl FnMut(u64, Duration) + Send + 'static,
+) -> tokio::task::JoinHandle<u64> {
     tokio::spawn(async move {
         let start = Instant::now();
-        let mut sent = 0u64;
+        let mut done = 0u64;
         while stop.load(Ordering::Relaxed) == 0 {
             let due = (start.elapsed().as_secs_f64() * rate as f64) as u64;
-            while sent < due {
-                monitor.observe(&Event::Answered {
-                    machine: "Microwave".into(),
-                    atom: format!("label{}", sent % 50),
-                    value: sent % 7 == 0,
-                    by: Answerer::Expert("oven".into()),
-                    at: start.elapsed(),
-                });
-                sent += 1;
+            while done < due {
+                act(done, start.elapsed());
+                done += 1;
             }
             tokio::time::sleep(Duration::from_millis(1)).await;
         }
-        sent
+        done
     })
 }
 
-/// Posts `rate` messages a second over 100 types until `stop`; how many it posted.
+/// Events as a run folds them in, `rate` a second, until `stop` (the answers of a machine's
+/// labels, as the run's event loop hands them to the page).
+fn fold_events(monitor: Monitor, rate: u64, stop: Arc<AtomicU64>) -> tokio::task::JoinHandle<u64> {
+    at_rate(rate, stop, move |n, at| {
+        monitor.observe(&Event::Answered {
+            machine: "Microwave".into(),
+            atom: format!("label{}", n % 50),
+            value: n % 7 == 0,
+            by: Answerer::Expert("oven".into()),
+            at,
+        })
+    })
+}
+
+/// Posts `rate` messages a second over 100 types until `stop`.
 fn post_load(board: Whiteboard, rate: u64, stop: Arc<AtomicU64>) -> tokio::task::JoinHandle<u64> {
-    tokio::spawn(async move {
-        let start = Instant::now();
-        let mut sent = 0u64;
-        while stop.load(Ordering::Relaxed) == 0 {
-            let due = (start.elapsed().as_secs_f64() * rate as f64) as u64;
-            while sent < due {
-                board.post("sensor", &format!("Reading{}", sent % 100), sent as i64);
-                sent += 1;
-            }
-            tokio::time::sleep(Duration::from_millis(1)).await;
-        }
-        sent
+    at_rate(rate, stop, move |n, _| {
+        board.post("sensor", &format!("Reading{}", n % 100), n as i64);
     })
 }
 

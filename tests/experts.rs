@@ -472,8 +472,9 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
     assert!(counters.status_sent.load(Ordering::Relaxed) >= 1);
 }
 
-#[test]
-fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
+/// A ladder of attack cycles (benchmarks.md) whose `t0` a budget of 1,000 steps leaves
+/// undecided (it is true), and that budget.
+fn ladder_and_a_tight_budget() -> (proclaim_cdl::Theory, proclaim_cdl::SearchLimits) {
     let mut text = Vec::new();
     proclaim_gen::Family::parse("ladder", &[6])
         .unwrap()
@@ -488,6 +489,12 @@ fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
         steps: 1000,
         ..Default::default()
     };
+    (theory, tight)
+}
+
+#[test]
+fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
+    let (theory, tight) = ladder_and_a_tight_budget();
     let mut expert =
         proclaim_experts::ReasonerExpert::new("ladder", theory.clone(), &Default::default())
             .with_limits(tight);
@@ -506,20 +513,7 @@ fn the_reasoner_expert_answers_an_undecided_label_false_and_counts_it() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn an_undecided_answer_is_marked_on_the_board_before_it_is_posted() {
-    let mut text = Vec::new();
-    proclaim_gen::Family::parse("ladder", &[6])
-        .unwrap()
-        .write(&mut text, proclaim_gen::Format::Dl)
-        .unwrap();
-    let theory = proclaim_cdl::load(
-        std::str::from_utf8(&text).unwrap(),
-        proclaim_cdl::Language::Dl,
-    )
-    .unwrap();
-    let tight = proclaim_cdl::SearchLimits {
-        steps: 1000,
-        ..Default::default()
-    };
+    let (theory, tight) = ladder_and_a_tight_budget();
     let board = Whiteboard::local();
     let expert = proclaim_experts::ReasonerExpert::new("ladder", theory, &Default::default())
         .with_limits(tight);

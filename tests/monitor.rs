@@ -112,6 +112,24 @@ async fn open_browser() -> Option<(Running, Client)> {
     }
 }
 
+/// Clicks the page's element with that id, as a person would.
+async fn click(client: &Client, id: &str) {
+    let element = client
+        .find(Locator::Id(id))
+        .await
+        .expect("the element is on the page");
+    element.click().await.expect("the element takes a click");
+}
+
+/// Types `text` into the page's field with that id.
+async fn type_into(client: &Client, id: &str, text: &str) {
+    let field = client
+        .find(Locator::Id(id))
+        .await
+        .expect("the field is on the page");
+    field.send_keys(text).await.expect("the field takes typing");
+}
+
 async fn eval(client: &Client, script: &str) -> Json {
     client
         .execute(script, vec![])
@@ -190,13 +208,7 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
         std::fs::write(path, client.screenshot().await.expect("a screenshot")).expect("written");
     }
 
-    client
-        .find(Locator::Id("pause"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    click(&client, "pause").await;
     until(
         &client,
         "return document.getElementById('status').dataset.paused ?? null",
@@ -205,27 +217,9 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
     )
     .await;
     // Opening the door while paused: the theory sees it, the machine does not move yet.
-    client
-        .find(Locator::Id("post-type"))
-        .await
-        .unwrap()
-        .send_keys("doorOpen")
-        .await
-        .unwrap();
-    client
-        .find(Locator::Id("post-value"))
-        .await
-        .unwrap()
-        .send_keys("true")
-        .await
-        .unwrap();
-    client
-        .find(Locator::Id("post-send"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    type_into(&client, "post-type", "doorOpen").await;
+    type_into(&client, "post-value", "true").await;
+    click(&client, "post-send").await;
     until(&client, &board_value("doorOpen"), json!("true"), 2 * second).await;
     tokio::time::sleep(Duration::from_millis(600)).await;
     assert_eq!(
@@ -234,22 +228,10 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
         "a paused machine moved"
     );
     // One ring: ~cook && light holds now.
-    client
-        .find(Locator::Id("step"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    click(&client, "step").await;
     until(&client, STATE, json!("OPEN"), 3 * second).await;
     until(&client, FIRED, json!("s3->s2"), second).await;
-    client
-        .find(Locator::Id("resume"))
-        .await
-        .unwrap()
-        .click()
-        .await
-        .unwrap();
+    click(&client, "resume").await;
     until(
         &client,
         "return document.getElementById('status').dataset.paused ?? null",
