@@ -4,11 +4,11 @@
 
 use proclaim_board::{Whiteboard, QUERY_TYPE};
 use proclaim_cdl::{load, Language};
-use proclaim_experts::simulator::{self, parse_game, SimConfig};
 use proclaim_experts::{
     parse_mapping, parse_script, ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator,
     ReasonerExpert, ReceiverConfig,
 };
+use proclaim_gcsim::{self as simulator, parse_game, SimConfig};
 use std::sync::atomic::Ordering;
 use std::time::Duration;
 

@@ -4,8 +4,8 @@
 use super::runtime::{runtime, Shape};
 use crate::failure::Failure;
 use crate::network::{whiteboard, Network};
-use proclaim_experts::simulator::{self, default_game, parse_game, SimConfig};
 use proclaim_experts::{parse_duration, GameControllerReceiver, ReceiverConfig};
+use proclaim_gcsim::{self as simulator, default_game, parse_game, SimConfig};
 use std::net::SocketAddr;
 use std::path::Path;
 use std::process::ExitCode;

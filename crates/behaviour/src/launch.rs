@@ -5,11 +5,11 @@
 use crate::load::Behaviour;
 use crate::manifest::{SensorKind, Simulator};
 use proclaim_board::{Pattern, Whiteboard};
-use proclaim_experts::simulator::{default_game, play, Event as SimEvent, SimConfig};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
     ReceiverConfig, Script,
 };
+use proclaim_gcsim::{default_game, play, Event as SimEvent, SimConfig};
 use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions, Stepper};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;

@@ -7,12 +7,12 @@ use crate::manifest::{
     MANIFEST,
 };
 use proclaim_cdl::{check_source, Language, Theory};
-use proclaim_experts::simulator::{parse_game, GameScript};
 use proclaim_experts::{parse_duration, parse_mapping, parse_script, Script};
 use proclaim_fsm::{
     import_qfsm, import_ta, machine_format, parse_machine, Imported, Machine, MachineFormat,
     Severity,
 };
+use proclaim_gcsim::{parse_game, GameScript};
 use proclaim_runner::Loader;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
@@ -292,7 +292,7 @@ fn load_theory(
 fn read_lines<T>(
     files: &dyn Files,
     file: &str,
-    parse: fn(&str) -> Result<T, proclaim_experts::LineErrors>,
+    parse: fn(&str) -> Result<T, proclaim_syntax::LineErrors>,
     problems: &mut Problems,
 ) -> Option<T> {
     match files.read(file).map(|text| parse(&text)) {

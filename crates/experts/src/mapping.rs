@@ -1,7 +1,7 @@
 //! The mapping file of a reasoner expert: which whiteboard message feeds which input atom, one
 //! `atom = MessageType` a line, `#` comments.
 
-use crate::lines::{code_lines, LineError, LineErrors};
+use proclaim_syntax::{code_lines, LineError, LineErrors};
 use rustc_hash::FxHashMap;
 
 /// Reads a mapping: input atom → message type. Every bad line is reported.

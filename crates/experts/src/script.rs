@@ -8,7 +8,7 @@
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
 //! ```
 
-use crate::lines::{code_lines, LineError, LineErrors};
+use proclaim_syntax::{code_lines, LineError, LineErrors};
 use std::time::Duration;
 
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -8,6 +8,7 @@ pub mod ast;
 mod dfl;
 pub mod diagnostic;
 pub mod lexer;
+mod lines;
 mod nearest;
 mod parse;
 pub mod span;
@@ -20,6 +21,7 @@ lalrpop_util::lalrpop_mod!(
 pub use ast::{Algorithm, Arrow, Item, Lit, OutputPart, Query, RuleItem};
 pub use dfl::parse_dfl;
 pub use diagnostic::{render, Diagnostic, Severity};
+pub use lines::{code_lines, parse_duration, LineError, LineErrors};
 pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
 pub use span::{line_column, Span};

@@ -14,10 +14,10 @@
 //! 8s    finished
 //! ```
 
-use crate::lines::{code_lines, LineError, LineErrors};
 use proclaim_gc::{
     encode, Colour, ControlPacket, GamePhase, GameState, RobotInfo, SetPlay, TeamInfo,
 };
+use proclaim_syntax::{code_lines, parse_duration, LineError, LineErrors};
 use std::io;
 use std::net::SocketAddr;
 use std::time::Duration;
@@ -107,7 +107,7 @@ pub fn parse_game(text: &str) -> Result<GameScript, LineErrors> {
             });
             continue;
         };
-        let Some(time) = crate::parse_duration(time) else {
+        let Some(time) = parse_duration(time) else {
             errors.push(LineError {
                 line,
                 message: format!("`{time}` is not a time"),

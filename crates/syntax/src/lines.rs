@@ -1,5 +1,6 @@
 //! What the small line-based formats (mapping files, impersonator scripts, game scripts) share:
-//! `#` comments, blank lines skipped, and errors that name their line.
+//! `#` comments, blank lines skipped, errors that name their line, and durations as they write
+//! them.
 
 use std::fmt;
 
@@ -55,9 +56,25 @@ impl fmt::Display for LineErrors {
 impl std::error::Error for LineErrors {}
 
 /// The non-blank lines with their comments removed, numbered from 1.
-pub(crate) fn code_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+pub fn code_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     text.lines().enumerate().filter_map(|(i, raw)| {
         let code = raw.split('#').next().unwrap_or("").trim();
         (!code.is_empty()).then_some((i + 1, code))
     })
+}
+
+/// Parses a duration written `250ms`, `2s`, `1.5s` or `3` (seconds).
+pub fn parse_duration(text: &str) -> Option<std::time::Duration> {
+    let t = text.trim();
+    let (number, scale) = if let Some(ms) = t.strip_suffix("ms") {
+        (ms, 1e-3)
+    } else if let Some(us) = t.strip_suffix("us") {
+        (us, 1e-6)
+    } else if let Some(s) = t.strip_suffix('s') {
+        (s, 1.0)
+    } else {
+        (t, 1.0)
+    };
+    let value: f64 = number.trim().parse().ok()?;
+    (value.is_finite() && value >= 0.0).then(|| std::time::Duration::from_secs_f64(value * scale))
 }
