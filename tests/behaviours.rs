@@ -432,17 +432,7 @@ fn liveness_formulas_of_the_test_behaviour_become_a_skeleton_machine() {
     );
     assert_eq!(files, ["TestBehavior.machine", "behaviour.toml"]);
     let text = std::fs::read_to_string(dir.join("TestBehavior.machine")).unwrap();
-    assert_eq!(
-        text,
-        "machine TestBehavior\ninitial Choose\n\n\
-         state Choose {\n    when choosePlay -> Choose2\n    when chooseNoPlay -> NoPlay\n}\n\n\
-         state Choose2 {\n    when chooseSitDownAndStare -> SitDownAndStare\n    when chooseStandUpAndScan -> StandUpAndScan\n}\n\n\
-         state NoPlay {\n    entry {\n        call NoPlay\n    }\n    when NoPlayDone -> Repeat\n}\n\n\
-         state SitDownAndStare {\n    entry {\n        call SitDownAndStare\n    }\n    when SitDownAndStareDone -> Repeat\n}\n\n\
-         state StandUpAndScan {\n    entry {\n        call StandUpAndScan\n    }\n    when StandUpAndScanDone -> Repeat\n}\n\n\
-         state Repeat {\n    when againPlay -> Choose\n    when TRUE -> End\n}\n\n\
-         state End {\n}\n"
-    );
+    insta::assert_snapshot!("liveness_test_behaviour_machine", text);
     let b = load("test", Arc::new(Folder::new(&dir))).unwrap();
     let open: Vec<String> = proclaim_behaviour::check_behaviour(&b)
         .iter()
