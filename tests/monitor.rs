@@ -426,3 +426,45 @@ fn bad_monitor_arguments_say_what_is_wrong() {
     assert!(stderr.contains("line 1: not a trace event"), "{stderr}");
     let _ = std::fs::remove_file(&not_a_trace);
 }
+
+#[test]
+fn a_trace_replayed_without_its_behaviour_draws_what_the_trace_shows() {
+    let trace = std::env::temp_dir().join(format!(
+        "proclaim-monitor-alone-{}.jsonl",
+        std::process::id()
+    ));
+    let trace_arg = trace.to_str().unwrap();
+    let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args([
+            "run",
+            "microwave",
+            "--virtual-clock",
+            "--for",
+            "10s",
+            "--trace",
+            trace_arg,
+        ])
+        .output()
+        .unwrap();
+    assert!(ran.status.success());
+    let (_replay, url) = proclaim_with_monitor(&["replay", trace_arg, "--monitor", "127.0.0.1:0"]);
+    let (status, model) = http(&url, "GET", "/api/model", None);
+    assert_eq!(status, 200);
+    let model: Json = serde_json::from_str(&model).unwrap();
+    assert_eq!(model["mode"], "replay");
+    // The impersonator's postings are in the trace too, but it is no machine.
+    let charts = model["charts"].as_array().unwrap();
+    assert_eq!(charts.len(), 1, "{charts:?}");
+    let states: Vec<&str> = charts[0]["states"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(states, ["IDLE", "OPEN", "COOKING"]);
+    let (_, first) = http(&url, "GET", "/api/frame?at=0", None);
+    let first: Json = serde_json::from_str(&first).unwrap();
+    assert_eq!(first["machines"][0]["state_name"], "IDLE");
+    assert_eq!(first["at"], 0);
+    let _ = std::fs::remove_file(&trace);
+}

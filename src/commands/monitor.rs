@@ -149,6 +149,8 @@ fn charts_of_trace(events: &[Event]) -> Vec<Chart> {
     }
     machines
         .into_iter()
+        // The script's postings show under `impersonator`, which is no machine.
+        .filter(|m| !(m.states.is_empty() && m.transitions.is_empty()))
         .map(|mut m| {
             // A transition fired into a state not yet entered when the trace ends.
             for (from, to, _) in &m.transitions {
