@@ -173,7 +173,7 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
         std::env::temp_dir().join(format!("proclaim-monitor-{}.script", std::process::id()));
     std::fs::write(
         &script,
-        "doorOpen = false\ntimeLeft = false\nat 3s doorOpen = true\nat 6s doorOpen = false\nat 8s timeLeft = true\n",
+        "doorOpen = false\ntimeLeft = false\nat 4s doorOpen = true\nat 8s doorOpen = false\nat 10s timeLeft = true\n",
     )
     .unwrap();
     let (_run, url) = proclaim_with_monitor(&[
@@ -188,12 +188,12 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
     ]);
     client.goto(&url).await.expect("the page opens");
     let second = Duration::from_secs(1);
-    until(&client, STATE, json!("IDLE"), 3 * second).await;
-    until(&client, STATE, json!("OPEN"), 5 * second).await;
+    until(&client, STATE, json!("IDLE"), 4 * second).await;
+    until(&client, STATE, json!("OPEN"), 6 * second).await;
     until(&client, LIT, json!("s2"), second).await;
     until(&client, FIRED, json!("s1->s2"), second).await;
     until(&client, &board_value("doorOpen"), json!("true"), second).await;
-    until(&client, STATE, json!("IDLE"), 5 * second).await;
+    until(&client, STATE, json!("IDLE"), 6 * second).await;
     until(&client, STATE, json!("COOKING"), 5 * second).await;
     until(
         &client,
