@@ -468,3 +468,105 @@ fn a_trace_replayed_without_its_behaviour_draws_what_the_trace_shows() {
     assert_eq!(first["at"], 0);
     let _ = std::fs::remove_file(&trace);
 }
+
+#[test]
+fn a_machine_read_again_is_drawn_anew() {
+    let dir = crate::behaviour_folder(
+        "monitor-watch",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
+            (
+                "W.machine",
+                "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
+    // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--watch",
+        "--force",
+        "--for",
+        "30s",
+        "--monitor",
+        "127.0.0.1:0",
+    ]);
+    let states = |url: &str| -> (Vec<String>, u64) {
+        let (_, model) = http(url, "GET", "/api/model", None);
+        let model: Json = serde_json::from_str(&model).unwrap();
+        let names = model["charts"][0]["states"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["name"].as_str().unwrap().to_string())
+            .collect();
+        (names, model["charts_version"].as_u64().unwrap())
+    };
+    assert_eq!(
+        states(&url),
+        (vec!["Wait".to_string(), "Done".to_string()], 0)
+    );
+    std::thread::sleep(Duration::from_millis(500));
+    std::fs::write(
+        dir.join("W.machine"),
+        "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n",
+    )
+    .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let (names, version) = states(&url);
+        if names == ["Wait", "Later", "Done"] {
+            assert!(version >= 1);
+            break;
+        }
+        assert!(Instant::now() < deadline, "the page still draws {names:?}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let (_, frame) = http(&url, "GET", "/api/frame", None);
+    let frame: Json = serde_json::from_str(&frame).unwrap();
+    assert_eq!(frame["machines"][0]["state_name"], "Wait");
+    assert!(frame["charts_version"].as_u64().unwrap() >= 1);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_draws_a_machine_anew_when_its_file_changes() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let dir = crate::behaviour_folder(
+        "monitor-watch-page",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
+            (
+                "W.machine",
+                "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--watch",
+        "--force",
+        "--for",
+        "60s",
+        "--monitor",
+        "127.0.0.1:0",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    // States' groups are titled `s<id>` (the start point is `start`).
+    let nodes = "return Array.from(document.querySelectorAll('[data-machine=\"W\"] g.node title')).filter(t => /^s[0-9]+$/.test(t.textContent)).length";
+    let second = Duration::from_secs(1);
+    until(&client, nodes, json!(2), 3 * second).await;
+    std::fs::write(
+        dir.join("W.machine"),
+        "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n",
+    )
+    .unwrap();
+    until(&client, nodes, json!(3), 10 * second).await;
+    // Still lit where the machine is.
+    let lit = "return document.querySelector('[data-machine=\"W\"] g.node.current title')?.textContent ?? null";
+    until(&client, lit, json!("s1"), 2 * second).await;
+    let _ = client.close().await;
+}

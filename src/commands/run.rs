@@ -177,6 +177,7 @@ async fn run_on_board(
         trace_file,
         changed: watch(behaviour, args.watch),
         monitor: monitor.clone(),
+        behaviour,
     };
     let (why, halted) = live.follow(&board, &mut running, limit).await;
     let stats = board.stats();
@@ -257,6 +258,8 @@ struct Live<'t> {
     changed: tokio::sync::mpsc::UnboundedReceiver<String>,
     /// The browser page (`--monitor`).
     monitor: Option<proclaim_monitor::Monitor>,
+    /// The behaviour running, whose machines the page draws anew when they are read again.
+    behaviour: &'t Behaviour,
 }
 
 impl Live<'_> {
@@ -301,6 +304,9 @@ impl Live<'_> {
     fn show(&mut self, event: &Event) {
         if let Some(monitor) = &self.monitor {
             monitor.observe(event);
+            if let Event::Reloaded { machine, .. } = event {
+                self.redraw(monitor, machine);
+            }
         }
         if let Some(line) = self.view.line(event) {
             println!("{line}");
@@ -312,6 +318,25 @@ impl Live<'_> {
                 *self.trace_file = None;
             }
         }
+    }
+
+    /// The page draws a machine read again from its file as it is now (Graphviz runs off the
+    /// async threads).
+    fn redraw(&self, monitor: &proclaim_monitor::Monitor, machine: &str) {
+        let Some(loaded) = self
+            .behaviour
+            .machines
+            .iter()
+            .find(|m| m.machine.name == machine)
+        else {
+            return;
+        };
+        let (loader, start, monitor) = (loaded.loader.clone(), loaded.start, monitor.clone());
+        tokio::task::spawn_blocking(move || {
+            if let Ok(machine) = loader() {
+                monitor.redraw(proclaim_monitor::Chart::of_machine(&machine, start));
+            }
+        });
     }
 
     /// One save is several file events (create, write, metadata): gathers those of the next

@@ -47,6 +47,9 @@ impl QueryOutcome {
 #[derive(Clone)]
 pub struct Whiteboard {
     transport: Arc<dyn Transport>,
+    /// The (module, atom) pairs already warned of asking what nobody answers: a machine asks
+    /// at every ring, and one warning says it.
+    unanswered: Arc<std::sync::Mutex<rustc_hash::FxHashSet<(String, String)>>>,
 }
 
 impl Whiteboard {
@@ -56,7 +59,10 @@ impl Whiteboard {
     }
 
     pub fn new(transport: Arc<dyn Transport>) -> Whiteboard {
-        let board = Whiteboard { transport };
+        let board = Whiteboard {
+            transport,
+            unanswered: Arc::default(),
+        };
         board.declare(QUERY_TYPE, Kind::Data);
         board
     }
@@ -139,7 +145,16 @@ impl Whiteboard {
     pub async fn query(&self, module: &str, atom: &str, timeout: Duration) -> QueryOutcome {
         if !self.transport.is_answered(atom) {
             self.transport.count_query(false, true);
-            tracing::warn!(module, atom, "query for an atom no module answers");
+            let first = self
+                .unanswered
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert((module.to_string(), atom.to_string()));
+            if first {
+                tracing::warn!(module, atom, "query for an atom no module answers");
+            } else {
+                tracing::debug!(module, atom, "query for an atom no module answers");
+            }
             return QueryOutcome::NoExpert;
         }
         let asked = self.post(module, QUERY_TYPE, atom);

@@ -150,8 +150,28 @@ function renderEvents(frame) {
 
 let lastFrame = null;
 
+// A machine read again (`run --watch`): its diagram is drawn anew from the model.
+let redrawing = false;
+async function redraw() {
+  if (redrawing) return;
+  redrawing = true;
+  try {
+    model = await (await fetch("/api/model")).json();
+    drawn.clear();
+    $("machines").replaceChildren();
+    drawMachines();
+    if (lastFrame) render(lastFrame);
+  } finally {
+    redrawing = false;
+  }
+}
+
 function render(frame) {
   lastFrame = frame;
+  if (frame.charts_version !== undefined && frame.charts_version !== model.charts_version) {
+    redraw();
+    return;
+  }
   for (const m of frame.machines) renderMachine(m);
   renderBoard(frame);
   renderAnswers(frame);

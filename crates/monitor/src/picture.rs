@@ -168,6 +168,25 @@ impl Picture {
         }
     }
 
+    /// A machine read again: its states are the new chart's, and where it is is found again by
+    /// the state's name.
+    pub fn redraw(&mut self, chart: &Chart) {
+        let Some(view) = self.machines.iter_mut().find(|m| m.name == chart.name) else {
+            return;
+        };
+        view.states = chart
+            .states
+            .iter()
+            .map(|s| (s.id, s.name.clone()))
+            .collect();
+        view.state = view
+            .state_name
+            .as_ref()
+            .and_then(|n| view.states.iter().find(|(_, s)| s == n).map(|(id, _)| *id));
+        // The transition that fired may be gone from the new machine.
+        view.fired = None;
+    }
+
     /// Each machine's name and the name of the state it is in (or going to).
     pub fn states(&self) -> impl Iterator<Item = (&str, Option<&str>)> {
         self.machines

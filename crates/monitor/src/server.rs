@@ -37,7 +37,10 @@ pub struct Monitor {
 
 struct Shared {
     name: String,
-    charts: Vec<Chart>,
+    /// Replaced whole when a machine is read again (`--watch`); the page asks for the model
+    /// again when `charts_version` moves.
+    charts: Mutex<Arc<Vec<Chart>>>,
+    charts_version: std::sync::atomic::AtomicU64,
     picture: Mutex<Picture>,
     /// Bumped by every event folded in; frame streams wait on it.
     version: watch::Sender<u64>,
@@ -82,7 +85,8 @@ impl Monitor {
         Monitor {
             shared: Arc::new(Shared {
                 name,
-                charts,
+                charts: Mutex::new(Arc::new(charts)),
+                charts_version: Default::default(),
                 picture: Mutex::new(picture),
                 version: watch::channel(0).0,
                 source,
@@ -93,6 +97,25 @@ impl Monitor {
     /// Folds an event of the live run in. Cheap, and never waits on a page.
     pub fn observe(&self, event: &Event) {
         self.shared.picture().observe(event);
+        self.shared.changed();
+    }
+
+    /// A machine read again (`--watch`): its diagram replaced, the pages told to draw it anew.
+    /// Draws through Graphviz, so call it off the async threads (`spawn_blocking`).
+    pub fn redraw(&self, chart: Chart) {
+        self.shared.picture().redraw(&chart);
+        {
+            let mut charts = self.shared.charts.lock().unwrap_or_else(|e| e.into_inner());
+            let mut all: Vec<Chart> = charts.as_ref().clone();
+            match all.iter_mut().find(|c| c.name == chart.name) {
+                Some(old) => *old = chart,
+                None => all.push(chart),
+            }
+            *charts = Arc::new(all);
+        }
+        self.shared
+            .charts_version
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.shared.changed();
     }
 
@@ -135,6 +158,11 @@ impl Monitor {
 }
 
 impl Shared {
+    fn charts_version(&self) -> u64 {
+        self.charts_version
+            .load(std::sync::atomic::Ordering::Relaxed)
+    }
+
     /// Wakes the frame streams.
     fn changed(&self) {
         self.version.send_modify(|v| *v = v.wrapping_add(1));
@@ -158,6 +186,7 @@ impl Shared {
             frame,
             stepping,
             at: None,
+            charts_version: self.charts_version(),
         })
         .unwrap_or_default()
     }
@@ -175,6 +204,8 @@ struct Framed<'p> {
     stepping: Option<Stepping>,
     /// Replays: the event this frame shows the run after.
     at: Option<usize>,
+    /// Moves when a machine's diagram was replaced: the page asks for the model again.
+    charts_version: u64,
 }
 
 #[derive(Serialize)]
@@ -189,6 +220,7 @@ struct Model<'s> {
     /// `live` or `replay`.
     mode: &'static str,
     charts: &'s [Chart],
+    charts_version: u64,
     /// Replays: how many events, and the time of each (microseconds).
     times: Option<Vec<u64>>,
     /// Live runs: whether the page can pause and step.
@@ -200,10 +232,16 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         Source::Live { stepper, .. } => ("live", None, stepper.is_some()),
         Source::Replay(timeline) => ("replay", Some(timeline.times()), false),
     };
+    let charts = shared
+        .charts
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .clone();
     Json(Model {
         name: &shared.name,
         mode,
-        charts: &shared.charts,
+        charts: &charts,
+        charts_version: shared.charts_version(),
         times,
         can_step,
     })
@@ -227,6 +265,7 @@ async fn frame(State(shared): State<Arc<Shared>>, Query(query): Query<At>) -> Re
                 frame: picture.frame(&board),
                 stepping: None,
                 at: Some(at),
+                charts_version: 0,
             })
             .unwrap_or_default()
         }
