@@ -3,8 +3,9 @@
 //! out to 10 subscribers. Figures, never asserts. `cargo bench --bench board`.
 
 use proclaim_board::Whiteboard;
-use proclaim_cdl::{load, Language};
 use proclaim_experts::ReasonerExpert;
+mod common;
+
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use tokio::sync::Notify;
@@ -52,33 +53,7 @@ async fn post_to_wake(samples: usize) -> Vec<Duration> {
 }
 
 async fn query_latency(samples: usize) -> Vec<Duration> {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/theories/microwave.dl"
-    ))
-    .unwrap();
-    let theory = load(&text, Language::Dl).unwrap();
-    let board = Whiteboard::local();
-    tokio::spawn(ReasonerExpert::new("oven", theory, &Default::default()).run(board.clone()));
-    while board.registry().answerers("cook").is_empty() {
-        tokio::task::yield_now().await;
-    }
-    board.post("sensors", "timeLeft", true);
-    let mut out = Vec::with_capacity(samples);
-    for i in 0..samples {
-        if i % 100 == 0 {
-            // An input change now and then, so answers are re-proved, not only cached.
-            board.post("sensors", "doorOpen", i % 200 == 0);
-        }
-        let start = Instant::now();
-        let answer = board.query("machine", "cook", Duration::from_secs(1)).await;
-        out.push(start.elapsed());
-        assert!(matches!(
-            answer,
-            proclaim_board::QueryOutcome::Answered { .. }
-        ));
-    }
-    out
+    common::round_trips(&common::oven().await, samples).await
 }
 
 async fn fan_out(messages: usize, subscribers: usize) -> (f64, u64) {
@@ -122,19 +97,9 @@ async fn fan_out(messages: usize, subscribers: usize) -> (f64, u64) {
 /// A two-state machine whose labels the reasoner expert answers: A --cook--> B --light--> A. Each
 /// transition is one query answered and one firing; the samples are the times between firings.
 async fn query_to_fire(samples: usize) -> Vec<Duration> {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/theories/microwave.dl"
-    ))
-    .unwrap();
     let board = Whiteboard::local();
     tokio::spawn(
-        ReasonerExpert::new(
-            "oven",
-            load(&text, Language::Dl).unwrap(),
-            &Default::default(),
-        )
-        .run(board.clone()),
+        ReasonerExpert::new("oven", common::microwave(), &Default::default()).run(board.clone()),
     );
     while board.registry().answerers("cook").is_empty() {
         tokio::task::yield_now().await;

@@ -4,9 +4,9 @@
 //! Figures, never asserts. `cargo bench --bench monitor` (`PROCLAIM_SOAK_SECS=3600` for an
 //! hour's soak; 60 s by default).
 
-use proclaim_board::{QueryOutcome, Whiteboard};
-use proclaim_cdl::{load, Language};
-use proclaim_experts::ReasonerExpert;
+mod common;
+
+use proclaim_board::Whiteboard;
 use proclaim_monitor::{Chart, Monitor};
 use proclaim_runner::{Answerer, Event};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -27,15 +27,6 @@ fn percentile_line(name: &str, mut samples: Vec<Duration>) -> f64 {
     at(0.5)
 }
 
-fn microwave() -> proclaim_cdl::Theory {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/theories/microwave.dl"
-    ))
-    .unwrap();
-    load(&text, Language::Dl).unwrap()
-}
-
 fn machine() -> Vec<Chart> {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -47,31 +38,6 @@ fn machine() -> Vec<Chart> {
         .iter()
         .map(|m| Chart::of_machine(m, true))
         .collect()
-}
-
-/// A board with the microwave theory's expert on it.
-async fn oven() -> Whiteboard {
-    let board = Whiteboard::local();
-    tokio::spawn(ReasonerExpert::new("oven", microwave(), &Default::default()).run(board.clone()));
-    while board.registry().answerers("cook").is_empty() {
-        tokio::task::yield_now().await;
-    }
-    board.post("sensors", "timeLeft", true);
-    board
-}
-
-async fn round_trips(board: &Whiteboard, samples: usize) -> Vec<Duration> {
-    let mut out = Vec::with_capacity(samples);
-    for i in 0..samples {
-        if i % 100 == 0 {
-            board.post("sensors", "doorOpen", i % 200 == 0);
-        }
-        let start = Instant::now();
-        let answer = board.query("machine", "cook", Duration::from_secs(1)).await;
-        out.push(start.elapsed());
-        assert!(matches!(answer, QueryOutcome::Answered { .. }));
-    }
-    out
 }
 
 /// A page reading `/api/frames`: counts frames and bytes until `stop`. `stalled`: reads the
@@ -189,9 +155,9 @@ fn main() {
     runtime.block_on(async {
         // The round trip, no page, then with two pages open (one reading, one stalled) and
         // 10,000 events a second folded into the picture.
-        let board = oven().await;
-        let _ = round_trips(&board, 1_000).await;
-        let bare = percentile_line("label round trip, no monitor", round_trips(&board, n).await);
+        let board = common::oven().await;
+        let _ = common::round_trips(&board, 1_000).await;
+        let bare = percentile_line("label round trip, no monitor", common::round_trips(&board, n).await);
         let monitor = Monitor::live("microwave", machine(), board.clone(), None);
         let addr = monitor.serve("127.0.0.1:0".parse().unwrap()).await.unwrap();
         let (frames, bytes) = (Arc::new(AtomicU64::new(0)), Arc::new(AtomicU64::new(0)));
@@ -199,10 +165,10 @@ fn main() {
         let stalled = open_page(addr, true, Arc::default(), Arc::default());
         let stop = Arc::new(AtomicU64::new(0));
         let folding = fold_events(monitor.clone(), 10_000, stop.clone());
-        let _ = round_trips(&board, 1_000).await;
+        let _ = common::round_trips(&board, 1_000).await;
         let with = percentile_line(
             "label round trip, 2 pages open, 10k events/s folded",
-            round_trips(&board, n).await,
+            common::round_trips(&board, n).await,
         );
         println!("{:<52} {:.2}x the round trip without (p50)", "", with / bare);
         stop.store(1, Ordering::Relaxed);

@@ -471,27 +471,7 @@ fn a_trace_replayed_without_its_behaviour_draws_what_the_trace_shows() {
 
 #[test]
 fn a_machine_read_again_is_drawn_anew() {
-    let dir = crate::behaviour_folder(
-        "monitor-watch",
-        &[
-            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
-            (
-                "W.machine",
-                "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
-            ),
-        ],
-    );
-    // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
-    let (_run, url) = proclaim_with_monitor(&[
-        "run",
-        dir.to_str().unwrap(),
-        "--watch",
-        "--force",
-        "--for",
-        "30s",
-        "--monitor",
-        "127.0.0.1:0",
-    ]);
+    let (dir, _run, url) = watched_machine("monitor-watch");
     let states = |url: &str| -> (Vec<String>, u64) {
         let (_, model) = http(url, "GET", "/api/model", None);
         let model: Json = serde_json::from_str(&model).unwrap();
@@ -508,11 +488,7 @@ fn a_machine_read_again_is_drawn_anew() {
         (vec!["Wait".to_string(), "Done".to_string()], 0)
     );
     std::thread::sleep(Duration::from_millis(500));
-    std::fs::write(
-        dir.join("W.machine"),
-        "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n",
-    )
-    .unwrap();
+    std::fs::write(dir.join("W.machine"), W_WITH_LATER).unwrap();
     let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         let (names, version) = states(&url);
@@ -534,8 +510,25 @@ async fn the_page_draws_a_machine_anew_when_its_file_changes() {
     let Some((_driver, client)) = open_browser().await else {
         return;
     };
+    let (dir, _run, url) = watched_machine("monitor-watch-page");
+    client.goto(&url).await.expect("the page opens");
+    // States' groups are titled `s<id>` (the start point is `start`).
+    let nodes = "return Array.from(document.querySelectorAll('[data-machine=\"W\"] g.node title')).filter(t => /^s[0-9]+$/.test(t.textContent)).length";
+    let second = Duration::from_secs(1);
+    until(&client, nodes, json!(2), 3 * second).await;
+    std::fs::write(dir.join("W.machine"), W_WITH_LATER).unwrap();
+    until(&client, nodes, json!(3), 10 * second).await;
+    // Still lit where the machine is.
+    let lit = "return document.querySelector('[data-machine=\"W\"] g.node.current title')?.textContent ?? null";
+    until(&client, lit, json!("s1"), 2 * second).await;
+    let _ = client.close().await;
+}
+
+/// A behaviour of one machine `W` (`Wait -go-> Done`; nobody answers `go`, so `--force`) run
+/// with `--watch` and the monitor; its folder, the run and the page's URL.
+fn watched_machine(tag: &str) -> (std::path::PathBuf, Running, String) {
     let dir = crate::behaviour_folder(
-        "monitor-watch-page",
+        tag,
         &[
             ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
             (
@@ -544,7 +537,7 @@ async fn the_page_draws_a_machine_anew_when_its_file_changes() {
             ),
         ],
     );
-    let (_run, url) = proclaim_with_monitor(&[
+    let (run, url) = proclaim_with_monitor(&[
         "run",
         dir.to_str().unwrap(),
         "--watch",
@@ -554,19 +547,9 @@ async fn the_page_draws_a_machine_anew_when_its_file_changes() {
         "--monitor",
         "127.0.0.1:0",
     ]);
-    client.goto(&url).await.expect("the page opens");
-    // States' groups are titled `s<id>` (the start point is `start`).
-    let nodes = "return Array.from(document.querySelectorAll('[data-machine=\"W\"] g.node title')).filter(t => /^s[0-9]+$/.test(t.textContent)).length";
-    let second = Duration::from_secs(1);
-    until(&client, nodes, json!(2), 3 * second).await;
-    std::fs::write(
-        dir.join("W.machine"),
-        "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n",
-    )
-    .unwrap();
-    until(&client, nodes, json!(3), 10 * second).await;
-    // Still lit where the machine is.
-    let lit = "return document.querySelector('[data-machine=\"W\"] g.node.current title')?.textContent ?? null";
-    until(&client, lit, json!("s1"), 2 * second).await;
-    let _ = client.close().await;
+    (dir, run, url)
 }
+
+/// `W` with a state `Later` between `Wait` and `Done`.
+const W_WITH_LATER: &str =
+    "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n";
