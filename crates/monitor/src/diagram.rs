@@ -179,37 +179,7 @@ const ROW: i64 = 80;
 /// than Graphviz, but the same titles, so the page lights it the same way.
 fn built_in(chart: &Chart) -> String {
     let index = |id: i64| chart.states.iter().position(|s| s.id == id);
-    let mut depth: Vec<Option<usize>> = vec![None; chart.states.len()];
-    let mut queue = std::collections::VecDeque::new();
-    if let Some(i) = index(chart.initial) {
-        depth[i] = Some(0);
-        queue.push_back(i);
-    }
-    while let Some(i) = queue.pop_front() {
-        let from = chart.states[i].id;
-        for t in chart.transitions.iter().filter(|t| t.from == from) {
-            if let Some(j) = index(t.to) {
-                if depth[j].is_none() {
-                    depth[j] = Some(depth[i].unwrap_or(0) + 1);
-                    queue.push_back(j);
-                }
-            }
-        }
-    }
-    // States the initial one never reaches go in a last column.
-    let last = depth.iter().flatten().max().map_or(0, |d| d + 1);
-    let mut rows_used: Vec<i64> = Vec::new();
-    let mut at: Vec<(i64, i64)> = Vec::with_capacity(chart.states.len());
-    for d in &depth {
-        let column = d.unwrap_or(last);
-        if rows_used.len() <= column {
-            rows_used.resize(column + 1, 0);
-        }
-        at.push((20 + column as i64 * COLUMN, 20 + rows_used[column] * ROW));
-        rows_used[column] += 1;
-    }
-    let width = 40 + rows_used.len() as i64 * COLUMN;
-    let height = 40 + rows_used.iter().max().copied().unwrap_or(1) * ROW;
+    let (at, width, height) = place(&depths(chart));
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}pt\" height=\"{height}pt\" viewBox=\"0 0 {width} {height}\">\n<g class=\"graph\">\n"
     );
@@ -246,6 +216,49 @@ fn built_in(chart: &Chart) -> String {
     }
     svg.push_str("</g>\n</svg>\n");
     svg
+}
+
+/// Each state's distance from the initial state (breadth first), `None` where it is never
+/// reached.
+fn depths(chart: &Chart) -> Vec<Option<usize>> {
+    let index = |id: i64| chart.states.iter().position(|s| s.id == id);
+    let mut depth: Vec<Option<usize>> = vec![None; chart.states.len()];
+    let mut queue = std::collections::VecDeque::new();
+    if let Some(i) = index(chart.initial) {
+        depth[i] = Some(0);
+        queue.push_back(i);
+    }
+    while let Some(i) = queue.pop_front() {
+        let from = chart.states[i].id;
+        for t in chart.transitions.iter().filter(|t| t.from == from) {
+            if let Some(j) = index(t.to) {
+                if depth[j].is_none() {
+                    depth[j] = Some(depth[i].unwrap_or(0) + 1);
+                    queue.push_back(j);
+                }
+            }
+        }
+    }
+    depth
+}
+
+/// Each state's top-left corner (a column per depth, the states never reached in a last one),
+/// and the drawing's width and height.
+fn place(depths: &[Option<usize>]) -> (Vec<(i64, i64)>, i64, i64) {
+    let last = depths.iter().flatten().max().map_or(0, |d| d + 1);
+    let mut rows_used: Vec<i64> = Vec::new();
+    let mut at: Vec<(i64, i64)> = Vec::with_capacity(depths.len());
+    for d in depths {
+        let column = d.unwrap_or(last);
+        if rows_used.len() <= column {
+            rows_used.resize(column + 1, 0);
+        }
+        at.push((20 + column as i64 * COLUMN, 20 + rows_used[column] * ROW));
+        rows_used[column] += 1;
+    }
+    let width = 40 + rows_used.len() as i64 * COLUMN;
+    let height = 40 + rows_used.iter().max().copied().unwrap_or(1) * ROW;
+    (at, width, height)
 }
 
 fn escape(text: &str) -> String {
@@ -293,5 +306,45 @@ mod tests {
             svg.contains("A&lt;B") && svg.contains("x &amp;&amp; y"),
             "{svg}"
         );
+    }
+
+    #[test]
+    fn states_stand_in_columns_by_their_distance_from_the_initial_one() {
+        // 0 -> 1 -> 2, 0 -> 3; 4 never reached.
+        let transitions = [(0, 1), (1, 2), (0, 3)]
+            .iter()
+            .map(|&(from, to)| ChartTransition {
+                from,
+                to,
+                label: "x".into(),
+            })
+            .collect();
+        let chart = Chart {
+            name: "M".into(),
+            start: true,
+            initial: 0,
+            states: (0..5)
+                .map(|id| ChartState {
+                    id,
+                    name: format!("S{id}"),
+                    node: node(id),
+                })
+                .collect(),
+            transitions,
+            svg: String::new(),
+            drawn_by: "built-in",
+        };
+        let depths = depths(&chart);
+        assert_eq!(depths, [Some(0), Some(1), Some(2), Some(1), None]);
+        let (at, width, height) = place(&depths);
+        let column = |x: i64| (x - 20) / COLUMN;
+        let columns: Vec<i64> = at.iter().map(|&(x, _)| column(x)).collect();
+        assert_eq!(columns, [0, 1, 2, 1, 3]);
+        assert_eq!(
+            at[3].1,
+            at[1].1 + ROW,
+            "two states of one column one above the other"
+        );
+        assert_eq!((width, height), (40 + 4 * COLUMN, 40 + 2 * ROW));
     }
 }

@@ -179,10 +179,7 @@ impl Picture {
             .iter()
             .map(|s| (s.id, s.name.clone()))
             .collect();
-        view.state = view
-            .state_name
-            .as_ref()
-            .and_then(|n| view.states.iter().find(|(_, s)| s == n).map(|(id, _)| *id));
+        view.state = view.state_name.as_deref().and_then(|n| view.id_of(n));
         // The transition that fired may be gone from the new machine.
         view.fired = None;
     }
@@ -211,57 +208,8 @@ impl Picture {
         }
         self.listed += 1;
         push_bounded(&mut self.events, event.clone());
-        let Some(view) = self.machines.iter_mut().find(|m| m.name == event.machine()) else {
-            return;
-        };
-        match event {
-            Event::Entered { state, id, .. } => {
-                view.state = Some(*id);
-                view.state_name = Some(state.clone());
-                view.finished = false;
-            }
-            Event::Reloaded { state, .. } => {
-                view.state = view
-                    .states
-                    .iter()
-                    .find(|(_, n)| n == state)
-                    .map(|(id, _)| *id);
-                view.state_name = Some(state.clone());
-                view.finished = false;
-            }
-            Event::Fired {
-                from,
-                to,
-                label,
-                at,
-                ..
-            } => {
-                view.state = Some(*to);
-                view.state_name = view
-                    .states
-                    .iter()
-                    .find(|(id, _)| id == to)
-                    .map(|(_, n)| n.clone());
-                view.fired = Some(Fired {
-                    from: *from,
-                    to: *to,
-                    label: label.clone(),
-                    at_us: micros(*at),
-                });
-            }
-            Event::Control { command, .. } => {
-                view.control = Some(command.clone());
-                if matches!(
-                    Command::parse(command),
-                    Some(Command::On | Command::Restart)
-                ) {
-                    view.finished = false;
-                    view.halted = None;
-                }
-            }
-            Event::Finished { .. } => view.finished = true,
-            Event::Halted { reason, .. } => view.halted = Some(reason.clone()),
-            _ => {}
+        if let Some(view) = self.machines.iter_mut().find(|m| m.name == event.machine()) {
+            view.follow(event);
         }
     }
 
@@ -369,6 +317,67 @@ impl Picture {
             board_seq: board.seq,
             time_us: micros(board.time),
         }
+    }
+}
+
+impl MachineView {
+    /// Where an event of this machine leaves it.
+    fn follow(&mut self, event: &Event) {
+        match event {
+            Event::Entered { state, id, .. } => {
+                self.state = Some(*id);
+                self.state_name = Some(state.clone());
+                self.finished = false;
+            }
+            Event::Reloaded { state, .. } => {
+                self.state = self.id_of(state);
+                self.state_name = Some(state.clone());
+                self.finished = false;
+            }
+            Event::Fired {
+                from,
+                to,
+                label,
+                at,
+                ..
+            } => {
+                self.state = Some(*to);
+                self.state_name = self.name_of(*to);
+                self.fired = Some(Fired {
+                    from: *from,
+                    to: *to,
+                    label: label.clone(),
+                    at_us: micros(*at),
+                });
+            }
+            Event::Control { command, .. } => {
+                self.control = Some(command.clone());
+                if matches!(
+                    Command::parse(command),
+                    Some(Command::On | Command::Restart)
+                ) {
+                    self.finished = false;
+                    self.halted = None;
+                }
+            }
+            Event::Finished { .. } => self.finished = true,
+            Event::Halted { reason, .. } => self.halted = Some(reason.clone()),
+            _ => {}
+        }
+    }
+
+    fn id_of(&self, name: &str) -> Option<i64> {
+        self.states
+            .iter()
+            .find(|(_, n)| n == name)
+            .map(|(id, _)| *id)
+    }
+
+    fn name_of(&self, id: i64) -> Option<String> {
+        self.states
+            .iter()
+            .find(|(s, _)| *s == id)
+            .map(|(_, n)| n.clone())
     }
 }
 
