@@ -36,6 +36,24 @@ pub fn charts(behaviour: &Behaviour) -> Vec<Chart> {
         .collect()
 }
 
+/// The page of a running behaviour on `board`, served at `addr`; `stepper` (the one its
+/// machines were launched with) makes its pause and step buttons work.
+pub async fn live(
+    behaviour: &Behaviour,
+    board: &proclaim_board::Whiteboard,
+    stepper: Option<proclaim_runner::Stepper>,
+    addr: &str,
+) -> Result<Monitor, Failure> {
+    let monitor = Monitor::live(
+        behaviour.name.clone(),
+        charts(behaviour),
+        board.clone(),
+        stepper,
+    );
+    open(&monitor, addr).await?;
+    Ok(monitor)
+}
+
 /// Serves the page and says where. The default port, when taken, gives way to any free one
 /// (a second run beside the first); an address given is kept to or refused.
 pub async fn open(monitor: &Monitor, addr: &str) -> Result<SocketAddr, Failure> {

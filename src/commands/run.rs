@@ -142,28 +142,10 @@ async fn run_on_board(
     let mut running = launch(behaviour, &board, options)
         .await
         .map_err(Failure::Start)?;
-    let machines: Vec<&str> = behaviour
-        .machines
-        .iter()
-        .map(|m| m.machine.name.as_str())
-        .collect();
-    announce(behaviour, machines.len(), limit, &running.notes);
-    // The script's postings show under the name `impersonator`.
-    let scripted = script_used.then_some("impersonator");
-    let width = machines.iter().copied().chain(scripted).map(str::len).max();
-    let mut view = TraceView::new(width.unwrap_or(8));
+    announce(behaviour, limit, &running.notes);
+    let mut view = trace_view(behaviour, script_used);
     let monitor = match &args.monitor {
-        Some(addr) => {
-            let charts = super::monitor::charts(behaviour);
-            let monitor = proclaim_monitor::Monitor::live(
-                behaviour.name.clone(),
-                charts,
-                board.clone(),
-                stepper.clone(),
-            );
-            super::monitor::open(&monitor, addr).await?;
-            Some(monitor)
-        }
+        Some(addr) => Some(super::monitor::live(behaviour, &board, stepper.clone(), addr).await?),
         None => None,
     };
     if let Some(stepper) = stepper.filter(|_| args.step) {
@@ -228,7 +210,16 @@ fn person(atoms: &[String]) -> Option<proclaim_experts::Impersonator> {
     })
 }
 
-fn announce(behaviour: &Behaviour, machines: usize, limit: Option<Duration>, notes: &[String]) {
+/// The live trace, its names column as wide as the longest machine's name (or the
+/// impersonator's, under which a script's postings show).
+fn trace_view(behaviour: &Behaviour, script_used: bool) -> TraceView {
+    let scripted = script_used.then_some("impersonator");
+    let names = behaviour.machines.iter().map(|m| m.machine.name.as_str());
+    TraceView::new(names.chain(scripted).map(str::len).max().unwrap_or(8))
+}
+
+fn announce(behaviour: &Behaviour, limit: Option<Duration>, notes: &[String]) {
+    let machines = behaviour.machines.len();
     println!(
         "running {}{} ({} machine{}{})",
         behaviour.name,

@@ -223,6 +223,22 @@ pub fn launch_manifest(
     }
     let wanted = started_from(behaviour, modules, centre);
     let needed = serving(modules, &wanted);
+    let smallest = smallest_manifest(behaviour, modules, centre, &wanted, &needed, place);
+    Ok(smallest.to_toml(&format!(
+        "The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`."
+    )))
+}
+
+/// The behaviour's manifest cut down to the `wanted` machines (only `centre` starting) and the
+/// `needed` modules, with every file written as `place` says.
+fn smallest_manifest(
+    behaviour: &Behaviour,
+    modules: &[Module],
+    centre: &str,
+    wanted: &[String],
+    needed: &[&str],
+    place: &dyn Fn(&str) -> String,
+) -> Manifest {
     let is_needed = |m: &Module| needed.contains(&m.decl.name.as_str());
     let manifest = &behaviour.manifest;
     let needs = |kind: ModuleKind| modules.iter().any(|m| m.kind == kind && is_needed(m));
@@ -272,9 +288,7 @@ pub fn launch_manifest(
         modules: manifest.modules.clone(),
         ..Manifest::default()
     };
-    Ok(smallest.to_toml(&format!(
-        "The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`."
-    )))
+    smallest
 }
 
 /// The machine and every machine it starts, transitively.

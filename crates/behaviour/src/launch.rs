@@ -262,41 +262,51 @@ async fn gamecontroller(
         }),
     });
     if simulate {
-        let player = e.player.unwrap_or(1);
-        let game = sensor.game.clone().unwrap_or_else(|| {
-            // The built-in game's penalty is for this robot, so it is seen.
-            let mut game = default_game(home, 5);
-            for (_, event) in &mut game.events {
-                if let SimEvent::Penalise { player: p, .. }
-                | SimEvent::Unpenalise { player: p, .. } = event
-                {
-                    *p = player;
-                }
-            }
-            game
-        });
-        let config = SimConfig {
-            to: at,
-            home,
-            ..SimConfig::default()
-        };
-        sim_note = Some(format!(
-            "GameController simulator: a game of {:.0} s to {at}",
-            game.length().as_secs_f64()
-        ));
-        modules.push(Module {
-            name: "gc-sim".into(),
-            answers: Vec::new(),
-            task: Box::pin(async move {
-                if let Err(error) = play(&game, &config, |_| {}).await {
-                    tracing::error!(%error, "the GameController simulator stopped");
-                }
-            }),
-        });
+        let (module, note) = simulator(sensor, at, home);
+        modules.push(module);
+        sim_note = Some(note);
     } else {
         notes.push(format!("listening for the GameController on {at}"));
     }
     Ok(sim_note)
+}
+
+/// The simulator playing the manifest's game (or the built-in one, its penalty for this robot)
+/// to the receiver at `at`, and the note saying so.
+fn simulator(sensor: &crate::load::LoadedSensor, at: SocketAddr, home: u8) -> (Module, String) {
+    let e = &sensor.entry;
+    let player = e.player.unwrap_or(1);
+    let game = sensor.game.clone().unwrap_or_else(|| {
+        // The built-in game's penalty is for this robot, so it is seen.
+        let mut game = default_game(home, 5);
+        for (_, event) in &mut game.events {
+            if let SimEvent::Penalise { player: p, .. } | SimEvent::Unpenalise { player: p, .. } =
+                event
+            {
+                *p = player;
+            }
+        }
+        game
+    });
+    let config = SimConfig {
+        to: at,
+        home,
+        ..SimConfig::default()
+    };
+    let note = format!(
+        "GameController simulator: a game of {:.0} s to {at}",
+        game.length().as_secs_f64()
+    );
+    let module = Module {
+        name: "gc-sim".into(),
+        answers: Vec::new(),
+        task: Box::pin(async move {
+            if let Err(error) = play(&game, &config, |_| {}).await {
+                tracing::error!(%error, "the GameController simulator stopped");
+            }
+        }),
+    };
+    (module, note)
 }
 
 /// A person at the terminal and the script, each leaving out the modules that answer what it

@@ -300,17 +300,7 @@ fn end_transition(
             return;
         }
     };
-    let priority = match t.outputs.trim() {
-        "" => 0,
-        written => written.parse::<i64>().unwrap_or_else(|_| {
-            diagnostics.push(FileDiagnostic::warning(
-                file,
-                t.line,
-                format!("priority `{written}` is not a number; 0 is used"),
-            ));
-            0
-        }),
-    };
+    let priority = priority(&t, file, diagnostics);
     m.transitions.push((
         priority,
         order,
@@ -321,6 +311,22 @@ fn end_transition(
             line: t.line,
         },
     ));
+}
+
+/// A transition's priority, Qfsm's `<outputs>`: 0 when empty, or (with a warning) when not
+/// a number.
+fn priority(t: &TransitionDraft, file: &str, diagnostics: &mut Vec<FileDiagnostic>) -> i64 {
+    match t.outputs.trim() {
+        "" => 0,
+        written => written.parse::<i64>().unwrap_or_else(|_| {
+            diagnostics.push(FileDiagnostic::warning(
+                file,
+                t.line,
+                format!("priority `{written}` is not a number; 0 is used"),
+            ));
+            0
+        }),
+    }
 }
 
 fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) {

@@ -109,14 +109,7 @@ fn a_line(
         ));
         return None;
     }
-    // A misspelt section keyword (`OnEnrtry`) would silently move the items to Internal.
-    if let Some(word) = activities.split(|c: char| !c.is_alphanumeric()).find(|w| {
-        w.starts_with("On")
-            && w.len() > 3
-            && *w != "OnEntry"
-            && *w != "OnExit"
-            && !activities.contains("OnEntry")
-    }) {
+    if let Some(word) = misspelt_section(activities) {
         diagnostics.push(FileDiagnostic::error(
             a_file,
             line,
@@ -143,6 +136,18 @@ fn a_line(
         // Internal text can hold more `/`-ended chunks (`…/ C++: f(1);/ C++: g;`): separators too.
         internal: read(&internal.replace('/', ";")),
         line,
+    })
+}
+
+/// A word that looks like a section keyword but is not one (`OnEnrtry`), which would
+/// silently move the items to Internal.
+fn misspelt_section(activities: &str) -> Option<&str> {
+    activities.split(|c: char| !c.is_alphanumeric()).find(|w| {
+        w.starts_with("On")
+            && w.len() > 3
+            && *w != "OnEntry"
+            && *w != "OnExit"
+            && !activities.contains("OnEntry")
     })
 }
 
