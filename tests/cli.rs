@@ -1419,3 +1419,25 @@ fn logs_show_the_crates_spans_with_v_and_as_json() {
         .unwrap();
     assert!(stderr(&o).contains("query answered"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_label_nobody_answers_is_warned_once_not_at_every_ring() {
+    let dir = crate::behaviour_folder(
+        "warn-once",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+            (
+                "M.machine",
+                "machine M\nstate A {\n  when go -> B\n}\nstate B {\n}\n",
+            ),
+        ],
+    );
+    // Ten rings a second for a second, each asking for `go`.
+    let o = proclaim(&["run", dir.to_str().unwrap(), "--force", "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let warned = stderr(&o)
+        .lines()
+        .filter(|l| l.contains("query for an atom no module answers"))
+        .count();
+    assert_eq!(warned, 1, "{}", stderr(&o));
+}

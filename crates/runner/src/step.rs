@@ -134,3 +134,35 @@ impl Stepper {
         self.finished.notify_waiters();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    /// Whether `wait(last)` returns within a moment, and with what step.
+    async fn rings(stepper: &Stepper, last: u64) -> Option<u64> {
+        tokio::time::timeout(Duration::from_millis(50), stepper.wait(last))
+            .await
+            .ok()
+    }
+
+    #[tokio::test]
+    async fn a_free_stepper_lets_machines_ring_until_paused_and_steps_one_ring_at_a_time() {
+        let stepper = Stepper::free();
+        assert!(!stepper.is_paused());
+        assert_eq!(rings(&stepper, 0).await, Some(0), "free: no waiting");
+        stepper.pause();
+        assert!(stepper.is_paused());
+        assert_eq!(rings(&stepper, 0).await, None, "paused: the machine waits");
+        assert_eq!(stepper.advance(), 1);
+        assert_eq!(rings(&stepper, 0).await, Some(1), "one ring");
+        assert_eq!(rings(&stepper, 1).await, None, "and no more");
+        stepper.resume();
+        assert_eq!(rings(&stepper, 1).await, Some(1));
+        // A step while running freely pauses first.
+        assert_eq!(stepper.advance(), 2);
+        assert!(stepper.is_paused());
+        assert_eq!(rings(&stepper, 2).await, None);
+    }
+}
