@@ -1,11 +1,14 @@
 //! Evaluating one strongly connected component of the goal graph that holds a cycle: a least
 //! fixpoint when only support runs through it; with attacks inside, the structure cdl.md §4
 //! ("Cost") names (a simple cycle in closed form, mutual attacks as undirected vertex geography
-//! through maximum matchings), then bounds, then a top-down search under a budget.
+//! through maximum matchings, a ring of small blocks by composition in `ring.rs`), then bounds,
+//! then a top-down search under a budget.
 
+use crate::dominators;
 use crate::engine::Engine;
 use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
 use crate::matching::uncovered_by_some_maximum_matching;
+use crate::ring::Ring;
 use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
 use rustc_hash::FxHashMap;
 
@@ -38,6 +41,8 @@ pub(crate) enum Method {
     SimpleCycle,
     /// Members attack each other symmetrically and nothing else: maximum matchings.
     Geography,
+    /// A ring of small single-entry blocks: each block's transfer function, composed round it.
+    Ring,
     /// Bounds, then a top-down search for the members between them.
     Search,
 }
@@ -68,7 +73,7 @@ const GEOGRAPHY_LIMIT: usize = 2048;
 const REFINE_LIMIT: usize = 50_000_000;
 
 /// An internal read: (reader, read member, through an attacker).
-type Edge = (u32, u32, bool);
+pub(crate) type Edge = (u32, u32, bool);
 
 impl Component<'_> {
     pub fn evaluate(&self, limits: &SearchLimits) -> Evaluated {
@@ -99,6 +104,14 @@ impl Component<'_> {
         }
         if let Some(values) = self.geography(&edges) {
             return decided(values, Method::Geography);
+        }
+        if let Some((values, steps)) =
+            Ring::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
+        {
+            return Evaluated {
+                steps,
+                ..decided(values, Method::Ring)
+            };
         }
         self.search(&edges, &fixpoint, limits)
     }
@@ -342,11 +355,11 @@ impl SupportDominators {
         let nodes = c.members.len() + 1;
         let successors = crate::engine::Csr::build(nodes, edges.iter().copied());
         let predecessors = crate::engine::Csr::build(nodes, edges.iter().map(|&(a, b)| (b, a)));
-        let order = reverse_postorder(&successors, root, nodes);
-        let idom = immediate_dominators(&predecessors, &order, nodes);
+        let order = dominators::reverse_postorder(&successors, root, nodes);
+        let idom = dominators::immediate_dominators(&predecessors, &order, nodes);
         let children =
             crate::engine::Csr::build(nodes, order.iter().skip(1).map(|&v| (idom[v as usize], v)));
-        let (enter, leave) = intervals(&children, root, nodes);
+        let (enter, leave) = dominators::intervals(&children, root, nodes);
         Some(SupportDominators { enter, leave })
     }
 
@@ -402,97 +415,6 @@ fn support_graph(c: &Component, up: &[bool], root: u32) -> Option<Vec<(u32, u32)
         }
     }
     Some(edges)
-}
-
-/// The nodes `root` reaches, in reverse postorder of a depth-first walk (iterative).
-fn reverse_postorder(successors: &crate::engine::Csr, root: u32, nodes: usize) -> Vec<u32> {
-    let mut order = Vec::new();
-    let mut seen = vec![false; nodes];
-    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
-    seen[root as usize] = true;
-    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
-        if let Some(&w) = successors.row(v as usize).get(*next as usize) {
-            *next += 1;
-            if !std::mem::replace(&mut seen[w as usize], true) {
-                stack.push((w, 0));
-            }
-        } else {
-            order.push(v);
-            stack.pop();
-        }
-    }
-    order.reverse();
-    order
-}
-
-/// Cooper, Harvey and Kennedy's iteration: each node's immediate dominator, by intersecting its
-/// predecessors' dominator chains in reverse postorder until nothing changes (`u32::MAX` for
-/// nodes the root does not reach).
-fn immediate_dominators(
-    predecessors: &crate::engine::Csr,
-    order: &[u32],
-    nodes: usize,
-) -> Vec<u32> {
-    const UNDEFINED: u32 = u32::MAX;
-    let mut rank = vec![u32::MAX; nodes];
-    for (i, &v) in order.iter().enumerate() {
-        rank[v as usize] = i as u32;
-    }
-    let mut idom = vec![UNDEFINED; nodes];
-    idom[order[0] as usize] = order[0];
-    let mut changed = true;
-    while changed {
-        changed = false;
-        for &v in order.iter().skip(1) {
-            let mut new = UNDEFINED;
-            for &p in predecessors.row(v as usize) {
-                if idom[p as usize] == UNDEFINED {
-                    continue;
-                }
-                new = if new == UNDEFINED {
-                    p
-                } else {
-                    let (mut a, mut b) = (p, new);
-                    while a != b {
-                        while rank[a as usize] > rank[b as usize] {
-                            a = idom[a as usize];
-                        }
-                        while rank[b as usize] > rank[a as usize] {
-                            b = idom[b as usize];
-                        }
-                    }
-                    a
-                };
-            }
-            if new != idom[v as usize] {
-                idom[v as usize] = new;
-                changed = true;
-            }
-        }
-    }
-    idom
-}
-
-/// Each node's interval in a depth-first numbering of the tree (`u32::MAX` on entry for nodes
-/// outside it), so that "`g` is an ancestor of `x`" is two comparisons.
-fn intervals(children: &crate::engine::Csr, root: u32, nodes: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut enter = vec![u32::MAX; nodes];
-    let mut leave = vec![0u32; nodes];
-    let mut clock = 0u32;
-    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
-    enter[root as usize] = clock;
-    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
-        if let Some(&w) = children.row(v as usize).get(*next as usize) {
-            *next += 1;
-            clock += 1;
-            enter[w as usize] = clock;
-            stack.push((w, 0));
-        } else {
-            leave[v as usize] = clock;
-            stack.pop();
-        }
-    }
-    (enter, leave)
 }
 
 /// Least fixpoints over the members of one component.
