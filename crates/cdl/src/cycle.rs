@@ -1,13 +1,15 @@
 //! Evaluating one strongly connected component of the goal graph that holds a cycle: a least
 //! fixpoint when only support runs through it; with attacks inside, the structure cdl.md §4
 //! ("Cost") names (a simple cycle in closed form, mutual attacks as undirected vertex geography
-//! through maximum matchings, a ring of small blocks by composition in `ring.rs`), then bounds,
-//! then a top-down search under a budget.
+//! through maximum matchings, a ring of small blocks by composition in `ring.rs`), or its
+//! falling apart once reads that change nothing are dropped (`relevance.rs`), then bounds, then
+//! a top-down search under a budget.
 
 use crate::dominators;
 use crate::engine::Engine;
 use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
 use crate::matching::uncovered_by_some_maximum_matching;
+use crate::relevance::independent_parts;
 use crate::ring::Ring;
 use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
 use rustc_hash::FxHashMap;
@@ -47,7 +49,15 @@ pub(crate) enum Method {
     Search,
 }
 
-/// What evaluating a component gave: each member's value (`TRUE`, `FALSE` or `UNDECIDED`).
+/// What evaluating a component gave.
+pub(crate) enum Outcome {
+    Evaluated(Evaluated),
+    /// Without the reads its members' conditions ignore, the component is several: these, as
+    /// positions, in the order they can be evaluated (each reads only itself and earlier ones).
+    Parts(Vec<Vec<u32>>),
+}
+
+/// Each member's value (`TRUE`, `FALSE` or `UNDECIDED`).
 pub(crate) struct Evaluated {
     pub values: Vec<u8>,
     pub method: Method,
@@ -76,7 +86,8 @@ const REFINE_LIMIT: usize = 50_000_000;
 pub(crate) type Edge = (u32, u32, bool);
 
 impl Component<'_> {
-    pub fn evaluate(&self, limits: &SearchLimits) -> Evaluated {
+    /// Decides every member, or (when `may_fall_apart`) says which parts it is made of.
+    pub fn evaluate(&self, limits: &SearchLimits, may_fall_apart: bool) -> Outcome {
         let mut edges = self.edges();
         let decided = |values: Vec<bool>, method| Evaluated {
             values: values
@@ -94,26 +105,35 @@ impl Component<'_> {
             readers: &readers,
         };
         if edges.iter().all(|&(_, _, attack)| !attack) {
-            return decided(fixpoint.least(|_, _| false, None), Method::Fixpoint);
+            return Outcome::Evaluated(decided(
+                fixpoint.least(|_, _| false, None),
+                Method::Fixpoint,
+            ));
         }
         // Sorted by reader, without repeats: what the structural tests look edges up in.
         edges.sort_unstable();
         edges.dedup();
         if let Some(values) = self.simple_cycle(&edges) {
-            return decided(values, Method::SimpleCycle);
+            return Outcome::Evaluated(decided(values, Method::SimpleCycle));
         }
         if let Some(values) = self.geography(&edges) {
-            return decided(values, Method::Geography);
+            return Outcome::Evaluated(decided(values, Method::Geography));
         }
         if let Some((values, steps)) =
             Ring::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
         {
-            return Evaluated {
+            return Outcome::Evaluated(Evaluated {
                 steps,
                 ..decided(values, Method::Ring)
-            };
+            });
         }
-        self.search(&edges, &fixpoint, limits)
+        if let Some(parts) = may_fall_apart
+            .then(|| independent_parts(self, &edges))
+            .flatten()
+        {
+            return Outcome::Parts(parts);
+        }
+        Outcome::Evaluated(self.search(&edges, &fixpoint, limits))
     }
 
     /// Every internal read, in member order (repeats possible).
@@ -135,7 +155,7 @@ impl Component<'_> {
 
     /// A member's condition with the members `is_true` accepts (by position) read as true and
     /// the other members as false.
-    fn condition_with(&self, member: u32, is_true: impl Fn(u32) -> bool) -> bool {
+    pub(crate) fn condition_with(&self, member: u32, is_true: impl Fn(u32) -> bool) -> bool {
         let mut read = |s: Goal, _: Read| match self.values[s as usize] {
             PENDING => is_true(self.position[s as usize]),
             v => v == TRUE,
@@ -355,8 +375,7 @@ impl SupportDominators {
         let nodes = c.members.len() + 1;
         let successors = crate::engine::Csr::build(nodes, edges.iter().copied());
         let predecessors = crate::engine::Csr::build(nodes, edges.iter().map(|&(a, b)| (b, a)));
-        let order = dominators::reverse_postorder(&successors, root, nodes);
-        let idom = dominators::immediate_dominators(&predecessors, &order, nodes);
+        let (order, idom) = dominators::dominator_tree(&successors, &predecessors, root, nodes);
         let children =
             crate::engine::Csr::build(nodes, order.iter().skip(1).map(|&v| (idom[v as usize], v)));
         let (enter, leave) = dominators::intervals(&children, root, nodes);

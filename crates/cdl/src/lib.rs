@@ -23,6 +23,7 @@ mod literal;
 mod matching;
 mod query;
 mod reference;
+mod relevance;
 mod ring;
 mod session;
 mod table;

@@ -67,11 +67,10 @@ impl Ring {
         }
         let successors = Csr::build(n, edges.iter().map(|&(from, to, _)| (from, to)));
         let predecessors = Csr::build(n, edges.iter().map(|&(from, to, _)| (to, from)));
-        let order = dominators::reverse_postorder(&successors, 0, n);
+        let (order, idom) = dominators::dominator_tree(&successors, &predecessors, 0, n);
         if order.len() != n {
             return None;
         }
-        let idom = dominators::immediate_dominators(&predecessors, &order, n);
         let (spine, anchor) = spine(&order, &idom, n);
         let k = spine.len();
         if k < 3 {
@@ -206,7 +205,7 @@ fn spine(order: &[u32], idom: &[u32], n: usize) -> (Vec<u32>, Vec<u32>) {
         anchor[at as usize] = spine.len() as u32;
         spine.push(at);
     }
-    // Reverse postorder meets a dominator before what it dominates.
+    // Preorder meets a dominator before what it dominates.
     for &v in order.iter().skip(1) {
         if anchor[v as usize] == u32::MAX {
             anchor[v as usize] = anchor[idom[v as usize] as usize];

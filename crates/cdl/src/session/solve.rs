@@ -135,6 +135,12 @@ impl Session {
     /// A component with a cycle ([`crate::cycle`]). A component that reads an undecided goal is
     /// left undecided as a whole.
     pub(super) fn evaluate_cycle(&mut self, engine: &Engine) {
+        self.evaluate_component(engine, true);
+    }
+
+    /// [`Session::evaluate_cycle`]; `may_fall_apart` is false for the parts of a component that
+    /// fell apart: splitting them again could peel one goal a time, quadratic on a long cycle.
+    fn evaluate_component(&mut self, engine: &Engine, may_fall_apart: bool) {
         let members = std::mem::take(&mut self.component);
         for (position, &g) in members.iter().enumerate() {
             self.values[g as usize] = PENDING;
@@ -165,7 +171,14 @@ impl Session {
             position: &self.low,
             members: &members,
         };
-        let evaluated = component.evaluate(&self.limits);
+        let evaluated = match component.evaluate(&self.limits, may_fall_apart) {
+            Outcome::Evaluated(evaluated) => evaluated,
+            Outcome::Parts(parts) => {
+                self.evaluate_parts(engine, &members, parts);
+                self.component = members;
+                return;
+            }
+        };
         if evaluated.method == Method::Search {
             let undecided = evaluated.values.contains(&UNDECIDED);
             let algorithm = |g: Goal| match kind_of(g) {
@@ -190,5 +203,28 @@ impl Session {
             }
         }
         self.component = members;
+    }
+
+    /// A component that falls apart once the reads its members ignore are dropped
+    /// (`relevance.rs`): each part in turn, as a component of its own. Until its part comes,
+    /// a member is read only by conditions that ignore it, which read it as false.
+    fn evaluate_parts(&mut self, engine: &Engine, members: &[Goal], parts: Vec<Vec<u32>>) {
+        for &g in members {
+            self.values[g as usize] = FALSE;
+        }
+        let mut reads = Vec::new();
+        for part in parts {
+            if let [single] = part[..] {
+                let g = members[single as usize];
+                reads.clear();
+                successors(engine, &self.mu, g, &mut reads, |s| s == g);
+                if reads.is_empty() {
+                    self.values[g as usize] = self.evaluate_single(engine, g);
+                    continue;
+                }
+            }
+            self.component = part.iter().map(|&p| members[p as usize]).collect();
+            self.evaluate_component(engine, false);
+        }
     }
 }
