@@ -246,11 +246,17 @@ fn attack_families_agree_with_the_reference_prover() {
     }
 }
 
-/// The rings whose blocks are small (the pairs ring; the attack ring's blocks are single goals)
-/// are decided by composition at a size the search leaves undecided within its default budget.
+/// The rings are decided at sizes where a search goal by goal is quadratic and runs out of its
+/// default budget: by composition when their blocks are small (the pairs ring; the attack
+/// ring's blocks are single goals), by bounds once the reads nothing depends on are dropped
+/// (the priority ring: each `a(i+1)`'s attacker is beaten by its own supporter).
 #[test]
-fn rings_of_small_blocks_are_decided_without_the_search() {
-    for (family, size) in [("pairs-ring", 3000), ("attack-ring", 3001)] {
+fn rings_are_decided_within_the_default_budget() {
+    for (family, size, searched) in [
+        ("pairs-ring", 3000, false),
+        ("attack-ring", 3001, false),
+        ("priority-ring", 5000, true),
+    ] {
         let f = proclaim_gen::Family::parse(family, &[size]).unwrap();
         let mut text = Vec::new();
         f.write(&mut text, proclaim_gen::Format::Dl).unwrap();
@@ -261,7 +267,9 @@ fn rings_of_small_blocks_are_decided_without_the_search() {
                 .decide(Algorithm::Beta, lit)
                 .unwrap_or_else(|u| panic!("{f}: {u}"));
         }
-        assert_eq!(session.searched(), vec![], "{f}");
+        if !searched {
+            assert_eq!(session.searched(), vec![], "{f}");
+        }
         for e in f.expected() {
             let lit = theory.lit(&e.literal).unwrap();
             assert_eq!(session.prove(Algorithm::Beta, lit), e.proved, "{f}: {e}");
