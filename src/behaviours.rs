@@ -3,7 +3,9 @@
 
 use crate::embedded;
 use crate::failure::Failure;
+use crate::located;
 use proclaim_behaviour::{load_manifest, Behaviour, Embedded, Files, Folder, MANIFEST};
+use proclaim_syntax::FileDiagnostic;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -75,18 +77,22 @@ pub fn resolve(name: &str) -> Result<Found, Failure> {
 }
 
 pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
-    let found = resolve(name)?;
-    let behaviour = load_manifest(&found.label, found.files, &found.manifest).map_err(|lines| {
-        Failure::Invalid {
-            what: "the behaviour",
-            errors: lines.iter().filter(|l| l.contains("error")).count().max(1),
-            rendered: lines.join("\n") + "\n",
-        }
+    let behaviour = try_load_behaviour(name)?.map_err(|problems| Failure::Invalid {
+        what: "the behaviour",
+        errors: problems.iter().filter(|d| d.is_error()).count().max(1),
+        rendered: problems.iter().map(located::shown).collect(),
     })?;
     for w in &behaviour.warnings {
-        eprintln!("{w}");
+        eprint!("{}", located::shown(w));
     }
     Ok(behaviour)
+}
+
+/// The behaviour `name`, or every problem its files have (`Err` inside); `Err` outside when
+/// there is no such behaviour.
+pub fn try_load_behaviour(name: &str) -> Result<Result<Behaviour, Vec<FileDiagnostic>>, Failure> {
+    let found = resolve(name)?;
+    Ok(load_manifest(&found.label, found.files, &found.manifest))
 }
 
 /// Whether `name` names a behaviour rather than a file (for commands that take either).

@@ -9,6 +9,7 @@ mod commands;
 mod embedded;
 mod failure;
 mod load;
+mod located;
 mod logs;
 mod machines;
 mod network;

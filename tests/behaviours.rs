@@ -246,10 +246,22 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
         ("B.machine", "machine B\nstate S {\n  entry {\n"),
         ("t.dl", "a => b\n"),
     ]);
-    let errors = match load("broken", Arc::new(Folder::new(&dir))) {
+    let problems = match load("broken", Arc::new(Folder::new(&dir))) {
         Ok(_) => panic!("a broken behaviour must not load"),
         Err(e) => e,
     };
+    // A theory's problem has its line and column too, as its own reader gives them.
+    let theory = &problems[2];
+    assert!(
+        theory.file.ends_with("t.dl") && theory.is_error(),
+        "{problems:#?}"
+    );
+    assert_eq!(
+        (theory.line, theory.column),
+        (Some(1), Some(7)),
+        "{problems:#?}"
+    );
+    let errors: Vec<String> = problems.iter().map(ToString::to_string).collect();
     let shown = |f: &str| dir.join(f).display().to_string();
     assert_eq!(
         errors[0],
@@ -273,7 +285,7 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
     )]);
     let errors = load("typo", Arc::new(Folder::new(&dir))).err().unwrap();
     assert!(
-        errors[0].ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`"),
+        errors[0].to_string().ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`"),
         "{errors:#?}"
     );
 }

@@ -1,9 +1,10 @@
 //! `proclaim check`: every problem in every theory, machine file and behaviour, exit 1 when any
 //! is an error.
 
-use crate::behaviours::{is_behaviour, load_behaviour};
+use crate::behaviours::{is_behaviour, try_load_behaviour};
 use crate::failure::Failure;
 use crate::load::{self, color, diagnostic_json};
+use crate::located;
 use crate::machines::machine_file;
 use proclaim_cdl::check_source;
 use proclaim_fsm::{lint, FileDiagnostic, Imported, Severity};
@@ -95,20 +96,26 @@ fn behaviour(
     json: bool,
     report: &mut Vec<serde_json::Value>,
 ) -> Result<usize, Failure> {
-    let loaded = match load_behaviour(name) {
+    let loaded = match try_load_behaviour(name)? {
         Ok(b) => b,
-        Err(Failure::Invalid {
-            rendered, errors, ..
-        }) => {
+        Err(problems) => {
             if json {
-                report.extend(problems_json(name, &rendered));
+                report.extend(problems.iter().map(diagnostic_of_file_json));
             } else {
-                eprint!("{rendered}");
+                for d in &problems {
+                    eprint!("{}", located::shown(d));
+                }
             }
-            return Ok(errors);
+            return Ok(problems.iter().filter(|d| d.is_error()).count().max(1));
         }
-        Err(other) => return Err(other),
     };
+    for w in &loaded.warnings {
+        if json {
+            report.push(diagnostic_of_file_json(w));
+        } else {
+            eprint!("{}", located::shown(w));
+        }
+    }
     let findings = proclaim_behaviour::check_behaviour(&loaded);
     let errors = findings
         .iter()
@@ -137,8 +144,10 @@ fn diagnostic_of_file_json(d: &FileDiagnostic) -> serde_json::Value {
     serde_json::json!({
         "file": d.file,
         "line": d.line,
+        "column": d.column,
         "severity": if d.severity == Severity::Error { "error" } else { "warning" },
         "message": d.message,
+        "hint": d.hint,
     })
 }
 
@@ -158,10 +167,7 @@ fn machines(
         report.extend(imported.diagnostics.iter().map(diagnostic_of_file_json));
     } else {
         for d in &imported.diagnostics {
-            match shown_with_source(d) {
-                Some(rendered) => eprint!("{rendered}"),
-                None => eprintln!("{d}"),
-            }
+            eprint!("{}", located::shown(d));
         }
         let states: usize = imported.machines.iter().map(|m| m.states.len()).sum();
         let transitions: usize = imported.machines.iter().map(|m| m.transitions.len()).sum();
@@ -179,34 +185,6 @@ fn machines(
     errors
 }
 
-/// The problems of a behaviour that did not load, one record each with its own file and line.
-/// They come as `file:line: severity: message` lines (a theory's problems add lines that show
-/// the source under them, which stay with the problem above).
-fn problems_json(behaviour: &str, rendered: &str) -> Vec<serde_json::Value> {
-    let mut out: Vec<serde_json::Value> = Vec::new();
-    for line in rendered.lines().filter(|l| !l.trim().is_empty()) {
-        let located = ["error", "warning"].iter().find_map(|severity| {
-            let (place, message) = line.split_once(&format!(": {severity}: "))?;
-            let (file, number) = place.rsplit_once(':')?;
-            let number: usize = number.parse().ok()?;
-            Some(serde_json::json!({
-                "file": file, "line": number, "severity": severity, "message": message,
-            }))
-        });
-        match (located, out.last_mut()) {
-            (Some(record), _) => out.push(record),
-            (None, Some(last)) => {
-                let message = format!("{}\n{line}", last["message"].as_str().unwrap_or(""));
-                last["message"] = serde_json::Value::String(message);
-            }
-            (None, None) => out.push(serde_json::json!({
-                "file": behaviour, "line": 0, "severity": "error", "message": line,
-            })),
-        }
-    }
-    out
-}
-
 /// `1 rule`, `2 rules`, `1 priority`, `2 priorities`.
 fn count(n: usize, one: &str) -> String {
     let many = match one {
@@ -215,36 +193,4 @@ fn count(n: usize, one: &str) -> String {
         other => format!("{other}s"),
     };
     format!("{n} {}", if n == 1 { one } else { &many })
-}
-
-/// A machine file's problem as a `.dl` problem is shown: the line itself, a caret under the
-/// place, the hint; `None` where the place or the file is not known.
-fn shown_with_source(d: &FileDiagnostic) -> Option<String> {
-    let column = d.column?;
-    let text = std::fs::read_to_string(&d.file).ok()?;
-    let line_start: usize = text
-        .split_inclusive('\n')
-        .take(d.line.saturating_sub(1))
-        .map(str::len)
-        .sum();
-    let line = text[line_start..].lines().next().unwrap_or("");
-    let at = line_start
-        + line
-            .char_indices()
-            .nth(column - 1)
-            .map_or(line.len(), |(i, _)| i);
-    // Under the word that starts there, or one character.
-    let word = text[at..]
-        .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .unwrap_or(text.len() - at)
-        .max(1);
-    let span = proclaim_syntax::Span::new(at, (at + word).min(text.len()));
-    let mut diagnostic = match d.severity {
-        Severity::Error => proclaim_syntax::Diagnostic::error(span, d.message.clone()),
-        Severity::Warning => proclaim_syntax::Diagnostic::warning(span, d.message.clone()),
-    };
-    if let Some(hint) = &d.hint {
-        diagnostic = diagnostic.with_hint(hint.clone());
-    }
-    Some(render(&[diagnostic], &d.file, &text, color()))
 }

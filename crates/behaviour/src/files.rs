@@ -1,11 +1,13 @@
 //! Where a behaviour's files come from: a folder on disk, or texts built into the program.
 
+use proclaim_syntax::FileDiagnostic;
 use std::path::{Path, PathBuf};
 
 /// Reads a behaviour's files by their path relative to the behaviour (as the manifest names
 /// them).
 pub trait Files: Send + Sync {
-    fn read(&self, relative: &str) -> Result<String, String>;
+    /// The file's text, or why it cannot be had (about the file as a whole).
+    fn read(&self, relative: &str) -> Result<String, FileDiagnostic>;
 
     /// How to name the file to a person (`machines/microwave/Microwave.machine`).
     fn show(&self, relative: &str) -> String;
@@ -28,9 +30,10 @@ impl Folder {
 }
 
 impl Files for Folder {
-    fn read(&self, relative: &str) -> Result<String, String> {
-        let path = self.root.join(relative);
-        std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
+        std::fs::read_to_string(self.root.join(relative)).map_err(|e| {
+            FileDiagnostic::in_file(&self.show(relative), format!("cannot read it: {e}"))
+        })
     }
 
     fn show(&self, relative: &str) -> String {
@@ -49,15 +52,15 @@ pub struct Embedded {
 }
 
 impl Files for Embedded {
-    fn read(&self, relative: &str) -> Result<String, String> {
+    fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
         self.files
             .iter()
             .find(|(path, _)| *path == relative)
             .map(|(_, text)| text.to_string())
             .ok_or_else(|| {
-                format!(
-                    "the built-in behaviour `{}` has no file {relative}",
-                    self.name
+                FileDiagnostic::in_file(
+                    &self.show(relative),
+                    format!("the built-in behaviour `{}` has no such file", self.name),
                 )
             })
     }

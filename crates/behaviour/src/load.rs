@@ -14,6 +14,7 @@ use proclaim_fsm::{
 };
 use proclaim_gcsim::{parse_game, GameScript};
 use proclaim_runner::Loader;
+use proclaim_syntax::FileDiagnostic;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 use std::time::Duration;
@@ -31,8 +32,8 @@ pub struct Behaviour {
     pub run_for: Option<Duration>,
     /// Modules outside the behaviour (the manifest's `[[module]]` and its dictionary's).
     pub outside: Vec<ModuleEntry>,
-    /// Warnings of its files, `file:line: warning: …`.
-    pub warnings: Vec<String>,
+    /// Warnings of its files, each with its place.
+    pub warnings: Vec<FileDiagnostic>,
     pub files: Arc<dyn Files>,
 }
 
@@ -67,8 +68,9 @@ pub struct LoadedSensor {
     pub game: Option<GameScript>,
 }
 
-/// Loads the behaviour `name` from `files`. `Err` holds every error (and warning), one a line.
-pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<String>> {
+/// Loads the behaviour `name` from `files`. `Err` holds every error (and warning), each with its
+/// file and line.
+pub fn load(name: &str, files: Arc<dyn Files>) -> Result<Behaviour, Vec<FileDiagnostic>> {
     load_manifest(name, files, MANIFEST)
 }
 
@@ -78,27 +80,25 @@ pub fn load_manifest(
     name: &str,
     files: Arc<dyn Files>,
     manifest_name: &str,
-) -> Result<Behaviour, Vec<String>> {
+) -> Result<Behaviour, Vec<FileDiagnostic>> {
     let mut problems = Problems::default();
     let manifest_text = files.read(manifest_name).map_err(|e| vec![e])?;
+    let manifest_file = files.show(manifest_name);
     let manifest = match parse_manifest(&manifest_text) {
         Ok(m) => m,
         Err((line, message)) => {
-            return Err(vec![format!(
-                "{}:{line}: error: {message}",
-                files.show(manifest_name)
-            )])
+            return Err(vec![FileDiagnostic::error(&manifest_file, line, message)])
         }
     };
-    let manifest_file = files.show(manifest_name);
     let Timing {
         ring_period,
         answer_timeout,
         run_for,
     } = timing(&manifest, &manifest_file, &mut problems);
     if manifest.machines.is_empty() {
-        problems.error(format!(
-            "{manifest_file}: error: the behaviour names no [[machine]]"
+        problems.error(FileDiagnostic::in_file(
+            &manifest_file,
+            "the behaviour names no [[machine]]",
         ));
     }
 
@@ -130,13 +130,13 @@ pub fn load_manifest(
 
     let outside = outside_modules(files.as_ref(), &manifest, &mut problems);
 
-    if problems.errors > 0 {
-        let mut all = problems.lines;
-        all.extend(problems.warnings);
+    let errors = problems.found.iter().any(FileDiagnostic::is_error);
+    let mut all = problems.found;
+    all.extend(problems.theory_warnings);
+    if errors {
         return Err(all);
     }
-    let mut warnings = problems.lines;
-    warnings.extend(problems.warnings);
+    let warnings = all;
     Ok(Behaviour {
         name: name.to_string(),
         manifest,
@@ -165,8 +165,9 @@ fn timing(manifest: &Manifest, manifest_file: &str, problems: &mut Problems) -> 
         let text = value.as_ref()?;
         let parsed = parse_duration(text).filter(|d| !d.is_zero());
         if parsed.is_none() {
-            problems.error(format!(
-                "{manifest_file}: error: {field} = \"{text}\" is not a duration (write 100ms, 2s or 1.5s)"
+            problems.error(FileDiagnostic::in_file(
+                manifest_file,
+                format!("{field} = \"{text}\" is not a duration (write 100ms, 2s or 1.5s)"),
             ));
         }
         parsed
@@ -194,7 +195,7 @@ fn outside_modules(
         match files.read(file).map(|t| parse_dictionary(&t)) {
             Ok(Ok(d)) => outside.extend(d.modules),
             Ok(Err((line, message))) => {
-                problems.error(format!("{}:{line}: error: {message}", files.show(file)))
+                problems.error(FileDiagnostic::error(&files.show(file), line, message))
             }
             Err(e) => problems.error(e),
         }
@@ -218,9 +219,12 @@ fn load_machines(
         match pick(imported, &entry.file, entry.name.as_deref(), files.as_ref()) {
             Ok(Some(machine)) => {
                 if let Some(other) = machines.iter().find(|m| m.machine.name == machine.name) {
-                    problems.error(format!(
-                        "{manifest_file}: error: two machines are named `{}` ({} and {}); a machine's name is its control message type, so names must differ",
-                        machine.name, other.file, entry.file
+                    problems.error(FileDiagnostic::in_file(
+                        manifest_file,
+                        format!(
+                            "two machines are named `{}` ({} and {}); a machine's name is its control message type, so names must differ",
+                            machine.name, other.file, entry.file
+                        ),
                     ));
                 }
                 machines.push(LoadedMachine {
@@ -235,8 +239,9 @@ fn load_machines(
         }
     }
     if !manifest.machines.is_empty() && manifest.machines.iter().all(|m| !m.start) {
-        problems.error(format!(
-            "{manifest_file}: error: every machine has `start = false`; nothing would run"
+        problems.error(FileDiagnostic::in_file(
+            manifest_file,
+            "every machine has `start = false`; nothing would run",
         ));
     }
     machines
@@ -256,14 +261,12 @@ fn load_theory(
         &text,
         Language::from_path(std::path::Path::new(&entry.file)),
     );
-    let rendered = proclaim_syntax::render(&checked.diagnostics, &shown, &text, false);
+    let located = checked.diagnostics.iter().map(|d| d.in_file(&shown, &text));
     let Some(theory) = checked.theory else {
-        problems.error(rendered.trim_end().to_string());
+        problems.found.extend(located);
         return None;
     };
-    if !rendered.is_empty() {
-        problems.warnings.push(rendered.trim_end().to_string());
-    }
+    problems.theory_warnings.extend(located);
     let mapping = match &entry.mapping {
         None => FxHashMap::default(),
         Some(file) => read_lines(files, file, parse_mapping, problems)?,
@@ -299,12 +302,7 @@ fn read_lines<T>(
         Ok(Ok(parsed)) => Some(parsed),
         Ok(Err(errors)) => {
             for e in errors {
-                problems.error(format!(
-                    "{}:{}: error: {}",
-                    files.show(file),
-                    e.line,
-                    e.message
-                ));
+                problems.error(FileDiagnostic::error(&files.show(file), e.line, e.message));
             }
             None
         }
@@ -315,26 +313,20 @@ fn read_lines<T>(
     }
 }
 
+/// What loading found, in the order found; a theory's warnings come last.
 #[derive(Default)]
 struct Problems {
-    lines: Vec<String>,
-    warnings: Vec<String>,
-    errors: usize,
+    found: Vec<FileDiagnostic>,
+    theory_warnings: Vec<FileDiagnostic>,
 }
 
 impl Problems {
-    fn error(&mut self, line: String) {
-        self.errors += 1;
-        self.lines.push(line);
+    fn error(&mut self, diagnostic: FileDiagnostic) {
+        self.found.push(diagnostic);
     }
 
     fn file(&mut self, imported: &Imported) {
-        for d in &imported.diagnostics {
-            if d.severity == Severity::Error {
-                self.errors += 1;
-            }
-            self.lines.push(d.to_string());
-        }
+        self.found.extend(imported.diagnostics.iter().cloned());
     }
 }
 
@@ -350,9 +342,9 @@ fn stem(file: &str) -> String {
 /// (`TName.txt` / `AName.txt`, its partner beside it).
 pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
     let shown = files.show(relative);
-    let unreadable = |message: String| Imported {
+    let unreadable = |diagnostic: FileDiagnostic| Imported {
         machines: Vec::new(),
-        diagnostics: vec![proclaim_fsm::FileDiagnostic::error(&shown, 1, message)],
+        diagnostics: vec![diagnostic],
     };
     let read = |file: &str| files.read(file);
     match machine_format(std::path::Path::new(relative)) {
@@ -373,9 +365,9 @@ pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
                 (Err(e), _) | (_, Err(e)) => unreadable(e),
             }
         }
-        None => unreadable(format!(
+        None => unreadable(FileDiagnostic::in_file(&shown, format!(
             "`{relative}` is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
-        )),
+        ))),
     }
 }
 
@@ -385,24 +377,25 @@ fn pick(
     file: &str,
     name: Option<&str>,
     files: &dyn Files,
-) -> Result<Option<Machine>, String> {
+) -> Result<Option<Machine>, FileDiagnostic> {
     let names: Vec<String> = imported.machines.iter().map(|m| m.name.clone()).collect();
     let has_errors = imported.has_errors();
     let mut machines = imported.machines;
     match (name, machines.len()) {
         (_, 0) => Ok(None),
         (None, 1) => Ok((!has_errors).then(|| machines.remove(0))),
-        (None, _) => Err(format!(
-            "{}: error: the file holds several machines ({}); say which with `name = \"…\"`",
-            files.show(file),
-            names.join(", ")
+        (None, _) => Err(FileDiagnostic::in_file(
+            &files.show(file),
+            format!(
+                "the file holds several machines ({}); say which with `name = \"…\"`",
+                names.join(", ")
+            ),
         )),
         (Some(n), _) => match machines.iter().position(|m| m.name == n) {
             Some(i) => Ok((!has_errors).then(|| machines.remove(i))),
-            None => Err(format!(
-                "{}: error: the file has no machine `{n}`; it has {}",
-                files.show(file),
-                names.join(", ")
+            None => Err(FileDiagnostic::in_file(
+                &files.show(file),
+                format!("the file has no machine `{n}`; it has {}", names.join(", ")),
             )),
         },
     }
@@ -424,7 +417,7 @@ fn machine_loader(files: Arc<dyn Files>, file: String, name: Option<String>) -> 
         match pick(imported, &file, name.as_deref(), files.as_ref()) {
             Ok(Some(m)) => Ok(m),
             Ok(None) => Err(format!("{}: no machine could be read", files.show(&file))),
-            Err(e) => Err(e),
+            Err(e) => Err(e.to_string()),
         }
     })
 }

@@ -74,7 +74,12 @@ pub fn run_scripted(
         .and_then(|n| n.to_str())
         .unwrap_or("behaviour")
         .to_string();
-    let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(|e| e.join("\n"))?;
+    let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(|e| {
+        e.iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join("\n")
+    })?;
     let script = parse_script(script).map_err(|errors| {
         errors
             .iter()

@@ -4,8 +4,8 @@
 
 use crate::code::{parse_statements, Expr, Statement};
 use crate::control::Command;
-use crate::diagnostic::Severity;
 use crate::model::{Action, Argument};
+use proclaim_syntax::Severity;
 
 /// Parses `;`-separated T/A items, with a problem for each item that is not `C++: call`,
 /// `Type: content` or a statement of the activity language (a bare `f(12)` is read as a call,

@@ -9,7 +9,6 @@
 mod activity;
 pub mod code;
 pub mod control;
-mod diagnostic;
 pub mod dot;
 mod format;
 mod label;
@@ -22,13 +21,13 @@ mod ta;
 pub use activity::{parse_gufsm_activities, parse_ta_items, BUILTIN_FUNCTIONS};
 pub use code::{BinOp, Expr, Statement, UnOp, VarType};
 pub use control::{finished_type, machine_of_running_type, running_type, Command};
-pub use diagnostic::{FileDiagnostic, Severity};
 pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use lint::{lint, reachable};
 pub use model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
 pub use native::{is_native, parse_machine, to_native, EXTENSION};
+pub use proclaim_syntax::{FileDiagnostic, Severity};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};
 

@@ -2,9 +2,9 @@
 //! transitions never tried (below a `TRUE`) or never fired (below the same label), text kept as
 //! code that does nothing, and transitions whose label was never read.
 
-use crate::diagnostic::FileDiagnostic;
 use crate::label::Label;
 use crate::model::{Action, Machine, StateId};
+use proclaim_syntax::FileDiagnostic;
 
 /// Warnings about `machine`, read from `file`, in state order.
 pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {

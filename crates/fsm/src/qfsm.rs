@@ -5,10 +5,10 @@
 
 use crate::activity::parse_gufsm_activities;
 use crate::code::Expr;
-use crate::diagnostic::{FileDiagnostic, Severity};
 use crate::label::parse_label;
 use crate::model::{Machine, State, StateId, Transition, UnreadTransition};
 use crate::Imported;
+use proclaim_syntax::{FileDiagnostic, Severity};
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::{Reader, XmlVersion};
 

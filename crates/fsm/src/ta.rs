@@ -3,10 +3,10 @@
 //! `id<TAB>NAME|OnEntry …/ OnExit …/ internal`, the **last** line the initial state).
 
 use crate::activity::parse_ta_items;
-use crate::diagnostic::{FileDiagnostic, Severity};
 use crate::label::parse_label;
 use crate::model::{Machine, State, StateId, Transition, UnreadTransition};
 use crate::Imported;
+use proclaim_syntax::{FileDiagnostic, Severity};
 use std::path::{Path, PathBuf};
 
 /// The other file of a T/A pair: `TFoo.txt` ↔ `AFoo.txt`, in the same folder.

@@ -37,13 +37,13 @@ mod lexer;
 mod write;
 
 use crate::code::parse_statements;
-use crate::diagnostic::FileDiagnostic;
 use crate::label::parse_label;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
 use ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
 use lalrpop_util::ParseError;
 use lexer::{LexError, Lexer, Tok};
+use proclaim_syntax::FileDiagnostic;
 
 pub use write::to_native;
 
