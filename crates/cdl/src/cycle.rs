@@ -340,6 +340,7 @@ impl Component<'_> {
                     FALSE
                 } else {
                     let v = top_down.prove(g);
+                    top_down.forget_histories();
                     if top_down.exhausted {
                         UNDECIDED
                     } else if v {
@@ -537,6 +538,20 @@ impl<'a> TopDown<'a> {
             steps: 0,
             step_limit: limits.steps,
             exhausted: false,
+        }
+    }
+
+    /// Forgets what was remembered under histories, once a member has been proved from the
+    /// empty one. Every history below a member holds that member, so a later member's search
+    /// meets an old key only where it visits the same set of goals in another order; a memo
+    /// kept small stays in cache, which pays more than those meetings (measured on the ladder:
+    /// ladder(8) 578 ms and 24 MB against 1,332 ms and 299 MB). A memo one hard member grew
+    /// large is dropped rather than cleared, which costs its whole capacity at every member.
+    fn forget_histories(&mut self) {
+        if self.memo.capacity() > 4 * self.memo.len().max(1024) {
+            self.memo = FxHashMap::default();
+        } else {
+            self.memo.clear();
         }
     }
 
