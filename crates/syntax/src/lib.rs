@@ -5,6 +5,7 @@
 //! This crate knows nothing of meaning (labels, priorities, consistency): see `proclaim-cdl`.
 
 pub mod ast;
+mod common;
 mod dfl;
 pub mod diagnostic;
 pub mod lexer;

@@ -2,6 +2,7 @@
 //! every problem in a file is reported at once and parsing never fails.
 
 use crate::ast::{Item, Query};
+use crate::common::common_statement;
 use crate::diagnostic::{Diagnostic, Sink};
 use crate::grammar::{QueryParser, StatementParser};
 use crate::lexer::{lex, Lexer, Tok, Token};
@@ -112,7 +113,11 @@ pub fn parse_dl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheor
             );
             continue;
         }
-        match parser.parse(triples(statement)) {
+        let parsed = match common_statement(statement) {
+            Some(item) => Ok(item),
+            None => parser.parse(triples(statement)),
+        };
+        match parsed {
             Ok(item) => {
                 if labelled {
                     broken_labels.pop();

@@ -1,0 +1,209 @@
+//! The statements nearly every theory is made of (`a.`, `R1: a, ~b => c.`, `R1 > R2.`) read
+//! straight off their tokens, without the LR parser: at a million statements its stacks and
+//! symbols cost more than the reading. Anything else, and anything malformed, is left to the
+//! grammar of record (`grammar.lalrpop`), which says what is wrong; a property test holds the two
+//! to the same trees.
+
+use crate::ast::{Arrow, Item, Lit, RuleItem};
+use crate::lexer::{Tok, Token};
+use crate::span::Span;
+
+/// The statement (its tokens, the final `.` included) when it has one of the common shapes,
+/// exactly as the grammar would build it; `None` for the grammar to parse.
+pub(crate) fn common_statement(statement: &[Token<'_>]) -> Option<Item> {
+    let (last, rest) = statement.split_last()?;
+    if last.tok != Tok::Dot {
+        return None;
+    }
+    let span = Span::new(statement[0].span.start as usize, last.span.end as usize);
+    // `a.` / `~a.`
+    if let Some((lit, [])) = lit(rest) {
+        return Some(Item::Fact {
+            clause: vec![lit],
+            span,
+        });
+    }
+    match rest {
+        [Token {
+            tok: Tok::Ident(_),
+            span: first,
+        }, Token { tok: Tok::Gt, .. }, ..] => priority(*first, &rest[2..], span),
+        _ => rule(rest, span),
+    }
+}
+
+/// `~`? name, and what follows it.
+fn lit<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(Lit, &'t [Token<'a>])> {
+    match tokens {
+        [Token {
+            tok: Tok::Tilde,
+            span: tilde,
+        }, Token {
+            tok: Tok::Ident(_),
+            span: atom,
+        }, after @ ..] => Some((
+            Lit {
+                negated: true,
+                atom: *atom,
+                span: Span::new(tilde.start as usize, atom.end as usize),
+            },
+            after,
+        )),
+        [Token {
+            tok: Tok::Ident(_),
+            span: atom,
+        }, after @ ..] => Some((
+            Lit {
+                negated: false,
+                atom: *atom,
+                span: *atom,
+            },
+            after,
+        )),
+        _ => None,
+    }
+}
+
+/// `first > b > c` once `first >` is read: the rest of the chain.
+fn priority(first: Span, mut tokens: &[Token<'_>], span: Span) -> Option<Item> {
+    let mut labels = vec![first];
+    loop {
+        match tokens {
+            [Token {
+                tok: Tok::Ident(_),
+                span: label,
+            }] => {
+                labels.push(*label);
+                return Some(Item::Priority { labels, span });
+            }
+            [Token {
+                tok: Tok::Ident(_),
+                span: label,
+            }, Token { tok: Tok::Gt, .. }, after @ ..] => {
+                labels.push(*label);
+                tokens = after;
+            }
+            _ => return None,
+        }
+    }
+}
+
+/// `label:`? lits (comma-separated, a trailing comma allowed, as the grammar's `Comma<Lit>`)
+/// arrow lit.
+fn rule(tokens: &[Token<'_>], span: Span) -> Option<Item> {
+    let (label, mut tokens) = match tokens {
+        [Token {
+            tok: Tok::Ident(_),
+            span: label,
+        }, Token {
+            tok: Tok::Colon, ..
+        }, after @ ..] => (Some(*label), after),
+        _ => (None, tokens),
+    };
+    let mut body = Vec::new();
+    let arrow = loop {
+        if let Some(arrow) = arrow(tokens.first()?) {
+            break arrow;
+        }
+        let (l, after) = lit(tokens)?;
+        body.push(l);
+        tokens = match after.first()? {
+            Token {
+                tok: Tok::Comma, ..
+            } => &after[1..],
+            next if arrow(next).is_some() => after,
+            // Two literals with no comma between: the grammar's error to report.
+            _ => return None,
+        };
+    };
+    let (head, after) = lit(&tokens[1..])?;
+    after.is_empty().then_some(Item::Rule(RuleItem {
+        label,
+        body,
+        arrow,
+        head,
+        span,
+    }))
+}
+
+fn arrow(token: &Token<'_>) -> Option<Arrow> {
+    match token.tok {
+        Tok::Defeasible => Some(Arrow::Defeasible),
+        Tok::Strict => Some(Arrow::Strict),
+        Tok::Warning => Some(Arrow::Warning),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grammar::StatementParser;
+    use crate::lexer::lex;
+    use proptest::prelude::*;
+
+    /// Statements of the common shapes and near misses, as token soup.
+    fn statement() -> impl Strategy<Value = String> {
+        let word = prop_oneof![
+            Just("a"),
+            Just("b2"),
+            Just("r1"),
+            Just("~"),
+            Just(":"),
+            Just(","),
+            Just("=>"),
+            Just("->"),
+            Just("~>"),
+            Just(">"),
+            Just("{"),
+            Just("}"),
+            Just("input"),
+            Just("."),
+        ];
+        prop::collection::vec(word, 0..9).prop_map(|words| words.join(" ") + ".")
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20000))]
+
+        #[test]
+        fn common_statements_read_as_the_grammar_reads_them(text in statement()) {
+            let tokens = lex(&text);
+            let Some(end) = tokens.iter().position(|t| t.tok == Tok::Dot) else {
+                return Ok(());
+            };
+            let statement = &tokens[..=end];
+            if let Some(fast) = common_statement(statement) {
+                let triples = statement
+                    .iter()
+                    .map(|t| Ok::<_, crate::parse::UserError>((t.span.start as usize, t.tok, t.span.end as usize)));
+                let slow = StatementParser::new().parse(triples);
+                prop_assert_eq!(Ok(fast), slow.map_err(|e| format!("{e:?}")), "{}", text);
+            }
+        }
+    }
+
+    #[test]
+    fn the_common_shapes_are_read_without_the_grammar() {
+        for text in [
+            "a.",
+            "~a.",
+            "r1: a, ~b => c.",
+            "=> a.",
+            "a, -> ~b.",
+            "r1 > r2 > r3.",
+        ] {
+            assert!(common_statement(&lex(text)).is_some(), "{text}");
+        }
+        for text in [
+            "a b => c.",
+            "{a} => b.",
+            "input{a}.",
+            "r1 >.",
+            "a => b c.",
+            "\\/{a}.",
+        ] {
+            assert!(common_statement(&lex(text)).is_none(), "{text}");
+        }
+    }
+}
