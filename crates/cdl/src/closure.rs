@@ -6,7 +6,9 @@
 //! them all.
 
 use crate::literal::Lit;
+use hashbrown::HashTable;
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::hash::{BuildHasher, BuildHasherDefault};
 
 /// The most clauses a closure may hold; past it the theory is rejected rather than letting
 /// resolution run away (a closure can grow exponentially).
@@ -65,7 +67,7 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
                 second: (Vec::new(), Some(i)),
             };
         }
-        if !closure.seen.contains(&clause) {
+        if !closure.holds(&clause) {
             closure.add(clause, Some(i));
         }
     }
@@ -76,7 +78,7 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
             if resolvents == Resolvents::All {
                 break;
             }
-            match forced_units(&closure.all, &closure.seen) {
+            match forced_units(&closure.all, |clause| closure.holds(clause)) {
                 Forced::None => break,
                 Forced::Units(units) => {
                     if closure.all.len() + units.len() > MAX_CLOSURE {
@@ -111,16 +113,30 @@ pub fn close(input: &[Vec<Lit>], resolvents: Resolvents) -> ClosureOutcome {
 struct Closure {
     all: Vec<Vec<Lit>>,
     given: Vec<Option<usize>>,
-    seen: FxHashSet<Vec<Lit>>,
+    /// Indices into `all`, found by the clause's hash: each clause is stored once.
+    seen: HashTable<u32>,
     by_lit: FxHashMap<Lit, Vec<usize>>,
 }
 
+fn hash(clause: &[Lit]) -> u64 {
+    BuildHasherDefault::<rustc_hash::FxHasher>::default().hash_one(clause)
+}
+
 impl Closure {
+    fn holds(&self, clause: &[Lit]) -> bool {
+        self.seen
+            .find(hash(clause), |&i| self.all[i as usize] == clause)
+            .is_some()
+    }
+
     fn add(&mut self, clause: Vec<Lit>, given: Option<usize>) {
+        let index = self.all.len();
         for &l in &clause {
-            self.by_lit.entry(l).or_default().push(self.all.len());
+            self.by_lit.entry(l).or_default().push(index);
         }
-        self.seen.insert(clause.clone());
+        let all = &self.all;
+        self.seen
+            .insert_unique(hash(&clause), index as u32, |&i| hash(&all[i as usize]));
         self.all.push(clause);
         self.given.push(given);
     }
@@ -130,10 +146,11 @@ impl Closure {
     fn resolve(&mut self, next: usize, resolvents: Resolvents) -> Result<(), ClosureOutcome> {
         let current = self.all[next].clone();
         for &l in &current {
-            let Some(partners) = self.by_lit.get(&l.complement()) else {
-                continue;
-            };
-            for p in partners.clone() {
+            // By place, not by a copy of the list: resolvents added below never hold `~l`
+            // (they would be tautologies), so the list does not change while it is read.
+            let partners = self.by_lit.get(&l.complement()).map_or(0, Vec::len);
+            for at in 0..partners {
+                let p = self.by_lit[&l.complement()][at];
                 let other = &self.all[p];
                 if resolvents == Resolvents::ImplicationsImplicit
                     && current.len() == 2
@@ -156,7 +173,7 @@ impl Closure {
                 let Some(resolvent) = normalize(resolvent) else {
                     continue;
                 };
-                if self.seen.contains(&resolvent) {
+                if self.holds(&resolvent) {
                     continue;
                 }
                 if self.all.len() >= MAX_CLOSURE {
@@ -181,7 +198,7 @@ enum Forced {
 /// implies `l` (resolving along that path ends in `{l}`). A path can only join literals of one
 /// weakly connected part of the graph, so only literals whose complement lies in their part are
 /// searched.
-fn forced_units(all: &[Vec<Lit>], seen: &FxHashSet<Vec<Lit>>) -> Forced {
+fn forced_units(all: &[Vec<Lit>], holds: impl Fn(&[Lit]) -> bool) -> Forced {
     let mut succ: FxHashMap<Lit, Vec<Lit>> = FxHashMap::default();
     for clause in all.iter().filter(|c| c.len() == 2) {
         let (a, b) = (clause[0], clause[1]);
@@ -217,7 +234,7 @@ fn forced_units(all: &[Vec<Lit>], seen: &FxHashSet<Vec<Lit>>) -> Forced {
     let mut units = Vec::new();
     let mut visited: FxHashSet<Lit> = FxHashSet::default();
     for l in literals {
-        if seen.contains(&vec![l]) || !part.contains_key(&l.complement()) {
+        if holds(&[l]) || !part.contains_key(&l.complement()) {
             continue;
         }
         if find(&mut part, l) != find(&mut part, l.complement()) {

@@ -28,8 +28,42 @@ pub(crate) fn common_statement(statement: &[Token<'_>]) -> Option<Item> {
             tok: Tok::Ident(_),
             span: first,
         }, Token { tok: Tok::Gt, .. }, ..] => priority(*first, &rest[2..], span),
+        // `\/{a, ~b}.`
+        [Token { tok: Tok::Or, .. }, Token {
+            tok: Tok::LBrace, ..
+        }, inside @ .., Token {
+            tok: Tok::RBrace, ..
+        }] => {
+            let (clause, after) = lits(inside, |_| false)?;
+            after.is_empty().then_some(Item::Fact { clause, span })
+        }
         _ => rule(rest, span),
     }
+}
+
+/// Literals separated by commas, a trailing comma allowed (the grammar's `Comma<Lit>`), up to
+/// the first token `ends` accepts or the end; `None` when two literals have no comma between.
+fn lits<'t, 'a>(
+    mut tokens: &'t [Token<'a>],
+    ends: impl Fn(&Token<'_>) -> bool,
+) -> Option<(Vec<Lit>, &'t [Token<'a>])> {
+    let mut found = Vec::new();
+    while let Some(first) = tokens.first() {
+        if ends(first) {
+            break;
+        }
+        let (l, after) = lit(tokens)?;
+        found.push(l);
+        tokens = match after.first() {
+            Some(Token {
+                tok: Tok::Comma, ..
+            }) => &after[1..],
+            Some(next) if ends(next) => after,
+            None => after,
+            Some(_) => return None,
+        };
+    }
+    Some((found, tokens))
 }
 
 /// `~`? name, and what follows it.
@@ -88,10 +122,9 @@ fn priority(first: Span, mut tokens: &[Token<'_>], span: Span) -> Option<Item> {
     }
 }
 
-/// `label:`? lits (comma-separated, a trailing comma allowed, as the grammar's `Comma<Lit>`)
-/// arrow lit.
+/// `label:`? lits arrow lit.
 fn rule(tokens: &[Token<'_>], span: Span) -> Option<Item> {
-    let (label, mut tokens) = match tokens {
+    let (label, tokens) = match tokens {
         [Token {
             tok: Tok::Ident(_),
             span: label,
@@ -100,22 +133,8 @@ fn rule(tokens: &[Token<'_>], span: Span) -> Option<Item> {
         }, after @ ..] => (Some(*label), after),
         _ => (None, tokens),
     };
-    let mut body = Vec::new();
-    let arrow = loop {
-        if let Some(arrow) = arrow(tokens.first()?) {
-            break arrow;
-        }
-        let (l, after) = lit(tokens)?;
-        body.push(l);
-        tokens = match after.first()? {
-            Token {
-                tok: Tok::Comma, ..
-            } => &after[1..],
-            next if arrow(next).is_some() => after,
-            // Two literals with no comma between: the grammar's error to report.
-            _ => return None,
-        };
-    };
+    let (body, tokens) = lits(tokens, |t| arrow(t).is_some())?;
+    let arrow = arrow(tokens.first()?)?;
     let (head, after) = lit(&tokens[1..])?;
     after.is_empty().then_some(Item::Rule(RuleItem {
         label,
@@ -157,6 +176,7 @@ mod tests {
             Just(">"),
             Just("{"),
             Just("}"),
+            Just("\\/"),
             Just("input"),
             Just("."),
         ];
@@ -192,6 +212,8 @@ mod tests {
             "=> a.",
             "a, -> ~b.",
             "r1 > r2 > r3.",
+            "\\/{~a, b}.",
+            "\\/{a,}.",
         ] {
             assert!(common_statement(&lex(text)).is_some(), "{text}");
         }
@@ -201,7 +223,8 @@ mod tests {
             "input{a}.",
             "r1 >.",
             "a => b c.",
-            "\\/{a}.",
+            "\\/{a b}.",
+            "\\/{a}, b.",
         ] {
             assert!(common_statement(&lex(text)).is_none(), "{text}");
         }
