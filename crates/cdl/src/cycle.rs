@@ -10,7 +10,7 @@ use crate::engine::Engine;
 use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
 use crate::matching::uncovered_by_some_maximum_matching;
 use crate::relevance::independent_parts;
-use crate::ring::Ring;
+use crate::ring::{apply, around, Function, Ring};
 use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
 use rustc_hash::FxHashMap;
 
@@ -201,11 +201,6 @@ impl Component<'_> {
         if at != 0 {
             return None;
         }
-        // A function of one boolean as (value at false, value at true).
-        type Function = (bool, bool);
-        let apply = |f: Function, x: bool| if x { f.1 } else { f.0 };
-        // (f ∘ g)(x) = f(g(x))
-        let compose = |f: Function, g: Function| (apply(f, g.0), apply(f, g.1));
         let functions: Vec<Function> = order
             .iter()
             .map(|&m| {
@@ -216,19 +211,9 @@ impl Component<'_> {
                 )
             })
             .collect();
-        let identity: Function = (false, true);
-        // prefix[i] = f0 ∘ … ∘ f(i-1); suffix[i] = fi ∘ … ∘ f(n-1).
-        let mut prefix = vec![identity; n + 1];
-        for i in 0..n {
-            prefix[i + 1] = compose(prefix[i], functions[i]);
-        }
-        let mut suffix = vec![identity; n + 1];
-        for i in (0..n).rev() {
-            suffix[i] = compose(functions[i], suffix[i + 1]);
-        }
         let mut values = vec![false; n];
-        for (i, &m) in order.iter().enumerate() {
-            values[m as usize] = apply(compose(suffix[i], prefix[i]), false);
+        for ((&m, &f), rest) in order.iter().zip(&functions).zip(around(&functions)) {
+            values[m as usize] = apply(f, apply(rest, false));
         }
         Some(values)
     }

@@ -21,9 +21,9 @@ use rustc_hash::FxHashMap;
 const BLOCK_LIMIT: usize = 12;
 
 /// A function of one boolean as (value at false, value at true).
-type Function = (bool, bool);
+pub(crate) type Function = (bool, bool);
 
-fn apply(f: Function, x: bool) -> bool {
+pub(crate) fn apply(f: Function, x: bool) -> bool {
     if x {
         f.1
     } else {
@@ -37,6 +37,23 @@ fn compose(f: Function, g: Function) -> Function {
 }
 
 const IDENTITY: Function = (false, true);
+
+/// For each function of a ring, the composition of all the others from the next one round:
+/// `around[i] = f(i+1) ∘ … ∘ f(n-1) ∘ f0 ∘ … ∘ f(i-1)`, by prefix and suffix compositions
+/// (linear).
+pub(crate) fn around(functions: &[Function]) -> Vec<Function> {
+    let n = functions.len();
+    // prefix[i] = f0 ∘ … ∘ f(i-1); suffix[i] = fi ∘ … ∘ f(n-1).
+    let mut prefix = vec![IDENTITY; n + 1];
+    for i in 0..n {
+        prefix[i + 1] = compose(prefix[i], functions[i]);
+    }
+    let mut suffix = vec![IDENTITY; n + 1];
+    for i in (0..n).rev() {
+        suffix[i] = compose(functions[i], suffix[i + 1]);
+    }
+    (0..n).map(|i| compose(suffix[i + 1], prefix[i])).collect()
+}
 
 /// The blocks in ring order: block `j`'s goals (by position in the component) read only each
 /// other and the entry of block `j + 1` (mod the number of blocks).
@@ -159,19 +176,9 @@ impl Ring {
             let at_true = search.value(entry, 0, Exit::Constant(true))?;
             transfer.push((at_false, at_true));
         }
-        // prefix[i] = t0 ∘ … ∘ t(i-1); suffix[i] = ti ∘ … ∘ t(blocks-1).
-        let mut prefix = vec![IDENTITY; blocks + 1];
-        for i in 0..blocks {
-            prefix[i + 1] = compose(prefix[i], transfer[i]);
-        }
-        let mut suffix = vec![IDENTITY; blocks + 1];
-        for i in (0..blocks).rev() {
-            suffix[i] = compose(transfer[i], suffix[i + 1]);
-        }
+        let around = around(&transfer);
         let mut values = vec![false; component.members.len()];
-        for b in 0..blocks {
-            // The rest of the ring seen from block b: t(b+1) ∘ … ∘ t(b-1).
-            let around = compose(suffix[b + 1], prefix[b]);
+        for (b, &around) in around.iter().enumerate() {
             search.forget();
             for &m in &self.members[b] {
                 values[m as usize] = search.value(m, 0, Exit::Around(around))?;
