@@ -15,27 +15,8 @@ pub(crate) fn dominator_tree(
     root: u32,
     nodes: usize,
 ) -> (Vec<u32>, Vec<u32>) {
+    let (order, number, parent) = depth_first(successors, root, nodes);
     const NONE: u32 = u32::MAX;
-    // Depth-first numbering: `number[v]` is v's place in `order`; `parent` is the DFS tree.
-    let mut number = vec![NONE; nodes];
-    let mut parent = vec![NONE; nodes];
-    let mut order: Vec<u32> = Vec::new();
-    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
-    number[root as usize] = 0;
-    order.push(root);
-    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
-        if let Some(&w) = successors.row(v as usize).get(*next as usize) {
-            *next += 1;
-            if number[w as usize] == NONE {
-                number[w as usize] = order.len() as u32;
-                order.push(w);
-                parent[w as usize] = v;
-                stack.push((w, 0));
-            }
-        } else {
-            stack.pop();
-        }
-    }
     // Semidominators, by DFS number; a forest linked in reverse preorder, evaluated with path
     // compression (`label` holds the node of least semidominator on the compressed path).
     let mut semi: Vec<u32> = (0..nodes).map(|v| number[v]).collect();
@@ -97,6 +78,32 @@ pub(crate) fn dominator_tree(
     }
     idom[root as usize] = root;
     (order, idom)
+}
+
+/// The nodes `root` reaches in depth-first preorder, each node's place in it (`u32::MAX` for
+/// the others) and its parent in the depth-first tree (iterative: the graphs are long).
+fn depth_first(successors: &Csr, root: u32, nodes: usize) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+    const NONE: u32 = u32::MAX;
+    let mut number = vec![NONE; nodes];
+    let mut parent = vec![NONE; nodes];
+    let mut order: Vec<u32> = Vec::new();
+    let mut stack: Vec<(u32, u32)> = vec![(root, 0)];
+    number[root as usize] = 0;
+    order.push(root);
+    while let Some(&mut (v, ref mut next)) = stack.last_mut() {
+        if let Some(&w) = successors.row(v as usize).get(*next as usize) {
+            *next += 1;
+            if number[w as usize] == NONE {
+                number[w as usize] = order.len() as u32;
+                order.push(w);
+                parent[w as usize] = v;
+                stack.push((w, 0));
+            }
+        } else {
+            stack.pop();
+        }
+    }
+    (order, number, parent)
 }
 
 /// Each node's interval in a depth-first numbering of the tree (`u32::MAX` on entry for nodes

@@ -17,7 +17,8 @@ const MOST_READS: usize = 4;
 /// it stays one part.
 pub(crate) fn independent_parts(component: &Component, edges: &[Edge]) -> Option<Vec<Vec<u32>>> {
     let n = component.members.len();
-    // Aggregates stand for the implication graph's many rules: their reads are all relevant.
+    // Components with aggregates (stand-ins for the implication graph's unwritten rules) stay
+    // whole: on clause chains a truth table per member cost time and dropped nothing useful.
     if component
         .members
         .iter()
