@@ -243,13 +243,12 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
     let _ = std::fs::remove_file(&script);
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_replayed_trace_shows_any_moment_with_its_slider() {
-    let Some((_driver, client)) = open_browser().await else {
-        return;
-    };
-    let trace = std::env::temp_dir().join(format!("proclaim-monitor-{}.jsonl", std::process::id()));
-    let trace_arg = trace.to_str().unwrap();
+/// The microwave behaviour run for ten virtual seconds, its trace written to a file of its own.
+fn microwave_trace(tag: &str) -> std::path::PathBuf {
+    let trace = std::env::temp_dir().join(format!(
+        "proclaim-monitor-{tag}-{}.jsonl",
+        std::process::id()
+    ));
     let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args([
             "run",
@@ -258,8 +257,8 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
             "--for",
             "10s",
             "--trace",
-            trace_arg,
         ])
+        .arg(&trace)
         .output()
         .expect("proclaim runs");
     assert!(
@@ -267,6 +266,16 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
         "{}",
         String::from_utf8_lossy(&ran.stderr)
     );
+    trace
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_replayed_trace_shows_any_moment_with_its_slider() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = microwave_trace("slider");
+    let trace_arg = trace.to_str().unwrap();
     let events: Vec<Json> = std::fs::read_to_string(&trace)
         .unwrap()
         .lines()
@@ -429,24 +438,8 @@ fn bad_monitor_arguments_say_what_is_wrong() {
 
 #[test]
 fn a_trace_replayed_without_its_behaviour_draws_what_the_trace_shows() {
-    let trace = std::env::temp_dir().join(format!(
-        "proclaim-monitor-alone-{}.jsonl",
-        std::process::id()
-    ));
+    let trace = microwave_trace("alone");
     let trace_arg = trace.to_str().unwrap();
-    let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args([
-            "run",
-            "microwave",
-            "--virtual-clock",
-            "--for",
-            "10s",
-            "--trace",
-            trace_arg,
-        ])
-        .output()
-        .unwrap();
-    assert!(ran.status.success());
     let (_replay, url) = proclaim_with_monitor(&["replay", trace_arg, "--monitor", "127.0.0.1:0"]);
     let (status, model) = http(&url, "GET", "/api/model", None);
     assert_eq!(status, 200);
