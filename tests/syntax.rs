@@ -242,3 +242,12 @@ fn a_missing_dot_is_one_error_not_a_cascade() {
         "2:1: error: unexpected `Doubt`\n",
     );
 }
+
+#[test]
+fn a_label_inside_a_statement_with_bad_characters_is_not_reported_again() {
+    // The bad characters stop the whole statement, `Doubt`'s rule with it: one error.
+    check(
+        "Sure: a => b $ Doubt: c => ~b.\nDoubt > Sure.\n",
+        "1:14: error: unexpected characters\n",
+    );
+}

@@ -1,8 +1,8 @@
-//! The statements nearly every theory is made of (`a.`, `R1: a, ~b => c.`, `R1 > R2.`) read
-//! straight off their tokens, without the LR parser: at a million statements its stacks and
-//! symbols cost more than the reading. Anything else, and anything malformed, is left to the
-//! grammar of record (`grammar.lalrpop`), which says what is wrong; a property test holds the two
-//! to the same trees.
+//! The statements nearly every theory is made of (`a.`, `\/{~a, b}.`, `R1: a, ~b => c.`,
+//! `R1 > R2.`) read straight off their tokens, without the LR parser: at a million statements
+//! its stacks and symbols cost more than the reading. Anything else, and anything malformed, is
+//! left to the grammar of record (`grammar.lalrpop`), which says what is wrong; a property test
+//! holds the two to the same trees.
 
 use crate::ast::{Arrow, Item, Lit, RuleItem};
 use crate::lexer::{Tok, Token};

@@ -69,74 +69,34 @@ pub fn parse_dl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheor
     let mut lexer = Lexer::new(source);
     let parser = StatementParser::new();
     let mut sink = Sink::default();
+    // Labels written in statements that did not parse (a missing `.` runs two statements
+    // together, `R1: a => b  Doubt: c => d.`, so every label inside counts), so that
+    // priorities naming them stay quiet.
     let mut broken_labels = Vec::new();
     let mut statement: Vec<Token<'_>> = Vec::new();
     loop {
-        statement.clear();
-        let mut terminated = false;
-        for token in lexer.by_ref() {
-            statement.push(token);
-            if token.tok == Tok::Dot {
-                terminated = true;
-                break;
-            }
-        }
+        let terminated = next_statement(&mut lexer, &mut statement);
         if statement.is_empty() {
             break;
         }
-        let statement = &statement[..];
-        if let [Token {
-            tok: Tok::Ident(_),
-            span,
-        }, Token {
-            tok: Tok::Colon, ..
-        }, ..] = statement
-        {
-            // Remembered in case the statement fails; dropped again below when it parses.
-            broken_labels.push(*span);
-        }
-        let labelled = broken_labels
-            .last()
-            .is_some_and(|s| *s == statement[0].span);
-        if report_bad_tokens(statement, &mut sink) {
+        if report_bad_tokens(&statement, &mut sink) {
+            broken_labels.extend(labels_written_in(&statement));
             continue;
         }
         if !terminated {
-            let last = statement[statement.len() - 1].span;
-            sink.push(
-                Diagnostic::error(
-                    Span::new(last.end as usize, last.end as usize),
-                    "missing `.` at the end of the statement",
-                )
-                .with_label("the statement ends here")
-                .with_hint("every statement (fact, rule, priority, directive) ends with `.`"),
-            );
+            broken_labels.extend(labels_written_in(&statement));
+            sink.push(missing_dot(&statement));
             continue;
         }
-        let parsed = match common_statement(statement) {
+        let parsed = match common_statement(&statement) {
             Some(item) => Ok(item),
-            None => parser.parse(triples(statement)),
+            None => parser.parse(triples(&statement)),
         };
         match parsed {
-            Ok(item) => {
-                if labelled {
-                    broken_labels.pop();
-                }
-                on_item(item)
-            }
+            Ok(item) => on_item(item),
             Err(error) => {
-                // A missing `.` runs two statements together (`R1: a => b  Doubt: c => d.`):
-                // the labels inside are broken too, so priorities naming them stay quiet.
-                broken_labels.extend(statement.windows(2).skip(1).filter_map(|pair| match pair {
-                    [Token {
-                        tok: Tok::Ident(_),
-                        span,
-                    }, Token {
-                        tok: Tok::Colon, ..
-                    }] => Some(*span),
-                    _ => None,
-                }));
-                sink.push(to_diagnostic(error, source, statement))
+                broken_labels.extend(labels_written_in(&statement));
+                sink.push(to_diagnostic(error, source, &statement))
             }
         }
     }
@@ -145,6 +105,42 @@ pub fn parse_dl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheor
         diagnostics: sink.finish(source.len()),
         broken_labels,
     }
+}
+
+/// Reads the tokens up to and including the next `.` into `statement` (emptied first); false
+/// when the text ended before a `.`.
+fn next_statement<'a>(lexer: &mut Lexer<'a>, statement: &mut Vec<Token<'a>>) -> bool {
+    statement.clear();
+    for token in lexer.by_ref() {
+        statement.push(token);
+        if token.tok == Tok::Dot {
+            return true;
+        }
+    }
+    false
+}
+
+/// Every `label:` written in the statement.
+fn labels_written_in<'s>(statement: &'s [Token<'_>]) -> impl Iterator<Item = Span> + 's {
+    statement.windows(2).filter_map(|pair| match pair {
+        [Token {
+            tok: Tok::Ident(_),
+            span,
+        }, Token {
+            tok: Tok::Colon, ..
+        }] => Some(*span),
+        _ => None,
+    })
+}
+
+fn missing_dot(statement: &[Token<'_>]) -> Diagnostic {
+    let last = statement[statement.len() - 1].span;
+    Diagnostic::error(
+        Span::new(last.end as usize, last.end as usize),
+        "missing `.` at the end of the statement",
+    )
+    .with_label("the statement ends here")
+    .with_hint("every statement (fact, rule, priority, directive) ends with `.`")
 }
 
 /// Parses a query given on the command line or through the library: `a`, `~a`, `\/{a, b}` or
