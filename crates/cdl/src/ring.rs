@@ -106,9 +106,16 @@ impl Ring {
         if boundaries.len() < 2 {
             return None;
         }
-        // Block 0 is the root's part of the spine with the part from the last boundary on (the
-        // two are one block of the ring, entered at the last boundary's place).
-        let mut block_of_place = vec![0u32; k];
+        let ring = Ring::from_boundaries(&boundaries, &spine, &anchor)?;
+        ring.holds(edges).then_some(ring)
+    }
+
+    /// The blocks the boundaries cut the spine into, each member in the block of its anchor;
+    /// `None` when a block is larger than [`BLOCK_LIMIT`]. Block 0 is the root's part of the
+    /// spine with the part from the last boundary on: one block of the ring, entered at the last
+    /// boundary's place.
+    fn from_boundaries(boundaries: &[u32], spine: &[u32], anchor: &[u32]) -> Option<Ring> {
+        let mut block_of_place = vec![0u32; spine.len()];
         for (b, pair) in boundaries.windows(2).enumerate() {
             for slot in &mut block_of_place[pair[0] as usize..pair[1] as usize] {
                 *slot = b as u32 + 1;
@@ -120,9 +127,9 @@ impl Ring {
             .map(|&b| spine[b as usize])
             .collect();
         entries.insert(0, spine[*boundaries.last()? as usize]);
+        let n = anchor.len();
         let mut members: Vec<Vec<u32>> = entries.iter().map(|&e| vec![e]).collect();
         let mut block = vec![0u32; n];
-        let mut place = vec![0u8; n];
         for m in 0..n as u32 {
             let b = block_of_place[anchor[m as usize] as usize];
             block[m as usize] = b;
@@ -134,17 +141,17 @@ impl Ring {
                 list.push(m);
             }
         }
+        let mut place = vec![0u8; n];
         for list in &members {
             for (i, &m) in list.iter().enumerate() {
                 place[m as usize] = i as u8;
             }
         }
-        let ring = Ring {
+        Some(Ring {
             block,
             place,
             members,
-        };
-        ring.holds(edges).then_some(ring)
+        })
     }
 
     /// Every read stays in its block or enters the next block at its entry.
