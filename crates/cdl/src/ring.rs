@@ -67,7 +67,7 @@ pub(crate) struct Ring {
 }
 
 impl Ring {
-    /// The ring the component's reads form, if they form one of at least three blocks, none
+    /// The ring the component's reads form, if they form one of at least two blocks, none
     /// larger than [`BLOCK_LIMIT`]. Found from the dominator tree of one member: its longest
     /// chain of dominators passes through every block's entry, and a block boundary is a place
     /// on that chain that only the reads closing the ring cross backwards.
