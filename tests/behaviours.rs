@@ -406,7 +406,7 @@ fn launch_manifests_start_exactly_what_a_machine_needs() {
         "{text}"
     );
     // The manifest loads beside the original.
-    let parsed = proclaim_behaviour::parse_manifest(&text).unwrap();
+    let parsed = proclaim_behaviour::parse_manifest("behaviour.toml", &text).unwrap();
     assert_eq!(parsed.machines.len(), 1);
     assert_eq!(parsed.theories.len(), 1);
 }

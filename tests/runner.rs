@@ -276,12 +276,7 @@ async fn reload_and_reread_replace_a_running_machine_and_a_bad_file_changes_noth
         let imported = proclaim_fsm::parse_machine("m.machine", &source.lock().unwrap());
         match imported.machines.into_iter().next() {
             Some(m) if imported.diagnostics.is_empty() => Ok(m),
-            _ => Err(imported
-                .diagnostics
-                .iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("; ")),
+            _ => Err(imported.diagnostics),
         }
     });
     let board = Whiteboard::local();

@@ -84,12 +84,7 @@ pub fn load_manifest(
     let mut problems = Problems::default();
     let manifest_text = files.read(manifest_name).map_err(|e| vec![e])?;
     let manifest_file = files.show(manifest_name);
-    let manifest = match parse_manifest(&manifest_text) {
-        Ok(m) => m,
-        Err((line, message)) => {
-            return Err(vec![FileDiagnostic::error(&manifest_file, line, message)])
-        }
-    };
+    let manifest = parse_manifest(&manifest_file, &manifest_text).map_err(|e| vec![e])?;
     let Timing {
         ring_period,
         answer_timeout,
@@ -192,11 +187,11 @@ fn outside_modules(
 ) -> Vec<ModuleEntry> {
     let mut outside = manifest.modules.clone();
     if let Some(file) = &manifest.dictionary {
-        match files.read(file).map(|t| parse_dictionary(&t)) {
-            Ok(Ok(d)) => outside.extend(d.modules),
-            Ok(Err((line, message))) => {
-                problems.error(FileDiagnostic::error(&files.show(file), line, message))
-            }
+        match files
+            .read(file)
+            .and_then(|t| parse_dictionary(&files.show(file), &t))
+        {
+            Ok(d) => outside.extend(d.modules),
             Err(e) => problems.error(e),
         }
     }
@@ -401,23 +396,26 @@ fn pick(
     }
 }
 
-/// Reads the machine of a manifest entry again; errors come back as one text.
+/// Reads the machine of a manifest entry again; the file's errors come back each at its place.
 fn machine_loader(files: Arc<dyn Files>, file: String, name: Option<String>) -> Loader {
     Arc::new(move || {
         let imported = read_machines(files.as_ref(), &file);
-        let errors: Vec<String> = imported
+        let errors: Vec<FileDiagnostic> = imported
             .diagnostics
             .iter()
             .filter(|d| d.severity == Severity::Error)
-            .map(ToString::to_string)
+            .cloned()
             .collect();
         if !errors.is_empty() {
-            return Err(errors.join("\n"));
+            return Err(errors);
         }
         match pick(imported, &file, name.as_deref(), files.as_ref()) {
             Ok(Some(m)) => Ok(m),
-            Ok(None) => Err(format!("{}: no machine could be read", files.show(&file))),
-            Err(e) => Err(e.to_string()),
+            Ok(None) => Err(vec![FileDiagnostic::in_file(
+                &files.show(&file),
+                "no machine could be read",
+            )]),
+            Err(e) => Err(vec![e]),
         }
     })
 }

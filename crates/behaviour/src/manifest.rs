@@ -31,6 +31,7 @@
 //! reads = ["LEDS"]                     # also posts = […], answers = […]
 //! ```
 
+use proclaim_syntax::{line_column, FileDiagnostic};
 use serde::{Deserialize, Serialize};
 
 /// The manifest's file name inside a behaviour's folder.
@@ -173,21 +174,20 @@ fn is_true(value: &bool) -> bool {
     *value
 }
 
-/// Reads a manifest; an error says where (1-based line) and why.
-pub fn parse_manifest(text: &str) -> Result<Manifest, (usize, String)> {
-    parse_toml(text)
+/// Reads a manifest, the text of `file`; an error says where and why.
+pub fn parse_manifest(file: &str, text: &str) -> Result<Manifest, FileDiagnostic> {
+    parse_toml(file, text)
 }
 
-/// Reads a dictionary of outside modules; an error says where (1-based line) and why.
-pub fn parse_dictionary(text: &str) -> Result<Dictionary, (usize, String)> {
-    parse_toml(text)
+/// Reads a dictionary of outside modules, the text of `file`; an error says where and why.
+pub fn parse_dictionary(file: &str, text: &str) -> Result<Dictionary, FileDiagnostic> {
+    parse_toml(file, text)
 }
 
-fn parse_toml<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, (usize, String)> {
+fn parse_toml<T: serde::de::DeserializeOwned>(file: &str, text: &str) -> Result<T, FileDiagnostic> {
     toml::from_str(text).map_err(|e| {
-        let line = e.span().map_or(1, |s| {
-            text[..s.start.min(text.len())].matches('\n').count() + 1
-        });
-        (line, e.message().to_string())
+        let start = e.span().map_or(0, |s| s.start.min(text.len()));
+        let (line, column) = line_column(text, start);
+        FileDiagnostic::error(file, line, e.message()).at_column(column)
     })
 }

@@ -9,7 +9,7 @@ use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
 use proclaim_fsm::control::{running_type, Command};
-use proclaim_fsm::{Action, Label, Machine, StateId};
+use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 use std::time::Duration;
@@ -52,8 +52,9 @@ impl Default for RunOptions {
     }
 }
 
-/// Reads the machine's file again, for `reload` and `reread`: the new machine, or why not.
-pub type Loader = Arc<dyn Fn() -> Result<Machine, String> + Send + Sync>;
+/// Reads the machine's file again, for `reload` and `reread`: the new machine, or every problem
+/// of the file, each at its place.
+pub type Loader = Arc<dyn Fn() -> Result<Machine, Vec<FileDiagnostic>> + Send + Sync>;
 
 pub struct MachineRunner {
     machine: Machine,
@@ -455,7 +456,14 @@ impl<'r> Run<'r> {
     /// nothing.
     fn reload(&mut self, keep_state: bool) {
         let loaded = match &self.runner.loader {
-            Some(load) => load(),
+            // The event is text, one problem a line, as the trace and the terminal show it.
+            Some(load) => load().map_err(|problems| {
+                problems
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            }),
             None => Err("the machine has no file to read again".to_string()),
         };
         let new = match loaded {
