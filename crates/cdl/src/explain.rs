@@ -149,6 +149,8 @@ impl Session {
         node
     }
 
+    /// β or π for `q`: settled by μ, or the first rule that supports it (or an implicit
+    /// resolvent), then what attacks it; or why nothing supports it.
     fn explain_defeasible(
         &mut self,
         alg: Algorithm,
@@ -157,65 +159,19 @@ impl Session {
         seen: &mut HashSet<(Algorithm, Lit)>,
         node: &mut Explanation,
     ) {
+        if let Some(settled) = self.settled_by_mu(q) {
+            node.children.push(settled);
+            return;
+        }
+        let (supporter, failed) = self.first_supporter(alg, q);
+        let Some(r) = supporter else {
+            if !self.explain_implicit_support(alg, q, depth, seen, node) {
+                self.explain_unsupported(alg, q, failed, depth, seen, node);
+            }
+            return;
+        };
         let engine = self.engine().clone();
         let theory = engine.theory();
-        let show = |l: Lit| theory.show(l).to_string();
-        if self.mu()[q.index()] {
-            node.children.push(Explanation::leaf(format!(
-                "+mu {}: definitely proved",
-                show(q)
-            )));
-            return;
-        }
-        if self.mu()[q.complement().index()] {
-            node.children.push(Explanation::leaf(format!(
-                "+mu {}: the complement is definitely proved",
-                show(q.complement())
-            )));
-            return;
-        }
-        let applicable = |s: &mut Session, r: u32, a: Algorithm| -> Option<Lit> {
-            engine.body(r).iter().copied().find(|&x| !s.prove(a, x))
-        };
-        let mut supporter = None;
-        let mut failed = Vec::new();
-        for &r in engine.rules_for(q) {
-            if !engine.kind(r).supports() {
-                continue;
-            }
-            match applicable(self, r, alg) {
-                None => {
-                    supporter = Some(r);
-                    break;
-                }
-                Some(a) => failed.push((r, a)),
-            }
-        }
-        if supporter.is_none() {
-            // A resolvent of the clause axioms the closure left implicit (`x -> q` for a path
-            // of implications from `x`), proved.
-            let implicit = implicit_sources(&engine, q)
-                .into_iter()
-                .find(|&x| self.prove(alg, x));
-            if let Some(x) = implicit {
-                let mut line = Explanation::leaf(format!(
-                    "supported by {} -> {}, a resolvent of the clause axioms",
-                    show(x),
-                    show(q)
-                ));
-                if depth > 0 {
-                    line.children.push(self.explain_at(alg, x, depth - 1, seen));
-                }
-                node.children.push(line);
-                self.explain_implicit_attackers(alg, q, node);
-                self.note_loop(alg, q, node);
-                return;
-            }
-        }
-        let Some(r) = supporter else {
-            self.explain_unsupported(alg, q, failed, depth, seen, node);
-            return;
-        };
         let mut line = Explanation::rule(
             format!("supported by {}", theory.show_rule(r)),
             theory.rule_name(r),
@@ -230,6 +186,79 @@ impl Session {
         self.explain_implicit_attackers(alg, q, node);
         self.explain_attackers(alg, q, node);
         self.note_loop(alg, q, node);
+    }
+
+    /// The line that says μ decides `q` (it or its complement definitely proved), if it does.
+    fn settled_by_mu(&mut self, q: Lit) -> Option<Explanation> {
+        let engine = self.engine().clone();
+        let show = |l: Lit| engine.theory().show(l).to_string();
+        if self.mu()[q.index()] {
+            Some(Explanation::leaf(format!(
+                "+mu {}: definitely proved",
+                show(q)
+            )))
+        } else if self.mu()[q.complement().index()] {
+            Some(Explanation::leaf(format!(
+                "+mu {}: the complement is definitely proved",
+                show(q.complement())
+            )))
+        } else {
+            None
+        }
+    }
+
+    /// The first supporting rule for `q` whose body `alg` proves, and, before it, each rule
+    /// that does not apply with the antecedent that fails it.
+    fn first_supporter(&mut self, alg: Algorithm, q: Lit) -> (Option<u32>, Vec<(u32, Lit)>) {
+        let engine = self.engine().clone();
+        let mut failed = Vec::new();
+        for &r in engine.rules_for(q) {
+            if !engine.kind(r).supports() {
+                continue;
+            }
+            match engine
+                .body(r)
+                .iter()
+                .copied()
+                .find(|&x| !self.prove(alg, x))
+            {
+                None => return (Some(r), failed),
+                Some(a) => failed.push((r, a)),
+            }
+        }
+        (None, failed)
+    }
+
+    /// Support by a resolvent of the clause axioms the closure left implicit (`x -> q` for a
+    /// path of implications from `x`), when one is proved; false when there is none.
+    fn explain_implicit_support(
+        &mut self,
+        alg: Algorithm,
+        q: Lit,
+        depth: usize,
+        seen: &mut HashSet<(Algorithm, Lit)>,
+        node: &mut Explanation,
+    ) -> bool {
+        let engine = self.engine().clone();
+        let Some(x) = implicit_sources(&engine, q)
+            .into_iter()
+            .find(|&x| self.prove(alg, x))
+        else {
+            return false;
+        };
+        let theory = engine.theory();
+        let mut line = Explanation::leaf(format!(
+            "supported by {} -> {}, a resolvent of the clause axioms",
+            theory.show(x),
+            theory.show(q)
+        ));
+        if depth > 0 {
+            line.children.push(self.explain_at(alg, x, depth - 1, seen));
+        }
+        node.children.push(line);
+        self.explain_implicit_attackers(alg, q, node);
+        self.note_loop(alg, q, node);
+        true
     }
 
     /// Why no rule supports `q`: each rule for it that does not apply, and the antecedent that

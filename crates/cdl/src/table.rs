@@ -4,7 +4,7 @@
 use crate::engine::Engine;
 use crate::literal::{Atom, Lit};
 use crate::session::Session;
-use crate::theory::RowFilter;
+use crate::theory::{RowFilter, Theory};
 use proclaim_syntax::Algorithm;
 use std::sync::Arc;
 
@@ -71,29 +71,7 @@ pub fn truth_table(engine: Arc<Engine>) -> Result<Table, TableError> {
         return Err(TableError::TooManyRows(combinations));
     }
     let default_columns = theory.outputs().is_empty();
-    let columns: Vec<Column> = if default_columns {
-        (0..theory.atom_count() as u32)
-            .map(Atom)
-            .filter(|a| !atoms.contains(a))
-            .map(|a| Column {
-                algorithm: Algorithm::Beta,
-                lit: Lit::positive(a),
-                heading: format!("beta {}", theory.atom_name(a)),
-                description: None,
-            })
-            .collect()
-    } else {
-        theory
-            .outputs()
-            .iter()
-            .map(|o| Column {
-                algorithm: o.algorithm,
-                lit: o.lit,
-                heading: format!("{} {}", o.algorithm, theory.show(o.lit)),
-                description: o.description.clone(),
-            })
-            .collect()
-    };
+    let columns = columns_of(theory, &atoms);
     let filters = theory.row_filters().to_vec();
     let inputs = atoms
         .iter()
@@ -114,19 +92,7 @@ pub fn truth_table(engine: Arc<Engine>) -> Result<Table, TableError> {
         if !keep(&filters, &atoms, &values) {
             continue;
         }
-        // Unknown first, so no half-set combination is checked against the axioms.
-        for &a in &atoms {
-            let _ = session.set_input(a, None);
-        }
-        let consistent = session
-            .set_inputs(atoms.iter().zip(&values).map(|(&a, &v)| (a, Some(v))))
-            .is_ok();
-        let outputs = consistent.then(|| {
-            columns
-                .iter()
-                .map(|c| session.prove(c.algorithm, c.lit))
-                .collect()
-        });
+        let outputs = row_outputs(&mut session, &atoms, &values, &columns);
         rows.push(Row {
             inputs: values,
             outputs,
@@ -137,6 +103,55 @@ pub fn truth_table(engine: Arc<Engine>) -> Result<Table, TableError> {
         columns,
         rows,
         default_columns,
+    })
+}
+
+/// The table's columns: the theory's declared outputs, or β of every atom that is not an input.
+fn columns_of(theory: &Theory, inputs: &[Atom]) -> Vec<Column> {
+    if theory.outputs().is_empty() {
+        (0..theory.atom_count() as u32)
+            .map(Atom)
+            .filter(|a| !inputs.contains(a))
+            .map(|a| Column {
+                algorithm: Algorithm::Beta,
+                lit: Lit::positive(a),
+                heading: format!("beta {}", theory.atom_name(a)),
+                description: None,
+            })
+            .collect()
+    } else {
+        theory
+            .outputs()
+            .iter()
+            .map(|o| Column {
+                algorithm: o.algorithm,
+                lit: o.lit,
+                heading: format!("{} {}", o.algorithm, theory.show(o.lit)),
+                description: o.description.clone(),
+            })
+            .collect()
+    }
+}
+
+/// Each column's answer with the inputs set to `values`; `None` when they contradict the axioms.
+fn row_outputs(
+    session: &mut Session,
+    atoms: &[Atom],
+    values: &[bool],
+    columns: &[Column],
+) -> Option<Vec<bool>> {
+    // Unknown first, so no half-set combination is checked against the axioms.
+    for &a in atoms {
+        let _ = session.set_input(a, None);
+    }
+    let consistent = session
+        .set_inputs(atoms.iter().zip(values).map(|(&a, &v)| (a, Some(v))))
+        .is_ok();
+    consistent.then(|| {
+        columns
+            .iter()
+            .map(|c| session.prove(c.algorithm, c.lit))
+            .collect()
     })
 }
 

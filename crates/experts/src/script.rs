@@ -59,81 +59,83 @@ pub fn parse_script(text: &str) -> Result<Script, LineErrors> {
     let mut steps = Vec::new();
     let mut errors = Vec::new();
     for (line, code) in code_lines(text) {
-        let error = |message: String| LineError { line, message };
-        let (when, assignment) = if let Some(rest) = code.strip_prefix("at ") {
-            let rest = rest.trim_start();
-            let (time, assignment) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
-            match crate::parse_duration(time) {
-                Some(d) => (When::At(d), assignment),
-                None => {
-                    errors.push(error(format!(
-                        "`{time}` is not a time; write `at 2s` or `at 500ms`"
-                    )));
-                    continue;
-                }
-            }
-        } else if let Some(rest) = code.strip_prefix("step ") {
-            let Some((n, assignment)) = rest.split_once(':') else {
-                errors.push(error("expected `step N: atom = value`".into()));
-                continue;
-            };
-            match n.trim().parse::<u64>() {
-                Ok(n) if n > 0 => (When::Step(n), assignment),
-                _ => {
-                    errors.push(error(format!(
-                        "`{}` is not a step number (1, 2, …)",
-                        n.trim()
-                    )));
-                    continue;
-                }
-            }
-        } else {
-            (When::Start, code)
-        };
-        let Some((atom, value)) = assignment.split_once('=') else {
-            errors.push(error(format!(
-                "expected `atom = value`, found `{}`",
-                assignment.trim()
-            )));
-            continue;
-        };
-        let atom = atom.trim();
-        if atom.is_empty()
-            || !atom
-                .chars()
-                .all(|c| c.is_alphanumeric() || c == '_' || c == '~')
-        {
-            errors.push(error(format!("`{atom}` is not an atom")));
-            continue;
+        match script_step(code) {
+            Ok((when, atom, value)) => steps.push(ScriptStep {
+                when,
+                atom: atom.to_string(),
+                value,
+                line,
+            }),
+            Err(message) => errors.push(LineError { line, message }),
         }
-        if value.trim().is_empty() {
-            errors.push(error(format!("`{atom}` has no value")));
-            continue;
-        }
-        let Some(value) = truth_word(value) else {
-            let value = value.trim();
-            errors.push(error(if value.starts_with('=') {
-                format!(
-                    "write `{atom} = {}`, with one `=`",
-                    value.trim_start_matches('=').trim()
-                )
-            } else {
-                format!(
-                    "`{value}` is not a truth value: write true or false (or yes/no, on/off, 1/0)"
-                )
-            }));
-            continue;
-        };
-        steps.push(ScriptStep {
-            when,
-            atom: atom.to_string(),
-            value,
-            line,
-        });
     }
     if errors.is_empty() {
         Ok(Script { steps })
     } else {
         Err(LineErrors(errors))
     }
+}
+
+/// One line of a script: when, and which atom becomes what; or why the line is not one.
+fn script_step(code: &str) -> Result<(When, &str, bool), String> {
+    let (when, assignment) = when_of(code)?;
+    let (atom, value) = assignment_of(assignment)?;
+    Ok((when, atom, value))
+}
+
+/// The line's time (`at 2s`, `step 3:`, or at the start) and the assignment after it.
+fn when_of(code: &str) -> Result<(When, &str), String> {
+    if let Some(rest) = code.strip_prefix("at ") {
+        let rest = rest.trim_start();
+        let (time, assignment) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
+        match crate::parse_duration(time) {
+            Some(d) => Ok((When::At(d), assignment)),
+            None => Err(format!(
+                "`{time}` is not a time; write `at 2s` or `at 500ms`"
+            )),
+        }
+    } else if let Some(rest) = code.strip_prefix("step ") {
+        let Some((n, assignment)) = rest.split_once(':') else {
+            return Err("expected `step N: atom = value`".into());
+        };
+        match n.trim().parse::<u64>() {
+            Ok(n) if n > 0 => Ok((When::Step(n), assignment)),
+            _ => Err(format!("`{}` is not a step number (1, 2, …)", n.trim())),
+        }
+    } else {
+        Ok((When::Start, code))
+    }
+}
+
+/// `atom = value`, the value a truth word.
+fn assignment_of(assignment: &str) -> Result<(&str, bool), String> {
+    let Some((atom, value)) = assignment.split_once('=') else {
+        return Err(format!(
+            "expected `atom = value`, found `{}`",
+            assignment.trim()
+        ));
+    };
+    let atom = atom.trim();
+    if atom.is_empty()
+        || !atom
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_' || c == '~')
+    {
+        return Err(format!("`{atom}` is not an atom"));
+    }
+    if value.trim().is_empty() {
+        return Err(format!("`{atom}` has no value"));
+    }
+    let Some(truth) = truth_word(value) else {
+        let value = value.trim();
+        return Err(if value.starts_with('=') {
+            format!(
+                "write `{atom} = {}`, with one `=`",
+                value.trim_start_matches('=').trim()
+            )
+        } else {
+            format!("`{value}` is not a truth value: write true or false (or yes/no, on/off, 1/0)")
+        });
+    };
+    Ok((atom, truth))
 }
