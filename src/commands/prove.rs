@@ -5,6 +5,8 @@ use crate::cli::AlgArg;
 use crate::failure::Failure;
 use crate::load;
 use proclaim_cdl::{Engine, SearchLimits, Session, Undecided};
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// The exit status when some answer was undecided within the search budget (README).
@@ -97,14 +99,33 @@ pub fn run(
             .collect();
         println!("{}", serde_json::Value::Array(list));
     } else {
-        for (alg, query, answer) in answers {
-            match answer {
-                Ok(proved) => println!("{}{alg} {query}", if proved { '+' } else { '-' }),
-                Err(undecided) => println!("?{alg} {query}  (undecided: {})", reason(&undecided)),
+        write_out(|out| {
+            for (alg, query, answer) in answers {
+                match answer {
+                    Ok(proved) => writeln!(out, "{}{alg} {query}", if proved { '+' } else { '-' })?,
+                    Err(undecided) => {
+                        writeln!(out, "?{alg} {query}  (undecided: {})", reason(&undecided))?
+                    }
+                }
             }
-        }
+            Ok(())
+        })?;
     }
     Ok(exit(any_undecided))
+}
+
+/// Writes to standard output through one buffer: a line a conclusion is a million lines for a
+/// large theory, and unbuffered each would be a system call. A closed pipe (`| head`) is the
+/// reader's choice, not an error.
+fn write_out(write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), Failure> {
+    let mut out = BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+    match write(&mut out).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => other.map_err(|error| Failure::Write {
+            path: PathBuf::from("<stdout>"),
+            error,
+        }),
+    }
 }
 
 /// The undecided answer's reason, short enough for the end of an answer line.
@@ -163,29 +184,32 @@ pub fn spindle(
     inputs::apply(&mut session, engine.theory(), sets)?;
     let theory = engine.theory();
     let mut any_undecided = false;
-    for lit in lits {
-        let name = theory.atom_name(lit.atom());
-        let shown = if lit.is_negated() {
-            format!("-{name}")
-        } else {
-            name.to_string()
-        };
-        for (tag, alg) in [
-            ('D', proclaim_cdl::Algorithm::Mu),
-            ('d', proclaim_cdl::Algorithm::Beta),
-        ] {
-            // SPINdle has no undecided answer: `?` marks one, explained on stderr.
-            let sign = match session.decide(alg, lit) {
-                Ok(true) => '+',
-                Ok(false) => '-',
-                Err(undecided) => {
-                    any_undecided = true;
-                    eprintln!("warning: {undecided}");
-                    '?'
-                }
+    write_out(|out| {
+        for lit in lits {
+            let name = theory.atom_name(lit.atom());
+            let shown = if lit.is_negated() {
+                format!("-{name}")
+            } else {
+                name.to_string()
             };
-            println!("{sign}{tag} {shown}");
+            for (tag, alg) in [
+                ('D', proclaim_cdl::Algorithm::Mu),
+                ('d', proclaim_cdl::Algorithm::Beta),
+            ] {
+                // SPINdle has no undecided answer: `?` marks one, explained on stderr.
+                let sign = match session.decide(alg, lit) {
+                    Ok(true) => '+',
+                    Ok(false) => '-',
+                    Err(undecided) => {
+                        any_undecided = true;
+                        eprintln!("warning: {undecided}");
+                        '?'
+                    }
+                };
+                writeln!(out, "{sign}{tag} {shown}")?;
+            }
         }
-    }
+        Ok(())
+    })?;
     Ok(exit(any_undecided))
 }
