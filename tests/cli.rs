@@ -1302,7 +1302,7 @@ fn generated(family: &str, size: u64) -> std::path::PathBuf {
 
 #[test]
 fn prove_prints_an_undecided_answer_and_exits_3() {
-    let ladder = generated("ladder", 6);
+    let ladder = temp_file("crossed-ladder.dl", crate::crossed_ladder().as_bytes());
     let path = ladder.to_str().unwrap();
     check(
         &["prove", path, "t0", "~t0", "--budget", "1000"],
@@ -1333,7 +1333,7 @@ fn prove_prints_an_undecided_answer_and_exits_3() {
 
 #[test]
 fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
-    let ladder = generated("ladder", 6);
+    let ladder = temp_file("crossed-ladder.dl", crate::crossed_ladder().as_bytes());
     let o = proclaim(&["check", ladder.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0));
     assert!(
@@ -1343,10 +1343,11 @@ fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
         "{}",
         stderr(&o)
     );
-    // Structure decides a clique: nothing to warn of.
-    let clique = generated("clique", 30);
-    let o = proclaim(&["check", clique.to_str().unwrap()]);
-    assert_eq!(stderr(&o), "");
+    // Structure decides a clique and the ladder itself: nothing to warn of.
+    for (family, size) in [("clique", 30), ("ladder", 16)] {
+        let o = proclaim(&["check", generated(family, size).to_str().unwrap()]);
+        assert_eq!(stderr(&o), "", "{family}({size})");
+    }
     let path = temp_file("self.dl", b"r3: => ~a2.\nr4: ~a2 => a2.\nr4 > r3.\n");
     let o = proclaim(&["check", path.to_str().unwrap()]);
     assert!(

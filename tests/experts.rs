@@ -472,19 +472,11 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
     assert!(counters.status_sent.load(Ordering::Relaxed) >= 1);
 }
 
-/// A ladder of attack cycles (benchmarks.md) whose `t0` a budget of 1,000 steps leaves
-/// undecided (it is true), and that budget.
+/// A crossed ladder of attack cycles whose `t0` a budget of 1,000 steps leaves undecided (it
+/// is true), and that budget.
 fn ladder_and_a_tight_budget() -> (proclaim_cdl::Theory, proclaim_cdl::SearchLimits) {
-    let mut text = Vec::new();
-    proclaim_gen::Family::parse("ladder", &[6])
-        .unwrap()
-        .write(&mut text, proclaim_gen::Format::Dl)
-        .unwrap();
-    let theory = proclaim_cdl::load(
-        std::str::from_utf8(&text).unwrap(),
-        proclaim_cdl::Language::Dl,
-    )
-    .unwrap();
+    let theory =
+        proclaim_cdl::load(&crate::crossed_ladder(), proclaim_cdl::Language::Dl).unwrap();
     let tight = proclaim_cdl::SearchLimits {
         steps: 1000,
         ..Default::default()

@@ -217,6 +217,58 @@ fn block_ring_theory() -> impl Strategy<Value = (String, Vec<(usize, Option<bool
         })
 }
 
+/// Rings of layers of one or two atoms (the ladder's shape, with other conditions): every rule
+/// for an atom of layer `j` reads only atoms of layer `j + 1`, with one or two antecedents, as
+/// support, attack or defeater, now and then beaten by a priority.
+fn layer_ring_theory() -> impl Strategy<Value = (String, Vec<(usize, Option<bool>)>)> {
+    (2..5usize)
+        .prop_flat_map(|layers| {
+            let rule = (0..2usize, 0..2usize, any::<bool>(), 0..4u8);
+            (
+                prop::collection::vec(1..3usize, layers),
+                prop::collection::vec(
+                    (any::<bool>(), prop::collection::vec(rule, 1..3)),
+                    2 * layers,
+                ),
+                prop::bool::weighted(0.3),
+            )
+        })
+        .prop_map(|(mut sizes, atoms, priority)| {
+            sizes[0] = 2;
+            let layers = sizes.len();
+            let mut text = String::new();
+            let mut label = 0;
+            for (j, &size) in sizes.iter().enumerate() {
+                let next = (j + 1) % layers;
+                let read = |a: usize| format!("l{next}_{}", a % sizes[next]);
+                for a in 0..size {
+                    let (default, rules) = &atoms[2 * j + a];
+                    if *default {
+                        text += &format!("=> l{j}_{a}.\n");
+                    }
+                    for &(x, y, two, shape) in rules {
+                        let body = if two && x % sizes[next] != y % sizes[next] {
+                            format!("{}, {}", read(x), read(y))
+                        } else {
+                            read(x)
+                        };
+                        let (arrow, neg) = match shape {
+                            0 | 1 => ("=>", "~"),
+                            2 => ("~>", "~"),
+                            _ => ("=>", ""),
+                        };
+                        text += &format!("r{label}: {body} {arrow} {neg}l{j}_{a}.\n");
+                        label += 1;
+                    }
+                }
+            }
+            if priority && label > 1 {
+                text += &format!("r0 > r{}.\n", label - 1);
+            }
+            (text, vec![])
+        })
+}
+
 /// The attack-cycle families at sizes the reference prover can still enumerate.
 #[test]
 fn attack_families_agree_with_the_reference_prover() {
@@ -226,7 +278,7 @@ fn attack_families_agree_with_the_reference_prover() {
         ("priority-ring", 3..=5),
         ("defeater-ring", 3..=7),
         ("clique", 1..=7),
-        ("ladder", 1..=2),
+        ("ladder", 1..=3),
         ("clause-chain", 1..=6),
     ] {
         for size in sizes {
@@ -249,13 +301,15 @@ fn attack_families_agree_with_the_reference_prover() {
 /// The rings are decided at sizes where a search goal by goal is quadratic and runs out of its
 /// default budget: by composition when their blocks are small (the pairs ring; the attack
 /// ring's blocks are single goals), by bounds once the reads nothing depends on are dropped
-/// (the priority ring: each `a(i+1)`'s attacker is beaten by its own supporter).
+/// (the priority ring: each `a(i+1)`'s attacker is beaten by its own supporter); the ladder,
+/// whose paths double with every layer, by one pass over its layers per goal.
 #[test]
 fn rings_are_decided_within_the_default_budget() {
     for (family, size, searched) in [
         ("pairs-ring", 3000, false),
         ("attack-ring", 3001, false),
         ("priority-ring", 5000, true),
+        ("ladder", 16, false),
     ] {
         let f = proclaim_gen::Family::parse(family, &[size]).unwrap();
         let mut text = Vec::new();
@@ -462,6 +516,11 @@ proptest! {
 
     #[test]
     fn engine_agrees_with_the_reference_prover_on_rings_of_blocks((text, inputs) in block_ring_theory()) {
+        agree(&text, &inputs)?;
+    }
+
+    #[test]
+    fn engine_agrees_with_the_reference_prover_on_rings_of_layers((text, inputs) in layer_ring_theory()) {
         agree(&text, &inputs)?;
     }
 

@@ -34,3 +34,16 @@ pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf
     }
     dir
 }
+
+/// A theory only a search decides: ladder(6) of `benchmarks.md`, whose layers alone would be
+/// decided without one, with one read across them (`t2` attacked from `t0`), so its 24 goals
+/// are searched (`t0` is proved, after about 110,000 steps).
+#[allow(dead_code)]
+pub fn crossed_ladder() -> String {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("ladder", &[6])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    String::from_utf8(text).unwrap() + "x: t0 => ~t2.\n"
+}

@@ -1,13 +1,15 @@
 //! Evaluating one strongly connected component of the goal graph that holds a cycle: a least
 //! fixpoint when only support runs through it; with attacks inside, the structure cdl.md §4
 //! ("Cost") names (a simple cycle in closed form, mutual attacks as undirected vertex geography
-//! through maximum matchings, a ring of small blocks by composition in `ring.rs`), or its
+//! through maximum matchings, a ring of small blocks by composition in `ring.rs`, a ring of
+//! layers of two by the dynamic program of `layers.rs`), or its
 //! falling apart once reads that change nothing are dropped (`relevance.rs`), then bounds, then
 //! a top-down search under a budget.
 
 use crate::dominators;
 use crate::engine::Engine;
 use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
+use crate::layers::Layers;
 use crate::matching::uncovered_by_some_maximum_matching;
 use crate::relevance::independent_parts;
 use crate::ring::{apply, around, Function, Ring};
@@ -45,6 +47,9 @@ pub(crate) enum Method {
     Geography,
     /// A ring of small single-entry blocks: each block's transfer function, composed round it.
     Ring,
+    /// A ring of layers of two goals, each reading only the next layer: one pass over the
+    /// layers per member.
+    Layers,
     /// Bounds, then a top-down search for the members between them.
     Search,
 }
@@ -126,6 +131,9 @@ impl Component<'_> {
                 steps,
                 ..decided(values, Method::Ring)
             });
+        }
+        if let Some(layers) = Layers::find(self, &edges) {
+            return Outcome::Evaluated(decided(layers.decide(self), Method::Layers));
         }
         if let Some(parts) = may_fall_apart
             .then(|| independent_parts(self, &edges))

@@ -19,6 +19,7 @@ mod engine;
 mod explain;
 mod goal;
 mod hard;
+mod layers;
 mod literal;
 mod matching;
 mod query;

@@ -32,11 +32,11 @@ pub(crate) fn apply(f: Function, x: bool) -> bool {
 }
 
 /// `(f ∘ g)(x) = f(g(x))`
-fn compose(f: Function, g: Function) -> Function {
+pub(crate) fn compose(f: Function, g: Function) -> Function {
     (apply(f, g.0), apply(f, g.1))
 }
 
-const IDENTITY: Function = (false, true);
+pub(crate) const IDENTITY: Function = (false, true);
 
 /// For each function of a ring, the composition of all the others from the next one round:
 /// `around[i] = f(i+1) ∘ … ∘ f(n-1) ∘ f0 ∘ … ∘ f(i-1)`, by prefix and suffix compositions
