@@ -475,8 +475,7 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
 /// A crossed ladder of attack cycles whose `t0` a budget of 1,000 steps leaves undecided (it
 /// is true), and that budget.
 fn ladder_and_a_tight_budget() -> (proclaim_cdl::Theory, proclaim_cdl::SearchLimits) {
-    let theory =
-        proclaim_cdl::load(&crate::crossed_ladder(), proclaim_cdl::Language::Dl).unwrap();
+    let theory = proclaim_cdl::load(&crate::crossed_ladder(), proclaim_cdl::Language::Dl).unwrap();
     let tight = proclaim_cdl::SearchLimits {
         steps: 1000,
         ..Default::default()

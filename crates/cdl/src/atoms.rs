@@ -2,6 +2,7 @@
 //! One map and no allocation per atom, which matters at millions of atoms.
 
 use crate::literal::Atom;
+use hashbrown::hash_table::Entry;
 use hashbrown::HashTable;
 use std::hash::Hasher;
 
@@ -12,7 +13,8 @@ pub(crate) struct AtomTable {
     index: HashTable<u32>,
 }
 
-fn hash(name: &str) -> u64 {
+/// The hash the atom and label tables share.
+pub(crate) fn hash(name: &str) -> u64 {
     let mut hasher = rustc_hash::FxHasher::default();
     hasher.write(name.as_bytes());
     hasher.finish()
@@ -48,22 +50,23 @@ impl AtomTable {
             .map(|&id| Atom(id))
     }
 
-    /// The atom of this name, added when new.
+    /// The atom of this name, added when new (one probe of the table either way).
     pub(crate) fn intern(&mut self, name: &str) -> Atom {
-        let h = hash(name);
-        if let Some(&id) = self
-            .index
-            .find(h, |&id| name_of(&self.text, &self.ends, id) == name)
-        {
-            return Atom(id);
-        }
-        let id = self.ends.len() as u32;
-        self.text.push_str(name);
-        self.ends.push(self.text.len() as u32);
         let (text, ends) = (&self.text, &self.ends);
-        self.index
-            .insert_unique(h, id, |&id| hash(name_of(text, ends, id)));
-        Atom(id)
+        match self.index.entry(
+            hash(name),
+            |&id| name_of(text, ends, id) == name,
+            |&id| hash(name_of(text, ends, id)),
+        ) {
+            Entry::Occupied(found) => Atom(*found.get()),
+            Entry::Vacant(slot) => {
+                let id = self.ends.len() as u32;
+                slot.insert(id);
+                self.text.push_str(name);
+                self.ends.push(self.text.len() as u32);
+                Atom(id)
+            }
+        }
     }
 
     pub(crate) fn name(&self, atom: Atom) -> &str {

@@ -2,9 +2,11 @@
 //! and where (duplicate and undefined labels, priority cycles, contradicting facts, misused
 //! input and output declarations).
 
+use crate::atoms::hash;
 use crate::closure::{close, normalize, ClosureOutcome, Resolvents, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
+use hashbrown::HashTable;
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
 use rustc_hash::FxHashMap;
 
@@ -25,7 +27,7 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
         .filter(|i| matches!(i, Item::Rule(_)))
         .count();
     let mut checker = Checker::new(source, rules);
-    for item in parsed.items {
+    for item in &parsed.items {
         checker.item(item);
     }
     checker.finish(parsed.diagnostics, &parsed.broken_labels)
@@ -42,6 +44,9 @@ pub fn check_source(source: &str, language: Language) -> Checked {
     }
     const BATCH: usize = 4096;
     let (sender, batches) = std::sync::mpsc::sync_channel::<Vec<Item>>(16);
+    // Checked batches go back to the parser to be freed: memory is freed fastest by the thread
+    // that allocated it, and the checker is the busier of the two.
+    let (give_back, checked) = std::sync::mpsc::channel::<Vec<Item>>();
     std::thread::scope(|scope| {
         let parser = scope.spawn(move || {
             let mut batch = Vec::with_capacity(BATCH);
@@ -50,6 +55,7 @@ pub fn check_source(source: &str, language: Language) -> Checked {
                 if batch.len() == BATCH {
                     // The checker only stops receiving when it is gone; nothing to do then.
                     let _ = sender.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                    checked.try_iter().for_each(drop);
                 }
             });
             let _ = sender.send(batch);
@@ -58,9 +64,10 @@ pub fn check_source(source: &str, language: Language) -> Checked {
         // About 25 bytes a rule in large generated theories.
         let mut checker = Checker::new(source, source.len() / 25);
         for batch in batches {
-            for item in batch {
+            for item in &batch {
                 checker.item(item);
             }
+            let _ = give_back.send(batch);
         }
         match parser.join() {
             Ok(parsed) => checker.finish(parsed.diagnostics, &parsed.broken_labels),
@@ -74,7 +81,11 @@ struct Checker<'s> {
     source: &'s str,
     theory: Theory,
     diagnostics: Vec<Diagnostic>,
-    labels: FxHashMap<&'s str, (RuleId, Span)>,
+    /// Each labelled rule, found by its label's text, which the theory's `label_text` holds: a
+    /// table of ids rather than a map of texts, a quarter of the memory at a million rules.
+    labels: HashTable<RuleId>,
+    /// Where each rule's label begins in the source (for "first used here").
+    label_starts: Vec<u32>,
     input_spans: FxHashMap<Atom, Span>,
     /// Where each body literal was written (parallel to the theory's `bodies`).
     body_spans: Vec<Span>,
@@ -100,14 +111,16 @@ impl<'s> Checker<'s> {
             source,
             theory: Theory::default(),
             diagnostics: Vec::new(),
-            labels: FxHashMap::default(),
+            labels: HashTable::new(),
+            label_starts: Vec::new(),
             input_spans: FxHashMap::default(),
             body_spans: Vec::new(),
             broken_labels: Default::default(),
             priorities: Vec::new(),
             name_span: None,
         };
-        checker.labels.reserve(rules);
+        checker.labels.reserve(rules, |_| 0);
+        checker.label_starts.reserve(rules);
         let t = &mut checker.theory;
         t.atoms.reserve(rules + 1);
         t.heads.reserve(rules);
@@ -120,10 +133,12 @@ impl<'s> Checker<'s> {
     }
 
     /// Takes in one statement, in file order.
-    fn item(&mut self, item: Item) {
+    /// One statement in. By reference, so that a pipeline's batches are freed on the thread
+    /// that made them.
+    fn item(&mut self, item: &Item) {
         match item {
             Item::Rule(rule) => self.add_rule(rule),
-            Item::Fact { clause, span } => {
+            &Item::Fact { ref clause, span } => {
                 let lits = clause.iter().map(|l| self.lit(l)).collect::<Vec<_>>();
                 if normalize(lits.clone()).is_none() {
                     self.diagnostics.push(
@@ -139,8 +154,8 @@ impl<'s> Checker<'s> {
                     span: Some(span),
                 });
             }
-            Item::Priority { labels, span } => self.priorities.push((labels, span)),
-            Item::Name { name, span } => {
+            Item::Priority { labels, span } => self.priorities.push((labels.clone(), *span)),
+            &Item::Name { name, span } => {
                 if let Some(first) = self.name_span {
                     self.diagnostics.push(
                         Diagnostic::error(span, "the theory is named twice")
@@ -151,13 +166,13 @@ impl<'s> Checker<'s> {
                     self.theory.name = Some(name.text(self.source).to_string());
                 }
             }
-            Item::Input { atoms, span } => self.add_input(atoms, span),
-            Item::Ignore {
+            Item::Input { atoms, span } => self.add_input(atoms, *span),
+            &Item::Ignore {
                 at_least,
-                lits,
+                ref lits,
                 span,
             } => {
-                let lits = self.filter_lits(&lits);
+                let lits = self.filter_lits(lits);
                 let at_least = at_least.map_or(lits.len(), |k| k as usize);
                 if at_least == 0 || at_least > lits.len() {
                     self.diagnostics.push(
@@ -172,8 +187,8 @@ impl<'s> Checker<'s> {
                     .filters
                     .push(RowFilter::Ignore { at_least, lits });
             }
-            Item::Assert { lits, span } => {
-                let lits = self.filter_lits(&lits);
+            &Item::Assert { ref lits, span } => {
+                let lits = self.filter_lits(lits);
                 if lits.is_empty() {
                     self.diagnostics.push(
                         Diagnostic::error(span, "`assert{}` names no literal").with_hint(
@@ -183,7 +198,7 @@ impl<'s> Checker<'s> {
                 }
                 self.theory.filters.push(RowFilter::Assert { lits });
             }
-            Item::Output { parts, span } => self.add_outputs(parts, span),
+            Item::Output { parts, span } => self.add_outputs(parts, *span),
         }
     }
 
@@ -219,12 +234,14 @@ impl<'s> Checker<'s> {
         }
     }
 
-    fn add_rule(&mut self, rule: ast::RuleItem) {
+    fn add_rule(&mut self, rule: &ast::RuleItem) {
         let id = self.theory.heads.len() as RuleId;
         let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
-            if let Some(&(_, first)) = self.labels.get(text) {
+            if let Some(first) = self.labelled(text) {
+                let start = self.label_starts[first as usize];
+                let first = Span::new(start as usize, start as usize + text.len());
                 self.diagnostics.push(
                     Diagnostic::error(label, format!("rule label `{text}` is used twice"))
                         .with_label("second use")
@@ -232,12 +249,17 @@ impl<'s> Checker<'s> {
                         .with_hint("labels name rules in priorities, so each must be unique"),
                 );
             } else {
-                self.labels.insert(text, (id, label));
+                let theory = &self.theory;
+                self.labels.insert_unique(hash(text), id, |&r| {
+                    hash(theory.label(r).unwrap_or_default())
+                });
             }
             let start = self.theory.label_text.len() as u32;
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
         }
+        self.label_starts
+            .push(rule.label.map_or(0, |label| label.start));
         for written in &rule.body {
             let lit = self.lit(written);
             self.theory.bodies.push(lit);
@@ -255,9 +277,9 @@ impl<'s> Checker<'s> {
         self.theory.origins.push(Origin::Written(rule.span));
     }
 
-    fn add_input(&mut self, atoms: Vec<ast::Lit>, span: Span) {
+    fn add_input(&mut self, atoms: &[ast::Lit], span: Span) {
         let mut group = Vec::new();
-        for lit in &atoms {
+        for lit in atoms {
             if lit.negated {
                 self.diagnostics.push(
                     Diagnostic::error(lit.span, "inputs are atoms, not negated literals")
@@ -298,7 +320,7 @@ impl<'s> Checker<'s> {
         lits.iter().map(|l| self.lit(l)).collect()
     }
 
-    fn add_outputs(&mut self, parts: Vec<ast::OutputPart>, span: Span) {
+    fn add_outputs(&mut self, parts: &[ast::OutputPart], span: Span) {
         let description = parts.iter().find_map(|p| match p {
             ast::OutputPart::Description(d) => Some(d.clone()),
             ast::OutputPart::Lit { .. } => None,
@@ -307,7 +329,7 @@ impl<'s> Checker<'s> {
         for part in parts {
             if let ast::OutputPart::Lit { algorithm, lit } = part {
                 any = true;
-                let lowered = self.lit(&lit);
+                let lowered = self.lit(lit);
                 self.theory.outputs.push(Output {
                     lit: lowered,
                     algorithm: algorithm.map_or(Algorithm::Beta, |(a, _)| a),
@@ -328,8 +350,8 @@ impl<'s> Checker<'s> {
         let mut ids = Vec::with_capacity(labels.len());
         for &label in labels {
             let text = label.text(self.source);
-            match self.labels.get(text) {
-                Some(&(id, _)) => ids.push(Some(id)),
+            match self.labelled(text) {
+                Some(id) => ids.push(Some(id)),
                 None if self.broken_labels.contains(text) => ids.push(None),
                 None => {
                     let mut d = Diagnostic::error(label, format!("no rule is labelled `{text}`"))
@@ -385,12 +407,20 @@ impl<'s> Checker<'s> {
         }
     }
 
-    fn similar_label(&self, text: &str) -> Option<&'s str> {
+    /// The rule labelled `text`, if one is.
+    fn labelled(&self, text: &str) -> Option<RuleId> {
         self.labels
-            .keys()
+            .find(hash(text), |&r| self.theory.label(r) == Some(text))
             .copied()
+    }
+
+    fn similar_label(&self, text: &str) -> Option<String> {
+        self.labels
+            .iter()
+            .filter_map(|&r| self.theory.label(r))
             .filter(|l| l.eq_ignore_ascii_case(text))
             .min()
+            .map(str::to_string)
     }
 
     /// Tarjan over the priority graph; every strongly connected component with more than one
