@@ -81,11 +81,13 @@ struct Checker<'s> {
     source: &'s str,
     theory: Theory,
     diagnostics: Vec<Diagnostic>,
-    /// Each labelled rule, found by its label's text, which the theory's `label_text` holds: a
-    /// table of ids rather than a map of texts, a quarter of the memory at a million rules.
+    /// Each label as written: its text's hash, its rule, where it begins in the source. Sorted
+    /// once every rule is in (`index_labels`), which finds labels used twice by streaming
+    /// through memory where a table filled rule by rule misses the cache at every insert.
+    written_labels: Vec<(u64, RuleId, u32)>,
+    /// The first rule of each label, found by the label's text (which the theory's
+    /// `label_text` holds); built only for a theory with priorities to resolve.
     labels: HashTable<RuleId>,
-    /// Where each rule's label begins in the source (for "first used here").
-    label_starts: Vec<u32>,
     input_spans: FxHashMap<Atom, Span>,
     /// Where each body literal was written (parallel to the theory's `bodies`).
     body_spans: Vec<Span>,
@@ -111,16 +113,15 @@ impl<'s> Checker<'s> {
             source,
             theory: Theory::default(),
             diagnostics: Vec::new(),
+            written_labels: Vec::new(),
             labels: HashTable::new(),
-            label_starts: Vec::new(),
             input_spans: FxHashMap::default(),
             body_spans: Vec::new(),
             broken_labels: Default::default(),
             priorities: Vec::new(),
             name_span: None,
         };
-        checker.labels.reserve(rules, |_| 0);
-        checker.label_starts.reserve(rules);
+        checker.written_labels.reserve(rules);
         let t = &mut checker.theory;
         t.atoms.reserve(rules + 1);
         t.heads.reserve(rules);
@@ -132,9 +133,8 @@ impl<'s> Checker<'s> {
         checker
     }
 
-    /// Takes in one statement, in file order.
-    /// One statement in. By reference, so that a pipeline's batches are freed on the thread
-    /// that made them.
+    /// Takes in one statement, in file order. By reference, so that a pipeline's batches are
+    /// freed by the thread that made them.
     fn item(&mut self, item: &Item) {
         match item {
             Item::Rule(rule) => self.add_rule(rule),
@@ -209,6 +209,7 @@ impl<'s> Checker<'s> {
             self.broken_labels.insert(span.text(self.source));
         }
         self.theory.written_rules = self.theory.heads.len();
+        self.index_labels();
         for (labels, span) in std::mem::take(&mut self.priorities) {
             self.add_priority(&labels, span);
         }
@@ -239,27 +240,11 @@ impl<'s> Checker<'s> {
         let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
-            if let Some(first) = self.labelled(text) {
-                let start = self.label_starts[first as usize];
-                let first = Span::new(start as usize, start as usize + text.len());
-                self.diagnostics.push(
-                    Diagnostic::error(label, format!("rule label `{text}` is used twice"))
-                        .with_label("second use")
-                        .with_related(first, "first used here")
-                        .with_hint("labels name rules in priorities, so each must be unique"),
-                );
-            } else {
-                let theory = &self.theory;
-                self.labels.insert_unique(hash(text), id, |&r| {
-                    hash(theory.label(r).unwrap_or_default())
-                });
-            }
+            self.written_labels.push((hash(text), id, label.start));
             let start = self.theory.label_text.len() as u32;
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
         }
-        self.label_starts
-            .push(rule.label.map_or(0, |label| label.start));
         for written in &rule.body {
             let lit = self.lit(written);
             self.theory.bodies.push(lit);
@@ -404,6 +389,49 @@ impl<'s> Checker<'s> {
                     self.theory.priorities.push((winner, loser));
                 }
             }
+        }
+    }
+
+    /// Reports every label used again, and indexes the first rule of each label when there are
+    /// priorities to resolve.
+    fn index_labels(&mut self) {
+        let mut written = std::mem::take(&mut self.written_labels);
+        // By hash, then by rule: the first rule of a label comes first in its run.
+        written.sort_unstable();
+        let mut firsts = Vec::new();
+        for run in written.chunk_by(|a, b| a.0 == b.0) {
+            for (i, &(h, id, start)) in run.iter().enumerate() {
+                let text = self.theory.label(id).unwrap_or_default();
+                let first = run[..i]
+                    .iter()
+                    .find(|&&(_, earlier, _)| self.theory.label(earlier) == Some(text));
+                match first {
+                    None => firsts.push((h, id)),
+                    Some(&(_, _, first_start)) => {
+                        let at =
+                            |start: u32| Span::new(start as usize, start as usize + text.len());
+                        self.diagnostics.push(
+                            Diagnostic::error(
+                                at(start),
+                                format!("rule label `{text}` is used twice"),
+                            )
+                            .with_label("second use")
+                            .with_related(at(first_start), "first used here")
+                            .with_hint("labels name rules in priorities, so each must be unique"),
+                        );
+                    }
+                }
+            }
+        }
+        if self.priorities.is_empty() {
+            return;
+        }
+        // Nothing to rehash in an empty table, so this hasher is never called.
+        self.labels.reserve(firsts.len(), |_| 0);
+        for (h, id) in firsts {
+            let theory = &self.theory;
+            self.labels
+                .insert_unique(h, id, |&r| hash(theory.label(r).unwrap_or_default()));
         }
     }
 
