@@ -400,6 +400,11 @@ impl<'s> Checker<'s> {
         written.sort_unstable();
         let mut firsts = Vec::new();
         for run in written.chunk_by(|a, b| a.0 == b.0) {
+            // A label of its own hash is used once; only a run's texts need reading.
+            if let [(h, id, _)] = run {
+                firsts.push((*h, *id));
+                continue;
+            }
             for (i, &(h, id, start)) in run.iter().enumerate() {
                 let text = self.theory.label(id).unwrap_or_default();
                 let first = run[..i]
@@ -408,17 +413,8 @@ impl<'s> Checker<'s> {
                 match first {
                     None => firsts.push((h, id)),
                     Some(&(_, _, first_start)) => {
-                        let at =
-                            |start: u32| Span::new(start as usize, start as usize + text.len());
-                        self.diagnostics.push(
-                            Diagnostic::error(
-                                at(start),
-                                format!("rule label `{text}` is used twice"),
-                            )
-                            .with_label("second use")
-                            .with_related(at(first_start), "first used here")
-                            .with_hint("labels name rules in priorities, so each must be unique"),
-                        );
+                        self.diagnostics
+                            .push(label_used_twice(text, start, first_start))
                     }
                 }
             }
@@ -454,15 +450,26 @@ impl<'s> Checker<'s> {
     /// Tarjan over the priority graph; every strongly connected component with more than one
     /// rule is a cycle.
     fn check_priority_cycles(&mut self) {
-        let n = self.theory.heads.len();
-        let mut succ: Vec<Vec<RuleId>> = vec![Vec::new(); n];
+        // Over the rules priorities name only: a theory of a million rules and a few
+        // priorities is a graph of a few nodes.
+        let mut named: Vec<RuleId> = self
+            .theory
+            .priorities
+            .iter()
+            .flat_map(|&(w, l)| [w, l])
+            .collect();
+        named.sort_unstable();
+        named.dedup();
+        let node = |r: RuleId| named.binary_search(&r).unwrap_or_default() as RuleId;
+        let mut succ: Vec<Vec<RuleId>> = vec![Vec::new(); named.len()];
         for &(w, l) in &self.theory.priorities {
-            succ[w as usize].push(l);
+            succ[node(w) as usize].push(node(l));
         }
-        for mut component in strongly_connected(&succ) {
+        for component in strongly_connected(&succ) {
             if component.len() < 2 {
                 continue;
             }
+            let mut component: Vec<RuleId> = component.iter().map(|&i| named[i as usize]).collect();
             component.sort_unstable();
             let mut names: Vec<String> = component
                 .iter()
@@ -689,6 +696,15 @@ fn label_of(theory: &Theory, rule: RuleId) -> String {
 }
 
 /// Strongly connected components of a small explicit graph (iterative Tarjan).
+/// Label `text` written again at `start`, first written at `first_start`.
+fn label_used_twice(text: &str, start: u32, first_start: u32) -> Diagnostic {
+    let at = |start: u32| Span::new(start as usize, start as usize + text.len());
+    Diagnostic::error(at(start), format!("rule label `{text}` is used twice"))
+        .with_label("second use")
+        .with_related(at(first_start), "first used here")
+        .with_hint("labels name rules in priorities, so each must be unique")
+}
+
 pub(crate) fn strongly_connected(succ: &[Vec<RuleId>]) -> Vec<Vec<RuleId>> {
     let n = succ.len();
     let mut index = vec![u32::MAX; n];
