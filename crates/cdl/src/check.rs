@@ -81,7 +81,9 @@ struct Checker<'s> {
     source: &'s str,
     theory: Theory,
     diagnostics: Vec<Diagnostic>,
-    /// Each label as written: its text's hash, its rule, where it begins in the source. Sorted
+    /// Each label as written: its text's hash with its bits reversed (so that sorting orders
+    /// labels by the low bits a hash table's bucket is chosen by), its rule, where it begins in
+    /// the source. Sorted
     /// once every rule is in (`index_labels`), which finds labels used twice by streaming
     /// through memory where a table filled rule by rule misses the cache at every insert.
     written_labels: Vec<(u64, RuleId, u32)>,
@@ -240,7 +242,8 @@ impl<'s> Checker<'s> {
         let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
-            self.written_labels.push((hash(text), id, label.start));
+            self.written_labels
+                .push((hash(text).reverse_bits(), id, label.start));
             let start = self.theory.label_text.len() as u32;
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
@@ -396,7 +399,8 @@ impl<'s> Checker<'s> {
     /// priorities to resolve.
     fn index_labels(&mut self) {
         let mut written = std::mem::take(&mut self.written_labels);
-        // By hash, then by rule: the first rule of a label comes first in its run.
+        // By hash, then by rule: the first rule of a label comes first in its run, and the
+        // table below is filled bucket after bucket.
         written.sort_unstable();
         let mut firsts = Vec::new();
         for run in written.chunk_by(|a, b| a.0 == b.0) {
@@ -424,10 +428,12 @@ impl<'s> Checker<'s> {
         }
         // Nothing to rehash in an empty table, so this hasher is never called.
         self.labels.reserve(firsts.len(), |_| 0);
-        for (h, id) in firsts {
+        for (reversed, id) in firsts {
             let theory = &self.theory;
             self.labels
-                .insert_unique(h, id, |&r| hash(theory.label(r).unwrap_or_default()));
+                .insert_unique(reversed.reverse_bits(), id, |&r| {
+                    hash(theory.label(r).unwrap_or_default())
+                });
         }
     }
 
