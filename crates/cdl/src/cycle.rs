@@ -161,6 +161,12 @@ impl Component<'_> {
         edges
     }
 
+    /// Whether a member is an aggregate: it never enters the history, so a path may meet it
+    /// twice, which the structural methods (each a claim about paths) do not allow for.
+    pub(crate) fn has_aggregate(&self) -> bool {
+        self.members.iter().any(|&g| self.engine.is_aggregate(g))
+    }
+
     /// A member's condition with the members `is_true` accepts (by position) read as true and
     /// the other members as false.
     pub(crate) fn condition_with(&self, member: u32, is_true: impl Fn(u32) -> bool) -> bool {
@@ -182,8 +188,7 @@ impl Component<'_> {
     /// from `i` round to `i - 1`, applied to false.
     fn simple_cycle(&self, edges: &[Edge]) -> Option<Vec<bool>> {
         let n = self.members.len();
-        // An aggregate never enters the history, so meeting one again does not fail.
-        if self.members.iter().any(|&g| self.engine.is_aggregate(g)) {
+        if self.has_aggregate() {
             return None;
         }
         let mut next = vec![u32::MAX; n];
@@ -234,7 +239,7 @@ impl Component<'_> {
         let n = self.members.len();
         if n > GEOGRAPHY_LIMIT
             || edges.iter().any(|&(_, _, attack)| !attack)
-            || self.members.iter().any(|&g| self.engine.is_aggregate(g))
+            || self.has_aggregate()
         {
             return None;
         }

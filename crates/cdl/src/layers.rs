@@ -42,12 +42,7 @@ impl Layers {
     /// (a ring of single goals is a simple cycle, decided before).
     pub(crate) fn find(component: &Component, edges: &[Edge]) -> Option<Layers> {
         let n = component.members.len();
-        if n < 3
-            || component
-                .members
-                .iter()
-                .any(|&g| component.engine.is_aggregate(g))
-        {
+        if n < 3 || component.has_aggregate() {
             return None;
         }
         let depth = depths(n, edges)?;

@@ -19,11 +19,7 @@ pub(crate) fn independent_parts(component: &Component, edges: &[Edge]) -> Option
     let n = component.members.len();
     // Components with aggregates (stand-ins for the implication graph's unwritten rules) stay
     // whole: on clause chains a truth table per member cost time and dropped nothing useful.
-    if component
-        .members
-        .iter()
-        .any(|&g| component.engine.is_aggregate(g))
-    {
+    if component.has_aggregate() {
         return None;
     }
     let mut kept: Vec<(u32, u32)> = Vec::with_capacity(edges.len());

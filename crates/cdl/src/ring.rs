@@ -73,13 +73,7 @@ impl Ring {
     /// on that chain that only the reads closing the ring cross backwards.
     pub(crate) fn find(component: &Component, edges: &[Edge]) -> Option<Ring> {
         let n = component.members.len();
-        // An aggregate never enters the history, so the path may meet it twice.
-        if n < 3
-            || component
-                .members
-                .iter()
-                .any(|&g| component.engine.is_aggregate(g))
-        {
+        if n < 3 || component.has_aggregate() {
             return None;
         }
         let successors = Csr::build(n, edges.iter().map(|&(from, to, _)| (from, to)));
