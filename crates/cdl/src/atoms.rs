@@ -2,22 +2,14 @@
 //! One map and no allocation per atom, which matters at millions of atoms.
 
 use crate::literal::Atom;
-use hashbrown::hash_table::Entry;
-use hashbrown::HashTable;
-use std::hash::Hasher;
+pub(crate) use crate::slots::hash;
+use crate::slots::Slots;
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct AtomTable {
     text: String,
     ends: Vec<u32>,
-    index: HashTable<u32>,
-}
-
-/// The hash the atom and label tables share.
-pub(crate) fn hash(name: &str) -> u64 {
-    let mut hasher = rustc_hash::FxHasher::default();
-    hasher.write(name.as_bytes());
-    hasher.finish()
+    index: Slots,
 }
 
 fn name_of<'t>(text: &'t str, ends: &[u32], id: u32) -> &'t str {
@@ -38,33 +30,37 @@ impl AtomTable {
     pub(crate) fn reserve(&mut self, atoms: usize) {
         let (text, ends) = (&self.text, &self.ends);
         self.index
-            .reserve(atoms, |&id| hash(name_of(text, ends, id)));
+            .reserve(atoms, |id| hash(name_of(text, ends, id)));
         self.ends.reserve(atoms);
+    }
+
+    /// Starts bringing the slot `name` is looked for in into the cache (see [`Slots`]).
+    #[inline]
+    pub(crate) fn prefetch(&self, name: &str) {
+        self.index.prefetch(hash(name));
     }
 
     pub(crate) fn get(&self, name: &str) -> Option<Atom> {
         self.index
-            .find(hash(name), |&id| {
-                name_of(&self.text, &self.ends, id) == name
-            })
-            .map(|&id| Atom(id))
+            .find(hash(name), |id| name_of(&self.text, &self.ends, id) == name)
+            .map(Atom)
     }
 
     /// The atom of this name, added when new (one probe of the table either way).
     pub(crate) fn intern(&mut self, name: &str) -> Atom {
         let (text, ends) = (&self.text, &self.ends);
-        match self.index.entry(
+        let found = self.index.find_or_insert(
             hash(name),
-            |&id| name_of(text, ends, id) == name,
-            |&id| hash(name_of(text, ends, id)),
-        ) {
-            Entry::Occupied(found) => Atom(*found.get()),
-            Entry::Vacant(slot) => {
-                let id = self.ends.len() as u32;
-                slot.insert(id);
+            ends.len() as u32,
+            |id| name_of(text, ends, id) == name,
+            |id| hash(name_of(text, ends, id)),
+        );
+        match found {
+            Ok(id) => Atom(id),
+            Err(new) => {
                 self.text.push_str(name);
                 self.ends.push(self.text.len() as u32);
-                Atom(id)
+                Atom(new)
             }
         }
     }

@@ -2,11 +2,10 @@
 //! and where (duplicate and undefined labels, priority cycles, contradicting facts, misused
 //! input and output declarations).
 
-use crate::atoms::hash;
 use crate::closure::{close, normalize, ClosureOutcome, Resolvents, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
+use crate::slots::{hash, Slots};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
-use hashbrown::HashTable;
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
 use rustc_hash::FxHashMap;
 
@@ -27,11 +26,12 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
         .filter(|i| matches!(i, Item::Rule(_)))
         .count();
     let mut checker = Checker::new(source, rules);
-    for item in &parsed.items {
-        checker.item(item);
-    }
+    checker.items(&parsed.items);
     checker.finish(parsed.diagnostics, &parsed.broken_labels)
 }
+
+/// How many statements' names are asked for from memory before the first of them is used.
+const AHEAD: usize = 32;
 
 /// Files at least this large are parsed and checked at the same time, on two threads.
 const PIPELINE_BYTES: usize = 1 << 20;
@@ -64,9 +64,7 @@ pub fn check_source(source: &str, language: Language) -> Checked {
         // About 25 bytes a rule in large generated theories.
         let mut checker = Checker::new(source, source.len() / 25);
         for batch in batches {
-            for item in &batch {
-                checker.item(item);
-            }
+            checker.items(&batch);
             let _ = give_back.send(batch);
         }
         match parser.join() {
@@ -81,15 +79,9 @@ struct Checker<'s> {
     source: &'s str,
     theory: Theory,
     diagnostics: Vec<Diagnostic>,
-    /// Each label as written: its text's hash with its bits reversed (so that sorting orders
-    /// labels by the low bits a hash table's bucket is chosen by), its rule, where it begins in
-    /// the source. Sorted
-    /// once every rule is in (`index_labels`), which finds labels used twice by streaming
-    /// through memory where a table filled rule by rule misses the cache at every insert.
-    written_labels: Vec<(u64, RuleId, u32)>,
     /// The first rule of each label, found by the label's text (which the theory's
-    /// `label_text` holds); built only for a theory with priorities to resolve.
-    labels: HashTable<RuleId>,
+    /// `label_text` holds). Filled as rules come in, so a label used twice is found at once.
+    labels: Slots,
     input_spans: FxHashMap<Atom, Span>,
     /// Where each body literal was written (parallel to the theory's `bodies`).
     body_spans: Vec<Span>,
@@ -115,15 +107,14 @@ impl<'s> Checker<'s> {
             source,
             theory: Theory::default(),
             diagnostics: Vec::new(),
-            written_labels: Vec::new(),
-            labels: HashTable::new(),
+            labels: Slots::default(),
             input_spans: FxHashMap::default(),
             body_spans: Vec::new(),
             broken_labels: Default::default(),
             priorities: Vec::new(),
             name_span: None,
         };
-        checker.written_labels.reserve(rules);
+        checker.labels.reserve(rules, |_| 0);
         let t = &mut checker.theory;
         t.atoms.reserve(rules + 1);
         t.heads.reserve(rules);
@@ -135,8 +126,41 @@ impl<'s> Checker<'s> {
         checker
     }
 
-    /// Takes in one statement, in file order. By reference, so that a pipeline's batches are
-    /// freed by the thread that made them.
+    /// Takes in statements, in file order. By reference, so that a pipeline's batches are freed
+    /// by the thread that made them. The atom table's slots for the next few statements' atoms
+    /// are asked for before those statements are taken in, so their cache misses overlap instead
+    /// of coming one after another (most of checking a large theory was waiting on them).
+    fn items(&mut self, items: &[Item]) {
+        for chunk in items.chunks(AHEAD) {
+            for item in chunk {
+                self.prefetch_names(item);
+            }
+            for item in chunk {
+                self.item(item);
+            }
+        }
+    }
+
+    /// The atoms and labels of the common statements, rules and facts; a hint only.
+    fn prefetch_names(&self, item: &Item) {
+        let lits: &[ast::Lit] = match item {
+            Item::Rule(rule) => &rule.body,
+            Item::Fact { clause, .. } => clause,
+            _ => &[],
+        };
+        let atoms = &self.theory.atoms;
+        for lit in lits {
+            atoms.prefetch(lit.atom.text(self.source));
+        }
+        if let Item::Rule(rule) = item {
+            atoms.prefetch(rule.head.atom.text(self.source));
+            if let Some(label) = rule.label {
+                self.labels.prefetch(hash(label.text(self.source)));
+            }
+        }
+    }
+
+    /// Takes in one statement, in file order.
     fn item(&mut self, item: &Item) {
         match item {
             Item::Rule(rule) => self.add_rule(rule),
@@ -211,7 +235,6 @@ impl<'s> Checker<'s> {
             self.broken_labels.insert(span.text(self.source));
         }
         self.theory.written_rules = self.theory.heads.len();
-        self.index_labels();
         for (labels, span) in std::mem::take(&mut self.priorities) {
             self.add_priority(&labels, span);
         }
@@ -242,8 +265,7 @@ impl<'s> Checker<'s> {
         let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
-            self.written_labels
-                .push((hash(text).reverse_bits(), id, label.start));
+            self.add_label(text, id, label.start);
             let start = self.theory.label_text.len() as u32;
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
@@ -395,59 +417,37 @@ impl<'s> Checker<'s> {
         }
     }
 
-    /// Reports every label used again, and indexes the first rule of each label when there are
-    /// priorities to resolve.
-    fn index_labels(&mut self) {
-        let mut written = std::mem::take(&mut self.written_labels);
-        // By hash, then by rule: the first rule of a label comes first in its run, and the
-        // table below is filled bucket after bucket.
-        written.sort_unstable();
-        let mut firsts = Vec::new();
-        for run in written.chunk_by(|a, b| a.0 == b.0) {
-            // A label of its own hash is used once; only a run's texts need reading.
-            if let [(h, id, _)] = run {
-                firsts.push((*h, *id));
-                continue;
-            }
-            for (i, &(h, id, start)) in run.iter().enumerate() {
-                let text = self.theory.label(id).unwrap_or_default();
-                let first = run[..i]
-                    .iter()
-                    .find(|&&(_, earlier, _)| self.theory.label(earlier) == Some(text));
-                match first {
-                    None => firsts.push((h, id)),
-                    Some(&(_, _, first_start)) => {
-                        self.diagnostics
-                            .push(label_used_twice(text, start, first_start))
-                    }
-                }
-            }
-        }
-        if self.priorities.is_empty() {
-            return;
-        }
-        // Nothing to rehash in an empty table, so this hasher is never called.
-        self.labels.reserve(firsts.len(), |_| 0);
-        for (reversed, id) in firsts {
-            let theory = &self.theory;
-            self.labels
-                .insert_unique(reversed.reverse_bits(), id, |&r| {
-                    hash(theory.label(r).unwrap_or_default())
-                });
+    /// Indexes the first rule of each label; reports a label used again.
+    fn add_label(&mut self, text: &str, rule: RuleId, start: u32) {
+        let theory = &self.theory;
+        let found = self.labels.find_or_insert(
+            hash(text),
+            rule,
+            |r| theory.label(r) == Some(text),
+            |r| hash(theory.label(r).unwrap_or_default()),
+        );
+        if let Ok(first) = found {
+            // A label is the first thing its rule's statement holds; rules of the closure are
+            // made after every written one, so the first is always written.
+            let first_start = match theory.origins[first as usize] {
+                Origin::Written(span) => span.start,
+                Origin::Clause(_) => start,
+            };
+            self.diagnostics
+                .push(label_used_twice(text, start, first_start));
         }
     }
 
     /// The rule labelled `text`, if one is.
     fn labelled(&self, text: &str) -> Option<RuleId> {
         self.labels
-            .find(hash(text), |&r| self.theory.label(r) == Some(text))
-            .copied()
+            .find(hash(text), |r| self.theory.label(r) == Some(text))
     }
 
     fn similar_label(&self, text: &str) -> Option<String> {
         self.labels
-            .iter()
-            .filter_map(|&r| self.theory.label(r))
+            .ids()
+            .filter_map(|r| self.theory.label(r))
             .filter(|l| l.eq_ignore_ascii_case(text))
             .min()
             .map(str::to_string)

@@ -27,6 +27,7 @@ mod reference;
 mod relevance;
 mod ring;
 mod session;
+mod slots;
 mod table;
 mod theory;
 
