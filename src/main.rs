@@ -17,6 +17,15 @@ mod network;
 use clap::Parser;
 use std::process::ExitCode;
 
+/// mimalloc rather than the system allocator: a large theory is a few hundred megabytes of
+/// tables made once, and mimalloc backs them with transparent huge pages where the system
+/// allows it (a fault per 2 MiB instead of per 4 KiB, and fewer TLB misses on the tables'
+/// random reads), and frees the parser's small allocations cheaply across threads. Measured on
+/// chain(10^6), `proclaim bench`: parse and check 238 ms against 111 ms. The library crates
+/// leave the choice to whoever embeds them.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     // Like other command-line tools, stop quietly when the reader of our output goes away
     // (`proclaim replay t.jsonl | head`) instead of failing to print. Sockets are unaffected:
