@@ -4,7 +4,7 @@ use super::{algorithms, inputs};
 use crate::cli::AlgArg;
 use crate::failure::Failure;
 use crate::load;
-use proclaim_cdl::{Engine, SearchLimits, Session, Undecided};
+use proclaim_cdl::{Algorithm, Engine, Formula, SearchLimits, Session, Undecided};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -30,6 +30,9 @@ fn exit(any_undecided: bool) -> ExitCode {
     }
 }
 
+/// One answer: the algorithm, the query as shown, proved or not (or undecided).
+type Answer = (Algorithm, String, Result<bool, Undecided>);
+
 pub fn run(
     theory_name: &str,
     queries: &[String],
@@ -39,13 +42,37 @@ pub fn run(
     budget: Option<u64>,
 ) -> Result<ExitCode, Failure> {
     let (source, theory) = load::theory(theory_name)?;
-    // A literal whose atom the theory lacks is not provable: answered `-`, with a warning, as
-    // SPINdle and Deimos answer it. Any other bad query is an error.
+    let formulas = read_queries(queries, &theory, &source)?;
+    let mut session = session(theory, budget);
+    let engine = session.engine().clone();
+    inputs::apply(&mut session, engine.theory(), sets)?;
+    let answers = if queries.is_empty() {
+        every_conclusion(&mut session, alg)
+    } else {
+        answer(&mut session, &formulas, queries, alg)
+    };
+    let any_undecided = answers.iter().any(|(_, _, a)| a.is_err());
+    if json {
+        print_json(&answers);
+    } else {
+        print_lines(answers)?;
+    }
+    Ok(exit(any_undecided))
+}
+
+/// Each query as a formula, or `None` for a literal whose atom the theory lacks: that is not
+/// provable, so it is answered `-` with a warning, as SPINdle and Deimos answer it. Any other
+/// bad query is an error.
+fn read_queries(
+    queries: &[String],
+    theory: &proclaim_cdl::Theory,
+    source: &load::Source,
+) -> Result<Vec<Option<Formula>>, Failure> {
     let mut formulas = Vec::new();
     for q in queries {
-        match inputs::formula(q, &theory, &source) {
+        match inputs::formula(q, theory, source) {
             Ok(f) => formulas.push(Some(f)),
-            Err(Failure::Invalid { rendered, .. }) if unknown_literal(q, &theory) => {
+            Err(Failure::Invalid { rendered, .. }) if unknown_literal(q, theory) => {
                 // The same words and caret, as a warning: the answer is `-`, not a failure.
                 eprint!("{}", rendered.replacen("error", "warning", 1));
                 eprintln!(
@@ -57,10 +84,18 @@ pub fn run(
             Err(failure) => return Err(failure),
         }
     }
-    let mut session = session(theory, budget);
+    Ok(formulas)
+}
+
+/// Each query under each algorithm asked for, in the order written.
+fn answer(
+    session: &mut Session,
+    formulas: &[Option<Formula>],
+    queries: &[String],
+    alg: AlgArg,
+) -> Vec<Answer> {
     let engine = session.engine().clone();
-    inputs::apply(&mut session, engine.theory(), sets)?;
-    let mut answers: Vec<(_, String, Result<bool, Undecided>)> = Vec::new();
+    let mut answers = Vec::new();
     for (formula, query) in formulas.iter().zip(queries) {
         for alg in algorithms(alg) {
             match formula {
@@ -72,46 +107,54 @@ pub fn run(
             }
         }
     }
-    // No query: every conclusion of each algorithm asked for, and every literal left undecided.
-    if queries.is_empty() {
-        for alg in algorithms(alg) {
-            for lit in (0..engine.theory().atom_count() as u32 * 2).map(proclaim_cdl::Lit) {
-                let answer = session.decide(alg, lit);
-                if answer != Ok(false) {
-                    answers.push((alg, engine.theory().show(lit).to_string(), answer));
-                }
+    answers
+}
+
+/// Every conclusion of each algorithm asked for, and every literal left undecided.
+fn every_conclusion(session: &mut Session, alg: AlgArg) -> Vec<Answer> {
+    let engine = session.engine().clone();
+    let theory = engine.theory();
+    let mut answers = Vec::new();
+    for alg in algorithms(alg) {
+        for lit in (0..theory.atom_count() as u32 * 2).map(proclaim_cdl::Lit) {
+            let answer = session.decide(alg, lit);
+            if answer != Ok(false) {
+                answers.push((alg, theory.show(lit).to_string(), answer));
             }
         }
     }
-    let any_undecided = answers.iter().any(|(_, _, a)| a.is_err());
-    if json {
-        let list: Vec<_> = answers
-            .iter()
-            .map(|(alg, query, answer)| match answer {
-                Ok(proved) => {
-                    serde_json::json!({"algorithm": alg.name(), "query": query, "proved": proved})
-                }
-                Err(undecided) => serde_json::json!({
-                    "algorithm": alg.name(), "query": query, "proved": null,
-                    "undecided": undecided.to_string(),
-                }),
-            })
-            .collect();
-        println!("{}", serde_json::Value::Array(list));
-    } else {
-        write_out(|out| {
-            for (alg, query, answer) in answers {
-                match answer {
-                    Ok(proved) => writeln!(out, "{}{alg} {query}", if proved { '+' } else { '-' })?,
-                    Err(undecided) => {
-                        writeln!(out, "?{alg} {query}  (undecided: {})", reason(&undecided))?
-                    }
+    answers
+}
+
+fn print_json(answers: &[Answer]) {
+    let list: Vec<_> = answers
+        .iter()
+        .map(|(alg, query, answer)| match answer {
+            Ok(proved) => {
+                serde_json::json!({"algorithm": alg.name(), "query": query, "proved": proved})
+            }
+            Err(undecided) => serde_json::json!({
+                "algorithm": alg.name(), "query": query, "proved": null,
+                "undecided": undecided.to_string(),
+            }),
+        })
+        .collect();
+    println!("{}", serde_json::Value::Array(list));
+}
+
+/// `+beta q`, `-beta q`, or `?beta q  (undecided: …)`, a line each.
+fn print_lines(answers: Vec<Answer>) -> Result<(), Failure> {
+    write_out(|out| {
+        for (alg, query, answer) in answers {
+            match answer {
+                Ok(proved) => writeln!(out, "{}{alg} {query}", if proved { '+' } else { '-' })?,
+                Err(undecided) => {
+                    writeln!(out, "?{alg} {query}  (undecided: {})", reason(&undecided))?
                 }
             }
-            Ok(())
-        })?;
-    }
-    Ok(exit(any_undecided))
+        }
+        Ok(())
+    })
 }
 
 /// Writes to standard output through one buffer: a line a conclusion is a million lines for a

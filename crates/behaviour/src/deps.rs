@@ -31,8 +31,8 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
     );
     let mut above: Vec<String> = Vec::new();
     let mut below: Vec<String> = Vec::new();
-    let experts_missing = experts_above(modules, me, &mut above, &mut out);
-    let listeners_missing = listeners_below(modules, me, &above, &mut below, &mut out);
+    let experts_missing = link_side(modules, me, Side::Experts, &mut above, &[], &mut out);
+    let listeners_missing = link_side(modules, me, Side::Listeners, &mut below, &above, &mut out);
     let unknown = experts_missing || listeners_missing;
     if unknown {
         out.push_str("  unknown [shape=plaintext, fontcolor=red, label=\"unknown\"];\n");
@@ -47,92 +47,79 @@ pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String
     Ok(out)
 }
 
-/// The experts answering what `me` waits on, linked green above it (a label nobody answers
-/// from `unknown`, red); whether any was missing.
-fn experts_above(
+/// The two sides of the module at the centre of its diagram.
+#[derive(Clone, Copy)]
+enum Side {
+    /// The experts answering what it waits on: green arrows into it, from above.
+    Experts,
+    /// The modules hearing what it posts: black arrows out of it, below.
+    Listeners,
+}
+
+/// The modules on one side of `me`, linked to it by what each link is about (a label nobody
+/// answers, or a posting nobody hears, linked to `unknown` in red), gathered into `placed`
+/// unless already in `elsewhere`; whether any was missing.
+fn link_side(
     modules: &[Module],
     me: &Module,
-    above: &mut Vec<String>,
+    side: Side,
+    placed: &mut Vec<String>,
+    elsewhere: &[String],
     out: &mut String,
 ) -> bool {
     let centre = me.decl.name.as_str();
+    let quoted_centre = quote(centre);
+    let running = proclaim_runner::running_type(centre);
+    let topics: Vec<&String> = match side {
+        Side::Experts => me.decl.waits_on.iter().collect(),
+        Side::Listeners => me.decl.posts.iter().filter(|t| **t != running).collect(),
+    };
     let mut unknown = false;
-    for atom in &me.decl.waits_on {
-        let experts: Vec<&Module> = modules
+    for topic in topics {
+        let partners: Vec<&str> = modules
             .iter()
-            .filter(|m| m.decl.name != centre && m.decl.answers.contains(atom))
+            .filter(|m| m.decl.name != centre)
+            .filter(|m| match side {
+                Side::Experts => m.decl.answers.contains(topic),
+                Side::Listeners => m.decl.reads.contains(topic) || m.decl.waits_on.contains(topic),
+            })
+            .map(|m| m.decl.name.as_str())
             .collect();
-        if experts.is_empty() {
+        let attributes = match side {
+            Side::Experts => "color=green4, ",
+            Side::Listeners => "",
+        };
+        if partners.is_empty() {
             unknown = true;
+            let (from, to) = ends(side, &quoted_centre, "unknown");
             let _ = writeln!(
                 out,
-                "  unknown -> {} [color=red, fontcolor=red, label={}];",
-                quote(centre),
-                quote(atom)
+                "  {from} -> {to} [color=red, fontcolor=red, label={}];",
+                quote(topic)
             );
         }
-        for e in experts {
-            if !above.contains(&e.decl.name) {
-                above.push(e.decl.name.clone());
+        for partner in partners {
+            if !placed.iter().chain(elsewhere).any(|p| p == partner) {
+                placed.push(partner.to_string());
             }
+            let quoted = quote(partner);
+            let (from, to) = ends(side, &quoted_centre, &quoted);
             let _ = writeln!(
                 out,
-                "  {} -> {} [color=green4, label={}];",
-                quote(&e.decl.name),
-                quote(centre),
-                quote(atom)
+                "  {from} -> {to} [{attributes}label={}];",
+                quote(topic)
             );
         }
     }
     unknown
 }
 
-/// The modules hearing what `me` posts, linked below it (a posting nobody hears to `unknown`,
-/// red); whether any was missing.
-fn listeners_below(
-    modules: &[Module],
-    me: &Module,
-    above: &[String],
-    below: &mut Vec<String>,
-    out: &mut String,
-) -> bool {
-    let centre = me.decl.name.as_str();
-    let mut unknown = false;
-    for ty in me
-        .decl
-        .posts
-        .iter()
-        .filter(|t| **t != proclaim_runner::running_type(centre))
-    {
-        let listeners: Vec<&Module> = modules
-            .iter()
-            .filter(|m| {
-                m.decl.name != centre && (m.decl.reads.contains(ty) || m.decl.waits_on.contains(ty))
-            })
-            .collect();
-        if listeners.is_empty() {
-            unknown = true;
-            let _ = writeln!(
-                out,
-                "  {} -> unknown [color=red, fontcolor=red, label={}];",
-                quote(centre),
-                quote(ty)
-            );
-        }
-        for l in listeners {
-            if !below.contains(&l.decl.name) && !above.contains(&l.decl.name) {
-                below.push(l.decl.name.clone());
-            }
-            let _ = writeln!(
-                out,
-                "  {} -> {} [label={}];",
-                quote(centre),
-                quote(&l.decl.name),
-                quote(ty)
-            );
-        }
+/// An arrow's tail and head: experts point at the centre, the centre at its listeners.
+fn ends<'a>(side: Side, centre: &'a str, partner: &'a str) -> (&'a str, &'a str) {
+    match side {
+        Side::Experts => (partner, centre),
+        Side::Listeners => (centre, partner),
     }
-    unknown
 }
 
 /// Every module and every provider → listener link: green where a label is proclaimed, black
