@@ -85,18 +85,14 @@ fn link_side(
             })
             .map(|m| m.decl.name.as_str())
             .collect();
-        let attributes = match side {
-            Side::Experts => "color=green4, ",
-            Side::Listeners => "",
+        let kind = match side {
+            Side::Experts => Arrow::Proclaims,
+            Side::Listeners => Arrow::Heard,
         };
         if partners.is_empty() {
             unknown = true;
             let (from, to) = ends(side, &quoted_centre, "unknown");
-            let _ = writeln!(
-                out,
-                "  {from} -> {to} [color=red, fontcolor=red, label={}];",
-                quote(topic)
-            );
+            arrow(out, from, to, topic, Arrow::Unknown);
         }
         for partner in partners {
             if !placed.iter().chain(elsewhere).any(|p| p == partner) {
@@ -104,11 +100,7 @@ fn link_side(
             }
             let quoted = quote(partner);
             let (from, to) = ends(side, &quoted_centre, &quoted);
-            let _ = writeln!(
-                out,
-                "  {from} -> {to} [{attributes}label={}];",
-                quote(topic)
-            );
+            arrow(out, from, to, topic, kind);
         }
     }
     unknown
@@ -120,6 +112,27 @@ fn ends<'a>(side: Side, centre: &'a str, partner: &'a str) -> (&'a str, &'a str)
         Side::Experts => (partner, centre),
         Side::Listeners => (centre, partner),
     }
+}
+
+/// What an arrow of a dependency diagram says.
+#[derive(Clone, Copy)]
+enum Arrow {
+    /// An expert proclaims a label its head waits on (green).
+    Proclaims,
+    /// Its head hears a posting of its tail (black).
+    Heard,
+    /// Nobody answers or hears it (red, to or from `unknown`).
+    Unknown,
+}
+
+/// One arrow between two nodes already quoted (or `unknown`), labelled with what it is about.
+fn arrow(out: &mut String, from: &str, to: &str, topic: &str, kind: Arrow) {
+    let colour = match kind {
+        Arrow::Proclaims => "color=green4, ",
+        Arrow::Heard => "",
+        Arrow::Unknown => "color=red, fontcolor=red, ",
+    };
+    let _ = writeln!(out, "  {from} -> {to} [{colour}label={}];", quote(topic));
 }
 
 /// Every module and every provider → listener link: green where a label is proclaimed, black
@@ -144,21 +157,17 @@ pub fn overall_diagram(modules: &[Module], name: &str) -> String {
                 .filter(|e| e.decl.name != m.decl.name && e.decl.answers.contains(atom))
                 .collect();
             unknown |= experts.is_empty();
+            let name = quote(&m.decl.name);
             if experts.is_empty() {
-                let _ = writeln!(
-                    out,
-                    "  unknown -> {} [color=red, fontcolor=red, label={}];",
-                    quote(&m.decl.name),
-                    quote(atom)
-                );
+                arrow(&mut out, "unknown", &name, atom, Arrow::Unknown);
             }
             for e in experts {
-                let _ = writeln!(
-                    out,
-                    "  {} -> {} [color=green4, label={}];",
-                    quote(&e.decl.name),
-                    quote(&m.decl.name),
-                    quote(atom)
+                arrow(
+                    &mut out,
+                    &quote(&e.decl.name),
+                    &name,
+                    atom,
+                    Arrow::Proclaims,
                 );
             }
         }
@@ -167,12 +176,12 @@ pub fn overall_diagram(modules: &[Module], name: &str) -> String {
                 .iter()
                 .filter(|l| l.decl.name != m.decl.name && l.decl.reads.contains(ty))
             {
-                let _ = writeln!(
-                    out,
-                    "  {} -> {} [label={}];",
-                    quote(&m.decl.name),
-                    quote(&l.decl.name),
-                    quote(ty)
+                arrow(
+                    &mut out,
+                    &quote(&m.decl.name),
+                    &quote(&l.decl.name),
+                    ty,
+                    Arrow::Heard,
                 );
             }
         }
