@@ -224,13 +224,8 @@ fn thousand_counters() -> Vec<proclaim_fsm::Machine> {
 }
 
 fn main() {
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
-    // Short runs when invoked by `cargo test --benches` / `cargo bench --no-run` smoke checks.
-    let quick = std::env::args().any(|a| a == "--test");
+    let runtime = common::runtime();
+    let quick = common::quick();
     let n = if quick { 1_000 } else { 100_000 };
     runtime.block_on(async {
         let _ = post_to_wake(1_000).await; // warm up

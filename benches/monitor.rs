@@ -136,12 +136,8 @@ fn resident_mib() -> Option<f64> {
 }
 
 fn main() {
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .unwrap();
-    let quick = std::env::args().any(|a| a == "--test");
+    let runtime = common::runtime();
+    let quick = common::quick();
     let n = if quick { 1_000 } else { 50_000 };
     let load_secs = if quick { 1 } else { 10 };
     let soak_secs: u64 = if quick {

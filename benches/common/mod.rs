@@ -5,6 +5,21 @@ use proclaim_board::{QueryOutcome, Whiteboard};
 use proclaim_experts::ReasonerExpert;
 use std::time::{Duration, Instant};
 
+/// The runtime every whiteboard bench runs on: two workers, as many as the machine has cores.
+pub fn runtime() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .expect("a tokio runtime")
+}
+
+/// Whether the bench was started as a smoke check (`cargo test --benches`, `cargo bench
+/// --no-run` runs), which wants short runs.
+pub fn quick() -> bool {
+    std::env::args().any(|a| a == "--test")
+}
+
 pub fn microwave() -> proclaim_cdl::Theory {
     let text = include_str!("../../theories/microwave.dl");
     proclaim_cdl::load(text, proclaim_cdl::Language::Dl).expect("the microwave theory loads")
