@@ -114,6 +114,7 @@ impl<'s> Checker<'s> {
             priorities: Vec::new(),
             name_span: None,
         };
+        // Nothing to rehash in an empty table, so this hasher is never called.
         checker.labels.reserve(rules, |_| 0);
         let t = &mut checker.theory;
         t.atoms.reserve(rules + 1);
@@ -127,9 +128,9 @@ impl<'s> Checker<'s> {
     }
 
     /// Takes in statements, in file order. By reference, so that a pipeline's batches are freed
-    /// by the thread that made them. The atom table's slots for the next few statements' atoms
-    /// are asked for before those statements are taken in, so their cache misses overlap instead
-    /// of coming one after another (most of checking a large theory was waiting on them).
+    /// by the thread that made them. The table slots of the next few statements' atoms and
+    /// labels are asked for before those statements are taken in, so their cache misses overlap
+    /// instead of coming one after another (most of checking a large theory was waiting on them).
     fn items(&mut self, items: &[Item]) {
         for chunk in items.chunks(AHEAD) {
             for item in chunk {
