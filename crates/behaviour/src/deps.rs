@@ -74,6 +74,10 @@ fn link_side(
         Side::Experts => me.decl.waits_on.iter().collect(),
         Side::Listeners => me.decl.posts.iter().filter(|t| **t != running).collect(),
     };
+    let kind = match side {
+        Side::Experts => Arrow::Proclaims,
+        Side::Listeners => Arrow::Heard,
+    };
     let mut unknown = false;
     for topic in topics {
         let partners: Vec<&str> = modules
@@ -85,10 +89,6 @@ fn link_side(
             })
             .map(|m| m.decl.name.as_str())
             .collect();
-        let kind = match side {
-            Side::Experts => Arrow::Proclaims,
-            Side::Listeners => Arrow::Heard,
-        };
         if partners.is_empty() {
             unknown = true;
             let (from, to) = ends(side, &quoted_centre, "unknown");
