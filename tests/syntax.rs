@@ -155,6 +155,34 @@ fn rendered_errors_show_the_line_a_caret_and_a_hint() {
 }
 
 #[test]
+fn a_label_used_twice_points_at_both_uses() {
+    // Comments and indentation before either use, in both languages: the first use is found
+    // through its rule, whose statement begins at the label.
+    for (source, language) in [
+        (
+            "% first\n  R1: a => b.\nc.\n /* again */ R1: b => c.\n",
+            Language::Dl,
+        ),
+        ("# first\n  R1: a => b\n>> c\n R1: b => c\n", Language::Dfl),
+    ] {
+        let checked = check_theory(parse(source, language), source);
+        let places: Vec<(u32, Vec<u32>)> = checked
+            .diagnostics
+            .iter()
+            .map(|d| {
+                (
+                    d.span.start,
+                    d.related.iter().map(|(s, _)| s.start).collect(),
+                )
+            })
+            .collect();
+        let second = source.rfind("R1").unwrap() as u32;
+        let first = source.find("R1").unwrap() as u32;
+        assert_eq!(places, [(second, vec![first])], "{source:?}");
+    }
+}
+
+#[test]
 fn a_flood_of_errors_is_capped() {
     let garbage = "$ ".repeat(100_000);
     let report = diagnostics(&garbage, Language::Dl);

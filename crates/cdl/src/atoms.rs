@@ -2,8 +2,7 @@
 //! One map and no allocation per atom, which matters at millions of atoms.
 
 use crate::literal::Atom;
-pub(crate) use crate::slots::hash;
-use crate::slots::Slots;
+use crate::slots::{hash, Slots};
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct AtomTable {

@@ -108,7 +108,8 @@ impl Slots {
         }
     }
 
-    /// The id found, or the empty slot where the probe ended.
+    /// The id found, or the empty slot where the probe ended. A table with no slots yet has no
+    /// slot to give: only `find` meets one (`find_or_insert` grows the table first).
     fn probe(&self, hash: u64, is_name: impl Fn(u32) -> bool) -> Result<u32, usize> {
         if self.slots.is_empty() {
             return Err(usize::MAX);
