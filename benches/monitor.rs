@@ -113,6 +113,7 @@ fn at_rate(
 fn fold_events(monitor: Monitor, rate: u64, stop: Arc<AtomicU64>) -> tokio::task::JoinHandle<u64> {
     at_rate(rate, stop, move |n, at| {
         monitor.observe(&Event::Answered {
+            round: 0,
             machine: "Microwave".into(),
             atom: format!("label{}", n % 50),
             value: n % 7 == 0,

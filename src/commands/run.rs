@@ -115,6 +115,7 @@ fn launch_options(args: &RunArgs, script: Option<proclaim_experts::Script>) -> L
             args.monitor.as_ref().map(|_| Stepper::free())
         },
         person: person(&args.ask),
+        ringlets: args.record.is_some(),
     }
 }
 

@@ -3,6 +3,7 @@
 //! trace.
 
 use crate::load::Behaviour;
+use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
 use proclaim_board::{Pattern, Whiteboard};
 use proclaim_experts::{
@@ -10,7 +11,9 @@ use proclaim_experts::{
     ReceiverConfig, Script,
 };
 use proclaim_gcsim::{default_game, play, Event as SimEvent, SimConfig};
-use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions, Stepper};
+use proclaim_runner::{
+    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RunOptions, Stepper,
+};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
 use std::net::SocketAddr;
@@ -34,6 +37,9 @@ pub struct LaunchOptions {
     /// An impersonator that asks a person (`proclaim run --ask`); experts and sensor wrappers
     /// answering its atoms are left out, as for a script.
     pub person: Option<Impersonator>,
+    /// Report every ringlet as it starts ([`Running::ringlets`]), for a recording that a
+    /// replay can post outside messages back into at the same places.
+    pub ringlets: bool,
 }
 
 /// Machine → its final states (those with no way out).
@@ -44,6 +50,11 @@ type Positions = FxHashMap<String, Option<i64>>;
 /// A behaviour running: its trace, and what it takes for it to be over.
 pub struct Running {
     pub events: mpsc::UnboundedReceiver<Event>,
+    /// Every ringlet as it starts, when asked for ([`LaunchOptions::ringlets`]) and the
+    /// machines run in rounds.
+    pub ringlets: Option<mpsc::UnboundedReceiver<Ringlet>>,
+    /// The round under way (0 under `schedule = "concurrent"`).
+    pub round: RoundCounter,
     /// What was started or left out, and where sockets listen, for the person running it.
     pub notes: Vec<String>,
     tasks: JoinSet<()>,
@@ -117,6 +128,14 @@ pub async fn launch(
     // shows as 1.000 s.
     let epoch = tokio::time::Instant::now();
     let (tx, events) = mpsc::unbounded_channel();
+    let mut rounds = rounds_of(behaviour, &options, &tx, epoch);
+    let ringlets = rounds
+        .as_mut()
+        .filter(|_| options.ringlets)
+        .map(Rounds::ringlets);
+    let round = rounds
+        .as_ref()
+        .map_or_else(RoundCounter::default, Rounds::counter);
     let mut notes = Vec::new();
     let mut modules = experts(behaviour, board);
     let sim_note = sensors(behaviour, board, &options, &mut modules, &mut notes).await?;
@@ -124,8 +143,7 @@ pub async fn launch(
         behaviour,
         board,
         &options,
-        &tx,
-        epoch,
+        (&tx, epoch, &round),
         &mut modules,
         &mut notes,
     );
@@ -146,9 +164,24 @@ pub async fn launch(
         tasks.spawn(m.task);
     }
     wait_registered(board, &experts).await;
-    let (finals, top) = start_machines(behaviour, board, &options, &tx, epoch, &mut tasks);
+    match rounds {
+        Some(rounds) => {
+            let board = board.clone();
+            tasks.spawn(async move {
+                rounds.run(board).await;
+            });
+        }
+        None => {
+            for runner in machine_runners(behaviour, &options, &tx, epoch) {
+                tasks.spawn(runner.run(board.clone()));
+            }
+        }
+    }
+    let (finals, top) = finals_and_top(behaviour);
     Ok(Running {
         events,
+        ringlets,
+        round,
         notes,
         tasks,
         finals,
@@ -315,8 +348,11 @@ fn impersonators(
     behaviour: &Behaviour,
     board: &Whiteboard,
     options: &LaunchOptions,
-    tx: &mpsc::UnboundedSender<Event>,
-    epoch: tokio::time::Instant,
+    (tx, epoch, round): (
+        &mpsc::UnboundedSender<Event>,
+        tokio::time::Instant,
+        &RoundCounter,
+    ),
     modules: &mut Vec<Module>,
     notes: &mut Vec<String>,
 ) {
@@ -350,7 +386,7 @@ fn impersonators(
         modules.push(Module {
             name: "script".into(),
             answers: Vec::new(),
-            task: Box::pin(show_script(said, tx.clone(), epoch)),
+            task: Box::pin(show_script(said, tx.clone(), epoch, round.clone())),
         });
         modules.push(Module {
             name: "impersonator".into(),
@@ -360,17 +396,58 @@ fn impersonators(
     }
 }
 
-/// Every machine, each on its own task; each machine's final states, and the machines running
-/// from the start.
-fn start_machines(
+/// The machines of a behaviour in one round schedule, unless it asks for `concurrent`.
+fn rounds_of(
     behaviour: &Behaviour,
-    board: &Whiteboard,
     options: &LaunchOptions,
     tx: &mpsc::UnboundedSender<Event>,
     epoch: tokio::time::Instant,
-    tasks: &mut JoinSet<()>,
-) -> (Finals, Positions) {
+) -> Option<Rounds> {
+    if behaviour.manifest.schedule == Schedule::Concurrent {
+        return None;
+    }
+    let rounds = Rounds::new(machine_runners(behaviour, options, tx, epoch));
+    Some(match &options.stepper {
+        Some(stepper) => rounds.stepped_by(stepper.clone()),
+        None => rounds,
+    })
+}
+
+/// A runner for every machine, in manifest order, sharing the behaviour's variables and
+/// epoch, with its events into `tx`.
+pub(crate) fn machine_runners(
+    behaviour: &Behaviour,
+    options: &LaunchOptions,
+    tx: &mpsc::UnboundedSender<Event>,
+    epoch: tokio::time::Instant,
+) -> Vec<MachineRunner> {
     let shared = behaviour.shared_variables();
+    behaviour
+        .machines
+        .iter()
+        .map(|loaded| {
+            let mut runner = MachineRunner::new(
+                loaded.machine.clone(),
+                options.hosts.clone(),
+                RunOptions {
+                    ring_period: behaviour.ring_period,
+                    answer_timeout: behaviour.answer_timeout,
+                    start_running: loaded.start,
+                    halt_on_timeout: options.halt_on_timeout,
+                    stepper: options.stepper.clone(),
+                    shared: Some(shared.clone()),
+                    epoch: Some(epoch),
+                },
+            )
+            .with_loader(loaded.loader.clone());
+            runner.events_into(tx.clone());
+            runner
+        })
+        .collect()
+}
+
+/// Each machine's final states, and the machines running from the start.
+pub(crate) fn finals_and_top(behaviour: &Behaviour) -> (Finals, Positions) {
     let mut finals = FxHashMap::default();
     let mut top = FxHashMap::default();
     for loaded in &behaviour.machines {
@@ -385,22 +462,6 @@ fn start_machines(
         if loaded.start {
             top.insert(m.name.clone(), None);
         }
-        let mut runner = MachineRunner::new(
-            m.clone(),
-            options.hosts.clone(),
-            RunOptions {
-                ring_period: behaviour.ring_period,
-                answer_timeout: behaviour.answer_timeout,
-                start_running: loaded.start,
-                halt_on_timeout: options.halt_on_timeout,
-                stepper: options.stepper.clone(),
-                shared: Some(shared.clone()),
-                epoch: Some(epoch),
-            },
-        )
-        .with_loader(loaded.loader.clone());
-        runner.events_into(tx.clone());
-        tasks.spawn(runner.run(board.clone()));
     }
     (finals, top)
 }
@@ -411,6 +472,7 @@ async fn show_script(
     mut said: proclaim_board::Subscription,
     trace: mpsc::UnboundedSender<Event>,
     epoch: tokio::time::Instant,
+    round: RoundCounter,
 ) {
     let mut last: FxHashMap<String, proclaim_board::Value> = FxHashMap::default();
     while let Some(m) = said.next().await {
@@ -422,6 +484,7 @@ async fn show_script(
             machine: "impersonator".into(),
             ty: m.ty.to_string(),
             content: m.value.to_string(),
+            round: round.get(),
             at: epoch.elapsed(),
         };
         if trace.send(event).is_err() {

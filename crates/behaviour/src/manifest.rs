@@ -5,6 +5,7 @@
 //! description = "The seed paper's guGameController"
 //! ring_period = "100ms"       # optional, the longest wait between rings
 //! answer_timeout = "1s"       # optional, how long a label waits for its expert
+//! schedule = "rounds"         # optional: rounds of ringlets (§3.1), or "concurrent"
 //!
 //! [[machine]]
 //! file = "GameController.machine"      # native, Qfsm .fsm, or either file of a T/A pair
@@ -46,6 +47,9 @@ pub struct Manifest {
     pub ring_period: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub answer_timeout: Option<String>,
+    /// How the machines share time: rounds of ringlets (the default), or each on its own task.
+    #[serde(default, skip_serializing_if = "Schedule::is_rounds")]
+    pub schedule: Schedule,
     /// How long `proclaim run` runs when not told (a behaviour that never ends by itself).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run_for: Option<String>,
@@ -73,6 +77,24 @@ impl Manifest {
         // Every field is a string, a number, a bool or a table of them: nothing fails here.
         out.push_str(&toml::to_string(self).unwrap_or_default());
         out
+    }
+}
+
+/// How the machines of a behaviour share time (`../shared/spec/behaviour.md` §3.1).
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Schedule {
+    /// One ringlet per running machine per round, in manifest order, on one task: the same
+    /// inputs give the same run.
+    #[default]
+    Rounds,
+    /// Each machine on a task of its own, racing the others (for machines that share nothing).
+    Concurrent,
+}
+
+impl Schedule {
+    fn is_rounds(&self) -> bool {
+        *self == Schedule::Rounds
     }
 }
 

@@ -28,6 +28,8 @@ impl TraceView {
             Event::Entered { state, .. } => format!("→ {state}"),
             Event::Fired { label, .. } => format!("fires on {label}"),
             Event::Posted { ty, content, .. } => format!("posts {ty}: {content}"),
+            // A variable's every change would drown the trace; the JSON trace keeps them.
+            Event::Assigned { .. } => return None,
             Event::Control { command, .. } => format!("told {command}"),
             Event::Answered {
                 machine,

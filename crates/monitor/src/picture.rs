@@ -200,6 +200,7 @@ impl Picture {
             value,
             by,
             at,
+            ..
         } = event
         {
             if !self.answer(machine, atom, *value, by, *at) {
@@ -436,6 +437,7 @@ mod tests {
 
     fn answered(atom: &str, value: bool, by: Answerer, ms: u64) -> Event {
         Event::Answered {
+            round: 0,
             machine: "M".into(),
             atom: atom.into(),
             value,
@@ -499,6 +501,7 @@ mod tests {
             [(Some("A".into()), "running"), (Some("A".into()), "dormant")]
         );
         picture.observe(&Event::Fired {
+            round: 0,
             machine: "M".into(),
             from: 0,
             to: 1,
@@ -507,6 +510,7 @@ mod tests {
         });
         board.post("Sub", "SubIsRunning", true.into());
         picture.observe(&Event::Control {
+            round: 0,
             machine: "Sub".into(),
             command: "suspend".into(),
             at: Duration::ZERO,
@@ -520,6 +524,7 @@ mod tests {
             ]
         );
         picture.observe(&Event::Halted {
+            round: 0,
             machine: "M".into(),
             reason: "no answer".into(),
             at: Duration::ZERO,

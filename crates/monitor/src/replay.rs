@@ -36,6 +36,7 @@ impl Timeline {
                     ty,
                     content,
                     at,
+                    ..
                 } => Some((machine.as_str(), ty.as_str(), Value::parse(content), *at)),
                 Event::Answered {
                     atom,
@@ -110,6 +111,7 @@ mod tests {
 
     fn posted(ty: &str, content: &str, ms: u64) -> Event {
         Event::Posted {
+            round: 0,
             machine: "M".into(),
             ty: ty.into(),
             content: content.into(),

@@ -5,6 +5,7 @@
 use crate::eval::Env;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
+use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
 use proclaim_board::{Value, Whiteboard};
 use proclaim_fsm::control::Command;
@@ -21,6 +22,7 @@ pub const LOOP_LIMIT: u64 = 100_000;
 /// What an activity runs with.
 pub(crate) struct Doer<'a> {
     pub board: &'a Whiteboard,
+    pub seen: &'a mut Seen,
     /// The machine's name: who posts.
     pub machine: &'a str,
     pub state: &'a str,
@@ -51,6 +53,7 @@ impl Doer<'_> {
     fn env(&self) -> Env<'_> {
         Env {
             board: self.board,
+            seen: self.seen,
             locals: self.locals,
             shared: self.shared,
             in_state: self.entered_at.elapsed(),
@@ -65,36 +68,56 @@ impl Doer<'_> {
         text(&self.value(e))
     }
 
-    fn post(&self, ty: &str, value: Value) {
+    fn post(&mut self, ty: &str, value: Value) {
         let message = self.board.post(self.machine, ty, value);
-        self.reporter.emit(|at| Event::Posted {
+        self.seen.posted(&message);
+        self.reporter.emit(|at, round| Event::Posted {
             machine: self.machine.to_string(),
             ty: ty.to_string(),
             content: text(&message.value),
             at,
+            round,
         });
     }
 
     fn warn(&self, message: String) {
         // The event reaches whoever runs the machine; a warning here would say it twice.
         tracing::debug!(machine = %self.machine, "{message}");
-        self.reporter.emit(|at| Event::Warned {
+        self.reporter.emit(|at, round| Event::Warned {
             machine: self.machine.to_string(),
             message,
             at,
+            round,
         });
     }
 
     /// Assigns as gufsm did: the machine's own variable, else an extern (posted), else a global.
+    /// A change of a variable's value is reported (an extern's as its posting), so a trace
+    /// says what every variable held when.
     fn assign(&mut self, name: &str, value: Value) {
-        if self.locals.set(name, value.clone()) {
-            return;
-        }
-        if self.shared.is_extern(name) {
+        if self.locals.contains(name) {
+            let before = self.locals.get(name).cloned();
+            self.locals.set(name, value);
+            let after = self.locals.get(name).cloned();
+            if after != before {
+                self.report_assigned(name, after);
+            }
+        } else if self.shared.is_extern(name) {
             self.post(name, value);
-        } else {
-            self.shared.set_global(name, value);
+        } else if self.shared.global(name).as_ref() != Some(&value) {
+            self.shared.set_global(name, value.clone());
+            self.report_assigned(name, Some(value));
         }
+    }
+
+    fn report_assigned(&self, variable: &str, value: Option<Value>) {
+        self.reporter.emit(|at, round| Event::Assigned {
+            machine: self.machine.to_string(),
+            variable: variable.to_string(),
+            value: value.as_ref().map(text).unwrap_or_default(),
+            round,
+            at,
+        });
     }
 
     fn exec<'s>(
@@ -223,7 +246,7 @@ impl Doer<'_> {
             None => {
                 if self.unknown.insert(function.to_string()) {
                     tracing::debug!(machine = %self.machine, function = %function, "host function not registered; skipped");
-                    self.reporter.emit(|_| Event::UnknownFunction {
+                    self.reporter.emit(|_, _| Event::UnknownFunction {
                         machine: self.machine.to_string(),
                         function: function.to_string(),
                     });
@@ -234,10 +257,11 @@ impl Doer<'_> {
 
     fn print(&self, text: String) {
         tracing::info!(machine = %self.machine, "{text}");
-        self.reporter.emit(|at| Event::Printed {
+        self.reporter.emit(|at, round| Event::Printed {
             machine: self.machine.to_string(),
             text,
             at,
+            round,
         });
     }
 }

@@ -4,6 +4,7 @@
 //! instead of stopping the robot.
 
 use crate::activity::text;
+use crate::seen::Seen;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Value, Whiteboard};
 use proclaim_fsm::{BinOp, Expr, UnOp, TIME_TESTS};
@@ -13,6 +14,8 @@ use std::time::Duration;
 /// What names mean where an expression runs.
 pub(crate) struct Env<'a> {
     pub board: &'a Whiteboard,
+    /// How the board reads in this part of the ringlet (live, or its snapshot).
+    pub seen: &'a Seen,
     pub locals: &'a Locals,
     pub shared: &'a Shared,
     /// Time since the machine entered its current state (for `timeout`, `after`, `after_ms`).
@@ -34,12 +37,17 @@ impl Env<'_> {
             return Some(v.clone());
         }
         if self.shared.is_extern(name) {
-            return Some(self.board.latest(name).map_or(Value::Int(0), |m| m.value));
+            return Some(self.latest(name).map_or(Value::Int(0), |m| m.value));
         }
         if let Some(v) = self.shared.global(name) {
             return Some(v);
         }
-        self.board.latest(name).map(|m| m.value)
+        self.latest(name).map(|m| m.value)
+    }
+
+    /// The newest message of a type, as the ringlet sees the board.
+    pub fn latest(&self, ty: &str) -> Option<proclaim_board::Message> {
+        self.seen.latest(self.board, ty)
     }
 
     /// The value of an expression; `None` where it reads a whiteboard value never posted.
@@ -260,6 +268,7 @@ mod tests {
         shared.set_global("g", Value::Int(7));
         let env = Env {
             board: &board,
+            seen: &Seen::default(),
             locals: &Locals::default(),
             shared: &shared,
             in_state: Duration::from_millis(1500),

@@ -1,6 +1,7 @@
 //! What a running machine reports: the trace of a behaviour, as data. Events serialise one per
 //! line as JSON (`at_us` is microseconds since the machine started), so a trace file replays.
 
+use crate::rounds::RoundCounter;
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
 use tokio::sync::mpsc;
@@ -12,6 +13,8 @@ use tokio::time::Instant;
 pub(crate) struct Reporter {
     pub sender: Option<mpsc::UnboundedSender<Event>>,
     pub epoch: Instant,
+    /// The schedule's round (shared by the machines of one round schedule).
+    pub round: RoundCounter,
 }
 
 impl Reporter {
@@ -20,14 +23,18 @@ impl Reporter {
         self.epoch.elapsed()
     }
 
-    /// Sends the event made for the time now.
-    pub fn emit(&self, event: impl FnOnce(Duration) -> Event) {
+    /// Sends the event made for the time and round now.
+    pub fn emit(&self, event: impl FnOnce(Duration, u64) -> Event) {
         if let Some(tx) = &self.sender {
-            let _ = tx.send(event(self.now()));
+            let _ = tx.send(event(self.now(), self.round.get()));
         }
     }
 }
 
+/// Every event that carries a time also carries its `round`: the round of the schedule it
+/// happened in (`../shared/spec/behaviour.md` §3.1), or, for a machine run on its own task
+/// (`schedule = "concurrent"`), that machine's own count of ringlets. Traces written before
+/// rounds existed read back with round 0.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "event", rename_all = "snake_case")]
 pub enum Event {
@@ -35,6 +42,8 @@ pub enum Event {
         machine: String,
         state: String,
         id: i64,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -44,6 +53,8 @@ pub enum Event {
         atom: String,
         value: bool,
         by: Answerer,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -52,6 +63,8 @@ pub enum Event {
         from: i64,
         to: i64,
         label: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -61,6 +74,19 @@ pub enum Event {
         #[serde(rename = "type")]
         ty: String,
         content: String,
+        #[serde(default)]
+        round: u64,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// An activity changed a variable's value: the machine's own, or a global of the
+    /// behaviour (an extern's change is its posting).
+    Assigned {
+        machine: String,
+        variable: String,
+        value: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -69,6 +95,8 @@ pub enum Event {
     Control {
         machine: String,
         command: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -77,6 +105,8 @@ pub enum Event {
     Reloaded {
         machine: String,
         state: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -84,6 +114,8 @@ pub enum Event {
     ReloadFailed {
         machine: String,
         error: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -91,6 +123,8 @@ pub enum Event {
     Finished {
         machine: String,
         state: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -98,6 +132,8 @@ pub enum Event {
     Printed {
         machine: String,
         text: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -106,6 +142,8 @@ pub enum Event {
     Warned {
         machine: String,
         message: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -113,6 +151,8 @@ pub enum Event {
     Halted {
         machine: String,
         reason: String,
+        #[serde(default)]
+        round: u64,
         #[serde(rename = "at_us", with = "micros")]
         at: Duration,
     },
@@ -139,6 +179,7 @@ impl Event {
             | Event::Answered { machine, .. }
             | Event::Fired { machine, .. }
             | Event::Posted { machine, .. }
+            | Event::Assigned { machine, .. }
             | Event::UnknownFunction { machine, .. }
             | Event::Control { machine, .. }
             | Event::Reloaded { machine, .. }
@@ -157,6 +198,7 @@ impl Event {
             | Event::Answered { at, .. }
             | Event::Fired { at, .. }
             | Event::Posted { at, .. }
+            | Event::Assigned { at, .. }
             | Event::Control { at, .. }
             | Event::Reloaded { at, .. }
             | Event::ReloadFailed { at, .. }
@@ -169,7 +211,7 @@ impl Event {
     }
 }
 
-mod micros {
+pub(crate) mod micros {
     use serde::{Deserialize, Deserializer, Serializer};
     use std::time::Duration;
 

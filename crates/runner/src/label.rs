@@ -56,7 +56,7 @@ async fn ask(atom: &str, cx: &mut Context<'_>) -> bool {
         QueryOutcome::TimedOut => (false, Answerer::TimedOut),
         // No expert, but a module posts it as a state (`PlacerIsRunning`, a sensor value): its
         // current value is the answer.
-        QueryOutcome::NoExpert => match board.latest(atom) {
+        QueryOutcome::NoExpert => match cx.env.latest(atom) {
             Some(m) => (m.value.truthy(), Answerer::Posted(m.module.to_string())),
             None => (false, Answerer::NoExpert),
         },

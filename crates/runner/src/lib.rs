@@ -14,6 +14,8 @@ mod event;
 mod host;
 mod label;
 mod machine;
+mod rounds;
+mod seen;
 mod step;
 mod variables;
 
@@ -22,5 +24,6 @@ pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
 pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions};
 pub use proclaim_fsm::control::{machine_of_running_type, running_type, Command};
+pub use rounds::{Feed, Ringlet, RoundCounter, Rounds, RoundsEnd};
 pub use step::Stepper;
 pub use variables::{Locals, Shared};

@@ -5,6 +5,8 @@ use crate::eval::Env;
 use crate::event::{Answerer, Event, Reporter};
 use crate::host::Hosts;
 use crate::label::{dependencies, next_time_test, prove, reads_globals, Context};
+use crate::rounds::RoundCounter;
+use crate::seen::Seen;
 use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
@@ -66,7 +68,7 @@ pub struct MachineRunner {
 
 /// Whether a machine rings: gufsm's `SuspensibleMachine` states.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Status {
+pub(crate) enum Status {
     Running,
     /// Parked by `suspend`; the current state is where `resume` goes back to.
     Suspended,
@@ -75,7 +77,7 @@ enum Status {
 }
 
 /// What one ring did.
-enum Ring {
+pub(crate) enum Ring {
     Moved,
     Stayed,
     /// The machine stopped for good, or its state vanished.
@@ -131,7 +133,8 @@ impl MachineRunner {
     }
 
     async fn serve(self, board: Whiteboard) {
-        let mut run = Run::new(&self, board);
+        // On its own task, a machine's rounds are its own ringlets.
+        let mut run = Run::new(&self, board, RoundCounter::default());
         // A command taken while waiting, applied on the next turn of the loop.
         let mut woken_by: Option<Message> = None;
         loop {
@@ -156,6 +159,7 @@ impl MachineRunner {
                     }
                 }
             }
+            run.reporter.round.advance();
             match run.ring().await {
                 Ring::Over => return,
                 Ring::Moved => {
@@ -182,30 +186,43 @@ impl MachineRunner {
 }
 
 /// A machine while it runs: where it is and what it holds.
-struct Run<'r> {
+pub(crate) struct Run<'r> {
     runner: &'r MachineRunner,
-    board: Whiteboard,
+    pub(crate) board: Whiteboard,
     /// The name it answers to: the one it started with, whatever a reload says.
-    name: String,
+    pub(crate) name: String,
     running_type: String,
     /// Shared with the ring that runs it, so a ring borrows no copy of its state.
     machine: Arc<Machine>,
-    status: Status,
+    pub(crate) status: Status,
     current: StateId,
     just_entered: bool,
     entered_at: Instant,
     locals: Locals,
     shared: Arc<Shared>,
-    globals_changed: watch::Receiver<u64>,
+    pub(crate) globals_changed: watch::Receiver<u64>,
     unknown: FxHashSet<String>,
-    reporter: Reporter,
+    pub(crate) reporter: Reporter,
+    /// What this ringlet reads of the board (its snapshot once OnEntry has run).
+    pub(crate) seen: Seen,
+    /// The atoms the last ringlet asked and their answers (an answer arriving is no news to
+    /// the machine that asked for it).
+    pub(crate) asked: Vec<(String, bool)>,
+    /// The count of changes of globals when the last ringlet took its snapshot.
+    pub(crate) globals_seen: u64,
     /// What the current state's labels read (messages), and whether they read globals.
-    watch: Option<(StateId, Subscription, bool)>,
+    reads: Option<(StateId, Vec<String>, bool)>,
+    /// On a task of its own: a subscription to what the current state's labels read.
+    watch: Option<(StateId, Subscription)>,
     last_step: u64,
 }
 
 impl<'r> Run<'r> {
-    fn new(runner: &'r MachineRunner, board: Whiteboard) -> Run<'r> {
+    pub(crate) fn new(
+        runner: &'r MachineRunner,
+        board: Whiteboard,
+        round: RoundCounter,
+    ) -> Run<'r> {
         let name = runner.machine.name.clone();
         let shared = runner.shared();
         board.declare(&name, Kind::Signal);
@@ -233,7 +250,12 @@ impl<'r> Run<'r> {
             reporter: Reporter {
                 sender: runner.events.clone(),
                 epoch: runner.options.epoch.unwrap_or_else(Instant::now),
+                round,
             },
+            seen: Seen::default(),
+            asked: Vec::new(),
+            globals_seen: 0,
+            reads: None,
             watch: None,
             last_step: 0,
             board,
@@ -243,21 +265,23 @@ impl<'r> Run<'r> {
     fn env(&self) -> Env<'_> {
         Env {
             board: &self.board,
+            seen: &self.seen,
             locals: &self.locals,
             shared: &self.shared,
             in_state: self.entered_at.elapsed(),
         }
     }
 
-    fn control(&mut self, message: &Message) {
+    pub(crate) fn control(&mut self, message: &Message) {
         let word = match &message.value {
             Value::Str(s) => s.clone(),
             other => other.to_string(),
         };
-        self.reporter.emit(|at| Event::Control {
+        self.reporter.emit(|at, round| Event::Control {
             machine: self.name.clone(),
             command: word.clone(),
             at,
+            round,
         });
         let Some(command) = Command::parse(&word) else {
             tracing::warn!(machine = %self.name, command = %word, "unknown control command");
@@ -292,9 +316,15 @@ impl<'r> Run<'r> {
         }
     }
 
-    /// One ring: OnEntry if just entered, the transitions in priority order, OnExit and a
-    /// move on the first proved, Internal when none was.
-    async fn ring(&mut self) -> Ring {
+    /// One ringlet (§3.1): OnEntry if just entered, then the snapshot, the transitions in
+    /// priority order, OnExit and a move on the first proved, Internal when none was.
+    pub(crate) async fn ring(&mut self) -> Ring {
+        let ring = self.ringlet().await;
+        self.seen.release();
+        ring
+    }
+
+    async fn ringlet(&mut self) -> Ring {
         let machine = self.machine.clone();
         let Some(state) = machine.state(self.current) else {
             return Ring::Over;
@@ -305,21 +335,26 @@ impl<'r> Run<'r> {
             self.just_entered = false;
             self.entered_at = Instant::now();
             let id = self.current;
-            self.reporter.emit(|at| Event::Entered {
+            self.reporter.emit(|at, round| Event::Entered {
                 machine: self.name.clone(),
                 state: state.name.clone(),
                 id,
                 at,
+                round,
             });
             self.act(&state.name, &state.on_entry).await;
             if self.machine.outgoing(self.current).next().is_none() {
-                self.reporter.emit(|at| Event::Finished {
+                self.reporter.emit(|at, round| Event::Finished {
                     machine: self.name.clone(),
                     state: state.name.clone(),
                     at,
+                    round,
                 });
             }
         }
+        self.seen.take(&self.board);
+        self.globals_seen = *self.globals_changed.borrow();
+        self.asked.clear();
         let mut fired = None;
         for t in machine.outgoing(self.current) {
             let mut answered = Vec::new();
@@ -333,13 +368,14 @@ impl<'r> Run<'r> {
                 prove(&t.label, &mut cx).await
             };
             if let Some(atom) = self.report_answers(answered) {
-                self.reporter.emit(|at| Event::Halted {
+                self.reporter.emit(|at, round| Event::Halted {
                     machine: self.name.clone(),
                     reason: format!(
                         "no expert answered `{atom}` within {:?} (in state {})",
                         self.runner.options.answer_timeout, state.name
                     ),
                     at,
+                    round,
                 });
                 self.board.post(&self.name, &self.running_type, false);
                 return Ring::Over;
@@ -353,12 +389,13 @@ impl<'r> Run<'r> {
             Some(t) => {
                 let (from, to, label) = (self.current, t.target, t.label.to_string());
                 tracing::debug!(from = %state.name, to, %label, "transition fired");
-                self.reporter.emit(|at| Event::Fired {
+                self.reporter.emit(|at, round| Event::Fired {
                     machine: self.name.clone(),
                     from,
                     to,
                     label,
                     at,
+                    round,
                 });
                 self.act(&state.name, &state.on_exit).await;
                 self.current = t.target;
@@ -374,18 +411,20 @@ impl<'r> Run<'r> {
 
     /// Reports a ring's answers; the first atom no expert answered in time, when that halts
     /// the machine.
-    fn report_answers(&self, answered: Vec<(String, bool, Answerer)>) -> Option<String> {
+    fn report_answers(&mut self, answered: Vec<(String, bool, Answerer)>) -> Option<String> {
         let mut silent = None;
         for (atom, value, by) in answered {
+            self.asked.push((atom.clone(), value));
             if by == Answerer::TimedOut && silent.is_none() {
                 silent = Some(atom.clone());
             }
-            self.reporter.emit(|at| Event::Answered {
+            self.reporter.emit(|at, round| Event::Answered {
                 machine: self.name.clone(),
                 atom,
                 value,
                 by,
                 at,
+                round,
             });
         }
         silent.filter(|_| self.runner.options.halt_on_timeout)
@@ -394,6 +433,7 @@ impl<'r> Run<'r> {
     async fn act(&mut self, state: &str, actions: &[Action]) {
         Doer {
             board: &self.board,
+            seen: &mut self.seen,
             machine: &self.name,
             state,
             entered_at: self.entered_at,
@@ -407,11 +447,11 @@ impl<'r> Run<'r> {
         .await
     }
 
-    /// Waits until a message a label of the state reads arrives, a global it reads changes,
-    /// its next time test comes due, or the ring period passes.
-    async fn wait_between_rings(&mut self) {
+    /// What the current state's labels read: the message types (its own name among them, for
+    /// control commands) and whether they read a global. Worked out once per state.
+    pub(crate) fn reads(&mut self) -> (&[String], bool) {
         if self
-            .watch
+            .reads
             .as_ref()
             .is_none_or(|(s, _, _)| *s != self.current)
         {
@@ -425,28 +465,44 @@ impl<'r> Run<'r> {
                 dependencies(&t.label, scope, &mut types);
                 globals |= reads_globals(&t.label, scope);
             }
-            let subscription = self.board.subscribe_pattern(Pattern::Any(types));
-            self.watch = Some((self.current, subscription, globals));
+            self.reads = Some((self.current, types, globals));
         }
+        let (_, types, globals) = self.reads.as_ref().expect("worked out above");
+        (types, *globals)
+    }
+
+    /// How long until the current state's next time test comes due, at most the ring period.
+    pub(crate) fn next_due(&self) -> Duration {
         let env = self.env();
-        let wait = self
-            .machine
+        self.machine
             .outgoing(self.current)
             .filter_map(|t| next_time_test(&t.label, &env))
             .min()
             .unwrap_or(self.runner.options.ring_period)
-            .min(self.runner.options.ring_period);
-        let Some((_, watch, reads_globals)) = self.watch.as_mut() else {
+            .min(self.runner.options.ring_period)
+    }
+
+    /// Waits until a message a label of the state reads arrives, a global it reads changes,
+    /// its next time test comes due, or the ring period passes.
+    async fn wait_between_rings(&mut self) {
+        if self.watch.as_ref().is_none_or(|(s, _)| *s != self.current) {
+            let types = self.reads().0.to_vec();
+            let subscription = self.board.subscribe_pattern(Pattern::Any(types));
+            self.watch = Some((self.current, subscription));
+        }
+        let wait = self.next_due();
+        let reads_globals = self.reads().1;
+        let Some((_, watch)) = self.watch.as_mut() else {
             return;
         };
         // Answers to this ring's own queries are not news.
         while watch.try_next().is_some() {}
         let globals = &mut self.globals_changed;
-        let reads_globals = *reads_globals;
         tokio::select! {
-            _ = tokio::time::sleep(wait) => {}
+            biased;
             _ = watch.next() => {}
             _ = globals.changed(), if reads_globals => {}
+            _ = tokio::time::sleep(wait) => {}
         }
     }
 
@@ -471,10 +527,11 @@ impl<'r> Run<'r> {
             Err(error) => {
                 // The event reaches whoever runs the machine; a warning here would say it twice.
                 tracing::debug!(machine = %self.name, %error, "reload failed; the machine runs on unchanged");
-                self.reporter.emit(|at| Event::ReloadFailed {
+                self.reporter.emit(|at, round| Event::ReloadFailed {
                     machine: self.name.clone(),
                     error,
                     at,
+                    round,
                 });
                 return;
             }
@@ -499,6 +556,7 @@ impl<'r> Run<'r> {
         self.shared.register(&new);
         self.locals = self.locals.reloaded(&new);
         self.machine = Arc::new(new);
+        self.reads = None;
         self.watch = None;
         self.board
             .register(declaration(&self.machine, &self.name, &self.shared));
@@ -506,10 +564,11 @@ impl<'r> Run<'r> {
             .machine
             .state(self.current)
             .map_or_else(String::new, |s| s.name.clone());
-        self.reporter.emit(|at| Event::Reloaded {
+        self.reporter.emit(|at, round| Event::Reloaded {
             machine: self.name.clone(),
             state,
             at,
+            round,
         });
     }
 }

@@ -1,0 +1,311 @@
+//! The round schedule (`../shared/spec/behaviour.md` §3.1), gufsm's `executeOnce` and swiftfsm's
+//! round-robin: one task gives every running machine of a behaviour exactly one ringlet per
+//! round, in the order the machines were given (the manifest's). Control commands posted
+//! during a round are applied at the start of the next, so a machine started in a round takes
+//! its first ringlet in the next one. When a machine fired the next round follows at once;
+//! when none did, the schedule waits for news: a posting or a change of globals that differs
+//! from what a running machine's current labels last saw, a time test coming due, or the ring
+//! period. The same outside postings arriving between the same rounds give the same trace.
+
+use crate::machine::{MachineRunner, Ring, Run, Status};
+use crate::step::Stepper;
+use proclaim_board::{BoxFuture, Message, Pattern, Snapshot, Subscription, Whiteboard};
+use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+use tokio::sync::mpsc;
+
+/// The number of the round under way (0 before the first), shared by the machines of a
+/// schedule so that every event says which round it happened in.
+#[derive(Clone, Debug, Default)]
+pub struct RoundCounter(Arc<AtomicU64>);
+
+impl RoundCounter {
+    pub fn get(&self) -> u64 {
+        self.0.load(Ordering::Relaxed)
+    }
+
+    /// Starts the next round; its number.
+    pub(crate) fn advance(&self) -> u64 {
+        self.0.fetch_add(1, Ordering::Relaxed) + 1
+    }
+}
+
+/// A ringlet about to start: the round, the machine's place in the schedule, the board's
+/// highest sequence number and the time since the epoch. A message with a sequence number up to
+/// `seq` was on the board before the ringlet began; a recording of these is what lets a replay
+/// post every outside message before the same ringlet again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Ringlet {
+    pub round: u64,
+    pub machine: usize,
+    pub seq: u64,
+    #[serde(rename = "at_us", with = "crate::event::micros")]
+    pub at: Duration,
+}
+
+/// What paces a schedule from outside instead of its own waiting: a replay of a recorded run,
+/// which posts the recorded outside messages before the ringlets they came before and advances
+/// the (virtual) clock to each ringlet's recorded time.
+pub trait Feed: Send {
+    /// Called before each ringlet of a running machine.
+    fn before<'a>(&'a mut self, ringlet: Ringlet, board: &'a Whiteboard) -> BoxFuture<'a, ()>;
+    /// Called when a round is over (before the next starts); false ends the run.
+    fn after_round<'a>(&'a mut self, round: u64, board: &'a Whiteboard) -> BoxFuture<'a, bool>;
+}
+
+/// Why a schedule's run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RoundsEnd {
+    /// Every machine halted (or its state vanished): nothing can ring again.
+    AllOver,
+    /// The feed had nothing more.
+    FeedDone,
+}
+
+/// Machines run in rounds of ringlets. Build it, then `run` it on a task of its own (abort the
+/// task to stop it).
+pub struct Rounds {
+    machines: Vec<MachineRunner>,
+    round: RoundCounter,
+    stepper: Option<Stepper>,
+    ticks: Option<mpsc::UnboundedSender<Ringlet>>,
+    feed: Option<Box<dyn Feed>>,
+}
+
+impl Rounds {
+    /// The machines in schedule order. Their own `RunOptions::stepper` is not used: give the
+    /// schedule one ([`Rounds::stepped_by`]), and a step is one round.
+    pub fn new(machines: Vec<MachineRunner>) -> Rounds {
+        Rounds {
+            machines,
+            round: RoundCounter::default(),
+            stepper: None,
+            ticks: None,
+            feed: None,
+        }
+    }
+
+    /// One round per step of `stepper` while it is paused.
+    pub fn stepped_by(mut self, stepper: Stepper) -> Rounds {
+        self.stepper = Some(stepper);
+        self
+    }
+
+    /// Paced by `feed` (a replay) instead of waiting for news.
+    pub fn fed_by(mut self, feed: Box<dyn Feed>) -> Rounds {
+        self.feed = Some(feed);
+        self
+    }
+
+    /// Every ringlet as it starts, from now on (what a recording keeps).
+    pub fn ringlets(&mut self) -> mpsc::UnboundedReceiver<Ringlet> {
+        let (tx, rx) = mpsc::unbounded_channel();
+        self.ticks = Some(tx);
+        rx
+    }
+
+    /// The round under way, readable while the schedule runs.
+    pub fn counter(&self) -> RoundCounter {
+        self.round.clone()
+    }
+
+    /// Runs round after round until every machine halted or the feed is done.
+    pub async fn run(self, board: Whiteboard) -> RoundsEnd {
+        let span = tracing::info_span!("rounds", machines = self.machines.len());
+        tracing::Instrument::instrument(self.serve(board), span).await
+    }
+
+    async fn serve(mut self, board: Whiteboard) -> RoundsEnd {
+        let mut runs: Vec<Run<'_>> = self
+            .machines
+            .iter()
+            .map(|m| Run::new(m, board.clone(), self.round.clone()))
+            .collect();
+        let mut over = vec![false; runs.len()];
+        let mut news = News::default();
+        let mut last_step = 0;
+        loop {
+            if let Some(stepper) = &self.stepper {
+                last_step = stepper.wait(last_step).await;
+            }
+            let round = self.round.advance();
+            for (run, _) in runs.iter_mut().zip(&over).filter(|(_, over)| !**over) {
+                while let Some(command) = board.latest(&run.name) {
+                    run.control(&command);
+                }
+            }
+            let mut fired = false;
+            for (machine, run) in runs.iter_mut().enumerate() {
+                if over[machine] || run.status != Status::Running {
+                    continue;
+                }
+                if self.feed.is_some() || self.ticks.is_some() {
+                    let ringlet = Ringlet {
+                        round,
+                        machine,
+                        seq: board.snapshot().seq,
+                        at: run.reporter.now(),
+                    };
+                    if let Some(feed) = self.feed.as_mut() {
+                        feed.before(ringlet, &board).await;
+                    }
+                    if let Some(ticks) = &self.ticks {
+                        // Posted by the feed count as before the ringlet too.
+                        let seq = board.snapshot().seq;
+                        let _ = ticks.send(Ringlet { seq, ..ringlet });
+                    }
+                }
+                let span = tracing::info_span!("machine", name = %run.name);
+                match tracing::Instrument::instrument(run.ring(), span).await {
+                    Ring::Moved => fired = true,
+                    Ring::Stayed => {}
+                    Ring::Over => over[machine] = true,
+                }
+            }
+            if let Some(stepper) = &self.stepper {
+                for run in &runs {
+                    stepper.ring_done(&run.name, last_step);
+                }
+            }
+            if over.iter().all(|o| *o) {
+                return RoundsEnd::AllOver;
+            }
+            if let Some(feed) = self.feed.as_mut() {
+                if !feed.after_round(round, &board).await {
+                    return RoundsEnd::FeedDone;
+                }
+                continue;
+            }
+            if fired {
+                // Machines whose labels are always true would otherwise never let the experts,
+                // the trace or a stop request have a turn.
+                tokio::task::consume_budget().await;
+                continue;
+            }
+            if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
+                continue;
+            }
+            news.wait(&board, &mut runs, &over).await;
+        }
+    }
+}
+
+/// Waiting between rounds: one subscription to every type a running machine's current labels
+/// read (and every machine's name, for control commands), made again only when that set
+/// changes.
+#[derive(Default)]
+struct News {
+    types: Vec<String>,
+    subscription: Option<Subscription>,
+}
+
+impl News {
+    async fn wait(&mut self, board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool]) {
+        let mut types: Vec<String> = Vec::new();
+        let mut reads_globals = false;
+        let mut due: Option<Duration> = None;
+        for (run, _) in runs.iter_mut().zip(over).filter(|(_, over)| !**over) {
+            if run.status != Status::Running {
+                types.push(run.name.clone());
+                continue;
+            }
+            let (reads, globals) = run.reads();
+            types.extend(reads.iter().cloned());
+            reads_globals |= globals;
+            let next = run.next_due();
+            due = Some(due.map_or(next, |d| d.min(next)));
+        }
+        types.sort_unstable();
+        types.dedup();
+        if self.subscription.is_none() || types != self.types {
+            self.subscription = Some(board.subscribe_pattern(Pattern::Any(types.clone())));
+            self.types = types;
+        }
+        let Some(subscription) = self.subscription.as_mut() else {
+            return;
+        };
+        // What was posted during the round is judged on the board as it is now; the
+        // subscription is for what comes after.
+        while subscription.try_next().is_some() {}
+        if missed(&board.snapshot(), runs, over) {
+            return;
+        }
+        let Some(first) = runs.first() else {
+            return;
+        };
+        let mut globals = first.globals_changed.clone();
+        let changes = *globals.borrow_and_update();
+        if reads_globals && runs.iter().any(|r| r.globals_seen != changes) {
+            return;
+        }
+        let deadline = due.map(|d| tokio::time::Instant::now() + d);
+        loop {
+            tokio::select! {
+                biased;
+                message = subscription.next() => match message {
+                    Some(m) if !is_news(&m, runs) => continue,
+                    _ => return,
+                },
+                _ = globals.changed(), if reads_globals => return,
+                _ = sleep_until(deadline) => return,
+            }
+        }
+    }
+}
+
+/// Whether a machine has a control command waiting, or a running machine's current labels
+/// read a type whose value on the board is not what its last ringlet saw.
+fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool]) -> bool {
+    runs.iter_mut()
+        .zip(over)
+        .filter(|(_, over)| !**over)
+        .any(|(run, _)| {
+            let since = run.seen.seq().unwrap_or(0);
+            if board.newest(&run.name).is_some_and(|m| m.seq > since) {
+                return true;
+            }
+            if run.status != Status::Running {
+                return false;
+            }
+            let types = run.reads().0.to_vec();
+            types.iter().any(|ty| {
+                board
+                    .newest(ty)
+                    .is_some_and(|m| m.seq > since && tells(run, m))
+            })
+        })
+}
+
+/// Whether a posting tells some machine something its last ringlet did not see: a control
+/// command, or a value of a type its current labels read that differs from the one it saw
+/// (a machine posting the same value every ringlet, or an expert answering what was just
+/// asked, wakes nobody).
+fn is_news(message: &Message, runs: &mut [Run<'_>]) -> bool {
+    runs.iter_mut().any(|run| {
+        if *message.ty == *run.name {
+            return true;
+        }
+        run.status == Status::Running
+            && run.reads().0.iter().any(|t| *t == *message.ty)
+            && tells(run, message)
+    })
+}
+
+/// Whether a posting of a type the machine's labels read is news to it: neither the answer
+/// to its own question nor the value it saw.
+fn tells(run: &Run<'_>, message: &Message) -> bool {
+    let answered = run
+        .asked
+        .iter()
+        .any(|(atom, value)| *atom == *message.ty && *value == message.value.truthy());
+    !answered && !run.seen.saw(&message.ty, &message.value)
+}
+
+async fn sleep_until(deadline: Option<tokio::time::Instant>) {
+    match deadline {
+        Some(at) => tokio::time::sleep_until(at).await,
+        None => std::future::pending().await,
+    }
+}
