@@ -4,6 +4,7 @@
 //! nobody posts, sub-machines nothing starts. Each finding names the file and line it is about.
 
 use crate::load::{Behaviour, LoadedMachine};
+use crate::manifest::Schedule;
 use crate::modules::{modules, Module, ModuleKind};
 use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
@@ -34,6 +35,7 @@ pub fn check_behaviour_with(
     }
     out.extend(script_warnings_of(behaviour, &whole.all, script));
     out.extend(whole.unstarted());
+    out.extend(whole.races());
     for module in &whole.all {
         if let ModuleKind::Theory { file } = &module.kind {
             out.extend(whole.theory_findings(module, file));
@@ -159,6 +161,79 @@ impl Whole<'_> {
             }
         }
         out
+    }
+
+    /// Under `schedule = "concurrent"`, each variable that several machines use and one of
+    /// them writes: which write wins depends on which task the runtime runs first.
+    fn races(&self) -> Vec<FileDiagnostic> {
+        if self.behaviour.manifest.schedule != Schedule::Concurrent {
+            return Vec::new();
+        }
+        // Variable → (the machines that use it, those that write it), in manifest order.
+        let mut users: Vec<(String, Vec<&str>, Vec<&str>)> = Vec::new();
+        for loaded in &self.behaviour.machines {
+            let m = &loaded.machine;
+            let own = proclaim_runner::Locals::declared(m);
+            let shared = |name: &str| {
+                !own.contains(name) && (self.shared.is_global(name) || self.shared.is_extern(name))
+            };
+            let mut note = |name: &str, writes: bool| {
+                if !shared(name) {
+                    return;
+                }
+                let at = match users.iter().position(|(v, _, _)| v == name) {
+                    Some(at) => at,
+                    None => {
+                        users.push((name.to_string(), Vec::new(), Vec::new()));
+                        users.len() - 1
+                    }
+                };
+                let (_, used, written) = &mut users[at];
+                if !used.contains(&m.name.as_str()) {
+                    used.push(&m.name);
+                }
+                if writes && !written.contains(&m.name.as_str()) {
+                    written.push(&m.name);
+                }
+            };
+            for t in &m.transitions {
+                t.label.visit_names(&mut |name, _| note(name, false));
+            }
+            for statement in m.statements() {
+                if let proclaim_fsm::Statement::Assign { name, .. } = statement {
+                    note(name, true);
+                }
+                for e in statement.expressions() {
+                    e.visit_names(&mut |name, _| note(name, false));
+                }
+            }
+        }
+        let manifest = self.behaviour.files.show(crate::manifest::MANIFEST);
+        let text = self
+            .behaviour
+            .files
+            .read(crate::manifest::MANIFEST)
+            .unwrap_or_default();
+        let line = text
+            .lines()
+            .position(|l| l.trim_start().starts_with("schedule"))
+            .map_or(1, |i| i + 1);
+        users
+            .into_iter()
+            .filter(|(_, used, written)| used.len() > 1 && !written.is_empty())
+            .map(|(variable, used, written)| {
+                FileDiagnostic::warning(
+                    &manifest,
+                    line,
+                    format!(
+                        "machines {} share `{variable}` (written by {}) under schedule = \"concurrent\": what each sees of it depends on which task the runtime runs first",
+                        used.join(", "),
+                        written.join(", ")
+                    ),
+                )
+                .with_hint("leave out `schedule` to run the machines in rounds of ringlets, in manifest order")
+            })
+            .collect()
     }
 
     /// A theory's outputs nobody queries and inputs nobody posts, at their declarations.

@@ -131,11 +131,7 @@ impl Rounds {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
-            for (run, _) in runs.iter_mut().zip(&over).filter(|(_, over)| !**over) {
-                while let Some(command) = board.latest(&run.name) {
-                    run.control(&command);
-                }
-            }
+            obey(&board, &mut runs, &over);
             let mut fired = false;
             for (machine, run) in runs.iter_mut().enumerate() {
                 if over[machine] || run.status != Status::Running {
@@ -164,6 +160,9 @@ impl Rounds {
                     Ring::Over => over[machine] = true,
                 }
             }
+            // Commands posted during the round take effect before anything else looks: a
+            // machine that switches a sub-machine off in its final state leaves it off.
+            let obeyed = obey(&board, &mut runs, &over);
             if let Some(stepper) = &self.stepper {
                 for run in &runs {
                     stepper.ring_done(&run.name, last_step);
@@ -187,9 +186,21 @@ impl Rounds {
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
-            news.wait(&board, &mut runs, &over).await;
+            news.wait(&board, &mut runs, &over, obeyed).await;
         }
     }
+}
+
+/// Applies the control commands waiting for each machine, in schedule order; the board's
+/// sequence number then (every command up to it has been obeyed).
+fn obey(board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool]) -> u64 {
+    let seq = board.snapshot().seq;
+    for (run, _) in runs.iter_mut().zip(over).filter(|(_, over)| !**over) {
+        while let Some(command) = board.latest(&run.name) {
+            run.control(&command);
+        }
+    }
+    seq
 }
 
 /// Waiting between rounds: one subscription to every type a running machine's current labels
@@ -202,7 +213,7 @@ struct News {
 }
 
 impl News {
-    async fn wait(&mut self, board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool]) {
+    async fn wait(&mut self, board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool], obeyed: u64) {
         let mut types: Vec<String> = Vec::new();
         let mut reads_globals = false;
         let mut due: Option<Duration> = None;
@@ -229,7 +240,7 @@ impl News {
         // What was posted during the round is judged on the board as it is now; the
         // subscription is for what comes after.
         while subscription.try_next().is_some() {}
-        if missed(&board.snapshot(), runs, over) {
+        if missed(&board.snapshot(), runs, over, obeyed) {
             return;
         }
         let Some(first) = runs.first() else {
@@ -237,7 +248,12 @@ impl News {
         };
         let mut globals = first.globals_changed.clone();
         let changes = *globals.borrow_and_update();
-        if reads_globals && runs.iter().any(|r| r.globals_seen != changes) {
+        let unseen = runs
+            .iter_mut()
+            .zip(over)
+            .filter(|(run, over)| !**over && run.status == Status::Running)
+            .any(|(run, _)| run.globals_seen != changes && run.reads().1);
+        if unseen {
             return;
         }
         let deadline = due.map(|d| tokio::time::Instant::now() + d);
@@ -255,17 +271,17 @@ impl News {
     }
 }
 
-/// Whether a machine has a control command waiting, or a running machine's current labels
-/// read a type whose value on the board is not what its last ringlet saw.
-fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool]) -> bool {
+/// Whether a machine has a control command posted after `obeyed`, or a running machine's
+/// current labels read a type whose value on the board is not what its last ringlet saw.
+fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool], obeyed: u64) -> bool {
     runs.iter_mut()
         .zip(over)
         .filter(|(_, over)| !**over)
         .any(|(run, _)| {
-            let since = run.seen.seq().unwrap_or(0);
-            if board.newest(&run.name).is_some_and(|m| m.seq > since) {
+            if board.newest(&run.name).is_some_and(|m| m.seq > obeyed) {
                 return true;
             }
+            let since = run.seen.seq().unwrap_or(0);
             if run.status != Status::Running {
                 return false;
             }
