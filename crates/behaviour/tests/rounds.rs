@@ -1,0 +1,141 @@
+//! The round schedule gives a behaviour one meaning: `machines/press` (gufsm's IndustrialPress
+//! race, where the sensor's write must land after the controller's) ends the same way in every
+//! real-time run, and its trace is the same to the byte on the virtual clock.
+
+use proclaim_behaviour::{launch, load, Folder, LaunchOptions};
+use proclaim_board::Whiteboard;
+use proclaim_runner::Event;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+fn press() -> proclaim_behaviour::Behaviour {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/press");
+    load("press", Arc::new(Folder::new(&dir))).expect("machines/press loads")
+}
+
+/// Runs the behaviour until every machine is in a final state (or `limit` passes); every event.
+async fn run_to_the_end(behaviour: &proclaim_behaviour::Behaviour, limit: Duration) -> Vec<Event> {
+    let board = Whiteboard::local();
+    let mut running = launch(behaviour, &board, LaunchOptions::default())
+        .await
+        .expect("launches");
+    let mut events = Vec::new();
+    let deadline = tokio::time::Instant::now() + limit;
+    while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+        let over = running.observe(&event);
+        events.push(event);
+        if over {
+            break;
+        }
+    }
+    running.stop().await;
+    events
+}
+
+/// Each machine's states, in order, as `Machine State` lines.
+fn states(events: &[Event]) -> Vec<String> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Entered { machine, state, .. } => Some(format!("{machine} {state}")),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_press_ends_the_same_way_in_a_hundred_real_time_runs() {
+    let behaviour = press();
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .unwrap();
+    let first = states(&runtime.block_on(run_to_the_end(&behaviour, Duration::from_secs(10))));
+    assert!(
+        first.iter().any(|s| s == "Controller Done") && !first.iter().any(|s| s.contains("Stuck")),
+        "the sensor's write lands after the controller's, so the press reopens: {first:?}"
+    );
+    for run in 1..100 {
+        let again = states(&runtime.block_on(run_to_the_end(&behaviour, Duration::from_secs(10))));
+        assert_eq!(again, first, "run {run} went another way");
+    }
+}
+
+#[test]
+fn on_the_virtual_clock_the_trace_is_the_same_to_the_byte() {
+    let behaviour = press();
+    let trace = || {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+            .unwrap();
+        let events = runtime.block_on(run_to_the_end(&behaviour, Duration::from_secs(10)));
+        events
+            .iter()
+            .map(|e| serde_json::to_string(e).unwrap() + "\n")
+            .collect::<String>()
+    };
+    let first = trace();
+    assert!(first.contains("\"round\":"), "every event says its round");
+    for _ in 0..5 {
+        assert_eq!(trace(), first);
+    }
+}
+
+/// Round by round, as §3.1 says: the controller's write on entry comes first and the sensor's
+/// after it in the same round; a machine's first ringlet after a posting that starts it is in
+/// the next round.
+#[test]
+fn rounds_run_machines_in_manifest_order_one_ringlet_each() {
+    let behaviour = press();
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .start_paused(true)
+        .build()
+        .unwrap();
+    let events = runtime.block_on(run_to_the_end(&behaviour, Duration::from_secs(10)));
+    let round_of = |machine: &str, state: &str, nth: usize| {
+        events
+            .iter()
+            .filter_map(|e| match e {
+                Event::Entered {
+                    machine: m,
+                    state: s,
+                    round,
+                    ..
+                } if m == machine && s == state => Some(*round),
+                _ => None,
+            })
+            .nth(nth)
+            .unwrap_or_else(|| panic!("{machine} never entered {state} ({nth})"))
+    };
+    // Round 1: the controller enters Closing; the sensor sees the motor on and fires, so it
+    // enters Clear (and writes `low = 0`) in round 2; the controller sees that in round 3.
+    assert_eq!(round_of("Controller", "Closing", 0), 1);
+    assert_eq!(round_of("Sensor", "Clear", 0), 2);
+    assert_eq!(round_of("Controller", "Reopening", 0), 4);
+    let lows: Vec<(String, String, u64)> = events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Assigned {
+                machine,
+                variable,
+                value,
+                round,
+                ..
+            } if variable == "low" => Some((machine.clone(), value.clone(), *round)),
+            _ => None,
+        })
+        .take(2)
+        .collect();
+    assert_eq!(
+        lows,
+        [
+            ("Controller".to_string(), "1".to_string(), 1),
+            ("Sensor".to_string(), "0".to_string(), 2)
+        ]
+    );
+}
