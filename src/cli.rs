@@ -187,6 +187,16 @@ pub enum Command {
         #[command(flatten)]
         network: Network,
     },
+    /// Replay recorded runs (`proclaim run --record`) on the behaviour as it is now, on the
+    /// virtual clock, and compare its machines' states, postings, answers and variables with
+    /// each recording round by round: exit 0 when all are the same, 1 naming the first
+    /// difference of each that is not
+    Test {
+        behaviour: String,
+        /// Recordings, or folders of them (every `.jsonl` inside)
+        #[arg(required = true)]
+        recordings: Vec<PathBuf>,
+    },
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay {
         trace: PathBuf,

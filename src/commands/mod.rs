@@ -18,6 +18,7 @@ mod run;
 mod runtime;
 mod step;
 mod table;
+mod test;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};
 use crate::failure::Failure;
@@ -81,6 +82,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             network,
         } => board::watch(&pattern, &network, duration.as_deref()),
         Command::Ping { count, network } => board::ping(count, &network),
+        Command::Test {
+            behaviour,
+            recordings,
+        } => test::run(&behaviour, &recordings),
         Command::Replay {
             trace,
             speed,

@@ -1,5 +1,7 @@
 //! `run --record`: every whiteboard message as one JSON line (`seq`, `at_us`, `module`, `type`,
-//! `value`), written while the behaviour runs, and read back by `proclaim replay`.
+//! `value`), written while the behaviour runs, with every ringlet as it started
+//! (`{"ringlet": …}`) and the machines' events (`{"event": …}`) between them: read back by
+//! `proclaim replay` (the messages) and `proclaim test` (all three).
 
 use crate::failure::Failure;
 use proclaim_board::{Message, Pattern, Value, Whiteboard};
@@ -9,6 +11,8 @@ use std::path::{Path, PathBuf};
 /// A record being written.
 pub struct Recorder {
     task: tokio::task::JoinHandle<u64>,
+    /// Ringlet and event lines, written as they come.
+    lines: tokio::sync::mpsc::UnboundedSender<String>,
     stop: tokio::sync::oneshot::Sender<()>,
     path: PathBuf,
 }
@@ -22,10 +26,11 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
     let mut out = std::io::BufWriter::new(file);
     let mut all = board.subscribe_pattern(Pattern::All);
     let (stop, mut stopped) = tokio::sync::oneshot::channel();
+    let (lines, mut other) = tokio::sync::mpsc::unbounded_channel::<String>();
     let task = tokio::spawn(async move {
         let mut written = 0u64;
-        let mut write = |m: &Message| {
-            if writeln!(out, "{}", line(m)).is_ok() {
+        let mut write = |text: &str, message: bool| {
+            if writeln!(out, "{text}").is_ok() && message {
                 written += 1;
             }
         };
@@ -33,13 +38,17 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
             tokio::select! {
                 biased;
                 message = all.next() => match message {
-                    Some(m) => write(&m),
+                    Some(m) => write(&line(&m), true),
                     None => break,
                 },
+                Some(text) = other.recv() => write(&text, false),
                 _ = &mut stopped => {
                     // What is already queued belongs to the run too.
                     while let Some(m) = all.try_next() {
-                        write(&m);
+                        write(&line(&m), true);
+                    }
+                    while let Ok(text) = other.try_recv() {
+                        write(&text, false);
                     }
                     break;
                 }
@@ -50,12 +59,38 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
     });
     Ok(Recorder {
         task,
+        lines,
         stop,
         path: path.to_path_buf(),
     })
 }
 
 impl Recorder {
+    /// Writes the ringlets as they start, from now on.
+    pub fn follow(
+        &self,
+        mut ringlets: tokio::sync::mpsc::UnboundedReceiver<proclaim_runner::Ringlet>,
+    ) {
+        let lines = self.lines.clone();
+        tokio::spawn(async move {
+            while let Some(ringlet) = ringlets.recv().await {
+                if lines
+                    .send(proclaim_behaviour::ringlet_line(&ringlet))
+                    .is_err()
+                {
+                    return;
+                }
+            }
+        });
+    }
+
+    /// Writes one of the machines' events.
+    pub fn event(&self, event: &proclaim_runner::Event) {
+        let _ = self
+            .lines
+            .send(serde_json::to_string(event).unwrap_or_default());
+    }
+
     /// Stops recording; how many messages were written, and where.
     pub async fn finish(self) -> (u64, PathBuf) {
         let _ = self.stop.send(());

@@ -144,6 +144,9 @@ async fn run_on_board(
         .await
         .map_err(Failure::Start)?;
     announce(behaviour, limit, &running.notes);
+    if let (Some(recorder), Some(ringlets)) = (&recorder, running.ringlets.take()) {
+        recorder.follow(ringlets);
+    }
     let mut view = trace_view(behaviour, script_used);
     let monitor = match &args.monitor {
         Some(addr) => Some(super::monitor::live(behaviour, &board, stepper.clone(), addr).await?),
@@ -161,6 +164,7 @@ async fn run_on_board(
         changed: watch(behaviour, args.watch),
         monitor: monitor.clone(),
         behaviour,
+        recorder: recorder.as_ref(),
     };
     let (why, halted) = live.follow(&board, &mut running, limit).await;
     let stats = board.stats();
@@ -252,6 +256,8 @@ struct Live<'t> {
     monitor: Option<proclaim_monitor::Monitor>,
     /// The behaviour running, whose machines the page draws anew when they are read again.
     behaviour: &'t Behaviour,
+    /// `--record`: the events go into the recording too.
+    recorder: Option<&'t record::Recorder>,
 }
 
 impl Live<'_> {
@@ -302,6 +308,9 @@ impl Live<'_> {
         }
         if let Some(line) = self.view.line(event) {
             println!("{line}");
+        }
+        if let Some(recorder) = self.recorder {
+            recorder.event(event);
         }
         if let Some(file) = self.trace_file.as_mut() {
             let json = serde_json::to_string(event).unwrap_or_default();
@@ -434,11 +443,15 @@ fn read_record(text: &str) -> Option<Result<Vec<(u64, String)>, String>> {
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty());
     let first: serde_json::Value = serde_json::from_str(lines.clone().next()?.1).ok()?;
-    first.get("seq")?;
+    first.get("seq").or_else(|| first.get("ringlet"))?;
     Some(
         lines
             .try_fold(Vec::new(), |mut out, (i, l)| -> Result<_, usize> {
                 let value: serde_json::Value = serde_json::from_str(l).map_err(|_| i + 1)?;
+                // The ringlets and events are for `proclaim test`.
+                if value.get("ringlet").is_some() || value.get("event").is_some() {
+                    return Ok(out);
+                }
                 let shown = record::shown(&value).ok_or(i + 1)?;
                 out.push((value["at_us"].as_u64().unwrap_or(0), shown));
                 Ok(out)

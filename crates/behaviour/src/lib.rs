@@ -16,6 +16,7 @@ mod liveness;
 mod load;
 mod manifest;
 mod modules;
+mod recorded;
 pub mod testing;
 mod trace;
 
@@ -33,6 +34,9 @@ pub use manifest::{
     Simulator, TheoryEntry, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
+pub use recorded::{
+    read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError, Verdict,
+};
 pub use trace::{read_trace, TraceView};
 
 /// The README's Rust snippets, compiled (and run) as doctests so they stay true.

@@ -1,0 +1,430 @@
+//! A recorded run as a regression test (`proclaim test`): the recording of `run --record` holds
+//! every whiteboard message, every ringlet as it started and the machines' events. Replayed, the
+//! behaviour's machines and theories run again on the virtual clock under the round schedule,
+//! and everything that came from outside them (sensor wrappers, the impersonator, a person, the
+//! network, the monitor) is posted again before the ringlet it came before the first time; what
+//! outside experts answered is answered again, query by query. The machines' states, postings,
+//! answers and variables are then compared with the recording, round by round.
+
+use crate::launch::machine_runners;
+use crate::load::Behaviour;
+use crate::LaunchOptions;
+use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use proclaim_experts::ReasonerExpert;
+use proclaim_runner::{Event, Feed, Ringlet, Rounds};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::VecDeque;
+use std::fmt;
+use std::time::Duration;
+use tokio::sync::mpsc;
+
+/// A ringlet's place in a run: its round and the machine's place in the schedule.
+type Place = (u64, usize);
+/// The outside messages to post again, each at the place of the first ringlet that saw it.
+type Outside = Vec<(Place, Recorded)>;
+/// What outside experts answered, atom by atom, in the order they answered.
+type Answers = FxHashMap<String, VecDeque<Value>>;
+
+/// A message as the recording keeps it.
+#[derive(Clone, Debug, PartialEq)]
+struct Recorded {
+    seq: u64,
+    module: String,
+    ty: String,
+    value: Value,
+}
+
+/// A recording read back.
+#[derive(Clone, Debug, Default)]
+pub struct Recording {
+    messages: Vec<Recorded>,
+    ringlets: Vec<Ringlet>,
+    events: Vec<Event>,
+}
+
+/// Why a recording cannot be read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RecordingError {
+    /// A line that is neither a message, a ringlet nor an event.
+    BadLine { line: usize, why: String },
+    /// The recording has no ringlets: it was made under `schedule = "concurrent"`, or by a
+    /// version that did not record them.
+    NoRinglets,
+}
+
+impl fmt::Display for RecordingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RecordingError::BadLine { line, why } => write!(f, "line {line}: {why}"),
+            RecordingError::NoRinglets => write!(
+                f,
+                "the recording has no ringlets (record a run in rounds with `proclaim run --record`)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for RecordingError {}
+
+/// One line of a recording as `run --record` writes it.
+pub fn ringlet_line(ringlet: &Ringlet) -> String {
+    serde_json::json!({ "ringlet": ringlet }).to_string()
+}
+
+/// Reads a recording: message lines (`seq`, `module`, `type`, `value`), ringlet lines
+/// (`{"ringlet": …}`) and event lines (`{"event": …}`).
+pub fn read_recording(text: &str) -> Result<Recording, RecordingError> {
+    let mut recording = Recording::default();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let bad = |why: String| RecordingError::BadLine { line: i + 1, why };
+        let json: serde_json::Value =
+            serde_json::from_str(line).map_err(|e| bad(format!("not JSON: {e}")))?;
+        if let Some(ringlet) = json.get("ringlet") {
+            let ringlet = serde_json::from_value(ringlet.clone())
+                .map_err(|e| bad(format!("not a ringlet: {e}")))?;
+            recording.ringlets.push(ringlet);
+        } else if json.get("event").is_some() {
+            let event =
+                serde_json::from_value(json).map_err(|e| bad(format!("not an event: {e}")))?;
+            recording.events.push(event);
+        } else {
+            let field = |name: &str| json.get(name).ok_or_else(|| bad(format!("no `{name}`")));
+            let text = |name: &str| {
+                field(name).and_then(|v| {
+                    v.as_str()
+                        .map(str::to_string)
+                        .ok_or_else(|| bad(format!("`{name}` is not text")))
+                })
+            };
+            recording.messages.push(Recorded {
+                seq: field("seq")?
+                    .as_u64()
+                    .ok_or_else(|| bad("`seq` is not a number".into()))?,
+                module: text("module")?,
+                ty: text("type")?,
+                value: value_of(field("value")?),
+            });
+        }
+    }
+    if recording.ringlets.is_empty() {
+        return Err(RecordingError::NoRinglets);
+    }
+    recording.messages.sort_by_key(|m| m.seq);
+    Ok(recording)
+}
+
+fn value_of(json: &serde_json::Value) -> Value {
+    match json {
+        serde_json::Value::Bool(b) => Value::Bool(*b),
+        serde_json::Value::Number(n) => match n.as_i64() {
+            Some(i) => Value::Int(i),
+            None => Value::Float(n.as_f64().unwrap_or(0.0)),
+        },
+        serde_json::Value::String(s) => Value::Str(s.clone()),
+        serde_json::Value::Array(items) => Value::List(items.iter().map(value_of).collect()),
+        serde_json::Value::Object(o) => match o.get("bytes").and_then(|b| b.as_array()) {
+            Some(bytes) => Value::Bytes(
+                bytes
+                    .iter()
+                    .filter_map(|b| b.as_u64().map(|b| b as u8))
+                    .collect(),
+            ),
+            None => Value::Str(json.to_string()),
+        },
+        serde_json::Value::Null => Value::Str(String::new()),
+    }
+}
+
+/// Where a replay first differs from its recording.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Difference {
+    pub round: u64,
+    pub machine: String,
+    pub expected: String,
+    pub found: String,
+}
+
+impl fmt::Display for Difference {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "round {}, {}: expected {}, found {}",
+            self.round, self.machine, self.expected, self.found
+        )
+    }
+}
+
+/// What a replay found.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// Every state, posting, answer and variable as recorded.
+    Same {
+        rounds: u64,
+        events: usize,
+    },
+    Differs(Difference),
+}
+
+/// One event as the comparison sees it: its round, its machine and what happened, without
+/// times or who answered.
+fn observable(event: &Event) -> Option<(u64, &str, String)> {
+    let (round, what) = match event {
+        Event::Entered { state, round, .. } => (*round, format!("enters {state}")),
+        Event::Fired {
+            from,
+            to,
+            label,
+            round,
+            ..
+        } => (*round, format!("fires {from} -> {to} on {label}")),
+        Event::Posted {
+            ty, content, round, ..
+        } => (*round, format!("posts {ty}: {content}")),
+        Event::Assigned {
+            variable,
+            value,
+            round,
+            ..
+        } => (*round, format!("sets {variable} = {value}")),
+        Event::Answered {
+            atom, value, round, ..
+        } => (*round, format!("reads {atom} = {value}")),
+        Event::Control { command, round, .. } => (*round, format!("is told {command}")),
+        Event::Finished { state, round, .. } => (*round, format!("finishes in {state}")),
+        Event::Halted { reason, round, .. } => (*round, format!("halts: {reason}")),
+        Event::Reloaded { state, round, .. } => (*round, format!("is reloaded in {state}")),
+        _ => return None,
+    };
+    Some((round, event.machine(), what))
+}
+
+/// Replays `recording` on `behaviour` (on a virtual clock of its own: call it from a plain
+/// thread, not inside an async runtime) and compares.
+pub fn replay_recording(
+    behaviour: &Behaviour,
+    recording: &Recording,
+) -> Result<Verdict, std::io::Error> {
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .start_paused(true)
+        .build()?;
+    let found = runtime.block_on(replay(behaviour, recording));
+    Ok(compare(behaviour, recording, &found))
+}
+
+async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
+    let board = Whiteboard::local();
+    let inside: FxHashSet<String> = behaviour
+        .machines
+        .iter()
+        .map(|m| m.machine.name.clone())
+        .chain(behaviour.theories.iter().map(|t| t.name.clone()))
+        .collect();
+    let (outside, answers) = split_outside(recording, &inside);
+    let mut tasks = tokio::task::JoinSet::new();
+    for t in &behaviour.theories {
+        let expert =
+            ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
+        tasks.spawn(expert.run(board.clone()));
+    }
+    if !answers.is_empty() {
+        tasks.spawn(answer_as_recorded(board.clone(), answers));
+    }
+    // Experts subscribe before their first query.
+    for _ in 0..64 {
+        tokio::task::yield_now().await;
+    }
+    let epoch = tokio::time::Instant::now();
+    let (tx, mut events) = mpsc::unbounded_channel();
+    let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch);
+    drop(tx);
+    let feed = RecordedFeed::new(recording, outside, epoch);
+    Rounds::new(runners)
+        .fed_by(Box::new(feed))
+        .run(board.clone())
+        .await;
+    tasks.abort_all();
+    let mut found = Vec::new();
+    while let Ok(event) = events.try_recv() {
+        found.push(event);
+    }
+    found
+}
+
+/// The outside messages to post again, each with the place of the first ringlet that saw it,
+/// and the outside experts' answers, atom by atom in the order they were given.
+fn split_outside(recording: &Recording, inside: &FxHashSet<String>) -> (Outside, Answers) {
+    let mut pending: FxHashSet<String> = FxHashSet::default();
+    let mut answers: FxHashMap<String, VecDeque<Value>> = FxHashMap::default();
+    let mut outside = Vec::new();
+    for m in &recording.messages {
+        if m.ty == QUERY_TYPE {
+            if let Value::Str(atom) = &m.value {
+                pending.insert(atom.clone());
+            }
+            continue;
+        }
+        let answers_a_query = pending.remove(&m.ty);
+        if inside.contains(&m.module) {
+            continue;
+        }
+        if answers_a_query {
+            answers
+                .entry(m.ty.clone())
+                .or_default()
+                .push_back(m.value.clone());
+            continue;
+        }
+        let Some(first) = recording.ringlets.iter().find(|r| r.seq >= m.seq) else {
+            continue;
+        };
+        outside.push(((first.round, first.machine), m.clone()));
+    }
+    (outside, answers)
+}
+
+/// Answers each query for an atom an outside expert answered with the next recorded answer.
+async fn answer_as_recorded(board: Whiteboard, mut answers: Answers) {
+    let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
+    board.register(ModuleDecl::new("recording").answers(answers.keys().cloned()));
+    while let Some(query) = queries.next().await {
+        let Value::Str(atom) = &query.value else {
+            continue;
+        };
+        if let Some(value) = answers.get_mut(atom).and_then(VecDeque::pop_front) {
+            board.post("recording", atom, value);
+        }
+    }
+}
+
+/// Paces the replay by the recording: before each ringlet, the clock goes to the recorded
+/// ringlet's time and the outside messages that came before it are posted.
+struct RecordedFeed {
+    /// The recorded ringlets by place: (round, machine) → time since the epoch.
+    times: Vec<(Place, Duration)>,
+    outside: Outside,
+    posted: usize,
+    last_round: u64,
+    epoch: tokio::time::Instant,
+}
+
+impl RecordedFeed {
+    fn new(recording: &Recording, outside: Outside, epoch: tokio::time::Instant) -> RecordedFeed {
+        let mut times: Vec<_> = recording
+            .ringlets
+            .iter()
+            .map(|r| ((r.round, r.machine), r.at))
+            .collect();
+        times.sort_unstable();
+        let mut outside = outside;
+        outside.sort_by_key(|(place, m)| (*place, m.seq));
+        RecordedFeed {
+            last_round: times.last().map_or(0, |((round, _), _)| *round),
+            times,
+            outside,
+            posted: 0,
+            epoch,
+        }
+    }
+}
+
+impl Feed for RecordedFeed {
+    fn before<'a>(
+        &'a mut self,
+        ringlet: Ringlet,
+        board: &'a Whiteboard,
+    ) -> proclaim_board::BoxFuture<'a, ()> {
+        Box::pin(async move {
+            let place = (ringlet.round, ringlet.machine);
+            let at = self
+                .times
+                .iter()
+                .take_while(|(p, _)| *p <= place)
+                .last()
+                .map(|(_, at)| *at);
+            if let Some(at) = at {
+                tokio::time::sleep_until(self.epoch + at).await;
+            }
+            while let Some((p, m)) = self.outside.get(self.posted) {
+                if *p > place {
+                    break;
+                }
+                board.post(&m.module, &m.ty, m.value.clone());
+                self.posted += 1;
+            }
+        })
+    }
+
+    fn after_round<'a>(
+        &'a mut self,
+        round: u64,
+        _: &'a Whiteboard,
+    ) -> proclaim_board::BoxFuture<'a, bool> {
+        Box::pin(async move { round < self.last_round })
+    }
+}
+
+/// The first difference between what was recorded and what the replay did, machine events of
+/// the behaviour only; a replay may run on past the end of the recording's last round (the
+/// recording stopped mid-round).
+fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Verdict {
+    let ours = |e: &&Event| {
+        behaviour
+            .machines
+            .iter()
+            .any(|m| m.machine.name == e.machine())
+    };
+    let expected: Vec<_> = recording
+        .events
+        .iter()
+        .filter(ours)
+        .filter_map(observable)
+        .collect();
+    let got: Vec<_> = found.iter().filter(ours).filter_map(observable).collect();
+    for (i, want) in expected.iter().enumerate() {
+        match got.get(i) {
+            Some(have) if have == want => {}
+            Some((round, machine, what)) => {
+                return Verdict::Differs(Difference {
+                    round: want.0.min(*round),
+                    machine: if want.1 == *machine {
+                        machine.to_string()
+                    } else {
+                        format!("{} (found {machine})", want.1)
+                    },
+                    expected: want.2.clone(),
+                    found: what.clone(),
+                })
+            }
+            None => {
+                return Verdict::Differs(Difference {
+                    round: want.0,
+                    machine: want.1.to_string(),
+                    expected: want.2.clone(),
+                    found: "nothing: the replay ended".into(),
+                })
+            }
+        }
+    }
+    let last = expected.last().map_or(0, |e| e.0);
+    if let Some((round, machine, what)) = got.get(expected.len()).filter(|e| e.0 < last) {
+        return Verdict::Differs(Difference {
+            round: *round,
+            machine: machine.to_string(),
+            expected: "nothing more".into(),
+            found: what.clone(),
+        });
+    }
+    Verdict::Same {
+        rounds: recording
+            .ringlets
+            .iter()
+            .map(|r| r.round)
+            .max()
+            .unwrap_or(0),
+        events: expected.len(),
+    }
+}

@@ -1,0 +1,69 @@
+//! `proclaim test BEHAVIOUR RECORDING...`: recorded runs as regression tests. Each recording
+//! (`run --record`, or every `.jsonl` in a folder) is replayed on the behaviour as it is now
+//! (`proclaim_behaviour::replay_recording`); exit 0 when every replay is the same as its
+//! recording, 1 with the first difference of each that is not.
+
+use crate::behaviours::load_behaviour;
+use crate::failure::Failure;
+use proclaim_behaviour::{read_recording, replay_recording, Verdict};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+pub fn run(behaviour: &str, recordings: &[PathBuf]) -> Result<ExitCode, Failure> {
+    let behaviour = load_behaviour(behaviour)?;
+    let files = recording_files(recordings)?;
+    if files.is_empty() {
+        return Err(Failure::Argument(
+            "no recordings given (a .jsonl file from `run --record`, or a folder of them)".into(),
+        ));
+    }
+    let mut failed = 0;
+    for path in &files {
+        let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+            path: path.clone(),
+            error,
+        })?;
+        let recording = read_recording(&text)
+            .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
+        match replay_recording(&behaviour, &recording).map_err(Failure::Runtime)? {
+            Verdict::Same { rounds, events } => {
+                println!(
+                    "ok    {} ({rounds} rounds, {events} events as recorded)",
+                    path.display()
+                );
+            }
+            Verdict::Differs(difference) => {
+                failed += 1;
+                println!("FAIL  {}: {difference}", path.display());
+            }
+        }
+    }
+    println!("{} passed, {failed} failed", files.len() - failed);
+    Ok(if failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// The files named, and the `.jsonl` files of the folders named, in name order.
+fn recording_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Failure> {
+    let mut files = Vec::new();
+    for path in paths {
+        if path.is_dir() {
+            let mut found: Vec<PathBuf> = std::fs::read_dir(path)
+                .map_err(|error| Failure::Read {
+                    path: path.clone(),
+                    error,
+                })?
+                .filter_map(|entry| entry.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|e| e == "jsonl"))
+                .collect();
+            found.sort();
+            files.extend(found);
+        } else {
+            files.push(Path::new(path).to_path_buf());
+        }
+    }
+    Ok(files)
+}
