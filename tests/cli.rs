@@ -1252,7 +1252,16 @@ fn record_keeps_every_whiteboard_message_and_replay_prints_it() {
         .and_then(|n| n.parse().ok())
         .expect("the postings count");
     let text = std::fs::read_to_string(&record).unwrap();
-    assert_eq!(text.lines().count(), posted, "every posting recorded");
+    let messages = text
+        .lines()
+        .filter(|l| !l.starts_with(r#"{"ringlet""#) && !l.starts_with(r#"{"event""#))
+        .count();
+    assert_eq!(messages, posted, "every posting recorded");
+    assert!(
+        text.lines().any(|l| l.starts_with(r#"{"ringlet":{"#))
+            && text.lines().any(|l| l.starts_with(r#"{"event":"entered""#)),
+        "and every ringlet and event, for `proclaim test`"
+    );
     assert!(
         out.contains(&format!("{posted} messages recorded in")),
         "{out}"

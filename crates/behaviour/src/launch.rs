@@ -12,12 +12,13 @@ use proclaim_experts::{
 };
 use proclaim_gcsim::{default_game, play, Event as SimEvent, SimConfig};
 use proclaim_runner::{
-    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RunOptions, Stepper,
+    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RunOptions, Shared, Stepper,
 };
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
 use std::net::SocketAddr;
 use std::pin::Pin;
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::mpsc;
 use tokio::task::JoinSet;
@@ -55,6 +56,8 @@ pub struct Running {
     pub ringlets: Option<mpsc::UnboundedReceiver<Ringlet>>,
     /// The round under way (0 under `schedule = "concurrent"`).
     pub round: RoundCounter,
+    /// The variables the machines share (globals and externs).
+    pub shared: Arc<Shared>,
     /// What was started or left out, and where sockets listen, for the person running it.
     pub notes: Vec<String>,
     tasks: JoinSet<()>,
@@ -128,7 +131,8 @@ pub async fn launch(
     // shows as 1.000 s.
     let epoch = tokio::time::Instant::now();
     let (tx, events) = mpsc::unbounded_channel();
-    let mut rounds = rounds_of(behaviour, &options, &tx, epoch);
+    let shared = behaviour.shared_variables();
+    let mut rounds = rounds_of(behaviour, &options, &tx, epoch, &shared);
     let ringlets = rounds
         .as_mut()
         .filter(|_| options.ringlets)
@@ -172,7 +176,7 @@ pub async fn launch(
             });
         }
         None => {
-            for runner in machine_runners(behaviour, &options, &tx, epoch) {
+            for runner in machine_runners(behaviour, &options, &tx, epoch, &shared) {
                 tasks.spawn(runner.run(board.clone()));
             }
         }
@@ -182,6 +186,7 @@ pub async fn launch(
         events,
         ringlets,
         round,
+        shared,
         notes,
         tasks,
         finals,
@@ -402,11 +407,12 @@ fn rounds_of(
     options: &LaunchOptions,
     tx: &mpsc::UnboundedSender<Event>,
     epoch: tokio::time::Instant,
+    shared: &Arc<Shared>,
 ) -> Option<Rounds> {
     if behaviour.manifest.schedule == Schedule::Concurrent {
         return None;
     }
-    let rounds = Rounds::new(machine_runners(behaviour, options, tx, epoch));
+    let rounds = Rounds::new(machine_runners(behaviour, options, tx, epoch, shared));
     Some(match &options.stepper {
         Some(stepper) => rounds.stepped_by(stepper.clone()),
         None => rounds,
@@ -420,8 +426,8 @@ pub(crate) fn machine_runners(
     options: &LaunchOptions,
     tx: &mpsc::UnboundedSender<Event>,
     epoch: tokio::time::Instant,
+    shared: &Arc<Shared>,
 ) -> Vec<MachineRunner> {
-    let shared = behaviour.shared_variables();
     behaviour
         .machines
         .iter()

@@ -239,7 +239,8 @@ async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
     }
     let epoch = tokio::time::Instant::now();
     let (tx, mut events) = mpsc::unbounded_channel();
-    let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch);
+    let shared = behaviour.shared_variables();
+    let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch, &shared);
     drop(tx);
     let feed = RecordedFeed::new(recording, outside, epoch);
     Rounds::new(runners)

@@ -134,3 +134,150 @@ pub fn run_scripted(
         Ok::<_, String>(run)
     })
 }
+
+/// A behaviour stepped round by round from a test (§3.1): each [`RoundByRound::round`] gives
+/// every running machine one ringlet, and between rounds the test reads where each machine is
+/// and what its variables hold. Time stands still unless the test moves it
+/// ([`RoundByRound::wait`]), so a `timeout` comes due exactly when the test says.
+///
+/// ```no_run
+/// use proclaim_behaviour::testing::RoundByRound;
+///
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let mut press = RoundByRound::start("machines/press", "")?;
+/// press.round();
+/// assert_eq!(press.state_of("Controller"), Some("Closing"));
+/// assert_eq!(press.variable("Controller", "low"), Some(proclaim_board::Value::Int(1)));
+/// press.round();
+/// assert_eq!(press.state_of("Sensor"), Some("Clear"));
+/// # Ok(())
+/// # }
+/// ```
+pub struct RoundByRound {
+    runtime: tokio::runtime::Runtime,
+    running: crate::launch::Running,
+    stepper: proclaim_runner::Stepper,
+    machines: Vec<String>,
+    states: rustc_hash::FxHashMap<String, String>,
+    /// (machine, variable) → the value its last change gave it, as text.
+    locals: rustc_hash::FxHashMap<(String, String), String>,
+    answer_timeout: Duration,
+    /// Every event so far, in order.
+    pub events: Vec<Event>,
+    pub board: Whiteboard,
+}
+
+impl RoundByRound {
+    /// Loads the behaviour in `folder` and starts it paused before its first round, with
+    /// `script` answering (it may be empty). Errors: the behaviour's or the script's problems.
+    pub fn start(folder: impl AsRef<Path>, script: &str) -> Result<RoundByRound, String> {
+        let folder = folder.as_ref();
+        let name = folder
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or("behaviour")
+            .to_string();
+        let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(|e| {
+            e.iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("\n")
+        })?;
+        let script = if script.trim().is_empty() {
+            None
+        } else {
+            Some(parse_script(script).map_err(|errors| {
+                errors
+                    .iter()
+                    .map(|e| format!("script: {e}"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            })?)
+        };
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+            .map_err(|e| format!("no async runtime: {e}"))?;
+        let board = Whiteboard::local();
+        let stepper = proclaim_runner::Stepper::default();
+        let options = LaunchOptions {
+            script,
+            stepper: Some(stepper.clone()),
+            ..LaunchOptions::default()
+        };
+        let running = runtime.block_on(launch(&behaviour, &board, options))?;
+        Ok(RoundByRound {
+            runtime,
+            running,
+            stepper,
+            machines: behaviour
+                .machines
+                .iter()
+                .map(|m| m.machine.name.clone())
+                .collect(),
+            states: Default::default(),
+            locals: Default::default(),
+            answer_timeout: behaviour.answer_timeout,
+            events: Vec::new(),
+            board,
+        })
+    }
+
+    /// Runs one round; its events.
+    pub fn round(&mut self) -> &[Event] {
+        let step = self.stepper.advance();
+        let limit = self.answer_timeout * 4 + Duration::from_secs(1);
+        let (stepper, machines) = (&self.stepper, &self.machines);
+        self.runtime
+            .block_on(async { stepper.settled(machines, step, limit).await });
+        let first = self.events.len();
+        while let Ok(event) = self.running.events.try_recv() {
+            match &event {
+                Event::Entered { machine, state, .. } => {
+                    self.states.insert(machine.clone(), state.clone());
+                }
+                Event::Assigned {
+                    machine,
+                    variable,
+                    value,
+                    ..
+                } => {
+                    self.locals
+                        .insert((machine.clone(), variable.clone()), value.clone());
+                }
+                _ => {}
+            }
+            self.events.push(event);
+        }
+        &self.events[first..]
+    }
+
+    /// Lets `time` pass on the virtual clock with no round run (a `timeout` may come due).
+    pub fn wait(&mut self, time: Duration) {
+        self.runtime.block_on(tokio::time::sleep(time));
+    }
+
+    /// The state `machine` last entered.
+    pub fn state_of(&self, machine: &str) -> Option<&str> {
+        self.states.get(machine).map(String::as_str)
+    }
+
+    /// A variable as `machine` sees it: its own, else the behaviour's global of that name
+    /// (an extern reads the whiteboard: [`RoundByRound::board`]).
+    pub fn variable(&self, machine: &str, name: &str) -> Option<proclaim_board::Value> {
+        let own = self
+            .locals
+            .get(&(machine.to_string(), name.to_string()))
+            .filter(|_| !self.running.shared.is_global(name));
+        match own {
+            Some(text) => Some(proclaim_board::Value::parse(text)),
+            None => self.running.shared.global(name),
+        }
+    }
+
+    /// The round the schedule is in.
+    pub fn rounds(&self) -> u64 {
+        self.running.round.get()
+    }
+}

@@ -139,3 +139,32 @@ fn rounds_run_machines_in_manifest_order_one_ringlet_each() {
         ]
     );
 }
+
+/// The Rust test API: a behaviour stepped one round at a time, its states and variables read
+/// between rounds.
+#[test]
+fn a_test_steps_the_press_round_by_round() {
+    use proclaim_behaviour::testing::RoundByRound;
+    use proclaim_board::Value;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/press");
+    let mut press = RoundByRound::start(&dir, "").unwrap();
+    press.round();
+    assert_eq!(press.rounds(), 1);
+    assert_eq!(press.state_of("Controller"), Some("Closing"));
+    assert_eq!(press.state_of("Sensor"), Some("Waiting"));
+    // The controller's write on entry, then the sensor's a round later.
+    assert_eq!(press.variable("Controller", "low"), Some(Value::Int(1)));
+    assert_eq!(press.variable("Plate", "pos"), Some(Value::Int(1)));
+    press.round();
+    assert_eq!(press.state_of("Sensor"), Some("Clear"));
+    assert_eq!(press.variable("Controller", "low"), Some(Value::Int(0)));
+    assert_eq!(
+        press.variable("Controller", "waited"),
+        Some(Value::Int(2)),
+        "its own, counted in Internal"
+    );
+    press.round();
+    press.round();
+    assert_eq!(press.state_of("Controller"), Some("Reopening"));
+    assert_eq!(press.variable("Controller", "motor"), Some(Value::Int(-1)));
+}
