@@ -96,7 +96,7 @@ async fn fan_out(messages: usize, subscribers: usize) -> (f64, u64) {
 
 /// A two-state machine whose labels the reasoner expert answers: A --cook--> B --light--> A. Each
 /// transition is one query answered and one firing; the samples are the times between firings.
-async fn query_to_fire(samples: usize) -> Vec<Duration> {
+async fn query_to_fire(samples: usize, schedule: Schedule) -> Vec<Duration> {
     let board = Whiteboard::local();
     tokio::spawn(
         ReasonerExpert::new("oven", common::microwave(), &Default::default()).run(board.clone()),
@@ -115,7 +115,7 @@ async fn query_to_fire(samples: usize) -> Vec<Duration> {
     )
     .machines
     .remove(0);
-    firing_intervals(machine, &board, samples).await
+    firing_intervals(machine, &board, samples, schedule).await
 }
 
 /// Runs `machine` on `board` until it has fired `samples + 1` times; the times between its
@@ -124,11 +124,20 @@ async fn firing_intervals(
     machine: proclaim_fsm::Machine,
     board: &Whiteboard,
     samples: usize,
+    schedule: Schedule,
 ) -> Vec<Duration> {
-    use proclaim_runner::{Event, Hosts, MachineRunner, RunOptions};
+    use proclaim_runner::{Event, Hosts, MachineRunner, Rounds, RunOptions};
     let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
     let mut events = runner.events();
-    let task = tokio::spawn(runner.run(board.clone()));
+    let task = match schedule {
+        Schedule::Concurrent => tokio::spawn(runner.run(board.clone())),
+        Schedule::Rounds => {
+            let rounds = Rounds::new(vec![runner]).run(board.clone());
+            tokio::spawn(async move {
+                rounds.await;
+            })
+        }
+    };
     let mut last: Option<Duration> = None;
     let mut out = Vec::with_capacity(samples);
     while out.len() < samples {
@@ -165,7 +174,7 @@ fn thousand_ringers() -> Vec<proclaim_fsm::Machine> {
 /// goes to the whiteboard but the machine's own events. The samples are the times between
 /// firings, as for `query_to_fire`; also the queries the board saw (none, if the label is
 /// decided on the spot).
-async fn variable_to_fire(samples: usize) -> (Vec<Duration>, u64) {
+async fn variable_to_fire(samples: usize, schedule: Schedule) -> (Vec<Duration>, u64) {
     let machine = proclaim_fsm::parse_machine(
         "v.machine",
         "machine Flip\nstate A {\n entry { int n; n = n + 1; }\n when n > 0 && n % 1 == 0 -> B\n}\nstate B {\n entry { n = n + 1; }\n when n > 0 -> A\n}\n",
@@ -173,24 +182,56 @@ async fn variable_to_fire(samples: usize) -> (Vec<Duration>, u64) {
     .machines
     .remove(0);
     let board = Whiteboard::local();
-    let out = firing_intervals(machine, &board, samples).await;
+    let out = firing_intervals(machine, &board, samples, schedule).await;
     (out, board.stats().queries)
 }
 
+/// How the machines of a bench share time.
+#[derive(Clone, Copy, PartialEq)]
+enum Schedule {
+    Rounds,
+    Concurrent,
+}
+
+impl Schedule {
+    fn name(self) -> &'static str {
+        match self {
+            Schedule::Rounds => "rounds",
+            Schedule::Concurrent => "concurrent",
+        }
+    }
+}
+
 /// CPU seconds per wall second while `machines` run for `seconds` (after one to settle).
-async fn cores_busy(machines: Vec<proclaim_fsm::Machine>, seconds: u64) -> Option<f64> {
-    use proclaim_runner::{Hosts, MachineRunner, RunOptions, Shared};
+async fn cores_busy(
+    machines: Vec<proclaim_fsm::Machine>,
+    seconds: u64,
+    schedule: Schedule,
+) -> Option<f64> {
+    use proclaim_runner::{Hosts, MachineRunner, Rounds, RunOptions, Shared};
     let board = Whiteboard::local();
     let shared = Shared::for_machines(&machines);
     let mut tasks = Vec::new();
+    let mut runners = Vec::new();
     for machine in machines {
         let options = RunOptions {
             shared: Some(shared.clone()),
             ..RunOptions::default()
         };
-        tasks.push(tokio::spawn(
-            MachineRunner::new(machine, Hosts::default(), options).run(board.clone()),
-        ));
+        runners.push(MachineRunner::new(machine, Hosts::default(), options));
+    }
+    match schedule {
+        Schedule::Concurrent => {
+            for runner in runners {
+                tasks.push(tokio::spawn(runner.run(board.clone())));
+            }
+        }
+        Schedule::Rounds => {
+            let rounds = Rounds::new(runners).run(board.clone());
+            tasks.push(tokio::spawn(async move {
+                rounds.await;
+            }));
+        }
     }
     tokio::time::sleep(Duration::from_secs(1)).await;
     let cpu = || -> Option<f64> {
@@ -243,26 +284,32 @@ fn main() {
             "{:<44} {:>10.0} messages/s posted, each to 10 subscribers ({drops} dropped)",
             "fan-out to 10 subscribers", rate
         );
-        let _ = query_to_fire(200).await;
-        percentiles(
-            "label query -> expert -> transition fired",
-            query_to_fire(if quick { 500 } else { 20_000 }).await,
-        );
-        if let Some(cores) = cores_busy(thousand_ringers(), if quick { 1 } else { 5 }).await {
-            println!(
-                "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
-                "1,000 machines ringing at 100 Hz"
+        // The machine-side figures under both schedules, side by side in this one run.
+        for schedule in [Schedule::Rounds, Schedule::Concurrent] {
+            let name = schedule.name();
+            let _ = query_to_fire(200, schedule).await;
+            percentiles(
+                &format!("label query -> expert -> fire ({name})"),
+                query_to_fire(if quick { 500 } else { 20_000 }, schedule).await,
             );
-        }
-        let _ = variable_to_fire(1_000).await;
-        let (samples, queries) = variable_to_fire(if quick { 1_000 } else { 100_000 }).await;
-        percentiles("label over variables -> transition fired", samples);
-        println!("{:<44} {queries} queries to the whiteboard", "");
-        if let Some(cores) = cores_busy(thousand_counters(), if quick { 1 } else { 5 }).await {
-            println!(
-                "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
-                "1,000 machines counting, posting at 100 Hz"
-            );
+            let seconds = if quick { 1 } else { 5 };
+            if let Some(cores) = cores_busy(thousand_ringers(), seconds, schedule).await {
+                println!(
+                    "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
+                    format!("1,000 machines ringing at 100 Hz ({name})")
+                );
+            }
+            let _ = variable_to_fire(1_000, schedule).await;
+            let (samples, queries) =
+                variable_to_fire(if quick { 1_000 } else { 100_000 }, schedule).await;
+            percentiles(&format!("label over variables -> fire ({name})"), samples);
+            println!("{:<44} {queries} queries to the whiteboard", "");
+            if let Some(cores) = cores_busy(thousand_counters(), seconds, schedule).await {
+                println!(
+                    "{:<44} {cores:.2} cores busy (CPU seconds per wall second)",
+                    format!("1,000 counting, posting at 100 Hz ({name})")
+                );
+            }
         }
     });
 }
