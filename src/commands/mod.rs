@@ -18,6 +18,7 @@ mod run;
 mod runtime;
 mod step;
 mod table;
+mod verify;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};
 use crate::failure::Failure;
@@ -50,6 +51,25 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             json,
         } => explain::run(&theory, &query, alg, &set, depth, json),
         Command::Check { theories, json } => check::run(&theories, json),
+        Command::Verify {
+            behaviour,
+            never,
+            always,
+            reachable,
+            max_states,
+            json,
+            counterexample,
+        } => verify::run(
+            &behaviour,
+            &verify::Asked {
+                never,
+                always,
+                reachable,
+            },
+            max_states,
+            json,
+            counterexample.as_deref(),
+        ),
         Command::Draw {
             machine,
             output,
