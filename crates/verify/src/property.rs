@@ -398,7 +398,7 @@ fn column_of(text: &str, at: &Expr) -> usize {
         if before_ok && after_ok {
             return text[..start].chars().count() + 1;
         }
-        from = start + 1;
+        from = start + needle.chars().next().map_or(1, char::len_utf8);
     }
     1
 }
@@ -505,5 +505,8 @@ mod tests {
         assert_eq!(column_of("ab && b", &e), 7);
         let e = Expr::Name(format!("Pump{DOT}X"));
         assert_eq!(column_of("x && Pump.X", &e), 6);
+        // Names may be any letters; columns count characters, not bytes.
+        let e = Expr::Name("été".into());
+        assert_eq!(column_of("étés || été", &e), 9);
     }
 }
