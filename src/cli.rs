@@ -255,6 +255,32 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Verify a behaviour under the round schedule: every run, the environment free, reasoners
+    /// answering from their theories (exit 0 all hold, 1 some fails, 3 undecided, 2 bad input)
+    Verify {
+        /// A behaviour: a folder, its manifest, machines/NAME or a built-in one
+        behaviour: String,
+        /// Check that no reachable state satisfies EXPR (`Machine.STATE`, `saw(Machine, name)`,
+        /// variables, whiteboard values and answers with the label language's operators).
+        /// Properties given here replace the manifest's [[property]] entries
+        #[arg(long, value_name = "EXPR")]
+        never: Vec<String>,
+        /// Check that every reachable state satisfies EXPR
+        #[arg(long, value_name = "EXPR")]
+        always: Vec<String>,
+        /// Check that some reachable state satisfies EXPR (and show the shortest way there)
+        #[arg(long, value_name = "EXPR")]
+        reachable: Vec<String>,
+        /// Stop after this many states (the outcome is then incomplete where undecided)
+        #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+        max_states: usize,
+        /// Print the report as JSON
+        #[arg(long)]
+        json: bool,
+        /// Write the first counterexample as an impersonator script for `run --script FILE --virtual-clock`
+        #[arg(long, value_name = "FILE")]
+        counterexample: Option<PathBuf>,
+    },
     /// Draw a machine (native, T/A pair or Qfsm file) or a behaviour as a diagram: DOT, or SVG/PNG/PDF through Graphviz
     Draw {
         /// A machine file, or a behaviour (its machines in boxes, sub-machines linked)

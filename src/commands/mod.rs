@@ -19,6 +19,7 @@ mod runtime;
 mod step;
 mod table;
 mod test;
+mod verify;
 
 use crate::cli::{AlgArg, Cli, Command, Sensor};
 use crate::failure::Failure;
@@ -51,6 +52,25 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             json,
         } => explain::run(&theory, &query, alg, &set, depth, json),
         Command::Check { theories, json } => check::run(&theories, json),
+        Command::Verify {
+            behaviour,
+            never,
+            always,
+            reachable,
+            max_states,
+            json,
+            counterexample,
+        } => verify::run(
+            &behaviour,
+            &verify::Asked {
+                never,
+                always,
+                reachable,
+            },
+            max_states,
+            json,
+            counterexample.as_deref(),
+        ),
         Command::Draw {
             machine,
             output,

@@ -30,8 +30,8 @@ pub use load::{
     load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
 };
 pub use manifest::{
-    parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, Schedule, SensorEntry, SensorKind,
-    Simulator, TheoryEntry, MANIFEST,
+    parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, PropertyEntry, PropertyKind,
+    Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
 pub use recorded::{

@@ -30,6 +30,10 @@
 //! [[module]]                           # one such module here
 //! name = "leds"
 //! reads = ["LEDS"]                     # also posts = […], answers = […]
+//!
+//! [[property]]                         # checked by `proclaim verify` (spec §6)
+//! name = "door interlock"
+//! never = 'Magnetron == "on" && saw(Microwave, doorOpen)'   # or always = …, reachable = …
 //! ```
 
 use proclaim_syntax::{line_column, FileDiagnostic};
@@ -67,6 +71,9 @@ pub struct Manifest {
     pub impersonator: Option<ImpersonatorEntry>,
     #[serde(default, rename = "module", skip_serializing_if = "Vec::is_empty")]
     pub modules: Vec<ModuleEntry>,
+    /// What `proclaim verify` checks of the behaviour.
+    #[serde(default, rename = "property", skip_serializing_if = "Vec::is_empty")]
+    pub properties: Vec<PropertyEntry>,
 }
 
 impl Manifest {
@@ -186,6 +193,100 @@ pub enum Simulator {
 #[serde(deny_unknown_fields)]
 pub struct ImpersonatorEntry {
     pub script: String,
+}
+
+/// A property `proclaim verify` checks: a name and exactly one of `never`, `always`,
+/// `reachable`, each an expression of the label language (read by `proclaim-verify`).
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(try_from = "RawProperty", into = "RawProperty")]
+pub struct PropertyEntry {
+    pub name: String,
+    pub kind: PropertyKind,
+    pub expression: String,
+}
+
+/// What a property says of its expression over every reachable state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PropertyKind {
+    Never,
+    Always,
+    Reachable,
+}
+
+impl PropertyKind {
+    pub const ALL: [PropertyKind; 3] = [
+        PropertyKind::Never,
+        PropertyKind::Always,
+        PropertyKind::Reachable,
+    ];
+
+    /// The key that declares it in the manifest (and the `verify` option).
+    pub fn word(self) -> &'static str {
+        match self {
+            PropertyKind::Never => "never",
+            PropertyKind::Always => "always",
+            PropertyKind::Reachable => "reachable",
+        }
+    }
+}
+
+/// `[[property]]` as written: the three keys optional, so that one missing or two given is an
+/// error at the table's place rather than serde's generic message.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RawProperty {
+    name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    never: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    always: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    reachable: Option<String>,
+}
+
+impl TryFrom<RawProperty> for PropertyEntry {
+    type Error = String;
+
+    fn try_from(raw: RawProperty) -> Result<PropertyEntry, String> {
+        let given: Vec<(PropertyKind, String)> = [
+            (PropertyKind::Never, raw.never),
+            (PropertyKind::Always, raw.always),
+            (PropertyKind::Reachable, raw.reachable),
+        ]
+        .into_iter()
+        .filter_map(|(kind, e)| Some((kind, e?)))
+        .collect();
+        match <[_; 1]>::try_from(given) {
+            Ok([(kind, expression)]) => Ok(PropertyEntry {
+                name: raw.name,
+                kind,
+                expression,
+            }),
+            Err(_) => Err(format!(
+                "property `{}` needs exactly one of `never`, `always`, `reachable`",
+                raw.name
+            )),
+        }
+    }
+}
+
+impl From<PropertyEntry> for RawProperty {
+    fn from(p: PropertyEntry) -> RawProperty {
+        let mut raw = RawProperty {
+            name: p.name,
+            never: None,
+            always: None,
+            reachable: None,
+        };
+        let slot = match p.kind {
+            PropertyKind::Never => &mut raw.never,
+            PropertyKind::Always => &mut raw.always,
+            PropertyKind::Reachable => &mut raw.reachable,
+        };
+        *slot = Some(p.expression);
+        raw
+    }
 }
 
 fn yes() -> bool {

@@ -1,0 +1,266 @@
+//! Breadth-first exploration of the model's states: every state packed once into one arena,
+//! found again by a hash table of state numbers (FxHash of the packed bytes), each with its
+//! parent and the environment's choice that led to it, so the first state found that a property
+//! looks for has the shortest path, rebuilt by replaying the choices. Successor lists are kept
+//! (4 bytes an edge) for the deadlock check, which needs to know which states can still reach a
+//! firing.
+
+use crate::model::Model;
+use crate::property::Property;
+use crate::ringlet::{initial_worlds, Choice, Stepper, Successor};
+use crate::world::{Layout, Status, World};
+use hashbrown::HashTable;
+use rustc_hash::FxBuildHasher;
+use std::hash::BuildHasher;
+
+/// No parent: an initial state (its `snapshot` choice is its index among the initial worlds).
+const ROOT: u32 = u32::MAX;
+
+#[derive(Clone, Copy, Debug)]
+struct Parent {
+    parent: u32,
+    snapshot: u32,
+    environment: u32,
+}
+
+/// Every state explored, in breadth-first order.
+pub struct Graph {
+    layout: Layout,
+    arena: Vec<u8>,
+    /// `offsets[i]..offsets[i + 1]` are state i's bytes.
+    offsets: Vec<u32>,
+    parents: Vec<Parent>,
+    table: HashTable<u32>,
+    /// Successors of state i: `edges[edge_start[i]..edge_start[i + 1]]`; the high bit marks a
+    /// step in which a transition fired.
+    edge_start: Vec<u32>,
+    edges: Vec<u32>,
+    pub complete: bool,
+    /// Per machine, per state: ever current.
+    pub entered: Vec<Vec<bool>>,
+    /// Per machine, per transition (index in the machine's list): ever fired.
+    pub fired: Vec<Vec<bool>>,
+    /// Per property: the first state it looks for.
+    pub targets: Vec<Option<u32>>,
+    values: usize,
+    saw: usize,
+}
+
+const FIRED: u32 = 1 << 31;
+
+impl Graph {
+    pub fn len(&self) -> usize {
+        self.parents.len()
+    }
+
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    pub fn world(&self, id: u32) -> World {
+        let i = id as usize;
+        let bytes = &self.arena[self.offsets[i] as usize..self.offsets[i + 1] as usize];
+        self.layout.unpack(bytes, self.values, self.saw)
+    }
+
+    pub fn packed_bytes(&self) -> usize {
+        self.arena.len()
+    }
+
+    /// Bytes held per state, all structures counted.
+    pub fn bytes_per_state(&self) -> f64 {
+        let table = self.table.allocation_size();
+        let total = self.arena.capacity()
+            + self.offsets.capacity() * 4
+            + self.parents.capacity() * std::mem::size_of::<Parent>()
+            + table
+            + self.edge_start.capacity() * 4
+            + self.edges.capacity() * 4;
+        total as f64 / self.len().max(1) as f64
+    }
+
+    /// The path to `id`: the index of its initial world and the choices after it.
+    pub fn path(&self, id: u32) -> (usize, Vec<(u32, Choice)>) {
+        let mut steps = Vec::new();
+        let mut at = id;
+        loop {
+            let p = self.parents[at as usize];
+            if p.parent == ROOT {
+                steps.reverse();
+                return (p.snapshot as usize, steps);
+            }
+            steps.push((
+                p.parent,
+                Choice {
+                    snapshot: u64::from(p.snapshot),
+                    environment: u64::from(p.environment),
+                },
+            ));
+            at = p.parent;
+        }
+    }
+
+    /// The first state (so the nearest) from which no transition can ever fire again while a
+    /// running machine is not in a final state; only meaningful when the graph is complete.
+    pub fn deadlock(&self, model: &Model) -> Option<u32> {
+        let n = self.len();
+        // Reverse edges, counting-sorted.
+        let mut start = vec![0u32; n + 1];
+        for &e in &self.edges {
+            start[(e & !FIRED) as usize + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut reverse = vec![0u32; self.edges.len()];
+        let mut live = vec![false; n];
+        let mut work = Vec::new();
+        for (s, bounds) in self.edge_start.windows(2).enumerate() {
+            for &e in &self.edges[bounds[0] as usize..bounds[1] as usize] {
+                let t = (e & !FIRED) as usize;
+                reverse[fill[t] as usize] = s as u32;
+                fill[t] += 1;
+                if e & FIRED != 0 && !live[s] {
+                    live[s] = true;
+                    work.push(s);
+                }
+            }
+        }
+        while let Some(t) = work.pop() {
+            for &s in &reverse[start[t] as usize..start[t + 1] as usize] {
+                if !live[s as usize] {
+                    live[s as usize] = true;
+                    work.push(s as usize);
+                }
+            }
+        }
+        (0..n as u32).find(|&id| !live[id as usize] && !waiting(model, &self.world(id)).is_empty())
+    }
+}
+
+/// The running machines of `world` that are not in a final state (one just entered will
+/// finish without firing anything).
+pub fn waiting(model: &Model, world: &World) -> Vec<usize> {
+    world
+        .machines
+        .iter()
+        .enumerate()
+        .filter(|(k, c)| {
+            c.status == Status::Running
+                && !model.machines[*k].states[usize::from(c.state)].is_final()
+        })
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// Explores from the initial states until every reachable state is seen or `max_states` are
+/// stored; checks `properties` on every state as it is found.
+pub fn explore(model: &Model, properties: &[Property], max_states: usize) -> Graph {
+    let layout = Layout::new(model);
+    let mut graph = Graph {
+        layout,
+        arena: Vec::new(),
+        offsets: vec![0],
+        parents: Vec::new(),
+        table: HashTable::new(),
+        edge_start: vec![0],
+        edges: Vec::new(),
+        complete: true,
+        entered: model
+            .machines
+            .iter()
+            .map(|m| vec![false; m.states.len()])
+            .collect(),
+        fired: model
+            .machines
+            .iter()
+            .map(|m| vec![false; m.machine.transitions.len()])
+            .collect(),
+        targets: vec![None; properties.len()],
+        values: model.slots.len(),
+        saw: model.saw.len(),
+    };
+    let hasher = FxBuildHasher;
+    let mut scratch = Vec::new();
+    let mut insert = |graph: &mut Graph, world: &World, parent: Parent| -> u32 {
+        scratch.clear();
+        graph.layout.pack(world, &mut scratch);
+        let hash = hasher.hash_one(&scratch[..]);
+        let (arena, offsets) = (&graph.arena, &graph.offsets);
+        let bytes_of =
+            |id: u32| &arena[offsets[id as usize] as usize..offsets[id as usize + 1] as usize];
+        if let Some(&id) = graph.table.find(hash, |&id| bytes_of(id) == &scratch[..]) {
+            return id;
+        }
+        let id = graph.parents.len() as u32;
+        graph.arena.extend_from_slice(&scratch);
+        graph.offsets.push(graph.arena.len() as u32);
+        graph.parents.push(parent);
+        let (arena, offsets) = (&graph.arena, &graph.offsets);
+        graph.table.insert_unique(hash, id, |&id| {
+            hasher
+                .hash_one(&arena[offsets[id as usize] as usize..offsets[id as usize + 1] as usize])
+        });
+        for (k, c) in world.machines.iter().enumerate() {
+            if c.status != Status::Dormant {
+                graph.entered[k][usize::from(c.state)] = true;
+            }
+        }
+        for (p, property) in properties.iter().enumerate() {
+            if graph.targets[p].is_none() && property.is_target(model, world) {
+                graph.targets[p] = Some(id);
+            }
+        }
+        id
+    };
+
+    for (i, w) in initial_worlds(model).iter().enumerate() {
+        insert(
+            &mut graph,
+            w,
+            Parent {
+                parent: ROOT,
+                snapshot: i as u32,
+                environment: 0,
+            },
+        );
+    }
+    let stepper = Stepper::new(model);
+    let mut successors: Vec<Successor> = Vec::new();
+    let mut next = 0usize;
+    while next < graph.len() {
+        // Ids must leave the top bit to the "fired" mark; the arena's offsets are u32.
+        if graph.len() >= max_states
+            || graph.len() >= (FIRED - 1) as usize
+            || graph.arena.len() >= (u32::MAX as usize - 4096)
+        {
+            graph.complete = false;
+            break;
+        }
+        let world = graph.world(next as u32);
+        successors.clear();
+        stepper.successors(&world, false, &mut successors);
+        for s in &successors {
+            let id = insert(
+                &mut graph,
+                &s.world,
+                Parent {
+                    parent: next as u32,
+                    snapshot: s.choice.snapshot as u32,
+                    environment: s.choice.environment as u32,
+                },
+            );
+            let mut edge = id;
+            if let Some(t) = s.fired {
+                edge |= FIRED;
+                let index = model.machines[s.machine].states[s.from].transitions[t].index;
+                graph.fired[s.machine][index] = true;
+            }
+            graph.edges.push(edge);
+        }
+        graph.edge_start.push(graph.edges.len() as u32);
+        next += 1;
+    }
+    graph
+}

@@ -1,0 +1,233 @@
+//! Explicit-state verification of a behaviour (`../shared/spec/behaviour.md` §6): its machines
+//! under §3.1's round schedule, the environment free, reasoners answering from their theories,
+//! time abstracted; `never`, `always` and `reachable` properties with shortest counterexamples;
+//! states never entered, transitions that never fire, and deadlock.
+//!
+//! - [`Model`]: the behaviour as slots (variables, whiteboard types), machines and reasoners;
+//!   free types take values from a finite domain ([`domain`] says why that is sound and where
+//!   it is not exact).
+//! - One step is one **ringlet** of the machine whose turn it is ([`ringlet`]), not a whole
+//!   round: a property must be able to see the world between two machines' ringlets (the door
+//!   opening while the pump waits its turn), and counterexamples then say who moved.
+//! - Time: a state's `timeout`/`after`/`after_ms` tests may come due at any snapshot after it
+//!   was entered (constant ones in order of duration) and stay due until it is left: every
+//!   real run is a path of the model, so a `never` that holds here holds in every run.
+//! - [`explore`]: breadth-first, states packed into a byte arena ([`world`]), a hash table of
+//!   state numbers, parents for the shortest path. Our own search rather than `stateright`'s:
+//!   its checkers keep each state as a Rust value (here a `Vec` per machine and slot: ten times
+//!   the bytes of the packed form), identify states by 64-bit fingerprints (a collision
+//!   silently hides states), and its actions would have to carry the environment's choices as
+//!   values; a model whose steps are "one ringlet and everything the environment may do" and
+//!   whose state is a few dozen bytes fits a plain BFS over packed bytes better.
+//! - Unbounded counters are cut by the state budget: the outcome is then incomplete, never a
+//!   hang. Nothing here reads files or prints: the command line does.
+
+pub mod arith;
+pub mod domain;
+mod error;
+mod explore;
+pub mod model;
+mod outcome;
+pub mod property;
+mod reasoner;
+pub mod ringlet;
+mod script;
+mod trace;
+mod values;
+pub mod world;
+
+pub use error::{PropertyError, VerifyError};
+pub use model::Model;
+pub use outcome::{Assignment, Finding, PropertyOutcome, Report, Stats, Trace, TraceStep, Verdict};
+pub use proclaim_behaviour::PropertyKind;
+pub use property::{Property, PropertySource};
+pub use script::to_script;
+pub use trace::render;
+
+use proclaim_behaviour::Behaviour;
+
+/// How far to explore.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Stop once this many states are stored (the outcome is then incomplete where the
+    /// question is not settled).
+    pub max_states: usize,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            max_states: 1_000_000,
+        }
+    }
+}
+
+/// The properties a behaviour's manifest declares.
+pub fn manifest_properties(behaviour: &Behaviour) -> Vec<PropertySource> {
+    behaviour
+        .manifest
+        .properties
+        .iter()
+        .map(|p| PropertySource {
+            name: p.name.clone(),
+            kind: p.kind,
+            expression: p.expression.clone(),
+        })
+        .collect()
+}
+
+/// Verifies `properties` of `behaviour`. Bad properties (every one) or a behaviour beyond the
+/// packed state's widths are errors; anything else is a [`Report`].
+pub fn verify(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+    options: Options,
+) -> Result<Report, VerifyError> {
+    let mut errors = Vec::new();
+    let mut parsed = Vec::new();
+    for p in properties {
+        match property::parse(p) {
+            Ok(e) => parsed.push((p, e)),
+            Err(e) => errors.push(e),
+        }
+    }
+    let exprs: Vec<&proclaim_fsm::Expr> = parsed.iter().map(|(_, e)| e).collect();
+    let mut model = Model::build(behaviour, &exprs);
+    let mut compiled = Vec::new();
+    for (source, expr) in &parsed {
+        match Property::compile(&mut model, source, expr) {
+            Ok(p) => compiled.push(p),
+            Err(e) => errors.push(e),
+        }
+    }
+    if !errors.is_empty() {
+        return Err(VerifyError::Properties(errors));
+    }
+    check_widths(&model)?;
+    Ok(run(&model, &compiled, options))
+}
+
+fn check_widths(model: &Model) -> Result<(), VerifyError> {
+    if model.machines.len() > 254 {
+        return Err(VerifyError::TooLarge(format!(
+            "{} machines (at most 254)",
+            model.machines.len()
+        )));
+    }
+    for m in &model.machines {
+        if m.states.len() > usize::from(u16::MAX) {
+            return Err(VerifyError::TooLarge(format!(
+                "machine {} has {} states (at most {})",
+                m.name,
+                m.states.len(),
+                u16::MAX
+            )));
+        }
+        if let Some(s) = m.states.iter().find(|s| s.time_tests.len() > 15) {
+            return Err(VerifyError::TooLarge(format!(
+                "state {}.{} has {} time tests (at most 15)",
+                m.name,
+                s.name,
+                s.time_tests.len()
+            )));
+        }
+    }
+    let choices = model
+        .free_slots()
+        .try_fold(1u64, |n, (_, d)| n.checked_mul(d.initial.len() as u64));
+    if choices.is_none_or(|n| n > u64::from(u32::MAX)) {
+        return Err(VerifyError::TooLarge(
+            "the free whiteboard types have over 2^32 joint values".into(),
+        ));
+    }
+    Ok(())
+}
+
+fn run(model: &Model, properties: &[Property], options: Options) -> Report {
+    let graph = explore::explore(model, properties, options.max_states);
+    let outcomes = properties
+        .iter()
+        .zip(&graph.targets)
+        .map(|(p, target)| {
+            let verdict = match (p.source.kind, target, graph.complete) {
+                (PropertyKind::Reachable, Some(_), _) => Verdict::Holds,
+                (_, Some(_), _) => Verdict::Fails,
+                (_, None, false) => Verdict::Incomplete,
+                (PropertyKind::Reachable, None, true) => Verdict::Fails,
+                (_, None, true) => Verdict::Holds,
+            };
+            PropertyOutcome {
+                name: p.source.name.clone(),
+                kind: p.source.kind.word().to_string(),
+                expression: p.source.expression.clone(),
+                verdict,
+                trace: target.map(|id| trace::trace(model, &graph, id)),
+            }
+        })
+        .collect();
+    let mut findings = Vec::new();
+    // Findings that say "never" are only true of a complete exploration.
+    if graph.complete {
+        for (k, m) in model.machines.iter().enumerate() {
+            for (s, state) in m.states.iter().enumerate() {
+                if !graph.entered[k][s] {
+                    findings.push(Finding::NeverEntered {
+                        machine: m.name.clone(),
+                        state: state.name.clone(),
+                    });
+                }
+            }
+            for (i, t) in m.machine.transitions.iter().enumerate() {
+                if !graph.fired[k][i] {
+                    let name = |id| {
+                        m.machine
+                            .state(id)
+                            .map_or_else(|| format!("#{id}"), |s| s.name.clone())
+                    };
+                    findings.push(Finding::NeverFires {
+                        machine: m.name.clone(),
+                        from: name(t.source),
+                        to: name(t.target),
+                        label: t.label.to_string(),
+                        line: t.line,
+                    });
+                }
+            }
+        }
+        if let Some(id) = graph.deadlock(model) {
+            let world = graph.world(id);
+            findings.push(Finding::Deadlock {
+                waiting: explore::waiting(model, &world)
+                    .into_iter()
+                    .map(|k| {
+                        let m = &model.machines[k];
+                        format!(
+                            "{}.{}",
+                            m.name,
+                            m.states[usize::from(world.machines[k].state)].name
+                        )
+                    })
+                    .collect(),
+                trace: trace::trace(model, &graph, id),
+            });
+        }
+    }
+    let stats = Stats {
+        states: graph.len(),
+        transitions: graph.edge_count(),
+        complete: graph.complete,
+        bytes_per_state: graph.bytes_per_state(),
+        packed_bytes_per_state: graph.packed_bytes() as f64 / graph.len().max(1) as f64,
+        values: model.values.borrow().len(),
+        valuations: model
+            .theories
+            .iter()
+            .map(|t| t.reasoner.borrow().valuations())
+            .sum(),
+    };
+    Report {
+        properties: outcomes,
+        findings,
+        stats,
+    }
+}

@@ -1,0 +1,527 @@
+//! The model of a loaded behaviour (spec §6): its machines in manifest order with their states,
+//! prioritised transitions and time tests; every storage place a run has (a machine's own
+//! variables, the behaviour's globals, the whiteboard types machines and reasoners read) as a
+//! numbered slot; which slots the environment sets freely and from which finite domain; and
+//! the reasoners whose answers labels ask for.
+//!
+//! Names resolve as the runner resolves them (`proclaim_runner`'s `variables.rs`): a name a
+//! machine declares is its own, then externs, then globals (every other name some activity
+//! assigns); any other name is a reasoner's answer when a theory outputs it, `NameIsRunning`
+//! when it speaks of a machine, and otherwise a whiteboard type.
+
+use crate::arith::{text, zero};
+use crate::domain::{Domains, FreeDomain};
+use crate::property::Kind;
+use crate::reasoner::Reasoner;
+use crate::values::Values;
+use proclaim_behaviour::{modules, Behaviour, ModuleKind};
+use proclaim_board::Value;
+use proclaim_fsm::control::{running_type, Command};
+use proclaim_fsm::{Action, Expr, Machine, Statement, TIME_TESTS};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::cell::RefCell;
+use std::time::Duration;
+
+pub type SlotId = usize;
+
+/// What a name stands for where it is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Name {
+    Slot(SlotId),
+    /// Output `output` of reasoner `theory`: computed from its inputs, never stored.
+    Answer {
+        theory: usize,
+        output: usize,
+    },
+    /// `NameIsRunning` of machine `m`: derived from its mode.
+    Running(usize),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum SlotKind {
+    /// A variable machine `machine` declares.
+    Local {
+        machine: usize,
+        ty: proclaim_fsm::VarType,
+    },
+    /// A name some activity assigns that no machine declares: shared, starting at 0.
+    Global,
+    /// A whiteboard type; `external` when some machine declares it `extern` (it then reads 0
+    /// before anything is posted, as gufsm's cache did).
+    Message { external: bool },
+}
+
+#[derive(Clone, Debug)]
+pub struct Slot {
+    pub name: String,
+    pub kind: SlotKind,
+    /// The value before anything happens (`None`: never posted).
+    pub initial: Option<Value>,
+    /// Set by the environment at every snapshot, from this domain.
+    pub free: Option<FreeDomain>,
+    /// What kind of value it holds, from the constants the behaviour gives it (a property
+    /// comparing it with another kind is refused).
+    pub value_kind: Kind,
+}
+
+/// A time test of a state's labels: `timeout(3s)`, `after(2)`, `after_ms(n)`.
+#[derive(Clone, Debug)]
+pub struct TimeTest {
+    pub call: Expr,
+    /// Its duration when the argument is a constant; tests with one come true in order of
+    /// duration (a state cannot be 2 s old and not 1 s old).
+    pub micros: Option<u64>,
+}
+
+#[derive(Clone, Debug)]
+pub struct TransitionModel {
+    /// Its index in the machine's `transitions` (what findings report).
+    pub index: usize,
+    pub target: usize,
+    pub label: Expr,
+}
+
+#[derive(Clone, Debug)]
+pub struct StateModel {
+    pub name: String,
+    /// Outgoing transitions in priority order.
+    pub transitions: Vec<TransitionModel>,
+    pub time_tests: Vec<TimeTest>,
+}
+
+impl StateModel {
+    /// A state with no way out: its machine's run ends once its OnEntry has run.
+    pub fn is_final(&self) -> bool {
+        self.transitions.is_empty()
+    }
+}
+
+#[derive(Debug)]
+pub struct MachineModel {
+    pub name: String,
+    pub machine: Machine,
+    /// Index = position in `machine.states`.
+    pub states: Vec<StateModel>,
+    pub initial: usize,
+    /// Running from the start (else a sub-machine, dormant until `Name: On`).
+    pub start: bool,
+    /// The machine's own variables.
+    pub locals: FxHashMap<String, SlotId>,
+}
+
+impl MachineModel {
+    pub fn state_index(&self, name: &str) -> Option<usize> {
+        self.states.iter().position(|s| s.name == name)
+    }
+}
+
+/// A reasoner: which slots feed its inputs, which atoms it answers.
+pub struct TheoryModel {
+    pub name: String,
+    /// (message type, what it is in the model), in the expert's order; `None` for a type
+    /// nothing models (it stays unknown to the theory).
+    pub inputs: Vec<(String, Option<Name>)>,
+    pub outputs: Vec<String>,
+    pub(crate) reasoner: RefCell<Reasoner>,
+}
+
+pub struct Model {
+    pub machines: Vec<MachineModel>,
+    pub slots: Vec<Slot>,
+    pub theories: Vec<TheoryModel>,
+    /// How names that are no machine's own variable resolve.
+    pub names: FxHashMap<String, Name>,
+    /// Every whiteboard type a machine or an outside module posts, reads or answers: the
+    /// names a property may use besides slots.
+    pub known_types: FxHashSet<String>,
+    /// Values met so far (the packed state stores their numbers).
+    pub values: RefCell<Values>,
+    /// What a property's `saw(Machine, name)` keeps: per machine, the name read at its last
+    /// snapshot. Added by the properties before exploring.
+    pub saw: Vec<(usize, Expr)>,
+    pub ring_period: Duration,
+}
+
+/// What the activities and labels of the behaviour read and write, gathered once.
+#[derive(Default)]
+struct Uses {
+    /// Names read by labels and activities that are no variable, in first-use order.
+    read: Vec<String>,
+    /// Types machines post (postings, `post()` with a literal type, extern assignments).
+    written: FxHashSet<String>,
+}
+
+impl Model {
+    /// The model of `behaviour`. `property_names` are the names the properties read, so a
+    /// type only a property mentions (`Magnetron`, which the machine posts and no machine
+    /// reads) gets a slot; `property_exprs` add the constants they compare with to the
+    /// environment's domains.
+    pub fn build(behaviour: &Behaviour, property_exprs: &[&Expr]) -> Model {
+        let machine_names: Vec<&str> = behaviour
+            .machines
+            .iter()
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        let mut slots: Vec<Slot> = Vec::new();
+        let mut names: FxHashMap<String, Name> = FxHashMap::default();
+
+        // Externs first: a name some machine binds to the whiteboard is no global anywhere.
+        let mut externs: FxHashSet<String> = FxHashSet::default();
+        for m in &behaviour.machines {
+            for s in m.machine.statements() {
+                if let Statement::Extern { name, .. } = s {
+                    externs.insert(name.clone());
+                }
+            }
+        }
+        // Each machine's own variables.
+        let mut locals_of: Vec<FxHashMap<String, SlotId>> = Vec::new();
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            let mut locals = FxHashMap::default();
+            for s in m.machine.statements() {
+                if let Statement::Declare { ty, name, .. } = s {
+                    if !locals.contains_key(name) {
+                        locals.insert(name.clone(), slots.len());
+                        slots.push(Slot {
+                            name: format!("{}.{name}", m.machine.name),
+                            kind: SlotKind::Local {
+                                machine: i,
+                                ty: ty.clone(),
+                            },
+                            initial: Some(zero(ty)),
+                            free: None,
+                            value_kind: Kind::Any,
+                        });
+                    } else if let Some(&slot) = locals.get(name) {
+                        // The last declaration's type wins, as `Locals::declared` has it.
+                        slots[slot].kind = SlotKind::Local {
+                            machine: i,
+                            ty: ty.clone(),
+                        };
+                        slots[slot].initial = Some(zero(ty));
+                    }
+                }
+            }
+            locals_of.push(locals);
+        }
+        // Globals: assigned, not the assigning machine's own, not extern.
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            for s in m.machine.statements() {
+                if let Statement::Assign { name, .. } = s {
+                    if !locals_of[i].contains_key(name)
+                        && !externs.contains(name)
+                        && !names.contains_key(name)
+                    {
+                        names.insert(name.clone(), Name::Slot(slots.len()));
+                        slots.push(Slot {
+                            name: name.clone(),
+                            kind: SlotKind::Global,
+                            initial: Some(Value::Int(0)),
+                            free: None,
+                            value_kind: Kind::Any,
+                        });
+                    }
+                }
+            }
+        }
+
+        // Reasoners: their answers are names; their inputs are whiteboard types they read.
+        let mut theories = Vec::new();
+        let mut theory_inputs: Vec<Vec<String>> = Vec::new();
+        for t in &behaviour.theories {
+            let reasoner = Reasoner::new(t);
+            let decl = reasoner.declaration();
+            for (o, atom) in decl.answers.iter().enumerate() {
+                names.entry(atom.clone()).or_insert(Name::Answer {
+                    theory: theories.len(),
+                    output: o,
+                });
+            }
+            theory_inputs.push(
+                decl.reads
+                    .iter()
+                    .filter(|r| r.as_str() != proclaim_board::QUERY_TYPE)
+                    .cloned()
+                    .collect(),
+            );
+            theories.push(TheoryModel {
+                name: t.name.clone(),
+                inputs: Vec::new(),
+                outputs: decl.answers.clone(),
+                reasoner: RefCell::new(reasoner),
+            });
+        }
+        for (i, name) in machine_names.iter().enumerate() {
+            names.entry(running_type(name)).or_insert(Name::Running(i));
+        }
+
+        // What machines read and write, and who outside posts.
+        let mut uses = Uses::default();
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            gather_uses(&m.machine, &locals_of[i], &names, &machine_names, &mut uses);
+        }
+        let mut outside: FxHashSet<String> = FxHashSet::default();
+        let mut known_types: FxHashSet<String> = FxHashSet::default();
+        for module in modules(behaviour) {
+            let inside = matches!(
+                module.kind,
+                ModuleKind::Machine { .. } | ModuleKind::Theory { .. }
+            );
+            for ty in module.decl.posts.iter().chain(&module.decl.answers) {
+                known_types.insert(ty.clone());
+                if !inside {
+                    outside.insert(ty.clone());
+                }
+            }
+            for ty in module.decl.reads.iter().chain(&module.decl.waits_on) {
+                known_types.insert(ty.clone());
+            }
+        }
+        known_types.extend(uses.read.iter().cloned());
+        known_types.extend(uses.written.iter().cloned());
+        known_types.extend(externs.iter().cloned());
+
+        // Message slots: what machines read, externs, reasoner inputs, and the types the
+        // properties name.
+        let mut wanted: Vec<String> = uses.read.clone();
+        let mut sorted_externs: Vec<&String> = externs.iter().collect();
+        sorted_externs.sort();
+        wanted.extend(sorted_externs.into_iter().cloned());
+        for inputs in &theory_inputs {
+            wanted.extend(inputs.iter().cloned());
+        }
+        for e in property_exprs {
+            e.visit_names(&mut |n, _| {
+                if known_types.contains(n) {
+                    wanted.push(n.to_string());
+                }
+            });
+        }
+        for ty in wanted {
+            if names.contains_key(&ty) || machine_names.contains(&ty.as_str()) {
+                continue;
+            }
+            names.insert(ty.clone(), Name::Slot(slots.len()));
+            slots.push(Slot {
+                kind: SlotKind::Message {
+                    external: externs.contains(&ty),
+                },
+                name: ty,
+                initial: None,
+                free: None,
+                value_kind: Kind::Any,
+            });
+        }
+        for (t, inputs) in theory_inputs.iter().enumerate() {
+            theories[t].inputs = inputs
+                .iter()
+                .map(|ty| (ty.clone(), names.get(ty).copied()))
+                .collect();
+        }
+
+        // The environment: a whiteboard type is free when something outside posts it, or
+        // when nothing inside writes it at all (spec §6).
+        let mut domains = Domains::default();
+        for m in &behaviour.machines {
+            domains.gather_machine(&m.machine);
+        }
+        if let Some(script) = &behaviour.script {
+            for step in &script.steps {
+                domains.add(&step.atom, Value::Bool(step.value));
+            }
+        }
+        for inputs in &theory_inputs {
+            for ty in inputs {
+                domains.add(ty, Value::Bool(false));
+                domains.add(ty, Value::Bool(true));
+            }
+        }
+        // The kind of a type is what the behaviour gives it; the properties' constants then
+        // widen what the environment tries (a property may ask about a value no machine names).
+        for slot in &mut slots {
+            if let SlotKind::Message { .. } = slot.kind {
+                slot.value_kind = Kind::of_values(&domains.domain(&slot.name).values);
+            }
+        }
+        for e in property_exprs {
+            domains.gather_expr(e);
+        }
+        for slot in &mut slots {
+            if let SlotKind::Message { .. } = slot.kind {
+                let domain = domains.domain(&slot.name);
+                if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
+                    slot.free = Some(domain);
+                }
+            }
+        }
+
+        let machines = behaviour
+            .machines
+            .iter()
+            .zip(locals_of)
+            .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
+            .collect();
+        Model {
+            machines,
+            slots,
+            theories,
+            names,
+            known_types,
+            values: RefCell::new(Values::default()),
+            saw: Vec::new(),
+            ring_period: behaviour.ring_period,
+        }
+    }
+
+    /// How `name` resolves in machine `m` (`None` for a whiteboard type nobody models: it
+    /// reads as never posted).
+    pub fn resolve(&self, m: Option<usize>, name: &str) -> Option<Name> {
+        if let Some(m) = m {
+            if let Some(&slot) = self.machines[m].locals.get(name) {
+                return Some(Name::Slot(slot));
+            }
+        }
+        self.names.get(name).copied()
+    }
+
+    pub fn machine_index(&self, name: &str) -> Option<usize> {
+        self.machines.iter().position(|m| m.name == name)
+    }
+
+    /// The free slots, in slot order.
+    pub fn free_slots(&self) -> impl Iterator<Item = (SlotId, &FreeDomain)> + '_ {
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| Some((i, s.free.as_ref()?)))
+    }
+
+    /// A slot's value as people read it.
+    pub fn show(&self, value: Option<&Value>) -> String {
+        match value {
+            None => "(never posted)".to_string(),
+            Some(Value::Str(s)) => format!("{s:?}"),
+            Some(v) => text(v),
+        }
+    }
+}
+
+fn machine_model(
+    machine: &Machine,
+    start: bool,
+    locals: FxHashMap<String, SlotId>,
+) -> MachineModel {
+    let index_of = |id| machine.states.iter().position(|s| s.id == id);
+    let states = machine
+        .states
+        .iter()
+        .map(|s| {
+            let transitions: Vec<TransitionModel> = machine
+                .transitions
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| t.source == s.id)
+                .filter_map(|(index, t)| {
+                    Some(TransitionModel {
+                        index,
+                        target: index_of(t.target)?,
+                        label: t.label.clone(),
+                    })
+                })
+                .collect();
+            let mut time_tests: Vec<TimeTest> = Vec::new();
+            for t in &transitions {
+                for (function, arguments) in t.label.calls() {
+                    let Some((_, unit)) = TIME_TESTS.iter().find(|(f, _)| *f == function) else {
+                        continue;
+                    };
+                    let call = Expr::Call {
+                        function: function.to_string(),
+                        arguments: arguments.to_vec(),
+                    };
+                    if time_tests.iter().any(|t| t.call == call) {
+                        continue;
+                    }
+                    let micros = match arguments {
+                        [Expr::Duration(us)] => Some(*us),
+                        [Expr::Int(n)] => Some((*n).max(0) as u64 * *unit as u64),
+                        [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
+                        _ => None,
+                    };
+                    time_tests.push(TimeTest { call, micros });
+                }
+            }
+            // Constant tests first, shortest first, so "which are due" is a prefix of them.
+            time_tests.sort_by_key(|t| t.micros.map_or(u64::MAX, |m| m));
+            StateModel {
+                name: s.name.clone(),
+                transitions,
+                time_tests,
+            }
+        })
+        .collect();
+    MachineModel {
+        name: machine.name.clone(),
+        initial: index_of(machine.initial).unwrap_or(0),
+        machine: machine.clone(),
+        states,
+        start,
+        locals,
+    }
+}
+
+/// Records what a machine's labels and activities read (names that are no variable of the
+/// machine) and which types it posts.
+fn gather_uses(
+    machine: &Machine,
+    locals: &FxHashMap<String, SlotId>,
+    names: &FxHashMap<String, Name>,
+    machine_names: &[&str],
+    uses: &mut Uses,
+) {
+    let mut read = |n: &str| {
+        if !locals.contains_key(n)
+            && !machine_names.contains(&n)
+            && !uses.read.iter().any(|r| r == n)
+            && !matches!(
+                names.get(n),
+                Some(Name::Answer { .. } | Name::Running(_) | Name::Slot(_))
+            )
+        {
+            uses.read.push(n.to_string());
+        }
+    };
+    for t in &machine.transitions {
+        t.label.visit_names(&mut |n, _| read(n));
+    }
+    for s in machine.statements() {
+        for e in s.expressions() {
+            e.visit_names(&mut |n, _| read(n));
+        }
+    }
+    for a in machine.actions() {
+        if let Action::Post { ty, .. } = a {
+            if !machine_names.contains(&ty.as_str()) {
+                uses.written.insert(ty.clone());
+            }
+        }
+    }
+    for s in machine.statements() {
+        match s {
+            Statement::Assign { name, .. } if !locals.contains_key(name) => {
+                uses.written.insert(name.clone());
+            }
+            Statement::Expr(Expr::Call {
+                function,
+                arguments,
+            }) if matches!(function.as_str(), "post" | "post_int" | "postv" | "post_v")
+                || Command::from_function(function).is_some() =>
+            {
+                if let Some(Expr::Str(ty)) = arguments.first() {
+                    uses.written.insert(ty.clone());
+                }
+            }
+            _ => {}
+        }
+    }
+}

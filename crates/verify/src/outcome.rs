@@ -1,0 +1,129 @@
+//! What verification finds, as data: each property's verdict with its shortest counterexample
+//! (or witness), the built-in findings, and the size of the exploration.
+
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    Holds,
+    Fails,
+    /// The state budget ran out before the question was settled.
+    Incomplete,
+}
+
+/// A whiteboard type or variable and the value it took.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Assignment {
+    pub name: String,
+    /// As people read it (text quoted).
+    pub value: String,
+    /// The value's truth when it is a truth value (what an impersonator script can set).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub truth: Option<bool>,
+}
+
+/// One ringlet of a counterexample.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TraceStep {
+    /// Rounds count from 1; every running machine rings once per round.
+    pub round: u32,
+    pub machine: String,
+    pub from: String,
+    /// The state it moved to, when a transition fired.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to: Option<String>,
+    /// The label of the transition that fired.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+    /// Time tests of its state that came due at the snapshot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub timers: Vec<String>,
+    /// Free types the world changed between the machine's OnEntry and its snapshot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub at_snapshot: Vec<Assignment>,
+    /// Free types the world changed after the ringlet (seen by the next snapshot).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub environment: Vec<Assignment>,
+}
+
+/// A path from an initial state: what the environment set first, then ringlet by ringlet.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Trace {
+    pub initially: Vec<Assignment>,
+    pub steps: Vec<TraceStep>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PropertyOutcome {
+    pub name: String,
+    /// `never`, `always` or `reachable`.
+    pub kind: String,
+    pub expression: String,
+    pub verdict: Verdict,
+    /// For a `never`/`always` that fails: the shortest counterexample; for a `reachable` that
+    /// holds: the shortest witness.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trace: Option<Trace>,
+}
+
+/// What the exploration noticed whatever the properties say (spec §6's built-in checks).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "finding", rename_all = "snake_case")]
+pub enum Finding {
+    /// No run ever makes the state current.
+    NeverEntered { machine: String, state: String },
+    /// The transition never fires in any run (its label never holds there, or an earlier one
+    /// always does, or its source is never entered).
+    NeverFires {
+        machine: String,
+        from: String,
+        to: String,
+        label: String,
+        line: usize,
+    },
+    /// A reachable state from which no machine can ever fire a transition again, whatever
+    /// the environment does, while a machine that runs is not in a final state.
+    Deadlock { waiting: Vec<String>, trace: Trace },
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Stats {
+    pub states: usize,
+    pub transitions: usize,
+    /// Every reachable state was explored (else the budget ran out).
+    pub complete: bool,
+    /// Memory per stored state: its packed bytes, index, parent and hash-table entry, and its
+    /// share of the edges kept for the deadlock check.
+    pub bytes_per_state: f64,
+    pub packed_bytes_per_state: f64,
+    /// Distinct values met (grows with counters).
+    pub values: usize,
+    /// Input valuations the reasoners were asked to prove.
+    pub valuations: usize,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    pub properties: Vec<PropertyOutcome>,
+    pub findings: Vec<Finding>,
+    pub stats: Stats,
+}
+
+impl Report {
+    /// The command line's exit status: 0 every property holds, 1 some fails, 3 none fails but
+    /// some is undecided.
+    pub fn exit_code(&self) -> u8 {
+        if self.properties.iter().any(|p| p.verdict == Verdict::Fails) {
+            1
+        } else if self
+            .properties
+            .iter()
+            .any(|p| p.verdict == Verdict::Incomplete)
+        {
+            3
+        } else {
+            0
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! A counterexample as an impersonator script (`proclaim_experts::parse_script`'s format:
+//! `doorOpen = false` from the start, `at 1.5s doorOpen = true` later), so that
+//! `proclaim run BEHAVIOUR --script FILE --virtual-clock` plays the same environment.
+//!
+//! What it cannot carry, said in the script's own comments: a script sets truth values only
+//! (another value the counterexample needs is listed, not set); a script speaks in time, not
+//! in rounds, so a change the model made in round r is placed in the middle of round r's ring
+//! period (`(r - ½) × ring_period`), which is where an idle behaviour's round r runs, but a
+//! round that follows a firing at once runs earlier; a change between two machines' ringlets
+//! of one round, or between a machine's OnEntry and its snapshot, falls to that round; and time
+//! tests come due when the clock says, not when the counterexample needed them.
+
+use crate::outcome::{Assignment, Trace};
+use std::fmt::Write;
+use std::time::Duration;
+
+/// The script, and the notes of what it does not reproduce (also in the script as comments).
+pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, Vec<String>) {
+    let mut out = String::new();
+    let mut notes = Vec::new();
+    let _ = writeln!(out, "# {title}");
+    let _ = writeln!(
+        out,
+        "# Written by `proclaim verify`: the environment of the counterexample, one round per {} ms.",
+        ring_period.as_millis()
+    );
+    let mut lines = Vec::new();
+    let mut line = |when: Option<f64>, a: &Assignment, lines: &mut Vec<String>| match a.truth {
+        Some(t) => lines.push(match when {
+            None => format!("{} = {t}", a.name),
+            Some(s) => format!("at {s}s {} = {t}", a.name),
+        }),
+        None => notes.push(format!(
+            "`{}` must be {}, which a script cannot set (truth values only)",
+            a.name, a.value
+        )),
+    };
+    for a in &trace.initially {
+        line(None, a, &mut lines);
+    }
+    let period = ring_period.as_secs_f64();
+    let mut timers = Vec::new();
+    for s in &trace.steps {
+        let at = ((f64::from(s.round) - 0.5) * period * 1e4).round() / 1e4;
+        for a in s.at_snapshot.iter().chain(&s.environment) {
+            line(Some(at), a, &mut lines);
+        }
+        for t in &s.timers {
+            timers.push(format!(
+                "`{t}` of {}.{} came due in round {}",
+                s.machine, s.from, s.round
+            ));
+        }
+    }
+    if !timers.is_empty() {
+        notes.push(format!(
+            "time tests come due by the clock, not as the counterexample needs: {}",
+            timers.join("; ")
+        ));
+    }
+    for n in &notes {
+        let _ = writeln!(out, "# not reproduced: {n}");
+    }
+    for l in lines {
+        let _ = writeln!(out, "{l}");
+    }
+    (out, notes)
+}

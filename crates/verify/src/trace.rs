@@ -1,0 +1,116 @@
+//! Counterexamples for people: a path of the graph replayed step by step with the
+//! environment's choices spelled out (what it set, which time tests came due), in rounds.
+
+use crate::explore::Graph;
+use crate::model::{Model, SlotId};
+use crate::outcome::{Assignment, Trace, TraceStep};
+use crate::ringlet::{initial_worlds, Stepper};
+use crate::values::ValueId;
+use proclaim_board::Value;
+
+fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
+    let values = model.values.borrow();
+    let v = values.get(value);
+    Assignment {
+        name: model.slots[slot].name.clone(),
+        value: model.show(v),
+        truth: match v {
+            Some(Value::Bool(b)) => Some(*b),
+            _ => None,
+        },
+    }
+}
+
+/// The path from an initial state to state `id`.
+pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
+    let (initial, path) = graph.path(id);
+    let first = &initial_worlds(model)[initial];
+    let initially = model
+        .free_slots()
+        .filter(|(slot, _)| first.values[*slot] != crate::values::NEVER)
+        .map(|(slot, _)| assignment(model, slot, first.values[slot]))
+        .collect();
+    let stepper = Stepper::new(model);
+    let mut round = 1;
+    let mut steps = Vec::new();
+    let mut successors = Vec::new();
+    for (parent, choice) in path {
+        let world = graph.world(parent);
+        successors.clear();
+        stepper.successors(&world, true, &mut successors);
+        let Some(s) = successors.iter().find(|s| s.choice == choice) else {
+            // Replaying is deterministic; a step not found again would be a bug in the model,
+            // and the trace ends where it could be followed.
+            break;
+        };
+        if s.wrapped {
+            round += 1;
+        }
+        let m = &model.machines[s.machine];
+        let state = &m.states[s.from];
+        let detail = s.detail.clone().unwrap_or_default();
+        steps.push(TraceStep {
+            round,
+            machine: m.name.clone(),
+            from: state.name.clone(),
+            to: s
+                .fired
+                .map(|t| m.states[state.transitions[t].target].name.clone()),
+            label: s.fired.map(|t| state.transitions[t].label.to_string()),
+            timers: detail
+                .timers
+                .iter()
+                .map(|&i| state.time_tests[i].call.to_string())
+                .collect(),
+            at_snapshot: detail
+                .at_snapshot
+                .iter()
+                .map(|&(slot, v)| assignment(model, slot, v))
+                .collect(),
+            environment: detail
+                .environment
+                .iter()
+                .map(|&(slot, v)| assignment(model, slot, v))
+                .collect(),
+        });
+    }
+    Trace { initially, steps }
+}
+
+/// A trace as text, one ringlet a line, grouped by round.
+pub fn render(trace: &Trace) -> String {
+    let mut out = String::new();
+    let show = |a: &[Assignment]| {
+        a.iter()
+            .map(|a| format!("{} = {}", a.name, a.value))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if !trace.initially.is_empty() {
+        out.push_str(&format!("  initially: {}\n", show(&trace.initially)));
+    }
+    let mut round = 0;
+    for s in &trace.steps {
+        if s.round != round {
+            round = s.round;
+            out.push_str(&format!("  round {round}\n"));
+        }
+        let mut line = format!("    {}: {}", s.machine, s.from);
+        match (&s.to, &s.label) {
+            (Some(to), Some(label)) => line.push_str(&format!(" -> {to} (when {label})")),
+            _ => line.push_str(" stays"),
+        }
+        if !s.timers.is_empty() {
+            line.push_str(&format!("; due: {}", s.timers.join(", ")));
+        }
+        if !s.at_snapshot.is_empty() {
+            line.push_str(&format!("; before its snapshot: {}", show(&s.at_snapshot)));
+        }
+        if !s.environment.is_empty() {
+            line.push_str(&format!("; then the world sets {}", show(&s.environment)));
+        }
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,93 @@
+//! Values as the packed state holds them: every value a run can produce is interned once and a
+//! state stores its number (0 for "never posted"), so a state is a few bytes however long the
+//! texts or lists it speaks of.
+
+use proclaim_board::Value;
+use rustc_hash::FxHashMap;
+
+/// The number of a value in [`Values`]; [`NEVER`] is "never posted" (no value at all).
+pub type ValueId = u32;
+
+/// A whiteboard type nobody has posted yet, or an extern before its first assignment.
+pub const NEVER: ValueId = 0;
+
+/// `Value` holds an `f64`, so it is neither `Eq` nor `Hash`; this is its exact, hashable twin
+/// (a float by its bits: `0.0` and `-0.0` are different values, as they print differently).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum Key {
+    Bool(bool),
+    Int(i64),
+    Float(u64),
+    Str(String),
+    Bytes(Vec<u8>),
+    List(Vec<Key>),
+}
+
+fn key(value: &Value) -> Key {
+    match value {
+        Value::Bool(b) => Key::Bool(*b),
+        Value::Int(i) => Key::Int(*i),
+        Value::Float(x) => Key::Float(x.to_bits()),
+        Value::Str(s) => Key::Str(s.clone()),
+        Value::Bytes(b) => Key::Bytes(b.clone()),
+        Value::List(l) => Key::List(l.iter().map(key).collect()),
+    }
+}
+
+/// Every value met so far, numbered from 1 in order of first meeting.
+#[derive(Debug, Default)]
+pub struct Values {
+    all: Vec<Value>,
+    ids: FxHashMap<Key, ValueId>,
+}
+
+impl Values {
+    /// The number of `value`, giving it one when it is new.
+    pub fn intern(&mut self, value: &Value) -> ValueId {
+        let k = key(value);
+        if let Some(&id) = self.ids.get(&k) {
+            return id;
+        }
+        self.all.push(value.clone());
+        let id = self.all.len() as ValueId;
+        self.ids.insert(k, id);
+        id
+    }
+
+    /// An optional value's number: [`NEVER`] for none.
+    pub fn intern_option(&mut self, value: Option<&Value>) -> ValueId {
+        value.map_or(NEVER, |v| self.intern(v))
+    }
+
+    /// The value numbered `id`; `None` for [`NEVER`].
+    pub fn get(&self, id: ValueId) -> Option<&Value> {
+        id.checked_sub(1).map(|i| &self.all[i as usize])
+    }
+
+    /// How many distinct values were met (the counters a model's exploration grew).
+    pub fn len(&self) -> usize {
+        self.all.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.all.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_values_share_a_number_and_never_is_zero() {
+        let mut values = Values::default();
+        let a = values.intern(&Value::Str("on".into()));
+        let b = values.intern(&Value::Int(1));
+        assert_eq!(values.intern(&Value::Str("on".into())), a);
+        assert_ne!(a, b);
+        assert_ne!(values.intern(&Value::Float(1.0)), b, "1.0 is no int");
+        assert_eq!(values.intern_option(None), NEVER);
+        assert_eq!(values.get(NEVER), None);
+        assert_eq!(values.get(b), Some(&Value::Int(1)));
+    }
+}

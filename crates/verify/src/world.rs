@@ -1,0 +1,210 @@
+//! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
+//! packed into a few bytes while stored: whose turn it is (one byte), per machine its state
+//! (one byte, two when it has over 255), one byte of flags (mode, just entered, started this
+//! round) and one of time bits when any of its states has a time test, then every slot's value
+//! number and every `saw()` value number as LEB128 varints (values met early, the usual ones,
+//! take one byte).
+
+use crate::model::Model;
+use crate::values::ValueId;
+
+/// A machine's mode, gufsm's `SuspensibleMachine` states.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    Running,
+    /// Parked by `suspend`; `resume` enters its state again.
+    Suspended,
+    /// Not started, or stopped by `Off`: `On` starts it from its initial state.
+    Dormant,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Control {
+    /// Index into the machine's states.
+    pub state: u16,
+    pub status: Status,
+    /// The state became current and its OnEntry has not run yet.
+    pub just_entered: bool,
+    /// Started during the current round: its first ringlet is in the next one (§3.1).
+    pub fresh: bool,
+    /// Which of the current state's time tests are due (bit i: its i-th test).
+    pub time: u16,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct World {
+    /// The machine whose turn is next, or the first to consider after it (the runnable one
+    /// at or after it, wrapping to a new round).
+    pub turn: u8,
+    pub machines: Vec<Control>,
+    pub values: Vec<ValueId>,
+    /// What each `saw(Machine, name)` of the properties read at that machine's last snapshot.
+    pub saw: Vec<ValueId>,
+}
+
+/// Field widths, fixed per model.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    wide_state: Vec<bool>,
+    has_time: Vec<bool>,
+}
+
+impl Layout {
+    pub fn new(model: &Model) -> Layout {
+        Layout {
+            wide_state: model
+                .machines
+                .iter()
+                .map(|m| m.states.len() > 255)
+                .collect(),
+            has_time: model
+                .machines
+                .iter()
+                .map(|m| m.states.iter().any(|s| !s.time_tests.is_empty()))
+                .collect(),
+        }
+    }
+
+    pub fn pack(&self, world: &World, out: &mut Vec<u8>) {
+        out.push(world.turn);
+        for (i, c) in world.machines.iter().enumerate() {
+            if self.wide_state[i] {
+                out.extend_from_slice(&c.state.to_le_bytes());
+            } else {
+                out.push(c.state as u8);
+            }
+            let status = match c.status {
+                Status::Running => 0,
+                Status::Suspended => 1,
+                Status::Dormant => 2,
+            };
+            out.push(status | (u8::from(c.just_entered) << 2) | (u8::from(c.fresh) << 3));
+            if self.has_time[i] {
+                // Time tests per state are limited to 16 by the model; most states have one.
+                if c.time > 0x7f {
+                    out.push(0x80 | (c.time & 0x7f) as u8);
+                    out.push((c.time >> 7) as u8);
+                } else {
+                    out.push(c.time as u8);
+                }
+            }
+        }
+        for &v in world.values.iter().chain(&world.saw) {
+            leb128(v, out);
+        }
+    }
+
+    /// Reads a packed world; `machines`, `values` and `saw` give the counts.
+    pub fn unpack(&self, bytes: &[u8], values: usize, saw: usize) -> World {
+        let mut at = 0;
+        let mut next = || {
+            let b = bytes[at];
+            at += 1;
+            b
+        };
+        let turn = next();
+        let mut machines = Vec::with_capacity(self.wide_state.len());
+        for i in 0..self.wide_state.len() {
+            let state = if self.wide_state[i] {
+                u16::from_le_bytes([next(), next()])
+            } else {
+                u16::from(next())
+            };
+            let flags = next();
+            let status = match flags & 3 {
+                0 => Status::Running,
+                1 => Status::Suspended,
+                _ => Status::Dormant,
+            };
+            let time = if self.has_time[i] {
+                let low = next();
+                if low & 0x80 != 0 {
+                    u16::from(low & 0x7f) | (u16::from(next()) << 7)
+                } else {
+                    u16::from(low)
+                }
+            } else {
+                0
+            };
+            machines.push(Control {
+                state,
+                status,
+                just_entered: flags & 4 != 0,
+                fresh: flags & 8 != 0,
+                time,
+            });
+        }
+        let mut numbers = Vec::with_capacity(values + saw);
+        let mut rest = &bytes[at..];
+        for _ in 0..values + saw {
+            let (v, used) = read_leb128(rest);
+            numbers.push(v);
+            rest = &rest[used..];
+        }
+        let saw = numbers.split_off(values);
+        World {
+            turn,
+            machines,
+            values: numbers,
+            saw,
+        }
+    }
+}
+
+fn leb128(mut v: u32, out: &mut Vec<u8>) {
+    while v >= 0x80 {
+        out.push((v as u8) | 0x80);
+        v >>= 7;
+    }
+    out.push(v as u8);
+}
+
+fn read_leb128(bytes: &[u8]) -> (u32, usize) {
+    let mut v = 0u32;
+    for (i, b) in bytes.iter().enumerate() {
+        v |= u32::from(b & 0x7f) << (7 * i);
+        if b & 0x80 == 0 {
+            return (v, i + 1);
+        }
+    }
+    (v, bytes.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packing_round_trips_at_every_width() {
+        let layout = Layout {
+            wide_state: vec![false, true],
+            has_time: vec![true, false],
+        };
+        for (time, value) in [(0, 0), (5, 127), (0x7fff, 128), (0x80, u32::MAX)] {
+            let world = World {
+                turn: 1,
+                machines: vec![
+                    Control {
+                        state: 200,
+                        status: Status::Suspended,
+                        just_entered: true,
+                        fresh: false,
+                        time,
+                    },
+                    Control {
+                        state: 300,
+                        status: Status::Dormant,
+                        just_entered: false,
+                        fresh: true,
+                        time: 0,
+                    },
+                ],
+                values: vec![value, 3, 0],
+                saw: vec![value],
+            };
+            let mut bytes = Vec::new();
+            layout.pack(&world, &mut bytes);
+            assert_eq!(layout.unpack(&bytes, 3, 1), world, "{time} {value}");
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! `proclaim verify`: a behaviour's properties (the manifest's, or those on the command line)
+//! checked over every run under the round schedule; each outcome, its counterexample by rounds,
+//! the built-in findings; `--counterexample` writes the first counterexample as an impersonator
+//! script. Exit 0 every property holds, 1 some fails, 3 none fails but some is undecided (the
+//! state budget ran out), 2 bad input.
+
+use crate::behaviours::load_behaviour;
+use crate::failure::Failure;
+use proclaim_verify::{
+    manifest_properties, render, to_script, verify, Finding, Options, PropertyKind, PropertySource,
+    Report, Verdict, VerifyError,
+};
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// The properties given on the command line.
+pub struct Asked {
+    pub never: Vec<String>,
+    pub always: Vec<String>,
+    pub reachable: Vec<String>,
+}
+
+impl Asked {
+    fn sources(&self) -> Vec<PropertySource> {
+        [
+            (PropertyKind::Never, &self.never),
+            (PropertyKind::Always, &self.always),
+            (PropertyKind::Reachable, &self.reachable),
+        ]
+        .into_iter()
+        .flat_map(|(kind, list)| {
+            list.iter().enumerate().map(move |(i, e)| PropertySource {
+                // Named after the option, numbered when it is given more than once.
+                name: if list.len() == 1 {
+                    format!("--{}", kind.word())
+                } else {
+                    format!("--{} #{}", kind.word(), i + 1)
+                },
+                kind,
+                expression: e.clone(),
+            })
+        })
+        .collect()
+    }
+}
+
+pub fn run(
+    behaviour: &str,
+    asked: &Asked,
+    max_states: usize,
+    json: bool,
+    counterexample: Option<&Path>,
+) -> Result<ExitCode, Failure> {
+    let loaded = load_behaviour(behaviour)?;
+    let mut properties = asked.sources();
+    if properties.is_empty() {
+        properties = manifest_properties(&loaded);
+    }
+    let started = Instant::now();
+    let report = verify(&loaded, &properties, Options { max_states }).map_err(|e| match e {
+        VerifyError::Properties(_) => Failure::Argument(e.to_string()),
+        VerifyError::TooLarge(_) => Failure::Argument(e.to_string()),
+    })?;
+    let seconds = started.elapsed().as_secs_f64();
+    if let Some(path) = counterexample {
+        write_counterexample(&report, &loaded, path)?;
+    }
+    if json {
+        let value = serde_json::json!({
+            "behaviour": behaviour,
+            "seconds": seconds,
+            "report": report,
+        });
+        println!("{value}");
+    } else {
+        print_report(behaviour, &report, seconds);
+    }
+    Ok(ExitCode::from(report.exit_code()))
+}
+
+fn print_report(behaviour: &str, report: &Report, seconds: f64) {
+    let s = &report.stats;
+    println!(
+        "{behaviour}: {} states, {} steps{}, {:.0} states/s, {:.1} bytes/state ({:.1} packed)",
+        s.states,
+        s.transitions,
+        if s.complete {
+            ", every reachable state explored".to_string()
+        } else {
+            ", the state budget ran out (--max-states)".to_string()
+        },
+        s.states as f64 / seconds.max(1e-9),
+        s.bytes_per_state,
+        s.packed_bytes_per_state,
+    );
+    if report.properties.is_empty() {
+        println!(
+            "no properties: give --never, --always or --reachable, or [[property]] in the manifest"
+        );
+    }
+    for p in &report.properties {
+        let verdict = match (p.verdict, p.kind.as_str()) {
+            (Verdict::Holds, _) => "holds",
+            (Verdict::Fails, _) => "FAILS",
+            (Verdict::Incomplete, _) => "undecided (state budget)",
+        };
+        println!("{}: {verdict} ({} {})", p.name, p.kind, p.expression);
+        if let Some(trace) = &p.trace {
+            let what = if p.kind == "reachable" {
+                "the shortest way there"
+            } else {
+                "shortest counterexample"
+            };
+            println!("  {what}, by rounds:");
+            print!("{}", render(trace));
+        }
+    }
+    for f in &report.findings {
+        match f {
+            Finding::NeverEntered { machine, state } => {
+                println!("warning: {machine}.{state} is never entered")
+            }
+            Finding::NeverFires {
+                machine,
+                from,
+                to,
+                label,
+                line,
+            } => println!(
+                "warning: {machine}: the transition {from} -> {to} (when {label}, line {line}) never fires"
+            ),
+            Finding::Deadlock { waiting, trace } => {
+                println!(
+                    "warning: deadlock: nothing can fire any more while {} wait",
+                    waiting.join(", ")
+                );
+                print!("{}", render(trace));
+            }
+        }
+    }
+}
+
+fn write_counterexample(
+    report: &Report,
+    behaviour: &proclaim_behaviour::Behaviour,
+    path: &Path,
+) -> Result<(), Failure> {
+    let failing = report
+        .properties
+        .iter()
+        .find(|p| p.verdict == Verdict::Fails && p.trace.is_some());
+    let Some(p) = failing else {
+        eprintln!("no counterexample to write: no property fails");
+        return Ok(());
+    };
+    let Some(trace) = &p.trace else {
+        return Ok(());
+    };
+    let title = format!(
+        "Counterexample to `{}` ({} {}) of {}",
+        p.name, p.kind, p.expression, behaviour.name
+    );
+    let (script, notes) = to_script(trace, behaviour.ring_period, &title);
+    for n in notes {
+        eprintln!("note: the script does not reproduce: {n}");
+    }
+    std::fs::write(path, script).map_err(|error| Failure::Write {
+        path: path.to_path_buf(),
+        error,
+    })
+}
