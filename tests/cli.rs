@@ -1476,7 +1476,11 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
     // The original holds; the fault fails (exit 1) with its counterexample by rounds.
     let o = proclaim(&["verify", "microwave"]);
     assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
-    assert!(stdout(&o).contains("door interlock: holds"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("door interlock: holds"),
+        "{}",
+        stdout(&o)
+    );
     let script = dir.join("counterexample.script");
     let o = proclaim(&["verify", d, "--counterexample", script.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
@@ -1486,7 +1490,10 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
         out.contains("Microwave: IDLE -> COOKING (when cook); then the world sets doorOpen = true"),
         "{out}"
     );
-    assert!(out.contains("round 2\n    Microwave: COOKING stays"), "{out}");
+    assert!(
+        out.contains("round 2\n    Microwave: COOKING stays"),
+        "{out}"
+    );
 
     // JSON, a budget too small (exit 3), a bad property (exit 2, located).
     let o = proclaim(&["verify", d, "--json"]);
@@ -1511,7 +1518,9 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
     ]);
     let run = stdout(&o);
     let opened = run.find("posts doorOpen: true").expect("the door opens");
-    let on = run.rfind("posts Magnetron: on").expect("the magnetron goes on");
+    let on = run
+        .rfind("posts Magnetron: on")
+        .expect("the magnetron goes on");
     assert!(on < opened, "{run}");
     assert!(!run[opened..].contains("Magnetron: off"), "{run}");
 }
