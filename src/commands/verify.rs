@@ -58,10 +58,9 @@ pub fn run(
         properties = manifest_properties(&loaded);
     }
     let started = Instant::now();
-    let report = verify(&loaded, &properties, Options { max_states }).map_err(|e| match e {
-        VerifyError::Properties(_) => Failure::Argument(e.to_string()),
-        VerifyError::TooLarge(_) => Failure::Argument(e.to_string()),
-    })?;
+    // A bad property and a behaviour beyond the checker's widths are both bad input (exit 2).
+    let report = verify(&loaded, &properties, Options { max_states })
+        .map_err(|e: VerifyError| Failure::Argument(e.to_string()))?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(path) = counterexample {
         write_counterexample(&report, &loaded, path)?;
@@ -100,10 +99,10 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
         );
     }
     for p in &report.properties {
-        let verdict = match (p.verdict, p.kind.as_str()) {
-            (Verdict::Holds, _) => "holds",
-            (Verdict::Fails, _) => "FAILS",
-            (Verdict::Incomplete, _) => "undecided (state budget)",
+        let verdict = match p.verdict {
+            Verdict::Holds => "holds",
+            Verdict::Fails => "FAILS",
+            Verdict::Incomplete => "undecided (state budget)",
         };
         println!("{}: {verdict} ({} {})", p.name, p.kind, p.expression);
         if let Some(trace) = &p.trace {
