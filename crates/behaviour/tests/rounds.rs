@@ -168,3 +168,64 @@ fn a_test_steps_the_press_round_by_round() {
     assert_eq!(press.state_of("Controller"), Some("Reopening"));
     assert_eq!(press.variable("Controller", "motor"), Some(Value::Int(-1)));
 }
+
+/// A command posted in a ringlet is obeyed when that ringlet ends: the machine it stops does
+/// not ring later in the round, the machine it starts rings from the next round; a machine in a
+/// final state whose OnEntry has run rings no more after that ringlet.
+#[test]
+fn commands_take_effect_after_the_ringlet_and_final_states_stop_ringing() {
+    use proclaim_behaviour::testing::RoundByRound;
+    use proclaim_board::Value;
+    let dir = std::env::temp_dir().join(format!("proclaim-rounds-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let files = [
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"Boss.machine\"\n[[machine]]\nfile = \"Worker.machine\"\n[[machine]]\nfile = \"Helper.machine\"\nstart = false\n",
+        ),
+        (
+            "Boss.machine",
+            "machine Boss\nstate Go {\n  entry {\n    Worker: Off\n    Helper: On\n  }\n  when TRUE -> End\n}\nstate End {\n  internal { ends = ends + 1; }\n}\n",
+        ),
+        (
+            "Worker.machine",
+            "machine Worker\nstate W {\n  internal { worked = worked + 1; }\n  when worked > 100 -> X\n}\nstate X {\n}\n",
+        ),
+        (
+            "Helper.machine",
+            "machine Helper\nstate H {\n  entry { helped = helped + 1; }\n  when helped > 100 -> Y\n}\nstate Y {\n}\n",
+        ),
+    ];
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let mut run = RoundByRound::start(&dir, "").unwrap();
+    run.round();
+    assert_eq!(run.state_of("Boss"), Some("Go"));
+    assert_eq!(
+        run.state_of("Worker"),
+        None,
+        "stopped before its turn in round 1"
+    );
+    assert_eq!(
+        run.state_of("Helper"),
+        None,
+        "started in round 1, rings from round 2"
+    );
+    assert_eq!(run.variable("Worker", "worked"), Some(Value::Int(0)));
+    run.round();
+    assert_eq!(run.state_of("Boss"), Some("End"));
+    assert_eq!(run.state_of("Helper"), Some("H"));
+    for _ in 0..5 {
+        run.round();
+    }
+    // The ringlet that enters End runs its Internal once, as any ringlet where nothing fires;
+    // after that the machine's run is over.
+    assert_eq!(
+        run.variable("Boss", "ends"),
+        Some(Value::Int(1)),
+        "a final state rings no more"
+    );
+    assert_eq!(run.variable("Worker", "worked"), Some(Value::Int(0)));
+}

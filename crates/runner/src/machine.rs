@@ -142,7 +142,7 @@ impl MachineRunner {
             while let Some(command) = woken_by.take().or_else(|| run.board.latest(&run.name)) {
                 run.control(&command);
             }
-            if run.status != Status::Running {
+            if run.status != Status::Running || run.is_done() {
                 woken_by = run
                     .board
                     .wait_for(&run.name, 0, Duration::from_secs(3600))
@@ -272,7 +272,9 @@ impl<'r> Run<'r> {
         }
     }
 
-    pub(crate) fn control(&mut self, message: &Message) {
+    /// Obeys one control command; whether it started the machine anew (from dormant, from
+    /// suspended, or again from its initial state).
+    pub(crate) fn control(&mut self, message: &Message) -> bool {
         let word = match &message.value {
             Value::Str(s) => s.clone(),
             other => other.to_string(),
@@ -285,20 +287,23 @@ impl<'r> Run<'r> {
         });
         let Some(command) = Command::parse(&word) else {
             tracing::warn!(machine = %self.name, command = %word, "unknown control command");
-            return;
+            return false;
         };
         let was = self.status;
+        let mut started = false;
         match (command, self.status) {
             (Command::On | Command::Resume, Status::Running) => {}
             (Command::Restart, _) | (Command::On | Command::Resume, Status::Dormant) => {
                 self.status = Status::Running;
                 self.current = self.machine.initial;
                 self.just_entered = true;
+                started = true;
             }
             // Back into the state it left, as a transition would enter it.
             (Command::On | Command::Resume, Status::Suspended) => {
                 self.status = Status::Running;
                 self.just_entered = true;
+                started = true;
             }
             (Command::Suspend, Status::Running) => self.status = Status::Suspended,
             (Command::Suspend, _) => {}
@@ -314,6 +319,13 @@ impl<'r> Run<'r> {
                 self.status == Status::Running,
             );
         }
+        started
+    }
+
+    /// Whether the machine's run is over for now: its state has no way out and its OnEntry
+    /// has run (§3: it rings no more until a command moves it).
+    pub(crate) fn is_done(&self) -> bool {
+        !self.just_entered && self.machine.outgoing(self.current).next().is_none()
     }
 
     /// One ringlet (§3.1): OnEntry if just entered, then the snapshot, the transitions in

@@ -1,8 +1,9 @@
 //! The round schedule (`../shared/spec/behaviour.md` §3.1), gufsm's `executeOnce` and swiftfsm's
 //! round-robin: one task gives every running machine of a behaviour exactly one ringlet per
-//! round, in the order the machines were given (the manifest's). Control commands posted
-//! during a round are applied at the start of the next, so a machine started in a round takes
-//! its first ringlet in the next one. When a machine fired the next round follows at once;
+//! round, in the order the machines were given (the manifest's). A control command posted in a
+//! ringlet is obeyed as soon as that ringlet ends: a machine stopped or suspended later in the
+//! round does not ring, and a machine started in a round takes its first ringlet in the next
+//! one; commands from outside are obeyed before each round. When a machine fired the next round follows at once;
 //! when none did, the schedule waits for news: a posting or a change of globals that differs
 //! from what a running machine's current labels last saw, a time test coming due, or the ring
 //! period. The same outside postings arriving between the same rounds give the same trace.
@@ -124,6 +125,10 @@ impl Rounds {
             .map(|m| Run::new(m, board.clone(), self.round.clone()))
             .collect();
         let mut over = vec![false; runs.len()];
+        // Machines started during this round: they ring from the next.
+        let mut fresh = vec![false; runs.len()];
+        let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
+        let mut commands = board.subscribe_pattern(Pattern::Any(names));
         let mut news = News::default();
         let mut last_step = 0;
         loop {
@@ -131,10 +136,14 @@ impl Rounds {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
-            obey(&board, &mut runs, &over);
+            fresh.fill(false);
+            obey(&board, &mut runs, &over, None);
+            while commands.try_next().is_some() {}
             let mut fired = false;
-            for (machine, run) in runs.iter_mut().enumerate() {
-                if over[machine] || run.status != Status::Running {
+            for machine in 0..runs.len() {
+                let run = &mut runs[machine];
+                if over[machine] || fresh[machine] || run.status != Status::Running || run.is_done()
+                {
                     continue;
                 }
                 if self.feed.is_some() || self.ticks.is_some() {
@@ -159,10 +168,16 @@ impl Rounds {
                     Ring::Stayed => {}
                     Ring::Over => over[machine] = true,
                 }
+                // A command posted in the ringlet takes effect at once: a machine stopped
+                // later in the round does not ring, one started rings from the next round.
+                if commands.try_next().is_some() {
+                    while commands.try_next().is_some() {}
+                    obey(&board, &mut runs, &over, Some(&mut fresh));
+                }
             }
             // Commands posted during the round take effect before anything else looks: a
             // machine that switches a sub-machine off in its final state leaves it off.
-            let obeyed = obey(&board, &mut runs, &over);
+            let obeyed = obey(&board, &mut runs, &over, None);
             if let Some(stepper) = &self.stepper {
                 for run in &runs {
                     stepper.ring_done(&run.name, last_step);
@@ -191,13 +206,26 @@ impl Rounds {
     }
 }
 
-/// Applies the control commands waiting for each machine, in schedule order; the board's
-/// sequence number then (every command up to it has been obeyed).
-fn obey(board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool]) -> u64 {
+/// Applies the control commands waiting for each machine, in schedule order, marking in
+/// `fresh` (mid-round) the machines they start; the board's sequence number then (every
+/// command up to it has been obeyed).
+fn obey(
+    board: &Whiteboard,
+    runs: &mut [Run<'_>],
+    over: &[bool],
+    mut fresh: Option<&mut [bool]>,
+) -> u64 {
     let seq = board.snapshot().seq;
-    for (run, _) in runs.iter_mut().zip(over).filter(|(_, over)| !**over) {
+    for (machine, run) in runs.iter_mut().enumerate() {
+        if over[machine] {
+            continue;
+        }
         while let Some(command) = board.latest(&run.name) {
-            run.control(&command);
+            if run.control(&command) {
+                if let Some(fresh) = fresh.as_deref_mut() {
+                    fresh[machine] = true;
+                }
+            }
         }
     }
     seq

@@ -8,7 +8,7 @@
 //! posted may change (the world may move between OnEntry and the snapshot); remember what the
 //! properties' `saw()` read; try the transitions in priority order (labels a reasoner answers
 //! are its answers on the snapshot's inputs, whiteboard values read from here on are the
-//! snapshot's, variables are live); on the first that holds run OnExit and make the target
+//! snapshot's with the machine's own later postings on top, variables are live); on the first that holds run OnExit and make the target
 //! current, else run Internal. Finally the environment sets every free type to any value of
 //! its domain: that is what the next snapshot, of whichever machine, will see, and what a
 //! property speaking of the world now sees after this step.
@@ -513,7 +513,13 @@ impl Exec<'_> {
                 if let Some(t) = &mut self.touched {
                     t.push(*slot);
                 }
-                self.world.values[*slot] = self.model.values.borrow_mut().intern(&value);
+                let id = self.model.values.borrow_mut().intern(&value);
+                self.world.values[*slot] = id;
+                // A machine reads back what it posted itself after its snapshot, as the
+                // runner's `seen.rs` does.
+                if let Some(snapshot) = &mut self.snapshot {
+                    snapshot[*slot] = id;
+                }
             }
         }
     }
