@@ -27,6 +27,8 @@ pub(crate) struct Doer<'a> {
     pub machine: &'a str,
     pub state: &'a str,
     pub entered_at: Instant,
+    /// Now, as the machine reads time (the round's moment under the round schedule).
+    pub now: Instant,
     pub hosts: &'a Hosts,
     pub shared: &'a Shared,
     pub locals: &'a mut Locals,
@@ -56,7 +58,7 @@ impl Doer<'_> {
             seen: self.seen,
             locals: self.locals,
             shared: self.shared,
-            in_state: self.entered_at.elapsed(),
+            in_state: self.now.saturating_duration_since(self.entered_at),
         }
     }
 

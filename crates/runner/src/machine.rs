@@ -198,6 +198,9 @@ pub(crate) struct Run<'r> {
     current: StateId,
     just_entered: bool,
     entered_at: Instant,
+    /// The round's moment, while a round schedule runs one (time tests and times in state
+    /// are read against it, so every machine of a round sees one time); the clock otherwise.
+    pub(crate) round_time: Option<Instant>,
     locals: Locals,
     shared: Arc<Shared>,
     pub(crate) globals_changed: watch::Receiver<u64>,
@@ -243,6 +246,7 @@ impl<'r> Run<'r> {
             current: runner.machine.initial,
             just_entered: true,
             entered_at: Instant::now(),
+            round_time: None,
             locals: Locals::declared(&runner.machine),
             globals_changed: shared.changes(),
             shared,
@@ -268,8 +272,13 @@ impl<'r> Run<'r> {
             seen: &self.seen,
             locals: &self.locals,
             shared: &self.shared,
-            in_state: self.entered_at.elapsed(),
+            in_state: self.now().saturating_duration_since(self.entered_at),
         }
+    }
+
+    /// Now, as the machine's time tests read it.
+    fn now(&self) -> Instant {
+        self.round_time.unwrap_or_else(Instant::now)
     }
 
     /// Obeys one control command; whether it started the machine anew (from dormant, from
@@ -345,7 +354,7 @@ impl<'r> Run<'r> {
         self.globals_changed.borrow_and_update();
         if self.just_entered {
             self.just_entered = false;
-            self.entered_at = Instant::now();
+            self.entered_at = self.now();
             let id = self.current;
             self.reporter.emit(|at, round| Event::Entered {
                 machine: self.name.clone(),
@@ -364,7 +373,7 @@ impl<'r> Run<'r> {
                 });
             }
         }
-        self.seen.take(&self.board);
+        self.seen.take();
         self.globals_seen = *self.globals_changed.borrow();
         self.asked.clear();
         let mut fired = None;
@@ -443,12 +452,14 @@ impl<'r> Run<'r> {
     }
 
     async fn act(&mut self, state: &str, actions: &[Action]) {
+        let now = self.now();
         Doer {
             board: &self.board,
             seen: &mut self.seen,
             machine: &self.name,
             state,
             entered_at: self.entered_at,
+            now,
             hosts: &self.runner.hosts,
             shared: &self.shared,
             locals: &mut self.locals,

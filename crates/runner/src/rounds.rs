@@ -131,14 +131,20 @@ impl Rounds {
         let mut commands = board.subscribe_pattern(Pattern::Any(names));
         let mut news = News::default();
         let mut last_step = 0;
+        // Commands posted before the schedule subscribed are obeyed before the first round.
+        let mut commanded = true;
         loop {
             if let Some(stepper) = &self.stepper {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
+            // One moment for the whole round: machines entered in one round time their
+            // `timeout`s from the same instant, so they come due in the same round.
+            let round_time = tokio::time::Instant::now();
             fresh.fill(false);
-            obey(&board, &mut runs, &over, None);
-            while commands.try_next().is_some() {}
+            if took(&mut commands) || commanded {
+                obey(&board, &mut runs, &over, None);
+            }
             let mut fired = false;
             for machine in 0..runs.len() {
                 let run = &mut runs[machine];
@@ -162,22 +168,28 @@ impl Rounds {
                         let _ = ticks.send(Ringlet { seq, ..ringlet });
                     }
                 }
+                run.round_time = Some(round_time);
                 let span = tracing::info_span!("machine", name = %run.name);
-                match tracing::Instrument::instrument(run.ring(), span).await {
+                let ring = tracing::Instrument::instrument(run.ring(), span).await;
+                // Between rounds, waits are reckoned from the clock.
+                run.round_time = None;
+                match ring {
                     Ring::Moved => fired = true,
                     Ring::Stayed => {}
                     Ring::Over => over[machine] = true,
                 }
                 // A command posted in the ringlet takes effect at once: a machine stopped
                 // later in the round does not ring, one started rings from the next round.
-                if commands.try_next().is_some() {
-                    while commands.try_next().is_some() {}
+                if took(&mut commands) {
                     obey(&board, &mut runs, &over, Some(&mut fresh));
                 }
             }
-            // Commands posted during the round take effect before anything else looks: a
-            // machine that switches a sub-machine off in its final state leaves it off.
-            let obeyed = obey(&board, &mut runs, &over, None);
+            // Commands from outside during the round take effect before anything else looks.
+            if took(&mut commands) {
+                obey(&board, &mut runs, &over, Some(&mut fresh));
+            }
+            // A machine started in the round has its OnEntry to run: as if it had fired.
+            fired |= fresh.iter().any(|f| *f);
             if let Some(stepper) = &self.stepper {
                 for run in &runs {
                     stepper.ring_done(&run.name, last_step);
@@ -201,21 +213,23 @@ impl Rounds {
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
-            news.wait(&board, &mut runs, &over, obeyed).await;
+            commanded = news.wait(&board, &mut runs, &over, &mut commands).await;
         }
     }
 }
 
+/// Whether anything came on `subscription` (all of it taken).
+fn took(subscription: &mut Subscription) -> bool {
+    let mut any = false;
+    while subscription.try_next().is_some() {
+        any = true;
+    }
+    any
+}
+
 /// Applies the control commands waiting for each machine, in schedule order, marking in
-/// `fresh` (mid-round) the machines they start; the board's sequence number then (every
-/// command up to it has been obeyed).
-fn obey(
-    board: &Whiteboard,
-    runs: &mut [Run<'_>],
-    over: &[bool],
-    mut fresh: Option<&mut [bool]>,
-) -> u64 {
-    let seq = board.snapshot().seq;
+/// `fresh` (mid-round) the machines they start.
+fn obey(board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool], mut fresh: Option<&mut [bool]>) {
     for (machine, run) in runs.iter_mut().enumerate() {
         if over[machine] {
             continue;
@@ -228,7 +242,6 @@ fn obey(
             }
         }
     }
-    seq
 }
 
 /// Waiting between rounds: one subscription to every type a running machine's current labels
@@ -241,13 +254,22 @@ struct News {
 }
 
 impl News {
-    async fn wait(&mut self, board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool], obeyed: u64) {
+    /// Waits for news; whether a control command came (to be obeyed before the next round).
+    async fn wait(
+        &mut self,
+        board: &Whiteboard,
+        runs: &mut [Run<'_>],
+        over: &[bool],
+        commands: &mut Subscription,
+    ) -> bool {
+        if commands.try_next().is_some() {
+            return true;
+        }
         let mut types: Vec<String> = Vec::new();
         let mut reads_globals = false;
         let mut due: Option<Duration> = None;
         for (run, _) in runs.iter_mut().zip(over).filter(|(_, over)| !**over) {
             if run.status != Status::Running {
-                types.push(run.name.clone());
                 continue;
             }
             let (reads, globals) = run.reads();
@@ -263,16 +285,16 @@ impl News {
             self.types = types;
         }
         let Some(subscription) = self.subscription.as_mut() else {
-            return;
+            return false;
         };
         // What was posted during the round is judged on the board as it is now; the
         // subscription is for what comes after.
         while subscription.try_next().is_some() {}
-        if missed(&board.snapshot(), runs, over, obeyed) {
-            return;
+        if missed(&board.snapshot(), runs, over) {
+            return false;
         }
         let Some(first) = runs.first() else {
-            return;
+            return false;
         };
         let mut globals = first.globals_changed.clone();
         let changes = *globals.borrow_and_update();
@@ -282,33 +304,31 @@ impl News {
             .filter(|(run, over)| !**over && run.status == Status::Running)
             .any(|(run, _)| run.globals_seen != changes && run.reads().1);
         if unseen {
-            return;
+            return false;
         }
         let deadline = due.map(|d| tokio::time::Instant::now() + d);
         loop {
             tokio::select! {
                 biased;
+                _ = commands.next() => return true,
                 message = subscription.next() => match message {
                     Some(m) if !is_news(&m, runs) => continue,
-                    _ => return,
+                    _ => return false,
                 },
-                _ = globals.changed(), if reads_globals => return,
-                _ = sleep_until(deadline) => return,
+                _ = globals.changed(), if reads_globals => return false,
+                _ = sleep_until(deadline) => return false,
             }
         }
     }
 }
 
-/// Whether a machine has a control command posted after `obeyed`, or a running machine's
-/// current labels read a type whose value on the board is not what its last ringlet saw.
-fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool], obeyed: u64) -> bool {
+/// Whether a running machine's current labels read a type whose value on the board is not
+/// what its last ringlet saw.
+fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool]) -> bool {
     runs.iter_mut()
         .zip(over)
         .filter(|(_, over)| !**over)
         .any(|(run, _)| {
-            if board.newest(&run.name).is_some_and(|m| m.seq > obeyed) {
-                return true;
-            }
             let since = run.seen.seq().unwrap_or(0);
             if run.status != Status::Running {
                 return false;
@@ -340,11 +360,10 @@ fn is_news(message: &Message, runs: &mut [Run<'_>]) -> bool {
 /// Whether a posting of a type the machine's labels read is news to it: neither the answer
 /// to its own question nor the value it saw.
 fn tells(run: &Run<'_>, message: &Message) -> bool {
-    let answered = run
-        .asked
-        .iter()
-        .any(|(atom, value)| *atom == *message.ty && *value == message.value.truthy());
-    !answered && !run.seen.saw(&message.ty, &message.value)
+    match run.asked.iter().find(|(atom, _)| *atom == *message.ty) {
+        Some((_, answer)) => *answer != message.value.truthy(),
+        None => !run.seen.saw(&message.ty, &message.value),
+    }
 }
 
 async fn sleep_until(deadline: Option<tokio::time::Instant>) {
