@@ -1611,4 +1611,14 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
         .expect("the magnetron goes on");
     assert!(on < opened, "{run}");
     assert!(!run[opened..].contains("Magnetron: off"), "{run}");
+
+    // Beside the script, that run's trace for `replay --monitor`: the same story.
+    let traced = std::fs::read_to_string(script.with_extension("jsonl")).unwrap();
+    let opened = traced
+        .find(r#""type":"doorOpen","content":"true""#)
+        .expect("the door opens in the trace");
+    assert!(traced[..opened].contains(r#""type":"Magnetron","content":"on""#));
+    assert!(!traced[opened..].contains(r#""type":"Magnetron","content":"off""#));
+    let o = proclaim(&["replay", script.with_extension("jsonl").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }

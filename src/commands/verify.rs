@@ -6,9 +6,10 @@
 
 use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
+use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
-    manifest_properties, render, to_script, verify, Finding, Options, PropertyKind, PropertySource,
-    Report, Verdict, VerifyError,
+    manifest_properties, render, to_script, verify_with_progress, Finding, Options, Progress,
+    PropertyKind, PropertySource, Report, Verdict, VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -58,9 +59,28 @@ pub fn run(
         properties = manifest_properties(&loaded);
     }
     let started = Instant::now();
+    // A long search shows how far it got (on a terminal only; never in JSON).
+    let bar = if json {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new_spinner()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    let mut progress = |p: Progress| {
+        bar.set_message(format!(
+            "{} states found, {} expanded",
+            p.stored, p.expanded
+        ));
+        bar.tick();
+    };
     // A bad property and a behaviour beyond the checker's widths are both bad input (exit 2).
-    let report = verify(&loaded, &properties, Options { max_states })
-        .map_err(|e: VerifyError| Failure::Argument(e.to_string()))?;
+    let report = verify_with_progress(&loaded, &properties, Options { max_states }, &mut progress)
+        .map_err(|e: VerifyError| Failure::Argument(e.to_string()));
+    bar.finish_and_clear();
+    let report = report?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(path) = counterexample {
         write_counterexample(&report, &loaded, path)?;
@@ -164,8 +184,73 @@ fn write_counterexample(
     for n in notes {
         eprintln!("note: the script does not reproduce: {n}");
     }
-    std::fs::write(path, script).map_err(|error| Failure::Write {
+    std::fs::write(path, &script).map_err(|error| Failure::Write {
         path: path.to_path_buf(),
         error,
+    })?;
+    // The script run by the runner itself, as a trace the monitor replays.
+    let rounds = trace.steps.iter().map(|s| s.round).max().unwrap_or(0);
+    let limit = behaviour.ring_period * (rounds + 10) + std::time::Duration::from_secs(1);
+    let events = run_script(behaviour, &script, limit)?;
+    let trace_path = path.with_extension("jsonl");
+    let lines: String = events
+        .iter()
+        .map(|e| serde_json::to_string(e).unwrap_or_default() + "\n")
+        .collect();
+    std::fs::write(&trace_path, lines).map_err(|error| Failure::Write {
+        path: trace_path.clone(),
+        error,
+    })?;
+    eprintln!(
+        "counterexample: {} (an impersonator script for `proclaim run {} --script {} --virtual-clock`) and {}, that run's trace (`proclaim replay --monitor {} --behaviour {}`)",
+        path.display(),
+        behaviour.name,
+        path.display(),
+        trace_path.display(),
+        trace_path.display(),
+        behaviour.name
+    );
+    Ok(())
+}
+
+/// Runs the behaviour with `script` answering, on the virtual clock, until every machine is
+/// done or `limit` of virtual time passes; every event.
+fn run_script(
+    behaviour: &proclaim_behaviour::Behaviour,
+    script: &str,
+    limit: std::time::Duration,
+) -> Result<Vec<proclaim_runner::Event>, Failure> {
+    let script = proclaim_experts::parse_script(script).map_err(|errors| {
+        Failure::Argument(format!(
+            "the counterexample's script does not read back: {}",
+            errors
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ")
+        ))
+    })?;
+    let runtime = super::runtime::runtime(super::runtime::Shape::VirtualClock)?;
+    runtime.block_on(async {
+        let board = proclaim_board::Whiteboard::local();
+        let options = proclaim_behaviour::LaunchOptions {
+            script: Some(script),
+            no_simulator: true,
+            ..Default::default()
+        };
+        let mut running = proclaim_behaviour::launch(behaviour, &board, options)
+            .await
+            .map_err(Failure::Start)?;
+        let deadline = tokio::time::Instant::now() + limit;
+        let mut events = Vec::new();
+        while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+            let over = running.observe(&event);
+            events.push(event);
+            if over {
+                break;
+            }
+        }
+        running.stop().await;
+        Ok(events)
     })
 }

@@ -154,9 +154,25 @@ pub fn waiting(model: &Model, world: &World) -> Vec<usize> {
         .collect()
 }
 
+/// How often a long search says how far it got.
+pub const PROGRESS_EVERY: usize = 1 << 16;
+
+/// How far a search got: states whose successors were made, and states found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    pub expanded: usize,
+    pub stored: usize,
+}
+
 /// Explores from the initial states until every reachable state is seen or `max_states` are
 /// stored; checks `properties` on every state as it is found.
-pub fn explore(model: &Model, properties: &[Property], max_states: usize) -> Graph {
+/// `progress` hears how far it got every [`PROGRESS_EVERY`] states expanded.
+pub fn explore(
+    model: &Model,
+    properties: &[Property],
+    max_states: usize,
+    progress: &mut dyn FnMut(Progress),
+) -> Graph {
     let layout = Layout::new(model);
     let mut graph = Graph {
         layout,
@@ -237,6 +253,12 @@ pub fn explore(model: &Model, properties: &[Property], max_states: usize) -> Gra
         {
             graph.complete = false;
             break;
+        }
+        if next % PROGRESS_EVERY == 0 && next > 0 {
+            progress(Progress {
+                expanded: next,
+                stored: graph.len(),
+            });
         }
         let world = graph.world(next as u32);
         successors.clear();

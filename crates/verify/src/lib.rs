@@ -37,6 +37,7 @@ mod values;
 pub mod world;
 
 pub use error::{PropertyError, VerifyError};
+pub use explore::Progress;
 pub use model::Model;
 pub use outcome::{Assignment, Finding, PropertyOutcome, Report, Stats, Trace, TraceStep, Verdict};
 pub use proclaim_behaviour::PropertyKind;
@@ -83,6 +84,16 @@ pub fn verify(
     properties: &[PropertySource],
     options: Options,
 ) -> Result<Report, VerifyError> {
+    verify_with_progress(behaviour, properties, options, &mut |_| {})
+}
+
+/// [`verify`], telling `progress` how far the search got as it goes (a long search's bar).
+pub fn verify_with_progress(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+    options: Options,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Report, VerifyError> {
     let mut errors = Vec::new();
     let mut parsed = Vec::new();
     for p in properties {
@@ -104,7 +115,7 @@ pub fn verify(
         return Err(VerifyError::Properties(errors));
     }
     check_widths(&model)?;
-    Ok(run(&model, &compiled, options))
+    Ok(run(&model, &compiled, options, progress))
 }
 
 fn check_widths(model: &Model) -> Result<(), VerifyError> {
@@ -143,8 +154,13 @@ fn check_widths(model: &Model) -> Result<(), VerifyError> {
     Ok(())
 }
 
-fn run(model: &Model, properties: &[Property], options: Options) -> Report {
-    let graph = explore::explore(model, properties, options.max_states);
+fn run(
+    model: &Model,
+    properties: &[Property],
+    options: Options,
+    progress: &mut dyn FnMut(Progress),
+) -> Report {
+    let graph = explore::explore(model, properties, options.max_states, progress);
     let outcomes = properties
         .iter()
         .zip(&graph.targets)
