@@ -68,6 +68,25 @@ impl fmt::Display for FamilyError {
 
 impl std::error::Error for FamilyError {}
 
+/// The families of one number, by name: each name stands once, with what it makes (a name
+/// missing here is an unknown family, never another family).
+const ONE_NUMBER: [(&str, fn(u64) -> Family); 14] = [
+    ("chain", Family::Chain),
+    ("chains", Family::Chains),
+    ("circle", Family::Circle),
+    ("circles", Family::Circles),
+    ("levels", Family::Levels),
+    ("levels-", Family::LevelsMinus),
+    ("teams", Family::Teams),
+    ("attack-ring", Family::AttackRing),
+    ("pairs-ring", Family::PairsRing),
+    ("priority-ring", Family::PriorityRing),
+    ("defeater-ring", Family::DefeaterRing),
+    ("clique", Family::Clique),
+    ("ladder", Family::Ladder),
+    ("clause-chain", Family::ClauseChain),
+];
+
 pub const NAMES: [&str; 17] = [
     "chain",
     "chains",
@@ -103,27 +122,14 @@ impl Family {
             }
         };
         let family = match name {
-            "chain" | "chains" | "circle" | "circles" | "levels" | "levels-" | "teams"
-            | "attack-ring" | "pairs-ring" | "priority-ring" | "defeater-ring" | "clique"
-            | "ladder" | "clause-chain" => {
+            _ if ONE_NUMBER.iter().any(|(n, _)| *n == name) => {
                 want(1)?;
-                let n = args[0];
-                match name {
-                    "attack-ring" => Family::AttackRing(n),
-                    "pairs-ring" => Family::PairsRing(n),
-                    "priority-ring" => Family::PriorityRing(n),
-                    "defeater-ring" => Family::DefeaterRing(n),
-                    "clique" => Family::Clique(n),
-                    "ladder" => Family::Ladder(n),
-                    "clause-chain" => Family::ClauseChain(n),
-                    "chain" => Family::Chain(n),
-                    "chains" => Family::Chains(n),
-                    "circle" => Family::Circle(n),
-                    "circles" => Family::Circles(n),
-                    "levels" => Family::Levels(n),
-                    "levels-" => Family::LevelsMinus(n),
-                    _ => Family::Teams(n),
-                }
+                let make = ONE_NUMBER
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .map(|(_, make)| *make)
+                    .ok_or_else(|| FamilyError(format!("unknown family `{name}`")))?;
+                make(args[0])
             }
             "tree" | "dag" => {
                 want(2)?;
@@ -573,5 +579,33 @@ impl<W: Write> Writer<'_, W> {
     fn priority(&mut self, winner: u64, loser: u64) -> io::Result<()> {
         let end = if self.format == Format::Dl { "." } else { "" };
         writeln!(self.out, "r{winner} > r{loser}{end}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every family name makes that family and no other (a name once fell through to `teams`).
+    #[test]
+    fn every_name_makes_its_own_family() {
+        for name in NAMES {
+            let args: &[u64] = match name {
+                "tree" | "dag" => &[3, 2],
+                "mix" => &[3, 3, 2],
+                _ => &[5],
+            };
+            let family = Family::parse(name, args).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(
+                family.to_string().starts_with(&format!("{name}(")),
+                "{name} made {family}"
+            );
+        }
+        assert_eq!(
+            ONE_NUMBER.len() + 3,
+            NAMES.len(),
+            "every name is in one table"
+        );
+        assert!(Family::parse("teamz", &[5]).is_err());
     }
 }
