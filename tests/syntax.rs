@@ -48,6 +48,19 @@ fn the_whole_language_parses() {
     );
 }
 
+/// `//` starts a comment in `.dl` as it does in `.machine` files and the activity language (a
+/// first line like `// Law 12, handling` was five errors); `\/` and `/\` still join. `.dfl`
+/// keeps SPINdle's `#` alone, so what proclaim reads SPINdle reads too.
+#[test]
+fn double_slash_comments_in_dl() {
+    check(
+        "// Law 12, handling\na. // the ball\n\\/{a, b}. /\\ // not a conjunction\n",
+        "3:13: error: missing `.` at the end of the statement\n",
+    );
+    check("// only a comment", "");
+    check_dfl("// a\n", "1:1: error: unexpected characters\n");
+}
+
 #[test]
 fn upper_case_atoms_and_keywords_as_atoms() {
     check("UDPsaysBlueKickOff. input. output => name.", "");

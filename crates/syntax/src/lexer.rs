@@ -83,7 +83,8 @@ pub struct Token<'a> {
     pub span: Span,
 }
 
-/// Lexes the whole text. Comments (`%` to end of line, `/* … */`) and white space are dropped.
+/// Lexes the whole text. Comments (`%` or `//` to end of line, `/* … */`) and white space are
+/// dropped.
 pub fn lex(source: &str) -> Vec<Token<'_>> {
     Lexer::new(source).collect()
 }
@@ -125,7 +126,8 @@ fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'
                 i += 1;
                 continue;
             }
-            b'%' => {
+            // `//` as in the `.machine` files and the activity language beside the theories.
+            b'%' | b'/' if b == b'%' || bytes.get(i + 1) == Some(&b'/') => {
                 i = memchr_newline(bytes, i);
                 continue;
             }

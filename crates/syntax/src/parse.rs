@@ -187,7 +187,7 @@ fn report_bad_tokens(statement: &[Token<'_>], sink: &mut Sink) -> bool {
         let diagnostic = match token.tok {
             Tok::Error => Diagnostic::error(token.span, "unexpected characters")
                 .with_label("not part of any token")
-                .with_hint("atoms are letters, digits and `_`, starting with a letter; comments start with `%` or are written `/* … */`"),
+                .with_hint("atoms are letters, digits and `_`, starting with a letter; comments start with `%` or `//`, or are written `/* … */`"),
             Tok::UnclosedStr => Diagnostic::error(token.span, "string has no closing `\"`")
                 .with_label("starts here")
                 .with_hint("close the string on the same line"),
