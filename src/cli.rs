@@ -400,9 +400,14 @@ pub struct RunArgs {
     pub force: bool,
     /// Show the run in the browser: each machine's diagram lit as it moves, the whiteboard,
     /// the answers, pause / step / resume and posting from the page (at 127.0.0.1:7480 unless
-    /// given; port 0 takes any free port). The page stays open after the run until Ctrl-C
+    /// given; port 0 takes any free port). The page stays open after the run until Ctrl-C. On
+    /// an address other than loopback, pausing, stepping and posting need the token printed
+    /// once in the page's address
     #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR, conflicts_with_all = ["step", "virtual_clock"])]
     pub monitor: Option<String>,
+    /// The monitor page shows the run and has no controls: nobody can pause, step or post
+    #[arg(long, requires = "monitor")]
+    pub monitor_read_only: bool,
     #[command(flatten)]
     pub network: Network,
 }

@@ -326,13 +326,28 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
 
 /// One HTTP/1.1 request over a plain socket: the status code and the body.
 fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+    http_with(url, method, path, body, "")
+}
+
+/// `http` with more header lines (each ending in `\r\n`).
+fn http_with(
+    url: &str,
+    method: &str,
+    path: &str,
+    body: Option<&str>,
+    headers: &str,
+) -> (u16, String) {
     use std::io::{Read, Write};
-    let host = url.trim_start_matches("http://").trim_end_matches('/');
+    let host = url
+        .trim_start_matches("http://")
+        .split('/')
+        .next()
+        .unwrap_or_default();
     let mut stream = std::net::TcpStream::connect(host).expect("the monitor listens");
     let body = body.unwrap_or("");
     write!(
         stream,
-        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\nContent-Type: application/json\r\n{headers}Content-Length: {}\r\n\r\n{body}",
         body.len()
     )
     .unwrap();
@@ -546,3 +561,51 @@ fn watched_machine(tag: &str) -> (std::path::PathBuf, Running, String) {
 /// `W` with a state `Later` between `Wait` and `Done`.
 const W_WITH_LATER: &str =
     "machine W\nstate Wait {\n  when go -> Later\n}\nstate Later {\n  when go -> Done\n}\nstate Done {\n}\n";
+
+/// A page on an address other than loopback changes the run only with the token printed in
+/// its address; `--monitor-read-only` changes nothing and says so. (The page listens on every
+/// address; the test talks to it on loopback.)
+#[test]
+fn a_page_on_the_network_needs_its_token_and_a_read_only_page_changes_nothing() {
+    let (_run, url) =
+        proclaim_with_monitor(&["run", "microwave", "--monitor", "0.0.0.0:0", "--for", "60s"]);
+    let (address, token) = url
+        .split_once("/?token=")
+        .expect("the address carries a token");
+    assert_eq!(token.len(), 32, "128 bits in hex: {token}");
+    let local = address.replace("0.0.0.0", "127.0.0.1");
+    let posting = Some(r#"{"type":"visitor","value":"42"}"#);
+    let (status, why) = http(&local, "POST", "/api/post", posting);
+    assert_eq!(status, 403, "{why}");
+    assert!(why.contains("token"), "{why}");
+    let wrong = "x-proclaim-token: 0123\r\n";
+    assert_eq!(
+        http_with(&local, "POST", "/api/post", posting, wrong).0,
+        403
+    );
+    let right = format!("x-proclaim-token: {token}\r\n");
+    let (status, why) = http_with(&local, "POST", "/api/post", posting, &right);
+    assert_eq!(status, 200, "{why}");
+    let (status, _) = http(&local, "GET", "/api/model", None);
+    assert_eq!(status, 200, "reading needs no token");
+
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--monitor-read-only",
+        "--for",
+        "60s",
+    ]);
+    let local = url.trim_end_matches(" (read-only)");
+    let (status, why) = http(local, "POST", "/api/control", Some(r#"{"action":"pause"}"#));
+    assert_eq!(
+        (status, why.as_str()),
+        (403, "this page is read-only (--monitor-read-only)")
+    );
+    assert_eq!(http(local, "POST", "/api/post", posting).0, 403);
+    let (_, model) = http(local, "GET", "/api/model", None);
+    let model: Json = serde_json::from_str(&model).unwrap();
+    assert_eq!(model["read_only"], true);
+}

@@ -4,7 +4,7 @@
 use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
 use proclaim_behaviour::{read_trace, Behaviour};
-use proclaim_monitor::{Chart, Monitor};
+use proclaim_monitor::{Access, Chart, Monitor};
 use proclaim_runner::Event;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::Path;
@@ -43,6 +43,7 @@ pub async fn live(
     board: &proclaim_board::Whiteboard,
     stepper: Option<proclaim_runner::Stepper>,
     addr: &str,
+    read_only: bool,
 ) -> Result<Monitor, Failure> {
     let monitor = Monitor::live(
         behaviour.name.clone(),
@@ -50,14 +51,59 @@ pub async fn live(
         board.clone(),
         stepper,
     );
-    open(&monitor, addr).await?;
+    let access = move |bound: SocketAddr| {
+        if read_only {
+            Access::ReadOnly
+        } else if bound.ip().is_loopback() {
+            Access::Open
+        } else {
+            Access::Token(new_token())
+        }
+    };
+    open_with(&monitor, addr, access).await?;
     Ok(monitor)
+}
+
+/// 128 random bits in hex: the operating system's randomness where there is any, else the
+/// standard library's per-process random hash keys.
+fn new_token() -> String {
+    use std::hash::{BuildHasher, Hasher};
+    use std::io::Read;
+    let mut bytes = [0u8; 16];
+    let from_os = std::fs::File::open("/dev/urandom")
+        .and_then(|mut f| f.read_exact(&mut bytes))
+        .is_ok();
+    if !from_os {
+        for chunk in bytes.chunks_mut(8) {
+            let mut hasher = std::collections::hash_map::RandomState::new().build_hasher();
+            hasher.write_u128(
+                std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0, |d| d.as_nanos()),
+            );
+            chunk.copy_from_slice(&hasher.finish().to_le_bytes());
+        }
+    }
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Serves the page and says where. The default port, when taken, gives way to any free one
 /// (a second run beside the first); an address given is kept to or refused.
 pub async fn open(monitor: &Monitor, addr: &str) -> Result<SocketAddr, Failure> {
+    open_with(monitor, addr, |_| Access::Open).await
+}
+
+/// [`open`], with who may change the run decided by the address asked for; a token goes into
+/// the address printed (the only place it is shown).
+async fn open_with(
+    monitor: &Monitor,
+    addr: &str,
+    access: impl FnOnce(SocketAddr) -> Access,
+) -> Result<SocketAddr, Failure> {
     let wanted = parse_addr(addr)?;
+    // Decided before the first request can come (the port may change, the address does not).
+    let access = access(wanted);
+    monitor.set_access(access.clone());
     let bound = match monitor.serve(wanted).await {
         Ok(bound) => bound,
         Err(e) if addr == DEFAULT_ADDR && e.kind() == std::io::ErrorKind::AddrInUse => monitor
@@ -70,7 +116,11 @@ pub async fn open(monitor: &Monitor, addr: &str) -> Result<SocketAddr, Failure> 
             )))
         }
     };
-    println!("  monitor: http://{bound}/");
+    match &access {
+        Access::Token(token) => println!("  monitor: http://{bound}/?token={token}"),
+        Access::ReadOnly => println!("  monitor: http://{bound}/ (read-only)"),
+        Access::Open => println!("  monitor: http://{bound}/"),
+    }
     Ok(bound)
 }
 

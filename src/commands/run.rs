@@ -149,7 +149,16 @@ async fn run_on_board(
     }
     let mut view = trace_view(behaviour, script_used);
     let monitor = match &args.monitor {
-        Some(addr) => Some(super::monitor::live(behaviour, &board, stepper.clone(), addr).await?),
+        Some(addr) => Some(
+            super::monitor::live(
+                behaviour,
+                &board,
+                stepper.clone(),
+                addr,
+                args.monitor_read_only,
+            )
+            .await?,
+        ),
         None => None,
     };
     if let Some(stepper) = stepper.filter(|_| args.step) {

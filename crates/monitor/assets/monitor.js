@@ -188,13 +188,19 @@ function render(frame) {
   document.body.dataset.frames = String(Number(document.body.dataset.frames || 0) + 1);
 }
 
+// A page served on the network changes the run only with the token of its address.
+const token = new URLSearchParams(location.search).get("token");
+
 async function send(path, body) {
-  const response = await fetch(path, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify(body) });
+  const headers = { "content-type": "application/json" };
+  if (token) headers["x-proclaim-token"] = token;
+  const response = await fetch(path, { method: "POST", headers, body: JSON.stringify(body) });
   if (!response.ok) throw new Error(await response.text());
   return response;
 }
 
 function live() {
+  if (model.read_only) return;
   $("post").hidden = false;
   if (model.can_step) {
     $("controls").hidden = false;

@@ -17,4 +17,4 @@ mod server;
 pub use diagram::{node, Chart, ChartState, ChartTransition};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
-pub use server::{Monitor, FRAME_GAP};
+pub use server::{Access, Monitor, FRAME_GAP, TOKEN_HEADER};

@@ -6,7 +6,7 @@ use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
 use axum::extract::{Query, State};
-use axum::http::{header, StatusCode};
+use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -29,6 +29,22 @@ const INDEX_HTML: &str = include_str!("../assets/index.html");
 const MONITOR_JS: &str = include_str!("../assets/monitor.js");
 const MONITOR_CSS: &str = include_str!("../assets/monitor.css");
 
+/// Who may change the run from the page (pause, step, post to the whiteboard).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Access {
+    /// Anyone who reaches the page: for a page on loopback only.
+    #[default]
+    Open,
+    /// Only requests that carry this token (a page on the network; the token is in the address
+    /// printed once, as Jupyter does it).
+    Token(String),
+    /// Nobody: the page shows the run and has no controls.
+    ReadOnly,
+}
+
+/// The header a page sends its token in.
+pub const TOKEN_HEADER: &str = "x-proclaim-token";
+
 /// A behaviour as the page shows it. Clones share it.
 #[derive(Clone)]
 pub struct Monitor {
@@ -45,6 +61,7 @@ struct Shared {
     /// Bumped by every event folded in; frame streams wait on it.
     version: watch::Sender<u64>,
     source: Source,
+    access: std::sync::RwLock<Access>,
 }
 
 enum Source {
@@ -90,8 +107,18 @@ impl Monitor {
                 picture: Mutex::new(picture),
                 version: watch::channel(0).0,
                 source,
+                access: Default::default(),
             }),
         }
+    }
+
+    /// Who may change the run from the page from now on.
+    pub fn set_access(&self, access: Access) {
+        *self
+            .shared
+            .access
+            .write()
+            .unwrap_or_else(|e| e.into_inner()) = access;
     }
 
     /// Folds an event of the live run in. Cheap, and never waits on a page.
@@ -168,6 +195,37 @@ impl Shared {
         self.version.send_modify(|v| *v = v.wrapping_add(1));
     }
 
+    fn access(&self) -> Access {
+        self.access
+            .read()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
+    /// Whether a request that changes the run may: refused with why otherwise.
+    fn allowed(&self, headers: &HeaderMap) -> Result<(), Response> {
+        match self.access() {
+            Access::Open => Ok(()),
+            Access::ReadOnly => Err((
+                StatusCode::FORBIDDEN,
+                "this page is read-only (--monitor-read-only)",
+            )
+                .into_response()),
+            Access::Token(token) => {
+                let given = headers.get(TOKEN_HEADER).and_then(|v| v.to_str().ok());
+                if given == Some(token.as_str()) {
+                    Ok(())
+                } else {
+                    Err((
+                        StatusCode::FORBIDDEN,
+                        "this page changes the run only with the token it was given (open the address with ?token=… that proclaim printed)",
+                    )
+                        .into_response())
+                }
+            }
+        }
+    }
+
     fn picture(&self) -> MutexGuard<'_, Picture> {
         // Folding an event leaves the picture whole even if a panic interrupted it elsewhere.
         self.picture.lock().unwrap_or_else(|e| e.into_inner())
@@ -225,6 +283,8 @@ struct Model<'s> {
     times: Option<Vec<u64>>,
     /// Live runs: whether the page can pause and step.
     can_step: bool,
+    /// Whether the page shows no controls at all.
+    read_only: bool,
 }
 
 async fn model(State(shared): State<Arc<Shared>>) -> Response {
@@ -244,6 +304,7 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         charts_version: shared.charts_version(),
         times,
         can_step,
+        read_only: shared.access() == Access::ReadOnly,
     })
     .into_response()
 }
@@ -326,8 +387,12 @@ struct ControlRequest {
 
 async fn control(
     State(shared): State<Arc<Shared>>,
+    headers: HeaderMap,
     Json(request): Json<ControlRequest>,
 ) -> Response {
+    if let Err(refused) = shared.allowed(&headers) {
+        return refused;
+    }
     let Source::Live {
         stepper: Some(stepper),
         ..
@@ -366,8 +431,12 @@ struct PostRequest {
 /// no expert answers is posted this way too: `doorOpen = true`).
 async fn post_message(
     State(shared): State<Arc<Shared>>,
+    headers: HeaderMap,
     Json(request): Json<PostRequest>,
 ) -> Response {
+    if let Err(refused) = shared.allowed(&headers) {
+        return refused;
+    }
     let Source::Live { board, .. } = &shared.source else {
         return (StatusCode::CONFLICT, "a replay cannot be posted to").into_response();
     };
