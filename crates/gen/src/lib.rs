@@ -68,9 +68,12 @@ impl fmt::Display for FamilyError {
 
 impl std::error::Error for FamilyError {}
 
+/// How a family of one number is made from it.
+type MakeFamily = fn(u64) -> Family;
+
 /// The families of one number, by name: each name stands once, with what it makes (a name
 /// missing here is an unknown family, never another family).
-const ONE_NUMBER: [(&str, fn(u64) -> Family); 14] = [
+const ONE_NUMBER: [(&str, MakeFamily); 14] = [
     ("chain", Family::Chain),
     ("chains", Family::Chains),
     ("circle", Family::Circle),
