@@ -202,21 +202,23 @@ impl Shared {
             .clone()
     }
 
-    /// Whether a request that changes the run may: refused with why otherwise.
-    fn allowed(&self, headers: &HeaderMap) -> Result<(), Response> {
+    /// Why a request that changes the run may not, if it may not.
+    fn refusal(&self, headers: &HeaderMap) -> Option<Response> {
         match self.access() {
-            Access::Open => Ok(()),
-            Access::ReadOnly => Err((
-                StatusCode::FORBIDDEN,
-                "this page is read-only (--monitor-read-only)",
-            )
-                .into_response()),
+            Access::Open => None,
+            Access::ReadOnly => Some(
+                (
+                    StatusCode::FORBIDDEN,
+                    "this page is read-only (--monitor-read-only)",
+                )
+                    .into_response(),
+            ),
             Access::Token(token) => {
                 let given = headers.get(TOKEN_HEADER).and_then(|v| v.to_str().ok());
                 if given == Some(token.as_str()) {
-                    Ok(())
+                    None
                 } else {
-                    Err((
+                    Some((
                         StatusCode::FORBIDDEN,
                         "this page changes the run only with the token it was given (open the address with ?token=… that proclaim printed)",
                     )
@@ -390,7 +392,7 @@ async fn control(
     headers: HeaderMap,
     Json(request): Json<ControlRequest>,
 ) -> Response {
-    if let Err(refused) = shared.allowed(&headers) {
+    if let Some(refused) = shared.refusal(&headers) {
         return refused;
     }
     let Source::Live {
@@ -434,7 +436,7 @@ async fn post_message(
     headers: HeaderMap,
     Json(request): Json<PostRequest>,
 ) -> Response {
-    if let Err(refused) = shared.allowed(&headers) {
+    if let Some(refused) = shared.refusal(&headers) {
         return refused;
     }
     let Source::Live { board, .. } = &shared.source else {
