@@ -27,7 +27,7 @@ pub enum Failure {
     /// A benchmark child process failed.
     Bench(String),
     /// A behaviour could not be started (a socket could not be opened).
-    Start(String),
+    Start(proclaim_behaviour::BehaviourError),
     /// A whiteboard across processes could not be held or joined; the message names the
     /// endpoint and why.
     Network(String),

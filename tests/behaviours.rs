@@ -373,7 +373,7 @@ fn a_posting_nobody_hears_and_a_label_nobody_answers_go_to_unknown() {
     );
     let err =
         proclaim_behaviour::module_diagram(&proclaim_behaviour::modules(&b), "N").unwrap_err();
-    assert_eq!(err, "no module `N`; the behaviour has M");
+    assert_eq!(err.to_string(), "no module `N`; the behaviour has M");
 }
 
 #[test]

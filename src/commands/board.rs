@@ -78,7 +78,7 @@ pub fn post(ty: &str, value: &str, module: &str, network: &Network) -> Result<Ex
                 println!("posted {} = {} (#{})", m.ty, m.value, m.seq);
                 Ok(ExitCode::SUCCESS)
             }
-            _ => Err(Failure::Start(format!(
+            _ => Err(Failure::Network(format!(
                 "the posting of {ty} was not seen on the whiteboard within 5 s"
             ))),
         }

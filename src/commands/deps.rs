@@ -18,7 +18,7 @@ pub fn run(
     let all = modules(&loaded);
     if let Some(machine) = launch {
         let place = |file: &str| placed(loaded.files.folder(), output, file);
-        let text = launch_manifest(&loaded, &all, machine, &place).map_err(Failure::Argument)?;
+        let text = launch_manifest(&loaded, &all, machine, &place).map_err(|e| Failure::Argument(e.to_string()))?;
         return match output {
             None => {
                 print!("{text}");
@@ -39,7 +39,7 @@ pub fn run(
         };
     }
     let dot = match module {
-        Some(m) => module_diagram(&all, m).map_err(Failure::Argument)?,
+        Some(m) => module_diagram(&all, m).map_err(|e| Failure::Argument(e.to_string()))?,
         None => overall_diagram(&all, &loaded.name),
     };
     write_diagram(&dot, output)

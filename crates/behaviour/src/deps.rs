@@ -2,6 +2,7 @@
 //! behaviour that runs one machine with exactly the modules it needs (the seed's generated test
 //! script).
 
+use crate::error::BehaviourError;
 use crate::load::Behaviour;
 use crate::manifest::{ImpersonatorEntry, MachineEntry, Manifest, Simulator, TheoryEntry};
 use crate::modules::{Module, ModuleKind};
@@ -10,12 +11,13 @@ use std::fmt::Write;
 /// One module at the centre: the experts it queries above it (green arrows, blocking: they
 /// proclaim its labels), the modules that listen to its postings below it (black arrows,
 /// non-blocking), and a red **unknown** for a label nobody answers or a posting nobody hears.
-pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, String> {
+pub fn module_diagram(modules: &[Module], centre: &str) -> Result<String, BehaviourError> {
     let Some(me) = modules.iter().find(|m| m.decl.name == centre) else {
-        return Err(format!(
-            "no module `{centre}`; the behaviour has {}",
-            names(modules)
-        ));
+        return Err(BehaviourError::NoSuch {
+            kind: "module",
+            name: centre.to_string(),
+            known: modules.iter().map(|m| m.decl.name.clone()).collect(),
+        });
     };
     let mut out = String::new();
     let _ = writeln!(
@@ -205,17 +207,17 @@ pub fn launch_manifest(
     modules: &[Module],
     centre: &str,
     place: &dyn Fn(&str) -> String,
-) -> Result<String, String> {
+) -> Result<String, BehaviourError> {
     if !behaviour.machines.iter().any(|m| m.machine.name == centre) {
-        return Err(format!(
-            "no machine `{centre}`; the behaviour's machines are {}",
-            behaviour
+        return Err(BehaviourError::NoSuch {
+            kind: "machine",
+            name: centre.to_string(),
+            known: behaviour
                 .machines
                 .iter()
-                .map(|m| m.machine.name.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ));
+                .map(|m| m.machine.name.clone())
+                .collect(),
+        });
     }
     let wanted = started_from(behaviour, modules, centre);
     let needed = serving(modules, &wanted);
@@ -337,14 +339,6 @@ fn serving<'m>(modules: &'m [Module], wanted: &'m [String]) -> Vec<&'m str> {
         }
     }
     needed
-}
-
-fn names(modules: &[Module]) -> String {
-    modules
-        .iter()
-        .map(|m| m.decl.name.as_str())
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 fn quote(text: &str) -> String {

@@ -2,6 +2,7 @@
 //! label has its expert before the first ring), then the machines; their events merged into one
 //! trace.
 
+use crate::error::BehaviourError;
 use crate::load::Behaviour;
 use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
@@ -121,12 +122,12 @@ struct Module {
     task: Task,
 }
 
-/// Starts the behaviour on `board`. Fails (saying why) only when a socket cannot be opened.
+/// Starts the behaviour on `board`. Fails only when a socket cannot be opened.
 pub async fn launch(
     behaviour: &Behaviour,
     board: &Whiteboard,
     options: LaunchOptions,
-) -> Result<Running, String> {
+) -> Result<Running, BehaviourError> {
     // The trace's times count from here, as the impersonator's script times do, so `at 1s`
     // shows as 1.000 s.
     let epoch = tokio::time::Instant::now();
@@ -221,7 +222,7 @@ async fn sensors(
     options: &LaunchOptions,
     modules: &mut Vec<Module>,
     notes: &mut Vec<String>,
-) -> Result<Option<String>, String> {
+) -> Result<Option<String>, BehaviourError> {
     let mut sim_note = None;
     for sensor in &behaviour.sensors {
         match sensor.entry.kind {
@@ -267,7 +268,7 @@ async fn gamecontroller(
     options: &LaunchOptions,
     modules: &mut Vec<Module>,
     notes: &mut Vec<String>,
-) -> Result<Option<String>, String> {
+) -> Result<Option<String>, BehaviourError> {
     let e = &sensor.entry;
     let mut sim_note = None;
     let simulate = !options.no_simulator && e.simulator != Some(Simulator::On(false));
@@ -284,10 +285,16 @@ async fn gamecontroller(
         ..ReceiverConfig::default()
     })
     .await
-    .map_err(|error| format!("cannot listen for the GameController on {bind}: {error}"))?;
+    .map_err(|error| BehaviourError::Socket {
+        what: format!("cannot listen for the GameController on {bind}"),
+        error,
+    })?;
     let at = receiver
         .local_addr()
-        .map_err(|e| format!("the GameController socket has no address: {e}"))?;
+        .map_err(|error| BehaviourError::Socket {
+            what: "the GameController socket has no address".into(),
+            error,
+        })?;
     let answers = receiver.declaration().answers;
     let board = board.clone();
     modules.push(Module {

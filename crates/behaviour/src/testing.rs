@@ -14,6 +14,7 @@
 //! # }
 //! ```
 
+use crate::error::BehaviourError;
 use crate::files::Folder;
 use crate::launch::{launch, LaunchOptions};
 use crate::load::load;
@@ -24,6 +25,15 @@ use proclaim_runner::Event;
 use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
+
+/// A runtime of its own on tokio's paused clock: time jumps whenever every task waits.
+fn paused_runtime() -> Result<tokio::runtime::Runtime, BehaviourError> {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .start_paused(true)
+        .build()
+        .map_err(BehaviourError::Runtime)
+}
 
 /// A machine entering a state, so many seconds into the run.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,31 +77,16 @@ pub fn run_scripted(
     folder: impl AsRef<Path>,
     script: &str,
     limit: Duration,
-) -> Result<ScriptedRun, String> {
+) -> Result<ScriptedRun, BehaviourError> {
     let folder = folder.as_ref();
     let name = folder
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or("behaviour")
         .to_string();
-    let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(|e| {
-        e.iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join("\n")
-    })?;
-    let script = parse_script(script).map_err(|errors| {
-        errors
-            .iter()
-            .map(|e| format!("script: {e}"))
-            .collect::<Vec<_>>()
-            .join("\n")
-    })?;
-    let runtime = tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .start_paused(true)
-        .build()
-        .map_err(|e| format!("no async runtime: {e}"))?;
+    let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(BehaviourError::Files)?;
+    let script = parse_script(script).map_err(BehaviourError::Script)?;
+    let runtime = paused_runtime()?;
     runtime.block_on(async {
         let board = Whiteboard::local();
         let options = LaunchOptions {
@@ -131,7 +126,7 @@ pub fn run_scripted(
             }
         }
         running.stop().await;
-        Ok::<_, String>(run)
+        Ok::<_, BehaviourError>(run)
     })
 }
 
@@ -170,35 +165,21 @@ pub struct RoundByRound {
 impl RoundByRound {
     /// Loads the behaviour in `folder` and starts it paused before its first round, with
     /// `script` answering (it may be empty). Errors: the behaviour's or the script's problems.
-    pub fn start(folder: impl AsRef<Path>, script: &str) -> Result<RoundByRound, String> {
+    pub fn start(folder: impl AsRef<Path>, script: &str) -> Result<RoundByRound, BehaviourError> {
         let folder = folder.as_ref();
         let name = folder
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or("behaviour")
             .to_string();
-        let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(|e| {
-            e.iter()
-                .map(ToString::to_string)
-                .collect::<Vec<_>>()
-                .join("\n")
-        })?;
+        let behaviour =
+            load(&name, Arc::new(Folder::new(folder))).map_err(BehaviourError::Files)?;
         let script = if script.trim().is_empty() {
             None
         } else {
-            Some(parse_script(script).map_err(|errors| {
-                errors
-                    .iter()
-                    .map(|e| format!("script: {e}"))
-                    .collect::<Vec<_>>()
-                    .join("\n")
-            })?)
+            Some(parse_script(script).map_err(BehaviourError::Script)?)
         };
-        let runtime = tokio::runtime::Builder::new_current_thread()
-            .enable_all()
-            .start_paused(true)
-            .build()
-            .map_err(|e| format!("no async runtime: {e}"))?;
+        let runtime = paused_runtime()?;
         let board = Whiteboard::local();
         let stepper = proclaim_runner::Stepper::default();
         let options = LaunchOptions {

@@ -3,6 +3,7 @@
 //! view leaves out answers that repeat the previous one (same value, same answerer), which would
 //! drown the rest.
 
+use crate::error::BehaviourError;
 use proclaim_runner::{Answerer, Event};
 use rustc_hash::FxHashMap;
 use std::fmt::Write;
@@ -85,12 +86,15 @@ impl TraceView {
 }
 
 /// Reads a JSON-lines trace; a bad line is reported with its number.
-pub fn read_trace(text: &str) -> Result<Vec<Event>, String> {
+pub fn read_trace(text: &str) -> Result<Vec<Event>, BehaviourError> {
     text.lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
         .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|e| format!("line {}: not a trace event: {e}", i + 1))
+            serde_json::from_str(l).map_err(|e| BehaviourError::TraceLine {
+                line: i + 1,
+                error: e.to_string(),
+            })
         })
         .collect()
 }

@@ -1,0 +1,62 @@
+//! What can go wrong in this crate's calls, each variant saying what and where; the
+//! binary turns them into its messages and exit codes.
+
+use proclaim_syntax::{FileDiagnostic, LineErrors};
+use std::fmt;
+
+#[derive(Debug)]
+pub enum BehaviourError {
+    /// The behaviour's files have problems, each at its place.
+    Files(Vec<FileDiagnostic>),
+    /// The impersonator script has problems, each at its line.
+    Script(LineErrors),
+    /// A socket a sensor wrapper needs could not be opened or has no address.
+    Socket { what: String, error: std::io::Error },
+    /// No async runtime could be made for a run on a clock of its own.
+    Runtime(std::io::Error),
+    /// A line of a JSON-lines trace is no event.
+    TraceLine { line: usize, error: String },
+    /// The behaviour has no module (or machine) of that name.
+    NoSuch {
+        kind: &'static str,
+        name: String,
+        known: Vec<String>,
+    },
+}
+
+impl fmt::Display for BehaviourError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BehaviourError::Files(problems) => {
+                let lines: Vec<String> = problems.iter().map(ToString::to_string).collect();
+                f.write_str(&lines.join("\n"))
+            }
+            BehaviourError::Script(errors) => {
+                let lines: Vec<String> = errors.iter().map(|e| format!("script: {e}")).collect();
+                f.write_str(&lines.join("\n"))
+            }
+            BehaviourError::Socket { what, error } => write!(f, "{what}: {error}"),
+            BehaviourError::Runtime(error) => write!(f, "no async runtime: {error}"),
+            BehaviourError::TraceLine { line, error } => {
+                write!(f, "line {line}: not a trace event: {error}")
+            }
+            BehaviourError::NoSuch { kind, name, known } => {
+                let plural = if *kind == "module" {
+                    "the behaviour has"
+                } else {
+                    "the behaviour's machines are"
+                };
+                write!(f, "no {kind} `{name}`; {plural} {}", known.join(", "))
+            }
+        }
+    }
+}
+
+impl std::error::Error for BehaviourError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            BehaviourError::Socket { error, .. } | BehaviourError::Runtime(error) => Some(error),
+            _ => None,
+        }
+    }
+}
