@@ -64,7 +64,7 @@ async fn shared(network: &Network) -> Result<Whiteboard, Failure> {
     };
     proclaim_zenoh::whiteboard(&role, &network.board, &settings(network))
         .await
-        .map_err(Failure::Network)
+        .map_err(|e| Failure::Network(e.to_string()))
 }
 
 #[cfg(feature = "zenoh")]
@@ -85,7 +85,7 @@ pub async fn round_trips(network: &Network, count: usize) -> Result<Vec<Duration
     };
     proclaim_zenoh::ping(endpoint, &network.board, &settings(network), count)
         .await
-        .map_err(Failure::Network)
+        .map_err(|e| Failure::Network(e.to_string()))
 }
 
 #[cfg(not(feature = "zenoh"))]

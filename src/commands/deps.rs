@@ -18,7 +18,8 @@ pub fn run(
     let all = modules(&loaded);
     if let Some(machine) = launch {
         let place = |file: &str| placed(loaded.files.folder(), output, file);
-        let text = launch_manifest(&loaded, &all, machine, &place).map_err(|e| Failure::Argument(e.to_string()))?;
+        let text = launch_manifest(&loaded, &all, machine, &place)
+            .map_err(|e| Failure::Argument(e.to_string()))?;
         return match output {
             None => {
                 print!("{text}");

@@ -9,12 +9,14 @@
 //! scouting is off; TLS and access control come from Zenoh's own configuration file.
 
 mod board;
+mod error;
 mod probe;
 mod session;
 mod threads;
 mod wire;
 
 pub use board::whiteboard;
+pub use error::NetworkError;
 pub use probe::ping;
 pub use session::{Role, Settings};
 pub use threads::{prefer_few_threads, FEW_THREADS};

@@ -1,6 +1,7 @@
 //! The link's own round trip, without the whiteboard: the holder answers pings, and a process
 //! measures what one Zenoh request and reply to it cost. A query's latency is judged against it.
 
+use crate::error::NetworkError;
 use crate::session::{open, Role, Settings};
 use std::time::{Duration, Instant};
 use zenoh::query::Queryable;
@@ -12,7 +13,10 @@ pub(crate) fn key(board: &str) -> String {
 }
 
 /// Answers every ping with its own payload, from Zenoh's receiving thread.
-pub(crate) async fn answer(session: &zenoh::Session, key: &str) -> Result<Queryable<()>, String> {
+pub(crate) async fn answer(
+    session: &zenoh::Session,
+    key: &str,
+) -> Result<Queryable<()>, NetworkError> {
     session
         .declare_queryable(key.to_string())
         .callback(|query| {
@@ -22,7 +26,7 @@ pub(crate) async fn answer(session: &zenoh::Session, key: &str) -> Result<Querya
             }
         })
         .await
-        .map_err(|e| format!("cannot answer pings on {key}: {e}"))
+        .map_err(|e| NetworkError::zenoh(format!("cannot answer pings on {key}"), e))
 }
 
 /// Joins the whiteboard held at `endpoint` and times `count` pings to its holder, one after
@@ -32,15 +36,16 @@ pub async fn ping(
     board: &str,
     settings: &Settings,
     count: usize,
-) -> Result<Vec<Duration>, String> {
+) -> Result<Vec<Duration>, NetworkError> {
     let session = open(&Role::Connect(endpoint.to_string()), settings).await?;
     let key = key(board);
     let deadline = Instant::now() + Duration::from_secs(5);
     while once(&session, &key).await.is_none() {
         if Instant::now() >= deadline {
-            return Err(format!(
-                "no whiteboard `{board}` answered at {endpoint} (is a `proclaim run … --listen {endpoint}` running?)"
-            ));
+            return Err(NetworkError::NoBoard {
+                board: Some(board.to_string()),
+                endpoint: endpoint.to_string(),
+            });
         }
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
@@ -49,7 +54,9 @@ pub async fn ping(
         let started = Instant::now();
         once(&session, &key)
             .await
-            .ok_or_else(|| format!("the holder at {endpoint} stopped answering"))?;
+            .ok_or_else(|| NetworkError::Stopped {
+                endpoint: endpoint.to_string(),
+            })?;
         samples.push(started.elapsed());
     }
     Ok(samples)

@@ -3,6 +3,7 @@
 //! only; the rest (certificates, access control) from Zenoh's own configuration file when one is
 //! given.
 
+use crate::error::NetworkError;
 use std::path::PathBuf;
 
 /// How a process joins a whiteboard.
@@ -36,13 +37,11 @@ impl Settings {
     }
 }
 
-pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Session, String> {
+pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Session, NetworkError> {
     let mut config = match &settings.config_file {
-        Some(path) => zenoh::Config::from_file(path).map_err(|e| {
-            format!(
-                "cannot read the Zenoh configuration {}: {e}",
-                path.display()
-            )
+        Some(path) => zenoh::Config::from_file(path).map_err(|e| NetworkError::Config {
+            path: path.clone(),
+            cause: e.to_string(),
         })?,
         None => zenoh::Config::default(),
     };
@@ -52,15 +51,13 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
     };
     for e in listen.iter().chain(&connect) {
         if !e.contains('/') {
-            return Err(format!(
-                "`{e}` is not a Zenoh endpoint; write it as tcp/HOST:PORT (tcp/127.0.0.1:7447)"
-            ));
+            return Err(NetworkError::Endpoint(e.clone()));
         }
     }
     let set = |config: &mut zenoh::Config, key: &str, value: String| {
         config
             .insert_json5(key, &value)
-            .map_err(|e| format!("Zenoh refused {key} = {value}: {e}"))
+            .map_err(|e| NetworkError::zenoh(format!("Zenoh refused {key} = {value}"), e))
     };
     set(&mut config, "mode", "\"peer\"".into())?;
     set(&mut config, "listen/endpoints", json_list(&listen))?;
@@ -74,8 +71,10 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
     }
     zenoh::open(config).await.map_err(|e| match role {
-        Role::Listen(e2) => format!("cannot listen on {e2}: {e}"),
-        Role::Connect(e2) => format!("cannot reach a whiteboard at {e2}: {e}"),
+        Role::Listen(endpoint) => NetworkError::zenoh(format!("cannot listen on {endpoint}"), e),
+        Role::Connect(endpoint) => {
+            NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
+        }
     })
 }
 

@@ -2,6 +2,7 @@
 //! serves requests, snapshots for joining processes, and pings.
 
 use super::*;
+use crate::error::NetworkError;
 
 /// The process that holds the board.
 pub(super) struct Holder {
@@ -22,7 +23,7 @@ impl Holder {
         session: zenoh::Session,
         keys: Keys,
         limit: Limit,
-    ) -> Result<Arc<Holder>, String> {
+    ) -> Result<Arc<Holder>, NetworkError> {
         let holder = Arc::new(Holder {
             core: LocalBoard::new(),
             id: process_id(),
@@ -54,7 +55,7 @@ impl Holder {
                 }
             })
             .await
-            .map_err(|e| format!("cannot serve {}: {e}", keys.snapshot))?;
+            .map_err(|e| NetworkError::zenoh(format!("cannot serve {}", keys.snapshot), e))?;
         let pings = crate::probe::answer(&session, &keys.ping).await?;
         let _ = holder.serving.set((requests, snapshots, pings));
         Ok(holder)

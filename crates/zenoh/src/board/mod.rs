@@ -5,6 +5,7 @@
 //! signal (a machine, for its own name); the others observe its signals. Reads, waits and
 //! subscriptions are served from the local replica, so they cost what they cost in process.
 
+use crate::error::NetworkError;
 use crate::session::{open, Role, Settings};
 use crate::wire::{Down, Snapshot, Up, WireDecl, WireKind, WireMessage, WireValue};
 use proclaim_board::{
@@ -105,7 +106,7 @@ pub async fn whiteboard(
     role: &Role,
     board: &str,
     settings: &Settings,
-) -> Result<Whiteboard, String> {
+) -> Result<Whiteboard, NetworkError> {
     let session = open(role, settings).await?;
     let keys = Keys::new(board);
     let transport: Arc<dyn Transport> = match role {
@@ -138,7 +139,7 @@ async fn on_every<T, F>(
     session: &zenoh::Session,
     key: &str,
     handle: F,
-) -> Result<Subscriber<()>, String>
+) -> Result<Subscriber<()>, NetworkError>
 where
     T: serde::de::DeserializeOwned,
     F: Fn(T) + Send + Sync + 'static,
@@ -152,7 +153,7 @@ where
             },
         )
         .await
-        .map_err(|e| format!("cannot subscribe to {key}: {e}"))
+        .map_err(|e| NetworkError::zenoh(format!("cannot subscribe to {key}"), e))
 }
 
 /// `handle` on `board` for as long as it lives: a callback holds its board weakly, so the board

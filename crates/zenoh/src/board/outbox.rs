@@ -1,6 +1,7 @@
 //! The ordered, blocking link one side of the board sends its messages over.
 
 use super::*;
+use crate::error::NetworkError;
 
 /// Where one side's messages go, in order. Puts block when the link is full (Zenoh's default
 /// for a put is to drop): the whiteboard loses nothing, it slows the poster down. Not express:
@@ -21,20 +22,20 @@ impl<T: serde::Serialize + Send + 'static> Outbox<T> {
     pub(super) async fn publisher(
         session: &zenoh::Session,
         key: &str,
-    ) -> Result<Publisher<'static>, String> {
+    ) -> Result<Publisher<'static>, NetworkError> {
         session
             .declare_publisher(key.to_string())
             .congestion_control(CongestionControl::Block)
             .express(false)
             .await
-            .map_err(|e| format!("cannot publish on {key}: {e}"))
+            .map_err(|e| NetworkError::zenoh(format!("cannot publish on {key}"), e))
     }
 
     pub(super) async fn direct(
         session: &zenoh::Session,
         key: &str,
         limit: Limit,
-    ) -> Result<Outbox<T>, String> {
+    ) -> Result<Outbox<T>, NetworkError> {
         Ok(Outbox::Direct(
             Self::publisher(session, key).await?,
             limit,
@@ -46,7 +47,7 @@ impl<T: serde::Serialize + Send + 'static> Outbox<T> {
         session: &zenoh::Session,
         key: &str,
         limit: Limit,
-    ) -> Result<Outbox<T>, String> {
+    ) -> Result<Outbox<T>, NetworkError> {
         let publisher = Self::publisher(session, key).await?;
         let (tx, rx) = std::sync::mpsc::channel::<T>();
         std::thread::Builder::new()
@@ -57,7 +58,9 @@ impl<T: serde::Serialize + Send + 'static> Outbox<T> {
                     put(&publisher, &item, limit);
                 }
             })
-            .map_err(|e| format!("cannot start the thread sending on {key}: {e}"))?;
+            .map_err(|e| {
+                NetworkError::zenoh(format!("cannot start the thread sending on {key}"), e)
+            })?;
         Ok(Outbox::Queued(tx))
     }
 

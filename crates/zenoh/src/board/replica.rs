@@ -2,6 +2,7 @@
 //! from the holder's snapshot.
 
 use super::*;
+use crate::error::NetworkError;
 
 /// A process that joined the board: a replica kept in step by the holder's messages.
 pub(super) struct Replica {
@@ -22,7 +23,7 @@ impl Replica {
         keys: Keys,
         endpoint: &str,
         limit: Limit,
-    ) -> Result<Arc<Replica>, String> {
+    ) -> Result<Arc<Replica>, NetworkError> {
         let replica = Arc::new(Replica {
             mirror: LocalBoard::new(),
             id: process_id(),
@@ -98,7 +99,7 @@ async fn fetch_snapshot(
     session: &zenoh::Session,
     keys: &Keys,
     endpoint: &str,
-) -> Result<Snapshot, String> {
+) -> Result<Snapshot, NetworkError> {
     let deadline = tokio::time::Instant::now() + Duration::from_secs(5);
     loop {
         if let Ok(replies) = session.get(&keys.snapshot).await {
@@ -106,20 +107,24 @@ async fn fetch_snapshot(
                 return match reply.result() {
                     Ok(sample) => {
                         serde_json::from_slice(&sample.payload().to_bytes()).map_err(|e| {
-                            format!("the whiteboard at {endpoint} sent an unreadable snapshot: {e}")
+                            NetworkError::Refused {
+                                endpoint: endpoint.to_string(),
+                                why: format!("it sent an unreadable snapshot ({e})"),
+                            }
                         })
                     }
-                    Err(refused) => Err(format!(
-                        "the whiteboard at {endpoint} cannot be joined: {}",
-                        String::from_utf8_lossy(&refused.payload().to_bytes())
-                    )),
+                    Err(refused) => Err(NetworkError::Refused {
+                        endpoint: endpoint.to_string(),
+                        why: String::from_utf8_lossy(&refused.payload().to_bytes()).into_owned(),
+                    }),
                 };
             }
         }
         if tokio::time::Instant::now() >= deadline {
-            return Err(format!(
-                "no whiteboard answered at {endpoint} (is a `proclaim run … --listen {endpoint}` running?)"
-            ));
+            return Err(NetworkError::NoBoard {
+                board: None,
+                endpoint: endpoint.to_string(),
+            });
         }
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
