@@ -99,13 +99,6 @@ impl Running {
         })
     }
 
-    /// The top-level machines and the states they are in, by name.
-    pub fn positions(&self) -> Vec<(String, Option<i64>)> {
-        let mut all: Vec<_> = self.top.iter().map(|(m, s)| (m.clone(), *s)).collect();
-        all.sort();
-        all
-    }
-
     /// Stops everything it started.
     pub async fn stop(mut self) {
         self.tasks.abort_all();

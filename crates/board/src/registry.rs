@@ -58,10 +58,6 @@ impl Registry {
         self.modules.insert(decl.name.clone(), decl);
     }
 
-    pub fn unregister(&mut self, name: &str) -> Option<ModuleDecl> {
-        self.modules.remove(name)
-    }
-
     pub fn get(&self, name: &str) -> Option<&ModuleDecl> {
         self.modules.get(name)
     }

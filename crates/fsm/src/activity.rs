@@ -216,18 +216,14 @@ fn action(statement: Statement) -> Action {
     }
 }
 
-/// Functions the interpreter itself provides to activities (see the runner); a call of any
-/// other name is a host function.
-pub const BUILTIN_FUNCTIONS: [&str; 26] = [
+/// Functions the interpreter itself provides to activities (see the runner), beside the
+/// sub-machine controls (`Command::from_function`); a call of any other name is a host
+/// function.
+pub const BUILTIN_FUNCTIONS: [&str; 21] = [
     "post",
     "post_int",
     "postv",
     "post_v",
-    "suspend",
-    "resume",
-    "restart",
-    "start",
-    "stop",
     "say",
     "speech",
     "say_state_name",
@@ -247,8 +243,11 @@ pub const BUILTIN_FUNCTIONS: [&str; 26] = [
     "atan2",
 ];
 
+/// Built in: the functions above, and the sub-machine controls, whose one place is
+/// `control.rs`.
 fn is_builtin(function: &str) -> bool {
     BUILTIN_FUNCTIONS.contains(&function)
+        || crate::control::Command::from_function(function).is_some()
 }
 
 /// Byte offset of the `}` matching the `{` that starts `text`, skipping strings.

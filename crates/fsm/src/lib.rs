@@ -26,7 +26,7 @@ pub use format::{machine_format, MachineFormat};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use lint::{lint, reachable};
 pub use model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
-pub use native::{is_native, parse_machine, to_native, EXTENSION};
+pub use native::{parse_machine, to_native, EXTENSION};
 pub use proclaim_syntax::{FileDiagnostic, Severity};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};

@@ -428,10 +428,3 @@ fn section_name(section: Section) -> &'static str {
         Section::Internal => "internal",
     }
 }
-
-/// Whether a file name is a native machine file.
-pub fn is_native(path: &str) -> bool {
-    std::path::Path::new(path)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(EXTENSION))
-}
