@@ -1622,3 +1622,33 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
     let o = proclaim(&["replay", script.with_extension("jsonl").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
+
+/// Recordings of the built-in behaviours replay as recorded: sub-machines started and stopped,
+/// `timeout`s, the GameController receiver on its socket (outside), variables alone.
+#[test]
+fn the_built_in_behaviours_recorded_replay_the_same() {
+    let dir = std::env::temp_dir().join(format!("proclaim-replays-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for behaviour in ["game_controller", "shootout", "microwave"] {
+        let recording = dir.join(format!("{behaviour}.jsonl"));
+        let run = proclaim(&[
+            "run",
+            behaviour,
+            "--virtual-clock",
+            "--for",
+            "70s",
+            "--record",
+            recording.to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{behaviour}: {}", stderr(&run));
+        let test = proclaim(&["test", behaviour, recording.to_str().unwrap()]);
+        assert_eq!(
+            test.status.code(),
+            Some(0),
+            "{behaviour}: {}{}",
+            stdout(&test),
+            stderr(&test)
+        );
+    }
+}

@@ -18,8 +18,9 @@ use std::fmt;
 use std::time::Duration;
 use tokio::sync::mpsc;
 
-/// A ringlet's place in a run: its round and the machine's place in the schedule.
-type Place = (u64, usize);
+/// Where in a run a message came: the round, the machine's place in the schedule, and 0 before
+/// its ringlet or k + 1 before the ringlet's query k.
+type Place = (u64, usize, usize);
 /// The outside messages to post again, each at the place of the first ringlet that saw it.
 type Outside = Vec<(Place, Recorded)>;
 /// What outside experts answered, atom by atom, in the order they answered.
@@ -223,7 +224,12 @@ async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
         .map(|m| m.machine.name.clone())
         .chain(behaviour.theories.iter().map(|t| t.name.clone()))
         .collect();
-    let (outside, answers) = split_outside(recording, &inside);
+    let machines: Vec<String> = behaviour
+        .machines
+        .iter()
+        .map(|m| m.machine.name.clone())
+        .collect();
+    let (outside, answers) = split_outside(recording, &inside, &machines);
     let mut tasks = tokio::task::JoinSet::new();
     for t in &behaviour.theories {
         let expert =
@@ -242,11 +248,8 @@ async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
     let shared = behaviour.shared_variables();
     let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch, &shared);
     drop(tx);
-    let feed = RecordedFeed::new(recording, outside, epoch);
-    Rounds::new(runners)
-        .fed_by(Box::new(feed))
-        .run(board.clone())
-        .await;
+    let feed = RecordedFeed::new(recording, outside);
+    Rounds::new(runners).fed_by(feed).run(board.clone()).await;
     tasks.abort_all();
     let mut found = Vec::new();
     while let Ok(event) = events.try_recv() {
@@ -255,9 +258,39 @@ async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
     found
 }
 
-/// The outside messages to post again, each with the place of the first ringlet that saw it,
-/// and the outside experts' answers, atom by atom in the order they were given.
-fn split_outside(recording: &Recording, inside: &FxHashSet<String>) -> (Outside, Answers) {
+/// The outside messages to post again, each at its place (the ringlet it came before, or the
+/// query of a ringlet it came before: a message may arrive while a ringlet waits for an
+/// answer), and the outside experts' answers, atom by atom in the order they were given.
+/// `machines` names the schedule's machines in order (a ringlet names its machine by place).
+fn split_outside(
+    recording: &Recording,
+    inside: &FxHashSet<String>,
+    machines: &[String],
+) -> (Outside, Answers) {
+    let ringlets = &recording.ringlets;
+    // The ringlet a sequence number falls in: the last that started before it.
+    let within = |seq: u64| ringlets.partition_point(|r| r.seq < seq).checked_sub(1);
+    // Each ringlet's queries, by sequence number.
+    let mut queries: Vec<Vec<u64>> = vec![Vec::new(); ringlets.len()];
+    for m in recording.messages.iter().filter(|m| m.ty == QUERY_TYPE) {
+        if let Some(i) = within(m.seq) {
+            if machines.get(ringlets[i].machine) == Some(&m.module) {
+                queries[i].push(m.seq);
+            }
+        }
+    }
+    let place_of = |seq: u64| -> Option<Place> {
+        let Some(i) = within(seq) else {
+            return ringlets.first().map(|r| (r.round, r.machine, 0));
+        };
+        let r = &ringlets[i];
+        match queries[i].iter().position(|q| *q > seq) {
+            Some(k) => Some((r.round, r.machine, k + 1)),
+            None => ringlets
+                .get(i + 1)
+                .map(|next| (next.round, next.machine, 0)),
+        }
+    };
     let mut pending: FxHashSet<String> = FxHashSet::default();
     let mut answers: FxHashMap<String, VecDeque<Value>> = FxHashMap::default();
     let mut outside = Vec::new();
@@ -279,10 +312,9 @@ fn split_outside(recording: &Recording, inside: &FxHashSet<String>) -> (Outside,
                 .push_back(m.value.clone());
             continue;
         }
-        let Some(first) = recording.ringlets.iter().find(|r| r.seq >= m.seq) else {
-            continue;
-        };
-        outside.push(((first.round, first.machine), m.clone()));
+        if let Some(place) = place_of(m.seq) {
+            outside.push((place, m.clone()));
+        }
     }
     (outside, answers)
 }
@@ -302,69 +334,62 @@ async fn answer_as_recorded(board: Whiteboard, mut answers: Answers) {
 }
 
 /// Paces the replay by the recording: before each ringlet, the clock goes to the recorded
-/// ringlet's time and the outside messages that came before it are posted.
+/// ringlet's time and the outside messages that came before it are posted; before each query,
+/// those that came before that query.
 struct RecordedFeed {
-    /// The recorded ringlets by place: (round, machine) → time since the epoch.
-    times: Vec<(Place, Duration)>,
+    /// The recorded ringlets by place (round, machine) and their times since the epoch.
+    times: Vec<((u64, usize), Duration)>,
     outside: Outside,
     posted: usize,
     last_round: u64,
-    epoch: tokio::time::Instant,
 }
 
 impl RecordedFeed {
-    fn new(recording: &Recording, outside: Outside, epoch: tokio::time::Instant) -> RecordedFeed {
+    fn new(recording: &Recording, mut outside: Outside) -> RecordedFeed {
         let mut times: Vec<_> = recording
             .ringlets
             .iter()
             .map(|r| ((r.round, r.machine), r.at))
             .collect();
         times.sort_unstable();
-        let mut outside = outside;
         outside.sort_by_key(|(place, m)| (*place, m.seq));
         RecordedFeed {
             last_round: times.last().map_or(0, |((round, _), _)| *round),
             times,
             outside,
             posted: 0,
-            epoch,
+        }
+    }
+
+    /// Posts every outside message whose place is not after `place`.
+    fn post_up_to(&mut self, place: Place, board: &Whiteboard) {
+        while let Some((p, m)) = self.outside.get(self.posted) {
+            if *p > place {
+                break;
+            }
+            board.post(&m.module, &m.ty, m.value.clone());
+            self.posted += 1;
         }
     }
 }
 
 impl Feed for RecordedFeed {
-    fn before<'a>(
-        &'a mut self,
-        ringlet: Ringlet,
-        board: &'a Whiteboard,
-    ) -> proclaim_board::BoxFuture<'a, ()> {
-        Box::pin(async move {
-            let place = (ringlet.round, ringlet.machine);
-            let at = self
-                .times
-                .iter()
-                .take_while(|(p, _)| *p <= place)
-                .last()
-                .map(|(_, at)| *at);
-            if let Some(at) = at {
-                tokio::time::sleep_until(self.epoch + at).await;
-            }
-            while let Some((p, m)) = self.outside.get(self.posted) {
-                if *p > place {
-                    break;
-                }
-                board.post(&m.module, &m.ty, m.value.clone());
-                self.posted += 1;
-            }
-        })
+    fn before(&mut self, ringlet: Ringlet, board: &Whiteboard) -> Option<Duration> {
+        let at = (ringlet.round, ringlet.machine);
+        self.post_up_to((ringlet.round, ringlet.machine, 0), board);
+        self.times
+            .iter()
+            .take_while(|(p, _)| *p <= at)
+            .last()
+            .map(|(_, time)| *time)
     }
 
-    fn after_round<'a>(
-        &'a mut self,
-        round: u64,
-        _: &'a Whiteboard,
-    ) -> proclaim_board::BoxFuture<'a, bool> {
-        Box::pin(async move { round < self.last_round })
+    fn before_query(&mut self, ringlet: Ringlet, nth: usize, board: &Whiteboard) {
+        self.post_up_to((ringlet.round, ringlet.machine, nth + 1), board);
+    }
+
+    fn after_round(&mut self, round: u64) -> bool {
+        round < self.last_round
     }
 }
 

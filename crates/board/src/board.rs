@@ -49,7 +49,7 @@ pub struct Whiteboard {
     transport: Arc<dyn Transport>,
     /// The (module, atom) pairs already warned of asking what nobody answers: a machine asks
     /// at every ring, and one warning says it.
-    unanswered: Arc<std::sync::Mutex<rustc_hash::FxHashSet<(String, String)>>>,
+    unanswered: Arc<parking_lot::Mutex<rustc_hash::FxHashSet<(String, String)>>>,
 }
 
 impl Whiteboard {
@@ -148,7 +148,6 @@ impl Whiteboard {
             let first = self
                 .unanswered
                 .lock()
-                .unwrap_or_else(|e| e.into_inner())
                 .insert((module.to_string(), atom.to_string()));
             if first {
                 tracing::warn!(module, atom, "query for an atom no module answers");

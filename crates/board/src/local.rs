@@ -8,9 +8,10 @@ use crate::snapshot::{Slot, Snapshot, Table};
 use crate::subscribers::Subscribers;
 use crate::transport::{BoxFuture, Stats, Subscription, Transport};
 use crate::value::Value;
+use parking_lot::{Mutex, MutexGuard};
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::{mpsc, Notify};
 use tokio::time::Instant;
@@ -103,9 +104,9 @@ impl LocalBoard {
     }
 
     fn lock(&self) -> MutexGuard<'_, Inner> {
-        // A panic while holding the lock leaves the table consistent (every update is a whole
-        // assignment), so a poisoned lock is still usable.
-        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+        // parking_lot's lock does not poison: a panic elsewhere leaves the table usable, and
+        // every update is a whole assignment, so it is also consistent.
+        self.inner.lock()
     }
 
     /// Posts with a new sequence number. `consumable`: whether a signal may be taken here (a

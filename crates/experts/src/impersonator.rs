@@ -2,9 +2,10 @@
 //! person at a terminal prompt, through the same protocol as any expert.
 
 use crate::script::{Script, When};
+use parking_lot::Mutex;
 use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use rustc_hash::FxHashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};
 use tracing::Instrument;
 
@@ -72,26 +73,14 @@ impl Impersonator {
 
     /// Sets an answer from Rust; posted at once when running (an unprompted proclamation).
     pub fn set(&self, atom: &str, value: bool) {
-        self.answers
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .insert(atom.to_string(), value);
-        if let Some(board) = self
-            .board
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .as_ref()
-        {
+        self.answers.lock().insert(atom.to_string(), value);
+        if let Some(board) = self.board.lock().as_ref() {
             board.post(&self.name, atom, value);
         }
     }
 
     fn current(&self, atom: &str) -> Option<bool> {
-        self.answers
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .get(atom)
-            .copied()
+        self.answers.lock().get(atom).copied()
     }
 
     /// Registers and answers queries until the whiteboard is gone.
@@ -103,7 +92,7 @@ impl Impersonator {
     async fn serve(self, board: Whiteboard) {
         let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
         board.register(self.declaration());
-        *self.board.lock().unwrap_or_else(|e| e.into_inner()) = Some(board.clone());
+        *self.board.lock() = Some(board.clone());
         for step in self.script.steps.iter().filter(|s| s.when == When::Start) {
             self.set(&step.atom, step.value);
         }
@@ -147,10 +136,7 @@ impl Impersonator {
                 .iter()
                 .filter(|s| s.when == When::Step(step))
             {
-                self.answers
-                    .lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .insert(s.atom.clone(), s.value);
+                self.answers.lock().insert(s.atom.clone(), s.value);
             }
             let answer = match self.current(atom) {
                 Some(v) => Some(v),

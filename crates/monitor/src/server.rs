@@ -11,11 +11,12 @@ use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
+use parking_lot::{Mutex, MutexGuard, RwLock};
 use proclaim_board::{Value, Whiteboard};
 use proclaim_runner::{Event, Stepper};
 use serde::{Deserialize, Serialize};
 use std::net::SocketAddr;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::watch;
 
@@ -61,7 +62,7 @@ struct Shared {
     /// Bumped by every event folded in; frame streams wait on it.
     version: watch::Sender<u64>,
     source: Source,
-    access: std::sync::RwLock<Access>,
+    access: RwLock<Access>,
 }
 
 enum Source {
@@ -114,11 +115,7 @@ impl Monitor {
 
     /// Who may change the run from the page from now on.
     pub fn set_access(&self, access: Access) {
-        *self
-            .shared
-            .access
-            .write()
-            .unwrap_or_else(|e| e.into_inner()) = access;
+        *self.shared.access.write() = access;
     }
 
     /// Folds an event of the live run in. Cheap, and never waits on a page.
@@ -132,7 +129,7 @@ impl Monitor {
     pub fn redraw(&self, chart: Chart) {
         self.shared.picture().redraw(&chart);
         {
-            let mut charts = self.shared.charts.lock().unwrap_or_else(|e| e.into_inner());
+            let mut charts = self.shared.charts.lock();
             let mut all: Vec<Chart> = charts.as_ref().clone();
             match all.iter_mut().find(|c| c.name == chart.name) {
                 Some(old) => *old = chart,
@@ -196,10 +193,7 @@ impl Shared {
     }
 
     fn access(&self) -> Access {
-        self.access
-            .read()
-            .unwrap_or_else(|e| e.into_inner())
-            .clone()
+        self.access.read().clone()
     }
 
     /// Why a request that changes the run may not, if it may not.
@@ -229,8 +223,7 @@ impl Shared {
     }
 
     fn picture(&self) -> MutexGuard<'_, Picture> {
-        // Folding an event leaves the picture whole even if a panic interrupted it elsewhere.
-        self.picture.lock().unwrap_or_else(|e| e.into_inner())
+        self.picture.lock()
     }
 
     /// The live frame as JSON text, with the board as it is now.
@@ -294,11 +287,7 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         Source::Live { stepper, .. } => ("live", None, stepper.is_some()),
         Source::Replay(timeline) => ("replay", Some(timeline.times()), false),
     };
-    let charts = shared
-        .charts
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .clone();
+    let charts = shared.charts.lock().clone();
     Json(Model {
         name: &shared.name,
         mode,

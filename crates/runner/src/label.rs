@@ -4,6 +4,7 @@
 
 use crate::eval::Env;
 use crate::event::Answerer;
+use crate::rounds::QueryHook;
 use crate::variables::Scope;
 use proclaim_board::QueryOutcome;
 use proclaim_fsm::{BinOp, Expr, Label, UnOp, TIME_TESTS};
@@ -18,6 +19,10 @@ pub(crate) struct Context<'a> {
     pub module: &'a str,
     pub answer_timeout: Duration,
     pub answered: &'a mut Vec<(String, bool, Answerer)>,
+    /// Under a feed: told before each query.
+    pub hook: Option<&'a QueryHook>,
+    /// Queries this ringlet asked so far.
+    pub queries: &'a mut usize,
 }
 
 /// Proves a label; `&&` and `||` stop at the first answer that decides them, as the original
@@ -50,6 +55,15 @@ pub(crate) fn prove<'a>(
 
 async fn ask(atom: &str, cx: &mut Context<'_>) -> bool {
     let board = cx.env.board;
+    if let Some(hook) = cx.hook {
+        // Only a query an expert answers is posted (and recorded); a replay counts those.
+        if !board.registry().answerers(atom).is_empty() {
+            hook.feed
+                .lock()
+                .before_query(hook.ringlet, *cx.queries, board);
+            *cx.queries += 1;
+        }
+    }
     let outcome = board.query(cx.module, atom, cx.answer_timeout).await;
     let (value, by) = match &outcome {
         QueryOutcome::Answered { value, by, .. } => (*value, Answerer::Expert(by.to_string())),

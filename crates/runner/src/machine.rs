@@ -5,7 +5,7 @@ use crate::eval::Env;
 use crate::event::{Answerer, Event, Reporter};
 use crate::host::Hosts;
 use crate::label::{dependencies, next_time_test, prove, reads_globals, Context};
-use crate::rounds::RoundCounter;
+use crate::rounds::{QueryHook, RoundCounter};
 use crate::seen::Seen;
 use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
@@ -213,6 +213,10 @@ pub(crate) struct Run<'r> {
     pub(crate) asked: Vec<(String, bool)>,
     /// The count of changes of globals when the last ringlet took its snapshot.
     pub(crate) globals_seen: u64,
+    /// Under a feed (a replay): told before each query this ringlet asks.
+    pub(crate) query_hook: Option<QueryHook>,
+    /// Queries asked of experts in this ringlet so far.
+    queries: usize,
     /// What the current state's labels read (messages), and whether they read globals.
     reads: Option<(StateId, Vec<String>, bool)>,
     /// On a task of its own: a subscription to what the current state's labels read.
@@ -259,6 +263,8 @@ impl<'r> Run<'r> {
             seen: Seen::default(),
             asked: Vec::new(),
             globals_seen: 0,
+            query_hook: None,
+            queries: 0,
             reads: None,
             watch: None,
             last_step: 0,
@@ -376,15 +382,24 @@ impl<'r> Run<'r> {
         self.seen.take();
         self.globals_seen = *self.globals_changed.borrow();
         self.asked.clear();
+        self.queries = 0;
         let mut fired = None;
         for t in machine.outgoing(self.current) {
             let mut answered = Vec::new();
             let proved = {
                 let mut cx = Context {
-                    env: self.env(),
+                    env: Env {
+                        board: &self.board,
+                        seen: &self.seen,
+                        locals: &self.locals,
+                        shared: &self.shared,
+                        in_state: self.now().saturating_duration_since(self.entered_at),
+                    },
                     module: &self.name,
                     answer_timeout: self.runner.options.answer_timeout,
                     answered: &mut answered,
+                    hook: self.query_hook.as_ref(),
+                    queries: &mut self.queries,
                 };
                 prove(&t.label, &mut cx).await
             };

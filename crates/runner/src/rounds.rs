@@ -10,7 +10,7 @@
 
 use crate::machine::{MachineRunner, Ring, Run, Status};
 use crate::step::Stepper;
-use proclaim_board::{BoxFuture, Message, Pattern, Snapshot, Subscription, Whiteboard};
+use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
@@ -34,7 +34,7 @@ impl RoundCounter {
 }
 
 /// A ringlet about to start: the round, the machine's place in the schedule, the board's
-/// highest sequence number and the time since the epoch. A message with a sequence number up to
+/// highest sequence number and its round's moment (time since the epoch). A message with a sequence number up to
 /// `seq` was on the board before the ringlet began; a recording of these is what lets a replay
 /// post every outside message before the same ringlet again.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -47,13 +47,28 @@ pub struct Ringlet {
 }
 
 /// What paces a schedule from outside instead of its own waiting: a replay of a recorded run,
-/// which posts the recorded outside messages before the ringlets they came before and advances
-/// the (virtual) clock to each ringlet's recorded time.
+/// which posts the recorded outside messages where they came the first time (before a ringlet,
+/// or in it before one of its queries) and moves the (virtual) clock to each ringlet's time.
 pub trait Feed: Send {
-    /// Called before each ringlet of a running machine.
-    fn before<'a>(&'a mut self, ringlet: Ringlet, board: &'a Whiteboard) -> BoxFuture<'a, ()>;
-    /// Called when a round is over (before the next starts); false ends the run.
-    fn after_round<'a>(&'a mut self, round: u64, board: &'a Whiteboard) -> BoxFuture<'a, bool>;
+    /// Before each ringlet of a running machine: posts what came before it; the time since the
+    /// epoch to wait for before it starts.
+    fn before(&mut self, ringlet: Ringlet, board: &Whiteboard) -> Option<Duration>;
+    /// Before the `nth` query (from 0) that a ringlet asks an expert: posts what came before it.
+    fn before_query(&mut self, ringlet: Ringlet, nth: usize, board: &Whiteboard) {
+        let _ = (ringlet, nth, board);
+    }
+    /// When a round is over (before the next starts); false ends the run.
+    fn after_round(&mut self, round: u64) -> bool;
+}
+
+/// A feed shared by the schedule and the ringlet it runs (whose queries it hears of).
+pub(crate) type SharedFeed = Arc<parking_lot::Mutex<dyn Feed>>;
+
+/// What a ringlet under a feed tells it of its queries.
+#[derive(Clone)]
+pub(crate) struct QueryHook {
+    pub feed: SharedFeed,
+    pub ringlet: Ringlet,
 }
 
 /// Why a schedule's run ended.
@@ -72,7 +87,7 @@ pub struct Rounds {
     round: RoundCounter,
     stepper: Option<Stepper>,
     ticks: Option<mpsc::UnboundedSender<Ringlet>>,
-    feed: Option<Box<dyn Feed>>,
+    feed: Option<SharedFeed>,
 }
 
 impl Rounds {
@@ -95,8 +110,8 @@ impl Rounds {
     }
 
     /// Paced by `feed` (a replay) instead of waiting for news.
-    pub fn fed_by(mut self, feed: Box<dyn Feed>) -> Rounds {
-        self.feed = Some(feed);
+    pub fn fed_by(mut self, feed: impl Feed + 'static) -> Rounds {
+        self.feed = Some(Arc::new(parking_lot::Mutex::new(feed)));
         self
     }
 
@@ -118,7 +133,7 @@ impl Rounds {
         tracing::Instrument::instrument(self.serve(board), span).await
     }
 
-    async fn serve(mut self, board: Whiteboard) -> RoundsEnd {
+    async fn serve(self, board: Whiteboard) -> RoundsEnd {
         let mut runs: Vec<Run<'_>> = self
             .machines
             .iter()
@@ -140,7 +155,7 @@ impl Rounds {
             let round = self.round.advance();
             // One moment for the whole round: machines entered in one round time their
             // `timeout`s from the same instant, so they come due in the same round.
-            let round_time = tokio::time::Instant::now();
+            let mut round_time = tokio::time::Instant::now();
             fresh.fill(false);
             if took(&mut commands) || commanded {
                 obey(&board, &mut runs, &over, None);
@@ -157,10 +172,19 @@ impl Rounds {
                         round,
                         machine,
                         seq: board.snapshot().seq,
-                        at: run.reporter.now(),
+                        at: round_time.saturating_duration_since(run.reporter.epoch),
                     };
-                    if let Some(feed) = self.feed.as_mut() {
-                        feed.before(ringlet, &board).await;
+                    if let Some(feed) = &self.feed {
+                        let wait = feed.lock().before(ringlet, &board);
+                        // The recorded round's moment becomes this round's.
+                        if let Some(at) = wait {
+                            round_time = run.reporter.epoch + at;
+                            tokio::time::sleep_until(round_time).await;
+                        }
+                        run.query_hook = Some(QueryHook {
+                            feed: feed.clone(),
+                            ringlet,
+                        });
                     }
                     if let Some(ticks) = &self.ticks {
                         // Posted by the feed count as before the ringlet too.
@@ -198,8 +222,8 @@ impl Rounds {
             if over.iter().all(|o| *o) {
                 return RoundsEnd::AllOver;
             }
-            if let Some(feed) = self.feed.as_mut() {
-                if !feed.after_round(round, &board).await {
+            if let Some(feed) = &self.feed {
+                if !feed.lock().after_round(round) {
                     return RoundsEnd::FeedDone;
                 }
                 continue;

@@ -2,7 +2,8 @@
 //! until the stepper's count passes the last ring it took, and reports when the ring is done.
 //! A stepper may also let the machines run freely and be paused later (the monitor's controls).
 
-use std::sync::{Arc, Mutex};
+use parking_lot::Mutex;
+use std::sync::Arc;
 use tokio::sync::{watch, Notify};
 
 /// The count of steps, and whether machines ring freely meanwhile.
@@ -92,7 +93,7 @@ impl Stepper {
         loop {
             let notified = self.finished.notified();
             let busy: Vec<String> = {
-                let done = self.done.lock().unwrap_or_else(|e| e.into_inner());
+                let done = self.done.lock();
                 machines
                     .iter()
                     .filter(|m| !done.iter().any(|(n, s)| n == *m && *s >= step))
@@ -125,7 +126,7 @@ impl Stepper {
 
     pub(crate) fn ring_done(&self, machine: &str, step: u64) {
         {
-            let mut done = self.done.lock().unwrap_or_else(|e| e.into_inner());
+            let mut done = self.done.lock();
             match done.iter_mut().find(|(n, _)| n == machine) {
                 Some(entry) => entry.1 = step,
                 None => done.push((machine.to_string(), step)),

@@ -5,10 +5,11 @@
 //! gufsm kept the three in one table per machine vector (`M<id>$$name`, `E$$name`, `name`);
 //! lookups go in that order: own, extern, global.
 
+use parking_lot::RwLock;
 use proclaim_board::Value;
 use proclaim_fsm::{Machine, Statement, VarType};
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::sync::{Arc, RwLock};
+use std::sync::Arc;
 use tokio::sync::watch;
 
 /// What the machines of one behaviour share: globals and the names bound to the whiteboard.
@@ -46,7 +47,7 @@ impl Shared {
     }
 
     fn add_externs(&self, machine: &Machine) {
-        let mut externs = self.externs.write().unwrap_or_else(|e| e.into_inner());
+        let mut externs = self.externs.write();
         for s in machine.statements() {
             if let Statement::Extern { name, .. } = s {
                 externs.insert(name.clone());
@@ -56,8 +57,8 @@ impl Shared {
 
     fn add_globals(&self, machine: &Machine) {
         let own = Locals::declared(machine);
-        let externs = self.externs.read().unwrap_or_else(|e| e.into_inner());
-        let mut globals = self.globals.write().unwrap_or_else(|e| e.into_inner());
+        let externs = self.externs.read();
+        let mut globals = self.globals.write();
         for s in machine.statements() {
             if let Statement::Assign { name, .. } = s {
                 if !own.types.contains_key(name) && !externs.contains(name) {
@@ -68,31 +69,21 @@ impl Shared {
     }
 
     pub fn is_extern(&self, name: &str) -> bool {
-        self.externs
-            .read()
-            .unwrap_or_else(|e| e.into_inner())
-            .contains(name)
+        self.externs.read().contains(name)
     }
 
     pub fn global(&self, name: &str) -> Option<Value> {
-        self.globals
-            .read()
-            .unwrap_or_else(|e| e.into_inner())
-            .get(name)
-            .cloned()
+        self.globals.read().get(name).cloned()
     }
 
     pub fn is_global(&self, name: &str) -> bool {
-        self.globals
-            .read()
-            .unwrap_or_else(|e| e.into_inner())
-            .contains_key(name)
+        self.globals.read().contains_key(name)
     }
 
     /// Sets a global (creating it); machines waiting on globals wake when the value changed.
     pub fn set_global(&self, name: &str, value: Value) {
         let changed = {
-            let mut globals = self.globals.write().unwrap_or_else(|e| e.into_inner());
+            let mut globals = self.globals.write();
             match globals.get_mut(name) {
                 Some(old) if *old == value => false,
                 Some(old) => {

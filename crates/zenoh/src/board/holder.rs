@@ -72,7 +72,7 @@ impl Holder {
     }
 
     pub(super) fn owner(&self, ty: &str) -> Option<String> {
-        lock(&self.owners).get(ty).cloned()
+        self.owners.lock().get(ty).cloned()
     }
 
     pub(super) fn post_here(&self, module: &str, ty: &str, value: Value) -> Message {
@@ -80,7 +80,7 @@ impl Holder {
         let owner = if signal { self.owner(ty) } else { None };
         // Unowned signals wait here until a process declares the type.
         let consumable = owner.as_ref().is_none_or(|o| *o == self.id);
-        let down = lock(&self.down);
+        let down = self.down.lock();
         let message = self.core.post_as(module, ty, value, consumable);
         down.send(Down::Posted {
             message: WireMessage::from(&message),
@@ -90,11 +90,12 @@ impl Holder {
     }
 
     pub(super) fn declare_for(&self, ty: &str, kind: Kind, process: &str) {
-        let down = lock(&self.down);
+        let down = self.down.lock();
         let was = self.core.kind(ty);
         if kind == Kind::Signal {
             let owner = {
-                lock(&self.owners)
+                self.owners
+                    .lock()
                     .entry(ty.to_string())
                     .or_insert_with(|| process.to_string())
                     .clone()
@@ -136,7 +137,7 @@ impl Holder {
 
     pub(super) fn snapshot(&self) -> Snapshot {
         let (kinds, messages) = self.core.snapshot().contents();
-        let owners = lock(&self.owners);
+        let owners = self.owners.lock();
         Snapshot {
             kinds: kinds.into_iter().map(|(t, k)| (t, k.into())).collect(),
             messages: messages.iter().map(WireMessage::from).collect(),
@@ -167,7 +168,7 @@ impl Transport for Holder {
 
     fn register(&self, decl: ModuleDecl) {
         let wire = WireDecl::from(&decl);
-        let down = lock(&self.down);
+        let down = self.down.lock();
         self.core.register(decl);
         down.send(Down::Registered(wire));
     }

@@ -8,13 +8,14 @@
 use crate::error::NetworkError;
 use crate::session::{open, Role, Settings};
 use crate::wire::{Down, Snapshot, Up, WireDecl, WireKind, WireMessage, WireValue};
+use parking_lot::Mutex;
 use proclaim_board::{
     BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Stats, Subscription,
     Transport, Value, Whiteboard,
 };
 use rustc_hash::FxHashMap;
 use std::marker::PhantomData;
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::qos::CongestionControl;
@@ -127,10 +128,6 @@ fn process_id() -> String {
 
 fn encode<T: serde::Serialize>(value: &T) -> Vec<u8> {
     serde_json::to_vec(value).unwrap_or_default()
-}
-
-fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
-    mutex.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Runs `handle` on every message arriving on `key`, on Zenoh's receiving thread: applying a

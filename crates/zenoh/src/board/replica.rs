@@ -61,14 +61,14 @@ impl Replica {
         for d in snapshot.registry {
             mirror.register(d.into());
         }
-        let mut early = lock(&self.early);
+        let mut early = self.early.lock();
         for down in early.take().unwrap_or_default() {
             self.apply(down);
         }
     }
 
     fn receive(&self, down: Down) {
-        let mut early = lock(&self.early);
+        let mut early = self.early.lock();
         match early.as_mut() {
             Some(waiting) => waiting.push(down),
             None => {
