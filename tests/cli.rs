@@ -1311,7 +1311,10 @@ fn generated(family: &str, size: u64) -> std::path::PathBuf {
 
 #[test]
 fn prove_prints_an_undecided_answer_and_exits_3() {
-    let ladder = temp_file("crossed-ladder.dl", crate::crossed_ladder().as_bytes());
+    let ladder = temp_file(
+        "crossed-ladder.dl",
+        proclaim_gen::crossed_ladder().as_bytes(),
+    );
     let path = ladder.to_str().unwrap();
     check(
         &["prove", path, "t0", "~t0", "--budget", "1000"],
@@ -1342,7 +1345,10 @@ fn prove_prints_an_undecided_answer_and_exits_3() {
 
 #[test]
 fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
-    let ladder = temp_file("crossed-ladder.dl", crate::crossed_ladder().as_bytes());
+    let ladder = temp_file(
+        "crossed-ladder.dl",
+        proclaim_gen::crossed_ladder().as_bytes(),
+    );
     let o = proclaim(&["check", ladder.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0));
     assert!(

@@ -1,18 +1,13 @@
-//! The one integration-test binary: one module per area.
+//! The one integration-test binary of the command line and what spans crates: the binary, the
+//! monitor in a browser, behaviours run whole, the whiteboard in and across processes, the
+//! shipped theories and the property tests. Each library crate tests itself beside it.
 
-mod activities;
 mod behaviours;
 mod cli;
-mod experts;
-mod gamecontroller;
-mod machines;
 mod monitor;
 #[cfg(feature = "zenoh")]
 mod network;
 mod properties;
-mod reasoner;
-mod runner;
-mod syntax;
 mod theories;
 mod whiteboard;
 
@@ -33,17 +28,4 @@ pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf
         std::fs::write(dir.join(name), text).unwrap();
     }
     dir
-}
-
-/// A theory only a search decides: ladder(6) of `benchmarks.md`, whose layers alone would be
-/// decided without one, with one read across them (`t2` attacked from `t0`), so its 24 goals
-/// are searched (`t0` is proved, after about 110,000 steps).
-#[allow(dead_code)]
-pub fn crossed_ladder() -> String {
-    let mut text = Vec::new();
-    proclaim_gen::Family::parse("ladder", &[6])
-        .unwrap()
-        .write(&mut text, proclaim_gen::Format::Dl)
-        .unwrap();
-    String::from_utf8(text).unwrap() + "x: t0 => ~t2.\n"
 }

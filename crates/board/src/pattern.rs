@@ -36,3 +36,31 @@ fn glob(pattern: &[u8], text: &[u8]) -> bool {
         Some((&c, rest)) => text.first() == Some(&c) && glob(rest, &text[1..]),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Pattern;
+
+    #[test]
+    fn patterns_match_what_they_name() {
+        for (pattern, ty, matches) in [
+            ("*", "anything", true),
+            ("", "anything", true),
+            ("*Received", "readyReceived", true),
+            ("*Received", "ReceivedNot", false),
+            ("UDPsays*", "UDPsaysBlueKickOff", true),
+            ("a*b*c", "axxbyyc", true),
+            ("a*b*c", "axxbyy", false),
+            ("doorOpen", "doorOpen", true),
+            ("doorOpen", "doorOpened", false),
+        ] {
+            assert_eq!(
+                Pattern::parse(pattern).matches(ty),
+                matches,
+                "{pattern} ~ {ty}"
+            );
+        }
+        let any = Pattern::Any(vec!["a".into(), "b".into()]);
+        assert!(any.matches("b") && !any.matches("c"));
+    }
+}

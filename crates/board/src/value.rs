@@ -114,3 +114,48 @@ impl From<String> for Value {
         Value::Str(s)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Value;
+
+    /// `check(typed, truth)`: a value as typed at a terminal, and its truth by gufsm's rule.
+    fn check(typed: &str, truth: bool) {
+        assert_eq!(Value::parse(typed).truthy(), truth, "{typed:?}");
+    }
+
+    #[test]
+    fn truthiness_as_gufsm_had_it() {
+        for (typed, truth) in [
+            ("true", true),
+            ("false", false),
+            ("1", true),
+            ("0", false),
+            ("-1", true),
+            ("0.0", false),
+            ("2.5", true),
+            ("yes", true),
+            ("on", true),
+            ("no", false),
+            ("No", false),
+            ("off", false),
+            ("OFF", false),
+            ("-x", false),
+            ("", false),
+            ("\"ball\"", true),
+        ] {
+            check(typed, truth);
+        }
+        assert!(!Value::List(Vec::new()).truthy());
+        assert!(Value::Bytes(vec![0]).truthy());
+    }
+
+    #[test]
+    fn typed_values_read_as_their_kind() {
+        assert_eq!(Value::parse(" 12 "), Value::Int(12));
+        assert_eq!(Value::parse("1.5"), Value::Float(1.5));
+        assert_eq!(Value::parse("\"kick 2\""), Value::Str("kick 2".into()));
+        assert_eq!(Value::parse("true").as_f64(), Some(1.0));
+        assert_eq!(Value::Str("3".into()).as_f64(), Some(3.0));
+    }
+}

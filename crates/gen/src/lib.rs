@@ -585,6 +585,16 @@ impl<W: Write> Writer<'_, W> {
     }
 }
 
+/// A theory only a search decides: ladder(6), whose layers alone would be decided without one,
+/// with one rule read across them (`t2` attacked from `t0`), so its 24 goals are searched (`t0`
+/// is proved, after about 110,000 steps). For tests of the search and its budget.
+pub fn crossed_ladder() -> String {
+    let mut text = Vec::new();
+    // Writing to a vector cannot fail.
+    let _ = Family::Ladder(6).write(&mut text, Format::Dl);
+    String::from_utf8_lossy(&text).into_owned() + "x: t0 => ~t2.\n"
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

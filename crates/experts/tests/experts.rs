@@ -14,7 +14,7 @@ use std::time::Duration;
 
 fn microwave() -> proclaim_cdl::Theory {
     let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("theories/microwave.dl"),
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../theories/microwave.dl"),
     )
     .unwrap();
     load(&text, Language::Dl).unwrap()
@@ -316,7 +316,7 @@ async fn malformed_and_foreign_packets_are_counted_and_ignored() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_real_capture_over_udp() {
-    let Some(dir) = crate::shared_dir() else {
+    let Some(dir) = shared_dir() else {
         eprintln!("skipped: ../shared/corpus is absent");
         return;
     };
@@ -475,7 +475,8 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
 /// A crossed ladder of attack cycles whose `t0` a budget of 1,000 steps leaves undecided (it
 /// is true), and that budget.
 fn ladder_and_a_tight_budget() -> (proclaim_cdl::Theory, proclaim_cdl::SearchLimits) {
-    let theory = proclaim_cdl::load(&crate::crossed_ladder(), proclaim_cdl::Language::Dl).unwrap();
+    let theory =
+        proclaim_cdl::load(&proclaim_gen::crossed_ladder(), proclaim_cdl::Language::Dl).unwrap();
     let tight = proclaim_cdl::SearchLimits {
         steps: 1000,
         ..Default::default()
@@ -524,4 +525,10 @@ async fn an_undecided_answer_is_marked_on_the_board_before_it_is_posted() {
         board.truth(&proclaim_board::undecided_type("t0")),
         Some(true)
     );
+}
+
+/// Where the shared corpus and specs live, when present beside the project.
+fn shared_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+    dir.is_dir().then_some(dir)
 }

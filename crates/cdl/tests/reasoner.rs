@@ -272,7 +272,7 @@ fn family(name: &str, size: u64) -> proclaim_cdl::Theory {
 
 #[test]
 fn a_search_past_its_budget_is_undecided_and_says_where() {
-    let theory = load(&crate::crossed_ladder(), Language::Dl).unwrap();
+    let theory = load(&proclaim_gen::crossed_ladder(), Language::Dl).unwrap();
     let t0 = theory.lit("t0").unwrap();
     let not_t0 = theory.lit("~t0").unwrap();
     let tight = proclaim_cdl::SearchLimits {

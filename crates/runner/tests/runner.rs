@@ -35,7 +35,7 @@ async fn entered(
 
 #[tokio::test(start_paused = true)]
 async fn the_seed_papers_game_controller_plays_a_game() {
-    let Some(dir) = crate::shared_dir() else {
+    let Some(dir) = shared_dir() else {
         eprintln!("skipped: ../shared/corpus is absent");
         return;
     };
@@ -337,4 +337,10 @@ async fn halt_on_timeout_stops_the_machine_and_says_why() {
         ]
     );
     assert_eq!(board.truth("MIsRunning"), Some(false));
+}
+
+/// Where the shared corpus and specs live, when present beside the project.
+fn shared_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+    dir.is_dir().then_some(dir)
 }

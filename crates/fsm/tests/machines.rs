@@ -201,7 +201,7 @@ fn what_does_nothing_is_said() {
 }
 
 fn corpus() -> Option<std::path::PathBuf> {
-    Some(crate::shared_dir()?.join("corpus/mipal"))
+    Some(shared_dir()?.join("corpus/mipal"))
 }
 
 #[test]
@@ -542,4 +542,10 @@ fn a_machine_as_dot() {
 }
 "#
     );
+}
+
+/// Where the shared corpus and specs live, when present beside the project.
+fn shared_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+    dir.is_dir().then_some(dir)
 }
