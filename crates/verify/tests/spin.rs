@@ -1,0 +1,190 @@
+//! SPIN against the checker: each example behaviour's Promela (`proclaim_verify::to_promela`)
+//! compiled and searched by SPIN, one `pan -N` run per property, and SPIN's verdict compared
+//! with `verify`'s. Needs `spin` and `gcc` on PATH: skipped without them, failed without them
+//! when `CI` is set.
+
+use proclaim_behaviour::{load, Folder};
+use proclaim_verify::{to_promela, verify, Options, PropertyKind, PropertySource, Verdict};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A fresh temporary folder for one case.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("proclaim-spin-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// Whether `spin` and `gcc` run; without them the test is skipped, unless `CI` is set.
+fn tools_present() -> bool {
+    let runs = |tool: &str, flag: &str| {
+        Command::new(tool)
+            .arg(flag)
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    let present = runs("spin", "-V") && runs("gcc", "--version");
+    if !present {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "spin and gcc must be installed on CI (.ci/run installs Debian's spin)"
+        );
+        eprintln!("skipped: spin or gcc is not on PATH");
+    }
+    present
+}
+
+fn property(kind: PropertyKind, expression: &str) -> PropertySource {
+    PropertySource {
+        name: format!("{} {expression}", kind.word()),
+        kind,
+        expression: expression.into(),
+    }
+}
+
+fn run(dir: &Path, program: &str, args: &[&str]) -> String {
+    let out = Command::new(program)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{program}: {e}"));
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "{program} {args:?} in {dir:?}:\n{text}"
+    );
+    text
+}
+
+/// Checks `properties` of the behaviour in `behaviour_dir` with both checkers, SPIN in
+/// `work`; returns the verdicts (equal in both).
+fn both(case: &str, behaviour_dir: &Path, properties: &[PropertySource]) -> Vec<Verdict> {
+    let behaviour = load(case, Arc::new(Folder::new(behaviour_dir)))
+        .unwrap_or_else(|e| panic!("{case} loads: {e:#?}"));
+    let report = verify(&behaviour, properties, Options::default()).expect("verifies");
+    assert!(
+        report.stats.complete,
+        "{case}: the checker explored everything"
+    );
+    let promela = to_promela(&behaviour, properties, Options::default()).expect("emits");
+    assert!(promela.values_complete, "{case}");
+    let work = scratch(case);
+    std::fs::write(work.join("model.pml"), &promela.text).expect("write");
+    run(&work, "spin", &["-a", "model.pml"]);
+    run(&work, "gcc", &["-O2", "-DSAFETY", "-o", "pan", "pan.c"]);
+    let mut verdicts = Vec::new();
+    for (claim, outcome) in promela.claims.iter().zip(&report.properties) {
+        assert_eq!(claim.property, outcome.name);
+        let out = run(&work, "./pan", &["-N", &claim.name, "-m1000000"]);
+        // Under -DSAFETY the claim is checked as an assertion: `assertion violated !( !( !(hit0)))`;
+        // any other assertion is the model's own (a value beyond those the checker numbered).
+        let violation = out.lines().find(|l| l.contains("assertion violated"));
+        let violated = match violation {
+            Some(line) => {
+                assert!(
+                    line.contains(&format!("(hit{})", &claim.name[1..])),
+                    "{case}: SPIN met a value the checker never numbered:\n{out}"
+                );
+                true
+            }
+            None => false,
+        };
+        let errors: usize = out
+            .split("errors: ")
+            .nth(1)
+            .and_then(|rest| rest.split_whitespace().next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{case}: pan's output has no error count:\n{out}"));
+        assert_eq!(
+            errors > 0,
+            violated,
+            "{case}: an error that is no violation:\n{out}"
+        );
+        let complete = !out.contains("max search depth too small");
+        let spin = claim.verdict(violated, complete);
+        assert_eq!(
+            spin, outcome.verdict,
+            "{case}, {}: SPIN says {spin:?}, the checker {:?}\n{out}",
+            outcome.name, outcome.verdict
+        );
+        verdicts.push(spin);
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    verdicts
+}
+
+/// The microwave's folder with `machine` as its machine and the manifest's own property.
+fn microwave(case: &str, machine: &str) -> PathBuf {
+    let dir = scratch(&format!("{case}-behaviour"));
+    let source = repo().join("machines/microwave");
+    let manifest = std::fs::read_to_string(source.join("behaviour.toml"))
+        .expect("manifest")
+        .replace("../../theories/", "");
+    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    std::fs::write(dir.join("Microwave.machine"), machine).expect("write");
+    std::fs::copy(source.join("kitchen.script"), dir.join("kitchen.script")).expect("copy");
+    std::fs::copy(
+        repo().join("theories/microwave.dl"),
+        dir.join("microwave.dl"),
+    )
+    .expect("copy");
+    dir
+}
+
+#[test]
+fn spin_agrees_with_the_checker_on_every_example() {
+    if !tools_present() {
+        return;
+    }
+    let original = std::fs::read_to_string(repo().join("machines/microwave/Microwave.machine"))
+        .expect("machine");
+    let microwave_dir = repo().join("machines/microwave");
+    let behaviour = load("microwave", Arc::new(Folder::new(&microwave_dir))).expect("loads");
+    let interlock = proclaim_verify::manifest_properties(&behaviour);
+    assert_eq!(
+        interlock.len(),
+        1,
+        "the manifest declares the door interlock"
+    );
+    assert_eq!(
+        both("microwave", &microwave_dir, &interlock),
+        [Verdict::Holds]
+    );
+
+    // The magnetron switched off on entering IDLE, a ringlet too late.
+    let late = original.replace("    exit {\n        Magnetron: off\n    }\n", "");
+    assert_ne!(late, original, "the fault is seeded");
+    let dir = microwave("late-off", &late);
+    assert_eq!(both("late-off", &dir, &interlock), [Verdict::Fails]);
+
+    let press = [
+        property(PropertyKind::Never, "Controller.Stuck"),
+        property(PropertyKind::Reachable, "Controller.Done"),
+    ];
+    let press_dir = repo().join("machines/press");
+    assert_eq!(
+        both("press", &press_dir, &press),
+        [Verdict::Holds, Verdict::Holds]
+    );
+
+    // A sensor that never corrects `low`: the press jams and is never done.
+    let dir = scratch("jammed-behaviour");
+    for file in ["behaviour.toml", "Controller.machine", "Plate.machine"] {
+        std::fs::copy(press_dir.join(file), dir.join(file)).expect("copy");
+    }
+    let sensor = std::fs::read_to_string(press_dir.join("Sensor.machine")).expect("sensor");
+    let broken = sensor.replace("low = 0;", "");
+    assert_ne!(broken, sensor, "the fault is seeded");
+    std::fs::write(dir.join("Sensor.machine"), broken).expect("write");
+    assert_eq!(
+        both("jammed", &dir, &press),
+        [Verdict::Fails, Verdict::Fails]
+    );
+}
