@@ -188,3 +188,83 @@ fn spin_agrees_with_the_checker_on_every_example() {
         [Verdict::Fails, Verdict::Fails]
     );
 }
+
+/// The bench's `odometer N K` (`benches/verify.rs`): N machines, one digit each of a base-K
+/// counter, the first also firing on a free button.
+fn odometer(n: usize, k: usize) -> PathBuf {
+    let dir = scratch(&format!("odometer-{n}-{k}-behaviour"));
+    let mut manifest = String::new();
+    for i in 0..n {
+        let (step, label) = match i {
+            0 => ("1".to_string(), "button && g0 == 0"),
+            _ => (format!("(g{} == 0)", i - 1), "FALSE"),
+        };
+        let machine = format!(
+            "machine D{i}\nstate RUN {{\n  internal {{ g{i} = (g{i} + {step}) % {k}; }}\n  when {label} -> RUN\n}}\n"
+        );
+        std::fs::write(dir.join(format!("D{i}.machine")), machine).expect("write");
+        manifest.push_str(&format!("[[machine]]\nfile = \"D{i}.machine\"\n"));
+    }
+    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    dir
+}
+
+/// States per second of `verify` and of SPIN on the same model, the odometer at three sizes:
+/// `cargo test --release -p proclaim-verify --test spin -- --ignored --nocapture`. SPIN's
+/// figures: `spin -a` with gcc apart from `pan`'s search; its states include those between a
+/// step's parts (see `promela.rs`), so they are more than the checker's.
+#[test]
+#[ignore = "a measurement: run it in release with --ignored --nocapture"]
+fn odometer_states_per_second_of_verify_and_spin() {
+    if !tools_present() {
+        return;
+    }
+    for (n, k) in [(2, 30), (3, 20), (4, 12)] {
+        let dir = odometer(n, k);
+        let case = format!("odometer {n} {k}");
+        let behaviour = load(&case, Arc::new(Folder::new(&dir))).expect("loads");
+        let property = [property(PropertyKind::Never, &format!("g0 >= {k}"))];
+        let started = std::time::Instant::now();
+        let report = verify(&behaviour, &property, Options::default()).expect("verifies");
+        let verify_seconds = started.elapsed().as_secs_f64();
+        let started = std::time::Instant::now();
+        let promela = to_promela(&behaviour, &property, Options::default()).expect("emits");
+        let emit_seconds = started.elapsed().as_secs_f64();
+        let work = scratch(&format!("odometer-{n}-{k}"));
+        std::fs::write(work.join("model.pml"), &promela.text).expect("write");
+        let started = std::time::Instant::now();
+        run(&work, "spin", &["-a", "model.pml"]);
+        run(&work, "gcc", &["-O2", "-DSAFETY", "-o", "pan", "pan.c"]);
+        let compile_seconds = started.elapsed().as_secs_f64();
+        let started = std::time::Instant::now();
+        let out = run(&work, "./pan", &["-m20000000", "-w24"]);
+        let pan_seconds = started.elapsed().as_secs_f64();
+        assert!(!out.contains("max search depth too small"), "{out}");
+        assert!(!out.contains("assertion violated"), "{out}");
+        let spin_states: f64 = out
+            .lines()
+            .find(|l| l.contains("states, stored"))
+            .and_then(|l| l.split_whitespace().next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("no state count:\n{out}"));
+        // pan's own clock: its search without allocating the stack and the hash table.
+        let pan_search: String = out
+            .lines()
+            .find_map(|l| l.strip_prefix("pan: elapsed time "))
+            .unwrap_or("?")
+            .to_string();
+        assert_eq!(report.properties[0].verdict, Verdict::Holds);
+        let states = report.stats.states as f64;
+        println!(
+            "{case}: verify {states} states in {verify_seconds:.3} s ({:.0} states/s); \
+             SPIN: emit {emit_seconds:.3} s (includes the checker's numbering pass), \
+             spin -a + gcc {compile_seconds:.2} s, pan {spin_states} states in {pan_seconds:.3} s \
+             ({:.0} states/s, {:.0} checker states/s; pan's own clock: {pan_search})",
+            states / verify_seconds,
+            spin_states / pan_seconds,
+            states / pan_seconds,
+        );
+        let _ = std::fs::remove_dir_all(&work);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
