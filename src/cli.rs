@@ -31,6 +31,13 @@ pub enum LogFormat {
     Json,
 }
 
+/// A model checker's language `proclaim verify --emit` writes the model in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EmitFormat {
+    /// Promela, for SPIN: one `ltl` claim per property (`pan -N p<i>`)
+    Promela,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum AlgArg {
     Mu,
@@ -280,6 +287,13 @@ pub enum Command {
         /// Write the first counterexample as an impersonator script for `run --script FILE --virtual-clock`
         #[arg(long, value_name = "FILE")]
         counterexample: Option<PathBuf>,
+        /// Write the model checked, with the properties, for another model checker instead of
+        /// checking it here
+        #[arg(long, value_enum, value_name = "LANGUAGE")]
+        emit: Option<EmitFormat>,
+        /// Where --emit writes (default: stdout)
+        #[arg(short, long, value_name = "FILE", requires = "emit")]
+        output: Option<PathBuf>,
     },
     /// Draw a machine (native, T/A pair or Qfsm file) or a behaviour as a diagram: DOT, or SVG/PNG/PDF through Graphviz
     Draw {

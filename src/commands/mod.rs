@@ -58,8 +58,31 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             always,
             reachable,
             max_states,
+            json: _,
+            counterexample: _,
+            emit: Some(language),
+            output,
+        } => verify::emit(
+            &behaviour,
+            &verify::Asked {
+                never,
+                always,
+                reachable,
+            },
+            max_states,
+            language,
+            output.as_deref(),
+        ),
+        Command::Verify {
+            behaviour,
+            never,
+            always,
+            reachable,
+            max_states,
             json,
             counterexample,
+            emit: None,
+            output: _,
         } => verify::run(
             &behaviour,
             &verify::Asked {

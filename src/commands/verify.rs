@@ -1,15 +1,16 @@
 //! `proclaim verify`: a behaviour's properties (the manifest's, or those on the command line)
 //! checked over every run under the round schedule; each outcome, its counterexample by rounds,
 //! the built-in findings; `--counterexample` writes the first counterexample as an impersonator
-//! script. Exit 0 every property holds, 1 some fails, 3 none fails but some is undecided (the
+//! script; `--emit promela` writes the same model for SPIN instead. Exit 0 every property holds, 1 some fails, 3 none fails but some is undecided (the
 //! state budget ran out), 2 bad input.
 
 use crate::behaviours::load_behaviour;
+use crate::cli::EmitFormat;
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
-    manifest_properties, render, to_script, verify_with_progress, Finding, Options, Progress,
-    PropertyKind, PropertySource, Report, Verdict, VerifyError,
+    manifest_properties, render, to_promela, to_script, verify_with_progress, Finding, Options,
+    Progress, PropertyKind, PropertySource, Report, Verdict, VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -96,6 +97,45 @@ pub fn run(
         print_report(behaviour, &report, seconds);
     }
     Ok(ExitCode::from(report.exit_code()))
+}
+
+/// `--emit`: the model and its properties in another checker's language, to `output` or
+/// stdout; the claim of each property is named on stderr.
+pub fn emit(
+    behaviour: &str,
+    asked: &Asked,
+    max_states: usize,
+    language: EmitFormat,
+    output: Option<&Path>,
+) -> Result<ExitCode, Failure> {
+    let loaded = load_behaviour(behaviour)?;
+    let mut properties = asked.sources();
+    if properties.is_empty() {
+        properties = manifest_properties(&loaded);
+    }
+    let text = match language {
+        EmitFormat::Promela => {
+            let promela = to_promela(&loaded, &properties, Options { max_states })
+                .map_err(|e| Failure::Argument(e.to_string()))?;
+            for c in &promela.claims {
+                eprintln!("{}: pan -N {}", c.property, c.name);
+            }
+            if !promela.values_complete {
+                eprintln!(
+                    "warning: the state budget ran out while numbering the values (--max-states)"
+                );
+            }
+            promela.text
+        }
+    };
+    match output {
+        Some(path) => std::fs::write(path, text).map_err(|error| Failure::Write {
+            path: path.to_path_buf(),
+            error,
+        })?,
+        None => print!("{text}"),
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {

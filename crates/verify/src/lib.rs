@@ -19,6 +19,7 @@
 //!   silently hides states), and its actions would have to carry the environment's choices as
 //!   values; a model whose steps are "one ringlet and everything the environment may do" and
 //!   whose state is a few dozen bytes fits a plain BFS over packed bytes better.
+//! - [`promela`]: the same model written as Promela, for SPIN to check the same properties.
 //! - Unbounded counters are cut by the state budget: the outcome is then incomplete, never a
 //!   hang. Nothing here reads files or prints: the command line does.
 
@@ -28,6 +29,7 @@ mod error;
 mod explore;
 pub mod model;
 mod outcome;
+pub mod promela;
 pub mod property;
 mod reasoner;
 pub mod ringlet;
@@ -41,6 +43,7 @@ pub use explore::Progress;
 pub use model::Model;
 pub use outcome::{Assignment, Finding, PropertyOutcome, Report, Stats, Trace, TraceStep, Verdict};
 pub use proclaim_behaviour::PropertyKind;
+pub use promela::{to_promela, Claim, EmitError, Promela};
 pub use property::{Property, PropertySource};
 pub use script::to_script;
 pub use trace::render;
@@ -94,6 +97,16 @@ pub fn verify_with_progress(
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Report, VerifyError> {
+    let (model, compiled) = prepare(behaviour, properties)?;
+    Ok(run(&model, &compiled, options, progress))
+}
+
+/// The model of `behaviour` and its properties compiled against it: what [`verify`] explores
+/// and [`promela`] writes out.
+pub(crate) fn prepare(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+) -> Result<(Model, Vec<Property>), VerifyError> {
     let mut errors = Vec::new();
     let mut parsed = Vec::new();
     for p in properties {
@@ -115,7 +128,7 @@ pub fn verify_with_progress(
         return Err(VerifyError::Properties(errors));
     }
     check_widths(&model)?;
-    Ok(run(&model, &compiled, options, progress))
+    Ok((model, compiled))
 }
 
 fn check_widths(model: &Model) -> Result<(), VerifyError> {

@@ -31,8 +31,9 @@ pub struct Property {
     term: Term,
 }
 
+/// A property's expression resolved against the model (what [`crate::promela`] translates).
 #[derive(Clone, Debug)]
-enum Term {
+pub(crate) enum Term {
     Const(Value),
     Slot(SlotId),
     Answer { theory: usize, output: usize },
@@ -145,6 +146,11 @@ impl Property {
             source: source.clone(),
             term,
         })
+    }
+
+    /// The resolved expression.
+    pub(crate) fn term(&self) -> &Term {
+        &self.term
     }
 
     /// Whether the property's expression is true in `world`.

@@ -318,7 +318,7 @@ fn rotated(domain: &[ValueId], current: ValueId, i: usize) -> ValueId {
 
 /// The time bits a state's tests may have at a snapshot, given those already due: a due test
 /// stays due, and constant tests (first in the list, shortest first) come due in order.
-fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16> {
+pub(crate) fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16> {
     let n = tests.len();
     let constant = tests.iter().take_while(|t| t.micros.is_some()).count();
     let all = (1u32 << n) - 1;

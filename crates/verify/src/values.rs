@@ -54,6 +54,11 @@ impl Values {
         id
     }
 
+    /// The number of `value` when it was met, without numbering it.
+    pub fn find(&self, value: &Value) -> Option<ValueId> {
+        self.ids.get(&key(value)).copied()
+    }
+
     /// An optional value's number: [`NEVER`] for none.
     pub fn intern_option(&mut self, value: Option<&Value>) -> ValueId {
         value.map_or(NEVER, |v| self.intern(v))

@@ -1,0 +1,1481 @@
+//! The model [`crate::verify`] explores, written as Promela so that SPIN checks the very same
+//! thing: the same machines, schedule, environment, reasoners and time bits, over the same
+//! value numbers.
+//!
+//! - **State.** Per machine its state, mode (0 running, 1 suspended, 2 dormant), just-entered
+//!   and started-this-round bits and due time bits (arrays `st`, `mode`, `je`, `fresh`, `due`);
+//!   `turn`; every slot (`s<i>`) and every `saw()` value (`saw<i>`) as a **value number** of the
+//!   model's [`crate::values::Values`] (0 never posted); that is [`crate::world::World`] field by
+//!   field.
+//! - **Values.** The numbers are those the checker's own exploration met (it runs first, so the
+//!   free domains, constants and every computed value are numbered), plus every constant the
+//!   activities and properties name. Operators, conversions and built-in functions are tables
+//!   over those numbers computed with [`crate::arith`], the checker's semantics; a result no
+//!   number stands for is `BEYOND`, and every step asserts that no variable holds it, so a
+//!   value the checker never met is SPIN's assertion error rather than a silent disagreement.
+//! - **Reasoners.** One table per answer, indexed by the inputs' valuation (unknown, false,
+//!   true per input, base 3), each entry proved by the engine ([`crate::reasoner`]).
+//! - **One step is one ringlet**, as in [`crate::ringlet`]: a `d_step` picks the machine whose
+//!   turn it is and runs its OnEntry (noting the free types it read or posted: `tch<i>`); the
+//!   snapshot's choices (which time tests came due, what the noted free types now hold) are
+//!   `if` choices; a `d_step` records `saw()`, tries the transitions in priority order and
+//!   runs OnExit or Internal and the machine's commands to itself; then the environment sets
+//!   every free type (`if` choices); a last `d_step` evaluates the properties (`hit<i>`).
+//! - **Properties** are one `ltl` claim each, `[] !hit<i>`, where `hit<i>` is set only at the
+//!   end of a step (the states between a step's parts are SPIN's, not the checker's, and never
+//!   hit): for `never P` hit is P, for `always P` it is !P, for `reachable P` it is P, so a
+//!   violation is the witness. Run `pan -N p<i>` per property; [`Claim::verdict`] reads the
+//!   answer. Everything the search needs is safety: compile `pan.c` with `-DSAFETY`.
+//!
+//! The tables and temporaries are `hidden` (outside SPIN's state vector), so SPIN's breadth
+//! first mode (`-DBFS`), which refuses hidden variables, is not available; depth first it is.
+
+use crate::arith::{self, text};
+use crate::model::{Model, Name, SlotKind};
+use crate::property::{Property, Term};
+use crate::reasoner::{input, Input};
+use crate::values::{ValueId, NEVER};
+use crate::{explore, prepare, Options, PropertySource, Verdict, VerifyError};
+use proclaim_behaviour::{Behaviour, PropertyKind};
+use proclaim_board::Value;
+use proclaim_fsm::control::Command;
+use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, VarType, TIME_TESTS};
+use proclaim_runner::LOOP_LIMIT;
+use std::fmt::{self, Write};
+
+/// Why a behaviour cannot be written as Promela.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum EmitError {
+    /// The behaviour or a property cannot be checked at all.
+    Verify(VerifyError),
+    /// Something the checker models that this translation does not write, and where.
+    Unsupported { machine: String, what: String },
+}
+
+impl fmt::Display for EmitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EmitError::Verify(e) => e.fmt(f),
+            EmitError::Unsupported { machine, what } => {
+                write!(f, "cannot write machine {machine} as Promela: {what}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for EmitError {}
+
+impl From<VerifyError> for EmitError {
+    fn from(e: VerifyError) -> EmitError {
+        EmitError::Verify(e)
+    }
+}
+
+/// A property as an `ltl` claim of the Promela text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Claim {
+    /// The claim's name: `pan -N <name>` checks it.
+    pub name: String,
+    pub property: String,
+    pub kind: PropertyKind,
+}
+
+impl Claim {
+    /// The property's verdict from SPIN's search of this claim: `violated` when `pan` found
+    /// an error, `complete` when its search was not cut short. A violation of a `reachable`
+    /// claim is its witness.
+    pub fn verdict(&self, violated: bool, complete: bool) -> Verdict {
+        match (self.kind, violated, complete) {
+            (PropertyKind::Reachable, true, _) => Verdict::Holds,
+            (_, true, _) => Verdict::Fails,
+            (_, false, false) => Verdict::Incomplete,
+            (PropertyKind::Reachable, false, true) => Verdict::Fails,
+            (_, false, true) => Verdict::Holds,
+        }
+    }
+}
+
+/// A behaviour and its properties as Promela.
+#[derive(Clone, Debug)]
+pub struct Promela {
+    pub text: String,
+    /// One per property, in the order given.
+    pub claims: Vec<Claim>,
+    /// The checker's exploration, which numbers the values, saw every reachable state (if not,
+    /// SPIN may meet a value beyond them and report an assertion error).
+    pub values_complete: bool,
+}
+
+/// Reasoner tables above this many entries (3 to the number of inputs) are refused.
+const MAX_VALUATIONS: usize = 3usize.pow(12);
+
+/// The Promela of `behaviour` with `properties` (see the module's documentation); `options`
+/// bound the exploration that numbers the values.
+pub fn to_promela(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+    options: Options,
+) -> Result<Promela, EmitError> {
+    let (model, compiled) = prepare(behaviour, properties)?;
+    let values_complete =
+        explore::explore(&model, &compiled, options.max_states, &mut |_| {}).complete;
+    // Writing numbers the constants it meets and learns how many commands a machine may send
+    // itself in a ringlet; the text is final once a pass adds neither.
+    let mut queue = 0;
+    loop {
+        let known = model.values.borrow().len();
+        let mut writer = Writer::new(&model, queue);
+        let text = writer.write(&behaviour.name, &compiled, values_complete)?;
+        if model.values.borrow().len() == known && writer.most_self_posts == queue {
+            let claims = compiled
+                .iter()
+                .enumerate()
+                .map(|(i, p)| Claim {
+                    name: format!("p{i}"),
+                    property: p.source.name.clone(),
+                    kind: p.source.kind,
+                })
+                .collect();
+            return Ok(Promela {
+                text,
+                claims,
+                values_complete,
+            });
+        }
+        queue = writer.most_self_posts;
+    }
+}
+
+/// A value number or Promela code computing one.
+#[derive(Clone, Debug)]
+enum Operand {
+    Const(ValueId),
+    Code(String),
+    /// A Promela truth standing for the value `true` or `false` (numbers `yes` and `no`),
+    /// kept as a truth so that testing it again costs no table.
+    Truth {
+        truth: String,
+        yes: ValueId,
+        no: ValueId,
+    },
+}
+
+impl Operand {
+    fn code(&self) -> String {
+        match self {
+            Operand::Const(id) => id.to_string(),
+            Operand::Code(c) => c.clone(),
+            Operand::Truth { truth, yes, no } => format!("({truth} -> {yes} : {no})"),
+        }
+    }
+}
+
+/// A table over value numbers, and what it holds.
+#[derive(Clone, Debug, PartialEq)]
+enum Table {
+    /// Truth of a value (a bit).
+    Truthy,
+    /// A reasoner input's digit: 0 unknown, 1 false, 2 true.
+    Input,
+    Neg,
+    /// What a variable of the type holds when the value is assigned.
+    Convert(VarType),
+    /// `say(x)`: the value as text.
+    Text,
+    /// `post_int(T, x)`: the value as a whole number.
+    PostInt,
+    /// `c op x` for constant `c`.
+    Left(BinOp, ValueId),
+    /// `x op c` for constant `c`.
+    Right(BinOp, ValueId),
+    /// `x op y`, indexed `x * VALUES + y`.
+    Both(BinOp),
+    Function1(String),
+    /// `f(x, y)`, indexed as [`Table::Both`].
+    Function2(String),
+    /// `post(T, a, b)`'s text: both parts' texts, the empty ones left out, joined by a space.
+    Join,
+}
+
+impl Table {
+    fn two_dimensional(&self) -> bool {
+        matches!(self, Table::Both(_) | Table::Function2(_) | Table::Join)
+    }
+
+    fn describe(&self) -> String {
+        match self {
+            Table::Truthy => "truth of a value".into(),
+            Table::Input => "reasoner input: 0 unknown, 1 false, 2 true".into(),
+            Table::Neg => "-x".into(),
+            Table::Convert(ty) => format!("assigned to a variable of type {ty:?}"),
+            Table::Text => "the value as text".into(),
+            Table::PostInt => "the value as a whole number".into(),
+            Table::Left(op, c) => format!("#{c} {} x", op.symbol()),
+            Table::Right(op, c) => format!("x {} #{c}", op.symbol()),
+            Table::Both(op) => format!("x {} y", op.symbol()),
+            Table::Function1(f) => format!("{f}(x)"),
+            Table::Function2(f) => format!("{f}(x, y)"),
+            Table::Join => "post(T, x, y)'s text".into(),
+        }
+    }
+}
+
+/// A table entry before it is numbered.
+enum Entry {
+    /// A truth or an input digit, stored as it is.
+    Number(ValueId),
+    Value(Option<Value>),
+}
+
+/// Writes one pass of the Promela text.
+struct Writer<'m> {
+    model: &'m Model,
+    out: String,
+    depth: usize,
+    tables: Vec<Table>,
+    /// Hidden `int` temporaries used.
+    temps: usize,
+    /// The machine whose code is written, and its state.
+    machine: usize,
+    state: usize,
+    /// Writing an OnEntry: reads and posts of free types are noted.
+    noting: bool,
+    /// Inside a `for` loop.
+    in_loop: usize,
+    /// Commands to the machine itself written so far for the current machine.
+    self_posts: usize,
+    most_self_posts: usize,
+    /// Length of the queue of commands a machine sends itself (from the previous pass).
+    queue: usize,
+}
+
+impl<'m> Writer<'m> {
+    fn new(model: &'m Model, queue: usize) -> Writer<'m> {
+        Writer {
+            model,
+            out: String::new(),
+            depth: 0,
+            tables: Vec::new(),
+            temps: 0,
+            machine: 0,
+            state: 0,
+            noting: false,
+            in_loop: 0,
+            self_posts: 0,
+            most_self_posts: 0,
+            queue,
+        }
+    }
+
+    fn line(&mut self, text: &str) {
+        for _ in 0..self.depth {
+            self.out.push_str("  ");
+        }
+        self.out.push_str(text);
+        self.out.push('\n');
+    }
+
+    fn unsupported(&self, what: String) -> EmitError {
+        EmitError::Unsupported {
+            machine: self.model.machines[self.machine].name.clone(),
+            what,
+        }
+    }
+
+    fn id(&self, value: &Value) -> ValueId {
+        self.model.values.borrow_mut().intern(value)
+    }
+
+    fn id_of(&self, value: Option<&Value>) -> ValueId {
+        self.model.values.borrow_mut().intern_option(value)
+    }
+
+    fn value_of(&self, id: ValueId) -> Option<Value> {
+        self.model.values.borrow().get(id).cloned()
+    }
+
+    fn temp(&mut self) -> String {
+        self.temps += 1;
+        format!("t{}", self.temps - 1)
+    }
+
+    fn table(&mut self, table: Table) -> String {
+        let i = match self.tables.iter().position(|t| *t == table) {
+            Some(i) => i,
+            None => {
+                self.tables.push(table);
+                self.tables.len() - 1
+            }
+        };
+        format!("tab{i}")
+    }
+
+    /// A truth as a value number.
+    fn of_truth(&self, truth: String) -> Operand {
+        let (t, f) = (self.id(&Value::Bool(true)), self.id(&Value::Bool(false)));
+        match truth.as_str() {
+            "1" => Operand::Const(t),
+            "0" => Operand::Const(f),
+            _ => Operand::Truth {
+                truth,
+                yes: t,
+                no: f,
+            },
+        }
+    }
+
+    /// A table of one argument applied to `x` (computed now when `x` is a constant).
+    fn unary(&mut self, table: Table, x: Operand) -> Operand {
+        match x {
+            Operand::Const(id) => Operand::Const(self.fold1(&table, id)),
+            code => Operand::Code(format!("{}[{}]", self.table(table), code.code())),
+        }
+    }
+
+    fn binary(&mut self, op: BinOp, l: Operand, r: Operand) -> Operand {
+        match (l, r) {
+            (Operand::Const(a), Operand::Const(b)) => {
+                let v = arith::binary(op, self.value_of(a), self.value_of(b));
+                Operand::Const(self.id_of(v.as_ref()))
+            }
+            (Operand::Const(a), r) => self.unary(Table::Left(op, a), r),
+            (l, Operand::Const(b)) => self.unary(Table::Right(op, b), l),
+            (l, r) => self.two(Table::Both(op), l, r),
+        }
+    }
+
+    fn two(&mut self, table: Table, l: Operand, r: Operand) -> Operand {
+        if let (Operand::Const(a), Operand::Const(b)) = (&l, &r) {
+            let v = self.entry2(&table, self.value_of(*a), self.value_of(*b));
+            return self.fold_constant(v);
+        }
+        let name = self.table(table);
+        Operand::Code(format!("{name}[({})*VALUES+({})]", l.code(), r.code()))
+    }
+
+    /// A one-argument table's entry on a value, with the checker's semantics: a truth or an
+    /// input digit, or a value.
+    fn entry1(&self, table: &Table, v: Option<Value>) -> Entry {
+        let zero_if_never = || v.clone().unwrap_or(Value::Int(0));
+        Entry::Value(match table {
+            Table::Truthy => return Entry::Number(ValueId::from(v.is_some_and(|v| v.truthy()))),
+            Table::Input => {
+                return Entry::Number(match input(v.as_ref()) {
+                    Input::Unknown => 0,
+                    Input::Value(false) => 1,
+                    Input::Value(true) => 2,
+                })
+            }
+            Table::Neg => v.as_ref().and_then(arith::negate),
+            Table::Convert(ty) => Some(arith::convert(ty, zero_if_never())),
+            Table::Text => Some(Value::Str(text(&zero_if_never()))),
+            Table::PostInt => Some(match zero_if_never() {
+                Value::Int(i) => Value::Int(i),
+                other => Value::Int(other.as_f64().unwrap_or(0.0) as i64),
+            }),
+            Table::Left(op, c) => arith::binary(*op, self.value_of(*c), v),
+            Table::Right(op, c) => arith::binary(*op, v, self.value_of(*c)),
+            Table::Function1(f) => arith::function(f, &[v]),
+            Table::Both(_) | Table::Function2(_) | Table::Join => None,
+        })
+    }
+
+    /// A two-argument table's entry on two values.
+    fn entry2(&self, table: &Table, x: Option<Value>, y: Option<Value>) -> Option<Value> {
+        match table {
+            Table::Both(op) => arith::binary(*op, x, y),
+            Table::Function2(f) => arith::function(f, &[x, y]),
+            Table::Join => {
+                let parts: Vec<String> = [x, y]
+                    .iter()
+                    .map(|v| text(&v.clone().unwrap_or(Value::Int(0))))
+                    .filter(|t| !t.is_empty())
+                    .collect();
+                Some(Value::Str(parts.join(" ")))
+            }
+            _ => None,
+        }
+    }
+
+    /// The number of a table's result when it has one (an unnumbered value is `BEYOND`).
+    fn lookup(&self, value: Option<Value>) -> Option<ValueId> {
+        match value {
+            None => Some(NEVER),
+            Some(v) => self.model.values.borrow().find(&v),
+        }
+    }
+
+    /// A one-argument table's entry for value number `id`, as stored in the table.
+    fn apply1(&self, table: &Table, id: ValueId) -> Option<ValueId> {
+        match self.entry1(table, self.value_of(id)) {
+            Entry::Number(n) => Some(n),
+            Entry::Value(v) => self.lookup(v),
+        }
+    }
+
+    /// A computed constant's number (numbered when new).
+    fn fold_constant(&self, value: Option<Value>) -> Operand {
+        Operand::Const(self.id_of(value.as_ref()))
+    }
+
+    /// A one-argument table on a constant, computed now (a new result is numbered).
+    fn fold1(&self, table: &Table, id: ValueId) -> ValueId {
+        match self.entry1(table, self.value_of(id)) {
+            Entry::Number(n) => n,
+            Entry::Value(v) => self.id_of(v.as_ref()),
+        }
+    }
+
+    // ----- expressions of a machine, as its ringlet reads them -----
+
+    /// Promela truth of `e` (0 or 1 when known now).
+    fn truth(&mut self, e: &Expr) -> Result<String, EmitError> {
+        match e {
+            Expr::Unary {
+                op: UnOp::Not,
+                operand,
+            } => {
+                let t = self.truth(operand)?;
+                Ok(match t.as_str() {
+                    "1" => "0".into(),
+                    "0" => "1".into(),
+                    _ => format!("!({t})"),
+                })
+            }
+            Expr::Binary {
+                op: op @ (BinOp::And | BinOp::Or),
+                left,
+                right,
+            } => {
+                let l = self.truth(left)?;
+                let outer = std::mem::take(&mut self.out);
+                let r = self.truth(right)?;
+                let right_code = std::mem::replace(&mut self.out, outer);
+                let and = *op == BinOp::And;
+                if right_code.is_empty() {
+                    let joiner = if and { "&&" } else { "||" };
+                    return Ok(format!("({l} {joiner} {r})"));
+                }
+                // The right side notes what it reads only when it is evaluated.
+                let t = self.temp();
+                self.line(&format!("{t} = {l};"));
+                self.line("if");
+                let guard = if and { t.clone() } else { format!("!{t}") };
+                self.line(&format!(":: {guard} ->"));
+                self.out.push_str(&right_code);
+                self.depth += 1;
+                self.line(&format!("{t} = {r};"));
+                self.depth -= 1;
+                self.line(":: else -> skip;");
+                self.line("fi;");
+                Ok(format!("({t} != 0)"))
+            }
+            _ => {
+                let v = self.value(e)?;
+                Ok(self.truthy(v))
+            }
+        }
+    }
+
+    fn truthy(&mut self, v: Operand) -> String {
+        match v {
+            Operand::Const(id) => {
+                let b = self.value_of(id).is_some_and(|v| v.truthy());
+                if b { "1" } else { "0" }.into()
+            }
+            Operand::Truth { truth, .. } => truth,
+            Operand::Code(c) => format!("{}[{c}]", self.table(Table::Truthy)),
+        }
+    }
+
+    fn value(&mut self, e: &Expr) -> Result<Operand, EmitError> {
+        Ok(match e {
+            Expr::Bool(b) => Operand::Const(self.id(&Value::Bool(*b))),
+            Expr::Int(i) => Operand::Const(self.id(&Value::Int(*i))),
+            Expr::Float(x) => Operand::Const(self.id(&Value::Float(*x))),
+            Expr::Str(s) => Operand::Const(self.id(&Value::Str(s.clone()))),
+            Expr::Duration(us) => Operand::Const(self.id(&Value::Int(*us as i64))),
+            Expr::Name(n) => match self.model.resolve(Some(self.machine), n) {
+                None => Operand::Const(NEVER),
+                Some(name) => self.name_value(name),
+            },
+            Expr::Unary { op: UnOp::Not, .. }
+            | Expr::Binary {
+                op: BinOp::And | BinOp::Or,
+                ..
+            } => {
+                let t = self.truth(e)?;
+                self.of_truth(t)
+            }
+            Expr::Unary {
+                op: UnOp::Neg,
+                operand,
+            } => {
+                let v = self.value(operand)?;
+                self.unary(Table::Neg, v)
+            }
+            Expr::Binary { op, left, right } => {
+                let l = self.value(left)?;
+                let r = self.value(right)?;
+                self.binary(*op, l, r)
+            }
+            Expr::Call {
+                function,
+                arguments,
+            } => {
+                if TIME_TESTS.iter().any(|(f, _)| f == function) {
+                    let t = self.time_due(e);
+                    return Ok(self.of_truth(t));
+                }
+                let mut args = Vec::new();
+                for a in arguments {
+                    args.push(self.value(a)?);
+                }
+                self.function(function, args)
+            }
+        })
+    }
+
+    fn function(&mut self, function: &str, args: Vec<Operand>) -> Operand {
+        if !arith::is_function(function) {
+            // A host function's result is nothing the model knows.
+            return Operand::Const(NEVER);
+        }
+        match <[Operand; 2]>::try_from(args) {
+            Ok([x, y]) => {
+                if let (Operand::Const(a), Operand::Const(b)) = (&x, &y) {
+                    let v = arith::function(function, &[self.value_of(*a), self.value_of(*b)]);
+                    return self.fold_constant(v);
+                }
+                self.two(Table::Function2(function.into()), x, y)
+            }
+            Err(args) => match <[Operand; 1]>::try_from(args) {
+                Ok([Operand::Const(a)]) => {
+                    let v = arith::function(function, &[self.value_of(a)]);
+                    self.fold_constant(v)
+                }
+                Ok([x]) => self.unary(Table::Function1(function.into()), x),
+                Err(_) => Operand::Const(NEVER),
+            },
+        }
+    }
+
+    /// Whether a time test of the current state is due (one no label has never is).
+    fn time_due(&self, call: &Expr) -> String {
+        let k = self.machine;
+        let tests = &self.model.machines[k].states[self.state].time_tests;
+        match tests.iter().position(|t| t.call == *call) {
+            Some(i) => format!("((due[{k}] >> {i}) & 1)"),
+            None => "0".into(),
+        }
+    }
+
+    fn slot_code(&mut self, slot: usize) -> Operand {
+        let s = &self.model.slots[slot];
+        if self.noting && s.free.is_some() {
+            self.line(&format!("tch{slot} = 1;"));
+        }
+        if s.kind == (SlotKind::Message { external: true }) {
+            // An extern reads 0 before anything is posted.
+            let zero = self.id(&Value::Int(0));
+            Operand::Code(format!("(s{slot} == {NEVER} -> {zero} : s{slot})"))
+        } else {
+            Operand::Code(format!("s{slot}"))
+        }
+    }
+
+    fn name_value(&mut self, name: Name) -> Operand {
+        match name {
+            Name::Slot(slot) => self.slot_code(slot),
+            Name::Answer { theory, output } => {
+                let t = self.answer(theory, output, 0);
+                self.of_truth(t)
+            }
+            Name::Running(m) => self.of_truth(format!("(mode[{m}] == 0)")),
+        }
+    }
+
+    /// A reasoner's answer on the inputs as read now: its table at their valuation.
+    fn answer(&mut self, theory: usize, output: usize, depth: usize) -> String {
+        let inputs = self.model.theories[theory].inputs.clone();
+        let mut index = Vec::new();
+        for (i, (_, name)) in inputs.iter().enumerate() {
+            let digit = match name {
+                Some(Name::Answer { theory, output }) if depth < 8 => {
+                    format!("({} -> 2 : 1)", self.answer(*theory, *output, depth + 1))
+                }
+                Some(n @ (Name::Slot(_) | Name::Running(_))) => match self.name_value(*n) {
+                    Operand::Const(id) => self.fold1(&Table::Input, id).to_string(),
+                    Operand::Truth { truth, .. } => format!("({truth} -> 2 : 1)"),
+                    code => format!("{}[{}]", self.table(Table::Input), code.code()),
+                },
+                _ => "0".into(),
+            };
+            index.push(format!("{digit}*{}", 3usize.pow(i as u32)));
+        }
+        if index.is_empty() {
+            index.push("0".into());
+        }
+        format!("ans{theory}_{output}[{}]", index.join(" + "))
+    }
+
+    // ----- activities -----
+
+    fn run(&mut self, actions: &[Action]) -> Result<(), EmitError> {
+        for action in actions {
+            match action {
+                Action::Post { ty, content } => {
+                    let v = Operand::Const(self.id(&Value::parse(content)));
+                    self.post(ty, &v)?;
+                }
+                Action::Statement(s) => self.exec(s)?,
+                // Host functions change nothing a machine reads; unread code does nothing.
+                Action::Call { .. } | Action::Code(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn exec(&mut self, statement: &Statement) -> Result<(), EmitError> {
+        match statement {
+            Statement::Declare {
+                name,
+                value: Some(value),
+                ..
+            }
+            | Statement::Assign { name, value } => {
+                let v = self.value(value)?;
+                let v = self.or_zero(v);
+                self.assign(name, v)?;
+            }
+            Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
+            Statement::Expr(Expr::Call {
+                function,
+                arguments,
+            }) => self.call(function, arguments)?,
+            Statement::Expr(other) => {
+                self.value(other)?;
+            }
+            Statement::Block(body) => {
+                for s in body {
+                    self.exec(s)?;
+                }
+            }
+            Statement::For {
+                init,
+                condition,
+                step,
+                body,
+            } => {
+                if let Some(init) = init {
+                    self.exec(init)?;
+                }
+                let rounds = self.temp();
+                self.line(&format!("{rounds} = 0;"));
+                self.line("do");
+                self.line(":: true ->");
+                self.depth += 1;
+                let go = match condition {
+                    Some(c) => self.truth(c)?,
+                    None => "1".into(),
+                };
+                self.line("if");
+                self.line(&format!(":: ({go}) && {rounds} < {LOOP_LIMIT} ->"));
+                self.depth += 1;
+                self.line(&format!("{rounds}++;"));
+                self.in_loop += 1;
+                self.exec(body)?;
+                if let Some(step) = step {
+                    self.exec(step)?;
+                }
+                self.in_loop -= 1;
+                self.depth -= 1;
+                self.line(":: else -> break;");
+                self.line("fi;");
+                self.depth -= 1;
+                self.line("od;");
+            }
+        }
+        Ok(())
+    }
+
+    /// `v`, or the number 0 where it is no value (an assignment of nothing assigns 0).
+    fn or_zero(&mut self, v: Operand) -> Operand {
+        let zero = self.id(&Value::Int(0));
+        match v {
+            Operand::Const(NEVER) => Operand::Const(zero),
+            Operand::Const(id) => Operand::Const(id),
+            code => {
+                let t = self.temp();
+                self.line(&format!("{t} = {};", code.code()));
+                self.line(&format!(
+                    "if :: {t} == {NEVER} -> {t} = {zero}; :: else -> skip; fi;"
+                ));
+                Operand::Code(t)
+            }
+        }
+    }
+
+    /// Keeps a computed value in a temporary when it will be used more than once.
+    fn settle(&mut self, v: Operand) -> Operand {
+        match &v {
+            Operand::Code(c) if is_temp(c) => v,
+            Operand::Code(_) | Operand::Truth { .. } => {
+                let t = self.temp();
+                self.line(&format!("{t} = {};", v.code()));
+                Operand::Code(t)
+            }
+            Operand::Const(_) => v,
+        }
+    }
+
+    fn assign(&mut self, name: &str, v: Operand) -> Result<(), EmitError> {
+        match self.model.resolve(Some(self.machine), name) {
+            Some(Name::Slot(slot)) => match &self.model.slots[slot].kind {
+                SlotKind::Local { ty, .. } => {
+                    let c = self.unary(Table::Convert(ty.clone()), v);
+                    self.line(&format!("s{slot} = {};", c.code()));
+                }
+                SlotKind::Global => self.line(&format!("s{slot} = {};", v.code())),
+                SlotKind::Message { .. } => self.post(name, &v)?,
+            },
+            _ => self.post(name, &v)?,
+        }
+        Ok(())
+    }
+
+    /// A posting to type `ty` (a constant name): a command to a machine, or a whiteboard
+    /// value; nothing when nothing models the type.
+    fn post(&mut self, ty: &str, v: &Operand) -> Result<(), EmitError> {
+        if let Some(j) = self.model.machine_index(ty) {
+            let word = |value: Option<Value>| match value {
+                Some(Value::Str(s)) => Command::parse(&s),
+                Some(other) => Command::parse(&other.to_string()),
+                None => None,
+            };
+            match v {
+                Operand::Const(id) => {
+                    if let Some(command) = word(self.value_of(*id)) {
+                        self.command(j, command)?;
+                    }
+                }
+                code => {
+                    let c = code.code();
+                    let count = self.model.values.borrow().len() as ValueId;
+                    let words: Vec<(ValueId, Command)> = (1..=count)
+                        .filter_map(|id| Some((id, word(self.value_of(id))?)))
+                        .collect();
+                    self.line("if");
+                    for (id, command) in words {
+                        self.line(&format!(":: {c} == {id} ->"));
+                        self.depth += 1;
+                        self.command(j, command)?;
+                        self.depth -= 1;
+                    }
+                    self.line(":: else -> skip;");
+                    self.line("fi;");
+                }
+            }
+            return Ok(());
+        }
+        if let Some(Name::Slot(slot)) = self.model.names.get(ty) {
+            let s = &self.model.slots[*slot];
+            if matches!(s.kind, SlotKind::Message { .. }) {
+                if self.noting && s.free.is_some() {
+                    self.line(&format!("tch{slot} = 1;"));
+                }
+                self.line(&format!("s{slot} = {};", v.code()));
+            }
+        }
+        Ok(())
+    }
+
+    /// A posting whose type is computed: the type is the value's text.
+    fn post_to(&mut self, ty: Operand, v: Operand) -> Result<(), EmitError> {
+        let type_name = |value: Option<Value>| text(&value.unwrap_or(Value::Int(0)));
+        match ty {
+            Operand::Const(id) => {
+                let name = type_name(self.value_of(id));
+                self.post(&name, &v)
+            }
+            code => {
+                let c = code.code();
+                let v = self.settle(v);
+                let count = self.model.values.borrow().len() as ValueId;
+                let model = self.model;
+                let targets: Vec<(ValueId, String)> = (0..=count)
+                    .map(|id| (id, type_name(self.value_of(id))))
+                    .filter(|(_, name)| {
+                        model.machine_index(name).is_some()
+                            || matches!(model.names.get(name), Some(Name::Slot(s))
+                                if matches!(model.slots[*s].kind, SlotKind::Message { .. }))
+                    })
+                    .collect();
+                self.line("if");
+                for (id, name) in targets {
+                    self.line(&format!(":: {c} == {id} ->"));
+                    self.depth += 1;
+                    self.post(&name, &v)?;
+                    self.depth -= 1;
+                }
+                self.line(":: else -> skip;");
+                self.line("fi;");
+                Ok(())
+            }
+        }
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Result<(), EmitError> {
+        match (function, arguments.len()) {
+            ("post", 2) => {
+                let ty = self.value(&arguments[0])?;
+                let v = self.value(&arguments[1])?;
+                let v = self.or_zero(v);
+                self.post_to(ty, v)
+            }
+            ("post", 3) => {
+                let ty = self.value(&arguments[0])?;
+                let a = self.value(&arguments[1])?;
+                let b = self.value(&arguments[2])?;
+                let v = self.two(Table::Join, a, b);
+                self.post_to(ty, v)
+            }
+            ("post_int", 2) => {
+                let ty = self.value(&arguments[0])?;
+                let v = self.value(&arguments[1])?;
+                let v = self.unary(Table::PostInt, v);
+                self.post_to(ty, v)
+            }
+            ("postv" | "post_v", n) if n >= 2 => {
+                Err(self.unsupported(format!("`{function}` posts a list")))
+            }
+            (f, 1) if Command::from_function(f).is_some() => {
+                let ty = self.value(&arguments[0])?;
+                let command = Command::from_function(f).unwrap_or(Command::On);
+                let word = Operand::Const(self.id(&Value::Str(command.word().into())));
+                self.post_to(ty, word)
+            }
+            ("say" | "speech", 1) => {
+                let v = self.value(&arguments[0])?;
+                let v = self.unary(Table::Text, v);
+                let ty = if function == "say" { "Say" } else { "Speech" };
+                self.post(ty, &v)
+            }
+            _ => {
+                // Arguments are still evaluated: they may read (and so note) free types.
+                for a in arguments {
+                    self.value(a)?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// A command to machine `j`: at once to another machine, at the ringlet's end to itself.
+    fn command(&mut self, j: usize, command: Command) -> Result<(), EmitError> {
+        if j != self.machine {
+            self.control(j, command);
+            return Ok(());
+        }
+        if self.in_loop > 0 {
+            return Err(self.unsupported(
+                "a command to the machine itself inside a `for` loop (the queue of them has a fixed length)"
+                    .into(),
+            ));
+        }
+        self.self_posts += 1;
+        self.most_self_posts = self.most_self_posts.max(self.self_posts);
+        let code = command_code(command);
+        self.line(&format!("defer[ndefer] = {code};"));
+        self.line("ndefer++;");
+        Ok(())
+    }
+
+    /// gufsm's `SuspensibleMachine` (and [`crate::ringlet`]'s `control`): a machine that
+    /// starts rings from the next round.
+    fn control(&mut self, j: usize, command: Command) {
+        let initial = self.model.machines[j].initial;
+        let restart = format!(
+            "st[{j}] = {initial}; mode[{j}] = 0; je[{j}] = 1; fresh[{j}] = 1; due[{j}] = 0;"
+        );
+        match command {
+            Command::On | Command::Resume => {
+                self.line("if");
+                self.line(&format!(":: mode[{j}] == 0 -> skip;"));
+                self.line(&format!(":: mode[{j}] == 2 -> {restart}"));
+                self.line(&format!(
+                    ":: mode[{j}] == 1 -> mode[{j}] = 0; je[{j}] = 1; fresh[{j}] = 1; due[{j}] = 0;"
+                ));
+                self.line("fi;");
+            }
+            Command::Restart => self.line(&restart),
+            Command::Suspend => self.line(&format!(
+                "if :: mode[{j}] == 0 -> mode[{j}] = 1; :: else -> skip; fi;"
+            )),
+            Command::Off => self.line(&format!("mode[{j}] = 2;")),
+            Command::Reload | Command::Reread => {}
+        }
+    }
+
+    // ----- properties -----
+
+    fn term_truth(&mut self, term: &Term) -> String {
+        match term {
+            Term::Not(t) => format!("!({})", self.term_truth(t)),
+            Term::And(l, r) => format!("({} && {})", self.term_truth(l), self.term_truth(r)),
+            Term::Or(l, r) => format!("({} || {})", self.term_truth(l), self.term_truth(r)),
+            other => {
+                let v = self.term(other);
+                self.truthy(v)
+            }
+        }
+    }
+
+    fn term(&mut self, term: &Term) -> Operand {
+        match term {
+            Term::Const(v) => Operand::Const(self.id(v)),
+            Term::Slot(slot) => self.slot_code(*slot),
+            Term::Answer { theory, output } => {
+                let t = self.answer(*theory, *output, 0);
+                self.of_truth(t)
+            }
+            Term::Running(m) => self.of_truth(format!("(mode[{m}] == 0)")),
+            Term::InState { machine, state } => self.of_truth(format!(
+                "(mode[{machine}] == 0 && st[{machine}] == {state})"
+            )),
+            Term::Saw(i) => Operand::Code(format!("saw{i}")),
+            Term::Not(_) | Term::And(..) | Term::Or(..) => {
+                let t = self.term_truth(term);
+                self.of_truth(t)
+            }
+            Term::Neg(t) => {
+                let v = self.term(t);
+                self.unary(Table::Neg, v)
+            }
+            Term::Binary(op, l, r) => {
+                let (l, r) = (self.term(l), self.term(r));
+                self.binary(*op, l, r)
+            }
+            Term::Function(f, args) => {
+                let args = args.iter().map(|a| self.term(a)).collect();
+                self.function(f, args)
+            }
+        }
+    }
+
+    // ----- the whole text -----
+
+    fn write(
+        &mut self,
+        behaviour: &str,
+        properties: &[Property],
+        values_complete: bool,
+    ) -> Result<String, EmitError> {
+        let model = self.model;
+        let n = model.machines.len();
+        let mut body = String::new();
+
+        // Initial state: tables first (filled in at the end of the pass), then the world.
+        self.depth = 1;
+        self.line("d_step {");
+        self.depth += 1;
+        self.line("TABLES");
+        for (k, m) in model.machines.iter().enumerate() {
+            let mode = if m.start { 0 } else { 2 };
+            self.line(&format!(
+                "st[{k}] = {}; mode[{k}] = {mode}; je[{k}] = 1;",
+                m.initial
+            ));
+        }
+        for (i, s) in model.slots.iter().enumerate() {
+            let id = self.id_of(s.initial.as_ref());
+            if id != NEVER {
+                self.line(&format!("s{i} = {id};"));
+            }
+        }
+        self.depth -= 1;
+        self.line("};");
+        // The initial worlds: every free type at each value of its initial domain.
+        self.line("atomic {");
+        self.depth += 1;
+        for (slot, domain) in model.free_slots() {
+            let ids: Vec<ValueId> = domain
+                .initial
+                .iter()
+                .map(|v| self.id_of(v.as_ref()))
+                .collect();
+            self.choose(slot, &ids);
+        }
+        self.line("skip;");
+        self.depth -= 1;
+        self.line("};");
+        self.properties(properties);
+        body.push_str(&std::mem::take(&mut self.out));
+
+        self.line("do");
+        self.line(":: d_step {");
+        self.depth += 1;
+        for i in 0..properties.len() {
+            self.line(&format!("hit{i} = 0;"));
+        }
+        self.select();
+        // OnEntry of the ringing machine's state.
+        self.line("if");
+        for k in 0..n {
+            self.machine = k;
+            self.self_posts = 0;
+            self.line(&format!(":: ringing == {} && je[{k}] ->", k + 1));
+            self.depth += 1;
+            self.line("if");
+            for (s, state) in model.machines[k].machine.states.iter().enumerate() {
+                self.state = s;
+                self.line(&format!(":: st[{k}] == {s} ->"));
+                self.depth += 1;
+                self.noting = true;
+                self.run(&state.on_entry)?;
+                self.noting = false;
+                self.line("skip;");
+                self.depth -= 1;
+            }
+            self.line("fi;");
+            self.line(&format!("je[{k}] = 0;"));
+            self.depth -= 1;
+        }
+        self.line(":: else -> skip;");
+        self.line("fi;");
+        self.depth -= 1;
+        self.line("};");
+        self.depth += 1;
+        self.line("if :: ringing == 0 -> break; :: else -> skip; fi;");
+        self.snapshot_choices();
+        self.rest_of_ringlet()?;
+        self.line("atomic {");
+        self.depth += 1;
+        let free: Vec<(usize, Vec<ValueId>)> = model
+            .free_slots()
+            .map(|(slot, d)| (slot, d.values.iter().map(|v| self.id(v)).collect()))
+            .collect();
+        for (slot, ids) in &free {
+            self.choose(*slot, ids);
+        }
+        self.line("skip;");
+        self.depth -= 1;
+        self.line("};");
+        self.depth -= 1;
+        self.properties(properties);
+        self.line("od");
+        body.push_str(&std::mem::take(&mut self.out));
+
+        let universe = model.values.borrow().len();
+        let beyond = universe + 1;
+        let value_type = if beyond < 256 {
+            "byte"
+        } else if beyond < 32768 {
+            "short"
+        } else {
+            "int"
+        };
+        let mut text = String::new();
+        let w = &mut text;
+        let _ = writeln!(
+            w,
+            "/* {}: the model of `proclaim verify`, one ringlet a step (generated by\n   `proclaim verify --emit promela`). Check property i with\n     spin -a FILE && gcc -O2 -DSAFETY -o pan pan.c && ./pan -N p<i> -m1000000\n   A claim violation of a never/always property is a counterexample, of a\n   reachable one its witness; an assertion error means SPIN met a value the\n   checker never numbered. */",
+            comment(behaviour)
+        );
+        if !values_complete {
+            let _ = writeln!(
+                w,
+                "/* The checker's exploration ran out of states: the values numbered below may\n   not be all a run computes. */"
+            );
+        }
+        let _ = writeln!(w, "#define VALUES {}", universe + 2);
+        let _ = writeln!(w, "#define BEYOND {beyond}");
+        let _ = writeln!(w, "\n/* Values (0: never posted; BEYOND: none of these):");
+        for id in 1..=universe as ValueId {
+            let shown = model.show(self.value_of(id).as_ref());
+            let _ = writeln!(w, "   {id} = {}", comment(&shown));
+        }
+        let _ = writeln!(w, "*/\n");
+        let _ = writeln!(w, "/* Machines, in manifest order:");
+        for (k, m) in model.machines.iter().enumerate() {
+            let states: Vec<String> = m
+                .states
+                .iter()
+                .enumerate()
+                .map(|(i, s)| format!("{i} {}", s.name))
+                .collect();
+            let _ = writeln!(
+                w,
+                "   {k} {}: {}",
+                comment(&m.name),
+                comment(&states.join(", "))
+            );
+        }
+        let _ = writeln!(w, "*/");
+        let _ = writeln!(
+            w,
+            "byte turn;\nbyte ringing; /* the ringing machine + 1, 0 between steps */"
+        );
+        let _ = writeln!(
+            w,
+            "byte st[{n}];\nbyte mode[{n}]; /* 0 running, 1 suspended, 2 dormant */"
+        );
+        let _ = writeln!(w, "bit je[{n}]; /* just entered: OnEntry still to run */");
+        let _ = writeln!(w, "bit fresh[{n}]; /* started this round */");
+        let _ = writeln!(
+            w,
+            "short due[{n}]; /* bit i: the state's time test i is due */"
+        );
+        for (i, s) in model.slots.iter().enumerate() {
+            let what = match &s.kind {
+                SlotKind::Local { .. } => "variable",
+                SlotKind::Global => "global",
+                SlotKind::Message { .. } if s.free.is_some() => "free whiteboard type",
+                SlotKind::Message { .. } => "whiteboard type",
+            };
+            let _ = writeln!(w, "{value_type} s{i}; /* {what} {} */", comment(&s.name));
+        }
+        for (i, (m, e)) in model.saw.iter().enumerate() {
+            let _ = writeln!(
+                w,
+                "{value_type} saw{i}; /* saw({}, {}) */",
+                comment(&model.machines[*m].name),
+                comment(&e.to_string())
+            );
+        }
+        for (slot, _) in model.free_slots() {
+            let _ = writeln!(w, "bit tch{slot}; /* OnEntry read or posted s{slot} */");
+        }
+        if self.queue > 0 {
+            let _ = writeln!(
+                w,
+                "byte defer[{}]; /* commands to the ringing machine itself */\nbyte ndefer;",
+                self.queue
+            );
+        }
+        for (i, p) in properties.iter().enumerate() {
+            let _ = writeln!(
+                w,
+                "bit hit{i}; /* {} {}: {} */",
+                p.source.kind.word(),
+                comment(&p.source.name),
+                comment(&p.source.expression)
+            );
+        }
+        let _ = writeln!(w, "\nhidden byte sel;\nhidden byte wrapped;");
+        for i in 0..self.temps {
+            let _ = writeln!(w, "hidden int t{i};");
+        }
+        let mut fill = String::new();
+        for (i, t) in self.tables.clone().iter().enumerate() {
+            // Hidden variables cannot be bits.
+            let element = match t {
+                Table::Truthy | Table::Input => "byte",
+                _ => value_type,
+            };
+            let width = universe + 2;
+            let size = if t.two_dimensional() {
+                width * width
+            } else {
+                width
+            };
+            let _ = writeln!(w, "hidden {element} tab{i}[{size}]; /* {} */", t.describe());
+            for a in 0..width as ValueId {
+                let row: Vec<(usize, ValueId)> = if t.two_dimensional() {
+                    (0..width as ValueId)
+                        .map(|b| {
+                            let r = if a == beyond as ValueId || b == beyond as ValueId {
+                                Some(beyond as ValueId)
+                            } else {
+                                self.lookup(self.entry2(t, self.value_of(a), self.value_of(b)))
+                            };
+                            (
+                                a as usize * width + b as usize,
+                                r.unwrap_or(beyond as ValueId),
+                            )
+                        })
+                        .collect()
+                } else {
+                    let r = if a == beyond as ValueId {
+                        match t {
+                            Table::Truthy | Table::Input => Some(0),
+                            _ => Some(beyond as ValueId),
+                        }
+                    } else {
+                        self.apply1(t, a)
+                    };
+                    vec![(a as usize, r.unwrap_or(beyond as ValueId))]
+                };
+                for (index, r) in row {
+                    if r != 0 {
+                        let _ = write!(fill, "tab{i}[{index}] = {r}; ");
+                    }
+                }
+            }
+        }
+        for (t, theory) in model.theories.iter().enumerate() {
+            let inputs = theory.inputs.len();
+            let valuations = 3usize.pow(inputs as u32);
+            if valuations > MAX_VALUATIONS {
+                return Err(EmitError::Unsupported {
+                    machine: theory.name.clone(),
+                    what: format!("the reasoner has {inputs} inputs (3^{inputs} valuations)"),
+                });
+            }
+            for o in 0..theory.outputs.len() {
+                let _ = writeln!(
+                    w,
+                    "hidden byte ans{t}_{o}[{valuations}]; /* {} of {} */",
+                    comment(&theory.outputs[o]),
+                    comment(&theory.name)
+                );
+            }
+            for index in 0..valuations {
+                let mut rest = index;
+                let valuation: Vec<Input> = (0..inputs)
+                    .map(|_| {
+                        let digit = rest % 3;
+                        rest /= 3;
+                        match digit {
+                            0 => Input::Unknown,
+                            1 => Input::Value(false),
+                            _ => Input::Value(true),
+                        }
+                    })
+                    .collect();
+                let answers = theory.reasoner.borrow_mut().answers(&valuation).to_vec();
+                for (o, a) in answers.iter().enumerate() {
+                    if *a {
+                        let _ = write!(fill, "ans{t}_{o}[{index}] = 1; ");
+                    }
+                }
+            }
+        }
+        if fill.is_empty() {
+            fill.push_str("skip;");
+        }
+        let _ = writeln!(w, "\nactive proctype rounds() {{");
+        w.push_str(&body.replacen("TABLES", &fill, 1));
+        let _ = writeln!(w, "}}\n");
+        for (i, p) in properties.iter().enumerate() {
+            let _ = writeln!(
+                w,
+                "ltl p{i} {{ [] !hit{i} }} /* {} {} */",
+                p.source.kind.word(),
+                comment(&p.source.name)
+            );
+        }
+        Ok(text)
+    }
+
+    /// `slot` takes any of `ids`.
+    fn choose(&mut self, slot: usize, ids: &[ValueId]) {
+        let options: Vec<String> = ids.iter().map(|id| format!(":: s{slot} = {id};")).collect();
+        self.line(&format!("if {} fi;", options.join(" ")));
+    }
+
+    /// The next machine that may ring from `turn` in manifest order (passing the end starts a
+    /// round: no machine is fresh any more); `ringing` is 0 when none can.
+    fn select(&mut self) {
+        let model = self.model;
+        let n = model.machines.len();
+        self.line("ringing = 0; sel = turn; wrapped = 0;");
+        self.line("do");
+        let clear: String = (0..n).map(|k| format!(" fresh[{k}] = 0;")).collect();
+        self.line(&format!(
+            ":: sel >= {n} -> if :: wrapped -> break; :: else -> sel = 0; wrapped = 1;{clear} fi;"
+        ));
+        for (k, m) in model.machines.iter().enumerate() {
+            let not_final: Vec<String> = m
+                .states
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.is_final())
+                .map(|(s, _)| format!("st[{k}] != {s}"))
+                .collect();
+            let not_final = if not_final.is_empty() {
+                "1".to_string()
+            } else {
+                not_final.join(" && ")
+            };
+            self.line(&format!(
+                ":: sel == {k} && mode[{k}] == 0 && !fresh[{k}] && (je[{k}] || ({not_final})) -> ringing = {}; break;",
+                k + 1
+            ));
+        }
+        self.line(":: else -> sel++;");
+        self.line("od;");
+    }
+
+    /// Between OnEntry and the snapshot: due time tests of the state (constant ones in order),
+    /// and the free types OnEntry touched.
+    fn snapshot_choices(&mut self) {
+        let model = self.model;
+        self.line("atomic {");
+        self.depth += 1;
+        self.line("if");
+        for (k, m) in model.machines.iter().enumerate() {
+            let timed: Vec<(usize, Vec<u16>)> = m
+                .states
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| !s.time_tests.is_empty())
+                .map(|(i, s)| (i, crate::ringlet::time_masks(&s.time_tests, 0)))
+                .collect();
+            if timed.is_empty() {
+                continue;
+            }
+            self.line(&format!(":: ringing == {} ->", k + 1));
+            self.depth += 1;
+            self.line("if");
+            for (s, masks) in timed {
+                let options: Vec<String> = masks
+                    .iter()
+                    .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
+                    .collect();
+                self.line(&format!(
+                    ":: st[{k}] == {s} -> if {} fi;",
+                    options.join(" ")
+                ));
+            }
+            self.line(":: else -> skip;");
+            self.line("fi;");
+            self.depth -= 1;
+        }
+        self.line(":: else -> skip;");
+        self.line("fi;");
+        let free: Vec<(usize, Vec<ValueId>)> = model
+            .free_slots()
+            .map(|(slot, d)| (slot, d.values.iter().map(|v| self.id(v)).collect()))
+            .collect();
+        for (slot, ids) in free {
+            let options: Vec<String> = ids.iter().map(|id| format!(":: s{slot} = {id};")).collect();
+            self.line(&format!(
+                "if :: tch{slot} -> tch{slot} = 0; if {} fi; :: else -> skip; fi;",
+                options.join(" ")
+            ));
+        }
+        self.depth -= 1;
+        self.line("};");
+    }
+
+    /// From the snapshot to the ringlet's end: `saw()`, the first transition that holds (its
+    /// OnExit, the target entered) or Internal, the commands to itself, the next turn.
+    fn rest_of_ringlet(&mut self) -> Result<(), EmitError> {
+        let model = self.model;
+        self.line("d_step {");
+        self.depth += 1;
+        self.line("if");
+        for (k, m) in model.machines.iter().enumerate() {
+            self.machine = k;
+            self.self_posts = 0;
+            self.line(&format!(":: ringing == {} ->", k + 1));
+            self.depth += 1;
+            self.line("if");
+            for (s, state) in m.states.iter().enumerate() {
+                self.state = s;
+                self.line(&format!(":: st[{k}] == {s} ->"));
+                self.depth += 1;
+                for (j, (seer, e)) in model.saw.iter().enumerate() {
+                    if *seer == k {
+                        let v = self.value(e)?;
+                        self.line(&format!("saw{j} = {};", v.code()));
+                    }
+                }
+                let fsm_state = &m.machine.states[s];
+                let mut opened = 0;
+                for t in &state.transitions {
+                    let holds = self.truth(&t.label)?;
+                    self.line("if");
+                    self.line(&format!(":: {holds} ->"));
+                    self.depth += 1;
+                    self.run(&fsm_state.on_exit)?;
+                    self.line(&format!(
+                        "st[{k}] = {}; je[{k}] = 1; due[{k}] = 0;",
+                        t.target
+                    ));
+                    self.depth -= 1;
+                    self.line(":: else ->");
+                    self.depth += 1;
+                    opened += 1;
+                }
+                self.run(&fsm_state.internal)?;
+                self.line("skip;");
+                for _ in 0..opened {
+                    self.depth -= 1;
+                    self.line("fi;");
+                }
+                self.depth -= 1;
+            }
+            self.line("fi;");
+            for i in 0..self.queue {
+                let options: Vec<String> = Command::ALL
+                    .iter()
+                    .map(|c| (command_code(*c), *c))
+                    .map(|(code, c)| {
+                        let saved = std::mem::take(&mut self.out);
+                        let depth = std::mem::replace(&mut self.depth, 0);
+                        self.control(k, c);
+                        self.depth = depth;
+                        let body = std::mem::replace(&mut self.out, saved);
+                        format!(":: defer[{i}] == {code} -> {}", body.replace('\n', " "))
+                    })
+                    .collect();
+                self.line(&format!(
+                    "if {} :: else -> skip; fi; defer[{i}] = 0;",
+                    options.join(" ")
+                ));
+            }
+            if self.queue > 0 {
+                self.line("ndefer = 0;");
+            }
+            self.line(&format!("turn = {};", k + 1));
+            self.depth -= 1;
+        }
+        self.line(":: else -> skip;");
+        self.line("fi;");
+        self.depth -= 1;
+        self.line("};");
+        Ok(())
+    }
+
+    /// The end of a step: `ringing` cleared, each property's hit bit, and no variable beyond
+    /// the numbered values.
+    fn properties(&mut self, properties: &[Property]) {
+        let model = self.model;
+        self.line("d_step {");
+        self.depth += 1;
+        self.line("ringing = 0;");
+        self.noting = false;
+        for (i, p) in properties.iter().enumerate() {
+            let holds = self.term_truth(p.term());
+            let hit = match p.source.kind {
+                PropertyKind::Never | PropertyKind::Reachable => holds,
+                PropertyKind::Always => format!("!({holds})"),
+            };
+            self.line(&format!("hit{i} = ({hit} -> 1 : 0);"));
+        }
+        let mut vars: Vec<String> = (0..model.slots.len()).map(|i| format!("s{i}")).collect();
+        vars.extend((0..model.saw.len()).map(|i| format!("saw{i}")));
+        if !vars.is_empty() {
+            let checks: Vec<String> = vars.iter().map(|v| format!("{v} != BEYOND")).collect();
+            self.line(&format!("assert({});", checks.join(" && ")));
+        }
+        self.depth -= 1;
+        self.line("};");
+    }
+}
+
+/// A command's number in the queue of commands a machine sends itself (0: none).
+fn command_code(command: Command) -> usize {
+    1 + Command::ALL.iter().position(|c| *c == command).unwrap_or(0)
+}
+
+fn is_temp(code: &str) -> bool {
+    code.len() > 1 && code.starts_with('t') && code[1..].bytes().all(|b| b.is_ascii_digit())
+}
+
+/// Text safe inside a Promela comment.
+fn comment(text: &str) -> String {
+    text.replace("*/", "* /").replace('\n', " ")
+}
