@@ -219,16 +219,28 @@ fn odometer_states_per_second_of_verify_and_spin() {
     if !tools_present() {
         return;
     }
-    for (n, k) in [(2, 30), (3, 20), (4, 12)] {
+    // 10^3 to 10^7 checker states; a run may be limited to the smaller ones with
+    // PROCLAIM_ODOMETER_MAX=N (the largest N machines).
+    let largest: usize = std::env::var("PROCLAIM_ODOMETER_MAX")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(5);
+    let options = Options {
+        max_states: 50_000_000,
+    };
+    for (n, k) in [(2, 30), (3, 20), (4, 12), (4, 24), (5, 16)]
+        .into_iter()
+        .filter(|(n, _)| *n <= largest)
+    {
         let dir = odometer(n, k);
         let case = format!("odometer {n} {k}");
         let behaviour = load(&case, Arc::new(Folder::new(&dir))).expect("loads");
         let property = [property(PropertyKind::Never, &format!("g0 >= {k}"))];
         let started = std::time::Instant::now();
-        let report = verify(&behaviour, &property, Options::default()).expect("verifies");
+        let report = verify(&behaviour, &property, options).expect("verifies");
         let verify_seconds = started.elapsed().as_secs_f64();
         let started = std::time::Instant::now();
-        let promela = to_promela(&behaviour, &property, Options::default()).expect("emits");
+        let promela = to_promela(&behaviour, &property, options).expect("emits");
         let emit_seconds = started.elapsed().as_secs_f64();
         let work = scratch(&format!("odometer-{n}-{k}"));
         std::fs::write(work.join("model.pml"), &promela.text).expect("write");
@@ -237,7 +249,7 @@ fn odometer_states_per_second_of_verify_and_spin() {
         run(&work, "gcc", &["-O2", "-DSAFETY", "-o", "pan", "pan.c"]);
         let compile_seconds = started.elapsed().as_secs_f64();
         let started = std::time::Instant::now();
-        let out = run(&work, "./pan", &["-m20000000", "-w24"]);
+        let out = run(&work, "./pan", &["-m200000000", "-w28"]);
         let pan_seconds = started.elapsed().as_secs_f64();
         assert!(!out.contains("max search depth too small"), "{out}");
         assert!(!out.contains("assertion violated"), "{out}");
