@@ -1,6 +1,7 @@
 //! examples/cpp/microwave.cpp, compiled with the system's g++ against this crate's static
-//! library and run: its answers are the Rust session's. Skipped (with a message) where g++ is
-//! missing, unless `CI` is set, where that is a failure.
+//! library and run: its answers are the Rust session's. examples/c/bench.c too, as C, run briefly
+//! so it keeps compiling. Skipped (with a message) where g++ is missing, unless `CI` is set,
+//! where that is a failure.
 
 use proclaim_cdl::{load, Algorithm, Engine, Language, Session};
 use std::path::{Path, PathBuf};
@@ -111,4 +112,46 @@ fn the_cpp_example_answers_as_the_rust_session_does() {
         "{stderr}"
     );
     assert!(stderr.contains("2 │ Timer: timeLeft => ."), "{stderr}");
+}
+
+#[test]
+fn the_c_timing_loop_builds_and_runs() {
+    if gpp_is_missing() {
+        return;
+    }
+    let root = workspace();
+    let program = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench-c");
+    // g++'s driver compiles a `.c` file as C when told the language.
+    let compiled = Command::new("g++")
+        .args([
+            "-x", "c", "-std=c11", "-Wall", "-Wextra", "-Werror", "-O2", "-I",
+        ])
+        .arg(root.join("crates/capi/include"))
+        .arg(root.join("examples/c/bench.c"))
+        .args(["-x", "none"])
+        .arg(static_library())
+        .args(["-lpthread", "-ldl", "-lm", "-o"])
+        .arg(&program)
+        .output()
+        .expect("g++ runs");
+    assert!(
+        compiled.status.success(),
+        "g++ failed:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+    let run = Command::new(&program)
+        .arg(root.join("theories/microwave.dl"))
+        .arg("101")
+        .output()
+        .expect("the timing loop runs");
+    let stdout = String::from_utf8(run.stdout).unwrap();
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        stdout.ends_with("ns per iteration (101 iterations)\n"),
+        "{stdout}"
+    );
 }
