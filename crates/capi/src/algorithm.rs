@@ -1,0 +1,58 @@
+//! The five proof algorithms as numbers C can pass.
+
+use proclaim_cdl::Algorithm;
+use std::ffi::c_int;
+
+/// The proof algorithm of a question (cdl.md §4). Functions take it as an `int`, so that a
+/// number outside this list is an error the call reports rather than undefined behaviour.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProclaimAlgorithm {
+    /// Definite provability: strict rules and facts only.
+    Mu = 0,
+    /// Ambiguity propagating.
+    Pi = 1,
+    /// Ambiguity blocking.
+    Beta = 2,
+    /// Proved by both β and π.
+    Alpha = 3,
+    /// Proved by β or π.
+    Delta = 4,
+}
+
+impl ProclaimAlgorithm {
+    /// The algorithm a number from C stands for, if any.
+    pub fn from_code(code: c_int) -> Option<Algorithm> {
+        Some(match code {
+            0 => Algorithm::Mu,
+            1 => Algorithm::Pi,
+            2 => Algorithm::Beta,
+            3 => Algorithm::Alpha,
+            4 => Algorithm::Delta,
+            _ => return None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_numbers_follow_the_enum_and_nothing_else_is_an_algorithm() {
+        for (variant, algorithm) in [
+            (ProclaimAlgorithm::Mu, Algorithm::Mu),
+            (ProclaimAlgorithm::Pi, Algorithm::Pi),
+            (ProclaimAlgorithm::Beta, Algorithm::Beta),
+            (ProclaimAlgorithm::Alpha, Algorithm::Alpha),
+            (ProclaimAlgorithm::Delta, Algorithm::Delta),
+        ] {
+            assert_eq!(
+                ProclaimAlgorithm::from_code(variant as c_int),
+                Some(algorithm)
+            );
+        }
+        assert_eq!(ProclaimAlgorithm::from_code(5), None);
+        assert_eq!(ProclaimAlgorithm::from_code(-1), None);
+    }
+}

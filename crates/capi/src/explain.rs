@@ -1,0 +1,41 @@
+//! Why an algorithm proves or refutes a literal, as text C owns.
+
+use crate::algorithm::ProclaimAlgorithm;
+use crate::names;
+use crate::session::{with_session, ProclaimSession};
+use crate::status::ProclaimStatus;
+use crate::string::owned;
+use std::ffi::{c_char, c_int};
+
+/// Explains `±algorithm literal` as `proclaim explain` prints it: the supporting rule, each
+/// attacker and what became of it, following antecedents `depth` levels down. Writes a string the
+/// caller frees with `proclaim_string_free` to `*text_out` and returns `OK`; otherwise
+/// `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*text_out` is left alone.
+///
+/// # Safety
+/// `session` is null or a live session; `literal` is null or a NUL-terminated string;
+/// `text_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_session_explain(
+    session: *mut ProclaimSession,
+    literal: *const c_char,
+    algorithm: c_int,
+    depth: u32,
+    text_out: *mut *mut c_char,
+) -> ProclaimStatus {
+    with_session(session, |session| {
+        let Some(algorithm) = ProclaimAlgorithm::from_code(algorithm) else {
+            return ProclaimStatus::BadArgument;
+        };
+        if text_out.is_null() {
+            return ProclaimStatus::BadArgument;
+        }
+        let literal = match names::literal(session, literal) {
+            Ok(literal) => literal,
+            Err(status) => return status,
+        };
+        let explanation = session.explain(algorithm, literal, depth as usize);
+        *text_out = owned(&explanation.to_string());
+        ProclaimStatus::Ok
+    })
+}

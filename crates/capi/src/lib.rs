@@ -1,0 +1,41 @@
+//! The reasoner behind a C ABI, for C and C++ programs (`include/proclaim.h`, generated from
+//! these files by cbindgen; `tests/header.rs` fails when the checked-in header is stale).
+//!
+//! Everything is an opaque handle freed by its own function: a theory loaded from text
+//! ([`proclaim_theory_load`]), a session over it ([`proclaim_session_new`]) whose inputs are set
+//! ([`proclaim_session_set`]) and whose literals are proved ([`proclaim_session_prove`]) or
+//! explained ([`proclaim_session_explain`]). Calls return a [`ProclaimStatus`]; a null pointer,
+//! text that is not UTF-8 or an out-of-range enum value is `PROCLAIM_STATUS_BAD_ARGUMENT`, never
+//! undefined behaviour, and a panic inside the reasoner is caught at the boundary and returned as
+//! `PROCLAIM_STATUS_PANIC` (the session it happened in answers nothing afterwards).
+//!
+//! A theory is immutable and may be shared between threads; a session must be used by one thread
+//! at a time. A session keeps its theory alive, so the theory may be freed first.
+
+mod algorithm;
+mod error;
+mod explain;
+mod guard;
+mod names;
+mod prove;
+mod session;
+mod status;
+mod string;
+mod text;
+mod theory;
+mod value;
+
+pub use algorithm::ProclaimAlgorithm;
+pub use error::{proclaim_error_free, ProclaimError};
+pub use explain::proclaim_session_explain;
+pub use prove::proclaim_session_prove;
+pub use session::{
+    proclaim_session_free, proclaim_session_new, proclaim_session_set, proclaim_session_set_budget,
+    ProclaimSession,
+};
+pub use status::{proclaim_status_name, ProclaimStatus};
+pub use string::proclaim_string_free;
+pub use theory::{
+    proclaim_theory_free, proclaim_theory_load, proclaim_theory_load_named, ProclaimTheory,
+};
+pub use value::ProclaimValue;

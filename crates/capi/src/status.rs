@@ -1,0 +1,88 @@
+//! What a call returns: whether it answered, and if not, why.
+
+use std::ffi::{c_char, c_int};
+
+/// The outcome of a call. Only `PROCLAIM_STATUS_OK` means its out-parameters were written with an
+/// answer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProclaimStatus {
+    /// The call did what it was asked.
+    Ok = 0,
+    /// The search ran out of its step budget inside an attack cycle before deciding the goal:
+    /// neither proved nor refuted (the answer written is `false`, "not proved").
+    Undecided = 1,
+    /// The theory has no such atom.
+    UnknownAtom = 2,
+    /// The theory declares its inputs and this atom is not one of them: it is concluded, not set.
+    NotAnInput = 3,
+    /// The value, together with the other inputs, contradicts the theory's axioms; the session was
+    /// left as it was.
+    InputConflict = 4,
+    /// A null pointer, text that is not UTF-8, or a number that is no algorithm or value.
+    BadArgument = 5,
+    /// The reasoner panicked (a bug); the panic was stopped at the boundary. A session that
+    /// panicked answers `PROCLAIM_STATUS_PANIC` to every later call: free it.
+    Panic = 6,
+}
+
+impl ProclaimStatus {
+    const ALL: [ProclaimStatus; 7] = [
+        ProclaimStatus::Ok,
+        ProclaimStatus::Undecided,
+        ProclaimStatus::UnknownAtom,
+        ProclaimStatus::NotAnInput,
+        ProclaimStatus::InputConflict,
+        ProclaimStatus::BadArgument,
+        ProclaimStatus::Panic,
+    ];
+
+    /// The status a number from C stands for, if any.
+    pub fn from_code(code: c_int) -> Option<ProclaimStatus> {
+        ProclaimStatus::ALL
+            .into_iter()
+            .find(|s| *s as c_int == code)
+    }
+
+    /// The name C programs print, NUL-terminated so it can be handed out as is.
+    fn name_with_nul(self) -> &'static str {
+        match self {
+            ProclaimStatus::Ok => "ok\0",
+            ProclaimStatus::Undecided => "undecided\0",
+            ProclaimStatus::UnknownAtom => "unknown atom\0",
+            ProclaimStatus::NotAnInput => "not an input\0",
+            ProclaimStatus::InputConflict => "input conflict\0",
+            ProclaimStatus::BadArgument => "bad argument\0",
+            ProclaimStatus::Panic => "panic\0",
+        }
+    }
+}
+
+/// The name of a status ("ok", "undecided", "unknown atom", …), a static string the caller must
+/// not free; "not a status" for a number that is none.
+#[no_mangle]
+pub extern "C" fn proclaim_status_name(status: c_int) -> *const c_char {
+    ProclaimStatus::from_code(status)
+        .map_or("not a status\0", ProclaimStatus::name_with_nul)
+        .as_ptr()
+        .cast()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::CStr;
+
+    #[test]
+    fn every_status_has_a_name_and_other_numbers_say_so() {
+        let name = |code| {
+            unsafe { CStr::from_ptr(proclaim_status_name(code)) }
+                .to_str()
+                .unwrap()
+        };
+        assert_eq!(name(ProclaimStatus::Undecided as c_int), "undecided");
+        assert_eq!(name(ProclaimStatus::Panic as c_int), "panic");
+        assert_eq!(name(7), "not a status");
+        assert_eq!(name(-1), "not a status");
+    }
+}

@@ -1,0 +1,121 @@
+//! A checked, compiled theory behind an opaque handle.
+
+use crate::error::ProclaimError;
+use crate::guard::guarded;
+use crate::text::{nul_terminated, sized, BadText};
+use proclaim_cdl::{load_named, Engine, Language};
+use std::ffi::c_char;
+use std::sync::Arc;
+
+/// A theory, immutable once loaded: sessions share it and may outlive the handle.
+pub struct ProclaimTheory {
+    pub(crate) engine: Arc<Engine>,
+}
+
+/// The name a theory is loaded under when none is given, as in `proclaim_cdl::load`.
+const UNNAMED: &str = "theory";
+
+/// Loads a theory from `len` bytes of `.dl` text (no terminator needed). Returns the theory, or
+/// null with `*error_out` set to why (every error, with the first one's line and column), which
+/// the caller frees with `proclaim_error_free`. `error_out` may be null when the reason is not
+/// wanted; on success `*error_out` is set to null.
+///
+/// # Safety
+/// `text` is null or points to `len` readable bytes; `error_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_load(
+    text: *const c_char,
+    len: usize,
+    error_out: *mut *mut ProclaimError,
+) -> *mut ProclaimTheory {
+    load(Ok(UNNAMED), text, len, error_out)
+}
+
+/// [`proclaim_theory_load`], naming the text (a file name) in the errors; a name ending in
+/// `.dfl` is read as DFL (SPINdle's syntax), anything else as `.dl`.
+///
+/// # Safety
+/// `name` is null or a NUL-terminated string; otherwise as [`proclaim_theory_load`].
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_load_named(
+    name: *const c_char,
+    text: *const c_char,
+    len: usize,
+    error_out: *mut *mut ProclaimError,
+) -> *mut ProclaimTheory {
+    load(nul_terminated(name), text, len, error_out)
+}
+
+unsafe fn load(
+    name: Result<&str, BadText>,
+    text: *const c_char,
+    len: usize,
+    error_out: *mut *mut ProclaimError,
+) -> *mut ProclaimTheory {
+    let outcome = guarded(
+        Err(ProclaimError::boxed(
+            name.unwrap_or(UNNAMED),
+            None,
+            "the reasoner panicked while loading the theory (a bug; the panic was stopped here)",
+        )),
+        || -> Result<*mut ProclaimTheory, *mut ProclaimError> {
+            let name = name.map_err(|bad| {
+                ProclaimError::boxed(UNNAMED, None, &format!("the theory's name: {bad}"))
+            })?;
+            let source = sized(text, len).map_err(|bad| {
+                let place = match bad {
+                    BadText::Null => None,
+                    BadText::NotUtf8 { valid_up_to } => {
+                        // The valid prefix is UTF-8, so the place can be counted in characters.
+                        let prefix = std::str::from_utf8(std::slice::from_raw_parts(
+                            text.cast::<u8>(),
+                            valid_up_to,
+                        ))
+                        .unwrap_or_default();
+                        Some(proclaim_syntax::line_column(prefix, valid_up_to))
+                    }
+                };
+                ProclaimError::boxed(name, place, &bad.to_string())
+            })?;
+            let language = if name.ends_with(".dfl") {
+                Language::Dfl
+            } else {
+                Language::Dl
+            };
+            match load_named(name, source, language) {
+                Ok(theory) => Ok(Box::into_raw(Box::new(ProclaimTheory {
+                    engine: Arc::new(Engine::new(theory)),
+                }))),
+                Err(error) => {
+                    let place = error
+                        .diagnostics()
+                        .first()
+                        .map(|d| proclaim_syntax::line_column(source, d.span.start as usize));
+                    Err(ProclaimError::boxed(name, place, &error.to_string()))
+                }
+            }
+        },
+    );
+    let (theory, error) = match outcome {
+        Ok(theory) => (theory, std::ptr::null_mut()),
+        Err(error) => (std::ptr::null_mut(), error),
+    };
+    if error_out.is_null() {
+        crate::error::proclaim_error_free(error);
+    } else {
+        *error_out = error;
+    }
+    theory
+}
+
+/// Frees a theory. Sessions made from it keep working (they hold their own reference). Null is
+/// ignored.
+///
+/// # Safety
+/// `theory` is null or a theory returned by this library and not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_free(theory: *mut ProclaimTheory) {
+    if !theory.is_null() {
+        drop(Box::from_raw(theory));
+    }
+}

@@ -1,0 +1,334 @@
+//! The C API called as C calls it (raw pointers, NUL-terminated strings, numbers for enums):
+//! answers equal the Rust session's, errors carry their place, and bad arguments are statuses.
+
+use proclaim_capi::*;
+use std::ffi::{c_char, c_int, CStr, CString};
+use std::ptr::{null, null_mut};
+
+const MICROWAVE: &str = include_str!("../../../theories/microwave.dl");
+const ALGORITHMS: [ProclaimAlgorithm; 5] = [
+    ProclaimAlgorithm::Mu,
+    ProclaimAlgorithm::Pi,
+    ProclaimAlgorithm::Beta,
+    ProclaimAlgorithm::Alpha,
+    ProclaimAlgorithm::Delta,
+];
+
+fn c(text: &str) -> CString {
+    CString::new(text).unwrap()
+}
+
+fn load(text: &str) -> Result<*mut ProclaimTheory, (String, u32, u32, String)> {
+    let mut error = null_mut();
+    let theory = unsafe { proclaim_theory_load(text.as_ptr().cast(), text.len(), &mut error) };
+    if theory.is_null() {
+        Err(unsafe { taken(error) })
+    } else {
+        assert!(error.is_null());
+        Ok(theory)
+    }
+}
+
+/// The error's fields, and the error freed.
+unsafe fn taken(error: *mut ProclaimError) -> (String, u32, u32, String) {
+    assert!(!error.is_null(), "a failed load sets the error");
+    let read = |text: *mut c_char| CStr::from_ptr(text).to_str().unwrap().to_string();
+    let fields = (
+        read((*error).file),
+        (*error).line,
+        (*error).column,
+        read((*error).message),
+    );
+    proclaim_error_free(error);
+    fields
+}
+
+fn prove(session: *mut ProclaimSession, literal: &str, algorithm: c_int) -> (ProclaimStatus, bool) {
+    let mut answer = false;
+    let status =
+        unsafe { proclaim_session_prove(session, c(literal).as_ptr(), algorithm, &mut answer) };
+    (status, answer)
+}
+
+fn set(session: *mut ProclaimSession, atom: &str, value: c_int) -> ProclaimStatus {
+    unsafe { proclaim_session_set(session, c(atom).as_ptr(), value) }
+}
+
+#[test]
+fn every_algorithm_answers_as_the_rust_session_does_on_every_input() {
+    let theory = load(MICROWAVE).unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    // Freed before the session is used: the session holds the theory.
+    unsafe { proclaim_theory_free(theory) };
+    let rust_theory = proclaim_cdl::load(MICROWAVE, proclaim_cdl::Language::Dl).unwrap();
+    let (door, time) = (
+        rust_theory.atom("doorOpen").unwrap(),
+        rust_theory.atom("timeLeft").unwrap(),
+    );
+    let mut rust = proclaim_cdl::Session::new(proclaim_cdl::Engine::new(rust_theory.clone()));
+    let values = [
+        (ProclaimValue::False, Some(false)),
+        (ProclaimValue::True, Some(true)),
+        (ProclaimValue::Unknown, None),
+    ];
+    for (door_value, door_open) in values {
+        for (time_value, time_left) in values {
+            assert_eq!(
+                set(session, "doorOpen", door_value as c_int),
+                ProclaimStatus::Ok
+            );
+            assert_eq!(
+                set(session, "timeLeft", time_value as c_int),
+                ProclaimStatus::Ok
+            );
+            rust.set_input(door, door_open).unwrap();
+            rust.set_input(time, time_left).unwrap();
+            for (algorithm, rust_algorithm) in
+                ALGORITHMS.into_iter().zip(proclaim_cdl::Algorithm::ALL)
+            {
+                for literal in ["cook", "~cook", "light", "~light"] {
+                    let expected = rust.prove(rust_algorithm, rust_theory.lit(literal).unwrap());
+                    assert_eq!(
+                        prove(session, literal, algorithm as c_int),
+                        (ProclaimStatus::Ok, expected),
+                        "{literal} under {rust_algorithm:?}, door {door_open:?}, time {time_left:?}"
+                    );
+                }
+            }
+        }
+    }
+    unsafe { proclaim_session_free(session) };
+}
+
+#[test]
+fn a_theory_that_does_not_load_says_where_and_why() {
+    let (file, line, column, message) = load("input{a}.\nR: a => b.\nS: a => .\n").unwrap_err();
+    assert_eq!((file.as_str(), line, column), ("theory", 3, 9));
+    assert!(
+        message.starts_with("theory does not load (1 error)"),
+        "{message}"
+    );
+    assert!(
+        message.contains("3 │ S: a => ."),
+        "the line is quoted: {message}"
+    );
+
+    let name = c("kitchen.dl");
+    let text = "R: a => b\nS: => c.";
+    let mut error = null_mut();
+    let theory = unsafe {
+        proclaim_theory_load_named(name.as_ptr(), text.as_ptr().cast(), text.len(), &mut error)
+    };
+    assert!(theory.is_null());
+    let (file, line, _, message) = unsafe { taken(error) };
+    assert_eq!((file.as_str(), line), ("kitchen.dl", 2));
+    assert!(message.starts_with("kitchen.dl does not load"), "{message}");
+}
+
+#[test]
+fn null_text_and_bad_utf8_are_errors_with_a_place_when_there_is_one() {
+    let mut error = null_mut();
+    assert!(unsafe { proclaim_theory_load(null(), 3, &mut error) }.is_null());
+    let (_, line, column, message) = unsafe { taken(error) };
+    assert_eq!((line, column), (0, 0));
+    assert_eq!(message, "the text is a null pointer");
+
+    let bytes = b"a.\nb\xff.";
+    let mut error = null_mut();
+    assert!(
+        unsafe { proclaim_theory_load(bytes.as_ptr().cast(), bytes.len(), &mut error) }.is_null()
+    );
+    let (_, line, column, message) = unsafe { taken(error) };
+    assert_eq!(
+        (line, column, message.as_str()),
+        (2, 2, "the text is not UTF-8 (byte 4 is not)")
+    );
+
+    // No error wanted: null error_out is allowed and nothing leaks into it.
+    assert!(
+        unsafe { proclaim_theory_load(bytes.as_ptr().cast(), bytes.len(), null_mut()) }.is_null()
+    );
+    let mut error = null_mut();
+    assert!(
+        unsafe { proclaim_theory_load_named(null(), b"a.".as_ptr().cast(), 2, &mut error) }
+            .is_null()
+    );
+    assert!(unsafe { taken(error) }
+        .3
+        .contains("name: the text is a null pointer"));
+}
+
+#[test]
+fn wrong_arguments_are_statuses_not_crashes() {
+    let theory = load(MICROWAVE).unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    let mut answer = false;
+    let beta = ProclaimAlgorithm::Beta as c_int;
+    let cook = c("cook");
+    unsafe {
+        assert!(proclaim_session_new(null()).is_null());
+        assert_eq!(
+            proclaim_session_prove(null_mut(), cook.as_ptr(), beta, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove(session, null(), beta, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove(session, cook.as_ptr(), beta, null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove(session, cook.as_ptr(), 5, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        let not_utf8 = b"c\xffok\0";
+        assert_eq!(
+            proclaim_session_prove(session, not_utf8.as_ptr().cast(), beta, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_set(session, null(), 1),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_set_budget(session, 0),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_set_budget(null_mut(), 10),
+            ProclaimStatus::BadArgument
+        );
+        let mut text = null_mut();
+        assert_eq!(
+            proclaim_session_explain(session, cook.as_ptr(), 9, 1, &mut text),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_explain(session, cook.as_ptr(), beta, 1, null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert!(text.is_null());
+    }
+    assert_eq!(set(session, "doorOpen", 3), ProclaimStatus::BadArgument);
+    assert_eq!(set(session, "doorOpen", -1), ProclaimStatus::BadArgument);
+    assert_eq!(set(session, "dorOpen", 1), ProclaimStatus::UnknownAtom);
+    assert_eq!(set(session, "cook", 1), ProclaimStatus::NotAnInput);
+    assert_eq!(
+        prove(session, "coook", beta),
+        (ProclaimStatus::UnknownAtom, false)
+    );
+    unsafe {
+        proclaim_session_free(session);
+        proclaim_theory_free(theory);
+        // Freeing null is allowed, as with free().
+        proclaim_session_free(null_mut());
+        proclaim_theory_free(null_mut());
+        proclaim_error_free(null_mut());
+    }
+}
+
+#[test]
+fn an_input_that_contradicts_the_axioms_is_refused_and_changes_nothing() {
+    let theory = load("input{a}. input{b}. \\/{~a, ~b}. R: a => c. output{beta c}.").unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    let beta = ProclaimAlgorithm::Beta as c_int;
+    assert_eq!(
+        set(session, "a", ProclaimValue::True as c_int),
+        ProclaimStatus::Ok
+    );
+    assert_eq!(
+        set(session, "b", ProclaimValue::True as c_int),
+        ProclaimStatus::InputConflict
+    );
+    assert_eq!(prove(session, "c", beta), (ProclaimStatus::Ok, true));
+    assert_eq!(
+        prove(session, "b", ProclaimAlgorithm::Mu as c_int),
+        (ProclaimStatus::Ok, false)
+    );
+    unsafe {
+        proclaim_session_free(session);
+        proclaim_theory_free(theory);
+    }
+}
+
+#[test]
+fn a_search_past_its_budget_is_undecided_until_the_budget_is_raised() {
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("ladder", &[6])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dl)
+        .unwrap();
+    // The crossed ladder of tests/reasoner.rs: 1,000 steps do not decide `t0` (it is true).
+    let text = String::from_utf8(text).unwrap() + "x: t0 => ~t2.\n";
+    let theory = load(&text).unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    let beta = ProclaimAlgorithm::Beta as c_int;
+    assert_eq!(
+        unsafe { proclaim_session_set_budget(session, 1000) },
+        ProclaimStatus::Ok
+    );
+    assert_eq!(
+        prove(session, "t0", beta),
+        (ProclaimStatus::Undecided, false)
+    );
+    assert_eq!(prove(session, "~t0", beta), (ProclaimStatus::Ok, false));
+    assert_eq!(
+        unsafe { proclaim_session_set_budget(session, 10_000_000) },
+        ProclaimStatus::Ok
+    );
+    assert_eq!(prove(session, "t0", beta), (ProclaimStatus::Ok, true));
+    unsafe {
+        proclaim_session_free(session);
+        proclaim_theory_free(theory);
+    }
+}
+
+#[test]
+fn an_explanation_is_the_rust_one_in_a_string_the_caller_frees() {
+    let theory = load(MICROWAVE).unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    assert_eq!(
+        set(session, "doorOpen", ProclaimValue::True as c_int),
+        ProclaimStatus::Ok
+    );
+    assert_eq!(
+        set(session, "timeLeft", ProclaimValue::True as c_int),
+        ProclaimStatus::Ok
+    );
+    let mut text = null_mut();
+    let status = unsafe {
+        proclaim_session_explain(
+            session,
+            c("cook").as_ptr(),
+            ProclaimAlgorithm::Beta as c_int,
+            1,
+            &mut text,
+        )
+    };
+    assert_eq!(status, ProclaimStatus::Ok);
+    let explanation = unsafe { CStr::from_ptr(text) }
+        .to_str()
+        .unwrap()
+        .to_string();
+    unsafe { proclaim_string_free(text) };
+
+    let rust_theory = proclaim_cdl::load(MICROWAVE, proclaim_cdl::Language::Dl).unwrap();
+    let mut rust = proclaim_cdl::Session::new(proclaim_cdl::Engine::new(rust_theory.clone()));
+    for input in ["doorOpen", "timeLeft"] {
+        rust.set_input(rust_theory.atom(input).unwrap(), Some(true))
+            .unwrap();
+    }
+    let expected = rust.explain(
+        proclaim_cdl::Algorithm::Beta,
+        rust_theory.lit("cook").unwrap(),
+        1,
+    );
+    assert_eq!(explanation, expected.to_string());
+    assert!(explanation.contains("DoorCut"), "{explanation}");
+    unsafe {
+        proclaim_session_free(session);
+        proclaim_theory_free(theory);
+    }
+}

@@ -1,0 +1,157 @@
+//! examples/cpp/microwave.cpp, compiled with the system's g++ against this crate's static
+//! library and run: its answers are the Rust session's. examples/c/bench.c too, as C, run briefly
+//! so it keeps compiling. Skipped (with a message) where g++ is missing, unless `CI` is set,
+//! where that is a failure.
+
+use proclaim_cdl::{load, Algorithm, Engine, Language, Session};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The static library cargo built beside this test: the package's lib target is compiled once
+/// with all its crate types, so `libproclaim_capi.a` sits in the profile directory above `deps/`.
+fn static_library() -> PathBuf {
+    let test_binary = std::env::current_exe().expect("the test knows where it is");
+    let profile_dir = test_binary
+        .parent()
+        .and_then(Path::parent)
+        .expect("test binaries live in <target>/<profile>/deps");
+    let library = profile_dir.join("libproclaim_capi.a");
+    assert!(
+        library.exists(),
+        "{} is missing: cargo builds it with the crate",
+        library.display()
+    );
+    library
+}
+
+fn gpp_is_missing() -> bool {
+    let missing = Command::new("g++").arg("--version").output().is_err();
+    if missing {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "g++ is missing, and CI must run the C++ example"
+        );
+        eprintln!("skipped: g++ is not installed, so the C++ example cannot be built");
+    }
+    missing
+}
+
+/// What the example prints, from the Rust session.
+fn expected_output(theory_text: &str) -> String {
+    let theory = load(theory_text, Language::Dl).unwrap();
+    let door = theory.atom("doorOpen").unwrap();
+    let time = theory.atom("timeLeft").unwrap();
+    let cook = theory.lit("cook").unwrap();
+    let mut session = Session::new(Engine::new(theory));
+    let mut out = String::new();
+    for door_open in [false, true] {
+        for time_left in [false, true] {
+            session.set_input(door, Some(door_open)).unwrap();
+            session.set_input(time, Some(time_left)).unwrap();
+            out += &format!("doorOpen={door_open} timeLeft={time_left} cook:");
+            for algorithm in Algorithm::ALL {
+                out += &format!(" {}={}", algorithm.name(), session.prove(algorithm, cook));
+            }
+            out += "\n";
+        }
+    }
+    out
+}
+
+#[test]
+fn the_cpp_example_answers_as_the_rust_session_does() {
+    if gpp_is_missing() {
+        return;
+    }
+    let root = workspace();
+    let program = Path::new(env!("CARGO_TARGET_TMPDIR")).join("microwave-cpp");
+    let compiled = Command::new("g++")
+        .args(["-std=c++17", "-Wall", "-Wextra", "-Werror", "-I"])
+        .arg(root.join("crates/capi/include"))
+        .arg(root.join("examples/cpp/microwave.cpp"))
+        .arg(static_library())
+        // What Rust's standard library needs from the system when linked statically.
+        .args(["-lpthread", "-ldl", "-lm", "-o"])
+        .arg(&program)
+        .output()
+        .expect("g++ runs");
+    assert!(
+        compiled.status.success(),
+        "g++ failed:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+
+    let theory_path = root.join("theories/microwave.dl");
+    let run = Command::new(&program)
+        .arg(&theory_path)
+        .output()
+        .expect("the example runs");
+    assert!(
+        run.status.success(),
+        "the example failed:\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let theory_text = std::fs::read_to_string(&theory_path).unwrap();
+    assert_eq!(
+        String::from_utf8(run.stdout).unwrap(),
+        expected_output(&theory_text)
+    );
+
+    // A theory that does not load: the message the C API rendered, on stderr, and exit 1.
+    let broken = Path::new(env!("CARGO_TARGET_TMPDIR")).join("broken-microwave.dl");
+    std::fs::write(&broken, "input{doorOpen}.\nTimer: timeLeft => .\n").unwrap();
+    let run = Command::new(&program).arg(&broken).output().unwrap();
+    let stderr = String::from_utf8(run.stderr).unwrap();
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("broken-microwave.dl does not load (1 error)"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("2 │ Timer: timeLeft => ."), "{stderr}");
+}
+
+#[test]
+fn the_c_timing_loop_builds_and_runs() {
+    if gpp_is_missing() {
+        return;
+    }
+    let root = workspace();
+    let program = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench-c");
+    // g++'s driver compiles a `.c` file as C when told the language.
+    let compiled = Command::new("g++")
+        .args([
+            "-x", "c", "-std=c11", "-Wall", "-Wextra", "-Werror", "-O2", "-I",
+        ])
+        .arg(root.join("crates/capi/include"))
+        .arg(root.join("examples/c/bench.c"))
+        .args(["-x", "none"])
+        .arg(static_library())
+        .args(["-lpthread", "-ldl", "-lm", "-o"])
+        .arg(&program)
+        .output()
+        .expect("g++ runs");
+    assert!(
+        compiled.status.success(),
+        "g++ failed:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+    let run = Command::new(&program)
+        .arg(root.join("theories/microwave.dl"))
+        .arg("101")
+        .output()
+        .expect("the timing loop runs");
+    let stdout = String::from_utf8(run.stdout).unwrap();
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        stdout.ends_with("ns per iteration (101 iterations)\n"),
+        "{stdout}"
+    );
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The Python package's tests: a fresh venv, `pip install ./python` (maturin builds the extension
+# in release mode), then pytest. The agreement tests run the `proclaim` binary: PROCLAIM_BIN, or
+# target/debug/proclaim (under CARGO_TARGET_DIR when set), built here when missing.
+set -euo pipefail
+python_dir="$(cd "$(dirname "$0")" && pwd)"
+root="$(dirname "$python_dir")"
+target="${CARGO_TARGET_DIR:-$root/target}"
+venv="${PROCLAIM_VENV:-$target/python-venv}"
+
+if [ -z "${PROCLAIM_BIN:-}" ]; then
+  export PROCLAIM_BIN="$target/debug/proclaim"
+  [ -x "$PROCLAIM_BIN" ] || cargo build --quiet --manifest-path "$root/Cargo.toml" --bin proclaim
+fi
+
+# Debian's python3 leaves venv's pip out (python3-venv); install it the way .ci/run installs its tools.
+if ! python3 -c 'import ensurepip, venv' 2>/dev/null && command -v apt-get >/dev/null 2>&1; then
+  (apt-get update -qq && apt-get install -y -qq python3-venv) >/dev/null 2>&1 \
+    || echo "python3-venv could not be installed; creating the venv will fail"
+fi
+python3 -m venv "$venv"
+"$venv/bin/pip" install --quiet --upgrade pip
+"$venv/bin/pip" install --quiet maturin pytest
+"$venv/bin/pip" install --quiet "$python_dir"
+# From the tests' directory, not python/: the source tree's proclaim/ has no extension in it and
+# must not shadow the installed package.
+cd "$python_dir/tests"
+"$venv/bin/pytest" -q "$@"

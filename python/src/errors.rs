@@ -1,0 +1,92 @@
+//! The module's exceptions, and the reasoner's errors turned into them with their details as
+//! attributes (a program reads `error.line`, not the message).
+
+use proclaim_cdl::{InputConflict as Conflict, LoadError, Undecided as Stalled};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+
+create_exception!(
+    proclaim,
+    Error,
+    PyException,
+    "Every error the reasoner raises derives from this one."
+);
+create_exception!(
+    proclaim,
+    TheoryError,
+    Error,
+    "A theory did not load: `file`, `line` and `column` (1-based) of its first error, and \
+     `message`, every error rendered with its line and a caret."
+);
+create_exception!(
+    proclaim,
+    Undecided,
+    Error,
+    "The search ran out of its step budget inside an attack cycle before deciding: neither \
+     proved nor refuted. `goal` is the goal asked (`beta t0`), `stalled_at` the undecided goal \
+     of the cycle it depends on."
+);
+create_exception!(
+    proclaim,
+    InputConflict,
+    Error,
+    "Setting an input would contradict the theory's axioms; the session is left as it was. \
+     `input` is the refused literal, `clause` the axiom it contradicts."
+);
+
+/// The exception for a theory that did not load; `place` is where its first error is (line and
+/// column, 1-based), `None` when it has none.
+pub(crate) fn theory_error(
+    py: Python<'_>,
+    file: &str,
+    place: Option<(usize, usize)>,
+    message: String,
+) -> PyErr {
+    let error = TheoryError::new_err(message.clone());
+    let (line, column) = place.unwrap_or((0, 0));
+    let value = error.value(py);
+    let attributes = [
+        value.setattr("file", file),
+        value.setattr("line", line),
+        value.setattr("column", column),
+        value.setattr("message", message),
+    ];
+    match attributes.into_iter().find_map(Result::err) {
+        Some(failed) => failed,
+        None => error,
+    }
+}
+
+/// [`theory_error`] for the reasoner's [`LoadError`], placed at its first error in `source`.
+pub(crate) fn load_error(py: Python<'_>, file: &str, source: &str, error: &LoadError) -> PyErr {
+    let place = error
+        .diagnostics()
+        .first()
+        .map(|d| proclaim_syntax::line_column(source, d.span.start as usize));
+    theory_error(py, file, place, error.to_string())
+}
+
+pub(crate) fn undecided(py: Python<'_>, stalled: Stalled) -> PyErr {
+    let error = Undecided::new_err(stalled.to_string());
+    let value = error.value(py);
+    match value
+        .setattr("goal", stalled.goal)
+        .and_then(|()| value.setattr("stalled_at", stalled.stalled_at))
+    {
+        Ok(()) => error,
+        Err(failed) => failed,
+    }
+}
+
+pub(crate) fn input_conflict(py: Python<'_>, conflict: Conflict) -> PyErr {
+    let error = InputConflict::new_err(conflict.to_string());
+    let value = error.value(py);
+    match value
+        .setattr("input", conflict.input)
+        .and_then(|()| value.setattr("clause", conflict.clause))
+    {
+        Ok(()) => error,
+        Err(failed) => failed,
+    }
+}
