@@ -219,12 +219,12 @@ fn odometer_states_per_second_of_verify_and_spin() {
     if !tools_present() {
         return;
     }
-    // 10^3 to 10^7 checker states; a run may be limited to the smaller ones with
-    // PROCLAIM_ODOMETER_MAX=N (the largest N machines).
+    // 10^3 to 10^6 checker states; PROCLAIM_ODOMETER_MAX=5 adds 10^7 (the odometer is one long
+    // cycle, so SPIN's depth-first stack holds nearly every state: several GB there).
     let largest: usize = std::env::var("PROCLAIM_ODOMETER_MAX")
         .ok()
         .and_then(|n| n.parse().ok())
-        .unwrap_or(5);
+        .unwrap_or(4);
     let options = Options {
         max_states: 50_000_000,
     };
@@ -249,7 +249,13 @@ fn odometer_states_per_second_of_verify_and_spin() {
         run(&work, "gcc", &["-O2", "-DSAFETY", "-o", "pan", "pan.c"]);
         let compile_seconds = started.elapsed().as_secs_f64();
         let started = std::time::Instant::now();
-        let out = run(&work, "./pan", &["-m200000000", "-w28"]);
+        // SPIN's hash table and depth sized to the model (it stores about seven states per
+        // checker state): a fixed large size would be most of a small run's time.
+        let spin_expected = report.stats.states * 10;
+        let hash_bits = (usize::BITS - spin_expected.leading_zeros()).clamp(18, 30);
+        let depth = format!("-m{}", spin_expected.max(10_000));
+        let bits = format!("-w{hash_bits}");
+        let out = run(&work, "./pan", &[depth.as_str(), bits.as_str()]);
         let pan_seconds = started.elapsed().as_secs_f64();
         assert!(!out.contains("max search depth too small"), "{out}");
         assert!(!out.contains("assertion violated"), "{out}");
