@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Python package's tests: a fresh venv, `pip install ./python` (maturin builds the extension
-# in release mode), then pytest. The agreement tests run the `proclaim` binary: PROCLAIM_BIN, or
+# in release mode), then pytest (arguments are pytest's: `-k zenoh` runs only the Zenoh test). The agreement tests run the `proclaim` binary: PROCLAIM_BIN, or
 # target/debug/proclaim (under CARGO_TARGET_DIR when set), built here when missing.
 set -euo pipefail
 python_dir="$(cd "$(dirname "$0")" && pwd)"
@@ -20,7 +20,9 @@ if ! python3 -c 'import ensurepip, venv' 2>/dev/null && command -v apt-get >/dev
 fi
 python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet --upgrade pip
-"$venv/bin/pip" install --quiet maturin pytest
+# eclipse-zenoh: Zenoh's own Python package, for the whiteboard-over-Zenoh test (the Rust side is
+# Zenoh 1.9); that test runs only when PROCLAIM_ZENOH_BIN names a proclaim built with `zenoh`.
+"$venv/bin/pip" install --quiet maturin pytest eclipse-zenoh==1.9.0
 "$venv/bin/pip" install --quiet "$python_dir"
 # From the tests' directory, not python/: the source tree's proclaim/ has no extension in it and
 # must not shadow the installed package.
