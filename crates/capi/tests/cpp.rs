@@ -11,8 +11,9 @@ fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// The static library cargo built beside this test: the package's lib target is compiled once
-/// with all its crate types, so `libproclaim_capi.a` sits in the profile directory above `deps/`.
+/// The static library in the profile directory above this test's `deps/`. Building only the
+/// tests (`cargo test`, `nextest`) makes the crate's rlib and not its staticlib, so it is built
+/// here when missing, by cargo, into the same target directory and profile.
 fn static_library() -> PathBuf {
     let test_binary = std::env::current_exe().expect("the test knows where it is");
     let profile_dir = test_binary
@@ -20,11 +21,25 @@ fn static_library() -> PathBuf {
         .and_then(Path::parent)
         .expect("test binaries live in <target>/<profile>/deps");
     let library = profile_dir.join("libproclaim_capi.a");
-    assert!(
-        library.exists(),
-        "{} is missing: cargo builds it with the crate",
-        library.display()
-    );
+    if !library.exists() {
+        let target_dir = profile_dir.parent().expect("<target>/<profile>");
+        let mut cargo = Command::new(env!("CARGO"));
+        cargo
+            .args(["build", "--quiet", "-p", "proclaim-capi", "--lib"])
+            .env("CARGO_TARGET_DIR", target_dir)
+            .current_dir(workspace());
+        if profile_dir.file_name().is_some_and(|p| p == "release") {
+            cargo.arg("--release");
+        }
+        let built = cargo.output().expect("cargo runs");
+        assert!(
+            built.status.success(),
+            "building {} failed: {}",
+            library.display(),
+            String::from_utf8_lossy(&built.stderr)
+        );
+    }
+    assert!(library.exists(), "{} is missing", library.display());
     library
 }
 
