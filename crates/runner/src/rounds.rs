@@ -3,10 +3,11 @@
 //! round, in the order the machines were given (the manifest's). A control command posted in a
 //! ringlet is obeyed as soon as that ringlet ends: a machine stopped or suspended later in the
 //! round does not ring, and a machine started in a round takes its first ringlet in the next
-//! one; commands from outside are obeyed before each round. When a machine fired the next round follows at once;
-//! when none did, the schedule waits for news: a posting or a change of globals that differs
-//! from what a running machine's current labels last saw, a time test coming due, or the ring
-//! period. The same outside postings arriving between the same rounds give the same trace.
+//! one; commands from outside are obeyed before each round. When a machine fired, the next round
+//! follows at once; when none did, the schedule waits for news: a posting or a change of globals
+//! that differs from what a running machine's current labels last saw, a time test coming due,
+//! or the ring period. The same outside postings arriving between the same rounds give the same
+//! trace.
 
 use crate::machine::{MachineRunner, Ring, Run, Status};
 use crate::step::Stepper;
@@ -34,9 +35,9 @@ impl RoundCounter {
 }
 
 /// A ringlet about to start: the round, the machine's place in the schedule, the board's
-/// highest sequence number and its round's moment (time since the epoch). A message with a sequence number up to
-/// `seq` was on the board before the ringlet began; a recording of these is what lets a replay
-/// post every outside message before the same ringlet again.
+/// highest sequence number and its round's moment (time since the epoch). A message with a
+/// sequence number up to `seq` was on the board before the ringlet began; a recording of these
+/// is what lets a replay post every outside message before the same ringlet again.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Ringlet {
     pub round: u64,
