@@ -5,7 +5,14 @@
 set -euo pipefail
 python_dir="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$python_dir")"
-target="${CARGO_TARGET_DIR:-$root/target}"
+target="$(realpath -m "${CARGO_TARGET_DIR:-$root/target}")"
+# Paths given relative to where this was called from still work after the cd below.
+if [ -n "${PROCLAIM_ZENOH_BIN:-}" ]; then
+  export PROCLAIM_ZENOH_BIN="$(realpath -m "$PROCLAIM_ZENOH_BIN")"
+fi
+if [ -n "${PROCLAIM_BIN:-}" ]; then
+  export PROCLAIM_BIN="$(realpath -m "$PROCLAIM_BIN")"
+fi
 venv="${PROCLAIM_VENV:-$target/python-venv}"
 
 if [ -z "${PROCLAIM_BIN:-}" ]; then
