@@ -2,6 +2,7 @@
 //! built-in functions gufsm gave its machines (`post`, `postv`, `suspend`, `say`, `print`,
 //! `msleep`, …).
 
+use crate::arith::text;
 use crate::eval::Env;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
@@ -272,15 +273,5 @@ async fn sleep_ms(amount: Value, ms_per_unit: f64) {
     let ms = amount.as_f64().unwrap_or(0.0) * ms_per_unit;
     if ms > 0.0 {
         tokio::time::sleep(Duration::from_secs_f64(ms / 1e3)).await;
-    }
-}
-
-/// A value as a person reads it: text without quotes, lists space-separated (the form
-/// postings had in the original tables).
-pub(crate) fn text(value: &Value) -> String {
-    match value {
-        Value::Str(s) => s.clone(),
-        Value::List(items) => items.iter().map(text).collect::<Vec<_>>().join(" "),
-        other => other.to_string(),
     }
 }

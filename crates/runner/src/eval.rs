@@ -3,12 +3,11 @@
 //! result a fraction, and (as gufsm had it) dividing by zero gives the largest whole number
 //! instead of stopping the robot.
 
-use crate::activity::text;
+use crate::arith::{self, binary, negate};
 use crate::seen::Seen;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Value, Whiteboard};
 use proclaim_fsm::{BinOp, Expr, UnOp, TIME_TESTS};
-use std::cmp::Ordering;
 use std::time::Duration;
 
 /// What names mean where an expression runs.
@@ -92,36 +91,8 @@ impl Env<'_> {
         if let Some(limit) = self.time_limit(function, arguments) {
             return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
         }
-        let number = |i: usize| arguments.get(i).and_then(|a| self.value(a)?.as_f64());
-        let x = number(0);
-        Some(match (function, arguments.len()) {
-            ("abs", 1) => match self.value(&arguments[0])? {
-                Value::Int(i) => Value::Int(i.wrapping_abs()),
-                other => Value::Float(other.as_f64()?.abs()),
-            },
-            ("sqrt", 1) => Value::Float(x?.sqrt()),
-            ("sin", 1) => Value::Float(x?.sin()),
-            ("cos", 1) => Value::Float(x?.cos()),
-            ("tan", 1) => Value::Float(x?.tan()),
-            ("atan", 1) => Value::Float(x?.atan()),
-            ("atan2", 2) => Value::Float(x?.atan2(number(1)?)),
-            ("round", 1) => Value::Int(x?.round() as i64),
-            ("floor", 1) => Value::Int(x?.floor() as i64),
-            ("ceil", 1) => Value::Int(x?.ceil() as i64),
-            ("min" | "max", 2) => {
-                let (a, b) = (self.value(&arguments[0])?, self.value(&arguments[1])?);
-                let a_first = compare(&a, &b).is_some_and(|o| {
-                    (function == "min" && o != Ordering::Greater)
-                        || (function == "max" && o != Ordering::Less)
-                });
-                if a_first {
-                    a
-                } else {
-                    b
-                }
-            }
-            _ => return None,
-        })
+        let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
+        arith::function(function, &values)
     }
 
     /// For `timeout(µs)`, `after(s)` and `after_ms(ms)`: how long the state must have been
@@ -141,118 +112,6 @@ impl Env<'_> {
                 .map(|n| Duration::from_secs_f64((n * micros_per_unit).max(0.0) / 1e6)),
         )
     }
-}
-
-fn negate(v: &Value) -> Option<Value> {
-    Some(match v {
-        Value::Int(i) => Value::Int(i.wrapping_neg()),
-        Value::Bool(b) => Value::Int(-i64::from(*b)),
-        other => Value::Float(-other.as_f64()?),
-    })
-}
-
-enum Number {
-    Int(i64),
-    Float(f64),
-}
-
-fn number(v: &Value) -> Option<Number> {
-    match v {
-        Value::Bool(b) => Some(Number::Int(i64::from(*b))),
-        Value::Int(i) => Some(Number::Int(*i)),
-        Value::Float(x) => Some(Number::Float(*x)),
-        Value::Str(s) => {
-            let t = s.trim();
-            t.parse()
-                .map(Number::Int)
-                .ok()
-                .or_else(|| t.parse().ok().map(Number::Float))
-        }
-        _ => None,
-    }
-}
-
-/// `<`, `==`, … between two values: numbers by value, strings by text.
-fn compare(a: &Value, b: &Value) -> Option<Ordering> {
-    if let (Value::Str(x), Value::Str(y)) = (a, b) {
-        return Some(x.cmp(y));
-    }
-    match (number(a)?, number(b)?) {
-        (Number::Int(x), Number::Int(y)) => Some(x.cmp(&y)),
-        (x, y) => as_float(x).partial_cmp(&as_float(y)),
-    }
-}
-
-fn as_float(n: Number) -> f64 {
-    match n {
-        Number::Int(i) => i as f64,
-        Number::Float(x) => x,
-    }
-}
-
-/// A binary operator on two values (`&&` and `||` read them as truth values; `Env::value`
-/// short-circuits those itself). A comparison with a value never posted is false; arithmetic
-/// with one has no value.
-pub(crate) fn binary(op: BinOp, left: Option<Value>, right: Option<Value>) -> Option<Value> {
-    let ordering = |want: fn(Ordering) -> bool| {
-        Some(Value::Bool(match (&left, &right) {
-            (Some(a), Some(b)) => compare(a, b).is_some_and(want),
-            _ => false,
-        }))
-    };
-    match op {
-        BinOp::Eq => ordering(|o| o == Ordering::Equal),
-        BinOp::Ne => Some(Value::Bool(match (&left, &right) {
-            (Some(a), Some(b)) => compare(a, b) != Some(Ordering::Equal),
-            _ => false,
-        })),
-        BinOp::Lt => ordering(|o| o == Ordering::Less),
-        BinOp::Le => ordering(|o| o != Ordering::Greater),
-        BinOp::Gt => ordering(|o| o == Ordering::Greater),
-        BinOp::Ge => ordering(|o| o != Ordering::Less),
-        BinOp::And | BinOp::Or => {
-            let (a, b) = (left?.truthy(), right?.truthy());
-            Some(Value::Bool(if op == BinOp::And { a && b } else { a || b }))
-        }
-        BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div | BinOp::Rem => {
-            let (left, right) = (left?, right?);
-            if op == BinOp::Add && (matches!(left, Value::Str(_)) || matches!(right, Value::Str(_)))
-            {
-                // Text joined to text or a number (`post("Say", "ball at " + d)`), unless both
-                // read as numbers (a sensor posting "12").
-                if number(&left).is_none() || number(&right).is_none() {
-                    return Some(Value::Str(text(&left) + &text(&right)));
-                }
-            }
-            arithmetic(op, number(&left)?, number(&right)?)
-        }
-    }
-}
-
-fn arithmetic(op: BinOp, left: Number, right: Number) -> Option<Value> {
-    Some(match (left, right) {
-        (Number::Int(a), Number::Int(b)) => Value::Int(match op {
-            BinOp::Add => a.wrapping_add(b),
-            BinOp::Sub => a.wrapping_sub(b),
-            BinOp::Mul => a.wrapping_mul(b),
-            BinOp::Div if b == 0 => i64::MAX,
-            BinOp::Div => a.wrapping_div(b),
-            BinOp::Rem if b == 0 => i64::MAX,
-            BinOp::Rem => a.wrapping_rem(b),
-            _ => return None,
-        }),
-        (a, b) => {
-            let (a, b) = (as_float(a), as_float(b));
-            Value::Float(match op {
-                BinOp::Add => a + b,
-                BinOp::Sub => a - b,
-                BinOp::Mul => a * b,
-                BinOp::Div => a / b,
-                BinOp::Rem => a % b,
-                _ => return None,
-            })
-        }
-    })
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 //! [`Event`]s, data a trace can record. No file I/O of its own: loaders come from the caller.
 
 mod activity;
+pub mod arith;
 mod eval;
 mod event;
 mod host;

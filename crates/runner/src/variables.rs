@@ -5,6 +5,7 @@
 //! gufsm kept the three in one table per machine vector (`M<id>$$name`, `E$$name`, `name`);
 //! lookups go in that order: own, extern, global.
 
+use crate::arith::{convert, zero};
 use parking_lot::RwLock;
 use proclaim_board::Value;
 use proclaim_fsm::{Machine, Statement, VarType};
@@ -180,33 +181,5 @@ impl Locals {
             }
             None => false,
         }
-    }
-}
-
-fn zero(ty: &VarType) -> Value {
-    match ty {
-        VarType::Bool => Value::Bool(false),
-        VarType::Float | VarType::Double => Value::Float(0.0),
-        VarType::Int | VarType::Char | VarType::Named(_) => Value::Int(0),
-    }
-}
-
-fn convert(ty: &VarType, value: Value) -> Value {
-    match ty {
-        VarType::Int | VarType::Char => match value {
-            Value::Float(x) => Value::Int(x as i64),
-            Value::Bool(b) => Value::Int(i64::from(b)),
-            Value::Str(ref s) => s
-                .trim()
-                .parse::<f64>()
-                .map_or(Value::Int(0), |x| Value::Int(x as i64)),
-            other => other,
-        },
-        VarType::Float | VarType::Double => match value.as_f64() {
-            Some(x) => Value::Float(x),
-            None => Value::Float(0.0),
-        },
-        VarType::Bool => Value::Bool(value.truthy()),
-        VarType::Named(_) => value,
     }
 }

@@ -23,7 +23,8 @@
 //! - Unbounded counters are cut by the state budget: the outcome is then incomplete, never a
 //!   hang. Nothing here reads files or prints: the command line does.
 
-pub mod arith;
+/// The activity language's operators: the runner's own, so the model computes as the robot does.
+pub use proclaim_runner::arith;
 pub mod domain;
 mod error;
 mod explore;

@@ -1,10 +1,9 @@
-//! The activity language's operators with the runner's C semantics (`proclaim_runner`'s
-//! `eval.rs` and `variables.rs`, which keep them crate-private): whole numbers stay whole
-//! (`7 / 2` is 3), a fraction anywhere makes a fraction, `x / 0` and `x % 0` give the largest
-//! whole number (gufsm's `INT_MAX`), text joins with `+`, a comparison with a value never posted
-//! is false, and a typed variable converts what is assigned (`int n = 2.7` holds 2). Written
-//! again here, over plain values, because the runner's evaluator reads a live whiteboard; the
-//! tests below are the runner's own table, so the two cannot drift apart unnoticed.
+//! The activity language's operators over plain values, with C's semantics as gufsm had them:
+//! whole numbers stay whole (`7 / 2` is 3), a fraction anywhere makes a fraction, `x / 0` and
+//! `x % 0` give the largest whole number (gufsm's `INT_MAX`), text joins with `+`, a comparison
+//! with a value never posted is false, and a typed variable converts what is assigned (`int n =
+//! 2.7` holds 2). One place for the runner's evaluator and for the verifier's model, so a proof
+//! is about the arithmetic the robot runs.
 
 use proclaim_board::Value;
 use proclaim_fsm::{BinOp, VarType};
@@ -217,8 +216,8 @@ mod tests {
     use super::*;
     use proclaim_fsm::{parse_label, Expr, UnOp};
 
-    /// A tiny evaluator over two names, enough to run the runner's own table of cases
-    /// (`crates/runner/src/eval.rs`) through these operators.
+    /// A tiny evaluator over three names, enough to run a table of cases through these
+    /// operators alone (`eval.rs` runs the same expressions through the runner's evaluator).
     fn eval(e: &Expr) -> Option<Value> {
         match e {
             Expr::Int(i) => Some(Value::Int(*i)),
