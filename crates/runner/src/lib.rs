@@ -1,8 +1,9 @@
-//! Runs machines on the whiteboard (`../shared/spec/behaviour.md` §3): one ring at a time, OnEntry
-//! on arrival, transitions tried in priority order with each label proved (conditions by their
-//! expert, variables and values on the spot), OnExit on leaving, Internal when nothing fired;
-//! between rings, wait for a message or global a label of the state reads, its next time test,
-//! or the ring period. Activities run gufsm's activity language over variables with gufsm's
+//! Runs machines on the whiteboard (`../shared/spec/behaviour.md` §3): [`Rounds`] gives every
+//! machine of a behaviour one ringlet per round in order (§3.1), or a [`MachineRunner`] runs one
+//! machine on a task of its own. A ringlet: OnEntry on arrival, the snapshot, transitions tried in
+//! priority order with each label proved (conditions by their expert, variables and values on
+//! the spot), OnExit on leaving, Internal when nothing fired; between rounds, wait for news a
+//! current label reads, the next time test, or the ring period. Activities run gufsm's activity language over variables with gufsm's
 //! scoping ([`Shared`], [`Locals`]). Sub-machines obey the [`Command`]s posted to their name
 //! and post `NameIsRunning`; `reload` / `reread` read the machine's file again through a
 //! [`Loader`] (a failure leaves the machine untouched). What happens is reported as
