@@ -135,16 +135,18 @@ impl Rounds {
     }
 
     async fn serve(self, board: Whiteboard) -> RoundsEnd {
-        let mut runs: Vec<Run<'_>> = self
+        let runs: Vec<Run<'_>> = self
             .machines
             .iter()
             .map(|m| Run::new(m, board.clone(), self.round.clone()))
             .collect();
-        let mut over = vec![false; runs.len()];
-        // Machines started during this round: they ring from the next.
-        let mut fresh = vec![false; runs.len()];
         let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
-        let mut commands = board.subscribe_pattern(Pattern::Any(names));
+        let mut turns = Turns {
+            over: vec![false; runs.len()],
+            fresh: vec![false; runs.len()],
+            runs,
+            commands: board.subscribe_pattern(Pattern::Any(names)),
+        };
         let mut news = News::default();
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
@@ -154,75 +156,16 @@ impl Rounds {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
-            // One moment for the whole round: machines entered in one round time their
-            // `timeout`s from the same instant, so they come due in the same round.
-            let mut round_time = tokio::time::Instant::now();
-            fresh.fill(false);
-            if took(&mut commands) || commanded {
-                obey(&board, &mut runs, &over, None);
-            }
-            let mut fired = false;
-            for machine in 0..runs.len() {
-                let run = &mut runs[machine];
-                if over[machine] || fresh[machine] || run.status != Status::Running || run.is_done()
-                {
-                    continue;
-                }
-                if self.feed.is_some() || self.ticks.is_some() {
-                    let ringlet = Ringlet {
-                        round,
-                        machine,
-                        seq: board.snapshot().seq,
-                        at: round_time.saturating_duration_since(run.reporter.epoch),
-                    };
-                    if let Some(feed) = &self.feed {
-                        let wait = feed.lock().before(ringlet, &board);
-                        // The recorded round's moment becomes this round's.
-                        if let Some(at) = wait {
-                            round_time = run.reporter.epoch + at;
-                            tokio::time::sleep_until(round_time).await;
-                        }
-                        run.query_hook = Some(QueryHook {
-                            feed: feed.clone(),
-                            ringlet,
-                        });
-                    }
-                    if let Some(ticks) = &self.ticks {
-                        // Posted by the feed count as before the ringlet too.
-                        let seq = board.snapshot().seq;
-                        let _ = ticks.send(Ringlet { seq, ..ringlet });
-                    }
-                }
-                run.round_time = Some(round_time);
-                let span = tracing::info_span!("machine", name = %run.name);
-                let ring = tracing::Instrument::instrument(run.ring(), span).await;
-                // Between rounds, waits are reckoned from the clock.
-                run.round_time = None;
-                match ring {
-                    Ring::Moved => fired = true,
-                    Ring::Stayed => {}
-                    Ring::Over => over[machine] = true,
-                }
-                // A command posted in the ringlet takes effect at once: a machine stopped
-                // later in the round does not ring, one started rings from the next round.
-                if took(&mut commands) {
-                    obey(&board, &mut runs, &over, Some(&mut fresh));
-                }
-            }
-            // Commands from outside during the round take effect before anything else looks.
-            if took(&mut commands) {
-                obey(&board, &mut runs, &over, Some(&mut fresh));
-            }
-            // A machine started in the round has its OnEntry to run: as if it had fired.
-            fired |= fresh.iter().any(|f| *f);
+            let fired = self.play_round(&mut turns, round, commanded, &board).await;
             if let Some(stepper) = &self.stepper {
-                for run in &runs {
+                for run in &turns.runs {
                     stepper.ring_done(&run.name, last_step);
                 }
             }
-            if over.iter().all(|o| *o) {
+            if turns.over.iter().all(|o| *o) {
                 return RoundsEnd::AllOver;
             }
+            commanded = false;
             if let Some(feed) = &self.feed {
                 if !feed.lock().after_round(round) {
                     return RoundsEnd::FeedDone;
@@ -238,9 +181,110 @@ impl Rounds {
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
-            commanded = news.wait(&board, &mut runs, &over, &mut commands).await;
+            commanded = news
+                .wait(&board, &mut turns.runs, &turns.over, &mut turns.commands)
+                .await;
         }
     }
+
+    /// One round: commands from outside obeyed, then a ringlet of every running machine in
+    /// order, each followed by the commands it posted. Whether a machine fired or was started
+    /// (either way the next round has work at once).
+    async fn play_round(
+        &self,
+        turns: &mut Turns<'_>,
+        round: u64,
+        commanded: bool,
+        board: &Whiteboard,
+    ) -> bool {
+        // One moment for the whole round: machines entered in one round time their `timeout`s
+        // from the same instant, so they come due in the same round.
+        let mut round_time = tokio::time::Instant::now();
+        turns.fresh.fill(false);
+        if took(&mut turns.commands) || commanded {
+            obey(board, &mut turns.runs, &turns.over, None);
+        }
+        let mut fired = false;
+        for machine in 0..turns.runs.len() {
+            let run = &mut turns.runs[machine];
+            if turns.over[machine]
+                || turns.fresh[machine]
+                || run.status != Status::Running
+                || run.is_done()
+            {
+                continue;
+            }
+            if self.feed.is_some() || self.ticks.is_some() {
+                let ringlet = Ringlet {
+                    round,
+                    machine,
+                    seq: board.snapshot().seq,
+                    at: round_time.saturating_duration_since(run.reporter.epoch),
+                };
+                self.before_ringlet(run, ringlet, &mut round_time, board)
+                    .await;
+            }
+            run.round_time = Some(round_time);
+            let span = tracing::info_span!("machine", name = %run.name);
+            let ring = tracing::Instrument::instrument(run.ring(), span).await;
+            // Between rounds, waits are reckoned from the clock.
+            run.round_time = None;
+            match ring {
+                Ring::Moved => fired = true,
+                Ring::Stayed => {}
+                Ring::Over => turns.over[machine] = true,
+            }
+            // A command posted in the ringlet takes effect at once: a machine stopped later in
+            // the round does not ring, one started rings from the next round.
+            if took(&mut turns.commands) {
+                obey(board, &mut turns.runs, &turns.over, Some(&mut turns.fresh));
+            }
+        }
+        // Commands from outside during the round take effect before anything else looks.
+        if took(&mut turns.commands) {
+            obey(board, &mut turns.runs, &turns.over, Some(&mut turns.fresh));
+        }
+        fired || turns.fresh.iter().any(|f| *f)
+    }
+
+    /// Before a ringlet, under a feed or a recording: the feed posts what came before it and
+    /// moves the round to its recorded moment, and hears of the ringlet's queries; the
+    /// recording hears of the ringlet.
+    async fn before_ringlet(
+        &self,
+        run: &mut Run<'_>,
+        ringlet: Ringlet,
+        round_time: &mut tokio::time::Instant,
+        board: &Whiteboard,
+    ) {
+        if let Some(feed) = &self.feed {
+            let wait = feed.lock().before(ringlet, board);
+            if let Some(at) = wait {
+                *round_time = run.reporter.epoch + at;
+                tokio::time::sleep_until(*round_time).await;
+            }
+            run.query_hook = Some(QueryHook {
+                feed: feed.clone(),
+                ringlet,
+            });
+        }
+        if let Some(ticks) = &self.ticks {
+            // What the feed posted counts as before the ringlet too.
+            let seq = board.snapshot().seq;
+            let _ = ticks.send(Ringlet { seq, ..ringlet });
+        }
+    }
+}
+
+/// The schedule's machines as it runs them.
+struct Turns<'r> {
+    runs: Vec<Run<'r>>,
+    /// Machines that halted (or whose state vanished): they ring no more.
+    over: Vec<bool>,
+    /// Machines started during this round: they ring from the next.
+    fresh: Vec<bool>,
+    /// Every posting to a machine's name (its control commands).
+    commands: Subscription,
 }
 
 /// Whether anything came on `subscription` (all of it taken).
