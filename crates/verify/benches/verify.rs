@@ -9,23 +9,13 @@ use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{verify, Options, PropertyKind, PropertySource};
 use std::sync::Arc;
 
+#[path = "../tests/common/odometer.rs"]
+mod odometer_family;
+
 /// The behaviour `odometer N K`, written to a temporary folder and loaded.
 fn odometer(n: usize, k: usize) -> Behaviour {
     let dir = std::env::temp_dir().join(format!("proclaim-verify-bench-{n}-{k}"));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let mut manifest = String::new();
-    for i in 0..n {
-        let (step, label) = match i {
-            0 => ("1".to_string(), "button && g0 == 0"),
-            _ => (format!("(g{} == 0)", i - 1), "FALSE"),
-        };
-        let machine = format!(
-            "machine D{i}\nstate RUN {{\n  internal {{ g{i} = (g{i} + {step}) % {k}; }}\n  when {label} -> RUN\n}}\n"
-        );
-        std::fs::write(dir.join(format!("D{i}.machine")), machine).expect("write");
-        manifest.push_str(&format!("[[machine]]\nfile = \"D{i}.machine\"\n"));
-    }
-    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    odometer_family::write_odometer(&dir, n, k);
     load("odometer", Arc::new(Folder::new(dir))).expect("loads")
 }
 

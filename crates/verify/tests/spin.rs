@@ -3,6 +3,10 @@
 //! with `verify`'s. Needs `spin` and `gcc` on PATH: skipped without them, failed without them
 //! when `CI` is set.
 
+mod common {
+    pub mod odometer;
+}
+
 use proclaim_behaviour::{load, Folder};
 use proclaim_verify::{to_promela, verify, Options, PropertyKind, PropertySource, Verdict};
 use std::path::{Path, PathBuf};
@@ -189,23 +193,10 @@ fn spin_agrees_with_the_checker_on_every_example() {
     );
 }
 
-/// The bench's `odometer N K` (`benches/verify.rs`): N machines, one digit each of a base-K
-/// counter, the first also firing on a free button.
+/// `odometer N K` (`tests/common/odometer.rs`, the bench's family too), in a fresh folder.
 fn odometer(n: usize, k: usize) -> PathBuf {
     let dir = scratch(&format!("odometer-{n}-{k}-behaviour"));
-    let mut manifest = String::new();
-    for i in 0..n {
-        let (step, label) = match i {
-            0 => ("1".to_string(), "button && g0 == 0"),
-            _ => (format!("(g{} == 0)", i - 1), "FALSE"),
-        };
-        let machine = format!(
-            "machine D{i}\nstate RUN {{\n  internal {{ g{i} = (g{i} + {step}) % {k}; }}\n  when {label} -> RUN\n}}\n"
-        );
-        std::fs::write(dir.join(format!("D{i}.machine")), machine).expect("write");
-        manifest.push_str(&format!("[[machine]]\nfile = \"D{i}.machine\"\n"));
-    }
-    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    common::odometer::write_odometer(&dir, n, k);
     dir
 }
 
