@@ -281,15 +281,7 @@ fn run_script(
         let mut running = proclaim_behaviour::launch(behaviour, &board, options)
             .await
             .map_err(Failure::Start)?;
-        let deadline = tokio::time::Instant::now() + limit;
-        let mut events = Vec::new();
-        while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
-            let over = running.observe(&event);
-            events.push(event);
-            if over {
-                break;
-            }
-        }
+        let (events, _) = running.follow(limit).await;
         running.stop().await;
         Ok(events)
     })

@@ -99,6 +99,21 @@ impl Running {
         })
     }
 
+    /// Every event until every top-level machine is in a final state or halted, or `limit`
+    /// passes; whether it ended by itself.
+    pub async fn follow(&mut self, limit: Duration) -> (Vec<Event>, bool) {
+        let deadline = tokio::time::Instant::now() + limit;
+        let mut events = Vec::new();
+        while let Ok(Some(event)) = tokio::time::timeout_at(deadline, self.events.recv()).await {
+            let over = self.observe(&event);
+            events.push(event);
+            if over {
+                return (events, true);
+            }
+        }
+        (events, false)
+    }
+
     /// Stops everything it started.
     pub async fn stop(mut self) {
         self.tasks.abort_all();

@@ -26,6 +26,15 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
+/// The behaviour in `folder`, named after it.
+fn load_folder(folder: &Path) -> Result<crate::Behaviour, BehaviourError> {
+    let name = folder
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("behaviour");
+    load(name, Arc::new(Folder::new(folder))).map_err(BehaviourError::Files)
+}
+
 /// A runtime of its own on tokio's paused clock: time jumps whenever every task waits.
 fn paused_runtime() -> Result<tokio::runtime::Runtime, BehaviourError> {
     tokio::runtime::Builder::new_current_thread()
@@ -78,13 +87,7 @@ pub fn run_scripted(
     script: &str,
     limit: Duration,
 ) -> Result<ScriptedRun, BehaviourError> {
-    let folder = folder.as_ref();
-    let name = folder
-        .file_name()
-        .and_then(|n| n.to_str())
-        .unwrap_or("behaviour")
-        .to_string();
-    let behaviour = load(&name, Arc::new(Folder::new(folder))).map_err(BehaviourError::Files)?;
+    let behaviour = load_folder(folder.as_ref())?;
     let script = parse_script(script).map_err(BehaviourError::Script)?;
     let runtime = paused_runtime()?;
     runtime.block_on(async {
@@ -102,11 +105,11 @@ pub fn run_scripted(
             finished: false,
             board: board.clone(),
         };
-        let deadline = tokio::time::Instant::now() + limit;
-        while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
+        let (events, finished) = running.follow(limit).await;
+        for event in &events {
             if let Event::Entered {
                 machine, state, at, ..
-            } = &event
+            } = event
             {
                 run.visits.push(Visit {
                     machine: machine.clone(),
@@ -114,17 +117,13 @@ pub fn run_scripted(
                     at: *at,
                 });
             }
-            if let Some(line) = view.line(&event) {
+            if let Some(line) = view.line(event) {
                 run.trace
                     .push(line.split_whitespace().collect::<Vec<_>>().join(" "));
             }
-            let over = running.observe(&event);
-            run.events.push(event);
-            if over {
-                run.finished = true;
-                break;
-            }
         }
+        run.events = events;
+        run.finished = finished;
         running.stop().await;
         Ok::<_, BehaviourError>(run)
     })
@@ -166,14 +165,7 @@ impl RoundByRound {
     /// Loads the behaviour in `folder` and starts it paused before its first round, with
     /// `script` answering (it may be empty). Errors: the behaviour's or the script's problems.
     pub fn start(folder: impl AsRef<Path>, script: &str) -> Result<RoundByRound, BehaviourError> {
-        let folder = folder.as_ref();
-        let name = folder
-            .file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or("behaviour")
-            .to_string();
-        let behaviour =
-            load(&name, Arc::new(Folder::new(folder))).map_err(BehaviourError::Files)?;
+        let behaviour = load_folder(folder.as_ref())?;
         let script = if script.trim().is_empty() {
             None
         } else {

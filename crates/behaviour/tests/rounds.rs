@@ -20,15 +20,7 @@ async fn run_to_the_end(behaviour: &proclaim_behaviour::Behaviour, limit: Durati
     let mut running = launch(behaviour, &board, LaunchOptions::default())
         .await
         .expect("launches");
-    let mut events = Vec::new();
-    let deadline = tokio::time::Instant::now() + limit;
-    while let Ok(Some(event)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
-        let over = running.observe(&event);
-        events.push(event);
-        if over {
-            break;
-        }
-    }
+    let (events, _) = running.follow(limit).await;
     running.stop().await;
     events
 }
