@@ -4,6 +4,7 @@
 
 use crate::closure::{close, normalize, ClosureOutcome, Resolvents, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
+use crate::scc::{strongly_connected, Roots};
 use crate::slots::{hash, Slots};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
@@ -472,7 +473,7 @@ impl<'s> Checker<'s> {
         for &(w, l) in &self.theory.priorities {
             succ[node(w) as usize].push(node(l));
         }
-        for component in strongly_connected(&succ) {
+        for component in strongly_connected(succ.len(), |v| &succ[v], Roots::WithSuccessors) {
             if component.len() < 2 {
                 continue;
             }
@@ -702,7 +703,6 @@ fn label_of(theory: &Theory, rule: RuleId) -> String {
     theory.label(rule).unwrap_or("?").to_string()
 }
 
-/// Strongly connected components of a small explicit graph (iterative Tarjan).
 /// Label `text` written again at `start`, first written at `first_start`.
 fn label_used_twice(text: &str, start: u32, first_start: u32) -> Diagnostic {
     let at = |start: u32| Span::new(start as usize, start as usize + text.len());
@@ -710,58 +710,4 @@ fn label_used_twice(text: &str, start: u32, first_start: u32) -> Diagnostic {
         .with_label("second use")
         .with_related(at(first_start), "first used here")
         .with_hint("labels name rules in priorities, so each must be unique")
-}
-
-pub(crate) fn strongly_connected(succ: &[Vec<RuleId>]) -> Vec<Vec<RuleId>> {
-    let n = succ.len();
-    let mut index = vec![u32::MAX; n];
-    let mut low = vec![0u32; n];
-    let mut on_stack = vec![false; n];
-    let mut stack = Vec::new();
-    let mut components = Vec::new();
-    let mut next = 0u32;
-    for root in 0..n {
-        if index[root] != u32::MAX || succ[root].is_empty() {
-            continue;
-        }
-        let mut frames: Vec<(usize, usize)> = vec![(root, 0)];
-        index[root] = next;
-        low[root] = next;
-        next += 1;
-        stack.push(root);
-        on_stack[root] = true;
-        while let Some(&mut (v, ref mut cursor)) = frames.last_mut() {
-            if let Some(&w) = succ[v].get(*cursor) {
-                *cursor += 1;
-                let w = w as usize;
-                if index[w] == u32::MAX {
-                    index[w] = next;
-                    low[w] = next;
-                    next += 1;
-                    stack.push(w);
-                    on_stack[w] = true;
-                    frames.push((w, 0));
-                } else if on_stack[w] {
-                    low[v] = low[v].min(index[w]);
-                }
-            } else {
-                frames.pop();
-                if let Some(&(parent, _)) = frames.last() {
-                    low[parent] = low[parent].min(low[v]);
-                }
-                if low[v] == index[v] {
-                    let mut component = Vec::new();
-                    while let Some(w) = stack.pop() {
-                        on_stack[w] = false;
-                        component.push(w as RuleId);
-                        if w == v {
-                            break;
-                        }
-                    }
-                    components.push(component);
-                }
-            }
-        }
-    }
-    components
 }

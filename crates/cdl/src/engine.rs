@@ -3,6 +3,7 @@
 //! Immutable and shareable; the mutable proving state lives in a [`crate::Session`].
 
 use crate::literal::{Lit, RuleId};
+use crate::scc::{strongly_connected, Roots};
 use crate::theory::{RuleKind, Theory};
 use std::sync::Arc;
 
@@ -106,17 +107,16 @@ impl Implications {
         }
         let forward = Csr::build(lit_count, edges.iter().copied());
         let backward = Csr::build(lit_count, edges.iter().map(|&(x, y)| (y, x)));
-        let succ: Vec<Vec<u32>> = (0..lit_count).map(|l| forward.row(l).to_vec()).collect();
         let mut representative = vec![NO_PART; lit_count];
         let mut cyclic = vec![false; lit_count];
         // Tarjan lists parts successors first; every literal with an edge is in one.
-        let parts = crate::check::strongly_connected(&succ);
+        let parts = strongly_connected(lit_count, |l| forward.row(l), Roots::WithSuccessors);
         for component in &parts {
             let rep = component[0];
             for &l in component {
                 representative[l as usize] = rep;
             }
-            cyclic[rep as usize] = component.len() > 1 || succ[rep as usize].contains(&rep);
+            cyclic[rep as usize] = component.len() > 1 || forward.row(rep as usize).contains(&rep);
         }
         let part_of_rep: rustc_hash::FxHashMap<u32, usize> =
             parts.iter().enumerate().map(|(i, c)| (c[0], i)).collect();

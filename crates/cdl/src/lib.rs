@@ -26,6 +26,7 @@ mod query;
 mod reference;
 mod relevance;
 mod ring;
+mod scc;
 mod session;
 mod slots;
 mod table;

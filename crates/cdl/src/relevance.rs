@@ -8,6 +8,7 @@
 
 use crate::cycle::{Component, Edge};
 use crate::engine::Csr;
+use crate::scc::{strongly_connected, Roots};
 
 /// Members reading more members than this keep every read: the test tries every assignment.
 const MOST_READS: usize = 4;
@@ -49,7 +50,8 @@ pub(crate) fn independent_parts(component: &Component, edges: &[Edge]) -> Option
     if !dropped {
         return None;
     }
-    let parts = strongly_connected(&Csr::build(n, kept.iter().copied()), n);
+    let reads = Csr::build(n, kept.iter().copied());
+    let parts = strongly_connected(n, |v| reads.row(v), Roots::All);
     (parts.len() > 1).then_some(parts)
 }
 
@@ -73,81 +75,4 @@ fn relevant_reads(component: &Component, reader: u32, reads: &[u32]) -> u32 {
         }
     }
     relevant
-}
-
-/// Tarjan's strongly connected components (iterative), each emitted after every component it
-/// reaches: the order in which they can be evaluated.
-fn strongly_connected(successors: &Csr, n: usize) -> Vec<Vec<u32>> {
-    const UNSEEN: u32 = u32::MAX;
-    let mut index = vec![UNSEEN; n];
-    let mut low = vec![0u32; n];
-    let mut on_stack = vec![false; n];
-    let mut stack: Vec<u32> = Vec::new();
-    let mut parts = Vec::new();
-    let mut next = 0u32;
-    let mut frames: Vec<(u32, usize)> = Vec::new();
-    for root in 0..n as u32 {
-        if index[root as usize] != UNSEEN {
-            continue;
-        }
-        frames.push((root, 0));
-        index[root as usize] = next;
-        low[root as usize] = next;
-        next += 1;
-        stack.push(root);
-        on_stack[root as usize] = true;
-        while let Some(&mut (v, ref mut cursor)) = frames.last_mut() {
-            if let Some(&w) = successors.row(v as usize).get(*cursor) {
-                *cursor += 1;
-                if index[w as usize] == UNSEEN {
-                    index[w as usize] = next;
-                    low[w as usize] = next;
-                    next += 1;
-                    stack.push(w);
-                    on_stack[w as usize] = true;
-                    frames.push((w, 0));
-                } else if on_stack[w as usize] {
-                    low[v as usize] = low[v as usize].min(index[w as usize]);
-                }
-                continue;
-            }
-            frames.pop();
-            if let Some(&(parent, _)) = frames.last() {
-                low[parent as usize] = low[parent as usize].min(low[v as usize]);
-            }
-            if low[v as usize] == index[v as usize] {
-                let mut part = Vec::new();
-                while let Some(w) = stack.pop() {
-                    on_stack[w as usize] = false;
-                    part.push(w);
-                    if w == v {
-                        break;
-                    }
-                }
-                parts.push(part);
-            }
-        }
-    }
-    parts
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn parts_come_after_the_parts_they_read() {
-        // 0 ⇄ 1 reads 2; 2 ⇄ 3; 4 reads itself and 0.
-        let edges = [(0, 1), (1, 0), (1, 2), (2, 3), (3, 2), (4, 4), (4, 0)];
-        let parts = strongly_connected(&Csr::build(5, edges.iter().copied()), 5);
-        let sorted: Vec<Vec<u32>> = parts
-            .iter()
-            .map(|p| {
-                let mut p = p.clone();
-                p.sort();
-                p
-            })
-            .collect();
-        assert_eq!(sorted, vec![vec![2, 3], vec![0, 1], vec![4]]);
-    }
 }
