@@ -267,11 +267,17 @@ impl Engine {
         self.superiors.row(rule as usize)
     }
 
-    /// Goals of the literals themselves: `literal * 3 + kind`; the implication aggregates come
-    /// after them.
+    /// Goals of the literals themselves come first ([`crate::goal::goal`]); the implication
+    /// aggregates after them.
     #[inline]
     pub(crate) fn aggregate_base(&self) -> u32 {
-        self.lit_count as u32 * 3
+        crate::goal::pack(self.lit_count as u32, 0)
+    }
+
+    /// The goal of part `rep`'s aggregate for `kind`.
+    #[inline]
+    pub(crate) fn aggregate_goal(&self, rep: u32, kind: u32) -> u32 {
+        self.aggregate_base() + crate::goal::pack(rep, kind)
     }
 
     /// How many goals a session keeps a value for.
@@ -291,7 +297,7 @@ impl Engine {
         let i = &self.implications;
         match i.representative.get(lit.index()) {
             Some(&rep) if rep != NO_PART && i.has_aggregate[rep as usize] => {
-                Some(self.aggregate_base() + rep * 3 + kind)
+                Some(self.aggregate_goal(rep, kind))
             }
             _ => None,
         }
@@ -305,7 +311,6 @@ impl Engine {
     /// The representative literal and kind of an aggregate goal.
     #[inline]
     pub(crate) fn aggregate_parts(&self, goal: u32) -> (u32, u32) {
-        let g = goal - self.aggregate_base();
-        (g / 3, g % 3)
+        crate::goal::unpack(goal - self.aggregate_base())
     }
 }

@@ -6,7 +6,8 @@
 use crate::engine::Engine;
 use crate::literal::Lit;
 
-/// A goal packed as `literal * 3 + kind`.
+/// A goal packed as `literal * KINDS + kind` ([`goal`]); the implication aggregates are packed
+/// the same way after the literals' goals ([`Engine::aggregate_goal`]).
 pub(crate) type Goal = u32;
 
 pub(crate) const BETA: u32 = 0;
@@ -14,23 +15,36 @@ pub(crate) const PI: u32 = 1;
 /// Support, the auxiliary algorithm π calls for attackers (and that calls π back).
 pub(crate) const SUP: u32 = 2;
 pub(crate) const KINDS: usize = 3;
+const KINDS_U32: u32 = KINDS as u32;
 
 /// Marks a successor reached through an attacker's antecedent (read negated by the condition).
 pub(crate) const ATTACK: u32 = 1 << 31;
 
 #[inline]
 pub(crate) fn goal(lit: Lit, kind: u32) -> Goal {
-    lit.0 * 3 + kind
+    pack(lit.0, kind)
+}
+
+/// `index * KINDS + kind`: the one place goals are packed.
+#[inline]
+pub(crate) fn pack(index: u32, kind: u32) -> Goal {
+    index * KINDS_U32 + kind
+}
+
+/// The inverse of [`pack`].
+#[inline]
+pub(crate) fn unpack(goal: Goal) -> (u32, u32) {
+    (goal / KINDS_U32, goal % KINDS_U32)
 }
 
 #[inline]
 pub(crate) fn lit_of(goal: Goal) -> Lit {
-    Lit(goal / 3)
+    Lit(unpack(goal).0)
 }
 
 #[inline]
 pub(crate) fn kind_of(goal: Goal) -> u32 {
-    goal % 3
+    unpack(goal).1
 }
 
 /// How a condition reads a sub-goal: as support (read positively) or through an attacker's
@@ -136,7 +150,7 @@ fn aggregate_condition(
         || i.chained
             .row(rep as usize)
             .iter()
-            .any(|&r| value(engine.aggregate_base() + r * 3 + kind, SUPPORT_READ))
+            .any(|&r| value(engine.aggregate_goal(r, kind), SUPPORT_READ))
 }
 
 #[cold]
@@ -158,7 +172,7 @@ fn aggregate_successors(
         .chained
         .row(rep as usize)
         .iter()
-        .map(|&r| engine.aggregate_base() + r * 3 + kind);
+        .map(|&r| engine.aggregate_goal(r, kind));
     out.extend(reads.chain(chained).filter(|&g| keep(g)));
 }
 
@@ -303,7 +317,7 @@ fn aggregate_supporters(
         supporter(&mut std::iter::once(self::goal(Lit(x), kind)));
     }
     for &r in i.chained.row(rep as usize) {
-        supporter(&mut std::iter::once(engine.aggregate_base() + r * 3 + kind));
+        supporter(&mut std::iter::once(engine.aggregate_goal(r, kind)));
     }
 }
 
