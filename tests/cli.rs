@@ -625,6 +625,24 @@ fn run_refuses_what_it_cannot_run() {
         "{}",
         stderr(&o)
     );
+    let bad = temp_file(
+        "bad-record.jsonl",
+        b"{\"at_us\":0,\"module\":\"m\",\"seq\":1,\"type\":\"doorOpen\",\"value\":true}\n{\"at_us\":5}\n",
+    );
+    let o = proclaim(&["replay", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad-record.jsonl: line 2: not a recorded message"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["replay", bad.to_str().unwrap(), "--speed", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--speed must be a positive number"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

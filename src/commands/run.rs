@@ -442,54 +442,54 @@ fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceive
     rx
 }
 
-/// `proclaim replay`: a JSON-lines trace printed as the live trace was, at `speed` times its
-/// real pace (`None`: at once).
-/// The lines of a `--record` file (`None` when the file is a trace instead), or the first line
-/// that is not a recorded message.
-fn read_record(text: &str) -> Option<Result<Vec<(u64, String)>, String>> {
+/// The lines of a `--record` file (`None` when the file is a trace instead), each with the
+/// moment it was recorded; or the number of the first line that is not a recorded message.
+fn read_record(text: &str) -> Option<Result<Vec<(Duration, String)>, usize>> {
     let mut lines = text
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty());
     let first: serde_json::Value = serde_json::from_str(lines.clone().next()?.1).ok()?;
     first.get("seq").or_else(|| first.get("ringlet"))?;
-    Some(
-        lines
-            .try_fold(Vec::new(), |mut out, (i, l)| -> Result<_, usize> {
-                let value: serde_json::Value = serde_json::from_str(l).map_err(|_| i + 1)?;
-                // The ringlets and events are for `proclaim test`.
-                if value.get("ringlet").is_some() || value.get("event").is_some() {
-                    return Ok(out);
-                }
-                let shown = record::shown(&value).ok_or(i + 1)?;
-                out.push((value["at_us"].as_u64().unwrap_or(0), shown));
-                Ok(out)
-            })
-            .map_err(|line| format!("line {line}: not a recorded message")),
-    )
-}
-
-fn replay_record(
-    file: &Path,
-    recorded: &Result<Vec<(u64, String)>, String>,
-    speed: Option<f64>,
-) -> Result<ExitCode, Failure> {
-    let recorded = recorded
-        .as_ref()
-        .map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
-    let start = std::time::Instant::now();
-    for (at, line) in recorded {
-        if let Some(speed) = speed {
-            let due = Duration::from_micros(*at).div_f64(speed);
-            if let Some(wait) = due.checked_sub(start.elapsed()) {
-                std::thread::sleep(wait.min(Duration::from_secs(3600)));
-            }
+    Some(lines.try_fold(Vec::new(), |mut out, (i, l)| {
+        let value: serde_json::Value = serde_json::from_str(l).map_err(|_| i + 1)?;
+        // The ringlets and events are for `proclaim test`.
+        if value.get("ringlet").is_some() || value.get("event").is_some() {
+            return Ok(out);
         }
-        println!("{line}");
-    }
-    Ok(ExitCode::SUCCESS)
+        let shown = record::shown(&value).ok_or(i + 1)?;
+        let at = Duration::from_micros(value["at_us"].as_u64().unwrap_or(0));
+        out.push((at, shown));
+        Ok(out)
+    }))
 }
 
+/// Lines printed at `speed` times the pace they were recorded at (`None`: at once).
+struct Pace {
+    speed: Option<f64>,
+    start: std::time::Instant,
+}
+
+impl Pace {
+    fn new(speed: Option<f64>) -> Pace {
+        Pace {
+            speed,
+            start: std::time::Instant::now(),
+        }
+    }
+
+    /// Waits until what happened `at` into the recording is due.
+    fn wait_for(&self, at: Duration) {
+        let Some(speed) = self.speed else { return };
+        if let Some(wait) = at.div_f64(speed).checked_sub(self.start.elapsed()) {
+            // A recording with a gap of days is not worth waiting days for.
+            std::thread::sleep(wait.min(Duration::from_secs(3600)));
+        }
+    }
+}
+
+/// `proclaim replay`: a JSON-lines trace or a `--record` file printed as the live trace was, at
+/// `speed` times its real pace (`None`: at once).
 pub fn replay(file: &Path, speed: Option<f64>) -> Result<ExitCode, Failure> {
     let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
         path: file.to_path_buf(),
@@ -500,20 +500,27 @@ pub fn replay(file: &Path, speed: Option<f64>) -> Result<ExitCode, Failure> {
             "--speed must be a positive number".into(),
         ));
     }
+    let pace = Pace::new(speed);
     if let Some(recorded) = read_record(&text) {
-        return replay_record(file, &recorded, speed);
+        let recorded = recorded.map_err(|line| {
+            Failure::Argument(format!(
+                "{}: line {line}: not a recorded message",
+                file.display()
+            ))
+        })?;
+        for (at, line) in recorded {
+            pace.wait_for(at);
+            println!("{line}");
+        }
+        return Ok(ExitCode::SUCCESS);
     }
     let events =
         read_trace(&text).map_err(|e| Failure::Argument(format!("{}: {e}", file.display())))?;
     let width = events.iter().map(|e| e.machine().len()).max().unwrap_or(8);
     let mut view = TraceView::new(width);
-    let start = std::time::Instant::now();
     for event in &events {
-        if let (Some(speed), Some(at)) = (speed, event.at()) {
-            let due = at.div_f64(speed);
-            if let Some(wait) = due.checked_sub(start.elapsed()) {
-                std::thread::sleep(wait.min(Duration::from_secs(3600)));
-            }
+        if let Some(at) = event.at() {
+            pace.wait_for(at);
         }
         if let Some(line) = view.line(event) {
             println!("{line}");
