@@ -311,6 +311,6 @@ fn parse_toml<T: serde::de::DeserializeOwned>(file: &str, text: &str) -> Result<
     toml::from_str(text).map_err(|e| {
         let start = e.span().map_or(0, |s| s.start.min(text.len()));
         let (line, column) = line_column(text, start);
-        FileDiagnostic::error(file, line, e.message()).at_column(column)
+        FileDiagnostic::error(file, line, e.message()).at_column(column, text)
     })
 }

@@ -136,7 +136,7 @@ impl LineIndex<'_> {
             .text
             .get(start..offset.min(self.text.len()))
             .map_or(1, |before| before.chars().count() + 1);
-        FileDiagnostic::error(file, line, message).at_column(column)
+        FileDiagnostic::error(file, line, message).at_column(column, self.text)
     }
 }
 
