@@ -4,7 +4,7 @@
 use crate::embedded;
 use crate::failure::Failure;
 use proclaim_cdl::{check_source, Diagnostic, Language, Theory};
-use proclaim_syntax::{line_column, render, Severity};
+use proclaim_syntax::{line_column, render, FileDiagnostic, Severity};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -110,16 +110,59 @@ pub fn color() -> bool {
     std::env::var_os("NO_COLOR").is_none() && std::io::stderr().is_terminal()
 }
 
-/// A diagnostic as a JSON object: file, line, column, severity, message, label, hint.
-pub fn diagnostic_json(d: &Diagnostic, file: &str, text: &str) -> serde_json::Value {
-    let (line, column) = line_column(text, d.span.start as usize);
-    serde_json::json!({
-        "file": file,
-        "line": line,
-        "column": column,
-        "severity": if d.severity == Severity::Error { "error" } else { "warning" },
-        "message": d.message,
-        "label": d.label,
-        "hint": d.hint,
-    })
+/// One problem as `check --json` reports it; every problem has this one shape,
+/// whichever reader found it (README: "Problems as JSON").
+#[derive(serde::Serialize)]
+pub struct ProblemJson<'a> {
+    pub file: &'a str,
+    /// 1-based; `null` for a problem with the file as a whole.
+    pub line: Option<usize>,
+    /// 1-based, in characters; `null` where the reader does not know it.
+    pub column: Option<usize>,
+    /// `"error"` or `"warning"`.
+    pub severity: &'static str,
+    pub message: &'a str,
+    /// What the place is, where the reader says (a theory's problems do).
+    pub label: Option<&'a str>,
+    pub hint: Option<&'a str>,
+}
+
+impl<'a> ProblemJson<'a> {
+    /// A theory's problem, `text` being the theory `file`.
+    pub fn of_theory(d: &'a Diagnostic, file: &'a str, text: &str) -> ProblemJson<'a> {
+        let (line, column) = line_column(text, d.span.start as usize);
+        ProblemJson {
+            file,
+            line: Some(line),
+            column: Some(column),
+            severity: severity(d.severity),
+            message: &d.message,
+            label: (!d.label.is_empty()).then_some(d.label.as_str()),
+            hint: d.hint.as_deref(),
+        }
+    }
+
+    /// A problem of a machine file, manifest, script or behaviour.
+    pub fn of_file(d: &'a FileDiagnostic) -> ProblemJson<'a> {
+        ProblemJson {
+            file: &d.file,
+            line: d.line,
+            column: d.column,
+            severity: severity(d.severity),
+            message: &d.message,
+            label: None,
+            hint: d.hint.as_deref(),
+        }
+    }
+
+    pub fn value(&self) -> serde_json::Value {
+        serde_json::to_value(self).unwrap_or_default()
+    }
+}
+
+fn severity(severity: Severity) -> &'static str {
+    match severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+    }
 }

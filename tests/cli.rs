@@ -30,6 +30,21 @@ fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
     path
 }
 
+/// Every record of a `check --json` report has the same keys, whichever reader found it.
+fn assert_one_problem_shape(report: &serde_json::Value) {
+    let keys = ["column", "file", "hint", "label", "line", "message", "severity"];
+    for problem in report.as_array().expect("an array") {
+        let mut found: Vec<&str> = problem
+            .as_object()
+            .expect("an object")
+            .keys()
+            .map(String::as_str)
+            .collect();
+        found.sort();
+        assert_eq!(found, keys, "{problem}");
+    }
+}
+
 /// `args` → (exit code, stdout) with stdout compared exactly.
 fn check(args: &[&str], code: i32, expect: &str) {
     let o = proclaim(args);
@@ -155,6 +170,7 @@ fn check_reports_every_error_and_exits_1() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v.as_array().unwrap().len(), 3);
     assert_eq!(v[0]["line"], 2);
+    assert_one_problem_shape(&v);
     check(
         &["check", "offside"],
         0,
@@ -838,6 +854,7 @@ fn check_draw_deps_and_liveness_on_behaviours() {
     let o = proclaim(&["check", out.to_str().unwrap(), "--json"]);
     assert_eq!(o.status.code(), Some(1), "open labels are errors");
     let report: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_one_problem_shape(&report);
     let messages: Vec<&str> = report
         .as_array()
         .unwrap()

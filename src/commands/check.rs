@@ -3,7 +3,7 @@
 
 use crate::behaviours::{is_behaviour, try_load_behaviour};
 use crate::failure::Failure;
-use crate::load::{self, color, diagnostic_json};
+use crate::load::{self, color, ProblemJson};
 use crate::located;
 use crate::machines::machine_file;
 use proclaim_cdl::check_source;
@@ -54,7 +54,7 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
                 checked
                     .diagnostics
                     .iter()
-                    .map(|d| diagnostic_json(d, &source.name, &source.text)),
+                    .map(|d| ProblemJson::of_theory(d, &source.name, &source.text).value()),
             );
         } else {
             eprint!(
@@ -100,7 +100,7 @@ fn behaviour(
         Ok(b) => b,
         Err(problems) => {
             if json {
-                report.extend(problems.iter().map(diagnostic_of_file_json));
+                report.extend(problems.iter().map(|d| ProblemJson::of_file(d).value()));
             } else {
                 for d in &problems {
                     eprint!("{}", located::shown(d));
@@ -111,7 +111,7 @@ fn behaviour(
     };
     for w in &loaded.warnings {
         if json {
-            report.push(diagnostic_of_file_json(w));
+            report.push(ProblemJson::of_file(w).value());
         } else {
             eprint!("{}", located::shown(w));
         }
@@ -122,7 +122,7 @@ fn behaviour(
         .filter(|d| d.severity == Severity::Error)
         .count();
     if json {
-        report.extend(findings.iter().map(diagnostic_of_file_json));
+        report.extend(findings.iter().map(|d| ProblemJson::of_file(d).value()));
     } else {
         for d in &findings {
             eprintln!("{d}");
@@ -140,17 +140,6 @@ fn behaviour(
     Ok(errors)
 }
 
-fn diagnostic_of_file_json(d: &FileDiagnostic) -> serde_json::Value {
-    serde_json::json!({
-        "file": d.file,
-        "line": d.line,
-        "column": d.column,
-        "severity": if d.severity == Severity::Error { "error" } else { "warning" },
-        "message": d.message,
-        "hint": d.hint,
-    })
-}
-
 /// Reports an imported machine file; returns its error count.
 fn machines(
     name: &str,
@@ -164,7 +153,12 @@ fn machines(
         .filter(|d| d.severity == Severity::Error)
         .count();
     if json {
-        report.extend(imported.diagnostics.iter().map(diagnostic_of_file_json));
+        report.extend(
+            imported
+                .diagnostics
+                .iter()
+                .map(|d| ProblemJson::of_file(d).value()),
+        );
     } else {
         for d in &imported.diagnostics {
             eprint!("{}", located::shown(d));
