@@ -32,7 +32,9 @@ fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
 
 /// Every record of a `check --json` report has the same keys, whichever reader found it.
 fn assert_one_problem_shape(report: &serde_json::Value) {
-    let keys = ["column", "file", "hint", "label", "line", "message", "severity"];
+    let keys = [
+        "column", "file", "hint", "label", "line", "message", "severity",
+    ];
     for problem in report.as_array().expect("an array") {
         let mut found: Vec<&str> = problem
             .as_object()

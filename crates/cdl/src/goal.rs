@@ -190,7 +190,7 @@ fn implied(
 }
 
 /// [`implied`]'s work, out of line: a theory without two-literal clauses pays one branch, and
-/// `condition` stays small enough to inline into the session's loop (measured: 30% on chains).
+/// `condition` stays small enough to inline into the session's loop (it shows on chains).
 #[cold]
 #[inline(never)]
 fn implied_through_clauses(

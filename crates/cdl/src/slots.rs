@@ -5,8 +5,8 @@
 //! million rules waits on memory at almost every probe (the slots are spread over megabytes), and
 //! only a table whose slot addresses we know can be prefetched: the checker asks for the slots of
 //! a few dozen names ahead ([`Slots::prefetch`]) and then looks them up while those lines arrive
-//! together. Measured on the atoms of chain(10^6) (2 million interns in a loop of their own):
-//! about 65 ns an atom with `hashbrown`, 25 prefetched.
+//! together, which interns the atoms of a large theory in well under half the time a plain
+//! hash table takes.
 
 use std::hash::Hasher;
 

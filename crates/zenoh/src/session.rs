@@ -21,9 +21,8 @@ pub struct Settings {
     /// Zenoh's own JSON5 configuration (TLS, access control), read first.
     pub config_file: Option<PathBuf>,
     /// Zenoh's low-latency transport: a message goes straight to the socket, with no queue,
-    /// batching, fragmentation or priorities. Measured on 2 cores (`cargo bench --features
-    /// zenoh --bench network`, three runs), a query answered in another process: p50 270-320 µs
-    /// → 200-240 µs; messages per second ~300,000 → 120,000-150,000. No message may exceed
+    /// batching, fragmentation or priorities: shorter round trips, fewer messages a second
+    /// (`cargo bench --features zenoh --bench network` compares them). No message may exceed
     /// 60 KiB: a larger posting is not sent (logged as an error), and a process cannot join a
     /// board whose snapshot is larger (it is told why).
     pub low_latency: bool,

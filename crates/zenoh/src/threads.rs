@@ -1,7 +1,6 @@
 //! How many threads Zenoh runs: by default five runtimes' worth, and every message crosses
-//! several of them. Handing them all to one runtime cuts a round trip on a small machine by a
-//! quarter (measured on 2 cores: a query answered in another process p50 ~390 → ~300 µs, p99
-//! 1.3-1.7 ms → ~0.55 ms; `cargo bench --features zenoh --bench network`).
+//! several of them. Handing them all to one runtime shortens a round trip on a small machine, at
+//! the median and more so at the tail (`cargo bench --features zenoh --bench network` measures it).
 
 /// Zenoh's runtimes (receive, send, accept, network) handed over to its application runtime.
 pub const FEW_THREADS: &str =
