@@ -106,6 +106,9 @@ pub struct Promela {
     pub values_complete: bool,
 }
 
+/// Where the initial step's table filling goes, once every value is numbered.
+const TABLES: &str = "TABLES";
+
 /// Reasoner tables above this many entries (3 to the number of inputs) are refused.
 const MAX_VALUATIONS: usize = 3usize.pow(12);
 
@@ -965,21 +968,42 @@ impl<'m> Writer<'m> {
 
     // ----- the whole text -----
 
+    /// The whole model: what it is (a comment), its variables, the tables every operator and
+    /// reasoner answer is looked up in, the process that runs one ringlet a step, and one
+    /// claim a property.
     fn write(
         &mut self,
         behaviour: &str,
         properties: &[Property],
         values_complete: bool,
     ) -> Result<String, EmitError> {
-        let model = self.model;
-        let n = model.machines.len();
-        let mut body = String::new();
+        let mut body = self.initial_step(properties);
+        body.push_str(&self.ringlet_steps(properties)?);
+        let mut text = self.header(behaviour, values_complete);
+        self.declarations(&mut text, properties);
+        let fill = self.tables(&mut text)?;
+        let _ = writeln!(text, "\nactive proctype rounds() {{");
+        text.push_str(&body.replacen(TABLES, &fill, 1));
+        let _ = writeln!(text, "}}\n");
+        for (i, p) in properties.iter().enumerate() {
+            let _ = writeln!(
+                text,
+                "ltl p{i} {{ [] !hit{i} }} /* {} {} */",
+                p.source.kind.word(),
+                comment(&p.source.name)
+            );
+        }
+        Ok(text)
+    }
 
-        // Initial state: tables first (filled in at the end of the pass), then the world.
+    /// The initial state: the tables (filled in once the pass has numbered every value), the
+    /// machines and variables, then every free type at each value of its initial domain.
+    fn initial_step(&mut self, properties: &[Property]) -> String {
+        let model = self.model;
         self.depth = 1;
         self.line("d_step {");
         self.depth += 1;
-        self.line("TABLES");
+        self.line(TABLES);
         for (k, m) in model.machines.iter().enumerate() {
             let mode = if m.start { 0 } else { 2 };
             self.line(&format!(
@@ -995,7 +1019,6 @@ impl<'m> Writer<'m> {
         }
         self.depth -= 1;
         self.line("};");
-        // The initial worlds: every free type at each value of its initial domain.
         self.line("atomic {");
         self.depth += 1;
         for (slot, domain) in model.free_slots() {
@@ -1010,8 +1033,13 @@ impl<'m> Writer<'m> {
         self.depth -= 1;
         self.line("};");
         self.properties(properties);
-        body.push_str(&std::mem::take(&mut self.out));
+        std::mem::take(&mut self.out)
+    }
 
+    /// The loop of steps: choose the machine that rings, run its OnEntry, its snapshot and the
+    /// rest of its ringlet, then let every free type take any value.
+    fn ringlet_steps(&mut self, properties: &[Property]) -> Result<String, EmitError> {
+        let model = self.model;
         self.line("do");
         self.line(":: d_step {");
         self.depth += 1;
@@ -1019,30 +1047,7 @@ impl<'m> Writer<'m> {
             self.line(&format!("hit{i} = 0;"));
         }
         self.select();
-        // OnEntry of the ringing machine's state.
-        self.line("if");
-        for k in 0..n {
-            self.machine = k;
-            self.self_posts = 0;
-            self.line(&format!(":: ringing == {} && je[{k}] ->", k + 1));
-            self.depth += 1;
-            self.line("if");
-            for (s, state) in model.machines[k].machine.states.iter().enumerate() {
-                self.state = s;
-                self.line(&format!(":: st[{k}] == {s} ->"));
-                self.depth += 1;
-                self.noting = true;
-                self.run(&state.on_entry)?;
-                self.noting = false;
-                self.line("skip;");
-                self.depth -= 1;
-            }
-            self.line("fi;");
-            self.line(&format!("je[{k}] = 0;"));
-            self.depth -= 1;
-        }
-        self.line(":: else -> skip;");
-        self.line("fi;");
+        self.on_entry()?;
         self.depth -= 1;
         self.line("};");
         self.depth += 1;
@@ -1064,17 +1069,43 @@ impl<'m> Writer<'m> {
         self.depth -= 1;
         self.properties(properties);
         self.line("od");
-        body.push_str(&std::mem::take(&mut self.out));
+        Ok(std::mem::take(&mut self.out))
+    }
 
+    /// OnEntry of the ringing machine's state, where it has just entered it.
+    fn on_entry(&mut self) -> Result<(), EmitError> {
+        let model = self.model;
+        self.line("if");
+        for k in 0..model.machines.len() {
+            self.machine = k;
+            self.self_posts = 0;
+            self.line(&format!(":: ringing == {} && je[{k}] ->", k + 1));
+            self.depth += 1;
+            self.line("if");
+            for (s, state) in model.machines[k].machine.states.iter().enumerate() {
+                self.state = s;
+                self.line(&format!(":: st[{k}] == {s} ->"));
+                self.depth += 1;
+                self.noting = true;
+                self.run(&state.on_entry)?;
+                self.noting = false;
+                self.line("skip;");
+                self.depth -= 1;
+            }
+            self.line("fi;");
+            self.line(&format!("je[{k}] = 0;"));
+            self.depth -= 1;
+        }
+        self.line(":: else -> skip;");
+        self.line("fi;");
+        Ok(())
+    }
+
+    /// The comment that says what the file is and how to check it, the value numbering and the
+    /// machines' state numbering.
+    fn header(&self, behaviour: &str, values_complete: bool) -> String {
+        let model = self.model;
         let universe = model.values.borrow().len();
-        let beyond = universe + 1;
-        let value_type = if beyond < 256 {
-            "byte"
-        } else if beyond < 32768 {
-            "short"
-        } else {
-            "int"
-        };
         let mut text = String::new();
         let w = &mut text;
         let _ = writeln!(
@@ -1089,7 +1120,7 @@ impl<'m> Writer<'m> {
             );
         }
         let _ = writeln!(w, "#define VALUES {}", universe + 2);
-        let _ = writeln!(w, "#define BEYOND {beyond}");
+        let _ = writeln!(w, "#define BEYOND {}", universe + 1);
         let _ = writeln!(w, "\n/* Values (0: never posted; BEYOND: none of these):");
         for id in 1..=universe as ValueId {
             let shown = model.show(self.value_of(id).as_ref());
@@ -1112,6 +1143,14 @@ impl<'m> Writer<'m> {
             );
         }
         let _ = writeln!(w, "*/");
+        text
+    }
+
+    /// The schedule's variables, one a slot, one a `saw`, the properties' flags and the temporaries.
+    fn declarations(&self, w: &mut String, properties: &[Property]) {
+        let model = self.model;
+        let n = model.machines.len();
+        let value_type = self.value_type();
         let _ = writeln!(
             w,
             "byte turn;\nbyte ringing; /* the ringing machine + 1, 0 between steps */"
@@ -1166,14 +1205,34 @@ impl<'m> Writer<'m> {
         for i in 0..self.temps {
             let _ = writeln!(w, "hidden int t{i};");
         }
+    }
+
+    /// The smallest Promela integer type that holds every value number and BEYOND.
+    fn value_type(&self) -> &'static str {
+        let beyond = self.model.values.borrow().len() + 1;
+        if beyond < 256 {
+            "byte"
+        } else if beyond < 32768 {
+            "short"
+        } else {
+            "int"
+        }
+    }
+
+    /// Declares the operator tables and the reasoners' answer tables into `w`; returns the
+    /// statements that fill them, for the initial step.
+    fn tables(&self, w: &mut String) -> Result<String, EmitError> {
+        let universe = self.model.values.borrow().len();
+        let beyond = (universe + 1) as ValueId;
+        let width = universe + 2;
+        let value_type = self.value_type();
         let mut fill = String::new();
-        for (i, t) in self.tables.clone().iter().enumerate() {
+        for (i, t) in self.tables.iter().enumerate() {
             // Hidden variables cannot be bits.
             let element = match t {
                 Table::Truthy | Table::Input => "byte",
                 _ => value_type,
             };
-            let width = universe + 2;
             let size = if t.two_dimensional() {
                 width * width
             } else {
@@ -1184,27 +1243,24 @@ impl<'m> Writer<'m> {
                 let row: Vec<(usize, ValueId)> = if t.two_dimensional() {
                     (0..width as ValueId)
                         .map(|b| {
-                            let r = if a == beyond as ValueId || b == beyond as ValueId {
-                                Some(beyond as ValueId)
+                            let r = if a == beyond || b == beyond {
+                                Some(beyond)
                             } else {
                                 self.lookup(self.entry2(t, self.value_of(a), self.value_of(b)))
                             };
-                            (
-                                a as usize * width + b as usize,
-                                r.unwrap_or(beyond as ValueId),
-                            )
+                            (a as usize * width + b as usize, r.unwrap_or(beyond))
                         })
                         .collect()
                 } else {
-                    let r = if a == beyond as ValueId {
+                    let r = if a == beyond {
                         match t {
                             Table::Truthy | Table::Input => Some(0),
-                            _ => Some(beyond as ValueId),
+                            _ => Some(beyond),
                         }
                     } else {
                         self.apply1(t, a)
                     };
-                    vec![(a as usize, r.unwrap_or(beyond as ValueId))]
+                    vec![(a as usize, r.unwrap_or(beyond))]
                 };
                 for (index, r) in row {
                     if r != 0 {
@@ -1213,7 +1269,16 @@ impl<'m> Writer<'m> {
                 }
             }
         }
-        for (t, theory) in model.theories.iter().enumerate() {
+        self.answer_tables(w, &mut fill)?;
+        if fill.is_empty() {
+            fill.push_str("skip;");
+        }
+        Ok(fill)
+    }
+
+    /// Each reasoner's answers under every valuation of its inputs, one table an output.
+    fn answer_tables(&self, w: &mut String, fill: &mut String) -> Result<(), EmitError> {
+        for (t, theory) in self.model.theories.iter().enumerate() {
             let inputs = theory.inputs.len();
             let valuations = 3usize.pow(inputs as u32);
             if valuations > MAX_VALUATIONS {
@@ -1251,21 +1316,7 @@ impl<'m> Writer<'m> {
                 }
             }
         }
-        if fill.is_empty() {
-            fill.push_str("skip;");
-        }
-        let _ = writeln!(w, "\nactive proctype rounds() {{");
-        w.push_str(&body.replacen("TABLES", &fill, 1));
-        let _ = writeln!(w, "}}\n");
-        for (i, p) in properties.iter().enumerate() {
-            let _ = writeln!(
-                w,
-                "ltl p{i} {{ [] !hit{i} }} /* {} {} */",
-                p.source.kind.word(),
-                comment(&p.source.name)
-            );
-        }
-        Ok(text)
+        Ok(())
     }
 
     /// `slot` takes any of `ids`.
