@@ -5,6 +5,7 @@
 use crate::code::{parse_statements, Expr, Statement};
 use crate::control::Command;
 use crate::model::{Action, Argument};
+use crate::sections::{section, split_sections, Section};
 use proclaim_syntax::Severity;
 
 /// Parses `;`-separated T/A items, with a problem for each item that is not `C++: call`,
@@ -94,6 +95,78 @@ fn argument(text: &str) -> Option<Argument> {
     } else {
         Some(Argument::Word(text.to_string()))
     }
+}
+
+/// A Qfsm description read, in either form gufsm's editors saved: its three activities (OnEntry,
+/// OnExit, Internal; the declarations of a `$variables$` section lead OnEntry, which gives the
+/// machine those variables), what to keep as a note (`$includes$`), and the problems.
+#[derive(Debug, Default)]
+pub struct Description {
+    pub activities: [Vec<Action>; 3],
+    pub notes: Vec<String>,
+    pub problems: Vec<(Severity, String)>,
+}
+
+pub fn parse_description(text: &str) -> Description {
+    let Some(sections) = split_sections(text) else {
+        let (activities, problems) = parse_gufsm_activities(text);
+        return Description {
+            activities,
+            problems,
+            ..Description::default()
+        };
+    };
+    let mut d = Description::default();
+    let mut declarations = Vec::new();
+    for (name, body) in sections {
+        match section(name) {
+            Section::Activity(i) => d.activities[i].extend(block_actions(body, &mut d.problems)),
+            Section::Variables => declarations.extend(variables(body, &mut d.problems)),
+            Section::Includes if !body.trim().is_empty() => {
+                d.notes.push(format!("includes: {}", body.trim()));
+            }
+            Section::SuspendResume if !body.trim().is_empty() => d.problems.push((
+                Severity::Warning,
+                format!("`${name}$` is not run: proclaim suspends a machine without running code"),
+            )),
+            Section::Unknown if !body.trim().is_empty() => d.problems.push((
+                Severity::Warning,
+                format!("section `${name}$` is not one proclaim reads; it is ignored"),
+            )),
+            _ => {}
+        }
+    }
+    d.activities[0].splice(0..0, declarations);
+    d
+}
+
+/// The declarations of a `$variables$` section, one a line as the editors write them
+/// (`int\tcount;\t///< how many`); a line that is no declaration of the activity language (a C++
+/// type such as `const char *`) is a warning, and its variable is not declared.
+fn variables(body: &str, problems: &mut Vec<(Severity, String)>) -> Vec<Action> {
+    let mut out = Vec::new();
+    for line in body.lines() {
+        let code = line.split("//").next().unwrap_or("").trim();
+        if code.is_empty() {
+            continue;
+        }
+        match parse_statements(code) {
+            Ok(statements)
+                if statements
+                    .iter()
+                    .all(|s| matches!(s, Statement::Declare { .. })) =>
+            {
+                out.extend(statements.into_iter().map(action));
+            }
+            _ => problems.push((
+                Severity::Warning,
+                format!(
+                    "`{code}` in `$variables$` is not a declaration proclaim knows (int, bool, char, float, double); the variable is not declared"
+                ),
+            )),
+        }
+    }
+    out
 }
 
 /// The three activities of a gufsm description (OnEntry, OnExit, Internal), and a problem for

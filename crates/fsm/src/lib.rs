@@ -16,9 +16,12 @@ mod lint;
 mod model;
 mod native;
 mod qfsm;
+mod sections;
 mod ta;
 
-pub use activity::{parse_gufsm_activities, parse_ta_items, BUILTIN_FUNCTIONS};
+pub use activity::{
+    parse_description, parse_gufsm_activities, parse_ta_items, Description, BUILTIN_FUNCTIONS,
+};
 pub use code::{BinOp, Expr, Statement, UnOp, VarType};
 pub use control::{finished_type, machine_of_running_type, running_type, Command};
 pub use dot::to_dot;

@@ -3,10 +3,11 @@
 //! tried first. Traps handled: link files (a path instead of XML), missing `<from>`/`<to>`,
 //! several machines in one file, no DTD, escaped labels (`&amp;&amp;`).
 
-use crate::activity::parse_gufsm_activities;
+use crate::activity::{parse_description, Description};
 use crate::code::Expr;
 use crate::label::parse_label;
 use crate::model::{Machine, State, StateId, Transition, UnreadTransition};
+use crate::sections::is_sectioned;
 use crate::Imported;
 use proclaim_syntax::{FileDiagnostic, Severity};
 use quick_xml::events::{BytesStart, Event};
@@ -31,6 +32,11 @@ struct MachineDraft {
     states: Vec<State>,
     transitions: Vec<(i64, usize, Transition)>,
     unread: Vec<UnreadTransition>,
+    /// The machine's own description, in the later editors' sectioned form where it has one
+    /// (its `$variables$` are the machine's, its `$includes$` a note).
+    description: String,
+    /// What the descriptions said that is kept but not run: C++ includes.
+    notes: Vec<String>,
     line: usize,
 }
 
@@ -80,6 +86,8 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
                     states: Vec::new(),
                     transitions: Vec::new(),
                     unread: Vec::new(),
+                    description: attribute(&e, "description").unwrap_or_default(),
+                    notes: Vec::new(),
                     line,
                 });
             }
@@ -170,7 +178,12 @@ fn end_of_file(machine: Option<MachineDraft>, file: &str, file_name: &str, out: 
     }
     if let [only] = out.machines.as_mut_slice() {
         if only.name != file_name {
-            only.description = std::mem::replace(&mut only.name, file_name.to_string());
+            let attribute_name = std::mem::replace(&mut only.name, file_name.to_string());
+            only.description = if only.description.is_empty() {
+                attribute_name
+            } else {
+                format!("{attribute_name}\n{}", only.description)
+            };
         }
     }
     if out.machines.is_empty() && !out.has_errors() {
@@ -222,7 +235,16 @@ fn end_state(
         ));
         return;
     };
-    let ([on_entry, on_exit, internal], problems) = parse_gufsm_activities(&description);
+    let Description {
+        activities: [on_entry, on_exit, internal],
+        notes,
+        problems,
+    } = parse_description(&description);
+    m.notes.extend(
+        notes
+            .into_iter()
+            .map(|note| format!("state {}: {note}", name.trim())),
+    );
     diagnostics.extend(problems.into_iter().map(|(severity, problem)| {
         let message = format!("state `{}`: {problem}", name.trim());
         match severity {
@@ -380,6 +402,31 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
             .then(b.0.cmp(&a.0))
             .then(a.1.cmp(&b.1))
     });
+    // Only the sectioned form says anything to run; an older machine description is prose.
+    let machine_level = if is_sectioned(&m.description) {
+        parse_description(&m.description)
+    } else {
+        Description::default()
+    };
+    out.diagnostics.extend(
+        machine_level
+            .problems
+            .into_iter()
+            .map(|(severity, problem)| {
+                let message = format!("machine description: {problem}");
+                match severity {
+                    Severity::Error => FileDiagnostic::error(file, m.line, message),
+                    Severity::Warning => FileDiagnostic::warning(file, m.line, message),
+                }
+            }),
+    );
+    // The machine's variables: declared where the machine starts.
+    let [declarations, ..] = machine_level.activities;
+    if let Some(start) = m.states.iter_mut().find(|s| s.id == initial) {
+        start.on_entry.splice(0..0, declarations);
+    }
+    let mut notes = machine_level.notes;
+    notes.append(&mut m.notes);
     let name = if m.attribute_name.trim().is_empty() {
         format!("{file_name}_{}", out.machines.len() + 1)
     } else {
@@ -391,7 +438,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
         transitions: transitions.into_iter().map(|(_, _, t)| t).collect(),
         initial,
         unread: m.unread,
-        ..Machine::default()
+        description: notes.join("\n"),
     });
 }
 

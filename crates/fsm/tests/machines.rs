@@ -462,6 +462,44 @@ fn qfsm_traps() {
         .contains("`../DefaultMachines/SMGetUp.fsm`"));
 }
 
+/// The later gufsm editors' sectioned descriptions: `$variables$` declared, `$includes$` kept as
+/// a note, `$Layout.plist$` (the editor's drawing, in JSON) and the version never read as code.
+#[test]
+fn qfsm_sectioned_descriptions() {
+    let text = r#"<?xml version='1.0'?>
+<qfsmproject version="0.53" author="MiCASE">
+  <machine name="Counter" initialstate="0" description="Version$&#x0a;1.3&#x0a;$includes$&#x0a;#include &lt;cmath&gt;&#x0a;$variables$&#x0a;int&#x09;total;&#x09;///&lt; pings so far&#x0a;$Layout.plist$&#x0a;{&#x0a;  &quot;States&quot; : { &quot;Ping&quot; : { &quot;x&quot; : 221 } }&#x0a;}&#x0a;">
+    <state code="0" description="Version$&#x0a;1.3&#x0a;$includes$&#x0a;&#x0a;$OnEntry$&#x0a;total = total + 1;&#x0a;post(&quot;Say&quot;, &quot;ping &quot; + total);&#x0a;$OnExit$&#x0a;&#x0a;$Internal$&#x0a;&#x0a;$variables$&#x0a;int&#x09;beats;&#x09;///&lt; in this state&#x0a;const char *&#x09;stateName;&#x0a;$Layout.plist$&#x0a;{&#x0a;  &quot;x&quot; : 221,&#x0a;  &quot;Transitions&quot; : [ { &quot;srcPoint&quot; : [ 415, 181 ] } ]&#x0a;}&#x0a;">Ping</state>
+    <state code="1" description="$OnEntry$&#x0a;beats = 2;&#x0a;">Done</state>
+    <transition><from>0</from><to>1</to><inputs>total &gt;= 3</inputs><outputs>0</outputs></transition>
+    <transition><from>0</from><to>0</to><inputs>after_ms(10)</inputs><outputs>0</outputs></transition>
+  </machine>
+</qfsmproject>
+"#;
+    let imported = import_qfsm("Counter.fsm", text, "Counter");
+    assert_eq!(
+        messages(&imported),
+        ["Counter.fsm:4: warning: state `Ping`: `const char *\tstateName;` in `$variables$` is not a declaration proclaim knows (int, bool, char, float, double); the variable is not declared"]
+    );
+    let counter = &imported.machines[0];
+    assert_eq!(
+        counter.state(0).unwrap().on_entry,
+        [
+            Action::Statement(statement("int total;")),
+            Action::Statement(statement("int beats;")),
+            Action::Statement(statement("total = total + 1;")),
+            Action::Statement(statement("post(\"Say\", \"ping \" + total);")),
+        ],
+        "the machine's variables, then the state's, then its OnEntry"
+    );
+    assert_eq!(
+        counter.state(1).unwrap().on_entry,
+        [Action::Statement(statement("beats = 2;"))]
+    );
+    assert_eq!(counter.description, "includes: #include <cmath>");
+    round_trip(counter, "Counter.fsm");
+}
+
 #[test]
 fn t_a_errors_name_file_and_line() {
     let imported = import_ta(
