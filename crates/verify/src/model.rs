@@ -162,124 +162,29 @@ impl Model {
             .iter()
             .map(|m| m.machine.name.as_str())
             .collect();
-        let mut slots: Vec<Slot> = Vec::new();
-        let mut names: FxHashMap<String, Name> = FxHashMap::default();
-
-        // Externs first: a name some machine binds to the whiteboard is no global anywhere.
-        let mut externs: FxHashSet<String> = FxHashSet::default();
-        for m in &behaviour.machines {
-            for s in m.machine.statements() {
-                if let Statement::Extern { name, .. } = s {
-                    externs.insert(name.clone());
-                }
-            }
-        }
-        // Each machine's own variables.
-        let mut locals_of: Vec<FxHashMap<String, SlotId>> = Vec::new();
-        for (i, m) in behaviour.machines.iter().enumerate() {
-            let mut locals = FxHashMap::default();
-            for s in m.machine.statements() {
-                if let Statement::Declare { ty, name, .. } = s {
-                    if !locals.contains_key(name) {
-                        locals.insert(name.clone(), slots.len());
-                        slots.push(Slot {
-                            name: format!("{}.{name}", m.machine.name),
-                            kind: SlotKind::Local {
-                                machine: i,
-                                ty: ty.clone(),
-                            },
-                            initial: Some(zero(ty)),
-                            free: None,
-                            value_kind: Kind::Any,
-                        });
-                    } else if let Some(&slot) = locals.get(name) {
-                        // The last declaration's type wins, as `Locals::declared` has it.
-                        slots[slot].kind = SlotKind::Local {
-                            machine: i,
-                            ty: ty.clone(),
-                        };
-                        slots[slot].initial = Some(zero(ty));
-                    }
-                }
-            }
-            locals_of.push(locals);
-        }
-        // Globals: assigned, not the assigning machine's own, not extern.
-        for (i, m) in behaviour.machines.iter().enumerate() {
-            for s in m.machine.statements() {
-                if let Statement::Assign { name, .. } = s {
-                    if !locals_of[i].contains_key(name)
-                        && !externs.contains(name)
-                        && !names.contains_key(name)
-                    {
-                        names.insert(name.clone(), Name::Slot(slots.len()));
-                        slots.push(Slot {
-                            name: name.clone(),
-                            kind: SlotKind::Global,
-                            initial: Some(Value::Int(0)),
-                            free: None,
-                            value_kind: Kind::Any,
-                        });
-                    }
-                }
-            }
-        }
-
-        // Reasoners: their answers are names; their inputs are whiteboard types they read.
-        let mut theories = Vec::new();
-        let mut theory_inputs: Vec<Vec<String>> = Vec::new();
-        for t in &behaviour.theories {
-            let reasoner = Reasoner::new(t);
-            let decl = reasoner.declaration();
-            for (o, atom) in decl.answers.iter().enumerate() {
-                names.entry(atom.clone()).or_insert(Name::Answer {
-                    theory: theories.len(),
-                    output: o,
-                });
-            }
-            theory_inputs.push(
-                decl.reads
-                    .iter()
-                    .filter(|r| r.as_str() != proclaim_board::QUERY_TYPE)
-                    .cloned()
-                    .collect(),
-            );
-            theories.push(TheoryModel {
-                name: t.name.clone(),
-                inputs: Vec::new(),
-                outputs: decl.answers.clone(),
-                reasoner: RefCell::new(reasoner),
-            });
-        }
+        let mut slots = Slots::default();
+        let externs = externs(behaviour);
+        let locals_of = slots.declare_locals(behaviour);
+        slots.declare_globals(behaviour, &locals_of, &externs);
+        let (mut theories, theory_inputs) = slots.reasoners(behaviour);
         for (i, name) in machine_names.iter().enumerate() {
-            names.entry(running_type(name)).or_insert(Name::Running(i));
+            slots
+                .names
+                .entry(running_type(name))
+                .or_insert(Name::Running(i));
         }
 
-        // What machines read and write, and who outside posts.
         let mut uses = Uses::default();
         for (i, m) in behaviour.machines.iter().enumerate() {
-            gather_uses(&m.machine, &locals_of[i], &names, &machine_names, &mut uses);
-        }
-        let mut outside: FxHashSet<String> = FxHashSet::default();
-        let mut known_types: FxHashSet<String> = FxHashSet::default();
-        for module in modules(behaviour) {
-            let inside = matches!(
-                module.kind,
-                ModuleKind::Machine { .. } | ModuleKind::Theory { .. }
+            gather_uses(
+                &m.machine,
+                &locals_of[i],
+                &slots.names,
+                &machine_names,
+                &mut uses,
             );
-            for ty in module.decl.posts.iter().chain(&module.decl.answers) {
-                known_types.insert(ty.clone());
-                if !inside {
-                    outside.insert(ty.clone());
-                }
-            }
-            for ty in module.decl.reads.iter().chain(&module.decl.waits_on) {
-                known_types.insert(ty.clone());
-            }
         }
-        known_types.extend(uses.read.iter().cloned());
-        known_types.extend(uses.written.iter().cloned());
-        known_types.extend(externs.iter().cloned());
+        let (outside, known_types) = posters(behaviour, &uses, &externs);
 
         // Message slots: what machines read, externs, reasoner inputs, and the types the
         // properties name.
@@ -298,62 +203,29 @@ impl Model {
             });
         }
         for ty in wanted {
-            if names.contains_key(&ty) || machine_names.contains(&ty.as_str()) {
-                continue;
+            if !slots.names.contains_key(&ty) && !machine_names.contains(&ty.as_str()) {
+                let external = externs.contains(&ty);
+                slots.message(ty, external);
             }
-            names.insert(ty.clone(), Name::Slot(slots.len()));
-            slots.push(Slot {
-                kind: SlotKind::Message {
-                    external: externs.contains(&ty),
-                },
-                name: ty,
-                initial: None,
-                free: None,
-                value_kind: Kind::Any,
-            });
         }
         for (t, inputs) in theory_inputs.iter().enumerate() {
             theories[t].inputs = inputs
                 .iter()
-                .map(|ty| (ty.clone(), names.get(ty).copied()))
+                .map(|ty| (ty.clone(), slots.names.get(ty).copied()))
                 .collect();
         }
-
-        // The environment: a whiteboard type is free when something outside posts it, or
-        // when nothing inside writes it at all (spec §6).
-        let mut domains = Domains::default();
-        for m in &behaviour.machines {
-            domains.gather_machine(&m.machine);
-        }
-        if let Some(script) = &behaviour.script {
-            for step in &script.steps {
-                domains.add(&step.atom, Value::Bool(step.value));
-            }
-        }
-        for inputs in &theory_inputs {
-            for ty in inputs {
-                domains.add(ty, Value::Bool(false));
-                domains.add(ty, Value::Bool(true));
-            }
-        }
-        // The kind of a type is what the behaviour gives it; the properties' constants then
-        // widen what the environment tries (a property may ask about a value no machine names).
-        for slot in &mut slots {
-            if let SlotKind::Message { .. } = slot.kind {
-                slot.value_kind = Kind::of_values(&domains.domain(&slot.name).values);
-            }
-        }
-        for e in property_exprs {
-            domains.gather_expr(e);
-        }
-        for slot in &mut slots {
-            if let SlotKind::Message { .. } = slot.kind {
-                let domain = domains.domain(&slot.name);
-                if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
-                    slot.free = Some(domain);
-                }
-            }
-        }
+        let Slots {
+            slots: mut all_slots,
+            names,
+        } = slots;
+        free_environment(
+            &mut all_slots,
+            behaviour,
+            &theory_inputs,
+            property_exprs,
+            &outside,
+            &uses,
+        );
 
         let machines = behaviour
             .machines
@@ -363,7 +235,7 @@ impl Model {
             .collect();
         Model {
             machines,
-            slots,
+            slots: all_slots,
             theories,
             names,
             known_types,
@@ -522,6 +394,211 @@ fn gather_uses(
                 }
             }
             _ => {}
+        }
+    }
+}
+
+/// The slots being numbered and what each name resolves to, while a model is built.
+#[derive(Default)]
+struct Slots {
+    slots: Vec<Slot>,
+    names: FxHashMap<String, Name>,
+}
+
+impl Slots {
+    /// Each machine's own variables (what it declares); the last declaration's type wins, as
+    /// `Locals::declared` has it.
+    fn declare_locals(&mut self, behaviour: &Behaviour) -> Vec<FxHashMap<String, SlotId>> {
+        let mut locals_of = Vec::new();
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            let mut locals: FxHashMap<String, SlotId> = FxHashMap::default();
+            for s in m.machine.statements() {
+                let Statement::Declare { ty, name, .. } = s else {
+                    continue;
+                };
+                let kind = SlotKind::Local {
+                    machine: i,
+                    ty: ty.clone(),
+                };
+                match locals.get(name) {
+                    Some(&slot) => {
+                        self.slots[slot].kind = kind;
+                        self.slots[slot].initial = Some(zero(ty));
+                    }
+                    None => {
+                        locals.insert(name.clone(), self.slots.len());
+                        self.slots.push(Slot {
+                            name: format!("{}.{name}", m.machine.name),
+                            kind,
+                            initial: Some(zero(ty)),
+                            free: None,
+                            value_kind: Kind::Any,
+                        });
+                    }
+                }
+            }
+            locals_of.push(locals);
+        }
+        locals_of
+    }
+
+    /// The behaviour's globals: names an activity assigns that are not the assigning machine's
+    /// own and not extern, starting at 0.
+    fn declare_globals(
+        &mut self,
+        behaviour: &Behaviour,
+        locals_of: &[FxHashMap<String, SlotId>],
+        externs: &FxHashSet<String>,
+    ) {
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            for s in m.machine.statements() {
+                if let Statement::Assign { name, .. } = s {
+                    if !locals_of[i].contains_key(name)
+                        && !externs.contains(name)
+                        && !self.names.contains_key(name)
+                    {
+                        self.names
+                            .insert(name.clone(), Name::Slot(self.slots.len()));
+                        self.slots.push(Slot {
+                            name: name.clone(),
+                            kind: SlotKind::Global,
+                            initial: Some(Value::Int(0)),
+                            free: None,
+                            value_kind: Kind::Any,
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    /// The reasoners: their answers become names; each one's inputs (whiteboard types it
+    /// reads) are returned beside it, to be given slots.
+    fn reasoners(&mut self, behaviour: &Behaviour) -> (Vec<TheoryModel>, Vec<Vec<String>>) {
+        let mut theories = Vec::new();
+        let mut theory_inputs = Vec::new();
+        for t in &behaviour.theories {
+            let reasoner = Reasoner::new(t);
+            let decl = reasoner.declaration();
+            for (o, atom) in decl.answers.iter().enumerate() {
+                self.names.entry(atom.clone()).or_insert(Name::Answer {
+                    theory: theories.len(),
+                    output: o,
+                });
+            }
+            theory_inputs.push(
+                decl.reads
+                    .iter()
+                    .filter(|r| r.as_str() != proclaim_board::QUERY_TYPE)
+                    .cloned()
+                    .collect(),
+            );
+            theories.push(TheoryModel {
+                name: t.name.clone(),
+                inputs: Vec::new(),
+                outputs: decl.answers.clone(),
+                reasoner: RefCell::new(reasoner),
+            });
+        }
+        (theories, theory_inputs)
+    }
+
+    /// A slot for whiteboard type `ty`, never posted at first.
+    fn message(&mut self, ty: String, external: bool) {
+        self.names.insert(ty.clone(), Name::Slot(self.slots.len()));
+        self.slots.push(Slot {
+            kind: SlotKind::Message { external },
+            name: ty,
+            initial: None,
+            free: None,
+            value_kind: Kind::Any,
+        });
+    }
+}
+
+/// Every name some machine binds to the whiteboard: such a name is no global anywhere.
+fn externs(behaviour: &Behaviour) -> FxHashSet<String> {
+    let mut externs = FxHashSet::default();
+    for m in &behaviour.machines {
+        for s in m.machine.statements() {
+            if let Statement::Extern { name, .. } = s {
+                externs.insert(name.clone());
+            }
+        }
+    }
+    externs
+}
+
+/// The types something outside the machines and reasoners posts, and every type anything
+/// declares, reads or writes.
+fn posters(
+    behaviour: &Behaviour,
+    uses: &Uses,
+    externs: &FxHashSet<String>,
+) -> (FxHashSet<String>, FxHashSet<String>) {
+    let mut outside: FxHashSet<String> = FxHashSet::default();
+    let mut known_types: FxHashSet<String> = FxHashSet::default();
+    for module in modules(behaviour) {
+        let inside = matches!(
+            module.kind,
+            ModuleKind::Machine { .. } | ModuleKind::Theory { .. }
+        );
+        for ty in module.decl.posts.iter().chain(&module.decl.answers) {
+            known_types.insert(ty.clone());
+            if !inside {
+                outside.insert(ty.clone());
+            }
+        }
+        for ty in module.decl.reads.iter().chain(&module.decl.waits_on) {
+            known_types.insert(ty.clone());
+        }
+    }
+    known_types.extend(uses.read.iter().cloned());
+    known_types.extend(uses.written.iter().cloned());
+    known_types.extend(externs.iter().cloned());
+    (outside, known_types)
+}
+
+/// The environment: a whiteboard type is free when something outside posts it, or when nothing
+/// inside writes it at all (spec §6), and takes the values its domain gathers.
+fn free_environment(
+    slots: &mut [Slot],
+    behaviour: &Behaviour,
+    theory_inputs: &[Vec<String>],
+    property_exprs: &[&Expr],
+    outside: &FxHashSet<String>,
+    uses: &Uses,
+) {
+    let mut domains = Domains::default();
+    for m in &behaviour.machines {
+        domains.gather_machine(&m.machine);
+    }
+    if let Some(script) = &behaviour.script {
+        for step in &script.steps {
+            domains.add(&step.atom, Value::Bool(step.value));
+        }
+    }
+    for inputs in theory_inputs {
+        for ty in inputs {
+            domains.add(ty, Value::Bool(false));
+            domains.add(ty, Value::Bool(true));
+        }
+    }
+    // The kind of a type is what the behaviour gives it; the properties' constants then
+    // widen what the environment tries (a property may ask about a value no machine names).
+    for slot in slots.iter_mut() {
+        if let SlotKind::Message { .. } = slot.kind {
+            slot.value_kind = Kind::of_values(&domains.domain(&slot.name).values);
+        }
+    }
+    for e in property_exprs {
+        domains.gather_expr(e);
+    }
+    for slot in slots.iter_mut() {
+        if let SlotKind::Message { .. } = slot.kind {
+            if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
+                slot.free = Some(domains.domain(&slot.name));
+            }
         }
     }
 }
