@@ -173,47 +173,126 @@ pub fn explore(
     max_states: usize,
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
-    let layout = Layout::new(model);
-    let mut graph = Graph {
-        layout,
-        arena: Vec::new(),
-        offsets: vec![0],
-        parents: Vec::new(),
-        table: HashTable::new(),
-        edge_start: vec![0],
-        edges: Vec::new(),
-        complete: true,
-        entered: model
-            .machines
-            .iter()
-            .map(|m| vec![false; m.states.len()])
-            .collect(),
-        fired: model
-            .machines
-            .iter()
-            .map(|m| vec![false; m.machine.transitions.len()])
-            .collect(),
-        targets: vec![None; properties.len()],
-        values: model.slots.len(),
-        saw: model.saw.len(),
-    };
-    let hasher = FxBuildHasher;
-    let mut scratch = Vec::new();
-    let mut insert = |graph: &mut Graph, world: &World, parent: Parent| -> u32 {
-        scratch.clear();
-        graph.layout.pack(world, &mut scratch);
-        let hash = hasher.hash_one(&scratch[..]);
-        let (arena, offsets) = (&graph.arena, &graph.offsets);
-        let bytes_of =
-            |id: u32| &arena[offsets[id as usize] as usize..offsets[id as usize + 1] as usize];
-        if let Some(&id) = graph.table.find(hash, |&id| bytes_of(id) == &scratch[..]) {
+    let mut graph = Graph::empty(model, properties.len());
+    let mut store = Store::default();
+    for (i, w) in initial_worlds(model).iter().enumerate() {
+        let parent = Parent {
+            parent: ROOT,
+            snapshot: i as u32,
+            environment: 0,
+        };
+        store.insert(&mut graph, w, parent, model, properties);
+    }
+    let stepper = Stepper::new(model);
+    let mut successors: Vec<Successor> = Vec::new();
+    let mut next = 0usize;
+    while next < graph.len() {
+        if graph.is_full(max_states) {
+            graph.complete = false;
+            break;
+        }
+        if next % PROGRESS_EVERY == 0 && next > 0 {
+            progress(Progress {
+                expanded: next,
+                stored: graph.len(),
+            });
+        }
+        let world = graph.world(next as u32);
+        successors.clear();
+        stepper.successors(&world, false, &mut successors);
+        for s in &successors {
+            let parent = Parent {
+                parent: next as u32,
+                snapshot: s.choice.snapshot as u32,
+                environment: s.choice.environment as u32,
+            };
+            let mut edge = store.insert(&mut graph, &s.world, parent, model, properties);
+            if let Some(t) = s.fired {
+                edge |= FIRED;
+                let index = model.machines[s.machine].states[s.from].transitions[t].index;
+                graph.fired[s.machine][index] = true;
+            }
+            graph.edges.push(edge);
+        }
+        graph.edge_start.push(graph.edges.len() as u32);
+        next += 1;
+    }
+    graph
+}
+
+impl Graph {
+    /// No states yet, and nothing entered, fired or found.
+    fn empty(model: &Model, properties: usize) -> Graph {
+        Graph {
+            layout: Layout::new(model),
+            arena: Vec::new(),
+            offsets: vec![0],
+            parents: Vec::new(),
+            table: HashTable::new(),
+            edge_start: vec![0],
+            edges: Vec::new(),
+            complete: true,
+            entered: model
+                .machines
+                .iter()
+                .map(|m| vec![false; m.states.len()])
+                .collect(),
+            fired: model
+                .machines
+                .iter()
+                .map(|m| vec![false; m.machine.transitions.len()])
+                .collect(),
+            targets: vec![None; properties],
+            values: model.slots.len(),
+            saw: model.saw.len(),
+        }
+    }
+
+    /// Whether another state would pass `max_states`, or what the ids and offsets can hold (ids
+    /// leave the top bit to the "fired" mark; the arena's offsets are u32).
+    fn is_full(&self, max_states: usize) -> bool {
+        self.len() >= max_states
+            || self.len() >= (FIRED - 1) as usize
+            || self.arena.len() >= (u32::MAX as usize - 4096)
+    }
+
+    fn bytes_of(&self, id: u32) -> &[u8] {
+        &self.arena[self.offsets[id as usize] as usize..self.offsets[id as usize + 1] as usize]
+    }
+}
+
+/// What storing a state needs besides the graph: its packing buffer and the hasher.
+#[derive(Default)]
+struct Store {
+    scratch: Vec<u8>,
+    hasher: FxBuildHasher,
+}
+
+impl Store {
+    /// The id of `world`, stored with `parent` if it is new; a new state is checked against
+    /// the properties and marks the states it is in as entered.
+    fn insert(
+        &mut self,
+        graph: &mut Graph,
+        world: &World,
+        parent: Parent,
+        model: &Model,
+        properties: &[Property],
+    ) -> u32 {
+        self.scratch.clear();
+        graph.layout.pack(world, &mut self.scratch);
+        let hash = self.hasher.hash_one(&self.scratch[..]);
+        if let Some(&id) = graph
+            .table
+            .find(hash, |&id| graph.bytes_of(id) == &self.scratch[..])
+        {
             return id;
         }
         let id = graph.parents.len() as u32;
-        graph.arena.extend_from_slice(&scratch);
+        graph.arena.extend_from_slice(&self.scratch);
         graph.offsets.push(graph.arena.len() as u32);
         graph.parents.push(parent);
-        let (arena, offsets) = (&graph.arena, &graph.offsets);
+        let (arena, offsets, hasher) = (&graph.arena, &graph.offsets, &self.hasher);
         graph.table.insert_unique(hash, id, |&id| {
             hasher
                 .hash_one(&arena[offsets[id as usize] as usize..offsets[id as usize + 1] as usize])
@@ -229,60 +308,5 @@ pub fn explore(
             }
         }
         id
-    };
-
-    for (i, w) in initial_worlds(model).iter().enumerate() {
-        insert(
-            &mut graph,
-            w,
-            Parent {
-                parent: ROOT,
-                snapshot: i as u32,
-                environment: 0,
-            },
-        );
     }
-    let stepper = Stepper::new(model);
-    let mut successors: Vec<Successor> = Vec::new();
-    let mut next = 0usize;
-    while next < graph.len() {
-        // Ids must leave the top bit to the "fired" mark; the arena's offsets are u32.
-        if graph.len() >= max_states
-            || graph.len() >= (FIRED - 1) as usize
-            || graph.arena.len() >= (u32::MAX as usize - 4096)
-        {
-            graph.complete = false;
-            break;
-        }
-        if next % PROGRESS_EVERY == 0 && next > 0 {
-            progress(Progress {
-                expanded: next,
-                stored: graph.len(),
-            });
-        }
-        let world = graph.world(next as u32);
-        successors.clear();
-        stepper.successors(&world, false, &mut successors);
-        for s in &successors {
-            let id = insert(
-                &mut graph,
-                &s.world,
-                Parent {
-                    parent: next as u32,
-                    snapshot: s.choice.snapshot as u32,
-                    environment: s.choice.environment as u32,
-                },
-            );
-            let mut edge = id;
-            if let Some(t) = s.fired {
-                edge |= FIRED;
-                let index = model.machines[s.machine].states[s.from].transitions[t].index;
-                graph.fired[s.machine][index] = true;
-            }
-            graph.edges.push(edge);
-        }
-        graph.edge_start.push(graph.edges.len() as u32);
-        next += 1;
-    }
-    graph
 }
