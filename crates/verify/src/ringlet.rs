@@ -179,36 +179,17 @@ impl<'m> Stepper<'m> {
             && (c.just_entered || !self.model.machines[k].states[usize::from(c.state)].is_final())
     }
 
-    /// Every successor of `world`, with what the environment did when `detail` is asked for.
+    /// Every successor of `world`, with what the environment did when `detail` is asked for:
+    /// the ringing machine's OnEntry, then for every snapshot it may take (the free types its
+    /// OnEntry touched at each value, the state's timers at each mask that can be due) the rest
+    /// of its ringlet, then every move of the environment.
     pub fn successors(&self, world: &World, detail: bool, out: &mut Vec<Successor>) {
         let Some((k, start, wrapped)) = self.next_machine(world) else {
             return;
         };
         let machine = &self.model.machines[k];
         let from = usize::from(start.machines[k].state);
-        let state = &machine.machine.states[from];
-
-        // OnEntry, noting the free types it reads or posts.
-        let mut entered = start;
-        let mut touched: Vec<SlotId> = Vec::new();
-        let mut deferred = Vec::new();
-        if entered.machines[k].just_entered {
-            let mut exec = Exec {
-                model: self.model,
-                world: &mut entered,
-                machine: k,
-                snapshot: None,
-                touched: Some(Vec::new()),
-                deferred: Vec::new(),
-            };
-            exec.run(&state.on_entry);
-            touched = exec.touched.take().unwrap_or_default();
-            deferred = std::mem::take(&mut exec.deferred);
-            entered.machines[k].just_entered = false;
-        }
-        touched.retain(|s| self.model.slots[*s].free.is_some());
-        touched.sort_unstable();
-        touched.dedup();
+        let (entered, touched, deferred) = self.on_entry(start, k);
 
         let tests = &machine.states[from].time_tests;
         let masks = time_masks(tests, entered.machines[k].time);
@@ -218,7 +199,6 @@ impl<'m> Stepper<'m> {
                 .iter()
                 .map(|d| d.len() as u64)
                 .product::<u64>();
-        let environment_count: u64 = self.free.iter().map(|(_, d)| d.len() as u64).product();
 
         for snapshot_choice in 0..snapshot_count {
             let mut w = entered.clone();
@@ -237,75 +217,152 @@ impl<'m> Stepper<'m> {
                 }
                 w.values[*slot] = v;
             }
-            let snapshot: Vec<ValueId> = w.values.clone();
-            let mut exec = Exec {
-                model: self.model,
-                world: &mut w,
+            let fired = self.rest_of_ringlet(&mut w, k, deferred.clone());
+            let ringlet = Ringlet {
                 machine: k,
-                snapshot: Some(snapshot),
-                touched: None,
-                deferred: deferred.clone(),
+                wrapped,
+                from,
+                fired,
+                snapshot_choice,
+                timers: if detail {
+                    (0..tests.len())
+                        .filter(|i| mask & !old_mask & (1 << i) != 0)
+                        .collect()
+                } else {
+                    Vec::new()
+                },
+                at_snapshot,
             };
-            for (j, (m, e)) in self.model.saw.iter().enumerate() {
-                if *m == k {
-                    let v = exec.value(e);
-                    let id = self.model.values.borrow_mut().intern_option(v.as_ref());
-                    exec.world.saw[j] = id;
-                }
-            }
-            let fired = machine.states[from]
-                .transitions
-                .iter()
-                .position(|t| exec.truth(&t.label));
-            match fired {
-                Some(t) => {
-                    exec.run(&state.on_exit);
-                    let c = &mut exec.world.machines[k];
-                    c.state = machine.states[from].transitions[t].target as u16;
-                    c.just_entered = true;
-                    c.time = 0;
-                }
-                None => exec.run(&state.internal),
-            }
-            for command in std::mem::take(&mut exec.deferred) {
-                control(self.model, exec.world, k, command);
-            }
-            w.turn = (k + 1) as u8;
-
-            for environment_choice in 0..environment_count {
-                let mut next = w.clone();
-                let mut index = environment_choice;
-                let mut changed = Vec::new();
-                for (slot, domain) in &self.free {
-                    let n = domain.len() as u64;
-                    let v = rotated(domain, w.values[*slot], (index % n) as usize);
-                    index /= n;
-                    if detail && next.values[*slot] != v {
-                        changed.push((*slot, v));
-                    }
-                    next.values[*slot] = v;
-                }
-                out.push(Successor {
-                    world: next,
-                    choice: Choice {
-                        snapshot: snapshot_choice,
-                        environment: environment_choice,
-                    },
-                    machine: k,
-                    wrapped,
-                    from,
-                    fired,
-                    detail: detail.then(|| Detail {
-                        timers: (0..tests.len())
-                            .filter(|i| mask & !old_mask & (1 << i) != 0)
-                            .collect(),
-                        at_snapshot: at_snapshot.clone(),
-                        environment: changed,
-                    }),
-                });
-            }
+            self.environment_moves(&w, &ringlet, detail, out);
         }
     }
+
+    /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the free
+    /// types it read or posted (sorted), and the commands it posted to itself.
+    fn on_entry(&self, start: World, k: usize) -> (World, Vec<SlotId>, Vec<Command>) {
+        let mut entered = start;
+        let mut touched: Vec<SlotId> = Vec::new();
+        let mut deferred = Vec::new();
+        if entered.machines[k].just_entered {
+            let state =
+                &self.model.machines[k].machine.states[usize::from(entered.machines[k].state)];
+            let mut exec = Exec {
+                model: self.model,
+                world: &mut entered,
+                machine: k,
+                snapshot: None,
+                touched: Some(Vec::new()),
+                deferred: Vec::new(),
+            };
+            exec.run(&state.on_entry);
+            touched = exec.touched.take().unwrap_or_default();
+            deferred = std::mem::take(&mut exec.deferred);
+            entered.machines[k].just_entered = false;
+        }
+        touched.retain(|s| self.model.slots[*s].free.is_some());
+        touched.sort_unstable();
+        touched.dedup();
+        (entered, touched, deferred)
+    }
+
+    /// The rest of machine `k`'s ringlet on its snapshot `w`: what it `saw`, the first
+    /// transition whose label holds (then OnExit and the move) or else Internal, then the
+    /// commands it posted, obeyed as the ringlet ends. Returns the transition that fired.
+    fn rest_of_ringlet(&self, w: &mut World, k: usize, deferred: Vec<Command>) -> Option<usize> {
+        let machine = &self.model.machines[k];
+        let from = usize::from(w.machines[k].state);
+        let state = &machine.machine.states[from];
+        let snapshot: Vec<ValueId> = w.values.clone();
+        let mut exec = Exec {
+            model: self.model,
+            world: w,
+            machine: k,
+            snapshot: Some(snapshot),
+            touched: None,
+            deferred,
+        };
+        for (j, (m, e)) in self.model.saw.iter().enumerate() {
+            if *m == k {
+                let v = exec.value(e);
+                let id = self.model.values.borrow_mut().intern_option(v.as_ref());
+                exec.world.saw[j] = id;
+            }
+        }
+        let fired = machine.states[from]
+            .transitions
+            .iter()
+            .position(|t| exec.truth(&t.label));
+        match fired {
+            Some(t) => {
+                exec.run(&state.on_exit);
+                let c = &mut exec.world.machines[k];
+                c.state = machine.states[from].transitions[t].target as u16;
+                c.just_entered = true;
+                c.time = 0;
+            }
+            None => exec.run(&state.internal),
+        }
+        for command in std::mem::take(&mut exec.deferred) {
+            control(self.model, exec.world, k, command);
+        }
+        w.turn = (k + 1) as u8;
+        fired
+    }
+
+    /// After a ringlet ending in `w`, one successor for every value each free type may take.
+    fn environment_moves(
+        &self,
+        w: &World,
+        ringlet: &Ringlet,
+        detail: bool,
+        out: &mut Vec<Successor>,
+    ) {
+        let environment_count: u64 = self.free.iter().map(|(_, d)| d.len() as u64).product();
+        for environment_choice in 0..environment_count {
+            let mut next = w.clone();
+            let mut index = environment_choice;
+            let mut changed = Vec::new();
+            for (slot, domain) in &self.free {
+                let n = domain.len() as u64;
+                let v = rotated(domain, w.values[*slot], (index % n) as usize);
+                index /= n;
+                if detail && next.values[*slot] != v {
+                    changed.push((*slot, v));
+                }
+                next.values[*slot] = v;
+            }
+            out.push(Successor {
+                world: next,
+                choice: Choice {
+                    snapshot: ringlet.snapshot_choice,
+                    environment: environment_choice,
+                },
+                machine: ringlet.machine,
+                wrapped: ringlet.wrapped,
+                from: ringlet.from,
+                fired: ringlet.fired,
+                detail: detail.then(|| Detail {
+                    timers: ringlet.timers.clone(),
+                    at_snapshot: ringlet.at_snapshot.clone(),
+                    environment: changed,
+                }),
+            });
+        }
+    }
+}
+
+/// One ringlet as its successors share it: which machine rang from which state, on which
+/// snapshot, and what fired.
+struct Ringlet {
+    machine: usize,
+    wrapped: bool,
+    from: usize,
+    fired: Option<usize>,
+    snapshot_choice: u64,
+    /// With detail only: the time tests that came due.
+    timers: Vec<usize>,
+    /// With detail only: the values the free types had at the snapshot.
+    at_snapshot: Vec<(SlotId, ValueId)>,
 }
 
 /// The `i`-th value of `domain` counted from `current` (when it is in the domain), so that
