@@ -251,6 +251,7 @@ fn smallest_manifest(
                 file: place(&m.file),
                 start: m.machine.name == centre,
                 name: None,
+                priority: m.priority,
             })
             .collect(),
         theories: manifest
@@ -284,6 +285,17 @@ fn smallest_manifest(
                 script: place(&i.script),
             }),
         modules: manifest.modules.clone(),
+        // The suppressed types some machine it keeps posts (any other would be unknown there).
+        suppress: manifest
+            .suppress
+            .iter()
+            .filter(|(ty, _)| {
+                modules
+                    .iter()
+                    .any(|m| wanted.contains(&m.decl.name) && m.decl.posts.contains(ty.get_ref()))
+            })
+            .map(|(ty, entry)| (ty.clone(), entry.clone()))
+            .collect(),
         ..Manifest::default()
     };
     smallest

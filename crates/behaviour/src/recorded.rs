@@ -184,6 +184,19 @@ fn observable(event: &Event) -> Option<(u64, &str, String)> {
         Event::Posted {
             ty, content, round, ..
         } => (*round, format!("posts {ty}: {content}")),
+        Event::Suppressed {
+            ty,
+            content,
+            by,
+            round,
+            ..
+        } => (
+            *round,
+            format!("is suppressed posting {ty}: {content} (held by {by})"),
+        ),
+        Event::TookOver {
+            ty, content, round, ..
+        } => (*round, format!("takes over {ty}: {content}")),
         Event::Assigned {
             variable,
             value,

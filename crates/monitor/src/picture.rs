@@ -290,7 +290,11 @@ impl Picture {
                     Kind::Data => "data",
                 },
                 value: r.newest.value.to_string(),
-                by: r.newest.module.to_string(),
+                // A subsumption layer's postings say their priority (who holds the type).
+                by: match r.newest.priority {
+                    0 => r.newest.module.to_string(),
+                    p => format!("{} @{p}", r.newest.module),
+                },
                 seq: r.newest.seq,
                 at_us: micros(r.newest.time),
                 posts: r.posts,
