@@ -221,6 +221,23 @@ fn check_places_each_bad_suppress_entry() {
         );
         assert!(errors[0].file.ends_with("behaviour.toml") && errors[0].is_error());
     }
+    // A layer's priority on a behaviour that suppresses nothing it posts is a warning.
+    let dir = crate::behaviour_folder(
+        "suppress-none",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"Walk.machine\"\npriority = 3\n",
+            ),
+            ("Walk.machine", machine),
+        ],
+    );
+    let loaded = load("lone", Arc::new(Folder::new(&dir))).unwrap();
+    let warnings: Vec<String> = loaded.warnings.iter().map(|w| w.message.clone()).collect();
+    assert_eq!(
+        warnings,
+        ["machine `Walk` has priority = 3, but posts no type of [suppress]: its priority changes nothing"]
+    );
     let concurrent = "schedule = \"concurrent\"\n[[machine]]\nfile = \"Walk.machine\"\n\n[suppress]\nwalk = { hold = \"1s\" }\n";
     let dir = crate::behaviour_folder(
         "suppress-concurrent",

@@ -5,7 +5,7 @@
 use crate::load::LoadedMachine;
 use crate::manifest::{Manifest, Schedule};
 use proclaim_experts::parse_duration;
-use proclaim_syntax::{line_column, nearest, FileDiagnostic};
+use proclaim_syntax::{line_column, nearest, FileDiagnostic, Severity};
 use std::time::Duration;
 use toml::Spanned;
 
@@ -55,6 +55,25 @@ pub(crate) fn check(
                     "hold = \"{text}\" for `{name}` is not a duration above zero (write 500ms, 2s or 1.5s)"
                 ),
             )),
+        }
+    }
+    for m in machines.iter().filter(|m| m.priority != 0) {
+        let decl = proclaim_runner::declaration(&m.machine, &m.machine.name, &shared);
+        if !manifest
+            .suppress
+            .keys()
+            .any(|ty| decl.posts.contains(ty.get_ref()))
+        {
+            problems.push(FileDiagnostic {
+                severity: Severity::Warning,
+                ..FileDiagnostic::in_file(
+                    manifest_file,
+                    format!(
+                        "machine `{}` has priority = {}, but posts no type of [suppress]: its priority changes nothing",
+                        m.machine.name, m.priority
+                    ),
+                )
+            });
         }
     }
     holds
