@@ -77,6 +77,42 @@ fn the_reflex_suppresses_the_walk_while_it_holds_and_the_walk_takes_over_after()
     );
 }
 
+/// The schedule wakes for a hold running out, not only at its ring period: with rounds every
+/// 400 ms, Reflex's last posting at 2.9 s holds until 3.35 s, and Walk takes over then.
+#[test]
+fn the_takeover_comes_when_the_hold_runs_out_between_ring_periods() {
+    let manifest = std::fs::read_to_string(example().join("behaviour.toml"))
+        .unwrap()
+        .replace("description", "ring_period = \"400ms\"\ndescription")
+        .replace("hold = \"500ms\"", "hold = \"450ms\"");
+    let files: Vec<(&str, String)> = vec![
+        ("behaviour.toml", manifest),
+        (
+            "Walk.machine",
+            std::fs::read_to_string(example().join("Walk.machine")).unwrap(),
+        ),
+        (
+            "Reflex.machine",
+            std::fs::read_to_string(example().join("Reflex.machine")).unwrap(),
+        ),
+        ("field.script", field_script()),
+    ];
+    let files: Vec<(&str, &str)> = files.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    let dir = crate::behaviour_folder("subsumption-ring", &files);
+    let run = run_scripted(&dir, &field_script(), Duration::from_secs(30)).unwrap();
+    let takeover: Vec<&String> = run
+        .trace
+        .iter()
+        .filter(|l| l.contains("takes over"))
+        .collect();
+    assert_eq!(takeover.len(), 1, "{:#?}", run.trace);
+    assert!(
+        takeover[0].trim_start().starts_with("3.350s Walk"),
+        "{:#?}",
+        run.trace
+    );
+}
+
 /// What a module reading `walk` sees: never the suppressed `slow` while Reflex holds the type,
 /// and then Walk's `slow` once the hold has run out, carrying each poster's priority.
 #[tokio::test(start_paused = true)]

@@ -44,7 +44,9 @@ pub struct RunOptions {
     /// default, is the bottom layer).
     pub priority: u32,
     /// The behaviour's suppressed types, shared by its machines (one per behaviour): a
-    /// posting to one of them is shown or suppressed by it at the schedule's moment.
+    /// posting to one of them is shown or suppressed by it at the schedule's moment. What
+    /// takes over when a hold runs out is posted by the round schedule ([`crate::Rounds`]);
+    /// a machine on a task of its own only has its postings judged.
     pub suppressor: Option<SharedSuppressor>,
 }
 
