@@ -285,7 +285,7 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
     )]);
     let errors = load("typo", Arc::new(Folder::new(&dir))).err().unwrap();
     assert!(
-        errors[0].to_string().ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`"),
+        errors[0].to_string().ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`, `priority`"),
         "{errors:#?}"
     );
 }

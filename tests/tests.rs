@@ -8,6 +8,7 @@ mod monitor;
 #[cfg(feature = "zenoh")]
 mod network;
 mod properties;
+mod subsumption;
 mod theories;
 mod whiteboard;
 

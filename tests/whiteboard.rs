@@ -51,6 +51,7 @@ on_every_transport!(
     dropped_subscriptions_do_not_pile_up,
     a_command_posted_before_its_type_is_a_signal_is_kept,
     a_snapshot_is_the_board_at_one_moment,
+    a_posting_carries_its_priority_to_every_process,
 );
 
 #[derive(Clone, Copy)]
@@ -134,6 +135,26 @@ fn truthiness_follows_gufsm() {
     ];
     for (value, truth) in cases {
         assert_eq!(value.truthy(), truth, "{value}");
+    }
+}
+
+/// A subsumption layer's priority travels with its posting (a replica's posting goes up to
+/// the holder and comes down to everyone with it); a posting that gives none has 0.
+async fn a_posting_carries_its_priority_to_every_process(transport: Transport) {
+    let boards = boards(transport).await;
+    let [_, poster, _] = &boards;
+    poster.post_ranked("Reflex", "walk", "back", 2);
+    poster.post("Walk", "kick", "right");
+    settle(poster, &boards).await;
+    for board in &boards {
+        let walk = board.latest("walk").unwrap();
+        assert_eq!(
+            (walk.value.clone(), walk.priority),
+            (Value::from("back"), 2)
+        );
+        assert_eq!(board.latest("kick").unwrap().priority, 0);
+        let snapshot = board.snapshot();
+        assert_eq!(snapshot.newest("walk").map(|m| m.priority), Some(2));
     }
 }
 

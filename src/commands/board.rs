@@ -93,8 +93,13 @@ pub fn watch(pattern: &str, network: &Network, limit: Option<&str>) -> Result<Ex
         eprintln!("watching {pattern} ({})", network.describe());
         let print = async {
             while let Some(m) = messages.next().await {
+                // A subsumption layer's postings say their priority; others print as before.
+                let priority = match m.priority {
+                    0 => String::new(),
+                    p => format!(" @{p}"),
+                };
                 println!(
-                    "{:>9.3}s #{:<6} {:<16} {} = {}",
+                    "{:>9.3}s #{:<6} {:<16} {} = {}{priority}",
                     m.time.as_secs_f64(),
                     m.seq,
                     m.module,

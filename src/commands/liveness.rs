@@ -63,6 +63,7 @@ pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
             file: format!("{}.{EXTENSION}", machine.name),
             start: *start,
             name: None,
+            priority: 0,
         });
     }
     let manifest = manifest.to_toml(&format!(

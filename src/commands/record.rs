@@ -100,14 +100,18 @@ impl Recorder {
 
 /// One message as a JSON line.
 pub fn line(m: &Message) -> String {
-    serde_json::json!({
+    let mut line = serde_json::json!({
         "seq": m.seq,
         "at_us": m.time.as_micros() as u64,
         "module": &*m.module,
         "type": &*m.ty,
         "value": json(&m.value),
-    })
-    .to_string()
+    });
+    // A subsumption layer's priority; absent at 0, so other recordings read as they did.
+    if m.priority != 0 {
+        line["priority"] = serde_json::json!(m.priority);
+    }
+    line.to_string()
 }
 
 fn json(value: &Value) -> serde_json::Value {
@@ -127,8 +131,12 @@ pub fn shown(line: &serde_json::Value) -> Option<String> {
     let module = line.get("module")?.as_str()?;
     let ty = line.get("type")?.as_str()?;
     let value = line.get("value")?;
+    let priority = match line.get("priority").and_then(serde_json::Value::as_u64) {
+        Some(p) => format!(" @{p}"),
+        None => String::new(),
+    };
     Some(format!(
-        "{:>8.3}s #{:<6} {module:<14} {ty} = {value}",
+        "{:>8.3}s #{:<6} {module:<14} {ty} = {value}{priority}",
         at as f64 / 1e6,
         line.get("seq")?.as_u64()?
     ))

@@ -7,6 +7,7 @@ use crate::load::Behaviour;
 use crate::manifest::{ImpersonatorEntry, MachineEntry, Manifest, Simulator, TheoryEntry};
 use crate::modules::{Module, ModuleKind};
 use std::fmt::Write;
+use std::time::Duration;
 
 /// One module at the centre: the experts it queries above it (green arrows, blocking: they
 /// proclaim its labels), the modules that listen to its postings below it (black arrows,
@@ -96,6 +97,10 @@ fn link_side(
             let (from, to) = ends(side, &quoted_centre, "unknown");
             arrow(out, from, to, topic, Arrow::Unknown);
         }
+        let kind = match side {
+            Side::Listeners => subsumption(modules, me, topic).unwrap_or(kind),
+            Side::Experts => kind,
+        };
         for partner in partners {
             if !placed.iter().chain(elsewhere).any(|p| p == partner) {
                 placed.push(partner.to_string());
@@ -125,16 +130,60 @@ enum Arrow {
     Heard,
     /// Nobody answers or hears it (red, to or from `unknown`).
     Unknown,
+    /// Heard, from a layer whose postings of a `[suppress]` type hold it against a lower
+    /// layer's for `hold` (Brooks' suppressor: bold blue, marked S).
+    Suppresses { priority: u32, hold: Duration },
+    /// Heard, from a layer a higher one suppresses on this type (dashed).
+    Suppressible { priority: u32 },
+}
+
+/// How the posting of `topic` by `poster` is heard when `topic` is under subsumption and
+/// another machine posts it at another priority; `None` for an ordinary posting.
+fn subsumption(modules: &[Module], poster: &Module, topic: &str) -> Option<Arrow> {
+    let ModuleKind::Machine {
+        priority, holds, ..
+    } = &poster.kind
+    else {
+        return None;
+    };
+    let hold = holds.iter().find(|(ty, _)| ty == topic)?.1;
+    let others: Vec<u32> = modules
+        .iter()
+        .filter(|m| m.decl.name != poster.decl.name && m.decl.posts.iter().any(|t| t == topic))
+        .filter_map(|m| match &m.kind {
+            ModuleKind::Machine { priority, .. } => Some(*priority),
+            _ => None,
+        })
+        .collect();
+    if others.iter().any(|p| p < priority) {
+        Some(Arrow::Suppresses {
+            priority: *priority,
+            hold,
+        })
+    } else if others.iter().any(|p| p > priority) {
+        Some(Arrow::Suppressible {
+            priority: *priority,
+        })
+    } else {
+        None
+    }
 }
 
 /// One arrow between two nodes already quoted (or `unknown`), labelled with what it is about.
 fn arrow(out: &mut String, from: &str, to: &str, topic: &str, kind: Arrow) {
-    let colour = match kind {
-        Arrow::Proclaims => "color=green4, ",
-        Arrow::Heard => "",
-        Arrow::Unknown => "color=red, fontcolor=red, ",
+    let (colour, label) = match kind {
+        Arrow::Proclaims => ("color=green4, ".to_string(), topic.to_string()),
+        Arrow::Heard => (String::new(), topic.to_string()),
+        Arrow::Unknown => ("color=red, fontcolor=red, ".to_string(), topic.to_string()),
+        Arrow::Suppresses { priority, hold } => (
+            "color=blue4, fontcolor=blue4, penwidth=2, arrowhead=odot, ".to_string(),
+            format!("{topic} @{priority} S {}ms", hold.as_millis()),
+        ),
+        Arrow::Suppressible { priority } => {
+            ("style=dashed, ".to_string(), format!("{topic} @{priority}"))
+        }
     };
-    let _ = writeln!(out, "  {from} -> {to} [{colour}label={}];", quote(topic));
+    let _ = writeln!(out, "  {from} -> {to} [{colour}label={}];", quote(&label));
 }
 
 /// Every module and every provider → listener link: green where a label is proclaimed, black
@@ -174,6 +223,7 @@ pub fn overall_diagram(modules: &[Module], name: &str) -> String {
             }
         }
         for ty in m.decl.posts.iter().filter(|t| !m.decl.answers.contains(t)) {
+            let kind = subsumption(modules, m, ty).unwrap_or(Arrow::Heard);
             for l in modules
                 .iter()
                 .filter(|l| l.decl.name != m.decl.name && l.decl.reads.contains(ty))
@@ -183,7 +233,7 @@ pub fn overall_diagram(modules: &[Module], name: &str) -> String {
                     &quote(&m.decl.name),
                     &quote(&l.decl.name),
                     ty,
-                    Arrow::Heard,
+                    kind,
                 );
             }
         }
@@ -251,6 +301,7 @@ fn smallest_manifest(
                 file: place(&m.file),
                 start: m.machine.name == centre,
                 name: None,
+                priority: m.priority,
             })
             .collect(),
         theories: manifest
@@ -284,6 +335,17 @@ fn smallest_manifest(
                 script: place(&i.script),
             }),
         modules: manifest.modules.clone(),
+        // The suppressed types some machine it keeps posts (any other would be unknown there).
+        suppress: manifest
+            .suppress
+            .iter()
+            .filter(|(ty, _)| {
+                modules
+                    .iter()
+                    .any(|m| wanted.contains(&m.decl.name) && m.decl.posts.contains(ty.get_ref()))
+            })
+            .map(|(ty, entry)| (ty.clone(), entry.clone()))
+            .collect(),
         ..Manifest::default()
     };
     smallest

@@ -6,7 +6,7 @@ use crate::error::BehaviourError;
 use crate::load::Behaviour;
 use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
-use proclaim_board::{Pattern, Whiteboard};
+use proclaim_board::{Pattern, Suppressor, Whiteboard};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
     ReceiverConfig, Script,
@@ -443,6 +443,14 @@ pub(crate) fn machine_runners(
     epoch: tokio::time::Instant,
     shared: &Arc<Shared>,
 ) -> Vec<MachineRunner> {
+    // One per run: what holds each suppressed type is the run's own.
+    let suppressor = (!behaviour.suppress.is_empty()).then(|| {
+        let holds = behaviour
+            .suppress
+            .iter()
+            .map(|(ty, hold)| (ty.as_str(), *hold));
+        Arc::new(parking_lot::Mutex::new(Suppressor::new(holds)))
+    });
     behaviour
         .machines
         .iter()
@@ -458,6 +466,8 @@ pub(crate) fn machine_runners(
                     stepper: options.stepper.clone(),
                     shared: Some(shared.clone()),
                     epoch: Some(epoch),
+                    priority: loaded.priority,
+                    suppressor: suppressor.clone(),
                 },
             )
             .with_loader(loaded.loader.clone());
@@ -505,6 +515,7 @@ async fn show_script(
             machine: "impersonator".into(),
             ty: m.ty.to_string(),
             content: m.value.to_string(),
+            priority: 0,
             round: round.get(),
             at: epoch.elapsed(),
         };

@@ -18,6 +18,7 @@ mod load;
 mod manifest;
 mod modules;
 mod recorded;
+mod subsumption;
 pub mod testing;
 mod trace;
 

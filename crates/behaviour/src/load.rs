@@ -32,6 +32,8 @@ pub struct Behaviour {
     pub run_for: Option<Duration>,
     /// Modules outside the behaviour (the manifest's `[[module]]` and its dictionary's).
     pub outside: Vec<ModuleEntry>,
+    /// The types under subsumption with their hold times (the manifest's `[suppress]`).
+    pub suppress: Vec<(String, Duration)>,
     /// Warnings of its files, each with its place.
     pub warnings: Vec<FileDiagnostic>,
     pub files: Arc<dyn Files>,
@@ -48,6 +50,8 @@ pub struct LoadedMachine {
     pub machine: Machine,
     pub file: String,
     pub start: bool,
+    /// Its subsumption layer (the manifest's `priority`).
+    pub priority: u32,
     /// Reads the file again (for `reload`, `reread` and `--watch`).
     pub loader: Loader,
 }
@@ -124,6 +128,13 @@ pub fn load_manifest(
     };
 
     let outside = outside_modules(files.as_ref(), &manifest, &mut problems);
+    let suppress = crate::subsumption::check(
+        &manifest,
+        &manifest_file,
+        &manifest_text,
+        &machines,
+        &mut problems.found,
+    );
 
     let errors = problems.found.iter().any(FileDiagnostic::is_error);
     let mut all = problems.found;
@@ -143,6 +154,7 @@ pub fn load_manifest(
         answer_timeout,
         run_for,
         outside,
+        suppress,
         warnings,
         files,
     })
@@ -226,6 +238,7 @@ fn load_machines(
                     machine,
                     file: entry.file.clone(),
                     start: entry.start,
+                    priority: entry.priority,
                     loader,
                 });
             }

@@ -13,6 +13,11 @@
 //! [[machine]]
 //! file = "Placer.machine"
 //! start = false                        # a sub-machine: dormant until `Placer: On`
+//! priority = 2                         # optional: its subsumption layer (default 0, the bottom)
+//!
+//! [suppress]                           # optional: types a higher layer's posting holds
+//! walk = { hold = "500ms" }            # lower layers' postings to `walk` are suppressed for
+//!                                      # 500ms after each higher one (Brooks' suppression)
 //!
 //! [[theory]]
 //! file = "microwave.dl"                # a reasoner expert; its outputs are the labels it answers
@@ -38,6 +43,8 @@
 
 use proclaim_syntax::{line_column, FileDiagnostic};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use toml::Spanned;
 
 /// The manifest's file name inside a behaviour's folder.
 pub const MANIFEST: &str = "behaviour.toml";
@@ -74,6 +81,18 @@ pub struct Manifest {
     /// What `proclaim verify` checks of the behaviour.
     #[serde(default, rename = "property", skip_serializing_if = "Vec::is_empty")]
     pub properties: Vec<PropertyEntry>,
+    /// Types under subsumption: a higher-priority machine's posting holds the type for `hold`
+    /// against lower ones (`subsumption.rs` checks the entries against the machines).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub suppress: BTreeMap<Spanned<String>, SuppressEntry>,
+}
+
+/// `[suppress] walk = { hold = "500ms" }`: how long a posting holds the type against lower
+/// priorities. Spanned, so a bad entry is reported at its place.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SuppressEntry {
+    pub hold: Spanned<String>,
 }
 
 impl Manifest {
@@ -136,6 +155,10 @@ pub struct MachineEntry {
     /// Which machine, when the file holds several (Qfsm).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// Its subsumption layer: every posting it makes carries this priority, which decides
+    /// only for the types of `[suppress]` (0, the bottom layer, by default).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub priority: u32,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
@@ -295,6 +318,10 @@ fn yes() -> bool {
 
 fn is_true(value: &bool) -> bool {
     *value
+}
+
+fn is_zero(value: &u32) -> bool {
+    *value == 0
 }
 
 /// Reads a manifest, the text of `file`; an error says where and why.

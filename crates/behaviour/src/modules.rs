@@ -14,6 +14,10 @@ pub enum ModuleKind {
     Machine {
         file: String,
         start: bool,
+        /// Its subsumption layer (the manifest's `priority`).
+        priority: u32,
+        /// The suppressed types it posts (the manifest's `[suppress]`), with their holds.
+        holds: Vec<(String, std::time::Duration)>,
     },
     Theory {
         file: String,
@@ -35,11 +39,20 @@ pub fn modules(behaviour: &Behaviour) -> Vec<Module> {
     let mut out = Vec::new();
     let shared = behaviour.shared_variables();
     for m in &behaviour.machines {
+        let decl = proclaim_runner::declaration(&m.machine, &m.machine.name, &shared);
+        let holds = behaviour
+            .suppress
+            .iter()
+            .filter(|(ty, _)| decl.posts.contains(ty))
+            .cloned()
+            .collect();
         out.push(Module {
-            decl: proclaim_runner::declaration(&m.machine, &m.machine.name, &shared),
+            decl,
             kind: ModuleKind::Machine {
                 file: m.file.clone(),
                 start: m.start,
+                priority: m.priority,
+                holds,
             },
         });
     }

@@ -182,8 +182,32 @@ fn observable(event: &Event) -> Option<(u64, &str, String)> {
             ..
         } => (*round, format!("fires {from} -> {to} on {label}")),
         Event::Posted {
-            ty, content, round, ..
+            ty,
+            content,
+            priority: 0,
+            round,
+            ..
         } => (*round, format!("posts {ty}: {content}")),
+        Event::Posted {
+            ty,
+            content,
+            priority,
+            round,
+            ..
+        } => (*round, format!("posts {ty}: {content} @{priority}")),
+        Event::Suppressed {
+            ty,
+            content,
+            by,
+            round,
+            ..
+        } => (
+            *round,
+            format!("is suppressed posting {ty}: {content} (held by {by})"),
+        ),
+        Event::TookOver {
+            ty, content, round, ..
+        } => (*round, format!("takes over {ty}: {content}")),
         Event::Assigned {
             variable,
             value,

@@ -28,7 +28,36 @@ impl TraceView {
         let what = match event {
             Event::Entered { state, .. } => format!("→ {state}"),
             Event::Fired { label, .. } => format!("fires on {label}"),
-            Event::Posted { ty, content, .. } => format!("posts {ty}: {content}"),
+            Event::Posted {
+                ty,
+                content,
+                priority: 0,
+                ..
+            } => format!("posts {ty}: {content}"),
+            Event::Posted {
+                ty,
+                content,
+                priority,
+                ..
+            } => format!("posts {ty}: {content} @{priority}"),
+            Event::Suppressed {
+                ty,
+                content,
+                priority,
+                by,
+                by_priority,
+                until,
+                ..
+            } => format!(
+                "suppressed {ty}: {content} @{priority} (held by {by} @{by_priority} until {:.3}s)",
+                until.as_secs_f64()
+            ),
+            Event::TookOver {
+                ty,
+                content,
+                priority,
+                ..
+            } => format!("takes over {ty}: {content} @{priority} (the hold above ran out)"),
             // A variable's every change would drown the trace; the JSON trace keeps them.
             Event::Assigned { .. } => return None,
             Event::Control { command, .. } => format!("told {command}"),

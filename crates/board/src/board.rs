@@ -80,6 +80,19 @@ impl Whiteboard {
         self.transport.post(module, ty, value.into())
     }
 
+    /// Posts with a priority: what a machine of a subsumption layer posts (`Suppressor`
+    /// decides beforehand whether it may be seen at all).
+    pub fn post_ranked(
+        &self,
+        module: &str,
+        ty: &str,
+        value: impl Into<Value>,
+        priority: u32,
+    ) -> Message {
+        self.transport
+            .post_ranked(module, ty, value.into(), priority)
+    }
+
     pub fn latest(&self, ty: &str) -> Option<Message> {
         self.transport.latest(ty)
     }

@@ -13,6 +13,7 @@ mod pattern;
 mod registry;
 mod snapshot;
 mod subscribers;
+mod suppress;
 mod transport;
 mod value;
 
@@ -22,5 +23,6 @@ pub use message::{Kind, Message};
 pub use pattern::Pattern;
 pub use registry::{ModuleDecl, Registry};
 pub use snapshot::{Row, Snapshot};
+pub use suppress::{Ranked, Suppressor, Verdict};
 pub use transport::{BoxFuture, Stats, Subscription, Transport};
 pub use value::Value;

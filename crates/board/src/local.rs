@@ -112,7 +112,14 @@ impl LocalBoard {
     /// Posts with a new sequence number. `consumable`: whether a signal may be taken here (a
     /// networked board keeps a signal consumable only in the process that owns its type; the
     /// others observe it).
-    pub fn post_as(&self, module: &str, ty: &str, value: Value, consumable: bool) -> Message {
+    pub fn post_as(
+        &self,
+        module: &str,
+        ty: &str,
+        value: Value,
+        priority: u32,
+        consumable: bool,
+    ) -> Message {
         let time = self.now();
         let mut inner = self.lock();
         inner.seq += 1;
@@ -125,6 +132,7 @@ impl LocalBoard {
             module,
             seq,
             time,
+            priority,
         };
         self.insert(inner, message.clone(), consumable);
         message
@@ -252,8 +260,8 @@ impl Transport for LocalBoard {
         self.lock().table.get(ty).map_or(Kind::State, |s| s.kind)
     }
 
-    fn post(&self, module: &str, ty: &str, value: Value) -> Message {
-        self.post_as(module, ty, value, true)
+    fn post_ranked(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message {
+        self.post_as(module, ty, value, priority, true)
     }
 
     fn latest(&self, ty: &str) -> Option<Message> {

@@ -26,4 +26,7 @@ pub struct Message {
     pub seq: u64,
     /// Since the board was created (on tokio's clock, so tests can pause it).
     pub time: Duration,
+    /// The poster's rank for subsumption (`suppress.rs`): 0, the default, for every poster
+    /// that gives none; it matters only for a type declared suppressed.
+    pub priority: u32,
 }

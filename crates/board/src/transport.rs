@@ -55,8 +55,13 @@ pub trait Transport: Send + Sync + 'static {
     /// Declares how a type's messages are kept (types are states until declared otherwise).
     fn declare(&self, ty: &str, kind: Kind);
     fn kind(&self, ty: &str) -> Kind;
-    /// Posts a message; returns it with its sequence number and time.
-    fn post(&self, module: &str, ty: &str, value: Value) -> Message;
+    /// Posts a message with a priority (`Message::priority`); returns it with its sequence
+    /// number and time.
+    fn post_ranked(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message;
+    /// Posts a message at the default priority, 0.
+    fn post(&self, module: &str, ty: &str, value: Value) -> Message {
+        self.post_ranked(module, ty, value, 0)
+    }
     /// The newest message of a type; for a signal, takes (consumes) the oldest unread one.
     fn latest(&self, ty: &str) -> Option<Message>;
     /// The first message of `ty` with a sequence number above `after` (consuming it if a

@@ -125,7 +125,9 @@ function describe(e) {
     case "entered": return `${e.machine} entered ${e.state}`;
     case "fired": return `${e.machine} fired ${e.label}`;
     case "answered": return `${e.machine} ${e.atom} = ${e.value}`;
-    case "posted": return `${e.machine} posted ${e.type}: ${e.content}`;
+    case "posted": return `${e.machine} posted ${e.type}: ${e.content}` + (e.priority ? ` @${e.priority}` : "");
+    case "suppressed": return `${e.machine} suppressed ${e.type}: ${e.content} @${e.priority} (held by ${e.by} @${e.by_priority} until ${seconds(e.until_us)} s)`;
+    case "took_over": return `${e.machine} took over ${e.type}: ${e.content} @${e.priority} (the hold above ran out)`;
     case "control": return `${e.machine} told ${e.command}`;
     case "finished": return `${e.machine} finished in ${e.state}`;
     case "halted": return `${e.machine} halted: ${e.reason}`;

@@ -290,7 +290,11 @@ impl Picture {
                     Kind::Data => "data",
                 },
                 value: r.newest.value.to_string(),
-                by: r.newest.module.to_string(),
+                // A subsumption layer's postings say their priority (who holds the type).
+                by: match r.newest.priority {
+                    0 => r.newest.module.to_string(),
+                    p => format!("{} @{p}", r.newest.module),
+                },
                 seq: r.newest.seq,
                 at_us: micros(r.newest.time),
                 posts: r.posts,
@@ -530,5 +534,41 @@ mod tests {
             at: Duration::ZERO,
         });
         assert_eq!(mode(&picture, &board)[0].1, "halted");
+    }
+
+    /// A suppressed posting is listed with the events (the page strikes it through), and the
+    /// board says which layer holds a suppressed type.
+    #[test]
+    fn a_suppressed_posting_is_listed_and_the_holder_shows_its_priority() {
+        let mut picture = Picture::new(&[chart("Walk", true)]);
+        let suppressed = Event::Suppressed {
+            round: 3,
+            machine: "Walk".into(),
+            ty: "walk".into(),
+            content: "slow".into(),
+            priority: 0,
+            by: "Reflex".into(),
+            by_priority: 2,
+            until: Duration::from_millis(3000),
+            at: Duration::from_millis(2500),
+        };
+        picture.observe(&suppressed);
+        let board = LocalBoard::new();
+        board.post_ranked("Reflex", "walk", "back".into(), 2);
+        board.post("Walk", "kick", "right".into());
+        let frame = picture.frame(&board.snapshot());
+        assert_eq!(frame.events.back(), Some(&suppressed));
+        let json = serde_json::to_value(&frame).unwrap();
+        let listed = &json["events"][0];
+        assert_eq!(
+            (&listed["event"], &listed["by"], &listed["until_us"]),
+            (&"suppressed".into(), &"Reflex".into(), &3_000_000.into())
+        );
+        let by: Vec<(&str, &str)> = frame
+            .board
+            .iter()
+            .map(|r| (r.ty.as_str(), r.by.as_str()))
+            .collect();
+        assert_eq!(by, [("kick", "Walk"), ("walk", "Reflex @2")]);
     }
 }

@@ -35,19 +35,34 @@ impl Timeline {
                     machine,
                     ty,
                     content,
+                    priority,
                     at,
                     ..
-                } => Some((machine.as_str(), ty.as_str(), Value::parse(content), *at)),
+                }
+                | Event::TookOver {
+                    machine,
+                    ty,
+                    content,
+                    priority,
+                    at,
+                    ..
+                } => Some((
+                    machine.as_str(),
+                    ty.as_str(),
+                    Value::parse(content),
+                    *priority,
+                    *at,
+                )),
                 Event::Answered {
                     atom,
                     value,
                     by: Answerer::Expert(expert),
                     at,
                     ..
-                } => Some((expert.as_str(), atom.as_str(), Value::Bool(*value), *at)),
+                } => Some((expert.as_str(), atom.as_str(), Value::Bool(*value), 0, *at)),
                 _ => None,
             };
-            if let Some((module, ty, value, time)) = posted {
+            if let Some((module, ty, value, priority, time)) = posted {
                 board.apply(
                     Message {
                         ty: Arc::from(ty),
@@ -55,6 +70,7 @@ impl Timeline {
                         module: Arc::from(module),
                         seq,
                         time,
+                        priority,
                     },
                     false,
                 );
@@ -115,6 +131,7 @@ mod tests {
             machine: "M".into(),
             ty: ty.into(),
             content: content.into(),
+            priority: 0,
             at: Duration::from_millis(ms),
         }
     }

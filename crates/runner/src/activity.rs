@@ -6,9 +6,10 @@ use crate::arith::text;
 use crate::eval::Env;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
+use crate::machine::SharedSuppressor;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
-use proclaim_board::{Value, Whiteboard};
+use proclaim_board::{Value, Verdict, Whiteboard};
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Argument, Expr, Statement};
 use rustc_hash::FxHashSet;
@@ -36,6 +37,9 @@ pub(crate) struct Doer<'a> {
     /// Host functions already reported missing (each is reported once).
     pub unknown: &'a mut FxHashSet<String>,
     pub reporter: &'a Reporter,
+    /// The machine's subsumption priority, carried by every posting it makes.
+    pub priority: u32,
+    pub suppressor: Option<&'a SharedSuppressor>,
 }
 
 impl Doer<'_> {
@@ -72,12 +76,42 @@ impl Doer<'_> {
     }
 
     fn post(&mut self, ty: &str, value: Value) {
-        let message = self.board.post(self.machine, ty, value);
+        if let Some(suppressor) = self.suppressor {
+            // The schedule's moment, so a replay judges as the run did.
+            let now = self.now.saturating_duration_since(self.reporter.epoch);
+            let verdict = suppressor
+                .lock()
+                .offer(self.machine, ty, &value, self.priority, now);
+            if let Verdict::Suppressed {
+                by,
+                priority,
+                until,
+            } = verdict
+            {
+                // Never on the board, so no reader (the machine itself included) sees it.
+                self.reporter.emit(|at, round| Event::Suppressed {
+                    machine: self.machine.to_string(),
+                    ty: ty.to_string(),
+                    content: text(&value),
+                    priority: self.priority,
+                    by: by.to_string(),
+                    by_priority: priority,
+                    until,
+                    at,
+                    round,
+                });
+                return;
+            }
+        }
+        let message = self
+            .board
+            .post_ranked(self.machine, ty, value, self.priority);
         self.seen.posted(&message);
         self.reporter.emit(|at, round| Event::Posted {
             machine: self.machine.to_string(),
             ty: ty.to_string(),
             content: text(&message.value),
+            priority: self.priority,
             at,
             round,
         });

@@ -74,6 +74,41 @@ pub enum Event {
         #[serde(rename = "type")]
         ty: String,
         content: String,
+        /// The machine's subsumption priority (the manifest's `priority`); absent when 0.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        priority: u32,
+        #[serde(default)]
+        round: u64,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// A posting to a type declared `suppress` that readers never saw: `by`'s posting, of the
+    /// higher priority `by_priority`, holds the type until `until_us`.
+    Suppressed {
+        machine: String,
+        #[serde(rename = "type")]
+        ty: String,
+        content: String,
+        priority: u32,
+        by: String,
+        by_priority: u32,
+        #[serde(rename = "until_us", with = "micros")]
+        until: Duration,
+        #[serde(default)]
+        round: u64,
+        #[serde(rename = "at_us", with = "micros")]
+        at: Duration,
+    },
+    /// The hold on a suppressed type ran out and this lower-priority posting of `machine`
+    /// (made at `posted_us`, suppressed or subsumed then) took over: it is on the board now.
+    TookOver {
+        machine: String,
+        #[serde(rename = "type")]
+        ty: String,
+        content: String,
+        priority: u32,
+        #[serde(rename = "posted_us", with = "micros")]
+        posted: Duration,
         #[serde(default)]
         round: u64,
         #[serde(rename = "at_us", with = "micros")]
@@ -179,6 +214,8 @@ impl Event {
             | Event::Answered { machine, .. }
             | Event::Fired { machine, .. }
             | Event::Posted { machine, .. }
+            | Event::Suppressed { machine, .. }
+            | Event::TookOver { machine, .. }
             | Event::Assigned { machine, .. }
             | Event::UnknownFunction { machine, .. }
             | Event::Control { machine, .. }
@@ -198,6 +235,8 @@ impl Event {
             | Event::Answered { at, .. }
             | Event::Fired { at, .. }
             | Event::Posted { at, .. }
+            | Event::Suppressed { at, .. }
+            | Event::TookOver { at, .. }
             | Event::Assigned { at, .. }
             | Event::Control { at, .. }
             | Event::Reloaded { at, .. }
@@ -209,6 +248,10 @@ impl Event {
             Event::UnknownFunction { .. } => None,
         }
     }
+}
+
+fn is_zero(priority: &u32) -> bool {
+    *priority == 0
 }
 
 pub(crate) mod micros {

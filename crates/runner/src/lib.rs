@@ -24,7 +24,7 @@ mod variables;
 pub use activity::LOOP_LIMIT;
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
-pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions};
+pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions, SharedSuppressor};
 pub use proclaim_fsm::control::{machine_of_running_type, running_type, Command};
 pub use rounds::{Feed, Ringlet, RoundCounter, Rounds, RoundsEnd};
 pub use step::Stepper;

@@ -9,7 +9,9 @@ use crate::rounds::{QueryHook, RoundCounter};
 use crate::seen::Seen;
 use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
-use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
+use proclaim_board::{
+    Kind, Message, ModuleDecl, Pattern, Subscription, Suppressor, Value, Whiteboard,
+};
 use proclaim_fsm::control::{running_type, Command};
 use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
 use rustc_hash::FxHashSet;
@@ -38,7 +40,18 @@ pub struct RunOptions {
     /// The moment event times count from, the same for every machine of a behaviour so that
     /// their merged trace is in time order; the machine's start when not given.
     pub epoch: Option<Instant>,
+    /// The machine's subsumption layer: every posting it makes carries this priority (0, the
+    /// default, is the bottom layer).
+    pub priority: u32,
+    /// The behaviour's suppressed types, shared by its machines (one per behaviour): a
+    /// posting to one of them is shown or suppressed by it at the schedule's moment. What
+    /// takes over when a hold runs out is posted by the round schedule ([`crate::Rounds`]);
+    /// a machine on a task of its own only has its postings judged.
+    pub suppressor: Option<SharedSuppressor>,
 }
+
+/// A behaviour's [`Suppressor`], shared by its machines and its schedule.
+pub type SharedSuppressor = Arc<parking_lot::Mutex<Suppressor>>;
 
 impl Default for RunOptions {
     fn default() -> RunOptions {
@@ -50,6 +63,8 @@ impl Default for RunOptions {
             stepper: None,
             shared: None,
             epoch: None,
+            priority: 0,
+            suppressor: None,
         }
     }
 }
@@ -117,6 +132,11 @@ impl MachineRunner {
     pub fn declaration(&self) -> ModuleDecl {
         let shared = self.shared();
         declaration(&self.machine, &self.machine.name, &shared)
+    }
+
+    /// The behaviour's suppressor, which the schedule asks between ringlets what takes over.
+    pub(crate) fn suppressor(&self) -> Option<SharedSuppressor> {
+        self.options.suppressor.clone()
     }
 
     fn shared(&self) -> Arc<Shared> {
@@ -480,6 +500,8 @@ impl<'r> Run<'r> {
             locals: &mut self.locals,
             unknown: &mut self.unknown,
             reporter: &self.reporter,
+            priority: self.runner.options.priority,
+            suppressor: self.runner.options.suppressor.as_ref(),
         }
         .run(actions)
         .await

@@ -9,7 +9,8 @@
 //! or the ring period. The same outside postings arriving between the same rounds give the same
 //! trace.
 
-use crate::machine::{MachineRunner, Ring, Run, Status};
+use crate::event::Event;
+use crate::machine::{MachineRunner, Ring, Run, SharedSuppressor, Status};
 use crate::step::Stepper;
 use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
 use serde::{Deserialize, Serialize};
@@ -146,6 +147,7 @@ impl Rounds {
             fresh: vec![false; runs.len()],
             runs,
             commands: board.subscribe_pattern(Pattern::Any(names)),
+            suppressor: self.machines.iter().find_map(MachineRunner::suppressor),
         };
         let mut news = News::default();
         let mut last_step = 0;
@@ -181,8 +183,18 @@ impl Rounds {
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
+            let release = turns
+                .suppressor
+                .as_ref()
+                .and_then(|s| s.lock().next_release());
             commanded = news
-                .wait(&board, &mut turns.runs, &turns.over, &mut turns.commands)
+                .wait(
+                    &board,
+                    &mut turns.runs,
+                    &turns.over,
+                    &mut turns.commands,
+                    release,
+                )
                 .await;
         }
     }
@@ -200,6 +212,9 @@ impl Rounds {
         // One moment for the whole round: machines entered in one round time their `timeout`s
         // from the same instant, so they come due in the same round.
         let mut round_time = tokio::time::Instant::now();
+        if let (Some(suppressor), Some(first)) = (&turns.suppressor, turns.runs.first()) {
+            take_over(suppressor, first, round_time, board);
+        }
         turns.fresh.fill(false);
         if took(&mut turns.commands) || commanded {
             obey(board, &mut turns.runs, &turns.over, None);
@@ -225,6 +240,9 @@ impl Rounds {
                     .await;
             }
             run.round_time = Some(round_time);
+            if let Some(suppressor) = &turns.suppressor {
+                take_over(suppressor, run, round_time, board);
+            }
             let span = tracing::info_span!("machine", name = %run.name);
             let ring = tracing::Instrument::instrument(run.ring(), span).await;
             // Between rounds, waits are reckoned from the clock.
@@ -285,6 +303,39 @@ struct Turns<'r> {
     fresh: Vec<bool>,
     /// Every posting to a machine's name (its control commands).
     commands: Subscription,
+    /// The behaviour's suppressed types, if it declares any.
+    suppressor: Option<SharedSuppressor>,
+}
+
+/// Before a ringlet, at its round's moment: every suppressed type whose hold has run out with a
+/// lower-priority posting behind it gets that posting, posted again as its machine's (the same
+/// moments in a replay give the same takeovers in the same rounds).
+fn take_over(
+    suppressor: &SharedSuppressor,
+    run: &Run<'_>,
+    round_time: tokio::time::Instant,
+    board: &Whiteboard,
+) {
+    let now = round_time.saturating_duration_since(run.reporter.epoch);
+    let released = suppressor.lock().release(now);
+    for posting in released {
+        let content = crate::arith::text(&posting.value);
+        board.post_ranked(
+            &posting.module,
+            &posting.ty,
+            posting.value,
+            posting.priority,
+        );
+        run.reporter.emit(|at, round| Event::TookOver {
+            machine: posting.module.to_string(),
+            ty: posting.ty.to_string(),
+            content,
+            priority: posting.priority,
+            posted: posting.at,
+            at,
+            round,
+        });
+    }
 }
 
 /// Whether anything came on `subscription` (all of it taken).
@@ -330,6 +381,7 @@ impl News {
         runs: &mut [Run<'_>],
         over: &[bool],
         commands: &mut Subscription,
+        release: Option<Duration>,
     ) -> bool {
         if commands.try_next().is_some() {
             return true;
@@ -375,7 +427,12 @@ impl News {
         if unseen {
             return false;
         }
-        let deadline = due.map(|d| tokio::time::Instant::now() + d);
+        let mut deadline = due.map(|d| tokio::time::Instant::now() + d);
+        // A hold running out with a lower posting behind it is a change of what readers see.
+        if let (Some(release), Some(first)) = (release, runs.first()) {
+            let at = first.reporter.epoch + release;
+            deadline = Some(deadline.map_or(at, |d| d.min(at)));
+        }
         loop {
             tokio::select! {
                 biased;

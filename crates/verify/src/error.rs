@@ -32,6 +32,9 @@ pub enum VerifyError {
     /// The packed state has fixed-width fields (states of a machine, machines, time tests of
     /// a state); a behaviour beyond them is refused rather than silently mis-encoded.
     TooLarge(String),
+    /// The behaviour declares types under subsumption (`[suppress]`), which the model does not
+    /// have yet (holds, suppressed postings, takeovers): refused rather than answered wrongly.
+    Suppression(Vec<String>),
 }
 
 impl fmt::Display for VerifyError {
@@ -47,6 +50,15 @@ impl fmt::Display for VerifyError {
                 Ok(())
             }
             VerifyError::TooLarge(what) => write!(f, "too large to verify: {what}"),
+            VerifyError::Suppression(types) => write!(
+                f,
+                "the behaviour declares [suppress] for {}: verify does not model subsumption yet (holds, suppressed postings, takeovers), so it would answer wrongly; test it with `proclaim test` on a recorded run instead",
+                types
+                    .iter()
+                    .map(|t| format!("`{t}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
         }
     }
 }

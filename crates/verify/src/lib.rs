@@ -108,6 +108,14 @@ pub(crate) fn prepare(
     behaviour: &Behaviour,
     properties: &[PropertySource],
 ) -> Result<(Model, Vec<Property>), VerifyError> {
+    if !behaviour.suppress.is_empty() {
+        let types = behaviour
+            .suppress
+            .iter()
+            .map(|(ty, _)| ty.clone())
+            .collect();
+        return Err(VerifyError::Suppression(types));
+    }
     let mut errors = Vec::new();
     let mut parsed = Vec::new();
     for p in properties {

@@ -77,6 +77,14 @@ pub struct WireMessage {
     pub module: String,
     pub seq: u64,
     pub time_ns: u64,
+    /// The poster's subsumption priority; left out when 0 (every message of a process that
+    /// knows nothing of priorities reads as 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub priority: u32,
+}
+
+fn is_zero(priority: &u32) -> bool {
+    *priority == 0
 }
 
 impl From<&Message> for WireMessage {
@@ -87,6 +95,7 @@ impl From<&Message> for WireMessage {
             module: m.module.to_string(),
             seq: m.seq,
             time_ns: m.time.as_nanos().min(u128::from(u64::MAX)) as u64,
+            priority: m.priority,
         }
     }
 }
@@ -99,6 +108,7 @@ impl From<WireMessage> for Message {
             module: Arc::from(m.module),
             seq: m.seq,
             time: Duration::from_nanos(m.time_ns),
+            priority: m.priority,
         }
     }
 }
@@ -141,6 +151,9 @@ pub enum Up {
         module: String,
         ty: String,
         value: WireValue,
+        /// As `WireMessage::priority`.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        priority: u32,
     },
     /// `process` declared `ty`; a signal type is consumed in the first process to declare it.
     Declare {

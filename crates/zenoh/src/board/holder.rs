@@ -63,8 +63,13 @@ impl Holder {
 
     pub(super) fn handle(&self, up: Up) {
         match up {
-            Up::Post { module, ty, value } => {
-                self.post_here(&module, &ty, value.into());
+            Up::Post {
+                module,
+                ty,
+                value,
+                priority,
+            } => {
+                self.post_here(&module, &ty, value.into(), priority);
             }
             Up::Declare { ty, kind, process } => self.declare_for(&ty, kind.into(), &process),
             Up::Register(decl) => self.register(decl.into()),
@@ -75,13 +80,13 @@ impl Holder {
         self.owners.lock().get(ty).cloned()
     }
 
-    pub(super) fn post_here(&self, module: &str, ty: &str, value: Value) -> Message {
+    pub(super) fn post_here(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message {
         let signal = self.core.kind(ty) == Kind::Signal;
         let owner = if signal { self.owner(ty) } else { None };
         // Unowned signals wait here until a process declares the type.
         let consumable = owner.as_ref().is_none_or(|o| *o == self.id);
         let down = self.down.lock();
-        let message = self.core.post_as(module, ty, value, consumable);
+        let message = self.core.post_as(module, ty, value, priority, consumable);
         down.send(Down::Posted {
             message: WireMessage::from(&message),
             owner,
@@ -162,8 +167,8 @@ impl Transport for Holder {
         self.declare_for(ty, kind, &id);
     }
 
-    fn post(&self, module: &str, ty: &str, value: Value) -> Message {
-        self.post_here(module, ty, value)
+    fn post_ranked(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message {
+        self.post_here(module, ty, value, priority)
     }
 
     fn register(&self, decl: ModuleDecl) {

@@ -150,13 +150,14 @@ impl Transport for Replica {
     /// Sent to the holder, which numbers it; the message comes back to this replica like any
     /// other. The one returned carries the highest sequence number seen here: the posting is
     /// numbered after it (what a query waits beyond).
-    fn post(&self, module: &str, ty: &str, value: Value) -> Message {
+    fn post_ranked(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message {
         // Read before sending: the answer to a query can be back before `send` returns.
         let seen = self.mirror.last_seq();
         self.up.send(Up::Post {
             module: module.to_string(),
             ty: ty.to_string(),
             value: WireValue::from(&value),
+            priority,
         });
         Message {
             ty: Arc::from(ty),
@@ -164,6 +165,7 @@ impl Transport for Replica {
             module: Arc::from(module),
             seq: seen,
             time: self.now(),
+            priority,
         }
     }
 
