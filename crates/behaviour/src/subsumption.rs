@@ -19,7 +19,7 @@ pub(crate) fn check(
 ) -> Vec<(String, Duration)> {
     let at = |spanned_start: usize, message: String| {
         let (line, column) = line_column(manifest_text, spanned_start.min(manifest_text.len()));
-        FileDiagnostic::error(manifest_file, line, message).at_column(column)
+        FileDiagnostic::error(manifest_file, line, message).at_column(column, manifest_text)
     };
     let shared = proclaim_runner::Shared::for_machines(machines.iter().map(|m| &m.machine));
     let posted: Vec<String> = machines

@@ -120,7 +120,9 @@ pub fn parse_description(text: &str) -> Description {
     let mut declarations = Vec::new();
     for (name, body) in sections {
         match section(name) {
-            Section::Activity(i) => d.activities[i].extend(block_actions(body, &mut d.problems)),
+            Section::Activity(i) => {
+                d.activities[i].extend(block_actions(unbraced(body), &mut d.problems));
+            }
             Section::Variables => declarations.extend(variables(body, &mut d.problems)),
             Section::Includes if !body.trim().is_empty() => {
                 d.notes.push(format!("includes: {}", body.trim()));
@@ -138,6 +140,16 @@ pub fn parse_description(text: &str) -> Description {
     }
     d.activities[0].splice(0..0, declarations);
     d
+}
+
+/// A section's statements without the braces the team's files put round them (`$OnExit$` then
+/// `{ light=1; }`), so they read as the braced form's blocks do.
+fn unbraced(body: &str) -> &str {
+    let trimmed = body.trim();
+    match matching_brace(trimmed) {
+        Some(close) if trimmed.starts_with('{') && close == trimmed.len() - 1 => &trimmed[1..close],
+        _ => body,
+    }
 }
 
 /// The declarations of a `$variables$` section, one a line as the editors write them

@@ -1,7 +1,8 @@
 //! Descriptions as the later gufsm editors (MiCASE, for clfsm) save them in Qfsm files: a line
 //! `$Name$` opens each section (`$includes$`, `$variables$`, `$OnEntry$`, `$OnExit$`,
-//! `$Internal$`, `$OnSuspend$`, `$OnResume$`, `$Layout.plist$`), after a first line `Version$`
-//! and the version. The older descriptions are blocks in braces (`OnEntry { … }`), read by
+//! `$Internal$`, `$OnSuspend$`, `$OnResume$`, `$Layout.plist$`), but the first, which the
+//! editors write `Name$` (`Version$`, or `OnEntry$` in the team's own files, whose sections then
+//! hold braced blocks). The older descriptions are blocks in braces (`OnEntry { … }`), read by
 //! [`crate::parse_gufsm_activities`].
 
 /// The sections of a description, in order, each with its text; `None` when the description
@@ -10,8 +11,8 @@ pub(crate) fn split_sections(text: &str) -> Option<Vec<(&str, &str)>> {
     let mut sections: Vec<(&str, &str)> = Vec::new();
     let mut open: Option<(&str, usize)> = None;
     let mut offset = 0;
-    for line in text.split_inclusive('\n') {
-        if let Some(name) = section_name(line.trim()) {
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        if let Some(name) = section_name(line.trim(), i == 0) {
             if let Some((previous, start)) = open {
                 sections.push((previous, &text[start..offset]));
             }
@@ -26,15 +27,19 @@ pub(crate) fn split_sections(text: &str) -> Option<Vec<(&str, &str)>> {
 
 /// Whether `text` is in the sectioned form.
 pub(crate) fn is_sectioned(text: &str) -> bool {
-    text.lines().any(|line| section_name(line.trim()).is_some())
+    text.lines()
+        .enumerate()
+        .any(|(i, line)| section_name(line.trim(), i == 0).is_some())
 }
 
-/// `$Name$`, or the first line's `Version$`.
-fn section_name(line: &str) -> Option<&str> {
-    if line == "Version$" {
-        return Some("Version");
-    }
-    let name = line.strip_prefix('$')?.strip_suffix('$')?;
+/// `$Name$`, or on the first line `Name$` too.
+fn section_name(line: &str, first: bool) -> Option<&str> {
+    let line = line.strip_suffix('$')?;
+    let name = match line.strip_prefix('$') {
+        Some(name) => name,
+        None if first => line,
+        None => return None,
+    };
     let plain = !name.is_empty()
         && name
             .chars()
@@ -90,6 +95,20 @@ mod tests {
                 ("Layout.plist", "{\n \"x\" : 3\n}\n"),
             ]),
         );
+    }
+
+    #[test]
+    fn the_first_section_may_lack_its_opening_dollar() {
+        check(
+            "OnEntry$\n{ light=0; }\n$OnExit$\n{ light=1; }\n$Internal$\n{}\n",
+            Some(&[
+                ("OnEntry", "{ light=0; }\n"),
+                ("OnExit", "{ light=1; }\n"),
+                ("Internal", "{}\n"),
+            ]),
+        );
+        // Only the first line.
+        check("x = 1;\nOnExit$\ny = 2;\n", None);
     }
 
     #[test]

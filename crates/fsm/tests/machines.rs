@@ -500,6 +500,31 @@ fn qfsm_sectioned_descriptions() {
     round_trip(counter, "Counter.fsm");
 }
 
+/// The team's own files mix the two forms: sections whose first marker lacks its `$`, each
+/// holding a braced block; they read as the braced form does.
+#[test]
+fn qfsm_sections_holding_braced_blocks() {
+    let d = proclaim_fsm::parse_description(
+        "OnEntry$\n{  light=0; post(\"LEDS\",\"Face Off\");}\n$OnExit$\n{light=1;}\n$Internal$\n{}\n",
+    );
+    assert!(d.problems.is_empty(), "{:?}", d.problems);
+    assert_eq!(
+        d.activities[0],
+        [
+            Action::Statement(statement("light = 0;")),
+            Action::Post {
+                ty: "LEDS".into(),
+                content: "Face Off".into()
+            },
+        ]
+    );
+    assert_eq!(
+        d.activities[1],
+        [Action::Statement(statement("light = 1;"))]
+    );
+    assert!(d.activities[2].is_empty());
+}
+
 #[test]
 fn t_a_errors_name_file_and_line() {
     let imported = import_ta(
