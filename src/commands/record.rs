@@ -4,7 +4,7 @@
 //! `proclaim replay` (the messages) and `proclaim test` (all three).
 
 use crate::failure::Failure;
-use proclaim_board::{Message, Pattern, Value, Whiteboard};
+use proclaim_board::{Message, Pattern, Whiteboard};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -105,24 +105,13 @@ pub fn line(m: &Message) -> String {
         "at_us": m.time.as_micros() as u64,
         "module": &*m.module,
         "type": &*m.ty,
-        "value": json(&m.value),
+        "value": m.value.to_json(),
     });
     // A subsumption layer's priority; absent at 0, so other recordings read as they did.
     if m.priority != 0 {
         line["priority"] = serde_json::json!(m.priority);
     }
     line.to_string()
-}
-
-fn json(value: &Value) -> serde_json::Value {
-    match value {
-        Value::Bool(b) => serde_json::json!(b),
-        Value::Int(i) => serde_json::json!(i),
-        Value::Float(x) => serde_json::json!(x),
-        Value::Str(s) => serde_json::json!(s),
-        Value::Bytes(b) => serde_json::json!({ "bytes": b }),
-        Value::List(items) => serde_json::Value::Array(items.iter().map(json).collect()),
-    }
 }
 
 /// A recorded message as `replay` prints it, or `None` when the line is not one.

@@ -106,7 +106,7 @@ pub fn read_recording(text: &str) -> Result<Recording, RecordingError> {
                     .ok_or_else(|| bad("`seq` is not a number".into()))?,
                 module: text("module")?,
                 ty: text("type")?,
-                value: value_of(field("value")?),
+                value: Value::from_json(field("value")?),
             });
         }
     }
@@ -115,28 +115,6 @@ pub fn read_recording(text: &str) -> Result<Recording, RecordingError> {
     }
     recording.messages.sort_by_key(|m| m.seq);
     Ok(recording)
-}
-
-fn value_of(json: &serde_json::Value) -> Value {
-    match json {
-        serde_json::Value::Bool(b) => Value::Bool(*b),
-        serde_json::Value::Number(n) => match n.as_i64() {
-            Some(i) => Value::Int(i),
-            None => Value::Float(n.as_f64().unwrap_or(0.0)),
-        },
-        serde_json::Value::String(s) => Value::Str(s.clone()),
-        serde_json::Value::Array(items) => Value::List(items.iter().map(value_of).collect()),
-        serde_json::Value::Object(o) => match o.get("bytes").and_then(|b| b.as_array()) {
-            Some(bytes) => Value::Bytes(
-                bytes
-                    .iter()
-                    .filter_map(|b| b.as_u64().map(|b| b as u8))
-                    .collect(),
-            ),
-            None => Value::Str(json.to_string()),
-        },
-        serde_json::Value::Null => Value::Str(String::new()),
-    }
 }
 
 /// Where a replay first differs from its recording.

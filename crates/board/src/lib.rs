@@ -7,6 +7,7 @@
 //! in-process transport every test runs against; a networked one plugs in behind the same trait.
 
 mod board;
+mod json;
 mod local;
 mod message;
 mod pattern;
