@@ -3,7 +3,7 @@
 
 use crate::embedded;
 use crate::failure::Failure;
-use crate::located;
+use crate::load::color;
 use proclaim_behaviour::{load_manifest, Behaviour, Embedded, Files, Folder, MANIFEST};
 use proclaim_syntax::FileDiagnostic;
 use std::path::Path;
@@ -80,10 +80,10 @@ pub fn load_behaviour(name: &str) -> Result<Behaviour, Failure> {
     let behaviour = try_load_behaviour(name)?.map_err(|problems| Failure::Invalid {
         what: "the behaviour",
         errors: problems.iter().filter(|d| d.is_error()).count().max(1),
-        rendered: problems.iter().map(located::shown).collect(),
+        rendered: problems.iter().map(|p| p.render(color())).collect(),
     })?;
     for w in &behaviour.warnings {
-        eprint!("{}", located::shown(w));
+        eprint!("{}", w.render(color()));
     }
     Ok(behaviour)
 }

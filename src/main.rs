@@ -9,7 +9,6 @@ mod commands;
 mod embedded;
 mod failure;
 mod load;
-mod located;
 mod logs;
 mod machines;
 mod network;

@@ -4,7 +4,6 @@
 use crate::behaviours::{is_behaviour, try_load_behaviour};
 use crate::failure::Failure;
 use crate::load::{self, color, ProblemJson};
-use crate::located;
 use crate::machines::machine_file;
 use proclaim_cdl::check_source;
 use proclaim_fsm::{lint, FileDiagnostic, Imported, Severity};
@@ -103,7 +102,7 @@ fn behaviour(
                 report.extend(problems.iter().map(|d| ProblemJson::of_file(d).value()));
             } else {
                 for d in &problems {
-                    eprint!("{}", located::shown(d));
+                    eprint!("{}", d.render(color()));
                 }
             }
             return Ok(problems.iter().filter(|d| d.is_error()).count().max(1));
@@ -113,7 +112,7 @@ fn behaviour(
         if json {
             report.push(ProblemJson::of_file(w).value());
         } else {
-            eprint!("{}", located::shown(w));
+            eprint!("{}", w.render(color()));
         }
     }
     let findings = proclaim_behaviour::check_behaviour(&loaded);
@@ -161,7 +160,7 @@ fn machines(
         );
     } else {
         for d in &imported.diagnostics {
-            eprint!("{}", located::shown(d));
+            eprint!("{}", d.render(color()));
         }
         let states: usize = imported.machines.iter().map(|m| m.states.len()).sum();
         let transitions: usize = imported.machines.iter().map(|m| m.transitions.len()).sum();

@@ -6,7 +6,6 @@
 //! [`Whiteboard`] is the handle modules hold; it talks to a [`Transport`]. [`LocalBoard`] is the
 //! in-process transport every test runs against; a networked one plugs in behind the same trait.
 
-mod board;
 mod json;
 mod local;
 mod message;
@@ -17,8 +16,8 @@ mod subscribers;
 mod suppress;
 mod transport;
 mod value;
+mod whiteboard;
 
-pub use board::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};
 pub use local::{LocalBoard, Retention};
 pub use message::{Kind, Message};
 pub use pattern::Pattern;
@@ -27,3 +26,4 @@ pub use snapshot::{Row, Snapshot};
 pub use suppress::{Ranked, Suppressor, Verdict};
 pub use transport::{BoxFuture, Stats, Subscription, Transport};
 pub use value::Value;
+pub use whiteboard::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};
