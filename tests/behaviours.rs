@@ -223,7 +223,7 @@ async fn opening_the_door_stops_the_magnetron_at_once() {
 }
 
 fn temp_behaviour(files: &[(&str, &str)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "proclaim-behaviour-{}-{}",
         std::process::id(),
         files.len() * 31 + files[0].1.len()

@@ -20,7 +20,8 @@ fn stderr(o: &Output) -> String {
 }
 
 fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("proclaim-cli-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::File::create(&path)
@@ -982,7 +983,8 @@ fn import_writes_a_label_it_cannot_read_as_a_comment_and_fails() {
 <transition><from>0</from><to>1</to><inputs>n &gt; 2</inputs></transition>
 </machine></qfsmproject>"#,
     );
-    let out_dir = std::env::temp_dir().join(format!("proclaim-import-bad-{}", std::process::id()));
+    let out_dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-import-bad-{}", std::process::id()));
     let o = proclaim(&[
         "import",
         fsm.to_str().unwrap(),
@@ -1018,7 +1020,8 @@ fn import_writes_a_label_it_cannot_read_as_a_comment_and_fails() {
 
 #[test]
 fn deps_launch_writes_a_manifest_that_runs_from_where_it_is_written() {
-    let elsewhere = std::env::temp_dir().join(format!("proclaim-launch-{}", std::process::id()));
+    let elsewhere = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-launch-{}", std::process::id()));
     std::fs::create_dir_all(&elsewhere).unwrap();
     let manifest = elsewhere.join("placer.toml");
     let o = proclaim(&[
@@ -1501,7 +1504,8 @@ fn a_label_nobody_answers_is_warned_once_not_at_every_ring() {
 /// first difference once a machine file is changed.
 #[test]
 fn a_recorded_run_is_a_test_that_names_the_first_difference() {
-    let dir = std::env::temp_dir().join(format!("proclaim-recorded-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-recorded-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -1670,7 +1674,8 @@ fn verify_finds_the_seeded_interlock_fault_and_its_script_replays_it() {
 /// `timeout`s, the GameController receiver on its socket (outside), variables alone.
 #[test]
 fn the_built_in_behaviours_recorded_replay_the_same() {
-    let dir = std::env::temp_dir().join(format!("proclaim-replays-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-replays-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     for behaviour in ["game_controller", "shootout", "microwave"] {

@@ -169,8 +169,8 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
     };
     // The kitchen script, slower: the page is surely open before the door is, even on a
     // loaded machine.
-    let script =
-        std::env::temp_dir().join(format!("proclaim-monitor-{}.script", std::process::id()));
+    let script = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-monitor-{}.script", std::process::id()));
     std::fs::write(
         &script,
         "doorOpen = false\ntimeLeft = false\nat 4s doorOpen = true\nat 8s doorOpen = false\nat 10s timeLeft = true\n",
@@ -245,7 +245,7 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
 
 /// The microwave behaviour run for ten virtual seconds, its trace written to a file of its own.
 fn microwave_trace(tag: &str) -> std::path::PathBuf {
-    let trace = std::env::temp_dir().join(format!(
+    let trace = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "proclaim-monitor-{tag}-{}.jsonl",
         std::process::id()
     ));
@@ -433,8 +433,8 @@ fn bad_monitor_arguments_say_what_is_wrong() {
         stderr.contains("--monitor the-kitchen: not an address to listen on"),
         "{stderr}"
     );
-    let not_a_trace =
-        std::env::temp_dir().join(format!("proclaim-not-a-trace-{}.jsonl", std::process::id()));
+    let not_a_trace = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-not-a-trace-{}.jsonl", std::process::id()));
     std::fs::write(&not_a_trace, "{\"event\": \"entered\"}\n").unwrap();
     let replay = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args([

@@ -164,7 +164,8 @@ async fn a_reader_never_sees_a_suppressed_posting() {
 /// clock and in real time; with a shorter hold the replay differs, and says where.
 #[test]
 fn a_recorded_subsumption_run_replays_exactly_and_a_changed_hold_is_caught() {
-    let dir = std::env::temp_dir().join(format!("proclaim-subsumption-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-subsumption-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let copy = dir.join("behaviour");
     std::fs::create_dir_all(&copy).unwrap();

@@ -23,7 +23,8 @@ pub fn shared_dir() -> Option<std::path::PathBuf> {
 /// this test process and `tag`.
 #[allow(dead_code)]
 pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("proclaim-{tag}-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (name, text) in files {
         std::fs::write(dir.join(name), text).unwrap();

@@ -168,7 +168,8 @@ fn a_test_steps_the_press_round_by_round() {
 fn commands_take_effect_after_the_ringlet_and_final_states_stop_ringing() {
     use proclaim_behaviour::testing::RoundByRound;
     use proclaim_board::Value;
-    let dir = std::env::temp_dir().join(format!("proclaim-rounds-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-rounds-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let files = [

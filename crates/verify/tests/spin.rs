@@ -19,7 +19,8 @@ fn repo() -> PathBuf {
 
 /// A fresh temporary folder for one case.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("proclaim-spin-{}-{name}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-spin-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir

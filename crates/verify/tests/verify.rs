@@ -16,7 +16,7 @@ fn repo() -> PathBuf {
 /// A fresh folder holding `files` (name, text).
 fn folder(files: &[(&str, &str)]) -> PathBuf {
     static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "proclaim-verify-{}-{}",
         std::process::id(),
         NEXT.fetch_add(1, Ordering::Relaxed)
