@@ -66,8 +66,10 @@ fn host_function(name: String, function: Py<PyAny>, raised: Raised) -> impl Fn(O
 /// Python callables as one expert answering their labels: each is called with the whiteboard
 /// (a `proclaim.Board`) when a machine asks its label, and answers True, False, or None (no
 /// answer: the query times out and the label reads false).
-fn expert(experts: HashMap<String, Py<PyAny>>, raised: Raised) -> FunctionExpert {
-    let labels: Vec<String> = experts.keys().cloned().collect();
+fn expert(experts: Vec<(String, Py<PyAny>)>, raised: Raised) -> FunctionExpert {
+    // In the order given, so notes and the registry list them as the caller wrote them.
+    let labels: Vec<String> = experts.iter().map(|(label, _)| label.clone()).collect();
+    let experts: HashMap<String, Py<PyAny>> = experts.into_iter().collect();
     FunctionExpert::new(MODULE, labels, move |label, board| {
         let function = experts.get(label)?;
         Python::attach(|py| {
@@ -98,12 +100,9 @@ fn expert(experts: HashMap<String, Py<PyAny>>, raised: Raised) -> FunctionExpert
     })
 }
 
-/// Callables keyed by name, each checked to be callable.
-fn callables(
-    what: &str,
-    given: Option<&Bound<'_, PyDict>>,
-) -> PyResult<HashMap<String, Py<PyAny>>> {
-    let mut out = HashMap::new();
+/// Callables keyed by name, in the dict's order, each checked to be callable.
+fn callables(what: &str, given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, Py<PyAny>)>> {
+    let mut out = Vec::new();
     let Some(given) = given else { return Ok(out) };
     for (key, value) in given.iter() {
         let name: String = key.extract().map_err(|_| {
@@ -115,7 +114,7 @@ fn callables(
                 value.get_type().name()?
             )));
         }
-        out.insert(name, value.unbind());
+        out.push((name, value.unbind()));
     }
     Ok(out)
 }
@@ -379,18 +378,18 @@ impl Behaviour {
         self.events_from(py, 0)
     }
 
-    /// The run so far as `proclaim run` prints it, a line an event (answers shown only when
-    /// they change).
+    /// The run so far as `proclaim run` prints it: what was started or left out, then a line
+    /// an event (answers shown only when they change).
     #[getter]
     fn trace(&self) -> PyResult<Vec<String>> {
         self.with(|running| {
             let mut view = TraceView::new(0);
-            Ok(running
+            let lines = running
                 .events
                 .iter()
                 .filter_map(|event| view.line(event))
-                .map(|line| line.split_whitespace().collect::<Vec<_>>().join(" "))
-                .collect())
+                .map(|line| line.split_whitespace().collect::<Vec<_>>().join(" "));
+            Ok(running.notes().iter().cloned().chain(lines).collect())
         })
     }
 

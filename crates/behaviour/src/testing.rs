@@ -280,6 +280,11 @@ impl RoundByRound {
         &self.events[first..]
     }
 
+    /// What was started or left out (`left out microwave: the embedding program answers cook`).
+    pub fn notes(&self) -> &[String] {
+        &self.running.notes
+    }
+
     /// Whether every machine that started is in a final state (its OnEntry run) or halted.
     pub fn is_over(&self) -> bool {
         self.running.is_over()
