@@ -30,6 +30,9 @@ typedef enum ProclaimStatus {
   // The reasoner panicked (a bug); the panic was stopped at the boundary. A session that
   // panicked answers `PROCLAIM_STATUS_PANIC` to every later call: free it.
   PROCLAIM_STATUS_PANIC = 6,
+  // The theory's inputs have more combinations than a truth table may hold (2^20): group
+  // mutually exclusive inputs as `input{a, b, c}`, or ask rows one at a time.
+  PROCLAIM_STATUS_TOO_MANY_ROWS = 7,
 } ProclaimStatus;
 
 // The proof algorithm of a question (cdl.md §4). Functions take it as an `int`, so that a
@@ -74,6 +77,30 @@ typedef struct ProclaimError {
   // Every error, rendered; several lines.
   char *message;
 } ProclaimError;
+
+// A truth table, read-only for C: row `r`'s value of input `i` is
+// `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
+// Freed, with everything it points to, by [`proclaim_table_free`].
+typedef struct ProclaimTable {
+  // How many input atoms (the declared inputs, in the order the theory declares them).
+  size_t input_count;
+  // Their names: `input_count` NUL-terminated strings.
+  const char *const *input_names;
+  // How many output columns (the declared outputs; every other atom under β when the theory
+  // declares none).
+  size_t output_count;
+  // Their headings, algorithm and literal (`beta cook`): `output_count` strings.
+  const char *const *output_names;
+  // How many rows: every combination of the inputs that `ignore{}` and `assert{}` keep.
+  size_t row_count;
+  // `row_count * input_count` values, row by row.
+  const bool *inputs;
+  // `row_count` values: false where the row's inputs contradict the theory's axioms, whose
+  // outputs are then all false and mean nothing (`proclaim table` prints "inconsistent").
+  const bool *consistent;
+  // `row_count * output_count` values, row by row.
+  const bool *outputs;
+} ProclaimTable;
 
 #ifdef __cplusplus
 extern "C" {
@@ -153,6 +180,21 @@ const char *proclaim_status_name(int status);
 // # Safety
 // `text` is null or a string returned by this library and not freed yet.
 void proclaim_string_free(char *text);
+
+// Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
+// when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
+// or `BAD_ARGUMENT`; then `*table_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `table_out` is null or writable.
+enum ProclaimStatus proclaim_theory_table(const struct ProclaimTheory *theory,
+                                          struct ProclaimTable **table_out);
+
+// Frees a table and everything it points to. Null is ignored.
+//
+// # Safety
+// `table` is null or a table from [`proclaim_theory_table`] not freed yet.
+void proclaim_table_free(struct ProclaimTable *table);
 
 // Loads a theory from `len` bytes of `.dl` text (no terminator needed). Returns the theory, or
 // null with `*error_out` set to why (every error, with the first one's line and column), which

@@ -4,7 +4,8 @@
 //! Everything is an opaque handle freed by its own function: a theory loaded from text
 //! ([`proclaim_theory_load`]), a session over it ([`proclaim_session_new`]) whose inputs are set
 //! ([`proclaim_session_set`]) and whose literals are proved ([`proclaim_session_prove`]) or
-//! explained ([`proclaim_session_explain`]). Calls return a [`ProclaimStatus`]; a null pointer,
+//! explained ([`proclaim_session_explain`]); a theory's truth table is one struct of arrays
+//! ([`proclaim_theory_table`]). Calls return a [`ProclaimStatus`]; a null pointer,
 //! text that is not UTF-8 or an out-of-range enum value is `PROCLAIM_STATUS_BAD_ARGUMENT`, never
 //! undefined behaviour, and a panic inside the reasoner is caught at the boundary and returned as
 //! `PROCLAIM_STATUS_PANIC` (the session it happened in answers nothing afterwards).
@@ -21,6 +22,7 @@ mod prove;
 mod session;
 mod status;
 mod string;
+mod table;
 mod text;
 mod theory;
 mod value;
@@ -35,6 +37,7 @@ pub use session::{
 };
 pub use status::{proclaim_status_name, ProclaimStatus};
 pub use string::proclaim_string_free;
+pub use table::{proclaim_table_free, proclaim_theory_table, ProclaimTable};
 pub use theory::{
     proclaim_theory_free, proclaim_theory_load, proclaim_theory_load_named, ProclaimTheory,
 };

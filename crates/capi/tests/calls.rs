@@ -332,3 +332,97 @@ fn an_explanation_is_the_rust_one_in_a_string_the_caller_frees() {
         proclaim_theory_free(theory);
     }
 }
+
+/// Every theory of `theories/` (and its classics): the C table's cells are the Rust table's.
+#[test]
+fn the_truth_table_is_the_rust_tables_cell_for_cell() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../theories");
+    let mut paths: Vec<_> = ["", "classics"]
+        .iter()
+        .flat_map(|dir| std::fs::read_dir(root.join(dir)).unwrap())
+        .map(|entry| entry.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dl"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 9, "{paths:?}");
+    for path in paths {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let expected = proclaim_cdl::truth_table(std::sync::Arc::new(proclaim_cdl::Engine::new(
+            proclaim_cdl::load(&text, proclaim_cdl::Language::Dl).unwrap(),
+        )))
+        .unwrap();
+        let theory = load(&text).unwrap();
+        let mut table = null_mut();
+        assert_eq!(
+            unsafe { proclaim_theory_table(theory, &mut table) },
+            ProclaimStatus::Ok
+        );
+        unsafe { proclaim_theory_free(theory) };
+        let t = unsafe { &*table };
+        let name = |names: *const *const c_char, i: usize| {
+            unsafe { CStr::from_ptr(*names.add(i)) }
+                .to_str()
+                .unwrap()
+                .to_string()
+        };
+        let inputs: Vec<String> = (0..t.input_count).map(|i| name(t.input_names, i)).collect();
+        let headings: Vec<String> = (0..t.output_count)
+            .map(|c| name(t.output_names, c))
+            .collect();
+        assert_eq!(inputs, expected.inputs, "{}", path.display());
+        let expected_headings: Vec<&str> = expected
+            .columns
+            .iter()
+            .map(|c| c.heading.as_str())
+            .collect();
+        assert_eq!(headings, expected_headings, "{}", path.display());
+        assert_eq!(t.row_count, expected.rows.len(), "{}", path.display());
+        for (r, row) in expected.rows.iter().enumerate() {
+            let cell =
+                |values: *const bool, width: usize, i: usize| unsafe { *values.add(r * width + i) };
+            let c_inputs: Vec<bool> = (0..t.input_count)
+                .map(|i| cell(t.inputs, t.input_count, i))
+                .collect();
+            assert_eq!(c_inputs, row.inputs, "{} row {r}", path.display());
+            let consistent = unsafe { *t.consistent.add(r) };
+            assert_eq!(
+                consistent,
+                row.outputs.is_some(),
+                "{} row {r}",
+                path.display()
+            );
+            let c_outputs: Vec<bool> = (0..t.output_count)
+                .map(|c| cell(t.outputs, t.output_count, c))
+                .collect();
+            let want = row
+                .outputs
+                .clone()
+                .unwrap_or_else(|| vec![false; t.output_count]);
+            assert_eq!(c_outputs, want, "{} row {r}", path.display());
+        }
+        unsafe { proclaim_table_free(table) };
+    }
+}
+
+#[test]
+fn a_table_too_large_is_a_status_and_bad_arguments_write_nothing() {
+    let inputs: String = (0..21).map(|i| format!("input{{a{i}}}. ")).collect();
+    let theory = load(&format!("{inputs} R: a0 => b.")).unwrap();
+    let mut table = null_mut();
+    assert_eq!(
+        unsafe { proclaim_theory_table(theory, &mut table) },
+        ProclaimStatus::TooManyRows
+    );
+    assert!(table.is_null());
+    assert_eq!(
+        unsafe { proclaim_theory_table(theory, null_mut()) },
+        ProclaimStatus::BadArgument
+    );
+    assert_eq!(
+        unsafe { proclaim_theory_table(null(), &mut table) },
+        ProclaimStatus::BadArgument
+    );
+    assert!(table.is_null());
+    unsafe { proclaim_table_free(null_mut()) };
+    unsafe { proclaim_theory_free(theory) };
+}
