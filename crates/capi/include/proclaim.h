@@ -78,6 +78,14 @@ typedef struct ProclaimError {
   char *message;
 } ProclaimError;
 
+// An input atom of one theory, from [`proclaim_theory_input`]: its theory's identity in the
+// high 32 bits, the atom's number in the low 32. Valid for every session over that theory.
+typedef uint64_t ProclaimInput;
+
+// A literal (`cook`, `~cook`) of one theory, from [`proclaim_theory_literal`]; made as
+// [`ProclaimInput`] is.
+typedef uint64_t ProclaimLiteral;
+
 // A truth table, read-only for C: row `r`'s value of input `i` is
 // `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
 // Freed, with everything it points to, by [`proclaim_table_free`].
@@ -125,6 +133,48 @@ enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
                                              int algorithm,
                                              uint32_t depth,
                                              char **text_out);
+
+// Looks up the input atom `atom` of `theory` and writes its handle to `*input_out`: `OK`, or
+// `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the theory declares its inputs and this is not one) or
+// `BAD_ARGUMENT`, and `*input_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `atom` is null or a NUL-terminated string; `input_out` is
+// null or writable.
+enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
+                                          const char *atom,
+                                          ProclaimInput *input_out);
+
+// Looks up `literal` (`cook`, `~cook`) of `theory` and writes its handle to `*literal_out`:
+// `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `literal` is null or a NUL-terminated string;
+// `literal_out` is null or writable.
+enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
+                                            const char *literal,
+                                            ProclaimLiteral *literal_out);
+
+// [`proclaim_session_set`](crate::proclaim_session_set) by handle: sets `input` to a
+// `ProclaimValue`. `BAD_ARGUMENT` for a handle of another theory or a value that is none;
+// `INPUT_CONFLICT` as by name.
+//
+// # Safety
+// `session` is null or a live session.
+enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
+                                               ProclaimInput input,
+                                               int value);
+
+// [`proclaim_session_prove`](crate::proclaim_session_prove) by handle: whether `algorithm`
+// proves `literal`, written to `*answer_out`; `OK`, `UNDECIDED` (`false` written), or
+// `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
+//
+// # Safety
+// `session` is null or a live session; `answer_out` is null or writable.
+enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *session,
+                                                   ProclaimLiteral literal,
+                                                   int algorithm,
+                                                   bool *answer_out);
 
 // Whether `algorithm` (a `ProclaimAlgorithm`) proves `literal` (`cook`, `~cook`) given the
 // inputs set so far: writes the answer to `*answer_out` and returns `OK`. When the search could

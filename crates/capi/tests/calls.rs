@@ -426,3 +426,149 @@ fn a_table_too_large_is_a_status_and_bad_arguments_write_nothing() {
     unsafe { proclaim_table_free(null_mut()) };
     unsafe { proclaim_theory_free(theory) };
 }
+
+/// Handles looked up once answer as names do, on every input and algorithm; a handle of another
+/// theory, a forged one and bad lookups are statuses.
+#[test]
+fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
+    let theory = load(MICROWAVE).unwrap();
+    let lookup_input = |text: &str| {
+        let mut handle = 0;
+        let status = unsafe { proclaim_theory_input(theory, c(text).as_ptr(), &mut handle) };
+        (status, handle)
+    };
+    let lookup_literal = |text: &str| {
+        let mut handle = 0;
+        let status = unsafe { proclaim_theory_literal(theory, c(text).as_ptr(), &mut handle) };
+        (status, handle)
+    };
+    let (_, door) = lookup_input("doorOpen");
+    let (_, time) = lookup_input(" timeLeft ");
+    let by_name = unsafe { proclaim_session_new(theory) };
+    let by_handle = unsafe { proclaim_session_new(theory) };
+    let values = [
+        ProclaimValue::False,
+        ProclaimValue::True,
+        ProclaimValue::Unknown,
+    ];
+    for door_value in values {
+        for time_value in values {
+            for (name, handle, value) in [
+                ("doorOpen", door, door_value),
+                ("timeLeft", time, time_value),
+            ] {
+                assert_eq!(set(by_name, name, value as c_int), ProclaimStatus::Ok);
+                let status =
+                    unsafe { proclaim_session_set_input(by_handle, handle, value as c_int) };
+                assert_eq!(status, ProclaimStatus::Ok);
+            }
+            for algorithm in ALGORITHMS {
+                for literal in ["cook", "~cook", "light", "~ light"] {
+                    let (status, handle) = lookup_literal(literal);
+                    assert_eq!(status, ProclaimStatus::Ok, "{literal}");
+                    let mut answer = false;
+                    let status = unsafe {
+                        proclaim_session_prove_literal(
+                            by_handle,
+                            handle,
+                            algorithm as c_int,
+                            &mut answer,
+                        )
+                    };
+                    assert_eq!(
+                        (status, answer),
+                        prove(by_name, literal, algorithm as c_int),
+                        "{literal} {algorithm:?} {door_value:?} {time_value:?}"
+                    );
+                }
+            }
+        }
+    }
+    // Lookups that fail, each with its status, writing nothing.
+    assert_eq!(lookup_input("cook"), (ProclaimStatus::NotAnInput, 0));
+    assert_eq!(lookup_input("oven"), (ProclaimStatus::UnknownAtom, 0));
+    assert_eq!(lookup_literal("~oven"), (ProclaimStatus::UnknownAtom, 0));
+    let mut handle = 0;
+    unsafe {
+        assert_eq!(
+            proclaim_theory_input(theory, null(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_input(null(), c("doorOpen").as_ptr(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_literal(theory, c("cook").as_ptr(), null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_literal(theory, [0xffu8, 0].as_ptr().cast(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+    }
+    assert_eq!(handle, 0);
+
+    // The same text loaded again is another theory: its handles are refused here.
+    let other = load(MICROWAVE).unwrap();
+    let mut foreign = 0;
+    unsafe {
+        assert_eq!(
+            proclaim_theory_input(other, c("timeLeft").as_ptr(), &mut foreign),
+            ProclaimStatus::Ok
+        );
+        assert_ne!(foreign, time);
+        assert_eq!(
+            proclaim_session_set_input(by_handle, foreign, ProclaimValue::True as c_int),
+            ProclaimStatus::BadArgument
+        );
+        let mut answer = true;
+        assert_eq!(
+            proclaim_session_prove_literal(
+                by_handle,
+                foreign,
+                ProclaimAlgorithm::Beta as c_int,
+                &mut answer
+            ),
+            ProclaimStatus::BadArgument
+        );
+        assert!(answer, "left alone");
+        // A forged number past the theory's atoms, with the right theory in its high bits.
+        let forged = (time & !0xffff_ffff) | 0xffff;
+        assert_eq!(
+            proclaim_session_set_input(by_handle, forged, ProclaimValue::True as c_int),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove_literal(
+                by_handle,
+                forged,
+                ProclaimAlgorithm::Beta as c_int,
+                &mut answer
+            ),
+            ProclaimStatus::BadArgument
+        );
+        // Bad values, algorithms and pointers, as by name.
+        assert_eq!(
+            proclaim_session_set_input(by_handle, time, 3),
+            ProclaimStatus::BadArgument
+        );
+        let (_, cook) = lookup_literal("cook");
+        assert_eq!(
+            proclaim_session_prove_literal(by_handle, cook, 5, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove_literal(by_handle, cook, 2, null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_set_input(null_mut(), time, 1),
+            ProclaimStatus::BadArgument
+        );
+        proclaim_theory_free(other);
+        proclaim_theory_free(theory);
+        proclaim_session_free(by_name);
+        proclaim_session_free(by_handle);
+    }
+}

@@ -163,7 +163,7 @@ fn the_c_timing_loop_builds_and_runs() {
     let program = compile_c("bench", true);
     let run = Command::new(&program)
         .arg(root.join("theories/microwave.dl"))
-        .arg("101")
+        .args(["101", "3"])
         .output()
         .expect("the timing loop runs");
     let stdout = String::from_utf8(run.stdout).unwrap();
@@ -172,10 +172,21 @@ fn the_c_timing_loop_builds_and_runs() {
         "{stdout}{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    assert!(
-        stdout.ends_with("ns per iteration (101 iterations)\n"),
-        "{stdout}"
-    );
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    for (line, way) in lines.iter().zip(["by name", "by handle"]) {
+        assert!(line.starts_with(&format!("set + prove {way}")), "{stdout}");
+        assert!(
+            line.ends_with("ns per iteration (3 runs of 101 iterations)"),
+            "{stdout}"
+        );
+    }
+    let usage = Command::new(&program)
+        .arg(root.join("theories/microwave.dl"))
+        .args(["10", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(usage.status.code(), Some(2));
 }
 
 /// `proclaim table --format csv`'s text, from the Rust table.
