@@ -18,6 +18,7 @@ use proclaim_runner::Hosts;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use pyo3::{PyTraverseError, PyVisit};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, TryLockError};
@@ -29,6 +30,19 @@ pub(crate) const MODULE: &str = "python";
 /// Exceptions raised by callables while the behaviour ran, oldest first, each with what raised.
 type Raised = Arc<Mutex<Vec<(String, PyErr)>>>;
 
+/// Every callable given, the only references to them the behaviour holds (the runner's host
+/// functions and expert hold an index), so Python's garbage collector sees them all: a callable
+/// that refers back to its behaviour makes a cycle, which `__traverse__` shows and `__clear__`
+/// breaks (emptied, a callable answers nothing and is not called).
+type Callables = Arc<Mutex<Vec<Py<PyAny>>>>;
+
+/// The callable at `index`, a new reference taken under the list's lock, which is not held
+/// while it runs (it may take a while, and may be collected meanwhile).
+fn callable(py: Python<'_>, callables: &Callables, index: usize) -> Option<Py<PyAny>> {
+    let list = callables.lock().ok()?;
+    list.get(index).map(|c| c.clone_ref(py))
+}
+
 /// A behaviour (a folder with a `behaviour.toml`) started paused before its first round.
 #[pyclass(module = "proclaim", frozen)]
 pub(crate) struct Behaviour {
@@ -38,6 +52,7 @@ pub(crate) struct Behaviour {
     board: proclaim_board::Whiteboard,
     raised: Raised,
     folder: PathBuf,
+    callables: Callables,
 }
 
 fn record(raised: &Raised, what: String, error: PyErr) {
@@ -48,9 +63,17 @@ fn record(raised: &Raised, what: String, error: PyErr) {
 
 /// A Python callable as a host function: called with the call's argument (an int or a str), or
 /// with none.
-fn host_function(name: String, function: Py<PyAny>, raised: Raised) -> impl Fn(Option<&Argument>) {
+fn host_function(
+    name: String,
+    index: usize,
+    callables: Callables,
+    raised: Raised,
+) -> impl Fn(Option<&Argument>) {
     move |argument| {
         Python::attach(|py| {
+            let Some(function) = callable(py, &callables, index) else {
+                return;
+            };
             let outcome = match argument {
                 None => function.call0(py),
                 Some(Argument::Int(i)) => function.call1(py, (*i,)),
@@ -66,13 +89,14 @@ fn host_function(name: String, function: Py<PyAny>, raised: Raised) -> impl Fn(O
 /// Python callables as one expert answering their labels: each is called with the whiteboard
 /// (a `proclaim.Board`) when a machine asks its label, and answers True, False, or None (no
 /// answer: the query times out and the label reads false).
-fn expert(experts: Vec<(String, Py<PyAny>)>, raised: Raised) -> FunctionExpert {
+fn expert(labels: Vec<(String, usize)>, callables: Callables, raised: Raised) -> FunctionExpert {
     // In the order given, so notes and the registry list them as the caller wrote them.
-    let labels: Vec<String> = experts.iter().map(|(label, _)| label.clone()).collect();
-    let experts: HashMap<String, Py<PyAny>> = experts.into_iter().collect();
-    FunctionExpert::new(MODULE, labels, move |label, board| {
-        let function = experts.get(label)?;
+    let names: Vec<String> = labels.iter().map(|(label, _)| label.clone()).collect();
+    let index: HashMap<String, usize> = labels.into_iter().collect();
+    FunctionExpert::new(MODULE, names, move |label, board| {
+        let index = *index.get(label)?;
         Python::attach(|py| {
+            let function = callable(py, &callables, index)?;
             let what = || format!("the expert for `{label}`");
             let board = Board::new(board.clone());
             let answer = function.call1(py, (board,)).and_then(|value| {
@@ -231,18 +255,30 @@ impl Behaviour {
         virtual_clock: bool,
     ) -> PyResult<Behaviour> {
         let raised: Raised = Arc::default();
+        let mut given = Vec::new();
         let mut host_functions = Hosts::default();
         for (name, function) in callables("hosts", hosts)? {
-            host_functions.register(&name, host_function(name.clone(), function, raised.clone()));
+            given.push((name, function));
         }
-        let experts = callables("experts", experts)?;
+        let host_count = given.len();
+        let mut labels = Vec::new();
+        for (label, function) in callables("experts", experts)? {
+            labels.push((label.clone(), given.len()));
+            given.push((label, function));
+        }
+        let (names, functions): (Vec<String>, Vec<Py<PyAny>>) = given.into_iter().unzip();
+        let list: Callables = Arc::new(Mutex::new(functions));
+        for (index, name) in names.iter().enumerate().take(host_count) {
+            let host = host_function(name.clone(), index, list.clone(), raised.clone());
+            host_functions.register(name, host);
+        }
         let stepping = Stepping {
             script: script.unwrap_or_default(),
             hosts: host_functions,
-            experts: if experts.is_empty() {
+            experts: if labels.is_empty() {
                 Vec::new()
             } else {
-                vec![expert(experts, raised.clone())]
+                vec![expert(labels, list.clone(), raised.clone())]
             },
             real_time: !virtual_clock,
         };
@@ -255,6 +291,7 @@ impl Behaviour {
             board,
             raised,
             folder,
+            callables: list,
         };
         behaviour.raise_callbacks(py)?;
         Ok(behaviour)
@@ -429,6 +466,25 @@ impl Behaviour {
             Ok(guard) => guard.is_none(),
             Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner().is_none(),
             Err(TryLockError::WouldBlock) => false,
+        }
+    }
+
+    fn __traverse__(&self, visit: PyVisit<'_>) -> Result<(), PyTraverseError> {
+        // Never waits: a list in use is skipped this time round.
+        if let Ok(callables) = self.callables.try_lock() {
+            for callable in callables.iter() {
+                visit.call(callable)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn __clear__(&self) {
+        if let Ok(mut running) = self.running.try_lock() {
+            running.take();
+        }
+        if let Ok(mut callables) = self.callables.try_lock() {
+            callables.clear();
         }
     }
 

@@ -2,8 +2,10 @@
 state, the kettle of tests/kettle with Python host functions and experts answering its labels,
 exceptions in callables, bad folders, the virtual clock."""
 
+import gc
 import threading
 import time
+import weakref
 from pathlib import Path
 
 import pytest
@@ -253,3 +255,19 @@ def test_unknown_machines_and_variables():
         with pytest.raises(KeyError, match="Kettle"):
             k.state("Toaster")
         assert k.variable("Kettle", "nothing") is None
+
+
+def test_a_behaviour_whose_callable_refers_back_to_it_is_collected():
+    def cycle():
+        holder = {}
+
+        def boiling(board):
+            return holder["kettle"].finished
+
+        holder["kettle"] = kettle(boiling, [])
+        holder["kettle"].step()
+        return weakref.ref(boiling)
+
+    gone = cycle()
+    gc.collect()
+    assert gone() is None, "the behaviour and its callable were left in a cycle"
