@@ -10,10 +10,23 @@ True
 
 A theory that does not load raises :class:`TheoryError` (with ``file``, ``line``, ``column``); an
 answer the search could not decide within its budget raises :class:`Undecided`.
+
+A behaviour (a folder with a ``behaviour.toml``) runs from Python with callables as host functions
+and experts, round by round on a virtual clock (see :class:`Behaviour`)::
+
+    kettle = proclaim.Behaviour("python/tests/kettle", hosts={"beep": print},
+                                experts={"switchedOn": lambda board: True,
+                                         "boiling": lambda board: board["temperature"] >= 100})
+    kettle.post("temperature", 100)
+    assert kettle.run_until(lambda b: b.finished, rounds=10)
 """
 
 from ._native import (
     ALGORITHMS,
+    Behaviour,
+    BehaviourError,
+    Board,
+    CallbackError,
     Error,
     InputConflict,
     Session,
@@ -26,6 +39,10 @@ from ._native import (
 
 __all__ = [
     "ALGORITHMS",
+    "Behaviour",
+    "BehaviourError",
+    "Board",
+    "CallbackError",
     "Error",
     "InputConflict",
     "Session",

@@ -2,7 +2,20 @@
 
 import os
 from types import TracebackType
-from typing import Dict, List, Literal, Optional, Tuple, Type, TypedDict, Union
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    List,
+    Literal,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    Type,
+    TypedDict,
+    Union,
+)
 
 
 AlgorithmName = Literal["mu", "pi", "beta", "alpha", "delta"]
@@ -98,3 +111,91 @@ def load(text: str, name: str = "theory") -> Theory:
 
 def load_file(path: Union[str, "os.PathLike[str]"]) -> Theory:
     """Loads a theory file; raises OSError when unreadable, TheoryError when it does not load."""
+
+WhiteboardValue = Union[bool, int, float, str, bytes, Sequence["WhiteboardValue"]]
+"""What the whiteboard holds; a tuple posted reads back as a list."""
+
+class BehaviourError(Error):
+    """A behaviour did not load or start."""
+
+    problems: List[Tuple[str, int, int, str]]
+    """Every problem of every file: (file, line, column, message); 0 when it has no place."""
+
+class CallbackError(Error):
+    """A callable given to a Behaviour raised while it ran; ``__cause__`` is what it raised."""
+
+    callable: str
+    """Which callable: "the host function `beep`", "the expert for `boiling`"."""
+
+class Board:
+    """A behaviour's whiteboard, as an expert's callable is given it."""
+
+    def read(self, type: str) -> Optional[WhiteboardValue]:
+        """The latest value of ``type``; None when never posted."""
+    def post(self, type: str, value: WhiteboardValue) -> None:
+        """Posts ``value`` as ``type``, from the module ``python``."""
+    def __getitem__(self, type: str) -> Optional[WhiteboardValue]:
+        """``board["x"]`` is ``board.read("x")``."""
+
+Event = Dict[str, Any]
+"""One event of the trace, as ``proclaim run --trace`` writes it: ``{"event": "entered", ...}``."""
+
+class Behaviour:
+    """A behaviour started paused before its first round; also a context manager.
+
+    ``hosts`` maps host function names to callables taking the call's argument (int or str) or
+    none; ``experts`` maps labels to callables taking the Board and answering True, False or None
+    (no answer). An exception in either raises CallbackError from the call that ran the round (an
+    expert's also answers its label False). With ``virtual_clock`` time moves only when asked.
+    """
+
+    def __init__(
+        self,
+        folder: Union[str, "os.PathLike[str]"],
+        hosts: Optional[Mapping[str, Callable[..., object]]] = None,
+        experts: Optional[Mapping[str, Callable[[Board], Optional[bool]]]] = None,
+        script: Optional[str] = None,
+        virtual_clock: bool = True,
+    ) -> None: ...
+    def step(self) -> List[Event]:
+        """One round: every running machine one ringlet; its events."""
+    def run_until(self, predicate: Callable[[Behaviour], object], rounds: int = 1000) -> bool:
+        """Steps until ``predicate(self)`` is true, at most ``rounds`` rounds; whether it was."""
+    def run(self, seconds: float) -> List[Event]:
+        """The machines ring freely for ``seconds`` (virtual, by default), then pause."""
+    def wait(self, seconds: float) -> None:
+        """Time passes with no round run."""
+    def post(self, type: str, value: WhiteboardValue) -> None:
+        """Posts ``value`` as ``type`` on the whiteboard, from the module ``python``."""
+    def read(self, type: str) -> Optional[WhiteboardValue]:
+        """The latest value of ``type``; None when never posted."""
+    @property
+    def board(self) -> Board: ...
+    def states(self) -> Dict[str, Optional[str]]:
+        """Every machine to the state it last entered (None before it entered one)."""
+    def state(self, machine: str) -> Optional[str]:
+        """The state ``machine`` last entered; KeyError for a machine it does not have."""
+    def variable(self, machine: str, name: str) -> Optional[WhiteboardValue]:
+        """A variable as ``machine`` sees it; None when it has none of that name."""
+    @property
+    def events(self) -> List[Event]:
+        """Every event so far, oldest first."""
+    @property
+    def trace(self) -> List[str]:
+        """The run as ``proclaim run`` prints it, a line an event."""
+    @property
+    def finished(self) -> bool:
+        """Whether every machine that started is in a final state or halted."""
+    @property
+    def rounds(self) -> int: ...
+    @property
+    def closed(self) -> bool: ...
+    def close(self) -> None:
+        """Stops the behaviour; later calls raise ValueError."""
+    def __enter__(self) -> Behaviour: ...
+    def __exit__(
+        self,
+        kind: Optional[Type[BaseException]],
+        value: Optional[BaseException],
+        traceback: Optional[TracebackType],
+    ) -> bool: ...

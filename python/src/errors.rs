@@ -90,3 +90,65 @@ pub(crate) fn input_conflict(py: Python<'_>, conflict: Conflict) -> PyErr {
         Err(failed) => failed,
     }
 }
+
+create_exception!(
+    proclaim,
+    BehaviourError,
+    Error,
+    "A behaviour did not load or start: `problems` lists every problem of every file as \
+     `(file, line, column, message)` (line and column 1-based, 0 when the problem is the file as \
+     a whole); the message renders them all."
+);
+create_exception!(
+    proclaim,
+    CallbackError,
+    Error,
+    "A Python callable given to a behaviour (a host function, an expert) raised while the \
+     behaviour ran. `callable` says which; `__cause__` is the exception it raised. An expert \
+     that raised answered its label false; the behaviour goes on and may be stepped again."
+);
+
+/// The exception for a behaviour that did not start, with each problem as data.
+pub(crate) fn behaviour_error(
+    py: Python<'_>,
+    folder: &std::path::Path,
+    error: proclaim_behaviour::BehaviourError,
+) -> PyErr {
+    let problems: Vec<(String, usize, usize, String)> = match &error {
+        proclaim_behaviour::BehaviourError::Files(diagnostics) => diagnostics
+            .iter()
+            .map(|d| {
+                (
+                    d.file.clone(),
+                    d.line.unwrap_or(0),
+                    d.column.unwrap_or(0),
+                    d.message.clone(),
+                )
+            })
+            .collect(),
+        other => vec![(folder.display().to_string(), 0, 0, other.to_string())],
+    };
+    let raised = BehaviourError::new_err(format!(
+        "the behaviour in {} did not start:\n{error}",
+        folder.display()
+    ));
+    match raised.value(py).setattr("problems", problems) {
+        Ok(()) => raised,
+        Err(failed) => failed,
+    }
+}
+
+/// The exception for what `callable` raised (`error`), mentioning how many others raised too.
+pub(crate) fn callback_error(py: Python<'_>, callable: &str, error: PyErr, others: usize) -> PyErr {
+    let also = match others {
+        0 => String::new(),
+        1 => " (and one more callable raised after it)".to_string(),
+        n => format!(" (and {n} more callables raised after it)"),
+    };
+    let raised = CallbackError::new_err(format!("{callable} raised {error}{also}"));
+    raised.set_cause(py, Some(error));
+    match raised.value(py).setattr("callable", callable) {
+        Ok(()) => raised,
+        Err(failed) => failed,
+    }
+}

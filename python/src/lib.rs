@@ -1,8 +1,12 @@
 //! The reasoner as the Python module `proclaim._native`, re-exported by `proclaim/__init__.py`:
-//! [`load`] and [`load_file`] give a [`Theory`], whose sessions set inputs and prove literals.
+//! [`load`] and [`load_file`] give a [`Theory`], whose sessions set inputs and prove literals;
+//! [`Behaviour`] starts a behaviour with Python callables as host functions and experts.
 //! Typed stubs are `proclaim/__init__.pyi`.
 
+mod behaviour;
+mod board;
 mod errors;
+mod events;
 mod session;
 mod theory;
 
@@ -16,6 +20,8 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(theory::load_file, module)?)?;
     module.add_class::<theory::Theory>()?;
     module.add_class::<session::Session>()?;
+    module.add_class::<behaviour::Behaviour>()?;
+    module.add_class::<board::Board>()?;
     // A tuple: the list of algorithms is not for callers to change.
     module.add(
         "ALGORITHMS",
@@ -28,5 +34,7 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("TheoryError", py.get_type::<errors::TheoryError>())?;
     module.add("Undecided", py.get_type::<errors::Undecided>())?;
     module.add("InputConflict", py.get_type::<errors::InputConflict>())?;
+    module.add("BehaviourError", py.get_type::<errors::BehaviourError>())?;
+    module.add("CallbackError", py.get_type::<errors::CallbackError>())?;
     Ok(())
 }

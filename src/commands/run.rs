@@ -116,6 +116,7 @@ fn launch_options(args: &RunArgs, script: Option<proclaim_experts::Script>) -> L
         },
         person: person(&args.ask),
         ringlets: args.record.is_some(),
+        experts: Vec::new(),
     }
 }
 

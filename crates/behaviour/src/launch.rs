@@ -8,8 +8,8 @@ use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
 use proclaim_board::{Pattern, Suppressor, Whiteboard};
 use proclaim_experts::{
-    ButtonWrapper, FallWrapper, GameControllerReceiver, Impersonator, ReasonerExpert,
-    ReceiverConfig, Script,
+    ButtonWrapper, FallWrapper, FunctionExpert, GameControllerReceiver, Impersonator,
+    ReasonerExpert, ReceiverConfig, Script,
 };
 use proclaim_gcsim::{default_game, play, Event as SimEvent, SimConfig};
 use proclaim_runner::{
@@ -42,6 +42,9 @@ pub struct LaunchOptions {
     /// Report every ringlet as it starts ([`Running::ringlets`]), for a recording that a
     /// replay can post outside messages back into at the same places.
     pub ringlets: bool,
+    /// Experts of the embedding program (a Python callable per label, say). Modules answering
+    /// an atom one of them answers are left out, the script's impersonator included.
+    pub experts: Vec<FunctionExpert>,
 }
 
 /// Machine → its final states (those with no way out).
@@ -160,6 +163,20 @@ pub async fn launch(
         &mut modules,
         &mut notes,
     );
+    for expert in &options.experts {
+        let answers = expert.declaration().answers;
+        leave_out(
+            &mut modules,
+            &answers,
+            "the embedding program answers",
+            &mut notes,
+        );
+        modules.push(Module {
+            name: expert.name().to_string(),
+            answers,
+            task: Box::pin(expert.clone().run(board.clone())),
+        });
+    }
     // A simulator with no receiver left to listen plays to nobody.
     if !modules.iter().any(|m| m.name == "gamecontroller") {
         modules.retain(|m| m.name != "gc-sim");

@@ -161,22 +161,59 @@ pub struct RoundByRound {
     pub board: Whiteboard,
 }
 
+/// How a [`RoundByRound`] is started beyond its folder: who answers and who is called.
+#[derive(Clone, Default)]
+pub struct Stepping {
+    /// An impersonator script (empty: none beyond the manifest's).
+    pub script: String,
+    /// Host functions the machines' activities call.
+    pub hosts: proclaim_runner::Hosts,
+    /// Experts of the embedding program; modules answering the same atoms are left out.
+    pub experts: Vec<proclaim_experts::FunctionExpert>,
+    /// Time as the wall clock has it, instead of the virtual clock that moves only when the
+    /// test waits (or when every task waits during [`RoundByRound::run_for`]).
+    pub real_time: bool,
+}
+
 impl RoundByRound {
     /// Loads the behaviour in `folder` and starts it paused before its first round, with
     /// `script` answering (it may be empty). Errors: the behaviour's or the script's problems.
     pub fn start(folder: impl AsRef<Path>, script: &str) -> Result<RoundByRound, BehaviourError> {
+        RoundByRound::start_with(
+            folder,
+            Stepping {
+                script: script.to_string(),
+                ..Stepping::default()
+            },
+        )
+    }
+
+    /// [`RoundByRound::start`] with host functions, outside experts, or the wall clock.
+    pub fn start_with(
+        folder: impl AsRef<Path>,
+        stepping: Stepping,
+    ) -> Result<RoundByRound, BehaviourError> {
         let behaviour = load_folder(folder.as_ref())?;
-        let script = if script.trim().is_empty() {
+        let script = if stepping.script.trim().is_empty() {
             None
         } else {
-            Some(parse_script(script).map_err(BehaviourError::Script)?)
+            Some(parse_script(&stepping.script).map_err(BehaviourError::Script)?)
         };
-        let runtime = paused_runtime()?;
+        let runtime = if stepping.real_time {
+            tokio::runtime::Builder::new_current_thread()
+                .enable_all()
+                .build()
+                .map_err(BehaviourError::Runtime)?
+        } else {
+            paused_runtime()?
+        };
         let board = Whiteboard::local();
         let stepper = proclaim_runner::Stepper::default();
         let options = LaunchOptions {
             script,
             stepper: Some(stepper.clone()),
+            hosts: stepping.hosts,
+            experts: stepping.experts,
             ..LaunchOptions::default()
         };
         let running = runtime.block_on(launch(&behaviour, &board, options))?;
@@ -204,8 +241,25 @@ impl RoundByRound {
         let (stepper, machines) = (&self.stepper, &self.machines);
         self.runtime
             .block_on(async { stepper.settled(machines, step, limit).await });
+        self.take_events()
+    }
+
+    /// Lets the machines ring freely for `time` (on the virtual clock, time jumps whenever every
+    /// task waits, so a minute's `timeout` takes no real time), then pauses them; the events.
+    pub fn run_for(&mut self, time: Duration) -> &[Event] {
+        self.stepper.resume();
+        // The sleep is made inside the runtime: its timer belongs to that runtime's clock.
+        self.runtime
+            .block_on(async move { tokio::time::sleep(time).await });
+        self.stepper.pause();
+        self.take_events()
+    }
+
+    /// The events that arrived since last taken, folded into the states and variables.
+    fn take_events(&mut self) -> &[Event] {
         let first = self.events.len();
         while let Ok(event) = self.running.events.try_recv() {
+            self.running.observe(&event);
             match &event {
                 Event::Entered { machine, state, .. } => {
                     self.states.insert(machine.clone(), state.clone());
@@ -226,9 +280,30 @@ impl RoundByRound {
         &self.events[first..]
     }
 
+    /// What was started or left out (`left out microwave: the embedding program answers cook`).
+    pub fn notes(&self) -> &[String] {
+        &self.running.notes
+    }
+
+    /// Whether every machine that started is in a final state (its OnEntry run) or halted.
+    pub fn is_over(&self) -> bool {
+        self.running.is_over()
+    }
+
+    /// Every machine of the behaviour, in manifest order, with the state it last entered
+    /// (`None` before it entered one: not started yet, or not started at all).
+    pub fn states(&self) -> Vec<(&str, Option<&str>)> {
+        self.machines
+            .iter()
+            .map(|m| (m.as_str(), self.state_of(m)))
+            .collect()
+    }
+
     /// Lets `time` pass on the virtual clock with no round run (a `timeout` may come due).
     pub fn wait(&mut self, time: Duration) {
-        self.runtime.block_on(tokio::time::sleep(time));
+        self.runtime
+            .block_on(async move { tokio::time::sleep(time).await });
+        self.take_events();
     }
 
     /// The state `machine` last entered.

@@ -222,3 +222,44 @@ fn commands_take_effect_after_the_ringlet_and_final_states_stop_ringing() {
     );
     assert_eq!(run.variable("Worker", "worked"), Some(Value::Int(0)));
 }
+
+/// An embedding program's function expert replaces the theory (its note says so), the machines
+/// ring freely for a virtual minute in `run_for`, and the host functions are called.
+#[test]
+fn an_embedding_programs_expert_answers_in_place_of_the_theory_through_a_virtual_minute() {
+    use proclaim_behaviour::testing::{RoundByRound, Stepping};
+    use proclaim_experts::FunctionExpert;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/microwave");
+    let asked = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let counted = asked.clone();
+    let expert = FunctionExpert::new("oven", ["cook", "light"], move |_, _| {
+        counted.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Some(true)
+    });
+    let mut run = RoundByRound::start_with(
+        &dir,
+        Stepping {
+            experts: vec![expert],
+            ..Stepping::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        run.notes()
+            .iter()
+            .any(|n| n == "left out microwave: the embedding program answers cook, light"),
+        "{:?}",
+        run.notes()
+    );
+    run.round();
+    assert_eq!(run.states(), [("Microwave", Some("IDLE"))]);
+    run.round();
+    assert_eq!(run.states(), [("Microwave", Some("COOKING"))]);
+    assert!(!run.is_over());
+    run.run_for(Duration::from_secs(59));
+    assert_eq!(run.state_of("Microwave"), Some("COOKING"));
+    run.run_for(Duration::from_secs(2));
+    assert_eq!(run.state_of("Microwave"), Some("DONE"));
+    assert!(run.is_over());
+    assert!(asked.load(std::sync::atomic::Ordering::Relaxed) > 0);
+}

@@ -30,6 +30,9 @@ typedef enum ProclaimStatus {
   // The reasoner panicked (a bug); the panic was stopped at the boundary. A session that
   // panicked answers `PROCLAIM_STATUS_PANIC` to every later call: free it.
   PROCLAIM_STATUS_PANIC = 6,
+  // The theory's inputs have more combinations than a truth table may hold (2^20): group
+  // mutually exclusive inputs as `input{a, b, c}`, or ask rows one at a time.
+  PROCLAIM_STATUS_TOO_MANY_ROWS = 7,
 } ProclaimStatus;
 
 // The proof algorithm of a question (cdl.md §4). Functions take it as an `int`, so that a
@@ -75,6 +78,38 @@ typedef struct ProclaimError {
   char *message;
 } ProclaimError;
 
+// An input atom of one theory, from [`proclaim_theory_input`]: its theory's identity in the
+// high 32 bits, the atom's number in the low 32. Valid for every session over that theory.
+typedef uint64_t ProclaimInput;
+
+// A literal (`cook`, `~cook`) of one theory, from [`proclaim_theory_literal`]; made as
+// [`ProclaimInput`] is.
+typedef uint64_t ProclaimLiteral;
+
+// A truth table, read-only for C: row `r`'s value of input `i` is
+// `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
+// Freed, with everything it points to, by [`proclaim_table_free`].
+typedef struct ProclaimTable {
+  // How many input atoms (the declared inputs, in the order the theory declares them).
+  size_t input_count;
+  // Their names: `input_count` NUL-terminated strings.
+  const char *const *input_names;
+  // How many output columns (the declared outputs; every other atom under β when the theory
+  // declares none).
+  size_t output_count;
+  // Their headings, algorithm and literal (`beta cook`): `output_count` strings.
+  const char *const *output_names;
+  // How many rows: every combination of the inputs that `ignore{}` and `assert{}` keep.
+  size_t row_count;
+  // `row_count * input_count` values, row by row.
+  const bool *inputs;
+  // `row_count` values: false where the row's inputs contradict the theory's axioms, whose
+  // outputs are then all false and mean nothing (`proclaim table` prints "inconsistent").
+  const bool *consistent;
+  // `row_count * output_count` values, row by row.
+  const bool *outputs;
+} ProclaimTable;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -98,6 +133,48 @@ enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
                                              int algorithm,
                                              uint32_t depth,
                                              char **text_out);
+
+// Looks up the input atom `atom` of `theory` and writes its handle to `*input_out`: `OK`, or
+// `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the theory declares its inputs and this is not one) or
+// `BAD_ARGUMENT`, and `*input_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `atom` is null or a NUL-terminated string; `input_out` is
+// null or writable.
+enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
+                                          const char *atom,
+                                          ProclaimInput *input_out);
+
+// Looks up `literal` (`cook`, `~cook`) of `theory` and writes its handle to `*literal_out`:
+// `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `literal` is null or a NUL-terminated string;
+// `literal_out` is null or writable.
+enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
+                                            const char *literal,
+                                            ProclaimLiteral *literal_out);
+
+// [`proclaim_session_set`](crate::proclaim_session_set) by handle: sets `input` to a
+// `ProclaimValue`. `BAD_ARGUMENT` for a handle of another theory or a value that is none;
+// `INPUT_CONFLICT` as by name.
+//
+// # Safety
+// `session` is null or a live session.
+enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
+                                               ProclaimInput input,
+                                               int value);
+
+// [`proclaim_session_prove`](crate::proclaim_session_prove) by handle: whether `algorithm`
+// proves `literal`, written to `*answer_out`; `OK`, `UNDECIDED` (`false` written), or
+// `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
+//
+// # Safety
+// `session` is null or a live session; `answer_out` is null or writable.
+enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *session,
+                                                   ProclaimLiteral literal,
+                                                   int algorithm,
+                                                   bool *answer_out);
 
 // Whether `algorithm` (a `ProclaimAlgorithm`) proves `literal` (`cook`, `~cook`) given the
 // inputs set so far: writes the answer to `*answer_out` and returns `OK`. When the search could
@@ -153,6 +230,21 @@ const char *proclaim_status_name(int status);
 // # Safety
 // `text` is null or a string returned by this library and not freed yet.
 void proclaim_string_free(char *text);
+
+// Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
+// when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
+// or `BAD_ARGUMENT`; then `*table_out` is left alone.
+//
+// # Safety
+// `theory` is null or a live theory; `table_out` is null or writable.
+enum ProclaimStatus proclaim_theory_table(const struct ProclaimTheory *theory,
+                                          struct ProclaimTable **table_out);
+
+// Frees a table and everything it points to. Null is ignored.
+//
+// # Safety
+// `table` is null or a table from [`proclaim_theory_table`] not freed yet.
+void proclaim_table_free(struct ProclaimTable *table);
 
 // Loads a theory from `len` bytes of `.dl` text (no terminator needed). Returns the theory, or
 // null with `*error_out` set to why (every error, with the first one's line and column), which

@@ -4,7 +4,10 @@
 //! Everything is an opaque handle freed by its own function: a theory loaded from text
 //! ([`proclaim_theory_load`]), a session over it ([`proclaim_session_new`]) whose inputs are set
 //! ([`proclaim_session_set`]) and whose literals are proved ([`proclaim_session_prove`]) or
-//! explained ([`proclaim_session_explain`]). Calls return a [`ProclaimStatus`]; a null pointer,
+//! explained ([`proclaim_session_explain`]); in a loop, atoms and literals are looked up once
+//! ([`proclaim_theory_input`], [`proclaim_theory_literal`]) and named by handle
+//! ([`proclaim_session_set_input`], [`proclaim_session_prove_literal`]); a theory's truth table is one struct of arrays
+//! ([`proclaim_theory_table`]). Calls return a [`ProclaimStatus`]; a null pointer,
 //! text that is not UTF-8 or an out-of-range enum value is `PROCLAIM_STATUS_BAD_ARGUMENT`, never
 //! undefined behaviour, and a panic inside the reasoner is caught at the boundary and returned as
 //! `PROCLAIM_STATUS_PANIC` (the session it happened in answers nothing afterwards).
@@ -16,11 +19,13 @@ mod algorithm;
 mod error;
 mod explain;
 mod guard;
+mod handles;
 mod names;
 mod prove;
 mod session;
 mod status;
 mod string;
+mod table;
 mod text;
 mod theory;
 mod value;
@@ -28,6 +33,10 @@ mod value;
 pub use algorithm::ProclaimAlgorithm;
 pub use error::{proclaim_error_free, ProclaimError};
 pub use explain::proclaim_session_explain;
+pub use handles::{
+    proclaim_session_prove_literal, proclaim_session_set_input, proclaim_theory_input,
+    proclaim_theory_literal, ProclaimInput, ProclaimLiteral,
+};
 pub use prove::proclaim_session_prove;
 pub use session::{
     proclaim_session_free, proclaim_session_new, proclaim_session_set, proclaim_session_set_budget,
@@ -35,6 +44,7 @@ pub use session::{
 };
 pub use status::{proclaim_status_name, ProclaimStatus};
 pub use string::proclaim_string_free;
+pub use table::{proclaim_table_free, proclaim_theory_table, ProclaimTable};
 pub use theory::{
     proclaim_theory_free, proclaim_theory_load, proclaim_theory_load_named, ProclaimTheory,
 };

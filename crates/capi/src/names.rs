@@ -2,7 +2,7 @@
 
 use crate::status::ProclaimStatus;
 use crate::text::nul_terminated;
-use proclaim_cdl::{Atom, Lit, Session};
+use proclaim_cdl::{Atom, Lit, Session, Theory};
 use std::ffi::c_char;
 
 /// The literal `text` names (`cook`, `~cook`).
@@ -27,8 +27,18 @@ pub(crate) unsafe fn literal(
 /// # Safety
 /// `text` is null or a NUL-terminated string.
 pub(crate) unsafe fn input(session: &Session, text: *const c_char) -> Result<Atom, ProclaimStatus> {
+    input_of(session.engine().theory(), text)
+}
+
+/// [`input`] in a theory rather than a session's.
+///
+/// # Safety
+/// `text` is null or a NUL-terminated string.
+pub(crate) unsafe fn input_of(
+    theory: &Theory,
+    text: *const c_char,
+) -> Result<Atom, ProclaimStatus> {
     let text = nul_terminated(text).map_err(|_| ProclaimStatus::BadArgument)?;
-    let theory = session.engine().theory();
     let atom = theory
         .atom(text.trim())
         .ok_or(ProclaimStatus::UnknownAtom)?;

@@ -11,6 +11,8 @@ use std::ffi::{c_char, c_int};
 /// A session: every input unknown until set. Not for two threads at once.
 pub struct ProclaimSession {
     session: Session,
+    /// Its theory's identity, which the handles it accepts carry.
+    tag: u32,
     /// Set when a call panicked: the session may be half-updated, so it answers nothing more.
     poisoned: bool,
 }
@@ -24,13 +26,25 @@ pub(crate) unsafe fn with_session(
     session: *mut ProclaimSession,
     body: impl FnOnce(&mut Session) -> ProclaimStatus,
 ) -> ProclaimStatus {
+    with_session_of(session, |session, _tag| body(session))
+}
+
+/// [`with_session`], telling `body` the identity of the session's theory too.
+///
+/// # Safety
+/// `session` is null or a live session from [`proclaim_session_new`].
+pub(crate) unsafe fn with_session_of(
+    session: *mut ProclaimSession,
+    body: impl FnOnce(&mut Session, u32) -> ProclaimStatus,
+) -> ProclaimStatus {
     let Some(handle) = session.as_mut() else {
         return ProclaimStatus::BadArgument;
     };
     if handle.poisoned {
         return ProclaimStatus::Panic;
     }
-    let status = guarded(ProclaimStatus::Panic, || body(&mut handle.session));
+    let tag = handle.tag;
+    let status = guarded(ProclaimStatus::Panic, || body(&mut handle.session, tag));
     if status == ProclaimStatus::Panic {
         handle.poisoned = true;
     }
@@ -52,6 +66,7 @@ pub unsafe extern "C" fn proclaim_session_new(
     guarded(std::ptr::null_mut(), || {
         Box::into_raw(Box::new(ProclaimSession {
             session: Session::new(theory.engine.clone()),
+            tag: theory.tag,
             poisoned: false,
         }))
     })

@@ -24,10 +24,13 @@ pub enum ProclaimStatus {
     /// The reasoner panicked (a bug); the panic was stopped at the boundary. A session that
     /// panicked answers `PROCLAIM_STATUS_PANIC` to every later call: free it.
     Panic = 6,
+    /// The theory's inputs have more combinations than a truth table may hold (2^20): group
+    /// mutually exclusive inputs as `input{a, b, c}`, or ask rows one at a time.
+    TooManyRows = 7,
 }
 
 impl ProclaimStatus {
-    const ALL: [ProclaimStatus; 7] = [
+    const ALL: [ProclaimStatus; 8] = [
         ProclaimStatus::Ok,
         ProclaimStatus::Undecided,
         ProclaimStatus::UnknownAtom,
@@ -35,6 +38,7 @@ impl ProclaimStatus {
         ProclaimStatus::InputConflict,
         ProclaimStatus::BadArgument,
         ProclaimStatus::Panic,
+        ProclaimStatus::TooManyRows,
     ];
 
     /// The status a number from C stands for, if any.
@@ -54,6 +58,7 @@ impl ProclaimStatus {
             ProclaimStatus::InputConflict => "input conflict\0",
             ProclaimStatus::BadArgument => "bad argument\0",
             ProclaimStatus::Panic => "panic\0",
+            ProclaimStatus::TooManyRows => "too many rows\0",
         }
     }
 }
@@ -82,7 +87,8 @@ mod tests {
         };
         assert_eq!(name(ProclaimStatus::Undecided as c_int), "undecided");
         assert_eq!(name(ProclaimStatus::Panic as c_int), "panic");
-        assert_eq!(name(7), "not a status");
+        assert_eq!(name(ProclaimStatus::TooManyRows as c_int), "too many rows");
+        assert_eq!(name(8), "not a status");
         assert_eq!(name(-1), "not a status");
     }
 }

@@ -5,12 +5,19 @@ use crate::guard::guarded;
 use crate::text::{nul_terminated, sized, BadText};
 use proclaim_cdl::{load_named, Engine, Language};
 use std::ffi::c_char;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::Arc;
 
 /// A theory, immutable once loaded: sessions share it and may outlive the handle.
 pub struct ProclaimTheory {
     pub(crate) engine: Arc<Engine>,
+    /// This load's identity, carried by its atom and literal handles (`handles.rs`).
+    pub(crate) tag: u32,
 }
+
+/// The next theory's identity. It wraps after 2^32 loads; a handle kept that long could then
+/// pass for one of a newer theory's, whose range check still keeps it in bounds.
+static NEXT_TAG: AtomicU32 = AtomicU32::new(1);
 
 /// The name a theory is loaded under when none is given, as in `proclaim_cdl::load`.
 const UNNAMED: &str = "theory";
@@ -85,6 +92,7 @@ unsafe fn load(
             match load_named(name, source, language) {
                 Ok(theory) => Ok(Box::into_raw(Box::new(ProclaimTheory {
                     engine: Arc::new(Engine::new(theory)),
+                    tag: NEXT_TAG.fetch_add(1, Ordering::Relaxed),
                 }))),
                 Err(error) => {
                     let place = error

@@ -332,3 +332,243 @@ fn an_explanation_is_the_rust_one_in_a_string_the_caller_frees() {
         proclaim_theory_free(theory);
     }
 }
+
+/// Every theory of `theories/` (and its classics): the C table's cells are the Rust table's.
+#[test]
+fn the_truth_table_is_the_rust_tables_cell_for_cell() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../theories");
+    let mut paths: Vec<_> = ["", "classics"]
+        .iter()
+        .flat_map(|dir| std::fs::read_dir(root.join(dir)).unwrap())
+        .map(|entry| entry.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dl"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 9, "{paths:?}");
+    for path in paths {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let expected = proclaim_cdl::truth_table(std::sync::Arc::new(proclaim_cdl::Engine::new(
+            proclaim_cdl::load(&text, proclaim_cdl::Language::Dl).unwrap(),
+        )))
+        .unwrap();
+        let theory = load(&text).unwrap();
+        let mut table = null_mut();
+        assert_eq!(
+            unsafe { proclaim_theory_table(theory, &mut table) },
+            ProclaimStatus::Ok
+        );
+        unsafe { proclaim_theory_free(theory) };
+        let t = unsafe { &*table };
+        let name = |names: *const *const c_char, i: usize| {
+            unsafe { CStr::from_ptr(*names.add(i)) }
+                .to_str()
+                .unwrap()
+                .to_string()
+        };
+        let inputs: Vec<String> = (0..t.input_count).map(|i| name(t.input_names, i)).collect();
+        let headings: Vec<String> = (0..t.output_count)
+            .map(|c| name(t.output_names, c))
+            .collect();
+        assert_eq!(inputs, expected.inputs, "{}", path.display());
+        let expected_headings: Vec<&str> = expected
+            .columns
+            .iter()
+            .map(|c| c.heading.as_str())
+            .collect();
+        assert_eq!(headings, expected_headings, "{}", path.display());
+        assert_eq!(t.row_count, expected.rows.len(), "{}", path.display());
+        for (r, row) in expected.rows.iter().enumerate() {
+            let cell =
+                |values: *const bool, width: usize, i: usize| unsafe { *values.add(r * width + i) };
+            let c_inputs: Vec<bool> = (0..t.input_count)
+                .map(|i| cell(t.inputs, t.input_count, i))
+                .collect();
+            assert_eq!(c_inputs, row.inputs, "{} row {r}", path.display());
+            let consistent = unsafe { *t.consistent.add(r) };
+            assert_eq!(
+                consistent,
+                row.outputs.is_some(),
+                "{} row {r}",
+                path.display()
+            );
+            let c_outputs: Vec<bool> = (0..t.output_count)
+                .map(|c| cell(t.outputs, t.output_count, c))
+                .collect();
+            let want = row
+                .outputs
+                .clone()
+                .unwrap_or_else(|| vec![false; t.output_count]);
+            assert_eq!(c_outputs, want, "{} row {r}", path.display());
+        }
+        unsafe { proclaim_table_free(table) };
+    }
+}
+
+#[test]
+fn a_table_too_large_is_a_status_and_bad_arguments_write_nothing() {
+    let inputs: String = (0..21).map(|i| format!("input{{a{i}}}. ")).collect();
+    let theory = load(&format!("{inputs} R: a0 => b.")).unwrap();
+    let mut table = null_mut();
+    assert_eq!(
+        unsafe { proclaim_theory_table(theory, &mut table) },
+        ProclaimStatus::TooManyRows
+    );
+    assert!(table.is_null());
+    assert_eq!(
+        unsafe { proclaim_theory_table(theory, null_mut()) },
+        ProclaimStatus::BadArgument
+    );
+    assert_eq!(
+        unsafe { proclaim_theory_table(null(), &mut table) },
+        ProclaimStatus::BadArgument
+    );
+    assert!(table.is_null());
+    unsafe { proclaim_table_free(null_mut()) };
+    unsafe { proclaim_theory_free(theory) };
+}
+
+/// Handles looked up once answer as names do, on every input and algorithm; a handle of another
+/// theory, a forged one and bad lookups are statuses.
+#[test]
+fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
+    let theory = load(MICROWAVE).unwrap();
+    let lookup_input = |text: &str| {
+        let mut handle = 0;
+        let status = unsafe { proclaim_theory_input(theory, c(text).as_ptr(), &mut handle) };
+        (status, handle)
+    };
+    let lookup_literal = |text: &str| {
+        let mut handle = 0;
+        let status = unsafe { proclaim_theory_literal(theory, c(text).as_ptr(), &mut handle) };
+        (status, handle)
+    };
+    let (_, door) = lookup_input("doorOpen");
+    let (_, time) = lookup_input(" timeLeft ");
+    let by_name = unsafe { proclaim_session_new(theory) };
+    let by_handle = unsafe { proclaim_session_new(theory) };
+    let values = [
+        ProclaimValue::False,
+        ProclaimValue::True,
+        ProclaimValue::Unknown,
+    ];
+    for door_value in values {
+        for time_value in values {
+            for (name, handle, value) in [
+                ("doorOpen", door, door_value),
+                ("timeLeft", time, time_value),
+            ] {
+                assert_eq!(set(by_name, name, value as c_int), ProclaimStatus::Ok);
+                let status =
+                    unsafe { proclaim_session_set_input(by_handle, handle, value as c_int) };
+                assert_eq!(status, ProclaimStatus::Ok);
+            }
+            for algorithm in ALGORITHMS {
+                for literal in ["cook", "~cook", "light", "~ light"] {
+                    let (status, handle) = lookup_literal(literal);
+                    assert_eq!(status, ProclaimStatus::Ok, "{literal}");
+                    let mut answer = false;
+                    let status = unsafe {
+                        proclaim_session_prove_literal(
+                            by_handle,
+                            handle,
+                            algorithm as c_int,
+                            &mut answer,
+                        )
+                    };
+                    assert_eq!(
+                        (status, answer),
+                        prove(by_name, literal, algorithm as c_int),
+                        "{literal} {algorithm:?} {door_value:?} {time_value:?}"
+                    );
+                }
+            }
+        }
+    }
+    // Lookups that fail, each with its status, writing nothing.
+    assert_eq!(lookup_input("cook"), (ProclaimStatus::NotAnInput, 0));
+    assert_eq!(lookup_input("oven"), (ProclaimStatus::UnknownAtom, 0));
+    assert_eq!(lookup_literal("~oven"), (ProclaimStatus::UnknownAtom, 0));
+    let mut handle = 0;
+    unsafe {
+        assert_eq!(
+            proclaim_theory_input(theory, null(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_input(null(), c("doorOpen").as_ptr(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_literal(theory, c("cook").as_ptr(), null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_theory_literal(theory, [0xffu8, 0].as_ptr().cast(), &mut handle),
+            ProclaimStatus::BadArgument
+        );
+    }
+    assert_eq!(handle, 0);
+
+    // The same text loaded again is another theory: its handles are refused here.
+    let other = load(MICROWAVE).unwrap();
+    let mut foreign = 0;
+    unsafe {
+        assert_eq!(
+            proclaim_theory_input(other, c("timeLeft").as_ptr(), &mut foreign),
+            ProclaimStatus::Ok
+        );
+        assert_ne!(foreign, time);
+        assert_eq!(
+            proclaim_session_set_input(by_handle, foreign, ProclaimValue::True as c_int),
+            ProclaimStatus::BadArgument
+        );
+        let mut answer = true;
+        assert_eq!(
+            proclaim_session_prove_literal(
+                by_handle,
+                foreign,
+                ProclaimAlgorithm::Beta as c_int,
+                &mut answer
+            ),
+            ProclaimStatus::BadArgument
+        );
+        assert!(answer, "left alone");
+        // A forged number past the theory's atoms, with the right theory in its high bits.
+        let forged = (time & !0xffff_ffff) | 0xffff;
+        assert_eq!(
+            proclaim_session_set_input(by_handle, forged, ProclaimValue::True as c_int),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove_literal(
+                by_handle,
+                forged,
+                ProclaimAlgorithm::Beta as c_int,
+                &mut answer
+            ),
+            ProclaimStatus::BadArgument
+        );
+        // Bad values, algorithms and pointers, as by name.
+        assert_eq!(
+            proclaim_session_set_input(by_handle, time, 3),
+            ProclaimStatus::BadArgument
+        );
+        let (_, cook) = lookup_literal("cook");
+        assert_eq!(
+            proclaim_session_prove_literal(by_handle, cook, 5, &mut answer),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_prove_literal(by_handle, cook, 2, null_mut()),
+            ProclaimStatus::BadArgument
+        );
+        assert_eq!(
+            proclaim_session_set_input(null_mut(), time, 1),
+            ProclaimStatus::BadArgument
+        );
+        proclaim_theory_free(other);
+        proclaim_theory_free(theory);
+        proclaim_session_free(by_name);
+        proclaim_session_free(by_handle);
+    }
+}

@@ -1,6 +1,7 @@
 //! examples/cpp/microwave.cpp, compiled with the system's g++ against this crate's static
-//! library and run: its answers are the Rust session's. examples/c/bench.c too, as C, run briefly
-//! so it keeps compiling. Skipped (with a message) where g++ is missing, unless `CI` is set,
+//! library and run: its answers are the Rust session's. examples/c/table.c, as C: its CSV is the
+//! Rust truth table's on every theory of theories/. examples/c/bench.c too, run briefly so it
+//! keeps compiling. Skipped (with a message) where g++ is missing, unless `CI` is set,
 //! where that is a failure.
 
 use proclaim_cdl::{load, Algorithm, Engine, Language, Session};
@@ -13,7 +14,8 @@ fn workspace() -> PathBuf {
 
 /// The static library in the profile directory above this test's `deps/`. Building only the
 /// tests (`cargo test`, `nextest`) makes the crate's rlib and not its staticlib, so it is built
-/// here when missing, by cargo, into the same target directory and profile.
+/// here, by cargo, into the same target directory and profile: every time (a no-op when it is
+/// current), so the examples never link against a library older than the header.
 fn static_library() -> PathBuf {
     let test_binary = std::env::current_exe().expect("the test knows where it is");
     let profile_dir = test_binary
@@ -21,26 +23,49 @@ fn static_library() -> PathBuf {
         .and_then(Path::parent)
         .expect("test binaries live in <target>/<profile>/deps");
     let library = profile_dir.join("libproclaim_capi.a");
-    if !library.exists() {
-        let target_dir = profile_dir.parent().expect("<target>/<profile>");
-        let mut cargo = Command::new(env!("CARGO"));
-        cargo
-            .args(["build", "--quiet", "-p", "proclaim-capi", "--lib"])
-            .env("CARGO_TARGET_DIR", target_dir)
-            .current_dir(workspace());
-        if profile_dir.file_name().is_some_and(|p| p == "release") {
-            cargo.arg("--release");
-        }
-        let built = cargo.output().expect("cargo runs");
-        assert!(
-            built.status.success(),
-            "building {} failed: {}",
-            library.display(),
-            String::from_utf8_lossy(&built.stderr)
-        );
+    let target_dir = profile_dir.parent().expect("<target>/<profile>");
+    let mut cargo = Command::new(env!("CARGO"));
+    cargo
+        .args(["build", "--quiet", "-p", "proclaim-capi", "--lib"])
+        .env("CARGO_TARGET_DIR", target_dir)
+        .current_dir(workspace());
+    if profile_dir.file_name().is_some_and(|p| p == "release") {
+        cargo.arg("--release");
     }
+    let built = cargo.output().expect("cargo runs");
+    assert!(
+        built.status.success(),
+        "building {} failed: {}",
+        library.display(),
+        String::from_utf8_lossy(&built.stderr)
+    );
     assert!(library.exists(), "{} is missing", library.display());
     library
+}
+
+/// `examples/c/NAME.c` compiled as C11 (warnings are errors) and linked with the library.
+fn compile_c(name: &str, optimise: bool) -> PathBuf {
+    let root = workspace();
+    let program = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-c"));
+    // g++'s driver compiles a `.c` file as C when told the language.
+    let compiled = Command::new("g++")
+        .args(["-x", "c", "-std=c11", "-Wall", "-Wextra", "-Werror"])
+        .args(optimise.then_some("-O2"))
+        .arg("-I")
+        .arg(root.join("crates/capi/include"))
+        .arg(root.join(format!("examples/c/{name}.c")))
+        .args(["-x", "none"])
+        .arg(static_library())
+        .args(["-lpthread", "-ldl", "-lm", "-o"])
+        .arg(&program)
+        .output()
+        .expect("g++ runs");
+    assert!(
+        compiled.status.success(),
+        "g++ failed on {name}.c:\n{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+    program
 }
 
 fn gpp_is_missing() -> bool {
@@ -135,28 +160,10 @@ fn the_c_timing_loop_builds_and_runs() {
         return;
     }
     let root = workspace();
-    let program = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench-c");
-    // g++'s driver compiles a `.c` file as C when told the language.
-    let compiled = Command::new("g++")
-        .args([
-            "-x", "c", "-std=c11", "-Wall", "-Wextra", "-Werror", "-O2", "-I",
-        ])
-        .arg(root.join("crates/capi/include"))
-        .arg(root.join("examples/c/bench.c"))
-        .args(["-x", "none"])
-        .arg(static_library())
-        .args(["-lpthread", "-ldl", "-lm", "-o"])
-        .arg(&program)
-        .output()
-        .expect("g++ runs");
-    assert!(
-        compiled.status.success(),
-        "g++ failed:\n{}",
-        String::from_utf8_lossy(&compiled.stderr)
-    );
+    let program = compile_c("bench", true);
     let run = Command::new(&program)
         .arg(root.join("theories/microwave.dl"))
-        .arg("101")
+        .args(["101", "3"])
         .output()
         .expect("the timing loop runs");
     let stdout = String::from_utf8(run.stdout).unwrap();
@@ -165,8 +172,77 @@ fn the_c_timing_loop_builds_and_runs() {
         "{stdout}{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    assert!(
-        stdout.ends_with("ns per iteration (101 iterations)\n"),
-        "{stdout}"
-    );
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 2, "{stdout}");
+    for (line, way) in lines.iter().zip(["by name", "by handle"]) {
+        assert!(line.starts_with(&format!("set + prove {way}")), "{stdout}");
+        assert!(
+            line.ends_with("ns per iteration (3 runs of 101 iterations)"),
+            "{stdout}"
+        );
+    }
+    let usage = Command::new(&program)
+        .arg(root.join("theories/microwave.dl"))
+        .args(["10", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(usage.status.code(), Some(2));
+}
+
+/// `proclaim table --format csv`'s text, from the Rust table.
+fn expected_csv(theory_text: &str) -> String {
+    let theory = load(theory_text, Language::Dl).unwrap();
+    let table = proclaim_cdl::truth_table(std::sync::Arc::new(Engine::new(theory))).unwrap();
+    let header: Vec<&str> = table
+        .inputs
+        .iter()
+        .map(String::as_str)
+        .chain(table.columns.iter().map(|c| c.heading.as_str()))
+        .collect();
+    let mut out = header.join(",") + "\n";
+    for row in &table.rows {
+        let mut cells: Vec<String> = row.inputs.iter().map(bool::to_string).collect();
+        match &row.outputs {
+            Some(values) => cells.extend(values.iter().map(bool::to_string)),
+            None => cells.extend(table.columns.iter().map(|_| "inconsistent".to_string())),
+        }
+        out += &(cells.join(",") + "\n");
+    }
+    out
+}
+
+#[test]
+fn the_c_table_example_prints_the_rust_truth_table_of_every_theory() {
+    if gpp_is_missing() {
+        return;
+    }
+    let program = compile_c("table", false);
+    let root = workspace().join("theories");
+    let mut theories = 0;
+    for dir in [root.clone(), root.join("classics")] {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|e| e != "dl") {
+                continue;
+            }
+            let run = Command::new(&program).arg(&path).output().unwrap();
+            assert!(
+                run.status.success(),
+                "{}: {}",
+                path.display(),
+                String::from_utf8_lossy(&run.stderr)
+            );
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert_eq!(
+                String::from_utf8(run.stdout).unwrap(),
+                expected_csv(&text),
+                "{}",
+                path.display()
+            );
+            theories += 1;
+        }
+    }
+    assert!(theories >= 9, "only {theories} theories found");
+    let run = Command::new(&program).output().unwrap();
+    assert_eq!(run.status.code(), Some(2), "no theory named: usage");
 }

@@ -4,6 +4,7 @@
 //! - [`ReasonerExpert`]: a `.dl` theory whose inputs are whiteboard messages and whose outputs are
 //!   the atoms it answers;
 //! - [`Impersonator`]: answers from a script, from Rust, or from a person at a prompt;
+//! - [`FunctionExpert`]: answers by calling a function of the embedding program when asked;
 //! - [`GameControllerReceiver`]: the RoboCup SPL GameController on a real UDP socket (the
 //!   simulator that plays a game to it, answering nothing, is `proclaim-gcsim`);
 //! - [`ButtonWrapper`] and [`FallWrapper`]: debounced propositions from raw sensor postings.
@@ -13,6 +14,7 @@
 
 mod answers;
 mod buttons;
+mod function;
 mod gamecontroller;
 mod impersonator;
 mod mapping;
@@ -20,6 +22,7 @@ mod reasoner;
 mod script;
 
 pub use buttons::{ButtonWrapper, FallWrapper};
+pub use function::{AnswerFunction, FunctionExpert};
 pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounters};
 pub use impersonator::Impersonator;
 pub use mapping::parse_mapping;

@@ -1,0 +1,174 @@
+//! Atoms and literals looked up by name once, then named by number in every call: the string
+//! hashing, UTF-8 checking and input check of a by-name call happen at the lookup, not in the
+//! loop. A handle carries its theory's identity, so a session over another theory refuses it
+//! (`BAD_ARGUMENT`) instead of answering about whatever atom has that number there.
+
+use crate::algorithm::ProclaimAlgorithm;
+use crate::guard::guarded;
+use crate::names;
+use crate::session::{with_session_of, ProclaimSession};
+use crate::status::ProclaimStatus;
+use crate::text::nul_terminated;
+use crate::theory::ProclaimTheory;
+use crate::value::ProclaimValue;
+use proclaim_cdl::{Atom, Lit};
+use std::ffi::{c_char, c_int};
+
+/// An input atom of one theory, from [`proclaim_theory_input`]: its theory's identity in the
+/// high 32 bits, the atom's number in the low 32. Valid for every session over that theory.
+pub type ProclaimInput = u64;
+
+/// A literal (`cook`, `~cook`) of one theory, from [`proclaim_theory_literal`]; made as
+/// [`ProclaimInput`] is.
+pub type ProclaimLiteral = u64;
+
+fn handle(theory: u32, number: u32) -> u64 {
+    (u64::from(theory) << 32) | u64::from(number)
+}
+
+/// The number inside `handle` when it belongs to the theory `tag`.
+fn number_of(handle: u64, tag: u32) -> Option<u32> {
+    ((handle >> 32) as u32 == tag).then_some(handle as u32)
+}
+
+/// Looks up the input atom `atom` of `theory` and writes its handle to `*input_out`: `OK`, or
+/// `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the theory declares its inputs and this is not one) or
+/// `BAD_ARGUMENT`, and `*input_out` is left alone.
+///
+/// # Safety
+/// `theory` is null or a live theory; `atom` is null or a NUL-terminated string; `input_out` is
+/// null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_input(
+    theory: *const ProclaimTheory,
+    atom: *const c_char,
+    input_out: *mut ProclaimInput,
+) -> ProclaimStatus {
+    let Some(theory) = theory.as_ref() else {
+        return ProclaimStatus::BadArgument;
+    };
+    if input_out.is_null() {
+        return ProclaimStatus::BadArgument;
+    }
+    guarded(ProclaimStatus::Panic, || {
+        match names::input_of(theory.engine.theory(), atom) {
+            Ok(atom) => {
+                *input_out = handle(theory.tag, atom.0);
+                ProclaimStatus::Ok
+            }
+            Err(status) => status,
+        }
+    })
+}
+
+/// Looks up `literal` (`cook`, `~cook`) of `theory` and writes its handle to `*literal_out`:
+/// `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
+///
+/// # Safety
+/// `theory` is null or a live theory; `literal` is null or a NUL-terminated string;
+/// `literal_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_literal(
+    theory: *const ProclaimTheory,
+    literal: *const c_char,
+    literal_out: *mut ProclaimLiteral,
+) -> ProclaimStatus {
+    let Some(theory) = theory.as_ref() else {
+        return ProclaimStatus::BadArgument;
+    };
+    if literal_out.is_null() {
+        return ProclaimStatus::BadArgument;
+    }
+    guarded(ProclaimStatus::Panic, || {
+        let Ok(text) = nul_terminated(literal) else {
+            return ProclaimStatus::BadArgument;
+        };
+        match theory.engine.theory().lit(text) {
+            Some(lit) => {
+                *literal_out = handle(theory.tag, lit.0);
+                ProclaimStatus::Ok
+            }
+            None => ProclaimStatus::UnknownAtom,
+        }
+    })
+}
+
+/// [`proclaim_session_set`](crate::proclaim_session_set) by handle: sets `input` to a
+/// `ProclaimValue`. `BAD_ARGUMENT` for a handle of another theory or a value that is none;
+/// `INPUT_CONFLICT` as by name.
+///
+/// # Safety
+/// `session` is null or a live session.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_session_set_input(
+    session: *mut ProclaimSession,
+    input: ProclaimInput,
+    value: c_int,
+) -> ProclaimStatus {
+    with_session_of(session, |session, tag| {
+        let Some(value) = ProclaimValue::from_code(value) else {
+            return ProclaimStatus::BadArgument;
+        };
+        // Only the lookup makes handles, and it checked the atom is an input; the range is
+        // checked again so a forged number is an error, never an index out of bounds.
+        let atom = match number_of(input, tag) {
+            Some(n) if (n as usize) < session.engine().theory().atom_count() => Atom(n),
+            _ => return ProclaimStatus::BadArgument,
+        };
+        match session.set_input(atom, value) {
+            Ok(()) => ProclaimStatus::Ok,
+            Err(_conflict) => ProclaimStatus::InputConflict,
+        }
+    })
+}
+
+/// [`proclaim_session_prove`](crate::proclaim_session_prove) by handle: whether `algorithm`
+/// proves `literal`, written to `*answer_out`; `OK`, `UNDECIDED` (`false` written), or
+/// `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
+///
+/// # Safety
+/// `session` is null or a live session; `answer_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_session_prove_literal(
+    session: *mut ProclaimSession,
+    literal: ProclaimLiteral,
+    algorithm: c_int,
+    answer_out: *mut bool,
+) -> ProclaimStatus {
+    with_session_of(session, |session, tag| {
+        let Some(algorithm) = ProclaimAlgorithm::from_code(algorithm) else {
+            return ProclaimStatus::BadArgument;
+        };
+        if answer_out.is_null() {
+            return ProclaimStatus::BadArgument;
+        }
+        let lit = match number_of(literal, tag) {
+            Some(n) if (Lit(n).atom().0 as usize) < session.engine().theory().atom_count() => {
+                Lit(n)
+            }
+            _ => return ProclaimStatus::BadArgument,
+        };
+        let (answer, status) = match session.decide(algorithm, lit) {
+            Ok(answer) => (answer, ProclaimStatus::Ok),
+            Err(_undecided) => (false, ProclaimStatus::Undecided),
+        };
+        *answer_out = answer;
+        status
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_handle_names_its_theory_and_number_and_no_other_theorys() {
+        let h = handle(7, 42);
+        assert_eq!(number_of(h, 7), Some(42));
+        assert_eq!(number_of(h, 8), None);
+        assert_eq!(
+            number_of(handle(u32::MAX, u32::MAX), u32::MAX),
+            Some(u32::MAX)
+        );
+    }
+}

@@ -1,0 +1,135 @@
+//! A theory's truth table as one read-only struct of arrays C indexes directly: its declared
+//! outputs over every combination of its declared inputs, as `proclaim table` prints it.
+
+use crate::guard::guarded;
+use crate::status::ProclaimStatus;
+use crate::theory::ProclaimTheory;
+use proclaim_cdl::{truth_table, TableError};
+use std::ffi::{c_char, CString};
+
+/// A truth table, read-only for C: row `r`'s value of input `i` is
+/// `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
+/// Freed, with everything it points to, by [`proclaim_table_free`].
+#[repr(C)]
+#[derive(Debug)]
+pub struct ProclaimTable {
+    /// How many input atoms (the declared inputs, in the order the theory declares them).
+    pub input_count: usize,
+    /// Their names: `input_count` NUL-terminated strings.
+    pub input_names: *const *const c_char,
+    /// How many output columns (the declared outputs; every other atom under β when the theory
+    /// declares none).
+    pub output_count: usize,
+    /// Their headings, algorithm and literal (`beta cook`): `output_count` strings.
+    pub output_names: *const *const c_char,
+    /// How many rows: every combination of the inputs that `ignore{}` and `assert{}` keep.
+    pub row_count: usize,
+    /// `row_count * input_count` values, row by row.
+    pub inputs: *const bool,
+    /// `row_count` values: false where the row's inputs contradict the theory's axioms, whose
+    /// outputs are then all false and mean nothing (`proclaim table` prints "inconsistent").
+    pub consistent: *const bool,
+    /// `row_count * output_count` values, row by row.
+    pub outputs: *const bool,
+}
+
+/// The table with what its pointers point to. `table` comes first (and the struct is `repr(C)`)
+/// so a pointer to the whole is a pointer to the table C sees.
+#[repr(C)]
+struct Owned {
+    table: ProclaimTable,
+    names: Vec<CString>,
+    input_names: Vec<*const c_char>,
+    output_names: Vec<*const c_char>,
+    inputs: Vec<bool>,
+    consistent: Vec<bool>,
+    outputs: Vec<bool>,
+}
+
+fn c_string(text: &str) -> CString {
+    // Atom names and headings hold no NUL (the lexer stops at one); replaced rather than trusted.
+    CString::new(text.replace('\0', "\u{FFFD}")).unwrap_or_default()
+}
+
+fn build(table: &proclaim_cdl::Table) -> Box<Owned> {
+    let names: Vec<CString> = table
+        .inputs
+        .iter()
+        .map(|name| c_string(name))
+        .chain(table.columns.iter().map(|c| c_string(&c.heading)))
+        .collect();
+    let (input_names, output_names) = names.split_at(table.inputs.len());
+    let input_names: Vec<*const c_char> = input_names.iter().map(|n| n.as_ptr()).collect();
+    let output_names: Vec<*const c_char> = output_names.iter().map(|n| n.as_ptr()).collect();
+    let columns = table.columns.len();
+    let mut inputs = Vec::with_capacity(table.rows.len() * table.inputs.len());
+    let mut consistent = Vec::with_capacity(table.rows.len());
+    let mut outputs = Vec::with_capacity(table.rows.len() * columns);
+    for row in &table.rows {
+        inputs.extend_from_slice(&row.inputs);
+        consistent.push(row.outputs.is_some());
+        match &row.outputs {
+            Some(values) => outputs.extend_from_slice(values),
+            None => outputs.extend(std::iter::repeat_n(false, columns)),
+        }
+    }
+    // The vectors' buffers stay where they are when the vectors move into the box.
+    let table = ProclaimTable {
+        input_count: table.inputs.len(),
+        input_names: input_names.as_ptr(),
+        output_count: columns,
+        output_names: output_names.as_ptr(),
+        row_count: table.rows.len(),
+        inputs: inputs.as_ptr(),
+        consistent: consistent.as_ptr(),
+        outputs: outputs.as_ptr(),
+    };
+    Box::new(Owned {
+        table,
+        names,
+        input_names,
+        output_names,
+        inputs,
+        consistent,
+        outputs,
+    })
+}
+
+/// Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
+/// when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
+/// or `BAD_ARGUMENT`; then `*table_out` is left alone.
+///
+/// # Safety
+/// `theory` is null or a live theory; `table_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_table(
+    theory: *const ProclaimTheory,
+    table_out: *mut *mut ProclaimTable,
+) -> ProclaimStatus {
+    let Some(theory) = theory.as_ref() else {
+        return ProclaimStatus::BadArgument;
+    };
+    if table_out.is_null() {
+        return ProclaimStatus::BadArgument;
+    }
+    guarded(ProclaimStatus::Panic, || {
+        match truth_table(theory.engine.clone()) {
+            Ok(table) => {
+                *table_out = Box::into_raw(build(&table)).cast::<ProclaimTable>();
+                ProclaimStatus::Ok
+            }
+            Err(TableError::TooManyRows(_)) => ProclaimStatus::TooManyRows,
+        }
+    })
+}
+
+/// Frees a table and everything it points to. Null is ignored.
+///
+/// # Safety
+/// `table` is null or a table from [`proclaim_theory_table`] not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_table_free(table: *mut ProclaimTable) {
+    if !table.is_null() {
+        drop(Box::from_raw(table.cast::<Owned>()));
+    }
+}

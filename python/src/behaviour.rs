@@ -1,0 +1,508 @@
+//! A behaviour driven from Python: its folder loaded and started with Python callables as host
+//! functions and as experts answering labels, stepped round by round (or run for a while) on
+//! the virtual clock, its states, variables, trace and whiteboard read between rounds.
+//!
+//! The interpreter lock is released while the behaviour runs and taken again for each callable,
+//! so the machines never hold it and a callable may run Python freely. An exception a callable
+//! raises never unwinds into the runner: a host function's is kept, an expert's answers the
+//! label false and is kept, and the call that ran the round raises `CallbackError` from it.
+
+use crate::board::{self, Board};
+use crate::errors;
+use crate::events;
+use proclaim_behaviour::testing::{RoundByRound, Stepping};
+use proclaim_behaviour::TraceView;
+use proclaim_experts::FunctionExpert;
+use proclaim_fsm::Argument;
+use proclaim_runner::Hosts;
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use pyo3::{PyTraverseError, PyVisit};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, TryLockError};
+use std::time::Duration;
+
+/// The module name Python's postings and answers carry on the whiteboard.
+pub(crate) const MODULE: &str = "python";
+
+/// Exceptions raised by callables while the behaviour ran, oldest first, each with what raised.
+type Raised = Arc<Mutex<Vec<(String, PyErr)>>>;
+
+/// Every callable given, the only references to them the behaviour holds (the runner's host
+/// functions and expert hold an index), so Python's garbage collector sees them all: a callable
+/// that refers back to its behaviour makes a cycle, which `__traverse__` shows and `__clear__`
+/// breaks (emptied, a callable answers nothing and is not called).
+type Callables = Arc<Mutex<Vec<Py<PyAny>>>>;
+
+/// The callable at `index`, a new reference taken under the list's lock, which is not held
+/// while it runs (it may take a while, and may be collected meanwhile).
+fn callable(py: Python<'_>, callables: &Callables, index: usize) -> Option<Py<PyAny>> {
+    let list = callables.lock().ok()?;
+    list.get(index).map(|c| c.clone_ref(py))
+}
+
+/// A behaviour (a folder with a `behaviour.toml`) started paused before its first round.
+#[pyclass(module = "proclaim", frozen)]
+pub(crate) struct Behaviour {
+    /// `None` once closed. Locked while a round runs, so a callable that tries to step the
+    /// behaviour it is called from gets an error rather than a deadlock.
+    running: Mutex<Option<RoundByRound>>,
+    board: proclaim_board::Whiteboard,
+    raised: Raised,
+    folder: PathBuf,
+    callables: Callables,
+}
+
+fn record(raised: &Raised, what: String, error: PyErr) {
+    if let Ok(mut list) = raised.lock() {
+        list.push((what, error));
+    }
+}
+
+/// A Python callable as a host function: called with the call's argument (an int or a str), or
+/// with none.
+fn host_function(
+    name: String,
+    index: usize,
+    callables: Callables,
+    raised: Raised,
+) -> impl Fn(Option<&Argument>) {
+    move |argument| {
+        Python::attach(|py| {
+            let Some(function) = callable(py, &callables, index) else {
+                return;
+            };
+            let outcome = match argument {
+                None => function.call0(py),
+                Some(Argument::Int(i)) => function.call1(py, (*i,)),
+                Some(Argument::Str(s) | Argument::Word(s)) => function.call1(py, (s.as_str(),)),
+            };
+            if let Err(error) = outcome {
+                record(&raised, format!("the host function `{name}`"), error);
+            }
+        })
+    }
+}
+
+/// Python callables as one expert answering their labels: each is called with the whiteboard
+/// (a `proclaim.Board`) when a machine asks its label, and answers True, False, or None (no
+/// answer: the query times out and the label reads false).
+fn expert(labels: Vec<(String, usize)>, callables: Callables, raised: Raised) -> FunctionExpert {
+    // In the order given, so notes and the registry list them as the caller wrote them.
+    let names: Vec<String> = labels.iter().map(|(label, _)| label.clone()).collect();
+    let index: HashMap<String, usize> = labels.into_iter().collect();
+    FunctionExpert::new(MODULE, names, move |label, board| {
+        let index = *index.get(label)?;
+        Python::attach(|py| {
+            let function = callable(py, &callables, index)?;
+            let what = || format!("the expert for `{label}`");
+            let board = Board::new(board.clone());
+            let answer = function.call1(py, (board,)).and_then(|value| {
+                value.extract::<Option<bool>>(py).map_err(|_| {
+                    let shown = value
+                        .bind(py)
+                        .repr()
+                        .map(|r| r.to_string())
+                        .unwrap_or_else(|_| "a value".into());
+                    PyTypeError::new_err(format!(
+                        "it returned {shown}; an expert answers True, False or None"
+                    ))
+                })
+            });
+            match answer {
+                Ok(answer) => answer,
+                Err(error) => {
+                    record(&raised, what(), error);
+                    // Answered rather than left to time out: the machine moves on at once, as
+                    // it would with a reasoner that could not decide.
+                    Some(false)
+                }
+            }
+        })
+    })
+}
+
+/// Callables keyed by name, in the dict's order, each checked to be callable.
+fn callables(what: &str, given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, Py<PyAny>)>> {
+    let mut out = Vec::new();
+    let Some(given) = given else { return Ok(out) };
+    for (key, value) in given.iter() {
+        let name: String = key.extract().map_err(|_| {
+            PyTypeError::new_err(format!("{what} are keyed by name (a str), not {key}"))
+        })?;
+        if !value.is_callable() {
+            return Err(PyTypeError::new_err(format!(
+                "{what}[{name:?}] is not callable: {}",
+                value.get_type().name()?
+            )));
+        }
+        out.push((name, value.unbind()));
+    }
+    Ok(out)
+}
+
+fn seconds(value: f64) -> PyResult<Duration> {
+    Duration::try_from_secs_f64(value).map_err(|_| {
+        PyValueError::new_err(format!("{value} is not a time: give seconds, zero or more"))
+    })
+}
+
+impl Behaviour {
+    /// Runs `body` on the running behaviour with the interpreter lock released, then raises
+    /// what a callable raised meanwhile.
+    fn drive<T: Send>(
+        &self,
+        py: Python<'_>,
+        body: impl FnOnce(&mut RoundByRound) -> T + Send,
+    ) -> PyResult<T> {
+        let mut guard = match self.running.try_lock() {
+            Ok(guard) => guard,
+            Err(TryLockError::WouldBlock) => {
+                return Err(PyRuntimeError::new_err(
+                    "the behaviour is running a round already (a callable cannot step the \
+                     behaviour that called it; read and post through the board it is given)",
+                ))
+            }
+            // Never held across a panic (caught below), but a poisoned lock still guards a
+            // behaviour that is either whole or already dropped.
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
+        };
+        let running = guard
+            .as_mut()
+            .ok_or_else(|| PyValueError::new_err("the behaviour is closed"))?;
+        let out =
+            py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| body(running))));
+        let out = match out {
+            Ok(out) => out,
+            Err(panic) => {
+                // A bug inside the runner: its state may be half-updated, so it runs no more.
+                *guard = None;
+                let why = panic
+                    .downcast_ref::<String>()
+                    .map(String::as_str)
+                    .or_else(|| panic.downcast_ref::<&str>().copied())
+                    .unwrap_or("no message");
+                return Err(errors::Error::new_err(format!(
+                    "the behaviour stopped: a bug inside it panicked ({why}); it is closed"
+                )));
+            }
+        };
+        drop(guard);
+        self.raise_callbacks(py)?;
+        Ok(out)
+    }
+
+    fn with<T>(&self, body: impl FnOnce(&RoundByRound) -> PyResult<T>) -> PyResult<T> {
+        let guard = match self.running.try_lock() {
+            Ok(guard) => guard,
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
+            Err(TryLockError::WouldBlock) => {
+                return Err(PyRuntimeError::new_err(
+                    "the behaviour is running a round; read it between rounds",
+                ))
+            }
+        };
+        let running = guard
+            .as_ref()
+            .ok_or_else(|| PyValueError::new_err("the behaviour is closed"))?;
+        body(running)
+    }
+
+    fn raise_callbacks(&self, py: Python<'_>) -> PyResult<()> {
+        let raised = match self.raised.lock() {
+            Ok(mut list) => std::mem::take(&mut *list),
+            Err(_) => return Ok(()),
+        };
+        let mut raised = raised.into_iter();
+        match raised.next() {
+            None => Ok(()),
+            Some((what, error)) => Err(errors::callback_error(py, &what, error, raised.len())),
+        }
+    }
+
+    /// The events from `first` on, as dicts.
+    fn events_from<'py>(&self, py: Python<'py>, first: usize) -> PyResult<Bound<'py, PyList>> {
+        self.with(|running| {
+            events::to_python(py, &running.events[first.min(running.events.len())..])
+        })
+    }
+
+    fn event_count(&self) -> PyResult<usize> {
+        self.with(|running| Ok(running.events.len()))
+    }
+}
+
+#[pymethods]
+impl Behaviour {
+    /// Loads the behaviour in `folder` and starts it paused before its first round: its
+    /// experts and sensor wrappers registered, its machines waiting. `hosts` maps host function
+    /// names (`call beep(3)`) to callables taking the call's argument; `experts` maps labels to
+    /// callables taking the board and answering True, False or None; both replace any module of
+    /// the behaviour answering the same label. `script` is an impersonator script
+    /// (`at 1s doorOpen = true`). With `virtual_clock` (the default) time moves only when asked
+    /// (`wait`, `run`), so a test gives the same answer every time. Raises BehaviourError with
+    /// every problem of every file when it does not load.
+    #[new]
+    #[pyo3(signature = (folder, hosts = None, experts = None, script = None, virtual_clock = true))]
+    fn new(
+        py: Python<'_>,
+        folder: PathBuf,
+        hosts: Option<&Bound<'_, PyDict>>,
+        experts: Option<&Bound<'_, PyDict>>,
+        script: Option<String>,
+        virtual_clock: bool,
+    ) -> PyResult<Behaviour> {
+        let raised: Raised = Arc::default();
+        let mut given = Vec::new();
+        let mut host_functions = Hosts::default();
+        for (name, function) in callables("hosts", hosts)? {
+            given.push((name, function));
+        }
+        let host_count = given.len();
+        let mut labels = Vec::new();
+        for (label, function) in callables("experts", experts)? {
+            labels.push((label.clone(), given.len()));
+            given.push((label, function));
+        }
+        let (names, functions): (Vec<String>, Vec<Py<PyAny>>) = given.into_iter().unzip();
+        let list: Callables = Arc::new(Mutex::new(functions));
+        for (index, name) in names.iter().enumerate().take(host_count) {
+            let host = host_function(name.clone(), index, list.clone(), raised.clone());
+            host_functions.register(name, host);
+        }
+        let stepping = Stepping {
+            script: script.unwrap_or_default(),
+            hosts: host_functions,
+            experts: if labels.is_empty() {
+                Vec::new()
+            } else {
+                vec![expert(labels, list.clone(), raised.clone())]
+            },
+            real_time: !virtual_clock,
+        };
+        let started = py
+            .detach(|| RoundByRound::start_with(&folder, stepping))
+            .map_err(|error| errors::behaviour_error(py, &folder, error))?;
+        let board = started.board.clone();
+        let behaviour = Behaviour {
+            running: Mutex::new(Some(started)),
+            board,
+            raised,
+            folder,
+            callables: list,
+        };
+        behaviour.raise_callbacks(py)?;
+        Ok(behaviour)
+    }
+
+    /// Runs one round (every running machine one ringlet, in manifest order); the events it
+    /// made, as dicts (`{"event": "entered", "machine": ..., "state": ...}`). Raises
+    /// CallbackError when a callable raised during it.
+    fn step<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let first = self.event_count()?;
+        self.drive(py, |running| {
+            running.round();
+        })?;
+        self.events_from(py, first)
+    }
+
+    /// Steps until `predicate(behaviour)` is true, at most `rounds` rounds; whether it became
+    /// true. The predicate is asked before the first round too.
+    #[pyo3(signature = (predicate, rounds = 1000))]
+    fn run_until(
+        slf: &Bound<'_, Self>,
+        predicate: &Bound<'_, PyAny>,
+        rounds: u64,
+    ) -> PyResult<bool> {
+        let py = slf.py();
+        let this = slf.get();
+        for _ in 0..rounds {
+            if predicate.call1((slf,))?.is_truthy()? {
+                return Ok(true);
+            }
+            this.drive(py, |running| {
+                running.round();
+            })?;
+        }
+        predicate.call1((slf,))?.is_truthy()
+    }
+
+    /// Lets the machines run freely for `seconds` (virtual seconds: a minute's timeout takes
+    /// no real time), then pauses them; the events.
+    fn run<'py>(&self, py: Python<'py>, seconds: f64) -> PyResult<Bound<'py, PyList>> {
+        let time = self::seconds(seconds)?;
+        let first = self.event_count()?;
+        self.drive(py, |running| {
+            running.run_for(time);
+        })?;
+        self.events_from(py, first)
+    }
+
+    /// Lets `seconds` pass with no round run: a `timeout` may come due, a script's timed line
+    /// may post.
+    fn wait(&self, py: Python<'_>, seconds: f64) -> PyResult<()> {
+        let time = self::seconds(seconds)?;
+        self.drive(py, |running| running.wait(time))
+    }
+
+    /// Posts `value` (bool, int, float, str, bytes or a list of them) as `type` on the
+    /// whiteboard, from the module `python`.
+    fn post(&self, r#type: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        board::post(&self.board, r#type, value)
+    }
+
+    /// The latest value of `type` on the whiteboard, None when never posted.
+    fn read<'py>(&self, py: Python<'py>, r#type: &str) -> PyResult<Bound<'py, PyAny>> {
+        board::read(py, &self.board, r#type)
+    }
+
+    /// The whiteboard, as the experts' callables get it.
+    #[getter]
+    fn board(&self) -> Board {
+        Board::new(self.board.clone())
+    }
+
+    /// Every machine, in manifest order, to the state it last entered (None before it entered
+    /// one).
+    fn states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.with(|running| {
+            let dict = PyDict::new(py);
+            for (machine, state) in running.states() {
+                dict.set_item(machine, state)?;
+            }
+            Ok(dict)
+        })
+    }
+
+    /// The state `machine` last entered; None before it entered one. KeyError for a machine the
+    /// behaviour does not have.
+    fn state(&self, machine: &str) -> PyResult<Option<String>> {
+        self.with(|running| {
+            running
+                .states()
+                .into_iter()
+                .find(|(m, _)| *m == machine)
+                .map(|(_, state)| state.map(str::to_string))
+                .ok_or_else(|| {
+                    let known: Vec<&str> = running.states().into_iter().map(|(m, _)| m).collect();
+                    pyo3::exceptions::PyKeyError::new_err(format!(
+                        "no machine `{machine}`; the behaviour's machines are {}",
+                        known.join(", ")
+                    ))
+                })
+        })
+    }
+
+    /// A variable as `machine` sees it (its own, else the behaviour's global); None when it has
+    /// none of that name.
+    fn variable<'py>(
+        &self,
+        py: Python<'py>,
+        machine: &str,
+        name: &str,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.with(|running| match running.variable(machine, name) {
+            Some(value) => board::to_python(py, &value),
+            None => Ok(py.None().into_bound(py)),
+        })
+    }
+
+    /// Every event so far, as dicts, oldest first (the JSON lines of `proclaim run --trace`).
+    #[getter]
+    fn events<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        self.events_from(py, 0)
+    }
+
+    /// The run so far as `proclaim run` prints it: what was started or left out, then a line
+    /// an event (answers shown only when they change).
+    #[getter]
+    fn trace(&self) -> PyResult<Vec<String>> {
+        self.with(|running| {
+            let mut view = TraceView::new(0);
+            let lines = running
+                .events
+                .iter()
+                .filter_map(|event| view.line(event))
+                .map(|line| line.split_whitespace().collect::<Vec<_>>().join(" "));
+            Ok(running.notes().iter().cloned().chain(lines).collect())
+        })
+    }
+
+    /// Whether every machine that started is in a final state (its OnEntry run) or halted.
+    #[getter]
+    fn finished(&self) -> PyResult<bool> {
+        self.with(|running| Ok(running.is_over()))
+    }
+
+    /// How many rounds have run.
+    #[getter]
+    fn rounds(&self) -> PyResult<u64> {
+        self.with(|running| Ok(running.rounds()))
+    }
+
+    /// Stops every module and machine now; later calls raise ValueError. Closing twice is
+    /// allowed.
+    fn close(&self) -> PyResult<()> {
+        let taken = match self.running.try_lock() {
+            Ok(mut guard) => guard.take(),
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner().take(),
+            Err(TryLockError::WouldBlock) => {
+                return Err(PyRuntimeError::new_err(
+                    "the behaviour cannot close itself from inside a round",
+                ))
+            }
+        };
+        // The machines' tasks never run again; the callables they held are released here, with
+        // the interpreter lock held.
+        drop(taken);
+        Ok(())
+    }
+
+    #[getter]
+    fn closed(&self) -> bool {
+        match self.running.try_lock() {
+            Ok(guard) => guard.is_none(),
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner().is_none(),
+            Err(TryLockError::WouldBlock) => false,
+        }
+    }
+
+    fn __traverse__(&self, visit: PyVisit<'_>) -> Result<(), PyTraverseError> {
+        // Never waits: a list in use is skipped this time round.
+        if let Ok(callables) = self.callables.try_lock() {
+            for callable in callables.iter() {
+                visit.call(callable)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn __clear__(&self) {
+        if let Ok(mut running) = self.running.try_lock() {
+            running.take();
+        }
+        if let Ok(mut callables) = self.callables.try_lock() {
+            callables.clear();
+        }
+    }
+
+    fn __enter__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    fn __exit__(
+        &self,
+        _kind: Option<Bound<'_, PyAny>>,
+        _value: Option<Bound<'_, PyAny>>,
+        _traceback: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<bool> {
+        self.close()?;
+        Ok(false)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<proclaim.Behaviour {}>", self.folder.display())
+    }
+}

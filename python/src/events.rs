@@ -1,0 +1,47 @@
+//! A behaviour's events as Python dicts, the JSON lines `proclaim run --trace` writes read as
+//! `json.loads` would (one serialisation, so the two never disagree).
+
+use proclaim_runner::Event;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use serde_json::Value as Json;
+
+pub(crate) fn to_python<'py>(py: Python<'py>, events: &[Event]) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for event in events {
+        let json = serde_json::to_value(event).map_err(|error| {
+            pyo3::exceptions::PyRuntimeError::new_err(format!(
+                "an event did not serialise: {error}"
+            ))
+        })?;
+        list.append(json_to_python(py, &json)?)?;
+    }
+    Ok(list)
+}
+
+fn json_to_python<'py>(py: Python<'py>, json: &Json) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match json {
+        Json::Null => py.None().into_bound(py),
+        Json::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        Json::Number(n) => match (n.as_i64(), n.as_f64()) {
+            (Some(i), _) => i.into_pyobject(py)?.into_any(),
+            (None, Some(f)) => f.into_pyobject(py)?.into_any(),
+            (None, None) => n.to_string().into_pyobject(py)?.into_any(),
+        },
+        Json::String(s) => s.into_pyobject(py)?.into_any(),
+        Json::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(json_to_python(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Json::Object(fields) => {
+            let dict = PyDict::new(py);
+            for (key, value) in fields {
+                dict.set_item(key, json_to_python(py, value)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}

@@ -1,0 +1,273 @@
+"""Behaviours driven from Python: the microwave of machines/ from whiteboard postings to its final
+state, the kettle of tests/kettle with Python host functions and experts answering its labels,
+exceptions in callables, bad folders, the virtual clock."""
+
+import gc
+import threading
+import time
+import weakref
+from pathlib import Path
+
+import pytest
+
+import proclaim
+
+ROOT = Path(__file__).resolve().parents[2]
+MICROWAVE = ROOT / "machines" / "microwave"
+KETTLE = Path(__file__).resolve().parent / "kettle"
+
+
+def entered(events):
+    return [(e["machine"], e["state"]) for e in events if e["event"] == "entered"]
+
+
+def test_the_microwave_with_its_kitchen_script_cooks_a_virtual_minute_to_its_final_state():
+    # The manifest's kitchen script opens the door at 1 s, shuts it at 3 s, presses the button
+    # at 4 s; the theory answers cook and light; the minute is virtual.
+    with proclaim.Behaviour(MICROWAVE) as oven:
+        assert oven.states() == {"Microwave": None}
+        first = oven.step()
+        assert ("Microwave", "IDLE") in entered(first)
+        assert oven.read("Light") == "off"
+        assert not oven.finished
+        started = time.monotonic()
+        events = oven.run(70)
+        assert time.monotonic() - started < 30, "a virtual minute takes no real minute"
+        assert [s for _, s in entered(events)] == ["OPEN", "IDLE", "COOKING", "DONE"]
+        done = next(e for e in events if e["event"] == "entered" and e["state"] == "DONE")
+        assert done["at_us"] == 64_000_000, "a minute after the button at 4 s"
+        assert oven.state("Microwave") == "DONE"
+        assert oven.finished
+        assert oven.read("Magnetron") == "off"
+        assert oven.read("Beeper") == "beep beep beep"
+        assert oven.read("timeLeft") is False
+        assert [s for _, s in entered(oven.events)] == ["IDLE", "OPEN", "IDLE", "COOKING", "DONE"]
+        assert any("DONE" in line for line in oven.trace)
+
+
+def test_the_microwave_follows_what_python_posts_round_by_round():
+    with proclaim.Behaviour(MICROWAVE) as oven:
+        oven.step()
+        # At virtual time 0, before the kitchen script's first line: the test is the kitchen.
+        oven.post("doorOpen", True)
+        assert oven.run_until(lambda b: b.state("Microwave") == "OPEN", rounds=10)
+        assert oven.read("Light") == "on"
+        oven.post("doorOpen", False)
+        oven.post("timeLeft", True)
+        assert oven.run_until(lambda b: b.state("Microwave") == "COOKING", rounds=10)
+        assert oven.read("Magnetron") == "on"
+        rounds = oven.rounds
+        assert not oven.run_until(lambda b: b.finished, rounds=5), "no time passes between rounds"
+        assert oven.rounds == rounds + 5
+
+
+def kettle(boiling, beeps, **options):
+    """The kettle with Python answering both labels; `beeps` collects the host calls."""
+    hosts = {"beep": beeps.append, "alarm": beeps.append}
+    experts = {"switchedOn": lambda board: True, "boiling": boiling}
+    return proclaim.Behaviour(KETTLE, hosts=hosts, experts=experts, **options)
+
+
+def test_a_python_expert_answers_a_label_from_the_board_and_a_host_function_gets_its_argument():
+    asked = []
+
+    def boiling(board):
+        asked.append(board["temperature"])
+        return (board.read("temperature") or 0) >= 100
+
+    beeps = []
+    with kettle(boiling, beeps) as k:
+        assert k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+        assert k.read("Element") == "on"
+        for temperature in (20, 60, 99):
+            k.post("temperature", temperature)
+            k.step()
+            assert k.state("Kettle") == "HEATING"
+        assert beeps == []
+        k.post("temperature", 100)
+        assert k.run_until(lambda b: b.finished, rounds=5)
+        assert k.state("Kettle") == "BOILED"
+        assert beeps == [3]
+        assert k.read("Element") == "off"
+        assert asked[-1] == 100 and 20 in asked and 99 in asked
+
+
+def test_the_kettle_times_out_after_five_virtual_minutes_and_calls_alarm_with_a_string():
+    beeps = []
+    with kettle(lambda board: False, beeps) as k:
+        k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+        k.wait(299)
+        k.step()
+        assert k.state("Kettle") == "HEATING"
+        k.wait(1)
+        assert k.run_until(lambda b: b.finished, rounds=5)
+        assert k.state("Kettle") == "TIMED_OUT"
+        assert beeps == ["no boil"]
+
+
+def test_an_expert_that_raises_answers_false_and_the_step_raises_callback_error():
+    def broken(board):
+        raise ZeroDivisionError("the thermometer divided by zero")
+
+    beeps = []
+    with kettle(broken, beeps) as k:
+        # The round that enters HEATING asks `boiling` at once.
+        with pytest.raises(proclaim.CallbackError) as raised:
+            k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+        assert raised.value.callable == "the expert for `boiling`"
+        assert isinstance(raised.value.__cause__, ZeroDivisionError)
+        assert "thermometer" in str(raised.value)
+        # Answered false: still heating, and the behaviour can go on.
+        assert k.state("Kettle") == "HEATING"
+        with pytest.raises(proclaim.CallbackError):
+            k.step()
+
+
+def test_an_expert_that_answers_what_is_no_truth_value_is_a_callback_error():
+    with kettle(lambda board: "yes", []) as k:
+        with pytest.raises(proclaim.CallbackError) as raised:
+            k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+        assert isinstance(raised.value.__cause__, TypeError)
+        assert "'yes'" in str(raised.value.__cause__)
+        assert k.state("Kettle") == "HEATING"
+
+
+def test_a_host_function_that_raises_is_a_callback_error_after_its_round():
+    def beep(times):
+        raise RuntimeError(f"the speaker is gone ({times} beeps lost)")
+
+    k = proclaim.Behaviour(
+        KETTLE,
+        hosts={"beep": beep},
+        experts={"switchedOn": lambda board: True, "boiling": lambda board: True},
+    )
+    with pytest.raises(proclaim.CallbackError) as raised:
+        k.run_until(lambda b: b.finished, rounds=10)
+    assert raised.value.callable == "the host function `beep`"
+    assert "3 beeps lost" in str(raised.value.__cause__)
+    assert k.state("Kettle") == "BOILED"
+    k.close()
+    assert k.closed
+    with pytest.raises(ValueError, match="closed"):
+        k.step()
+    k.close()
+
+
+def test_a_callable_cannot_step_the_behaviour_that_called_it():
+    holder = {}
+
+    def boiling(board):
+        holder["k"].step()
+
+    k = kettle(boiling, [])
+    holder["k"] = k
+    with pytest.raises(proclaim.CallbackError) as raised:
+        k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+    assert isinstance(raised.value.__cause__, RuntimeError)
+    assert "running a round" in str(raised.value.__cause__)
+    holder["k"] = None
+    k.close()
+
+
+def test_other_threads_run_while_the_behaviour_runs():
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    try:
+        with kettle(lambda board: False, []) as k:
+            k.run_until(lambda b: b.state("Kettle") == "HEATING", rounds=5)
+            before = len(ticks)
+            # Real time on the wall clock, so the waiting is real and the lock must be free.
+            k2 = proclaim.Behaviour(KETTLE, virtual_clock=False)
+            k2.wait(0.2)
+            k2.close()
+            assert len(ticks) > before
+    finally:
+        stop.set()
+        ticker.join()
+
+
+def test_a_folder_that_is_no_behaviour_raises_behaviour_error_with_each_problem(tmp_path):
+    with pytest.raises(proclaim.BehaviourError) as raised:
+        proclaim.Behaviour(tmp_path)
+    assert raised.value.problems
+    assert str(tmp_path) in str(raised.value)
+    (tmp_path / "behaviour.toml").write_text('[[machine]]\nfile = "M.machine"\n')
+    (tmp_path / "M.machine").write_text("machine M\ninitial A\nstate A {\n  when x -> NOWHERE\n}\n")
+    with pytest.raises(proclaim.BehaviourError) as raised:
+        proclaim.Behaviour(tmp_path)
+    files = {Path(file).name for file, _line, _column, _message in raised.value.problems}
+    assert "M.machine" in files
+    assert any(line == 4 for _file, line, _column, _message in raised.value.problems)
+
+
+@pytest.mark.parametrize(
+    "hosts, experts, message",
+    [
+        ({"beep": 3}, None, "not callable"),
+        (None, {"boiling": "hot"}, "not callable"),
+        ({1: print}, None, "keyed by name"),
+    ],
+)
+def test_callables_are_checked_when_given(hosts, experts, message):
+    with pytest.raises(TypeError, match=message):
+        proclaim.Behaviour(KETTLE, hosts=hosts, experts=experts)
+
+
+@pytest.mark.parametrize(
+    "value",
+    [True, False, 7, -2**63, 2.5, "on", b"\x00\x01", [1, "two", [3.0, False]]],
+    ids=repr,
+)
+def test_values_cross_the_whiteboard_unchanged(value):
+    with proclaim.Behaviour(KETTLE) as k:
+        k.post("anything", value)
+        expected = list(value) if isinstance(value, tuple) else value
+        assert k.read("anything") == expected
+        assert type(k.read("anything")) is type(expected)
+        assert k.board.read("anything") == expected
+
+
+@pytest.mark.parametrize("value", [None, {"a": 1}, 2**64, object()], ids=repr)
+def test_what_the_whiteboard_cannot_hold_is_a_type_error(value):
+    with proclaim.Behaviour(KETTLE) as k:
+        with pytest.raises(TypeError):
+            k.post("anything", value)
+
+
+def test_a_negative_time_is_a_value_error():
+    with proclaim.Behaviour(KETTLE) as k:
+        with pytest.raises(ValueError, match="seconds"):
+            k.wait(-1)
+        with pytest.raises(ValueError, match="seconds"):
+            k.run(float("nan"))
+
+
+def test_unknown_machines_and_variables():
+    with proclaim.Behaviour(KETTLE) as k:
+        with pytest.raises(KeyError, match="Kettle"):
+            k.state("Toaster")
+        assert k.variable("Kettle", "nothing") is None
+
+
+def test_a_behaviour_whose_callable_refers_back_to_it_is_collected():
+    def cycle():
+        holder = {}
+
+        def boiling(board):
+            return holder["kettle"].finished
+
+        holder["kettle"] = kettle(boiling, [])
+        holder["kettle"].step()
+        return weakref.ref(boiling)
+
+    gone = cycle()
+    gc.collect()
+    assert gone() is None, "the behaviour and its callable were left in a cycle"
