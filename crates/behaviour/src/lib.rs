@@ -17,6 +17,8 @@ mod liveness;
 mod load;
 mod manifest;
 mod modules;
+mod program_entries;
+mod programs;
 mod recorded;
 pub mod testing;
 mod trace;
@@ -36,6 +38,8 @@ pub use manifest::{
     Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
+pub use program_entries::{PrologEntry, ProgramEntry};
+pub use programs::{LoadedProgram, ProgramKind};
 pub use recorded::{
     read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError, Verdict,
 };
