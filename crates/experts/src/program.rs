@@ -52,6 +52,8 @@ pub struct ProgramCounters {
     pub failed: AtomicU64,
     /// Lines of its stdout that were not the protocol, each ignored with a warning.
     pub garbled: AtomicU64,
+    /// The running process's id (0 while none runs).
+    pub pid: AtomicU64,
 }
 
 impl ProgramCounters {
@@ -72,6 +74,8 @@ pub struct ProgramExpert {
     greeting: Vec<Request>,
     backoff: Backoff,
     counters: Arc<ProgramCounters>,
+    /// Whether every answer to a query carries its id (the Prolog driver's do).
+    echoes_ids: bool,
 }
 
 impl ProgramExpert {
@@ -93,6 +97,7 @@ impl ProgramExpert {
             greeting: Vec::new(),
             backoff: Backoff::default(),
             counters: Arc::default(),
+            echoes_ids: false,
         }
     }
 
@@ -110,6 +115,13 @@ impl ProgramExpert {
     /// Lines the process is sent after its hello, each time it starts.
     pub(crate) fn with_greeting(mut self, greeting: Vec<Request>) -> ProgramExpert {
         self.greeting = greeting;
+        self
+    }
+
+    /// Declares that the process answers every query with its id, so an answer with none is
+    /// one given unasked from its first line on.
+    pub(crate) fn echoing_ids(mut self) -> ProgramExpert {
+        self.echoes_ids = true;
         self
     }
 
@@ -142,16 +154,22 @@ impl ProgramExpert {
         types.push(QUERY_TYPE.to_string());
         let mut messages = board.subscribe_pattern(Pattern::Any(types));
         board.register(self.declaration());
-        let mut answers = Answers::default();
+        let mut answers = Answers {
+            echoes_ids: self.echoes_ids,
+            ..Answers::default()
+        };
         let mut wait = self.backoff.first;
         loop {
             let started = tokio::time::Instant::now();
             let why = match self.spawn() {
                 Ok(mut child) => {
                     self.counters.starts.fetch_add(1, Ordering::Relaxed);
+                    let pid = child.id().map_or(0, u64::from);
+                    self.counters.pid.store(pid, Ordering::Relaxed);
                     let ended = self
                         .serve(&mut child, &board, &mut messages, &mut answers)
                         .await;
+                    self.counters.pid.store(0, Ordering::Relaxed);
                     match ended {
                         Ended::BoardGone => return,
                         Ended::Died(why) => why,
@@ -178,7 +196,7 @@ impl ProgramExpert {
                     Err(_) => break,
                 }
             }
-            answers.pending.clear();
+            answers.asked.clear();
             wait = (wait * 2).min(self.backoff.most);
         }
     }
@@ -244,6 +262,9 @@ impl ProgramExpert {
         let mut stdout = BufReader::new(stdout).lines();
         loop {
             tokio::select! {
+                // The board first: an answer the process gives unasked is posted only once
+                // every query already on the board is known, so none takes a stale one.
+                biased;
                 message = messages.next() => {
                     let Some(m) = message else {
                         return Ended::BoardGone;
@@ -251,8 +272,7 @@ impl ProgramExpert {
                     let request = if &*m.ty == QUERY_TYPE {
                         match &m.value {
                             proclaim_board::Value::Str(label) if self.answers.contains(label) => {
-                                answers.pending.insert(label.clone());
-                                Request::Query { label: label.clone() }
+                                Request::Query { label: label.clone(), id: answers.ask(label) }
                             }
                             _ => continue,
                         }
@@ -274,16 +294,16 @@ impl ProgramExpert {
     /// Acts on one line of the process.
     fn heard(&self, said: Said, board: &Whiteboard, answers: &mut Answers) {
         match said {
-            Said::Answer { label, value } => {
+            Said::Answer { label, value, id } => {
                 if self.owns(&label) {
-                    answers.give(&self.name, board, label, value, false);
+                    answers.give(&self.name, board, label, value, id, false);
                 }
             }
-            Said::Failed { label, why } => {
+            Said::Failed { label, why, id } => {
                 if self.owns(&label) {
                     self.counters.failed.fetch_add(1, Ordering::Relaxed);
                     tracing::warn!(expert = %self.name, label, why, "no answer; answered false");
-                    answers.give(&self.name, board, label, false, true);
+                    answers.give(&self.name, board, label, false, id, true);
                 }
             }
             Said::Warning(located) => warn_located(&self.name, &located),
@@ -308,21 +328,62 @@ impl ProgramExpert {
     }
 }
 
-/// What the expert last posted, and which labels a machine is waiting on.
+/// What the expert last posted, and the queries the process has not answered yet.
 #[derive(Default)]
 struct Answers {
     last: FxHashMap<String, bool>,
     /// Labels last answered with an error (their `…Undecided` is true).
     failed: FxHashSet<String>,
-    /// Labels asked and not yet answered: their next answer is posted even when unchanged.
-    pending: FxHashSet<String>,
+    /// Label → the ids of its queries not yet answered, oldest first.
+    asked: FxHashMap<String, VecDeque<u64>>,
+    next_id: u64,
+    /// Whether the process echoes ids (known once it has, or from the start for the Prolog
+    /// driver): then an answer with none is one given unasked.
+    echoes_ids: bool,
 }
 
 impl Answers {
-    /// Posts an answer asked for, or one that changed; a failed one (false) marked so first, as
-    /// the reasoner marks an undecided one.
-    fn give(&mut self, expert: &str, board: &Whiteboard, label: String, value: bool, failed: bool) {
-        let asked = self.pending.remove(&label);
+    /// A new query for `label`: its id.
+    fn ask(&mut self, label: &str) -> u64 {
+        self.next_id += 1;
+        self.asked
+            .entry(label.to_string())
+            .or_default()
+            .push_back(self.next_id);
+        self.next_id
+    }
+
+    /// Posts an answer to a query, or one given unasked that changed while no query for its
+    /// label is outstanding (the reply to that query will say what holds after every input
+    /// sent before it). From a process that has never echoed an id, an answer with none is the
+    /// reply to the oldest query of its label: a program need not echo ids if it never answers
+    /// unasked. A failed answer (false) is marked so first, as the reasoner marks an undecided
+    /// one.
+    fn give(
+        &mut self,
+        expert: &str,
+        board: &Whiteboard,
+        label: String,
+        value: bool,
+        id: Option<u64>,
+        failed: bool,
+    ) {
+        self.echoes_ids |= id.is_some();
+        let outstanding = self.asked.entry(label.clone()).or_default();
+        let reply = match id {
+            Some(id) => match outstanding.iter().position(|&q| q == id) {
+                Some(at) => {
+                    // Older queries were answered by this one too.
+                    outstanding.drain(..=at);
+                    true
+                }
+                None => false,
+            },
+            None => !self.echoes_ids && outstanding.pop_front().is_some(),
+        };
+        if !reply && (!outstanding.is_empty() || self.last.get(&label) == Some(&value)) {
+            return;
+        }
         let was_failed = self.failed.contains(&label);
         if failed != was_failed {
             if failed {
@@ -332,10 +393,8 @@ impl Answers {
             }
             board.post(expert, &undecided_type(&label), failed);
         }
-        if asked || self.last.get(&label) != Some(&value) {
-            board.post(expert, &label, value);
-            self.last.insert(label, value);
-        }
+        board.post(expert, &label, value);
+        self.last.insert(label, value);
     }
 }
 

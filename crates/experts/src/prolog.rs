@@ -90,6 +90,7 @@ pub fn prolog_expert(
     inputs: Vec<String>,
 ) -> ProgramExpert {
     ProgramExpert::new(name, driver_command(), answers, inputs).with_greeting(vec![kb.load()])
+        .echoing_ids()
 }
 
 /// Why a knowledge base could not be checked.

@@ -59,7 +59,7 @@ handle(query, Message) :- !,
     prove(Label, Result),
     retractall(last(Label, _)),
     assertz(last(Label, Result)),
-    answer(Label, Result).
+    answer(Label, Result, _{id: Message.get(id, null)}).
 handle(Type, _) :-
     format(string(Text), "the driver does not know messages of type ~w", [Type]),
     reply(_{warning: Text}).
@@ -70,7 +70,7 @@ load_knowledge(File, Text) :-
     retractall(load_file(_)),
     assertz(load_file(File)),
     time_limit(Limit),
-    LoadLimit is max(Limit * 50, 10),
+    LoadLimit is max(Limit * 50, 1),
     setup_call_cleanup(
         open_string(Text, Stream),
         catch(call_with_time_limit(LoadLimit,
@@ -85,6 +85,11 @@ load_knowledge(File, Text) :-
                reply(_{warning: W, file: File, line: 1})
            )).
 
+load_failed(File, time_limit_exceeded) :- !,
+    time_limit(Limit),
+    LoadLimit is max(Limit * 50, 1),
+    format(string(Text), "loading took longer than its time limit of ~w s (a directive that never ends?)", [LoadLimit]),
+    reply(_{warning: Text, file: File, line: 1}).
 load_failed(File, Error) :-
     message_text(Error, Text),
     reply(_{warning: Text, file: File, line: 1}).
@@ -133,7 +138,7 @@ prove_changed :-
                ->  true
                ;   retractall(last(L, _)),
                    assertz(last(L, Result)),
-                   answer(L, Result)
+                   answer(L, Result, _{})
                )
            )).
 
@@ -147,10 +152,11 @@ prove(Label, Result) :-
           Error,
           (   message_text(Error, Text), Result = error(Text) )).
 
-answer(Label, error(Text)) :- !,
-    reply(_{label: Label, error: Text}).
-answer(Label, Value) :-
-    reply(_{label: Label, value: Value}).
+% An answer; to a query, with its id.
+answer(Label, error(Text), Id) :- !,
+    reply(Id.put(_{label: Label, error: Text})).
+answer(Label, Value, Id) :-
+    reply(Id.put(_{label: Label, value: Value})).
 
 message_text(time_limit_exceeded, Text) :- !,
     time_limit(Limit),

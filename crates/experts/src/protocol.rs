@@ -26,8 +26,8 @@ pub enum Request {
     /// An input's current value: at the start for each one already posted, then at each
     /// posting.
     Input { name: String, value: Json },
-    /// A machine asks for this label: answer it.
-    Query { label: String },
+    /// A machine asks for this label: answer it, echoing `id`.
+    Query { label: String, id: u64 },
 }
 
 impl Request {
@@ -40,7 +40,8 @@ impl Request {
     }
 }
 
-/// A line from the process: an answer (`label` with `value` or `error`), a warning about its
+/// A line from the process: an answer (`label` with `value` or `error`, and the query's `id`
+/// when it answers one), a warning about its
 /// own files (`warning`, with `file` and `line` when it knows them), or `ready` once it has
 /// loaded what it needs. Unknown fields are ignored, so a program can say more.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
@@ -52,6 +53,9 @@ pub struct Reply {
     /// Why the label could not be answered: it counts as false, with a warning.
     #[serde(default)]
     pub error: Option<String>,
+    /// The query it answers; none for an answer it gives unasked (its value changed).
+    #[serde(default)]
+    pub id: Option<u64>,
     #[serde(default)]
     pub warning: Option<String>,
     #[serde(default)]
@@ -67,9 +71,17 @@ pub struct Reply {
 /// What one line from the process means.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Said {
-    Answer { label: String, value: bool },
+    Answer {
+        label: String,
+        value: bool,
+        id: Option<u64>,
+    },
     /// No answer: false, with a warning and a count.
-    Failed { label: String, why: String },
+    Failed {
+        label: String,
+        why: String,
+        id: Option<u64>,
+    },
     Warning(Located),
     Ready,
     /// A line that is not the protocol (said why).
@@ -93,8 +105,16 @@ pub fn read_reply(line: &str) -> Said {
     };
     if let Some(label) = reply.label {
         return match (reply.value, reply.error) {
-            (_, Some(why)) => Said::Failed { label, why },
-            (Some(Json::Bool(value)), None) => Said::Answer { label, value },
+            (_, Some(why)) => Said::Failed {
+                label,
+                why,
+                id: reply.id,
+            },
+            (Some(Json::Bool(value)), None) => Said::Answer {
+                label,
+                value,
+                id: reply.id,
+            },
             (other, None) => Said::Garbled(format!(
                 "the answer for `{label}` needs \"value\": true or false, or \"error\" (found {})",
                 other.map_or("neither".to_string(), |v| v.to_string())
@@ -152,6 +172,15 @@ mod tests {
                 Said::Answer {
                     label: "ballNear".into(),
                     value: true,
+                    id: None,
+                },
+            ),
+            (
+                r#"{"label":"ballNear","value":false,"id":7}"#,
+                Said::Answer {
+                    label: "ballNear".into(),
+                    value: false,
+                    id: Some(7),
                 },
             ),
             (
@@ -159,6 +188,7 @@ mod tests {
                 Said::Failed {
                     label: "x".into(),
                     why: "boom".into(),
+                    id: None,
                 },
             ),
             (
@@ -207,10 +237,11 @@ mod tests {
         assert_eq!(input.line().matches('\n').count(), 1);
         assert_eq!(
             Request::Query {
-                label: "ballNear".into()
+                label: "ballNear".into(),
+                id: 3
             }
             .line(),
-            "{\"type\":\"query\",\"label\":\"ballNear\"}\n"
+            "{\"type\":\"query\",\"label\":\"ballNear\",\"id\":3}\n"
         );
     }
 }
