@@ -49,12 +49,14 @@ impl LoadedProgram {
     /// The expert, its process run in `folder` when the behaviour has one on disk.
     pub fn expert(&self, folder: Option<&Path>) -> ProgramExpert {
         let expert = match &self.kind {
+            // Loading checked the knowledge base and reported its warnings.
             ProgramKind::Prolog { kb, .. } => prolog_expert(
                 &self.name,
                 kb,
                 self.answers.clone(),
                 self.inputs.clone(),
-            ),
+            )
+            .warnings_reported(),
             ProgramKind::Command { command } => ProgramExpert::new(
                 &self.name,
                 command.clone(),

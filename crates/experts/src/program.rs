@@ -76,6 +76,9 @@ pub struct ProgramExpert {
     counters: Arc<ProgramCounters>,
     /// Whether every answer to a query carries its id (the Prolog driver's do).
     echoes_ids: bool,
+    /// Whether its located warnings were reported already (a behaviour's load checks a
+    /// knowledge base): then they are logged at debug, not again as warnings.
+    warnings_reported: bool,
 }
 
 impl ProgramExpert {
@@ -98,6 +101,7 @@ impl ProgramExpert {
             backoff: Backoff::default(),
             counters: Arc::default(),
             echoes_ids: false,
+            warnings_reported: false,
         }
     }
 
@@ -115,6 +119,13 @@ impl ProgramExpert {
     /// Lines the process is sent after its hello, each time it starts.
     pub(crate) fn with_greeting(mut self, greeting: Vec<Request>) -> ProgramExpert {
         self.greeting = greeting;
+        self
+    }
+
+    /// Logs the warnings the process places in its files at debug only: whoever made the
+    /// expert has reported them already (a behaviour's load checks a knowledge base).
+    pub fn warnings_reported(mut self) -> ProgramExpert {
+        self.warnings_reported = true;
         self
     }
 
@@ -305,6 +316,9 @@ impl ProgramExpert {
                     tracing::warn!(expert = %self.name, label, why, "no answer; answered false");
                     answers.give(&self.name, board, label, false, id, true);
                 }
+            }
+            Said::Warning(located) if self.warnings_reported => {
+                tracing::debug!(expert = %self.name, ?located, "a warning reported at load");
             }
             Said::Warning(located) => warn_located(&self.name, &located),
             Said::Ready => tracing::debug!(expert = %self.name, "ready"),
