@@ -2,8 +2,8 @@
 % off-side, unless fewer than two opponents are between the player and the goal line, unless
 % the player is in its own half, or behind the ball, or received the ball directly from a
 % throw-in." Each input is the fact value(Input, true | false); an input never posted has none.
-% The Prolog expert proves the label `offside` as this goal (tests/theories.rs checks every
-% row of offside.dl's truth table against it).
+% The Prolog expert proves the label `offside` as this goal (crates/experts/tests/programs.rs
+% checks it against every row of offside.dl's truth table); machines/referee runs it.
 
 offside :-
     holds(fewerThanTwoOpponentsBetween),
