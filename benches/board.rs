@@ -330,7 +330,9 @@ fn main() {
                     prolog_query_to_fire(if quick { 500 } else { 20_000 }, schedule).await,
                 );
             } else {
-                println!("label query -> Prolog expert: skipped, SWI-Prolog (swipl) is not installed");
+                println!(
+                    "label query -> Prolog expert: skipped, SWI-Prolog (swipl) is not installed"
+                );
             }
             let seconds = if quick { 1 } else { 5 };
             if let Some(cores) = cores_busy(thousand_ringers(), seconds, schedule).await {

@@ -77,7 +77,8 @@ fn a_process_expert_is_refused_on_the_virtual_clock() {
     );
 }
 
-const REFEREE: &str = "machine Referee\nstate WATCH {\n    when offside && handball -> FLAG\n}\nstate FLAG {\n}\n";
+const REFEREE: &str =
+    "machine Referee\nstate WATCH {\n    when offside && handball -> FLAG\n}\nstate FLAG {\n}\n";
 
 /// `check` places each Prolog problem at its line, knows the labels a Prolog expert answers
 /// (`offside`) and still says that nobody answers `handball`.
@@ -113,7 +114,10 @@ fn check_places_prolog_problems_and_knows_its_labels() {
         err.contains("label `handball` is answered by no expert"),
         "{err}"
     );
-    assert!(!err.contains("label `offside` is answered by no expert"), "{err}");
+    assert!(
+        !err.contains("label `offside` is answered by no expert"),
+        "{err}"
+    );
     assert_eq!(o.status.code(), Some(1), "{out}\n{err}");
     assert!(out.contains("1 program expert"), "{out}");
 

@@ -209,7 +209,10 @@ fn refuse_processes_on_virtual_clock(
     behaviour: &Behaviour,
     script: Option<&proclaim_experts::Script>,
 ) -> Result<(), Failure> {
-    let scripted = script.or(behaviour.script.as_ref()).map(|s| s.atoms()).unwrap_or_default();
+    let scripted = script
+        .or(behaviour.script.as_ref())
+        .map(|s| s.atoms())
+        .unwrap_or_default();
     match behaviour
         .programs
         .iter()

@@ -38,7 +38,7 @@ pub use manifest::{
     Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
-pub use program_entries::{PrologEntry, ProgramEntry};
+pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
 pub use recorded::{
     read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError, Verdict,

@@ -6,11 +6,10 @@
 
 use crate::files::Files;
 use crate::manifest::Manifest;
-use crate::program_entries::{PrologEntry, ProgramEntry};
+use crate::program_entries::{ProgramEntry, PrologEntry};
 use proclaim_board::ModuleDecl;
 use proclaim_experts::{
-    check_knowledge_base, find_program, parse_duration, prolog_expert, KnowledgeBase,
-    ProgramExpert,
+    check_knowledge_base, find_program, parse_duration, prolog_expert, KnowledgeBase, ProgramExpert,
 };
 use proclaim_syntax::FileDiagnostic;
 use std::path::Path;
@@ -50,13 +49,10 @@ impl LoadedProgram {
     pub fn expert(&self, folder: Option<&Path>) -> ProgramExpert {
         let expert = match &self.kind {
             // Loading checked the knowledge base and reported its warnings.
-            ProgramKind::Prolog { kb, .. } => prolog_expert(
-                &self.name,
-                kb,
-                self.answers.clone(),
-                self.inputs.clone(),
-            )
-            .warnings_reported(),
+            ProgramKind::Prolog { kb, .. } => {
+                prolog_expert(&self.name, kb, self.answers.clone(), self.inputs.clone())
+                    .warnings_reported()
+            }
             ProgramKind::Command { command } => ProgramExpert::new(
                 &self.name,
                 command.clone(),
@@ -104,7 +100,10 @@ fn load_prolog(
     if entry.answers.is_empty() {
         problems.push(FileDiagnostic::in_file(
             manifest_file,
-            format!("[[prolog]] `{}` answers no label (write `answers = [\"…\"]`)", entry.file),
+            format!(
+                "[[prolog]] `{}` answers no label (write `answers = [\"…\"]`)",
+                entry.file
+            ),
         ));
         return None;
     }
@@ -164,7 +163,10 @@ fn load_command(
     if entry.answers.is_empty() {
         problems.push(FileDiagnostic::in_file(
             manifest_file,
-            format!("[[expert]] `{}` answers no label (write `answers = [\"…\"]`)", entry.command.join(" ")),
+            format!(
+                "[[expert]] `{}` answers no label (write `answers = [\"…\"]`)",
+                entry.command.join(" ")
+            ),
         ));
         return None;
     }

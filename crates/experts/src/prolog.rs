@@ -89,7 +89,8 @@ pub fn prolog_expert(
     answers: Vec<String>,
     inputs: Vec<String>,
 ) -> ProgramExpert {
-    ProgramExpert::new(name, driver_command(), answers, inputs).with_greeting(vec![kb.load()])
+    ProgramExpert::new(name, driver_command(), answers, inputs)
+        .with_greeting(vec![kb.load()])
         .echoing_ids()
 }
 

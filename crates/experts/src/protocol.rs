@@ -212,10 +212,7 @@ mod tests {
             "{}",
             "[1]",
         ] {
-            assert!(
-                matches!(read_reply(garbled), Said::Garbled(_)),
-                "{garbled}"
-            );
+            assert!(matches!(read_reply(garbled), Said::Garbled(_)), "{garbled}");
         }
     }
 

@@ -112,7 +112,10 @@ async fn the_readme_python_expert_answers_dies_and_comes_back() {
     assert!(killed.success());
     reaches(&counters.deaths, 1, "deaths").await;
     // Down for the backoff: its label times out, as any missing expert's does.
-    assert_eq!(ask(&board, "ballNear", Duration::from_millis(50)).await, None);
+    assert_eq!(
+        ask(&board, "ballNear", Duration::from_millis(50)).await,
+        None
+    );
     reaches(&counters.starts, 2, "starts").await;
     // Back, told the current distance again.
     assert_eq!(ask(&board, "ballNear", long).await, Some(true));
@@ -175,7 +178,10 @@ for line in sys.stdin:
     registered(&board, "x").await;
     assert_eq!(ask(&board, "x", Duration::from_secs(5)).await, Some(true));
     assert_eq!(ProgramCounters::get(&counters.garbled), 2);
-    assert!(board.latest("other").is_none(), "a label it does not own is not posted");
+    assert!(
+        board.latest("other").is_none(),
+        "a label it does not own is not posted"
+    );
 }
 
 fn offside_pl() -> KnowledgeBase {
@@ -234,7 +240,9 @@ async fn inputs_are_value_facts_and_answers_follow_them_unasked() {
         time_limit: KnowledgeBase::TIME_LIMIT,
     };
     let labels: Vec<String> = ["near", "red", "on"].map(String::from).to_vec();
-    let inputs: Vec<String> = ["ballDistance", "light", "power"].map(String::from).to_vec();
+    let inputs: Vec<String> = ["ballDistance", "light", "power"]
+        .map(String::from)
+        .to_vec();
     let expert = prolog_expert("kb", &kb, labels, inputs);
     let board = Whiteboard::local();
     let mut answers = board.subscribe("near");
@@ -244,14 +252,23 @@ async fn inputs_are_value_facts_and_answers_follow_them_unasked() {
     // value(Type, Value): a number, an atom, true or false.
     for (ty, value, label, expected) in [
         ("ballDistance", proclaim_board::Value::Int(12), "near", true),
-        ("ballDistance", proclaim_board::Value::Float(45.5), "near", false),
+        (
+            "ballDistance",
+            proclaim_board::Value::Float(45.5),
+            "near",
+            false,
+        ),
         ("light", "red".into(), "red", true),
         ("light", "green".into(), "red", false),
         ("power", true.into(), "on", true),
         ("power", false.into(), "on", false),
     ] {
         board.post("sensors", ty, value.clone());
-        assert_eq!(ask(&board, label, long).await, Some(expected), "{ty} = {value}");
+        assert_eq!(
+            ask(&board, label, long).await,
+            Some(expected),
+            "{ty} = {value}"
+        );
     }
     // Re-proved when an input changes: `near` is posted unasked when it changes.
     while answers.try_next().is_some() {}
@@ -291,7 +308,10 @@ async fn a_prolog_error_is_a_false_answer_never_a_hang() {
     for (n, label) in ["loop", "deep", "boom", "missing"].into_iter().enumerate() {
         let before = ProgramCounters::get(&counters.failed);
         assert_eq!(ask(&board, label, long).await, Some(false), "{label}");
-        assert!(ProgramCounters::get(&counters.failed) > before, "{label} counted");
+        assert!(
+            ProgramCounters::get(&counters.failed) > before,
+            "{label} counted"
+        );
         assert_eq!(
             board.truth(&undecided_type(label)),
             Some(true),
@@ -318,10 +338,7 @@ fn loading_a_knowledge_base_warns_at_the_lines_of_its_errors() {
             "offside :- ok.\nok.\nlonely(X) :- true.\n",
             &[(3, "Singleton variables: [X]")],
         ),
-        (
-            "ok.\n",
-            &[(1, "label `offside` is not defined")],
-        ),
+        ("ok.\n", &[(1, "label `offside` is not defined")]),
     ];
     for (text, expected) in cases {
         let kb = KnowledgeBase {
