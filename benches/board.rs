@@ -326,7 +326,7 @@ fn main() {
             if proclaim_experts::find_swipl().is_some() {
                 let _ = prolog_query_to_fire(200, schedule).await;
                 percentiles(
-                    &format!("label query -> Prolog expert -> fire ({name})"),
+                    &format!("label query -> Prolog -> fire ({name})"),
                     prolog_query_to_fire(if quick { 500 } else { 20_000 }, schedule).await,
                 );
             } else {

@@ -5,7 +5,9 @@
 //! started as a supervised [`ProgramExpert`].
 
 use crate::files::Files;
-use crate::manifest::Manifest;
+use crate::load::Behaviour;
+use crate::manifest::{Manifest, MANIFEST};
+use crate::modules::Module;
 use crate::program_entries::{ProgramEntry, PrologEntry};
 use proclaim_board::ModuleDecl;
 use proclaim_experts::{
@@ -195,6 +197,50 @@ fn load_command(
             command: entry.command.clone(),
         },
     })
+}
+
+/// What `check` says of the program experts, as of a theory's outputs and inputs: a label no
+/// machine queries and an input no module posts, each at the manifest line that names it.
+pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnostic> {
+    let manifest = behaviour.files.show(MANIFEST);
+    let text = behaviour.files.read(MANIFEST).unwrap_or_default();
+    let line_of = |name: &str| {
+        let quoted = format!("\"{name}\"");
+        text.lines()
+            .position(|l| l.contains(&quoted))
+            .map_or(1, |i| i + 1)
+    };
+    let mut out = Vec::new();
+    for p in &behaviour.programs {
+        for label in &p.answers {
+            if !all.iter().any(|m| m.decl.waits_on.contains(label)) {
+                out.push(FileDiagnostic::warning(
+                    &manifest,
+                    line_of(label),
+                    format!(
+                        "label `{label}` of expert {} is queried by no machine",
+                        p.name
+                    ),
+                ));
+            }
+        }
+        for input in &p.inputs {
+            let posted = all
+                .iter()
+                .any(|m| m.decl.name != p.name && m.decl.posts.contains(input));
+            if !posted {
+                out.push(FileDiagnostic::warning(
+                    &manifest,
+                    line_of(input),
+                    format!(
+                        "input `{input}` of expert {} is posted by no module",
+                        p.name
+                    ),
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The manifest entries of the program experts `needed` names, with each file written as

@@ -119,8 +119,9 @@ located(Full, File, Line, Column, Text) :-
     string_concat(":", Rest1, Rest0),
     split_string(Rest1, ":", "", [LineText|Parts]),
     number_string(Line, LineText),
-    (   Parts = [ColumnText|More], number_string(Column, ColumnText), More \== []
-    ->  atomic_list_concat(More, ':', Text1)
+    (   Parts = [ColumnText|More], number_string(Column0, ColumnText), More \== []
+    ->  Column is Column0 + 1,              % SWI-Prolog counts columns from 0
+        atomic_list_concat(More, ':', Text1)
     ;   Column = 0, atomic_list_concat(Parts, ':', Text1)
     ),
     split_string(Text1, "", " ", [Text]).

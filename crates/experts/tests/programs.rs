@@ -358,6 +358,20 @@ fn loading_a_knowledge_base_warns_at_the_lines_of_its_errors() {
         }
         assert!(warnings.iter().all(|w| w.file.as_deref() == Some("kb.pl")));
     }
+    // The syntax error's column is the character it could not read, counted from 1.
+    let kb = KnowledgeBase {
+        file: "kb.pl".into(),
+        text: "offside.\nbad :- value(x, .\n".into(),
+        time_limit: KnowledgeBase::TIME_LIMIT,
+    };
+    let warnings = check_knowledge_base(&kb, &["offside".into()]).expect("swipl runs");
+    assert_eq!(
+        warnings
+            .iter()
+            .map(|w| (w.line, w.column))
+            .collect::<Vec<_>>(),
+        [(2, 17)]
+    );
     // A directive that never ends is cut off by the time limit, not waited on forever.
     let kb = KnowledgeBase {
         file: "stuck.pl".into(),
