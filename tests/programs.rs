@@ -146,3 +146,21 @@ fn the_launch_manifest_keeps_the_prolog_expert() {
     assert!(out.contains("offside.pl"), "{out}");
     assert!(out.contains("answers = [\"offside\"]"), "{out}");
 }
+
+/// Without SWI-Prolog, `check` says so at the knowledge base (a warning: the behaviour is
+/// sound, the robot lacks a program) and `run` reports the expert that cannot start.
+#[test]
+fn a_missing_prolog_is_a_warning_at_the_knowledge_base() {
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["check", "machines/referee"])
+        .env("NO_COLOR", "1")
+        .env("PROCLAIM_SWIPL", "/nonexistent/swipl")
+        .output()
+        .expect("the binary runs");
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(
+        err.contains("offside.pl:1: warning: SWI-Prolog is not installed"),
+        "{err}"
+    );
+}
