@@ -164,3 +164,16 @@ fn a_missing_prolog_is_a_warning_at_the_knowledge_base() {
         "{err}"
     );
 }
+
+/// README's Python expert is `machines/ball/ball.py` word for word, which the tests run.
+#[test]
+fn the_readme_shows_the_python_expert_the_tests_run() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let program = std::fs::read_to_string(root.join("machines/ball/ball.py")).unwrap();
+    assert_eq!(program.lines().count(), 10);
+    assert!(
+        readme.contains(&format!("```python\n{program}```")),
+        "README's example differs from machines/ball/ball.py"
+    );
+}
