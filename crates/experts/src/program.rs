@@ -270,7 +270,10 @@ impl ProgramExpert {
             let _ = to_child.send(request.line());
         }
 
-        let mut stdout = BufReader::new(stdout).lines();
+        let mut stdout = BufReader::new(stdout);
+        // Bytes, not text: a line that is not UTF-8 is garbled output, not a death. Kept across
+        // the loop's turns, as a read the board interrupts goes on where it stopped.
+        let mut line = Vec::new();
         loop {
             tokio::select! {
                 // The board first: an answer the process gives unasked is posted only once
@@ -292,11 +295,13 @@ impl ProgramExpert {
                     };
                     let _ = to_child.send(request.line());
                 }
-                line = stdout.next_line() => match line {
-                    Ok(Some(line)) => self.heard(read_reply(&line), board, answers),
-                    Ok(None) | Err(_) => {
-                        return Ended::Died(death(child, &stderr_tail).await);
+                read = stdout.read_until(b'\n', &mut line) => match read {
+                    Ok(n) if n > 0 && line.ends_with(b"\n") => {
+                        let text = String::from_utf8_lossy(&line);
+                        self.heard(read_reply(text.trim_end()), board, answers);
+                        line.clear();
                     }
+                    _ => return Ended::Died(death(child, &stderr_tail).await),
                 }
             }
         }
@@ -446,14 +451,18 @@ async fn write_lines(
 /// How many lines of a process's stderr its death report quotes.
 const STDERR_TAIL: usize = 12;
 
-/// Keeps the last lines of the process's stderr (logged at debug as they come).
+/// Keeps the last lines of the process's stderr (logged at debug as they come), read to its end
+/// whatever it holds, so the process never blocks on a full pipe.
 async fn keep_tail(
     stderr: tokio::process::ChildStderr,
     tail: Arc<parking_lot::Mutex<VecDeque<String>>>,
     expert: String,
 ) {
-    let mut lines = BufReader::new(stderr).lines();
-    while let Ok(Some(line)) = lines.next_line().await {
+    let mut stderr = BufReader::new(stderr);
+    let mut bytes = Vec::new();
+    while matches!(stderr.read_until(b'\n', &mut bytes).await, Ok(n) if n > 0) {
+        let line = String::from_utf8_lossy(&bytes).trim_end().to_string();
+        bytes.clear();
         tracing::debug!(expert, stderr = %line);
         let mut tail = tail.lock();
         if tail.len() == STDERR_TAIL {

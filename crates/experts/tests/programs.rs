@@ -155,13 +155,15 @@ async fn lines_that_are_not_the_protocol_are_counted_and_ignored() {
     ) {
         return;
     }
-    // Says something that is not JSON, answers a label it does not own, then answers.
+    // Says something that is not JSON, then something that is not even UTF-8, answers a label
+    // it does not own and one with no truth value, then answers.
     let program = r#"
 import json, sys
 for line in sys.stdin:
     m = json.loads(line)
     if m["type"] == "query":
         print("thinking...", flush=True)
+        sys.stdout.buffer.write(b"\xff\xfe not UTF-8\n"); sys.stdout.flush()
         print(json.dumps({"label": "other", "value": True}), flush=True)
         print(json.dumps({"label": m["label"], "value": "maybe"}), flush=True)
         print(json.dumps({"label": m["label"], "value": True}), flush=True)
@@ -177,7 +179,8 @@ for line in sys.stdin:
     tokio::spawn(expert.run(board.clone()));
     registered(&board, "x").await;
     assert_eq!(ask(&board, "x", Duration::from_secs(5)).await, Some(true));
-    assert_eq!(ProgramCounters::get(&counters.garbled), 2);
+    assert_eq!(ProgramCounters::get(&counters.garbled), 3);
+    assert_eq!(ProgramCounters::get(&counters.deaths), 0);
     assert!(
         board.latest("other").is_none(),
         "a label it does not own is not posted"
