@@ -177,3 +177,34 @@ fn the_readme_shows_the_python_expert_the_tests_run() {
         "README's example differs from machines/ball/ball.py"
     );
 }
+
+/// A launch manifest written elsewhere runs its program expert where it ran: `ball.py` is
+/// found from the new manifest.
+#[test]
+fn a_launch_manifest_written_elsewhere_runs_the_program_where_it_ran() {
+    if !present("python3") {
+        return;
+    }
+    let dir = crate::behaviour_folder("program-launch", &[]);
+    let manifest = dir.join("keeper.toml");
+    let manifest = manifest.to_str().unwrap();
+    let o = proclaim(&[
+        "deps",
+        "machines/ball",
+        "--launch",
+        "Keeper",
+        "-o",
+        manifest,
+    ]);
+    assert!(o.status.success(), "{}", text(&o).1);
+    let written = std::fs::read_to_string(manifest).unwrap();
+    assert!(
+        written.contains("[[expert]]") && written.contains("folder = "),
+        "{written}"
+    );
+    let o = proclaim(&["run", manifest, "--for", "3s"]);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{out}\n{err}");
+    assert!(out.contains("ballNear = false  (ball)"), "{out}\n{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

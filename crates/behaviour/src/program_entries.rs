@@ -14,6 +14,7 @@
 //! answers = ["ballNear"]
 //! inputs = ["ballDistance"]
 //! name = "ball"                        # optional: the last argument's stem
+//! folder = "tools"                     # optional: where it runs, from the manifest's folder
 //! ```
 
 use serde::{Deserialize, Serialize};
@@ -44,4 +45,7 @@ pub struct ProgramEntry {
     pub inputs: Vec<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// Where it runs, relative to the manifest's folder (default: that folder).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub folder: Option<String>,
 }

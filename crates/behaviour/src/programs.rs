@@ -29,8 +29,11 @@ pub struct LoadedProgram {
 pub enum ProgramKind {
     /// `[[prolog]]`: the file as the manifest names it, and its text.
     Prolog { file: String, kb: KnowledgeBase },
-    /// `[[expert]]`.
-    Command { command: Vec<String> },
+    /// `[[expert]]`, and the folder it runs in as the manifest names it.
+    Command {
+        command: Vec<String>,
+        folder: Option<String>,
+    },
 }
 
 impl LoadedProgram {
@@ -47,7 +50,8 @@ impl LoadedProgram {
             .answers(self.answers.clone())
     }
 
-    /// The expert, its process run in `folder` when the behaviour has one on disk.
+    /// The expert, its process run in the behaviour's `folder` when it has one on disk (or in
+    /// the entry's `folder`, from there).
     pub fn expert(&self, folder: Option<&Path>) -> ProgramExpert {
         let expert = match &self.kind {
             // Loading checked the knowledge base and reported its warnings.
@@ -55,16 +59,29 @@ impl LoadedProgram {
                 prolog_expert(&self.name, kb, self.answers.clone(), self.inputs.clone())
                     .warnings_reported()
             }
-            ProgramKind::Command { command } => ProgramExpert::new(
+            ProgramKind::Command { command, .. } => ProgramExpert::new(
                 &self.name,
                 command.clone(),
                 self.answers.clone(),
                 self.inputs.clone(),
             ),
         };
-        match folder {
+        match self.run_in(folder) {
             Some(folder) => expert.in_folder(folder),
             None => expert,
+        }
+    }
+
+    /// Where its process runs: the entry's `folder` from the behaviour's, or the behaviour's.
+    fn run_in(&self, behaviour_folder: Option<&Path>) -> Option<std::path::PathBuf> {
+        let own = match &self.kind {
+            ProgramKind::Command { folder, .. } => folder.as_deref(),
+            ProgramKind::Prolog { .. } => None,
+        };
+        match (behaviour_folder, own) {
+            (Some(b), Some(own)) => Some(b.join(own)),
+            (Some(b), None) => Some(b.to_path_buf()),
+            (None, own) => own.map(std::path::PathBuf::from),
         }
     }
 }
@@ -172,10 +189,34 @@ fn load_command(
         ));
         return None;
     }
-    // A program named by a path is found from the behaviour's folder, as it runs there.
-    let found = match files.folder() {
+    let loaded = LoadedProgram {
+        name: entry
+            .name
+            .clone()
+            .unwrap_or_else(|| stem(entry.command.last().unwrap_or(program))),
+        answers: entry.answers.clone(),
+        inputs: entry.inputs.clone(),
+        kind: ProgramKind::Command {
+            command: entry.command.clone(),
+            folder: entry.folder.clone(),
+        },
+    };
+    let runs_in = loaded.run_in(files.folder());
+    if let Some(folder) = runs_in.as_ref().filter(|f| !f.is_dir()) {
+        problems.push(FileDiagnostic::in_file(
+            manifest_file,
+            format!(
+                "[[expert]] `{}`: it runs in {}, which is not a folder",
+                entry.command.join(" "),
+                folder.display()
+            ),
+        ));
+        return None;
+    }
+    // A program named by a path is found from the folder it runs in.
+    let found = match &runs_in {
         Some(folder) if Path::new(program).components().count() > 1 => {
-            folder.join(program).is_file() || Path::new(program).is_file()
+            folder.join(program).is_file()
         }
         _ => find_program(program).is_some(),
     };
@@ -186,17 +227,7 @@ fn load_command(
             format!("[[expert]] `{}`: `{program}` is not found, so the expert will not start and its labels will time out", entry.command.join(" ")),
         ));
     }
-    Some(LoadedProgram {
-        name: entry
-            .name
-            .clone()
-            .unwrap_or_else(|| stem(entry.command.last().unwrap_or(program))),
-        answers: entry.answers.clone(),
-        inputs: entry.inputs.clone(),
-        kind: ProgramKind::Command {
-            command: entry.command.clone(),
-        },
-    })
+    Some(loaded)
 }
 
 /// What `check` says of the program experts, as of a theory's outputs and inputs: a label no
@@ -272,7 +303,17 @@ pub(crate) fn needed_entries(
                 .unwrap_or_default();
             named(&name)
         })
-        .cloned()
+        .map(|e| {
+            // It runs where it ran: its folder as seen from the new manifest.
+            let from_manifest = e.folder.clone().unwrap_or_else(|| ".".into());
+            let placed = place(&from_manifest);
+            ProgramEntry {
+                folder: (placed != from_manifest)
+                    .then_some(placed)
+                    .or_else(|| e.folder.clone()),
+                ..e.clone()
+            }
+        })
         .collect();
     (prolog, commands)
 }
