@@ -208,3 +208,30 @@ fn a_launch_manifest_written_elsewhere_runs_the_program_where_it_ran() {
     assert!(out.contains("ballNear = false  (ball)"), "{out}\n{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The off-side rule in Prolog beside the theory it mirrors: the expert's default name, the
+/// file's stem, is the theory's, and `check` says to rename one.
+#[test]
+fn an_expert_named_as_another_module_is_an_error() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("theories");
+    let manifest = format!(
+        "[[machine]]\nfile = \"Referee.machine\"\n\n[[theory]]\nfile = \"{dl}\"\n\n[[prolog]]\nfile = \"{pl}\"\nanswers = [\"offside\"]\n",
+        dl = root.join("offside.dl").display(),
+        pl = root.join("offside.pl").display(),
+    );
+    let dir = crate::behaviour_folder(
+        "prolog-namesake",
+        &[
+            ("behaviour.toml", &manifest),
+            (
+                "Referee.machine",
+                "machine Referee\nstate WATCH {\n    when offside -> FLAG\n}\nstate FLAG {\n}\n",
+            ),
+        ],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    let (out, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}\n{err}");
+    assert!(err.contains("two modules are named `offside`"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

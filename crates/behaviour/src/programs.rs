@@ -243,6 +243,20 @@ pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnos
     };
     let mut out = Vec::new();
     for p in &behaviour.programs {
+        let namesakes = all.iter().filter(|m| m.decl.name == p.name).count();
+        if namesakes > 1 {
+            out.push(
+                FileDiagnostic::error(
+                    &manifest,
+                    p.answers.first().map_or(1, |a| line_of(a)),
+                    format!(
+                        "two modules are named `{}`: the expert's name is how the whiteboard knows it",
+                        p.name
+                    ),
+                )
+                .with_hint("give the expert a name of its own with `name = \"…\"`"),
+            );
+        }
         for label in &p.answers {
             if !all.iter().any(|m| m.decl.waits_on.contains(label)) {
                 out.push(FileDiagnostic::warning(
