@@ -1,6 +1,7 @@
 //! Whiteboard latency and throughput, in-process: post → subscriber woken, a label query answered
-//! by the reasoner expert (percentiles from individual samples), and messages a second fanned
-//! out to 10 subscribers. Figures, never asserts. `cargo bench --bench board`.
+//! by the reasoner expert and by the Prolog expert (SWI-Prolog in a child process, when
+//! installed) (percentiles from individual samples), and messages a second fanned out to 10
+//! subscribers. Figures, never asserts. `cargo bench --bench board`.
 
 use proclaim_board::Whiteboard;
 use proclaim_experts::ReasonerExpert;
@@ -101,11 +102,41 @@ async fn query_to_fire(samples: usize, schedule: Schedule) -> Vec<Duration> {
     tokio::spawn(
         ReasonerExpert::new("oven", common::microwave(), &Default::default()).run(board.clone()),
     );
+    ping_pong(board, samples, schedule).await
+}
+
+/// The same machine, its labels answered by the microwave in Prolog (`theories/microwave.pl`)
+/// through the Prolog expert: a query is a line to SWI-Prolog and a line back.
+async fn prolog_query_to_fire(samples: usize, schedule: Schedule) -> Vec<Duration> {
+    let board = Whiteboard::local();
+    let kb = proclaim_experts::KnowledgeBase {
+        file: "theories/microwave.pl".into(),
+        text: include_str!("../theories/microwave.pl").into(),
+        time_limit: proclaim_experts::KnowledgeBase::TIME_LIMIT,
+    };
+    let labels = vec!["cook".to_string(), "light".to_string()];
+    let inputs = vec!["doorOpen".to_string(), "timeLeft".to_string()];
+    let expert = proclaim_experts::prolog_expert("oven", &kb, labels, inputs);
+    // Aborting the task drops the process, which is then killed.
+    let task = tokio::spawn(expert.run(board.clone()));
+    let out = ping_pong(board, samples, schedule).await;
+    task.abort();
+    out
+}
+
+/// A two-state machine whose labels `cook` and `light` the expert on `board` answers, once the
+/// door is shut and there is time left: A --cook--> B --light--> A.
+async fn ping_pong(board: Whiteboard, samples: usize, schedule: Schedule) -> Vec<Duration> {
     while board.registry().answerers("cook").is_empty() {
         tokio::task::yield_now().await;
     }
     board.post("sensors", "doorOpen", false);
     board.post("sensors", "timeLeft", true);
+    // A process expert answers once it has started: wait for its first answer.
+    while !matches!(
+        board.query("bench", "cook", Duration::from_secs(5)).await,
+        proclaim_board::QueryOutcome::Answered { value: true, .. }
+    ) {}
     let machine = proclaim_fsm::import_ta(
         "PingPong",
         "T",
@@ -292,6 +323,17 @@ fn main() {
                 &format!("label query -> expert -> fire ({name})"),
                 query_to_fire(if quick { 500 } else { 20_000 }, schedule).await,
             );
+            if proclaim_experts::find_swipl().is_some() {
+                let _ = prolog_query_to_fire(200, schedule).await;
+                percentiles(
+                    &format!("label query -> Prolog -> fire ({name})"),
+                    prolog_query_to_fire(if quick { 500 } else { 20_000 }, schedule).await,
+                );
+            } else {
+                println!(
+                    "label query -> Prolog expert: skipped, SWI-Prolog (swipl) is not installed"
+                );
+            }
             let seconds = if quick { 1 } else { 5 };
             if let Some(cores) = cores_busy(thousand_ringers(), seconds, schedule).await {
                 println!(

@@ -7,6 +7,7 @@ mod cli;
 mod monitor;
 #[cfg(feature = "zenoh")]
 mod network;
+mod programs;
 mod properties;
 mod subsumption;
 mod theories;

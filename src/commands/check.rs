@@ -126,8 +126,13 @@ fn behaviour(
         for d in &findings {
             eprintln!("{d}");
         }
+        // Only behaviours that have them say so: the line stays as it was for the others.
+        let programs = match loaded.programs.len() {
+            0 => String::new(),
+            n => format!(", {}", count(n, "program expert")),
+        };
         println!(
-            "{name}: {} ({}, {}, {}; {}, {})",
+            "{name}: {} ({}, {}{programs}, {}; {}, {})",
             if errors == 0 { "ok" } else { "has errors" },
             count(loaded.machines.len(), "machine"),
             count(loaded.theories.len(), "theory"),

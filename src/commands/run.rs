@@ -67,6 +67,9 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         Some(path) => Some(read_script(path)?),
     };
     refuse_unchecked(&behaviour, script.as_ref(), &args)?;
+    if args.virtual_clock {
+        refuse_processes_on_virtual_clock(&behaviour, script.as_ref())?;
+    }
     let limit = match &args.duration {
         Some(text) => Some(parse_duration(text).ok_or_else(|| {
             Failure::Argument(format!(
@@ -198,6 +201,31 @@ async fn run_on_board(
 
 fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
     crate::load::line_file(path, "the script", parse_script)
+}
+
+/// A Prolog or program expert is a process on the real clock: under the paused clock every
+/// query to it would time out before it could answer. Refused, unless the script answers all
+/// its labels (then it is left out).
+fn refuse_processes_on_virtual_clock(
+    behaviour: &Behaviour,
+    script: Option<&proclaim_experts::Script>,
+) -> Result<(), Failure> {
+    let scripted = script
+        .or(behaviour.script.as_ref())
+        .map(|s| s.atoms())
+        .unwrap_or_default();
+    match behaviour
+        .programs
+        .iter()
+        .find(|p| !p.answers.iter().all(|a| scripted.contains(a)))
+    {
+        None => Ok(()),
+        Some(p) => Err(Failure::Argument(format!(
+            "--virtual-clock: the expert `{}` is a process on the real clock, so every query to it would time out on a paused clock; run without --virtual-clock, or give a --script that answers {}",
+            p.name,
+            p.answers.join(", ")
+        ))),
+    }
 }
 
 /// Two worker threads; or, for `--virtual-clock`, one thread and tokio's paused clock.

@@ -41,6 +41,7 @@ pub fn check_behaviour_with(
             out.extend(whole.theory_findings(module, file));
         }
     }
+    out.extend(crate::programs::findings(behaviour, &whole.all));
     out
 }
 

@@ -291,7 +291,7 @@ fn smallest_manifest(
     let manifest = &behaviour.manifest;
     let needs = |kind: ModuleKind| modules.iter().any(|m| m.kind == kind && is_needed(m));
     let needs_named = |name: &str| modules.iter().any(|m| m.decl.name == name && is_needed(m));
-    let smallest = Manifest {
+    let mut smallest = Manifest {
         dictionary: manifest.dictionary.as_deref().map(place),
         machines: behaviour
             .machines
@@ -348,6 +348,8 @@ fn smallest_manifest(
             .collect(),
         ..Manifest::default()
     };
+    (smallest.prolog, smallest.programs) =
+        crate::programs::needed_entries(manifest, &behaviour.programs, &needs_named, place);
     smallest
 }
 

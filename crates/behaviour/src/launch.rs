@@ -222,21 +222,23 @@ pub async fn launch(
     })
 }
 
-/// A reasoner expert per theory.
+/// A reasoner expert per theory, then the Prolog and program experts.
 fn experts(behaviour: &Behaviour, board: &Whiteboard) -> Vec<Module> {
-    behaviour
-        .theories
-        .iter()
-        .map(|t| {
-            let expert =
-                ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
-            Module {
-                name: t.name.clone(),
-                answers: expert.declaration().answers,
-                task: Box::pin(expert.run(board.clone())),
-            }
-        })
-        .collect()
+    let theories = behaviour.theories.iter().map(|t| {
+        let expert =
+            ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
+        Module {
+            name: t.name.clone(),
+            answers: expert.declaration().answers,
+            task: Box::pin(expert.run(board.clone())),
+        }
+    });
+    let programs = behaviour.programs.iter().map(|p| Module {
+        name: p.name.clone(),
+        answers: p.answers.clone(),
+        task: Box::pin(p.expert(behaviour.files.folder()).run(board.clone())),
+    });
+    theories.chain(programs).collect()
 }
 
 /// The sensor wrappers of the manifest; what the GameController simulator will play, if it

@@ -17,6 +17,8 @@ mod liveness;
 mod load;
 mod manifest;
 mod modules;
+mod program_entries;
+mod programs;
 mod recorded;
 mod subsumption;
 pub mod testing;
@@ -37,6 +39,8 @@ pub use manifest::{
     Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
+pub use program_entries::{ProgramEntry, PrologEntry};
+pub use programs::{LoadedProgram, ProgramKind};
 pub use recorded::{
     read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError, Verdict,
 };

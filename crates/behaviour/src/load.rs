@@ -26,6 +26,8 @@ pub struct Behaviour {
     pub machines: Vec<LoadedMachine>,
     pub theories: Vec<LoadedTheory>,
     pub sensors: Vec<LoadedSensor>,
+    /// Prolog knowledge bases and programs answering labels (`programs.rs`).
+    pub programs: Vec<crate::programs::LoadedProgram>,
     pub script: Option<Script>,
     pub ring_period: Duration,
     pub answer_timeout: Duration,
@@ -108,6 +110,13 @@ pub fn load_manifest(
         .filter_map(|entry| load_theory(files.as_ref(), entry, &mut problems))
         .collect();
 
+    let programs = crate::programs::load_programs(
+        files.as_ref(),
+        &manifest,
+        &manifest_file,
+        &mut problems.found,
+    );
+
     let mut sensors = Vec::new();
     for entry in &manifest.sensors {
         let game = match &entry.simulator {
@@ -149,6 +158,7 @@ pub fn load_manifest(
         machines,
         theories,
         sensors,
+        programs,
         script,
         ring_period,
         answer_timeout,

@@ -24,6 +24,10 @@
 //! mapping = "inputs.map"               # optional: input atom → message type
 //! budget = 1000000                     # optional: search steps per attack cycle (README)
 //!
+//! [[prolog]]                           # a Prolog knowledge base; [[expert]]: any program
+//! file = "offside.pl"                  # (both in program_entries.rs)
+//! answers = ["offside"]
+//!
 //! [[sensor]]
 //! kind = "gamecontroller"              # also: chest_button, foot_bumpers, fall
 //! simulator = true                     # or a game script file, or false for a real one
@@ -74,6 +78,12 @@ pub struct Manifest {
     pub theories: Vec<TheoryEntry>,
     #[serde(default, rename = "sensor", skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorEntry>,
+    /// Prolog knowledge bases answering labels (`program_entries.rs`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub prolog: Vec<crate::program_entries::PrologEntry>,
+    /// Programs answering labels over JSON lines (`program_entries.rs`).
+    #[serde(default, rename = "expert", skip_serializing_if = "Vec::is_empty")]
+    pub programs: Vec<crate::program_entries::ProgramEntry>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub impersonator: Option<ImpersonatorEntry>,
     #[serde(default, rename = "module", skip_serializing_if = "Vec::is_empty")]

@@ -23,6 +23,10 @@ pub enum ModuleKind {
         file: String,
     },
     Sensor(SensorKind),
+    /// A `[[prolog]]` knowledge base (its file) or an `[[expert]]` program (`None`).
+    Program {
+        file: Option<String>,
+    },
     Impersonator,
     /// Declared in the manifest or its dictionary; not started by the behaviour.
     Outside,
@@ -63,6 +67,16 @@ pub fn modules(behaviour: &Behaviour) -> Vec<Module> {
             kind: ModuleKind::Theory {
                 file: t.file.clone(),
             },
+        });
+    }
+    for p in &behaviour.programs {
+        let file = match &p.kind {
+            crate::programs::ProgramKind::Prolog { file, .. } => Some(file.clone()),
+            crate::programs::ProgramKind::Command { .. } => None,
+        };
+        out.push(Module {
+            decl: p.declaration(),
+            kind: ModuleKind::Program { file },
         });
     }
     for s in &behaviour.sensors {

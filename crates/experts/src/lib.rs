@@ -7,7 +7,11 @@
 //! - [`FunctionExpert`]: answers by calling a function of the embedding program when asked;
 //! - [`GameControllerReceiver`]: the RoboCup SPL GameController on a real UDP socket (the
 //!   simulator that plays a game to it, answering nothing, is `proclaim-gcsim`);
-//! - [`ButtonWrapper`] and [`FallWrapper`]: debounced propositions from raw sensor postings.
+//! - [`ButtonWrapper`] and [`FallWrapper`]: debounced propositions from raw sensor postings;
+//! - [`ProgramExpert`]: any program as an expert, a supervised child process speaking JSON
+//!   lines (`protocol`);
+//! - the Prolog expert ([`prolog_expert`]): a `.pl` knowledge base proved by SWI-Prolog, a
+//!   program expert running a driver shipped inside proclaim.
 //!
 //! Scripts and mapping files are parsed purely (`script`, `mapping`); sockets and the terminal
 //! are touched only by the `run` methods.
@@ -18,6 +22,9 @@ mod function;
 mod gamecontroller;
 mod impersonator;
 mod mapping;
+mod program;
+mod prolog;
+pub mod protocol;
 mod reasoner;
 mod script;
 
@@ -27,5 +34,9 @@ pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounter
 pub use impersonator::Impersonator;
 pub use mapping::parse_mapping;
 pub use proclaim_syntax::{parse_duration, LineError, LineErrors};
+pub use program::{Backoff, ProgramCounters, ProgramExpert};
+pub use prolog::{
+    check_knowledge_base, find_program, find_swipl, prolog_expert, KnowledgeBase, PrologError,
+};
 pub use reasoner::ReasonerExpert;
 pub use script::{parse_script, Script, ScriptStep, When};
