@@ -628,10 +628,9 @@ impl<'s> Checker<'s> {
     }
 
     fn close_axioms(&mut self) {
-        let axioms: Vec<Vec<Lit>> = self.theory.axioms.iter().map(|c| c.lits.clone()).collect();
         let span_of =
             |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
-        match close(&axioms, Resolvents::ImplicationsImplicit) {
+        match close(&self.theory.axioms, Resolvents::ImplicationsImplicit) {
             ClosureOutcome::Closed { clauses, given } => {
                 for (index, (lits, given)) in clauses.into_iter().zip(given).enumerate() {
                     for (i, &head) in lits.iter().enumerate() {

@@ -10,12 +10,14 @@ use crate::goal::{
 use crate::literal::{Atom, Lit};
 use crate::query::Formula;
 use crate::theory::RuleKind;
+pub use answers::Verdict;
 use proclaim_syntax::Algorithm;
 use rustc_hash::FxHashMap;
 use std::fmt;
 use std::sync::Arc;
 use truth::Truth;
 
+mod answers;
 mod mu;
 mod solve;
 mod truth;
@@ -419,21 +421,6 @@ impl Session {
 
     fn input_falsifies(&self, lit: Lit) -> bool {
         self.inputs[lit.atom().0 as usize] == Some(lit.is_negated())
-    }
-
-    /// Every literal `alg` proves, in literal order.
-    pub fn conclusions(&mut self, alg: Algorithm) -> Vec<Lit> {
-        (0..self.engine.lit_count as u32)
-            .map(Lit)
-            .filter(|&l| self.prove(alg, l))
-            .collect()
-    }
-
-    /// How many literals `alg` proves (without collecting them).
-    pub fn count_conclusions(&mut self, alg: Algorithm) -> usize {
-        (0..self.engine.lit_count as u32)
-            .filter(|&l| self.prove(alg, Lit(l)))
-            .count()
     }
 
     // ---- β, π and support: components of the goal graph, on demand -----------------------------
