@@ -36,10 +36,10 @@ const AHEAD: usize = 32;
 /// Files at least this large are parsed and checked at the same time, on two threads.
 const PIPELINE_BYTES: usize = 1 << 20;
 
-/// Parses and checks a source text. A large `.dl` file is parsed on a second thread that hands
+/// Parses and checks a source text. A large file is parsed on a second thread that hands
 /// statements over in batches while this one checks them: the two stages overlap.
 pub fn check_source(source: &str, language: Language) -> Checked {
-    if language != Language::Dl || source.len() < PIPELINE_BYTES {
+    if source.len() < PIPELINE_BYTES {
         return check(proclaim_syntax::parse(source, language), source);
     }
     const BATCH: usize = 4096;
@@ -50,7 +50,7 @@ pub fn check_source(source: &str, language: Language) -> Checked {
     std::thread::scope(|scope| {
         let parser = scope.spawn(move || {
             let mut batch = Vec::with_capacity(BATCH);
-            let parsed = proclaim_syntax::parse_dl_each(source, |item| {
+            let parsed = proclaim_syntax::parse_each(source, language, |item| {
                 batch.push(item);
                 if batch.len() == BATCH {
                     // The checker only stops receiving when it is gone; nothing to do then.

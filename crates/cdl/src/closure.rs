@@ -57,8 +57,14 @@ pub enum Resolvents {
 /// unit facts, few real clauses) linear.
 pub fn close(input: &[impl AsRef<[Lit]>], resolvents: Resolvents) -> ClosureOutcome {
     if input.iter().all(|clause| clause.as_ref().len() == 1) {
-        return close_units(input);
+        close_units(input)
+    } else {
+        close_clauses(input, resolvents)
     }
+}
+
+/// [`close`] for any clauses.
+fn close_clauses(input: &[impl AsRef<[Lit]>], resolvents: Resolvents) -> ClosureOutcome {
     let mut closure = Closure::default();
     for (i, clause) in input.iter().enumerate() {
         let Some(clause) = normalize(clause.as_ref().to_vec()) else {
@@ -303,5 +309,33 @@ fn forced_units(all: &[Vec<Lit>], holds: impl Fn(&[Lit]) -> bool) -> Forced {
         Forced::None
     } else {
         Forced::Units(units)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Units alone give what the general loop gives: the same clauses in the same order, and
+    /// the same pair (and the same given clauses) when two contradict.
+    #[test]
+    fn units_alone_close_as_the_general_loop_closes_them() {
+        for units in [
+            vec![],
+            vec![0],
+            vec![4, 2, 4, 7, 2],
+            vec![4, 2, 5, 3],
+            vec![9, 1, 6, 8, 0, 6, 7],
+            vec![3, 3, 2],
+        ] {
+            let input: Vec<Vec<Lit>> = units.iter().map(|&l| vec![Lit(l)]).collect();
+            for resolvents in [Resolvents::All, Resolvents::ImplicationsImplicit] {
+                assert_eq!(
+                    close_units(&input),
+                    close_clauses(&input, resolvents),
+                    "{units:?}"
+                );
+            }
+        }
     }
 }
