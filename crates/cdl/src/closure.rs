@@ -129,7 +129,7 @@ fn close_units(input: &[impl AsRef<[Lit]>]) -> ClosureOutcome {
         .max()
         .map_or(0, |m| m + 1);
     let mut first = vec![u32::MAX; slots];
-    let mut given = Vec::new();
+    let mut given = Vec::with_capacity(input.len());
     for i in 0..input.len() {
         let at = &mut first[unit(i).index()];
         if *at == u32::MAX {
@@ -148,10 +148,9 @@ fn close_units(input: &[impl AsRef<[Lit]>]) -> ClosureOutcome {
             second: (vec![unit(c)], Some(c)),
         };
     }
-    ClosureOutcome::Closed {
-        clauses: given.iter().flatten().map(|&i| vec![unit(i)]).collect(),
-        given,
-    }
+    let mut clauses = Vec::with_capacity(given.len());
+    clauses.extend(given.iter().flatten().map(|&i| vec![unit(i)]));
+    ClosureOutcome::Closed { clauses, given }
 }
 
 /// The clauses so far, indexed by literal, each with the input clause it is (if one).
