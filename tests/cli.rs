@@ -1744,3 +1744,32 @@ fn every_conclusion_is_what_each_literal_asked_alone_answers() {
         assert_eq!(run(&spindle, false), run(&spindle, true), "{family}");
     }
 }
+
+/// `bench --all` runs every conclusion, one query and `wc -w` as processes of their own and
+/// reports each one's best and median time.
+#[test]
+fn bench_all_times_every_conclusion_against_one_query() {
+    let o = proclaim(&[
+        "bench",
+        "--all",
+        "--json",
+        "--repeat",
+        "2",
+        "chain:200",
+        "tree:3:3",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let cases: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let cases = cases.as_array().unwrap();
+    assert_eq!(cases.len(), 2);
+    assert_eq!(cases[0]["query"], "beta a200");
+    for case in cases {
+        for timing in ["every_conclusion", "one_query"] {
+            let (best, median) = (&case[timing]["best_ms"], &case[timing]["median_ms"]);
+            assert!(best.as_f64().unwrap() > 0.0, "{case}");
+            assert!(best.as_f64() <= median.as_f64(), "{case}");
+        }
+    }
+    let o = proclaim(&["bench", "--all", "chain:nope"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

@@ -158,12 +158,10 @@ pub fn write_spindle(
 ) -> io::Result<bool> {
     let engine = session.engine().clone();
     let theory = engine.theory();
-    let mu = session.answers(Algorithm::Mu);
-    let beta = session.answers(Algorithm::Beta);
     let mut any_undecided = false;
     for &lit in lits {
-        for (tag, alg, verdicts) in [(b"D ", Algorithm::Mu, &mu), (b"d ", Algorithm::Beta, &beta)] {
-            out.write_all(match verdicts[lit.index()] {
+        for (tag, alg) in [(b"D ", Algorithm::Mu), (b"d ", Algorithm::Beta)] {
+            out.write_all(match session.verdict(alg, lit) {
                 Verdict::Proved => b"+",
                 Verdict::NotProved => b"-",
                 Verdict::Undecided => {

@@ -52,29 +52,31 @@ pub fn run(
         return Ok(exit(any_undecided));
     }
     let answers = answer(&mut session, &formulas, queries, alg);
-    let any_undecided = answers.iter().any(|(_, _, a)| a.is_err());
-    write_out(|out| {
+    write_out(|out| write_answers(out, &answers, json))?;
+    Ok(exit(answers.iter().any(|(_, _, a)| a.is_err())))
+}
+
+/// The answers to the queries, a line each or one JSON array.
+fn write_answers(out: &mut Out, answers: &[Answer], json: bool) -> std::io::Result<()> {
+    if json {
+        out.write_all(b"[")?;
+    }
+    for (i, (alg, query, answer)) in answers.iter().enumerate() {
         if json {
-            out.write_all(b"[")?;
-        }
-        for (i, (alg, query, answer)) in answers.iter().enumerate() {
-            if json {
-                if i > 0 {
-                    out.write_all(b",")?;
-                }
-                let query = |out: &mut Out| conclusions::write_json_string(out, query);
-                conclusions::write_json_item(out, *alg, query, answer)?;
-            } else {
-                let query = |out: &mut Out| out.write_all(query.as_bytes());
-                conclusions::write_line(out, *alg, query, answer)?;
+            if i > 0 {
+                out.write_all(b",")?;
             }
+            let query = |out: &mut Out| conclusions::write_json_string(out, query);
+            conclusions::write_json_item(out, *alg, query, answer)?;
+        } else {
+            let query = |out: &mut Out| out.write_all(query.as_bytes());
+            conclusions::write_line(out, *alg, query, answer)?;
         }
-        if json {
-            out.write_all(b"]\n")?;
-        }
-        Ok(())
-    })?;
-    Ok(exit(any_undecided))
+    }
+    if json {
+        out.write_all(b"]\n")?;
+    }
+    Ok(())
 }
 
 /// Each query as a formula, or `None` for a literal whose atom the theory lacks: that is not

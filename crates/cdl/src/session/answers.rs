@@ -25,11 +25,17 @@ impl From<Truth> for Verdict {
 }
 
 impl Session {
+    /// Whether `alg` proves the literal, without the reasons [`Session::decide`] gives for an
+    /// undecided answer.
+    pub fn verdict(&mut self, alg: Algorithm, lit: Lit) -> Verdict {
+        Verdict::from(self.truth(alg, lit))
+    }
+
     /// The answer of `alg` for every literal of the theory, indexed by [`Lit::index`]: the same
     /// as [`Session::decide`] asked literal by literal.
     pub fn answers(&mut self, alg: Algorithm) -> Vec<Verdict> {
         (0..self.engine.lit_count as u32)
-            .map(|l| Verdict::from(self.truth(alg, Lit(l))))
+            .map(|l| self.verdict(alg, Lit(l)))
             .collect()
     }
 
