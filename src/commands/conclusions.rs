@@ -154,12 +154,12 @@ pub fn write_every<W: Write>(
 pub fn write_spindle(
     out: &mut impl Write,
     session: &mut Session,
-    lits: &[Lit],
+    lits: impl IntoIterator<Item = Lit>,
 ) -> io::Result<bool> {
     let engine = session.engine().clone();
     let theory = engine.theory();
     let mut any_undecided = false;
-    for &lit in lits {
+    for lit in lits {
         for (tag, alg) in [(b"D ", Algorithm::Mu), (b"d ", Algorithm::Beta)] {
             out.write_all(match session.verdict(alg, lit) {
                 Verdict::Proved => b"+",
@@ -180,10 +180,9 @@ pub fn write_spindle(
     Ok(any_undecided)
 }
 
-/// Every literal of the theory in SPINdle's order: atoms by name (byte order), each positive
-/// then negated. The sort key leads with a name's first eight bytes as a number, so nearly
+/// Every atom of the theory in SPINdle's order: by name (byte order). The sort key leads with a name's first eight bytes as a number, so nearly
 /// every comparison is one of integers rather than of two names far apart in memory.
-pub fn spindle_order(theory: &Theory) -> Vec<Lit> {
+pub fn spindle_order(theory: &Theory) -> Vec<Atom> {
     let prefix = |name: &str| {
         let mut bytes = [0u8; 8];
         let n = name.len().min(8);
@@ -199,8 +198,12 @@ pub fn spindle_order(theory: &Theory) -> Vec<Lit> {
         x.0.cmp(&y.0)
             .then_with(|| theory.atom_name(Atom(x.1)).cmp(theory.atom_name(Atom(y.1))))
     });
+    atoms.into_iter().map(|(_, a)| Atom(a)).collect()
+}
+
+/// Each atom's two literals, positive first, as SPINdle lists them.
+pub fn both_literals(atoms: &[Atom]) -> impl Iterator<Item = Lit> + '_ {
     atoms
-        .into_iter()
-        .flat_map(|(_, a)| [Lit::new(Atom(a), false), Lit::new(Atom(a), true)])
-        .collect()
+        .iter()
+        .flat_map(|&a| [Lit::new(a, false), Lit::new(a, true)])
 }

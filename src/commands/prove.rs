@@ -175,12 +175,17 @@ pub fn spindle(
             }
         }
     }
-    if queries.is_empty() {
-        lits = conclusions::spindle_order(&theory);
-    }
+    let every_atom = queries
+        .is_empty()
+        .then(|| conclusions::spindle_order(&theory));
     let mut session = session(theory, budget);
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
-    let any_undecided = write_out(|out| conclusions::write_spindle(out, &mut session, &lits))?;
+    let any_undecided = write_out(|out| match &every_atom {
+        Some(atoms) => {
+            conclusions::write_spindle(out, &mut session, conclusions::both_literals(atoms))
+        }
+        None => conclusions::write_spindle(out, &mut session, lits),
+    })?;
     Ok(exit(any_undecided))
 }
