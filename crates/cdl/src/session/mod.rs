@@ -431,13 +431,30 @@ impl Session {
 
     fn goal_truth(&mut self, g: Goal) -> Truth {
         if self.values[g as usize] == UNKNOWN {
-            self.solve(g);
+            if self.concluded_by_nothing(g) {
+                // Its condition reads no goal (cdl.md §4: no rule and no μ proof, no proof).
+                self.values[g as usize] = FALSE;
+                self.evaluated += 1;
+            } else {
+                self.solve(g);
+            }
         }
         match self.values[g as usize] {
             TRUE => Truth::True,
             UNDECIDED => Truth::Undecided(g),
             _ => Truth::False,
         }
+    }
+
+    /// A β or π goal whose literal no rule concludes and μ does not prove: most negated
+    /// literals of a large theory, which every-conclusion output asks about one by one, and
+    /// which need no walk. (A literal an implication leads to is the head of the clause's rule.)
+    fn concluded_by_nothing(&self, g: Goal) -> bool {
+        let kind = kind_of(g);
+        !self.engine.is_aggregate(g)
+            && (kind == BETA || kind == PI)
+            && !self.mu[lit_of(g).index()]
+            && self.engine.rules_for(lit_of(g)).is_empty()
     }
 
     pub(crate) fn mu(&self) -> &[bool] {
