@@ -333,6 +333,10 @@ pub enum Command {
         repeat: u32,
         #[arg(long)]
         json: bool,
+        /// Time every conclusion (`prove FILE --format spindle`) against one query and `wc -w`
+        /// on the same `.dfl` file, as whole processes, best and median of the repeats
+        #[arg(long)]
+        all: bool,
     },
     /// Run a sensor wrapper alone and print every change it posts, one line each
     Sensor {

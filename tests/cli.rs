@@ -1700,3 +1700,118 @@ fn the_built_in_behaviours_recorded_replay_the_same() {
         );
     }
 }
+
+/// `prove FILE` with no query prints every conclusion (as lines, as JSON, in SPINdle's form)
+/// exactly as asking for each literal prints it, on generated theories of several families in
+/// both languages, under every algorithm.
+#[test]
+fn every_conclusion_is_what_each_literal_asked_alone_answers() {
+    use proclaim_gen::Format::{Dfl, Dl};
+    for (family, sizes, format) in [
+        ("chain", vec![20], Dl),
+        ("circle", vec![12], Dfl),
+        ("teams", vec![2], Dfl),
+        ("tree", vec![3, 3], Dfl),
+        ("dag", vec![6, 3], Dl),
+        ("levels-", vec![6], Dl),
+        ("mix", vec![2, 2, 3], Dl),
+        ("attack-ring", vec![9], Dl),
+        ("clique", vec![5], Dl),
+    ] {
+        let f = proclaim_gen::Family::parse(family, &sizes).unwrap();
+        let mut text = Vec::new();
+        f.write(&mut text, format).unwrap();
+        let (name, language) = match format {
+            Dl => (format!("every-{family}.dl"), proclaim_cdl::Language::Dl),
+            Dfl => (format!("every-{family}.dfl"), proclaim_cdl::Language::Dfl),
+        };
+        let path = temp_file(&name, &text);
+        let path = path.to_str().unwrap();
+        let theory = proclaim_cdl::load(std::str::from_utf8(&text).unwrap(), language).unwrap();
+        let mut names: Vec<&str> = (0..theory.atom_count() as u32)
+            .map(|a| theory.atom_name(proclaim_cdl::Atom(a)))
+            .collect();
+        names.sort();
+        let lits: Vec<String> = names
+            .iter()
+            .flat_map(|n| [n.to_string(), format!("~{n}")])
+            .collect();
+        let run = |extra: &[&str], each: bool| {
+            let mut args = vec!["prove", path];
+            if each {
+                args.extend(lits.iter().map(String::as_str));
+            }
+            args.extend(extra);
+            let o = proclaim(&args);
+            assert_eq!(
+                o.status.code(),
+                Some(0),
+                "{family} {args:?}: {}",
+                stderr(&o)
+            );
+            stdout(&o)
+        };
+        // Lines: every answer but the `-` ones, algorithm by algorithm.
+        let lines = |out: String| {
+            let mut kept: Vec<String> = out
+                .lines()
+                .filter(|l| !l.starts_with('-'))
+                .map(String::from)
+                .collect();
+            kept.sort();
+            kept
+        };
+        let all = ["--alg", "all"];
+        assert_eq!(lines(run(&all, false)), lines(run(&all, true)), "{family}");
+        let json = |out: String| {
+            let value: serde_json::Value = serde_json::from_str(&out).unwrap();
+            let mut kept: Vec<String> = value
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|a| a["proved"] != false)
+                .map(|a| a.to_string())
+                .collect();
+            kept.sort();
+            kept
+        };
+        let all_json = ["--alg", "all", "--json"];
+        assert_eq!(
+            json(run(&all_json, false)),
+            json(run(&all_json, true)),
+            "{family}"
+        );
+        // SPINdle's form lists every literal, atoms by name: the same bytes either way.
+        let spindle = ["--format", "spindle"];
+        assert_eq!(run(&spindle, false), run(&spindle, true), "{family}");
+    }
+}
+
+/// `bench --all` runs every conclusion, one query and `wc -w` as processes of their own and
+/// reports each one's best and median time.
+#[test]
+fn bench_all_times_every_conclusion_against_one_query() {
+    let o = proclaim(&[
+        "bench",
+        "--all",
+        "--json",
+        "--repeat",
+        "2",
+        "chain:200",
+        "tree:3:3",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let cases: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let cases = cases.as_array().unwrap();
+    assert_eq!(cases.len(), 2);
+    assert_eq!(cases[0]["query"], "beta a200");
+    for case in cases {
+        for timing in ["every_conclusion", "one_query"] {
+            let (best, median) = (&case[timing]["best_ms"], &case[timing]["median_ms"]);
+            assert!(best.as_f64().unwrap() > 0.0, "{case}");
+            assert!(best.as_f64() <= median.as_f64(), "{case}");
+        }
+    }
+    let o = proclaim(&["bench", "--all", "chain:nope"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

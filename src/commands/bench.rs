@@ -36,7 +36,7 @@ pub struct Measurement {
 
 /// What one case times: a generated family (with its expected answers) or the user's own file.
 #[derive(Clone, Debug)]
-enum Case {
+pub(super) enum Case {
     Family(Family),
     File(PathBuf),
 }
@@ -77,7 +77,7 @@ const QUICK: [&str; 7] = [
 ];
 
 /// A theory file (`.dl` or `.dfl`) that exists is timed as it is; anything else names a family.
-fn parse_case(case: &str) -> Result<Case, Failure> {
+pub(super) fn parse_case(case: &str) -> Result<Case, Failure> {
     let path = Path::new(case);
     if path.is_file() {
         return Ok(Case::File(path.to_path_buf()));
@@ -100,7 +100,22 @@ fn parse_family(case: &str) -> Result<Family, Failure> {
     Family::parse(name, &sizes).map_err(|e| Failure::Argument(format!("bench case `{case}`: {e}")))
 }
 
-pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<ExitCode, Failure> {
+/// How `proclaim bench` was asked to run.
+pub struct BenchOptions {
+    pub quick: bool,
+    pub repeat: u32,
+    pub json: bool,
+    /// Every conclusion against one query and `wc -w`, as whole processes (`bench_all.rs`).
+    pub all: bool,
+}
+
+pub fn run(cases: &[String], options: BenchOptions) -> Result<ExitCode, Failure> {
+    let BenchOptions {
+        quick,
+        repeat,
+        json,
+        all,
+    } = options;
     let names: Vec<String> = if cases.is_empty() {
         (if quick { &QUICK } else { &SUITE })
             .iter()
@@ -109,6 +124,9 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
     } else {
         cases.to_vec()
     };
+    if all {
+        return super::bench_all::run(&names, repeat, json);
+    }
     let cases = names
         .iter()
         .map(|c| parse_case(c))
@@ -129,7 +147,9 @@ pub fn run(cases: &[String], quick: bool, repeat: u32, json: bool) -> Result<Exi
             progress.set_message(case.to_string());
             let (file, expected) = match case {
                 Case::File(path) => (path.clone(), Vec::new()),
-                Case::Family(family) => (write_family(&dir, family)?, family.expected()),
+                Case::Family(family) => {
+                    (write_family(&dir, family, Format::Dl)?, family.expected())
+                }
             };
             let mut best: Option<(Measurement, f64)> = None;
             for _ in 0..repeat.max(1) {
@@ -213,15 +233,22 @@ fn print_table(results: &Results) {
 }
 
 /// Writes a family's theory into `dir` for the child to read.
-fn write_family(dir: &Path, family: &Family) -> Result<PathBuf, Failure> {
-    let file = dir.join("theory.dl");
+pub(super) fn write_family(
+    dir: &Path,
+    family: &Family,
+    format: Format,
+) -> Result<PathBuf, Failure> {
+    let file = dir.join(match format {
+        Format::Dl => "theory.dl",
+        Format::Dfl => "theory.dfl",
+    });
     let out = std::fs::File::create(&file).map_err(|error| Failure::Write {
         path: file.clone(),
         error,
     })?;
     let mut out = BufWriter::with_capacity(1 << 20, out);
     family
-        .write(&mut out, Format::Dl)
+        .write(&mut out, format)
         .and_then(|_| out.flush())
         .map_err(|error| Failure::Write {
             path: file.clone(),

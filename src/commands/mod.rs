@@ -1,8 +1,10 @@
 //! One module per subcommand; `run` dispatches.
 
 mod bench;
+mod bench_all;
 mod board;
 mod check;
+mod conclusions;
 mod deps;
 pub mod draw;
 mod explain;
@@ -165,7 +167,16 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             quick,
             repeat,
             json,
-        } => bench::run(&cases, quick, repeat, json),
+            all,
+        } => bench::run(
+            &cases,
+            bench::BenchOptions {
+                quick,
+                repeat,
+                json,
+                all,
+            },
+        ),
         Command::BenchRun { file, expect } => bench::run_one(&file, &expect),
         Command::Sensor {
             sensor:

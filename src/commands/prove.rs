@@ -1,6 +1,6 @@
 //! `proclaim prove`: answers queries, one line each.
 
-use super::{algorithms, inputs};
+use super::{algorithms, conclusions, inputs};
 use crate::cli::AlgArg;
 use crate::failure::Failure;
 use crate::load;
@@ -46,18 +46,37 @@ pub fn run(
     let mut session = session(theory, budget);
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
-    let answers = if queries.is_empty() {
-        every_conclusion(&mut session, alg)
-    } else {
-        answer(&mut session, &formulas, queries, alg)
-    };
-    let any_undecided = answers.iter().any(|(_, _, a)| a.is_err());
-    if json {
-        print_json(&answers);
-    } else {
-        print_lines(answers)?;
+    if queries.is_empty() {
+        let any_undecided =
+            write_out(|out| conclusions::write_every(out, &mut session, &algorithms(alg), json))?;
+        return Ok(exit(any_undecided));
     }
-    Ok(exit(any_undecided))
+    let answers = answer(&mut session, &formulas, queries, alg);
+    write_out(|out| write_answers(out, &answers, json))?;
+    Ok(exit(answers.iter().any(|(_, _, a)| a.is_err())))
+}
+
+/// The answers to the queries, a line each or one JSON array.
+fn write_answers(out: &mut Out, answers: &[Answer], json: bool) -> std::io::Result<()> {
+    if json {
+        out.write_all(b"[")?;
+    }
+    for (i, (alg, query, answer)) in answers.iter().enumerate() {
+        if json {
+            if i > 0 {
+                out.write_all(b",")?;
+            }
+            let query = |out: &mut Out| conclusions::write_json_string(out, query);
+            conclusions::write_json_item(out, *alg, query, answer)?;
+        } else {
+            let query = |out: &mut Out| out.write_all(query.as_bytes());
+            conclusions::write_line(out, *alg, query, answer)?;
+        }
+    }
+    if json {
+        out.write_all(b"]\n")?;
+    }
+    Ok(())
 }
 
 /// Each query as a formula, or `None` for a literal whose atom the theory lacks: that is not
@@ -110,78 +129,21 @@ fn answer(
     answers
 }
 
-/// Every conclusion of each algorithm asked for, and every literal left undecided.
-fn every_conclusion(session: &mut Session, alg: AlgArg) -> Vec<Answer> {
-    let engine = session.engine().clone();
-    let theory = engine.theory();
-    let mut answers = Vec::new();
-    for alg in algorithms(alg) {
-        for lit in (0..theory.atom_count() as u32 * 2).map(proclaim_cdl::Lit) {
-            let answer = session.decide(alg, lit);
-            if answer != Ok(false) {
-                answers.push((alg, theory.show(lit).to_string(), answer));
-            }
-        }
-    }
-    answers
-}
-
-fn print_json(answers: &[Answer]) {
-    let list: Vec<_> = answers
-        .iter()
-        .map(|(alg, query, answer)| match answer {
-            Ok(proved) => {
-                serde_json::json!({"algorithm": alg.name(), "query": query, "proved": proved})
-            }
-            Err(undecided) => serde_json::json!({
-                "algorithm": alg.name(), "query": query, "proved": null,
-                "undecided": undecided.to_string(),
-            }),
-        })
-        .collect();
-    println!("{}", serde_json::Value::Array(list));
-}
-
-/// `+beta q`, `-beta q`, or `?beta q  (undecided: …)`, a line each.
-fn print_lines(answers: Vec<Answer>) -> Result<(), Failure> {
-    write_out(|out| {
-        for (alg, query, answer) in answers {
-            match answer {
-                Ok(proved) => writeln!(out, "{}{alg} {query}", if proved { '+' } else { '-' })?,
-                Err(undecided) => {
-                    writeln!(out, "?{alg} {query}  (undecided: {})", reason(&undecided))?
-                }
-            }
-        }
-        Ok(())
-    })
-}
+/// Standard output through one buffer.
+type Out = BufWriter<std::io::StdoutLock<'static>>;
 
 /// Writes to standard output through one buffer: a line a conclusion is a million lines for a
 /// large theory, and unbuffered each would be a system call. A closed pipe (`| head`) is the
 /// reader's choice, not an error.
-fn write_out(write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), Failure> {
+fn write_out<T: Default>(write: impl FnOnce(&mut Out) -> std::io::Result<T>) -> Result<T, Failure> {
     let mut out = BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
-    match write(&mut out).and_then(|()| out.flush()) {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+    match write(&mut out).and_then(|t| out.flush().map(|()| t)) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(T::default()),
         other => other.map_err(|error| Failure::Write {
             path: PathBuf::from("<stdout>"),
             error,
         }),
     }
-}
-
-/// The undecided answer's reason, short enough for the end of an answer line.
-fn reason(undecided: &Undecided) -> String {
-    let origin = if undecided.stalled_at == undecided.goal {
-        String::new()
-    } else {
-        format!(" through `{}`", undecided.stalled_at)
-    };
-    format!(
-        "search budget of {} steps spent in an attack cycle of {} goals{origin}; raise it with --budget",
-        undecided.steps, undecided.component
-    )
 }
 
 /// Whether `query` is a plain literal (`a`, `~a`) naming an atom the theory does not have.
@@ -213,46 +175,17 @@ pub fn spindle(
             }
         }
     }
-    if queries.is_empty() {
-        let mut atoms: Vec<u32> = (0..theory.atom_count() as u32).collect();
-        atoms.sort_by_key(|&a| theory.atom_name(proclaim_cdl::Atom(a)).to_string());
-        for a in atoms {
-            let atom = proclaim_cdl::Atom(a);
-            lits.push(proclaim_cdl::Lit::new(atom, false));
-            lits.push(proclaim_cdl::Lit::new(atom, true));
-        }
-    }
+    let every_atom = queries
+        .is_empty()
+        .then(|| conclusions::spindle_order(&theory));
     let mut session = session(theory, budget);
     let engine = session.engine().clone();
     inputs::apply(&mut session, engine.theory(), sets)?;
-    let theory = engine.theory();
-    let mut any_undecided = false;
-    write_out(|out| {
-        for lit in lits {
-            let name = theory.atom_name(lit.atom());
-            let shown = if lit.is_negated() {
-                format!("-{name}")
-            } else {
-                name.to_string()
-            };
-            for (tag, alg) in [
-                ('D', proclaim_cdl::Algorithm::Mu),
-                ('d', proclaim_cdl::Algorithm::Beta),
-            ] {
-                // SPINdle has no undecided answer: `?` marks one, explained on stderr.
-                let sign = match session.decide(alg, lit) {
-                    Ok(true) => '+',
-                    Ok(false) => '-',
-                    Err(undecided) => {
-                        any_undecided = true;
-                        eprintln!("warning: {undecided}");
-                        '?'
-                    }
-                };
-                writeln!(out, "{sign}{tag} {shown}")?;
-            }
+    let any_undecided = write_out(|out| match &every_atom {
+        Some(atoms) => {
+            conclusions::write_spindle(out, &mut session, conclusions::both_literals(atoms))
         }
-        Ok(())
+        None => conclusions::write_spindle(out, &mut session, lits),
     })?;
     Ok(exit(any_undecided))
 }

@@ -112,38 +112,81 @@ fn markdown(table: &Table) -> String {
     out
 }
 
-fn json(table: &Table) -> serde_json::Value {
-    let rows: Vec<_> = table
-        .rows
-        .iter()
-        .map(|row| {
-            let inputs: serde_json::Map<_, _> = table
-                .inputs
-                .iter()
-                .zip(&row.inputs)
-                .map(|(n, v)| (n.clone(), (*v).into()))
-                .collect();
-            let outputs = row.outputs.as_ref().map(|outputs| {
-                table
-                    .columns
-                    .iter()
-                    .zip(outputs)
-                    .map(|(c, v)| (c.heading.clone(), (*v).into()))
-                    .collect::<serde_json::Map<_, _>>()
-            });
-            serde_json::json!({"inputs": inputs, "outputs": outputs})
-        })
-        .collect();
-    let columns: Vec<_> = table
-        .columns
-        .iter()
-        .map(|c| {
-            serde_json::json!({
-                "heading": c.heading,
-                "algorithm": c.algorithm.name(),
-                "description": c.description,
-            })
-        })
-        .collect();
-    serde_json::json!({"inputs": table.inputs, "outputs": columns, "rows": rows})
+/// The table as one JSON object, written straight into text: a `serde_json::Value` of a table
+/// with a column for each of a million atoms is a million map entries. Keys come in the order
+/// serde_json's maps keep them (sorted, the last of equal keys kept), so the text is the one
+/// serde_json would print.
+fn json(table: &Table) -> String {
+    let mut out = String::from("{\"inputs\":[");
+    for (i, name) in table.inputs.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        push_json_str(&mut out, name);
+    }
+    out.push_str("],\"outputs\":[");
+    for (i, c) in table.columns.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        out.push_str("{\"algorithm\":");
+        push_json_str(&mut out, c.algorithm.name());
+        out.push_str(",\"description\":");
+        match &c.description {
+            Some(d) => push_json_str(&mut out, d),
+            None => out.push_str("null"),
+        }
+        out.push_str(",\"heading\":");
+        push_json_str(&mut out, &c.heading);
+        out.push('}');
+    }
+    out.push_str("],\"rows\":[");
+    let inputs = map_order(&table.inputs);
+    let headings: Vec<&String> = table.columns.iter().map(|c| &c.heading).collect();
+    let columns = map_order(&headings);
+    let push_map = |out: &mut String, keys: &[&String], order: &[usize], values: &[bool]| {
+        out.push('{');
+        for (n, &i) in order.iter().enumerate() {
+            if n > 0 {
+                out.push(',');
+            }
+            push_json_str(out, keys[i]);
+            out.push_str(if values[i] { ":true" } else { ":false" });
+        }
+        out.push('}');
+    };
+    let input_names: Vec<&String> = table.inputs.iter().collect();
+    for (r, row) in table.rows.iter().enumerate() {
+        if r > 0 {
+            out.push(',');
+        }
+        out.push_str("{\"inputs\":");
+        push_map(&mut out, &input_names, &inputs, &row.inputs);
+        out.push_str(",\"outputs\":");
+        match &row.outputs {
+            Some(outputs) => push_map(&mut out, &headings, &columns, outputs),
+            None => out.push_str("null"),
+        }
+        out.push('}');
+    }
+    out.push_str("]}");
+    out
+}
+
+/// The order in which a JSON map holds these keys: sorted, and of equal keys only the last.
+fn map_order<K: Ord>(keys: &[K]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..keys.len()).collect();
+    order.sort_by(|&a, &b| keys[a].cmp(&keys[b]));
+    let mut kept: Vec<usize> = Vec::with_capacity(order.len());
+    for i in order {
+        match kept.last_mut() {
+            Some(last) if keys[*last] == keys[i] => *last = i,
+            _ => kept.push(i),
+        }
+    }
+    kept
+}
+
+fn push_json_str(out: &mut String, text: &str) {
+    out.push_str(&serde_json::to_string(text).unwrap_or_default());
 }

@@ -17,20 +17,22 @@ pub(crate) struct Csr {
 impl Csr {
     /// Builds rows for `keys` keys from `(key, item)` pairs, keeping each row in pair order.
     pub(crate) fn build(keys: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> Csr {
-        let mut start = vec![0u32; keys + 1];
+        // Counted one place further on, so that after the sums `start[k + 1]` is where row `k`
+        // begins: filled from there, it ends where row `k + 1` begins, with no second array.
+        let mut start = vec![0u32; keys + 2];
         for (k, _) in pairs.clone() {
-            start[k as usize + 1] += 1;
+            start[k as usize + 2] += 1;
         }
-        for i in 0..keys {
-            start[i + 1] += start[i];
+        for i in 2..keys + 2 {
+            start[i] += start[i - 1];
         }
-        let mut fill = start.clone();
-        let mut items = vec![0u32; start[keys] as usize];
+        let mut items = vec![0u32; start[keys + 1] as usize];
         for (k, item) in pairs {
-            let slot = &mut fill[k as usize];
+            let slot = &mut start[k as usize + 1];
             items[*slot as usize] = item;
             *slot += 1;
         }
+        start.truncate(keys + 1);
         Csr { start, items }
     }
 

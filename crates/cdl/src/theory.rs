@@ -74,6 +74,12 @@ pub struct Clause {
     pub span: Option<Span>,
 }
 
+impl AsRef<[Lit]> for Clause {
+    fn as_ref(&self) -> &[Lit] {
+        &self.lits
+    }
+}
+
 /// A rule as the engine and the reference prover read it.
 #[derive(Clone, Copy, Debug)]
 pub struct RuleRef<'t> {

@@ -1,6 +1,6 @@
 //! The worked cases of cdl.md §6, answered by the fast engine and the reference prover alike.
 
-use proclaim_cdl::{load, Algorithm, Engine, Formula, Language, ReferenceProver, Session};
+use proclaim_cdl::{load, Algorithm, Engine, Formula, Language, ReferenceProver, Session, Verdict};
 
 /// `expect` gives μ π β α δ in order, `+` proved, `-` not.
 fn check(theory: &str, query: &str, expect: &str) {
@@ -334,5 +334,64 @@ fn cliques_and_rings_are_decided_by_their_structure_without_search() {
             "{}",
             theory.show(l)
         );
+    }
+}
+
+/// Every literal's answer at once (`Session::answers`, what `prove` with no query prints) is
+/// each literal's answer asked alone in a fresh session, on generated theories of several
+/// families under every algorithm, and on a cycle the search leaves undecided.
+#[test]
+fn every_answer_at_once_equals_each_asked_alone() {
+    let verdict = |answer: Result<bool, proclaim_cdl::Undecided>| match answer {
+        Ok(true) => Verdict::Proved,
+        Ok(false) => Verdict::NotProved,
+        Err(_) => Verdict::Undecided,
+    };
+    let tight = proclaim_cdl::SearchLimits {
+        steps: 1000,
+        ..Default::default()
+    };
+    let mut cases: Vec<(String, proclaim_cdl::Theory, proclaim_cdl::SearchLimits)> = [
+        ("chain", vec![30]),
+        ("circle", vec![30]),
+        ("teams", vec![3]),
+        ("tree", vec![4, 3]),
+        ("dag", vec![10, 3]),
+        ("levels-", vec![10]),
+        ("mix", vec![3, 2, 4]),
+        ("attack-ring", vec![31]),
+        ("pairs-ring", vec![12]),
+        ("clique", vec![9]),
+        ("ladder", vec![4]),
+        ("clause-chain", vec![20]),
+    ]
+    .into_iter()
+    .map(|(name, sizes)| {
+        let mut text = Vec::new();
+        proclaim_gen::Family::parse(name, &sizes)
+            .unwrap()
+            .write(&mut text, proclaim_gen::Format::Dl)
+            .unwrap();
+        let theory = load(std::str::from_utf8(&text).unwrap(), Language::Dl).unwrap();
+        (name.to_string(), theory, Default::default())
+    })
+    .collect();
+    let ladder = load(&proclaim_gen::crossed_ladder(), Language::Dl).unwrap();
+    cases.push(("crossed ladder, tight budget".into(), ladder, tight));
+    for (name, theory, limits) in cases {
+        let engine = std::sync::Arc::new(Engine::new(theory));
+        let lits = (0..engine.theory().atom_count() as u32 * 2).map(proclaim_cdl::Lit);
+        for alg in Algorithm::ALL {
+            let at_once = Session::with_limits(engine.clone(), limits).answers(alg);
+            let alone: Vec<Verdict> = lits
+                .clone()
+                .map(|l| verdict(Session::with_limits(engine.clone(), limits).decide(alg, l)))
+                .collect();
+            assert_eq!(at_once, alone, "{name}, {alg}");
+        }
+        let undecided = Session::with_limits(engine.clone(), limits)
+            .answers(Algorithm::Beta)
+            .contains(&Verdict::Undecided);
+        assert_eq!(undecided, name.contains("tight"), "{name}");
     }
 }

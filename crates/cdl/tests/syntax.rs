@@ -293,6 +293,35 @@ fn large_files_checked_in_a_pipeline_match_the_sequential_check() {
 }
 
 #[test]
+fn large_dfl_files_checked_in_a_pipeline_match_the_sequential_check() {
+    // SPINdle's format goes through the same pipeline past 1 MiB.
+    let mut text = Vec::new();
+    proclaim_gen::Family::parse("tree", &[10, 3])
+        .unwrap()
+        .write(&mut text, proclaim_gen::Format::Dfl)
+        .unwrap();
+    let mut text = String::from_utf8(text).unwrap();
+    assert!(text.len() > 1 << 20);
+    let sequential = |t: &str| check_theory(parse(t, Language::Dfl), t);
+    let good = proclaim_cdl::check_source(&text, Language::Dfl);
+    let expected = sequential(&text);
+    assert_eq!(good.diagnostics, expected.diagnostics);
+    let (a, b) = (good.theory.unwrap(), expected.theory.unwrap());
+    assert_eq!(a.rule_count(), b.rule_count());
+    assert_eq!(a.atom_count(), b.atom_count());
+    for rule in (0..a.rule_count() as u32).step_by(997) {
+        assert_eq!(a.show_rule(rule), b.show_rule(rule));
+    }
+    let middle = text[..text.len() / 2].rfind('\n').unwrap() + 1;
+    text.insert_str(middle, "Broken: a b => c\nBroken > r1\nr1 > Nowhere\n");
+    let pipelined = proclaim_cdl::check_source(&text, Language::Dfl);
+    let expected = sequential(&text);
+    assert!(pipelined.theory.is_none());
+    assert_eq!(pipelined.diagnostics, expected.diagnostics);
+    assert!(!pipelined.diagnostics.is_empty());
+}
+
+#[test]
 fn a_missing_dot_is_one_error_not_a_cascade() {
     // Before, the priority below also said "no rule is labelled `Doubt`".
     check(

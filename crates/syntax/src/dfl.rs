@@ -24,6 +24,14 @@ enum T {
 /// Parses a whole `.dfl` text. Never fails.
 pub fn parse_dfl(source: &str) -> ParsedTheory {
     let mut items = Vec::new();
+    let mut parsed = parse_dfl_each(source, |item| items.push(item));
+    parsed.items = items;
+    parsed
+}
+
+/// Parses a whole `.dfl` text, handing each statement to `on_item` as soon as it is parsed (so
+/// a later stage can work at the same time); the result holds the diagnostics and no items.
+pub fn parse_dfl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheory {
     let mut sink = Sink::default();
     if source.len() > u32::MAX as usize {
         sink.push(Diagnostic::error(
@@ -31,7 +39,7 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
             "file is larger than 4 GiB",
         ));
         return ParsedTheory {
-            items,
+            items: Vec::new(),
             diagnostics: sink.finish(0),
             broken_labels: Vec::new(),
         };
@@ -49,7 +57,7 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
             continue;
         }
         match statement(&tokens, source) {
-            Ok(item) => items.push(item),
+            Ok(item) => on_item(item),
             Err(d) => {
                 if let [(T::Word, label), (T::Colon, _), ..] = tokens[..] {
                     broken_labels.push(label);
@@ -59,7 +67,7 @@ pub fn parse_dfl(source: &str) -> ParsedTheory {
         }
     }
     ParsedTheory {
-        items,
+        items: Vec::new(),
         diagnostics: sink.finish(source.len()),
         broken_labels,
     }

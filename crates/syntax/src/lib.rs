@@ -21,7 +21,7 @@ lalrpop_util::lalrpop_mod!(
 );
 
 pub use ast::{Algorithm, Arrow, Item, Lit, OutputPart, Query, RuleItem};
-pub use dfl::parse_dfl;
+pub use dfl::{parse_dfl, parse_dfl_each};
 pub use diagnostic::{render, Diagnostic, Severity};
 pub use lines::{code_lines, parse_duration, LineError, LineErrors};
 pub use located::FileDiagnostic;
@@ -45,6 +45,15 @@ impl Language {
             Some(ext) if ext.eq_ignore_ascii_case("dfl") => Language::Dfl,
             _ => Language::Dl,
         }
+    }
+}
+
+/// Parses a text in the given language, handing each statement to `on_item` as soon as it is
+/// parsed; the result holds the diagnostics and no items.
+pub fn parse_each(source: &str, language: Language, on_item: impl FnMut(Item)) -> ParsedTheory {
+    match language {
+        Language::Dl => parse_dl_each(source, on_item),
+        Language::Dfl => parse_dfl_each(source, on_item),
     }
 }
 

@@ -10,12 +10,14 @@ use crate::goal::{
 use crate::literal::{Atom, Lit};
 use crate::query::Formula;
 use crate::theory::RuleKind;
+pub use answers::Verdict;
 use proclaim_syntax::Algorithm;
 use rustc_hash::FxHashMap;
 use std::fmt;
 use std::sync::Arc;
 use truth::Truth;
 
+mod answers;
 mod mu;
 mod solve;
 mod truth;
@@ -421,21 +423,6 @@ impl Session {
         self.inputs[lit.atom().0 as usize] == Some(lit.is_negated())
     }
 
-    /// Every literal `alg` proves, in literal order.
-    pub fn conclusions(&mut self, alg: Algorithm) -> Vec<Lit> {
-        (0..self.engine.lit_count as u32)
-            .map(Lit)
-            .filter(|&l| self.prove(alg, l))
-            .collect()
-    }
-
-    /// How many literals `alg` proves (without collecting them).
-    pub fn count_conclusions(&mut self, alg: Algorithm) -> usize {
-        (0..self.engine.lit_count as u32)
-            .filter(|&l| self.prove(alg, Lit(l)))
-            .count()
-    }
-
     // ---- β, π and support: components of the goal graph, on demand -----------------------------
 
     fn goal_value(&mut self, g: Goal) -> bool {
@@ -444,13 +431,30 @@ impl Session {
 
     fn goal_truth(&mut self, g: Goal) -> Truth {
         if self.values[g as usize] == UNKNOWN {
-            self.solve(g);
+            if self.concluded_by_nothing(g) {
+                // Its condition reads no goal (cdl.md §4: no rule and no μ proof, no proof).
+                self.values[g as usize] = FALSE;
+                self.evaluated += 1;
+            } else {
+                self.solve(g);
+            }
         }
         match self.values[g as usize] {
             TRUE => Truth::True,
             UNDECIDED => Truth::Undecided(g),
             _ => Truth::False,
         }
+    }
+
+    /// A β or π goal whose literal no rule concludes and μ does not prove: most negated
+    /// literals of a large theory, which every-conclusion output asks about one by one, and
+    /// which need no walk. (A literal an implication leads to is the head of the clause's rule.)
+    fn concluded_by_nothing(&self, g: Goal) -> bool {
+        let kind = kind_of(g);
+        !self.engine.is_aggregate(g)
+            && (kind == BETA || kind == PI)
+            && !self.mu[lit_of(g).index()]
+            && self.engine.rules_for(lit_of(g)).is_empty()
     }
 
     pub(crate) fn mu(&self) -> &[bool] {
