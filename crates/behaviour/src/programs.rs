@@ -148,7 +148,9 @@ fn load_prolog(
         Ok(warnings) => problems.extend(warnings.into_iter().map(|w| {
             let d = FileDiagnostic::warning(w.file.as_deref().unwrap_or(&shown), w.line, w.message);
             if w.column > 0 {
-                d.at_column(w.column)
+                // A warning placed in another file (one the program loads) has no text here to quote.
+                let source = if w.file.is_none() { kb.text.as_str() } else { "" };
+                d.at_column(w.column, source)
             } else {
                 d
             }
