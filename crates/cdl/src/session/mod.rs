@@ -36,6 +36,9 @@ struct Frame {
     lo: u32,
     hi: u32,
     cursor: u32,
+    /// Tarjan's low-link of `goal`: needed only while the goal is on the walk's path, so it
+    /// lives here rather than in an array over every goal.
+    low: u32,
 }
 
 /// Setting an input would make the axioms inconsistent.
@@ -110,8 +113,9 @@ pub struct Session {
     inputs: Vec<Option<bool>>,
     mu: Vec<bool>,
     values: Vec<u8>,
+    /// Tarjan's visit number of each goal still unsettled (0: not visited); once a component
+    /// closes, its members' positions in it, which `cycle.rs` reads while they are pending.
     index: Vec<u32>,
-    low: Vec<u32>,
     next_index: u32,
     stack: Vec<Goal>,
     frames: Vec<Frame>,
@@ -142,7 +146,6 @@ impl Session {
             mu: vec![false; lits],
             values: vec![UNKNOWN; engine.goal_count()],
             index: vec![0; engine.goal_count()],
-            low: vec![0; engine.goal_count()],
             next_index: 1,
             stack: Vec::new(),
             frames: Vec::new(),

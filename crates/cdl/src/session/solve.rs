@@ -18,39 +18,30 @@ impl Session {
             if frame.cursor < frame.hi {
                 let s = self.succ[frame.cursor as usize] & !ATTACK;
                 frame.cursor += 1;
-                let g = frame.goal as usize;
                 if self.values[s as usize] != UNKNOWN {
                     continue;
                 }
-                if self.index[s as usize] == 0 {
-                    self.visit(s);
-                } else {
-                    self.low[g] = self.low[g].min(self.index[s as usize]);
+                match self.index[s as usize] {
+                    0 => self.visit(s),
+                    visited => frame.low = frame.low.min(visited),
                 }
             } else {
                 let f = *frame;
                 self.frames.pop();
                 let g = f.goal as usize;
-                if self.low[g] == self.index[g] {
+                if f.low == self.index[g] {
                     self.close_component(f);
                 }
                 self.succ.truncate(f.lo as usize);
-                if let Some(parent) = self.frames.last() {
-                    let p = parent.goal as usize;
-                    // A finished component reuses `low` as scratch; it never lowers its caller.
-                    if self.values[g] == UNKNOWN {
-                        self.low[p] = self.low[p].min(self.low[g]);
-                    }
+                if let Some(parent) = self.frames.last_mut() {
+                    parent.low = parent.low.min(f.low);
                 }
             }
         }
     }
 
     pub(super) fn visit(&mut self, g: Goal) {
-        let i = g as usize;
-        self.index[i] = self.next_index;
-        self.low[i] = self.next_index;
-        self.next_index += 1;
+        self.index[g as usize] = self.next_index;
         self.stack.push(g);
         let lo = self.succ.len() as u32;
         let values = &self.values;
@@ -62,7 +53,9 @@ impl Session {
             lo,
             hi: self.succ.len() as u32,
             cursor: lo,
+            low: self.next_index,
         });
+        self.next_index += 1;
     }
 
     pub(super) fn close_component(&mut self, root: Frame) {
@@ -144,7 +137,8 @@ impl Session {
         let members = std::mem::take(&mut self.component);
         for (position, &g) in members.iter().enumerate() {
             self.values[g as usize] = PENDING;
-            self.low[g as usize] = position as u32;
+            // Its visit number is spent: a settled goal's is never read as one.
+            self.index[g as usize] = position as u32;
         }
         let mut reads = Vec::new();
         let undecided_read = members.iter().find_map(|&g| {
@@ -168,7 +162,7 @@ impl Session {
             engine,
             mu: &self.mu,
             values: &self.values,
-            position: &self.low,
+            position: &self.index,
             members: &members,
         };
         let evaluated = match component.evaluate(&self.limits, may_fall_apart) {
