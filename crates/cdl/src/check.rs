@@ -652,35 +652,37 @@ impl<'s> Checker<'s> {
         self.diagnostics.extend(found);
     }
 
+    fn reserve_strict_rules(&mut self, strict: usize) {
+        let theory = &mut self.theory;
+        theory.heads.reserve(strict);
+        theory.kinds.reserve(strict);
+        theory.body_start.reserve(strict);
+        theory.labels.reserve(strict);
+        theory.origins.reserve(strict);
+    }
+
     fn close_axioms(&mut self) {
         let span_of =
             |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
         match close(&self.theory.axioms, Resolvents::ImplicationsImplicit) {
             ClosureOutcome::Closed { clauses, given } => {
-                let theory = &mut self.theory;
-                let strict = clauses.iter().map(Vec::len).sum::<usize>();
-                theory.closure.reserve(clauses.len());
-                theory.heads.reserve(strict);
-                theory.kinds.reserve(strict);
-                theory.body_start.reserve(strict);
-                theory.labels.reserve(strict);
-                theory.origins.reserve(strict);
+                self.reserve_strict_rules(clauses.iter().map(Vec::len).sum::<usize>());
+                self.theory.closure.reserve(clauses.len());
                 for (index, (lits, given)) in clauses.into_iter().zip(given).enumerate() {
-                    for (i, &head) in lits.iter().enumerate() {
-                        for (j, &other) in lits.iter().enumerate() {
-                            if i != j {
-                                self.theory.bodies.push(other.complement());
-                            }
-                        }
-                        self.theory.heads.push(head);
-                        self.theory.kinds.push(RuleKind::Strict);
-                        self.theory.body_start.push(self.theory.bodies.len() as u32);
-                        self.theory.labels.push((0, 0));
-                        self.theory.origins.push(Origin::Clause(index as u32));
-                    }
+                    add_strict_rules(&mut self.theory, index, &lits);
                     let span = span_of(&self.theory, given);
                     self.theory.closure.push(Clause { lits, span });
                 }
+            }
+            ClosureOutcome::Input => {
+                self.reserve_strict_rules(self.theory.axioms.len());
+                let theory = &mut self.theory;
+                let axioms = std::mem::take(&mut theory.axioms);
+                for (index, clause) in axioms.iter().enumerate() {
+                    add_strict_rules(theory, index, &clause.lits);
+                }
+                theory.axioms = axioms;
+                theory.closure_is_axioms = true;
             }
             ClosureOutcome::Inconsistent { first, second } => {
                 let show = |lits: &[Lit]| {
@@ -727,6 +729,23 @@ impl<'s> Checker<'s> {
                 );
             }
         }
+    }
+}
+
+/// The strict rules of closure clause number `index` (cdl.md §2): each literal, from the
+/// complements of the others.
+fn add_strict_rules(theory: &mut Theory, index: usize, lits: &[Lit]) {
+    for (i, &head) in lits.iter().enumerate() {
+        for (j, &other) in lits.iter().enumerate() {
+            if i != j {
+                theory.bodies.push(other.complement());
+            }
+        }
+        theory.heads.push(head);
+        theory.kinds.push(RuleKind::Strict);
+        theory.body_start.push(theory.bodies.len() as u32);
+        theory.labels.push((0, 0));
+        theory.origins.push(Origin::Clause(index as u32));
     }
 }
 

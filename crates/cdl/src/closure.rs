@@ -23,6 +23,9 @@ pub enum ClosureOutcome {
         clauses: Vec<Vec<Lit>>,
         given: Vec<Option<usize>>,
     },
+    /// The input clauses are their own closure: units, none written twice and no two
+    /// complementary (the facts of nearly every large theory), so there is nothing to copy.
+    Input,
     /// The empty clause was derived: from these two complementary unit clauses (with the input
     /// clause each one is, when it is one), or from an empty input clause (both empty).
     Inconsistent {
@@ -129,27 +132,31 @@ fn close_units(input: &[impl AsRef<[Lit]>]) -> ClosureOutcome {
         .max()
         .map_or(0, |m| m + 1);
     let mut first = vec![u32::MAX; slots];
-    let mut given = Vec::with_capacity(input.len());
+    let mut repeated = false;
     for i in 0..input.len() {
         let at = &mut first[unit(i).index()];
         if *at == u32::MAX {
             *at = i as u32;
-            given.push(Some(i));
+        } else {
+            repeated = true;
         }
     }
+    let is_first = |&i: &usize| first[unit(i).index()] == i as u32;
     let complement_at = |l: Lit| Some(first[l.complement().index()]).filter(|&c| c != u32::MAX);
-    if let Some((l, c)) = given
-        .iter()
-        .flatten()
-        .find_map(|&i| complement_at(unit(i)).map(|c| (i, c as usize)))
+    if let Some((l, c)) = (0..input.len())
+        .filter(is_first)
+        .find_map(|i| complement_at(unit(i)).map(|c| (i, c as usize)))
     {
         return ClosureOutcome::Inconsistent {
             first: (vec![unit(l)], Some(l)),
             second: (vec![unit(c)], Some(c)),
         };
     }
-    let mut clauses = Vec::with_capacity(given.len());
-    clauses.extend(given.iter().flatten().map(|&i| vec![unit(i)]));
+    if !repeated {
+        return ClosureOutcome::Input;
+    }
+    let given: Vec<Option<usize>> = (0..input.len()).filter(is_first).map(Some).collect();
+    let clauses = given.iter().flatten().map(|&i| vec![unit(i)]).collect();
     ClosureOutcome::Closed { clauses, given }
 }
 

@@ -96,7 +96,7 @@ pub(crate) const NO_PART: u32 = u32::MAX;
 impl Implications {
     fn new(lit_count: usize, theory: &Theory) -> Implications {
         let edges: Vec<(u32, u32)> = theory
-            .closure
+            .closure()
             .iter()
             .filter(|c| c.lits.len() == 2)
             .flat_map(|c| {
@@ -221,7 +221,7 @@ impl Engine {
         let closure_by_lit = Csr::build(
             lit_count,
             theory
-                .closure
+                .closure()
                 .iter()
                 .enumerate()
                 .flat_map(|(i, c)| c.lits.iter().map(move |l| (l.0, i as u32))),

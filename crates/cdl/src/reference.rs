@@ -57,8 +57,10 @@ impl ReferenceProver {
             .map(|c| c.lits.clone())
             .chain(facts.iter().map(|&f| vec![f]))
             .collect();
-        let ClosureOutcome::Closed { clauses, .. } = close(&clauses, Resolvents::All) else {
-            return None;
+        let clauses = match close(&clauses, Resolvents::All) {
+            ClosureOutcome::Closed { clauses, .. } => clauses,
+            ClosureOutcome::Input => clauses,
+            ClosureOutcome::Inconsistent { .. } | ClosureOutcome::TooLarge => return None,
         };
         for clause in clauses {
             for &head in &clause {

@@ -108,7 +108,9 @@ pub struct Theory {
     pub(crate) written_rules: usize,
     pub(crate) priorities: Vec<(RuleId, RuleId)>,
     pub(crate) axioms: Vec<Clause>,
+    /// Empty when `closure_is_axioms`: a theory's facts alone are stored once.
     pub(crate) closure: Vec<Clause>,
+    pub(crate) closure_is_axioms: bool,
     pub(crate) inputs: Vec<InputGroup>,
     pub(crate) outputs: Vec<Output>,
     pub(crate) filters: Vec<RowFilter>,
@@ -188,7 +190,11 @@ impl Theory {
 
     /// The closure of the axioms under resolution, tautologies dropped.
     pub fn closure(&self) -> &[Clause] {
-        &self.closure
+        if self.closure_is_axioms {
+            &self.axioms
+        } else {
+            &self.closure
+        }
     }
 
     pub fn inputs(&self) -> &[InputGroup] {
