@@ -149,7 +149,11 @@ fn load_prolog(
             let d = FileDiagnostic::warning(w.file.as_deref().unwrap_or(&shown), w.line, w.message);
             if w.column > 0 {
                 // A warning placed in another file (one the program loads) has no text here to quote.
-                let source = if w.file.is_none() { kb.text.as_str() } else { "" };
+                let source = if w.file.is_none() {
+                    kb.text.as_str()
+                } else {
+                    ""
+                };
                 d.at_column(w.column, source)
             } else {
                 d
