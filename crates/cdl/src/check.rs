@@ -88,8 +88,11 @@ struct Checker<'s> {
     body_spans: Vec<Span>,
     /// Labels of rules that did not parse: priorities naming them are not reported again.
     broken_labels: rustc_hash::FxHashSet<&'s str>,
-    /// Resolved once every label is known.
-    priorities: Vec<(Vec<Span>, Span)>,
+    /// The priorities, resolved once every label is known: each is where its labels end in
+    /// `priority_labels` (every priority's labels one after another, so a million priorities
+    /// are two arrays rather than a million small ones) and its span.
+    priorities: Vec<(u32, Span)>,
+    priority_labels: Vec<Span>,
     name_span: Option<Span>,
 }
 
@@ -113,6 +116,7 @@ impl<'s> Checker<'s> {
             body_spans: Vec::new(),
             broken_labels: Default::default(),
             priorities: Vec::new(),
+            priority_labels: Vec::new(),
             name_span: None,
         };
         // Nothing to rehash in an empty table, so this hasher is never called.
@@ -186,7 +190,11 @@ impl<'s> Checker<'s> {
                     span: Some(span),
                 });
             }
-            Item::Priority { labels, span } => self.priorities.push((labels.clone(), *span)),
+            Item::Priority { labels, span } => {
+                self.priority_labels.extend_from_slice(labels);
+                let end = self.priority_labels.len() as u32;
+                self.priorities.push((end, *span));
+            }
             &Item::Name { name, span } => {
                 if let Some(first) = self.name_span {
                     self.diagnostics.push(
@@ -244,12 +252,16 @@ impl<'s> Checker<'s> {
         // The labels of the next few priorities are asked for from memory first, as `items`
         // does for rules: their slots lie anywhere in the table.
         let priorities = std::mem::take(&mut self.priorities);
+        let labels = std::mem::take(&mut self.priority_labels);
+        let mut start = 0;
         for chunk in priorities.chunks(AHEAD) {
-            for label in chunk.iter().flat_map(|(labels, _)| labels) {
+            let chunk_end = chunk.last().map_or(start, |&(end, _)| end as usize);
+            for label in &labels[start..chunk_end] {
                 self.labels.prefetch(hash(label.text(self.source)));
             }
-            for (labels, span) in chunk {
-                self.add_priority(labels, *span);
+            for &(end, span) in chunk {
+                self.add_priority(&labels[start..end as usize], span);
+                start = end as usize;
             }
         }
         self.check_priority_cycles();
