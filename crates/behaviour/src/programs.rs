@@ -148,7 +148,11 @@ fn load_prolog(
         Ok(warnings) => problems.extend(warnings.into_iter().map(|w| {
             let d = FileDiagnostic::warning(w.file.as_deref().unwrap_or(&shown), w.line, w.message);
             // The line is quoted from the knowledge base itself; a file it loads is not read.
-            let source = if w.file.is_none() { kb.text.as_str() } else { "" };
+            let source = if w.file.is_none() {
+                kb.text.as_str()
+            } else {
+                ""
+            };
             if w.column > 0 {
                 d.at_column(w.column, source)
             } else {

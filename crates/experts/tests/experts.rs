@@ -464,7 +464,8 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
         .await
         .expect("a status packet within a second or two")
         .unwrap();
-    let status = proclaim_gamecontroller::StatusPacket::decode(&buffer[..len]).expect("an RGrt packet");
+    let status =
+        proclaim_gamecontroller::StatusPacket::decode(&buffer[..len]).expect("an RGrt packet");
     assert_eq!(
         (status.team_number, status.player_number, status.fallen),
         (18, 3, true)
