@@ -65,18 +65,18 @@ typedef enum ProclaimValue {
   PROCLAIM_VALUE_UNKNOWN = 2,
 } ProclaimValue;
 
-// A session: every input unknown until set. The pointer C holds is this header, which is never
-// deallocated (`proclaim_session_free` drops the session inside and marks the header dead), so
-// that a freed session answers `DEAD_HANDLE` rather than being undefined behaviour. Each call
-// takes the header from `IDLE` to `BUSY` with one compare-and-swap and puts it back with one
-// store: a second thread's call meanwhile answers `BUSY` instead of racing.
+// A session: every input unknown until set; for one thread at a time. The pointer C holds is a
+// small header that is never deallocated (`proclaim_session_free` drops the session and marks
+// the header dead), so that a freed session answers `DEAD_HANDLE` rather than being undefined
+// behaviour. Each call marks the header busy with one compare-and-swap and idle again with one
+// store: a call from a second thread meanwhile answers `BUSY` instead of racing.
 typedef struct ProclaimSession ProclaimSession;
 
 // A theory, immutable once loaded: sessions share it and may outlive the handle. The pointer C
-// holds is this header, which is never deallocated: `proclaim_theory_free` drops its reference
-// to the engine and leaves `None`, so that later calls answer `DEAD_HANDLE`. Calls take their
-// own reference under the lock (no call is on a proving loop's path), so a free on another
-// thread never pulls the theory from under a running call.
+// holds is a small header that is never deallocated: `proclaim_theory_free` drops the theory
+// and empties the header, so that later calls answer `DEAD_HANDLE`. Each call takes its own
+// reference to the theory under a lock (no call on a theory is on a proving loop's path), so a
+// free on another thread never pulls the theory from under a running call.
 typedef struct ProclaimTheory ProclaimTheory;
 
 // A theory that did not load: where its first error is, and every error rendered as
@@ -143,7 +143,8 @@ enum ProclaimStatus proclaim_error_free(struct ProclaimError *error);
 // `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*text_out` is left alone.
 //
 // # Safety
-// `session` is null or a pointer from `proclaim_session_new` (freed or not); `literal` is null or a NUL-terminated string;
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `text_out` is null or writable.
 enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
                                              const char *literal,
@@ -156,7 +157,8 @@ enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
 // `BAD_ARGUMENT`, and `*input_out` is left alone.
 //
 // # Safety
-// `theory` is null or a pointer from `proclaim_theory_load` (freed or not); `atom` is null or a NUL-terminated string; `input_out` is
+// `theory` is null or from `proclaim_theory_load` (freed or not);
+// `atom` is null or a NUL-terminated string; `input_out` is
 // null or writable.
 enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
                                           const char *atom,
@@ -166,7 +168,8 @@ enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
 // `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
 //
 // # Safety
-// `theory` is null or a pointer from `proclaim_theory_load` (freed or not); `literal` is null or a NUL-terminated string;
+// `theory` is null or from `proclaim_theory_load` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `literal_out` is null or writable.
 enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
                                             const char *literal,
@@ -177,7 +180,7 @@ enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
 // `INPUT_CONFLICT` as by name.
 //
 // # Safety
-// `session` is null or a pointer from `proclaim_session_new` (freed or not).
+// `session` is null or from `proclaim_session_new` (freed or not).
 enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
                                                ProclaimInput input,
                                                int value);
@@ -187,7 +190,8 @@ enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
 // `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
 //
 // # Safety
-// `session` is null or a pointer from `proclaim_session_new` (freed or not); `answer_out` is null or writable.
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *session,
                                                    ProclaimLiteral literal,
                                                    int algorithm,
@@ -199,7 +203,8 @@ enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *sessi
 // `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*answer_out` is left alone.
 //
 // # Safety
-// `session` is null or a pointer from `proclaim_session_new` (freed or not); `literal` is null or a NUL-terminated string;
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove(struct ProclaimSession *session,
                                            const char *literal,
@@ -210,7 +215,7 @@ enum ProclaimStatus proclaim_session_prove(struct ProclaimSession *session,
 // session holds its own reference to the theory. Freed by [`proclaim_session_free`].
 //
 // # Safety
-// `theory` is null or a pointer from `proclaim_theory_load` (freed or not).
+// `theory` is null or from `proclaim_theory_load` (freed or not).
 struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory);
 
 // Sets an input atom to a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`, `_UNKNOWN`); only
@@ -220,7 +225,8 @@ struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory
 // was), or `BAD_ARGUMENT`.
 //
 // # Safety
-// `session` is null or a pointer from [`proclaim_session_new`] (freed or not); `atom` is null or a NUL-terminated string.
+// `session` is null or from [`proclaim_session_new`] (freed or not);
+// `atom` is null or a NUL-terminated string.
 enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
                                          const char *atom,
                                          int value);
@@ -229,7 +235,7 @@ enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
 // answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
 //
 // # Safety
-// `session` is null or a pointer from [`proclaim_session_new`] (freed or not).
+// `session` is null or from [`proclaim_session_new`] (freed or not).
 enum ProclaimStatus proclaim_session_set_budget(struct ProclaimSession *session, uint64_t steps);
 
 // Frees a session: `OK`, or `DEAD_HANDLE` when it was freed already, or `BUSY` when a call on
@@ -241,7 +247,7 @@ enum ProclaimStatus proclaim_session_set_budget(struct ProclaimSession *session,
 // never reused, so no later session can be mistaken for this one.
 //
 // # Safety
-// `session` is null or a pointer from [`proclaim_session_new`] (freed or not).
+// `session` is null or from [`proclaim_session_new`] (freed or not).
 enum ProclaimStatus proclaim_session_free(struct ProclaimSession *session);
 
 // The name of a status ("ok", "undecided", "unknown atom", …), a static string the caller must
@@ -260,7 +266,7 @@ void proclaim_string_free(char *text);
 // or `BAD_ARGUMENT`, or `DEAD_HANDLE` for a freed theory; then `*table_out` is left alone.
 //
 // # Safety
-// `theory` is null or a pointer from `proclaim_theory_load` (freed or not); `table_out` is null or writable.
+// `theory` is null or from `proclaim_theory_load` (freed or not); `table_out` is null or writable.
 enum ProclaimStatus proclaim_theory_table(const struct ProclaimTheory *theory,
                                           struct ProclaimTable **table_out);
 

@@ -274,7 +274,10 @@ fn the_c_dead_handle_example_gets_dead_handle_for_every_freed_handle() {
         String::from_utf8_lossy(&run.stderr)
     );
     assert!(!stdout.contains("FAILED"), "{stdout}");
-    let dead = stdout.lines().filter(|l| l.ends_with(": dead handle")).count();
+    let dead = stdout
+        .lines()
+        .filter(|l| l.ends_with(": dead handle"))
+        .count();
     assert_eq!(dead, 13, "{stdout}");
 
     // No read of freed memory behind the answers: valgrind reports none (and leaks are expected,

@@ -32,6 +32,13 @@ impl<T> Clone for Shared<T> {
     }
 }
 impl<T> Copy for Shared<T> {}
+impl<T> Shared<T> {
+    /// The pointer, through a method so that a closure captures the `Shared` (which is `Sync`),
+    /// not the raw pointer field (which is not).
+    fn get(self) -> *mut T {
+        self.0
+    }
+}
 unsafe impl<T> Send for Shared<T> {}
 unsafe impl<T> Sync for Shared<T> {}
 
@@ -239,15 +246,14 @@ fn a_theory_freed_while_other_threads_use_it_answers_or_is_dead_never_half() {
     std::thread::scope(|scope| {
         for _ in 0..threads {
             scope.spawn(|| {
-                let theory = theory;
                 started.wait();
                 let mut seen_dead = false;
                 for _ in 0..2_000 {
                     let mut input = 0;
                     let status = unsafe {
-                        proclaim_theory_input(theory.0, c("doorOpen").as_ptr(), &mut input)
+                        proclaim_theory_input(theory.get(), c("doorOpen").as_ptr(), &mut input)
                     };
-                    let session = unsafe { proclaim_session_new(theory.0) };
+                    let session = unsafe { proclaim_session_new(theory.get()) };
                     if !session.is_null() {
                         assert!(
                             !seen_dead,
@@ -273,12 +279,12 @@ fn a_theory_freed_while_other_threads_use_it_answers_or_is_dead_never_half() {
         started.wait();
         std::thread::yield_now();
         assert_eq!(
-            unsafe { proclaim_theory_free(theory.0) },
+            unsafe { proclaim_theory_free(theory.get()) },
             ProclaimStatus::Ok
         );
     });
     assert_eq!(
-        unsafe { proclaim_theory_free(theory.0) },
+        unsafe { proclaim_theory_free(theory.get()) },
         ProclaimStatus::DeadHandle
     );
 }
@@ -291,7 +297,7 @@ fn a_session_shared_against_the_rules_says_busy_and_a_free_during_a_call_waits_i
     let theory = theory();
     let (input, literal) = handles(theory);
     let session = Shared(unsafe { proclaim_session_new(theory) });
-    let freed = AtomicBool::new(false);
+    let freeing = AtomicBool::new(false);
     let answered = AtomicUsize::new(0);
     let started = Barrier::new(3);
     let mut busy_seen = 0;
@@ -299,15 +305,20 @@ fn a_session_shared_against_the_rules_says_busy_and_a_free_during_a_call_waits_i
         let users: Vec<_> = (0..2)
             .map(|_| {
                 scope.spawn(|| {
-                    let session = session;
                     started.wait();
                     let mut busy = 0;
                     for i in 0..20_000 {
                         let value = c_int::from(i % 2 == 0);
                         let mut answer = false;
-                        let set = unsafe { proclaim_session_set_input(session.0, input, value) };
+                        let set =
+                            unsafe { proclaim_session_set_input(session.get(), input, value) };
                         let asked = unsafe {
-                            proclaim_session_prove_literal(session.0, literal, BETA, &mut answer)
+                            proclaim_session_prove_literal(
+                                session.get(),
+                                literal,
+                                BETA,
+                                &mut answer,
+                            )
                         };
                         for status in [set, asked] {
                             match status {
@@ -315,7 +326,9 @@ fn a_session_shared_against_the_rules_says_busy_and_a_free_during_a_call_waits_i
                                     answered.fetch_add(1, Ordering::SeqCst);
                                 }
                                 ProclaimStatus::Busy => busy += 1,
-                                ProclaimStatus::DeadHandle => assert!(freed.load(Ordering::SeqCst)),
+                                ProclaimStatus::DeadHandle => {
+                                    assert!(freeing.load(Ordering::SeqCst))
+                                }
                                 other => panic!("{other:?}"),
                             }
                         }
@@ -329,20 +342,20 @@ fn a_session_shared_against_the_rules_says_busy_and_a_free_during_a_call_waits_i
         while answered.load(Ordering::SeqCst) < 5_000 && !users.iter().all(|u| u.is_finished()) {
             std::thread::yield_now();
         }
+        freeing.store(true, Ordering::SeqCst);
         loop {
-            match unsafe { proclaim_session_free(session.0) } {
+            match unsafe { proclaim_session_free(session.get()) } {
                 ProclaimStatus::Ok => break,
                 ProclaimStatus::Busy => std::thread::yield_now(),
                 other => panic!("{other:?}"),
             }
         }
-        freed.store(true, Ordering::SeqCst);
         busy_seen = users.into_iter().map(|u| u.join().unwrap()).sum::<u32>();
     });
     // Whether the two users ever overlapped depends on the scheduler; what they answered did not.
     eprintln!("{busy_seen} calls answered BUSY");
     assert_eq!(
-        unsafe { proclaim_session_free(session.0) },
+        unsafe { proclaim_session_free(session.get()) },
         ProclaimStatus::DeadHandle
     );
     unsafe { proclaim_theory_free(theory) };
