@@ -102,7 +102,7 @@ typedef uint64_t ProclaimLiteral;
 
 // A truth table, read-only for C: row `r`'s value of input `i` is
 // `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
-// Freed, with everything it points to, by [`proclaim_table_free`].
+// [`proclaim_table_free`] frees what it points to and leaves the struct itself empty.
 typedef struct ProclaimTable {
   // How many input atoms (the declared inputs, in the order the theory declares them).
   size_t input_count;

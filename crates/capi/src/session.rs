@@ -200,3 +200,15 @@ pub unsafe extern "C" fn proclaim_session_free(session: *mut ProclaimSession) ->
         ProclaimStatus::Ok
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What a freed handle keeps for ever is its header: the session itself is behind a pointer.
+    #[test]
+    fn a_freed_handle_keeps_a_header_of_a_few_bytes() {
+        assert!(std::mem::size_of::<ProclaimSession>() <= 16);
+        assert!(std::mem::size_of::<ProclaimTheory>() <= 32);
+    }
+}

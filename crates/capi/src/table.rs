@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A truth table, read-only for C: row `r`'s value of input `i` is
 /// `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
-/// Freed, with everything it points to, by [`proclaim_table_free`].
+/// [`proclaim_table_free`] frees what it points to and leaves the struct itself empty.
 #[repr(C)]
 #[derive(Debug)]
 pub struct ProclaimTable {
