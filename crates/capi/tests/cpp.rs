@@ -1,8 +1,9 @@
 //! examples/cpp/microwave.cpp, compiled with the system's g++ against this crate's static
 //! library and run: its answers are the Rust session's. examples/c/table.c, as C: its CSV is the
 //! Rust truth table's on every theory of theories/. examples/c/bench.c too, run briefly so it
-//! keeps compiling. Skipped (with a message) where g++ is missing, unless `CI` is set,
-//! where that is a failure.
+//! keeps compiling. examples/c/dead_handles.c: every freed handle answers `DEAD_HANDLE`, and
+//! valgrind sees no read of freed memory. Skipped (with a message) where g++ (or valgrind, for
+//! that part) is missing, unless `CI` is set, where that is a failure.
 
 use proclaim_cdl::{load, Algorithm, Engine, Language, Session};
 use std::path::{Path, PathBuf};
