@@ -2,6 +2,7 @@
 //! monitor in a browser, behaviours run whole, the whiteboard in and across processes, the
 //! shipped theories and the property tests. Each library crate tests itself beside it.
 
+mod architecture;
 mod behaviours;
 mod cli;
 mod monitor;

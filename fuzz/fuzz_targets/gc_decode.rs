@@ -5,10 +5,10 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok(packet) = proclaim_gc::decode(data) {
-        let again = proclaim_gc::decode(&proclaim_gc::encode(&packet)).expect("re-encoded packets decode");
+    if let Ok(packet) = proclaim_gamecontroller::decode(data) {
+        let again = proclaim_gamecontroller::decode(&proclaim_gamecontroller::encode(&packet)).expect("re-encoded packets decode");
         assert_eq!(again, packet);
-        let _ = packet.labels(proclaim_gc::Perspective { team: data.first().copied().unwrap_or(0), player: 2 });
+        let _ = packet.labels(proclaim_gamecontroller::Perspective { team: data.first().copied().unwrap_or(0), player: 2 });
     }
-    let _ = proclaim_gc::StatusPacket::decode(data);
+    let _ = proclaim_gamecontroller::StatusPacket::decode(data);
 });

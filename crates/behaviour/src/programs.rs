@@ -147,13 +147,13 @@ fn load_prolog(
     match check_knowledge_base(&kb, &entry.answers) {
         Ok(warnings) => problems.extend(warnings.into_iter().map(|w| {
             let d = FileDiagnostic::warning(w.file.as_deref().unwrap_or(&shown), w.line, w.message);
+            // The line is quoted from the knowledge base itself; a file it loads is not read.
+            let source = if w.file.is_none() {
+                kb.text.as_str()
+            } else {
+                ""
+            };
             if w.column > 0 {
-                // A warning placed in another file (one the program loads) has no text here to quote.
-                let source = if w.file.is_none() {
-                    kb.text.as_str()
-                } else {
-                    ""
-                };
                 d.at_column(w.column, source)
             } else {
                 d

@@ -33,6 +33,12 @@ typedef enum ProclaimStatus {
   // The theory's inputs have more combinations than a truth table may hold (2^20): group
   // mutually exclusive inputs as `input{a, b, c}`, or ask rows one at a time.
   PROCLAIM_STATUS_TOO_MANY_ROWS = 7,
+  // The handle was freed: its `_free` already ran (a second `_free` says this too). A freed
+  // handle keeps a few bytes so that this is an answer, not undefined behaviour.
+  PROCLAIM_STATUS_DEAD_HANDLE = 8,
+  // A call on another thread is running on this session (a session is for one thread at a
+  // time); nothing was done. A `_free` that says this freed nothing.
+  PROCLAIM_STATUS_BUSY = 9,
 } ProclaimStatus;
 
 // The proof algorithm of a question (cdl.md §4). Functions take it as an `int`, so that a
@@ -59,10 +65,18 @@ typedef enum ProclaimValue {
   PROCLAIM_VALUE_UNKNOWN = 2,
 } ProclaimValue;
 
-// A session: every input unknown until set. Not for two threads at once.
+// A session: every input unknown until set; for one thread at a time. The pointer C holds is a
+// small header that is never deallocated (`proclaim_session_free` drops the session and marks
+// the header dead), so that a freed session answers `DEAD_HANDLE` rather than being undefined
+// behaviour. Each call marks the header busy with one compare-and-swap and idle again with one
+// store: a call from a second thread meanwhile answers `BUSY` instead of racing.
 typedef struct ProclaimSession ProclaimSession;
 
-// A theory, immutable once loaded: sessions share it and may outlive the handle.
+// A theory, immutable once loaded: sessions share it and may outlive the handle. The pointer C
+// holds is a small header that is never deallocated: `proclaim_theory_free` drops the theory
+// and empties the header, so that later calls answer `DEAD_HANDLE`. Each call takes its own
+// reference to the theory under a lock (no call on a theory is on a proving loop's path), so a
+// free on another thread never pulls the theory from under a running call.
 typedef struct ProclaimTheory ProclaimTheory;
 
 // A theory that did not load: where its first error is, and every error rendered as
@@ -88,7 +102,7 @@ typedef uint64_t ProclaimLiteral;
 
 // A truth table, read-only for C: row `r`'s value of input `i` is
 // `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
-// Freed, with everything it points to, by [`proclaim_table_free`].
+// [`proclaim_table_free`] frees what it points to and leaves the struct itself empty.
 typedef struct ProclaimTable {
   // How many input atoms (the declared inputs, in the order the theory declares them).
   size_t input_count;
@@ -114,11 +128,14 @@ typedef struct ProclaimTable {
 extern "C" {
 #endif // __cplusplus
 
-// Frees an error and its strings. Null is ignored.
+// Frees an error's strings: `OK`, or `DEAD_HANDLE` when it was freed already. Null is ignored
+// (`OK`), as with `free()`. The struct itself stays readable, emptied (null strings, line and
+// column 0), and is never reused.
 //
 // # Safety
-// `error` is null or an error returned by this library and not freed yet.
-void proclaim_error_free(struct ProclaimError *error);
+// `error` is null or a pointer this library returned (freed or not), not read by another thread
+// during the free.
+enum ProclaimStatus proclaim_error_free(struct ProclaimError *error);
 
 // Explains `±algorithm literal` as `proclaim explain` prints it: the supporting rule, each
 // attacker and what became of it, following antecedents `depth` levels down. Writes a string the
@@ -126,7 +143,8 @@ void proclaim_error_free(struct ProclaimError *error);
 // `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*text_out` is left alone.
 //
 // # Safety
-// `session` is null or a live session; `literal` is null or a NUL-terminated string;
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `text_out` is null or writable.
 enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
                                              const char *literal,
@@ -139,7 +157,8 @@ enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
 // `BAD_ARGUMENT`, and `*input_out` is left alone.
 //
 // # Safety
-// `theory` is null or a live theory; `atom` is null or a NUL-terminated string; `input_out` is
+// `theory` is null or from `proclaim_theory_load` (freed or not);
+// `atom` is null or a NUL-terminated string; `input_out` is
 // null or writable.
 enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
                                           const char *atom,
@@ -149,7 +168,8 @@ enum ProclaimStatus proclaim_theory_input(const struct ProclaimTheory *theory,
 // `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
 //
 // # Safety
-// `theory` is null or a live theory; `literal` is null or a NUL-terminated string;
+// `theory` is null or from `proclaim_theory_load` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `literal_out` is null or writable.
 enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
                                             const char *literal,
@@ -160,7 +180,7 @@ enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
 // `INPUT_CONFLICT` as by name.
 //
 // # Safety
-// `session` is null or a live session.
+// `session` is null or from `proclaim_session_new` (freed or not).
 enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
                                                ProclaimInput input,
                                                int value);
@@ -170,7 +190,8 @@ enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
 // `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
 //
 // # Safety
-// `session` is null or a live session; `answer_out` is null or writable.
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *session,
                                                    ProclaimLiteral literal,
                                                    int algorithm,
@@ -182,18 +203,19 @@ enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *sessi
 // `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*answer_out` is left alone.
 //
 // # Safety
-// `session` is null or a live session; `literal` is null or a NUL-terminated string;
+// `session` is null or from `proclaim_session_new` (freed or not);
+// `literal` is null or a NUL-terminated string;
 // `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove(struct ProclaimSession *session,
                                            const char *literal,
                                            int algorithm,
                                            bool *answer_out);
 
-// A new session over `theory`, every input unknown; null when `theory` is null. The session
-// holds its own reference to the theory. Freed by [`proclaim_session_free`].
+// A new session over `theory`, every input unknown; null when `theory` is null or freed. The
+// session holds its own reference to the theory. Freed by [`proclaim_session_free`].
 //
 // # Safety
-// `theory` is null or a live theory from `proclaim_theory_load`.
+// `theory` is null or from `proclaim_theory_load` (freed or not).
 struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory);
 
 // Sets an input atom to a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`, `_UNKNOWN`); only
@@ -203,7 +225,8 @@ struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory
 // was), or `BAD_ARGUMENT`.
 //
 // # Safety
-// `session` is null or a live session; `atom` is null or a NUL-terminated string.
+// `session` is null or from [`proclaim_session_new`] (freed or not);
+// `atom` is null or a NUL-terminated string.
 enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
                                          const char *atom,
                                          int value);
@@ -212,20 +235,27 @@ enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
 // answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
 //
 // # Safety
-// `session` is null or a live session.
+// `session` is null or from [`proclaim_session_new`] (freed or not).
 enum ProclaimStatus proclaim_session_set_budget(struct ProclaimSession *session, uint64_t steps);
 
-// Frees a session. Null is ignored.
+// Frees a session: `OK`, or `DEAD_HANDLE` when it was freed already, or `BUSY` when a call on
+// another thread is running on it (nothing is freed; free it once that call has returned). Null
+// is ignored (`OK`), as with `free()`. A poisoned session is freed like any other.
+//
+// What stays allocated is the handle's header (a few bytes: a state byte, the theory's
+// identity and a null pointer), so that later calls with the pointer say `DEAD_HANDLE`; it is
+// never reused, so no later session can be mistaken for this one.
 //
 // # Safety
-// `session` is null or a session returned by this library and not freed yet.
-void proclaim_session_free(struct ProclaimSession *session);
+// `session` is null or from [`proclaim_session_new`] (freed or not).
+enum ProclaimStatus proclaim_session_free(struct ProclaimSession *session);
 
 // The name of a status ("ok", "undecided", "unknown atom", …), a static string the caller must
 // not free; "not a status" for a number that is none.
 const char *proclaim_status_name(int status);
 
-// Frees a string this library returned (an explanation). Null is ignored.
+// Frees a string this library returned (an explanation). Null is ignored. A string is plain
+// memory C reads directly, not a handle: freeing it twice is undefined, as with `free()`.
 //
 // # Safety
 // `text` is null or a string returned by this library and not freed yet.
@@ -233,18 +263,22 @@ void proclaim_string_free(char *text);
 
 // Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
 // when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
-// or `BAD_ARGUMENT`; then `*table_out` is left alone.
+// or `BAD_ARGUMENT`, or `DEAD_HANDLE` for a freed theory; then `*table_out` is left alone.
 //
 // # Safety
-// `theory` is null or a live theory; `table_out` is null or writable.
+// `theory` is null or from `proclaim_theory_load` (freed or not); `table_out` is null or writable.
 enum ProclaimStatus proclaim_theory_table(const struct ProclaimTheory *theory,
                                           struct ProclaimTable **table_out);
 
-// Frees a table and everything it points to. Null is ignored.
+// Frees what a table points to: `OK`, or `DEAD_HANDLE` when it was freed already. Null is
+// ignored (`OK`), as with `free()`. The struct itself stays readable, emptied (counts 0,
+// pointers null), so that a loop over a freed table's rows reads nothing; it is never reused.
+// Pointers copied out of the table before the free dangle, as with any freed memory.
 //
 // # Safety
-// `table` is null or a table from [`proclaim_theory_table`] not freed yet.
-void proclaim_table_free(struct ProclaimTable *table);
+// `table` is null or a pointer from [`proclaim_theory_table`] (freed or not), not read by
+// another thread during the free.
+enum ProclaimStatus proclaim_table_free(struct ProclaimTable *table);
 
 // Loads a theory from `len` bytes of `.dl` text (no terminator needed). Returns the theory, or
 // null with `*error_out` set to why (every error, with the first one's line and column), which
@@ -267,12 +301,16 @@ struct ProclaimTheory *proclaim_theory_load_named(const char *name,
                                                   size_t len,
                                                   struct ProclaimError **error_out);
 
-// Frees a theory. Sessions made from it keep working (they hold their own reference). Null is
-// ignored.
+// Frees a theory: `OK`, or `DEAD_HANDLE` when it was freed already. Sessions made from it keep
+// working (they hold their own reference). Null is ignored (`OK`), as with `free()`.
+//
+// What stays allocated is the handle's header (a lock, an empty slot and the theory's
+// identity: a few dozen bytes), so that later calls with the pointer say `DEAD_HANDLE`; it is
+// never reused, so no later theory can be mistaken for this one.
 //
 // # Safety
-// `theory` is null or a theory returned by this library and not freed yet.
-void proclaim_theory_free(struct ProclaimTheory *theory);
+// `theory` is null or a pointer from [`proclaim_theory_load`] (freed or not).
+enum ProclaimStatus proclaim_theory_free(struct ProclaimTheory *theory);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -1,7 +1,10 @@
 //! Why a theory did not load, as a struct C reads and frees with [`proclaim_error_free`].
 
+use crate::guard::guarded;
+use crate::status::ProclaimStatus;
 use crate::string::owned;
 use std::ffi::{c_char, CString};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A theory that did not load: where its first error is, and every error rendered as
 /// `proclaim check` prints it (file, line, the line itself with a caret, a hint).
@@ -18,38 +21,64 @@ pub struct ProclaimError {
     pub message: *mut c_char,
 }
 
+/// An error with its mark. `error` comes first (and the struct is `repr(C)`) so a pointer to the
+/// whole is a pointer to the error C sees. Never deallocated: [`proclaim_error_free`] frees the
+/// strings, empties `error` and clears `live`, so that a second free says `DEAD_HANDLE`.
+#[repr(C)]
+struct Marked {
+    error: ProclaimError,
+    live: AtomicBool,
+}
+
 impl ProclaimError {
     /// A new error on the heap, as C receives it.
     pub(crate) fn boxed(file: &str, place: Option<(usize, usize)>, message: &str) -> *mut Self {
         let (line, column) = place.unwrap_or((0, 0));
         let saturate = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
-        Box::into_raw(Box::new(ProclaimError {
-            file: owned(file),
-            line: saturate(line),
-            column: saturate(column),
-            message: owned(message),
+        Box::into_raw(Box::new(Marked {
+            error: ProclaimError {
+                file: owned(file),
+                line: saturate(line),
+                column: saturate(column),
+                message: owned(message),
+            },
+            live: AtomicBool::new(true),
         }))
+        .cast()
     }
 }
 
-impl Drop for ProclaimError {
-    fn drop(&mut self) {
-        for text in [self.file, self.message] {
-            if !text.is_null() {
-                // SAFETY: both were made by `owned` (CString::into_raw) and are freed only here.
-                drop(unsafe { CString::from_raw(text) });
-            }
-        }
-    }
-}
-
-/// Frees an error and its strings. Null is ignored.
+/// Frees an error's strings: `OK`, or `DEAD_HANDLE` when it was freed already. Null is ignored
+/// (`OK`), as with `free()`. The struct itself stays readable, emptied (null strings, line and
+/// column 0), and is never reused.
 ///
 /// # Safety
-/// `error` is null or an error returned by this library and not freed yet.
+/// `error` is null or a pointer this library returned (freed or not), not read by another thread
+/// during the free.
 #[no_mangle]
-pub unsafe extern "C" fn proclaim_error_free(error: *mut ProclaimError) {
-    if !error.is_null() {
-        drop(Box::from_raw(error));
+pub unsafe extern "C" fn proclaim_error_free(error: *mut ProclaimError) -> ProclaimStatus {
+    if error.is_null() {
+        return ProclaimStatus::Ok;
     }
+    let marked = error.cast::<Marked>();
+    // Only `live` is borrowed before the swap: a second free racing this one touches nothing else.
+    let live = &*std::ptr::addr_of!((*marked).live);
+    if !live.swap(false, Ordering::AcqRel) {
+        return ProclaimStatus::DeadHandle;
+    }
+    let texts = [(*error).file, (*error).message];
+    *error = ProclaimError {
+        file: std::ptr::null_mut(),
+        line: 0,
+        column: 0,
+        message: std::ptr::null_mut(),
+    };
+    guarded(ProclaimStatus::Panic, || {
+        for text in texts.into_iter().filter(|t| !t.is_null()) {
+            // SAFETY: both were made by `owned` (CString::into_raw); the swap above lets only
+            // this free reach them.
+            drop(unsafe { CString::from_raw(text) });
+        }
+        ProclaimStatus::Ok
+    })
 }

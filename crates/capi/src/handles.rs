@@ -9,7 +9,7 @@ use crate::names;
 use crate::session::{with_session_of, ProclaimSession};
 use crate::status::ProclaimStatus;
 use crate::text::nul_terminated;
-use crate::theory::ProclaimTheory;
+use crate::theory::{live_theory, ProclaimTheory};
 use crate::value::ProclaimValue;
 use proclaim_cdl::{Atom, Lit};
 use std::ffi::{c_char, c_int};
@@ -36,7 +36,8 @@ fn number_of(handle: u64, tag: u32) -> Option<u32> {
 /// `BAD_ARGUMENT`, and `*input_out` is left alone.
 ///
 /// # Safety
-/// `theory` is null or a live theory; `atom` is null or a NUL-terminated string; `input_out` is
+/// `theory` is null or from `proclaim_theory_load` (freed or not);
+/// `atom` is null or a NUL-terminated string; `input_out` is
 /// null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_theory_input(
@@ -44,16 +45,17 @@ pub unsafe extern "C" fn proclaim_theory_input(
     atom: *const c_char,
     input_out: *mut ProclaimInput,
 ) -> ProclaimStatus {
-    let Some(theory) = theory.as_ref() else {
-        return ProclaimStatus::BadArgument;
-    };
     if input_out.is_null() {
         return ProclaimStatus::BadArgument;
     }
+    let (engine, tag) = match live_theory(theory) {
+        Ok(live) => live,
+        Err(status) => return status,
+    };
     guarded(ProclaimStatus::Panic, || {
-        match names::input_of(theory.engine.theory(), atom) {
+        match names::input_of(engine.theory(), atom) {
             Ok(atom) => {
-                *input_out = handle(theory.tag, atom.0);
+                *input_out = handle(tag, atom.0);
                 ProclaimStatus::Ok
             }
             Err(status) => status,
@@ -65,7 +67,8 @@ pub unsafe extern "C" fn proclaim_theory_input(
 /// `OK`, or `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*literal_out` is left alone.
 ///
 /// # Safety
-/// `theory` is null or a live theory; `literal` is null or a NUL-terminated string;
+/// `theory` is null or from `proclaim_theory_load` (freed or not);
+/// `literal` is null or a NUL-terminated string;
 /// `literal_out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_theory_literal(
@@ -73,19 +76,20 @@ pub unsafe extern "C" fn proclaim_theory_literal(
     literal: *const c_char,
     literal_out: *mut ProclaimLiteral,
 ) -> ProclaimStatus {
-    let Some(theory) = theory.as_ref() else {
-        return ProclaimStatus::BadArgument;
-    };
     if literal_out.is_null() {
         return ProclaimStatus::BadArgument;
     }
+    let (engine, tag) = match live_theory(theory) {
+        Ok(live) => live,
+        Err(status) => return status,
+    };
     guarded(ProclaimStatus::Panic, || {
         let Ok(text) = nul_terminated(literal) else {
             return ProclaimStatus::BadArgument;
         };
-        match theory.engine.theory().lit(text) {
+        match engine.theory().lit(text) {
             Some(lit) => {
-                *literal_out = handle(theory.tag, lit.0);
+                *literal_out = handle(tag, lit.0);
                 ProclaimStatus::Ok
             }
             None => ProclaimStatus::UnknownAtom,
@@ -98,7 +102,7 @@ pub unsafe extern "C" fn proclaim_theory_literal(
 /// `INPUT_CONFLICT` as by name.
 ///
 /// # Safety
-/// `session` is null or a live session.
+/// `session` is null or from `proclaim_session_new` (freed or not).
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_set_input(
     session: *mut ProclaimSession,
@@ -127,7 +131,8 @@ pub unsafe extern "C" fn proclaim_session_set_input(
 /// `BAD_ARGUMENT` for a handle of another theory, and `*answer_out` is left alone.
 ///
 /// # Safety
-/// `session` is null or a live session; `answer_out` is null or writable.
+/// `session` is null or from `proclaim_session_new` (freed or not);
+/// `answer_out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_prove_literal(
     session: *mut ProclaimSession,

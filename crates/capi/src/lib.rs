@@ -12,8 +12,16 @@
 //! undefined behaviour, and a panic inside the reasoner is caught at the boundary and returned as
 //! `PROCLAIM_STATUS_PANIC` (the session it happened in answers nothing afterwards).
 //!
-//! A theory is immutable and may be shared between threads; a session must be used by one thread
-//! at a time. A session keeps its theory alive, so the theory may be freed first.
+//! A theory is immutable and may be shared between threads; a session is used by one thread at a
+//! time (a call while another thread's call runs on it answers `PROCLAIM_STATUS_BUSY`). A session
+//! keeps its theory alive, so the theory may be freed first.
+//!
+//! A freed handle (theory, session, table, load error) is detectably dead: the pointer C holds is
+//! a small header that is never deallocated nor reused, so every later call with it, and a second
+//! free, answers `PROCLAIM_STATUS_DEAD_HANDLE` (a freed theory makes no session: null). A free
+//! racing a call on another thread is safe: the call runs with its own reference to the theory,
+//! or the session's free answers `BUSY` and frees nothing. Strings (explanations) are plain
+//! memory, freed once, as with `free()`.
 
 mod algorithm;
 mod error;

@@ -12,7 +12,8 @@ use std::ffi::{c_char, c_int};
 /// `UNKNOWN_ATOM` or `BAD_ARGUMENT`, and `*answer_out` is left alone.
 ///
 /// # Safety
-/// `session` is null or a live session; `literal` is null or a NUL-terminated string;
+/// `session` is null or from `proclaim_session_new` (freed or not);
+/// `literal` is null or a NUL-terminated string;
 /// `answer_out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_prove(

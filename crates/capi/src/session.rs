@@ -1,27 +1,45 @@
-//! A proving session behind an opaque handle: input values and cached answers.
+//! A proving session behind an opaque handle: input values and cached answers, behind a small
+//! header that outlives `proclaim_session_free` so that a freed session is detected, not used.
 
 use crate::guard::guarded;
 use crate::names;
 use crate::status::ProclaimStatus;
-use crate::theory::ProclaimTheory;
+use crate::theory::{live_theory, ProclaimTheory};
 use crate::value::ProclaimValue;
 use proclaim_cdl::{SearchLimits, Session};
+use std::cell::UnsafeCell;
 use std::ffi::{c_char, c_int};
+use std::sync::atomic::{AtomicU8, Ordering};
 
-/// A session: every input unknown until set. Not for two threads at once.
+/// No call is running; the session may be taken.
+const IDLE: u8 = 0;
+/// A call is running on it (on some thread): another call or a free is refused with `BUSY`.
+const BUSY: u8 = 1;
+/// Freed: the session is gone and only this header is left.
+const DEAD: u8 = 2;
+/// A call panicked: the session may be half-updated, so it answers nothing more.
+const POISONED: u8 = 3;
+
+/// A session: every input unknown until set; for one thread at a time. The pointer C holds is a
+/// small header that is never deallocated (`proclaim_session_free` drops the session and marks
+/// the header dead), so that a freed session answers `DEAD_HANDLE` rather than being undefined
+/// behaviour. Each call marks the header busy with one compare-and-swap and idle again with one
+/// store: a call from a second thread meanwhile answers `BUSY` instead of racing.
 pub struct ProclaimSession {
-    session: Session,
+    state: AtomicU8,
     /// Its theory's identity, which the handles it accepts carry.
     tag: u32,
-    /// Set when a call panicked: the session may be half-updated, so it answers nothing more.
-    poisoned: bool,
+    /// The session; `None` once freed. Touched only by the call that moved `state` to `BUSY`, or
+    /// by the free that moved it to `DEAD`.
+    session: UnsafeCell<Option<Box<Session>>>,
 }
 
 /// Runs `body` on the session behind `session`, with the checks every session call makes: null
-/// is a bad argument, a poisoned session answers `Panic`, and a panic poisons it.
+/// is a bad argument, a freed session is a dead handle, a session another call is running on is
+/// busy, a poisoned session answers `Panic`, and a panic poisons it.
 ///
 /// # Safety
-/// `session` is null or a live session from [`proclaim_session_new`].
+/// `session` is null or from [`proclaim_session_new`] (freed or not).
 pub(crate) unsafe fn with_session(
     session: *mut ProclaimSession,
     body: impl FnOnce(&mut Session) -> ProclaimStatus,
@@ -32,42 +50,65 @@ pub(crate) unsafe fn with_session(
 /// [`with_session`], telling `body` the identity of the session's theory too.
 ///
 /// # Safety
-/// `session` is null or a live session from [`proclaim_session_new`].
+/// `session` is null or from [`proclaim_session_new`] (freed or not).
+#[inline]
 pub(crate) unsafe fn with_session_of(
     session: *mut ProclaimSession,
     body: impl FnOnce(&mut Session, u32) -> ProclaimStatus,
 ) -> ProclaimStatus {
-    let Some(handle) = session.as_mut() else {
+    let Some(handle) = session.as_ref() else {
         return ProclaimStatus::BadArgument;
     };
-    if handle.poisoned {
-        return ProclaimStatus::Panic;
+    if let Err(state) =
+        handle
+            .state
+            .compare_exchange(IDLE, BUSY, Ordering::Acquire, Ordering::Relaxed)
+    {
+        return refusal(state);
     }
+    // SAFETY: this call moved the state from IDLE to BUSY, so nothing else touches the session
+    // until the store below; IDLE means it was not freed.
+    let Some(inner) = (*handle.session.get()).as_deref_mut() else {
+        handle.state.store(DEAD, Ordering::Release);
+        return ProclaimStatus::DeadHandle;
+    };
     let tag = handle.tag;
-    let status = guarded(ProclaimStatus::Panic, || body(&mut handle.session, tag));
-    if status == ProclaimStatus::Panic {
-        handle.poisoned = true;
-    }
+    let status = guarded(ProclaimStatus::Panic, || body(inner, tag));
+    let after = if status == ProclaimStatus::Panic {
+        POISONED
+    } else {
+        IDLE
+    };
+    handle.state.store(after, Ordering::Release);
     status
 }
 
-/// A new session over `theory`, every input unknown; null when `theory` is null. The session
-/// holds its own reference to the theory. Freed by [`proclaim_session_free`].
+/// What a call on a session in `state` (not `IDLE`) answers.
+fn refusal(state: u8) -> ProclaimStatus {
+    match state {
+        BUSY => ProclaimStatus::Busy,
+        DEAD => ProclaimStatus::DeadHandle,
+        _ => ProclaimStatus::Panic,
+    }
+}
+
+/// A new session over `theory`, every input unknown; null when `theory` is null or freed. The
+/// session holds its own reference to the theory. Freed by [`proclaim_session_free`].
 ///
 /// # Safety
-/// `theory` is null or a live theory from `proclaim_theory_load`.
+/// `theory` is null or from `proclaim_theory_load` (freed or not).
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_new(
     theory: *const ProclaimTheory,
 ) -> *mut ProclaimSession {
-    let Some(theory) = theory.as_ref() else {
+    let Ok((engine, tag)) = live_theory(theory) else {
         return std::ptr::null_mut();
     };
     guarded(std::ptr::null_mut(), || {
         Box::into_raw(Box::new(ProclaimSession {
-            session: Session::new(theory.engine.clone()),
-            tag: theory.tag,
-            poisoned: false,
+            state: AtomicU8::new(IDLE),
+            tag,
+            session: UnsafeCell::new(Some(Box::new(Session::new(engine)))),
         }))
     })
 }
@@ -79,7 +120,8 @@ pub unsafe extern "C" fn proclaim_session_new(
 /// was), or `BAD_ARGUMENT`.
 ///
 /// # Safety
-/// `session` is null or a live session; `atom` is null or a NUL-terminated string.
+/// `session` is null or from [`proclaim_session_new`] (freed or not);
+/// `atom` is null or a NUL-terminated string.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_set(
     session: *mut ProclaimSession,
@@ -105,7 +147,7 @@ pub unsafe extern "C" fn proclaim_session_set(
 /// answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
 ///
 /// # Safety
-/// `session` is null or a live session.
+/// `session` is null or from [`proclaim_session_new`] (freed or not).
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_session_set_budget(
     session: *mut ProclaimSession,
@@ -123,13 +165,50 @@ pub unsafe extern "C" fn proclaim_session_set_budget(
     })
 }
 
-/// Frees a session. Null is ignored.
+/// Frees a session: `OK`, or `DEAD_HANDLE` when it was freed already, or `BUSY` when a call on
+/// another thread is running on it (nothing is freed; free it once that call has returned). Null
+/// is ignored (`OK`), as with `free()`. A poisoned session is freed like any other.
+///
+/// What stays allocated is the handle's header (a few bytes: a state byte, the theory's
+/// identity and a null pointer), so that later calls with the pointer say `DEAD_HANDLE`; it is
+/// never reused, so no later session can be mistaken for this one.
 ///
 /// # Safety
-/// `session` is null or a session returned by this library and not freed yet.
+/// `session` is null or from [`proclaim_session_new`] (freed or not).
 #[no_mangle]
-pub unsafe extern "C" fn proclaim_session_free(session: *mut ProclaimSession) {
-    if !session.is_null() {
-        drop(Box::from_raw(session));
+pub unsafe extern "C" fn proclaim_session_free(session: *mut ProclaimSession) -> ProclaimStatus {
+    let Some(handle) = session.as_ref() else {
+        return ProclaimStatus::Ok;
+    };
+    let mut state = handle.state.load(Ordering::Acquire);
+    loop {
+        if state == BUSY || state == DEAD {
+            return refusal(state);
+        }
+        match handle
+            .state
+            .compare_exchange(state, DEAD, Ordering::AcqRel, Ordering::Acquire)
+        {
+            Ok(_) => break,
+            Err(now) => state = now,
+        }
+    }
+    // SAFETY: this free moved the state to DEAD, so no call touches the session again.
+    let inner = (*handle.session.get()).take();
+    guarded(ProclaimStatus::Panic, || {
+        drop(inner);
+        ProclaimStatus::Ok
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What a freed handle keeps for ever is its header: the session itself is behind a pointer.
+    #[test]
+    fn a_freed_handle_keeps_a_header_of_a_few_bytes() {
+        assert!(std::mem::size_of::<ProclaimSession>() <= 16);
+        assert!(std::mem::size_of::<ProclaimTheory>() <= 32);
     }
 }

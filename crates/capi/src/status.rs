@@ -27,10 +27,16 @@ pub enum ProclaimStatus {
     /// The theory's inputs have more combinations than a truth table may hold (2^20): group
     /// mutually exclusive inputs as `input{a, b, c}`, or ask rows one at a time.
     TooManyRows = 7,
+    /// The handle was freed: its `_free` already ran (a second `_free` says this too). A freed
+    /// handle keeps a few bytes so that this is an answer, not undefined behaviour.
+    DeadHandle = 8,
+    /// A call on another thread is running on this session (a session is for one thread at a
+    /// time); nothing was done. A `_free` that says this freed nothing.
+    Busy = 9,
 }
 
 impl ProclaimStatus {
-    const ALL: [ProclaimStatus; 8] = [
+    const ALL: [ProclaimStatus; 10] = [
         ProclaimStatus::Ok,
         ProclaimStatus::Undecided,
         ProclaimStatus::UnknownAtom,
@@ -39,6 +45,8 @@ impl ProclaimStatus {
         ProclaimStatus::BadArgument,
         ProclaimStatus::Panic,
         ProclaimStatus::TooManyRows,
+        ProclaimStatus::DeadHandle,
+        ProclaimStatus::Busy,
     ];
 
     /// The status a number from C stands for, if any.
@@ -59,6 +67,8 @@ impl ProclaimStatus {
             ProclaimStatus::BadArgument => "bad argument\0",
             ProclaimStatus::Panic => "panic\0",
             ProclaimStatus::TooManyRows => "too many rows\0",
+            ProclaimStatus::DeadHandle => "dead handle\0",
+            ProclaimStatus::Busy => "busy\0",
         }
     }
 }
@@ -88,7 +98,9 @@ mod tests {
         assert_eq!(name(ProclaimStatus::Undecided as c_int), "undecided");
         assert_eq!(name(ProclaimStatus::Panic as c_int), "panic");
         assert_eq!(name(ProclaimStatus::TooManyRows as c_int), "too many rows");
-        assert_eq!(name(8), "not a status");
+        assert_eq!(name(ProclaimStatus::DeadHandle as c_int), "dead handle");
+        assert_eq!(name(ProclaimStatus::Busy as c_int), "busy");
+        assert_eq!(name(10), "not a status");
         assert_eq!(name(-1), "not a status");
     }
 }

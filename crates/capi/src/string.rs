@@ -13,7 +13,8 @@ pub(crate) fn owned(text: &str) -> *mut c_char {
     CString::new(bytes).expect("NULs were replaced").into_raw()
 }
 
-/// Frees a string this library returned (an explanation). Null is ignored.
+/// Frees a string this library returned (an explanation). Null is ignored. A string is plain
+/// memory C reads directly, not a handle: freeing it twice is undefined, as with `free()`.
 ///
 /// # Safety
 /// `text` is null or a string returned by this library and not freed yet.

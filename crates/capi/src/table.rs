@@ -3,13 +3,14 @@
 
 use crate::guard::guarded;
 use crate::status::ProclaimStatus;
-use crate::theory::ProclaimTheory;
+use crate::theory::{live_theory, ProclaimTheory};
 use proclaim_cdl::{truth_table, TableError};
 use std::ffi::{c_char, CString};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A truth table, read-only for C: row `r`'s value of input `i` is
 /// `inputs[r * input_count + i]`, its value of output `c` is `outputs[r * output_count + c]`.
-/// Freed, with everything it points to, by [`proclaim_table_free`].
+/// [`proclaim_table_free`] frees what it points to and leaves the struct itself empty.
 #[repr(C)]
 #[derive(Debug)]
 pub struct ProclaimTable {
@@ -34,10 +35,23 @@ pub struct ProclaimTable {
 }
 
 /// The table with what its pointers point to. `table` comes first (and the struct is `repr(C)`)
-/// so a pointer to the whole is a pointer to the table C sees.
+/// so a pointer to the whole is a pointer to the table C sees. The header (`table` and `live`) is
+/// never deallocated: [`proclaim_table_free`] drops `storage`, empties `table` (counts 0,
+/// pointers null) and clears `live`, so a second free says `DEAD_HANDLE`.
 #[repr(C)]
 struct Owned {
     table: ProclaimTable,
+    live: AtomicBool,
+    storage: Option<Box<Storage>>,
+}
+
+/// What a table's pointers point to. The vectors' buffers stay where they are when the vectors
+/// move.
+#[allow(
+    dead_code,
+    reason = "held, never read: they keep alive what the table points to"
+)]
+struct Storage {
     names: Vec<CString>,
     input_names: Vec<*const c_char>,
     output_names: Vec<*const c_char>,
@@ -73,7 +87,6 @@ fn build(table: &proclaim_cdl::Table) -> Box<Owned> {
             None => outputs.extend(std::iter::repeat_n(false, columns)),
         }
     }
-    // The vectors' buffers stay where they are when the vectors move into the box.
     let table = ProclaimTable {
         input_count: table.inputs.len(),
         input_names: input_names.as_ptr(),
@@ -86,50 +99,82 @@ fn build(table: &proclaim_cdl::Table) -> Box<Owned> {
     };
     Box::new(Owned {
         table,
-        names,
-        input_names,
-        output_names,
-        inputs,
-        consistent,
-        outputs,
+        live: AtomicBool::new(true),
+        storage: Some(Box::new(Storage {
+            names,
+            input_names,
+            output_names,
+            inputs,
+            consistent,
+            outputs,
+        })),
     })
 }
 
 /// Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
 /// when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
-/// or `BAD_ARGUMENT`; then `*table_out` is left alone.
+/// or `BAD_ARGUMENT`, or `DEAD_HANDLE` for a freed theory; then `*table_out` is left alone.
 ///
 /// # Safety
-/// `theory` is null or a live theory; `table_out` is null or writable.
+/// `theory` is null or from `proclaim_theory_load` (freed or not); `table_out` is null or writable.
 #[no_mangle]
 pub unsafe extern "C" fn proclaim_theory_table(
     theory: *const ProclaimTheory,
     table_out: *mut *mut ProclaimTable,
 ) -> ProclaimStatus {
-    let Some(theory) = theory.as_ref() else {
-        return ProclaimStatus::BadArgument;
-    };
     if table_out.is_null() {
         return ProclaimStatus::BadArgument;
     }
-    guarded(ProclaimStatus::Panic, || {
-        match truth_table(theory.engine.clone()) {
-            Ok(table) => {
-                *table_out = Box::into_raw(build(&table)).cast::<ProclaimTable>();
-                ProclaimStatus::Ok
-            }
-            Err(TableError::TooManyRows(_)) => ProclaimStatus::TooManyRows,
+    let (engine, _tag) = match live_theory(theory) {
+        Ok(live) => live,
+        Err(status) => return status,
+    };
+    guarded(ProclaimStatus::Panic, || match truth_table(engine) {
+        Ok(table) => {
+            *table_out = Box::into_raw(build(&table)).cast::<ProclaimTable>();
+            ProclaimStatus::Ok
         }
+        Err(TableError::TooManyRows(_)) => ProclaimStatus::TooManyRows,
     })
 }
 
-/// Frees a table and everything it points to. Null is ignored.
+/// Frees what a table points to: `OK`, or `DEAD_HANDLE` when it was freed already. Null is
+/// ignored (`OK`), as with `free()`. The struct itself stays readable, emptied (counts 0,
+/// pointers null), so that a loop over a freed table's rows reads nothing; it is never reused.
+/// Pointers copied out of the table before the free dangle, as with any freed memory.
 ///
 /// # Safety
-/// `table` is null or a table from [`proclaim_theory_table`] not freed yet.
+/// `table` is null or a pointer from [`proclaim_theory_table`] (freed or not), not read by
+/// another thread during the free.
 #[no_mangle]
-pub unsafe extern "C" fn proclaim_table_free(table: *mut ProclaimTable) {
-    if !table.is_null() {
-        drop(Box::from_raw(table.cast::<Owned>()));
+pub unsafe extern "C" fn proclaim_table_free(table: *mut ProclaimTable) -> ProclaimStatus {
+    if table.is_null() {
+        return ProclaimStatus::Ok;
+    }
+    let owned = table.cast::<Owned>();
+    // Only `live` is borrowed before the swap: a second free racing this one touches nothing else.
+    let live = &*std::ptr::addr_of!((*owned).live);
+    if !live.swap(false, Ordering::AcqRel) {
+        return ProclaimStatus::DeadHandle;
+    }
+    (*owned).table = emptied();
+    let storage = (*owned).storage.take();
+    guarded(ProclaimStatus::Panic, || {
+        drop(storage);
+        ProclaimStatus::Ok
+    })
+}
+
+/// What a freed table reads as.
+fn emptied() -> ProclaimTable {
+    ProclaimTable {
+        input_count: 0,
+        input_names: std::ptr::null(),
+        output_count: 0,
+        output_names: std::ptr::null(),
+        row_count: 0,
+        inputs: std::ptr::null(),
+        consistent: std::ptr::null(),
+        outputs: std::ptr::null(),
     }
 }

@@ -1,18 +1,38 @@
-//! A checked, compiled theory behind an opaque handle.
+//! A checked, compiled theory behind an opaque handle, whose header outlives
+//! `proclaim_theory_free` so that a freed theory is detected, not used.
 
 use crate::error::ProclaimError;
 use crate::guard::guarded;
+use crate::status::ProclaimStatus;
 use crate::text::{nul_terminated, sized, BadText};
 use proclaim_cdl::{load_named, Engine, Language};
 use std::ffi::c_char;
 use std::sync::atomic::{AtomicU32, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
-/// A theory, immutable once loaded: sessions share it and may outlive the handle.
+/// A theory, immutable once loaded: sessions share it and may outlive the handle. The pointer C
+/// holds is a small header that is never deallocated: `proclaim_theory_free` drops the theory
+/// and empties the header, so that later calls answer `DEAD_HANDLE`. Each call takes its own
+/// reference to the theory under a lock (no call on a theory is on a proving loop's path), so a
+/// free on another thread never pulls the theory from under a running call.
 pub struct ProclaimTheory {
-    pub(crate) engine: Arc<Engine>,
+    engine: Mutex<Option<Arc<Engine>>>,
     /// This load's identity, carried by its atom and literal handles (`handles.rs`).
-    pub(crate) tag: u32,
+    tag: u32,
+}
+
+/// The engine behind `theory` and its identity: `BAD_ARGUMENT` for null, `DEAD_HANDLE` once freed.
+///
+/// # Safety
+/// `theory` is null or a pointer from [`proclaim_theory_load`] (freed or not).
+pub(crate) unsafe fn live_theory(
+    theory: *const ProclaimTheory,
+) -> Result<(Arc<Engine>, u32), ProclaimStatus> {
+    let theory = theory.as_ref().ok_or(ProclaimStatus::BadArgument)?;
+    // Nothing panics while the lock is held, so a poisoned lock still holds a sound value.
+    let engine = theory.engine.lock().unwrap_or_else(PoisonError::into_inner);
+    let engine = engine.as_ref().ok_or(ProclaimStatus::DeadHandle)?;
+    Ok((engine.clone(), theory.tag))
 }
 
 /// The next theory's identity. It wraps after 2^32 loads; a handle kept that long could then
@@ -91,7 +111,7 @@ unsafe fn load(
             };
             match load_named(name, source, language) {
                 Ok(theory) => Ok(Box::into_raw(Box::new(ProclaimTheory {
-                    engine: Arc::new(Engine::new(theory)),
+                    engine: Mutex::new(Some(Arc::new(Engine::new(theory)))),
                     tag: NEXT_TAG.fetch_add(1, Ordering::Relaxed),
                 }))),
                 Err(error) => {
@@ -116,14 +136,31 @@ unsafe fn load(
     theory
 }
 
-/// Frees a theory. Sessions made from it keep working (they hold their own reference). Null is
-/// ignored.
+/// Frees a theory: `OK`, or `DEAD_HANDLE` when it was freed already. Sessions made from it keep
+/// working (they hold their own reference). Null is ignored (`OK`), as with `free()`.
+///
+/// What stays allocated is the handle's header (a lock, an empty slot and the theory's
+/// identity: a few dozen bytes), so that later calls with the pointer say `DEAD_HANDLE`; it is
+/// never reused, so no later theory can be mistaken for this one.
 ///
 /// # Safety
-/// `theory` is null or a theory returned by this library and not freed yet.
+/// `theory` is null or a pointer from [`proclaim_theory_load`] (freed or not).
 #[no_mangle]
-pub unsafe extern "C" fn proclaim_theory_free(theory: *mut ProclaimTheory) {
-    if !theory.is_null() {
-        drop(Box::from_raw(theory));
+pub unsafe extern "C" fn proclaim_theory_free(theory: *mut ProclaimTheory) -> ProclaimStatus {
+    let Some(theory) = theory.as_ref() else {
+        return ProclaimStatus::Ok;
+    };
+    let engine = theory
+        .engine
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .take();
+    match engine {
+        // Dropped outside the lock: the last reference frees the whole theory.
+        Some(engine) => guarded(ProclaimStatus::Panic, || {
+            drop(engine);
+            ProclaimStatus::Ok
+        }),
+        None => ProclaimStatus::DeadHandle,
     }
 }

@@ -4,7 +4,7 @@
 //! `RGrt` status back to the sender once a second.
 
 use proclaim_board::{ModuleDecl, Value, Whiteboard};
-use proclaim_gc::{decode, DecodeError, Perspective, StatusPacket, LABELS};
+use proclaim_gamecontroller::{decode, DecodeError, Perspective, StatusPacket, LABELS};
 use rustc_hash::FxHashMap;
 use std::io;
 use std::net::SocketAddr;
@@ -173,7 +173,7 @@ impl GameControllerReceiver {
     }
 
     /// Decodes and filters one datagram, counting what it ignores.
-    fn accept(&self, bytes: &[u8]) -> Option<proclaim_gc::ControlPacket> {
+    fn accept(&self, bytes: &[u8]) -> Option<proclaim_gamecontroller::ControlPacket> {
         let c = &self.counters;
         c.received.fetch_add(1, Ordering::Relaxed);
         let packet = match decode(bytes) {
@@ -204,7 +204,7 @@ impl GameControllerReceiver {
     fn post_changes(
         &self,
         board: &Whiteboard,
-        packet: &proclaim_gc::ControlPacket,
+        packet: &proclaim_gamecontroller::ControlPacket,
         last: &mut FxHashMap<&'static str, Value>,
     ) -> Option<u8> {
         let team = self.config.team.unwrap_or(packet.teams[0].team_number);

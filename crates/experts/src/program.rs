@@ -263,6 +263,7 @@ impl ProgramExpert {
                 hello.push(Request::Input {
                     name: ty.clone(),
                     value: to_json(&m.value),
+                    seq: answers.input_sent(),
                 });
             }
         }
@@ -291,7 +292,11 @@ impl ProgramExpert {
                             _ => continue,
                         }
                     } else {
-                        Request::Input { name: m.ty.to_string(), value: to_json(&m.value) }
+                        Request::Input {
+                            name: m.ty.to_string(),
+                            value: to_json(&m.value),
+                            seq: answers.input_sent(),
+                        }
                     };
                     let _ = to_child.send(request.line());
                 }
@@ -310,16 +315,26 @@ impl ProgramExpert {
     /// Acts on one line of the process.
     fn heard(&self, said: Said, board: &Whiteboard, answers: &mut Answers) {
         match said {
-            Said::Answer { label, value, id } => {
+            Said::Answer {
+                label,
+                value,
+                id,
+                after,
+            } => {
                 if self.owns(&label) {
-                    answers.give(&self.name, board, label, value, id, false);
+                    answers.give(&self.name, board, label, value, (id, after), false);
                 }
             }
-            Said::Failed { label, why, id } => {
+            Said::Failed {
+                label,
+                why,
+                id,
+                after,
+            } => {
                 if self.owns(&label) {
                     self.counters.failed.fetch_add(1, Ordering::Relaxed);
                     tracing::warn!(expert = %self.name, label, why, "no answer; answered false");
-                    answers.give(&self.name, board, label, false, id, true);
+                    answers.give(&self.name, board, label, false, (id, after), true);
                 }
             }
             Said::Warning(located) if self.warnings_reported => {
@@ -356,12 +371,20 @@ struct Answers {
     /// Label → the ids of its queries not yet answered, oldest first.
     asked: FxHashMap<String, VecDeque<u64>>,
     next_id: u64,
+    /// How many inputs have been sent to this process (each input line's `seq`).
+    inputs_sent: u64,
     /// Whether the process echoes ids (known once it has, or from the start for the Prolog
     /// driver): then an answer with none is one given unasked.
     echoes_ids: bool,
 }
 
 impl Answers {
+    /// One more input sent: its `seq`.
+    fn input_sent(&mut self) -> u64 {
+        self.inputs_sent += 1;
+        self.inputs_sent
+    }
+
     /// A new query for `label`: its id.
     fn ask(&mut self, label: &str) -> u64 {
         self.next_id += 1;
@@ -384,10 +407,15 @@ impl Answers {
         board: &Whiteboard,
         label: String,
         value: bool,
-        id: Option<u64>,
+        (id, after): (Option<u64>, Option<u64>),
         failed: bool,
     ) {
         self.echoes_ids |= id.is_some();
+        // Given unasked about inputs an input sent since has changed: that input's own
+        // answer, or the next query's, will say what holds.
+        if id.is_none() && after.is_some_and(|after| after < self.inputs_sent) {
+            return;
+        }
         let outstanding = self.asked.entry(label.clone()).or_default();
         let reply = match id {
             Some(id) => match outstanding.iter().position(|&q| q == id) {
@@ -492,5 +520,51 @@ async fn death(child: &mut Child, tail: &parking_lot::Mutex<VecDeque<String>>) -
             "the process ended ({status}); its stderr ended with:\n  {}",
             tail.join("\n  ")
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The label's latest posting: its sequence number and value.
+    fn latest(board: &Whiteboard) -> Option<(u64, proclaim_board::Value)> {
+        board.latest("near").map(|m| (m.seq, m.value))
+    }
+
+    #[test]
+    fn an_answer_given_unasked_about_overtaken_inputs_is_dropped() {
+        use proclaim_board::Value::Bool;
+        let board = Whiteboard::local();
+        let mut answers = Answers {
+            echoes_ids: true,
+            ..Answers::default()
+        };
+        answers.input_sent();
+        answers.input_sent();
+        // Computed after input 1 only: input 2 is on its way, and its own answer will come.
+        answers.give("kb", &board, "near".into(), true, (None, Some(1)), false);
+        assert_eq!(latest(&board), None);
+        // After input 2: posted.
+        answers.give("kb", &board, "near".into(), true, (None, Some(2)), false);
+        let (first, value) = latest(&board).expect("posted");
+        assert_eq!(value, Bool(true));
+        // A program that does not say `after` is taken at its word.
+        answers.give("kb", &board, "near".into(), false, (None, None), false);
+        let (second, value) = latest(&board).expect("posted");
+        assert!(second > first);
+        assert_eq!(value, Bool(false));
+        // A query's reply is posted whatever came since.
+        let id = answers.ask("near");
+        answers.input_sent();
+        answers.give(
+            "kb",
+            &board,
+            "near".into(),
+            true,
+            (Some(id), Some(2)),
+            false,
+        );
+        assert_eq!(latest(&board).map(|(_, v)| v), Some(Bool(true)));
     }
 }

@@ -9,7 +9,10 @@
 :- use_module(library(time)).
 
 :- dynamic user:value/2.
-:- dynamic label/1, last/2, protocol_out/1, time_limit/1, load_file/1.
+:- dynamic label/1, last/2, protocol_out/1, time_limit/1, load_file/1, input_seq/1.
+
+% The seq of the last input taken in (0 before any): an answer given unasked says it.
+input_seq(0).
 
 time_limit(0.2).
 
@@ -48,6 +51,8 @@ handle(load, Message) :- !,
     prove_changed.
 handle(input, Message) :- !,
     Name = Message.name,
+    retractall(input_seq(_)),
+    assertz(input_seq(Message.get(seq, 0))),
     retractall(user:value(Name, _)),
     (   Message.get(value, null) == null
     ->  true
@@ -139,7 +144,8 @@ prove_changed :-
                ->  true
                ;   retractall(last(L, _)),
                    assertz(last(L, Result)),
-                   answer(L, Result, _{})
+                   input_seq(Seq),
+                   answer(L, Result, _{after: Seq})
                )
            )).
 

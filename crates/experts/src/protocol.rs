@@ -24,8 +24,9 @@ pub enum Request {
         time_limit: f64,
     },
     /// An input's current value: at the start for each one already posted, then at each
-    /// posting.
-    Input { name: String, value: Json },
+    /// posting; `seq` counts the inputs sent (1, 2, …), so an answer given unasked can say
+    /// which it followed.
+    Input { name: String, value: Json, seq: u64 },
     /// A machine asks for this label: answer it, echoing `id`.
     Query { label: String, id: u64 },
 }
@@ -56,6 +57,11 @@ pub struct Reply {
     /// The query it answers; none for an answer it gives unasked (its value changed).
     #[serde(default)]
     pub id: Option<u64>,
+    /// For an answer given unasked: the `seq` of the last input it took into account. One that
+    /// an input sent since has overtaken is dropped, so a query never takes an answer about
+    /// inputs that have already changed. Optional.
+    #[serde(default)]
+    pub after: Option<u64>,
     #[serde(default)]
     pub warning: Option<String>,
     #[serde(default)]
@@ -75,12 +81,14 @@ pub enum Said {
         label: String,
         value: bool,
         id: Option<u64>,
+        after: Option<u64>,
     },
     /// No answer: false, with a warning and a count.
     Failed {
         label: String,
         why: String,
         id: Option<u64>,
+        after: Option<u64>,
     },
     Warning(Located),
     Ready,
@@ -109,11 +117,13 @@ pub fn read_reply(line: &str) -> Said {
                 label,
                 why,
                 id: reply.id,
+                after: reply.after,
             },
             (Some(Json::Bool(value)), None) => Said::Answer {
                 label,
                 value,
                 id: reply.id,
+                after: reply.after,
             },
             (other, None) => Said::Garbled(format!(
                 "the answer for `{label}` needs \"value\": true or false, or \"error\" (found {})",
@@ -173,6 +183,7 @@ mod tests {
                     label: "ballNear".into(),
                     value: true,
                     id: None,
+                    after: None,
                 },
             ),
             (
@@ -181,6 +192,7 @@ mod tests {
                     label: "ballNear".into(),
                     value: false,
                     id: Some(7),
+                    after: None,
                 },
             ),
             (
@@ -189,6 +201,7 @@ mod tests {
                     label: "x".into(),
                     why: "boom".into(),
                     id: None,
+                    after: None,
                 },
             ),
             (
@@ -230,6 +243,7 @@ mod tests {
         let input = Request::Input {
             name: "note".into(),
             value: to_json(&Value::Str("two\nlines".into())),
+            seq: 1,
         };
         assert_eq!(input.line().matches('\n').count(), 1);
         assert_eq!(

@@ -265,12 +265,12 @@ async fn malformed_and_foreign_packets_are_counted_and_ignored() {
     let counters = receiver.counters();
     tokio::spawn(receiver.run(board.clone()));
     let socket = tokio::net::UdpSocket::bind("127.0.0.1:0").await.unwrap();
-    let good = proclaim_gc::encode(&simulator::initial_packet(&SimConfig::default()));
+    let good = proclaim_gamecontroller::encode(&simulator::initial_packet(&SimConfig::default()));
     let mut wrong_version = good.clone();
     wrong_version[4] = 19;
     let mut wrong_header = good.clone();
     wrong_header[0] = b'X';
-    let foreign = proclaim_gc::encode(&simulator::initial_packet(&SimConfig {
+    let foreign = proclaim_gamecontroller::encode(&simulator::initial_packet(&SimConfig {
         home: 30,
         away: 31,
         ..Default::default()
@@ -457,14 +457,15 @@ async fn the_receiver_sends_rgrt_status_back_once_a_second() {
     let board = Whiteboard::local();
     board.post("imu", "fallen", true);
     tokio::spawn(receiver.run(board.clone()));
-    let packet = proclaim_gc::encode(&simulator::initial_packet(&SimConfig::default()));
+    let packet = proclaim_gamecontroller::encode(&simulator::initial_packet(&SimConfig::default()));
     controller.send_to(&packet, addr).await.unwrap();
     let mut buffer = [0u8; 64];
     let (len, _) = tokio::time::timeout(Duration::from_secs(3), controller.recv_from(&mut buffer))
         .await
         .expect("a status packet within a second or two")
         .unwrap();
-    let status = proclaim_gc::StatusPacket::decode(&buffer[..len]).expect("an RGrt packet");
+    let status =
+        proclaim_gamecontroller::StatusPacket::decode(&buffer[..len]).expect("an RGrt packet");
     assert_eq!(
         (status.team_number, status.player_number, status.fallen),
         (18, 3, true)

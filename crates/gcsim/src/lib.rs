@@ -14,7 +14,7 @@
 //! 8s    finished
 //! ```
 
-use proclaim_gc::{
+use proclaim_gamecontroller::{
     encode, Colour, ControlPacket, GamePhase, GameState, RobotInfo, SetPlay, TeamInfo,
 };
 use proclaim_syntax::{code_lines, parse_duration, LineError, LineErrors};
@@ -213,7 +213,7 @@ pub fn initial_packet(config: &SimConfig) -> ControlPacket {
                 penalty: if i < config.players_per_team {
                     0
                 } else {
-                    proclaim_gc::PENALTY_SUBSTITUTE
+                    proclaim_gamecontroller::PENALTY_SUBSTITUTE
                 },
                 secs_till_unpenalised: 0,
             })

@@ -4,6 +4,7 @@
 
 use crate::arith::text;
 use crate::eval::Env;
+use crate::eval::Evaluate;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
 use crate::machine::SharedSuppressor;

@@ -49,8 +49,57 @@ impl Env<'_> {
         self.seen.latest(self.board, ty)
     }
 
-    /// The value of an expression; `None` where it reads a whiteboard value never posted.
-    pub fn value(&self, expr: &Expr) -> Option<Value> {
+    /// The functions an expression may use; `None` for one that gives no value (a host
+    /// function or an activity built-in such as `post`, which only statements run).
+    fn function(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
+        if let Some(limit) = self.time_limit(function, arguments) {
+            return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
+        }
+        let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
+        arith::function(function, &values)
+    }
+
+    /// For `timeout(µs)`, `after(s)` and `after_ms(ms)`: how long the state must have been
+    /// active (`Some(None)` when the argument has no value); `None` for other functions.
+    pub fn time_limit(&mut self, function: &str, arguments: &[Expr]) -> Option<Option<Duration>> {
+        let (_, micros_per_unit) = TIME_TESTS.iter().find(|(f, _)| *f == function)?;
+        let [argument] = arguments else {
+            return Some(None);
+        };
+        // A duration says its own unit: `after(2s)` and `timeout(2s)` are the same test.
+        if let Expr::Duration(us) = argument {
+            return Some(Some(Duration::from_micros(*us)));
+        }
+        Some(
+            self.value(argument)
+                .and_then(|v| v.as_f64())
+                .map(|n| Duration::from_secs_f64((n * micros_per_unit).max(0.0) / 1e6)),
+        )
+    }
+}
+
+impl Evaluate for Env<'_> {
+    fn read(&mut self, name: &str) -> Option<Value> {
+        Env::read(self, name)
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
+        self.function(function, arguments)
+    }
+}
+
+/// The walk over an expression, the same wherever it runs (a machine's ringlet, the verifier's
+/// model); what its names and calls mean is the implementor's.
+pub trait Evaluate {
+    /// A name's value; `None` where it reads a whiteboard value never posted.
+    fn read(&mut self, name: &str) -> Option<Value>;
+
+    /// A function's value; `None` for one that gives no value (a host function, or a
+    /// built-in statement such as `post`).
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value>;
+
+    /// The value of an expression, with C's arithmetic (`crate::arith`).
+    fn value(&mut self, expr: &Expr) -> Option<Value> {
         match expr {
             Expr::Bool(b) => Some(Value::Bool(*b)),
             Expr::Int(i) => Some(Value::Int(*i)),
@@ -70,7 +119,10 @@ impl Env<'_> {
             Expr::Binary { op, left, right } => match op {
                 BinOp::And => Some(Value::Bool(self.truth(left) && self.truth(right))),
                 BinOp::Or => Some(Value::Bool(self.truth(left) || self.truth(right))),
-                _ => binary(*op, self.value(left), self.value(right)),
+                _ => {
+                    let (l, r) = (self.value(left), self.value(right));
+                    binary(*op, l, r)
+                }
             },
             Expr::Call {
                 function,
@@ -81,36 +133,8 @@ impl Env<'_> {
 
     /// The truth of an expression, by gufsm's rule ([`Value::truthy`]); a value never posted
     /// is false.
-    pub fn truth(&self, expr: &Expr) -> bool {
+    fn truth(&mut self, expr: &Expr) -> bool {
         self.value(expr).is_some_and(|v| v.truthy())
-    }
-
-    /// The functions an expression may use; `None` for one that gives no value (a host
-    /// function or an activity built-in such as `post`, which only statements run).
-    pub fn call(&self, function: &str, arguments: &[Expr]) -> Option<Value> {
-        if let Some(limit) = self.time_limit(function, arguments) {
-            return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
-        }
-        let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
-        arith::function(function, &values)
-    }
-
-    /// For `timeout(µs)`, `after(s)` and `after_ms(ms)`: how long the state must have been
-    /// active (`Some(None)` when the argument has no value); `None` for other functions.
-    pub fn time_limit(&self, function: &str, arguments: &[Expr]) -> Option<Option<Duration>> {
-        let (_, micros_per_unit) = TIME_TESTS.iter().find(|(f, _)| *f == function)?;
-        let [argument] = arguments else {
-            return Some(None);
-        };
-        // A duration says its own unit: `after(2s)` and `timeout(2s)` are the same test.
-        if let Expr::Duration(us) = argument {
-            return Some(Some(Duration::from_micros(*us)));
-        }
-        Some(
-            self.value(argument)
-                .and_then(|v| v.as_f64())
-                .map(|n| Duration::from_secs_f64((n * micros_per_unit).max(0.0) / 1e6)),
-        )
     }
 }
 
@@ -125,7 +149,7 @@ mod tests {
         board.post("test", "word", Value::Str("ball".into()));
         let shared = Shared::for_machines([]);
         shared.set_global("g", Value::Int(7));
-        let env = Env {
+        let mut env = Env {
             board: &board,
             seen: &Seen::default(),
             locals: &Locals::default(),

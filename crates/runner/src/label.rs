@@ -3,6 +3,7 @@
 //! comparisons, the time tests) is computed on the spot, with no round trip.
 
 use crate::eval::Env;
+use crate::eval::Evaluate;
 use crate::event::Answerer;
 use crate::rounds::QueryHook;
 use crate::variables::Scope;
@@ -100,13 +101,14 @@ pub(crate) fn reads_globals(label: &Label, scope: Scope<'_>) -> bool {
 
 /// How long the label's time tests (`timeout`, `after`, `after_ms`) still need, the soonest
 /// first; none when it has none still to come.
-pub(crate) fn next_time_test(label: &Label, env: &Env<'_>) -> Option<Duration> {
+pub(crate) fn next_time_test(label: &Label, env: &mut Env<'_>) -> Option<Duration> {
+    let in_state = env.in_state;
     label
         .calls()
         .into_iter()
         .filter(|(f, _)| TIME_TESTS.iter().any(|(t, _)| t == f))
         .filter_map(|(f, arguments)| env.time_limit(f, arguments).flatten())
-        .filter(|due| *due > env.in_state)
-        .map(|due| due - env.in_state)
+        .filter(|due| *due > in_state)
+        .map(|due| due - in_state)
         .min()
 }

@@ -22,6 +22,7 @@ mod step;
 mod variables;
 
 pub use activity::LOOP_LIMIT;
+pub use eval::Evaluate;
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
 pub use machine::{asked, declaration, Loader, MachineRunner, RunOptions, SharedSuppressor};

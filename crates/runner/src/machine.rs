@@ -533,10 +533,10 @@ impl<'r> Run<'r> {
 
     /// How long until the current state's next time test comes due, at most the ring period.
     pub(crate) fn next_due(&self) -> Duration {
-        let env = self.env();
+        let mut env = self.env();
         self.machine
             .outgoing(self.current)
-            .filter_map(|t| next_time_test(&t.label, &env))
+            .filter_map(|t| next_time_test(&t.label, &mut env))
             .min()
             .unwrap_or(self.runner.options.ring_period)
             .min(self.runner.options.ring_period)

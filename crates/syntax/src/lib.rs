@@ -5,9 +5,9 @@
 //! This crate knows nothing of meaning (labels, priorities, consistency): see `proclaim-cdl`.
 
 pub mod ast;
-mod common;
 mod dfl;
 pub mod diagnostic;
+mod fast_path;
 pub mod lexer;
 mod lines;
 mod located;

@@ -19,10 +19,10 @@ pub struct FileDiagnostic {
     /// The text of the line, as the reader read it, where the column is known: what a renderer
     /// quotes with a caret under the place, without reading the file again (it may have changed
     /// or be gone by then).
-    pub source_line: Option<String>,
+    pub source_line: Option<Box<str>>,
     pub message: String,
     /// How to fix it, where there is something to say.
-    pub hint: Option<String>,
+    pub hint: Option<Box<str>>,
 }
 
 impl FileDiagnostic {
@@ -59,12 +59,12 @@ impl FileDiagnostic {
         self.source_line = self
             .line
             .and_then(|line| source.lines().nth(line.saturating_sub(1)))
-            .map(str::to_string);
+            .map(Box::from);
         self
     }
 
     pub fn with_hint(mut self, hint: impl Into<String>) -> FileDiagnostic {
-        self.hint = Some(hint.into());
+        self.hint = Some(hint.into().into_boxed_str());
         self
     }
 
@@ -99,7 +99,7 @@ impl FileDiagnostic {
             Severity::Warning => Diagnostic::warning(span, self.message.clone()),
         };
         if let Some(hint) = &self.hint {
-            diagnostic = diagnostic.with_hint(hint.clone());
+            diagnostic = diagnostic.with_hint(hint.to_string());
         }
         Some(render(&[diagnostic], &self.file, &source, color))
     }
@@ -114,7 +114,7 @@ impl Diagnostic {
             Severity::Warning => FileDiagnostic::warning(file, line, self.message.clone()),
         };
         FileDiagnostic {
-            hint: self.hint.clone(),
+            hint: self.hint.as_deref().map(Box::from),
             ..located.at_column(column, source)
         }
     }

@@ -2,8 +2,8 @@
 //! every problem in a file is reported at once and parsing never fails.
 
 use crate::ast::{Item, Query};
-use crate::common::common_statement;
 use crate::diagnostic::{Diagnostic, Sink};
+use crate::fast_path::common_statement;
 use crate::grammar::{QueryParser, StatementParser};
 use crate::lexer::{lex, Lexer, Tok, Token};
 use crate::span::Span;

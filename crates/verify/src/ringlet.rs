@@ -26,8 +26,8 @@ use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, World};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
-use proclaim_runner::LOOP_LIMIT;
+use proclaim_fsm::{Action, Expr, Statement, TIME_TESTS};
+use proclaim_runner::{Evaluate, LOOP_LIMIT};
 
 /// Which of the environment's options a step took: the snapshot's (time tests, types OnEntry
 /// touched) and the one after the ringlet (every free type). Replaying a step with its choice
@@ -431,6 +431,23 @@ struct Exec<'a> {
     deferred: Vec<Command>,
 }
 
+/// The runner's walk over an expression, on the model: names resolve to slots and answers, a
+/// time test is due where the step's choice made it so.
+impl Evaluate for Exec<'_> {
+    fn read(&mut self, name: &str) -> Option<Value> {
+        let resolved = self.model.resolve(Some(self.machine), name)?;
+        self.name_value(resolved)
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
+        if TIME_TESTS.iter().any(|(f, _)| *f == function) {
+            return Some(Value::Bool(self.time_due(function, arguments)));
+        }
+        let args: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
+        arith::function(function, &args)
+    }
+}
+
 impl Exec<'_> {
     fn is_message(&self, slot: SlotId) -> bool {
         matches!(self.model.slots[slot].kind, SlotKind::Message { .. })
@@ -481,61 +498,16 @@ impl Exec<'_> {
         t.reasoner.borrow_mut().answers(&inputs)[output]
     }
 
-    fn read(&mut self, name: &str) -> Option<Value> {
-        let resolved = self.model.resolve(Some(self.machine), name)?;
-        self.name_value(resolved)
-    }
-
-    fn truth(&mut self, e: &Expr) -> bool {
-        self.value(e).is_some_and(|v| v.truthy())
-    }
-
-    fn value(&mut self, e: &Expr) -> Option<Value> {
-        match e {
-            Expr::Bool(b) => Some(Value::Bool(*b)),
-            Expr::Int(i) => Some(Value::Int(*i)),
-            Expr::Float(x) => Some(Value::Float(*x)),
-            Expr::Str(s) => Some(Value::Str(s.clone())),
-            Expr::Duration(us) => Some(Value::Int(*us as i64)),
-            Expr::Name(n) => self.read(n),
-            Expr::Unary {
-                op: UnOp::Not,
-                operand,
-            } => Some(Value::Bool(!self.truth(operand))),
-            Expr::Unary {
-                op: UnOp::Neg,
-                operand,
-            } => arith::negate(&self.value(operand)?),
-            Expr::Binary { op, left, right } => match op {
-                BinOp::And => Some(Value::Bool(self.truth(left) && self.truth(right))),
-                BinOp::Or => Some(Value::Bool(self.truth(left) || self.truth(right))),
-                _ => {
-                    let (l, r) = (self.value(left), self.value(right));
-                    arith::binary(*op, l, r)
-                }
-            },
-            Expr::Call {
-                function,
-                arguments,
-            } => {
-                if TIME_TESTS.iter().any(|(f, _)| f == function) {
-                    return Some(Value::Bool(self.time_due(e)));
-                }
-                let args: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
-                arith::function(function, &args)
-            }
-        }
-    }
-
     /// Whether a time test of the current state is due; a time test that no label of the
     /// state has (one in an activity) is never due.
-    fn time_due(&self, call: &Expr) -> bool {
+    fn time_due(&self, function: &str, arguments: &[Expr]) -> bool {
         let c = &self.world.machines[self.machine];
         let state = &self.model.machines[self.machine].states[usize::from(c.state)];
+        let this_call = |call: &Expr| matches!(call, Expr::Call { function: f, arguments: a } if f == function && a == arguments);
         state
             .time_tests
             .iter()
-            .position(|t| t.call == *call)
+            .position(|t| this_call(&t.call))
             .is_some_and(|i| c.time & (1 << i) != 0)
     }
 

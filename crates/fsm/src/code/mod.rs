@@ -13,6 +13,8 @@ mod parse;
 mod stmt;
 mod token;
 
+pub(crate) use token::LexError;
+
 pub use expr::{BinOp, Expr, UnOp};
 pub use parse::{parse_expression, parse_statements, CodeError};
 pub use stmt::{Statement, VarType};

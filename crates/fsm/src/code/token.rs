@@ -32,7 +32,8 @@ const PUNCTUATION: [&str; 24] = [
     "<", ">", "!", "~", "[", "]",
 ];
 
-/// Where and why the text is not a token (`at` in bytes).
+/// Where and why the text is not a token (`at` in bytes): the activity language's and the
+/// machine files' lexers both say it this way.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LexError {
     pub at: usize,

@@ -62,12 +62,8 @@ impl std::fmt::Display for Tok<'_> {
     }
 }
 
-/// Where and why the text is not a token.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LexError {
-    pub at: usize,
-    pub message: String,
-}
+/// Where and why the text is not a token: the one lexer error of both languages.
+pub(crate) use crate::code::LexError;
 
 pub type Spanned<'a> = Result<(usize, Tok<'a>, usize), LexError>;
 

@@ -1,7 +1,7 @@
 //! GameController packets: the real capture decodes to the game its README describes, encoding
 //! round-trips, and malformed packets are refused with a reason, never a panic.
 
-use proclaim_gc::{
+use proclaim_gamecontroller::{
     decode, encode, Colour, DecodeError, GameState, Perspective, StatusPacket, V18_LEN, V7_LEN,
 };
 use proptest::prelude::*;
@@ -54,7 +54,7 @@ fn the_real_capture_decodes_to_the_game_described() {
     assert_eq!(first.teams[1].field_player_colour, Colour::Black);
     assert_eq!(
         first.teams[1].players[8].penalty,
-        proclaim_gc::PENALTY_SUBSTITUTE
+        proclaim_gamecontroller::PENALTY_SUBSTITUTE
     );
     // Packet numbers count up by one.
     for pair in decoded.windows(2) {
