@@ -161,8 +161,9 @@ impl Behaviour {
             Ok(guard) => guard,
             Err(TryLockError::WouldBlock) => {
                 return Err(PyRuntimeError::new_err(
-                    "the behaviour is running a round already (a callable cannot step the \
-                     behaviour that called it; read and post through the board it is given)",
+                    "the behaviour is running a round already (stepped from one of its own \
+                     callables, which read and post through the board they are given, or from \
+                     another thread while a round runs)",
                 ))
             }
             // Never held across a panic (caught below), but a poisoned lock still guards a
@@ -450,7 +451,8 @@ impl Behaviour {
             Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner().take(),
             Err(TryLockError::WouldBlock) => {
                 return Err(PyRuntimeError::new_err(
-                    "the behaviour cannot close itself from inside a round",
+                    "the behaviour cannot be closed while it is running a round (from one of \
+                     its own callables, or from another thread)",
                 ))
             }
         };

@@ -88,8 +88,10 @@ fn compare(dir: &Path, case: &Case, repeat: u32) -> Result<Comparison, Failure> 
         "--alg".as_ref(),
         alg.as_ref(),
     ];
+    // `wc -w` on the file itself: `--version` is GNU's alone.
     let has_wc = Command::new("wc")
-        .arg("--version")
+        .arg("-w")
+        .arg(file.as_os_str())
         .stdout(Stdio::null())
         .status()
         .is_ok_and(|s| s.success());

@@ -12,7 +12,7 @@ pub(crate) enum Roots {
 }
 
 /// The strongly connected components of the nodes `0..n`, each emitted after every component it
-/// reaches: the order in which they can be evaluated. A component's first node is the one the
+/// reaches: the order in which they can be evaluated. A component's last node is the one the
 /// search entered it by.
 pub(crate) fn strongly_connected<'g>(
     n: usize,

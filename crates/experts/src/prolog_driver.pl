@@ -82,7 +82,9 @@ load_knowledge(File, Text) :-
                                    load_files(user:File, [stream(Stream), silent(true)])),
               Error,
               load_failed(File, Error)),
-        close(Stream)),
+        (   close(Stream),
+            retractall(load_file(_))
+        )),
     forall(label(L),
            (   atom(L), current_predicate(user:L/0)
            ->  true
@@ -99,8 +101,9 @@ load_failed(File, Error) :-
     message_text(Error, Text),
     reply(_{warning: Text, file: File, line: 1}).
 
-% Errors and warnings while loading come back located: at the place SWI-Prolog's message names
-% (`file:line:column: text`), else where the loader is.
+% Errors and warnings while loading (while load_file/1 names the file) come back located: at
+% the place SWI-Prolog's message names (`file:line:column: text`), else where the loader is.
+% Afterwards SWI-Prolog prints them as it would.
 :- multifile user:message_hook/3.
 user:message_hook(Term, Kind, Lines) :-
     memberchk(Kind, [error, warning]),
