@@ -1,15 +1,8 @@
 //! The `proclaim` binary as users run it: output lines, JSON, exit codes and errors.
 
+use crate::proclaim;
 use std::io::Write;
 use std::process::{Command, Output};
-
-fn proclaim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("the binary runs")
-}
 
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

@@ -3,15 +3,8 @@
 //! warnings, `deps` knowing who answers. Each needs SWI-Prolog or python3: skipped without it,
 //! failed without it when `CI` is set (`.ci/run` installs Debian's swi-prolog-nox).
 
+use crate::proclaim;
 use std::process::{Command, Output};
-
-fn proclaim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("the binary runs")
-}
 
 fn text(o: &Output) -> (String, String) {
     (

@@ -2,12 +2,12 @@
 //! layer's postings to `walk` for its hold, what readers of the board see, the trace, the
 //! replay of a recording, `check`'s placed errors, `verify`'s refusal and the diagram's mark.
 
+use crate::proclaim;
 use proclaim_behaviour::testing::run_scripted;
 use proclaim_behaviour::{launch, load, Folder, LaunchOptions};
 use proclaim_board::Whiteboard;
 use proclaim_runner::Event;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -17,14 +17,6 @@ fn example() -> PathBuf {
 
 fn field_script() -> String {
     std::fs::read_to_string(example().join("field.script")).unwrap()
-}
-
-fn proclaim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("the binary runs")
 }
 
 fn text(bytes: &[u8]) -> String {

@@ -14,6 +14,15 @@ mod subsumption;
 mod theories;
 mod whiteboard;
 
+/// The binary run with `args`, as a user runs it (no colour).
+pub fn proclaim(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("the binary runs")
+}
+
 /// Where the shared corpus and specs live, when present beside the project.
 #[allow(dead_code)]
 pub fn shared_dir() -> Option<std::path::PathBuf> {

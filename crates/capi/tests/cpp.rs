@@ -69,16 +69,22 @@ fn compile_c(name: &str, optimise: bool) -> PathBuf {
     program
 }
 
-fn gpp_is_missing() -> bool {
-    let missing = Command::new("g++").arg("--version").output().is_err();
+/// Whether `tool` is missing here: a skip said on stderr, or with `CI` set a failure (`.ci/run`
+/// installs what the tests need).
+fn is_missing(tool: &str, needed_for: &str) -> bool {
+    let missing = Command::new(tool).arg("--version").output().is_err();
     if missing {
         assert!(
             std::env::var_os("CI").is_none(),
-            "g++ is missing, and CI must run the C++ example"
+            "{tool} is missing, and CI must {needed_for}"
         );
-        eprintln!("skipped: g++ is not installed, so the C++ example cannot be built");
+        eprintln!("skipped: {tool} is not installed, so this test cannot {needed_for}");
     }
     missing
+}
+
+fn gpp_is_missing() -> bool {
+    is_missing("g++", "build the C and C++ examples")
 }
 
 /// What the example prints, from the Rust session.
@@ -248,17 +254,8 @@ fn the_c_table_example_prints_the_rust_truth_table_of_every_theory() {
     assert_eq!(run.status.code(), Some(2), "no theory named: usage");
 }
 
-/// Whether valgrind can run here; with `CI` set its absence is a failure (`.ci/run` installs it).
 fn valgrind_is_missing() -> bool {
-    let missing = Command::new("valgrind").arg("--version").output().is_err();
-    if missing {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "valgrind is missing, and CI must check the dead-handle example's memory use"
-        );
-        eprintln!("skipped under valgrind: valgrind is not installed");
-    }
-    missing
+    is_missing("valgrind", "check the dead-handle example's memory use")
 }
 
 #[test]
