@@ -246,11 +246,12 @@ fn end_state(
             .map(|note| format!("state {}: {note}", name.trim())),
     );
     diagnostics.extend(problems.into_iter().map(|(severity, problem)| {
-        let message = format!("state `{}`: {problem}", name.trim());
-        match severity {
-            Severity::Error => FileDiagnostic::error(file, at, message),
-            Severity::Warning => FileDiagnostic::warning(file, at, message),
-        }
+        problem_at(
+            severity,
+            file,
+            at,
+            format!("state `{}`: {problem}", name.trim()),
+        )
     }));
     if m.states.iter().any(|s| s.id == id) {
         diagnostics.push(FileDiagnostic::error(
@@ -402,31 +403,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
             .then(b.0.cmp(&a.0))
             .then(a.1.cmp(&b.1))
     });
-    // Only the sectioned form says anything to run; an older machine description is prose.
-    let machine_level = if is_sectioned(&m.description) {
-        parse_description(&m.description)
-    } else {
-        Description::default()
-    };
-    out.diagnostics.extend(
-        machine_level
-            .problems
-            .into_iter()
-            .map(|(severity, problem)| {
-                let message = format!("machine description: {problem}");
-                match severity {
-                    Severity::Error => FileDiagnostic::error(file, m.line, message),
-                    Severity::Warning => FileDiagnostic::warning(file, m.line, message),
-                }
-            }),
-    );
-    // The machine's variables: declared where the machine starts.
-    let [declarations, ..] = machine_level.activities;
-    if let Some(start) = m.states.iter_mut().find(|s| s.id == initial) {
-        start.on_entry.splice(0..0, declarations);
-    }
-    let mut notes = machine_level.notes;
-    notes.append(&mut m.notes);
+    let notes = machine_description(&mut m, initial, file, out);
     let name = if m.attribute_name.trim().is_empty() {
         format!("{file_name}_{}", out.machines.len() + 1)
     } else {
@@ -440,6 +417,50 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
         unread: m.unread,
         description: notes.join("\n"),
     });
+}
+
+/// The machine's own description, in the later editors' sectioned form: its problems reported,
+/// its `$variables$` declared where the machine starts; returns what to keep as notes (its
+/// `$includes$`, then the states'). An older machine description is prose, and says nothing.
+fn machine_description(
+    m: &mut MachineDraft,
+    initial: StateId,
+    file: &str,
+    out: &mut Imported,
+) -> Vec<String> {
+    let machine_level = if is_sectioned(&m.description) {
+        parse_description(&m.description)
+    } else {
+        Description::default()
+    };
+    out.diagnostics.extend(
+        machine_level
+            .problems
+            .into_iter()
+            .map(|(severity, problem)| {
+                problem_at(
+                    severity,
+                    file,
+                    m.line,
+                    format!("machine description: {problem}"),
+                )
+            }),
+    );
+    let [declarations, ..] = machine_level.activities;
+    if let Some(start) = m.states.iter_mut().find(|s| s.id == initial) {
+        start.on_entry.splice(0..0, declarations);
+    }
+    let mut notes = machine_level.notes;
+    notes.append(&mut m.notes);
+    notes
+}
+
+/// A description's problem, placed at the line of the element it came from.
+fn problem_at(severity: Severity, file: &str, line: usize, message: String) -> FileDiagnostic {
+    match severity {
+        Severity::Error => FileDiagnostic::error(file, line, message),
+        Severity::Warning => FileDiagnostic::warning(file, line, message),
+    }
 }
 
 fn attribute(e: &BytesStart<'_>, name: &str) -> Option<String> {
