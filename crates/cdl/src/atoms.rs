@@ -33,10 +33,11 @@ impl AtomTable {
         self.ends.reserve(atoms);
     }
 
-    /// Starts bringing the slot `name` is looked for in into the cache (see [`Slots`]).
+    /// Starts bringing the slot a name of this [`hash`] is looked for in into the cache (see
+    /// [`Slots`]).
     #[inline]
-    pub(crate) fn prefetch(&self, name: &str) {
-        self.index.prefetch(hash(name));
+    pub(crate) fn prefetch_hashed(&self, name_hash: u64) {
+        self.index.prefetch(name_hash);
     }
 
     pub(crate) fn get(&self, name: &str) -> Option<Atom> {
@@ -47,9 +48,14 @@ impl AtomTable {
 
     /// The atom of this name, added when new (one probe of the table either way).
     pub(crate) fn intern(&mut self, name: &str) -> Atom {
+        self.intern_hashed(name, hash(name))
+    }
+
+    /// [`AtomTable::intern`] for a name whose [`hash`] is known already.
+    pub(crate) fn intern_hashed(&mut self, name: &str, name_hash: u64) -> Atom {
         let (text, ends) = (&self.text, &self.ends);
         let found = self.index.find_or_insert(
-            hash(name),
+            name_hash,
             ends.len() as u32,
             |id| name_of(text, ends, id) == name,
             |id| hash(name_of(text, ends, id)),

@@ -27,12 +27,78 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
         .filter(|i| matches!(i, Item::Rule(_)))
         .count();
     let mut checker = Checker::new(source, rules);
-    checker.items(&parsed.items);
+    let mut batch = Batch::default();
+    for item in parsed.items {
+        batch.push(item, source);
+    }
+    checker.batch(&batch);
     checker.finish(parsed.diagnostics, &parsed.broken_labels)
 }
 
 /// How many statements' names are asked for from memory before the first of them is used.
 const AHEAD: usize = 32;
+
+/// How far ahead of the literal being interned its table slot is asked for from memory, in
+/// literals, and likewise for labels.
+const LITS_AHEAD: usize = 64;
+const LABELS_AHEAD: usize = 16;
+
+/// Statements on their way to the checker, with the work on them that needs nothing but the
+/// statement itself done beforehand (by the parser's thread, in a pipeline): their literals laid
+/// out flat and every name hashed. The checker then reads the literals in one sweep instead of
+/// from each statement's own vectors, which lie scattered over the parser's heap, and hashes
+/// nothing.
+#[derive(Default)]
+struct Batch {
+    items: Vec<Item>,
+    /// The literals of each rule (its body, then its head) and fact, in statement order.
+    lits: Vec<ast::Lit>,
+    /// The hash of each literal's atom name in `lits`.
+    lit_hashes: Vec<u64>,
+    /// The hash of each rule's label, for the rules that have one, in statement order.
+    label_hashes: Vec<u64>,
+}
+
+impl Batch {
+    fn with_capacity(items: usize) -> Batch {
+        Batch {
+            items: Vec::with_capacity(items),
+            lits: Vec::with_capacity(items * 4),
+            lit_hashes: Vec::with_capacity(items * 4),
+            label_hashes: Vec::with_capacity(items),
+        }
+    }
+
+    fn push(&mut self, item: Item, source: &str) {
+        let mut add = |lit: &ast::Lit| {
+            self.lits.push(*lit);
+            self.lit_hashes.push(hash(lit.atom.text(source)));
+        };
+        match &item {
+            Item::Rule(rule) => {
+                rule.body.iter().for_each(&mut add);
+                add(&rule.head);
+                if let Some(label) = rule.label {
+                    self.label_hashes.push(hash(label.text(source)));
+                }
+            }
+            Item::Fact { clause, .. } => clause.iter().for_each(add),
+            _ => {}
+        }
+        self.items.push(item);
+    }
+
+    fn len(&self) -> usize {
+        self.items.len()
+    }
+}
+
+/// Where the checker is in a [`Batch`]'s flat arrays.
+#[derive(Default)]
+struct Cursor {
+    lit: usize,
+    label: usize,
+}
 
 /// Files at least this large are parsed and checked at the same time, on two threads.
 const PIPELINE_BYTES: usize = 1 << 20;
@@ -44,18 +110,18 @@ pub fn check_source(source: &str, language: Language) -> Checked {
         return check(proclaim_syntax::parse(source, language), source);
     }
     const BATCH: usize = 4096;
-    let (sender, batches) = std::sync::mpsc::sync_channel::<Vec<Item>>(16);
+    let (sender, batches) = std::sync::mpsc::sync_channel::<Batch>(16);
     // Checked batches go back to the parser to be freed: memory is freed fastest by the thread
     // that allocated it, and the checker is the busier of the two.
-    let (give_back, checked) = std::sync::mpsc::channel::<Vec<Item>>();
+    let (give_back, checked) = std::sync::mpsc::channel::<Batch>();
     std::thread::scope(|scope| {
         let parser = scope.spawn(move || {
-            let mut batch = Vec::with_capacity(BATCH);
+            let mut batch = Batch::with_capacity(BATCH);
             let parsed = proclaim_syntax::parse_each(source, language, |item| {
-                batch.push(item);
+                batch.push(item, source);
                 if batch.len() == BATCH {
                     // The checker only stops receiving when it is gone; nothing to do then.
-                    let _ = sender.send(std::mem::replace(&mut batch, Vec::with_capacity(BATCH)));
+                    let _ = sender.send(std::mem::replace(&mut batch, Batch::with_capacity(BATCH)));
                     checked.try_iter().for_each(drop);
                 }
             });
@@ -65,7 +131,7 @@ pub fn check_source(source: &str, language: Language) -> Checked {
         // About 25 bytes a rule in large generated theories.
         let mut checker = Checker::new(source, source.len() / 25);
         for batch in batches {
-            checker.items(&batch);
+            checker.batch(&batch);
             let _ = give_back.send(batch);
         }
         match parser.join() {
@@ -135,46 +201,58 @@ impl<'s> Checker<'s> {
         checker
     }
 
-    /// Takes in statements, in file order. By reference, so that a pipeline's batches are freed
-    /// by the thread that made them. The table slots of the next few statements' atoms and
-    /// labels are asked for before those statements are taken in, so their cache misses overlap
-    /// instead of coming one after another (most of checking a large theory was waiting on them).
-    fn items(&mut self, items: &[Item]) {
-        for chunk in items.chunks(AHEAD) {
-            for item in chunk {
-                self.prefetch_names(item);
-            }
-            for item in chunk {
-                self.item(item);
-            }
+    /// Takes in a batch of statements, in file order. By reference, so that a pipeline's
+    /// batches are freed by the thread that made them. The table slots of the literals and
+    /// labels a little further on are asked for before these are taken in, so their cache
+    /// misses overlap instead of coming one after another (most of checking a large theory was
+    /// waiting on them).
+    fn batch(&mut self, batch: &Batch) {
+        for hash in batch.lit_hashes.iter().take(LITS_AHEAD) {
+            self.theory.atoms.prefetch_hashed(*hash);
+        }
+        for hash in batch.label_hashes.iter().take(LABELS_AHEAD) {
+            self.labels.prefetch(*hash);
+        }
+        let mut at = Cursor::default();
+        for item in &batch.items {
+            self.item(item, batch, &mut at);
         }
     }
 
-    /// The atoms and labels of the common statements, rules and facts; a hint only.
-    fn prefetch_names(&self, item: &Item) {
-        let lits: &[ast::Lit] = match item {
-            Item::Rule(rule) => &rule.body,
-            Item::Fact { clause, .. } => clause,
-            _ => &[],
-        };
-        let atoms = &self.theory.atoms;
-        for lit in lits {
-            atoms.prefetch(lit.atom.text(self.source));
+    /// The next literal of the batch, interned; the slot of the one `LITS_AHEAD` further on is
+    /// asked for.
+    fn next_lit(&mut self, batch: &Batch, at: &mut Cursor) -> (Lit, Span) {
+        if let Some(&ahead) = batch.lit_hashes.get(at.lit + LITS_AHEAD) {
+            self.theory.atoms.prefetch_hashed(ahead);
         }
-        if let Item::Rule(rule) = item {
-            atoms.prefetch(rule.head.atom.text(self.source));
-            if let Some(label) = rule.label {
-                self.labels.prefetch(hash(label.text(self.source)));
-            }
+        let written = batch.lits[at.lit];
+        let name = written.atom.text(self.source);
+        let atom = self
+            .theory
+            .atoms
+            .intern_hashed(name, batch.lit_hashes[at.lit]);
+        at.lit += 1;
+        (Lit::new(atom, written.negated), written.span)
+    }
+
+    /// The hash of the next label of the batch; the slot of the one `LABELS_AHEAD` further on
+    /// is asked for.
+    fn next_label_hash(&mut self, batch: &Batch, at: &mut Cursor) -> u64 {
+        if let Some(&ahead) = batch.label_hashes.get(at.label + LABELS_AHEAD) {
+            self.labels.prefetch(ahead);
         }
+        at.label += 1;
+        batch.label_hashes[at.label - 1]
     }
 
     /// Takes in one statement, in file order.
-    fn item(&mut self, item: &Item) {
+    fn item(&mut self, item: &Item, batch: &Batch, at: &mut Cursor) {
         match item {
-            Item::Rule(rule) => self.add_rule(rule),
+            Item::Rule(rule) => self.add_rule(rule, batch, at),
             &Item::Fact { ref clause, span } => {
-                let lits = clause.iter().map(|l| self.lit(l)).collect::<Vec<_>>();
+                let lits = (0..clause.len())
+                    .map(|_| self.next_lit(batch, at).0)
+                    .collect::<Vec<_>>();
                 // One literal is no tautology: a fact, nearly always, needs no copy to tell.
                 if lits.len() > 1 && normalize(lits.clone()).is_none() {
                     self.diagnostics.push(
@@ -286,22 +364,24 @@ impl<'s> Checker<'s> {
         }
     }
 
-    fn add_rule(&mut self, rule: &ast::RuleItem) {
+    /// Takes in a rule, its literals and label hash the next ones of the batch.
+    fn add_rule(&mut self, rule: &ast::RuleItem, batch: &Batch, at: &mut Cursor) {
         let id = self.theory.heads.len() as RuleId;
         let mut label_range = (0, 0);
         if let Some(label) = rule.label {
             let text = label.text(self.source);
-            self.add_label(text, id, label.start);
+            let label_hash = self.next_label_hash(batch, at);
+            self.add_label(text, label_hash, id, label.start);
             let start = self.theory.label_text.len() as u32;
             self.theory.label_text.push_str(text);
             label_range = (start, self.theory.label_text.len() as u32);
         }
-        for written in &rule.body {
-            let lit = self.lit(written);
+        for _ in 0..rule.body.len() {
+            let (lit, span) = self.next_lit(batch, at);
             self.theory.bodies.push(lit);
-            self.body_spans.push(written.span);
+            self.body_spans.push(span);
         }
-        let head = self.lit(&rule.head);
+        let (head, _) = self.next_lit(batch, at);
         self.theory.heads.push(head);
         self.theory.kinds.push(match rule.arrow {
             ast::Arrow::Strict => RuleKind::Strict,
@@ -444,10 +524,10 @@ impl<'s> Checker<'s> {
     }
 
     /// Indexes the first rule of each label; reports a label used again.
-    fn add_label(&mut self, text: &str, rule: RuleId, start: u32) {
+    fn add_label(&mut self, text: &str, label_hash: u64, rule: RuleId, start: u32) {
         let theory = &self.theory;
         let found = self.labels.find_or_insert(
-            hash(text),
+            label_hash,
             rule,
             |r| theory.label(r) == Some(text),
             |r| hash(theory.label(r).unwrap_or_default()),

@@ -93,6 +93,29 @@ pub(crate) struct Implications {
 
 pub(crate) const NO_PART: u32 = u32::MAX;
 
+/// Below this many rules the engine is built on one thread: a thread costs more than it saves.
+const PARALLEL_RULES: usize = 100_000;
+
+/// `a` and `b`, on two threads when `parallel`, else one after the other.
+fn both<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if !parallel {
+        return (a(), b());
+    }
+    std::thread::scope(|scope| {
+        let other = scope.spawn(b);
+        let a = a();
+        // `b` only builds arrays; should it panic, the panic goes on unchanged.
+        let b = other
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (a, b)
+    })
+}
+
 impl Implications {
     fn new(lit_count: usize, theory: &Theory) -> Implications {
         let edges: Vec<(u32, u32)> = theory
@@ -184,22 +207,50 @@ impl Implications {
     }
 }
 
-impl Engine {
-    /// Compiles a checked theory. Linear in its size.
-    pub fn new(theory: impl Into<Arc<Theory>>) -> Engine {
-        let theory = theory.into();
-        let lit_count = theory.atom_count() * 2;
+/// The indexes read by consequent: rules by head, superiors, and the axioms' closure.
+struct ByConsequent {
+    by_head: Csr,
+    superiors: Csr,
+    closure_by_lit: Csr,
+    implications: Implications,
+}
+
+impl ByConsequent {
+    fn new(theory: &Theory, lit_count: usize) -> ByConsequent {
         let rules = theory.rule_count();
-        let by_head = Csr::build(
-            lit_count,
-            (0..rules as u32).map(|r| (theory.heads[r as usize].0, r)),
-        );
-        let superiors = Csr::build(rules, theory.priorities.iter().map(|&(w, l)| (l, w)));
+        ByConsequent {
+            by_head: Csr::build(
+                lit_count,
+                (0..rules as u32).map(|r| (theory.heads[r as usize].0, r)),
+            ),
+            superiors: Csr::build(rules, theory.priorities.iter().map(|&(w, l)| (l, w))),
+            closure_by_lit: Csr::build(
+                lit_count,
+                theory
+                    .closure()
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(i, c)| c.lits.iter().map(move |l| (l.0, i as u32))),
+            ),
+            implications: Implications::new(lit_count, theory),
+        }
+    }
+}
+
+/// The indexes read by antecedent: strict rules and dependents by body literal.
+struct ByAntecedent {
+    strict_uses: Csr,
+    dependents: Csr,
+    strict_facts: Vec<RuleId>,
+    strict_body_len: Vec<u32>,
+}
+
+impl ByAntecedent {
+    fn new(theory: &Theory, lit_count: usize) -> ByAntecedent {
+        let rules = theory.rule_count();
         let is_strict = |r: u32| theory.kinds[r as usize] == RuleKind::Strict;
-        let t: &Theory = &theory;
         let body_pairs = || {
             (0..rules as u32).flat_map(move |r| {
-                let theory = t;
                 let (a, b) = (
                     theory.body_start[r as usize] as usize,
                     theory.body_start[r as usize + 1] as usize,
@@ -207,36 +258,46 @@ impl Engine {
                 theory.bodies[a..b].iter().map(move |l| (l.0, r))
             })
         };
-        let strict_uses = Csr::build(lit_count, body_pairs().filter(|&(_, r)| is_strict(r)));
-        let dependents = Csr::build(
-            lit_count,
-            body_pairs().map(|(l, r)| (l, theory.heads[r as usize].0)),
-        );
         let strict_body_len = (0..rules)
             .map(|r| theory.body_start[r + 1] - theory.body_start[r])
             .collect::<Vec<_>>();
-        let strict_facts = (0..rules as u32)
-            .filter(|&r| is_strict(r) && strict_body_len[r as usize] == 0)
-            .collect();
-        let closure_by_lit = Csr::build(
-            lit_count,
-            theory
-                .closure()
-                .iter()
-                .enumerate()
-                .flat_map(|(i, c)| c.lits.iter().map(move |l| (l.0, i as u32))),
-        );
-        let implications = Implications::new(lit_count, &theory);
-        Engine {
-            implications,
-            closure_by_lit,
-            lit_count,
-            by_head,
-            superiors,
-            strict_uses,
-            dependents,
-            strict_facts,
+        ByAntecedent {
+            strict_uses: Csr::build(lit_count, body_pairs().filter(|&(_, r)| is_strict(r))),
+            dependents: Csr::build(
+                lit_count,
+                body_pairs().map(|(l, r)| (l, theory.heads[r as usize].0)),
+            ),
+            strict_facts: (0..rules as u32)
+                .filter(|&r| is_strict(r) && strict_body_len[r as usize] == 0)
+                .collect(),
             strict_body_len,
+        }
+    }
+}
+
+impl Engine {
+    /// Compiles a checked theory. Linear in its size. A large theory's indexes by consequent and
+    /// by antecedent are built on two threads at once: they read the theory and nothing else.
+    pub fn new(theory: impl Into<Arc<Theory>>) -> Engine {
+        let theory = theory.into();
+        let t: &Theory = &theory;
+        let lit_count = t.atom_count() * 2;
+        let parallel = t.rule_count() >= PARALLEL_RULES;
+        let (by_consequent, by_antecedent) = both(
+            parallel,
+            || ByConsequent::new(t, lit_count),
+            || ByAntecedent::new(t, lit_count),
+        );
+        Engine {
+            implications: by_consequent.implications,
+            closure_by_lit: by_consequent.closure_by_lit,
+            lit_count,
+            by_head: by_consequent.by_head,
+            superiors: by_consequent.superiors,
+            strict_uses: by_antecedent.strict_uses,
+            dependents: by_antecedent.dependents,
+            strict_facts: by_antecedent.strict_facts,
+            strict_body_len: by_antecedent.strict_body_len,
             theory,
         }
     }

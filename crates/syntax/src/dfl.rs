@@ -44,15 +44,12 @@ pub fn parse_dfl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheo
             broken_labels: Vec::new(),
         };
     }
-    let mut offset = 0;
     let mut tokens = Vec::new();
     let mut broken_labels = Vec::new();
-    for line in source.split_inclusive('\n') {
-        let start = offset;
-        offset += line.len();
-        let code = line.split('#').next().unwrap_or("");
+    let mut line = 0;
+    while line < source.len() {
         tokens.clear();
-        tokenize(code, start, &mut tokens);
+        line = tokenize_line(source, line, &mut tokens);
         if tokens.is_empty() {
             continue;
         }
@@ -73,13 +70,24 @@ pub fn parse_dfl_each(source: &str, mut on_item: impl FnMut(Item)) -> ParsedTheo
     }
 }
 
-fn tokenize(code: &str, base: usize, out: &mut Vec<(T, Span)>) {
-    let bytes = code.as_bytes();
-    let mut i = 0;
+/// The tokens of the line beginning at `start`, up to its `#` comment if it has one; returns
+/// where the next line begins. One pass over the bytes: lines and comments are found as the
+/// tokens are.
+fn tokenize_line(source: &str, start: usize, out: &mut Vec<(T, Span)>) -> usize {
+    let bytes = source.as_bytes();
+    let line_end = |from: usize| {
+        bytes[from..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |p| from + p + 1)
+    };
+    let mut i = start;
     while i < bytes.len() {
-        let start = i;
+        let from = i;
         let two = bytes.get(i..i + 2);
         let t = match bytes[i] {
+            b'\n' => return i + 1,
+            b'#' => return line_end(i),
             b if b.is_ascii_whitespace() => {
                 i += 1;
                 continue;
@@ -117,18 +125,30 @@ fn tokenize(code: &str, base: usize, out: &mut Vec<(T, Span)>) {
                 T::Not
             }
             b if b.is_ascii_alphanumeric() || b == b'_' => {
-                // SPINdle allows predicate-style atoms `p(x, y)`: the parenthesised part is kept
-                // in the atom's name.
                 while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
                     i += 1;
                 }
+                // SPINdle allows predicate-style atoms `p(x, y)`: the parenthesised part is kept
+                // in the atom's name. Unclosed before the comment or the line ends, the rest of
+                // the line (its newline too) is one bad token.
                 if bytes.get(i) == Some(&b'(') {
-                    match bytes[i..].iter().position(|&b| b == b')') {
-                        Some(p) => i += p + 1,
+                    let stop = bytes[i..]
+                        .iter()
+                        .position(|&b| matches!(b, b')' | b'#' | b'\n'))
+                        .map(|p| (i + p, bytes[i + p]));
+                    match stop {
+                        Some((close, b')')) => i = close + 1,
+                        Some((newline, b'\n')) => {
+                            out.push((T::Bad, Span::new(from, newline + 1)));
+                            return newline + 1;
+                        }
+                        Some((comment, _)) => {
+                            out.push((T::Bad, Span::new(from, comment)));
+                            return line_end(comment);
+                        }
                         None => {
-                            i = bytes.len();
-                            out.push((T::Bad, Span::new(base + start, base + i)));
-                            continue;
+                            out.push((T::Bad, Span::new(from, bytes.len())));
+                            return bytes.len();
                         }
                     }
                 }
@@ -136,14 +156,15 @@ fn tokenize(code: &str, base: usize, out: &mut Vec<(T, Span)>) {
             }
             _ => {
                 i += 1;
-                while i < bytes.len() && !code.is_char_boundary(i) {
+                while i < bytes.len() && !source.is_char_boundary(i) {
                     i += 1;
                 }
                 T::Bad
             }
         };
-        out.push((t, Span::new(base + start, base + i)));
+        out.push((t, Span::new(from, i)));
     }
+    bytes.len()
 }
 
 fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
@@ -204,20 +225,27 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
                 unreachable!("position matched an arrow")
             };
             let body = literals(&rest[..arrow_at], whole, source)?;
-            let head = literals(&rest[arrow_at + 1..], whole, source)?;
-            match head.as_slice() {
-                [head] => Ok(Item::Rule(RuleItem {
+            // The consequent is one literal: read without a vector to hold it.
+            let (mut head, mut second) = (None, None);
+            each_literal(&rest[arrow_at + 1..], whole, |lit| match head {
+                None => head = Some(lit),
+                Some(_) => {
+                    second.get_or_insert(lit);
+                }
+            })?;
+            match (head, second) {
+                (Some(head), None) => Ok(Item::Rule(RuleItem {
                     label,
                     body,
                     arrow,
-                    head: *head,
+                    head,
                     span: whole,
                 })),
-                [] => Err(
+                (None, _) => Err(
                     Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
                         .with_label("a literal must follow the arrow"),
                 ),
-                [_, second, ..] => Err(Diagnostic::error(
+                (Some(_), Some(second)) => Err(Diagnostic::error(
                     second.span,
                     "rule has more than one consequent",
                 )
@@ -228,7 +256,18 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
 }
 
 fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>, Diagnostic> {
-    let mut lits = Vec::new();
+    // A literal is at least one token and a comma parts two: room for all of them at once.
+    let mut lits = Vec::with_capacity(tokens.len().div_ceil(2));
+    each_literal(tokens, whole, |lit| lits.push(lit))?;
+    Ok(lits)
+}
+
+/// Hands each literal of a comma-separated list to `on_lit`, in order, or says what is wrong.
+fn each_literal(
+    tokens: &[(T, Span)],
+    whole: Span,
+    mut on_lit: impl FnMut(Lit),
+) -> Result<(), Diagnostic> {
     let mut i = 0;
     while i < tokens.len() {
         let (negated, at) = match tokens[i] {
@@ -236,7 +275,7 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
             _ => (false, i),
         };
         match tokens.get(at) {
-            Some(&(T::Word, atom)) => lits.push(Lit {
+            Some(&(T::Word, atom)) => on_lit(Lit {
                 negated,
                 atom,
                 span: tokens[i].1.cover(atom),
@@ -262,5 +301,5 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
             }
         }
     }
-    Ok(lits)
+    Ok(())
 }
