@@ -13,7 +13,10 @@ use std::process::ExitCode;
 const UNDECIDED_EXIT: u8 = 3;
 
 /// A session with the `--budget` given (search steps per attack cycle), or the default.
-fn session(theory: proclaim_cdl::Theory, budget: Option<u64>) -> Session {
+fn session(
+    theory: impl Into<std::sync::Arc<proclaim_cdl::Theory>>,
+    budget: Option<u64>,
+) -> Session {
     let defaults = SearchLimits::default();
     let limits = SearchLimits {
         steps: budget.unwrap_or(defaults.steps),
@@ -175,17 +178,26 @@ pub fn spindle(
             }
         }
     }
-    let every_atom = queries
-        .is_empty()
-        .then(|| conclusions::spindle_order(&theory));
-    let mut session = session(theory, budget);
-    let engine = session.engine().clone();
-    inputs::apply(&mut session, engine.theory(), sets)?;
-    let any_undecided = write_out(|out| match &every_atom {
-        Some(atoms) => {
-            conclusions::write_spindle(out, &mut session, conclusions::both_literals(atoms))
-        }
-        None => conclusions::write_spindle(out, &mut session, lits),
-    })?;
-    Ok(exit(any_undecided))
+    let theory = std::sync::Arc::new(theory);
+    std::thread::scope(|scope| {
+        // SPINdle's lines need only the theory: made on a second thread while this one
+        // compiles and proves (see `SpindleLines`).
+        let every_atom = queries.is_empty().then(|| {
+            let theory = theory.clone();
+            scope.spawn(move || conclusions::SpindleLines::new(&theory))
+        });
+        let mut session = session(theory, budget);
+        let engine = session.engine().clone();
+        inputs::apply(&mut session, engine.theory(), sets)?;
+        let any_undecided = match every_atom {
+            Some(lines) => {
+                let lines = lines
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                write_out(|out| lines.write(out, &mut session))?
+            }
+            None => write_out(|out| conclusions::write_spindle(out, &mut session, lits))?,
+        };
+        Ok(exit(any_undecided))
+    })
 }
