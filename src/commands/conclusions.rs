@@ -202,55 +202,30 @@ pub fn spindle_order(theory: &Theory) -> Vec<Atom> {
     atoms.into_iter().map(|(_, a)| Atom(a)).collect()
 }
 
-/// SPINdle's four lines of every atom (`±D a`, `±d a`, `±D -a`, `±d -a`), in SPINdle's order,
-/// written before anything is proved with a placeholder where each line's sign goes. It needs
-/// only the theory, so it is made on a second thread while the first compiles the theory and
-/// proves every literal: ordering and writing out millions of lines then cost next to nothing
-/// once the answers are known, which only fill in the signs.
-pub struct SpindleLines {
-    text: Vec<u8>,
-    /// Each atom in SPINdle's order, with where its first line begins in `text`.
-    atoms: Vec<(Atom, usize)>,
-}
-
-impl SpindleLines {
-    pub fn new(theory: &Theory) -> SpindleLines {
-        let order = spindle_order(theory);
-        let names: usize = order.iter().map(|&a| theory.atom_name(a).len()).sum();
-        let mut text = Vec::with_capacity(4 * names + SIGNLESS_BYTES * order.len());
-        let mut atoms = Vec::with_capacity(order.len());
-        for atom in order {
-            atoms.push((atom, text.len()));
-            let name = theory.atom_name(atom).as_bytes();
-            for line in [b"?D ".as_slice(), b"?d ", b"?D -", b"?d -"] {
-                text.extend_from_slice(line);
-                text.extend_from_slice(name);
-                text.push(b'\n');
-            }
-        }
-        SpindleLines { text, atoms }
-    }
-
-    /// Fills in every line's sign from μ's and β's answers and writes the lines. SPINdle has no
-    /// undecided answer: `?` marks one, explained on stderr. Returns whether any was undecided.
-    pub fn write(mut self, out: &mut impl Write, session: &mut Session) -> io::Result<bool> {
-        let mu = session.answers(Algorithm::Mu);
-        let beta = session.answers(Algorithm::Beta);
-        let mut any_undecided = false;
-        let ends = self.atoms.iter().skip(1).map(|&(_, start)| start);
-        for (&(atom, start), end) in self.atoms.iter().zip(ends.chain([self.text.len()])) {
-            // The four lines hold the name four times and `SIGNLESS_BYTES` more.
-            let name = (end - start - SIGNLESS_BYTES) / 4;
-            let lines = [
-                (start, Algorithm::Mu, false),
-                (start + name + 4, Algorithm::Beta, false),
-                (start + 2 * name + 8, Algorithm::Mu, true),
-                (start + 3 * name + 13, Algorithm::Beta, true),
-            ];
-            for (at, alg, negated) in lines {
-                let lit = Lit::new(atom, negated);
-                let answers = if alg == Algorithm::Mu { &mu } else { &beta };
-                self.text[at] = match answers[lit.index()] {
+/// SPINdle's conclusions for every atom, in SPINdle's order (`order`, from [`spindle_order`]):
+/// `±D a`, `±d a`, `±D -a`, `±d -a`. Every answer is found first, in literal order, and the lines
+/// are then written as bytes into one buffer, handed on a megabyte at a time. SPINdle has no
+/// undecided answer: `?` marks one, explained on stderr. Returns whether any was undecided.
+pub fn write_spindle_every(
+    out: &mut impl Write,
+    session: &mut Session,
+    order: &[Atom],
+) -> io::Result<bool> {
+    const CHUNK: usize = 1 << 20;
+    let mu = session.answers(Algorithm::Mu);
+    let beta = session.answers(Algorithm::Beta);
+    let engine = session.engine().clone();
+    let theory = engine.theory();
+    let mut any_undecided = false;
+    let mut text = Vec::with_capacity(CHUNK + 4096);
+    for &atom in order {
+        let name = theory.atom_name(atom).as_bytes();
+        for negated in [false, true] {
+            let lit = Lit::new(atom, negated);
+            for (tag, alg, answers) in
+                [(b"D ", Algorithm::Mu, &mu), (b"d ", Algorithm::Beta, &beta)]
+            {
+                text.push(match answers[lit.index()] {
                     Verdict::Proved => b'+',
                     Verdict::NotProved => b'-',
                     Verdict::Undecided => {
@@ -260,14 +235,20 @@ impl SpindleLines {
                         }
                         b'?'
                     }
-                };
+                });
+                text.extend_from_slice(tag);
+                if negated {
+                    text.push(b'-');
+                }
+                text.extend_from_slice(name);
+                text.push(b'\n');
             }
         }
-        out.write_all(&self.text)?;
-        Ok(any_undecided)
+        if text.len() >= CHUNK {
+            out.write_all(&text)?;
+            text.clear();
+        }
     }
+    out.write_all(&text)?;
+    Ok(any_undecided)
 }
-
-/// The bytes of an atom's four SPINdle lines besides its name: `?D `, `?d `, `?D -`, `?d -`
-/// and four newlines.
-const SIGNLESS_BYTES: usize = 3 + 3 + 4 + 4 + 4;

@@ -8,21 +8,24 @@ use proclaim_cdl::{Algorithm, Engine, Formula, SearchLimits, Session, Undecided}
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 /// The exit status when some answer was undecided within the search budget (README).
 const UNDECIDED_EXIT: u8 = 3;
 
 /// A session with the `--budget` given (search steps per attack cycle), or the default.
-fn session(
-    theory: impl Into<std::sync::Arc<proclaim_cdl::Theory>>,
-    budget: Option<u64>,
-) -> Session {
+fn session(theory: proclaim_cdl::Theory, budget: Option<u64>) -> Session {
+    session_on(Engine::new(theory), budget)
+}
+
+/// [`session`] on an engine compiled already.
+fn session_on(engine: impl Into<Arc<Engine>>, budget: Option<u64>) -> Session {
     let defaults = SearchLimits::default();
     let limits = SearchLimits {
         steps: budget.unwrap_or(defaults.steps),
         ..defaults
     };
-    Session::with_limits(Engine::new(theory), limits)
+    Session::with_limits(engine, limits)
 }
 
 fn exit(any_undecided: bool) -> ExitCode {
@@ -178,23 +181,22 @@ pub fn spindle(
             }
         }
     }
-    let theory = std::sync::Arc::new(theory);
+    // Compiled first, on both cores (see `Engine::new`).
+    let engine = Arc::new(Engine::new(theory));
     std::thread::scope(|scope| {
-        // SPINdle's lines need only the theory: made on a second thread while this one
-        // compiles and proves (see `SpindleLines`).
-        let every_atom = queries.is_empty().then(|| {
-            let theory = theory.clone();
-            scope.spawn(move || conclusions::SpindleLines::new(&theory))
-        });
-        let mut session = session(theory, budget);
-        let engine = session.engine().clone();
+        // SPINdle's order needs only the theory: sorted on a second thread while this one
+        // proves.
+        let every_atom = queries
+            .is_empty()
+            .then(|| scope.spawn(|| conclusions::spindle_order(engine.theory())));
+        let mut session = session_on(engine.clone(), budget);
         inputs::apply(&mut session, engine.theory(), sets)?;
         let any_undecided = match every_atom {
-            Some(lines) => {
-                let lines = lines
+            Some(order) => {
+                let order = order
                     .join()
                     .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-                write_out(|out| lines.write(out, &mut session))?
+                write_out(|out| conclusions::write_spindle_every(out, &mut session, &order))?
             }
             None => write_out(|out| conclusions::write_spindle(out, &mut session, lits))?,
         };
