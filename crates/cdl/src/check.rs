@@ -160,6 +160,20 @@ struct Checker<'s> {
     priorities: Vec<(u32, Span)>,
     priority_labels: Vec<Span>,
     name_span: Option<Span>,
+    /// The literal of every fact, one after another, while every fact is one literal (as in
+    /// nearly every large theory): closing and compiling the facts then reads one flat array
+    /// instead of a vector per fact. `None` once a fact is a longer clause.
+    units: Option<Vec<Unit>>,
+}
+
+/// A fact of one literal, read as a clause.
+#[derive(Clone, Copy)]
+struct Unit(Lit);
+
+impl AsRef<[Lit]> for Unit {
+    fn as_ref(&self) -> &[Lit] {
+        std::slice::from_ref(&self.0)
+    }
 }
 
 impl<'s> Checker<'s> {
@@ -184,6 +198,7 @@ impl<'s> Checker<'s> {
             priorities: Vec::new(),
             priority_labels: Vec::new(),
             name_span: None,
+            units: Some(Vec::new()),
         };
         // Nothing to rehash in an empty table, so this hasher is never called.
         checker.labels.reserve(rules, |_| 0);
@@ -253,6 +268,10 @@ impl<'s> Checker<'s> {
                 let lits = (0..clause.len())
                     .map(|_| self.next_lit(batch, at).0)
                     .collect::<Vec<_>>();
+                match (&mut self.units, lits.as_slice()) {
+                    (Some(units), &[unit]) => units.push(Unit(unit)),
+                    _ => self.units = None,
+                }
                 // One literal is no tautology: a fact, nearly always, needs no copy to tell.
                 if lits.len() > 1 && normalize(lits.clone()).is_none() {
                     self.diagnostics.push(
@@ -756,7 +775,12 @@ impl<'s> Checker<'s> {
     fn close_axioms(&mut self) {
         let span_of =
             |theory: &Theory, given: Option<usize>| given.and_then(|i| theory.axioms[i].span);
-        match close(&self.theory.axioms, Resolvents::ImplicationsImplicit) {
+        let units = self.units.take();
+        let outcome = match &units {
+            Some(units) => close(units, Resolvents::ImplicationsImplicit),
+            None => close(&self.theory.axioms, Resolvents::ImplicationsImplicit),
+        };
+        match outcome {
             ClosureOutcome::Closed { clauses, given } => {
                 self.reserve_strict_rules(clauses.iter().map(Vec::len).sum::<usize>());
                 self.theory.closure.reserve(clauses.len());
@@ -769,11 +793,20 @@ impl<'s> Checker<'s> {
             ClosureOutcome::Input => {
                 self.reserve_strict_rules(self.theory.axioms.len());
                 let theory = &mut self.theory;
-                let axioms = std::mem::take(&mut theory.axioms);
-                for (index, clause) in axioms.iter().enumerate() {
-                    add_strict_rules(theory, index, &clause.lits);
+                match units {
+                    Some(units) => {
+                        for (index, unit) in units.iter().enumerate() {
+                            add_strict_rules(theory, index, unit.as_ref());
+                        }
+                    }
+                    None => {
+                        let axioms = std::mem::take(&mut theory.axioms);
+                        for (index, clause) in axioms.iter().enumerate() {
+                            add_strict_rules(theory, index, &clause.lits);
+                        }
+                        theory.axioms = axioms;
+                    }
                 }
-                theory.axioms = axioms;
                 theory.closure_is_axioms = true;
             }
             ClosureOutcome::Inconsistent { first, second } => {
