@@ -5,7 +5,7 @@
 use crate::closure::{close, normalize, ClosureOutcome, Resolvents, MAX_CLOSURE};
 use crate::literal::{Atom, Lit, RuleId};
 use crate::scc::{strongly_connected, Roots};
-use crate::slots::{hash, Slots};
+use crate::slots::{hash, hash_bytes, Slots};
 use crate::theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, Theory};
 use proclaim_syntax::{ast, Algorithm, Diagnostic, Item, Language, ParsedTheory, Span};
 use rustc_hash::FxHashMap;
@@ -70,16 +70,18 @@ impl Batch {
     }
 
     fn push(&mut self, item: Item, source: &str) {
+        // By bytes: a span of the source always falls on character boundaries.
+        let name = |span: Span| hash_bytes(&source.as_bytes()[span.range()]);
         let mut add = |lit: &ast::Lit| {
             self.lits.push(*lit);
-            self.lit_hashes.push(hash(lit.atom.text(source)));
+            self.lit_hashes.push(name(lit.atom));
         };
         match &item {
             Item::Rule(rule) => {
                 rule.body.iter().for_each(&mut add);
                 add(&rule.head);
                 if let Some(label) = rule.label {
-                    self.label_hashes.push(hash(label.text(source)));
+                    self.label_hashes.push(name(label));
                 }
             }
             Item::Fact { clause, .. } => clause.iter().for_each(add),

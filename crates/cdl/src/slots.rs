@@ -12,8 +12,14 @@ use std::hash::Hasher;
 
 /// The hash every name table shares.
 pub(crate) fn hash(name: &str) -> u64 {
+    hash_bytes(name.as_bytes())
+}
+
+/// [`hash`] of a name's bytes.
+#[inline]
+pub(crate) fn hash_bytes(name: &[u8]) -> u64 {
     let mut hasher = rustc_hash::FxHasher::default();
-    hasher.write(name.as_bytes());
+    hasher.write(name);
     hasher.finish()
 }
 

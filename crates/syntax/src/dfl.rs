@@ -84,47 +84,30 @@ fn tokenize_line(source: &str, start: usize, out: &mut Vec<(T, Span)>) -> usize 
     let mut i = start;
     while i < bytes.len() {
         let from = i;
-        let two = bytes.get(i..i + 2);
-        let t = match bytes[i] {
+        // By the first byte, atoms' bytes (nearly all of a file) first; a second `>` makes
+        // the two-byte tokens.
+        let then_gt = bytes.get(i + 1) == Some(&b'>');
+        let (t, width) = match bytes[i] {
+            b if b.is_ascii_alphanumeric() || b == b'_' => (T::Word, 0),
             b'\n' => return i + 1,
             b'#' => return line_end(i),
             b if b.is_ascii_whitespace() => {
                 i += 1;
                 continue;
             }
-            _ if two == Some(b">>") => {
-                i += 2;
-                T::Facts
-            }
-            _ if two == Some(b"->") => {
-                i += 2;
-                T::Arrow(Arrow::Strict)
-            }
-            _ if two == Some(b"=>") => {
-                i += 2;
-                T::Arrow(Arrow::Defeasible)
-            }
-            _ if two == Some(b"~>") => {
-                i += 2;
-                T::Arrow(Arrow::Warning)
-            }
-            b',' => {
-                i += 1;
-                T::Comma
-            }
-            b':' => {
-                i += 1;
-                T::Colon
-            }
-            b'>' => {
-                i += 1;
-                T::Gt
-            }
-            b'-' | b'~' | b'!' => {
-                i += 1;
-                T::Not
-            }
-            b if b.is_ascii_alphanumeric() || b == b'_' => {
+            b'>' if then_gt => (T::Facts, 2),
+            b'-' if then_gt => (T::Arrow(Arrow::Strict), 2),
+            b'=' if then_gt => (T::Arrow(Arrow::Defeasible), 2),
+            b'~' if then_gt => (T::Arrow(Arrow::Warning), 2),
+            b',' => (T::Comma, 1),
+            b':' => (T::Colon, 1),
+            b'>' => (T::Gt, 1),
+            b'-' | b'~' | b'!' => (T::Not, 1),
+            _ => (T::Bad, 1),
+        };
+        i += width;
+        let t = match t {
+            T::Word => {
                 while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_') {
                     i += 1;
                 }
@@ -154,13 +137,13 @@ fn tokenize_line(source: &str, start: usize, out: &mut Vec<(T, Span)>) -> usize 
                 }
                 T::Word
             }
-            _ => {
-                i += 1;
+            T::Bad => {
                 while i < bytes.len() && !source.is_char_boundary(i) {
                     i += 1;
                 }
                 T::Bad
             }
+            t => t,
         };
         out.push((t, Span::new(from, i)));
     }
