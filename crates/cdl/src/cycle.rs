@@ -619,3 +619,36 @@ impl<'a> TopDown<'a> {
         v
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{readers_by_read_member, Edge};
+
+    /// The counting sort gives what sorting the reversed pairs by comparison gives.
+    fn check(members: usize, edges: &[Edge]) {
+        let mut expect: Vec<(u32, u32)> = edges.iter().map(|&(r, m, _)| (m, r)).collect();
+        expect.sort_unstable();
+        expect.dedup();
+        assert_eq!(readers_by_read_member(edges, members), expect, "{edges:?}");
+    }
+
+    #[test]
+    fn readers_come_sorted_and_once() {
+        check(1, &[]);
+        check(1, &[(0, 0, false)]);
+        // A ring, read through support and attack alike, and a member read twice by one reader.
+        check(3, &[(0, 1, false), (1, 2, true), (2, 0, false)]);
+        check(
+            4,
+            &[
+                (0, 3, false),
+                (0, 1, true),
+                (0, 3, true),
+                (1, 0, false),
+                (2, 3, false),
+                (3, 0, true),
+                (3, 2, false),
+            ],
+        );
+    }
+}

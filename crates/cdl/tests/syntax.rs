@@ -222,6 +222,26 @@ fn spindle_dfl() {
     assert_eq!(theory.priorities().len(), 1);
 }
 
+/// Lines and comments are found in the same pass as the tokens: a `#` ends a line's code wherever
+/// it is, even inside an unclosed predicate-style atom, and a file may end without a newline.
+#[test]
+fn spindle_dfl_lines_and_comments() {
+    check_dfl(
+        ">> a # >> b\r\nr1: a => c # r1 > r2\n  # only a comment\n\n>> d",
+        "",
+    );
+    check_dfl(">> p(x # y)\n>> q\n", "1:4: error: unexpected characters\n");
+    check_dfl(">> p(x\n>> q", "1:4: error: unexpected characters\n");
+    check_dfl(">> q\n>> p(x", "2:4: error: unexpected characters\n");
+    check_dfl(
+        ">> a = b\nr1: é => a\n",
+        "1:6: error: unexpected characters\n2:5: error: unexpected characters\n",
+    );
+    check_dfl("r1: a -> b\nr2: a ~> -b\nr3: => ~b\n>> !a\n", "");
+    let theory = load(">> a # >> b\nr1: a => c\n>> d", Language::Dfl).unwrap();
+    assert_eq!(theory.atom_count(), 3, "`b` is in a comment");
+}
+
 #[test]
 fn dl_and_dfl_of_a_benchmark_are_the_same_theory() {
     let family = proclaim_gen::Family::parse("levels", &[5]).unwrap();
