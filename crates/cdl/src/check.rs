@@ -55,7 +55,7 @@ struct Batch {
     lits: Vec<ast::Lit>,
     /// The hash of each literal's atom name in `lits`.
     lit_hashes: Vec<u64>,
-    /// The hash of each rule's label, for the rules that have one, in statement order.
+    /// The hash of each label written, in a rule or a priority, in statement order.
     label_hashes: Vec<u64>,
 }
 
@@ -85,6 +85,11 @@ impl Batch {
                 }
             }
             Item::Fact { clause, .. } => clause.iter().for_each(add),
+            Item::Priority { labels, .. } => {
+                for &label in labels {
+                    self.label_hashes.push(name(label));
+                }
+            }
             _ => {}
         }
         self.items.push(item);
@@ -290,9 +295,25 @@ impl<'s> Checker<'s> {
                 });
             }
             Item::Priority { labels, span } => {
-                self.priority_labels.extend_from_slice(labels);
-                let end = self.priority_labels.len() as u32;
-                self.priorities.push((end, *span));
+                // Resolved now when every label names a rule read already (as in nearly every
+                // theory, whose priorities come after its rules): while the parser is the
+                // slower stage this costs no time. Else at the end, once every label is known,
+                // and every later priority with it, so that priorities keep their file order.
+                let mut ids = Vec::with_capacity(labels.len());
+                for &label in labels {
+                    let label_hash = self.next_label_hash(batch, at);
+                    if self.priorities.is_empty() {
+                        let text = label.text(self.source);
+                        ids.push(self.labelled_hashed(text, label_hash));
+                    }
+                }
+                if ids.len() == labels.len() && ids.iter().all(Option::is_some) {
+                    self.add_priority_ids(&ids, *span);
+                } else {
+                    self.priority_labels.extend_from_slice(labels);
+                    let end = self.priority_labels.len() as u32;
+                    self.priorities.push((end, *span));
+                }
             }
             &Item::Name { name, span } => {
                 if let Some(first) = self.name_span {
@@ -505,6 +526,12 @@ impl<'s> Checker<'s> {
                 }
             }
         }
+        self.add_priority_ids(&ids, span);
+    }
+
+    /// The priorities between each two rules next to each other in `ids` (`None` for a label
+    /// reported already), with what is wrong with them.
+    fn add_priority_ids(&mut self, ids: &[Option<RuleId>], span: Span) {
         for pair in ids.windows(2) {
             if let [Some(winner), Some(loser)] = *pair {
                 if winner == loser {
@@ -567,8 +594,13 @@ impl<'s> Checker<'s> {
 
     /// The rule labelled `text`, if one is.
     fn labelled(&self, text: &str) -> Option<RuleId> {
+        self.labelled_hashed(text, hash(text))
+    }
+
+    /// [`Checker::labelled`] for a label whose hash is known already.
+    fn labelled_hashed(&self, text: &str, label_hash: u64) -> Option<RuleId> {
         self.labels
-            .find(hash(text), |r| self.theory.label(r) == Some(text))
+            .find(label_hash, |r| self.theory.label(r) == Some(text))
     }
 
     fn similar_label(&self, text: &str) -> Option<String> {

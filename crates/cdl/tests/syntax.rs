@@ -242,6 +242,27 @@ fn spindle_dfl_lines_and_comments() {
     assert_eq!(theory.atom_count(), 3, "`b` is in a comment");
 }
 
+/// A priority may come before the rules it names; priorities keep their file order whether they
+/// are resolved as they are read (after their rules) or at the end (before them).
+#[test]
+fn priorities_before_and_after_their_rules() {
+    let text = "r1 > r2\nr1: a => b\nr2: c => -b\nr3: d => -b\nr1 > r3\nr4: e => b\nr4 > r2\n";
+    let theory = load(text, Language::Dfl).unwrap();
+    let label = |id| theory.rule(id).label.unwrap();
+    let pairs: Vec<(&str, &str)> = theory
+        .priorities()
+        .iter()
+        .map(|&(w, l)| (label(w), label(l)))
+        .collect();
+    assert_eq!(pairs, [("r1", "r2"), ("r1", "r3"), ("r4", "r2")]);
+    let resolved_at_once = load(&text[8..], Language::Dfl).unwrap();
+    assert_eq!(resolved_at_once.priorities().len(), 2);
+    check_dfl(
+        "r1: a => b\nr2: c => -b\nr1 > r2\nr1 > r9\nr2 > r1 > r2\n",
+        "1:1: error: priorities form a cycle among rules r1, r2\n4:6: error: no rule is labelled `r9`\n",
+    );
+}
+
 #[test]
 fn dl_and_dfl_of_a_benchmark_are_the_same_theory() {
     let family = proclaim_gen::Family::parse("levels", &[5]).unwrap();
