@@ -35,7 +35,8 @@ pub fn check(parsed: ParsedTheory, source: &str) -> Checked {
     checker.finish(parsed.diagnostics, &parsed.broken_labels)
 }
 
-/// How many statements' names are asked for from memory before the first of them is used.
+/// How many priorities left to the end have their labels asked for from memory before the first
+/// of them is resolved.
 const AHEAD: usize = 32;
 
 /// How far ahead of the literal being interned its table slot is asked for from memory, in
