@@ -202,23 +202,25 @@ pub fn spindle_order(theory: &Theory) -> Vec<Atom> {
     atoms.into_iter().map(|(_, a)| Atom(a)).collect()
 }
 
-/// SPINdle's conclusions for every atom, in SPINdle's order (`order`, from [`spindle_order`]):
+/// SPINdle's conclusions for every atom, in SPINdle's order (`order` gives it, from
+/// [`spindle_order`], once asked: it may still be being sorted on another thread):
 /// `±D a`, `±d a`, `±D -a`, `±d -a`. Every answer is found first, in literal order, and the lines
 /// are then written as bytes into one buffer, handed on a megabyte at a time. SPINdle has no
 /// undecided answer: `?` marks one, explained on stderr. Returns whether any was undecided.
 pub fn write_spindle_every(
     out: &mut impl Write,
     session: &mut Session,
-    order: &[Atom],
+    order: impl FnOnce() -> Vec<Atom>,
 ) -> io::Result<bool> {
     const CHUNK: usize = 1 << 20;
     let mu = session.answers(Algorithm::Mu);
     let beta = session.answers(Algorithm::Beta);
+    let order = order();
     let engine = session.engine().clone();
     let theory = engine.theory();
     let mut any_undecided = false;
     let mut text = Vec::with_capacity(CHUNK + 4096);
-    for &atom in order {
+    for &atom in &order {
         let name = theory.atom_name(atom).as_bytes();
         for negated in [false, true] {
             let lit = Lit::new(atom, negated);

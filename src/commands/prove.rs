@@ -14,18 +14,13 @@ use std::sync::Arc;
 const UNDECIDED_EXIT: u8 = 3;
 
 /// A session with the `--budget` given (search steps per attack cycle), or the default.
-fn session(theory: proclaim_cdl::Theory, budget: Option<u64>) -> Session {
-    session_on(Engine::new(theory), budget)
-}
-
-/// [`session`] on an engine compiled already.
-fn session_on(engine: impl Into<Arc<Engine>>, budget: Option<u64>) -> Session {
+fn session(theory: impl Into<Arc<proclaim_cdl::Theory>>, budget: Option<u64>) -> Session {
     let defaults = SearchLimits::default();
     let limits = SearchLimits {
         steps: budget.unwrap_or(defaults.steps),
         ..defaults
     };
-    Session::with_limits(engine, limits)
+    Session::with_limits(Engine::new(theory), limits)
 }
 
 fn exit(any_undecided: bool) -> ExitCode {
@@ -181,22 +176,25 @@ pub fn spindle(
             }
         }
     }
-    // Compiled first, on both cores (see `Engine::new`).
-    let engine = Arc::new(Engine::new(theory));
+    let theory = Arc::new(theory);
     std::thread::scope(|scope| {
         // SPINdle's order needs only the theory: sorted on a second thread while this one
-        // proves.
-        let every_atom = queries
-            .is_empty()
-            .then(|| scope.spawn(|| conclusions::spindle_order(engine.theory())));
-        let mut session = session_on(engine.clone(), budget);
+        // compiles and proves.
+        let every_atom = queries.is_empty().then(|| {
+            let theory = theory.clone();
+            scope.spawn(move || conclusions::spindle_order(&theory))
+        });
+        let mut session = session(theory, budget);
+        let engine = session.engine().clone();
         inputs::apply(&mut session, engine.theory(), sets)?;
         let any_undecided = match every_atom {
             Some(order) => {
-                let order = order
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-                write_out(|out| conclusions::write_spindle_every(out, &mut session, &order))?
+                let order = || {
+                    order
+                        .join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+                };
+                write_out(|out| conclusions::write_spindle_every(out, &mut session, order))?
             }
             None => write_out(|out| conclusions::write_spindle(out, &mut session, lits))?,
         };
