@@ -829,10 +829,16 @@ impl<'s> Checker<'s> {
                 self.reserve_strict_rules(self.theory.axioms.len());
                 let theory = &mut self.theory;
                 match units {
+                    // Each fact the strict rule `-> fact`, made for all of them at once.
                     Some(units) => {
-                        for (index, unit) in units.iter().enumerate() {
-                            add_strict_rules(theory, index, unit.as_ref());
-                        }
+                        let body_end = theory.bodies.len() as u32;
+                        theory.heads.extend(units.iter().map(|unit| unit.0));
+                        theory.kinds.extend(units.iter().map(|_| RuleKind::Strict));
+                        theory.body_start.extend(units.iter().map(|_| body_end));
+                        theory.labels.extend(units.iter().map(|_| (0, 0)));
+                        theory
+                            .origins
+                            .extend((0..units.len() as u32).map(Origin::Clause));
                     }
                     None => {
                         let axioms = std::mem::take(&mut theory.axioms);
