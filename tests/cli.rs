@@ -1374,6 +1374,15 @@ fn prove_prints_an_undecided_answer_and_exits_3() {
         "{}",
         stderr(&o)
     );
+    // Every atom in SPINdle's form: the same `?`, explained, and the exit status that says so.
+    let o = proclaim(&["prove", path, "--format", "spindle", "--budget", "1000"]);
+    assert_eq!(o.status.code(), Some(3));
+    assert!(stdout(&o).contains("-D t0\n?d t0\n"), "{}", stdout(&o));
+    assert!(
+        stderr(&o).contains("`beta t0` is undecided"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

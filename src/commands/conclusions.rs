@@ -148,6 +148,21 @@ pub fn write_every<W: Write>(
     Ok(any_undecided)
 }
 
+/// SPINdle's sign for `alg`'s answer about `lit`: `+`, `-`, or `?` for an undecided one, which
+/// SPINdle does not have, explained on stderr.
+fn spindle_sign(session: &mut Session, alg: Algorithm, lit: Lit, verdict: Verdict) -> u8 {
+    match verdict {
+        Verdict::Proved => b'+',
+        Verdict::NotProved => b'-',
+        Verdict::Undecided => {
+            if let Err(undecided) = session.decide(alg, lit) {
+                eprintln!("warning: {undecided}");
+            }
+            b'?'
+        }
+    }
+}
+
 /// SPINdle's conclusions for each literal given: `+D`/`-D` for μ, `+d`/`-d` for β, negation
 /// written `-a`. SPINdle has no undecided answer: `?` marks one, explained on stderr. Returns
 /// whether any was undecided.
@@ -161,17 +176,10 @@ pub fn write_spindle(
     let mut any_undecided = false;
     for lit in lits {
         for (tag, alg) in [(b"D ", Algorithm::Mu), (b"d ", Algorithm::Beta)] {
-            out.write_all(match session.verdict(alg, lit) {
-                Verdict::Proved => b"+",
-                Verdict::NotProved => b"-",
-                Verdict::Undecided => {
-                    any_undecided = true;
-                    if let Err(undecided) = session.decide(alg, lit) {
-                        eprintln!("warning: {undecided}");
-                    }
-                    b"?"
-                }
-            })?;
+            let verdict = session.verdict(alg, lit);
+            let sign = spindle_sign(session, alg, lit, verdict);
+            any_undecided |= sign == b'?';
+            out.write_all(&[sign])?;
             out.write_all(tag)?;
             write_lit(out, theory, lit, Negation::Minus)?;
             out.write_all(b"\n")?;
@@ -227,17 +235,9 @@ pub fn write_spindle_every(
             for (tag, alg, answers) in
                 [(b"D ", Algorithm::Mu, &mu), (b"d ", Algorithm::Beta, &beta)]
             {
-                text.push(match answers[lit.index()] {
-                    Verdict::Proved => b'+',
-                    Verdict::NotProved => b'-',
-                    Verdict::Undecided => {
-                        any_undecided = true;
-                        if let Err(undecided) = session.decide(alg, lit) {
-                            eprintln!("warning: {undecided}");
-                        }
-                        b'?'
-                    }
-                });
+                let sign = spindle_sign(session, alg, lit, answers[lit.index()]);
+                any_undecided |= sign == b'?';
+                text.push(sign);
                 text.extend_from_slice(tag);
                 if negated {
                     text.push(b'-');

@@ -272,50 +272,8 @@ impl<'s> Checker<'s> {
     fn item(&mut self, item: &Item, batch: &Batch, at: &mut Cursor) {
         match item {
             Item::Rule(rule) => self.add_rule(rule, batch, at),
-            &Item::Fact { ref clause, span } => {
-                let lits = (0..clause.len())
-                    .map(|_| self.next_lit(batch, at).0)
-                    .collect::<Vec<_>>();
-                match (&mut self.units, lits.as_slice()) {
-                    (Some(units), &[unit]) => units.push(Unit(unit)),
-                    _ => self.units = None,
-                }
-                // One literal is no tautology: a fact, nearly always, needs no copy to tell.
-                if lits.len() > 1 && normalize(lits.clone()).is_none() {
-                    self.diagnostics.push(
-                        Diagnostic::warning(
-                            span,
-                            "this clause holds a literal and its complement, so it says nothing",
-                        )
-                        .with_label("a tautology"),
-                    );
-                }
-                self.theory.axioms.push(Clause {
-                    lits,
-                    span: Some(span),
-                });
-            }
-            Item::Priority { labels, span } => {
-                // Resolved now when every label names a rule read already (as in nearly every
-                // theory, whose priorities come after its rules): while the parser is the
-                // slower stage this costs no time. Else at the end, once every label is known,
-                // and every later priority with it, so that priorities keep their file order.
-                let mut ids = Vec::with_capacity(labels.len());
-                for &label in labels {
-                    let label_hash = self.next_label_hash(batch, at);
-                    if self.priorities.is_empty() {
-                        let text = label.text(self.source);
-                        ids.push(self.labelled_hashed(text, label_hash));
-                    }
-                }
-                if ids.len() == labels.len() && ids.iter().all(Option::is_some) {
-                    self.add_priority_ids(&ids, *span);
-                } else {
-                    self.priority_labels.extend_from_slice(labels);
-                    let end = self.priority_labels.len() as u32;
-                    self.priorities.push((end, *span));
-                }
-            }
+            &Item::Fact { ref clause, span } => self.add_fact(clause.len(), span, batch, at),
+            Item::Priority { labels, span } => self.add_priority_item(labels, *span, batch, at),
             &Item::Name { name, span } => {
                 if let Some(first) = self.name_span {
                     self.diagnostics.push(
@@ -360,6 +318,54 @@ impl<'s> Checker<'s> {
                 self.theory.filters.push(RowFilter::Assert { lits });
             }
             Item::Output { parts, span } => self.add_outputs(parts, *span),
+        }
+    }
+
+    /// Takes in a fact of `len` literals, the next ones of the batch.
+    fn add_fact(&mut self, len: usize, span: Span, batch: &Batch, at: &mut Cursor) {
+        let lits = (0..len)
+            .map(|_| self.next_lit(batch, at).0)
+            .collect::<Vec<_>>();
+        match (&mut self.units, lits.as_slice()) {
+            (Some(units), &[unit]) => units.push(Unit(unit)),
+            _ => self.units = None,
+        }
+        // One literal is no tautology: a fact, nearly always, needs no copy to tell.
+        if lits.len() > 1 && normalize(lits.clone()).is_none() {
+            self.diagnostics.push(
+                Diagnostic::warning(
+                    span,
+                    "this clause holds a literal and its complement, so it says nothing",
+                )
+                .with_label("a tautology"),
+            );
+        }
+        self.theory.axioms.push(Clause {
+            lits,
+            span: Some(span),
+        });
+    }
+
+    /// Takes in a priority, its labels' hashes the next ones of the batch. Resolved now when
+    /// every label names a rule read already (as in nearly every theory, whose priorities come
+    /// after its rules): while the parser is the slower stage this costs no time. Else at the
+    /// end, once every label is known, and every later priority with it, so that priorities
+    /// keep their file order.
+    fn add_priority_item(&mut self, labels: &[Span], span: Span, batch: &Batch, at: &mut Cursor) {
+        let mut ids = Vec::with_capacity(labels.len());
+        for &label in labels {
+            let label_hash = self.next_label_hash(batch, at);
+            if self.priorities.is_empty() {
+                let text = label.text(self.source);
+                ids.push(self.labelled_hashed(text, label_hash));
+            }
+        }
+        if ids.len() == labels.len() && ids.iter().all(Option::is_some) {
+            self.add_priority_ids(&ids, span);
+        } else {
+            self.priority_labels.extend_from_slice(labels);
+            let end = self.priority_labels.len() as u32;
+            self.priorities.push((end, span));
         }
     }
 
@@ -827,28 +833,8 @@ impl<'s> Checker<'s> {
             }
             ClosureOutcome::Input => {
                 self.reserve_strict_rules(self.theory.axioms.len());
-                let theory = &mut self.theory;
-                match units {
-                    // Each fact the strict rule `-> fact`, made for all of them at once.
-                    Some(units) => {
-                        let body_end = theory.bodies.len() as u32;
-                        theory.heads.extend(units.iter().map(|unit| unit.0));
-                        theory.kinds.extend(units.iter().map(|_| RuleKind::Strict));
-                        theory.body_start.extend(units.iter().map(|_| body_end));
-                        theory.labels.extend(units.iter().map(|_| (0, 0)));
-                        theory
-                            .origins
-                            .extend((0..units.len() as u32).map(Origin::Clause));
-                    }
-                    None => {
-                        let axioms = std::mem::take(&mut theory.axioms);
-                        for (index, clause) in axioms.iter().enumerate() {
-                            add_strict_rules(theory, index, &clause.lits);
-                        }
-                        theory.axioms = axioms;
-                    }
-                }
-                theory.closure_is_axioms = true;
+                strict_rules_of_axioms(&mut self.theory, units.as_deref());
+                self.theory.closure_is_axioms = true;
             }
             ClosureOutcome::Inconsistent { first, second } => {
                 let show = |lits: &[Lit]| {
@@ -900,6 +886,31 @@ impl<'s> Checker<'s> {
 
 /// The strict rules of closure clause number `index` (cdl.md §2): each literal, from the
 /// complements of the others.
+/// The strict rules of the axioms, which are their own closure; `units`, when given, are the
+/// axioms' one literal each, in order.
+fn strict_rules_of_axioms(theory: &mut Theory, units: Option<&[Unit]>) {
+    match units {
+        // Each fact the strict rule `-> fact`, made for all of them at once.
+        Some(units) => {
+            let body_end = theory.bodies.len() as u32;
+            theory.heads.extend(units.iter().map(|unit| unit.0));
+            theory.kinds.extend(units.iter().map(|_| RuleKind::Strict));
+            theory.body_start.extend(units.iter().map(|_| body_end));
+            theory.labels.extend(units.iter().map(|_| (0, 0)));
+            theory
+                .origins
+                .extend((0..units.len() as u32).map(Origin::Clause));
+        }
+        None => {
+            let axioms = std::mem::take(&mut theory.axioms);
+            for (index, clause) in axioms.iter().enumerate() {
+                add_strict_rules(theory, index, &clause.lits);
+            }
+            theory.axioms = axioms;
+        }
+    }
+}
+
 fn add_strict_rules(theory: &mut Theory, index: usize, lits: &[Lit]) {
     for (i, &head) in lits.iter().enumerate() {
         for (j, &other) in lits.iter().enumerate() {
