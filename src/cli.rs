@@ -281,6 +281,17 @@ pub enum Command {
         /// Stop after this many states (the outcome is then incomplete where undecided)
         #[arg(long, value_name = "N", default_value_t = 1_000_000)]
         max_states: usize,
+        /// Stop before the search holds more than this much memory, e.g. 512M or 4G (the
+        /// outcome is then incomplete where undecided; default: half the memory available)
+        #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+        max_memory: Option<usize>,
+        /// Switch an exact reduction off (to compare; the verdicts are the same)
+        #[arg(long, value_enum, value_name = "REDUCTION")]
+        without: Vec<ReductionName>,
+        /// Which engine explores: explicit states, sets of states as decision diagrams, or
+        /// the explicit one first and the symbolic one where it does not decide soon
+        #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
+        engine: EngineName,
         /// Print the report as JSON
         #[arg(long)]
         json: bool,
@@ -438,4 +449,50 @@ mod tests {
         use clap::CommandFactory;
         super::Cli::command().debug_assert();
     }
+}
+
+/// The verifier's exact reductions, by the names `verify --without` takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ReductionName {
+    /// Free types stored in every state instead of chosen where a ringlet reads them
+    ChosenWhenRead,
+    /// Slots nothing reads stored too
+    ConeOfInfluence,
+    /// The search goes on after every property is decided
+    StopWhenDecided,
+}
+
+/// A size in bytes as people write it: `1048576`, `512K`, `256M`, `4G` (powers of 1024).
+pub fn parse_size(text: &str) -> Result<usize, String> {
+    let text = text.trim();
+    let (digits, unit) = match text.char_indices().find(|(_, c)| !c.is_ascii_digit()) {
+        Some((at, _)) => text.split_at(at),
+        None => (text, ""),
+    };
+    let scale: usize = match unit
+        .trim()
+        .to_ascii_uppercase()
+        .trim_end_matches("IB")
+        .trim_end_matches('B')
+    {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        "T" => 1 << 40,
+        _ => return Err(format!("`{text}`: the unit is not one of K, M, G, T")),
+    };
+    let n: usize = digits
+        .parse()
+        .map_err(|_| format!("`{text}` is not a size (a whole number, then K, M or G)"))?;
+    n.checked_mul(scale)
+        .ok_or_else(|| format!("`{text}` is larger than this machine can count"))
+}
+
+/// The verifier's engines, by the names `verify --engine` takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EngineName {
+    Auto,
+    Explicit,
+    Symbolic,
 }

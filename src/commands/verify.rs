@@ -5,12 +5,12 @@
 //! state budget ran out), 2 bad input.
 
 use crate::behaviours::load_behaviour;
-use crate::cli::EmitFormat;
+use crate::cli::{EmitFormat, EngineName, ReductionName};
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
-    manifest_properties, render, to_promela, to_script, verify_with_progress, Finding, Options,
-    Progress, PropertyKind, PropertySource, Report, Verdict, VerifyError,
+    manifest_properties, render, to_promela, to_script, verify_with_progress, Engine, Finding,
+    Options, Progress, PropertyKind, PropertySource, Reductions, Report, Verdict, VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -47,10 +47,50 @@ impl Asked {
     }
 }
 
+/// The search's options from the command line: the memory budget defaults to half of what
+/// the machine has available, so a search stops with an answer before the system stops it.
+pub fn options(
+    max_states: usize,
+    max_memory: Option<usize>,
+    without: &[ReductionName],
+    engine: EngineName,
+) -> Options {
+    let mut reductions = Reductions::default();
+    for r in without {
+        match r {
+            ReductionName::ChosenWhenRead => reductions.chosen_when_read = false,
+            ReductionName::ConeOfInfluence => reductions.cone_of_influence = false,
+            ReductionName::StopWhenDecided => reductions.stop_when_decided = false,
+        }
+    }
+    Options {
+        max_states,
+        max_memory: max_memory.unwrap_or_else(default_memory_budget),
+        reductions,
+        engine: match engine {
+            EngineName::Auto => Engine::Auto,
+            EngineName::Explicit => Engine::Explicit,
+            EngineName::Symbolic => Engine::Symbolic,
+        },
+    }
+}
+
+/// Half the memory available now (Linux's `MemAvailable`), or 4 GiB where that cannot be read.
+fn default_memory_budget() -> usize {
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|info| {
+            let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+            let kib: usize = line.split_whitespace().nth(1)?.parse().ok()?;
+            Some(kib * 1024)
+        });
+    available.map_or(4 << 30, |bytes| (bytes / 2).max(64 << 20))
+}
+
 pub fn run(
     behaviour: &str,
     asked: &Asked,
-    max_states: usize,
+    options: Options,
     json: bool,
     counterexample: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
@@ -78,7 +118,7 @@ pub fn run(
         bar.tick();
     };
     // A bad property and a behaviour beyond the checker's widths are both bad input (exit 2).
-    let report = verify_with_progress(&loaded, &properties, Options { max_states }, &mut progress)
+    let report = verify_with_progress(&loaded, &properties, options, &mut progress)
         .map_err(|e: VerifyError| Failure::Argument(e.to_string()));
     bar.finish_and_clear();
     let report = report?;
@@ -115,7 +155,11 @@ pub fn emit(
     }
     let text = match language {
         EmitFormat::Promela => {
-            let promela = to_promela(&loaded, &properties, Options { max_states })
+            let options = Options {
+                max_states,
+                ..Options::default()
+            };
+            let promela = to_promela(&loaded, &properties, options)
                 .map_err(|e| Failure::Argument(e.to_string()))?;
             for c in &promela.claims {
                 eprintln!("{}: pan -N {}", c.property, c.name);
@@ -140,19 +184,26 @@ pub fn emit(
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     let s = &report.stats;
-    println!(
-        "{behaviour}: {} states, {} steps{}, {:.0} states/s, {:.1} bytes/state ({:.1} packed)",
-        s.states,
-        s.transitions,
-        if s.complete {
-            ", every reachable state explored".to_string()
-        } else {
-            ", the state budget ran out (--max-states)".to_string()
-        },
-        s.states as f64 / seconds.max(1e-9),
-        s.bytes_per_state,
-        s.packed_bytes_per_state,
-    );
+    if s.engine == Engine::Symbolic.word() {
+        println!(
+            "{behaviour}: {} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
+            s.states,
+            s.transitions,
+            s.stopped.describe(),
+            seconds,
+            s.bytes as f64 / 1e6,
+        );
+    } else {
+        println!(
+            "{behaviour}: {} states, {} steps, {}, {:.0} states/s, {:.1} bytes/state ({:.1} packed)",
+            s.states,
+            s.transitions,
+            s.stopped.describe(),
+            s.states as f64 / seconds.max(1e-9),
+            s.bytes_per_state,
+            s.packed_bytes_per_state,
+        );
+    }
     if report.properties.is_empty() {
         println!(
             "no properties: give --never, --always or --reachable, or [[property]] in the manifest"
@@ -162,7 +213,10 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
         let verdict = match p.verdict {
             Verdict::Holds => "holds",
             Verdict::Fails => "FAILS",
-            Verdict::Incomplete => "undecided (state budget)",
+            Verdict::Incomplete => match s.stopped {
+                proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
+                _ => "undecided (state budget)",
+            },
         };
         println!("{}: {verdict} ({} {})", p.name, p.kind, p.expression);
         if let Some(trace) = &p.trace {

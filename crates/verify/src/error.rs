@@ -35,6 +35,8 @@ pub enum VerifyError {
     /// The behaviour declares types under subsumption (`[suppress]`), which the model does not
     /// have yet (holds, suppressed postings, takeovers): refused rather than answered wrongly.
     Suppression(Vec<String>),
+    /// `--engine symbolic` was asked for a behaviour the symbolic engine does not take.
+    SymbolicDeclined(String),
 }
 
 impl fmt::Display for VerifyError {
@@ -50,6 +52,10 @@ impl fmt::Display for VerifyError {
                 Ok(())
             }
             VerifyError::TooLarge(what) => write!(f, "too large to verify: {what}"),
+            VerifyError::SymbolicDeclined(why) => write!(
+                f,
+                "the symbolic engine does not take this behaviour: {why} (the explicit engine does: --engine explicit)"
+            ),
             VerifyError::Suppression(types) => write!(
                 f,
                 "the behaviour declares [suppress] for {}: verify does not model subsumption yet (holds, suppressed postings, takeovers), so it would answer wrongly; test it with `proclaim test` on a recorded run instead",

@@ -6,10 +6,12 @@
 //! firing.
 
 use crate::model::Model;
+use crate::outcome::Stop;
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, Stepper, Successor};
 use crate::world::{Layout, Status, World};
 use hashbrown::HashTable;
+use proclaim_behaviour::PropertyKind;
 use rustc_hash::FxBuildHasher;
 use std::hash::BuildHasher;
 
@@ -36,13 +38,14 @@ pub struct Graph {
     edge_start: Vec<u32>,
     edges: Vec<u32>,
     pub complete: bool,
+    /// Why the search ended.
+    pub stopped: Stop,
     /// Per machine, per state: ever current.
     pub entered: Vec<Vec<bool>>,
     /// Per machine, per transition (index in the machine's list): ever fired.
     pub fired: Vec<Vec<bool>>,
     /// Per property: the first state it looks for.
     pub targets: Vec<Option<u32>>,
-    values: usize,
     saw: usize,
 }
 
@@ -60,7 +63,7 @@ impl Graph {
     pub fn world(&self, id: u32) -> World {
         let i = id as usize;
         let bytes = &self.arena[self.offsets[i] as usize..self.offsets[i + 1] as usize];
-        self.layout.unpack(bytes, self.values, self.saw)
+        self.layout.unpack(bytes, self.saw)
     }
 
     pub fn packed_bytes(&self) -> usize {
@@ -69,14 +72,37 @@ impl Graph {
 
     /// Bytes held per state, all structures counted.
     pub fn bytes_per_state(&self) -> f64 {
-        let table = self.table.allocation_size();
-        let total = self.arena.capacity()
-            + self.offsets.capacity() * 4
-            + self.parents.capacity() * std::mem::size_of::<Parent>()
+        self.bytes() as f64 / self.len().max(1) as f64
+    }
+
+    /// Bytes the graph's tables hold.
+    pub fn bytes(&self) -> usize {
+        self.bytes_after(0, 0, 0)
+    }
+
+    /// Bytes the tables would hold after `states` more states of `packed` bytes in all and
+    /// `edges` more edges, counting the doubling of every table that would have to grow.
+    fn bytes_after(&self, states: usize, packed: usize, edges: usize) -> usize {
+        fn grown<T>(v: &Vec<T>, more: usize) -> usize {
+            let needed = v.len() + more;
+            let capacity = if needed > v.capacity() {
+                needed.max(2 * v.capacity())
+            } else {
+                v.capacity()
+            };
+            capacity * std::mem::size_of::<T>()
+        }
+        let table = if self.table.len() + states > self.table.capacity() {
+            2 * self.table.allocation_size().max(64)
+        } else {
+            self.table.allocation_size()
+        };
+        grown(&self.arena, packed)
+            + grown(&self.offsets, states)
+            + grown(&self.parents, states)
             + table
-            + self.edge_start.capacity() * 4
-            + self.edges.capacity() * 4;
-        total as f64 / self.len().max(1) as f64
+            + grown(&self.edge_start, 1)
+            + grown(&self.edges, edges)
     }
 
     /// The path to `id`: the index of its initial world and the choices after it.
@@ -164,31 +190,65 @@ pub struct Progress {
     pub stored: usize,
 }
 
-/// Explores from the initial states until every reachable state is seen or `max_states` are
-/// stored; checks `properties` on every state as it is found.
+/// Where a search stops before it has seen every reachable state.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    pub max_states: usize,
+    /// Bytes the graph's tables may hold.
+    pub max_memory: usize,
+    /// Stop once every property has found what it looks for.
+    pub stop_when_decided: bool,
+}
+
+/// Explores from the initial states until every reachable state is seen or a limit stops it;
+/// checks `properties` on every state as it is found.
 /// `progress` hears how far it got every [`PROGRESS_EVERY`] states expanded.
 pub fn explore(
     model: &Model,
     properties: &[Property],
-    max_states: usize,
+    limits: Limits,
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
     let mut store = Store::default();
-    for (i, w) in initial_worlds(model).iter().enumerate() {
+    let decidable = limits.stop_when_decided
+        && !properties.is_empty()
+        && properties.iter().all(|p| {
+            matches!(
+                p.source.kind,
+                PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
+            )
+        });
+    let stop = |graph: &mut Graph, reason: Stop| {
+        graph.complete = false;
+        graph.stopped = reason;
+    };
+    for (i, w) in initial_worlds(model).enumerate() {
+        if graph.is_full(limits.max_states) {
+            stop(&mut graph, Stop::StateBudget);
+            return graph;
+        }
+        if graph.bytes_after(1, 64, 0) > limits.max_memory {
+            stop(&mut graph, Stop::MemoryBudget);
+            return graph;
+        }
         let parent = Parent {
             parent: ROOT,
             snapshot: i as u32,
             environment: 0,
         };
-        store.insert(&mut graph, w, parent, model, properties);
+        store.insert(&mut graph, &w, parent, model, properties);
     }
     let stepper = Stepper::new(model);
     let mut successors: Vec<Successor> = Vec::new();
     let mut next = 0usize;
     while next < graph.len() {
-        if graph.is_full(max_states) {
-            graph.complete = false;
+        if decidable && graph.targets.iter().all(Option::is_some) {
+            stop(&mut graph, Stop::Decided);
+            break;
+        }
+        if graph.is_full(limits.max_states) {
+            stop(&mut graph, Stop::StateBudget);
             break;
         }
         if next % PROGRESS_EVERY == 0 && next > 0 {
@@ -200,6 +260,13 @@ pub fn explore(
         let world = graph.world(next as u32);
         successors.clear();
         stepper.successors(&world, false, &mut successors);
+        // As if every successor were new and a little larger than the state it came from:
+        // what the tables would grow to must stay within the memory budget.
+        let packed = successors.len() * (graph.bytes_of(next as u32).len() + 8);
+        if graph.bytes_after(successors.len(), packed, successors.len()) > limits.max_memory {
+            stop(&mut graph, Stop::MemoryBudget);
+            break;
+        }
         for s in &successors {
             let parent = Parent {
                 parent: next as u32,
@@ -232,6 +299,7 @@ impl Graph {
             edge_start: vec![0],
             edges: Vec::new(),
             complete: true,
+            stopped: Stop::Explored,
             entered: model
                 .machines
                 .iter()
@@ -243,7 +311,6 @@ impl Graph {
                 .map(|m| vec![false; m.machine.transitions.len()])
                 .collect(),
             targets: vec![None; properties],
-            values: model.slots.len(),
             saw: model.saw.len(),
         }
     }

@@ -25,6 +25,7 @@
 
 /// The activity language's operators: the runner's own, so the model computes as the robot does.
 pub use proclaim_runner::arith;
+mod choices;
 pub mod domain;
 mod error;
 mod explore;
@@ -33,8 +34,10 @@ mod outcome;
 pub mod promela;
 pub mod property;
 mod reasoner;
+pub mod reduce;
 pub mod ringlet;
 mod script;
+mod symbolic;
 mod trace;
 mod values;
 pub mod world;
@@ -42,27 +45,74 @@ pub mod world;
 pub use error::{PropertyError, VerifyError};
 pub use explore::Progress;
 pub use model::Model;
-pub use outcome::{Assignment, Finding, PropertyOutcome, Report, Stats, Trace, TraceStep, Verdict};
+pub use outcome::{
+    Assignment, Finding, PropertyOutcome, Report, Stats, Stop, Trace, TraceStep, Verdict,
+};
 pub use proclaim_behaviour::PropertyKind;
 pub use promela::{to_promela, Claim, EmitError, Promela};
 pub use property::{Property, PropertySource};
+pub use reduce::Reductions;
 pub use script::to_script;
 pub use trace::render;
 
 use proclaim_behaviour::Behaviour;
 
-/// How far to explore.
+/// Which engine explores.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Engine {
+    /// The explicit search for its first [`AUTO_EXPLICIT_STATES`] states; where that decides
+    /// nothing and the behaviour suits it, the symbolic engine; else the explicit search on.
+    #[default]
+    Auto,
+    /// States one by one (`explore.rs`).
+    Explicit,
+    /// Sets of states as decision diagrams (`symbolic.rs`).
+    Symbolic,
+}
+
+impl Engine {
+    pub fn word(self) -> &'static str {
+        match self {
+            Engine::Auto => "auto",
+            Engine::Explicit => "explicit",
+            Engine::Symbolic => "symbolic",
+        }
+    }
+}
+
+/// How many states the automatic choice lets the explicit search store before it turns to
+/// the symbolic engine.
+pub const AUTO_EXPLICIT_STATES: usize = 200_000;
+
+/// How far to explore, and how.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
     /// Stop once this many states are stored (the outcome is then incomplete where the
     /// question is not settled).
     pub max_states: usize,
+    /// Stop before the search's tables would hold more than this many bytes (likewise).
+    pub max_memory: usize,
+    pub reductions: Reductions,
+    pub engine: Engine,
 }
 
 impl Default for Options {
     fn default() -> Options {
         Options {
             max_states: 1_000_000,
+            max_memory: 2 << 30,
+            reductions: Reductions::default(),
+            engine: Engine::Auto,
+        }
+    }
+}
+
+impl Options {
+    fn limits(&self) -> explore::Limits {
+        explore::Limits {
+            max_states: self.max_states,
+            max_memory: self.max_memory,
+            stop_when_decided: self.reductions.stop_when_decided,
         }
     }
 }
@@ -98,8 +148,27 @@ pub fn verify_with_progress(
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Report, VerifyError> {
-    let (model, compiled) = prepare(behaviour, properties)?;
-    Ok(run(&model, &compiled, options, progress))
+    let (mut model, compiled) = prepare(behaviour, properties)?;
+    model.storage = reduce::storage(&model, &compiled, options.reductions);
+    match options.engine {
+        Engine::Explicit => Ok(explicit(&model, &compiled, options, progress)),
+        Engine::Symbolic => symbolic(&model, &compiled, options)
+            .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
+        Engine::Auto => {
+            let trial = Options {
+                max_states: options.max_states.min(AUTO_EXPLICIT_STATES),
+                ..options
+            };
+            let report = explicit(&model, &compiled, trial, progress);
+            if report.stats.stopped != Stop::StateBudget || trial.max_states == options.max_states {
+                return Ok(report);
+            }
+            match symbolic(&model, &compiled, options) {
+                Ok(report) => Ok(report),
+                Err(_) => Ok(explicit(&model, &compiled, options, progress)),
+            }
+        }
+    }
 }
 
 /// The model of `behaviour` and its properties compiled against it: what [`verify`] explores
@@ -176,62 +245,92 @@ fn check_widths(model: &Model) -> Result<(), VerifyError> {
     Ok(())
 }
 
-fn run(
+/// A property's verdict from whether what it looks for was found and whether every state was.
+fn verdict(kind: PropertyKind, found: bool, complete: bool) -> Verdict {
+    match (kind, found, complete) {
+        (PropertyKind::Reachable, true, _) => Verdict::Holds,
+        (_, true, _) => Verdict::Fails,
+        (_, false, false) => Verdict::Incomplete,
+        (PropertyKind::Reachable, false, true) => Verdict::Fails,
+        (_, false, true) => Verdict::Holds,
+    }
+}
+
+fn outcome(
+    property: &Property,
+    found: bool,
+    complete: bool,
+    trace: Option<Trace>,
+) -> PropertyOutcome {
+    PropertyOutcome {
+        name: property.source.name.clone(),
+        kind: property.source.kind.word().to_string(),
+        expression: property.source.expression.clone(),
+        verdict: verdict(property.source.kind, found, complete),
+        trace,
+    }
+}
+
+/// The states never entered and the transitions that never fire, of a complete search.
+fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> Vec<Finding> {
+    let mut findings = Vec::new();
+    for (k, m) in model.machines.iter().enumerate() {
+        for (s, state) in m.states.iter().enumerate() {
+            if !entered[k][s] {
+                findings.push(Finding::NeverEntered {
+                    machine: m.name.clone(),
+                    state: state.name.clone(),
+                });
+            }
+        }
+        for (i, t) in m.machine.transitions.iter().enumerate() {
+            if !fired[k][i] {
+                let name = |id| {
+                    m.machine
+                        .state(id)
+                        .map_or_else(|| format!("#{id}"), |s| s.name.clone())
+                };
+                findings.push(Finding::NeverFires {
+                    machine: m.name.clone(),
+                    from: name(t.source),
+                    to: name(t.target),
+                    label: t.label.to_string(),
+                    line: t.line,
+                });
+            }
+        }
+    }
+    findings
+}
+
+fn valuations(model: &Model) -> usize {
+    model
+        .theories
+        .iter()
+        .map(|t| t.reasoner.borrow().valuations())
+        .sum()
+}
+
+/// The explicit search's report.
+fn explicit(
     model: &Model,
     properties: &[Property],
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Report {
-    let graph = explore::explore(model, properties, options.max_states, progress);
+    let graph = explore::explore(model, properties, options.limits(), progress);
     let outcomes = properties
         .iter()
         .zip(&graph.targets)
         .map(|(p, target)| {
-            let verdict = match (p.source.kind, target, graph.complete) {
-                (PropertyKind::Reachable, Some(_), _) => Verdict::Holds,
-                (_, Some(_), _) => Verdict::Fails,
-                (_, None, false) => Verdict::Incomplete,
-                (PropertyKind::Reachable, None, true) => Verdict::Fails,
-                (_, None, true) => Verdict::Holds,
-            };
-            PropertyOutcome {
-                name: p.source.name.clone(),
-                kind: p.source.kind.word().to_string(),
-                expression: p.source.expression.clone(),
-                verdict,
-                trace: target.map(|id| trace::trace(model, &graph, id)),
-            }
+            let trace = target.map(|id| trace::trace(model, &graph, id));
+            outcome(p, target.is_some(), graph.complete, trace)
         })
         .collect();
     let mut findings = Vec::new();
     // Findings that say "never" are only true of a complete exploration.
     if graph.complete {
-        for (k, m) in model.machines.iter().enumerate() {
-            for (s, state) in m.states.iter().enumerate() {
-                if !graph.entered[k][s] {
-                    findings.push(Finding::NeverEntered {
-                        machine: m.name.clone(),
-                        state: state.name.clone(),
-                    });
-                }
-            }
-            for (i, t) in m.machine.transitions.iter().enumerate() {
-                if !graph.fired[k][i] {
-                    let name = |id| {
-                        m.machine
-                            .state(id)
-                            .map_or_else(|| format!("#{id}"), |s| s.name.clone())
-                    };
-                    findings.push(Finding::NeverFires {
-                        machine: m.name.clone(),
-                        from: name(t.source),
-                        to: name(t.target),
-                        label: t.label.to_string(),
-                        line: t.line,
-                    });
-                }
-            }
-        }
+        findings = never_findings(model, &graph.entered, &graph.fired);
         if let Some(id) = graph.deadlock(model) {
             let world = graph.world(id);
             findings.push(Finding::Deadlock {
@@ -254,18 +353,59 @@ fn run(
         states: graph.len(),
         transitions: graph.edge_count(),
         complete: graph.complete,
+        stopped: graph.stopped,
+        bytes: graph.bytes(),
         bytes_per_state: graph.bytes_per_state(),
         packed_bytes_per_state: graph.packed_bytes() as f64 / graph.len().max(1) as f64,
         values: model.values.borrow().len(),
-        valuations: model
-            .theories
-            .iter()
-            .map(|t| t.reasoner.borrow().valuations())
-            .sum(),
+        valuations: valuations(model),
+        engine: Engine::Explicit.word(),
     };
     Report {
         properties: outcomes,
         findings,
         stats,
     }
+}
+
+/// The symbolic engine's report (it looks for no deadlock: that is the explicit search's).
+fn symbolic(
+    model: &Model,
+    properties: &[Property],
+    options: Options,
+) -> Result<Report, symbolic::Declined> {
+    let found = symbolic::check(model, properties, options.max_memory)?;
+    let complete = found.stopped == Stop::Explored;
+    let outcomes = properties
+        .iter()
+        .zip(&found.targets)
+        .map(|(p, target)| {
+            let trace = target
+                .as_ref()
+                .map(|(initial, path)| trace::trace_of(model, *initial, path.iter().cloned()));
+            outcome(p, target.is_some(), complete, trace)
+        })
+        .collect();
+    let findings = if complete {
+        never_findings(model, &found.entered, &found.fired)
+    } else {
+        Vec::new()
+    };
+    let states = found.states.min(usize::MAX as f64) as usize;
+    Ok(Report {
+        properties: outcomes,
+        findings,
+        stats: Stats {
+            states,
+            transitions: found.steps,
+            complete,
+            stopped: found.stopped,
+            bytes: found.bytes,
+            bytes_per_state: found.bytes as f64 / states.max(1) as f64,
+            packed_bytes_per_state: 0.0,
+            values: model.values.borrow().len(),
+            valuations: valuations(model),
+            engine: Engine::Symbolic.word(),
+        },
+    })
 }

@@ -13,6 +13,7 @@ use crate::arith::{text, zero};
 use crate::domain::{Domains, FreeDomain};
 use crate::property::Kind;
 use crate::reasoner::Reasoner;
+use crate::reduce::Storage;
 use crate::values::Values;
 use proclaim_behaviour::{modules, Behaviour, ModuleKind};
 use proclaim_board::Value;
@@ -139,6 +140,9 @@ pub struct Model {
     /// What a property's `saw(Machine, name)` keeps: per machine, the name read at its last
     /// snapshot. Added by the properties before exploring.
     pub saw: Vec<(usize, Expr)>,
+    /// How the search keeps each slot ([`crate::reduce`]); every slot stored until the
+    /// reductions are decided.
+    pub storage: Vec<Storage>,
     pub ring_period: Duration,
 }
 
@@ -235,6 +239,7 @@ impl Model {
             .collect();
         Model {
             machines,
+            storage: vec![Storage::Stored; all_slots.len()],
             slots: all_slots,
             theories,
             names,
@@ -266,6 +271,13 @@ impl Model {
             .iter()
             .enumerate()
             .filter_map(|(i, s)| Some((i, s.free.as_ref()?)))
+    }
+
+    /// The free slots every state stores (the environment sets them after every ringlet);
+    /// the others are chosen where they are read.
+    pub fn stored_free_slots(&self) -> impl Iterator<Item = (SlotId, &FreeDomain)> + '_ {
+        self.free_slots()
+            .filter(|(slot, _)| self.storage[*slot] == Storage::Stored)
     }
 
     /// A slot's value as people read it.

@@ -8,8 +8,34 @@ use serde::Serialize;
 pub enum Verdict {
     Holds,
     Fails,
-    /// The state budget ran out before the question was settled.
+    /// The search stopped (a budget ran out) before the question was settled.
     Incomplete,
+}
+
+/// Why the search stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stop {
+    /// Every reachable state was explored.
+    Explored,
+    /// Every property had found what it looks for; the rest could change no verdict.
+    Decided,
+    /// `--max-states` states were stored.
+    StateBudget,
+    /// The states stored reached `--max-memory` bytes.
+    MemoryBudget,
+}
+
+impl Stop {
+    /// The reason in words, for the report.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Stop::Explored => "every reachable state explored",
+            Stop::Decided => "stopped once every property was decided",
+            Stop::StateBudget => "the state budget ran out (--max-states)",
+            Stop::MemoryBudget => "the memory budget ran out (--max-memory)",
+        }
+    }
 }
 
 /// A whiteboard type or variable and the value it took.
@@ -39,6 +65,10 @@ pub struct TraceStep {
     /// Time tests of its state that came due at the snapshot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub timers: Vec<String>,
+    /// Free types as the ringlet read them, where they differ from what was last read (the
+    /// search chooses a free type no property names where it is read).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub read: Vec<Assignment>,
     /// Free types the world changed between the machine's OnEntry and its snapshot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub at_snapshot: Vec<Assignment>,
@@ -91,8 +121,11 @@ pub enum Finding {
 pub struct Stats {
     pub states: usize,
     pub transitions: usize,
-    /// Every reachable state was explored (else the budget ran out).
+    /// Every reachable state was explored (else the search stopped early, for `stopped`).
     pub complete: bool,
+    pub stopped: Stop,
+    /// Bytes the search's tables held when it stopped.
+    pub bytes: usize,
     /// Memory per stored state: its packed bytes, index, parent and hash-table entry, and its
     /// share of the edges kept for the deadlock check.
     pub bytes_per_state: f64,
@@ -101,6 +134,9 @@ pub struct Stats {
     pub values: usize,
     /// Input valuations the reasoners were asked to prove.
     pub valuations: usize,
+    /// `explicit` or `symbolic`: which engine gave the report. The symbolic engine counts its
+    /// layers as `transitions` and stores no state on its own (`packed_bytes_per_state` 0).
+    pub engine: &'static str,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -35,7 +35,7 @@ use crate::model::{Model, Name, SlotKind};
 use crate::property::{Property, Term};
 use crate::reasoner::{input, Input};
 use crate::values::{ValueId, NEVER};
-use crate::{explore, prepare, Options, PropertySource, Verdict, VerifyError};
+use crate::{explore, prepare, Options, PropertySource, Reductions, Verdict, VerifyError};
 use proclaim_behaviour::{Behaviour, PropertyKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
@@ -120,8 +120,17 @@ pub fn to_promela(
     options: Options,
 ) -> Result<Promela, EmitError> {
     let (model, compiled) = prepare(behaviour, properties)?;
-    let values_complete =
-        explore::explore(&model, &compiled, options.max_states, &mut |_| {}).complete;
+    let values_complete = explore::explore(
+        &model,
+        &compiled,
+        Options {
+            reductions: Reductions::NONE,
+            ..options
+        }
+        .limits(),
+        &mut |_| {},
+    )
+    .complete;
     // Writing numbers the constants it meets and learns how many commands a machine may send
     // itself in a ringlet; the text is final once a pass adds neither.
     let mut queue = 0;

@@ -13,6 +13,12 @@
 //! its domain: that is what the next snapshot, of whichever machine, will see, and what a
 //! property speaking of the world now sees after this step.
 //!
+//! A free type the search does not store ([`Storage::ChosenWhenRead`]) is the same world seen
+//! lazily: its value is chosen where the ringlet first reads it, once in OnEntry and once from
+//! the snapshot on (as the environment could have set it before either), and a machine reads
+//! back what it posted to it; the choices are walked as a tree ([`Choices`]). Before the first
+//! ringlet it may still be never posted, as in the initial states of a stored one.
+//!
 //! Control postings (`Name: On`, `suspend("Name")`) act on the other machine at once (a
 //! machine started this round rings from the next); a machine's postings to its own name act
 //! when its ringlet ends, as the runner consumes them between rings. `reload` and `reread`
@@ -20,8 +26,10 @@
 //! `print` and the sleeps have no effect on what machines read, and are skipped.
 
 use crate::arith::{self, convert, text};
+use crate::choices::Choices;
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
+use crate::reduce::Storage;
 use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, World};
 use proclaim_board::Value;
@@ -29,9 +37,13 @@ use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, Statement, TIME_TESTS};
 use proclaim_runner::{Evaluate, LOOP_LIMIT};
 
-/// Which of the environment's options a step took: the snapshot's (time tests, types OnEntry
-/// touched) and the one after the ringlet (every free type). Replaying a step with its choice
-/// gives the same successor.
+/// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
+/// type chosen when read may still be never posted).
+pub const FIRST_TURN: u8 = u8::MAX;
+
+/// Which of the environment's options a step took: the leaf of its ringlet's choices (time
+/// tests, free types read) and the environment's move after the ringlet (every stored free
+/// type). Replaying a step with its choice gives the same successor.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Choice {
     pub snapshot: u64,
@@ -43,9 +55,11 @@ pub struct Choice {
 pub struct Detail {
     /// Time tests of the ringing machine's state that came due at the snapshot.
     pub timers: Vec<usize>,
-    /// Free types set between OnEntry and the snapshot.
+    /// Stored free types set between OnEntry and the snapshot.
     pub at_snapshot: Vec<(SlotId, ValueId)>,
-    /// Free types that changed after the ringlet.
+    /// Free types chosen where the ringlet read them, in the order it read them.
+    pub read: Vec<(SlotId, ValueId)>,
+    /// Stored free types that changed after the ringlet.
     pub environment: Vec<(SlotId, ValueId)>,
 }
 
@@ -63,10 +77,11 @@ pub struct Successor {
 }
 
 /// The initial worlds: every machine at its initial state (running or dormant as the manifest
-/// says), variables at zero, every free type at each value of its initial domain.
-pub fn initial_worlds(model: &Model) -> Vec<World> {
+/// says), variables at zero, every stored free type at each value of its initial domain (in
+/// mixed radix, the first free slot the fastest).
+pub fn initial_worlds(model: &Model) -> impl Iterator<Item = World> + '_ {
     let base = World {
-        turn: 0,
+        turn: FIRST_TURN,
         machines: model
             .machines
             .iter()
@@ -87,7 +102,11 @@ pub fn initial_worlds(model: &Model) -> Vec<World> {
             model
                 .slots
                 .iter()
-                .map(|s| values.intern_option(s.initial.as_ref()))
+                .zip(&model.storage)
+                .map(|(s, storage)| match storage {
+                    Storage::ChosenWhenRead => NEVER,
+                    Storage::Stored | Storage::Unread => values.intern_option(s.initial.as_ref()),
+                })
                 .collect()
         },
         saw: vec![NEVER; model.saw.len()],
@@ -95,7 +114,7 @@ pub fn initial_worlds(model: &Model) -> Vec<World> {
     let free: Vec<(SlotId, Vec<ValueId>)> = {
         let mut values = model.values.borrow_mut();
         model
-            .free_slots()
+            .stored_free_slots()
             .map(|(slot, d)| {
                 (
                     slot,
@@ -108,34 +127,59 @@ pub fn initial_worlds(model: &Model) -> Vec<World> {
             .collect()
     };
     let count: u64 = free.iter().map(|(_, d)| d.len() as u64).product();
-    (0..count)
-        .map(|mut index| {
-            let mut w = base.clone();
-            for (slot, domain) in &free {
-                let n = domain.len() as u64;
-                w.values[*slot] = domain[(index % n) as usize];
-                index /= n;
-            }
-            w
-        })
-        .collect()
+    (0..count).map(move |mut index| {
+        let mut w = base.clone();
+        for (slot, domain) in &free {
+            let n = domain.len() as u64;
+            w.values[*slot] = domain[(index % n) as usize];
+            index /= n;
+        }
+        w
+    })
+}
+
+/// The values a free type chosen when read may take: at any snapshot, and before the first
+/// ringlet (never posted first).
+#[derive(Clone, Debug, Default)]
+struct ReadDomain {
+    values: Vec<ValueId>,
+    initial: Vec<ValueId>,
 }
 
 /// The steps of the model.
 pub struct Stepper<'m> {
     model: &'m Model,
-    /// Free slots and their domains as value numbers.
+    /// Stored free slots and their domains as value numbers.
     free: Vec<(SlotId, Vec<ValueId>)>,
+    /// Per slot: its domain when it is chosen when read (empty otherwise).
+    read_domains: Vec<ReadDomain>,
 }
 
 impl<'m> Stepper<'m> {
     pub fn new(model: &'m Model) -> Stepper<'m> {
         let mut values = model.values.borrow_mut();
         let free = model
-            .free_slots()
+            .stored_free_slots()
             .map(|(slot, d)| (slot, d.values.iter().map(|v| values.intern(v)).collect()))
             .collect();
-        Stepper { model, free }
+        let mut read_domains = vec![ReadDomain::default(); model.slots.len()];
+        for (slot, d) in model.free_slots() {
+            if model.storage[slot] == Storage::ChosenWhenRead {
+                read_domains[slot] = ReadDomain {
+                    values: d.values.iter().map(|v| values.intern(v)).collect(),
+                    initial: d
+                        .initial
+                        .iter()
+                        .map(|v| values.intern_option(v.as_ref()))
+                        .collect(),
+                };
+            }
+        }
+        Stepper {
+            model,
+            free,
+            read_domains,
+        }
     }
 
     fn domain(&self, slot: SlotId) -> &[ValueId] {
@@ -150,7 +194,11 @@ impl<'m> Stepper<'m> {
     fn next_machine(&self, world: &World) -> Option<(usize, World, bool)> {
         let n = self.model.machines.len();
         let mut w = world.clone();
-        let mut k = usize::from(w.turn);
+        let mut k = if w.turn == FIRST_TURN {
+            0
+        } else {
+            usize::from(w.turn)
+        };
         let mut wrapped = false;
         for _ in 0..=2 * n {
             if k >= n {
@@ -180,66 +228,183 @@ impl<'m> Stepper<'m> {
     }
 
     /// Every successor of `world`, with what the environment did when `detail` is asked for:
-    /// the ringing machine's OnEntry, then for every snapshot it may take (the free types its
-    /// OnEntry touched at each value, the state's timers at each mask that can be due) the rest
-    /// of its ringlet, then every move of the environment.
+    /// the ringing machine's ringlet once for every leaf of its choices (the free types it
+    /// reads, the snapshot's time tests and stored free types), then every move of the
+    /// environment.
     pub fn successors(&self, world: &World, detail: bool, out: &mut Vec<Successor>) {
         let Some((k, start, wrapped)) = self.next_machine(world) else {
             return;
         };
-        let machine = &self.model.machines[k];
-        let from = usize::from(start.machines[k].state);
-        let (entered, touched, deferred) = self.on_entry(start, k);
-
-        let tests = &machine.states[from].time_tests;
-        let masks = time_masks(tests, entered.machines[k].time);
-        let touched_domains: Vec<&[ValueId]> = touched.iter().map(|s| self.domain(*s)).collect();
-        let snapshot_count = masks.len() as u64
-            * touched_domains
-                .iter()
-                .map(|d| d.len() as u64)
-                .product::<u64>();
-
-        for snapshot_choice in 0..snapshot_count {
-            let mut w = entered.clone();
-            let mut index = snapshot_choice;
-            let mask = masks[(index % masks.len() as u64) as usize];
-            index /= masks.len() as u64;
-            let old_mask = w.machines[k].time;
-            w.machines[k].time = mask;
-            let mut at_snapshot = Vec::new();
-            for (slot, domain) in touched.iter().zip(&touched_domains) {
-                let n = domain.len() as u64;
-                let v = rotated(domain, w.values[*slot], (index % n) as usize);
-                index /= n;
-                if detail {
-                    at_snapshot.push((*slot, v));
-                }
-                w.values[*slot] = v;
+        let first = world.turn == FIRST_TURN;
+        let mut choices = Choices::default();
+        let mut leaf = 0u64;
+        loop {
+            let ringlet = self.ringlet(&start, k, wrapped, first, &mut choices, leaf, detail);
+            self.environment_moves(&ringlet, detail, out);
+            leaf += 1;
+            if out.len() >= limit {
+                return false;
             }
-            let fired = self.rest_of_ringlet(&mut w, k, deferred.clone());
-            let ringlet = Ringlet {
-                machine: k,
-                wrapped,
-                from,
-                fired,
-                snapshot_choice,
-                timers: if detail {
-                    (0..tests.len())
-                        .filter(|i| mask & !old_mask & (1 << i) != 0)
-                        .collect()
-                } else {
-                    Vec::new()
-                },
-                at_snapshot,
-            };
-            self.environment_moves(&w, &ringlet, detail, out);
+            if !choices.advance() {
+                return true;
+            }
         }
     }
 
-    /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the free
-    /// types it read or posted (sorted), and the commands it posted to itself.
-    fn on_entry(&self, start: World, k: usize) -> (World, Vec<SlotId>, Vec<Command>) {
+    /// Machine `k`'s ringlet from `start` along the current path of `choices`.
+    #[allow(clippy::too_many_arguments)]
+    fn ringlet(
+        &self,
+        start: &World,
+        k: usize,
+        wrapped: bool,
+        first: bool,
+        choices: &mut Choices,
+        leaf: u64,
+        detail: bool,
+    ) -> Ringlet {
+        self.ringlet_on(start, k, wrapped, first, choices, leaf, detail, None)
+            .0
+    }
+
+    /// [`Stepper::ringlet`], on an open world when `open` is given (handed back after).
+    #[allow(clippy::too_many_arguments)]
+    fn ringlet_on<'c>(
+        &'c self,
+        start: &World,
+        k: usize,
+        wrapped: bool,
+        first: bool,
+        choices: &'c mut Choices,
+        leaf: u64,
+        detail: bool,
+        open: Option<Open<'c>>,
+    ) -> (Ringlet, Option<Open<'c>>) {
+        let machine = &self.model.machines[k];
+        let from = usize::from(start.machines[k].state);
+        let mut chosen = Chosen {
+            choices,
+            domains: &self.read_domains,
+            now: Vec::new(),
+            entry: Vec::new(),
+            first,
+            log: detail.then(Vec::new),
+            open,
+        };
+        let (mut w, touched, deferred) = self.on_entry(start.clone(), k, &mut chosen);
+        chosen.entry = std::mem::take(&mut chosen.now);
+
+        let tests = &machine.states[from].time_tests;
+        let masks = time_masks(tests, w.machines[k].time);
+        let touched_domains: Vec<&[ValueId]> = touched.iter().map(|s| self.domain(*s)).collect();
+        let snapshot_count =
+            masks.len() * touched_domains.iter().map(|d| d.len()).product::<usize>();
+        let mut index = chosen.choices.branch(snapshot_count);
+        let mask = masks[index % masks.len()];
+        index /= masks.len();
+        let old_mask = w.machines[k].time;
+        w.machines[k].time = mask;
+        let mut at_snapshot = Vec::new();
+        for (slot, domain) in touched.iter().zip(&touched_domains) {
+            let n = domain.len();
+            let v = rotated(domain, w.values[*slot], index % n);
+            index /= n;
+            if detail {
+                at_snapshot.push((*slot, v));
+            }
+            w.values[*slot] = v;
+        }
+        let fired = self.rest_of_ringlet(&mut w, k, deferred, &mut chosen);
+        let ringlet = Ringlet {
+            world: w,
+            machine: k,
+            wrapped,
+            from,
+            fired,
+            leaf,
+            timers: if detail {
+                (0..tests.len())
+                    .filter(|i| mask & !old_mask & (1 << i) != 0)
+                    .collect()
+            } else {
+                Vec::new()
+            },
+            at_snapshot,
+            read: chosen.log.unwrap_or_default(),
+        };
+        (ringlet, chosen.open)
+    }
+
+    /// Every leaf of machine `k`'s ringlet from `control` on an open world whose stored slots
+    /// take the values of `domains` (after the first ringlet, in a round already begun); false
+    /// (and `out` incomplete) past `limit` leaves.
+    pub(crate) fn open_leaves(
+        &self,
+        k: usize,
+        control: Control,
+        domains: &[Vec<ValueId>],
+        limit: usize,
+        out: &mut Vec<OpenLeaf>,
+    ) -> bool {
+        let model = self.model;
+        let unknown_control = Control {
+            state: 0,
+            status: Status::Running,
+            just_entered: false,
+            fresh: false,
+            time: 0,
+        };
+        let mut start = World {
+            turn: k as u8,
+            machines: vec![unknown_control; model.machines.len()],
+            values: model
+                .storage
+                .iter()
+                .map(|s| match s {
+                    Storage::Stored => UNKNOWN,
+                    Storage::ChosenWhenRead | Storage::Unread => NEVER,
+                })
+                .collect(),
+            saw: vec![NEVER; model.saw.len()],
+        };
+        start.machines[k] = control;
+        let mut choices = Choices::default();
+        loop {
+            let mut status_known = vec![false; model.machines.len()];
+            status_known[k] = true;
+            let open = Open {
+                domains,
+                reads: Vec::new(),
+                status_known,
+                control_writes: vec![ControlWrites::default(); model.machines.len()],
+            };
+            let (ringlet, open) =
+                self.ringlet_on(&start, k, false, false, &mut choices, 0, false, Some(open));
+            if let Some(open) = open {
+                out.push(OpenLeaf {
+                    reads: open.reads,
+                    after: ringlet.world,
+                    control_writes: open.control_writes,
+                    fired: ringlet.fired,
+                });
+            }
+            if out.len() >= limit {
+                return false;
+            }
+            if !choices.advance() {
+                return true;
+            }
+        }
+    }
+
+    /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the
+    /// stored free types it read or posted (sorted), and the commands it posted to itself.
+    fn on_entry(
+        &self,
+        start: World,
+        k: usize,
+        chosen: &mut Chosen<'_>,
+    ) -> (World, Vec<SlotId>, Vec<Command>) {
         let mut entered = start;
         let mut touched: Vec<SlotId> = Vec::new();
         let mut deferred = Vec::new();
@@ -253,13 +418,16 @@ impl<'m> Stepper<'m> {
                 snapshot: None,
                 touched: Some(Vec::new()),
                 deferred: Vec::new(),
+                chosen,
             };
             exec.run(&state.on_entry);
             touched = exec.touched.take().unwrap_or_default();
             deferred = std::mem::take(&mut exec.deferred);
             entered.machines[k].just_entered = false;
         }
-        touched.retain(|s| self.model.slots[*s].free.is_some());
+        touched.retain(|s| {
+            self.model.slots[*s].free.is_some() && self.model.storage[*s] == Storage::Stored
+        });
         touched.sort_unstable();
         touched.dedup();
         (entered, touched, deferred)
@@ -268,7 +436,13 @@ impl<'m> Stepper<'m> {
     /// The rest of machine `k`'s ringlet on its snapshot `w`: what it `saw`, the first
     /// transition whose label holds (then OnExit and the move) or else Internal, then the
     /// commands it posted, obeyed as the ringlet ends. Returns the transition that fired.
-    fn rest_of_ringlet(&self, w: &mut World, k: usize, deferred: Vec<Command>) -> Option<usize> {
+    fn rest_of_ringlet(
+        &self,
+        w: &mut World,
+        k: usize,
+        deferred: Vec<Command>,
+        chosen: &mut Chosen<'_>,
+    ) -> Option<usize> {
         let machine = &self.model.machines[k];
         let from = usize::from(w.machines[k].state);
         let state = &machine.machine.states[from];
@@ -280,6 +454,7 @@ impl<'m> Stepper<'m> {
             snapshot: Some(snapshot),
             touched: None,
             deferred,
+            chosen,
         };
         for (j, (m, e)) in self.model.saw.iter().enumerate() {
             if *m == k {
@@ -309,14 +484,9 @@ impl<'m> Stepper<'m> {
         fired
     }
 
-    /// After a ringlet ending in `w`, one successor for every value each free type may take.
-    fn environment_moves(
-        &self,
-        w: &World,
-        ringlet: &Ringlet,
-        detail: bool,
-        out: &mut Vec<Successor>,
-    ) {
+    /// After a ringlet, one successor for every value each stored free type may take.
+    fn environment_moves(&self, ringlet: &Ringlet, detail: bool, out: &mut Vec<Successor>) {
+        let w = &ringlet.world;
         let environment_count: u64 = self.free.iter().map(|(_, d)| d.len() as u64).product();
         for environment_choice in 0..environment_count {
             let mut next = w.clone();
@@ -334,7 +504,7 @@ impl<'m> Stepper<'m> {
             out.push(Successor {
                 world: next,
                 choice: Choice {
-                    snapshot: ringlet.snapshot_choice,
+                    snapshot: ringlet.leaf,
                     environment: environment_choice,
                 },
                 machine: ringlet.machine,
@@ -344,6 +514,7 @@ impl<'m> Stepper<'m> {
                 detail: detail.then(|| Detail {
                     timers: ringlet.timers.clone(),
                     at_snapshot: ringlet.at_snapshot.clone(),
+                    read: ringlet.read.clone(),
                     environment: changed,
                 }),
             });
@@ -351,18 +522,102 @@ impl<'m> Stepper<'m> {
     }
 }
 
-/// One ringlet as its successors share it: which machine rang from which state, on which
-/// snapshot, and what fired.
+/// One ringlet as its successors share it: which machine rang from which state, along which
+/// leaf of its choices, and what fired.
 struct Ringlet {
+    world: World,
     machine: usize,
     wrapped: bool,
     from: usize,
     fired: Option<usize>,
-    snapshot_choice: u64,
+    leaf: u64,
     /// With detail only: the time tests that came due.
     timers: Vec<usize>,
-    /// With detail only: the values the free types had at the snapshot.
+    /// With detail only: the values the stored free types had at the snapshot.
     at_snapshot: Vec<(SlotId, ValueId)>,
+    /// With detail only: the free types chosen where they were read.
+    read: Vec<(SlotId, ValueId)>,
+}
+
+/// The free types a ringlet chooses where it reads them: each phase (OnEntry, then from the
+/// snapshot on) chooses a type at its first read and reads back what the machine posted to it.
+struct Chosen<'c> {
+    choices: &'c mut Choices,
+    domains: &'c [ReadDomain],
+    /// This phase's values.
+    now: Vec<(SlotId, ValueId)>,
+    /// OnEntry's values, from the snapshot on: the value a snapshot choice starts from, so that
+    /// its first branch leaves it unchanged.
+    entry: Vec<(SlotId, ValueId)>,
+    /// No ringlet has run yet: a type OnEntry did not touch may still be never posted.
+    first: bool,
+    /// With detail: every value chosen, in order.
+    log: Option<Vec<(SlotId, ValueId)>>,
+    /// Where the ringlet runs on a world only partly known.
+    open: Option<Open<'c>>,
+}
+
+/// A stored slot's value not known before a ringlet of the symbolic engine runs.
+pub(crate) const UNKNOWN: ValueId = ValueId::MAX;
+
+/// What a ringlet on an open world found out by reading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum OpenRead {
+    Slot(SlotId, ValueId),
+    Status(usize, Status),
+}
+
+/// A world only partly known (the symbolic engine's): the ringing machine's control is, every
+/// other machine's mode and every stored slot are chosen where the ringlet first reads them,
+/// from the values they can hold.
+pub(crate) struct Open<'d> {
+    /// Per slot, the values it can hold.
+    pub domains: &'d [Vec<ValueId>],
+    pub reads: Vec<OpenRead>,
+    pub status_known: Vec<bool>,
+    /// Per machine, what commands to it wrote.
+    pub control_writes: Vec<ControlWrites>,
+}
+
+/// One leaf of a ringlet on an open world: what it read, and the world after it (a stored slot
+/// still [`UNKNOWN`] was neither read nor written).
+pub(crate) struct OpenLeaf {
+    pub reads: Vec<OpenRead>,
+    pub after: World,
+    pub control_writes: Vec<ControlWrites>,
+    pub fired: Option<usize>,
+}
+
+impl Chosen<'_> {
+    fn value(&mut self, slot: SlotId) -> ValueId {
+        if let Some(&(_, v)) = self.now.iter().find(|(s, _)| *s == slot) {
+            return v;
+        }
+        let before = self.entry.iter().find(|(s, _)| *s == slot).map(|&(_, v)| v);
+        let d = &self.domains[slot];
+        let domain = if self.first && before.is_none() {
+            &d.initial
+        } else {
+            &d.values
+        };
+        let branch = self.choices.branch(domain.len());
+        let v = match before {
+            Some(before) => rotated(domain, before, branch),
+            None => domain[branch % domain.len()],
+        };
+        self.now.push((slot, v));
+        if let Some(log) = &mut self.log {
+            log.push((slot, v));
+        }
+        v
+    }
+
+    fn post(&mut self, slot: SlotId, value: ValueId) {
+        match self.now.iter_mut().find(|(s, _)| *s == slot) {
+            Some(entry) => entry.1 = value,
+            None => self.now.push((slot, value)),
+        }
+    }
 }
 
 /// The `i`-th value of `domain` counted from `current` (when it is in the domain), so that
@@ -389,13 +644,42 @@ pub(crate) fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16>
         .collect()
 }
 
+/// Which fields of a machine's control a command wrote.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ControlWrites {
+    /// Its mode.
+    pub status: bool,
+    /// Just entered, started this round and the time bits (it starts or enters again).
+    pub entry: bool,
+    /// Its state (it starts afresh).
+    pub state: bool,
+}
+
+impl ControlWrites {
+    fn add(&mut self, other: ControlWrites) {
+        self.status |= other.status;
+        self.entry |= other.entry;
+        self.state |= other.state;
+    }
+}
+
 /// Applies a control command to machine `k` as gufsm's `SuspensibleMachine` (and the runner)
-/// does; a machine that starts is "fresh": it rings from the next round on.
-fn control(model: &Model, world: &mut World, k: usize, command: Command) {
+/// does; a machine that starts is "fresh": it rings from the next round on. Returns what it
+/// wrote.
+fn control(model: &Model, world: &mut World, k: usize, command: Command) -> ControlWrites {
     let initial = model.machines[k].initial as u16;
     let c = &mut world.machines[k];
+    let all = ControlWrites {
+        status: true,
+        entry: true,
+        state: true,
+    };
+    let status = ControlWrites {
+        status: true,
+        ..ControlWrites::default()
+    };
     match (command, c.status) {
-        (Command::On | Command::Resume, Status::Running) => {}
+        (Command::On | Command::Resume, Status::Running) => ControlWrites::default(),
         (Command::Restart, _) | (Command::On | Command::Resume, Status::Dormant) => {
             *c = Control {
                 state: initial,
@@ -404,22 +688,33 @@ fn control(model: &Model, world: &mut World, k: usize, command: Command) {
                 fresh: true,
                 time: 0,
             };
+            all
         }
         (Command::On | Command::Resume, Status::Suspended) => {
             c.status = Status::Running;
             c.just_entered = true;
             c.fresh = true;
             c.time = 0;
+            ControlWrites {
+                state: false,
+                ..all
+            }
         }
-        (Command::Suspend, Status::Running) => c.status = Status::Suspended,
-        (Command::Suspend, _) => {}
-        (Command::Off, _) => c.status = Status::Dormant,
-        (Command::Reload | Command::Reread, _) => {}
+        (Command::Suspend, Status::Running) => {
+            c.status = Status::Suspended;
+            status
+        }
+        (Command::Suspend, _) => ControlWrites::default(),
+        (Command::Off, _) => {
+            c.status = Status::Dormant;
+            status
+        }
+        (Command::Reload | Command::Reread, _) => ControlWrites::default(),
     }
 }
 
 /// Runs activities and evaluates expressions for machine `machine` over a world.
-struct Exec<'a> {
+struct Exec<'a, 'c> {
     model: &'a Model,
     world: &'a mut World,
     machine: usize,
@@ -429,11 +724,12 @@ struct Exec<'a> {
     touched: Option<Vec<SlotId>>,
     /// Commands to the machine itself, applied when its ringlet ends.
     deferred: Vec<Command>,
+    chosen: &'a mut Chosen<'c>,
 }
 
 /// The runner's walk over an expression, on the model: names resolve to slots and answers, a
 /// time test is due where the step's choice made it so.
-impl Evaluate for Exec<'_> {
+impl Evaluate for Exec<'_, '_> {
     fn read(&mut self, name: &str) -> Option<Value> {
         let resolved = self.model.resolve(Some(self.machine), name)?;
         self.name_value(resolved)
@@ -448,21 +744,30 @@ impl Evaluate for Exec<'_> {
     }
 }
 
-impl Exec<'_> {
+impl Exec<'_, '_> {
     fn is_message(&self, slot: SlotId) -> bool {
         matches!(self.model.slots[slot].kind, SlotKind::Message { .. })
     }
 
     fn slot_value(&mut self, slot: SlotId) -> Option<Value> {
         let message = self.is_message(slot);
-        if message {
-            if let Some(t) = &mut self.touched {
-                t.push(slot);
+        let id = if self.model.storage[slot] == Storage::ChosenWhenRead {
+            self.chosen.value(slot)
+        } else {
+            if message {
+                if let Some(t) = &mut self.touched {
+                    t.push(slot);
+                }
             }
-        }
-        let id = match (&self.snapshot, message) {
-            (Some(snapshot), true) => snapshot[slot],
-            _ => self.world.values[slot],
+            let id = match (&self.snapshot, message) {
+                (Some(snapshot), true) => snapshot[slot],
+                _ => self.world.values[slot],
+            };
+            if id == UNKNOWN {
+                self.open_read(slot)
+            } else {
+                id
+            }
         };
         let value = self.model.values.borrow().get(id).cloned();
         match (value, &self.model.slots[slot].kind) {
@@ -475,10 +780,22 @@ impl Exec<'_> {
         match name {
             Name::Slot(slot) => self.slot_value(slot),
             Name::Answer { theory, output } => Some(Value::Bool(self.answer(theory, output, 0))),
-            Name::Running(m) => Some(Value::Bool(
-                self.world.machines[m].status == Status::Running,
-            )),
+            Name::Running(m) => Some(Value::Bool(self.status_of(m) == Status::Running)),
         }
+    }
+
+    /// Machine `m`'s mode; on an open world, chosen at its first read.
+    fn status_of(&mut self, m: usize) -> Status {
+        if let Some(open) = &mut self.chosen.open {
+            if !open.status_known[m] {
+                const MODES: [Status; 3] = [Status::Running, Status::Suspended, Status::Dormant];
+                let status = MODES[self.chosen.choices.branch(MODES.len())];
+                open.status_known[m] = true;
+                open.reads.push(OpenRead::Status(m, status));
+                self.world.machines[m].status = status;
+            }
+        }
+        self.world.machines[m].status
     }
 
     /// A reasoner's answer on the inputs as this ringlet reads them.
@@ -532,24 +849,38 @@ impl Exec<'_> {
                 if k == self.machine {
                     self.deferred.push(command);
                 } else {
-                    control(self.model, self.world, k, command);
+                    self.status_of(k);
+                    let writes = control(self.model, self.world, k, command);
+                    if let Some(open) = &mut self.chosen.open {
+                        open.control_writes[k].add(writes);
+                    }
                 }
             }
             return;
         }
-        if let Some(Name::Slot(slot)) = self.model.names.get(ty) {
-            if self.is_message(*slot) {
-                if let Some(t) = &mut self.touched {
-                    t.push(*slot);
-                }
+        let Some(&Name::Slot(slot)) = self.model.names.get(ty) else {
+            return;
+        };
+        if !self.is_message(slot) {
+            return;
+        }
+        let id = match self.model.storage[slot] {
+            Storage::Unread => return,
+            Storage::ChosenWhenRead => {
                 let id = self.model.values.borrow_mut().intern(&value);
-                self.world.values[*slot] = id;
-                // A machine reads back what it posted itself after its snapshot, as the
-                // runner's `seen.rs` does.
-                if let Some(snapshot) = &mut self.snapshot {
-                    snapshot[*slot] = id;
-                }
+                self.chosen.post(slot, id);
+                return;
             }
+            Storage::Stored => self.model.values.borrow_mut().intern(&value),
+        };
+        if let Some(t) = &mut self.touched {
+            t.push(slot);
+        }
+        self.world.values[slot] = id;
+        // A machine reads back what it posted itself after its snapshot, as the runner's
+        // `seen.rs` does.
+        if let Some(snapshot) = &mut self.snapshot {
+            snapshot[slot] = id;
         }
     }
 
@@ -557,6 +888,7 @@ impl Exec<'_> {
     /// global.
     fn assign(&mut self, name: &str, value: Value) {
         match self.model.resolve(Some(self.machine), name) {
+            Some(Name::Slot(slot)) if self.model.storage[slot] == Storage::Unread => {}
             Some(Name::Slot(slot)) => match &self.model.slots[slot].kind {
                 SlotKind::Local { ty, .. } => {
                     let v = convert(ty, value);
@@ -579,6 +911,10 @@ impl Exec<'_> {
                 ..
             }
             | Statement::Assign { name, value } => {
+                // What nothing reads is not computed: its reads would only branch.
+                if self.unread(name) {
+                    return;
+                }
                 let v = self.value(value).unwrap_or(Value::Int(0));
                 self.assign(name, v);
             }
@@ -610,6 +946,33 @@ impl Exec<'_> {
                 }
             }
         }
+    }
+
+    /// A stored slot of an open world read for the first time: each value of its domain in
+    /// turn, as a choice, held from here on as if it had been there all along.
+    fn open_read(&mut self, slot: SlotId) -> ValueId {
+        let Some(open) = &mut self.chosen.open else {
+            return UNKNOWN;
+        };
+        let domain = &open.domains[slot];
+        if domain.is_empty() {
+            return UNKNOWN;
+        }
+        let v = domain[self.chosen.choices.branch(domain.len())];
+        open.reads.push(OpenRead::Slot(slot, v));
+        self.world.values[slot] = v;
+        if let Some(snapshot) = &mut self.snapshot {
+            snapshot[slot] = v;
+        }
+        v
+    }
+
+    /// Whether `name` is a slot the search does not keep (nothing reads it).
+    fn unread(&self, name: &str) -> bool {
+        matches!(
+            self.model.resolve(Some(self.machine), name),
+            Some(Name::Slot(slot)) if self.model.storage[slot] == Storage::Unread
+        )
     }
 
     fn text_of(&mut self, e: &Expr) -> String {

@@ -5,10 +5,11 @@
 //! What it cannot carry, said in the script's own comments: a script sets truth values only
 //! (another value the counterexample needs is listed, not set); a script speaks in time, not
 //! in rounds, so a change the model made in round r is placed in the middle of round r's ring
-//! period (`(r - ½) × ring_period`), which is where an idle behaviour's round r runs, but a
-//! round that follows a firing at once runs earlier; a change between two machines' ringlets
-//! of one round, or between a machine's OnEntry and its snapshot, falls to that round; and time
-//! tests come due when the clock says, not when the counterexample needed them.
+//! period (`(r - ½) × ring_period`), and a value a ringlet of round r read in the middle of
+//! round r - 1's, which is where an idle behaviour's round r runs, but a round that follows a
+//! firing at once runs earlier; a change between two machines' ringlets of one round, or
+//! between a machine's OnEntry and its snapshot, falls to that round; and time tests come due
+//! when the clock says, not when the counterexample needed them.
 
 use crate::outcome::{Assignment, Trace};
 use std::fmt::Write;
@@ -42,6 +43,12 @@ pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, 
     let mut timers = Vec::new();
     for s in &trace.steps {
         let at = ((f64::from(s.round) - 0.5) * period * 1e4).round() / 1e4;
+        // A value a ringlet of round r read was set before that round: in the middle of
+        // round r - 1's period (from the start, for round 1).
+        let before = ((f64::from(s.round) - 1.5) * period * 1e4).round() / 1e4;
+        for a in &s.read {
+            line((s.round > 1).then_some(before), a, &mut lines);
+        }
         for a in s.at_snapshot.iter().chain(&s.environment) {
             line(Some(at), a, &mut lines);
         }

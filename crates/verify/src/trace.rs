@@ -4,9 +4,11 @@
 use crate::explore::Graph;
 use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
-use crate::ringlet::{initial_worlds, Stepper};
-use crate::values::ValueId;
+use crate::ringlet::{initial_worlds, Choice, Stepper};
+use crate::values::{ValueId, NEVER};
+use crate::world::World;
 use proclaim_board::Value;
+use rustc_hash::FxHashMap;
 
 fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
     let values = model.values.borrow();
@@ -24,18 +26,38 @@ fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
 /// The path from an initial state to state `id`.
 pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
     let (initial, path) = graph.path(id);
-    let first = &initial_worlds(model)[initial];
+    let steps = path
+        .into_iter()
+        .map(|(parent, choice)| (graph.world(parent), choice));
+    trace_of(model, initial, steps)
+}
+
+/// The path from initial world number `initial` through `path`: each world a step starts from
+/// and the choice it took there.
+pub fn trace_of(
+    model: &Model,
+    initial: usize,
+    path: impl IntoIterator<Item = (World, Choice)>,
+) -> Trace {
+    let Some(first) = initial_worlds(model).nth(initial) else {
+        return Trace {
+            initially: Vec::new(),
+            steps: Vec::new(),
+        };
+    };
     let initially = model
-        .free_slots()
-        .filter(|(slot, _)| first.values[*slot] != crate::values::NEVER)
+        .stored_free_slots()
+        .filter(|(slot, _)| first.values[*slot] != NEVER)
         .map(|(slot, _)| assignment(model, slot, first.values[slot]))
         .collect();
+    // What a free type chosen when read was last seen to hold: a read is told only where it
+    // differs, as the world's moves are.
+    let mut last_read: FxHashMap<SlotId, ValueId> = FxHashMap::default();
     let stepper = Stepper::new(model);
     let mut round = 1;
     let mut steps = Vec::new();
     let mut successors = Vec::new();
-    for (parent, choice) in path {
-        let world = graph.world(parent);
+    for (world, choice) in path {
         successors.clear();
         stepper.successors(&world, true, &mut successors);
         let Some(s) = successors.iter().find(|s| s.choice == choice) else {
@@ -65,6 +87,12 @@ pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
             at_snapshot: detail
                 .at_snapshot
                 .iter()
+                .map(|&(slot, v)| assignment(model, slot, v))
+                .collect(),
+            read: detail
+                .read
+                .iter()
+                .filter(|&&(slot, v)| last_read.insert(slot, v).unwrap_or(NEVER) != v)
                 .map(|&(slot, v)| assignment(model, slot, v))
                 .collect(),
             environment: detail
@@ -102,6 +130,9 @@ pub fn render(trace: &Trace) -> String {
         }
         if !s.timers.is_empty() {
             line.push_str(&format!("; due: {}", s.timers.join(", ")));
+        }
+        if !s.read.is_empty() {
+            line.push_str(&format!("; reads {}", show(&s.read)));
         }
         if !s.at_snapshot.is_empty() {
             line.push_str(&format!("; before its snapshot: {}", show(&s.at_snapshot)));

@@ -1,12 +1,13 @@
 //! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
 //! packed into a few bytes while stored: whose turn it is (one byte), per machine its state
 //! (one byte, two when it has over 255), one byte of flags (mode, just entered, started this
-//! round) and one of time bits when any of its states has a time test, then every slot's value
-//! number and every `saw()` value number as LEB128 varints (values met early, the usual ones,
-//! take one byte).
+//! round) and one of time bits when any of its states has a time test, then the value number
+//! of every slot the search stores ([`crate::reduce::Storage`]) and every `saw()` value number
+//! as LEB128 varints (values met early, the usual ones, take one byte).
 
-use crate::model::Model;
-use crate::values::ValueId;
+use crate::model::{Model, SlotId};
+use crate::reduce::Storage;
+use crate::values::{ValueId, NEVER};
 
 /// A machine's mode, gufsm's `SuspensibleMachine` states.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,6 +48,11 @@ pub struct World {
 pub struct Layout {
     wide_state: Vec<bool>,
     has_time: Vec<bool>,
+    /// The slots a state stores, in slot order.
+    stored: Vec<SlotId>,
+    /// Every slot's value in an unpacked world before the stored ones are read: the initial
+    /// value of one nothing reads, "never posted" for one chosen when read.
+    fill: Vec<ValueId>,
 }
 
 impl Layout {
@@ -62,6 +68,21 @@ impl Layout {
                 .iter()
                 .map(|m| m.states.iter().any(|s| !s.time_tests.is_empty()))
                 .collect(),
+            stored: (0..model.slots.len())
+                .filter(|&slot| model.storage[slot] == Storage::Stored)
+                .collect(),
+            fill: {
+                let mut values = model.values.borrow_mut();
+                model
+                    .slots
+                    .iter()
+                    .zip(&model.storage)
+                    .map(|(slot, storage)| match storage {
+                        Storage::Unread => values.intern_option(slot.initial.as_ref()),
+                        Storage::Stored | Storage::ChosenWhenRead => NEVER,
+                    })
+                    .collect()
+            },
         }
     }
 
@@ -89,13 +110,16 @@ impl Layout {
                 }
             }
         }
-        for &v in world.values.iter().chain(&world.saw) {
+        for &slot in &self.stored {
+            leb128(world.values[slot], out);
+        }
+        for &v in &world.saw {
             leb128(v, out);
         }
     }
 
-    /// Reads a packed world; `machines`, `values` and `saw` give the counts.
-    pub fn unpack(&self, bytes: &[u8], values: usize, saw: usize) -> World {
+    /// Reads a packed world; `saw` gives the count of `saw()` values.
+    pub fn unpack(&self, bytes: &[u8], saw: usize) -> World {
         let mut at = 0;
         let mut next = || {
             let b = bytes[at];
@@ -134,18 +158,21 @@ impl Layout {
                 time,
             });
         }
-        let mut numbers = Vec::with_capacity(values + saw);
         let mut rest = &bytes[at..];
-        for _ in 0..values + saw {
+        let mut next_number = || {
             let (v, used) = read_leb128(rest);
-            numbers.push(v);
             rest = &rest[used..];
+            v
+        };
+        let mut values = self.fill.clone();
+        for &slot in &self.stored {
+            values[slot] = next_number();
         }
-        let saw = numbers.split_off(values);
+        let saw = (0..saw).map(|_| next_number()).collect();
         World {
             turn,
             machines,
-            values: numbers,
+            values,
             saw,
         }
     }
@@ -179,6 +206,8 @@ mod tests {
         let layout = Layout {
             wide_state: vec![false, true],
             has_time: vec![true, false],
+            stored: vec![0, 2],
+            fill: vec![NEVER, 7, NEVER],
         };
         for (time, value) in [(0, 0), (5, 127), (0x7fff, 128), (0x80, u32::MAX)] {
             let world = World {
@@ -199,12 +228,12 @@ mod tests {
                         time: 0,
                     },
                 ],
-                values: vec![value, 3, 0],
+                values: vec![value, 7, 3],
                 saw: vec![value],
             };
             let mut bytes = Vec::new();
             layout.pack(&world, &mut bytes);
-            assert_eq!(layout.unpack(&bytes, 3, 1), world, "{time} {value}");
+            assert_eq!(layout.unpack(&bytes, 1), world, "{time} {value}");
         }
     }
 }

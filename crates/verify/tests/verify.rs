@@ -157,8 +157,7 @@ fn the_environment_is_free_and_time_only_passes() {
     check(
         &[("M", m)],
         &[reachable("M.LATE"), never("M.NEVER")],
-        "Holds: reachable M.LATE\n  round 1\n    M: WAIT -> LATE (when timeout(2s)); due: timeout(1s), timeout(2s); \
-         then the world sets button = false\n\
+        "Holds: reachable M.LATE\n  round 1\n    M: WAIT -> LATE (when timeout(2s)); due: timeout(1s), timeout(2s)\n\
          Holds: never M.NEVER\n\
          never entered: M.NEVER\n\
          never fires: M.WAIT -> NEVER",
@@ -314,10 +313,11 @@ fn the_shortest_counterexample_of_a_missing_transition() {
         .trace
         .as_ref()
         .expect("a counterexample");
-    // Start with the timer set (the door not yet reported), cook, then see the door open and stay in COOKING.
-    let expect = "  initially: timeLeft = true\n  round 1\n    \
-                  Microwave: IDLE -> COOKING (when cook); then the world sets doorOpen = true\n  \
-                  round 2\n    Microwave: COOKING stays\n";
+    // Cook with the timer set (the door not yet reported), then see the door open and stay
+    // in COOKING.
+    let expect = "  round 1\n    \
+                  Microwave: IDLE -> COOKING (when cook); reads timeLeft = true\n  \
+                  round 2\n    Microwave: COOKING stays; reads doorOpen = true\n";
     assert_eq!(render(trace), expect);
 }
 
@@ -369,7 +369,10 @@ fn an_unbounded_counter_is_incomplete_not_a_hang() {
     let report = verify(
         &load_dir(&dir),
         &[never("Count.n < 0"), reachable("Count.n == 50")],
-        Options { max_states: 1000 },
+        Options {
+            max_states: 1000,
+            ..Options::default()
+        },
     )
     .expect("verifies");
     assert!(!report.stats.complete);

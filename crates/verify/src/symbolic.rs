@@ -1,0 +1,924 @@
+//! The symbolic engine: the same model as the explicit search, its sets of states as binary
+//! decision diagrams (`biodivine-lib-bdd`), for behaviours of many free inputs and small
+//! machines, where the states are too many to store one by one but their sets are small as
+//! diagrams.
+//!
+//! - **Its steps are the explicit search's ringlets.** Each machine's ringlet is run by
+//!   `ringlet.rs` itself on an *open* world (its own control known, every stored slot and
+//!   every other machine's mode chosen where first read), once per leaf of its choices: a leaf
+//!   is a cube of what was read and the constants it wrote. The image of a set under a leaf is
+//!   that set and the cube, the written fields forgotten and set; no relation over primed
+//!   variables is built, and no second meaning of a ringlet is written.
+//! - **Fields** are the packed state's: whose turn, each machine's state, mode, just-entered,
+//!   started-this-round and time bits, every stored slot and `saw()` value as the index of its
+//!   value among those it can hold. Those values are found first by the same ringlets, to a
+//!   fixpoint; a slot whose values keep growing (a counter) makes the engine decline.
+//! - **The first ringlet** (where a free type may still be never posted) is taken by the
+//!   explicit stepper: the search starts from its successors.
+//! - **Breadth first by layers**, so the first layer that meets what a property looks for
+//!   gives the shortest counterexample; it is rebuilt backwards through the layers and then
+//!   replayed forwards by the explicit stepper, so it reads exactly as the explicit search's.
+//! - It declines (and `auto` explores explicitly) where a free type is stored (a property
+//!   names it), where a slot's values are unbounded, or where a property is not a safety one.
+
+use crate::model::Model;
+use crate::outcome::Stop;
+use crate::property::{Property, Term};
+use crate::reduce::Storage;
+use crate::ringlet::{
+    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, Stepper, UNKNOWN,
+};
+use crate::values::{ValueId, NEVER};
+use crate::world::{Control, Status, World};
+use biodivine_lib_bdd::{
+    Bdd, BddPartialValuation, BddValuation, BddVariable, BddVariableSet, BddVariableSetBuilder,
+};
+use proclaim_behaviour::PropertyKind;
+
+/// At most this many values a slot may hold for the engine to encode it.
+const MAX_VALUES: usize = 256;
+
+/// At most this many leaves one ringlet from one control may have (the product of the values
+/// of what it reads, cut short where a label is decided early).
+const MAX_LEAVES: usize = 4096;
+
+fn too_many_leaves(model: &Model, k: usize) -> Declined {
+    Declined(format!(
+        "a ringlet of {} reads more than {MAX_LEAVES} combinations of values",
+        model.machines[k].name
+    ))
+}
+
+/// Why the symbolic engine does not take a behaviour.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Declined(pub String);
+
+/// A world's component as decision-diagram variables: its value's index, in binary.
+#[derive(Clone, Debug)]
+struct Field {
+    bits: Vec<BddVariable>,
+}
+
+impl Field {
+    fn set(&self, index: usize, cube: &mut BddPartialValuation) {
+        for (b, var) in self.bits.iter().enumerate() {
+            cube.set_value(*var, index >> b & 1 == 1);
+        }
+    }
+
+    fn get(&self, valuation: &BddValuation) -> usize {
+        self.bits
+            .iter()
+            .enumerate()
+            .map(|(b, var)| usize::from(valuation.value(*var)) << b)
+            .sum()
+    }
+}
+
+/// A machine's control as fields.
+#[derive(Clone, Debug)]
+struct ControlFields {
+    state: Field,
+    status: Field,
+    just_entered: Field,
+    fresh: Field,
+    time: Field,
+}
+
+/// Every component of a world as fields, and the values each stored one can hold.
+struct Encoding {
+    vars: BddVariableSet,
+    turn: Field,
+    machines: Vec<ControlFields>,
+    /// Per slot: its field when stored.
+    slots: Vec<Option<Field>>,
+    saw: Vec<Field>,
+    /// Per slot (stored ones): the values it can hold, in the order of their indices.
+    domains: Vec<Vec<ValueId>>,
+    saw_domains: Vec<Vec<ValueId>>,
+}
+
+fn bits_for(count: usize) -> usize {
+    (usize::BITS - count.saturating_sub(1).leading_zeros()) as usize
+}
+
+fn status_index(s: Status) -> usize {
+    match s {
+        Status::Running => 0,
+        Status::Suspended => 1,
+        Status::Dormant => 2,
+    }
+}
+
+const STATUSES: [Status; 3] = [Status::Running, Status::Suspended, Status::Dormant];
+
+/// The turn field's value for [`crate::ringlet::FIRST_TURN`]: after every machine's and "past
+/// the last".
+fn turn_index(model: &Model, turn: u8) -> usize {
+    if turn == crate::ringlet::FIRST_TURN {
+        model.machines.len() + 1
+    } else {
+        usize::from(turn)
+    }
+}
+
+impl Encoding {
+    fn new(model: &Model, domains: Vec<Vec<ValueId>>, saw_domains: Vec<Vec<ValueId>>) -> Self {
+        let mut builder = BddVariableSetBuilder::new();
+        let mut count = 0usize;
+        let mut field = |builder: &mut BddVariableSetBuilder, values: usize| {
+            let bits = (0..bits_for(values))
+                .map(|_| {
+                    count += 1;
+                    builder.make_variable(&format!("v{count}"))
+                })
+                .collect();
+            Field { bits }
+        };
+        let turn = field(&mut builder, model.machines.len() + 2);
+        let machines = model
+            .machines
+            .iter()
+            .map(|m| {
+                let tests = m
+                    .states
+                    .iter()
+                    .map(|s| s.time_tests.len())
+                    .max()
+                    .unwrap_or(0);
+                ControlFields {
+                    state: field(&mut builder, m.states.len()),
+                    status: field(&mut builder, 3),
+                    just_entered: field(&mut builder, 2),
+                    fresh: field(&mut builder, 2),
+                    time: field(&mut builder, 1 << tests),
+                }
+            })
+            .collect();
+        let slots = domains
+            .iter()
+            .enumerate()
+            .map(|(slot, d)| {
+                (model.storage[slot] == Storage::Stored).then(|| field(&mut builder, d.len()))
+            })
+            .collect();
+        let saw = saw_domains
+            .iter()
+            .map(|d| field(&mut builder, d.len()))
+            .collect();
+        Encoding {
+            vars: builder.build(),
+            turn,
+            machines,
+            slots,
+            saw,
+            domains,
+            saw_domains,
+        }
+    }
+
+    fn index_of(domain: &[ValueId], v: ValueId) -> usize {
+        domain.iter().position(|&d| d == v).unwrap_or(0)
+    }
+
+    fn set_control(&self, m: usize, c: &Control, cube: &mut BddPartialValuation) {
+        let f = &self.machines[m];
+        f.state.set(usize::from(c.state), cube);
+        f.status.set(status_index(c.status), cube);
+        f.just_entered.set(usize::from(c.just_entered), cube);
+        f.fresh.set(usize::from(c.fresh), cube);
+        f.time.set(usize::from(c.time), cube);
+    }
+
+    /// The cube of one whole world.
+    fn world(&self, model: &Model, w: &World) -> BddPartialValuation {
+        let mut cube = BddPartialValuation::empty();
+        self.turn.set(turn_index(model, w.turn), &mut cube);
+        for (m, c) in w.machines.iter().enumerate() {
+            self.set_control(m, c, &mut cube);
+        }
+        for (slot, field) in self.slots.iter().enumerate() {
+            if let Some(field) = field {
+                field.set(
+                    Self::index_of(&self.domains[slot], w.values[slot]),
+                    &mut cube,
+                );
+            }
+        }
+        for (j, field) in self.saw.iter().enumerate() {
+            field.set(Self::index_of(&self.saw_domains[j], w.saw[j]), &mut cube);
+        }
+        cube
+    }
+
+    /// Whether every stored value of `w` has an index (a world the encoding can hold).
+    fn holds(&self, w: &World) -> bool {
+        self.slots
+            .iter()
+            .enumerate()
+            .all(|(slot, f)| f.is_none() || self.domains[slot].contains(&w.values[slot]))
+            && w.saw
+                .iter()
+                .enumerate()
+                .all(|(j, v)| self.saw_domains[j].contains(v))
+    }
+
+    fn mk(&self, cube: &BddPartialValuation) -> Bdd {
+        self.vars.mk_conjunctive_clause(cube)
+    }
+
+    fn full_valuation(&self, cube: &BddPartialValuation) -> BddValuation {
+        let mut v = BddValuation::all_false(self.vars.num_vars());
+        for var in self.vars.variables() {
+            if let Some(b) = cube.get_value(var) {
+                v.set_value(var, b);
+            }
+        }
+        v
+    }
+}
+
+/// One leaf of machine `k`'s ringlet, as the engine applies it.
+struct Step {
+    machine: usize,
+    /// The cube it needs: the machine's control and what it read.
+    needs: Bdd,
+    /// The fields it writes, and their values.
+    writes: BddPartialValuation,
+    written: Vec<BddVariable>,
+    fired: Option<usize>,
+}
+
+/// What the engine found.
+pub struct SymbolicOutcome {
+    /// Per property: the path to what it looks for (initial world's index and the steps).
+    pub targets: Vec<Option<(usize, Vec<(World, Choice)>)>>,
+    pub stopped: Stop,
+    pub states: f64,
+    pub steps: usize,
+    pub bytes: usize,
+    /// Per machine, per state: ever current; per machine, per transition: ever fired (only
+    /// meaningful once every state was reached).
+    pub entered: Vec<Vec<bool>>,
+    pub fired: Vec<Vec<bool>>,
+}
+
+/// Checks `properties` of `model` symbolically, or says why it does not.
+pub fn check(
+    model: &Model,
+    properties: &[Property],
+    max_memory: usize,
+) -> Result<SymbolicOutcome, Declined> {
+    if let Some((slot, _)) = model.stored_free_slots().next() {
+        return Err(Declined(format!(
+            "a property names the free type `{}`",
+            model.slots[slot].name
+        )));
+    }
+    if let Some(p) = properties.iter().find(|p| {
+        !matches!(
+            p.source.kind,
+            PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
+        )
+    }) {
+        return Err(Declined(format!(
+            "`{}` is not a safety property",
+            p.source.name
+        )));
+    }
+    let stepper = Stepper::new(model);
+    let initial: Vec<World> = initial_worlds(model).collect();
+    let mut first_steps: Vec<Vec<(World, Choice)>> = Vec::new();
+    let mut successors = Vec::new();
+    for w in &initial {
+        successors.clear();
+        stepper.successors(w, false, &mut successors);
+        first_steps.push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
+    }
+    let (domains, saw_domains) = value_domains(model, &stepper, &initial, &first_steps)?;
+    let enc = Encoding::new(model, domains, saw_domains);
+    let steps = steps_of(model, &stepper, &enc)?;
+    let guards = Guards::new(model, &enc);
+    let targets: Vec<Bdd> = properties
+        .iter()
+        .map(|p| target_set(model, &enc, p))
+        .collect::<Result<_, _>>()?;
+
+    let mut outcome = SymbolicOutcome {
+        targets: vec![None; properties.len()],
+        stopped: Stop::Explored,
+        states: 0.0,
+        steps: 0,
+        bytes: 0,
+        entered: model
+            .machines
+            .iter()
+            .map(|m| vec![false; m.states.len()])
+            .collect(),
+        fired: model
+            .machines
+            .iter()
+            .map(|m| vec![false; m.machine.transitions.len()])
+            .collect(),
+    };
+    // Layer 0 and 1 are the explicit stepper's.
+    for (i, w) in initial.iter().enumerate() {
+        for (p, property) in properties.iter().enumerate() {
+            if outcome.targets[p].is_none() && property.is_target(model, w) {
+                outcome.targets[p] = Some((i, Vec::new()));
+            }
+        }
+    }
+    let mut reached = enc.vars.mk_false();
+    for w in &initial {
+        reached = reached.or(&enc.mk(&enc.world(model, w)));
+    }
+    let mut layer = enc.vars.mk_false();
+    for steps in &first_steps {
+        for (w, _) in steps {
+            layer = layer.or(&enc.mk(&enc.world(model, w)));
+        }
+    }
+    layer = layer.and_not(&reached);
+    let mut layers = vec![layer.clone()];
+    reached = reached.or(&layer);
+    let decidable = !properties.is_empty();
+    loop {
+        for (p, target) in targets.iter().enumerate() {
+            if outcome.targets[p].is_none() && !layer.and(target).is_false() {
+                outcome.targets[p] = Some(rebuild(
+                    model,
+                    &stepper,
+                    &enc,
+                    &steps,
+                    &guards,
+                    &layers,
+                    target,
+                    &initial,
+                    &first_steps,
+                ));
+            }
+        }
+        if decidable && outcome.targets.iter().all(Option::is_some) {
+            outcome.stopped = Stop::Decided;
+            break;
+        }
+        let next = image(&enc, &steps, &guards, &layer).and_not(&reached);
+        if next.is_false() {
+            break;
+        }
+        reached = reached.or(&next);
+        layers.push(next.clone());
+        layer = next;
+        let nodes: usize = layers.iter().map(Bdd::size).sum::<usize>() + reached.size();
+        outcome.bytes = nodes * 12;
+        if outcome.bytes > max_memory {
+            outcome.stopped = Stop::MemoryBudget;
+            break;
+        }
+    }
+    outcome.states = reached.cardinality();
+    outcome.steps = layers.len();
+    for (k, m) in model.machines.iter().enumerate() {
+        for s in 0..m.states.len() {
+            let mut cube = BddPartialValuation::empty();
+            enc.machines[k].state.set(s, &mut cube);
+            let here = reached.and(&enc.mk(&cube)).and_not(&guards.dormant[k]);
+            outcome.entered[k][s] = !here.is_false();
+        }
+    }
+    let ringing = ringing_sets(&guards, &reached);
+    for step in &steps {
+        let Some(t) = step.fired else { continue };
+        let k = step.machine;
+        let enabled = ringing[k]
+            .iter()
+            .any(|from| !from.and(&step.needs).is_false());
+        if enabled {
+            let state = first_state(&enc, k, &step.needs);
+            let index = model.machines[k].states[state].transitions[t].index;
+            outcome.fired[k][index] = true;
+        }
+    }
+    // The first ringlets fire too.
+    for w in &initial {
+        successors.clear();
+        stepper.successors(w, false, &mut successors);
+        for s in &successors {
+            if let Some(t) = s.fired {
+                let index = model.machines[s.machine].states[s.from].transitions[t].index;
+                outcome.fired[s.machine][index] = true;
+            }
+        }
+    }
+    Ok(outcome)
+}
+
+/// Per machine, the states of `set` in which it rings, as its ringlet sees them: without a
+/// new round, and with one (the fresh bits cleared).
+fn ringing_sets(guards: &Guards, set: &Bdd) -> Vec<[Bdd; 2]> {
+    (0..guards.next.len())
+        .map(|k| {
+            let direct = set.and(&guards.next[k]);
+            let here = set.and(&guards.next_wrapped[k]);
+            let wrapped = if here.is_false() {
+                here
+            } else {
+                here.exists(&guards.fresh_vars).and(&guards.none_fresh)
+            };
+            [direct, wrapped]
+        })
+        .collect()
+}
+
+/// The state of machine `k` a step's cube needs.
+fn first_state(enc: &Encoding, k: usize, needs: &Bdd) -> usize {
+    needs
+        .sat_witness()
+        .map_or(0, |v| enc.machines[k].state.get(&v))
+}
+
+/// The values every stored slot and `saw()` can hold: those of the initial worlds and of the
+/// first ringlets, then whatever a ringlet of any machine can write from values already known,
+/// to a fixpoint.
+fn value_domains(
+    model: &Model,
+    stepper: &Stepper<'_>,
+    initial: &[World],
+    first_steps: &[Vec<(World, Choice)>],
+) -> Result<(Vec<Vec<ValueId>>, Vec<Vec<ValueId>>), Declined> {
+    let mut domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.slots.len()];
+    let mut saw_domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.saw.len()];
+    let add = |list: &mut Vec<ValueId>, v: ValueId| {
+        if v != UNKNOWN && !list.contains(&v) {
+            list.push(v);
+        }
+    };
+    let worlds = initial
+        .iter()
+        .chain(first_steps.iter().flatten().map(|(w, _)| w));
+    for w in worlds {
+        for (slot, d) in domains.iter_mut().enumerate() {
+            if model.storage[slot] == Storage::Stored {
+                add(d, w.values[slot]);
+            }
+        }
+        for (j, d) in saw_domains.iter_mut().enumerate() {
+            add(d, w.saw[j]);
+        }
+    }
+    let mut leaves = Vec::new();
+    loop {
+        let before: usize = domains.iter().chain(&saw_domains).map(Vec::len).sum();
+        for k in 0..model.machines.len() {
+            for control in controls(model, k) {
+                leaves.clear();
+                if !stepper.open_leaves(k, control, &domains, MAX_LEAVES, &mut leaves) {
+                    return Err(too_many_leaves(model, k));
+                }
+                for leaf in &leaves {
+                    for (slot, d) in domains.iter_mut().enumerate() {
+                        if model.storage[slot] == Storage::Stored {
+                            add(d, leaf.after.values[slot]);
+                        }
+                    }
+                    for (j, (m, _)) in model.saw.iter().enumerate() {
+                        if *m == k {
+                            add(&mut saw_domains[j], leaf.after.saw[j]);
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(slot) = domains.iter().position(|d| d.len() > MAX_VALUES) {
+            return Err(Declined(format!(
+                "`{}` takes more than {MAX_VALUES} values (a counter?)",
+                model.slots[slot].name
+            )));
+        }
+        if saw_domains.iter().any(|d| d.len() > MAX_VALUES) {
+            return Err(Declined(format!(
+                "a saw() of a property takes more than {MAX_VALUES} values"
+            )));
+        }
+        let after: usize = domains.iter().chain(&saw_domains).map(Vec::len).sum();
+        if after == before {
+            break;
+        }
+    }
+    for d in &mut domains {
+        if d.is_empty() {
+            d.push(NEVER);
+        }
+    }
+    for d in &mut saw_domains {
+        if d.is_empty() {
+            d.push(NEVER);
+        }
+    }
+    Ok((domains, saw_domains))
+}
+
+/// Every control machine `k` may ring from: each state, just entered (no time due) or not
+/// (each set of due time tests that can be), running and not started this round.
+fn controls(model: &Model, k: usize) -> Vec<Control> {
+    let mut out = Vec::new();
+    for (s, state) in model.machines[k].states.iter().enumerate() {
+        let base = Control {
+            state: s as u16,
+            status: Status::Running,
+            just_entered: true,
+            fresh: false,
+            time: 0,
+        };
+        out.push(base);
+        if !state.is_final() {
+            for time in time_masks(&state.time_tests, 0) {
+                out.push(Control {
+                    just_entered: false,
+                    time,
+                    ..base
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Every leaf of every machine's ringlet, as cubes and writes.
+fn steps_of(model: &Model, stepper: &Stepper<'_>, enc: &Encoding) -> Result<Vec<Step>, Declined> {
+    let mut steps = Vec::new();
+    let mut leaves: Vec<OpenLeaf> = Vec::new();
+    for k in 0..model.machines.len() {
+        for control in controls(model, k) {
+            leaves.clear();
+            if !stepper.open_leaves(k, control, &enc.domains, MAX_LEAVES, &mut leaves) {
+                return Err(too_many_leaves(model, k));
+            }
+            for leaf in &leaves {
+                steps.push(step_of(model, enc, k, &control, leaf));
+            }
+        }
+    }
+    Ok(steps)
+}
+
+fn step_of(model: &Model, enc: &Encoding, k: usize, before: &Control, leaf: &OpenLeaf) -> Step {
+    let mut needs = BddPartialValuation::empty();
+    enc.set_control(k, before, &mut needs);
+    let mut read_values: Vec<(usize, ValueId)> = Vec::new();
+    for read in &leaf.reads {
+        match *read {
+            OpenRead::Slot(slot, v) => {
+                if let Some(f) = &enc.slots[slot] {
+                    f.set(Encoding::index_of(&enc.domains[slot], v), &mut needs);
+                }
+                read_values.push((slot, v));
+            }
+            OpenRead::Status(m, status) => {
+                enc.machines[m].status.set(status_index(status), &mut needs);
+            }
+        }
+    }
+    let mut writes = BddPartialValuation::empty();
+    enc.turn.set(k + 1, &mut writes);
+    enc.set_control(k, &leaf.after.machines[k], &mut writes);
+    for (m, w) in leaf.control_writes.iter().enumerate() {
+        if m == k || *w == ControlWrites::default() {
+            continue;
+        }
+        let f = &enc.machines[m];
+        let c = &leaf.after.machines[m];
+        if w.status {
+            f.status.set(status_index(c.status), &mut writes);
+        }
+        if w.entry {
+            f.just_entered.set(usize::from(c.just_entered), &mut writes);
+            f.fresh.set(usize::from(c.fresh), &mut writes);
+            f.time.set(usize::from(c.time), &mut writes);
+        }
+        if w.state {
+            f.state.set(usize::from(c.state), &mut writes);
+        }
+    }
+    for (slot, field) in enc.slots.iter().enumerate() {
+        let Some(field) = field else { continue };
+        let v = leaf.after.values[slot];
+        if v == UNKNOWN || read_values.contains(&(slot, v)) {
+            continue;
+        }
+        field.set(Encoding::index_of(&enc.domains[slot], v), &mut writes);
+    }
+    for (j, (m, _)) in model.saw.iter().enumerate() {
+        if *m == k {
+            enc.saw[j].set(
+                Encoding::index_of(&enc.saw_domains[j], leaf.after.saw[j]),
+                &mut writes,
+            );
+        }
+    }
+    let written = enc
+        .vars
+        .variables()
+        .into_iter()
+        .filter(|v| writes.get_value(*v).is_some())
+        .collect();
+    Step {
+        machine: k,
+        needs: enc.mk(&needs),
+        writes,
+        written,
+        fired: leaf.fired,
+    }
+}
+
+/// The schedule as sets: where machine `k` rings next without and with a new round begun.
+struct Guards {
+    next: Vec<Bdd>,
+    next_wrapped: Vec<Bdd>,
+    dormant: Vec<Bdd>,
+    fresh_vars: Vec<BddVariable>,
+    /// No machine started this round.
+    none_fresh: Bdd,
+}
+
+impl Guards {
+    fn new(model: &Model, enc: &Encoding) -> Guards {
+        let n = model.machines.len();
+        let field_is = |f: &Field, i: usize| {
+            let mut cube = BddPartialValuation::empty();
+            f.set(i, &mut cube);
+            enc.mk(&cube)
+        };
+        let mut can_ring = Vec::new();
+        let mut can_ring_wrapped = Vec::new();
+        let mut dormant = Vec::new();
+        for (k, m) in model.machines.iter().enumerate() {
+            let f = &enc.machines[k];
+            let running = field_is(&f.status, 0);
+            let mut unfinished = field_is(&f.just_entered, 1);
+            for (s, state) in m.states.iter().enumerate() {
+                if !state.is_final() {
+                    unfinished = unfinished.or(&field_is(&f.state, s));
+                }
+            }
+            let wrapped = running.and(&unfinished);
+            can_ring.push(wrapped.and(&field_is(&f.fresh, 0)));
+            can_ring_wrapped.push(wrapped);
+            dormant.push(field_is(&f.status, 2));
+        }
+        let mut next = Vec::new();
+        let mut next_wrapped = Vec::new();
+        for k in 0..n {
+            // Without a new round: from a turn t <= k, nothing rings in t..k, k can.
+            let mut direct = enc.vars.mk_false();
+            for t in 0..=k {
+                let mut none = field_is(&enc.turn, t);
+                for ring in &can_ring[t..k] {
+                    none = none.and_not(ring);
+                }
+                direct = direct.or(&none);
+            }
+            next.push(direct.and(&can_ring[k]));
+            // With one: nothing rings from the turn to the end, then (fresh cleared) nothing
+            // before k, and k can.
+            let mut to_end = enc.vars.mk_false();
+            for t in 0..=n {
+                let mut none = field_is(&enc.turn, t);
+                for ring in &can_ring[t..] {
+                    none = none.and_not(ring);
+                }
+                to_end = to_end.or(&none);
+            }
+            let mut wrapped = to_end;
+            for ring in &can_ring_wrapped[..k] {
+                wrapped = wrapped.and_not(ring);
+            }
+            next_wrapped.push(wrapped.and(&can_ring_wrapped[k]));
+        }
+        let fresh_vars: Vec<BddVariable> = enc
+            .machines
+            .iter()
+            .flat_map(|f| f.fresh.bits.clone())
+            .collect();
+        let mut none_fresh = BddPartialValuation::empty();
+        for v in &fresh_vars {
+            none_fresh.set_value(*v, false);
+        }
+        Guards {
+            next,
+            next_wrapped,
+            dormant,
+            none_fresh: enc.mk(&none_fresh),
+            fresh_vars,
+        }
+    }
+}
+
+/// Every state one ringlet leads to from `set`.
+fn image(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
+    let ringing = ringing_sets(guards, set);
+    let mut out = enc.vars.mk_false();
+    for step in steps {
+        for from in &ringing[step.machine] {
+            if from.is_false() {
+                continue;
+            }
+            let applied = from.and(&step.needs);
+            if applied.is_false() {
+                continue;
+            }
+            let after = applied.exists(&step.written).and(&enc.mk(&step.writes));
+            out = out.or(&after);
+        }
+    }
+    out
+}
+
+/// Every state from which one ringlet leads into `set`.
+fn preimage(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
+    let mut out = enc.vars.mk_false();
+    for step in steps {
+        let assignments: Vec<(BddVariable, bool)> = step
+            .written
+            .iter()
+            .filter_map(|v| Some((*v, step.writes.get_value(*v)?)))
+            .collect();
+        let after = set.restrict(&assignments);
+        if after.is_false() {
+            continue;
+        }
+        let before = after.and(&step.needs);
+        out = out.or(&before.and(&guards.next[step.machine]));
+        // From a new round: the fresh bits were cleared first, whatever they were.
+        let cleared: Vec<(BddVariable, bool)> =
+            guards.fresh_vars.iter().map(|v| (*v, false)).collect();
+        let before_round = before.restrict(&cleared);
+        out = out.or(&before_round.and(&guards.next_wrapped[step.machine]));
+    }
+    out
+}
+
+/// The shortest path to `target` through `layers`: back through the layers to the first
+/// ringlets, then forwards with the explicit stepper, one successor inside each layer's part
+/// that leads on.
+#[allow(clippy::too_many_arguments)]
+fn rebuild(
+    model: &Model,
+    stepper: &Stepper<'_>,
+    enc: &Encoding,
+    steps: &[Step],
+    guards: &Guards,
+    layers: &[Bdd],
+    target: &Bdd,
+    initial: &[World],
+    first_steps: &[Vec<(World, Choice)>],
+) -> (usize, Vec<(World, Choice)>) {
+    let last = layers.len() - 1;
+    let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
+    for j in (0..last).rev() {
+        let before = layers[j].and(&preimage(enc, steps, guards, &leads[0]));
+        leads.insert(0, before);
+    }
+    let inside = |set: &Bdd, w: &World| {
+        enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(model, w)))
+    };
+    for (i, w0) in initial.iter().enumerate() {
+        let Some((w1, choice)) = first_steps[i].iter().find(|(w, _)| inside(&leads[0], w)) else {
+            continue;
+        };
+        let mut path = vec![(w0.clone(), *choice)];
+        let mut at = w1.clone();
+        let mut successors = Vec::new();
+        for lead in &leads[1..] {
+            successors.clear();
+            stepper.successors(&at, false, &mut successors);
+            let Some(s) = successors.iter().find(|s| inside(lead, &s.world)) else {
+                break;
+            };
+            path.push((at.clone(), s.choice));
+            at = s.world.clone();
+        }
+        return (i, path);
+    }
+    (0, Vec::new())
+}
+
+/// The states a property looks for, over the fields its expression reads: every combination
+/// of their values evaluated as the explicit search evaluates it.
+fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd, Declined> {
+    let mut fields: Vec<Component> = Vec::new();
+    components(model, property.term(), &mut fields, 0);
+    fields.sort();
+    fields.dedup();
+    let sizes: Vec<usize> = fields
+        .iter()
+        .map(|c| match c {
+            Component::Slot(slot) => enc.domains[*slot].len(),
+            Component::Saw(j) => enc.saw_domains[*j].len(),
+            Component::Control(m) => model.machines[*m].states.len() * 3,
+        })
+        .collect();
+    let combinations = sizes.iter().try_fold(1usize, |n, s| n.checked_mul(*s));
+    let Some(combinations) = combinations.filter(|&n| n <= 1 << 16) else {
+        return Err(Declined(format!(
+            "`{}` reads too many values at once",
+            property.source.name
+        )));
+    };
+    let mut world = World {
+        turn: 0,
+        machines: vec![
+            Control {
+                state: 0,
+                status: Status::Dormant,
+                just_entered: false,
+                fresh: false,
+                time: 0,
+            };
+            model.machines.len()
+        ],
+        values: vec![NEVER; model.slots.len()],
+        saw: vec![NEVER; model.saw.len()],
+    };
+    let mut set = enc.vars.mk_false();
+    for mut index in 0..combinations {
+        let mut cube = BddPartialValuation::empty();
+        for (c, size) in fields.iter().zip(&sizes) {
+            let i = index % size;
+            index /= size;
+            match c {
+                Component::Slot(slot) => {
+                    world.values[*slot] = enc.domains[*slot][i];
+                    if let Some(f) = &enc.slots[*slot] {
+                        f.set(i, &mut cube);
+                    }
+                }
+                Component::Saw(j) => {
+                    world.saw[*j] = enc.saw_domains[*j][i];
+                    enc.saw[*j].set(i, &mut cube);
+                }
+                Component::Control(m) => {
+                    let (state, status) = (i / 3, STATUSES[i % 3]);
+                    world.machines[*m].state = state as u16;
+                    world.machines[*m].status = status;
+                    enc.machines[*m].state.set(state, &mut cube);
+                    enc.machines[*m].status.set(i % 3, &mut cube);
+                }
+            }
+        }
+        if property.is_target(model, &world) {
+            set = set.or(&enc.mk(&cube));
+        }
+    }
+    Ok(set)
+}
+
+/// A part of the world a property reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Component {
+    Slot(usize),
+    Saw(usize),
+    /// A machine's state and mode.
+    Control(usize),
+}
+
+fn components(model: &Model, term: &Term, out: &mut Vec<Component>, depth: usize) {
+    match term {
+        Term::Const(_) => {}
+        Term::Slot(slot) => out.push(Component::Slot(*slot)),
+        Term::Saw(j) => out.push(Component::Saw(*j)),
+        Term::Running(m) => out.push(Component::Control(*m)),
+        Term::InState { machine, .. } => out.push(Component::Control(*machine)),
+        Term::Answer { theory, .. } => {
+            for (_, name) in &model.theories[*theory].inputs {
+                match name {
+                    Some(crate::model::Name::Slot(slot)) => out.push(Component::Slot(*slot)),
+                    Some(crate::model::Name::Running(m)) => out.push(Component::Control(*m)),
+                    Some(crate::model::Name::Answer { theory, output }) if depth < 8 => {
+                        components(
+                            model,
+                            &Term::Answer {
+                                theory: *theory,
+                                output: *output,
+                            },
+                            out,
+                            depth + 1,
+                        );
+                    }
+                    _ => {}
+                }
+            }
+        }
+        Term::Not(t) | Term::Neg(t) => components(model, t, out, depth),
+        Term::And(l, r) | Term::Or(l, r) | Term::Binary(_, l, r) => {
+            components(model, l, out, depth);
+            components(model, r, out, depth);
+        }
+        Term::Function(_, args) => {
+            for a in args {
+                components(model, a, out, depth);
+            }
+        }
+    }
+}
