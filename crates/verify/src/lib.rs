@@ -28,6 +28,7 @@ pub use proclaim_runner::arith;
 pub mod domain;
 mod error;
 mod explore;
+pub mod follow;
 pub mod model;
 mod outcome;
 pub mod promela;
