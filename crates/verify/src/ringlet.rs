@@ -13,9 +13,9 @@
 //! its domain: that is what the next snapshot, of whichever machine, will see, and what a
 //! property speaking of the world now sees after this step.
 //!
-//! Control postings (`Name: On`, `suspend("Name")`) act on the other machine at once (a
-//! machine started this round rings from the next); a machine's postings to its own name act
-//! when its ringlet ends, as the runner consumes them between rings. `reload` and `reread`
+//! Control postings (`Name: On`, `suspend("Name")`) act when the posting ringlet ends, in the
+//! order posted, as the runner obeys them between ringlets: `NameIsRunning` read later in the
+//! same ringlet is still the old mode (a machine started this round rings from the next). `reload` and `reread`
 //! change nothing: files do not change while a behaviour is verified. Host functions, `say`,
 //! `print` and the sleeps have no effect on what machines read, and are skipped.
 
@@ -238,8 +238,8 @@ impl<'m> Stepper<'m> {
     }
 
     /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the free
-    /// types it read or posted (sorted), and the commands it posted to itself.
-    fn on_entry(&self, start: World, k: usize) -> (World, Vec<SlotId>, Vec<Command>) {
+    /// types it read or posted (sorted), and the commands it posted (to which machine).
+    fn on_entry(&self, start: World, k: usize) -> (World, Vec<SlotId>, Vec<(usize, Command)>) {
         let mut entered = start;
         let mut touched: Vec<SlotId> = Vec::new();
         let mut deferred = Vec::new();
@@ -268,7 +268,12 @@ impl<'m> Stepper<'m> {
     /// The rest of machine `k`'s ringlet on its snapshot `w`: what it `saw`, the first
     /// transition whose label holds (then OnExit and the move) or else Internal, then the
     /// commands it posted, obeyed as the ringlet ends. Returns the transition that fired.
-    fn rest_of_ringlet(&self, w: &mut World, k: usize, deferred: Vec<Command>) -> Option<usize> {
+    fn rest_of_ringlet(
+        &self,
+        w: &mut World,
+        k: usize,
+        deferred: Vec<(usize, Command)>,
+    ) -> Option<usize> {
         let machine = &self.model.machines[k];
         let from = usize::from(w.machines[k].state);
         let state = &machine.machine.states[from];
@@ -302,8 +307,8 @@ impl<'m> Stepper<'m> {
             }
             None => exec.run(&state.internal),
         }
-        for command in std::mem::take(&mut exec.deferred) {
-            control(self.model, exec.world, k, command);
+        for (target, command) in std::mem::take(&mut exec.deferred) {
+            control(self.model, exec.world, target, command);
         }
         w.turn = (k + 1) as u8;
         fired
@@ -427,8 +432,8 @@ struct Exec<'a> {
     snapshot: Option<Vec<ValueId>>,
     /// While OnEntry runs: the whiteboard types it reads or posts.
     touched: Option<Vec<SlotId>>,
-    /// Commands to the machine itself, applied when its ringlet ends.
-    deferred: Vec<Command>,
+    /// Commands posted (target machine, command), obeyed when the ringlet ends.
+    deferred: Vec<(usize, Command)>,
 }
 
 /// The runner's walk over an expression, on the model: names resolve to slots and answers, a
@@ -529,11 +534,7 @@ impl Exec<'_> {
                 other => other.to_string(),
             };
             if let Some(command) = Command::parse(&word) {
-                if k == self.machine {
-                    self.deferred.push(command);
-                } else {
-                    control(self.model, self.world, k, command);
-                }
+                self.deferred.push((k, command));
             }
             return;
         }
