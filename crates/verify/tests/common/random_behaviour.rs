@@ -140,6 +140,18 @@ fn machine(rng: &mut Rng, names: &Names, m: usize) -> String {
                 let _ = writeln!(entry, "        extern e{e};");
             }
         }
+        if m == 0 && s == 0 {
+            // Every global and extern assigned somewhere (to itself: no change), so that none
+            // is a whiteboard type nobody posts. Unposted, `g1` and `g1 != 1` are both false in
+            // the runner, where the model's environment has given `g1` a value after the first
+            // step and one of them holds (reported with issue 32's conformance test).
+            for g in 0..names.globals {
+                let _ = writeln!(entry, "        g{g} = g{g};");
+            }
+            for e in 0..names.externs {
+                let _ = writeln!(entry, "        e{e} = e{e};");
+            }
+        }
         entry.push_str(&activity(rng, names, m, counter));
         for (section, text) in [
             ("entry", entry),
