@@ -29,6 +29,7 @@ mod choices;
 pub mod domain;
 mod error;
 mod explore;
+pub mod follow;
 pub mod model;
 mod outcome;
 pub mod promela;

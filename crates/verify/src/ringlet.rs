@@ -19,9 +19,10 @@
 //! back what it posted to it; the choices are walked as a tree ([`Choices`]). Before the first
 //! ringlet it may still be never posted, as in the initial states of a stored one.
 //!
-//! Control postings (`Name: On`, `suspend("Name")`) act on the other machine at once (a
-//! machine started this round rings from the next); a machine's postings to its own name act
-//! when its ringlet ends, as the runner consumes them between rings. `reload` and `reread`
+//! Control postings (`Name: On`, `suspend("Name")`) act when the posting ringlet ends, in the
+//! order posted, as the runner obeys them between ringlets: `NameIsRunning` read later in the
+//! same ringlet is still the old mode (a machine started this round rings from the next).
+//! `reload` and `reread`
 //! change nothing: files do not change while a behaviour is verified. Host functions, `say`,
 //! `print` and the sleeps have no effect on what machines read, and are skipped.
 
@@ -242,11 +243,8 @@ impl<'m> Stepper<'m> {
             let ringlet = self.ringlet(&start, k, wrapped, first, &mut choices, leaf, detail);
             self.environment_moves(&ringlet, detail, out);
             leaf += 1;
-            if out.len() >= limit {
-                return false;
-            }
             if !choices.advance() {
-                return true;
+                break;
             }
         }
     }
@@ -398,13 +396,14 @@ impl<'m> Stepper<'m> {
     }
 
     /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the
-    /// stored free types it read or posted (sorted), and the commands it posted to itself.
+    /// stored free types it read or posted (sorted), and the commands it posted (to which
+    /// machine).
     fn on_entry(
         &self,
         start: World,
         k: usize,
         chosen: &mut Chosen<'_>,
-    ) -> (World, Vec<SlotId>, Vec<Command>) {
+    ) -> (World, Vec<SlotId>, Vec<(usize, Command)>) {
         let mut entered = start;
         let mut touched: Vec<SlotId> = Vec::new();
         let mut deferred = Vec::new();
@@ -440,7 +439,7 @@ impl<'m> Stepper<'m> {
         &self,
         w: &mut World,
         k: usize,
-        deferred: Vec<Command>,
+        deferred: Vec<(usize, Command)>,
         chosen: &mut Chosen<'_>,
     ) -> Option<usize> {
         let machine = &self.model.machines[k];
@@ -477,8 +476,8 @@ impl<'m> Stepper<'m> {
             }
             None => exec.run(&state.internal),
         }
-        for command in std::mem::take(&mut exec.deferred) {
-            control(self.model, exec.world, k, command);
+        for (target, command) in std::mem::take(&mut exec.deferred) {
+            exec.obey(target, command);
         }
         w.turn = (k + 1) as u8;
         fired
@@ -722,8 +721,8 @@ struct Exec<'a, 'c> {
     snapshot: Option<Vec<ValueId>>,
     /// While OnEntry runs: the whiteboard types it reads or posts.
     touched: Option<Vec<SlotId>>,
-    /// Commands to the machine itself, applied when its ringlet ends.
-    deferred: Vec<Command>,
+    /// Commands posted (target machine, command), obeyed when the ringlet ends.
+    deferred: Vec<(usize, Command)>,
     chosen: &'a mut Chosen<'c>,
 }
 
@@ -781,6 +780,20 @@ impl Exec<'_, '_> {
             Name::Slot(slot) => self.slot_value(slot),
             Name::Answer { theory, output } => Some(Value::Bool(self.answer(theory, output, 0))),
             Name::Running(m) => Some(Value::Bool(self.status_of(m) == Status::Running)),
+        }
+    }
+
+    /// A command this ringlet posted, obeyed as it ends; on an open world, what it wrote of
+    /// another machine's control is noted.
+    fn obey(&mut self, target: usize, command: Command) {
+        if target != self.machine {
+            self.status_of(target);
+        }
+        let writes = control(self.model, self.world, target, command);
+        if let Some(open) = &mut self.chosen.open {
+            if target != self.machine {
+                open.control_writes[target].add(writes);
+            }
         }
     }
 
@@ -846,15 +859,7 @@ impl Exec<'_, '_> {
                 other => other.to_string(),
             };
             if let Some(command) = Command::parse(&word) {
-                if k == self.machine {
-                    self.deferred.push(command);
-                } else {
-                    self.status_of(k);
-                    let writes = control(self.model, self.world, k, command);
-                    if let Some(open) = &mut self.chosen.open {
-                        open.control_writes[k].add(writes);
-                    }
-                }
+                self.deferred.push((k, command));
             }
             return;
         }

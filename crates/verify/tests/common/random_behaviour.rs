@@ -1,0 +1,345 @@
+//! Random behaviours for the conformance test of runner and model: from a seed, one to four
+//! machines of two to five states over free boolean inputs (which a script sets), globals,
+//! externs and a posted type with small constant values, a local counter, time tests,
+//! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
+//! labels ask; then a script for the run and when to run each round. Everything is a function
+//! of the seed, so a failure names the seed that repeats it.
+
+use std::fmt::Write;
+use std::path::Path;
+use std::time::Duration;
+
+/// xorshift64*: small, fast, and the same sequence everywhere.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Rng {
+        // Any seed but 0 works; mixing spreads neighbouring seeds apart.
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// A number in `0..n` (`n` > 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next_u64() % n as u64) as usize
+    }
+
+    /// A number in `low..=high`.
+    pub fn between(&mut self, low: usize, high: usize) -> usize {
+        low + self.below(high - low + 1)
+    }
+
+    /// True `percent` times in a hundred.
+    pub fn chance(&mut self, percent: usize) -> bool {
+        self.below(100) < percent
+    }
+
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}
+
+/// A behaviour's files, the script of one run and its rounds.
+pub struct RandomBehaviour {
+    /// (file name, text), `behaviour.toml` among them.
+    pub files: Vec<(String, String)>,
+    /// The impersonator's script (also the manifest's, so the model's domains know its values).
+    pub script: String,
+    /// Before each round, how long to let virtual time pass.
+    pub waits: Vec<Duration>,
+}
+
+impl RandomBehaviour {
+    pub fn write(&self, dir: &Path) {
+        let _ = std::fs::remove_dir_all(dir);
+        std::fs::create_dir_all(dir).expect("the folder can be made");
+        for (name, text) in &self.files {
+            std::fs::write(dir.join(name), text).expect("write");
+        }
+    }
+
+    /// Every file, then the rounds, as one text for a report.
+    pub fn show(&self) -> String {
+        let mut out = String::new();
+        for (name, text) in &self.files {
+            let _ = writeln!(out, "--- {name}\n{text}");
+        }
+        let waits: Vec<String> = self.waits.iter().map(|w| format!("{w:?}")).collect();
+        let _ = writeln!(out, "--- waits before each round: {}", waits.join(" "));
+        out
+    }
+}
+
+/// What the machines of one behaviour may speak of.
+struct Names {
+    machines: usize,
+    inputs: usize,
+    globals: usize,
+    externs: usize,
+    /// Whether the machines post the type `T0` (and read it).
+    posted: bool,
+    /// The theory's outputs (none without a theory).
+    outputs: usize,
+}
+
+pub fn generate(seed: u64) -> RandomBehaviour {
+    let mut rng = Rng::new(seed);
+    let names = Names {
+        machines: rng.between(1, 4),
+        inputs: rng.between(1, 3),
+        globals: rng.between(0, 2),
+        externs: rng.between(0, 1),
+        posted: rng.chance(40),
+        outputs: if rng.chance(30) { rng.between(1, 2) } else { 0 },
+    };
+    let mut files = Vec::new();
+    let mut manifest = String::new();
+    for m in 0..names.machines {
+        let text = machine(&mut rng, &names, m);
+        files.push((format!("M{m}.machine"), text));
+        let _ = writeln!(manifest, "[[machine]]\nfile = \"M{m}.machine\"");
+        // The first machine always runs; the others are sometimes sub-machines.
+        if m > 0 && rng.chance(40) {
+            let _ = writeln!(manifest, "start = false");
+        }
+    }
+    if names.outputs > 0 {
+        files.push(("th.dl".into(), theory(&mut rng, &names)));
+        let _ = writeln!(manifest, "[[theory]]\nfile = \"th.dl\"");
+    }
+    let (script, run_for) = script(&mut rng, &names);
+    files.push(("run.script".into(), script.clone()));
+    let _ = writeln!(manifest, "[impersonator]\nscript = \"run.script\"");
+    files.push(("behaviour.toml".into(), manifest));
+    let waits = waits(&mut rng, run_for);
+    RandomBehaviour {
+        files,
+        script,
+        waits,
+    }
+}
+
+fn machine(rng: &mut Rng, names: &Names, m: usize) -> String {
+    let states = rng.between(2, 5);
+    let counter = rng.chance(30);
+    let mut out = format!("machine M{m}\n");
+    for s in 0..states {
+        let _ = writeln!(out, "state S{s} {{");
+        let mut entry = String::new();
+        if s == 0 {
+            if counter {
+                entry.push_str("        int c;\n");
+            }
+            for e in 0..names.externs {
+                let _ = writeln!(entry, "        extern e{e};");
+            }
+        }
+        if m == 0 && s == 0 {
+            // Every global and extern assigned somewhere (to itself: no change), so that none
+            // is a whiteboard type nobody posts. Unposted, `g1` and `g1 != 1` are both false in
+            // the runner, where the model's environment has given `g1` a value after the first
+            // step and one of them holds (reported with issue 32's conformance test).
+            for g in 0..names.globals {
+                let _ = writeln!(entry, "        g{g} = g{g};");
+            }
+            for e in 0..names.externs {
+                let _ = writeln!(entry, "        e{e} = e{e};");
+            }
+        }
+        entry.push_str(&activity(rng, names, m, counter));
+        for (section, text) in [
+            ("entry", entry),
+            ("exit", activity(rng, names, m, counter)),
+            ("internal", activity(rng, names, m, counter)),
+        ] {
+            if !text.is_empty() {
+                let _ = writeln!(out, "    {section} {{\n{text}    }}");
+            }
+        }
+        // A state other than the first is sometimes final.
+        let transitions = if s > 0 && rng.chance(20) {
+            0
+        } else {
+            rng.between(1, 3)
+        };
+        for _ in 0..transitions {
+            let label = label(rng, names, counter, 2);
+            let _ = writeln!(out, "    when {label} -> S{}", rng.below(states));
+        }
+        let _ = writeln!(out, "}}");
+    }
+    out
+}
+
+/// Zero to three actions, one a line.
+fn activity(rng: &mut Rng, names: &Names, m: usize, counter: bool) -> String {
+    let mut out = String::new();
+    let count = *rng.pick(&[0, 0, 1, 1, 2, 3]);
+    for _ in 0..count {
+        let line = match rng.below(8) {
+            0 | 1 if names.globals > 0 => {
+                let g = rng.below(names.globals);
+                match rng.below(3) {
+                    0 => format!("g{g} = {};", rng.below(3)),
+                    1 => format!("g{g} = in{};", rng.below(names.inputs)),
+                    _ => format!("g{g} = (g{g} + 1) % 3;"),
+                }
+            }
+            2 if names.externs > 0 => format!("e{} = {};", rng.below(names.externs), rng.below(3)),
+            3 if names.posted => format!("T0: {}", rng.below(3)),
+            4 if counter => "c = c + 1;".to_string(),
+            5 | 6 if names.machines > 1 => control(rng, names, m),
+            7 if rng.chance(30) => control(rng, names, m),
+            _ => format!("g = {};", rng.below(2)),
+        };
+        let _ = writeln!(out, "        {line}");
+    }
+    out
+}
+
+/// A command to another machine (now and then to itself), as a call or as a posting.
+fn control(rng: &mut Rng, names: &Names, m: usize) -> String {
+    let target = if names.machines > 1 && !rng.chance(10) {
+        (m + rng.between(1, names.machines - 1)) % names.machines
+    } else {
+        m
+    };
+    if rng.chance(30) {
+        format!(
+            "M{target}: {}",
+            rng.pick(&["On", "Off", "suspend", "resume", "restart"])
+        )
+    } else {
+        let call = rng.pick(&["start", "stop", "suspend", "resume", "restart"]);
+        format!("{call}(\"M{target}\");")
+    }
+}
+
+fn label(rng: &mut Rng, names: &Names, counter: bool, depth: usize) -> String {
+    if depth > 0 && rng.chance(40) {
+        let left = label(rng, names, counter, depth - 1);
+        return match rng.below(3) {
+            0 => format!("!({left})"),
+            1 => format!("({left} && {})", label(rng, names, counter, depth - 1)),
+            _ => format!("({left} || {})", label(rng, names, counter, depth - 1)),
+        };
+    }
+    loop {
+        let atom = match rng.below(11) {
+            0 | 1 => format!("in{}", rng.below(names.inputs)),
+            2 => format!("~in{}", rng.below(names.inputs)),
+            3 if names.globals > 0 => {
+                let g = rng.below(names.globals);
+                match rng.below(3) {
+                    0 => format!("g{g}"),
+                    1 => format!("g{g} == {}", rng.below(3)),
+                    _ => format!("g{g} != 1"),
+                }
+            }
+            4 if names.externs > 0 => format!("e{} == {}", rng.below(names.externs), rng.below(3)),
+            10 if names.posted => format!("T0 == {}", rng.below(3)),
+            5 => {
+                let d = rng.pick(&["50ms", "100ms", "200ms", "500ms", "1s"]);
+                match rng.below(4) {
+                    0 => format!("after_ms({})", rng.pick(&[100, 300])),
+                    _ => format!("timeout({d})"),
+                }
+            }
+            6 if counter => format!("c >= {}", rng.between(1, 3)),
+            7 if names.outputs > 0 => format!("o{}", rng.below(names.outputs)),
+            8 if names.machines > 1 => format!("M{}IsRunning", rng.below(names.machines)),
+            9 if rng.chance(50) => "TRUE".to_string(),
+            _ => continue,
+        };
+        return atom;
+    }
+}
+
+/// A theory answering `o0`, `o1` from some of the inputs (and the posted type): each output
+/// false by default, true by a rule or two over its inputs, with now and then an exception.
+fn theory(rng: &mut Rng, names: &Names) -> String {
+    let mut inputs: Vec<String> = (0..names.inputs).map(|i| format!("in{i}")).collect();
+    if names.posted {
+        inputs.push("T0".into());
+    }
+    let mut out = String::from("name{th}.\n");
+    for i in &inputs {
+        let _ = writeln!(out, "input{{{i}}}.");
+    }
+    let literal = |rng: &mut Rng| {
+        let i = rng.pick(&inputs).clone();
+        if rng.chance(30) {
+            format!("~{i}")
+        } else {
+            i
+        }
+    };
+    for o in 0..names.outputs {
+        let _ = writeln!(out, "D{o}: => ~o{o}.");
+        for r in 0..rng.between(1, 2) {
+            let conditions = if rng.chance(40) {
+                format!("{}, {}", literal(rng), literal(rng))
+            } else {
+                literal(rng)
+            };
+            let _ = writeln!(out, "R{o}x{r}: {conditions} => o{o}.\nR{o}x{r} > D{o}.");
+            if rng.chance(30) {
+                let _ = writeln!(
+                    out,
+                    "X{o}x{r}: {} => ~o{o}.\nX{o}x{r} > R{o}x{r}.",
+                    literal(rng)
+                );
+            }
+        }
+        let _ = writeln!(out, "output{{beta o{o}, \"output {o}\"}}.");
+    }
+    out
+}
+
+/// The inputs' values at the start (some left unset: false until set) and their changes;
+/// how long the run goes on.
+fn script(rng: &mut Rng, names: &Names) -> (String, Duration) {
+    let run_ms = rng.between(500, 4000);
+    let mut out = String::new();
+    // Every input set from the start. An atom the script sets only later is not posted until
+    // then, and a machine copying it reads 0, where the model's environment has set it to true
+    // or false after the first step: the model cannot leave a free type unposted (reported
+    // with issue 32's conformance test), so the generator does not ask it to.
+    for i in 0..names.inputs {
+        let _ = writeln!(out, "in{i} = {}", rng.chance(50));
+    }
+    for _ in 0..rng.between(0, 8) {
+        let at = rng.between(1, run_ms);
+        let _ = writeln!(
+            out,
+            "at {at}ms in{} = {}",
+            rng.below(names.inputs),
+            rng.chance(50)
+        );
+    }
+    (out, Duration::from_millis(run_ms as u64))
+}
+
+/// Waits before rounds until `run_for` has passed: often none (rounds back to back), often a
+/// ring period's worth or less, sometimes long enough for every time test. The first is never
+/// zero, so that the experts have started before the first round asks them.
+fn waits(rng: &mut Rng, run_for: Duration) -> Vec<Duration> {
+    let mut waits = vec![Duration::from_millis(1)];
+    let mut total = Duration::ZERO;
+    while total < run_for && waits.len() < 60 {
+        let wait = match rng.below(10) {
+            0..=3 => Duration::ZERO,
+            4..=7 => Duration::from_millis(rng.between(1, 150) as u64),
+            _ => Duration::from_millis(rng.between(200, 1200) as u64),
+        };
+        total += wait;
+        waits.push(wait);
+    }
+    waits
+}

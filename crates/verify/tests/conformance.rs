@@ -1,0 +1,129 @@
+//! Conformance of runner and model (issue 32, item 1): random behaviours run on the virtual
+//! clock under random scripts, a round at a time, and every run's trace must be a path of the
+//! model (`proclaim_verify::follow`). A mismatch prints the behaviour's files, the script, the
+//! rounds and the round at which the model could not follow, with the seed that repeats it.
+
+mod common {
+    pub mod random_behaviour;
+}
+
+use common::random_behaviour::{generate, RandomBehaviour};
+use proclaim_behaviour::testing::RoundByRound;
+use proclaim_behaviour::{load, Folder};
+use proclaim_runner::Event;
+use proclaim_verify::follow::{follow, Followed};
+use proclaim_verify::model::Model;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+fn folder(seed: u64) -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("conformance-{}-{seed}", std::process::id()))
+}
+
+/// What the runs did, so that a corpus that stopped exercising something shows.
+#[derive(Default, Debug)]
+struct Coverage {
+    runs: usize,
+    ringlets: usize,
+    firings: usize,
+    commands: usize,
+    answers_of_theories: usize,
+    widest: usize,
+}
+
+/// Runs the behaviour of `seed` and follows its trace in the model; the events, or the whole
+/// story of a mismatch.
+fn run_one(seed: u64) -> Result<(Followed, Vec<Event>), String> {
+    let generated = generate(seed);
+    let dir = folder(seed);
+    generated.write(&dir);
+    let behaviour = load("random", Arc::new(Folder::new(&dir))).unwrap_or_else(|e| {
+        panic!(
+            "seed {seed}: a generated behaviour does not load (a generator bug): {e:#?}\n{}",
+            generated.show()
+        )
+    });
+    let model = Model::build(&behaviour, &[]);
+    let events = play(&dir, &generated).map_err(|e| format!("seed {seed}: {e}"))?;
+    let outcome = follow(&model, &events);
+    let _ = std::fs::remove_dir_all(&dir);
+    match outcome {
+        Ok(followed) => Ok((followed, events)),
+        Err(mismatch) => Err(format!(
+            "seed {seed}: the run is no path of the model\n{mismatch}\n{}",
+            generated.show()
+        )),
+    }
+}
+
+/// The run: a round after each wait, on the virtual clock.
+fn play(dir: &Path, generated: &RandomBehaviour) -> Result<Vec<Event>, String> {
+    let mut run = RoundByRound::start(dir, &generated.script).map_err(|e| e.to_string())?;
+    for wait in &generated.waits {
+        if !wait.is_zero() {
+            run.wait(*wait);
+        }
+        run.round();
+    }
+    Ok(run.events)
+}
+
+fn conform(seeds: std::ops::Range<u64>) {
+    let mut coverage = Coverage::default();
+    let mut mismatches = Vec::new();
+    for seed in seeds {
+        match run_one(seed) {
+            Ok((followed, events)) => {
+                coverage.runs += 1;
+                coverage.ringlets += followed.ringlets;
+                coverage.widest = coverage.widest.max(followed.widest);
+                for e in &events {
+                    match e {
+                        Event::Fired { .. } => coverage.firings += 1,
+                        Event::Control { .. } => coverage.commands += 1,
+                        Event::Answered {
+                            by: proclaim_runner::Answerer::Expert(who),
+                            ..
+                        } if who.as_str() != "impersonator" => coverage.answers_of_theories += 1,
+                        _ => {}
+                    }
+                }
+            }
+            Err(story) => mismatches.push(story),
+        }
+    }
+    eprintln!("{coverage:?}, {} mismatches", mismatches.len());
+    // Each mismatch's round and reasons, then the first told whole with its files.
+    for story in &mismatches {
+        let head: Vec<&str> = story
+            .lines()
+            .take_while(|l| !l.starts_with("---"))
+            .collect();
+        eprintln!("{}", head.join("\n"));
+    }
+    if let Some(first) = mismatches.first() {
+        panic!(
+            "{} runs are no path of the model; the first:\n{first}",
+            mismatches.len()
+        );
+    }
+    // A corpus that stopped firing, commanding or asking theories would pass for nothing.
+    assert!(coverage.firings > coverage.runs, "{coverage:?}");
+    assert!(
+        coverage.commands > 0 && coverage.answers_of_theories > 0,
+        "{coverage:?}"
+    );
+}
+
+#[test]
+fn random_behaviours_run_as_the_model_says() {
+    conform(0..500);
+}
+
+/// `cargo test -p proclaim-verify --release --test conformance -- --ignored`
+#[test]
+#[ignore = "ten thousand behaviours: run before a change to the runner or the model lands"]
+fn ten_thousand_random_behaviours_run_as_the_model_says() {
+    conform(0..10_000);
+}
