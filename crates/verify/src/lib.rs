@@ -151,6 +151,7 @@ pub fn verify_with_progress(
 ) -> Result<Report, VerifyError> {
     let (mut model, compiled) = prepare(behaviour, properties)?;
     model.storage = reduce::storage(&model, &compiled, options.reductions);
+    check_stored_free(&model)?;
     match options.engine {
         Engine::Explicit => Ok(explicit(&model, &compiled, options, progress)),
         Engine::Symbolic => symbolic(&model, &compiled, options)
@@ -235,12 +236,18 @@ fn check_widths(model: &Model) -> Result<(), VerifyError> {
             )));
         }
     }
+    Ok(())
+}
+
+/// The environment's moves are numbered in a `u32`: the free types every state stores (those
+/// the properties name, or all of them without the reduction) must have fewer joint values.
+pub(crate) fn check_stored_free(model: &Model) -> Result<(), VerifyError> {
     let choices = model
-        .free_slots()
+        .stored_free_slots()
         .try_fold(1u64, |n, (_, d)| n.checked_mul(d.initial.len() as u64));
     if choices.is_none_or(|n| n > u64::from(u32::MAX)) {
         return Err(VerifyError::TooLarge(
-            "the free whiteboard types have over 2^32 joint values".into(),
+            "the free whiteboard types stored in every state have over 2^32 joint values (name fewer in properties)".into(),
         ));
     }
     Ok(())

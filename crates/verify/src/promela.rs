@@ -120,6 +120,7 @@ pub fn to_promela(
     options: Options,
 ) -> Result<Promela, EmitError> {
     let (model, compiled) = prepare(behaviour, properties)?;
+    crate::check_stored_free(&model)?;
     let values_complete = explore::explore(
         &model,
         &compiled,

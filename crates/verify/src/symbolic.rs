@@ -123,7 +123,11 @@ fn turn_index(model: &Model, turn: u8) -> usize {
 }
 
 impl Encoding {
-    fn new(model: &Model, domains: Vec<Vec<ValueId>>, saw_domains: Vec<Vec<ValueId>>) -> Self {
+    /// The fields in the order of their variables: the turn, then machine by machine its
+    /// control, the slots it is the first to write and its `saw()` values, then the slots no
+    /// machine writes. A slot beside its writer keeps the diagrams of "a sensor and the
+    /// variable it mirrors" small.
+    fn new(model: &Model, domains: Domains) -> Self {
         let mut builder = BddVariableSetBuilder::new();
         let mut count = 0usize;
         let mut field = |builder: &mut BddVariableSetBuilder, values: usize| {
@@ -136,44 +140,50 @@ impl Encoding {
             Field { bits }
         };
         let turn = field(&mut builder, model.machines.len() + 2);
-        let machines = model
-            .machines
-            .iter()
-            .map(|m| {
-                let tests = m
-                    .states
-                    .iter()
-                    .map(|s| s.time_tests.len())
-                    .max()
-                    .unwrap_or(0);
-                ControlFields {
-                    state: field(&mut builder, m.states.len()),
-                    status: field(&mut builder, 3),
-                    just_entered: field(&mut builder, 2),
-                    fresh: field(&mut builder, 2),
-                    time: field(&mut builder, 1 << tests),
+        let mut machines = Vec::new();
+        let mut slots: Vec<Option<Field>> = vec![None; model.slots.len()];
+        let mut saw: Vec<Option<Field>> = vec![None; model.saw.len()];
+        for (k, m) in model.machines.iter().enumerate() {
+            let tests = m
+                .states
+                .iter()
+                .map(|s| s.time_tests.len())
+                .max()
+                .unwrap_or(0);
+            machines.push(ControlFields {
+                state: field(&mut builder, m.states.len()),
+                status: field(&mut builder, 3),
+                just_entered: field(&mut builder, 2),
+                fresh: field(&mut builder, 2),
+                time: field(&mut builder, 1 << tests),
+            });
+            for slot in 0..model.slots.len() {
+                if model.storage[slot] == Storage::Stored && domains.writer[slot] == Some(k) {
+                    slots[slot] = Some(field(&mut builder, domains.slots[slot].len()));
                 }
-            })
-            .collect();
-        let slots = domains
-            .iter()
-            .enumerate()
-            .map(|(slot, d)| {
-                (model.storage[slot] == Storage::Stored).then(|| field(&mut builder, d.len()))
-            })
-            .collect();
-        let saw = saw_domains
-            .iter()
-            .map(|d| field(&mut builder, d.len()))
-            .collect();
+            }
+            for (j, (m, _)) in model.saw.iter().enumerate() {
+                if *m == k {
+                    saw[j] = Some(field(&mut builder, domains.saw[j].len()));
+                }
+            }
+        }
+        for slot in 0..model.slots.len() {
+            if model.storage[slot] == Storage::Stored && slots[slot].is_none() {
+                slots[slot] = Some(field(&mut builder, domains.slots[slot].len()));
+            }
+        }
         Encoding {
             vars: builder.build(),
             turn,
             machines,
             slots,
-            saw,
-            domains,
-            saw_domains,
+            saw: saw
+                .into_iter()
+                .map(|f| f.unwrap_or(Field { bits: Vec::new() }))
+                .collect(),
+            domains: domains.slots,
+            saw_domains: domains.saw,
         }
     }
 
@@ -249,10 +259,13 @@ struct Step {
     fired: Option<usize>,
 }
 
+/// A path from initial world number `.0`: each step's world and the choice it took.
+pub type Path = (usize, Vec<(World, Choice)>);
+
 /// What the engine found.
 pub struct SymbolicOutcome {
-    /// Per property: the path to what it looks for (initial world's index and the steps).
-    pub targets: Vec<Option<(usize, Vec<(World, Choice)>)>>,
+    /// Per property: the path to what it looks for.
+    pub targets: Vec<Option<Path>>,
     pub stopped: Stop,
     pub states: f64,
     pub steps: usize,
@@ -295,8 +308,8 @@ pub fn check(
         stepper.successors(w, false, &mut successors);
         first_steps.push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
     }
-    let (domains, saw_domains) = value_domains(model, &stepper, &initial, &first_steps)?;
-    let enc = Encoding::new(model, domains, saw_domains);
+    let domains = value_domains(model, &stepper, &initial, &first_steps)?;
+    let enc = Encoding::new(model, domains);
     let steps = steps_of(model, &stepper, &enc)?;
     let guards = Guards::new(model, &enc);
     let targets: Vec<Bdd> = properties
@@ -446,8 +459,9 @@ fn value_domains(
     stepper: &Stepper<'_>,
     initial: &[World],
     first_steps: &[Vec<(World, Choice)>],
-) -> Result<(Vec<Vec<ValueId>>, Vec<Vec<ValueId>>), Declined> {
+) -> Result<Domains, Declined> {
     let mut domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.slots.len()];
+    let mut writer: Vec<Option<usize>> = vec![None; model.slots.len()];
     let mut saw_domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.saw.len()];
     let add = |list: &mut Vec<ValueId>, v: ValueId| {
         if v != UNKNOWN && !list.contains(&v) {
@@ -480,6 +494,9 @@ fn value_domains(
                     for (slot, d) in domains.iter_mut().enumerate() {
                         if model.storage[slot] == Storage::Stored {
                             add(d, leaf.after.values[slot]);
+                            if leaf.after.values[slot] != UNKNOWN {
+                                writer[slot].get_or_insert(k);
+                            }
                         }
                     }
                     for (j, (m, _)) in model.saw.iter().enumerate() {
@@ -516,7 +533,19 @@ fn value_domains(
             d.push(NEVER);
         }
     }
-    Ok((domains, saw_domains))
+    Ok(Domains {
+        slots: domains,
+        saw: saw_domains,
+        writer,
+    })
+}
+
+/// The values every stored slot and `saw()` can hold, and the first machine that writes each
+/// slot (where the encoding places it).
+struct Domains {
+    slots: Vec<Vec<ValueId>>,
+    saw: Vec<Vec<ValueId>>,
+    writer: Vec<Option<usize>>,
 }
 
 /// Every control machine `k` may ring from: each state, just entered (no time due) or not
@@ -773,7 +802,7 @@ fn rebuild(
     target: &Bdd,
     initial: &[World],
     first_steps: &[Vec<(World, Choice)>],
-) -> (usize, Vec<(World, Choice)>) {
+) -> Path {
     let last = layers.len() - 1;
     let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
     for j in (0..last).rev() {
