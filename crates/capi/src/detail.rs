@@ -22,8 +22,10 @@ pub(crate) fn fail(status: ProclaimStatus, why: impl Into<String>) -> ProclaimSt
 /// status's own description) becomes this thread's last error message; success leaves the
 /// message of the last failure as it was.
 pub(crate) fn reported(status: ProclaimStatus) -> ProclaimStatus {
-    let why = PENDING.with(|pending| pending.borrow_mut().take());
+    // Only a failing call gives a detail, so a success has none to clear: it touches nothing,
+    // which keeps the thread-local off every answered call's path.
     if status != ProclaimStatus::Ok {
+        let why = PENDING.with(|pending| pending.borrow_mut().take());
         set(&why.unwrap_or_else(|| status.description().to_string()));
     }
     status

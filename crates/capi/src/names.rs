@@ -65,13 +65,14 @@ pub(crate) unsafe fn input_of(
     let atom = theory
         .atom(text)
         .ok_or_else(|| unknown_atom(theory, text))?;
-    let declared: Vec<&str> = theory.input_atoms().map(|a| theory.atom_name(a)).collect();
-    if !declared.is_empty() && !declared.contains(&text) {
+    let mut declared = theory.input_atoms().peekable();
+    if declared.peek().is_some() && !declared.any(|a| a == atom) {
+        let inputs: Vec<&str> = theory.input_atoms().map(|a| theory.atom_name(a)).collect();
         return Err(fail(
             ProclaimStatus::NotAnInput,
             format!(
                 "`{text}` is not an input: the theory concludes it; its inputs are {}",
-                declared.join(", ")
+                inputs.join(", ")
             ),
         ));
     }
