@@ -1,8 +1,8 @@
 //! A behaviour driven from Python: its folder loaded and started with Python callables as host
 //! functions and as experts answering labels (checked against what the machines call and ask,
-//! `checks.rs`), stepped round by round (or run for a while) on the virtual clock, which a step
-//! with nothing else to do moves to the next thing due (`clock.rs`), its states, variables,
-//! trace and whiteboard read between rounds.
+//! `checks.rs`), stepped round by round (or run for a while) on the virtual clock, which
+//! `run_until` moves to the next thing due when nothing else can happen (`clock.rs`), its
+//! states, variables, trace and whiteboard read between rounds.
 //!
 //! The interpreter lock is released while the behaviour runs and taken again for each callable,
 //! so the machines never hold it and a callable may run Python freely. An exception a callable
@@ -288,7 +288,8 @@ impl Behaviour {
         }
         let (names, functions): (Vec<String>, Vec<Py<PyAny>>) = given.into_iter().unzip();
         let expert_labels: Vec<String> = labels.iter().map(|(label, _)| label.clone()).collect();
-        let machines = checked(py, &folder, &expert_labels, &names[..host_count])?;
+        let (machines, manifest_script) =
+            checked(py, &folder, &expert_labels, &names[..host_count])?;
         let list: Callables = Arc::new(Mutex::new(functions));
         let calls: Calls = Arc::default();
         for (index, name) in names.iter().enumerate().take(host_count) {
@@ -317,7 +318,6 @@ impl Behaviour {
             .detach(|| RoundByRound::start_with(&folder, stepping))
             .map_err(|error| errors::behaviour_error(py, &folder, error))?;
         let board = started.board.clone();
-        let (machines, manifest_script) = machines;
         // The script given replaces the manifest's, as in the runner.
         let script = if script.trim().is_empty() {
             manifest_script
