@@ -7,10 +7,8 @@
 
 #include "proclaim.h"
 
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -29,14 +27,16 @@ struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The status's name and the detail: which atom, which argument.
 inline void check(ProclaimStatus status, const std::string& what) {
-  if (status != PROCLAIM_STATUS_OK) throw Error(what + ": " + proclaim_status_name(status));
+  if (status != PROCLAIM_STATUS_OK) {
+    throw Error(what + ": " + proclaim_status_name(status) + ": " + proclaim_last_error_message());
+  }
 }
 
-inline Owned<ProclaimTheory> load(const std::string& name, const std::string& text) {
+inline Owned<ProclaimTheory> load_file(const std::string& path) {
   ProclaimError* raw_error = nullptr;
-  Owned<ProclaimTheory> theory(
-      proclaim_theory_load_named(name.c_str(), text.data(), text.size(), &raw_error));
+  Owned<ProclaimTheory> theory(proclaim_theory_load_file(path.c_str(), &raw_error));
   Owned<ProclaimError> error(raw_error);
   if (!theory) throw Error(error->message);
   return theory;
@@ -62,15 +62,8 @@ class Session {
 
 int main(int argc, char** argv) {
   const std::string path = argc > 1 ? argv[1] : "theories/microwave.dl";
-  std::ifstream file(path);
-  if (!file) {
-    std::cerr << "cannot read " << path << "\n";
-    return 1;
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
   try {
-    auto theory = proclaim::load(path, text.str());
+    auto theory = proclaim::load_file(path);
     proclaim::Session session(theory);
     const struct {
       const char* name;

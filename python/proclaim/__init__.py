@@ -19,12 +19,17 @@ and experts, round by round on a virtual clock (see :class:`Behaviour`)::
                                          "boiling": lambda board: board["temperature"] >= 100})
     kettle.post("temperature", 100)
     assert kettle.run_until(lambda b: b.finished, rounds=10)
+
+A step is one round at one moment; ``run_until`` moves the virtual clock to the next thing due
+(a timeout, a script's line) when a round moves no machine, and ``run(s)`` includes what falls
+due at exactly ``s`` seconds.
 """
 
 from ._native import (
     ALGORITHMS,
     Behaviour,
     BehaviourError,
+    BehaviourWarning,
     Board,
     CallbackError,
     Error,
@@ -41,6 +46,7 @@ __all__ = [
     "ALGORITHMS",
     "Behaviour",
     "BehaviourError",
+    "BehaviourWarning",
     "Board",
     "CallbackError",
     "Error",

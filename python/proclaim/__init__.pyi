@@ -84,18 +84,23 @@ class Session:
     def set(self, atom: str, value: Optional[bool]) -> None:
         """Sets an input: True, False or None (unknown).
 
-        Raises KeyError (no such atom), ValueError (not an input), TypeError (not a bool or
-        None), InputConflict (contradicts the axioms).
+        Raises KeyError (no such atom; names the theory's file and the nearest atom),
+        ValueError (not an input), TypeError (not a bool or None), InputConflict (contradicts
+        the axioms).
         """
     def get(self, atom: str) -> Optional[bool]:
         """The value an input was set to."""
-    def prove(self, literal: str, algorithm: AlgorithmName = "beta") -> bool:
-        """Whether the algorithm proves the literal (``cook``, ``~cook``).
+    def prove(self, query: str, algorithm: AlgorithmName = "beta") -> bool:
+        """Whether the algorithm proves the query, written as ``proclaim prove`` takes it: a
+        literal (``cook``, ``~cook``), a clause (``\\/{a, b}``) or a conjunction of clauses
+        (``/\\{a, \\/{b, c}}``).
 
-        Raises Undecided, KeyError (no such atom), ValueError (no such algorithm).
+        Raises Undecided, KeyError (no such atom; names the theory's file and the nearest atom),
+        ValueError (no query, or no such algorithm).
         """
     def explain(self, literal: str, algorithm: AlgorithmName = "beta", depth: int = 1) -> str:
-        """Why the algorithm proves or refutes the literal, as ``proclaim explain`` prints it."""
+        """Why the algorithm proves or refutes the literal, as ``proclaim explain`` prints it;
+        ValueError for a clause or conjunction."""
     def close(self) -> None:
         """Frees the session now; later calls raise ValueError."""
     def __enter__(self) -> Session: ...
@@ -110,7 +115,8 @@ def load(text: str, name: str = "theory") -> Theory:
     """Loads a theory from its text; raises TheoryError when it does not load."""
 
 def load_file(path: Union[str, "os.PathLike[str]"]) -> Theory:
-    """Loads a theory file; raises OSError when unreadable, TheoryError when it does not load."""
+    """Loads a theory file; raises OSError when unreadable (FileNotFoundError when missing),
+    with ``filename`` set, and TheoryError when it does not load."""
 
 WhiteboardValue = Union[bool, int, float, str, bytes, Sequence["WhiteboardValue"]]
 """What the whiteboard holds; a tuple posted reads back as a list."""
@@ -120,6 +126,10 @@ class BehaviourError(Error):
 
     problems: List[Tuple[str, int, int, str]]
     """Every problem of every file: (file, line, column, message); 0 when it has no place."""
+
+class BehaviourWarning(UserWarning):
+    """A host function a machine calls that no callable in ``hosts`` answers (the call is
+    skipped); ``warnings.simplefilter("error", proclaim.BehaviourWarning)`` makes it an error."""
 
 class CallbackError(Error):
     """A callable given to a Behaviour raised while it ran; ``__cause__`` is what it raised."""
@@ -138,7 +148,9 @@ class Board:
         """``board["x"]`` is ``board.read("x")``."""
 
 Event = Dict[str, Any]
-"""One event of the trace, as ``proclaim run --trace`` writes it: ``{"event": "entered", ...}``."""
+"""One event of the trace, as ``proclaim run --trace`` writes it: ``{"event": "entered", ...}``;
+a host call is ``{"event": "called", "function": "beep", "argument": 3, "round": 7}``, after the
+events of the round that made it."""
 
 class Behaviour:
     """A behaviour started paused before its first round; also a context manager.
@@ -146,7 +158,14 @@ class Behaviour:
     ``hosts`` maps host function names to callables taking the call's argument (int or str) or
     none; ``experts`` maps labels to callables taking the Board and answering True, False or None
     (no answer). An exception in either raises CallbackError from the call that ran the round (an
-    expert's also answers its label False). With ``virtual_clock`` time moves only when asked.
+    expert's also answers its label False). An expert for a label no machine asks or a host
+    function no machine calls raises BehaviourError naming the nearest one they do; a host
+    function a machine calls that no callable answers warns (BehaviourWarning).
+
+    With ``virtual_clock`` (the default) time is virtual: ``step`` is one round at one moment;
+    ``wait`` and ``run`` move the clock; ``run_until`` moves it to the next thing due (a
+    ``timeout``/``after`` of a machine's state, a script's timed line) whenever a round moves no
+    machine, so it reaches a state behind timeouts by itself. ``time`` says where the clock is.
     """
 
     def __init__(
@@ -158,13 +177,20 @@ class Behaviour:
         virtual_clock: bool = True,
     ) -> None: ...
     def step(self) -> List[Event]:
-        """One round: every running machine one ringlet; its events."""
+        """One round: every running machine one ringlet, at the moment the clock is at (time
+        does not move); its events."""
     def run_until(self, predicate: Callable[[Behaviour], object], rounds: int = 1000) -> bool:
-        """Steps until ``predicate(self)`` is true, at most ``rounds`` rounds; whether it was."""
+        """Rounds until ``predicate(self)`` is true, at most ``rounds``; whether it was. When a
+        round moves no machine, the virtual clock moves to the next thing due and its round
+        runs; with nothing due, time stands still."""
     def run(self, seconds: float) -> List[Event]:
-        """The machines ring freely for ``seconds`` (virtual, by default), then pause."""
+        """The machines ring freely for ``seconds`` (virtual, by default), then pause after a
+        round at exactly ``seconds`` from now (what falls due then happens); its events."""
     def wait(self, seconds: float) -> None:
-        """Time passes with no round run."""
+        """``seconds`` pass with no round run."""
+    @property
+    def time(self) -> float:
+        """Seconds the clock has moved since the start."""
     def post(self, type: str, value: WhiteboardValue) -> None:
         """Posts ``value`` as ``type`` on the whiteboard, from the module ``python``."""
     def read(self, type: str) -> Optional[WhiteboardValue]:

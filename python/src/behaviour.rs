@@ -1,6 +1,8 @@
 //! A behaviour driven from Python: its folder loaded and started with Python callables as host
-//! functions and as experts answering labels, stepped round by round (or run for a while) on
-//! the virtual clock, its states, variables, trace and whiteboard read between rounds.
+//! functions and as experts answering labels (checked against what the machines call and ask,
+//! `checks.rs`), stepped round by round (or run for a while) on the virtual clock, which
+//! `run_until` moves to the next thing due when nothing else can happen (`clock.rs`), its
+//! states, variables, trace and whiteboard read between rounds.
 //!
 //! The interpreter lock is released while the behaviour runs and taken again for each callable,
 //! so the machines never hold it and a callable may run Python freely. An exception a callable
@@ -8,6 +10,8 @@
 //! label false and is kept, and the call that ran the round raises `CallbackError` from it.
 
 use crate::board::{self, Board};
+use crate::checks;
+use crate::clock::{Calls, Clock, HostCall};
 use crate::errors;
 use crate::events;
 use proclaim_behaviour::testing::{RoundByRound, Stepping};
@@ -43,12 +47,18 @@ fn callable(py: Python<'_>, callables: &Callables, index: usize) -> Option<Py<Py
     list.get(index).map(|c| c.clone_ref(py))
 }
 
+/// A running behaviour and its clock.
+struct Driven {
+    run: RoundByRound,
+    clock: Clock,
+}
+
 /// A behaviour (a folder with a `behaviour.toml`) started paused before its first round.
 #[pyclass(module = "proclaim", frozen)]
 pub(crate) struct Behaviour {
     /// `None` once closed. Locked while a round runs, so a callable that tries to step the
     /// behaviour it is called from gets an error rather than a deadlock.
-    running: Mutex<Option<RoundByRound>>,
+    running: Mutex<Option<Driven>>,
     board: proclaim_board::Whiteboard,
     raised: Raised,
     folder: PathBuf,
@@ -62,14 +72,21 @@ fn record(raised: &Raised, what: String, error: PyErr) {
 }
 
 /// A Python callable as a host function: called with the call's argument (an int or a str), or
-/// with none.
+/// with none; each call is noted for the events.
 fn host_function(
     name: String,
     index: usize,
     callables: Callables,
     raised: Raised,
+    calls: Calls,
 ) -> impl Fn(Option<&Argument>) {
     move |argument| {
+        if let Ok(mut calls) = calls.lock() {
+            calls.push(HostCall {
+                function: name.clone(),
+                argument: argument.cloned(),
+            });
+        }
         Python::attach(|py| {
             let Some(function) = callable(py, &callables, index) else {
                 return;
@@ -155,7 +172,7 @@ impl Behaviour {
     fn drive<T: Send>(
         &self,
         py: Python<'_>,
-        body: impl FnOnce(&mut RoundByRound) -> T + Send,
+        body: impl FnOnce(&mut Driven) -> T + Send,
     ) -> PyResult<T> {
         let mut guard = match self.running.try_lock() {
             Ok(guard) => guard,
@@ -195,7 +212,7 @@ impl Behaviour {
         Ok(out)
     }
 
-    fn with<T>(&self, body: impl FnOnce(&RoundByRound) -> PyResult<T>) -> PyResult<T> {
+    fn with<T>(&self, body: impl FnOnce(&Driven) -> PyResult<T>) -> PyResult<T> {
         let guard = match self.running.try_lock() {
             Ok(guard) => guard,
             Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
@@ -225,13 +242,11 @@ impl Behaviour {
 
     /// The events from `first` on, as dicts.
     fn events_from<'py>(&self, py: Python<'py>, first: usize) -> PyResult<Bound<'py, PyList>> {
-        self.with(|running| {
-            events::to_python(py, &running.events[first.min(running.events.len())..])
-        })
+        self.with(|driven| events::to_python(py, &driven.clock.events_from(&driven.run, first)))
     }
 
     fn event_count(&self) -> PyResult<usize> {
-        self.with(|running| Ok(running.events.len()))
+        self.with(|driven| Ok(driven.clock.event_count(&driven.run)))
     }
 }
 
@@ -242,9 +257,13 @@ impl Behaviour {
     /// names (`call beep(3)`) to callables taking the call's argument; `experts` maps labels to
     /// callables taking the board and answering True, False or None; both replace any module of
     /// the behaviour answering the same label. `script` is an impersonator script
-    /// (`at 1s doorOpen = true`). With `virtual_clock` (the default) time moves only when asked
-    /// (`wait`, `run`), so a test gives the same answer every time. Raises BehaviourError with
-    /// every problem of every file when it does not load.
+    /// (`at 1s doorOpen = true`). With `virtual_clock` (the default) time is virtual: it moves
+    /// by `wait` and `run`, and in `run_until` when nothing else can happen, so a test gives
+    /// the same answer every time and a minute takes no real minute. Raises BehaviourError with
+    /// every problem of every file when it does not load, and when an expert is given for a
+    /// label no machine asks or a host function no machine calls (with the nearest name that
+    /// is); warns (BehaviourWarning) of a host function a machine calls that no callable
+    /// answers.
     #[new]
     #[pyo3(signature = (folder, hosts = None, experts = None, script = None, virtual_clock = true))]
     fn new(
@@ -268,13 +287,25 @@ impl Behaviour {
             given.push((label, function));
         }
         let (names, functions): (Vec<String>, Vec<Py<PyAny>>) = given.into_iter().unzip();
+        let expert_labels: Vec<String> = labels.iter().map(|(label, _)| label.clone()).collect();
+        let (machines, manifest_script) =
+            checked(py, &folder, &expert_labels, &names[..host_count])?;
         let list: Callables = Arc::new(Mutex::new(functions));
+        let calls: Calls = Arc::default();
         for (index, name) in names.iter().enumerate().take(host_count) {
-            let host = host_function(name.clone(), index, list.clone(), raised.clone());
+            let host = host_function(
+                name.clone(),
+                index,
+                list.clone(),
+                raised.clone(),
+                calls.clone(),
+            );
             host_functions.register(name, host);
         }
+        let script = script.unwrap_or_default();
+        let given_script = proclaim_experts::parse_script(&script).ok();
         let stepping = Stepping {
-            script: script.unwrap_or_default(),
+            script: script.clone(),
             hosts: host_functions,
             experts: if labels.is_empty() {
                 Vec::new()
@@ -287,8 +318,18 @@ impl Behaviour {
             .detach(|| RoundByRound::start_with(&folder, stepping))
             .map_err(|error| errors::behaviour_error(py, &folder, error))?;
         let board = started.board.clone();
+        // The script given replaces the manifest's, as in the runner.
+        let script = if script.trim().is_empty() {
+            manifest_script
+        } else {
+            given_script
+        };
+        let clock = Clock::new(machines, script.as_ref(), calls, virtual_clock);
         let behaviour = Behaviour {
-            running: Mutex::new(Some(started)),
+            running: Mutex::new(Some(Driven {
+                run: started,
+                clock,
+            })),
             board,
             raised,
             folder,
@@ -298,19 +339,25 @@ impl Behaviour {
         Ok(behaviour)
     }
 
-    /// Runs one round (every running machine one ringlet, in manifest order); the events it
-    /// made, as dicts (`{"event": "entered", "machine": ..., "state": ...}`). Raises
+    /// Runs one round (every running machine one ringlet, in manifest order) at the moment the
+    /// clock is at: time does not move in a step, so a test can post and step a moment at a
+    /// time (`wait`, `run` and `run_until` move it). The events the round made, as dicts
+    /// (`{"event": "entered", "machine": ..., "state": ..., "at_us": ...}`; host calls as
+    /// `{"event": "called", "function": ..., "argument": ..., "round": ...}`). Raises
     /// CallbackError when a callable raised during it.
     fn step<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let first = self.event_count()?;
-        self.drive(py, |running| {
-            running.round();
-        })?;
+        self.drive(py, |driven| driven.clock.step(&mut driven.run, false))?;
         self.events_from(py, first)
     }
 
-    /// Steps until `predicate(behaviour)` is true, at most `rounds` rounds; whether it became
-    /// true. The predicate is asked before the first round too.
+    /// Runs rounds until `predicate(behaviour)` is true, at most `rounds` of them; whether it
+    /// became true. The predicate is asked before the first round too. Time passes as it must
+    /// for the machines to get on: when a round moves no machine and something is due later (a
+    /// `timeout`/`after` of a machine's current state, a timed line of the script), the
+    /// virtual clock moves to that moment and the round it wakes runs too (one of the
+    /// `rounds`); when nothing is due, time stands still (a machine waiting on the whiteboard
+    /// waits for a post).
     #[pyo3(signature = (predicate, rounds = 1000))]
     fn run_until(
         slf: &Bound<'_, Self>,
@@ -323,29 +370,34 @@ impl Behaviour {
             if predicate.call1((slf,))?.is_truthy()? {
                 return Ok(true);
             }
-            this.drive(py, |running| {
-                running.round();
-            })?;
+            this.drive(py, |driven| driven.clock.step(&mut driven.run, true))?;
         }
         predicate.call1((slf,))?.is_truthy()
     }
 
-    /// Lets the machines run freely for `seconds` (virtual seconds: a minute's timeout takes
-    /// no real time), then pauses them; the events.
+    /// Lets the machines run freely for `seconds` (seconds of the virtual clock: a minute's
+    /// timeout takes no real time), then pauses them after a last round at exactly `seconds`
+    /// from now, so what falls due then (a `timeout(2s)` under `run(2)`) happens within the
+    /// run; the events.
     fn run<'py>(&self, py: Python<'py>, seconds: f64) -> PyResult<Bound<'py, PyList>> {
         let time = self::seconds(seconds)?;
         let first = self.event_count()?;
-        self.drive(py, |running| {
-            running.run_for(time);
-        })?;
+        self.drive(py, |driven| driven.clock.run(&mut driven.run, time))?;
         self.events_from(py, first)
     }
 
-    /// Lets `seconds` pass with no round run: a `timeout` may come due, a script's timed line
-    /// may post.
+    /// Lets `seconds` pass with no round run: a `timeout` may come due (the next round sees
+    /// it), a script's timed line may post.
     fn wait(&self, py: Python<'_>, seconds: f64) -> PyResult<()> {
         let time = self::seconds(seconds)?;
-        self.drive(py, |running| running.wait(time))
+        self.drive(py, |driven| driven.clock.wait(&mut driven.run, time))
+    }
+
+    /// How far the clock has moved since the start, in seconds (virtual seconds on the virtual
+    /// clock): what `wait`, `run` and `run_until`'s waits for what was due added up to.
+    #[getter]
+    fn time(&self) -> PyResult<f64> {
+        self.with(|driven| Ok(driven.clock.now().as_secs_f64()))
     }
 
     /// Posts `value` (bool, int, float, str, bytes or a list of them) as `type` on the
@@ -370,7 +422,7 @@ impl Behaviour {
     fn states<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         self.with(|running| {
             let dict = PyDict::new(py);
-            for (machine, state) in running.states() {
+            for (machine, state) in running.run.states() {
                 dict.set_item(machine, state)?;
             }
             Ok(dict)
@@ -382,12 +434,14 @@ impl Behaviour {
     fn state(&self, machine: &str) -> PyResult<Option<String>> {
         self.with(|running| {
             running
+                .run
                 .states()
                 .into_iter()
                 .find(|(m, _)| *m == machine)
                 .map(|(_, state)| state.map(str::to_string))
                 .ok_or_else(|| {
-                    let known: Vec<&str> = running.states().into_iter().map(|(m, _)| m).collect();
+                    let known: Vec<&str> =
+                        running.run.states().into_iter().map(|(m, _)| m).collect();
                     pyo3::exceptions::PyKeyError::new_err(format!(
                         "no machine `{machine}`; the behaviour's machines are {}",
                         known.join(", ")
@@ -404,7 +458,7 @@ impl Behaviour {
         machine: &str,
         name: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.with(|running| match running.variable(machine, name) {
+        self.with(|running| match running.run.variable(machine, name) {
             Some(value) => board::to_python(py, &value),
             None => Ok(py.None().into_bound(py)),
         })
@@ -423,24 +477,25 @@ impl Behaviour {
         self.with(|running| {
             let mut view = TraceView::new(0);
             let lines = running
+                .run
                 .events
                 .iter()
                 .filter_map(|event| view.line(event))
                 .map(|line| line.split_whitespace().collect::<Vec<_>>().join(" "));
-            Ok(running.notes().iter().cloned().chain(lines).collect())
+            Ok(running.run.notes().iter().cloned().chain(lines).collect())
         })
     }
 
     /// Whether every machine that started is in a final state (its OnEntry run) or halted.
     #[getter]
     fn finished(&self) -> PyResult<bool> {
-        self.with(|running| Ok(running.is_over()))
+        self.with(|running| Ok(running.run.is_over()))
     }
 
     /// How many rounds have run.
     #[getter]
     fn rounds(&self) -> PyResult<u64> {
-        self.with(|running| Ok(running.rounds()))
+        self.with(|running| Ok(running.run.rounds()))
     }
 
     /// Stops every module and machine now; later calls raise ValueError. Closing twice is
@@ -507,4 +562,54 @@ impl Behaviour {
     fn __repr__(&self) -> String {
         format!("<proclaim.Behaviour {}>", self.folder.display())
     }
+}
+
+/// The behaviour in `folder` loaded to check the callables given against it: BehaviourError for
+/// an expert no machine asks for or a host function no machine calls, a BehaviourWarning for a
+/// host function called that no callable answers. Its machines and script, for the clock; none
+/// when it does not load (starting it then raises the load's errors).
+fn checked(
+    py: Python<'_>,
+    folder: &std::path::Path,
+    experts: &[String],
+    hosts: &[String],
+) -> PyResult<(Vec<proclaim_fsm::Machine>, Option<proclaim_experts::Script>)> {
+    let name = folder
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or("behaviour");
+    let files = Arc::new(proclaim_behaviour::Folder::new(folder));
+    let Ok(behaviour) = proclaim_behaviour::load(name, files) else {
+        return Ok((Vec::new(), None));
+    };
+    let findings = checks::check(
+        &behaviour.machines,
+        &behaviour.shared_variables(),
+        experts,
+        hosts,
+    );
+    let category = py.get_type::<errors::BehaviourWarning>();
+    for warning in &findings.warnings {
+        let message =
+            std::ffi::CString::new(warning.message.replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, &category, &message, 1)?;
+    }
+    if !findings.errors.is_empty() {
+        let message: Vec<&str> = findings.errors.iter().map(|p| p.message.as_str()).collect();
+        let problems: Vec<(String, usize, usize, String)> = findings
+            .errors
+            .iter()
+            .map(|p| (p.file.clone(), p.line, 0, p.message.clone()))
+            .collect();
+        let error = errors::BehaviourError::new_err(format!(
+            "the behaviour in {} was given callables its machines do not use:\n{}",
+            folder.display(),
+            message.join("\n")
+        ));
+        error.value(py).setattr("problems", problems)?;
+        return Err(error);
+    }
+    let script = behaviour.script.clone();
+    let machines = behaviour.machines.into_iter().map(|m| m.machine).collect();
+    Ok((machines, script))
 }

@@ -3,7 +3,7 @@
 
 use proclaim_cdl::{InputConflict as Conflict, LoadError, Undecided as Stalled};
 use pyo3::create_exception;
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyUserWarning};
 use pyo3::prelude::*;
 
 create_exception!(
@@ -58,6 +58,24 @@ pub(crate) fn theory_error(
     }
 }
 
+/// The OSError subclass Python raises for `error` (FileNotFoundError, PermissionError, …), made
+/// as `open()` makes it: `errno`, `strerror` and `filename` set.
+pub(crate) fn os_error(py: Python<'_>, error: std::io::Error, filename: &str) -> PyErr {
+    let errno = error.raw_os_error().unwrap_or(0);
+    // The message without the " (os error N)" Rust adds.
+    let strerror = error.to_string();
+    let strerror = strerror
+        .split(" (os error")
+        .next()
+        .unwrap_or_default()
+        .to_string();
+    let kind = PyErr::from(error).get_type(py);
+    match kind.call1((errno, strerror, filename)) {
+        Ok(value) => PyErr::from_value(value),
+        Err(failed) => failed,
+    }
+}
+
 /// [`theory_error`] for the reasoner's [`LoadError`], placed at its first error in `source`.
 pub(crate) fn load_error(py: Python<'_>, file: &str, source: &str, error: &LoadError) -> PyErr {
     let place = error
@@ -98,6 +116,14 @@ create_exception!(
     "A behaviour did not load or start: `problems` lists every problem of every file as \
      `(file, line, column, message)` (line and column 1-based, 0 when the problem is the file as \
      a whole); the message renders them all."
+);
+create_exception!(
+    proclaim,
+    BehaviourWarning,
+    PyUserWarning,
+    "Something a behaviour was given does not match its machines, and the behaviour runs anyway: \
+     a host function a machine calls that no callable in `hosts` answers (the call is skipped). \
+     `warnings.simplefilter(\"error\", proclaim.BehaviourWarning)` makes it an error."
 );
 create_exception!(
     proclaim,

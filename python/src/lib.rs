@@ -5,6 +5,8 @@
 
 mod behaviour;
 mod board;
+mod checks;
+mod clock;
 mod errors;
 mod events;
 mod session;
@@ -35,6 +37,10 @@ fn _native(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("Undecided", py.get_type::<errors::Undecided>())?;
     module.add("InputConflict", py.get_type::<errors::InputConflict>())?;
     module.add("BehaviourError", py.get_type::<errors::BehaviourError>())?;
+    module.add(
+        "BehaviourWarning",
+        py.get_type::<errors::BehaviourWarning>(),
+    )?;
     module.add("CallbackError", py.get_type::<errors::CallbackError>())?;
     Ok(())
 }

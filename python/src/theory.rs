@@ -13,6 +13,8 @@ use std::sync::Arc;
 #[pyclass(module = "proclaim", frozen)]
 pub(crate) struct Theory {
     pub(crate) engine: Arc<Engine>,
+    /// The name it was loaded under (its file's path for `load_file`), which errors give.
+    file: String,
 }
 
 fn language_of(name: &str) -> Language {
@@ -27,6 +29,7 @@ fn loaded(py: Python<'_>, name: &str, source: &str) -> PyResult<Theory> {
     load_named(name, source, language_of(name))
         .map(|theory| Theory {
             engine: Arc::new(Engine::new(theory)),
+            file: name.to_string(),
         })
         .map_err(|error| errors::load_error(py, name, source, &error))
 }
@@ -39,12 +42,13 @@ pub(crate) fn load(py: Python<'_>, text: &str, name: &str) -> PyResult<Theory> {
     loaded(py, name, text)
 }
 
-/// Loads a theory file (`.dl`, or `.dfl`). Raises OSError when it cannot be read and
-/// TheoryError when it does not load (text that is not UTF-8 included, placed at the bad byte).
+/// Loads a theory file (`.dl`, or `.dfl`). Raises OSError when it cannot be read
+/// (FileNotFoundError when it is not there), with `filename` set to the path, and TheoryError
+/// when it does not load (text that is not UTF-8 included, placed at the bad byte).
 #[pyfunction]
 pub(crate) fn load_file(py: Python<'_>, path: PathBuf) -> PyResult<Theory> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(&path)?;
+    let bytes = std::fs::read(&path).map_err(|error| errors::os_error(py, error, &name))?;
     match std::str::from_utf8(&bytes) {
         Ok(source) => loaded(py, &name, source),
         Err(bad) => {
@@ -76,10 +80,10 @@ impl Theory {
             }
             limits.steps = steps;
         }
-        Ok(Session::new(proclaim_cdl::Session::with_limits(
-            self.engine.clone(),
-            limits,
-        )))
+        Ok(Session::new(
+            proclaim_cdl::Session::with_limits(self.engine.clone(), limits),
+            self.file.clone(),
+        ))
     }
 
     /// The name the theory gives itself (`name{microwave}.`), if any.

@@ -233,3 +233,62 @@ def test_the_theory_describes_itself():
     assert {"cook", "light", "doorOpen", "timeLeft"} <= set(theory.atoms)
     assert proclaim.ALGORITHMS == ("mu", "pi", "beta", "alpha", "delta")
     assert "microwave" in repr(theory)
+
+
+QUERIES = [
+    "cook",
+    "~cook",
+    "\\/{cook, light}",
+    "\\/{~cook, ~light}",
+    "\\/{cook, ~cook}",
+    "/\\{light, ~cook}",
+    "/\\{light, \\/{cook, doorOpen}}",
+    "/\\{\\/{cook, ~cook}, ~light}",
+]
+
+
+@pytest.mark.parametrize("query", QUERIES)
+def test_a_query_in_the_clis_language_gets_the_clis_answer_on_every_row(query):
+    theory = proclaim.load_file(MICROWAVE)
+    session = theory.session()
+    for row in theory.table():
+        sets = []
+        for atom, value in row["inputs"].items():
+            session.set(atom, value)
+            sets += ["--set", f"{atom}={str(value).lower()}"]
+        for algorithm in proclaim.ALGORITHMS:
+            [answer] = json.loads(cli("prove", MICROWAVE, query, "--alg", algorithm, "--json", *sets))
+            assert session.prove(query, algorithm) is answer["proved"], (algorithm, row["inputs"])
+
+
+@pytest.mark.parametrize(
+    "call, kind, message",
+    [
+        (lambda s: s.prove("coook"), KeyError, "no atom `coook` (in {file}); did you mean `cook`?"),
+        (lambda s: s.prove("\\/{cook, ligt}"), KeyError, "`ligt` (in {file}); did you mean `light`?"),
+        (lambda s: s.prove("/\\{~Cook, light}"), KeyError, "`Cook` (in {file}); did you mean `cook`?"),
+        (lambda s: s.set("dorOpen", True), KeyError, "`dorOpen` (in {file}); did you mean `doorOpen`?"),
+        (lambda s: s.explain("coook"), KeyError, "did you mean `cook`?"),
+        (lambda s: s.prove("\\/{cook,"), ValueError, "is not a query"),
+        (lambda s: s.explain("\\/{cook, light}"), ValueError, "only a literal"),
+    ],
+)
+def test_a_misspelt_atom_gets_the_nearest_and_the_file_and_a_bad_query_says_so(call, kind, message):
+    session = proclaim.load_file(MICROWAVE).session()
+    with pytest.raises(kind) as raised:
+        call(session)
+    # KeyError's str() is the repr of its message.
+    text = raised.value.args[0]
+    assert message.format(file=MICROWAVE) in text, text
+
+
+def test_a_missing_file_is_file_not_found_naming_it(tmp_path):
+    missing = tmp_path / "missing.dl"
+    with pytest.raises(FileNotFoundError) as raised:
+        proclaim.load_file(missing)
+    assert raised.value.filename == str(missing)
+    assert raised.value.errno == 2
+    assert str(missing) in str(raised.value)
+    with pytest.raises(IsADirectoryError) as raised:
+        proclaim.load_file(tmp_path)
+    assert raised.value.filename == str(tmp_path)

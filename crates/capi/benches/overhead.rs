@@ -35,8 +35,13 @@ fn c_session() -> (*mut ProclaimSession, ProclaimInput, ProclaimLiteral) {
         proclaim_theory_free(theory);
     }
     let door = CString::new("doorOpen").unwrap();
-    let status =
-        unsafe { proclaim_session_set(session, door.as_ptr(), ProclaimValue::False as c_int) };
+    let status = unsafe {
+        proclaim_session_set(
+            session,
+            door.as_ptr(),
+            ValueArgument(ProclaimValue::False as c_int),
+        )
+    };
     assert_eq!(status, ProclaimStatus::Ok);
     (session, time_left, cook)
 }
@@ -78,9 +83,12 @@ fn overhead(c: &mut Criterion) {
         b.iter(|| {
             on = !on;
             let mut answer = false;
-            let set = unsafe { proclaim_session_set(session, time_left.as_ptr(), value(on)) };
-            let asked =
-                unsafe { proclaim_session_prove(session, cook.as_ptr(), beta, &mut answer) };
+            let set = unsafe {
+                proclaim_session_set(session, time_left.as_ptr(), ValueArgument(value(on)))
+            };
+            let asked = unsafe {
+                proclaim_session_prove(session, cook.as_ptr(), AlgorithmArgument(beta), &mut answer)
+            };
             black_box((set, asked, answer))
         })
     });
@@ -88,9 +96,17 @@ fn overhead(c: &mut Criterion) {
         b.iter(|| {
             on = !on;
             let mut answer = false;
-            let set = unsafe { proclaim_session_set_input(session, time_left_handle, value(on)) };
-            let asked =
-                unsafe { proclaim_session_prove_literal(session, cook_handle, beta, &mut answer) };
+            let set = unsafe {
+                proclaim_session_set_input(session, time_left_handle, ValueArgument(value(on)))
+            };
+            let asked = unsafe {
+                proclaim_session_prove_literal(
+                    session,
+                    cook_handle,
+                    AlgorithmArgument(beta),
+                    &mut answer,
+                )
+            };
             black_box((set, asked, answer))
         })
     });

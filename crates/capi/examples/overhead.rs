@@ -68,11 +68,15 @@ impl Way for ByName {
             let mut answer = false;
             let (set, asked) = unsafe {
                 (
-                    proclaim_session_set(self.session, self.time_left.as_ptr(), value(i % 2 == 0)),
+                    proclaim_session_set(
+                        self.session,
+                        self.time_left.as_ptr(),
+                        ValueArgument(value(i % 2 == 0)),
+                    ),
                     proclaim_session_prove(
                         self.session,
                         self.cook.as_ptr(),
-                        ProclaimAlgorithm::Beta as c_int,
+                        AlgorithmArgument(ProclaimAlgorithm::Beta as c_int),
                         &mut answer,
                     ),
                 )
@@ -100,11 +104,15 @@ impl Way for ByHandle {
             let mut answer = false;
             let (set, asked) = unsafe {
                 (
-                    proclaim_session_set_input(self.session, self.time_left, value(i % 2 == 0)),
+                    proclaim_session_set_input(
+                        self.session,
+                        self.time_left,
+                        ValueArgument(value(i % 2 == 0)),
+                    ),
                     proclaim_session_prove_literal(
                         self.session,
                         self.cook,
-                        ProclaimAlgorithm::Beta as c_int,
+                        AlgorithmArgument(ProclaimAlgorithm::Beta as c_int),
                         &mut answer,
                     ),
                 )
@@ -137,7 +145,7 @@ fn c_sessions() -> (ByName, ByHandle) {
         let sessions = [proclaim_session_new(theory), proclaim_session_new(theory)];
         for session in sessions {
             let off = ProclaimValue::False as c_int;
-            let set = proclaim_session_set(session, name("doorOpen").as_ptr(), off);
+            let set = proclaim_session_set(session, name("doorOpen").as_ptr(), ValueArgument(off));
             assert_eq!(set, ProclaimStatus::Ok);
         }
         proclaim_theory_free(theory);

@@ -41,8 +41,10 @@ typedef enum ProclaimStatus {
   PROCLAIM_STATUS_BUSY = 9,
 } ProclaimStatus;
 
-// The proof algorithm of a question (cdl.md §4). Functions take it as an `int`, so that a
-// number outside this list is an error the call reports rather than undefined behaviour.
+// The proof algorithm of a question (cdl.md §4). The header declares the functions' parameter
+// as this enum, so a C++ caller cannot pass a plain number nor C a value of another enum
+// unwarned; the library receives it as an `int` ([`AlgorithmArgument`]), so a number outside
+// this list is an error the call reports rather than undefined behaviour.
 typedef enum ProclaimAlgorithm {
   // Definite provability: strict rules and facts only.
   PROCLAIM_ALGORITHM_MU = 0,
@@ -56,8 +58,9 @@ typedef enum ProclaimAlgorithm {
   PROCLAIM_ALGORITHM_DELTA = 4,
 } ProclaimAlgorithm;
 
-// An input value. Functions take it as an `int`, so that a number outside this list is an error
-// the call reports rather than undefined behaviour.
+// An input value. The header declares the functions' parameter as this enum; the library
+// receives it as an `int` ([`ValueArgument`]), so a number outside this list is an error the
+// call reports rather than undefined behaviour.
 typedef enum ProclaimValue {
   PROCLAIM_VALUE_FALSE = 0,
   PROCLAIM_VALUE_TRUE = 1,
@@ -128,6 +131,13 @@ typedef struct ProclaimTable {
 extern "C" {
 #endif // __cplusplus
 
+// Why the last call on this thread that failed (returned a status other than `OK`, or null
+// for a handle) did: "`cok` is no atom of the theory; did you mean `cook`?", "the algorithm is
+// 42, which is none of PROCLAIM_ALGORITHM_MU (0) to _DELTA (4)". Empty before any call failed.
+// Calls that succeed leave it as it was. The string belongs to the library and holds until the
+// next failing call on the same thread: copy it to keep it; do not free it.
+const char *proclaim_last_error_message(void);
+
 // Frees an error's strings: `OK`, or `DEAD_HANDLE` when it was freed already. Null is ignored
 // (`OK`), as with `free()`. The struct itself stays readable, emptied (null strings, line and
 // column 0), and is never reused.
@@ -148,7 +158,7 @@ enum ProclaimStatus proclaim_error_free(struct ProclaimError *error);
 // `text_out` is null or writable.
 enum ProclaimStatus proclaim_session_explain(struct ProclaimSession *session,
                                              const char *literal,
-                                             int algorithm,
+                                             ProclaimAlgorithm algorithm,
                                              uint32_t depth,
                                              char **text_out);
 
@@ -183,7 +193,7 @@ enum ProclaimStatus proclaim_theory_literal(const struct ProclaimTheory *theory,
 // `session` is null or from `proclaim_session_new` (freed or not).
 enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
                                                ProclaimInput input,
-                                               int value);
+                                               ProclaimValue value);
 
 // [`proclaim_session_prove`](crate::proclaim_session_prove) by handle: whether `algorithm`
 // proves `literal`, written to `*answer_out`; `OK`, `UNDECIDED` (`false` written), or
@@ -194,7 +204,7 @@ enum ProclaimStatus proclaim_session_set_input(struct ProclaimSession *session,
 // `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *session,
                                                    ProclaimLiteral literal,
-                                                   int algorithm,
+                                                   ProclaimAlgorithm algorithm,
                                                    bool *answer_out);
 
 // Whether `algorithm` (a `ProclaimAlgorithm`) proves `literal` (`cook`, `~cook`) given the
@@ -208,7 +218,7 @@ enum ProclaimStatus proclaim_session_prove_literal(struct ProclaimSession *sessi
 // `answer_out` is null or writable.
 enum ProclaimStatus proclaim_session_prove(struct ProclaimSession *session,
                                            const char *literal,
-                                           int algorithm,
+                                           ProclaimAlgorithm algorithm,
                                            bool *answer_out);
 
 // A new session over `theory`, every input unknown; null when `theory` is null or freed. The
@@ -229,7 +239,7 @@ struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory
 // `atom` is null or a NUL-terminated string.
 enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
                                          const char *atom,
-                                         int value);
+                                         ProclaimValue value);
 
 // Sets how many goals the search may expand inside one attack cycle before it gives up and
 // answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
@@ -300,6 +310,16 @@ struct ProclaimTheory *proclaim_theory_load_named(const char *name,
                                                   const char *text,
                                                   size_t len,
                                                   struct ProclaimError **error_out);
+
+// Loads the theory file at `path` (a NUL-terminated path; `.dfl` is read as DFL, anything else
+// as `.dl`): [`proclaim_theory_load_named`] of its contents, named by `path`. A file that
+// cannot be read is an error like any other: null, with `*error_out` naming the file and
+// saying why ("No such file or directory").
+//
+// # Safety
+// `path` is null or a NUL-terminated string; `error_out` is null or writable.
+struct ProclaimTheory *proclaim_theory_load_file(const char *path,
+                                                 struct ProclaimError **error_out);
 
 // Frees a theory: `OK`, or `DEAD_HANDLE` when it was freed already. Sessions made from it keep
 // working (they hold their own reference). Null is ignored (`OK`), as with `free()`.

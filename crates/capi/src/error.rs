@@ -31,6 +31,22 @@ struct Marked {
 }
 
 impl ProclaimError {
+    /// Deallocates an error that never reached C (the caller did not ask for it): with no
+    /// pointer to it outside, nothing can use it after, so no header need stay.
+    ///
+    /// # Safety
+    /// `error` is from [`ProclaimError::boxed`] and no copy of the pointer is left anywhere.
+    pub(crate) unsafe fn discard(error: *mut ProclaimError) {
+        if !error.is_null() {
+            let marked = Box::from_raw(error.cast::<Marked>());
+            for text in [marked.error.file, marked.error.message] {
+                if !text.is_null() {
+                    drop(CString::from_raw(text));
+                }
+            }
+        }
+    }
+
     /// A new error on the heap, as C receives it.
     pub(crate) fn boxed(file: &str, place: Option<(usize, usize)>, message: &str) -> *mut Self {
         let (line, column) = place.unwrap_or((0, 0));
@@ -64,8 +80,9 @@ pub unsafe extern "C" fn proclaim_error_free(error: *mut ProclaimError) -> Procl
     // Only `live` is borrowed before the swap: a second free racing this one touches nothing else.
     let live = &*std::ptr::addr_of!((*marked).live);
     if !live.swap(false, Ordering::AcqRel) {
-        return ProclaimStatus::DeadHandle;
+        return crate::detail::reported(ProclaimStatus::DeadHandle);
     }
+    crate::kept::keep(marked);
     let texts = [(*error).file, (*error).message];
     *error = ProclaimError {
         file: std::ptr::null_mut(),

@@ -1,11 +1,12 @@
 //! Why an algorithm proves or refutes a literal, as text C owns.
 
-use crate::algorithm::ProclaimAlgorithm;
+use crate::algorithm::AlgorithmArgument;
+use crate::detail::fail;
 use crate::names;
 use crate::session::{with_session, ProclaimSession};
 use crate::status::ProclaimStatus;
 use crate::string::owned;
-use std::ffi::{c_char, c_int};
+use std::ffi::c_char;
 
 /// Explains `±algorithm literal` as `proclaim explain` prints it: the supporting rule, each
 /// attacker and what became of it, following antecedents `depth` levels down. Writes a string the
@@ -20,16 +21,17 @@ use std::ffi::{c_char, c_int};
 pub unsafe extern "C" fn proclaim_session_explain(
     session: *mut ProclaimSession,
     literal: *const c_char,
-    algorithm: c_int,
+    algorithm: AlgorithmArgument,
     depth: u32,
     text_out: *mut *mut c_char,
 ) -> ProclaimStatus {
     with_session(session, |session| {
-        let Some(algorithm) = ProclaimAlgorithm::from_code(algorithm) else {
-            return ProclaimStatus::BadArgument;
+        let algorithm = match algorithm.algorithm() {
+            Ok(algorithm) => algorithm,
+            Err(status) => return status,
         };
         if text_out.is_null() {
-            return ProclaimStatus::BadArgument;
+            return fail(ProclaimStatus::BadArgument, "text_out is null");
         }
         let literal = match names::literal(session, literal) {
             Ok(literal) => literal,

@@ -3,16 +3,16 @@
 //! loop. A handle carries its theory's identity, so a session over another theory refuses it
 //! (`BAD_ARGUMENT`) instead of answering about whatever atom has that number there.
 
-use crate::algorithm::ProclaimAlgorithm;
+use crate::algorithm::AlgorithmArgument;
+use crate::detail::{fail, reported};
 use crate::guard::guarded;
 use crate::names;
 use crate::session::{with_session_of, ProclaimSession};
 use crate::status::ProclaimStatus;
-use crate::text::nul_terminated;
 use crate::theory::{live_theory, ProclaimTheory};
-use crate::value::ProclaimValue;
+use crate::value::ValueArgument;
 use proclaim_cdl::{Atom, Lit};
-use std::ffi::{c_char, c_int};
+use std::ffi::c_char;
 
 /// An input atom of one theory, from [`proclaim_theory_input`]: its theory's identity in the
 /// high 32 bits, the atom's number in the low 32. Valid for every session over that theory.
@@ -21,6 +21,10 @@ pub type ProclaimInput = u64;
 /// A literal (`cook`, `~cook`) of one theory, from [`proclaim_theory_literal`]; made as
 /// [`ProclaimInput`] is.
 pub type ProclaimLiteral = u64;
+
+/// Why a handle from another theory's lookup (or no lookup) is refused.
+const OTHER_THEORY: &str = "the handle is not one of this session's theory: look it up with \
+                            proclaim_theory_input or proclaim_theory_literal on that theory";
 
 fn handle(theory: u32, number: u32) -> u64 {
     (u64::from(theory) << 32) | u64::from(number)
@@ -46,13 +50,13 @@ pub unsafe extern "C" fn proclaim_theory_input(
     input_out: *mut ProclaimInput,
 ) -> ProclaimStatus {
     if input_out.is_null() {
-        return ProclaimStatus::BadArgument;
+        return reported(fail(ProclaimStatus::BadArgument, "input_out is null"));
     }
     let (engine, tag) = match live_theory(theory) {
         Ok(live) => live,
-        Err(status) => return status,
+        Err(status) => return reported(status),
     };
-    guarded(ProclaimStatus::Panic, || {
+    reported(guarded(ProclaimStatus::Panic, || {
         match names::input_of(engine.theory(), atom) {
             Ok(atom) => {
                 *input_out = handle(tag, atom.0);
@@ -60,7 +64,7 @@ pub unsafe extern "C" fn proclaim_theory_input(
             }
             Err(status) => status,
         }
-    })
+    }))
 }
 
 /// Looks up `literal` (`cook`, `~cook`) of `theory` and writes its handle to `*literal_out`:
@@ -77,24 +81,25 @@ pub unsafe extern "C" fn proclaim_theory_literal(
     literal_out: *mut ProclaimLiteral,
 ) -> ProclaimStatus {
     if literal_out.is_null() {
-        return ProclaimStatus::BadArgument;
+        return reported(fail(ProclaimStatus::BadArgument, "literal_out is null"));
     }
     let (engine, tag) = match live_theory(theory) {
         Ok(live) => live,
-        Err(status) => return status,
+        Err(status) => return reported(status),
     };
-    guarded(ProclaimStatus::Panic, || {
-        let Ok(text) = nul_terminated(literal) else {
-            return ProclaimStatus::BadArgument;
+    reported(guarded(ProclaimStatus::Panic, || {
+        let text = match names::text(literal, "the literal") {
+            Ok(text) => text.trim(),
+            Err(status) => return status,
         };
         match engine.theory().lit(text) {
             Some(lit) => {
                 *literal_out = handle(tag, lit.0);
                 ProclaimStatus::Ok
             }
-            None => ProclaimStatus::UnknownAtom,
+            None => names::unknown_atom(engine.theory(), text),
         }
-    })
+    }))
 }
 
 /// [`proclaim_session_set`](crate::proclaim_session_set) by handle: sets `input` to a
@@ -107,21 +112,22 @@ pub unsafe extern "C" fn proclaim_theory_literal(
 pub unsafe extern "C" fn proclaim_session_set_input(
     session: *mut ProclaimSession,
     input: ProclaimInput,
-    value: c_int,
+    value: ValueArgument,
 ) -> ProclaimStatus {
     with_session_of(session, |session, tag| {
-        let Some(value) = ProclaimValue::from_code(value) else {
-            return ProclaimStatus::BadArgument;
+        let value = match value.value() {
+            Ok(value) => value,
+            Err(status) => return status,
         };
         // Only the lookup makes handles, and it checked the atom is an input; the range is
         // checked again so a forged number is an error, never an index out of bounds.
         let atom = match number_of(input, tag) {
             Some(n) if (n as usize) < session.engine().theory().atom_count() => Atom(n),
-            _ => return ProclaimStatus::BadArgument,
+            _ => return fail(ProclaimStatus::BadArgument, OTHER_THEORY),
         };
         match session.set_input(atom, value) {
             Ok(()) => ProclaimStatus::Ok,
-            Err(_conflict) => ProclaimStatus::InputConflict,
+            Err(conflict) => fail(ProclaimStatus::InputConflict, conflict.to_string()),
         }
     })
 }
@@ -137,25 +143,29 @@ pub unsafe extern "C" fn proclaim_session_set_input(
 pub unsafe extern "C" fn proclaim_session_prove_literal(
     session: *mut ProclaimSession,
     literal: ProclaimLiteral,
-    algorithm: c_int,
+    algorithm: AlgorithmArgument,
     answer_out: *mut bool,
 ) -> ProclaimStatus {
     with_session_of(session, |session, tag| {
-        let Some(algorithm) = ProclaimAlgorithm::from_code(algorithm) else {
-            return ProclaimStatus::BadArgument;
+        let algorithm = match algorithm.algorithm() {
+            Ok(algorithm) => algorithm,
+            Err(status) => return status,
         };
         if answer_out.is_null() {
-            return ProclaimStatus::BadArgument;
+            return fail(ProclaimStatus::BadArgument, "answer_out is null");
         }
         let lit = match number_of(literal, tag) {
             Some(n) if (Lit(n).atom().0 as usize) < session.engine().theory().atom_count() => {
                 Lit(n)
             }
-            _ => return ProclaimStatus::BadArgument,
+            _ => return fail(ProclaimStatus::BadArgument, OTHER_THEORY),
         };
         let (answer, status) = match session.decide(algorithm, lit) {
             Ok(answer) => (answer, ProclaimStatus::Ok),
-            Err(_undecided) => (false, ProclaimStatus::Undecided),
+            Err(undecided) => (
+                false,
+                fail(ProclaimStatus::Undecided, undecided.to_string()),
+            ),
         };
         *answer_out = answer;
         status

@@ -1,10 +1,11 @@
 //! Asking whether an algorithm proves a literal.
 
-use crate::algorithm::ProclaimAlgorithm;
+use crate::algorithm::AlgorithmArgument;
+use crate::detail::fail;
 use crate::names;
 use crate::session::{with_session, ProclaimSession};
 use crate::status::ProclaimStatus;
-use std::ffi::{c_char, c_int};
+use std::ffi::c_char;
 
 /// Whether `algorithm` (a `ProclaimAlgorithm`) proves `literal` (`cook`, `~cook`) given the
 /// inputs set so far: writes the answer to `*answer_out` and returns `OK`. When the search could
@@ -19,15 +20,16 @@ use std::ffi::{c_char, c_int};
 pub unsafe extern "C" fn proclaim_session_prove(
     session: *mut ProclaimSession,
     literal: *const c_char,
-    algorithm: c_int,
+    algorithm: AlgorithmArgument,
     answer_out: *mut bool,
 ) -> ProclaimStatus {
     with_session(session, |session| {
-        let Some(algorithm) = ProclaimAlgorithm::from_code(algorithm) else {
-            return ProclaimStatus::BadArgument;
+        let algorithm = match algorithm.algorithm() {
+            Ok(algorithm) => algorithm,
+            Err(status) => return status,
         };
         if answer_out.is_null() {
-            return ProclaimStatus::BadArgument;
+            return fail(ProclaimStatus::BadArgument, "answer_out is null");
         }
         let literal = match names::literal(session, literal) {
             Ok(literal) => literal,
@@ -35,7 +37,10 @@ pub unsafe extern "C" fn proclaim_session_prove(
         };
         let (answer, status) = match session.decide(algorithm, literal) {
             Ok(answer) => (answer, ProclaimStatus::Ok),
-            Err(_undecided) => (false, ProclaimStatus::Undecided),
+            Err(undecided) => (
+                false,
+                fail(ProclaimStatus::Undecided, undecided.to_string()),
+            ),
         };
         *answer_out = answer;
         status

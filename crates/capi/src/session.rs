@@ -1,14 +1,15 @@
 //! A proving session behind an opaque handle: input values and cached answers, behind a small
 //! header that outlives `proclaim_session_free` so that a freed session is detected, not used.
 
+use crate::detail::{fail, reported};
 use crate::guard::guarded;
 use crate::names;
 use crate::status::ProclaimStatus;
 use crate::theory::{live_theory, ProclaimTheory};
-use crate::value::ProclaimValue;
+use crate::value::ValueArgument;
 use proclaim_cdl::{SearchLimits, Session};
 use std::cell::UnsafeCell;
-use std::ffi::{c_char, c_int};
+use std::ffi::c_char;
 use std::sync::atomic::{AtomicU8, Ordering};
 
 /// No call is running; the session may be taken.
@@ -57,20 +58,20 @@ pub(crate) unsafe fn with_session_of(
     body: impl FnOnce(&mut Session, u32) -> ProclaimStatus,
 ) -> ProclaimStatus {
     let Some(handle) = session.as_ref() else {
-        return ProclaimStatus::BadArgument;
+        return reported(fail(ProclaimStatus::BadArgument, "the session is null"));
     };
     if let Err(state) =
         handle
             .state
             .compare_exchange(IDLE, BUSY, Ordering::Acquire, Ordering::Relaxed)
     {
-        return refusal(state);
+        return reported(refusal(state));
     }
     // SAFETY: this call moved the state from IDLE to BUSY, so nothing else touches the session
     // until the store below; IDLE means it was not freed.
     let Some(inner) = (*handle.session.get()).as_deref_mut() else {
         handle.state.store(DEAD, Ordering::Release);
-        return ProclaimStatus::DeadHandle;
+        return reported(ProclaimStatus::DeadHandle);
     };
     let tag = handle.tag;
     let status = guarded(ProclaimStatus::Panic, || body(inner, tag));
@@ -80,7 +81,7 @@ pub(crate) unsafe fn with_session_of(
         IDLE
     };
     handle.state.store(after, Ordering::Release);
-    status
+    reported(status)
 }
 
 /// What a call on a session in `state` (not `IDLE`) answers.
@@ -101,8 +102,12 @@ fn refusal(state: u8) -> ProclaimStatus {
 pub unsafe extern "C" fn proclaim_session_new(
     theory: *const ProclaimTheory,
 ) -> *mut ProclaimSession {
-    let Ok((engine, tag)) = live_theory(theory) else {
-        return std::ptr::null_mut();
+    let (engine, tag) = match live_theory(theory) {
+        Ok(live) => live,
+        Err(status) => {
+            reported(status);
+            return std::ptr::null_mut();
+        }
     };
     guarded(std::ptr::null_mut(), || {
         Box::into_raw(Box::new(ProclaimSession {
@@ -126,11 +131,12 @@ pub unsafe extern "C" fn proclaim_session_new(
 pub unsafe extern "C" fn proclaim_session_set(
     session: *mut ProclaimSession,
     atom: *const c_char,
-    value: c_int,
+    value: ValueArgument,
 ) -> ProclaimStatus {
     with_session(session, |session| {
-        let Some(value) = ProclaimValue::from_code(value) else {
-            return ProclaimStatus::BadArgument;
+        let value = match value.value() {
+            Ok(value) => value,
+            Err(status) => return status,
         };
         let atom = match names::input(session, atom) {
             Ok(atom) => atom,
@@ -138,7 +144,7 @@ pub unsafe extern "C" fn proclaim_session_set(
         };
         match session.set_input(atom, value) {
             Ok(()) => ProclaimStatus::Ok,
-            Err(_conflict) => ProclaimStatus::InputConflict,
+            Err(conflict) => fail(ProclaimStatus::InputConflict, conflict.to_string()),
         }
     })
 }
@@ -155,7 +161,10 @@ pub unsafe extern "C" fn proclaim_session_set_budget(
 ) -> ProclaimStatus {
     with_session(session, |session| {
         if steps == 0 {
-            return ProclaimStatus::BadArgument;
+            return fail(
+                ProclaimStatus::BadArgument,
+                "the budget is 0 steps; give one or more",
+            );
         }
         session.set_limits(SearchLimits {
             steps,
@@ -183,7 +192,7 @@ pub unsafe extern "C" fn proclaim_session_free(session: *mut ProclaimSession) ->
     let mut state = handle.state.load(Ordering::Acquire);
     loop {
         if state == BUSY || state == DEAD {
-            return refusal(state);
+            return reported(refusal(state));
         }
         match handle
             .state
@@ -195,6 +204,7 @@ pub unsafe extern "C" fn proclaim_session_free(session: *mut ProclaimSession) ->
     }
     // SAFETY: this free moved the state to DEAD, so no call touches the session again.
     let inner = (*handle.session.get()).take();
+    crate::kept::keep(handle);
     guarded(ProclaimStatus::Panic, || {
         drop(inner);
         ProclaimStatus::Ok

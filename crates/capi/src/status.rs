@@ -56,6 +56,24 @@ impl ProclaimStatus {
             .find(|s| *s as c_int == code)
     }
 
+    /// What the status means, for a failure whose call gave no detail of its own.
+    pub(crate) fn description(self) -> &'static str {
+        match self {
+            ProclaimStatus::Ok => "ok",
+            ProclaimStatus::Undecided => "the search ran out of its budget before deciding",
+            ProclaimStatus::UnknownAtom => "the theory has no such atom",
+            ProclaimStatus::NotAnInput => "the atom is not an input of the theory",
+            ProclaimStatus::InputConflict => "the value contradicts the theory's axioms",
+            ProclaimStatus::BadArgument => "a bad argument",
+            ProclaimStatus::Panic => {
+                "the reasoner panicked (a bug; the panic was stopped here); free the session"
+            }
+            ProclaimStatus::TooManyRows => "the truth table would have too many rows",
+            ProclaimStatus::DeadHandle => "the handle was freed already",
+            ProclaimStatus::Busy => "a call on another thread is running on this session",
+        }
+    }
+
     /// The name C programs print, NUL-terminated so it can be handed out as is.
     fn name_with_nul(self) -> &'static str {
         match self {

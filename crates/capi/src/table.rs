@@ -1,6 +1,7 @@
 //! A theory's truth table as one read-only struct of arrays C indexes directly: its declared
 //! outputs over every combination of its declared inputs, as `proclaim table` prints it.
 
+use crate::detail::{fail, reported};
 use crate::guard::guarded;
 use crate::status::ProclaimStatus;
 use crate::theory::{live_theory, ProclaimTheory};
@@ -123,19 +124,23 @@ pub unsafe extern "C" fn proclaim_theory_table(
     table_out: *mut *mut ProclaimTable,
 ) -> ProclaimStatus {
     if table_out.is_null() {
-        return ProclaimStatus::BadArgument;
+        return reported(fail(ProclaimStatus::BadArgument, "table_out is null"));
     }
     let (engine, _tag) = match live_theory(theory) {
         Ok(live) => live,
-        Err(status) => return status,
+        Err(status) => return reported(status),
     };
-    guarded(ProclaimStatus::Panic, || match truth_table(engine) {
-        Ok(table) => {
-            *table_out = Box::into_raw(build(&table)).cast::<ProclaimTable>();
-            ProclaimStatus::Ok
+    reported(guarded(ProclaimStatus::Panic, || {
+        match truth_table(engine) {
+            Ok(table) => {
+                *table_out = Box::into_raw(build(&table)).cast::<ProclaimTable>();
+                ProclaimStatus::Ok
+            }
+            Err(error @ TableError::TooManyRows(_)) => {
+                fail(ProclaimStatus::TooManyRows, error.to_string())
+            }
         }
-        Err(TableError::TooManyRows(_)) => ProclaimStatus::TooManyRows,
-    })
+    }))
 }
 
 /// Frees what a table points to: `OK`, or `DEAD_HANDLE` when it was freed already. Null is
@@ -155,8 +160,9 @@ pub unsafe extern "C" fn proclaim_table_free(table: *mut ProclaimTable) -> Procl
     // Only `live` is borrowed before the swap: a second free racing this one touches nothing else.
     let live = &*std::ptr::addr_of!((*owned).live);
     if !live.swap(false, Ordering::AcqRel) {
-        return ProclaimStatus::DeadHandle;
+        return reported(ProclaimStatus::DeadHandle);
     }
+    crate::kept::keep(owned);
     (*owned).table = emptied();
     let storage = (*owned).storage.take();
     guarded(ProclaimStatus::Panic, || {

@@ -1,8 +1,9 @@
 //! A checked, compiled theory behind an opaque handle, whose header outlives
 //! `proclaim_theory_free` so that a freed theory is detected, not used.
 
+use crate::detail::{fail, reported};
 use crate::error::ProclaimError;
-use crate::guard::guarded;
+use crate::guard::{guarded, guarded_else};
 use crate::status::ProclaimStatus;
 use crate::text::{nul_terminated, sized, BadText};
 use proclaim_cdl::{load_named, Engine, Language};
@@ -28,7 +29,9 @@ pub struct ProclaimTheory {
 pub(crate) unsafe fn live_theory(
     theory: *const ProclaimTheory,
 ) -> Result<(Arc<Engine>, u32), ProclaimStatus> {
-    let theory = theory.as_ref().ok_or(ProclaimStatus::BadArgument)?;
+    let theory = theory
+        .as_ref()
+        .ok_or_else(|| fail(ProclaimStatus::BadArgument, "the theory is null"))?;
     // Nothing panics while the lock is held, so a poisoned lock still holds a sound value.
     let engine = theory.engine.lock().unwrap_or_else(PoisonError::into_inner);
     let engine = engine.as_ref().ok_or(ProclaimStatus::DeadHandle)?;
@@ -73,18 +76,48 @@ pub unsafe extern "C" fn proclaim_theory_load_named(
     load(nul_terminated(name), text, len, error_out)
 }
 
+/// Loads the theory file at `path` (a NUL-terminated path; `.dfl` is read as DFL, anything else
+/// as `.dl`): [`proclaim_theory_load_named`] of its contents, named by `path`. A file that
+/// cannot be read is an error like any other: null, with `*error_out` naming the file and
+/// saying why ("No such file or directory").
+///
+/// # Safety
+/// `path` is null or a NUL-terminated string; `error_out` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn proclaim_theory_load_file(
+    path: *const c_char,
+    error_out: *mut *mut ProclaimError,
+) -> *mut ProclaimTheory {
+    let name = nul_terminated(path);
+    let read = name.map(|path| (path, std::fs::read(path)));
+    match read {
+        Ok((path, Ok(bytes))) => load(Ok(path), bytes.as_ptr().cast(), bytes.len(), error_out),
+        Ok((path, Err(why))) => {
+            let error = ProclaimError::boxed(path, None, &format!("{path} cannot be read: {why}"));
+            hand_out(std::ptr::null_mut(), error, error_out)
+        }
+        Err(bad) => {
+            let error = ProclaimError::boxed(UNNAMED, None, &format!("the path: {bad}"));
+            hand_out(std::ptr::null_mut(), error, error_out)
+        }
+    }
+}
+
 unsafe fn load(
     name: Result<&str, BadText>,
     text: *const c_char,
     len: usize,
     error_out: *mut *mut ProclaimError,
 ) -> *mut ProclaimTheory {
-    let outcome = guarded(
-        Err(ProclaimError::boxed(
-            name.unwrap_or(UNNAMED),
-            None,
-            "the reasoner panicked while loading the theory (a bug; the panic was stopped here)",
-        )),
+    let outcome = guarded_else(
+        || {
+            Err(ProclaimError::boxed(
+                name.unwrap_or(UNNAMED),
+                None,
+                "the reasoner panicked while loading the theory (a bug; the panic was stopped \
+                 here)",
+            ))
+        },
         || -> Result<*mut ProclaimTheory, *mut ProclaimError> {
             let name = name.map_err(|bad| {
                 ProclaimError::boxed(UNNAMED, None, &format!("the theory's name: {bad}"))
@@ -124,12 +157,29 @@ unsafe fn load(
             }
         },
     );
-    let (theory, error) = match outcome {
-        Ok(theory) => (theory, std::ptr::null_mut()),
-        Err(error) => (std::ptr::null_mut(), error),
-    };
+    match outcome {
+        Ok(theory) => hand_out(theory, std::ptr::null_mut(), error_out),
+        Err(error) => hand_out(std::ptr::null_mut(), error, error_out),
+    }
+}
+
+/// A load's outcome as C receives it: `theory`, and `error` (null on success) written to
+/// `*error_out`, or deallocated whole when the caller did not ask for it; its message is the
+/// thread's last error message too.
+///
+/// # Safety
+/// `error` is null or from [`ProclaimError::boxed`], not handed out yet; `error_out` is null or
+/// writable.
+unsafe fn hand_out(
+    theory: *mut ProclaimTheory,
+    error: *mut ProclaimError,
+    error_out: *mut *mut ProclaimError,
+) -> *mut ProclaimTheory {
+    if let Some(message) = error.as_ref().and_then(|e| e.message.as_ref()) {
+        crate::detail::set(&std::ffi::CStr::from_ptr(message).to_string_lossy());
+    }
     if error_out.is_null() {
-        crate::error::proclaim_error_free(error);
+        ProclaimError::discard(error);
     } else {
         *error_out = error;
     }
@@ -157,10 +207,13 @@ pub unsafe extern "C" fn proclaim_theory_free(theory: *mut ProclaimTheory) -> Pr
         .take();
     match engine {
         // Dropped outside the lock: the last reference frees the whole theory.
-        Some(engine) => guarded(ProclaimStatus::Panic, || {
-            drop(engine);
-            ProclaimStatus::Ok
-        }),
-        None => ProclaimStatus::DeadHandle,
+        Some(engine) => {
+            crate::kept::keep(theory);
+            guarded(ProclaimStatus::Panic, || {
+                drop(engine);
+                ProclaimStatus::Ok
+            })
+        }
+        None => reported(ProclaimStatus::DeadHandle),
     }
 }

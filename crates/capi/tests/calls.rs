@@ -45,13 +45,19 @@ unsafe fn taken(error: *mut ProclaimError) -> (String, u32, u32, String) {
 
 fn prove(session: *mut ProclaimSession, literal: &str, algorithm: c_int) -> (ProclaimStatus, bool) {
     let mut answer = false;
-    let status =
-        unsafe { proclaim_session_prove(session, c(literal).as_ptr(), algorithm, &mut answer) };
+    let status = unsafe {
+        proclaim_session_prove(
+            session,
+            c(literal).as_ptr(),
+            AlgorithmArgument(algorithm),
+            &mut answer,
+        )
+    };
     (status, answer)
 }
 
 fn set(session: *mut ProclaimSession, atom: &str, value: c_int) -> ProclaimStatus {
-    unsafe { proclaim_session_set(session, c(atom).as_ptr(), value) }
+    unsafe { proclaim_session_set(session, c(atom).as_ptr(), ValueArgument(value)) }
 }
 
 #[test]
@@ -168,28 +174,38 @@ fn wrong_arguments_are_statuses_not_crashes() {
     unsafe {
         assert!(proclaim_session_new(null()).is_null());
         assert_eq!(
-            proclaim_session_prove(null_mut(), cook.as_ptr(), beta, &mut answer),
+            proclaim_session_prove(
+                null_mut(),
+                cook.as_ptr(),
+                AlgorithmArgument(beta),
+                &mut answer
+            ),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_prove(session, null(), beta, &mut answer),
+            proclaim_session_prove(session, null(), AlgorithmArgument(beta), &mut answer),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_prove(session, cook.as_ptr(), beta, null_mut()),
+            proclaim_session_prove(session, cook.as_ptr(), AlgorithmArgument(beta), null_mut()),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_prove(session, cook.as_ptr(), 5, &mut answer),
+            proclaim_session_prove(session, cook.as_ptr(), AlgorithmArgument(5), &mut answer),
             ProclaimStatus::BadArgument
         );
         let not_utf8 = b"c\xffok\0";
         assert_eq!(
-            proclaim_session_prove(session, not_utf8.as_ptr().cast(), beta, &mut answer),
+            proclaim_session_prove(
+                session,
+                not_utf8.as_ptr().cast(),
+                AlgorithmArgument(beta),
+                &mut answer
+            ),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_set(session, null(), 1),
+            proclaim_session_set(session, null(), ValueArgument(1)),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
@@ -202,11 +218,17 @@ fn wrong_arguments_are_statuses_not_crashes() {
         );
         let mut text = null_mut();
         assert_eq!(
-            proclaim_session_explain(session, cook.as_ptr(), 9, 1, &mut text),
+            proclaim_session_explain(session, cook.as_ptr(), AlgorithmArgument(9), 1, &mut text),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_explain(session, cook.as_ptr(), beta, 1, null_mut()),
+            proclaim_session_explain(
+                session,
+                cook.as_ptr(),
+                AlgorithmArgument(beta),
+                1,
+                null_mut()
+            ),
             ProclaimStatus::BadArgument
         );
         assert!(text.is_null());
@@ -302,7 +324,7 @@ fn an_explanation_is_the_rust_one_in_a_string_the_caller_frees() {
         proclaim_session_explain(
             session,
             c("cook").as_ptr(),
-            ProclaimAlgorithm::Beta as c_int,
+            AlgorithmArgument(ProclaimAlgorithm::Beta as c_int),
             1,
             &mut text,
         )
@@ -458,8 +480,9 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
                 ("timeLeft", time, time_value),
             ] {
                 assert_eq!(set(by_name, name, value as c_int), ProclaimStatus::Ok);
-                let status =
-                    unsafe { proclaim_session_set_input(by_handle, handle, value as c_int) };
+                let status = unsafe {
+                    proclaim_session_set_input(by_handle, handle, ValueArgument(value as c_int))
+                };
                 assert_eq!(status, ProclaimStatus::Ok);
             }
             for algorithm in ALGORITHMS {
@@ -471,7 +494,7 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
                         proclaim_session_prove_literal(
                             by_handle,
                             handle,
-                            algorithm as c_int,
+                            AlgorithmArgument(algorithm as c_int),
                             &mut answer,
                         )
                     };
@@ -519,7 +542,11 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
         );
         assert_ne!(foreign, time);
         assert_eq!(
-            proclaim_session_set_input(by_handle, foreign, ProclaimValue::True as c_int),
+            proclaim_session_set_input(
+                by_handle,
+                foreign,
+                ValueArgument(ProclaimValue::True as c_int)
+            ),
             ProclaimStatus::BadArgument
         );
         let mut answer = true;
@@ -527,7 +554,7 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
             proclaim_session_prove_literal(
                 by_handle,
                 foreign,
-                ProclaimAlgorithm::Beta as c_int,
+                AlgorithmArgument(ProclaimAlgorithm::Beta as c_int),
                 &mut answer
             ),
             ProclaimStatus::BadArgument
@@ -536,34 +563,38 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
         // A forged number past the theory's atoms, with the right theory in its high bits.
         let forged = (time & !0xffff_ffff) | 0xffff;
         assert_eq!(
-            proclaim_session_set_input(by_handle, forged, ProclaimValue::True as c_int),
+            proclaim_session_set_input(
+                by_handle,
+                forged,
+                ValueArgument(ProclaimValue::True as c_int)
+            ),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
             proclaim_session_prove_literal(
                 by_handle,
                 forged,
-                ProclaimAlgorithm::Beta as c_int,
+                AlgorithmArgument(ProclaimAlgorithm::Beta as c_int),
                 &mut answer
             ),
             ProclaimStatus::BadArgument
         );
         // Bad values, algorithms and pointers, as by name.
         assert_eq!(
-            proclaim_session_set_input(by_handle, time, 3),
+            proclaim_session_set_input(by_handle, time, ValueArgument(3)),
             ProclaimStatus::BadArgument
         );
         let (_, cook) = lookup_literal("cook");
         assert_eq!(
-            proclaim_session_prove_literal(by_handle, cook, 5, &mut answer),
+            proclaim_session_prove_literal(by_handle, cook, AlgorithmArgument(5), &mut answer),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_prove_literal(by_handle, cook, 2, null_mut()),
+            proclaim_session_prove_literal(by_handle, cook, AlgorithmArgument(2), null_mut()),
             ProclaimStatus::BadArgument
         );
         assert_eq!(
-            proclaim_session_set_input(null_mut(), time, 1),
+            proclaim_session_set_input(null_mut(), time, ValueArgument(1)),
             ProclaimStatus::BadArgument
         );
         proclaim_theory_free(other);
@@ -571,4 +602,133 @@ fn handles_answer_as_names_do_and_a_handle_of_another_theory_is_refused() {
         proclaim_session_free(by_name);
         proclaim_session_free(by_handle);
     }
+}
+
+/// This thread's last error message.
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(proclaim_last_error_message()) }
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn a_failed_call_says_which_atom_or_argument_and_the_nearest_name() {
+    let theory = load(MICROWAVE).unwrap();
+    let session = unsafe { proclaim_session_new(theory) };
+    let beta = ProclaimAlgorithm::Beta as c_int;
+    let truth = ProclaimValue::True as c_int;
+    let mut input = 0;
+    let check = |status: ProclaimStatus, expected: ProclaimStatus, message: &str| {
+        assert_eq!(status, expected, "{message}");
+        assert_eq!(last_error(), message);
+    };
+    check(
+        prove(session, "cok", beta).0,
+        ProclaimStatus::UnknownAtom,
+        "`cok` is no atom of the theory; did you mean `cook`?",
+    );
+    check(
+        prove(session, "~cok", beta).0,
+        ProclaimStatus::UnknownAtom,
+        "`cok` is no atom of the theory; did you mean `~cook`?",
+    );
+    check(
+        prove(session, "kettle", beta).0,
+        ProclaimStatus::UnknownAtom,
+        "`kettle` is no atom of the theory",
+    );
+    check(
+        set(session, "doorOpn", truth),
+        ProclaimStatus::UnknownAtom,
+        "`doorOpn` is no atom of the theory; did you mean `doorOpen`?",
+    );
+    check(
+        set(session, "cook", truth),
+        ProclaimStatus::NotAnInput,
+        "`cook` is not an input: the theory concludes it; its inputs are doorOpen, timeLeft",
+    );
+    check(
+        unsafe { proclaim_theory_input(theory, c("timeleft").as_ptr(), &mut input) },
+        ProclaimStatus::UnknownAtom,
+        "`timeleft` is no atom of the theory; did you mean `timeLeft`?",
+    );
+    check(
+        prove(session, "cook", 42).0,
+        ProclaimStatus::BadArgument,
+        "the algorithm is 42, which is none of PROCLAIM_ALGORITHM_MU (0) to \
+         PROCLAIM_ALGORITHM_DELTA (4)",
+    );
+    check(
+        set(session, "doorOpen", 7),
+        ProclaimStatus::BadArgument,
+        "the value is 7, which is none of PROCLAIM_VALUE_FALSE (0), _TRUE (1), _UNKNOWN (2)",
+    );
+    check(
+        unsafe { proclaim_session_prove(session, null(), AlgorithmArgument(beta), null_mut()) },
+        ProclaimStatus::BadArgument,
+        "answer_out is null",
+    );
+    check(
+        unsafe { proclaim_session_set_budget(session, 0) },
+        ProclaimStatus::BadArgument,
+        "the budget is 0 steps; give one or more",
+    );
+    // A call that succeeds leaves the last failure's message.
+    assert_eq!(set(session, "doorOpen", truth), ProclaimStatus::Ok);
+    assert_eq!(last_error(), "the budget is 0 steps; give one or more");
+    unsafe { proclaim_session_free(session) };
+    check(
+        unsafe { proclaim_session_free(session) },
+        ProclaimStatus::DeadHandle,
+        "the handle was freed already",
+    );
+    unsafe { proclaim_theory_free(theory) };
+    assert!(unsafe { proclaim_session_new(theory) }.is_null());
+    assert_eq!(last_error(), "the handle was freed already");
+    assert!(unsafe { proclaim_session_new(null()) }.is_null());
+    assert_eq!(last_error(), "the theory is null");
+}
+
+#[test]
+fn a_theory_file_loads_by_its_path_and_a_missing_one_is_an_error_naming_it() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../theories/microwave.dl");
+    let mut error = null_mut();
+    let theory = unsafe { proclaim_theory_load_file(c(path).as_ptr(), &mut error) };
+    assert!(!theory.is_null() && error.is_null());
+    let session = unsafe { proclaim_session_new(theory) };
+    assert_eq!(
+        set(session, "timeLeft", ProclaimValue::True as c_int),
+        ProclaimStatus::Ok
+    );
+    assert_eq!(
+        prove(session, "cook", ProclaimAlgorithm::Beta as c_int),
+        (ProclaimStatus::Ok, true)
+    );
+    unsafe { proclaim_session_free(session) };
+    unsafe { proclaim_theory_free(theory) };
+
+    let missing = concat!(env!("CARGO_TARGET_TMPDIR"), "/no-such-theory.dl");
+    let theory = unsafe { proclaim_theory_load_file(c(missing).as_ptr(), &mut error) };
+    assert!(theory.is_null());
+    let (file, line, column, message) = unsafe { taken(error) };
+    assert_eq!((file.as_str(), line, column), (missing, 0, 0));
+    assert!(
+        message.starts_with(&format!("{missing} cannot be read: No such file")),
+        "{message}"
+    );
+    assert_eq!(last_error(), message);
+
+    // A file that does not load says where, under its path, as a text loaded by name does.
+    let broken = concat!(env!("CARGO_TARGET_TMPDIR"), "/broken.dl");
+    std::fs::write(broken, "input{doorOpen}.\nTimer: timeLeft => .\n").unwrap();
+    let theory = unsafe { proclaim_theory_load_file(c(broken).as_ptr(), &mut error) };
+    assert!(theory.is_null());
+    let (file, line, _, message) = unsafe { taken(error) };
+    assert_eq!((file.as_str(), line), (broken, 2));
+    assert!(
+        message.contains("broken.dl does not load (1 error)"),
+        "{message}"
+    );
+    assert!(unsafe { proclaim_theory_load_file(null(), null_mut()) }.is_null());
 }

@@ -82,24 +82,40 @@ fn session_calls(
         vec![
             (
                 "set",
-                proclaim_session_set(session, c("doorOpen").as_ptr(), TRUE),
+                proclaim_session_set(session, c("doorOpen").as_ptr(), ValueArgument(TRUE)),
             ),
             (
                 "set_input",
-                proclaim_session_set_input(session, input, TRUE),
+                proclaim_session_set_input(session, input, ValueArgument(TRUE)),
             ),
             ("set_budget", proclaim_session_set_budget(session, 100)),
             (
                 "prove",
-                proclaim_session_prove(session, cook.as_ptr(), BETA, &mut answer),
+                proclaim_session_prove(
+                    session,
+                    cook.as_ptr(),
+                    AlgorithmArgument(BETA),
+                    &mut answer,
+                ),
             ),
             (
                 "prove_literal",
-                proclaim_session_prove_literal(session, literal, BETA, &mut answer),
+                proclaim_session_prove_literal(
+                    session,
+                    literal,
+                    AlgorithmArgument(BETA),
+                    &mut answer,
+                ),
             ),
             (
                 "explain",
-                proclaim_session_explain(session, cook.as_ptr(), BETA, 1, &mut text),
+                proclaim_session_explain(
+                    session,
+                    cook.as_ptr(),
+                    AlgorithmArgument(BETA),
+                    1,
+                    &mut text,
+                ),
             ),
         ]
     }
@@ -260,7 +276,9 @@ fn a_theory_freed_while_other_threads_use_it_answers_or_is_dead_never_half() {
                             "a session opened after the theory was seen dead"
                         );
                         assert_eq!(
-                            unsafe { proclaim_session_set_input(session, input, TRUE) },
+                            unsafe {
+                                proclaim_session_set_input(session, input, ValueArgument(TRUE))
+                            },
                             status
                         );
                         assert_eq!(
@@ -310,13 +328,14 @@ fn a_session_shared_against_the_rules_says_busy_and_a_free_during_a_call_waits_i
                     for i in 0..20_000 {
                         let value = c_int::from(i % 2 == 0);
                         let mut answer = false;
-                        let set =
-                            unsafe { proclaim_session_set_input(session.get(), input, value) };
+                        let set = unsafe {
+                            proclaim_session_set_input(session.get(), input, ValueArgument(value))
+                        };
                         let asked = unsafe {
                             proclaim_session_prove_literal(
                                 session.get(),
                                 literal,
-                                BETA,
+                                AlgorithmArgument(BETA),
                                 &mut answer,
                             )
                         };
