@@ -4,7 +4,7 @@
 use crate::explore::Graph;
 use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
-use crate::ringlet::{initial_worlds, Stepper};
+use crate::ringlet::{initial_worlds, Choice, Stepper};
 use crate::values::ValueId;
 use proclaim_board::Value;
 
@@ -24,6 +24,11 @@ fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
 /// The path from an initial state to state `id`.
 pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
     let (initial, path) = graph.path(id);
+    replay(model, graph, initial, &path)
+}
+
+/// The path from initial world `initial` taking, from each state, the step of its choice.
+pub fn replay(model: &Model, graph: &Graph, initial: usize, path: &[(u32, Choice)]) -> Trace {
     let first = &initial_worlds(model)[initial];
     let initially = model
         .free_slots()
@@ -34,7 +39,7 @@ pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
     let mut round = 1;
     let mut steps = Vec::new();
     let mut successors = Vec::new();
-    for (parent, choice) in path {
+    for &(parent, choice) in path {
         let world = graph.world(parent);
         successors.clear();
         stepper.successors(&world, true, &mut successors);
