@@ -270,3 +270,39 @@ fn bad_liveness_properties_are_located_errors() {
     let e = errors(property(PropertyKind::Never, "M.A", &["M.A"]));
     assert!(e.contains("liveness"), "{e}");
 }
+
+#[test]
+fn manifests_declare_liveness_with_its_fairness() {
+    let base = "[[machine]]\nfile = \"M.machine\"\n[[property]]\nname = \"p\"\n";
+    for (property, ok) in [
+        ("eventually = \"x\"\n", true),
+        ("always_eventually = \"x\"\nfair = \"y\"\n", true),
+        ("leads_to = [\"a\", \"b\"]\nfair = \"y\"\n", true),
+        ("leads_to = [\"a\"]\n", false),
+        ("leads_to = \"a ~> b\"\n", false),
+        ("never = \"x\"\nfair = \"y\"\n", false),
+        ("eventually = \"x\"\nleads_to = [\"a\", \"b\"]\n", false),
+    ] {
+        let text = format!("{base}{property}");
+        let parsed = proclaim_behaviour::parse_manifest("behaviour.toml", &text);
+        assert_eq!(parsed.is_ok(), ok, "{property}: {parsed:?}");
+        match parsed {
+            Err(e) => assert!(e.line >= Some(3), "{property}: located at {e}"),
+            Ok(manifest) => {
+                // Written back as it was read.
+                let again = manifest.to_toml("");
+                let reread = proclaim_behaviour::parse_manifest("again", &again).expect("rereads");
+                assert_eq!(reread.properties, manifest.properties, "{again}");
+            }
+        }
+    }
+    let text = format!("{base}leads_to = [\"Pump.ON\", 'x == \"a ~> b\"']\nfair = \"y\"\n");
+    let manifest = proclaim_behaviour::parse_manifest("behaviour.toml", &text).expect("parses");
+    let p = &manifest.properties[0];
+    assert_eq!(p.expression, "Pump.ON ~> x == \"a ~> b\"");
+    assert_eq!(p.fair.as_deref(), Some("y"));
+    assert_eq!(
+        proclaim_behaviour::split_leads_to("a ~> \"~>\" ~> c"),
+        Some(((0, "a"), (5, "\"~>\" ~> c")))
+    );
+}
