@@ -204,11 +204,16 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
             p.name, p.kind, p.expression
         );
         if let Some(cycle) = &p.cycle {
+            let run = match p.kind.as_str() {
+                "leads_to" => "a run where the second never follows the first",
+                "always_eventually" => "a run where it stops coming back",
+                _ => "a run that never gets there",
+            };
             let prefix = p.trace.as_ref().map(render).unwrap_or_default();
             if prefix.is_empty() {
-                println!("  a run that never gets there, from the start, by rounds:");
+                println!("  {run}, from the start:");
             } else {
-                println!("  a run that never gets there: the way in, by rounds:");
+                println!("  {run}: the way in, by rounds:");
                 print!("{prefix}");
             }
             if cycle.steps.is_empty() {

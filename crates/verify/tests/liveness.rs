@@ -1,6 +1,11 @@
 //! Liveness end to end: `eventually`, `leads_to` and `always_eventually` on small behaviours
 //! written to a folder, each holding and failing; time passing; `fair` assumptions; the shape
-//! of a lasso and its script; and the microwave's own "cooking stops".
+//! of a lasso and its script; the microwave's own "cooking stops"; and (ignored, a
+//! measurement) what the liveness check adds to an exploration.
+
+mod common {
+    pub mod odometer;
+}
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
@@ -305,4 +310,60 @@ fn manifests_declare_liveness_with_its_fairness() {
         proclaim_behaviour::split_leads_to("a ~> \"~>\" ~> c"),
         Some(((0, "a"), (5, "\"~>\" ~> c")))
     );
+}
+
+/// The time and states of `verify` with a safety property and with each liveness kind on the
+/// odometer family (`tests/common/odometer.rs`): what the check after the exploration adds.
+/// `cargo test --release -p proclaim-verify --test liveness -- --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement: run it in release with --ignored --nocapture"]
+fn liveness_costs_little_beside_the_exploration() {
+    for (n, k) in [(4, 16), (4, 24)] {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+            "proclaim-liveness-odometer-{n}-{k}-{}",
+            std::process::id()
+        ));
+        common::odometer::write_odometer(&dir, n, k);
+        let behaviour = load("odometer", Arc::new(Folder::new(&dir))).expect("loads");
+        let last = n - 1;
+        for p in [
+            property(PropertyKind::Never, &format!("g0 >= {k}"), &[]),
+            property(
+                PropertyKind::AlwaysEventually,
+                &format!("g{last} == 0"),
+                &[],
+            ),
+            property(
+                PropertyKind::LeadsTo,
+                &format!("g0 == 1 ~> g{last} == 5"),
+                &[],
+            ),
+            property(PropertyKind::Eventually, &format!("g{last} == {k}"), &[]),
+        ] {
+            let started = std::time::Instant::now();
+            let report = verify(
+                &behaviour,
+                std::slice::from_ref(&p),
+                Options {
+                    max_states: 10_000_000,
+                },
+            )
+            .expect("verifies");
+            let seconds = started.elapsed().as_secs_f64();
+            let outcome = &report.properties[0];
+            println!(
+                "odometer {n} {k}, {} {}: {:?} in {seconds:.2} s, {} states ({:.0} states/s){}",
+                p.kind.word(),
+                p.expression,
+                outcome.verdict,
+                report.stats.states,
+                report.stats.states as f64 / seconds,
+                outcome.cycle.as_ref().map_or(String::new(), |c| format!(
+                    ", a loop of {} ringlets",
+                    c.steps.len()
+                )),
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
