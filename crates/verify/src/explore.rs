@@ -312,8 +312,8 @@ impl Store {
 }
 
 /// Read-only views of the explored graph for the checks made after exploration
-/// ([`crate::liveness`]): which states were expanded, their successors, and how a step is
-/// replayed.
+/// ([`crate::liveness`], [`crate::components`], [`crate::lasso`]): which states were expanded,
+/// their successors, and how a step is recognised when it is replayed.
 impl Graph {
     /// How many states had all their successors made: states `0..expanded()` (breadth-first
     /// order); the others were stored but the budget ran out before their turn.
@@ -321,27 +321,13 @@ impl Graph {
         self.edge_start.len() - 1
     }
 
-    /// The successors of an expanded state `id`, as state ids (a state may repeat).
-    pub fn successors_of(&self, id: u32) -> impl Iterator<Item = u32> + '_ {
-        let i = id as usize;
-        self.edges[self.edge_start[i] as usize..self.edge_start[i + 1] as usize]
-            .iter()
-            .map(|e| e & !FIRED)
+    /// Whether state `id` is one of the initial states.
+    pub fn is_initial(&self, id: u32) -> bool {
+        self.parents[id as usize].parent == ROOT
     }
 
-    /// Whether `world` is stored as state `id` (a successor made again, when a step of a
-    /// lasso is replayed, is recognised by its packed bytes).
-    pub fn stores_as(&self, world: &World, id: u32) -> bool {
-        let mut bytes = Vec::new();
-        self.layout.pack(world, &mut bytes);
-        self.bytes_of(id) == &bytes[..]
-    }
-}
-
-/// Edge-level views for searches over the graph's edges that keep their place in a state's
-/// successor list ([`crate::components`]).
-impl Graph {
-    /// Where state `id`'s successors are in the edge list (`id` expanded).
+    /// Where state `id`'s successors are in the edge list (`id` expanded; empty when no
+    /// machine can ring there).
     pub fn edge_range(&self, id: u32) -> std::ops::Range<usize> {
         let i = id as usize;
         self.edge_start[i] as usize..self.edge_start[i + 1] as usize
@@ -352,8 +338,16 @@ impl Graph {
         self.edges[e] & !FIRED
     }
 
-    /// Whether state `id` is one of the initial states.
-    pub fn is_initial(&self, id: u32) -> bool {
-        self.parents[id as usize].parent == ROOT
+    /// The successors of an expanded state `id`, as state ids (a state may repeat).
+    pub fn successors_of(&self, id: u32) -> impl Iterator<Item = u32> + '_ {
+        self.edge_range(id).map(|e| self.edge_target(e))
+    }
+
+    /// Whether `world` is stored as state `id` (a successor made again, when a step of a
+    /// lasso is replayed, is recognised by its packed bytes).
+    pub fn stores_as(&self, world: &World, id: u32) -> bool {
+        let mut bytes = Vec::new();
+        self.layout.pack(world, &mut bytes);
+        self.bytes_of(id) == &bytes[..]
     }
 }

@@ -102,6 +102,8 @@ fn failing_run(model: &Model, graph: &Graph, property: &Property) -> Option<Fail
                 let bad = !property.holds_in(model, &world);
                 (bad, bad && graph.is_initial(id))
             }
+            // `always_eventually`: a run may stop meeting P from any state (the safety kinds
+            // never come here).
             _ => {
                 let bad = !property.holds_in(model, &world);
                 (bad, bad)
