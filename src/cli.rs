@@ -278,6 +278,20 @@ pub enum Command {
         /// Check that some reachable state satisfies EXPR (and show the shortest way there)
         #[arg(long, value_name = "EXPR")]
         reachable: Vec<String>,
+        /// Check that every run reaches a state where EXPR holds (time passing; a failure is a
+        /// lasso: a way in and a loop)
+        #[arg(long, value_name = "EXPR")]
+        eventually: Vec<String>,
+        /// Check that after every state where P holds, every run reaches one where Q holds
+        #[arg(long, value_name = "'P ~> Q'")]
+        leads_to: Vec<String>,
+        /// Check that every run makes EXPR true again and again
+        #[arg(long, value_name = "EXPR")]
+        always_eventually: Vec<String>,
+        /// Assume the environment makes EXPR true infinitely often (for the liveness
+        /// properties checked)
+        #[arg(long, value_name = "EXPR")]
+        fair: Vec<String>,
         /// Stop after this many states (the outcome is then incomplete where undecided)
         #[arg(long, value_name = "N", default_value_t = 1_000_000)]
         max_states: usize,

@@ -12,6 +12,7 @@ mod programs;
 mod properties;
 mod subsumption;
 mod theories;
+mod verify_cli;
 mod whiteboard;
 
 /// The binary run with `args`, as a user runs it (no colour).

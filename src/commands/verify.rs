@@ -1,7 +1,7 @@
 //! `proclaim verify`: a behaviour's properties (the manifest's, or those on the command line)
 //! checked over every run under the round schedule; each outcome, its counterexample by rounds,
 //! the built-in findings; `--counterexample` writes the first counterexample as an impersonator
-//! script; `--emit promela` writes the same model for SPIN instead. Exit 0 every property holds, 1 some fails, 3 none fails but some is undecided (the
+//! script (a liveness property's lasso with its loop played several times); `--emit promela` writes the same model for SPIN instead. Exit 0 every property holds, 1 some fails, 3 none fails but some is undecided (the
 //! state budget ran out), 2 bad input.
 
 use crate::behaviours::load_behaviour;
@@ -9,8 +9,9 @@ use crate::cli::{EmitFormat, EngineName, ReductionName};
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
-    manifest_properties, render, to_promela, to_script, verify_with_progress, Engine, Finding,
-    Options, Progress, PropertyKind, PropertySource, Reductions, Report, Verdict, VerifyError,
+    lasso_script, manifest_properties, render, to_promela, to_script, unroll, verify_with_progress,
+    Engine, Finding, Options, Progress, PropertyKind, PropertySource, Reductions, Report, Verdict,
+    VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -21,6 +22,11 @@ pub struct Asked {
     pub never: Vec<String>,
     pub always: Vec<String>,
     pub reachable: Vec<String>,
+    pub eventually: Vec<String>,
+    pub leads_to: Vec<String>,
+    pub always_eventually: Vec<String>,
+    /// Assumed by every liveness property checked.
+    pub fair: Vec<String>,
 }
 
 impl Asked {
@@ -29,21 +35,52 @@ impl Asked {
             (PropertyKind::Never, &self.never),
             (PropertyKind::Always, &self.always),
             (PropertyKind::Reachable, &self.reachable),
+            (PropertyKind::Eventually, &self.eventually),
+            (PropertyKind::LeadsTo, &self.leads_to),
+            (PropertyKind::AlwaysEventually, &self.always_eventually),
         ]
         .into_iter()
         .flat_map(|(kind, list)| {
             list.iter().enumerate().map(move |(i, e)| PropertySource {
                 // Named after the option, numbered when it is given more than once.
                 name: if list.len() == 1 {
-                    format!("--{}", kind.word())
+                    kind.option()
                 } else {
-                    format!("--{} #{}", kind.word(), i + 1)
+                    format!("{} #{}", kind.option(), i + 1)
                 },
                 kind,
                 expression: e.clone(),
+                fair: Vec::new(),
             })
         })
         .collect()
+    }
+
+    /// The properties to check: those asked, else the manifest's; `--fair` added to every
+    /// liveness property among them (an error when there is none).
+    fn properties(
+        &self,
+        behaviour: &proclaim_behaviour::Behaviour,
+    ) -> Result<Vec<PropertySource>, Failure> {
+        let mut properties = self.sources();
+        if properties.is_empty() {
+            properties = manifest_properties(behaviour);
+        }
+        if !self.fair.is_empty() {
+            let mut live = properties
+                .iter_mut()
+                .filter(|p| p.kind.is_liveness())
+                .peekable();
+            if live.peek().is_none() {
+                return Err(Failure::Argument(
+                    "--fair is an assumption of liveness properties: give --eventually, --leads-to or --always-eventually (or declare one in the manifest)".into(),
+                ));
+            }
+            for p in live {
+                p.fair.extend(self.fair.iter().cloned());
+            }
+        }
+        Ok(properties)
     }
 }
 
@@ -95,10 +132,7 @@ pub fn run(
     counterexample: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
     let loaded = load_behaviour(behaviour)?;
-    let mut properties = asked.sources();
-    if properties.is_empty() {
-        properties = manifest_properties(&loaded);
-    }
+    let properties = asked.properties(&loaded)?;
     let started = Instant::now();
     // A long search shows how far it got (on a terminal only; never in JSON).
     let bar = if json {
@@ -149,10 +183,7 @@ pub fn emit(
     output: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
     let loaded = load_behaviour(behaviour)?;
-    let mut properties = asked.sources();
-    if properties.is_empty() {
-        properties = manifest_properties(&loaded);
-    }
+    let properties = asked.properties(&loaded)?;
     let text = match language {
         EmitFormat::Promela => {
             let options = Options {
@@ -206,7 +237,7 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     }
     if report.properties.is_empty() {
         println!(
-            "no properties: give --never, --always or --reachable, or [[property]] in the manifest"
+            "no properties: give --never, --always, --reachable, --eventually, --leads-to or --always-eventually, or [[property]] in the manifest"
         );
     }
     for p in &report.properties {
@@ -218,7 +249,36 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
                 _ => "undecided (state budget)",
             },
         };
-        println!("{}: {verdict} ({} {})", p.name, p.kind, p.expression);
+        let assuming = if p.fair.is_empty() {
+            String::new()
+        } else {
+            format!(", assuming fair {}", p.fair.join(", fair "))
+        };
+        println!(
+            "{}: {verdict} ({} {}{assuming})",
+            p.name, p.kind, p.expression
+        );
+        if let Some(cycle) = &p.cycle {
+            let run = match p.kind.as_str() {
+                "leads_to" => "a run where the second never follows the first",
+                "always_eventually" => "a run where it stops coming back",
+                _ => "a run that never gets there",
+            };
+            let prefix = p.trace.as_ref().map(render).unwrap_or_default();
+            if prefix.is_empty() {
+                println!("  {run}, from the start:");
+            } else {
+                println!("  {run}: the way in, by rounds:");
+                print!("{prefix}");
+            }
+            if cycle.steps.is_empty() {
+                println!("  then no machine can ring any more, for ever");
+            } else {
+                println!("  then this loop, for ever:");
+                print!("{}", render(cycle));
+            }
+            continue;
+        }
         if let Some(trace) = &p.trace {
             let what = if p.kind == "reachable" {
                 "the shortest way there"
@@ -274,7 +334,10 @@ fn write_counterexample(
         "Counterexample to `{}` ({} {}) of {}",
         p.name, p.kind, p.expression, behaviour.name
     );
-    let (script, notes) = to_script(trace, behaviour.ring_period, &title);
+    let (script, notes) = match &p.cycle {
+        Some(cycle) => lasso_script(trace, cycle, behaviour.ring_period, &title),
+        None => to_script(trace, behaviour.ring_period, &title),
+    };
     for n in notes {
         eprintln!("note: the script does not reproduce: {n}");
     }
@@ -283,7 +346,11 @@ fn write_counterexample(
         error,
     })?;
     // The script run by the runner itself, as a trace the monitor replays.
-    let rounds = trace.steps.iter().map(|s| s.round).max().unwrap_or(0);
+    let played = match &p.cycle {
+        Some(cycle) => unroll(trace, cycle),
+        None => trace.clone(),
+    };
+    let rounds = played.steps.iter().map(|s| s.round).max().unwrap_or(0);
     let limit = behaviour.ring_period * (rounds + 10) + std::time::Duration::from_secs(1);
     let events = run_script(behaviour, &script, limit)?;
     let trace_path = path.with_extension("jsonl");

@@ -35,8 +35,8 @@ pub use load::{
     load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
 };
 pub use manifest::{
-    parse_manifest, ImpersonatorEntry, MachineEntry, Manifest, PropertyEntry, PropertyKind,
-    Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, MANIFEST,
+    parse_manifest, split_leads_to, ImpersonatorEntry, MachineEntry, Manifest, PropertyEntry,
+    PropertyKind, Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, LEADS_TO, MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};

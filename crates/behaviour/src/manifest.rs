@@ -43,6 +43,8 @@
 //! [[property]]                         # checked by `proclaim verify` (spec §6)
 //! name = "door interlock"
 //! never = 'Magnetron == "on" && saw(Microwave, doorOpen)'   # or always = …, reachable = …
+//! # liveness: eventually = …, always_eventually = …, leads_to = ["P", "Q"]; fair = "EXPR" assumes
+//! # the environment makes EXPR true infinitely often
 //! ```
 
 use proclaim_syntax::{line_column, FileDiagnostic};
@@ -229,42 +231,102 @@ pub struct ImpersonatorEntry {
 }
 
 /// A property `proclaim verify` checks: a name and exactly one of `never`, `always`,
-/// `reachable`, each an expression of the label language (read by `proclaim-verify`).
+/// `reachable`, `eventually`, `always_eventually` (each an expression of the label language, read
+/// by `proclaim-verify`) or `leads_to = [P, Q]`; a liveness property may assume `fair = "EXPR"`
+/// (the environment makes EXPR true infinitely often).
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(try_from = "RawProperty", into = "RawProperty")]
 pub struct PropertyEntry {
     pub name: String,
     pub kind: PropertyKind,
+    /// For `leads_to`, both expressions as `P ~> Q` (how the command line writes it).
     pub expression: String,
+    pub fair: Option<String>,
 }
 
-/// What a property says of its expression over every reachable state.
+/// What a property says of its expression over every reachable state (safety) or over every
+/// infinite run (liveness).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum PropertyKind {
     Never,
     Always,
     Reachable,
+    /// Every run reaches a state where it holds.
+    Eventually,
+    /// Every state where the first holds is followed by one where the second does.
+    LeadsTo,
+    /// Every run holds it again and again.
+    AlwaysEventually,
 }
 
 impl PropertyKind {
-    pub const ALL: [PropertyKind; 3] = [
+    pub const ALL: [PropertyKind; 6] = [
         PropertyKind::Never,
         PropertyKind::Always,
         PropertyKind::Reachable,
+        PropertyKind::Eventually,
+        PropertyKind::LeadsTo,
+        PropertyKind::AlwaysEventually,
     ];
 
-    /// The key that declares it in the manifest (and the `verify` option).
+    /// The key that declares it in the manifest.
     pub fn word(self) -> &'static str {
         match self {
             PropertyKind::Never => "never",
             PropertyKind::Always => "always",
             PropertyKind::Reachable => "reachable",
+            PropertyKind::Eventually => "eventually",
+            PropertyKind::LeadsTo => "leads_to",
+            PropertyKind::AlwaysEventually => "always_eventually",
         }
+    }
+
+    /// The `verify` option that gives it on the command line.
+    pub fn option(self) -> String {
+        format!("--{}", self.word().replace('_', "-"))
+    }
+
+    /// Whether it speaks of infinite runs rather than of single states.
+    pub fn is_liveness(self) -> bool {
+        matches!(
+            self,
+            PropertyKind::Eventually | PropertyKind::LeadsTo | PropertyKind::AlwaysEventually
+        )
     }
 }
 
-/// `[[property]]` as written: the three keys optional, so that one missing or two given is an
+/// What separates a `leads_to` property's two expressions in its one-line form `P ~> Q`.
+pub const LEADS_TO: &str = "~>";
+
+/// A part of a text and the byte offset where it starts.
+pub type Part<'a> = (usize, &'a str);
+
+/// `P ~> Q` split at its `~>` (the first outside a quoted text), both sides trimmed, each with
+/// the byte offset where it starts; `None` without one.
+pub fn split_leads_to(text: &str) -> Option<(Part<'_>, Part<'_>)> {
+    let mut quoted = false;
+    let mut previous = None;
+    for (i, c) in text.char_indices() {
+        match c {
+            '"' if previous != Some('\\') => quoted = !quoted,
+            '>' if !quoted && previous == Some('~') => {
+                let (left, right) = (&text[..i - 1], &text[i + 1..]);
+                return Some((trimmed(left, 0), trimmed(right, i + 1)));
+            }
+            _ => {}
+        }
+        previous = Some(c);
+    }
+    None
+}
+
+/// `part` without its surrounding spaces, and where that starts when `part` starts at `at`.
+fn trimmed(part: &str, at: usize) -> Part<'_> {
+    (at + part.len() - part.trim_start().len(), part.trim())
+}
+
+/// `[[property]]` as written: the kinds' keys optional, so that none or two given is an
 /// error at the table's place rather than serde's generic message.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -276,6 +338,14 @@ struct RawProperty {
     always: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     reachable: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    eventually: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    leads_to: Option<[String; 2]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    always_eventually: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    fair: Option<String>,
 }
 
 impl TryFrom<RawProperty> for PropertyEntry {
@@ -286,18 +356,30 @@ impl TryFrom<RawProperty> for PropertyEntry {
             (PropertyKind::Never, raw.never),
             (PropertyKind::Always, raw.always),
             (PropertyKind::Reachable, raw.reachable),
+            (PropertyKind::Eventually, raw.eventually),
+            (
+                PropertyKind::LeadsTo,
+                raw.leads_to.map(|[p, q]| format!("{p} {LEADS_TO} {q}")),
+            ),
+            (PropertyKind::AlwaysEventually, raw.always_eventually),
         ]
         .into_iter()
         .filter_map(|(kind, e)| Some((kind, e?)))
         .collect();
         match <[_; 1]>::try_from(given) {
+            Ok([(kind, _)]) if raw.fair.is_some() && !kind.is_liveness() => Err(format!(
+                "property `{}`: `fair` is an assumption of a liveness property (eventually, leads_to, always_eventually), not of `{}`",
+                raw.name,
+                kind.word()
+            )),
             Ok([(kind, expression)]) => Ok(PropertyEntry {
                 name: raw.name,
                 kind,
                 expression,
+                fair: raw.fair,
             }),
             Err(_) => Err(format!(
-                "property `{}` needs exactly one of `never`, `always`, `reachable`",
+                "property `{}` needs exactly one of `never`, `always`, `reachable`, `eventually`, `leads_to`, `always_eventually`",
                 raw.name
             )),
         }
@@ -311,11 +393,24 @@ impl From<PropertyEntry> for RawProperty {
             never: None,
             always: None,
             reachable: None,
+            eventually: None,
+            leads_to: None,
+            always_eventually: None,
+            fair: p.fair,
         };
         let slot = match p.kind {
             PropertyKind::Never => &mut raw.never,
             PropertyKind::Always => &mut raw.always,
             PropertyKind::Reachable => &mut raw.reachable,
+            PropertyKind::Eventually => &mut raw.eventually,
+            PropertyKind::AlwaysEventually => &mut raw.always_eventually,
+            PropertyKind::LeadsTo => {
+                raw.leads_to = Some(match split_leads_to(&p.expression) {
+                    Some(((_, left), (_, right))) => [left.to_string(), right.to_string()],
+                    None => [p.expression, String::new()],
+                });
+                return raw;
+            }
         };
         *slot = Some(p.expression);
         raw

@@ -28,6 +28,7 @@ fn bench(c: &mut Criterion) {
             name: "bounded".into(),
             kind: PropertyKind::Never,
             expression: format!("g0 >= {k}"),
+            fair: Vec::new(),
         }];
         let report = verify(&behaviour, &property, Options::default()).expect("verifies");
         let s = &report.stats;

@@ -377,3 +377,44 @@ impl Store {
         id
     }
 }
+
+/// Read-only views of the explored graph for the checks made after exploration
+/// ([`crate::liveness`], [`crate::components`], [`crate::lasso`]): which states were expanded,
+/// their successors, and how a step is recognised when it is replayed.
+impl Graph {
+    /// How many states had all their successors made: states `0..expanded()` (breadth-first
+    /// order); the others were stored but the budget ran out before their turn.
+    pub fn expanded(&self) -> usize {
+        self.edge_start.len() - 1
+    }
+
+    /// Whether state `id` is one of the initial states.
+    pub fn is_initial(&self, id: u32) -> bool {
+        self.parents[id as usize].parent == ROOT
+    }
+
+    /// Where state `id`'s successors are in the edge list (`id` expanded; empty when no
+    /// machine can ring there).
+    pub fn edge_range(&self, id: u32) -> std::ops::Range<usize> {
+        let i = id as usize;
+        self.edge_start[i] as usize..self.edge_start[i + 1] as usize
+    }
+
+    /// The state edge `e` leads to.
+    pub fn edge_target(&self, e: usize) -> u32 {
+        self.edges[e] & !FIRED
+    }
+
+    /// The successors of an expanded state `id`, as state ids (a state may repeat).
+    pub fn successors_of(&self, id: u32) -> impl Iterator<Item = u32> + '_ {
+        self.edge_range(id).map(|e| self.edge_target(e))
+    }
+
+    /// Whether `world` is stored as state `id` (a successor made again, when a step of a
+    /// lasso is replayed, is recognised by its packed bytes).
+    pub fn stores_as(&self, world: &World, id: u32) -> bool {
+        let mut bytes = Vec::new();
+        self.layout.pack(world, &mut bytes);
+        self.bytes_of(id) == &bytes[..]
+    }
+}

@@ -1,7 +1,9 @@
 //! Explicit-state verification of a behaviour (`../shared/spec/behaviour.md` §6): its machines
 //! under §3.1's round schedule, the environment free, reasoners answering from their theories,
 //! time abstracted; `never`, `always` and `reachable` properties with shortest counterexamples;
-//! states never entered, transitions that never fire, and deadlock.
+//! `eventually`, `leads_to` and `always_eventually` over infinite runs, time passing, with lasso
+//! counterexamples ([`liveness`]); states never entered, transitions that never fire, and
+//! deadlock.
 //!
 //! - [`Model`]: the behaviour as slots (variables, whiteboard types), machines and reasoners;
 //!   free types take values from a finite domain ([`domain`] says why that is sound and where
@@ -26,10 +28,13 @@
 /// The activity language's operators: the runner's own, so the model computes as the robot does.
 pub use proclaim_runner::arith;
 mod choices;
+mod components;
 pub mod domain;
 mod error;
 mod explore;
 pub mod follow;
+mod lasso;
+mod liveness;
 pub mod model;
 mod outcome;
 pub mod promela;
@@ -53,7 +58,7 @@ pub use proclaim_behaviour::PropertyKind;
 pub use promela::{to_promela, Claim, EmitError, Promela};
 pub use property::{Property, PropertySource};
 pub use reduce::Reductions;
-pub use script::to_script;
+pub use script::{lasso_script, to_script, unroll, LOOP_REPEATS};
 pub use trace::render;
 
 use proclaim_behaviour::Behaviour;
@@ -128,6 +133,7 @@ pub fn manifest_properties(behaviour: &Behaviour) -> Vec<PropertySource> {
             name: p.name.clone(),
             kind: p.kind,
             expression: p.expression.clone(),
+            fair: p.fair.iter().cloned().collect(),
         })
         .collect()
 }
@@ -195,7 +201,7 @@ pub(crate) fn prepare(
             Err(e) => errors.push(e),
         }
     }
-    let exprs: Vec<&proclaim_fsm::Expr> = parsed.iter().map(|(_, e)| e).collect();
+    let exprs: Vec<&proclaim_fsm::Expr> = parsed.iter().flat_map(|(_, e)| e.exprs()).collect();
     let mut model = Model::build(behaviour, &exprs);
     let mut compiled = Vec::new();
     for (source, expr) in &parsed {
@@ -274,8 +280,10 @@ fn outcome(
         name: property.source.name.clone(),
         kind: property.source.kind.word().to_string(),
         expression: property.source.expression.clone(),
+        fair: Vec::new(),
         verdict: verdict(property.source.kind, found, complete),
         trace,
+        cycle: None,
     }
 }
 
@@ -331,6 +339,9 @@ fn explicit(
         .iter()
         .zip(&graph.targets)
         .map(|(p, target)| {
+            if p.source.kind.is_liveness() {
+                return liveness::outcome(model, &graph, p);
+            }
             let trace = target.map(|id| trace::trace(model, &graph, id));
             outcome(p, target.is_some(), graph.complete, trace)
         })

@@ -87,14 +87,23 @@ pub struct Trace {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PropertyOutcome {
     pub name: String,
-    /// `never`, `always` or `reachable`.
+    /// `never`, `always`, `reachable`, `eventually`, `leads_to` or `always_eventually`.
     pub kind: String,
     pub expression: String,
+    /// What a liveness property assumes the environment makes true infinitely often.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub fair: Vec<String>,
     pub verdict: Verdict,
     /// For a `never`/`always` that fails: the shortest counterexample; for a `reachable` that
     /// holds: the shortest witness.
+    /// For a liveness property that fails, the way into the loop of its lasso.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trace: Option<Trace>,
+    /// For a liveness property that fails: the loop its run repeats for ever after `trace`
+    /// (rounds numbered on from it); no steps when the run ends where no machine can ring any
+    /// more, which stays so for ever.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<Trace>,
 }
 
 /// What the exploration noticed whatever the properties say (spec §6's built-in checks).

@@ -1,5 +1,6 @@
-//! Properties: `never P`, `always P`, `reachable P`, where P is an expression of the label
-//! language (`proclaim_fsm`'s parser) over the world **now**, between two ringlets: a plain name
+//! Properties: `never P`, `always P`, `reachable P`, and the liveness properties `eventually
+//! P`, `always_eventually P`, `leads_to P ~> Q` with their `fair` assumptions (checked by
+//! [`crate::liveness`]), where P is an expression of the label language (`proclaim_fsm`'s parser) over the world **now**, between two ringlets: a plain name
 //! is a variable, a whiteboard type's current value or a reasoner's answer on the current
 //! inputs; `Machine.STATE` is true while the machine runs in that state (`Machine.x` is its
 //! variable `x`); `saw(Machine, e)` is what `e` was in that machine's last snapshot (never
@@ -21,7 +22,30 @@ use proclaim_fsm::{BinOp, Expr, UnOp, TIME_TESTS};
 pub struct PropertySource {
     pub name: String,
     pub kind: PropertyKind,
+    /// For `leads_to`, both expressions as `P ~> Q`.
     pub expression: String,
+    /// What a liveness property assumes the environment makes true infinitely often (each
+    /// separately).
+    pub fair: Vec<String>,
+}
+
+/// A property's expressions read but not yet resolved: its own (two for `leads_to`) and its
+/// fairness assumptions.
+#[derive(Clone, Debug)]
+pub struct Parsed {
+    pub main: Expr,
+    /// `leads_to`'s Q.
+    pub then: Option<Expr>,
+    pub fair: Vec<Expr>,
+}
+
+impl Parsed {
+    /// Every expression, for what the model must keep.
+    pub fn exprs(&self) -> impl Iterator<Item = &Expr> {
+        std::iter::once(&self.main)
+            .chain(&self.then)
+            .chain(&self.fair)
+    }
 }
 
 /// A property read and resolved against a model.
@@ -29,6 +53,9 @@ pub struct PropertySource {
 pub struct Property {
     pub source: PropertySource,
     term: Term,
+    /// `leads_to`'s Q.
+    then: Option<Term>,
+    fair: Vec<Term>,
 }
 
 /// A property's expression resolved against the model (what [`crate::promela`] translates).
@@ -90,9 +117,56 @@ impl Kind {
 /// (`ª`, one character, so columns stay the same) before parsing.
 const DOT: char = 'ª';
 
-/// Reads a property's expression (names not yet resolved).
-pub fn parse(source: &PropertySource) -> Result<Expr, PropertyError> {
-    let chars: Vec<char> = source.expression.chars().collect();
+/// Reads a property's expressions (names not yet resolved): `leads_to` needs its `~>`, and
+/// only liveness properties may assume fairness.
+pub fn parse(source: &PropertySource) -> Result<Parsed, PropertyError> {
+    let error = |column: usize, message: String| PropertyError {
+        property: source.name.clone(),
+        column,
+        message,
+    };
+    if !source.fair.is_empty() && !source.kind.is_liveness() {
+        return Err(error(
+            1,
+            format!(
+                "`fair` is an assumption of a liveness property, not of `{}`",
+                source.kind.word()
+            ),
+        ));
+    }
+    let (main, then) = if source.kind == PropertyKind::LeadsTo {
+        let Some(((p_at, p), (q_at, q))) = proclaim_behaviour::split_leads_to(&source.expression)
+        else {
+            return Err(error(
+                1,
+                "`leads_to` needs two expressions: `P ~> Q` (after every P, eventually Q)".into(),
+            ));
+        };
+        let column = |at: usize| source.expression[..at].chars().count();
+        (
+            parse_text(&source.name, p, column(p_at))?,
+            Some(parse_text(&source.name, q, column(q_at))?),
+        )
+    } else {
+        (parse_text(&source.name, &source.expression, 0)?, None)
+    };
+    let fair = source
+        .fair
+        .iter()
+        .map(|f| {
+            parse_text(&source.name, f, 0).map_err(|mut e| {
+                e.message = format!("in `fair {f}`: {}", e.message);
+                e
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Parsed { main, then, fair })
+}
+
+/// Reads one expression of property `name`; an error's column counts from `shift` characters
+/// before the text.
+fn parse_text(name: &str, text: &str, shift: usize) -> Result<Expr, PropertyError> {
+    let chars: Vec<char> = text.chars().collect();
     let mangled: String = chars
         .iter()
         .enumerate()
@@ -117,54 +191,85 @@ pub fn parse(source: &PropertySource) -> Result<Expr, PropertyError> {
         })
         .collect();
     parse_expression(&mangled).map_err(|e| PropertyError {
-        property: source.name.clone(),
-        column: mangled[..e.offset.min(mangled.len())].chars().count() + 1,
+        property: name.to_string(),
+        column: shift + mangled[..e.offset.min(mangled.len())].chars().count() + 1,
         message: e.message,
     })
 }
 
 impl Property {
-    /// Resolves `expr` (from [`parse`]) against `model`, registering the `saw()` values the
+    /// Resolves `parsed` (from [`parse`]) against `model`, registering the `saw()` values the
     /// exploration must keep.
     pub fn compile(
         model: &mut Model,
         source: &PropertySource,
-        expr: &Expr,
+        parsed: &Parsed,
     ) -> Result<Property, PropertyError> {
-        let mut compiler = Compiler { model, source };
-        let (term, kind) = compiler.term(expr)?;
-        if matches!(kind, Kind::Text | Kind::Number) {
-            // Legal (truthiness), but almost always a slip: say so only for plain text.
-            if matches!(term, Term::Const(_)) {
-                return Err(compiler.error(
-                    expr,
-                    format!("the property is the constant {}", show_expr(expr)),
-                ));
-            }
+        let mut compiler = Compiler {
+            model,
+            property: &source.name,
+            text: &source.expression,
+        };
+        let term = compiler.truth(&parsed.main)?;
+        let then = match &parsed.then {
+            Some(e) => Some(compiler.truth(e)?),
+            None => None,
+        };
+        let mut fair = Vec::new();
+        for (text, e) in source.fair.iter().zip(&parsed.fair) {
+            compiler.text = text;
+            fair.push(compiler.truth(e).map_err(|mut error| {
+                error.message = format!("in `fair {text}`: {}", error.message);
+                error
+            })?);
         }
         Ok(Property {
             source: source.clone(),
             term,
+            then,
+            fair,
         })
     }
 
-    /// The resolved expression.
+    /// The resolved expression (`leads_to`'s P).
     pub(crate) fn term(&self) -> &Term {
         &self.term
     }
 
-    /// Whether the property's expression is true in `world`.
+    /// `leads_to`'s Q, resolved.
+    pub(crate) fn then_term(&self) -> Option<&Term> {
+        self.then.as_ref()
+    }
+
+    /// The fairness assumptions, resolved.
+    pub(crate) fn fair_terms(&self) -> &[Term] {
+        &self.fair
+    }
+
+    /// Whether the property's expression (`leads_to`'s P) is true in `world`.
     pub fn holds_in(&self, model: &Model, world: &World) -> bool {
-        value(&self.term, model, world).is_some_and(|v| v.truthy())
+        truth(&self.term, model, world)
+    }
+
+    /// Whether `leads_to`'s Q is true in `world` (false for the other kinds).
+    pub fn then_holds_in(&self, model: &Model, world: &World) -> bool {
+        self.then.as_ref().is_some_and(|t| truth(t, model, world))
+    }
+
+    /// Whether fairness assumption `i` is true in `world`.
+    pub fn fair_holds_in(&self, i: usize, model: &Model, world: &World) -> bool {
+        truth(&self.fair[i], model, world)
     }
 
     /// Whether `world` is what the property looks for: a violation of `never`/`always`, a
-    /// witness of `reachable`.
+    /// witness of `reachable`; never for a liveness property, which no single state settles.
     pub fn is_target(&self, model: &Model, world: &World) -> bool {
-        let holds = self.holds_in(model, world);
         match self.source.kind {
-            PropertyKind::Never | PropertyKind::Reachable => holds,
-            PropertyKind::Always => !holds,
+            PropertyKind::Never | PropertyKind::Reachable => self.holds_in(model, world),
+            PropertyKind::Always => !self.holds_in(model, world),
+            PropertyKind::Eventually | PropertyKind::LeadsTo | PropertyKind::AlwaysEventually => {
+                false
+            }
         }
     }
 }
@@ -175,16 +280,31 @@ fn show_expr(e: &Expr) -> String {
 
 struct Compiler<'a> {
     model: &'a mut Model,
-    source: &'a PropertySource,
+    property: &'a str,
+    /// The text the expression being compiled was read from, for columns.
+    text: &'a str,
 }
 
 impl Compiler<'_> {
     fn error(&self, at: &Expr, message: String) -> PropertyError {
         PropertyError {
-            property: self.source.name.clone(),
-            column: column_of(&self.source.expression, at),
+            property: self.property.to_string(),
+            column: column_of(self.text, at),
             message,
         }
+    }
+
+    /// A whole expression of the property: a constant that is not a truth value is refused
+    /// (legal as truthiness, but almost always a slip).
+    fn truth(&mut self, expr: &Expr) -> Result<Term, PropertyError> {
+        let (term, kind) = self.term(expr)?;
+        if matches!(kind, Kind::Text | Kind::Number) && matches!(term, Term::Const(_)) {
+            return Err(self.error(
+                expr,
+                format!("the property is the constant {}", show_expr(expr)),
+            ));
+        }
+        Ok(term)
     }
 
     fn term(&mut self, e: &Expr) -> Result<(Term, Kind), PropertyError> {
@@ -482,9 +602,10 @@ mod tests {
             name: "p".into(),
             kind: PropertyKind::Never,
             expression: text.into(),
+            fair: Vec::new(),
         };
         match (parse(&source), expect) {
-            (Ok(e), Ok(shown)) => assert_eq!(show_expr(&e), shown, "{text}"),
+            (Ok(e), Ok(shown)) => assert_eq!(show_expr(&e.main), shown, "{text}"),
             (Err(e), Err(column)) => assert_eq!(e.column, column, "{text}: {e}"),
             (got, want) => panic!("{text}: got {got:?}, want {want:?}"),
         }

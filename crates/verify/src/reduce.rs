@@ -73,6 +73,12 @@ pub fn storage(model: &Model, properties: &[Property], reductions: Reductions) -
     }
     for p in properties {
         reads.term(p.term());
+        if let Some(then) = p.then_term() {
+            reads.term(then);
+        }
+        for fair in p.fair_terms() {
+            reads.term(fair);
+        }
     }
     model
         .slots

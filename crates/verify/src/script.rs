@@ -10,6 +10,10 @@
 //! firing at once runs earlier; a change between two machines' ringlets of one round, or
 //! between a machine's OnEntry and its snapshot, falls to that round; and time tests come due
 //! when the clock says, not when the counterexample needed them.
+//!
+//! A liveness counterexample is a lasso, a way in and a loop repeated for ever; scripts have
+//! no repetition, so [`lasso_script`] plays the way in and then the loop [`LOOP_REPEATS`] times,
+//! and says so in a comment.
 
 use crate::outcome::{Assignment, Trace};
 use std::fmt::Write;
@@ -72,4 +76,56 @@ pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, 
         let _ = writeln!(out, "{l}");
     }
     (out, notes)
+}
+
+/// How many times a lasso's script plays its loop.
+pub const LOOP_REPEATS: u32 = 5;
+
+/// The lasso's way in followed by its loop played `LOOP_REPEATS` times, rounds numbered on.
+pub fn unroll(prefix: &Trace, cycle: &Trace) -> Trace {
+    let before = prefix.steps.last().map_or(1, |s| s.round);
+    let rounds = cycle
+        .steps
+        .last()
+        .map_or(0, |s| s.round.saturating_sub(before));
+    let mut steps = prefix.steps.clone();
+    for repeat in 0..LOOP_REPEATS {
+        steps.extend(cycle.steps.iter().map(|s| {
+            let mut s = s.clone();
+            s.round += repeat * rounds;
+            s
+        }));
+    }
+    Trace {
+        initially: prefix.initially.clone(),
+        steps,
+    }
+}
+
+/// A lasso (a liveness property's counterexample) as a script: [`to_script`] of [`unroll`],
+/// with a comment saying where the loop starts and how often it is played.
+pub fn lasso_script(
+    prefix: &Trace,
+    cycle: &Trace,
+    ring_period: Duration,
+    title: &str,
+) -> (String, Vec<String>) {
+    let (script, notes) = to_script(&unroll(prefix, cycle), ring_period, title);
+    let last = prefix.steps.last().map_or(0, |s| s.round);
+    let comment = if cycle.steps.is_empty() {
+        format!(
+            "# The run ends after round {last}: no machine can ring any more, and it stays so for ever.\n"
+        )
+    } else {
+        format!(
+            "# A lasso: the way in to round {last}, then its loop (rounds {} to {}), which repeats for ever; scripts cannot repeat, so it is played {LOOP_REPEATS} times.\n",
+            cycle.steps.first().map_or(last, |s| s.round),
+            cycle.steps.last().map_or(last, |s| s.round),
+        )
+    };
+    // After the title and the line that says what the script is.
+    let mut lines: Vec<&str> = script.split_inclusive('\n').collect();
+    let at = lines.len().min(2);
+    lines.insert(at, &comment);
+    (lines.concat(), notes)
 }

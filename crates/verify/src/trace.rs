@@ -32,6 +32,16 @@ pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
     trace_of(model, initial, steps)
 }
 
+/// The path from initial world `initial` taking, from each state, the step of its choice.
+pub fn replay(model: &Model, graph: &Graph, initial: usize, path: &[(u32, Choice)]) -> Trace {
+    trace_of(
+        model,
+        initial,
+        path.iter()
+            .map(|&(parent, choice)| (graph.world(parent), choice)),
+    )
+}
+
 /// The path from initial world number `initial` through `path`: each world a step starts from
 /// and the choice it took there.
 pub fn trace_of(

@@ -39,6 +39,7 @@ fn properties(behaviour: &Behaviour, extra: &[(PropertyKind, &str)]) -> Vec<Prop
                     name: format!("{} {expression}", kind.word()),
                     kind,
                     expression,
+                    fair: Vec::new(),
                 });
             }
         }
@@ -48,6 +49,7 @@ fn properties(behaviour: &Behaviour, extra: &[(PropertyKind, &str)]) -> Vec<Prop
             name: format!("{} {expression}", kind.word()),
             kind: *kind,
             expression: expression.to_string(),
+            fair: Vec::new(),
         });
     }
     all

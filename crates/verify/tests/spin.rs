@@ -1,6 +1,6 @@
 //! SPIN against the checker: each example behaviour's Promela (`proclaim_verify::to_promela`)
 //! compiled and searched by SPIN, one `pan -N` run per property, and SPIN's verdict compared
-//! with `verify`'s. Needs `spin` and `gcc` on PATH: skipped without them, failed without them
+//! with `verify`'s; liveness claims by `pan -a`'s acceptance-cycle search. Needs `spin` and `gcc` on PATH: skipped without them, failed without them
 //! when `CI` is set.
 
 mod common {
@@ -50,6 +50,7 @@ fn property(kind: PropertyKind, expression: &str) -> PropertySource {
         name: format!("{} {expression}", kind.word()),
         kind,
         expression: expression.into(),
+        fair: Vec::new(),
     }
 }
 
@@ -84,34 +85,19 @@ fn both(case: &str, behaviour_dir: &Path, properties: &[PropertySource]) -> Vec<
     std::fs::write(work.join("model.pml"), &promela.text).expect("write");
     run(&work, "spin", &["-a", "model.pml"]);
     run(&work, "gcc", &["-O2", "-DSAFETY", "-o", "pan", "pan.c"]);
+    // Liveness claims need the acceptance-cycle search, which -DSAFETY leaves out.
+    let live = promela.claims.iter().any(|c| c.kind.is_liveness());
+    if live {
+        run(&work, "gcc", &["-O2", "-o", "pan-live", "pan.c"]);
+    }
     let mut verdicts = Vec::new();
     for (claim, outcome) in promela.claims.iter().zip(&report.properties) {
         assert_eq!(claim.property, outcome.name);
-        let out = run(&work, "./pan", &["-N", &claim.name, "-m1000000"]);
-        // Under -DSAFETY the claim is checked as an assertion: `assertion violated !( !( !(hit0)))`;
-        // any other assertion is the model's own (a value beyond those the checker numbered).
-        let violation = out.lines().find(|l| l.contains("assertion violated"));
-        let violated = match violation {
-            Some(line) => {
-                assert!(
-                    line.contains(&format!("(hit{})", &claim.name[1..])),
-                    "{case}: SPIN met a value the checker never numbered:\n{out}"
-                );
-                true
-            }
-            None => false,
+        let (violated, out) = if claim.kind.is_liveness() {
+            spin_liveness(case, &work, &claim.name)
+        } else {
+            spin_safety(case, &work, &claim.name)
         };
-        let errors: usize = out
-            .split("errors: ")
-            .nth(1)
-            .and_then(|rest| rest.split_whitespace().next())
-            .and_then(|n| n.parse().ok())
-            .unwrap_or_else(|| panic!("{case}: pan's output has no error count:\n{out}"));
-        assert_eq!(
-            errors > 0,
-            violated,
-            "{case}: an error that is no violation:\n{out}"
-        );
         let complete = !out.contains("max search depth too small");
         let spin = claim.verdict(violated, complete);
         assert_eq!(
@@ -123,6 +109,56 @@ fn both(case: &str, behaviour_dir: &Path, properties: &[PropertySource]) -> Vec<
     }
     let _ = std::fs::remove_dir_all(&work);
     verdicts
+}
+
+/// `pan`'s count of errors in its output `out`.
+fn errors(case: &str, out: &str) -> usize {
+    out.split("errors: ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{case}: pan's output has no error count:\n{out}"))
+}
+
+/// A safety claim searched by `pan` built with -DSAFETY: whether it is violated, and the output.
+fn spin_safety(case: &str, work: &Path, claim: &str) -> (bool, String) {
+    let out = run(work, "./pan", &["-N", claim, "-m1000000"]);
+    // Under -DSAFETY the claim is checked as an assertion: `assertion violated !( !( !(hit0)))`;
+    // any other assertion is the model's own (a value beyond those the checker numbered).
+    let violation = out.lines().find(|l| l.contains("assertion violated"));
+    let violated = match violation {
+        Some(line) => {
+            assert!(
+                line.contains(&format!("(hit{})", &claim[1..])),
+                "{case}: SPIN met a value the checker never numbered:\n{out}"
+            );
+            true
+        }
+        None => false,
+    };
+    assert_eq!(
+        errors(case, &out) > 0,
+        violated,
+        "{case}: an error that is no violation:\n{out}"
+    );
+    (violated, out)
+}
+
+/// A liveness claim searched for acceptance cycles (`pan -a`): whether one was found, and the
+/// output. An assertion is the model's own (a value beyond those the checker numbered).
+fn spin_liveness(case: &str, work: &Path, claim: &str) -> (bool, String) {
+    let out = run(work, "./pan-live", &["-a", "-N", claim, "-m1000000"]);
+    assert!(
+        !out.contains("assertion violated"),
+        "{case}: SPIN met a value the checker never numbered:\n{out}"
+    );
+    let violated = out.contains("acceptance cycle") || out.contains("claim violated");
+    assert_eq!(
+        errors(case, &out) > 0,
+        violated,
+        "{case}: an error that is no violation:\n{out}"
+    );
+    (violated, out)
 }
 
 /// The microwave's folder with `machine` as its machine and the manifest's own property.
@@ -152,31 +188,62 @@ fn spin_agrees_with_the_checker_on_every_example() {
         .expect("machine");
     let microwave_dir = repo().join("machines/microwave");
     let behaviour = load("microwave", Arc::new(Folder::new(&microwave_dir))).expect("loads");
-    let interlock = proclaim_verify::manifest_properties(&behaviour);
+    let declared = proclaim_verify::manifest_properties(&behaviour);
     assert_eq!(
-        interlock.len(),
-        1,
-        "the manifest declares the door interlock"
+        declared.iter().map(|p| p.kind).collect::<Vec<_>>(),
+        [PropertyKind::Never, PropertyKind::LeadsTo],
+        "the manifest declares the door interlock and that cooking stops"
     );
     assert_eq!(
-        both("microwave", &microwave_dir, &interlock),
-        [Verdict::Holds]
+        both("microwave", &microwave_dir, &declared),
+        [Verdict::Holds, Verdict::Holds]
     );
 
     // The magnetron switched off on entering IDLE, a ringlet too late.
     let late = original.replace("    exit {\n        Magnetron: off\n    }\n", "");
     assert_ne!(late, original, "the fault is seeded");
     let dir = microwave("late-off", &late);
-    assert_eq!(both("late-off", &dir, &interlock), [Verdict::Fails]);
+    assert_eq!(
+        both("late-off", &dir, &declared),
+        [Verdict::Fails, Verdict::Holds]
+    );
+
+    // Without its timeout the minute never ends: cooking need not stop. Under the assumption
+    // that the door is opened again and again, it does.
+    let endless = original.replace("when timeout(60000000) -> DONE", "when FALSE -> DONE");
+    assert_ne!(endless, original, "the fault is seeded");
+    let dir = microwave("endless", &endless);
+    let mut door_opens = declared[1].clone();
+    door_opens.name = "cooking stops if the door opens".into();
+    door_opens.fair = vec!["doorOpen".into()];
+    assert_eq!(
+        both(
+            "endless",
+            &dir,
+            &[
+                declared[1].clone(),
+                door_opens,
+                property(PropertyKind::AlwaysEventually, "!Microwave.COOKING"),
+                property(PropertyKind::Eventually, "Microwave.COOKING"),
+            ]
+        ),
+        [
+            Verdict::Fails,
+            Verdict::Holds,
+            Verdict::Fails,
+            Verdict::Fails
+        ]
+    );
 
     let press = [
         property(PropertyKind::Never, "Controller.Stuck"),
         property(PropertyKind::Reachable, "Controller.Done"),
+        property(PropertyKind::Eventually, "Controller.Done"),
     ];
     let press_dir = repo().join("machines/press");
     assert_eq!(
         both("press", &press_dir, &press),
-        [Verdict::Holds, Verdict::Holds]
+        [Verdict::Holds, Verdict::Holds, Verdict::Holds]
     );
 
     // A sensor that never corrects `low`: the press jams and is never done.
@@ -190,7 +257,7 @@ fn spin_agrees_with_the_checker_on_every_example() {
     std::fs::write(dir.join("Sensor.machine"), broken).expect("write");
     assert_eq!(
         both("jammed", &dir, &press),
-        [Verdict::Fails, Verdict::Fails]
+        [Verdict::Fails, Verdict::Fails, Verdict::Fails]
     );
 }
 

@@ -38,6 +38,7 @@ fn property(kind: PropertyKind, expression: &str) -> PropertySource {
         name: format!("{} {expression}", kind.word()),
         kind,
         expression: expression.into(),
+        fair: Vec::new(),
     }
 }
 
