@@ -300,16 +300,8 @@ impl Graph {
             edges: Vec::new(),
             complete: true,
             stopped: Stop::Explored,
-            entered: model
-                .machines
-                .iter()
-                .map(|m| vec![false; m.states.len()])
-                .collect(),
-            fired: model
-                .machines
-                .iter()
-                .map(|m| vec![false; m.machine.transitions.len()])
-                .collect(),
+            entered: model.per_state(),
+            fired: model.per_transition(),
             targets: vec![None; properties],
             saw: model.saw.len(),
         }

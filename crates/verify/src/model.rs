@@ -261,6 +261,23 @@ impl Model {
         self.names.get(name).copied()
     }
 
+    /// Per machine, per state: false, for a search to mark the states it enters.
+    pub fn per_state(&self) -> Vec<Vec<bool>> {
+        self.machines
+            .iter()
+            .map(|m| vec![false; m.states.len()])
+            .collect()
+    }
+
+    /// Per machine, per transition (in the machine's list): false, for a search to mark the
+    /// transitions that fire.
+    pub fn per_transition(&self) -> Vec<Vec<bool>> {
+        self.machines
+            .iter()
+            .map(|m| vec![false; m.machine.transitions.len()])
+            .collect()
+    }
+
     pub fn machine_index(&self, name: &str) -> Option<usize> {
         self.machines.iter().position(|m| m.name == name)
     }

@@ -323,16 +323,8 @@ pub fn check(
         states: 0.0,
         steps: 0,
         bytes: 0,
-        entered: model
-            .machines
-            .iter()
-            .map(|m| vec![false; m.states.len()])
-            .collect(),
-        fired: model
-            .machines
-            .iter()
-            .map(|m| vec![false; m.machine.transitions.len()])
-            .collect(),
+        entered: model.per_state(),
+        fired: model.per_transition(),
     };
     // Layer 0 and 1 are the explicit stepper's.
     for (i, w) in initial.iter().enumerate() {
