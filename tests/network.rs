@@ -422,6 +422,9 @@ fn follower(name: &str) -> String {
     )
 }
 
+/// A machine that follows `ballSeen` and, while the sensor that posted it is gone, is blind.
+const STRIKER: &str = "machine Striker\nstate WAIT {\n  when ballSeen -> SEEN\n}\nstate SEEN {\n  when ballSeenStale -> BLIND\n  when ~ballSeen -> WAIT\n}\nstate BLIND {\n  when ~ballSeenStale -> WAIT\n}\n";
+
 /// A sensor: posts `ballSeen` once, then a `tick` counting up every 200 ms for ever.
 const SENSOR: &str = "machine Sensor\ninitial INIT\nstate INIT {\n  entry {\n    int n;\n    ballSeen: true\n  }\n  when TRUE -> A\n}\nstate A {\n  entry {\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(200000) -> B\n}\nstate B {\n  entry {\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(200000) -> A\n}\n";
 
@@ -457,7 +460,7 @@ fn kill(process: &mut Process) {
 fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
     let endpoint = free_endpoint();
     let keeper = behaviour("four-keeper", "Keeper", &follower("Keeper"));
-    let striker = behaviour("four-striker", "Striker", &follower("Striker"));
+    let striker = behaviour("four-striker", "Striker", STRIKER);
     let sensor = behaviour("four-sensor", "Sensor", SENSOR);
     let start = |which: &str| -> (Process, std::sync::mpsc::Receiver<String>) {
         let mut process = match which {
@@ -501,6 +504,8 @@ fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
                     gone.extend(lines.iter().filter(|l| l.contains("Stale = true")).cloned());
                     watched.extend(lines);
                 }
+                // A label reads staleness like any value.
+                wait_line(&striker_out, "Striker  → BLIND", ten);
             }
             "watch" => {}
             _ => {
@@ -527,7 +532,10 @@ fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
         match victim {
             "keeper" => drop(wait_line(&keeper_out, "Keeper  → SEEN", ten)),
             "striker" => drop(wait_line(&striker_out, "Striker  → SEEN", ten)),
-            "sensor" => watched.extend(wait_line(&watch_out, "ballSeenStale = false", ten)),
+            "sensor" => {
+                watched.extend(wait_line(&watch_out, "ballSeenStale = false", ten));
+                wait_line(&striker_out, "Striker  → SEEN", ten);
+            }
             _ => {
                 assert_no_tick_missed(&ticks(&watched));
                 watched = wait_line(&watch_out, "tick = ", ten);
