@@ -9,7 +9,7 @@ use super::*;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
 /// How long a catch-up waits for the processes' answers.
-const ANSWER_PATIENCE: Duration = Duration::from_secs(2);
+const ANSWER_PATIENCE: Duration = Duration::from_secs(5);
 
 pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Serving>, NetworkError> {
     let session = &peer.session;
@@ -22,7 +22,7 @@ pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
             .allowed_origin(Locality::Remote)
             .callback(move |query| {
                 if let Some(peer) = weak.upgrade() {
-                    peer.answer_values(&query);
+                    peer.answer_values(query);
                 }
             })
             .await
@@ -58,7 +58,7 @@ pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
 impl Peer {
     /// Answers a get with what this process owns of the types it asks for. `?from=PROCESS`
     /// asks one process only.
-    fn answer_values(&self, query: &zenoh::query::Query) {
+    fn answer_values(&self, query: zenoh::query::Query) {
         if let Some(from) = query.parameters().get("from") {
             if from != self.me {
                 return;
@@ -90,22 +90,31 @@ impl Peer {
             });
             states.chain(histories).collect()
         };
-        for (ty, meta, value) in owned {
-            let key = self.keys.ty(&ty);
-            let Ok(key) = zenoh::key_expr::KeyExpr::try_from(key) else {
-                continue;
-            };
-            if !asked.intersects(&key) {
-                continue;
-            }
-            let sent = query
-                .reply(key, encode_value(&value))
-                .encoding(Encoding::APPLICATION_JSON)
-                .attachment(meta.encode())
-                .wait();
-            if let Err(e) = sent {
-                tracing::debug!(ty, error = %e, "value not sent to a joiner");
-            }
+        let answers: Vec<(zenoh::key_expr::KeyExpr<'static>, Meta, Value)> = owned
+            .into_iter()
+            .filter_map(|(ty, meta, value)| {
+                let key = zenoh::key_expr::KeyExpr::try_from(self.keys.ty(&ty)).ok()?;
+                asked.intersects(&key).then_some((key, meta, value))
+            })
+            .collect();
+        // Replies wait when the link is full, and this is Zenoh's receiving thread, the one
+        // that drains it: answer from a thread of its own.
+        let answering = std::thread::Builder::new()
+            .name("proclaim-zenoh-answer".into())
+            .spawn(move || {
+                for (key, meta, value) in answers {
+                    let sent = query
+                        .reply(key, encode_value(&value))
+                        .encoding(Encoding::APPLICATION_JSON)
+                        .attachment(meta.encode())
+                        .wait();
+                    if let Err(e) = sent {
+                        tracing::debug!(error = %e, "value not sent to a joiner");
+                    }
+                }
+            });
+        if let Err(e) = answering {
+            tracing::warn!(error = %e, "cannot answer a joiner");
         }
     }
 
