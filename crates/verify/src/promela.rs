@@ -1367,9 +1367,14 @@ impl<'m> Writer<'m> {
     }
 
     /// `slot` takes any of `ids`.
+    /// The environment sets free type `slot` to one of `ids`, or leaves it never posted while
+    /// it is (a sensor may stay silent).
     fn choose(&mut self, slot: usize, ids: &[ValueId]) {
         let options: Vec<String> = ids.iter().map(|id| format!(":: s{slot} = {id};")).collect();
-        self.line(&format!("if {} fi;", options.join(" ")));
+        self.line(&format!(
+            "if {} :: s{slot} == {NEVER} -> skip; fi;",
+            options.join(" ")
+        ));
     }
 
     /// The next machine that may ring from `turn` in manifest order (passing the end starts a
@@ -1449,7 +1454,7 @@ impl<'m> Writer<'m> {
         for (slot, ids) in free {
             let options: Vec<String> = ids.iter().map(|id| format!(":: s{slot} = {id};")).collect();
             self.line(&format!(
-                "if :: tch{slot} -> tch{slot} = 0; if {} fi; :: else -> skip; fi;",
+                "if :: tch{slot} -> tch{slot} = 0; if {} :: s{slot} == {NEVER} -> skip; fi; :: else -> skip; fi;",
                 options.join(" ")
             ));
         }

@@ -16,8 +16,9 @@
 //! A free type the search does not store ([`Storage::ChosenWhenRead`]) is the same world seen
 //! lazily: its value is chosen where the ringlet first reads it, once in OnEntry and once from
 //! the snapshot on (as the environment could have set it before either), and a machine reads
-//! back what it posted to it; the choices are walked as a tree ([`Choices`]). Before the first
-//! ringlet it may still be never posted, as in the initial states of a stored one.
+//! back what it posted to it; the choices are walked as a tree ([`Choices`]). A free type may
+//! stay never posted (a silent sensor) until the environment first posts it, and never after:
+//! a stored one by its value, one chosen when read by one bit of the state ([`POSTED`]).
 //!
 //! Control postings (`Name: On`, `suspend("Name")`) act when the posting ringlet ends, in the
 //! order posted, as the runner obeys them between ringlets: `NameIsRunning` read later in the
@@ -139,19 +140,45 @@ pub fn initial_worlds(model: &Model) -> impl Iterator<Item = World> + '_ {
     })
 }
 
-/// The values a free type chosen when read may take: at any snapshot, and before the first
-/// ringlet (never posted first).
+/// The values a free type may take: once posted, and while still never posted (never posted
+/// first: staying silent is the first choice).
 #[derive(Clone, Debug, Default)]
 struct ReadDomain {
     values: Vec<ValueId>,
     initial: Vec<ValueId>,
 }
 
+impl ReadDomain {
+    fn of(values: &mut crate::values::Values, d: &crate::domain::FreeDomain) -> ReadDomain {
+        ReadDomain {
+            values: d.values.iter().map(|v| values.intern(v)).collect(),
+            initial: d
+                .initial
+                .iter()
+                .map(|v| values.intern_option(v.as_ref()))
+                .collect(),
+        }
+    }
+
+    /// What the type may hold next, given whether it was ever posted.
+    fn now(&self, posted: bool) -> &[ValueId] {
+        if posted {
+            &self.values
+        } else {
+            &self.initial
+        }
+    }
+}
+
+/// In the state, a free type chosen when read that the environment has posted (before, it
+/// holds [`NEVER`]): what it holds is chosen at each read, but it is never silent again.
+pub(crate) const POSTED: ValueId = ValueId::MAX - 1;
+
 /// The steps of the model.
 pub struct Stepper<'m> {
     model: &'m Model,
     /// Stored free slots and their domains as value numbers.
-    free: Vec<(SlotId, Vec<ValueId>)>,
+    free: Vec<(SlotId, ReadDomain)>,
     /// Per slot: its domain when it is chosen when read (empty otherwise).
     read_domains: Vec<ReadDomain>,
 }
@@ -161,19 +188,12 @@ impl<'m> Stepper<'m> {
         let mut values = model.values.borrow_mut();
         let free = model
             .stored_free_slots()
-            .map(|(slot, d)| (slot, d.values.iter().map(|v| values.intern(v)).collect()))
+            .map(|(slot, d)| (slot, ReadDomain::of(&mut values, d)))
             .collect();
         let mut read_domains = vec![ReadDomain::default(); model.slots.len()];
         for (slot, d) in model.free_slots() {
             if model.storage[slot] == Storage::ChosenWhenRead {
-                read_domains[slot] = ReadDomain {
-                    values: d.values.iter().map(|v| values.intern(v)).collect(),
-                    initial: d
-                        .initial
-                        .iter()
-                        .map(|v| values.intern_option(v.as_ref()))
-                        .collect(),
-                };
+                read_domains[slot] = ReadDomain::of(&mut values, d);
             }
         }
         Stepper {
@@ -183,11 +203,12 @@ impl<'m> Stepper<'m> {
         }
     }
 
-    fn domain(&self, slot: SlotId) -> &[ValueId] {
+    /// What stored free type `slot`, now holding `current`, may hold next.
+    fn domain(&self, slot: SlotId, current: ValueId) -> &[ValueId] {
         self.free
             .iter()
             .find(|(s, _)| *s == slot)
-            .map_or(&[], |(_, d)| d.as_slice())
+            .map_or(&[], |(_, d)| d.now(current != NEVER))
     }
 
     /// The machine that rings next from `world` and the world as it is when it starts (a new
@@ -236,11 +257,10 @@ impl<'m> Stepper<'m> {
         let Some((k, start, wrapped)) = self.next_machine(world) else {
             return;
         };
-        let first = world.turn == FIRST_TURN;
         let mut choices = Choices::default();
         let mut leaf = 0u64;
         loop {
-            let ringlet = self.ringlet(&start, k, wrapped, first, &mut choices, leaf, detail);
+            let ringlet = self.ringlet(&start, k, wrapped, &mut choices, leaf, detail);
             self.environment_moves(&ringlet, detail, out);
             leaf += 1;
             if !choices.advance() {
@@ -256,12 +276,11 @@ impl<'m> Stepper<'m> {
         start: &World,
         k: usize,
         wrapped: bool,
-        first: bool,
         choices: &mut Choices,
         leaf: u64,
         detail: bool,
     ) -> Ringlet {
-        self.ringlet_on(start, k, wrapped, first, choices, leaf, detail, None)
+        self.ringlet_on(start, k, wrapped, choices, leaf, detail, None)
             .0
     }
 
@@ -272,7 +291,6 @@ impl<'m> Stepper<'m> {
         start: &World,
         k: usize,
         wrapped: bool,
-        first: bool,
         choices: &'c mut Choices,
         leaf: u64,
         detail: bool,
@@ -285,7 +303,6 @@ impl<'m> Stepper<'m> {
             domains: &self.read_domains,
             now: Vec::new(),
             entry: Vec::new(),
-            first,
             log: detail.then(Vec::new),
             open,
         };
@@ -294,7 +311,10 @@ impl<'m> Stepper<'m> {
 
         let tests = &machine.states[from].time_tests;
         let masks = time_masks(tests, w.machines[k].time);
-        let touched_domains: Vec<&[ValueId]> = touched.iter().map(|s| self.domain(*s)).collect();
+        let touched_domains: Vec<&[ValueId]> = touched
+            .iter()
+            .map(|s| self.domain(*s, w.values[*s]))
+            .collect();
         let snapshot_count =
             masks.len() * touched_domains.iter().map(|d| d.len()).product::<usize>();
         let mut index = chosen.choices.branch(snapshot_count);
@@ -359,8 +379,8 @@ impl<'m> Stepper<'m> {
                 .storage
                 .iter()
                 .map(|s| match s {
-                    Storage::Stored => UNKNOWN,
-                    Storage::ChosenWhenRead | Storage::Unread => NEVER,
+                    Storage::Stored | Storage::ChosenWhenRead => UNKNOWN,
+                    Storage::Unread => NEVER,
                 })
                 .collect(),
             saw: vec![NEVER; model.saw.len()],
@@ -377,7 +397,7 @@ impl<'m> Stepper<'m> {
                 control_writes: vec![ControlWrites::default(); model.machines.len()],
             };
             let (ringlet, open) =
-                self.ringlet_on(&start, k, false, false, &mut choices, 0, false, Some(open));
+                self.ringlet_on(&start, k, false, &mut choices, 0, false, Some(open));
             if let Some(open) = open {
                 out.push(OpenLeaf {
                     reads: open.reads,
@@ -486,19 +506,24 @@ impl<'m> Stepper<'m> {
     /// After a ringlet, one successor for every value each stored free type may take.
     fn environment_moves(&self, ringlet: &Ringlet, detail: bool, out: &mut Vec<Successor>) {
         let w = &ringlet.world;
-        let environment_count: u64 = self.free.iter().map(|(_, d)| d.len() as u64).product();
+        let domains: Vec<(SlotId, &[ValueId])> = self
+            .free
+            .iter()
+            .map(|(slot, d)| (*slot, d.now(w.values[*slot] != NEVER)))
+            .collect();
+        let environment_count: u64 = domains.iter().map(|(_, d)| d.len() as u64).product();
         for environment_choice in 0..environment_count {
             let mut next = w.clone();
             let mut index = environment_choice;
             let mut changed = Vec::new();
-            for (slot, domain) in &self.free {
+            for &(slot, domain) in &domains {
                 let n = domain.len() as u64;
-                let v = rotated(domain, w.values[*slot], (index % n) as usize);
+                let v = rotated(domain, w.values[slot], (index % n) as usize);
                 index /= n;
-                if detail && next.values[*slot] != v {
-                    changed.push((*slot, v));
+                if detail && next.values[slot] != v {
+                    changed.push((slot, v));
                 }
-                next.values[*slot] = v;
+                next.values[slot] = v;
             }
             out.push(Successor {
                 world: next,
@@ -548,8 +573,6 @@ struct Chosen<'c> {
     /// OnEntry's values, from the snapshot on: the value a snapshot choice starts from, so that
     /// its first branch leaves it unchanged.
     entry: Vec<(SlotId, ValueId)>,
-    /// No ringlet has run yet: a type OnEntry did not touch may still be never posted.
-    first: bool,
     /// With detail: every value chosen, in order.
     log: Option<Vec<(SlotId, ValueId)>>,
     /// Where the ringlet runs on a world only partly known.
@@ -588,17 +611,14 @@ pub(crate) struct OpenLeaf {
 }
 
 impl Chosen<'_> {
-    fn value(&mut self, slot: SlotId) -> ValueId {
+    /// The value of `slot` in this phase: chosen at its first read, from what it may hold
+    /// given whether the environment has `posted` it.
+    fn value(&mut self, slot: SlotId, posted: bool) -> ValueId {
         if let Some(&(_, v)) = self.now.iter().find(|(s, _)| *s == slot) {
             return v;
         }
         let before = self.entry.iter().find(|(s, _)| *s == slot).map(|&(_, v)| v);
-        let d = &self.domains[slot];
-        let domain = if self.first && before.is_none() {
-            &d.initial
-        } else {
-            &d.values
-        };
+        let domain = self.domains[slot].now(posted);
         let branch = self.choices.branch(domain.len());
         let v = match before {
             Some(before) => rotated(domain, before, branch),
@@ -751,7 +771,15 @@ impl Exec<'_, '_> {
     fn slot_value(&mut self, slot: SlotId) -> Option<Value> {
         let message = self.is_message(slot);
         let id = if self.model.storage[slot] == Storage::ChosenWhenRead {
-            self.chosen.value(slot)
+            let mut posted = self.world.values[slot];
+            if posted == UNKNOWN {
+                posted = self.open_read(slot);
+            }
+            let id = self.chosen.value(slot, posted == POSTED);
+            if id != NEVER {
+                self.world.values[slot] = POSTED;
+            }
+            id
         } else {
             if message {
                 if let Some(t) = &mut self.touched {
@@ -874,6 +902,7 @@ impl Exec<'_, '_> {
             Storage::ChosenWhenRead => {
                 let id = self.model.values.borrow_mut().intern(&value);
                 self.chosen.post(slot, id);
+                self.world.values[slot] = POSTED;
                 return;
             }
             Storage::Stored => self.model.values.borrow_mut().intern(&value),

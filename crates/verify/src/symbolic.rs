@@ -11,7 +11,7 @@
 //!   variables is built, and no second meaning of a ringlet is written.
 //! - **Fields** are the packed state's: whose turn, each machine's state, mode, just-entered,
 //!   started-this-round and time bits, every stored slot and `saw()` value as the index of its
-//!   value among those it can hold. Those values are found first by the same ringlets, to a
+//!   value among those it can hold, and a bit for each free type chosen when read (posted yet). Those values are found first by the same ringlets, to a
 //!   fixpoint; a slot whose values keep growing (a counter) makes the engine decline.
 //! - **The first ringlet** (where a free type may still be never posted) is taken by the
 //!   explicit stepper: the search starts from its successors.
@@ -26,7 +26,7 @@ use crate::outcome::Stop;
 use crate::property::{Property, Term};
 use crate::reduce::Storage;
 use crate::ringlet::{
-    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, Stepper, UNKNOWN,
+    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, Stepper, POSTED, UNKNOWN,
 };
 use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, World};
@@ -158,7 +158,7 @@ impl Encoding {
                 time: field(&mut builder, 1 << tests),
             });
             for slot in 0..model.slots.len() {
-                if model.storage[slot] == Storage::Stored && domains.writer[slot] == Some(k) {
+                if model.storage[slot] != Storage::Unread && domains.writer[slot] == Some(k) {
                     slots[slot] = Some(field(&mut builder, domains.slots[slot].len()));
                 }
             }
@@ -169,7 +169,7 @@ impl Encoding {
             }
         }
         for slot in 0..model.slots.len() {
-            if model.storage[slot] == Storage::Stored && slots[slot].is_none() {
+            if model.storage[slot] != Storage::Unread && slots[slot].is_none() {
                 slots[slot] = Some(field(&mut builder, domains.slots[slot].len()));
             }
         }
@@ -454,6 +454,12 @@ fn value_domains(
 ) -> Result<Domains, Declined> {
     let mut domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.slots.len()];
     let mut writer: Vec<Option<usize>> = vec![None; model.slots.len()];
+    // A free type chosen when read is one bit: posted yet or not.
+    for (slot, d) in domains.iter_mut().enumerate() {
+        if model.storage[slot] == Storage::ChosenWhenRead {
+            *d = vec![NEVER, POSTED];
+        }
+    }
     let mut saw_domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.saw.len()];
     let add = |list: &mut Vec<ValueId>, v: ValueId| {
         if v != UNKNOWN && !list.contains(&v) {
@@ -486,9 +492,11 @@ fn value_domains(
                     for (slot, d) in domains.iter_mut().enumerate() {
                         if model.storage[slot] == Storage::Stored {
                             add(d, leaf.after.values[slot]);
-                            if leaf.after.values[slot] != UNKNOWN {
-                                writer[slot].get_or_insert(k);
-                            }
+                        }
+                        if model.storage[slot] != Storage::Unread
+                            && leaf.after.values[slot] != UNKNOWN
+                        {
+                            writer[slot].get_or_insert(k);
                         }
                     }
                     for (j, (m, _)) in model.saw.iter().enumerate() {

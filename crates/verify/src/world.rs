@@ -7,6 +7,7 @@
 
 use crate::model::{Model, SlotId};
 use crate::reduce::Storage;
+use crate::ringlet::POSTED;
 use crate::values::{ValueId, NEVER};
 
 /// A machine's mode, gufsm's `SuspensibleMachine` states.
@@ -50,6 +51,8 @@ pub struct Layout {
     has_time: Vec<bool>,
     /// The slots a state stores, in slot order.
     stored: Vec<SlotId>,
+    /// The free types chosen when read, whose one bit each (posted yet) a state stores.
+    chosen: Vec<SlotId>,
     /// Every slot's value in an unpacked world before the stored ones are read: the initial
     /// value of one nothing reads, "never posted" for one chosen when read.
     fill: Vec<ValueId>,
@@ -70,6 +73,9 @@ impl Layout {
                 .collect(),
             stored: (0..model.slots.len())
                 .filter(|&slot| model.storage[slot] == Storage::Stored)
+                .collect(),
+            chosen: (0..model.slots.len())
+                .filter(|&slot| model.storage[slot] == Storage::ChosenWhenRead)
                 .collect(),
             fill: {
                 let mut values = model.values.borrow_mut();
@@ -115,6 +121,14 @@ impl Layout {
         }
         for &v in &world.saw {
             leb128(v, out);
+        }
+        for byte in self.chosen.chunks(8) {
+            let bits = byte
+                .iter()
+                .enumerate()
+                .filter(|(_, &slot)| world.values[slot] == POSTED)
+                .fold(0u8, |bits, (i, _)| bits | 1 << i);
+            out.push(bits);
         }
     }
 
@@ -169,6 +183,11 @@ impl Layout {
             values[slot] = next_number();
         }
         let saw = (0..saw).map(|_| next_number()).collect();
+        for (byte, slots) in rest.iter().zip(self.chosen.chunks(8)) {
+            for (i, &slot) in slots.iter().enumerate() {
+                values[slot] = if byte >> i & 1 == 1 { POSTED } else { NEVER };
+            }
+        }
         World {
             turn,
             machines,
@@ -207,7 +226,8 @@ mod tests {
             wide_state: vec![false, true],
             has_time: vec![true, false],
             stored: vec![0, 2],
-            fill: vec![NEVER, 7, NEVER],
+            chosen: vec![3],
+            fill: vec![NEVER, 7, NEVER, NEVER],
         };
         for (time, value) in [(0, 0), (5, 127), (0x7fff, 128), (0x80, u32::MAX)] {
             let world = World {
@@ -228,7 +248,7 @@ mod tests {
                         time: 0,
                     },
                 ],
-                values: vec![value, 7, 3],
+                values: vec![value, 7, 3, if time > 0 { POSTED } else { NEVER }],
                 saw: vec![value],
             };
             let mut bytes = Vec::new();

@@ -80,8 +80,8 @@ fn eventually_holds_where_every_run_gets_there_and_fails_with_a_lasso_where_one_
             property(Eventually, "M.ON", &[]),
         ],
         "Holds: eventually M.ON || M.WAIT\n\
-         Fails: eventually M.ON\n  round 1\n    M: WAIT stays\n  \
-         loop:\n  round 2\n    M: WAIT stays; reads go = false",
+         Fails: eventually M.ON\n  round 1\n    M: WAIT stays; reads go = false\n  \
+         loop:\n  round 2\n    M: WAIT stays",
     );
 }
 
@@ -104,8 +104,8 @@ fn a_timeout_comes_due_because_time_passes() {
     check(
         &[("M", m)],
         &[property(PropertyKind::Eventually, "M.DONE", &[])],
-        "Fails: eventually M.DONE\n  round 1\n    M: WAIT stays; due: timeout(1s)\n  \
-         loop:\n  round 2\n    M: WAIT stays; reads go = false",
+        "Fails: eventually M.DONE\n  round 1\n    M: WAIT stays; due: timeout(1s); reads go = false\n  \
+         loop:\n  round 2\n    M: WAIT stays",
     );
 }
 
