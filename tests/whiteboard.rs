@@ -95,9 +95,8 @@ async fn boards(transport: Transport) -> [Whiteboard; 3] {
 }
 
 /// Waits until every board has seen all that `poster` posted so far: at once in process, after
-/// the postings before it over a network (one poster's postings reach every process in order).
-/// The bound is generous: on a loaded two-core machine a backlog of thousands of postings to
-/// ten subscribers once took longer than 5 s to drain.
+/// the holder's round trip over a network (postings reach every process in one order). The
+/// bound is generous, for a loaded machine draining thousands of postings to ten subscribers.
 async fn settle(poster: &Whiteboard, boards: &[Whiteboard]) {
     static MARK: AtomicI64 = AtomicI64::new(0);
     let mark = Value::Int(MARK.fetch_add(1, Ordering::Relaxed));

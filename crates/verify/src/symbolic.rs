@@ -302,10 +302,17 @@ pub fn check(
     let stepper = Stepper::new(model);
     let initial: Vec<World> = initial_worlds(model).collect();
     let mut first_steps: Vec<Vec<(World, Choice)>> = Vec::new();
+    let mut first_fired = model.per_transition();
     let mut successors = Vec::new();
     for w in &initial {
         successors.clear();
         stepper.successors(w, false, &mut successors);
+        for s in &successors {
+            if let Some(t) = s.fired {
+                let index = model.machines[s.machine].states[s.from].transitions[t].index;
+                first_fired[s.machine][index] = true;
+            }
+        }
         first_steps.push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
     }
     let domains = value_domains(model, &stepper, &initial, &first_steps)?;
@@ -324,7 +331,7 @@ pub fn check(
         steps: 0,
         bytes: 0,
         entered: model.per_state(),
-        fired: model.per_transition(),
+        fired: first_fired,
     };
     // Layer 0 and 1 are the explicit stepper's.
     for (i, w) in initial.iter().enumerate() {
@@ -334,19 +341,8 @@ pub fn check(
             }
         }
     }
-    let mut reached = enc.vars.mk_false();
-    for w in &initial {
-        reached = reached.or(&enc.mk(&enc.world(model, w)));
-    }
-    let mut layer = enc.vars.mk_false();
-    for steps in &first_steps {
-        for (w, _) in steps {
-            layer = layer.or(&enc.mk(&enc.world(model, w)));
-        }
-    }
-    layer = layer.and_not(&reached);
+    let (mut reached, mut layer) = first_layers(model, &enc, &initial, &first_steps);
     let mut layers = vec![layer.clone()];
-    reached = reached.or(&layer);
     let decidable = !properties.is_empty();
     loop {
         for (p, target) in targets.iter().enumerate() {
@@ -384,6 +380,40 @@ pub fn check(
     }
     outcome.states = reached.cardinality();
     outcome.steps = layers.len();
+    mark_entered_and_fired(model, &enc, &guards, &steps, &reached, &mut outcome);
+    Ok(outcome)
+}
+
+/// The states of the initial worlds, and those of the first ringlets' successors not among
+/// them (the first layer the symbolic search grows).
+fn first_layers(
+    model: &Model,
+    enc: &Encoding,
+    initial: &[World],
+    first_steps: &[Vec<(World, Choice)>],
+) -> (Bdd, Bdd) {
+    let mut reached = enc.vars.mk_false();
+    for w in initial {
+        reached = reached.or(&enc.mk(&enc.world(model, w)));
+    }
+    let mut layer = enc.vars.mk_false();
+    for (w, _) in first_steps.iter().flatten() {
+        layer = layer.or(&enc.mk(&enc.world(model, w)));
+    }
+    let layer = layer.and_not(&reached);
+    (reached.or(&layer), layer)
+}
+
+/// Marks every state some machine is in within `reached`, and every transition some step from
+/// `reached` fires.
+fn mark_entered_and_fired(
+    model: &Model,
+    enc: &Encoding,
+    guards: &Guards,
+    steps: &[Step],
+    reached: &Bdd,
+    outcome: &mut SymbolicOutcome,
+) {
     for (k, m) in model.machines.iter().enumerate() {
         for s in 0..m.states.len() {
             let mut cube = BddPartialValuation::empty();
@@ -392,31 +422,19 @@ pub fn check(
             outcome.entered[k][s] = !here.is_false();
         }
     }
-    let ringing = ringing_sets(&guards, &reached);
-    for step in &steps {
+    let ringing = ringing_sets(guards, reached);
+    for step in steps {
         let Some(t) = step.fired else { continue };
         let k = step.machine;
         let enabled = ringing[k]
             .iter()
             .any(|from| !from.and(&step.needs).is_false());
         if enabled {
-            let state = first_state(&enc, k, &step.needs);
+            let state = first_state(enc, k, &step.needs);
             let index = model.machines[k].states[state].transitions[t].index;
             outcome.fired[k][index] = true;
         }
     }
-    // The first ringlets fire too.
-    for w in &initial {
-        successors.clear();
-        stepper.successors(w, false, &mut successors);
-        for s in &successors {
-            if let Some(t) = s.fired {
-                let index = model.machines[s.machine].states[s.from].transitions[t].index;
-                outcome.fired[s.machine][index] = true;
-            }
-        }
-    }
-    Ok(outcome)
 }
 
 /// Per machine, the states of `set` in which it rings, as its ringlet sees them: without a
