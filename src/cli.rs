@@ -463,6 +463,19 @@ mod tests {
         use clap::CommandFactory;
         super::Cli::command().debug_assert();
     }
+
+    /// `--max-memory` sizes as people write them, and what is no size.
+    #[test]
+    fn sizes_read_as_written() {
+        use super::parse_size;
+        assert_eq!(parse_size("1048576"), Ok(1 << 20));
+        assert_eq!(parse_size("512K"), Ok(512 << 10));
+        assert_eq!(parse_size("256M"), Ok(256 << 20));
+        assert_eq!(parse_size("4G"), Ok(4 << 30));
+        assert_eq!(parse_size("2GiB"), Ok(2 << 30));
+        assert!(parse_size("12Q").unwrap_err().contains("unit"));
+        assert!(parse_size("G").unwrap_err().contains("not a size"));
+    }
 }
 
 /// The verifier's exact reductions, by the names `verify --without` takes.
