@@ -1,7 +1,8 @@
 //! Breadth-first exploration of the model's states: every state packed once into one arena,
 //! found again by a hash table of state numbers (FxHash of the packed bytes), each with its
-//! parent and the environment's choice that led to it, so the first state found that a property
-//! looks for has the shortest path, rebuilt by replaying the choices. Successor lists are kept
+//! parent, so the first state found that a property looks for has the shortest path. The
+//! environment's choice on each step of that path is found again when the path is asked for,
+//! by making the parent's successors once more, rather than stored with every state. Successor lists are kept
 //! (4 bytes an edge) for the deadlock check, which needs to know which states can still reach a
 //! firing.
 
@@ -15,15 +16,8 @@ use proclaim_behaviour::PropertyKind;
 use rustc_hash::FxBuildHasher;
 use std::hash::BuildHasher;
 
-/// No parent: an initial state (its `snapshot` choice is its index among the initial worlds).
+/// No parent: an initial state.
 const ROOT: u32 = u32::MAX;
-
-#[derive(Clone, Copy, Debug)]
-struct Parent {
-    parent: u32,
-    snapshot: u32,
-    environment: u32,
-}
 
 /// Every state explored, in breadth-first order.
 pub struct Graph {
@@ -31,7 +25,8 @@ pub struct Graph {
     arena: Vec<u8>,
     /// `offsets[i]..offsets[i + 1]` are state i's bytes.
     offsets: Vec<u32>,
-    parents: Vec<Parent>,
+    /// State i's parent in the breadth-first tree, or [`ROOT`].
+    parents: Vec<u32>,
     table: HashTable<u32>,
     /// Successors of state i: `edges[edge_start[i]..edge_start[i + 1]]`; the high bit marks a
     /// step in which a transition fired.
@@ -46,6 +41,9 @@ pub struct Graph {
     pub fired: Vec<Vec<bool>>,
     /// Per property: the first state it looks for.
     pub targets: Vec<Option<u32>>,
+    /// Breadth-first layers reached: the states at the greatest distance from an initial one
+    /// are this many steps away.
+    pub depth: usize,
     saw: usize,
 }
 
@@ -105,25 +103,37 @@ impl Graph {
             + grown(&self.edges, edges)
     }
 
-    /// The path to `id`: the index of its initial world and the choices after it.
-    pub fn path(&self, id: u32) -> (usize, Vec<(u32, Choice)>) {
-        let mut steps = Vec::new();
-        let mut at = id;
-        loop {
-            let p = self.parents[at as usize];
-            if p.parent == ROOT {
-                steps.reverse();
-                return (p.snapshot as usize, steps);
+    /// The path to `id`: the index of its initial world and the choices after it. Each step's
+    /// choice is found by making its parent's successors again.
+    pub fn path(&self, model: &Model, id: u32) -> (usize, Vec<(u32, Choice)>) {
+        let mut states = vec![id];
+        while let Some(&at) = states.last() {
+            match self.parents[at as usize] {
+                ROOT => break,
+                parent => states.push(parent),
             }
-            steps.push((
-                p.parent,
-                Choice {
-                    snapshot: u64::from(p.snapshot),
-                    environment: u64::from(p.environment),
-                },
-            ));
-            at = p.parent;
         }
+        states.reverse();
+        let root = states[0];
+        let initial = initial_worlds(model)
+            .position(|w| self.stores_as(&w, root))
+            .unwrap_or(0);
+        let stepper = Stepper::new(model);
+        let steps = states
+            .windows(2)
+            .map_while(|pair| Some((pair[0], self.choice_between(&stepper, pair[0], pair[1])?)))
+            .collect();
+        (initial, steps)
+    }
+
+    /// The choice that leads from state `from` to state `to` in one step, if one does.
+    pub fn choice_between(&self, stepper: &Stepper, from: u32, to: u32) -> Option<Choice> {
+        let mut successors = Vec::new();
+        stepper.successors(&self.world(from), false, &mut successors);
+        successors
+            .iter()
+            .find(|s| self.stores_as(&s.world, to))
+            .map(|s| s.choice)
     }
 
     /// The first state (so the nearest) from which no transition can ever fire again while a
@@ -223,7 +233,7 @@ pub fn explore(
         graph.complete = false;
         graph.stopped = reason;
     };
-    for (i, w) in initial_worlds(model).enumerate() {
+    for w in initial_worlds(model) {
         if graph.is_full(limits.max_states) {
             stop(&mut graph, Stop::StateBudget);
             return graph;
@@ -232,17 +242,18 @@ pub fn explore(
             stop(&mut graph, Stop::MemoryBudget);
             return graph;
         }
-        let parent = Parent {
-            parent: ROOT,
-            snapshot: i as u32,
-            environment: 0,
-        };
-        store.insert(&mut graph, &w, parent, model, properties);
+        store.insert(&mut graph, &w, ROOT, model, properties);
     }
     let stepper = Stepper::new(model);
     let mut successors: Vec<Successor> = Vec::new();
     let mut next = 0usize;
+    // States from here on are one step further from the initial ones than those before.
+    let mut layer_end = graph.len();
     while next < graph.len() {
+        if next == layer_end {
+            graph.depth += 1;
+            layer_end = graph.len();
+        }
         if decidable && graph.targets.iter().all(Option::is_some) {
             stop(&mut graph, Stop::Decided);
             break;
@@ -268,12 +279,7 @@ pub fn explore(
             break;
         }
         for s in &successors {
-            let parent = Parent {
-                parent: next as u32,
-                snapshot: s.choice.snapshot as u32,
-                environment: s.choice.environment as u32,
-            };
-            let mut edge = store.insert(&mut graph, &s.world, parent, model, properties);
+            let mut edge = store.insert(&mut graph, &s.world, next as u32, model, properties);
             if let Some(t) = s.fired {
                 edge |= FIRED;
                 let index = model.machines[s.machine].states[s.from].transitions[t].index;
@@ -303,6 +309,7 @@ impl Graph {
             entered: model.per_state(),
             fired: model.per_transition(),
             targets: vec![None; properties],
+            depth: 0,
             saw: model.saw.len(),
         }
     }
@@ -334,7 +341,7 @@ impl Store {
         &mut self,
         graph: &mut Graph,
         world: &World,
-        parent: Parent,
+        parent: u32,
         model: &Model,
         properties: &[Property],
     ) -> u32 {
@@ -382,7 +389,7 @@ impl Graph {
 
     /// Whether state `id` is one of the initial states.
     pub fn is_initial(&self, id: u32) -> bool {
-        self.parents[id as usize].parent == ROOT
+        self.parents[id as usize] == ROOT
     }
 
     /// Where state `id`'s successors are in the edge list (`id` expanded; empty when no

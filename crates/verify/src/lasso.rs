@@ -8,7 +8,7 @@ use crate::liveness::{acceptance_sets, meets, FailingRun};
 use crate::model::Model;
 use crate::outcome::Trace;
 use crate::property::Property;
-use crate::ringlet::{Choice, Stepper};
+use crate::ringlet::Stepper;
 use crate::trace;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::VecDeque;
@@ -18,7 +18,7 @@ use std::collections::VecDeque;
 pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun) -> (Trace, Trace) {
     let component: FxHashSet<u32> = run.component.iter().copied().collect();
     let in_component = |v: u32| component.contains(&v);
-    let (initial, mut steps) = graph.path(run.seed);
+    let (initial, mut steps) = graph.path(model, run.seed);
     let to_seed = steps.len();
     let mut states = vec![run.seed];
     if !in_component(run.seed) {
@@ -33,7 +33,7 @@ pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun)
     }
     let stepper = Stepper::new(model);
     for pair in states.windows(2) {
-        match choice_between(&stepper, graph, pair[0], pair[1]) {
+        match graph.choice_between(&stepper, pair[0], pair[1]) {
             Some(choice) => steps.push((pair[0], choice)),
             // Every edge was made by a step; one not made again would be a bug in the model,
             // and the lasso ends where it could be followed.
@@ -123,14 +123,4 @@ fn shortest(
         }
     }
     Vec::new()
-}
-
-/// The environment's choice of the step from state `from` to state `to`.
-fn choice_between(stepper: &Stepper, graph: &Graph, from: u32, to: u32) -> Option<Choice> {
-    let mut successors = Vec::new();
-    stepper.successors(&graph.world(from), false, &mut successors);
-    successors
-        .iter()
-        .find(|s| graph.stores_as(&s.world, to))
-        .map(|s| s.choice)
 }

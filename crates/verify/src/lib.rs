@@ -67,7 +67,8 @@ use proclaim_behaviour::Behaviour;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Engine {
     /// The explicit search for its first [`AUTO_EXPLICIT_STATES`] states; where that decides
-    /// nothing and the behaviour suits it, the symbolic engine; else the explicit search on.
+    /// nothing, the graph is not deep and narrow ([`AUTO_NARROW_WIDTH`]) and the behaviour suits
+    /// it, the symbolic engine; else the explicit search on.
     #[default]
     Auto,
     /// States one by one (`explore.rs`).
@@ -89,6 +90,12 @@ impl Engine {
 /// How many states the automatic choice lets the explicit search store before it turns to
 /// the symbolic engine.
 pub const AUTO_EXPLICIT_STATES: usize = 200_000;
+
+/// The automatic choice keeps the explicit search when its first states spread over layers of
+/// fewer than this many states on average: the symbolic engine pays one image a layer, the
+/// explicit search one ringlet a state, and below this width the explicit search was the faster
+/// on every family of `cargo bench -p proclaim-verify --bench families`.
+pub const AUTO_NARROW_WIDTH: usize = 1000;
 
 /// How far to explore, and how.
 #[derive(Clone, Copy, Debug)]
@@ -170,6 +177,12 @@ pub fn verify_with_progress(
             let report = explicit(&model, &compiled, trial, progress);
             if report.stats.stopped != Stop::StateBudget || trial.max_states == options.max_states {
                 return Ok(report);
+            }
+            // A deep, narrow graph (counters stepping through their values) would take the
+            // symbolic engine one image a layer; the explicit search goes on with it.
+            let width = report.stats.states / report.stats.depth.max(1);
+            if width < AUTO_NARROW_WIDTH {
+                return Ok(explicit(&model, &compiled, options, progress));
             }
             match symbolic(&model, &compiled, options) {
                 Ok(report) => Ok(report),
@@ -376,6 +389,7 @@ fn explicit(
         bytes: graph.bytes(),
         bytes_per_state: graph.bytes_per_state(),
         packed_bytes_per_state: graph.packed_bytes() as f64 / graph.len().max(1) as f64,
+        depth: graph.depth,
         values: model.values.borrow().len(),
         valuations: valuations(model),
         engine: Engine::Explicit.word(),
@@ -422,6 +436,7 @@ fn symbolic(
             bytes: found.bytes,
             bytes_per_state: found.bytes as f64 / states.max(1) as f64,
             packed_bytes_per_state: 0.0,
+            depth: found.steps,
             values: model.values.borrow().len(),
             valuations: valuations(model),
             engine: Engine::Symbolic.word(),

@@ -139,6 +139,9 @@ pub struct Stats {
     /// share of the edges kept for the deadlock check.
     pub bytes_per_state: f64,
     pub packed_bytes_per_state: f64,
+    /// Breadth-first layers explored: the farthest state found is this many steps from an
+    /// initial one.
+    pub depth: usize,
     /// Distinct values met (grows with counters).
     pub values: usize,
     /// Input valuations the reasoners were asked to prove.

@@ -25,7 +25,7 @@ fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
 
 /// The path from an initial state to state `id`.
 pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
-    let (initial, path) = graph.path(id);
+    let (initial, path) = graph.path(model, id);
     let steps = path
         .into_iter()
         .map(|(parent, choice)| (graph.world(parent), choice));
