@@ -1,5 +1,6 @@
 //! ARCHITECTURE.md's picture of the crates, held to the manifests: every crate drawn with exactly
-//! the proclaim crates its `Cargo.toml` depends on, each on a layer above all of them.
+//! the proclaim crates its `Cargo.toml` depends on, each on a layer above all of them; and no
+//! file names a path outside the repository but the shared corpus.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -86,4 +87,134 @@ fn the_crates_picture_is_what_the_manifests_say() {
             );
         }
     }
+}
+
+/// Every file of the repository that is text, with its path: code, tests, documents, scripts,
+/// manifests (not build output, caches or git's own files).
+fn repository_texts(root: &Path) -> Vec<(std::path::PathBuf, String)> {
+    // Folders of tools' output: a venv, caches, fuzzing's inputs and findings.
+    const SKIPPED: [&str; 5] = [
+        ".venv",
+        "__pycache__",
+        "node_modules",
+        "corpus",
+        "artifacts",
+    ];
+    let mut files = Vec::new();
+    let mut folders = vec![root.to_path_buf()];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name == ".git" {
+                // A clone's folder, or a worktree's file naming where its repository is.
+                continue;
+            }
+            if path.is_dir() {
+                if !(name.starts_with("target") || SKIPPED.contains(&name.as_str())) {
+                    folders.push(path);
+                }
+            } else if let Ok(text) = std::fs::read_to_string(&path) {
+                files.push((path, text));
+            }
+        }
+    }
+    files
+}
+
+/// The relative paths a text names: each run of `../` and what follows it up to a character no
+/// path has (a sentence's closing `.` left out).
+fn relative_paths(text: &str) -> Vec<&str> {
+    let in_path = |c: char| c.is_ascii_alphanumeric() || "_-./*".contains(c);
+    let mut paths = Vec::new();
+    let mut from = 0;
+    while let Some(at) = text[from..].find("../").map(|i| from + i) {
+        let starts_a_path = !text[..at].ends_with(in_path);
+        let end = text[at..]
+            .find(|c: char| !in_path(c))
+            .map_or(text.len(), |i| at + i);
+        if starts_a_path {
+            let path = &text[at..end];
+            let path = match path.strip_suffix('.') {
+                Some(shorter) if !shorter.ends_with('.') => shorter,
+                _ => path,
+            };
+            paths.push(path);
+        }
+        from = end.max(at + 3);
+    }
+    paths
+}
+
+/// `relative` read from `folder`, `..` taken off as it comes (no file system access).
+fn resolve(folder: &Path, relative: &str) -> std::path::PathBuf {
+    let mut path = folder.to_path_buf();
+    for part in relative.split('/') {
+        match part {
+            ".." => {
+                path.pop();
+            }
+            "" | "." => {}
+            part => path.push(part),
+        }
+    }
+    path
+}
+
+/// A clone of the repository alone is enough to read what its code and documents cite: no file
+/// names a path outside it (the specs the code implements once lived beside it), except
+/// the shared corpus of real user files, which the tests read when it is there and skip without.
+/// A relative path counts as inside when, read from some folder of the repository, it names
+/// something that exists in the repository.
+#[test]
+fn no_file_names_a_path_outside_the_repository_but_the_shared_corpus() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let outside = root.parent().expect("the repository has a parent folder");
+    let corpus = outside.join("shared/corpus");
+    // Text that is data, not a reference: a Qfsm link file, as the importer's test feeds it.
+    let data = [(
+        "crates/fsm/tests/machines.rs",
+        concat!("..", "/DefaultMachines/SMGetUp.fsm"),
+    )];
+    let texts = repository_texts(root);
+    let mut folders: Vec<std::path::PathBuf> = texts
+        .iter()
+        .filter_map(|(path, _)| path.parent().map(Path::to_path_buf))
+        .collect();
+    folders.sort();
+    folders.dedup();
+    let mut found = Vec::new();
+    for (file, text) in &texts {
+        let name = file
+            .strip_prefix(root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        for relative in relative_paths(text) {
+            let names_the_corpus = folders
+                .iter()
+                .any(|folder| resolve(folder, relative).starts_with(&corpus));
+            let names_something_inside = folders.iter().any(|folder| {
+                let path = resolve(folder, relative);
+                path.starts_with(root) && path.exists()
+            });
+            if !(names_the_corpus
+                || names_something_inside
+                || data.contains(&(name.as_str(), relative)))
+            {
+                found.push(format!("{name}: {relative}"));
+            }
+        }
+        if text.contains(&format!("{}/", outside.display())) {
+            found.push(format!(
+                "{name}: an absolute path under {}",
+                outside.display()
+            ));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "paths outside the repository:\n{}",
+        found.join("\n")
+    );
 }
