@@ -1,6 +1,8 @@
-//! ARCHITECTURE.md's picture of the crates, held to the manifests: every crate drawn with exactly
-//! the proclaim crates its `Cargo.toml` depends on, each on a layer above all of them; and no
-//! file names a path outside the repository but the shared corpus.
+//! ARCHITECTURE.md's claims that can be checked cheaply, held to the repository: the picture of
+//! the crates against the manifests (every crate drawn with exactly the proclaim crates its
+//! `Cargo.toml` depends on, each on a layer above all of them), the binary's and Zenoh's "does
+//! not", the crates that do no I/O, the map's length and that it holds no measured figure; and
+//! that no file names a path outside the repository but the shared corpus.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -46,7 +48,13 @@ fn picture() -> BTreeMap<String, (usize, BTreeSet<String>)> {
 
 /// The proclaim crates `crates/NAME/Cargo.toml` lists under `[dependencies]`.
 fn manifest_dependencies(name: &str) -> BTreeSet<String> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("crates/{name}/Cargo.toml"));
+    dependencies(&format!("crates/{name}/Cargo.toml"), "proclaim-")
+}
+
+/// The dependencies whose names start with `prefix` (that prefix taken off) that the manifest at
+/// `manifest` (from the repository's root) lists under `[dependencies]`.
+fn dependencies(manifest: &str, prefix: &str) -> BTreeSet<String> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(manifest);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut section = "";
     let mut deps = BTreeSet::new();
@@ -54,9 +62,9 @@ fn manifest_dependencies(name: &str) -> BTreeSet<String> {
         if line.starts_with('[') {
             section = line;
         } else if section == "[dependencies]" {
-            if let Some(dep) = line.strip_prefix("proclaim-") {
+            if let Some(dep) = line.strip_prefix(prefix) {
                 let end = dep
-                    .find(|c: char| !(c.is_alphanumeric() || c == '-'))
+                    .find(|c: char| !(c.is_alphanumeric() || c == '-' || c == '_'))
                     .unwrap_or(dep.len());
                 deps.insert(dep[..end].to_string());
             }
@@ -65,14 +73,23 @@ fn manifest_dependencies(name: &str) -> BTreeSet<String> {
     deps
 }
 
+/// The crates under `crates/`, by folder name.
+fn crates_on_disk() -> BTreeSet<String> {
+    std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("crates"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect()
+}
+
+fn architecture_text() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md"))
+        .expect("ARCHITECTURE.md")
+}
+
 #[test]
 fn the_crates_picture_is_what_the_manifests_say() {
     let picture = picture();
-    let on_disk: BTreeSet<String> =
-        std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("crates"))
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
+    let on_disk = crates_on_disk();
     assert_eq!(
         picture.keys().cloned().collect::<BTreeSet<_>>(),
         on_disk,
@@ -84,6 +101,103 @@ fn the_crates_picture_is_what_the_manifests_say() {
             assert!(
                 picture[dep].0 < *layer,
                 "`{name}` (layer {layer}) uses `{dep}` on a layer not below it"
+            );
+        }
+    }
+}
+
+/// The binary's line of the picture: every crate but capi (the C library is built on its own),
+/// and zenoh only as its optional feature.
+#[test]
+fn the_binary_depends_on_every_crate_but_capi() {
+    assert!(architecture_text().contains("the binary) ─▶ every crate below but capi"));
+    let mut expected = crates_on_disk();
+    expected.remove("capi");
+    assert_eq!(dependencies("Cargo.toml", "proclaim-"), expected);
+    let manifest =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml")).unwrap();
+    assert!(manifest.contains("proclaim-zenoh = { workspace = true, optional = true }"));
+}
+
+/// "the only crate that depends on Zenoh".
+#[test]
+fn only_the_zenoh_crate_depends_on_zenoh() {
+    for name in crates_on_disk() {
+        let zenoh = dependencies(&format!("crates/{name}/Cargo.toml"), "zenoh");
+        assert_eq!(zenoh.contains(""), name == "zenoh", "`{name}` and Zenoh");
+    }
+    assert!(
+        !dependencies("Cargo.toml", "zenoh").contains(""),
+        "the binary uses Zenoh through proclaim-zenoh"
+    );
+}
+
+/// The crates whose paragraphs say they do no I/O, are pure, or open no sockets and read no
+/// files: none of their library code names the file system, the network or processes.
+#[test]
+fn the_crates_without_io_name_none() {
+    let io = [
+        "std::fs",
+        "tokio::fs",
+        "std::net",
+        "tokio::net",
+        "std::process",
+        "tokio::process",
+    ];
+    for name in [
+        "syntax",
+        "cdl",
+        "fsm",
+        "gamecontroller",
+        "gen",
+        "runner",
+        "verify",
+    ] {
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("crates/{name}/src"));
+        for (file, text) in repository_texts(&src) {
+            for word in io {
+                assert!(!text.contains(word), "{} names {word}", file.display());
+            }
+        }
+    }
+}
+
+/// The map stays a map: short, and with no measured figure (those are README's, under "Speed").
+#[test]
+fn architecture_is_short_and_holds_no_measured_figure() {
+    let text = architecture_text();
+    let lines = text.lines().count();
+    assert!(
+        lines < 250,
+        "ARCHITECTURE.md has {lines} lines; a map has fewer than 250"
+    );
+    let units = [
+        "ns", "µs", "us", "ms", "s", "min", "KiB", "MiB", "GiB", "kB", "KB", "MB", "GB", "%", "×",
+    ];
+    for (number, line) in text.lines().enumerate() {
+        let chars: Vec<char> = line.chars().collect();
+        let mut i = 0;
+        while i < chars.len() {
+            if !chars[i].is_ascii_digit() {
+                i += 1;
+                continue;
+            }
+            while i < chars.len() && (chars[i].is_ascii_digit() || ",._".contains(chars[i])) {
+                i += 1;
+            }
+            let mut j = i;
+            if j < chars.len() && chars[j] == ' ' {
+                j += 1;
+            }
+            let word: String = chars[j..]
+                .iter()
+                .take_while(|c| c.is_alphabetic() || "%×".contains(**c))
+                .collect();
+            assert!(
+                !units.contains(&word.as_str()),
+                "ARCHITECTURE.md:{}: a measured figure (`{}`) belongs in README's \"Speed\"",
+                number + 1,
+                line.trim()
             );
         }
     }
