@@ -207,9 +207,11 @@ fn architecture_is_short_and_holds_no_measured_figure() {
 /// manifests (not build output, caches or git's own files).
 fn repository_texts(root: &Path) -> Vec<(std::path::PathBuf, String)> {
     // Folders of tools' output: a venv, caches, fuzzing's inputs and findings.
-    const SKIPPED: [&str; 5] = [
+    const SKIPPED: [&str; 7] = [
         ".venv",
         "__pycache__",
+        ".pytest_cache",
+        ".mypy_cache",
         "node_modules",
         "corpus",
         "artifacts",
