@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's tests: a fresh venv, `pip install ./python` (maturin builds the extension
-# in release mode), then pytest (arguments are pytest's: `-k zenoh` runs only the Zenoh test). The agreement tests run the `proclaim` binary: PROCLAIM_BIN, or
+# in release mode), the typed stub `proclaim/__init__.pyi` checked against the built extension
+# by mypy's stubtest, then pytest (arguments are pytest's: `-k zenoh` runs only the Zenoh test). The agreement tests run the `proclaim` binary: PROCLAIM_BIN, or
 # target/debug/proclaim (under CARGO_TARGET_DIR when set), built here when missing.
 set -euo pipefail
 python_dir="$(cd "$(dirname "$0")" && pwd)"
@@ -30,8 +31,13 @@ python3 -m venv "$venv"
 # eclipse-zenoh: Zenoh's own Python package, for the whiteboard-over-Zenoh test (the Rust side is
 # Zenoh 1.9); that test runs only when PROCLAIM_ZENOH_BIN names a proclaim built with `zenoh`.
 "$venv/bin/pip" install --quiet maturin pytest eclipse-zenoh==1.9.0
+# mypy for stubtest, pinned: a newer mypy may add checks, which should be taken on on purpose.
+"$venv/bin/pip" install --quiet mypy==2.4.1
 "$venv/bin/pip" install --quiet "$python_dir"
 # From the tests' directory, not python/: the source tree's proclaim/ has no extension in it and
 # must not shadow the installed package.
 cd "$python_dir/tests"
+# Every name, signature and class of the stub as the extension has it (a name only the stub has,
+# for annotations, starts with an underscore); run in the venv, where mypy leaves its cache.
+(cd "$venv" && "$venv/bin/python" -m mypy.stubtest proclaim)
 "$venv/bin/pytest" -q "$@"

@@ -348,7 +348,7 @@ pub enum Command {
     Bench {
         /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3 clique:200`, or your
         /// own theory files (`.dl`, `.dfl`), timed the same way; default: the suite of
-        /// spec/benchmarks.md
+        /// docs/spec/benchmarks.md
         cases: Vec<String>,
         /// Smaller sizes (10^3 to 10^5) for a quick look
         #[arg(long)]

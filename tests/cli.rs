@@ -414,11 +414,11 @@ fn gc_sim_reports_script_errors_by_line() {
 
 #[test]
 fn check_reads_t_a_pairs_and_qfsm_files() {
-    let Some(dir) = crate::shared_dir() else {
+    let Some(dir) = crate::corpus_dir() else {
         eprintln!("skipped: ../shared/corpus is absent");
         return;
     };
-    let corpus = dir.join("corpus/mipal");
+    let corpus = dir.join("mipal");
     let a = corpus.join("testfiles/AGameController.txt");
     let fsm = corpus.join("machines/SMGetUp.fsm");
     let o = proclaim(&["check", a.to_str().unwrap(), fsm.to_str().unwrap()]);

@@ -24,10 +24,10 @@ pub fn proclaim(args: &[&str]) -> std::process::Output {
         .expect("the binary runs")
 }
 
-/// Where the shared corpus and specs live, when present beside the project.
+/// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
 #[allow(dead_code)]
-pub fn shared_dir() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
+pub fn corpus_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus");
     dir.is_dir().then_some(dir)
 }
 

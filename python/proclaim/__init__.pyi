@@ -15,10 +15,31 @@ from typing import (
     Type,
     TypedDict,
     Union,
+    final,
 )
 
+__all__ = [
+    "ALGORITHMS",
+    "Behaviour",
+    "BehaviourError",
+    "BehaviourWarning",
+    "Board",
+    "CallbackError",
+    "Error",
+    "InputConflict",
+    "Session",
+    "Theory",
+    "TheoryError",
+    "Undecided",
+    "load",
+    "load_file",
+]
 
-AlgorithmName = Literal["mu", "pi", "beta", "alpha", "delta"]
+# Names with a leading underscore are the stub's own (types for annotations): they do not exist
+# at run time, so import them only under `typing.TYPE_CHECKING`.
+
+
+_AlgorithmName = Literal["mu", "pi", "beta", "alpha", "delta"]
 
 ALGORITHMS: Tuple[str, str, str, str, str]
 """The algorithm names, in the order cdl.md gives them: mu, pi, beta, alpha, delta."""
@@ -54,11 +75,12 @@ class InputConflict(Error):
     clause: str
     """The axiom clause it contradicts."""
 
-class TableRow(TypedDict):
+class _TableRow(TypedDict):
     inputs: Dict[str, bool]
     outputs: Optional[Dict[str, bool]]
     """Keyed by column heading (``beta cook``); None when the inputs contradict the axioms."""
 
+@final
 class Theory:
     """A checked theory, immutable; sessions share it and keep it alive."""
 
@@ -73,9 +95,10 @@ class Theory:
         """The declared input atoms, the ones Session.set accepts."""
     def session(self, budget: Optional[int] = None) -> Session:
         """A new session, every input unknown; ``budget``: search steps per attack cycle."""
-    def table(self) -> List[TableRow]:
+    def table(self) -> List[_TableRow]:
         """The truth table's rows, as ``proclaim table --format json`` gives them."""
 
+@final
 class Session:
     """Input values and cached answers over one theory; also a context manager."""
 
@@ -90,7 +113,7 @@ class Session:
         """
     def get(self, atom: str) -> Optional[bool]:
         """The value an input was set to."""
-    def prove(self, query: str, algorithm: AlgorithmName = "beta") -> bool:
+    def prove(self, query: str, algorithm: _AlgorithmName = "beta") -> bool:
         """Whether the algorithm proves the query, written as ``proclaim prove`` takes it: a
         literal (``cook``, ``~cook``), a clause (``\\/{a, b}``) or a conjunction of clauses
         (``/\\{a, \\/{b, c}}``).
@@ -98,7 +121,7 @@ class Session:
         Raises Undecided, KeyError (no such atom; names the theory's file and the nearest atom),
         ValueError (no query, or no such algorithm).
         """
-    def explain(self, literal: str, algorithm: AlgorithmName = "beta", depth: int = 1) -> str:
+    def explain(self, literal: str, algorithm: _AlgorithmName = "beta", depth: int = 1) -> str:
         """Why the algorithm proves or refutes the literal, as ``proclaim explain`` prints it;
         ValueError for a clause or conjunction."""
     def close(self) -> None:
@@ -118,7 +141,7 @@ def load_file(path: Union[str, "os.PathLike[str]"]) -> Theory:
     """Loads a theory file; raises OSError when unreadable (FileNotFoundError when missing),
     with ``filename`` set, and TheoryError when it does not load."""
 
-WhiteboardValue = Union[bool, int, float, str, bytes, Sequence["WhiteboardValue"]]
+_WhiteboardValue = Union[bool, int, float, str, bytes, Sequence["_WhiteboardValue"]]
 """What the whiteboard holds; a tuple posted reads back as a list."""
 
 class BehaviourError(Error):
@@ -137,21 +160,23 @@ class CallbackError(Error):
     callable: str
     """Which callable: "the host function `beep`", "the expert for `boiling`"."""
 
+@final
 class Board:
     """A behaviour's whiteboard, as an expert's callable is given it."""
 
-    def read(self, type: str) -> Optional[WhiteboardValue]:
+    def read(self, type: str) -> Optional[_WhiteboardValue]:
         """The latest value of ``type``; None when never posted."""
-    def post(self, type: str, value: WhiteboardValue) -> None:
+    def post(self, type: str, value: _WhiteboardValue) -> None:
         """Posts ``value`` as ``type``, from the module ``python``."""
-    def __getitem__(self, type: str) -> Optional[WhiteboardValue]:
+    def __getitem__(self, key: str, /) -> Optional[_WhiteboardValue]:
         """``board["x"]`` is ``board.read("x")``."""
 
-Event = Dict[str, Any]
+_Event = Dict[str, Any]
 """One event of the trace, as ``proclaim run --trace`` writes it: ``{"event": "entered", ...}``;
 a host call is ``{"event": "called", "function": "beep", "argument": 3, "round": 7}``, after the
 events of the round that made it."""
 
+@final
 class Behaviour:
     """A behaviour started paused before its first round; also a context manager.
 
@@ -168,22 +193,22 @@ class Behaviour:
     machine, so it reaches a state behind timeouts by itself. ``time`` says where the clock is.
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         folder: Union[str, "os.PathLike[str]"],
         hosts: Optional[Mapping[str, Callable[..., object]]] = None,
         experts: Optional[Mapping[str, Callable[[Board], Optional[bool]]]] = None,
         script: Optional[str] = None,
         virtual_clock: bool = True,
-    ) -> None: ...
-    def step(self) -> List[Event]:
+    ) -> Behaviour: ...
+    def step(self) -> List[_Event]:
         """One round: every running machine one ringlet, at the moment the clock is at (time
         does not move); its events."""
     def run_until(self, predicate: Callable[[Behaviour], object], rounds: int = 1000) -> bool:
         """Rounds until ``predicate(self)`` is true, at most ``rounds``; whether it was. When a
         round moves no machine, the virtual clock moves to the next thing due and its round
         runs; with nothing due, time stands still."""
-    def run(self, seconds: float) -> List[Event]:
+    def run(self, seconds: float) -> List[_Event]:
         """The machines ring freely for ``seconds`` (virtual, by default), then pause after a
         round at exactly ``seconds`` from now (what falls due then happens); its events."""
     def wait(self, seconds: float) -> None:
@@ -191,9 +216,9 @@ class Behaviour:
     @property
     def time(self) -> float:
         """Seconds the clock has moved since the start."""
-    def post(self, type: str, value: WhiteboardValue) -> None:
+    def post(self, type: str, value: _WhiteboardValue) -> None:
         """Posts ``value`` as ``type`` on the whiteboard, from the module ``python``."""
-    def read(self, type: str) -> Optional[WhiteboardValue]:
+    def read(self, type: str) -> Optional[_WhiteboardValue]:
         """The latest value of ``type``; None when never posted."""
     @property
     def board(self) -> Board: ...
@@ -201,10 +226,10 @@ class Behaviour:
         """Every machine to the state it last entered (None before it entered one)."""
     def state(self, machine: str) -> Optional[str]:
         """The state ``machine`` last entered; KeyError for a machine it does not have."""
-    def variable(self, machine: str, name: str) -> Optional[WhiteboardValue]:
+    def variable(self, machine: str, name: str) -> Optional[_WhiteboardValue]:
         """A variable as ``machine`` sees it; None when it has none of that name."""
     @property
-    def events(self) -> List[Event]:
+    def events(self) -> List[_Event]:
         """Every event so far, oldest first."""
     @property
     def trace(self) -> List[str]:

@@ -118,7 +118,7 @@ impl Manifest {
     }
 }
 
-/// How the machines of a behaviour share time (`../shared/spec/behaviour.md` §3.1).
+/// How the machines of a behaviour share time (`docs/spec/behaviour.md` §3.1).
 #[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Schedule {

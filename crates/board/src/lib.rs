@@ -1,4 +1,4 @@
-//! The whiteboard (`../shared/spec/behaviour.md` §1–2): every module talks through it and holds
+//! The whiteboard (`docs/spec/behaviour.md` §1–2): every module talks through it and holds
 //! no reference to another. Messages have a type, a value, the posting module, a sequence number
 //! and a time; a type is a *state* (one current value), a *signal* (consumed by its first reader)
 //! or *data* (a bounded time-stamped history). Waiters and subscribers are woken, never polling.

@@ -1,4 +1,4 @@
-//! Clausal defeasible logic (`../shared/spec/cdl.md`): a syntax tree is checked into a
+//! Clausal defeasible logic (`docs/spec/cdl.md`): a syntax tree is checked into a
 //! [`Theory`], compiled into an [`Engine`], and asked through a [`Session`] that holds input
 //! values and re-proves only what an input change reaches. No I/O happens here.
 //!

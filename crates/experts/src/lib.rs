@@ -1,5 +1,5 @@
 //! Experts: modules that own transition labels and proclaim them on the whiteboard
-//! (`../shared/spec/behaviour.md` §2). A machine cannot tell one from another.
+//! (`docs/spec/behaviour.md` §2). A machine cannot tell one from another.
 //!
 //! - [`ReasonerExpert`]: a `.dl` theory whose inputs are whiteboard messages and whose outputs are
 //!   the atoms it answers;

@@ -316,11 +316,11 @@ async fn malformed_and_foreign_packets_are_counted_and_ignored() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_real_capture_over_udp() {
-    let Some(dir) = shared_dir() else {
+    let Some(dir) = corpus_dir() else {
         eprintln!("skipped: ../shared/corpus is absent");
         return;
     };
-    let text = std::fs::read_to_string(dir.join("corpus/gamecontroller/gc3-capture.hex")).unwrap();
+    let text = std::fs::read_to_string(dir.join("gamecontroller/gc3-capture.hex")).unwrap();
     let board = Whiteboard::local();
     let (receiver, addr) = receiver(Some(5), 2).await;
     let counters = receiver.counters();
@@ -528,8 +528,8 @@ async fn an_undecided_answer_is_marked_on_the_board_before_it_is_posted() {
     );
 }
 
-/// Where the shared corpus and specs live, when present beside the project.
-fn shared_dir() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+/// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
+fn corpus_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }

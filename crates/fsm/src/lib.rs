@@ -1,4 +1,4 @@
-//! Behaviour machines (`../shared/spec/behaviour.md` §3–4): the model the interpreter will run,
+//! Behaviour machines (`docs/spec/behaviour.md` §3–4): the model the interpreter will run,
 //! the label expressions transitions wait on, and importers for the formats robot teams already
 //! have: the original T/A tables and Qfsm `.fsm` XML, and the native format ([`parse_machine`],
 //! [`to_native`]). Pure: texts in, machines and diagnostics

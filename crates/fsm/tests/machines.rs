@@ -201,7 +201,7 @@ fn what_does_nothing_is_said() {
 }
 
 fn corpus() -> Option<std::path::PathBuf> {
-    Some(shared_dir()?.join("corpus/mipal"))
+    Some(corpus_dir()?.join("mipal"))
 }
 
 #[test]
@@ -607,8 +607,8 @@ fn a_machine_as_dot() {
     );
 }
 
-/// Where the shared corpus and specs live, when present beside the project.
-fn shared_dir() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+/// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
+fn corpus_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }

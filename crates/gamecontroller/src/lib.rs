@@ -1,4 +1,4 @@
-//! The RoboCup SPL GameController protocol (`../shared/spec/gamecontroller.md`): control packets
+//! The RoboCup SPL GameController protocol (`docs/spec/gamecontroller.md`): control packets
 //! of version 18 (GameController3) and 7 (the Griffith era), the robot's `RGrt` status packet,
 //! and the labels a robot's behaviour asks about. Pure: bytes in, values out; sockets live
 //! elsewhere.

@@ -15,7 +15,7 @@ fn hex(text: &str) -> Vec<u8> {
 
 /// The capture's packets, or `None` (the test then skips) when the shared corpus is absent.
 fn capture() -> Option<Vec<(f64, Vec<u8>)>> {
-    let path = shared_dir()?.join("corpus/gamecontroller/gc3-capture.hex");
+    let path = corpus_dir()?.join("gamecontroller/gc3-capture.hex");
     let text = std::fs::read_to_string(path).ok()?;
     Some(
         text.lines()
@@ -207,8 +207,8 @@ proptest! {
     }
 }
 
-/// Where the shared corpus and specs live, when present beside the project.
-fn shared_dir() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+/// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
+fn corpus_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }

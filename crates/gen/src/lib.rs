@@ -1,4 +1,4 @@
-//! The standard scalable defeasible-logic theories of `spec/benchmarks.md` (Maher, Rock,
+//! The standard scalable defeasible-logic theories of `docs/spec/benchmarks.md` (Maher, Rock,
 //! Antoniou, Billington and Miller, 2001), written in `.dl` or SPINdle's `.dfl` so the same
 //! files can be timed here and by other reasoners, with the answer each must give.
 

@@ -32,7 +32,7 @@ impl Reporter {
 }
 
 /// Every event that carries a time also carries its `round`: the round of the schedule it
-/// happened in (`../shared/spec/behaviour.md` §3.1), or, for a machine run on its own task
+/// happened in (`docs/spec/behaviour.md` §3.1), or, for a machine run on its own task
 /// (`schedule = "concurrent"`), that machine's own count of ringlets. Traces written before
 /// rounds existed read back with round 0.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -1,4 +1,4 @@
-//! Runs machines on the whiteboard (`../shared/spec/behaviour.md` §3): [`Rounds`] gives every
+//! Runs machines on the whiteboard (`docs/spec/behaviour.md` §3): [`Rounds`] gives every
 //! machine of a behaviour one ringlet per round in order (§3.1), or a [`MachineRunner`] runs one
 //! machine on a task of its own. A ringlet: OnEntry on arrival, the snapshot, transitions tried in
 //! priority order with each label proved (conditions by their expert, variables and values on

@@ -1,4 +1,4 @@
-//! The round schedule (`../shared/spec/behaviour.md` §3.1), gufsm's `executeOnce` and swiftfsm's
+//! The round schedule (`docs/spec/behaviour.md` §3.1), gufsm's `executeOnce` and swiftfsm's
 //! round-robin: one task gives every running machine of a behaviour exactly one ringlet per
 //! round, in the order the machines were given (the manifest's). A control command posted in a
 //! ringlet is obeyed as soon as that ringlet ends: a machine stopped or suspended later in the

@@ -1,4 +1,4 @@
-//! What a ringlet reads of the whiteboard (`../shared/spec/behaviour.md` §3.1): the live board
+//! What a ringlet reads of the whiteboard (`docs/spec/behaviour.md` §3.1): the live board
 //! until its snapshot, taken after OnEntry; from then to the end of the ringlet, the board as
 //! it was at that moment, with the machine's own postings since on top (a machine sees what it
 //! wrote itself, and nothing anyone else posted meanwhile). The snapshot is taken when the

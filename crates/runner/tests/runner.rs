@@ -35,12 +35,11 @@ async fn entered(
 
 #[tokio::test(start_paused = true)]
 async fn the_seed_papers_game_controller_plays_a_game() {
-    let Some(dir) = shared_dir() else {
+    let Some(dir) = corpus_dir() else {
         eprintln!("skipped: ../shared/corpus is absent");
         return;
     };
-    let read =
-        |f: &str| std::fs::read_to_string(dir.join("corpus/mipal/testfiles").join(f)).unwrap();
+    let read = |f: &str| std::fs::read_to_string(dir.join("mipal/testfiles").join(f)).unwrap();
     let machine = ta(
         "GameController",
         &read("TGameController.txt"),
@@ -339,8 +338,8 @@ async fn halt_on_timeout_stops_the_machine_and_says_why() {
     assert_eq!(board.truth("MIsRunning"), Some(false));
 }
 
-/// Where the shared corpus and specs live, when present beside the project.
-fn shared_dir() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+/// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
+fn corpus_dir() -> Option<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }

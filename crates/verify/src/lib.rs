@@ -1,4 +1,4 @@
-//! Explicit-state verification of a behaviour (`../shared/spec/behaviour.md` §6): its machines
+//! Explicit-state verification of a behaviour (`docs/spec/behaviour.md` §6): its machines
 //! under §3.1's round schedule, the environment free, reasoners answering from their theories,
 //! time abstracted; `never`, `always` and `reachable` properties with shortest counterexamples;
 //! `eventually`, `leads_to` and `always_eventually` over infinite runs, time passing, with lasso
