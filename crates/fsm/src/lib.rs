@@ -35,8 +35,8 @@ pub use native::{parse_machine, to_native, EXTENSION};
 /// what it does not touch stays byte for byte as written.
 pub mod edit {
     pub use crate::native::{
-        check_native, edit_native, editable, view_native, Edit, EditError, Edited, Section,
-        StateView, TransitionView,
+        check_native, edit_native, editable, view_native, ActivityView, Edit, EditError, Edited,
+        Section, StateView, TransitionView,
     };
 }
 pub use proclaim_syntax::{FileDiagnostic, Severity};

@@ -372,11 +372,11 @@ fn every_shipped_machine_round_trips() {
                 state: i,
                 to: s.name.clone(),
             });
-            for (section, body) in &s.activities {
+            for activity in &s.activities {
                 edits.push(Edit::SetActivity {
                     state: i,
-                    section: *section,
-                    text: body.clone(),
+                    section: activity.section,
+                    text: activity.text.clone(),
                 });
             }
             for (t, transition) in s.transitions.iter().enumerate() {

@@ -152,12 +152,22 @@ pub struct StateView {
     pub name: String,
     pub id: i64,
     /// Each written activity's text, dedented, in file order.
-    pub activities: Vec<(Section, String)>,
+    pub activities: Vec<ActivityView>,
     pub transitions: Vec<TransitionView>,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ActivityView {
+    pub section: Section,
+    pub text: String,
+    /// The lines of its block, braces included (1-based), where its diagnostics fall.
+    pub lines: std::ops::RangeInclusive<usize>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TransitionView {
+    /// Its line (1-based), where its label's diagnostics fall.
+    pub line: usize,
     pub label: String,
     /// The target's position, `None` when the reference resolves to no single state.
     pub target: Option<usize>,
@@ -168,6 +178,7 @@ pub struct TransitionView {
 pub fn view_native(text: &str) -> Result<(Vec<StateView>, Option<usize>), EditError> {
     let outline = read(text)?;
     let ids = outline.ids();
+    let lines = LineIndex::new(text);
     let states = outline
         .states
         .iter()
@@ -178,12 +189,17 @@ pub fn view_native(text: &str) -> Result<(Vec<StateView>, Option<usize>), EditEr
             activities: s
                 .activities
                 .iter()
-                .map(|a| (a.section, dedent(&text[a.open + 1..a.close])))
+                .map(|a| ActivityView {
+                    section: a.section,
+                    text: dedent(&text[a.open + 1..a.close]),
+                    lines: lines.line(a.start)..=lines.line(a.close),
+                })
                 .collect(),
             transitions: s
                 .whens
                 .iter()
                 .map(|w| TransitionView {
+                    line: lines.line(w.start),
                     label: text[w.label.clone()].to_string(),
                     target: outline.resolve(&w.target.reference),
                     target_as_written: text[w.target.span.clone()].to_string(),

@@ -50,7 +50,8 @@ use proclaim_syntax::FileDiagnostic;
 
 pub use ast::Section;
 pub use edit::{
-    check_native, edit_native, editable, view_native, Edit, Edited, StateView, TransitionView,
+    check_native, edit_native, editable, view_native, ActivityView, Edit, Edited, StateView,
+    TransitionView,
 };
 pub use edit_error::EditError;
 pub use write::to_native;
