@@ -9,6 +9,7 @@ use fantoccini::{Client, Locator};
 use serde_json::{json, Value as Json};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
+use std::time::Instant;
 
 const WAIT: Duration = Duration::from_secs(20);
 /// WebDriver's Enter key.
@@ -273,5 +274,90 @@ fn the_editor_follows_the_monitors_access_rules() {
     let model: Json = serde_json::from_str(&model).unwrap();
     assert_eq!(model["read_only"], true);
     assert_eq!(model["machines"][0]["name"], "Microwave");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A change saved in the editor beside `run --watch --monitor` is picked up by the running
+/// behaviour: the new state is drawn, the new transition (put first) fires, and the page lights
+/// the new state.
+#[test]
+fn a_change_saved_in_the_editor_is_picked_up_by_the_running_behaviour() {
+    let dir = crate::behaviour_folder(
+        "edit-watch",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
+            (
+                "W.machine",
+                "machine W\n// Nobody answers `go`.\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
+    let (_run, monitor) = proclaim_serving(
+        &[
+            "run",
+            dir.to_str().unwrap(),
+            "--watch",
+            "--force",
+            "--for",
+            "60s",
+            "--monitor",
+            "127.0.0.1:0",
+        ],
+        "monitor: ",
+    );
+    let (_editor, editor) = self::editor(&dir, &[]);
+    let frame = || -> Json {
+        let (_, frame) = http(&monitor, "GET", "/api/frame", None);
+        serde_json::from_str(&frame).unwrap()
+    };
+    let deadline = Instant::now() + WAIT;
+    while frame()["machines"][0]["state_name"] != "Wait" {
+        assert!(
+            Instant::now() < deadline,
+            "W never entered Wait: {}",
+            frame()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    for edit in [
+        r#"{"kind":"add_state","name":"Later"}"#,
+        r#"{"kind":"add_transition","state":0,"label":"TRUE","target":2}"#,
+        r#"{"kind":"move_transition","state":0,"from":1,"to":0}"#,
+    ] {
+        let body = format!(r#"{{"machine":0,"edit":{edit}}}"#);
+        let (status, answer) = http(&editor, "POST", "/api/edit/change", Some(&body));
+        assert_eq!(status, 200, "{edit}: {answer}");
+    }
+    let (status, answer) = http(&editor, "POST", "/api/edit/save", Some(r#"{"machine":0}"#));
+    assert_eq!(status, 200, "{answer}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("W.machine")).unwrap(),
+        "machine W\n// Nobody answers `go`.\nstate Wait {\n  when TRUE -> Later\n  when go -> Done\n}\nstate Done {\n}\n\nstate Later {\n}\n"
+    );
+    let deadline = Instant::now() + WAIT;
+    while frame()["machines"][0]["state_name"] != "Later" {
+        assert!(
+            Instant::now() < deadline,
+            "the running W never entered the new state: {}",
+            frame()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    // Drawn anew off the run's threads, so perhaps a moment after the machine moved.
+    let drawn = || -> Vec<String> {
+        let (_, model) = http(&monitor, "GET", "/api/model", None);
+        let model: Json = serde_json::from_str(&model).unwrap();
+        model["charts"][0]["states"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["name"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let deadline = Instant::now() + WAIT;
+    while drawn() != ["Wait", "Done", "Later"] {
+        assert!(Instant::now() < deadline, "the page draws {:?}", drawn());
+        std::thread::sleep(Duration::from_millis(50));
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
