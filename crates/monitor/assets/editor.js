@@ -41,7 +41,7 @@ async function change(edit) {
   const a = done.answer;
   model = a.model;
   render();
-  if (a.ok) status("edited (not saved yet)", "");
+  if (a.ok) status("edited; Save writes it", "");
   else status(a.message, "error");
   return a.ok;
 }
@@ -120,10 +120,11 @@ function render() {
   $("redo").disabled = !m.can_redo;
   $("panel").hidden = !editable;
   renderDiagram(m);
-  $("diagnostics").replaceChildren(...m.diagnostics.map((d) => {
+  const said = m.diagnostics.length ? m.diagnostics : [{ severity: "clean", message: "nothing: the machine reads and lints clean" }];
+  $("diagnostics").replaceChildren(...said.map((d) => {
     const li = document.createElement("li");
     li.className = d.severity;
-    li.textContent = `${d.line != null ? "line " + d.line + ": " : ""}${d.severity}: ${d.message}`;
+    li.textContent = d.severity === "clean" ? d.message : `${d.line != null ? "line " + d.line + ": " : ""}${d.severity}: ${d.message}`;
     return li;
   }));
   if (selected !== null && selected >= m.states.length) selected = null;
@@ -281,6 +282,8 @@ async function start() {
   model = await response.json();
   render();
   status(model.read_only ? "read-only: the machines are drawn, nothing can be changed" : "ready", "");
+  // Since navigation began: what the editor's load figure measures.
+  document.body.dataset.drawnAt = performance.now().toFixed(1);
   document.body.dataset.ready = "true";
 }
 
