@@ -268,6 +268,16 @@ fn the_editor_follows_the_monitors_access_rules() {
     let (status, _) = http(&local, "GET", "/api/edit/model", None);
     assert_eq!(status, 200, "reading needs no token");
 
+    let bad = crate::proclaim(&["edit", dir.to_str().unwrap(), "nowhere"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains(
+            "edit nowhere: not an address to listen on (write 127.0.0.1:7481, or a port alone)"
+        ),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
+
     let (_editor, url) = editor(&dir, &["--read-only"]);
     let local = url.trim_end_matches(" (read-only)");
     let (status, why) = http(local, "POST", "/api/edit/change", add);

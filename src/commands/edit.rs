@@ -34,7 +34,11 @@ pub fn run(behaviour: &str, addr: &str, read_only: bool) -> Result<ExitCode, Fai
             start: m.start,
         })
         .collect();
-    let wanted = parse_addr(addr)?;
+    let wanted = parse_addr(addr).map_err(|_| {
+        Failure::Argument(format!(
+            "edit {addr}: not an address to listen on (write 127.0.0.1:7481, or a port alone)"
+        ))
+    })?;
     let access = if read_only {
         Access::ReadOnly
     } else if wanted.ip().is_loopback() {

@@ -719,3 +719,96 @@ async fn try_edit(
         Err(e) => (StatusCode::CONFLICT, e.to_string()).into_response(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn opened(tag: &str, text: &str) -> (Editor, PathBuf) {
+        let dir =
+            std::env::temp_dir().join(format!("proclaim-editor-{}-{tag}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("M.machine");
+        std::fs::write(&path, text).unwrap();
+        let editor = Editor::open(
+            "test",
+            vec![EditorFile {
+                path: path.clone(),
+                start: true,
+            }],
+        );
+        (editor, path)
+    }
+
+    const M: &str = "machine M // kept\nstate A {\n    when go -> A\n}\n";
+
+    #[test]
+    fn save_writes_only_a_good_text_over_the_file_it_read() {
+        let (editor, path) = opened("save", M);
+        let mut open = editor.shared.machines[0].lock();
+        open.change(&Edit::AddState { name: "B".into() }).unwrap();
+        assert_eq!(open.save(), Ok(format!("saved {}", path.display())));
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            format!("{M}\nstate B {{\n}}\n")
+        );
+        // An error in the text: refused, the file as it was, the edit kept.
+        open.change(&Edit::SetLabel {
+            state: 0,
+            transition: 0,
+            label: "go &&".into(),
+        })
+        .unwrap();
+        let refused = open.save().unwrap_err();
+        assert!(
+            refused.starts_with("not saved: the machine has 1 error (line 3: bad label"),
+            "{refused}"
+        );
+        assert!(open.text.contains("go && -> A"));
+        // Undone, then the file changed by someone else: not overwritten.
+        let undone = open.undo.pop().unwrap();
+        open.text = undone;
+        std::fs::write(&path, "machine M\nstate Z {\n}\n").unwrap();
+        open.change(&Edit::RenameState {
+            state: 1,
+            to: "C".into(),
+        })
+        .unwrap();
+        let refused = open.save().unwrap_err();
+        assert!(refused.contains("changed on disk"), "{refused}");
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            "machine M\nstate Z {\n}\n"
+        );
+        let _ = std::fs::remove_dir_all(path.parent().unwrap());
+    }
+
+    #[test]
+    fn qfsm_and_t_a_files_are_drawn_not_edited() {
+        let dir = std::env::temp_dir().join(format!("proclaim-editor-{}-qfsm", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("Door.fsm");
+        std::fs::write(&path, "<qfsmproject></qfsmproject>").unwrap();
+        let editor = Editor::open(
+            "test",
+            vec![EditorFile {
+                path: path.clone(),
+                start: true,
+            }],
+        );
+        let mut open = editor.shared.machines[0].lock();
+        let refused = open
+            .change(&Edit::AddState { name: "B".into() })
+            .unwrap_err();
+        assert!(
+            refused.starts_with("Qfsm machines are not edited in place"),
+            "{refused}"
+        );
+        assert!(open.save().is_err());
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            "<qfsmproject></qfsmproject>"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
