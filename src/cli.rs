@@ -320,6 +320,18 @@ pub enum Command {
         #[arg(short, long, value_name = "FILE", requires = "emit")]
         output: Option<PathBuf>,
     },
+    /// Edit a behaviour's machines in the browser (at 127.0.0.1:7481 unless given): states,
+    /// transitions, labels and activities, checked as you type; Save writes the .machine file
+    /// with everything untouched kept as written, and never a machine with errors
+    Edit {
+        behaviour: String,
+        /// Where the page listens (off loopback it needs the token printed with its address)
+        #[arg(default_value = crate::commands::edit::DEFAULT_ADDR)]
+        addr: String,
+        /// The page draws the machines and changes nothing
+        #[arg(long)]
+        read_only: bool,
+    },
     /// Draw a machine (native, T/A pair or Qfsm file) or a behaviour as a diagram: DOT, or SVG/PNG/PDF through Graphviz
     Draw {
         /// A machine file, or a behaviour (its machines in boxes, sub-machines linked)

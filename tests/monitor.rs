@@ -9,7 +9,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// A child process killed when the test ends, however it ends.
-struct Running(Child);
+pub(crate) struct Running(Child);
 
 impl Drop for Running {
     fn drop(&mut self) {
@@ -44,7 +44,7 @@ fn browser() -> Option<(std::path::PathBuf, Option<std::path::PathBuf>)> {
     }
 }
 
-fn free_port() -> u16 {
+pub(crate) fn free_port() -> u16 {
     std::net::TcpListener::bind("127.0.0.1:0")
         .and_then(|l| l.local_addr())
         .map(|a| a.port())
@@ -53,6 +53,12 @@ fn free_port() -> u16 {
 
 /// Starts `proclaim ARGS` and reads its output up to the monitor's URL.
 fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
+    proclaim_serving(args, "monitor: ")
+}
+
+/// Starts `proclaim ARGS` and reads its output up to the line starting `page` (after spaces),
+/// whose rest is the page's URL.
+pub(crate) fn proclaim_serving(args: &[&str], page: &str) -> (Running, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args(args)
         .stdout(Stdio::piped())
@@ -67,7 +73,7 @@ fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
             .next()
             .expect("proclaim printed the monitor's URL before ending")
             .expect("readable output");
-        if let Some(url) = line.trim().strip_prefix("monitor: ") {
+        if let Some(url) = line.trim().strip_prefix(page) {
             break url.to_string();
         }
     };
@@ -76,7 +82,7 @@ fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
     (running, url)
 }
 
-async fn open_browser() -> Option<(Running, Client)> {
+pub(crate) async fn open_browser() -> Option<(Running, Client)> {
     let (driver, chromium) = browser()?;
     let port = free_port();
     let driver = Running(
@@ -113,7 +119,7 @@ async fn open_browser() -> Option<(Running, Client)> {
 }
 
 /// Clicks the page's element with that id, as a person would.
-async fn click(client: &Client, id: &str) {
+pub(crate) async fn click(client: &Client, id: &str) {
     let element = client
         .find(Locator::Id(id))
         .await
@@ -122,7 +128,7 @@ async fn click(client: &Client, id: &str) {
 }
 
 /// Types `text` into the page's field with that id.
-async fn type_into(client: &Client, id: &str, text: &str) {
+pub(crate) async fn type_into(client: &Client, id: &str, text: &str) {
     let field = client
         .find(Locator::Id(id))
         .await
@@ -130,7 +136,7 @@ async fn type_into(client: &Client, id: &str, text: &str) {
     field.send_keys(text).await.expect("the field takes typing");
 }
 
-async fn eval(client: &Client, script: &str) -> Json {
+pub(crate) async fn eval(client: &Client, script: &str) -> Json {
     client
         .execute(script, vec![])
         .await
@@ -138,7 +144,7 @@ async fn eval(client: &Client, script: &str) -> Json {
 }
 
 /// Waits until `script` returns `want`, failing with what it returned last.
-async fn until(client: &Client, script: &str, want: Json, within: Duration) {
+pub(crate) async fn until(client: &Client, script: &str, want: Json, within: Duration) {
     let deadline = Instant::now() + within;
     loop {
         let got = eval(client, script).await;
@@ -325,12 +331,12 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
 }
 
 /// One HTTP/1.1 request over a plain socket: the status code and the body.
-fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
+pub(crate) fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
     http_with(url, method, path, body, "")
 }
 
 /// `http` with more header lines (each ending in `\r\n`).
-fn http_with(
+pub(crate) fn http_with(
     url: &str,
     method: &str,
     path: &str,

@@ -7,6 +7,7 @@ mod check;
 mod conclusions;
 mod deps;
 pub mod draw;
+pub mod edit;
 mod explain;
 mod gamecontroller;
 mod gen;
@@ -123,6 +124,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             output,
             name,
         } => draw::run(&machine, output.as_deref(), name.as_deref()),
+        Command::Edit {
+            behaviour,
+            addr,
+            read_only,
+        } => edit::run(&behaviour, &addr, read_only),
         Command::Run(args) => run::run(args),
         Command::Expert {
             theory,

@@ -66,7 +66,7 @@ pub async fn live(
 
 /// 128 random bits in hex: the operating system's randomness where there is any, else the
 /// standard library's per-process random hash keys.
-fn new_token() -> String {
+pub fn new_token() -> String {
     use std::hash::{BuildHasher, Hasher};
     use std::io::Read;
     let mut bytes = [0u8; 16];

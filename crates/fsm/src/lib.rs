@@ -30,6 +30,15 @@ pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use lint::{lint, reachable};
 pub use model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
 pub use native::{parse_machine, to_native, EXTENSION};
+
+/// Editing native machine files in place: each edit a text patch at the reader's spans, so
+/// what it does not touch stays byte for byte as written.
+pub mod edit {
+    pub use crate::native::{
+        check_native, edit_native, editable, view_native, ActivityView, Edit, EditError, Edited,
+        Section, StateView, TransitionView,
+    };
+}
 pub use proclaim_syntax::{FileDiagnostic, Severity};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};

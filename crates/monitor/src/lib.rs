@@ -8,13 +8,18 @@
 //! O(1) [`proclaim_board::Snapshot`] when a frame is made; frames go to a page at most every
 //! [`FRAME_GAP`], each one the state of things then, so a slow page sees fewer frames and
 //! nothing queues up for it.
+//!
+//! The same crate serves `proclaim edit`'s page ([`Editor`]): the machines drawn the same way,
+//! changed by text patches to their files, under the same access rules.
 
 mod diagram;
+mod editor;
 mod picture;
 mod replay;
 mod server;
 
 pub use diagram::{node, Chart, ChartState, ChartTransition};
+pub use editor::{Editor, EditorFile};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
 pub use server::{Access, Monitor, FRAME_GAP, TOKEN_HEADER};

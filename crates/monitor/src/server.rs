@@ -198,28 +198,12 @@ impl Shared {
 
     /// Why a request that changes the run may not, if it may not.
     fn refusal(&self, headers: &HeaderMap) -> Option<Response> {
-        match self.access() {
-            Access::Open => None,
-            Access::ReadOnly => Some(
-                (
-                    StatusCode::FORBIDDEN,
-                    "this page is read-only (--monitor-read-only)",
-                )
-                    .into_response(),
-            ),
-            Access::Token(token) => {
-                let given = headers.get(TOKEN_HEADER).and_then(|v| v.to_str().ok());
-                if given == Some(token.as_str()) {
-                    None
-                } else {
-                    Some((
-                        StatusCode::FORBIDDEN,
-                        "this page changes the run only with the token it was given (open the address with ?token=… that proclaim printed)",
-                    )
-                        .into_response())
-                }
-            }
-        }
+        refusal(
+            &self.access(),
+            headers,
+            "this page is read-only (--monitor-read-only)",
+            "this page changes the run only with the token it was given (open the address with ?token=… that proclaim printed)",
+        )
     }
 
     fn picture(&self) -> MutexGuard<'_, Picture> {
@@ -242,6 +226,28 @@ impl Shared {
             charts_version: self.charts_version(),
         })
         .unwrap_or_default()
+    }
+}
+
+/// Why a request that changes something may not, under `access`, if it may not: the monitor's
+/// rule, which the editor's page follows too.
+pub(crate) fn refusal(
+    access: &Access,
+    headers: &HeaderMap,
+    read_only: &'static str,
+    needs_token: &'static str,
+) -> Option<Response> {
+    match access {
+        Access::Open => None,
+        Access::ReadOnly => Some((StatusCode::FORBIDDEN, read_only).into_response()),
+        Access::Token(token) => {
+            let given = headers.get(TOKEN_HEADER).and_then(|v| v.to_str().ok());
+            if given == Some(token.as_str()) {
+                None
+            } else {
+                Some((StatusCode::FORBIDDEN, needs_token).into_response())
+            }
+        }
     }
 }
 

@@ -28,6 +28,7 @@ pub struct StateAst {
     pub members: Vec<Member>,
 }
 
+/// Which of a state's three activities.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Section {
     Entry,

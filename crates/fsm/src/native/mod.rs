@@ -33,18 +33,27 @@
 //! a transition names its target by id (`-> #14`).
 
 mod ast;
+mod edit;
+mod edit_error;
 mod lexer;
+mod outline;
 mod write;
 
 use crate::code::parse_statements;
 use crate::label::parse_label;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
-use ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
+use ast::{ActionAst, FileAst, Member, Ref, StateAst, TopItem};
 use lalrpop_util::ParseError;
 use lexer::{LexError, Lexer, Tok};
 use proclaim_syntax::FileDiagnostic;
 
+pub use ast::Section;
+pub use edit::{
+    check_native, edit_native, editable, view_native, ActivityView, Edit, Edited, StateView,
+    TransitionView,
+};
+pub use edit_error::EditError;
 pub use write::to_native;
 
 lalrpop_util::lalrpop_mod!(
@@ -126,6 +135,18 @@ impl LineIndex<'_> {
     /// 1-based.
     fn line(&self, offset: usize) -> usize {
         self.starts.partition_point(|&s| s <= offset)
+    }
+
+    /// The byte offset of a 1-based line and column (in characters), when the text has them.
+    fn offset(&self, line: usize, column: usize) -> Option<usize> {
+        let start = *self.starts.get(line.checked_sub(1)?)?;
+        let rest = &self.text[start..];
+        let within = rest
+            .char_indices()
+            .map(|(i, _)| i)
+            .chain(std::iter::once(rest.len()))
+            .nth(column.checked_sub(1)?)?;
+        Some(start + within)
     }
 
     /// An error at a byte offset, with its line and column.

@@ -122,14 +122,14 @@ fn reference(machine: &Machine, id: StateId) -> String {
     }
 }
 
-fn is_word(text: &str) -> bool {
+pub(super) fn is_word(text: &str) -> bool {
     let mut chars = text.chars();
     chars.next().is_some_and(|c| c.is_alphabetic() || c == '_')
         && chars.all(|c| c.is_alphanumeric() || c == '_' || c == '.')
         && !KEYWORDS.contains(&text)
 }
 
-fn name(text: &str) -> String {
+pub(super) fn name(text: &str) -> String {
     if is_word(text) {
         text.to_string()
     } else {
