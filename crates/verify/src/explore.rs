@@ -1,11 +1,13 @@
-//! Breadth-first exploration of the model's states: every state packed once into one arena,
-//! found again by a hash table of state numbers (FxHash of the packed bytes), each with its
+//! Breadth-first exploration of the model's states: every state packed once into a table of
+//! fixed-width records (`chunked.rs`), found again by a hash table of state numbers (FxHash of
+//! the packed bytes), each with its
 //! parent, so the first state found that a property looks for has the shortest path. The
 //! environment's choice on each step of that path is found again when the path is asked for,
 //! by making the parent's successors once more, rather than stored with every state. Successor lists are kept
 //! (4 bytes an edge) for the deadlock check, which needs to know which states can still reach a
 //! firing.
 
+use crate::chunked::{Chunked, Records};
 use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
@@ -22,16 +24,15 @@ const ROOT: u32 = u32::MAX;
 /// Every state explored, in breadth-first order.
 pub struct Graph {
     layout: Layout,
-    arena: Vec<u8>,
-    /// `offsets[i]..offsets[i + 1]` are state i's bytes.
-    offsets: Vec<u32>,
+    /// State i's packed bytes, padded to the widest state's.
+    states: Records,
     /// State i's parent in the breadth-first tree, or [`ROOT`].
-    parents: Vec<u32>,
+    parents: Chunked<u32>,
     table: HashTable<u32>,
     /// Successors of state i: `edges[edge_start[i]..edge_start[i + 1]]`; the high bit marks a
     /// step in which a transition fired.
-    edge_start: Vec<u32>,
-    edges: Vec<u32>,
+    edge_start: Chunked<u32>,
+    edges: Chunked<u32>,
     pub complete: bool,
     /// Why the search ended.
     pub stopped: Stop,
@@ -59,13 +60,12 @@ impl Graph {
     }
 
     pub fn world(&self, id: u32) -> World {
-        let i = id as usize;
-        let bytes = &self.arena[self.offsets[i] as usize..self.offsets[i + 1] as usize];
-        self.layout.unpack(bytes, self.saw)
+        self.layout.unpack(self.bytes_of(id), self.saw)
     }
 
-    pub fn packed_bytes(&self) -> usize {
-        self.arena.len()
+    /// The bytes a state's record takes.
+    pub fn packed_bytes_per_state(&self) -> usize {
+        self.states.stride()
     }
 
     /// Bytes held per state, all structures counted.
@@ -78,29 +78,19 @@ impl Graph {
         self.bytes_after(0, 0, 0)
     }
 
-    /// Bytes the tables would hold after `states` more states of `packed` bytes in all and
-    /// `edges` more edges, counting the doubling of every table that would have to grow.
-    fn bytes_after(&self, states: usize, packed: usize, edges: usize) -> usize {
-        fn grown<T>(v: &Vec<T>, more: usize) -> usize {
-            let needed = v.len() + more;
-            let capacity = if needed > v.capacity() {
-                needed.max(2 * v.capacity())
-            } else {
-                v.capacity()
-            };
-            capacity * std::mem::size_of::<T>()
-        }
+    /// Bytes the tables would hold after `states` more states of at most `width` bytes each
+    /// and `edges` more edges (the hash table doubles when it grows).
+    fn bytes_after(&self, states: usize, width: usize, edges: usize) -> usize {
         let table = if self.table.len() + states > self.table.capacity() {
             2 * self.table.allocation_size().max(64)
         } else {
             self.table.allocation_size()
         };
-        grown(&self.arena, packed)
-            + grown(&self.offsets, states)
-            + grown(&self.parents, states)
+        self.states.bytes_after(states, width)
+            + self.parents.bytes_after(states)
             + table
-            + grown(&self.edge_start, 1)
-            + grown(&self.edges, edges)
+            + self.edge_start.bytes_after(1)
+            + self.edges.bytes_after(edges)
     }
 
     /// The path to `id`: the index of its initial world and the choices after it. Each step's
@@ -108,7 +98,7 @@ impl Graph {
     pub fn path(&self, model: &Model, id: u32) -> (usize, Vec<(u32, Choice)>) {
         let mut states = vec![id];
         while let Some(&at) = states.last() {
-            match self.parents[at as usize] {
+            match self.parents.get(at as usize) {
                 ROOT => break,
                 parent => states.push(parent),
             }
@@ -142,7 +132,7 @@ impl Graph {
         let n = self.len();
         // Reverse edges, counting-sorted.
         let mut start = vec![0u32; n + 1];
-        for &e in &self.edges {
+        for e in self.edges.iter() {
             start[(e & !FIRED) as usize + 1] += 1;
         }
         for i in 0..n {
@@ -150,10 +140,12 @@ impl Graph {
         }
         let mut fill = start.clone();
         let mut reverse = vec![0u32; self.edges.len()];
+        let mut bounds = self.edge_start.iter();
+        let mut from = bounds.next().unwrap_or(0);
         let mut live = vec![false; n];
         let mut work = Vec::new();
-        for (s, bounds) in self.edge_start.windows(2).enumerate() {
-            for &e in &self.edges[bounds[0] as usize..bounds[1] as usize] {
+        for (s, to) in bounds.enumerate() {
+            for e in (from..to).map(|e| self.edges.get(e as usize)) {
                 let t = (e & !FIRED) as usize;
                 reverse[fill[t] as usize] = s as u32;
                 fill[t] += 1;
@@ -162,6 +154,7 @@ impl Graph {
                     work.push(s);
                 }
             }
+            from = to;
         }
         while let Some(t) = work.pop() {
             for &s in &reverse[start[t] as usize..start[t + 1] as usize] {
@@ -271,10 +264,9 @@ pub fn explore(
         let world = graph.world(next as u32);
         successors.clear();
         stepper.successors(&world, false, &mut successors);
-        // As if every successor were new and a little larger than the state it came from:
-        // what the tables would grow to must stay within the memory budget.
-        let packed = successors.len() * (graph.bytes_of(next as u32).len() + 8);
-        if graph.bytes_after(successors.len(), packed, successors.len()) > limits.max_memory {
+        // What the tables would grow to must stay within the memory budget: as if every successor were new and a little wider than the state it came from.
+        let width = graph.states.stride() + 8;
+        if graph.bytes_after(successors.len(), width, successors.len()) > limits.max_memory {
             stop(&mut graph, Stop::MemoryBudget);
             break;
         }
@@ -298,12 +290,15 @@ impl Graph {
     fn empty(model: &Model, properties: usize) -> Graph {
         Graph {
             layout: Layout::new(model),
-            arena: Vec::new(),
-            offsets: vec![0],
-            parents: Vec::new(),
+            states: Records::default(),
+            parents: Chunked::default(),
             table: HashTable::new(),
-            edge_start: vec![0],
-            edges: Vec::new(),
+            edge_start: {
+                let mut start = Chunked::default();
+                start.push(0);
+                start
+            },
+            edges: Chunked::default(),
             complete: true,
             stopped: Stop::Explored,
             entered: model.per_state(),
@@ -314,16 +309,17 @@ impl Graph {
         }
     }
 
-    /// Whether another state would pass `max_states`, or what the ids and offsets can hold (ids
-    /// leave the top bit to the "fired" mark; the arena's offsets are u32).
+    /// Whether another state would pass `max_states`, or what the ids can hold (ids leave the
+    /// top bit to the "fired" mark).
     fn is_full(&self, max_states: usize) -> bool {
         self.len() >= max_states
             || self.len() >= (FIRED - 1) as usize
-            || self.arena.len() >= (u32::MAX as usize - 4096)
+            || self.edges.len() >= (u32::MAX as usize - (1 << 20))
     }
 
+    /// State `id`'s record (padded with zero bytes to the stride).
     fn bytes_of(&self, id: u32) -> &[u8] {
-        &self.arena[self.offsets[id as usize] as usize..self.offsets[id as usize + 1] as usize]
+        self.states.get(id as usize)
     }
 }
 
@@ -347,21 +343,18 @@ impl Store {
     ) -> u32 {
         self.scratch.clear();
         graph.layout.pack(world, &mut self.scratch);
-        let hash = self.hasher.hash_one(&self.scratch[..]);
-        if let Some(&id) = graph
-            .table
-            .find(hash, |&id| graph.bytes_of(id) == &self.scratch[..])
-        {
+        let hash = self.hasher.hash_one(unpadded(&self.scratch));
+        if let Some(&id) = graph.table.find(hash, |&id| {
+            unpadded(graph.bytes_of(id)) == unpadded(&self.scratch)
+        }) {
             return id;
         }
         let id = graph.parents.len() as u32;
-        graph.arena.extend_from_slice(&self.scratch);
-        graph.offsets.push(graph.arena.len() as u32);
+        graph.states.push(&self.scratch);
         graph.parents.push(parent);
-        let (arena, offsets, hasher) = (&graph.arena, &graph.offsets, &self.hasher);
+        let (states, hasher) = (&graph.states, &self.hasher);
         graph.table.insert_unique(hash, id, |&id| {
-            hasher
-                .hash_one(&arena[offsets[id as usize] as usize..offsets[id as usize + 1] as usize])
+            hasher.hash_one(unpadded(states.get(id as usize)))
         });
         for (k, c) in world.machines.iter().enumerate() {
             if c.status != Status::Dormant {
@@ -389,19 +382,19 @@ impl Graph {
 
     /// Whether state `id` is one of the initial states.
     pub fn is_initial(&self, id: u32) -> bool {
-        self.parents[id as usize] == ROOT
+        self.parents.get(id as usize) == ROOT
     }
 
     /// Where state `id`'s successors are in the edge list (`id` expanded; empty when no
     /// machine can ring there).
     pub fn edge_range(&self, id: u32) -> std::ops::Range<usize> {
         let i = id as usize;
-        self.edge_start[i] as usize..self.edge_start[i + 1] as usize
+        self.edge_start.get(i) as usize..self.edge_start.get(i + 1) as usize
     }
 
     /// The state edge `e` leads to.
     pub fn edge_target(&self, e: usize) -> u32 {
-        self.edges[e] & !FIRED
+        self.edges.get(e) & !FIRED
     }
 
     /// The successors of an expanded state `id`, as state ids (a state may repeat).
@@ -414,6 +407,14 @@ impl Graph {
     pub fn stores_as(&self, world: &World, id: u32) -> bool {
         let mut bytes = Vec::new();
         self.layout.pack(world, &mut bytes);
-        self.bytes_of(id) == &bytes[..]
+        unpadded(self.bytes_of(id)) == unpadded(&bytes)
     }
+}
+
+/// A packed state without the zero bytes that pad it to its record's width. Two states' packed
+/// forms never differ by trailing zeros alone (the layout says how many fields a state has and
+/// each field's width follows from its first bytes), so this is what hashes and compares.
+fn unpadded(bytes: &[u8]) -> &[u8] {
+    let end = bytes.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
+    &bytes[..end]
 }

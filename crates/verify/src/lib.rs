@@ -28,6 +28,7 @@
 /// The activity language's operators: the runner's own, so the model computes as the robot does.
 pub use proclaim_runner::arith;
 mod choices;
+mod chunked;
 mod components;
 pub mod domain;
 mod error;
@@ -388,7 +389,7 @@ fn explicit(
         stopped: graph.stopped,
         bytes: graph.bytes(),
         bytes_per_state: graph.bytes_per_state(),
-        packed_bytes_per_state: graph.packed_bytes() as f64 / graph.len().max(1) as f64,
+        packed_bytes_per_state: graph.packed_bytes_per_state() as f64,
         depth: graph.depth,
         values: model.values.borrow().len(),
         valuations: valuations(model),

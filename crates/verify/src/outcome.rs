@@ -135,7 +135,7 @@ pub struct Stats {
     pub stopped: Stop,
     /// Bytes the search's tables held when it stopped.
     pub bytes: usize,
-    /// Memory per stored state: its packed bytes, index, parent and hash-table entry, and its
+    /// Memory per stored state: its packed record, parent and hash-table entry, and its
     /// share of the edges kept for the deadlock check.
     pub bytes_per_state: f64,
     pub packed_bytes_per_state: f64,

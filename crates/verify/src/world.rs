@@ -1,7 +1,9 @@
 //! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
 //! packed into a few bytes while stored: whose turn it is (one byte), per machine its state
-//! (one byte, two when it has over 255), one byte of flags (mode, just entered, started this
-//! round) and one of time bits when any of its states has a time test, then the value number
+//! (no byte for a machine of one state, one, or two when it has over 256) and its time bits
+//! (one byte, two for a state with over seven time tests) when any of its states has a time
+//! test, four bits of flags a machine (mode, just entered, started this round), two machines to
+//! a byte, then the value number
 //! of every slot the search stores ([`crate::reduce::Storage`]) and every `saw()` value number
 //! as LEB128 varints (values met early, the usual ones, take one byte).
 
@@ -47,7 +49,8 @@ pub struct World {
 /// Field widths, fixed per model.
 #[derive(Clone, Debug)]
 pub struct Layout {
-    wide_state: Vec<bool>,
+    /// Bytes of each machine's state number: 0, 1 or 2.
+    state_bytes: Vec<u8>,
     has_time: Vec<bool>,
     /// The slots a state stores, in slot order.
     stored: Vec<SlotId>,
@@ -61,10 +64,14 @@ pub struct Layout {
 impl Layout {
     pub fn new(model: &Model) -> Layout {
         Layout {
-            wide_state: model
+            state_bytes: model
                 .machines
                 .iter()
-                .map(|m| m.states.len() > 255)
+                .map(|m| match m.states.len() {
+                    0 | 1 => 0,
+                    2..=256 => 1,
+                    _ => 2,
+                })
                 .collect(),
             has_time: model
                 .machines
@@ -95,17 +102,11 @@ impl Layout {
     pub fn pack(&self, world: &World, out: &mut Vec<u8>) {
         out.push(world.turn);
         for (i, c) in world.machines.iter().enumerate() {
-            if self.wide_state[i] {
-                out.extend_from_slice(&c.state.to_le_bytes());
-            } else {
-                out.push(c.state as u8);
+            match self.state_bytes[i] {
+                0 => {}
+                1 => out.push(c.state as u8),
+                _ => out.extend_from_slice(&c.state.to_le_bytes()),
             }
-            let status = match c.status {
-                Status::Running => 0,
-                Status::Suspended => 1,
-                Status::Dormant => 2,
-            };
-            out.push(status | (u8::from(c.just_entered) << 2) | (u8::from(c.fresh) << 3));
             if self.has_time[i] {
                 // Time tests per state are limited to 16 by the model; most states have one.
                 if c.time > 0x7f {
@@ -115,6 +116,17 @@ impl Layout {
                     out.push(c.time as u8);
                 }
             }
+        }
+        for pair in world.machines.chunks(2) {
+            let nibble = |c: &Control| {
+                let status = match c.status {
+                    Status::Running => 0,
+                    Status::Suspended => 1,
+                    Status::Dormant => 2,
+                };
+                status | (u8::from(c.just_entered) << 2) | (u8::from(c.fresh) << 3)
+            };
+            out.push(nibble(&pair[0]) | pair.get(1).map_or(0, |c| nibble(c) << 4));
         }
         for &slot in &self.stored {
             leb128(world.values[slot], out);
@@ -141,18 +153,13 @@ impl Layout {
             b
         };
         let turn = next();
-        let mut machines = Vec::with_capacity(self.wide_state.len());
-        for i in 0..self.wide_state.len() {
-            let state = if self.wide_state[i] {
-                u16::from_le_bytes([next(), next()])
-            } else {
-                u16::from(next())
-            };
-            let flags = next();
-            let status = match flags & 3 {
-                0 => Status::Running,
-                1 => Status::Suspended,
-                _ => Status::Dormant,
+        let count = self.state_bytes.len();
+        let mut machines = Vec::with_capacity(count);
+        for i in 0..count {
+            let state = match self.state_bytes[i] {
+                0 => 0,
+                1 => u16::from(next()),
+                _ => u16::from_le_bytes([next(), next()]),
             };
             let time = if self.has_time[i] {
                 let low = next();
@@ -166,11 +173,23 @@ impl Layout {
             };
             machines.push(Control {
                 state,
-                status,
-                just_entered: flags & 4 != 0,
-                fresh: flags & 8 != 0,
+                status: Status::Running,
+                just_entered: false,
+                fresh: false,
                 time,
             });
+        }
+        for pair in machines.chunks_mut(2) {
+            let byte = next();
+            for (c, flags) in pair.iter_mut().zip([byte & 0xf, byte >> 4]) {
+                c.status = match flags & 3 {
+                    0 => Status::Running,
+                    1 => Status::Suspended,
+                    _ => Status::Dormant,
+                };
+                c.just_entered = flags & 4 != 0;
+                c.fresh = flags & 8 != 0;
+            }
         }
         let mut rest = &bytes[at..];
         let mut next_number = || {
@@ -223,8 +242,8 @@ mod tests {
     #[test]
     fn packing_round_trips_at_every_width() {
         let layout = Layout {
-            wide_state: vec![false, true],
-            has_time: vec![true, false],
+            state_bytes: vec![1, 2, 0],
+            has_time: vec![true, false, false],
             stored: vec![0, 2],
             chosen: vec![3],
             fill: vec![NEVER, 7, NEVER, NEVER],
@@ -244,6 +263,13 @@ mod tests {
                         state: 300,
                         status: Status::Dormant,
                         just_entered: false,
+                        fresh: true,
+                        time: 0,
+                    },
+                    Control {
+                        state: 0,
+                        status: Status::Running,
+                        just_entered: true,
                         fresh: true,
                         time: 0,
                     },

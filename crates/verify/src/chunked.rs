@@ -1,0 +1,137 @@
+//! Append-only tables in fixed-size chunks, for the explicit search's per-state data: they grow
+//! without copying what they hold or doubling their allocation, so the memory a search holds is
+//! what it stored plus at most one chunk a table, and what the budget counts is what it holds.
+
+/// Elements a chunk holds.
+const CHUNK: usize = 1 << 16;
+
+/// A vector of `T` that only grows, a chunk at a time.
+#[derive(Debug, Default)]
+pub struct Chunked<T> {
+    chunks: Vec<Vec<T>>,
+    len: usize,
+}
+
+impl<T: Copy> Chunked<T> {
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn push(&mut self, value: T) {
+        if self.len % CHUNK == 0 {
+            self.chunks.push(Vec::with_capacity(CHUNK));
+        }
+        if let Some(last) = self.chunks.last_mut() {
+            last.push(value);
+        }
+        self.len += 1;
+    }
+
+    pub fn get(&self, i: usize) -> T {
+        self.chunks[i / CHUNK][i % CHUNK]
+    }
+
+    /// Bytes allocated, and what they would be after `more` pushes.
+    pub fn bytes_after(&self, more: usize) -> usize {
+        (self.len + more).div_ceil(CHUNK) * CHUNK * std::mem::size_of::<T>()
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = T> + '_ {
+        self.chunks.iter().flatten().copied()
+    }
+}
+
+/// Records of `stride` bytes each, in chunks of [`CHUNK`] records. Records are compared and
+/// read whole, so a shorter one is stored padded with zero bytes; when a longer one comes,
+/// every record is copied once to the new stride.
+#[derive(Debug, Default)]
+pub struct Records {
+    chunks: Vec<Vec<u8>>,
+    stride: usize,
+    len: usize,
+}
+
+impl Records {
+    #[cfg(test)]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn stride(&self) -> usize {
+        self.stride
+    }
+
+    /// Record `i`, `stride` bytes.
+    pub fn get(&self, i: usize) -> &[u8] {
+        let at = (i % CHUNK) * self.stride;
+        &self.chunks[i / CHUNK][at..at + self.stride]
+    }
+
+    /// Appends `record` (at most `stride` bytes after [`Records::fit`]), padded to the stride.
+    pub fn push(&mut self, record: &[u8]) {
+        self.fit(record.len());
+        if self.len % CHUNK == 0 {
+            self.chunks.push(Vec::with_capacity(CHUNK * self.stride));
+        }
+        if let Some(last) = self.chunks.last_mut() {
+            last.extend_from_slice(record);
+            last.resize(last.len() + self.stride - record.len(), 0);
+        }
+        self.len += 1;
+    }
+
+    /// Widens every record to `width` bytes if the stride is narrower.
+    pub fn fit(&mut self, width: usize) {
+        if width <= self.stride {
+            return;
+        }
+        let old = self.stride;
+        for chunk in &mut self.chunks {
+            let records = chunk.len().checked_div(old).unwrap_or(0);
+            let mut wide = Vec::with_capacity(CHUNK * width);
+            for r in 0..records {
+                wide.extend_from_slice(&chunk[r * old..(r + 1) * old]);
+                wide.resize((r + 1) * width, 0);
+            }
+            *chunk = wide;
+        }
+        self.stride = width;
+    }
+
+    /// Bytes allocated, and what they would be after `more` records of at most `width` bytes.
+    pub fn bytes_after(&self, more: usize, width: usize) -> usize {
+        (self.len + more).div_ceil(CHUNK) * CHUNK * self.stride.max(width)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunked_keeps_every_value_across_chunks() {
+        let mut v = Chunked::default();
+        for i in 0..(2 * CHUNK + 3) as u32 {
+            v.push(i);
+        }
+        assert_eq!(v.len(), 2 * CHUNK + 3);
+        assert_eq!(v.get(CHUNK), CHUNK as u32);
+        assert_eq!(v.iter().last(), Some((2 * CHUNK + 2) as u32));
+        assert_eq!(v.bytes_after(0), 3 * CHUNK * 4);
+    }
+
+    #[test]
+    fn records_widen_without_changing_what_they_hold() {
+        let mut r = Records::default();
+        r.push(&[1, 2]);
+        for i in 0..CHUNK + 5 {
+            r.push(&[(i % 251) as u8]);
+        }
+        r.push(&[7, 8, 9]);
+        assert_eq!(r.stride(), 3);
+        assert_eq!(r.get(0), [1, 2, 0]);
+        assert_eq!(r.get(2), [1, 0, 0]);
+        assert_eq!(r.get(CHUNK + 1), [(CHUNK % 251) as u8, 0, 0]);
+        assert_eq!(r.get(r.len() - 1), [7, 8, 9]);
+    }
+}
