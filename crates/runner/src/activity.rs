@@ -3,6 +3,7 @@
 //! `msleep`, …).
 
 use crate::arith::text;
+use crate::builtin::{builtin, Builtin, Content};
 use crate::eval::Env;
 use crate::eval::Evaluate;
 use crate::event::{Event, Reporter};
@@ -11,7 +12,6 @@ use crate::machine::SharedSuppressor;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
 use proclaim_board::{Value, Verdict, Whiteboard};
-use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Argument, Expr, Statement};
 use rustc_hash::FxHashSet;
 use std::future::Future;
@@ -215,52 +215,35 @@ impl Doer<'_> {
         })
     }
 
-    /// A call standing as a statement: a built-in, or a host function.
+    /// A call standing as a statement: a built-in ([`builtin`]), or a function of the
+    /// environment, or a host function.
     async fn call(&mut self, function: &str, arguments: &[Expr]) {
-        let arg = |i: usize| arguments.get(i);
-        match (function, arguments.len()) {
-            ("post", 2) => {
-                let value = self.value(&arguments[1]);
-                self.post(&self.text(&arguments[0]), value);
+        let call = builtin(function, arguments);
+        let state = match call {
+            Builtin::Post {
+                content: Content::StateName,
+                ..
             }
-            // `post("Say", "", "Hello")`: the two parts joined by a space, empty ones left out.
-            ("post", 3) => {
-                let parts: Vec<String> = arguments[1..]
-                    .iter()
-                    .map(|a| self.text(a))
-                    .filter(|t| !t.is_empty())
-                    .collect();
-                self.post(&self.text(&arguments[0]), Value::Str(parts.join(" ")));
+            | Builtin::Print(Content::StateName) => self.state.to_string(),
+            _ => String::new(),
+        };
+        match call {
+            Builtin::Post { to, content } => {
+                let ty = to.name(|e| self.text(e));
+                let value = content.value(|e| self.value(e), &state);
+                self.post(&ty, value);
             }
-            ("post_int", 2) => {
-                let value = match self.value(&arguments[1]) {
-                    Value::Int(i) => Value::Int(i),
-                    other => Value::Int(other.as_f64().unwrap_or(0.0) as i64),
-                };
-                self.post(&self.text(&arguments[0]), value);
+            Builtin::Print(content) => {
+                let printed = text(&content.value(|e| self.value(e), &state));
+                self.print(printed);
             }
-            ("postv" | "post_v", n) if n >= 2 => {
-                let values = arguments[1..].iter().map(|a| self.value(a)).collect();
-                self.post(&self.text(&arguments[0]), Value::List(values));
-            }
-            (f, 1) if Command::from_function(f).is_some() => {
-                let command = Command::from_function(f).unwrap_or(Command::On);
-                self.post(&self.text(&arguments[0]), Value::Str(command.word().into()));
-            }
-            ("say", 1) => self.post("Say", Value::Str(self.text(&arguments[0]))),
-            ("speech", 1) => self.post("Speech", Value::Str(self.text(&arguments[0]))),
-            ("say_state_name", 0) => self.post("Say", Value::Str(self.state.to_string())),
-            ("speak_state_name", 0) => self.post("Speech", Value::Str(self.state.to_string())),
-            ("print" | "print_int" | "print_fixed", 1) => {
-                let text = self.text(&arguments[0]);
-                self.print(text);
-            }
-            ("print_state_name", 0) => self.print(self.state.to_string()),
-            ("msleep", 1) => sleep_ms(self.value(&arguments[0]), 1.0).await,
-            ("sleep", 1) => sleep_ms(self.value(&arguments[0]), 1000.0).await,
-            _ if self.env().call(function, arguments).is_some() => {}
-            _ => {
-                let argument = arg(0).map(|a| match self.value(a) {
+            Builtin::Sleep {
+                amount,
+                ms_per_unit,
+            } => sleep_ms(self.value(amount), ms_per_unit).await,
+            Builtin::Other if self.env().call(function, arguments).is_some() => {}
+            Builtin::Other => {
+                let argument = arguments.first().map(|a| match self.value(a) {
                     Value::Int(i) => Argument::Int(i),
                     Value::Str(s) => Argument::Str(s),
                     other => Argument::Word(other.to_string()),

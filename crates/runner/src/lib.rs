@@ -11,6 +11,7 @@
 
 mod activity;
 pub mod arith;
+pub mod builtin;
 mod eval;
 mod event;
 mod host;

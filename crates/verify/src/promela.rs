@@ -46,6 +46,7 @@ use proclaim_behaviour::{Behaviour, PropertyKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, VarType, TIME_TESTS};
+use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::{self, Write};
 
@@ -845,48 +846,52 @@ impl<'m> Writer<'m> {
     }
 
     fn call(&mut self, function: &str, arguments: &[Expr]) -> Result<(), EmitError> {
-        match (function, arguments.len()) {
-            ("post", 2) => {
-                let ty = self.value(&arguments[0])?;
-                let v = self.value(&arguments[1])?;
-                let v = self.or_zero(v);
-                self.post_to(ty, v)
+        let Builtin::Post { to, content } = builtin(function, arguments) else {
+            // Arguments are still evaluated: they may read (and so note) free types.
+            for a in arguments {
+                self.value(a)?;
             }
-            ("post", 3) => {
-                let ty = self.value(&arguments[0])?;
-                let a = self.value(&arguments[1])?;
-                let b = self.value(&arguments[2])?;
-                let v = self.two(Table::Join, a, b);
-                self.post_to(ty, v)
+            return Ok(());
+        };
+        // The type first, then the value, as the runner evaluates them.
+        let named = match to {
+            Target::Named(e) => Some(self.value(e)?),
+            Target::Fixed(_) => None,
+        };
+        let v = match content {
+            Content::Value(e) => {
+                let v = self.value(e)?;
+                self.or_zero(v)
             }
-            ("post_int", 2) => {
-                let ty = self.value(&arguments[0])?;
-                let v = self.value(&arguments[1])?;
-                let v = self.unary(Table::PostInt, v);
-                self.post_to(ty, v)
+            Content::Int(e) => {
+                let v = self.value(e)?;
+                self.unary(Table::PostInt, v)
             }
-            ("postv" | "post_v", n) if n >= 2 => {
-                Err(self.unsupported(format!("`{function}` posts a list")))
+            Content::Joined([a, b]) => {
+                let a = self.value(a)?;
+                let b = self.value(b)?;
+                self.two(Table::Join, a, b)
             }
-            (f, 1) if Command::from_function(f).is_some() => {
-                let ty = self.value(&arguments[0])?;
-                let command = Command::from_function(f).unwrap_or(Command::On);
-                let word = Operand::Const(self.id(&Value::Str(command.word().into())));
-                self.post_to(ty, word)
+            Content::Joined(_) | Content::List(_) => {
+                return Err(self.unsupported(format!("`{function}` posts a list")))
             }
-            ("say" | "speech", 1) => {
-                let v = self.value(&arguments[0])?;
-                let v = self.unary(Table::Text, v);
-                let ty = if function == "say" { "Say" } else { "Speech" };
-                self.post(ty, &v)
+            Content::Command(command) => {
+                Operand::Const(self.id(&Value::Str(command.word().into())))
             }
-            _ => {
-                // Arguments are still evaluated: they may read (and so note) free types.
-                for a in arguments {
-                    self.value(a)?;
-                }
-                Ok(())
+            Content::Text(e) => {
+                let v = self.value(e)?;
+                self.unary(Table::Text, v)
             }
+            Content::StateName => {
+                let name = self.model.machines[self.machine].states[self.state]
+                    .name
+                    .clone();
+                Operand::Const(self.id(&Value::Str(name)))
+            }
+        };
+        match (named, to) {
+            (Some(ty), _) => self.post_to(ty, v),
+            (None, to) => self.post(&to.name(|_| String::new()), &v),
         }
     }
 

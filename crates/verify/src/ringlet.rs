@@ -37,6 +37,7 @@ use crate::world::{Control, Status, World};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, Statement, TIME_TESTS};
+use proclaim_runner::builtin::{builtin, Builtin, Content};
 use proclaim_runner::{Evaluate, LOOP_LIMIT};
 
 /// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
@@ -1013,55 +1014,29 @@ impl Exec<'_, '_> {
         text(&self.value(e).unwrap_or(Value::Int(0)))
     }
 
-    /// A call standing as a statement: the runner's built-ins that post; everything else
-    /// (printing, sleeping, host functions) changes nothing a machine reads.
+    /// The name of the state the ringing machine is in.
+    fn state_name(&self) -> String {
+        let state = self.world.machines[self.machine].state;
+        self.model.machines[self.machine].states[usize::from(state)]
+            .name
+            .clone()
+    }
+
+    /// A call standing as a statement ([`builtin`]): its postings; everything else (printing,
+    /// sleeping, host functions) changes nothing a machine reads, but its arguments are still
+    /// evaluated, as they may read (and so touch) free types.
     fn call(&mut self, function: &str, arguments: &[Expr]) {
-        match (function, arguments.len()) {
-            ("post", 2) => {
-                let ty = self.text_of(&arguments[0]);
-                let v = self.value(&arguments[1]).unwrap_or(Value::Int(0));
-                self.post(&ty, v);
-            }
-            ("post", 3) => {
-                let ty = self.text_of(&arguments[0]);
-                let parts: Vec<String> = arguments[1..]
-                    .iter()
-                    .map(|a| self.text_of(a))
-                    .filter(|t| !t.is_empty())
-                    .collect();
-                self.post(&ty, Value::Str(parts.join(" ")));
-            }
-            ("post_int", 2) => {
-                let ty = self.text_of(&arguments[0]);
-                let v = match self.value(&arguments[1]).unwrap_or(Value::Int(0)) {
-                    Value::Int(i) => Value::Int(i),
-                    other => Value::Int(other.as_f64().unwrap_or(0.0) as i64),
+        match builtin(function, arguments) {
+            Builtin::Post { to, content } => {
+                let ty = to.name(|e| self.text_of(e));
+                let state = match content {
+                    Content::StateName => self.state_name(),
+                    _ => String::new(),
                 };
-                self.post(&ty, v);
-            }
-            ("postv" | "post_v", n) if n >= 2 => {
-                let ty = self.text_of(&arguments[0]);
-                let values = arguments[1..]
-                    .iter()
-                    .map(|a| self.value(a).unwrap_or(Value::Int(0)))
-                    .collect();
-                self.post(&ty, Value::List(values));
-            }
-            (f, 1) if Command::from_function(f).is_some() => {
-                let ty = self.text_of(&arguments[0]);
-                let command = Command::from_function(f).unwrap_or(Command::On);
-                self.post(&ty, Value::Str(command.word().into()));
-            }
-            ("say", 1) => {
-                let t = self.text_of(&arguments[0]);
-                self.post("Say", Value::Str(t));
-            }
-            ("speech", 1) => {
-                let t = self.text_of(&arguments[0]);
-                self.post("Speech", Value::Str(t));
+                let value = content.value(|e| self.value(e).unwrap_or(Value::Int(0)), &state);
+                self.post(&ty, value);
             }
             _ => {
-                // Arguments are still evaluated: they may read (and so touch) free types.
                 for a in arguments {
                     self.value(a);
                 }
