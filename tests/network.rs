@@ -567,6 +567,36 @@ async fn until(what: &str, done: impl Fn() -> bool) {
     }
 }
 
+/// Processes that join at once are told of each other by gossip at once; every pair must end up
+/// linked (over the low-latency transport, a pair that both dialled lost its link for good, and
+/// neither heard the other again).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn processes_joining_at_once_all_hear_each_other() {
+    let endpoint = free_endpoint();
+    let settings = Settings {
+        config_file: None,
+        low_latency: true,
+    };
+    let first = whiteboard(&Role::Listen(endpoint.clone()), "crowd", &settings)
+        .await
+        .unwrap();
+    let role = Role::Connect(endpoint);
+    let joiner = || whiteboard(&role, "crowd", &settings);
+    let (b, c, d, e) = tokio::join!(joiner(), joiner(), joiner(), joiner());
+    let boards = [first, b.unwrap(), c.unwrap(), d.unwrap(), e.unwrap()];
+    for (i, board) in boards.iter().enumerate() {
+        board.post("crowd", &format!("hello{i}"), i as i64);
+    }
+    for (i, board) in boards.iter().enumerate() {
+        for j in (0..boards.len()).filter(|j| *j != i) {
+            until(&format!("process {i} hears process {j}"), || {
+                board.latest(&format!("hello{j}")).is_some()
+            })
+            .await;
+        }
+    }
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_late_joiner_gets_the_current_values_from_their_posters() {
     let endpoint = free_endpoint();

@@ -65,6 +65,15 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
     }
     set(&mut config, "connect/endpoints", json_list(&connect))?;
     set(&mut config, "scouting/multicast/enabled", "false".into())?;
+    // Two processes told of each other by gossip at once must not both dial: the low-latency
+    // transport cannot take the second link of a pair, tears the pair's transport down on
+    // both sides, and gossip never dials again, so the two stay unlinked and each loses all
+    // the other posts. Only the process with the greater id dials; every process listens.
+    set(
+        &mut config,
+        "scouting/gossip/autoconnect_strategy",
+        "{peer: {to_peer: \"greater-zid\"}}".into(),
+    )?;
     // A process joining must find the board, or say so, not wait for ever.
     set(&mut config, "connect/exit_on_failure", "true".into())?;
     set(&mut config, "connect/timeout_ms", "5000".into())?;
