@@ -1,8 +1,10 @@
-//! The whiteboard across processes (needs `--features zenoh`): a label query answered by a
-//! reasoner expert in another process, against the bare Zenoh request/reply round trip between
-//! the same two kinds of process in the same run; and messages per second from one process to
-//! another, on loopback. Both on Zenoh's default transport and on its low-latency one
-//! (`--low-latency`). The bench binary is also its own other process (`PROCLAIM_BENCH_ROLE`).
+//! The whiteboard across processes (needs `--features zenoh`), on loopback: a posting's way to a
+//! reader in another process beside a bare Zenoh put to a subscriber in another process, in the
+//! same run; a label query answered by a reasoner expert in another process, beside the bare
+//! Zenoh request/reply round trip; a late joiner's catch-up with a board of 10,000 types; and
+//! messages per second from one process to another. Both on Zenoh's default transport and on
+//! its low-latency one (`--low-latency`). The bench binary is also its own other process
+//! (`PROCLAIM_BENCH_ROLE`).
 //!
 //! `cargo bench --features zenoh --bench network`
 
@@ -15,6 +17,8 @@ use std::time::{Duration, Instant};
 const THEORY: &str = include_str!("../theories/microwave.dl");
 const MESSAGES: u64 = 50_000;
 const SAMPLES: usize = 3000;
+/// The types of the board a late joiner catches up with.
+const TYPES: usize = 10_000;
 
 fn main() {
     // What `proclaim` runs with (before any thread exists).
@@ -51,10 +55,42 @@ async fn join(endpoint: &str) -> Whiteboard {
 /// The other process: an expert, a sink that counts `tick`s, or a pinger.
 async fn child(role: &str) {
     let (what, endpoint) = role.split_once(' ').expect("ROLE ENDPOINT");
+    match what {
+        "reader" | "bare" => {
+            let ready = || println!("ready");
+            let samples = if what == "bare" {
+                proclaim_zenoh::bare_receive(endpoint, "bench", &settings(), SAMPLES, ready)
+                    .await
+                    .expect("the bare sender puts")
+            } else {
+                read_postings(join(endpoint).await, ready).await
+            };
+            let name = if what == "bare" {
+                "bare Zenoh put -> subscriber in another process"
+            } else {
+                "posting -> reader in another process"
+            };
+            percentiles(name, samples);
+            return;
+        }
+        "joiner" => {
+            let started = Instant::now();
+            let board = join(endpoint).await;
+            let elapsed = started.elapsed();
+            let types = board.snapshot().len();
+            println!(
+                "{:<48} {types} types in {:.0} ms (the mesh's settling included)",
+                "a late joiner's catch-up",
+                elapsed.as_secs_f64() * 1e3
+            );
+            return;
+        }
+        _ => {}
+    }
     if what == "ping" {
         let samples = proclaim_zenoh::ping(endpoint, "bench", &settings(), SAMPLES)
             .await
-            .expect("the holder answers pings");
+            .expect("the board's processes answer pings");
         percentiles("bare Zenoh round trip (request, reply)", samples);
         return;
     }
@@ -87,6 +123,22 @@ async fn child(role: &str) {
     }
 }
 
+/// How long each of `SAMPLES` postings of `latency` took to reach this process (the poster's
+/// clock and this one are the same machine's).
+async fn read_postings(board: Whiteboard, ready: impl FnOnce()) -> Vec<Duration> {
+    let mut postings = board.subscribe("latency");
+    ready();
+    let mut samples = Vec::with_capacity(SAMPLES);
+    while samples.len() < SAMPLES {
+        let posting = tokio::time::timeout(Duration::from_secs(10), postings.next())
+            .await
+            .expect("the postings keep coming")
+            .expect("the board lives");
+        samples.push(board.now().saturating_sub(posting.time));
+    }
+    samples
+}
+
 fn spawn(role: &str, low_latency: bool) -> std::process::Child {
     let mut command = Command::new(std::env::current_exe().unwrap());
     if low_latency {
@@ -112,6 +164,24 @@ fn percentiles(name: &str, mut samples: Vec<Duration>) -> f64 {
     at(0.5)
 }
 
+/// The p50 figure of a line `percentiles` printed.
+fn p50_of(line: &str) -> f64 {
+    line.split("p50")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .expect("a p50 figure")
+}
+
+fn free_endpoint() -> String {
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    format!("tcp/127.0.0.1:{port}")
+}
+
 async fn parent(low_latency: bool) {
     println!(
         "-- {} transport",
@@ -121,12 +191,7 @@ async fn parent(low_latency: bool) {
             "default"
         }
     );
-    let port = std::net::TcpListener::bind("127.0.0.1:0")
-        .unwrap()
-        .local_addr()
-        .unwrap()
-        .port();
-    let endpoint = format!("tcp/127.0.0.1:{port}");
+    let endpoint = free_endpoint();
     let settings = Settings {
         config_file: None,
         low_latency,
@@ -134,6 +199,49 @@ async fn parent(low_latency: bool) {
     let board = whiteboard(&Role::Listen(endpoint.clone()), "bench", &settings)
         .await
         .expect("listens");
+
+    // A posting to a reader in another process, then a bare Zenoh put the same way.
+    let mut reader = spawn(&format!("reader {endpoint}"), low_latency);
+    let mut out = BufReader::new(reader.stdout.take().unwrap()).lines();
+    assert_eq!(out.next().unwrap().unwrap(), "ready");
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    for i in 0..SAMPLES {
+        board.post("bench", "latency", i as i64);
+        tokio::time::sleep(Duration::from_micros(500)).await;
+    }
+    let line = out.next().unwrap().unwrap();
+    println!("{line}");
+    let posting_p50 = p50_of(&line);
+    let _ = reader.wait();
+    let bare_endpoint = free_endpoint();
+    let bare = proclaim_zenoh::BareSender::listen(&bare_endpoint, "bench", &settings)
+        .await
+        .expect("listens");
+    let mut receiver = spawn(&format!("bare {bare_endpoint}"), low_latency);
+    let mut out = BufReader::new(receiver.stdout.take().unwrap()).lines();
+    assert_eq!(out.next().unwrap().unwrap(), "ready");
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while !bare.heard().await {
+        assert!(
+            Instant::now() < deadline,
+            "the bare receiver did not subscribe"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    for _ in 0..SAMPLES {
+        bare.send_now();
+        tokio::time::sleep(Duration::from_micros(500)).await;
+    }
+    let line = out.next().unwrap().unwrap();
+    println!("{line}");
+    println!(
+        "{:<48} {:.2}x the bare put (p50)",
+        "posting / bare Zenoh",
+        posting_p50 / p50_of(&line)
+    );
+    let _ = receiver.wait();
+    drop(bare);
 
     let mut expert = spawn(&format!("expert {endpoint}"), low_latency);
     let deadline = Instant::now() + Duration::from_secs(20);
@@ -162,18 +270,27 @@ async fn parent(low_latency: bool) {
         .expect("the pinger reports")
         .unwrap();
     println!("{line}");
-    let ping_p50: f64 = line
-        .split("p50")
-        .nth(1)
-        .and_then(|rest| rest.split_whitespace().next())
-        .and_then(|n| n.parse().ok())
-        .expect("a p50 figure");
+    let ping_p50 = p50_of(&line);
     println!(
         "{:<48} {:.2}x the bare round trip (p50)",
         "query / bare Zenoh",
         query_p50 / ping_p50
     );
     let _ = pinger.wait();
+
+    // A late joiner catches up with a board of TYPES types.
+    for i in 0..TYPES {
+        board.post("bench", &format!("type{i}"), i as i64);
+    }
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let mut joiner = spawn(&format!("joiner {endpoint}"), low_latency);
+    let line = BufReader::new(joiner.stdout.take().unwrap())
+        .lines()
+        .next()
+        .expect("the joiner reports")
+        .unwrap();
+    println!("{line}");
+    let _ = joiner.wait();
 
     let mut sink = spawn(&format!("sink {endpoint}"), low_latency);
     let mut out = BufReader::new(sink.stdout.take().unwrap()).lines();
@@ -191,7 +308,7 @@ async fn parent(low_latency: bool) {
     let dropped = out.next().unwrap().unwrap();
     println!(
         "{:<48} {:.0} messages/s ({received}, {dropped} by its full queue)",
-        "holder -> other process",
+        "one process -> another",
         MESSAGES as f64 / elapsed.as_secs_f64()
     );
     let _ = std::io::stdout().flush();

@@ -1,7 +1,9 @@
 //! The whiteboard across processes over Zenoh (built with `--features zenoh`): a behaviour split
-//! over processes runs, loses an expert that dies (its labels time out) and gets it back; the
-//! commands that poke at a live board work. (Every whiteboard semantic is checked over Zenoh by
-//! the whiteboard suite, `whiteboard::over_zenoh`.)
+//! over processes runs, loses an expert that dies (its labels time out) and gets it back; a board
+//! of four processes outlives each of them killed in turn; a late joiner catches up, a process
+//! that goes leaves its types stale and its signals to the next claimant; the commands that poke
+//! at a live board work. (Every whiteboard semantic is checked over Zenoh by the whiteboard
+//! suite, `whiteboard::over_zenoh`.)
 //! Everything is on 127.0.0.1, on free ports, bounded in count and time.
 
 use proclaim_board::{Kind, Value};
@@ -68,18 +70,22 @@ async fn the_low_latency_transport_refuses_what_it_cannot_carry_and_says_why() {
     let seen = holder.wait_for("seen", 0, Duration::from_secs(2)).await;
     assert!(seen.is_some(), "the link survived");
     assert!(holder.latest("image").is_none());
-    // A board whose snapshot is over the limit cannot be joined, and the joiner is told why.
+    // A late joiner catches up one posting at a time, so a board larger than the limit is
+    // joined whole.
     holder.declare("odometry", Kind::Data);
     for i in 0..100 {
         holder.post("walk", "odometry", format!("{i:01000}"));
     }
-    let error = whiteboard(&Role::Connect(endpoint.clone()), "big", &settings)
+    let joiner = whiteboard(&Role::Connect(endpoint.clone()), "big", &settings)
         .await
-        .err()
-        .expect("too big to join");
-    assert!(
-        matches!(&error, proclaim_zenoh::NetworkError::Refused { why, .. } if why.contains("--low-latency")),
-        "{error}"
+        .expect("joins");
+    let oldest = joiner
+        .nearest_not_older("odometry", Duration::ZERO)
+        .unwrap();
+    assert_eq!(oldest.value, Value::from(format!("{:01000}", 0)));
+    assert_eq!(
+        joiner.latest("odometry").unwrap().value,
+        Value::from(format!("{:01000}", 99))
     );
 }
 
@@ -295,7 +301,7 @@ fn listening(
         "60s",
     ]);
     let trace = lines(&mut run);
-    wait_line(&trace, "holding whiteboard", Duration::from_secs(10));
+    wait_line(&trace, "listening on", Duration::from_secs(10));
     (run, trace, endpoint)
 }
 
@@ -376,7 +382,7 @@ fn post_watch_and_ping_poke_at_a_live_whiteboard() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(
-        out.starts_with("20 round trips to the holder of `proclaim`: p50 "),
+        out.starts_with("20 round trips to a process of `proclaim`: p50 "),
         "{out}"
     );
     // Asked of nobody, it says so.
@@ -392,4 +398,364 @@ fn post_watch_and_ping_poke_at_a_live_whiteboard() {
         .unwrap();
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--count 0"));
+}
+
+/// A folder holding a one-machine behaviour: the machine `name` in `name.machine`.
+fn behaviour(tag: &str, name: &str, machine: &str) -> String {
+    let file = format!("{name}.machine");
+    let manifest = format!("[[machine]]\nfile = \"{file}\"\n");
+    crate::behaviour_folder(
+        tag,
+        &[
+            ("behaviour.toml", manifest.as_str()),
+            (file.as_str(), machine),
+        ],
+    )
+    .display()
+    .to_string()
+}
+
+/// A machine that goes to SEEN while `ballSeen` is true and back while it is not.
+fn follower(name: &str) -> String {
+    format!(
+        "machine {name}\nstate WAIT {{\n  when ballSeen -> SEEN\n}}\nstate SEEN {{\n  when ~ballSeen -> WAIT\n}}\n"
+    )
+}
+
+/// A machine that follows `ballSeen` and, while the sensor that posted it is gone, is blind.
+const STRIKER: &str = "machine Striker\nstate WAIT {\n  when ballSeen -> SEEN\n}\nstate SEEN {\n  when ballSeenStale -> BLIND\n  when ~ballSeen -> WAIT\n}\nstate BLIND {\n  when ~ballSeenStale -> WAIT\n}\n";
+
+/// A sensor: posts `ballSeen` once, then a `tick` counting up every 200 ms for ever.
+const SENSOR: &str = "machine Sensor\ninitial INIT\nstate INIT {\n  entry {\n    int n;\n    ballSeen: true\n  }\n  when TRUE -> A\n}\nstate A {\n  entry {\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(200000) -> B\n}\nstate B {\n  entry {\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(200000) -> A\n}\n";
+
+/// The `tick` values in a watcher's lines, in order.
+fn ticks(lines: &[String]) -> Vec<i64> {
+    lines
+        .iter()
+        .filter(|l| l.contains(" Sensor ") && l.contains(" tick = "))
+        .filter_map(|l| l.rsplit(" = ").next()?.trim().parse().ok())
+        .collect()
+}
+
+/// Every tick a watcher printed follows the one before it, except where the sensor restarted
+/// (it counts from 1 again).
+fn assert_no_tick_missed(ticks: &[i64]) {
+    for pair in ticks.windows(2) {
+        assert!(
+            pair[1] == pair[0] + 1 || pair[1] <= 2,
+            "a posting was missed between {} and {}: {ticks:?}",
+            pair[0],
+            pair[1]
+        );
+    }
+}
+
+/// Kills a process at once, as a crash would (SIGKILL on Unix).
+fn kill(process: &mut Process) {
+    let _ = process.0.kill();
+    let _ = process.0.wait();
+}
+
+#[test]
+fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
+    let endpoint = free_endpoint();
+    let keeper = behaviour("four-keeper", "Keeper", &follower("Keeper"));
+    let striker = behaviour("four-striker", "Striker", STRIKER);
+    let sensor = behaviour("four-sensor", "Sensor", SENSOR);
+    let start = |which: &str| -> (Process, std::sync::mpsc::Receiver<String>) {
+        let mut process = match which {
+            "keeper" => proclaim(&["run", &keeper, "--listen", &endpoint, "--for", "120s"]),
+            "striker" => proclaim(&["run", &striker, "--connect", &endpoint, "--for", "120s"]),
+            "sensor" => proclaim(&["run", &sensor, "--connect", &endpoint, "--for", "120s"]),
+            _ => proclaim(&["watch", "*", "--connect", &endpoint, "--for", "120s"]),
+        };
+        let out = lines(&mut process);
+        (process, out)
+    };
+    let ten = Duration::from_secs(10);
+    let (mut keeper_p, mut keeper_out) = start("keeper");
+    wait_line(&keeper_out, "listening on", ten);
+    let (mut sensor_p, mut sensor_out) = start("sensor");
+    let (mut striker_p, mut striker_out) = start("striker");
+    let (mut watch_p, mut watch_out) = start("watch");
+    wait_line(&keeper_out, "Keeper  → SEEN", ten);
+    wait_line(&striker_out, "Striker  → SEEN", ten);
+    let mut watched = wait_line(&watch_out, "tick = 3", ten);
+
+    let mut gone = Vec::new();
+    for victim in ["keeper", "sensor", "striker", "watch"] {
+        kill(match victim {
+            "keeper" => &mut keeper_p,
+            "sensor" => &mut sensor_p,
+            "striker" => &mut striker_p,
+            _ => &mut watch_p,
+        });
+        // The others go on: the watcher hears the sensor, or says it went stale.
+        match victim {
+            "sensor" => {
+                // Every type the sensor posted turns stale, in no particular order.
+                let stale = |gone: &[String], ty: &str| {
+                    gone.iter()
+                        .any(|l| l.contains(&format!(" {ty}Stale = true")))
+                };
+                while !(stale(&gone, "tick") && stale(&gone, "ballSeen")) {
+                    assert!(gone.len() < 10, "{gone:?}");
+                    let lines = wait_line(&watch_out, "Stale = true", ten);
+                    gone.extend(lines.iter().filter(|l| l.contains("Stale = true")).cloned());
+                    watched.extend(lines);
+                }
+                // A label reads staleness like any value.
+                wait_line(&striker_out, "Striker  → BLIND", ten);
+            }
+            "watch" => {}
+            _ => {
+                let before = ticks(&watched).last().copied().unwrap_or(0);
+                watched.extend(wait_line(
+                    &watch_out,
+                    &format!("tick = {}", before + 3),
+                    ten,
+                ));
+            }
+        }
+        let restarted = std::time::Instant::now();
+        let (new_process, new_out) = start(victim);
+        let (process, out) = match victim {
+            "keeper" => (&mut keeper_p, &mut keeper_out),
+            "sensor" => (&mut sensor_p, &mut sensor_out),
+            "striker" => (&mut striker_p, &mut striker_out),
+            _ => (&mut watch_p, &mut watch_out),
+        };
+        *process = new_process;
+        *out = new_out;
+        // The restarted one holds the current values: the behaviours see the ball the sensor
+        // posted once, long before; a new watcher prints the current tick first.
+        match victim {
+            "keeper" => drop(wait_line(&keeper_out, "Keeper  → SEEN", ten)),
+            "striker" => drop(wait_line(&striker_out, "Striker  → SEEN", ten)),
+            "sensor" => {
+                watched.extend(wait_line(&watch_out, "ballSeenStale = false", ten));
+                wait_line(&striker_out, "Striker  → SEEN", ten);
+            }
+            _ => {
+                assert_no_tick_missed(&ticks(&watched));
+                watched = wait_line(&watch_out, "tick = ", ten);
+            }
+        }
+        println!(
+            "restarted {victim}: holds the current values after {} ms",
+            restarted.elapsed().as_millis()
+        );
+    }
+    let before = ticks(&watched).last().copied().unwrap_or(0);
+    watched.extend(wait_line(
+        &watch_out,
+        &format!("tick = {}", before + 3),
+        ten,
+    ));
+    assert_no_tick_missed(&ticks(&watched));
+}
+
+/// Waits (at most 5 s) until `done` holds.
+async fn until(what: &str, done: impl Fn() -> bool) {
+    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    while !done() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "not within 5 s: {what}"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+/// Processes that join at once are told of each other by gossip at once; every pair must end up
+/// linked (over the low-latency transport, a pair that both dialled lost its link for good, and
+/// neither heard the other again).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn processes_joining_at_once_all_hear_each_other() {
+    let endpoint = free_endpoint();
+    let settings = Settings {
+        config_file: None,
+        low_latency: true,
+    };
+    let first = whiteboard(&Role::Listen(endpoint.clone()), "crowd", &settings)
+        .await
+        .unwrap();
+    let role = Role::Connect(endpoint);
+    let joiner = || whiteboard(&role, "crowd", &settings);
+    let (b, c, d, e) = tokio::join!(joiner(), joiner(), joiner(), joiner());
+    let boards = [first, b.unwrap(), c.unwrap(), d.unwrap(), e.unwrap()];
+    for (i, board) in boards.iter().enumerate() {
+        board.post("crowd", &format!("hello{i}"), i as i64);
+    }
+    for (i, board) in boards.iter().enumerate() {
+        for j in (0..boards.len()).filter(|j| *j != i) {
+            until(&format!("process {i} hears process {j}"), || {
+                board.latest(&format!("hello{j}")).is_some()
+            })
+            .await;
+        }
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_late_joiner_gets_the_current_values_from_their_posters() {
+    let endpoint = free_endpoint();
+    let settings = Settings::default();
+    let a = whiteboard(&Role::Listen(endpoint.clone()), "late", &settings)
+        .await
+        .unwrap();
+    let b = whiteboard(&Role::Connect(endpoint.clone()), "late", &settings)
+        .await
+        .unwrap();
+    a.post("vision", "ballSeen", true);
+    b.declare("ballDistance", Kind::Data);
+    for d in [90i64, 80] {
+        b.post("vision", "ballDistance", d);
+    }
+    b.post("coach", "role", "keeper");
+    until("a hears b", || {
+        a.latest("role").map(|m| m.value) == Some(Value::from("keeper"))
+    })
+    .await;
+    // The current value of `role` is a's now, so a alone answers for it.
+    a.post("coach", "role", "striker");
+    until("b hears a", || {
+        b.latest("role").map(|m| m.value) == Some(Value::from("striker"))
+    })
+    .await;
+    let mut stale = a.subscribe("*Stale");
+    let c = whiteboard(&Role::Connect(endpoint), "late", &settings)
+        .await
+        .unwrap();
+    assert_eq!(c.latest("ballSeen").unwrap().value, Value::Bool(true));
+    assert_eq!(c.latest("ballSeen").unwrap().module.as_ref(), "vision");
+    assert_eq!(c.kind("ballDistance"), Kind::Data);
+    let history: Vec<Value> = [Duration::ZERO, Duration::MAX]
+        .into_iter()
+        .filter_map(|t| c.nearest("ballDistance", t))
+        .map(|m| m.value)
+        .collect();
+    assert_eq!(history, [Value::Int(90), Value::Int(80)]);
+    assert_eq!(c.latest("role").unwrap().value, Value::from("striker"));
+    assert_eq!(
+        c.snapshot()
+            .rows()
+            .iter()
+            .filter(|r| r.ty == "role")
+            .count(),
+        1
+    );
+    // The joiner's arrival turned nothing stale.
+    assert!(stale.try_next().is_none());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_process_that_goes_leaves_its_types_stale_and_nothing_else_stops() {
+    let endpoint = free_endpoint();
+    let settings = Settings::default();
+    let a = whiteboard(&Role::Listen(endpoint.clone()), "stale", &settings)
+        .await
+        .unwrap();
+    let b = whiteboard(&Role::Connect(endpoint.clone()), "stale", &settings)
+        .await
+        .unwrap();
+    let c = whiteboard(&Role::Connect(endpoint), "stale", &settings)
+        .await
+        .unwrap();
+    b.post("vision", "ballSeen", true);
+    c.post("gc", "gameState", "playing");
+    until("a hears both", || {
+        a.latest("ballSeen").is_some() && a.latest("gameState").is_some()
+    })
+    .await;
+    let mut stale = a.subscribe("*Stale");
+    drop(b);
+    let gone = tokio::time::timeout(Duration::from_secs(5), stale.next())
+        .await
+        .expect("b's going is noticed within 5 s")
+        .unwrap();
+    assert_eq!(
+        (gone.ty.as_ref(), gone.value.clone()),
+        ("ballSeenStale", Value::Bool(true))
+    );
+    assert!(gone.module.starts_with("gone "), "{gone:?}");
+    // The value stays, marked; the types of the living are not stale.
+    assert_eq!(a.latest("ballSeen").unwrap().value, Value::Bool(true));
+    assert!(a.latest("gameStateStale").is_none());
+    // Nothing else stops, and a posting from the living makes the type fresh again.
+    c.post("gc", "gameState", "ready");
+    c.post("vision2", "ballSeen", false);
+    let fresh = tokio::time::timeout(Duration::from_secs(5), stale.next())
+        .await
+        .expect("fresh again within 5 s")
+        .unwrap();
+    assert_eq!(
+        (fresh.ty.as_ref(), fresh.value.clone()),
+        ("ballSeenStale", Value::Bool(false))
+    );
+    assert_eq!(a.latest("gameState").unwrap().value, Value::from("ready"));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_signal_passes_to_the_next_claimant_when_its_consumer_dies_mid_consume() {
+    let endpoint = free_endpoint();
+    let settings = Settings::default();
+    let ops = whiteboard(&Role::Listen(endpoint.clone()), "signals", &settings)
+        .await
+        .unwrap();
+    let first = whiteboard(&Role::Connect(endpoint.clone()), "signals", &settings)
+        .await
+        .unwrap();
+    let second = whiteboard(&Role::Connect(endpoint), "signals", &settings)
+        .await
+        .unwrap();
+    first.declare("reload", Kind::Signal);
+    until("the others know reload is a signal", || {
+        ops.kind("reload") == Kind::Signal && second.kind("reload") == Kind::Signal
+    })
+    .await;
+    second.declare("reload", Kind::Signal);
+    first.post("first", "alive", true);
+    until("the first's heartbeat is heard", || {
+        ops.latest("alive").is_some() && second.latest("alive").is_some()
+    })
+    .await;
+    // The earliest claim consumes; the later claimant observes.
+    let mut observed = second.subscribe("reload");
+    ops.post("ops", "reload", 1i64);
+    let got = first.wait_for("reload", 0, Duration::from_secs(5)).await;
+    assert_eq!(got.map(|m| m.value), Some(Value::Int(1)));
+    let seen = tokio::time::timeout(Duration::from_secs(5), observed.next())
+        .await
+        .unwrap()
+        .unwrap();
+    assert_eq!(seen.value, Value::Int(1));
+    assert!(
+        second.latest("reload").is_none(),
+        "observed, not consumable"
+    );
+    // The consumer dies with a signal it had not read yet: that one goes with it (at most once).
+    ops.post("ops", "reload", 2i64);
+    tokio::time::timeout(Duration::from_secs(5), observed.next())
+        .await
+        .unwrap()
+        .unwrap();
+    let mut stale = ops.subscribe("aliveStale");
+    let mut second_stale = second.subscribe("aliveStale");
+    drop(first);
+    for s in [&mut stale, &mut second_stale] {
+        tokio::time::timeout(Duration::from_secs(5), s.next())
+            .await
+            .expect("the consumer's going is noticed")
+            .unwrap();
+    }
+    // The next claimant consumes from then on, each signal once.
+    ops.post("ops", "reload", 3i64);
+    let got = second.wait_for("reload", 0, Duration::from_secs(5)).await;
+    assert_eq!(got.map(|m| m.value), Some(Value::Int(3)));
+    assert!(second
+        .wait_for("reload", 0, Duration::from_millis(200))
+        .await
+        .is_none());
+    assert!(ops.latest("reload").is_none());
 }

@@ -64,7 +64,7 @@ enum Transport {
 }
 
 /// Three handles on one whiteboard: the same board three times in process; over Zenoh, the
-/// holder and two replicas, each with its own session and socket.
+/// listening process and two that connect, each with its own session, socket and replica.
 async fn boards(transport: Transport) -> [Whiteboard; 3] {
     match transport {
         Transport::InProcess => {
@@ -94,9 +94,10 @@ async fn boards(transport: Transport) -> [Whiteboard; 3] {
     }
 }
 
-/// Waits until every board has seen all that `poster` posted so far: at once in process, after
-/// the holder's round trip over a network (postings reach every process in one order). The
-/// bound is generous, for a loaded machine draining thousands of postings to ten subscribers.
+/// Waits until every board has seen all that `poster` posted so far: at once in process, once
+/// the poster's puts reached each process over a network (a poster's postings of one type
+/// arrive in order). The bound is generous, for a loaded machine draining thousands of postings
+/// to ten subscribers.
 async fn settle(poster: &Whiteboard, boards: &[Whiteboard]) {
     static MARK: AtomicI64 = AtomicI64::new(0);
     let mark = Value::Int(MARK.fetch_add(1, Ordering::Relaxed));

@@ -1,8 +1,9 @@
-"""A sensor wrapper in Python on a proclaim whiteboard held by another process over Zenoh.
+"""A sensor wrapper in Python on a proclaim whiteboard shared over Zenoh.
 
 It posts `doorOpen` as a sensor would and reads back the reasoner expert's answer (`light`),
-speaking the whiteboard's wire format (docs/whiteboard-wire.md) with Zenoh's own Python
-package (`pip install eclipse-zenoh==1.9.0`); no proclaim code runs in this process.
+speaking the whiteboard's wire format (docs/whiteboard-wire.md: one key per type, the value as
+plain JSON, the rest in a JSON attachment) with Zenoh's own Python package
+(`pip install eclipse-zenoh==1.9.0`); no proclaim code runs in this process.
 
     proclaim expert microwave --listen tcp/127.0.0.1:7447 &
     python3 zenoh_sensor.py tcp/127.0.0.1:7447
@@ -15,54 +16,64 @@ import time
 
 import zenoh
 
-BOARD = "proclaim"  # `--board NAME` of the holder; `proclaim` unless given
+BOARD = "proclaim"  # `--board NAME` of the other processes; `proclaim` unless given
 
 
 def join(endpoint):
-    """A Zenoh peer session connected to the holder only, as proclaim's own processes are."""
+    """A Zenoh peer session connected to one process of the board; it also listens on a free
+    loopback port so that the board's other processes, told of it by Zenoh's gossip, link to it
+    directly, as proclaim's own processes do."""
     config = zenoh.Config()
     config.insert_json5("mode", '"peer"')
     config.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    config.insert_json5("listen/endpoints", json.dumps(["tcp/127.0.0.1:0"]))
     config.insert_json5("scouting/multicast/enabled", "false")
     return zenoh.open(config)
 
 
+def key(ty):
+    return f"proclaim/{BOARD}/{ty}"
+
+
 class Board:
-    """Posts go up to the holder; every posting comes down, numbered, to everyone."""
+    """Posts a type by putting its value on the type's key; reads one by subscribing to it."""
 
     def __init__(self, session, module):
         self.session = session
         self.module = module
-        self.postings = queue.Queue()
-        self.subscriber = session.declare_subscriber(
-            f"proclaim/{BOARD}/down", lambda sample: self.postings.put(sample)
-        )
+        self.seq = {}
+        self.postings = {}
+        self.subscribers = []
 
     def post(self, ty, value):
-        wire = {"Bool": value} if isinstance(value, bool) else {"Int": value}
-        up = {"Post": {"module": self.module, "ty": ty, "value": wire}}
-        self.session.put(f"proclaim/{BOARD}/up", json.dumps(up))
+        # The attachment may be left out; with it, readers see who posted and in what order.
+        self.seq[ty] = self.seq.get(ty, 0) + 1
+        meta = {"module": self.module, "seq": self.seq[ty], "time_ns": time.time_ns()}
+        self.session.put(key(ty), json.dumps(value), attachment=json.dumps(meta))
+
+    def follow(self, ty):
+        """Keeps every posting of `ty` from now on, for `next_posting`."""
+        postings = self.postings.setdefault(ty, queue.Queue())
+        self.subscribers.append(
+            self.session.declare_subscriber(key(ty), lambda sample: postings.put(sample))
+        )
 
     def next_posting(self, ty, timeout):
-        """The next posting of `ty` coming down: (value, who posted it), or None."""
-        deadline = time.monotonic() + timeout
-        while (left := deadline - time.monotonic()) > 0:
-            try:
-                sample = self.postings.get(timeout=left)
-            except queue.Empty:
-                return None
-            down = json.loads(sample.payload.to_bytes())
-            message = down.get("Posted", {}).get("message")
-            if message and message["ty"] == ty:
-                (kind, value), = message["value"].items()
-                return value, message["module"]
-        return None
+        """The next posting of a followed `ty`: (value, who posted it), or None in time."""
+        try:
+            sample = self.postings[ty].get(timeout=timeout)
+        except queue.Empty:
+            return None
+        value = json.loads(sample.payload.to_string())
+        meta = json.loads(sample.attachment.to_string()) if sample.attachment else {}
+        return value, meta.get("module")
 
 
 def main(endpoint):
     with join(endpoint) as session:
         board = Board(session, "python-door-sensor")
-        time.sleep(0.5)  # routes settle before the first put
+        board.follow("light")
+        time.sleep(0.5)  # links and routes settle before the first put
         board.post("timeLeft", False)
         for door in (True, False, True):
             board.post("doorOpen", door)

@@ -1,7 +1,8 @@
 """The whiteboard from Python over Zenoh: a Python sensor wrapper (examples/zenoh_sensor.py, with
-Zenoh's own `eclipse-zenoh` package and no proclaim code) posts `doorOpen` to a board held by
-`proclaim expert microwave --listen` in another process, and reads the reasoner's `light` back.
-Loopback only, on a free port.
+Zenoh's own `eclipse-zenoh` package and no proclaim code) subscribes to `light` and posts
+`doorOpen`, each on its own key with a plain JSON value, to a board shared with `proclaim expert
+microwave --listen` in another process, and reads the reasoner's answer back; a get on `light`'s
+key is answered with its current value. Loopback only, on a free port.
 
 Needs a `proclaim` built with the `zenoh` feature: PROCLAIM_ZENOH_BIN (.ci/run sets it after
 its Zenoh build, in a run of this test alone); skipped without it."""
@@ -40,7 +41,7 @@ def free_port():
 
 
 @pytest.fixture
-def holder():
+def expert():
     binary = zenoh_binary()
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     process = subprocess.Popen(
@@ -49,26 +50,34 @@ def holder():
         stderr=subprocess.STDOUT,
         text=True,
     )
-    # The holder says where it listens once it does.
+    # The expert says where it listens once it does.
     for line in process.stdout:
-        if "holding whiteboard" in line or "listening" in line or endpoint in line:
+        if endpoint in line:
             break
     yield endpoint
     process.terminate()
     process.wait(timeout=10)
 
 
-def test_a_python_sensor_posts_and_reads_the_reasoners_answer(holder):
+def test_a_python_sensor_posts_and_reads_the_reasoners_answer(expert):
+    import json
+
     import zenoh_sensor
 
-    with zenoh_sensor.join(holder) as session:
+    with zenoh_sensor.join(expert) as session:
         board = zenoh_sensor.Board(session, "python-door-sensor")
+        board.follow("light")
         time.sleep(0.5)
         board.post("timeLeft", False)
         board.post("doorOpen", True)
         assert board.next_posting("light", timeout=10) == (True, "microwave")
         board.post("doorOpen", False)
         assert board.next_posting("light", timeout=10) == (False, "microwave")
+
+        # A late reader asks for the current value: the process that posted it answers.
+        replies = list(session.get("proclaim/proclaim/light", timeout=5))
+        answers = [json.loads(r.ok.payload.to_string()) for r in replies if r.ok is not None]
+        assert answers == [False], replies
 
         # Round trips: a posting from Python, the reasoner's changed answer back in Python.
         samples = []

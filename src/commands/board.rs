@@ -1,12 +1,12 @@
 //! Commands that work on a whiteboard, usually one shared by other processes: `expert` (a
 //! theory answering labels), `post` (one message), `watch` (every message, as it comes) and
-//! `ping` (what the link to its holder costs).
+//! `ping` (what a round trip to another process of it costs).
 
 use super::runtime::{runtime, Shape};
 use crate::failure::Failure;
 use crate::load;
-use crate::network::{round_trips, whiteboard, Network};
-use proclaim_board::{Value, Whiteboard};
+use crate::network::{post_once, round_trips, whiteboard, Network};
+use proclaim_board::{Message, Pattern, Value, Whiteboard};
 use proclaim_experts::{parse_duration, parse_mapping, ReasonerExpert};
 use std::path::Path;
 use std::process::ExitCode;
@@ -69,19 +69,19 @@ pub fn expert(
 
 pub fn post(ty: &str, value: &str, module: &str, network: &Network) -> Result<ExitCode, Failure> {
     runtime(Shape::TwoThreads)?.block_on(async {
-        let board = whiteboard(network).await?;
-        // Seen coming back through the whiteboard: then it has been delivered.
-        let mut echo = board.subscribe(ty);
-        board.post(module, ty, Value::parse(value));
-        match tokio::time::timeout(Duration::from_secs(5), echo.next()).await {
-            Ok(Some(m)) => {
-                println!("posted {} = {} (#{})", m.ty, m.value, m.seq);
-                Ok(ExitCode::SUCCESS)
-            }
-            _ => Err(Failure::Network(format!(
-                "the posting of {ty} was not seen on the whiteboard within 5 s"
-            ))),
+        if !network.is_local() {
+            let (m, heard) = post_once(network, module, ty, Value::parse(value)).await?;
+            let processes = if heard == 1 { "process" } else { "processes" };
+            println!(
+                "posted {} = {} (#{}, heard by {heard} {processes})",
+                m.ty, m.value, m.seq
+            );
+            return Ok(ExitCode::SUCCESS);
         }
+        let board = whiteboard(network).await?;
+        let m = board.post(module, ty, Value::parse(value));
+        println!("posted {} = {} (#{})", m.ty, m.value, m.seq);
+        Ok(ExitCode::SUCCESS)
     })
 }
 
@@ -90,22 +90,21 @@ pub fn watch(pattern: &str, network: &Network, limit: Option<&str>) -> Result<Ex
     runtime(Shape::TwoThreads)?.block_on(async {
         let board: Whiteboard = whiteboard(network).await?;
         let mut messages = board.subscribe(pattern);
+        // Times from the watch's start: a shared board's clock is the Unix epoch's.
+        let start = board.now();
         eprintln!("watching {pattern} ({})", network.describe());
+        // What the board holds already (a shared board's other processes told it on joining),
+        // then every posting from now on.
+        let matching = Pattern::parse(pattern);
+        let now = board.snapshot();
+        for row in now.rows().into_iter().filter(|r| matching.matches(r.ty)) {
+            print_posting(row.newest, start);
+        }
         let print = async {
             while let Some(m) = messages.next().await {
-                // A subsumption layer's postings say their priority; others print as before.
-                let priority = match m.priority {
-                    0 => String::new(),
-                    p => format!(" @{p}"),
-                };
-                println!(
-                    "{:>9.3}s #{:<6} {:<16} {} = {}{priority}",
-                    m.time.as_secs_f64(),
-                    m.seq,
-                    m.module,
-                    m.ty,
-                    m.value
-                );
+                if m.seq > now.seq {
+                    print_posting(&m, start);
+                }
             }
         };
         tokio::select! {
@@ -116,6 +115,22 @@ pub fn watch(pattern: &str, network: &Network, limit: Option<&str>) -> Result<Ex
     })
 }
 
+fn print_posting(m: &Message, start: Duration) {
+    // A subsumption layer's postings say their priority; others print as before.
+    let priority = match m.priority {
+        0 => String::new(),
+        p => format!(" @{p}"),
+    };
+    println!(
+        "{:>9.3}s #{:<6} {:<16} {} = {}{priority}",
+        m.time.saturating_sub(start).as_secs_f64(),
+        m.seq,
+        m.module,
+        m.ty,
+        m.value
+    );
+}
+
 pub fn ping(count: usize, network: &Network) -> Result<ExitCode, Failure> {
     if count == 0 {
         return Err(Failure::Argument("--count 0: nothing to time".into()));
@@ -124,7 +139,7 @@ pub fn ping(count: usize, network: &Network) -> Result<ExitCode, Failure> {
     samples.sort();
     let at = |q: f64| samples[((samples.len() - 1) as f64 * q) as usize].as_secs_f64() * 1e6;
     println!(
-        "{} round trips to the holder of `{}`: p50 {:.1} µs, p90 {:.1} µs, p99 {:.1} µs, max {:.1} µs",
+        "{} round trips to a process of `{}`: p50 {:.1} µs, p90 {:.1} µs, p99 {:.1} µs, max {:.1} µs",
         samples.len(),
         network.board,
         at(0.5),

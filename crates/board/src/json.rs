@@ -1,7 +1,6 @@
-//! A whiteboard value as plain JSON, the one form recordings and traces write and read back:
-//! a truth value, a whole number, a fraction, a string, `{"bytes": [...]}` or a list.
-//! (The Zenoh wire keeps its own tagged form, `docs/whiteboard-wire.md`, which other languages
-//! already speak.)
+//! A whiteboard value as plain JSON, the one form recordings, traces and the Zenoh wire
+//! (`docs/whiteboard-wire.md`) write and read back: a truth value, a whole number, a fraction, a
+//! string, `{"bytes": [...]}` or a list.
 
 use crate::Value;
 

@@ -120,7 +120,20 @@ impl LocalBoard {
         priority: u32,
         consumable: bool,
     ) -> Message {
-        let time = self.now();
+        self.post_at(module, ty, value, priority, self.now(), consumable)
+    }
+
+    /// Posts with a new sequence number of this board and the time the poster gave it (a
+    /// networked board's posting from another process, on the clock every process shares).
+    pub fn post_at(
+        &self,
+        module: &str,
+        ty: &str,
+        value: Value,
+        priority: u32,
+        time: Duration,
+        consumable: bool,
+    ) -> Message {
         let mut inner = self.lock();
         inner.seq += 1;
         let seq = inner.seq;
@@ -138,9 +151,9 @@ impl LocalBoard {
         message
     }
 
-    /// Takes a message sequenced elsewhere (a networked board's replica): kept with its own
+    /// Takes a message sequenced elsewhere (a recording played back): kept with its own
     /// sequence number and time. One already seen (by sequence number) is ignored, except that a
-    /// signal handed over to this process as its owner becomes consumable.
+    /// signal handed over to this board as its consumer becomes consumable.
     pub fn apply(&self, message: Message, consumable: bool) {
         let mut inner = self.lock();
         if message.seq <= inner.seq {
@@ -165,17 +178,6 @@ impl LocalBoard {
     /// a signal of this process.
     pub fn declare_observed(&self, ty: &str, kind: Kind) {
         self.lock().slot(ty).kind = kind;
-    }
-
-    /// Takes a state's current value out (a networked board handing a command posted before
-    /// its type became a signal to the process that consumes it).
-    pub fn take_latest(&self, ty: &str) -> Option<Message> {
-        self.lock().table.get_mut(ty)?.latest.take()
-    }
-
-    /// The highest sequence number seen.
-    pub fn last_seq(&self) -> u64 {
-        self.lock().seq
     }
 
     /// Stores a message and tells waiters and subscribers; takes the lock and releases it.

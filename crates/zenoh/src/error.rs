@@ -17,9 +17,7 @@ pub enum NetworkError {
         board: Option<String>,
         endpoint: String,
     },
-    /// The holder answered but refused this process, saying why (or sent what cannot be read).
-    Refused { endpoint: String, why: String },
-    /// The holder answered, then stopped.
+    /// The board's processes answered, then stopped.
     Stopped { endpoint: String },
 }
 
@@ -55,11 +53,8 @@ impl fmt::Display for NetworkError {
                     "no {which} answered at {endpoint} (is a `proclaim run … --listen {endpoint}` running?)"
                 )
             }
-            NetworkError::Refused { endpoint, why } => {
-                write!(f, "the whiteboard at {endpoint} cannot be joined: {why}")
-            }
             NetworkError::Stopped { endpoint } => {
-                write!(f, "the holder at {endpoint} stopped answering")
+                write!(f, "the whiteboard at {endpoint} stopped answering")
             }
         }
     }

@@ -1,12 +1,15 @@
 //! The whiteboard across processes and robots, over Zenoh 1.9 (TCP, peer to peer, no broker):
 //! the only crate that depends on Zenoh, built into `proclaim` by its `zenoh` feature.
 //!
-//! One process holds the board and listens on an explicit endpoint (loopback unless told
-//! otherwise); others connect to it and keep a replica in step. Every semantic of the
-//! in-process board holds across them: sequence numbers and states are the holder's, a signal is
-//! consumed once (in the process that declared its type a signal), data histories and the
-//! module registry are replicated, and queries and their timeouts run on the replica. Multicast
-//! scouting is off; TLS and access control come from Zenoh's own configuration file.
+//! No process holds the board: every process keeps its own replica and puts what it posts on the
+//! type's own key, `proclaim/<board>/<type>`, the value as plain JSON and the rest in Zenoh's
+//! attachment (docs/whiteboard-wire.md), so any Zenoh binding can read or post a type. A late
+//! joiner asks the others for the values they own; a process that dies is noticed by its
+//! liveliness token and its types turn stale. A signal is consumed once, in the process that
+//! declared it a signal first and is alive. One process listens on an explicit endpoint
+//! (loopback unless told otherwise), the others connect to it and meet each other through
+//! Zenoh's gossip. Multicast scouting is off; TLS and access control come from Zenoh's own
+//! configuration file.
 
 mod board;
 mod error;
@@ -15,8 +18,8 @@ mod session;
 mod threads;
 mod wire;
 
-pub use board::whiteboard;
+pub use board::{post_once, stale_type, whiteboard};
 pub use error::NetworkError;
-pub use probe::ping;
+pub use probe::{bare_receive, ping, BareSender};
 pub use session::{Role, Settings};
 pub use threads::{prefer_few_threads, FEW_THREADS};

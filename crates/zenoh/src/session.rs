@@ -1,17 +1,18 @@
-//! Opening a Zenoh session the safe way: exactly the endpoints given (a listening process on
-//! loopback unless told otherwise), no multicast scouting, TCP (and TLS, with the `tls` feature)
-//! only; the rest (certificates, access control) from Zenoh's own configuration file when one is
-//! given.
+//! Opening a Zenoh session the safe way: the endpoints given (a listening process on loopback
+//! unless told otherwise), no multicast scouting, TCP (and TLS, with the `tls` feature) only; the
+//! rest (certificates, access control) from Zenoh's own configuration file when one is given.
+//! A process that connects also listens, on a port of its own beside it, so that the others,
+//! told of it by Zenoh's gossip, link to it directly: postings go straight from poster to reader.
 
 use crate::error::NetworkError;
 use std::path::PathBuf;
 
-/// How a process joins a whiteboard.
+/// How a process meets the others of a whiteboard (none holds it).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Role {
-    /// Holds the board and listens on this endpoint (`tcp/127.0.0.1:7447`).
+    /// Listens on this endpoint (`tcp/127.0.0.1:7447`) for the others to connect to.
     Listen(String),
-    /// Joins the board held by the process listening on this endpoint.
+    /// Connects to the process listening on this endpoint, and through it meets the rest.
     Connect(String),
 }
 
@@ -23,8 +24,7 @@ pub struct Settings {
     /// Zenoh's low-latency transport: a message goes straight to the socket, with no queue,
     /// batching, fragmentation or priorities: shorter round trips, fewer messages a second
     /// (`cargo bench --features zenoh --bench network` compares them). No message may exceed
-    /// 60 KiB: a larger posting is not sent (logged as an error), and a process cannot join a
-    /// board whose snapshot is larger (it is told why).
+    /// 60 KiB: a larger posting is not sent (logged as an error).
     pub low_latency: bool,
 }
 
@@ -46,7 +46,7 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
     };
     let (listen, connect) = match role {
         Role::Listen(e) => (vec![e.clone()], Vec::new()),
-        Role::Connect(e) => (Vec::new(), vec![e.clone()]),
+        Role::Connect(e) => (beside(e).into_iter().collect(), vec![e.clone()]),
     };
     for e in listen.iter().chain(&connect) {
         if !e.contains('/') {
@@ -59,12 +59,30 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
             .map_err(|e| NetworkError::zenoh(format!("Zenoh refused {key} = {value}"), e))
     };
     set(&mut config, "mode", "\"peer\"".into())?;
-    set(&mut config, "listen/endpoints", json_list(&listen))?;
+    // A process connecting over TLS listens where the configuration file says, if anywhere.
+    if !listen.is_empty() || settings.config_file.is_none() {
+        set(&mut config, "listen/endpoints", json_list(&listen))?;
+    }
     set(&mut config, "connect/endpoints", json_list(&connect))?;
     set(&mut config, "scouting/multicast/enabled", "false".into())?;
+    // Two processes told of each other by gossip at once must not both dial: the low-latency
+    // transport cannot take the second link of a pair, tears the pair's transport down on
+    // both sides, and gossip never dials again, so the two stay unlinked and each loses all
+    // the other posts. Only the process with the greater id dials; every process listens.
+    set(
+        &mut config,
+        "scouting/gossip/autoconnect_strategy",
+        "{peer: {to_peer: \"greater-zid\"}}".into(),
+    )?;
     // A process joining must find the board, or say so, not wait for ever.
     set(&mut config, "connect/exit_on_failure", "true".into())?;
     set(&mut config, "connect/timeout_ms", "5000".into())?;
+    // A process that was away (the listening one restarted) is linked again within a second.
+    set(
+        &mut config,
+        "connect/retry",
+        "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
+    )?;
     if settings.low_latency {
         set(&mut config, "transport/unicast/lowlatency", "true".into())?;
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
@@ -75,6 +93,22 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
             NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
         }
     })
+}
+
+/// Where a process connecting to `endpoint` listens for the others: a free port on loopback when
+/// the endpoint is on loopback, on every interface otherwise. Over TLS a process listens only
+/// where Zenoh's configuration file says (it needs its own certificate to).
+fn beside(endpoint: &str) -> Option<String> {
+    let address = endpoint.strip_prefix("tcp/")?;
+    let loopback = address.starts_with("127.") || address.starts_with("localhost:");
+    Some(
+        if loopback {
+            "tcp/127.0.0.1:0"
+        } else {
+            "tcp/0.0.0.0:0"
+        }
+        .to_string(),
+    )
 }
 
 fn json_list(items: &[String]) -> String {

@@ -1,53 +1,104 @@
-//! What travels between processes, as JSON: a module's request to the process that holds the
-//! board (`Up`), and what that process tells every other (`Down`), plus the snapshot a joining
-//! process starts from.
+//! What travels between processes (docs/whiteboard-wire.md): a posting's value as plain JSON on
+//! its type's own key, everything else about it as a JSON attachment beside it, and a module's
+//! declaration for the registry.
 
-use proclaim_board::{Kind, Message, ModuleDecl, Value};
+use proclaim_board::{Kind, ModuleDecl, Value};
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
 use std::time::Duration;
 
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
-pub enum WireValue {
-    Bool(bool),
-    Int(i64),
-    Float(f64),
-    Str(String),
-    Bytes(Vec<u8>),
-    List(Vec<WireValue>),
+/// Everything about a posting but its value: the attachment of every put and every reply.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]
+pub struct Meta {
+    /// The module that posted it; a posting without one reads as [`ANONYMOUS`].
+    #[serde(default)]
+    pub module: Option<String>,
+    /// The poster's own number for this type, from 1: a reader sees each poster's postings of a
+    /// type in this order and ignores a number it has passed.
+    #[serde(default)]
+    pub seq: Option<u64>,
+    /// When it was posted, in nanoseconds since the Unix epoch (the poster's clock).
+    #[serde(default)]
+    pub time_ns: Option<u64>,
+    /// The poster's subsumption priority; left out when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub priority: u32,
+    /// How the poster keeps the type: `state`, `signal` or `data`.
+    #[serde(default)]
+    pub kind: Option<WireKind>,
+    /// The Zenoh id of the posting process: its liveliness token says whether it is alive.
+    #[serde(default)]
+    pub process: Option<String>,
+    /// In an answer to a late joiner: the poster is gone, and the value is stale.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub stale: bool,
 }
 
-impl From<&Value> for WireValue {
-    fn from(v: &Value) -> WireValue {
-        match v {
-            Value::Bool(b) => WireValue::Bool(*b),
-            Value::Int(i) => WireValue::Int(*i),
-            Value::Float(f) => WireValue::Float(*f),
-            Value::Str(s) => WireValue::Str(s.clone()),
-            Value::Bytes(b) => WireValue::Bytes(b.clone()),
-            Value::List(l) => WireValue::List(l.iter().map(WireValue::from).collect()),
-        }
+fn is_false(stale: &bool) -> bool {
+    !*stale
+}
+
+/// The module a posting without an attachment (a bare Zenoh put) is shown as.
+pub const ANONYMOUS: &str = "zenoh";
+
+fn is_zero(priority: &u32) -> bool {
+    *priority == 0
+}
+
+impl Meta {
+    pub fn encode(&self) -> Vec<u8> {
+        serde_json::to_vec(self).unwrap_or_default()
+    }
+
+    /// The attachment as sent; `None` (and a warning by the caller) when it is not ours.
+    pub fn decode(bytes: &[u8]) -> Result<Meta, String> {
+        serde_json::from_slice(bytes).map_err(|e| format!("unreadable attachment ({e})"))
+    }
+
+    pub fn time(&self) -> Option<Duration> {
+        self.time_ns.map(Duration::from_nanos)
     }
 }
 
-impl From<WireValue> for Value {
-    fn from(v: WireValue) -> Value {
-        match v {
-            WireValue::Bool(b) => Value::Bool(b),
-            WireValue::Int(i) => Value::Int(i),
-            WireValue::Float(f) => Value::Float(f),
-            WireValue::Str(s) => Value::Str(s),
-            WireValue::Bytes(b) => Value::Bytes(b),
-            WireValue::List(l) => Value::List(l.into_iter().map(Value::from).collect()),
-        }
+/// A value as the payload carries it: plain JSON (`true`, `3`, `0.5`, `"kick"`, `[1, 2]`,
+/// `{"bytes": [1, 2]}`).
+pub fn encode_value(value: &Value) -> Vec<u8> {
+    value.to_json().to_string().into_bytes()
+}
+
+/// The value a payload holds. A payload that is not JSON is taken as a string (what a person
+/// typing `z_put -v kick` means).
+pub fn decode_value(bytes: &[u8]) -> Value {
+    match serde_json::from_slice::<serde_json::Value>(bytes) {
+        Ok(json) => Value::from_json(&json),
+        Err(_) => Value::Str(String::from_utf8_lossy(bytes).into_owned()),
     }
 }
 
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
 pub enum WireKind {
     State,
     Signal,
     Data,
+}
+
+impl WireKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            WireKind::State => "state",
+            WireKind::Signal => "signal",
+            WireKind::Data => "data",
+        }
+    }
+
+    pub fn parse(text: &str) -> Option<WireKind> {
+        match text {
+            "state" => Some(WireKind::State),
+            "signal" => Some(WireKind::Signal),
+            "data" => Some(WireKind::Data),
+            _ => None,
+        }
+    }
 }
 
 impl From<Kind> for WireKind {
@@ -70,55 +121,17 @@ impl From<WireKind> for Kind {
     }
 }
 
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
-pub struct WireMessage {
-    pub ty: String,
-    pub value: WireValue,
-    pub module: String,
-    pub seq: u64,
-    pub time_ns: u64,
-    /// The poster's subsumption priority; left out when 0 (every message of a process that
-    /// knows nothing of priorities reads as 0).
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub priority: u32,
-}
-
-fn is_zero(priority: &u32) -> bool {
-    *priority == 0
-}
-
-impl From<&Message> for WireMessage {
-    fn from(m: &Message) -> WireMessage {
-        WireMessage {
-            ty: m.ty.to_string(),
-            value: WireValue::from(&m.value),
-            module: m.module.to_string(),
-            seq: m.seq,
-            time_ns: m.time.as_nanos().min(u128::from(u64::MAX)) as u64,
-            priority: m.priority,
-        }
-    }
-}
-
-impl From<WireMessage> for Message {
-    fn from(m: WireMessage) -> Message {
-        Message {
-            ty: Arc::from(m.ty),
-            value: m.value.into(),
-            module: Arc::from(m.module),
-            seq: m.seq,
-            time: Duration::from_nanos(m.time_ns),
-            priority: m.priority,
-        }
-    }
-}
-
+/// A module's declaration (the registry), as JSON.
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Eq, Default)]
 pub struct WireDecl {
     pub name: String,
+    #[serde(default)]
     pub posts: Vec<String>,
+    #[serde(default)]
     pub reads: Vec<String>,
+    #[serde(default)]
     pub waits_on: Vec<String>,
+    #[serde(default)]
     pub answers: Vec<String>,
 }
 
@@ -144,49 +157,45 @@ impl From<WireDecl> for ModuleDecl {
     }
 }
 
-/// From a process to the one that holds the board.
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
-pub enum Up {
-    Post {
-        module: String,
-        ty: String,
-        value: WireValue,
-        /// As `WireMessage::priority`.
-        #[serde(default, skip_serializing_if = "is_zero")]
-        priority: u32,
-    },
-    /// `process` declared `ty`; a signal type is consumed in the first process to declare it.
-    Declare {
-        ty: String,
-        kind: WireKind,
-        process: String,
-    },
-    Register(WireDecl),
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-/// From the process that holds the board to every other, in order.
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
-pub enum Down {
-    /// A message and, for a signal, the process that may consume it.
-    Posted {
-        message: WireMessage,
-        owner: Option<String>,
-    },
-    Declared {
-        ty: String,
-        kind: WireKind,
-    },
-    Registered(WireDecl),
-}
+    #[test]
+    fn values_travel_as_plain_json() {
+        for (value, text) in [
+            (Value::Bool(true), "true"),
+            (Value::Int(3), "3"),
+            (Value::Float(0.5), "0.5"),
+            (Value::from("kick"), "\"kick\""),
+            (Value::List(vec![Value::Int(1), Value::Int(2)]), "[1,2]"),
+        ] {
+            assert_eq!(String::from_utf8(encode_value(&value)).unwrap(), text);
+            assert_eq!(decode_value(text.as_bytes()), value);
+        }
+        assert_eq!(decode_value(b"kick left"), Value::from("kick left"));
+    }
 
-/// Where a joining process starts: every type's kind, what the board holds, who owns which
-/// signal type, and the registry.
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]
-pub struct Snapshot {
-    pub kinds: Vec<(String, WireKind)>,
-    pub messages: Vec<WireMessage>,
-    pub owners: Vec<(String, String)>,
-    pub registry: Vec<WireDecl>,
-    /// The holder's clock when the snapshot was taken.
-    pub now_us: u64,
+    #[test]
+    fn an_attachment_leaves_out_what_it_need_not_say() {
+        let meta = Meta {
+            module: Some("vision".into()),
+            seq: Some(7),
+            time_ns: Some(1_500),
+            priority: 0,
+            kind: Some(WireKind::Data),
+            process: Some("ab12".into()),
+            stale: false,
+        };
+        let text = String::from_utf8(meta.encode()).unwrap();
+        assert_eq!(
+            text,
+            r#"{"module":"vision","seq":7,"time_ns":1500,"kind":"data","process":"ab12"}"#
+        );
+        assert_eq!(Meta::decode(text.as_bytes()).unwrap(), meta);
+        assert_eq!(Meta::decode(b"{}").unwrap(), Meta::default());
+        assert!(Meta::decode(b"not json")
+            .unwrap_err()
+            .contains("unreadable"));
+    }
 }

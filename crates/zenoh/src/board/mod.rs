@@ -1,169 +1,562 @@
-//! The whiteboard across processes. One process holds the board (it listens); the others join
-//! it (they connect) and keep a replica. Every posting goes to the holder, which numbers it and
-//! sends it, in order, to every replica, so sequence numbers, states and data histories are the
-//! same everywhere. A signal type is consumed in one process only, the first that declared it a
-//! signal (a machine, for its own name); the others observe its signals. Reads, waits and
-//! subscriptions are served from the local replica, so they cost what they cost in process.
+//! The whiteboard across processes, with no process it depends on. Every process keeps its own
+//! replica (a `LocalBoard`) and is the authority for what it posts: it numbers its own postings
+//! of each type and puts them on the type's own key, `proclaim/<board>/<type>`, the value as
+//! plain JSON and the rest in the attachment. A process joining asks the others for the values
+//! they own (each answers for its own, `catchup.rs`); a process that dies is noticed through its
+//! liveliness token and the types whose current value it posted turn stale (`members.rs`).
+//! Reads, waits and subscriptions are served from the local replica, so they cost what they
+//! cost in process, and a replica numbers what reaches it in the order it arrives.
 
 use crate::error::NetworkError;
 use crate::session::{open, Role, Settings};
-use crate::wire::{Down, Snapshot, Up, WireDecl, WireKind, WireMessage, WireValue};
+use crate::wire::{decode_value, encode_value, Meta, WireDecl, WireKind, ANONYMOUS};
 use parking_lot::Mutex;
 use proclaim_board::{
     BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Stats, Subscription,
     Transport, Value, Whiteboard,
 };
-use rustc_hash::FxHashMap;
-use std::marker::PhantomData;
-use std::sync::{Arc, OnceLock};
-use std::time::Duration;
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::{BTreeSet, VecDeque};
+use std::sync::{Arc, Weak};
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+use zenoh::bytes::Encoding;
+use zenoh::liveliness::LivelinessToken;
 use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::qos::CongestionControl;
 use zenoh::query::Queryable;
+use zenoh::sample::Locality;
 use zenoh::Wait;
 
-/// What every process serves from its own board, holder or replica alike: reads, waits,
-/// subscriptions, the registry and the counters.
-macro_rules! served_locally {
-    ($board:ident) => {
-        fn kind(&self, ty: &str) -> Kind {
-            self.$board.kind(ty)
-        }
+mod catchup;
+mod members;
 
-        fn latest(&self, ty: &str) -> Option<Message> {
-            self.$board.latest(ty)
-        }
+/// The largest message a transport carries, if it has a limit.
+type Limit = Option<usize>;
 
-        fn wait_for(
-            &self,
-            ty: &str,
-            after: u64,
-            timeout: Duration,
-        ) -> BoxFuture<'_, Option<Message>> {
-            self.$board.wait_for(ty, after, timeout)
-        }
+/// How many of its own postings of a data type a process keeps to answer a late joiner with
+/// (the in-process board's default history).
+const OWN_HISTORY: usize = 256;
 
-        fn nearest(&self, ty: &str, time: Duration, side: std::cmp::Ordering) -> Option<Message> {
-            self.$board.nearest(ty, time, side)
-        }
-
-        fn subscribe(&self, pattern: Pattern) -> Subscription {
-            self.$board.subscribe(pattern)
-        }
-
-        fn registry(&self) -> Registry {
-            self.$board.registry()
-        }
-
-        fn is_answered(&self, atom: &str) -> bool {
-            self.$board.is_answered(atom)
-        }
-
-        fn stats(&self) -> Stats {
-            self.$board.stats()
-        }
-
-        fn count_query(&self, timed_out: bool, unanswerable: bool) {
-            self.$board.count_query(timed_out, unanswerable)
-        }
-
-        fn snapshot(&self) -> proclaim_board::Snapshot {
-            self.$board.snapshot()
-        }
-    };
-}
-
-mod holder;
-mod outbox;
-mod replica;
-
-use holder::Holder;
-use outbox::{Limit, Outbox};
-use replica::Replica;
-
-/// Key expressions of one board, under its name.
+/// Key expressions of one board, under its name. Every key but the types' starts with a chunk
+/// beginning with `@`, which Zenoh's wildcards never match: `proclaim/B/**` is the types alone.
 #[derive(Clone)]
-struct Keys {
-    up: String,
-    down: String,
-    snapshot: String,
-    ping: String,
+pub(crate) struct Keys {
+    board: String,
 }
 
 impl Keys {
-    fn new(board: &str) -> Keys {
+    pub(crate) fn new(board: &str) -> Keys {
         Keys {
-            up: format!("proclaim/{board}/up"),
-            down: format!("proclaim/{board}/down"),
-            snapshot: format!("proclaim/{board}/snapshot"),
-            ping: crate::probe::key(board),
+            board: board.to_string(),
         }
+    }
+
+    fn ty(&self, ty: &str) -> String {
+        format!("proclaim/{}/{ty}", self.board)
+    }
+
+    fn every_type(&self) -> String {
+        format!("proclaim/{}/*", self.board)
+    }
+
+    /// The type a key names, when it is one of this board's types.
+    fn type_of<'k>(&self, key: &'k str) -> Option<&'k str> {
+        let rest = key.strip_prefix("proclaim/")?.strip_prefix(&*self.board)?;
+        rest.strip_prefix('/')
+            .filter(|t| type_key_error(t).is_none())
+    }
+
+    fn alive(&self, process: &str) -> String {
+        format!("proclaim/{}/@alive/{process}", self.board)
+    }
+
+    fn every_alive(&self) -> String {
+        format!("proclaim/{}/@alive/*", self.board)
+    }
+
+    fn kind(&self, ty: &str, kind: WireKind, since_ns: u64, process: &str) -> String {
+        format!(
+            "proclaim/{}/@kind/{ty}/{}/{since_ns}/{process}",
+            self.board,
+            kind.name()
+        )
+    }
+
+    fn every_kind(&self) -> String {
+        format!("proclaim/{}/@kind/*/*/*/*", self.board)
+    }
+
+    fn registry(&self) -> String {
+        format!("proclaim/{}/@registry", self.board)
+    }
+
+    pub(crate) fn ping(&self) -> String {
+        format!("proclaim/{}/@ping", self.board)
     }
 }
 
-/// Joins or holds the whiteboard named `board` (several can share a network) as `role` says.
-/// `config_file` is Zenoh's own JSON5 configuration (TLS, access control), read first.
+/// Why a type's name cannot be a key's last chunk, if it cannot.
+pub(crate) fn type_key_error(ty: &str) -> Option<&'static str> {
+    if ty.is_empty() {
+        Some("it is empty")
+    } else if ty.starts_with('@') {
+        Some("it starts with `@`, which Zenoh keeps for its own keys")
+    } else if ty.contains(['/', '*', '$', '?', '#']) {
+        Some("it holds one of / * $ ? #, which Zenoh's keys cannot")
+    } else {
+        None
+    }
+}
+
+/// The module a stale mark is posted by: the gone process, as a person reads its id.
+fn gone_module(process: &str) -> String {
+    format!("gone {}", &process[..process.len().min(8)])
+}
+
+/// The local type saying whether `ty`'s current value came from a process that is gone.
+pub fn stale_type(ty: &str) -> String {
+    format!("{ty}Stale")
+}
+
+/// Joins the whiteboard named `board` (several can share a network): listening on an endpoint
+/// or connecting to one, as `role` says; either way a process like every other.
 pub async fn whiteboard(
     role: &Role,
     board: &str,
     settings: &Settings,
 ) -> Result<Whiteboard, NetworkError> {
     let session = open(role, settings).await?;
-    let keys = Keys::new(board);
-    let transport: Arc<dyn Transport> = match role {
-        Role::Listen(_) => Holder::start(session, keys, settings.message_limit()).await?,
-        Role::Connect(endpoint) => {
-            Replica::start(session, keys, endpoint, settings.message_limit()).await?
+    if let Role::Connect(endpoint) = role {
+        members::wait_for_the_mesh(&session, endpoint).await?;
+    }
+    let peer = Peer::start(session, Keys::new(board), settings.message_limit()).await?;
+    peer.catch_up(None).await;
+    Ok(Whiteboard::new(peer))
+}
+
+/// Posts one message from a process that ends right after: joins, posts, and returns once every
+/// process linked to this one has answered a ping sent after the posting (on each link the
+/// posting went first, so each has it), with the message and how many processes answered.
+pub async fn post_once(
+    role: &Role,
+    board: &str,
+    settings: &Settings,
+    module: &str,
+    ty: &str,
+    value: Value,
+) -> Result<(Message, usize), NetworkError> {
+    let session = open(role, settings).await?;
+    if let Role::Connect(endpoint) = role {
+        members::wait_for_the_mesh(&session, endpoint).await?;
+    }
+    let peer = Peer::start(session, Keys::new(board), settings.message_limit()).await?;
+    let message = peer.post(module, ty, value);
+    let heard = peer.ask(&peer.keys.ping()).await.len();
+    Ok((message, heard))
+}
+
+pub(crate) fn unix_now() -> Duration {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .unwrap_or_default()
+}
+
+fn nanos(time: Duration) -> u64 {
+    time.as_nanos().min(u128::from(u64::MAX)) as u64
+}
+
+/// One process on the board.
+pub(crate) struct Peer {
+    board: LocalBoard,
+    /// This process's Zenoh id, the name its liveliness token and its postings carry.
+    me: String,
+    keys: Keys,
+    limit: Limit,
+    session: zenoh::Session,
+    /// Numbering a posting and putting it happen under this lock, so each type's puts leave in
+    /// the order of their numbers whichever threads post at once.
+    outgoing: Mutex<Outgoing>,
+    net: Mutex<Net>,
+    /// Kind declarations this process made, each a liveliness token (dropping one undeclares it).
+    kind_tokens: Mutex<FxHashMap<String, LivelinessToken>>,
+    /// What this process serves and listens to; dropping them undeclares them.
+    serving: Mutex<Vec<Serving>>,
+}
+
+#[allow(dead_code)] // held only to keep the declarations alive
+enum Serving {
+    Subscriber(Subscriber<()>),
+    Queryable(Queryable<()>),
+    Token(LivelinessToken),
+}
+
+#[derive(Default)]
+struct Outgoing {
+    seq: FxHashMap<String, u64>,
+    publishers: FxHashMap<String, Publisher<'static>>,
+}
+
+/// What this process knows of the others.
+#[derive(Default)]
+struct Net {
+    /// Processes whose liveliness token is seen.
+    alive: FxHashSet<String>,
+    /// Each type's current posting, with the process that posted it (none for a bare Zenoh
+    /// put): whom it turns stale with, and what a late joiner is answered.
+    current: FxHashMap<String, (Meta, Value)>,
+    /// The last number seen from each (process, type).
+    last: FxHashMap<(String, String), u64>,
+    /// Each signal type's claims to consume it: (since when, by which process). The earliest
+    /// living claim consumes.
+    claims: FxHashMap<String, BTreeSet<(u64, String)>>,
+    /// Kinds declared in this process, which a declaration elsewhere does not override.
+    declared_here: FxHashMap<String, Kind>,
+    /// Types whose current value's poster is gone.
+    stale: FxHashSet<String>,
+    /// This process's own recent postings of each data type, what it answers a late joiner
+    /// with.
+    own_history: FxHashMap<String, VecDeque<(Meta, Value)>>,
+    /// Modules registered in this process.
+    registered: Vec<WireDecl>,
+}
+
+impl Net {
+    fn consumer(&self, ty: &str) -> Option<&str> {
+        self.claims
+            .get(ty)
+            .and_then(|c| c.first())
+            .map(|(_, p)| p.as_str())
+    }
+}
+
+impl Peer {
+    async fn start(
+        session: zenoh::Session,
+        keys: Keys,
+        limit: Limit,
+    ) -> Result<Arc<Peer>, NetworkError> {
+        let peer = Arc::new(Peer {
+            board: LocalBoard::new(),
+            me: session.zid().to_string(),
+            keys,
+            limit,
+            session: session.clone(),
+            outgoing: Mutex::default(),
+            net: Mutex::default(),
+            kind_tokens: Mutex::default(),
+            serving: Mutex::default(),
+        });
+        let weak = Arc::downgrade(&peer);
+        let postings = {
+            let weak = weak.clone();
+            session
+                .declare_subscriber(peer.keys.every_type())
+                .allowed_origin(Locality::Remote)
+                .callback(move |sample| {
+                    if let Some(peer) = weak.upgrade() {
+                        peer.on_sample(&sample);
+                    }
+                })
+                .await
+                .map_err(|e| {
+                    NetworkError::zenoh(
+                        format!("cannot subscribe to {}", peer.keys.every_type()),
+                        e,
+                    )
+                })?
+        };
+        let registrations = {
+            let weak = weak.clone();
+            session
+                .declare_subscriber(peer.keys.registry())
+                .allowed_origin(Locality::Remote)
+                .callback(move |sample| {
+                    if let Some(peer) = weak.upgrade() {
+                        peer.on_registration(&sample.payload().to_bytes());
+                    }
+                })
+                .await
+                .map_err(|e| {
+                    NetworkError::zenoh(format!("cannot subscribe to {}", peer.keys.registry()), e)
+                })?
+        };
+        let mut serving = vec![
+            Serving::Subscriber(postings),
+            Serving::Subscriber(registrations),
+        ];
+        serving.extend(catchup::serve(&peer, &weak).await?);
+        serving.extend(members::watch(&peer, &weak).await?);
+        *peer.serving.lock() = serving;
+        Ok(peer)
+    }
+
+    /// A posting from another process (or a bare Zenoh put).
+    fn on_sample(&self, sample: &zenoh::sample::Sample) {
+        let Some(ty) = self.keys.type_of(sample.key_expr().as_str()) else {
+            return;
+        };
+        let meta = match sample.attachment().map(|a| Meta::decode(&a.to_bytes())) {
+            None => Meta::default(),
+            Some(Ok(meta)) => meta,
+            Some(Err(why)) => {
+                tracing::warn!(key = %sample.key_expr(), "{why}; the posting is taken without it");
+                Meta::default()
+            }
+        };
+        self.receive(ty, decode_value(&sample.payload().to_bytes()), meta);
+    }
+
+    fn on_registration(&self, bytes: &[u8]) {
+        match serde_json::from_slice::<WireDecl>(bytes) {
+            Ok(decl) => self.board.register(decl.into()),
+            Err(e) => tracing::warn!(error = %e, "unreadable module declaration ignored"),
         }
-    };
-    Ok(Whiteboard::new(transport))
-}
+    }
 
-fn process_id() -> String {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    format!("{}-{nanos:08x}", std::process::id())
-}
+    /// Puts a posting from elsewhere on this replica, unless this process has seen its number
+    /// from its poster already.
+    fn receive(&self, ty: &str, value: Value, meta: Meta) {
+        let mut net = self.net.lock();
+        if let (Some(process), Some(seq)) = (&meta.process, meta.seq) {
+            let last = net
+                .last
+                .entry((process.clone(), ty.to_string()))
+                .or_insert(0);
+            if seq <= *last {
+                return;
+            }
+            *last = seq;
+        }
+        if let Some(kind) = meta.kind.map(Kind::from) {
+            if kind != Kind::State
+                && self.board.kind(ty) == Kind::State
+                && !net.declared_here.contains_key(ty)
+            {
+                self.board.declare_observed(ty, kind);
+            }
+        }
+        let consumable =
+            self.board.kind(ty) != Kind::Signal || net.consumer(ty) == Some(self.me.as_str());
+        net.current
+            .insert(ty.to_string(), (meta.clone(), value.clone()));
+        let was_stale = if meta.stale {
+            !net.stale.insert(ty.to_string())
+        } else {
+            net.stale.remove(ty)
+        };
+        let time = meta.time().unwrap_or_else(unix_now);
+        let module = meta.module.as_deref().unwrap_or(ANONYMOUS);
+        self.board
+            .post_at(module, ty, value, meta.priority, time, consumable);
+        if meta.stale != was_stale {
+            let by = match (&meta.process, meta.stale) {
+                (Some(process), true) => gone_module(process),
+                _ => module.to_string(),
+            };
+            self.mark_stale(ty, meta.stale, &by);
+        }
+    }
 
-fn encode<T: serde::Serialize>(value: &T) -> Vec<u8> {
-    serde_json::to_vec(value).unwrap_or_default()
-}
+    /// Says on this replica (only) whether `ty`'s current value's poster is gone.
+    fn mark_stale(&self, ty: &str, stale: bool, module: &str) {
+        self.board
+            .post_at(module, &stale_type(ty), stale.into(), 0, unix_now(), true);
+    }
 
-/// Runs `handle` on every message arriving on `key`, on Zenoh's receiving thread: applying a
-/// message to a board never blocks, and no task hop stands between the socket and the waiter.
-async fn on_every<T, F>(
-    session: &zenoh::Session,
-    key: &str,
-    handle: F,
-) -> Result<Subscriber<()>, NetworkError>
-where
-    T: serde::de::DeserializeOwned,
-    F: Fn(T) + Send + Sync + 'static,
-{
-    session
-        .declare_subscriber(key.to_string())
-        .callback(
-            move |sample| match serde_json::from_slice::<T>(&sample.payload().to_bytes()) {
-                Ok(item) => handle(item),
-                Err(e) => tracing::warn!(error = %e, "unreadable whiteboard message ignored"),
-            },
-        )
-        .await
-        .map_err(|e| NetworkError::zenoh(format!("cannot subscribe to {key}"), e))
-}
+    fn publisher<'o>(&self, out: &'o mut Outgoing, ty: &str) -> Option<&'o Publisher<'static>> {
+        if !out.publishers.contains_key(ty) {
+            let key = self.keys.ty(ty);
+            let declared = self
+                .session
+                .declare_publisher(key.clone())
+                .congestion_control(CongestionControl::Block)
+                .express(false)
+                .encoding(Encoding::APPLICATION_JSON)
+                .allowed_destination(Locality::Remote)
+                .wait();
+            match declared {
+                Ok(publisher) => {
+                    out.publishers.insert(ty.to_string(), publisher);
+                }
+                Err(e) => {
+                    tracing::error!(key, error = %e, "cannot publish this type; kept in this process");
+                    return None;
+                }
+            }
+        }
+        out.publishers.get(ty)
+    }
 
-/// `handle` on `board` for as long as it lives: a callback holds its board weakly, so the board
-/// ends when its last handle is dropped.
-fn while_alive<B, T>(board: &Arc<B>, handle: fn(&B, T)) -> impl Fn(T) + Send + Sync + 'static
-where
-    B: Send + Sync + 'static,
-    T: 'static,
-{
-    let weak = Arc::downgrade(board);
-    move |item| {
-        if let Some(board) = weak.upgrade() {
-            handle(&board, item);
+    fn put(&self, publisher: &Publisher<'static>, value: &Value, meta: &Meta) {
+        let payload = encode_value(value);
+        let attachment = meta.encode();
+        let size = payload.len() + attachment.len();
+        if let Some(limit) = self.limit.filter(|l| size > *l) {
+            tracing::error!(
+                key = %publisher.key_expr(),
+                bytes = size,
+                limit,
+                "posting too large for the low-latency transport, not sent (run every process without --low-latency)"
+            );
+            return;
+        }
+        if let Err(e) = publisher.put(payload).attachment(attachment).wait() {
+            tracing::warn!(key = %publisher.key_expr(), error = %e, "posting not sent");
         }
     }
 }
+
+/// What every process serves from its own replica: reads, waits, subscriptions, the registry
+/// and the counters.
+impl Transport for Peer {
+    fn declare(&self, ty: &str, kind: Kind) {
+        let since = nanos(unix_now());
+        {
+            let mut net = self.net.lock();
+            net.declared_here.insert(ty.to_string(), kind);
+            let mine = (since, self.me.clone());
+            let claims = net.claims.entry(ty.to_string()).or_default();
+            claims.retain(|(_, p)| *p != self.me);
+            if kind == Kind::Signal {
+                claims.insert(mine);
+            }
+            // Only the consumer takes a command posted before the type was a signal.
+            if kind != Kind::Signal || net.consumer(ty) == Some(self.me.as_str()) {
+                self.board.declare(ty, kind);
+            } else {
+                self.board.declare_observed(ty, kind);
+            }
+        }
+        if let Some(why) = type_key_error(ty) {
+            tracing::error!(ty, "cannot share this type's kind: {why}");
+            return;
+        }
+        let key = self.keys.kind(ty, kind.into(), since, &self.me);
+        match self.session.liveliness().declare_token(key.clone()).wait() {
+            Ok(token) => {
+                self.kind_tokens.lock().insert(ty.to_string(), token);
+            }
+            Err(e) => tracing::error!(key, error = %e, "cannot share this type's kind"),
+        }
+    }
+
+    fn kind(&self, ty: &str) -> Kind {
+        self.board.kind(ty)
+    }
+
+    fn post_ranked(&self, module: &str, ty: &str, value: Value, priority: u32) -> Message {
+        let time = unix_now();
+        let kind = self.board.kind(ty);
+        let mut out = self.outgoing.lock();
+        let seq = {
+            let seq = out.seq.entry(ty.to_string()).or_insert(0);
+            *seq += 1;
+            *seq
+        };
+        let meta = Meta {
+            module: Some(module.to_string()),
+            seq: Some(seq),
+            time_ns: Some(nanos(time)),
+            priority,
+            kind: Some(kind.into()),
+            process: Some(self.me.clone()),
+            stale: false,
+        };
+        let message = {
+            let mut net = self.net.lock();
+            let consumable = kind != Kind::Signal || net.consumer(ty) == Some(self.me.as_str());
+            net.current
+                .insert(ty.to_string(), (meta.clone(), value.clone()));
+            let fresh = net.stale.remove(ty);
+            if kind == Kind::Data {
+                let own = net.own_history.entry(ty.to_string()).or_default();
+                own.push_back((meta.clone(), value.clone()));
+                while own.len() > OWN_HISTORY {
+                    own.pop_front();
+                }
+            }
+            let message = self
+                .board
+                .post_at(module, ty, value, priority, time, consumable);
+            if fresh {
+                self.mark_stale(ty, false, module);
+            }
+            message
+        };
+        match type_key_error(ty) {
+            Some(why) => tracing::error!(ty, "posting kept in this process: {why}"),
+            None => {
+                if let Some(publisher) = self.publisher(&mut out, ty) {
+                    self.put(publisher, &message.value, &meta);
+                }
+            }
+        }
+        message
+    }
+
+    fn latest(&self, ty: &str) -> Option<Message> {
+        self.board.latest(ty)
+    }
+
+    fn wait_for(&self, ty: &str, after: u64, timeout: Duration) -> BoxFuture<'_, Option<Message>> {
+        self.board.wait_for(ty, after, timeout)
+    }
+
+    fn nearest(&self, ty: &str, time: Duration, side: std::cmp::Ordering) -> Option<Message> {
+        self.board.nearest(ty, time, side)
+    }
+
+    fn subscribe(&self, pattern: Pattern) -> Subscription {
+        self.board.subscribe(pattern)
+    }
+
+    fn register(&self, decl: ModuleDecl) {
+        let wire = WireDecl::from(&decl);
+        self.board.register(decl);
+        let bytes = serde_json::to_vec(&wire).unwrap_or_default();
+        {
+            let mut net = self.net.lock();
+            net.registered.retain(|d| d.name != wire.name);
+            net.registered.push(wire);
+        }
+        let key = self.keys.registry();
+        if let Err(e) = self
+            .session
+            .put(key.clone(), bytes)
+            .congestion_control(CongestionControl::Block)
+            .allowed_destination(Locality::Remote)
+            .wait()
+        {
+            tracing::warn!(key, error = %e, "module declaration not sent");
+        }
+    }
+
+    fn registry(&self) -> Registry {
+        self.board.registry()
+    }
+
+    fn is_answered(&self, atom: &str) -> bool {
+        self.board.is_answered(atom)
+    }
+
+    fn stats(&self) -> Stats {
+        self.board.stats()
+    }
+
+    fn count_query(&self, timed_out: bool, unanswerable: bool) {
+        self.board.count_query(timed_out, unanswerable)
+    }
+
+    /// The Unix epoch's clock, which every process of the board shares (on one machine exactly;
+    /// across machines as well as their clocks agree).
+    fn now(&self) -> Duration {
+        unix_now()
+    }
+
+    fn snapshot(&self) -> proclaim_board::Snapshot {
+        self.board.snapshot()
+    }
+}
+
+/// A weak handle a Zenoh callback holds, so the board ends when its last handle is dropped.
+type PeerRef = Weak<Peer>;
