@@ -1,6 +1,7 @@
-//! 1,000 random theories of up to 16 inputs, compiled to C in one translation unit: each agrees
-//! with the reasoner's truth table on every row, and a theory the reasoner cannot decide within
-//! its budget is refused, the row it names being undecided indeed.
+//! 1,000 random theories of up to 16 inputs, compiled to C in one translation unit (each in both
+//! forms, diagram and table): each agrees with the reasoner's truth table on every row, and a
+//! theory the reasoner cannot decide within its budget is refused, the row it names being
+//! undecided indeed.
 
 mod common;
 
@@ -194,6 +195,7 @@ fn a_thousand_random_theories_compiled_to_c_agree_with_the_reasoner() {
         "{} compiled, {refused} refused as undecided, {not_loaded} generated texts did not load",
         compiled.len()
     );
+    let (theories, compiled) = common::in_both_forms(&theories, &compiled);
     let printed = common::run_in_c(&common::scratch("random"), &compiled);
     assert_eq!(printed.len(), compiled.len());
     for ((theory, c), got) in theories.iter().zip(&compiled).zip(&printed) {

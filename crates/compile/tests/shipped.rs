@@ -61,6 +61,7 @@ fn every_shipped_theory_compiled_to_c_agrees_with_its_truth_table() {
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         })
         .collect();
+    let (theories, compiled) = common::in_both_forms(&theories, &compiled);
     let printed = common::run_in_c(&common::scratch("shipped"), &compiled);
     assert_eq!(printed.len(), compiled.len());
     for (((_, theory), c), got) in theories.iter().zip(&compiled).zip(&printed) {
@@ -99,6 +100,7 @@ fn shipped_theories_a_behaviour_can_run_agree_with_unknown_inputs_too() {
         compiled.iter().any(|c| c.name == "microwave"),
         "the microwave is among them"
     );
+    let (theories, compiled) = common::in_both_forms(&theories, &compiled);
     let printed = common::run_in_c(&common::scratch("ternary"), &compiled);
     for ((theory, c), got) in theories.iter().zip(&compiled).zip(&printed) {
         let expected = common::expected_ternary(theory, c);

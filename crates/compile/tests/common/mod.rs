@@ -204,3 +204,18 @@ pub fn expected_ternary(theory: &Theory, compiled: &Compiled) -> String {
     }
     expected
 }
+
+/// Each compiled theory in both forms, the one chosen and the other, so both printers are
+/// checked on every theory; the theories repeated to match.
+pub fn in_both_forms<T: Clone>(theories: &[T], compiled: &[Compiled]) -> (Vec<T>, Vec<Compiled>) {
+    use proclaim_compile::Form;
+    let mut ts = Vec::new();
+    let mut cs = Vec::new();
+    for (t, c) in theories.iter().zip(compiled) {
+        for form in [Form::Diagram, Form::Table] {
+            ts.push(t.clone());
+            cs.push(Compiled { form, ..c.clone() });
+        }
+    }
+    (ts, cs)
+}
