@@ -129,9 +129,10 @@ pub enum Command {
     },
     /// Compile a theory into decision functions of its inputs, printed as freestanding C99
     /// (`NAME.h` and `NAME.c` in the output folder): a reduced ordered decision diagram or a
-    /// truth table, whichever is smaller; an answer undecided within the budget is refused
+    /// truth table, whichever is smaller; an answer undecided within the budget is refused. A
+    /// behaviour (a folder) compiles to `behaviour.c`, its theories and a host harness `main.c`
     Compile {
-        /// A .dl or .dfl file, or an embedded theory
+        /// A .dl or .dfl file, an embedded theory, or a behaviour's folder
         theory: String,
         #[arg(long, value_enum, default_value = "c")]
         target: CompileTarget,

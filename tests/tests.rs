@@ -5,6 +5,7 @@
 mod architecture;
 mod behaviours;
 mod cli;
+mod compiled;
 mod monitor;
 #[cfg(feature = "zenoh")]
 mod network;

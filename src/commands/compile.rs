@@ -22,9 +22,7 @@ pub fn run(
     }
     let path = Path::new(theory_name);
     if path.is_dir() || path.join("behaviour.toml").exists() {
-        return Err(Failure::Argument(format!(
-            "{theory_name} is a behaviour: compiling its machines is not built yet; compile each of its theories (`proclaim compile FILE.dl --target c -o DIR`)"
-        )));
+        return behaviour(theory_name, out);
     }
     let (source, theory) = load::theory(theory_name)?;
     let defaults = SearchLimits::default();
@@ -94,4 +92,26 @@ pub fn run(
 
 fn bytes(n: usize) -> String {
     format!("{n} byte{}", if n == 1 { "" } else { "s" })
+}
+
+/// A behaviour: its machines and theories as freestanding C, with the host harness `main.c`.
+fn behaviour(name: &str, out: &Path) -> Result<ExitCode, Failure> {
+    let behaviour = crate::behaviours::load_behaviour(name)?;
+    let compiled = proclaim_compile::compile_behaviour(&behaviour)
+        .map_err(|refusal| Failure::Argument(refusal.to_string()))?;
+    std::fs::create_dir_all(out).map_err(|error| Failure::Write {
+        path: out.to_path_buf(),
+        error,
+    })?;
+    for (file, text) in &compiled.files {
+        let path = out.join(file);
+        std::fs::write(&path, text).map_err(|error| Failure::Write { path, error })?;
+    }
+    println!(
+        "{}: wrote {} files to {} (core: behaviour.c and the theories; host harness: main.c)",
+        behaviour.name,
+        compiled.files.len(),
+        out.display()
+    );
+    Ok(ExitCode::SUCCESS)
 }

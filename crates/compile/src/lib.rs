@@ -12,11 +12,13 @@
 //! assert_eq!(compiled.answer(0, &[true, false]), false);
 //! ```
 
+mod behaviour;
 mod c;
 mod diagram;
 mod error;
 mod tabulate;
 
+pub use behaviour::{compile_behaviour, CBehaviour, Refusal};
 pub use c::{c_identifier, CSource};
 pub use diagram::{Diagram, Node};
 pub use error::CompileError;
