@@ -238,3 +238,49 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line() {
         assert!(stderr.contains(expected), "{behaviour}: {stderr}");
     }
 }
+
+#[test]
+fn two_machines_on_timeouts_and_a_theory_and_one_without_theories_write_the_same_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let blink = "machine Blink\ninitial ON\nstate ON {\n    entry {\n        Lamp: on\n    }\n    when timeout(250ms) -> OFF\n}\nstate OFF {\n    entry {\n        Lamp: off\n    }\n    when timeout(1s) && !light -> END\n    when timeout(400ms) -> ON\n}\nstate END {\n    entry {\n        Lamp: gone\n    }\n}\n";
+    // The watcher posts a quoted text and a theory input, and moves on `TRUE`.
+    let watch = "machine Watch\ninitial WAIT\nstate WAIT {\n    when light || cook -> SEEN\n}\nstate SEEN {\n    entry {\n        Seen: \"yes\"\n        doorOpen: false\n    }\n    when TRUE -> DONE\n}\nstate DONE {\n}\n";
+    let theory = std::fs::read_to_string("theories/microwave.dl").unwrap();
+    let modules = "[[module]]\nname = \"lamp\"\nreads = [\"Lamp\", \"Seen\"]\n";
+    let both = scratch("both-behaviour");
+    std::fs::write(
+        both.join("behaviour.toml"),
+        format!("[[machine]]\nfile = \"Blink.machine\"\n[[machine]]\nfile = \"Watch.machine\"\n[[theory]]\nfile = \"microwave.dl\"\n{modules}"),
+    )
+    .unwrap();
+    std::fs::write(both.join("Blink.machine"), blink).unwrap();
+    std::fs::write(both.join("Watch.machine"), watch).unwrap();
+    std::fs::write(both.join("microwave.dl"), &theory).unwrap();
+    let alone = scratch("alone-behaviour");
+    std::fs::write(
+        alone.join("behaviour.toml"),
+        format!("[[machine]]\nfile = \"Blink.machine\"\n{modules}"),
+    )
+    .unwrap();
+    std::fs::write(
+        alone.join("Blink.machine"),
+        blink.replace("timeout(1s) && !light", "timeout(1s)"),
+    )
+    .unwrap();
+    for (name, folder, script) in [
+        ("both", &both, "at 700ms doorOpen = true\n"),
+        ("alone", &alone, ""),
+    ] {
+        let dir = scratch(name);
+        let behaviour = folder.to_str().unwrap();
+        build(behaviour, &dir);
+        let (interpreted, compiled) = traces(behaviour, &dir, name, script, Some("5s"));
+        assert!(
+            interpreted.lines().count() > 10,
+            "{name}: the run did something"
+        );
+        assert_same(name, &interpreted, &compiled);
+    }
+}

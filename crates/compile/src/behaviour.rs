@@ -242,6 +242,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
 
 static int reads_{m}(const struct world *w, unsigned k)
 {{
+    (void)k;
     switch (w->state[{m}]) {{
 {read_cases}    default:
         return 0;
@@ -408,6 +409,7 @@ static void set_input(struct world *w, unsigned v, const char *content)
 static int apply_input(struct world *w, const char *type, const char *content)
 {{
 {input_cases}    (void)w;
+    (void)type;
     (void)content;
     return 0;
 }}
@@ -457,6 +459,9 @@ static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
 void behaviour_init(struct world *w)
 {{
     unsigned v, m, k;
+    /* Helpers a behaviour without theories, or whose labels ask none, leaves unused. */
+    (void)ask;
+    (void)set_input;
     w->round = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {{
         w->in[v] = 0;
@@ -494,14 +499,7 @@ int behaviour_news(const struct world *w)
 
 int behaviour_answers(const char *atom)
 {{
-    unsigned k;
-    for (k = 0; k < {outputs_len}u; k++) {{
-        if (same(atom, output_name[k])) {{
-            return 1;
-        }}
-    }}
-    return 0;
-}}
+{answers_body}}}
 
 uint64_t behaviour_next_due_ms(const struct world *w)
 {{
@@ -520,10 +518,14 @@ int behaviour_finished(const struct world *w)
     return 1;
 }}
 ",
-        output_names.join(", "),
-        experts.join(", "),
+        if output_names.is_empty() { "0".to_string() } else { output_names.join(", ") },
+        if experts.is_empty() { "0".to_string() } else { experts.join(", ") },
         machine_names.join(", "),
-        outputs_len = outputs.len(),
+        answers_body = if outputs.is_empty() {
+            "    (void)atom;\n    return 0;\n".to_string()
+        } else {
+            format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", outputs.len())
+        },
     )
     .unwrap();
     let mut files = vec![
@@ -557,8 +559,14 @@ fn action_c(
             if machines.contains(ty) {
                 return Err(refuse(format!("sub-machine control (`{ty}: {content}`)")));
             }
+            let Some(text) = posted_text(content) else {
+                return Err(refuse(format!(
+                    "the number `{}` (floating-point postings are not compiled yet)",
+                    content.trim()
+                )));
+            };
             if inputs.iter().any(|(t, _, _)| t == ty)
-                && !["true", "false", "unknown"].contains(&content.as_str())
+                && !["true", "false", "unknown"].contains(&text.as_str())
             {
                 return Err(refuse(format!(
                     "a theory input posted as `{content}` (only true, false or unknown)"
@@ -567,7 +575,7 @@ fn action_c(
             Ok(format!(
                 "            post(w, {m}u, \"{}\", \"{}\");\n",
                 esc(ty),
-                esc(content)
+                esc(&text)
             ))
         }
         Action::Call { function, .. } => Err(refuse(format!(
@@ -627,6 +635,22 @@ fn label_c(
         }
         other => return Err(refuse(format!("the label `{other}` (only theory outputs, !, &&, ||, TRUE and timeout are compiled yet)"))),
     })
+}
+
+/// A posting's content as the runner reads it (`Value::parse`) and shows it in a trace: a truth
+/// word, a whole number, or text without its quotes; `None` for a floating-point number, whose
+/// printed form is not compiled yet.
+fn posted_text(content: &str) -> Option<String> {
+    let t = content.trim();
+    if t == "true" || t == "false" {
+        Some(t.to_string())
+    } else if let Ok(i) = t.parse::<i64>() {
+        Some(i.to_string())
+    } else if t.parse::<f64>().is_ok() {
+        None
+    } else {
+        Some(t.trim_matches('"').to_string())
+    }
 }
 
 /// Text as a C string literal's inside.
