@@ -127,6 +127,26 @@ pub enum Command {
         #[arg(long, value_enum, default_value = "text")]
         format: TableFormat,
     },
+    /// Compile a theory into decision functions of its inputs, printed as freestanding C99
+    /// (`NAME.h` and `NAME.c` in the output folder): a reduced ordered decision diagram or a
+    /// truth table, whichever is smaller; an answer undecided within the budget is refused. A
+    /// behaviour (a folder) compiles to `behaviour.c`, its theories and a host harness `main.c`
+    Compile {
+        /// A .dl or .dfl file, an embedded theory, or a behaviour's folder
+        theory: String,
+        #[arg(long, value_enum, default_value = "c")]
+        target: CompileTarget,
+        /// The folder to write into (made when missing)
+        #[arg(short = 'o', long = "out", value_name = "DIR")]
+        out: PathBuf,
+        /// Inputs may also be unknown (never posted), as a running behaviour's expert holds
+        /// them: two decision variables an input (known, true); default: the truth table's rows
+        #[arg(long)]
+        unknown_inputs: bool,
+        /// Search steps allowed inside one attack cycle (default 10,000,000)
+        #[arg(long, value_name = "STEPS")]
+        budget: Option<u64>,
+    },
     /// Explain why a query is proved or not: supporters, attackers, loops
     Explain {
         /// A .dl or .dfl file, or an embedded theory
@@ -406,6 +426,15 @@ pub enum Command {
         #[arg(long = "expect")]
         expect: Vec<String>,
     },
+}
+
+/// What `proclaim compile` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum CompileTarget {
+    /// Freestanding C99: no heap, no library beyond `<stdint.h>`
+    C,
+    /// A Cargo project (not built yet: refused)
+    Rust,
 }
 
 /// What `proclaim run` is told.

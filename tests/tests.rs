@@ -5,6 +5,7 @@
 mod architecture;
 mod behaviours;
 mod cli;
+mod compiled;
 mod editor;
 mod monitor;
 #[cfg(feature = "zenoh")]

@@ -4,6 +4,7 @@ mod bench;
 mod bench_all;
 mod board;
 mod check;
+mod compile;
 mod conclusions;
 mod deps;
 pub mod draw;
@@ -46,6 +47,13 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             crate::cli::ProveFormat::Text => prove::run(&theory, &queries, alg, &set, json, budget),
         },
         Command::Table { theory, format } => table::run(&theory, format),
+        Command::Compile {
+            theory,
+            target,
+            out,
+            unknown_inputs,
+            budget,
+        } => compile::run(&theory, target, &out, unknown_inputs, budget),
         Command::Explain {
             theory,
             query,

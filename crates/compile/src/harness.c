@@ -1,0 +1,335 @@
+/* The host harness of a behaviour compiled by proclaim: reads an impersonator script on standard
+ * input (`name = value` from the start, `at 2s name = value` later), runs the behaviour on a
+ * virtual clock and writes its trace as `proclaim run --trace --virtual-clock` does, until every
+ * machine is in a final state or, given a time (`main 12s`), until then as `--for 12s` stops. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <ctype.h>
+#include "behaviour.h"
+
+#define MAX_STEPS 4096
+
+struct step {
+    uint64_t at_ms;
+    int start;
+    /* This step's value is the last the trace showed for its type. */
+    int shown;
+    char name[128];
+    const char *value;
+};
+
+static struct step steps[MAX_STEPS];
+static size_t step_count;
+static size_t next_step;
+
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (; *s != '\0'; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') {
+            printf("\\%c", c);
+        } else if (c == '\n') {
+            printf("\\n");
+        } else if (c == '\t') {
+            printf("\\t");
+        } else if (c == '\r') {
+            printf("\\r");
+        } else if (c < 0x20) {
+            printf("\\u%04x", c);
+        } else {
+            putchar(c);
+        }
+    }
+    putchar('"');
+}
+
+static void tail(struct world *w)
+{
+    printf(",\"round\":%llu,\"at_us\":%llu}\n", (unsigned long long)w->round,
+           (unsigned long long)(w->now_ms * 1000u));
+}
+
+static void on_post(struct world *w, const char *machine, const char *type, const char *content)
+{
+    printf("{\"event\":\"posted\",\"machine\":");
+    json_string(machine);
+    printf(",\"type\":");
+    json_string(type);
+    printf(",\"content\":");
+    json_string(content);
+    tail(w);
+}
+
+static void on_entered(struct world *w, const char *machine, const char *state, long id)
+{
+    printf("{\"event\":\"entered\",\"machine\":");
+    json_string(machine);
+    printf(",\"state\":");
+    json_string(state);
+    printf(",\"id\":%ld", id);
+    tail(w);
+}
+
+static void on_finished(struct world *w, const char *machine, const char *state)
+{
+    printf("{\"event\":\"finished\",\"machine\":");
+    json_string(machine);
+    printf(",\"state\":");
+    json_string(state);
+    tail(w);
+}
+
+static void on_answered(struct world *w, const char *machine, const char *atom, int value,
+                        const char *expert)
+{
+    printf("{\"event\":\"answered\",\"machine\":");
+    json_string(machine);
+    printf(",\"atom\":");
+    json_string(atom);
+    printf(",\"value\":%s,\"by\":{\"expert\":", value ? "true" : "false");
+    json_string(expert);
+    printf("}");
+    tail(w);
+}
+
+static void on_fired(struct world *w, const char *machine, long from, long to, const char *label)
+{
+    printf("{\"event\":\"fired\",\"machine\":");
+    json_string(machine);
+    printf(",\"from\":%ld,\"to\":%ld,\"label\":", from, to);
+    json_string(label);
+    tail(w);
+}
+
+/* The impersonator posts a step; the trace shows each type's value once when it changes, as
+ * `proclaim run` does. Whether it was news to a machine. */
+static int impersonate(struct world *w, struct step *s)
+{
+    size_t i;
+    for (i = 0; i < step_count && &steps[i] != s; i++) {
+        if (steps[i].shown && strcmp(steps[i].name, s->name) == 0) {
+            steps[i].shown = 0;
+            if (steps[i].value == s->value) {
+                s->shown = 1;
+            }
+        }
+    }
+    if (!s->shown) {
+        s->shown = 1;
+        on_post(w, "impersonator", s->name, s->value);
+    }
+    return behaviour_outside(w, s->name, s->value);
+}
+
+/* Posts the script's steps due by now; whether one was news. */
+static int post_due(struct world *w)
+{
+    int news = 0;
+    while (next_step < step_count && steps[next_step].at_ms <= w->now_ms) {
+        news |= impersonate(w, &steps[next_step++]);
+    }
+    return news;
+}
+
+static void on_round_started(struct world *w)
+{
+    (void)post_due(w);
+}
+
+static char *trim(char *s)
+{
+    char *end;
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    end = s + strlen(s);
+    while (end > s && isspace((unsigned char)end[-1])) {
+        *--end = '\0';
+    }
+    return s;
+}
+
+/* `2s`, `500ms`, `1.5s`, `250us`: milliseconds, or -1. */
+static long long duration_ms(const char *text)
+{
+    char *end;
+    double value = strtod(text, &end);
+    double ms;
+    if (end == text || value < 0) {
+        return -1;
+    }
+    if (strcmp(end, "s") == 0) {
+        ms = value * 1000.0;
+    } else if (strcmp(end, "ms") == 0) {
+        ms = value;
+    } else if (strcmp(end, "us") == 0 || strcmp(end, "µs") == 0) {
+        ms = value / 1000.0;
+    } else if (strcmp(end, "min") == 0) {
+        ms = value * 60000.0;
+    } else {
+        return -1;
+    }
+    if (ms != (double)(long long)ms) {
+        return -1;
+    }
+    return (long long)ms;
+}
+
+static const char *truth(const char *word)
+{
+    if (strcmp(word, "true") == 0 || strcmp(word, "yes") == 0 || strcmp(word, "on") == 0 ||
+        strcmp(word, "1") == 0) {
+        return "true";
+    }
+    if (strcmp(word, "false") == 0 || strcmp(word, "no") == 0 || strcmp(word, "off") == 0 ||
+        strcmp(word, "0") == 0) {
+        return "false";
+    }
+    return NULL;
+}
+
+static int read_script(void)
+{
+    char line[1024];
+    int number = 0;
+    while (fgets(line, sizeof line, stdin) != NULL) {
+        char *code, *hash, *eq, *name, *value;
+        struct step s;
+        number++;
+        hash = strchr(line, '#');
+        if (hash != NULL) {
+            *hash = '\0';
+        }
+        code = trim(line);
+        if (*code == '\0') {
+            continue;
+        }
+        memset(&s, 0, sizeof s);
+        s.start = 1;
+        if (strncmp(code, "at ", 3) == 0) {
+            char *time = trim(code + 3);
+            char *space = time;
+            long long ms;
+            while (*space != '\0' && !isspace((unsigned char)*space)) {
+                space++;
+            }
+            if (*space == '\0') {
+                fprintf(stderr, "stdin:%d: expected `at TIME atom = value`\n", number);
+                return 0;
+            }
+            *space = '\0';
+            ms = duration_ms(time);
+            if (ms < 0) {
+                fprintf(stderr, "stdin:%d: `%s` is not a time in whole milliseconds; write `at 2s` or `at 500ms`\n", number, time);
+                return 0;
+            }
+            s.start = 0;
+            s.at_ms = (uint64_t)ms;
+            code = space + 1;
+        } else if (strncmp(code, "step ", 5) == 0) {
+            fprintf(stderr, "stdin:%d: `step N:` lines are not supported by a compiled behaviour\n", number);
+            return 0;
+        }
+        eq = strchr(code, '=');
+        if (eq == NULL) {
+            fprintf(stderr, "stdin:%d: expected `atom = value`\n", number);
+            return 0;
+        }
+        *eq = '\0';
+        name = trim(code);
+        value = trim(eq + 1);
+        s.value = truth(value);
+        if (*name == '\0' || strlen(name) >= sizeof s.name || s.value == NULL) {
+            fprintf(stderr, "stdin:%d: expected `atom = true|false`\n", number);
+            return 0;
+        }
+        strcpy(s.name, name);
+        if (behaviour_answers(s.name)) {
+            fprintf(stderr, "stdin:%d: `%s` is a theory's answer: impersonating an answer is not supported by a compiled behaviour\n", number, s.name);
+            return 0;
+        }
+        if (step_count == MAX_STEPS) {
+            fprintf(stderr, "stdin:%d: more than %d steps\n", number, MAX_STEPS);
+            return 0;
+        }
+        steps[step_count++] = s;
+    }
+    return 1;
+}
+
+/* Start steps first, then the timed ones in time order (stable: same time keeps file order). */
+static void order_steps(void)
+{
+    size_t i, j;
+    for (i = 1; i < step_count; i++) {
+        struct step s = steps[i];
+        j = i;
+        while (j > 0 && (steps[j - 1].start < s.start ||
+                         (steps[j - 1].start == s.start && steps[j - 1].at_ms > s.at_ms))) {
+            /* `start` steps (1) sort before timed ones (0); timed ones by time. */
+            steps[j] = steps[j - 1];
+            j--;
+        }
+        steps[j] = s;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static struct world w;
+    int fired;
+    long long limit = -1;
+    if (argc > 2 || (argc == 2 && (limit = duration_ms(argv[1])) < 0)) {
+        fprintf(stderr, "usage: %s [DURATION] < SCRIPT   (DURATION: 12s, 500ms: stop then)\n", argv[0]);
+        return 2;
+    }
+    if (!read_script()) {
+        return 2;
+    }
+    order_steps();
+    w.cb.post = on_post;
+    w.cb.entered = on_entered;
+    w.cb.finished = on_finished;
+    w.cb.answered = on_answered;
+    w.cb.fired = on_fired;
+    w.cb.round_started = NULL;
+    behaviour_init(&w);
+    w.now_ms = 0;
+    /* What the script says from the start is posted before the first round. */
+    while (next_step < step_count && steps[next_step].start) {
+        (void)impersonate(&w, &steps[next_step++]);
+    }
+    w.cb.round_started = on_round_started;
+    for (;;) {
+        if (limit >= 0 && w.now_ms >= (uint64_t)limit) {
+            break;
+        }
+        fired = behaviour_round(&w);
+        if (behaviour_finished(&w)) {
+            break;
+        }
+        /* A round that fired, or whose own postings changed what a label reads, is followed at once. */
+        if (fired || behaviour_news(&w)) {
+            continue;
+        }
+        {
+            uint64_t due = w.now_ms + behaviour_next_due_ms(&w);
+            int news = 0;
+            uint64_t until = limit >= 0 && (uint64_t)limit < due ? (uint64_t)limit : due;
+            while (!news && next_step < step_count && steps[next_step].at_ms < until) {
+                w.now_ms = steps[next_step].at_ms;
+                news = post_due(&w);
+            }
+            if (!news) {
+                w.now_ms = due;
+            }
+        }
+        if (w.round > 100000000u) {
+            fprintf(stderr, "stopped after 100,000,000 rounds\n");
+            return 1;
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,25 @@
+//! Compiles a checked theory into decision functions: each declared output's answer is a boolean
+//! function of the theory's inputs, tabulated with the reasoner itself, reduced to an ordered
+//! decision diagram or kept as a truth table (whichever is smaller), and printed as freestanding
+//! C99. An answer the reasoner leaves undecided within its budget is refused, never guessed.
+//!
+//! ```
+//! use proclaim_cdl::{load, Language, SearchLimits};
+//! use proclaim_compile::{compile, Domain};
+//! let theory = load("input{a}. input{b}. R: a, b => c. output{beta c}.", Language::Dl).unwrap();
+//! let compiled = compile(&theory, SearchLimits::default(), Domain::Boolean).unwrap();
+//! assert_eq!(compiled.answer(0, &[true, true]), true);
+//! assert_eq!(compiled.answer(0, &[true, false]), false);
+//! ```
+
+mod behaviour;
+mod c;
+mod diagram;
+mod error;
+mod tabulate;
+
+pub use behaviour::{compile_behaviour, CBehaviour, Refusal};
+pub use c::{c_identifier, CSource};
+pub use diagram::{Diagram, Node};
+pub use error::CompileError;
+pub use tabulate::{compile, Compiled, Domain, Form, MAX_VARIABLES};

@@ -1,0 +1,117 @@
+//! `proclaim compile`: a theory's outputs as decision functions in freestanding C99.
+
+use crate::cli::CompileTarget;
+use crate::failure::Failure;
+use crate::load;
+use proclaim_cdl::SearchLimits;
+use proclaim_compile::{c_identifier, compile, Domain, Form};
+use std::path::Path;
+use std::process::ExitCode;
+
+pub fn run(
+    theory_name: &str,
+    target: CompileTarget,
+    out: &Path,
+    unknown_inputs: bool,
+    budget: Option<u64>,
+) -> Result<ExitCode, Failure> {
+    if target == CompileTarget::Rust {
+        return Err(Failure::Argument(
+            "--target rust is not built yet; --target c compiles a theory".into(),
+        ));
+    }
+    let path = Path::new(theory_name);
+    if path.is_dir() || path.join("behaviour.toml").exists() {
+        return behaviour(theory_name, out);
+    }
+    let (source, theory) = load::theory(theory_name)?;
+    let defaults = SearchLimits::default();
+    let limits = SearchLimits {
+        steps: budget.unwrap_or(defaults.steps),
+        ..defaults
+    };
+    let domain = if unknown_inputs {
+        Domain::Ternary
+    } else {
+        Domain::Boolean
+    };
+    let compiled = compile(&theory, limits, domain)
+        .map_err(|e| Failure::Argument(format!("{}: {e}", source.name)))?;
+    let stem = Path::new(&source.name)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned());
+    let prefix = c_identifier(
+        theory
+            .name()
+            .map(str::to_string)
+            .or(stem)
+            .as_deref()
+            .unwrap_or("theory"),
+    );
+    let c = compiled.to_c(&prefix);
+    std::fs::create_dir_all(out).map_err(|error| Failure::Write {
+        path: out.to_path_buf(),
+        error,
+    })?;
+    for (file, text) in [
+        (out.join(format!("{prefix}.h")), &c.header),
+        (out.join(format!("{prefix}.c")), &c.source),
+    ] {
+        std::fs::write(&file, text).map_err(|error| Failure::Write { path: file, error })?;
+    }
+    let (kept, other) = match compiled.form {
+        Form::Diagram => (
+            format!(
+                "a decision diagram of {} nodes, {}",
+                compiled.diagram.nodes.len(),
+                bytes(compiled.diagram_bytes())
+            ),
+            format!("a table would take {}", bytes(compiled.table_bytes())),
+        ),
+        Form::Table => (
+            format!("a table of {}", bytes(compiled.table_bytes())),
+            format!(
+                "a decision diagram would take {} nodes, {}",
+                compiled.diagram.nodes.len(),
+                bytes(compiled.diagram_bytes())
+            ),
+        ),
+    };
+    println!(
+        "{prefix}: {} input{}, {} output{}, {} rule{}: {kept} ({other}); wrote {}",
+        compiled.inputs.len(),
+        if compiled.inputs.len() == 1 { "" } else { "s" },
+        compiled.outputs.len(),
+        if compiled.outputs.len() == 1 { "" } else { "s" },
+        compiled.rules,
+        if compiled.rules == 1 { "" } else { "s" },
+        out.join(format!("{prefix}.c")).display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn bytes(n: usize) -> String {
+    format!("{n} byte{}", if n == 1 { "" } else { "s" })
+}
+
+/// A behaviour: its machines and theories as freestanding C, with the host harness `main.c`.
+fn behaviour(name: &str, out: &Path) -> Result<ExitCode, Failure> {
+    let behaviour = crate::behaviours::load_behaviour(name)?;
+    let compiled = proclaim_compile::compile_behaviour(&behaviour)
+        .map_err(|refusal| Failure::Argument(refusal.to_string()))?;
+    std::fs::create_dir_all(out).map_err(|error| Failure::Write {
+        path: out.to_path_buf(),
+        error,
+    })?;
+    for (file, text) in &compiled.files {
+        let path = out.join(file);
+        std::fs::write(&path, text).map_err(|error| Failure::Write { path, error })?;
+    }
+    println!(
+        "{}: wrote {} files to {} (core: behaviour.c and the theories; host harness: main.c)",
+        behaviour.name,
+        compiled.files.len(),
+        out.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
