@@ -3,7 +3,7 @@
 //! written as bytes into one buffer, the algorithm's tag and the atom's name copied, never
 //! formatted line by line.
 
-use proclaim_cdl::{Algorithm, Atom, Lit, Session, Theory, Undecided, Verdict};
+use proclaim_cdl::{Algorithm, Atom, Lit, ProofOutcome, Session, Theory, Undecided};
 use std::io::{self, Write};
 
 /// How a line writes a negated literal: `~a` in proclaim's own forms, `-a` in SPINdle's.
@@ -122,9 +122,9 @@ pub fn write_every<W: Write>(
     for &alg in algorithms {
         for (lit, verdict) in (0..).map(Lit).zip(session.answers(alg)) {
             let answer = match verdict {
-                Verdict::NotProved => continue,
-                Verdict::Proved => Ok(true),
-                Verdict::Undecided => {
+                ProofOutcome::NotProved => continue,
+                ProofOutcome::Proved => Ok(true),
+                ProofOutcome::Undecided => {
                     any_undecided = true;
                     session.decide(alg, lit)
                 }
@@ -150,11 +150,11 @@ pub fn write_every<W: Write>(
 
 /// SPINdle's sign for `alg`'s answer about `lit`: `+`, `-`, or `?` for an undecided one, which
 /// SPINdle does not have, explained on stderr.
-fn spindle_sign(session: &mut Session, alg: Algorithm, lit: Lit, verdict: Verdict) -> u8 {
+fn spindle_sign(session: &mut Session, alg: Algorithm, lit: Lit, verdict: ProofOutcome) -> u8 {
     match verdict {
-        Verdict::Proved => b'+',
-        Verdict::NotProved => b'-',
-        Verdict::Undecided => {
+        ProofOutcome::Proved => b'+',
+        ProofOutcome::NotProved => b'-',
+        ProofOutcome::Undecided => {
             if let Err(undecided) = session.decide(alg, lit) {
                 eprintln!("warning: {undecided}");
             }

@@ -5,7 +5,7 @@
 
 use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
-use proclaim_behaviour::{read_recording, replay_recording, Verdict};
+use proclaim_behaviour::{read_recording, replay_recording, ReplayOutcome};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -26,13 +26,13 @@ pub fn run(behaviour: &str, recordings: &[PathBuf]) -> Result<ExitCode, Failure>
         let recording = read_recording(&text)
             .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
         match replay_recording(&behaviour, &recording).map_err(Failure::Runtime)? {
-            Verdict::Same { rounds, events } => {
+            ReplayOutcome::Same { rounds, events } => {
                 println!(
                     "ok    {} ({rounds} rounds, {events} events as recorded)",
                     path.display()
                 );
             }
-            Verdict::Differs(difference) => {
+            ReplayOutcome::Differs(difference) => {
                 failed += 1;
                 println!("FAIL  {}: {difference}", path.display());
             }

@@ -42,7 +42,8 @@ pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
 pub use recorded::{
-    read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError, Verdict,
+    read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError,
+    ReplayOutcome,
 };
 pub use trace::{read_trace, TraceView};
 

@@ -138,7 +138,7 @@ impl fmt::Display for Difference {
 
 /// What a replay found.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Verdict {
+pub enum ReplayOutcome {
     /// Every state, posting, answer and variable as recorded.
     Same {
         rounds: u64,
@@ -209,7 +209,7 @@ fn observable(event: &Event) -> Option<(u64, &str, String)> {
 pub fn replay_recording(
     behaviour: &Behaviour,
     recording: &Recording,
-) -> Result<Verdict, std::io::Error> {
+) -> Result<ReplayOutcome, std::io::Error> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .start_paused(true)
@@ -398,7 +398,7 @@ impl Feed for RecordedFeed {
 /// The first difference between what was recorded and what the replay did, machine events of
 /// the behaviour only; a replay may run on past the end of the recording's last round (the
 /// recording stopped mid-round).
-fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Verdict {
+fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> ReplayOutcome {
     let ours = |e: &&Event| {
         behaviour
             .machines
@@ -416,7 +416,7 @@ fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Ver
         match got.get(i) {
             Some(have) if have == want => {}
             Some((round, machine, what)) => {
-                return Verdict::Differs(Difference {
+                return ReplayOutcome::Differs(Difference {
                     round: want.0.min(*round),
                     machine: if want.1 == *machine {
                         machine.to_string()
@@ -428,7 +428,7 @@ fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Ver
                 })
             }
             None => {
-                return Verdict::Differs(Difference {
+                return ReplayOutcome::Differs(Difference {
                     round: want.0,
                     machine: want.1.to_string(),
                     expected: want.2.clone(),
@@ -439,14 +439,14 @@ fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Ver
     }
     let last = expected.last().map_or(0, |e| e.0);
     if let Some((round, machine, what)) = got.get(expected.len()).filter(|e| e.0 < last) {
-        return Verdict::Differs(Difference {
+        return ReplayOutcome::Differs(Difference {
             round: *round,
             machine: machine.to_string(),
             expected: "nothing more".into(),
             found: what.clone(),
         });
     }
-    Verdict::Same {
+    ReplayOutcome::Same {
         rounds: recording
             .ringlets
             .iter()

@@ -5,7 +5,7 @@
 //! proclaim-board --bench suppress`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use proclaim_board::{LocalBoard, Suppressor, Transport, Value, Verdict};
+use proclaim_board::{LocalBoard, Suppressor, Transport, Value, Visibility};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -25,8 +25,8 @@ fn bench(c: &mut Criterion) {
         |suppressor: &mut Suppressor, ty: &str, priority: u32, now: Duration| match suppressor
             .offer("Walk", ty, &value, priority, now)
         {
-            Verdict::Shown => Some(board.post_ranked("Walk", ty, value.clone(), priority)),
-            Verdict::Suppressed { .. } => None,
+            Visibility::Shown => Some(board.post_ranked("Walk", ty, value.clone(), priority)),
+            Visibility::Suppressed { .. } => None,
         };
     let mut suppressor = Suppressor::new([("walk", Duration::from_millis(500))]);
     group.bench_function("post, type not declared", |b| {

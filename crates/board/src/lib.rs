@@ -23,7 +23,7 @@ pub use message::{Kind, Message};
 pub use pattern::Pattern;
 pub use registry::{ModuleDecl, Registry};
 pub use snapshot::{Row, Snapshot};
-pub use suppress::{Ranked, Suppressor, Verdict};
+pub use suppress::{Ranked, Suppressor, Visibility};
 pub use transport::{BoxFuture, Stats, Subscription, Transport};
 pub use value::Value;
 pub use whiteboard::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};

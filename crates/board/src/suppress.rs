@@ -23,7 +23,7 @@ pub struct Ranked {
 
 /// What becomes of an offered posting.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Verdict {
+pub enum Visibility {
     /// Post it: the type is not suppressed, or nothing higher holds it.
     Shown,
     /// Do not post it: `by`'s posting at `priority` holds the type until `until`.
@@ -121,9 +121,9 @@ impl Suppressor {
         value: &Value,
         priority: u32,
         now: Duration,
-    ) -> Verdict {
+    ) -> Visibility {
         let Some(line) = self.lines.get_mut(ty) else {
-            return Verdict::Shown;
+            return Visibility::Shown;
         };
         let ranked = Ranked {
             module: Arc::from(module),
@@ -138,7 +138,7 @@ impl Suppressor {
             .as_ref()
             .filter(|h| priority < h.priority && line.live(h, now))
         {
-            let verdict = Verdict::Suppressed {
+            let verdict = Visibility::Suppressed {
                 by: holder.module.clone(),
                 priority: holder.priority,
                 until: holder.at + line.hold,
@@ -148,7 +148,7 @@ impl Suppressor {
         }
         line.subsuming = line.below(priority);
         line.shown = Some(ranked);
-        Verdict::Shown
+        Visibility::Shown
     }
 
     /// The postings that take over at `now`, each to be posted: for every type whose hold ran
@@ -202,8 +202,8 @@ mod tests {
                 Offer(at, who, priority, value, suppressed_by) => {
                     let verdict = s.offer(who, "walk", &Value::parse(value), *priority, ms(*at));
                     let by = match &verdict {
-                        Verdict::Shown => None,
-                        Verdict::Suppressed { by, .. } => Some(by.to_string()),
+                        Visibility::Shown => None,
+                        Visibility::Suppressed { by, .. } => Some(by.to_string()),
                     };
                     assert_eq!(by.as_deref(), *suppressed_by, "step {i}: {verdict:?}");
                 }
@@ -305,11 +305,11 @@ mod tests {
         let mut s = Suppressor::new([("walk", ms(500))]);
         assert_eq!(
             s.offer("Reflex", "say", &Value::Int(1), 9, ms(0)),
-            Verdict::Shown
+            Visibility::Shown
         );
         assert_eq!(
             s.offer("Walk", "say", &Value::Int(2), 0, ms(1)),
-            Verdict::Shown
+            Visibility::Shown
         );
         assert!(s.release(ms(10_000)).is_empty());
         assert_eq!(s.next_release(), None);

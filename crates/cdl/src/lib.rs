@@ -42,7 +42,7 @@ pub use literal::{Atom, Lit, RuleId};
 pub use proclaim_syntax::{render, Algorithm, Diagnostic, Language, Severity};
 pub use query::Formula;
 pub use reference::ReferenceProver;
-pub use session::{InputConflict, Searched, Session, Undecided, Verdict};
+pub use session::{InputConflict, ProofOutcome, Searched, Session, Undecided};
 pub use table::{truth_table, Column, Row, Table, TableError, MAX_ROWS};
 pub use theory::{Clause, InputGroup, Origin, Output, RowFilter, RuleKind, RuleRef, Theory};
 

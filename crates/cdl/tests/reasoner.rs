@@ -1,6 +1,8 @@
 //! The worked cases of cdl.md §6, answered by the fast engine and the reference prover alike.
 
-use proclaim_cdl::{load, Algorithm, Engine, Formula, Language, ReferenceProver, Session, Verdict};
+use proclaim_cdl::{
+    load, Algorithm, Engine, Formula, Language, ProofOutcome, ReferenceProver, Session,
+};
 
 /// `expect` gives μ π β α δ in order, `+` proved, `-` not.
 fn check(theory: &str, query: &str, expect: &str) {
@@ -343,9 +345,9 @@ fn cliques_and_rings_are_decided_by_their_structure_without_search() {
 #[test]
 fn every_answer_at_once_equals_each_asked_alone() {
     let verdict = |answer: Result<bool, proclaim_cdl::Undecided>| match answer {
-        Ok(true) => Verdict::Proved,
-        Ok(false) => Verdict::NotProved,
-        Err(_) => Verdict::Undecided,
+        Ok(true) => ProofOutcome::Proved,
+        Ok(false) => ProofOutcome::NotProved,
+        Err(_) => ProofOutcome::Undecided,
     };
     let tight = proclaim_cdl::SearchLimits {
         steps: 1000,
@@ -383,7 +385,7 @@ fn every_answer_at_once_equals_each_asked_alone() {
         let lits = (0..engine.theory().atom_count() as u32 * 2).map(proclaim_cdl::Lit);
         for alg in Algorithm::ALL {
             let at_once = Session::with_limits(engine.clone(), limits).answers(alg);
-            let alone: Vec<Verdict> = lits
+            let alone: Vec<ProofOutcome> = lits
                 .clone()
                 .map(|l| verdict(Session::with_limits(engine.clone(), limits).decide(alg, l)))
                 .collect();
@@ -391,7 +393,7 @@ fn every_answer_at_once_equals_each_asked_alone() {
         }
         let undecided = Session::with_limits(engine.clone(), limits)
             .answers(Algorithm::Beta)
-            .contains(&Verdict::Undecided);
+            .contains(&ProofOutcome::Undecided);
         assert_eq!(undecided, name.contains("tight"), "{name}");
     }
 }

@@ -11,7 +11,7 @@ use crate::host::Hosts;
 use crate::machine::SharedSuppressor;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
-use proclaim_board::{Value, Verdict, Whiteboard};
+use proclaim_board::{Value, Visibility, Whiteboard};
 use proclaim_fsm::{Action, Argument, Expr, Statement};
 use rustc_hash::FxHashSet;
 use std::future::Future;
@@ -83,7 +83,7 @@ impl Doer<'_> {
             let verdict = suppressor
                 .lock()
                 .offer(self.machine, ty, &value, self.priority, now);
-            if let Verdict::Suppressed {
+            if let Visibility::Suppressed {
                 by,
                 priority,
                 until,

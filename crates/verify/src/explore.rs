@@ -11,7 +11,7 @@ use crate::chunked::{Chunked, Records};
 use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
-use crate::ringlet::{initial_worlds, Choice, Stepper, Successor};
+use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
 use crate::world::{Layout, Status, World};
 use hashbrown::HashTable;
 use proclaim_behaviour::PropertyKind;
@@ -108,7 +108,7 @@ impl Graph {
         let initial = initial_worlds(model)
             .position(|w| self.stores_as(&w, root))
             .unwrap_or(0);
-        let stepper = Stepper::new(model);
+        let stepper = StepGenerator::new(model);
         let steps = states
             .windows(2)
             .map_while(|pair| Some((pair[0], self.choice_between(&stepper, pair[0], pair[1])?)))
@@ -117,7 +117,7 @@ impl Graph {
     }
 
     /// The choice that leads from state `from` to state `to` in one step, if one does.
-    pub fn choice_between(&self, stepper: &Stepper, from: u32, to: u32) -> Option<Choice> {
+    pub fn choice_between(&self, stepper: &StepGenerator, from: u32, to: u32) -> Option<Choice> {
         let mut successors = Vec::new();
         stepper.successors(&self.world(from), false, &mut successors);
         successors
@@ -237,7 +237,7 @@ pub fn explore(
         }
         store.insert(&mut graph, &w, ROOT, model, properties);
     }
-    let stepper = Stepper::new(model);
+    let stepper = StepGenerator::new(model);
     let mut successors: Vec<Successor> = Vec::new();
     let mut next = 0usize;
     // States from here on are one step further from the initial ones than those before.

@@ -18,7 +18,7 @@
 
 use crate::arith::text;
 use crate::model::{Model, Name, SlotId};
-use crate::ringlet::{initial_worlds, Stepper, Successor};
+use crate::ringlet::{initial_worlds, StepGenerator, Successor};
 use crate::world::{Status, World};
 use proclaim_fsm::control::Command;
 use proclaim_runner::Event;
@@ -108,7 +108,7 @@ impl Observed {
 pub fn follow(model: &Model, events: &[Event]) -> Result<Followed, Mismatch> {
     let rounds = ringlets(model, events)?;
     let last = rounds.keys().next_back().copied().unwrap_or(0);
-    let stepper = Stepper::new(model);
+    let stepper = StepGenerator::new(model);
     let mut worlds: Vec<World> = initial_worlds(model).collect();
     let mut statuses: Vec<Status> = model
         .machines
@@ -273,7 +273,7 @@ fn describe(event: &Event) -> String {
 /// `modes[j]`: every machine's mode once the first `j` ringlets seen have rung.
 fn step_round(
     model: &Model,
-    stepper: &Stepper<'_>,
+    stepper: &StepGenerator<'_>,
     worlds: Vec<World>,
     observed: &[Observed],
     modes: &[Vec<Status>],

@@ -8,7 +8,7 @@ use crate::liveness::{acceptance_sets, meets, FailingRun};
 use crate::model::Model;
 use crate::outcome::Trace;
 use crate::property::Property;
-use crate::ringlet::Stepper;
+use crate::ringlet::StepGenerator;
 use crate::trace;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::VecDeque;
@@ -31,7 +31,7 @@ pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun)
     if !ends {
         states.extend(cycle(model, graph, property, start, &component));
     }
-    let stepper = Stepper::new(model);
+    let stepper = StepGenerator::new(model);
     for pair in states.windows(2) {
         match graph.choice_between(&stepper, pair[0], pair[1]) {
             Some(choice) => steps.push((pair[0], choice)),

@@ -176,7 +176,7 @@ impl ReadDomain {
 pub(crate) const POSTED: ValueId = ValueId::MAX - 1;
 
 /// The steps of the model.
-pub struct Stepper<'m> {
+pub struct StepGenerator<'m> {
     model: &'m Model,
     /// Stored free slots and their domains as value numbers.
     free: Vec<(SlotId, ReadDomain)>,
@@ -184,8 +184,8 @@ pub struct Stepper<'m> {
     read_domains: Vec<ReadDomain>,
 }
 
-impl<'m> Stepper<'m> {
-    pub fn new(model: &'m Model) -> Stepper<'m> {
+impl<'m> StepGenerator<'m> {
+    pub fn new(model: &'m Model) -> StepGenerator<'m> {
         let mut values = model.values.borrow_mut();
         let free = model
             .stored_free_slots()
@@ -197,7 +197,7 @@ impl<'m> Stepper<'m> {
                 read_domains[slot] = ReadDomain::of(&mut values, d);
             }
         }
-        Stepper {
+        StepGenerator {
             model,
             free,
             read_domains,
@@ -285,7 +285,7 @@ impl<'m> Stepper<'m> {
             .0
     }
 
-    /// [`Stepper::ringlet`], on an open world when `open` is given (handed back after).
+    /// [`StepGenerator::ringlet`], on an open world when `open` is given (handed back after).
     #[allow(clippy::too_many_arguments)]
     fn ringlet_on<'c>(
         &'c self,

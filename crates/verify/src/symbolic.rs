@@ -26,7 +26,8 @@ use crate::outcome::Stop;
 use crate::property::{Property, Term};
 use crate::reduce::Storage;
 use crate::ringlet::{
-    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, Stepper, POSTED, UNKNOWN,
+    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, POSTED,
+    UNKNOWN,
 };
 use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, World};
@@ -299,7 +300,7 @@ pub fn check(
             p.source.name
         )));
     }
-    let stepper = Stepper::new(model);
+    let stepper = StepGenerator::new(model);
     let initial: Vec<World> = initial_worlds(model).collect();
     let mut first_steps: Vec<Vec<(World, Choice)>> = Vec::new();
     let mut first_fired = model.per_transition();
@@ -466,7 +467,7 @@ fn first_state(enc: &Encoding, k: usize, needs: &Bdd) -> usize {
 /// to a fixpoint.
 fn value_domains(
     model: &Model,
-    stepper: &Stepper<'_>,
+    stepper: &StepGenerator<'_>,
     initial: &[World],
     first_steps: &[Vec<(World, Choice)>],
 ) -> Result<Domains, Declined> {
@@ -593,7 +594,11 @@ fn controls(model: &Model, k: usize) -> Vec<Control> {
 }
 
 /// Every leaf of every machine's ringlet, as cubes and writes.
-fn steps_of(model: &Model, stepper: &Stepper<'_>, enc: &Encoding) -> Result<Vec<Step>, Declined> {
+fn steps_of(
+    model: &Model,
+    stepper: &StepGenerator<'_>,
+    enc: &Encoding,
+) -> Result<Vec<Step>, Declined> {
     let mut steps = Vec::new();
     let mut leaves: Vec<OpenLeaf> = Vec::new();
     for k in 0..model.machines.len() {
@@ -812,7 +817,7 @@ fn preimage(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
 #[allow(clippy::too_many_arguments)]
 fn rebuild(
     model: &Model,
-    stepper: &Stepper<'_>,
+    stepper: &StepGenerator<'_>,
     enc: &Encoding,
     steps: &[Step],
     guards: &Guards,

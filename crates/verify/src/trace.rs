@@ -4,7 +4,7 @@
 use crate::explore::Graph;
 use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
-use crate::ringlet::{initial_worlds, Choice, Stepper};
+use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::values::{ValueId, NEVER};
 use crate::world::World;
 use proclaim_board::Value;
@@ -63,7 +63,7 @@ pub fn trace_of(
     // What a free type chosen when read was last seen to hold: a read is told only where it
     // differs, as the world's moves are.
     let mut last_read: FxHashMap<SlotId, ValueId> = FxHashMap::default();
-    let stepper = Stepper::new(model);
+    let stepper = StepGenerator::new(model);
     let mut round = 1;
     let mut steps = Vec::new();
     let mut successors = Vec::new();

@@ -7,19 +7,19 @@ use super::*;
 
 /// A literal's answer without its reasons: [`Session::decide`] gives those of an undecided one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Verdict {
+pub enum ProofOutcome {
     Proved,
     NotProved,
     /// Not decided within the search limits.
     Undecided,
 }
 
-impl From<Truth> for Verdict {
-    fn from(truth: Truth) -> Verdict {
+impl From<Truth> for ProofOutcome {
+    fn from(truth: Truth) -> ProofOutcome {
         match truth {
-            Truth::True => Verdict::Proved,
-            Truth::False => Verdict::NotProved,
-            Truth::Undecided(_) => Verdict::Undecided,
+            Truth::True => ProofOutcome::Proved,
+            Truth::False => ProofOutcome::NotProved,
+            Truth::Undecided(_) => ProofOutcome::Undecided,
         }
     }
 }
@@ -27,13 +27,13 @@ impl From<Truth> for Verdict {
 impl Session {
     /// Whether `alg` proves the literal, without the reasons [`Session::decide`] gives for an
     /// undecided answer.
-    pub fn verdict(&mut self, alg: Algorithm, lit: Lit) -> Verdict {
-        Verdict::from(self.truth(alg, lit))
+    pub fn verdict(&mut self, alg: Algorithm, lit: Lit) -> ProofOutcome {
+        ProofOutcome::from(self.truth(alg, lit))
     }
 
     /// The answer of `alg` for every literal of the theory, indexed by [`Lit::index`]: the same
     /// as [`Session::decide`] asked literal by literal.
-    pub fn answers(&mut self, alg: Algorithm) -> Vec<Verdict> {
+    pub fn answers(&mut self, alg: Algorithm) -> Vec<ProofOutcome> {
         (0..self.engine.lit_count as u32)
             .map(|l| self.verdict(alg, Lit(l)))
             .collect()
@@ -44,7 +44,7 @@ impl Session {
         self.answers(alg)
             .into_iter()
             .zip(0..)
-            .filter(|(v, _)| *v == Verdict::Proved)
+            .filter(|(v, _)| *v == ProofOutcome::Proved)
             .map(|(_, l)| Lit(l))
             .collect()
     }

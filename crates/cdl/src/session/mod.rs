@@ -10,7 +10,7 @@ use crate::goal::{
 use crate::literal::{Atom, Lit};
 use crate::query::Formula;
 use crate::theory::RuleKind;
-pub use answers::Verdict;
+pub use answers::ProofOutcome;
 use proclaim_syntax::Algorithm;
 use rustc_hash::FxHashMap;
 use std::fmt;
