@@ -1,0 +1,245 @@
+//! `check`: every problem of theories, machine files and behaviours, as text and as JSON.
+
+use super::{assert_one_problem_shape, check, generated, stderr, stdout, temp_file};
+use crate::proclaim;
+
+#[test]
+fn check_reports_every_error_and_exits_1() {
+    let bad = temp_file("bad.dl", b"R1: a => b.\nR1: c => d.\nR1 > R7.\nx y.\n");
+    let o = proclaim(&["check", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(err.contains("rule label `R1` is used twice"), "{err}");
+    assert!(err.contains("no rule is labelled `R7`"), "{err}");
+    assert!(err.contains("unexpected `y`"), "{err}");
+    assert!(err.contains("bad.dl:3:6"), "{err}");
+    assert!(err.contains("3 errors found"), "{err}");
+    let o = proclaim(&["check", bad.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v.as_array().unwrap().len(), 3);
+    assert_eq!(v[0]["line"], 2);
+    assert_one_problem_shape(&v);
+    check(
+        &["check", "offside"],
+        0,
+        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 output)\n",
+    );
+}
+
+#[test]
+fn a_hundred_megabytes_of_garbage_is_refused_cleanly() {
+    // Printable garbage with some structure-like characters, so the parser works for it.
+    let mut garbage = Vec::with_capacity(100 << 20);
+    let mut x: u64 = 0x2545F4914F6CDD1D;
+    let alphabet = b"ab~.,:{}=>-\\/%\" \n$R1";
+    while garbage.len() < 100 << 20 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        garbage.push(alphabet[(x % alphabet.len() as u64) as usize]);
+    }
+    let path = temp_file("garbage.dl", &garbage);
+    let o = proclaim(&["check", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("more problems not shown"),
+        "{}",
+        &stderr(&o)[..2000.min(stderr(&o).len())]
+    );
+    let binary = temp_file("binary.dl", &[0xff, 0xfe, 0x00, 0x41]);
+    let o = proclaim(&["check", binary.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("not UTF-8"), "{}", stderr(&o));
+    std::fs::remove_file(path).unwrap();
+}
+
+#[test]
+fn check_reads_t_a_pairs_and_qfsm_files() {
+    let Some(dir) = crate::corpus_dir() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let corpus = dir.join("mipal");
+    let a = corpus.join("testfiles/AGameController.txt");
+    let fsm = corpus.join("machines/SMGetUp.fsm");
+    let o = proclaim(&["check", a.to_str().unwrap(), fsm.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o)
+            .contains("AGameController.txt: ok (1 machine, 21 states, 51 transitions, 0 warnings)"),
+        "{}",
+        stdout(&o)
+    );
+    let broken = corpus.join("testfiles/TSensorsTester.txt");
+    let o = proclaim(&["check", broken.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v[0]["line"], 12);
+    assert!(v[0]["message"].as_str().unwrap().contains("OnEnrtry"));
+}
+
+#[test]
+fn a_behaviour_check_finds_errors_in_is_refused_by_run_and_checked_file_by_file() {
+    let broken = crate::behaviour_folder(
+        "check-files",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"B.machine\"\n",
+            ),
+            ("A.machine", "machine A\nstate S {\n when x && -> S\n}\n"),
+            ("B.machine", "machine B\nstate S {\n entry {\n"),
+        ],
+    );
+    // Every file's problems, each with its own file and line.
+    let o = proclaim(&["check", broken.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let report: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    let places: Vec<(String, u64)> = report
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let file = r["file"].as_str().unwrap();
+            let file = file.rsplit('/').next().unwrap().to_string();
+            (file, r["line"].as_u64().unwrap())
+        })
+        .collect();
+    assert_eq!(
+        places,
+        [("A.machine".to_string(), 3), ("B.machine".to_string(), 4)]
+    );
+
+    let unanswered = crate::behaviour_folder(
+        "check-refuse",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"Idle.machine\"\nstart = false\n",
+            ),
+            ("A.machine", "machine A\nstate S {\n when ready -> T\n}\nstate T {\n}\n"),
+            ("Idle.machine", "machine Idle\nstate S {\n}\n"),
+        ],
+    );
+    let o = proclaim(&["check", unanswered.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("Idle.machine:1: warning: sub-machine `Idle` has `start = false` and no module posts `Idle: On`, so it never runs"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["run", unanswered.to_str().unwrap(), "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("A.machine:3: error: label `ready` is answered by no expert")
+            && stderr(&o).contains("run it anyway with --force"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&[
+        "run",
+        unanswered.to_str().unwrap(),
+        "--for",
+        "1s",
+        "--force",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // A script that answers the label is as good as an expert.
+    let script = temp_file(
+        "ready.script",
+        b"at 100ms ready = true\nat 200ms redy = true\n",
+    );
+    let o = proclaim(&[
+        "run",
+        unanswered.to_str().unwrap(),
+        "--script",
+        script.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("→ T"), "{}", stdout(&o));
+    assert!(
+        stderr(&o).contains(
+            "ready.script:2: warning: `redy` is asked by no machine and read by no module; did you mean `ready`?"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn check_says_why_a_negated_output_is_not_queried_and_where_it_is_declared() {
+    let dir = crate::behaviour_folder(
+        "negated-output",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"M.machine\"\n[[theory]]\nfile = \"ref.dl\"\n[impersonator]\nscript = \"s.script\"\n",
+            ),
+            (
+                "M.machine",
+                "machine M\nstate A {\n  when ~expectPenalty -> B\n}\nstate B {\n}\n",
+            ),
+            (
+                "ref.dl",
+                "input{foul}.\nR: foul => expectPenalty.\n\noutput{~expectPenalty}.\n",
+            ),
+            ("s.script", "foul = false\nexpectPenalty = false\n"),
+        ],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("ref.dl:4: warning: output `~expectPenalty` of theory ref is queried by no machine; a label `~expectPenalty` asks for `expectPenalty` and negates its answer, so declare `output{expectPenalty}` for it"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn a_machine_files_errors_show_the_line_a_caret_and_a_near_name() {
+    let machine = temp_file(
+        "Typo.machine",
+        b"machine M\nstate READY {\n  when go -> REDY\n}\n",
+    );
+    let o = proclaim(&["check", machine.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(
+        err.contains("error: there is no state named `REDY`; did you mean `READY`?"),
+        "{err}"
+    );
+    assert!(err.contains("Typo.machine:3:14"), "{err}");
+    assert!(
+        err.contains("3 │   when go -> REDY\n  │              ^^^^"),
+        "{err}"
+    );
+}
+
+#[test]
+fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
+    let ladder = temp_file(
+        "crossed-ladder.dl",
+        proclaim_gen::crossed_ladder().as_bytes(),
+    );
+    let o = proclaim(&["check", ladder.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(
+        stderr(&o).contains(
+            "warning: rules attack each other in a cycle of 24 goals that only a search decides"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    // Structure decides a clique and the ladder itself: nothing to warn of.
+    for (family, size) in [("clique", 30), ("ladder", 16)] {
+        let o = proclaim(&["check", generated(family, size).to_str().unwrap()]);
+        assert_eq!(stderr(&o), "", "{family}({size})");
+    }
+    let path = temp_file("self.dl", b"r3: => ~a2.\nr4: ~a2 => a2.\nr4 > r3.\n");
+    let o = proclaim(&["check", path.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains(
+            "warning: beta proves both `a2` and `~a2`, through a self-attacking loop: r4"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -1,0 +1,80 @@
+//! `compile`: a theory written as freestanding C, and what it refuses.
+
+use super::{stderr, stdout, temp_file};
+use crate::proclaim;
+use std::process::Command;
+
+#[test]
+fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-compile-{}", std::process::id()));
+    let o = proclaim(&[
+        "compile",
+        "theories/microwave.dl",
+        "--target",
+        "c",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stdout(&o),
+        format!(
+            "microwave: 2 inputs, 2 outputs, 6 rules: a table of 2 bytes (a decision diagram would take 5 nodes, 25 bytes); wrote {}\n",
+            out.join("microwave.c").display()
+        )
+    );
+    let header = std::fs::read_to_string(out.join("microwave.h")).unwrap();
+    assert!(header.contains("#define MICROWAVE_COOK 0"), "{header}");
+    match Command::new("gcc")
+        .args([
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-ffreestanding",
+            "-c",
+        ])
+        .arg(out.join("microwave.c"))
+        .arg("-o")
+        .arg(out.join("microwave.o"))
+        .output()
+    {
+        Ok(gcc) => assert!(gcc.status.success(), "{}", stderr(&gcc)),
+        Err(_) => assert!(
+            std::env::var_os("CI").is_none(),
+            "gcc is missing, and CI must build the compiled theory"
+        ),
+    }
+    // Not built yet: said so, exit 2.
+    let o = proclaim(&[
+        "compile",
+        "microwave",
+        "--target",
+        "rust",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--target rust is not built yet"),
+        "{}",
+        stderr(&o)
+    );
+    // An answer undecided within the budget is refused, not guessed.
+    let ladder = temp_file("ladder.dl", proclaim_gen::crossed_ladder().as_bytes());
+    let o = proclaim(&[
+        "compile",
+        ladder.to_str().unwrap(),
+        "--budget",
+        "1000",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("undecided within the search budget"),
+        "{}",
+        stderr(&o)
+    );
+}

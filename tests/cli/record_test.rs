@@ -1,0 +1,161 @@
+//! `run --record`, `replay` and `test`: a run's whiteboard kept, printed, replayed as a test.
+
+use super::{stderr, stdout, temp_file};
+use crate::proclaim;
+
+#[test]
+fn record_keeps_every_whiteboard_message_and_replay_prints_it() {
+    let record = temp_file("microwave-record.jsonl", b"");
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--record",
+        record.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    let posted: usize = out
+        .lines()
+        .find_map(|l| l.trim().strip_suffix(" unanswerable)"))
+        .and_then(|l| l.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the postings count");
+    let text = std::fs::read_to_string(&record).unwrap();
+    let messages = text
+        .lines()
+        .filter(|l| !l.starts_with(r#"{"ringlet""#) && !l.starts_with(r#"{"event""#))
+        .count();
+    assert_eq!(messages, posted, "every posting recorded");
+    assert!(
+        text.lines().any(|l| l.starts_with(r#"{"ringlet":{"#))
+            && text.lines().any(|l| l.starts_with(r#"{"event":"entered""#)),
+        "and every ringlet and event, for `proclaim test`"
+    );
+    assert!(
+        out.contains(&format!("{posted} messages recorded in")),
+        "{out}"
+    );
+    assert!(
+        text.contains(r#"{"at_us":1000000,"module":"impersonator","seq":"#),
+        "the script's posting at 1 s"
+    );
+    let o = proclaim(&["replay", record.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("   1.000s #") && stdout(&o).contains("impersonator   doorOpen = true"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+/// A recorded run is a regression test: `proclaim test` replays what came from outside the
+/// behaviour (here the kitchen script's impersonator) at the rounds it came, passes on the
+/// behaviour that made the recording, in real time and on the virtual clock, and names the
+/// first difference once a machine file is changed.
+#[test]
+fn a_recorded_run_is_a_test_that_names_the_first_difference() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-recorded-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let oven = dir.join("oven");
+    std::fs::create_dir_all(&oven).unwrap();
+    let manifest = std::fs::read_to_string(root.join("machines/microwave/behaviour.toml"))
+        .unwrap()
+        .replace(
+            "../../theories/microwave.dl",
+            &root.join("theories/microwave.dl").display().to_string(),
+        );
+    std::fs::write(oven.join("behaviour.toml"), manifest).unwrap();
+    for file in ["Microwave.machine", "kitchen.script"] {
+        std::fs::copy(root.join("machines/microwave").join(file), oven.join(file)).unwrap();
+    }
+    let oven = oven.to_str().unwrap();
+    let virtual_run = dir.join("virtual.jsonl");
+    let real_run = dir.join("real.jsonl");
+    let recorded = proclaim(&[
+        "run",
+        oven,
+        "--virtual-clock",
+        "--for",
+        "8s",
+        "--record",
+        virtual_run.to_str().unwrap(),
+    ]);
+    assert!(recorded.status.success(), "{}", stderr(&recorded));
+    let recorded = proclaim(&[
+        "run",
+        oven,
+        "--for",
+        "5s",
+        "--record",
+        real_run.to_str().unwrap(),
+    ]);
+    assert!(recorded.status.success(), "{}", stderr(&recorded));
+
+    // Both recordings as a suite (a folder), on the behaviour that made them.
+    let suite = proclaim(&["test", oven, dir.to_str().unwrap()]);
+    assert_eq!(
+        suite.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&suite),
+        stderr(&suite)
+    );
+    assert!(
+        stdout(&suite).ends_with("2 passed, 0 failed\n"),
+        "{}",
+        stdout(&suite)
+    );
+
+    // The machine now lights the lamp another way when the door opens.
+    let machine = dir.join("oven/Microwave.machine");
+    let text = std::fs::read_to_string(&machine).unwrap();
+    std::fs::write(&machine, text.replace("Light: on\n", "Light: bright\n")).unwrap();
+    let changed = proclaim(&["test", oven, virtual_run.to_str().unwrap()]);
+    assert_eq!(changed.status.code(), Some(1), "{}", stderr(&changed));
+    let out = stdout(&changed);
+    assert!(
+        out.contains(": round ")
+            && out.contains("Microwave: expected posts Light: on, found posts Light: bright"),
+        "{out}"
+    );
+
+    let not_a_recording = temp_file("trace.jsonl", b"{\"event\":\"entered\"}\n");
+    let bad = proclaim(&["test", oven, not_a_recording.to_str().unwrap()]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("not a recording"), "{}", stderr(&bad));
+}
+
+/// Recordings of the built-in behaviours replay as recorded: sub-machines started and stopped,
+/// `timeout`s, the GameController receiver on its socket (outside), variables alone.
+#[test]
+fn the_built_in_behaviours_recorded_replay_the_same() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-replays-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for behaviour in ["game_controller", "shootout", "microwave"] {
+        let recording = dir.join(format!("{behaviour}.jsonl"));
+        let run = proclaim(&[
+            "run",
+            behaviour,
+            "--virtual-clock",
+            "--for",
+            "70s",
+            "--record",
+            recording.to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{behaviour}: {}", stderr(&run));
+        let test = proclaim(&["test", behaviour, recording.to_str().unwrap()]);
+        assert_eq!(
+            test.status.code(),
+            Some(0),
+            "{behaviour}: {}{}",
+            stdout(&test),
+            stderr(&test)
+        );
+    }
+}

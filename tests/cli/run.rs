@@ -1,0 +1,411 @@
+//! `run`: behaviours played to the end, watched, stepped, asked, on the virtual clock, logged.
+
+use super::{stderr, stdout, temp_file};
+use crate::proclaim;
+use std::io::Write;
+use std::process::Command;
+
+#[test]
+fn run_plays_the_built_in_game_over_udp_to_finished_and_the_trace_replays() {
+    let trace = temp_file("game.jsonl", b"");
+    let o = proclaim(&[
+        "run",
+        "game_controller",
+        "--for",
+        "60s",
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    let states: Vec<&str> = out
+        .lines()
+        .filter(|l| l.contains("GameController  →"))
+        .map(|l| l.rsplit(' ').next().unwrap())
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "INITIAL",
+            "READY",
+            "SET",
+            "PLAYING",
+            "PENALIZED",
+            "PLAYING",
+            "FINISHED"
+        ],
+        "{out}"
+    );
+    assert!(
+        out.contains("stopped: every machine that started is in a final state"),
+        "{out}"
+    );
+    // FINISHED's entry runs before the run ends: the robot says so and sits.
+    let tail: Vec<&str> = out.lines().rev().take(8).collect();
+    for said in [
+        "posts Say: game over",
+        "posts NaoMotionPlayer: play sit",
+        "finished in FINISHED",
+    ] {
+        assert!(tail.iter().any(|l| l.ends_with(said)), "{said}:\n{out}");
+    }
+    assert!(
+        out.contains("readyReceived = true  (gamecontroller)"),
+        "{out}"
+    );
+    // The replay prints the same trace lines.
+    let replayed = proclaim(&["replay", trace.to_str().unwrap()]);
+    assert_eq!(replayed.status.code(), Some(0), "{}", stderr(&replayed));
+    let timed = |l: &&str| {
+        let first = l.split_whitespace().next().unwrap_or("");
+        first
+            .strip_suffix('s')
+            .is_some_and(|t| t.parse::<f64>().is_ok())
+    };
+    let live: Vec<&str> = out.lines().filter(timed).collect();
+    let replayed = stdout(&replayed);
+    let again: Vec<&str> = replayed.lines().collect();
+    assert_eq!(again, live);
+}
+
+#[test]
+fn run_refuses_what_it_cannot_run() {
+    let o = proclaim(&["run", "no_such_behaviour"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("no behaviour `no_such_behaviour`: not a folder with a behaviour.toml, not machines/no_such_behaviour, and not a built-in one (game_controller, microwave, shootout)"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["run", "microwave", "--for", "soon"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--for soon: not a duration"),
+        "{}",
+        stderr(&o)
+    );
+    let bad = temp_file("bad.jsonl", b"{\"event\":\"entered\"}\n");
+    let o = proclaim(&["replay", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.jsonl: line 1: not a trace event: missing field `machine`"),
+        "{}",
+        stderr(&o)
+    );
+    let bad = temp_file(
+        "bad-record.jsonl",
+        b"{\"at_us\":0,\"module\":\"m\",\"seq\":1,\"type\":\"doorOpen\",\"value\":true}\n{\"at_us\":5}\n",
+    );
+    let o = proclaim(&["replay", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad-record.jsonl: line 2: not a recorded message"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["replay", bad.to_str().unwrap(), "--speed", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--speed must be a positive number"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
+    let dir = crate::behaviour_folder(
+        "watch",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"W.machine\"\n"),
+            (
+                "W.machine",
+                "machine W\nstate Wait {\n  when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
+    let machine = dir.join("W.machine");
+    let child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
+        .args([
+            "run",
+            dir.to_str().unwrap(),
+            "--watch",
+            "--for",
+            "20s",
+            "--force",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    std::fs::write(&machine, "machine W\nstate Wait {\n  when -> Done\n}\n").unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    std::fs::write(
+        &machine,
+        "machine W\nstate Wait {\n  when TRUE -> Done\n}\nstate Done {\n}\n",
+    )
+    .unwrap();
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    assert!(
+        out.contains("W  reload failed, runs on unchanged:"),
+        "{out}"
+    );
+    assert!(
+        out.contains("W.machine:3: error: a transition needs a label"),
+        "{out}"
+    );
+    assert!(out.contains("W  reloaded, in Wait"), "{out}");
+    // Each save is read once, however many file events it makes.
+    assert_eq!(
+        out.matches("its file changed; rereading").count(),
+        2,
+        "{out}"
+    );
+    assert!(
+        stderr(&o).contains("W.machine:3: warning: label `go` is answered by no expert"),
+        "--force shows what check found as warnings: {}",
+        stderr(&o)
+    );
+    assert!(out.contains("W  → Done"), "{out}");
+    assert!(
+        out.contains("stopped: every machine that started is in a final state"),
+        "{out}"
+    );
+}
+
+#[test]
+fn run_step_rings_once_per_enter_and_reads_answers_typed_at_the_prompt() {
+    let dir = crate::behaviour_folder(
+        "step",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+            ("M.machine", "machine M\nstate A {\n  entry {\n    Say: hello\n  }\n  when go -> B\n}\nstate B {\n}\n"),
+        ],
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", dir.to_str().unwrap(), "--step"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"\n\ngo=true\n\n\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    // Each prompt (`step N> `) is followed by what that step printed, on the same line.
+    let shown: Vec<String> = out
+        .lines()
+        .map(|l| match l.find("> ") {
+            Some(i) if l.starts_with("step ") => &l[i + 2..],
+            _ => l,
+        })
+        .map(|l| {
+            let words: Vec<&str> = l.split_whitespace().collect();
+            match words.first() {
+                Some(w) if w.ends_with('s') && w[..w.len() - 1].parse::<f64>().is_ok() => {
+                    words[1..].join(" ")
+                }
+                _ => words.join(" "),
+            }
+        })
+        .filter(|l| l.starts_with("M"))
+        .collect();
+    assert_eq!(
+        shown,
+        [
+            "M: A (running)",
+            "M → A",
+            "M posts Say: hello",
+            "M go: no expert answers it, counted false",
+            "M: A (running)",
+            "M: A (running)",
+            "M: A (running)",
+            "M go = true (as posted by you)",
+            "M fires on go",
+            "M: B (running)",
+            "M → B",
+            "M finished in B",
+            "M: B (running)",
+        ],
+        "{out}"
+    );
+    assert!(
+        out.contains("whiteboard: MIsRunning=true, Say=\"hello\", go=true"),
+        "{out}"
+    );
+    assert!(
+        out.ends_with("stopped: every machine that started is in a final state or halted\n"),
+        "{out}"
+    );
+}
+
+#[test]
+fn a_virtual_clock_runs_a_minute_of_microwave_at_once_and_the_same_every_time() {
+    let run = || {
+        let started = std::time::Instant::now();
+        let o = proclaim(&["run", "microwave", "--virtual-clock"]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        (stdout(&o), started.elapsed())
+    };
+    let (first, took) = run();
+    let states: Vec<String> = first
+        .lines()
+        .filter(|l| l.contains('→'))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect();
+    assert_eq!(
+        states,
+        [
+            "0.000s Microwave → IDLE",
+            "1.000s Microwave → OPEN",
+            "3.000s Microwave → IDLE",
+            "4.000s Microwave → COOKING",
+            "64.000s Microwave → DONE",
+        ],
+        "{first}"
+    );
+    // What the script sets shows in the trace, once each time it changes.
+    assert!(
+        first.contains("   1.000s impersonator  posts doorOpen: true\n"),
+        "{first}"
+    );
+    assert_eq!(first.matches("posts doorOpen").count(), 3, "{first}");
+    assert!(
+        took < std::time::Duration::from_secs(20),
+        "64 s of behaviour on the virtual clock took {took:?}"
+    );
+    assert_eq!(run().0, first, "the same trace every time");
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--connect",
+        "tcp/127.0.0.1:1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("cannot --listen or --connect"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn run_ask_puts_a_person_in_place_of_the_experts() {
+    let dir = crate::behaviour_folder(
+        "ask",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n"),
+            (
+                "A.machine",
+                "machine A\nstate S {\n  when ready -> T\n}\nstate T {\n}\n",
+            ),
+        ],
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", dir.to_str().unwrap(), "--ask", "ready"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    {
+        use std::io::Write;
+        let stdin = child.stdin.as_mut().unwrap();
+        writeln!(stdin, "maybe").unwrap();
+        writeln!(stdin, "n").unwrap();
+        writeln!(stdin, "y").unwrap();
+    }
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    assert!(out.contains("please answer y or n"), "{out}");
+    assert!(out.contains("ready = false  (person)"), "{out}");
+    assert!(out.contains("ready = true  (person)"), "{out}");
+    assert!(out.contains("finished in T"), "{out}");
+    assert!(
+        !stderr(&o).contains("answered by no expert"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn logs_show_the_crates_spans_with_v_and_as_json() {
+    // Nothing extra by default: the trace is the output.
+    let quiet = proclaim(&["run", "microwave", "--for", "300ms"]);
+    assert!(
+        !stderr(&quiet).contains("query answered"),
+        "{}",
+        stderr(&quiet)
+    );
+    let o = proclaim(&["run", "microwave", "--for", "300ms", "-vv"]);
+    let log = stderr(&o);
+    assert!(
+        log.contains("machine{name=Microwave}") && log.contains("query answered"),
+        "{log}"
+    );
+    let o = proclaim(&[
+        "run",
+        "microwave",
+        "--for",
+        "300ms",
+        "-vv",
+        "--log-format",
+        "json",
+    ]);
+    let line = stderr(&o)
+        .lines()
+        .find(|l| l.contains("query answered"))
+        .map(str::to_string)
+        .unwrap_or_else(|| panic!("{}", stderr(&o)));
+    let event: serde_json::Value = serde_json::from_str(&line).unwrap();
+    assert_eq!(event["level"], "DEBUG");
+    assert_eq!(
+        event["fields"]["atom"]
+            .as_str()
+            .map(|a| a == "cook" || a == "light"),
+        Some(true)
+    );
+    assert_eq!(event["span"]["name"], "machine");
+    // RUST_LOG decides when set.
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", "microwave", "--for", "300ms"])
+        .env("NO_COLOR", "1")
+        .env("RUST_LOG", "proclaim_board=debug")
+        .output()
+        .unwrap();
+    assert!(stderr(&o).contains("query answered"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_label_nobody_answers_is_warned_once_not_at_every_ring() {
+    let dir = crate::behaviour_folder(
+        "warn-once",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+            (
+                "M.machine",
+                "machine M\nstate A {\n  when go -> B\n}\nstate B {\n}\n",
+            ),
+        ],
+    );
+    // Ten rings a second for a second, each asking for `go`.
+    let o = proclaim(&["run", dir.to_str().unwrap(), "--force", "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let warned = stderr(&o)
+        .lines()
+        .filter(|l| l.contains("query for an atom no module answers"))
+        .count();
+    assert_eq!(warned, 1, "{}", stderr(&o));
+}
