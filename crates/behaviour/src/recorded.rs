@@ -286,6 +286,11 @@ fn split_outside(
             return ringlets.first().map(|r| (r.round, r.machine, 0));
         };
         let r = &ringlets[i];
+        // Came after the ringlet began but was in its snapshot: it came before the ringlet
+        // as far as the ringlet could tell.
+        if r.snapshot.is_some_and(|snapshot| seq <= snapshot) {
+            return Some((r.round, r.machine, 0));
+        }
         match queries[i].iter().position(|q| *q > seq) {
             Some(k) => Some((r.round, r.machine, k + 1)),
             None => ringlets
@@ -454,5 +459,60 @@ fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Rep
             .max()
             .unwrap_or(0),
         events: expected.len(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ringlet(round: u64, machine: usize, seq: u64, snapshot: Option<u64>) -> Ringlet {
+        Ringlet {
+            round,
+            machine,
+            seq,
+            at: Duration::ZERO,
+            snapshot,
+        }
+    }
+
+    fn message(seq: u64, ty: &str) -> Recorded {
+        Recorded {
+            seq,
+            module: "impersonator".into(),
+            ty: ty.into(),
+            value: Value::Bool(true),
+        }
+    }
+
+    /// Where each outside message is posted again, by its sequence number.
+    fn places(ringlets: Vec<Ringlet>, messages: Vec<Recorded>) -> Vec<(u64, Place)> {
+        let recording = Recording {
+            messages,
+            ringlets,
+            events: Vec::new(),
+        };
+        let (outside, _) = split_outside(&recording, &FxHashSet::default(), &["A".into()]);
+        outside
+            .into_iter()
+            .map(|(place, m)| (m.seq, place))
+            .collect()
+    }
+
+    #[test]
+    fn a_message_in_a_ringlets_snapshot_is_posted_before_that_ringlet() {
+        // Ringlet (1, 0) began at 10 and took its snapshot at 12; (2, 0) began at 14.
+        let ringlets = vec![ringlet(1, 0, 10, Some(12)), ringlet(2, 0, 14, None)];
+        let messages = vec![message(9, "a"), message(11, "b"), message(13, "c")];
+        assert_eq!(
+            places(ringlets, messages),
+            [(9, (1, 0, 0)), (11, (1, 0, 0)), (13, (2, 0, 0))]
+        );
+    }
+
+    #[test]
+    fn without_a_snapshot_a_message_after_a_ringlet_began_comes_before_the_next() {
+        let ringlets = vec![ringlet(1, 0, 10, None), ringlet(2, 0, 14, None)];
+        assert_eq!(places(ringlets, vec![message(11, "b")]), [(11, (2, 0, 0))]);
     }
 }

@@ -35,10 +35,11 @@ impl RoundCounter {
     }
 }
 
-/// A ringlet about to start: the round, the machine's place in the schedule, the board's
-/// highest sequence number and its round's moment (time since the epoch). A message with a
-/// sequence number up to `seq` was on the board before the ringlet began; a recording of these
-/// is what lets a replay post every outside message before the same ringlet again.
+/// A ringlet: the round, the machine's place in the schedule, the board's highest sequence
+/// number as it began and its round's moment (time since the epoch). A message with a sequence
+/// number up to `seq` was on the board before the ringlet began, and one up to `snapshot` was
+/// in what it read; a recording of these is what lets a replay post every outside message
+/// before the same ringlet again.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Ringlet {
     pub round: u64,
@@ -46,6 +47,11 @@ pub struct Ringlet {
     pub seq: u64,
     #[serde(rename = "at_us", with = "crate::event::micros")]
     pub at: Duration,
+    /// The board's highest sequence number in the ringlet's snapshot, once it has run and if it
+    /// read the board (a message that came after the ringlet began but before its snapshot was
+    /// seen by it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshot: Option<u64>,
 }
 
 /// What paces a schedule from outside instead of its own waiting: a replay of a recorded run,
@@ -220,6 +226,8 @@ impl Rounds {
             obey(board, &mut turns.runs, &turns.over, None);
         }
         let mut fired = false;
+        // The ringlet under way, recorded once it has run (with its snapshot).
+        let mut began: Option<Ringlet> = None;
         for machine in 0..turns.runs.len() {
             let run = &mut turns.runs[machine];
             if turns.over[machine]
@@ -235,9 +243,12 @@ impl Rounds {
                     machine,
                     seq: board.snapshot().seq,
                     at: round_time.saturating_duration_since(run.reporter.epoch),
+                    snapshot: None,
                 };
-                self.before_ringlet(run, ringlet, &mut round_time, board)
-                    .await;
+                began = Some(
+                    self.before_ringlet(run, ringlet, &mut round_time, board)
+                        .await,
+                );
             }
             run.round_time = Some(round_time);
             if let Some(suppressor) = &turns.suppressor {
@@ -245,6 +256,13 @@ impl Rounds {
             }
             let span = tracing::info_span!("machine", name = %run.name);
             let ring = tracing::Instrument::instrument(run.ring(), span).await;
+            if let (Some(ticks), Some(ringlet)) = (&self.ticks, began.take()) {
+                let snapshot = run.seen.seq();
+                let _ = ticks.send(Ringlet {
+                    snapshot,
+                    ..ringlet
+                });
+            }
             // Between rounds, waits are reckoned from the clock.
             run.round_time = None;
             match ring {
@@ -266,15 +284,15 @@ impl Rounds {
     }
 
     /// Before a ringlet, under a feed or a recording: the feed posts what came before it and
-    /// moves the round to its recorded moment, and hears of the ringlet's queries; the
-    /// recording hears of the ringlet.
+    /// moves the round to its recorded moment, and hears of the ringlet's queries. The ringlet
+    /// as the recording will hear of it once it has run.
     async fn before_ringlet(
         &self,
         run: &mut Run<'_>,
         ringlet: Ringlet,
         round_time: &mut tokio::time::Instant,
         board: &Whiteboard,
-    ) {
+    ) -> Ringlet {
         if let Some(feed) = &self.feed {
             let wait = feed.lock().before(ringlet, board);
             if let Some(at) = wait {
@@ -286,10 +304,10 @@ impl Rounds {
                 ringlet,
             });
         }
-        if let Some(ticks) = &self.ticks {
-            // What the feed posted counts as before the ringlet too.
-            let seq = board.snapshot().seq;
-            let _ = ticks.send(Ringlet { seq, ..ringlet });
+        // What the feed posted counts as before the ringlet too.
+        Ringlet {
+            seq: board.snapshot().seq,
+            ..ringlet
         }
     }
 }
