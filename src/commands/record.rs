@@ -66,7 +66,7 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
 }
 
 impl Recorder {
-    /// Writes the ringlets as they start, from now on.
+    /// Writes the ringlets as they end (with their snapshots), from now on.
     pub fn follow(
         &self,
         mut ringlets: tokio::sync::mpsc::UnboundedReceiver<proclaim_runner::Ringlet>,
