@@ -1,11 +1,10 @@
 //! Breadth-first exploration of the model's states: every state packed once into a table of
 //! fixed-width records (`chunked.rs`), found again by a hash table of state numbers (FxHash of
-//! the packed bytes), each with its
-//! parent, so the first state found that a property looks for has the shortest path. The
-//! environment's choice on each step of that path is found again when the path is asked for,
-//! by making the parent's successors once more, rather than stored with every state. Successor lists are kept
-//! (4 bytes an edge) for the deadlock check, which needs to know which states can still reach a
-//! firing.
+//! the packed bytes), each with its parent, so the first state found that a property looks for
+//! has the shortest path. The environment's choice on each step of that path is found again
+//! when the path is asked for, by making the parent's successors once more, rather than stored
+//! with every state. Successor lists are kept (4 bytes an edge) for the deadlock check, which
+//! needs to know which states can still reach a firing.
 
 use crate::chunked::{Chunked, Records};
 use crate::model::Model;

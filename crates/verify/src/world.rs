@@ -3,9 +3,9 @@
 //! (no byte for a machine of one state, one, or two when it has over 256) and its time bits
 //! (one byte, two for a state with over seven time tests) when any of its states has a time
 //! test, four bits of flags a machine (mode, just entered, started this round), two machines to
-//! a byte, then the value number
-//! of every slot the search stores ([`crate::reduce::Storage`]) and every `saw()` value number
-//! as LEB128 varints (values met early, the usual ones, take one byte).
+//! a byte, then the value number of every slot the search stores ([`crate::reduce::Storage`])
+//! and every `saw()` value number as LEB128 varints (values met early, the usual ones, take one
+//! byte).
 
 use crate::model::{Model, SlotId};
 use crate::reduce::Storage;
