@@ -3,8 +3,8 @@
 //! for each behaviour and engine, the verdicts, the states it stored, the time and the memory
 //! it held, under the default budget. SPIN is run on `--emit promela`'s text (`spin -a`,
 //! `gcc -O2 -DSAFETY`, one `pan -N` per property, its search time apart from its build time)
-//! within a time limit; once SPIN or the
-//! explicit engine does not finish a family at one size, the larger sizes skip it.
+//! within a time limit; once SPIN or the explicit engine does not finish a family at one size,
+//! the larger sizes skip it.
 //! `cargo bench -p proclaim-verify --bench families` (`-- sensors` or `-- press` etc. to run
 //! only the families named; SPIN is left out when `spin` or `gcc` is not on PATH).
 
@@ -25,9 +25,9 @@ use std::time::{Duration, Instant};
 
 /// How long one SPIN search (one `pan` run) may take before the family's larger sizes skip SPIN.
 const SPIN_LIMIT: Duration = Duration::from_secs(60);
-/// The memory `pan` may use, in megabytes (as the checker's default budget).
+/// The memory `pan` may use, in megabytes.
 const SPIN_MEMORY_MB: usize = 4096;
-/// `pan`'s depth limit: its stack takes about 53 bytes a step of depth.
+/// `pan`'s depth limit (its stack is allocated for this depth up front, so no larger).
 const SPIN_DEPTH: &str = "-m20000000";
 
 /// One behaviour of a family and the properties asked of it.
@@ -130,7 +130,7 @@ struct Row {
     finished: bool,
 }
 
-fn verdict_letters(verdicts: impl Iterator<Item = Verdict>) -> String {
+fn verdict_words(verdicts: impl Iterator<Item = Verdict>) -> String {
     verdicts
         .map(|v| match v {
             Verdict::Holds => "holds",
@@ -154,7 +154,7 @@ fn checker(behaviour: &Behaviour, case: &Case, engine: Engine) -> (Row, Option<R
             let s = &report.stats;
             let finished = matches!(s.stopped, Stop::Explored | Stop::Decided);
             let row = Row {
-                verdicts: verdict_letters(report.properties.iter().map(|p| p.verdict)),
+                verdicts: verdict_words(report.properties.iter().map(|p| p.verdict)),
                 states: if finished {
                     format!("{} ({})", s.states, s.engine)
                 } else {
