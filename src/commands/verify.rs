@@ -10,8 +10,8 @@ use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
     lasso_script, manifest_properties, render, to_promela, to_script, unroll, verify_with_progress,
-    Engine, Finding, Options, Progress, PropertyKind, PropertySource, Reductions, Report, Verdict,
-    VerifyError,
+    Finding, Options, Progress, PropertyKind, PropertySource, Reductions, Report, SearchEngine,
+    Verdict, VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -105,9 +105,9 @@ pub fn options(
         max_memory: max_memory.unwrap_or_else(default_memory_budget),
         reductions,
         engine: match engine {
-            EngineName::Auto => Engine::Auto,
-            EngineName::Explicit => Engine::Explicit,
-            EngineName::Symbolic => Engine::Symbolic,
+            EngineName::Auto => SearchEngine::Auto,
+            EngineName::Explicit => SearchEngine::Explicit,
+            EngineName::Symbolic => SearchEngine::Symbolic,
         },
     }
 }
@@ -215,7 +215,7 @@ pub fn emit(
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     let s = &report.stats;
-    if s.engine == Engine::Symbolic.word() {
+    if s.engine == SearchEngine::Symbolic.word() {
         println!(
             "{behaviour}: {} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
             s.states,

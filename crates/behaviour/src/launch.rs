@@ -11,7 +11,7 @@ use proclaim_experts::{
     ButtonWrapper, FallWrapper, FunctionExpert, GameControllerReceiver, Impersonator,
     ReasonerExpert, ReceiverConfig, Script,
 };
-use proclaim_gcsim::{default_game, play, Event as SimEvent, SimConfig};
+use proclaim_gcsim::{default_game, play, GameEvent, SimConfig};
 use proclaim_runner::{
     Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RunOptions, Shared, Stepper,
 };
@@ -352,7 +352,7 @@ fn simulator(sensor: &crate::load::LoadedSensor, at: SocketAddr, home: u8) -> (M
         // The built-in game's penalty is for this robot, so it is seen.
         let mut game = default_game(home, 5);
         for (_, event) in &mut game.events {
-            if let SimEvent::Penalise { player: p, .. } | SimEvent::Unpenalise { player: p, .. } =
+            if let GameEvent::Penalise { player: p, .. } | GameEvent::Unpenalise { player: p, .. } =
                 event
             {
                 *p = player;

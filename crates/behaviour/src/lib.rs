@@ -30,7 +30,7 @@ pub use draw::behaviour_to_dot;
 pub use error::BehaviourError;
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
-pub use liveness::{liveness_machines, parse_liveness, Definition, Formula};
+pub use liveness::{liveness_machines, parse_liveness, Definition, GaiaFormula};
 pub use load::{
     load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
 };

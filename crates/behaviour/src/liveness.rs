@@ -21,26 +21,26 @@ use proclaim_fsm::{finished_type, Command};
 use proclaim_fsm::{Action, Machine, State, StateId, Transition};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Formula {
+pub enum GaiaFormula {
     Activity(String),
-    Sequence(Vec<Formula>),
-    Choice(Vec<Formula>),
-    Parallel(Vec<Formula>),
+    Sequence(Vec<GaiaFormula>),
+    Choice(Vec<GaiaFormula>),
+    Parallel(Vec<GaiaFormula>),
     /// `A*`
-    Many(Box<Formula>),
+    Many(Box<GaiaFormula>),
     /// `A+`
-    OneOrMore(Box<Formula>),
+    OneOrMore(Box<GaiaFormula>),
     /// `A~`
-    Forever(Box<Formula>),
+    Forever(Box<GaiaFormula>),
     /// `[A]`
-    Optional(Box<Formula>),
+    Optional(Box<GaiaFormula>),
 }
 
 /// One `Name = formula` line.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Definition {
     pub name: String,
-    pub formula: Formula,
+    pub formula: GaiaFormula,
     pub line: usize,
 }
 
@@ -156,9 +156,9 @@ impl Parser {
     fn list(
         &mut self,
         op: &str,
-        part: fn(&mut Parser) -> Result<Formula, String>,
-        make: fn(Vec<Formula>) -> Formula,
-    ) -> Result<Formula, String> {
+        part: fn(&mut Parser) -> Result<GaiaFormula, String>,
+        make: fn(Vec<GaiaFormula>) -> GaiaFormula,
+    ) -> Result<GaiaFormula, String> {
         let mut parts = vec![part(self)?];
         while self.peek() == Some(op) {
             self.at += 1;
@@ -171,32 +171,32 @@ impl Parser {
         })
     }
 
-    fn parallel(&mut self) -> Result<Formula, String> {
-        self.list("||", Parser::choice, Formula::Parallel)
+    fn parallel(&mut self) -> Result<GaiaFormula, String> {
+        self.list("||", Parser::choice, GaiaFormula::Parallel)
     }
 
-    fn choice(&mut self) -> Result<Formula, String> {
-        self.list("|", Parser::sequence, Formula::Choice)
+    fn choice(&mut self) -> Result<GaiaFormula, String> {
+        self.list("|", Parser::sequence, GaiaFormula::Choice)
     }
 
-    fn sequence(&mut self) -> Result<Formula, String> {
-        self.list(".", Parser::postfix, Formula::Sequence)
+    fn sequence(&mut self) -> Result<GaiaFormula, String> {
+        self.list(".", Parser::postfix, GaiaFormula::Sequence)
     }
 
-    fn postfix(&mut self) -> Result<Formula, String> {
+    fn postfix(&mut self) -> Result<GaiaFormula, String> {
         let mut f = self.atom()?;
         loop {
             f = match self.peek() {
-                Some("*") => Formula::Many(Box::new(f)),
-                Some("+") => Formula::OneOrMore(Box::new(f)),
-                Some("~") => Formula::Forever(Box::new(f)),
+                Some("*") => GaiaFormula::Many(Box::new(f)),
+                Some("+") => GaiaFormula::OneOrMore(Box::new(f)),
+                Some("~") => GaiaFormula::Forever(Box::new(f)),
                 _ => return Ok(f),
             };
             self.at += 1;
         }
     }
 
-    fn atom(&mut self) -> Result<Formula, String> {
+    fn atom(&mut self) -> Result<GaiaFormula, String> {
         let Some(token) = self.peek().map(str::to_string) else {
             return Err("the formula ends too early".into());
         };
@@ -210,9 +210,9 @@ impl Parser {
             "[" => {
                 let f = self.parallel()?;
                 self.expect("]")?;
-                Ok(Formula::Optional(Box::new(f)))
+                Ok(GaiaFormula::Optional(Box::new(f)))
             }
-            name if is_name(name) => Ok(Formula::Activity(name.to_string())),
+            name if is_name(name) => Ok(GaiaFormula::Activity(name.to_string())),
             other => Err(format!("expected an activity, `(` or `[`, found `{other}`")),
         }
     }
@@ -334,15 +334,16 @@ fn ident(name: &str) -> String {
 }
 
 /// The first activity a formula names (to name the choice that leads to it).
-fn first_activity(f: &Formula) -> String {
+fn first_activity(f: &GaiaFormula) -> String {
     match f {
-        Formula::Activity(a) => ident(a),
-        Formula::Sequence(fs) | Formula::Choice(fs) | Formula::Parallel(fs) => {
+        GaiaFormula::Activity(a) => ident(a),
+        GaiaFormula::Sequence(fs) | GaiaFormula::Choice(fs) | GaiaFormula::Parallel(fs) => {
             fs.first().map(first_activity).unwrap_or_default()
         }
-        Formula::Many(f) | Formula::OneOrMore(f) | Formula::Forever(f) | Formula::Optional(f) => {
-            first_activity(f)
-        }
+        GaiaFormula::Many(f)
+        | GaiaFormula::OneOrMore(f)
+        | GaiaFormula::Forever(f)
+        | GaiaFormula::Optional(f) => first_activity(f),
     }
 }
 
@@ -370,46 +371,46 @@ impl Generator<'_> {
 
     /// Builds `f`'s states into `draft`, every way out leading to `next`; returns the state
     /// where `f` begins.
-    fn compile(&mut self, draft: &mut Draft, f: &Formula, next: StateId) -> StateId {
+    fn compile(&mut self, draft: &mut Draft, f: &GaiaFormula, next: StateId) -> StateId {
         let atom = Label::Name;
         match f {
-            Formula::Activity(name) => self.activity(draft, name, next),
-            Formula::Sequence(parts) => {
+            GaiaFormula::Activity(name) => self.activity(draft, name, next),
+            GaiaFormula::Sequence(parts) => {
                 let mut at = next;
                 for part in parts.iter().rev() {
                     at = self.compile(draft, part, at);
                 }
                 at
             }
-            Formula::Choice(options) => self.choice(draft, options, next),
-            Formula::Many(inner) => {
+            GaiaFormula::Choice(options) => self.choice(draft, options, next),
+            GaiaFormula::Many(inner) => {
                 let l = draft.state("Repeat", Vec::new());
                 let start = self.compile(draft, inner, l);
                 draft.go(l, atom(format!("again{}", first_activity(inner))), start);
                 draft.go(l, Label::TRUE, next);
                 l
             }
-            Formula::OneOrMore(inner) => {
+            GaiaFormula::OneOrMore(inner) => {
                 let l = draft.state("Repeat", Vec::new());
                 let start = self.compile(draft, inner, l);
                 draft.go(l, atom(format!("again{}", first_activity(inner))), start);
                 draft.go(l, Label::TRUE, next);
                 start
             }
-            Formula::Forever(inner) => {
+            GaiaFormula::Forever(inner) => {
                 let l = draft.state("Again", Vec::new());
                 let start = self.compile(draft, inner, l);
                 draft.go(l, Label::TRUE, start);
                 start
             }
-            Formula::Optional(inner) => {
+            GaiaFormula::Optional(inner) => {
                 let m = draft.state("Maybe", Vec::new());
                 let start = self.compile(draft, inner, next);
                 draft.go(m, atom(format!("do{}", first_activity(inner))), start);
                 draft.go(m, Label::TRUE, next);
                 m
             }
-            Formula::Parallel(branches) => self.parallel(draft, branches, next),
+            GaiaFormula::Parallel(branches) => self.parallel(draft, branches, next),
         }
     }
 
@@ -446,7 +447,7 @@ impl Generator<'_> {
     }
 
     /// A state choosing among the options by labels nobody answers yet (`chooseA`).
-    fn choice(&mut self, draft: &mut Draft, options: &[Formula], next: StateId) -> StateId {
+    fn choice(&mut self, draft: &mut Draft, options: &[GaiaFormula], next: StateId) -> StateId {
         let atom = Label::Name;
         let c = draft.state("Choose", Vec::new());
         let mut named: Vec<String> = Vec::new();
@@ -463,13 +464,13 @@ impl Generator<'_> {
     }
 
     /// A state starting one sub-machine per branch and waiting for all their `NameFinished`.
-    fn parallel(&mut self, draft: &mut Draft, branches: &[Formula], next: StateId) -> StateId {
+    fn parallel(&mut self, draft: &mut Draft, branches: &[GaiaFormula], next: StateId) -> StateId {
         let atom = Label::Name;
         let mut entry = Vec::new();
         let mut done = Vec::new();
         for (k, branch) in branches.iter().enumerate() {
             let base = match branch {
-                Formula::Activity(a) => a.clone(),
+                GaiaFormula::Activity(a) => a.clone(),
                 _ => format!("{}Branch{}", draft.name, k + 1),
             };
             let name = self.machine_name(&base);
@@ -494,7 +495,7 @@ impl Generator<'_> {
     }
 
     /// A sub-machine running `f` once, then posting `NameFinished` and turning itself off.
-    fn branch_machine(&mut self, name: &str, f: &Formula) {
+    fn branch_machine(&mut self, name: &str, f: &GaiaFormula) {
         let mut draft = Draft::new(name);
         let end = draft.state(
             "End",
@@ -560,14 +561,15 @@ pub fn liveness_machines(
     (machines, g.diagnostics)
 }
 
-fn mentions(f: &Formula, name: &str) -> bool {
+fn mentions(f: &GaiaFormula, name: &str) -> bool {
     match f {
-        Formula::Activity(a) => a == name,
-        Formula::Sequence(fs) | Formula::Choice(fs) | Formula::Parallel(fs) => {
+        GaiaFormula::Activity(a) => a == name,
+        GaiaFormula::Sequence(fs) | GaiaFormula::Choice(fs) | GaiaFormula::Parallel(fs) => {
             fs.iter().any(|f| mentions(f, name))
         }
-        Formula::Many(f) | Formula::OneOrMore(f) | Formula::Forever(f) | Formula::Optional(f) => {
-            mentions(f, name)
-        }
+        GaiaFormula::Many(f)
+        | GaiaFormula::OneOrMore(f)
+        | GaiaFormula::Forever(f)
+        | GaiaFormula::Optional(f) => mentions(f, name),
     }
 }

@@ -22,7 +22,7 @@ pub use local::{LocalBoard, Retention};
 pub use message::{Kind, Message};
 pub use pattern::Pattern;
 pub use registry::{ModuleDecl, Registry};
-pub use snapshot::{Row, Snapshot};
+pub use snapshot::{BoardRow, Snapshot};
 pub use suppress::{Ranked, Suppressor, Visibility};
 pub use transport::{BoxFuture, Stats, Subscription, Transport};
 pub use value::Value;

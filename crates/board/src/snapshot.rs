@@ -61,7 +61,7 @@ pub struct Snapshot {
 
 /// One type as a person reads the board: its kind, its newest message, how many were posted.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Row<'s> {
+pub struct BoardRow<'s> {
     pub ty: &'s str,
     pub kind: Kind,
     pub newest: &'s Message,
@@ -96,12 +96,12 @@ impl Snapshot {
     }
 
     /// Every type that has been posted, by name.
-    pub fn rows(&self) -> Vec<Row<'_>> {
-        let mut rows: Vec<Row<'_>> = self
+    pub fn rows(&self) -> Vec<BoardRow<'_>> {
+        let mut rows: Vec<BoardRow<'_>> = self
             .table
             .iter()
             .filter_map(|(ty, slot)| {
-                Some(Row {
+                Some(BoardRow {
                     ty,
                     kind: slot.kind,
                     newest: slot.newest()?,

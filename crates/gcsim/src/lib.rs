@@ -24,7 +24,7 @@ use std::time::Duration;
 use tokio::net::UdpSocket;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Event {
+pub enum GameEvent {
     State(GameState),
     /// The team of the next kick-off or set play.
     Kick(u8),
@@ -46,7 +46,7 @@ pub enum Event {
 
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct GameScript {
-    pub events: Vec<(Duration, Event)>,
+    pub events: Vec<(Duration, GameEvent)>,
 }
 
 impl GameScript {
@@ -66,14 +66,14 @@ pub fn default_game(home: u8, away: u8) -> GameScript {
     let s = Duration::from_secs;
     GameScript {
         events: vec![
-            (s(0), Event::State(GameState::Initial)),
-            (s(0), Event::Kick(home)),
-            (s(1), Event::State(GameState::Ready)),
-            (s(2), Event::State(GameState::Set)),
-            (s(3), Event::State(GameState::Playing)),
+            (s(0), GameEvent::State(GameState::Initial)),
+            (s(0), GameEvent::Kick(home)),
+            (s(1), GameEvent::State(GameState::Ready)),
+            (s(2), GameEvent::State(GameState::Set)),
+            (s(3), GameEvent::State(GameState::Playing)),
             (
                 s(4),
-                Event::Penalise {
+                GameEvent::Penalise {
                     team: home,
                     player: 2,
                     secs: 2,
@@ -82,14 +82,14 @@ pub fn default_game(home: u8, away: u8) -> GameScript {
             ),
             (
                 s(6),
-                Event::Unpenalise {
+                GameEvent::Unpenalise {
                     team: home,
                     player: 2,
                 },
             ),
-            (Duration::from_millis(6500), Event::Goal { team: away }),
-            (Duration::from_millis(6500), Event::Kick(home)),
-            (s(8), Event::State(GameState::Finished)),
+            (Duration::from_millis(6500), GameEvent::Goal { team: away }),
+            (Duration::from_millis(6500), GameEvent::Kick(home)),
+            (s(8), GameEvent::State(GameState::Finished)),
         ],
     }
 }
@@ -127,23 +127,23 @@ pub fn parse_game(text: &str) -> Result<GameScript, LineErrors> {
             arg(key).and_then(|v| u8::try_from(v).map_err(|_| format!("{key} is at most 255")))
         };
         let parsed = match event.to_ascii_lowercase().as_str() {
-            "initial" => Ok(Event::State(GameState::Initial)),
-            "ready" => Ok(Event::State(GameState::Ready)),
-            "set" => Ok(Event::State(GameState::Set)),
-            "playing" => Ok(Event::State(GameState::Playing)),
-            "finished" => Ok(Event::State(GameState::Finished)),
-            "standby" => Ok(Event::State(GameState::Standby)),
-            "kick" => small("team").map(Event::Kick),
+            "initial" => Ok(GameEvent::State(GameState::Initial)),
+            "ready" => Ok(GameEvent::State(GameState::Ready)),
+            "set" => Ok(GameEvent::State(GameState::Set)),
+            "playing" => Ok(GameEvent::State(GameState::Playing)),
+            "finished" => Ok(GameEvent::State(GameState::Finished)),
+            "standby" => Ok(GameEvent::State(GameState::Standby)),
+            "kick" => small("team").map(GameEvent::Kick),
             "penalty" => (|| {
-                Ok(Event::Penalise {
+                Ok(GameEvent::Penalise {
                     team: small("team")?,
                     player: small("player")?,
                     secs: arg("secs")?,
                     penalty: if args.iter().any(|(k, _)| *k == "reason") { small("reason")? } else { 2 },
                 })
             })(),
-            "unpenalise" => (|| Ok(Event::Unpenalise { team: small("team")?, player: small("player")? }))(),
-            "goal" => small("team").map(|team| Event::Goal { team }),
+            "unpenalise" => (|| Ok(GameEvent::Unpenalise { team: small("team")?, player: small("player")? }))(),
+            "goal" => small("team").map(|team| GameEvent::Goal { team }),
             other => Err(format!(
                 "unknown event `{other}`; events are initial, ready, set, playing, finished, standby, kick, penalty, unpenalise, goal"
             )),
@@ -151,9 +151,11 @@ pub fn parse_game(text: &str) -> Result<GameScript, LineErrors> {
         match parsed {
             Ok(e) => {
                 // `ready kick=18` is shorthand for a state and the kicking team.
-                if let (Event::State(_), Some(k)) = (&e, args.iter().find(|(k, _)| *k == "kick")) {
+                if let (GameEvent::State(_), Some(k)) =
+                    (&e, args.iter().find(|(k, _)| *k == "kick"))
+                {
                     match k.1.parse::<u8>() {
-                        Ok(team) => events.push((time, Event::Kick(team))),
+                        Ok(team) => events.push((time, GameEvent::Kick(team))),
                         Err(_) => errors.push(LineError {
                             line,
                             message: format!("kick={} is not a team number", k.1),
@@ -251,15 +253,15 @@ fn slot(packet: &mut ControlPacket, team: u8, player: u8) -> Option<&mut RobotIn
 /// Applies an event; a penalty's end is kept in `penalties` as playing time.
 fn apply(
     packet: &mut ControlPacket,
-    event: &Event,
+    event: &GameEvent,
     played: f64,
     penalties: &mut Vec<(u8, u8, f64)>,
 ) {
     match *event {
-        Event::State(s) => packet.state = s,
-        Event::Kick(team) => packet.kicking_team = Some(team),
-        Event::SetPlay(p) => packet.set_play = p,
-        Event::Penalise {
+        GameEvent::State(s) => packet.state = s,
+        GameEvent::Kick(team) => packet.kicking_team = Some(team),
+        GameEvent::SetPlay(p) => packet.set_play = p,
+        GameEvent::Penalise {
             team,
             player,
             secs,
@@ -274,13 +276,13 @@ fn apply(
                 penalties.push((team, player, played + f64::from(secs)));
             }
         }
-        Event::Unpenalise { team, player } => {
+        GameEvent::Unpenalise { team, player } => {
             if let Some(p) = slot(packet, team, player) {
                 *p = RobotInfo::default();
             }
             penalties.retain(|&(t, n, _)| (t, n) != (team, player));
         }
-        Event::Goal { team } => {
+        GameEvent::Goal { team } => {
             if let Some(t) = packet.teams.iter_mut().find(|t| t.team_number == team) {
                 t.score = t.score.saturating_add(1);
             }

@@ -2,7 +2,7 @@
 //! played as real control packets over UDP on loopback, decoded by the codec the robot uses.
 
 use proclaim_gamecontroller::{decode, GameState};
-use proclaim_gcsim::{parse_game, play, Event, SimConfig};
+use proclaim_gcsim::{parse_game, play, GameEvent, SimConfig};
 use std::time::Duration;
 use tokio::net::UdpSocket;
 
@@ -25,9 +25,10 @@ fn a_script_reads_to_its_events_in_time_order() {
         parse_game("# a short game\n0s initial kick=5\n500ms ready\n1.5s playing\n").unwrap();
     let times: Vec<Duration> = script.events.iter().map(|(t, _)| *t).collect();
     assert!(times.windows(2).all(|w| w[0] <= w[1]));
-    assert!(script
-        .events
-        .contains(&(Duration::from_millis(500), Event::State(GameState::Ready))));
+    assert!(script.events.contains(&(
+        Duration::from_millis(500),
+        GameEvent::State(GameState::Ready)
+    )));
     assert_eq!(script.length(), Duration::from_millis(1500));
 }
 

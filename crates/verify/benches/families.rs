@@ -15,7 +15,7 @@ mod odometer;
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
-    to_promela, verify, Engine, Options, PropertyKind, PropertySource, Report, Stop, Verdict,
+    to_promela, verify, Options, PropertyKind, PropertySource, Report, SearchEngine, Stop, Verdict,
 };
 use std::collections::BTreeSet;
 use std::path::PathBuf;
@@ -141,7 +141,7 @@ fn verdict_words(verdicts: impl Iterator<Item = Verdict>) -> String {
         .join(", ")
 }
 
-fn checker(behaviour: &Behaviour, case: &Case, engine: Engine) -> (Row, Option<Report>) {
+fn checker(behaviour: &Behaviour, case: &Case, engine: SearchEngine) -> (Row, Option<Report>) {
     let options = Options {
         engine,
         ..Options::default()
@@ -306,9 +306,9 @@ fn main() {
         let behaviour = load(case.family, Arc::new(Folder::new(&case.dir))).expect("loads");
         let mut reference: Option<Vec<Verdict>> = None;
         for (name, engine) in [
-            ("auto", Some(Engine::Auto)),
-            ("explicit", Some(Engine::Explicit)),
-            ("symbolic", Some(Engine::Symbolic)),
+            ("auto", Some(SearchEngine::Auto)),
+            ("explicit", Some(SearchEngine::Explicit)),
+            ("symbolic", Some(SearchEngine::Symbolic)),
             ("SPIN", None),
         ] {
             if gave_up.contains(&(case.family, name)) {

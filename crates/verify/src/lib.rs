@@ -53,7 +53,7 @@ pub use error::{PropertyError, VerifyError};
 pub use explore::Progress;
 pub use model::Model;
 pub use outcome::{
-    Assignment, Finding, PropertyOutcome, Report, Stats, Stop, Trace, TraceStep, Verdict,
+    Assignment, Finding, PropertyOutcome, Report, SearchStats, Stop, Trace, TraceStep, Verdict,
 };
 pub use proclaim_behaviour::PropertyKind;
 pub use promela::{to_promela, Claim, EmitError, Promela};
@@ -66,7 +66,7 @@ use proclaim_behaviour::Behaviour;
 
 /// Which engine explores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Engine {
+pub enum SearchEngine {
     /// The explicit search for its first [`AUTO_EXPLICIT_STATES`] states; where that decides
     /// nothing, the graph is not deep and narrow ([`AUTO_NARROW_WIDTH`]) and the behaviour suits
     /// it, the symbolic engine; else the explicit search on.
@@ -78,12 +78,12 @@ pub enum Engine {
     Symbolic,
 }
 
-impl Engine {
+impl SearchEngine {
     pub fn word(self) -> &'static str {
         match self {
-            Engine::Auto => "auto",
-            Engine::Explicit => "explicit",
-            Engine::Symbolic => "symbolic",
+            SearchEngine::Auto => "auto",
+            SearchEngine::Explicit => "explicit",
+            SearchEngine::Symbolic => "symbolic",
         }
     }
 }
@@ -107,7 +107,7 @@ pub struct Options {
     /// Stop before the search's tables would hold more than this many bytes (likewise).
     pub max_memory: usize,
     pub reductions: Reductions,
-    pub engine: Engine,
+    pub engine: SearchEngine,
 }
 
 impl Default for Options {
@@ -116,7 +116,7 @@ impl Default for Options {
             max_states: 1_000_000,
             max_memory: 2 << 30,
             reductions: Reductions::default(),
-            engine: Engine::Auto,
+            engine: SearchEngine::Auto,
         }
     }
 }
@@ -167,10 +167,10 @@ pub fn verify_with_progress(
     model.storage = reduce::storage(&model, &compiled, options.reductions);
     check_stored_free(&model)?;
     match options.engine {
-        Engine::Explicit => Ok(explicit(&model, &compiled, options, progress)),
-        Engine::Symbolic => symbolic(&model, &compiled, options)
+        SearchEngine::Explicit => Ok(explicit(&model, &compiled, options, progress)),
+        SearchEngine::Symbolic => symbolic(&model, &compiled, options)
             .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
-        Engine::Auto => {
+        SearchEngine::Auto => {
             let trial = Options {
                 max_states: options.max_states.min(AUTO_EXPLICIT_STATES),
                 ..options
@@ -382,7 +382,7 @@ fn explicit(
             });
         }
     }
-    let stats = Stats {
+    let stats = SearchStats {
         states: graph.len(),
         transitions: graph.edge_count(),
         complete: graph.complete,
@@ -393,7 +393,7 @@ fn explicit(
         depth: graph.depth,
         values: model.values.borrow().len(),
         valuations: valuations(model),
-        engine: Engine::Explicit.word(),
+        engine: SearchEngine::Explicit.word(),
     };
     Report {
         properties: outcomes,
@@ -429,7 +429,7 @@ fn symbolic(
     Ok(Report {
         properties: outcomes,
         findings,
-        stats: Stats {
+        stats: SearchStats {
             states,
             transitions: found.steps,
             complete,
@@ -440,7 +440,7 @@ fn symbolic(
             depth: found.steps,
             values: model.values.borrow().len(),
             valuations: valuations(model),
-            engine: Engine::Symbolic.word(),
+            engine: SearchEngine::Symbolic.word(),
         },
     })
 }

@@ -11,7 +11,7 @@
 
 use crate::arith::{text, zero};
 use crate::domain::{Domains, FreeDomain};
-use crate::property::Kind;
+use crate::property::ValueKind;
 use crate::reasoner::Reasoner;
 use crate::reduce::Storage;
 use crate::values::Values;
@@ -62,7 +62,7 @@ pub struct Slot {
     pub free: Option<FreeDomain>,
     /// What kind of value it holds, from the constants the behaviour gives it (a property
     /// comparing it with another kind is refused).
-    pub value_kind: Kind,
+    pub value_kind: ValueKind,
 }
 
 /// A time test of a state's labels: `timeout(3s)`, `after(2)`, `after_ms(n)`.
@@ -461,7 +461,7 @@ impl Slots {
                             kind,
                             initial: Some(zero(ty)),
                             free: None,
-                            value_kind: Kind::Any,
+                            value_kind: ValueKind::Any,
                         });
                     }
                 }
@@ -493,7 +493,7 @@ impl Slots {
                             kind: SlotKind::Global,
                             initial: Some(Value::Int(0)),
                             free: None,
-                            value_kind: Kind::Any,
+                            value_kind: ValueKind::Any,
                         });
                     }
                 }
@@ -540,7 +540,7 @@ impl Slots {
             name: ty,
             initial: None,
             free: None,
-            value_kind: Kind::Any,
+            value_kind: ValueKind::Any,
         });
     }
 }
@@ -617,7 +617,7 @@ fn free_environment(
     // widen what the environment tries (a property may ask about a value no machine names).
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
-            slot.value_kind = Kind::of_values(&domains.domain(&slot.name).values);
+            slot.value_kind = ValueKind::of_values(&domains.domain(&slot.name).values);
         }
     }
     for e in property_exprs {

@@ -127,7 +127,7 @@ pub enum Finding {
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Stats {
+pub struct SearchStats {
     pub states: usize,
     pub transitions: usize,
     /// Every reachable state was explored (else the search stopped early, for `stopped`).
@@ -155,7 +155,7 @@ pub struct Stats {
 pub struct Report {
     pub properties: Vec<PropertyOutcome>,
     pub findings: Vec<Finding>,
-    pub stats: Stats,
+    pub stats: SearchStats,
 }
 
 impl Report {

@@ -77,38 +77,38 @@ pub(crate) enum Term {
 
 /// What kind of value a term has, as far as the behaviour's constants tell.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Kind {
+pub enum ValueKind {
     Truth,
     Number,
     Text,
     Any,
 }
 
-impl Kind {
-    pub fn of_values<'a>(values: impl IntoIterator<Item = &'a Value>) -> Kind {
+impl ValueKind {
+    pub fn of_values<'a>(values: impl IntoIterator<Item = &'a Value>) -> ValueKind {
         let mut kind = None;
         for v in values {
             let k = match v {
-                Value::Bool(_) => Kind::Truth,
-                Value::Int(_) | Value::Float(_) => Kind::Number,
-                Value::Str(_) => Kind::Text,
-                _ => Kind::Any,
+                Value::Bool(_) => ValueKind::Truth,
+                Value::Int(_) | Value::Float(_) => ValueKind::Number,
+                Value::Str(_) => ValueKind::Text,
+                _ => ValueKind::Any,
             };
             kind = match kind {
                 None => Some(k),
                 Some(old) if old == k => Some(k),
-                Some(_) => Some(Kind::Any),
+                Some(_) => Some(ValueKind::Any),
             };
         }
-        kind.unwrap_or(Kind::Any)
+        kind.unwrap_or(ValueKind::Any)
     }
 
     fn describe(self) -> &'static str {
         match self {
-            Kind::Truth => "a truth value",
-            Kind::Number => "a number",
-            Kind::Text => "text",
-            Kind::Any => "a value",
+            ValueKind::Truth => "a truth value",
+            ValueKind::Number => "a number",
+            ValueKind::Text => "text",
+            ValueKind::Any => "a value",
         }
     }
 }
@@ -298,7 +298,7 @@ impl Compiler<'_> {
     /// (legal as truthiness, but almost always a slip).
     fn truth(&mut self, expr: &Expr) -> Result<Term, PropertyError> {
         let (term, kind) = self.term(expr)?;
-        if matches!(kind, Kind::Text | Kind::Number) && matches!(term, Term::Const(_)) {
+        if matches!(kind, ValueKind::Text | ValueKind::Number) && matches!(term, Term::Const(_)) {
             return Err(self.error(
                 expr,
                 format!("the property is the constant {}", show_expr(expr)),
@@ -307,40 +307,40 @@ impl Compiler<'_> {
         Ok(term)
     }
 
-    fn term(&mut self, e: &Expr) -> Result<(Term, Kind), PropertyError> {
+    fn term(&mut self, e: &Expr) -> Result<(Term, ValueKind), PropertyError> {
         Ok(match e {
-            Expr::Bool(b) => (Term::Const(Value::Bool(*b)), Kind::Truth),
-            Expr::Int(i) => (Term::Const(Value::Int(*i)), Kind::Number),
-            Expr::Float(x) => (Term::Const(Value::Float(*x)), Kind::Number),
-            Expr::Str(s) => (Term::Const(Value::Str(s.clone())), Kind::Text),
-            Expr::Duration(us) => (Term::Const(Value::Int(*us as i64)), Kind::Number),
+            Expr::Bool(b) => (Term::Const(Value::Bool(*b)), ValueKind::Truth),
+            Expr::Int(i) => (Term::Const(Value::Int(*i)), ValueKind::Number),
+            Expr::Float(x) => (Term::Const(Value::Float(*x)), ValueKind::Number),
+            Expr::Str(s) => (Term::Const(Value::Str(s.clone())), ValueKind::Text),
+            Expr::Duration(us) => (Term::Const(Value::Int(*us as i64)), ValueKind::Number),
             Expr::Name(n) => self.name(e, n)?,
             Expr::Unary {
                 op: UnOp::Not,
                 operand,
-            } => (Term::Not(Box::new(self.term(operand)?.0)), Kind::Truth),
+            } => (Term::Not(Box::new(self.term(operand)?.0)), ValueKind::Truth),
             Expr::Unary {
                 op: UnOp::Neg,
                 operand,
             } => {
                 let (t, k) = self.term(operand)?;
-                if matches!(k, Kind::Text | Kind::Truth) {
+                if matches!(k, ValueKind::Text | ValueKind::Truth) {
                     return Err(self.error(e, format!("`-` of {}", k.describe())));
                 }
-                (Term::Neg(Box::new(t)), Kind::Number)
+                (Term::Neg(Box::new(t)), ValueKind::Number)
             }
             Expr::Binary { op, left, right } => {
                 let (l, lk) = self.term(left)?;
                 let (r, rk) = self.term(right)?;
                 let (l, r) = (Box::new(l), Box::new(r));
                 match op {
-                    BinOp::And => (Term::And(l, r), Kind::Truth),
-                    BinOp::Or => (Term::Or(l, r), Kind::Truth),
+                    BinOp::And => (Term::And(l, r), ValueKind::Truth),
+                    BinOp::Or => (Term::Or(l, r), ValueKind::Truth),
                     BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => {
                         let ordered = !matches!(op, BinOp::Eq | BinOp::Ne);
                         let clash = match (lk, rk) {
-                            (Kind::Any, _) | (_, Kind::Any) => false,
-                            (a, b) if a == b => ordered && a == Kind::Truth,
+                            (ValueKind::Any, _) | (_, ValueKind::Any) => false,
+                            (a, b) if a == b => ordered && a == ValueKind::Truth,
                             _ => true,
                         };
                         if clash {
@@ -354,15 +354,19 @@ impl Compiler<'_> {
                                 ),
                             ));
                         }
-                        (Term::Binary(*op, l, r), Kind::Truth)
+                        (Term::Binary(*op, l, r), ValueKind::Truth)
                     }
                     _ => {
                         let joins_text =
-                            *op == BinOp::Add && (lk == Kind::Text || rk == Kind::Text);
-                        if !joins_text && (lk == Kind::Text || rk == Kind::Text) {
+                            *op == BinOp::Add && (lk == ValueKind::Text || rk == ValueKind::Text);
+                        if !joins_text && (lk == ValueKind::Text || rk == ValueKind::Text) {
                             return Err(self.error(e, format!("`{}` on text", op.symbol())));
                         }
-                        let kind = if joins_text { Kind::Text } else { Kind::Number };
+                        let kind = if joins_text {
+                            ValueKind::Text
+                        } else {
+                            ValueKind::Number
+                        };
                         (Term::Binary(*op, l, r), kind)
                     }
                 }
@@ -379,7 +383,7 @@ impl Compiler<'_> {
         e: &Expr,
         function: &str,
         arguments: &[Expr],
-    ) -> Result<(Term, Kind), PropertyError> {
+    ) -> Result<(Term, ValueKind), PropertyError> {
         if function == "saw" {
             let [Expr::Name(machine), seen] = arguments else {
                 return Err(self.error(
@@ -420,7 +424,7 @@ impl Compiler<'_> {
                     self.model.saw.len() - 1
                 }
             };
-            return Ok((Term::Saw(index), Kind::Any));
+            return Ok((Term::Saw(index), ValueKind::Any));
         }
         if is_time_test(function) {
             return Err(self.error(
@@ -435,10 +439,13 @@ impl Compiler<'_> {
         for a in arguments {
             terms.push(self.term(a)?.0);
         }
-        Ok((Term::Function(function.to_string(), terms), Kind::Number))
+        Ok((
+            Term::Function(function.to_string(), terms),
+            ValueKind::Number,
+        ))
     }
 
-    fn name(&mut self, e: &Expr, name: &str) -> Result<(Term, Kind), PropertyError> {
+    fn name(&mut self, e: &Expr, name: &str) -> Result<(Term, ValueKind), PropertyError> {
         if let Some((machine, part)) = name.split_once(DOT) {
             let Some(m) = self.model.machine_index(machine) else {
                 return Err(self.error(e, format!("`{machine}` is no machine of the behaviour")));
@@ -450,7 +457,7 @@ impl Compiler<'_> {
                         machine: m,
                         state: s as u16,
                     },
-                    Kind::Truth,
+                    ValueKind::Truth,
                 ));
             }
             if let Some(&slot) = mm.locals.get(part) {
@@ -468,9 +475,9 @@ impl Compiler<'_> {
         match self.model.resolve(None, name) {
             Some(Name::Slot(slot)) => Ok((Term::Slot(slot), self.slot_kind(slot))),
             Some(Name::Answer { theory, output }) => {
-                Ok((Term::Answer { theory, output }, Kind::Truth))
+                Ok((Term::Answer { theory, output }, ValueKind::Truth))
             }
-            Some(Name::Running(m)) => Ok((Term::Running(m), Kind::Truth)),
+            Some(Name::Running(m)) => Ok((Term::Running(m), ValueKind::Truth)),
             None if self.model.machine_index(name).is_some() => Err(self.error(
                 e,
                 format!("`{name}` is a machine: write {name}.STATE for \"in that state\""),
@@ -484,15 +491,15 @@ impl Compiler<'_> {
         }
     }
 
-    fn slot_kind(&self, slot: SlotId) -> Kind {
+    fn slot_kind(&self, slot: SlotId) -> ValueKind {
         let s = &self.model.slots[slot];
         match &s.kind {
             SlotKind::Local { ty, .. } => match ty {
-                proclaim_fsm::VarType::Bool => Kind::Truth,
-                proclaim_fsm::VarType::Named(_) => Kind::Any,
-                _ => Kind::Number,
+                proclaim_fsm::VarType::Bool => ValueKind::Truth,
+                proclaim_fsm::VarType::Named(_) => ValueKind::Any,
+                _ => ValueKind::Number,
             },
-            SlotKind::Global => Kind::Any,
+            SlotKind::Global => ValueKind::Any,
             SlotKind::Message { .. } => s.value_kind,
         }
     }

@@ -10,8 +10,8 @@ mod common {
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
-    manifest_properties, verify, Engine, Finding, Options, PropertyKind, PropertySource,
-    Reductions, Report, Stop, VerifyError,
+    manifest_properties, verify, Finding, Options, PropertyKind, PropertySource, Reductions,
+    Report, SearchEngine, Stop, VerifyError,
 };
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -103,7 +103,7 @@ fn check_symbolic(
     plain: &Report,
 ) {
     let options = Options {
-        engine: Engine::Symbolic,
+        engine: SearchEngine::Symbolic,
         ..Options::default()
     };
     let symbolic = match verify(behaviour, properties, options) {
@@ -137,7 +137,7 @@ fn check_case(
     let options = |reductions| Options {
         max_states: 300_000,
         reductions,
-        engine: Engine::Explicit,
+        engine: SearchEngine::Explicit,
         ..Options::default()
     };
     let plain =
@@ -197,7 +197,7 @@ fn every_example_behaviour_keeps_its_verdicts() {
         let plain = Options {
             max_states: 5_000,
             reductions: Reductions::NONE,
-            engine: Engine::Explicit,
+            engine: SearchEngine::Explicit,
             ..Options::default()
         };
         let small = verify(&behaviour, &[], plain).is_ok_and(|r| r.stats.complete);
