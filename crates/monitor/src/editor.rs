@@ -110,15 +110,7 @@ impl Editor {
 
     /// Serves the page on `addr` (port 0: any free port) until the runtime ends.
     pub async fn serve(&self, addr: SocketAddr) -> std::io::Result<SocketAddr> {
-        let listener = tokio::net::TcpListener::bind(addr).await?;
-        let bound = listener.local_addr()?;
-        let app = self.router();
-        tokio::spawn(async move {
-            if let Err(e) = axum::serve(listener, app).await {
-                tracing::warn!(error = %e, "the editor page stopped serving");
-            }
-        });
-        Ok(bound)
+        crate::server::serve_router(self.router(), addr, "editor").await
     }
 
     pub fn router(&self) -> Router {

@@ -146,15 +146,7 @@ impl Monitor {
     /// Serves the page on `addr` (port 0: any free port) until the runtime ends; returns the
     /// address it listens on.
     pub async fn serve(&self, addr: SocketAddr) -> std::io::Result<SocketAddr> {
-        let listener = tokio::net::TcpListener::bind(addr).await?;
-        let bound = listener.local_addr()?;
-        let app = self.router();
-        tokio::spawn(async move {
-            if let Err(e) = axum::serve(listener, app).await {
-                tracing::warn!(error = %e, "the monitor page stopped serving");
-            }
-        });
-        Ok(bound)
+        serve_router(self.router(), addr, "monitor").await
     }
 
     /// The routes, for serving elsewhere (tests, a program embedding the runner).
@@ -448,4 +440,21 @@ async fn post_message(
     let message = board.post("monitor", ty, Value::parse(request.value.trim()));
     tracing::debug!(ty, seq = message.seq, "posted from the monitor page");
     Json(serde_json::json!({ "seq": message.seq })).into_response()
+}
+
+/// Serves `app` on `addr` (port 0: any free port) until the runtime ends; returns the address it
+/// listens on. `page` names the page in the warning logged if serving stops.
+pub(crate) async fn serve_router(
+    app: Router,
+    addr: SocketAddr,
+    page: &'static str,
+) -> std::io::Result<SocketAddr> {
+    let listener = tokio::net::TcpListener::bind(addr).await?;
+    let bound = listener.local_addr()?;
+    tokio::spawn(async move {
+        if let Err(e) = axum::serve(listener, app).await {
+            tracing::warn!(error = %e, page, "the page stopped serving");
+        }
+    });
+    Ok(bound)
 }
