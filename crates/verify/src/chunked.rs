@@ -1,6 +1,7 @@
-//! Append-only tables in fixed-size chunks, for the explicit search's per-state data: they grow
-//! without copying what they hold or doubling their allocation, so the memory a search holds is
-//! what it stored plus at most one chunk a table, and what the budget counts is what it holds.
+//! Append-only tables in fixed-size chunks, for the explicit search's per-state data: past their
+//! first chunk (which grows as a vector does, so a small search holds little) they grow without
+//! copying what they hold or doubling their allocation, so the memory a search holds is what it
+//! stored plus at most one chunk a table, and what the budget counts is what it holds.
 
 /// Elements a chunk holds.
 const CHUNK: usize = 1 << 16;
@@ -19,7 +20,7 @@ impl<T: Copy> Chunked<T> {
 
     pub fn push(&mut self, value: T) {
         if self.len % CHUNK == 0 {
-            self.chunks.push(Vec::with_capacity(CHUNK));
+            self.chunks.push(first_or_whole(self.len, CHUNK));
         }
         if let Some(last) = self.chunks.last_mut() {
             last.push(value);
@@ -33,7 +34,7 @@ impl<T: Copy> Chunked<T> {
 
     /// Bytes allocated, and what they would be after `more` pushes.
     pub fn bytes_after(&self, more: usize) -> usize {
-        (self.len + more).div_ceil(CHUNK) * CHUNK * std::mem::size_of::<T>()
+        allocated(self.len + more, 1) * std::mem::size_of::<T>()
     }
 
     pub fn iter(&self) -> impl Iterator<Item = T> + '_ {
@@ -71,7 +72,8 @@ impl Records {
     pub fn push(&mut self, record: &[u8]) {
         self.fit(record.len());
         if self.len % CHUNK == 0 {
-            self.chunks.push(Vec::with_capacity(CHUNK * self.stride));
+            self.chunks
+                .push(first_or_whole(self.len, CHUNK * self.stride));
         }
         if let Some(last) = self.chunks.last_mut() {
             last.extend_from_slice(record);
@@ -88,7 +90,7 @@ impl Records {
         let old = self.stride;
         for chunk in &mut self.chunks {
             let records = chunk.len().checked_div(old).unwrap_or(0);
-            let mut wide = Vec::with_capacity(CHUNK * width);
+            let mut wide = Vec::with_capacity(records * width);
             for r in 0..records {
                 wide.extend_from_slice(&chunk[r * old..(r + 1) * old]);
                 wide.resize((r + 1) * width, 0);
@@ -100,7 +102,26 @@ impl Records {
 
     /// Bytes allocated, and what they would be after `more` records of at most `width` bytes.
     pub fn bytes_after(&self, more: usize, width: usize) -> usize {
-        (self.len + more).div_ceil(CHUNK) * CHUNK * self.stride.max(width)
+        allocated(self.len + more, self.stride.max(width))
+    }
+}
+
+/// A new chunk: the first grows as a vector does, the others are allocated whole.
+fn first_or_whole<T>(len: usize, whole: usize) -> Vec<T> {
+    if len == 0 {
+        Vec::new()
+    } else {
+        Vec::with_capacity(whole)
+    }
+}
+
+/// The elements of `width` units allocated for `n` elements: the first chunk's vector at its
+/// doubled capacity, whole chunks after it.
+fn allocated(n: usize, width: usize) -> usize {
+    if n <= CHUNK {
+        (n * width).next_power_of_two()
+    } else {
+        n.div_ceil(CHUNK) * CHUNK * width
     }
 }
 
@@ -118,6 +139,9 @@ mod tests {
         assert_eq!(v.get(CHUNK), CHUNK as u32);
         assert_eq!(v.iter().last(), Some((2 * CHUNK + 2) as u32));
         assert_eq!(v.bytes_after(0), 3 * CHUNK * 4);
+        let mut small = Chunked::default();
+        small.push(1u32);
+        assert_eq!(small.bytes_after(20), 32 * 4, "a small table holds little");
     }
 
     #[test]
