@@ -430,21 +430,38 @@ impl Searched<'_, '_> {
         initial_fires: &[bool],
     ) -> Option<(Path, World)> {
         let (enc, guards) = (self.enc, self.guards);
-        let firing = self.steps.iter().filter(|s| s.fired.is_some());
-        let mut live = reached.and(&preimage(enc, firing, guards, &enc.vars.mk_true()));
-        let mut frontier = live.clone();
-        while !frontier.is_false() {
-            let before = preimage(enc, self.steps, guards, &frontier)
-                .and(reached)
-                .and_not(&live);
-            live = live.or(&before);
-            frontier = before;
-        }
-        // The first ringlets are the explicit stepper's, so the initial worlds are judged by
-        // theirs: live when one fires or leads somewhere live.
         let is_in = |set: &Bdd, w: &World| {
             enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(self.model, w)))
         };
+        let firing = self.steps.iter().filter(|s| s.fired.is_some());
+        let mut live = preimage(enc, firing, guards, &enc.vars.mk_true(), reached);
+        let mut initial_set = enc.vars.mk_false();
+        for w in self.initial {
+            initial_set = initial_set.or(&enc.mk(&enc.world(self.model, w)));
+        }
+        // Only a state where a machine waits and nothing fires can be a deadlock, and the first
+        // ringlets are the explicit stepper's, so an initial world that waits and fires nothing
+        // is judged by where they lead. The fixpoint stops once all of those are known live.
+        let dead_here = reached
+            .and_not(&live)
+            .and_not(&initial_set)
+            .and(&waiting_set(self.model, enc));
+        let mut first_successors = enc.vars.mk_false();
+        for (i, w) in self.initial.iter().enumerate() {
+            if !initial_fires[i] && !crate::explore::waiting(self.model, w).is_empty() {
+                for (s, _) in &self.first_steps[i] {
+                    first_successors = first_successors.or(&enc.mk(&enc.world(self.model, s)));
+                }
+            }
+        }
+        let mut undecided = dead_here.or(&first_successors).and_not(&live);
+        let mut frontier = live.clone();
+        while !frontier.is_false() && !undecided.is_false() {
+            let before = preimage(enc, self.steps, guards, &frontier, &reached.and_not(&live));
+            live = live.or(&before);
+            undecided = undecided.and_not(&before);
+            frontier = before;
+        }
         for (i, w) in self.initial.iter().enumerate() {
             let live_here =
                 initial_fires[i] || self.first_steps[i].iter().any(|(s, _)| is_in(&live, s));
@@ -452,14 +469,7 @@ impl Searched<'_, '_> {
                 return Some(((i, Vec::new()), w.clone()));
             }
         }
-        let mut initial_set = enc.vars.mk_false();
-        for w in self.initial {
-            initial_set = initial_set.or(&enc.mk(&enc.world(self.model, w)));
-        }
-        let dead = reached
-            .and_not(&live)
-            .and_not(&initial_set)
-            .and(&waiting_set(self.model, enc));
+        let dead = dead_here.and_not(&live);
         let nearest = layers
             .iter()
             .position(|layer| !layer.and(&dead).is_false())?;
@@ -891,15 +901,25 @@ fn image(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
     out
 }
 
-/// Every state from which one ringlet leads into `set`.
+/// Every state of `within` from which one ringlet leads into `set`. `within` is met first, so
+/// a large `set` costs little when `within` is small.
 fn preimage<'s>(
     enc: &Encoding,
     steps: impl IntoIterator<Item = &'s Step>,
     guards: &Guards,
     set: &Bdd,
+    within: &Bdd,
 ) -> Bdd {
+    let direct: Vec<Bdd> = guards.next.iter().map(|g| g.and(within)).collect();
+    let wrapped: Vec<Bdd> = guards.next_wrapped.iter().map(|g| g.and(within)).collect();
+    // From a new round: the fresh bits were cleared first, whatever they were.
+    let cleared: Vec<(BddVariable, bool)> = guards.fresh_vars.iter().map(|v| (*v, false)).collect();
     let mut out = enc.vars.mk_false();
     for step in steps {
+        let k = step.machine;
+        if direct[k].is_false() && wrapped[k].is_false() {
+            continue;
+        }
         let assignments: Vec<(BddVariable, bool)> = step
             .written
             .iter()
@@ -909,13 +929,15 @@ fn preimage<'s>(
         if after.is_false() {
             continue;
         }
-        let before = after.and(&step.needs);
-        out = out.or(&before.and(&guards.next[step.machine]));
-        // From a new round: the fresh bits were cleared first, whatever they were.
-        let cleared: Vec<(BddVariable, bool)> =
-            guards.fresh_vars.iter().map(|v| (*v, false)).collect();
-        let before_round = before.restrict(&cleared);
-        out = out.or(&before_round.and(&guards.next_wrapped[step.machine]));
+        let here = step.needs.and(&direct[k]);
+        if !here.is_false() {
+            out = out.or(&here.and(&after));
+        }
+        // What the ringlet needs and reads, of the state with its fresh bits cleared.
+        let from_round = step.needs.restrict(&cleared).and(&wrapped[k]);
+        if !from_round.is_false() {
+            out = out.or(&from_round.and(&after.restrict(&cleared)));
+        }
     }
     out
 }
@@ -929,7 +951,7 @@ impl Searched<'_, '_> {
         let last = layers.len() - 1;
         let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
         for j in (0..last).rev() {
-            let before = layers[j].and(&preimage(enc, self.steps, self.guards, &leads[0]));
+            let before = preimage(enc, self.steps, self.guards, &leads[0], &layers[j]);
             leads.insert(0, before);
         }
         let inside = |set: &Bdd, w: &World| {
