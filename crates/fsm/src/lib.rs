@@ -22,7 +22,7 @@ mod ta;
 pub use activity::{
     parse_description, parse_gufsm_activities, parse_ta_items, Description, BUILTIN_FUNCTIONS,
 };
-pub use code::{BinOp, Expr, Statement, UnOp, VarType};
+pub use code::{BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType};
 pub use control::{finished_type, machine_of_running_type, running_type, Command};
 pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};

@@ -11,16 +11,12 @@ use crate::host::Hosts;
 use crate::machine::SharedSuppressor;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
+use crate::walk::{Effects, Walk, LOOP_LIMIT};
 use proclaim_board::{Value, Visibility, Whiteboard};
-use proclaim_fsm::{Action, Argument, Expr, Statement};
+use proclaim_fsm::{Action, Argument, Expr};
 use rustc_hash::FxHashSet;
-use std::future::Future;
-use std::pin::Pin;
 use std::time::Duration;
 use tokio::time::Instant;
-
-/// A `for` loop stops after this many rounds in one activity (with a warning): a ring must end.
-pub const LOOP_LIMIT: u64 = 100_000;
 
 /// What an activity runs with.
 pub(crate) struct Doer<'a> {
@@ -51,7 +47,12 @@ impl Doer<'_> {
                     self.post(ty, Value::parse(content));
                 }
                 Action::Call { function, argument } => self.host_call(function, argument).await,
-                Action::Statement(s) => self.exec(s).await,
+                Action::Statement(s) => {
+                    let mut walk = Walk::new(s);
+                    while let Some(ms) = walk.resume(self) {
+                        sleep_ms(ms).await;
+                    }
+                }
                 // Reported when the machine was read; it does nothing.
                 Action::Code(_) => {}
             }
@@ -132,7 +133,7 @@ impl Doer<'_> {
     /// Assigns as gufsm did: the machine's own variable, else an extern (posted), else a global.
     /// A change of a variable's value is reported (an extern's as its posting), so a trace
     /// says what every variable held when.
-    fn assign(&mut self, name: &str, value: Value) {
+    fn store(&mut self, name: &str, value: Value) {
         if self.locals.contains(name) {
             let before = self.locals.get(name).cloned();
             self.locals.set(name, value);
@@ -158,105 +159,10 @@ impl Doer<'_> {
         });
     }
 
-    fn exec<'s>(
-        &'s mut self,
-        statement: &'s Statement,
-    ) -> Pin<Box<dyn Future<Output = ()> + Send + 's>> {
-        Box::pin(async move {
-            match statement {
-                Statement::Declare {
-                    name,
-                    value: Some(value),
-                    ..
-                }
-                | Statement::Assign { name, value } => {
-                    let v = self.value(value);
-                    self.assign(name, v);
-                }
-                Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
-                Statement::Expr(Expr::Call {
-                    function,
-                    arguments,
-                }) => self.call(function, arguments).await,
-                Statement::Expr(other) => {
-                    self.value(other);
-                }
-                Statement::Block(body) => {
-                    for s in body {
-                        self.exec(s).await;
-                    }
-                }
-                Statement::For {
-                    init,
-                    condition,
-                    step,
-                    body,
-                } => {
-                    if let Some(init) = init {
-                        self.exec(init).await;
-                    }
-                    let mut rounds = 0;
-                    while condition.as_ref().is_none_or(|c| self.env().truth(c)) {
-                        if rounds == LOOP_LIMIT {
-                            self.warn(format!(
-                                "a `for` loop in state {} stopped after {LOOP_LIMIT} rounds",
-                                self.state
-                            ));
-                            break;
-                        }
-                        rounds += 1;
-                        self.exec(body).await;
-                        if let Some(step) = step {
-                            self.exec(step).await;
-                        }
-                    }
-                }
-            }
-        })
-    }
-
-    /// A call standing as a statement: a built-in ([`builtin`]), or a function of the
-    /// environment, or a host function.
-    async fn call(&mut self, function: &str, arguments: &[Expr]) {
-        let call = builtin(function, arguments);
-        let state = match call {
-            Builtin::Post {
-                content: Content::StateName,
-                ..
-            }
-            | Builtin::Print(Content::StateName) => self.state.to_string(),
-            _ => String::new(),
-        };
-        match call {
-            Builtin::Post { to, content } => {
-                let ty = to.name(|e| self.text(e));
-                let value = content.value(|e| self.value(e), &state);
-                self.post(&ty, value);
-            }
-            Builtin::Print(content) => {
-                let printed = text(&content.value(|e| self.value(e), &state));
-                self.print(printed);
-            }
-            Builtin::Sleep {
-                amount,
-                ms_per_unit,
-            } => sleep_ms(self.value(amount), ms_per_unit).await,
-            Builtin::Other if self.env().call(function, arguments).is_some() => {}
-            Builtin::Other => {
-                let argument = arguments.first().map(|a| match self.value(a) {
-                    Value::Int(i) => Argument::Int(i),
-                    Value::Str(s) => Argument::Str(s),
-                    other => Argument::Word(other.to_string()),
-                });
-                self.host(function, argument.as_ref());
-            }
-        }
-    }
-
     async fn host_call(&mut self, function: &str, argument: &Option<Argument>) {
         match (function, argument) {
-            ("msleep", Some(Argument::Int(ms))) => sleep_ms(Value::Int(*ms), 1.0).await,
-            ("sleep", Some(Argument::Int(s))) => sleep_ms(Value::Int(*s), 1000.0).await,
+            ("msleep", Some(Argument::Int(ms))) => sleep_ms(*ms as f64).await,
+            ("sleep", Some(Argument::Int(s))) => sleep_ms(*s as f64 * 1000.0).await,
             _ => self.host(function, argument.as_ref()),
         }
     }
@@ -287,9 +193,74 @@ impl Doer<'_> {
     }
 }
 
-async fn sleep_ms(amount: Value, ms_per_unit: f64) {
-    let ms = amount.as_f64().unwrap_or(0.0) * ms_per_unit;
+impl Effects for Doer<'_> {
+    /// Milliseconds to sleep.
+    type Pause = f64;
+
+    fn assign(&mut self, name: &str, value: &Expr) {
+        let value = self.value(value);
+        self.store(name, value);
+    }
+
+    /// A call standing as a statement: a built-in ([`builtin`]), or a function of the
+    /// environment, or a host function.
+    fn perform(&mut self, function: &str, arguments: &[Expr]) -> Option<f64> {
+        let call = builtin(function, arguments);
+        let state = match call {
+            Builtin::Post {
+                content: Content::StateName,
+                ..
+            }
+            | Builtin::Print(Content::StateName) => self.state.to_string(),
+            _ => String::new(),
+        };
+        match call {
+            Builtin::Post { to, content } => {
+                let ty = to.name(|e| self.text(e));
+                let value = content.value(|e| self.value(e), &state);
+                self.post(&ty, value);
+            }
+            Builtin::Print(content) => {
+                let printed = text(&content.value(|e| self.value(e), &state));
+                self.print(printed);
+            }
+            Builtin::Sleep {
+                amount,
+                ms_per_unit,
+            } => return Some(self.value(amount).as_f64().unwrap_or(0.0) * ms_per_unit),
+            Builtin::Other if self.env().call(function, arguments).is_some() => {}
+            Builtin::Other => {
+                let argument = arguments.first().map(|a| match self.value(a) {
+                    Value::Int(i) => Argument::Int(i),
+                    Value::Str(s) => Argument::Str(s),
+                    other => Argument::Word(other.to_string()),
+                });
+                self.host(function, argument.as_ref());
+            }
+        }
+        None
+    }
+
+    fn evaluate(&mut self, expr: &Expr) {
+        self.value(expr);
+    }
+
+    fn holds(&mut self, condition: &Expr) -> bool {
+        self.env().truth(condition)
+    }
+
+    fn loop_stopped(&mut self) {
+        self.warn(format!(
+            "a `for` loop in state {} stopped after {LOOP_LIMIT} rounds",
+            self.state
+        ));
+    }
+}
+
+async fn sleep_ms(ms: f64) {
     if ms > 0.0 {
-        tokio::time::sleep(Duration::from_secs_f64(ms / 1e3)).await;
+        // A sleep too long for a `Duration` sleeps for ever rather than panicking.
+        let duration = Duration::try_from_secs_f64(ms / 1e3).unwrap_or(Duration::MAX);
+        tokio::time::sleep(duration).await;
     }
 }

@@ -228,6 +228,27 @@ impl Event {
         }
     }
 
+    /// The round it happened in (0 for the events that carry none).
+    pub fn round(&self) -> u64 {
+        match self {
+            Event::Entered { round, .. }
+            | Event::Answered { round, .. }
+            | Event::Fired { round, .. }
+            | Event::Posted { round, .. }
+            | Event::Suppressed { round, .. }
+            | Event::TookOver { round, .. }
+            | Event::Assigned { round, .. }
+            | Event::Control { round, .. }
+            | Event::Reloaded { round, .. }
+            | Event::ReloadFailed { round, .. }
+            | Event::Finished { round, .. }
+            | Event::Printed { round, .. }
+            | Event::Warned { round, .. }
+            | Event::Halted { round, .. } => *round,
+            Event::UnknownFunction { .. } => 0,
+        }
+    }
+
     /// When it happened, for the events that carry a time.
     pub fn at(&self) -> Option<Duration> {
         match self {

@@ -21,8 +21,8 @@ mod rounds;
 mod seen;
 mod step;
 mod variables;
+pub mod walk;
 
-pub use activity::LOOP_LIMIT;
 pub use eval::Evaluate;
 pub use event::{Answerer, Event};
 pub use host::{HostFunction, Hosts};
@@ -31,3 +31,4 @@ pub use proclaim_fsm::control::{machine_of_running_type, running_type, Command};
 pub use rounds::{Feed, Ringlet, RoundCounter, Rounds, RoundsEnd};
 pub use step::Stepper;
 pub use variables::{Locals, Shared};
+pub use walk::LOOP_LIMIT;

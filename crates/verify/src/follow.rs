@@ -171,7 +171,7 @@ fn ringlets(model: &Model, events: &[Event]) -> Result<BTreeMap<u64, Vec<Observe
         let Some(k) = model.machine_index(event.machine()) else {
             continue;
         };
-        let round = round_of(event);
+        let round = event.round();
         let ringlets = rounds.entry(round).or_default();
         let bad = |message: String| Mismatch {
             round,
@@ -226,26 +226,6 @@ fn ringlets(model: &Model, events: &[Event]) -> Result<BTreeMap<u64, Vec<Observe
         }
     }
     Ok(rounds)
-}
-
-fn round_of(event: &Event) -> u64 {
-    match event {
-        Event::Entered { round, .. }
-        | Event::Answered { round, .. }
-        | Event::Fired { round, .. }
-        | Event::Posted { round, .. }
-        | Event::Suppressed { round, .. }
-        | Event::TookOver { round, .. }
-        | Event::Assigned { round, .. }
-        | Event::Control { round, .. }
-        | Event::Reloaded { round, .. }
-        | Event::ReloadFailed { round, .. }
-        | Event::Finished { round, .. }
-        | Event::Printed { round, .. }
-        | Event::Warned { round, .. }
-        | Event::Halted { round, .. } => *round,
-        Event::UnknownFunction { .. } => 0,
-    }
 }
 
 fn describe(event: &Event) -> String {

@@ -365,19 +365,8 @@ fn explicit(
     if graph.complete {
         findings = never_findings(model, &graph.entered, &graph.fired);
         if let Some(id) = graph.deadlock(model) {
-            let world = graph.world(id);
             findings.push(Finding::Deadlock {
-                waiting: explore::waiting(model, &world)
-                    .into_iter()
-                    .map(|k| {
-                        let m = &model.machines[k];
-                        format!(
-                            "{}.{}",
-                            m.name,
-                            m.states[usize::from(world.machines[k].state)].name
-                        )
-                    })
-                    .collect(),
+                waiting: waiting_names(model, &graph.world(id)),
                 trace: trace::trace(model, &graph, id),
             });
         }
@@ -402,7 +391,19 @@ fn explicit(
     }
 }
 
-/// The symbolic engine's report (it looks for no deadlock: that is the explicit search's).
+/// `Machine.State` of each running machine of `world` not in a final state.
+fn waiting_names(model: &Model, world: &world::World) -> Vec<String> {
+    explore::waiting(model, world)
+        .into_iter()
+        .map(|k| {
+            let m = &model.machines[k];
+            let state = &m.states[usize::from(world.machines[k].state)].name;
+            format!("{}.{state}", m.name)
+        })
+        .collect()
+}
+
+/// The symbolic engine's report.
 fn symbolic(
     model: &Model,
     properties: &[Property],
@@ -420,11 +421,16 @@ fn symbolic(
             outcome(p, target.is_some(), complete, trace)
         })
         .collect();
-    let findings = if complete {
-        never_findings(model, &found.entered, &found.fired)
-    } else {
-        Vec::new()
-    };
+    let mut findings = Vec::new();
+    if complete {
+        findings = never_findings(model, &found.entered, &found.fired);
+        if let Some(((initial, path), world)) = found.deadlock {
+            findings.push(Finding::Deadlock {
+                waiting: waiting_names(model, &world),
+                trace: trace::trace_of(model, initial, path),
+            });
+        }
+    }
     let states = found.states.min(usize::MAX as f64) as usize;
     Ok(Report {
         properties: outcomes,

@@ -45,7 +45,9 @@ use crate::{explore, prepare, Options, PropertySource, Reductions, Verdict, Veri
 use proclaim_behaviour::{Behaviour, PropertyKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, VarType, TIME_TESTS};
+use proclaim_fsm::{
+    Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
+};
 use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::{self, Write};
@@ -657,65 +659,59 @@ impl<'m> Writer<'m> {
     }
 
     fn exec(&mut self, statement: &Statement) -> Result<(), EmitError> {
-        match statement {
-            Statement::Declare {
-                name,
-                value: Some(value),
-                ..
-            }
-            | Statement::Assign { name, value } => {
+        match statement.kind() {
+            StatementKind::Assign { name, value } => {
                 let v = self.value(value)?;
                 let v = self.or_zero(v);
                 self.assign(name, v)?;
             }
-            Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
-            Statement::Expr(Expr::Call {
+            StatementKind::Call {
                 function,
                 arguments,
-            }) => self.call(function, arguments)?,
-            Statement::Expr(other) => {
-                self.value(other)?;
+            } => self.call(function, arguments)?,
+            StatementKind::Evaluate(expr) => {
+                self.value(expr)?;
             }
-            Statement::Block(body) => {
+            StatementKind::Sequence(body) => {
                 for s in body {
                     self.exec(s)?;
                 }
             }
-            Statement::For {
-                init,
-                condition,
-                step,
-                body,
-            } => {
-                if let Some(init) = init {
-                    self.exec(init)?;
-                }
-                let rounds = self.temp();
-                self.line(&format!("{rounds} = 0;"));
-                self.line("do");
-                self.line(":: true ->");
-                self.depth += 1;
-                let go = match condition {
-                    Some(c) => self.truth(c)?,
-                    None => "1".into(),
-                };
-                self.line("if");
-                self.line(&format!(":: ({go}) && {rounds} < {LOOP_LIMIT} ->"));
-                self.depth += 1;
-                self.line(&format!("{rounds}++;"));
-                self.in_loop += 1;
-                self.exec(body)?;
-                if let Some(step) = step {
-                    self.exec(step)?;
-                }
-                self.in_loop -= 1;
-                self.depth -= 1;
-                self.line(":: else -> break;");
-                self.line("fi;");
-                self.depth -= 1;
-                self.line("od;");
-            }
+            StatementKind::Loop(parts) => self.for_loop(parts)?,
+            StatementKind::Nothing => {}
         }
+        Ok(())
+    }
+
+    /// A `for` loop as a Promela `do`, stopped at the runner's [`LOOP_LIMIT`].
+    fn for_loop(&mut self, parts: ForLoop<'_>) -> Result<(), EmitError> {
+        if let Some(init) = parts.init {
+            self.exec(init)?;
+        }
+        let rounds = self.temp();
+        self.line(&format!("{rounds} = 0;"));
+        self.line("do");
+        self.line(":: true ->");
+        self.depth += 1;
+        let go = match parts.condition {
+            Some(c) => self.truth(c)?,
+            None => "1".into(),
+        };
+        self.line("if");
+        self.line(&format!(":: ({go}) && {rounds} < {LOOP_LIMIT} ->"));
+        self.depth += 1;
+        self.line(&format!("{rounds}++;"));
+        self.in_loop += 1;
+        self.exec(parts.body)?;
+        if let Some(step) = parts.step {
+            self.exec(step)?;
+        }
+        self.in_loop -= 1;
+        self.depth -= 1;
+        self.line(":: else -> break;");
+        self.line("fi;");
+        self.depth -= 1;
+        self.line("od;");
         Ok(())
     }
 

@@ -36,9 +36,11 @@ use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, World};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{Action, Expr, Statement, TIME_TESTS};
+use proclaim_fsm::{Action, Expr, TIME_TESTS};
 use proclaim_runner::builtin::{builtin, Builtin, Content};
-use proclaim_runner::{Evaluate, LOOP_LIMIT};
+use proclaim_runner::walk::{walk_to_end, Effects};
+use proclaim_runner::Evaluate;
+use std::convert::Infallible;
 
 /// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
 /// type chosen when read may still be never posted).
@@ -874,7 +876,7 @@ impl Exec<'_, '_> {
         for action in actions {
             match action {
                 Action::Post { ty, content } => self.post(ty, Value::parse(content)),
-                Action::Statement(s) => self.exec(s),
+                Action::Statement(s) => walk_to_end(s, self),
                 // Host functions change nothing a machine reads; unread code does nothing.
                 Action::Call { .. } | Action::Code(_) => {}
             }
@@ -921,7 +923,7 @@ impl Exec<'_, '_> {
 
     /// Assigns as gufsm did: the machine's own variable, else an extern (posted), else a
     /// global.
-    fn assign(&mut self, name: &str, value: Value) {
+    fn store(&mut self, name: &str, value: Value) {
         match self.model.resolve(Some(self.machine), name) {
             Some(Name::Slot(slot)) if self.model.storage[slot] == Storage::Unread => {}
             Some(Name::Slot(slot)) => match &self.model.slots[slot].kind {
@@ -935,51 +937,6 @@ impl Exec<'_, '_> {
                 SlotKind::Message { .. } => self.post(name, value),
             },
             _ => self.post(name, value),
-        }
-    }
-
-    fn exec(&mut self, statement: &Statement) {
-        match statement {
-            Statement::Declare {
-                name,
-                value: Some(value),
-                ..
-            }
-            | Statement::Assign { name, value } => {
-                // What nothing reads is not computed: its reads would only branch.
-                if self.unread(name) {
-                    return;
-                }
-                let v = self.value(value).unwrap_or(Value::Int(0));
-                self.assign(name, v);
-            }
-            Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
-            Statement::Expr(Expr::Call {
-                function,
-                arguments,
-            }) => self.call(function, arguments),
-            Statement::Expr(other) => {
-                self.value(other);
-            }
-            Statement::Block(body) => body.iter().for_each(|s| self.exec(s)),
-            Statement::For {
-                init,
-                condition,
-                step,
-                body,
-            } => {
-                if let Some(init) = init {
-                    self.exec(init);
-                }
-                let mut rounds = 0;
-                while condition.as_ref().is_none_or(|c| self.truth(c)) && rounds < LOOP_LIMIT {
-                    rounds += 1;
-                    self.exec(body);
-                    if let Some(step) = step {
-                        self.exec(step);
-                    }
-                }
-            }
         }
     }
 
@@ -1021,11 +978,25 @@ impl Exec<'_, '_> {
             .name
             .clone()
     }
+}
+
+/// The activity language's statements on the model: the same walk as the runner's.
+impl Effects for Exec<'_, '_> {
+    type Pause = Infallible;
+
+    fn assign(&mut self, name: &str, value: &Expr) {
+        // What nothing reads is not computed: its reads would only branch.
+        if self.unread(name) {
+            return;
+        }
+        let v = self.value(value).unwrap_or(Value::Int(0));
+        self.store(name, v);
+    }
 
     /// A call standing as a statement ([`builtin`]): its postings; everything else (printing,
     /// sleeping, host functions) changes nothing a machine reads, but its arguments are still
     /// evaluated, as they may read (and so touch) free types.
-    fn call(&mut self, function: &str, arguments: &[Expr]) {
+    fn perform(&mut self, function: &str, arguments: &[Expr]) -> Option<Infallible> {
         match builtin(function, arguments) {
             Builtin::Post { to, content } => {
                 let ty = to.name(|e| self.text_of(e));
@@ -1042,6 +1013,15 @@ impl Exec<'_, '_> {
                 }
             }
         }
+        None
+    }
+
+    fn evaluate(&mut self, expr: &Expr) {
+        self.value(expr);
+    }
+
+    fn holds(&mut self, condition: &Expr) -> bool {
+        self.truth(condition)
     }
 }
 

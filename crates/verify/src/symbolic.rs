@@ -275,6 +275,10 @@ pub struct SymbolicOutcome {
     /// meaningful once every state was reached).
     pub entered: Vec<Vec<bool>>,
     pub fired: Vec<Vec<bool>>,
+    /// The nearest state from which no transition can ever fire again while a running machine
+    /// is not in a final state, with the path to it (looked for only once every state was
+    /// reached, as the explicit search does).
+    pub deadlock: Option<(Path, World)>,
 }
 
 /// Checks `properties` of `model` symbolically, or says why it does not.
@@ -305,9 +309,11 @@ pub fn check(
     let mut first_steps: Vec<Vec<(World, Choice)>> = Vec::new();
     let mut first_fired = model.per_transition();
     let mut successors = Vec::new();
+    let mut initial_fires = Vec::new();
     for w in &initial {
         successors.clear();
         stepper.successors(w, false, &mut successors);
+        initial_fires.push(successors.iter().any(|s| s.fired.is_some()));
         for s in &successors {
             if let Some(t) = s.fired {
                 let index = model.machines[s.machine].states[s.from].transitions[t].index;
@@ -333,6 +339,7 @@ pub fn check(
         bytes: 0,
         entered: model.per_state(),
         fired: first_fired,
+        deadlock: None,
     };
     // Layer 0 and 1 are the explicit stepper's.
     for (i, w) in initial.iter().enumerate() {
@@ -348,17 +355,20 @@ pub fn check(
     loop {
         for (p, target) in targets.iter().enumerate() {
             if outcome.targets[p].is_none() && !layer.and(target).is_false() {
-                outcome.targets[p] = Some(rebuild(
+                let searched = Searched {
                     model,
-                    &stepper,
-                    &enc,
-                    &steps,
-                    &guards,
-                    &layers,
-                    target,
-                    &initial,
-                    &first_steps,
-                ));
+                    stepper: &stepper,
+                    enc: &enc,
+                    steps: &steps,
+                    guards: &guards,
+                    initial: &initial,
+                    first_steps: &first_steps,
+                };
+                outcome.targets[p] = Some(
+                    searched
+                        .rebuild(&layers, target)
+                        .map_or((0, Vec::new()), |(path, _)| path),
+                );
             }
         }
         if decidable && outcome.targets.iter().all(Option::is_some) {
@@ -382,7 +392,111 @@ pub fn check(
     outcome.states = reached.cardinality();
     outcome.steps = layers.len();
     mark_entered_and_fired(model, &enc, &guards, &steps, &reached, &mut outcome);
+    if outcome.stopped == Stop::Explored {
+        let searched = Searched {
+            model,
+            stepper: &stepper,
+            enc: &enc,
+            steps: &steps,
+            guards: &guards,
+            initial: &initial,
+            first_steps: &first_steps,
+        };
+        outcome.deadlock = searched.deadlock(&layers, &reached, &initial_fires);
+    }
     Ok(outcome)
+}
+
+/// What a finished search keeps to answer with paths: the model, its steps as the explicit
+/// stepper and as diagrams, and the first ringlets (the explicit stepper's).
+struct Searched<'a, 'm> {
+    model: &'m Model,
+    stepper: &'a StepGenerator<'m>,
+    enc: &'a Encoding,
+    steps: &'a [Step],
+    guards: &'a Guards,
+    initial: &'a [World],
+    first_steps: &'a [Vec<(World, Choice)>],
+}
+
+impl Searched<'_, '_> {
+    /// The nearest deadlock of a complete search: a reached state, not live, where a running
+    /// machine is not in a final state. Live: some ringlet that fires a transition can still be
+    /// reached from it (a backward fixpoint from the states where one rings).
+    fn deadlock(
+        &self,
+        layers: &[Bdd],
+        reached: &Bdd,
+        initial_fires: &[bool],
+    ) -> Option<(Path, World)> {
+        let (enc, guards) = (self.enc, self.guards);
+        let is_in = |set: &Bdd, w: &World| {
+            enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(self.model, w)))
+        };
+        let firing = self.steps.iter().filter(|s| s.fired.is_some());
+        let mut live = preimage(enc, firing, guards, &enc.vars.mk_true(), reached);
+        let mut initial_set = enc.vars.mk_false();
+        for w in self.initial {
+            initial_set = initial_set.or(&enc.mk(&enc.world(self.model, w)));
+        }
+        // Only a state where a machine waits and nothing fires can be a deadlock, and the first
+        // ringlets are the explicit stepper's, so an initial world that waits and fires nothing
+        // is judged by where they lead. The fixpoint stops once all of those are known live.
+        let dead_here = reached
+            .and_not(&live)
+            .and_not(&initial_set)
+            .and(&waiting_set(self.model, enc));
+        let mut first_successors = enc.vars.mk_false();
+        for (i, w) in self.initial.iter().enumerate() {
+            if !initial_fires[i] && !crate::explore::waiting(self.model, w).is_empty() {
+                for (s, _) in &self.first_steps[i] {
+                    first_successors = first_successors.or(&enc.mk(&enc.world(self.model, s)));
+                }
+            }
+        }
+        let mut undecided = dead_here.or(&first_successors).and_not(&live);
+        let mut frontier = live.clone();
+        while !frontier.is_false() && !undecided.is_false() {
+            let before = preimage(enc, self.steps, guards, &frontier, &reached.and_not(&live));
+            live = live.or(&before);
+            undecided = undecided.and_not(&before);
+            frontier = before;
+        }
+        for (i, w) in self.initial.iter().enumerate() {
+            let live_here =
+                initial_fires[i] || self.first_steps[i].iter().any(|(s, _)| is_in(&live, s));
+            if !live_here && !crate::explore::waiting(self.model, w).is_empty() {
+                return Some(((i, Vec::new()), w.clone()));
+            }
+        }
+        let dead = dead_here.and_not(&live);
+        let nearest = layers
+            .iter()
+            .position(|layer| !layer.and(&dead).is_false())?;
+        self.rebuild(&layers[..=nearest], &dead)
+    }
+}
+
+/// The states where some running machine is not in a final state.
+fn waiting_set(model: &Model, enc: &Encoding) -> Bdd {
+    let field_is = |f: &Field, i: usize| {
+        let mut cube = BddPartialValuation::empty();
+        f.set(i, &mut cube);
+        enc.mk(&cube)
+    };
+    let mut waiting = enc.vars.mk_false();
+    for (k, m) in model.machines.iter().enumerate() {
+        let f = &enc.machines[k];
+        let mut unfinished = enc.vars.mk_false();
+        for (s, state) in m.states.iter().enumerate() {
+            if !state.is_final() {
+                unfinished = unfinished.or(&field_is(&f.state, s));
+            }
+        }
+        let running = field_is(&f.status, status_index(Status::Running));
+        waiting = waiting.or(&running.and(&unfinished));
+    }
+    waiting
 }
 
 /// The states of the initial worlds, and those of the first ringlets' successors not among
@@ -787,10 +901,25 @@ fn image(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
     out
 }
 
-/// Every state from which one ringlet leads into `set`.
-fn preimage(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
+/// Every state of `within` from which one ringlet leads into `set`. `within` is met first, so
+/// a large `set` costs little when `within` is small.
+fn preimage<'s>(
+    enc: &Encoding,
+    steps: impl IntoIterator<Item = &'s Step>,
+    guards: &Guards,
+    set: &Bdd,
+    within: &Bdd,
+) -> Bdd {
+    let direct: Vec<Bdd> = guards.next.iter().map(|g| g.and(within)).collect();
+    let wrapped: Vec<Bdd> = guards.next_wrapped.iter().map(|g| g.and(within)).collect();
+    // From a new round: the fresh bits were cleared first, whatever they were.
+    let cleared: Vec<(BddVariable, bool)> = guards.fresh_vars.iter().map(|v| (*v, false)).collect();
     let mut out = enc.vars.mk_false();
     for step in steps {
+        let k = step.machine;
+        if direct[k].is_false() && wrapped[k].is_false() {
+            continue;
+        }
         let assignments: Vec<(BddVariable, bool)> = step
             .written
             .iter()
@@ -800,60 +929,57 @@ fn preimage(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
         if after.is_false() {
             continue;
         }
-        let before = after.and(&step.needs);
-        out = out.or(&before.and(&guards.next[step.machine]));
-        // From a new round: the fresh bits were cleared first, whatever they were.
-        let cleared: Vec<(BddVariable, bool)> =
-            guards.fresh_vars.iter().map(|v| (*v, false)).collect();
-        let before_round = before.restrict(&cleared);
-        out = out.or(&before_round.and(&guards.next_wrapped[step.machine]));
+        let here = step.needs.and(&direct[k]);
+        if !here.is_false() {
+            out = out.or(&here.and(&after));
+        }
+        // What the ringlet needs and reads, of the state with its fresh bits cleared.
+        let from_round = step.needs.restrict(&cleared).and(&wrapped[k]);
+        if !from_round.is_false() {
+            out = out.or(&from_round.and(&after.restrict(&cleared)));
+        }
     }
     out
 }
 
-/// The shortest path to `target` through `layers`: back through the layers to the first
-/// ringlets, then forwards with the explicit stepper, one successor inside each layer's part
-/// that leads on.
-#[allow(clippy::too_many_arguments)]
-fn rebuild(
-    model: &Model,
-    stepper: &StepGenerator<'_>,
-    enc: &Encoding,
-    steps: &[Step],
-    guards: &Guards,
-    layers: &[Bdd],
-    target: &Bdd,
-    initial: &[World],
-    first_steps: &[Vec<(World, Choice)>],
-) -> Path {
-    let last = layers.len() - 1;
-    let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
-    for j in (0..last).rev() {
-        let before = layers[j].and(&preimage(enc, steps, guards, &leads[0]));
-        leads.insert(0, before);
-    }
-    let inside = |set: &Bdd, w: &World| {
-        enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(model, w)))
-    };
-    for (i, w0) in initial.iter().enumerate() {
-        let Some((w1, choice)) = first_steps[i].iter().find(|(w, _)| inside(&leads[0], w)) else {
-            continue;
-        };
-        let mut path = vec![(w0.clone(), *choice)];
-        let mut at = w1.clone();
-        let mut successors = Vec::new();
-        for lead in &leads[1..] {
-            successors.clear();
-            stepper.successors(&at, false, &mut successors);
-            let Some(s) = successors.iter().find(|s| inside(lead, &s.world)) else {
-                break;
-            };
-            path.push((at.clone(), s.choice));
-            at = s.world.clone();
+impl Searched<'_, '_> {
+    /// The shortest path to `target` through `layers`, and the world it ends in: back through
+    /// the layers to the first ringlets, then forwards with the explicit stepper, one successor
+    /// inside each layer's part that leads on.
+    fn rebuild(&self, layers: &[Bdd], target: &Bdd) -> Option<(Path, World)> {
+        let (model, enc) = (self.model, self.enc);
+        let last = layers.len() - 1;
+        let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
+        for j in (0..last).rev() {
+            let before = preimage(enc, self.steps, self.guards, &leads[0], &layers[j]);
+            leads.insert(0, before);
         }
-        return (i, path);
+        let inside = |set: &Bdd, w: &World| {
+            enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(model, w)))
+        };
+        for (i, w0) in self.initial.iter().enumerate() {
+            let Some((w1, choice)) = self.first_steps[i]
+                .iter()
+                .find(|(w, _)| inside(&leads[0], w))
+            else {
+                continue;
+            };
+            let mut path = vec![(w0.clone(), *choice)];
+            let mut at = w1.clone();
+            let mut successors = Vec::new();
+            for lead in &leads[1..] {
+                successors.clear();
+                self.stepper.successors(&at, false, &mut successors);
+                let Some(s) = successors.iter().find(|s| inside(lead, &s.world)) else {
+                    break;
+                };
+                path.push((at.clone(), s.choice));
+                at = s.world.clone();
+            }
+            return Some(((i, path), at));
+        }
+        None
     }
-    (0, Vec::new())
 }
 
 /// The states a property looks for, over the fields its expression reads: every combination

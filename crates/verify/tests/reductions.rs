@@ -116,13 +116,19 @@ fn check_symbolic(
     };
     assert_eq!(verdicts(&symbolic), verdicts(plain), "{case}, symbolic");
     if symbolic.stats.stopped == Stop::Explored {
-        let never = |r: &Report| {
+        // Of the nearest deadlocks the engines may name different ones, at the same depth.
+        let nearest = |r: &Report| {
             findings(r)
                 .into_iter()
-                .filter(|f| !f.starts_with("deadlock"))
+                .map(|f| match f.split_once(" after ") {
+                    Some((_, depth)) if f.starts_with("deadlock") => {
+                        format!("deadlock after {depth}")
+                    }
+                    _ => f,
+                })
                 .collect::<Vec<_>>()
         };
-        assert_eq!(never(&symbolic), never(plain), "{case}, symbolic");
+        assert_eq!(nearest(&symbolic), nearest(plain), "{case}, symbolic");
     }
 }
 

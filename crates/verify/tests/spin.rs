@@ -313,7 +313,9 @@ fn odometer_states_per_second_of_verify_and_spin() {
         // checker state): a fixed large size would be most of a small run's time.
         let spin_expected = report.stats.states * 10;
         let hash_bits = (usize::BITS - spin_expected.leading_zeros()).clamp(18, 30);
-        let depth = format!("-m{}", spin_expected.max(10_000));
+        // A depth-first path can hold most of SPIN's states, and on the odometer SPIN keeps
+        // many more a checker state than the hash estimate above.
+        let depth = format!("-m{}", (report.stats.states * 100).max(10_000));
         let bits = format!("-w{hash_bits}");
         let out = run(&work, "./pan", &[depth.as_str(), bits.as_str()]);
         let pan_seconds = started.elapsed().as_secs_f64();

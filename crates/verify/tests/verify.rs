@@ -3,7 +3,8 @@
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
-    render, to_script, verify, Finding, Options, PropertyKind, PropertySource, Report, Verdict,
+    render, to_script, verify, Finding, Options, PropertyKind, PropertySource, Report,
+    SearchEngine, Verdict, VerifyError,
 };
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -107,6 +108,19 @@ fn check(machines: &[(&str, &str)], properties: &[PropertySource], expect: &str)
     let dir = folder(&refs);
     let got = summary(&run(&dir, properties));
     assert_eq!(got.trim(), expect.trim(), "\n--- got ---\n{got}");
+    // The symbolic engine, where it takes the behaviour, says the same.
+    let symbolic = Options {
+        engine: SearchEngine::Symbolic,
+        ..Options::default()
+    };
+    match verify(&load_dir(&dir), properties, symbolic) {
+        Ok(report) => {
+            let got = summary(&report);
+            assert_eq!(got.trim(), expect.trim(), "\n--- symbolic ---\n{got}");
+        }
+        Err(VerifyError::SymbolicDeclined(_)) => {}
+        Err(e) => panic!("symbolic: {e}"),
+    }
 }
 
 #[test]
@@ -187,6 +201,35 @@ fn suspend_and_resume_keep_the_state_and_enter_it_again() {
          never fires: W.X -> Y\n\
          deadlock: W.X\n  round 1\n    W: X stays\n    Boss: A -> B (when TRUE)\n  \
          round 2\n    Boss: B -> C (when TRUE)",
+    );
+}
+
+#[test]
+fn a_state_no_label_can_leave_is_a_deadlock_to_both_engines() {
+    // Two free inputs: the symbolic engine takes this behaviour, so `check` holds both engines
+    // to the same nearest deadlock.
+    let m = "machine M\nstate WAIT { when a && b -> HELD }\nstate HELD { when FALSE -> WAIT }";
+    // A property that holds, so the search is complete and deadlocks are looked for.
+    let property = always("M.WAIT || M.HELD");
+    let expect = "Holds: always M.WAIT || M.HELD\n\
+                  never fires: M.HELD -> WAIT\n\
+                  deadlock: M.HELD\n  round 1\n    \
+                  M: WAIT -> HELD (when a && b); reads a = true, b = true";
+    check(&[("M", m)], std::slice::from_ref(&property), expect);
+    let dir = folder(&[
+        ("M.machine", m),
+        ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+    ]);
+    let symbolic = Options {
+        engine: SearchEngine::Symbolic,
+        ..Options::default()
+    };
+    let report = verify(&load_dir(&dir), &[property], symbolic)
+        .expect("the symbolic engine takes two free inputs");
+    assert!(
+        matches!(report.findings.last(), Some(Finding::Deadlock { .. })),
+        "{:?}",
+        report.findings
     );
 }
 

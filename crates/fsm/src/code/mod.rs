@@ -17,4 +17,4 @@ pub(crate) use token::LexError;
 
 pub use expr::{BinOp, Expr, UnOp};
 pub use parse::{parse_expression, parse_statements, CodeError};
-pub use stmt::{Statement, VarType};
+pub use stmt::{ForLoop, Statement, StatementKind, VarType};

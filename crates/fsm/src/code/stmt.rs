@@ -72,22 +72,79 @@ pub enum Statement {
     },
 }
 
+/// What a statement does, read once for everyone who runs or prints one (the runner, the
+/// checker's ringlet and the Promela writer): a declaration with a value is an assignment, a
+/// declaration without one and an `extern` do nothing, and a call standing alone is a call.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StatementKind<'s> {
+    Assign {
+        name: &'s str,
+        value: &'s Expr,
+    },
+    Call {
+        function: &'s str,
+        arguments: &'s [Expr],
+    },
+    /// An expression evaluated for nothing but what evaluating it reads.
+    Evaluate(&'s Expr),
+    Sequence(&'s [Statement]),
+    Loop(ForLoop<'s>),
+    Nothing,
+}
+
+/// A `for` loop's parts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForLoop<'s> {
+    pub init: Option<&'s Statement>,
+    pub condition: Option<&'s Expr>,
+    pub step: Option<&'s Statement>,
+    pub body: &'s Statement,
+}
+
 impl Statement {
+    /// What the statement does ([`StatementKind`]).
+    pub fn kind(&self) -> StatementKind<'_> {
+        match self {
+            Statement::Declare {
+                name,
+                value: Some(value),
+                ..
+            }
+            | Statement::Assign { name, value } => StatementKind::Assign { name, value },
+            Statement::Declare { value: None, .. } | Statement::Extern { .. } => {
+                StatementKind::Nothing
+            }
+            Statement::Expr(Expr::Call {
+                function,
+                arguments,
+            }) => StatementKind::Call {
+                function,
+                arguments,
+            },
+            Statement::Expr(other) => StatementKind::Evaluate(other),
+            Statement::Block(body) => StatementKind::Sequence(body),
+            Statement::For {
+                init,
+                condition,
+                step,
+                body,
+            } => StatementKind::Loop(ForLoop {
+                init: init.as_deref(),
+                condition: condition.as_ref(),
+                step: step.as_deref(),
+                body,
+            }),
+        }
+    }
+
     /// Calls `f` on this statement and every statement inside it, outermost first.
     pub fn visit<'a>(&'a self, f: &mut impl FnMut(&'a Statement)) {
         f(self);
-        match self {
-            Statement::Block(body) => body.iter().for_each(|s| s.visit(f)),
-            Statement::For {
-                init, step, body, ..
-            } => {
-                if let Some(init) = init {
-                    init.visit(f);
-                }
-                if let Some(step) = step {
-                    step.visit(f);
-                }
-                body.visit(f);
+        match self.kind() {
+            StatementKind::Sequence(body) => body.iter().for_each(|s| s.visit(f)),
+            StatementKind::Loop(l) => {
+                l.init.into_iter().chain(l.step).for_each(|s| s.visit(f));
+                l.body.visit(f);
             }
             _ => {}
         }
