@@ -162,7 +162,8 @@ impl Activity<'_> {
                         content.trim()
                     )));
                 };
-                if self.inputs.contains(ty) && !["true", "false", "unknown"].contains(&text.as_str())
+                if self.inputs.contains(ty)
+                    && !["true", "false", "unknown"].contains(&text.as_str())
                 {
                     return Err(self.refuse(format!(
                         "a theory input posted as `{content}` (only true, false or unknown)"
@@ -216,8 +217,7 @@ impl Activity<'_> {
                 esc(&word)
             ));
         }
-        if self.inputs.iter().any(|i| i == ty)
-            && !matches!(pieces.as_slice(), [Piece::Literal(_)])
+        if self.inputs.iter().any(|i| i == ty) && !matches!(pieces.as_slice(), [Piece::Literal(_)])
         {
             return Err(self.refuse(format!(
                 "a computed posting to the theory input `{ty}` (only true, false or unknown)"
@@ -371,9 +371,9 @@ impl Activity<'_> {
                 writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);").unwrap();
                 Ok(out)
             }
-            Builtin::Sleep { .. } => Err(self.refuse(format!(
-                "`{function}` (a compiled ringlet does not sleep)"
-            ))),
+            Builtin::Sleep { .. } => {
+                Err(self.refuse(format!("`{function}` (a compiled ringlet does not sleep)")))
+            }
             Builtin::Other => Err(self.refuse(format!(
                 "the call `{function}` (host functions are not compiled yet)"
             ))),
@@ -462,9 +462,9 @@ impl Activity<'_> {
             Expr::Int(i) => (format!("v_int({})", int_c(*i)), Kinds::INT),
             Expr::Duration(us) => (format!("v_int({})", int_c(*us as i64)), Kinds::INT),
             Expr::Float(x) => {
-                return Err(self.refuse(format!(
-                    "the number `{x}` (fractions are not compiled yet)"
-                )))
+                return Err(
+                    self.refuse(format!("the number `{x}` (fractions are not compiled yet)"))
+                )
             }
             Expr::Str(s) => {
                 return Err(self.refuse(format!(
@@ -489,9 +489,7 @@ impl Activity<'_> {
             } => (format!("v_neg({})", self.value(operand)?.0), Kinds::INT),
             Expr::Binary { op, left, right } => {
                 if is_text(left) || is_text(right) {
-                    return Err(self.refuse(format!(
-                        "`{e}` (text is compiled only in postings)"
-                    )));
+                    return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
                 }
                 match op {
                     BinOp::And | BinOp::Or => (
@@ -534,9 +532,7 @@ impl Activity<'_> {
                     )));
                 }
                 if arguments.iter().any(is_text) {
-                    return Err(self.refuse(format!(
-                        "`{e}` (text is compiled only in postings)"
-                    )));
+                    return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
                 }
                 match (function.as_str(), arguments.as_slice()) {
                     ("abs", [x]) => {
@@ -554,9 +550,8 @@ impl Activity<'_> {
                         (format!("v_{function}({a}, {b})"), ka.union(kb))
                     }
                     _ if arith::is_function(function) => {
-                        return Err(self.refuse(format!(
-                            "`{e}` (its value is a fraction: not compiled yet)"
-                        )))
+                        return Err(self
+                            .refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
                     }
                     _ => {
                         return Err(self.refuse(format!(
@@ -586,11 +581,9 @@ fn is_text(e: &Expr) -> bool {
 /// character that no number (`12`, `-3.5e2`, `inf`, `NaN`) has.
 fn never_a_number(e: &Expr) -> bool {
     match e {
-        Expr::Str(s) => s.chars().any(|c| {
-            !c.is_whitespace()
-                && !c.is_ascii_digit()
-                && !"+-.eEiInNfFtTyYaA".contains(c)
-        }),
+        Expr::Str(s) => s
+            .chars()
+            .any(|c| !c.is_whitespace() && !c.is_ascii_digit() && !"+-.eEiInNfFtTyYaA".contains(c)),
         Expr::Binary {
             op: BinOp::Add,
             left,

@@ -378,7 +378,11 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
         .unwrap();
         writeln!(finals, "    case {m}:\n        return final_{m}(w);").unwrap();
         if loaded.start {
-            writeln!(tops, "    if (!done(w, {m}u)) {{\n        return 0;\n    }}").unwrap();
+            writeln!(
+                tops,
+                "    if (!done(w, {m}u)) {{\n        return 0;\n    }}"
+            )
+            .unwrap();
         }
     }
     let var_inits: String = slots
@@ -594,10 +598,14 @@ static int elapsed_at_least(const struct world *w, unsigned m, uint64_t ms)
     return w->now_ms - w->entered_ms[m] >= ms;
 }}
 
+/* A time test still to come due shortens the wait; one already past (its label false for
+ * another reason) does not, as the runner's `next_time_test` has it. */
 static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
 {{
-    uint64_t left = at > now ? at - now : 0;
-    return left < due ? left : due;
+    if (at <= now) {{
+        return due;
+    }}
+    return at - now < due ? at - now : due;
 }}
 {runtime}
 #define RUNNING 0
@@ -716,6 +724,9 @@ void behaviour_init(struct world *w)
     (void)text_literal;
     (void)text_whole;
     (void)command;
+    (void)post;
+    (void)text_value;
+    (void)v_neg;
     w->round = 0;
     w->globals_changes = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {{
@@ -824,7 +835,13 @@ impl Labels<'_> {
         };
         self.note_globals(label, activity);
         Ok(match label {
-            Expr::Bool(b) => if *b { "1".into() } else { "0".into() },
+            Expr::Bool(b) => {
+                if *b {
+                    "1".into()
+                } else {
+                    "0".into()
+                }
+            }
             Expr::Name(n) if activity.variables.lookup(n).is_some() => activity.truth(label)?,
             Expr::Name(n) => {
                 let Some(k) = self.outputs.iter().position(|o| &o.name == n) else {
@@ -833,21 +850,39 @@ impl Labels<'_> {
                 self.read.push(k);
                 format!("ask(w, {m}u, {k}u)")
             }
-            Expr::Unary { op: UnOp::Not, operand } => format!("!{}", self.condition(operand, activity)?),
-            Expr::Binary { op: op @ (BinOp::And | BinOp::Or), left, right } => format!(
+            Expr::Unary {
+                op: UnOp::Not,
+                operand,
+            } => format!("!{}", self.condition(operand, activity)?),
+            Expr::Binary {
+                op: op @ (BinOp::And | BinOp::Or),
+                left,
+                right,
+            } => format!(
                 "({} {} {})",
                 self.condition(left, activity)?,
                 if *op == BinOp::And { "&&" } else { "||" },
                 self.condition(right, activity)?
             ),
-            Expr::Call { function, arguments } if function == "timeout" && arguments.len() == 1 => {
+            Expr::Call {
+                function,
+                arguments,
+            } if function == "timeout" && arguments.len() == 1 => {
                 let micros = match &arguments[0] {
                     Expr::Int(n) if *n >= 0 => *n as u64,
                     Expr::Duration(d) => *d,
-                    other => return Err(refuse(activity, format!("timeout({other}) (only a constant time)"))),
+                    other => {
+                        return Err(refuse(
+                            activity,
+                            format!("timeout({other}) (only a constant time)"),
+                        ))
+                    }
                 };
                 if micros % 1000 != 0 {
-                    return Err(refuse(activity, format!("timeout({micros}) (a target's clock counts milliseconds)")));
+                    return Err(refuse(
+                        activity,
+                        format!("timeout({micros}) (a target's clock counts milliseconds)"),
+                    ));
                 }
                 self.due.push(micros / 1000);
                 format!("elapsed_at_least(w, {m}u, {}u)", micros / 1000)
@@ -868,7 +903,12 @@ impl Labels<'_> {
 /// The statements of a state's activities, those inside blocks and loops included.
 fn state_statements(state: &proclaim_fsm::State) -> Vec<&Statement> {
     let mut out = Vec::new();
-    for action in state.on_entry.iter().chain(&state.on_exit).chain(&state.internal) {
+    for action in state
+        .on_entry
+        .iter()
+        .chain(&state.on_exit)
+        .chain(&state.internal)
+    {
         if let Action::Statement(s) = action {
             s.visit(&mut |inner| out.push(inner));
         }
