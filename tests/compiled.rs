@@ -399,7 +399,10 @@ fn postings_and_prints_carry_the_runners_text() {
     let folder = behaviour_of(
         "say",
         &[
-            ("behaviour.toml", "[[machine]]\nfile = \"Speaker.machine\"\n"),
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"Speaker.machine\"\n",
+            ),
             ("Speaker.machine", machine),
         ],
     );
@@ -538,7 +541,7 @@ fn random_behaviour(seed: u64) -> Vec<(String, String)> {
                     let k = next(100);
                     // Internal activities change only the machine's own variables: a global
                     // changed every ringlet would be news every round, and time would stand.
-                    let line = if section == "internal" && (k < 55 || k >= 78) {
+                    let line = if section == "internal" && !(55..78).contains(&k) {
                         format!(
                             "{} = {};",
                             own[next(2) as usize],

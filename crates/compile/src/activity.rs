@@ -133,6 +133,8 @@ pub(crate) struct Activity<'a> {
     pub longest_text: &'a mut usize,
     /// Numbers the `for` loops' counters.
     pub loops: &'a mut usize,
+    /// Counts the places that post a control command: no ringlet queues more than that.
+    pub commands: &'a mut usize,
 }
 
 impl Activity<'_> {
@@ -209,6 +211,7 @@ impl Activity<'_> {
                     "a control command to `{ty}` inside a loop (a compiled behaviour queues a fixed number)"
                 )));
             }
+            *self.commands += 1;
             return Ok(format!(
                 "{pad}post(w, {m}u, \"{}\", \"{}\");\n{pad}command(w, {target}u, {}, \"{}\");\n",
                 esc(ty),

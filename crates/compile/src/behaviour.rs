@@ -183,13 +183,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
             }
         }
     }
-    let commands_n = behaviour
-        .machines
-        .iter()
-        .flat_map(|m| m.machine.states.iter())
-        .flat_map(|s| s.on_entry.iter().chain(&s.on_exit).chain(&s.internal))
-        .count()
-        .max(1);
+    let mut commands = 0;
     let mut longest_text = 1;
     let mut loops = 0;
     let mut code = String::new();
@@ -231,6 +225,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
                 inputs: &input_types,
                 longest_text: &mut longest_text,
                 loops: &mut loops,
+                commands: &mut commands,
             };
             let mut entry = activity.actions(&state.on_entry)?;
             let exit = activity.actions(&state.on_exit)?;
@@ -411,6 +406,7 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
     let machines = names.len().max(1);
     let outputs_n = outputs.len().max(1);
     let values_n = slots.len().max(1);
+    let commands_n = commands.max(1);
     let mut h = String::new();
     writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&behaviour.name)).unwrap();
     writeln!(h, "#define BEHAVIOUR_MACHINES {machines}\n#define BEHAVIOUR_OUTPUTS {outputs_n}\n#define BEHAVIOUR_VARIABLES {variables}\n#define BEHAVIOUR_VALUES {values_n}\n#define BEHAVIOUR_TEXT {longest_text}\n#define BEHAVIOUR_COMMANDS {commands_n}\n#define BEHAVIOUR_PERIOD_MS {period_ms}u\n").unwrap();
@@ -467,6 +463,8 @@ struct world {
     unsigned char command[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
     const char *command_word[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
     unsigned command_count[BEHAVIOUR_MACHINES];
+    /* Whether a command waits (so a ringlet that posted none costs no look at every machine). */
+    unsigned char commands_waiting;
     /* The text a posting or a print is built in. */
     char text[BEHAVIOUR_TEXT];
     unsigned text_length;
@@ -634,6 +632,7 @@ static void command(struct world *w, unsigned m, unsigned char code, const char 
         w->command[m][w->command_count[m]] = code;
         w->command_word[m][w->command_count[m]] = word;
         w->command_count[m]++;
+        w->commands_waiting = 1;
     }}
 }}
 
@@ -675,6 +674,10 @@ static int control(struct world *w, unsigned m, unsigned char code, const char *
 static void obey(struct world *w)
 {{
     unsigned m, i;
+    if (!w->commands_waiting) {{
+        return;
+    }}
+    w->commands_waiting = 0;
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
         for (i = 0; i < w->command_count[m]; i++) {{
             if (control(w, m, w->command[m][i], w->command_word[m][i])) {{
@@ -729,6 +732,7 @@ void behaviour_init(struct world *w)
     (void)v_neg;
     w->round = 0;
     w->globals_changes = 0;
+    w->commands_waiting = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {{
         w->in[v] = 0;
     }}
