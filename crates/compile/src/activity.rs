@@ -208,7 +208,7 @@ impl Activity<'_> {
             }
             if depth > 0 {
                 return Err(self.refuse(format!(
-                    "a control command to `{ty}` inside a loop (a compiled behaviour queues a fixed number)"
+                    "a control command to `{ty}` inside a block or a loop (a compiled behaviour queues a fixed number)"
                 )));
             }
             *self.commands += 1;

@@ -479,6 +479,8 @@ int behaviour_outside(struct world *w, const char *type, const char *content);
 int behaviour_news(const struct world *w);
 /* 1 when `atom` is an answer of the behaviour's theories. */
 int behaviour_answers(const char *atom);
+/* 1 when `name` is a machine's (a posting to it is a control command). */
+int behaviour_is_machine(const char *name);
 /* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
 uint64_t behaviour_next_due_ms(const struct world *w);
 /* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
@@ -779,6 +781,17 @@ int behaviour_news(const struct world *w)
 int behaviour_answers(const char *atom)
 {{
 {answers_body}}}
+
+int behaviour_is_machine(const char *name)
+{{
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
+        if (same(name, machine_name[m])) {{
+            return 1;
+        }}
+    }}
+    return 0;
+}}
 
 uint64_t behaviour_next_due_ms(const struct world *w)
 {{

@@ -325,6 +325,10 @@ static int read_script(void)
             fprintf(stderr, "stdin:%d: `%s` is a theory's answer: impersonating an answer is not supported by a compiled behaviour\n", number, s.name);
             return 0;
         }
+        if (behaviour_is_machine(s.name)) {
+            fprintf(stderr, "stdin:%d: `%s` is a machine: control commands from a script are not supported by a compiled behaviour\n", number, s.name);
+            return 0;
+        }
         if (step_count == MAX_STEPS) {
             fprintf(stderr, "stdin:%d: more than %d steps\n", number, MAX_STEPS);
             return 0;
