@@ -680,3 +680,20 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line() {
         assert!(stderr.contains(expected), "{body}: {stderr}");
     }
 }
+
+#[test]
+fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
+    let folder = behaviour_of(
+        "time",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"T.machine\"\n"),
+            ("T.machine", machine),
+        ],
+    );
+    let trace = same_trace("time", &folder, "", None);
+    assert!(trace.contains("\"at_us\":3550000"), "{trace}");
+}

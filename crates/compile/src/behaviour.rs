@@ -7,7 +7,7 @@ use crate::activity::{conversion, esc, Activity, Conversion, Variable, Variables
 use crate::c::c_identifier;
 use crate::tabulate::{compile, Compiled, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
-use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp};
+use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -884,23 +884,23 @@ impl Labels<'_> {
             Expr::Call {
                 function,
                 arguments,
-            } if function == "timeout" && arguments.len() == 1 => {
+            } if arguments.len() == 1 && TIME_TESTS.iter().any(|(t, _)| t == function) => {
+                // The µs one unit of the argument stands for (1 for timeout, 1000 for after_ms).
+                let unit = TIME_TESTS
+                    .iter()
+                    .find(|(t, _)| t == function)
+                    .map_or(1, |(_, us)| *us as u64);
                 let micros = match &arguments[0] {
-                    Expr::Int(n) if *n >= 0 => *n as u64,
-                    Expr::Duration(d) => *d,
-                    other => {
-                        return Err(refuse(
-                            activity,
-                            format!("timeout({other}) (only a constant time)"),
-                        ))
-                    }
+                    Expr::Int(n) if *n >= 0 => (*n as u64).checked_mul(unit),
+                    Expr::Duration(d) => Some(*d),
+                    _ => None,
                 };
-                if micros % 1000 != 0 {
+                let Some(micros) = micros.filter(|us| us % 1000 == 0) else {
                     return Err(refuse(
                         activity,
-                        format!("timeout({micros}) (a target's clock counts milliseconds)"),
+                        format!("`{label}` (only a constant time in whole milliseconds: a target's clock counts milliseconds)"),
                     ));
-                }
+                };
                 self.due.push(micros / 1000);
                 format!("elapsed_at_least(w, {m}u, {}u)", micros / 1000)
             }
