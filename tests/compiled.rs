@@ -1,7 +1,8 @@
 //! A behaviour compiled to freestanding C (`proclaim compile B --target c`), its core built with
 //! `gcc -std=c99 -Wall -Wextra -Werror -ffreestanding` and run by its host harness on a script,
 //! writes the same trace as `proclaim run --virtual-clock --trace` on that script, byte for
-//! byte; what the slice cannot compile is refused with its file and line.
+//! byte (the shipped behaviours that compile, each construct of the activity language, seeded
+//! random behaviours); what cannot be compiled is refused with its file and line.
 
 use crate::proclaim;
 use std::path::{Path, PathBuf};
@@ -217,8 +218,12 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line() {
             "machines/ball/behaviour.toml:11: cannot be compiled: a Prolog or program expert",
         ),
         (
-            "machines/press",
-            "machines/press/Controller.machine:7: cannot be compiled: the statement `int waited;`",
+            "machines/game_controller",
+            "machines/game_controller/behaviour.toml:14: cannot be compiled: a sensor",
+        ),
+        (
+            "machines/referee",
+            "machines/referee/behaviour.toml:10: cannot be compiled: a Prolog or program expert",
         ),
         (
             "machines/subsumption",
@@ -283,4 +288,412 @@ fn two_machines_on_timeouts_and_a_theory_and_one_without_theories_write_the_same
         );
         assert_same(name, &interpreted, &compiled);
     }
+}
+
+/// Writes a behaviour of `files` (name, text) into a fresh folder.
+fn behaviour_of(name: &str, files: &[(&str, &str)]) -> PathBuf {
+    let folder = scratch(&format!("{name}-behaviour"));
+    for (file, text) in files {
+        std::fs::write(folder.join(file), text).unwrap();
+    }
+    folder
+}
+
+/// Compiles the behaviour in `folder`, runs both on `script` for `run_for`, and holds the traces
+/// equal; the interpreter's trace.
+fn same_trace(name: &str, folder: &Path, script: &str, run_for: Option<&str>) -> String {
+    let dir = scratch(name);
+    let behaviour = folder.to_str().unwrap();
+    build(behaviour, &dir);
+    let (interpreted, compiled) = traces(behaviour, &dir, name, script, run_for);
+    assert_same(name, &interpreted, &compiled);
+    interpreted
+}
+
+#[test]
+fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    for behaviour in ["machines/press", "machines/shootout"] {
+        let name = behaviour.trim_start_matches("machines/");
+        let dir = scratch(name);
+        build(behaviour, &dir);
+        // Neither ships a script: run to the end, then seeded scripts of postings no label
+        // reads (news to nobody) at any millisecond, stopped at any time.
+        let mut cases: Vec<(String, String, Option<String>)> =
+            vec![(format!("{name}-own"), String::new(), None)];
+        let mut seed = 0x5eed_0033 ^ name.len() as u64;
+        for n in 0..12 {
+            let mut script = String::new();
+            for _ in 0..splitmix(&mut seed) % 5 {
+                let at = splitmix(&mut seed) % 12_000;
+                let value = splitmix(&mut seed) % 2 == 0;
+                script.push_str(&format!("at {at}ms crowd = {value}\n"));
+            }
+            let run_for = format!("{}ms", 1 + splitmix(&mut seed) % 12_000);
+            cases.push((format!("{name}-random{n}"), script, Some(run_for)));
+        }
+        for (case, script, run_for) in &cases {
+            let (interpreted, compiled) = traces(behaviour, &dir, case, script, run_for.as_deref());
+            assert_same(case, &interpreted, &compiled);
+        }
+        let (whole, _) = traces(behaviour, &dir, name, "", None);
+        assert!(
+            whole.lines().last().unwrap_or("").contains("\"finished\""),
+            "{name} runs to its end: {whole}"
+        );
+    }
+}
+
+#[test]
+fn arithmetic_is_the_runners_wrapping_c_arithmetic() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine Arith\ninitial A\nstate A {\n    entry {\n        q = 7 / 0;\n        r = -7 % 0;\n        d = -7 / 2;\n        e = -7 % 3;\n        big = 9223372036854775807;\n        over = big + 1;\n        under = -over - 1;\n        minus = over / -1;\n        rest = over % -1;\n        product = big * 3;\n        t = 3 < 4;\n        u = t + 1;\n        v = -t;\n        w = t == 1;\n        x = max(t, 1);\n        y = min(1, t);\n        z = abs(-5) * abs(over + 1);\n        same = (q != r) || !(d <= e) && u >= 2 && 2 > 1;\n    }\n    when u == 2 && d / -3 -> B\n}\nstate B {\n}\n";
+    let folder = behaviour_of(
+        "arith",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Arith.machine\"\n"),
+            ("Arith.machine", machine),
+        ],
+    );
+    let trace = same_trace("arith", &folder, "", None);
+    assert!(
+        trace.contains("\"variable\":\"over\",\"value\":\"-9223372036854775808\""),
+        "{trace}"
+    );
+    assert!(
+        trace.contains("\"variable\":\"x\",\"value\":\"true\""),
+        "{trace}"
+    );
+}
+
+#[test]
+fn a_typed_variable_converts_what_is_assigned_and_a_change_of_kind_is_a_change() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine Types\ninitial A\nstate A {\n    entry {\n        int n;\n        bool b;\n        char c;\n        n = 2 < 3;\n        b = 5;\n        c = b;\n        b = 0;\n        b = false;\n        g = 1;\n        g = true;\n        g = 1 == 1;\n        g = 1;\n    }\n    when n && !b -> B\n}\nstate B {\n}\n";
+    let folder = behaviour_of(
+        "types",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Types.machine\"\n"),
+            ("Types.machine", machine),
+        ],
+    );
+    let trace = same_trace("types", &folder, "", None);
+    assert!(
+        trace.contains("\"variable\":\"n\",\"value\":\"1\""),
+        "{trace}"
+    );
+}
+
+#[test]
+fn postings_and_prints_carry_the_runners_text() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine Speaker\ninitial A\nstate A {\n    entry {\n        int n;\n        n = 41 + 1;\n        post(\"Out\", n * 2);\n        post(\"Text\", \"n is \" + n + \", big \" + (n > 40));\n        post(\"Two\", \"a\", \"\");\n        post(\"Three\", \"\", \"hi\");\n        post_int(\"Whole\", n == 42);\n        postv(\"List\", 1, n > 1, \"x y\", -3);\n        say(\"said \" + n);\n        speech(\"spoken\");\n        say_state_name();\n        speak_state_name();\n        print(\"printed \" + n);\n        print_int(n);\n        print_state_name();\n        Plain: 12\n        Word: \"quoted\"\n        Truth: true\n    }\n}\n";
+    let folder = behaviour_of(
+        "say",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"Speaker.machine\"\n",
+            ),
+            ("Speaker.machine", machine),
+        ],
+    );
+    let trace = same_trace("say", &folder, "", None);
+    assert!(trace.contains("\"content\":\"1 true x y -3\""), "{trace}");
+}
+
+#[test]
+fn for_loops_run_and_stop_at_the_runners_loop_limit() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine Loop\ninitial L\nstate L {\n    entry {\n        int i;\n        int sum;\n        for (i = 0; i < 10; i = i + 1) {\n            sum = sum + i;\n            last = i;\n        }\n        for (;;) {\n            i = 3;\n        }\n        for (k = 0; k < 3; k = k + 1) post(\"K\", k * k);\n    }\n    when sum == 45 -> M\n}\nstate M {\n    entry {\n        print_int(sum);\n    }\n}\n";
+    let folder = behaviour_of(
+        "loop",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Loop.machine\"\n"),
+            ("Loop.machine", machine),
+        ],
+    );
+    let trace = same_trace("loop", &folder, "", None);
+    assert!(trace.contains("stopped after 100000 rounds"), "{trace}");
+}
+
+#[test]
+fn sub_machines_obey_on_off_suspend_resume_and_restart_as_the_runner_does() {
+    if gcc_missing() {
+        return;
+    }
+    let boss = "machine Boss\ninitial START\nstate START {\n    entry {\n        start(\"Worker\");\n        Worker: On\n        step = 1;\n    }\n    when timeout(5ms) -> PAUSE\n}\nstate PAUSE {\n    entry {\n        suspend(\"Worker\");\n        step = 2;\n    }\n    when timeout(10ms) -> GO\n}\nstate GO {\n    entry {\n        resume(\"Worker\");\n        Worker: hello\n        step = 3;\n    }\n    when timeout(7ms) -> AGAIN\n}\nstate AGAIN {\n    entry {\n        restart(\"Worker\");\n        step = 4;\n    }\n    when timeout(20ms) -> STOP\n}\nstate STOP {\n    entry {\n        stop(\"Worker\");\n        Worker: suspend\n        Worker: resume\n    }\n    when timeout(3ms) -> END\n}\nstate END {\n    entry {\n        Worker: restart\n        print(\"bye\");\n    }\n}\n";
+    let worker = "machine Worker\ninitial W1\nstate W1 {\n    entry {\n        int count;\n        count = count + 1;\n    }\n    internal {\n        ticks = ticks + 1;\n    }\n    when timeout(4ms) -> W2\n}\nstate W2 {\n    entry {\n        count = count + 10;\n    }\n    when count > 100 -> W3\n    when timeout(3ms) -> W1\n}\nstate W3 {\n}\n";
+    // A label over a global that another machine changes, and a time test already past.
+    let watcher = "machine Watcher\ninitial W\nstate W {\n    when step == 4 && timeout(1ms) -> SEEN\n}\nstate SEEN {\n}\n";
+    let folder = behaviour_of(
+        "control",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Boss.machine\"\n[[machine]]\nfile = \"Worker.machine\"\nstart = false\n[[machine]]\nfile = \"Watcher.machine\"\n"),
+            ("Boss.machine", boss),
+            ("Worker.machine", worker),
+            ("Watcher.machine", watcher),
+        ],
+    );
+    let trace = same_trace("control", &folder, "", Some("2s"));
+    for command in ["On", "Off", "suspend", "resume", "restart", "hello"] {
+        assert!(
+            trace.contains(&format!("\"command\":\"{command}\"")),
+            "{command}: {trace}"
+        );
+    }
+}
+
+/// A random behaviour of up to three machines over four globals and typed variables of their
+/// own: assignments of random arithmetic, computed postings, prints, loops, the first machine
+/// controlling the others; every label a random condition and a time test (so time passes
+/// between moves, and a run of `--for` ends).
+fn random_behaviour(seed: u64) -> Vec<(String, String)> {
+    let mut state = seed;
+    let mut next = move |n: u64| splitmix(&mut state) % n;
+    let globals = ["g0", "g1", "g2", "g3"];
+    let constants = [
+        "0",
+        "1",
+        "2",
+        "3",
+        "-1",
+        "7",
+        "100",
+        "9223372036854775807",
+        "-9223372036854775807",
+        "true",
+        "false",
+    ];
+    fn expression(
+        next: &mut impl FnMut(u64) -> u64,
+        depth: u32,
+        names: &[String],
+        constants: &[&str],
+    ) -> String {
+        if depth == 0 || next(10) < 3 {
+            return if next(2) == 0 {
+                constants[next(constants.len() as u64) as usize].to_string()
+            } else {
+                names[next(names.len() as u64) as usize].clone()
+            };
+        }
+        let choice = next(17);
+        let mut sub = || expression(next, depth - 1, names, constants);
+        let ops = [
+            "+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==", "!=", "&&", "||",
+        ];
+        match choice {
+            13 => format!("!({})", sub()),
+            14 => format!("-({})", sub()),
+            15 => format!("min({}, {})", sub(), sub()),
+            16 => format!("max({}, {})", sub(), sub()),
+            k => format!("({} {} {})", sub(), ops[k as usize], sub()),
+        }
+    }
+    let machines = 1 + next(3) as usize;
+    let mut manifest = String::new();
+    let mut files = Vec::new();
+    for m in 0..machines {
+        manifest.push_str(&format!("[[machine]]\nfile = \"M{m}.machine\"\n"));
+        if m > 0 && next(2) == 0 {
+            manifest.push_str("start = false\n");
+        }
+        let own: Vec<String> = (0..2).map(|j| format!("l{m}_{j}")).collect();
+        let names: Vec<String> = globals
+            .iter()
+            .map(|g| g.to_string())
+            .chain(own.iter().cloned())
+            .collect();
+        let states = 2 + next(3);
+        let mut text = format!("machine M{m}\ninitial S0\n");
+        for s in 0..states {
+            text.push_str(&format!("state S{s} {{\n"));
+            for section in ["entry", "exit", "internal"] {
+                if section != "entry" && next(2) == 0 {
+                    continue;
+                }
+                text.push_str(&format!("    {section} {{\n"));
+                if section == "entry" && s == 0 {
+                    for v in &own {
+                        text.push_str(&format!(
+                            "        {} {v};\n",
+                            ["int", "bool", "char"][next(3) as usize]
+                        ));
+                    }
+                    if m == 0 {
+                        for g in globals {
+                            text.push_str(&format!("        {g} = {g};\n"));
+                        }
+                    }
+                }
+                for _ in 0..next(5) {
+                    let k = next(100);
+                    // Internal activities change only the machine's own variables: a global
+                    // changed every ringlet would be news every round, and time would stand.
+                    let line = if section == "internal" && !(55..78).contains(&k) {
+                        format!(
+                            "{} = {};",
+                            own[next(2) as usize],
+                            expression(&mut next, 2, &names, &constants)
+                        )
+                    } else if k < 55 {
+                        format!(
+                            "{} = {};",
+                            names[next(6) as usize],
+                            expression(&mut next, 2, &names, &constants)
+                        )
+                    } else if k < 65 {
+                        format!(
+                            "post(\"Out{m}\", {});",
+                            expression(&mut next, 2, &names, &constants)
+                        )
+                    } else if k < 72 {
+                        format!(
+                            "say(\"v is \" + {} + \" and \" + {});",
+                            names[next(6) as usize],
+                            names[next(6) as usize]
+                        )
+                    } else if k < 78 {
+                        format!(
+                            "print_int({});",
+                            expression(&mut next, 1, &names, &constants)
+                        )
+                    } else if k < 84 {
+                        format!(
+                            "for (i{m} = 0; i{m} < {}; i{m} = i{m} + 1) {{ {} = {} + i{m}; }}",
+                            next(5),
+                            globals[next(4) as usize],
+                            globals[next(4) as usize]
+                        )
+                    } else if m == 0 && machines > 1 {
+                        let word = ["On", "Off", "suspend", "resume", "restart"][next(5) as usize];
+                        format!("M{}: {word}", 1 + next(machines as u64 - 1))
+                    } else {
+                        format!(
+                            "postv(\"List{m}\", {}, {});",
+                            expression(&mut next, 1, &names, &constants),
+                            expression(&mut next, 1, &names, &constants)
+                        )
+                    };
+                    text.push_str(&format!("        {line}\n"));
+                }
+                text.push_str("    }\n");
+            }
+            for _ in 0..next(4) {
+                let target = next(states);
+                let ms = [1, 2, 5, 10, 50][next(5) as usize];
+                let condition = expression(&mut next, 2, &names, &constants);
+                if next(2) == 0 {
+                    text.push_str(&format!(
+                        "    when {condition} && timeout({ms}ms) -> S{target}\n"
+                    ));
+                } else {
+                    text.push_str(&format!(
+                        "    when timeout({ms}ms) && {condition} -> S{target}\n"
+                    ));
+                }
+            }
+            text.push_str("}\n");
+        }
+        files.push((format!("M{m}.machine"), text));
+    }
+    files.push(("behaviour.toml".into(), manifest));
+    files
+}
+
+#[test]
+fn seeded_random_behaviours_of_variables_write_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let mut moved = 0;
+    for seed in 0..24u64 {
+        let files = random_behaviour(0x0033_0000 + seed);
+        let name = format!("random-behaviour{seed}");
+        let borrowed: Vec<(&str, &str)> = files
+            .iter()
+            .map(|(f, t)| (f.as_str(), t.as_str()))
+            .collect();
+        let folder = behaviour_of(&name, &borrowed);
+        let trace = same_trace(&name, &folder, "", Some("300ms"));
+        moved += usize::from(trace.contains("\"fired\""));
+    }
+    assert!(moved >= 12, "most random behaviours move: {moved} of 24");
+}
+
+#[test]
+fn what_an_activity_cannot_compile_is_refused_at_its_line() {
+    let out = scratch("refused-activity");
+    for (body, expected) in [
+        ("float speed;", "a `float` variable"),
+        ("extern ballDistance;", "`extern ballDistance`"),
+        (
+            "x = ballDistance + 1;",
+            "`ballDistance`, which is no variable",
+        ),
+        ("x = 2.5;", "the number `2.5`"),
+        ("x = \"text\";", "the text \"text\""),
+        ("kick(3);", "the call `kick`"),
+        ("msleep(5);", "`msleep`"),
+        ("x = sqrt(4);", "`sqrt(4)`"),
+        (
+            "post(\"Say\", \"12\" + 1);",
+            "text that may read as a number",
+        ),
+        ("Other: reload", "no file to read again"),
+    ] {
+        let machine = format!("machine M\ninitial A\nstate A {{\n    entry {{\n        {body}\n    }}\n    when timeout(1s) -> B\n}}\nstate B {{\n}}\n");
+        let other = "machine Other\ninitial O\nstate O {\n}\n";
+        let folder = behaviour_of(
+            "refused-activity",
+            &[
+                ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n[[machine]]\nfile = \"Other.machine\"\nstart = false\n"),
+                ("M.machine", &machine),
+                ("Other.machine", other),
+            ],
+        );
+        let o = proclaim(&[
+            "compile",
+            folder.to_str().unwrap(),
+            "--target",
+            "c",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{body}");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            stderr.contains("M.machine:3: cannot be compiled: "),
+            "{body}: {stderr}"
+        );
+        assert!(stderr.contains(expected), "{body}: {stderr}");
+    }
+}
+
+#[test]
+fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
+    if gcc_missing() {
+        return;
+    }
+    let machine = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
+    let folder = behaviour_of(
+        "time",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"T.machine\"\n"),
+            ("T.machine", machine),
+        ],
+    );
+    let trace = same_trace("time", &folder, "", None);
+    assert!(trace.contains("\"at_us\":3550000"), "{trace}");
 }

@@ -1,12 +1,14 @@
-//! A behaviour's machines as freestanding C99 rounds of ringlets over compiled theories, for the
-//! slice this crate supports yet: machines that post constant values and whose labels are
-//! theory outputs, `!`, `&&`, `||`, `TRUE` and `timeout`; anything else is refused with its
-//! file and line.
+//! A behaviour's machines as freestanding C99 rounds of ringlets over compiled theories: the
+//! round schedule of `proclaim_runner::Rounds` (news, time tests, sub-machine control, final
+//! states), labels over theory outputs, variables and comparisons, and activities compiled by
+//! `activity.rs`; anything else is refused with its file and line.
 
+use crate::activity::{conversion, esc, Activity, Conversion, Variable, Variables, RUNTIME};
 use crate::c::c_identifier;
 use crate::tabulate::{compile, Compiled, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
-use proclaim_fsm::{Action, BinOp, Expr, UnOp};
+use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
+use std::collections::HashMap;
 use std::fmt::Write;
 
 /// Why a behaviour was not compiled: where, and what.
@@ -132,21 +134,68 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
         .iter()
         .map(|m| m.machine.name.clone())
         .collect();
+    let input_types: Vec<String> = inputs.iter().map(|(ty, _, _)| ty.clone()).collect();
+    // Slots: each machine's own variables (declared anywhere in it), then the globals (names a
+    // machine assigns without declaring them), as `proclaim_runner::Shared` and `Locals` read.
+    let mut slots: Vec<bool> = Vec::new();
+    let mut own: Vec<HashMap<String, Variable>> = Vec::new();
+    for loaded in &behaviour.machines {
+        let file = behaviour.files.show(&loaded.file);
+        let mut mine: HashMap<String, Variable> = HashMap::new();
+        for state in &loaded.machine.states {
+            for s in state_statements(state) {
+                if let Statement::Declare { ty, name, .. } = s {
+                    let conversion =
+                        conversion(ty).map_err(|what| refuse(&file, state.line, what))?;
+                    match mine.get_mut(name) {
+                        // The type declared last converts; the first gave the starting value.
+                        Some(v) => v.conversion = conversion,
+                        None => {
+                            mine.insert(
+                                name.clone(),
+                                Variable {
+                                    slot: slots.len(),
+                                    conversion,
+                                },
+                            );
+                            slots.push(conversion == Conversion::Truth);
+                        }
+                    }
+                }
+            }
+        }
+        own.push(mine);
+    }
+    let mut globals: HashMap<String, Variable> = HashMap::new();
+    for (m, loaded) in behaviour.machines.iter().enumerate() {
+        for s in loaded.machine.statements() {
+            if let Statement::Assign { name, .. } = s {
+                if !own[m].contains_key(name) && !globals.contains_key(name) {
+                    globals.insert(
+                        name.clone(),
+                        Variable {
+                            slot: slots.len(),
+                            conversion: Conversion::Kept,
+                        },
+                    );
+                    slots.push(false);
+                }
+            }
+        }
+    }
+    let mut commands = 0;
+    let mut longest_text = 1;
+    let mut loops = 0;
     let mut code = String::new();
     let mut rings = String::new();
     let mut reads = String::new();
     let mut dues = String::new();
     let mut inits = String::new();
+    let mut finals = String::new();
+    let mut tops = String::new();
     for (m, loaded) in behaviour.machines.iter().enumerate() {
         let machine = &loaded.machine;
         let file = &behaviour.files.show(&loaded.file);
-        if !loaded.start {
-            return Err(refuse(
-                file,
-                1,
-                "a sub-machine that does not start (start = false)".into(),
-            ));
-        }
         if let Some(u) = machine.unread.first() {
             return Err(refuse(
                 file,
@@ -154,22 +203,39 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
                 format!("the label `{}` that did not read", u.label),
             ));
         }
+        let variables = Variables {
+            own: own[m].clone(),
+            globals: globals.clone(),
+        };
         let mut cases = String::new();
         let mut entries = String::new();
         let mut read_cases = String::new();
         let mut due_cases = String::new();
+        let mut global_cases = String::new();
+        let mut final_ids = Vec::new();
         for state in &machine.states {
             let id = state.id;
-            // Entry actions, and whether the state is final.
-            let mut entry = String::new();
-            for action in &state.on_entry {
-                entry.push_str(&action_c(action, file, state.line, &names, &inputs, m)?);
-            }
+            let mut activity = Activity {
+                file,
+                line: state.line,
+                machine: m,
+                state: &state.name,
+                variables: &variables,
+                machines: &names,
+                inputs: &input_types,
+                longest_text: &mut longest_text,
+                loops: &mut loops,
+                commands: &mut commands,
+            };
+            let mut entry = activity.actions(&state.on_entry)?;
+            let exit = activity.actions(&state.on_exit)?;
+            let internal = activity.actions(&state.internal)?;
             let outgoing: Vec<_> = machine.outgoing(id).collect();
             if outgoing.is_empty() {
+                final_ids.push(id);
                 writeln!(
                     entry,
-                    "            w->cb.finished(w, \"{}\", \"{}\");\n            w->done[{m}] = 1;",
+                    "            w->cb.finished(w, \"{}\", \"{}\");",
                     esc(&machine.name),
                     esc(&state.name)
                 )
@@ -177,14 +243,15 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
             }
             writeln!(entries, "        case {id}:\n            w->cb.entered(w, \"{}\", \"{}\", {id});\n{entry}            break;", esc(&machine.name), esc(&state.name)).unwrap();
             let mut body = String::new();
-            let mut read = Vec::new();
-            let mut due = Vec::new();
+            let mut labels = Labels {
+                outputs: &outputs,
+                read: Vec::new(),
+                due: Vec::new(),
+                reads_globals: false,
+            };
             for t in &outgoing {
-                let label = label_c(&t.label, file, t.line, &outputs, &mut read, &mut due, m)?;
-                let mut exit = String::new();
-                for action in &state.on_exit {
-                    exit.push_str(&action_c(action, file, state.line, &names, &inputs, m)?);
-                }
+                activity.line = t.line;
+                let label = labels.condition(&t.label, &mut activity)?;
                 writeln!(
                     body,
                     "        if ({label}) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
@@ -195,11 +262,13 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
                 )
                 .unwrap();
             }
-            let mut internal = String::new();
-            for action in &state.internal {
-                internal.push_str(&action_c(action, file, state.line, &names, &inputs, m)?);
-            }
             writeln!(cases, "    case {id}:\n{body}{internal}        return 0;").unwrap();
+            let Labels {
+                mut read,
+                due,
+                reads_globals,
+                ..
+            } = labels;
             read.sort_unstable();
             read.dedup();
             let read_expr: Vec<String> = read.iter().map(|k| format!("k == {k}u")).collect();
@@ -220,7 +289,24 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
                 })
                 .collect();
             writeln!(due_cases, "    case {id}:\n{due_expr}        break;").unwrap();
+            if reads_globals {
+                writeln!(global_cases, "    case {id}:").unwrap();
+            }
         }
+        let final_cases: String = final_ids
+            .iter()
+            .map(|id| format!("    case {id}:\n"))
+            .collect();
+        let global_return = if global_cases.is_empty() {
+            "    (void)w;\n    return 0;\n".to_string()
+        } else {
+            format!("    switch (w->state[{m}]) {{\n{global_cases}        return 1;\n    default:\n        return 0;\n    }}\n")
+        };
+        let final_return = if final_cases.is_empty() {
+            "    (void)w;\n    return 0;\n".to_string()
+        } else {
+            format!("    switch (w->state[{m}]) {{\n{final_cases}        return 1;\n    default:\n        return 0;\n    }}\n")
+        };
         writeln!(
             code,
             "static int ring_{m}(struct world *w)
@@ -234,6 +320,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
         }}
     }}
     snapshot(w, {m});
+    w->globals_seen[{m}] = w->globals_changes;
     switch (w->state[{m}]) {{
 {cases}    default:
         return 0;
@@ -249,6 +336,15 @@ static int reads_{m}(const struct world *w, unsigned k)
     }}
 }}
 
+/* Whether the current state's labels read a global. */
+static int reads_globals_{m}(const struct world *w)
+{{
+{global_return}}}
+
+static int final_{m}(const struct world *w)
+{{
+{final_return}}}
+
 static uint64_t due_{m}(const struct world *w, uint64_t due)
 {{
     switch (w->state[{m}]) {{
@@ -260,20 +356,40 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
 "
         )
         .unwrap();
-        writeln!(rings, "    if (!w->done[{m}] || w->just_entered[{m}]) {{\n        fired |= ring_{m}(w);\n    }}").unwrap();
-        writeln!(reads, "    if (!w->done[{m}]) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n    }}").unwrap();
+        writeln!(rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}").unwrap();
+        writeln!(reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}").unwrap();
         writeln!(
             dues,
-            "    if (!w->done[{m}]) {{\n        due = due_{m}(w, due);\n    }}"
+            "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
         )
         .unwrap();
         writeln!(
             inits,
-            "    w->state[{m}] = {};\n    w->just_entered[{m}] = 1;",
-            machine.initial
+            "    w->state[{m}] = {};\n    w->initial[{m}] = {};\n    w->just_entered[{m}] = 1;\n    w->status[{m}] = {};",
+            machine.initial,
+            machine.initial,
+            if loaded.start { "RUNNING" } else { "DORMANT" }
         )
         .unwrap();
+        writeln!(finals, "    case {m}:\n        return final_{m}(w);").unwrap();
+        if loaded.start {
+            writeln!(
+                tops,
+                "    if (!done(w, {m}u)) {{\n        return 0;\n    }}"
+            )
+            .unwrap();
+        }
     }
+    let var_inits: String = slots
+        .iter()
+        .enumerate()
+        .map(|(slot, is_bool)| {
+            format!(
+                "    w->var[{slot}] = {};\n",
+                if *is_bool { "v_bool(0)" } else { "v_int(0)" }
+            )
+        })
+        .collect();
     let period_ms = behaviour.ring_period.as_millis() as u64;
     if behaviour.ring_period.as_micros() % 1000 != 0 {
         return Err(refuse(
@@ -289,9 +405,11 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
         .max(1);
     let machines = names.len().max(1);
     let outputs_n = outputs.len().max(1);
+    let values_n = slots.len().max(1);
+    let commands_n = commands.max(1);
     let mut h = String::new();
     writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&behaviour.name)).unwrap();
-    writeln!(h, "#define BEHAVIOUR_MACHINES {machines}\n#define BEHAVIOUR_OUTPUTS {outputs_n}\n#define BEHAVIOUR_VARIABLES {variables}\n#define BEHAVIOUR_PERIOD_MS {period_ms}u\n").unwrap();
+    writeln!(h, "#define BEHAVIOUR_MACHINES {machines}\n#define BEHAVIOUR_OUTPUTS {outputs_n}\n#define BEHAVIOUR_VARIABLES {variables}\n#define BEHAVIOUR_VALUES {values_n}\n#define BEHAVIOUR_TEXT {longest_text}\n#define BEHAVIOUR_COMMANDS {commands_n}\n#define BEHAVIOUR_PERIOD_MS {period_ms}u\n").unwrap();
     h.push_str(
         "struct world;
 
@@ -302,8 +420,20 @@ struct world_callbacks {
     void (*finished)(struct world *w, const char *machine, const char *state);
     void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert);
     void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
+    /* A variable's value changed (its text as the trace shows it). */
+    void (*assigned)(struct world *w, const char *machine, const char *variable, const char *value);
+    void (*printed)(struct world *w, const char *machine, const char *text);
+    /* A machine obeys a control command (`On`, `Off`, `suspend`, `resume`, `restart`). */
+    void (*control)(struct world *w, const char *machine, const char *command);
+    void (*warned)(struct world *w, const char *machine, const char *message);
     /* At the start of each round, before its ringlets: post what came from outside by now. */
     void (*round_started)(struct world *w);
+};
+
+/* A variable's value as the runner holds it: a whole number, or a truth value (0 or 1). */
+struct value {
+    int64_t i;
+    unsigned char is_bool;
 };
 
 /* The whiteboard's values the behaviour reads and its machines' states. */
@@ -315,12 +445,29 @@ struct world {
     uint64_t round;
     long state[BEHAVIOUR_MACHINES];
     unsigned char just_entered[BEHAVIOUR_MACHINES];
-    unsigned char done[BEHAVIOUR_MACHINES];
     uint64_t entered_ms[BEHAVIOUR_MACHINES];
     /* Each theory input: known, then true. */
     unsigned char in[BEHAVIOUR_VARIABLES];
     /* The answers each machine's last ringlet saw. */
     unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
+    long initial[BEHAVIOUR_MACHINES];
+    /* Running, suspended or dormant; started in this round (it rings from the next). */
+    unsigned char status[BEHAVIOUR_MACHINES];
+    unsigned char fresh[BEHAVIOUR_MACHINES];
+    /* Each machine's own variables, then the behaviour's globals. */
+    struct value var[BEHAVIOUR_VALUES];
+    /* Changes of globals so far, and as each machine's last ringlet saw them. */
+    uint64_t globals_changes;
+    uint64_t globals_seen[BEHAVIOUR_MACHINES];
+    /* Control commands posted to each machine, obeyed when the ringlet that posted them ends. */
+    unsigned char command[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
+    const char *command_word[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
+    unsigned command_count[BEHAVIOUR_MACHINES];
+    /* Whether a command waits (so a ringlet that posted none costs no look at every machine). */
+    unsigned char commands_waiting;
+    /* The text a posting or a print is built in. */
+    char text[BEHAVIOUR_TEXT];
+    unsigned text_length;
 };
 
 void behaviour_init(struct world *w);
@@ -332,9 +479,11 @@ int behaviour_outside(struct world *w, const char *type, const char *content);
 int behaviour_news(const struct world *w);
 /* 1 when `atom` is an answer of the behaviour's theories. */
 int behaviour_answers(const char *atom);
+/* 1 when `name` is a machine's (a posting to it is a control command). */
+int behaviour_is_machine(const char *name);
 /* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
 uint64_t behaviour_next_due_ms(const struct world *w);
-/* 1 when every machine is in a final state. */
+/* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
 int behaviour_finished(const struct world *w);
 
 #endif
@@ -449,40 +598,172 @@ static int elapsed_at_least(const struct world *w, unsigned m, uint64_t ms)
     return w->now_ms - w->entered_ms[m] >= ms;
 }}
 
+/* A time test still to come due shortens the wait; one already past (its label false for
+ * another reason) does not, as the runner's `next_time_test` has it. */
 static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
 {{
-    uint64_t left = at > now ? at - now : 0;
-    return left < due ? left : due;
+    if (at <= now) {{
+        return due;
+    }}
+    return at - now < due ? at - now : due;
+}}
+{runtime}
+#define RUNNING 0
+#define SUSPENDED 1
+#define DORMANT 2
+#define COMMAND_UNKNOWN 0
+#define COMMAND_ON 1
+#define COMMAND_OFF 2
+#define COMMAND_SUSPEND 3
+#define COMMAND_RESUME 4
+#define COMMAND_RESTART 5
+#define LOOP_LIMIT {loop_limit}u
+
+static int final_state(const struct world *w, unsigned m);
+
+/* Whether a machine's run is over for now: in a state with no way out, its OnEntry run. */
+static int done(const struct world *w, unsigned m)
+{{
+    return !w->just_entered[m] && final_state(w, m);
+}}
+
+/* A control command posted to machine `m`, obeyed when the ringlet ends. */
+static void command(struct world *w, unsigned m, unsigned char code, const char *word)
+{{
+    if (w->command_count[m] < BEHAVIOUR_COMMANDS) {{
+        w->command[m][w->command_count[m]] = code;
+        w->command_word[m][w->command_count[m]] = word;
+        w->command_count[m]++;
+        w->commands_waiting = 1;
+    }}
+}}
+
+/* gufsm's SuspensibleMachine, as the runner's `control`: whether it started the machine. */
+static int control(struct world *w, unsigned m, unsigned char code, const char *word)
+{{
+    w->cb.control(w, machine_name[m], word);
+    switch (code) {{
+    case COMMAND_ON:
+    case COMMAND_RESUME:
+        if (w->status[m] == DORMANT) {{
+            w->state[m] = w->initial[m];
+        }} else if (w->status[m] == RUNNING) {{
+            return 0;
+        }}
+        w->status[m] = RUNNING;
+        w->just_entered[m] = 1;
+        return 1;
+    case COMMAND_RESTART:
+        w->status[m] = RUNNING;
+        w->state[m] = w->initial[m];
+        w->just_entered[m] = 1;
+        return 1;
+    case COMMAND_SUSPEND:
+        if (w->status[m] == RUNNING) {{
+            w->status[m] = SUSPENDED;
+        }}
+        return 0;
+    case COMMAND_OFF:
+        w->status[m] = DORMANT;
+        return 0;
+    default:
+        return 0;
+    }}
+}}
+
+/* The commands waiting for each machine, in schedule order; a machine started rings from the
+ * next round. */
+static void obey(struct world *w)
+{{
+    unsigned m, i;
+    if (!w->commands_waiting) {{
+        return;
+    }}
+    w->commands_waiting = 0;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
+        for (i = 0; i < w->command_count[m]; i++) {{
+            if (control(w, m, w->command[m][i], w->command_word[m][i])) {{
+                w->fresh[m] = 1;
+            }}
+        }}
+        w->command_count[m] = 0;
+    }}
 }}
 
 {code}
+static int final_state(const struct world *w, unsigned m)
+{{
+    switch (m) {{
+{finals}    default:
+        return 0;
+    }}
+}}
+
 void behaviour_init(struct world *w)
 {{
     unsigned v, m, k;
     /* Helpers a behaviour without theories, or whose labels ask none, leaves unused. */
     (void)ask;
     (void)set_input;
+    (void)elapsed_at_least;
+    (void)min_due;
+    (void)v_int;
+    (void)v_bool;
+    (void)truthy;
+    (void)v_add;
+    (void)v_sub;
+    (void)v_mul;
+    (void)v_div;
+    (void)v_rem;
+    (void)v_abs;
+    (void)v_eq;
+    (void)v_ne;
+    (void)v_lt;
+    (void)v_le;
+    (void)v_gt;
+    (void)v_ge;
+    (void)v_min;
+    (void)v_max;
+    (void)assign;
+    (void)text_clear;
+    (void)text_literal;
+    (void)text_whole;
+    (void)command;
+    (void)post;
+    (void)text_value;
+    (void)v_neg;
     w->round = 0;
+    w->globals_changes = 0;
+    w->commands_waiting = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {{
         w->in[v] = 0;
     }}
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
-        w->done[m] = 0;
         w->entered_ms[m] = 0;
+        w->fresh[m] = 0;
+        w->globals_seen[m] = 0;
+        w->command_count[m] = 0;
         for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{
             w->seen[m][k] = 0;
         }}
     }}
-{inits}}}
+{var_inits}{inits}}}
 
 int behaviour_round(struct world *w)
 {{
     int fired = 0;
+    unsigned m;
     w->round++;
     if (w->cb.round_started) {{
         w->cb.round_started(w);
     }}
-{rings}    return fired;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
+        w->fresh[m] = 0;
+    }}
+{rings}    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
+        fired |= w->fresh[m];
+    }}
+    return fired;
 }}
 
 int behaviour_outside(struct world *w, const char *type, const char *content)
@@ -501,6 +782,17 @@ int behaviour_answers(const char *atom)
 {{
 {answers_body}}}
 
+int behaviour_is_machine(const char *name)
+{{
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
+        if (same(name, machine_name[m])) {{
+            return 1;
+        }}
+    }}
+    return 0;
+}}
+
 uint64_t behaviour_next_due_ms(const struct world *w)
 {{
     uint64_t due = BEHAVIOUR_PERIOD_MS;
@@ -509,18 +801,15 @@ uint64_t behaviour_next_due_ms(const struct world *w)
 
 int behaviour_finished(const struct world *w)
 {{
-    unsigned m;
-    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {{
-        if (!w->done[m]) {{
-            return 0;
-        }}
-    }}
+{tops}    (void)w;
     return 1;
 }}
 ",
         if output_names.is_empty() { "0".to_string() } else { output_names.join(", ") },
         if experts.is_empty() { "0".to_string() } else { experts.join(", ") },
         machine_names.join(", "),
+        runtime = RUNTIME,
+        loop_limit = proclaim_runner::LOOP_LIMIT,
         answers_body = if outputs.is_empty() {
             "    (void)atom;\n    return 0;\n".to_string()
         } else {
@@ -541,133 +830,104 @@ int behaviour_finished(const struct world *w)
     Ok(CBehaviour { files })
 }
 
-fn action_c(
-    action: &Action,
-    file: &str,
-    line: usize,
-    machines: &[String],
-    inputs: &[(String, usize, usize)],
-    m: usize,
-) -> Result<String, Refusal> {
-    let refuse = |what: String| Refusal {
-        file: file.to_string(),
-        line,
-        what,
-    };
-    match action {
-        Action::Post { ty, content } => {
-            if machines.contains(ty) {
-                return Err(refuse(format!("sub-machine control (`{ty}: {content}`)")));
-            }
-            let Some(text) = posted_text(content) else {
-                return Err(refuse(format!(
-                    "the number `{}` (floating-point postings are not compiled yet)",
-                    content.trim()
-                )));
-            };
-            if inputs.iter().any(|(t, _, _)| t == ty)
-                && !["true", "false", "unknown"].contains(&text.as_str())
-            {
-                return Err(refuse(format!(
-                    "a theory input posted as `{content}` (only true, false or unknown)"
-                )));
-            }
-            Ok(format!(
-                "            post(w, {m}u, \"{}\", \"{}\");\n",
-                esc(ty),
-                esc(&text)
-            ))
-        }
-        Action::Call { function, .. } => Err(refuse(format!(
-            "the host function `{function}` (host functions are not compiled yet)"
-        ))),
-        Action::Statement(s) => Err(refuse(format!(
-            "the statement `{s}` (variables and statements are not compiled yet)"
-        ))),
-        Action::Code(text) => Err(refuse(format!("the unread code `{text}`"))),
-    }
+/// What a state's labels read, gathered as they are compiled: the theory outputs they ask, the
+/// times their time tests come due, and whether they read a global.
+struct Labels<'a> {
+    outputs: &'a [Output],
+    read: Vec<usize>,
+    due: Vec<u64>,
+    reads_globals: bool,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn label_c(
-    label: &Expr,
-    file: &str,
-    line: usize,
-    outputs: &[Output],
-    read: &mut Vec<usize>,
-    due: &mut Vec<u64>,
-    m: usize,
-) -> Result<String, Refusal> {
-    let refuse = |what: String| Refusal {
-        file: file.to_string(),
-        line,
-        what,
-    };
-    Ok(match label {
-        Expr::Bool(b) => if *b { "1".into() } else { "0".into() },
-        Expr::Name(n) if n == "TRUE" || n == "true" => "1".into(),
-        Expr::Name(n) if n == "FALSE" || n == "false" => "0".into(),
-        Expr::Name(n) => {
-            let Some(k) = outputs.iter().position(|o| &o.name == n) else {
-                return Err(refuse(format!("the label atom `{n}`, which no theory of the behaviour answers")));
-            };
-            read.push(k);
-            format!("ask(w, {m}u, {k}u)")
-        }
-        Expr::Unary { op: UnOp::Not, operand } => format!("!{}", label_c(operand, file, line, outputs, read, due, m)?),
-        Expr::Binary { op: op @ (BinOp::And | BinOp::Or), left, right } => format!(
-            "({} {} {})",
-            label_c(left, file, line, outputs, read, due, m)?,
-            if *op == BinOp::And { "&&" } else { "||" },
-            label_c(right, file, line, outputs, read, due, m)?
-        ),
-        Expr::Call { function, arguments } if function == "timeout" && arguments.len() == 1 => {
-            let micros = match &arguments[0] {
-                Expr::Int(n) if *n >= 0 => *n as u64,
-                Expr::Duration(d) => *d,
-                other => return Err(refuse(format!("timeout({other}) (only a constant time)"))),
-            };
-            if micros % 1000 != 0 {
-                return Err(refuse(format!("timeout({micros}) (a target's clock counts milliseconds)")));
-            }
-            due.push(micros / 1000);
-            format!("elapsed_at_least(w, {m}u, {}u)", micros / 1000)
-        }
-        other => return Err(refuse(format!("the label `{other}` (only theory outputs, !, &&, ||, TRUE and timeout are compiled yet)"))),
-    })
-}
-
-/// A posting's content as the runner reads it (`Value::parse`) and shows it in a trace: a truth
-/// word, a whole number, or text without its quotes; `None` for a floating-point number, whose
-/// printed form is not compiled yet.
-fn posted_text(content: &str) -> Option<String> {
-    let t = content.trim();
-    if t == "true" || t == "false" {
-        Some(t.to_string())
-    } else if let Ok(i) = t.parse::<i64>() {
-        Some(i.to_string())
-    } else if t.parse::<f64>().is_ok() {
-        None
-    } else {
-        Some(t.trim_matches('"').to_string())
-    }
-}
-
-/// Text as a C string literal's inside.
-fn esc(text: &str) -> String {
-    let mut out = String::new();
-    for c in text.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            c if (c as u32) < 0x20 || (c as u32) > 0x7e => {
-                let mut buf = [0u8; 4];
-                for b in c.encode_utf8(&mut buf).bytes() {
-                    write!(out, "\\{b:03o}").unwrap();
+impl Labels<'_> {
+    /// A label as the runner proves it: a name standing as a condition is a variable's truth,
+    /// else a theory output asked; `!`, `&&`, `||` over conditions; anything else (comparisons,
+    /// arithmetic) a value's truth, computed on the spot.
+    fn condition(&mut self, label: &Expr, activity: &mut Activity<'_>) -> Result<String, Refusal> {
+        let m = activity.machine;
+        let refuse = |activity: &Activity<'_>, what: String| Refusal {
+            file: activity.file.to_string(),
+            line: activity.line,
+            what,
+        };
+        self.note_globals(label, activity);
+        Ok(match label {
+            Expr::Bool(b) => {
+                if *b {
+                    "1".into()
+                } else {
+                    "0".into()
                 }
             }
-            c => out.push(c),
+            Expr::Name(n) if activity.variables.lookup(n).is_some() => activity.truth(label)?,
+            Expr::Name(n) => {
+                let Some(k) = self.outputs.iter().position(|o| &o.name == n) else {
+                    return Err(refuse(activity, format!("the label atom `{n}`, which is no variable and which no theory of the behaviour answers")));
+                };
+                self.read.push(k);
+                format!("ask(w, {m}u, {k}u)")
+            }
+            Expr::Unary {
+                op: UnOp::Not,
+                operand,
+            } => format!("!{}", self.condition(operand, activity)?),
+            Expr::Binary {
+                op: op @ (BinOp::And | BinOp::Or),
+                left,
+                right,
+            } => format!(
+                "({} {} {})",
+                self.condition(left, activity)?,
+                if *op == BinOp::And { "&&" } else { "||" },
+                self.condition(right, activity)?
+            ),
+            Expr::Call {
+                function,
+                arguments,
+            } if arguments.len() == 1 && TIME_TESTS.iter().any(|(t, _)| t == function) => {
+                // The µs one unit of the argument stands for (1 for timeout, 1000 for after_ms).
+                let unit = TIME_TESTS
+                    .iter()
+                    .find(|(t, _)| t == function)
+                    .map_or(1, |(_, us)| *us as u64);
+                let micros = match &arguments[0] {
+                    Expr::Int(n) if *n >= 0 => (*n as u64).checked_mul(unit),
+                    Expr::Duration(d) => Some(*d),
+                    _ => None,
+                };
+                let Some(micros) = micros.filter(|us| us % 1000 == 0) else {
+                    return Err(refuse(
+                        activity,
+                        format!("`{label}` (only a constant time in whole milliseconds: a target's clock counts milliseconds)"),
+                    ));
+                };
+                self.due.push(micros / 1000);
+                format!("elapsed_at_least(w, {m}u, {}u)", micros / 1000)
+            }
+            other => activity.truth(other)?,
+        })
+    }
+
+    fn note_globals(&mut self, label: &Expr, activity: &Activity<'_>) {
+        label.visit_names(&mut |name, _| {
+            if matches!(activity.variables.lookup(name), Some((_, true))) {
+                self.reads_globals = true;
+            }
+        });
+    }
+}
+
+/// The statements of a state's activities, those inside blocks and loops included.
+fn state_statements(state: &proclaim_fsm::State) -> Vec<&Statement> {
+    let mut out = Vec::new();
+    for action in state
+        .on_entry
+        .iter()
+        .chain(&state.on_exit)
+        .chain(&state.internal)
+    {
+        if let Action::Statement(s) = action {
+            s.visit(&mut |inner| out.push(inner));
         }
     }
     out

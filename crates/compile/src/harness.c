@@ -36,6 +36,10 @@ static void json_string(const char *s)
             printf("\\t");
         } else if (c == '\r') {
             printf("\\r");
+        } else if (c == '\b') {
+            printf("\\b");
+        } else if (c == '\f') {
+            printf("\\f");
         } else if (c < 0x20) {
             printf("\\u%04x", c);
         } else {
@@ -45,6 +49,10 @@ static void json_string(const char *s)
     putchar('"');
 }
 
+/* The run is over once every machine that started with the behaviour is in a final state:
+ * the trace ends at the event that made it so, as `proclaim run`'s does. */
+static int over;
+
 static void tail(struct world *w)
 {
     printf(",\"round\":%llu,\"at_us\":%llu}\n", (unsigned long long)w->round,
@@ -53,6 +61,9 @@ static void tail(struct world *w)
 
 static void on_post(struct world *w, const char *machine, const char *type, const char *content)
 {
+    if (over) {
+        return;
+    }
     printf("{\"event\":\"posted\",\"machine\":");
     json_string(machine);
     printf(",\"type\":");
@@ -64,6 +75,9 @@ static void on_post(struct world *w, const char *machine, const char *type, cons
 
 static void on_entered(struct world *w, const char *machine, const char *state, long id)
 {
+    if (over) {
+        return;
+    }
     printf("{\"event\":\"entered\",\"machine\":");
     json_string(machine);
     printf(",\"state\":");
@@ -74,16 +88,23 @@ static void on_entered(struct world *w, const char *machine, const char *state, 
 
 static void on_finished(struct world *w, const char *machine, const char *state)
 {
+    if (over) {
+        return;
+    }
     printf("{\"event\":\"finished\",\"machine\":");
     json_string(machine);
     printf(",\"state\":");
     json_string(state);
     tail(w);
+    over = behaviour_finished(w);
 }
 
 static void on_answered(struct world *w, const char *machine, const char *atom, int value,
                         const char *expert)
 {
+    if (over) {
+        return;
+    }
     printf("{\"event\":\"answered\",\"machine\":");
     json_string(machine);
     printf(",\"atom\":");
@@ -96,10 +117,64 @@ static void on_answered(struct world *w, const char *machine, const char *atom, 
 
 static void on_fired(struct world *w, const char *machine, long from, long to, const char *label)
 {
+    if (over) {
+        return;
+    }
     printf("{\"event\":\"fired\",\"machine\":");
     json_string(machine);
     printf(",\"from\":%ld,\"to\":%ld,\"label\":", from, to);
     json_string(label);
+    tail(w);
+}
+
+static void on_assigned(struct world *w, const char *machine, const char *variable,
+                        const char *value)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"assigned\",\"machine\":");
+    json_string(machine);
+    printf(",\"variable\":");
+    json_string(variable);
+    printf(",\"value\":");
+    json_string(value);
+    tail(w);
+}
+
+static void on_printed(struct world *w, const char *machine, const char *text)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"printed\",\"machine\":");
+    json_string(machine);
+    printf(",\"text\":");
+    json_string(text);
+    tail(w);
+}
+
+static void on_control(struct world *w, const char *machine, const char *command)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"control\",\"machine\":");
+    json_string(machine);
+    printf(",\"command\":");
+    json_string(command);
+    tail(w);
+}
+
+static void on_warned(struct world *w, const char *machine, const char *message)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"warned\",\"machine\":");
+    json_string(machine);
+    printf(",\"message\":");
+    json_string(message);
     tail(w);
 }
 
@@ -250,6 +325,10 @@ static int read_script(void)
             fprintf(stderr, "stdin:%d: `%s` is a theory's answer: impersonating an answer is not supported by a compiled behaviour\n", number, s.name);
             return 0;
         }
+        if (behaviour_is_machine(s.name)) {
+            fprintf(stderr, "stdin:%d: `%s` is a machine: control commands from a script are not supported by a compiled behaviour\n", number, s.name);
+            return 0;
+        }
         if (step_count == MAX_STEPS) {
             fprintf(stderr, "stdin:%d: more than %d steps\n", number, MAX_STEPS);
             return 0;
@@ -294,6 +373,10 @@ int main(int argc, char **argv)
     w.cb.finished = on_finished;
     w.cb.answered = on_answered;
     w.cb.fired = on_fired;
+    w.cb.assigned = on_assigned;
+    w.cb.printed = on_printed;
+    w.cb.control = on_control;
+    w.cb.warned = on_warned;
     w.cb.round_started = NULL;
     behaviour_init(&w);
     w.now_ms = 0;
@@ -307,7 +390,7 @@ int main(int argc, char **argv)
             break;
         }
         fired = behaviour_round(&w);
-        if (behaviour_finished(&w)) {
+        if (over || behaviour_finished(&w)) {
             break;
         }
         /* A round that fired, or whose own postings changed what a label reads, is followed at once. */

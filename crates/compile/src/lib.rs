@@ -12,6 +12,7 @@
 //! assert_eq!(compiled.answer(0, &[true, false]), false);
 //! ```
 
+mod activity;
 mod behaviour;
 mod c;
 mod diagram;
