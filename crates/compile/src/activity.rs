@@ -6,7 +6,9 @@
 
 use crate::behaviour::Refusal;
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, VarType, TIME_TESTS};
+use proclaim_fsm::{
+    Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
+};
 use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use proclaim_runner::{arith, LOOP_LIMIT};
 use std::collections::HashMap;
@@ -234,7 +236,7 @@ impl Activity<'_> {
             ));
         }
         let mut out = self.build_text(&pieces, depth);
-        writeln!(out, "{pad}post(w, {m}u, \"{}\", w->text);", esc(ty)).unwrap();
+        let _ = writeln!(out, "{pad}post(w, {m}u, \"{}\", w->text);", esc(ty));
         Ok(out)
     }
 
@@ -243,22 +245,22 @@ impl Activity<'_> {
         let pad = Self::indent(depth);
         let mut out = String::new();
         let mut longest = 1;
-        writeln!(out, "{pad}text_clear(w);").unwrap();
+        let _ = writeln!(out, "{pad}text_clear(w);");
         for piece in pieces {
             match piece {
                 Piece::Literal(s) => {
                     longest += s.len();
                     if !s.is_empty() {
-                        writeln!(out, "{pad}text_literal(w, \"{}\");", esc(s)).unwrap();
+                        let _ = writeln!(out, "{pad}text_literal(w, \"{}\");", esc(s));
                     }
                 }
                 Piece::Value(v) => {
                     longest += VALUE_TEXT;
-                    writeln!(out, "{pad}text_value(w, {v});").unwrap();
+                    let _ = writeln!(out, "{pad}text_value(w, {v});");
                 }
                 Piece::Whole(v) => {
                     longest += VALUE_TEXT;
-                    writeln!(out, "{pad}text_whole(w, {v});").unwrap();
+                    let _ = writeln!(out, "{pad}text_whole(w, {v});");
                 }
             }
         }
@@ -269,13 +271,13 @@ impl Activity<'_> {
     fn statement(&mut self, statement: &Statement, depth: usize) -> Result<String, Refusal> {
         let pad = Self::indent(depth);
         let m = self.machine;
-        Ok(match statement {
-            Statement::Declare {
-                name,
-                value: Some(value),
-                ..
-            }
-            | Statement::Assign { name, value } => {
+        if let Statement::Extern { name, .. } = statement {
+            return Err(self.refuse(format!(
+                "`extern {name}` (whiteboard variables are not compiled yet)"
+            )));
+        }
+        Ok(match statement.kind() {
+            StatementKind::Assign { name, value } => {
                 let Some((variable, global)) = self.variables.lookup(name) else {
                     return Err(self.refuse(format!(
                         "the assignment to `{name}`, which is no variable here (an extern?)"
@@ -290,19 +292,14 @@ impl Activity<'_> {
                     esc(name)
                 )
             }
-            Statement::Declare { value: None, .. } => String::new(),
-            Statement::Extern { name, .. } => {
-                return Err(self.refuse(format!(
-                    "`extern {name}` (whiteboard variables are not compiled yet)"
-                )))
-            }
-            Statement::Expr(Expr::Call {
+            StatementKind::Nothing => String::new(),
+            StatementKind::Call {
                 function,
                 arguments,
-            }) => self.call(function, arguments, depth)?,
+            } => self.call(function, arguments, depth)?,
             // An expression standing alone has no effect (nothing in one has a side effect).
-            Statement::Expr(_) => String::new(),
-            Statement::Block(body) => {
+            StatementKind::Evaluate(_) => String::new(),
+            StatementKind::Sequence(body) => {
                 let mut out = format!("{pad}{{\n");
                 for s in body {
                     out.push_str(&self.statement(s, depth + 1)?);
@@ -310,39 +307,38 @@ impl Activity<'_> {
                 out.push_str(&format!("{pad}}}\n"));
                 out
             }
-            Statement::For {
-                init,
-                condition,
-                step,
-                body,
-            } => {
-                let n = *self.loops;
-                *self.loops += 1;
-                let inner = Self::indent(depth + 1);
-                let mut out = format!("{pad}{{\n{inner}uint32_t rounds_{n} = 0;\n");
-                if let Some(init) = init {
-                    out.push_str(&self.statement(init, depth + 1)?);
-                }
-                let condition = match condition {
-                    Some(c) => self.truth(c)?,
-                    None => "1".into(),
-                };
-                writeln!(out, "{inner}while ({condition}) {{").unwrap();
-                let deeper = Self::indent(depth + 2);
-                writeln!(
-                    out,
-                    "{deeper}if (rounds_{n} == LOOP_LIMIT) {{\n{deeper}    w->cb.warned(w, machine_name[{m}], \"a `for` loop in state {} stopped after {LOOP_LIMIT} rounds\");\n{deeper}    break;\n{deeper}}}\n{deeper}rounds_{n}++;",
-                    esc(self.state)
-                )
-                .unwrap();
-                out.push_str(&self.statement(body, depth + 2)?);
-                if let Some(step) = step {
-                    out.push_str(&self.statement(step, depth + 2)?);
-                }
-                writeln!(out, "{inner}}}\n{pad}}}").unwrap();
-                out
-            }
+            StatementKind::Loop(parts) => self.for_loop(parts, depth)?,
         })
+    }
+
+    /// A `for` loop as a C `while`, stopped at the runner's [`LOOP_LIMIT`] with its warning.
+    fn for_loop(&mut self, parts: ForLoop<'_>, depth: usize) -> Result<String, Refusal> {
+        let pad = Self::indent(depth);
+        let m = self.machine;
+        let n = *self.loops;
+        *self.loops += 1;
+        let inner = Self::indent(depth + 1);
+        let mut out = format!("{pad}{{\n{inner}uint32_t rounds_{n} = 0;\n");
+        if let Some(init) = parts.init {
+            out.push_str(&self.statement(init, depth + 1)?);
+        }
+        let condition = match parts.condition {
+            Some(c) => self.truth(c)?,
+            None => "1".into(),
+        };
+        let _ = writeln!(out, "{inner}while ({condition}) {{");
+        let deeper = Self::indent(depth + 2);
+        let _ = writeln!(
+            out,
+            "{deeper}if (rounds_{n} == LOOP_LIMIT) {{\n{deeper}    w->cb.warned(w, machine_name[{m}], \"a `for` loop in state {} stopped after {LOOP_LIMIT} rounds\");\n{deeper}    break;\n{deeper}}}\n{deeper}rounds_{n}++;",
+            esc(self.state)
+        );
+        out.push_str(&self.statement(parts.body, depth + 2)?);
+        if let Some(step) = parts.step {
+            out.push_str(&self.statement(step, depth + 2)?);
+        }
+        let _ = writeln!(out, "{inner}}}\n{pad}}}");
+        Ok(out)
     }
 
     /// A call standing as a statement, by the runner's one decoding of the built-ins.
@@ -371,7 +367,7 @@ impl Activity<'_> {
             Builtin::Print(content) => {
                 let pieces = self.content(&content)?;
                 let mut out = self.build_text(&pieces, depth);
-                writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);").unwrap();
+                let _ = writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);");
                 Ok(out)
             }
             Builtin::Sleep { .. } => {
@@ -633,7 +629,7 @@ pub(crate) fn esc(text: &str) -> String {
             c if (c as u32) < 0x20 || (c as u32) > 0x7e => {
                 let mut buf = [0u8; 4];
                 for b in c.encode_utf8(&mut buf).bytes() {
-                    write!(out, "\\{b:03o}").unwrap();
+                    let _ = write!(out, "\\{b:03o}");
                 }
             }
             c => out.push(c),

@@ -233,15 +233,14 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
             let outgoing: Vec<_> = machine.outgoing(id).collect();
             if outgoing.is_empty() {
                 final_ids.push(id);
-                writeln!(
+                let _ = writeln!(
                     entry,
                     "            w->cb.finished(w, \"{}\", \"{}\");",
                     esc(&machine.name),
                     esc(&state.name)
-                )
-                .unwrap();
+                );
             }
-            writeln!(entries, "        case {id}:\n            w->cb.entered(w, \"{}\", \"{}\", {id});\n{entry}            break;", esc(&machine.name), esc(&state.name)).unwrap();
+            let _ = writeln!(entries, "        case {id}:\n            w->cb.entered(w, \"{}\", \"{}\", {id});\n{entry}            break;", esc(&machine.name), esc(&state.name));
             let mut body = String::new();
             let mut labels = Labels {
                 outputs: &outputs,
@@ -252,17 +251,16 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
             for t in &outgoing {
                 activity.line = t.line;
                 let label = labels.condition(&t.label, &mut activity)?;
-                writeln!(
+                let _ = writeln!(
                     body,
                     "        if ({label}) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
                     esc(&machine.name),
                     t.target,
                     esc(&t.label.to_string()),
                     t.target
-                )
-                .unwrap();
+                );
             }
-            writeln!(cases, "    case {id}:\n{body}{internal}        return 0;").unwrap();
+            let _ = writeln!(cases, "    case {id}:\n{body}{internal}        return 0;");
             let Labels {
                 mut read,
                 due,
@@ -272,7 +270,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
             read.sort_unstable();
             read.dedup();
             let read_expr: Vec<String> = read.iter().map(|k| format!("k == {k}u")).collect();
-            writeln!(
+            let _ = writeln!(
                 read_cases,
                 "    case {id}:\n        return {};",
                 if read_expr.is_empty() {
@@ -280,17 +278,16 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
                 } else {
                     read_expr.join(" || ")
                 }
-            )
-            .unwrap();
+            );
             let due_expr: String = due
                 .iter()
                 .map(|ms| {
                     format!("        due = min_due(due, w->entered_ms[{m}] + {ms}u, w->now_ms);\n")
                 })
                 .collect();
-            writeln!(due_cases, "    case {id}:\n{due_expr}        break;").unwrap();
+            let _ = writeln!(due_cases, "    case {id}:\n{due_expr}        break;");
             if reads_globals {
-                writeln!(global_cases, "    case {id}:").unwrap();
+                let _ = writeln!(global_cases, "    case {id}:");
             }
         }
         let final_cases: String = final_ids
@@ -307,7 +304,7 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
         } else {
             format!("    switch (w->state[{m}]) {{\n{final_cases}        return 1;\n    default:\n        return 0;\n    }}\n")
         };
-        writeln!(
+        let _ = writeln!(
             code,
             "static int ring_{m}(struct world *w)
 {{
@@ -354,30 +351,26 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
     return due;
 }}
 "
-        )
-        .unwrap();
-        writeln!(rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}").unwrap();
-        writeln!(reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}").unwrap();
-        writeln!(
+        );
+        let _ = writeln!(rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
+        let _ = writeln!(reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
+        let _ = writeln!(
             dues,
             "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             inits,
             "    w->state[{m}] = {};\n    w->initial[{m}] = {};\n    w->just_entered[{m}] = 1;\n    w->status[{m}] = {};",
             machine.initial,
             machine.initial,
             if loaded.start { "RUNNING" } else { "DORMANT" }
-        )
-        .unwrap();
-        writeln!(finals, "    case {m}:\n        return final_{m}(w);").unwrap();
+        );
+        let _ = writeln!(finals, "    case {m}:\n        return final_{m}(w);");
         if loaded.start {
-            writeln!(
+            let _ = writeln!(
                 tops,
                 "    if (!done(w, {m}u)) {{\n        return 0;\n    }}"
-            )
-            .unwrap();
+            );
         }
     }
     let var_inits: String = slots
@@ -408,8 +401,8 @@ static uint64_t due_{m}(const struct world *w, uint64_t due)
     let values_n = slots.len().max(1);
     let commands_n = commands.max(1);
     let mut h = String::new();
-    writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&behaviour.name)).unwrap();
-    writeln!(h, "#define BEHAVIOUR_MACHINES {machines}\n#define BEHAVIOUR_OUTPUTS {outputs_n}\n#define BEHAVIOUR_VARIABLES {variables}\n#define BEHAVIOUR_VALUES {values_n}\n#define BEHAVIOUR_TEXT {longest_text}\n#define BEHAVIOUR_COMMANDS {commands_n}\n#define BEHAVIOUR_PERIOD_MS {period_ms}u\n").unwrap();
+    let _ = writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&behaviour.name));
+    let _ = writeln!(h, "#define BEHAVIOUR_MACHINES {machines}\n#define BEHAVIOUR_OUTPUTS {outputs_n}\n#define BEHAVIOUR_VARIABLES {variables}\n#define BEHAVIOUR_VALUES {values_n}\n#define BEHAVIOUR_TEXT {longest_text}\n#define BEHAVIOUR_COMMANDS {commands_n}\n#define BEHAVIOUR_PERIOD_MS {period_ms}u\n");
     h.push_str(
         "struct world;
 
@@ -490,9 +483,9 @@ int behaviour_finished(const struct world *w);
 ",
     );
     let mut c = String::new();
-    writeln!(c, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#include <stdint.h>\n#include \"behaviour.h\"", comment(&behaviour.name)).unwrap();
+    let _ = writeln!(c, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#include <stdint.h>\n#include \"behaviour.h\"", comment(&behaviour.name));
     for (_, prefix, _) in &theories {
-        writeln!(c, "#include \"{prefix}.h\"").unwrap();
+        let _ = writeln!(c, "#include \"{prefix}.h\"");
     }
     let mut answer_cases = String::new();
     let mut offset = 0;
@@ -502,12 +495,11 @@ int behaviour_finished(const struct world *w);
         offset += compiled.variables();
     }
     for (k, o) in outputs.iter().enumerate() {
-        writeln!(
+        let _ = writeln!(
             answer_cases,
             "    case {k}:\n        return {}_answer({}u, w->in + {});",
             theories[o.theory].1, o.index, offsets[o.theory]
-        )
-        .unwrap();
+        );
     }
     let output_names: Vec<String> = outputs
         .iter()
@@ -521,9 +513,9 @@ int behaviour_finished(const struct world *w);
     let mut input_cases = String::new();
     for (ty, t, i) in &inputs {
         let v = offsets[*t] + 2 * i;
-        writeln!(input_cases, "    if (same(type, \"{}\")) {{\n        set_input(w, {v}, content);\n        return 1;\n    }}", esc(ty)).unwrap();
+        let _ = writeln!(input_cases, "    if (same(type, \"{}\")) {{\n        set_input(w, {v}, content);\n        return 1;\n    }}", esc(ty));
     }
-    write!(
+    let _ = write!(
         c,
         "
 static const char *const output_name[{outputs_n}] = {{{}}};
@@ -805,8 +797,16 @@ int behaviour_finished(const struct world *w)
     return 1;
 }}
 ",
-        if output_names.is_empty() { "0".to_string() } else { output_names.join(", ") },
-        if experts.is_empty() { "0".to_string() } else { experts.join(", ") },
+        if output_names.is_empty() {
+            "0".to_string()
+        } else {
+            output_names.join(", ")
+        },
+        if experts.is_empty() {
+            "0".to_string()
+        } else {
+            experts.join(", ")
+        },
         machine_names.join(", "),
         runtime = RUNTIME,
         loop_limit = proclaim_runner::LOOP_LIMIT,
@@ -815,8 +815,7 @@ int behaviour_finished(const struct world *w)
         } else {
             format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", outputs.len())
         },
-    )
-    .unwrap();
+    );
     let mut files = vec![
         ("behaviour.h".to_string(), h),
         ("behaviour.c".to_string(), c),

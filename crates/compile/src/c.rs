@@ -50,19 +50,18 @@ impl Compiled {
         let upper = prefix.to_ascii_uppercase();
         let mut h = String::new();
         let guard = format!("{upper}_H");
-        writeln!(
+        let _ = writeln!(
             h,
             "/* Theory `{}` compiled by proclaim (generated: do not edit). */",
             comment(&self.name)
-        )
-        .unwrap();
-        writeln!(h, "#ifndef {guard}\n#define {guard}\n").unwrap();
-        writeln!(h, "/* Decision variables: in[v] non-zero is true. */").unwrap();
+        );
+        let _ = writeln!(h, "#ifndef {guard}\n#define {guard}\n");
+        let _ = writeln!(h, "/* Decision variables: in[v] non-zero is true. */");
         for (v, name) in self.variable_names().iter().enumerate() {
-            writeln!(h, "/*   in[{v}]: {} */", comment(name)).unwrap();
+            let _ = writeln!(h, "/*   in[{v}]: {} */", comment(name));
         }
-        writeln!(h, "#define {upper}_VARIABLES {variables}").unwrap();
-        writeln!(h, "#define {upper}_OUTPUTS {}", self.outputs.len()).unwrap();
+        let _ = writeln!(h, "#define {upper}_VARIABLES {variables}");
+        let _ = writeln!(h, "#define {upper}_OUTPUTS {}", self.outputs.len());
         let mut taken: Vec<String> = Vec::new();
         for (o, name) in self.outputs.iter().enumerate() {
             let mut id = format!(
@@ -72,36 +71,33 @@ impl Compiled {
             if taken.contains(&id) || id.ends_with("_VARIABLES") || id.ends_with("_OUTPUTS") {
                 id = format!("{id}_{o}");
             }
-            writeln!(h, "#define {id} {o} /* {} */", comment(name)).unwrap();
+            let _ = writeln!(h, "#define {id} {o} /* {} */", comment(name));
             taken.push(id);
         }
-        writeln!(h, "\n/* Output `output`'s answer (0 or 1); 0 for an output out of range or an invalid valuation. */").unwrap();
-        writeln!(
+        let _ = writeln!(h, "\n/* Output `output`'s answer (0 or 1); 0 for an output out of range or an invalid valuation. */");
+        let _ = writeln!(
             h,
             "int {prefix}_answer(unsigned output, const unsigned char in[]);"
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             h,
             "/* Whether the valuation is one the theory's truth table holds (1) or not (0). */"
-        )
-        .unwrap();
-        writeln!(h, "int {prefix}_valid(const unsigned char in[]);").unwrap();
-        writeln!(h, "\n#endif").unwrap();
+        );
+        let _ = writeln!(h, "int {prefix}_valid(const unsigned char in[]);");
+        let _ = writeln!(h, "\n#endif");
 
         let mut c = String::new();
-        writeln!(
+        let _ = writeln!(
             c,
             "/* Theory `{}` compiled by proclaim (generated: do not edit). */",
             comment(&self.name)
-        )
-        .unwrap();
-        writeln!(c, "#include <stdint.h>\n#include \"{prefix}.h\"\n").unwrap();
+        );
+        let _ = writeln!(c, "#include <stdint.h>\n#include \"{prefix}.h\"\n");
         match self.form {
             Form::Diagram => self.diagram_c(prefix, &mut c),
             Form::Table => self.table_c(prefix, &mut c),
         }
-        writeln!(c, "\nint {prefix}_valid(const unsigned char in[])\n{{\n    return {prefix}_answer({}u, in);\n}}", functions - 1).unwrap();
+        let _ = writeln!(c, "\nint {prefix}_valid(const unsigned char in[])\n{{\n    return {prefix}_answer({}u, in);\n}}", functions - 1);
         CSource {
             header: h,
             source: c,
@@ -122,37 +118,33 @@ impl Compiled {
                 if i % 16 == 0 {
                     text.push_str("\n    ");
                 }
-                write!(text, "{v},").unwrap();
+                let _ = write!(text, "{v},");
             }
             text
         };
-        writeln!(c, "/* A reduced ordered decision diagram: {n} nodes (0 and 1 are false and true), {} bytes. */", self.diagram_bytes()).unwrap();
-        writeln!(
+        let _ = writeln!(c, "/* A reduced ordered decision diagram: {n} nodes (0 and 1 are false and true), {} bytes. */", self.diagram_bytes());
+        let _ = writeln!(
             c,
             "static const uint8_t {prefix}_var[{n}] = {{{}\n}};",
             list(d.nodes.iter().map(|x| x.var).collect())
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             c,
             "static const {index} {prefix}_low[{n}] = {{{}\n}};",
             list(d.nodes.iter().map(|x| x.low).collect())
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             c,
             "static const {index} {prefix}_high[{n}] = {{{}\n}};",
             list(d.nodes.iter().map(|x| x.high).collect())
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             c,
             "static const {index} {prefix}_root[{}] = {{{}\n}};",
             d.roots.len(),
             list(d.roots.clone())
-        )
-        .unwrap();
-        writeln!(
+        );
+        let _ = writeln!(
             c,
             "
 int {prefix}_answer(unsigned output, const unsigned char in[])
@@ -168,8 +160,7 @@ int {prefix}_answer(unsigned output, const unsigned char in[])
     return (int)node;
 }}",
             functions = self.functions()
-        )
-        .unwrap();
+        );
     }
 
     fn table_c(&self, prefix: &str, c: &mut String) {
@@ -189,18 +180,17 @@ int {prefix}_answer(unsigned output, const unsigned char in[])
                 }
             }
         }
-        writeln!(c, "/* A truth table: bit (row * {functions} + function), {} bytes; the first variable is the row's highest bit. */", bytes.len()).unwrap();
-        write!(
+        let _ = writeln!(c, "/* A truth table: bit (row * {functions} + function), {} bytes; the first variable is the row's highest bit. */", bytes.len());
+        let _ = write!(
             c,
             "static const uint8_t {prefix}_table[{}] = {{",
             bytes.len()
-        )
-        .unwrap();
+        );
         for (i, b) in bytes.iter().enumerate() {
             if i % 16 == 0 {
                 c.push_str("\n    ");
             }
-            write!(c, "0x{b:02x},").unwrap();
+            let _ = write!(c, "0x{b:02x},");
         }
         c.push_str("\n};\n");
         let row = if variables == 0 {
@@ -213,7 +203,7 @@ int {prefix}_answer(unsigned output, const unsigned char in[])
         } else {
             "    unsigned v;\n"
         };
-        writeln!(
+        let _ = writeln!(
             c,
             "
 int {prefix}_answer(unsigned output, const unsigned char in[])
@@ -225,7 +215,6 @@ int {prefix}_answer(unsigned output, const unsigned char in[])
 {row}    bit = bit * {functions}u + output;
     return ({prefix}_table[bit >> 3] >> (bit & 7u)) & 1;
 }}"
-        )
-        .unwrap();
+        );
     }
 }

@@ -349,21 +349,21 @@ pub fn check(
             }
         }
     }
+    let searched = Searched {
+        model,
+        stepper: &stepper,
+        enc: &enc,
+        steps: &steps,
+        guards: &guards,
+        initial: &initial,
+        first_steps: &first_steps,
+    };
     let (mut reached, mut layer) = first_layers(model, &enc, &initial, &first_steps);
     let mut layers = vec![layer.clone()];
     let decidable = !properties.is_empty();
     loop {
         for (p, target) in targets.iter().enumerate() {
             if outcome.targets[p].is_none() && !layer.and(target).is_false() {
-                let searched = Searched {
-                    model,
-                    stepper: &stepper,
-                    enc: &enc,
-                    steps: &steps,
-                    guards: &guards,
-                    initial: &initial,
-                    first_steps: &first_steps,
-                };
                 outcome.targets[p] = Some(
                     searched
                         .rebuild(&layers, target)
@@ -393,15 +393,6 @@ pub fn check(
     outcome.steps = layers.len();
     mark_entered_and_fired(model, &enc, &guards, &steps, &reached, &mut outcome);
     if outcome.stopped == Stop::Explored {
-        let searched = Searched {
-            model,
-            stepper: &stepper,
-            enc: &enc,
-            steps: &steps,
-            guards: &guards,
-            initial: &initial,
-            first_steps: &first_steps,
-        };
         outcome.deadlock = searched.deadlock(&layers, &reached, &initial_fires);
     }
     Ok(outcome)
