@@ -115,8 +115,21 @@ pub struct Promela {
     pub values_complete: bool,
 }
 
-/// Where the initial step's table filling goes, once every value is numbered.
+/// Where the table filling goes, before the initial step, once every value is numbered.
 const TABLES: &str = "TABLES";
+
+/// At most this many assignments in one `d_step` (SPIN refuses a sequence of a few thousand).
+const FILL_PER_STEP: usize = 1000;
+
+/// The table filling as `d_step`s of at most [`FILL_PER_STEP`] assignments each.
+fn table_steps(fill: &str) -> String {
+    let assignments: Vec<&str> = fill.split_inclusive("; ").collect();
+    assignments
+        .chunks(FILL_PER_STEP)
+        .map(|chunk| format!("d_step {{ {} }};", chunk.concat().trim_end()))
+        .collect::<Vec<_>>()
+        .join("\n  ")
+}
 
 /// Reasoner tables above this many entries (3 to the number of inputs) are refused.
 const MAX_VALUATIONS: usize = 3usize.pow(12);
@@ -130,17 +143,20 @@ pub fn to_promela(
 ) -> Result<Promela, EmitError> {
     let (model, compiled) = prepare(behaviour, properties)?;
     crate::check_stored_free(&model)?;
-    let values_complete = explore::explore(
-        &model,
-        &compiled,
-        Options {
-            reductions: Reductions::NONE,
-            ..options
-        }
-        .limits(),
-        &mut |_| {},
-    )
-    .complete;
+    // The values are numbered from the machines' ringlets to a fixpoint, with no search; only
+    // where a slot's values keep growing (a counter) does a bounded search number them.
+    let values_complete = crate::symbolic::number_values(&model).is_ok()
+        || explore::explore(
+            &model,
+            &compiled,
+            Options {
+                reductions: Reductions::NONE,
+                ..options
+            }
+            .limits(),
+            &mut |_| {},
+        )
+        .complete;
     // Writing numbers the constants it meets and learns how many commands a machine may send
     // itself in a ringlet; the text is final once a pass adds neither.
     let mut queue = 0;
@@ -1000,7 +1016,7 @@ impl<'m> Writer<'m> {
         self.declarations(&mut text, properties);
         let fill = self.tables(&mut text)?;
         let _ = writeln!(text, "\nactive proctype rounds() {{");
-        text.push_str(&body.replacen(TABLES, &fill, 1));
+        text.push_str(&body.replacen(TABLES, &table_steps(&fill), 1));
         let _ = writeln!(text, "}}\n");
         for (i, p) in properties.iter().enumerate() {
             let _ = writeln!(
@@ -1019,9 +1035,9 @@ impl<'m> Writer<'m> {
     fn initial_step(&mut self, properties: &[Property]) -> String {
         let model = self.model;
         self.depth = 1;
+        self.line(TABLES);
         self.line("d_step {");
         self.depth += 1;
-        self.line(TABLES);
         for (k, m) in model.machines.iter().enumerate() {
             let mode = if m.start { 0 } else { 2 };
             self.line(&format!(

@@ -281,6 +281,25 @@ pub struct SymbolicOutcome {
     pub deadlock: Option<(Path, World)>,
 }
 
+/// Numbers every value a slot or `saw()` of `model` can hold, without a search: the values of
+/// the initial worlds and the first ringlets, then whatever a ringlet of any machine writes
+/// from values already numbered, to a fixpoint (as [`check`] finds its fields' values).
+/// Declines where a slot's values keep growing.
+pub fn number_values(model: &Model) -> Result<(), Declined> {
+    let stepper = StepGenerator::new(model);
+    let initial: Vec<World> = initial_worlds(model).collect();
+    let mut successors = Vec::new();
+    let first_steps: Vec<Vec<(World, Choice)>> = initial
+        .iter()
+        .map(|w| {
+            successors.clear();
+            stepper.successors(w, false, &mut successors);
+            successors.drain(..).map(|s| (s.world, s.choice)).collect()
+        })
+        .collect();
+    value_domains(model, &stepper, &initial, &first_steps).map(|_| ())
+}
+
 /// Checks `properties` of `model` symbolically, or says why it does not.
 pub fn check(
     model: &Model,
