@@ -7,9 +7,10 @@
 //!   `turn`; every slot (`s<i>`) and every `saw()` value (`saw<i>`) as a **value number** of the
 //!   model's [`crate::values::Values`] (0 never posted); that is [`crate::world::World`] field by
 //!   field.
-//! - **Values.** The numbers are those the checker's own exploration met (it runs first, so the
-//!   free domains, constants and every computed value are numbered), plus every constant the
-//!   activities and properties name. Operators, conversions and built-in functions are tables
+//! - **Values.** The numbers are those the machines' ringlets can write, found to a fixpoint
+//!   with no search (as the symbolic engine finds its fields' values; a bounded exploration
+//!   numbers them only where a slot's values keep growing), plus every constant the activities
+//!   and properties name. Operators, conversions and built-in functions are tables
 //!   over those numbers computed with [`crate::arith`], the checker's semantics; a result no
 //!   number stands for is `BEYOND`, and every step asserts that no variable holds it, so a
 //!   value the checker never met is SPIN's assertion error rather than a silent disagreement.
@@ -110,8 +111,8 @@ pub struct Promela {
     pub text: String,
     /// One per property, in the order given.
     pub claims: Vec<Claim>,
-    /// The checker's exploration, which numbers the values, saw every reachable state (if not,
-    /// SPIN may meet a value beyond them and report an assertion error).
+    /// Every value a run can meet is numbered (if not, SPIN may meet a value beyond them and
+    /// report an assertion error).
     pub values_complete: bool,
 }
 
