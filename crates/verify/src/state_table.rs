@@ -31,10 +31,13 @@ pub fn hash(record: &[u8]) -> u64 {
         w.copy_from_slice(word);
         h = fold(h ^ u64::from_le_bytes(w), 0x9e37_79b9_7f4a_7c15);
     }
-    let rest = words.remainder();
-    let mut w = [0u8; 8];
-    w[..rest.len()].copy_from_slice(rest);
-    fold(h ^ u64::from_le_bytes(w), 0xbf58_476d_1ce4_e5b9)
+    // The last few bytes a byte at a time: a copy of a length unknown here is a call.
+    let rest = words
+        .remainder()
+        .iter()
+        .rev()
+        .fold(0u64, |w, &b| w << 8 | u64::from(b));
+    fold(h ^ rest, 0xbf58_476d_1ce4_e5b9)
 }
 
 fn fold(a: u64, b: u64) -> u64 {
@@ -101,16 +104,19 @@ impl StateTable {
         self.entries.len() / 5 * 4
     }
 
+    /// Enters every state again in a larger table. The old entries are taken in the order they
+    /// lie, which is (but for the few displaced past the end) the order of their hashes, so
+    /// the new entries are written in order too rather than scattered.
     fn grow(&mut self, hash_of: impl Fn(u32) -> u64) {
         let size = grown(self.entries.len(), self.len + 1);
         let mut entries = vec![0u32; size];
-        for id in 0..self.len as u32 {
-            let hash = hash_of(id);
+        for &entry in self.entries.iter().filter(|&&e| e != 0) {
+            let hash = hash_of((entry & ID_MASK) - 1);
             let mut at = home(hash, size);
             while entries[at] != 0 {
                 at = if at + 1 == size { 0 } else { at + 1 };
             }
-            entries[at] = tag_of(hash) | (id + 1);
+            entries[at] = entry;
         }
         self.entries = entries;
     }

@@ -252,9 +252,13 @@ impl BitWriter<'_> {
         }
     }
 
-    fn finish(self) {
-        let bytes = self.used.div_ceil(8) as usize;
-        self.out.extend_from_slice(&self.acc.to_le_bytes()[..bytes]);
+    fn finish(mut self) {
+        // A byte at a time: a copy of a length unknown here is a call.
+        while self.used > 0 {
+            self.out.push(self.acc as u8);
+            self.acc >>= 8;
+            self.used = self.used.saturating_sub(8);
+        }
     }
 }
 
@@ -270,13 +274,17 @@ impl BitReader<'_> {
     fn take(&mut self, width: u8) -> u64 {
         let width = u32::from(width);
         if self.held < width {
-            let mut word = [0u8; 4];
-            let end = self.bytes.len().min(self.at + 4);
-            if self.at < end {
-                word[..end - self.at].copy_from_slice(&self.bytes[self.at..end]);
-            }
+            let word = match self.bytes.get(self.at..self.at + 4) {
+                Some(&[a, b, c, d]) => u32::from_le_bytes([a, b, c, d]),
+                _ => {
+                    let mut word = [0u8; 4];
+                    let rest = self.bytes.get(self.at..).unwrap_or(&[]);
+                    word[..rest.len()].copy_from_slice(rest);
+                    u32::from_le_bytes(word)
+                }
+            };
             self.at += 4;
-            self.acc |= u64::from(u32::from_le_bytes(word)) << self.held;
+            self.acc |= u64::from(word) << self.held;
             self.held += 32;
         }
         let v = self.acc & ((1u64 << width) - 1);
