@@ -11,6 +11,9 @@ use crate::chunked::Chunked;
 /// Lists between two block starts.
 const BLOCK: usize = 64;
 
+/// The bit of an edge's varint that ends its list.
+const LAST: u64 = 1;
+
 /// One edge of a list: the state it leads to and whether a transition fired on the step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Edge {
@@ -57,23 +60,29 @@ impl Edges {
     }
 
     /// Appends the successor list of state `lists()`; `new` says of each edge whether it found
-    /// its state (which then has the next number).
+    /// its state (which then has the next number). Each edge is one varint: its code (0 for an
+    /// empty list, 1 for a state found by the edge, else 2 and the zigzagged distance from the
+    /// list's state), whether a transition fired, and whether it is the list's last.
     pub fn push(&mut self, list: impl ExactSizeIterator<Item = (Edge, bool)>) {
         let source = self.lists as u32;
         if self.lists % BLOCK == 0 {
             self.block_at.push(self.bytes.len());
             self.block_found.push(self.found);
         }
-        self.varint(list.len() as u64);
-        for (edge, new) in list {
+        let last = list.len();
+        if last == 0 {
+            self.varint(LAST);
+        }
+        for (i, (edge, new)) in list.enumerate() {
             let code = if new {
                 debug_assert_eq!(edge.target, self.found);
                 self.found += 1;
-                0
+                1
             } else {
-                1 + zigzag(i64::from(edge.target) - i64::from(source))
+                2 + zigzag(i64::from(edge.target) - i64::from(source))
             };
-            self.varint(code << 1 | u64::from(edge.fired));
+            let end = if i + 1 == last { LAST } else { 0 };
+            self.varint(code << 2 | u64::from(edge.fired) << 1 | end);
             self.edges += 1;
         }
         self.lists += 1;
@@ -155,26 +164,39 @@ impl Reader<'_> {
         }
     }
 
-    fn edge(&mut self) -> (Edge, bool) {
+    /// The next edge of the list being read, whether it found its state, and whether it ends
+    /// the list; `None` for an empty list.
+    fn edge(&mut self) -> Option<(Edge, bool, bool)> {
         let v = self.varint();
-        let fired = v & 1 == 1;
-        let code = v >> 1;
-        if code == 0 {
-            self.found += 1;
-            let target = self.found - 1;
-            (Edge { target, fired }, true)
-        } else {
-            let target = (i64::from(self.source) + unzigzag(code - 1)) as u32;
-            (Edge { target, fired }, false)
+        let last = v & LAST != 0;
+        let fired = v & 2 != 0;
+        match v >> 2 {
+            0 => None,
+            1 => {
+                self.found += 1;
+                let target = self.found - 1;
+                Some((Edge { target, fired }, true, last))
+            }
+            code => {
+                let target = (i64::from(self.source) + unzigzag(code - 2)) as u32;
+                Some((Edge { target, fired }, false, last))
+            }
         }
     }
 
-    fn skip_list(&mut self) {
-        let n = self.varint();
-        for _ in 0..n {
-            self.edge();
+    /// Hands each edge of the next list, with whether it found its state, to `each`.
+    fn list(&mut self, mut each: impl FnMut(Edge, bool)) {
+        while let Some((edge, new, last)) = self.edge() {
+            each(edge, new);
+            if last {
+                break;
+            }
         }
         self.source += 1;
+    }
+
+    fn skip_list(&mut self) {
+        self.list(|_, _| {});
     }
 
     /// The next state's number and its edges (with whether each found its state), or `None`
@@ -183,24 +205,20 @@ impl Reader<'_> {
         if self.source as usize >= self.edges.lists {
             return None;
         }
-        let n = self.varint();
-        let list = (0..n).map(|_| self.edge()).collect();
         let source = self.source;
-        self.source += 1;
+        let mut list = Vec::new();
+        self.list(|edge, new| list.push((edge, new)));
         Some((source, list))
     }
 
-    /// Hands every edge of the next list to `each`; `false` after the last list.
+    /// Hands every edge of the next list to `each`, with the list's state; `false` after the
+    /// last list.
     pub fn each_of_next(&mut self, mut each: impl FnMut(u32, Edge)) -> bool {
         if self.source as usize >= self.edges.lists {
             return false;
         }
-        let n = self.varint();
-        for _ in 0..n {
-            let (edge, _) = self.edge();
-            each(self.source, edge);
-        }
-        self.source += 1;
+        let source = self.source;
+        self.list(|edge, _| each(source, edge));
         true
     }
 }

@@ -241,6 +241,12 @@ pub fn explore(
     let stepper = StepGenerator::new(model);
     let mut successors: Vec<Successor> = Vec::new();
     let mut list = Vec::new();
+    let mut world = World {
+        turn: 0,
+        machines: Vec::new(),
+        values: Vec::new(),
+        saw: Vec::new(),
+    };
     let mut next = 0usize;
     // States from here on are one step further from the initial ones than those before.
     let mut layer_end = graph.len();
@@ -263,7 +269,9 @@ pub fn explore(
                 stored: graph.len(),
             });
         }
-        let world = graph.world(next as u32);
+        graph
+            .layout
+            .unpack_into(graph.bytes_of(next as u32), &mut world);
         successors.clear();
         stepper.successors(&world, false, &mut successors);
         // What the tables would grow to must stay within the memory budget: as if every

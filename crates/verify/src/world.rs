@@ -1,8 +1,8 @@
 //! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
 //! packed while stored into a record of bit fields, each as wide as its values need: whose
 //! turn it is, per machine its state number (none for a machine of one state), its time bits
-//! (one a time test of its states) and four bits of flags (mode, just entered, started this
-//! round), then the value number of every slot the search stores ([`crate::reduce::Storage`])
+//! (one a time test of its states) and its flags (just entered, started this round, mode: none
+//! while they never change), then the value number of every slot the search stores ([`crate::reduce::Storage`])
 //! and of every `saw()`, then one bit a free type chosen when read (posted yet). A value
 //! number wider than its field widens the field; every record of a search has one width.
 
@@ -45,9 +45,10 @@ pub struct World {
     pub saw: Vec<ValueId>,
 }
 
-/// Field widths in bits. Every field's width is what its values have needed so far: a machine's
-/// state number and time bits are bounded by the model, value numbers grow as values are met,
-/// and a value that does not fit makes [`Layout::pack`] say which field must widen.
+/// Field widths in bits. A machine's state number and time bits are as wide as the model says
+/// they can need; its flags and every value number start with no bits and are as wide as what
+/// the search has met needed: a value that does not fit makes [`Layout::pack`] say which field
+/// must widen.
 #[derive(Clone, Debug)]
 pub struct Layout {
     /// Per field, in packing order: turn; per machine its state, time bits and four flags;
@@ -76,9 +77,6 @@ fn bits_for(max: u64) -> u8 {
     (u64::BITS - max.leading_zeros()) as u8
 }
 
-/// Flags of a machine's mode: the status in two bits, then "just entered" and "fresh".
-const FLAG_BITS: u8 = 4;
-
 impl Layout {
     pub fn new(model: &Model) -> Layout {
         let stored: Vec<SlotId> = (0..model.slots.len())
@@ -97,7 +95,6 @@ impl Layout {
                 Storage::Stored | Storage::ChosenWhenRead => NEVER,
             })
             .collect();
-        let value_bits = bits_for(values.len() as u64);
         let mut widths = vec![bits_for(model.machines.len() as u64 + 1)];
         for m in &model.machines {
             widths.push(bits_for(m.states.len().saturating_sub(1) as u64));
@@ -108,12 +105,10 @@ impl Layout {
                 .max()
                 .unwrap_or(0);
             widths.push(tests as u8);
-            widths.push(FLAG_BITS);
+            // Most machines only ever run, so their flags start with no bits at all.
+            widths.push(0);
         }
-        widths.extend(std::iter::repeat_n(
-            value_bits,
-            stored.len() + model.saw.len(),
-        ));
+        widths.extend(std::iter::repeat_n(0, stored.len() + model.saw.len()));
         widths.extend(std::iter::repeat_n(1, chosen.len()));
         Layout {
             widths,
@@ -173,7 +168,8 @@ impl Layout {
                 Status::Suspended => 1,
                 Status::Dormant => 2,
             };
-            put(status | u64::from(c.just_entered) << 2 | u64::from(c.fresh) << 3)?;
+            // The flags that change most often in the low bits, so a field stays narrow.
+            put(u64::from(c.just_entered) | u64::from(c.fresh) << 1 | status << 2)?;
         }
         for &slot in &self.stored {
             put(u64::from(world.values[slot]))?;
@@ -190,6 +186,19 @@ impl Layout {
 
     /// Reads a world [`Layout::pack`] packed with this layout.
     pub fn unpack(&self, bytes: &[u8]) -> World {
+        let mut world = World {
+            turn: 0,
+            machines: Vec::with_capacity(self.machines),
+            values: Vec::with_capacity(self.fill.len()),
+            saw: Vec::with_capacity(self.saw),
+        };
+        self.unpack_into(bytes, &mut world);
+        world
+    }
+
+    /// [`Layout::unpack`] into a world already allocated, which a search reuses state after
+    /// state.
+    pub fn unpack_into(&self, bytes: &[u8], world: &mut World) {
         let mut bits = BitReader {
             bytes,
             at: 0,
@@ -198,37 +207,35 @@ impl Layout {
         };
         let mut widths = self.widths.iter();
         let mut next = || bits.take(widths.next().copied().unwrap_or(0));
-        let turn = (next() as u8).wrapping_sub(1);
-        let mut machines = Vec::with_capacity(self.machines);
+        world.turn = (next() as u8).wrapping_sub(1);
+        world.machines.clear();
         for _ in 0..self.machines {
             let state = next() as u16;
             let time = next() as u16;
             let flags = next();
-            machines.push(Control {
+            world.machines.push(Control {
                 state,
-                status: match flags & 3 {
+                status: match flags >> 2 {
                     0 => Status::Running,
                     1 => Status::Suspended,
                     _ => Status::Dormant,
                 },
-                just_entered: flags & 4 != 0,
-                fresh: flags & 8 != 0,
+                just_entered: flags & 1 != 0,
+                fresh: flags & 2 != 0,
                 time,
             });
         }
-        let mut values = self.fill.clone();
+        world.values.clear();
+        world.values.extend_from_slice(&self.fill);
         for &slot in &self.stored {
-            values[slot] = next() as ValueId;
+            world.values[slot] = next() as ValueId;
         }
-        let saw = (0..self.saw).map(|_| next() as ValueId).collect();
+        world.saw.clear();
+        for _ in 0..self.saw {
+            world.saw.push(next() as ValueId);
+        }
         for &slot in &self.chosen {
-            values[slot] = if next() == 1 { POSTED } else { NEVER };
-        }
-        World {
-            turn,
-            machines,
-            values,
-            saw,
+            world.values[slot] = if next() == 1 { POSTED } else { NEVER };
         }
     }
 }
