@@ -235,8 +235,8 @@ pub fn explore(
             return graph;
         }
         store.insert(&mut graph, &w, model, properties);
+        graph.initial = graph.len() as u32;
     }
-    graph.initial = graph.len() as u32;
     graph.edges = Edges::new(graph.initial);
     let stepper = StepGenerator::new(model);
     let mut successors: Vec<Successor> = Vec::new();
