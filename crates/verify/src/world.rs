@@ -46,14 +46,16 @@ pub struct World {
 }
 
 /// Field widths in bits. A machine's state number and time bits are as wide as the model says
-/// they can need; its flags and every value number start with no bits and are as wide as what
-/// the search has met needed: a value that does not fit makes [`Layout::pack`] say which field
-/// must widen.
+/// they can need; its flags start with no bits and value numbers as wide as the values the
+/// text names, and each is as wide as what the search has met needed: a value that does not
+/// fit makes [`Layout::pack`] say which field must widen.
 #[derive(Clone, Debug)]
 pub struct Layout {
     /// Per field, in packing order: turn; per machine its state, time bits and four flags;
     /// every stored slot's value number; every `saw()` value number; a bit per chosen slot.
     widths: Vec<u8>,
+    /// The sum of the widths.
+    bits: usize,
     machines: usize,
     /// The slots a state stores, in slot order.
     stored: Vec<SlotId>,
@@ -108,9 +110,13 @@ impl Layout {
             // Most machines only ever run, so their flags start with no bits at all.
             widths.push(0);
         }
-        widths.extend(std::iter::repeat_n(0, stored.len() + model.saw.len()));
+        // Value numbers start as wide as the values the text names (numbered as the model was
+        // built), so a search widens them only for values its steps make.
+        let named = bits_for(values.len() as u64);
+        widths.extend(std::iter::repeat_n(named, stored.len() + model.saw.len()));
         widths.extend(std::iter::repeat_n(1, chosen.len()));
         Layout {
+            bits: widths.iter().map(|&w| usize::from(w)).sum(),
             widths,
             machines: model.machines.len(),
             stored,
@@ -129,22 +135,49 @@ impl Layout {
             .div_ceil(8)
     }
 
-    /// This layout with `field` widened to at least `bits`.
+    /// This layout with `field` widened to at least `bits`. Value numbers are shared by every
+    /// slot, so a number one slot met the others may meet next: every value field widens with
+    /// it, and a search packs its records again once rather than once a slot.
     pub fn widened(&self, narrow: TooNarrow) -> Layout {
         let mut wider = self.clone();
-        let w = &mut wider.widths[narrow.field];
-        *w = (*w).max(narrow.bits);
+        let values = 1 + 3 * self.machines..1 + 3 * self.machines + self.stored.len() + self.saw;
+        let fields = if values.contains(&narrow.field) {
+            values
+        } else {
+            narrow.field..narrow.field + 1
+        };
+        for w in &mut wider.widths[fields] {
+            *w = (*w).max(narrow.bits);
+        }
+        wider.bits = wider.widths.iter().map(|&w| usize::from(w)).sum();
         wider
     }
 
     /// Packs `world` into [`Layout::bytes`] bytes appended to `out`, or says which field is too
     /// narrow for it (`out` then holds a part of the record).
     pub fn pack(&self, world: &World, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
+        // Most records fit in a register, which is filled before a byte is written.
+        if self.bits <= 128 {
+            let mut bits = Register { acc: 0, used: 0 };
+            self.pack_into(world, &mut bits)?;
+            let mut acc = bits.acc;
+            for _ in 0..self.bytes() {
+                out.push(acc as u8);
+                acc >>= 8;
+            }
+            return Ok(());
+        }
         let mut bits = BitWriter {
             out,
             acc: 0,
             used: 0,
         };
+        self.pack_into(world, &mut bits)?;
+        bits.finish();
+        Ok(())
+    }
+
+    fn pack_into(&self, world: &World, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
         let mut field = 0;
         let mut put = |v: u64| {
             let width = self.widths[field];
@@ -180,7 +213,6 @@ impl Layout {
         for &slot in &self.chosen {
             put(u64::from(world.values[slot] == POSTED))?;
         }
-        bits.finish();
         Ok(())
     }
 
@@ -199,12 +231,24 @@ impl Layout {
     /// [`Layout::unpack`] into a world already allocated, which a search reuses state after
     /// state.
     pub fn unpack_into(&self, bytes: &[u8], world: &mut World) {
-        let mut bits = BitReader {
-            bytes,
-            at: 0,
-            acc: 0,
-            held: 0,
-        };
+        if self.bits <= 128 {
+            let acc = bytes
+                .iter()
+                .rev()
+                .fold(0u128, |acc, &b| acc << 8 | u128::from(b));
+            self.unpack_from(&mut Register { acc, used: 0 }, world);
+        } else {
+            let mut bits = BitReader {
+                bytes,
+                at: 0,
+                acc: 0,
+                held: 0,
+            };
+            self.unpack_from(&mut bits, world);
+        }
+    }
+
+    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut World) {
         let mut widths = self.widths.iter();
         let mut next = || bits.take(widths.next().copied().unwrap_or(0));
         world.turn = (next() as u8).wrapping_sub(1);
@@ -240,6 +284,38 @@ impl Layout {
     }
 }
 
+/// Where fields of at most 32 bits are written.
+trait FieldWriter {
+    fn put(&mut self, v: u64, width: u8);
+}
+
+/// Where fields are read from.
+trait FieldReader {
+    fn take(&mut self, width: u8) -> u64;
+}
+
+/// A record of at most 128 bits held whole: written from its low bits up, read by shifting
+/// them out.
+struct Register {
+    acc: u128,
+    used: u32,
+}
+
+impl FieldWriter for Register {
+    fn put(&mut self, v: u64, width: u8) {
+        self.acc |= u128::from(v) << self.used;
+        self.used += u32::from(width);
+    }
+}
+
+impl FieldReader for Register {
+    fn take(&mut self, width: u8) -> u64 {
+        let v = (self.acc as u64) & ((1u64 << width) - 1);
+        self.acc >>= width;
+        v
+    }
+}
+
 /// Appends numbers of at most 32 bits to a byte vector, least significant bit first, four
 /// bytes at a time.
 struct BitWriter<'a> {
@@ -248,7 +324,7 @@ struct BitWriter<'a> {
     used: u32,
 }
 
-impl BitWriter<'_> {
+impl FieldWriter for BitWriter<'_> {
     fn put(&mut self, v: u64, width: u8) {
         self.acc |= v << self.used;
         self.used += u32::from(width);
@@ -258,7 +334,9 @@ impl BitWriter<'_> {
             self.used -= 32;
         }
     }
+}
 
+impl BitWriter<'_> {
     fn finish(mut self) {
         // A byte at a time: a copy of a length unknown here is a call.
         while self.used > 0 {
@@ -277,7 +355,7 @@ struct BitReader<'a> {
     held: u32,
 }
 
-impl BitReader<'_> {
+impl FieldReader for BitReader<'_> {
     fn take(&mut self, width: u8) -> u64 {
         let width = u32::from(width);
         if self.held < width {
@@ -309,6 +387,7 @@ mod tests {
         Layout {
             // turn; three machines (state, time, flags); two stored slots; one saw; one chosen.
             widths: vec![2, 8, 2, 4, 9, 0, 4, 0, 0, 4, 3, 3, 3, 1],
+            bits: 43,
             machines: 3,
             stored: vec![0, 2],
             chosen: vec![3],
@@ -366,7 +445,11 @@ mod tests {
             layout.widths[10], 32,
             "the stored slot grew to the widest value"
         );
-        assert_eq!(layout.widths[11], 3, "the other kept its width");
+        assert_eq!(
+            layout.widths[10..14],
+            [32, 32, 32, 1],
+            "every value field grew with it, the chosen bit did not"
+        );
         let mut first = world(0, 0);
         first.turn = crate::ringlet::FIRST_TURN;
         let mut bytes = Vec::new();
@@ -374,5 +457,28 @@ mod tests {
             .pack(&first, &mut bytes)
             .expect("the first turn fits");
         assert_eq!(layout.unpack(&bytes), first);
+    }
+
+    #[test]
+    fn records_wider_than_a_register_round_trip_too() {
+        let layout = Layout {
+            widths: vec![1, 32, 32, 32, 32, 32, 3],
+            bits: 164,
+            machines: 0,
+            stored: (0..6).collect(),
+            chosen: Vec::new(),
+            fill: vec![NEVER; 6],
+            saw: 0,
+        };
+        let world = World {
+            turn: crate::ringlet::FIRST_TURN,
+            machines: Vec::new(),
+            values: vec![u32::MAX, 1, 1 << 31, 3, 4, 5],
+            saw: Vec::new(),
+        };
+        let mut bytes = Vec::new();
+        layout.pack(&world, &mut bytes).expect("every value fits");
+        assert_eq!(bytes.len(), 21);
+        assert_eq!(layout.unpack(&bytes), world);
     }
 }
