@@ -36,15 +36,9 @@ impl<T: Copy> Chunked<T> {
     pub fn bytes_after(&self, more: usize) -> usize {
         allocated(self.len + more, 1) * std::mem::size_of::<T>()
     }
-
-    pub fn iter(&self) -> impl Iterator<Item = T> + '_ {
-        self.chunks.iter().flatten().copied()
-    }
 }
 
-/// Records of `stride` bytes each, in chunks of [`CHUNK`] records. Records are compared and
-/// read whole, so a shorter one is stored padded with zero bytes; when a longer one comes,
-/// every record is copied once to the new stride.
+/// Records of `stride` bytes each, in chunks of [`CHUNK`] records.
 #[derive(Debug, Default)]
 pub struct Records {
     chunks: Vec<Vec<u8>>,
@@ -53,7 +47,14 @@ pub struct Records {
 }
 
 impl Records {
-    #[cfg(test)]
+    /// No records yet; each will take `stride` bytes.
+    pub fn new(stride: usize) -> Records {
+        Records {
+            stride,
+            ..Records::default()
+        }
+    }
+
     pub fn len(&self) -> usize {
         self.len
     }
@@ -68,41 +69,22 @@ impl Records {
         &self.chunks[i / CHUNK][at..at + self.stride]
     }
 
-    /// Appends `record` (at most `stride` bytes after [`Records::fit`]), padded to the stride.
+    /// Appends `record`, which is `stride` bytes long.
     pub fn push(&mut self, record: &[u8]) {
-        self.fit(record.len());
+        debug_assert_eq!(record.len(), self.stride);
         if self.len % CHUNK == 0 {
             self.chunks
                 .push(first_or_whole(self.len, CHUNK * self.stride));
         }
         if let Some(last) = self.chunks.last_mut() {
             last.extend_from_slice(record);
-            last.resize(last.len() + self.stride - record.len(), 0);
         }
         self.len += 1;
     }
 
-    /// Widens every record to `width` bytes if the stride is narrower.
-    pub fn fit(&mut self, width: usize) {
-        if width <= self.stride {
-            return;
-        }
-        let old = self.stride;
-        for chunk in &mut self.chunks {
-            let records = chunk.len().checked_div(old).unwrap_or(0);
-            let mut wide = Vec::with_capacity(records * width);
-            for r in 0..records {
-                wide.extend_from_slice(&chunk[r * old..(r + 1) * old]);
-                wide.resize((r + 1) * width, 0);
-            }
-            *chunk = wide;
-        }
-        self.stride = width;
-    }
-
-    /// Bytes allocated, and what they would be after `more` records of at most `width` bytes.
-    pub fn bytes_after(&self, more: usize, width: usize) -> usize {
-        allocated(self.len + more, self.stride.max(width))
+    /// Bytes allocated, and what they would be after `more` records.
+    pub fn bytes_after(&self, more: usize) -> usize {
+        allocated(self.len + more, self.stride)
     }
 }
 
@@ -137,7 +119,7 @@ mod tests {
         }
         assert_eq!(v.len(), 2 * CHUNK + 3);
         assert_eq!(v.get(CHUNK), CHUNK as u32);
-        assert_eq!(v.iter().last(), Some((2 * CHUNK + 2) as u32));
+        assert_eq!(v.get(2 * CHUNK + 2), (2 * CHUNK + 2) as u32);
         assert_eq!(v.bytes_after(0), 3 * CHUNK * 4);
         let mut small = Chunked::default();
         small.push(1u32);
@@ -145,17 +127,14 @@ mod tests {
     }
 
     #[test]
-    fn records_widen_without_changing_what_they_hold() {
-        let mut r = Records::default();
-        r.push(&[1, 2]);
+    fn records_keep_every_record_across_chunks() {
+        let mut r = Records::new(3);
         for i in 0..CHUNK + 5 {
-            r.push(&[(i % 251) as u8]);
+            r.push(&[(i % 251) as u8, 1, 2]);
         }
-        r.push(&[7, 8, 9]);
-        assert_eq!(r.stride(), 3);
-        assert_eq!(r.get(0), [1, 2, 0]);
-        assert_eq!(r.get(2), [1, 0, 0]);
-        assert_eq!(r.get(CHUNK + 1), [(CHUNK % 251) as u8, 0, 0]);
-        assert_eq!(r.get(r.len() - 1), [7, 8, 9]);
+        assert_eq!(r.len(), CHUNK + 5);
+        assert_eq!(r.get(2), [2, 1, 2]);
+        assert_eq!(r.get(CHUNK + 1), [((CHUNK + 1) % 251) as u8, 1, 2]);
+        assert_eq!(r.bytes_after(0), 2 * CHUNK * 3);
     }
 }

@@ -1,37 +1,35 @@
 //! Breadth-first exploration of the model's states: every state packed once into a table of
-//! fixed-width records (`chunked.rs`), found again by a hash table of state numbers (FxHash of
-//! the packed bytes), each with its parent, so the first state found that a property looks for
-//! has the shortest path. The environment's choice on each step of that path is found again
-//! when the path is asked for, by making the parent's successors once more, rather than stored
-//! with every state. Successor lists are kept (4 bytes an edge) for the deadlock check, which
-//! needs to know which states can still reach a firing.
+//! fixed-width bit-packed records (`world.rs`, `chunked.rs`), found again by an index of state
+//! numbers (`state_table.rs`), so the first state found that a property looks for has the
+//! shortest path. Successor lists are kept compressed (`edges.rs`, a byte or two an edge) for
+//! the deadlock and liveness checks, which need to know which states reach which; a state's
+//! parent is the state whose list found it, read from them rather than kept. The environment's
+//! choice on each step of a path is found again when the path is asked for, by making the
+//! parent's successors once more, rather than stored with every state.
 
-use crate::chunked::{Chunked, Records};
+use crate::chunked::Records;
+use crate::edges::{Edge, Edges};
 use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
-use crate::world::{Layout, Status, World};
-use hashbrown::HashTable;
+use crate::state_table::{self, StateTable, MAX_STATES};
+use crate::world::{Layout, Status, TooNarrow, World};
 use proclaim_behaviour::PropertyKind;
-use rustc_hash::FxBuildHasher;
-use std::hash::BuildHasher;
-
-/// No parent: an initial state.
-const ROOT: u32 = u32::MAX;
+use std::cell::OnceCell;
 
 /// Every state explored, in breadth-first order.
 pub struct Graph {
     layout: Layout,
-    /// State i's packed bytes, padded to the widest state's.
+    /// State i's packed record.
     states: Records,
-    /// State i's parent in the breadth-first tree, or [`ROOT`].
-    parents: Chunked<u32>,
-    table: HashTable<u32>,
-    /// Successors of state i: `edges[edge_start[i]..edge_start[i + 1]]`; the high bit marks a
-    /// step in which a transition fired.
-    edge_start: Chunked<u32>,
-    edges: Chunked<u32>,
+    table: StateTable,
+    /// How many initial states there are: states `0..initial`.
+    initial: u32,
+    /// Successors of the states expanded.
+    edges: Edges,
+    /// The successor lists unpacked, made when a liveness check first asks.
+    adjacency: OnceCell<Adjacency>,
     pub complete: bool,
     /// Why the search ended.
     pub stopped: Stop,
@@ -44,14 +42,18 @@ pub struct Graph {
     /// Breadth-first layers reached: the states at the greatest distance from an initial one
     /// are this many steps away.
     pub depth: usize,
-    saw: usize,
 }
 
-const FIRED: u32 = 1 << 31;
+/// Successor lists with an index, for checks that walk edges in any order: the successors of
+/// state i are `targets[start[i]..start[i + 1]]`.
+struct Adjacency {
+    start: Vec<u32>,
+    targets: Vec<u32>,
+}
 
 impl Graph {
     pub fn len(&self) -> usize {
-        self.parents.len()
+        self.states.len()
     }
 
     pub fn edge_count(&self) -> usize {
@@ -59,7 +61,7 @@ impl Graph {
     }
 
     pub fn world(&self, id: u32) -> World {
-        self.layout.unpack(self.bytes_of(id), self.saw)
+        self.layout.unpack(self.bytes_of(id))
     }
 
     /// The bytes a state's record takes.
@@ -74,33 +76,36 @@ impl Graph {
 
     /// Bytes the graph's tables hold.
     pub fn bytes(&self) -> usize {
-        self.bytes_after(0, 0, 0)
+        self.bytes_after(0, 0)
     }
 
-    /// Bytes the tables would hold after `states` more states of at most `width` bytes each
-    /// and `edges` more edges (the hash table doubles when it grows).
-    fn bytes_after(&self, states: usize, width: usize, edges: usize) -> usize {
-        let table = if self.table.len() + states > self.table.capacity() {
-            2 * self.table.allocation_size().max(64)
-        } else {
-            self.table.allocation_size()
-        };
-        self.states.bytes_after(states, width)
-            + self.parents.bytes_after(states)
-            + table
-            + self.edge_start.bytes_after(1)
+    /// Bytes the tables would hold, at most, after `states` more states and `edges` more edges
+    /// in one more list.
+    fn bytes_after(&self, states: usize, edges: usize) -> usize {
+        let adjacency = self
+            .adjacency
+            .get()
+            .map_or(0, |a| 4 * (a.start.capacity() + a.targets.capacity()));
+        self.states.bytes_after(states)
+            + self.table.bytes_after(states)
             + self.edges.bytes_after(edges)
+            + adjacency
+    }
+
+    /// The state whose successors first found `id` (its parent in the breadth-first tree).
+    fn parent(&self, id: u32) -> Option<u32> {
+        if id < self.initial {
+            return None;
+        }
+        self.edges.finder(id)
     }
 
     /// The path to `id`: the index of its initial world and the choices after it. Each step's
     /// choice is found by making its parent's successors again.
     pub fn path(&self, model: &Model, id: u32) -> (usize, Vec<(u32, Choice)>) {
         let mut states = vec![id];
-        while let Some(&at) = states.last() {
-            match self.parents.get(at as usize) {
-                ROOT => break,
-                parent => states.push(parent),
-            }
+        while let Some(parent) = states.last().and_then(|&at| self.parent(at)) {
+            states.push(parent);
         }
         states.reverse();
         let root = states[0];
@@ -131,30 +136,25 @@ impl Graph {
         let n = self.len();
         // Reverse edges, counting-sorted.
         let mut start = vec![0u32; n + 1];
-        for e in self.edges.iter() {
-            start[(e & !FIRED) as usize + 1] += 1;
-        }
+        let mut reader = self.edges.from(0);
+        while reader.each_of_next(|_, e| start[e.target as usize + 1] += 1) {}
         for i in 0..n {
             start[i + 1] += start[i];
         }
         let mut fill = start.clone();
         let mut reverse = vec![0u32; self.edges.len()];
-        let mut bounds = self.edge_start.iter();
-        let mut from = bounds.next().unwrap_or(0);
         let mut live = vec![false; n];
         let mut work = Vec::new();
-        for (s, to) in bounds.enumerate() {
-            for e in (from..to).map(|e| self.edges.get(e as usize)) {
-                let t = (e & !FIRED) as usize;
-                reverse[fill[t] as usize] = s as u32;
-                fill[t] += 1;
-                if e & FIRED != 0 && !live[s] {
-                    live[s] = true;
-                    work.push(s);
-                }
+        let mut reader = self.edges.from(0);
+        while reader.each_of_next(|s, e| {
+            let t = e.target as usize;
+            reverse[fill[t] as usize] = s;
+            fill[t] += 1;
+            if e.fired && !live[s as usize] {
+                live[s as usize] = true;
+                work.push(s as usize);
             }
-            from = to;
-        }
+        }) {}
         while let Some(t) = work.pop() {
             for &s in &reverse[start[t] as usize..start[t + 1] as usize] {
                 if !live[s as usize] {
@@ -230,14 +230,23 @@ pub fn explore(
             stop(&mut graph, Stop::StateBudget);
             return graph;
         }
-        if graph.bytes_after(1, 64, 0) > limits.max_memory {
+        if graph.bytes_after(1, 0) > limits.max_memory {
             stop(&mut graph, Stop::MemoryBudget);
             return graph;
         }
-        store.insert(&mut graph, &w, ROOT, model, properties);
+        store.insert(&mut graph, &w, model, properties);
+        graph.initial = graph.len() as u32;
     }
+    graph.edges = Edges::new(graph.initial);
     let stepper = StepGenerator::new(model);
     let mut successors: Vec<Successor> = Vec::new();
+    let mut list = Vec::new();
+    let mut world = World {
+        turn: 0,
+        machines: Vec::new(),
+        values: Vec::new(),
+        saw: Vec::new(),
+    };
     let mut next = 0usize;
     // States from here on are one step further from the initial ones than those before.
     let mut layer_end = graph.len();
@@ -260,25 +269,28 @@ pub fn explore(
                 stored: graph.len(),
             });
         }
-        let world = graph.world(next as u32);
+        graph
+            .layout
+            .unpack_into(graph.bytes_of(next as u32), &mut world);
         successors.clear();
         stepper.successors(&world, false, &mut successors);
-        // What the tables would grow to must stay within the memory budget: as if every successor were new and a little wider than the state it came from.
-        let width = graph.states.stride() + 8;
-        if graph.bytes_after(successors.len(), width, successors.len()) > limits.max_memory {
+        // What the tables would grow to must stay within the memory budget: as if every
+        // successor were new.
+        if graph.bytes_after(successors.len(), successors.len()) > limits.max_memory {
             stop(&mut graph, Stop::MemoryBudget);
             break;
         }
+        list.clear();
         for s in &successors {
-            let mut edge = store.insert(&mut graph, &s.world, next as u32, model, properties);
+            let (target, new) = store.insert(&mut graph, &s.world, model, properties);
             if let Some(t) = s.fired {
-                edge |= FIRED;
                 let index = model.machines[s.machine].states[s.from].transitions[t].index;
                 graph.fired[s.machine][index] = true;
             }
-            graph.edges.push(edge);
+            let fired = s.fired.is_some();
+            list.push((Edge { target, fired }, new));
         }
-        graph.edge_start.push(graph.edges.len() as u32);
+        graph.edges.push(list.iter().copied());
         next += 1;
     }
     graph
@@ -287,74 +299,97 @@ pub fn explore(
 impl Graph {
     /// No states yet, and nothing entered, fired or found.
     fn empty(model: &Model, properties: usize) -> Graph {
+        let layout = Layout::new(model);
         Graph {
-            layout: Layout::new(model),
-            states: Records::default(),
-            parents: Chunked::default(),
-            table: HashTable::new(),
-            edge_start: {
-                let mut start = Chunked::default();
-                start.push(0);
-                start
-            },
-            edges: Chunked::default(),
+            states: Records::new(layout.bytes()),
+            layout,
+            table: StateTable::default(),
+            initial: 0,
+            edges: Edges::default(),
+            adjacency: OnceCell::new(),
             complete: true,
             stopped: Stop::Explored,
             entered: model.per_state(),
             fired: model.per_transition(),
             targets: vec![None; properties],
             depth: 0,
-            saw: model.saw.len(),
         }
     }
 
-    /// Whether another state would pass `max_states`, or what the ids can hold (ids leave the
-    /// top bit to the "fired" mark).
+    /// Whether another state would pass `max_states`, or what the index and the edge numbers
+    /// can hold.
     fn is_full(&self, max_states: usize) -> bool {
         self.len() >= max_states
-            || self.len() >= (FIRED - 1) as usize
+            || self.len() >= MAX_STATES
             || self.edges.len() >= (u32::MAX as usize - (1 << 20))
     }
 
-    /// State `id`'s record (padded with zero bytes to the stride).
+    /// State `id`'s record.
     fn bytes_of(&self, id: u32) -> &[u8] {
         self.states.get(id as usize)
     }
+
+    /// Every record packed again with `narrow`'s field widened, and the index made anew (the
+    /// state numbers stay).
+    fn widen(&mut self, narrow: TooNarrow) {
+        let wider = self.layout.widened(narrow);
+        let mut states = Records::new(wider.bytes());
+        let mut table = StateTable::default();
+        let mut record = Vec::new();
+        for id in 0..self.len() as u32 {
+            record.clear();
+            let fits = wider.pack(&self.world(id), &mut record);
+            // Every field is at least as wide as the one the record was packed with.
+            debug_assert!(fits.is_ok());
+            let stored = &states;
+            table.find_or_insert(
+                state_table::hash(&record),
+                id,
+                |_| false,
+                |i| state_table::hash(stored.get(i as usize)),
+            );
+            states.push(&record);
+        }
+        self.layout = wider;
+        self.states = states;
+        self.table = table;
+    }
 }
 
-/// What storing a state needs besides the graph: its packing buffer and the hasher.
+/// What storing a state needs besides the graph: its packing buffer.
 #[derive(Default)]
 struct Store {
     scratch: Vec<u8>,
-    hasher: FxBuildHasher,
 }
 
 impl Store {
-    /// The id of `world`, stored with `parent` if it is new; a new state is checked against
-    /// the properties and marks the states it is in as entered.
+    /// The id of `world` and whether it is new; a new state is stored, checked against the
+    /// properties and marks the states it is in as entered.
     fn insert(
         &mut self,
         graph: &mut Graph,
         world: &World,
-        parent: u32,
         model: &Model,
         properties: &[Property],
-    ) -> u32 {
-        self.scratch.clear();
-        graph.layout.pack(world, &mut self.scratch);
-        let hash = self.hasher.hash_one(unpadded(&self.scratch));
-        if let Some(&id) = graph.table.find(hash, |&id| {
-            unpadded(graph.bytes_of(id)) == unpadded(&self.scratch)
-        }) {
-            return id;
+    ) -> (u32, bool) {
+        loop {
+            self.scratch.clear();
+            match graph.layout.pack(world, &mut self.scratch) {
+                Ok(()) => break,
+                Err(narrow) => graph.widen(narrow),
+            }
         }
-        let id = graph.parents.len() as u32;
+        let id = graph.len() as u32;
+        let (states, record) = (&graph.states, &self.scratch[..]);
+        if let Some(found) = graph.table.find_or_insert(
+            state_table::hash(record),
+            id,
+            |id| states.get(id as usize) == record,
+            |id| state_table::hash(states.get(id as usize)),
+        ) {
+            return (found, false);
+        }
         graph.states.push(&self.scratch);
-        graph.parents.push(parent);
-        let (states, hasher) = (&graph.states, &self.hasher);
-        graph.table.insert_unique(hash, id, |&id| {
-            hasher.hash_one(unpadded(states.get(id as usize)))
-        });
         for (k, c) in world.machines.iter().enumerate() {
             if c.status != Status::Dormant {
                 graph.entered[k][usize::from(c.state)] = true;
@@ -365,7 +400,7 @@ impl Store {
                 graph.targets[p] = Some(id);
             }
         }
-        id
+        (id, true)
     }
 }
 
@@ -376,24 +411,25 @@ impl Graph {
     /// How many states had all their successors made: states `0..expanded()` (breadth-first
     /// order); the others were stored but the budget ran out before their turn.
     pub fn expanded(&self) -> usize {
-        self.edge_start.len() - 1
+        self.edges.lists()
     }
 
     /// Whether state `id` is one of the initial states.
     pub fn is_initial(&self, id: u32) -> bool {
-        self.parents.get(id as usize) == ROOT
+        id < self.initial
     }
 
     /// Where state `id`'s successors are in the edge list (`id` expanded; empty when no
     /// machine can ring there).
     pub fn edge_range(&self, id: u32) -> std::ops::Range<usize> {
+        let a = self.adjacency();
         let i = id as usize;
-        self.edge_start.get(i) as usize..self.edge_start.get(i + 1) as usize
+        a.start[i] as usize..a.start[i + 1] as usize
     }
 
     /// The state edge `e` leads to.
     pub fn edge_target(&self, e: usize) -> u32 {
-        self.edges.get(e) & !FIRED
+        self.adjacency().targets[e]
     }
 
     /// The successors of an expanded state `id`, as state ids (a state may repeat).
@@ -405,15 +441,20 @@ impl Graph {
     /// lasso is replayed, is recognised by its packed bytes).
     pub fn stores_as(&self, world: &World, id: u32) -> bool {
         let mut bytes = Vec::new();
-        self.layout.pack(world, &mut bytes);
-        unpadded(self.bytes_of(id)) == unpadded(&bytes)
+        self.layout.pack(world, &mut bytes).is_ok() && self.bytes_of(id) == bytes
     }
-}
 
-/// A packed state without the zero bytes that pad it to its record's width. Two states' packed
-/// forms never differ by trailing zeros alone (the layout says how many fields a state has and
-/// each field's width follows from its first bytes), so this is what hashes and compares.
-fn unpadded(bytes: &[u8]) -> &[u8] {
-    let end = bytes.iter().rposition(|&b| b != 0).map_or(0, |i| i + 1);
-    &bytes[..end]
+    /// The successor lists unpacked (made on the first call).
+    fn adjacency(&self) -> &Adjacency {
+        self.adjacency.get_or_init(|| {
+            let mut start = Vec::with_capacity(self.expanded() + 1);
+            let mut targets = Vec::with_capacity(self.edges.len());
+            start.push(0);
+            let mut reader = self.edges.from(0);
+            while reader.each_of_next(|_, e| targets.push(e.target)) {
+                start.push(targets.len() as u32);
+            }
+            Adjacency { start, targets }
+        })
+    }
 }

@@ -1,11 +1,10 @@
 //! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
-//! packed into a few bytes while stored: whose turn it is (one byte), per machine its state
-//! (no byte for a machine of one state, one, or two when it has over 256) and its time bits
-//! (one byte, two for a state with over seven time tests) when any of its states has a time
-//! test, four bits of flags a machine (mode, just entered, started this round), two machines to
-//! a byte, then the value number of every slot the search stores ([`crate::reduce::Storage`])
-//! and every `saw()` value number as LEB128 varints (values met early, the usual ones, take one
-//! byte).
+//! packed while stored into a record of bit fields, each as wide as its values need: whose
+//! turn it is, per machine its state number (none for a machine of one state), its time bits
+//! (one a time test of its states) and its flags (just entered, started this round, mode: none
+//! while they never change), then the value number of every slot the search stores ([`crate::reduce::Storage`])
+//! and of every `saw()`, then one bit a free type chosen when read (posted yet). A value
+//! number wider than its field widens the field; every record of a search has one width.
 
 use crate::model::{Model, SlotId};
 use crate::reduce::Storage;
@@ -46,12 +45,18 @@ pub struct World {
     pub saw: Vec<ValueId>,
 }
 
-/// Field widths, fixed per model.
+/// Field widths in bits. A machine's state number and time bits are as wide as the model says
+/// they can need; its flags start with no bits and value numbers as wide as the values the
+/// text names, and each is as wide as what the search has met needed: a value that does not
+/// fit makes [`Layout::pack`] say which field must widen.
 #[derive(Clone, Debug)]
 pub struct Layout {
-    /// Bytes of each machine's state number: 0, 1 or 2.
-    state_bytes: Vec<u8>,
-    has_time: Vec<bool>,
+    /// Per field, in packing order: turn; per machine its state, time bits and four flags;
+    /// every stored slot's value number; every `saw()` value number; a bit per chosen slot.
+    widths: Vec<u8>,
+    /// The sum of the widths.
+    bits: usize,
+    machines: usize,
     /// The slots a state stores, in slot order.
     stored: Vec<SlotId>,
     /// The free types chosen when read, whose one bit each (posted yet) a state stores.
@@ -59,227 +64,421 @@ pub struct Layout {
     /// Every slot's value in an unpacked world before the stored ones are read: the initial
     /// value of one nothing reads, "never posted" for one chosen when read.
     fill: Vec<ValueId>,
+    saw: usize,
+}
+
+/// A value that does not fit its field: the field's index and the bits it needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TooNarrow {
+    pub field: usize,
+    pub bits: u8,
+}
+
+/// Bits that hold every number up to `max`.
+fn bits_for(max: u64) -> u8 {
+    (u64::BITS - max.leading_zeros()) as u8
 }
 
 impl Layout {
     pub fn new(model: &Model) -> Layout {
+        let stored: Vec<SlotId> = (0..model.slots.len())
+            .filter(|&slot| model.storage[slot] == Storage::Stored)
+            .collect();
+        let chosen: Vec<SlotId> = (0..model.slots.len())
+            .filter(|&slot| model.storage[slot] == Storage::ChosenWhenRead)
+            .collect();
+        let mut values = model.values.borrow_mut();
+        let fill = model
+            .slots
+            .iter()
+            .zip(&model.storage)
+            .map(|(slot, storage)| match storage {
+                Storage::Unread => values.intern_option(slot.initial.as_ref()),
+                Storage::Stored | Storage::ChosenWhenRead => NEVER,
+            })
+            .collect();
+        let mut widths = vec![bits_for(model.machines.len() as u64 + 1)];
+        for m in &model.machines {
+            widths.push(bits_for(m.states.len().saturating_sub(1) as u64));
+            let tests = m
+                .states
+                .iter()
+                .map(|s| s.time_tests.len())
+                .max()
+                .unwrap_or(0);
+            widths.push(tests as u8);
+            // Most machines only ever run, so their flags start with no bits at all.
+            widths.push(0);
+        }
+        // Value numbers start as wide as the values the text names (numbered as the model was
+        // built), so a search widens them only for values its steps make.
+        let named = bits_for(values.len() as u64);
+        widths.extend(std::iter::repeat_n(named, stored.len() + model.saw.len()));
+        widths.extend(std::iter::repeat_n(1, chosen.len()));
         Layout {
-            state_bytes: model
-                .machines
-                .iter()
-                .map(|m| match m.states.len() {
-                    0 | 1 => 0,
-                    2..=256 => 1,
-                    _ => 2,
-                })
-                .collect(),
-            has_time: model
-                .machines
-                .iter()
-                .map(|m| m.states.iter().any(|s| !s.time_tests.is_empty()))
-                .collect(),
-            stored: (0..model.slots.len())
-                .filter(|&slot| model.storage[slot] == Storage::Stored)
-                .collect(),
-            chosen: (0..model.slots.len())
-                .filter(|&slot| model.storage[slot] == Storage::ChosenWhenRead)
-                .collect(),
-            fill: {
-                let mut values = model.values.borrow_mut();
-                model
-                    .slots
-                    .iter()
-                    .zip(&model.storage)
-                    .map(|(slot, storage)| match storage {
-                        Storage::Unread => values.intern_option(slot.initial.as_ref()),
-                        Storage::Stored | Storage::ChosenWhenRead => NEVER,
-                    })
-                    .collect()
-            },
+            bits: widths.iter().map(|&w| usize::from(w)).sum(),
+            widths,
+            machines: model.machines.len(),
+            stored,
+            chosen,
+            fill,
+            saw: model.saw.len(),
         }
     }
 
-    pub fn pack(&self, world: &World, out: &mut Vec<u8>) {
-        out.push(world.turn);
-        for (i, c) in world.machines.iter().enumerate() {
-            match self.state_bytes[i] {
-                0 => {}
-                1 => out.push(c.state as u8),
-                _ => out.extend_from_slice(&c.state.to_le_bytes()),
-            }
-            if self.has_time[i] {
-                // Time tests per state are limited to 16 by the model; most states have one.
-                if c.time > 0x7f {
-                    out.push(0x80 | (c.time & 0x7f) as u8);
-                    out.push((c.time >> 7) as u8);
-                } else {
-                    out.push(c.time as u8);
-                }
-            }
+    /// The bytes every packed state takes.
+    pub fn bytes(&self) -> usize {
+        self.widths
+            .iter()
+            .map(|&w| usize::from(w))
+            .sum::<usize>()
+            .div_ceil(8)
+    }
+
+    /// This layout with `field` widened to at least `bits`. Value numbers are shared by every
+    /// slot, so a number one slot met the others may meet next: every value field widens with
+    /// it, and a search packs its records again once rather than once a slot.
+    pub fn widened(&self, narrow: TooNarrow) -> Layout {
+        let mut wider = self.clone();
+        let values = 1 + 3 * self.machines..1 + 3 * self.machines + self.stored.len() + self.saw;
+        let fields = if values.contains(&narrow.field) {
+            values
+        } else {
+            narrow.field..narrow.field + 1
+        };
+        for w in &mut wider.widths[fields] {
+            *w = (*w).max(narrow.bits);
         }
-        for pair in world.machines.chunks(2) {
-            let nibble = |c: &Control| {
-                let status = match c.status {
-                    Status::Running => 0,
-                    Status::Suspended => 1,
-                    Status::Dormant => 2,
-                };
-                status | (u8::from(c.just_entered) << 2) | (u8::from(c.fresh) << 3)
+        wider.bits = wider.widths.iter().map(|&w| usize::from(w)).sum();
+        wider
+    }
+
+    /// Packs `world` into [`Layout::bytes`] bytes appended to `out`, or says which field is too
+    /// narrow for it (`out` then holds a part of the record).
+    pub fn pack(&self, world: &World, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
+        // Most records fit in a register, which is filled before a byte is written.
+        if self.bits <= 128 {
+            let mut bits = Register { acc: 0, used: 0 };
+            self.pack_into(world, &mut bits)?;
+            let mut acc = bits.acc;
+            for _ in 0..self.bytes() {
+                out.push(acc as u8);
+                acc >>= 8;
+            }
+            return Ok(());
+        }
+        let mut bits = BitWriter {
+            out,
+            acc: 0,
+            used: 0,
+        };
+        self.pack_into(world, &mut bits)?;
+        bits.finish();
+        Ok(())
+    }
+
+    fn pack_into(&self, world: &World, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
+        let mut field = 0;
+        let mut put = |v: u64| {
+            let width = self.widths[field];
+            if v >> width != 0 {
+                return Err(TooNarrow {
+                    field,
+                    bits: bits_for(v),
+                });
+            }
+            bits.put(v, width);
+            field += 1;
+            Ok(())
+        };
+        // The first turn (no ringlet yet) is numbered 0, machine k's k + 1.
+        put(u64::from(world.turn.wrapping_add(1)))?;
+        for c in &world.machines {
+            put(u64::from(c.state))?;
+            put(u64::from(c.time))?;
+            let status = match c.status {
+                Status::Running => 0,
+                Status::Suspended => 1,
+                Status::Dormant => 2,
             };
-            out.push(nibble(&pair[0]) | pair.get(1).map_or(0, |c| nibble(c) << 4));
+            // The flags that change most often in the low bits, so a field stays narrow.
+            put(u64::from(c.just_entered) | u64::from(c.fresh) << 1 | status << 2)?;
         }
         for &slot in &self.stored {
-            leb128(world.values[slot], out);
+            put(u64::from(world.values[slot]))?;
         }
         for &v in &world.saw {
-            leb128(v, out);
+            put(u64::from(v))?;
         }
-        for byte in self.chosen.chunks(8) {
-            let bits = byte
+        for &slot in &self.chosen {
+            put(u64::from(world.values[slot] == POSTED))?;
+        }
+        Ok(())
+    }
+
+    /// Reads a world [`Layout::pack`] packed with this layout.
+    pub fn unpack(&self, bytes: &[u8]) -> World {
+        let mut world = World {
+            turn: 0,
+            machines: Vec::with_capacity(self.machines),
+            values: Vec::with_capacity(self.fill.len()),
+            saw: Vec::with_capacity(self.saw),
+        };
+        self.unpack_into(bytes, &mut world);
+        world
+    }
+
+    /// [`Layout::unpack`] into a world already allocated, which a search reuses state after
+    /// state.
+    pub fn unpack_into(&self, bytes: &[u8], world: &mut World) {
+        if self.bits <= 128 {
+            let acc = bytes
                 .iter()
-                .enumerate()
-                .filter(|(_, &slot)| world.values[slot] == POSTED)
-                .fold(0u8, |bits, (i, _)| bits | 1 << i);
-            out.push(bits);
+                .rev()
+                .fold(0u128, |acc, &b| acc << 8 | u128::from(b));
+            self.unpack_from(&mut Register { acc, used: 0 }, world);
+        } else {
+            let mut bits = BitReader {
+                bytes,
+                at: 0,
+                acc: 0,
+                held: 0,
+            };
+            self.unpack_from(&mut bits, world);
         }
     }
 
-    /// Reads a packed world; `saw` gives the count of `saw()` values.
-    pub fn unpack(&self, bytes: &[u8], saw: usize) -> World {
-        let mut at = 0;
-        let mut next = || {
-            let b = bytes[at];
-            at += 1;
-            b
-        };
-        let turn = next();
-        let count = self.state_bytes.len();
-        let mut machines = Vec::with_capacity(count);
-        for i in 0..count {
-            let state = match self.state_bytes[i] {
-                0 => 0,
-                1 => u16::from(next()),
-                _ => u16::from_le_bytes([next(), next()]),
-            };
-            let time = if self.has_time[i] {
-                let low = next();
-                if low & 0x80 != 0 {
-                    u16::from(low & 0x7f) | (u16::from(next()) << 7)
-                } else {
-                    u16::from(low)
-                }
-            } else {
-                0
-            };
-            machines.push(Control {
+    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut World) {
+        let mut widths = self.widths.iter();
+        let mut next = || bits.take(widths.next().copied().unwrap_or(0));
+        world.turn = (next() as u8).wrapping_sub(1);
+        world.machines.clear();
+        for _ in 0..self.machines {
+            let state = next() as u16;
+            let time = next() as u16;
+            let flags = next();
+            world.machines.push(Control {
                 state,
-                status: Status::Running,
-                just_entered: false,
-                fresh: false,
-                time,
-            });
-        }
-        for pair in machines.chunks_mut(2) {
-            let byte = next();
-            for (c, flags) in pair.iter_mut().zip([byte & 0xf, byte >> 4]) {
-                c.status = match flags & 3 {
+                status: match flags >> 2 {
                     0 => Status::Running,
                     1 => Status::Suspended,
                     _ => Status::Dormant,
-                };
-                c.just_entered = flags & 4 != 0;
-                c.fresh = flags & 8 != 0;
-            }
+                },
+                just_entered: flags & 1 != 0,
+                fresh: flags & 2 != 0,
+                time,
+            });
         }
-        let mut rest = &bytes[at..];
-        let mut next_number = || {
-            let (v, used) = read_leb128(rest);
-            rest = &rest[used..];
-            v
-        };
-        let mut values = self.fill.clone();
+        world.values.clear();
+        world.values.extend_from_slice(&self.fill);
         for &slot in &self.stored {
-            values[slot] = next_number();
+            world.values[slot] = next() as ValueId;
         }
-        let saw = (0..saw).map(|_| next_number()).collect();
-        for (byte, slots) in rest.iter().zip(self.chosen.chunks(8)) {
-            for (i, &slot) in slots.iter().enumerate() {
-                values[slot] = if byte >> i & 1 == 1 { POSTED } else { NEVER };
-            }
+        world.saw.clear();
+        for _ in 0..self.saw {
+            world.saw.push(next() as ValueId);
         }
-        World {
-            turn,
-            machines,
-            values,
-            saw,
+        for &slot in &self.chosen {
+            world.values[slot] = if next() == 1 { POSTED } else { NEVER };
         }
     }
 }
 
-fn leb128(mut v: u32, out: &mut Vec<u8>) {
-    while v >= 0x80 {
-        out.push((v as u8) | 0x80);
-        v >>= 7;
-    }
-    out.push(v as u8);
+/// Where fields of at most 32 bits are written.
+trait FieldWriter {
+    fn put(&mut self, v: u64, width: u8);
 }
 
-fn read_leb128(bytes: &[u8]) -> (u32, usize) {
-    let mut v = 0u32;
-    for (i, b) in bytes.iter().enumerate() {
-        v |= u32::from(b & 0x7f) << (7 * i);
-        if b & 0x80 == 0 {
-            return (v, i + 1);
+/// Where fields are read from.
+trait FieldReader {
+    fn take(&mut self, width: u8) -> u64;
+}
+
+/// A record of at most 128 bits held whole: written from its low bits up, read by shifting
+/// them out.
+struct Register {
+    acc: u128,
+    used: u32,
+}
+
+impl FieldWriter for Register {
+    fn put(&mut self, v: u64, width: u8) {
+        self.acc |= u128::from(v) << self.used;
+        self.used += u32::from(width);
+    }
+}
+
+impl FieldReader for Register {
+    fn take(&mut self, width: u8) -> u64 {
+        let v = (self.acc as u64) & ((1u64 << width) - 1);
+        self.acc >>= width;
+        v
+    }
+}
+
+/// Appends numbers of at most 32 bits to a byte vector, least significant bit first, four
+/// bytes at a time.
+struct BitWriter<'a> {
+    out: &'a mut Vec<u8>,
+    acc: u64,
+    used: u32,
+}
+
+impl FieldWriter for BitWriter<'_> {
+    fn put(&mut self, v: u64, width: u8) {
+        self.acc |= v << self.used;
+        self.used += u32::from(width);
+        if self.used >= 32 {
+            self.out.extend_from_slice(&(self.acc as u32).to_le_bytes());
+            self.acc >>= 32;
+            self.used -= 32;
         }
     }
-    (v, bytes.len())
+}
+
+impl BitWriter<'_> {
+    fn finish(mut self) {
+        // A byte at a time: a copy of a length unknown here is a call.
+        while self.used > 0 {
+            self.out.push(self.acc as u8);
+            self.acc >>= 8;
+            self.used = self.used.saturating_sub(8);
+        }
+    }
+}
+
+/// Reads what a [`BitWriter`] wrote; past the end it reads zeros.
+struct BitReader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    acc: u64,
+    held: u32,
+}
+
+impl FieldReader for BitReader<'_> {
+    fn take(&mut self, width: u8) -> u64 {
+        let width = u32::from(width);
+        if self.held < width {
+            let word = match self.bytes.get(self.at..self.at + 4) {
+                Some(&[a, b, c, d]) => u32::from_le_bytes([a, b, c, d]),
+                _ => {
+                    let mut word = [0u8; 4];
+                    let rest = self.bytes.get(self.at..).unwrap_or(&[]);
+                    word[..rest.len()].copy_from_slice(rest);
+                    u32::from_le_bytes(word)
+                }
+            };
+            self.at += 4;
+            self.acc |= u64::from(word) << self.held;
+            self.held += 32;
+        }
+        let v = self.acc & ((1u64 << width) - 1);
+        self.acc >>= width;
+        self.held -= width;
+        v
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn packing_round_trips_at_every_width() {
-        let layout = Layout {
-            state_bytes: vec![1, 2, 0],
-            has_time: vec![true, false, false],
+    fn layout() -> Layout {
+        Layout {
+            // turn; three machines (state, time, flags); two stored slots; one saw; one chosen.
+            widths: vec![2, 8, 2, 4, 9, 0, 4, 0, 0, 4, 3, 3, 3, 1],
+            bits: 43,
+            machines: 3,
             stored: vec![0, 2],
             chosen: vec![3],
             fill: vec![NEVER, 7, NEVER, NEVER],
-        };
-        for (time, value) in [(0, 0), (5, 127), (0x7fff, 128), (0x80, u32::MAX)] {
-            let world = World {
-                turn: 1,
-                machines: vec![
-                    Control {
-                        state: 200,
-                        status: Status::Suspended,
-                        just_entered: true,
-                        fresh: false,
-                        time,
-                    },
-                    Control {
-                        state: 300,
-                        status: Status::Dormant,
-                        just_entered: false,
-                        fresh: true,
-                        time: 0,
-                    },
-                    Control {
-                        state: 0,
-                        status: Status::Running,
-                        just_entered: true,
-                        fresh: true,
-                        time: 0,
-                    },
-                ],
-                values: vec![value, 7, 3, if time > 0 { POSTED } else { NEVER }],
-                saw: vec![value],
-            };
-            let mut bytes = Vec::new();
-            layout.pack(&world, &mut bytes);
-            assert_eq!(layout.unpack(&bytes, 1), world, "{time} {value}");
+            saw: 1,
         }
+    }
+
+    fn world(time: u16, value: ValueId) -> World {
+        World {
+            turn: 1,
+            machines: vec![
+                Control {
+                    state: 200,
+                    status: Status::Suspended,
+                    just_entered: true,
+                    fresh: false,
+                    time,
+                },
+                Control {
+                    state: 300,
+                    status: Status::Dormant,
+                    just_entered: false,
+                    fresh: true,
+                    time: 0,
+                },
+                Control {
+                    state: 0,
+                    status: Status::Running,
+                    just_entered: true,
+                    fresh: true,
+                    time: 0,
+                },
+            ],
+            values: vec![value, 7, 3, if time > 0 { POSTED } else { NEVER }],
+            saw: vec![value],
+        }
+    }
+
+    #[test]
+    fn packing_round_trips_and_widens_what_does_not_fit() {
+        let mut layout = layout();
+        for (time, value) in [(0, 0), (3, 5), (1, 128), (2, u32::MAX)] {
+            let w = world(time, value);
+            let mut bytes = Vec::new();
+            while let Err(narrow) = layout.pack(&w, &mut bytes) {
+                assert!(narrow.bits > layout.widths[narrow.field], "{narrow:?}");
+                layout = layout.widened(narrow);
+                bytes.clear();
+            }
+            assert_eq!(bytes.len(), layout.bytes());
+            assert_eq!(layout.unpack(&bytes), w, "{time} {value}");
+        }
+        assert_eq!(
+            layout.widths[10], 32,
+            "the stored slot grew to the widest value"
+        );
+        assert_eq!(
+            layout.widths[10..14],
+            [32, 32, 32, 1],
+            "every value field grew with it, the chosen bit did not"
+        );
+        let mut first = world(0, 0);
+        first.turn = crate::ringlet::FIRST_TURN;
+        let mut bytes = Vec::new();
+        layout
+            .pack(&first, &mut bytes)
+            .expect("the first turn fits");
+        assert_eq!(layout.unpack(&bytes), first);
+    }
+
+    #[test]
+    fn records_wider_than_a_register_round_trip_too() {
+        let layout = Layout {
+            widths: vec![1, 32, 32, 32, 32, 32, 3],
+            bits: 164,
+            machines: 0,
+            stored: (0..6).collect(),
+            chosen: Vec::new(),
+            fill: vec![NEVER; 6],
+            saw: 0,
+        };
+        let world = World {
+            turn: crate::ringlet::FIRST_TURN,
+            machines: Vec::new(),
+            values: vec![u32::MAX, 1, 1 << 31, 3, 4, 5],
+            saw: Vec::new(),
+        };
+        let mut bytes = Vec::new();
+        layout.pack(&world, &mut bytes).expect("every value fits");
+        assert_eq!(bytes.len(), 21);
+        assert_eq!(layout.unpack(&bytes), world);
     }
 }
