@@ -2,7 +2,11 @@
 //! the crates against the manifests (every crate drawn with exactly the proclaim crates its
 //! `Cargo.toml` depends on, each on a layer above all of them), the binary's and Zenoh's "does
 //! not", the crates that do no I/O, the map's length and that it holds no measured figure; and
-//! that no file names a path outside the repository but the shared corpus.
+//! that no file names a path outside the repository but the shared corpus; and what the code
+//! itself must keep (`type_names`: one name per thing).
+
+mod rust_code;
+mod type_names;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;

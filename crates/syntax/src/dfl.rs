@@ -4,7 +4,7 @@
 //! One statement a line: `>> a` (fact), `r1: a, -b => c` (rule; `->` strict, `~>` defeater),
 //! `r1 > r2` (superiority); `-` negates; `#` starts a comment.
 
-use crate::ast::{Arrow, Item, Lit, RuleItem};
+use crate::ast::{Arrow, Item, RuleItem, SourceLiteral};
 use crate::diagnostic::{Diagnostic, Sink};
 use crate::parse::ParsedTheory;
 use crate::span::Span;
@@ -238,7 +238,11 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
     }
 }
 
-fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>, Diagnostic> {
+fn literals(
+    tokens: &[(T, Span)],
+    whole: Span,
+    _source: &str,
+) -> Result<Vec<SourceLiteral>, Diagnostic> {
     // A literal is at least one token and a comma parts two: room for all of them at once.
     let mut lits = Vec::with_capacity(tokens.len().div_ceil(2));
     each_literal(tokens, whole, |lit| lits.push(lit))?;
@@ -249,7 +253,7 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
 fn each_literal(
     tokens: &[(T, Span)],
     whole: Span,
-    mut on_lit: impl FnMut(Lit),
+    mut on_lit: impl FnMut(SourceLiteral),
 ) -> Result<(), Diagnostic> {
     let mut i = 0;
     while i < tokens.len() {
@@ -258,7 +262,7 @@ fn each_literal(
             _ => (false, i),
         };
         match tokens.get(at) {
-            Some(&(T::Word, atom)) => on_lit(Lit {
+            Some(&(T::Word, atom)) => on_lit(SourceLiteral {
                 negated,
                 atom,
                 span: tokens[i].1.cover(atom),
