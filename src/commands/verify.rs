@@ -5,7 +5,7 @@
 //! state budget ran out), 2 bad input.
 
 use crate::behaviours::load_behaviour;
-use crate::cli::{EmitFormat, EngineName, ReductionName};
+use crate::cli::{EmitFormat, EngineName, ReductionName, VerifyArgs};
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
@@ -81,6 +81,35 @@ impl Asked {
             }
         }
         Ok(properties)
+    }
+}
+
+/// `proclaim verify`: the model written for another checker with `--emit`, else checked here.
+pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
+    let asked = Asked {
+        never: args.never,
+        always: args.always,
+        reachable: args.reachable,
+        eventually: args.eventually,
+        leads_to: args.leads_to,
+        always_eventually: args.always_eventually,
+        fair: args.fair,
+    };
+    match args.emit {
+        Some(language) => emit(
+            &args.behaviour,
+            &asked,
+            args.max_states,
+            language,
+            args.output.as_deref(),
+        ),
+        None => run(
+            &args.behaviour,
+            &asked,
+            options(args.max_states, args.max_memory, &args.without, args.engine),
+            args.json,
+            args.counterexample.as_deref(),
+        ),
     }
 }
 
