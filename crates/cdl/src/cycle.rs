@@ -12,7 +12,7 @@ use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
 use crate::layers::Layers;
 use crate::matching::uncovered_by_some_maximum_matching;
 use crate::relevance::independent_parts;
-use crate::ring::{apply, around, Function, Ring};
+use crate::ring::{apply, around, BlockRing, Function};
 use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
 use rustc_hash::FxHashMap;
 
@@ -149,7 +149,7 @@ impl Component<'_> {
             return Outcome::Evaluated(decided(values, Method::Geography));
         }
         if let Some((values, steps)) =
-            Ring::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
+            BlockRing::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
         {
             return Outcome::Evaluated(Evaluated {
                 steps,
