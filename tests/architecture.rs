@@ -166,6 +166,28 @@ fn the_crates_without_io_name_none() {
     }
 }
 
+/// "Library crates test themselves": each crate under `crates/` holds a test of its own, in its
+/// `src` or its `tests`.
+#[test]
+fn every_library_crate_tests_itself() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let crates = crates_on_disk();
+    assert!(crates.len() > 10, "{crates:?}");
+    for name in crates {
+        let dir = root.join("crates").join(&name);
+        let mut texts = repository_texts(&dir.join("src"));
+        if dir.join("tests").is_dir() {
+            texts.extend(repository_texts(&dir.join("tests")));
+        }
+        assert!(
+            texts
+                .iter()
+                .any(|(_, text)| text.contains("#[test]") || text.contains("#[tokio::test")),
+            "crates/{name} tests nothing of its own"
+        );
+    }
+}
+
 /// The map stays a map: short, and with no measured figure (those are README's, under "Speed").
 #[test]
 fn architecture_is_short_and_holds_no_measured_figure() {
