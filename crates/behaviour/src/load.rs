@@ -117,19 +117,7 @@ pub fn load_manifest(
         &mut problems.found,
     );
 
-    let mut sensors = Vec::new();
-    for entry in &manifest.sensors {
-        let game = match &entry.simulator {
-            Some(Simulator::Script(file)) => {
-                read_lines(files.as_ref(), file, parse_game, &mut problems)
-            }
-            _ => None,
-        };
-        sensors.push(LoadedSensor {
-            entry: entry.clone(),
-            game,
-        });
-    }
+    let sensors = load_sensors(files.as_ref(), &manifest, &mut problems);
 
     let script = match &manifest.impersonator {
         None => None,
@@ -168,6 +156,26 @@ pub fn load_manifest(
         warnings,
         files,
     })
+}
+
+/// The manifest's sensors, each with the game script its simulator plays, when it has one.
+fn load_sensors(
+    files: &dyn Files,
+    manifest: &Manifest,
+    problems: &mut Problems,
+) -> Vec<LoadedSensor> {
+    let mut sensors = Vec::new();
+    for entry in &manifest.sensors {
+        let game = match &entry.simulator {
+            Some(Simulator::Script(file)) => read_lines(files, file, parse_game, problems),
+            _ => None,
+        };
+        sensors.push(LoadedSensor {
+            entry: entry.clone(),
+            game,
+        });
+    }
+    sensors
 }
 
 /// The manifest's times, each a duration or an error saying what to write.

@@ -175,66 +175,79 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
             })
         }
         [(T::Word, first), (T::Gt, _), more @ ..] if label.is_none() => {
-            let mut labels = vec![*first];
-            let mut rest = more;
-            loop {
-                match rest {
-                    [(T::Word, l)] => {
-                        labels.push(*l);
-                        break;
-                    }
-                    [(T::Word, l), (T::Gt, _), tail @ ..] => {
-                        labels.push(*l);
-                        rest = tail;
-                    }
-                    _ => {
-                        return Err(Diagnostic::error(whole, "malformed superiority relation")
-                            .with_hint("write `r1 > r2`"))
-                    }
-                }
-            }
-            Ok(Item::Priority {
-                labels,
-                span: whole,
-            })
+            priority(*first, more, whole)
         }
-        _ => {
-            let Some(arrow_at) = rest.iter().position(|(t, _)| matches!(t, T::Arrow(_))) else {
-                return Err(Diagnostic::error(whole, "not a SPINdle statement")
-                    .with_label("no `=>`, `->`, `~>`, `>>` or `>` here")
-                    .with_hint("rules are `r1: a, b => c`, facts `>> a`, superiority `r1 > r2`"));
-            };
-            let T::Arrow(arrow) = rest[arrow_at].0 else {
-                unreachable!("position matched an arrow")
-            };
-            let body = literals(&rest[..arrow_at], whole, source)?;
-            // The consequent is one literal: read without a vector to hold it.
-            let (mut head, mut second) = (None, None);
-            each_literal(&rest[arrow_at + 1..], whole, |lit| match head {
-                None => head = Some(lit),
-                Some(_) => {
-                    second.get_or_insert(lit);
-                }
-            })?;
-            match (head, second) {
-                (Some(head), None) => Ok(Item::Rule(RuleItem {
-                    label,
-                    body,
-                    arrow,
-                    head,
-                    span: whole,
-                })),
-                (None, _) => Err(
-                    Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
-                        .with_label("a literal must follow the arrow"),
-                ),
-                (Some(_), Some(second)) => Err(Diagnostic::error(
-                    second.span,
-                    "rule has more than one consequent",
-                )
-                .with_hint("write one rule for each consequent")),
+        _ => rule(label, rest, whole, source),
+    }
+}
+
+/// A superiority relation `r1 > r2 > …`, `first` and its `>` already read.
+fn priority(first: Span, more: &[(T, Span)], whole: Span) -> Result<Item, Diagnostic> {
+    let mut labels = vec![first];
+    let mut rest = more;
+    loop {
+        match rest {
+            [(T::Word, l)] => {
+                labels.push(*l);
+                break;
+            }
+            [(T::Word, l), (T::Gt, _), tail @ ..] => {
+                labels.push(*l);
+                rest = tail;
+            }
+            _ => {
+                return Err(Diagnostic::error(whole, "malformed superiority relation")
+                    .with_hint("write `r1 > r2`"))
             }
         }
+    }
+    Ok(Item::Priority {
+        labels,
+        span: whole,
+    })
+}
+
+/// A rule `[label:] body ARROW head`, the label already read.
+fn rule(
+    label: Option<Span>,
+    rest: &[(T, Span)],
+    whole: Span,
+    source: &str,
+) -> Result<Item, Diagnostic> {
+    let Some(arrow_at) = rest.iter().position(|(t, _)| matches!(t, T::Arrow(_))) else {
+        return Err(Diagnostic::error(whole, "not a SPINdle statement")
+            .with_label("no `=>`, `->`, `~>`, `>>` or `>` here")
+            .with_hint("rules are `r1: a, b => c`, facts `>> a`, superiority `r1 > r2`"));
+    };
+    let T::Arrow(arrow) = rest[arrow_at].0 else {
+        unreachable!("position matched an arrow")
+    };
+    let body = literals(&rest[..arrow_at], whole, source)?;
+    // The consequent is one literal: read without a vector to hold it.
+    let (mut head, mut second) = (None, None);
+    each_literal(&rest[arrow_at + 1..], whole, |lit| match head {
+        None => head = Some(lit),
+        Some(_) => {
+            second.get_or_insert(lit);
+        }
+    })?;
+    match (head, second) {
+        (Some(head), None) => Ok(Item::Rule(RuleItem {
+            label,
+            body,
+            arrow,
+            head,
+            span: whole,
+        })),
+        (None, _) => Err(
+            Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
+                .with_label("a literal must follow the arrow"),
+        ),
+        (Some(_), Some(second)) => Err(Diagnostic::error(
+            second.span,
+            "rule has more than one consequent",
+        )
+        .with_hint("write one rule for each consequent")),
     }
 }
 

@@ -120,8 +120,8 @@ impl<'a> MachineLexer<'a> {
         (start, make(text), start + text.len())
     }
 
-    /// Long by design: one arm per token shape and per raw-text mode, the lexer's whole table
-    /// in one match (split up, the order of the arms, which decides, would be scattered).
+    /// One arm per token shape and per raw-text mode, the lexer's whole table in one match (the
+    /// order of the arms decides); the longer shapes are read by a method each.
     fn next_token(&mut self) -> Option<Spanned<'a>> {
         if let Some(t) = self.pending.pop() {
             return Some(Ok(t));
@@ -168,49 +168,8 @@ impl<'a> MachineLexer<'a> {
                 Some(Ok((start, MachineToken::Arrow, start + 2)))
             }
             '"' => Some(self.string()),
-            c if c.is_ascii_digit() || c == '-' => {
-                let len = rest[1..]
-                    .find(|c: char| !c.is_ascii_digit())
-                    .map_or(rest.len(), |n| n + 1);
-                self.at += len;
-                match rest[..len].parse() {
-                    Ok(n) => Some(Ok((start, MachineToken::Int(n), start + len))),
-                    Err(_) => Some(Err(LexError {
-                        at: start,
-                        message: format!("`{}` is not a whole number", &rest[..len]),
-                    })),
-                }
-            }
-            c if c.is_alphabetic() || c == '_' => {
-                let len = rest
-                    .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
-                    .unwrap_or(rest.len());
-                let word = &rest[..len];
-                self.at += len;
-                let end = start + len;
-                let tok = match word {
-                    "machine" => MachineToken::Machine,
-                    "description" if self.depth == 0 => MachineToken::Description,
-                    "initial" => MachineToken::Initial,
-                    "state" => MachineToken::State,
-                    "entry" => MachineToken::Entry,
-                    "exit" => MachineToken::Exit,
-                    "internal" => MachineToken::Internal,
-                    "call" => MachineToken::Call,
-                    "code" => {
-                        let text = self.line_text(MachineToken::Text);
-                        self.pending.push(text);
-                        MachineToken::Code
-                    }
-                    "when" => {
-                        let label = self.label();
-                        self.pending.extend(label);
-                        MachineToken::When
-                    }
-                    _ => MachineToken::Word(word),
-                };
-                Some(Ok((start, tok, end)))
-            }
+            c if c.is_ascii_digit() || c == '-' => Some(self.number()),
+            c if c.is_alphabetic() || c == '_' => Some(Ok(self.word())),
             other => {
                 self.at += other.len_utf8();
                 Some(Err(LexError {
@@ -219,6 +178,57 @@ impl<'a> MachineLexer<'a> {
                 }))
             }
         }
+    }
+
+    /// A whole number from the digit or `-` at `self.at`.
+    fn number(&mut self) -> Spanned<'a> {
+        let start = self.at;
+        let rest = self.rest();
+        let len = rest[1..]
+            .find(|c: char| !c.is_ascii_digit())
+            .map_or(rest.len(), |n| n + 1);
+        self.at += len;
+        match rest[..len].parse() {
+            Ok(n) => Ok((start, MachineToken::Int(n), start + len)),
+            Err(_) => Err(LexError {
+                at: start,
+                message: format!("`{}` is not a whole number", &rest[..len]),
+            }),
+        }
+    }
+
+    /// A keyword or a word from the letter at `self.at`; after `code` and `when`, the raw text
+    /// that follows them is cut too and waits in `pending`.
+    fn word(&mut self) -> (usize, MachineToken<'a>, usize) {
+        let start = self.at;
+        let rest = self.rest();
+        let len = rest
+            .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+            .unwrap_or(rest.len());
+        let word = &rest[..len];
+        self.at += len;
+        let tok = match word {
+            "machine" => MachineToken::Machine,
+            "description" if self.depth == 0 => MachineToken::Description,
+            "initial" => MachineToken::Initial,
+            "state" => MachineToken::State,
+            "entry" => MachineToken::Entry,
+            "exit" => MachineToken::Exit,
+            "internal" => MachineToken::Internal,
+            "call" => MachineToken::Call,
+            "code" => {
+                let text = self.line_text(MachineToken::Text);
+                self.pending.push(text);
+                MachineToken::Code
+            }
+            "when" => {
+                let label = self.label();
+                self.pending.extend(label);
+                MachineToken::When
+            }
+            _ => MachineToken::Word(word),
+        };
+        (start, tok, start + len)
     }
 
     /// Inside an activity: a statement, or `None` where the item starts as anywhere else (a
