@@ -1,9 +1,9 @@
 //! The whiteboard across `proclaim` processes over Zenoh (built with `--features zenoh`): a
-//! behaviour split over processes runs, loses an expert that dies (its labels time out) and gets
-//! it back; a board of four processes outlives each of them killed in turn; the commands that
-//! poke at a live board work; TLS through Zenoh's own configuration. (Every whiteboard semantic
-//! is checked over Zenoh by the whiteboard suite, `whiteboard::over_zenoh`; joining, catching up,
-//! staleness and signals between sessions are crates/zenoh's own tests.)
+//! behaviour split over processes runs, loses an expert that dies (its labels time out) and gets it
+//! back; a board of four processes outlives each of them killed in turn; the commands that poke at
+//! a live board work; TLS through Zenoh's own configuration; sessions joining at once. (Every
+//! whiteboard semantic is checked over Zenoh by the whiteboard suite, `whiteboard::over_zenoh`;
+//! joining, catching up, staleness and signals between sessions are crates/zenoh's own tests.)
 //! Everything is on 127.0.0.1, on free ports, bounded in count and time.
 
 use std::io::{BufRead, BufReader};
@@ -161,6 +161,49 @@ async fn tls_is_switched_on_through_zenohs_own_configuration() {
     // Trusting nobody in particular (the system's roots), the certificate is refused.
     let error = join_error(&endpoint, "tls").await;
     assert!(error.contains(&endpoint), "{error}");
+}
+
+/// Waits (at most 5 s) until `done` holds.
+async fn until(what: &str, done: impl Fn() -> bool) {
+    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    while !done() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "not within 5 s: {what}"
+        );
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+/// Processes that join at once are told of each other by gossip at once; every pair must end up
+/// linked (over the low-latency transport, a pair that both dialled lost its link for good, and
+/// neither heard the other again).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn processes_joining_at_once_all_hear_each_other() {
+    use proclaim_zenoh::{whiteboard, Role, Settings};
+    let endpoint = free_endpoint();
+    let settings = Settings {
+        config_file: None,
+        low_latency: true,
+    };
+    let first = whiteboard(&Role::Listen(endpoint.clone()), "crowd", &settings)
+        .await
+        .unwrap();
+    let role = Role::Connect(endpoint);
+    let joiner = || whiteboard(&role, "crowd", &settings);
+    let (b, c, d, e) = tokio::join!(joiner(), joiner(), joiner(), joiner());
+    let boards = [first, b.unwrap(), c.unwrap(), d.unwrap(), e.unwrap()];
+    for (i, board) in boards.iter().enumerate() {
+        board.post("crowd", &format!("hello{i}"), i as i64);
+    }
+    for (i, board) in boards.iter().enumerate() {
+        for j in (0..boards.len()).filter(|j| *j != i) {
+            until(&format!("process {i} hears process {j}"), || {
+                board.latest(&format!("hello{j}")).is_some()
+            })
+            .await;
+        }
+    }
 }
 
 /// A child process, killed when dropped.
