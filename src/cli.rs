@@ -13,7 +13,7 @@ use std::path::PathBuf;
 )]
 pub struct Cli {
     #[command(subcommand)]
-    pub command: Command,
+    pub command: CliCommand,
     /// More log lines on stderr: -v info, -vv debug, -vvv trace (RUST_LOG, when set, decides)
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     pub verbose: u8,
@@ -95,31 +95,9 @@ pub enum Sensor {
 }
 
 #[derive(Subcommand)]
-pub enum Command {
+pub enum CliCommand {
     /// Prove queries: one line per answer, `+beta offside` or `-beta offside`
-    Prove {
-        /// A .dl or .dfl file, or an embedded theory (offside, microwave, tweety, …)
-        theory: String,
-        /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`); none:
-        /// every conclusion (`+beta a` a line)
-        queries: Vec<String>,
-        #[arg(long, value_enum, default_value = "beta")]
-        alg: AlgArg,
-        /// Input values, `atom=true|false|unknown` (repeatable)
-        #[arg(long = "set", value_name = "ATOM=VALUE")]
-        set: Vec<String>,
-        /// Print a JSON array instead of lines
-        #[arg(long)]
-        json: bool,
-        /// `spindle`: SPINdle's conclusions, `+D`/`-D` (definite, μ) and `+d`/`-d` (defeasible,
-        /// β) for every literal (or each query), negation written `-a`, to diff against SPINdle
-        #[arg(long, value_enum, default_value = "text")]
-        format: ProveFormat,
-        /// Search steps allowed inside one attack cycle (default 10,000,000); an answer not
-        /// decided within them prints as `?beta q  (undecided: …)` and the exit status is 3
-        #[arg(long, value_name = "STEPS")]
-        budget: Option<u64>,
-    },
+    Prove(ProveArgs),
     /// Print the truth table of the declared outputs over the declared inputs
     Table {
         /// A .dl or .dfl file, or an embedded theory
@@ -131,59 +109,15 @@ pub enum Command {
     /// (`NAME.h` and `NAME.c` in the output folder): a reduced ordered decision diagram or a
     /// truth table, whichever is smaller; an answer undecided within the budget is refused. A
     /// behaviour (a folder) compiles to `behaviour.c`, its theories and a host harness `main.c`
-    Compile {
-        /// A .dl or .dfl file, an embedded theory, or a behaviour's folder
-        theory: String,
-        #[arg(long, value_enum, default_value = "c")]
-        target: CompileTarget,
-        /// The folder to write into (made when missing)
-        #[arg(short = 'o', long = "out", value_name = "DIR")]
-        out: PathBuf,
-        /// Inputs may also be unknown (never posted), as a running behaviour's expert holds
-        /// them: two decision variables an input (known, true); default: the truth table's rows
-        #[arg(long)]
-        unknown_inputs: bool,
-        /// Search steps allowed inside one attack cycle (default 10,000,000)
-        #[arg(long, value_name = "STEPS")]
-        budget: Option<u64>,
-    },
+    Compile(CompileArgs),
     /// Explain why a query is proved or not: supporters, attackers, loops
-    Explain {
-        /// A .dl or .dfl file, or an embedded theory
-        theory: String,
-        /// A literal: `offside` or `~offside`
-        query: String,
-        #[arg(long, value_enum, default_value = "beta")]
-        alg: AlgArg,
-        /// Input values, `atom=true|false|unknown` (repeatable)
-        #[arg(long = "set", value_name = "ATOM=VALUE")]
-        set: Vec<String>,
-        /// How many levels of antecedents to explain
-        #[arg(long, default_value_t = 1)]
-        depth: usize,
-        /// Print the explanation as JSON (each node: its goal, rule, status and reasons)
-        #[arg(long)]
-        json: bool,
-    },
+    Explain(ExplainArgs),
     /// Run a behaviour (a folder with a behaviour.toml, machines/NAME, or a built-in one:
     /// game_controller, microwave, shootout) on the in-process whiteboard, printing a live trace
     Run(RunArgs),
     /// Run a theory as an expert on a whiteboard (usually one held by another process:
     /// `--connect tcp/127.0.0.1:7447`), answering its outputs until stopped
-    Expert {
-        theory: String,
-        /// Its name on the whiteboard (default: the theory's name{})
-        #[arg(long)]
-        name: Option<String>,
-        /// Input atom → message type, one `atom = type` a line
-        #[arg(long, value_name = "FILE")]
-        mapping: Option<PathBuf>,
-        /// Stop after this long (default: at Ctrl-C)
-        #[arg(long = "for", value_name = "DURATION")]
-        duration: Option<String>,
-        #[command(flatten)]
-        network: Network,
-    },
+    Expert(ExpertArgs),
     /// Post one message on a whiteboard: `proclaim post doorOpen true --connect …`
     Post {
         #[arg(value_name = "TYPE")]
@@ -225,36 +159,11 @@ pub enum Command {
         recordings: Vec<PathBuf>,
     },
     /// Print a trace written by `proclaim run --trace` as the live trace was
-    Replay {
-        trace: PathBuf,
-        /// Replay at this many times the recorded pace (default: all at once)
-        #[arg(long, conflicts_with = "monitor")]
-        speed: Option<f64>,
-        /// Show the trace in the browser with a time slider over every moment (at
-        /// 127.0.0.1:7480 unless given), until Ctrl-C
-        #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR)]
-        monitor: Option<String>,
-        /// The behaviour that made the trace, to draw its machines whole (without it, each
-        /// machine is drawn from the states and transitions the trace shows)
-        #[arg(long, value_name = "BEHAVIOUR", requires = "monitor")]
-        behaviour: Option<String>,
-    },
+    Replay(ReplayArgs),
     /// Draw a behaviour's module dependencies: for one module, the experts it queries above it
     /// (green), the modules hearing its postings below it (black), and a red `unknown` for a
     /// label nobody answers or a posting nobody hears
-    Deps {
-        behaviour: String,
-        /// The module at the centre (default: every module and link)
-        #[arg(long)]
-        module: Option<String>,
-        /// Instead, write the smallest manifest that runs this machine with exactly the modules
-        /// it needs (put it beside the behaviour's own, then `proclaim run FILE.toml`)
-        #[arg(long, value_name = "MACHINE", conflicts_with = "module")]
-        launch: Option<String>,
-        /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout); with --launch, .toml
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-    },
+    Deps(DepsArgs),
     /// Turn liveness formulas (Gaia operators: `A.B`, `A|B`, `A||B`, `A*`, `A+`, `A~`, `[A]`) into a
     /// skeleton behaviour of native machines; `proclaim check DIR` then lists the open labels
     Liveness {
@@ -284,62 +193,7 @@ pub enum Command {
     },
     /// Verify a behaviour under the round schedule: every run, the environment free, reasoners
     /// answering from their theories (exit 0 all hold, 1 some fails, 3 undecided, 2 bad input)
-    Verify {
-        /// A behaviour: a folder, its manifest, machines/NAME or a built-in one
-        behaviour: String,
-        /// Check that no reachable state satisfies EXPR (`Machine.STATE`, `saw(Machine, name)`,
-        /// variables, whiteboard values and answers with the label language's operators).
-        /// Properties given here replace the manifest's [[property]] entries
-        #[arg(long, value_name = "EXPR")]
-        never: Vec<String>,
-        /// Check that every reachable state satisfies EXPR
-        #[arg(long, value_name = "EXPR")]
-        always: Vec<String>,
-        /// Check that some reachable state satisfies EXPR (and show the shortest way there)
-        #[arg(long, value_name = "EXPR")]
-        reachable: Vec<String>,
-        /// Check that every run reaches a state where EXPR holds (time passing; a failure is a
-        /// lasso: a way in and a loop)
-        #[arg(long, value_name = "EXPR")]
-        eventually: Vec<String>,
-        /// Check that after every state where P holds, every run reaches one where Q holds
-        #[arg(long, value_name = "'P ~> Q'")]
-        leads_to: Vec<String>,
-        /// Check that every run makes EXPR true again and again
-        #[arg(long, value_name = "EXPR")]
-        always_eventually: Vec<String>,
-        /// Assume the environment makes EXPR true infinitely often (for the liveness
-        /// properties checked)
-        #[arg(long, value_name = "EXPR")]
-        fair: Vec<String>,
-        /// Stop after this many states (the outcome is then incomplete where undecided)
-        #[arg(long, value_name = "N", default_value_t = 1_000_000)]
-        max_states: usize,
-        /// Stop before the search holds more than this much memory, e.g. 512M or 4G (the
-        /// outcome is then incomplete where undecided; default: half the memory available)
-        #[arg(long, value_name = "SIZE", value_parser = parse_size)]
-        max_memory: Option<usize>,
-        /// Switch an exact reduction off (to compare; the verdicts are the same)
-        #[arg(long, value_enum, value_name = "REDUCTION")]
-        without: Vec<ReductionName>,
-        /// Which engine explores: explicit states, sets of states as decision diagrams, or
-        /// the explicit one first and the symbolic one where it does not decide soon
-        #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
-        engine: EngineName,
-        /// Print the report as JSON
-        #[arg(long)]
-        json: bool,
-        /// Write the first counterexample as an impersonator script for `run --script FILE --virtual-clock`
-        #[arg(long, value_name = "FILE")]
-        counterexample: Option<PathBuf>,
-        /// Write the model checked, with the properties, for another model checker instead of
-        /// checking it here
-        #[arg(long, value_enum, value_name = "LANGUAGE")]
-        emit: Option<EmitFormat>,
-        /// Where --emit writes (default: stdout)
-        #[arg(short, long, value_name = "FILE", requires = "emit")]
-        output: Option<PathBuf>,
-    },
+    Verify(VerifyArgs),
     /// Edit a behaviour's machines in the browser (at 127.0.0.1:7481 unless given): states,
     /// transitions, labels and activities, checked as you type; Save writes the .machine file
     /// with everything untouched kept as written, and never a machine with errors
@@ -365,36 +219,10 @@ pub enum Command {
     },
     /// Write a standard benchmark theory: chain N, chains N, circle N, circles N, levels N,
     /// levels- N, teams N, tree N K, dag N K, mix M N K (the expected answer goes to stderr)
-    Gen {
-        family: String,
-        #[arg(required = true, num_args = 1..=3)]
-        sizes: Vec<u64>,
-        #[arg(long, value_enum, default_value = "dl")]
-        format: TheoryFormat,
-        /// Write to this file instead of stdout
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-    },
+    Gen(GenArgs),
     /// Time the benchmark families end to end (parse + all conclusions for beta, then for pi),
     /// each in its own process so peak memory is its own
-    Bench {
-        /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3 clique:200`, or your
-        /// own theory files (`.dl`, `.dfl`), timed the same way; default: the suite of
-        /// docs/spec/benchmarks.md
-        cases: Vec<String>,
-        /// Smaller sizes (10^3 to 10^5) for a quick look
-        #[arg(long)]
-        quick: bool,
-        /// Repeat each case and keep the fastest
-        #[arg(long, default_value_t = 1)]
-        repeat: u32,
-        #[arg(long)]
-        json: bool,
-        /// Time every conclusion (`prove FILE --format spindle`) against one query and `wc -w`
-        /// on the same `.dfl` file, as whole processes, best and median of the repeats
-        #[arg(long)]
-        all: bool,
-    },
+    Bench(BenchArgs),
     /// Run a sensor wrapper alone and print every change it posts, one line each
     Sensor {
         #[command(subcommand)]
@@ -435,6 +263,214 @@ pub enum CompileTarget {
     C,
     /// A Cargo project (not built yet: refused)
     Rust,
+}
+
+/// What `proclaim prove` is told.
+#[derive(Args, Clone, Debug)]
+pub struct ProveArgs {
+    /// A .dl or .dfl file, or an embedded theory (offside, microwave, tweety, …)
+    pub theory: String,
+    /// Literals (`a`, `~a`), clauses (`\/{a, b}`) or conjunctions (`/\{a, b}`); none:
+    /// every conclusion (`+beta a` a line)
+    pub queries: Vec<String>,
+    #[arg(long, value_enum, default_value = "beta")]
+    pub alg: AlgArg,
+    /// Input values, `atom=true|false|unknown` (repeatable)
+    #[arg(long = "set", value_name = "ATOM=VALUE")]
+    pub set: Vec<String>,
+    /// Print a JSON array instead of lines
+    #[arg(long)]
+    pub json: bool,
+    /// `spindle`: SPINdle's conclusions, `+D`/`-D` (definite, μ) and `+d`/`-d` (defeasible,
+    /// β) for every literal (or each query), negation written `-a`, to diff against SPINdle
+    #[arg(long, value_enum, default_value = "text")]
+    pub format: ProveFormat,
+    /// Search steps allowed inside one attack cycle (default 10,000,000); an answer not
+    /// decided within them prints as `?beta q  (undecided: …)` and the exit status is 3
+    #[arg(long, value_name = "STEPS")]
+    pub budget: Option<u64>,
+}
+
+/// What `proclaim explain` is told.
+#[derive(Args, Clone, Debug)]
+pub struct ExplainArgs {
+    /// A .dl or .dfl file, or an embedded theory
+    pub theory: String,
+    /// A literal: `offside` or `~offside`
+    pub query: String,
+    #[arg(long, value_enum, default_value = "beta")]
+    pub alg: AlgArg,
+    /// Input values, `atom=true|false|unknown` (repeatable)
+    #[arg(long = "set", value_name = "ATOM=VALUE")]
+    pub set: Vec<String>,
+    /// How many levels of antecedents to explain
+    #[arg(long, default_value_t = 1)]
+    pub depth: usize,
+    /// Print the explanation as JSON (each node: its goal, rule, status and reasons)
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What `proclaim compile` is told.
+#[derive(Args, Clone, Debug)]
+pub struct CompileArgs {
+    /// A .dl or .dfl file, an embedded theory, or a behaviour's folder
+    pub theory: String,
+    #[arg(long, value_enum, default_value = "c")]
+    pub target: CompileTarget,
+    /// The folder to write into (made when missing)
+    #[arg(short = 'o', long = "out", value_name = "DIR")]
+    pub out: PathBuf,
+    /// Inputs may also be unknown (never posted), as a running behaviour's expert holds
+    /// them: two decision variables an input (known, true); default: the truth table's rows
+    #[arg(long)]
+    pub unknown_inputs: bool,
+    /// Search steps allowed inside one attack cycle (default 10,000,000)
+    #[arg(long, value_name = "STEPS")]
+    pub budget: Option<u64>,
+}
+
+/// What `proclaim bench` is told.
+#[derive(Args, Clone, Debug)]
+pub struct BenchArgs {
+    /// Cases as `family:size[:k[:m]]`, e.g. `chain:1000000 tree:12:3 clique:200`, or your
+    /// own theory files (`.dl`, `.dfl`), timed the same way; default: the suite of
+    /// docs/spec/benchmarks.md
+    pub cases: Vec<String>,
+    /// Smaller sizes (10^3 to 10^5) for a quick look
+    #[arg(long)]
+    pub quick: bool,
+    /// Repeat each case and keep the fastest
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
+    #[arg(long)]
+    pub json: bool,
+    /// Time every conclusion (`prove FILE --format spindle`) against one query and `wc -w`
+    /// on the same `.dfl` file, as whole processes, best and median of the repeats
+    #[arg(long)]
+    pub all: bool,
+}
+
+/// What `proclaim expert` is told.
+#[derive(Args, Clone, Debug)]
+pub struct ExpertArgs {
+    pub theory: String,
+    /// Its name on the whiteboard (default: the theory's name{})
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Input atom → message type, one `atom = type` a line
+    #[arg(long, value_name = "FILE")]
+    pub mapping: Option<PathBuf>,
+    /// Stop after this long (default: at Ctrl-C)
+    #[arg(long = "for", value_name = "DURATION")]
+    pub duration: Option<String>,
+    #[command(flatten)]
+    pub network: Network,
+}
+
+/// What `proclaim deps` is told.
+#[derive(Args, Clone, Debug)]
+pub struct DepsArgs {
+    pub behaviour: String,
+    /// The module at the centre (default: every module and link)
+    #[arg(long)]
+    pub module: Option<String>,
+    /// Instead, write the smallest manifest that runs this machine with exactly the modules
+    /// it needs (put it beside the behaviour's own, then `proclaim run FILE.toml`)
+    #[arg(long, value_name = "MACHINE", conflicts_with = "module")]
+    pub launch: Option<String>,
+    /// Output file: .dot, .svg, .png or .pdf (default: DOT on stdout); with --launch, .toml
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// What `proclaim gen` is told.
+#[derive(Args, Clone, Debug)]
+pub struct GenArgs {
+    pub family: String,
+    #[arg(required = true, num_args = 1..=3)]
+    pub sizes: Vec<u64>,
+    #[arg(long, value_enum, default_value = "dl")]
+    pub format: TheoryFormat,
+    /// Write to this file instead of stdout
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// What `proclaim replay` is told.
+#[derive(Args, Clone, Debug)]
+pub struct ReplayArgs {
+    pub trace: PathBuf,
+    /// Replay at this many times the recorded pace (default: all at once)
+    #[arg(long, conflicts_with = "monitor")]
+    pub speed: Option<f64>,
+    /// Show the trace in the browser with a time slider over every moment (at
+    /// 127.0.0.1:7480 unless given), until Ctrl-C
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR)]
+    pub monitor: Option<String>,
+    /// The behaviour that made the trace, to draw its machines whole (without it, each
+    /// machine is drawn from the states and transitions the trace shows)
+    #[arg(long, value_name = "BEHAVIOUR", requires = "monitor")]
+    pub behaviour: Option<String>,
+}
+
+/// What `proclaim verify` is told.
+#[derive(Args, Clone, Debug)]
+pub struct VerifyArgs {
+    /// A behaviour: a folder, its manifest, machines/NAME or a built-in one
+    pub behaviour: String,
+    /// Check that no reachable state satisfies EXPR (`Machine.STATE`, `saw(Machine, name)`,
+    /// variables, whiteboard values and answers with the label language's operators).
+    /// Properties given here replace the manifest's [[property]] entries
+    #[arg(long, value_name = "EXPR")]
+    pub never: Vec<String>,
+    /// Check that every reachable state satisfies EXPR
+    #[arg(long, value_name = "EXPR")]
+    pub always: Vec<String>,
+    /// Check that some reachable state satisfies EXPR (and show the shortest way there)
+    #[arg(long, value_name = "EXPR")]
+    pub reachable: Vec<String>,
+    /// Check that every run reaches a state where EXPR holds (time passing; a failure is a
+    /// lasso: a way in and a loop)
+    #[arg(long, value_name = "EXPR")]
+    pub eventually: Vec<String>,
+    /// Check that after every state where P holds, every run reaches one where Q holds
+    #[arg(long, value_name = "'P ~> Q'")]
+    pub leads_to: Vec<String>,
+    /// Check that every run makes EXPR true again and again
+    #[arg(long, value_name = "EXPR")]
+    pub always_eventually: Vec<String>,
+    /// Assume the environment makes EXPR true infinitely often (for the liveness
+    /// properties checked)
+    #[arg(long, value_name = "EXPR")]
+    pub fair: Vec<String>,
+    /// Stop after this many states (the outcome is then incomplete where undecided)
+    #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+    pub max_states: usize,
+    /// Stop before the search holds more than this much memory, e.g. 512M or 4G (the
+    /// outcome is then incomplete where undecided; default: half the memory available)
+    #[arg(long, value_name = "SIZE", value_parser = parse_size)]
+    pub max_memory: Option<usize>,
+    /// Switch an exact reduction off (to compare; the verdicts are the same)
+    #[arg(long, value_enum, value_name = "REDUCTION")]
+    pub without: Vec<ReductionName>,
+    /// Which engine explores: explicit states, sets of states as decision diagrams, or
+    /// the explicit one first and the symbolic one where it does not decide soon
+    #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
+    pub engine: EngineName,
+    /// Print the report as JSON
+    #[arg(long)]
+    pub json: bool,
+    /// Write the first counterexample as an impersonator script for `run --script FILE --virtual-clock`
+    #[arg(long, value_name = "FILE")]
+    pub counterexample: Option<PathBuf>,
+    /// Write the model checked, with the properties, for another model checker instead of
+    /// checking it here
+    #[arg(long, value_enum, value_name = "LANGUAGE")]
+    pub emit: Option<EmitFormat>,
+    /// Where --emit writes (default: stdout)
+    #[arg(short, long, value_name = "FILE", requires = "emit")]
+    pub output: Option<PathBuf>,
 }
 
 /// What `proclaim run` is told.

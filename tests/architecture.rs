@@ -2,7 +2,13 @@
 //! the crates against the manifests (every crate drawn with exactly the proclaim crates its
 //! `Cargo.toml` depends on, each on a layer above all of them), the binary's and Zenoh's "does
 //! not", the crates that do no I/O, the map's length and that it holds no measured figure; and
-//! that no file names a path outside the repository but the shared corpus.
+//! that no file names a path outside the repository but the shared corpus; and what the code
+//! itself must keep: every library crate tests itself, one name per thing (`type_names`), no
+//! library function over eighty lines (`function_length`).
+
+mod function_length;
+mod rust_code;
+mod type_names;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -159,6 +165,28 @@ fn the_crates_without_io_name_none() {
                 assert!(!text.contains(word), "{} names {word}", file.display());
             }
         }
+    }
+}
+
+/// "Library crates test themselves": each crate under `crates/` holds a test of its own, in its
+/// `src` or its `tests`.
+#[test]
+fn every_library_crate_tests_itself() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let crates = crates_on_disk();
+    assert!(crates.len() > 10, "{crates:?}");
+    for name in crates {
+        let dir = root.join("crates").join(&name);
+        let mut texts = repository_texts(&dir.join("src"));
+        if dir.join("tests").is_dir() {
+            texts.extend(repository_texts(&dir.join("tests")));
+        }
+        assert!(
+            texts
+                .iter()
+                .any(|(_, text)| text.contains("#[test]") || text.contains("#[tokio::test")),
+            "crates/{name} tests nothing of its own"
+        );
     }
 }
 

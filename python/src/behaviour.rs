@@ -9,7 +9,7 @@
 //! raises never unwinds into the runner: a host function's is kept, an expert's answers the
 //! label false and is kept, and the call that ran the round raises `CallbackError` from it.
 
-use crate::board::{self, Board};
+use crate::board::{self, Board, MODULE};
 use crate::checks;
 use crate::clock::{Calls, Clock, HostCall};
 use crate::errors;
@@ -28,8 +28,6 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, TryLockError};
 use std::time::Duration;
 
-/// The module name Python's postings and answers carry on the whiteboard.
-pub(crate) const MODULE: &str = "python";
 
 /// Exceptions raised by callables while the behaviour ran, oldest first, each with what raised.
 type Raised = Arc<Mutex<Vec<(String, PyErr)>>>;

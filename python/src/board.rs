@@ -1,11 +1,13 @@
 //! The whiteboard from Python: what an expert's callable is given, and the values that cross
 //! (bool, int, float, str, bytes and lists of them, as the whiteboard's own values).
 
-use crate::behaviour::MODULE;
 use proclaim_board::{Value, Whiteboard};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+/// The module name Python's postings and answers carry on the whiteboard.
+pub(crate) const MODULE: &str = "python";
 
 /// A behaviour's whiteboard: `read` the latest value of a type, `post` one.
 #[pyclass(module = "proclaim", frozen)]

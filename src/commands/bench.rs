@@ -1,6 +1,7 @@
 //! `proclaim bench`: times the benchmark families end to end, each case in its own child process
 //! (`bench-run`) so that its peak memory is its own; prints a table or JSON.
 
+use crate::cli::BenchArgs;
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_cdl::{check_source, Algorithm, Engine, Session};
@@ -107,6 +108,17 @@ pub struct BenchOptions {
     pub json: bool,
     /// Every conclusion against one query and `wc -w`, as whole processes (`bench_all.rs`).
     pub all: bool,
+}
+
+/// `proclaim bench`.
+pub fn command(args: BenchArgs) -> Result<ExitCode, Failure> {
+    let options = BenchOptions {
+        quick: args.quick,
+        repeat: args.repeat,
+        json: args.json,
+        all: args.all,
+    };
+    run(&args.cases, options)
 }
 
 pub fn run(cases: &[String], options: BenchOptions) -> Result<ExitCode, Failure> {

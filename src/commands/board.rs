@@ -3,6 +3,7 @@
 //! `ping` (what a round trip to another process of it costs).
 
 use super::runtime::{runtime, Shape};
+use crate::cli::ExpertArgs;
 use crate::failure::Failure;
 use crate::load;
 use crate::network::{post_once, round_trips, whiteboard, Network};
@@ -31,6 +32,17 @@ async fn until_stopped(limit: Option<Duration>) {
             let _ = tokio::signal::ctrl_c().await;
         }
     }
+}
+
+/// `proclaim expert`.
+pub fn expert_command(args: ExpertArgs) -> Result<ExitCode, Failure> {
+    expert(
+        &args.theory,
+        args.name.as_deref(),
+        args.mapping.as_deref(),
+        &args.network,
+        args.duration.as_deref(),
+    )
 }
 
 pub fn expert(

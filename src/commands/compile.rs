@@ -1,5 +1,6 @@
 //! `proclaim compile`: a theory's outputs as decision functions in freestanding C99.
 
+use crate::cli::CompileArgs;
 use crate::cli::CompileTarget;
 use crate::failure::Failure;
 use crate::load;
@@ -7,6 +8,17 @@ use proclaim_cdl::SearchLimits;
 use proclaim_compile::{c_identifier, compile, Domain, Form};
 use std::path::Path;
 use std::process::ExitCode;
+
+/// `proclaim compile`.
+pub fn command(args: CompileArgs) -> Result<ExitCode, Failure> {
+    run(
+        &args.theory,
+        args.target,
+        &args.out,
+        args.unknown_inputs,
+        args.budget,
+    )
+}
 
 pub fn run(
     theory_name: &str,

@@ -2,11 +2,22 @@
 //! or the smallest behaviour that runs one machine (`--launch`).
 
 use crate::behaviours::load_behaviour;
+use crate::cli::DepsArgs;
 use crate::commands::draw::write_diagram;
 use crate::failure::Failure;
 use proclaim_behaviour::{launch_manifest, module_diagram, modules, overall_diagram};
 use std::path::Path;
 use std::process::ExitCode;
+
+/// `proclaim deps`.
+pub fn command(args: DepsArgs) -> Result<ExitCode, Failure> {
+    run(
+        &args.behaviour,
+        args.module.as_deref(),
+        args.launch.as_deref(),
+        args.output.as_deref(),
+    )
+}
 
 pub fn run(
     behaviour: &str,

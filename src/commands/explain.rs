@@ -2,10 +2,23 @@
 
 use super::{algorithms, inputs};
 use crate::cli::AlgArg;
+use crate::cli::ExplainArgs;
 use crate::failure::Failure;
 use crate::load;
 use proclaim_cdl::{About, Engine, Explanation, Formula, Session};
 use std::process::ExitCode;
+
+/// `proclaim explain`.
+pub fn command(args: ExplainArgs) -> Result<ExitCode, Failure> {
+    run(
+        &args.theory,
+        &args.query,
+        args.alg,
+        &args.set,
+        args.depth,
+        args.json,
+    )
+}
 
 pub fn run(
     theory_name: &str,

@@ -1,11 +1,22 @@
 //! `proclaim gen`: writes a standard benchmark theory, its expected answers on stderr.
 
+use crate::cli::GenArgs;
 use crate::cli::TheoryFormat;
 use crate::failure::Failure;
 use proclaim_gen::{Family, Format};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// `proclaim gen`.
+pub fn command(args: GenArgs) -> Result<ExitCode, Failure> {
+    run(
+        &args.family,
+        &args.sizes,
+        args.format,
+        args.output.as_deref(),
+    )
+}
 
 pub fn run(
     family: &str,

@@ -25,196 +25,57 @@ mod table;
 mod test;
 mod verify;
 
-use crate::cli::{AlgArg, Cli, Command, Sensor};
+use crate::cli::{AlgArg, Cli, CliCommand, ReplayArgs, Sensor};
 use crate::failure::Failure;
 use proclaim_cdl::Algorithm;
 use std::process::ExitCode;
 
-/// Runs one subcommand. Long by design: one arm a subcommand, each only unpacking its
-/// arguments for the command's own file, so the whole command line reads in one place.
+/// Runs one subcommand: one arm a subcommand, each handing its arguments to the command's own
+/// file, so the whole command line reads in one place.
 pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
     match cli.command {
-        Command::Prove {
-            theory,
-            queries,
-            alg,
-            set,
-            json,
-            format,
-            budget,
-        } => match format {
-            crate::cli::ProveFormat::Spindle => prove::spindle(&theory, &queries, &set, budget),
-            crate::cli::ProveFormat::Text => prove::run(&theory, &queries, alg, &set, json, budget),
-        },
-        Command::Table { theory, format } => table::run(&theory, format),
-        Command::Compile {
-            theory,
-            target,
-            out,
-            unknown_inputs,
-            budget,
-        } => compile::run(&theory, target, &out, unknown_inputs, budget),
-        Command::Explain {
-            theory,
-            query,
-            alg,
-            set,
-            depth,
-            json,
-        } => explain::run(&theory, &query, alg, &set, depth, json),
-        Command::Check { theories, json } => check::run(&theories, json),
-        Command::Verify {
-            behaviour,
-            never,
-            always,
-            reachable,
-            eventually,
-            leads_to,
-            always_eventually,
-            fair,
-            max_states,
-            max_memory: _,
-            without: _,
-            engine: _,
-            json: _,
-            counterexample: _,
-            emit: Some(language),
-            output,
-        } => verify::emit(
-            &behaviour,
-            &verify::Asked {
-                never,
-                always,
-                reachable,
-                eventually,
-                leads_to,
-                always_eventually,
-                fair,
-            },
-            max_states,
-            language,
-            output.as_deref(),
-        ),
-        Command::Verify {
-            behaviour,
-            never,
-            always,
-            reachable,
-            eventually,
-            leads_to,
-            always_eventually,
-            fair,
-            max_states,
-            max_memory,
-            without,
-            engine,
-            json,
-            counterexample,
-            emit: None,
-            output: _,
-        } => verify::run(
-            &behaviour,
-            &verify::Asked {
-                never,
-                always,
-                reachable,
-                eventually,
-                leads_to,
-                always_eventually,
-                fair,
-            },
-            verify::options(max_states, max_memory, &without, engine),
-            json,
-            counterexample.as_deref(),
-        ),
-        Command::Draw {
+        CliCommand::Prove(args) => prove::command(args),
+        CliCommand::Table { theory, format } => table::run(&theory, format),
+        CliCommand::Compile(args) => compile::command(args),
+        CliCommand::Explain(args) => explain::command(args),
+        CliCommand::Check { theories, json } => check::run(&theories, json),
+        CliCommand::Verify(args) => verify::command(args),
+        CliCommand::Draw {
             machine,
             output,
             name,
         } => draw::run(&machine, output.as_deref(), name.as_deref()),
-        Command::Edit {
+        CliCommand::Edit {
             behaviour,
             addr,
             read_only,
         } => edit::run(&behaviour, &addr, read_only),
-        Command::Run(args) => run::run(args),
-        Command::Expert {
-            theory,
-            name,
-            mapping,
-            duration,
-            network,
-        } => board::expert(
-            &theory,
-            name.as_deref(),
-            mapping.as_deref(),
-            &network,
-            duration.as_deref(),
-        ),
-        Command::Post {
+        CliCommand::Run(args) => run::run(args),
+        CliCommand::Expert(args) => board::expert_command(args),
+        CliCommand::Post {
             ty,
             value,
             module,
             network,
         } => board::post(&ty, &value, &module, &network),
-        Command::Watch {
+        CliCommand::Watch {
             pattern,
             duration,
             network,
         } => board::watch(&pattern, &network, duration.as_deref()),
-        Command::Ping { count, network } => board::ping(count, &network),
-        Command::Test {
+        CliCommand::Ping { count, network } => board::ping(count, &network),
+        CliCommand::Test {
             behaviour,
             recordings,
         } => test::run(&behaviour, &recordings),
-        Command::Replay {
-            trace,
-            speed,
-            monitor: None,
-            ..
-        } => run::replay(&trace, speed),
-        Command::Replay {
-            trace,
-            monitor: Some(addr),
-            behaviour,
-            ..
-        } => monitor::replay(&trace, &addr, behaviour.as_deref()),
-        Command::Deps {
-            behaviour,
-            module,
-            launch,
-            output,
-        } => deps::run(
-            &behaviour,
-            module.as_deref(),
-            launch.as_deref(),
-            output.as_deref(),
-        ),
-        Command::Liveness { file, output } => liveness::run(&file, &output),
-        Command::Import { files, output } => import::run(&files, &output),
-        Command::Gen {
-            family,
-            sizes,
-            format,
-            output,
-        } => gen::run(&family, &sizes, format, output.as_deref()),
-        Command::Bench {
-            cases,
-            quick,
-            repeat,
-            json,
-            all,
-        } => bench::run(
-            &cases,
-            bench::BenchOptions {
-                quick,
-                repeat,
-                json,
-                all,
-            },
-        ),
-        Command::BenchRun { file, expect } => bench::run_one(&file, &expect),
-        Command::Sensor {
+        CliCommand::Replay(args) => replay(args),
+        CliCommand::Deps(args) => deps::command(args),
+        CliCommand::Liveness { file, output } => liveness::run(&file, &output),
+        CliCommand::Import { files, output } => import::run(&files, &output),
+        CliCommand::Gen(args) => gen::command(args),
+        CliCommand::Bench(args) => bench::command(args),
+        CliCommand::BenchRun { file, expect } => bench::run_one(&file, &expect),
+        CliCommand::Sensor {
             sensor:
                 Sensor::Gamecontroller {
                     port,
@@ -233,13 +94,21 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             duration.as_deref(),
             &network,
         ),
-        Command::GcSim {
+        CliCommand::GcSim {
             script,
             to,
             interval,
             home,
             away,
         } => gamecontroller::simulate(script.as_deref(), to, interval, home, away),
+    }
+}
+
+/// `proclaim replay`: printed as the live trace was, or shown in the browser with `--monitor`.
+fn replay(args: ReplayArgs) -> Result<ExitCode, Failure> {
+    match args.monitor {
+        None => run::replay(&args.trace, args.speed),
+        Some(addr) => monitor::replay(&args.trace, &addr, args.behaviour.as_deref()),
     }
 }
 

@@ -2,6 +2,7 @@
 
 use super::{algorithms, conclusions, inputs};
 use crate::cli::AlgArg;
+use crate::cli::{ProveArgs, ProveFormat};
 use crate::failure::Failure;
 use crate::load;
 use proclaim_cdl::{Algorithm, Engine, Formula, SearchLimits, Session, Undecided};
@@ -152,6 +153,21 @@ fn unknown_literal(query: &str, theory: &proclaim_cdl::Theory) -> bool {
     match proclaim_syntax::parse_query(query) {
         Ok(proclaim_syntax::Query::Lit(l)) => theory.atom(l.atom.text(query)).is_none(),
         _ => false,
+    }
+}
+
+/// `proclaim prove`: SPINdle's output with `--format spindle`, else one line an answer.
+pub fn command(args: ProveArgs) -> Result<ExitCode, Failure> {
+    match args.format {
+        ProveFormat::Spindle => spindle(&args.theory, &args.queries, &args.set, args.budget),
+        ProveFormat::Text => run(
+            &args.theory,
+            &args.queries,
+            args.alg,
+            &args.set,
+            args.json,
+            args.budget,
+        ),
     }
 }
 

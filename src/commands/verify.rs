@@ -5,13 +5,13 @@
 //! state budget ran out), 2 bad input.
 
 use crate::behaviours::load_behaviour;
-use crate::cli::{EmitFormat, EngineName, ReductionName};
+use crate::cli::{EmitFormat, EngineName, ReductionName, VerifyArgs};
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
 use proclaim_verify::{
     lasso_script, manifest_properties, render, to_promela, to_script, unroll, verify_with_progress,
-    Finding, Options, Progress, PropertyKind, PropertySource, Reductions, Report, SearchEngine,
-    Verdict, VerifyError,
+    Finding, Options, Progress, PropertyKind, PropertyOutcome, PropertySource, Reductions, Report,
+    SearchEngine, SearchStats, Verdict, VerifyError,
 };
 use std::path::Path;
 use std::process::ExitCode;
@@ -81,6 +81,35 @@ impl Asked {
             }
         }
         Ok(properties)
+    }
+}
+
+/// `proclaim verify`: the model written for another checker with `--emit`, else checked here.
+pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
+    let asked = Asked {
+        never: args.never,
+        always: args.always,
+        reachable: args.reachable,
+        eventually: args.eventually,
+        leads_to: args.leads_to,
+        always_eventually: args.always_eventually,
+        fair: args.fair,
+    };
+    match args.emit {
+        Some(language) => emit(
+            &args.behaviour,
+            &asked,
+            args.max_states,
+            language,
+            args.output.as_deref(),
+        ),
+        None => run(
+            &args.behaviour,
+            &asked,
+            options(args.max_states, args.max_memory, &args.without, args.engine),
+            args.json,
+            args.counterexample.as_deref(),
+        ),
     }
 }
 
@@ -214,7 +243,22 @@ pub fn emit(
 }
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {
-    let s = &report.stats;
+    print_search(behaviour, &report.stats, seconds);
+    if report.properties.is_empty() {
+        println!(
+            "no properties: give --never, --always, --reachable, --eventually, --leads-to or --always-eventually, or [[property]] in the manifest"
+        );
+    }
+    for p in &report.properties {
+        print_property(p, &report.stats);
+    }
+    for f in &report.findings {
+        print_finding(f);
+    }
+}
+
+/// The search's one line: how much it explored, why it stopped, how fast and how small.
+fn print_search(behaviour: &str, s: &SearchStats, seconds: f64) {
     if s.engine == SearchEngine::Symbolic.word() {
         println!(
             "{behaviour}: {} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
@@ -235,81 +279,79 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
             s.packed_bytes_per_state,
         );
     }
-    if report.properties.is_empty() {
-        println!(
-            "no properties: give --never, --always, --reachable, --eventually, --leads-to or --always-eventually, or [[property]] in the manifest"
-        );
-    }
-    for p in &report.properties {
-        let verdict = match p.verdict {
-            Verdict::Holds => "holds",
-            Verdict::Fails => "FAILS",
-            Verdict::Incomplete => match s.stopped {
-                proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
-                _ => "undecided (state budget)",
-            },
+}
+
+/// A property's verdict, and the run that shows it when there is one.
+fn print_property(p: &PropertyOutcome, s: &SearchStats) {
+    let verdict = match p.verdict {
+        Verdict::Holds => "holds",
+        Verdict::Fails => "FAILS",
+        Verdict::Incomplete => match s.stopped {
+            proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
+            _ => "undecided (state budget)",
+        },
+    };
+    let assuming = if p.fair.is_empty() {
+        String::new()
+    } else {
+        format!(", assuming fair {}", p.fair.join(", fair "))
+    };
+    println!(
+        "{}: {verdict} ({} {}{assuming})",
+        p.name, p.kind, p.expression
+    );
+    if let Some(cycle) = &p.cycle {
+        let run = match p.kind.as_str() {
+            "leads_to" => "a run where the second never follows the first",
+            "always_eventually" => "a run where it stops coming back",
+            _ => "a run that never gets there",
         };
-        let assuming = if p.fair.is_empty() {
-            String::new()
+        let prefix = p.trace.as_ref().map(render).unwrap_or_default();
+        if prefix.is_empty() {
+            println!("  {run}, from the start:");
         } else {
-            format!(", assuming fair {}", p.fair.join(", fair "))
-        };
-        println!(
-            "{}: {verdict} ({} {}{assuming})",
-            p.name, p.kind, p.expression
-        );
-        if let Some(cycle) = &p.cycle {
-            let run = match p.kind.as_str() {
-                "leads_to" => "a run where the second never follows the first",
-                "always_eventually" => "a run where it stops coming back",
-                _ => "a run that never gets there",
-            };
-            let prefix = p.trace.as_ref().map(render).unwrap_or_default();
-            if prefix.is_empty() {
-                println!("  {run}, from the start:");
-            } else {
-                println!("  {run}: the way in, by rounds:");
-                print!("{prefix}");
-            }
-            if cycle.steps.is_empty() {
-                println!("  then no machine can ring any more, for ever");
-            } else {
-                println!("  then this loop, for ever:");
-                print!("{}", render(cycle));
-            }
-            continue;
+            println!("  {run}: the way in, by rounds:");
+            print!("{prefix}");
         }
-        if let Some(trace) = &p.trace {
-            let what = if p.kind == "reachable" {
-                "the shortest way there"
-            } else {
-                "shortest counterexample"
-            };
-            println!("  {what}, by rounds:");
-            print!("{}", render(trace));
+        if cycle.steps.is_empty() {
+            println!("  then no machine can ring any more, for ever");
+        } else {
+            println!("  then this loop, for ever:");
+            print!("{}", render(cycle));
         }
+        return;
     }
-    for f in &report.findings {
-        match f {
-            Finding::NeverEntered { machine, state } => {
-                println!("warning: {machine}.{state} is never entered")
-            }
-            Finding::NeverFires {
-                machine,
-                from,
-                to,
-                label,
-                line,
-            } => println!(
-                "warning: {machine}: the transition {from} -> {to} (when {label}, line {line}) never fires"
-            ),
-            Finding::Deadlock { waiting, trace } => {
-                println!(
-                    "warning: deadlock: nothing can fire any more while {} wait",
-                    waiting.join(", ")
-                );
-                print!("{}", render(trace));
-            }
+    if let Some(trace) = &p.trace {
+        let what = if p.kind == "reachable" {
+            "the shortest way there"
+        } else {
+            "shortest counterexample"
+        };
+        println!("  {what}, by rounds:");
+        print!("{}", render(trace));
+    }
+}
+
+fn print_finding(f: &Finding) {
+    match f {
+        Finding::NeverEntered { machine, state } => {
+            println!("warning: {machine}.{state} is never entered")
+        }
+        Finding::NeverFires {
+            machine,
+            from,
+            to,
+            label,
+            line,
+        } => println!(
+            "warning: {machine}: the transition {from} -> {to} (when {label}, line {line}) never fires"
+        ),
+        Finding::Deadlock { waiting, trace } => {
+            println!(
+                "warning: deadlock: nothing can fire any more while {} wait",
+                waiting.join(", ")
+            );
+            print!("{}", render(trace));
         }
     }
 }

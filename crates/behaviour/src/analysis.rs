@@ -4,7 +4,7 @@
 //! nobody posts, sub-machines nothing starts. Each finding names the file and line it is about.
 
 use crate::load::{Behaviour, LoadedMachine};
-use crate::manifest::Schedule;
+use crate::manifest::{Schedule, MANIFEST};
 use crate::modules::{modules, Module, ModuleKind};
 use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
@@ -23,7 +23,7 @@ pub fn check_behaviour_with(
 ) -> Vec<FileDiagnostic> {
     let mut answered_elsewhere = script.map(|(_, s)| s.atoms()).unwrap_or_default();
     answered_elsewhere.extend(asked.iter().cloned());
-    let whole = Whole {
+    let check = CrossModuleCheck {
         behaviour,
         all: modules(behaviour),
         answered_elsewhere,
@@ -31,22 +31,22 @@ pub fn check_behaviour_with(
     };
     let mut out = Vec::new();
     for loaded in &behaviour.machines {
-        out.extend(whole.machine_findings(loaded));
+        out.extend(check.machine_findings(loaded));
     }
-    out.extend(script_warnings_of(behaviour, &whole.all, script));
-    out.extend(whole.unstarted());
-    out.extend(whole.races());
-    for module in &whole.all {
+    out.extend(script_warnings_of(behaviour, &check.all, script));
+    out.extend(check.unstarted());
+    out.extend(check.races());
+    for module in &check.all {
         if let ModuleKind::Theory { file } = &module.kind {
-            out.extend(whole.theory_findings(module, file));
+            out.extend(check.theory_findings(module, file));
         }
     }
-    out.extend(crate::programs::findings(behaviour, &whole.all));
+    out.extend(program_findings(behaviour, &check.all));
     out
 }
 
 /// A behaviour and every module's declaration: what only the whole shows.
-struct Whole<'b> {
+struct CrossModuleCheck<'b> {
     behaviour: &'b Behaviour,
     all: Vec<Module>,
     /// Atoms a script or a person answers.
@@ -55,7 +55,7 @@ struct Whole<'b> {
     shared: std::sync::Arc<proclaim_runner::Shared>,
 }
 
-impl Whole<'_> {
+impl CrossModuleCheck<'_> {
     fn answered(&self, atom: &str) -> bool {
         self.answered_elsewhere.iter().any(|a| a == atom)
             || self
@@ -359,6 +359,64 @@ fn unheard(all: &[Module], file: &str, script: &Script) -> Vec<FileDiagnostic> {
             step.line,
             format!("`{atom}` is asked by no machine and read by no module{hint}"),
         ));
+    }
+    out
+}
+
+/// What `check` says of the program experts, as of a theory's outputs and inputs: a label no
+/// machine queries and an input no module posts, each at the manifest line that names it.
+fn program_findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnostic> {
+    let manifest = behaviour.files.show(MANIFEST);
+    let text = behaviour.files.read(MANIFEST).unwrap_or_default();
+    let line_of = |name: &str| {
+        let quoted = format!("\"{name}\"");
+        text.lines()
+            .position(|l| l.contains(&quoted))
+            .map_or(1, |i| i + 1)
+    };
+    let mut out = Vec::new();
+    for p in &behaviour.programs {
+        let namesakes = all.iter().filter(|m| m.decl.name == p.name).count();
+        if namesakes > 1 {
+            out.push(
+                FileDiagnostic::error(
+                    &manifest,
+                    p.answers.first().map_or(1, |a| line_of(a)),
+                    format!(
+                        "two modules are named `{}`: the expert's name is how the whiteboard knows it",
+                        p.name
+                    ),
+                )
+                .with_hint("give the expert a name of its own with `name = \"…\"`"),
+            );
+        }
+        for label in &p.answers {
+            if !all.iter().any(|m| m.decl.waits_on.contains(label)) {
+                out.push(FileDiagnostic::warning(
+                    &manifest,
+                    line_of(label),
+                    format!(
+                        "label `{label}` of expert {} is queried by no machine",
+                        p.name
+                    ),
+                ));
+            }
+        }
+        for input in &p.inputs {
+            let posted = all
+                .iter()
+                .any(|m| m.decl.name != p.name && m.decl.posts.contains(input));
+            if !posted {
+                out.push(FileDiagnostic::warning(
+                    &manifest,
+                    line_of(input),
+                    format!(
+                        "input `{input}` of expert {} is posted by no module",
+                        p.name
+                    ),
+                ));
+            }
+        }
     }
     out
 }

@@ -163,20 +163,7 @@ pub async fn launch(
         &mut modules,
         &mut notes,
     );
-    for expert in &options.experts {
-        let answers = expert.declaration().answers;
-        leave_out(
-            &mut modules,
-            &answers,
-            "the embedding program answers",
-            &mut notes,
-        );
-        modules.push(Module {
-            name: expert.name().to_string(),
-            answers,
-            task: Box::pin(expert.clone().run(board.clone())),
-        });
-    }
+    embedded_experts(board, &options, &mut modules, &mut notes);
     // A simulator with no receiver left to listen plays to nobody.
     if !modules.iter().any(|m| m.name == "gamecontroller") {
         modules.retain(|m| m.name != "gc-sim");
@@ -220,6 +207,25 @@ pub async fn launch(
         halted: FxHashSet::default(),
         finished: FxHashSet::default(),
     })
+}
+
+/// The experts the embedding program gives: each takes over the atoms it answers from the
+/// behaviour's own.
+fn embedded_experts(
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    modules: &mut Vec<Module>,
+    notes: &mut Vec<String>,
+) {
+    for expert in &options.experts {
+        let answers = expert.declaration().answers;
+        leave_out(modules, &answers, "the embedding program answers", notes);
+        modules.push(Module {
+            name: expert.name().to_string(),
+            answers,
+            task: Box::pin(expert.clone().run(board.clone())),
+        });
+    }
 }
 
 /// A reasoner expert per theory, then the Prolog and program experts.

@@ -15,6 +15,7 @@ mod files;
 mod launch;
 mod liveness;
 mod load;
+mod loaded;
 mod manifest;
 mod modules;
 mod program_entries;

@@ -3,76 +3,22 @@
 
 use crate::files::Files;
 use crate::manifest::{
-    parse_dictionary, parse_manifest, Manifest, ModuleEntry, SensorEntry, Simulator, TheoryEntry,
-    MANIFEST,
+    parse_dictionary, parse_manifest, Manifest, ModuleEntry, Simulator, TheoryEntry, MANIFEST,
 };
-use proclaim_cdl::{check_source, Language, Theory};
-use proclaim_experts::{parse_duration, parse_mapping, parse_script, Script};
+use proclaim_cdl::{check_source, Language};
+use proclaim_experts::{parse_duration, parse_mapping, parse_script};
 use proclaim_fsm::{
     import_qfsm, import_ta, machine_format, parse_machine, Imported, Machine, MachineFormat,
     Severity,
 };
-use proclaim_gcsim::{parse_game, GameScript};
+use proclaim_gcsim::parse_game;
 use proclaim_runner::Loader;
 use proclaim_syntax::FileDiagnostic;
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// A behaviour ready to start.
-pub struct Behaviour {
-    pub name: String,
-    pub manifest: Manifest,
-    pub machines: Vec<LoadedMachine>,
-    pub theories: Vec<LoadedTheory>,
-    pub sensors: Vec<LoadedSensor>,
-    /// Prolog knowledge bases and programs answering labels (`programs.rs`).
-    pub programs: Vec<crate::programs::LoadedProgram>,
-    pub script: Option<Script>,
-    pub ring_period: Duration,
-    pub answer_timeout: Duration,
-    pub run_for: Option<Duration>,
-    /// Modules outside the behaviour (the manifest's `[[module]]` and its dictionary's).
-    pub outside: Vec<ModuleEntry>,
-    /// The types under subsumption with their hold times (the manifest's `[suppress]`).
-    pub suppress: Vec<(String, Duration)>,
-    /// Warnings of its files, each with its place.
-    pub warnings: Vec<FileDiagnostic>,
-    pub files: Arc<dyn Files>,
-}
-
-impl Behaviour {
-    /// The variables its machines share: globals and externs, from every machine's activities.
-    pub fn shared_variables(&self) -> std::sync::Arc<proclaim_runner::Shared> {
-        proclaim_runner::Shared::for_machines(self.machines.iter().map(|m| &m.machine))
-    }
-}
-
-pub struct LoadedMachine {
-    pub machine: Machine,
-    pub file: String,
-    pub start: bool,
-    /// Its subsumption layer (the manifest's `priority`).
-    pub priority: u32,
-    /// Reads the file again (for `reload`, `reread` and `--watch`).
-    pub loader: Loader,
-}
-
-pub struct LoadedTheory {
-    pub name: String,
-    pub file: String,
-    pub theory: Theory,
-    /// Input atom → message type.
-    pub mapping: FxHashMap<String, String>,
-    /// Bounds on the search inside attack cycles (the manifest's `budget`).
-    pub limits: proclaim_cdl::SearchLimits,
-}
-
-pub struct LoadedSensor {
-    pub entry: SensorEntry,
-    /// The game the simulator plays, when it plays one.
-    pub game: Option<GameScript>,
-}
+pub use crate::loaded::{Behaviour, LoadedMachine, LoadedSensor, LoadedTheory};
 
 /// Loads the behaviour `name` from `files`. `Err` holds every error (and warning), each with its
 /// file and line.
@@ -117,19 +63,7 @@ pub fn load_manifest(
         &mut problems.found,
     );
 
-    let mut sensors = Vec::new();
-    for entry in &manifest.sensors {
-        let game = match &entry.simulator {
-            Some(Simulator::Script(file)) => {
-                read_lines(files.as_ref(), file, parse_game, &mut problems)
-            }
-            _ => None,
-        };
-        sensors.push(LoadedSensor {
-            entry: entry.clone(),
-            game,
-        });
-    }
+    let sensors = load_sensors(files.as_ref(), &manifest, &mut problems);
 
     let script = match &manifest.impersonator {
         None => None,
@@ -168,6 +102,26 @@ pub fn load_manifest(
         warnings,
         files,
     })
+}
+
+/// The manifest's sensors, each with the game script its simulator plays, when it has one.
+fn load_sensors(
+    files: &dyn Files,
+    manifest: &Manifest,
+    problems: &mut Problems,
+) -> Vec<LoadedSensor> {
+    let mut sensors = Vec::new();
+    for entry in &manifest.sensors {
+        let game = match &entry.simulator {
+            Some(Simulator::Script(file)) => read_lines(files, file, parse_game, problems),
+            _ => None,
+        };
+        sensors.push(LoadedSensor {
+            entry: entry.clone(),
+            game,
+        });
+    }
+    sensors
 }
 
 /// The manifest's times, each a duration or an error saying what to write.

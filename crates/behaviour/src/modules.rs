@@ -1,7 +1,7 @@
 //! Every module of a behaviour with its declaration (what it posts, reads, waits on and
 //! answers), without starting anything: the dictionary that `check`, `deps` and `--launch` read.
 
-use crate::load::Behaviour;
+use crate::loaded::Behaviour;
 use crate::manifest::SensorKind;
 use proclaim_board::ModuleDecl;
 use proclaim_experts::{

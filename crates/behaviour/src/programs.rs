@@ -5,9 +5,7 @@
 //! started as a supervised [`ProgramExpert`].
 
 use crate::files::Files;
-use crate::load::Behaviour;
-use crate::manifest::{Manifest, MANIFEST};
-use crate::modules::Module;
+use crate::manifest::Manifest;
 use crate::program_entries::{ProgramEntry, PrologEntry};
 use proclaim_board::ModuleDecl;
 use proclaim_experts::{
@@ -234,64 +232,6 @@ fn load_command(
         ));
     }
     Some(loaded)
-}
-
-/// What `check` says of the program experts, as of a theory's outputs and inputs: a label no
-/// machine queries and an input no module posts, each at the manifest line that names it.
-pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnostic> {
-    let manifest = behaviour.files.show(MANIFEST);
-    let text = behaviour.files.read(MANIFEST).unwrap_or_default();
-    let line_of = |name: &str| {
-        let quoted = format!("\"{name}\"");
-        text.lines()
-            .position(|l| l.contains(&quoted))
-            .map_or(1, |i| i + 1)
-    };
-    let mut out = Vec::new();
-    for p in &behaviour.programs {
-        let namesakes = all.iter().filter(|m| m.decl.name == p.name).count();
-        if namesakes > 1 {
-            out.push(
-                FileDiagnostic::error(
-                    &manifest,
-                    p.answers.first().map_or(1, |a| line_of(a)),
-                    format!(
-                        "two modules are named `{}`: the expert's name is how the whiteboard knows it",
-                        p.name
-                    ),
-                )
-                .with_hint("give the expert a name of its own with `name = \"…\"`"),
-            );
-        }
-        for label in &p.answers {
-            if !all.iter().any(|m| m.decl.waits_on.contains(label)) {
-                out.push(FileDiagnostic::warning(
-                    &manifest,
-                    line_of(label),
-                    format!(
-                        "label `{label}` of expert {} is queried by no machine",
-                        p.name
-                    ),
-                ));
-            }
-        }
-        for input in &p.inputs {
-            let posted = all
-                .iter()
-                .any(|m| m.decl.name != p.name && m.decl.posts.contains(input));
-            if !posted {
-                out.push(FileDiagnostic::warning(
-                    &manifest,
-                    line_of(input),
-                    format!(
-                        "input `{input}` of expert {} is posted by no module",
-                        p.name
-                    ),
-                ));
-            }
-        }
-    }
-    out
 }
 
 /// The manifest entries of the program experts `needed` names, with each file written as

@@ -2,7 +2,7 @@
 //! some machine posts, with a hold time that is a duration, under the round schedule (whose
 //! moments time the holds). Every problem is placed at its key or value in the manifest.
 
-use crate::load::LoadedMachine;
+use crate::loaded::LoadedMachine;
 use crate::manifest::{Manifest, Schedule};
 use proclaim_experts::parse_duration;
 use proclaim_syntax::{line_column, nearest, FileDiagnostic, Severity};

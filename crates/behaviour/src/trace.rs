@@ -25,6 +25,28 @@ impl TraceView {
 
     /// The event as a line, or `None` when it says nothing new.
     pub fn line(&mut self, event: &Event) -> Option<String> {
+        let what = self.what(event)?;
+        let mut line = String::new();
+        match event.at() {
+            Some(at) => {
+                // In whole microseconds, as the JSON trace keeps it, so a replay prints the
+                // same digits.
+                let at = std::time::Duration::from_micros(at.as_micros() as u64);
+                let _ = write!(line, "{:>8.3}s ", at.as_secs_f64());
+            }
+            None => line.push_str("          "),
+        }
+        let _ = write!(
+            line,
+            "{:<width$}  {what}",
+            event.machine(),
+            width = self.width
+        );
+        Some(line)
+    }
+
+    /// What the event says, after the time and the machine's name.
+    fn what(&mut self, event: &Event) -> Option<String> {
         let what = match event {
             Event::Entered { state, .. } => format!("→ {state}"),
             Event::Fired { label, .. } => format!("fires on {label}"),
@@ -67,21 +89,7 @@ impl TraceView {
                 value,
                 by,
                 ..
-            } => {
-                // Shown when the answer or who gave it changes.
-                let key = (machine.clone(), atom.clone());
-                let now = (*value, by.clone());
-                if self.last_answer.get(&key) == Some(&now) {
-                    return None;
-                }
-                self.last_answer.insert(key, now);
-                match by {
-                    Answerer::Expert(who) => format!("{atom} = {value}  ({who})"),
-                    Answerer::Posted(who) => format!("{atom} = {value}  (as posted by {who})"),
-                    Answerer::TimedOut => format!("{atom}: no answer in time, counted false"),
-                    Answerer::NoExpert => format!("{atom}: no expert answers it, counted false"),
-                }
-            }
+            } => self.answer(machine, atom, *value, by)?,
             Event::UnknownFunction { function, .. } => {
                 format!("host function {function} is not registered; skipped")
             }
@@ -94,23 +102,23 @@ impl TraceView {
             Event::Printed { text, .. } => format!("prints {text}"),
             Event::Warned { message, .. } => format!("warning: {message}"),
         };
-        let mut line = String::new();
-        match event.at() {
-            Some(at) => {
-                // In whole microseconds, as the JSON trace keeps it, so a replay prints the
-                // same digits.
-                let at = std::time::Duration::from_micros(at.as_micros() as u64);
-                let _ = write!(line, "{:>8.3}s ", at.as_secs_f64());
-            }
-            None => line.push_str("          "),
+        Some(what)
+    }
+
+    /// An answer, shown when its value or who gave it changes.
+    fn answer(&mut self, machine: &str, atom: &str, value: bool, by: &Answerer) -> Option<String> {
+        let key = (machine.to_string(), atom.to_string());
+        let now = (value, by.clone());
+        if self.last_answer.get(&key) == Some(&now) {
+            return None;
         }
-        let _ = write!(
-            line,
-            "{:<width$}  {what}",
-            event.machine(),
-            width = self.width
-        );
-        Some(line)
+        self.last_answer.insert(key, now);
+        Some(match by {
+            Answerer::Expert(who) => format!("{atom} = {value}  ({who})"),
+            Answerer::Posted(who) => format!("{atom} = {value}  (as posted by {who})"),
+            Answerer::TimedOut => format!("{atom}: no answer in time, counted false"),
+            Answerer::NoExpert => format!("{atom}: no expert answers it, counted false"),
+        })
     }
 }
 

@@ -264,13 +264,6 @@ enum ProclaimStatus proclaim_session_free(struct ProclaimSession *session);
 // not free; "not a status" for a number that is none.
 const char *proclaim_status_name(int status);
 
-// Frees a string this library returned (an explanation). Null is ignored. A string is plain
-// memory C reads directly, not a handle: freeing it twice is undefined, as with `free()`.
-//
-// # Safety
-// `text` is null or a string returned by this library and not freed yet.
-void proclaim_string_free(char *text);
-
 // Makes the truth table of `theory` and writes it to `*table_out`: `OK`, or `TOO_MANY_ROWS`
 // when the inputs have more than 2^20 combinations (group exclusive inputs as `input{a, b}`),
 // or `BAD_ARGUMENT`, or `DEAD_HANDLE` for a freed theory; then `*table_out` is left alone.
@@ -289,6 +282,13 @@ enum ProclaimStatus proclaim_theory_table(const struct ProclaimTheory *theory,
 // `table` is null or a pointer from [`proclaim_theory_table`] (freed or not), not read by
 // another thread during the free.
 enum ProclaimStatus proclaim_table_free(struct ProclaimTable *table);
+
+// Frees a string this library returned (an explanation). Null is ignored. A string is plain
+// memory C reads directly, not a handle: freeing it twice is undefined, as with `free()`.
+//
+// # Safety
+// `text` is null or a string returned by this library and not freed yet.
+void proclaim_string_free(char *text);
 
 // Loads a theory from `len` bytes of `.dl` text (no terminator needed). Returns the theory, or
 // null with `*error_out` set to why (every error, with the first one's line and column), which

@@ -2,7 +2,7 @@
 
 use crate::guard::guarded;
 use crate::status::ProclaimStatus;
-use crate::string::owned;
+use crate::text_to_c::owned;
 use std::ffi::{c_char, CString};
 use std::sync::atomic::{AtomicBool, Ordering};
 

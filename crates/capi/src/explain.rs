@@ -5,7 +5,7 @@ use crate::detail::fail;
 use crate::names;
 use crate::session::{with_session, ProclaimSession};
 use crate::status::ProclaimStatus;
-use crate::string::owned;
+use crate::text_to_c::owned;
 use std::ffi::c_char;
 
 /// Explains `±algorithm literal` as `proclaim explain` prints it: the supporting rule, each

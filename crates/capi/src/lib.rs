@@ -41,9 +41,9 @@ mod names;
 mod prove;
 mod session;
 mod status;
-mod string;
 mod table;
-mod text;
+mod text_from_c;
+mod text_to_c;
 mod theory;
 mod value;
 
@@ -61,8 +61,8 @@ pub use session::{
     ProclaimSession,
 };
 pub use status::{proclaim_status_name, ProclaimStatus};
-pub use string::proclaim_string_free;
 pub use table::{proclaim_table_free, proclaim_theory_table, ProclaimTable};
+pub use text_to_c::proclaim_string_free;
 pub use theory::{
     proclaim_theory_free, proclaim_theory_load, proclaim_theory_load_file,
     proclaim_theory_load_named, ProclaimTheory,

@@ -2,7 +2,7 @@
 
 use crate::detail::fail;
 use crate::status::ProclaimStatus;
-use crate::text::nul_terminated;
+use crate::text_from_c::nul_terminated;
 use proclaim_cdl::{Atom, Lit, Session, Theory};
 use std::ffi::c_char;
 

@@ -5,7 +5,7 @@ use crate::detail::{fail, reported};
 use crate::error::ProclaimError;
 use crate::guard::{guarded, guarded_else};
 use crate::status::ProclaimStatus;
-use crate::text::{nul_terminated, sized, BadText};
+use crate::text_from_c::{nul_terminated, sized, BadText};
 use proclaim_cdl::{load_named, Engine, Language};
 use std::ffi::c_char;
 use std::sync::atomic::{AtomicU32, Ordering};

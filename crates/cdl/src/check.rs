@@ -53,7 +53,7 @@ const LABELS_AHEAD: usize = 16;
 struct Batch {
     items: Vec<Item>,
     /// The literals of each rule (its body, then its head) and fact, in statement order.
-    lits: Vec<ast::Lit>,
+    lits: Vec<ast::SourceLiteral>,
     /// The hash of each literal's atom name in `lits`.
     lit_hashes: Vec<u64>,
     /// The hash of each label written, in a rule or a priority, in statement order.
@@ -73,7 +73,7 @@ impl Batch {
     fn push(&mut self, item: Item, source: &str) {
         // By bytes: a span of the source always falls on character boundaries.
         let name = |span: Span| hash_bytes(&source.as_bytes()[span.range()]);
-        let mut add = |lit: &ast::Lit| {
+        let mut add = |lit: &ast::SourceLiteral| {
             self.lits.push(*lit);
             self.lit_hashes.push(name(lit.atom));
         };
@@ -189,7 +189,7 @@ impl<'s> Checker<'s> {
         self.theory.atoms.intern(span.text(self.source))
     }
 
-    fn lit(&mut self, lit: &ast::Lit) -> Lit {
+    fn lit(&mut self, lit: &ast::SourceLiteral) -> Lit {
         Lit::new(self.atom(lit.atom), lit.negated)
     }
 
@@ -442,7 +442,7 @@ impl<'s> Checker<'s> {
         self.theory.origins.push(Origin::Written(rule.span));
     }
 
-    fn add_input(&mut self, atoms: &[ast::Lit], span: Span) {
+    fn add_input(&mut self, atoms: &[ast::SourceLiteral], span: Span) {
         let mut group = Vec::new();
         for lit in atoms {
             if lit.negated {
@@ -481,7 +481,7 @@ impl<'s> Checker<'s> {
         }
     }
 
-    fn filter_lits(&mut self, lits: &[ast::Lit]) -> Vec<Lit> {
+    fn filter_lits(&mut self, lits: &[ast::SourceLiteral]) -> Vec<Lit> {
         lits.iter().map(|l| self.lit(l)).collect()
     }
 

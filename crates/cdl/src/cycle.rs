@@ -6,89 +6,21 @@
 //! falling apart once reads that change nothing are dropped (`relevance.rs`), then bounds, then
 //! a top-down search under a budget.
 
+use crate::component::{Component, Edge, Evaluated, Method, Outcome, SearchLimits};
 use crate::dominators;
-use crate::engine::Engine;
 use crate::goal::{condition, successors, Goal, Read, ATTACK, ATTACK_READ};
 use crate::layers::Layers;
 use crate::matching::uncovered_by_some_maximum_matching;
 use crate::relevance::independent_parts;
-use crate::ring::{apply, around, Function, Ring};
+use crate::ring::{apply, around, BlockRing, Function};
 use crate::session::{FALSE, PENDING, TRUE, UNDECIDED};
 use rustc_hash::FxHashMap;
-
-/// Bounds on the search inside one component (cdl.md §4: no algorithm is polynomial on every
-/// theory, so the search is bounded and says when the bound was hit).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SearchLimits {
-    /// Goals the top-down search may expand inside one component before its remaining members
-    /// are left undecided.
-    pub steps: u64,
-    /// Memory the search's memo of answers under a history may take, in bytes.
-    pub memo_bytes: usize,
-}
-
-impl Default for SearchLimits {
-    fn default() -> SearchLimits {
-        SearchLimits {
-            steps: 10_000_000,
-            memo_bytes: 256 << 20,
-        }
-    }
-}
-
-/// How a component was decided (for `check`'s warnings and the tests).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Method {
-    /// Support only inside: the least fixpoint.
-    Fixpoint,
-    /// Every member reads exactly one other: composed around the cycle.
-    SimpleCycle,
-    /// Members attack each other symmetrically and nothing else: maximum matchings.
-    Geography,
-    /// A ring of small single-entry blocks: each block's transfer function, composed round it.
-    Ring,
-    /// A ring of layers of two goals, each reading only the next layer: one pass over the
-    /// layers per member.
-    Layers,
-    /// Bounds, then a top-down search for the members between them.
-    Search,
-}
-
-/// What evaluating a component gave.
-pub(crate) enum Outcome {
-    Evaluated(Evaluated),
-    /// Without the reads its members' conditions ignore, the component is several: these, as
-    /// positions, in the order they can be evaluated (each reads only itself and earlier ones).
-    Parts(Vec<Vec<u32>>),
-}
-
-/// Each member's value (`TRUE`, `FALSE` or `UNDECIDED`).
-pub(crate) struct Evaluated {
-    pub values: Vec<u8>,
-    pub method: Method,
-    /// Goals the search expanded.
-    pub steps: u64,
-}
-
-/// One component to evaluate. Its members are `PENDING` in `values`; every other goal it reads
-/// is settled.
-pub(crate) struct Component<'a> {
-    pub engine: &'a Engine,
-    pub mu: &'a [bool],
-    pub values: &'a [u8],
-    /// A member's position in `members`, by goal.
-    pub position: &'a [u32],
-    pub members: &'a [Goal],
-}
 
 /// Components larger than this are not tried as geography (the blossom search is cubic).
 const GEOGRAPHY_LIMIT: usize = 2048;
 
 /// Bounds the work of refining the lower bound: attacking goals times component size.
 const REFINE_LIMIT: usize = 50_000_000;
-
-/// An internal read: (reader, read member, through an attacker).
-pub(crate) type Edge = (u32, u32, bool);
 
 /// Every (read member, reader) pair of the edges, sorted, without repeats. The edges come in
 /// ascending order of reader, so a counting sort on the read member keeps each member's readers
@@ -149,7 +81,7 @@ impl Component<'_> {
             return Outcome::Evaluated(decided(values, Method::Geography));
         }
         if let Some((values, steps)) =
-            Ring::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
+            BlockRing::find(self, &edges).and_then(|ring| ring.decide(self, limits.steps))
         {
             return Outcome::Evaluated(Evaluated {
                 steps,

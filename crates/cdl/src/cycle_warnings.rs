@@ -3,7 +3,7 @@
 //! and its complement. Found by proving every literal once, so it runs after checking, on a
 //! theory that loaded.
 
-use crate::cycle::SearchLimits;
+use crate::component::SearchLimits;
 use crate::engine::Engine;
 use crate::literal::{Atom, Lit, RuleId};
 use crate::session::{Searched, Session};

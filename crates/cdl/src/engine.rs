@@ -334,13 +334,13 @@ impl Engine {
     /// aggregates after them.
     #[inline]
     pub(crate) fn aggregate_base(&self) -> u32 {
-        crate::goal::pack(self.lit_count as u32, 0)
+        crate::goal_number::pack(self.lit_count as u32, 0)
     }
 
     /// The goal of part `rep`'s aggregate for `kind`.
     #[inline]
     pub(crate) fn aggregate_goal(&self, rep: u32, kind: u32) -> u32 {
-        self.aggregate_base() + crate::goal::pack(rep, kind)
+        self.aggregate_base() + crate::goal_number::pack(rep, kind)
     }
 
     /// How many goals a session keeps a value for.
@@ -374,6 +374,6 @@ impl Engine {
     /// The representative literal and kind of an aggregate goal.
     #[inline]
     pub(crate) fn aggregate_parts(&self, goal: u32) -> (u32, u32) {
-        crate::goal::unpack(goal - self.aggregate_base())
+        crate::goal_number::unpack(goal - self.aggregate_base())
     }
 }

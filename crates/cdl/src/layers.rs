@@ -13,7 +13,7 @@
 //! composition so far, one of four functions of a boolean: eight states a layer, whatever the
 //! length of the path.
 
-use crate::cycle::{Component, Edge};
+use crate::component::{Component, Edge};
 use crate::ring::{apply, compose, Function, IDENTITY};
 
 /// Components are decided this way while (members × layers) stays under this: every member is

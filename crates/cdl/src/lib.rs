@@ -13,12 +13,14 @@
 mod atoms;
 mod check;
 mod closure;
+mod component;
 mod cycle;
 mod cycle_warnings;
 mod dominators;
 mod engine;
 mod explain;
 mod goal;
+mod goal_number;
 mod layers;
 mod literal;
 mod matching;
@@ -34,7 +36,7 @@ mod theory;
 
 pub use check::{check, check_source, Checked};
 pub use closure::MAX_CLOSURE;
-pub use cycle::SearchLimits;
+pub use component::SearchLimits;
 pub use cycle_warnings::attack_cycle_warnings;
 pub use engine::Engine;
 pub use explain::{About, Explanation};

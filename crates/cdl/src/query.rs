@@ -20,7 +20,7 @@ impl Formula {
     pub fn parse(text: &str, theory: &Theory) -> Result<Formula, Vec<Diagnostic>> {
         let query = parse_query(text)?;
         let mut errors = Vec::new();
-        let mut lower = |lit: &proclaim_syntax::Lit| -> Lit {
+        let mut lower = |lit: &proclaim_syntax::SourceLiteral| -> Lit {
             let name = lit.atom.text(text);
             match theory.atom(name) {
                 Some(atom) => Lit::new(atom, lit.negated),

@@ -6,7 +6,7 @@
 //! `benchmarks.md` is one cycle of support with every attacker beaten or read only from outside
 //! the cycle once such reads are gone.
 
-use crate::cycle::{Component, Edge};
+use crate::component::{Component, Edge};
 use crate::engine::Csr;
 use crate::scc::{strongly_connected, Roots};
 

@@ -9,7 +9,7 @@
 //! function of the value its entry takes when the path comes round: each other block is a
 //! function of one boolean (its entry's value given the next entry's), and they compose.
 
-use crate::cycle::{Component, Edge};
+use crate::component::{Component, Edge};
 use crate::dominators;
 use crate::engine::Csr;
 use crate::goal::{condition, Goal};
@@ -57,7 +57,7 @@ pub(crate) fn around(functions: &[Function]) -> Vec<Function> {
 
 /// The blocks in ring order: block `j`'s goals (by position in the component) read only each
 /// other and the entry of block `j + 1` (mod the number of blocks).
-pub(crate) struct Ring {
+pub(crate) struct BlockRing {
     /// Each member's block.
     block: Vec<u32>,
     /// Each member's place inside its block (its bit in a block's history).
@@ -66,12 +66,12 @@ pub(crate) struct Ring {
     members: Vec<Vec<u32>>,
 }
 
-impl Ring {
+impl BlockRing {
     /// The ring the component's reads form, if they form one of at least two blocks, none
     /// larger than [`BLOCK_LIMIT`]. Found from the dominator tree of one member: its longest
     /// chain of dominators passes through every block's entry, and a block boundary is a place
     /// on that chain that only the reads closing the ring cross backwards.
-    pub(crate) fn find(component: &Component, edges: &[Edge]) -> Option<Ring> {
+    pub(crate) fn find(component: &Component, edges: &[Edge]) -> Option<BlockRing> {
         let n = component.members.len();
         if n < 3 || component.has_aggregate() {
             return None;
@@ -100,7 +100,7 @@ impl Ring {
         if boundaries.len() < 2 {
             return None;
         }
-        let ring = Ring::from_boundaries(&boundaries, &spine, &anchor)?;
+        let ring = BlockRing::from_boundaries(&boundaries, &spine, &anchor)?;
         ring.holds(edges).then_some(ring)
     }
 
@@ -108,7 +108,7 @@ impl Ring {
     /// `None` when a block is larger than [`BLOCK_LIMIT`]. Block 0 is the root's part of the
     /// spine with the part from the last boundary on: one block of the ring, entered at the last
     /// boundary's place.
-    fn from_boundaries(boundaries: &[u32], spine: &[u32], anchor: &[u32]) -> Option<Ring> {
+    fn from_boundaries(boundaries: &[u32], spine: &[u32], anchor: &[u32]) -> Option<BlockRing> {
         let mut block_of_place = vec![0u32; spine.len()];
         for (b, pair) in boundaries.windows(2).enumerate() {
             for slot in &mut block_of_place[pair[0] as usize..pair[1] as usize] {
@@ -141,7 +141,7 @@ impl Ring {
                 place[m as usize] = i as u8;
             }
         }
-        Some(Ring {
+        Some(BlockRing {
             block,
             place,
             members,
@@ -288,7 +288,7 @@ enum Exit {
 /// (a bit each).
 struct BlockSearch<'a> {
     component: &'a Component<'a>,
-    ring: &'a Ring,
+    ring: &'a BlockRing,
     memo: FxHashMap<(u32, u16, Exit), bool>,
     steps: u64,
     step_limit: u64,

@@ -43,14 +43,11 @@ struct MachineDraft {
 /// Imports every machine of a Qfsm file. A file's one machine is named `file_name` (the file's
 /// name without `.fsm`, as qfsm2gu and gufsm named it); its `name` attribute, when it differs,
 /// becomes the description. Several machines in one file keep their `name` attributes.
-///
-/// Longer than most: one arm per XML event, around the drafts being filled; each element's end
-/// is its own step (`end_state`, `end_transition`, `finish`).
 pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
-    let mut out = Imported::default();
+    let mut drafts = Drafts::new(file, file_name);
     if !text.trim().starts_with('<') {
-        out.diagnostics.push(not_xml(file, text));
-        return out;
+        drafts.out.diagnostics.push(not_xml(file, text));
+        return drafts.out;
     }
     let line_of = |offset: u64| {
         text[..(offset as usize).min(text.len())]
@@ -59,17 +56,12 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
             + 1
     };
     let mut reader = Reader::from_str(text);
-    let mut machine: Option<MachineDraft> = None;
-    let mut state: Option<StateDraft> = None;
-    let mut transition: Option<TransitionDraft> = None;
-    let mut field: Option<&'static str> = None;
-    let mut order = 0usize;
     loop {
         let position = reader.buffer_position();
         let event = match reader.read_event() {
             Ok(e) => e,
             Err(e) => {
-                out.diagnostics.push(FileDiagnostic::error(
+                drafts.out.diagnostics.push(FileDiagnostic::error(
                     file,
                     line_of(reader.error_position()),
                     format!("malformed XML: {e}"),
@@ -79,73 +71,114 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
         };
         let line = line_of(position);
         match event {
-            Event::Start(e) | Event::Empty(e) if e.local_name().as_ref() == "machine" => {
-                machine = Some(MachineDraft {
-                    attribute_name: attribute(&e, "name").unwrap_or_default(),
-                    initial: attribute(&e, "initialstate"),
-                    states: Vec::new(),
-                    transitions: Vec::new(),
-                    unread: Vec::new(),
-                    description: attribute(&e, "description").unwrap_or_default(),
-                    notes: Vec::new(),
-                    line,
-                });
-            }
-            Event::Start(e) if e.local_name().as_ref() == "state" => {
-                state = Some(StateDraft {
-                    code: attribute(&e, "code"),
-                    description: attribute(&e, "description").unwrap_or_default(),
-                    name: String::new(),
-                    line,
-                });
-                field = Some("state");
-            }
-            Event::Start(e) if e.local_name().as_ref() == "transition" => {
-                transition = Some(TransitionDraft {
-                    line,
-                    ..Default::default()
-                });
-            }
-            Event::Start(e) => {
-                if let Some(t) = transition.as_mut() {
-                    field = transition_field(&e, t);
-                }
-            }
-            Event::Text(t) => append(&mut state, &mut transition, field, &t.xml10_content()),
-            Event::CData(t) => append(&mut state, &mut transition, field, &t),
-            Event::GeneralRef(r) => append(
-                &mut state,
-                &mut transition,
-                field,
-                &entity(&r.xml10_content()),
-            ),
-            Event::End(e) => match e.local_name().as_ref() {
-                "state" => {
-                    field = None;
-                    if let (Some(draft), Some(m)) = (state.take(), machine.as_mut()) {
-                        end_state(draft, m, file, &mut out.diagnostics);
-                    }
-                }
-                "from" | "to" | "inputs" | "outputs" => field = None,
-                "transition" => {
-                    if let (Some(t), Some(m)) = (transition.take(), machine.as_mut()) {
-                        order += 1;
-                        end_transition(t, order, m, file, &mut out.diagnostics);
-                    }
-                }
-                "machine" => {
-                    if let Some(m) = machine.take() {
-                        finish(m, file, file_name, &mut out);
-                    }
-                }
-                _ => {}
-            },
+            Event::Start(e) => drafts.start(&e, line),
+            Event::Empty(e) if e.local_name().as_ref() == "machine" => drafts.start(&e, line),
+            Event::Text(t) => drafts.text(&t.xml10_content()),
+            Event::CData(t) => drafts.text(&t),
+            Event::GeneralRef(r) => drafts.text(&entity(&r.xml10_content())),
+            Event::End(e) => drafts.end(e.local_name().as_ref()),
             Event::Eof => break,
             _ => {}
         }
     }
-    end_of_file(machine, file, file_name, &mut out);
-    out
+    end_of_file(drafts.machine, file, file_name, &mut drafts.out);
+    drafts.out
+}
+
+/// What a Qfsm file has said so far: the machines finished, and the machine, state and
+/// transition being read, each element's end its own step (`end_state`, `end_transition`,
+/// `finish`).
+struct Drafts<'f> {
+    file: &'f str,
+    file_name: &'f str,
+    out: Imported,
+    machine: Option<MachineDraft>,
+    state: Option<StateDraft>,
+    transition: Option<TransitionDraft>,
+    /// The element whose text is being read.
+    field: Option<&'static str>,
+    /// How many transitions were read: their order in the file.
+    order: usize,
+}
+
+impl<'f> Drafts<'f> {
+    fn new(file: &'f str, file_name: &'f str) -> Drafts<'f> {
+        Drafts {
+            file,
+            file_name,
+            out: Imported::default(),
+            machine: None,
+            state: None,
+            transition: None,
+            field: None,
+            order: 0,
+        }
+    }
+
+    fn start(&mut self, e: &BytesStart<'_>, line: usize) {
+        match e.local_name().as_ref() {
+            "machine" => {
+                self.machine = Some(MachineDraft {
+                    attribute_name: attribute(e, "name").unwrap_or_default(),
+                    initial: attribute(e, "initialstate"),
+                    states: Vec::new(),
+                    transitions: Vec::new(),
+                    unread: Vec::new(),
+                    description: attribute(e, "description").unwrap_or_default(),
+                    notes: Vec::new(),
+                    line,
+                });
+            }
+            "state" => {
+                self.state = Some(StateDraft {
+                    code: attribute(e, "code"),
+                    description: attribute(e, "description").unwrap_or_default(),
+                    name: String::new(),
+                    line,
+                });
+                self.field = Some("state");
+            }
+            "transition" => {
+                self.transition = Some(TransitionDraft {
+                    line,
+                    ..Default::default()
+                });
+            }
+            _ => {
+                if let Some(t) = self.transition.as_mut() {
+                    self.field = transition_field(e, t);
+                }
+            }
+        }
+    }
+
+    fn text(&mut self, text: &str) {
+        append(&mut self.state, &mut self.transition, self.field, text);
+    }
+
+    fn end(&mut self, name: &str) {
+        match name {
+            "state" => {
+                self.field = None;
+                if let (Some(draft), Some(m)) = (self.state.take(), self.machine.as_mut()) {
+                    end_state(draft, m, self.file, &mut self.out.diagnostics);
+                }
+            }
+            "from" | "to" | "inputs" | "outputs" => self.field = None,
+            "transition" => {
+                if let (Some(t), Some(m)) = (self.transition.take(), self.machine.as_mut()) {
+                    self.order += 1;
+                    end_transition(t, self.order, m, self.file, &mut self.out.diagnostics);
+                }
+            }
+            "machine" => {
+                if let Some(m) = self.machine.take() {
+                    finish(m, self.file, self.file_name, &mut self.out);
+                }
+            }
+            _ => {}
+        }
+    }
 }
 
 /// Which part of a `<transition>` an element starts (`<inputs>` also says whether the label

@@ -314,7 +314,8 @@ impl Family {
         Ok(())
     }
 
-    /// The attack-cycle families of benchmarks.md ("Attack cycles"). Long by design: one short arm per family, each arm that family's definition.
+    /// The attack-cycle families of benchmarks.md ("Attack cycles"): one short arm per family,
+    /// each arm that family's definition.
     fn write_attack_family<W: Write>(&self, w: &mut Writer<'_, W>) -> io::Result<()> {
         let a = |i: u64| format!("a{i}");
         let mut label = 0u64;
@@ -339,23 +340,7 @@ impl Family {
                     rule(w, &[&bi], "=>", &w.neg(&a((i + 1) % n)))?;
                 }
             }
-            Family::PriorityRing(n) => {
-                rule(w, &[], "=>", &a(0))?;
-                for i in 0..n {
-                    let (next, after) = (a((i + 1) % n), a((i + 2) % n));
-                    let bi = format!("b{i}");
-                    let p = rule(w, &[&a(i)], "=>", &next)?;
-                    let m = rule(w, &[&bi], "=>", &w.neg(&next))?;
-                    let b = rule(w, &[&next], "=>", &bi)?;
-                    let c = rule(w, &[&after], "=>", &w.neg(&bi))?;
-                    w.priority(p, m)?;
-                    if i % 2 == 0 {
-                        w.priority(b, c)?;
-                    } else {
-                        w.priority(c, b)?;
-                    }
-                }
-            }
+            Family::PriorityRing(n) => write_priority_ring(w, n)?,
             Family::DefeaterRing(n) => {
                 rule(w, &[], "=>", &a(0))?;
                 for i in 0..n {
@@ -496,6 +481,33 @@ fn write_tree<W: Write>(w: &mut Writer<'_, W>, n: u64, k: u64) -> io::Result<()>
     let leaves = (k as u128).pow(n as u32) as u64;
     for leaf in internal..internal + leaves {
         w.fact(&format!("a{leaf}"))?;
+    }
+    Ok(())
+}
+
+/// The priority ring of benchmarks.md ("Attack cycles"): `a(i) => a(i+1)`, attacked through
+/// `b(i)`, the priorities alternating round the ring.
+fn write_priority_ring<W: Write>(w: &mut Writer<'_, W>, n: u64) -> io::Result<()> {
+    let a = |i: u64| format!("a{i}");
+    let mut label = 0u64;
+    let mut rule = |w: &mut Writer<'_, W>, body: &[&str], arrow: &str, head: &str| {
+        label += 1;
+        w.rule(label - 1, body, arrow, head).map(|_| label - 1)
+    };
+    rule(w, &[], "=>", &a(0))?;
+    for i in 0..n {
+        let (next, after) = (a((i + 1) % n), a((i + 2) % n));
+        let bi = format!("b{i}");
+        let p = rule(w, &[&a(i)], "=>", &next)?;
+        let m = rule(w, &[&bi], "=>", &w.neg(&next))?;
+        let b = rule(w, &[&next], "=>", &bi)?;
+        let c = rule(w, &[&after], "=>", &w.neg(&bi))?;
+        w.priority(p, m)?;
+        if i % 2 == 0 {
+            w.priority(b, c)?;
+        } else {
+            w.priority(c, b)?;
+        }
     }
     Ok(())
 }

@@ -84,7 +84,7 @@ pub struct Frame<'p> {
     /// How many events were listed since the start (the first of `events` is number
     /// `events_listed - events.len() + 1`).
     pub events_listed: u64,
-    pub board: Vec<BoardRow>,
+    pub board: Vec<BoardRowFrame>,
     /// Types left out beyond [`BOARD_ROWS`].
     pub board_more: usize,
     pub board_seq: u64,
@@ -108,8 +108,9 @@ pub struct MachineFrame<'p> {
     pub mode: &'static str,
 }
 
+/// One row of the board as the page shows it (the board crate's `BoardRow` in text).
 #[derive(Debug, Serialize)]
-pub struct BoardRow {
+pub struct BoardRowFrame {
     #[serde(rename = "type")]
     pub ty: String,
     pub kind: &'static str,
@@ -282,7 +283,7 @@ impl Picture {
             .into_iter()
             .filter(|r| r.ty != proclaim_board::QUERY_TYPE)
             .take(BOARD_ROWS)
-            .map(|r| BoardRow {
+            .map(|r| BoardRowFrame {
                 ty: r.ty.to_string(),
                 kind: match r.kind {
                     Kind::State => "state",

@@ -2,9 +2,9 @@
 
 use crate::span::Span;
 
-/// A literal as written: `a` or `~a`. The atom's name is `atom.text(source)`.
+/// A literal as written in the source, `a` or `~a`, its atom a span (cdl checks it into a `Lit`). The atom's name is `atom.text(source)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Lit {
+pub struct SourceLiteral {
     pub negated: bool,
     pub atom: Span,
     /// The whole literal, `~` included.
@@ -64,9 +64,9 @@ impl std::fmt::Display for Algorithm {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RuleItem {
     pub label: Option<Span>,
-    pub body: Vec<Lit>,
+    pub body: Vec<SourceLiteral>,
     pub arrow: Arrow,
-    pub head: Lit,
+    pub head: SourceLiteral,
     pub span: Span,
 }
 
@@ -75,7 +75,7 @@ pub struct RuleItem {
 pub enum OutputPart {
     Lit {
         algorithm: Option<(Algorithm, Span)>,
-        lit: Lit,
+        lit: SourceLiteral,
     },
     Description(String),
 }
@@ -84,7 +84,7 @@ pub enum OutputPart {
 pub enum Item {
     /// `a.`, `~a.` or `\/{a, ~b}.`: an axiom clause.
     Fact {
-        clause: Vec<Lit>,
+        clause: Vec<SourceLiteral>,
         span: Span,
     },
     Rule(RuleItem),
@@ -100,19 +100,19 @@ pub enum Item {
     },
     /// `input{a}.` one binary input; `input{a, b, c}.` mutually exclusive, exactly one true.
     Input {
-        atoms: Vec<Lit>,
+        atoms: Vec<SourceLiteral>,
         span: Span,
     },
     /// `ignore{a, ~b}.` (all of them) or `ignore K of {…}.` (at least K of them): input
     /// combinations the truth table leaves out.
     Ignore {
         at_least: Option<u32>,
-        lits: Vec<Lit>,
+        lits: Vec<SourceLiteral>,
         span: Span,
     },
     /// `assert{a, ~b}.`: the truth table keeps only input combinations where one of these holds.
     Assert {
-        lits: Vec<Lit>,
+        lits: Vec<SourceLiteral>,
         span: Span,
     },
     /// `output{beta offside, "description"}.`
@@ -140,7 +140,7 @@ impl Item {
 /// A query: a literal, a clause `\/{…}` or a conjunction `/\{…}` of clauses.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Query {
-    Lit(Lit),
-    Clause(Vec<Lit>),
-    Conjunction(Vec<Vec<Lit>>),
+    Lit(SourceLiteral),
+    Clause(Vec<SourceLiteral>),
+    Conjunction(Vec<Vec<SourceLiteral>>),
 }

@@ -4,7 +4,7 @@
 //! One statement a line: `>> a` (fact), `r1: a, -b => c` (rule; `->` strict, `~>` defeater),
 //! `r1 > r2` (superiority); `-` negates; `#` starts a comment.
 
-use crate::ast::{Arrow, Item, Lit, RuleItem};
+use crate::ast::{Arrow, Item, RuleItem, SourceLiteral};
 use crate::diagnostic::{Diagnostic, Sink};
 use crate::parse::ParsedTheory;
 use crate::span::Span;
@@ -175,70 +175,87 @@ fn statement(tokens: &[(T, Span)], source: &str) -> Result<Item, Diagnostic> {
             })
         }
         [(T::Word, first), (T::Gt, _), more @ ..] if label.is_none() => {
-            let mut labels = vec![*first];
-            let mut rest = more;
-            loop {
-                match rest {
-                    [(T::Word, l)] => {
-                        labels.push(*l);
-                        break;
-                    }
-                    [(T::Word, l), (T::Gt, _), tail @ ..] => {
-                        labels.push(*l);
-                        rest = tail;
-                    }
-                    _ => {
-                        return Err(Diagnostic::error(whole, "malformed superiority relation")
-                            .with_hint("write `r1 > r2`"))
-                    }
-                }
-            }
-            Ok(Item::Priority {
-                labels,
-                span: whole,
-            })
+            priority(*first, more, whole)
         }
-        _ => {
-            let Some(arrow_at) = rest.iter().position(|(t, _)| matches!(t, T::Arrow(_))) else {
-                return Err(Diagnostic::error(whole, "not a SPINdle statement")
-                    .with_label("no `=>`, `->`, `~>`, `>>` or `>` here")
-                    .with_hint("rules are `r1: a, b => c`, facts `>> a`, superiority `r1 > r2`"));
-            };
-            let T::Arrow(arrow) = rest[arrow_at].0 else {
-                unreachable!("position matched an arrow")
-            };
-            let body = literals(&rest[..arrow_at], whole, source)?;
-            // The consequent is one literal: read without a vector to hold it.
-            let (mut head, mut second) = (None, None);
-            each_literal(&rest[arrow_at + 1..], whole, |lit| match head {
-                None => head = Some(lit),
-                Some(_) => {
-                    second.get_or_insert(lit);
-                }
-            })?;
-            match (head, second) {
-                (Some(head), None) => Ok(Item::Rule(RuleItem {
-                    label,
-                    body,
-                    arrow,
-                    head,
-                    span: whole,
-                })),
-                (None, _) => Err(
-                    Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
-                        .with_label("a literal must follow the arrow"),
-                ),
-                (Some(_), Some(second)) => Err(Diagnostic::error(
-                    second.span,
-                    "rule has more than one consequent",
-                )
-                .with_hint("write one rule for each consequent")),
-            }
-        }
+        _ => rule(label, rest, whole, source),
     }
 }
 
-fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>, Diagnostic> {
+/// A superiority relation `r1 > r2 > …`, `first` and its `>` already read.
+fn priority(first: Span, more: &[(T, Span)], whole: Span) -> Result<Item, Diagnostic> {
+    let mut labels = vec![first];
+    let mut rest = more;
+    loop {
+        match rest {
+            [(T::Word, l)] => {
+                labels.push(*l);
+                break;
+            }
+            [(T::Word, l), (T::Gt, _), tail @ ..] => {
+                labels.push(*l);
+                rest = tail;
+            }
+            _ => {
+                return Err(Diagnostic::error(whole, "malformed superiority relation")
+                    .with_hint("write `r1 > r2`"))
+            }
+        }
+    }
+    Ok(Item::Priority {
+        labels,
+        span: whole,
+    })
+}
+
+/// A rule `[label:] body ARROW head`, the label already read.
+fn rule(
+    label: Option<Span>,
+    rest: &[(T, Span)],
+    whole: Span,
+    source: &str,
+) -> Result<Item, Diagnostic> {
+    let Some(arrow_at) = rest.iter().position(|(t, _)| matches!(t, T::Arrow(_))) else {
+        return Err(Diagnostic::error(whole, "not a SPINdle statement")
+            .with_label("no `=>`, `->`, `~>`, `>>` or `>` here")
+            .with_hint("rules are `r1: a, b => c`, facts `>> a`, superiority `r1 > r2`"));
+    };
+    let T::Arrow(arrow) = rest[arrow_at].0 else {
+        unreachable!("position matched an arrow")
+    };
+    let body = literals(&rest[..arrow_at], whole, source)?;
+    // The consequent is one literal: read without a vector to hold it.
+    let (mut head, mut second) = (None, None);
+    each_literal(&rest[arrow_at + 1..], whole, |lit| match head {
+        None => head = Some(lit),
+        Some(_) => {
+            second.get_or_insert(lit);
+        }
+    })?;
+    match (head, second) {
+        (Some(head), None) => Ok(Item::Rule(RuleItem {
+            label,
+            body,
+            arrow,
+            head,
+            span: whole,
+        })),
+        (None, _) => Err(
+            Diagnostic::error(rest[arrow_at].1, "rule has no consequent")
+                .with_label("a literal must follow the arrow"),
+        ),
+        (Some(_), Some(second)) => Err(Diagnostic::error(
+            second.span,
+            "rule has more than one consequent",
+        )
+        .with_hint("write one rule for each consequent")),
+    }
+}
+
+fn literals(
+    tokens: &[(T, Span)],
+    whole: Span,
+    _source: &str,
+) -> Result<Vec<SourceLiteral>, Diagnostic> {
     // A literal is at least one token and a comma parts two: room for all of them at once.
     let mut lits = Vec::with_capacity(tokens.len().div_ceil(2));
     each_literal(tokens, whole, |lit| lits.push(lit))?;
@@ -249,7 +266,7 @@ fn literals(tokens: &[(T, Span)], whole: Span, _source: &str) -> Result<Vec<Lit>
 fn each_literal(
     tokens: &[(T, Span)],
     whole: Span,
-    mut on_lit: impl FnMut(Lit),
+    mut on_lit: impl FnMut(SourceLiteral),
 ) -> Result<(), Diagnostic> {
     let mut i = 0;
     while i < tokens.len() {
@@ -258,7 +275,7 @@ fn each_literal(
             _ => (false, i),
         };
         match tokens.get(at) {
-            Some(&(T::Word, atom)) => on_lit(Lit {
+            Some(&(T::Word, atom)) => on_lit(SourceLiteral {
                 negated,
                 atom,
                 span: tokens[i].1.cover(atom),

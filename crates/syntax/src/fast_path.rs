@@ -4,7 +4,7 @@
 //! left to the grammar of record (`grammar.lalrpop`), which says what is wrong; a property test
 //! holds the two to the same trees.
 
-use crate::ast::{Arrow, Item, Lit, RuleItem};
+use crate::ast::{Arrow, Item, RuleItem, SourceLiteral};
 use crate::lexer::{Tok, Token};
 use crate::span::Span;
 
@@ -41,12 +41,12 @@ pub(crate) fn common_statement(statement: &[Token<'_>]) -> Option<Item> {
     }
 }
 
-/// Literals separated by commas, a trailing comma allowed (the grammar's `Comma<Lit>`), up to
+/// Literals separated by commas, a trailing comma allowed (the grammar's `Comma<SourceLiteral>`), up to
 /// the first token `ends` accepts or the end; `None` when two literals have no comma between.
 fn lits<'t, 'a>(
     mut tokens: &'t [Token<'a>],
     ends: impl Fn(&Token<'_>) -> bool,
-) -> Option<(Vec<Lit>, &'t [Token<'a>])> {
+) -> Option<(Vec<SourceLiteral>, &'t [Token<'a>])> {
     let mut found = Vec::new();
     while let Some(first) = tokens.first() {
         if ends(first) {
@@ -67,7 +67,7 @@ fn lits<'t, 'a>(
 }
 
 /// `~`? name, and what follows it.
-fn lit<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(Lit, &'t [Token<'a>])> {
+fn lit<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(SourceLiteral, &'t [Token<'a>])> {
     match tokens {
         [Token {
             tok: Tok::Tilde,
@@ -76,7 +76,7 @@ fn lit<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(Lit, &'t [Token<'a>])> {
             tok: Tok::Ident(_),
             span: atom,
         }, after @ ..] => Some((
-            Lit {
+            SourceLiteral {
                 negated: true,
                 atom: *atom,
                 span: Span::new(tilde.start as usize, atom.end as usize),
@@ -87,7 +87,7 @@ fn lit<'t, 'a>(tokens: &'t [Token<'a>]) -> Option<(Lit, &'t [Token<'a>])> {
             tok: Tok::Ident(_),
             span: atom,
         }, after @ ..] => Some((
-            Lit {
+            SourceLiteral {
                 negated: false,
                 atom: *atom,
                 span: *atom,

@@ -114,8 +114,8 @@ impl<'a> Iterator for Lexer<'a> {
     }
 }
 
-/// The next token at `cursor`. Long by design: one arm per token shape, the lexer's whole
-/// table in one match (split up, the order of the arms, which decides, would be scattered).
+/// The next token at `cursor`: one arm per token shape, the lexer's whole table in one match
+/// (the order of the arms decides), the longer shapes read by a function each.
 fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'a>> {
     let mut i = *cursor;
     while i < bytes.len() {
@@ -168,54 +168,15 @@ fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'
             b'{' => single(&mut i, Tok::LBrace),
             b'}' => single(&mut i, Tok::RBrace),
             b'>' => single(&mut i, Tok::Gt),
-            b'"' => {
-                let mut j = i + 1;
-                while j < bytes.len() && bytes[j] != b'"' && bytes[j] != b'\n' {
-                    j += if bytes[j] == b'\\' && j + 1 < bytes.len() && bytes[j + 1] != b'\n' {
-                        2
-                    } else {
-                        1
-                    };
-                }
-                if j < bytes.len() && bytes[j] == b'"' {
-                    i = j + 1;
-                    Tok::Str(&source[start + 1..j])
-                } else {
-                    i = j;
-                    Tok::UnclosedStr
-                }
-            }
-            b'0'..=b'9' => {
-                while i < bytes.len() && bytes[i].is_ascii_digit() {
-                    i += 1;
-                }
-                // A digit run glued to letters (`2ab`) is not an atom: atoms start with a letter.
-                if i < bytes.len() && is_ident_byte(bytes[i]) {
-                    while i < bytes.len() && is_ident_byte(bytes[i]) {
-                        i += 1;
-                    }
-                    Tok::Error
-                } else {
-                    source[start..i].parse().map_or(Tok::Error, Tok::Num)
-                }
-            }
+            b'"' => string(source, bytes, &mut i),
+            b'0'..=b'9' => number(source, bytes, &mut i),
             b if b.is_ascii_alphabetic() => {
                 while i < bytes.len() && is_ident_byte(bytes[i]) {
                     i += 1;
                 }
                 keyword_or_ident(&source[start..i], next_significant(bytes, i))
             }
-            _ => {
-                // One error token for a whole run of unusable characters, on char boundaries.
-                i += 1;
-                while i < bytes.len() && !starts_token(bytes[i]) {
-                    i += 1;
-                }
-                while i < bytes.len() && !source.is_char_boundary(i) {
-                    i += 1;
-                }
-                Tok::Error
-            }
+            _ => unusable_run(source, bytes, &mut i),
         };
         *cursor = i;
         return Some(Token {
@@ -225,6 +186,55 @@ fn scan<'a>(source: &'a str, bytes: &[u8], cursor: &mut usize) -> Option<Token<'
     }
     *cursor = i;
     None
+}
+
+/// A string from the `"` at `i`, closed on its line (a `\"` inside does not close it).
+fn string<'a>(source: &'a str, bytes: &[u8], i: &mut usize) -> Tok<'a> {
+    let start = *i;
+    let mut j = start + 1;
+    while j < bytes.len() && bytes[j] != b'"' && bytes[j] != b'\n' {
+        j += if bytes[j] == b'\\' && j + 1 < bytes.len() && bytes[j + 1] != b'\n' {
+            2
+        } else {
+            1
+        };
+    }
+    if j < bytes.len() && bytes[j] == b'"' {
+        *i = j + 1;
+        Tok::Str(&source[start + 1..j])
+    } else {
+        *i = j;
+        Tok::UnclosedStr
+    }
+}
+
+/// A number from the digit at `i`.
+fn number<'a>(source: &'a str, bytes: &[u8], i: &mut usize) -> Tok<'a> {
+    let start = *i;
+    while *i < bytes.len() && bytes[*i].is_ascii_digit() {
+        *i += 1;
+    }
+    // A digit run glued to letters (`2ab`) is not an atom: atoms start with a letter.
+    if *i < bytes.len() && is_ident_byte(bytes[*i]) {
+        while *i < bytes.len() && is_ident_byte(bytes[*i]) {
+            *i += 1;
+        }
+        Tok::Error
+    } else {
+        source[start..*i].parse().map_or(Tok::Error, Tok::Num)
+    }
+}
+
+/// One error token for a whole run of unusable characters from `i`, ending on a char boundary.
+fn unusable_run<'a>(source: &'a str, bytes: &[u8], i: &mut usize) -> Tok<'a> {
+    *i += 1;
+    while *i < bytes.len() && !starts_token(bytes[*i]) {
+        *i += 1;
+    }
+    while *i < bytes.len() && !source.is_char_boundary(*i) {
+        *i += 1;
+    }
+    Tok::Error
 }
 
 fn single<'a>(i: &mut usize, tok: Tok<'a>) -> Tok<'a> {

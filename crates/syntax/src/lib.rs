@@ -20,7 +20,7 @@ lalrpop_util::lalrpop_mod!(
     grammar
 );
 
-pub use ast::{Algorithm, Arrow, Item, Lit, OutputPart, Query, RuleItem};
+pub use ast::{Algorithm, Arrow, Item, OutputPart, Query, RuleItem, SourceLiteral};
 pub use dfl::{parse_dfl, parse_dfl_each};
 pub use diagnostic::{render, Diagnostic, Severity};
 pub use lines::{code_lines, parse_duration, LineError, LineErrors};

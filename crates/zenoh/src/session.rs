@@ -37,6 +37,21 @@ impl Settings {
 }
 
 pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Session, NetworkError> {
+    zenoh::open(config(role, settings)?)
+        .await
+        .map_err(|e| match role {
+            Role::Listen(endpoint) => {
+                NetworkError::zenoh(format!("cannot listen on {endpoint}"), e)
+            }
+            Role::Connect(endpoint) => {
+                NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
+            }
+        })
+}
+
+/// Zenoh's configuration for `role` and `settings`: the file's, if given, with this crate's
+/// choices written over it.
+fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkError> {
     let mut config = match &settings.config_file {
         Some(path) => zenoh::Config::from_file(path).map_err(|e| NetworkError::Config {
             path: path.clone(),
@@ -87,12 +102,7 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
         set(&mut config, "transport/unicast/lowlatency", "true".into())?;
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
     }
-    zenoh::open(config).await.map_err(|e| match role {
-        Role::Listen(endpoint) => NetworkError::zenoh(format!("cannot listen on {endpoint}"), e),
-        Role::Connect(endpoint) => {
-            NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
-        }
-    })
+    Ok(config)
 }
 
 /// Where a process connecting to `endpoint` listens for the others: a free port on loopback when
@@ -114,4 +124,91 @@ fn beside(endpoint: &str) -> Option<String> {
 fn json_list(items: &[String]) -> String {
     let quoted: Vec<String> = items.iter().map(|i| format!("{i:?}")).collect();
     format!("[{}]", quoted.join(","))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setting(config: &zenoh::Config, key: &str) -> String {
+        config.get_json(key).unwrap().replace(' ', "")
+    }
+
+    #[test]
+    fn a_listening_process_listens_where_told_and_dials_nobody() {
+        let role = Role::Listen("tcp/127.0.0.1:7447".into());
+        let config = config(&role, &Settings::default()).unwrap();
+        assert_eq!(setting(&config, "mode"), "\"peer\"");
+        assert_eq!(
+            setting(&config, "listen/endpoints"),
+            r#"["tcp/127.0.0.1:7447"]"#
+        );
+        assert_eq!(setting(&config, "connect/endpoints"), "[]");
+        assert_eq!(setting(&config, "scouting/multicast/enabled"), "false");
+        assert_eq!(setting(&config, "transport/unicast/lowlatency"), "false");
+    }
+
+    #[test]
+    fn a_connecting_process_also_listens_beside_on_the_same_side_of_loopback() {
+        let role = Role::Connect("tcp/127.0.0.1:7447".into());
+        let config = config(&role, &Settings::default()).unwrap();
+        assert!(setting(&config, "listen/endpoints").contains("\"tcp/127.0.0.1:0\""));
+        assert!(setting(&config, "connect/endpoints").contains("\"tcp/127.0.0.1:7447\""));
+        assert_eq!(
+            beside("tcp/10.0.0.2:7447").as_deref(),
+            Some("tcp/0.0.0.0:0")
+        );
+        assert_eq!(
+            beside("tcp/localhost:7447").as_deref(),
+            Some("tcp/127.0.0.1:0")
+        );
+        assert_eq!(beside("tls/10.0.0.2:7447"), None);
+    }
+
+    #[test]
+    fn low_latency_switches_the_queues_off() {
+        let settings = Settings {
+            low_latency: true,
+            ..Settings::default()
+        };
+        let config = config(&Role::Listen("tcp/127.0.0.1:7447".into()), &settings).unwrap();
+        assert_eq!(setting(&config, "transport/unicast/lowlatency"), "true");
+        assert_eq!(setting(&config, "transport/unicast/qos/enabled"), "false");
+        assert_eq!(settings.message_limit(), Some(60 * 1024));
+        assert_eq!(Settings::default().message_limit(), None);
+    }
+
+    #[test]
+    fn an_endpoint_without_its_protocol_is_refused_by_name() {
+        let error = config(
+            &Role::Connect("127.0.0.1:7447".into()),
+            &Settings::default(),
+        )
+        .unwrap_err();
+        assert!(matches!(&error, NetworkError::Endpoint(e) if e == "127.0.0.1:7447"));
+        assert!(error.to_string().contains("tcp/HOST:PORT"), "{error}");
+    }
+
+    #[test]
+    fn a_missing_configuration_file_is_named() {
+        let settings = Settings {
+            config_file: Some(PathBuf::from("no/such/zenoh.json5")),
+            ..Settings::default()
+        };
+        let error = config(&Role::Listen("tcp/127.0.0.1:7447".into()), &settings).unwrap_err();
+        assert!(
+            matches!(&error, NetworkError::Config { path, .. } if path.ends_with("zenoh.json5")),
+            "{error}"
+        );
+        assert!(error.to_string().contains("no/such/zenoh.json5"), "{error}");
+    }
+
+    #[test]
+    fn endpoints_are_written_as_a_json_list() {
+        assert_eq!(json_list(&[]), "[]");
+        assert_eq!(
+            json_list(&["tcp/127.0.0.1:1".into(), "tcp/[::1]:2".into()]),
+            r#"["tcp/127.0.0.1:1","tcp/[::1]:2"]"#
+        );
+    }
 }

@@ -198,4 +198,28 @@ mod tests {
             .unwrap_err()
             .contains("unreadable"));
     }
+
+    #[test]
+    fn kinds_travel_by_name() {
+        for kind in [Kind::State, Kind::Signal, Kind::Data] {
+            let wire = WireKind::from(kind);
+            assert_eq!(WireKind::parse(wire.name()), Some(wire));
+            assert_eq!(Kind::from(wire), kind);
+        }
+        assert_eq!(WireKind::parse("Signal"), None);
+    }
+
+    #[test]
+    fn a_declaration_survives_the_registry() {
+        let decl = ModuleDecl::new("kicker")
+            .posts(["kick"])
+            .reads(["ballNear"])
+            .waits_on(["whistle"])
+            .answers(["canKick"]);
+        let json = serde_json::to_string(&WireDecl::from(&decl)).unwrap();
+        let back: WireDecl = serde_json::from_str(&json).unwrap();
+        assert_eq!(ModuleDecl::from(back), decl);
+        let bare: WireDecl = serde_json::from_str(r#"{"name":"eye"}"#).unwrap();
+        assert_eq!(ModuleDecl::from(bare), ModuleDecl::new("eye"));
+    }
 }

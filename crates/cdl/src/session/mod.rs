@@ -2,7 +2,7 @@
 //! answer, computed on demand component by component and re-proved only where an input change
 //! reaches.
 
-use crate::cycle::{Component, Method, Outcome, SearchLimits};
+use crate::component::{Component, Method, Outcome, SearchLimits};
 use crate::engine::Engine;
 use crate::goal::{
     condition, goal, kind_of, lit_of, successors, Goal, ATTACK, ATTACK_READ, BETA, KINDS, PI, SUP,

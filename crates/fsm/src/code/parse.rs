@@ -2,7 +2,7 @@
 
 use super::expr::{BinOp, Expr, UnOp};
 use super::stmt::{Statement, VarType};
-use super::token::{tokenize, Token};
+use super::token::{tokenize, CodeToken};
 use std::fmt;
 
 /// Where and why code did not parse (`offset` in bytes into the text given).
@@ -40,7 +40,7 @@ pub fn parse_statements(text: &str) -> Result<Vec<Statement>, CodeError> {
 }
 
 struct Parser {
-    tokens: Vec<(usize, Token, usize)>,
+    tokens: Vec<(usize, CodeToken, usize)>,
     at: usize,
     end: usize,
 }
@@ -60,11 +60,11 @@ impl Parser {
         })
     }
 
-    fn peek(&self) -> Option<&Token> {
+    fn peek(&self) -> Option<&CodeToken> {
         self.tokens.get(self.at).map(|(_, t, _)| t)
     }
 
-    fn peek_at(&self, ahead: usize) -> Option<&Token> {
+    fn peek_at(&self, ahead: usize) -> Option<&CodeToken> {
         self.tokens.get(self.at + ahead).map(|(_, t, _)| t)
     }
 
@@ -73,7 +73,7 @@ impl Parser {
     }
 
     fn is(&self, punct: &str) -> bool {
-        matches!(self.peek(), Some(Token::Punct(p)) if *p == punct)
+        matches!(self.peek(), Some(CodeToken::Punct(p)) if *p == punct)
     }
 
     fn eat(&mut self, punct: &str) -> bool {
@@ -120,7 +120,7 @@ impl Parser {
 
     fn name(&mut self) -> Parsed<String> {
         match self.peek() {
-            Some(Token::Name(n)) => {
+            Some(CodeToken::Name(n)) => {
                 let n = n.clone();
                 self.at += 1;
                 Ok(n)
@@ -138,7 +138,7 @@ impl Parser {
         let mut left = self.unary()?;
         loop {
             let Some(op) = (match self.peek() {
-                Some(Token::Punct(p)) => BinOp::from_symbol(p),
+                Some(CodeToken::Punct(p)) => BinOp::from_symbol(p),
                 _ => None,
             }) else {
                 return Ok(left);
@@ -162,12 +162,12 @@ impl Parser {
         if self.eat("-") {
             // A sign before a number is part of it: `-1` is the number minus one.
             match self.peek() {
-                Some(Token::Int(i)) => {
+                Some(CodeToken::Int(i)) => {
                     let i = -*i;
                     self.at += 1;
                     return Ok(Expr::Int(i));
                 }
-                Some(Token::Float(x)) => {
+                Some(CodeToken::Float(x)) => {
                     let x = -*x;
                     self.at += 1;
                     return Ok(Expr::Float(x));
@@ -191,23 +191,23 @@ impl Parser {
     fn primary(&mut self) -> Parsed<Expr> {
         let token = self.peek().cloned();
         match token {
-            Some(Token::Int(i)) => {
+            Some(CodeToken::Int(i)) => {
                 self.at += 1;
                 Ok(Expr::Int(i))
             }
-            Some(Token::Float(x)) => {
+            Some(CodeToken::Float(x)) => {
                 self.at += 1;
                 Ok(Expr::Float(x))
             }
-            Some(Token::Str(s)) => {
+            Some(CodeToken::Str(s)) => {
                 self.at += 1;
                 Ok(Expr::Str(s))
             }
-            Some(Token::Duration(us)) => {
+            Some(CodeToken::Duration(us)) => {
                 self.at += 1;
                 Ok(Expr::Duration(us))
             }
-            Some(Token::Name(n)) => {
+            Some(CodeToken::Name(n)) => {
                 self.at += 1;
                 if self.eat("(") {
                     let mut arguments = Vec::new();
@@ -234,7 +234,7 @@ impl Parser {
                     _ => Expr::Name(n),
                 })
             }
-            Some(Token::Punct("(")) => {
+            Some(CodeToken::Punct("(")) => {
                 self.at += 1;
                 let inner = self.expression()?;
                 if !self.eat(")") {
@@ -264,13 +264,13 @@ impl Parser {
             return Ok(Some(Statement::Block(body)));
         }
         let statement = match (self.peek(), self.peek_at(1)) {
-            (Some(Token::Name(k)), Some(Token::Punct("("))) if k == "for" => {
+            (Some(CodeToken::Name(k)), Some(CodeToken::Punct("("))) if k == "for" => {
                 return self.for_loop().map(Some)
             }
-            (Some(Token::Name(k)), Some(Token::Name(_))) if k == "extern" => {
+            (Some(CodeToken::Name(k)), Some(CodeToken::Name(_))) if k == "extern" => {
                 self.at += 1;
                 let ty = match (self.peek(), self.peek_at(1)) {
-                    (Some(Token::Name(t)), Some(Token::Name(_))) => {
+                    (Some(CodeToken::Name(t)), Some(CodeToken::Name(_))) => {
                         let ty = type_of(t);
                         self.at += 1;
                         Some(ty)
@@ -291,7 +291,7 @@ impl Parser {
     /// A declaration, an assignment or an expression, without its `;`.
     fn simple(&mut self) -> Parsed<Statement> {
         match (self.peek(), self.peek_at(1)) {
-            (Some(Token::Name(t)), Some(Token::Name(_))) => {
+            (Some(CodeToken::Name(t)), Some(CodeToken::Name(_))) => {
                 let ty = type_of(t);
                 self.at += 1;
                 let name = self.name()?;
@@ -302,7 +302,7 @@ impl Parser {
                 };
                 Ok(Statement::Declare { ty, name, value })
             }
-            (Some(Token::Name(n)), Some(Token::Punct("="))) => {
+            (Some(CodeToken::Name(n)), Some(CodeToken::Punct("="))) => {
                 let name = n.clone();
                 self.at += 2;
                 Ok(Statement::Assign {
@@ -318,7 +318,7 @@ impl Parser {
     fn terminator(&mut self) -> Parsed<()> {
         if self.eat(";") || self.is("}") || self.peek().is_none() {
             Ok(())
-        } else if matches!(self.peek(), Some(Token::Punct(p)) if BinOp::from_symbol(p).is_some() || *p == "=")
+        } else if matches!(self.peek(), Some(CodeToken::Punct(p)) if BinOp::from_symbol(p).is_some() || *p == "=")
         {
             Err(self.expected("`;` or an operator"))
         } else {

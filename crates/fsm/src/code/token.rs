@@ -3,7 +3,7 @@
 use std::fmt;
 
 #[derive(Clone, Debug, PartialEq)]
-pub enum Token {
+pub enum CodeToken {
     Name(String),
     Int(i64),
     Float(f64),
@@ -14,15 +14,15 @@ pub enum Token {
     Punct(&'static str),
 }
 
-impl fmt::Display for Token {
+impl fmt::Display for CodeToken {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Token::Name(n) => write!(f, "`{n}`"),
-            Token::Int(i) => write!(f, "the number `{i}`"),
-            Token::Float(x) => write!(f, "the number `{x:?}`"),
-            Token::Str(s) => write!(f, "the string {s:?}"),
-            Token::Duration(us) => write!(f, "the duration `{us}us`"),
-            Token::Punct(p) => write!(f, "`{p}`"),
+            CodeToken::Name(n) => write!(f, "`{n}`"),
+            CodeToken::Int(i) => write!(f, "the number `{i}`"),
+            CodeToken::Float(x) => write!(f, "the number `{x:?}`"),
+            CodeToken::Str(s) => write!(f, "the string {s:?}"),
+            CodeToken::Duration(us) => write!(f, "the duration `{us}us`"),
+            CodeToken::Punct(p) => write!(f, "`{p}`"),
         }
     }
 }
@@ -41,7 +41,7 @@ pub struct LexError {
 }
 
 /// Every token of `text` with its start and end offsets.
-pub fn tokenize(text: &str) -> Result<Vec<(usize, Token, usize)>, LexError> {
+pub fn tokenize(text: &str) -> Result<Vec<(usize, CodeToken, usize)>, LexError> {
     let mut out = Vec::new();
     let bytes = text.as_bytes();
     let mut at = 0;
@@ -70,17 +70,17 @@ pub fn tokenize(text: &str) -> Result<Vec<(usize, Token, usize)>, LexError> {
                 .find(|c: char| !(c.is_alphanumeric() || c == '_'))
                 .unwrap_or(rest.len());
             at += len;
-            out.push((start, Token::Name(rest[..len].to_string()), at));
+            out.push((start, CodeToken::Name(rest[..len].to_string()), at));
         } else if c == '"' || c == '\'' {
             let (s, len) = string(rest, c).ok_or_else(|| LexError {
                 at,
                 message: format!("this string has no closing `{c}`"),
             })?;
             at += len;
-            out.push((start, Token::Str(s), at));
+            out.push((start, CodeToken::Str(s), at));
         } else if let Some(p) = PUNCTUATION.iter().find(|p| rest.starts_with(**p)) {
             at += p.len();
-            out.push((start, Token::Punct(p), at));
+            out.push((start, CodeToken::Punct(p), at));
         } else {
             return Err(LexError {
                 at,
@@ -92,7 +92,7 @@ pub fn tokenize(text: &str) -> Result<Vec<(usize, Token, usize)>, LexError> {
 }
 
 /// `12`, `0.3`, `.5`, `1e-3`, `2.5E4`: an integer unless it has a point or an exponent.
-fn number(text: &str) -> Result<(Token, usize), String> {
+fn number(text: &str) -> Result<(CodeToken, usize), String> {
     let b = text.as_bytes();
     let mut len = 0;
     while len < b.len() && b[len].is_ascii_digit() {
@@ -131,7 +131,7 @@ fn number(text: &str) -> Result<(Token, usize), String> {
                 .parse()
                 .map_err(|_| format!("`{digits}` is not a number"))?;
             return Ok((
-                Token::Duration((amount * micros).round() as u64),
+                CodeToken::Duration((amount * micros).round() as u64),
                 len + unit.len(),
             ));
         }
@@ -149,7 +149,7 @@ fn number(text: &str) -> Result<(Token, usize), String> {
     }
     if float {
         match digits.parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok((Token::Float(x), len)),
+            Ok(x) if x.is_finite() => Ok((CodeToken::Float(x), len)),
             // Found by the fuzzer: `2E999` would be infinity, which prints as a name.
             Ok(_) => Err(format!("`{digits}` is too large for a number")),
             Err(_) => Err(format!("`{digits}` is not a number")),
@@ -157,7 +157,7 @@ fn number(text: &str) -> Result<(Token, usize), String> {
     } else {
         digits
             .parse()
-            .map(|i| (Token::Int(i), len))
+            .map(|i| (CodeToken::Int(i), len))
             .map_err(|_| format!("`{digits}` is too large for a whole number"))
     }
 }
@@ -190,7 +190,7 @@ fn string(text: &str, quote: char) -> Option<(String, usize)> {
 mod tests {
     use super::*;
 
-    fn kinds(text: &str) -> Vec<Token> {
+    fn kinds(text: &str) -> Vec<CodeToken> {
         tokenize(text)
             .expect("tokens")
             .into_iter()
@@ -203,13 +203,13 @@ mod tests {
         assert_eq!(
             kinds("HeadYaw<-b"),
             vec![
-                Token::Name("HeadYaw".into()),
-                Token::Punct("<"),
-                Token::Punct("-"),
-                Token::Name("b".into())
+                CodeToken::Name("HeadYaw".into()),
+                CodeToken::Punct("<"),
+                CodeToken::Punct("-"),
+                CodeToken::Name("b".into())
             ]
         );
-        assert_eq!(kinds("a<=b")[1], Token::Punct("<="));
+        assert_eq!(kinds("a<=b")[1], CodeToken::Punct("<="));
     }
 
     #[test]
@@ -217,11 +217,11 @@ mod tests {
         assert_eq!(
             kinds(r#"12 0.3 .5 1e-3 "a\"b" /* x */ // y"#),
             vec![
-                Token::Int(12),
-                Token::Float(0.3),
-                Token::Float(0.5),
-                Token::Float(0.001),
-                Token::Str("a\"b".into())
+                CodeToken::Int(12),
+                CodeToken::Float(0.3),
+                CodeToken::Float(0.5),
+                CodeToken::Float(0.001),
+                CodeToken::Str("a\"b".into())
             ]
         );
     }

@@ -5,7 +5,7 @@
 //! language, taken raw up to its `;` (or the `}` of its block) and parsed later.
 
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Tok<'a> {
+pub enum MachineToken<'a> {
     Machine,
     Description,
     Initial,
@@ -33,31 +33,31 @@ pub enum Tok<'a> {
     Statement(&'a str),
 }
 
-impl std::fmt::Display for Tok<'_> {
+impl std::fmt::Display for MachineToken<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Tok::Machine => f.write_str("`machine`"),
-            Tok::Description => f.write_str("`description`"),
-            Tok::Initial => f.write_str("`initial`"),
-            Tok::State => f.write_str("`state`"),
-            Tok::Entry => f.write_str("`entry`"),
-            Tok::Exit => f.write_str("`exit`"),
-            Tok::Internal => f.write_str("`internal`"),
-            Tok::When => f.write_str("`when`"),
-            Tok::Call => f.write_str("`call`"),
-            Tok::Code => f.write_str("`code`"),
-            Tok::Word(w) => write!(f, "`{w}`"),
-            Tok::Str(s) => write!(f, "{s:?}"),
-            Tok::Int(i) => write!(f, "`{i}`"),
-            Tok::Hash => f.write_str("`#`"),
-            Tok::LBrace => f.write_str("`{`"),
-            Tok::RBrace => f.write_str("`}`"),
-            Tok::LParen => f.write_str("`(`"),
-            Tok::RParen => f.write_str("`)`"),
-            Tok::Arrow => f.write_str("`->`"),
-            Tok::Text(t) => write!(f, "`: {t}`"),
-            Tok::LabelText(t) => write!(f, "label `{t}`"),
-            Tok::Statement(t) => write!(f, "statement `{t}`"),
+            MachineToken::Machine => f.write_str("`machine`"),
+            MachineToken::Description => f.write_str("`description`"),
+            MachineToken::Initial => f.write_str("`initial`"),
+            MachineToken::State => f.write_str("`state`"),
+            MachineToken::Entry => f.write_str("`entry`"),
+            MachineToken::Exit => f.write_str("`exit`"),
+            MachineToken::Internal => f.write_str("`internal`"),
+            MachineToken::When => f.write_str("`when`"),
+            MachineToken::Call => f.write_str("`call`"),
+            MachineToken::Code => f.write_str("`code`"),
+            MachineToken::Word(w) => write!(f, "`{w}`"),
+            MachineToken::Str(s) => write!(f, "{s:?}"),
+            MachineToken::Int(i) => write!(f, "`{i}`"),
+            MachineToken::Hash => f.write_str("`#`"),
+            MachineToken::LBrace => f.write_str("`{`"),
+            MachineToken::RBrace => f.write_str("`}`"),
+            MachineToken::LParen => f.write_str("`(`"),
+            MachineToken::RParen => f.write_str("`)`"),
+            MachineToken::Arrow => f.write_str("`->`"),
+            MachineToken::Text(t) => write!(f, "`: {t}`"),
+            MachineToken::LabelText(t) => write!(f, "label `{t}`"),
+            MachineToken::Statement(t) => write!(f, "statement `{t}`"),
         }
     }
 }
@@ -65,22 +65,22 @@ impl std::fmt::Display for Tok<'_> {
 /// Where and why the text is not a token: the one lexer error of both languages.
 pub(crate) use crate::code::LexError;
 
-pub type Spanned<'a> = Result<(usize, Tok<'a>, usize), LexError>;
+pub type Spanned<'a> = Result<(usize, MachineToken<'a>, usize), LexError>;
 
-pub struct Lexer<'a> {
+pub struct MachineLexer<'a> {
     text: &'a str,
     at: usize,
     /// Tokens already cut that come before anything else (a label's `->`).
-    pending: Vec<(usize, Tok<'a>, usize)>,
+    pending: Vec<(usize, MachineToken<'a>, usize)>,
     /// How many `{` are open: 2 and more is inside an activity.
     depth: usize,
     /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
     plain_until: usize,
 }
 
-impl<'a> Lexer<'a> {
-    pub fn new(text: &'a str) -> Lexer<'a> {
-        Lexer {
+impl<'a> MachineLexer<'a> {
+    pub fn new(text: &'a str) -> MachineLexer<'a> {
+        MachineLexer {
             text,
             at: 0,
             pending: Vec::new(),
@@ -108,7 +108,10 @@ impl<'a> Lexer<'a> {
     }
 
     /// The rest of the current line from `self.at`, trimmed, as one token.
-    fn line_text(&mut self, make: fn(&'a str) -> Tok<'a>) -> (usize, Tok<'a>, usize) {
+    fn line_text(
+        &mut self,
+        make: fn(&'a str) -> MachineToken<'a>,
+    ) -> (usize, MachineToken<'a>, usize) {
         let rest = self.rest();
         let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
         let start = self.at + (line.len() - line.trim_start().len());
@@ -117,8 +120,8 @@ impl<'a> Lexer<'a> {
         (start, make(text), start + text.len())
     }
 
-    /// Long by design: one arm per token shape and per raw-text mode, the lexer's whole table
-    /// in one match (split up, the order of the arms, which decides, would be scattered).
+    /// One arm per token shape and per raw-text mode, the lexer's whole table in one match (the
+    /// order of the arms decides); the longer shapes are read by a method each.
     fn next_token(&mut self) -> Option<Spanned<'a>> {
         if let Some(t) = self.pending.pop() {
             return Some(Ok(t));
@@ -137,77 +140,36 @@ impl<'a> Lexer<'a> {
             '{' => {
                 self.at += 1;
                 self.depth += 1;
-                one(Tok::LBrace)
+                one(MachineToken::LBrace)
             }
             '}' => {
                 self.at += 1;
                 self.depth = self.depth.saturating_sub(1);
-                one(Tok::RBrace)
+                one(MachineToken::RBrace)
             }
             '(' => {
                 self.at += 1;
-                one(Tok::LParen)
+                one(MachineToken::LParen)
             }
             ')' => {
                 self.at += 1;
-                one(Tok::RParen)
+                one(MachineToken::RParen)
             }
             '#' => {
                 self.at += 1;
-                one(Tok::Hash)
+                one(MachineToken::Hash)
             }
             ':' => {
                 self.at += 1;
-                Some(Ok(self.line_text(Tok::Text)))
+                Some(Ok(self.line_text(MachineToken::Text)))
             }
             '-' if rest.starts_with("->") => {
                 self.at += 2;
-                Some(Ok((start, Tok::Arrow, start + 2)))
+                Some(Ok((start, MachineToken::Arrow, start + 2)))
             }
             '"' => Some(self.string()),
-            c if c.is_ascii_digit() || c == '-' => {
-                let len = rest[1..]
-                    .find(|c: char| !c.is_ascii_digit())
-                    .map_or(rest.len(), |n| n + 1);
-                self.at += len;
-                match rest[..len].parse() {
-                    Ok(n) => Some(Ok((start, Tok::Int(n), start + len))),
-                    Err(_) => Some(Err(LexError {
-                        at: start,
-                        message: format!("`{}` is not a whole number", &rest[..len]),
-                    })),
-                }
-            }
-            c if c.is_alphabetic() || c == '_' => {
-                let len = rest
-                    .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
-                    .unwrap_or(rest.len());
-                let word = &rest[..len];
-                self.at += len;
-                let end = start + len;
-                let tok = match word {
-                    "machine" => Tok::Machine,
-                    "description" if self.depth == 0 => Tok::Description,
-                    "initial" => Tok::Initial,
-                    "state" => Tok::State,
-                    "entry" => Tok::Entry,
-                    "exit" => Tok::Exit,
-                    "internal" => Tok::Internal,
-                    "call" => Tok::Call,
-                    "code" => {
-                        let text = self.line_text(Tok::Text);
-                        self.pending.push(text);
-                        Tok::Code
-                    }
-                    "when" => {
-                        let label = self.label();
-                        self.pending.extend(label);
-                        Tok::When
-                    }
-                    _ => Tok::Word(word),
-                };
-                Some(Ok((start, tok, end)))
-            }
+            c if c.is_ascii_digit() || c == '-' => Some(self.number()),
+            c if c.is_alphabetic() || c == '_' => Some(Ok(self.word())),
             other => {
                 self.at += other.len_utf8();
                 Some(Err(LexError {
@@ -218,9 +180,60 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// A whole number from the digit or `-` at `self.at`.
+    fn number(&mut self) -> Spanned<'a> {
+        let start = self.at;
+        let rest = self.rest();
+        let len = rest[1..]
+            .find(|c: char| !c.is_ascii_digit())
+            .map_or(rest.len(), |n| n + 1);
+        self.at += len;
+        match rest[..len].parse() {
+            Ok(n) => Ok((start, MachineToken::Int(n), start + len)),
+            Err(_) => Err(LexError {
+                at: start,
+                message: format!("`{}` is not a whole number", &rest[..len]),
+            }),
+        }
+    }
+
+    /// A keyword or a word from the letter at `self.at`; after `code` and `when`, the raw text
+    /// that follows them is cut too and waits in `pending`.
+    fn word(&mut self) -> (usize, MachineToken<'a>, usize) {
+        let start = self.at;
+        let rest = self.rest();
+        let len = rest
+            .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+            .unwrap_or(rest.len());
+        let word = &rest[..len];
+        self.at += len;
+        let tok = match word {
+            "machine" => MachineToken::Machine,
+            "description" if self.depth == 0 => MachineToken::Description,
+            "initial" => MachineToken::Initial,
+            "state" => MachineToken::State,
+            "entry" => MachineToken::Entry,
+            "exit" => MachineToken::Exit,
+            "internal" => MachineToken::Internal,
+            "call" => MachineToken::Call,
+            "code" => {
+                let text = self.line_text(MachineToken::Text);
+                self.pending.push(text);
+                MachineToken::Code
+            }
+            "when" => {
+                let label = self.label();
+                self.pending.extend(label);
+                MachineToken::When
+            }
+            _ => MachineToken::Word(word),
+        };
+        (start, tok, start + len)
+    }
+
     /// Inside an activity: a statement, or `None` where the item starts as anywhere else (a
     /// posting's type, `call`, `code`, the activity's closing `}`).
-    fn activity_item(&mut self, first: char) -> Option<(usize, Tok<'a>, usize)> {
+    fn activity_item(&mut self, first: char) -> Option<(usize, MachineToken<'a>, usize)> {
         let rest = self.rest();
         if matches!(first, '}' | '"' | ':') {
             return None;
@@ -244,12 +257,12 @@ impl<'a> Lexer<'a> {
         let start = self.at;
         self.at += len;
         let text = rest[..len].trim_end();
-        Some((start, Tok::Statement(text), start + text.len()))
+        Some((start, MachineToken::Statement(text), start + text.len()))
     }
 
     /// The label after `when`, up to `->` on the same line; the tokens come back in reverse
     /// order (they are popped from `pending`).
-    fn label(&mut self) -> Vec<(usize, Tok<'a>, usize)> {
+    fn label(&mut self) -> Vec<(usize, MachineToken<'a>, usize)> {
         let rest = self.rest();
         let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
         match line.find("->") {
@@ -260,11 +273,11 @@ impl<'a> Lexer<'a> {
                 let arrow_at = self.at + arrow;
                 self.at = arrow_at + 2;
                 vec![
-                    (arrow_at, Tok::Arrow, arrow_at + 2),
-                    (start, Tok::LabelText(label), start + label.len()),
+                    (arrow_at, MachineToken::Arrow, arrow_at + 2),
+                    (start, MachineToken::LabelText(label), start + label.len()),
                 ]
             }
-            None => vec![self.line_text(Tok::LabelText)],
+            None => vec![self.line_text(MachineToken::LabelText)],
         }
     }
 
@@ -276,7 +289,7 @@ impl<'a> Lexer<'a> {
             match c {
                 '"' => {
                     self.at = start + 1 + i + 1;
-                    return Ok((start, Tok::Str(out), self.at));
+                    return Ok((start, MachineToken::Str(out), self.at));
                 }
                 '\\' => match chars.next() {
                     Some((_, 'n')) => out.push('\n'),
@@ -297,7 +310,7 @@ impl<'a> Lexer<'a> {
     }
 }
 
-impl<'a> Iterator for Lexer<'a> {
+impl<'a> Iterator for MachineLexer<'a> {
     type Item = Spanned<'a>;
 
     fn next(&mut self) -> Option<Spanned<'a>> {

@@ -45,7 +45,7 @@ use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
 use ast::{ActionAst, FileAst, Member, Ref, StateAst, TopItem};
 use lalrpop_util::ParseError;
-use lexer::{LexError, Lexer, Tok};
+use lexer::{LexError, MachineLexer, MachineToken};
 use proclaim_syntax::FileDiagnostic;
 
 pub use ast::Section;
@@ -69,7 +69,7 @@ pub const EXTENSION: &str = "machine";
 /// machine and a diagnostic naming the line; names that resolve to no state are reported too.
 pub fn parse_machine(file: &str, text: &str) -> Imported {
     let lines = LineIndex::new(text);
-    let parsed = grammar::FileParser::new().parse(Lexer::new(text));
+    let parsed = grammar::FileParser::new().parse(MachineLexer::new(text));
     match parsed {
         Ok(ast) => lower(file, &lines, ast),
         Err(error) => {
@@ -82,7 +82,7 @@ pub fn parse_machine(file: &str, text: &str) -> Imported {
     }
 }
 
-fn describe(error: ParseError<usize, Tok<'_>, LexError>, end: usize) -> (usize, String) {
+fn describe(error: ParseError<usize, MachineToken<'_>, LexError>, end: usize) -> (usize, String) {
     let expected = |expected: &[String]| {
         let names: Vec<String> = expected.iter().map(|e| friendly(e)).collect();
         match names.as_slice() {

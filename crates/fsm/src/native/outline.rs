@@ -5,7 +5,7 @@
 //! holds what things mean, the outline where they are.
 
 use super::ast::{Ref, Section};
-use super::lexer::{Lexer, Tok};
+use super::lexer::{MachineLexer, MachineToken};
 use std::ops::Range;
 
 /// A native file's parts and their places, in file order.
@@ -66,7 +66,7 @@ impl Outline {
     /// The outline of `text`, or where it stops reading as a machine.
     pub fn read(text: &str) -> Result<Outline, Unreadable> {
         let mut tokens = Vec::new();
-        for token in Lexer::new(text) {
+        for token in MachineLexer::new(text) {
             match token {
                 Ok(t) => tokens.push(t),
                 Err(e) => {
@@ -124,17 +124,17 @@ impl Outline {
 }
 
 struct Reader<'t> {
-    tokens: Vec<(usize, Tok<'t>, usize)>,
+    tokens: Vec<(usize, MachineToken<'t>, usize)>,
     next: usize,
     end: usize,
 }
 
 impl<'t> Reader<'t> {
-    fn peek(&self) -> Option<&(usize, Tok<'t>, usize)> {
+    fn peek(&self) -> Option<&(usize, MachineToken<'t>, usize)> {
         self.tokens.get(self.next)
     }
 
-    fn take(&mut self, wanted: &str) -> Result<(usize, Tok<'t>, usize), Unreadable> {
+    fn take(&mut self, wanted: &str) -> Result<(usize, MachineToken<'t>, usize), Unreadable> {
         match self.tokens.get(self.next) {
             Some(t) => {
                 self.next += 1;
@@ -147,7 +147,10 @@ impl<'t> Reader<'t> {
         }
     }
 
-    fn unexpected<T>(token: &(usize, Tok<'t>, usize), wanted: &str) -> Result<T, Unreadable> {
+    fn unexpected<T>(
+        token: &(usize, MachineToken<'t>, usize),
+        wanted: &str,
+    ) -> Result<T, Unreadable> {
         Err(Unreadable {
             at: token.0,
             message: format!("unexpected {}; expected {wanted}", token.1),
@@ -156,7 +159,7 @@ impl<'t> Reader<'t> {
 
     fn file(mut self) -> Result<Outline, Unreadable> {
         let first = self.take("`machine`")?;
-        if first.1 != Tok::Machine {
+        if first.1 != MachineToken::Machine {
             return Self::unexpected(&first, "`machine`");
         }
         let (_, name_span) = self.name()?;
@@ -168,14 +171,14 @@ impl<'t> Reader<'t> {
         while let Some(token) = self.peek().cloned() {
             self.next += 1;
             match token.1 {
-                Tok::Initial => outline.initial = Some(self.reference()?),
-                Tok::Description => {
+                MachineToken::Initial => outline.initial = Some(self.reference()?),
+                MachineToken::Description => {
                     let text = self.take("the description")?;
-                    if !matches!(text.1, Tok::Str(_)) {
+                    if !matches!(text.1, MachineToken::Str(_)) {
                         return Self::unexpected(&text, "a quoted description");
                     }
                 }
-                Tok::State => outline.states.push(self.state(token.0)?),
+                MachineToken::State => outline.states.push(self.state(token.0)?),
                 _ => return Self::unexpected(&token, "`initial`, `description` or `state`"),
             }
         }
@@ -185,18 +188,18 @@ impl<'t> Reader<'t> {
     fn name(&mut self) -> Result<(String, Range<usize>), Unreadable> {
         let token = self.take("a name")?;
         match &token.1 {
-            Tok::Word(w) => Ok((w.to_string(), token.0..token.2)),
-            Tok::Str(s) => Ok((s.clone(), token.0..token.2)),
+            MachineToken::Word(w) => Ok((w.to_string(), token.0..token.2)),
+            MachineToken::Str(s) => Ok((s.clone(), token.0..token.2)),
             _ => Self::unexpected(&token, "a name"),
         }
     }
 
     fn reference(&mut self) -> Result<RefAt, Unreadable> {
-        if self.peek().is_some_and(|t| t.1 == Tok::Hash) {
+        if self.peek().is_some_and(|t| t.1 == MachineToken::Hash) {
             let hash = self.take("`#`")?;
             let number = self.take("a state id")?;
             return match number.1 {
-                Tok::Int(id) => Ok(RefAt {
+                MachineToken::Int(id) => Ok(RefAt {
                     reference: Ref::Id(id),
                     span: hash.0..number.2,
                 }),
@@ -210,7 +213,7 @@ impl<'t> Reader<'t> {
         })
     }
 
-    fn brace(&mut self, wanted: Tok<'static>) -> Result<usize, Unreadable> {
+    fn brace(&mut self, wanted: MachineToken<'static>) -> Result<usize, Unreadable> {
         let token = self.take(&wanted.to_string())?;
         if token.1 == wanted {
             Ok(token.0)
@@ -222,13 +225,13 @@ impl<'t> Reader<'t> {
     fn state(&mut self, start: usize) -> Result<StateAt, Unreadable> {
         let (name, name_span) = self.name()?;
         let mut id = None;
-        if self.peek().is_some_and(|t| t.1 == Tok::Hash) {
+        if self.peek().is_some_and(|t| t.1 == MachineToken::Hash) {
             match self.reference()?.reference {
                 Ref::Id(n) => id = Some(n),
                 Ref::Name(_) => unreachable!("a `#` reference is an id"),
             }
         }
-        self.brace(Tok::LBrace)?;
+        self.brace(MachineToken::LBrace)?;
         let mut state = StateAt {
             name,
             id,
@@ -241,16 +244,16 @@ impl<'t> Reader<'t> {
         loop {
             let token = self.take("`}`")?;
             let section = match token.1 {
-                Tok::RBrace => {
+                MachineToken::RBrace => {
                     state.close = token.0;
                     return Ok(state);
                 }
-                Tok::When => {
+                MachineToken::When => {
                     let label = self.take("a label")?;
-                    let Tok::LabelText(_) = label.1 else {
+                    let MachineToken::LabelText(_) = label.1 else {
                         return Self::unexpected(&label, "a label");
                     };
-                    self.brace(Tok::Arrow)?;
+                    self.brace(MachineToken::Arrow)?;
                     let target = self.reference()?;
                     state.whens.push(WhenAt {
                         start: token.0,
@@ -259,20 +262,22 @@ impl<'t> Reader<'t> {
                     });
                     continue;
                 }
-                Tok::Entry => Section::Entry,
-                Tok::Exit => Section::Exit,
-                Tok::Internal => Section::Internal,
+                MachineToken::Entry => Section::Entry,
+                MachineToken::Exit => Section::Exit,
+                MachineToken::Internal => Section::Internal,
                 _ => return Self::unexpected(&token, "`entry`, `exit`, `internal`, `when` or `}`"),
             };
-            let open = self.brace(Tok::LBrace)?;
+            let open = self.brace(MachineToken::LBrace)?;
             // An activity's items hold no braces of their own: a statement's are inside its token.
             let close = loop {
                 let item = self.take("the activity's `}`")?;
                 match item.1 {
-                    Tok::RBrace => break item.0,
-                    Tok::LBrace | Tok::State | Tok::When | Tok::Entry | Tok::Exit => {
-                        return Self::unexpected(&item, "the activity's `}`")
-                    }
+                    MachineToken::RBrace => break item.0,
+                    MachineToken::LBrace
+                    | MachineToken::State
+                    | MachineToken::When
+                    | MachineToken::Entry
+                    | MachineToken::Exit => return Self::unexpected(&item, "the activity's `}`"),
                     _ => {}
                 }
             };

@@ -193,3 +193,30 @@ impl Peer {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::board::Keys;
+
+    #[test]
+    fn a_kind_declaration_is_read_back_from_its_key() {
+        let key = Keys::new("team18").kind("kick", WireKind::Signal, 1_700, "ab12");
+        let declared = Declared::parse(&key).unwrap();
+        assert_eq!(declared.ty, "kick");
+        assert_eq!(declared.kind, Kind::Signal);
+        assert_eq!(declared.since, 1_700);
+        assert_eq!(declared.process, "ab12");
+    }
+
+    #[test]
+    fn a_key_that_is_no_kind_declaration_is_ignored() {
+        for key in [
+            "proclaim/team18/@kind/kick/loud/1700/ab12",
+            "proclaim/team18/@kind/kick/signal/soon/ab12",
+            "ab12",
+        ] {
+            assert!(Declared::parse(key).is_none(), "{key}");
+        }
+    }
+}

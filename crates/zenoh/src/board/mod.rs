@@ -560,3 +560,57 @@ impl Transport for Peer {
 
 /// A weak handle a Zenoh callback holds, so the board ends when its last handle is dropped.
 type PeerRef = Weak<Peer>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_type_has_its_own_key_under_the_board() {
+        let keys = Keys::new("team18");
+        assert_eq!(keys.ty("ballNear"), "proclaim/team18/ballNear");
+        assert_eq!(keys.type_of(&keys.ty("ballNear")), Some("ballNear"));
+        assert_eq!(keys.every_type(), "proclaim/team18/*");
+    }
+
+    #[test]
+    fn only_this_boards_types_are_read_as_types() {
+        let keys = Keys::new("team18");
+        assert_eq!(keys.type_of("proclaim/team5/ballNear"), None);
+        assert_eq!(keys.type_of("proclaim/team181/ballNear"), None);
+        assert_eq!(keys.type_of("other/team18/ballNear"), None);
+        for own in [
+            keys.alive("ab12"),
+            keys.registry(),
+            keys.ping(),
+            keys.kind("ballNear", WireKind::Signal, 5, "ab12"),
+        ] {
+            assert!(own.starts_with("proclaim/team18/@"), "{own}");
+            assert_eq!(keys.type_of(&own), None, "{own}");
+        }
+    }
+
+    #[test]
+    fn a_type_name_that_cannot_be_a_key_says_why() {
+        assert_eq!(type_key_error("ballNear"), None);
+        assert_eq!(type_key_error("ball.near-2"), None);
+        assert_eq!(type_key_error(""), Some("it is empty"));
+        assert!(type_key_error("@alive").unwrap().contains("`@`"));
+        for bad in ["a/b", "a*", "a$b", "a?", "#a"] {
+            assert!(type_key_error(bad).unwrap().contains("/ * $ ? #"), "{bad}");
+        }
+    }
+
+    #[test]
+    fn stale_marks_name_the_type_and_the_gone_process() {
+        assert_eq!(stale_type("ballNear"), "ballNearStale");
+        assert_eq!(gone_module("0123456789abcdef"), "gone 01234567");
+        assert_eq!(gone_module("ab"), "gone ab");
+    }
+
+    #[test]
+    fn nanoseconds_saturate() {
+        assert_eq!(nanos(Duration::from_micros(3)), 3_000);
+        assert_eq!(nanos(Duration::MAX), u64::MAX);
+    }
+}
