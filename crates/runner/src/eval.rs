@@ -55,6 +55,11 @@ impl Env<'_> {
         if let Some(limit) = self.time_limit(function, arguments) {
             return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
         }
+        if let Some(aggregate) = proclaim_fsm::Aggregate::of_function(function) {
+            let team =
+                crate::team::aggregated_type(function, arguments).and_then(|ty| self.latest(&ty));
+            return crate::team::aggregate(aggregate, team.as_ref().map(|m| &m.value));
+        }
         let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
         arith::function(function, &values)
     }
