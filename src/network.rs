@@ -82,6 +82,8 @@ const DEFAULT_BOARD: &str = "proclaim";
 pub struct TeamPlace {
     pub name: String,
     pub member: String,
+    /// Read only where the whiteboard crosses processes (the `zenoh` feature).
+    #[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
     pub shared: Vec<String>,
 }
 

@@ -306,7 +306,7 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     check(
         &["check", "machines/striker"],
         0,
-        "machines/striker: ok (1 machine, 0 theories, 0 sensors)\n",
+        "machines/striker: ok (1 machine, 0 theories, 0 sensors; 0 errors, 0 warnings)\n",
     );
     // A team meets on a shared board, and a member needs a team.
     let o = proclaim(&["run", "machines/striker", "--for", "1s"]);
