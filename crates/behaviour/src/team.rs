@@ -43,7 +43,7 @@ pub fn name_error(name: &str) -> Option<&'static str> {
     } else if name.starts_with('@') {
         Some("it starts with `@`, which Zenoh keeps for its own keys")
     } else if name.contains(['/', '*', '$', '?', '#', '.']) {
-        Some("it holds one of / * $ ? # . (a key chunk, and the part before the dot of robot2.ballDistance)")
+        Some("it holds one of / * $ ? # . (it is a Zenoh key chunk, and what comes before the dot in `robot2.ballDistance`)")
     } else if name == proclaim_board::team::TEAM || name == proclaim_board::team::ME {
         Some("`team` and `me` are words of the label language")
     } else {
