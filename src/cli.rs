@@ -528,6 +528,10 @@ pub struct RunArgs {
     /// The monitor page shows the run and has no controls: nobody can pause, step or post
     #[arg(long, requires = "monitor")]
     pub monitor_read_only: bool,
+    /// This robot's name in its team, in place of the manifest's `[team] member` (one behaviour
+    /// run as several robots)
+    #[arg(long, value_name = "NAME")]
+    pub member: Option<String>,
     #[command(flatten)]
     pub network: Network,
 }

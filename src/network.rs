@@ -1,6 +1,7 @@
 //! Which whiteboard a command uses: the in-process one, or one shared over Zenoh when the
-//! command is told to `--listen` (for the others to connect to) or `--connect` (to one that
-//! listens); no process holds a shared board. Without the `zenoh` cargo
+//! command is told to `--listen` (for the others to connect to), `--connect` (to one that
+//! listens) or `--scout` (to find the others by multicast); no process holds a shared board. A
+//! behaviour whose manifest has a `[team]` joins its team there too. Without the `zenoh` cargo
 //! feature the options are still understood and say how to get it.
 
 use crate::failure::Failure;
@@ -22,12 +23,18 @@ pub struct Network {
     /// every other)
     #[arg(long, value_name = "ENDPOINT", conflicts_with = "listen")]
     pub connect: Option<String>,
+    /// Share the whiteboard with the processes this one finds on the local network by Zenoh's
+    /// multicast scouting, with no endpoint given (each listens on a free port of every
+    /// interface)
+    #[arg(long, conflicts_with_all = ["listen", "connect"])]
+    pub scout: bool,
     /// Zenoh's own JSON5 configuration (TLS, access control), read before the endpoints
     #[arg(long, value_name = "FILE")]
     pub zenoh_config: Option<PathBuf>,
-    /// The whiteboard's name, when several share a network
-    #[arg(long = "board", value_name = "NAME", default_value = "proclaim")]
-    pub board: String,
+    /// The whiteboard's name, when several share a network (`proclaim` unless given; a robot of a
+    /// team: its member name)
+    #[arg(long = "board", value_name = "NAME")]
+    pub board: Option<String>,
     /// Zenoh's low-latency transport (every process of the board must say so): faster round
     /// trips, fewer messages per second, no message over 60 KiB
     #[arg(long)]
@@ -36,16 +43,76 @@ pub struct Network {
 
 impl Network {
     pub fn is_local(&self) -> bool {
-        self.listen.is_none() && self.connect.is_none()
+        self.listen.is_none() && self.connect.is_none() && !self.scout
+    }
+
+    /// The network for a robot of `team`: its whiteboard named after its member name unless
+    /// `--board` names it, so the robots of a team each have their own.
+    pub fn for_team(&self, team: Option<&TeamPlace>) -> Network {
+        let mut network = self.clone();
+        if let (None, Some(team)) = (&network.board, team) {
+            network.board = Some(team.member.clone());
+        }
+        network
+    }
+
+    /// The whiteboard's name.
+    pub fn board_name(&self) -> &str {
+        self.board.as_deref().unwrap_or(DEFAULT_BOARD)
     }
 
     /// Where this process is on the network, for messages to people.
     pub fn describe(&self) -> String {
+        let board = self.board_name();
         match (&self.listen, &self.connect) {
-            (Some(e), _) => format!("on whiteboard `{}`, listening on {e}", self.board),
-            (_, Some(e)) => format!("on whiteboard `{}`, connected to {e}", self.board),
+            (Some(e), _) => format!("on whiteboard `{board}`, listening on {e}"),
+            (_, Some(e)) => format!("on whiteboard `{board}`, connected to {e}"),
+            _ if self.scout => format!("on whiteboard `{board}`, found by multicast scouting"),
             _ => "in-process whiteboard".into(),
         }
+    }
+}
+
+/// The board's name when none is given.
+const DEFAULT_BOARD: &str = "proclaim";
+
+/// A robot's place in its team: the manifest's `[team]`, its member name perhaps given on the
+/// command line instead.
+#[derive(Clone, Debug)]
+pub struct TeamPlace {
+    pub name: String,
+    pub member: String,
+    /// Read only where the whiteboard crosses processes (the `zenoh` feature).
+    #[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
+    pub shared: Vec<String>,
+}
+
+impl TeamPlace {
+    /// The place a behaviour's manifest gives, with `member` (`run --member`) in place of its
+    /// member name; `None` for a behaviour of no team.
+    pub fn of(
+        team: Option<&proclaim_behaviour::TeamEntry>,
+        member: Option<&str>,
+    ) -> Result<Option<TeamPlace>, Failure> {
+        let Some(team) = team else {
+            return match member {
+                Some(m) => Err(Failure::Argument(format!(
+                    "--member {m}: the behaviour's manifest has no [team] to be a member of"
+                ))),
+                None => Ok(None),
+            };
+        };
+        let member = member.unwrap_or(team.member.get_ref()).to_string();
+        if let Some(why) = proclaim_behaviour::team_name_error(&member) {
+            return Err(Failure::Argument(format!(
+                "--member {member} cannot name a team's member: {why}"
+            )));
+        }
+        Ok(Some(TeamPlace {
+            name: team.name.get_ref().clone(),
+            member,
+            shared: team.shared.iter().map(|s| s.get_ref().clone()).collect(),
+        }))
     }
 }
 
@@ -54,14 +121,40 @@ pub async fn whiteboard(network: &Network) -> Result<Whiteboard, Failure> {
     if network.is_local() {
         return Ok(Whiteboard::local());
     }
-    shared(network).await
+    shared(network, None).await
+}
+
+/// The whiteboard a behaviour runs on, as [`whiteboard`], for a robot of `team` when it is one
+/// (a team needs a shared board; see [`Network::for_team`]).
+pub async fn behaviour_whiteboard(
+    network: &Network,
+    team: Option<TeamPlace>,
+) -> Result<Whiteboard, Failure> {
+    match team {
+        None => whiteboard(network).await,
+        Some(team) if network.is_local() => Err(Failure::Argument(format!(
+            "the behaviour is {} of team `{}`, whose members meet on a shared whiteboard: add --listen, --connect ENDPOINT or --scout",
+            team.member, team.name
+        ))),
+        Some(team) => shared(network, Some(team)).await,
+    }
 }
 
 #[cfg(feature = "zenoh")]
-async fn shared(network: &Network) -> Result<Whiteboard, Failure> {
-    proclaim_zenoh::whiteboard(&role(network), &network.board, &settings(network))
-        .await
-        .map_err(|e| Failure::Network(e.to_string()))
+async fn shared(network: &Network, team: Option<TeamPlace>) -> Result<Whiteboard, Failure> {
+    let (role, settings) = (role(network), settings(network));
+    let joined = match team {
+        None => proclaim_zenoh::whiteboard(&role, network.board_name(), &settings).await,
+        Some(team) => {
+            let team = proclaim_zenoh::Team {
+                name: team.name,
+                member: team.member,
+                shared: team.shared,
+            };
+            proclaim_zenoh::team_whiteboard(&role, network.board_name(), &settings, team).await
+        }
+    };
+    joined.map_err(|e| Failure::Network(e.to_string()))
 }
 
 /// Posts one message on the whiteboard `network` shares and returns it once every process
@@ -75,7 +168,7 @@ pub async fn post_once(
 ) -> Result<(proclaim_board::Message, usize), Failure> {
     proclaim_zenoh::post_once(
         &role(network),
-        &network.board,
+        network.board_name(),
         &settings(network),
         module,
         ty,
@@ -90,6 +183,7 @@ fn role(network: &Network) -> proclaim_zenoh::Role {
     match (&network.listen, &network.connect) {
         (Some(e), _) => proclaim_zenoh::Role::Listen(e.clone()),
         (_, Some(e)) => proclaim_zenoh::Role::Connect(e.clone()),
+        _ if network.scout => proclaim_zenoh::Role::Scout,
         _ => unreachable!("a local board is handled by the caller"),
     }
 }
@@ -110,13 +204,13 @@ pub async fn round_trips(network: &Network, count: usize) -> Result<Vec<Duration
             "ping needs --connect ENDPOINT: a process of the whiteboard".into(),
         ));
     };
-    proclaim_zenoh::ping(endpoint, &network.board, &settings(network), count)
+    proclaim_zenoh::ping(endpoint, network.board_name(), &settings(network), count)
         .await
         .map_err(|e| Failure::Network(e.to_string()))
 }
 
 #[cfg(not(feature = "zenoh"))]
-async fn shared(_: &Network) -> Result<Whiteboard, Failure> {
+async fn shared(_: &Network, _: Option<TeamPlace>) -> Result<Whiteboard, Failure> {
     Err(without_zenoh())
 }
 

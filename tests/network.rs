@@ -541,3 +541,96 @@ fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
     ));
     assert_no_tick_missed(&ticks(&watched));
 }
+
+/// Reads a robot's lines until none comes for half a second (ten seconds at most): the state
+/// its `Player` machine is in then, `state` if it did not move.
+fn settled_player(rx: &std::sync::mpsc::Receiver<String>, mut state: String) -> String {
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
+    while std::time::Instant::now() < deadline {
+        match rx.recv_timeout(Duration::from_millis(500)) {
+            Ok(line) => {
+                if let Some((_, to)) = line.split_once("Player  → ") {
+                    state = to.trim().to_string();
+                }
+            }
+            Err(_) => return state,
+        }
+    }
+    panic!("the robot's Player never settled (last in {state})");
+}
+
+#[test]
+fn a_team_elects_the_closest_robot_striker_and_the_next_closest_when_it_dies() {
+    let endpoint = free_endpoint();
+    let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
+    let ten = Duration::from_secs(10);
+    // One behaviour, three robots: the manifest's member (robot1), then two named here.
+    let mut robot1 = proclaim(&["run", striker, "--listen", &endpoint, "--for", "120s"]);
+    let robot1_out = lines(&mut robot1);
+    wait_line(&robot1_out, "robot1 of team `blue`", ten);
+    let mut robots = Vec::new();
+    for member in ["robot2", "robot3"] {
+        let mut robot = proclaim(&[
+            "run",
+            striker,
+            "--member",
+            member,
+            "--connect",
+            &endpoint,
+            "--for",
+            "120s",
+        ]);
+        let out = lines(&mut robot);
+        wait_line(&out, &format!("{member} of team `blue`"), ten);
+        robots.push((robot, out));
+    }
+    // Each robot's vision says how far the ball is, on the robot's own board.
+    for (member, distance) in [("robot1", "0.8"), ("robot2", "1.5"), ("robot3", "2.5")] {
+        let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            .args(["post", "ballDistance", distance, "--board", member])
+            .args(["--connect", &endpoint])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    wait_line(&robot1_out, "Player  → STRIKER", ten);
+    let [(_, robot2_out), (_, robot3_out)] = &robots[..] else {
+        unreachable!()
+    };
+    assert_eq!(settled_player(robot2_out, "SUPPORTER".into()), "SUPPORTER");
+    assert_eq!(settled_player(robot3_out, "SUPPORTER".into()), "SUPPORTER");
+
+    // The striker dies: the next closest takes the role, the farthest stays a supporter.
+    kill(&mut robot1);
+    let killed = std::time::Instant::now();
+    wait_line(robot2_out, "Player  → STRIKER", ten);
+    println!(
+        "robot2 took the striker's role {} ms after robot1 was killed",
+        killed.elapsed().as_millis()
+    );
+    assert_eq!(settled_player(robot3_out, "SUPPORTER".into()), "SUPPORTER");
+}
+
+#[test]
+fn processes_started_with_scout_find_each_other_with_no_endpoint() {
+    // A board of this test's own, so other processes scouting on the network do not mix in.
+    let board = format!("scout{}", std::process::id());
+    let follower = behaviour("scout", "Follower", &follower("Follower"));
+    let mut run = proclaim(&[
+        "run", &follower, "--scout", "--board", &board, "--for", "60s",
+    ]);
+    let out = lines(&mut run);
+    wait_line(&out, "found by multicast scouting", Duration::from_secs(10));
+    wait_line(&out, "Follower  → WAIT", Duration::from_secs(10));
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["post", "ballSeen", "true", "--scout", "--board", &board])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("heard by 1 process"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    wait_line(&out, "Follower  → SEEN", Duration::from_secs(10));
+}

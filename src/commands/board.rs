@@ -153,7 +153,7 @@ pub fn ping(count: usize, network: &Network) -> Result<ExitCode, Failure> {
     println!(
         "{} round trips to a process of `{}`: p50 {:.1} µs, p90 {:.1} µs, p99 {:.1} µs, max {:.1} µs",
         samples.len(),
-        network.board,
+        network.board_name(),
         at(0.5),
         at(0.9),
         at(0.99),

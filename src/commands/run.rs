@@ -135,9 +135,15 @@ async fn run_on_board(
     let script_used = script.is_some() || behaviour.script.is_some();
     let options = launch_options(args, script);
     let stepper = options.stepper.clone();
-    let board = crate::network::whiteboard(&args.network).await?;
-    if !args.network.is_local() {
-        println!("  {}", args.network.describe());
+    let team =
+        crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
+    let network = args.network.for_team(team.as_ref());
+    let board = crate::network::behaviour_whiteboard(&network, team.clone()).await?;
+    if !network.is_local() {
+        println!("  {}", network.describe());
+    }
+    if let Some(team) = team {
+        println!("  {} of team `{}`", team.member, team.name);
     }
     // Subscribed before anything starts, so the record misses nothing.
     let recorder = match &args.record {

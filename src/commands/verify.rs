@@ -8,6 +8,7 @@ use crate::behaviours::load_behaviour;
 use crate::cli::{EmitFormat, EngineName, ReductionName, VerifyArgs};
 use crate::failure::Failure;
 use indicatif::{ProgressBar, ProgressStyle};
+use proclaim_behaviour::Behaviour;
 use proclaim_verify::{
     lasso_script, manifest_properties, render, to_promela, to_script, unroll, verify_with_progress,
     Finding, Options, Progress, PropertyKind, PropertyOutcome, PropertySource, Reductions, Report,
@@ -153,6 +154,19 @@ fn default_memory_budget() -> usize {
     available.map_or(4 << 30, |bytes| (bytes / 2).max(64 << 20))
 }
 
+/// The behaviour, unless it is a robot of a team: the model has no teammates, so every label
+/// reading the team would be wrongly never true.
+fn modelled(behaviour: Behaviour) -> Result<Behaviour, Failure> {
+    match &behaviour.manifest.team {
+        Some(team) => Err(Failure::Argument(format!(
+            "`{}` is a robot of team `{}`: verify does not model a team's values yet",
+            behaviour.name,
+            team.name.get_ref()
+        ))),
+        None => Ok(behaviour),
+    }
+}
+
 pub fn run(
     behaviour: &str,
     asked: &Asked,
@@ -160,7 +174,7 @@ pub fn run(
     json: bool,
     counterexample: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
-    let loaded = load_behaviour(behaviour)?;
+    let loaded = modelled(load_behaviour(behaviour)?)?;
     let properties = asked.properties(&loaded)?;
     let started = Instant::now();
     // A long search shows how far it got (on a terminal only; never in JSON).
@@ -211,7 +225,7 @@ pub fn emit(
     language: EmitFormat,
     output: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
-    let loaded = load_behaviour(behaviour)?;
+    let loaded = modelled(load_behaviour(behaviour)?)?;
     let properties = asked.properties(&loaded)?;
     let text = match language {
         EmitFormat::Promela => {

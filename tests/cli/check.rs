@@ -243,3 +243,80 @@ fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
         stderr(&o)
     );
 }
+
+#[test]
+fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
+    let player = include_str!("../../machines/striker/Player.machine");
+    let manifest = include_str!("../../machines/striker/behaviour.toml");
+    let no_team: String = manifest
+        .lines()
+        .filter(|l| {
+            !["[team]", "name = \"blue\"", "member", "shared"]
+                .iter()
+                .any(|s| l.starts_with(s))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = crate::behaviour_folder(
+        "no-team",
+        &[("behaviour.toml", &no_team), ("Player.machine", player)],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("Player.machine:10: error: label reads the team (`team.argmin(ballDistance)`), but the manifest has no [team]"),
+        "{}",
+        stderr(&o)
+    );
+
+    let misspelt = manifest.replace("[\"ballDistance\", ", "[\"ballDistnce\", ");
+    let line = misspelt
+        .lines()
+        .position(|l| l.contains("ballDistnce"))
+        .unwrap()
+        + 1;
+    let dir = crate::behaviour_folder(
+        "misspelt-team",
+        &[("behaviour.toml", &misspelt), ("Player.machine", player)],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_one_problem_shape(&v);
+    let problem = |text: &str| {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["message"].as_str().unwrap().contains(text))
+            .unwrap_or_else(|| panic!("no problem says {text}: {v}"))
+            .clone()
+    };
+    let unposted = problem("[team] shares `ballDistnce`, which no module of the behaviour posts");
+    assert_eq!(unposted["line"], line);
+    assert!(unposted["file"]
+        .as_str()
+        .unwrap()
+        .ends_with("behaviour.toml"));
+    assert_eq!(unposted["hint"], "did you mean `ballDistance`?");
+    let unshared = problem(
+        "label reads `team.argmin(ballDistance)`, but `ballDistance` is not shared with the team",
+    );
+    assert_eq!(unshared["line"], 10);
+
+    check(
+        &["check", "machines/striker"],
+        0,
+        "machines/striker: ok (1 machine, 0 theories, 0 sensors; 0 errors, 0 warnings)\n",
+    );
+    // A team meets on a shared board, and a member needs a team.
+    let o = proclaim(&["run", "machines/striker", "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("robot1 of team `blue`, whose members meet on a shared whiteboard: add --listen, --connect ENDPOINT or --scout"), "{}", stderr(&o));
+    let o = proclaim(&["run", "microwave", "--member", "robot2", "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--member robot2: the behaviour's manifest has no [team]"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -42,6 +42,7 @@ pub fn check_behaviour_with(
         }
     }
     out.extend(program_findings(behaviour, &check.all));
+    out.extend(crate::team::findings(behaviour, &check.all));
     out
 }
 
@@ -70,11 +71,13 @@ impl CrossModuleCheck<'_> {
             .any(|m| m.decl.name != me && m.decl.posts.iter().any(|p| p == ty))
     }
 
-    /// A machine may read back what it posts itself.
+    /// A machine may read back what it posts itself; the team hears the types it shares.
     fn read_by(&self, ty: &str) -> bool {
-        self.all.iter().any(|m| {
-            m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty)
-        })
+        let shared = self.behaviour.manifest.team.iter();
+        shared.flat_map(|t| &t.shared).any(|s| s.get_ref() == ty)
+            || self.all.iter().any(|m| {
+                m.decl.reads.iter().any(|r| r == ty) || m.decl.waits_on.iter().any(|w| w == ty)
+            })
     }
 
     fn is_machine(&self, name: &str) -> bool {
@@ -93,8 +96,11 @@ impl CrossModuleCheck<'_> {
         for t in &m.transitions {
             for atom in proclaim_runner::asked(&t.label, m, &self.shared) {
                 let own_status = machine_of_running_type(atom).is_some_and(|n| self.is_machine(n));
+                // A teammate's value (`robot2.ballSeen`) is the team's to check (team.rs).
+                let teammates = atom.contains('.');
                 if self.answered(atom)
                     || own_status
+                    || teammates
                     || self.posted_by_other(atom, &m.name)
                     || reported.iter().any(|r| r == atom)
                 {

@@ -22,6 +22,7 @@ mod program_entries;
 mod programs;
 mod recorded;
 mod subsumption;
+mod team;
 pub mod testing;
 mod trace;
 
@@ -37,7 +38,8 @@ pub use load::{
 };
 pub use manifest::{
     parse_manifest, split_leads_to, ImpersonatorEntry, MachineEntry, Manifest, PropertyEntry,
-    PropertyKind, Schedule, SensorEntry, SensorKind, Simulator, TheoryEntry, LEADS_TO, MANIFEST,
+    PropertyKind, Schedule, SensorEntry, SensorKind, Simulator, TeamEntry, TheoryEntry, LEADS_TO,
+    MANIFEST,
 };
 pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};
@@ -46,6 +48,7 @@ pub use recorded::{
     read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError,
     ReplayOutcome,
 };
+pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
 
 /// The README's Rust snippets, compiled (and run) as doctests so they stay true.

@@ -40,6 +40,12 @@
 //! name = "leds"
 //! reads = ["LEDS"]                     # also posts = […], answers = […]
 //!
+//! [team]                               # optional: a robot of a team (team.rs)
+//! name = "blue"
+//! member = "robot1"                    # `proclaim run --member robot2` overrides it
+//! shared = ["ballDistance", "role"]    # read on teammates as robot2.ballDistance,
+//!                                      # team.min(ballDistance), team.argmin(…) == me
+//!
 //! [[property]]                         # checked by `proclaim verify` (spec §6)
 //! name = "door interlock"
 //! never = 'Magnetron == "on" && saw(Microwave, doorOpen)'   # or always = …, reachable = …
@@ -90,6 +96,9 @@ pub struct Manifest {
     pub impersonator: Option<ImpersonatorEntry>,
     #[serde(default, rename = "module", skip_serializing_if = "Vec::is_empty")]
     pub modules: Vec<ModuleEntry>,
+    /// The robot's team: who it is in it and which types it shares (`team.rs` checks it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub team: Option<TeamEntry>,
     /// What `proclaim verify` checks of the behaviour.
     #[serde(default, rename = "property", skip_serializing_if = "Vec::is_empty")]
     pub properties: Vec<PropertyEntry>,
@@ -97,6 +106,18 @@ pub struct Manifest {
     /// against lower ones (`subsumption.rs` checks the entries against the machines).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub suppress: BTreeMap<Spanned<String>, SuppressEntry>,
+}
+
+/// `[team] name = "blue"`, `member = "robot1"`, `shared = ["ballDistance", "role"]`: the
+/// robot's team, its own name in it (`run --member` overrides it) and the types whose postings
+/// its teammates hear. Spanned, so a bad entry is reported at its place.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TeamEntry {
+    pub name: Spanned<String>,
+    pub member: Spanned<String>,
+    #[serde(default)]
+    pub shared: Vec<Spanned<String>>,
 }
 
 /// `[suppress] walk = { hold = "500ms" }`: how long a posting holds the type against lower

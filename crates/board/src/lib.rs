@@ -14,6 +14,7 @@ mod registry;
 mod snapshot;
 mod subscribers;
 mod suppress;
+pub mod team;
 mod transport;
 mod value;
 mod whiteboard;

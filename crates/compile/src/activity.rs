@@ -486,80 +486,84 @@ impl Activity<'_> {
                 op: UnOp::Neg,
                 operand,
             } => (format!("v_neg({})", self.value(operand)?.0), Kinds::INT),
-            Expr::Binary { op, left, right } => {
-                if is_text(left) || is_text(right) {
-                    return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
-                }
-                match op {
-                    BinOp::And | BinOp::Or => (
-                        format!(
-                            "v_bool({} {} {})",
-                            self.truth(left)?,
-                            op.symbol(),
-                            self.truth(right)?
-                        ),
-                        Kinds::BOOL,
-                    ),
-                    _ => {
-                        let (l, _) = self.value(left)?;
-                        let (r, _) = self.value(right)?;
-                        let (f, kinds) = match op {
-                            BinOp::Eq => ("v_eq", Kinds::BOOL),
-                            BinOp::Ne => ("v_ne", Kinds::BOOL),
-                            BinOp::Lt => ("v_lt", Kinds::BOOL),
-                            BinOp::Le => ("v_le", Kinds::BOOL),
-                            BinOp::Gt => ("v_gt", Kinds::BOOL),
-                            BinOp::Ge => ("v_ge", Kinds::BOOL),
-                            BinOp::Add => ("v_add", Kinds::INT),
-                            BinOp::Sub => ("v_sub", Kinds::INT),
-                            BinOp::Mul => ("v_mul", Kinds::INT),
-                            BinOp::Div => ("v_div", Kinds::INT),
-                            BinOp::Rem => ("v_rem", Kinds::INT),
-                            BinOp::And | BinOp::Or => unreachable!("handled above"),
-                        };
-                        (format!("{f}({l}, {r})"), kinds)
-                    }
-                }
-            }
+            Expr::Binary { op, left, right } => self.binary(e, *op, left, right)?,
             Expr::Call {
                 function,
                 arguments,
-            } => {
-                if TIME_TESTS.iter().any(|(t, _)| t == function) {
+            } => self.call_value(e, function, arguments)?,
+        })
+    }
+
+    /// The C of a binary operation: `&&` and `||` on truths, the rest on values.
+    fn binary(
+        &mut self,
+        e: &Expr,
+        op: BinOp,
+        left: &Expr,
+        right: &Expr,
+    ) -> Result<(String, Kinds), Refusal> {
+        if is_text(left) || is_text(right) {
+            return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
+        }
+        let (f, kinds) = match op {
+            BinOp::And | BinOp::Or => {
+                let (l, r) = (self.truth(left)?, self.truth(right)?);
+                return Ok((format!("v_bool({l} {} {r})", op.symbol()), Kinds::BOOL));
+            }
+            BinOp::Eq => ("v_eq", Kinds::BOOL),
+            BinOp::Ne => ("v_ne", Kinds::BOOL),
+            BinOp::Lt => ("v_lt", Kinds::BOOL),
+            BinOp::Le => ("v_le", Kinds::BOOL),
+            BinOp::Gt => ("v_gt", Kinds::BOOL),
+            BinOp::Ge => ("v_ge", Kinds::BOOL),
+            BinOp::Add => ("v_add", Kinds::INT),
+            BinOp::Sub => ("v_sub", Kinds::INT),
+            BinOp::Mul => ("v_mul", Kinds::INT),
+            BinOp::Div => ("v_div", Kinds::INT),
+            BinOp::Rem => ("v_rem", Kinds::INT),
+        };
+        let (l, _) = self.value(left)?;
+        let (r, _) = self.value(right)?;
+        Ok((format!("{f}({l}, {r})"), kinds))
+    }
+
+    /// The C of a call inside an expression: `abs`, `min` and `max`; the rest is refused.
+    fn call_value(
+        &mut self,
+        e: &Expr,
+        function: &str,
+        arguments: &[Expr],
+    ) -> Result<(String, Kinds), Refusal> {
+        if TIME_TESTS.iter().any(|(t, _)| *t == function) {
+            return Err(self.refuse(format!(
+                "`{e}` in an activity (time tests are compiled in labels)"
+            )));
+        }
+        if arguments.iter().any(is_text) {
+            return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
+        }
+        match (function, arguments) {
+            ("abs", [x]) => {
+                let (x, kinds) = self.value(x)?;
+                if kinds != Kinds::INT {
                     return Err(self.refuse(format!(
-                        "`{e}` in an activity (time tests are compiled in labels)"
+                        "`{e}`: abs of what may be a truth value is a fraction in the runner (not compiled yet)"
                     )));
                 }
-                if arguments.iter().any(is_text) {
-                    return Err(self.refuse(format!("`{e}` (text is compiled only in postings)")));
-                }
-                match (function.as_str(), arguments.as_slice()) {
-                    ("abs", [x]) => {
-                        let (x, kinds) = self.value(x)?;
-                        if kinds != Kinds::INT {
-                            return Err(self.refuse(format!(
-                                "`{e}`: abs of what may be a truth value is a fraction in the runner (not compiled yet)"
-                            )));
-                        }
-                        (format!("v_abs({x})"), Kinds::INT)
-                    }
-                    ("min" | "max", [a, b]) => {
-                        let (a, ka) = self.value(a)?;
-                        let (b, kb) = self.value(b)?;
-                        (format!("v_{function}({a}, {b})"), ka.union(kb))
-                    }
-                    _ if arith::is_function(function) => {
-                        return Err(self
-                            .refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
-                    }
-                    _ => {
-                        return Err(self.refuse(format!(
-                            "the call `{e}` in an expression (host functions are not compiled yet)"
-                        )))
-                    }
-                }
+                Ok((format!("v_abs({x})"), Kinds::INT))
             }
-        })
+            ("min" | "max", [a, b]) => {
+                let (a, ka) = self.value(a)?;
+                let (b, kb) = self.value(b)?;
+                Ok((format!("v_{function}({a}, {b})"), ka.union(kb)))
+            }
+            _ if arith::is_function(function) => {
+                Err(self.refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
+            }
+            _ => Err(self.refuse(format!(
+                "the call `{e}` in an expression (host functions are not compiled yet)"
+            ))),
+        }
     }
 }
 

@@ -1,7 +1,8 @@
 //! Transition labels: expressions of the activity language ([`crate::code`]). `TRUE`, atoms,
 //! `~a` or `!a`, `&&`, `||`, parentheses, numbers (non-zero is true), arithmetic and
 //! comparisons over variables and whiteboard values, and the time tests `timeout(µs)`,
-//! `after(s)` and `after_ms(ms)` (time since the state was entered).
+//! `after(s)` and `after_ms(ms)` (time since the state was entered); a robot of a team also reads
+//! its teammates (`robot2.ballDistance`, `team.argmin(ballDistance) == me`: `team.rs`).
 
 use crate::code::{parse_expression, CodeError, Expr};
 

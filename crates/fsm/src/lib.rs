@@ -18,6 +18,7 @@ mod native;
 mod qfsm;
 mod sections;
 mod ta;
+mod team;
 
 pub use activity::{
     parse_description, parse_gufsm_activities, parse_ta_items, Description, BUILTIN_FUNCTIONS,
@@ -42,6 +43,7 @@ pub mod edit {
 pub use proclaim_syntax::{FileDiagnostic, Severity};
 pub use qfsm::import_qfsm;
 pub use ta::{import_ta, partner_of};
+pub use team::{team_words, Aggregate, TeamWord};
 
 /// What an importer read from one file, with everything it could not read.
 #[derive(Clone, Debug, Default, PartialEq)]

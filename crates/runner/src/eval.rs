@@ -55,6 +55,11 @@ impl Env<'_> {
         if let Some(limit) = self.time_limit(function, arguments) {
             return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
         }
+        if let Some(aggregate) = proclaim_fsm::Aggregate::of_function(function) {
+            let team =
+                crate::team::aggregated_type(function, arguments).and_then(|ty| self.latest(&ty));
+            return crate::team::aggregate(aggregate, team.as_ref().map(|m| &m.value));
+        }
         let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
         arith::function(function, &values)
     }
@@ -147,6 +152,12 @@ mod tests {
         let board = Whiteboard::local();
         board.post("test", "posted", Value::Int(12));
         board.post("test", "word", Value::Str("ball".into()));
+        // What a robot of a team keeps of it (`proclaim_board::team`).
+        let (near, far) = (Value::Float(0.8), Value::Float(2.5));
+        let team = proclaim_board::team::team_value([("robot1", &far), ("robot2", &near)]);
+        board.post("team", "team.ballDistance", team);
+        board.post("team", "robot1.ballDistance", far.clone());
+        board.post("team", "me", "robot2");
         let shared = Shared::for_machines([]);
         shared.set_global("g", Value::Int(7));
         let mut env = Env {
@@ -184,6 +195,15 @@ mod tests {
                 Some(Value::Bool(true)),
             ),
             ("timeout(2s) + 500ms", Some(Value::Int(500_000))),
+            ("team.argmin(ballDistance) == me", Some(Value::Bool(true))),
+            ("team.argmax(ballDistance)", Some(Value::from("robot1"))),
+            (
+                "team.min(ballDistance) < robot1.ballDistance",
+                Some(Value::Bool(true)),
+            ),
+            ("team.count(ballDistance)", Some(Value::Int(2))),
+            ("team.count(role)", Some(Value::Int(0))),
+            ("team.argmin(role) == me", Some(Value::Bool(false))),
         ] {
             assert_eq!(eval(text), expect, "{text}");
         }

@@ -88,6 +88,14 @@ pub(crate) fn dependencies(label: &Label, scope: Scope<'_>, out: &mut Vec<String
             out.push(name.to_string());
         }
     });
+    // A team aggregate reads the type holding the whole team's values, not its argument.
+    for (function, arguments) in label.calls() {
+        if let Some(team) = crate::team::aggregated_type(function, arguments) {
+            if !out.contains(&team) {
+                out.push(team);
+            }
+        }
+    }
 }
 
 /// Whether a label reads a global (so a change of globals may change its answer).

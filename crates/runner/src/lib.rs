@@ -20,6 +20,7 @@ mod machine;
 mod rounds;
 mod seen;
 mod step;
+mod team;
 mod variables;
 pub mod walk;
 

@@ -8,8 +8,9 @@
 //! liveliness token and its types turn stale. A signal is consumed once, in the process that
 //! declared it a signal first and is alive. One process listens on an explicit endpoint
 //! (loopback unless told otherwise), the others connect to it and meet each other through
-//! Zenoh's gossip. Multicast scouting is off; TLS and access control come from Zenoh's own
-//! configuration file.
+//! Zenoh's gossip; with `--scout`, they find each other by multicast scouting instead. TLS and
+//! access control come from Zenoh's own configuration file. A robot of a team also puts the
+//! types its team shares where its teammates hear them (`board/team.rs`).
 
 mod board;
 mod error;
@@ -18,7 +19,7 @@ mod session;
 mod threads;
 mod wire;
 
-pub use board::{post_once, stale_type, whiteboard};
+pub use board::{post_once, stale_type, team_whiteboard, whiteboard, Team};
 pub use error::NetworkError;
 pub use probe::{bare_receive, ping, BareSender};
 pub use session::{Role, Settings};

@@ -1,5 +1,6 @@
 //! Opening a Zenoh session the safe way: the endpoints given (a listening process on loopback
-//! unless told otherwise), no multicast scouting, TCP (and TLS, with the `tls` feature) only; the
+//! unless told otherwise), no multicast scouting unless asked ([`Role::Scout`]), TCP (and TLS,
+//! with the `tls` feature) only; the
 //! rest (certificates, access control) from Zenoh's own configuration file when one is given.
 //! A process that connects also listens, on a port of its own beside it, so that the others,
 //! told of it by Zenoh's gossip, link to it directly: postings go straight from poster to reader.
@@ -14,6 +15,10 @@ pub enum Role {
     Listen(String),
     /// Connects to the process listening on this endpoint, and through it meets the rest.
     Connect(String),
+    /// Finds the others on the local network by Zenoh's multicast scouting (UDP to
+    /// 224.0.0.224:7446 unless Zenoh's configuration file says otherwise), and listens on a free
+    /// port of every interface for them to link to.
+    Scout,
 }
 
 /// How a session is set up beyond its endpoint. Every process of one board must agree.
@@ -46,6 +51,7 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
             Role::Connect(endpoint) => {
                 NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
             }
+            Role::Scout => NetworkError::zenoh("cannot scout for a whiteboard", e),
         })
 }
 
@@ -62,6 +68,7 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
     let (listen, connect) = match role {
         Role::Listen(e) => (vec![e.clone()], Vec::new()),
         Role::Connect(e) => (beside(e).into_iter().collect(), vec![e.clone()]),
+        Role::Scout => (vec!["tcp/0.0.0.0:0".to_string()], Vec::new()),
     };
     for e in listen.iter().chain(&connect) {
         if !e.contains('/') {
@@ -79,16 +86,24 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
         set(&mut config, "listen/endpoints", json_list(&listen))?;
     }
     set(&mut config, "connect/endpoints", json_list(&connect))?;
-    set(&mut config, "scouting/multicast/enabled", "false".into())?;
+    let scouting = *role == Role::Scout;
+    set(
+        &mut config,
+        "scouting/multicast/enabled",
+        scouting.to_string(),
+    )?;
     // Two processes told of each other by gossip at once must not both dial: the low-latency
     // transport cannot take the second link of a pair, tears the pair's transport down on
     // both sides, and gossip never dials again, so the two stay unlinked and each loses all
     // the other posts. Only the process with the greater id dials; every process listens.
-    set(
-        &mut config,
-        "scouting/gossip/autoconnect_strategy",
-        "{peer: {to_peer: \"greater-zid\"}}".into(),
-    )?;
+    // Two that scout each other at once are the same case.
+    for how in ["gossip", "multicast"] {
+        set(
+            &mut config,
+            &format!("scouting/{how}/autoconnect_strategy"),
+            "{peer: {to_peer: \"greater-zid\"}}".into(),
+        )?;
+    }
     // A process joining must find the board, or say so, not wait for ever.
     set(&mut config, "connect/exit_on_failure", "true".into())?;
     set(&mut config, "connect/timeout_ms", "5000".into())?;

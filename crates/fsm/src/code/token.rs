@@ -66,9 +66,7 @@ pub fn tokenize(text: &str) -> Result<Vec<(usize, CodeToken, usize)>, LexError> 
             at += len;
             out.push((start, token, at));
         } else if c.is_alphabetic() || c == '_' {
-            let len = rest
-                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-                .unwrap_or(rest.len());
+            let len = name_length(rest);
             at += len;
             out.push((start, CodeToken::Name(rest[..len].to_string()), at));
         } else if c == '"' || c == '\'' {
@@ -89,6 +87,24 @@ pub fn tokenize(text: &str) -> Result<Vec<(usize, CodeToken, usize)>, LexError> 
         }
     }
     Ok(out)
+}
+
+/// The length of the name `text` starts with: letters, digits and `_`, and dotted parts
+/// (`robot2.ballDistance`, `team.min`: a teammate's value, a team aggregate) whose every part
+/// starts with a letter or `_`, so `a.5` is no name.
+fn name_length(text: &str) -> usize {
+    let part = |from: usize| {
+        text[from..]
+            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .map_or(text.len(), |end| end + from)
+    };
+    let mut len = part(0);
+    while text[len..].starts_with('.')
+        && text[len + 1..].starts_with(|c: char| c.is_alphabetic() || c == '_')
+    {
+        len = part(len + 1);
+    }
+    len
 }
 
 /// `12`, `0.3`, `.5`, `1e-3`, `2.5E4`: an integer unless it has a point or an exponent.
@@ -210,6 +226,25 @@ mod tests {
             ]
         );
         assert_eq!(kinds("a<=b")[1], CodeToken::Punct("<="));
+    }
+
+    #[test]
+    fn dotted_names_are_one_name_and_a_dot_before_a_digit_is_not_part_of_one() {
+        assert_eq!(
+            kinds("robot2.ballDistance team.min(x)"),
+            vec![
+                CodeToken::Name("robot2.ballDistance".into()),
+                CodeToken::Name("team.min".into()),
+                CodeToken::Punct("("),
+                CodeToken::Name("x".into()),
+                CodeToken::Punct(")"),
+            ]
+        );
+        assert_eq!(
+            kinds("a.5"),
+            vec![CodeToken::Name("a".into()), CodeToken::Float(0.5)]
+        );
+        assert!(tokenize("a.").is_err());
     }
 
     #[test]

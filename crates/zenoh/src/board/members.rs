@@ -12,12 +12,31 @@ const SETTLED: Duration = Duration::from_millis(250);
 /// How long a joining process waits for the mesh at most before it goes on with what it has.
 const MESH_PATIENCE: Duration = Duration::from_secs(3);
 
+/// How long a scouting process looks for others before it goes on alone (Zenoh scouts every
+/// few hundred milliseconds).
+const SCOUTING_PATIENCE: Duration = Duration::from_secs(1);
+
+/// Waits, as `role` needs, until this process is linked to the others it can find.
+pub(super) async fn meet(session: &zenoh::Session, role: &Role) -> Result<(), NetworkError> {
+    match role {
+        Role::Listen(_) => Ok(()),
+        Role::Connect(endpoint) => wait_for_the_mesh(session, endpoint, MESH_PATIENCE, true).await,
+        // The first robot on the network finds nobody, and is a board of its own until others
+        // come.
+        Role::Scout => {
+            wait_for_the_mesh(session, "multicast scouting", SCOUTING_PATIENCE, false).await
+        }
+    }
+}
+
 /// Waits until this process is linked to the one at `endpoint` and to every process that one
 /// knows: postings go straight from poster to reader, so a process must be linked to a poster
 /// to hear it.
-pub(super) async fn wait_for_the_mesh(
+async fn wait_for_the_mesh(
     session: &zenoh::Session,
     endpoint: &str,
+    patience: Duration,
+    must_find: bool,
 ) -> Result<(), NetworkError> {
     let started = tokio::time::Instant::now();
     let mut linked = Vec::new();
@@ -36,8 +55,8 @@ pub(super) async fn wait_for_the_mesh(
         } else if !linked.is_empty() && since.elapsed() >= SETTLED {
             return Ok(());
         }
-        if started.elapsed() >= MESH_PATIENCE {
-            return if linked.is_empty() {
+        if started.elapsed() >= patience {
+            return if linked.is_empty() && must_find {
                 Err(NetworkError::NoBoard {
                     board: None,
                     endpoint: endpoint.to_string(),

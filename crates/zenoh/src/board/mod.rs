@@ -29,6 +29,9 @@ use zenoh::Wait;
 
 mod catchup;
 mod members;
+mod team;
+
+pub use team::Team;
 
 /// The largest message a transport carries, if it has a limit.
 type Limit = Option<usize>;
@@ -125,11 +128,30 @@ pub async fn whiteboard(
     board: &str,
     settings: &Settings,
 ) -> Result<Whiteboard, NetworkError> {
+    join(role, board, settings, None).await
+}
+
+/// Joins the whiteboard named `board` as [`whiteboard`] does, as a robot of `team`: the types
+/// the team shares are also put where its teammates hear them, and theirs are kept on this
+/// board (`team.rs`).
+pub async fn team_whiteboard(
+    role: &Role,
+    board: &str,
+    settings: &Settings,
+    team: Team,
+) -> Result<Whiteboard, NetworkError> {
+    join(role, board, settings, Some(team)).await
+}
+
+async fn join(
+    role: &Role,
+    board: &str,
+    settings: &Settings,
+    team: Option<Team>,
+) -> Result<Whiteboard, NetworkError> {
     let session = open(role, settings).await?;
-    if let Role::Connect(endpoint) = role {
-        members::wait_for_the_mesh(&session, endpoint).await?;
-    }
-    let peer = Peer::start(session, Keys::new(board), settings.message_limit()).await?;
+    members::meet(&session, role).await?;
+    let peer = Peer::start(session, Keys::new(board), settings.message_limit(), team).await?;
     peer.catch_up(None).await;
     Ok(Whiteboard::new(peer))
 }
@@ -146,10 +168,8 @@ pub async fn post_once(
     value: Value,
 ) -> Result<(Message, usize), NetworkError> {
     let session = open(role, settings).await?;
-    if let Role::Connect(endpoint) = role {
-        members::wait_for_the_mesh(&session, endpoint).await?;
-    }
-    let peer = Peer::start(session, Keys::new(board), settings.message_limit()).await?;
+    members::meet(&session, role).await?;
+    let peer = Peer::start(session, Keys::new(board), settings.message_limit(), None).await?;
     let message = peer.post(module, ty, value);
     let heard = peer.ask(&peer.keys.ping()).await.len();
     Ok((message, heard))
@@ -181,6 +201,8 @@ pub(crate) struct Peer {
     kind_tokens: Mutex<FxHashMap<String, LivelinessToken>>,
     /// What this process serves and listens to; dropping them undeclares them.
     serving: Mutex<Vec<Serving>>,
+    /// The robot's team, when it is in one.
+    team: Option<team::TeamPart>,
 }
 
 #[allow(dead_code)] // held only to keep the declarations alive
@@ -234,6 +256,7 @@ impl Peer {
         session: zenoh::Session,
         keys: Keys,
         limit: Limit,
+        team: Option<Team>,
     ) -> Result<Arc<Peer>, NetworkError> {
         let peer = Arc::new(Peer {
             board: LocalBoard::new(),
@@ -245,6 +268,7 @@ impl Peer {
             net: Mutex::default(),
             kind_tokens: Mutex::default(),
             serving: Mutex::default(),
+            team: team.map(team::TeamPart::new),
         });
         let weak = Arc::downgrade(&peer);
         let postings = {
@@ -286,6 +310,7 @@ impl Peer {
         ];
         serving.extend(catchup::serve(&peer, &weak).await?);
         serving.extend(members::watch(&peer, &weak).await?);
+        serving.extend(team::serve(&peer, &weak).await?);
         *peer.serving.lock() = serving;
         Ok(peer)
     }
@@ -346,6 +371,9 @@ impl Peer {
         };
         let time = meta.time().unwrap_or_else(unix_now);
         let module = meta.module.as_deref().unwrap_or(ANONYMOUS);
+        // A robot's team hears what any process of its board posts (its vision, a sensor in
+        // Python), as it hears the robot's own postings; not a value whose poster is gone.
+        let for_the_team = (!meta.stale).then(|| value.clone());
         self.board
             .post_at(module, ty, value, meta.priority, time, consumable);
         if meta.stale != was_stale {
@@ -354,6 +382,10 @@ impl Peer {
                 _ => module.to_string(),
             };
             self.mark_stale(ty, meta.stale, &by);
+        }
+        drop(net);
+        if let Some(value) = for_the_team {
+            self.share(ty, &value, &meta);
         }
     }
 
@@ -491,6 +523,7 @@ impl Transport for Peer {
                 }
             }
         }
+        self.share(ty, &message.value, &meta);
         message
     }
 

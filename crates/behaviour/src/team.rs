@@ -1,0 +1,156 @@
+//! The manifest's `[team]` checked against the behaviour (`proclaim check`): its names must be
+//! key chunks, every shared type must be posted by one of its modules, and a label that reads
+//! the team (`robot2.ballDistance`, `team.min(ballDistance)`) needs a `[team]` sharing that
+//! type. Each problem is placed at its line of the manifest or of the machine.
+
+use crate::load::Behaviour;
+use crate::manifest::{TeamEntry, MANIFEST};
+use crate::modules::Module;
+use proclaim_fsm::{team_words, Aggregate, FileDiagnostic, TeamWord};
+use proclaim_syntax::{line_column, nearest};
+use toml::Spanned;
+
+pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnostic> {
+    let mut out = Vec::new();
+    if let Some(team) = &behaviour.manifest.team {
+        out.extend(manifest_findings(behaviour, team, all));
+    }
+    let shared: Vec<&str> = behaviour
+        .manifest
+        .team
+        .iter()
+        .flat_map(|t| t.shared.iter().map(|s| s.get_ref().as_str()))
+        .collect();
+    for loaded in &behaviour.machines {
+        let file = behaviour.files.show(&loaded.file);
+        for t in &loaded.machine.transitions {
+            for word in team_words(&t.label) {
+                if let Some(problem) =
+                    label_problem(&word, behaviour.manifest.team.is_some(), &shared)
+                {
+                    out.push(problem.at(&file, t.line));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Why a team entry's name cannot be what it names, if it cannot.
+pub fn name_error(name: &str) -> Option<&'static str> {
+    if name.is_empty() {
+        Some("it is empty")
+    } else if name.starts_with('@') {
+        Some("it starts with `@`, which Zenoh keeps for its own keys")
+    } else if name.contains(['/', '*', '$', '?', '#', '.']) {
+        Some("it holds one of / * $ ? # . (it is a Zenoh key chunk, and what comes before the dot in `robot2.ballDistance`)")
+    } else if name == proclaim_board::team::TEAM || name == proclaim_board::team::ME {
+        Some("`team` and `me` are words of the label language")
+    } else {
+        None
+    }
+}
+
+fn manifest_findings(
+    behaviour: &Behaviour,
+    team: &TeamEntry,
+    all: &[Module],
+) -> Vec<FileDiagnostic> {
+    let file = behaviour.files.show(MANIFEST);
+    let text = behaviour.files.read(MANIFEST).unwrap_or_default();
+    let at = |spanned: &Spanned<String>, message: String| {
+        let (line, column) = line_column(&text, spanned.span().start.min(text.len()));
+        FileDiagnostic::error(&file, line, message).at_column(column, &text)
+    };
+    let mut out = Vec::new();
+    for (what, spanned) in [("name", &team.name), ("member", &team.member)] {
+        if let Some(why) = name_error(spanned.get_ref()) {
+            out.push(at(
+                spanned,
+                format!(
+                    "[team] {what} `{}` cannot name a team's {what}: {why}",
+                    spanned.get_ref()
+                ),
+            ));
+        }
+    }
+    let posted: Vec<&str> = all
+        .iter()
+        .flat_map(|m| m.decl.posts.iter().map(String::as_str))
+        .collect();
+    for ty in &team.shared {
+        let name = ty.get_ref();
+        if name.contains('.') || name.starts_with('@') || name.contains(['/', '*', '$', '?', '#']) {
+            out.push(at(ty, format!("[team] shared `{name}` cannot be a shared type's name: no `.`, `/ * $ ? #` or leading `@`")));
+        } else if !posted.contains(&name.as_str()) {
+            let problem = at(
+                ty,
+                format!("[team] shares `{name}`, which no module of the behaviour posts"),
+            );
+            out.push(match nearest(posted.iter().copied(), name) {
+                Some(near) => problem.with_hint(format!("did you mean `{near}`?")),
+                None => problem.with_hint(
+                    "share a type a machine posts, or name the module that posts it in [[module]]",
+                ),
+            });
+        }
+    }
+    out
+}
+
+/// A label's problem, before it is placed.
+struct Problem {
+    message: String,
+    hint: String,
+}
+
+impl Problem {
+    fn at(self, file: &str, line: usize) -> FileDiagnostic {
+        FileDiagnostic::error(file, line, self.message).with_hint(self.hint)
+    }
+}
+
+fn label_problem(word: &TeamWord<'_>, has_team: bool, shared: &[&str]) -> Option<Problem> {
+    let (shown, ty) = match word {
+        TeamWord::Aggregate {
+            function,
+            aggregate: None,
+            ..
+        } => {
+            let known: Vec<&str> = Aggregate::ALL.iter().map(|a| a.name()).collect();
+            return Some(Problem {
+                message: format!("`{function}` is no team aggregate"),
+                hint: format!("the team's aggregates are team.{}", known.join(", team.")),
+            });
+        }
+        TeamWord::Aggregate {
+            function, ty: None, ..
+        } => {
+            return Some(Problem {
+                message: format!("`{function}(…)` takes one shared type's name"),
+                hint: format!("write `{function}(ballDistance)`"),
+            })
+        }
+        TeamWord::Aggregate {
+            function,
+            ty: Some(ty),
+            ..
+        } => (format!("{function}({ty})"), *ty),
+        TeamWord::Member { member, ty } => (format!("{member}.{ty}"), *ty),
+    };
+    if !has_team {
+        return Some(Problem {
+            message: format!("label reads the team (`{shown}`), but the manifest has no [team]"),
+            hint: format!(
+                "add [team] with name = \"…\", member = \"…\" and shared = [\"{ty}\"] to behaviour.toml"
+            ),
+        });
+    }
+    if !shared.contains(&ty) {
+        return Some(Problem {
+            message: format!("label reads `{shown}`, but `{ty}` is not shared with the team"),
+            hint: format!("add \"{ty}\" to [team] shared in behaviour.toml"),
+        });
+    }
+    None
+}

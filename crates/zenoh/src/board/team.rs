@@ -1,0 +1,326 @@
+//! A team of robots over Zenoh: each robot runs its own board, and the types its `[team]`
+//! shares are also put on `proclaim/<team>/@team/<member>/<type>` (the same plain JSON and
+//! attachment as on the board's own key). Every member holds the liveliness token
+//! `proclaim/<team>/@team/<member>/@alive`; a member whose token goes drops out of the team's
+//! values at once. What a robot hears is kept on its own replica as local types
+//! (`proclaim_board::team`): `robot2.ballDistance`, `team.ballDistance` (the living members'
+//! `[member, value]` pairs, its own among them) and `me`, so labels read them through the round
+//! schedule's snapshot like any value.
+
+use super::*;
+use proclaim_board::team::{member_type, team_type, team_value, ME};
+use std::collections::BTreeMap;
+use zenoh::sample::SampleKind;
+
+/// A robot's place in its team.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Team {
+    /// The team's name, the key chunk after `proclaim/`.
+    pub name: String,
+    /// This robot's name in the team.
+    pub member: String,
+    /// The types whose postings the team hears.
+    pub shared: Vec<String>,
+}
+
+/// The module the team's local types are posted by.
+const TEAM_MODULE: &str = "team";
+
+/// The team's keys.
+struct TeamKeys {
+    team: String,
+}
+
+impl TeamKeys {
+    fn value(&self, member: &str, ty: &str) -> String {
+        format!("proclaim/{}/@team/{member}/{ty}", self.team)
+    }
+
+    fn every_value(&self) -> String {
+        format!("proclaim/{}/@team/*/*", self.team)
+    }
+
+    fn alive(&self, member: &str) -> String {
+        format!("proclaim/{}/@team/{member}/@alive", self.team)
+    }
+
+    fn every_alive(&self) -> String {
+        format!("proclaim/{}/@team/*/@alive", self.team)
+    }
+
+    /// The member and type a value's key names, or the member an `@alive` key names.
+    fn parse<'k>(&self, key: &'k str) -> Option<(&'k str, &'k str)> {
+        let rest = key
+            .strip_prefix("proclaim/")?
+            .strip_prefix(self.team.as_str())?
+            .strip_prefix("/@team/")?;
+        rest.split_once('/')
+    }
+}
+
+/// What this robot knows of its team.
+#[derive(Default)]
+struct Heard {
+    /// Members whose token is seen (this one always).
+    alive: BTreeSet<String>,
+    /// Each type's latest value from each member, in member-name order.
+    values: FxHashMap<String, BTreeMap<String, Value>>,
+    /// (member, type) pairs whose member is gone since its value came.
+    stale: FxHashSet<(String, String)>,
+}
+
+/// The team part of one process on the board.
+pub(crate) struct TeamPart {
+    team: Team,
+    keys: TeamKeys,
+    heard: Mutex<Heard>,
+    publishers: Mutex<FxHashMap<String, Publisher<'static>>>,
+}
+
+impl TeamPart {
+    pub(crate) fn new(team: Team) -> TeamPart {
+        TeamPart {
+            keys: TeamKeys {
+                team: team.name.clone(),
+            },
+            heard: Mutex::new(Heard {
+                alive: BTreeSet::from([team.member.clone()]),
+                ..Heard::default()
+            }),
+            team,
+            publishers: Mutex::default(),
+        }
+    }
+
+    fn shares(&self, ty: &str) -> bool {
+        self.team.shared.iter().any(|s| s == ty)
+    }
+}
+
+/// Joins the team: says who this robot is on its own board, follows the others' values and
+/// tokens, and declares its own token last, so a teammate that hears of it can already be heard.
+pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Serving>, NetworkError> {
+    let Some(part) = &peer.team else {
+        return Ok(Vec::new());
+    };
+    let session = &peer.session;
+    peer.board.post_at(
+        TEAM_MODULE,
+        ME,
+        Value::from(part.team.member.as_str()),
+        0,
+        unix_now(),
+        true,
+    );
+    let values = {
+        let weak = weak.clone();
+        let key = part.keys.every_value();
+        session
+            .declare_subscriber(key.clone())
+            .allowed_origin(Locality::Remote)
+            .callback(move |sample| {
+                if let Some(peer) = weak.upgrade() {
+                    peer.on_team_sample(&sample);
+                }
+            })
+            .await
+            .map_err(|e| NetworkError::zenoh(format!("cannot subscribe to {key}"), e))?
+    };
+    let members = {
+        let weak = weak.clone();
+        let key = part.keys.every_alive();
+        session
+            .liveliness()
+            .declare_subscriber(key.clone())
+            .history(true)
+            .callback(move |sample| {
+                let Some(peer) = weak.upgrade() else { return };
+                let Some(part) = &peer.team else { return };
+                let Some((member, _)) = part.keys.parse(sample.key_expr().as_str()) else {
+                    return;
+                };
+                match sample.kind() {
+                    SampleKind::Put => peer.member_arrived(member),
+                    SampleKind::Delete => peer.member_gone(member),
+                }
+            })
+            .await
+            .map_err(|e| NetworkError::zenoh(format!("cannot follow {key}"), e))?
+    };
+    let alive_key = part.keys.alive(&part.team.member);
+    let token = session
+        .liveliness()
+        .declare_token(alive_key.clone())
+        .await
+        .map_err(|e| NetworkError::zenoh(format!("cannot declare {alive_key}"), e))?;
+    Ok(vec![
+        Serving::Subscriber(values),
+        Serving::Subscriber(members),
+        Serving::Token(token),
+    ])
+}
+
+impl Peer {
+    /// This process posted `value` to `ty`: if the team shares the type, the team hears it.
+    pub(super) fn share(&self, ty: &str, value: &Value, meta: &Meta) {
+        let Some(part) = self.team.as_ref().filter(|p| p.shares(ty)) else {
+            return;
+        };
+        self.team_heard(&part.team.member, ty, value.clone());
+        self.put_to_team(part, ty, value, meta);
+    }
+
+    fn put_to_team(&self, part: &TeamPart, ty: &str, value: &Value, meta: &Meta) {
+        let mut publishers = part.publishers.lock();
+        if !publishers.contains_key(ty) {
+            let key = part.keys.value(&part.team.member, ty);
+            match self
+                .session
+                .declare_publisher(key.clone())
+                .congestion_control(CongestionControl::Block)
+                .encoding(Encoding::APPLICATION_JSON)
+                .allowed_destination(Locality::Remote)
+                .wait()
+            {
+                Ok(publisher) => {
+                    publishers.insert(ty.to_string(), publisher);
+                }
+                Err(e) => {
+                    tracing::error!(key, error = %e, "cannot share this type with the team");
+                    return;
+                }
+            }
+        }
+        if let Some(publisher) = publishers.get(ty) {
+            self.put(publisher, value, meta);
+        }
+    }
+
+    fn on_team_sample(&self, sample: &zenoh::sample::Sample) {
+        let Some(part) = &self.team else { return };
+        let Some((member, ty)) = part.keys.parse(sample.key_expr().as_str()) else {
+            return;
+        };
+        // Another process under this robot's own name (one restarted in its place) is not a
+        // teammate.
+        if member == part.team.member || ty.starts_with('@') {
+            return;
+        }
+        self.team_heard(member, ty, decode_value(&sample.payload().to_bytes()));
+    }
+
+    /// `member`'s latest value of `ty` is `value`: kept, and said on this replica.
+    fn team_heard(&self, member: &str, ty: &str, value: Value) {
+        let Some(part) = &self.team else { return };
+        let mut heard = part.heard.lock();
+        heard
+            .values
+            .entry(ty.to_string())
+            .or_default()
+            .insert(member.to_string(), value.clone());
+        let now = unix_now();
+        let own = member_type(member, ty);
+        self.board.post_at(TEAM_MODULE, &own, value, 0, now, true);
+        if heard.stale.remove(&(member.to_string(), ty.to_string())) {
+            self.board
+                .post_at(TEAM_MODULE, &stale_type(&own), false.into(), 0, now, true);
+        }
+        self.post_team_value(&heard, ty);
+    }
+
+    /// Posts `team.<ty>` on this replica: the living members' values.
+    fn post_team_value(&self, heard: &Heard, ty: &str) {
+        let Some(values) = heard.values.get(ty) else {
+            return;
+        };
+        let living = values
+            .iter()
+            .filter(|(member, _)| heard.alive.contains(*member))
+            .map(|(member, value)| (member.as_str(), value));
+        self.board.post_at(
+            TEAM_MODULE,
+            &team_type(ty),
+            team_value(living),
+            0,
+            unix_now(),
+            true,
+        );
+    }
+
+    fn member_arrived(self: &Arc<Self>, member: &str) {
+        let Some(part) = &self.team else { return };
+        {
+            let mut heard = part.heard.lock();
+            if !heard.alive.insert(member.to_string()) {
+                return;
+            }
+            let types: Vec<String> = heard
+                .values
+                .iter()
+                .filter(|(_, by)| by.contains_key(member))
+                .map(|(ty, _)| ty.clone())
+                .collect();
+            for ty in types {
+                self.post_team_value(&heard, &ty);
+            }
+        }
+        // The newcomer has not heard this robot's values yet: put them again, off Zenoh's
+        // receiving thread.
+        let peer = Arc::clone(self);
+        let telling = std::thread::Builder::new()
+            .name("proclaim-zenoh-team".into())
+            .spawn(move || peer.tell_the_team_again());
+        if let Err(e) = telling {
+            tracing::warn!(error = %e, "cannot tell a new teammate this robot's values");
+        }
+    }
+
+    fn tell_the_team_again(&self) {
+        let Some(part) = &self.team else { return };
+        let own: Vec<(String, Value)> = {
+            let heard = part.heard.lock();
+            part.team
+                .shared
+                .iter()
+                .filter_map(|ty| {
+                    let value = heard.values.get(ty)?.get(&part.team.member)?;
+                    Some((ty.clone(), value.clone()))
+                })
+                .collect()
+        };
+        let meta = Meta {
+            process: Some(self.me.clone()),
+            ..Meta::default()
+        };
+        for (ty, value) in own {
+            self.put_to_team(part, &ty, &value, &meta);
+        }
+    }
+
+    fn member_gone(&self, member: &str) {
+        let Some(part) = &self.team else { return };
+        if member == part.team.member {
+            return;
+        }
+        let mut heard = part.heard.lock();
+        if !heard.alive.remove(member) {
+            return;
+        }
+        tracing::info!(member, team = part.team.name, "a teammate is gone");
+        let types: Vec<String> = heard
+            .values
+            .iter()
+            .filter(|(_, by)| by.contains_key(member))
+            .map(|(ty, _)| ty.clone())
+            .collect();
+        let now = unix_now();
+        for ty in types {
+            self.post_team_value(&heard, &ty);
+            if heard.stale.insert((member.to_string(), ty.clone())) {
+                let stale = stale_type(&member_type(member, &ty));
+                self.board
+                    .post_at(TEAM_MODULE, &stale, true.into(), 0, now, true);
+            }
+        }
+    }
+}
