@@ -6,15 +6,10 @@ use std::path::Path;
 
 const LONGEST_BODY: usize = 80;
 
-/// Code this rule does not hold yet, by path: the verification issue is replacing the runner's
-/// and the verifier's ringlet code, so their long functions are left to that work; the
-/// behaviour compiler's `compile_behaviour` (one function writing the whole C file) is being
-/// extended by the compile issue now, and is split once that lands.
-const NOT_YET: [&str; 3] = [
-    "crates/runner/src/",
-    "crates/verify/src/",
-    "crates/compile/src/behaviour.rs",
-];
+/// Code this rule does not hold yet, by path: the runner's ringlet (being changed for the
+/// read-consistency finding of the verification issue) and the behaviour compiler's
+/// `compile_behaviour` (one function writing the whole C file, to be split into stages).
+const NOT_YET: [&str; 2] = ["crates/runner/src/", "crates/compile/src/behaviour.rs"];
 
 #[test]
 fn no_library_function_is_longer_than_eighty_lines() {

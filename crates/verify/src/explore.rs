@@ -202,6 +202,39 @@ pub struct Limits {
     pub stop_when_decided: bool,
 }
 
+/// Whether a search can stop once every property is decided: every property is a safety one
+/// (a liveness property needs the whole graph).
+fn all_decidable(properties: &[Property]) -> bool {
+    !properties.is_empty()
+        && properties.iter().all(|p| {
+            matches!(
+                p.source.kind,
+                PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
+            )
+        })
+}
+
+/// Stores the initial worlds, or says which budget they do not fit.
+fn store_initial(
+    graph: &mut Graph,
+    store: &mut Store,
+    model: &Model,
+    properties: &[Property],
+    limits: Limits,
+) -> Result<(), Stop> {
+    for w in initial_worlds(model) {
+        if graph.is_full(limits.max_states) {
+            return Err(Stop::StateBudget);
+        }
+        if graph.bytes_after(1, 0) > limits.max_memory {
+            return Err(Stop::MemoryBudget);
+        }
+        store.insert(graph, &w, model, properties);
+        graph.initial = graph.len() as u32;
+    }
+    Ok(())
+}
+
 /// Explores from the initial states until every reachable state is seen or a limit stops it;
 /// checks `properties` on every state as it is found.
 /// `progress` hears how far it got every [`PROGRESS_EVERY`] states expanded.
@@ -213,29 +246,14 @@ pub fn explore(
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
     let mut store = Store::default();
-    let decidable = limits.stop_when_decided
-        && !properties.is_empty()
-        && properties.iter().all(|p| {
-            matches!(
-                p.source.kind,
-                PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
-            )
-        });
+    let decidable = limits.stop_when_decided && all_decidable(properties);
     let stop = |graph: &mut Graph, reason: Stop| {
         graph.complete = false;
         graph.stopped = reason;
     };
-    for w in initial_worlds(model) {
-        if graph.is_full(limits.max_states) {
-            stop(&mut graph, Stop::StateBudget);
-            return graph;
-        }
-        if graph.bytes_after(1, 0) > limits.max_memory {
-            stop(&mut graph, Stop::MemoryBudget);
-            return graph;
-        }
-        store.insert(&mut graph, &w, model, properties);
-        graph.initial = graph.len() as u32;
+    if let Err(reason) = store_initial(&mut graph, &mut store, model, properties, limits) {
+        stop(&mut graph, reason);
+        return graph;
     }
     graph.edges = Edges::new(graph.initial);
     let stepper = StepGenerator::new(model);

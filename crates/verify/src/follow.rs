@@ -357,6 +357,29 @@ fn fits(
             !finished
         ));
     }
+    fits_firing(model, s, seen, &at)?;
+    fits_writes(model, before, s, seen, &at)?;
+    for (k, mode) in modes.iter().enumerate() {
+        let model_mode = s.world.machines[k].status;
+        if model_mode != *mode {
+            return Err(format!(
+                "{at}: {} is {model_mode:?} in the model, {mode:?} in the runner",
+                model.machines[k].name
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether the model fired what the runner fired, from machine `s.machine`'s current state.
+fn fits_firing(
+    model: &Model,
+    s: &Successor,
+    seen: Option<&Observed>,
+    at: &str,
+) -> Result<(), String> {
+    let machine = &model.machines[s.machine];
+    let state = &machine.states[s.from];
     let seen_fired = seen.and_then(|o| o.fired.as_ref());
     match (s.fired, seen_fired) {
         (None, None) => {}
@@ -382,6 +405,17 @@ fn fits(
             ))
         }
     }
+    Ok(())
+}
+
+/// Whether the model's step wrote what the runner's ringlet wrote, and nothing else.
+fn fits_writes(
+    model: &Model,
+    before: &World,
+    s: &Successor,
+    seen: Option<&Observed>,
+    at: &str,
+) -> Result<(), String> {
     let values = model.values.borrow();
     let show = |id| values.get(id).map(text).unwrap_or_default();
     for (slot, info) in model.slots.iter().enumerate() {
@@ -407,15 +441,6 @@ fn fits(
                 ))
             }
             None => {}
-        }
-    }
-    for (k, mode) in modes.iter().enumerate() {
-        let model_mode = s.world.machines[k].status;
-        if model_mode != *mode {
-            return Err(format!(
-                "{at}: {} is {model_mode:?} in the model, {mode:?} in the runner",
-                model.machines[k].name
-            ));
         }
     }
     Ok(())

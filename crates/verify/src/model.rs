@@ -155,6 +155,32 @@ struct Uses {
     written: FxHashSet<String>,
 }
 
+/// The types that get a message slot, in slot order: what machines read, externs, reasoner
+/// inputs, and the types the properties name.
+fn message_types(
+    uses: &Uses,
+    externs: &FxHashSet<String>,
+    theory_inputs: &[Vec<String>],
+    property_exprs: &[&Expr],
+    known_types: &FxHashSet<String>,
+) -> Vec<String> {
+    let mut wanted: Vec<String> = uses.read.clone();
+    let mut sorted_externs: Vec<&String> = externs.iter().collect();
+    sorted_externs.sort();
+    wanted.extend(sorted_externs.into_iter().cloned());
+    for inputs in theory_inputs {
+        wanted.extend(inputs.iter().cloned());
+    }
+    for e in property_exprs {
+        e.visit_names(&mut |n, _| {
+            if known_types.contains(n) {
+                wanted.push(n.to_string());
+            }
+        });
+    }
+    wanted
+}
+
 impl Model {
     /// The model of `behaviour`. `property_names` are the names the properties read, so a
     /// type only a property mentions (`Magnetron`, which the machine posts and no machine
@@ -190,22 +216,13 @@ impl Model {
         }
         let (outside, known_types) = posters(behaviour, &uses, &externs);
 
-        // Message slots: what machines read, externs, reasoner inputs, and the types the
-        // properties name.
-        let mut wanted: Vec<String> = uses.read.clone();
-        let mut sorted_externs: Vec<&String> = externs.iter().collect();
-        sorted_externs.sort();
-        wanted.extend(sorted_externs.into_iter().cloned());
-        for inputs in &theory_inputs {
-            wanted.extend(inputs.iter().cloned());
-        }
-        for e in property_exprs {
-            e.visit_names(&mut |n, _| {
-                if known_types.contains(n) {
-                    wanted.push(n.to_string());
-                }
-            });
-        }
+        let wanted = message_types(
+            &uses,
+            &externs,
+            &theory_inputs,
+            property_exprs,
+            &known_types,
+        );
         for ty in wanted {
             if !slots.names.contains_key(&ty) && !machine_names.contains(&ty.as_str()) {
                 let external = externs.contains(&ty);

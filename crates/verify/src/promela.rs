@@ -1231,41 +1231,7 @@ impl<'m> Writer<'m> {
                 self.queue
             );
         }
-        for (i, p) in properties.iter().enumerate() {
-            if p.source.kind.is_liveness() {
-                let _ = writeln!(
-                    w,
-                    "bit lp{i}; /* {} {}: {}, at the end of the last step */",
-                    p.source.kind.word(),
-                    comment(&p.source.name),
-                    comment(&p.source.expression)
-                );
-                if p.then_term().is_some() {
-                    let _ = writeln!(w, "bit lq{i}; /* its second expression */");
-                }
-                for (j, f) in p.source.fair.iter().enumerate() {
-                    let _ = writeln!(
-                        w,
-                        "bit fair{i}_{j}; /* assumed infinitely often: {} */",
-                        comment(f)
-                    );
-                }
-                continue;
-            }
-            let _ = writeln!(
-                w,
-                "bit hit{i}; /* {} {}: {} */",
-                p.source.kind.word(),
-                comment(&p.source.name),
-                comment(&p.source.expression)
-            );
-        }
-        if properties.iter().any(|p| p.source.kind.is_liveness()) {
-            let _ = writeln!(
-                w,
-                "bit acc[{n}]; /* liveness: the machine lets time pass now */"
-            );
-        }
+        property_declarations(w, properties, n);
         let _ = writeln!(w, "\nhidden byte sel;\nhidden byte wrapped;");
         for i in 0..self.temps {
             let _ = writeln!(w, "hidden int t{i};");
@@ -1675,4 +1641,44 @@ fn is_temp(code: &str) -> bool {
 /// Text safe inside a Promela comment.
 fn comment(text: &str) -> String {
     text.replace("*/", "* /").replace('\n', " ")
+}
+
+/// Each property's bits: `hit<i>` for a safety property; `lp<i>`, `lq<i>` and `fair<i>_<j>`
+/// for a liveness one, and `acc` once any is there.
+fn property_declarations(w: &mut String, properties: &[Property], n: usize) {
+    for (i, p) in properties.iter().enumerate() {
+        if p.source.kind.is_liveness() {
+            let _ = writeln!(
+                w,
+                "bit lp{i}; /* {} {}: {}, at the end of the last step */",
+                p.source.kind.word(),
+                comment(&p.source.name),
+                comment(&p.source.expression)
+            );
+            if p.then_term().is_some() {
+                let _ = writeln!(w, "bit lq{i}; /* its second expression */");
+            }
+            for (j, f) in p.source.fair.iter().enumerate() {
+                let _ = writeln!(
+                    w,
+                    "bit fair{i}_{j}; /* assumed infinitely often: {} */",
+                    comment(f)
+                );
+            }
+            continue;
+        }
+        let _ = writeln!(
+            w,
+            "bit hit{i}; /* {} {}: {} */",
+            p.source.kind.word(),
+            comment(&p.source.name),
+            comment(&p.source.expression)
+        );
+    }
+    if properties.iter().any(|p| p.source.kind.is_liveness()) {
+        let _ = writeln!(
+            w,
+            "bit acc[{n}]; /* liveness: the machine lets time pass now */"
+        );
+    }
 }

@@ -287,17 +287,71 @@ pub struct SymbolicOutcome {
 /// Declines where a slot's values keep growing.
 pub fn number_values(model: &Model) -> Result<(), Declined> {
     let stepper = StepGenerator::new(model);
+    let first = first_ringlets(model, &stepper);
+    value_domains(model, &stepper, &first.initial, &first.steps).map(|_| ())
+}
+
+/// The initial worlds and their first ringlets, which the explicit stepper takes (a free type
+/// may still be never posted there).
+struct FirstRinglets {
+    initial: Vec<World>,
+    /// Per initial world, its successors and the choice that made each.
+    steps: Vec<Vec<(World, Choice)>>,
+    /// Per machine, per transition: fired by a first ringlet.
+    fired: Vec<Vec<bool>>,
+    /// Per initial world: some first ringlet from it fires a transition.
+    fires: Vec<bool>,
+}
+
+fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
     let initial: Vec<World> = initial_worlds(model).collect();
+    let mut first = FirstRinglets {
+        steps: Vec::new(),
+        fired: model.per_transition(),
+        fires: Vec::new(),
+        initial: Vec::new(),
+    };
     let mut successors = Vec::new();
-    let first_steps: Vec<Vec<(World, Choice)>> = initial
-        .iter()
-        .map(|w| {
-            successors.clear();
-            stepper.successors(w, false, &mut successors);
-            successors.drain(..).map(|s| (s.world, s.choice)).collect()
-        })
-        .collect();
-    value_domains(model, &stepper, &initial, &first_steps).map(|_| ())
+    for w in &initial {
+        successors.clear();
+        stepper.successors(w, false, &mut successors);
+        first
+            .fires
+            .push(successors.iter().any(|s| s.fired.is_some()));
+        for s in &successors {
+            if let Some(t) = s.fired {
+                let index = model.machines[s.machine].states[s.from].transitions[t].index;
+                first.fired[s.machine][index] = true;
+            }
+        }
+        first
+            .steps
+            .push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
+    }
+    first.initial = initial;
+    first
+}
+
+/// Why the engine does not take these properties, if it does not.
+fn declines(model: &Model, properties: &[Property]) -> Result<(), Declined> {
+    if let Some((slot, _)) = model.stored_free_slots().next() {
+        return Err(Declined(format!(
+            "a property names the free type `{}`",
+            model.slots[slot].name
+        )));
+    }
+    match properties.iter().find(|p| {
+        !matches!(
+            p.source.kind,
+            PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
+        )
+    }) {
+        Some(p) => Err(Declined(format!(
+            "`{}` is not a safety property",
+            p.source.name
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Checks `properties` of `model` symbolically, or says why it does not.
@@ -306,41 +360,14 @@ pub fn check(
     properties: &[Property],
     max_memory: usize,
 ) -> Result<SymbolicOutcome, Declined> {
-    if let Some((slot, _)) = model.stored_free_slots().next() {
-        return Err(Declined(format!(
-            "a property names the free type `{}`",
-            model.slots[slot].name
-        )));
-    }
-    if let Some(p) = properties.iter().find(|p| {
-        !matches!(
-            p.source.kind,
-            PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
-        )
-    }) {
-        return Err(Declined(format!(
-            "`{}` is not a safety property",
-            p.source.name
-        )));
-    }
+    declines(model, properties)?;
     let stepper = StepGenerator::new(model);
-    let initial: Vec<World> = initial_worlds(model).collect();
-    let mut first_steps: Vec<Vec<(World, Choice)>> = Vec::new();
-    let mut first_fired = model.per_transition();
-    let mut successors = Vec::new();
-    let mut initial_fires = Vec::new();
-    for w in &initial {
-        successors.clear();
-        stepper.successors(w, false, &mut successors);
-        initial_fires.push(successors.iter().any(|s| s.fired.is_some()));
-        for s in &successors {
-            if let Some(t) = s.fired {
-                let index = model.machines[s.machine].states[s.from].transitions[t].index;
-                first_fired[s.machine][index] = true;
-            }
-        }
-        first_steps.push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
-    }
+    let FirstRinglets {
+        initial,
+        steps: first_steps,
+        fired: first_fired,
+        fires: initial_fires,
+    } = first_ringlets(model, &stepper);
     let domains = value_domains(model, &stepper, &initial, &first_steps)?;
     let enc = Encoding::new(model, domains);
     let steps = steps_of(model, &stepper, &enc)?;
@@ -650,17 +677,7 @@ fn value_domains(
                 }
             }
         }
-        if let Some(slot) = domains.iter().position(|d| d.len() > MAX_VALUES) {
-            return Err(Declined(format!(
-                "`{}` takes more than {MAX_VALUES} values (a counter?)",
-                model.slots[slot].name
-            )));
-        }
-        if saw_domains.iter().any(|d| d.len() > MAX_VALUES) {
-            return Err(Declined(format!(
-                "a saw() of a property takes more than {MAX_VALUES} values"
-            )));
-        }
+        too_many_values(model, &domains, &saw_domains)?;
         let after: usize = domains.iter().chain(&saw_domains).map(Vec::len).sum();
         if after == before {
             break;
@@ -681,6 +698,26 @@ fn value_domains(
         saw: saw_domains,
         writer,
     })
+}
+
+/// Declines domains grown past [`MAX_VALUES`].
+fn too_many_values(
+    model: &Model,
+    domains: &[Vec<ValueId>],
+    saw_domains: &[Vec<ValueId>],
+) -> Result<(), Declined> {
+    if let Some(slot) = domains.iter().position(|d| d.len() > MAX_VALUES) {
+        return Err(Declined(format!(
+            "`{}` takes more than {MAX_VALUES} values (a counter?)",
+            model.slots[slot].name
+        )));
+    }
+    if saw_domains.iter().any(|d| d.len() > MAX_VALUES) {
+        return Err(Declined(format!(
+            "a saw() of a property takes more than {MAX_VALUES} values"
+        )));
+    }
+    Ok(())
 }
 
 /// The values every stored slot and `saw()` can hold, and the first machine that writes each
