@@ -332,6 +332,18 @@ fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
     first
 }
 
+/// Per property, the first initial world it looks for, if any (layers 0 and 1 are the explicit
+/// stepper's).
+fn initial_targets(model: &Model, properties: &[Property], initial: &[World]) -> Vec<Option<Path>> {
+    properties
+        .iter()
+        .map(|property| {
+            let i = initial.iter().position(|w| property.is_target(model, w))?;
+            Some((i, Vec::new()))
+        })
+        .collect()
+}
+
 /// Why the engine does not take these properties, if it does not.
 fn declines(model: &Model, properties: &[Property]) -> Result<(), Declined> {
     if let Some((slot, _)) = model.stored_free_slots().next() {
@@ -378,7 +390,7 @@ pub fn check(
         .collect::<Result<_, _>>()?;
 
     let mut outcome = SymbolicOutcome {
-        targets: vec![None; properties.len()],
+        targets: initial_targets(model, properties, &initial),
         stopped: Stop::Explored,
         states: 0.0,
         steps: 0,
@@ -387,14 +399,6 @@ pub fn check(
         fired: first_fired,
         deadlock: None,
     };
-    // Layer 0 and 1 are the explicit stepper's.
-    for (i, w) in initial.iter().enumerate() {
-        for (p, property) in properties.iter().enumerate() {
-            if outcome.targets[p].is_none() && property.is_target(model, w) {
-                outcome.targets[p] = Some((i, Vec::new()));
-            }
-        }
-    }
     let searched = Searched {
         model,
         stepper: &stepper,
