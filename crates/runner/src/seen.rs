@@ -84,11 +84,13 @@ impl Seen {
         Some(message)
     }
 
-    /// The value of `ty` as this ringlet reads it: what it posted itself, else the answer a
-    /// condition of it held, else the snapshot's (or the live board's before the snapshot).
+    /// The value of `ty` as this ringlet reads it: what it posted itself, else an expert's
+    /// answer a condition of it held, else the snapshot's (or the live board's before the
+    /// snapshot). A condition that read a posted value, or no answer at all, leaves the value
+    /// as posted: a number stays a number, and what was never posted stays absent.
     pub fn value(&self, board: &Whiteboard, ty: &str) -> Option<Value> {
         if self.held && !self.own.contains_key(ty) {
-            if let Some((answer, _)) = self.answers.lock().get(ty) {
+            if let Some((answer, Answerer::Expert(_))) = self.answers.lock().get(ty) {
                 return Some(Value::Bool(*answer));
             }
         }

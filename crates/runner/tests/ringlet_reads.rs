@@ -91,3 +91,32 @@ async fn an_answer_the_expert_changes_mid_ringlet_reads_as_it_did_first() {
     );
     assert_eq!(entered, ["Start", "No"]);
 }
+
+/// A condition on a type no expert answers reads its posted value's truth; a value read of
+/// that type later in the ringlet is still the value as posted, not that truth.
+#[tokio::test(start_paused = true)]
+async fn a_posted_number_read_as_a_condition_stays_a_number() {
+    let board = Whiteboard::local();
+    board.post("sensor", "T0", 2i64);
+    let imported = proclaim_fsm::parse_machine(
+        "M.machine",
+        "machine M\nstate Start {\n    when ~T0 -> Yes\n    when T0 == 2 -> No\n}\nstate Yes {\n}\nstate No {\n}\n",
+    );
+    assert!(
+        imported.diagnostics.is_empty(),
+        "{:?}",
+        imported.diagnostics
+    );
+    let machine = imported.machines.into_iter().next().expect("one machine");
+    let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
+    let mut events = runner.events();
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    let entered: Vec<String> = std::iter::from_fn(|| events.try_recv().ok())
+        .filter_map(|e| match e {
+            Event::Entered { state, .. } => Some(state),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(entered, ["Start", "No"]);
+}
