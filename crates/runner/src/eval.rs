@@ -36,12 +36,12 @@ impl Env<'_> {
             return Some(v.clone());
         }
         if self.shared.is_extern(name) {
-            return Some(self.latest(name).map_or(Value::Int(0), |m| m.value));
+            return Some(self.seen.value(self.board, name).unwrap_or(Value::Int(0)));
         }
         if let Some(v) = self.shared.global(name) {
             return Some(v);
         }
-        self.latest(name).map(|m| m.value)
+        self.seen.value(self.board, name)
     }
 
     /// The newest message of a type, as the ringlet sees the board.

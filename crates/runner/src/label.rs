@@ -76,6 +76,8 @@ async fn ask(atom: &str, cx: &mut Context<'_>) -> bool {
             None => (false, Answerer::NoExpert),
         },
     };
+    // Within a ringlet an atom reads as it read first (`seen.rs`).
+    let (value, by) = cx.env.seen.answer(board, atom, value, by);
     cx.answered.push((atom.to_string(), value, by));
     value
 }

@@ -5,10 +5,19 @@
 //! ringlet first reads the board after OnEntry: nothing of the ringlet runs in between, so that
 //! is the same snapshot, and a ringlet that reads nothing (labels over variables and time)
 //! takes none.
+//!
+//! An atom a label asks of its expert (§2) is answered after the snapshot, so the snapshot
+//! cannot hold it; the first read of a type after the snapshot is held instead, to the end of
+//! the ringlet. A later query of that atom is still asked (the protocol and the count of
+//! queries a replay follows are unchanged), but the ringlet reads what it read first, even when
+//! the expert has changed its mind since (a reasoner whose input moved mid-ringlet), as the
+//! verifier's model reads one world per ringlet.
 
+use crate::event::Answerer;
+use parking_lot::Mutex;
 use proclaim_board::{Message, Snapshot, Value, Whiteboard};
-use rustc_hash::FxHashMap;
-use std::sync::OnceLock;
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::{Arc, OnceLock};
 
 #[derive(Default)]
 pub(crate) struct Seen {
@@ -16,6 +25,10 @@ pub(crate) struct Seen {
     held: bool,
     snapshot: OnceLock<Snapshot>,
     own: FxHashMap<String, Message>,
+    /// What the ringlet's conditions read of each atom they asked: its first answer, held.
+    answers: Mutex<FxHashMap<String, (bool, Answerer)>>,
+    /// The types the ringlet read from its snapshot before any condition asked them.
+    from_snapshot: Mutex<FxHashSet<Arc<str>>>,
 }
 
 impl Seen {
@@ -24,6 +37,8 @@ impl Seen {
         self.held = true;
         self.snapshot = OnceLock::new();
         self.own.clear();
+        self.answers.get_mut().clear();
+        self.from_snapshot.get_mut().clear();
     }
 
     /// The ringlet is over: reads see the live board again (the next OnEntry). What it saw is
@@ -55,10 +70,60 @@ impl Seen {
         if !self.held {
             return board.latest(ty);
         }
-        self.own
-            .get(ty)
-            .or_else(|| self.snapshot.get_or_init(|| board.snapshot()).newest(ty))
-            .cloned()
+        if let Some(own) = self.own.get(ty) {
+            return Some(own.clone());
+        }
+        let message = self
+            .snapshot
+            .get_or_init(|| board.snapshot())
+            .newest(ty)
+            .cloned()?;
+        if !self.answers.lock().contains_key(ty) {
+            self.from_snapshot.lock().insert(message.ty.clone());
+        }
+        Some(message)
+    }
+
+    /// The value of `ty` as this ringlet reads it: what it posted itself, else an expert's
+    /// answer a condition of it held, else the snapshot's (or the live board's before the
+    /// snapshot). A condition that read a posted value, or no answer at all, leaves the value
+    /// as posted: a number stays a number, and what was never posted stays absent.
+    pub fn value(&self, board: &Whiteboard, ty: &str) -> Option<Value> {
+        if self.held && !self.own.contains_key(ty) {
+            if let Some((answer, Answerer::Expert(_))) = self.answers.lock().get(ty) {
+                return Some(Value::Bool(*answer));
+            }
+        }
+        self.latest(board, ty).map(|m| m.value)
+    }
+
+    /// A condition of this ringlet asked `atom` and got `value` from `by`: what the ringlet
+    /// reads of it. The first read of the atom since the snapshot (this answer, an earlier
+    /// one, or the snapshot's value read before any condition asked) is held to the end of
+    /// the ringlet; before the snapshot every answer stands as given.
+    pub fn answer(
+        &self,
+        board: &Whiteboard,
+        atom: &str,
+        value: bool,
+        by: Answerer,
+    ) -> (bool, Answerer) {
+        if !self.held {
+            return (value, by);
+        }
+        if let Some(held) = self.answers.lock().get(atom) {
+            return held.clone();
+        }
+        let first = if self.from_snapshot.lock().contains(atom) {
+            match self.latest(board, atom) {
+                Some(m) => (m.value.truthy(), Answerer::Posted(m.module.to_string())),
+                None => (value, by),
+            }
+        } else {
+            (value, by)
+        };
+        self.answers.lock().insert(atom.to_string(), first.clone());
+        first
     }
 
     /// The machine posted `message` itself: it reads it back for the rest of the ringlet.
