@@ -6,10 +6,9 @@ use std::path::Path;
 
 const LONGEST_BODY: usize = 80;
 
-/// Code this rule does not hold yet, by path: the runner's ringlet (being changed for the
-/// read-consistency finding of the verification issue) and the behaviour compiler's
-/// `compile_behaviour` (one function writing the whole C file, to be split into stages).
-const NOT_YET: [&str; 2] = ["crates/runner/src/", "crates/compile/src/behaviour.rs"];
+/// Code this rule does not hold yet, by path: the behaviour compiler's `compile_behaviour` (one
+/// function writing the whole C file, to be split into stages by the compile issue).
+const NOT_YET: [&str; 1] = ["crates/compile/src/behaviour.rs"];
 
 #[test]
 fn no_library_function_is_longer_than_eighty_lines() {

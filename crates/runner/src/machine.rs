@@ -13,7 +13,7 @@ use proclaim_board::{
     Kind, Message, ModuleDecl, Pattern, Subscription, Suppressor, Value, Whiteboard,
 };
 use proclaim_fsm::control::{running_type, Command};
-use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
+use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, State, StateId};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 use std::time::Duration;
@@ -379,25 +379,7 @@ impl<'r> Run<'r> {
         // Changes of globals from here on wake the wait after this ring.
         self.globals_changed.borrow_and_update();
         if self.just_entered {
-            self.just_entered = false;
-            self.entered_at = self.now();
-            let id = self.current;
-            self.reporter.emit(|at, round| Event::Entered {
-                machine: self.name.clone(),
-                state: state.name.clone(),
-                id,
-                at,
-                round,
-            });
-            self.act(&state.name, &state.on_entry).await;
-            if self.machine.outgoing(self.current).next().is_none() {
-                self.reporter.emit(|at, round| Event::Finished {
-                    machine: self.name.clone(),
-                    state: state.name.clone(),
-                    at,
-                    round,
-                });
-            }
+            self.enter(state).await;
         }
         self.seen.take();
         self.globals_seen = *self.globals_changed.borrow();
@@ -462,6 +444,29 @@ impl<'r> Run<'r> {
                 self.act(&state.name, &state.internal).await;
                 Ring::Stayed
             }
+        }
+    }
+
+    /// Arriving in `state`: its OnEntry, and the end of the run for a state with no way out.
+    async fn enter(&mut self, state: &State) {
+        self.just_entered = false;
+        self.entered_at = self.now();
+        let id = self.current;
+        self.reporter.emit(|at, round| Event::Entered {
+            machine: self.name.clone(),
+            state: state.name.clone(),
+            id,
+            at,
+            round,
+        });
+        self.act(&state.name, &state.on_entry).await;
+        if self.machine.outgoing(self.current).next().is_none() {
+            self.reporter.emit(|at, round| Event::Finished {
+                machine: self.name.clone(),
+                state: state.name.clone(),
+                at,
+                round,
+            });
         }
     }
 
