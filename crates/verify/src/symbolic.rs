@@ -463,7 +463,7 @@ struct Searched<'a, 'm> {
 impl Searched<'_, '_> {
     /// The nearest deadlock of a complete search: a reached state, not live, where a running
     /// machine is not in a final state. Live: some ringlet that fires a transition can still be
-    /// reached from it (a backward fixpoint from the states where one rings).
+    /// reached from it (a backward fixpoint from the states where one can fire).
     fn deadlock(
         &self,
         layers: &[Bdd],
