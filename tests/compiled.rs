@@ -647,6 +647,7 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line() {
         ("kick(3);", "the call `kick`"),
         ("msleep(5);", "`msleep`"),
         ("x = sqrt(4);", "`sqrt(4)`"),
+        ("x = team.min(d);", "a team aggregate"),
         (
             "post(\"Say\", \"12\" + 1);",
             "text that may read as a number",

@@ -557,6 +557,9 @@ impl Activity<'_> {
                 let (b, kb) = self.value(b)?;
                 Ok((format!("v_{function}({a}, {b})"), ka.union(kb)))
             }
+            _ if function.starts_with("team.") => Err(self.refuse(format!(
+                "`{e}`: a team aggregate (a compiled behaviour has no team board)"
+            ))),
             _ if arith::is_function(function) => {
                 Err(self.refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
             }
