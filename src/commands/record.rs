@@ -14,6 +14,11 @@ pub struct Recorder {
     /// Ringlet and event lines, written as they come.
     lines: tokio::sync::mpsc::UnboundedSender<String>,
     stop: tokio::sync::oneshot::Sender<()>,
+    /// The task passing ringlets on to `lines`, and how to tell it the run is over.
+    follower: Option<(
+        tokio::task::JoinHandle<()>,
+        tokio::sync::oneshot::Sender<()>,
+    )>,
     path: PathBuf,
 }
 
@@ -61,6 +66,7 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
         task,
         lines,
         stop,
+        follower: None,
         path: path.to_path_buf(),
     })
 }
@@ -68,20 +74,36 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
 impl Recorder {
     /// Writes the ringlets as they end (with their snapshots), from now on.
     pub fn follow(
-        &self,
+        &mut self,
         mut ringlets: tokio::sync::mpsc::UnboundedReceiver<proclaim_runner::Ringlet>,
     ) {
         let lines = self.lines.clone();
-        tokio::spawn(async move {
-            while let Some(ringlet) = ringlets.recv().await {
-                if lines
-                    .send(proclaim_behaviour::ringlet_line(&ringlet))
-                    .is_err()
-                {
-                    return;
+        let (over, mut run_over) = tokio::sync::oneshot::channel();
+        let task = tokio::spawn(async move {
+            let send = |ringlet: &proclaim_runner::Ringlet| {
+                lines
+                    .send(proclaim_behaviour::ringlet_line(ringlet))
+                    .is_ok()
+            };
+            loop {
+                tokio::select! {
+                    biased;
+                    ringlet = ringlets.recv() => match ringlet {
+                        Some(ringlet) if send(&ringlet) => {}
+                        _ => return,
+                    },
+                    _ = &mut run_over => {
+                        // The last ringlets may still be queued: a record without its last
+                        // round would not replay to its end.
+                        while let Ok(ringlet) = ringlets.try_recv() {
+                            send(&ringlet);
+                        }
+                        return;
+                    }
                 }
             }
         });
+        self.follower = Some((task, over));
     }
 
     /// Writes one of the machines' events.
@@ -93,6 +115,10 @@ impl Recorder {
 
     /// Stops recording; how many messages were written, and where.
     pub async fn finish(self) -> (u64, PathBuf) {
+        if let Some((task, over)) = self.follower {
+            let _ = over.send(());
+            let _ = task.await;
+        }
         let _ = self.stop.send(());
         (self.task.await.unwrap_or(0), self.path)
     }
@@ -129,4 +155,45 @@ pub fn shown(line: &serde_json::Value) -> Option<String> {
         at as f64 / 1e6,
         line.get("seq")?.as_u64()?
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proclaim_runner::Ringlet;
+    use std::time::Duration;
+
+    /// The run's last ringlets are sent just before it finishes; the task passing them on may
+    /// not have run since (it did not on a loaded machine, and the replay ended a round short).
+    #[tokio::test(flavor = "current_thread")]
+    async fn the_ringlets_sent_just_before_the_finish_are_written() {
+        let dir = std::env::temp_dir().join(format!("proclaim-record-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("last-round.jsonl");
+        let board = Whiteboard::local();
+        let Ok(mut recorder) = start(&board, &path) else {
+            panic!("cannot write {}", path.display());
+        };
+        let (ringlets, heard) = tokio::sync::mpsc::unbounded_channel();
+        recorder.follow(heard);
+        for round in 1..=3 {
+            let ringlet = Ringlet {
+                round,
+                machine: 0,
+                seq: 0,
+                at: Duration::from_millis(100 * round),
+                snapshot: None,
+            };
+            ringlets.send(ringlet).unwrap();
+        }
+        recorder.finish().await;
+        let text = std::fs::read_to_string(&path).unwrap();
+        let rounds: Vec<u64> = text
+            .lines()
+            .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+            .filter_map(|l| l["ringlet"]["round"].as_u64())
+            .collect();
+        assert_eq!(rounds, [1, 2, 3], "{text}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -146,7 +146,7 @@ async fn run_on_board(
         println!("  {} of team `{}`", team.member, team.name);
     }
     // Subscribed before anything starts, so the record misses nothing.
-    let recorder = match &args.record {
+    let mut recorder = match &args.record {
         Some(path) => Some(record::start(&board, path)?),
         None => None,
     };
@@ -154,7 +154,7 @@ async fn run_on_board(
         .await
         .map_err(Failure::Start)?;
     announce(behaviour, limit, &running.notes);
-    if let (Some(recorder), Some(ringlets)) = (&recorder, running.ringlets.take()) {
+    if let (Some(recorder), Some(ringlets)) = (recorder.as_mut(), running.ringlets.take()) {
         recorder.follow(ringlets);
     }
     let mut view = trace_view(behaviour, script_used);
