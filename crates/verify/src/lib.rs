@@ -296,7 +296,7 @@ fn outcome(
         name: property.source.name.clone(),
         kind: property.source.kind.word().to_string(),
         expression: property.source.expression.clone(),
-        fair: Vec::new(),
+        fair: property.source.fair.clone(),
         verdict: verdict(property.source.kind, found, complete),
         trace,
         cycle: None,
@@ -416,7 +416,11 @@ fn symbolic(
     let outcomes = properties
         .iter()
         .zip(&found.targets)
-        .map(|(p, target)| {
+        .zip(&found.liveness)
+        .map(|((p, target), liveness)| {
+            if let Some(outcome) = liveness {
+                return outcome.clone();
+            }
             let trace = target
                 .as_ref()
                 .map(|(initial, path)| trace::trace_of(model, *initial, path.iter().cloned()));

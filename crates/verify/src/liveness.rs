@@ -21,7 +21,7 @@ use crate::components::Components;
 use crate::explore::Graph;
 use crate::lasso;
 use crate::model::Model;
-use crate::outcome::{PropertyOutcome, Verdict};
+use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
 use crate::world::{Status, World};
 use proclaim_behaviour::PropertyKind;
@@ -41,6 +41,16 @@ pub fn outcome(model: &Model, graph: &Graph, property: &Property) -> PropertyOut
         }
         None => (None, None),
     };
+    property_outcome(property, verdict, trace, cycle)
+}
+
+/// A liveness property's outcome: its verdict, and the way in and the loop of a lasso.
+pub fn property_outcome(
+    property: &Property,
+    verdict: Verdict,
+    trace: Option<Trace>,
+    cycle: Option<Trace>,
+) -> PropertyOutcome {
     PropertyOutcome {
         name: property.source.name.clone(),
         kind: property.source.kind.word().to_string(),

@@ -9,8 +9,8 @@ mod common {
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
-    lasso_script, render, verify, Options, PropertyKind, PropertySource, Report, Verdict,
-    LOOP_REPEATS,
+    lasso_script, render, verify, Options, PropertyKind, PropertySource, Report, SearchEngine,
+    Verdict, VerifyError, LOOP_REPEATS,
 };
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -60,10 +60,36 @@ fn summary(report: &Report) -> String {
 
 /// The behaviour of `machines` checked against `properties`; `expect` is the [`summary`].
 fn check(machines: &[(&str, &str)], properties: &[PropertySource], expect: &str) {
-    let report = verify(&behaviour(machines), properties, Options::default()).expect("verifies");
+    let behaviour = behaviour(machines);
+    let report = verify(&behaviour, properties, Options::default()).expect("verifies");
     assert!(report.stats.complete);
     let got = summary(&report);
     assert_eq!(got.trim(), expect.trim(), "\n--- got ---\n{got}");
+    // The symbolic engine, where it takes the behaviour, gives the same verdicts, and a lasso
+    // (perhaps another) wherever one fails.
+    let symbolic = Options {
+        engine: SearchEngine::Symbolic,
+        ..Options::default()
+    };
+    match verify(&behaviour, properties, symbolic) {
+        Ok(symbolic) => {
+            assert!(symbolic.stats.complete);
+            let verdicts = |r: &Report| -> Vec<(Verdict, bool)> {
+                r.properties
+                    .iter()
+                    .map(|p| (p.verdict, p.trace.is_some() && p.cycle.is_some()))
+                    .collect()
+            };
+            assert_eq!(
+                verdicts(&symbolic),
+                verdicts(&report),
+                "\n--- symbolic ---\n{}",
+                summary(&symbolic)
+            );
+        }
+        Err(VerifyError::SymbolicDeclined(_)) => {}
+        Err(e) => panic!("symbolic: {e}"),
+    }
 }
 
 /// Waits for a free `go`, then toggles between two states for ever.

@@ -18,11 +18,15 @@
 //! - **Breadth first by layers**, so the first layer that meets what a property looks for
 //!   gives the shortest counterexample; it is rebuilt backwards through the layers and then
 //!   replayed forwards by the explicit stepper, so it reads exactly as the explicit search's.
+//! - **Liveness** once the search is complete: fair cycles as a fixpoint, the lasso walked by
+//!   the explicit stepper ([`liveness`]).
 //! - It declines (and `auto` explores explicitly) where a free type is stored (a property
-//!   names it), where a slot's values are unbounded, or where a property is not a safety one.
+//!   names it) or where a slot's values are unbounded.
+
+mod liveness;
 
 use crate::model::Model;
-use crate::outcome::Stop;
+use crate::outcome::{PropertyOutcome, Stop};
 use crate::property::{Property, Term};
 use crate::reduce::Storage;
 use crate::ringlet::{
@@ -34,7 +38,6 @@ use crate::world::{Control, Status, World};
 use biodivine_lib_bdd::{
     Bdd, BddPartialValuation, BddValuation, BddVariable, BddVariableSet, BddVariableSetBuilder,
 };
-use proclaim_behaviour::PropertyKind;
 
 /// At most this many values a slot may hold for the engine to encode it.
 const MAX_VALUES: usize = 256;
@@ -234,6 +237,11 @@ impl Encoding {
                 .all(|(j, v)| self.saw_domains[j].contains(v))
     }
 
+    /// Whether world `w` is in `set`.
+    fn contains(&self, model: &Model, set: &Bdd, w: &World) -> bool {
+        self.holds(w) && set.eval_in(&self.full_valuation(&self.world(model, w)))
+    }
+
     fn mk(&self, cube: &BddPartialValuation) -> Bdd {
         self.vars.mk_conjunctive_clause(cube)
     }
@@ -279,6 +287,8 @@ pub struct SymbolicOutcome {
     /// is not in a final state, with the path to it (looked for only once every state was
     /// reached, as the explicit search does).
     pub deadlock: Option<(Path, World)>,
+    /// Per property: a liveness property's outcome, once the search is complete.
+    pub liveness: Vec<Option<PropertyOutcome>>,
 }
 
 /// Numbers every value a slot or `saw()` of `model` can hold, without a search: the values of
@@ -344,26 +354,15 @@ fn initial_targets(model: &Model, properties: &[Property], initial: &[World]) ->
         .collect()
 }
 
-/// Why the engine does not take these properties, if it does not.
-fn declines(model: &Model, properties: &[Property]) -> Result<(), Declined> {
+/// Why the engine does not take this model, if it does not.
+fn declines(model: &Model) -> Result<(), Declined> {
     if let Some((slot, _)) = model.stored_free_slots().next() {
         return Err(Declined(format!(
             "a property names the free type `{}`",
             model.slots[slot].name
         )));
     }
-    match properties.iter().find(|p| {
-        !matches!(
-            p.source.kind,
-            PropertyKind::Never | PropertyKind::Always | PropertyKind::Reachable
-        )
-    }) {
-        Some(p) => Err(Declined(format!(
-            "`{}` is not a safety property",
-            p.source.name
-        ))),
-        None => Ok(()),
-    }
+    Ok(())
 }
 
 /// Checks `properties` of `model` symbolically, or says why it does not.
@@ -372,7 +371,7 @@ pub fn check(
     properties: &[Property],
     max_memory: usize,
 ) -> Result<SymbolicOutcome, Declined> {
-    declines(model, properties)?;
+    declines(model)?;
     let stepper = StepGenerator::new(model);
     let FirstRinglets {
         initial,
@@ -398,6 +397,7 @@ pub fn check(
         entered: model.per_state(),
         fired: first_fired,
         deadlock: None,
+        liveness: vec![None; properties.len()],
     };
     let searched = Searched {
         model,
@@ -444,6 +444,11 @@ pub fn check(
     mark_entered_and_fired(model, &enc, &guards, &steps, &reached, &mut outcome);
     if outcome.stopped == Stop::Explored {
         outcome.deadlock = searched.deadlock(&layers, &reached, &initial_fires);
+        for (p, property) in properties.iter().enumerate() {
+            if property.source.kind.is_liveness() {
+                outcome.liveness[p] = Some(searched.liveness(property, &layers, &reached)?);
+            }
+        }
     }
     Ok(outcome)
 }
@@ -471,9 +476,6 @@ impl Searched<'_, '_> {
         initial_fires: &[bool],
     ) -> Option<(Path, World)> {
         let (enc, guards) = (self.enc, self.guards);
-        let is_in = |set: &Bdd, w: &World| {
-            enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(self.model, w)))
-        };
         let firing = self.steps.iter().filter(|s| s.fired.is_some());
         let mut live = preimage(enc, firing, guards, &enc.vars.mk_true(), reached);
         let mut initial_set = enc.vars.mk_false();
@@ -504,8 +506,10 @@ impl Searched<'_, '_> {
             frontier = before;
         }
         for (i, w) in self.initial.iter().enumerate() {
-            let live_here =
-                initial_fires[i] || self.first_steps[i].iter().any(|(s, _)| is_in(&live, s));
+            let live_here = initial_fires[i]
+                || self.first_steps[i]
+                    .iter()
+                    .any(|(s, _)| enc.contains(self.model, &live, s));
             if !live_here && !crate::explore::waiting(self.model, w).is_empty() {
                 return Some(((i, Vec::new()), w.clone()));
             }
@@ -1005,9 +1009,7 @@ impl Searched<'_, '_> {
             let before = preimage(enc, self.steps, self.guards, &leads[0], &layers[j]);
             leads.insert(0, before);
         }
-        let inside = |set: &Bdd, w: &World| {
-            enc.holds(w) && set.eval_in(&enc.full_valuation(&enc.world(model, w)))
-        };
+        let inside = |set: &Bdd, w: &World| enc.contains(model, set, w);
         for (i, w0) in self.initial.iter().enumerate() {
             let Some((w1, choice)) = self.first_steps[i]
                 .iter()
@@ -1036,8 +1038,26 @@ impl Searched<'_, '_> {
 /// The states a property looks for, over the fields its expression reads: every combination
 /// of their values evaluated as the explicit search evaluates it.
 fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd, Declined> {
+    if property.source.kind.is_liveness() {
+        return Ok(enc.vars.mk_false());
+    }
+    set_where(model, enc, property.term(), &property.source.name, &|w| {
+        property.is_target(model, w)
+    })
+}
+
+/// The states where `holds` is true, over the fields `term` reads (`holds` reads no other):
+/// every combination of their values evaluated as the explicit search evaluates it. `name`
+/// (the property's) says which property reads too many.
+fn set_where(
+    model: &Model,
+    enc: &Encoding,
+    term: &Term,
+    name: &str,
+    holds: &dyn Fn(&World) -> bool,
+) -> Result<Bdd, Declined> {
     let mut fields: Vec<Component> = Vec::new();
-    components(model, property.term(), &mut fields, 0);
+    components(model, term, &mut fields, 0);
     fields.sort();
     fields.dedup();
     let sizes: Vec<usize> = fields
@@ -1050,10 +1070,7 @@ fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd,
         .collect();
     let combinations = sizes.iter().try_fold(1usize, |n, s| n.checked_mul(*s));
     let Some(combinations) = combinations.filter(|&n| n <= 1 << 16) else {
-        return Err(Declined(format!(
-            "`{}` reads too many values at once",
-            property.source.name
-        )));
+        return Err(Declined(format!("`{name}` reads too many values at once")));
     };
     let mut world = World {
         turn: 0,
@@ -1096,7 +1113,7 @@ fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd,
                 }
             }
         }
-        if property.is_target(model, &world) {
+        if holds(&world) {
             set = set.or(&enc.mk(&cube));
         }
     }
