@@ -9,11 +9,13 @@
 
 use crate::chunked::Records;
 use crate::edges::{Edge, Edges};
+use crate::found_memo::FoundMemo;
 use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
 use crate::state_table::{self, StateTable, MAX_STATES};
+use crate::step_memo::{Step, StepMemo};
 use crate::world::{Layout, Status, TooNarrow, World};
 use proclaim_behaviour::PropertyKind;
 use std::cell::OnceCell;
@@ -42,6 +44,10 @@ pub struct Graph {
     /// Breadth-first layers reached: the states at the greatest distance from an initial one
     /// are this many steps away.
     pub depth: usize,
+    /// The search stopped at its [`Trial`]: the graph is wide.
+    pub wide: bool,
+    /// How many times the layout was widened (records packed before are packed no more).
+    generation: usize,
 }
 
 /// Successor lists with an index, for checks that walk edges in any order: the successors of
@@ -200,6 +206,16 @@ pub struct Limits {
     pub max_memory: usize,
     /// Stop once every property has found what it looks for.
     pub stop_when_decided: bool,
+    /// Where the automatic engine choice looks at the graph: see [`Trial`].
+    pub trial: Option<Trial>,
+}
+
+/// Once `states` are stored, the search stops ([`Graph::wide`]) if its layers hold `width`
+/// states or more on average, and goes on otherwise: a narrow, deep graph suits this search.
+#[derive(Clone, Copy, Debug)]
+pub struct Trial {
+    pub states: usize,
+    pub width: usize,
 }
 
 /// Whether a search can stop once every property is decided: every property is a safety one
@@ -241,7 +257,7 @@ fn store_initial(
 pub fn explore(
     model: &Model,
     properties: &[Property],
-    limits: Limits,
+    mut limits: Limits,
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
@@ -258,6 +274,10 @@ pub fn explore(
     graph.edges = Edges::new(graph.initial);
     let stepper = StepGenerator::new(model);
     let mut successors: Vec<Successor> = Vec::new();
+    let mut memo = StepMemo::new(model, &graph.layout);
+    let mut found = FoundMemo::new(model, properties, &graph.layout);
+    let mut found_generation = graph.generation;
+    let mut batch = Batch::default();
     let mut list = Vec::new();
     let mut world = World {
         turn: 0,
@@ -277,6 +297,14 @@ pub fn explore(
             stop(&mut graph, Stop::Decided);
             break;
         }
+        if let Some(trial) = limits.trial.filter(|t| graph.len() >= t.states) {
+            if graph.len() / graph.depth.max(1) >= trial.width {
+                graph.wide = true;
+                stop(&mut graph, Stop::StateBudget);
+                break;
+            }
+            limits.trial = None;
+        }
         if graph.is_full(limits.max_states) {
             stop(&mut graph, Stop::StateBudget);
             break;
@@ -287,26 +315,52 @@ pub fn explore(
                 stored: graph.len(),
             });
         }
-        graph
-            .layout
-            .unpack_into(graph.bytes_of(next as u32), &mut world);
-        successors.clear();
-        stepper.successors(&world, false, &mut successors);
-        // What the tables would grow to must stay within the memory budget: as if every
-        // successor were new.
-        if graph.bytes_after(successors.len(), successors.len()) > limits.max_memory {
-            stop(&mut graph, Stop::MemoryBudget);
-            break;
-        }
         list.clear();
-        for s in &successors {
-            let (target, new) = store.insert(&mut graph, &s.world, model, properties);
-            if let Some(t) = s.fired {
-                let index = model.machines[s.machine].states[s.from].transitions[t].index;
-                graph.fired[s.machine][index] = true;
+        if batch.has(next, graph.generation) || batch.fill(&mut graph, &mut memo, &stepper, next) {
+            if found_generation != graph.generation {
+                found.relayout(&graph.layout);
+                found_generation = graph.generation;
             }
-            let fired = s.fired.is_some();
-            list.push((Edge { target, fired }, new));
+            let range = batch.range(next);
+            // What the tables would grow to must stay within the memory budget: as if every
+            // successor were new.
+            let memos = memo.bytes() + found.bytes();
+            if graph.bytes_after(range.len(), range.len()) + memos > limits.max_memory {
+                stop(&mut graph, Stop::MemoryBudget);
+                break;
+            }
+            let bytes = graph.layout.bytes();
+            for (step, &hash) in batch.steps[range.clone()].iter().zip(&batch.hashes[range]) {
+                let record = step.record.to_le_bytes();
+                let (target, new) = graph.insert_record(&record[..bytes], hash);
+                if new {
+                    found.check(
+                        &graph.layout,
+                        step.record,
+                        &mut world,
+                        &mut graph.entered,
+                        &mut graph.targets,
+                        target,
+                    );
+                }
+                let fired = graph.mark_fired(model, step.machine, step.from, step.fired);
+                list.push((Edge { target, fired }, new));
+            }
+        } else {
+            graph
+                .layout
+                .unpack_into(graph.bytes_of(next as u32), &mut world);
+            successors.clear();
+            stepper.successors(&world, false, &mut successors);
+            if graph.bytes_after(successors.len(), successors.len()) > limits.max_memory {
+                stop(&mut graph, Stop::MemoryBudget);
+                break;
+            }
+            for s in &successors {
+                let (target, new) = store.insert(&mut graph, &s.world, model, properties);
+                let fired = graph.mark_fired(model, s.machine, s.from, s.fired);
+                list.push((Edge { target, fired }, new));
+            }
         }
         graph.edges.push(list.iter().copied());
         next += 1;
@@ -314,7 +368,113 @@ pub fn explore(
     graph
 }
 
+/// How many states' successors are made ahead of storing them, so that the table entries
+/// they will probe are read from memory together rather than one after another.
+const BATCH: usize = 64;
+
+/// The successors of a run of states, packed, made through the step memo ahead of storing.
+#[derive(Default)]
+struct Batch {
+    /// The first state of the run.
+    first: usize,
+    /// Per state of the run: where its successors end in `steps`.
+    ends: Vec<usize>,
+    steps: Vec<Step>,
+    /// Each step's record's hash.
+    hashes: Vec<u64>,
+    /// The layout the records were packed with ([`Graph::generation`]).
+    generation: usize,
+    scratch: Vec<Step>,
+}
+
+impl Batch {
+    /// Whether state `id`'s successors are here, packed with the layout of `generation`.
+    fn has(&self, id: usize, generation: usize) -> bool {
+        self.generation == generation && (self.first..self.first + self.ends.len()).contains(&id)
+    }
+
+    /// Where state `id`'s successors are in `steps`.
+    fn range(&self, id: usize) -> std::ops::Range<usize> {
+        let i = id - self.first;
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        start..self.ends[i]
+    }
+
+    /// Makes the successors of the states from `first` on (at most [`BATCH`] of them) and reads
+    /// the table entries their records will probe; false (and nothing made) when the records
+    /// are too wide for the step memo. A successor too wide for its field widens it: the memo
+    /// starts afresh and so does the run.
+    fn fill(
+        &mut self,
+        graph: &mut Graph,
+        memo: &mut StepMemo,
+        stepper: &StepGenerator,
+        first: usize,
+    ) -> bool {
+        self.first = first;
+        self.ends.clear();
+        self.steps.clear();
+        self.generation = graph.generation;
+        let mut id = first;
+        while id < graph.len() && id < first + BATCH {
+            if !graph.layout.fits_register() {
+                self.ends.clear();
+                return false;
+            }
+            let mut record = [0u8; 16];
+            let bytes = graph.bytes_of(id as u32);
+            record[..bytes.len()].copy_from_slice(bytes);
+            self.scratch.clear();
+            let made = memo.successors(
+                &graph.layout,
+                stepper,
+                u128::from_le_bytes(record),
+                &mut self.scratch,
+            );
+            if let Err(narrow) = made {
+                graph.widen(narrow);
+                memo.relayout(&graph.layout);
+                self.ends.clear();
+                self.steps.clear();
+                self.generation = graph.generation;
+                id = first;
+                continue;
+            }
+            self.steps.extend_from_slice(&self.scratch);
+            self.ends.push(self.steps.len());
+            id += 1;
+        }
+        let bytes = graph.layout.bytes();
+        self.hashes.clear();
+        self.hashes.extend(
+            self.steps
+                .iter()
+                .map(|s| state_table::hash(&s.record.to_le_bytes()[..bytes])),
+        );
+        for &hash in &self.hashes {
+            graph.table.touch(hash);
+        }
+        true
+    }
+}
+
 impl Graph {
+    /// Marks the transition a step fired (machine `machine`'s, from state `from`, by its
+    /// position in priority order) as fired; whether one did.
+    fn mark_fired(
+        &mut self,
+        model: &Model,
+        machine: usize,
+        from: usize,
+        fired: Option<usize>,
+    ) -> bool {
+        if let Some(t) = fired {
+            let index = model.machines[machine].states[from].transitions[t].index;
+            self.fired[machine][index] = true;
+        }
+        fired.is_some()
+    }
+
     /// No states yet, and nothing entered, fired or found.
     fn empty(model: &Model, properties: usize) -> Graph {
         let layout = Layout::new(model);
@@ -331,6 +491,8 @@ impl Graph {
             fired: model.per_transition(),
             targets: vec![None; properties],
             depth: 0,
+            wide: false,
+            generation: 0,
         }
     }
 
@@ -371,6 +533,24 @@ impl Graph {
         self.layout = wider;
         self.states = states;
         self.table = table;
+        self.generation += 1;
+    }
+
+    /// The id of the state packed as `record` (whose hash is `hash`) and whether it is new; a
+    /// new one is stored.
+    fn insert_record(&mut self, record: &[u8], hash: u64) -> (u32, bool) {
+        let id = self.len() as u32;
+        let states = &self.states;
+        if let Some(found) = self.table.find_or_insert(
+            hash,
+            id,
+            |id| states.get(id as usize) == record,
+            |id| state_table::hash(states.get(id as usize)),
+        ) {
+            return (found, false);
+        }
+        self.states.push(record);
+        (id, true)
     }
 }
 
@@ -397,17 +577,23 @@ impl Store {
                 Err(narrow) => graph.widen(narrow),
             }
         }
-        let id = graph.len() as u32;
-        let (states, record) = (&graph.states, &self.scratch[..]);
-        if let Some(found) = graph.table.find_or_insert(
-            state_table::hash(record),
-            id,
-            |id| states.get(id as usize) == record,
-            |id| state_table::hash(states.get(id as usize)),
-        ) {
-            return (found, false);
+        let (id, new) = graph.insert_record(&self.scratch, state_table::hash(&self.scratch));
+        if new {
+            self.note_new(graph, id, world, model, properties);
         }
-        graph.states.push(&self.scratch);
+        (id, new)
+    }
+
+    /// A new state `id`, `world`: it is checked against the properties and marks the states
+    /// it is in as entered.
+    fn note_new(
+        &mut self,
+        graph: &mut Graph,
+        id: u32,
+        world: &World,
+        model: &Model,
+        properties: &[Property],
+    ) {
         for (k, c) in world.machines.iter().enumerate() {
             if c.status != Status::Dormant {
                 graph.entered[k][usize::from(c.state)] = true;
@@ -418,7 +604,6 @@ impl Store {
                 graph.targets[p] = Some(id);
             }
         }
-        (id, true)
     }
 }
 

@@ -216,7 +216,7 @@ impl<'m> StepGenerator<'m> {
 
     /// The machine that rings next from `world` and the world as it is when it starts (a new
     /// round clears "started this round"); `None` when no machine can ring any more.
-    fn next_machine(&self, world: &World) -> Option<(usize, World, bool)> {
+    pub(crate) fn next_machine(&self, world: &World) -> Option<(usize, World, bool)> {
         let n = self.model.machines.len();
         let mut w = world.clone();
         let mut k = if w.turn == FIRST_TURN {

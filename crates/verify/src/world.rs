@@ -153,6 +153,77 @@ impl Layout {
         wider
     }
 
+    /// Whether a record fits in a `u128`, on which the explicit search's step memo works.
+    pub fn fits_register(&self) -> bool {
+        self.bits <= 128
+    }
+
+    /// The bit a field starts at, in a record read as a little-endian number.
+    fn field_start(&self, field: usize) -> u32 {
+        self.widths[..field].iter().map(|&w| u32::from(w)).sum()
+    }
+
+    /// The bits of `field` in a record read as a little-endian `u128`.
+    fn field_mask(&self, field: usize) -> u128 {
+        match self.widths.get(field) {
+            Some(&w) if w > 0 => ((1u128 << w) - 1) << self.field_start(field),
+            _ => 0,
+        }
+    }
+
+    /// The bits of whose turn it is.
+    pub fn turn_mask(&self) -> u128 {
+        self.field_mask(0)
+    }
+
+    /// The bits of machine `k`'s control: its state, time bits and flags.
+    pub fn control_mask(&self, k: usize) -> u128 {
+        (1..4).fold(0, |m, f| m | self.field_mask(f + 3 * k))
+    }
+
+    /// The bit of machine `k`'s "started this round" flag, when its flags field has one.
+    pub fn fresh_mask(&self, k: usize) -> u128 {
+        let field = 3 + 3 * k;
+        if self.widths[field] >= 2 {
+            1u128 << (self.field_start(field) + 1)
+        } else {
+            0
+        }
+    }
+
+    /// The bits a record keeps of `slot`: its value number when stored, its one bit when
+    /// chosen when read, none when unread.
+    pub fn slot_mask(&self, slot: SlotId) -> u128 {
+        let values = 1 + 3 * self.machines;
+        if let Ok(i) = self.stored.binary_search(&slot) {
+            return self.field_mask(values + i);
+        }
+        if let Ok(i) = self.chosen.binary_search(&slot) {
+            return self.field_mask(values + self.stored.len() + self.saw + i);
+        }
+        0
+    }
+
+    /// The bits of the value `saw()` number `j` keeps.
+    pub fn saw_mask(&self, j: usize) -> u128 {
+        self.field_mask(1 + 3 * self.machines + self.stored.len() + j)
+    }
+
+    /// Where machine `k`'s state number lies in a record read as a `u128`: its first bit and
+    /// the mask of its width.
+    pub fn state_field(&self, k: usize) -> (u32, u128) {
+        let field = 1 + 3 * k;
+        let width = self.widths[field];
+        (self.field_start(field), (1u128 << width) - 1)
+    }
+
+    /// [`Layout::pack`] into a `u128`, for a layout that [`Layout::fits_register`].
+    pub fn pack_register(&self, world: &World) -> Result<u128, TooNarrow> {
+        let mut bits = Register { acc: 0, used: 0 };
+        self.pack_into(world, &mut bits)?;
+        Ok(bits.acc)
+    }
+
     /// Packs `world` into [`Layout::bytes`] bytes appended to `out`, or says which field is too
     /// narrow for it (`out` then holds a part of the record).
     pub fn pack(&self, world: &World, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
