@@ -208,6 +208,9 @@ pub struct Limits {
     pub stop_when_decided: bool,
     /// Where the automatic engine choice looks at the graph: see [`Trial`].
     pub trial: Option<Trial>,
+    /// Make successors through the step memo (`step_memo.rs`) where records fit it; off only
+    /// to check that it changes nothing.
+    pub memo: bool,
 }
 
 /// Once `states` are stored, the search stops ([`Graph::wide`]) if its layers hold `width`
@@ -316,7 +319,10 @@ pub fn explore(
             });
         }
         list.clear();
-        if batch.has(next, graph.generation) || batch.fill(&mut graph, &mut memo, &stepper, next) {
+        if limits.memo
+            && (batch.has(next, graph.generation)
+                || batch.fill(&mut graph, &mut memo, &stepper, next))
+        {
             if found_generation != graph.generation {
                 found.relayout(&graph.layout);
                 found_generation = graph.generation;
@@ -544,7 +550,7 @@ impl Graph {
         if let Some(found) = self.table.find_or_insert(
             hash,
             id,
-            |id| states.get(id as usize) == record,
+            |id| state_table::same(states.get(id as usize), record),
             |id| state_table::hash(states.get(id as usize)),
         ) {
             return (found, false);
@@ -659,5 +665,105 @@ impl Graph {
             }
             Adjacency { start, targets }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::property::PropertySource;
+    use crate::random_behaviour;
+    use crate::reduce::{self, Reductions};
+    use proclaim_behaviour::{load, Folder};
+    use std::sync::Arc;
+
+    /// Properties that read each machine's states and every global.
+    fn properties(model: &Model) -> Vec<PropertySource> {
+        let mut out = Vec::new();
+        let mut add = |kind: PropertyKind, expression: String| {
+            out.push(PropertySource {
+                name: expression.clone(),
+                kind,
+                expression,
+                fair: Vec::new(),
+            })
+        };
+        for m in &model.machines {
+            for s in &m.states {
+                add(PropertyKind::Reachable, format!("{}.{}", m.name, s.name));
+            }
+        }
+        for slot in &model.slots {
+            if slot.kind == crate::model::SlotKind::Global {
+                add(PropertyKind::Never, format!("{} == 1", slot.name));
+            }
+        }
+        out
+    }
+
+    /// The whole graph as data: every record, successor list and mark, in order.
+    fn picture(model: &Model, graph: &Graph) -> String {
+        let records: Vec<&[u8]> = (0..graph.len() as u32)
+            .map(|id| graph.bytes_of(id))
+            .collect();
+        let lists: Vec<Vec<u32>> = (0..graph.expanded() as u32)
+            .map(|id| graph.successors_of(id).collect())
+            .collect();
+        format!(
+            "{records:?}\n{lists:?}\n{:?} {:?} {:?} {} {} {:?} {}",
+            graph.entered,
+            graph.fired,
+            graph.targets,
+            graph.depth,
+            graph.complete,
+            graph.deadlock(model),
+            graph.wide,
+        )
+    }
+
+    /// The step memo and the found-state memo change nothing the search finds, on the random
+    /// behaviours of the conformance test, every reduction on and off.
+    #[test]
+    fn the_memos_change_nothing_on_random_behaviours() {
+        let dir = std::env::temp_dir().join(format!("proclaim-memo-{}", std::process::id()));
+        let mut replayed = 0;
+        for seed in 0..20 {
+            let generated = random_behaviour::generate(seed);
+            let _ = std::fs::remove_dir_all(&dir);
+            generated.write(&dir);
+            let behaviour = load("random", Arc::new(Folder::new(&dir))).expect("it loads");
+            let (plain, _) = crate::prepare(&behaviour, &[]).expect("it models");
+            let asked = properties(&plain);
+            for reductions in [Reductions::default(), Reductions::NONE] {
+                // Each search on a model of its own, as a search numbers the values it meets.
+                let picture_of = |memo| {
+                    let (mut model, compiled) =
+                        crate::prepare(&behaviour, &asked).expect("it models");
+                    model.storage = reduce::storage(&model, &compiled, reductions);
+                    let limits = Limits {
+                        max_states: 5_000,
+                        max_memory: 1 << 30,
+                        stop_when_decided: reductions.stop_when_decided,
+                        trial: None,
+                        memo,
+                    };
+                    let graph = explore(&model, &compiled, limits, &mut |_| {});
+                    (picture(&model, &graph), graph.len())
+                };
+                let (with, states) = picture_of(true);
+                let (without, _) = picture_of(false);
+                assert!(
+                    with == without,
+                    "seed {seed}, {reductions:?}: the searches differ\n{}",
+                    generated.show()
+                );
+                replayed += states;
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(
+            replayed > 5_000,
+            "the behaviours explored only {replayed} states"
+        );
     }
 }

@@ -42,6 +42,11 @@ pub mod model;
 mod outcome;
 pub mod promela;
 pub mod property;
+/// The conformance test's random behaviours, for the tests of the search's memos.
+#[cfg(test)]
+#[path = "../tests/common/random_behaviour.rs"]
+#[allow(dead_code)]
+mod random_behaviour;
 mod reasoner;
 pub mod reduce;
 pub mod ringlet;
@@ -132,6 +137,7 @@ impl Options {
             max_memory: self.max_memory,
             stop_when_decided: self.reductions.stop_when_decided,
             trial: None,
+            memo: true,
         }
     }
 }
