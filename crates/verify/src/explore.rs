@@ -16,7 +16,7 @@ use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
 use crate::state_table::{self, StateTable, MAX_STATES};
 use crate::step_memo::{Step, StepMemo};
-use crate::world::{Layout, Status, TooNarrow, World};
+use crate::world::{Layout, Status, SystemState, TooNarrow};
 use proclaim_behaviour::PropertyKind;
 use std::cell::OnceCell;
 
@@ -66,7 +66,7 @@ impl Graph {
         self.edges.len()
     }
 
-    pub fn world(&self, id: u32) -> World {
+    pub fn world(&self, id: u32) -> SystemState {
         self.layout.unpack(self.bytes_of(id))
     }
 
@@ -175,7 +175,7 @@ impl Graph {
 
 /// The running machines of `world` that are not in a final state (one just entered will
 /// finish without firing anything).
-pub fn waiting(model: &Model, world: &World) -> Vec<usize> {
+pub fn waiting(model: &Model, world: &SystemState) -> Vec<usize> {
     world
         .machines
         .iter()
@@ -236,7 +236,7 @@ fn all_decidable(properties: &[Property]) -> bool {
 /// Stores the initial worlds, or says which budget they do not fit.
 fn store_initial(
     graph: &mut Graph,
-    store: &mut Store,
+    store: &mut StateInserter,
     model: &Model,
     properties: &[Property],
     limits: Limits,
@@ -264,7 +264,7 @@ pub fn explore(
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
-    let mut store = Store::default();
+    let mut store = StateInserter::default();
     let decidable = limits.stop_when_decided && all_decidable(properties);
     let stop = |graph: &mut Graph, reason: Stop| {
         graph.complete = false;
@@ -275,19 +275,7 @@ pub fn explore(
         return graph;
     }
     graph.edges = Edges::new(graph.initial);
-    let stepper = StepGenerator::new(model);
-    let mut successors: Vec<Successor> = Vec::new();
-    let mut memo = StepMemo::new(model, &graph.layout);
-    let mut found = FoundMemo::new(model, properties, &graph.layout);
-    let mut found_generation = graph.generation;
-    let mut batch = Batch::default();
-    let mut list = Vec::new();
-    let mut world = World {
-        turn: 0,
-        machines: Vec::new(),
-        values: Vec::new(),
-        saw: Vec::new(),
-    };
+    let mut expansion = Expansion::new(model, properties, &graph, store);
     let mut next = 0usize;
     // States from here on are one step further from the initial ones than those before.
     let mut layer_end = graph.len();
@@ -318,60 +306,135 @@ pub fn explore(
                 stored: graph.len(),
             });
         }
-        list.clear();
-        if limits.memo
-            && (batch.has(next, graph.generation)
-                || batch.fill(&mut graph, &mut memo, &stepper, next))
-        {
-            if found_generation != graph.generation {
-                found.relayout(&graph.layout);
-                found_generation = graph.generation;
-            }
-            let range = batch.range(next);
-            // What the tables would grow to must stay within the memory budget: as if every
-            // successor were new.
-            let memos = memo.bytes() + found.bytes();
-            if graph.bytes_after(range.len(), range.len()) + memos > limits.max_memory {
-                stop(&mut graph, Stop::MemoryBudget);
-                break;
-            }
-            let bytes = graph.layout.bytes();
-            for (step, &hash) in batch.steps[range.clone()].iter().zip(&batch.hashes[range]) {
-                let record = step.record.to_le_bytes();
-                let (target, new) = graph.insert_record(&record[..bytes], hash);
-                if new {
-                    found.check(
-                        &graph.layout,
-                        step.record,
-                        &mut world,
-                        &mut graph.entered,
-                        &mut graph.targets,
-                        target,
-                    );
-                }
-                let fired = graph.mark_fired(model, step.machine, step.from, step.fired);
-                list.push((Edge { target, fired }, new));
-            }
-        } else {
-            graph
-                .layout
-                .unpack_into(graph.bytes_of(next as u32), &mut world);
-            successors.clear();
-            stepper.successors(&world, false, &mut successors);
-            if graph.bytes_after(successors.len(), successors.len()) > limits.max_memory {
-                stop(&mut graph, Stop::MemoryBudget);
-                break;
-            }
-            for s in &successors {
-                let (target, new) = store.insert(&mut graph, &s.world, model, properties);
-                let fired = graph.mark_fired(model, s.machine, s.from, s.fired);
-                list.push((Edge { target, fired }, new));
-            }
+        if let Err(reason) = expansion.expand(&mut graph, &limits, next) {
+            stop(&mut graph, reason);
+            break;
         }
-        graph.edges.push(list.iter().copied());
         next += 1;
     }
     graph
+}
+
+/// What expanding states needs besides the graph: the step generator and its memos, the
+/// batch of successors made ahead, and buffers reused state after state.
+struct Expansion<'m> {
+    model: &'m Model,
+    properties: &'m [Property],
+    stepper: StepGenerator<'m>,
+    memo: StepMemo<'m>,
+    found: FoundMemo<'m>,
+    /// The layout `found` knows ([`Graph::generation`]).
+    found_generation: usize,
+    batch: Batch,
+    store: StateInserter,
+    successors: Vec<Successor>,
+    list: Vec<(Edge, bool)>,
+    world: SystemState,
+}
+
+impl<'m> Expansion<'m> {
+    fn new(
+        model: &'m Model,
+        properties: &'m [Property],
+        graph: &Graph,
+        store: StateInserter,
+    ) -> Expansion<'m> {
+        Expansion {
+            model,
+            properties,
+            stepper: StepGenerator::new(model),
+            memo: StepMemo::new(model, &graph.layout),
+            found: FoundMemo::new(model, properties, &graph.layout),
+            found_generation: graph.generation,
+            batch: Batch::default(),
+            store,
+            successors: Vec::new(),
+            list: Vec::new(),
+            world: SystemState {
+                turn: 0,
+                machines: Vec::new(),
+                values: Vec::new(),
+                saw: Vec::new(),
+            },
+        }
+    }
+
+    /// Makes state `id`'s successors, stores the new ones and its successor list; or says
+    /// that the memory budget does not hold them.
+    fn expand(&mut self, graph: &mut Graph, limits: &Limits, id: usize) -> Result<(), Stop> {
+        self.list.clear();
+        if limits.memo
+            && (self.batch.has(id, graph.generation)
+                || self.batch.fill(graph, &mut self.memo, &self.stepper, id))
+        {
+            self.store_packed(graph, limits, id)?;
+        } else {
+            self.store_unpacked(graph, limits, id)?;
+        }
+        graph.edges.push(self.list.iter().copied());
+        Ok(())
+    }
+
+    /// State `id`'s successors from the batch, stored as they are packed.
+    fn store_packed(&mut self, graph: &mut Graph, limits: &Limits, id: usize) -> Result<(), Stop> {
+        if self.found_generation != graph.generation {
+            self.found.relayout(&graph.layout);
+            self.found_generation = graph.generation;
+        }
+        let range = self.batch.range(id);
+        // What the tables would grow to must stay within the memory budget: as if every
+        // successor were new.
+        let memos = self.memo.bytes() + self.found.bytes();
+        if graph.bytes_after(range.len(), range.len()) + memos > limits.max_memory {
+            return Err(Stop::MemoryBudget);
+        }
+        let bytes = graph.layout.bytes();
+        let steps = self.batch.steps[range.clone()].iter();
+        for (step, &hash) in steps.zip(&self.batch.hashes[range]) {
+            let record = step.record.to_le_bytes();
+            let (target, new) = graph.insert_record(&record[..bytes], hash);
+            if new {
+                self.found.check(
+                    &graph.layout,
+                    step.record,
+                    &mut self.world,
+                    &mut graph.entered,
+                    &mut graph.targets,
+                    target,
+                );
+            }
+            let fired = graph.mark_fired(self.model, step.machine, step.from, step.fired);
+            self.list.push((Edge { target, fired }, new));
+        }
+        Ok(())
+    }
+
+    /// State `id`'s successors made on its unpacked world, each packed as it is stored.
+    fn store_unpacked(
+        &mut self,
+        graph: &mut Graph,
+        limits: &Limits,
+        id: usize,
+    ) -> Result<(), Stop> {
+        graph
+            .layout
+            .unpack_into(graph.bytes_of(id as u32), &mut self.world);
+        self.successors.clear();
+        self.stepper
+            .successors(&self.world, false, &mut self.successors);
+        let made = self.successors.len();
+        if graph.bytes_after(made, made) > limits.max_memory {
+            return Err(Stop::MemoryBudget);
+        }
+        for s in &self.successors {
+            let (target, new) = self
+                .store
+                .insert(graph, &s.world, self.model, self.properties);
+            let fired = graph.mark_fired(self.model, s.machine, s.from, s.fired);
+            self.list.push((Edge { target, fired }, new));
+        }
+        Ok(())
+    }
 }
 
 /// How many states' successors are made ahead of storing them, so that the table entries
@@ -560,19 +623,20 @@ impl Graph {
     }
 }
 
-/// What storing a state needs besides the graph: its packing buffer.
+/// Packs states and inserts them into the graph, checking each new one: what that needs
+/// besides the graph, its packing buffer.
 #[derive(Default)]
-struct Store {
+struct StateInserter {
     scratch: Vec<u8>,
 }
 
-impl Store {
+impl StateInserter {
     /// The id of `world` and whether it is new; a new state is stored, checked against the
     /// properties and marks the states it is in as entered.
     fn insert(
         &mut self,
         graph: &mut Graph,
-        world: &World,
+        world: &SystemState,
         model: &Model,
         properties: &[Property],
     ) -> (u32, bool) {
@@ -596,7 +660,7 @@ impl Store {
         &mut self,
         graph: &mut Graph,
         id: u32,
-        world: &World,
+        world: &SystemState,
         model: &Model,
         properties: &[Property],
     ) {
@@ -648,7 +712,7 @@ impl Graph {
 
     /// Whether `world` is stored as state `id` (a successor made again, when a step of a
     /// lasso is replayed, is recognised by its packed bytes).
-    pub fn stores_as(&self, world: &World, id: u32) -> bool {
+    pub fn stores_as(&self, world: &SystemState, id: u32) -> bool {
         let mut bytes = Vec::new();
         self.layout.pack(world, &mut bytes).is_ok() && self.bytes_of(id) == bytes
     }

@@ -5,7 +5,7 @@
 
 use crate::model::{Model, Name};
 use crate::property::{Property, Term};
-use crate::world::{Layout, Status, World};
+use crate::world::{Layout, Status, SystemState};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The most keys each table keeps; past it, states are unpacked and checked as they come.
@@ -68,14 +68,14 @@ impl<'m> FoundMemo<'m> {
         &mut self,
         layout: &Layout,
         record: u128,
-        world: &mut World,
+        world: &mut SystemState,
         entered: &mut [Vec<bool>],
         found: &mut [Option<u32>],
         id: u32,
     ) {
         let bytes = &record.to_le_bytes()[..layout.bytes()];
         let mut unpacked = false;
-        let mut unpack = |world: &mut World| {
+        let mut unpack = |world: &mut SystemState| {
             if !std::mem::replace(&mut unpacked, true) {
                 layout.unpack_into(bytes, world);
             }

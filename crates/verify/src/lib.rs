@@ -405,7 +405,7 @@ fn explicit(
 }
 
 /// `Machine.State` of each running machine of `world` not in a final state.
-fn waiting_names(model: &Model, world: &world::World) -> Vec<String> {
+fn waiting_names(model: &Model, world: &world::SystemState) -> Vec<String> {
     explore::waiting(model, world)
         .into_iter()
         .map(|k| {

@@ -1,4 +1,4 @@
-//! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
+//! A state of the model and its packed form. Unpacked ([`SystemState`]) while a ringlet runs;
 //! packed while stored into a record of bit fields, each as wide as its values need: whose
 //! turn it is, per machine its state number (none for a machine of one state), its time bits
 //! (one a time test of its states) and its flags (just entered, started this round, mode: none
@@ -34,8 +34,10 @@ pub struct Control {
     pub time: u16,
 }
 
+/// The whole model's state, unpacked: whose turn it is, every machine's control, every slot's
+/// value and what each `saw()` kept.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct World {
+pub struct SystemState {
     /// The machine whose turn is next, or the first to consider after it (the runnable one
     /// at or after it, wrapping to a new round).
     pub turn: u8,
@@ -218,7 +220,7 @@ impl Layout {
     }
 
     /// [`Layout::pack`] into a `u128`, for a layout that [`Layout::fits_register`].
-    pub fn pack_register(&self, world: &World) -> Result<u128, TooNarrow> {
+    pub fn pack_register(&self, world: &SystemState) -> Result<u128, TooNarrow> {
         let mut bits = Register { acc: 0, used: 0 };
         self.pack_into(world, &mut bits)?;
         Ok(bits.acc)
@@ -226,7 +228,7 @@ impl Layout {
 
     /// Packs `world` into [`Layout::bytes`] bytes appended to `out`, or says which field is too
     /// narrow for it (`out` then holds a part of the record).
-    pub fn pack(&self, world: &World, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
+    pub fn pack(&self, world: &SystemState, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
         // Most records fit in a register, which is filled before a byte is written.
         if self.bits <= 128 {
             let mut bits = Register { acc: 0, used: 0 };
@@ -248,7 +250,7 @@ impl Layout {
         Ok(())
     }
 
-    fn pack_into(&self, world: &World, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
+    fn pack_into(&self, world: &SystemState, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
         let mut field = 0;
         let mut put = |v: u64| {
             let width = self.widths[field];
@@ -288,8 +290,8 @@ impl Layout {
     }
 
     /// Reads a world [`Layout::pack`] packed with this layout.
-    pub fn unpack(&self, bytes: &[u8]) -> World {
-        let mut world = World {
+    pub fn unpack(&self, bytes: &[u8]) -> SystemState {
+        let mut world = SystemState {
             turn: 0,
             machines: Vec::with_capacity(self.machines),
             values: Vec::with_capacity(self.fill.len()),
@@ -301,7 +303,7 @@ impl Layout {
 
     /// [`Layout::unpack`] into a world already allocated, which a search reuses state after
     /// state.
-    pub fn unpack_into(&self, bytes: &[u8], world: &mut World) {
+    pub fn unpack_into(&self, bytes: &[u8], world: &mut SystemState) {
         if self.bits <= 128 {
             let acc = bytes
                 .iter()
@@ -319,7 +321,7 @@ impl Layout {
         }
     }
 
-    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut World) {
+    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut SystemState) {
         let mut widths = self.widths.iter();
         let mut next = || bits.take(widths.next().copied().unwrap_or(0));
         world.turn = (next() as u8).wrapping_sub(1);
@@ -467,8 +469,8 @@ mod tests {
         }
     }
 
-    fn world(time: u16, value: ValueId) -> World {
-        World {
+    fn world(time: u16, value: ValueId) -> SystemState {
+        SystemState {
             turn: 1,
             machines: vec![
                 Control {
@@ -541,7 +543,7 @@ mod tests {
             fill: vec![NEVER; 6],
             saw: 0,
         };
-        let world = World {
+        let world = SystemState {
             turn: crate::ringlet::FIRST_TURN,
             machines: Vec::new(),
             values: vec![u32::MAX, 1, 1 << 31, 3, 4, 5],
