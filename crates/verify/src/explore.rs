@@ -738,7 +738,8 @@ mod tests {
     use crate::property::PropertySource;
     use crate::random_behaviour;
     use crate::reduce::{self, Reductions};
-    use proclaim_behaviour::{load, Folder};
+    use proclaim_behaviour::{load, Files};
+    use proclaim_fsm::FileDiagnostic;
     use std::sync::Arc;
 
     /// Properties that read each machine's states and every global.
@@ -785,17 +786,32 @@ mod tests {
         )
     }
 
+    /// A generated behaviour's files, read where they are held.
+    struct Generated(Vec<(String, String)>);
+
+    impl Files for Generated {
+        fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
+            self.0
+                .iter()
+                .find(|(name, _)| name == relative)
+                .map(|(_, text)| text.clone())
+                .ok_or_else(|| FileDiagnostic::in_file(relative, "no such file generated"))
+        }
+
+        fn show(&self, relative: &str) -> String {
+            format!("<generated>/{relative}")
+        }
+    }
+
     /// The step memo and the found-state memo change nothing the search finds, on the random
     /// behaviours of the conformance test, every reduction on and off.
     #[test]
     fn the_memos_change_nothing_on_random_behaviours() {
-        let dir = std::env::temp_dir().join(format!("proclaim-memo-{}", std::process::id()));
         let mut replayed = 0;
         for seed in 0..20 {
             let generated = random_behaviour::generate(seed);
-            let _ = std::fs::remove_dir_all(&dir);
-            generated.write(&dir);
-            let behaviour = load("random", Arc::new(Folder::new(&dir))).expect("it loads");
+            let files = Generated(generated.files.clone());
+            let behaviour = load("random", Arc::new(files)).expect("it loads");
             let (plain, _) = crate::prepare(&behaviour, &[]).expect("it models");
             let asked = properties(&plain);
             for reductions in [Reductions::default(), Reductions::NONE] {
@@ -824,7 +840,6 @@ mod tests {
                 replayed += states;
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
         assert!(
             replayed > 5_000,
             "the behaviours explored only {replayed} states"
