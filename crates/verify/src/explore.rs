@@ -9,12 +9,14 @@
 
 use crate::chunked::Records;
 use crate::edges::{Edge, Edges};
+use crate::found_memo::FoundMemo;
 use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
 use crate::state_table::{self, StateTable, MAX_STATES};
-use crate::world::{Layout, Status, TooNarrow, World};
+use crate::step_memo::{Step, StepMemo};
+use crate::world::{Layout, Status, SystemState, TooNarrow};
 use proclaim_behaviour::PropertyKind;
 use std::cell::OnceCell;
 
@@ -42,6 +44,10 @@ pub struct Graph {
     /// Breadth-first layers reached: the states at the greatest distance from an initial one
     /// are this many steps away.
     pub depth: usize,
+    /// The search stopped at its [`Trial`]: the graph is wide.
+    pub wide: bool,
+    /// How many times the layout was widened (records packed before are packed no more).
+    generation: usize,
 }
 
 /// Successor lists with an index, for checks that walk edges in any order: the successors of
@@ -60,7 +66,7 @@ impl Graph {
         self.edges.len()
     }
 
-    pub fn world(&self, id: u32) -> World {
+    pub fn world(&self, id: u32) -> SystemState {
         self.layout.unpack(self.bytes_of(id))
     }
 
@@ -169,7 +175,7 @@ impl Graph {
 
 /// The running machines of `world` that are not in a final state (one just entered will
 /// finish without firing anything).
-pub fn waiting(model: &Model, world: &World) -> Vec<usize> {
+pub fn waiting(model: &Model, world: &SystemState) -> Vec<usize> {
     world
         .machines
         .iter()
@@ -200,6 +206,19 @@ pub struct Limits {
     pub max_memory: usize,
     /// Stop once every property has found what it looks for.
     pub stop_when_decided: bool,
+    /// Where the automatic engine choice looks at the graph: see [`Trial`].
+    pub trial: Option<Trial>,
+    /// Make successors through the step memo (`step_memo.rs`) where records fit it; off only
+    /// to check that it changes nothing.
+    pub memo: bool,
+}
+
+/// Once `states` are stored, the search stops ([`Graph::wide`]) if its layers hold `width`
+/// states or more on average, and goes on otherwise: a narrow, deep graph suits this search.
+#[derive(Clone, Copy, Debug)]
+pub struct Trial {
+    pub states: usize,
+    pub width: usize,
 }
 
 /// Whether a search can stop once every property is decided: every property is a safety one
@@ -217,7 +236,7 @@ fn all_decidable(properties: &[Property]) -> bool {
 /// Stores the initial worlds, or says which budget they do not fit.
 fn store_initial(
     graph: &mut Graph,
-    store: &mut Store,
+    store: &mut StateInserter,
     model: &Model,
     properties: &[Property],
     limits: Limits,
@@ -241,11 +260,11 @@ fn store_initial(
 pub fn explore(
     model: &Model,
     properties: &[Property],
-    limits: Limits,
+    mut limits: Limits,
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
-    let mut store = Store::default();
+    let mut store = StateInserter::default();
     let decidable = limits.stop_when_decided && all_decidable(properties);
     let stop = |graph: &mut Graph, reason: Stop| {
         graph.complete = false;
@@ -256,15 +275,7 @@ pub fn explore(
         return graph;
     }
     graph.edges = Edges::new(graph.initial);
-    let stepper = StepGenerator::new(model);
-    let mut successors: Vec<Successor> = Vec::new();
-    let mut list = Vec::new();
-    let mut world = World {
-        turn: 0,
-        machines: Vec::new(),
-        values: Vec::new(),
-        saw: Vec::new(),
-    };
+    let mut expansion = Expansion::new(model, properties, &graph, store);
     let mut next = 0usize;
     // States from here on are one step further from the initial ones than those before.
     let mut layer_end = graph.len();
@@ -277,6 +288,14 @@ pub fn explore(
             stop(&mut graph, Stop::Decided);
             break;
         }
+        if let Some(trial) = limits.trial.filter(|t| graph.len() >= t.states) {
+            if graph.len() / graph.depth.max(1) >= trial.width {
+                graph.wide = true;
+                stop(&mut graph, Stop::StateBudget);
+                break;
+            }
+            limits.trial = None;
+        }
         if graph.is_full(limits.max_states) {
             stop(&mut graph, Stop::StateBudget);
             break;
@@ -287,34 +306,244 @@ pub fn explore(
                 stored: graph.len(),
             });
         }
-        graph
-            .layout
-            .unpack_into(graph.bytes_of(next as u32), &mut world);
-        successors.clear();
-        stepper.successors(&world, false, &mut successors);
-        // What the tables would grow to must stay within the memory budget: as if every
-        // successor were new.
-        if graph.bytes_after(successors.len(), successors.len()) > limits.max_memory {
-            stop(&mut graph, Stop::MemoryBudget);
+        if let Err(reason) = expansion.expand(&mut graph, &limits, next) {
+            stop(&mut graph, reason);
             break;
         }
-        list.clear();
-        for s in &successors {
-            let (target, new) = store.insert(&mut graph, &s.world, model, properties);
-            if let Some(t) = s.fired {
-                let index = model.machines[s.machine].states[s.from].transitions[t].index;
-                graph.fired[s.machine][index] = true;
-            }
-            let fired = s.fired.is_some();
-            list.push((Edge { target, fired }, new));
-        }
-        graph.edges.push(list.iter().copied());
         next += 1;
     }
     graph
 }
 
+/// What expanding states needs besides the graph: the step generator and its memos, the
+/// batch of successors made ahead, and buffers reused state after state.
+struct Expansion<'m> {
+    model: &'m Model,
+    properties: &'m [Property],
+    stepper: StepGenerator<'m>,
+    memo: StepMemo<'m>,
+    found: FoundMemo<'m>,
+    /// The layout `found` knows ([`Graph::generation`]).
+    found_generation: usize,
+    batch: Batch,
+    store: StateInserter,
+    successors: Vec<Successor>,
+    list: Vec<(Edge, bool)>,
+    world: SystemState,
+}
+
+impl<'m> Expansion<'m> {
+    fn new(
+        model: &'m Model,
+        properties: &'m [Property],
+        graph: &Graph,
+        store: StateInserter,
+    ) -> Expansion<'m> {
+        Expansion {
+            model,
+            properties,
+            stepper: StepGenerator::new(model),
+            memo: StepMemo::new(model, &graph.layout),
+            found: FoundMemo::new(model, properties, &graph.layout),
+            found_generation: graph.generation,
+            batch: Batch::default(),
+            store,
+            successors: Vec::new(),
+            list: Vec::new(),
+            world: SystemState {
+                turn: 0,
+                machines: Vec::new(),
+                values: Vec::new(),
+                saw: Vec::new(),
+            },
+        }
+    }
+
+    /// Makes state `id`'s successors, stores the new ones and its successor list; or says
+    /// that the memory budget does not hold them.
+    fn expand(&mut self, graph: &mut Graph, limits: &Limits, id: usize) -> Result<(), Stop> {
+        self.list.clear();
+        if limits.memo
+            && (self.batch.has(id, graph.generation)
+                || self.batch.fill(graph, &mut self.memo, &self.stepper, id))
+        {
+            self.store_packed(graph, limits, id)?;
+        } else {
+            self.store_unpacked(graph, limits, id)?;
+        }
+        graph.edges.push(self.list.iter().copied());
+        Ok(())
+    }
+
+    /// State `id`'s successors from the batch, stored as they are packed.
+    fn store_packed(&mut self, graph: &mut Graph, limits: &Limits, id: usize) -> Result<(), Stop> {
+        if self.found_generation != graph.generation {
+            self.found.relayout(&graph.layout);
+            self.found_generation = graph.generation;
+        }
+        let range = self.batch.range(id);
+        // What the tables would grow to must stay within the memory budget: as if every
+        // successor were new.
+        let memos = self.memo.bytes() + self.found.bytes();
+        if graph.bytes_after(range.len(), range.len()) + memos > limits.max_memory {
+            return Err(Stop::MemoryBudget);
+        }
+        let bytes = graph.layout.bytes();
+        let steps = self.batch.steps[range.clone()].iter();
+        for (step, &hash) in steps.zip(&self.batch.hashes[range]) {
+            let record = step.record.to_le_bytes();
+            let (target, new) = graph.insert_record(&record[..bytes], hash);
+            if new {
+                self.found.check(
+                    &graph.layout,
+                    step.record,
+                    &mut self.world,
+                    &mut graph.entered,
+                    &mut graph.targets,
+                    target,
+                );
+            }
+            let fired = graph.mark_fired(self.model, step.machine, step.from, step.fired);
+            self.list.push((Edge { target, fired }, new));
+        }
+        Ok(())
+    }
+
+    /// State `id`'s successors made on its unpacked world, each packed as it is stored.
+    fn store_unpacked(
+        &mut self,
+        graph: &mut Graph,
+        limits: &Limits,
+        id: usize,
+    ) -> Result<(), Stop> {
+        graph
+            .layout
+            .unpack_into(graph.bytes_of(id as u32), &mut self.world);
+        self.successors.clear();
+        self.stepper
+            .successors(&self.world, false, &mut self.successors);
+        let made = self.successors.len();
+        if graph.bytes_after(made, made) > limits.max_memory {
+            return Err(Stop::MemoryBudget);
+        }
+        for s in &self.successors {
+            let (target, new) = self
+                .store
+                .insert(graph, &s.world, self.model, self.properties);
+            let fired = graph.mark_fired(self.model, s.machine, s.from, s.fired);
+            self.list.push((Edge { target, fired }, new));
+        }
+        Ok(())
+    }
+}
+
+/// How many states' successors are made ahead of storing them, so that the table entries
+/// they will probe are read from memory together rather than one after another.
+const BATCH: usize = 64;
+
+/// The successors of a run of states, packed, made through the step memo ahead of storing.
+#[derive(Default)]
+struct Batch {
+    /// The first state of the run.
+    first: usize,
+    /// Per state of the run: where its successors end in `steps`.
+    ends: Vec<usize>,
+    steps: Vec<Step>,
+    /// Each step's record's hash.
+    hashes: Vec<u64>,
+    /// The layout the records were packed with ([`Graph::generation`]).
+    generation: usize,
+    scratch: Vec<Step>,
+}
+
+impl Batch {
+    /// Whether state `id`'s successors are here, packed with the layout of `generation`.
+    fn has(&self, id: usize, generation: usize) -> bool {
+        self.generation == generation && (self.first..self.first + self.ends.len()).contains(&id)
+    }
+
+    /// Where state `id`'s successors are in `steps`.
+    fn range(&self, id: usize) -> std::ops::Range<usize> {
+        let i = id - self.first;
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        start..self.ends[i]
+    }
+
+    /// Makes the successors of the states from `first` on (at most [`BATCH`] of them) and reads
+    /// the table entries their records will probe; false (and nothing made) when the records
+    /// are too wide for the step memo. A successor too wide for its field widens it: the memo
+    /// starts afresh and so does the run.
+    fn fill(
+        &mut self,
+        graph: &mut Graph,
+        memo: &mut StepMemo,
+        stepper: &StepGenerator,
+        first: usize,
+    ) -> bool {
+        self.first = first;
+        self.ends.clear();
+        self.steps.clear();
+        self.generation = graph.generation;
+        let mut id = first;
+        while id < graph.len() && id < first + BATCH {
+            if !graph.layout.fits_register() {
+                self.ends.clear();
+                return false;
+            }
+            let mut record = [0u8; 16];
+            let bytes = graph.bytes_of(id as u32);
+            record[..bytes.len()].copy_from_slice(bytes);
+            self.scratch.clear();
+            let made = memo.successors(
+                &graph.layout,
+                stepper,
+                u128::from_le_bytes(record),
+                &mut self.scratch,
+            );
+            if let Err(narrow) = made {
+                graph.widen(narrow);
+                memo.relayout(&graph.layout);
+                self.ends.clear();
+                self.steps.clear();
+                self.generation = graph.generation;
+                id = first;
+                continue;
+            }
+            self.steps.extend_from_slice(&self.scratch);
+            self.ends.push(self.steps.len());
+            id += 1;
+        }
+        let bytes = graph.layout.bytes();
+        self.hashes.clear();
+        self.hashes.extend(
+            self.steps
+                .iter()
+                .map(|s| state_table::hash(&s.record.to_le_bytes()[..bytes])),
+        );
+        for &hash in &self.hashes {
+            graph.table.touch(hash);
+        }
+        true
+    }
+}
+
 impl Graph {
+    /// Marks the transition a step fired (machine `machine`'s, from state `from`, by its
+    /// position in priority order) as fired; whether one did.
+    fn mark_fired(
+        &mut self,
+        model: &Model,
+        machine: usize,
+        from: usize,
+        fired: Option<usize>,
+    ) -> bool {
+        if let Some(t) = fired {
+            let index = model.machines[machine].states[from].transitions[t].index;
+            self.fired[machine][index] = true;
+        }
+        fired.is_some()
+    }
+
     /// No states yet, and nothing entered, fired or found.
     fn empty(model: &Model, properties: usize) -> Graph {
         let layout = Layout::new(model);
@@ -331,6 +560,8 @@ impl Graph {
             fired: model.per_transition(),
             targets: vec![None; properties],
             depth: 0,
+            wide: false,
+            generation: 0,
         }
     }
 
@@ -371,22 +602,41 @@ impl Graph {
         self.layout = wider;
         self.states = states;
         self.table = table;
+        self.generation += 1;
+    }
+
+    /// The id of the state packed as `record` (whose hash is `hash`) and whether it is new; a
+    /// new one is stored.
+    fn insert_record(&mut self, record: &[u8], hash: u64) -> (u32, bool) {
+        let id = self.len() as u32;
+        let states = &self.states;
+        if let Some(found) = self.table.find_or_insert(
+            hash,
+            id,
+            |id| state_table::same(states.get(id as usize), record),
+            |id| state_table::hash(states.get(id as usize)),
+        ) {
+            return (found, false);
+        }
+        self.states.push(record);
+        (id, true)
     }
 }
 
-/// What storing a state needs besides the graph: its packing buffer.
+/// Packs states and inserts them into the graph, checking each new one: what that needs
+/// besides the graph, its packing buffer.
 #[derive(Default)]
-struct Store {
+struct StateInserter {
     scratch: Vec<u8>,
 }
 
-impl Store {
+impl StateInserter {
     /// The id of `world` and whether it is new; a new state is stored, checked against the
     /// properties and marks the states it is in as entered.
     fn insert(
         &mut self,
         graph: &mut Graph,
-        world: &World,
+        world: &SystemState,
         model: &Model,
         properties: &[Property],
     ) -> (u32, bool) {
@@ -397,17 +647,23 @@ impl Store {
                 Err(narrow) => graph.widen(narrow),
             }
         }
-        let id = graph.len() as u32;
-        let (states, record) = (&graph.states, &self.scratch[..]);
-        if let Some(found) = graph.table.find_or_insert(
-            state_table::hash(record),
-            id,
-            |id| states.get(id as usize) == record,
-            |id| state_table::hash(states.get(id as usize)),
-        ) {
-            return (found, false);
+        let (id, new) = graph.insert_record(&self.scratch, state_table::hash(&self.scratch));
+        if new {
+            self.note_new(graph, id, world, model, properties);
         }
-        graph.states.push(&self.scratch);
+        (id, new)
+    }
+
+    /// A new state `id`, `world`: it is checked against the properties and marks the states
+    /// it is in as entered.
+    fn note_new(
+        &mut self,
+        graph: &mut Graph,
+        id: u32,
+        world: &SystemState,
+        model: &Model,
+        properties: &[Property],
+    ) {
         for (k, c) in world.machines.iter().enumerate() {
             if c.status != Status::Dormant {
                 graph.entered[k][usize::from(c.state)] = true;
@@ -418,7 +674,6 @@ impl Store {
                 graph.targets[p] = Some(id);
             }
         }
-        (id, true)
     }
 }
 
@@ -457,7 +712,7 @@ impl Graph {
 
     /// Whether `world` is stored as state `id` (a successor made again, when a step of a
     /// lasso is replayed, is recognised by its packed bytes).
-    pub fn stores_as(&self, world: &World, id: u32) -> bool {
+    pub fn stores_as(&self, world: &SystemState, id: u32) -> bool {
         let mut bytes = Vec::new();
         self.layout.pack(world, &mut bytes).is_ok() && self.bytes_of(id) == bytes
     }
@@ -474,5 +729,120 @@ impl Graph {
             }
             Adjacency { start, targets }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::property::PropertySource;
+    use crate::random_behaviour;
+    use crate::reduce::{self, Reductions};
+    use proclaim_behaviour::{load, Files};
+    use proclaim_fsm::FileDiagnostic;
+    use std::sync::Arc;
+
+    /// Properties that read each machine's states and every global.
+    fn properties(model: &Model) -> Vec<PropertySource> {
+        let mut out = Vec::new();
+        let mut add = |kind: PropertyKind, expression: String| {
+            out.push(PropertySource {
+                name: expression.clone(),
+                kind,
+                expression,
+                fair: Vec::new(),
+            })
+        };
+        for m in &model.machines {
+            for s in &m.states {
+                add(PropertyKind::Reachable, format!("{}.{}", m.name, s.name));
+            }
+        }
+        for slot in &model.slots {
+            if slot.kind == crate::model::SlotKind::Global {
+                add(PropertyKind::Never, format!("{} == 1", slot.name));
+            }
+        }
+        out
+    }
+
+    /// The whole graph as data: every record, successor list and mark, in order.
+    fn picture(model: &Model, graph: &Graph) -> String {
+        let records: Vec<&[u8]> = (0..graph.len() as u32)
+            .map(|id| graph.bytes_of(id))
+            .collect();
+        let lists: Vec<Vec<u32>> = (0..graph.expanded() as u32)
+            .map(|id| graph.successors_of(id).collect())
+            .collect();
+        format!(
+            "{records:?}\n{lists:?}\n{:?} {:?} {:?} {} {} {:?} {}",
+            graph.entered,
+            graph.fired,
+            graph.targets,
+            graph.depth,
+            graph.complete,
+            graph.deadlock(model),
+            graph.wide,
+        )
+    }
+
+    /// A generated behaviour's files, read where they are held.
+    struct Generated(Vec<(String, String)>);
+
+    impl Files for Generated {
+        fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
+            self.0
+                .iter()
+                .find(|(name, _)| name == relative)
+                .map(|(_, text)| text.clone())
+                .ok_or_else(|| FileDiagnostic::in_file(relative, "no such file generated"))
+        }
+
+        fn show(&self, relative: &str) -> String {
+            format!("<generated>/{relative}")
+        }
+    }
+
+    /// The step memo and the found-state memo change nothing the search finds, on the random
+    /// behaviours of the conformance test, every reduction on and off.
+    #[test]
+    fn the_memos_change_nothing_on_random_behaviours() {
+        let mut replayed = 0;
+        for seed in 0..20 {
+            let generated = random_behaviour::generate(seed);
+            let files = Generated(generated.files.clone());
+            let behaviour = load("random", Arc::new(files)).expect("it loads");
+            let (plain, _) = crate::prepare(&behaviour, &[]).expect("it models");
+            let asked = properties(&plain);
+            for reductions in [Reductions::default(), Reductions::NONE] {
+                // Each search on a model of its own, as a search numbers the values it meets.
+                let picture_of = |memo| {
+                    let (mut model, compiled) =
+                        crate::prepare(&behaviour, &asked).expect("it models");
+                    model.storage = reduce::storage(&model, &compiled, reductions);
+                    let limits = Limits {
+                        max_states: 5_000,
+                        max_memory: 1 << 30,
+                        stop_when_decided: reductions.stop_when_decided,
+                        trial: None,
+                        memo,
+                    };
+                    let graph = explore(&model, &compiled, limits, &mut |_| {});
+                    (picture(&model, &graph), graph.len())
+                };
+                let (with, states) = picture_of(true);
+                let (without, _) = picture_of(false);
+                assert!(
+                    with == without,
+                    "seed {seed}, {reductions:?}: the searches differ\n{}",
+                    generated.show()
+                );
+                replayed += states;
+            }
+        }
+        assert!(
+            replayed > 5_000,
+            "the behaviours explored only {replayed} states"
+        );
     }
 }

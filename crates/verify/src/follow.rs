@@ -19,7 +19,7 @@
 use crate::arith::text;
 use crate::model::{Model, Name, SlotId};
 use crate::ringlet::{initial_worlds, StepGenerator, Successor};
-use crate::world::{Status, World};
+use crate::world::{Status, SystemState};
 use proclaim_fsm::control::Command;
 use proclaim_runner::Event;
 use rustc_hash::FxHashMap;
@@ -109,7 +109,7 @@ pub fn follow(model: &Model, events: &[Event]) -> Result<Followed, Mismatch> {
     let rounds = ringlets(model, events)?;
     let last = rounds.keys().next_back().copied().unwrap_or(0);
     let stepper = StepGenerator::new(model);
-    let mut worlds: Vec<World> = initial_worlds(model).collect();
+    let mut worlds: Vec<SystemState> = initial_worlds(model).collect();
     let mut statuses: Vec<Status> = model
         .machines
         .iter()
@@ -254,16 +254,16 @@ fn describe(event: &Event) -> String {
 fn step_round(
     model: &Model,
     stepper: &StepGenerator<'_>,
-    worlds: Vec<World>,
+    worlds: Vec<SystemState>,
     observed: &[Observed],
     modes: &[Vec<Status>],
     last: bool,
-) -> Result<Vec<World>, Vec<String>> {
+) -> Result<Vec<SystemState>, Vec<String>> {
     let mut ended = WorldSet::default();
     // Worlds within the round, by how many ringlets seen they have matched; whether they have
     // rung at all this round.
     let mut seen: Vec<WorldSet> = (0..=observed.len()).map(|_| WorldSet::default()).collect();
-    let mut frontier: Vec<(World, usize, bool)> =
+    let mut frontier: Vec<(SystemState, usize, bool)> =
         worlds.into_iter().map(|w| (w, 0, false)).collect();
     let mut reasons: Vec<String> = Vec::new();
     let mut reason = |r: String| {
@@ -326,7 +326,7 @@ fn step_round(
 /// (`None`: a ringlet with no events), leaving every machine in the mode `modes` says.
 fn fits(
     model: &Model,
-    before: &World,
+    before: &SystemState,
     s: &Successor,
     seen: Option<&Observed>,
     modes: &[Status],
@@ -411,7 +411,7 @@ fn fits_firing(
 /// Whether the model's step wrote what the runner's ringlet wrote, and nothing else.
 fn fits_writes(
     model: &Model,
-    before: &World,
+    before: &SystemState,
     s: &Successor,
     seen: Option<&Observed>,
     at: &str,
@@ -446,17 +446,17 @@ fn fits_writes(
     Ok(())
 }
 
-/// Worlds without repeats. `World` is the lead's to change, so it is hashed here by the parts
+/// Worlds without repeats. `SystemState` is the lead's to change, so it is hashed here by the parts
 /// every world has (where each machine is and the values), and compared whole.
 #[derive(Default)]
 struct WorldSet {
-    buckets: FxHashMap<u64, Vec<World>>,
+    buckets: FxHashMap<u64, Vec<SystemState>>,
     len: usize,
 }
 
 impl WorldSet {
     /// Whether `world` was new.
-    fn insert(&mut self, world: World) -> bool {
+    fn insert(&mut self, world: SystemState) -> bool {
         let mut h = rustc_hash::FxHasher::default();
         for c in &world.machines {
             (c.state, c.just_entered, c.status as u8).hash(&mut h);
@@ -475,7 +475,7 @@ impl WorldSet {
         self.len == 0
     }
 
-    fn into_worlds(self) -> Vec<World> {
+    fn into_worlds(self) -> Vec<SystemState> {
         self.buckets.into_values().flatten().collect()
     }
 }

@@ -35,17 +35,24 @@ mod edges;
 mod error;
 mod explore;
 pub mod follow;
+mod found_memo;
 mod lasso;
 mod liveness;
 pub mod model;
 mod outcome;
 pub mod promela;
 pub mod property;
+/// The conformance test's random behaviours, for the tests of the search's memos.
+#[cfg(test)]
+#[path = "../tests/common/random_behaviour.rs"]
+#[allow(dead_code)]
+mod random_behaviour;
 mod reasoner;
 pub mod reduce;
 pub mod ringlet;
 mod script;
 mod state_table;
+mod step_memo;
 mod symbolic;
 mod trace;
 mod values;
@@ -129,6 +136,8 @@ impl Options {
             max_states: self.max_states,
             max_memory: self.max_memory,
             stop_when_decided: self.reductions.stop_when_decided,
+            trial: None,
+            memo: true,
         }
     }
 }
@@ -169,27 +178,23 @@ pub fn verify_with_progress(
     model.storage = reduce::storage(&model, &compiled, options.reductions);
     check_stored_free(&model)?;
     match options.engine {
-        SearchEngine::Explicit => Ok(explicit(&model, &compiled, options, progress)),
+        SearchEngine::Explicit => Ok(explicit(&model, &compiled, options, None, progress).0),
         SearchEngine::Symbolic => symbolic(&model, &compiled, options)
             .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
         SearchEngine::Auto => {
-            let trial = Options {
-                max_states: options.max_states.min(AUTO_EXPLICIT_STATES),
-                ..options
-            };
-            let report = explicit(&model, &compiled, trial, progress);
-            if report.stats.stopped != Stop::StateBudget || trial.max_states == options.max_states {
-                return Ok(report);
-            }
             // A deep, narrow graph (counters stepping through their values) would take the
-            // symbolic engine one image a layer; the explicit search goes on with it.
-            let width = report.stats.states / report.stats.depth.max(1);
-            if width < AUTO_NARROW_WIDTH {
-                return Ok(explicit(&model, &compiled, options, progress));
+            // symbolic engine one image a layer: the explicit search goes on with it.
+            let trial = (options.max_states > AUTO_EXPLICIT_STATES).then_some(explore::Trial {
+                states: AUTO_EXPLICIT_STATES,
+                width: AUTO_NARROW_WIDTH,
+            });
+            let (report, wide) = explicit(&model, &compiled, options, trial, progress);
+            if !wide {
+                return Ok(report);
             }
             match symbolic(&model, &compiled, options) {
                 Ok(report) => Ok(report),
-                Err(_) => Ok(explicit(&model, &compiled, options, progress)),
+                Err(_) => Ok(explicit(&model, &compiled, options, None, progress).0),
             }
         }
     }
@@ -343,14 +348,19 @@ fn valuations(model: &Model) -> usize {
         .sum()
 }
 
-/// The explicit search's report.
+/// The explicit search's report, and whether it stopped at its `trial` (the graph is wide).
 fn explicit(
     model: &Model,
     properties: &[Property],
     options: Options,
+    trial: Option<explore::Trial>,
     progress: &mut dyn FnMut(Progress),
-) -> Report {
-    let graph = explore::explore(model, properties, options.limits(), progress);
+) -> (Report, bool) {
+    let limits = explore::Limits {
+        trial,
+        ..options.limits()
+    };
+    let graph = explore::explore(model, properties, limits, progress);
     let outcomes = properties
         .iter()
         .zip(&graph.targets)
@@ -386,15 +396,16 @@ fn explicit(
         valuations: valuations(model),
         engine: SearchEngine::Explicit.word(),
     };
-    Report {
+    let report = Report {
         properties: outcomes,
         findings,
         stats,
-    }
+    };
+    (report, graph.wide)
 }
 
 /// `Machine.State` of each running machine of `world` not in a final state.
-fn waiting_names(model: &Model, world: &world::World) -> Vec<String> {
+fn waiting_names(model: &Model, world: &world::SystemState) -> Vec<String> {
     explore::waiting(model, world)
         .into_iter()
         .map(|k| {

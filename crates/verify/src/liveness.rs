@@ -23,7 +23,7 @@ use crate::lasso;
 use crate::model::Model;
 use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
-use crate::world::{Status, World};
+use crate::world::{Status, SystemState};
 use proclaim_behaviour::PropertyKind;
 
 /// The verdict of liveness property `property` on `graph`, with its lasso when it fails.
@@ -80,7 +80,7 @@ pub fn acceptance_sets(model: &Model, property: &Property) -> usize {
 }
 
 /// Whether `world` is in acceptance set `set` (see [`acceptance_sets`]).
-pub fn meets(model: &Model, property: &Property, world: &World, set: usize) -> bool {
+pub fn meets(model: &Model, property: &Property, world: &SystemState, set: usize) -> bool {
     let machines = model.machines.len();
     if set >= machines {
         return property.fair_holds_in(set - machines, model, world);

@@ -5,7 +5,7 @@
 //! - **State.** Per machine its state, mode (0 running, 1 suspended, 2 dormant), just-entered
 //!   and started-this-round bits and due time bits (arrays `st`, `mode`, `je`, `fresh`, `due`);
 //!   `turn`; every slot (`s<i>`) and every `saw()` value (`saw<i>`) as a **value number** of the
-//!   model's [`crate::values::Values`] (0 never posted); that is [`crate::world::World`] field by
+//!   model's [`crate::values::Values`] (0 never posted); that is [`crate::world::SystemState`] field by
 //!   field.
 //! - **Values.** The numbers are those the machines' ringlets can write, found to a fixpoint
 //!   with no search (as the symbolic engine finds its fields' values; a bounded exploration

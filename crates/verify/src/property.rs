@@ -11,7 +11,7 @@ use crate::error::PropertyError;
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
 use crate::values::ValueId;
-use crate::world::{Status, World};
+use crate::world::{Status, SystemState};
 use proclaim_behaviour::PropertyKind;
 use proclaim_board::Value;
 use proclaim_fsm::code::parse_expression;
@@ -247,23 +247,23 @@ impl Property {
     }
 
     /// Whether the property's expression (`leads_to`'s P) is true in `world`.
-    pub fn holds_in(&self, model: &Model, world: &World) -> bool {
+    pub fn holds_in(&self, model: &Model, world: &SystemState) -> bool {
         truth(&self.term, model, world)
     }
 
     /// Whether `leads_to`'s Q is true in `world` (false for the other kinds).
-    pub fn then_holds_in(&self, model: &Model, world: &World) -> bool {
+    pub fn then_holds_in(&self, model: &Model, world: &SystemState) -> bool {
         self.then.as_ref().is_some_and(|t| truth(t, model, world))
     }
 
     /// Whether fairness assumption `i` is true in `world`.
-    pub fn fair_holds_in(&self, i: usize, model: &Model, world: &World) -> bool {
+    pub fn fair_holds_in(&self, i: usize, model: &Model, world: &SystemState) -> bool {
         truth(&self.fair[i], model, world)
     }
 
     /// Whether `world` is what the property looks for: a violation of `never`/`always`, a
     /// witness of `reachable`; never for a liveness property, which no single state settles.
-    pub fn is_target(&self, model: &Model, world: &World) -> bool {
+    pub fn is_target(&self, model: &Model, world: &SystemState) -> bool {
         match self.source.kind {
             PropertyKind::Never | PropertyKind::Reachable => self.holds_in(model, world),
             PropertyKind::Always => !self.holds_in(model, world),
@@ -537,7 +537,7 @@ fn column_of(text: &str, at: &Expr) -> usize {
 }
 
 /// A term's value in `world`.
-fn value(term: &Term, model: &Model, world: &World) -> Option<Value> {
+fn value(term: &Term, model: &Model, world: &SystemState) -> Option<Value> {
     match term {
         Term::Const(v) => Some(v.clone()),
         Term::Slot(slot) => slot_value(model, &world.values, *slot),
@@ -570,7 +570,7 @@ fn value(term: &Term, model: &Model, world: &World) -> Option<Value> {
     }
 }
 
-fn truth(term: &Term, model: &Model, world: &World) -> bool {
+fn truth(term: &Term, model: &Model, world: &SystemState) -> bool {
     value(term, model, world).is_some_and(|v| v.truthy())
 }
 
@@ -583,7 +583,7 @@ fn slot_value(model: &Model, values: &[ValueId], slot: SlotId) -> Option<Value> 
     }
 }
 
-fn answer(model: &Model, world: &World, theory: usize, output: usize, depth: usize) -> bool {
+fn answer(model: &Model, world: &SystemState, theory: usize, output: usize, depth: usize) -> bool {
     let t = &model.theories[theory];
     let inputs: Vec<Input> = t
         .inputs

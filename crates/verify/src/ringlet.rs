@@ -33,7 +33,7 @@ use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
 use crate::reduce::Storage;
 use crate::values::{ValueId, NEVER};
-use crate::world::{Control, Status, World};
+use crate::world::{Control, Status, SystemState};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, TIME_TESTS};
@@ -69,7 +69,7 @@ pub struct Detail {
 }
 
 pub struct Successor {
-    pub world: World,
+    pub world: SystemState,
     pub choice: Choice,
     pub machine: usize,
     /// A new round began with this step.
@@ -84,8 +84,8 @@ pub struct Successor {
 /// The initial worlds: every machine at its initial state (running or dormant as the manifest
 /// says), variables at zero, every stored free type at each value of its initial domain (in
 /// mixed radix, the first free slot the fastest).
-pub fn initial_worlds(model: &Model) -> impl Iterator<Item = World> + '_ {
-    let base = World {
+pub fn initial_worlds(model: &Model) -> impl Iterator<Item = SystemState> + '_ {
+    let base = SystemState {
         turn: FIRST_TURN,
         machines: model
             .machines
@@ -216,7 +216,7 @@ impl<'m> StepGenerator<'m> {
 
     /// The machine that rings next from `world` and the world as it is when it starts (a new
     /// round clears "started this round"); `None` when no machine can ring any more.
-    fn next_machine(&self, world: &World) -> Option<(usize, World, bool)> {
+    pub(crate) fn next_machine(&self, world: &SystemState) -> Option<(usize, SystemState, bool)> {
         let n = self.model.machines.len();
         let mut w = world.clone();
         let mut k = if w.turn == FIRST_TURN {
@@ -245,7 +245,7 @@ impl<'m> StepGenerator<'m> {
     }
 
     /// Running, not started this round, and not finished (a final state whose OnEntry ran).
-    fn can_ring(&self, w: &World, k: usize) -> bool {
+    fn can_ring(&self, w: &SystemState, k: usize) -> bool {
         let c = &w.machines[k];
         c.status == Status::Running
             && !c.fresh
@@ -256,7 +256,7 @@ impl<'m> StepGenerator<'m> {
     /// the ringing machine's ringlet once for every leaf of its choices (the free types it
     /// reads, the snapshot's time tests and stored free types), then every move of the
     /// environment.
-    pub fn successors(&self, world: &World, detail: bool, out: &mut Vec<Successor>) {
+    pub fn successors(&self, world: &SystemState, detail: bool, out: &mut Vec<Successor>) {
         let Some((k, start, wrapped)) = self.next_machine(world) else {
             return;
         };
@@ -276,7 +276,7 @@ impl<'m> StepGenerator<'m> {
     #[allow(clippy::too_many_arguments)]
     fn ringlet(
         &self,
-        start: &World,
+        start: &SystemState,
         k: usize,
         wrapped: bool,
         choices: &mut Choices,
@@ -291,7 +291,7 @@ impl<'m> StepGenerator<'m> {
     #[allow(clippy::too_many_arguments)]
     fn ringlet_on<'c>(
         &'c self,
-        start: &World,
+        start: &SystemState,
         k: usize,
         wrapped: bool,
         choices: &'c mut Choices,
@@ -375,7 +375,7 @@ impl<'m> StepGenerator<'m> {
             fresh: false,
             time: 0,
         };
-        let mut start = World {
+        let mut start = SystemState {
             turn: k as u8,
             machines: vec![unknown_control; model.machines.len()],
             values: model
@@ -423,17 +423,17 @@ impl<'m> StepGenerator<'m> {
     /// machine).
     fn on_entry(
         &self,
-        start: World,
+        start: SystemState,
         k: usize,
         chosen: &mut Chosen<'_>,
-    ) -> (World, Vec<SlotId>, Vec<(usize, Command)>) {
+    ) -> (SystemState, Vec<SlotId>, Vec<(usize, Command)>) {
         let mut entered = start;
         let mut touched: Vec<SlotId> = Vec::new();
         let mut deferred = Vec::new();
         if entered.machines[k].just_entered {
             let state =
                 &self.model.machines[k].machine.states[usize::from(entered.machines[k].state)];
-            let mut exec = Exec {
+            let mut exec = RingletInterpreter {
                 model: self.model,
                 world: &mut entered,
                 machine: k,
@@ -460,7 +460,7 @@ impl<'m> StepGenerator<'m> {
     /// commands it posted, obeyed as the ringlet ends. Returns the transition that fired.
     fn rest_of_ringlet(
         &self,
-        w: &mut World,
+        w: &mut SystemState,
         k: usize,
         deferred: Vec<(usize, Command)>,
         chosen: &mut Chosen<'_>,
@@ -469,7 +469,7 @@ impl<'m> StepGenerator<'m> {
         let from = usize::from(w.machines[k].state);
         let state = &machine.machine.states[from];
         let snapshot: Vec<ValueId> = w.values.clone();
-        let mut exec = Exec {
+        let mut exec = RingletInterpreter {
             model: self.model,
             world: w,
             machine: k,
@@ -552,7 +552,7 @@ impl<'m> StepGenerator<'m> {
 /// One ringlet as its successors share it: which machine rang from which state, along which
 /// leaf of its choices, and what fired.
 struct Ringlet {
-    world: World,
+    world: SystemState,
     machine: usize,
     wrapped: bool,
     from: usize,
@@ -608,7 +608,7 @@ pub(crate) struct Open<'d> {
 /// still [`UNKNOWN`] was neither read nor written).
 pub(crate) struct OpenLeaf {
     pub reads: Vec<OpenRead>,
-    pub after: World,
+    pub after: SystemState,
     pub control_writes: Vec<ControlWrites>,
     pub fired: Option<usize>,
 }
@@ -688,7 +688,7 @@ impl ControlWrites {
 /// Applies a control command to machine `k` as gufsm's `SuspensibleMachine` (and the runner)
 /// does; a machine that starts is "fresh": it rings from the next round on. Returns what it
 /// wrote.
-fn control(model: &Model, world: &mut World, k: usize, command: Command) -> ControlWrites {
+fn control(model: &Model, world: &mut SystemState, k: usize, command: Command) -> ControlWrites {
     let initial = model.machines[k].initial as u16;
     let c = &mut world.machines[k];
     let all = ControlWrites {
@@ -735,10 +735,11 @@ fn control(model: &Model, world: &mut World, k: usize, command: Command) -> Cont
     }
 }
 
-/// Runs activities and evaluates expressions for machine `machine` over a world.
-struct Exec<'a, 'c> {
+/// One ringlet's interpreter: runs activities and evaluates expressions for machine `machine`
+/// over a world.
+struct RingletInterpreter<'a, 'c> {
     model: &'a Model,
-    world: &'a mut World,
+    world: &'a mut SystemState,
     machine: usize,
     /// Whiteboard values as the snapshot took them (from the snapshot to the ringlet's end).
     snapshot: Option<Vec<ValueId>>,
@@ -751,7 +752,7 @@ struct Exec<'a, 'c> {
 
 /// The runner's walk over an expression, on the model: names resolve to slots and answers, a
 /// time test is due where the step's choice made it so.
-impl Evaluate for Exec<'_, '_> {
+impl Evaluate for RingletInterpreter<'_, '_> {
     fn read(&mut self, name: &str) -> Option<Value> {
         let resolved = self.model.resolve(Some(self.machine), name)?;
         self.name_value(resolved)
@@ -766,7 +767,7 @@ impl Evaluate for Exec<'_, '_> {
     }
 }
 
-impl Exec<'_, '_> {
+impl RingletInterpreter<'_, '_> {
     fn is_message(&self, slot: SlotId) -> bool {
         matches!(self.model.slots[slot].kind, SlotKind::Message { .. })
     }
@@ -981,7 +982,7 @@ impl Exec<'_, '_> {
 }
 
 /// The activity language's statements on the model: the same walk as the runner's.
-impl Effects for Exec<'_, '_> {
+impl Effects for RingletInterpreter<'_, '_> {
     type Pause = Infallible;
 
     fn assign(&mut self, name: &str, value: &Expr) {

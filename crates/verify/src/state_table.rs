@@ -40,6 +40,23 @@ pub fn hash(record: &[u8]) -> u64 {
     fold(h ^ rest, 0xbf58_476d_1ce4_e5b9)
 }
 
+/// Whether two packed records are the same: those of a few bytes (most) compared as one
+/// number, since comparing them as slices is a call.
+pub fn same(a: &[u8], b: &[u8]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    if a.len() > 16 {
+        return a == b;
+    }
+    let number = |r: &[u8]| {
+        r.iter()
+            .rev()
+            .fold(0u128, |n, &byte| n << 8 | u128::from(byte))
+    };
+    number(a) == number(b)
+}
+
 fn fold(a: u64, b: u64) -> u64 {
     let product = u128::from(a) * u128::from(b);
     (product as u64) ^ ((product >> 64) as u64)
@@ -96,6 +113,14 @@ impl StateTable {
             if at == mask {
                 at = 0;
             }
+        }
+    }
+
+    /// Reads the entry a record of `hash` is looked for first, so that it is in the cache when
+    /// it is looked for.
+    pub fn touch(&self, hash: u64) {
+        if !self.entries.is_empty() {
+            std::hint::black_box(self.entries[home(hash, self.entries.len())]);
         }
     }
 
@@ -170,6 +195,11 @@ mod tests {
             );
             assert_eq!(found, Some(i as u32));
         }
+        assert!(same(&records[3], &[3, 0, 7]) && !same(&records[3], &records[4]));
+        assert!(
+            !same(&[1, 2], &[1, 2, 0]),
+            "a longer record is another record"
+        );
         assert!(
             table.bytes() < records.len() * 4 * 2,
             "{} bytes",

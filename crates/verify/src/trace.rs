@@ -6,7 +6,7 @@ use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
 use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::values::{ValueId, NEVER};
-use crate::world::World;
+use crate::world::SystemState;
 use proclaim_board::Value;
 use rustc_hash::FxHashMap;
 
@@ -47,7 +47,7 @@ pub fn replay(model: &Model, graph: &Graph, initial: usize, path: &[(u32, Choice
 pub fn trace_of(
     model: &Model,
     initial: usize,
-    path: impl IntoIterator<Item = (World, Choice)>,
+    path: impl IntoIterator<Item = (SystemState, Choice)>,
 ) -> Trace {
     let Some(first) = initial_worlds(model).nth(initial) else {
         return Trace {

@@ -1,4 +1,4 @@
-//! A state of the model and its packed form. Unpacked ([`World`]) while a ringlet runs;
+//! A state of the model and its packed form. Unpacked ([`SystemState`]) while a ringlet runs;
 //! packed while stored into a record of bit fields, each as wide as its values need: whose
 //! turn it is, per machine its state number (none for a machine of one state), its time bits
 //! (one a time test of its states) and its flags (just entered, started this round, mode: none
@@ -34,8 +34,10 @@ pub struct Control {
     pub time: u16,
 }
 
+/// The whole model's state, unpacked: whose turn it is, every machine's control, every slot's
+/// value and what each `saw()` kept.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct World {
+pub struct SystemState {
     /// The machine whose turn is next, or the first to consider after it (the runnable one
     /// at or after it, wrapping to a new round).
     pub turn: u8,
@@ -153,9 +155,80 @@ impl Layout {
         wider
     }
 
+    /// Whether a record fits in a `u128`, on which the explicit search's step memo works.
+    pub fn fits_register(&self) -> bool {
+        self.bits <= 128
+    }
+
+    /// The bit a field starts at, in a record read as a little-endian number.
+    fn field_start(&self, field: usize) -> u32 {
+        self.widths[..field].iter().map(|&w| u32::from(w)).sum()
+    }
+
+    /// The bits of `field` in a record read as a little-endian `u128`.
+    fn field_mask(&self, field: usize) -> u128 {
+        match self.widths.get(field) {
+            Some(&w) if w > 0 => ((1u128 << w) - 1) << self.field_start(field),
+            _ => 0,
+        }
+    }
+
+    /// The bits of whose turn it is.
+    pub fn turn_mask(&self) -> u128 {
+        self.field_mask(0)
+    }
+
+    /// The bits of machine `k`'s control: its state, time bits and flags.
+    pub fn control_mask(&self, k: usize) -> u128 {
+        (1..4).fold(0, |m, f| m | self.field_mask(f + 3 * k))
+    }
+
+    /// The bit of machine `k`'s "started this round" flag, when its flags field has one.
+    pub fn fresh_mask(&self, k: usize) -> u128 {
+        let field = 3 + 3 * k;
+        if self.widths[field] >= 2 {
+            1u128 << (self.field_start(field) + 1)
+        } else {
+            0
+        }
+    }
+
+    /// The bits a record keeps of `slot`: its value number when stored, its one bit when
+    /// chosen when read, none when unread.
+    pub fn slot_mask(&self, slot: SlotId) -> u128 {
+        let values = 1 + 3 * self.machines;
+        if let Ok(i) = self.stored.binary_search(&slot) {
+            return self.field_mask(values + i);
+        }
+        if let Ok(i) = self.chosen.binary_search(&slot) {
+            return self.field_mask(values + self.stored.len() + self.saw + i);
+        }
+        0
+    }
+
+    /// The bits of the value `saw()` number `j` keeps.
+    pub fn saw_mask(&self, j: usize) -> u128 {
+        self.field_mask(1 + 3 * self.machines + self.stored.len() + j)
+    }
+
+    /// Where machine `k`'s state number lies in a record read as a `u128`: its first bit and
+    /// the mask of its width.
+    pub fn state_field(&self, k: usize) -> (u32, u128) {
+        let field = 1 + 3 * k;
+        let width = self.widths[field];
+        (self.field_start(field), (1u128 << width) - 1)
+    }
+
+    /// [`Layout::pack`] into a `u128`, for a layout that [`Layout::fits_register`].
+    pub fn pack_register(&self, world: &SystemState) -> Result<u128, TooNarrow> {
+        let mut bits = Register { acc: 0, used: 0 };
+        self.pack_into(world, &mut bits)?;
+        Ok(bits.acc)
+    }
+
     /// Packs `world` into [`Layout::bytes`] bytes appended to `out`, or says which field is too
     /// narrow for it (`out` then holds a part of the record).
-    pub fn pack(&self, world: &World, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
+    pub fn pack(&self, world: &SystemState, out: &mut Vec<u8>) -> Result<(), TooNarrow> {
         // Most records fit in a register, which is filled before a byte is written.
         if self.bits <= 128 {
             let mut bits = Register { acc: 0, used: 0 };
@@ -177,7 +250,7 @@ impl Layout {
         Ok(())
     }
 
-    fn pack_into(&self, world: &World, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
+    fn pack_into(&self, world: &SystemState, bits: &mut impl FieldWriter) -> Result<(), TooNarrow> {
         let mut field = 0;
         let mut put = |v: u64| {
             let width = self.widths[field];
@@ -217,8 +290,8 @@ impl Layout {
     }
 
     /// Reads a world [`Layout::pack`] packed with this layout.
-    pub fn unpack(&self, bytes: &[u8]) -> World {
-        let mut world = World {
+    pub fn unpack(&self, bytes: &[u8]) -> SystemState {
+        let mut world = SystemState {
             turn: 0,
             machines: Vec::with_capacity(self.machines),
             values: Vec::with_capacity(self.fill.len()),
@@ -230,7 +303,7 @@ impl Layout {
 
     /// [`Layout::unpack`] into a world already allocated, which a search reuses state after
     /// state.
-    pub fn unpack_into(&self, bytes: &[u8], world: &mut World) {
+    pub fn unpack_into(&self, bytes: &[u8], world: &mut SystemState) {
         if self.bits <= 128 {
             let acc = bytes
                 .iter()
@@ -248,7 +321,7 @@ impl Layout {
         }
     }
 
-    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut World) {
+    fn unpack_from(&self, bits: &mut impl FieldReader, world: &mut SystemState) {
         let mut widths = self.widths.iter();
         let mut next = || bits.take(widths.next().copied().unwrap_or(0));
         world.turn = (next() as u8).wrapping_sub(1);
@@ -396,8 +469,8 @@ mod tests {
         }
     }
 
-    fn world(time: u16, value: ValueId) -> World {
-        World {
+    fn world(time: u16, value: ValueId) -> SystemState {
+        SystemState {
             turn: 1,
             machines: vec![
                 Control {
@@ -470,7 +543,7 @@ mod tests {
             fill: vec![NEVER; 6],
             saw: 0,
         };
-        let world = World {
+        let world = SystemState {
             turn: crate::ringlet::FIRST_TURN,
             machines: Vec::new(),
             values: vec![u32::MAX, 1, 1 << 31, 3, 4, 5],

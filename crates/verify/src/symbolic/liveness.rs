@@ -19,7 +19,7 @@ use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
 use crate::ringlet::{Choice, Successor};
 use crate::trace::trace_of;
-use crate::world::{Status, World};
+use crate::world::{Status, SystemState};
 use biodivine_lib_bdd::{Bdd, BddPartialValuation};
 use proclaim_behaviour::PropertyKind;
 
@@ -219,7 +219,7 @@ impl Searched<'_, '_> {
         sets: &FairSets,
         to_stay: &[Bdd],
         layers: &[Bdd],
-    ) -> Option<(Path, World)> {
+    ) -> Option<(Path, SystemState)> {
         let fails = to_stay.last()?;
         let (model, enc) = (self.model, self.enc);
         let kind = property.source.kind;
@@ -273,8 +273,8 @@ impl Searched<'_, '_> {
 
     /// From `at`, in some ring of `rings`, one successor at a time into ring 0; the steps taken
     /// go on `path`.
-    fn walk(&self, at: &mut World, path: &mut Vec<(World, Choice)>, rings: &[Bdd]) {
-        let ring_of = |w: &World| {
+    fn walk(&self, at: &mut SystemState, path: &mut Vec<(SystemState, Choice)>, rings: &[Bdd]) {
+        let ring_of = |w: &SystemState| {
             rings
                 .iter()
                 .position(|r| self.enc.contains(self.model, r, w))
@@ -303,7 +303,7 @@ impl Searched<'_, '_> {
     /// The shortest way of at least one step from `from` to `to` through `within`, found by
     /// images of the frontier (cheap while the frontier is small) and then walked back to
     /// front by the explicit stepper.
-    fn way(&self, from: &World, to: &World, within: &Bdd) -> Option<Vec<(World, Choice)>> {
+    fn way(&self, from: &SystemState, to: &SystemState, within: &Bdd) -> Option<Vec<(SystemState, Choice)>> {
         let (model, enc) = (self.model, self.enc);
         let target = enc.mk(&enc.world(model, to));
         let mut frontiers = vec![enc.mk(&enc.world(model, from))];
@@ -353,9 +353,9 @@ impl Searched<'_, '_> {
     fn fair_loop(
         &self,
         sets: &FairSets,
-        at: &mut World,
-        prefix: &mut Vec<(World, Choice)>,
-    ) -> Result<Vec<(World, Choice)>, Declined> {
+        at: &mut SystemState,
+        prefix: &mut Vec<(SystemState, Choice)>,
+    ) -> Result<Vec<(SystemState, Choice)>, Declined> {
         let (model, enc) = (self.model, self.enc);
         for _ in 0..MAX_LOOP_STARTS {
             let start = at.clone();

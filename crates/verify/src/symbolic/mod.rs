@@ -34,7 +34,7 @@ use crate::ringlet::{
     UNKNOWN,
 };
 use crate::values::{ValueId, NEVER};
-use crate::world::{Control, Status, World};
+use crate::world::{Control, Status, SystemState};
 use biodivine_lib_bdd::{
     Bdd, BddPartialValuation, BddValuation, BddVariable, BddVariableSet, BddVariableSetBuilder,
 };
@@ -205,7 +205,7 @@ impl Encoding {
     }
 
     /// The cube of one whole world.
-    fn world(&self, model: &Model, w: &World) -> BddPartialValuation {
+    fn world(&self, model: &Model, w: &SystemState) -> BddPartialValuation {
         let mut cube = BddPartialValuation::empty();
         self.turn.set(turn_index(model, w.turn), &mut cube);
         for (m, c) in w.machines.iter().enumerate() {
@@ -226,7 +226,7 @@ impl Encoding {
     }
 
     /// Whether every stored value of `w` has an index (a world the encoding can hold).
-    fn holds(&self, w: &World) -> bool {
+    fn holds(&self, w: &SystemState) -> bool {
         self.slots
             .iter()
             .enumerate()
@@ -238,7 +238,7 @@ impl Encoding {
     }
 
     /// Whether world `w` is in `set`.
-    fn contains(&self, model: &Model, set: &Bdd, w: &World) -> bool {
+    fn contains(&self, model: &Model, set: &Bdd, w: &SystemState) -> bool {
         self.holds(w) && set.eval_in(&self.full_valuation(&self.world(model, w)))
     }
 
@@ -269,7 +269,7 @@ struct Step {
 }
 
 /// A path from initial world number `.0`: each step's world and the choice it took.
-pub type Path = (usize, Vec<(World, Choice)>);
+pub type Path = (usize, Vec<(SystemState, Choice)>);
 
 /// What the engine found.
 pub struct SymbolicOutcome {
@@ -286,7 +286,7 @@ pub struct SymbolicOutcome {
     /// The nearest state from which no transition can ever fire again while a running machine
     /// is not in a final state, with the path to it (looked for only once every state was
     /// reached, as the explicit search does).
-    pub deadlock: Option<(Path, World)>,
+    pub deadlock: Option<(Path, SystemState)>,
     /// Per property: a liveness property's outcome, once the search is complete.
     pub liveness: Vec<Option<PropertyOutcome>>,
 }
@@ -304,9 +304,9 @@ pub fn number_values(model: &Model) -> Result<(), Declined> {
 /// The initial worlds and their first ringlets, which the explicit stepper takes (a free type
 /// may still be never posted there).
 struct FirstRinglets {
-    initial: Vec<World>,
+    initial: Vec<SystemState>,
     /// Per initial world, its successors and the choice that made each.
-    steps: Vec<Vec<(World, Choice)>>,
+    steps: Vec<Vec<(SystemState, Choice)>>,
     /// Per machine, per transition: fired by a first ringlet.
     fired: Vec<Vec<bool>>,
     /// Per initial world: some first ringlet from it fires a transition.
@@ -314,7 +314,7 @@ struct FirstRinglets {
 }
 
 fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
-    let initial: Vec<World> = initial_worlds(model).collect();
+    let initial: Vec<SystemState> = initial_worlds(model).collect();
     let mut first = FirstRinglets {
         steps: Vec::new(),
         fired: model.per_transition(),
@@ -344,7 +344,11 @@ fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
 
 /// Per property, the first initial world it looks for, if any (layers 0 and 1 are the explicit
 /// stepper's).
-fn initial_targets(model: &Model, properties: &[Property], initial: &[World]) -> Vec<Option<Path>> {
+fn initial_targets(
+    model: &Model,
+    properties: &[Property],
+    initial: &[SystemState],
+) -> Vec<Option<Path>> {
     properties
         .iter()
         .map(|property| {
@@ -461,8 +465,8 @@ struct Searched<'a, 'm> {
     enc: &'a Encoding,
     steps: &'a [Step],
     guards: &'a Guards,
-    initial: &'a [World],
-    first_steps: &'a [Vec<(World, Choice)>],
+    initial: &'a [SystemState],
+    first_steps: &'a [Vec<(SystemState, Choice)>],
 }
 
 impl Searched<'_, '_> {
@@ -474,7 +478,7 @@ impl Searched<'_, '_> {
         layers: &[Bdd],
         reached: &Bdd,
         initial_fires: &[bool],
-    ) -> Option<(Path, World)> {
+    ) -> Option<(Path, SystemState)> {
         let (enc, guards) = (self.enc, self.guards);
         let firing = self.steps.iter().filter(|s| s.fired.is_some());
         let mut live = preimage(enc, firing, guards, &enc.vars.mk_true(), reached);
@@ -549,8 +553,8 @@ fn waiting_set(model: &Model, enc: &Encoding) -> Bdd {
 fn first_layers(
     model: &Model,
     enc: &Encoding,
-    initial: &[World],
-    first_steps: &[Vec<(World, Choice)>],
+    initial: &[SystemState],
+    first_steps: &[Vec<(SystemState, Choice)>],
 ) -> (Bdd, Bdd) {
     let mut reached = enc.vars.mk_false();
     for w in initial {
@@ -627,8 +631,8 @@ fn first_state(enc: &Encoding, k: usize, needs: &Bdd) -> usize {
 fn value_domains(
     model: &Model,
     stepper: &StepGenerator<'_>,
-    initial: &[World],
-    first_steps: &[Vec<(World, Choice)>],
+    initial: &[SystemState],
+    first_steps: &[Vec<(SystemState, Choice)>],
 ) -> Result<Domains, Declined> {
     let mut domains: Vec<Vec<ValueId>> = vec![Vec::new(); model.slots.len()];
     let mut writer: Vec<Option<usize>> = vec![None; model.slots.len()];
@@ -1001,7 +1005,7 @@ impl Searched<'_, '_> {
     /// The shortest path to `target` through `layers`, and the world it ends in: back through
     /// the layers to the first ringlets, then forwards with the explicit stepper, one successor
     /// inside each layer's part that leads on.
-    fn rebuild(&self, layers: &[Bdd], target: &Bdd) -> Option<(Path, World)> {
+    fn rebuild(&self, layers: &[Bdd], target: &Bdd) -> Option<(Path, SystemState)> {
         let (model, enc) = (self.model, self.enc);
         let last = layers.len() - 1;
         let mut leads: Vec<Bdd> = vec![layers[last].and(target)];
@@ -1009,7 +1013,7 @@ impl Searched<'_, '_> {
             let before = preimage(enc, self.steps, self.guards, &leads[0], &layers[j]);
             leads.insert(0, before);
         }
-        let inside = |set: &Bdd, w: &World| enc.contains(model, set, w);
+        let inside = |set: &Bdd, w: &SystemState| enc.contains(model, set, w);
         for (i, w0) in self.initial.iter().enumerate() {
             let Some((w1, choice)) = self.first_steps[i]
                 .iter()
@@ -1054,7 +1058,7 @@ fn set_where(
     enc: &Encoding,
     term: &Term,
     name: &str,
-    holds: &dyn Fn(&World) -> bool,
+    holds: &dyn Fn(&SystemState) -> bool,
 ) -> Result<Bdd, Declined> {
     let mut fields: Vec<Component> = Vec::new();
     components(model, term, &mut fields, 0);
@@ -1072,7 +1076,7 @@ fn set_where(
     let Some(combinations) = combinations.filter(|&n| n <= 1 << 16) else {
         return Err(Declined(format!("`{name}` reads too many values at once")));
     };
-    let mut world = World {
+    let mut world = SystemState {
         turn: 0,
         machines: vec![
             Control {
