@@ -138,26 +138,6 @@ fn exclusive_inputs_and_row_filters() {
 }
 
 #[test]
-fn the_embedding_example_runs() {
-    let out = std::process::Command::new(env!("CARGO"))
-        .args(["run", "--quiet", "--example", "embed"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        text.contains("door open false  time left true   ->  cook true   light true"),
-        "{text}"
-    );
-    assert!(text.contains("+beta cook"), "{text}");
-}
-
-#[test]
 fn rows_whose_inputs_contradict_the_axioms_are_marked() {
     let theory = load("input{a}. input{b}. \\/{~a, ~b}. R1: a => c.", Language::Dl).unwrap();
     let table = truth_table(Arc::new(Engine::new(theory))).unwrap();

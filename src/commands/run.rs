@@ -469,6 +469,8 @@ fn watch(behaviour: &Behaviour, on: bool) -> tokio::sync::mpsc::UnboundedReceive
                     eprintln!("warning: cannot watch {}: {e}", f.display());
                 }
             }
+            // Said once the watches are in place: a save from then on is seen (tests wait for it).
+            eprintln!("note: --watch: a save to a machine's file rereads the machine from now on");
             // The watcher lives as long as the process.
             std::mem::forget(w);
         }

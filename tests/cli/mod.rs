@@ -11,6 +11,7 @@ mod record_test;
 mod run;
 mod table_explain;
 mod verify;
+mod waiting;
 
 use crate::proclaim;
 use std::io::Write;

@@ -1,5 +1,6 @@
 //! `run`: behaviours played to the end, watched, stepped, asked, on the virtual clock, logged.
 
+use super::waiting::{Lines, Running};
 use super::{stderr, stdout, temp_file};
 use crate::proclaim;
 use std::io::Write;
@@ -125,31 +126,36 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
         ],
     );
     let machine = dir.join("W.machine");
-    let child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
-        .args([
-            "run",
-            dir.to_str().unwrap(),
-            "--watch",
-            "--for",
-            "20s",
-            "--force",
-        ])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let mut child = Running(
+        Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            // `go` is answered by nobody (a behaviour being written): --force runs it all the same.
+            .args([
+                "run",
+                dir.to_str().unwrap(),
+                "--watch",
+                "--for",
+                "60s",
+                "--force",
+            ])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap(),
+    );
+    let mut printed = Lines::of(child.0.stdout.take().unwrap());
+    let mut said = Lines::of(child.0.stderr.take().unwrap());
+    // Each save once the one before it has been seen: no sleep a loaded machine can outrun.
+    said.wait_for("--watch: a save to a machine's file rereads the machine");
     std::fs::write(&machine, "machine W\nstate Wait {\n  when -> Done\n}\n").unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1000));
+    printed.wait_for("W  reload failed, runs on unchanged:");
     std::fs::write(
         &machine,
         "machine W\nstate Wait {\n  when TRUE -> Done\n}\nstate Done {\n}\n",
     )
     .unwrap();
-    let o = child.wait_with_output().unwrap();
-    let out = stdout(&o);
-    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    let status = child.0.wait().unwrap();
+    let (out, err) = (printed.all(), said.all());
+    assert_eq!(status.code(), Some(0), "{out}\n{err}");
     assert!(
         out.contains("W  reload failed, runs on unchanged:"),
         "{out}"
@@ -166,9 +172,8 @@ fn run_watch_rereads_a_changed_machine_and_a_broken_edit_changes_nothing() {
         "{out}"
     );
     assert!(
-        stderr(&o).contains("W.machine:3: warning: label `go` is answered by no expert"),
-        "--force shows what check found as warnings: {}",
-        stderr(&o)
+        err.contains("W.machine:3: warning: label `go` is answered by no expert"),
+        "--force shows what check found as warnings: {err}"
     );
     assert!(out.contains("W  → Done"), "{out}");
     assert!(

@@ -19,7 +19,7 @@ use std::time::Duration;
 use tokio::time::Instant;
 
 /// What an activity runs with.
-pub(crate) struct Doer<'a> {
+pub(crate) struct ActivityContext<'a> {
     pub board: &'a Whiteboard,
     pub seen: &'a mut Seen,
     /// The machine's name: who posts.
@@ -39,7 +39,7 @@ pub(crate) struct Doer<'a> {
     pub suppressor: Option<&'a SharedSuppressor>,
 }
 
-impl Doer<'_> {
+impl ActivityContext<'_> {
     pub async fn run(&mut self, actions: &[Action]) {
         for action in actions {
             match action {
@@ -193,7 +193,7 @@ impl Doer<'_> {
     }
 }
 
-impl Effects for Doer<'_> {
+impl Effects for ActivityContext<'_> {
     /// Milliseconds to sleep.
     type Pause = f64;
 

@@ -1,6 +1,6 @@
 //! One machine running on the whiteboard: its rings, its control commands, its reloads.
 
-use crate::activity::Doer;
+use crate::activity::ActivityContext;
 use crate::eval::Env;
 use crate::event::{Answerer, Event, Reporter};
 use crate::host::Hosts;
@@ -92,7 +92,7 @@ pub(crate) enum Status {
 }
 
 /// What one ring did.
-pub(crate) enum Ring {
+pub(crate) enum RingOutcome {
     Moved,
     Stayed,
     /// The machine stopped for good, or its state vanished.
@@ -154,7 +154,7 @@ impl MachineRunner {
 
     async fn serve(self, board: Whiteboard) {
         // On its own task, a machine's rounds are its own ringlets.
-        let mut run = Run::new(&self, board, RoundCounter::default());
+        let mut run = RunningMachine::new(&self, board, RoundCounter::default());
         // A command taken while waiting, applied on the next turn of the loop.
         let mut woken_by: Option<Message> = None;
         loop {
@@ -181,8 +181,8 @@ impl MachineRunner {
             }
             run.reporter.round.advance();
             match run.ring().await {
-                Ring::Over => return,
-                Ring::Moved => {
+                RingOutcome::Over => return,
+                RingOutcome::Moved => {
                     if let Some(stepper) = &self.options.stepper {
                         stepper.ring_done(&run.name, run.last_step);
                     }
@@ -191,7 +191,7 @@ impl MachineRunner {
                     // this yields once the task has used up its share (tokio's budget).
                     tokio::task::consume_budget().await;
                 }
-                Ring::Stayed => match &self.options.stepper {
+                RingOutcome::Stayed => match &self.options.stepper {
                     Some(stepper) => {
                         stepper.ring_done(&run.name, run.last_step);
                         if !stepper.is_paused() {
@@ -206,7 +206,7 @@ impl MachineRunner {
 }
 
 /// A machine while it runs: where it is and what it holds.
-pub(crate) struct Run<'r> {
+pub(crate) struct RunningMachine<'r> {
     runner: &'r MachineRunner,
     pub(crate) board: Whiteboard,
     /// The name it answers to: the one it started with, whatever a reload says.
@@ -244,12 +244,12 @@ pub(crate) struct Run<'r> {
     last_step: u64,
 }
 
-impl<'r> Run<'r> {
+impl<'r> RunningMachine<'r> {
     pub(crate) fn new(
         runner: &'r MachineRunner,
         board: Whiteboard,
         round: RoundCounter,
-    ) -> Run<'r> {
+    ) -> RunningMachine<'r> {
         let name = runner.machine.name.clone();
         let shared = runner.shared();
         board.declare(&name, Kind::Signal);
@@ -261,7 +261,7 @@ impl<'r> Run<'r> {
         };
         let running_type = running_type(&name);
         board.post(&name, &running_type, status == Status::Running);
-        Run {
+        RunningMachine {
             runner,
             name,
             running_type,
@@ -365,16 +365,16 @@ impl<'r> Run<'r> {
 
     /// One ringlet (§3.1): OnEntry if just entered, then the snapshot, the transitions in
     /// priority order, OnExit and a move on the first proved, Internal when none was.
-    pub(crate) async fn ring(&mut self) -> Ring {
+    pub(crate) async fn ring(&mut self) -> RingOutcome {
         let ring = self.ringlet().await;
         self.seen.release();
         ring
     }
 
-    async fn ringlet(&mut self) -> Ring {
+    async fn ringlet(&mut self) -> RingOutcome {
         let machine = self.machine.clone();
         let Some(state) = machine.state(self.current) else {
-            return Ring::Over;
+            return RingOutcome::Over;
         };
         // Changes of globals from here on wake the wait after this ring.
         self.globals_changed.borrow_and_update();
@@ -416,7 +416,7 @@ impl<'r> Run<'r> {
                     round,
                 });
                 self.board.post(&self.name, &self.running_type, false);
-                return Ring::Over;
+                return RingOutcome::Over;
             }
             if proved {
                 fired = Some(t);
@@ -438,11 +438,11 @@ impl<'r> Run<'r> {
                 self.act(&state.name, &state.on_exit).await;
                 self.current = t.target;
                 self.just_entered = true;
-                Ring::Moved
+                RingOutcome::Moved
             }
             None => {
                 self.act(&state.name, &state.internal).await;
-                Ring::Stayed
+                RingOutcome::Stayed
             }
         }
     }
@@ -493,7 +493,7 @@ impl<'r> Run<'r> {
 
     async fn act(&mut self, state: &str, actions: &[Action]) {
         let now = self.now();
-        Doer {
+        ActivityContext {
             board: &self.board,
             seen: &mut self.seen,
             machine: &self.name,

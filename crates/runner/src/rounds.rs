@@ -10,7 +10,7 @@
 //! trace.
 
 use crate::event::Event;
-use crate::machine::{MachineRunner, Ring, Run, SharedSuppressor, Status};
+use crate::machine::{MachineRunner, RingOutcome, RunningMachine, SharedSuppressor, Status};
 use crate::step::Stepper;
 use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
 use serde::{Deserialize, Serialize};
@@ -142,20 +142,20 @@ impl Rounds {
     }
 
     async fn serve(self, board: Whiteboard) -> RoundsEnd {
-        let runs: Vec<Run<'_>> = self
+        let runs: Vec<RunningMachine<'_>> = self
             .machines
             .iter()
-            .map(|m| Run::new(m, board.clone(), self.round.clone()))
+            .map(|m| RunningMachine::new(m, board.clone(), self.round.clone()))
             .collect();
         let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
-        let mut turns = Turns {
+        let mut scheduled = ScheduledMachines {
             over: vec![false; runs.len()],
             fresh: vec![false; runs.len()],
             runs,
             commands: board.subscribe_pattern(Pattern::Any(names)),
             suppressor: self.machines.iter().find_map(MachineRunner::suppressor),
         };
-        let mut news = News::default();
+        let mut wakeup = RoundWakeup::default();
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
         let mut commanded = true;
@@ -164,13 +164,15 @@ impl Rounds {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
-            let fired = self.play_round(&mut turns, round, commanded, &board).await;
+            let fired = self
+                .play_round(&mut scheduled, round, commanded, &board)
+                .await;
             if let Some(stepper) = &self.stepper {
-                for run in &turns.runs {
+                for run in &scheduled.runs {
                     stepper.ring_done(&run.name, last_step);
                 }
             }
-            if turns.over.iter().all(|o| *o) {
+            if scheduled.over.iter().all(|o| *o) {
                 return RoundsEnd::AllOver;
             }
             commanded = false;
@@ -189,16 +191,16 @@ impl Rounds {
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
-            let release = turns
+            let release = scheduled
                 .suppressor
                 .as_ref()
                 .and_then(|s| s.lock().next_release());
-            commanded = news
+            commanded = wakeup
                 .wait(
                     &board,
-                    &mut turns.runs,
-                    &turns.over,
-                    &mut turns.commands,
+                    &mut scheduled.runs,
+                    &scheduled.over,
+                    &mut scheduled.commands,
                     release,
                 )
                 .await;
@@ -210,7 +212,7 @@ impl Rounds {
     /// (either way the next round has work at once).
     async fn play_round(
         &self,
-        turns: &mut Turns<'_>,
+        scheduled: &mut ScheduledMachines<'_>,
         round: u64,
         commanded: bool,
         board: &Whiteboard,
@@ -218,20 +220,20 @@ impl Rounds {
         // One moment for the whole round: machines entered in one round time their `timeout`s
         // from the same instant, so they come due in the same round.
         let mut round_time = tokio::time::Instant::now();
-        if let (Some(suppressor), Some(first)) = (&turns.suppressor, turns.runs.first()) {
+        if let (Some(suppressor), Some(first)) = (&scheduled.suppressor, scheduled.runs.first()) {
             take_over(suppressor, first, round_time, board);
         }
-        turns.fresh.fill(false);
-        if took(&mut turns.commands) || commanded {
-            obey(board, &mut turns.runs, &turns.over, None);
+        scheduled.fresh.fill(false);
+        if took(&mut scheduled.commands) || commanded {
+            obey(board, &mut scheduled.runs, &scheduled.over, None);
         }
         let mut fired = false;
         // The ringlet under way, recorded once it has run (with its snapshot).
         let mut began: Option<Ringlet> = None;
-        for machine in 0..turns.runs.len() {
-            let run = &mut turns.runs[machine];
-            if turns.over[machine]
-                || turns.fresh[machine]
+        for machine in 0..scheduled.runs.len() {
+            let run = &mut scheduled.runs[machine];
+            if scheduled.over[machine]
+                || scheduled.fresh[machine]
                 || run.status != Status::Running
                 || run.is_done()
             {
@@ -251,7 +253,7 @@ impl Rounds {
                 );
             }
             run.round_time = Some(round_time);
-            if let Some(suppressor) = &turns.suppressor {
+            if let Some(suppressor) = &scheduled.suppressor {
                 take_over(suppressor, run, round_time, board);
             }
             let span = tracing::info_span!("machine", name = %run.name);
@@ -266,21 +268,31 @@ impl Rounds {
             // Between rounds, waits are reckoned from the clock.
             run.round_time = None;
             match ring {
-                Ring::Moved => fired = true,
-                Ring::Stayed => {}
-                Ring::Over => turns.over[machine] = true,
+                RingOutcome::Moved => fired = true,
+                RingOutcome::Stayed => {}
+                RingOutcome::Over => scheduled.over[machine] = true,
             }
             // A command posted in the ringlet takes effect at once: a machine stopped later in
             // the round does not ring, one started rings from the next round.
-            if took(&mut turns.commands) {
-                obey(board, &mut turns.runs, &turns.over, Some(&mut turns.fresh));
+            if took(&mut scheduled.commands) {
+                obey(
+                    board,
+                    &mut scheduled.runs,
+                    &scheduled.over,
+                    Some(&mut scheduled.fresh),
+                );
             }
         }
         // Commands from outside during the round take effect before anything else looks.
-        if took(&mut turns.commands) {
-            obey(board, &mut turns.runs, &turns.over, Some(&mut turns.fresh));
+        if took(&mut scheduled.commands) {
+            obey(
+                board,
+                &mut scheduled.runs,
+                &scheduled.over,
+                Some(&mut scheduled.fresh),
+            );
         }
-        fired || turns.fresh.iter().any(|f| *f)
+        fired || scheduled.fresh.iter().any(|f| *f)
     }
 
     /// Before a ringlet, under a feed or a recording: the feed posts what came before it and
@@ -288,7 +300,7 @@ impl Rounds {
     /// as the recording will hear of it once it has run.
     async fn before_ringlet(
         &self,
-        run: &mut Run<'_>,
+        run: &mut RunningMachine<'_>,
         ringlet: Ringlet,
         round_time: &mut tokio::time::Instant,
         board: &Whiteboard,
@@ -313,8 +325,8 @@ impl Rounds {
 }
 
 /// The schedule's machines as it runs them.
-struct Turns<'r> {
-    runs: Vec<Run<'r>>,
+struct ScheduledMachines<'r> {
+    runs: Vec<RunningMachine<'r>>,
     /// Machines that halted (or whose state vanished): they ring no more.
     over: Vec<bool>,
     /// Machines started during this round: they ring from the next.
@@ -330,7 +342,7 @@ struct Turns<'r> {
 /// moments in a replay give the same takeovers in the same rounds).
 fn take_over(
     suppressor: &SharedSuppressor,
-    run: &Run<'_>,
+    run: &RunningMachine<'_>,
     round_time: tokio::time::Instant,
     board: &Whiteboard,
 ) {
@@ -367,7 +379,12 @@ fn took(subscription: &mut Subscription) -> bool {
 
 /// Applies the control commands waiting for each machine, in schedule order, marking in
 /// `fresh` (mid-round) the machines they start.
-fn obey(board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool], mut fresh: Option<&mut [bool]>) {
+fn obey(
+    board: &Whiteboard,
+    runs: &mut [RunningMachine<'_>],
+    over: &[bool],
+    mut fresh: Option<&mut [bool]>,
+) {
     for (machine, run) in runs.iter_mut().enumerate() {
         if over[machine] {
             continue;
@@ -386,17 +403,17 @@ fn obey(board: &Whiteboard, runs: &mut [Run<'_>], over: &[bool], mut fresh: Opti
 /// read (and every machine's name, for control commands), made again only when that set
 /// changes.
 #[derive(Default)]
-struct News {
+struct RoundWakeup {
     types: Vec<String>,
     subscription: Option<Subscription>,
 }
 
-impl News {
+impl RoundWakeup {
     /// Waits for news; whether a control command came (to be obeyed before the next round).
     async fn wait(
         &mut self,
         board: &Whiteboard,
-        runs: &mut [Run<'_>],
+        runs: &mut [RunningMachine<'_>],
         over: &[bool],
         commands: &mut Subscription,
         release: Option<Duration>,
@@ -468,7 +485,7 @@ impl News {
 
 /// Whether a running machine's current labels read a type whose value on the board is not
 /// what its last ringlet saw.
-fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool]) -> bool {
+fn missed(board: &Snapshot, runs: &mut [RunningMachine<'_>], over: &[bool]) -> bool {
     runs.iter_mut()
         .zip(over)
         .filter(|(_, over)| !**over)
@@ -490,7 +507,7 @@ fn missed(board: &Snapshot, runs: &mut [Run<'_>], over: &[bool]) -> bool {
 /// command, or a value of a type its current labels read that differs from the one it saw
 /// (a machine posting the same value every ringlet, or an expert answering what was just
 /// asked, wakes nobody).
-fn is_news(message: &Message, runs: &mut [Run<'_>]) -> bool {
+fn is_news(message: &Message, runs: &mut [RunningMachine<'_>]) -> bool {
     runs.iter_mut().any(|run| {
         if *message.ty == *run.name {
             return true;
@@ -503,7 +520,7 @@ fn is_news(message: &Message, runs: &mut [Run<'_>]) -> bool {
 
 /// Whether a posting of a type the machine's labels read is news to it: neither the answer
 /// to its own question nor the value it saw.
-fn tells(run: &Run<'_>, message: &Message) -> bool {
+fn tells(run: &RunningMachine<'_>, message: &Message) -> bool {
     match run.asked.iter().find(|(atom, _)| *atom == *message.ty) {
         Some((_, answer)) => *answer != message.value.truthy(),
         None => !run.seen.saw(&message.ty, &message.value),

@@ -221,57 +221,53 @@ fn every_example_behaviour_keeps_its_verdicts() {
     assert!(checked >= 4, "only {checked} example behaviours checked");
 }
 
+// The real shapes, one test each so that nextest runs them side by side.
+
 #[test]
-fn the_real_shapes_keep_their_verdicts() {
+fn the_sensors_shape_keeps_its_verdicts() {
     let sensors = scratch("sensors");
     common::families::write_sensors(&sensors, 3);
+    let behaviour = load("sensors", Arc::new(Folder::new(&sensors))).expect("loads");
+    // A free input a property names is stored, the others chosen when read.
+    let extra: &[Extra] = &[
+        (PropertyKind::Reachable, "in0 && Controller.Alarm"),
+        (PropertyKind::Always, "alarm == 0 || s1 == 1"),
+    ];
+    check_case("sensors", &behaviour, extra, Reductions::NONE);
+}
+
+#[test]
+fn the_press_shape_keeps_its_verdicts() {
     let press = scratch("press");
     common::families::write_press(&press);
-    let minepump = scratch("minepump");
-    common::families::write_minepump(&minepump);
-    let odometer = scratch("odometer");
-    common::odometer::write_odometer(&odometer, 2, 4);
+    let behaviour = load("press", Arc::new(Folder::new(&press))).expect("loads");
     // Five free inputs stored in every state are more than a test should explore: the press
     // is checked against the search that chooses them when read and reduces nothing else.
     let chosen = Reductions {
         chosen_when_read: true,
         ..Reductions::NONE
     };
-    let cases: [(&str, &PathBuf, &[Extra], Reductions); 4] = [
-        (
-            "sensors",
-            &sensors,
-            // A free input a property names is stored, the others chosen when read.
-            &[
-                (PropertyKind::Reachable, "in0 && Controller.Alarm"),
-                (PropertyKind::Always, "alarm == 0 || s1 == 1"),
-            ],
-            Reductions::NONE,
-        ),
-        (
-            "press",
-            &press,
-            &[(
-                PropertyKind::Never,
-                "Controller.PressClosed && Controller.Open",
-            )],
-            chosen,
-        ),
-        (
-            "minepump",
-            &minepump,
-            &[(PropertyKind::Never, "pumping == 1 && methane == 1")],
-            Reductions::NONE,
-        ),
-        (
-            "odometer",
-            &odometer,
-            &[(PropertyKind::Never, "g0 >= 4")],
-            Reductions::NONE,
-        ),
-    ];
-    for (case, dir, extra, baseline) in cases {
-        let behaviour = load(case, Arc::new(Folder::new(dir))).expect("loads");
-        check_case(case, &behaviour, extra, baseline);
-    }
+    let extra: &[Extra] = &[(
+        PropertyKind::Never,
+        "Controller.PressClosed && Controller.Open",
+    )];
+    check_case("press", &behaviour, extra, chosen);
+}
+
+#[test]
+fn the_minepump_shape_keeps_its_verdicts() {
+    let minepump = scratch("minepump");
+    common::families::write_minepump(&minepump);
+    let behaviour = load("minepump", Arc::new(Folder::new(&minepump))).expect("loads");
+    let extra: &[Extra] = &[(PropertyKind::Never, "pumping == 1 && methane == 1")];
+    check_case("minepump", &behaviour, extra, Reductions::NONE);
+}
+
+#[test]
+fn the_odometer_shape_keeps_its_verdicts() {
+    let odometer = scratch("odometer");
+    common::odometer::write_odometer(&odometer, 2, 4);
+    let behaviour = load("odometer", Arc::new(Folder::new(&odometer))).expect("loads");
+    let extra: &[Extra] = &[(PropertyKind::Never, "g0 >= 4")];
+    check_case("odometer", &behaviour, extra, Reductions::NONE);
 }

@@ -27,13 +27,17 @@ async fn join_error(endpoint: &str, board: &str) -> String {
         .to_string()
 }
 
-/// Waits (at most 5 s) until `done` holds.
+/// How long a test waits for what must come: generous, for a loaded two-core CI machine where
+/// Zenoh's links and gossip can take seconds; what never comes still fails.
+const PATIENCE: Duration = Duration::from_secs(60);
+
+/// Waits (at most [`PATIENCE`]) until `done` holds.
 async fn until(what: &str, done: impl Fn() -> bool) {
-    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    let deadline = std::time::Instant::now() + PATIENCE;
     while !done() {
         assert!(
             std::time::Instant::now() < deadline,
-            "not within 5 s: {what}"
+            "not within {PATIENCE:?}: {what}"
         );
         tokio::time::sleep(Duration::from_millis(10)).await;
     }
@@ -75,7 +79,7 @@ async fn the_low_latency_transport_refuses_what_it_cannot_carry_and_says_why() {
     // A posting over the limit is not sent (the log says so); the link stays up for the rest.
     replica.post("camera", "image", Value::Bytes(vec![7; 100 * 1024]));
     replica.post("camera", "seen", true);
-    let seen = holder.wait_for("seen", 0, Duration::from_secs(2)).await;
+    let seen = holder.wait_for("seen", 0, PATIENCE).await;
     assert!(seen.is_some(), "the link survived");
     assert!(holder.latest("image").is_none());
     // A late joiner catches up one posting at a time, so a board larger than the limit is
@@ -170,9 +174,9 @@ async fn a_process_that_goes_leaves_its_types_stale_and_nothing_else_stops() {
     .await;
     let mut stale = a.subscribe("*Stale");
     drop(b);
-    let gone = tokio::time::timeout(Duration::from_secs(5), stale.next())
+    let gone = tokio::time::timeout(PATIENCE, stale.next())
         .await
-        .expect("b's going is noticed within 5 s")
+        .expect("b's going is noticed")
         .unwrap();
     assert_eq!(
         (gone.ty.as_ref(), gone.value.clone()),
@@ -185,9 +189,9 @@ async fn a_process_that_goes_leaves_its_types_stale_and_nothing_else_stops() {
     // Nothing else stops, and a posting from the living makes the type fresh again.
     c.post("gc", "gameState", "ready");
     c.post("vision2", "ballSeen", false);
-    let fresh = tokio::time::timeout(Duration::from_secs(5), stale.next())
+    let fresh = tokio::time::timeout(PATIENCE, stale.next())
         .await
-        .expect("fresh again within 5 s")
+        .expect("fresh again")
         .unwrap();
     assert_eq!(
         (fresh.ty.as_ref(), fresh.value.clone()),
@@ -223,9 +227,9 @@ async fn a_signal_passes_to_the_next_claimant_when_its_consumer_dies_mid_consume
     // The earliest claim consumes; the later claimant observes.
     let mut observed = second.subscribe("reload");
     ops.post("ops", "reload", 1i64);
-    let got = first.wait_for("reload", 0, Duration::from_secs(5)).await;
+    let got = first.wait_for("reload", 0, PATIENCE).await;
     assert_eq!(got.map(|m| m.value), Some(Value::Int(1)));
-    let seen = tokio::time::timeout(Duration::from_secs(5), observed.next())
+    let seen = tokio::time::timeout(PATIENCE, observed.next())
         .await
         .unwrap()
         .unwrap();
@@ -236,7 +240,7 @@ async fn a_signal_passes_to_the_next_claimant_when_its_consumer_dies_mid_consume
     );
     // The consumer dies with a signal it had not read yet: that one goes with it (at most once).
     ops.post("ops", "reload", 2i64);
-    tokio::time::timeout(Duration::from_secs(5), observed.next())
+    tokio::time::timeout(PATIENCE, observed.next())
         .await
         .unwrap()
         .unwrap();
@@ -244,14 +248,14 @@ async fn a_signal_passes_to_the_next_claimant_when_its_consumer_dies_mid_consume
     let mut second_stale = second.subscribe("aliveStale");
     drop(first);
     for s in [&mut stale, &mut second_stale] {
-        tokio::time::timeout(Duration::from_secs(5), s.next())
+        tokio::time::timeout(PATIENCE, s.next())
             .await
             .expect("the consumer's going is noticed")
             .unwrap();
     }
     // The next claimant consumes from then on, each signal once.
     ops.post("ops", "reload", 3i64);
-    let got = second.wait_for("reload", 0, Duration::from_secs(5)).await;
+    let got = second.wait_for("reload", 0, PATIENCE).await;
     assert_eq!(got.map(|m| m.value), Some(Value::Int(3)));
     assert!(second
         .wait_for("reload", 0, Duration::from_millis(200))
