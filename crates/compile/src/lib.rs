@@ -15,8 +15,11 @@
 mod activity;
 mod behaviour;
 mod c;
+mod c_template;
 mod diagram;
 mod error;
+mod plan;
+mod print_c;
 mod tabulate;
 
 pub use behaviour::{compile_behaviour, CBehaviour, Refusal};
