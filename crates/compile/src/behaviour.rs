@@ -48,6 +48,33 @@ pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
     })
 }
 
+/// The files of a behaviour compiled to a Cargo project: path in the project and text.
+pub struct RustBehaviour {
+    pub files: Vec<(String, String)>,
+}
+
+/// Compiles `behaviour` to a Cargo project whose machines are Rust code, depending by path on
+/// the crates of the repository at `repository` for the trace's events and the script's
+/// reading.
+pub fn compile_behaviour_rust(
+    behaviour: &Behaviour,
+    repository: &std::path::Path,
+) -> Result<RustBehaviour, Refusal> {
+    let plan = plan_behaviour(behaviour)?;
+    Ok(RustBehaviour {
+        files: crate::print_rust::project_files(&plan, repository),
+    })
+}
+
+/// The root of the repository this crate was built from, whose crates a compiled Rust
+/// behaviour depends on by path; `None` when it is not on this machine.
+pub fn source_repository() -> Option<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    root.join("crates/runner/Cargo.toml")
+        .exists()
+        .then(|| root.canonicalize().unwrap_or(root))
+}
+
 fn refuse(file: &str, line: usize, what: String) -> Refusal {
     Refusal {
         file: file.to_string(),

@@ -20,9 +20,14 @@ mod diagram;
 mod error;
 mod plan;
 mod print_c;
+mod print_rust;
+mod rust_template;
 mod tabulate;
 
-pub use behaviour::{compile_behaviour, CBehaviour, Refusal};
+pub use behaviour::{
+    compile_behaviour, compile_behaviour_rust, source_repository, CBehaviour, Refusal,
+    RustBehaviour,
+};
 pub use c::{c_identifier, CSource};
 pub use diagram::{Diagram, Node};
 pub use error::CompileError;
