@@ -34,7 +34,7 @@ fn microwave() -> Compiled {
         ),
     ];
     let mut seed = 0x5eed_0033_7275;
-    for n in 0..8 {
+    for n in 0..6 {
         let mut script = String::new();
         if splitmix(&mut seed) % 3 != 0 {
             script.push_str("doorOpen = false\n");
@@ -59,7 +59,7 @@ fn microwave() -> Compiled {
 fn shipped(name: &str) -> Compiled {
     let mut runs = vec![(format!("{name}-own"), String::new(), None)];
     let mut seed = 0x5eed_0033 ^ name.len() as u64;
-    for n in 0..4 {
+    for n in 0..3 {
         let mut script = String::new();
         for _ in 0..splitmix(&mut seed) % 5 {
             let at = splitmix(&mut seed) % 12_000;

@@ -1,7 +1,9 @@
 //! Compiles a checked theory into decision functions: each declared output's answer is a boolean
 //! function of the theory's inputs, tabulated with the reasoner itself, reduced to an ordered
 //! decision diagram or kept as a truth table (whichever is smaller), and printed as freestanding
-//! C99. An answer the reasoner leaves undecided within its budget is refused, never guessed.
+//! C99. An answer the reasoner leaves undecided within its budget is refused, never guessed. A
+//! behaviour compiles the same way, its machines planned once and printed as C
+//! ([`compile_behaviour`]) or as a Cargo project ([`compile_behaviour_rust`]).
 //!
 //! ```
 //! use proclaim_cdl::{load, Language, SearchLimits};

@@ -171,14 +171,19 @@ pub struct World {
     pub commands_waiting: bool,
     /// The text a posting or a print is built in.
     pub text: String,
-    /// Where the trace's events go.
-    pub sink: Box<dyn FnMut(Event)>,
+    /// Where the trace's events go; none are made without one.
+    pub sink: Option<Box<dyn FnMut(Event)>>,
     /// Set once every machine that started is in a final state: the trace ends there.
     pub over: bool,
 }
 
 impl World {
-    pub fn new(machines: usize, outputs: usize, variables: usize, sink: Box<dyn FnMut(Event)>) -> World {
+    pub fn new(
+        machines: usize,
+        outputs: usize,
+        variables: usize,
+        sink: Option<Box<dyn FnMut(Event)>>,
+    ) -> World {
         World {
             now_ms: 0,
             round: 0,
@@ -201,112 +206,104 @@ impl World {
         }
     }
 
-    fn at(&self) -> Duration {
-        Duration::from_millis(self.now_ms)
-    }
-
-    pub fn report(&mut self, event: Event) {
-        if !self.over {
-            (self.sink)(event);
+    /// Reports the event `event` makes of the round and the time now, unless the run is over.
+    pub fn report(&mut self, event: impl FnOnce(u64, Duration) -> Event) {
+        if self.over {
+            return;
+        }
+        let (round, at) = (self.round, Duration::from_millis(self.now_ms));
+        if let Some(sink) = self.sink.as_mut() {
+            sink(event(round, at));
         }
     }
 
     pub fn posted(&mut self, machine: &str, ty: &str, content: &str) {
-        let event = Event::Posted {
+        self.report(|round, at| Event::Posted {
             machine: machine.to_string(),
             ty: ty.to_string(),
             content: content.to_string(),
             priority: 0,
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn entered(&mut self, machine: &str, state: &str, id: i64) {
-        let event = Event::Entered {
+        self.report(|round, at| Event::Entered {
             machine: machine.to_string(),
             state: state.to_string(),
             id,
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn finished(&mut self, machine: &str, state: &str) {
-        let event = Event::Finished {
+        self.report(|round, at| Event::Finished {
             machine: machine.to_string(),
             state: state.to_string(),
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: &str) {
-        let event = Event::Answered {
+        self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
             by: Answerer::Expert(expert.to_string()),
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn fired(&mut self, machine: &str, from: i64, to: i64, label: &str) {
-        let event = Event::Fired {
+        self.report(|round, at| Event::Fired {
             machine: machine.to_string(),
             from,
             to,
             label: label.to_string(),
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
-    pub fn assigned(&mut self, machine: &str, variable: &str, value: String) {
-        let event = Event::Assigned {
+    pub fn assigned(&mut self, machine: &str, variable: &str, value: impl FnOnce() -> String) {
+        self.report(|round, at| Event::Assigned {
             machine: machine.to_string(),
             variable: variable.to_string(),
-            value,
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            value: value(),
+            round,
+            at,
+        });
     }
 
-    pub fn printed(&mut self, machine: &str, text: String) {
-        let event = Event::Printed {
+    pub fn printed(&mut self, machine: &str, text: &str) {
+        self.report(|round, at| Event::Printed {
             machine: machine.to_string(),
-            text,
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            text: text.to_string(),
+            round,
+            at,
+        });
     }
 
     pub fn control(&mut self, machine: &str, command: &str) {
-        let event = Event::Control {
+        self.report(|round, at| Event::Control {
             machine: machine.to_string(),
             command: command.to_string(),
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn warned(&mut self, machine: &str, message: &str) {
-        let event = Event::Warned {
+        self.report(|round, at| Event::Warned {
             machine: machine.to_string(),
             message: message.to_string(),
-            round: self.round,
-            at: self.at(),
-        };
-        self.report(event);
+            round,
+            at,
+        });
     }
 
     pub fn text_clear(&mut self) {
@@ -402,8 +399,9 @@ fn post_text(w: &mut World, m: usize, ty: &str) {
 }
 
 fn print_text(w: &mut World, m: usize) {
-    let text = w.text.clone();
-    w.printed(MACHINE_NAME[m], text);
+    let text = std::mem::take(&mut w.text);
+    w.printed(MACHINE_NAME[m], &text);
+    w.text = text;
 }
 
 fn snapshot(w: &mut World, m: usize) {
@@ -428,7 +426,7 @@ fn assign(w: &mut World, m: usize, slot: usize, conversion: u8, global: bool, na
     if global {
         w.globals_changes += 1;
     }
-    w.assigned(MACHINE_NAME[m], name, value_text(v));
+    w.assigned(MACHINE_NAME[m], name, || value_text(v));
 }
 
 /// The machine's run is over: reported, and the trace ends once every machine's is.
@@ -511,8 +509,8 @@ fn final_state(w: &World, m: usize) -> bool {
     }
 }
 
-/// The behaviour at its start, reporting its events to `sink`.
-pub fn init(sink: Box<dyn FnMut(Event)>) -> World {
+/// The behaviour at its start, reporting its events to `sink` (none made without one).
+pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, sink);
     w.var = vec![@var_inits@];
 @inits@    w
