@@ -72,9 +72,8 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let mut files = compiled.files;
-    files.push(("src/bin/rounds.rs".into(), ROUNDS.into()));
-    for (file, text) in &files {
+    for (file, text) in &compiled.files {
+        let text = if file == "src/main.rs" { ROUNDS } else { text };
         let path = out.join(file);
         std::fs::create_dir_all(path.parent().expect("a folder")).expect("a folder made");
         std::fs::write(path, text).expect("a compiled file written");
@@ -96,7 +95,7 @@ fn main() -> ExitCode {
         eprintln!("cargo build failed in {}", out.display());
         return ExitCode::FAILURE;
     }
-    let status = Command::new(target.join("release/rounds"))
+    let status = Command::new(target.join("release/behaviour-machines"))
         .arg(&seconds)
         .status();
     let _ = std::fs::remove_dir_all(&dir);
