@@ -80,14 +80,7 @@ fn main() -> ExitCode {
     }
     let target = target_dir(&root);
     let built = Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
-        .args([
-            "build",
-            "--release",
-            "--offline",
-            "--quiet",
-            "--bin",
-            "rounds",
-        ])
+        .args(["build", "--release", "--offline", "--quiet"])
         .current_dir(&out)
         .env("CARGO_TARGET_DIR", &target)
         .status();
