@@ -108,7 +108,8 @@ pub enum CliCommand {
     /// Compile a theory into decision functions of its inputs, printed as freestanding C99
     /// (`NAME.h` and `NAME.c` in the output folder): a reduced ordered decision diagram or a
     /// truth table, whichever is smaller; an answer undecided within the budget is refused. A
-    /// behaviour (a folder) compiles to `behaviour.c`, its theories and a host harness `main.c`
+    /// behaviour (a folder) compiles to `behaviour.c`, its theories and a host harness `main.c`,
+    /// or with `--target rust` to a Cargo project
     Compile(CompileArgs),
     /// Explain why a query is proved or not: supporters, attackers, loops
     Explain(ExplainArgs),
@@ -261,7 +262,7 @@ pub enum CliCommand {
 pub enum CompileTarget {
     /// Freestanding C99: no heap, no library beyond `<stdint.h>`
     C,
-    /// A Cargo project (not built yet: refused)
+    /// A Cargo project of a behaviour: its machines as Rust code, a host taking `run`'s options
     Rust,
 }
 

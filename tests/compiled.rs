@@ -8,7 +8,7 @@ use crate::proclaim;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-fn scratch(name: &str) -> PathBuf {
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("proclaim-compiled-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -125,7 +125,7 @@ fn traces(
     (interpreted, String::from_utf8(out.stdout).unwrap())
 }
 
-fn assert_same(name: &str, interpreted: &str, compiled: &str) {
+pub(crate) fn assert_same(name: &str, interpreted: &str, compiled: &str) {
     if interpreted != compiled {
         let line = interpreted
             .lines()
@@ -142,13 +142,46 @@ fn assert_same(name: &str, interpreted: &str, compiled: &str) {
 }
 
 /// A small seeded generator (SplitMix64).
-fn splitmix(state: &mut u64) -> u64 {
+pub(crate) fn splitmix(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
     let mut z = *state;
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
 }
+
+/// A lamp on timeouts, ending when the theory says no light.
+const BLINK: &str = "machine Blink\ninitial ON\nstate ON {\n    entry {\n        Lamp: on\n    }\n    when timeout(250ms) -> OFF\n}\nstate OFF {\n    entry {\n        Lamp: off\n    }\n    when timeout(1s) && !light -> END\n    when timeout(400ms) -> ON\n}\nstate END {\n    entry {\n        Lamp: gone\n    }\n}\n";
+
+/// A watcher of theory outputs posting a quoted text and a theory input.
+const WATCH: &str = "machine Watch\ninitial WAIT\nstate WAIT {\n    when light || cook -> SEEN\n}\nstate SEEN {\n    entry {\n        Seen: \"yes\"\n        doorOpen: false\n    }\n    when TRUE -> DONE\n}\nstate DONE {\n}\n";
+
+/// The module the blinking behaviours declare.
+const MODULES: &str = "[[module]]\nname = \"lamp\"\nreads = [\"Lamp\", \"Seen\"]\n";
+
+/// Wrapping arithmetic, division by zero, truth values in arithmetic.
+const ARITH: &str = "machine Arith\ninitial A\nstate A {\n    entry {\n        q = 7 / 0;\n        r = -7 % 0;\n        d = -7 / 2;\n        e = -7 % 3;\n        big = 9223372036854775807;\n        over = big + 1;\n        under = -over - 1;\n        minus = over / -1;\n        rest = over % -1;\n        product = big * 3;\n        t = 3 < 4;\n        u = t + 1;\n        v = -t;\n        w = t == 1;\n        x = max(t, 1);\n        y = min(1, t);\n        z = abs(-5) * abs(over + 1);\n        same = (q != r) || !(d <= e) && u >= 2 && 2 > 1;\n    }\n    when u == 2 && d / -3 -> B\n}\nstate B {\n}\n";
+
+/// Typed variables converting what is assigned.
+const TYPES: &str = "machine Types\ninitial A\nstate A {\n    entry {\n        int n;\n        bool b;\n        char c;\n        n = 2 < 3;\n        b = 5;\n        c = b;\n        b = 0;\n        b = false;\n        g = 1;\n        g = true;\n        g = 1 == 1;\n        g = 1;\n    }\n    when n && !b -> B\n}\nstate B {\n}\n";
+
+/// Computed postings and prints.
+const SPEAKER: &str = "machine Speaker\ninitial A\nstate A {\n    entry {\n        int n;\n        n = 41 + 1;\n        post(\"Out\", n * 2);\n        post(\"Text\", \"n is \" + n + \", big \" + (n > 40));\n        post(\"Two\", \"a\", \"\");\n        post(\"Three\", \"\", \"hi\");\n        post_int(\"Whole\", n == 42);\n        postv(\"List\", 1, n > 1, \"x y\", -3);\n        say(\"said \" + n);\n        speech(\"spoken\");\n        say_state_name();\n        speak_state_name();\n        print(\"printed \" + n);\n        print_int(n);\n        print_state_name();\n        Plain: 12\n        Word: \"quoted\"\n        Truth: true\n    }\n}\n";
+
+/// `for` loops, one stopped at the loop limit.
+const LOOP: &str = "machine Loop\ninitial L\nstate L {\n    entry {\n        int i;\n        int sum;\n        for (i = 0; i < 10; i = i + 1) {\n            sum = sum + i;\n            last = i;\n        }\n        for (;;) {\n            i = 3;\n        }\n        for (k = 0; k < 3; k = k + 1) post(\"K\", k * k);\n    }\n    when sum == 45 -> M\n}\nstate M {\n    entry {\n        print_int(sum);\n    }\n}\n";
+
+/// A machine controlling a sub-machine with every command.
+const BOSS: &str = "machine Boss\ninitial START\nstate START {\n    entry {\n        start(\"Worker\");\n        Worker: On\n        step = 1;\n    }\n    when timeout(5ms) -> PAUSE\n}\nstate PAUSE {\n    entry {\n        suspend(\"Worker\");\n        step = 2;\n    }\n    when timeout(10ms) -> GO\n}\nstate GO {\n    entry {\n        resume(\"Worker\");\n        Worker: hello\n        step = 3;\n    }\n    when timeout(7ms) -> AGAIN\n}\nstate AGAIN {\n    entry {\n        restart(\"Worker\");\n        step = 4;\n    }\n    when timeout(20ms) -> STOP\n}\nstate STOP {\n    entry {\n        stop(\"Worker\");\n        Worker: suspend\n        Worker: resume\n    }\n    when timeout(3ms) -> END\n}\nstate END {\n    entry {\n        Worker: restart\n        print(\"bye\");\n    }\n}\n";
+
+/// The sub-machine.
+const WORKER: &str = "machine Worker\ninitial W1\nstate W1 {\n    entry {\n        int count;\n        count = count + 1;\n    }\n    internal {\n        ticks = ticks + 1;\n    }\n    when timeout(4ms) -> W2\n}\nstate W2 {\n    entry {\n        count = count + 10;\n    }\n    when count > 100 -> W3\n    when timeout(3ms) -> W1\n}\nstate W3 {\n}\n";
+
+/// A label over a global another machine changes, and a time test already past.
+const WATCHER: &str = "machine Watcher\ninitial W\nstate W {\n    when step == 4 && timeout(1ms) -> SEEN\n}\nstate SEEN {\n}\n";
+
+/// The time tests in their units.
+const TIME: &str = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
 
 #[test]
 fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
@@ -210,7 +243,7 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
 }
 
 #[test]
-fn what_the_slice_cannot_compile_is_refused_with_file_and_line() {
+fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target() {
     let out = scratch("refused");
     for (behaviour, expected) in [
         (
@@ -230,17 +263,22 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line() {
             "machines/subsumption/behaviour.toml:15: cannot be compiled: suppression",
         ),
     ] {
-        let o = proclaim(&[
-            "compile",
-            behaviour,
-            "--target",
-            "c",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{behaviour}");
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(stderr.contains(expected), "{behaviour}: {stderr}");
+        for target in ["c", "rust"] {
+            let o = proclaim(&[
+                "compile",
+                behaviour,
+                "--target",
+                target,
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            assert_eq!(o.status.code(), Some(2), "{behaviour} to {target}");
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert!(
+                stderr.contains(expected),
+                "{behaviour} to {target}: {stderr}"
+            );
+        }
     }
 }
 
@@ -249,11 +287,11 @@ fn two_machines_on_timeouts_and_a_theory_and_one_without_theories_write_the_same
     if gcc_missing() {
         return;
     }
-    let blink = "machine Blink\ninitial ON\nstate ON {\n    entry {\n        Lamp: on\n    }\n    when timeout(250ms) -> OFF\n}\nstate OFF {\n    entry {\n        Lamp: off\n    }\n    when timeout(1s) && !light -> END\n    when timeout(400ms) -> ON\n}\nstate END {\n    entry {\n        Lamp: gone\n    }\n}\n";
+    let blink = BLINK;
     // The watcher posts a quoted text and a theory input, and moves on `TRUE`.
-    let watch = "machine Watch\ninitial WAIT\nstate WAIT {\n    when light || cook -> SEEN\n}\nstate SEEN {\n    entry {\n        Seen: \"yes\"\n        doorOpen: false\n    }\n    when TRUE -> DONE\n}\nstate DONE {\n}\n";
+    let watch = WATCH;
     let theory = std::fs::read_to_string("theories/microwave.dl").unwrap();
-    let modules = "[[module]]\nname = \"lamp\"\nreads = [\"Lamp\", \"Seen\"]\n";
+    let modules = MODULES;
     let both = scratch("both-behaviour");
     std::fs::write(
         both.join("behaviour.toml"),
@@ -291,7 +329,7 @@ fn two_machines_on_timeouts_and_a_theory_and_one_without_theories_write_the_same
 }
 
 /// Writes a behaviour of `files` (name, text) into a fresh folder.
-fn behaviour_of(name: &str, files: &[(&str, &str)]) -> PathBuf {
+pub(crate) fn behaviour_of(name: &str, files: &[(&str, &str)]) -> PathBuf {
     let folder = scratch(&format!("{name}-behaviour"));
     for (file, text) in files {
         std::fs::write(folder.join(file), text).unwrap();
@@ -351,7 +389,7 @@ fn arithmetic_is_the_runners_wrapping_c_arithmetic() {
     if gcc_missing() {
         return;
     }
-    let machine = "machine Arith\ninitial A\nstate A {\n    entry {\n        q = 7 / 0;\n        r = -7 % 0;\n        d = -7 / 2;\n        e = -7 % 3;\n        big = 9223372036854775807;\n        over = big + 1;\n        under = -over - 1;\n        minus = over / -1;\n        rest = over % -1;\n        product = big * 3;\n        t = 3 < 4;\n        u = t + 1;\n        v = -t;\n        w = t == 1;\n        x = max(t, 1);\n        y = min(1, t);\n        z = abs(-5) * abs(over + 1);\n        same = (q != r) || !(d <= e) && u >= 2 && 2 > 1;\n    }\n    when u == 2 && d / -3 -> B\n}\nstate B {\n}\n";
+    let machine = ARITH;
     let folder = behaviour_of(
         "arith",
         &[
@@ -375,7 +413,7 @@ fn a_typed_variable_converts_what_is_assigned_and_a_change_of_kind_is_a_change()
     if gcc_missing() {
         return;
     }
-    let machine = "machine Types\ninitial A\nstate A {\n    entry {\n        int n;\n        bool b;\n        char c;\n        n = 2 < 3;\n        b = 5;\n        c = b;\n        b = 0;\n        b = false;\n        g = 1;\n        g = true;\n        g = 1 == 1;\n        g = 1;\n    }\n    when n && !b -> B\n}\nstate B {\n}\n";
+    let machine = TYPES;
     let folder = behaviour_of(
         "types",
         &[
@@ -395,7 +433,7 @@ fn postings_and_prints_carry_the_runners_text() {
     if gcc_missing() {
         return;
     }
-    let machine = "machine Speaker\ninitial A\nstate A {\n    entry {\n        int n;\n        n = 41 + 1;\n        post(\"Out\", n * 2);\n        post(\"Text\", \"n is \" + n + \", big \" + (n > 40));\n        post(\"Two\", \"a\", \"\");\n        post(\"Three\", \"\", \"hi\");\n        post_int(\"Whole\", n == 42);\n        postv(\"List\", 1, n > 1, \"x y\", -3);\n        say(\"said \" + n);\n        speech(\"spoken\");\n        say_state_name();\n        speak_state_name();\n        print(\"printed \" + n);\n        print_int(n);\n        print_state_name();\n        Plain: 12\n        Word: \"quoted\"\n        Truth: true\n    }\n}\n";
+    let machine = SPEAKER;
     let folder = behaviour_of(
         "say",
         &[
@@ -415,7 +453,7 @@ fn for_loops_run_and_stop_at_the_runners_loop_limit() {
     if gcc_missing() {
         return;
     }
-    let machine = "machine Loop\ninitial L\nstate L {\n    entry {\n        int i;\n        int sum;\n        for (i = 0; i < 10; i = i + 1) {\n            sum = sum + i;\n            last = i;\n        }\n        for (;;) {\n            i = 3;\n        }\n        for (k = 0; k < 3; k = k + 1) post(\"K\", k * k);\n    }\n    when sum == 45 -> M\n}\nstate M {\n    entry {\n        print_int(sum);\n    }\n}\n";
+    let machine = LOOP;
     let folder = behaviour_of(
         "loop",
         &[
@@ -432,10 +470,10 @@ fn sub_machines_obey_on_off_suspend_resume_and_restart_as_the_runner_does() {
     if gcc_missing() {
         return;
     }
-    let boss = "machine Boss\ninitial START\nstate START {\n    entry {\n        start(\"Worker\");\n        Worker: On\n        step = 1;\n    }\n    when timeout(5ms) -> PAUSE\n}\nstate PAUSE {\n    entry {\n        suspend(\"Worker\");\n        step = 2;\n    }\n    when timeout(10ms) -> GO\n}\nstate GO {\n    entry {\n        resume(\"Worker\");\n        Worker: hello\n        step = 3;\n    }\n    when timeout(7ms) -> AGAIN\n}\nstate AGAIN {\n    entry {\n        restart(\"Worker\");\n        step = 4;\n    }\n    when timeout(20ms) -> STOP\n}\nstate STOP {\n    entry {\n        stop(\"Worker\");\n        Worker: suspend\n        Worker: resume\n    }\n    when timeout(3ms) -> END\n}\nstate END {\n    entry {\n        Worker: restart\n        print(\"bye\");\n    }\n}\n";
-    let worker = "machine Worker\ninitial W1\nstate W1 {\n    entry {\n        int count;\n        count = count + 1;\n    }\n    internal {\n        ticks = ticks + 1;\n    }\n    when timeout(4ms) -> W2\n}\nstate W2 {\n    entry {\n        count = count + 10;\n    }\n    when count > 100 -> W3\n    when timeout(3ms) -> W1\n}\nstate W3 {\n}\n";
+    let boss = BOSS;
+    let worker = WORKER;
     // A label over a global that another machine changes, and a time test already past.
-    let watcher = "machine Watcher\ninitial W\nstate W {\n    when step == 4 && timeout(1ms) -> SEEN\n}\nstate SEEN {\n}\n";
+    let watcher = WATCHER;
     let folder = behaviour_of(
         "control",
         &[
@@ -458,7 +496,7 @@ fn sub_machines_obey_on_off_suspend_resume_and_restart_as_the_runner_does() {
 /// own: assignments of random arithmetic, computed postings, prints, loops, the first machine
 /// controlling the others; every label a random condition and a time test (so time passes
 /// between moves, and a run of `--for` ends).
-fn random_behaviour(seed: u64) -> Vec<(String, String)> {
+pub(crate) fn random_behaviour(seed: u64) -> Vec<(String, String)> {
     let mut state = seed;
     let mut next = move |n: u64| splitmix(&mut state) % n;
     let globals = ["g0", "g1", "g2", "g3"];
@@ -633,7 +671,7 @@ fn seeded_random_behaviours_of_variables_write_the_interpreters_trace() {
 }
 
 #[test]
-fn what_an_activity_cannot_compile_is_refused_at_its_line() {
+fn what_an_activity_cannot_compile_is_refused_at_its_line_for_either_target() {
     let out = scratch("refused-activity");
     for (body, expected) in [
         ("float speed;", "a `float` variable"),
@@ -664,21 +702,23 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line() {
                 ("Other.machine", other),
             ],
         );
-        let o = proclaim(&[
-            "compile",
-            folder.to_str().unwrap(),
-            "--target",
-            "c",
-            "-o",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{body}");
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(
-            stderr.contains("M.machine:3: cannot be compiled: "),
-            "{body}: {stderr}"
-        );
-        assert!(stderr.contains(expected), "{body}: {stderr}");
+        for target in ["c", "rust"] {
+            let o = proclaim(&[
+                "compile",
+                folder.to_str().unwrap(),
+                "--target",
+                target,
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            assert_eq!(o.status.code(), Some(2), "{body} to {target}");
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert!(
+                stderr.contains("M.machine:3: cannot be compiled: "),
+                "{body} to {target}: {stderr}"
+            );
+            assert!(stderr.contains(expected), "{body} to {target}: {stderr}");
+        }
     }
 }
 
@@ -687,7 +727,7 @@ fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
     if gcc_missing() {
         return;
     }
-    let machine = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
+    let machine = TIME;
     let folder = behaviour_of(
         "time",
         &[
@@ -697,4 +737,68 @@ fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
     );
     let trace = same_trace("time", &folder, "", None);
     assert!(trace.contains("\"at_us\":3550000"), "{trace}");
+}
+
+/// A behaviour the tests above compile, as files, with a script and a time to stop at.
+pub(crate) struct Case {
+    pub name: &'static str,
+    pub files: Vec<(String, String)>,
+    pub script: &'static str,
+    pub run_for: Option<&'static str>,
+}
+
+/// The behaviours of the tests above that each hold to one construct: one machine each, the
+/// controlling three, and the blinking two (with and without a theory).
+pub(crate) fn construct_cases() -> Vec<Case> {
+    let one = |name: &'static str, machine: &str, text: &str, run_for| Case {
+        name,
+        files: vec![
+            (
+                "behaviour.toml".into(),
+                format!("[[machine]]\nfile = \"{machine}.machine\"\n"),
+            ),
+            (format!("{machine}.machine"), text.into()),
+        ],
+        script: "",
+        run_for,
+    };
+    let theory = std::fs::read_to_string("theories/microwave.dl").unwrap();
+    vec![
+        one("arith", "Arith", ARITH, None),
+        one("types", "Types", TYPES, None),
+        one("say", "Speaker", SPEAKER, None),
+        one("loop", "Loop", LOOP, None),
+        one("time", "T", TIME, None),
+        Case {
+            name: "control",
+            files: vec![
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"Boss.machine\"\n[[machine]]\nfile = \"Worker.machine\"\nstart = false\n[[machine]]\nfile = \"Watcher.machine\"\n".into()),
+                ("Boss.machine".into(), BOSS.into()),
+                ("Worker.machine".into(), WORKER.into()),
+                ("Watcher.machine".into(), WATCHER.into()),
+            ],
+            script: "",
+            run_for: Some("2s"),
+        },
+        Case {
+            name: "both",
+            files: vec![
+                ("behaviour.toml".into(), format!("[[machine]]\nfile = \"Blink.machine\"\n[[machine]]\nfile = \"Watch.machine\"\n[[theory]]\nfile = \"microwave.dl\"\n{MODULES}")),
+                ("Blink.machine".into(), BLINK.into()),
+                ("Watch.machine".into(), WATCH.into()),
+                ("microwave.dl".into(), theory),
+            ],
+            script: "at 700ms doorOpen = true\n",
+            run_for: Some("5s"),
+        },
+        Case {
+            name: "alone",
+            files: vec![
+                ("behaviour.toml".into(), format!("[[machine]]\nfile = \"Blink.machine\"\n{MODULES}")),
+                ("Blink.machine".into(), BLINK.replace("timeout(1s) && !light", "timeout(1s)")),
+            ],
+            script: "",
+            run_for: Some("5s"),
+        },
+    ]
 }

@@ -27,14 +27,15 @@ pub fn run(
     unknown_inputs: bool,
     budget: Option<u64>,
 ) -> Result<ExitCode, Failure> {
-    if target == CompileTarget::Rust {
-        return Err(Failure::Argument(
-            "--target rust is not built yet; --target c compiles a theory".into(),
-        ));
-    }
     let path = Path::new(theory_name);
     if path.is_dir() || path.join("behaviour.toml").exists() {
-        return behaviour(theory_name, out);
+        return behaviour(theory_name, target, out);
+    }
+    if target == CompileTarget::Rust {
+        return Err(Failure::Argument(
+            "--target rust compiles a behaviour (a folder); a theory compiles to C (--target c)"
+                .into(),
+        ));
     }
     let (source, theory) = load::theory(theory_name)?;
     let defaults = SearchLimits::default();
@@ -106,23 +107,46 @@ fn bytes(n: usize) -> String {
     format!("{n} byte{}", if n == 1 { "" } else { "s" })
 }
 
-/// A behaviour: its machines and theories as freestanding C, with the host harness `main.c`.
-fn behaviour(name: &str, out: &Path) -> Result<ExitCode, Failure> {
+/// A behaviour: its machines and theories as freestanding C with the host harness `main.c`, or
+/// as a Cargo project.
+fn behaviour(name: &str, target: CompileTarget, out: &Path) -> Result<ExitCode, Failure> {
     let behaviour = crate::behaviours::load_behaviour(name)?;
-    let compiled = proclaim_compile::compile_behaviour(&behaviour)
-        .map_err(|refusal| Failure::Argument(refusal.to_string()))?;
-    std::fs::create_dir_all(out).map_err(|error| Failure::Write {
-        path: out.to_path_buf(),
-        error,
-    })?;
-    for (file, text) in &compiled.files {
+    let refused = |refusal: proclaim_compile::Refusal| Failure::Argument(refusal.to_string());
+    let (files, what) = match target {
+        CompileTarget::C => (
+            proclaim_compile::compile_behaviour(&behaviour)
+                .map_err(refused)?
+                .files,
+            "core: behaviour.c and the theories; host harness: main.c",
+        ),
+        CompileTarget::Rust => {
+            let Some(repository) = proclaim_compile::source_repository() else {
+                return Err(Failure::Argument(
+                    "--target rust depends on proclaim's crates by path, and the source tree this proclaim was built from is not here".into(),
+                ));
+            };
+            (
+                proclaim_compile::compile_behaviour_rust(&behaviour, &repository)
+                    .map_err(refused)?
+                    .files,
+                "a Cargo project: `cargo run --release -- --script FILE --virtual-clock --trace FILE`",
+            )
+        }
+    };
+    for (file, text) in &files {
         let path = out.join(file);
+        if let Some(folder) = path.parent() {
+            std::fs::create_dir_all(folder).map_err(|error| Failure::Write {
+                path: folder.to_path_buf(),
+                error,
+            })?;
+        }
         std::fs::write(&path, text).map_err(|error| Failure::Write { path, error })?;
     }
     println!(
-        "{}: wrote {} files to {} (core: behaviour.c and the theories; host harness: main.c)",
+        "{}: wrote {} files to {} ({what})",
         behaviour.name,
-        compiled.files.len(),
+        files.len(),
         out.display()
     );
     Ok(ExitCode::SUCCESS)

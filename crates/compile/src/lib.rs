@@ -1,7 +1,9 @@
 //! Compiles a checked theory into decision functions: each declared output's answer is a boolean
 //! function of the theory's inputs, tabulated with the reasoner itself, reduced to an ordered
 //! decision diagram or kept as a truth table (whichever is smaller), and printed as freestanding
-//! C99. An answer the reasoner leaves undecided within its budget is refused, never guessed.
+//! C99. An answer the reasoner leaves undecided within its budget is refused, never guessed. A
+//! behaviour compiles the same way, its machines planned once and printed as C
+//! ([`compile_behaviour`]) or as a Cargo project ([`compile_behaviour_rust`]).
 //!
 //! ```
 //! use proclaim_cdl::{load, Language, SearchLimits};
@@ -15,11 +17,19 @@
 mod activity;
 mod behaviour;
 mod c;
+mod c_template;
 mod diagram;
 mod error;
+mod plan;
+mod print_c;
+mod print_rust;
+mod rust_template;
 mod tabulate;
 
-pub use behaviour::{compile_behaviour, CBehaviour, Refusal};
+pub use behaviour::{
+    compile_behaviour, compile_behaviour_rust, source_repository, CBehaviour, Refusal,
+    RustBehaviour,
+};
 pub use c::{c_identifier, CSource};
 pub use diagram::{Diagram, Node};
 pub use error::CompileError;

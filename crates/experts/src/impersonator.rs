@@ -1,9 +1,9 @@
 //! The impersonator (the original `testcdl`): answers atoms from a script, from Rust, or from a
 //! person at a terminal prompt, through the same protocol as any expert.
 
-use crate::script::{Script, When};
 use parking_lot::Mutex;
 use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use proclaim_syntax::{Script, When};
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};

@@ -13,7 +13,7 @@
 //! - the Prolog expert ([`prolog_expert`]): a `.pl` knowledge base proved by SWI-Prolog, a
 //!   program expert running a driver shipped inside proclaim.
 //!
-//! Scripts and mapping files are parsed purely (`script`, `mapping`); sockets and the terminal
+//! Scripts and mapping files are parsed purely (`proclaim_syntax::parse_script`, `mapping`); sockets and the terminal
 //! are touched only by the `run` methods.
 
 mod answers;
@@ -26,7 +26,6 @@ mod program;
 mod prolog;
 pub mod protocol;
 mod reasoner;
-mod script;
 
 pub use buttons::{ButtonWrapper, FallWrapper};
 pub use function::{AnswerFunction, FunctionExpert};
@@ -34,9 +33,9 @@ pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounter
 pub use impersonator::Impersonator;
 pub use mapping::parse_mapping;
 pub use proclaim_syntax::{parse_duration, LineError, LineErrors};
+pub use proclaim_syntax::{parse_script, Script, ScriptStep, When};
 pub use program::{Backoff, ProgramCounters, ProgramExpert};
 pub use prolog::{
     check_knowledge_base, find_program, find_swipl, prolog_expert, KnowledgeBase, PrologError,
 };
 pub use reasoner::ReasonerExpert;
-pub use script::{parse_script, Script, ScriptStep, When};

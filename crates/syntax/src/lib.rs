@@ -1,6 +1,9 @@
 //! The languages theories are written in: `.dl` (clausal defeasible logic with Rock's DPL
 //! input/output statements) and SPINdle's `.dfl`, parsed to one syntax tree with diagnostics.
 //!
+//! Also the small line formats every crate reads: durations and the impersonator's script
+//! (`script.rs`), which a compiled behaviour reads too.
+//!
 //! Parsing never fails: it returns the statements that parsed and a diagnostic for each problem.
 //! This crate knows nothing of meaning (labels, priorities, consistency): see `proclaim-cdl`.
 
@@ -13,6 +16,7 @@ mod lines;
 mod located;
 mod nearest;
 mod parse;
+mod script;
 pub mod span;
 
 lalrpop_util::lalrpop_mod!(
@@ -27,6 +31,7 @@ pub use lines::{code_lines, parse_duration, LineError, LineErrors};
 pub use located::FileDiagnostic;
 pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
+pub use script::{parse_script, Script, ScriptStep, When};
 pub use span::{line_column, Span};
 
 /// The two theory languages.

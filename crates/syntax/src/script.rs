@@ -8,7 +8,7 @@
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
 //! ```
 
-use proclaim_syntax::{code_lines, LineError, LineErrors};
+use crate::{code_lines, LineError, LineErrors};
 use std::time::Duration;
 
 #[derive(Clone, Debug, PartialEq, Eq)]

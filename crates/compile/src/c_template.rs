@@ -1,0 +1,411 @@
+//! The fixed text of a behaviour compiled to C, with `@NAME@` where `print_c.rs` fills in the
+//! behaviour's own parts.
+
+/// One machine's functions (`@m@` is its number).
+pub(crate) const RING: &str = r#"static int ring_@m@(struct world *w)
+{
+    if (w->just_entered[@m@]) {
+        w->just_entered[@m@] = 0;
+        w->entered_ms[@m@] = w->now_ms;
+        switch (w->state[@m@]) {
+@entries@        default:
+            break;
+        }
+    }
+    snapshot(w, @m@);
+    w->globals_seen[@m@] = w->globals_changes;
+    switch (w->state[@m@]) {
+@cases@    default:
+        return 0;
+    }
+}
+
+static int reads_@m@(const struct world *w, unsigned k)
+{
+    (void)k;
+    switch (w->state[@m@]) {
+@read_cases@    default:
+        return 0;
+    }
+}
+
+/* Whether the current state's labels read a global. */
+static int reads_globals_@m@(const struct world *w)
+{
+@global_return@}
+
+static int final_@m@(const struct world *w)
+{
+@final_return@}
+
+static uint64_t due_@m@(const struct world *w, uint64_t due)
+{
+    switch (w->state[@m@]) {
+@due_cases@    default:
+        break;
+    }
+    return due;
+}
+
+"#;
+
+/// `behaviour.h` after its sizes: the world, its callbacks and the functions a host calls.
+pub(crate) const HEADER: &str = r#"struct world;
+
+/* What the behaviour tells its host: postings, and the events of `proclaim run --trace`. */
+struct world_callbacks {
+    void (*post)(struct world *w, const char *machine, const char *type, const char *content);
+    void (*entered)(struct world *w, const char *machine, const char *state, long id);
+    void (*finished)(struct world *w, const char *machine, const char *state);
+    void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert);
+    void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
+    /* A variable's value changed (its text as the trace shows it). */
+    void (*assigned)(struct world *w, const char *machine, const char *variable, const char *value);
+    void (*printed)(struct world *w, const char *machine, const char *text);
+    /* A machine obeys a control command (`On`, `Off`, `suspend`, `resume`, `restart`). */
+    void (*control)(struct world *w, const char *machine, const char *command);
+    void (*warned)(struct world *w, const char *machine, const char *message);
+    /* At the start of each round, before its ringlets: post what came from outside by now. */
+    void (*round_started)(struct world *w);
+};
+
+/* A variable's value as the runner holds it: a whole number, or a truth value (0 or 1). */
+struct value {
+    int64_t i;
+    unsigned char is_bool;
+};
+
+/* The whiteboard's values the behaviour reads and its machines' states. */
+struct world {
+    struct world_callbacks cb;
+    void *user;
+    /* The user's millisecond counter: set before each behaviour_round. */
+    uint64_t now_ms;
+    uint64_t round;
+    long state[BEHAVIOUR_MACHINES];
+    unsigned char just_entered[BEHAVIOUR_MACHINES];
+    uint64_t entered_ms[BEHAVIOUR_MACHINES];
+    /* Each theory input: known, then true. */
+    unsigned char in[BEHAVIOUR_VARIABLES];
+    /* The answers each machine's last ringlet saw. */
+    unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
+    long initial[BEHAVIOUR_MACHINES];
+    /* Running, suspended or dormant; started in this round (it rings from the next). */
+    unsigned char status[BEHAVIOUR_MACHINES];
+    unsigned char fresh[BEHAVIOUR_MACHINES];
+    /* Each machine's own variables, then the behaviour's globals. */
+    struct value var[BEHAVIOUR_VALUES];
+    /* Changes of globals so far, and as each machine's last ringlet saw them. */
+    uint64_t globals_changes;
+    uint64_t globals_seen[BEHAVIOUR_MACHINES];
+    /* Control commands posted to each machine, obeyed when the ringlet that posted them ends. */
+    unsigned char command[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
+    const char *command_word[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
+    unsigned command_count[BEHAVIOUR_MACHINES];
+    /* Whether a command waits (so a ringlet that posted none costs no look at every machine). */
+    unsigned char commands_waiting;
+    /* The text a posting or a print is built in. */
+    char text[BEHAVIOUR_TEXT];
+    unsigned text_length;
+};
+
+void behaviour_init(struct world *w);
+/* One round: a ringlet of every machine in manifest order; 1 when one fired (the next round follows at once). */
+int behaviour_round(struct world *w);
+/* A posting from outside the machines (an impersonator, a sensor); 1 when it is news to a machine's labels. */
+int behaviour_outside(struct world *w, const char *type, const char *content);
+/* 1 when an answer a machine's current labels read differs from what its last ringlet saw. */
+int behaviour_news(const struct world *w);
+/* 1 when `atom` is an answer of the behaviour's theories. */
+int behaviour_answers(const char *atom);
+/* 1 when `name` is a machine's (a posting to it is a control command). */
+int behaviour_is_machine(const char *name);
+/* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
+uint64_t behaviour_next_due_ms(const struct world *w);
+/* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
+int behaviour_finished(const struct world *w);
+
+#endif
+"#;
+
+/// `behaviour.c` after its includes.
+pub(crate) const BODY: &str = r#"
+static const char *const output_name[@outputs_n@] = {@output_names@};
+static const char *const output_expert[@outputs_n@] = {@experts@};
+static const char *const machine_name[@machines@] = {@machine_names@};
+
+static int same(const char *a, const char *b)
+{
+    while (*a != '\0' && *a == *b) {
+        a++;
+        b++;
+    }
+    return *a == *b;
+}
+
+/* A theory input from a posting's content: true, false, or unknown for anything else. */
+static void set_input(struct world *w, unsigned v, const char *content)
+{
+    if (same(content, "true")) {
+        w->in[v] = 1;
+        w->in[v + 1] = 1;
+    } else if (same(content, "false")) {
+        w->in[v] = 1;
+        w->in[v + 1] = 0;
+    } else {
+        w->in[v] = 0;
+        w->in[v + 1] = 0;
+    }
+}
+
+/* Whether the posting's type is a theory input (then applied). */
+static int apply_input(struct world *w, const char *type, const char *content)
+{
+@input_cases@    (void)w;
+    (void)type;
+    (void)content;
+    return 0;
+}
+
+static int answer(const struct world *w, unsigned k)
+{
+    switch (k) {
+@answer_cases@    default:
+        (void)w;
+        return 0;
+    }
+}
+
+static int ask(struct world *w, unsigned m, unsigned k)
+{
+    int value = answer(w, k);
+    w->cb.answered(w, machine_name[m], output_name[k], value, output_expert[k]);
+    return value;
+}
+
+static void post(struct world *w, unsigned m, const char *type, const char *content)
+{
+    w->cb.post(w, machine_name[m], type, content);
+    (void)apply_input(w, type, content);
+}
+
+static void snapshot(struct world *w, unsigned m)
+{
+    unsigned k;
+    for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
+        w->seen[m][k] = (unsigned char)answer(w, k);
+    }
+}
+
+static int elapsed_at_least(const struct world *w, unsigned m, uint64_t ms)
+{
+    return w->now_ms - w->entered_ms[m] >= ms;
+}
+
+/* A time test still to come due shortens the wait; one already past (its label false for
+ * another reason) does not, as the runner's `next_time_test` has it. */
+static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
+{
+    if (at <= now) {
+        return due;
+    }
+    return at - now < due ? at - now : due;
+}
+@runtime@
+#define RUNNING 0
+#define SUSPENDED 1
+#define DORMANT 2
+#define COMMAND_UNKNOWN 0
+#define COMMAND_ON 1
+#define COMMAND_OFF 2
+#define COMMAND_SUSPEND 3
+#define COMMAND_RESUME 4
+#define COMMAND_RESTART 5
+#define LOOP_LIMIT @loop_limit@u
+
+static int final_state(const struct world *w, unsigned m);
+
+/* Whether a machine's run is over for now: in a state with no way out, its OnEntry run. */
+static int done(const struct world *w, unsigned m)
+{
+    return !w->just_entered[m] && final_state(w, m);
+}
+
+/* A control command posted to machine `m`, obeyed when the ringlet ends. */
+static void command(struct world *w, unsigned m, unsigned char code, const char *word)
+{
+    if (w->command_count[m] < BEHAVIOUR_COMMANDS) {
+        w->command[m][w->command_count[m]] = code;
+        w->command_word[m][w->command_count[m]] = word;
+        w->command_count[m]++;
+        w->commands_waiting = 1;
+    }
+}
+
+/* gufsm's SuspensibleMachine, as the runner's `control`: whether it started the machine. */
+static int control(struct world *w, unsigned m, unsigned char code, const char *word)
+{
+    w->cb.control(w, machine_name[m], word);
+    switch (code) {
+    case COMMAND_ON:
+    case COMMAND_RESUME:
+        if (w->status[m] == DORMANT) {
+            w->state[m] = w->initial[m];
+        } else if (w->status[m] == RUNNING) {
+            return 0;
+        }
+        w->status[m] = RUNNING;
+        w->just_entered[m] = 1;
+        return 1;
+    case COMMAND_RESTART:
+        w->status[m] = RUNNING;
+        w->state[m] = w->initial[m];
+        w->just_entered[m] = 1;
+        return 1;
+    case COMMAND_SUSPEND:
+        if (w->status[m] == RUNNING) {
+            w->status[m] = SUSPENDED;
+        }
+        return 0;
+    case COMMAND_OFF:
+        w->status[m] = DORMANT;
+        return 0;
+    default:
+        return 0;
+    }
+}
+
+/* The commands waiting for each machine, in schedule order; a machine started rings from the
+ * next round. */
+static void obey(struct world *w)
+{
+    unsigned m, i;
+    if (!w->commands_waiting) {
+        return;
+    }
+    w->commands_waiting = 0;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        for (i = 0; i < w->command_count[m]; i++) {
+            if (control(w, m, w->command[m][i], w->command_word[m][i])) {
+                w->fresh[m] = 1;
+            }
+        }
+        w->command_count[m] = 0;
+    }
+}
+
+@code@
+static int final_state(const struct world *w, unsigned m)
+{
+    switch (m) {
+@finals@    default:
+        return 0;
+    }
+}
+
+void behaviour_init(struct world *w)
+{
+    unsigned v, m, k;
+    /* Helpers a behaviour without theories, or whose labels ask none, leaves unused. */
+    (void)ask;
+    (void)set_input;
+    (void)elapsed_at_least;
+    (void)min_due;
+    (void)v_int;
+    (void)v_bool;
+    (void)truthy;
+    (void)v_add;
+    (void)v_sub;
+    (void)v_mul;
+    (void)v_div;
+    (void)v_rem;
+    (void)v_abs;
+    (void)v_eq;
+    (void)v_ne;
+    (void)v_lt;
+    (void)v_le;
+    (void)v_gt;
+    (void)v_ge;
+    (void)v_min;
+    (void)v_max;
+    (void)assign;
+    (void)text_clear;
+    (void)text_literal;
+    (void)text_whole;
+    (void)command;
+    (void)post;
+    (void)text_value;
+    (void)v_neg;
+    w->round = 0;
+    w->globals_changes = 0;
+    w->commands_waiting = 0;
+    for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {
+        w->in[v] = 0;
+    }
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        w->entered_ms[m] = 0;
+        w->fresh[m] = 0;
+        w->globals_seen[m] = 0;
+        w->command_count[m] = 0;
+        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
+            w->seen[m][k] = 0;
+        }
+    }
+@var_inits@@inits@}
+
+int behaviour_round(struct world *w)
+{
+    int fired = 0;
+    unsigned m;
+    w->round++;
+    if (w->cb.round_started) {
+        w->cb.round_started(w);
+    }
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        w->fresh[m] = 0;
+    }
+@rings@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        fired |= w->fresh[m];
+    }
+    return fired;
+}
+
+int behaviour_outside(struct world *w, const char *type, const char *content)
+{
+    return apply_input(w, type, content) && behaviour_news(w);
+}
+
+int behaviour_news(const struct world *w)
+{
+    unsigned k;
+    (void)k;
+@reads@    return 0;
+}
+
+int behaviour_answers(const char *atom)
+{
+@answers_body@}
+
+int behaviour_is_machine(const char *name)
+{
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (same(name, machine_name[m])) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+uint64_t behaviour_next_due_ms(const struct world *w)
+{
+    uint64_t due = BEHAVIOUR_PERIOD_MS;
+@dues@    return due;
+}
+
+int behaviour_finished(const struct world *w)
+{
+@tops@    (void)w;
+    return 1;
+}
+"#;

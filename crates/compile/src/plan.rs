@@ -1,0 +1,241 @@
+//! A behaviour's compiled form that no target language decides: the whiteboard's slots, the
+//! machines, their states and transitions, labels as conditions and activities as steps. A
+//! printer (`print_c.rs`, `print_rust.rs`) writes it in its language, so every target keeps one
+//! meaning.
+
+use crate::tabulate::Compiled;
+use proclaim_fsm::control::Command;
+
+/// Everything a printer needs to write a behaviour.
+pub(crate) struct Plan {
+    pub name: String,
+    pub theories: Vec<PlannedTheory>,
+    /// The theories' outputs, numbered across the behaviour.
+    pub outputs: Vec<Output>,
+    /// Posting types that set a theory input, in theory order.
+    pub inputs: Vec<Input>,
+    /// The value slots (each machine's own variables, then the globals): whether each starts as
+    /// a truth value rather than a whole number.
+    pub slots: Vec<bool>,
+    pub machines: Vec<MachinePlan>,
+    pub period_ms: u64,
+    /// The longest text a posting or a print builds.
+    pub longest_text: usize,
+    /// Places that post a control command: no ringlet queues more than that.
+    pub commands: usize,
+}
+
+impl Plan {
+    /// Where each theory's decision variables start in the behaviour's one input array.
+    pub fn offsets(&self) -> Vec<usize> {
+        let mut offset = 0;
+        let mut offsets = Vec::new();
+        for theory in &self.theories {
+            offsets.push(offset);
+            offset += theory.compiled.variables();
+        }
+        offsets
+    }
+
+    /// The decision variables of every theory (at least one, for a C array's sake).
+    pub fn variables(&self) -> usize {
+        self.theories
+            .iter()
+            .map(|t| t.compiled.variables())
+            .sum::<usize>()
+    }
+}
+
+pub(crate) struct PlannedTheory {
+    pub compiled: Compiled,
+    /// The name its code goes by (`theory_NAME`), an identifier in every target.
+    pub prefix: String,
+}
+
+pub(crate) struct Output {
+    pub name: String,
+    pub theory: usize,
+    pub index: usize,
+    /// The expert a trace names as its answerer.
+    pub expert: String,
+}
+
+pub(crate) struct Input {
+    /// The posting type that sets it.
+    pub ty: String,
+    pub theory: usize,
+    pub index: usize,
+}
+
+pub(crate) struct MachinePlan {
+    pub name: String,
+    pub initial: i64,
+    /// Whether it runs from the start (else dormant until started).
+    pub start: bool,
+    pub states: Vec<StatePlan>,
+}
+
+pub(crate) struct StatePlan {
+    pub id: i64,
+    pub name: String,
+    pub entry: Vec<Step>,
+    pub exit: Vec<Step>,
+    pub internal: Vec<Step>,
+    /// Tried top to bottom; the first whose condition holds fires.
+    pub transitions: Vec<TransitionPlan>,
+    /// No way out: the machine's run is over here.
+    pub is_final: bool,
+    /// The outputs its labels ask, sorted, each once.
+    pub reads: Vec<usize>,
+    /// The milliseconds after entry at which its time tests come due, in label order.
+    pub due_ms: Vec<u64>,
+    /// Whether its labels read a global.
+    pub reads_globals: bool,
+}
+
+pub(crate) struct TransitionPlan {
+    pub condition: Condition,
+    pub target: i64,
+    /// The label as written, for the trace.
+    pub label: String,
+}
+
+/// A label as the runner proves it.
+pub(crate) enum Condition {
+    Constant(bool),
+    /// A theory output asked (and reported as answered).
+    Ask(usize),
+    Not(Box<Condition>),
+    Both {
+        and: bool,
+        left: Box<Condition>,
+        right: Box<Condition>,
+    },
+    /// At least this many milliseconds in the state.
+    Elapsed(u64),
+    /// A value's truth.
+    Truth(Value),
+}
+
+/// An expression's value, as the runner's `Int` and `Bool`.
+pub(crate) enum Value {
+    Bool(bool),
+    Int(i64),
+    /// A variable's slot.
+    Slot(usize),
+    /// The truth value of `!operand`.
+    Not(Box<Value>),
+    /// The truth value of `left && right` or `left || right`.
+    Logic {
+        and: bool,
+        left: Box<Value>,
+        right: Box<Value>,
+    },
+    Apply(Function, Vec<Value>),
+}
+
+/// The runner's `arith` operators and functions on values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Function {
+    Eq,
+    Ne,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Rem,
+    Neg,
+    Abs,
+    Min,
+    Max,
+}
+
+impl Function {
+    /// The helper's name in every runtime (`v_add`, …).
+    pub fn helper(self) -> &'static str {
+        match self {
+            Function::Eq => "v_eq",
+            Function::Ne => "v_ne",
+            Function::Lt => "v_lt",
+            Function::Le => "v_le",
+            Function::Gt => "v_gt",
+            Function::Ge => "v_ge",
+            Function::Add => "v_add",
+            Function::Sub => "v_sub",
+            Function::Mul => "v_mul",
+            Function::Div => "v_div",
+            Function::Rem => "v_rem",
+            Function::Neg => "v_neg",
+            Function::Abs => "v_abs",
+            Function::Min => "v_min",
+            Function::Max => "v_max",
+        }
+    }
+}
+
+/// How a value assigned to a variable is converted, as `arith::convert` does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Conversion {
+    /// `int`, `char`: a truth value becomes 0 or 1.
+    Whole,
+    /// `bool`: the value's truth.
+    Truth,
+    /// A global, or a declared type the runner keeps as assigned.
+    Kept,
+}
+
+/// A piece of a posting's or a print's text.
+pub(crate) enum Piece {
+    Literal(String),
+    /// A value's text.
+    Value(Value),
+    /// A value as a whole number (`post_int`).
+    Whole(Value),
+}
+
+/// One thing an activity does.
+pub(crate) enum Step {
+    /// A posting of constant text.
+    Post {
+        ty: String,
+        content: String,
+    },
+    /// A posting of text built at run time.
+    PostBuilt {
+        ty: String,
+        pieces: Vec<Piece>,
+    },
+    /// A control command to machine `target`, posted as `ty: word`.
+    Command {
+        ty: String,
+        word: String,
+        command: Option<Command>,
+        target: usize,
+    },
+    Print(Vec<Piece>),
+    Assign {
+        slot: usize,
+        conversion: Conversion,
+        global: bool,
+        name: String,
+        value: Value,
+    },
+    Block(Vec<Step>),
+    /// A `for` loop, stopped after `proclaim_runner::LOOP_LIMIT` rounds with a warning.
+    Loop {
+        /// Numbers the loop's counter, unique in the behaviour.
+        number: usize,
+        /// The state it is in, for the warning.
+        state: String,
+        init: Option<Box<Step>>,
+        condition: Option<Value>,
+        body: Box<Step>,
+        step: Option<Box<Step>>,
+    },
+    /// A statement that does nothing (an empty one, an expression standing alone).
+    Nothing,
+}

@@ -1,0 +1,731 @@
+//! A behaviour's plan printed as freestanding C99: `behaviour.h` (the world's values in a
+//! struct, its callbacks), `behaviour.c` (a `ring_M` a machine, the round schedule), a decision
+//! function a theory, and the host harness `main.c`.
+
+use crate::c_template::{BODY, HEADER, RING};
+use crate::plan::{Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value};
+use proclaim_fsm::control::Command;
+use proclaim_runner::LOOP_LIMIT;
+use std::fmt::Write;
+
+/// The host harness: reads an impersonator script on standard input, runs the behaviour on a
+/// virtual clock and writes the trace as `proclaim run --trace` does.
+const HARNESS: &str = include_str!("harness.c");
+
+/// Every file of the compiled behaviour: name and text.
+pub(crate) fn behaviour_files(plan: &Plan) -> Vec<(String, String)> {
+    let mut files = vec![
+        ("behaviour.h".to_string(), header(plan)),
+        ("behaviour.c".to_string(), source(plan)),
+        ("main.c".to_string(), HARNESS.to_string()),
+    ];
+    for theory in &plan.theories {
+        let c = theory.compiled.to_c(&theory.prefix);
+        files.push((format!("{}.h", theory.prefix), c.header));
+        files.push((format!("{}.c", theory.prefix), c.source));
+    }
+    files
+}
+
+/// `template` with each `@NAME@` replaced by its value, in one pass (values are not searched).
+pub(crate) fn fill(template: &str, values: &[(&str, &str)]) -> String {
+    let mut out = String::with_capacity(template.len());
+    let mut rest = template;
+    while let Some(at) = rest.find('@') {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 1..];
+        let named = after.find('@').and_then(|end| {
+            let name = &after[..end];
+            values
+                .iter()
+                .find(|(key, _)| *key == name)
+                .map(|(_, value)| (end, *value))
+        });
+        match named {
+            Some((end, value)) => {
+                out.push_str(value);
+                rest = &after[end + 1..];
+            }
+            None => {
+                out.push('@');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+fn header(plan: &Plan) -> String {
+    let mut h = String::new();
+    let _ = writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&plan.name));
+    let _ = writeln!(
+        h,
+        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
+        plan.machines.len().max(1),
+        plan.outputs.len().max(1),
+        plan.variables().max(1),
+        plan.slots.len().max(1),
+        plan.longest_text,
+        plan.commands.max(1),
+        plan.period_ms
+    );
+    h.push_str(HEADER);
+    h
+}
+
+/// A list of C string literals, or `0` for an empty array's one element.
+fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
+    let quoted: Vec<String> = texts.map(|t| format!("\"{}\"", esc(t))).collect();
+    if quoted.is_empty() {
+        "0".into()
+    } else {
+        quoted.join(", ")
+    }
+}
+
+fn source(plan: &Plan) -> String {
+    let mut c = String::new();
+    let _ = writeln!(c, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#include <stdint.h>\n#include \"behaviour.h\"", comment(&plan.name));
+    for theory in &plan.theories {
+        let _ = writeln!(c, "#include \"{}.h\"", theory.prefix);
+    }
+    let offsets = plan.offsets();
+    let mut answer_cases = String::new();
+    for (k, o) in plan.outputs.iter().enumerate() {
+        let _ = writeln!(
+            answer_cases,
+            "    case {k}:\n        return {}_answer({}u, w->in + {});",
+            plan.theories[o.theory].prefix, o.index, offsets[o.theory]
+        );
+    }
+    let mut input_cases = String::new();
+    for input in &plan.inputs {
+        let v = offsets[input.theory] + 2 * input.index;
+        let _ = writeln!(input_cases, "    if (same(type, \"{}\")) {{\n        set_input(w, {v}, content);\n        return 1;\n    }}", esc(&input.ty));
+    }
+    let schedule = Schedule::of(plan);
+    let answers_body = if plan.outputs.is_empty() {
+        "    (void)atom;\n    return 0;\n".to_string()
+    } else {
+        format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.outputs.len())
+    };
+    let var_inits: String = plan
+        .slots
+        .iter()
+        .enumerate()
+        .map(|(slot, is_bool)| {
+            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
+            format!("    w->var[{slot}] = {value};\n")
+        })
+        .collect();
+    let outputs_n = plan.outputs.len().max(1).to_string();
+    let machines = plan.machines.len().max(1).to_string();
+    let loop_limit = LOOP_LIMIT.to_string();
+    c.push_str(&fill(
+        BODY,
+        &[
+            ("outputs_n", &outputs_n),
+            (
+                "output_names",
+                &strings(plan.outputs.iter().map(|o| o.name.as_str())),
+            ),
+            (
+                "experts",
+                &strings(plan.outputs.iter().map(|o| o.expert.as_str())),
+            ),
+            ("machines", &machines),
+            (
+                "machine_names",
+                &strings(plan.machines.iter().map(|m| m.name.as_str())),
+            ),
+            ("input_cases", &input_cases),
+            ("answer_cases", &answer_cases),
+            ("runtime", RUNTIME),
+            ("loop_limit", &loop_limit),
+            ("code", &schedule.code),
+            ("finals", &schedule.finals),
+            ("var_inits", &var_inits),
+            ("inits", &schedule.inits),
+            ("rings", &schedule.rings),
+            ("reads", &schedule.reads),
+            ("answers_body", &answers_body),
+            ("dues", &schedule.dues),
+            ("tops", &schedule.tops),
+        ],
+    ));
+    c
+}
+
+/// The parts of `behaviour.c` written once a machine.
+struct Schedule {
+    /// Each machine's functions.
+    code: String,
+    /// Its ringlet in the round.
+    rings: String,
+    /// Its news test.
+    reads: String,
+    /// Its next time test due.
+    dues: String,
+    /// Its start.
+    inits: String,
+    finals: String,
+    /// Its part in the behaviour's end.
+    tops: String,
+}
+
+impl Schedule {
+    fn of(plan: &Plan) -> Schedule {
+        let mut s = Schedule {
+            code: String::new(),
+            rings: String::new(),
+            reads: String::new(),
+            dues: String::new(),
+            inits: String::new(),
+            finals: String::new(),
+            tops: String::new(),
+        };
+        for (m, machine) in plan.machines.iter().enumerate() {
+            s.code.push_str(&machine_code(m, machine));
+            let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
+            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
+            let _ = writeln!(
+                s.dues,
+                "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
+            );
+            let _ = writeln!(
+                s.inits,
+                "    w->state[{m}] = {};\n    w->initial[{m}] = {};\n    w->just_entered[{m}] = 1;\n    w->status[{m}] = {};",
+                machine.initial,
+                machine.initial,
+                if machine.start { "RUNNING" } else { "DORMANT" }
+            );
+            let _ = writeln!(s.finals, "    case {m}:\n        return final_{m}(w);");
+            if machine.start {
+                let _ = writeln!(
+                    s.tops,
+                    "    if (!done(w, {m}u)) {{\n        return 0;\n    }}"
+                );
+            }
+        }
+        s
+    }
+}
+
+/// A `switch` on machine `m`'s state returning 1 in `cases`, or 0 without any.
+fn state_test(m: usize, cases: &str) -> String {
+    if cases.is_empty() {
+        "    (void)w;\n    return 0;\n".to_string()
+    } else {
+        format!("    switch (w->state[{m}]) {{\n{cases}        return 1;\n    default:\n        return 0;\n    }}\n")
+    }
+}
+
+/// Machine `m`'s functions: its ringlet, what its labels read, its final states, its dues.
+fn machine_code(m: usize, machine: &MachinePlan) -> String {
+    let mut entries = String::new();
+    let mut cases = String::new();
+    let mut read_cases = String::new();
+    let mut due_cases = String::new();
+    let mut global_cases = String::new();
+    let mut final_cases = String::new();
+    for state in &machine.states {
+        let id = state.id;
+        entries.push_str(&entry_case(m, machine, state));
+        cases.push_str(&ring_case(m, machine, state));
+        let read: Vec<String> = state.reads.iter().map(|k| format!("k == {k}u")).collect();
+        let read = if read.is_empty() {
+            "0".into()
+        } else {
+            read.join(" || ")
+        };
+        let _ = writeln!(read_cases, "    case {id}:\n        return {read};");
+        let due: String = state
+            .due_ms
+            .iter()
+            .map(|ms| {
+                format!("        due = min_due(due, w->entered_ms[{m}] + {ms}u, w->now_ms);\n")
+            })
+            .collect();
+        let _ = writeln!(due_cases, "    case {id}:\n{due}        break;");
+        if state.reads_globals {
+            let _ = writeln!(global_cases, "    case {id}:");
+        }
+        if state.is_final {
+            let _ = writeln!(final_cases, "    case {id}:");
+        }
+    }
+    let m_text = m.to_string();
+    fill(
+        RING,
+        &[
+            ("m", &m_text),
+            ("entries", &entries),
+            ("cases", &cases),
+            ("read_cases", &read_cases),
+            ("global_return", &state_test(m, &global_cases)),
+            ("final_return", &state_test(m, &final_cases)),
+            ("due_cases", &due_cases),
+        ],
+    )
+}
+
+/// What entering `state` does: the event, its OnEntry, and a final state's end.
+fn entry_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
+    let mut entry = steps(m, &state.entry);
+    if state.is_final {
+        let _ = writeln!(
+            entry,
+            "            w->cb.finished(w, \"{}\", \"{}\");",
+            esc(&machine.name),
+            esc(&state.name)
+        );
+    }
+    let id = state.id;
+    format!(
+        "        case {id}:\n            w->cb.entered(w, \"{}\", \"{}\", {id});\n{entry}            break;\n",
+        esc(&machine.name),
+        esc(&state.name)
+    )
+}
+
+/// A ringlet in `state`: its transitions tried in order, else its internal activity.
+fn ring_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
+    let id = state.id;
+    let exit = steps(m, &state.exit);
+    let mut body = String::new();
+    for t in &state.transitions {
+        let _ = writeln!(
+            body,
+            "        if ({}) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
+            condition(m, &t.condition),
+            esc(&machine.name),
+            t.target,
+            esc(&t.label),
+            t.target
+        );
+    }
+    let internal = steps(m, &state.internal);
+    format!("    case {id}:\n{body}{internal}        return 0;\n")
+}
+
+/// A label's C.
+fn condition(m: usize, c: &Condition) -> String {
+    match c {
+        Condition::Constant(b) => if *b { "1" } else { "0" }.into(),
+        Condition::Ask(k) => format!("ask(w, {m}u, {k}u)"),
+        Condition::Not(c) => format!("!{}", condition(m, c)),
+        Condition::Both { and, left, right } => format!(
+            "({} {} {})",
+            condition(m, left),
+            if *and { "&&" } else { "||" },
+            condition(m, right)
+        ),
+        Condition::Elapsed(ms) => format!("elapsed_at_least(w, {m}u, {ms}u)"),
+        Condition::Truth(v) => truth(v),
+    }
+}
+
+fn truth(v: &Value) -> String {
+    format!("truthy({})", value(v))
+}
+
+/// A value's C (a `struct value`).
+fn value(v: &Value) -> String {
+    match v {
+        Value::Bool(b) => format!("v_bool({})", u8::from(*b)),
+        Value::Int(i) => format!("v_int({})", int_c(*i)),
+        Value::Slot(slot) => format!("w->var[{slot}]"),
+        Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
+        Value::Logic { and, left, right } => format!(
+            "v_bool({} {} {})",
+            truth(left),
+            if *and { "&&" } else { "||" },
+            truth(right)
+        ),
+        Value::Apply(function, arguments) => {
+            let arguments: Vec<String> = arguments.iter().map(value).collect();
+            format!("{}({})", function.helper(), arguments.join(", "))
+        }
+    }
+}
+
+/// A whole number as a C expression of type `int64_t`.
+fn int_c(i: i64) -> String {
+    if i == i64::MIN {
+        "(-INT64_C(9223372036854775807) - 1)".into()
+    } else {
+        format!("INT64_C({i})")
+    }
+}
+
+fn steps(m: usize, steps: &[Step]) -> String {
+    steps.iter().map(|s| step(m, s, 0)).collect()
+}
+
+fn indent(depth: usize) -> String {
+    " ".repeat(12 + 4 * depth)
+}
+
+/// One step's C, indented for `depth` blocks inside a `case` of `ring_M`.
+fn step(m: usize, s: &Step, depth: usize) -> String {
+    let pad = indent(depth);
+    match s {
+        Step::Post { ty, content } => format!(
+            "{pad}post(w, {m}u, \"{}\", \"{}\");\n",
+            esc(ty),
+            esc(content)
+        ),
+        Step::PostBuilt { ty, pieces } => {
+            let mut out = build_text(pieces, depth);
+            let _ = writeln!(out, "{pad}post(w, {m}u, \"{}\", w->text);", esc(ty));
+            out
+        }
+        Step::Command {
+            ty,
+            word,
+            command,
+            target,
+        } => format!(
+            "{pad}post(w, {m}u, \"{}\", \"{}\");\n{pad}command(w, {target}u, {}, \"{}\");\n",
+            esc(ty),
+            esc(word),
+            command_c(*command),
+            esc(word)
+        ),
+        Step::Print(pieces) => {
+            let mut out = build_text(pieces, depth);
+            let _ = writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);");
+            out
+        }
+        Step::Assign {
+            slot,
+            conversion,
+            global,
+            name,
+            value: v,
+        } => format!(
+            "{pad}assign(w, {m}u, {slot}u, {}, {}, \"{}\", {});\n",
+            conversion_c(*conversion),
+            u8::from(*global),
+            esc(name),
+            value(v)
+        ),
+        Step::Block(body) => {
+            let inner: String = body.iter().map(|s| step(m, s, depth + 1)).collect();
+            format!("{pad}{{\n{inner}{pad}}}\n")
+        }
+        Step::Loop { .. } => for_loop(m, s, depth),
+        Step::Nothing => String::new(),
+    }
+}
+
+/// A `for` loop as a C `while`, stopped at the runner's loop limit with its warning.
+fn for_loop(m: usize, s: &Step, depth: usize) -> String {
+    let Step::Loop {
+        number: n,
+        state,
+        init,
+        condition,
+        body,
+        step: next,
+    } = s
+    else {
+        return String::new();
+    };
+    let pad = indent(depth);
+    let inner = indent(depth + 1);
+    let deeper = indent(depth + 2);
+    let mut out = format!("{pad}{{\n{inner}uint32_t rounds_{n} = 0;\n");
+    if let Some(init) = init {
+        out.push_str(&step(m, init, depth + 1));
+    }
+    let condition = condition.as_ref().map_or("1".into(), truth);
+    let _ = writeln!(out, "{inner}while ({condition}) {{");
+    let _ = writeln!(
+        out,
+        "{deeper}if (rounds_{n} == LOOP_LIMIT) {{\n{deeper}    w->cb.warned(w, machine_name[{m}], \"a `for` loop in state {} stopped after {LOOP_LIMIT} rounds\");\n{deeper}    break;\n{deeper}}}\n{deeper}rounds_{n}++;",
+        esc(state)
+    );
+    out.push_str(&step(m, body, depth + 2));
+    if let Some(next) = next {
+        out.push_str(&step(m, next, depth + 2));
+    }
+    let _ = writeln!(out, "{inner}}}\n{pad}}}");
+    out
+}
+
+/// The C that builds `pieces` into `w->text`.
+fn build_text(pieces: &[Piece], depth: usize) -> String {
+    let pad = indent(depth);
+    let mut out = String::new();
+    let _ = writeln!(out, "{pad}text_clear(w);");
+    for piece in pieces {
+        match piece {
+            Piece::Literal(s) if s.is_empty() => {}
+            Piece::Literal(s) => {
+                let _ = writeln!(out, "{pad}text_literal(w, \"{}\");", esc(s));
+            }
+            Piece::Value(v) => {
+                let _ = writeln!(out, "{pad}text_value(w, {});", value(v));
+            }
+            Piece::Whole(v) => {
+                let _ = writeln!(out, "{pad}text_whole(w, {});", value(v));
+            }
+        }
+    }
+    out
+}
+
+fn conversion_c(conversion: Conversion) -> &'static str {
+    match conversion {
+        Conversion::Whole => "CONVERT_WHOLE",
+        Conversion::Truth => "CONVERT_TRUTH",
+        Conversion::Kept => "CONVERT_KEPT",
+    }
+}
+
+/// A sub-machine control command as the C names it.
+fn command_c(command: Option<Command>) -> &'static str {
+    match command {
+        Some(Command::On) => "COMMAND_ON",
+        Some(Command::Off) => "COMMAND_OFF",
+        Some(Command::Suspend) => "COMMAND_SUSPEND",
+        Some(Command::Resume) => "COMMAND_RESUME",
+        Some(Command::Restart) => "COMMAND_RESTART",
+        Some(Command::Reload) | Some(Command::Reread) | None => "COMMAND_UNKNOWN",
+    }
+}
+
+/// Text as a C string literal's inside.
+pub(crate) fn esc(text: &str) -> String {
+    let mut out = String::new();
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '?' => out.push_str("\\?"),
+            c if (c as u32) < 0x20 || (c as u32) > 0x7e => {
+                let mut buf = [0u8; 4];
+                for b in c.encode_utf8(&mut buf).bytes() {
+                    let _ = write!(out, "\\{b:03o}");
+                }
+            }
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+fn comment(text: &str) -> String {
+    text.replace("*/", "* /")
+}
+
+/// The C helpers compiled activities call: the runner's values and `arith`'s operators on them.
+const RUNTIME: &str = r#"
+/* A value as the runner holds it: a whole number, or a truth value (0 or 1). */
+#define CONVERT_WHOLE 0
+#define CONVERT_TRUTH 1
+#define CONVERT_KEPT 2
+
+static struct value v_int(int64_t i)
+{
+    struct value v;
+    v.i = i;
+    v.is_bool = 0;
+    return v;
+}
+
+static struct value v_bool(int b)
+{
+    struct value v;
+    v.i = b ? 1 : 0;
+    v.is_bool = 1;
+    return v;
+}
+
+static int truthy(struct value v)
+{
+    return v.i != 0;
+}
+
+/* Wrapping arithmetic, as the runner's `wrapping_add` and kin. */
+static int64_t wrap(uint64_t u)
+{
+    return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)(~u) - 1;
+}
+
+static struct value v_add(struct value a, struct value b)
+{
+    return v_int(wrap((uint64_t)a.i + (uint64_t)b.i));
+}
+
+static struct value v_sub(struct value a, struct value b)
+{
+    return v_int(wrap((uint64_t)a.i - (uint64_t)b.i));
+}
+
+static struct value v_mul(struct value a, struct value b)
+{
+    return v_int(wrap((uint64_t)a.i * (uint64_t)b.i));
+}
+
+/* Dividing by zero gives the largest whole number, as gufsm's INT_MAX. */
+static struct value v_div(struct value a, struct value b)
+{
+    if (b.i == 0) {
+        return v_int(INT64_MAX);
+    }
+    if (b.i == -1) {
+        return v_int(wrap(0u - (uint64_t)a.i));
+    }
+    return v_int(a.i / b.i);
+}
+
+static struct value v_rem(struct value a, struct value b)
+{
+    if (b.i == 0) {
+        return v_int(INT64_MAX);
+    }
+    if (b.i == -1) {
+        return v_int(0);
+    }
+    return v_int(a.i % b.i);
+}
+
+static struct value v_neg(struct value a)
+{
+    return v_int(wrap(0u - (uint64_t)a.i));
+}
+
+static struct value v_abs(struct value a)
+{
+    return a.i < 0 ? v_neg(a) : a;
+}
+
+static struct value v_eq(struct value a, struct value b)
+{
+    return v_bool(a.i == b.i);
+}
+
+static struct value v_ne(struct value a, struct value b)
+{
+    return v_bool(a.i != b.i);
+}
+
+static struct value v_lt(struct value a, struct value b)
+{
+    return v_bool(a.i < b.i);
+}
+
+static struct value v_le(struct value a, struct value b)
+{
+    return v_bool(a.i <= b.i);
+}
+
+static struct value v_gt(struct value a, struct value b)
+{
+    return v_bool(a.i > b.i);
+}
+
+static struct value v_ge(struct value a, struct value b)
+{
+    return v_bool(a.i >= b.i);
+}
+
+/* The first when it is not greater (min) or not less (max), as the runner picks. */
+static struct value v_min(struct value a, struct value b)
+{
+    return a.i <= b.i ? a : b;
+}
+
+static struct value v_max(struct value a, struct value b)
+{
+    return a.i >= b.i ? a : b;
+}
+
+static struct value convert(int conversion, struct value v)
+{
+    if (conversion == CONVERT_WHOLE) {
+        return v_int(v.i);
+    }
+    if (conversion == CONVERT_TRUTH) {
+        return v_bool(truthy(v));
+    }
+    return v;
+}
+
+/* A value's text, as the trace shows it, into `out` (at least 21 bytes); its length. */
+static unsigned value_text(char *out, struct value v)
+{
+    char digits[20];
+    unsigned n = 0, len = 0;
+    uint64_t u;
+    const char *word;
+    if (v.is_bool) {
+        word = v.i ? "true" : "false";
+        while (word[len] != '\0') {
+            out[len] = word[len];
+            len++;
+        }
+        out[len] = '\0';
+        return len;
+    }
+    u = v.i < 0 ? 0u - (uint64_t)v.i : (uint64_t)v.i;
+    do {
+        digits[n++] = (char)('0' + (int)(u % 10u));
+        u /= 10u;
+    } while (u != 0u);
+    if (v.i < 0) {
+        out[len++] = '-';
+    }
+    while (n > 0) {
+        out[len++] = digits[--n];
+    }
+    out[len] = '\0';
+    return len;
+}
+
+static void text_clear(struct world *w)
+{
+    w->text_length = 0;
+    w->text[0] = '\0';
+}
+
+static void text_literal(struct world *w, const char *s)
+{
+    while (*s != '\0') {
+        w->text[w->text_length++] = *s++;
+    }
+    w->text[w->text_length] = '\0';
+}
+
+static void text_value(struct world *w, struct value v)
+{
+    w->text_length += value_text(w->text + w->text_length, v);
+}
+
+static void text_whole(struct world *w, struct value v)
+{
+    text_value(w, v_int(v.i));
+}
+
+/* An assignment as the runner makes it: converted to the variable's type, reported when the
+ * value changed; a global's change is news to the labels that read globals. */
+static void assign(struct world *w, unsigned m, unsigned slot, int conversion, int global,
+                   const char *name, struct value v)
+{
+    char shown[24];
+    v = convert(conversion, v);
+    if (w->var[slot].i == v.i && w->var[slot].is_bool == v.is_bool) {
+        return;
+    }
+    w->var[slot] = v;
+    if (global) {
+        w->globals_changes++;
+    }
+    (void)value_text(shown, v);
+    w->cb.assigned(w, machine_name[m], name, shown);
+}
+"#;

@@ -1,0 +1,601 @@
+//! The fixed text of a behaviour compiled to a Cargo project, with `@NAME@` where
+//! `print_rust.rs` fills in the behaviour's own parts.
+
+/// `src/runtime.rs`: values as the runner holds them, `arith`'s operators on them, and the world
+/// a compiled behaviour runs in, reporting `proclaim_runner::Event`s.
+pub(crate) const RUNTIME: &str = r#"//! The runtime of a behaviour compiled by proclaim (generated: do not edit): values as the
+//! runner holds them, `proclaim_runner::arith`'s operators on them, and the world the machines
+//! run in, which reports the trace's events.
+
+use proclaim_runner::{Answerer, Event};
+use std::time::Duration;
+
+/// A value as the runner holds it: a whole number, or a truth value (0 or 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Value {
+    pub i: i64,
+    pub is_bool: bool,
+}
+
+pub fn v_int(i: i64) -> Value {
+    Value { i, is_bool: false }
+}
+
+pub fn v_bool(b: bool) -> Value {
+    Value {
+        i: i64::from(b),
+        is_bool: true,
+    }
+}
+
+pub fn truthy(v: Value) -> bool {
+    v.i != 0
+}
+
+pub fn v_add(a: Value, b: Value) -> Value {
+    v_int(a.i.wrapping_add(b.i))
+}
+
+pub fn v_sub(a: Value, b: Value) -> Value {
+    v_int(a.i.wrapping_sub(b.i))
+}
+
+pub fn v_mul(a: Value, b: Value) -> Value {
+    v_int(a.i.wrapping_mul(b.i))
+}
+
+/// Dividing by zero gives the largest whole number, as gufsm's INT_MAX.
+pub fn v_div(a: Value, b: Value) -> Value {
+    match b.i {
+        0 => v_int(i64::MAX),
+        -1 => v_int(a.i.wrapping_neg()),
+        _ => v_int(a.i / b.i),
+    }
+}
+
+pub fn v_rem(a: Value, b: Value) -> Value {
+    match b.i {
+        0 => v_int(i64::MAX),
+        -1 => v_int(0),
+        _ => v_int(a.i % b.i),
+    }
+}
+
+pub fn v_neg(a: Value) -> Value {
+    v_int(a.i.wrapping_neg())
+}
+
+pub fn v_abs(a: Value) -> Value {
+    if a.i < 0 {
+        v_neg(a)
+    } else {
+        a
+    }
+}
+
+pub fn v_eq(a: Value, b: Value) -> Value {
+    v_bool(a.i == b.i)
+}
+
+pub fn v_ne(a: Value, b: Value) -> Value {
+    v_bool(a.i != b.i)
+}
+
+pub fn v_lt(a: Value, b: Value) -> Value {
+    v_bool(a.i < b.i)
+}
+
+pub fn v_le(a: Value, b: Value) -> Value {
+    v_bool(a.i <= b.i)
+}
+
+pub fn v_gt(a: Value, b: Value) -> Value {
+    v_bool(a.i > b.i)
+}
+
+pub fn v_ge(a: Value, b: Value) -> Value {
+    v_bool(a.i >= b.i)
+}
+
+/// The first when it is not greater (min) or not less (max), as the runner picks.
+pub fn v_min(a: Value, b: Value) -> Value {
+    if a.i <= b.i {
+        a
+    } else {
+        b
+    }
+}
+
+pub fn v_max(a: Value, b: Value) -> Value {
+    if a.i >= b.i {
+        a
+    } else {
+        b
+    }
+}
+
+pub const CONVERT_WHOLE: u8 = 0;
+pub const CONVERT_TRUTH: u8 = 1;
+pub const CONVERT_KEPT: u8 = 2;
+
+pub fn convert(conversion: u8, v: Value) -> Value {
+    match conversion {
+        CONVERT_WHOLE => v_int(v.i),
+        CONVERT_TRUTH => v_bool(truthy(v)),
+        _ => v,
+    }
+}
+
+/// A value's text, as the trace shows it.
+pub fn value_text(v: Value) -> String {
+    if v.is_bool {
+        (if v.i != 0 { "true" } else { "false" }).to_string()
+    } else {
+        v.i.to_string()
+    }
+}
+
+pub const RUNNING: u8 = 0;
+pub const SUSPENDED: u8 = 1;
+pub const DORMANT: u8 = 2;
+pub const COMMAND_UNKNOWN: u8 = 0;
+pub const COMMAND_ON: u8 = 1;
+pub const COMMAND_OFF: u8 = 2;
+pub const COMMAND_SUSPEND: u8 = 3;
+pub const COMMAND_RESUME: u8 = 4;
+pub const COMMAND_RESTART: u8 = 5;
+
+/// The whiteboard's values the behaviour reads, its machines' states, and where its events go.
+pub struct World {
+    /// The millisecond clock: set before each round.
+    pub now_ms: u64,
+    pub round: u64,
+    pub state: Vec<i64>,
+    pub just_entered: Vec<bool>,
+    pub entered_ms: Vec<u64>,
+    /// Each theory input: known, then true.
+    pub input: Vec<bool>,
+    /// The answers each machine's last ringlet saw.
+    pub seen: Vec<Vec<bool>>,
+    pub initial: Vec<i64>,
+    /// Running, suspended or dormant; started in this round (it rings from the next).
+    pub status: Vec<u8>,
+    pub fresh: Vec<bool>,
+    /// Each machine's own variables, then the behaviour's globals.
+    pub var: Vec<Value>,
+    /// Changes of globals so far, and as each machine's last ringlet saw them.
+    pub globals_changes: u64,
+    pub globals_seen: Vec<u64>,
+    /// Control commands posted to each machine, obeyed when the ringlet that posted them ends.
+    pub commands: Vec<Vec<(u8, &'static str)>>,
+    pub commands_waiting: bool,
+    /// The text a posting or a print is built in.
+    pub text: String,
+    /// Where the trace's events go; none are made without one.
+    pub sink: Option<Box<dyn FnMut(Event)>>,
+    /// Set once every machine that started is in a final state: the trace ends there.
+    pub over: bool,
+}
+
+impl World {
+    pub fn new(
+        machines: usize,
+        outputs: usize,
+        variables: usize,
+        sink: Option<Box<dyn FnMut(Event)>>,
+    ) -> World {
+        World {
+            now_ms: 0,
+            round: 0,
+            state: vec![0; machines],
+            just_entered: vec![false; machines],
+            entered_ms: vec![0; machines],
+            input: vec![false; variables],
+            seen: vec![vec![false; outputs]; machines],
+            initial: vec![0; machines],
+            status: vec![RUNNING; machines],
+            fresh: vec![false; machines],
+            var: Vec::new(),
+            globals_changes: 0,
+            globals_seen: vec![0; machines],
+            commands: vec![Vec::new(); machines],
+            commands_waiting: false,
+            text: String::new(),
+            sink,
+            over: false,
+        }
+    }
+
+    /// Reports the event `event` makes of the round and the time now, unless the run is over.
+    pub fn report(&mut self, event: impl FnOnce(u64, Duration) -> Event) {
+        if self.over {
+            return;
+        }
+        let (round, at) = (self.round, Duration::from_millis(self.now_ms));
+        if let Some(sink) = self.sink.as_mut() {
+            sink(event(round, at));
+        }
+    }
+
+    pub fn posted(&mut self, machine: &str, ty: &str, content: &str) {
+        self.report(|round, at| Event::Posted {
+            machine: machine.to_string(),
+            ty: ty.to_string(),
+            content: content.to_string(),
+            priority: 0,
+            round,
+            at,
+        });
+    }
+
+    pub fn entered(&mut self, machine: &str, state: &str, id: i64) {
+        self.report(|round, at| Event::Entered {
+            machine: machine.to_string(),
+            state: state.to_string(),
+            id,
+            round,
+            at,
+        });
+    }
+
+    pub fn finished(&mut self, machine: &str, state: &str) {
+        self.report(|round, at| Event::Finished {
+            machine: machine.to_string(),
+            state: state.to_string(),
+            round,
+            at,
+        });
+    }
+
+    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: &str) {
+        self.report(|round, at| Event::Answered {
+            machine: machine.to_string(),
+            atom: atom.to_string(),
+            value,
+            by: Answerer::Expert(expert.to_string()),
+            round,
+            at,
+        });
+    }
+
+    pub fn fired(&mut self, machine: &str, from: i64, to: i64, label: &str) {
+        self.report(|round, at| Event::Fired {
+            machine: machine.to_string(),
+            from,
+            to,
+            label: label.to_string(),
+            round,
+            at,
+        });
+    }
+
+    pub fn assigned(&mut self, machine: &str, variable: &str, value: impl FnOnce() -> String) {
+        self.report(|round, at| Event::Assigned {
+            machine: machine.to_string(),
+            variable: variable.to_string(),
+            value: value(),
+            round,
+            at,
+        });
+    }
+
+    pub fn printed(&mut self, machine: &str, text: &str) {
+        self.report(|round, at| Event::Printed {
+            machine: machine.to_string(),
+            text: text.to_string(),
+            round,
+            at,
+        });
+    }
+
+    pub fn control(&mut self, machine: &str, command: &str) {
+        self.report(|round, at| Event::Control {
+            machine: machine.to_string(),
+            command: command.to_string(),
+            round,
+            at,
+        });
+    }
+
+    pub fn warned(&mut self, machine: &str, message: &str) {
+        self.report(|round, at| Event::Warned {
+            machine: machine.to_string(),
+            message: message.to_string(),
+            round,
+            at,
+        });
+    }
+
+    pub fn text_clear(&mut self) {
+        self.text.clear();
+    }
+
+    pub fn text_literal(&mut self, s: &str) {
+        self.text.push_str(s);
+    }
+
+    pub fn text_value(&mut self, v: Value) {
+        let shown = value_text(v);
+        self.text.push_str(&shown);
+    }
+
+    pub fn text_whole(&mut self, v: Value) {
+        self.text_value(v_int(v.i));
+    }
+}
+
+/// A time test still to come due shortens the wait; one already past (its label false for
+/// another reason) does not, as the runner's `next_time_test` has it.
+pub fn min_due(due: u64, at: u64, now: u64) -> u64 {
+    if at <= now {
+        return due;
+    }
+    if at - now < due {
+        at - now
+    } else {
+        due
+    }
+}
+"#;
+
+/// `src/behaviour.rs` around its machines' code.
+pub(crate) const BODY: &str = r#"//! The behaviour `@name@` compiled by proclaim (generated: do not edit): a ringlet a machine,
+//! the round schedule, and what its host asks of it.
+
+use crate::runtime::*;
+use proclaim_runner::Event;
+
+pub const MACHINES: usize = @machines@;
+pub const OUTPUTS: usize = @outputs@;
+pub const VARIABLES: usize = @variables@;
+/// The period of rounds without news, in milliseconds.
+pub const PERIOD_MS: u64 = @period_ms@;
+const COMMANDS: usize = @commands@;
+const LOOP_LIMIT: u32 = @loop_limit@;
+const OUTPUT_NAME: [&str; OUTPUTS] = [@output_names@];
+const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
+const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
+
+/// A theory input from a posting's content: true, false, or unknown for anything else.
+fn set_input(w: &mut World, v: usize, content: &str) {
+    let (known, value) = match content {
+        "true" => (true, true),
+        "false" => (true, false),
+        _ => (false, false),
+    };
+    w.input[v] = known;
+    w.input[v + 1] = value;
+}
+
+/// Whether the posting's type is a theory input (then applied).
+fn apply_input(w: &mut World, ty: &str, content: &str) -> bool {
+    match ty {
+@input_cases@        _ => false,
+    }
+}
+
+pub fn answer(w: &World, k: usize) -> bool {
+    match k {
+@answer_cases@        _ => false,
+    }
+}
+
+fn ask(w: &mut World, m: usize, k: usize) -> bool {
+    let value = answer(w, k);
+    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, OUTPUT_EXPERT[k]);
+    value
+}
+
+fn post(w: &mut World, m: usize, ty: &str, content: &str) {
+    w.posted(MACHINE_NAME[m], ty, content);
+    apply_input(w, ty, content);
+}
+
+/// Posts the text built.
+fn post_text(w: &mut World, m: usize, ty: &str) {
+    let text = std::mem::take(&mut w.text);
+    post(w, m, ty, &text);
+    w.text = text;
+}
+
+fn print_text(w: &mut World, m: usize) {
+    let text = std::mem::take(&mut w.text);
+    w.printed(MACHINE_NAME[m], &text);
+    w.text = text;
+}
+
+fn snapshot(w: &mut World, m: usize) {
+    for k in 0..OUTPUTS {
+        let value = answer(w, k);
+        w.seen[m][k] = value;
+    }
+}
+
+fn elapsed_at_least(w: &World, m: usize, ms: u64) -> bool {
+    w.now_ms.wrapping_sub(w.entered_ms[m]) >= ms
+}
+
+/// An assignment as the runner makes it: converted to the variable's type, reported when the
+/// value changed; a global's change is news to the labels that read globals.
+fn assign(w: &mut World, m: usize, slot: usize, conversion: u8, global: bool, name: &str, v: Value) {
+    let v = convert(conversion, v);
+    if w.var[slot] == v {
+        return;
+    }
+    w.var[slot] = v;
+    if global {
+        w.globals_changes += 1;
+    }
+    w.assigned(MACHINE_NAME[m], name, || value_text(v));
+}
+
+/// The machine's run is over: reported, and the trace ends once every machine's is.
+fn report_finished(w: &mut World, m: usize, state: &str) {
+    if w.over {
+        return;
+    }
+    w.finished(MACHINE_NAME[m], state);
+    w.over = finished(w);
+}
+
+/// Whether a machine's run is over for now: in a state with no way out, its OnEntry run.
+fn done(w: &World, m: usize) -> bool {
+    !w.just_entered[m] && final_state(w, m)
+}
+
+/// A control command posted to machine `m`, obeyed when the ringlet ends.
+fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
+    if w.commands[m].len() < COMMANDS {
+        w.commands[m].push((code, word));
+        w.commands_waiting = true;
+    }
+}
+
+/// gufsm's SuspensibleMachine, as the runner's `control`: whether it started the machine.
+fn control(w: &mut World, m: usize, code: u8, word: &str) -> bool {
+    w.control(MACHINE_NAME[m], word);
+    match code {
+        COMMAND_ON | COMMAND_RESUME => {
+            if w.status[m] == DORMANT {
+                w.state[m] = w.initial[m];
+            } else if w.status[m] == RUNNING {
+                return false;
+            }
+            w.status[m] = RUNNING;
+            w.just_entered[m] = true;
+            true
+        }
+        COMMAND_RESTART => {
+            w.status[m] = RUNNING;
+            w.state[m] = w.initial[m];
+            w.just_entered[m] = true;
+            true
+        }
+        COMMAND_SUSPEND => {
+            if w.status[m] == RUNNING {
+                w.status[m] = SUSPENDED;
+            }
+            false
+        }
+        COMMAND_OFF => {
+            w.status[m] = DORMANT;
+            false
+        }
+        _ => false,
+    }
+}
+
+/// The commands waiting for each machine, in schedule order; a machine started rings from the
+/// next round.
+fn obey(w: &mut World) {
+    if !w.commands_waiting {
+        return;
+    }
+    w.commands_waiting = false;
+    for m in 0..MACHINES {
+        let commands = std::mem::take(&mut w.commands[m]);
+        for (code, word) in commands {
+            if control(w, m, code, word) {
+                w.fresh[m] = true;
+            }
+        }
+    }
+}
+
+@code@
+fn final_state(w: &World, m: usize) -> bool {
+    match m {
+@finals@        _ => false,
+    }
+}
+
+/// The behaviour at its start, reporting its events to `sink` (none made without one).
+pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
+    let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, sink);
+    w.var = vec![@var_inits@];
+@inits@    w
+}
+
+/// One round: `started` (what came from outside by now is posted), then a ringlet of every
+/// machine in manifest order; whether one fired (the next round follows at once).
+pub fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
+    let mut fired = false;
+    w.round += 1;
+    started(w);
+    for m in 0..MACHINES {
+        w.fresh[m] = false;
+    }
+@rings@    fired || w.fresh.iter().any(|f| *f)
+}
+
+/// A posting from outside the machines (an impersonator, a sensor); whether it is news to a
+/// machine's labels.
+pub fn outside(w: &mut World, ty: &str, content: &str) -> bool {
+    apply_input(w, ty, content) && news(w)
+}
+
+/// Whether an answer a machine's current labels read differs from what its last ringlet saw.
+pub fn news(w: &World) -> bool {
+@reads@    false
+}
+
+/// Whether `atom` is an answer of the behaviour's theories.
+pub fn answers(atom: &str) -> bool {
+    OUTPUT_NAME.contains(&atom)
+}
+
+/// Whether `name` is a machine's (a posting to it is a control command).
+pub fn is_machine(name: &str) -> bool {
+    MACHINE_NAME.contains(&name)
+}
+
+/// Milliseconds from now until the next round is due without news (a timeout or the period).
+pub fn next_due_ms(w: &World) -> u64 {
+    let mut due = PERIOD_MS;
+@dues@    due
+}
+
+/// Whether every machine that starts with the behaviour is in a final state, its OnEntry run.
+pub fn finished(w: &World) -> bool {
+@tops@    true
+}
+"#;
+
+/// One machine's functions (`@m@` is its number).
+pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
+    if w.just_entered[@m@] {
+        w.just_entered[@m@] = false;
+        w.entered_ms[@m@] = w.now_ms;
+        match w.state[@m@] {
+@entries@            _ => {}
+        }
+    }
+    snapshot(w, @m@);
+    w.globals_seen[@m@] = w.globals_changes;
+    match w.state[@m@] {
+@cases@        _ => false,
+    }
+}
+
+fn reads_@m@(w: &World, k: usize) -> bool {
+    match w.state[@m@] {
+@read_cases@        _ => false,
+    }
+}
+
+/// Whether the current state's labels read a global.
+fn reads_globals_@m@(w: &World) -> bool {
+    @global_test@
+}
+
+fn final_@m@(w: &World) -> bool {
+    @final_test@
+}
+
+fn due_@m@(w: &World, due: u64) -> u64 {
+    match w.state[@m@] {
+@due_cases@        _ => due,
+    }
+}
+
+"#;

@@ -1,0 +1,242 @@
+//! A behaviour compiled to a Cargo project (`proclaim compile B --target rust`), built and run
+//! with `--script`, `--virtual-clock` and `--trace`, writes the same trace as `proclaim run`
+//! with those options, byte for byte: every behaviour the C target's tests compile (the shipped
+//! ones, each construct's, the seeded random ones). The projects are built together, in one
+//! Cargo workspace, into one target folder kept under the tests' temporary folder, so the
+//! crates they depend on build once.
+
+use super::compiled::{
+    assert_same, behaviour_of, construct_cases, random_behaviour, scratch, splitmix, Case,
+};
+use crate::proclaim;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// One behaviour to compile and the runs to hold to the interpreter's.
+struct Compiled {
+    name: String,
+    folder: PathBuf,
+    /// Name, script, and `--for`.
+    runs: Vec<(String, String, Option<String>)>,
+}
+
+/// The microwave on its own script, on the door opening while cooking, and on seeded scripts
+/// of the door and the timer at any millisecond.
+fn microwave() -> Compiled {
+    let kitchen = std::fs::read_to_string("machines/microwave/kitchen.script").unwrap();
+    let mut runs = vec![
+        ("kitchen".to_string(), kitchen, None),
+        (
+            "door".to_string(),
+            "doorOpen = false\ntimeLeft = false\nat 1s timeLeft = true\nat 10s doorOpen = true\n"
+                .to_string(),
+            Some("12s".to_string()),
+        ),
+    ];
+    let mut seed = 0x5eed_0033_7275;
+    for n in 0..6 {
+        let mut script = String::new();
+        if splitmix(&mut seed) % 3 != 0 {
+            script.push_str("doorOpen = false\n");
+        }
+        for _ in 0..1 + splitmix(&mut seed) % 8 {
+            let at = splitmix(&mut seed) % 5_000;
+            let atom = ["doorOpen", "timeLeft"][(splitmix(&mut seed) % 2) as usize];
+            let value = splitmix(&mut seed) % 2 == 0;
+            script.push_str(&format!("at {at}ms {atom} = {value}\n"));
+        }
+        let run_for = if n % 2 == 0 { "6s" } else { "70s" };
+        runs.push((format!("random{n}"), script, Some(run_for.to_string())));
+    }
+    Compiled {
+        name: "microwave".into(),
+        folder: "machines/microwave".into(),
+        runs,
+    }
+}
+
+/// Press and shootout to their ends, and stopped at seeded times with postings no label reads.
+fn shipped(name: &str) -> Compiled {
+    let mut runs = vec![(format!("{name}-own"), String::new(), None)];
+    let mut seed = 0x5eed_0033 ^ name.len() as u64;
+    for n in 0..3 {
+        let mut script = String::new();
+        for _ in 0..splitmix(&mut seed) % 5 {
+            let at = splitmix(&mut seed) % 12_000;
+            let value = splitmix(&mut seed) % 2 == 0;
+            script.push_str(&format!("at {at}ms crowd = {value}\n"));
+        }
+        let run_for = format!("{}ms", 1 + splitmix(&mut seed) % 12_000);
+        runs.push((format!("{name}-random{n}"), script, Some(run_for)));
+    }
+    Compiled {
+        name: name.into(),
+        folder: format!("machines/{name}").into(),
+        runs,
+    }
+}
+
+fn from_case(case: Case) -> Compiled {
+    let files: Vec<(&str, &str)> = case
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    Compiled {
+        name: case.name.into(),
+        folder: behaviour_of(&format!("rust-{}", case.name), &files),
+        runs: vec![(
+            case.name.to_string(),
+            case.script.to_string(),
+            case.run_for.map(str::to_string),
+        )],
+    }
+}
+
+fn random(seed: u64) -> Compiled {
+    let files = random_behaviour(0x0033_0000 + seed);
+    let name = format!("random-behaviour{seed}");
+    let borrowed: Vec<(&str, &str)> = files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    Compiled {
+        folder: behaviour_of(&format!("rust-{name}"), &borrowed),
+        runs: vec![(name.clone(), String::new(), Some("300ms".into()))],
+        name,
+    }
+}
+
+/// Compiles each behaviour into `projects/NAME` and makes the folder one Cargo workspace of
+/// them (each project is its own workspace as written; here they share one lock and build).
+fn write_projects(behaviours: &[Compiled], projects: &Path) {
+    let mut members = Vec::new();
+    for b in behaviours {
+        let dir = projects.join(&b.name);
+        let o = proclaim(&[
+            "compile",
+            b.folder.to_str().unwrap(),
+            "--target",
+            "rust",
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(
+            o.status.success(),
+            "{}: {}",
+            b.name,
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let manifest = dir.join("Cargo.toml");
+        let text = std::fs::read_to_string(&manifest).unwrap();
+        let name = format!("behaviour-{}", b.name);
+        let text = text
+            .replace("[workspace]\n", "")
+            .lines()
+            .map(|l| {
+                if l.starts_with("name = ") {
+                    format!("name = \"{name}\"")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        std::fs::write(&manifest, text).unwrap();
+        let lock = dir.join("Cargo.lock");
+        if lock.exists() {
+            std::fs::rename(&lock, projects.join("Cargo.lock")).unwrap();
+        }
+        members.push(format!("{:?}", b.name));
+    }
+    std::fs::write(
+        projects.join("Cargo.toml"),
+        format!(
+            "[workspace]\nmembers = [{}]\nresolver = \"2\"\n",
+            members.join(", ")
+        ),
+    )
+    .unwrap();
+}
+
+/// Builds every project; the folder of the programs.
+fn build_projects(projects: &Path) -> PathBuf {
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rust-behaviours");
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let o = Command::new(cargo)
+        .args(["build", "--offline", "--workspace", "--quiet"])
+        .current_dir(projects)
+        .env("CARGO_TARGET_DIR", &target)
+        .output()
+        .expect("cargo runs");
+    assert!(
+        o.status.success(),
+        "the compiled behaviours build:\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    target.join("debug")
+}
+
+/// The interpreter's trace and the compiled program's, for one run.
+fn traces(
+    folder: &Path,
+    program: &Path,
+    dir: &Path,
+    run: &(String, String, Option<String>),
+) -> (String, String) {
+    let (name, script, run_for) = run;
+    let script_path = dir.join(format!("{name}.script"));
+    std::fs::write(&script_path, script).unwrap();
+    let mut options = vec![
+        "--virtual-clock".to_string(),
+        "--script".into(),
+        script_path.to_str().unwrap().into(),
+    ];
+    if let Some(d) = run_for {
+        options.extend(["--for".to_string(), d.clone()]);
+    }
+    let interpreted_path = dir.join(format!("{name}.interpreted.jsonl"));
+    let compiled_path = dir.join(format!("{name}.compiled.jsonl"));
+    let mut args = vec!["run".to_string(), folder.to_str().unwrap().into()];
+    args.extend(options.iter().cloned());
+    args.extend(["--trace".into(), interpreted_path.to_str().unwrap().into()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = proclaim(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = Command::new(program)
+        .args(&options)
+        .args(["--trace", compiled_path.to_str().unwrap()])
+        .output()
+        .expect("the compiled behaviour runs");
+    assert!(
+        o.status.success(),
+        "the compiled behaviour failed on {name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (
+        std::fs::read_to_string(interpreted_path).unwrap(),
+        std::fs::read_to_string(compiled_path).unwrap(),
+    )
+}
+
+#[test]
+fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
+    let mut behaviours = vec![microwave(), shipped("press"), shipped("shootout")];
+    behaviours.extend(construct_cases().into_iter().map(from_case));
+    behaviours.extend((0..24).map(random));
+    let projects = scratch("rust-projects");
+    write_projects(&behaviours, &projects);
+    let programs = build_projects(&projects);
+    let runs = scratch("rust-runs");
+    let mut moved = 0;
+    for b in &behaviours {
+        let program = programs.join(format!("behaviour-{}", b.name));
+        for run in &b.runs {
+            let (interpreted, compiled) = traces(&b.folder, &program, &runs, run);
+            assert!(!interpreted.is_empty(), "{}: the run did something", run.0);
+            assert_same(&run.0, &interpreted, &compiled);
+            moved += usize::from(interpreted.contains("\"fired\""));
+        }
+    }
+    assert!(moved > 30, "most runs move: {moved}");
+}
