@@ -303,7 +303,12 @@ impl Searched<'_, '_> {
     /// The shortest way of at least one step from `from` to `to` through `within`, found by
     /// images of the frontier (cheap while the frontier is small) and then walked back to
     /// front by the explicit stepper.
-    fn way(&self, from: &SystemState, to: &SystemState, within: &Bdd) -> Option<Vec<(SystemState, Choice)>> {
+    fn way(
+        &self,
+        from: &SystemState,
+        to: &SystemState,
+        within: &Bdd,
+    ) -> Option<Vec<(SystemState, Choice)>> {
         let (model, enc) = (self.model, self.enc);
         let target = enc.mk(&enc.world(model, to));
         let mut frontiers = vec![enc.mk(&enc.world(model, from))];
