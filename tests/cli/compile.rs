@@ -46,7 +46,7 @@ fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
             "gcc is missing, and CI must build the compiled theory"
         ),
     }
-    // Not built yet: said so, exit 2.
+    // A theory has no Rust target: said so, exit 2.
     let o = proclaim(&[
         "compile",
         "microwave",
@@ -57,7 +57,7 @@ fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("--target rust is not built yet"),
+        stderr(&o).contains("--target rust compiles a behaviour (a folder)"),
         "{}",
         stderr(&o)
     );
