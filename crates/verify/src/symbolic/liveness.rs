@@ -29,8 +29,10 @@ const MAX_LOOP_STARTS: usize = 256;
 
 /// The sets a failing run is made of.
 struct FairSets {
-    /// Reached states, the initial worlds left out (their steps are the explicit stepper's).
-    graph: Bdd,
+    /// Where, besides the initial worlds, a run may start staying bad (reached states, the
+    /// initial worlds left out: their steps are the explicit stepper's): none for
+    /// `eventually`, `leads_to`'s P, any for `always_eventually`.
+    starts: Bdd,
     bad: Bdd,
     /// Bad states that lie on a fair cycle of bad states (Emerson-Lei's Z).
     fair: Bdd,
@@ -101,6 +103,17 @@ impl Searched<'_, '_> {
             })?,
         };
         let bad = graph.and_not(&good);
+        let starts = match property.source.kind {
+            PropertyKind::Eventually => enc.vars.mk_false(),
+            PropertyKind::LeadsTo => graph.and(&set_where(
+                model,
+                enc,
+                property.term(),
+                &property.source.name,
+                &|w| property.holds_in(model, w),
+            )?),
+            _ => graph.clone(),
+        };
         let acceptance: Vec<Bdd> = self
             .acceptance(property)?
             .into_iter()
@@ -109,7 +122,7 @@ impl Searched<'_, '_> {
         let ended = bad.and_not(&self.before(&enc.vars.mk_true(), &bad));
         let fair = self.fair_cycles(&bad, &acceptance);
         Ok(FairSets {
-            graph,
+            starts,
             bad,
             fair,
             ended,
@@ -256,17 +269,7 @@ impl Searched<'_, '_> {
                 return Some(((i, vec![(w.clone(), *choice)]), s.clone()));
             }
         }
-        let seeds = match kind {
-            PropertyKind::Eventually => return None,
-            PropertyKind::LeadsTo => {
-                let p = set_where(model, enc, property.term(), &property.source.name, &|w| {
-                    property.holds_in(model, w)
-                })
-                .ok()?;
-                fails.and(&sets.graph).and(&p)
-            }
-            _ => fails.and(&sets.graph),
-        };
+        let seeds = fails.and(&sets.starts);
         let nearest = layers.iter().position(|l| !l.and(&seeds).is_false())?;
         self.rebuild(&layers[..=nearest], &seeds)
     }
