@@ -176,6 +176,50 @@ fn a_run_that_ends_stays_where_it_ends() {
 }
 
 #[test]
+fn a_leads_to_whose_p_the_symbolic_engine_cannot_encode_is_declined_not_held() {
+    // Seven machines each leave A on a free input of their own and come back; none reaches C.
+    // `P` reads all seven machines at once (more values than the symbolic engine encodes a
+    // set of), so that engine must decline and leave the verdict to the explicit one: it once
+    // took the seeds it could not build for none and answered "fails" with no run to show.
+    let texts: Vec<(String, String)> = (0..7)
+        .map(|i| {
+            let text = format!(
+                "machine M{i}\nstate A {{ when go{i} -> B }}\nstate B {{ when TRUE -> A }}\nstate C {{ }}"
+            );
+            (format!("M{i}"), text)
+        })
+        .collect();
+    let machines: Vec<(&str, &str)> = texts
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    let all_in_a = (0..7)
+        .map(|i| format!("M{i}.A"))
+        .collect::<Vec<_>>()
+        .join(" && ");
+    let properties = [property(
+        PropertyKind::LeadsTo,
+        &format!("{all_in_a} ~> M0.C"),
+        &[],
+    )];
+    let b = behaviour(&machines);
+    let symbolic = Options {
+        engine: SearchEngine::Symbolic,
+        ..Options::default()
+    };
+    match verify(&b, &properties, symbolic) {
+        Err(VerifyError::SymbolicDeclined(why)) => {
+            assert!(why.contains("reads too many values at once"), "{why}")
+        }
+        Ok(report) => panic!("the symbolic engine answered:\n{}", summary(&report)),
+        Err(e) => panic!("symbolic: {e}"),
+    }
+    let report = verify(&b, &properties, Options::default()).expect("verifies");
+    assert_eq!(report.properties[0].verdict, Verdict::Fails);
+    assert!(report.properties[0].cycle.is_some());
+}
+
+#[test]
 fn the_lasso_runs_through_every_machine_and_its_script_plays_the_loop_again_and_again() {
     // Two machines: the loop must let both ring (one round at least) and let P's machine's
     // time pass; the script names the loop and repeats it.
