@@ -216,7 +216,7 @@ impl Peer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::Keys;
+    use crate::keys::Keys;
 
     #[test]
     fn a_kind_declaration_is_read_back_from_its_key() {
