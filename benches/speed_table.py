@@ -58,7 +58,12 @@ def table(binary: pathlib.Path, cases: list, repeat: int) -> str:
     """The markdown table of one `bench --all` run over `cases`, with the command that made it."""
     run = subprocess.run([binary, "bench", "--all", "--repeat", str(repeat), "--json", *cases],
                          check=True, capture_output=True, text=True)
-    rows = json.loads(run.stdout)
+    return format_table(json.loads(run.stdout), cases, repeat, lambda case: size_mb(binary, case))
+
+
+def format_table(rows: list, cases: list, repeat: int, size_of) -> str:
+    """The markdown table of `bench --all --json`'s `rows` for `cases`; `size_of(case)` is a
+    generated case's size in megabytes (a file case is labelled by its name alone)."""
     lines = [
         f"`proclaim bench --all --repeat {repeat} {' '.join(cases)}`:",
         "",
@@ -66,7 +71,7 @@ def table(binary: pathlib.Path, cases: list, repeat: int) -> str:
         "|---|---|---|---|---|---|",
     ]
     for case, row in zip(cases, rows):
-        label = f"{row['case']} ({size_mb(binary, case):.0f} MB)" if ":" in case else row["case"]
+        label = f"{row['case']} ({size_of(case):.0f} MB)" if ":" in case else row["case"]
         wc = row.get("wc_words")
         lines.append(" | ".join([
             f"| {label}",
@@ -79,14 +84,14 @@ def table(binary: pathlib.Path, cases: list, repeat: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def rewrite_readme(text: str) -> None:
+def rewrite_readme(text: str, readme_path: pathlib.Path = README) -> None:
     """Replaces what lies between the markers; says so and fails when they are missing."""
-    readme = README.read_text()
+    readme = readme_path.read_text()
     start, end = readme.find(BEGIN), readme.find(END)
     if start < 0 or end < start:
-        sys.exit(f"{README}: the speed table's markers are missing:\n{BEGIN}\n{END}")
+        sys.exit(f"{readme_path}: the speed table's markers are missing:\n{BEGIN}\n{END}")
     start += len(BEGIN)
-    README.write_text(readme[:start] + "\n" + text + readme[end:])
+    readme_path.write_text(readme[:start] + "\n" + text + readme[end:])
 
 
 def main() -> None:

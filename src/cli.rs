@@ -4,6 +4,15 @@ use crate::network::Network;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
+/// Where `--monitor` serves its page when given no address. Loopback: a page that steps and
+/// posts to the robot's whiteboard is not for the whole network unless asked
+/// (`--monitor 0.0.0.0:7480`).
+pub const MONITOR_ADDR: &str = "127.0.0.1:7480";
+
+/// Where `proclaim edit` serves its page when given no address: its own port beside the
+/// monitor's, so both can run at once.
+pub const EDITOR_ADDR: &str = "127.0.0.1:7481";
+
 #[derive(Parser)]
 #[command(
     name = "proclaim",
@@ -201,7 +210,7 @@ pub enum CliCommand {
     Edit {
         behaviour: String,
         /// Where the page listens (off loopback it needs the token printed with its address)
-        #[arg(default_value = crate::commands::edit::DEFAULT_ADDR)]
+        #[arg(default_value = EDITOR_ADDR)]
         addr: String,
         /// The page draws the machines and changes nothing
         #[arg(long)]
@@ -407,7 +416,7 @@ pub struct ReplayArgs {
     pub speed: Option<f64>,
     /// Show the trace in the browser with a time slider over every moment (at
     /// 127.0.0.1:7480 unless given), until Ctrl-C
-    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR)]
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = MONITOR_ADDR)]
     pub monitor: Option<String>,
     /// The behaviour that made the trace, to draw its machines whole (without it, each
     /// machine is drawn from the states and transitions the trace shows)
@@ -524,7 +533,7 @@ pub struct RunArgs {
     /// given; port 0 takes any free port). The page stays open after the run until Ctrl-C. On
     /// an address other than loopback, pausing, stepping and posting need the token printed
     /// once in the page's address
-    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = crate::commands::monitor::DEFAULT_ADDR, conflicts_with_all = ["step", "virtual_clock"])]
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = MONITOR_ADDR, conflicts_with_all = ["step", "virtual_clock"])]
     pub monitor: Option<String>,
     /// The monitor page shows the run and has no controls: nobody can pause, step or post
     #[arg(long, requires = "monitor")]

@@ -10,9 +10,6 @@ use proclaim_monitor::{Access, Editor, EditorFile};
 use std::net::SocketAddr;
 use std::process::ExitCode;
 
-/// The editor's own port beside the monitor's 7480, so both can run at once.
-pub const DEFAULT_ADDR: &str = "127.0.0.1:7481";
-
 pub fn run(behaviour: &str, addr: &str, read_only: bool) -> Result<ExitCode, Failure> {
     let found = resolve(behaviour)?;
     let Some(folder) = found.files.folder().map(|f| f.to_path_buf()) else {

@@ -10,10 +10,6 @@ use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::Path;
 use std::process::ExitCode;
 
-/// Loopback: a page that steps and posts to the robot's whiteboard is not for the whole
-/// network unless asked (`--monitor 0.0.0.0:7480`).
-pub const DEFAULT_ADDR: &str = "127.0.0.1:7480";
-
 /// `7480`, `127.0.0.1:7480`, `[::1]:7480` or `0.0.0.0:8080`.
 pub fn parse_addr(text: &str) -> Result<SocketAddr, Failure> {
     let text = text.trim();
@@ -106,10 +102,12 @@ async fn open_with(
     monitor.set_access(access.clone());
     let bound = match monitor.serve(wanted).await {
         Ok(bound) => bound,
-        Err(e) if addr == DEFAULT_ADDR && e.kind() == std::io::ErrorKind::AddrInUse => monitor
-            .serve(SocketAddr::new(wanted.ip(), 0))
-            .await
-            .map_err(|e| Failure::Argument(format!("--monitor: cannot listen ({e})")))?,
+        Err(e) if addr == crate::cli::MONITOR_ADDR && e.kind() == std::io::ErrorKind::AddrInUse => {
+            monitor
+                .serve(SocketAddr::new(wanted.ip(), 0))
+                .await
+                .map_err(|e| Failure::Argument(format!("--monitor: cannot listen ({e})")))?
+        }
         Err(e) => {
             return Err(Failure::Argument(format!(
                 "--monitor {addr}: cannot listen there ({e})"

@@ -224,9 +224,7 @@ impl Rounds {
             take_over(suppressor, first, round_time, board);
         }
         scheduled.fresh.fill(false);
-        if took(&mut scheduled.commands) || commanded {
-            obey(board, &mut scheduled.runs, &scheduled.over, None);
-        }
+        scheduled.obey_commands(board, commanded, Moment::BeforeRound);
         let mut fired = false;
         // The ringlet under way, recorded once it has run (with its snapshot).
         let mut began: Option<Ringlet> = None;
@@ -274,24 +272,10 @@ impl Rounds {
             }
             // A command posted in the ringlet takes effect at once: a machine stopped later in
             // the round does not ring, one started rings from the next round.
-            if took(&mut scheduled.commands) {
-                obey(
-                    board,
-                    &mut scheduled.runs,
-                    &scheduled.over,
-                    Some(&mut scheduled.fresh),
-                );
-            }
+            scheduled.obey_commands(board, false, Moment::MidRound);
         }
         // Commands from outside during the round take effect before anything else looks.
-        if took(&mut scheduled.commands) {
-            obey(
-                board,
-                &mut scheduled.runs,
-                &scheduled.over,
-                Some(&mut scheduled.fresh),
-            );
-        }
+        scheduled.obey_commands(board, false, Moment::MidRound);
         fired || scheduled.fresh.iter().any(|f| *f)
     }
 
@@ -377,22 +361,28 @@ fn took(subscription: &mut Subscription) -> bool {
     any
 }
 
-/// Applies the control commands waiting for each machine, in schedule order, marking in
-/// `fresh` (mid-round) the machines they start.
-fn obey(
-    board: &Whiteboard,
-    runs: &mut [RunningMachine<'_>],
-    over: &[bool],
-    mut fresh: Option<&mut [bool]>,
-) {
-    for (machine, run) in runs.iter_mut().enumerate() {
-        if over[machine] {
-            continue;
+/// When control commands are obeyed: a machine they start mid-round rings from the next round.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Moment {
+    BeforeRound,
+    MidRound,
+}
+
+impl ScheduledMachines<'_> {
+    /// If a control command came since the last look (or `already` says one did), applies the
+    /// commands waiting for each machine, in schedule order; mid-round, marking in `fresh` the
+    /// machines they start.
+    fn obey_commands(&mut self, board: &Whiteboard, already: bool, moment: Moment) {
+        if !took(&mut self.commands) && !already {
+            return;
         }
-        while let Some(command) = board.latest(&run.name) {
-            if run.control(&command) {
-                if let Some(fresh) = fresh.as_deref_mut() {
-                    fresh[machine] = true;
+        for (machine, run) in self.runs.iter_mut().enumerate() {
+            if self.over[machine] {
+                continue;
+            }
+            while let Some(command) = board.latest(&run.name) {
+                if run.control(&command) && moment == Moment::MidRound {
+                    self.fresh[machine] = true;
                 }
             }
         }

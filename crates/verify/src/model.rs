@@ -114,6 +114,16 @@ impl MachineModel {
     pub fn state_index(&self, name: &str) -> Option<usize> {
         self.states.iter().position(|s| s.name == name)
     }
+
+    /// The most time tests any one state has: the bits of the machine's time field in either
+    /// engine's state (a bit a test, set once it came due).
+    pub fn most_time_tests(&self) -> usize {
+        self.states
+            .iter()
+            .map(|s| s.time_tests.len())
+            .max()
+            .unwrap_or(0)
+    }
 }
 
 /// A reasoner: which slots feed its inputs, which atoms it answers.
@@ -182,6 +192,15 @@ fn message_types(
 }
 
 impl Model {
+    /// The `saw()` expressions machine `machine`'s labels hold, with their indices in `saw`.
+    pub fn saw_of(&self, machine: usize) -> impl Iterator<Item = (usize, &Expr)> {
+        self.saw
+            .iter()
+            .enumerate()
+            .filter(move |(_, (m, _))| *m == machine)
+            .map(|(j, (_, e))| (j, e))
+    }
+
     /// The model of `behaviour`. `property_names` are the names the properties read, so a
     /// type only a property mentions (`Magnetron`, which the machine posts and no machine
     /// reads) gets a slot; `property_exprs` add the constants they compare with to the

@@ -478,12 +478,10 @@ impl<'m> StepGenerator<'m> {
             deferred,
             chosen,
         };
-        for (j, (m, e)) in self.model.saw.iter().enumerate() {
-            if *m == k {
-                let v = exec.value(e);
-                let id = self.model.values.borrow_mut().intern_option(v.as_ref());
-                exec.world.saw[j] = id;
-            }
+        for (j, e) in self.model.saw_of(k) {
+            let v = exec.value(e);
+            let id = self.model.values.borrow_mut().intern_option(v.as_ref());
+            exec.world.saw[j] = id;
         }
         let fired = machine.states[from]
             .transitions

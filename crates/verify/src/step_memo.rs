@@ -125,9 +125,7 @@ impl<'m> StepMemo<'m> {
             .iter()
             .enumerate()
             .map(|(k, states)| {
-                let saw = (0..model.saw.len())
-                    .filter(|&j| model.saw[j].0 == k)
-                    .fold(0, |m, j| m | layout.saw_mask(j));
+                let saw = model.saw_of(k).fold(0, |m, (j, _)| m | layout.saw_mask(j));
                 states
                     .iter()
                     .map(|footprint| {
@@ -250,7 +248,7 @@ impl<'m> StepMemo<'m> {
     ) -> Option<(usize, bool)> {
         let key = record & self.schedule_mask;
         let next = *self.schedule.entry(key).or_insert_with(|| {
-            let world = layout.unpack(&record.to_le_bytes()[..layout.bytes()]);
+            let world = layout.unpack_record(record);
             stepper
                 .next_machine(&world)
                 .map(|(k, _, wrapped)| (k as u32, wrapped))
@@ -266,7 +264,7 @@ impl<'m> StepMemo<'m> {
         record: u128,
         out: &mut Vec<Step>,
     ) -> Result<(), TooNarrow> {
-        let world = layout.unpack(&record.to_le_bytes()[..layout.bytes()]);
+        let world = layout.unpack_record(record);
         self.successors.clear();
         stepper.successors(&world, false, &mut self.successors);
         for s in &self.successors {
@@ -298,10 +296,8 @@ fn footprint(model: &Model, k: usize, s: usize) -> Option<Footprint> {
     for t in &model.machines[k].states[s].transitions {
         gather.expr(&t.label);
     }
-    for (m, e) in &model.saw {
-        if *m == k {
-            gather.expr(e);
-        }
+    for (_, e) in model.saw_of(k) {
+        gather.expr(e);
     }
     if gather.computed_type {
         return None;

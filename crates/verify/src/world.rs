@@ -76,8 +76,8 @@ pub struct TooNarrow {
     pub bits: u8,
 }
 
-/// Bits that hold every number up to `max`.
-fn bits_for(max: u64) -> u8 {
+/// Bits that hold every number up to `max` (both engines' fields are this wide).
+pub(crate) fn bits_for(max: u64) -> u8 {
     (u64::BITS - max.leading_zeros()) as u8
 }
 
@@ -102,13 +102,7 @@ impl Layout {
         let mut widths = vec![bits_for(model.machines.len() as u64 + 1)];
         for m in &model.machines {
             widths.push(bits_for(m.states.len().saturating_sub(1) as u64));
-            let tests = m
-                .states
-                .iter()
-                .map(|s| s.time_tests.len())
-                .max()
-                .unwrap_or(0);
-            widths.push(tests as u8);
+            widths.push(m.most_time_tests() as u8);
             // Most machines only ever run, so their flags start with no bits at all.
             widths.push(0);
         }
@@ -299,6 +293,11 @@ impl Layout {
         };
         self.unpack_into(bytes, &mut world);
         world
+    }
+
+    /// Reads a world [`Layout::pack_register`] packed with this layout.
+    pub fn unpack_record(&self, record: u128) -> SystemState {
+        self.unpack(&record.to_le_bytes()[..self.bytes()])
     }
 
     /// [`Layout::unpack`] into a world already allocated, which a search reuses state after

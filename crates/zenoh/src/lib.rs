@@ -14,6 +14,7 @@
 
 mod board;
 mod error;
+mod keys;
 mod probe;
 mod session;
 mod threads;

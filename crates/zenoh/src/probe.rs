@@ -34,7 +34,7 @@ pub async fn ping(
     count: usize,
 ) -> Result<Vec<Duration>, NetworkError> {
     let session = open(&Role::Connect(endpoint.to_string()), settings).await?;
-    let key = crate::board::Keys::new(board).ping();
+    let key = crate::keys::Keys::new(board).ping();
     let deadline = Instant::now() + Duration::from_secs(5);
     while once(&session, &key).await.is_none() {
         if Instant::now() >= deadline {
@@ -110,7 +110,7 @@ impl BareSender {
     }
 
     pub fn send_now(&self) {
-        let now = crate::board::unix_now().as_nanos() as u64;
+        let now = crate::wire::unix_now().as_nanos() as u64;
         if let Err(e) = self.publisher.put(now.to_le_bytes().to_vec()).wait() {
             tracing::warn!(error = %e, "bare put not sent");
         }
@@ -142,7 +142,7 @@ pub async fn bare_receive(
             .ok_or_else(|| NetworkError::Stopped {
                 endpoint: endpoint.to_string(),
             })?;
-        let now = crate::board::unix_now();
+        let now = crate::wire::unix_now();
         let bytes = sample.payload().to_bytes();
         let sent = <[u8; 8]>::try_from(&bytes[..]).map_or(0, u64::from_le_bytes);
         samples.push(now.saturating_sub(Duration::from_nanos(sent)));

@@ -4,7 +4,14 @@
 
 use proclaim_board::{Kind, ModuleDecl, Value};
 use serde::{Deserialize, Serialize};
-use std::time::Duration;
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+
+/// Now, as the wire's times count it: since the Unix epoch, on this process's clock.
+pub(crate) fn unix_now() -> Duration {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .unwrap_or_default()
+}
 
 /// Everything about a posting but its value: the attachment of every put and every reply.
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]

@@ -102,8 +102,9 @@ struct Encoding {
     saw_domains: Vec<Vec<ValueId>>,
 }
 
+/// Bits that number `count` values (as the explicit engine's fields do).
 fn bits_for(count: usize) -> usize {
-    (usize::BITS - count.saturating_sub(1).leading_zeros()) as usize
+    usize::from(crate::world::bits_for(count.saturating_sub(1) as u64))
 }
 
 fn status_index(s: Status) -> usize {
@@ -148,12 +149,7 @@ impl Encoding {
         let mut slots: Vec<Option<Field>> = vec![None; model.slots.len()];
         let mut saw: Vec<Option<Field>> = vec![None; model.saw.len()];
         for (k, m) in model.machines.iter().enumerate() {
-            let tests = m
-                .states
-                .iter()
-                .map(|s| s.time_tests.len())
-                .max()
-                .unwrap_or(0);
+            let tests = m.most_time_tests();
             machines.push(ControlFields {
                 state: field(&mut builder, m.states.len()),
                 status: field(&mut builder, 3),
@@ -166,10 +162,8 @@ impl Encoding {
                     slots[slot] = Some(field(&mut builder, domains.slots[slot].len()));
                 }
             }
-            for (j, (m, _)) in model.saw.iter().enumerate() {
-                if *m == k {
-                    saw[j] = Some(field(&mut builder, domains.saw[j].len()));
-                }
+            for (j, _) in model.saw_of(k) {
+                saw[j] = Some(field(&mut builder, domains.saw[j].len()));
             }
         }
         for slot in 0..model.slots.len() {
@@ -681,10 +675,8 @@ fn value_domains(
                             writer[slot].get_or_insert(k);
                         }
                     }
-                    for (j, (m, _)) in model.saw.iter().enumerate() {
-                        if *m == k {
-                            add(&mut saw_domains[j], leaf.after.saw[j]);
-                        }
+                    for (j, _) in model.saw_of(k) {
+                        add(&mut saw_domains[j], leaf.after.saw[j]);
                     }
                 }
             }
@@ -834,13 +826,11 @@ fn step_of(model: &Model, enc: &Encoding, k: usize, before: &Control, leaf: &Ope
         }
         field.set(Encoding::index_of(&enc.domains[slot], v), &mut writes);
     }
-    for (j, (m, _)) in model.saw.iter().enumerate() {
-        if *m == k {
-            enc.saw[j].set(
-                Encoding::index_of(&enc.saw_domains[j], leaf.after.saw[j]),
-                &mut writes,
-            );
-        }
+    for (j, _) in model.saw_of(k) {
+        enc.saw[j].set(
+            Encoding::index_of(&enc.saw_domains[j], leaf.after.saw[j]),
+            &mut writes,
+        );
     }
     let written = enc
         .vars

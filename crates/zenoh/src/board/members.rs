@@ -79,52 +79,54 @@ pub(super) async fn watch(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
         .await
         .map_err(|e| NetworkError::zenoh(format!("cannot declare {alive_key}"), e))?;
     peer.net.lock().alive.insert(peer.me.clone());
-    let processes = {
-        let weak = weak.clone();
-        let key = peer.keys.every_alive();
-        session
-            .liveliness()
-            .declare_subscriber(key.clone())
-            .history(true)
-            .callback(move |sample| {
-                let Some(peer) = weak.upgrade() else { return };
-                let Some(process) = sample.key_expr().as_str().rsplit('/').next() else {
-                    return;
-                };
-                match sample.kind() {
-                    SampleKind::Put => peer.arrived(process),
-                    SampleKind::Delete => peer.gone(process),
-                }
-            })
-            .await
-            .map_err(|e| NetworkError::zenoh(format!("cannot follow {key}"), e))?
-    };
-    let kinds = {
-        let weak = weak.clone();
-        let key = peer.keys.every_kind();
-        session
-            .liveliness()
-            .declare_subscriber(key.clone())
-            .history(true)
-            .callback(move |sample| {
-                let Some(peer) = weak.upgrade() else { return };
-                let Some(declared) = Declared::parse(sample.key_expr().as_str()) else {
-                    tracing::debug!(key = %sample.key_expr(), "unreadable kind declaration");
-                    return;
-                };
-                match sample.kind() {
-                    SampleKind::Put => peer.declared(declared),
-                    SampleKind::Delete => peer.undeclared(declared),
-                }
-            })
-            .await
-            .map_err(|e| NetworkError::zenoh(format!("cannot follow {key}"), e))?
-    };
+    let processes = follow_tokens(peer, weak, peer.keys.every_alive(), |peer, key, kind| {
+        let Some(process) = key.rsplit('/').next() else {
+            return;
+        };
+        match kind {
+            SampleKind::Put => peer.arrived(process),
+            SampleKind::Delete => peer.gone(process),
+        }
+    })
+    .await?;
+    let kinds = follow_tokens(peer, weak, peer.keys.every_kind(), |peer, key, kind| {
+        let Some(declared) = Declared::parse(key) else {
+            tracing::debug!(key, "unreadable kind declaration");
+            return;
+        };
+        match kind {
+            SampleKind::Put => peer.declared(declared),
+            SampleKind::Delete => peer.undeclared(declared),
+        }
+    })
+    .await?;
     Ok(vec![
         Serving::Token(token),
         Serving::Subscriber(processes),
         Serving::Subscriber(kinds),
     ])
+}
+
+/// Follows the liveliness tokens under `key`, those already declared included: `on` hears each
+/// token's key as it comes (`Put`) and goes (`Delete`), while the peer lives.
+pub(super) async fn follow_tokens(
+    peer: &Arc<Peer>,
+    weak: &PeerRef,
+    key: String,
+    on: impl Fn(&Arc<Peer>, &str, SampleKind) + Send + Sync + 'static,
+) -> Result<Subscriber<()>, NetworkError> {
+    let weak = weak.clone();
+    peer.session
+        .liveliness()
+        .declare_subscriber(key.clone())
+        .history(true)
+        .callback(move |sample| {
+            if let Some(peer) = weak.upgrade() {
+                on(&peer, sample.key_expr().as_str(), sample.kind());
+            }
+        })
+        .await
+        .map_err(|e| NetworkError::zenoh(format!("cannot follow {key}"), e))
 }
 
 /// A kind declaration read from its token's key.
@@ -216,7 +218,7 @@ impl Peer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::Keys;
+    use crate::keys::Keys;
 
     #[test]
     fn a_kind_declaration_is_read_back_from_its_key() {

@@ -8,8 +8,9 @@
 //! cost in process, and a replica numbers what reaches it in the order it arrives.
 
 use crate::error::NetworkError;
+use crate::keys::{type_key_error, Keys};
 use crate::session::{open, Role, Settings};
-use crate::wire::{decode_value, encode_value, Meta, WireDecl, WireKind, ANONYMOUS};
+use crate::wire::{decode_value, encode_value, unix_now, Meta, WireDecl, WireKind, ANONYMOUS};
 use parking_lot::Mutex;
 use proclaim_board::{
     BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Stats, Subscription,
@@ -18,7 +19,7 @@ use proclaim_board::{
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::{BTreeSet, VecDeque};
 use std::sync::{Arc, Weak};
-use std::time::{Duration, SystemTime, UNIX_EPOCH};
+use std::time::Duration;
 use zenoh::bytes::Encoding;
 use zenoh::liveliness::LivelinessToken;
 use zenoh::pubsub::{Publisher, Subscriber};
@@ -39,77 +40,6 @@ type Limit = Option<usize>;
 /// How many of its own postings of a data type a process keeps to answer a late joiner with
 /// (the in-process board's default history).
 const OWN_HISTORY: usize = 256;
-
-/// Key expressions of one board, under its name. Every key but the types' starts with a chunk
-/// beginning with `@`, which Zenoh's wildcards never match: `proclaim/B/**` is the types alone.
-#[derive(Clone)]
-pub(crate) struct Keys {
-    board: String,
-}
-
-impl Keys {
-    pub(crate) fn new(board: &str) -> Keys {
-        Keys {
-            board: board.to_string(),
-        }
-    }
-
-    fn ty(&self, ty: &str) -> String {
-        format!("proclaim/{}/{ty}", self.board)
-    }
-
-    fn every_type(&self) -> String {
-        format!("proclaim/{}/*", self.board)
-    }
-
-    /// The type a key names, when it is one of this board's types.
-    fn type_of<'k>(&self, key: &'k str) -> Option<&'k str> {
-        let rest = key.strip_prefix("proclaim/")?.strip_prefix(&*self.board)?;
-        rest.strip_prefix('/')
-            .filter(|t| type_key_error(t).is_none())
-    }
-
-    fn alive(&self, process: &str) -> String {
-        format!("proclaim/{}/@alive/{process}", self.board)
-    }
-
-    fn every_alive(&self) -> String {
-        format!("proclaim/{}/@alive/*", self.board)
-    }
-
-    fn kind(&self, ty: &str, kind: WireKind, since_ns: u64, process: &str) -> String {
-        format!(
-            "proclaim/{}/@kind/{ty}/{}/{since_ns}/{process}",
-            self.board,
-            kind.name()
-        )
-    }
-
-    fn every_kind(&self) -> String {
-        format!("proclaim/{}/@kind/*/*/*/*", self.board)
-    }
-
-    fn registry(&self) -> String {
-        format!("proclaim/{}/@registry", self.board)
-    }
-
-    pub(crate) fn ping(&self) -> String {
-        format!("proclaim/{}/@ping", self.board)
-    }
-}
-
-/// Why a type's name cannot be a key's last chunk, if it cannot.
-pub(crate) fn type_key_error(ty: &str) -> Option<&'static str> {
-    if ty.is_empty() {
-        Some("it is empty")
-    } else if ty.starts_with('@') {
-        Some("it starts with `@`, which Zenoh keeps for its own keys")
-    } else if ty.contains(['/', '*', '$', '?', '#']) {
-        Some("it holds one of / * $ ? #, which Zenoh's keys cannot")
-    } else {
-        None
-    }
-}
 
 /// The module a stale mark is posted by: the gone process, as a person reads its id.
 fn gone_module(process: &str) -> String {
@@ -173,12 +103,6 @@ pub async fn post_once(
     let message = peer.post(module, ty, value);
     let heard = peer.ask(&peer.keys.ping()).await.len();
     Ok((message, heard))
-}
-
-pub(crate) fn unix_now() -> Duration {
-    SystemTime::now()
-        .duration_since(UNIX_EPOCH)
-        .unwrap_or_default()
 }
 
 fn nanos(time: Duration) -> u64 {
@@ -597,42 +521,6 @@ type PeerRef = Weak<Peer>;
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_type_has_its_own_key_under_the_board() {
-        let keys = Keys::new("team18");
-        assert_eq!(keys.ty("ballNear"), "proclaim/team18/ballNear");
-        assert_eq!(keys.type_of(&keys.ty("ballNear")), Some("ballNear"));
-        assert_eq!(keys.every_type(), "proclaim/team18/*");
-    }
-
-    #[test]
-    fn only_this_boards_types_are_read_as_types() {
-        let keys = Keys::new("team18");
-        assert_eq!(keys.type_of("proclaim/team5/ballNear"), None);
-        assert_eq!(keys.type_of("proclaim/team181/ballNear"), None);
-        assert_eq!(keys.type_of("other/team18/ballNear"), None);
-        for own in [
-            keys.alive("ab12"),
-            keys.registry(),
-            keys.ping(),
-            keys.kind("ballNear", WireKind::Signal, 5, "ab12"),
-        ] {
-            assert!(own.starts_with("proclaim/team18/@"), "{own}");
-            assert_eq!(keys.type_of(&own), None, "{own}");
-        }
-    }
-
-    #[test]
-    fn a_type_name_that_cannot_be_a_key_says_why() {
-        assert_eq!(type_key_error("ballNear"), None);
-        assert_eq!(type_key_error("ball.near-2"), None);
-        assert_eq!(type_key_error(""), Some("it is empty"));
-        assert!(type_key_error("@alive").unwrap().contains("`@`"));
-        for bad in ["a/b", "a*", "a$b", "a?", "#a"] {
-            assert!(type_key_error(bad).unwrap().contains("/ * $ ? #"), "{bad}");
-        }
-    }
 
     #[test]
     fn stale_marks_name_the_type_and_the_gone_process() {

@@ -126,27 +126,17 @@ pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
             .await
             .map_err(|e| NetworkError::zenoh(format!("cannot subscribe to {key}"), e))?
     };
-    let members = {
-        let weak = weak.clone();
-        let key = part.keys.every_alive();
-        session
-            .liveliness()
-            .declare_subscriber(key.clone())
-            .history(true)
-            .callback(move |sample| {
-                let Some(peer) = weak.upgrade() else { return };
-                let Some(part) = &peer.team else { return };
-                let Some((member, _)) = part.keys.parse(sample.key_expr().as_str()) else {
-                    return;
-                };
-                match sample.kind() {
-                    SampleKind::Put => peer.member_arrived(member),
-                    SampleKind::Delete => peer.member_gone(member),
-                }
-            })
-            .await
-            .map_err(|e| NetworkError::zenoh(format!("cannot follow {key}"), e))?
-    };
+    let members = members::follow_tokens(peer, weak, part.keys.every_alive(), |peer, key, kind| {
+        let Some(part) = &peer.team else { return };
+        let Some((member, _)) = part.keys.parse(key) else {
+            return;
+        };
+        match kind {
+            SampleKind::Put => peer.member_arrived(member),
+            SampleKind::Delete => peer.member_gone(member),
+        }
+    })
+    .await?;
     let alive_key = part.keys.alive(&part.team.member);
     let token = session
         .liveliness()
