@@ -258,10 +258,6 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
             "machines/referee",
             "machines/referee/behaviour.toml:10: cannot be compiled: a Prolog or program expert",
         ),
-        (
-            "machines/subsumption",
-            "machines/subsumption/behaviour.toml:15: cannot be compiled: suppression",
-        ),
     ] {
         for target in ["c", "rust"] {
             let o = proclaim(&[
@@ -382,6 +378,75 @@ fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_t
             "{name} runs to its end: {whole}"
         );
     }
+}
+
+/// The subsumption behaviour's runs: its own script, and seeded ones of its story at other
+/// milliseconds (the ball seen, an obstacle for a while, the ball near and reached), with a
+/// few steps at any time, stopped at any time.
+pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
+    let field = std::fs::read_to_string("machines/subsumption/field.script").unwrap();
+    let mut runs = vec![("subsumption-own".to_string(), field, None)];
+    let atoms = ["ballSeen", "ballNear", "atBall", "obstacle"];
+    let mut seed = 0x5eed_0033_5b5b;
+    for n in 0..6 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
+        let seen = next(1_500);
+        let obstacle = 500 + next(2_500);
+        let near = obstacle + next(800);
+        let clear = obstacle + 100 + next(1_400);
+        let at_ball = 3_000 + next(3_000);
+        for (at, step) in [
+            (seen, "ballSeen = true"),
+            (obstacle, "obstacle = true"),
+            (near, "ballNear = true"),
+            (clear, "obstacle = false"),
+            (at_ball, "atBall = true"),
+        ] {
+            script.push_str(&format!("at {at}ms {step}\n"));
+        }
+        for _ in 0..next(3) {
+            let at = next(6_000);
+            let atom = atoms[next(4) as usize];
+            let value = next(2) == 0;
+            script.push_str(&format!("at {at}ms {atom} = {value}\n"));
+        }
+        let run_for = format!("{}ms", 1_000 + next(7_000));
+        runs.push((format!("subsumption-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+#[test]
+fn suppression_holds_back_and_hands_over_as_the_interpreter_does() {
+    if gcc_missing() {
+        return;
+    }
+    let behaviour = "machines/subsumption";
+    let dir = scratch("subsumption");
+    build(behaviour, &dir);
+    let mut held_back = 0;
+    for (case, script, run_for) in subsumption_runs() {
+        let (interpreted, compiled) = traces(behaviour, &dir, &case, &script, run_for.as_deref());
+        assert_same(&case, &interpreted, &compiled);
+        held_back += usize::from(interpreted.contains("\"took_over\""));
+    }
+    assert!(held_back >= 3, "runs where a hold ran out: {held_back}");
+    let layers = construct_cases()
+        .into_iter()
+        .find(|c| c.name == "layers")
+        .unwrap();
+    let files: Vec<(&str, &str)> = layers
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of("layers", &files);
+    let trace = same_trace("layers", &folder, layers.script, layers.run_for);
+    assert!(
+        trace.contains("\"suppressed\"") && trace.contains("\"took_over\""),
+        "the layers hold each other back: {trace}"
+    );
 }
 
 #[test]
@@ -739,6 +804,13 @@ fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
     assert!(trace.contains("\"at_us\":3550000"), "{trace}");
 }
 
+/// Three layers posting two suppressed types on their own timeouts, so holds run out between
+/// ringlets, behind one or two lower postings, live or not.
+const LAYERS: &str = "[[machine]]\nfile = \"Low.machine\"\n[[machine]]\nfile = \"Mid.machine\"\npriority = 1\n[[machine]]\nfile = \"High.machine\"\npriority = 3\n[suppress]\ncmd = { hold = \"300ms\" }\nbeep = { hold = \"150ms\" }\n[[module]]\nname = \"legs\"\nreads = [\"cmd\", \"beep\"]\n";
+const LOW: &str = "machine Low\ninitial A\nstate A {\n    internal {\n        cmd: low\n    }\n    when timeout(250ms) -> B\n}\nstate B {\n    entry {\n        cmd: lowB\n        beep: low\n    }\n    when timeout(130ms) -> A\n}\n";
+const MID: &str = "machine Mid\ninitial A\nstate A {\n    entry {\n        cmd: mid\n    }\n    when timeout(350ms) -> B\n}\nstate B {\n    entry {\n        beep: mid\n    }\n    when timeout(220ms) -> A\n}\n";
+const HIGH: &str = "machine High\ninitial A\nstate A {\n    when timeout(600ms) -> B\n}\nstate B {\n    entry {\n        cmd: high\n        beep: high\n    }\n    when timeout(90ms) -> A\n}\n";
+
 /// A behaviour the tests above compile, as files, with a script and a time to stop at.
 pub(crate) struct Case {
     pub name: &'static str,
@@ -769,6 +841,17 @@ pub(crate) fn construct_cases() -> Vec<Case> {
         one("say", "Speaker", SPEAKER, None),
         one("loop", "Loop", LOOP, None),
         one("time", "T", TIME, None),
+        Case {
+            name: "layers",
+            files: vec![
+                ("behaviour.toml".into(), LAYERS.into()),
+                ("Low.machine".into(), LOW.into()),
+                ("Mid.machine".into(), MID.into()),
+                ("High.machine".into(), HIGH.into()),
+            ],
+            script: "",
+            run_for: Some("3s"),
+        },
         Case {
             name: "control",
             files: vec![

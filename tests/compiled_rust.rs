@@ -6,7 +6,8 @@
 //! crates they depend on build once.
 
 use super::compiled::{
-    assert_same, behaviour_of, construct_cases, random_behaviour, scratch, splitmix, Case,
+    assert_same, behaviour_of, construct_cases, random_behaviour, scratch, splitmix,
+    subsumption_runs, Case,
 };
 use crate::proclaim;
 use std::path::{Path, PathBuf};
@@ -222,6 +223,11 @@ fn traces(
 #[test]
 fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
     let mut behaviours = vec![microwave(), shipped("press"), shipped("shootout")];
+    behaviours.push(Compiled {
+        name: "subsumption".into(),
+        folder: "machines/subsumption".into(),
+        runs: subsumption_runs(),
+    });
     behaviours.extend(construct_cases().into_iter().map(from_case));
     behaviours.extend((0..24).map(random));
     let projects = scratch("rust-projects");

@@ -6,8 +6,8 @@
 use crate::activity::{conversion, Activity, Variable, Variables};
 use crate::c::c_identifier;
 use crate::plan::{
-    Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory, StatePlan,
-    TransitionPlan,
+    Answer, Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory, StatePlan,
+    Suppressed, TransitionPlan,
 };
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
@@ -87,6 +87,10 @@ fn refuse(file: &str, line: usize, what: String) -> Refusal {
 pub(crate) fn plan_behaviour(behaviour: &Behaviour) -> Result<Plan, Refusal> {
     refuse_what_no_target_has(behaviour)?;
     let (theories, outputs, inputs) = plan_theories(behaviour)?;
+    let impersonated = outputs
+        .iter()
+        .filter(|o| matches!(o.answer, Answer::Impersonated { .. }))
+        .count();
     let (slots, own, globals) = plan_slots(behaviour)?;
     let names: Vec<String> = behaviour
         .machines
@@ -114,17 +118,41 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour) -> Result<Plan, Refusal> {
         machines.push(plan_machine(loaded, &seen, &mut counters)?);
     }
     let period_ms = period_ms(behaviour)?;
+    let suppressed = plan_suppressed(behaviour)?;
     Ok(Plan {
         name: behaviour.name.clone(),
         theories,
         outputs,
         inputs,
+        impersonated,
         slots,
         machines,
         period_ms,
         longest_text: counters.longest_text,
         commands: counters.commands,
+        suppressed,
     })
+}
+
+/// The manifest's `[suppress]` in name order (the order the runner releases holds in), each
+/// hold in whole milliseconds (a target's clock counts milliseconds).
+fn plan_suppressed(behaviour: &Behaviour) -> Result<Vec<Suppressed>, Refusal> {
+    let mut suppressed = Vec::new();
+    for (ty, hold) in &behaviour.suppress {
+        if hold.as_micros() % 1000 != 0 {
+            return Err(refuse(
+                &behaviour.files.show(MANIFEST),
+                manifest_line(behaviour, &[ty.as_str()]),
+                format!("the hold of `{ty}` is not whole milliseconds"),
+            ));
+        }
+        suppressed.push(Suppressed {
+            ty: ty.clone(),
+            hold_ms: hold.as_millis() as u64,
+        });
+    }
+    suppressed.sort_by(|a, b| a.ty.cmp(&b.ty));
+    Ok(suppressed)
 }
 
 /// The manifest's line that starts with one of `starts`, for a refusal to point at.
@@ -152,11 +180,6 @@ fn refuse_what_no_target_has(behaviour: &Behaviour) -> Result<(), Refusal> {
         Some((
             &["[[sensor]]"][..],
             "a sensor (sensor wrappers are not compiled yet)",
-        ))
-    } else if !behaviour.suppress.is_empty() {
-        Some((
-            &["[suppress]"][..],
-            "suppression ([suppress] is not compiled yet)",
         ))
     } else {
         None
@@ -191,6 +214,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
     let mut theories = Vec::new();
     let mut outputs: Vec<Output> = Vec::new();
     let mut inputs = Vec::new();
+    let mut offset = 0;
     for (t, loaded) in behaviour.theories.iter().enumerate() {
         let file = behaviour.files.show(&loaded.file);
         let compiled = compile(&loaded.theory, loaded.limits, Domain::Ternary)
@@ -203,8 +227,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
                 .unwrap_or_else(|| atom.clone());
             inputs.push(Input {
                 ty,
-                theory: t,
-                index,
+                variable: offset + 2 * index,
             });
         }
         for (index, name) in compiled.outputs.iter().enumerate() {
@@ -214,13 +237,42 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
             }
             outputs.push(Output {
                 name: name.clone(),
-                theory: t,
-                index,
+                answer: Answer::Theory {
+                    theory: t,
+                    index,
+                    offset,
+                },
                 expert: loaded.name.clone(),
             });
         }
+        offset += compiled.variables();
         let prefix = format!("theory_{}", c_identifier(&loaded.name));
         theories.push(PlannedTheory { compiled, prefix });
+    }
+    // The manifest's script answers the atoms it sets that no theory answers or reads, as the
+    // interpreter's impersonator does (false until the script sets them).
+    let mut scripted: Vec<String> = behaviour
+        .script
+        .as_ref()
+        .map(|s| s.atoms())
+        .unwrap_or_default();
+    scripted.sort();
+    scripted.dedup();
+    for atom in scripted {
+        // A theory's input the script sets stays only that: no label asks it directly.
+        if outputs.iter().any(|o| o.name == atom) || inputs.iter().any(|i| i.ty == atom) {
+            continue;
+        }
+        inputs.push(Input {
+            ty: atom.clone(),
+            variable: offset,
+        });
+        outputs.push(Output {
+            name: atom,
+            answer: Answer::Impersonated { variable: offset },
+            expert: "impersonator".into(),
+        });
+        offset += 2;
     }
     Ok((theories, outputs, inputs))
 }
@@ -311,6 +363,7 @@ fn plan_machine(
         name: machine.name.clone(),
         initial: machine.initial,
         start: loaded.start,
+        priority: loaded.priority,
         states,
     })
 }

@@ -59,7 +59,8 @@ static void tail(struct world *w)
            (unsigned long long)(w->now_ms * 1000u));
 }
 
-static void on_post(struct world *w, const char *machine, const char *type, const char *content)
+static void on_post(struct world *w, const char *machine, const char *type, const char *content,
+                    unsigned long priority)
 {
     if (over) {
         return;
@@ -70,6 +71,46 @@ static void on_post(struct world *w, const char *machine, const char *type, cons
     json_string(type);
     printf(",\"content\":");
     json_string(content);
+    if (priority != 0) {
+        printf(",\"priority\":%lu", priority);
+    }
+    tail(w);
+}
+
+static void on_suppressed(struct world *w, const char *machine, const char *type,
+                          const char *content, unsigned long priority, const char *by,
+                          unsigned long by_priority, uint64_t until_ms)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"suppressed\",\"machine\":");
+    json_string(machine);
+    printf(",\"type\":");
+    json_string(type);
+    printf(",\"content\":");
+    json_string(content);
+    printf(",\"priority\":%lu,\"by\":", priority);
+    json_string(by);
+    printf(",\"by_priority\":%lu,\"until_us\":%llu", by_priority,
+           (unsigned long long)(until_ms * 1000u));
+    tail(w);
+}
+
+static void on_took_over(struct world *w, const char *machine, const char *type,
+                         const char *content, unsigned long priority, uint64_t posted_ms)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"took_over\",\"machine\":");
+    json_string(machine);
+    printf(",\"type\":");
+    json_string(type);
+    printf(",\"content\":");
+    json_string(content);
+    printf(",\"priority\":%lu,\"posted_us\":%llu", priority,
+           (unsigned long long)(posted_ms * 1000u));
     tail(w);
 }
 
@@ -193,7 +234,7 @@ static int impersonate(struct world *w, struct step *s)
     }
     if (!s->shown) {
         s->shown = 1;
-        on_post(w, "impersonator", s->name, s->value);
+        on_post(w, "impersonator", s->name, s->value, 0);
     }
     return behaviour_outside(w, s->name, s->value);
 }
@@ -369,6 +410,8 @@ int main(int argc, char **argv)
     }
     order_steps();
     w.cb.post = on_post;
+    w.cb.suppressed = on_suppressed;
+    w.cb.took_over = on_took_over;
     w.cb.entered = on_entered;
     w.cb.finished = on_finished;
     w.cb.answered = on_answered;

@@ -4,7 +4,9 @@
 //! The trace's events (`proclaim-runner`) and the script's reading (`proclaim-syntax`) are this
 //! repository's crates', by path, so a trace is the interpreter's by construction.
 
-use crate::plan::{Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value};
+use crate::plan::{
+    Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
+};
 use crate::print_c::fill;
 use crate::rust_template::{BODY, RING, RUNTIME};
 use crate::tabulate::Compiled;
@@ -54,9 +56,10 @@ fn package_name(name: &str) -> String {
 fn manifest(plan: &Plan, crates: &Path) -> String {
     let path = |krate: &str| format!("{:?}", crates.join(krate).to_string_lossy());
     format!(
-        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
+        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-board = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
         plan.name.replace('\n', " "),
         package_name(&plan.name),
+        path("board"),
         path("runner"),
         path("syntax"),
     )
@@ -97,22 +100,32 @@ fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
 
 /// `src/behaviour.rs`.
 fn behaviour(plan: &Plan) -> String {
-    let offsets = plan.offsets();
     let mut answer_cases = String::new();
     for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = writeln!(
-            answer_cases,
-            "        {k} => crate::theories::{}({}, &w.input[{}..]),",
-            plan.theories[o.theory].prefix, o.index, offsets[o.theory]
-        );
+        let _ = match o.answer {
+            Answer::Theory {
+                theory,
+                index,
+                offset,
+            } => writeln!(
+                answer_cases,
+                "        {k} => crate::theories::{}({index}, &w.input[{offset}..]),",
+                plan.theories[theory].prefix
+            ),
+            Answer::Impersonated { variable } => {
+                writeln!(answer_cases, "        {k} => w.input[{}],", variable + 1)
+            }
+        };
     }
     let mut input_cases = String::new();
-    for input in &plan.inputs {
-        let v = offsets[input.theory] + 2 * input.index;
+    for (ty, variables) in plan.input_types() {
+        let sets: String = variables
+            .iter()
+            .map(|v| format!("            set_input(w, {v}, content);\n"))
+            .collect();
         let _ = writeln!(
             input_cases,
-            "        {:?} => {{\n            set_input(w, {v}, content);\n            true\n        }}",
-            input.ty
+            "        {ty:?} => {{\n{sets}            true\n        }}"
         );
     }
     let var_inits: Vec<&str> = plan
@@ -127,6 +140,18 @@ fn behaviour(plan: &Plan) -> String {
         })
         .collect();
     let schedule = Schedule::of(plan);
+    let priorities: Vec<String> = plan
+        .machines
+        .iter()
+        .map(|m| m.priority.to_string())
+        .collect();
+    let priorities = priorities.join(", ");
+    let suppressed: Vec<String> = plan
+        .suppressed
+        .iter()
+        .map(|s| format!("({:?}, {})", s.ty, s.hold_ms))
+        .collect();
+    let suppressed = suppressed.join(", ");
     let numbers = [
         plan.machines.len().to_string(),
         plan.outputs.len().to_string(),
@@ -157,6 +182,10 @@ fn behaviour(plan: &Plan) -> String {
                 "machine_names",
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
+            ("priorities", &priorities),
+            ("theory_outputs", &plan.theory_outputs().to_string()),
+            ("suppressed_n", &plan.suppressed.len().to_string()),
+            ("suppressed", &suppressed),
             ("input_cases", &input_cases),
             ("answer_cases", &answer_cases),
             ("code", &schedule.code),
