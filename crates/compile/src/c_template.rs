@@ -67,6 +67,7 @@ struct world_callbacks {
                       unsigned long priority, uint64_t posted_ms);
     void (*entered)(struct world *w, const char *machine, const char *state, long id);
     void (*finished)(struct world *w, const char *machine, const char *state);
+    /* `expert` is NULL when no expert answers the atom (one from outside the host does not supply). */
     void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert);
     void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
     /* A variable's value changed (its text as the trace shows it). */
@@ -99,6 +100,12 @@ struct world {
     unsigned char in[BEHAVIOUR_VARIABLES];
     /* The answers each machine's last ringlet saw. */
     unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
+    /* Whether each answer has an answerer: a theory's always, an atom from outside once the
+     * host supplies it. */
+    unsigned char supplied[BEHAVIOUR_OUTPUTS];
+    /* The answers each machine's last ringlet asked (a label's `&&` and `||` ask no further than
+     * they need): an atom from outside is news only to a machine that asked it. */
+    unsigned char asked[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
     long initial[BEHAVIOUR_MACHINES];
     /* Running, suspended or dormant; started in this round (it rings from the next). */
     unsigned char status[BEHAVIOUR_MACHINES];
@@ -128,6 +135,13 @@ int behaviour_outside(struct world *w, const char *type, const char *content);
 int behaviour_news(const struct world *w);
 /* 1 when `atom` is an answer of the behaviour's theories. */
 int behaviour_answers(const char *atom);
+/* The host answers `atom` from outside (a script or its own sensor sets it): 1 when the
+ * behaviour's labels ask it. Unsupplied, such an atom is false and answered by no expert. */
+int behaviour_supply(struct world *w, const char *atom);
+/* Sensor wrapper `s`'s name, NULL past the last; its atom `i`, NULL past the last. A host
+ * supplies one of each sensor's atoms (the interpreter leaves the sensor out then). */
+const char *behaviour_sensor_name(unsigned s);
+const char *behaviour_sensor_atom(unsigned s, unsigned i);
 /* 1 when `name` is a machine's (a posting to it is a control command). */
 int behaviour_is_machine(const char *name);
 /* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
@@ -142,6 +156,11 @@ int behaviour_finished(const struct world *w);
 pub(crate) const BODY: &str = r#"
 static const char *const output_name[@outputs_n@] = {@output_names@};
 static const char *const output_expert[@outputs_n@] = {@experts@};
+/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,
+ * not literals, so that an empty range is no comparison a compiler warns of. */
+static const unsigned theory_outputs = @theory_outputs@u;
+static const unsigned outputs = @outputs@u;
+static const unsigned sensors = @sensors@u;
 static const char *const machine_name[@machines@] = {@machine_names@};
 /* Each machine's subsumption layer, which its postings carry. */
 static const unsigned long machine_priority[@machines@] = {@priorities@};
@@ -191,7 +210,8 @@ static int answer(const struct world *w, unsigned k)
 static int ask(struct world *w, unsigned m, unsigned k)
 {
     int value = answer(w, k);
-    w->cb.answered(w, machine_name[m], output_name[k], value, output_expert[k]);
+    w->asked[m][k] = 1;
+    w->cb.answered(w, machine_name[m], output_name[k], value, w->supplied[k] ? output_expert[k] : 0);
     return value;
 }
 
@@ -207,6 +227,7 @@ static void snapshot(struct world *w, unsigned m)
     unsigned k;
     for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
         w->seen[m][k] = (unsigned char)answer(w, k);
+        w->asked[m][k] = 0;
     }
 }
 
@@ -362,7 +383,11 @@ void behaviour_init(struct world *w)
         w->command_count[m] = 0;
         for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
             w->seen[m][k] = 0;
+            w->asked[m][k] = 0;
         }
+    }
+    for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
+        w->supplied[k] = k < theory_outputs;
     }
 @held_init@@var_inits@@inits@}
 
@@ -398,6 +423,36 @@ int behaviour_news(const struct world *w)
 int behaviour_answers(const char *atom)
 {
 @answers_body@}
+
+int behaviour_supply(struct world *w, const char *atom)
+{
+    unsigned k;
+    for (k = theory_outputs; k < outputs; k++) {
+        if (same(atom, output_name[k])) {
+            w->supplied[k] = 1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static const char *const sensor_name[@sensors_n@] = {@sensor_names@};
+/* Each sensor's atoms, one after another; `sensor_start[s]` is where sensor `s`'s begin. */
+static const char *const sensor_atom[@sensor_atoms_n@] = {@sensor_atoms@};
+static const unsigned sensor_start[@sensors_n@ + 1] = {@sensor_starts@};
+
+const char *behaviour_sensor_name(unsigned s)
+{
+    return s < sensors ? sensor_name[s] : 0;
+}
+
+const char *behaviour_sensor_atom(unsigned s, unsigned i)
+{
+    if (s >= sensors || sensor_start[s] + i >= sensor_start[s + 1]) {
+        return 0;
+    }
+    return sensor_atom[sensor_start[s] + i];
+}
 
 int behaviour_is_machine(const char *name)
 {

@@ -150,9 +150,14 @@ static void on_answered(struct world *w, const char *machine, const char *atom, 
     json_string(machine);
     printf(",\"atom\":");
     json_string(atom);
-    printf(",\"value\":%s,\"by\":{\"expert\":", value ? "true" : "false");
-    json_string(expert);
-    printf("}");
+    printf(",\"value\":%s,\"by\":", value ? "true" : "false");
+    if (expert == NULL) {
+        printf("\"no_expert\"");
+    } else {
+        printf("{\"expert\":");
+        json_string(expert);
+        printf("}");
+    }
     tail(w);
 }
 
@@ -379,6 +384,33 @@ static int read_script(void)
     return 1;
 }
 
+/* Whether the script sets an atom of every sensor (else the interpreter would run that sensor,
+ * which a compiled behaviour does not have); says which it does not. */
+static int sensors_scripted(void)
+{
+    unsigned s, a;
+    size_t i;
+    const char *name;
+    for (s = 0; (name = behaviour_sensor_name(s)) != NULL; s++) {
+        const char *atom;
+        int set = 0;
+        for (a = 0; (atom = behaviour_sensor_atom(s, a)) != NULL; a++) {
+            for (i = 0; i < step_count; i++) {
+                set |= strcmp(steps[i].name, atom) == 0;
+            }
+        }
+        if (!set) {
+            fprintf(stderr, "stdin: sets none of the atoms the sensor `%s` answers (", name);
+            for (a = 0; (atom = behaviour_sensor_atom(s, a)) != NULL; a++) {
+                fprintf(stderr, "%s%s", a == 0 ? "" : ", ", atom);
+            }
+            fprintf(stderr, "): a compiled behaviour has no sensors, and takes their atoms from its script (as `proclaim run --script` leaves a sensor out when the script sets one of its atoms)\n");
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Start steps first, then the timed ones in time order (stable: same time keeps file order). */
 static void order_steps(void)
 {
@@ -399,6 +431,7 @@ static void order_steps(void)
 int main(int argc, char **argv)
 {
     static struct world w;
+    size_t i;
     int fired;
     long long limit = -1;
     if (argc > 2 || (argc == 2 && (limit = duration_ms(argv[1])) < 0)) {
@@ -409,6 +442,9 @@ int main(int argc, char **argv)
         return 2;
     }
     order_steps();
+    if (!sensors_scripted()) {
+        return 2;
+    }
     w.cb.post = on_post;
     w.cb.suppressed = on_suppressed;
     w.cb.took_over = on_took_over;
@@ -422,6 +458,9 @@ int main(int argc, char **argv)
     w.cb.warned = on_warned;
     w.cb.round_started = NULL;
     behaviour_init(&w);
+    for (i = 0; i < step_count; i++) {
+        (void)behaviour_supply(&w, steps[i].name);
+    }
     w.now_ms = 0;
     /* What the script says from the start is posted before the first round. */
     while (next_step < step_count && steps[next_step].start) {

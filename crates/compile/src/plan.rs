@@ -14,8 +14,15 @@ pub(crate) struct Plan {
     pub outputs: Vec<Output>,
     /// Posting types that set a theory input, in theory order, then the impersonator's atoms.
     pub inputs: Vec<Input>,
-    /// How many label atoms no theory answers and the impersonator's script does.
-    pub impersonated: usize,
+    /// How many atoms come from outside (no theory answers them; the behaviour's script or a
+    /// sensor does): the host supplies them, from its script.
+    pub outside: usize,
+    /// Each sensor wrapper (module name) and the atoms it answers: a run's script must set one
+    /// of them, so that the interpreter leaves the sensor out as the compiled program does.
+    pub sensors: Vec<(String, Vec<String>)>,
+    /// The behaviour's own script (`[impersonator]`), its file as shown and its text: what a
+    /// run without `--script` plays.
+    pub script: Option<(String, String)>,
     /// The value slots (each machine's own variables, then the globals): whether each starts as
     /// a truth value rather than a whole number.
     pub slots: Vec<bool>,
@@ -43,7 +50,7 @@ impl Plan {
             .iter()
             .map(|t| t.compiled.variables())
             .sum::<usize>()
-            + 2 * self.impersonated
+            + 2 * self.outside
     }
 
     /// Each posting type that sets inputs, in first-seen order, with the variable pairs it sets.
@@ -123,9 +130,10 @@ pub(crate) enum Answer {
         index: usize,
         offset: usize,
     },
-    /// The last truth the impersonator posted for it (false before any): the pair of decision
-    /// variables (known, true) at `variable`.
-    Impersonated { variable: usize },
+    /// From outside: the last truth the host posted for it (false before any), the pair of
+    /// decision variables (known, true) at `variable`; answered by the impersonator when the
+    /// run's script sets it, else by no expert.
+    Outside { variable: usize },
 }
 
 pub(crate) struct Input {

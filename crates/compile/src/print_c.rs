@@ -115,37 +115,7 @@ fn source(plan: &Plan) -> String {
     for theory in &plan.theories {
         let _ = writeln!(c, "#include \"{}.h\"", theory.prefix);
     }
-    let mut answer_cases = String::new();
-    for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = match o.answer {
-            Answer::Theory {
-                theory,
-                index,
-                offset,
-            } => writeln!(
-                answer_cases,
-                "    case {k}:\n        return {}_answer({index}u, w->in + {offset});",
-                plan.theories[theory].prefix
-            ),
-            Answer::Impersonated { variable } => writeln!(
-                answer_cases,
-                "    case {k}:\n        return w->in[{}];",
-                variable + 1
-            ),
-        };
-    }
-    let mut input_cases = String::new();
-    for (ty, variables) in plan.input_types() {
-        let sets: String = variables
-            .iter()
-            .map(|v| format!("        set_input(w, {v}, content);\n"))
-            .collect();
-        let _ = writeln!(
-            input_cases,
-            "    if (same(type, \"{}\")) {{\n{sets}        return 1;\n    }}",
-            esc(ty)
-        );
-    }
+    let (answer_cases, input_cases) = answers_and_inputs(plan);
     let schedule = Schedule::of(plan);
     // Only a theory's answers: the impersonator's atoms are the script's to set.
     let answers_body = if plan.theory_outputs() == 0 {
@@ -163,6 +133,7 @@ fn source(plan: &Plan) -> String {
         })
         .collect();
     let held = Held::of(plan);
+    let (sensor_atoms, sensor_starts) = sensor_tables(plan);
     let outputs_n = plan.outputs.len().max(1).to_string();
     let machines = plan.machines.len().max(1).to_string();
     let loop_limit = LOOP_LIMIT.to_string();
@@ -184,6 +155,17 @@ fn source(plan: &Plan) -> String {
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
             ("priorities", &held.priorities),
+            ("theory_outputs", &plan.theory_outputs().to_string()),
+            ("outputs", &plan.outputs.len().to_string()),
+            ("sensors", &plan.sensors.len().to_string()),
+            ("sensors_n", &plan.sensors.len().max(1).to_string()),
+            (
+                "sensor_names",
+                &strings(plan.sensors.iter().map(|(n, _)| n.as_str())),
+            ),
+            ("sensor_atoms_n", &sensor_atoms.len().max(1).to_string()),
+            ("sensor_atoms", &strings(sensor_atoms.iter().copied())),
+            ("sensor_starts", &sensor_starts.join(", ")),
             ("suppression", &held.suppression),
             ("held_back", &held.held_back),
             ("held_init", &held.init),
@@ -205,6 +187,59 @@ fn source(plan: &Plan) -> String {
         ],
     ));
     c
+}
+
+/// The cases of `answer` (a theory's decision function, or an atom from outside's variable)
+/// and of `apply_input` (each type once, setting every variable pair it sets).
+fn answers_and_inputs(plan: &Plan) -> (String, String) {
+    let mut answer_cases = String::new();
+    for (k, o) in plan.outputs.iter().enumerate() {
+        let _ = match o.answer {
+            Answer::Theory {
+                theory,
+                index,
+                offset,
+            } => writeln!(
+                answer_cases,
+                "    case {k}:\n        return {}_answer({index}u, w->in + {offset});",
+                plan.theories[theory].prefix
+            ),
+            Answer::Outside { variable } => writeln!(
+                answer_cases,
+                "    case {k}:\n        return w->in[{}];",
+                variable + 1
+            ),
+        };
+    }
+    let mut input_cases = String::new();
+    for (ty, variables) in plan.input_types() {
+        let sets: String = variables
+            .iter()
+            .map(|v| format!("        set_input(w, {v}, content);\n"))
+            .collect();
+        let _ = writeln!(
+            input_cases,
+            "    if (same(type, \"{}\")) {{\n{sets}        return 1;\n    }}",
+            esc(ty)
+        );
+    }
+    (answer_cases, input_cases)
+}
+
+/// Every sensor's atoms one after another, and where each sensor's begin (and the last ends).
+fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
+    let sensor_atoms: Vec<&str> = plan
+        .sensors
+        .iter()
+        .flat_map(|(_, atoms)| atoms.iter().map(String::as_str))
+        .collect();
+    let mut sensor_starts = vec!["0u".to_string()];
+    let mut start = 0;
+    for (_, atoms) in &plan.sensors {
+        start += atoms.len();
+        sensor_starts.push(format!("{start}u"));
+    }
+    (sensor_atoms, sensor_starts)
 }
 
 /// The parts of `behaviour.c` for subsumption: empty but the priorities for a behaviour
@@ -307,7 +342,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (k < theory_outputs || w->asked[{m}][k]) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"

@@ -98,8 +98,9 @@ fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
     quoted.join(", ")
 }
 
-/// `src/behaviour.rs`.
-fn behaviour(plan: &Plan) -> String {
+/// The arms of `answer` (a theory's decision diagram, or an atom from outside's variable) and
+/// of `apply_input` (each type once, setting every variable pair it sets).
+fn answers_and_inputs(plan: &Plan) -> (String, String) {
     let mut answer_cases = String::new();
     for (k, o) in plan.outputs.iter().enumerate() {
         let _ = match o.answer {
@@ -112,7 +113,7 @@ fn behaviour(plan: &Plan) -> String {
                 "        {k} => crate::theories::{}({index}, &w.input[{offset}..]),",
                 plan.theories[theory].prefix
             ),
-            Answer::Impersonated { variable } => {
+            Answer::Outside { variable } => {
                 writeln!(answer_cases, "        {k} => w.input[{}],", variable + 1)
             }
         };
@@ -128,18 +129,12 @@ fn behaviour(plan: &Plan) -> String {
             "        {ty:?} => {{\n{sets}            true\n        }}"
         );
     }
-    let var_inits: Vec<&str> = plan
-        .slots
-        .iter()
-        .map(|is_bool| {
-            if *is_bool {
-                "v_bool(false)"
-            } else {
-                "v_int(0)"
-            }
-        })
-        .collect();
-    let schedule = Schedule::of(plan);
+    (answer_cases, input_cases)
+}
+
+/// The constants of what comes from outside the machines' code: each machine's priority, the
+/// types under subsumption, the sensors' atoms and the behaviour's own script.
+fn outside_tables(plan: &Plan) -> (String, String, String, String) {
     let priorities: Vec<String> = plan
         .machines
         .iter()
@@ -152,6 +147,35 @@ fn behaviour(plan: &Plan) -> String {
         .map(|s| format!("({:?}, {})", s.ty, s.hold_ms))
         .collect();
     let suppressed = suppressed.join(", ");
+    let sensors: Vec<String> = plan
+        .sensors
+        .iter()
+        .map(|(name, atoms)| format!("({name:?}, &{atoms:?})"))
+        .collect();
+    let sensors = sensors.join(", ");
+    let script = match &plan.script {
+        Some((file, text)) => format!("Some(({file:?}, {text:?}))"),
+        None => "None".into(),
+    };
+    (priorities, suppressed, sensors, script)
+}
+
+/// `src/behaviour.rs`.
+fn behaviour(plan: &Plan) -> String {
+    let (answer_cases, input_cases) = answers_and_inputs(plan);
+    let var_inits: Vec<&str> = plan
+        .slots
+        .iter()
+        .map(|is_bool| {
+            if *is_bool {
+                "v_bool(false)"
+            } else {
+                "v_int(0)"
+            }
+        })
+        .collect();
+    let schedule = Schedule::of(plan);
+    let (priorities, suppressed, sensors, script) = outside_tables(plan);
     let numbers = [
         plan.machines.len().to_string(),
         plan.outputs.len().to_string(),
@@ -184,6 +208,9 @@ fn behaviour(plan: &Plan) -> String {
             ),
             ("priorities", &priorities),
             ("theory_outputs", &plan.theory_outputs().to_string()),
+            ("script", &script),
+            ("sensors_n", &plan.sensors.len().to_string()),
+            ("sensors", &sensors),
             ("suppressed_n", &plan.suppressed.len().to_string()),
             ("suppressed", &suppressed),
             ("input_cases", &input_cases),
@@ -218,7 +245,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if w.status[{m}] == RUNNING && !w.fresh[{m}] && !done(w, {m}) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (k < THEORY_OUTPUTS || w.asked[{m}][k]) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if w.status[{m}] == RUNNING {{\n        due = due_{m}(w, due);\n    }}"

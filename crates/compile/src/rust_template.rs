@@ -157,6 +157,9 @@ pub struct World {
     pub input: Vec<bool>,
     /// The answers each machine's last ringlet saw.
     pub seen: Vec<Vec<bool>>,
+    /// The answers each machine's last ringlet asked (a label's `&&` and `||` ask no further
+    /// than they need): an atom from outside is news only to a machine that asked it.
+    pub asked: Vec<Vec<bool>>,
     pub initial: Vec<i64>,
     /// Running, suspended or dormant; started in this round (it rings from the next).
     pub status: Vec<u8>,
@@ -177,6 +180,9 @@ pub struct World {
     pub over: bool,
     /// What holds each type under subsumption, for a behaviour that declares any.
     pub suppressor: Option<proclaim_board::Suppressor>,
+    /// Whether each output has an answerer: a theory's always, an atom from outside when the
+    /// host supplies it (else no expert answers it, false).
+    pub supplied: Vec<bool>,
 }
 
 impl World {
@@ -194,6 +200,7 @@ impl World {
             entered_ms: vec![0; machines],
             input: vec![false; variables],
             seen: vec![vec![false; outputs]; machines],
+            asked: vec![vec![false; outputs]; machines],
             initial: vec![0; machines],
             status: vec![RUNNING; machines],
             fresh: vec![false; machines],
@@ -206,6 +213,7 @@ impl World {
             sink,
             over: false,
             suppressor: None,
+            supplied: vec![false; outputs],
         }
     }
 
@@ -288,12 +296,13 @@ impl World {
         });
     }
 
-    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: &str) {
+    /// `expert` answered, or none did (`None`).
+    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: Option<&str>) {
         self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
-            by: Answerer::Expert(expert.to_string()),
+            by: expert.map_or(Answerer::NoExpert, |e| Answerer::Expert(e.to_string())),
             round,
             at,
         });
@@ -396,6 +405,10 @@ const LOOP_LIMIT: u32 = @loop_limit@;
 const OUTPUT_NAME: [&str; OUTPUTS] = [@output_names@];
 /// The outputs a theory answers come first; the impersonator's atoms follow.
 const THEORY_OUTPUTS: usize = @theory_outputs@;
+/// The behaviour's own script (`[impersonator]`): its file and text, played without `--script`.
+pub const SCRIPT: Option<(&str, &str)> = @script@;
+/// Each sensor wrapper and the atoms it answers: the host's script must set one of them.
+const SENSORS: [(&str, &[&str]); @sensors_n@] = [@sensors@];
 const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
 /// Each machine's subsumption layer, which its postings carry.
@@ -429,7 +442,9 @@ pub fn answer(w: &World, k: usize) -> bool {
 
 fn ask(w: &mut World, m: usize, k: usize) -> bool {
     let value = answer(w, k);
-    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, OUTPUT_EXPERT[k]);
+    w.asked[m][k] = true;
+    let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
+    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, expert);
     value
 }
 
@@ -483,6 +498,7 @@ fn snapshot(w: &mut World, m: usize) {
     for k in 0..OUTPUTS {
         let value = answer(w, k);
         w.seen[m][k] = value;
+        w.asked[m][k] = false;
     }
 }
 
@@ -587,6 +603,7 @@ fn final_state(w: &World, m: usize) -> bool {
 /// The behaviour at its start, reporting its events to `sink` (none made without one).
 pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, sink);
+    w.supplied[..THEORY_OUTPUTS].fill(true);
     if !SUPPRESSED.is_empty() {
         let holds = SUPPRESSED
             .iter()
@@ -624,6 +641,27 @@ pub fn news(w: &World) -> bool {
 /// Whether `atom` is an answer of the behaviour's theories (the script may not set it).
 pub fn answers(atom: &str) -> bool {
     OUTPUT_NAME[..THEORY_OUTPUTS].contains(&atom)
+}
+
+/// The host answers `atom` from outside (its script sets it): whether it is an atom from
+/// outside the behaviour's labels ask.
+pub fn supply(w: &mut World, atom: &str) -> bool {
+    match OUTPUT_NAME[THEORY_OUTPUTS..].iter().position(|o| *o == atom) {
+        Some(k) => {
+            w.supplied[THEORY_OUTPUTS + k] = true;
+            true
+        }
+        None => false,
+    }
+}
+
+/// A sensor none of whose atoms are in `scripted`, and its atoms: the interpreter would run
+/// that sensor, which a compiled behaviour does not have.
+pub fn unscripted_sensor(scripted: &[&str]) -> Option<(&'static str, &'static [&'static str])> {
+    SENSORS
+        .iter()
+        .find(|(_, atoms)| !atoms.iter().any(|a| scripted.contains(a)))
+        .copied()
 }
 
 /// Whether `name` is a machine's (a posting to it is a control command).
