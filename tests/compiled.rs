@@ -245,40 +245,32 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
 #[test]
 fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target() {
     let out = scratch("refused");
-    for (behaviour, expected) in [
-        (
-            "machines/ball",
-            "machines/ball/behaviour.toml:11: cannot be compiled: a Prolog or program expert",
-        ),
-        (
-            "machines/game_controller",
-            "machines/game_controller/behaviour.toml:14: cannot be compiled: a sensor",
-        ),
-        (
-            "machines/referee",
-            "machines/referee/behaviour.toml:10: cannot be compiled: a Prolog or program expert",
-        ),
-        (
-            "machines/subsumption",
-            "machines/subsumption/behaviour.toml:15: cannot be compiled: suppression",
-        ),
+    let expert = "cannot be compiled: a Prolog or program expert";
+    let c_expert = "(a target without processes cannot run it)";
+    let rust_expert = "(a compiled Rust behaviour has no whiteboard for an expert's process to answer on: run it with `proclaim run`)";
+    let team = "machines/striker/Player.machine:10: cannot be compiled: `team.argmin(ballDistance)`: a team aggregate";
+    for (behaviour, target, expected) in [
+        ("machines/ball", "c", format!("machines/ball/behaviour.toml:11: {expert} {c_expert}")),
+        ("machines/ball", "rust", format!("machines/ball/behaviour.toml:11: {expert} {rust_expert}")),
+        ("machines/referee", "c", format!("machines/referee/behaviour.toml:10: {expert} {c_expert}")),
+        ("machines/referee", "rust", format!("machines/referee/behaviour.toml:10: {expert} {rust_expert}")),
+        ("machines/striker", "c", format!("{team} (a freestanding C behaviour has no network to its team's boards)")),
+        ("machines/striker", "rust", format!("{team} (a compiled Rust behaviour joins no team: it has no whiteboard to share with the team's robots; run it with `proclaim run --member`)")),
     ] {
-        for target in ["c", "rust"] {
-            let o = proclaim(&[
-                "compile",
-                behaviour,
-                "--target",
-                target,
-                "-o",
-                out.to_str().unwrap(),
-            ]);
-            assert_eq!(o.status.code(), Some(2), "{behaviour} to {target}");
-            let stderr = String::from_utf8_lossy(&o.stderr);
-            assert!(
-                stderr.contains(expected),
-                "{behaviour} to {target}: {stderr}"
-            );
-        }
+        let o = proclaim(&[
+            "compile",
+            behaviour,
+            "--target",
+            target,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{behaviour} to {target}");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            stderr.contains(&expected),
+            "{behaviour} to {target}: {stderr}"
+        );
     }
 }
 
@@ -382,6 +374,161 @@ fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_t
             "{name} runs to its end: {whole}"
         );
     }
+}
+
+/// The subsumption behaviour's runs: its own script, and seeded ones of its story at other
+/// milliseconds (the ball seen, an obstacle for a while, the ball near and reached), with a
+/// few steps at any time, stopped at any time.
+pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
+    let field = std::fs::read_to_string("machines/subsumption/field.script").unwrap();
+    let mut runs = vec![("subsumption-own".to_string(), field, None)];
+    let atoms = ["ballSeen", "ballNear", "atBall", "obstacle"];
+    let mut seed = 0x5eed_0033_5b5b;
+    for n in 0..6 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
+        let seen = next(1_500);
+        let obstacle = 500 + next(2_500);
+        let near = obstacle + next(800);
+        let clear = obstacle + 100 + next(1_400);
+        let at_ball = 3_000 + next(3_000);
+        for (at, step) in [
+            (seen, "ballSeen = true"),
+            (obstacle, "obstacle = true"),
+            (near, "ballNear = true"),
+            (clear, "obstacle = false"),
+            (at_ball, "atBall = true"),
+        ] {
+            script.push_str(&format!("at {at}ms {step}\n"));
+        }
+        for _ in 0..next(3) {
+            let at = next(6_000);
+            let atom = atoms[next(4) as usize];
+            let value = next(2) == 0;
+            script.push_str(&format!("at {at}ms {atom} = {value}\n"));
+        }
+        let run_for = format!("{}ms", 1_000 + next(7_000));
+        runs.push((format!("subsumption-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+/// The GameController behaviour's runs, its sensors' atoms from the script: a whole game with
+/// a penalty and the chest button, one where the script sets only some atoms (the rest no
+/// expert answers), and seeded games of any order at any millisecond, stopped at any time.
+pub(crate) fn game_controller_runs() -> Vec<(String, String, Option<String>)> {
+    let states = ["initial", "ready", "set", "playing", "penalty", "finished"];
+    let all_false: String = states
+        .iter()
+        .map(|s| format!("{s}Received = false\n"))
+        .chain(["shortChestButtonPressed = false\n".to_string()])
+        .collect();
+    let game = format!("{all_false}at 500ms initialReceived = true\nat 1s initialReceived = false\nat 1s readyReceived = true\nat 2s readyReceived = false\nat 2s setReceived = true\nat 3s setReceived = false\nat 3s playingReceived = true\nat 4s penaltyReceived = true\nat 4500ms shortChestButtonPressed = true\nat 4600ms shortChestButtonPressed = false\nat 5s penaltyReceived = false\nat 6s playingReceived = false\nat 6s finishedReceived = true\n");
+    let some = "readyReceived = false\nshortChestButtonPressed = false\nat 1s readyReceived = true\nat 2550ms shortChestButtonPressed = true\n";
+    let mut runs = vec![
+        ("gc-game".to_string(), game, Some("8s".to_string())),
+        (
+            "gc-some".to_string(),
+            some.to_string(),
+            Some("4s".to_string()),
+        ),
+    ];
+    let mut seed = 0x5eed_0033_6c6c;
+    for n in 0..6 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script = all_false.clone();
+        let mut at = 0;
+        let mut now = "initial";
+        // Off the ring period's moments: a posting no label reads, made just as a round is due,
+        // the interpreter shows after that round's events and a compiled host before them.
+        let off_period = |at: u64| if at % 100 == 0 { at + 1 } else { at };
+        for _ in 0..3 + next(6) {
+            at = off_period(at + 1 + next(1_500));
+            let then = states[next(states.len() as u64) as usize];
+            script.push_str(&format!(
+                "at {at}ms {now}Received = false\nat {at}ms {then}Received = true\n"
+            ));
+            now = then;
+        }
+        for _ in 0..next(3) {
+            let press = off_period(next(at + 1));
+            let release = off_period(press + 50 + next(400));
+            script.push_str(&format!("at {press}ms shortChestButtonPressed = true\nat {release}ms shortChestButtonPressed = false\n"));
+        }
+        let run_for = format!("{}ms", 1 + next(at + 2_000));
+        runs.push((format!("gc-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+#[test]
+fn sensors_atoms_come_from_the_script_as_when_the_interpreter_leaves_the_sensors_out() {
+    if gcc_missing() {
+        return;
+    }
+    let behaviour = "machines/game_controller";
+    let dir = scratch("game_controller");
+    build(behaviour, &dir);
+    let mut moved = 0;
+    for (case, script, run_for) in game_controller_runs() {
+        let (interpreted, compiled) = traces(behaviour, &dir, &case, &script, run_for.as_deref());
+        assert_same(&case, &interpreted, &compiled);
+        moved += interpreted.matches("\"fired\"").count();
+    }
+    assert!(moved > 20, "the games move the machines: {moved} firings");
+    // A script that sets none of a sensor's atoms would have the interpreter run the sensor.
+    let mut program = Command::new(dir.join("behaviour"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::io::Write::write_all(
+        &mut program.stdin.take().unwrap(),
+        b"at 1s readyReceived = true\n",
+    )
+    .unwrap();
+    let out = program.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "sets none of the atoms the sensor `chestButton` answers (shortChestButtonPressed)"
+        ),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn suppression_holds_back_and_hands_over_as_the_interpreter_does() {
+    if gcc_missing() {
+        return;
+    }
+    let behaviour = "machines/subsumption";
+    let dir = scratch("subsumption");
+    build(behaviour, &dir);
+    let mut held_back = 0;
+    for (case, script, run_for) in subsumption_runs() {
+        let (interpreted, compiled) = traces(behaviour, &dir, &case, &script, run_for.as_deref());
+        assert_same(&case, &interpreted, &compiled);
+        held_back += usize::from(interpreted.contains("\"took_over\""));
+    }
+    assert!(held_back >= 3, "runs where a hold ran out: {held_back}");
+    let layers = construct_cases()
+        .into_iter()
+        .find(|c| c.name == "layers")
+        .unwrap();
+    let files: Vec<(&str, &str)> = layers
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of("layers", &files);
+    let trace = same_trace("layers", &folder, layers.script, layers.run_for);
+    assert!(
+        trace.contains("\"suppressed\"") && trace.contains("\"took_over\""),
+        "the layers hold each other back: {trace}"
+    );
 }
 
 #[test]
@@ -739,6 +886,13 @@ fn the_time_tests_timeout_after_ms_and_after_come_due_as_the_runners() {
     assert!(trace.contains("\"at_us\":3550000"), "{trace}");
 }
 
+/// Three layers posting two suppressed types on their own timeouts, so holds run out between
+/// ringlets, behind one or two lower postings, live or not.
+const LAYERS: &str = "[[machine]]\nfile = \"Low.machine\"\n[[machine]]\nfile = \"Mid.machine\"\npriority = 1\n[[machine]]\nfile = \"High.machine\"\npriority = 3\n[suppress]\ncmd = { hold = \"300ms\" }\nbeep = { hold = \"150ms\" }\n[[module]]\nname = \"legs\"\nreads = [\"cmd\", \"beep\"]\n";
+const LOW: &str = "machine Low\ninitial A\nstate A {\n    internal {\n        cmd: low\n    }\n    when timeout(250ms) -> B\n}\nstate B {\n    entry {\n        cmd: lowB\n        beep: low\n    }\n    when timeout(130ms) -> A\n}\n";
+const MID: &str = "machine Mid\ninitial A\nstate A {\n    entry {\n        cmd: mid\n    }\n    when timeout(350ms) -> B\n}\nstate B {\n    entry {\n        beep: mid\n    }\n    when timeout(220ms) -> A\n}\n";
+const HIGH: &str = "machine High\ninitial A\nstate A {\n    when timeout(600ms) -> B\n}\nstate B {\n    entry {\n        cmd: high\n        beep: high\n    }\n    when timeout(90ms) -> A\n}\n";
+
 /// A behaviour the tests above compile, as files, with a script and a time to stop at.
 pub(crate) struct Case {
     pub name: &'static str,
@@ -769,6 +923,17 @@ pub(crate) fn construct_cases() -> Vec<Case> {
         one("say", "Speaker", SPEAKER, None),
         one("loop", "Loop", LOOP, None),
         one("time", "T", TIME, None),
+        Case {
+            name: "layers",
+            files: vec![
+                ("behaviour.toml".into(), LAYERS.into()),
+                ("Low.machine".into(), LOW.into()),
+                ("Mid.machine".into(), MID.into()),
+                ("High.machine".into(), HIGH.into()),
+            ],
+            script: "",
+            run_for: Some("3s"),
+        },
         Case {
             name: "control",
             files: vec![

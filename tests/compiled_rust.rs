@@ -6,7 +6,8 @@
 //! crates they depend on build once.
 
 use super::compiled::{
-    assert_same, behaviour_of, construct_cases, random_behaviour, scratch, splitmix, Case,
+    assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour, scratch,
+    splitmix, subsumption_runs, Case,
 };
 use crate::proclaim;
 use std::path::{Path, PathBuf};
@@ -222,6 +223,16 @@ fn traces(
 #[test]
 fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
     let mut behaviours = vec![microwave(), shipped("press"), shipped("shootout")];
+    behaviours.push(Compiled {
+        name: "subsumption".into(),
+        folder: "machines/subsumption".into(),
+        runs: subsumption_runs(),
+    });
+    behaviours.push(Compiled {
+        name: "game_controller".into(),
+        folder: "machines/game_controller".into(),
+        runs: game_controller_runs(),
+    });
     behaviours.extend(construct_cases().into_iter().map(from_case));
     behaviours.extend((0..24).map(random));
     let projects = scratch("rust-projects");
@@ -239,4 +250,50 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         }
     }
     assert!(moved > 30, "most runs move: {moved}");
+    // Without `--script`, both play the behaviour's own script.
+    for name in ["microwave", "subsumption"] {
+        let interpreted_path = runs.join(format!("{name}-own-script.interpreted.jsonl"));
+        let compiled_path = runs.join(format!("{name}-own-script.compiled.jsonl"));
+        let folder = format!("machines/{name}");
+        let o = proclaim(&[
+            "run",
+            &folder,
+            "--virtual-clock",
+            "--trace",
+            interpreted_path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = Command::new(programs.join(format!("behaviour-{name}")))
+            .args([
+                "--virtual-clock",
+                "--trace",
+                compiled_path.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let interpreted = std::fs::read_to_string(&interpreted_path).unwrap();
+        assert!(
+            interpreted.contains("\"impersonator\""),
+            "{name} plays its script"
+        );
+        assert_same(
+            &format!("{name} without --script"),
+            &interpreted,
+            &std::fs::read_to_string(&compiled_path).unwrap(),
+        );
+    }
+    // A script that sets none of a sensor's atoms would have the interpreter run the sensor.
+    let script = runs.join("no-chest.script");
+    std::fs::write(&script, "at 1s readyReceived = true\n").unwrap();
+    let o = Command::new(programs.join("behaviour-game_controller"))
+        .args(["--virtual-clock", "--script", script.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("sets none of the atoms the sensor `chestButton` answers"),
+        "{stderr}"
+    );
 }

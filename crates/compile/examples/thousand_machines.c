@@ -9,12 +9,14 @@
 
 static unsigned long long events, fired;
 
-static void on_post(struct world *w, const char *machine, const char *type, const char *content)
+static void on_post(struct world *w, const char *machine, const char *type, const char *content,
+                    unsigned long priority)
 {
     (void)w;
     (void)machine;
     (void)type;
     (void)content;
+    (void)priority;
     events++;
 }
 

@@ -4,7 +4,7 @@
 //! `proclaim_runner::arith`'s meaning written once in each target's runtime; fractions, text held
 //! in variables, whiteboard reads, host functions and sleeps are refused.
 
-use crate::behaviour::Refusal;
+use crate::behaviour::{Language, Refusal};
 use crate::plan::{Conversion, Function, Piece, Step, Value};
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{
@@ -88,6 +88,7 @@ pub(crate) struct Activity<'a> {
     pub machines: &'a [String],
     /// Types that are theory inputs.
     pub inputs: &'a [String],
+    pub target: Language,
     /// The longest text a posting needs, grown as postings are planned.
     pub longest_text: &'a mut usize,
     /// Numbers the `for` loops.
@@ -490,9 +491,10 @@ impl Activity<'_> {
                 };
                 Ok((Value::Apply(f, vec![a, b]), ka.union(kb)))
             }
-            _ if function.starts_with("team.") => Err(self.refuse(format!(
-                "`{e}`: a team aggregate (a compiled behaviour has no team board)"
-            ))),
+            _ if function.starts_with("team.") => Err(self.refuse(match self.target {
+                Language::C => format!("`{e}`: a team aggregate (a freestanding C behaviour has no network to its team's boards)"),
+                Language::Rust => format!("`{e}`: a team aggregate (a compiled Rust behaviour joins no team: it has no whiteboard to share with the team's robots; run it with `proclaim run --member`)"),
+            })),
             _ if arith::is_function(function) => {
                 Err(self.refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
             }

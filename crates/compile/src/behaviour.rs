@@ -6,8 +6,8 @@
 use crate::activity::{conversion, Activity, Variable, Variables};
 use crate::c::c_identifier;
 use crate::plan::{
-    Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory, StatePlan,
-    TransitionPlan,
+    Answer, Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory, StatePlan,
+    Suppressed, TransitionPlan,
 };
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
@@ -42,7 +42,7 @@ pub struct CBehaviour {
 /// Compiles `behaviour` to freestanding C (its theories over true/false/unknown inputs, its
 /// machines as code) with the host harness `main.c`.
 pub fn compile_behaviour(behaviour: &Behaviour) -> Result<CBehaviour, Refusal> {
-    let plan = plan_behaviour(behaviour)?;
+    let plan = plan_behaviour(behaviour, Language::C)?;
     Ok(CBehaviour {
         files: crate::print_c::behaviour_files(&plan),
     })
@@ -60,7 +60,7 @@ pub fn compile_behaviour_rust(
     behaviour: &Behaviour,
     repository: &std::path::Path,
 ) -> Result<RustBehaviour, Refusal> {
-    let plan = plan_behaviour(behaviour)?;
+    let plan = plan_behaviour(behaviour, Language::Rust)?;
     Ok(RustBehaviour {
         files: crate::print_rust::project_files(&plan, repository),
     })
@@ -75,6 +75,15 @@ pub fn source_repository() -> Option<std::path::PathBuf> {
         .then(|| root.canonicalize().unwrap_or(root))
 }
 
+/// The language a behaviour is compiled to: what each cannot have is refused in its own words.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Language {
+    /// Freestanding C: no heap, no operating system, no processes, no network.
+    C,
+    /// A Cargo project: a native program, but without a whiteboard of its own.
+    Rust,
+}
+
 fn refuse(file: &str, line: usize, what: String) -> Refusal {
     Refusal {
         file: file.to_string(),
@@ -84,9 +93,14 @@ fn refuse(file: &str, line: usize, what: String) -> Refusal {
 }
 
 /// The plan of `behaviour`, or the first thing in it a compiled program cannot have.
-pub(crate) fn plan_behaviour(behaviour: &Behaviour) -> Result<Plan, Refusal> {
-    refuse_what_no_target_has(behaviour)?;
+pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<Plan, Refusal> {
+    refuse_what_no_target_has(behaviour, target)?;
     let (theories, outputs, inputs) = plan_theories(behaviour)?;
+    let outside = outputs
+        .iter()
+        .filter(|o| matches!(o.answer, Answer::Outside { .. }))
+        .count();
+    let sensors = sensor_atoms(behaviour);
     let (slots, own, globals) = plan_slots(behaviour)?;
     let names: Vec<String> = behaviour
         .machines
@@ -110,21 +124,48 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour) -> Result<Plan, Refusal> {
             machines: &names,
             inputs: &input_types,
             outputs: &outputs,
+            target,
         };
         machines.push(plan_machine(loaded, &seen, &mut counters)?);
     }
     let period_ms = period_ms(behaviour)?;
+    let suppressed = plan_suppressed(behaviour)?;
     Ok(Plan {
         name: behaviour.name.clone(),
         theories,
         outputs,
         inputs,
+        outside,
+        sensors,
+        script: own_script(behaviour),
         slots,
         machines,
         period_ms,
         longest_text: counters.longest_text,
         commands: counters.commands,
+        suppressed,
     })
+}
+
+/// The manifest's `[suppress]` in name order (the order the runner releases holds in), each
+/// hold in whole milliseconds (a target's clock counts milliseconds).
+fn plan_suppressed(behaviour: &Behaviour) -> Result<Vec<Suppressed>, Refusal> {
+    let mut suppressed = Vec::new();
+    for (ty, hold) in &behaviour.suppress {
+        if hold.as_micros() % 1000 != 0 {
+            return Err(refuse(
+                &behaviour.files.show(MANIFEST),
+                manifest_line(behaviour, &[ty.as_str()]),
+                format!("the hold of `{ty}` is not whole milliseconds"),
+            ));
+        }
+        suppressed.push(Suppressed {
+            ty: ty.clone(),
+            hold_ms: hold.as_millis() as u64,
+        });
+    }
+    suppressed.sort_by(|a, b| a.ty.cmp(&b.ty));
+    Ok(suppressed)
 }
 
 /// The manifest's line that starts with one of `starts`, for a refusal to point at.
@@ -138,25 +179,18 @@ fn manifest_line(behaviour: &Behaviour, starts: &[&str]) -> usize {
         .map_or(1, |i| i + 1)
 }
 
-/// Refuses the manifest's parts that no compiled target runs yet.
-fn refuse_what_no_target_has(behaviour: &Behaviour) -> Result<(), Refusal> {
+/// Refuses the manifest's parts that `target` does not run.
+fn refuse_what_no_target_has(behaviour: &Behaviour, target: Language) -> Result<(), Refusal> {
     let manifest = behaviour.files.show(MANIFEST);
     let refused = if behaviour.manifest.schedule != Schedule::Rounds {
         Some((&["schedule"][..], "schedule = \"concurrent\""))
     } else if !behaviour.programs.is_empty() {
         Some((
             &["[[prolog]]", "[[expert]]"][..],
-            "a Prolog or program expert (a target without processes cannot run it)",
-        ))
-    } else if !behaviour.sensors.is_empty() {
-        Some((
-            &["[[sensor]]"][..],
-            "a sensor (sensor wrappers are not compiled yet)",
-        ))
-    } else if !behaviour.suppress.is_empty() {
-        Some((
-            &["[suppress]"][..],
-            "suppression ([suppress] is not compiled yet)",
+            match target {
+                Language::C => "a Prolog or program expert (a target without processes cannot run it)",
+                Language::Rust => "a Prolog or program expert (a compiled Rust behaviour has no whiteboard for an expert's process to answer on: run it with `proclaim run`)",
+            },
         ))
     } else {
         None
@@ -191,6 +225,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
     let mut theories = Vec::new();
     let mut outputs: Vec<Output> = Vec::new();
     let mut inputs = Vec::new();
+    let mut offset = 0;
     for (t, loaded) in behaviour.theories.iter().enumerate() {
         let file = behaviour.files.show(&loaded.file);
         let compiled = compile(&loaded.theory, loaded.limits, Domain::Ternary)
@@ -203,8 +238,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
                 .unwrap_or_else(|| atom.clone());
             inputs.push(Input {
                 ty,
-                theory: t,
-                index,
+                variable: offset + 2 * index,
             });
         }
         for (index, name) in compiled.outputs.iter().enumerate() {
@@ -214,15 +248,65 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
             }
             outputs.push(Output {
                 name: name.clone(),
-                theory: t,
-                index,
+                answer: Answer::Theory {
+                    theory: t,
+                    index,
+                    offset,
+                },
                 expert: loaded.name.clone(),
             });
         }
+        offset += compiled.variables();
         let prefix = format!("theory_{}", c_identifier(&loaded.name));
         theories.push(PlannedTheory { compiled, prefix });
     }
+    // The atoms the manifest's script or a sensor answers and no theory answers or reads come
+    // from outside: from a run's script, as the interpreter's impersonator answers them then.
+    let mut scripted: Vec<String> = behaviour
+        .script
+        .as_ref()
+        .map(|s| s.atoms())
+        .unwrap_or_default();
+    scripted.extend(
+        sensor_atoms(behaviour)
+            .into_iter()
+            .flat_map(|(_, atoms)| atoms),
+    );
+    scripted.sort();
+    scripted.dedup();
+    for atom in scripted {
+        // A theory's input the script sets stays only that: no label asks it directly.
+        if outputs.iter().any(|o| o.name == atom) || inputs.iter().any(|i| i.ty == atom) {
+            continue;
+        }
+        inputs.push(Input {
+            ty: atom.clone(),
+            variable: offset,
+        });
+        outputs.push(Output {
+            name: atom,
+            answer: Answer::Outside { variable: offset },
+            expert: "impersonator".into(),
+        });
+        offset += 2;
+    }
     Ok((theories, outputs, inputs))
+}
+
+/// The manifest's `[impersonator]` script: its file as shown and its text.
+fn own_script(behaviour: &Behaviour) -> Option<(String, String)> {
+    let file = &behaviour.manifest.impersonator.as_ref()?.script;
+    let text = behaviour.files.read(file).ok()?;
+    Some((behaviour.files.show(file), text))
+}
+
+/// Each sensor wrapper of the behaviour (its module's name) and the atoms it answers.
+fn sensor_atoms(behaviour: &Behaviour) -> Vec<(String, Vec<String>)> {
+    proclaim_behaviour::modules(behaviour)
+        .into_iter()
+        .filter(|m| matches!(m.kind, proclaim_behaviour::ModuleKind::Sensor(_)))
+        .map(|m| (m.decl.name.clone(), m.decl.answers.clone()))
+        .collect()
 }
 
 type Slots = (
@@ -283,6 +367,7 @@ struct Seen<'a> {
     machines: &'a [String],
     inputs: &'a [String],
     outputs: &'a [Output],
+    target: Language,
 }
 
 /// What grows across the whole behaviour as it is planned.
@@ -311,6 +396,7 @@ fn plan_machine(
         name: machine.name.clone(),
         initial: machine.initial,
         start: loaded.start,
+        priority: loaded.priority,
         states,
     })
 }
@@ -328,6 +414,7 @@ fn plan_state(
         variables: &seen.variables,
         machines: seen.machines,
         inputs: seen.inputs,
+        target: seen.target,
         longest_text: &mut counters.longest_text,
         loops: &mut counters.loops,
         commands: &mut counters.commands,

@@ -54,9 +54,20 @@ pub(crate) const HEADER: &str = r#"struct world;
 
 /* What the behaviour tells its host: postings, and the events of `proclaim run --trace`. */
 struct world_callbacks {
-    void (*post)(struct world *w, const char *machine, const char *type, const char *content);
+    /* `priority` is the poster's subsumption layer (the manifest's `priority`, 0 by default). */
+    void (*post)(struct world *w, const char *machine, const char *type, const char *content,
+                 unsigned long priority);
+    /* A posting to a type under subsumption that no reader saw: `by`'s posting, of the higher
+     * `by_priority`, holds the type until `until_ms`. */
+    void (*suppressed)(struct world *w, const char *machine, const char *type, const char *content,
+                       unsigned long priority, const char *by, unsigned long by_priority,
+                       uint64_t until_ms);
+    /* A hold ran out and this lower posting, made at `posted_ms`, is what readers see now. */
+    void (*took_over)(struct world *w, const char *machine, const char *type, const char *content,
+                      unsigned long priority, uint64_t posted_ms);
     void (*entered)(struct world *w, const char *machine, const char *state, long id);
     void (*finished)(struct world *w, const char *machine, const char *state);
+    /* `expert` is NULL when no expert answers the atom (one from outside the host does not supply). */
     void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert);
     void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
     /* A variable's value changed (its text as the trace shows it). */
@@ -75,7 +86,7 @@ struct value {
     unsigned char is_bool;
 };
 
-/* The whiteboard's values the behaviour reads and its machines' states. */
+@held_types@/* The whiteboard's values the behaviour reads and its machines' states. */
 struct world {
     struct world_callbacks cb;
     void *user;
@@ -89,6 +100,12 @@ struct world {
     unsigned char in[BEHAVIOUR_VARIABLES];
     /* The answers each machine's last ringlet saw. */
     unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
+    /* Whether each answer has an answerer: a theory's always, an atom from outside once the
+     * host supplies it. */
+    unsigned char supplied[BEHAVIOUR_OUTPUTS];
+    /* The answers each machine's last ringlet asked (a label's `&&` and `||` ask no further than
+     * they need): an atom from outside is news only to a machine that asked it. */
+    unsigned char asked[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
     long initial[BEHAVIOUR_MACHINES];
     /* Running, suspended or dormant; started in this round (it rings from the next). */
     unsigned char status[BEHAVIOUR_MACHINES];
@@ -107,7 +124,7 @@ struct world {
     /* The text a posting or a print is built in. */
     char text[BEHAVIOUR_TEXT];
     unsigned text_length;
-};
+@held_field@};
 
 void behaviour_init(struct world *w);
 /* One round: a ringlet of every machine in manifest order; 1 when one fired (the next round follows at once). */
@@ -118,6 +135,13 @@ int behaviour_outside(struct world *w, const char *type, const char *content);
 int behaviour_news(const struct world *w);
 /* 1 when `atom` is an answer of the behaviour's theories. */
 int behaviour_answers(const char *atom);
+/* The host answers `atom` from outside (a script or its own sensor sets it): 1 when the
+ * behaviour's labels ask it. Unsupplied, such an atom is false and answered by no expert. */
+int behaviour_supply(struct world *w, const char *atom);
+/* Sensor wrapper `s`'s name, NULL past the last; its atom `i`, NULL past the last. A host
+ * supplies one of each sensor's atoms (the interpreter leaves the sensor out then). */
+const char *behaviour_sensor_name(unsigned s);
+const char *behaviour_sensor_atom(unsigned s, unsigned i);
 /* 1 when `name` is a machine's (a posting to it is a control command). */
 int behaviour_is_machine(const char *name);
 /* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
@@ -132,7 +156,14 @@ int behaviour_finished(const struct world *w);
 pub(crate) const BODY: &str = r#"
 static const char *const output_name[@outputs_n@] = {@output_names@};
 static const char *const output_expert[@outputs_n@] = {@experts@};
+/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,
+ * not literals, so that an empty range is no comparison a compiler warns of. */
+static const unsigned theory_outputs = @theory_outputs@u;
+static const unsigned outputs = @outputs@u;
+static const unsigned sensors = @sensors@u;
 static const char *const machine_name[@machines@] = {@machine_names@};
+/* Each machine's subsumption layer, which its postings carry. */
+static const unsigned long machine_priority[@machines@] = {@priorities@};
 
 static int same(const char *a, const char *b)
 {
@@ -179,13 +210,15 @@ static int answer(const struct world *w, unsigned k)
 static int ask(struct world *w, unsigned m, unsigned k)
 {
     int value = answer(w, k);
-    w->cb.answered(w, machine_name[m], output_name[k], value, output_expert[k]);
+    w->asked[m][k] = 1;
+    w->cb.answered(w, machine_name[m], output_name[k], value, w->supplied[k] ? output_expert[k] : 0);
     return value;
 }
 
+@suppression@
 static void post(struct world *w, unsigned m, const char *type, const char *content)
 {
-    w->cb.post(w, machine_name[m], type, content);
+@held_back@    w->cb.post(w, machine_name[m], type, content, machine_priority[m]);
     (void)apply_input(w, type, content);
 }
 
@@ -194,6 +227,7 @@ static void snapshot(struct world *w, unsigned m)
     unsigned k;
     for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
         w->seen[m][k] = (unsigned char)answer(w, k);
+        w->asked[m][k] = 0;
     }
 }
 
@@ -349,9 +383,13 @@ void behaviour_init(struct world *w)
         w->command_count[m] = 0;
         for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
             w->seen[m][k] = 0;
+            w->asked[m][k] = 0;
         }
     }
-@var_inits@@inits@}
+    for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
+        w->supplied[k] = k < theory_outputs;
+    }
+@held_init@@var_inits@@inits@}
 
 int behaviour_round(struct world *w)
 {
@@ -361,7 +399,7 @@ int behaviour_round(struct world *w)
     if (w->cb.round_started) {
         w->cb.round_started(w);
     }
-    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+@take_over@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->fresh[m] = 0;
     }
 @rings@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
@@ -386,6 +424,36 @@ int behaviour_answers(const char *atom)
 {
 @answers_body@}
 
+int behaviour_supply(struct world *w, const char *atom)
+{
+    unsigned k;
+    for (k = theory_outputs; k < outputs; k++) {
+        if (same(atom, output_name[k])) {
+            w->supplied[k] = 1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static const char *const sensor_name[@sensors_n@] = {@sensor_names@};
+/* Each sensor's atoms, one after another; `sensor_start[s]` is where sensor `s`'s begin. */
+static const char *const sensor_atom[@sensor_atoms_n@] = {@sensor_atoms@};
+static const unsigned sensor_start[@sensors_n@ + 1] = {@sensor_starts@};
+
+const char *behaviour_sensor_name(unsigned s)
+{
+    return s < sensors ? sensor_name[s] : 0;
+}
+
+const char *behaviour_sensor_atom(unsigned s, unsigned i)
+{
+    if (s >= sensors || sensor_start[s] + i >= sensor_start[s + 1]) {
+        return 0;
+    }
+    return sensor_atom[sensor_start[s] + i];
+}
+
 int behaviour_is_machine(const char *name)
 {
     unsigned m;
@@ -400,12 +468,161 @@ int behaviour_is_machine(const char *name)
 uint64_t behaviour_next_due_ms(const struct world *w)
 {
     uint64_t due = BEHAVIOUR_PERIOD_MS;
-@dues@    return due;
+@dues@@release_due@    return due;
 }
 
 int behaviour_finished(const struct world *w)
 {
 @tops@    (void)w;
     return 1;
+}
+"#;
+
+/// `behaviour.h`'s types for subsumption, when the behaviour declares `[suppress]`.
+pub(crate) const HELD_TYPES: &str = r#"/* A posting to a type under subsumption, kept: by whom, when, and its text. */
+struct held_posting {
+    unsigned char known;
+    unsigned machine;
+    uint64_t at_ms;
+    char text[BEHAVIOUR_HELD_TEXT];
+};
+
+/* One type under subsumption: the posting readers see, the newest of each layer (seen or held
+ * back), and whether the one seen stands over a lower one that takes over when its hold ends. */
+struct held_line {
+    struct held_posting shown;
+    struct held_posting newest[BEHAVIOUR_LAYERS];
+    unsigned char subsuming;
+};
+
+"#;
+
+/// `behaviour.c`'s subsumption (Brooks' suppression), as the board's `Suppressor` decides.
+pub(crate) const SUPPRESSION: &str = r#"static const char *const held_type[BEHAVIOUR_SUPPRESSED] = {@held_types@};
+static const uint64_t held_ms[BEHAVIOUR_SUPPRESSED] = {@held_ms@};
+/* Each machine's rank among the distinct priorities, lowest 0. */
+static const unsigned machine_layer[BEHAVIOUR_MACHINES] = {@machine_layers@};
+
+static int held_live(const struct held_posting *p, unsigned t, uint64_t now)
+{
+    return now < p->at_ms + held_ms[t];
+}
+
+/* Whether some posting of a layer below `layer` is known. */
+static int held_below(const struct held_line *line, unsigned layer)
+{
+    unsigned l;
+    for (l = 0; l < layer; l++) {
+        if (line->newest[l].known) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static void held_keep(struct held_posting *to, unsigned m, uint64_t now, const char *content)
+{
+    unsigned i = 0;
+    to->known = 1;
+    to->machine = m;
+    to->at_ms = now;
+    while (content[i] != '\0' && i + 1 < BEHAVIOUR_HELD_TEXT) {
+        to->text[i] = content[i];
+        i++;
+    }
+    to->text[i] = '\0';
+}
+
+/* Judges machine `m`'s posting: 1 when a higher layer's live posting holds its type (reported
+ * as suppressed, and kept to take over later); 0 when readers see it (and, for a type under
+ * subsumption, it holds the type from now). */
+static int held_back(struct world *w, unsigned m, const char *type, const char *content)
+{
+    unsigned t, layer = machine_layer[m];
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        struct held_line *line = &w->held[t];
+        if (!same(type, held_type[t])) {
+            continue;
+        }
+        held_keep(&line->newest[layer], m, w->now_ms, content);
+        if (line->shown.known && layer < machine_layer[line->shown.machine] &&
+            held_live(&line->shown, t, w->now_ms)) {
+            unsigned by = line->shown.machine;
+            line->subsuming = 1;
+            w->cb.suppressed(w, machine_name[m], type, content, machine_priority[m], machine_name[by],
+                             machine_priority[by], line->shown.at_ms + held_ms[t]);
+            return 1;
+        }
+        line->subsuming = (unsigned char)held_below(line, layer);
+        line->shown = line->newest[layer];
+        return 0;
+    }
+    return 0;
+}
+
+/* The posting that takes over once the shown one's hold has run out: of the lower layers', the
+ * highest whose own hold still runs, else the newest (the higher layer on a tie); or none. */
+static const struct held_posting *held_successor(const struct held_line *line, unsigned t,
+                                                 uint64_t now)
+{
+    const struct held_posting *best = 0;
+    unsigned l, top;
+    if (!line->shown.known || !line->subsuming || held_live(&line->shown, t, now)) {
+        return 0;
+    }
+    top = machine_layer[line->shown.machine];
+    for (l = 0; l < top; l++) {
+        if (line->newest[l].known && held_live(&line->newest[l], t, now)) {
+            best = &line->newest[l];
+        }
+    }
+    if (best != 0) {
+        return best;
+    }
+    for (l = 0; l < top; l++) {
+        if (line->newest[l].known && (best == 0 || line->newest[l].at_ms >= best->at_ms)) {
+            best = &line->newest[l];
+        }
+    }
+    return best;
+}
+
+/* At a round's start: every held type whose hold ran out with a lower posting behind it gets
+ * that posting, in type name order, as the runner's schedule has it. */
+static void take_over(struct world *w)
+{
+    unsigned t;
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        struct held_line *line = &w->held[t];
+        const struct held_posting *next = held_successor(line, t, w->now_ms);
+        unsigned m;
+        if (next == 0) {
+            continue;
+        }
+        line->shown = *next;
+        m = line->shown.machine;
+        line->subsuming = (unsigned char)(held_live(&line->shown, t, w->now_ms) &&
+                                          held_below(line, machine_layer[m]));
+        w->cb.took_over(w, machine_name[m], held_type[t], line->shown.text, machine_priority[m],
+                        line->shown.at_ms);
+        (void)apply_input(w, held_type[t], line->shown.text);
+    }
+}
+
+/* A hold running out with a lower posting behind it changes what readers see: a round then. */
+static uint64_t release_due(const struct world *w, uint64_t due)
+{
+    unsigned t;
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        const struct held_line *line = &w->held[t];
+        if (line->subsuming && line->shown.known) {
+            uint64_t at = line->shown.at_ms + held_ms[t];
+            uint64_t wait = at > w->now_ms ? at - w->now_ms : 0;
+            if (wait < due) {
+                due = wait;
+            }
+        }
+    }
+    return due;
 }
 "#;

@@ -59,7 +59,8 @@ static void tail(struct world *w)
            (unsigned long long)(w->now_ms * 1000u));
 }
 
-static void on_post(struct world *w, const char *machine, const char *type, const char *content)
+static void on_post(struct world *w, const char *machine, const char *type, const char *content,
+                    unsigned long priority)
 {
     if (over) {
         return;
@@ -70,6 +71,46 @@ static void on_post(struct world *w, const char *machine, const char *type, cons
     json_string(type);
     printf(",\"content\":");
     json_string(content);
+    if (priority != 0) {
+        printf(",\"priority\":%lu", priority);
+    }
+    tail(w);
+}
+
+static void on_suppressed(struct world *w, const char *machine, const char *type,
+                          const char *content, unsigned long priority, const char *by,
+                          unsigned long by_priority, uint64_t until_ms)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"suppressed\",\"machine\":");
+    json_string(machine);
+    printf(",\"type\":");
+    json_string(type);
+    printf(",\"content\":");
+    json_string(content);
+    printf(",\"priority\":%lu,\"by\":", priority);
+    json_string(by);
+    printf(",\"by_priority\":%lu,\"until_us\":%llu", by_priority,
+           (unsigned long long)(until_ms * 1000u));
+    tail(w);
+}
+
+static void on_took_over(struct world *w, const char *machine, const char *type,
+                         const char *content, unsigned long priority, uint64_t posted_ms)
+{
+    if (over) {
+        return;
+    }
+    printf("{\"event\":\"took_over\",\"machine\":");
+    json_string(machine);
+    printf(",\"type\":");
+    json_string(type);
+    printf(",\"content\":");
+    json_string(content);
+    printf(",\"priority\":%lu,\"posted_us\":%llu", priority,
+           (unsigned long long)(posted_ms * 1000u));
     tail(w);
 }
 
@@ -109,9 +150,14 @@ static void on_answered(struct world *w, const char *machine, const char *atom, 
     json_string(machine);
     printf(",\"atom\":");
     json_string(atom);
-    printf(",\"value\":%s,\"by\":{\"expert\":", value ? "true" : "false");
-    json_string(expert);
-    printf("}");
+    printf(",\"value\":%s,\"by\":", value ? "true" : "false");
+    if (expert == NULL) {
+        printf("\"no_expert\"");
+    } else {
+        printf("{\"expert\":");
+        json_string(expert);
+        printf("}");
+    }
     tail(w);
 }
 
@@ -193,7 +239,7 @@ static int impersonate(struct world *w, struct step *s)
     }
     if (!s->shown) {
         s->shown = 1;
-        on_post(w, "impersonator", s->name, s->value);
+        on_post(w, "impersonator", s->name, s->value, 0);
     }
     return behaviour_outside(w, s->name, s->value);
 }
@@ -338,6 +384,33 @@ static int read_script(void)
     return 1;
 }
 
+/* Whether the script sets an atom of every sensor (else the interpreter would run that sensor,
+ * which a compiled behaviour does not have); says which it does not. */
+static int sensors_scripted(void)
+{
+    unsigned s, a;
+    size_t i;
+    const char *name;
+    for (s = 0; (name = behaviour_sensor_name(s)) != NULL; s++) {
+        const char *atom;
+        int set = 0;
+        for (a = 0; (atom = behaviour_sensor_atom(s, a)) != NULL; a++) {
+            for (i = 0; i < step_count; i++) {
+                set |= strcmp(steps[i].name, atom) == 0;
+            }
+        }
+        if (!set) {
+            fprintf(stderr, "stdin: sets none of the atoms the sensor `%s` answers (", name);
+            for (a = 0; (atom = behaviour_sensor_atom(s, a)) != NULL; a++) {
+                fprintf(stderr, "%s%s", a == 0 ? "" : ", ", atom);
+            }
+            fprintf(stderr, "): a compiled behaviour has no sensors, and takes their atoms from its script (as `proclaim run --script` leaves a sensor out when the script sets one of its atoms)\n");
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* Start steps first, then the timed ones in time order (stable: same time keeps file order). */
 static void order_steps(void)
 {
@@ -358,6 +431,7 @@ static void order_steps(void)
 int main(int argc, char **argv)
 {
     static struct world w;
+    size_t i;
     int fired;
     long long limit = -1;
     if (argc > 2 || (argc == 2 && (limit = duration_ms(argv[1])) < 0)) {
@@ -368,7 +442,12 @@ int main(int argc, char **argv)
         return 2;
     }
     order_steps();
+    if (!sensors_scripted()) {
+        return 2;
+    }
     w.cb.post = on_post;
+    w.cb.suppressed = on_suppressed;
+    w.cb.took_over = on_took_over;
     w.cb.entered = on_entered;
     w.cb.finished = on_finished;
     w.cb.answered = on_answered;
@@ -379,6 +458,9 @@ int main(int argc, char **argv)
     w.cb.warned = on_warned;
     w.cb.round_started = NULL;
     behaviour_init(&w);
+    for (i = 0; i < step_count; i++) {
+        (void)behaviour_supply(&w, steps[i].name);
+    }
     w.now_ms = 0;
     /* What the script says from the start is posted before the first round. */
     while (next_step < step_count && steps[next_step].start) {

@@ -12,8 +12,17 @@ pub(crate) struct Plan {
     pub theories: Vec<PlannedTheory>,
     /// The theories' outputs, numbered across the behaviour.
     pub outputs: Vec<Output>,
-    /// Posting types that set a theory input, in theory order.
+    /// Posting types that set a theory input, in theory order, then the impersonator's atoms.
     pub inputs: Vec<Input>,
+    /// How many atoms come from outside (no theory answers them; the behaviour's script or a
+    /// sensor does): the host supplies them, from its script.
+    pub outside: usize,
+    /// Each sensor wrapper (module name) and the atoms it answers: a run's script must set one
+    /// of them, so that the interpreter leaves the sensor out as the compiled program does.
+    pub sensors: Vec<(String, Vec<String>)>,
+    /// The behaviour's own script (`[impersonator]`), its file as shown and its text: what a
+    /// run without `--script` plays.
+    pub script: Option<(String, String)>,
     /// The value slots (each machine's own variables, then the globals): whether each starts as
     /// a truth value rather than a whole number.
     pub slots: Vec<bool>,
@@ -23,26 +32,80 @@ pub(crate) struct Plan {
     pub longest_text: usize,
     /// Places that post a control command: no ringlet queues more than that.
     pub commands: usize,
+    /// The types under subsumption (the manifest's `[suppress]`), in name order.
+    pub suppressed: Vec<Suppressed>,
+}
+
+/// A type under subsumption: a posting of a higher layer holds it against lower layers'.
+pub(crate) struct Suppressed {
+    pub ty: String,
+    pub hold_ms: u64,
 }
 
 impl Plan {
-    /// Where each theory's decision variables start in the behaviour's one input array.
-    pub fn offsets(&self) -> Vec<usize> {
-        let mut offset = 0;
-        let mut offsets = Vec::new();
-        for theory in &self.theories {
-            offsets.push(offset);
-            offset += theory.compiled.variables();
-        }
-        offsets
-    }
-
-    /// The decision variables of every theory (at least one, for a C array's sake).
+    /// The decision variables of every theory, then a known/true pair for each atom the
+    /// impersonator answers.
     pub fn variables(&self) -> usize {
         self.theories
             .iter()
             .map(|t| t.compiled.variables())
             .sum::<usize>()
+            + 2 * self.outside
+    }
+
+    /// Each posting type that sets inputs, in first-seen order, with the variable pairs it sets.
+    pub fn input_types(&self) -> Vec<(&str, Vec<usize>)> {
+        let mut types: Vec<(&str, Vec<usize>)> = Vec::new();
+        for input in &self.inputs {
+            match types.iter_mut().find(|(ty, _)| *ty == input.ty) {
+                Some((_, variables)) => variables.push(input.variable),
+                None => types.push((&input.ty, vec![input.variable])),
+            }
+        }
+        types
+    }
+
+    /// The outputs a theory answers (the first ones; the impersonator's follow).
+    pub fn theory_outputs(&self) -> usize {
+        self.outputs
+            .iter()
+            .filter(|o| matches!(o.answer, Answer::Theory { .. }))
+            .count()
+    }
+
+    /// The machines' subsumption layers, each priority once, lowest first.
+    pub fn layers(&self) -> Vec<u32> {
+        let mut layers: Vec<u32> = self.machines.iter().map(|m| m.priority).collect();
+        layers.sort_unstable();
+        layers.dedup();
+        layers
+    }
+
+    /// Room for the longest text a posting makes (its end included), constant or built: what
+    /// a posting held back by subsumption keeps until it takes over.
+    pub fn longest_posting(&self) -> usize {
+        fn walk(step: &Step, longest: &mut usize) {
+            match step {
+                Step::Post { content, .. } => *longest = (*longest).max(content.len() + 1),
+                Step::Block(steps) => steps.iter().for_each(|s| walk(s, longest)),
+                Step::Loop {
+                    init, body, step, ..
+                } => {
+                    for s in init.iter().chain(step.iter()) {
+                        walk(s, longest);
+                    }
+                    walk(body, longest);
+                }
+                _ => {}
+            }
+        }
+        let mut longest = self.longest_text;
+        for state in self.machines.iter().flat_map(|m| &m.states) {
+            for s in state.entry.iter().chain(&state.exit).chain(&state.internal) {
+                walk(s, &mut longest);
+            }
+        }
+        longest
     }
 }
 
@@ -54,17 +117,30 @@ pub(crate) struct PlannedTheory {
 
 pub(crate) struct Output {
     pub name: String,
-    pub theory: usize,
-    pub index: usize,
+    pub answer: Answer,
     /// The expert a trace names as its answerer.
     pub expert: String,
+}
+
+/// Where an output's answer comes from.
+pub(crate) enum Answer {
+    /// Output `index` of theory `theory`, whose decision variables start at `offset`.
+    Theory {
+        theory: usize,
+        index: usize,
+        offset: usize,
+    },
+    /// From outside: the last truth the host posted for it (false before any), the pair of
+    /// decision variables (known, true) at `variable`; answered by the impersonator when the
+    /// run's script sets it, else by no expert.
+    Outside { variable: usize },
 }
 
 pub(crate) struct Input {
     /// The posting type that sets it.
     pub ty: String,
-    pub theory: usize,
-    pub index: usize,
+    /// Its pair of decision variables (known, true).
+    pub variable: usize,
 }
 
 pub(crate) struct MachinePlan {
@@ -72,6 +148,8 @@ pub(crate) struct MachinePlan {
     pub initial: i64,
     /// Whether it runs from the start (else dormant until started).
     pub start: bool,
+    /// Its subsumption layer (the manifest's `priority`), which its postings carry.
+    pub priority: u32,
     pub states: Vec<StatePlan>,
 }
 

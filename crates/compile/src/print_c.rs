@@ -2,8 +2,10 @@
 //! struct, its callbacks), `behaviour.c` (a `ring_M` a machine, the round schedule), a decision
 //! function a theory, and the host harness `main.c`.
 
-use crate::c_template::{BODY, HEADER, RING};
-use crate::plan::{Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value};
+use crate::c_template::{BODY, HEADER, HELD_TYPES, RING, SUPPRESSION};
+use crate::plan::{
+    Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
+};
 use proclaim_fsm::control::Command;
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::Write;
@@ -70,7 +72,30 @@ fn header(plan: &Plan) -> String {
         plan.commands.max(1),
         plan.period_ms
     );
-    h.push_str(HEADER);
+    let held = !plan.suppressed.is_empty();
+    if held {
+        let _ = writeln!(
+            h,
+            "#define BEHAVIOUR_SUPPRESSED {}\n#define BEHAVIOUR_LAYERS {}\n#define BEHAVIOUR_HELD_TEXT {}\n",
+            plan.suppressed.len(),
+            plan.layers().len(),
+            plan.longest_posting()
+        );
+    }
+    h.push_str(&fill(
+        HEADER,
+        &[
+            ("held_types", if held { HELD_TYPES } else { "" }),
+            (
+                "held_field",
+                if held {
+                    "    /* Each type under subsumption, in name order. */\n    struct held_line held[BEHAVIOUR_SUPPRESSED];\n"
+                } else {
+                    ""
+                },
+            ),
+        ],
+    ));
     h
 }
 
@@ -90,25 +115,13 @@ fn source(plan: &Plan) -> String {
     for theory in &plan.theories {
         let _ = writeln!(c, "#include \"{}.h\"", theory.prefix);
     }
-    let offsets = plan.offsets();
-    let mut answer_cases = String::new();
-    for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = writeln!(
-            answer_cases,
-            "    case {k}:\n        return {}_answer({}u, w->in + {});",
-            plan.theories[o.theory].prefix, o.index, offsets[o.theory]
-        );
-    }
-    let mut input_cases = String::new();
-    for input in &plan.inputs {
-        let v = offsets[input.theory] + 2 * input.index;
-        let _ = writeln!(input_cases, "    if (same(type, \"{}\")) {{\n        set_input(w, {v}, content);\n        return 1;\n    }}", esc(&input.ty));
-    }
+    let (answer_cases, input_cases) = answers_and_inputs(plan);
     let schedule = Schedule::of(plan);
-    let answers_body = if plan.outputs.is_empty() {
+    // Only a theory's answers: the impersonator's atoms are the script's to set.
+    let answers_body = if plan.theory_outputs() == 0 {
         "    (void)atom;\n    return 0;\n".to_string()
     } else {
-        format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.outputs.len())
+        format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.theory_outputs())
     };
     let var_inits: String = plan
         .slots
@@ -119,6 +132,8 @@ fn source(plan: &Plan) -> String {
             format!("    w->var[{slot}] = {value};\n")
         })
         .collect();
+    let held = Held::of(plan);
+    let (sensor_atoms, sensor_starts) = sensor_tables(plan);
     let outputs_n = plan.outputs.len().max(1).to_string();
     let machines = plan.machines.len().max(1).to_string();
     let loop_limit = LOOP_LIMIT.to_string();
@@ -139,6 +154,23 @@ fn source(plan: &Plan) -> String {
                 "machine_names",
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
+            ("priorities", &held.priorities),
+            ("theory_outputs", &plan.theory_outputs().to_string()),
+            ("outputs", &plan.outputs.len().to_string()),
+            ("sensors", &plan.sensors.len().to_string()),
+            ("sensors_n", &plan.sensors.len().max(1).to_string()),
+            (
+                "sensor_names",
+                &strings(plan.sensors.iter().map(|(n, _)| n.as_str())),
+            ),
+            ("sensor_atoms_n", &sensor_atoms.len().max(1).to_string()),
+            ("sensor_atoms", &strings(sensor_atoms.iter().copied())),
+            ("sensor_starts", &sensor_starts.join(", ")),
+            ("suppression", &held.suppression),
+            ("held_back", &held.held_back),
+            ("held_init", &held.init),
+            ("take_over", &held.take_over),
+            ("release_due", &held.release_due),
             ("input_cases", &input_cases),
             ("answer_cases", &answer_cases),
             ("runtime", RUNTIME),
@@ -155,6 +187,128 @@ fn source(plan: &Plan) -> String {
         ],
     ));
     c
+}
+
+/// The cases of `answer` (a theory's decision function, or an atom from outside's variable)
+/// and of `apply_input` (each type once, setting every variable pair it sets).
+fn answers_and_inputs(plan: &Plan) -> (String, String) {
+    let mut answer_cases = String::new();
+    for (k, o) in plan.outputs.iter().enumerate() {
+        let _ = match o.answer {
+            Answer::Theory {
+                theory,
+                index,
+                offset,
+            } => writeln!(
+                answer_cases,
+                "    case {k}:\n        return {}_answer({index}u, w->in + {offset});",
+                plan.theories[theory].prefix
+            ),
+            Answer::Outside { variable } => writeln!(
+                answer_cases,
+                "    case {k}:\n        return w->in[{}];",
+                variable + 1
+            ),
+        };
+    }
+    let mut input_cases = String::new();
+    for (ty, variables) in plan.input_types() {
+        let sets: String = variables
+            .iter()
+            .map(|v| format!("        set_input(w, {v}, content);\n"))
+            .collect();
+        let _ = writeln!(
+            input_cases,
+            "    if (same(type, \"{}\")) {{\n{sets}        return 1;\n    }}",
+            esc(ty)
+        );
+    }
+    (answer_cases, input_cases)
+}
+
+/// Every sensor's atoms one after another, and where each sensor's begin (and the last ends).
+fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
+    let sensor_atoms: Vec<&str> = plan
+        .sensors
+        .iter()
+        .flat_map(|(_, atoms)| atoms.iter().map(String::as_str))
+        .collect();
+    let mut sensor_starts = vec!["0u".to_string()];
+    let mut start = 0;
+    for (_, atoms) in &plan.sensors {
+        start += atoms.len();
+        sensor_starts.push(format!("{start}u"));
+    }
+    (sensor_atoms, sensor_starts)
+}
+
+/// The parts of `behaviour.c` for subsumption: empty but the priorities for a behaviour
+/// without `[suppress]`.
+struct Held {
+    priorities: String,
+    suppression: String,
+    held_back: String,
+    init: String,
+    take_over: String,
+    release_due: String,
+}
+
+impl Held {
+    fn of(plan: &Plan) -> Held {
+        let priorities: Vec<String> = plan
+            .machines
+            .iter()
+            .map(|m| format!("{}ul", m.priority))
+            .collect();
+        let priorities = if priorities.is_empty() {
+            "0".into()
+        } else {
+            priorities.join(", ")
+        };
+        if plan.suppressed.is_empty() {
+            return Held {
+                priorities,
+                suppression: String::new(),
+                held_back: String::new(),
+                init: String::new(),
+                take_over: String::new(),
+                release_due: String::new(),
+            };
+        }
+        let layers = plan.layers();
+        let machine_layers: Vec<String> = plan
+            .machines
+            .iter()
+            .map(|m| {
+                let layer = layers.iter().position(|p| *p == m.priority).unwrap_or(0);
+                format!("{layer}u")
+            })
+            .collect();
+        let held_ms: Vec<String> = plan
+            .suppressed
+            .iter()
+            .map(|s| format!("{}u", s.hold_ms))
+            .collect();
+        let suppression = fill(
+            SUPPRESSION,
+            &[
+                (
+                    "held_types",
+                    &strings(plan.suppressed.iter().map(|s| s.ty.as_str())),
+                ),
+                ("held_ms", &held_ms.join(", ")),
+                ("machine_layers", &machine_layers.join(", ")),
+            ],
+        );
+        Held {
+            priorities,
+            suppression,
+            held_back: "    if (held_back(w, m, type, content)) {\n        return;\n    }\n".into(),
+            init: "    for (v = 0; v < BEHAVIOUR_SUPPRESSED; v++) {\n        w->held[v].shown.known = 0;\n        w->held[v].subsuming = 0;\n        for (k = 0; k < BEHAVIOUR_LAYERS; k++) {\n            w->held[v].newest[k].known = 0;\n        }\n    }\n".into(),
+            take_over: "    take_over(w);\n".into(),
+            release_due: "    due = release_due(w, due);\n".into(),
+        }
+    }
 }
 
 /// The parts of `behaviour.c` written once a machine.
@@ -188,7 +342,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (k < theory_outputs || w->asked[{m}][k]) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"

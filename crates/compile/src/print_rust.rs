@@ -4,7 +4,9 @@
 //! The trace's events (`proclaim-runner`) and the script's reading (`proclaim-syntax`) are this
 //! repository's crates', by path, so a trace is the interpreter's by construction.
 
-use crate::plan::{Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value};
+use crate::plan::{
+    Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
+};
 use crate::print_c::fill;
 use crate::rust_template::{BODY, RING, RUNTIME};
 use crate::tabulate::Compiled;
@@ -54,9 +56,10 @@ fn package_name(name: &str) -> String {
 fn manifest(plan: &Plan, crates: &Path) -> String {
     let path = |krate: &str| format!("{:?}", crates.join(krate).to_string_lossy());
     format!(
-        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
+        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-board = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
         plan.name.replace('\n', " "),
         package_name(&plan.name),
+        path("board"),
         path("runner"),
         path("syntax"),
     )
@@ -95,26 +98,71 @@ fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
     quoted.join(", ")
 }
 
-/// `src/behaviour.rs`.
-fn behaviour(plan: &Plan) -> String {
-    let offsets = plan.offsets();
+/// The arms of `answer` (a theory's decision diagram, or an atom from outside's variable) and
+/// of `apply_input` (each type once, setting every variable pair it sets).
+fn answers_and_inputs(plan: &Plan) -> (String, String) {
     let mut answer_cases = String::new();
     for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = writeln!(
-            answer_cases,
-            "        {k} => crate::theories::{}({}, &w.input[{}..]),",
-            plan.theories[o.theory].prefix, o.index, offsets[o.theory]
-        );
+        let _ = match o.answer {
+            Answer::Theory {
+                theory,
+                index,
+                offset,
+            } => writeln!(
+                answer_cases,
+                "        {k} => crate::theories::{}({index}, &w.input[{offset}..]),",
+                plan.theories[theory].prefix
+            ),
+            Answer::Outside { variable } => {
+                writeln!(answer_cases, "        {k} => w.input[{}],", variable + 1)
+            }
+        };
     }
     let mut input_cases = String::new();
-    for input in &plan.inputs {
-        let v = offsets[input.theory] + 2 * input.index;
+    for (ty, variables) in plan.input_types() {
+        let sets: String = variables
+            .iter()
+            .map(|v| format!("            set_input(w, {v}, content);\n"))
+            .collect();
         let _ = writeln!(
             input_cases,
-            "        {:?} => {{\n            set_input(w, {v}, content);\n            true\n        }}",
-            input.ty
+            "        {ty:?} => {{\n{sets}            true\n        }}"
         );
     }
+    (answer_cases, input_cases)
+}
+
+/// The constants of what comes from outside the machines' code: each machine's priority, the
+/// types under subsumption, the sensors' atoms and the behaviour's own script.
+fn outside_tables(plan: &Plan) -> (String, String, String, String) {
+    let priorities: Vec<String> = plan
+        .machines
+        .iter()
+        .map(|m| m.priority.to_string())
+        .collect();
+    let priorities = priorities.join(", ");
+    let suppressed: Vec<String> = plan
+        .suppressed
+        .iter()
+        .map(|s| format!("({:?}, {})", s.ty, s.hold_ms))
+        .collect();
+    let suppressed = suppressed.join(", ");
+    let sensors: Vec<String> = plan
+        .sensors
+        .iter()
+        .map(|(name, atoms)| format!("({name:?}, &{atoms:?})"))
+        .collect();
+    let sensors = sensors.join(", ");
+    let script = match &plan.script {
+        Some((file, text)) => format!("Some(({file:?}, {text:?}))"),
+        None => "None".into(),
+    };
+    (priorities, suppressed, sensors, script)
+}
+
+/// `src/behaviour.rs`.
+fn behaviour(plan: &Plan) -> String {
+    let (answer_cases, input_cases) = answers_and_inputs(plan);
     let var_inits: Vec<&str> = plan
         .slots
         .iter()
@@ -127,6 +175,7 @@ fn behaviour(plan: &Plan) -> String {
         })
         .collect();
     let schedule = Schedule::of(plan);
+    let (priorities, suppressed, sensors, script) = outside_tables(plan);
     let numbers = [
         plan.machines.len().to_string(),
         plan.outputs.len().to_string(),
@@ -157,6 +206,13 @@ fn behaviour(plan: &Plan) -> String {
                 "machine_names",
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
+            ("priorities", &priorities),
+            ("theory_outputs", &plan.theory_outputs().to_string()),
+            ("script", &script),
+            ("sensors_n", &plan.sensors.len().to_string()),
+            ("sensors", &sensors),
+            ("suppressed_n", &plan.suppressed.len().to_string()),
+            ("suppressed", &suppressed),
             ("input_cases", &input_cases),
             ("answer_cases", &answer_cases),
             ("code", &schedule.code),
@@ -189,7 +245,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if w.status[{m}] == RUNNING && !w.fresh[{m}] && !done(w, {m}) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (k < THEORY_OUTPUTS || w.asked[{m}][k]) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if w.status[{m}] == RUNNING {{\n        due = due_{m}(w, due);\n    }}"

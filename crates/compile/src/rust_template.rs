@@ -157,6 +157,9 @@ pub struct World {
     pub input: Vec<bool>,
     /// The answers each machine's last ringlet saw.
     pub seen: Vec<Vec<bool>>,
+    /// The answers each machine's last ringlet asked (a label's `&&` and `||` ask no further
+    /// than they need): an atom from outside is news only to a machine that asked it.
+    pub asked: Vec<Vec<bool>>,
     pub initial: Vec<i64>,
     /// Running, suspended or dormant; started in this round (it rings from the next).
     pub status: Vec<u8>,
@@ -175,6 +178,11 @@ pub struct World {
     pub sink: Option<Box<dyn FnMut(Event)>>,
     /// Set once every machine that started is in a final state: the trace ends there.
     pub over: bool,
+    /// What holds each type under subsumption, for a behaviour that declares any.
+    pub suppressor: Option<proclaim_board::Suppressor>,
+    /// Whether each output has an answerer: a theory's always, an atom from outside when the
+    /// host supplies it (else no expert answers it, false).
+    pub supplied: Vec<bool>,
 }
 
 impl World {
@@ -192,6 +200,7 @@ impl World {
             entered_ms: vec![0; machines],
             input: vec![false; variables],
             seen: vec![vec![false; outputs]; machines],
+            asked: vec![vec![false; outputs]; machines],
             initial: vec![0; machines],
             status: vec![RUNNING; machines],
             fresh: vec![false; machines],
@@ -203,6 +212,8 @@ impl World {
             text: String::new(),
             sink,
             over: false,
+            suppressor: None,
+            supplied: vec![false; outputs],
         }
     }
 
@@ -217,12 +228,50 @@ impl World {
         }
     }
 
-    pub fn posted(&mut self, machine: &str, ty: &str, content: &str) {
+    pub fn posted(&mut self, machine: &str, ty: &str, content: &str, priority: u32) {
         self.report(|round, at| Event::Posted {
             machine: machine.to_string(),
             ty: ty.to_string(),
             content: content.to_string(),
-            priority: 0,
+            priority,
+            round,
+            at,
+        });
+    }
+
+    /// A posting no reader saw: `by`'s, of the higher `by_priority`, holds the type until `until`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn suppressed(
+        &mut self,
+        machine: &str,
+        ty: &str,
+        content: &str,
+        priority: u32,
+        by: &str,
+        by_priority: u32,
+        until: Duration,
+    ) {
+        self.report(|round, at| Event::Suppressed {
+            machine: machine.to_string(),
+            ty: ty.to_string(),
+            content: content.to_string(),
+            priority,
+            by: by.to_string(),
+            by_priority,
+            until,
+            round,
+            at,
+        });
+    }
+
+    /// A hold ran out and this lower posting, made at `posted`, is on the board now.
+    pub fn took_over(&mut self, machine: &str, ty: &str, content: &str, priority: u32, posted: Duration) {
+        self.report(|round, at| Event::TookOver {
+            machine: machine.to_string(),
+            ty: ty.to_string(),
+            content: content.to_string(),
+            priority,
+            posted,
             round,
             at,
         });
@@ -247,12 +296,13 @@ impl World {
         });
     }
 
-    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: &str) {
+    /// `expert` answered, or none did (`None`).
+    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: Option<&str>) {
         self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
-            by: Answerer::Expert(expert.to_string()),
+            by: expert.map_or(Answerer::NoExpert, |e| Answerer::Expert(e.to_string())),
             round,
             at,
         });
@@ -353,8 +403,18 @@ pub const PERIOD_MS: u64 = @period_ms@;
 const COMMANDS: usize = @commands@;
 const LOOP_LIMIT: u32 = @loop_limit@;
 const OUTPUT_NAME: [&str; OUTPUTS] = [@output_names@];
+/// The outputs a theory answers come first; the impersonator's atoms follow.
+const THEORY_OUTPUTS: usize = @theory_outputs@;
+/// The behaviour's own script (`[impersonator]`): its file and text, played without `--script`.
+pub const SCRIPT: Option<(&str, &str)> = @script@;
+/// Each sensor wrapper and the atoms it answers: the host's script must set one of them.
+const SENSORS: [(&str, &[&str]); @sensors_n@] = [@sensors@];
 const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
+/// Each machine's subsumption layer, which its postings carry.
+const PRIORITY: [u32; MACHINES] = [@priorities@];
+/// The types under subsumption and how long a higher layer's posting holds each, in ms.
+const SUPPRESSED: [(&str, u64); @suppressed_n@] = [@suppressed@];
 
 /// A theory input from a posting's content: true, false, or unknown for anything else.
 fn set_input(w: &mut World, v: usize, content: &str) {
@@ -382,13 +442,43 @@ pub fn answer(w: &World, k: usize) -> bool {
 
 fn ask(w: &mut World, m: usize, k: usize) -> bool {
     let value = answer(w, k);
-    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, OUTPUT_EXPERT[k]);
+    w.asked[m][k] = true;
+    let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
+    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, expert);
     value
 }
 
+/// A machine's posting: shown (then a theory input takes it), or held back by a higher
+/// layer's posting of a type under subsumption (then no reader sees it).
 fn post(w: &mut World, m: usize, ty: &str, content: &str) {
-    w.posted(MACHINE_NAME[m], ty, content);
+    if let Some(suppressor) = w.suppressor.as_mut() {
+        let now = std::time::Duration::from_millis(w.now_ms);
+        let value = proclaim_board::Value::Str(content.to_string());
+        let verdict = suppressor.offer(MACHINE_NAME[m], ty, &value, PRIORITY[m], now);
+        if let proclaim_board::Visibility::Suppressed { by, priority, until } = verdict {
+            w.suppressed(MACHINE_NAME[m], ty, content, PRIORITY[m], &by, priority, until);
+            return;
+        }
+    }
+    w.posted(MACHINE_NAME[m], ty, content, PRIORITY[m]);
     apply_input(w, ty, content);
+}
+
+/// At a round's start: every held type whose hold ran out with a lower posting behind it gets
+/// that posting, as the runner's schedule has it.
+fn take_over(w: &mut World) {
+    let Some(suppressor) = w.suppressor.as_mut() else {
+        return;
+    };
+    let released = suppressor.release(std::time::Duration::from_millis(w.now_ms));
+    for posting in released {
+        let content = match &posting.value {
+            proclaim_board::Value::Str(text) => text.clone(),
+            other => other.to_string(),
+        };
+        w.took_over(&posting.module, &posting.ty, &content, posting.priority, posting.at);
+        apply_input(w, &posting.ty, &content);
+    }
 }
 
 /// Posts the text built.
@@ -408,6 +498,7 @@ fn snapshot(w: &mut World, m: usize) {
     for k in 0..OUTPUTS {
         let value = answer(w, k);
         w.seen[m][k] = value;
+        w.asked[m][k] = false;
     }
 }
 
@@ -512,6 +603,13 @@ fn final_state(w: &World, m: usize) -> bool {
 /// The behaviour at its start, reporting its events to `sink` (none made without one).
 pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, sink);
+    w.supplied[..THEORY_OUTPUTS].fill(true);
+    if !SUPPRESSED.is_empty() {
+        let holds = SUPPRESSED
+            .iter()
+            .map(|(ty, ms)| (*ty, std::time::Duration::from_millis(*ms)));
+        w.suppressor = Some(proclaim_board::Suppressor::new(holds));
+    }
     w.var = vec![@var_inits@];
 @inits@    w
 }
@@ -522,6 +620,7 @@ pub fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
     let mut fired = false;
     w.round += 1;
     started(w);
+    take_over(w);
     for m in 0..MACHINES {
         w.fresh[m] = false;
     }
@@ -539,9 +638,30 @@ pub fn news(w: &World) -> bool {
 @reads@    false
 }
 
-/// Whether `atom` is an answer of the behaviour's theories.
+/// Whether `atom` is an answer of the behaviour's theories (the script may not set it).
 pub fn answers(atom: &str) -> bool {
-    OUTPUT_NAME.contains(&atom)
+    OUTPUT_NAME[..THEORY_OUTPUTS].contains(&atom)
+}
+
+/// The host answers `atom` from outside (its script sets it): whether it is an atom from
+/// outside the behaviour's labels ask.
+pub fn supply(w: &mut World, atom: &str) -> bool {
+    match OUTPUT_NAME[THEORY_OUTPUTS..].iter().position(|o| *o == atom) {
+        Some(k) => {
+            w.supplied[THEORY_OUTPUTS + k] = true;
+            true
+        }
+        None => false,
+    }
+}
+
+/// A sensor none of whose atoms are in `scripted`, and its atoms: the interpreter would run
+/// that sensor, which a compiled behaviour does not have.
+pub fn unscripted_sensor(scripted: &[&str]) -> Option<(&'static str, &'static [&'static str])> {
+    SENSORS
+        .iter()
+        .find(|(_, atoms)| !atoms.iter().any(|a| scripted.contains(a)))
+        .copied()
 }
 
 /// Whether `name` is a machine's (a posting to it is a control command).
@@ -552,7 +672,11 @@ pub fn is_machine(name: &str) -> bool {
 /// Milliseconds from now until the next round is due without news (a timeout or the period).
 pub fn next_due_ms(w: &World) -> u64 {
     let mut due = PERIOD_MS;
-@dues@    due
+@dues@    // A hold running out with a lower posting behind it changes what readers see.
+    if let Some(release) = w.suppressor.as_ref().and_then(|s| s.next_release()) {
+        due = due.min((release.as_millis() as u64).saturating_sub(w.now_ms));
+    }
+    due
 }
 
 /// Whether every machine that starts with the behaviour is in a final state, its OnEntry run.
