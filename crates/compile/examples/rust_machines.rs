@@ -11,29 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 use std::sync::Arc;
 
-const ROUNDS: &str = include_str!("rust_rounds.rs.txt");
+#[path = "common/microwave_copies.rs"]
+mod microwave_copies;
 
-/// A behaviour folder of `machines` copies of the microwave's machine and its theory.
-fn copies(root: &Path, folder: &Path, machines: usize) {
-    let machine = std::fs::read_to_string(root.join("machines/microwave/Microwave.machine"))
-        .expect("the microwave's machine");
-    std::fs::copy(
-        root.join("theories/microwave.dl"),
-        folder.join("microwave.dl"),
-    )
-    .expect("the microwave's theory");
-    let mut manifest = String::from("[[theory]]\nfile = \"microwave.dl\"\n");
-    for i in 0..machines {
-        let name = format!("Microwave{i}");
-        std::fs::write(
-            folder.join(format!("{name}.machine")),
-            machine.replace("machine Microwave", &format!("machine {name}")),
-        )
-        .expect("a machine written");
-        manifest.push_str(&format!("[[machine]]\nfile = \"{name}.machine\"\n"));
-    }
-    std::fs::write(folder.join("behaviour.toml"), manifest).expect("the manifest written");
-}
+const ROUNDS: &str = include_str!("rust_rounds.rs.txt");
 
 /// Where the project is built: beside the workspace's own builds, so its crates build once.
 fn target_dir(root: &Path) -> PathBuf {
@@ -55,7 +36,7 @@ fn main() -> ExitCode {
     let folder = dir.join("behaviour");
     let out = dir.join("project");
     std::fs::create_dir_all(&folder).expect("a scratch folder");
-    copies(&root, &folder, machines);
+    microwave_copies::copies(&root, &folder, machines);
     let behaviour = match load("machines", Arc::new(Folder::new(&folder))) {
         Ok(b) => b,
         Err(problems) => {

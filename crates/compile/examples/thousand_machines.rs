@@ -10,6 +10,9 @@ use std::path::Path;
 use std::process::{Command, ExitCode};
 use std::sync::Arc;
 
+#[path = "common/microwave_copies.rs"]
+mod microwave_copies;
+
 const HOST: &str = include_str!("thousand_machines.c");
 
 fn main() -> ExitCode {
@@ -22,24 +25,7 @@ fn main() -> ExitCode {
     let out = dir.join("c");
     std::fs::create_dir_all(&folder).expect("a scratch folder");
     std::fs::create_dir_all(&out).expect("a scratch folder");
-    let machine = std::fs::read_to_string(root.join("machines/microwave/Microwave.machine"))
-        .expect("the microwave's machine");
-    std::fs::copy(
-        root.join("theories/microwave.dl"),
-        folder.join("microwave.dl"),
-    )
-    .expect("the microwave's theory");
-    let mut manifest = String::from("[[theory]]\nfile = \"microwave.dl\"\n");
-    for i in 0..machines {
-        let name = format!("Microwave{i}");
-        std::fs::write(
-            folder.join(format!("{name}.machine")),
-            machine.replace("machine Microwave", &format!("machine {name}")),
-        )
-        .expect("a machine written");
-        manifest.push_str(&format!("[[machine]]\nfile = \"{name}.machine\"\n"));
-    }
-    std::fs::write(folder.join("behaviour.toml"), manifest).expect("the manifest written");
+    microwave_copies::copies(&root, &folder, machines);
     let behaviour = match load("thousand", Arc::new(Folder::new(&folder))) {
         Ok(b) => b,
         Err(problems) => {
