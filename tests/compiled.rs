@@ -150,6 +150,28 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// Runs of press or shootout (neither ships a script): its own to the end, then `seeded`
+/// scripts of postings no label reads (news to nobody) at any millisecond, each stopped at a
+/// seeded time. Name, script and `--for` of each.
+pub(crate) fn runs_of_press_or_shootout(
+    name: &str,
+    seeded: usize,
+) -> Vec<(String, String, Option<String>)> {
+    let mut runs = vec![(format!("{name}-own"), String::new(), None)];
+    let mut seed = 0x5eed_0033 ^ name.len() as u64;
+    for n in 0..seeded {
+        let mut script = String::new();
+        for _ in 0..splitmix(&mut seed) % 5 {
+            let at = splitmix(&mut seed) % 12_000;
+            let value = splitmix(&mut seed) % 2 == 0;
+            script.push_str(&format!("at {at}ms crowd = {value}\n"));
+        }
+        let run_for = format!("{}ms", 1 + splitmix(&mut seed) % 12_000);
+        runs.push((format!("{name}-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
 /// A lamp on timeouts, ending when the theory says no light.
 const BLINK: &str = "machine Blink\ninitial ON\nstate ON {\n    entry {\n        Lamp: on\n    }\n    when timeout(250ms) -> OFF\n}\nstate OFF {\n    entry {\n        Lamp: off\n    }\n    when timeout(1s) && !light -> END\n    when timeout(400ms) -> ON\n}\nstate END {\n    entry {\n        Lamp: gone\n    }\n}\n";
 
@@ -349,21 +371,7 @@ fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_t
         let name = behaviour.trim_start_matches("machines/");
         let dir = scratch(name);
         build(behaviour, &dir);
-        // Neither ships a script: run to the end, then seeded scripts of postings no label
-        // reads (news to nobody) at any millisecond, stopped at any time.
-        let mut cases: Vec<(String, String, Option<String>)> =
-            vec![(format!("{name}-own"), String::new(), None)];
-        let mut seed = 0x5eed_0033 ^ name.len() as u64;
-        for n in 0..12 {
-            let mut script = String::new();
-            for _ in 0..splitmix(&mut seed) % 5 {
-                let at = splitmix(&mut seed) % 12_000;
-                let value = splitmix(&mut seed) % 2 == 0;
-                script.push_str(&format!("at {at}ms crowd = {value}\n"));
-            }
-            let run_for = format!("{}ms", 1 + splitmix(&mut seed) % 12_000);
-            cases.push((format!("{name}-random{n}"), script, Some(run_for)));
-        }
+        let cases = runs_of_press_or_shootout(name, 12);
         for (case, script, run_for) in &cases {
             let (interpreted, compiled) = traces(behaviour, &dir, case, script, run_for.as_deref());
             assert_same(case, &interpreted, &compiled);

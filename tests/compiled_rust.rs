@@ -6,8 +6,8 @@
 //! crates they depend on build once.
 
 use super::compiled::{
-    assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour, scratch,
-    splitmix, subsumption_runs, Case,
+    assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
+    runs_of_press_or_shootout, scratch, splitmix, subsumption_runs, Case,
 };
 use crate::proclaim;
 use std::path::{Path, PathBuf};
@@ -58,18 +58,7 @@ fn microwave() -> Compiled {
 
 /// Press and shootout to their ends, and stopped at seeded times with postings no label reads.
 fn shipped(name: &str) -> Compiled {
-    let mut runs = vec![(format!("{name}-own"), String::new(), None)];
-    let mut seed = 0x5eed_0033 ^ name.len() as u64;
-    for n in 0..3 {
-        let mut script = String::new();
-        for _ in 0..splitmix(&mut seed) % 5 {
-            let at = splitmix(&mut seed) % 12_000;
-            let value = splitmix(&mut seed) % 2 == 0;
-            script.push_str(&format!("at {at}ms crowd = {value}\n"));
-        }
-        let run_for = format!("{}ms", 1 + splitmix(&mut seed) % 12_000);
-        runs.push((format!("{name}-random{n}"), script, Some(run_for)));
-    }
+    let runs = runs_of_press_or_shootout(name, 3);
     Compiled {
         name: name.into(),
         folder: format!("machines/{name}").into(),
