@@ -138,6 +138,38 @@ fn only_the_zenoh_crate_depends_on_zenoh() {
     );
 }
 
+/// README's test command names no package, so it runs the workspace's default members: the
+/// binary and every crate but zenoh (whose suite `.ci/run` runs with the feature on). A crate
+/// added under `crates/` and left out of that list would never be tested by it.
+#[test]
+fn the_default_members_are_every_crate_but_zenoh() {
+    let manifest =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml")).unwrap();
+    let list = manifest
+        .split_once("default-members = [")
+        .and_then(|(_, rest)| rest.split_once(']'))
+        .expect("Cargo.toml has default-members")
+        .0;
+    let members: BTreeSet<String> = list
+        .split(',')
+        .map(|m| m.trim().trim_matches('"').to_string())
+        .filter(|m| !m.is_empty())
+        .collect();
+    let mut expected: BTreeSet<String> = crates_on_disk()
+        .into_iter()
+        .filter(|name| name != "zenoh")
+        .map(|name| format!("crates/{name}"))
+        .collect();
+    expected.insert(".".to_string());
+    assert_eq!(members, expected);
+    let ci =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(".ci/run")).unwrap();
+    assert!(
+        ci.contains("-p proclaim-zenoh"),
+        ".ci/run tests the Zenoh crate on its own"
+    );
+}
+
 /// The crates whose paragraphs say they do no I/O, are pure, or open no sockets and read no
 /// files: none of their library code names the file system, the network or processes.
 #[test]
