@@ -31,7 +31,7 @@ fn the_checked_in_header_is_current() {
             .unwrap_or(checked_in.lines().count().min(generated.lines().count()));
         panic!(
             "include/proclaim.h is stale (first difference at line {}); run \
-             `PROCLAIM_BLESS=1 cargo test -p proclaim-capi --test header` and commit it",
+             `PROCLAIM_BLESS=1 cargo test -p proclaim-capi --test tests header` and commit it",
             first_difference + 1
         );
     }

@@ -4,7 +4,7 @@
 //! undecided indeed. The suite checks the first 100 of the seeded sequence; before a release,
 //! all 1,000 (`cargo nextest run -p proclaim-compile --run-ignored all`).
 
-mod common;
+use crate::common;
 
 use proclaim_cdl::{load_named, Algorithm, Language, SearchLimits, Session, Theory};
 use proclaim_compile::{compile, CompileError, Compiled, Domain};

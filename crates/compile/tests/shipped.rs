@@ -2,7 +2,7 @@
 //! agrees with the reasoner on every row of its truth table, and, where a behaviour could run
 //! it, on every valuation with unknown inputs too.
 
-mod common;
+use crate::common;
 
 use proclaim_cdl::{load_named, Language, SearchLimits, Theory};
 use proclaim_compile::{compile, CompileError, Domain};

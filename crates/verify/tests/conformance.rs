@@ -3,9 +3,7 @@
 //! model (`proclaim_verify::follow`). A mismatch prints the behaviour's files, the script, the
 //! rounds and the round at which the model could not follow, with the seed that repeats it.
 
-mod common {
-    pub mod random_behaviour;
-}
+use crate::common;
 
 use common::random_behaviour::{generate, RandomBehaviour};
 use proclaim_behaviour::testing::RoundByRound;
@@ -126,7 +124,7 @@ fn random_behaviours_run_as_the_model_says() {
     conform(0..500);
 }
 
-/// `cargo test -p proclaim-verify --release --test conformance -- --ignored`; with
+/// `cargo test -p proclaim-verify --release --test tests -- --ignored conformance::`; with
 /// `CONFORMANCE_SEED=N` set, only seed `N`, the way a mismatch's message says to repeat it.
 #[test]
 #[ignore = "ten thousand behaviours: run before a change to the runner or the model lands"]

@@ -3,9 +3,7 @@
 //! of a lasso and its script; the microwave's own "cooking stops"; and (ignored, a
 //! measurement) what the liveness check adds to an exploration.
 
-mod common {
-    pub mod odometer;
-}
+use crate::common;
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{
@@ -397,7 +395,7 @@ fn manifests_declare_liveness_with_its_fairness() {
 
 /// The time and states of `verify` with a safety property and with each liveness kind on the
 /// odometer family (`tests/common/odometer.rs`): what the check after the exploration adds.
-/// `cargo test --release -p proclaim-verify --test liveness -- --ignored --nocapture`.
+/// `cargo test --release -p proclaim-verify --test tests -- --ignored --nocapture liveness::`.
 #[test]
 #[ignore = "a measurement: run it in release with --ignored --nocapture"]
 fn liveness_costs_little_beside_the_exploration() {

@@ -3,10 +3,7 @@
 //! and the counterexample length of the plain search, and the same findings where both
 //! searches finish.
 
-mod common {
-    pub mod families;
-    pub mod odometer;
-}
+use crate::common;
 
 use proclaim_behaviour::{load, Behaviour, Folder};
 use proclaim_verify::{

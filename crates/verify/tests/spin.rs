@@ -3,9 +3,7 @@
 //! with `verify`'s; liveness claims by `pan -a`'s acceptance-cycle search. Needs `spin` and `gcc` on PATH: skipped without them, failed without them
 //! when `CI` is set.
 
-mod common {
-    pub mod odometer;
-}
+use crate::common;
 
 use proclaim_behaviour::{load, Folder};
 use proclaim_verify::{to_promela, verify, Options, PropertyKind, PropertySource, Stop, Verdict};
@@ -313,7 +311,7 @@ fn odometer(n: usize, k: usize) -> PathBuf {
 }
 
 /// States per second of `verify` and of SPIN on the same model, the odometer at three sizes:
-/// `cargo test --release -p proclaim-verify --test spin -- --ignored --nocapture`. SPIN's
+/// `cargo test --release -p proclaim-verify --test tests -- --ignored --nocapture spin::`. SPIN's
 /// figures: `spin -a` with gcc apart from `pan`'s search; its states include those between a
 /// step's parts (see `promela.rs`), so they are more than the checker's.
 #[test]

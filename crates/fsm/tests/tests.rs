@@ -1,0 +1,4 @@
+//! The one integration-test binary of machine files: labels, the T/A and Qfsm importers, the corpus, and edits in place.
+
+mod edit;
+mod machines;

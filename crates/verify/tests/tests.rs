@@ -1,0 +1,12 @@
+//! The one integration-test binary of the verifier: its verdicts, liveness, reductions, conformance with the runner and agreement with SPIN.
+
+mod common {
+    pub mod families;
+    pub mod odometer;
+    pub mod random_behaviour;
+}
+mod conformance;
+mod liveness;
+mod reductions;
+mod spin;
+mod verify;
