@@ -17,7 +17,7 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
 }
 
 /// Whether gcc is here: a skip said on stderr, or with `CI` set a failure.
-fn gcc_missing() -> bool {
+pub(crate) fn gcc_missing() -> bool {
     let missing = Command::new("gcc").arg("--version").output().is_err();
     if missing {
         assert!(
@@ -44,7 +44,7 @@ fn gcc(dir: &Path, args: &[&str]) {
 }
 
 /// Compiles `behaviour` into `dir` and builds the program `dir/behaviour`.
-fn build(behaviour: &str, dir: &Path) {
+pub(crate) fn build(behaviour: &str, dir: &Path) {
     let o = proclaim(&[
         "compile",
         behaviour,
@@ -85,7 +85,7 @@ fn build(behaviour: &str, dir: &Path) {
 }
 
 /// The interpreter's trace and the compiled program's, for one script (and `--for`, if given).
-fn traces(
+pub(crate) fn traces(
     behaviour: &str,
     dir: &Path,
     name: &str,
@@ -830,7 +830,18 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line_for_either_target() {
     let out = scratch("refused-activity");
     for (body, expected) in [
         ("float speed;", "a `float` variable"),
-        ("extern ballDistance;", "`extern ballDistance`"),
+        (
+            "extern Other;",
+            "`extern Other`, which is also a machine's name",
+        ),
+        (
+            "extern d;\n        post(\"d\", \"hi\");",
+            "a posting of text to `d`, a whiteboard variable",
+        ),
+        (
+            "extern d;\n        d: \"12\"",
+            "the text \"12\" posted to `d`, a whiteboard variable",
+        ),
         (
             "x = ballDistance + 1;",
             "`ballDistance`, which is no variable",

@@ -1,7 +1,7 @@
 //! A behaviour compiled to a Cargo project (`proclaim compile B --target rust`), built and run
 //! with `--script`, `--virtual-clock` and `--trace`, writes the same trace as `proclaim run`
 //! with those options, byte for byte: every behaviour the C target's tests compile (the shipped
-//! ones, each construct's, the seeded random ones). The projects are built together, in one
+//! ones, each construct's, the seeded random ones, the shared corpus's when present). The projects are built together, in one
 //! Cargo workspace, into one target folder kept under the tests' temporary folder, so the
 //! crates they depend on build once.
 
@@ -224,6 +224,15 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
     });
     behaviours.extend(construct_cases().into_iter().map(from_case));
     behaviours.extend((0..24).map(random));
+    behaviours.extend(
+        super::compiled_corpus::corpus_behaviours(6)
+            .into_iter()
+            .map(|b| Compiled {
+                name: b.name,
+                folder: b.folder,
+                runs: b.runs,
+            }),
+    );
     let projects = scratch("rust-projects");
     write_projects(&behaviours, &projects);
     let programs = build_projects(&projects);

@@ -6,6 +6,7 @@ mod architecture;
 mod behaviours;
 mod cli;
 mod compiled;
+mod compiled_corpus;
 mod compiled_rust;
 mod editor;
 mod monitor;
