@@ -233,6 +233,13 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
                 runs: b.runs,
             }),
     );
+    // The verifier's random behaviours that compile, run below with a bound (some spin).
+    let verified = super::compiled_verify::compiled_seeds();
+    behaviours.extend(verified.iter().map(|g| Compiled {
+        name: g.name.clone(),
+        folder: g.folder.clone(),
+        runs: Vec::new(),
+    }));
     let projects = scratch("rust-projects");
     write_projects(&behaviours, &projects);
     let programs = build_projects(&projects);
@@ -248,6 +255,23 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         }
     }
     assert!(moved > 30, "most runs move: {moved}");
+    for g in &verified {
+        let interpreted = super::compiled_verify::interpreted(g, &runs);
+        let script = runs.join(format!("{}.script", g.name));
+        let trace = runs.join(format!("{}.compiled.jsonl", g.name));
+        let mut command = Command::new(programs.join(format!("behaviour-{}", g.name)));
+        command.args([
+            "--virtual-clock",
+            "--script",
+            script.to_str().unwrap(),
+            "--for",
+            &g.run_for,
+            "--trace",
+            trace.to_str().unwrap(),
+        ]);
+        let program = super::compiled_verify::bounded_run(command, &trace);
+        super::compiled_verify::assert_same_bounded(&g.name, interpreted, program);
+    }
     // Without `--script`, both play the behaviour's own script.
     for name in ["microwave", "subsumption"] {
         let interpreted_path = runs.join(format!("{name}-own-script.interpreted.jsonl"));

@@ -8,6 +8,7 @@ mod cli;
 mod compiled;
 mod compiled_corpus;
 mod compiled_rust;
+mod compiled_verify;
 mod editor;
 mod monitor;
 #[cfg(feature = "zenoh")]

@@ -124,15 +124,7 @@ fn source(plan: &Plan) -> String {
     } else {
         format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.theory_outputs())
     };
-    let var_inits: String = plan
-        .slots
-        .iter()
-        .enumerate()
-        .map(|(slot, is_bool)| {
-            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
-            format!("    w->var[{slot}] = {value};\n")
-        })
-        .collect();
+    let var_inits = var_inits(plan);
     let held = Held::of(plan);
     let (sensor_atoms, sensor_starts) = sensor_tables(plan);
     let outputs_n = plan.outputs.len().max(1).to_string();
@@ -194,6 +186,18 @@ fn source(plan: &Plan) -> String {
         ],
     ));
     c
+}
+
+/// Each value slot's start: a whole 0, or false.
+fn var_inits(plan: &Plan) -> String {
+    plan.slots
+        .iter()
+        .enumerate()
+        .map(|(slot, is_bool)| {
+            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
+            format!("    w->var[{slot}] = {value};\n")
+        })
+        .collect()
 }
 
 /// The cases of `answer` (a theory's decision function, or an atom from outside's variable)
