@@ -237,6 +237,10 @@ static int ask(struct world *w, unsigned m, unsigned k)
 {
     int value = answer(w, k);
     w->asked[m][k] = 1;
+    /* No expert answers it: the runner reads its newest posting instead, from the snapshot. */
+    if (!w->supplied[k]) {
+        w->ext_read[m] = 1;
+    }
     w->cb.answered(w, machine_name[m], output_name[k], value, w->supplied[k] ? output_expert[k] : 0);
     return value;
 }

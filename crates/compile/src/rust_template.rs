@@ -526,6 +526,10 @@ pub fn answer(w: &World, k: usize) -> bool {
 fn ask(w: &mut World, m: usize, k: usize) -> bool {
     let value = answer(w, k);
     w.asked[m][k] = true;
+    // No expert answers it: the runner reads its newest posting instead, from the snapshot.
+    if !w.supplied[k] {
+        w.ext_read[m] = true;
+    }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
     w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, expert);
     value
