@@ -3,9 +3,10 @@
 //! Griffith team's one-minute microwave of four gufsm machines talking through whiteboard
 //! variables (`extern`) alone, and the machines that run alone once a script answers their
 //! label atoms. Skipped when the corpus is absent. The corpus's other machines call host
-//! functions the interpreter does not have either, use fractions, or control machines it does
-//! not hold; `compile` refuses the first two with file and line (README, "Deploying a
-//! behaviour").
+//! functions the interpreter does not have either, compute fractions, post text to a
+//! whiteboard variable or time out after a variable (each refused with file and line, tested
+//! below), only name another file, or control machines a behaviour of their own does not hold
+//! (`proclaim run` refuses those).
 
 use super::compiled::{assert_same, build, gcc_missing, scratch, splitmix, traces};
 use std::path::PathBuf;

@@ -1,9 +1,10 @@
 //! A behaviour compiled to a Cargo project (`proclaim compile B --target rust`), built and run
 //! with `--script`, `--virtual-clock` and `--trace`, writes the same trace as `proclaim run`
 //! with those options, byte for byte: every behaviour the C target's tests compile (the shipped
-//! ones, each construct's, the seeded random ones, the shared corpus's when present). The projects are built together, in one
-//! Cargo workspace, into one target folder kept under the tests' temporary folder, so the
-//! crates they depend on build once.
+//! ones, each construct's, the seeded random ones, the shared corpus's when present, the
+//! verifier's random ones that compile). The projects are built together, in one Cargo
+//! workspace, into one target folder kept under the tests' temporary folder, so the crates they
+//! depend on build once.
 
 use super::compiled::{
     assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
