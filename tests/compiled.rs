@@ -17,7 +17,7 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
 }
 
 /// Whether gcc is here: a skip said on stderr, or with `CI` set a failure.
-fn gcc_missing() -> bool {
+pub(crate) fn gcc_missing() -> bool {
     let missing = Command::new("gcc").arg("--version").output().is_err();
     if missing {
         assert!(
@@ -44,7 +44,7 @@ fn gcc(dir: &Path, args: &[&str]) {
 }
 
 /// Compiles `behaviour` into `dir` and builds the program `dir/behaviour`.
-fn build(behaviour: &str, dir: &Path) {
+pub(crate) fn build(behaviour: &str, dir: &Path) {
     let o = proclaim(&[
         "compile",
         behaviour,
@@ -85,7 +85,7 @@ fn build(behaviour: &str, dir: &Path) {
 }
 
 /// The interpreter's trace and the compiled program's, for one script (and `--for`, if given).
-fn traces(
+pub(crate) fn traces(
     behaviour: &str,
     dir: &Path,
     name: &str,
@@ -201,6 +201,14 @@ const WORKER: &str = "machine Worker\ninitial W1\nstate W1 {\n    entry {\n     
 
 /// A label over a global another machine changes, and a time test already past.
 const WATCHER: &str = "machine Watcher\ninitial W\nstate W {\n    when step == 4 && timeout(1ms) -> SEEN\n}\nstate SEEN {\n}\n";
+
+/// A watcher of whiteboard variables: asking `q`, which no expert answers, reads the snapshot,
+/// so a later posting of `e` is news though `&&` never read it.
+const EXTERN_WATCHER: &str = "machine W\ninitial S\nstate S {\n    entry {\n        extern e;\n    }\n    when q && e -> T\n    when timeout(1s) -> T\n}\nstate T {\n    entry {\n        print_int(n);\n    }\n}\n";
+
+/// A poster of whiteboard variables: assignments, postings of constants and of values, a read
+/// in OnEntry (live) and in Internal (the snapshot, then its own posting).
+const EXTERN_POSTER: &str = "machine P\ninitial A\nstate A {\n    entry {\n        extern e;\n        extern n;\n        n = 5;\n        post(\"n\", n + 2);\n        e = true;\n        e: 0\n        post_int(\"m\", e == 0);\n        g = n;\n    }\n    internal {\n        n = n + 1;\n        g = n * 2;\n    }\n    when n > 9 -> B\n}\nstate B {\n    entry {\n        print_int(n);\n        e = 1;\n        n: 3\n    }\n    when timeout(200ms) -> C\n}\nstate C {\n}\n";
 
 /// The time tests in their units.
 const TIME: &str = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
@@ -540,6 +548,29 @@ fn suppression_holds_back_and_hands_over_as_the_interpreter_does() {
 }
 
 #[test]
+fn whiteboard_variables_are_read_through_the_snapshot_and_posted_when_assigned() {
+    if gcc_missing() {
+        return;
+    }
+    let case = construct_cases()
+        .into_iter()
+        .find(|c| c.name == "externs")
+        .unwrap();
+    let files: Vec<(&str, &str)> = case
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of("externs", &files);
+    let trace = same_trace("externs", &folder, case.script, case.run_for);
+    // The poster counts `n` up to 10 through its own postings, and the watcher sees it.
+    assert!(
+        trace.contains("\"type\":\"n\",\"content\":\"10\"") && trace.contains("\"text\":\"10\""),
+        "{trace}"
+    );
+}
+
+#[test]
 fn arithmetic_is_the_runners_wrapping_c_arithmetic() {
     if gcc_missing() {
         return;
@@ -830,7 +861,18 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line_for_either_target() {
     let out = scratch("refused-activity");
     for (body, expected) in [
         ("float speed;", "a `float` variable"),
-        ("extern ballDistance;", "`extern ballDistance`"),
+        (
+            "extern Other;",
+            "`extern Other`, which is also a machine's name",
+        ),
+        (
+            "extern d;\n        post(\"d\", \"hi\");",
+            "a posting of text to `d`, a whiteboard variable",
+        ),
+        (
+            "extern d;\n        d: \"12\"",
+            "the text \"12\" posted to `d`, a whiteboard variable",
+        ),
         (
             "x = ballDistance + 1;",
             "`ballDistance`, which is no variable",
@@ -963,6 +1005,17 @@ pub(crate) fn construct_cases() -> Vec<Case> {
             ],
             script: "at 700ms doorOpen = true\n",
             run_for: Some("5s"),
+        },
+        Case {
+            name: "externs",
+            files: vec![
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"W.machine\"\n[[machine]]\nfile = \"P.machine\"\n[impersonator]\nscript = \"own.script\"\n".into()),
+                ("W.machine".into(), EXTERN_WATCHER.into()),
+                ("P.machine".into(), EXTERN_POSTER.into()),
+                ("own.script".into(), "q = false\n".into()),
+            ],
+            script: "at 170ms e = true\nat 333ms e = false\nat 400ms n = true\n",
+            run_for: Some("2s"),
         },
         Case {
             name: "alone",

@@ -1,9 +1,10 @@
 //! A behaviour compiled to a Cargo project (`proclaim compile B --target rust`), built and run
 //! with `--script`, `--virtual-clock` and `--trace`, writes the same trace as `proclaim run`
 //! with those options, byte for byte: every behaviour the C target's tests compile (the shipped
-//! ones, each construct's, the seeded random ones). The projects are built together, in one
-//! Cargo workspace, into one target folder kept under the tests' temporary folder, so the
-//! crates they depend on build once.
+//! ones, each construct's, the seeded random ones, the shared corpus's when present, the
+//! verifier's random ones that compile). The projects are built together, in one Cargo
+//! workspace, into one target folder kept under the tests' temporary folder, so the crates they
+//! depend on build once.
 
 use super::compiled::{
     assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
@@ -224,6 +225,22 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
     });
     behaviours.extend(construct_cases().into_iter().map(from_case));
     behaviours.extend((0..24).map(random));
+    behaviours.extend(
+        super::compiled_corpus::corpus_behaviours(6)
+            .into_iter()
+            .map(|b| Compiled {
+                name: b.name,
+                folder: b.folder,
+                runs: b.runs,
+            }),
+    );
+    // The verifier's random behaviours that compile, run below with a bound (some spin).
+    let verified = super::compiled_verify::compiled_seeds();
+    behaviours.extend(verified.iter().map(|g| Compiled {
+        name: g.name.clone(),
+        folder: g.folder.clone(),
+        runs: Vec::new(),
+    }));
     let projects = scratch("rust-projects");
     write_projects(&behaviours, &projects);
     let programs = build_projects(&projects);
@@ -239,6 +256,23 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         }
     }
     assert!(moved > 30, "most runs move: {moved}");
+    for g in &verified {
+        let interpreted = super::compiled_verify::interpreted(g, &runs);
+        let script = runs.join(format!("{}.script", g.name));
+        let trace = runs.join(format!("{}.compiled.jsonl", g.name));
+        let mut command = Command::new(programs.join(format!("behaviour-{}", g.name)));
+        command.args([
+            "--virtual-clock",
+            "--script",
+            script.to_str().unwrap(),
+            "--for",
+            &g.run_for,
+            "--trace",
+            trace.to_str().unwrap(),
+        ]);
+        let program = super::compiled_verify::bounded_run(command, &trace);
+        super::compiled_verify::assert_same_bounded(&g.name, interpreted, program);
+    }
     // Without `--script`, both play the behaviour's own script.
     for name in ["microwave", "subsumption"] {
         let interpreted_path = runs.join(format!("{name}-own-script.interpreted.jsonl"));

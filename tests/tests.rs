@@ -6,7 +6,9 @@ mod architecture;
 mod behaviours;
 mod cli;
 mod compiled;
+mod compiled_corpus;
 mod compiled_rust;
+mod compiled_verify;
 mod editor;
 mod monitor;
 #[cfg(feature = "zenoh")]

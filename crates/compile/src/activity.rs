@@ -44,18 +44,39 @@ impl Kinds {
     }
 }
 
-/// The variables one machine sees: its own (declared anywhere in it), then the globals.
+/// The variables one machine sees, looked up as gufsm did: its own (declared anywhere in it),
+/// then the behaviour's whiteboard variables (`extern`), then the globals.
 pub(crate) struct Variables {
     pub own: HashMap<String, Variable>,
+    /// Each whiteboard variable's number.
+    pub externs: HashMap<String, usize>,
     pub globals: HashMap<String, Variable>,
 }
 
 impl Variables {
+    /// A variable with a slot (the machine's own, or a global) and whether it is a global;
+    /// `None` for a whiteboard variable or no variable.
     pub fn lookup(&self, name: &str) -> Option<(&Variable, bool)> {
         if let Some(v) = self.own.get(name) {
             return Some((v, false));
         }
+        if self.externs.contains_key(name) {
+            return None;
+        }
         self.globals.get(name).map(|v| (v, true))
+    }
+
+    /// The whiteboard variable `name` names here (the machine's own variable hides one).
+    pub fn extern_number(&self, name: &str) -> Option<usize> {
+        if self.own.contains_key(name) {
+            return None;
+        }
+        self.externs.get(name).copied()
+    }
+
+    /// Whether `name` is a variable here of either kind (not an atom to ask).
+    pub fn is_variable(&self, name: &str) -> bool {
+        self.lookup(name).is_some() || self.extern_number(name).is_some()
     }
 }
 
@@ -120,6 +141,12 @@ impl Activity<'_> {
                         content.trim()
                     )));
                 };
+                if self.variables.externs.contains_key(ty) && content.trim().starts_with('"') {
+                    return Err(self.refuse(format!(
+                        "the text {} posted to `{ty}`, a whiteboard variable (a compiled one holds a whole number or a truth value)",
+                        content.trim()
+                    )));
+                }
                 if self.inputs.contains(ty)
                     && !["true", "false", "unknown"].contains(&text.as_str())
                 {
@@ -143,6 +170,9 @@ impl Activity<'_> {
         if let Some(target) = self.machines.iter().position(|n| n == ty) {
             return self.command(ty, target, &pieces, depth);
         }
+        if let Some(&number) = self.variables.externs.get(ty) {
+            return self.post_extern(ty, number, pieces);
+        }
         if self.inputs.iter().any(|i| i == ty) && !matches!(pieces.as_slice(), [Piece::Literal(_)])
         {
             return Err(self.refuse(format!(
@@ -160,6 +190,33 @@ impl Activity<'_> {
             ty: ty.to_string(),
             pieces,
         })
+    }
+
+    /// A posting to a whiteboard variable's type: one value, which its readers read as posted
+    /// (`Value::parse` of a constant); text, which no compiled value holds, is refused.
+    fn post_extern(&self, ty: &str, number: usize, pieces: Vec<Piece>) -> Result<Step, Refusal> {
+        let value = match pieces.as_slice() {
+            [Piece::Literal(text)] if text == "true" || text == "false" => {
+                Some(Value::Bool(text == "true"))
+            }
+            [Piece::Literal(text)] => text.parse::<i64>().ok().map(Value::Int),
+            [Piece::Value(_)] => pieces.into_iter().next().and_then(|p| match p {
+                Piece::Value(v) => Some(v),
+                _ => None,
+            }),
+            // `post_int`'s whole number: adding 0 makes a truth value whole, as `v_int` does.
+            [Piece::Whole(_)] => pieces.into_iter().next().and_then(|p| match p {
+                Piece::Whole(v) => Some(Value::Apply(Function::Add, vec![v, Value::Int(0)])),
+                _ => None,
+            }),
+            _ => None,
+        };
+        match value {
+            Some(value) => Ok(Step::PostExtern { number, value }),
+            None => Err(self.refuse(format!(
+                "a posting of text to `{ty}`, a whiteboard variable (a compiled one holds a whole number or a truth value)"
+            ))),
+        }
     }
 
     /// A posting to machine `target`: a control command of a constant word, not in a block.
@@ -212,16 +269,20 @@ impl Activity<'_> {
     }
 
     fn statement(&mut self, statement: &Statement, depth: usize) -> Result<Step, Refusal> {
-        if let Statement::Extern { name, .. } = statement {
-            return Err(self.refuse(format!(
-                "`extern {name}` (whiteboard variables are not compiled yet)"
-            )));
+        // The binding is the behaviour's (`plan_externs`): the statement itself does nothing.
+        if let Statement::Extern { .. } = statement {
+            return Ok(Step::Nothing);
         }
         Ok(match statement.kind() {
             StatementKind::Assign { name, value } => {
+                if let Some(number) = self.variables.extern_number(name) {
+                    // Assigning a whiteboard variable posts the value, unconverted.
+                    let (value, _) = self.value(value)?;
+                    return Ok(Step::PostExtern { number, value });
+                }
                 let Some((variable, global)) = self.variables.lookup(name) else {
                     return Err(self.refuse(format!(
-                        "the assignment to `{name}`, which is no variable here (an extern?)"
+                        "the assignment to `{name}`, which is no variable here"
                     )));
                 };
                 let (slot, conversion) = (variable.slot, variable.conversion);
@@ -391,9 +452,10 @@ impl Activity<'_> {
                     "the text \"{s}\" where a value is computed (text is compiled only in postings)"
                 )))
             }
-            Expr::Name(n) => match self.variables.lookup(n) {
-                Some((v, _)) => (Value::Slot(v.slot), kinds_of(v.conversion)),
-                None => {
+            Expr::Name(n) => match (self.variables.lookup(n), self.variables.extern_number(n)) {
+                (Some((v, _)), _) => (Value::Slot(v.slot), kinds_of(v.conversion)),
+                (None, Some(number)) => (Value::Extern(number), Kinds::ANY),
+                (None, None) => {
                     return Err(self.refuse(format!(
                         "`{n}`, which is no variable: reading the whiteboard is not compiled yet"
                     )))

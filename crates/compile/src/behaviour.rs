@@ -101,7 +101,8 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         .filter(|o| matches!(o.answer, Answer::Outside { .. }))
         .count();
     let sensors = sensor_atoms(behaviour);
-    let (slots, own, globals) = plan_slots(behaviour)?;
+    let externs = plan_externs(behaviour, &outputs, &inputs)?;
+    let (slots, own, globals) = plan_slots(behaviour, &externs)?;
     let names: Vec<String> = behaviour
         .machines
         .iter()
@@ -119,6 +120,11 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
             file: behaviour.files.show(&loaded.file),
             variables: Variables {
                 own: own[m].clone(),
+                externs: externs
+                    .iter()
+                    .enumerate()
+                    .map(|(number, name)| (name.clone(), number))
+                    .collect(),
                 globals: globals.clone(),
             },
             machines: &names,
@@ -139,6 +145,7 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         sensors,
         script: own_script(behaviour),
         slots,
+        externs,
         machines,
         period_ms,
         longest_text: counters.longest_text,
@@ -309,6 +316,46 @@ fn sensor_atoms(behaviour: &Behaviour) -> Vec<(String, Vec<String>)> {
         .collect()
 }
 
+/// The behaviour's whiteboard variables (every name a machine binds with `extern`), in the
+/// order first bound; one that is also a theory's input or answer, a machine's name or a type
+/// under subsumption is refused where it is bound (a compiled program keeps those apart).
+fn plan_externs(
+    behaviour: &Behaviour,
+    outputs: &[Output],
+    inputs: &[Input],
+) -> Result<Vec<String>, Refusal> {
+    let mut externs: Vec<String> = Vec::new();
+    for loaded in &behaviour.machines {
+        let file = behaviour.files.show(&loaded.file);
+        for state in &loaded.machine.states {
+            for s in state_statements(state) {
+                let Statement::Extern { name, .. } = s else {
+                    continue;
+                };
+                let clash = if inputs.iter().any(|i| &i.ty == name) {
+                    Some("a theory's input or an atom the script sets")
+                } else if outputs.iter().any(|o| &o.name == name) {
+                    Some("a theory's answer")
+                } else if behaviour.machines.iter().any(|m| &m.machine.name == name) {
+                    Some("a machine's name")
+                } else if behaviour.suppress.iter().any(|(ty, _)| ty == name) {
+                    Some("a type under subsumption")
+                } else {
+                    None
+                };
+                if let Some(clash) = clash {
+                    let what = format!("`extern {name}`, which is also {clash} (a compiled behaviour keeps a whiteboard variable's value apart from those)");
+                    return Err(refuse(&file, state.line, what));
+                }
+                if !externs.contains(name) {
+                    externs.push(name.clone());
+                }
+            }
+        }
+    }
+    Ok(externs)
+}
+
 type Slots = (
     Vec<bool>,
     Vec<HashMap<String, Variable>>,
@@ -316,8 +363,9 @@ type Slots = (
 );
 
 /// Slots: each machine's own variables (declared anywhere in it), then the globals (names a
-/// machine assigns without declaring them), as `proclaim_runner::Shared` and `Locals` read.
-fn plan_slots(behaviour: &Behaviour) -> Result<Slots, Refusal> {
+/// machine assigns without declaring them or binding them to the whiteboard), as
+/// `proclaim_runner::Shared` and `Locals` read.
+fn plan_slots(behaviour: &Behaviour, externs: &[String]) -> Result<Slots, Refusal> {
     let mut slots: Vec<bool> = Vec::new();
     let mut own: Vec<HashMap<String, Variable>> = Vec::new();
     for loaded in &behaviour.machines {
@@ -346,7 +394,10 @@ fn plan_slots(behaviour: &Behaviour) -> Result<Slots, Refusal> {
     for (m, loaded) in behaviour.machines.iter().enumerate() {
         for s in loaded.machine.statements() {
             if let Statement::Assign { name, .. } = s {
-                if !own[m].contains_key(name) && !globals.contains_key(name) {
+                if !own[m].contains_key(name)
+                    && !externs.contains(name)
+                    && !globals.contains_key(name)
+                {
                     let variable = Variable {
                         slot: slots.len(),
                         conversion: Conversion::Kept,
@@ -427,6 +478,7 @@ fn plan_state(
         read: Vec::new(),
         due: Vec::new(),
         reads_globals: false,
+        reads_externs: Vec::new(),
     };
     let mut transitions = Vec::new();
     for t in machine.outgoing(state.id) {
@@ -441,10 +493,13 @@ fn plan_state(
         mut read,
         due,
         reads_globals,
+        mut reads_externs,
         ..
     } = labels;
     read.sort_unstable();
     read.dedup();
+    reads_externs.sort_unstable();
+    reads_externs.dedup();
     Ok(StatePlan {
         id: state.id,
         name: state.name.clone(),
@@ -456,16 +511,19 @@ fn plan_state(
         reads: read,
         due_ms: due,
         reads_globals,
+        reads_externs,
     })
 }
 
 /// What a state's labels read, gathered as they are planned: the theory outputs they ask, the
-/// times their time tests come due, and whether they read a global.
+/// times their time tests come due, whether they read a global, and the whiteboard variables
+/// they read.
 struct Labels<'a> {
     outputs: &'a [Output],
     read: Vec<usize>,
     due: Vec<u64>,
     reads_globals: bool,
+    reads_externs: Vec<usize>,
 }
 
 impl Labels<'_> {
@@ -480,7 +538,7 @@ impl Labels<'_> {
         self.note_globals(label, activity);
         Ok(match label {
             Expr::Bool(b) => Condition::Constant(*b),
-            Expr::Name(n) if activity.variables.lookup(n).is_some() => {
+            Expr::Name(n) if activity.variables.is_variable(n) => {
                 Condition::Truth(activity.value(label)?.0)
             }
             Expr::Name(n) => {
@@ -542,6 +600,9 @@ impl Labels<'_> {
         label.visit_names(&mut |name, _| {
             if matches!(activity.variables.lookup(name), Some((_, true))) {
                 self.reads_globals = true;
+            }
+            if let Some(number) = activity.variables.extern_number(name) {
+                self.reads_externs.push(number);
             }
         });
     }

@@ -4,6 +4,8 @@
 /// One machine's functions (`@m@` is its number).
 pub(crate) const RING: &str = r#"static int ring_@m@(struct world *w)
 {
+    w->ringing = @m@u;
+    w->past_snapshot = 0;
     if (w->just_entered[@m@]) {
         w->just_entered[@m@] = 0;
         w->entered_ms[@m@] = w->now_ms;
@@ -13,6 +15,7 @@ pub(crate) const RING: &str = r#"static int ring_@m@(struct world *w)
         }
     }
     snapshot(w, @m@);
+    extern_snapshot(w, @m@u);
     w->globals_seen[@m@] = w->globals_changes;
     switch (w->state[@m@]) {
 @cases@    default:
@@ -28,6 +31,12 @@ static int reads_@m@(const struct world *w, unsigned k)
         return 0;
     }
 }
+
+/* Whether the current state's labels read whiteboard variable `e`. */
+static int reads_extern_@m@(const struct world *w, unsigned e)
+{
+    (void)e;
+@extern_return@}
 
 /* Whether the current state's labels read a global. */
 static int reads_globals_@m@(const struct world *w)
@@ -112,6 +121,21 @@ struct world {
     unsigned char fresh[BEHAVIOUR_MACHINES];
     /* Each machine's own variables, then the behaviour's globals. */
     struct value var[BEHAVIOUR_VALUES];
+    /* Each whiteboard variable (`extern`): the board's newest value, and whether any was posted
+     * (one never posted reads as a whole 0). */
+    struct value ext[BEHAVIOUR_EXTERNS];
+    unsigned char ext_known[BEHAVIOUR_EXTERNS];
+    /* As each machine's last ringlet saw them: the board at its snapshot, the values it posted
+     * itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
+     * board finds nothing new in a posting). */
+    struct value ext_seen[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    unsigned char ext_seen_known[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    struct value ext_own[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    unsigned char ext_owned[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    unsigned char ext_read[BEHAVIOUR_MACHINES];
+    /* The machine whose ringlet runs, and whether that ringlet is past its snapshot. */
+    unsigned ringing;
+    unsigned char past_snapshot;
     /* Changes of globals so far, and as each machine's last ringlet saw them. */
     uint64_t globals_changes;
     uint64_t globals_seen[BEHAVIOUR_MACHINES];
@@ -162,6 +186,8 @@ static const unsigned theory_outputs = @theory_outputs@u;
 static const unsigned outputs = @outputs@u;
 static const unsigned sensors = @sensors@u;
 static const char *const machine_name[@machines@] = {@machine_names@};
+static const char *const extern_name[@externs_n@] = {@extern_names@};
+static const unsigned externs = @externs@u;
 /* Each machine's subsumption layer, which its postings carry. */
 static const unsigned long machine_priority[@machines@] = {@priorities@};
 
@@ -211,6 +237,10 @@ static int ask(struct world *w, unsigned m, unsigned k)
 {
     int value = answer(w, k);
     w->asked[m][k] = 1;
+    /* No expert answers it: the runner reads its newest posting instead, from the snapshot. */
+    if (!w->supplied[k]) {
+        w->ext_read[m] = 1;
+    }
     w->cb.answered(w, machine_name[m], output_name[k], value, w->supplied[k] ? output_expert[k] : 0);
     return value;
 }
@@ -328,6 +358,81 @@ static void obey(struct world *w)
     }
 }
 
+static int same_value(struct value a, struct value b)
+{
+    return a.i == b.i && a.is_bool == b.is_bool;
+}
+
+/* The snapshot (`docs/spec/behaviour.md` 3.1), after OnEntry: from here to the ringlet's end
+ * machine `m` reads the whiteboard variables as they are now, and its own postings. */
+static void extern_snapshot(struct world *w, unsigned m)
+{
+    unsigned e;
+    w->past_snapshot = 1;
+    w->ext_read[m] = 0;
+    for (e = 0; e < externs; e++) {
+        w->ext_seen[m][e] = w->ext[e];
+        w->ext_seen_known[m][e] = w->ext_known[e];
+        w->ext_owned[m][e] = 0;
+    }
+}
+
+/* A whiteboard variable as the ringlet reads it: live before the snapshot (in OnEntry), then
+ * what the ringlet posted itself, else the snapshot. */
+static struct value read_extern(struct world *w, unsigned e)
+{
+    unsigned m = w->ringing;
+    if (!w->past_snapshot || w->ext_owned[m][e]) {
+        return w->ext_known[e] ? w->ext[e] : v_int(0);
+    }
+    w->ext_read[m] = 1;
+    return w->ext_seen_known[m][e] ? w->ext_seen[m][e] : v_int(0);
+}
+
+/* Machine `m` posts `v` to whiteboard variable `e` (an assignment to it, or a posting). */
+static void post_extern(struct world *w, unsigned m, unsigned e, struct value v)
+{
+    char shown[24];
+    (void)value_text(shown, v);
+    w->cb.post(w, machine_name[m], extern_name[e], shown, machine_priority[m]);
+    w->ext[e] = v;
+    w->ext_known[e] = 1;
+    if (w->past_snapshot) {
+        w->ext_own[m][e] = v;
+        w->ext_owned[m][e] = 1;
+    }
+}
+
+/* Whether the board's value of `e` is news to machine `m`: not what it posted itself in its
+ * last ringlet, or (when that ringlet read the snapshot) not what the snapshot held. */
+static int extern_news(const struct world *w, unsigned m, unsigned e)
+{
+    if (!w->ext_known[e]) {
+        return 0;
+    }
+    if (w->ext_owned[m][e]) {
+        return !same_value(w->ext_own[m][e], w->ext[e]);
+    }
+    if (!w->ext_read[m]) {
+        return 0;
+    }
+    return !w->ext_seen_known[m][e] || !same_value(w->ext_seen[m][e], w->ext[e]);
+}
+
+/* A posting from outside to a whiteboard variable's type (a script's truth word): whether it was one. */
+static int apply_extern(struct world *w, const char *type, const char *content)
+{
+    unsigned e;
+    for (e = 0; e < externs; e++) {
+        if (same(type, extern_name[e])) {
+            w->ext[e] = v_bool(same(content, "true"));
+            w->ext_known[e] = 1;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 @code@
 static int final_state(const struct world *w, unsigned m)
 {
@@ -370,7 +475,15 @@ void behaviour_init(struct world *w)
     (void)post;
     (void)text_value;
     (void)v_neg;
+    (void)read_extern;
+    (void)post_extern;
     w->round = 0;
+    w->ringing = 0;
+    w->past_snapshot = 0;
+    for (v = 0; v < externs; v++) {
+        w->ext[v] = v_int(0);
+        w->ext_known[v] = 0;
+    }
     w->globals_changes = 0;
     w->commands_waiting = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {
@@ -381,6 +494,11 @@ void behaviour_init(struct world *w)
         w->fresh[m] = 0;
         w->globals_seen[m] = 0;
         w->command_count[m] = 0;
+        w->ext_read[m] = 0;
+        for (v = 0; v < externs; v++) {
+            w->ext_owned[m][v] = 0;
+            w->ext_seen_known[m][v] = 0;
+        }
         for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
             w->seen[m][k] = 0;
             w->asked[m][k] = 0;
@@ -410,13 +528,16 @@ int behaviour_round(struct world *w)
 
 int behaviour_outside(struct world *w, const char *type, const char *content)
 {
-    return apply_input(w, type, content) && behaviour_news(w);
+    int applied = apply_input(w, type, content);
+    applied |= apply_extern(w, type, content);
+    return applied && behaviour_news(w);
 }
 
 int behaviour_news(const struct world *w)
 {
-    unsigned k;
+    unsigned k, e;
     (void)k;
+    (void)e;
 @reads@    return 0;
 }
 

@@ -15,6 +15,11 @@ struct step {
     int start;
     /* This step's value is the last the trace showed for its type. */
     int shown;
+    /* Posted as a round started, its trace line still to come (see `show_deferred`). */
+    int deferred;
+    /* For a type's first step: asked before the script posted it, the impersonator's answer
+     * was shown with this value (see `show_answer`). */
+    const char *answer_shown;
     char name[128];
     const char *value;
 };
@@ -140,11 +145,18 @@ static void on_finished(struct world *w, const char *machine, const char *state)
     over = behaviour_finished(w);
 }
 
+static void show_deferred(struct world *w);
+static void show_answer(struct world *w, const char *atom, int value);
+
 static void on_answered(struct world *w, const char *machine, const char *atom, int value,
                         const char *expert)
 {
     if (over) {
         return;
+    }
+    if (expert != NULL) {
+        show_deferred(w);
+        show_answer(w, atom, value);
     }
     printf("{\"event\":\"answered\",\"machine\":");
     json_string(machine);
@@ -224,11 +236,66 @@ static void on_warned(struct world *w, const char *machine, const char *message)
     tail(w);
 }
 
+/* Whether the script's steps due as a round starts are shown later: `proclaim run` shows the
+ * impersonator's postings from a task of their own, which writes them once the rounds wait
+ * (for time, or for an expert's answer), with the round counted then. */
+static int deferring;
+
+/* Shows the steps posted as a round started, at the round counted now. */
+static void show_deferred(struct world *w)
+{
+    size_t i;
+    for (i = 0; i < next_step; i++) {
+        if (steps[i].deferred) {
+            steps[i].deferred = 0;
+            on_post(w, "impersonator", steps[i].name, steps[i].value, 0);
+        }
+    }
+}
+
+/* The first step of `name`, or NULL. */
+static struct step *first_step(const char *name)
+{
+    size_t i;
+    for (i = 0; i < step_count; i++) {
+        if (strcmp(steps[i].name, name) == 0) {
+            return &steps[i];
+        }
+    }
+    return NULL;
+}
+
+/* The impersonator answers every query by posting its answer: for an atom of the script asked
+ * before the script posted it, that posting (its default) is the first the trace shows. */
+static void show_answer(struct world *w, const char *atom, int value)
+{
+    struct step *first = first_step(atom);
+    size_t i;
+    if (first == NULL || first->answer_shown != NULL) {
+        return;
+    }
+    for (i = 0; i < next_step; i++) {
+        if (strcmp(steps[i].name, atom) == 0) {
+            return;
+        }
+    }
+    first->answer_shown = value ? "true" : "false";
+    on_post(w, "impersonator", atom, first->answer_shown, 0);
+}
+
 /* The impersonator posts a step; the trace shows each type's value once when it changes, as
  * `proclaim run` does. Whether it was news to a machine. */
 static int impersonate(struct world *w, struct step *s)
 {
     size_t i;
+    struct step *first = first_step(s->name);
+    if (first != NULL && first->answer_shown != NULL) {
+        /* The answer shown stands for the type's last value shown. */
+        if (strcmp(first->answer_shown, s->value) == 0) {
+            s->shown = 1;
+        }
+        first->answer_shown = NULL;
+    }
     for (i = 0; i < step_count && &steps[i] != s; i++) {
         if (steps[i].shown && strcmp(steps[i].name, s->name) == 0) {
             steps[i].shown = 0;
@@ -239,7 +306,11 @@ static int impersonate(struct world *w, struct step *s)
     }
     if (!s->shown) {
         s->shown = 1;
-        on_post(w, "impersonator", s->name, s->value, 0);
+        if (deferring) {
+            s->deferred = 1;
+        } else {
+            on_post(w, "impersonator", s->name, s->value, 0);
+        }
     }
     return behaviour_outside(w, s->name, s->value);
 }
@@ -256,7 +327,9 @@ static int post_due(struct world *w)
 
 static void on_round_started(struct world *w)
 {
+    deferring = 1;
     (void)post_due(w);
+    deferring = 0;
 }
 
 static char *trim(char *s)
@@ -462,8 +535,8 @@ int main(int argc, char **argv)
         (void)behaviour_supply(&w, steps[i].name);
     }
     w.now_ms = 0;
-    /* What the script says from the start is posted before the first round. */
-    while (next_step < step_count && steps[next_step].start) {
+    /* What the script says from the start, or at 0 ms, is posted before the first round. */
+    while (next_step < step_count && (steps[next_step].start || steps[next_step].at_ms == 0)) {
         (void)impersonate(&w, &steps[next_step++]);
     }
     w.cb.round_started = on_round_started;
@@ -479,6 +552,7 @@ int main(int argc, char **argv)
         if (fired || behaviour_news(&w)) {
             continue;
         }
+        show_deferred(&w);
         {
             uint64_t due = w.now_ms + behaviour_next_due_ms(&w);
             int news = 0;

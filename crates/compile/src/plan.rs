@@ -26,6 +26,9 @@ pub(crate) struct Plan {
     /// The value slots (each machine's own variables, then the globals): whether each starts as
     /// a truth value rather than a whole number.
     pub slots: Vec<bool>,
+    /// The whiteboard variables (`extern x`), numbered: the board's newest value of each type,
+    /// which every machine reads through its ringlet's snapshot and an assignment posts.
+    pub externs: Vec<String>,
     pub machines: Vec<MachinePlan>,
     pub period_ms: u64,
     /// The longest text a posting or a print builds.
@@ -169,6 +172,8 @@ pub(crate) struct StatePlan {
     pub due_ms: Vec<u64>,
     /// Whether its labels read a global.
     pub reads_globals: bool,
+    /// The whiteboard variables its labels read, each once.
+    pub reads_externs: Vec<usize>,
 }
 
 pub(crate) struct TransitionPlan {
@@ -201,6 +206,9 @@ pub(crate) enum Value {
     Int(i64),
     /// A variable's slot.
     Slot(usize),
+    /// A whiteboard variable, as the ringlet reads it (live before its snapshot, the snapshot
+    /// and its own postings after); a whole 0 while nothing was posted.
+    Extern(usize),
     /// The truth value of `!operand`.
     Not(Box<Value>),
     /// The truth value of `left && right` or `left || right`.
@@ -295,6 +303,12 @@ pub(crate) enum Step {
         target: usize,
     },
     Print(Vec<Piece>),
+    /// A posting of a value to a whiteboard variable's type (an assignment to it, or a posting
+    /// of one value): posted as its text, then read as the value.
+    PostExtern {
+        number: usize,
+        value: Value,
+    },
     Assign {
         slot: usize,
         conversion: Conversion,

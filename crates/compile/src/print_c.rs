@@ -63,11 +63,12 @@ fn header(plan: &Plan) -> String {
     let _ = writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&plan.name));
     let _ = writeln!(
         h,
-        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
+        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_EXTERNS {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
         plan.machines.len().max(1),
         plan.outputs.len().max(1),
         plan.variables().max(1),
         plan.slots.len().max(1),
+        plan.externs.len().max(1),
         plan.longest_text,
         plan.commands.max(1),
         plan.period_ms
@@ -123,15 +124,7 @@ fn source(plan: &Plan) -> String {
     } else {
         format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.theory_outputs())
     };
-    let var_inits: String = plan
-        .slots
-        .iter()
-        .enumerate()
-        .map(|(slot, is_bool)| {
-            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
-            format!("    w->var[{slot}] = {value};\n")
-        })
-        .collect();
+    let var_inits = var_inits(plan);
     let held = Held::of(plan);
     let (sensor_atoms, sensor_starts) = sensor_tables(plan);
     let outputs_n = plan.outputs.len().max(1).to_string();
@@ -155,6 +148,12 @@ fn source(plan: &Plan) -> String {
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
             ("priorities", &held.priorities),
+            ("externs_n", &plan.externs.len().max(1).to_string()),
+            (
+                "extern_names",
+                &strings(plan.externs.iter().map(String::as_str)),
+            ),
+            ("externs", &plan.externs.len().to_string()),
             ("theory_outputs", &plan.theory_outputs().to_string()),
             ("outputs", &plan.outputs.len().to_string()),
             ("sensors", &plan.sensors.len().to_string()),
@@ -187,6 +186,18 @@ fn source(plan: &Plan) -> String {
         ],
     ));
     c
+}
+
+/// Each value slot's start: a whole 0, or false.
+fn var_inits(plan: &Plan) -> String {
+    plan.slots
+        .iter()
+        .enumerate()
+        .map(|(slot, is_bool)| {
+            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
+            format!("    w->var[{slot}] = {value};\n")
+        })
+        .collect()
 }
 
 /// The cases of `answer` (a theory's decision function, or an atom from outside's variable)
@@ -342,7 +353,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (k < theory_outputs || w->asked[{m}][k]) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (k < theory_outputs || w->asked[{m}][k]) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n        for (e = 0; e < externs; e++) {{\n            if (reads_extern_{m}(w, e) && extern_news(w, {m}u, e)) {{\n                return 1;\n            }}\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
@@ -375,6 +386,15 @@ fn state_test(m: usize, cases: &str) -> String {
     }
 }
 
+/// A `switch` on machine `m`'s state whose `cases` return whether it reads extern `e`.
+fn extern_test(m: usize, cases: &str) -> String {
+    if cases.is_empty() {
+        "    (void)w;\n    return 0;\n".to_string()
+    } else {
+        format!("    switch (w->state[{m}]) {{\n{cases}    default:\n        return 0;\n    }}\n")
+    }
+}
+
 /// Machine `m`'s functions: its ringlet, what its labels read, its final states, its dues.
 fn machine_code(m: usize, machine: &MachinePlan) -> String {
     let mut entries = String::new();
@@ -382,6 +402,7 @@ fn machine_code(m: usize, machine: &MachinePlan) -> String {
     let mut read_cases = String::new();
     let mut due_cases = String::new();
     let mut global_cases = String::new();
+    let mut extern_cases = String::new();
     let mut final_cases = String::new();
     for state in &machine.states {
         let id = state.id;
@@ -405,6 +426,18 @@ fn machine_code(m: usize, machine: &MachinePlan) -> String {
         if state.reads_globals {
             let _ = writeln!(global_cases, "    case {id}:");
         }
+        if !state.reads_externs.is_empty() {
+            let read: Vec<String> = state
+                .reads_externs
+                .iter()
+                .map(|e| format!("e == {e}u"))
+                .collect();
+            let _ = writeln!(
+                extern_cases,
+                "    case {id}:\n        return {};",
+                read.join(" || ")
+            );
+        }
         if state.is_final {
             let _ = writeln!(final_cases, "    case {id}:");
         }
@@ -418,6 +451,7 @@ fn machine_code(m: usize, machine: &MachinePlan) -> String {
             ("cases", &cases),
             ("read_cases", &read_cases),
             ("global_return", &state_test(m, &global_cases)),
+            ("extern_return", &extern_test(m, &extern_cases)),
             ("final_return", &state_test(m, &final_cases)),
             ("due_cases", &due_cases),
         ],
@@ -490,6 +524,7 @@ fn value(v: &Value) -> String {
         Value::Bool(b) => format!("v_bool({})", u8::from(*b)),
         Value::Int(i) => format!("v_int({})", int_c(*i)),
         Value::Slot(slot) => format!("w->var[{slot}]"),
+        Value::Extern(number) => format!("read_extern(w, {number}u)"),
         Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
         Value::Logic { and, left, right } => format!(
             "v_bool({} {} {})",
@@ -551,6 +586,9 @@ fn step(m: usize, s: &Step, depth: usize) -> String {
             let mut out = build_text(pieces, depth);
             let _ = writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);");
             out
+        }
+        Step::PostExtern { number, value: v } => {
+            format!("{pad}post_extern(w, {m}u, {number}u, {});\n", value(v))
         }
         Step::Assign {
             slot,

@@ -207,6 +207,11 @@ fn behaviour(plan: &Plan) -> String {
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
             ("priorities", &priorities),
+            ("externs", &plan.externs.len().to_string()),
+            (
+                "extern_names",
+                &strings(plan.externs.iter().map(String::as_str)),
+            ),
             ("theory_outputs", &plan.theory_outputs().to_string()),
             ("script", &script),
             ("sensors_n", &plan.sensors.len().to_string()),
@@ -245,7 +250,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if w.status[{m}] == RUNNING && !w.fresh[{m}] && !done(w, {m}) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (k < THEORY_OUTPUTS || w.asked[{m}][k]) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (k < THEORY_OUTPUTS || w.asked[{m}][k]) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n        if (0..EXTERNS).any(|e| reads_extern_{m}(w, e) && w.extern_news({m}, e)) {{\n            return true;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if w.status[{m}] == RUNNING {{\n        due = due_{m}(w, due);\n    }}"
@@ -285,8 +290,17 @@ fn machine_code(m: usize, machine: &MachinePlan) -> String {
     let mut cases = String::new();
     let mut read_cases = String::new();
     let mut due_cases = String::new();
+    let mut extern_cases = String::new();
     for state in &machine.states {
         let id = state.id;
+        if !state.reads_externs.is_empty() {
+            let read: Vec<String> = state
+                .reads_externs
+                .iter()
+                .map(|e| format!("e == {e}"))
+                .collect();
+            let _ = writeln!(extern_cases, "        {id} => {},", read.join(" || "));
+        }
         entries.push_str(&entry_case(m, machine, state));
         cases.push_str(&ring_case(m, machine, state));
         let read: Vec<String> = state.reads.iter().map(|k| format!("k == {k}")).collect();
@@ -324,6 +338,7 @@ fn machine_code(m: usize, machine: &MachinePlan) -> String {
             ("entries", &entries),
             ("cases", &cases),
             ("read_cases", &read_cases),
+            ("extern_cases", &extern_cases),
             ("global_test", &state_test(m, &ids(|s| s.reads_globals))),
             ("final_test", &state_test(m, &ids(|s| s.is_final))),
             ("due_cases", &due_cases),
@@ -397,6 +412,7 @@ fn value(v: &Value) -> String {
         Value::Int(i) if *i == i64::MIN => "v_int(i64::MIN)".into(),
         Value::Int(i) => format!("v_int({i})"),
         Value::Slot(slot) => format!("w.var[{slot}]"),
+        Value::Extern(number) => format!("w.read_extern({number})"),
         Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
         Value::Logic { and, left, right } => format!(
             "v_bool({} {} {})",
@@ -436,6 +452,10 @@ fn step(m: usize, s: &Step, depth: usize) -> String {
             command_code(*command)
         ),
         Step::Print(pieces) => format!("{}{pad}print_text(w, {m});\n", build_text(pieces, &pad)),
+        Step::PostExtern { number, value: v } => format!(
+            "{pad}let value = {};\n{pad}post_extern(w, {m}, {number}, value);\n",
+            value(v)
+        ),
         Step::Assign {
             slot,
             conversion,

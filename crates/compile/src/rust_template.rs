@@ -166,6 +166,18 @@ pub struct World {
     pub fresh: Vec<bool>,
     /// Each machine's own variables, then the behaviour's globals.
     pub var: Vec<Value>,
+    /// Each whiteboard variable (`extern`): the board's newest value, if any was posted (one
+    /// never posted reads as a whole 0).
+    pub ext: Vec<Option<Value>>,
+    /// As each machine's last ringlet saw them: the board at its snapshot, the values it posted
+    /// itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
+    /// board finds nothing new in a posting).
+    pub ext_seen: Vec<Vec<Option<Value>>>,
+    pub ext_own: Vec<Vec<Option<Value>>>,
+    pub ext_read: Vec<bool>,
+    /// The machine whose ringlet runs, and whether that ringlet is past its snapshot.
+    pub ringing: usize,
+    pub past_snapshot: bool,
     /// Changes of globals so far, and as each machine's last ringlet saw them.
     pub globals_changes: u64,
     pub globals_seen: Vec<u64>,
@@ -183,6 +195,16 @@ pub struct World {
     /// Whether each output has an answerer: a theory's always, an atom from outside when the
     /// host supplies it (else no expert answers it, false).
     pub supplied: Vec<bool>,
+    /// The script's postings made as a round started (type and content), their trace lines
+    /// still to come: `proclaim run` shows the impersonator's postings from a task of its own,
+    /// which writes them once the rounds wait (for time, or for an expert's answer), with the
+    /// round counted then.
+    pub unshown: Vec<(String, String)>,
+    /// The script's atoms it has not posted yet (the host lists them): the impersonator answers
+    /// every query by posting its answer, so one asked before the script posts it shows that
+    /// answer first, kept in `answer_shown` as the type's last value shown.
+    pub unposted: Vec<String>,
+    pub answer_shown: Vec<(String, bool)>,
 }
 
 impl World {
@@ -190,6 +212,7 @@ impl World {
         machines: usize,
         outputs: usize,
         variables: usize,
+        externs: usize,
         sink: Option<Box<dyn FnMut(Event)>>,
     ) -> World {
         World {
@@ -205,6 +228,12 @@ impl World {
             status: vec![RUNNING; machines],
             fresh: vec![false; machines],
             var: Vec::new(),
+            ext: vec![None; externs],
+            ext_seen: vec![vec![None; externs]; machines],
+            ext_own: vec![vec![None; externs]; machines],
+            ext_read: vec![false; machines],
+            ringing: 0,
+            past_snapshot: false,
             globals_changes: 0,
             globals_seen: vec![0; machines],
             commands: vec![Vec::new(); machines],
@@ -214,6 +243,16 @@ impl World {
             over: false,
             suppressor: None,
             supplied: vec![false; outputs],
+            unshown: Vec::new(),
+            unposted: Vec::new(),
+            answer_shown: Vec::new(),
+        }
+    }
+
+    /// Shows the script's postings made as the round started, at the round counted now.
+    pub fn show_unshown(&mut self) {
+        for (ty, content) in std::mem::take(&mut self.unshown) {
+            self.posted("impersonator", &ty, &content, 0);
         }
     }
 
@@ -298,6 +337,16 @@ impl World {
 
     /// `expert` answered, or none did (`None`).
     pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: Option<&str>) {
+        // The machine waits for an expert's answer: the rounds wait, and the script's postings
+        // are shown meanwhile.
+        if expert.is_some() {
+            self.show_unshown();
+            if let Some(i) = self.unposted.iter().position(|a| a == atom) {
+                self.unposted.remove(i);
+                self.posted("impersonator", atom, if value { "true" } else { "false" }, 0);
+                self.answer_shown.push((atom.to_string(), value));
+            }
+        }
         self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
@@ -356,6 +405,38 @@ impl World {
         });
     }
 
+    /// The snapshot (`docs/spec/behaviour.md` 3.1), after OnEntry: from here to the ringlet's
+    /// end machine `m` reads the whiteboard variables as they are now, and its own postings.
+    pub fn extern_snapshot(&mut self, m: usize) {
+        self.past_snapshot = true;
+        self.ext_read[m] = false;
+        self.ext_seen[m].clone_from(&self.ext);
+        self.ext_own[m].fill(None);
+    }
+
+    /// A whiteboard variable as the ringlet reads it: live before the snapshot (in OnEntry),
+    /// then what the ringlet posted itself, else the snapshot.
+    pub fn read_extern(&mut self, e: usize) -> Value {
+        let m = self.ringing;
+        if !self.past_snapshot || self.ext_own[m][e].is_some() {
+            return self.ext[e].unwrap_or(v_int(0));
+        }
+        self.ext_read[m] = true;
+        self.ext_seen[m][e].unwrap_or(v_int(0))
+    }
+
+    /// Whether the board's value of `e` is news to machine `m`: not what it posted itself in
+    /// its last ringlet, or (when that ringlet read the snapshot) not what the snapshot held.
+    pub fn extern_news(&self, m: usize, e: usize) -> bool {
+        let Some(now) = self.ext[e] else {
+            return false;
+        };
+        if let Some(own) = self.ext_own[m][e] {
+            return own != now;
+        }
+        self.ext_read[m] && self.ext_seen[m][e] != Some(now)
+    }
+
     pub fn text_clear(&mut self) {
         self.text.clear();
     }
@@ -411,6 +492,8 @@ pub const SCRIPT: Option<(&str, &str)> = @script@;
 const SENSORS: [(&str, &[&str]); @sensors_n@] = [@sensors@];
 const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
+pub const EXTERNS: usize = @externs@;
+const EXTERN_NAME: [&str; EXTERNS] = [@extern_names@];
 /// Each machine's subsumption layer, which its postings carry.
 const PRIORITY: [u32; MACHINES] = [@priorities@];
 /// The types under subsumption and how long a higher layer's posting holds each, in ms.
@@ -443,6 +526,10 @@ pub fn answer(w: &World, k: usize) -> bool {
 fn ask(w: &mut World, m: usize, k: usize) -> bool {
     let value = answer(w, k);
     w.asked[m][k] = true;
+    // No expert answers it: the runner reads its newest posting instead, from the snapshot.
+    if !w.supplied[k] {
+        w.ext_read[m] = true;
+    }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
     w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, expert);
     value
@@ -462,6 +549,27 @@ fn post(w: &mut World, m: usize, ty: &str, content: &str) {
     }
     w.posted(MACHINE_NAME[m], ty, content, PRIORITY[m]);
     apply_input(w, ty, content);
+}
+
+/// Machine `m` posts `v` to whiteboard variable `e` (an assignment to it, or a posting).
+fn post_extern(w: &mut World, m: usize, e: usize, v: Value) {
+    w.posted(MACHINE_NAME[m], EXTERN_NAME[e], &value_text(v), PRIORITY[m]);
+    w.ext[e] = Some(v);
+    if w.past_snapshot {
+        w.ext_own[m][e] = Some(v);
+    }
+}
+
+/// A posting from outside to a whiteboard variable's type (a script's truth word): whether it
+/// was one.
+fn apply_extern(w: &mut World, ty: &str, content: &str) -> bool {
+    match EXTERN_NAME.iter().position(|name| *name == ty) {
+        Some(e) => {
+            w.ext[e] = Some(v_bool(content == "true"));
+            true
+        }
+        None => false,
+    }
 }
 
 /// At a round's start: every held type whose hold ran out with a lower posting behind it gets
@@ -602,7 +710,7 @@ fn final_state(w: &World, m: usize) -> bool {
 
 /// The behaviour at its start, reporting its events to `sink` (none made without one).
 pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
-    let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, sink);
+    let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, EXTERNS, sink);
     w.supplied[..THEORY_OUTPUTS].fill(true);
     if !SUPPRESSED.is_empty() {
         let holds = SUPPRESSED
@@ -630,7 +738,8 @@ pub fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
 /// A posting from outside the machines (an impersonator, a sensor); whether it is news to a
 /// machine's labels.
 pub fn outside(w: &mut World, ty: &str, content: &str) -> bool {
-    apply_input(w, ty, content) && news(w)
+    let applied = apply_input(w, ty, content);
+    (apply_extern(w, ty, content) || applied) && news(w)
 }
 
 /// Whether an answer a machine's current labels read differs from what its last ringlet saw.
@@ -687,6 +796,8 @@ pub fn finished(w: &World) -> bool {
 
 /// One machine's functions (`@m@` is its number).
 pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
+    w.ringing = @m@;
+    w.past_snapshot = false;
     if w.just_entered[@m@] {
         w.just_entered[@m@] = false;
         w.entered_ms[@m@] = w.now_ms;
@@ -695,6 +806,7 @@ pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
         }
     }
     snapshot(w, @m@);
+    w.extern_snapshot(@m@);
     w.globals_seen[@m@] = w.globals_changes;
     match w.state[@m@] {
 @cases@        _ => false,
@@ -704,6 +816,13 @@ pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
 fn reads_@m@(w: &World, k: usize) -> bool {
     match w.state[@m@] {
 @read_cases@        _ => false,
+    }
+}
+
+/// Whether the current state's labels read whiteboard variable `e`.
+fn reads_extern_@m@(w: &World, e: usize) -> bool {
+    match w.state[@m@] {
+@extern_cases@        _ => false,
     }
 }
 
