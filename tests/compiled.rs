@@ -384,6 +384,56 @@ fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_t
     }
 }
 
+#[test]
+fn a_posting_due_at_a_rounds_moment_comes_before_that_round_interpreted_and_compiled() {
+    if gcc_missing() {
+        return;
+    }
+    // Postings no current label reads, each due just as a round is: the shoot-out's kicks come
+    // every two seconds (a chain of rounds that fire at once), the game's READY rings every
+    // ring period, the button unread there; and a step timed for the first round's moment,
+    // which is that round's, not the script's start.
+    let cases = [
+        (
+            "machines/shootout",
+            "at 100ms crowd = true\nat 2000ms crowd = false\nat 2100ms crowd = true\nat 4000ms crowd = false\n",
+            "5s",
+            "\"type\":\"crowd\",\"content\":\"false\",\"round\":",
+            "\"fired\",\"machine\":\"Kicker\",\"from\":1,\"to\":2,\"label\":\"kicks < 5 && timeout(2000000)\",\"round\":22,",
+        ),
+        (
+            "machines/game_controller",
+            "readyReceived = false\npenaltyReceived = false\nsetReceived = false\nplayingReceived = false\nfinishedReceived = false\ninitialReceived = false\nshortChestButtonPressed = false\nat 1s readyReceived = true\nat 2500ms shortChestButtonPressed = true\nat 2800ms shortChestButtonPressed = false\n",
+            "3s",
+            "\"type\":\"shortChestButtonPressed\",\"content\":\"true\",\"round\":",
+            "\"answered\",\"machine\":\"GameController\",\"atom\":\"penaltyReceived\",\"value\":false,\"by\":{\"expert\":\"impersonator\"},\"round\":30,\"at_us\":2500000}",
+        ),
+        (
+            "machines/subsumption",
+            "ballSeen = false\nballNear = false\natBall = false\nobstacle = false\nat 0ms obstacle = true\nat 300ms ballSeen = true\n",
+            "1s",
+            "\"type\":\"obstacle\",\"content\":\"true\",\"round\":1,\"at_us\":0}",
+            "\"entered\",\"machine\":\"Walk\",\"state\":\"SEARCH\",\"id\":1,\"round\":1,",
+        ),
+    ];
+    for (behaviour, script, run_for, posted, round) in cases {
+        let name = behaviour.trim_start_matches("machines/");
+        let dir = scratch(&format!("on-the-moment-{name}"));
+        build(behaviour, &dir);
+        let (interpreted, compiled) = traces(behaviour, &dir, name, script, Some(run_for));
+        let at = |what: &str| {
+            interpreted
+                .find(what)
+                .unwrap_or_else(|| panic!("{name}: no {what} in {interpreted}"))
+        };
+        assert!(
+            at(posted) < at(round),
+            "{name}: the posting comes before its round's events: {interpreted}"
+        );
+        assert_same(name, &interpreted, &compiled);
+    }
+}
+
 /// The subsumption behaviour's runs: its own script, and seeded ones of its story at other
 /// milliseconds (the ball seen, an obstacle for a while, the ball near and reached), with a
 /// few steps at any time, stopped at any time.
