@@ -150,9 +150,23 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// A seeded moment for a script's step, `from` plus less than `span` milliseconds, `next(n)`
+/// drawing below `n`: every other one moved up onto the ring period's beat (where an idle
+/// behaviour's rounds fall, so the step is due just as a round is, the first round's moment
+/// included), the rest at any millisecond.
+pub(crate) fn seeded_moment(next: &mut impl FnMut(u64) -> u64, from: u64, span: u64) -> u64 {
+    let period = 100;
+    let at = from + next(span);
+    if next(2) == 0 {
+        at.div_ceil(period) * period
+    } else {
+        at
+    }
+}
+
 /// Runs of press or shootout (neither ships a script): its own to the end, then `seeded`
-/// scripts of postings no label reads (news to nobody) at any millisecond, each stopped at a
-/// seeded time. Name, script and `--for` of each.
+/// scripts of postings no label reads (news to nobody) at any millisecond, rounds' moments
+/// included, each stopped at a seeded time. Name, script and `--for` of each.
 pub(crate) fn runs_of_press_or_shootout(
     name: &str,
     seeded: usize,
@@ -162,7 +176,7 @@ pub(crate) fn runs_of_press_or_shootout(
     for n in 0..seeded {
         let mut script = String::new();
         for _ in 0..splitmix(&mut seed) % 5 {
-            let at = splitmix(&mut seed) % 12_000;
+            let at = seeded_moment(&mut |n| splitmix(&mut seed) % n, 0, 12_000);
             let value = splitmix(&mut seed) % 2 == 0;
             script.push_str(&format!("at {at}ms crowd = {value}\n"));
         }
@@ -231,8 +245,8 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
             None,
         ),
     ];
-    // Seeded random scripts: the door and the timer at any millisecond, the door sometimes never
-    // posted (unknown to the theory).
+    // Seeded random scripts: the door and the timer at any millisecond, rounds' moments
+    // included, the door sometimes never posted (unknown to the theory).
     let mut seed = 0x5eed_0033;
     for n in 0..60 {
         let mut script = String::new();
@@ -241,7 +255,7 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
         }
         let steps = 1 + splitmix(&mut seed) % 8;
         for _ in 0..steps {
-            let at = splitmix(&mut seed) % 5_000;
+            let at = seeded_moment(&mut |n| splitmix(&mut seed) % n, 0, 5_000);
             let atom = if splitmix(&mut seed) % 2 == 0 {
                 "doorOpen"
             } else {
@@ -436,7 +450,7 @@ fn a_posting_due_at_a_rounds_moment_comes_before_that_round_interpreted_and_comp
 
 /// The subsumption behaviour's runs: its own script, and seeded ones of its story at other
 /// milliseconds (the ball seen, an obstacle for a while, the ball near and reached), with a
-/// few steps at any time, stopped at any time.
+/// few steps at any time (rounds' moments included), stopped at any time.
 pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
     let field = std::fs::read_to_string("machines/subsumption/field.script").unwrap();
     let mut runs = vec![("subsumption-own".to_string(), field, None)];
@@ -460,7 +474,7 @@ pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
             script.push_str(&format!("at {at}ms {step}\n"));
         }
         for _ in 0..next(3) {
-            let at = next(6_000);
+            let at = seeded_moment(&mut next, 0, 6_000);
             let atom = atoms[next(4) as usize];
             let value = next(2) == 0;
             script.push_str(&format!("at {at}ms {atom} = {value}\n"));
@@ -497,11 +511,11 @@ pub(crate) fn game_controller_runs() -> Vec<(String, String, Option<String>)> {
         let mut script = all_false.clone();
         let mut at = 0;
         let mut now = "initial";
-        // Off the ring period's moments: a posting no label reads, made just as a round is due,
-        // the interpreter shows after that round's events and a compiled host before them.
-        let off_period = |at: u64| if at % 100 == 0 { at + 1 } else { at };
+        // At any millisecond, rounds' moments included: a posting due just as a round is (the
+        // button, unread in most states) comes before that round, in the interpreter as in the
+        // compiled hosts (`docs/spec/behaviour.md` §3.1).
         for _ in 0..3 + next(6) {
-            at = off_period(at + 1 + next(1_500));
+            at = seeded_moment(&mut next, at + 1, 1_500);
             let then = states[next(states.len() as u64) as usize];
             script.push_str(&format!(
                 "at {at}ms {now}Received = false\nat {at}ms {then}Received = true\n"
@@ -509,8 +523,8 @@ pub(crate) fn game_controller_runs() -> Vec<(String, String, Option<String>)> {
             now = then;
         }
         for _ in 0..next(3) {
-            let press = off_period(next(at + 1));
-            let release = off_period(press + 50 + next(400));
+            let press = seeded_moment(&mut next, 0, at + 1);
+            let release = seeded_moment(&mut next, press + 50, 400);
             script.push_str(&format!("at {press}ms shortChestButtonPressed = true\nat {release}ms shortChestButtonPressed = false\n"));
         }
         let run_for = format!("{}ms", 1 + next(at + 2_000));
