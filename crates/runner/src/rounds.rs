@@ -491,11 +491,12 @@ impl RoundWakeup {
     }
 }
 
-/// Lets every other task that is ready at this moment run, and the tasks they wake, until two
-/// turns in a row post nothing: on the virtual clock (tokio's current-thread scheduler, which
-/// runs a yielding task again only once no other task is ready) that is everything due at this
-/// moment, so what arrives before a round does not depend on which task the clock woke first.
-/// On the real clock a poster that never pauses must not hold the round back, hence the bound.
+/// Lets every other task that is ready at this moment run, and the tasks they wake, until a
+/// turn (two yields, for a task woken by one woken first) posts nothing: on the virtual clock
+/// (tokio's current-thread scheduler, which runs a yielding task again only once no other task
+/// is ready) that is everything due at this moment, so what arrives before a round does not
+/// depend on which task the clock woke first. On the real clock a poster that never pauses must
+/// not hold the round back, hence the bound.
 async fn settle(board: &Whiteboard) {
     for _ in 0..SETTLE_TURNS {
         let seq = board.snapshot().seq;
