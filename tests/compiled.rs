@@ -150,9 +150,23 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// A seeded moment for a script's step, `from` plus less than `span` milliseconds, `next(n)`
+/// drawing below `n`: every other one moved up onto the ring period's beat (where an idle
+/// behaviour's rounds fall, so the step is due just as a round is, the first round's moment
+/// included), the rest at any millisecond.
+pub(crate) fn seeded_moment(next: &mut impl FnMut(u64) -> u64, from: u64, span: u64) -> u64 {
+    let period = 100;
+    let at = from + next(span);
+    if next(2) == 0 {
+        at.div_ceil(period) * period
+    } else {
+        at
+    }
+}
+
 /// Runs of press or shootout (neither ships a script): its own to the end, then `seeded`
-/// scripts of postings no label reads (news to nobody) at any millisecond, each stopped at a
-/// seeded time. Name, script and `--for` of each.
+/// scripts of postings no label reads (news to nobody) at any millisecond, rounds' moments
+/// included, each stopped at a seeded time. Name, script and `--for` of each.
 pub(crate) fn runs_of_press_or_shootout(
     name: &str,
     seeded: usize,
@@ -162,7 +176,7 @@ pub(crate) fn runs_of_press_or_shootout(
     for n in 0..seeded {
         let mut script = String::new();
         for _ in 0..splitmix(&mut seed) % 5 {
-            let at = splitmix(&mut seed) % 12_000;
+            let at = seeded_moment(&mut |n| splitmix(&mut seed) % n, 0, 12_000);
             let value = splitmix(&mut seed) % 2 == 0;
             script.push_str(&format!("at {at}ms crowd = {value}\n"));
         }
@@ -239,8 +253,8 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
             None,
         ),
     ];
-    // Seeded random scripts: the door and the timer at any millisecond, the door sometimes never
-    // posted (unknown to the theory).
+    // Seeded random scripts: the door and the timer at any millisecond, rounds' moments
+    // included, the door sometimes never posted (unknown to the theory).
     let mut seed = 0x5eed_0033;
     for n in 0..60 {
         let mut script = String::new();
@@ -249,7 +263,7 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
         }
         let steps = 1 + splitmix(&mut seed) % 8;
         for _ in 0..steps {
-            let at = splitmix(&mut seed) % 5_000;
+            let at = seeded_moment(&mut |n| splitmix(&mut seed) % n, 0, 5_000);
             let atom = if splitmix(&mut seed) % 2 == 0 {
                 "doorOpen"
             } else {
@@ -392,9 +406,59 @@ fn the_shipped_behaviours_of_variables_and_sub_machines_write_the_interpreters_t
     }
 }
 
+#[test]
+fn a_posting_due_at_a_rounds_moment_comes_before_that_round_interpreted_and_compiled() {
+    if gcc_missing() {
+        return;
+    }
+    // Postings no current label reads, each due just as a round is: the shoot-out's kicks come
+    // every two seconds (a chain of rounds that fire at once), the game's READY rings every
+    // ring period, the button unread there; and a step timed for the first round's moment,
+    // which is that round's, not the script's start.
+    let cases = [
+        (
+            "machines/shootout",
+            "at 100ms crowd = true\nat 2000ms crowd = false\nat 2100ms crowd = true\nat 4000ms crowd = false\n",
+            "5s",
+            "\"type\":\"crowd\",\"content\":\"false\",\"round\":",
+            "\"fired\",\"machine\":\"Kicker\",\"from\":1,\"to\":2,\"label\":\"kicks < 5 && timeout(2000000)\",\"round\":22,",
+        ),
+        (
+            "machines/game_controller",
+            "readyReceived = false\npenaltyReceived = false\nsetReceived = false\nplayingReceived = false\nfinishedReceived = false\ninitialReceived = false\nshortChestButtonPressed = false\nat 1s readyReceived = true\nat 2500ms shortChestButtonPressed = true\nat 2800ms shortChestButtonPressed = false\n",
+            "3s",
+            "\"type\":\"shortChestButtonPressed\",\"content\":\"true\",\"round\":",
+            "\"answered\",\"machine\":\"GameController\",\"atom\":\"penaltyReceived\",\"value\":false,\"by\":{\"expert\":\"impersonator\"},\"round\":30,\"at_us\":2500000}",
+        ),
+        (
+            "machines/subsumption",
+            "ballSeen = false\nballNear = false\natBall = false\nobstacle = false\nat 0ms obstacle = true\nat 300ms ballSeen = true\n",
+            "1s",
+            "\"type\":\"obstacle\",\"content\":\"true\",\"round\":1,\"at_us\":0}",
+            "\"entered\",\"machine\":\"Walk\",\"state\":\"SEARCH\",\"id\":1,\"round\":1,",
+        ),
+    ];
+    for (behaviour, script, run_for, posted, round) in cases {
+        let name = behaviour.trim_start_matches("machines/");
+        let dir = scratch(&format!("on-the-moment-{name}"));
+        build(behaviour, &dir);
+        let (interpreted, compiled) = traces(behaviour, &dir, name, script, Some(run_for));
+        let at = |what: &str| {
+            interpreted
+                .find(what)
+                .unwrap_or_else(|| panic!("{name}: no {what} in {interpreted}"))
+        };
+        assert!(
+            at(posted) < at(round),
+            "{name}: the posting comes before its round's events: {interpreted}"
+        );
+        assert_same(name, &interpreted, &compiled);
+    }
+}
+
 /// The subsumption behaviour's runs: its own script, and seeded ones of its story at other
 /// milliseconds (the ball seen, an obstacle for a while, the ball near and reached), with a
-/// few steps at any time, stopped at any time.
+/// few steps at any time (rounds' moments included), stopped at any time.
 pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
     let field = std::fs::read_to_string("machines/subsumption/field.script").unwrap();
     let mut runs = vec![("subsumption-own".to_string(), field, None)];
@@ -418,7 +482,7 @@ pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
             script.push_str(&format!("at {at}ms {step}\n"));
         }
         for _ in 0..next(3) {
-            let at = next(6_000);
+            let at = seeded_moment(&mut next, 0, 6_000);
             let atom = atoms[next(4) as usize];
             let value = next(2) == 0;
             script.push_str(&format!("at {at}ms {atom} = {value}\n"));
@@ -455,11 +519,11 @@ pub(crate) fn game_controller_runs() -> Vec<(String, String, Option<String>)> {
         let mut script = all_false.clone();
         let mut at = 0;
         let mut now = "initial";
-        // Off the ring period's moments: a posting no label reads, made just as a round is due,
-        // the interpreter shows after that round's events and a compiled host before them.
-        let off_period = |at: u64| if at % 100 == 0 { at + 1 } else { at };
+        // At any millisecond, rounds' moments included: a posting due just as a round is (the
+        // button, unread in most states) comes before that round, in the interpreter as in the
+        // compiled hosts (`docs/spec/behaviour.md` §3.1).
         for _ in 0..3 + next(6) {
-            at = off_period(at + 1 + next(1_500));
+            at = seeded_moment(&mut next, at + 1, 1_500);
             let then = states[next(states.len() as u64) as usize];
             script.push_str(&format!(
                 "at {at}ms {now}Received = false\nat {at}ms {then}Received = true\n"
@@ -467,8 +531,8 @@ pub(crate) fn game_controller_runs() -> Vec<(String, String, Option<String>)> {
             now = then;
         }
         for _ in 0..next(3) {
-            let press = off_period(next(at + 1));
-            let release = off_period(press + 50 + next(400));
+            let press = seeded_moment(&mut next, 0, at + 1);
+            let release = seeded_moment(&mut next, press + 50, 400);
             script.push_str(&format!("at {press}ms shortChestButtonPressed = true\nat {release}ms shortChestButtonPressed = false\n"));
         }
         let run_for = format!("{}ms", 1 + next(at + 2_000));

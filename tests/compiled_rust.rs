@@ -8,7 +8,7 @@
 
 use super::compiled::{
     assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
-    runs_of_press_or_shootout, scratch, splitmix, subsumption_runs, Case,
+    runs_of_press_or_shootout, scratch, seeded_moment, splitmix, subsumption_runs, Case,
 };
 use crate::proclaim;
 use std::path::{Path, PathBuf};
@@ -23,7 +23,7 @@ struct Compiled {
 }
 
 /// The microwave on its own script, on the door opening while cooking, and on seeded scripts
-/// of the door and the timer at any millisecond.
+/// of the door and the timer at any millisecond, rounds' moments included.
 fn microwave() -> Compiled {
     let kitchen = std::fs::read_to_string("machines/microwave/kitchen.script").unwrap();
     let mut runs = vec![
@@ -42,7 +42,7 @@ fn microwave() -> Compiled {
             script.push_str("doorOpen = false\n");
         }
         for _ in 0..1 + splitmix(&mut seed) % 8 {
-            let at = splitmix(&mut seed) % 5_000;
+            let at = seeded_moment(&mut |n| splitmix(&mut seed) % n, 0, 5_000);
             let atom = ["doorOpen", "timeLeft"][(splitmix(&mut seed) % 2) as usize];
             let value = splitmix(&mut seed) % 2 == 0;
             script.push_str(&format!("at {at}ms {atom} = {value}\n"));

@@ -155,12 +155,15 @@ pub async fn launch(
     let mut notes = Vec::new();
     let mut modules = experts(behaviour, board);
     let sim_note = sensors(behaviour, board, &options, &mut modules, &mut notes).await?;
+    // The script's timed steps wait for the machines, so that one timed for the first round's
+    // moment comes at that round's start (`docs/spec/behaviour.md` §3.1, between rounds).
+    let machines_started = Arc::new(tokio::sync::Notify::new());
     impersonators(
         behaviour,
         board,
         &options,
         (&tx, epoch, &round),
-        &mut modules,
+        (&mut modules, &machines_started),
         &mut notes,
     );
     embedded_experts(board, &options, &mut modules, &mut notes);
@@ -194,6 +197,7 @@ pub async fn launch(
             }
         }
     }
+    machines_started.notify_one();
     let (finals, top) = finals_and_top(behaviour);
     Ok(Running {
         events,
@@ -398,7 +402,7 @@ fn impersonators(
         tokio::time::Instant,
         &RoundCounter,
     ),
-    modules: &mut Vec<Module>,
+    (modules, machines_started): (&mut Vec<Module>, &Arc<tokio::sync::Notify>),
     notes: &mut Vec<String>,
 ) {
     let script = options.script.clone().or_else(|| behaviour.script.clone());
@@ -414,7 +418,8 @@ fn impersonators(
     if let Some(script) = script {
         let scripted = script.atoms();
         leave_out(modules, &scripted, "the script impersonates", notes);
-        let imp = Impersonator::new("impersonator", Vec::<String>::new(), script.clone());
+        let imp = Impersonator::new("impersonator", Vec::<String>::new(), script.clone())
+            .timed_after(machines_started.clone());
         // An atom the script sets only later is false until then.
         for atom in &scripted {
             if !script

@@ -23,6 +23,8 @@ pub struct Impersonator {
     script: Script,
     person: Arc<tokio::sync::Mutex<Option<Person>>>,
     board: Arc<Mutex<Option<Whiteboard>>>,
+    /// When given, the script's timed steps wait until it is notified (the machines started).
+    timed_after: Option<Arc<tokio::sync::Notify>>,
 }
 
 impl Impersonator {
@@ -45,7 +47,18 @@ impl Impersonator {
             script,
             person: Arc::default(),
             board: Arc::default(),
+            timed_after: None,
         }
+    }
+
+    /// Holds the script's timed steps back until `started` is notified (once the machines are
+    /// started), counting their times from the impersonator's own start as ever: a step timed
+    /// for the first round's moment then arrives at that round's beginning, as a step timed for
+    /// any later round's moment does, and not before the schedule exists. Queries are answered
+    /// meanwhile.
+    pub fn timed_after(mut self, started: Arc<tokio::sync::Notify>) -> Impersonator {
+        self.timed_after = Some(started);
+        self
     }
 
     /// Asks a person for atoms with no scripted value: `readyReceived? [y/n]`.
@@ -109,10 +122,18 @@ impl Impersonator {
         timed.sort_by_key(|(t, _, _)| *t);
         let mut timed = timed.into_iter().peekable();
         let mut step = 0u64;
+        let mut held = self.timed_after.clone();
         loop {
             let next_time = timed.peek().map(|(t, _, _)| start + *t);
-            let query = match next_time {
-                Some(at) => tokio::select! {
+            let query = match (next_time, &held) {
+                (Some(_), Some(started)) => tokio::select! {
+                    q = queries.next() => q,
+                    () = started.notified() => {
+                        held = None;
+                        continue;
+                    }
+                },
+                (Some(at), None) => tokio::select! {
                     q = queries.next() => q,
                     _ = tokio::time::sleep_until(at) => {
                         let (_, atom, value) = timed.next().expect("peeked");
@@ -120,7 +141,7 @@ impl Impersonator {
                         continue;
                     }
                 },
-                None => queries.next().await,
+                (None, _) => queries.next().await,
             };
             let Some(query) = query else { return };
             let Value::Str(atom) = &query.value else {

@@ -129,6 +129,30 @@ async fn the_impersonator_answers_from_its_script() {
     assert!(board.query("m", "playingReceived", t).await.truth());
 }
 
+#[tokio::test(start_paused = true)]
+async fn timed_steps_wait_until_the_machines_start_and_queries_are_answered_meanwhile() {
+    let script = parse_script("readyReceived = true\nat 0ms setReceived = true\n").unwrap();
+    let board = Whiteboard::local();
+    let started = std::sync::Arc::new(tokio::sync::Notify::new());
+    let imp =
+        Impersonator::new("testcdl", Vec::<String>::new(), script).timed_after(started.clone());
+    tokio::spawn(imp.run(board.clone()));
+    tokio::task::yield_now().await;
+    let t = Duration::from_millis(100);
+    assert!(board.query("m", "readyReceived", t).await.truth());
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    assert_eq!(
+        board.truth("setReceived"),
+        None,
+        "held back until the machines start, however long that takes"
+    );
+    started.notify_one();
+    eventually("the step timed for 0 ms", || {
+        board.truth("setReceived") == Some(true)
+    })
+    .await;
+}
+
 #[test]
 fn script_errors_name_their_lines() {
     let errors = parse_script(

@@ -7,7 +7,7 @@
 //! follows at once; when none did, the schedule waits for news: a posting or a change of globals
 //! that differs from what a running machine's current labels last saw, a time test coming due,
 //! or the ring period. The same outside postings arriving between the same rounds give the same
-//! trace.
+//! trace; one due just as a round is (a script's step timed for that moment) arrives before it.
 
 use crate::event::Event;
 use crate::machine::{MachineRunner, RingOutcome, RunningMachine, SharedSuppressor, Status};
@@ -159,11 +159,21 @@ impl Rounds {
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
         let mut commanded = true;
+        // The moment of the last round: a round at a later one first lets the outside catch up.
+        let mut last_moment: Option<tokio::time::Instant> = None;
         loop {
             if let Some(stepper) = &self.stepper {
                 last_step = stepper.wait(last_step).await;
             }
             let round = self.round.advance();
+            let moment = tokio::time::Instant::now();
+            if self.feed.is_none() && last_moment != Some(moment) {
+                // What was due at this moment (a script's step timed for it) is posted before
+                // the round's first snapshot and belongs to this round, whichever task the
+                // clock woke first.
+                settle(&board).await;
+            }
+            last_moment = Some(moment);
             let fired = self
                 .play_round(&mut scheduled, round, commanded, &board)
                 .await;
@@ -458,20 +468,48 @@ impl RoundWakeup {
             let at = first.reporter.epoch + release;
             deadline = Some(deadline.map_or(at, |d| d.min(at)));
         }
-        loop {
+        let commanded = loop {
             tokio::select! {
                 biased;
-                _ = commands.next() => return true,
+                _ = commands.next() => break true,
                 message = subscription.next() => match message {
                     Some(m) if !is_news(&m, runs) => continue,
-                    _ => return false,
+                    _ => break false,
                 },
-                _ = globals.changed(), if reads_globals => return false,
+                _ = globals.changed(), if reads_globals => break false,
                 _ = sleep_until(deadline) => return false,
             }
+        };
+        // News before the round was due belongs to the wait: whatever else came at its moment
+        // (the rest of a script's steps, the trace's note of them) is in before the round
+        // begins. News just as the round is due is the round's (the schedule settles after it
+        // counts the round).
+        if deadline.is_none_or(|d| tokio::time::Instant::now() < d) {
+            settle(board).await;
+        }
+        commanded
+    }
+}
+
+/// Lets every other task that is ready at this moment run, and the tasks they wake, until a
+/// turn (two yields, for a task woken by one woken first) posts nothing: on the virtual clock
+/// (tokio's current-thread scheduler, which runs a yielding task again only once no other task
+/// is ready) that is everything due at this moment, so what arrives before a round does not
+/// depend on which task the clock woke first. On the real clock a poster that never pauses must
+/// not hold the round back, hence the bound.
+async fn settle(board: &Whiteboard) {
+    for _ in 0..SETTLE_TURNS {
+        let seq = board.snapshot().seq;
+        tokio::task::yield_now().await;
+        tokio::task::yield_now().await;
+        if board.snapshot().seq == seq {
+            return;
         }
     }
 }
+
+/// How many times [`settle`] lets the others run while they keep posting.
+const SETTLE_TURNS: usize = 16;
 
 /// Whether a running machine's current labels read a type whose value on the board is not
 /// what its last ringlet saw.

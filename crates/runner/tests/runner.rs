@@ -343,3 +343,42 @@ fn corpus_dir() -> Option<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }
+
+/// A posting due just as a round is (on the ring period's beat, of a type no label reads) is on
+/// the board before that round's ringlet begins, whether the poster's timer or the schedule's
+/// was set first.
+#[tokio::test(start_paused = true)]
+async fn a_posting_due_at_a_rounds_moment_is_on_the_board_before_that_round_begins() {
+    for (poster_first, timer_set_at) in [(true, 0), (false, 0), (true, 250), (false, 250)] {
+        let board = Whiteboard::local();
+        let machine =
+            native("machine M\ninitial A\nstate A {\n    when timeout(5s) -> B\n}\nstate B {\n}\n");
+        let runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
+        let mut rounds = proclaim_runner::Rounds::new(vec![runner]);
+        let mut ringlets = rounds.ringlets();
+        let outside = board.clone();
+        let start = tokio::time::Instant::now();
+        let poster = async move {
+            tokio::time::sleep_until(start + Duration::from_millis(timer_set_at)).await;
+            tokio::time::sleep_until(start + Duration::from_millis(300)).await;
+            outside.post("outside", "crowd", true);
+        };
+        if poster_first {
+            tokio::spawn(poster);
+            tokio::spawn(rounds.run(board.clone()));
+        } else {
+            tokio::spawn(rounds.run(board.clone()));
+            tokio::spawn(poster);
+        }
+        tokio::time::sleep(Duration::from_secs(1)).await;
+        let posted = board.snapshot().newest("crowd").map(|m| m.seq).unwrap();
+        let at_its_moment = std::iter::from_fn(|| ringlets.try_recv().ok())
+            .find(|r| r.at == Duration::from_millis(300))
+            .expect("a round at 300 ms");
+        assert!(
+            at_its_moment.seq >= posted,
+            "poster first: {poster_first}, its timer set at {timer_set_at} ms: the ringlet at 300 ms began at {} before the posting {posted}",
+            at_its_moment.seq
+        );
+    }
+}
