@@ -15,8 +15,6 @@ struct step {
     int start;
     /* This step's value is the last the trace showed for its type. */
     int shown;
-    /* Posted as a round started, its trace line still to come (see `show_deferred`). */
-    int deferred;
     /* For a type's first step: asked before the script posted it, the impersonator's answer
      * was shown with this value (see `show_answer`). */
     const char *answer_shown;
@@ -145,7 +143,6 @@ static void on_finished(struct world *w, const char *machine, const char *state)
     over = behaviour_finished(w);
 }
 
-static void show_deferred(struct world *w);
 static void show_answer(struct world *w, const char *atom, int value);
 
 static void on_answered(struct world *w, const char *machine, const char *atom, int value,
@@ -155,7 +152,6 @@ static void on_answered(struct world *w, const char *machine, const char *atom, 
         return;
     }
     if (expert != NULL) {
-        show_deferred(w);
         show_answer(w, atom, value);
     }
     printf("{\"event\":\"answered\",\"machine\":");
@@ -236,23 +232,6 @@ static void on_warned(struct world *w, const char *machine, const char *message)
     tail(w);
 }
 
-/* Whether the script's steps due as a round starts are shown later: `proclaim run` shows the
- * impersonator's postings from a task of their own, which writes them once the rounds wait
- * (for time, or for an expert's answer), with the round counted then. */
-static int deferring;
-
-/* Shows the steps posted as a round started, at the round counted now. */
-static void show_deferred(struct world *w)
-{
-    size_t i;
-    for (i = 0; i < next_step; i++) {
-        if (steps[i].deferred) {
-            steps[i].deferred = 0;
-            on_post(w, "impersonator", steps[i].name, steps[i].value, 0);
-        }
-    }
-}
-
 /* The first step of `name`, or NULL. */
 static struct step *first_step(const char *name)
 {
@@ -306,11 +285,7 @@ static int impersonate(struct world *w, struct step *s)
     }
     if (!s->shown) {
         s->shown = 1;
-        if (deferring) {
-            s->deferred = 1;
-        } else {
-            on_post(w, "impersonator", s->name, s->value, 0);
-        }
+        on_post(w, "impersonator", s->name, s->value, 0);
     }
     return behaviour_outside(w, s->name, s->value);
 }
@@ -327,9 +302,7 @@ static int post_due(struct world *w)
 
 static void on_round_started(struct world *w)
 {
-    deferring = 1;
     (void)post_due(w);
-    deferring = 0;
 }
 
 static char *trim(char *s)
@@ -535,8 +508,9 @@ int main(int argc, char **argv)
         (void)behaviour_supply(&w, steps[i].name);
     }
     w.now_ms = 0;
-    /* What the script says from the start, or at 0 ms, is posted before the first round. */
-    while (next_step < step_count && (steps[next_step].start || steps[next_step].at_ms == 0)) {
+    /* What the script says from the start is posted before the first round; what it says at
+     * 0 ms, as the first round starts. */
+    while (next_step < step_count && steps[next_step].start) {
         (void)impersonate(&w, &steps[next_step++]);
     }
     w.cb.round_started = on_round_started;
@@ -552,7 +526,6 @@ int main(int argc, char **argv)
         if (fired || behaviour_news(&w)) {
             continue;
         }
-        show_deferred(&w);
         {
             uint64_t due = w.now_ms + behaviour_next_due_ms(&w);
             int news = 0;

@@ -195,11 +195,6 @@ pub struct World {
     /// Whether each output has an answerer: a theory's always, an atom from outside when the
     /// host supplies it (else no expert answers it, false).
     pub supplied: Vec<bool>,
-    /// The script's postings made as a round started (type and content), their trace lines
-    /// still to come: `proclaim run` shows the impersonator's postings from a task of its own,
-    /// which writes them once the rounds wait (for time, or for an expert's answer), with the
-    /// round counted then.
-    pub unshown: Vec<(String, String)>,
     /// The script's atoms it has not posted yet (the host lists them): the impersonator answers
     /// every query by posting its answer, so one asked before the script posts it shows that
     /// answer first, kept in `answer_shown` as the type's last value shown.
@@ -243,16 +238,8 @@ impl World {
             over: false,
             suppressor: None,
             supplied: vec![false; outputs],
-            unshown: Vec::new(),
             unposted: Vec::new(),
             answer_shown: Vec::new(),
-        }
-    }
-
-    /// Shows the script's postings made as the round started, at the round counted now.
-    pub fn show_unshown(&mut self) {
-        for (ty, content) in std::mem::take(&mut self.unshown) {
-            self.posted("impersonator", &ty, &content, 0);
         }
     }
 
@@ -337,10 +324,7 @@ impl World {
 
     /// `expert` answered, or none did (`None`).
     pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: Option<&str>) {
-        // The machine waits for an expert's answer: the rounds wait, and the script's postings
-        // are shown meanwhile.
         if expert.is_some() {
-            self.show_unshown();
             if let Some(i) = self.unposted.iter().position(|a| a == atom) {
                 self.unposted.remove(i);
                 self.posted("impersonator", atom, if value { "true" } else { "false" }, 0);
