@@ -222,6 +222,15 @@ const EXTERN_WATCHER: &str = "machine W\ninitial S\nstate S {\n    entry {\n    
 
 /// A poster of whiteboard variables: assignments, postings of constants and of values, a read
 /// in OnEntry (live) and in Internal (the snapshot, then its own posting).
+/// Whiteboard values read by name alone: a type never posted (no value: a comparison is false,
+/// arithmetic keeps none, an assignment makes it 0), a type another machine posts, a
+/// sub-machine's `WorkerIsRunning`, an atom no expert answers that a machine posts, a script's atom that is also
+/// a theory input (asked of the impersonator, read as the value it posted), a theory input
+/// posted as a whole number.
+const BOARD_READER: &str = "machine Reader\ninitial A\nstate A {\n    entry {\n        int n = 5;\n        n = never + 1;\n        k = level;\n    }\n    when never == 1 || never != 1 -> Z\n    when level > 2 && WorkerIsRunning -> B\n    when timeout(2s) -> Z\n}\nstate B {\n    entry {\n        k = level * 10 + n;\n        Worker: Off\n    }\n    when cook && !WorkerIsRunning && !busy -> C\n}\nstate C {\n    entry {\n        d = doorOpen;\n        print_int(k);\n    }\n    when doorOpen && !cook -> D\n}\nstate D {\n    entry {\n        d = doorOpen;\n    }\n}\nstate Z {\n}\n";
+
+const BOARD_POSTER: &str = "machine Poster\ninitial P\nstate P {\n    entry {\n        level: 1\n        timeLeft: 0\n        busy: 0\n    }\n    when timeout(300ms) -> Q\n}\nstate Q {\n    entry {\n        level: 3\n        timeLeft: 7\n        Worker: On\n    }\n}\n";
+
 const EXTERN_POSTER: &str = "machine P\ninitial A\nstate A {\n    entry {\n        extern e;\n        extern n;\n        n = 5;\n        post(\"n\", n + 2);\n        e = true;\n        e: 0\n        post_int(\"m\", e == 0);\n        g = n;\n    }\n    internal {\n        n = n + 1;\n        g = n * 2;\n    }\n    when n > 9 -> B\n}\nstate B {\n    entry {\n        print_int(n);\n        e = 1;\n        n: 3\n    }\n    when timeout(200ms) -> C\n}\nstate C {\n}\n";
 
 /// The time tests in their units.
@@ -635,6 +644,54 @@ fn whiteboard_variables_are_read_through_the_snapshot_and_posted_when_assigned()
 }
 
 #[test]
+fn whiteboard_values_read_by_name_alone_are_the_runners_including_none_and_who_posted() {
+    if gcc_missing() {
+        return;
+    }
+    let case = construct_cases()
+        .into_iter()
+        .find(|c| c.name == "board")
+        .unwrap();
+    let files: Vec<(&str, &str)> = case
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of("board", &files);
+    let trace = same_trace("board", &folder, case.script, case.run_for);
+    for (what, expected) in [
+        (
+            "no value plus one is assigned as 0",
+            "\"variable\":\"n\",\"value\":\"0\"",
+        ),
+        (
+            "a running state is read from its poster",
+            "\"atom\":\"WorkerIsRunning\",\"value\":true,\"by\":{\"posted\":\"Worker\"}",
+        ),
+        (
+            "a stop is posted too",
+            "\"atom\":\"WorkerIsRunning\",\"value\":false,\"by\":{\"posted\":\"Worker\"}",
+        ),
+        (
+            "an atom no expert answers is read from its poster",
+            "\"atom\":\"busy\",\"value\":false,\"by\":{\"posted\":\"Poster\"}",
+        ),
+        (
+            "a whole number sets a theory input",
+            "\"atom\":\"cook\",\"value\":true",
+        ),
+        ("a posted type is read", "\"text\":\"30\""),
+        (
+            "a script's atom that is a theory input is asked of the impersonator",
+            "\"atom\":\"doorOpen\",\"value\":true,\"by\":{\"expert\":\"impersonator\"}",
+        ),
+        ("the reader ends in D", "\"state\":\"D\""),
+    ] {
+        assert!(trace.contains(expected), "{what}: {trace}");
+    }
+}
+
+#[test]
 fn arithmetic_is_the_runners_wrapping_c_arithmetic() {
     if gcc_missing() {
         return;
@@ -931,16 +988,17 @@ fn what_an_activity_cannot_compile_is_refused_at_its_line_for_either_target() {
         ),
         (
             "extern d;\n        post(\"d\", \"hi\");",
-            "a posting of text to `d`, a whiteboard variable",
+            "a posting of text to `d`, a whiteboard value",
         ),
         (
             "extern d;\n        d: \"12\"",
-            "the text \"12\" posted to `d`, a whiteboard variable",
+            "the text \"12\" posted to `d`, a whiteboard value",
         ),
         (
-            "x = ballDistance + 1;",
-            "`ballDistance`, which is no variable",
+            "x = ballDistance + 1;\n        ballDistance: \"far\"",
+            "the text \"far\" posted to `ballDistance`, a whiteboard value",
         ),
+        ("x = Other + 1;", "`Other`, which is no variable"),
         ("x = 2.5;", "the number `2.5`"),
         ("x = \"text\";", "the text \"text\""),
         ("kick(3);", "the call `kick`"),
@@ -1080,6 +1138,19 @@ pub(crate) fn construct_cases() -> Vec<Case> {
             ],
             script: "at 170ms e = true\nat 333ms e = false\nat 400ms n = true\n",
             run_for: Some("2s"),
+        },
+        Case {
+            name: "board",
+            files: vec![
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"Reader.machine\"\n[[machine]]\nfile = \"Poster.machine\"\n[[machine]]\nfile = \"Worker.machine\"\nstart = false\n[[theory]]\nfile = \"microwave.dl\"\n[impersonator]\nscript = \"own.script\"\n".into()),
+                ("Reader.machine".into(), BOARD_READER.into()),
+                ("Poster.machine".into(), BOARD_POSTER.into()),
+                ("Worker.machine".into(), "machine Worker\ninitial W\nstate W {\n}\n".into()),
+                ("microwave.dl".into(), std::fs::read_to_string("theories/microwave.dl").unwrap()),
+                ("own.script".into(), "doorOpen = false\n".into()),
+            ],
+            script: "doorOpen = false\nat 900ms doorOpen = true\n",
+            run_for: Some("3s"),
         },
         Case {
             name: "alone",

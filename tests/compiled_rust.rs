@@ -234,7 +234,7 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
                 runs: b.runs,
             }),
     );
-    // The verifier's random behaviours that compile, run below with a bound (some spin).
+    // The verifier's random behaviours, run below with a bound (some spin).
     let verified = super::compiled_verify::compiled_seeds();
     behaviours.extend(verified.iter().map(|g| Compiled {
         name: g.name.clone(),

@@ -133,6 +133,7 @@ fn behaviour(name: &str, target: CompileTarget, out: &Path) -> Result<ExitCode, 
             )
         }
     };
+    warn_what_run_would_refuse(&behaviour);
     for (file, text) in &files {
         let path = out.join(file);
         if let Some(folder) = path.parent() {
@@ -150,4 +151,24 @@ fn behaviour(name: &str, target: CompileTarget, out: &Path) -> Result<ExitCode, 
         out.display()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// What `check` finds stops `proclaim run` unless `--force`; a compiled program has no such
+/// stop and runs as `run --force` does (an atom nobody answers reads false), so each finding is
+/// shown as a warning.
+fn warn_what_run_would_refuse(behaviour: &proclaim_behaviour::Behaviour) {
+    let errors: Vec<String> = proclaim_behaviour::check_behaviour_with(behaviour, None, &[])
+        .iter()
+        .filter(|d| d.severity == proclaim_fsm::Severity::Error)
+        .map(|d| d.to_string().replacen(": error: ", ": warning: ", 1))
+        .collect();
+    if errors.is_empty() {
+        return;
+    }
+    for e in &errors {
+        eprintln!("{e}");
+    }
+    eprintln!(
+        "warning: `proclaim run` refuses this behaviour without --force; the compiled program runs it as `run --force` does"
+    );
 }

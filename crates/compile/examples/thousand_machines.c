@@ -38,13 +38,14 @@ static void on_text(struct world *w, const char *machine, const char *a)
 }
 
 static void on_answered(struct world *w, const char *machine, const char *atom, int value,
-                        const char *expert)
+                        const char *expert, const char *poster)
 {
     (void)w;
     (void)machine;
     (void)atom;
     (void)value;
     (void)expert;
+    (void)poster;
     events++;
 }
 

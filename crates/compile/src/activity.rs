@@ -45,38 +45,45 @@ impl Kinds {
 }
 
 /// The variables one machine sees, looked up as gufsm did: its own (declared anywhere in it),
-/// then the behaviour's whiteboard variables (`extern`), then the globals.
+/// then the behaviour's whiteboard variables (`extern`), then the globals; any other name it
+/// reads is a whiteboard value read by name alone.
 pub(crate) struct Variables {
     pub own: HashMap<String, Variable>,
-    /// Each whiteboard variable's number.
-    pub externs: HashMap<String, usize>,
+    /// Each whiteboard value's number, and whether it is bound with `extern` (a variable).
+    pub board: HashMap<String, (usize, bool)>,
     pub globals: HashMap<String, Variable>,
 }
 
 impl Variables {
     /// A variable with a slot (the machine's own, or a global) and whether it is a global;
-    /// `None` for a whiteboard variable or no variable.
+    /// `None` for a whiteboard value or no variable.
     pub fn lookup(&self, name: &str) -> Option<(&Variable, bool)> {
         if let Some(v) = self.own.get(name) {
             return Some((v, false));
         }
-        if self.externs.contains_key(name) {
+        if self.board.contains_key(name) {
             return None;
         }
         self.globals.get(name).map(|v| (v, true))
     }
 
-    /// The whiteboard variable `name` names here (the machine's own variable hides one).
+    /// The whiteboard value `name` reads here (the machine's own variable hides one).
     pub fn extern_number(&self, name: &str) -> Option<usize> {
         if self.own.contains_key(name) {
             return None;
         }
-        self.externs.get(name).copied()
+        self.board.get(name).map(|(number, _)| *number)
+    }
+
+    /// The whiteboard value a posting to type `ty` sets.
+    pub fn posted_value(&self, ty: &str) -> Option<usize> {
+        self.board.get(ty).map(|(number, _)| *number)
     }
 
     /// Whether `name` is a variable here of either kind (not an atom to ask).
     pub fn is_variable(&self, name: &str) -> bool {
-        self.lookup(name).is_some() || self.extern_number(name).is_some()
+        self.lookup(name).is_some()
+            || (!self.own.contains_key(name) && self.board.get(name).is_some_and(|(_, b)| *b))
     }
 }
 
@@ -95,6 +102,17 @@ pub(crate) fn conversion(ty: &VarType) -> Result<Conversion, String> {
         )),
         VarType::Named(_) => Ok(Conversion::Kept),
     }
+}
+
+/// Whether a posting's text sets a theory input as the reasoner expert reads it, in the words a
+/// compiled program reads too: `true`, `false`, `unknown` (in any case) or a whole number
+/// (true unless 0). Other text (`yes`, `True`) the reasoner reads by its truthiness, which a
+/// compiled program does not keep.
+fn is_input_word(text: &str) -> bool {
+    text == "true"
+        || text == "false"
+        || text.eq_ignore_ascii_case("unknown")
+        || text.parse::<i64>().is_ok()
 }
 
 /// The longest text of a value: `-9223372036854775808`.
@@ -141,17 +159,15 @@ impl Activity<'_> {
                         content.trim()
                     )));
                 };
-                if self.variables.externs.contains_key(ty) && content.trim().starts_with('"') {
+                if self.variables.posted_value(ty).is_some() && content.trim().starts_with('"') {
                     return Err(self.refuse(format!(
-                        "the text {} posted to `{ty}`, a whiteboard variable (a compiled one holds a whole number or a truth value)",
+                        "the text {} posted to `{ty}`, a whiteboard value the machines read (a compiled one holds a whole number or a truth value)",
                         content.trim()
                     )));
                 }
-                if self.inputs.contains(ty)
-                    && !["true", "false", "unknown"].contains(&text.as_str())
-                {
+                if self.inputs.contains(ty) && !is_input_word(&text) {
                     return Err(self.refuse(format!(
-                        "a theory input posted as `{content}` (only true, false or unknown)"
+                        "a theory input posted as `{content}` (only true, false, unknown or a whole number)"
                     )));
                 }
                 self.post(ty, vec![Piece::Literal(text)], 0)
@@ -170,7 +186,7 @@ impl Activity<'_> {
         if let Some(target) = self.machines.iter().position(|n| n == ty) {
             return self.command(ty, target, &pieces, depth);
         }
-        if let Some(&number) = self.variables.externs.get(ty) {
+        if let Some(number) = self.variables.posted_value(ty) {
             return self.post_extern(ty, number, pieces);
         }
         if self.inputs.iter().any(|i| i == ty) && !matches!(pieces.as_slice(), [Piece::Literal(_)])
@@ -214,7 +230,7 @@ impl Activity<'_> {
         match value {
             Some(value) => Ok(Step::PostExtern { number, value }),
             None => Err(self.refuse(format!(
-                "a posting of text to `{ty}`, a whiteboard variable (a compiled one holds a whole number or a truth value)"
+                "a posting of text to `{ty}`, a whiteboard value the machines read (a compiled one holds a whole number or a truth value)"
             ))),
         }
     }
@@ -457,7 +473,7 @@ impl Activity<'_> {
                 (None, Some(number)) => (Value::Extern(number), Kinds::ANY),
                 (None, None) => {
                     return Err(self.refuse(format!(
-                        "`{n}`, which is no variable: reading the whiteboard is not compiled yet"
+                        "`{n}`, which is no variable: reading it from the whiteboard is not compiled (a machine's name, a theory's answer or a type under subsumption)"
                     )))
                 }
             },

@@ -6,11 +6,12 @@
 use crate::activity::{conversion, Activity, Variable, Variables};
 use crate::c::c_identifier;
 use crate::plan::{
-    Answer, Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory, StatePlan,
-    Suppressed, TransitionPlan,
+    Answer, BoardValue, Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory,
+    StatePlan, Suppressed, TransitionPlan,
 };
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
+use proclaim_fsm::control::running_type;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
 use std::collections::HashMap;
 
@@ -101,8 +102,9 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         .filter(|o| matches!(o.answer, Answer::Outside { .. }))
         .count();
     let sensors = sensor_atoms(behaviour);
-    let externs = plan_externs(behaviour, &outputs, &inputs)?;
+    let mut externs = plan_externs(behaviour, &outputs)?;
     let (slots, own, globals) = plan_slots(behaviour, &externs)?;
+    plan_board_reads(behaviour, &own, &globals, &outputs, &mut externs);
     let names: Vec<String> = behaviour
         .machines
         .iter()
@@ -120,10 +122,10 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
             file: behaviour.files.show(&loaded.file),
             variables: Variables {
                 own: own[m].clone(),
-                externs: externs
+                board: externs
                     .iter()
                     .enumerate()
-                    .map(|(number, name)| (name.clone(), number))
+                    .map(|(number, b)| (b.name.clone(), (number, b.bound)))
                     .collect(),
                 globals: globals.clone(),
             },
@@ -282,8 +284,9 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
     scripted.sort();
     scripted.dedup();
     for atom in scripted {
-        // A theory's input the script sets stays only that: no label asks it directly.
-        if outputs.iter().any(|o| o.name == atom) || inputs.iter().any(|i| i.ty == atom) {
+        // A theory's input the script sets is both: the theory reads it, and a label asking it
+        // is answered by the impersonator.
+        if outputs.iter().any(|o| o.name == atom) {
             continue;
         }
         inputs.push(Input {
@@ -317,14 +320,10 @@ fn sensor_atoms(behaviour: &Behaviour) -> Vec<(String, Vec<String>)> {
 }
 
 /// The behaviour's whiteboard variables (every name a machine binds with `extern`), in the
-/// order first bound; one that is also a theory's input or answer, a machine's name or a type
-/// under subsumption is refused where it is bound (a compiled program keeps those apart).
-fn plan_externs(
-    behaviour: &Behaviour,
-    outputs: &[Output],
-    inputs: &[Input],
-) -> Result<Vec<String>, Refusal> {
-    let mut externs: Vec<String> = Vec::new();
+/// order first bound; one that is also a theory's answer, a machine's name or a type under
+/// subsumption is refused where it is bound (a compiled program keeps those apart).
+fn plan_externs(behaviour: &Behaviour, outputs: &[Output]) -> Result<Vec<BoardValue>, Refusal> {
+    let mut externs: Vec<BoardValue> = Vec::new();
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
@@ -332,28 +331,86 @@ fn plan_externs(
                 let Statement::Extern { name, .. } = s else {
                     continue;
                 };
-                let clash = if inputs.iter().any(|i| &i.ty == name) {
-                    Some("a theory's input or an atom the script sets")
-                } else if outputs.iter().any(|o| &o.name == name) {
-                    Some("a theory's answer")
-                } else if behaviour.machines.iter().any(|m| &m.machine.name == name) {
-                    Some("a machine's name")
-                } else if behaviour.suppress.iter().any(|(ty, _)| ty == name) {
-                    Some("a type under subsumption")
-                } else {
-                    None
-                };
-                if let Some(clash) = clash {
+                if let Some(clash) = board_clash(behaviour, outputs, name) {
                     let what = format!("`extern {name}`, which is also {clash} (a compiled behaviour keeps a whiteboard variable's value apart from those)");
                     return Err(refuse(&file, state.line, what));
                 }
-                if !externs.contains(name) {
-                    externs.push(name.clone());
+                if !externs.iter().any(|b| &b.name == name) {
+                    externs.push(BoardValue {
+                        name: name.clone(),
+                        bound: true,
+                        status_of: None,
+                    });
                 }
             }
         }
     }
     Ok(externs)
+}
+
+/// What a whiteboard type read as a value is besides, that a compiled program keeps apart: a
+/// theory's answer (its expert's postings), a machine's name (its control commands), or a type
+/// under subsumption.
+fn board_clash(behaviour: &Behaviour, outputs: &[Output], name: &str) -> Option<&'static str> {
+    if outputs
+        .iter()
+        .any(|o| o.name == name && matches!(o.answer, Answer::Theory { .. }))
+    {
+        Some("a theory's answer")
+    } else if behaviour.machines.iter().any(|m| m.machine.name == name) {
+        Some("a machine's name")
+    } else if behaviour.suppress.iter().any(|(ty, _)| ty == name) {
+        Some("a type under subsumption")
+    } else {
+        None
+    }
+}
+
+/// Adds to `board` every other whiteboard type a machine reads: a name in an expression that
+/// is no variable of that machine, and a label atom no theory, script or sensor answers (the
+/// runner reads its newest posting then: a machine's `NameIsRunning`, a type a machine posts,
+/// or nothing at all). A name that clashes (`board_clash`) is left out, so that reading it is
+/// refused where it is read.
+fn plan_board_reads(
+    behaviour: &Behaviour,
+    own: &[HashMap<String, Variable>],
+    globals: &HashMap<String, Variable>,
+    outputs: &[Output],
+    board: &mut Vec<BoardValue>,
+) {
+    for (m, loaded) in behaviour.machines.iter().enumerate() {
+        let mut read = |name: &str, asked: bool| {
+            let answered = asked && outputs.iter().any(|o| o.name == name);
+            if answered
+                || own[m].contains_key(name)
+                || globals.contains_key(name)
+                || board.iter().any(|b| b.name == name)
+                || board_clash(behaviour, outputs, name).is_some()
+            {
+                return;
+            }
+            let status_of = behaviour
+                .machines
+                .iter()
+                .position(|other| running_type(&other.machine.name) == name);
+            board.push(BoardValue {
+                name: name.to_string(),
+                bound: false,
+                status_of,
+            });
+        };
+        for state in &loaded.machine.states {
+            for s in state_statements(state) {
+                for e in s.expressions() {
+                    e.visit_names(&mut |name, _| read(name, false));
+                }
+            }
+        }
+        for t in &loaded.machine.transitions {
+            t.label
+                .visit_names(&mut |name, condition| read(name, condition));
+        }
+    }
 }
 
 type Slots = (
@@ -365,7 +422,7 @@ type Slots = (
 /// Slots: each machine's own variables (declared anywhere in it), then the globals (names a
 /// machine assigns without declaring them or binding them to the whiteboard), as
 /// `proclaim_runner::Shared` and `Locals` read.
-fn plan_slots(behaviour: &Behaviour, externs: &[String]) -> Result<Slots, Refusal> {
+fn plan_slots(behaviour: &Behaviour, externs: &[BoardValue]) -> Result<Slots, Refusal> {
     let mut slots: Vec<bool> = Vec::new();
     let mut own: Vec<HashMap<String, Variable>> = Vec::new();
     for loaded in &behaviour.machines {
@@ -395,7 +452,7 @@ fn plan_slots(behaviour: &Behaviour, externs: &[String]) -> Result<Slots, Refusa
         for s in loaded.machine.statements() {
             if let Statement::Assign { name, .. } = s {
                 if !own[m].contains_key(name)
-                    && !externs.contains(name)
+                    && !externs.iter().any(|b| &b.name == name)
                     && !globals.contains_key(name)
                 {
                     let variable = Variable {
@@ -542,11 +599,17 @@ impl Labels<'_> {
                 Condition::Truth(activity.value(label)?.0)
             }
             Expr::Name(n) => {
-                let Some(k) = self.outputs.iter().position(|o| &o.name == n) else {
-                    return Err(refuse(activity.file, activity.line, format!("the label atom `{n}`, which is no variable and which no theory of the behaviour answers")));
-                };
-                self.read.push(k);
-                Condition::Ask(k)
+                if let Some(k) = self.outputs.iter().position(|o| &o.name == n) {
+                    self.read.push(k);
+                    Condition::Ask(k)
+                } else if let Some(number) = activity.variables.extern_number(n) {
+                    Condition::AskPosted {
+                        number,
+                        atom: n.clone(),
+                    }
+                } else {
+                    return Err(refuse(activity.file, activity.line, format!("the label atom `{n}`, which no theory, script or sensor answers and whose postings a compiled program does not keep (a machine's name or a type under subsumption)")));
+                }
             }
             Expr::Unary {
                 op: UnOp::Not,

@@ -76,8 +76,16 @@ struct world_callbacks {
                       unsigned long priority, uint64_t posted_ms);
     void (*entered)(struct world *w, const char *machine, const char *state, long id);
     void (*finished)(struct world *w, const char *machine, const char *state);
-    /* `expert` is NULL when no expert answers the atom (one from outside the host does not supply). */
-    void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert);
+    /* An expert was asked `atom` and answered `value`, which it posts (may be NULL): the
+     * impersonator's answer to an atom its script has not posted yet is the first the trace
+     * shows of it. */
+    void (*queried)(struct world *w, const char *atom, int value);
+    /* The answers a transition's label read, once the label is proved (as the runner reports
+     * them). `expert` is NULL when no expert answers the atom (one from outside the host does not
+     * supply, or one nobody answers); then `poster` is the module whose posting of the atom the
+     * machine read (a machine's `NameIsRunning`: that machine), or NULL when nothing was posted. */
+    void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert,
+                     const char *poster);
     void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
     /* A variable's value changed (its text as the trace shows it). */
     void (*assigned)(struct world *w, const char *machine, const char *variable, const char *value);
@@ -89,10 +97,12 @@ struct world_callbacks {
     void (*round_started)(struct world *w);
 };
 
-/* A variable's value as the runner holds it: a whole number, or a truth value (0 or 1). */
+/* A variable's value as the runner holds it: a whole number, or a truth value (0 or 1); or
+ * none, a whiteboard value never posted. */
 struct value {
     int64_t i;
     unsigned char is_bool;
+    unsigned char none;
 };
 
 @held_types@/* The whiteboard's values the behaviour reads and its machines' states. */
@@ -121,15 +131,22 @@ struct world {
     unsigned char fresh[BEHAVIOUR_MACHINES];
     /* Each machine's own variables, then the behaviour's globals. */
     struct value var[BEHAVIOUR_VALUES];
-    /* Each whiteboard variable (`extern`): the board's newest value, and whether any was posted
-     * (one never posted reads as a whole 0). */
+    /* Each whiteboard value the machines read: the board's newest value, whether any was posted
+     * (one never posted reads as a whole 0 when bound with `extern`, else as none), and who
+     * posted it. */
     struct value ext[BEHAVIOUR_EXTERNS];
     unsigned char ext_known[BEHAVIOUR_EXTERNS];
+    const char *ext_by[BEHAVIOUR_EXTERNS];
     /* As each machine's last ringlet saw them: the board at its snapshot, the values it posted
      * itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
      * board finds nothing new in a posting). */
     struct value ext_seen[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
     unsigned char ext_seen_known[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    const char *ext_seen_by[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    /* The atoms nobody answers that each machine's last ringlet asked, read from these values,
+     * and what it read: news is then a posting whose truth differs. */
+    unsigned char asked_posted[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
+    unsigned char asked_answer[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
     struct value ext_own[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
     unsigned char ext_owned[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
     unsigned char ext_read[BEHAVIOUR_MACHINES];
@@ -143,6 +160,14 @@ struct world {
     unsigned char command[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
     const char *command_word[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
     unsigned command_count[BEHAVIOUR_MACHINES];
+    /* The answers the label being proved has read, reported once it is proved. */
+    struct pending_answer {
+        const char *atom;
+        const char *expert;
+        const char *poster;
+        int value;
+    } pending[BEHAVIOUR_ASKS];
+    unsigned pending_count;
     /* Whether a command waits (so a ringlet that posted none costs no look at every machine). */
     unsigned char commands_waiting;
     /* The text a posting or a print is built in. */
@@ -168,7 +193,8 @@ const char *behaviour_sensor_name(unsigned s);
 const char *behaviour_sensor_atom(unsigned s, unsigned i);
 /* 1 when `name` is a machine's (a posting to it is a control command). */
 int behaviour_is_machine(const char *name);
-/* Milliseconds from now_ms until the next round is due without news (a timeout or the ring period). */
+/* Milliseconds from now_ms until the next round is due without news (a timeout or the ring
+ * period); UINT64_MAX while no machine runs (then only news starts a round, as the runner waits). */
 uint64_t behaviour_next_due_ms(const struct world *w);
 /* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
 int behaviour_finished(const struct world *w);
@@ -188,6 +214,12 @@ static const unsigned sensors = @sensors@u;
 static const char *const machine_name[@machines@] = {@machine_names@};
 static const char *const extern_name[@externs_n@] = {@extern_names@};
 static const unsigned externs = @externs@u;
+/* Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted). */
+static const unsigned char extern_bound[@externs_n@] = {@extern_bound@};
+/* The whiteboard value of each output's atom (-1 for none): an expert's answer is posted there. */
+static const int output_board[@outputs_n@] = {@output_board@};
+/* The whiteboard value each machine's running state is posted to (`NameIsRunning`), or -1. */
+static const int status_board[@machines@] = {@status_board@};
 /* Each machine's subsumption layer, which its postings carry. */
 static const unsigned long machine_priority[@machines@] = {@priorities@};
 
@@ -200,15 +232,40 @@ static int same(const char *a, const char *b)
     return *a == *b;
 }
 
-/* A theory input from a posting's content: true, false, or unknown for anything else. */
+/* Whether `content` is a whole number (an optional `-`, then digits), and whether it is 0. */
+static int whole_number(const char *content, int *zero)
+{
+    const char *c = content;
+    *zero = 1;
+    if (*c == '-') {
+        c++;
+    }
+    if (*c == '\0') {
+        return 0;
+    }
+    for (; *c != '\0'; c++) {
+        if (*c < '0' || *c > '9') {
+            return 0;
+        }
+        *zero &= *c == '0';
+    }
+    return 1;
+}
+
+/* A theory input from a posting's content, as the reasoner expert reads it: true, false, a
+ * whole number (true unless 0), or unknown for anything else. */
 static void set_input(struct world *w, unsigned v, const char *content)
 {
+    int zero;
     if (same(content, "true")) {
         w->in[v] = 1;
         w->in[v + 1] = 1;
     } else if (same(content, "false")) {
         w->in[v] = 1;
         w->in[v + 1] = 0;
+    } else if (whole_number(content, &zero)) {
+        w->in[v] = 1;
+        w->in[v + 1] = (unsigned char)!zero;
     } else {
         w->in[v] = 0;
         w->in[v + 1] = 0;
@@ -233,6 +290,32 @@ static int answer(const struct world *w, unsigned k)
     }
 }
 
+static struct value v_bool(int b);
+
+/* An answer a label read, reported once the label is proved. */
+static void pend(struct world *w, const char *atom, int value, const char *expert, const char *poster)
+{
+    if (w->pending_count < BEHAVIOUR_ASKS) {
+        struct pending_answer *p = &w->pending[w->pending_count++];
+        p->atom = atom;
+        p->value = value;
+        p->expert = expert;
+        p->poster = poster;
+    }
+}
+
+/* A transition's label is proved: the answers it read are reported, and its truth returned. */
+static int proved(struct world *w, unsigned m, int holds)
+{
+    unsigned i;
+    for (i = 0; i < w->pending_count; i++) {
+        const struct pending_answer *p = &w->pending[i];
+        w->cb.answered(w, machine_name[m], p->atom, p->value, p->expert, p->poster);
+    }
+    w->pending_count = 0;
+    return holds;
+}
+
 static int ask(struct world *w, unsigned m, unsigned k)
 {
     int value = answer(w, k);
@@ -240,8 +323,20 @@ static int ask(struct world *w, unsigned m, unsigned k)
     /* No expert answers it: the runner reads its newest posting instead, from the snapshot. */
     if (!w->supplied[k]) {
         w->ext_read[m] = 1;
+    } else if (output_board[k] >= 0) {
+        /* An expert answers by posting its answer, which the machines read as a value. */
+        w->ext[output_board[k]] = v_bool(value);
+        w->ext_known[output_board[k]] = 1;
+        w->ext_by[output_board[k]] = output_expert[k];
     }
-    w->cb.answered(w, machine_name[m], output_name[k], value, w->supplied[k] ? output_expert[k] : 0);
+    if (w->supplied[k]) {
+        /* The expert posts its answer: a theory reading the atom as an input sees it. */
+        (void)apply_input(w, output_name[k], value ? "true" : "false");
+        if (w->cb.queried) {
+            w->cb.queried(w, output_name[k], value);
+        }
+    }
+    pend(w, output_name[k], value, w->supplied[k] ? output_expert[k] : 0, 0);
     return value;
 }
 
@@ -306,10 +401,35 @@ static void command(struct world *w, unsigned m, unsigned char code, const char 
     }
 }
 
+/* The runner posts a machine's running state to `NameIsRunning` when it starts and whenever
+ * that changes. */
+static void post_status(struct world *w, unsigned m)
+{
+    int e = status_board[m];
+    if (e >= 0) {
+        w->ext[e] = v_bool(w->status[m] == RUNNING);
+        w->ext_known[e] = 1;
+        w->ext_by[e] = machine_name[m];
+    }
+}
+
+static int obey_command(struct world *w, unsigned m, unsigned char code);
+
 /* gufsm's SuspensibleMachine, as the runner's `control`: whether it started the machine. */
 static int control(struct world *w, unsigned m, unsigned char code, const char *word)
 {
+    int was_running = w->status[m] == RUNNING;
+    int started;
     w->cb.control(w, machine_name[m], word);
+    started = obey_command(w, m, code);
+    if (was_running != (w->status[m] == RUNNING)) {
+        post_status(w, m);
+    }
+    return started;
+}
+
+static int obey_command(struct world *w, unsigned m, unsigned char code)
+{
     switch (code) {
     case COMMAND_ON:
     case COMMAND_RESUME:
@@ -373,30 +493,97 @@ static void extern_snapshot(struct world *w, unsigned m)
     for (e = 0; e < externs; e++) {
         w->ext_seen[m][e] = w->ext[e];
         w->ext_seen_known[m][e] = w->ext_known[e];
+        w->ext_seen_by[m][e] = w->ext_by[e];
         w->ext_owned[m][e] = 0;
+        w->asked_posted[m][e] = 0;
     }
 }
 
-/* A whiteboard variable as the ringlet reads it: live before the snapshot (in OnEntry), then
- * what the ringlet posted itself, else the snapshot. */
-static struct value read_extern(struct world *w, unsigned e)
+/* What a whiteboard value never posted reads as. */
+static struct value unposted(unsigned e)
+{
+    return extern_bound[e] ? v_int(0) : v_none();
+}
+
+/* Whether machine `m`'s last ringlet asked an output whose atom whiteboard value `e` is. */
+static int asked_of_expert(const struct world *w, unsigned m, unsigned e)
+{
+    unsigned k;
+    for (k = 0; k < outputs; k++) {
+        if (output_board[k] == (int)e && w->asked[m][k]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The output whose atom whiteboard value `e` is, when an expert answered the ringlet's question
+ * of it: the ringlet reads that answer, as the runner holds an expert's answer (-1 otherwise). */
+static int answered_here(const struct world *w, unsigned e)
+{
+    unsigned k;
+    for (k = 0; k < outputs; k++) {
+        if (output_board[k] == (int)e && w->supplied[k] && w->asked[w->ringing][k]) {
+            return (int)k;
+        }
+    }
+    return -1;
+}
+
+/* A whiteboard value as the ringlet reads it: live before the snapshot (in OnEntry), then
+ * what the ringlet posted itself, else an expert's answer it asked, else the snapshot; `by`
+ * is who posted it (NULL: nobody). */
+static struct value read_board(struct world *w, unsigned e, const char **by)
 {
     unsigned m = w->ringing;
+    int k;
     if (!w->past_snapshot || w->ext_owned[m][e]) {
-        return w->ext_known[e] ? w->ext[e] : v_int(0);
+        *by = w->past_snapshot ? machine_name[m] : w->ext_by[e];
+        return w->ext_known[e] ? w->ext[e] : unposted(e);
+    }
+    k = answered_here(w, e);
+    if (k >= 0) {
+        *by = output_expert[k];
+        return v_bool(answer(w, (unsigned)k));
     }
     w->ext_read[m] = 1;
-    return w->ext_seen_known[m][e] ? w->ext_seen[m][e] : v_int(0);
+    *by = w->ext_seen_by[m][e];
+    return w->ext_seen_known[m][e] ? w->ext_seen[m][e] : unposted(e);
+}
+
+static struct value read_extern(struct world *w, unsigned e)
+{
+    const char *by;
+    return read_board(w, e, &by);
+}
+
+/* A label atom nobody answers: the runner reads the atom's newest posting as the ringlet sees it
+ * and reports who posted it (a never posted atom is false, answered by nobody). */
+static int ask_posted(struct world *w, unsigned m, unsigned e, const char *atom)
+{
+    const char *by = 0;
+    struct value v = read_board(w, e, &by);
+    int value = !v.none && truthy(v);
+    if (v.none) {
+        by = 0;
+    }
+    w->asked_posted[m][e] = 1;
+    w->asked_answer[m][e] = (unsigned char)value;
+    pend(w, atom, value, 0, by);
+    return value;
 }
 
 /* Machine `m` posts `v` to whiteboard variable `e` (an assignment to it, or a posting). */
 static void post_extern(struct world *w, unsigned m, unsigned e, struct value v)
 {
     char shown[24];
+    v = v_some(v);
     (void)value_text(shown, v);
     w->cb.post(w, machine_name[m], extern_name[e], shown, machine_priority[m]);
+    (void)apply_input(w, extern_name[e], shown);
     w->ext[e] = v;
     w->ext_known[e] = 1;
+    w->ext_by[e] = machine_name[m];
     if (w->past_snapshot) {
         w->ext_own[m][e] = v;
         w->ext_owned[m][e] = 1;
@@ -408,6 +595,14 @@ static void post_extern(struct world *w, unsigned m, unsigned e, struct value v)
 static int extern_news(const struct world *w, unsigned m, unsigned e)
 {
     if (!w->ext_known[e]) {
+        return 0;
+    }
+    if (w->asked_posted[m][e]) {
+        return truthy(w->ext[e]) != w->asked_answer[m][e];
+    }
+    if (asked_of_expert(w, m, e)) {
+        /* The answer to the machine's own question: news only when it changes, which the
+         * answers' own test sees. */
         return 0;
     }
     if (w->ext_owned[m][e]) {
@@ -427,6 +622,7 @@ static int apply_extern(struct world *w, const char *type, const char *content)
         if (same(type, extern_name[e])) {
             w->ext[e] = v_bool(same(content, "true"));
             w->ext_known[e] = 1;
+            w->ext_by[e] = "impersonator";
             return 1;
         }
     }
@@ -477,12 +673,17 @@ void behaviour_init(struct world *w)
     (void)v_neg;
     (void)read_extern;
     (void)post_extern;
+    (void)ask_posted;
+    (void)proved;
+    w->pending_count = 0;
+    (void)v_none;
     w->round = 0;
     w->ringing = 0;
     w->past_snapshot = 0;
     for (v = 0; v < externs; v++) {
         w->ext[v] = v_int(0);
         w->ext_known[v] = 0;
+        w->ext_by[v] = 0;
     }
     w->globals_changes = 0;
     w->commands_waiting = 0;
@@ -498,6 +699,8 @@ void behaviour_init(struct world *w)
         for (v = 0; v < externs; v++) {
             w->ext_owned[m][v] = 0;
             w->ext_seen_known[m][v] = 0;
+            w->ext_seen_by[m][v] = 0;
+            w->asked_posted[m][v] = 0;
         }
         for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
             w->seen[m][k] = 0;
@@ -507,7 +710,10 @@ void behaviour_init(struct world *w)
     for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
         w->supplied[k] = k < theory_outputs;
     }
-@held_init@@var_inits@@inits@}
+@held_init@@var_inits@@inits@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        post_status(w, m);
+    }
+}
 
 int behaviour_round(struct world *w)
 {
@@ -588,7 +794,13 @@ int behaviour_is_machine(const char *name)
 
 uint64_t behaviour_next_due_ms(const struct world *w)
 {
-    uint64_t due = BEHAVIOUR_PERIOD_MS;
+    uint64_t due = UINT64_MAX;
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (w->status[m] == RUNNING) {
+            due = BEHAVIOUR_PERIOD_MS;
+        }
+    }
 @dues@@release_due@    return due;
 }
 

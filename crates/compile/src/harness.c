@@ -145,21 +145,29 @@ static void on_finished(struct world *w, const char *machine, const char *state)
 
 static void show_answer(struct world *w, const char *atom, int value);
 
+static void on_queried(struct world *w, const char *atom, int value)
+{
+    if (!over) {
+        show_answer(w, atom, value);
+    }
+}
+
 static void on_answered(struct world *w, const char *machine, const char *atom, int value,
-                        const char *expert)
+                        const char *expert, const char *poster)
 {
     if (over) {
         return;
-    }
-    if (expert != NULL) {
-        show_answer(w, atom, value);
     }
     printf("{\"event\":\"answered\",\"machine\":");
     json_string(machine);
     printf(",\"atom\":");
     json_string(atom);
     printf(",\"value\":%s,\"by\":", value ? "true" : "false");
-    if (expert == NULL) {
+    if (expert == NULL && poster != NULL) {
+        printf("{\"posted\":");
+        json_string(poster);
+        printf("}");
+    } else if (expert == NULL) {
         printf("\"no_expert\"");
     } else {
         printf("{\"expert\":");
@@ -496,6 +504,7 @@ int main(int argc, char **argv)
     w.cb.took_over = on_took_over;
     w.cb.entered = on_entered;
     w.cb.finished = on_finished;
+    w.cb.queried = on_queried;
     w.cb.answered = on_answered;
     w.cb.fired = on_fired;
     w.cb.assigned = on_assigned;
@@ -527,15 +536,20 @@ int main(int argc, char **argv)
             continue;
         }
         {
-            uint64_t due = w.now_ms + behaviour_next_due_ms(&w);
+            uint64_t wait = behaviour_next_due_ms(&w);
+            uint64_t due = wait == UINT64_MAX ? UINT64_MAX : w.now_ms + wait;
             int news = 0;
             uint64_t until = limit >= 0 && (uint64_t)limit < due ? (uint64_t)limit : due;
             while (!news && next_step < step_count && steps[next_step].at_ms < until) {
                 w.now_ms = steps[next_step].at_ms;
                 news = post_due(&w);
             }
+            if (!news && until == UINT64_MAX) {
+                /* No machine runs and the script has said all it will: nothing can happen again. */
+                break;
+            }
             if (!news) {
-                w.now_ms = due;
+                w.now_ms = until;
             }
         }
         if (w.round > 100000000u) {

@@ -26,9 +26,10 @@ pub(crate) struct Plan {
     /// The value slots (each machine's own variables, then the globals): whether each starts as
     /// a truth value rather than a whole number.
     pub slots: Vec<bool>,
-    /// The whiteboard variables (`extern x`), numbered: the board's newest value of each type,
-    /// which every machine reads through its ringlet's snapshot and an assignment posts.
-    pub externs: Vec<String>,
+    /// The whiteboard values the machines read, numbered: the board's newest value of each
+    /// type, which every machine reads through its ringlet's snapshot and a posting sets (the
+    /// whiteboard variables, `extern x`, and the types read by name alone).
+    pub externs: Vec<BoardValue>,
     pub machines: Vec<MachinePlan>,
     pub period_ms: u64,
     /// The longest text a posting or a print builds.
@@ -37,6 +38,17 @@ pub(crate) struct Plan {
     pub commands: usize,
     /// The types under subsumption (the manifest's `[suppress]`), in name order.
     pub suppressed: Vec<Suppressed>,
+}
+
+/// A whiteboard type the machines read as a value: its newest posting, of a whole number or a
+/// truth value.
+pub(crate) struct BoardValue {
+    pub name: String,
+    /// Bound with `extern` by some machine: read as a whole 0 while nothing was posted, as
+    /// gufsm's cache did; else read as no value at all (`x == 1` and `x != 1` both false).
+    pub bound: bool,
+    /// `NameIsRunning` of machine `status_of`: the runner posts that machine's running state.
+    pub status_of: Option<usize>,
 }
 
 /// A type under subsumption: a posting of a higher layer holds it against lower layers'.
@@ -82,6 +94,25 @@ impl Plan {
         layers.sort_unstable();
         layers.dedup();
         layers
+    }
+
+    /// The most answers one label asks (its atoms, each place counted).
+    pub fn most_asks(&self) -> usize {
+        fn asks(c: &Condition) -> usize {
+            match c {
+                Condition::Ask(_) | Condition::AskPosted { .. } => 1,
+                Condition::Not(c) => asks(c),
+                Condition::Both { left, right, .. } => asks(left) + asks(right),
+                Condition::Constant(_) | Condition::Elapsed(_) | Condition::Truth(_) => 0,
+            }
+        }
+        self.machines
+            .iter()
+            .flat_map(|m| &m.states)
+            .flat_map(|s| &s.transitions)
+            .map(|t| asks(&t.condition))
+            .max()
+            .unwrap_or(0)
     }
 
     /// Room for the longest text a posting makes (its end included), constant or built: what
@@ -188,6 +219,12 @@ pub(crate) enum Condition {
     Constant(bool),
     /// A theory output asked (and reported as answered).
     Ask(usize),
+    /// An atom no expert answers, read from whiteboard value `number` as the ringlet sees it
+    /// (reported as answered by the module that posted it, or by none).
+    AskPosted {
+        number: usize,
+        atom: String,
+    },
     Not(Box<Condition>),
     Both {
         and: bool,
@@ -206,8 +243,9 @@ pub(crate) enum Value {
     Int(i64),
     /// A variable's slot.
     Slot(usize),
-    /// A whiteboard variable, as the ringlet reads it (live before its snapshot, the snapshot
-    /// and its own postings after); a whole 0 while nothing was posted.
+    /// A whiteboard value, as the ringlet reads it (live before its snapshot, the snapshot and
+    /// its own postings after); while nothing was posted, a whole 0 when bound with `extern`,
+    /// else no value.
     Extern(usize),
     /// The truth value of `!operand`.
     Not(Box<Value>),

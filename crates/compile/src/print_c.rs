@@ -63,7 +63,7 @@ fn header(plan: &Plan) -> String {
     let _ = writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&plan.name));
     let _ = writeln!(
         h,
-        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_EXTERNS {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
+        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_EXTERNS {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_ASKS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
         plan.machines.len().max(1),
         plan.outputs.len().max(1),
         plan.variables().max(1),
@@ -71,6 +71,7 @@ fn header(plan: &Plan) -> String {
         plan.externs.len().max(1),
         plan.longest_text,
         plan.commands.max(1),
+        plan.most_asks().max(1),
         plan.period_ms
     );
     let held = !plan.suppressed.is_empty();
@@ -151,9 +152,15 @@ fn source(plan: &Plan) -> String {
             ("externs_n", &plan.externs.len().max(1).to_string()),
             (
                 "extern_names",
-                &strings(plan.externs.iter().map(String::as_str)),
+                &strings(plan.externs.iter().map(|b| b.name.as_str())),
             ),
             ("externs", &plan.externs.len().to_string()),
+            (
+                "extern_bound",
+                &numbers(plan.externs.iter().map(|b| i64::from(b.bound))),
+            ),
+            ("output_board", &numbers(board_of_outputs(plan))),
+            ("status_board", &numbers(board_of_statuses(plan))),
             ("theory_outputs", &plan.theory_outputs().to_string()),
             ("outputs", &plan.outputs.len().to_string()),
             ("sensors", &plan.sensors.len().to_string()),
@@ -186,6 +193,36 @@ fn source(plan: &Plan) -> String {
         ],
     ));
     c
+}
+
+/// A list of C numbers, or `0` for an empty array's one element.
+fn numbers(values: impl Iterator<Item = i64>) -> String {
+    let shown: Vec<String> = values.map(|v| v.to_string()).collect();
+    if shown.is_empty() {
+        "0".into()
+    } else {
+        shown.join(", ")
+    }
+}
+
+/// The whiteboard value of each output's atom, or -1.
+pub(crate) fn board_of_outputs(plan: &Plan) -> impl Iterator<Item = i64> + '_ {
+    plan.outputs.iter().map(|o| {
+        plan.externs
+            .iter()
+            .position(|b| b.name == o.name)
+            .map_or(-1, |e| e as i64)
+    })
+}
+
+/// The whiteboard value each machine's running state is posted to, or -1.
+pub(crate) fn board_of_statuses(plan: &Plan) -> impl Iterator<Item = i64> + '_ {
+    (0..plan.machines.len()).map(|m| {
+        plan.externs
+            .iter()
+            .position(|b| b.status_of == Some(m))
+            .map_or(-1, |e| e as i64)
+    })
 }
 
 /// Each value slot's start: a whole 0, or false.
@@ -485,7 +522,7 @@ fn ring_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
     for t in &state.transitions {
         let _ = writeln!(
             body,
-            "        if ({}) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
+            "        if (proved(w, {m}u, {})) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
             condition(m, &t.condition),
             esc(&machine.name),
             t.target,
@@ -502,6 +539,9 @@ fn condition(m: usize, c: &Condition) -> String {
     match c {
         Condition::Constant(b) => if *b { "1" } else { "0" }.into(),
         Condition::Ask(k) => format!("ask(w, {m}u, {k}u)"),
+        Condition::AskPosted { number, atom } => {
+            format!("ask_posted(w, {m}u, {number}u, \"{}\")", esc(atom))
+        }
         Condition::Not(c) => format!("!{}", condition(m, c)),
         Condition::Both { and, left, right } => format!(
             "({} {} {})",
@@ -716,7 +756,8 @@ fn comment(text: &str) -> String {
 
 /// The C helpers compiled activities call: the runner's values and `arith`'s operators on them.
 const RUNTIME: &str = r#"
-/* A value as the runner holds it: a whole number, or a truth value (0 or 1). */
+/* A value as the runner holds it: a whole number, or a truth value (0 or 1); `none` for a
+ * whiteboard value never posted, which arithmetic keeps and a comparison finds false. */
 #define CONVERT_WHOLE 0
 #define CONVERT_TRUTH 1
 #define CONVERT_KEPT 2
@@ -726,7 +767,21 @@ static struct value v_int(int64_t i)
     struct value v;
     v.i = i;
     v.is_bool = 0;
+    v.none = 0;
     return v;
+}
+
+static struct value v_none(void)
+{
+    struct value v = v_int(0);
+    v.none = 1;
+    return v;
+}
+
+/* What an activity makes of a value: no value is a whole 0, as the runner's activities have it. */
+static struct value v_some(struct value v)
+{
+    return v.none ? v_int(0) : v;
 }
 
 static struct value v_bool(int b)
@@ -734,6 +789,7 @@ static struct value v_bool(int b)
     struct value v;
     v.i = b ? 1 : 0;
     v.is_bool = 1;
+    v.none = 0;
     return v;
 }
 
@@ -750,22 +806,34 @@ static int64_t wrap(uint64_t u)
 
 static struct value v_add(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     return v_int(wrap((uint64_t)a.i + (uint64_t)b.i));
 }
 
 static struct value v_sub(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     return v_int(wrap((uint64_t)a.i - (uint64_t)b.i));
 }
 
 static struct value v_mul(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     return v_int(wrap((uint64_t)a.i * (uint64_t)b.i));
 }
 
 /* Dividing by zero gives the largest whole number, as gufsm's INT_MAX. */
 static struct value v_div(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     if (b.i == 0) {
         return v_int(INT64_MAX);
     }
@@ -777,6 +845,9 @@ static struct value v_div(struct value a, struct value b)
 
 static struct value v_rem(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     if (b.i == 0) {
         return v_int(INT64_MAX);
     }
@@ -788,6 +859,9 @@ static struct value v_rem(struct value a, struct value b)
 
 static struct value v_neg(struct value a)
 {
+    if (a.none) {
+        return a;
+    }
     return v_int(wrap(0u - (uint64_t)a.i));
 }
 
@@ -798,42 +872,48 @@ static struct value v_abs(struct value a)
 
 static struct value v_eq(struct value a, struct value b)
 {
-    return v_bool(a.i == b.i);
+    return v_bool(!a.none && !b.none && a.i == b.i);
 }
 
 static struct value v_ne(struct value a, struct value b)
 {
-    return v_bool(a.i != b.i);
+    return v_bool(!a.none && !b.none && a.i != b.i);
 }
 
 static struct value v_lt(struct value a, struct value b)
 {
-    return v_bool(a.i < b.i);
+    return v_bool(!a.none && !b.none && a.i < b.i);
 }
 
 static struct value v_le(struct value a, struct value b)
 {
-    return v_bool(a.i <= b.i);
+    return v_bool(!a.none && !b.none && a.i <= b.i);
 }
 
 static struct value v_gt(struct value a, struct value b)
 {
-    return v_bool(a.i > b.i);
+    return v_bool(!a.none && !b.none && a.i > b.i);
 }
 
 static struct value v_ge(struct value a, struct value b)
 {
-    return v_bool(a.i >= b.i);
+    return v_bool(!a.none && !b.none && a.i >= b.i);
 }
 
 /* The first when it is not greater (min) or not less (max), as the runner picks. */
 static struct value v_min(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     return a.i <= b.i ? a : b;
 }
 
 static struct value v_max(struct value a, struct value b)
 {
+    if (a.none || b.none) {
+        return v_none();
+    }
     return a.i >= b.i ? a : b;
 }
 
@@ -909,7 +989,7 @@ static void assign(struct world *w, unsigned m, unsigned slot, int conversion, i
                    const char *name, struct value v)
 {
     char shown[24];
-    v = convert(conversion, v);
+    v = convert(conversion, v_some(v));
     if (w->var[slot].i == v.i && w->var[slot].is_bool == v.is_bool) {
         return;
     }

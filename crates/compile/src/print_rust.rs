@@ -7,7 +7,7 @@
 use crate::plan::{
     Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
 };
-use crate::print_c::fill;
+use crate::print_c::{board_of_outputs, board_of_statuses, fill};
 use crate::rust_template::{BODY, RING, RUNTIME};
 use crate::tabulate::Compiled;
 use proclaim_fsm::control::Command;
@@ -90,6 +90,16 @@ fn diagram(prefix: &str, compiled: &Compiled) -> String {
         d.roots.len(),
         list(d.roots.clone()),
     )
+}
+
+/// Items of a Rust array, separated by commas.
+fn list(items: impl Iterator<Item = String>) -> String {
+    items.collect::<Vec<_>>().join(", ")
+}
+
+/// An index the C tables write as -1 for none, as a Rust `Option`.
+fn optional_index(index: i64) -> String {
+    usize::try_from(index).map_or("None".to_string(), |i| format!("Some({i})"))
 }
 
 /// A list of Rust string literals.
@@ -210,7 +220,19 @@ fn behaviour(plan: &Plan) -> String {
             ("externs", &plan.externs.len().to_string()),
             (
                 "extern_names",
-                &strings(plan.externs.iter().map(String::as_str)),
+                &strings(plan.externs.iter().map(|b| b.name.as_str())),
+            ),
+            (
+                "extern_bound",
+                &list(plan.externs.iter().map(|b| b.bound.to_string())),
+            ),
+            (
+                "output_board",
+                &list(board_of_outputs(plan).map(optional_index)),
+            ),
+            (
+                "status_board",
+                &list(board_of_statuses(plan).map(optional_index)),
             ),
             ("theory_outputs", &plan.theory_outputs().to_string()),
             ("script", &script),
@@ -372,7 +394,7 @@ fn ring_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
     for t in &state.transitions {
         let _ = writeln!(
             body,
-            "            if {} {{\n                w.fired({:?}, {id}, {}, {:?});\n{exit}                w.state[{m}] = {};\n                w.just_entered[{m}] = true;\n                return true;\n            }}",
+            "            if proved(w, {m}, |w| {}) {{\n                w.fired({:?}, {id}, {}, {:?});\n{exit}                w.state[{m}] = {};\n                w.just_entered[{m}] = true;\n                return true;\n            }}",
             condition(m, &t.condition),
             machine.name,
             t.target,
@@ -389,6 +411,7 @@ fn condition(m: usize, c: &Condition) -> String {
     match c {
         Condition::Constant(b) => b.to_string(),
         Condition::Ask(k) => format!("ask(w, {m}, {k})"),
+        Condition::AskPosted { number, atom } => format!("ask_posted(w, {m}, {number}, {atom:?})"),
         Condition::Not(c) => format!("!{}", condition(m, c)),
         Condition::Both { and, left, right } => format!(
             "({} {} {})",
@@ -412,7 +435,7 @@ fn value(v: &Value) -> String {
         Value::Int(i) if *i == i64::MIN => "v_int(i64::MIN)".into(),
         Value::Int(i) => format!("v_int({i})"),
         Value::Slot(slot) => format!("w.var[{slot}]"),
-        Value::Extern(number) => format!("w.read_extern({number})"),
+        Value::Extern(number) => format!("read_extern(w, {number})"),
         Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
         Value::Logic { and, left, right } => format!(
             "v_bool({} {} {})",

@@ -10,21 +10,45 @@ pub(crate) const RUNTIME: &str = r#"//! The runtime of a behaviour compiled by p
 use proclaim_runner::{Answerer, Event};
 use std::time::Duration;
 
-/// A value as the runner holds it: a whole number, or a truth value (0 or 1).
+/// A value as the runner holds it: a whole number, or a truth value (0 or 1); or `none`, a
+/// whiteboard value never posted, which arithmetic keeps and a comparison finds false.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Value {
     pub i: i64,
     pub is_bool: bool,
+    pub none: bool,
 }
 
 pub fn v_int(i: i64) -> Value {
-    Value { i, is_bool: false }
+    Value {
+        i,
+        is_bool: false,
+        none: false,
+    }
 }
 
 pub fn v_bool(b: bool) -> Value {
     Value {
         i: i64::from(b),
         is_bool: true,
+        none: false,
+    }
+}
+
+pub fn v_none() -> Value {
+    Value {
+        i: 0,
+        is_bool: false,
+        none: true,
+    }
+}
+
+/// What an activity makes of a value: no value is a whole 0, as the runner's activities have it.
+pub fn v_some(v: Value) -> Value {
+    if v.none {
+        v_int(0)
+    } else {
+        v
     }
 }
 
@@ -33,19 +57,31 @@ pub fn truthy(v: Value) -> bool {
 }
 
 pub fn v_add(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     v_int(a.i.wrapping_add(b.i))
 }
 
 pub fn v_sub(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     v_int(a.i.wrapping_sub(b.i))
 }
 
 pub fn v_mul(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     v_int(a.i.wrapping_mul(b.i))
 }
 
 /// Dividing by zero gives the largest whole number, as gufsm's INT_MAX.
 pub fn v_div(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     match b.i {
         0 => v_int(i64::MAX),
         -1 => v_int(a.i.wrapping_neg()),
@@ -54,6 +90,9 @@ pub fn v_div(a: Value, b: Value) -> Value {
 }
 
 pub fn v_rem(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     match b.i {
         0 => v_int(i64::MAX),
         -1 => v_int(0),
@@ -62,6 +101,9 @@ pub fn v_rem(a: Value, b: Value) -> Value {
 }
 
 pub fn v_neg(a: Value) -> Value {
+    if a.none {
+        return a;
+    }
     v_int(a.i.wrapping_neg())
 }
 
@@ -74,31 +116,34 @@ pub fn v_abs(a: Value) -> Value {
 }
 
 pub fn v_eq(a: Value, b: Value) -> Value {
-    v_bool(a.i == b.i)
+    v_bool(!a.none && !b.none && a.i == b.i)
 }
 
 pub fn v_ne(a: Value, b: Value) -> Value {
-    v_bool(a.i != b.i)
+    v_bool(!a.none && !b.none && a.i != b.i)
 }
 
 pub fn v_lt(a: Value, b: Value) -> Value {
-    v_bool(a.i < b.i)
+    v_bool(!a.none && !b.none && a.i < b.i)
 }
 
 pub fn v_le(a: Value, b: Value) -> Value {
-    v_bool(a.i <= b.i)
+    v_bool(!a.none && !b.none && a.i <= b.i)
 }
 
 pub fn v_gt(a: Value, b: Value) -> Value {
-    v_bool(a.i > b.i)
+    v_bool(!a.none && !b.none && a.i > b.i)
 }
 
 pub fn v_ge(a: Value, b: Value) -> Value {
-    v_bool(a.i >= b.i)
+    v_bool(!a.none && !b.none && a.i >= b.i)
 }
 
 /// The first when it is not greater (min) or not less (max), as the runner picks.
 pub fn v_min(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     if a.i <= b.i {
         a
     } else {
@@ -107,6 +152,9 @@ pub fn v_min(a: Value, b: Value) -> Value {
 }
 
 pub fn v_max(a: Value, b: Value) -> Value {
+    if a.none || b.none {
+        return v_none();
+    }
     if a.i >= b.i {
         a
     } else {
@@ -166,15 +214,26 @@ pub struct World {
     pub fresh: Vec<bool>,
     /// Each machine's own variables, then the behaviour's globals.
     pub var: Vec<Value>,
-    /// Each whiteboard variable (`extern`): the board's newest value, if any was posted (one
-    /// never posted reads as a whole 0).
+    /// Each whiteboard value the machines read: the board's newest value, if any was posted
+    /// (one never posted reads as a whole 0 when bound with `extern`, else as none), and who
+    /// posted it.
     pub ext: Vec<Option<Value>>,
+    pub ext_by: Vec<&'static str>,
     /// As each machine's last ringlet saw them: the board at its snapshot, the values it posted
     /// itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
     /// board finds nothing new in a posting).
     pub ext_seen: Vec<Vec<Option<Value>>>,
+    pub ext_seen_by: Vec<Vec<&'static str>>,
     pub ext_own: Vec<Vec<Option<Value>>>,
     pub ext_read: Vec<bool>,
+    /// The atoms nobody answers that each machine's last ringlet asked, read from these values,
+    /// and what it read: news is then a posting whose truth differs.
+    pub asked_posted: Vec<Vec<Option<bool>>>,
+    /// Whether each machine's last ringlet asked an expert the atom each value is.
+    pub asked_of_expert: Vec<Vec<bool>>,
+    /// The answers the label being proved has read (atom, value, expert, poster), reported
+    /// once it is proved, as the runner reports them.
+    pub pending: Vec<(&'static str, bool, Option<&'static str>, Option<&'static str>)>,
     /// The machine whose ringlet runs, and whether that ringlet is past its snapshot.
     pub ringing: usize,
     pub past_snapshot: bool,
@@ -224,9 +283,14 @@ impl World {
             fresh: vec![false; machines],
             var: Vec::new(),
             ext: vec![None; externs],
+            ext_by: vec![""; externs],
             ext_seen: vec![vec![None; externs]; machines],
+            ext_seen_by: vec![vec![""; externs]; machines],
             ext_own: vec![vec![None; externs]; machines],
             ext_read: vec![false; machines],
+            asked_posted: vec![vec![None; externs]; machines],
+            asked_of_expert: vec![vec![false; externs]; machines],
+            pending: Vec::new(),
             ringing: 0,
             past_snapshot: false,
             globals_changes: 0,
@@ -322,20 +386,35 @@ impl World {
         });
     }
 
-    /// `expert` answered, or none did (`None`).
-    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, expert: Option<&str>) {
-        if expert.is_some() {
-            if let Some(i) = self.unposted.iter().position(|a| a == atom) {
-                self.unposted.remove(i);
-                self.posted("impersonator", atom, if value { "true" } else { "false" }, 0);
-                self.answer_shown.push((atom.to_string(), value));
-            }
+    /// An expert was asked `atom` and answered `value`, which it posts: the impersonator's answer
+    /// to an atom its script has not posted yet is the first the trace shows of it.
+    pub fn queried(&mut self, atom: &str, value: bool) {
+        if let Some(i) = self.unposted.iter().position(|a| a == atom) {
+            self.unposted.remove(i);
+            self.posted("impersonator", atom, if value { "true" } else { "false" }, 0);
+            self.answer_shown.push((atom.to_string(), value));
         }
+    }
+
+    /// `expert` answered, or none did (`None`): then the machine read `poster`'s posting of the
+    /// atom, or nothing posted (`None`).
+    pub fn answered(
+        &mut self,
+        machine: &str,
+        atom: &str,
+        value: bool,
+        expert: Option<&str>,
+        poster: Option<&str>,
+    ) {
         self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
-            by: expert.map_or(Answerer::NoExpert, |e| Answerer::Expert(e.to_string())),
+            by: match (expert, poster) {
+                (Some(e), _) => Answerer::Expert(e.to_string()),
+                (None, Some(p)) => Answerer::Posted(p.to_string()),
+                (None, None) => Answerer::NoExpert,
+            },
             round,
             at,
         });
@@ -395,18 +474,10 @@ impl World {
         self.past_snapshot = true;
         self.ext_read[m] = false;
         self.ext_seen[m].clone_from(&self.ext);
+        self.ext_seen_by[m].clone_from(&self.ext_by);
         self.ext_own[m].fill(None);
-    }
-
-    /// A whiteboard variable as the ringlet reads it: live before the snapshot (in OnEntry),
-    /// then what the ringlet posted itself, else the snapshot.
-    pub fn read_extern(&mut self, e: usize) -> Value {
-        let m = self.ringing;
-        if !self.past_snapshot || self.ext_own[m][e].is_some() {
-            return self.ext[e].unwrap_or(v_int(0));
-        }
-        self.ext_read[m] = true;
-        self.ext_seen[m][e].unwrap_or(v_int(0))
+        self.asked_posted[m].fill(None);
+        self.asked_of_expert[m].fill(false);
     }
 
     /// Whether the board's value of `e` is news to machine `m`: not what it posted itself in
@@ -415,6 +486,14 @@ impl World {
         let Some(now) = self.ext[e] else {
             return false;
         };
+        if let Some(answer) = self.asked_posted[m][e] {
+            return truthy(now) != answer;
+        }
+        if self.asked_of_expert[m][e] {
+            // The answer to the machine's own question: news only when it changes, which the
+            // answers' own test sees.
+            return false;
+        }
         if let Some(own) = self.ext_own[m][e] {
             return own != now;
         }
@@ -478,16 +557,27 @@ const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
 pub const EXTERNS: usize = @externs@;
 const EXTERN_NAME: [&str; EXTERNS] = [@extern_names@];
+/// Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted).
+const EXTERN_BOUND: [bool; EXTERNS] = [@extern_bound@];
+/// The whiteboard value of each output's atom: an expert's answer is posted there.
+const OUTPUT_BOARD: [Option<usize>; OUTPUTS] = [@output_board@];
+/// The whiteboard value each machine's running state is posted to (`NameIsRunning`).
+const STATUS_BOARD: [Option<usize>; MACHINES] = [@status_board@];
 /// Each machine's subsumption layer, which its postings carry.
 const PRIORITY: [u32; MACHINES] = [@priorities@];
 /// The types under subsumption and how long a higher layer's posting holds each, in ms.
 const SUPPRESSED: [(&str, u64); @suppressed_n@] = [@suppressed@];
 
-/// A theory input from a posting's content: true, false, or unknown for anything else.
+/// A theory input from a posting's content, as the reasoner expert reads it: true, false, a
+/// whole number (true unless 0), or unknown for anything else.
 fn set_input(w: &mut World, v: usize, content: &str) {
+    let whole = content.strip_prefix('-').unwrap_or(content);
     let (known, value) = match content {
         "true" => (true, true),
         "false" => (true, false),
+        _ if !whole.is_empty() && whole.bytes().all(|b| b.is_ascii_digit()) => {
+            (true, whole.bytes().any(|b| b != b'0'))
+        }
         _ => (false, false),
     };
     w.input[v] = known;
@@ -513,9 +603,82 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
     // No expert answers it: the runner reads its newest posting instead, from the snapshot.
     if !w.supplied[k] {
         w.ext_read[m] = true;
+    } else if let Some(e) = OUTPUT_BOARD[k] {
+        // An expert answers by posting its answer, which the machines read as a value.
+        w.ext[e] = Some(v_bool(value));
+        w.ext_by[e] = OUTPUT_EXPERT[k];
+    }
+    if let Some(e) = OUTPUT_BOARD[k] {
+        w.asked_of_expert[m][e] = true;
     }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
-    w.answered(MACHINE_NAME[m], OUTPUT_NAME[k], value, expert);
+    if expert.is_some() {
+        // The expert posts its answer: a theory reading the atom as an input sees it.
+        apply_input(w, OUTPUT_NAME[k], if value { "true" } else { "false" });
+        w.queried(OUTPUT_NAME[k], value);
+    }
+    w.pending.push((OUTPUT_NAME[k], value, expert, None));
+    value
+}
+
+/// Proves a transition's label; the answers it read are reported once it is proved, as the
+/// runner reports them.
+fn proved(w: &mut World, m: usize, label: impl FnOnce(&mut World) -> bool) -> bool {
+    let holds = label(w);
+    for (atom, value, expert, poster) in std::mem::take(&mut w.pending) {
+        w.answered(MACHINE_NAME[m], atom, value, expert, poster);
+    }
+    holds
+}
+
+/// What a whiteboard value never posted reads as.
+fn unposted(e: usize) -> Value {
+    if EXTERN_BOUND[e] {
+        v_int(0)
+    } else {
+        v_none()
+    }
+}
+
+/// The output whose atom whiteboard value `e` is, when an expert answered the ringlet's
+/// question of it: the ringlet reads that answer, as the runner holds an expert's answer.
+fn answered_here(w: &World, e: usize) -> Option<usize> {
+    (0..OUTPUTS).find(|k| OUTPUT_BOARD[*k] == Some(e) && w.supplied[*k] && w.asked[w.ringing][*k])
+}
+
+/// A whiteboard value as the ringlet reads it: live before the snapshot (in OnEntry), then
+/// what the ringlet posted itself, else an expert's answer it asked, else the snapshot; and
+/// who posted it (none: nobody).
+fn read_board(w: &mut World, e: usize) -> (Value, Option<&'static str>) {
+    let m = w.ringing;
+    let by = |v: Option<Value>, by: &'static str| match v {
+        Some(v) => (v, Some(by)),
+        None => (unposted(e), None),
+    };
+    if !w.past_snapshot {
+        return by(w.ext[e], w.ext_by[e]);
+    }
+    if let Some(own) = w.ext_own[m][e] {
+        return (own, Some(MACHINE_NAME[m]));
+    }
+    if let Some(k) = answered_here(w, e) {
+        return (v_bool(answer(w, k)), Some(OUTPUT_EXPERT[k]));
+    }
+    w.ext_read[m] = true;
+    by(w.ext_seen[m][e], w.ext_seen_by[m][e])
+}
+
+fn read_extern(w: &mut World, e: usize) -> Value {
+    read_board(w, e).0
+}
+
+/// A label atom nobody answers: the runner reads the atom's newest posting as the ringlet sees
+/// it and reports who posted it (a never posted atom is false, answered by nobody).
+fn ask_posted(w: &mut World, m: usize, e: usize, atom: &'static str) -> bool {
+    let (v, by) = read_board(w, e);
+    let value = !v.none && truthy(v);
+    w.asked_posted[m][e] = Some(value);
+    w.pending.push((atom, value, None, by.filter(|_| !v.none)));
     value
 }
 
@@ -537,8 +700,12 @@ fn post(w: &mut World, m: usize, ty: &str, content: &str) {
 
 /// Machine `m` posts `v` to whiteboard variable `e` (an assignment to it, or a posting).
 fn post_extern(w: &mut World, m: usize, e: usize, v: Value) {
-    w.posted(MACHINE_NAME[m], EXTERN_NAME[e], &value_text(v), PRIORITY[m]);
+    let v = v_some(v);
+    let shown = value_text(v);
+    w.posted(MACHINE_NAME[m], EXTERN_NAME[e], &shown, PRIORITY[m]);
+    apply_input(w, EXTERN_NAME[e], &shown);
     w.ext[e] = Some(v);
+    w.ext_by[e] = MACHINE_NAME[m];
     if w.past_snapshot {
         w.ext_own[m][e] = Some(v);
     }
@@ -550,6 +717,7 @@ fn apply_extern(w: &mut World, ty: &str, content: &str) -> bool {
     match EXTERN_NAME.iter().position(|name| *name == ty) {
         Some(e) => {
             w.ext[e] = Some(v_bool(content == "true"));
+            w.ext_by[e] = "impersonator";
             true
         }
         None => false,
@@ -601,7 +769,7 @@ fn elapsed_at_least(w: &World, m: usize, ms: u64) -> bool {
 /// An assignment as the runner makes it: converted to the variable's type, reported when the
 /// value changed; a global's change is news to the labels that read globals.
 fn assign(w: &mut World, m: usize, slot: usize, conversion: u8, global: bool, name: &str, v: Value) {
-    let v = convert(conversion, v);
+    let v = convert(conversion, v_some(v));
     if w.var[slot] == v {
         return;
     }
@@ -634,9 +802,27 @@ fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
     }
 }
 
+/// The runner posts a machine's running state to `NameIsRunning` when it starts and whenever
+/// that changes.
+fn post_status(w: &mut World, m: usize) {
+    if let Some(e) = STATUS_BOARD[m] {
+        w.ext[e] = Some(v_bool(w.status[m] == RUNNING));
+        w.ext_by[e] = MACHINE_NAME[m];
+    }
+}
+
 /// gufsm's SuspensibleMachine, as the runner's `control`: whether it started the machine.
 fn control(w: &mut World, m: usize, code: u8, word: &str) -> bool {
+    let was_running = w.status[m] == RUNNING;
     w.control(MACHINE_NAME[m], word);
+    let started = obey_command(w, m, code);
+    if was_running != (w.status[m] == RUNNING) {
+        post_status(w, m);
+    }
+    started
+}
+
+fn obey_command(w: &mut World, m: usize, code: u8) -> bool {
     match code {
         COMMAND_ON | COMMAND_RESUME => {
             if w.status[m] == DORMANT {
@@ -703,7 +889,10 @@ pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
         w.suppressor = Some(proclaim_board::Suppressor::new(holds));
     }
     w.var = vec![@var_inits@];
-@inits@    w
+@inits@    for m in 0..MACHINES {
+        post_status(&mut w, m);
+    }
+    w
 }
 
 /// One round: `started` (what came from outside by now is posted), then a ringlet of every
@@ -762,14 +951,19 @@ pub fn is_machine(name: &str) -> bool {
     MACHINE_NAME.contains(&name)
 }
 
-/// Milliseconds from now until the next round is due without news (a timeout or the period).
-pub fn next_due_ms(w: &World) -> u64 {
-    let mut due = PERIOD_MS;
+/// Milliseconds from now until the next round is due without news (a timeout or the period);
+/// none while no machine runs (then only news starts a round, as the runner waits).
+pub fn next_due_ms(w: &World) -> Option<u64> {
+    let mut due = if w.status.contains(&RUNNING) {
+        PERIOD_MS
+    } else {
+        u64::MAX
+    };
 @dues@    // A hold running out with a lower posting behind it changes what readers see.
     if let Some(release) = w.suppressor.as_ref().and_then(|s| s.next_release()) {
         due = due.min((release.as_millis() as u64).saturating_sub(w.now_ms));
     }
-    due
+    (due != u64::MAX).then_some(due)
 }
 
 /// Whether every machine that starts with the behaviour is in a final state, its OnEntry run.

@@ -512,7 +512,9 @@ async fn settle(board: &Whiteboard) {
 const SETTLE_TURNS: usize = 16;
 
 /// Whether a running machine's current labels read a type whose value on the board is not
-/// what its last ringlet saw.
+/// what its last ringlet saw. A control command is not such a type: commands are obeyed as they
+/// come (`obey_commands`), and one that changed nothing (`resume` to a machine in a final state)
+/// must not start round after round at one moment.
 fn missed(board: &Snapshot, runs: &mut [RunningMachine<'_>], over: &[bool]) -> bool {
     runs.iter_mut()
         .zip(over)
@@ -523,7 +525,7 @@ fn missed(board: &Snapshot, runs: &mut [RunningMachine<'_>], over: &[bool]) -> b
                 return false;
             }
             let types = run.reads().0.to_vec();
-            types.iter().any(|ty| {
+            types.iter().filter(|ty| **ty != run.name).any(|ty| {
                 board
                     .newest(ty)
                     .is_some_and(|m| m.seq > since && tells(run, m))
