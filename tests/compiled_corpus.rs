@@ -291,7 +291,7 @@ fn corpus_machines_a_target_cannot_have_are_refused_with_file_and_line() {
         (
             "mipal/machines",
             &["SMGetToGoal.fsm"],
-            "SMGetToGoal.fsm:10: cannot be compiled: a posting of text to `gunaowalk_ready`, a whiteboard variable",
+            "SMGetToGoal.fsm:10: cannot be compiled: a posting of text to `gunaowalk_ready`, a whiteboard value",
         ),
         (
             "mipal/machines",

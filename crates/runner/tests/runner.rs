@@ -382,3 +382,41 @@ async fn a_posting_due_at_a_rounds_moment_is_on_the_board_before_that_round_begi
         );
     }
 }
+
+/// A control command that changes nothing (`resume` to a machine in a final state whose last
+/// ringlet read the board), posted in every ringlet of another machine, is no news: rounds keep
+/// the ring period instead of following one another at one moment forever, which left the
+/// clock, the trace and every other task no turn.
+#[test]
+fn a_command_that_changes_nothing_starts_no_round_of_its_own() {
+    const DONE: &str =
+        "machine Done\ninitial D\nstate D {\n    internal {\n        x = level;\n    }\n}\n";
+    const NAGGER: &str = "machine Nagger\ninitial N\nstate N {\n    internal {\n        Done: resume\n    }\n    when timeout(5s) -> E\n}\nstate E {\n}\n";
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+            .expect("a runtime");
+        runtime.block_on(async {
+            let board = Whiteboard::local();
+            let machines = [DONE, NAGGER]
+                .map(|m| MachineRunner::new(native(m), Hosts::default(), RunOptions::default()));
+            let mut rounds = proclaim_runner::Rounds::new(machines.into());
+            let mut ringlets = rounds.ringlets();
+            tokio::spawn(rounds.run(board));
+            tokio::time::sleep(Duration::from_millis(1050)).await;
+            let at: Vec<Duration> = std::iter::from_fn(|| ringlets.try_recv().ok())
+                .map(|r| r.at)
+                .collect();
+            let _ = send.send(at);
+        });
+    });
+    let at = receive
+        .recv_timeout(Duration::from_secs(30))
+        .expect("a second of virtual time passes: the rounds leave the clock a turn");
+    // The nagger rings once a period, the finished machine once: about a dozen ringlets.
+    assert!(at.len() <= 15, "{} ringlets in a second: {at:?}", at.len());
+    assert!(at.contains(&Duration::from_millis(1000)), "{at:?}");
+}
