@@ -223,6 +223,13 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         folder: "machines/game_controller".into(),
         runs: game_controller_runs(),
     });
+    for name in ["ball", "referee"] {
+        behaviours.push(Compiled {
+            name: name.into(),
+            folder: format!("machines/{name}").into(),
+            runs: super::compiled::expert_runs(name),
+        });
+    }
     behaviours.extend(construct_cases().into_iter().map(from_case));
     behaviours.extend((0..24).map(random));
     behaviours.extend(
@@ -316,7 +323,7 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
     assert_eq!(o.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(
-        stderr.contains("sets none of the atoms the sensor `chestButton` answers"),
+        stderr.contains("sets none of the atoms the module `chestButton` answers"),
         "{stderr}"
     );
 }

@@ -95,7 +95,7 @@ fn refuse(file: &str, line: usize, what: String) -> Refusal {
 
 /// The plan of `behaviour`, or the first thing in it a compiled program cannot have.
 pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<Plan, Refusal> {
-    refuse_what_no_target_has(behaviour, target)?;
+    refuse_what_no_target_has(behaviour)?;
     let (theories, outputs, inputs) = plan_theories(behaviour)?;
     let outside = outputs
         .iter()
@@ -188,30 +188,19 @@ fn manifest_line(behaviour: &Behaviour, starts: &[&str]) -> usize {
         .map_or(1, |i| i + 1)
 }
 
-/// Refuses the manifest's parts that `target` does not run.
-fn refuse_what_no_target_has(behaviour: &Behaviour, target: Language) -> Result<(), Refusal> {
-    let manifest = behaviour.files.show(MANIFEST);
-    let refused = if behaviour.manifest.schedule != Schedule::Rounds {
-        Some((&["schedule"][..], "schedule = \"concurrent\""))
-    } else if !behaviour.programs.is_empty() {
-        Some((
-            &["[[prolog]]", "[[expert]]"][..],
-            match target {
-                Language::C => "a Prolog or program expert (a target without processes cannot run it)",
-                Language::Rust => "a Prolog or program expert (a compiled Rust behaviour has no whiteboard for an expert's process to answer on: run it with `proclaim run`)",
-            },
-        ))
-    } else {
-        None
-    };
-    match refused {
-        Some((starts, what)) => Err(refuse(
-            &manifest,
-            manifest_line(behaviour, starts),
-            what.into(),
-        )),
-        None => Ok(()),
+/// Refuses the manifest's parts that no target runs. A Prolog or program expert is no such part:
+/// a compiled program takes its atoms from the run's script, as a sensor's, which is how
+/// `proclaim run --virtual-clock` runs it too (a process on the real clock is left out when the
+/// script sets its atoms).
+fn refuse_what_no_target_has(behaviour: &Behaviour) -> Result<(), Refusal> {
+    if behaviour.manifest.schedule != Schedule::Rounds {
+        return Err(refuse(
+            &behaviour.files.show(MANIFEST),
+            manifest_line(behaviour, &["schedule"]),
+            "schedule = \"concurrent\"".into(),
+        ));
     }
+    Ok(())
 }
 
 /// The ring period in whole milliseconds (a target's clock counts milliseconds).
@@ -310,11 +299,18 @@ fn own_script(behaviour: &Behaviour) -> Option<(String, String)> {
     Some((behaviour.files.show(file), text))
 }
 
-/// Each sensor wrapper of the behaviour (its module's name) and the atoms it answers.
+/// Each module of the behaviour whose atoms a compiled program takes from its script (a sensor
+/// wrapper, a Prolog or program expert: its name) and the atoms it answers.
 fn sensor_atoms(behaviour: &Behaviour) -> Vec<(String, Vec<String>)> {
     proclaim_behaviour::modules(behaviour)
         .into_iter()
-        .filter(|m| matches!(m.kind, proclaim_behaviour::ModuleKind::Sensor(_)))
+        .filter(|m| {
+            matches!(
+                m.kind,
+                proclaim_behaviour::ModuleKind::Sensor(_)
+                    | proclaim_behaviour::ModuleKind::Program { .. }
+            )
+        })
         .map(|m| (m.decl.name.clone(), m.decl.answers.clone()))
         .collect()
 }

@@ -187,8 +187,9 @@ int behaviour_answers(const char *atom);
 /* The host answers `atom` from outside (a script or its own sensor sets it): 1 when the
  * behaviour's labels ask it. Unsupplied, such an atom is false and answered by no expert. */
 int behaviour_supply(struct world *w, const char *atom);
-/* Sensor wrapper `s`'s name, NULL past the last; its atom `i`, NULL past the last. A host
- * supplies one of each sensor's atoms (the interpreter leaves the sensor out then). */
+/* Module `s`'s name (a sensor wrapper, a Prolog or program expert), NULL past the last; its atom
+ * `i`, NULL past the last. A host supplies one of each module's atoms (the interpreter leaves
+ * the module out then). */
 const char *behaviour_sensor_name(unsigned s);
 const char *behaviour_sensor_atom(unsigned s, unsigned i);
 /* 1 when `name` is a machine's (a posting to it is a control command). */

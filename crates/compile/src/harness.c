@@ -454,11 +454,11 @@ static int sensors_scripted(void)
             }
         }
         if (!set) {
-            fprintf(stderr, "stdin: sets none of the atoms the sensor `%s` answers (", name);
+            fprintf(stderr, "stdin: sets none of the atoms the module `%s` answers (", name);
             for (a = 0; (atom = behaviour_sensor_atom(s, a)) != NULL; a++) {
                 fprintf(stderr, "%s%s", a == 0 ? "" : ", ", atom);
             }
-            fprintf(stderr, "): a compiled behaviour has no sensors, and takes their atoms from its script (as `proclaim run --script` leaves a sensor out when the script sets one of its atoms)\n");
+            fprintf(stderr, "): a compiled behaviour has no sensors or expert processes, and takes their atoms from its script (as `proclaim run --script` leaves such a module out when the script sets one of its atoms)\n");
             return 0;
         }
     }

@@ -17,8 +17,9 @@ pub(crate) struct Plan {
     /// How many atoms come from outside (no theory answers them; the behaviour's script or a
     /// sensor does): the host supplies them, from its script.
     pub outside: usize,
-    /// Each sensor wrapper (module name) and the atoms it answers: a run's script must set one
-    /// of them, so that the interpreter leaves the sensor out as the compiled program does.
+    /// Each module whose atoms come from the run's script (a sensor wrapper, a Prolog or program
+    /// expert) and the atoms it answers: a run's script must set one of them, so that the
+    /// interpreter leaves the module out as the compiled program does.
     pub sensors: Vec<(String, Vec<String>)>,
     /// The behaviour's own script (`[impersonator]`), its file as shown and its text: what a
     /// run without `--script` plays.

@@ -129,6 +129,7 @@ fn source(plan: &Plan) -> String {
     let held = Held::of(plan);
     let (sensor_atoms, sensor_starts) = sensor_tables(plan);
     let outputs_n = plan.outputs.len().max(1).to_string();
+    let extern_names = strings(plan.externs.iter().map(|b| b.name.as_str()));
     let machines = plan.machines.len().max(1).to_string();
     let loop_limit = LOOP_LIMIT.to_string();
     c.push_str(&fill(
@@ -150,10 +151,7 @@ fn source(plan: &Plan) -> String {
             ),
             ("priorities", &held.priorities),
             ("externs_n", &plan.externs.len().max(1).to_string()),
-            (
-                "extern_names",
-                &strings(plan.externs.iter().map(|b| b.name.as_str())),
-            ),
+            ("extern_names", &extern_names),
             ("externs", &plan.externs.len().to_string()),
             (
                 "extern_bound",
