@@ -78,3 +78,40 @@ fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
         stderr(&o)
     );
 }
+
+#[test]
+fn compiling_what_run_refuses_without_force_says_so_and_compiles() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "proclaim-compile-unanswered-{}",
+        std::process::id()
+    ));
+    let behaviour = dir.join("behaviour");
+    std::fs::create_dir_all(&behaviour).unwrap();
+    std::fs::write(
+        behaviour.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        behaviour.join("M.machine"),
+        "machine M\ninitial A\nstate A {\n    when nobody -> B\n}\nstate B {\n}\n",
+    )
+    .unwrap();
+    let o = proclaim(&["run", behaviour.to_str().unwrap(), "--for", "1s"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let o = proclaim(&[
+        "compile",
+        behaviour.to_str().unwrap(),
+        "--target",
+        "c",
+        "-o",
+        dir.join("c").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = stderr(&o);
+    assert!(
+        said.contains("M.machine:4: warning: label `nobody` is answered by no expert")
+            && said.contains("the compiled program runs it as `run --force` does"),
+        "{said}"
+    );
+}
