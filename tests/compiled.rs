@@ -635,21 +635,27 @@ fn suppression_holds_back_and_hands_over_as_the_interpreter_does() {
         held_back += usize::from(interpreted.contains("\"took_over\""));
     }
     assert!(held_back >= 3, "runs where a hold ran out: {held_back}");
-    let layers = construct_cases()
-        .into_iter()
-        .find(|c| c.name == "layers")
-        .unwrap();
-    let files: Vec<(&str, &str)> = layers
-        .files
-        .iter()
-        .map(|(f, t)| (f.as_str(), t.as_str()))
-        .collect();
-    let folder = behaviour_of("layers", &files);
-    let trace = same_trace("layers", &folder, layers.script, layers.run_for);
+    let trace = construct_trace("layers");
     assert!(
         trace.contains("\"suppressed\"") && trace.contains("\"took_over\""),
         "the layers hold each other back: {trace}"
     );
+}
+
+/// The construct case `name` written out, compiled, and held to the interpreter's trace, which
+/// it returns.
+fn construct_trace(name: &str) -> String {
+    let case = construct_cases()
+        .into_iter()
+        .find(|c| c.name == name)
+        .unwrap();
+    let files: Vec<(&str, &str)> = case
+        .files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of(name, &files);
+    same_trace(name, &folder, case.script, case.run_for)
 }
 
 #[test]
@@ -657,17 +663,7 @@ fn whiteboard_variables_are_read_through_the_snapshot_and_posted_when_assigned()
     if gcc_missing() {
         return;
     }
-    let case = construct_cases()
-        .into_iter()
-        .find(|c| c.name == "externs")
-        .unwrap();
-    let files: Vec<(&str, &str)> = case
-        .files
-        .iter()
-        .map(|(f, t)| (f.as_str(), t.as_str()))
-        .collect();
-    let folder = behaviour_of("externs", &files);
-    let trace = same_trace("externs", &folder, case.script, case.run_for);
+    let trace = construct_trace("externs");
     // The poster counts `n` up to 10 through its own postings, and the watcher sees it.
     assert!(
         trace.contains("\"type\":\"n\",\"content\":\"10\"") && trace.contains("\"text\":\"10\""),
@@ -680,17 +676,7 @@ fn whiteboard_values_read_by_name_alone_are_the_runners_including_none_and_who_p
     if gcc_missing() {
         return;
     }
-    let case = construct_cases()
-        .into_iter()
-        .find(|c| c.name == "board")
-        .unwrap();
-    let files: Vec<(&str, &str)> = case
-        .files
-        .iter()
-        .map(|(f, t)| (f.as_str(), t.as_str()))
-        .collect();
-    let folder = behaviour_of("board", &files);
-    let trace = same_trace("board", &folder, case.script, case.run_for);
+    let trace = construct_trace("board");
     for (what, expected) in [
         (
             "no value plus one is assigned as 0",
