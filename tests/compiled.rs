@@ -95,10 +95,13 @@ pub(crate) fn traces(
     let script_path = dir.join(format!("{name}.script"));
     std::fs::write(&script_path, script).unwrap();
     let trace_path = dir.join(format!("{name}.jsonl"));
+    // `--force`: a compiled program runs what `check` would stop (`proclaim compile` warns of
+    // it), so the interpreter runs it too.
     let mut args = vec![
         "run",
         behaviour,
         "--virtual-clock",
+        "--force",
         "--script",
         script_path.to_str().unwrap(),
         "--trace",

@@ -2,11 +2,11 @@
 //! `compiled_rust.rs`'s one workspace), write the interpreter's trace byte for byte: the
 //! Griffith team's one-minute microwave of four gufsm machines talking through whiteboard
 //! variables (`extern`) alone, and the machines that run alone once a script answers their
-//! label atoms. Skipped when the corpus is absent. The corpus's other machines call host
-//! functions the interpreter does not have either, compute fractions, post text to a
-//! whiteboard variable or time out after a variable (each refused with file and line, tested
-//! below), only name another file, or control machines a behaviour of their own does not hold
-//! (`proclaim run` refuses those).
+//! label atoms, three of them controlling machines a behaviour of their own does not hold
+//! (`proclaim run --force` runs those, as a compiled program does). Skipped when the corpus is
+//! absent. The corpus's other machines call host functions the interpreter does not have
+//! either, compute fractions, post text to a whiteboard value a machine reads or time out after
+//! a variable (each refused with file and line, tested below), or only name another file.
 
 use super::compiled::{assert_same, build, gcc_missing, scratch, splitmix, traces};
 use std::path::PathBuf;
@@ -52,7 +52,7 @@ struct Alone {
 
 /// The corpus machines that import, compile and run alone (found by compiling every one of
 /// them: README, "Deploying a behaviour").
-const ALONE: [Alone; 5] = [
+const ALONE: [Alone; 8] = [
     Alone {
         tag: "vlad-placer",
         from: "mipal/machines",
@@ -120,6 +120,33 @@ const ALONE: [Alone; 5] = [
         tag: "microwave-timer-kripke",
         from: "mipal/machines",
         files: &["Examples__OneMinuteMicrowave__MicrowaveTimerKripke.fsm"],
+        atoms: &[],
+        seeded: false,
+        scenes: &[],
+    },
+    // These three start and suspend machines of the team's whole player that a behaviour of
+    // their own does not hold (`proclaim run` wants `--force`), and read the ball's place from
+    // the whiteboard by name alone.
+    Alone {
+        tag: "goalie-eugene",
+        from: "mipal/machines",
+        files: &["SMGoalieEugene.fsm"],
+        atoms: &[],
+        seeded: false,
+        scenes: &[],
+    },
+    Alone {
+        tag: "head-ball-tracker-fair",
+        from: "mipal/machines",
+        files: &["SMHeadBallTrackerFair.fsm"],
+        atoms: &[],
+        seeded: false,
+        scenes: &[],
+    },
+    Alone {
+        tag: "head-ball-tracker-fair-find",
+        from: "mipal/machines",
+        files: &["SMHeadBallTrackerFairFind.fsm"],
         atoms: &[],
         seeded: false,
         scenes: &[],

@@ -188,7 +188,12 @@ fn traces(
     }
     let interpreted_path = dir.join(format!("{name}.interpreted.jsonl"));
     let compiled_path = dir.join(format!("{name}.compiled.jsonl"));
-    let mut args = vec!["run".to_string(), folder.to_str().unwrap().into()];
+    // `--force`: a compiled program runs what `check` would stop, so the interpreter does too.
+    let mut args = vec![
+        "run".to_string(),
+        folder.to_str().unwrap().into(),
+        "--force".into(),
+    ];
     args.extend(options.iter().cloned());
     args.extend(["--trace".into(), interpreted_path.to_str().unwrap().into()]);
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
