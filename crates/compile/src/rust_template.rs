@@ -625,9 +625,12 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
 /// runner reports them.
 fn proved(w: &mut World, m: usize, label: impl FnOnce(&mut World) -> bool) -> bool {
     let holds = label(w);
-    for (atom, value, expert, poster) in std::mem::take(&mut w.pending) {
+    // By index, so that the list keeps its room for the next label.
+    for i in 0..w.pending.len() {
+        let (atom, value, expert, poster) = w.pending[i];
         w.answered(MACHINE_NAME[m], atom, value, expert, poster);
     }
+    w.pending.clear();
     holds
 }
 

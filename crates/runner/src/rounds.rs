@@ -214,6 +214,10 @@ impl Rounds {
                     release,
                 )
                 .await;
+            // News already on the board ends the wait at once: machines that keep posting what
+            // the others read must not keep the experts, the trace or a stop request from a turn
+            // either.
+            tokio::task::consume_budget().await;
         }
     }
 

@@ -420,3 +420,34 @@ fn a_command_that_changes_nothing_starts_no_round_of_its_own() {
     assert!(at.len() <= 15, "{} ringlets in a second: {at:?}", at.len());
     assert!(at.contains(&Duration::from_millis(1000)), "{at:?}");
 }
+
+/// Two machines that keep posting values of a type the other reads are news to each other
+/// round after round at one moment, none firing: the schedule still gives every other task a
+/// turn (the trace's writer, an expert, a stop request), which it did not.
+#[test]
+fn machines_that_keep_telling_each_other_news_leave_other_tasks_a_turn() {
+    const ZERO: &str = "machine Zero\ninitial S\nstate S {\n    internal {\n        x: 0\n    }\n    when x == 5 -> T\n}\nstate T {\n}\n";
+    const ONE: &str = "machine One\ninitial S\nstate S {\n    internal {\n        x: 1\n    }\n    when x == 7 -> T\n}\nstate T {\n}\n";
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .start_paused(true)
+            .build()
+            .expect("a runtime");
+        runtime.block_on(async {
+            let board = Whiteboard::local();
+            let machines = [ZERO, ONE]
+                .map(|m| MachineRunner::new(native(m), Hosts::default(), RunOptions::default()));
+            let mut rounds = proclaim_runner::Rounds::new(machines.into());
+            let mut ringlets = rounds.ringlets();
+            tokio::spawn(rounds.run(board));
+            // A turn for this task, however many rounds come first.
+            while ringlets.recv().await.is_some_and(|r| r.round < 1000) {}
+            let _ = send.send(());
+        });
+    });
+    receive
+        .recv_timeout(Duration::from_secs(30))
+        .expect("the test's own task gets a turn while the machines tell each other news");
+}
