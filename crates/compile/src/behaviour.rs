@@ -363,10 +363,11 @@ fn board_clash(behaviour: &Behaviour, outputs: &[Output], name: &str) -> Option<
 }
 
 /// Adds to `board` every other whiteboard type a machine reads: a name in an expression that
-/// is no variable of that machine, and a label atom no theory, script or sensor answers (the
-/// runner reads its newest posting then: a machine's `NameIsRunning`, a type a machine posts,
-/// or nothing at all). A name that clashes (`board_clash`) is left out, so that reading it is
-/// refused where it is read.
+/// is no variable of that machine, a label atom the script or a module answers from outside
+/// (also a value on the board), and a label atom nobody answers (the runner reads its newest
+/// posting then: a machine's `NameIsRunning`, a type a machine posts, or nothing at all). A
+/// name that clashes (`board_clash`) is left out, so that reading it is refused where it is
+/// read.
 fn plan_board_reads(
     behaviour: &Behaviour,
     own: &[HashMap<String, Variable>],
@@ -376,7 +377,13 @@ fn plan_board_reads(
 ) {
     for (m, loaded) in behaviour.machines.iter().enumerate() {
         let mut read = |name: &str, asked: bool| {
-            let answered = asked && outputs.iter().any(|o| o.name == name);
+            // A theory's answer is its expert's alone; an atom from outside is also a value on
+            // the board, whose postings are news to a ringlet that read the snapshot without
+            // asking it.
+            let answered = asked
+                && outputs
+                    .iter()
+                    .any(|o| o.name == name && matches!(o.answer, Answer::Theory { .. }));
             if answered
                 || own[m].contains_key(name)
                 || globals.contains_key(name)

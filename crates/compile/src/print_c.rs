@@ -388,7 +388,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (k < theory_outputs || w->asked[{m}][k]) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n        for (e = 0; e < externs; e++) {{\n            if (reads_extern_{m}(w, e) && extern_news(w, {m}u, e)) {{\n                return 1;\n            }}\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (w->asked[{m}][k] || (k < theory_outputs && w->ext_read[{m}])) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n        for (e = 0; e < externs; e++) {{\n            if (reads_extern_{m}(w, e) && extern_news(w, {m}u, e)) {{\n                return 1;\n            }}\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
