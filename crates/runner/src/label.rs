@@ -66,6 +66,12 @@ async fn ask(atom: &str, cx: &mut Context<'_>) -> bool {
         }
     }
     let outcome = board.query(cx.module, atom, cx.answer_timeout).await;
+    if matches!(outcome, QueryOutcome::Answered { .. }) {
+        // The expert's answer is a posting: those who hear of postings (the trace's note of
+        // the script's, a monitor) hear of it before the ringlet goes on, whichever task the
+        // answer woke first.
+        tokio::task::yield_now().await;
+    }
     let (value, by) = match &outcome {
         QueryOutcome::Answered { value, by, .. } => (*value, Answerer::Expert(by.to_string())),
         QueryOutcome::TimedOut => (false, Answerer::TimedOut),
