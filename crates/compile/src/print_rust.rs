@@ -272,7 +272,7 @@ impl Schedule {
         for (m, machine) in plan.machines.iter().enumerate() {
             s.code.push_str(&machine_code(m, machine));
             let _ = writeln!(s.rings, "    if w.status[{m}] == RUNNING && !w.fresh[{m}] && !done(w, {m}) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (w.asked[{m}][k] || (k < THEORY_OUTPUTS && w.ext_read[{m}])) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n        if (0..EXTERNS).any(|e| reads_extern_{m}(w, e) && w.extern_news({m}, e)) {{\n            return true;\n        }}\n    }}");
+            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (w.asked[{m}][k] || (k < THEORY_OUTPUTS && w.ext_read[{m}])) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n        if (0..EXTERNS).any(|e| reads_extern_{m}(w, e) && !asked_of_expert(w, {m}, e) && w.extern_news({m}, e)) {{\n            return true;\n        }}\n    }}");
             let _ = writeln!(
                 s.dues,
                 "    if w.status[{m}] == RUNNING {{\n        due = due_{m}(w, due);\n    }}"

@@ -229,8 +229,6 @@ pub struct World {
     /// The atoms nobody answers that each machine's last ringlet asked, read from these values,
     /// and what it read: news is then a posting whose truth differs.
     pub asked_posted: Vec<Vec<Option<bool>>>,
-    /// Whether each machine's last ringlet asked an expert the atom each value is.
-    pub asked_of_expert: Vec<Vec<bool>>,
     /// The answers the label being proved has read (atom, value, expert, poster), reported
     /// once it is proved, as the runner reports them.
     pub pending: Vec<(&'static str, bool, Option<&'static str>, Option<&'static str>)>,
@@ -289,7 +287,6 @@ impl World {
             ext_own: vec![vec![None; externs]; machines],
             ext_read: vec![false; machines],
             asked_posted: vec![vec![None; externs]; machines],
-            asked_of_expert: vec![vec![false; externs]; machines],
             pending: Vec::new(),
             ringing: 0,
             past_snapshot: false,
@@ -477,7 +474,6 @@ impl World {
         self.ext_seen_by[m].clone_from(&self.ext_by);
         self.ext_own[m].fill(None);
         self.asked_posted[m].fill(None);
-        self.asked_of_expert[m].fill(false);
     }
 
     /// Whether the board's value of `e` is news to machine `m`: not what it posted itself in
@@ -488,11 +484,6 @@ impl World {
         };
         if let Some(answer) = self.asked_posted[m][e] {
             return truthy(now) != answer;
-        }
-        if self.asked_of_expert[m][e] {
-            // The answer to the machine's own question: news only when it changes, which the
-            // answers' own test sees.
-            return false;
         }
         if let Some(own) = self.ext_own[m][e] {
             return own != now;
@@ -608,9 +599,6 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
         w.ext[e] = Some(v_bool(value));
         w.ext_by[e] = OUTPUT_EXPERT[k];
     }
-    if let Some(e) = OUTPUT_BOARD[k] {
-        w.asked_of_expert[m][e] = true;
-    }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
     if expert.is_some() {
         // The expert posts its answer: a theory reading the atom as an input sees it.
@@ -632,6 +620,12 @@ fn proved(w: &mut World, m: usize, label: impl FnOnce(&mut World) -> bool) -> bo
     }
     w.pending.clear();
     holds
+}
+
+/// Whether machine `m`'s last ringlet asked an expert the atom whiteboard value `e` is: then a
+/// posting of it is news only when the answer changed, which the answers' own test sees.
+fn asked_of_expert(w: &World, m: usize, e: usize) -> bool {
+    (0..OUTPUTS).any(|k| OUTPUT_BOARD[k] == Some(e) && w.asked[m][k])
 }
 
 /// What a whiteboard value never posted reads as.
