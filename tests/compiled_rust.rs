@@ -199,14 +199,28 @@ fn traces(
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let o = proclaim(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let record_path = dir.join(format!("{name}.compiled-record.jsonl"));
     let o = Command::new(program)
         .args(&options)
         .args(["--trace", compiled_path.to_str().unwrap()])
+        .args(["--record", record_path.to_str().unwrap()])
         .output()
         .expect("the compiled behaviour runs");
     assert!(
         o.status.success(),
         "the compiled behaviour failed on {name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // The compiled program's recording, replayed on the interpreter, is the same run.
+    let o = proclaim(&[
+        "test",
+        folder.to_str().unwrap(),
+        record_path.to_str().unwrap(),
+    ]);
+    assert!(
+        o.status.success(),
+        "the interpreter's replay of the compiled program's recording of {name}:\n{}{}",
+        String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     );
     (

@@ -257,6 +257,29 @@ pub struct World {
     /// answer first, kept in `answer_shown` as the type's last value shown.
     pub unposted: Vec<String>,
     pub answer_shown: Vec<(String, bool)>,
+    /// The recording `--record` writes, when it asks for one.
+    pub record: Option<Record>,
+}
+
+/// A recording as `proclaim run --record` writes it, for `proclaim test` and `proclaim replay`:
+/// every whiteboard message the interpreter's run would post (numbered in order), and every
+/// ringlet as it begins, as JSON lines the host writes out.
+#[derive(Default)]
+pub struct Record {
+    seq: u64,
+    pub lines: Vec<String>,
+}
+
+/// A posting's content as the whiteboard holds it: a truth value, a whole number, or text.
+pub fn board_value(content: &str) -> serde_json::Value {
+    match content {
+        "true" => serde_json::Value::Bool(true),
+        "false" => serde_json::Value::Bool(false),
+        _ => match content.parse::<i64>() {
+            Ok(whole) => serde_json::json!(whole),
+            Err(_) => serde_json::json!(content),
+        },
+    }
 }
 
 impl World {
@@ -301,6 +324,39 @@ impl World {
             supplied: vec![false; outputs],
             unposted: Vec::new(),
             answer_shown: Vec::new(),
+            record: None,
+        }
+    }
+
+    /// Records a whiteboard message `module` posts, when recording.
+    pub fn message(&mut self, module: &str, ty: &str, value: serde_json::Value) {
+        let at_us = self.now_ms * 1000;
+        if let Some(record) = self.record.as_mut() {
+            record.seq += 1;
+            let line = serde_json::json!({
+                "seq": record.seq,
+                "at_us": at_us,
+                "module": module,
+                "type": ty,
+                "value": value,
+            });
+            record.lines.push(line.to_string());
+        }
+    }
+
+    /// Records that machine `m` (its place in the schedule) begins a ringlet: after every
+    /// message numbered so far, as the runner's schedule records it.
+    pub fn ringlet_begins(&mut self, m: usize) {
+        let (round, at) = (self.round, Duration::from_millis(self.now_ms));
+        if let Some(record) = self.record.as_mut() {
+            let ringlet = proclaim_runner::Ringlet {
+                round,
+                machine: m,
+                seq: record.seq,
+                at,
+                snapshot: None,
+            };
+            record.lines.push(serde_json::json!({ "ringlet": ringlet }).to_string());
         }
     }
 
@@ -528,6 +584,7 @@ pub(crate) const BODY: &str = r#"//! The behaviour `@name@` compiled by proclaim
 //! the round schedule, and what its host asks of it.
 
 use crate::runtime::*;
+use proclaim_board::QUERY_TYPE;
 use proclaim_runner::Event;
 
 pub const MACHINES: usize = @machines@;
@@ -600,7 +657,9 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
         w.ext_by[e] = OUTPUT_EXPERT[k];
     }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
-    if expert.is_some() {
+    if let Some(expert) = expert {
+        w.message(MACHINE_NAME[m], QUERY_TYPE, serde_json::json!(OUTPUT_NAME[k]));
+        w.message(expert, OUTPUT_NAME[k], serde_json::Value::Bool(value));
         // The expert posts its answer: a theory reading the atom as an input sees it.
         apply_input(w, OUTPUT_NAME[k], if value { "true" } else { "false" });
         w.queried(OUTPUT_NAME[k], value);
@@ -692,6 +751,7 @@ fn post(w: &mut World, m: usize, ty: &str, content: &str) {
         }
     }
     w.posted(MACHINE_NAME[m], ty, content, PRIORITY[m]);
+    w.message(MACHINE_NAME[m], ty, board_value(content));
     apply_input(w, ty, content);
 }
 
@@ -700,6 +760,7 @@ fn post_extern(w: &mut World, m: usize, e: usize, v: Value) {
     let v = v_some(v);
     let shown = value_text(v);
     w.posted(MACHINE_NAME[m], EXTERN_NAME[e], &shown, PRIORITY[m]);
+    w.message(MACHINE_NAME[m], EXTERN_NAME[e], board_value(&shown));
     apply_input(w, EXTERN_NAME[e], &shown);
     w.ext[e] = Some(v);
     w.ext_by[e] = MACHINE_NAME[m];
@@ -793,6 +854,7 @@ fn done(w: &World, m: usize) -> bool {
 
 /// A control command posted to machine `m`, obeyed when the ringlet ends.
 fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
+    w.message(MACHINE_NAME[w.ringing], MACHINE_NAME[m], serde_json::json!(word));
     if w.commands[m].len() < COMMANDS {
         w.commands[m].push((code, word));
         w.commands_waiting = true;
@@ -802,6 +864,10 @@ fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
 /// The runner posts a machine's running state to `NameIsRunning` when it starts and whenever
 /// that changes.
 fn post_status(w: &mut World, m: usize) {
+    if w.record.is_some() {
+        let ty = format!("{}IsRunning", MACHINE_NAME[m]);
+        w.message(MACHINE_NAME[m], &ty, serde_json::Value::Bool(w.status[m] == RUNNING));
+    }
     if let Some(e) = STATUS_BOARD[m] {
         w.ext[e] = Some(v_bool(w.status[m] == RUNNING));
         w.ext_by[e] = MACHINE_NAME[m];
@@ -892,6 +958,15 @@ pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     w
 }
 
+/// Starts the recording `--record` asks for, with what the start posted: each machine's
+/// running state.
+pub fn start_recording(w: &mut World) {
+    w.record = Some(Record::default());
+    for m in 0..MACHINES {
+        post_status(w, m);
+    }
+}
+
 /// One round: `started` (what came from outside by now is posted), then a ringlet of every
 /// machine in manifest order; whether one fired (the next round follows at once).
 pub fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
@@ -972,6 +1047,7 @@ pub fn finished(w: &World) -> bool {
 /// One machine's functions (`@m@` is its number).
 pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
     w.ringing = @m@;
+    w.ringlet_begins(@m@);
     w.past_snapshot = false;
     if w.just_entered[@m@] {
         w.just_entered[@m@] = false;
