@@ -10,9 +10,13 @@ use super::compiled::{
     assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
     runs_of_press_or_shootout, scratch, seeded_moment, splitmix, subsumption_runs, Case,
 };
+use super::monitor::{http, proclaim_serving, Running};
 use crate::proclaim;
+use serde_json::Value as Json;
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 /// One behaviour to compile and the runs to hold to the interpreter's.
 struct Compiled {
@@ -158,6 +162,10 @@ fn build_projects(projects: &Path) -> PathBuf {
         .args(["build", "--offline", "--workspace", "--quiet"])
         .current_dir(projects)
         .env("CARGO_TARGET_DIR", &target)
+        // Sixty-odd programs: without debug information and incremental caches they link
+        // faster and take a fraction of the disk.
+        .env("CARGO_PROFILE_DEV_DEBUG", "0")
+        .env("CARGO_INCREMENTAL", "0")
         .output()
         .expect("cargo runs");
     assert!(
@@ -345,4 +353,146 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         stderr.contains("sets none of the atoms the module `chestButton` answers"),
         "{stderr}"
     );
+    the_compiled_microwave_shows_its_run_on_the_monitors_page(
+        &programs.join("behaviour-microwave"),
+        &runs,
+    );
+}
+
+/// Starts a compiled program with `args` and reads its standard error up to the monitor's URL.
+fn serving(program: &Path, args: &[&str]) -> (Running, String) {
+    let mut child = Command::new(program)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the compiled behaviour starts");
+    let stderr = child.stderr.take().expect("stderr");
+    let running = Running(child);
+    let mut lines = BufReader::new(stderr).lines();
+    let url = loop {
+        let line = lines
+            .next()
+            .expect("the program printed the monitor's URL before ending")
+            .expect("readable output");
+        if let Some(url) = line.trim().strip_prefix("monitor: ") {
+            break url.to_string();
+        }
+    };
+    std::thread::spawn(move || for _ in lines {});
+    (running, url)
+}
+
+fn json_at(url: &str, path: &str) -> Json {
+    let (status, body) = http(url, "GET", path, None);
+    assert_eq!(status, 200, "{path}: {body}");
+    serde_json::from_str(&body).unwrap()
+}
+
+/// The page's frame once it shows the microwave in `state` (within 20 s).
+fn frame_once(url: &str, state: &str) -> Json {
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        let frame = json_at(url, "/api/frame");
+        if frame["machines"][0]["state_name"] == state {
+            return frame;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "the page never shows {state}: {frame}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// `--monitor`: the page draws the machines as `proclaim run --monitor` draws them, shows the
+/// run's whiteboard and where the run ended; on the real clock a posting from the page comes
+/// into the run, Ctrl-C ends it with its trace and recording whole, and the recording replays.
+fn the_compiled_microwave_shows_its_run_on_the_monitors_page(program: &Path, runs: &Path) {
+    let (_interpreted, interpreted_url) = proclaim_serving(
+        &[
+            "run",
+            "machines/microwave",
+            "--monitor",
+            "127.0.0.1:0",
+            "--for",
+            "60s",
+        ],
+        "monitor: ",
+    );
+    let (_compiled, url) = serving(
+        program,
+        &[
+            "--virtual-clock",
+            "--monitor",
+            "127.0.0.1:0",
+            "--trace",
+            "/dev/null",
+        ],
+    );
+    let model = json_at(&url, "/api/model");
+    let interpreted = json_at(&interpreted_url, "/api/model");
+    assert_eq!(
+        (&model["name"], &model["charts"]),
+        (&interpreted["name"], &interpreted["charts"])
+    );
+    assert_eq!(model["charts"][0]["name"], "Microwave");
+    assert_eq!(model["can_step"], false, "a compiled run has no stepping");
+    // The page shows where the virtual run ended once it has.
+    let frame = frame_once(&url, "DONE");
+    let magnetron = frame["board"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|row| row["type"] == "Magnetron")
+        .cloned()
+        .unwrap_or_else(|| panic!("the run's postings are on the board: {frame}"));
+    assert_eq!(
+        (magnetron["value"].as_str(), magnetron["by"].as_str()),
+        (Some("\"off\""), Some("Microwave")),
+        "{frame}"
+    );
+
+    let script = runs.join("idle.script");
+    std::fs::write(&script, "doorOpen = false\ntimeLeft = false\n").unwrap();
+    let trace = runs.join("monitored.compiled.jsonl");
+    let record = runs.join("monitored.compiled-record.jsonl");
+    let (mut running, url) = serving(
+        program,
+        &[
+            "--script",
+            script.to_str().unwrap(),
+            "--monitor",
+            "127.0.0.1:0",
+            "--trace",
+            trace.to_str().unwrap(),
+            "--record",
+            record.to_str().unwrap(),
+        ],
+    );
+    let (status, body) = http(
+        &url,
+        "POST",
+        "/api/post",
+        Some(r#"{"type":"timeLeft","value":"true"}"#),
+    );
+    assert_eq!(status, 200, "{body}");
+    frame_once(&url, "COOKING");
+    let interrupted = Command::new("kill")
+        .args(["-INT", &running.0.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(interrupted.success());
+    let ended = running.0.wait().unwrap();
+    assert!(
+        ended.success(),
+        "Ctrl-C ends the run as a finished one: {ended}"
+    );
+    let trace = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        trace.contains(r#""fired","machine":"Microwave","from":1,"to":3,"label":"cook""#),
+        "{trace}"
+    );
+    let o = proclaim(&["test", "machines/microwave", record.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
 }

@@ -2,7 +2,7 @@
 //! (the page is `proclaim_monitor::Editor`), under the monitor's access rules: open on
 //! loopback, a token off it, nothing changed with `--read-only`.
 
-use super::monitor::{new_token, parse_addr};
+use super::monitor::parse_addr;
 use crate::behaviours::resolve;
 use crate::failure::Failure;
 use proclaim_behaviour::parse_manifest;
@@ -36,13 +36,7 @@ pub fn run(behaviour: &str, addr: &str, read_only: bool) -> Result<ExitCode, Fai
             "edit {addr}: not an address to listen on (write 127.0.0.1:7481, or a port alone)"
         ))
     })?;
-    let access = if read_only {
-        Access::ReadOnly
-    } else if wanted.ip().is_loopback() {
-        Access::Open
-    } else {
-        Access::Token(new_token())
-    };
+    let access = Access::for_address(wanted, read_only);
     let runtime = super::runtime::runtime(super::runtime::Shape::OneThread)?;
     runtime.block_on(async {
         let editor = tokio::task::spawn_blocking(move || Editor::open(found.label, files))

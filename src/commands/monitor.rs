@@ -6,19 +6,16 @@ use crate::failure::Failure;
 use proclaim_behaviour::{read_trace, Behaviour};
 use proclaim_monitor::{Access, Chart, Monitor};
 use proclaim_runner::Event;
-use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::net::SocketAddr;
 use std::path::Path;
 use std::process::ExitCode;
 
 /// `7480`, `127.0.0.1:7480`, `[::1]:7480` or `0.0.0.0:8080`.
 pub fn parse_addr(text: &str) -> Result<SocketAddr, Failure> {
-    let text = text.trim();
-    if let Ok(port) = text.parse::<u16>() {
-        return Ok(SocketAddr::new(IpAddr::V4(Ipv4Addr::LOCALHOST), port));
-    }
-    text.parse().map_err(|_| {
+    proclaim_monitor::parse_address(text).ok_or_else(|| {
         Failure::Argument(format!(
-            "--monitor {text}: not an address to listen on (write 127.0.0.1:7480, or a port alone)"
+            "--monitor {}: not an address to listen on (write 127.0.0.1:7480, or a port alone)",
+            text.trim()
         ))
     })
 }
@@ -47,40 +44,9 @@ pub async fn live(
         board.clone(),
         stepper,
     );
-    let access = move |bound: SocketAddr| {
-        if read_only {
-            Access::ReadOnly
-        } else if bound.ip().is_loopback() {
-            Access::Open
-        } else {
-            Access::Token(new_token())
-        }
-    };
+    let access = move |bound: SocketAddr| Access::for_address(bound, read_only);
     open_with(&monitor, addr, access).await?;
     Ok(monitor)
-}
-
-/// 128 random bits in hex: the operating system's randomness where there is any, else the
-/// standard library's per-process random hash keys.
-pub fn new_token() -> String {
-    use std::hash::{BuildHasher, Hasher};
-    use std::io::Read;
-    let mut bytes = [0u8; 16];
-    let from_os = std::fs::File::open("/dev/urandom")
-        .and_then(|mut f| f.read_exact(&mut bytes))
-        .is_ok();
-    if !from_os {
-        for chunk in bytes.chunks_mut(8) {
-            let mut hasher = std::collections::hash_map::RandomState::new().build_hasher();
-            hasher.write_u128(
-                std::time::SystemTime::now()
-                    .duration_since(std::time::UNIX_EPOCH)
-                    .map_or(0, |d| d.as_nanos()),
-            );
-            chunk.copy_from_slice(&hasher.finish().to_le_bytes());
-        }
-    }
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Serves the page and says where. The default port, when taken, gives way to any free one

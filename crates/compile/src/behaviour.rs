@@ -6,8 +6,8 @@
 use crate::activity::{conversion, Activity, Variable, Variables};
 use crate::c::c_identifier;
 use crate::plan::{
-    Answer, BoardValue, Condition, Conversion, Input, MachinePlan, Output, Plan, PlannedTheory,
-    StatePlan, Suppressed, TransitionPlan,
+    Answer, BoardValue, Condition, Conversion, Drawing, Input, MachinePlan, Output, Plan,
+    PlannedTheory, StatePlan, Suppressed, TransitionPlan,
 };
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
@@ -509,6 +509,14 @@ fn plan_machine(
         start: loaded.start,
         priority: loaded.priority,
         states,
+        drawing: Drawing {
+            transitions: machine
+                .transitions
+                .iter()
+                .map(|t| (t.source, t.target, t.label.to_string()))
+                .collect(),
+            dot: proclaim_fsm::to_dot(machine),
+        },
     })
 }
 

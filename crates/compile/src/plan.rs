@@ -186,6 +186,14 @@ pub(crate) struct MachinePlan {
     /// Its subsumption layer (the manifest's `priority`), which its postings carry.
     pub priority: u32,
     pub states: Vec<StatePlan>,
+    /// How `proclaim draw` draws it, for a compiled program's monitor page: every transition
+    /// (source, target, label) in the machine's order, and the DOT text.
+    pub drawing: Drawing,
+}
+
+pub(crate) struct Drawing {
+    pub transitions: Vec<(i64, i64, String)>,
+    pub dot: String,
 }
 
 pub(crate) struct StatePlan {

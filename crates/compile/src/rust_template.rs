@@ -259,6 +259,9 @@ pub struct World {
     pub answer_shown: Vec<(String, bool)>,
     /// The recording `--record` writes, when it asks for one.
     pub record: Option<Record>,
+    /// Where every whiteboard message of the run is posted too (a real whiteboard, under
+    /// `--monitor`): module, type, value.
+    pub mirror: Option<Box<dyn FnMut(&str, &str, &serde_json::Value)>>,
 }
 
 /// A recording as `proclaim run --record` writes it, for `proclaim test` and `proclaim replay`:
@@ -325,11 +328,25 @@ impl World {
             unposted: Vec::new(),
             answer_shown: Vec::new(),
             record: None,
+            mirror: None,
         }
     }
 
-    /// Records a whiteboard message `module` posts, when recording.
+    /// Whether the run's whiteboard messages go anywhere (a recording, a whiteboard).
+    pub fn telling(&self) -> bool {
+        self.record.is_some() || self.mirror.is_some()
+    }
+
+    /// A whiteboard message `module` posts: recorded, and posted on the whiteboard.
     pub fn message(&mut self, module: &str, ty: &str, value: serde_json::Value) {
+        if let Some(mirror) = self.mirror.as_mut() {
+            mirror(module, ty, &value);
+        }
+        self.recorded(module, ty, value);
+    }
+
+    /// Records a whiteboard message `module` posted (one heard there, or one of the run's).
+    pub fn recorded(&mut self, module: &str, ty: &str, value: serde_json::Value) {
         let at_us = self.now_ms * 1000;
         if let Some(record) = self.record.as_mut() {
             record.seq += 1;
@@ -864,7 +881,7 @@ fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
 /// The runner posts a machine's running state to `NameIsRunning` when it starts and whenever
 /// that changes.
 fn post_status(w: &mut World, m: usize) {
-    if w.record.is_some() {
+    if w.telling() {
         let ty = format!("{}IsRunning", MACHINE_NAME[m]);
         w.message(MACHINE_NAME[m], &ty, serde_json::Value::Bool(w.status[m] == RUNNING));
     }
@@ -958,13 +975,21 @@ pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     w
 }
 
-/// Starts the recording `--record` asks for, with what the start posted: each machine's
-/// running state.
-pub fn start_recording(w: &mut World) {
-    w.record = Some(Record::default());
-    for m in 0..MACHINES {
-        post_status(w, m);
+/// Tells the recording and the whiteboard, when there are any, what the run's start posted:
+/// each machine's running state.
+pub fn announce(w: &mut World) {
+    if w.telling() {
+        for m in 0..MACHINES {
+            post_status(w, m);
+        }
     }
+}
+
+/// The run's own modules: its machines, its experts and the impersonator.
+pub fn modules() -> Vec<&'static str> {
+    let mut modules: Vec<&'static str> = MACHINE_NAME.iter().chain(OUTPUT_EXPERT.iter()).copied().collect();
+    modules.push("impersonator");
+    modules
 }
 
 /// One round: `started` (what came from outside by now is posted), then a ringlet of every

@@ -69,6 +69,35 @@ impl Chart {
         )
     }
 
+    /// A machine from its parts and `proclaim draw`'s DOT of it, as a behaviour compiled by
+    /// `proclaim compile --target rust` keeps them: the same chart as [`Chart::of_machine`].
+    pub fn of_parts(
+        name: String,
+        start: bool,
+        initial: i64,
+        states: &[(i64, &str)],
+        transitions: &[(i64, i64, &str)],
+        dot: &str,
+    ) -> Chart {
+        let states = states
+            .iter()
+            .map(|(id, name)| ChartState {
+                id: *id,
+                name: name.to_string(),
+                node: node(*id),
+            })
+            .collect();
+        let transitions = transitions
+            .iter()
+            .map(|(from, to, label)| ChartTransition {
+                from: *from,
+                to: *to,
+                label: label.to_string(),
+            })
+            .collect();
+        Chart::drawn(name, start, initial, states, transitions, dot)
+    }
+
     /// A machine known only from what it did (a trace replayed without its behaviour): the
     /// states it entered and the transitions it fired.
     pub fn of_trace(

@@ -6,8 +6,9 @@
 //! are server-side stacks of whole texts (a machine file is small), so what the page shows is
 //! always exactly what Save would write.
 
+use crate::access::Access;
 use crate::diagram::{node, Chart};
-use crate::server::{refusal, Access};
+use crate::server::refusal;
 use axum::extract::State;
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};

@@ -12,14 +12,16 @@
 //! The same crate serves `proclaim edit`'s page ([`Editor`]): the machines drawn the same way,
 //! changed by text patches to their files, under the same access rules.
 
+mod access;
 mod diagram;
 mod editor;
 mod picture;
 mod replay;
 mod server;
 
+pub use access::{new_token, parse_address, Access, TOKEN_HEADER};
 pub use diagram::{node, Chart, ChartState, ChartTransition};
 pub use editor::{Editor, EditorFile};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
-pub use server::{Access, Monitor, FRAME_GAP, TOKEN_HEADER};
+pub use server::{Monitor, FRAME_GAP};

@@ -2,6 +2,7 @@
 //! stream of frames for a live run (server-sent events, at most [`FRAME_GAP`] apart whatever
 //! the posting rate), a frame at any moment of a replay, and the controls.
 
+use crate::access::{Access, TOKEN_HEADER};
 use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
@@ -29,22 +30,6 @@ const IDLE_LOOK: Duration = Duration::from_millis(250);
 const INDEX_HTML: &str = include_str!("../assets/index.html");
 const MONITOR_JS: &str = include_str!("../assets/monitor.js");
 const MONITOR_CSS: &str = include_str!("../assets/monitor.css");
-
-/// Who may change the run from the page (pause, step, post to the whiteboard).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum Access {
-    /// Anyone who reaches the page: for a page on loopback only.
-    #[default]
-    Open,
-    /// Only requests that carry this token (a page on the network; the token is in the address
-    /// printed once, as Jupyter does it).
-    Token(String),
-    /// Nobody: the page shows the run and has no controls.
-    ReadOnly,
-}
-
-/// The header a page sends its token in.
-pub const TOKEN_HEADER: &str = "x-proclaim-token";
 
 /// A behaviour as the page shows it. Clones share it.
 #[derive(Clone)]
