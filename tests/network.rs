@@ -630,3 +630,83 @@ fn processes_started_with_scout_find_each_other_with_no_endpoint() {
     );
     wait_line(&out, "Follower  → SEEN", PATIENCE);
 }
+
+/// A behaviour compiled to Rust with the `network` feature joins a board over Zenoh as
+/// `proclaim run --listen` does: another process's posting comes into its run, its postings
+/// reach another process, and Ctrl-C ends it with a recording that replays on the interpreter.
+#[test]
+fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
+    let project = crate::compiled::scratch("network-microwave");
+    let o = crate::proclaim(&[
+        "compile",
+        "machines/microwave",
+        "--target",
+        "rust",
+        "-o",
+        project.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let target = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rust-network");
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let o = Command::new(cargo)
+        .args(["build", "--offline", "--quiet", "--features", "network"])
+        .current_dir(&project)
+        .env("CARGO_TARGET_DIR", &target)
+        .env("CARGO_PROFILE_DEV_DEBUG", "0")
+        .env("CARGO_INCREMENTAL", "0")
+        .output()
+        .expect("cargo runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let script = project.join("idle.script");
+    std::fs::write(&script, "doorOpen = false\ntimeLeft = false\n").unwrap();
+    let (trace, record) = (project.join("trace.jsonl"), project.join("record.jsonl"));
+    let endpoint = free_endpoint();
+    let mut compiled = Process(
+        Command::new(target.join("debug/behaviour-microwave"))
+            .args(["--script", script.to_str().unwrap(), "--listen", &endpoint])
+            .args(["--trace", trace.to_str().unwrap()])
+            .args(["--record", record.to_str().unwrap()])
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the compiled behaviour starts"),
+    );
+    let (tx, said) = std::sync::mpsc::channel();
+    let err = compiled.0.stderr.take().unwrap();
+    std::thread::spawn(move || {
+        for line in BufReader::new(err).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                return;
+            }
+        }
+    });
+    wait_line(&said, "listening on", PATIENCE);
+    let mut watch = proclaim(&["watch", "Magnetron", "--connect", &endpoint, "--for", "60s"]);
+    let watched = lines(&mut watch);
+    wait_line(&watched, "Magnetron = \"off\"", PATIENCE);
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["post", "timeLeft", "true", "--connect", &endpoint])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let seen = wait_line(&watched, "Magnetron = \"on\"", PATIENCE);
+    assert!(seen.last().unwrap().contains("Microwave"), "{seen:?}");
+    let interrupted = Command::new("kill")
+        .args(["-INT", &compiled.0.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(interrupted.success());
+    let ended = compiled.0.wait().unwrap();
+    assert!(
+        ended.success(),
+        "Ctrl-C ends the run as a finished one: {ended}"
+    );
+    let trace = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        trace.contains(r#""fired","machine":"Microwave","from":1,"to":3,"label":"cook""#),
+        "{trace}"
+    );
+    let o = crate::proclaim(&["test", "machines/microwave", record.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+}

@@ -60,13 +60,14 @@ fn package_name(name: &str) -> String {
 fn manifest(plan: &Plan, crates: &Path) -> String {
     let path = |krate: &str| format!("{:?}", crates.join(krate).to_string_lossy());
     format!(
-        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-board = {{ path = {} }}\nproclaim-monitor = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\ntokio = {{ version = \"1.40\", features = [\"rt-multi-thread\", \"signal\", \"time\", \"sync\"] }}\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
+        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-board = {{ path = {} }}\nproclaim-monitor = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\ntokio = {{ version = \"1.40\", features = [\"rt-multi-thread\", \"signal\", \"time\", \"sync\"] }}\nproclaim-zenoh = {{ path = {}, optional = true }}\n\n[features]\n# The whiteboard shared with other processes and robots (`--listen`, `--connect`): Zenoh's\n# stack is large, so it is built only when asked for.\nnetwork = [\"dep:proclaim-zenoh\"]\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
         plan.name.replace('\n', " "),
         package_name(&plan.name),
         path("board"),
         path("monitor"),
         path("runner"),
         path("syntax"),
+        path("zenoh"),
     )
 }
 
