@@ -631,15 +631,13 @@ fn processes_started_with_scout_find_each_other_with_no_endpoint() {
     wait_line(&out, "Follower  → SEEN", PATIENCE);
 }
 
-/// A behaviour compiled to Rust with the `network` feature joins a board over Zenoh as
-/// `proclaim run --listen` does: another process's posting comes into its run, its postings
-/// reach another process, and Ctrl-C ends it with a recording that replays on the interpreter.
-#[test]
-fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
-    let project = crate::compiled::scratch("network-microwave");
+/// `behaviour` (a folder) compiled to Rust and built with the `network` feature: its folder and
+/// its program. Every such build shares one target folder, so Zenoh's stack builds once.
+fn compiled_with_network(tag: &str, behaviour: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let project = crate::compiled::scratch(tag);
     let o = crate::proclaim(&[
         "compile",
-        "machines/microwave",
+        behaviour,
         "--target",
         "rust",
         "-o",
@@ -657,15 +655,24 @@ fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
         .output()
         .expect("cargo runs");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let script = project.join("idle.script");
-    std::fs::write(&script, "doorOpen = false\ntimeLeft = false\n").unwrap();
-    let (trace, record) = (project.join("trace.jsonl"), project.join("record.jsonl"));
-    let endpoint = free_endpoint();
-    let mut compiled = Process(
-        Command::new(target.join("debug/behaviour-microwave"))
-            .args(["--script", script.to_str().unwrap(), "--listen", &endpoint])
-            .args(["--trace", trace.to_str().unwrap()])
-            .args(["--record", record.to_str().unwrap()])
+    let manifest = std::fs::read_to_string(project.join("Cargo.toml")).unwrap();
+    let name = manifest
+        .lines()
+        .find_map(|l| l.strip_prefix("name = \""))
+        .and_then(|l| l.strip_suffix('"'))
+        .expect("the project names its package")
+        .to_string();
+    (project, target.join("debug").join(name))
+}
+
+/// A compiled program started with `args`, its standard error read on a thread.
+fn compiled_program(
+    program: &std::path::Path,
+    args: &[&str],
+) -> (Process, std::sync::mpsc::Receiver<String>) {
+    let mut process = Process(
+        Command::new(program)
+            .args(args)
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
@@ -673,7 +680,7 @@ fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
             .expect("the compiled behaviour starts"),
     );
     let (tx, said) = std::sync::mpsc::channel();
-    let err = compiled.0.stderr.take().unwrap();
+    let err = process.0.stderr.take().unwrap();
     std::thread::spawn(move || {
         for line in BufReader::new(err).lines().map_while(Result::ok) {
             if tx.send(line).is_err() {
@@ -681,27 +688,62 @@ fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
             }
         }
     });
-    wait_line(&said, "listening on", PATIENCE);
-    let mut watch = proclaim(&["watch", "Magnetron", "--connect", &endpoint, "--for", "60s"]);
-    let watched = lines(&mut watch);
-    wait_line(&watched, "Magnetron = \"off\"", PATIENCE);
-    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(["post", "timeLeft", "true", "--connect", &endpoint])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let seen = wait_line(&watched, "Magnetron = \"on\"", PATIENCE);
-    assert!(seen.last().unwrap().contains("Microwave"), "{seen:?}");
-    let interrupted = Command::new("kill")
-        .args(["-INT", &compiled.0.id().to_string()])
+    (process, said)
+}
+
+/// Ctrl-C to a compiled program, which ends its run as a finished one.
+fn interrupt(process: &mut Process) {
+    let sent = Command::new("kill")
+        .args(["-INT", &process.0.id().to_string()])
         .status()
         .unwrap();
-    assert!(interrupted.success());
-    let ended = compiled.0.wait().unwrap();
+    assert!(sent.success());
+    let ended = process.0.wait().unwrap();
     assert!(
         ended.success(),
         "Ctrl-C ends the run as a finished one: {ended}"
     );
+}
+
+fn post(endpoint: &str, ty: &str, value: &str) {
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["post", ty, value, "--connect", endpoint])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A behaviour compiled to Rust with the `network` feature joins a board over Zenoh as
+/// `proclaim run --listen` does: another process's posting comes into its run, its postings
+/// reach another process, and Ctrl-C ends it with a recording that replays on the interpreter.
+#[test]
+fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
+    let (project, program) = compiled_with_network("network-microwave", "machines/microwave");
+    let script = project.join("idle.script");
+    std::fs::write(&script, "doorOpen = false\ntimeLeft = false\n").unwrap();
+    let (trace, record) = (project.join("trace.jsonl"), project.join("record.jsonl"));
+    let endpoint = free_endpoint();
+    let (mut compiled, said) = compiled_program(
+        &program,
+        &[
+            "--script",
+            script.to_str().unwrap(),
+            "--listen",
+            &endpoint,
+            "--trace",
+            trace.to_str().unwrap(),
+            "--record",
+            record.to_str().unwrap(),
+        ],
+    );
+    wait_line(&said, "listening on", PATIENCE);
+    let mut watch = proclaim(&["watch", "Magnetron", "--connect", &endpoint, "--for", "60s"]);
+    let watched = lines(&mut watch);
+    wait_line(&watched, "Magnetron = \"off\"", PATIENCE);
+    post(&endpoint, "timeLeft", "true");
+    let seen = wait_line(&watched, "Magnetron = \"on\"", PATIENCE);
+    assert!(seen.last().unwrap().contains("Microwave"), "{seen:?}");
+    interrupt(&mut compiled);
     let trace = std::fs::read_to_string(&trace).unwrap();
     assert!(
         trace.contains(r#""fired","machine":"Microwave","from":1,"to":3,"label":"cook""#),
@@ -709,4 +751,48 @@ fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
     );
     let o = crate::proclaim(&["test", "machines/microwave", record.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+}
+
+/// A label's atom that no module of the compiled behaviour answers is asked of an expert in
+/// another process, as the runner asks it: the compiled oven cooks when `proclaim expert`
+/// proves `cook` from the postings of a third process.
+#[test]
+fn a_compiled_behaviour_asks_an_expert_in_another_process() {
+    let oven = crate::behaviour_folder(
+        "network-compiled-oven",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Oven.machine\"\n"),
+            (
+                "Oven.machine",
+                "machine Oven\nstate IDLE {\n  when cook -> COOKING\n}\nstate COOKING {\n  when ~cook -> IDLE\n}\n",
+            ),
+        ],
+    );
+    let (project, program) = compiled_with_network("network-oven", oven.to_str().unwrap());
+    let endpoint = free_endpoint();
+    let mut expert = proclaim(&["expert", "microwave", "--listen", &endpoint]);
+    let said = lines(&mut expert);
+    wait_line(&said, "listening on", PATIENCE);
+    let trace = project.join("trace.jsonl");
+    let (mut compiled, _) = compiled_program(
+        &program,
+        &["--connect", &endpoint, "--trace", trace.to_str().unwrap()],
+    );
+    post(&endpoint, "doorOpen", "false");
+    post(&endpoint, "timeLeft", "true");
+    let deadline = std::time::Instant::now() + PATIENCE;
+    // The trace is written as the run goes; the oven's move to COOKING is in it once made.
+    while !std::fs::read_to_string(&trace)
+        .unwrap_or_default()
+        .contains(r#""fired","machine":"Oven","from":1,"to":2,"label":"cook""#)
+    {
+        assert!(std::time::Instant::now() < deadline, "the oven never cooks");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    interrupt(&mut compiled);
+    let trace = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        trace.contains(r#""atom":"cook","value":true,"by":{"expert":"microwave"}"#),
+        "{trace}"
+    );
 }

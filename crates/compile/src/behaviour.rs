@@ -150,6 +150,7 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         externs,
         machines,
         period_ms,
+        answer_timeout_ms: u64::try_from(behaviour.answer_timeout.as_millis()).unwrap_or(u64::MAX),
         longest_text: counters.longest_text,
         commands: counters.commands,
         suppressed,

@@ -33,6 +33,8 @@ pub(crate) struct Plan {
     pub externs: Vec<BoardValue>,
     pub machines: Vec<MachinePlan>,
     pub period_ms: u64,
+    /// How long a query to an expert in another process waits (the manifest's `answer_timeout`).
+    pub answer_timeout_ms: u64,
     /// The longest text a posting or a print builds.
     pub longest_text: usize,
     /// Places that post a control command: no ringlet queues more than that.

@@ -221,6 +221,7 @@ fn behaviour(plan: &Plan) -> String {
         plan.outputs.len().to_string(),
         plan.variables().to_string(),
         plan.period_ms.to_string(),
+        plan.answer_timeout_ms.to_string(),
         plan.commands.max(1).to_string(),
         LOOP_LIMIT.to_string(),
     ];
@@ -232,8 +233,9 @@ fn behaviour(plan: &Plan) -> String {
             ("outputs", &numbers[1]),
             ("variables", &numbers[2]),
             ("period_ms", &numbers[3]),
-            ("commands", &numbers[4]),
-            ("loop_limit", &numbers[5]),
+            ("commands", &numbers[5]),
+            ("loop_limit", &numbers[6]),
+            ("answer_timeout_ms", &numbers[4]),
             (
                 "output_names",
                 &strings(plan.outputs.iter().map(|o| o.name.as_str())),

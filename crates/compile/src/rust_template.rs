@@ -231,7 +231,7 @@ pub struct World {
     pub asked_posted: Vec<Vec<Option<bool>>>,
     /// The answers the label being proved has read (atom, value, expert, poster), reported
     /// once it is proved, as the runner reports them.
-    pub pending: Vec<(&'static str, bool, Option<&'static str>, Option<&'static str>)>,
+    pub pending: Vec<(&'static str, bool, By)>,
     /// The machine whose ringlet runs, and whether that ringlet is past its snapshot.
     pub ringing: usize,
     pub past_snapshot: bool,
@@ -262,6 +262,28 @@ pub struct World {
     /// Where every whiteboard message of the run is posted too (a real whiteboard, under
     /// `--monitor`): module, type, value.
     pub mirror: Option<Box<dyn FnMut(&str, &str, &serde_json::Value)>>,
+    /// Asks an atom of an expert in another process, on a shared whiteboard: the asking
+    /// machine, the atom, how long to wait in milliseconds.
+    pub elsewhere: Option<Box<dyn FnMut(&str, &str, u64) -> Elsewhere>>,
+}
+
+/// Who gave a label's atom its answer, as the trace reports it.
+#[derive(Clone, Copy)]
+pub enum By {
+    Expert(&'static str),
+    /// No expert answers it: the newest posting, by this module.
+    Posted(&'static str),
+    Nobody,
+    /// An expert in another process did not answer in time: false.
+    TimedOut,
+}
+
+/// What a query to another process's expert came to.
+pub enum Elsewhere {
+    Answered(bool, &'static str),
+    TimedOut,
+    /// No module anywhere answers the atom.
+    NoExpert,
 }
 
 /// A recording as `proclaim run --record` writes it, for `proclaim test` and `proclaim replay`:
@@ -329,6 +351,7 @@ impl World {
             answer_shown: Vec::new(),
             record: None,
             mirror: None,
+            elsewhere: None,
         }
     }
 
@@ -466,24 +489,17 @@ impl World {
         }
     }
 
-    /// `expert` answered, or none did (`None`): then the machine read `poster`'s posting of the
-    /// atom, or nothing posted (`None`).
-    pub fn answered(
-        &mut self,
-        machine: &str,
-        atom: &str,
-        value: bool,
-        expert: Option<&str>,
-        poster: Option<&str>,
-    ) {
+    /// A label's atom read `value`, answered as `by` says.
+    pub fn answered(&mut self, machine: &str, atom: &str, value: bool, by: By) {
         self.report(|round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
-            by: match (expert, poster) {
-                (Some(e), _) => Answerer::Expert(e.to_string()),
-                (None, Some(p)) => Answerer::Posted(p.to_string()),
-                (None, None) => Answerer::NoExpert,
+            by: match by {
+                By::Expert(e) => Answerer::Expert(e.to_string()),
+                By::Posted(p) => Answerer::Posted(p.to_string()),
+                By::Nobody => Answerer::NoExpert,
+                By::TimedOut => Answerer::TimedOut,
             },
             round,
             at,
@@ -611,6 +627,8 @@ pub const VARIABLES: usize = @variables@;
 pub const PERIOD_MS: u64 = @period_ms@;
 const COMMANDS: usize = @commands@;
 const LOOP_LIMIT: u32 = @loop_limit@;
+/// How long a query to an expert in another process waits, in milliseconds.
+const ANSWER_TIMEOUT_MS: u64 = @answer_timeout_ms@;
 const OUTPUT_NAME: [&str; OUTPUTS] = [@output_names@];
 /// The outputs a theory answers come first; the impersonator's atoms follow.
 const THEORY_OUTPUTS: usize = @theory_outputs@;
@@ -681,7 +699,8 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
         apply_input(w, OUTPUT_NAME[k], if value { "true" } else { "false" });
         w.queried(OUTPUT_NAME[k], value);
     }
-    w.pending.push((OUTPUT_NAME[k], value, expert, None));
+    let by = expert.map_or(By::Nobody, By::Expert);
+    w.pending.push((OUTPUT_NAME[k], value, by));
     value
 }
 
@@ -691,8 +710,8 @@ fn proved(w: &mut World, m: usize, label: impl FnOnce(&mut World) -> bool) -> bo
     let holds = label(w);
     // By index, so that the list keeps its room for the next label.
     for i in 0..w.pending.len() {
-        let (atom, value, expert, poster) = w.pending[i];
-        w.answered(MACHINE_NAME[m], atom, value, expert, poster);
+        let (atom, value, by) = w.pending[i];
+        w.answered(MACHINE_NAME[m], atom, value, by);
     }
     w.pending.clear();
     holds
@@ -748,10 +767,32 @@ fn read_extern(w: &mut World, e: usize) -> Value {
 /// A label atom nobody answers: the runner reads the atom's newest posting as the ringlet sees
 /// it and reports who posted it (a never posted atom is false, answered by nobody).
 fn ask_posted(w: &mut World, m: usize, e: usize, atom: &'static str) -> bool {
+    // On a shared whiteboard an expert in another process may answer it, as it answers the
+    // runner's query.
+    let asked = w.elsewhere.as_mut().map(|ask| ask(MACHINE_NAME[m], atom, ANSWER_TIMEOUT_MS));
+    let answered = match asked {
+        Some(Elsewhere::Answered(value, expert)) => Some((value, By::Expert(expert))),
+        Some(Elsewhere::TimedOut) => Some((false, By::TimedOut)),
+        Some(Elsewhere::NoExpert) | None => None,
+    };
+    if let Some((value, by)) = answered {
+        if let By::Expert(expert) = by {
+            // The expert posted its answer: the board's value is that answer now.
+            w.ext[e] = Some(v_bool(value));
+            w.ext_by[e] = expert;
+        }
+        w.asked_posted[m][e] = Some(value);
+        w.pending.push((atom, value, by));
+        return value;
+    }
     let (v, by) = read_board(w, e);
     let value = !v.none && truthy(v);
     w.asked_posted[m][e] = Some(value);
-    w.pending.push((atom, value, None, by.filter(|_| !v.none)));
+    let by = match by.filter(|_| !v.none) {
+        Some(poster) => By::Posted(poster),
+        None => By::Nobody,
+    };
+    w.pending.push((atom, value, by));
     value
 }
 
