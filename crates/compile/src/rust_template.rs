@@ -229,8 +229,8 @@ pub struct World {
     /// The atoms nobody answers that each machine's last ringlet asked, read from these values,
     /// and what it read: news is then a posting whose truth differs.
     pub asked_posted: Vec<Vec<Option<bool>>>,
-    /// The answers the label being proved has read (atom, value, expert, poster), reported
-    /// once it is proved, as the runner reports them.
+    /// The answers the label being proved has read (atom, value, who answered), reported once
+    /// it is proved, as the runner reports them.
     pub pending: Vec<(&'static str, bool, By)>,
     /// The machine whose ringlet runs, and whether that ringlet is past its snapshot.
     pub ringing: usize,
@@ -360,8 +360,13 @@ impl World {
         self.record.is_some() || self.mirror.is_some()
     }
 
-    /// A whiteboard message `module` posts: recorded, and posted on the whiteboard.
-    pub fn message(&mut self, module: &str, ty: &str, value: serde_json::Value) {
+    /// A whiteboard message `module` posts: recorded, and posted on the whiteboard. Its value
+    /// is made only when it goes somewhere (a ringlet's hot path pays nothing otherwise).
+    pub fn message(&mut self, module: &str, ty: &str, value: impl FnOnce() -> serde_json::Value) {
+        if !self.telling() {
+            return;
+        }
+        let value = value();
         if let Some(mirror) = self.mirror.as_mut() {
             mirror(module, ty, &value);
         }
@@ -693,8 +698,8 @@ fn ask(w: &mut World, m: usize, k: usize) -> bool {
     }
     let expert = w.supplied[k].then_some(OUTPUT_EXPERT[k]);
     if let Some(expert) = expert {
-        w.message(MACHINE_NAME[m], QUERY_TYPE, serde_json::json!(OUTPUT_NAME[k]));
-        w.message(expert, OUTPUT_NAME[k], serde_json::Value::Bool(value));
+        w.message(MACHINE_NAME[m], QUERY_TYPE, || serde_json::json!(OUTPUT_NAME[k]));
+        w.message(expert, OUTPUT_NAME[k], || serde_json::Value::Bool(value));
         // The expert posts its answer: a theory reading the atom as an input sees it.
         apply_input(w, OUTPUT_NAME[k], if value { "true" } else { "false" });
         w.queried(OUTPUT_NAME[k], value);
@@ -809,7 +814,7 @@ fn post(w: &mut World, m: usize, ty: &str, content: &str) {
         }
     }
     w.posted(MACHINE_NAME[m], ty, content, PRIORITY[m]);
-    w.message(MACHINE_NAME[m], ty, board_value(content));
+    w.message(MACHINE_NAME[m], ty, || board_value(content));
     apply_input(w, ty, content);
 }
 
@@ -818,7 +823,7 @@ fn post_extern(w: &mut World, m: usize, e: usize, v: Value) {
     let v = v_some(v);
     let shown = value_text(v);
     w.posted(MACHINE_NAME[m], EXTERN_NAME[e], &shown, PRIORITY[m]);
-    w.message(MACHINE_NAME[m], EXTERN_NAME[e], board_value(&shown));
+    w.message(MACHINE_NAME[m], EXTERN_NAME[e], || board_value(&shown));
     apply_input(w, EXTERN_NAME[e], &shown);
     w.ext[e] = Some(v);
     w.ext_by[e] = MACHINE_NAME[m];
@@ -912,7 +917,7 @@ fn done(w: &World, m: usize) -> bool {
 
 /// A control command posted to machine `m`, obeyed when the ringlet ends.
 fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
-    w.message(MACHINE_NAME[w.ringing], MACHINE_NAME[m], serde_json::json!(word));
+    w.message(MACHINE_NAME[w.ringing], MACHINE_NAME[m], || serde_json::json!(word));
     if w.commands[m].len() < COMMANDS {
         w.commands[m].push((code, word));
         w.commands_waiting = true;
@@ -924,7 +929,8 @@ fn command(w: &mut World, m: usize, code: u8, word: &'static str) {
 fn post_status(w: &mut World, m: usize) {
     if w.telling() {
         let ty = format!("{}IsRunning", MACHINE_NAME[m]);
-        w.message(MACHINE_NAME[m], &ty, serde_json::Value::Bool(w.status[m] == RUNNING));
+        let running = w.status[m] == RUNNING;
+        w.message(MACHINE_NAME[m], &ty, || serde_json::Value::Bool(running));
     }
     if let Some(e) = STATUS_BOARD[m] {
         w.ext[e] = Some(v_bool(w.status[m] == RUNNING));
