@@ -304,7 +304,7 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
     let team = "machines/striker/Player.machine:10: cannot be compiled: `team.argmin(ballDistance)`: a team aggregate";
     for (behaviour, target, expected) in [
         ("machines/striker", "c", format!("{team} (a freestanding C behaviour has no network to its team's boards)")),
-        ("machines/striker", "rust", format!("{team} (a compiled Rust behaviour joins no team: it has no whiteboard to share with the team's robots; run it with `proclaim run --member`)")),
+        ("machines/striker", "rust", format!("{team} (a compiled Rust behaviour joins no team: its `--listen` or `--connect` whiteboard is not a team's, whose teammates' postings it would aggregate; run it with `proclaim run --member`)")),
     ] {
         let o = proclaim(&[
             "compile",

@@ -571,7 +571,7 @@ impl Activity<'_> {
             }
             _ if function.starts_with("team.") => Err(self.refuse(match self.target {
                 Language::C => format!("`{e}`: a team aggregate (a freestanding C behaviour has no network to its team's boards)"),
-                Language::Rust => format!("`{e}`: a team aggregate (a compiled Rust behaviour joins no team: it has no whiteboard to share with the team's robots; run it with `proclaim run --member`)"),
+                Language::Rust => format!("`{e}`: a team aggregate (a compiled Rust behaviour joins no team: its `--listen` or `--connect` whiteboard is not a team's, whose teammates' postings it would aggregate; run it with `proclaim run --member`)"),
             })),
             _ if arith::is_function(function) => {
                 Err(self.refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
