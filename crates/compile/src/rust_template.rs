@@ -643,6 +643,8 @@ pub const SCRIPT: Option<(&str, &str)> = @script@;
 const SENSORS: [(&str, &[&str]); @sensors_n@] = [@sensors@];
 const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
+/// The machines' names, in schedule order.
+pub const MACHINE_NAMES: &[&str] = &MACHINE_NAME;
 pub const EXTERNS: usize = @externs@;
 const EXTERN_NAME: [&str; EXTERNS] = [@extern_names@];
 /// Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted).

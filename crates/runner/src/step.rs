@@ -124,7 +124,16 @@ impl Stepper {
         }
     }
 
-    pub(crate) fn ring_done(&self, machine: &str, step: u64) {
+    /// Whether a machine whose last ring was of step `last` may ring now, without waiting: the
+    /// step to ring in, or none while paused (for a host that rings machines itself, as a
+    /// compiled behaviour's does).
+    pub fn may_ring(&self, last: u64) -> Option<u64> {
+        let clock = *self.step.borrow();
+        (clock.free || clock.step > last).then(|| clock.step.max(last))
+    }
+
+    /// `machine` finished its ring of `step` (what the page's step waits for).
+    pub fn ring_done(&self, machine: &str, step: u64) {
         {
             let mut done = self.done.lock();
             match done.iter_mut().find(|(n, _)| n == machine) {
@@ -165,5 +174,18 @@ mod tests {
         assert_eq!(stepper.advance(), 2);
         assert!(stepper.is_paused());
         assert_eq!(rings(&stepper, 2).await, None);
+    }
+
+    #[test]
+    fn may_ring_says_without_waiting_what_wait_would_return() {
+        let stepper = Stepper::free();
+        assert_eq!(stepper.may_ring(0), Some(0));
+        stepper.pause();
+        assert_eq!(stepper.may_ring(0), None);
+        assert_eq!(stepper.advance(), 1);
+        assert_eq!(stepper.may_ring(0), Some(1));
+        assert_eq!(stepper.may_ring(1), None);
+        stepper.resume();
+        assert_eq!(stepper.may_ring(5), Some(5));
     }
 }
