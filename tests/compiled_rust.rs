@@ -10,12 +10,11 @@ use super::compiled::{
     assert_same, behaviour_of, construct_cases, game_controller_runs, random_behaviour,
     runs_of_press_or_shootout, scratch, seeded_moment, splitmix, subsumption_runs, Case,
 };
-use super::monitor::{http, proclaim_serving, Running};
+use super::monitor::{http, proclaim_serving, serving, Running};
 use crate::proclaim;
 use serde_json::Value as Json;
-use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 /// One behaviour to compile and the runs to hold to the interpreter's.
@@ -360,27 +359,24 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
 }
 
 /// Starts a compiled program with `args` and reads its standard error up to the monitor's URL.
-fn serving(program: &Path, args: &[&str]) -> (Running, String) {
-    let mut child = Command::new(program)
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the compiled behaviour starts");
-    let stderr = child.stderr.take().expect("stderr");
-    let running = Running(child);
-    let mut lines = BufReader::new(stderr).lines();
-    let url = loop {
-        let line = lines
-            .next()
-            .expect("the program printed the monitor's URL before ending")
-            .expect("readable output");
-        if let Some(url) = line.trim().strip_prefix("monitor: ") {
-            break url.to_string();
-        }
-    };
-    std::thread::spawn(move || for _ in lines {});
-    (running, url)
+fn serving_program(program: &Path, args: &[&str]) -> (Running, String) {
+    let mut command = Command::new(program);
+    command.args(args);
+    serving(command, true, "monitor: ")
+}
+
+/// Ctrl-C to a compiled program, which ends its run as a finished one.
+pub(crate) fn interrupt(program: &mut std::process::Child) {
+    let sent = Command::new("kill")
+        .args(["-INT", &program.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let ended = program.wait().unwrap();
+    assert!(
+        ended.success(),
+        "Ctrl-C ends the run as a finished one: {ended}"
+    );
 }
 
 fn json_at(url: &str, path: &str) -> Json {
@@ -421,7 +417,7 @@ fn the_compiled_microwave_shows_its_run_on_the_monitors_page(program: &Path, run
         ],
         "monitor: ",
     );
-    let (_compiled, url) = serving(
+    let (_compiled, url) = serving_program(
         program,
         &[
             "--virtual-clock",
@@ -453,7 +449,7 @@ fn the_compiled_microwave_shows_its_run_on_the_monitors_page(program: &Path, run
     std::fs::write(&script, "doorOpen = false\ntimeLeft = false\n").unwrap();
     let trace = runs.join("monitored.compiled.jsonl");
     let record = runs.join("monitored.compiled-record.jsonl");
-    let (mut running, url) = serving(
+    let (mut running, url) = serving_program(
         program,
         &[
             "--script",
@@ -487,16 +483,7 @@ fn the_compiled_microwave_shows_its_run_on_the_monitors_page(program: &Path, run
     control("step");
     frame_once(&url, "COOKING");
     control("resume");
-    let interrupted = Command::new("kill")
-        .args(["-INT", &running.0.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(interrupted.success());
-    let ended = running.0.wait().unwrap();
-    assert!(
-        ended.success(),
-        "Ctrl-C ends the run as a finished one: {ended}"
-    );
+    interrupt(&mut running.0);
     let trace = std::fs::read_to_string(&trace).unwrap();
     assert!(
         trace.contains(r#""fired","machine":"Microwave","from":1,"to":3,"label":"cook""#),

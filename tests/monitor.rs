@@ -59,19 +59,31 @@ fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
 /// Starts `proclaim ARGS` and reads its output up to the line starting `page` (after spaces),
 /// whose rest is the page's URL.
 pub(crate) fn proclaim_serving(args: &[&str], page: &str) -> (Running, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::inherit())
-        .spawn()
-        .expect("proclaim starts");
-    let stdout = child.stdout.take().expect("stdout");
+    let mut command = Command::new(env!("CARGO_BIN_EXE_proclaim"));
+    command.args(args).stderr(Stdio::inherit());
+    serving(command, false, page)
+}
+
+/// Starts `command` and reads its standard output (or error, with `from_stderr`) up to the
+/// line starting `page` (after spaces), whose rest is the page's URL.
+pub(crate) fn serving(mut command: Command, from_stderr: bool, page: &str) -> (Running, String) {
+    if from_stderr {
+        command.stdout(Stdio::null()).stderr(Stdio::piped());
+    } else {
+        command.stdout(Stdio::piped());
+    }
+    let mut child = command.spawn().expect("the program starts");
+    let out: Box<dyn std::io::Read + Send> = if from_stderr {
+        Box::new(child.stderr.take().expect("stderr"))
+    } else {
+        Box::new(child.stdout.take().expect("stdout"))
+    };
     let running = Running(child);
-    let mut lines = BufReader::new(stdout).lines();
+    let mut lines = BufReader::new(out).lines();
     let url = loop {
         let line = lines
             .next()
-            .expect("proclaim printed the monitor's URL before ending")
+            .expect("the program printed the page's URL before ending")
             .expect("readable output");
         if let Some(url) = line.trim().strip_prefix(page) {
             break url.to_string();

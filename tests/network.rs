@@ -237,8 +237,12 @@ fn proclaim(args: &[&str]) -> Process {
 
 /// Lines of a child's output, read on a thread so the test can wait with a bound.
 fn lines(child: &mut Process) -> std::sync::mpsc::Receiver<String> {
+    lines_of(child.0.stdout.take().unwrap())
+}
+
+/// Lines of `out`, read on a thread.
+fn lines_of(out: impl std::io::Read + Send + 'static) -> std::sync::mpsc::Receiver<String> {
     let (tx, rx) = std::sync::mpsc::channel();
-    let out = child.0.stdout.take().unwrap();
     std::thread::spawn(move || {
         for line in BufReader::new(out).lines().map_while(Result::ok) {
             if tx.send(line).is_err() {
@@ -679,30 +683,8 @@ fn compiled_program(
             .spawn()
             .expect("the compiled behaviour starts"),
     );
-    let (tx, said) = std::sync::mpsc::channel();
-    let err = process.0.stderr.take().unwrap();
-    std::thread::spawn(move || {
-        for line in BufReader::new(err).lines().map_while(Result::ok) {
-            if tx.send(line).is_err() {
-                return;
-            }
-        }
-    });
+    let said = lines_of(process.0.stderr.take().unwrap());
     (process, said)
-}
-
-/// Ctrl-C to a compiled program, which ends its run as a finished one.
-fn interrupt(process: &mut Process) {
-    let sent = Command::new("kill")
-        .args(["-INT", &process.0.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(sent.success());
-    let ended = process.0.wait().unwrap();
-    assert!(
-        ended.success(),
-        "Ctrl-C ends the run as a finished one: {ended}"
-    );
 }
 
 fn post(endpoint: &str, ty: &str, value: &str) {
@@ -743,7 +725,7 @@ fn a_compiled_behaviour_shares_its_whiteboard_with_other_processes() {
     post(&endpoint, "timeLeft", "true");
     let seen = wait_line(&watched, "Magnetron = \"on\"", PATIENCE);
     assert!(seen.last().unwrap().contains("Microwave"), "{seen:?}");
-    interrupt(&mut compiled);
+    crate::compiled_rust::interrupt(&mut compiled.0);
     let trace = std::fs::read_to_string(&trace).unwrap();
     assert!(
         trace.contains(r#""fired","machine":"Microwave","from":1,"to":3,"label":"cook""#),
@@ -789,7 +771,7 @@ fn a_compiled_behaviour_asks_an_expert_in_another_process() {
         assert!(std::time::Instant::now() < deadline, "the oven never cooks");
         std::thread::sleep(Duration::from_millis(100));
     }
-    interrupt(&mut compiled);
+    crate::compiled_rust::interrupt(&mut compiled.0);
     let trace = std::fs::read_to_string(&trace).unwrap();
     assert!(
         trace.contains(r#""atom":"cook","value":true,"by":{"expert":"microwave"}"#),
