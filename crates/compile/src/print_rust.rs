@@ -203,17 +203,6 @@ fn outside_tables(plan: &Plan) -> (String, String, String, String) {
 /// `src/behaviour.rs`.
 fn behaviour(plan: &Plan) -> String {
     let (answer_cases, input_cases) = answers_and_inputs(plan);
-    let var_inits: Vec<&str> = plan
-        .slots
-        .iter()
-        .map(|is_bool| {
-            if *is_bool {
-                "v_bool(false)"
-            } else {
-                "v_int(0)"
-            }
-        })
-        .collect();
     let schedule = Schedule::of(plan);
     let (priorities, suppressed, sensors, script) = outside_tables(plan);
     let numbers = [
@@ -276,7 +265,7 @@ fn behaviour(plan: &Plan) -> String {
             ("answer_cases", &answer_cases),
             ("code", &schedule.code),
             ("finals", &schedule.finals),
-            ("var_inits", &var_inits.join(", ")),
+            ("var_inits", &var_inits(plan)),
             ("inits", &schedule.inits),
             ("rings", &schedule.rings),
             ("reads", &schedule.reads),
@@ -284,6 +273,22 @@ fn behaviour(plan: &Plan) -> String {
             ("tops", &schedule.tops),
         ],
     )
+}
+
+/// Each value slot's start: a whole 0, or false for one that starts as a truth value.
+fn var_inits(plan: &Plan) -> String {
+    let starts: Vec<&str> = plan
+        .slots
+        .iter()
+        .map(|is_bool| {
+            if *is_bool {
+                "v_bool(false)"
+            } else {
+                "v_int(0)"
+            }
+        })
+        .collect();
+    starts.join(", ")
 }
 
 /// The parts of `behaviour.rs` written once a machine.
