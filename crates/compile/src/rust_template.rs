@@ -362,11 +362,15 @@ impl World {
 
     /// A whiteboard message `module` posts: recorded, and posted on the whiteboard. Its value
     /// is made only when it goes somewhere (a ringlet's hot path pays nothing otherwise).
+    #[inline]
     pub fn message(&mut self, module: &str, ty: &str, value: impl FnOnce() -> serde_json::Value) {
-        if !self.telling() {
-            return;
+        if self.telling() {
+            self.tell(module, ty, value());
         }
-        let value = value();
+    }
+
+    #[cold]
+    fn tell(&mut self, module: &str, ty: &str, value: serde_json::Value) {
         if let Some(mirror) = self.mirror.as_mut() {
             mirror(module, ty, &value);
         }
@@ -392,6 +396,14 @@ impl World {
     /// Records that machine `m` (its place in the schedule) begins a ringlet: after every
     /// message numbered so far, as the runner's schedule records it.
     pub fn ringlet_begins(&mut self, m: usize) {
+        if self.record.is_none() {
+            return;
+        }
+        self.record_ringlet(m);
+    }
+
+    #[cold]
+    fn record_ringlet(&mut self, m: usize) {
         let (round, at) = (self.round, Duration::from_millis(self.now_ms));
         if let Some(record) = self.record.as_mut() {
             let ringlet = proclaim_runner::Ringlet {
