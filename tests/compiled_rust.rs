@@ -356,6 +356,39 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         &programs.join("behaviour-microwave"),
         &runs,
     );
+    bad_options_are_refused_with_what_is_wrong(&programs.join("behaviour-microwave"));
+}
+
+/// Options that do not go together, or a page or board the program cannot have, end the
+/// program at once with exit 2 and say why.
+fn bad_options_are_refused_with_what_is_wrong(program: &Path) {
+    let cases: [(&[&str], &str); 6] = [
+        (&["--monitor-read-only"], "is said of a `--monitor` page"),
+        (
+            &["--listen", "--connect", "tcp/127.0.0.1:1"],
+            "`--listen` and `--connect` exclude each other",
+        ),
+        (&["--board", "team"], "`--board` names a whiteboard shared"),
+        (
+            &["--virtual-clock", "--listen"],
+            "cannot `--listen` or `--connect`",
+        ),
+        (
+            &["--monitor", "localhost:80"],
+            "--monitor localhost:80: not an address to listen on",
+        ),
+        // The tests build the project without the `network` feature.
+        (
+            &["--connect", "tcp/127.0.0.1:1"],
+            "build it with `cargo build --release --features network`",
+        ),
+    ];
+    for (args, why) in cases {
+        let o = Command::new(program).args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(why), "{args:?}: {stderr}");
+    }
 }
 
 /// Starts a compiled program with `args` and reads its standard error up to the monitor's URL.
