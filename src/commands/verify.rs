@@ -264,10 +264,16 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
         );
     }
     for p in &report.properties {
-        print_property(p, &report.stats);
+        print_property(p, &report.stats, !report.inexact.is_empty());
     }
     for f in &report.findings {
         print_finding(f);
+    }
+    if !report.inexact.is_empty() {
+        println!("undecided where nothing was found: the model's values of these free types are not exact, so what it never reached a real run may reach (states never entered and transitions that never fire are not reported):");
+        for i in &report.inexact {
+            println!("  {i}");
+        }
     }
 }
 
@@ -296,13 +302,15 @@ fn print_search(behaviour: &str, s: &SearchStats, seconds: f64) {
 }
 
 /// A property's verdict, and the run that shows it when there is one.
-fn print_property(p: &PropertyOutcome, s: &SearchStats) {
+fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
     let verdict = match p.verdict {
         Verdict::Holds => "holds",
         Verdict::Fails => "FAILS",
         Verdict::Incomplete => match s.stopped {
             proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
-            _ => "undecided (state budget)",
+            proclaim_verify::Stop::StateBudget => "undecided (state budget)",
+            _ if inexact => "undecided (free values not exact: below)",
+            _ => "undecided",
         },
     };
     let assuming = if p.fair.is_empty() {

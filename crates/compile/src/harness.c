@@ -417,7 +417,7 @@ static int read_script(void)
         value = trim(eq + 1);
         s.value = truth(value);
         if (*name == '\0' || strlen(name) >= sizeof s.name || s.value == NULL) {
-            fprintf(stderr, "stdin:%d: expected `atom = true|false`\n", number);
+            fprintf(stderr, "stdin:%d: expected `atom = true|false` (numbers and text in a script are not supported by a compiled behaviour)\n", number);
             return 0;
         }
         strcpy(s.name, name);

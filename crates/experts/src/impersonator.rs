@@ -3,7 +3,7 @@
 
 use parking_lot::Mutex;
 use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
-use proclaim_syntax::{Script, When};
+use proclaim_syntax::{Script, ScriptValue, When};
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};
@@ -19,7 +19,7 @@ type Person = (
 pub struct Impersonator {
     name: String,
     atoms: Vec<String>,
-    answers: Arc<Mutex<FxHashMap<String, bool>>>,
+    answers: Arc<Mutex<FxHashMap<String, Value>>>,
     script: Script,
     person: Arc<tokio::sync::Mutex<Option<Person>>>,
     board: Arc<Mutex<Option<Whiteboard>>>,
@@ -86,14 +86,20 @@ impl Impersonator {
 
     /// Sets an answer from Rust; posted at once when running (an unprompted proclamation).
     pub fn set(&self, atom: &str, value: bool) {
-        self.answers.lock().insert(atom.to_string(), value);
+        self.set_value(atom, Value::Bool(value));
+    }
+
+    /// Sets an atom's value (a number or text, as a sensor posts them); a query for it is
+    /// answered with the value itself, which a label reads as its truth.
+    pub fn set_value(&self, atom: &str, value: Value) {
+        self.answers.lock().insert(atom.to_string(), value.clone());
         if let Some(board) = self.board.lock().as_ref() {
             board.post(&self.name, atom, value);
         }
     }
 
-    fn current(&self, atom: &str) -> Option<bool> {
-        self.answers.lock().get(atom).copied()
+    fn current(&self, atom: &str) -> Option<Value> {
+        self.answers.lock().get(atom).cloned()
     }
 
     /// Registers and answers queries until the whiteboard is gone.
@@ -107,7 +113,7 @@ impl Impersonator {
         board.register(self.declaration());
         *self.board.lock() = Some(board.clone());
         for step in self.script.steps.iter().filter(|s| s.when == When::Start) {
-            self.set(&step.atom, step.value);
+            self.set_value(&step.atom, value_of(&step.value));
         }
         let start = tokio::time::Instant::now();
         let mut timed: Vec<_> = self
@@ -115,7 +121,7 @@ impl Impersonator {
             .steps
             .iter()
             .filter_map(|s| match s.when {
-                When::At(t) => Some((t, s.atom.clone(), s.value)),
+                When::At(t) => Some((t, s.atom.clone(), value_of(&s.value))),
                 _ => None,
             })
             .collect();
@@ -137,7 +143,7 @@ impl Impersonator {
                     q = queries.next() => q,
                     _ = tokio::time::sleep_until(at) => {
                         let (_, atom, value) = timed.next().expect("peeked");
-                        self.set(&atom, value);
+                        self.set_value(&atom, value);
                         continue;
                     }
                 },
@@ -157,11 +163,13 @@ impl Impersonator {
                 .iter()
                 .filter(|s| s.when == When::Step(step))
             {
-                self.answers.lock().insert(s.atom.clone(), s.value);
+                self.answers
+                    .lock()
+                    .insert(s.atom.clone(), value_of(&s.value));
             }
             let answer = match self.current(atom) {
                 Some(v) => Some(v),
-                None => self.ask_person(atom).await,
+                None => self.ask_person(atom).await.map(Value::Bool),
             };
             if let Some(v) = answer {
                 board.post(&self.name, atom, v);
@@ -190,5 +198,15 @@ impl Impersonator {
                 }
             }
         }
+    }
+}
+
+/// A script's value as the whiteboard holds it.
+pub fn value_of(value: &ScriptValue) -> Value {
+    match value {
+        ScriptValue::Truth(b) => Value::Bool(*b),
+        ScriptValue::Whole(i) => Value::Int(*i),
+        ScriptValue::Fraction(x) => Value::Float(*x),
+        ScriptValue::Text(s) => Value::Str(s.clone()),
     }
 }

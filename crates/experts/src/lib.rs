@@ -30,10 +30,10 @@ mod reasoner;
 pub use buttons::{ButtonWrapper, FallWrapper};
 pub use function::{AnswerFunction, FunctionExpert};
 pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounters};
-pub use impersonator::Impersonator;
+pub use impersonator::{value_of as script_value, Impersonator};
 pub use mapping::parse_mapping;
 pub use proclaim_syntax::{parse_duration, LineError, LineErrors};
-pub use proclaim_syntax::{parse_script, Script, ScriptStep, When};
+pub use proclaim_syntax::{parse_script, Script, ScriptStep, ScriptValue, When};
 pub use program::{Backoff, ProgramCounters, ProgramExpert};
 pub use prolog::{
     check_knowledge_base, find_program, find_swipl, prolog_expert, KnowledgeBase, PrologError,

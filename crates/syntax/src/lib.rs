@@ -31,7 +31,7 @@ pub use lines::{code_lines, parse_duration, LineError, LineErrors};
 pub use located::FileDiagnostic;
 pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
-pub use script::{parse_script, Script, ScriptStep, When};
+pub use script::{parse_script, Script, ScriptStep, ScriptValue, When};
 pub use span::{line_column, Span};
 
 /// The two theory languages.

@@ -6,7 +6,12 @@
 //! at 2s readyReceived = true     # two seconds after the start
 //! at 500ms setReceived = yes     # true/false, yes/no, on/off or 1/0
 //! step 3: playingReceived = true # when the third query arrives, before it is answered
+//! at 1s ballRR = -120            # a number (`1` and `0` are truths; `+1` is the number)
+//! at 2s mode = "kick"            # text, in double quotes
 //! ```
+//!
+//! A sensor posts numbers and text, so a script can too: a counterexample that needs
+//! `ballRR < 0` must be a script that replays. A query is answered with the value's truth.
 
 use crate::{code_lines, LineError, LineErrors};
 use std::time::Duration;
@@ -19,15 +24,76 @@ pub enum When {
     Step(u64),
 }
 
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// What a script line sets an atom to.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ScriptValue {
+    Truth(bool),
+    Whole(i64),
+    Fraction(f64),
+    Text(String),
+}
+
+impl ScriptValue {
+    /// The value's truth, as a query's answer gives it: a number is true unless 0, text as
+    /// the whiteboard reads a truth word (`"off"`, `"no"`, `"0"` and the empty text are false).
+    pub fn truth(&self) -> bool {
+        match self {
+            ScriptValue::Truth(b) => *b,
+            ScriptValue::Whole(i) => *i != 0,
+            ScriptValue::Fraction(x) => *x != 0.0,
+            ScriptValue::Text(s) => {
+                let lower = s.trim().to_ascii_lowercase();
+                !(lower.is_empty()
+                    || lower.starts_with(['n', 'f', '-', '0'])
+                    || lower.starts_with("of"))
+            }
+        }
+    }
+
+    /// The truth value, when the line set one.
+    pub fn as_truth(&self) -> Option<bool> {
+        match self {
+            ScriptValue::Truth(b) => Some(*b),
+            _ => None,
+        }
+    }
+}
+
+impl From<bool> for ScriptValue {
+    fn from(b: bool) -> ScriptValue {
+        ScriptValue::Truth(b)
+    }
+}
+
+impl std::fmt::Display for ScriptValue {
+    /// As a script writes it, so that it reads back the same.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ScriptValue::Truth(b) => write!(f, "{b}"),
+            // `1` and `0` are truth words; `+1` is the number.
+            ScriptValue::Whole(i @ (0 | 1)) => write!(f, "+{i}"),
+            ScriptValue::Whole(i) => write!(f, "{i}"),
+            // `{:?}` keeps the point (`2.0`), so a fraction reads back as one.
+            ScriptValue::Fraction(x) => write!(f, "{x:?}"),
+            ScriptValue::Text(s) => write!(f, "{}", quote(s)),
+        }
+    }
+}
+
+/// Text in double quotes, `\"` and `\\` escaped.
+fn quote(s: &str) -> String {
+    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
+}
+
+#[derive(Clone, Debug, PartialEq)]
 pub struct ScriptStep {
     pub when: When,
     pub atom: String,
-    pub value: bool,
+    pub value: ScriptValue,
     pub line: usize,
 }
 
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Script {
     pub steps: Vec<ScriptStep>,
 }
@@ -77,7 +143,7 @@ pub fn parse_script(text: &str) -> Result<Script, LineErrors> {
 }
 
 /// One line of a script: when, and which atom becomes what; or why the line is not one.
-fn script_step(code: &str) -> Result<(When, &str, bool), String> {
+fn script_step(code: &str) -> Result<(When, &str, ScriptValue), String> {
     let (when, assignment) = when_of(code)?;
     let (atom, value) = assignment_of(assignment)?;
     Ok((when, atom, value))
@@ -107,8 +173,8 @@ fn when_of(code: &str) -> Result<(When, &str), String> {
     }
 }
 
-/// `atom = value`, the value a truth word.
-fn assignment_of(assignment: &str) -> Result<(&str, bool), String> {
+/// `atom = value`, the value a truth word, a number or quoted text.
+fn assignment_of(assignment: &str) -> Result<(&str, ScriptValue), String> {
     let Some((atom, value)) = assignment.split_once('=') else {
         return Err(format!(
             "expected `atom = value`, found `{}`",
@@ -126,16 +192,120 @@ fn assignment_of(assignment: &str) -> Result<(&str, bool), String> {
     if value.trim().is_empty() {
         return Err(format!("`{atom}` has no value"));
     }
-    let Some(truth) = truth_word(value) else {
+    let Some(value) = script_value(value) else {
         let value = value.trim();
         return Err(if value.starts_with('=') {
             format!(
                 "write `{atom} = {}`, with one `=`",
                 value.trim_start_matches('=').trim()
             )
+        } else if value.starts_with('"') {
+            format!("`{value}` is not closed: text ends with `\"`")
         } else {
-            format!("`{value}` is not a truth value: write true or false (or yes/no, on/off, 1/0)")
+            format!("`{value}` is not a value: write true or false (or yes/no, on/off, 1/0), a number, or text in double quotes (`\"{value}\"`)")
         });
     };
-    Ok((atom, truth))
+    Ok((atom, value))
+}
+
+/// A truth word, a number, or text in double quotes.
+fn script_value(text: &str) -> Option<ScriptValue> {
+    let text = text.trim();
+    if let Some(truth) = truth_word(text) {
+        return Some(ScriptValue::Truth(truth));
+    }
+    if let Some(quoted) = text.strip_prefix('"') {
+        return unquote(quoted).map(ScriptValue::Text);
+    }
+    if let Ok(i) = text.parse::<i64>() {
+        return Some(ScriptValue::Whole(i));
+    }
+    // Rust also reads `inf` and `NaN` as numbers; a sensor's reading is a finite one.
+    match text.parse::<f64>() {
+        Ok(x)
+            if x.is_finite()
+                && text.starts_with(|c: char| {
+                    c.is_ascii_digit() || c == '-' || c == '+' || c == '.'
+                }) =>
+        {
+            Some(ScriptValue::Fraction(x))
+        }
+        _ => None,
+    }
+}
+
+/// The text of `rest` up to its closing quote (which must end the value), `\"` and `\\`
+/// read as one character.
+fn unquote(rest: &str) -> Option<String> {
+    let mut out = String::new();
+    let mut chars = rest.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' => return chars.as_str().trim().is_empty().then_some(out),
+            '\\' => out.push(chars.next()?),
+            c => out.push(c),
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(line: &str, expect: Result<ScriptValue, &str>) {
+        let got = parse_script(line).map(|s| s.steps[0].value.clone());
+        match (got, expect) {
+            (Ok(v), Ok(e)) => assert_eq!(v, e, "{line}"),
+            (Err(errors), Err(e)) => {
+                let message = &errors.0[0].message;
+                assert!(message.contains(e), "{line}: {message}");
+            }
+            (got, expect) => panic!("{line}: {got:?}, expected {expect:?}"),
+        }
+    }
+
+    #[test]
+    fn a_script_sets_truths_numbers_and_text() {
+        check("a = yes", Ok(ScriptValue::Truth(true)));
+        check("a = 0", Ok(ScriptValue::Truth(false)));
+        check("at 1s ballRR = -120", Ok(ScriptValue::Whole(-120)));
+        check("charge = 15", Ok(ScriptValue::Whole(15)));
+        check("x = 2.5", Ok(ScriptValue::Fraction(2.5)));
+        check("x = -0.5", Ok(ScriptValue::Fraction(-0.5)));
+        check("mode = \"kick\"", Ok(ScriptValue::Text("kick".into())));
+        check(
+            "say = \"a \\\"b\\\" c\"",
+            Ok(ScriptValue::Text("a \"b\" c".into())),
+        );
+        check("mode = kick", Err("`kick` is not a value"));
+        check("mode = \"kick", Err("is not closed"));
+        check("x = inf", Err("is not a value"));
+        check("x = NaN", Err("is not a value"));
+        check("x == 3", Err("with one `=`"));
+    }
+
+    #[test]
+    fn values_print_as_a_script_reads_them() {
+        for v in [
+            ScriptValue::Truth(false),
+            ScriptValue::Whole(-7),
+            ScriptValue::Whole(1),
+            ScriptValue::Whole(0),
+            ScriptValue::Fraction(2.0),
+            ScriptValue::Fraction(-0.25),
+            ScriptValue::Text("say \"hi\" \\ there".into()),
+        ] {
+            let line = format!("at 1s a = {v}");
+            check(&line, Ok(v));
+        }
+    }
+
+    #[test]
+    fn truth_of_a_value_is_the_whiteboard_s() {
+        assert!(ScriptValue::Whole(-3).truth());
+        assert!(!ScriptValue::Whole(0).truth());
+        assert!(!ScriptValue::Text("off".into()).truth());
+        assert!(ScriptValue::Text("kick".into()).truth());
+    }
 }

@@ -1,19 +1,28 @@
 //! The values the free environment may give a whiteboard type: a finite abstraction of "any
-//! value of its kind".
+//! value of its kind" that keeps the truth of every test the behaviour makes of it (spec §6,
+//! "Free values").
 //!
-//! A type only ever used as a truth value (a label's atom, a reasoner's input, a script's
-//! atom) takes `true` and `false`. Any other type takes every constant the behaviour compares
-//! it with or posts to it, the neighbours `c - 1` and `c + 1` of each number it is ordered
-//! against (`x < 20` then sees 19, 20 and 21: below, at and above), and one "other" value equal
-//! to none of them. This is sound for what the activity language can do with a value it did
-//! not compute itself: test its truth, compare it with constants (`==`, `!=`, `<`, …) and
-//! post or copy it. It is **not** exact for arithmetic on the value or for comparing two free
-//! values with each other (`a < b`): there the abstraction picks representatives, and a run
-//! that needs a value between them is not explored. Every free type may also still be "never
-//! posted" in the initial state (a sensor that has not spoken yet).
+//! [`crate::flow`] finds every test of a free type's value: the value, or a chain of monotone
+//! operations on it (`rr = ballRR`, `Battery_Charge / 10`), compared with a constant or taken
+//! as a truth. Each such test splits the type's values into at most three intervals, whose
+//! ends are found by bisection with the runner's own operators ([`boundaries`]); one value of
+//! every interval, with values whose tests all agree merged, is a domain on which each label,
+//! activity and property takes every truth a real value could give it. Where copies of free
+//! values are compared with each other, each interval holds as many values as places may
+//! hold such a copy at once, so that every order among them is there too. Whole numbers
+//! range over C's 32-bit `int` (gufsm's values), widened to take in every constant; a type
+//! the behaviour compares with a fraction ranges over fractions. Every free type may also
+//! still be "never posted" in the initial state (a sensor that has not spoken yet).
+//!
+//! [`Domains`] gathers the constants a behaviour gives each type (what it posts, assigns and
+//! compares): they say what kind of value a type holds, for the properties' kind checks.
 
+use crate::flow::{apply, Facts, Op, Predicate, Test};
+use crate::model::{Slot, SlotId};
+use crate::outcome::Inexact;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Machine, Statement};
+use proclaim_runner::arith;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// What the environment may set a free type to.
@@ -88,16 +97,13 @@ impl Domains {
     fn comparisons(&mut self, expr: &Expr) {
         match expr {
             Expr::Binary { op, left, right } => {
-                let ordered = matches!(op, BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge);
-                let compares = ordered || matches!(op, BinOp::Eq | BinOp::Ne);
+                let compares = matches!(
+                    op,
+                    BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge | BinOp::Eq | BinOp::Ne
+                );
                 if compares {
                     for (a, b) in [(left, right), (right, left)] {
                         if let (Expr::Name(n), Some(c)) = (&**a, constant(b)) {
-                            if ordered {
-                                for v in neighbours(&c) {
-                                    self.add(n, v);
-                                }
-                            }
                             self.add(n, c);
                         }
                     }
@@ -111,29 +117,469 @@ impl Domains {
         }
     }
 
-    /// The domain of free type `name`.
-    pub fn domain(&self, name: &str) -> FreeDomain {
-        let seen = self.seen.get(name).cloned().unwrap_or_default();
-        let mut values: Vec<Value> = if seen.iter().all(|v| matches!(v, Value::Bool(_))) {
-            vec![Value::Bool(false), Value::Bool(true)]
-        } else {
-            let mut values = seen.clone();
-            values.push(other(&seen));
-            values
-        };
+    /// The constants gathered for `name`, in first-met order.
+    pub fn seen(&self, name: &str) -> &[Value] {
+        self.seen.get(name).map_or(&[], Vec::as_slice)
+    }
+
+    /// The constants gathered for `name`, as kinds of value: both truths for a type only
+    /// ever used as one, and a truth beside its constants when it is also used as one (what
+    /// the properties' kind checks read).
+    pub fn hints(&self, name: &str) -> Vec<Value> {
+        let seen = self.seen(name);
+        if seen.iter().all(|v| matches!(v, Value::Bool(_))) {
+            return vec![Value::Bool(false), Value::Bool(true)];
+        }
+        let mut values = seen.to_vec();
         if self.conditions.contains(name) {
-            // Used as a truth value too: both truths must be possible.
             for truth in [false, true] {
                 if !values.iter().any(|v| v.truthy() == truth) {
                     values.push(Value::Bool(truth));
                 }
             }
         }
+        values
+    }
+
+    /// A first domain for `name` that only says the type is free; [`sound_domains`] gives
+    /// the one the search uses.
+    pub fn placeholder(&self, name: &str) -> FreeDomain {
+        FreeDomain::of(self.hints(name))
+    }
+}
+
+impl FreeDomain {
+    fn of(values: Vec<Value>) -> FreeDomain {
         let initial = std::iter::once(None)
             .chain(values.iter().cloned().map(Some))
             .collect();
         FreeDomain { values, initial }
     }
+}
+
+/// The domain of every free slot of `slots` from what [`crate::flow`] found, and the tests no
+/// finite domain keeps (arithmetic that may wrap around, text compared by its order).
+pub fn sound_domains(
+    slots: &[Slot],
+    facts: &Facts,
+    hints: &Domains,
+) -> (Vec<Option<FreeDomain>>, Vec<Inexact>) {
+    let free: Vec<SlotId> = (0..slots.len())
+        .filter(|&i| slots[i].free.is_some())
+        .collect();
+    // Free types whose copies are compared with each other share their intervals.
+    let mut group: Vec<SlotId> = (0..slots.len()).collect();
+    fn root(group: &mut [SlotId], mut i: SlotId) -> SlotId {
+        while group[i] != i {
+            group[i] = group[group[i]];
+            i = group[i];
+        }
+        i
+    }
+    for &(a, b) in &facts.pairs {
+        let (ra, rb) = (root(&mut group, a), root(&mut group, b));
+        group[ra.max(rb)] = ra.min(rb);
+    }
+    let mut domains = vec![None; slots.len()];
+    let mut inexact = Vec::new();
+    for &leader in &free {
+        if root(&mut group, leader) != leader {
+            continue;
+        }
+        let members: Vec<SlotId> = free
+            .iter()
+            .copied()
+            .filter(|&m| root(&mut group, m) == leader)
+            .collect();
+        let paired = facts.pairs.iter().any(|(a, _)| members.contains(a));
+        let k = if paired {
+            members
+                .iter()
+                .map(|&m| facts.copies[m].max(1))
+                .sum::<usize>()
+                .max(2)
+        } else {
+            1
+        };
+        let mut tests: Vec<(SlotId, &Predicate)> = Vec::new();
+        let mut hint_values: Vec<Value> = Vec::new();
+        for &m in &members {
+            tests.extend(facts.predicates[m].iter().map(|p| (m, p)));
+            hint_values.extend(hints.seen(&slots[m].name).iter().cloned());
+        }
+        let group = Group {
+            tests: &tests,
+            hints: &hint_values,
+            k,
+        };
+        let values = group.values(slots, &mut inexact);
+        for &m in &members {
+            domains[m] = Some(FreeDomain::of(values.clone()));
+        }
+    }
+    (domains, inexact)
+}
+
+/// Free types whose values are chosen together, and every test made of them.
+struct Group<'a> {
+    tests: &'a [(SlotId, &'a Predicate)],
+    hints: &'a [Value],
+    /// Values each interval holds.
+    k: usize,
+}
+
+impl Group<'_> {
+    fn values(&self, slots: &[Slot], inexact: &mut Vec<Inexact>) -> Vec<Value> {
+        let constants = || {
+            self.tests.iter().filter_map(|(_, p)| match &p.test {
+                Test::Compare(_, c) => Some(c),
+                Test::Truth => None,
+            })
+        };
+        let chained = self.tests.iter().any(|(_, p)| !p.ops.is_empty());
+        let text = constants().any(|c| matches!(c, Value::Str(_)));
+        let number = chained
+            || constants().any(|c| matches!(c, Value::Int(_) | Value::Float(_)))
+            || self
+                .hints
+                .iter()
+                .any(|v| matches!(v, Value::Int(_) | Value::Float(_)));
+        if !text && !number {
+            let mut values = vec![Value::Bool(false), Value::Bool(true)];
+            values.extend(
+                self.hints
+                    .iter()
+                    .filter(|v| !values.contains(v))
+                    .cloned()
+                    .collect::<Vec<_>>(),
+            );
+            return values;
+        }
+        let mut points = Vec::new();
+        if number {
+            let space = Space::of(self.tests, self.hints);
+            let mut cuts = Vec::new();
+            for (m, p) in self.tests {
+                if matches!(&p.test, Test::Compare(_, Value::Str(_))) {
+                    continue;
+                }
+                if let Some(why) = space.wraps(&p.ops) {
+                    inexact.push(Inexact {
+                        value: slots[*m].name.clone(),
+                        why,
+                        place: "its tests".into(),
+                    });
+                }
+                cuts.extend(space.boundaries(p));
+            }
+            cuts.sort_unstable();
+            cuts.dedup();
+            points.extend(space.representatives(&cuts, self.k));
+        }
+        if text {
+            for (m, p) in self.tests {
+                if let Test::Compare(op, Value::Str(_)) = &p.test {
+                    if !matches!(op, BinOp::Eq | BinOp::Ne) {
+                        inexact.push(Inexact {
+                            value: slots[*m].name.clone(),
+                            why: format!(
+                                "it is compared with text by `{}`, by text order",
+                                op.symbol()
+                            ),
+                            place: "its tests".into(),
+                        });
+                    }
+                }
+            }
+            let mut texts: Vec<Value> = Vec::new();
+            for c in constants() {
+                if matches!(c, Value::Str(_)) && !texts.contains(c) {
+                    texts.push(c.clone());
+                }
+            }
+            let mut other = "other".to_string();
+            for _ in 0..self.k {
+                while texts.contains(&Value::Str(other.clone())) {
+                    other.push('_');
+                }
+                texts.push(Value::Str(other.clone()));
+            }
+            points.extend(texts);
+        }
+        if self.tests.iter().any(|(_, p)| p.test == Test::Truth) {
+            // Text is true or false by its words: make sure both truths are there.
+            for truth in [false, true] {
+                if !points.iter().any(|v| v.truthy() == truth) {
+                    points.push(Value::Bool(truth));
+                }
+            }
+        }
+        // The constants the behaviour gives the type stay (a run that posts them is then a
+        // path of the model value for value, as the conformance test follows it); of the
+        // values added here, one read at a time, those every test takes alike as a value
+        // already there are left out.
+        let mut kept: Vec<(Vec<bool>, Value)> = Vec::new();
+        let signature =
+            |v: &Value| -> Vec<bool> { self.tests.iter().map(|(_, p)| holds(p, v)).collect() };
+        for v in self.hints {
+            if !kept.iter().any(|(_, k)| k == v) {
+                kept.push((signature(v), v.clone()));
+            }
+        }
+        for v in points {
+            let s = signature(&v);
+            let same = kept
+                .iter()
+                .any(|(k, kv)| *kv == v || (self.k == 1 && *k == s));
+            if !same {
+                kept.push((s, v));
+            }
+        }
+        kept.into_iter().map(|(_, v)| v).collect()
+    }
+}
+
+/// Whether test `p` holds of value `x`, as the runner computes it.
+pub fn holds(p: &Predicate, x: &Value) -> bool {
+    let Some(v) = apply(&p.ops, x.clone()) else {
+        return false;
+    };
+    match &p.test {
+        Test::Truth => v.truthy(),
+        Test::Compare(op, c) => {
+            arith::binary(*op, Some(v), Some(c.clone())).is_some_and(|r| r.truthy())
+        }
+    }
+}
+
+/// Numbers as points of a line the bisection walks: whole numbers, or fractions (ordered by
+/// their bits, so that every fraction between two is there).
+#[derive(Clone, Copy, Debug)]
+enum Space {
+    Whole { low: i64, high: i64 },
+    Fraction { low: f64, high: f64 },
+}
+
+/// C's `int`, the range of gufsm's values.
+const WHOLE: (i64, i64) = (i32::MIN as i64, i32::MAX as i64);
+const FRACTION: (f64, f64) = (-1e15, 1e15);
+
+impl Space {
+    fn of(tests: &[(SlotId, &Predicate)], hints: &[Value]) -> Space {
+        let mut numbers: Vec<&Value> = hints.iter().collect();
+        for (_, p) in tests {
+            if let Test::Compare(_, c) = &p.test {
+                numbers.push(c);
+            }
+            for op in &p.ops {
+                if let Op::Arith { constant, .. } = op {
+                    numbers.push(constant);
+                }
+            }
+        }
+        let fraction = numbers.iter().any(|v| matches!(v, Value::Float(_)));
+        let extreme = |pick: fn(f64, f64) -> f64, start: f64| {
+            numbers.iter().filter_map(|v| v.as_f64()).fold(start, pick)
+        };
+        if fraction {
+            Space::Fraction {
+                low: extreme(f64::min, FRACTION.0) - 1.0,
+                high: extreme(f64::max, FRACTION.1) + 1.0,
+            }
+        } else {
+            let pad = 64.0;
+            let low = (extreme(f64::min, WHOLE.0 as f64) - pad).max(i64::MIN as f64 / 2.0);
+            let high = (extreme(f64::max, WHOLE.1 as f64) + pad).min(i64::MAX as f64 / 2.0);
+            Space::Whole {
+                low: low as i64,
+                high: high as i64,
+            }
+        }
+    }
+
+    fn ordinal_range(self) -> (u64, u64) {
+        match self {
+            Space::Whole { low, high } => (whole_ordinal(low), whole_ordinal(high)),
+            Space::Fraction { low, high } => (fraction_ordinal(low), fraction_ordinal(high)),
+        }
+    }
+
+    fn value(self, o: u64) -> Value {
+        match self {
+            Space::Whole { .. } => Value::Int((o ^ (1 << 63)) as i64),
+            Space::Fraction { .. } => Value::Float(if o >> 63 == 1 {
+                f64::from_bits(o & !(1 << 63))
+            } else {
+                f64::from_bits(!o)
+            }),
+        }
+    }
+
+    /// The first values of each interval on which `p`'s outcome is constant (the test's
+    /// ordering against its constant, so `==` cuts twice): the chain is monotone, so its
+    /// comparison with a constant changes at most twice along the line.
+    fn boundaries(self, p: &Predicate) -> Vec<u64> {
+        let c = match &p.test {
+            Test::Compare(_, c) => c.clone(),
+            Test::Truth => Value::Int(0),
+        };
+        let rank = |o: u64| -> u8 {
+            match apply(&p.ops, self.value(o)).and_then(|v| arith::compare(&v, &c)) {
+                Some(std::cmp::Ordering::Less) => 0,
+                Some(std::cmp::Ordering::Equal) => 1,
+                Some(std::cmp::Ordering::Greater) => 2,
+                None => 3,
+            }
+        };
+        let (low, high) = self.ordinal_range();
+        let mut out = Vec::new();
+        bisect(low, high, rank(low), rank(high), &rank, &mut out);
+        out
+    }
+
+    /// `k` values of every interval that `cuts` (sorted) leaves, the one below the first cut
+    /// included; for whole numbers, fewer where an interval holds fewer.
+    fn representatives(self, cuts: &[u64], k: usize) -> Vec<Value> {
+        let k = k as u64;
+        let mut out = Vec::new();
+        let (low, high) = self.ordinal_range();
+        let mut starts = vec![];
+        match cuts.first() {
+            Some(&first) if first > low => starts.push((first.saturating_sub(k).max(low), first)),
+            Some(_) => {}
+            None => starts.push((whole_or_zero(self), high)),
+        }
+        for (i, &c) in cuts.iter().enumerate() {
+            let end = cuts.get(i + 1).copied().unwrap_or(high);
+            starts.push((c, end.max(c + 1)));
+        }
+        for (start, end) in starts {
+            match self {
+                Space::Whole { .. } => {
+                    for o in start..end.min(start + k) {
+                        out.push(self.value(o));
+                    }
+                }
+                Space::Fraction { .. } => {
+                    let (a, b) = (self.value(start), self.value(end));
+                    let (a, b) = (a.as_f64().unwrap_or(0.0), b.as_f64().unwrap_or(0.0));
+                    for j in 0..k {
+                        let x = if j == 0 {
+                            a
+                        } else {
+                            a + (b - a) * j as f64 / k as f64
+                        };
+                        let v = Value::Float(x);
+                        if !out.contains(&v) {
+                            out.push(v);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Why the runner's whole-number arithmetic on a chain may wrap around within the range,
+    /// if it may (the chain is then not monotone there).
+    fn wraps(self, ops: &[Op]) -> Option<String> {
+        let Space::Whole { low, high } = self else {
+            return None;
+        };
+        for x in [low, high] {
+            let mut exact = i128::from(x);
+            let mut v = Value::Int(x);
+            for op in ops {
+                let (next_exact, next) = match op {
+                    Op::Arith {
+                        op,
+                        constant: Value::Int(c),
+                        constant_left,
+                    } => {
+                        let c = i128::from(*c);
+                        let (a, b) = if *constant_left {
+                            (c, exact)
+                        } else {
+                            (exact, c)
+                        };
+                        let e = match op {
+                            BinOp::Add => a + b,
+                            BinOp::Sub => a - b,
+                            BinOp::Mul => a.checked_mul(b)?,
+                            BinOp::Div if b == 0 => i128::from(i64::MAX),
+                            BinOp::Div => a / b,
+                            _ => return None,
+                        };
+                        (
+                            e,
+                            apply(
+                                std::slice::from_ref(&Op::Arith {
+                                    op: *op,
+                                    constant: Value::Int(c as i64),
+                                    constant_left: *constant_left,
+                                }),
+                                v,
+                            )?,
+                        )
+                    }
+                    Op::Neg => (-exact, apply(&[Op::Neg], v)?),
+                    // Fractions and conversions do not wrap.
+                    _ => return None,
+                };
+                if next != Value::Int(i64::try_from(next_exact).ok()?) {
+                    return Some(format!(
+                        "its arithmetic wraps around for {x}, within the whole numbers it may take"
+                    ));
+                }
+                exact = next_exact;
+                v = next;
+            }
+        }
+        None
+    }
+}
+
+fn whole_or_zero(space: Space) -> u64 {
+    match space {
+        Space::Whole { .. } => whole_ordinal(0),
+        Space::Fraction { .. } => fraction_ordinal(0.0),
+    }
+}
+
+fn whole_ordinal(x: i64) -> u64 {
+    (x as u64) ^ (1 << 63)
+}
+
+fn fraction_ordinal(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | (1 << 63)
+    }
+}
+
+/// The ordinals in `(low, high]` where `rank` differs from its value just below, for a
+/// monotone `rank`.
+fn bisect(
+    low: u64,
+    high: u64,
+    at_low: u8,
+    at_high: u8,
+    rank: &dyn Fn(u64) -> u8,
+    out: &mut Vec<u64>,
+) {
+    if at_low == at_high || high <= low {
+        return;
+    }
+    if high - low == 1 {
+        out.push(high);
+        return;
+    }
+    let mid = low + (high - low) / 2;
+    let at_mid = rank(mid);
+    bisect(low, mid, at_low, at_mid, rank, out);
+    bisect(mid, high, at_mid, at_high, rank, out);
 }
 
 /// A literal's value (`-3` is a literal too).
@@ -153,85 +599,4 @@ fn constant(e: &Expr) -> Option<Value> {
         },
         _ => return None,
     })
-}
-
-/// Values just below and above a number an ordering compares with.
-fn neighbours(c: &Value) -> Vec<Value> {
-    match c {
-        Value::Int(i) => vec![Value::Int(i.wrapping_sub(1)), Value::Int(i.wrapping_add(1))],
-        Value::Float(x) => vec![Value::Float(x - 0.5), Value::Float(x + 0.5)],
-        _ => Vec::new(),
-    }
-}
-
-/// A value equal to none of `seen` and of the same kind as most of them.
-fn other(seen: &[Value]) -> Value {
-    if seen.iter().any(|v| matches!(v, Value::Str(_))) {
-        let mut candidate = "other".to_string();
-        while seen.contains(&Value::Str(candidate.clone())) {
-            candidate.push('_');
-        }
-        Value::Str(candidate)
-    } else {
-        let largest = seen
-            .iter()
-            .filter_map(Value::as_f64)
-            .fold(0.0_f64, f64::max);
-        Value::Int(largest as i64 + 1000)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use proclaim_fsm::parse_label;
-
-    fn check(labels: &[&str], name: &str, expect: &[Value]) {
-        let mut domains = Domains::default();
-        for l in labels {
-            domains.gather_expr(&parse_label(l).expect("parses"));
-        }
-        let domain = domains.domain(name);
-        assert_eq!(domain.values, expect, "{labels:?}");
-        assert_eq!(domain.initial.len(), expect.len() + 1, "never posted first");
-        assert_eq!(domain.initial[0], None);
-    }
-
-    #[test]
-    fn domains_are_the_constants_compared_with_and_one_other() {
-        check(
-            &["doorOpen && cook"],
-            "doorOpen",
-            &[false.into(), true.into()],
-        );
-        check(
-            &["mode == \"kick\"", "mode != \"walk\""],
-            "mode",
-            &[
-                Value::Str("kick".into()),
-                Value::Str("walk".into()),
-                Value::Str("other".into()),
-            ],
-        );
-        check(
-            &["d < 20"],
-            "d",
-            &[
-                Value::Int(19),
-                Value::Int(21),
-                Value::Int(20),
-                Value::Int(1021),
-            ],
-        );
-        // Used as a truth value and compared with text: both truths are there.
-        check(
-            &["mode == \"on\" || mode"],
-            "mode",
-            &[
-                Value::Str("on".into()),
-                Value::Str("other".into()),
-                Value::Bool(false),
-            ],
-        );
-    }
 }

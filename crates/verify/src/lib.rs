@@ -34,6 +34,7 @@ pub mod domain;
 mod edges;
 mod error;
 mod explore;
+mod flow;
 pub mod follow;
 mod found_memo;
 mod lasso;
@@ -62,7 +63,8 @@ pub use error::{PropertyError, VerifyError};
 pub use explore::Progress;
 pub use model::Model;
 pub use outcome::{
-    Assignment, Finding, PropertyOutcome, Report, SearchStats, Stop, Trace, TraceStep, Verdict,
+    Assignment, Finding, Inexact, PropertyOutcome, Report, SearchStats, Stop, Trace, TraceStep,
+    Verdict,
 };
 pub use proclaim_behaviour::PropertyKind;
 pub use promela::{to_promela, Claim, EmitError, Promela};
@@ -177,9 +179,44 @@ pub fn verify_with_progress(
     let (mut model, compiled) = prepare(behaviour, properties)?;
     model.storage = reduce::storage(&model, &compiled, options.reductions);
     check_stored_free(&model)?;
+    let report = search(&model, &compiled, options, progress)?;
+    Ok(undecided_where_inexact(report, &model))
+}
+
+/// What a search claims is absent (a `never` that holds, a state never entered) is only
+/// true when the free values' domains keep every test (spec §6, "Free values"): where they
+/// do not, such a verdict is undecided and such a finding left out, with the reasons. What
+/// a search found (a counterexample, a witness, a lasso) is a run with real values and
+/// stands.
+fn undecided_where_inexact(mut report: Report, model: &Model) -> Report {
+    if model.inexact.is_empty() {
+        return report;
+    }
+    for p in &mut report.properties {
+        let absent = match p.verdict {
+            Verdict::Holds => p.kind != PropertyKind::Reachable.word(),
+            Verdict::Fails => p.kind == PropertyKind::Reachable.word(),
+            Verdict::Incomplete => false,
+        };
+        if absent {
+            p.verdict = Verdict::Incomplete;
+        }
+    }
+    report.findings.clear();
+    report.inexact = model.inexact.clone();
+    report
+}
+
+fn search(
+    model: &Model,
+    compiled: &[Property],
+    options: Options,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Report, VerifyError> {
+    let (model, compiled) = (model, compiled);
     match options.engine {
-        SearchEngine::Explicit => Ok(explicit(&model, &compiled, options, None, progress).0),
-        SearchEngine::Symbolic => symbolic(&model, &compiled, options)
+        SearchEngine::Explicit => Ok(explicit(model, compiled, options, None, progress).0),
+        SearchEngine::Symbolic => symbolic(model, compiled, options)
             .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
         SearchEngine::Auto => {
             // A deep, narrow graph (counters stepping through their values) would take the
@@ -188,13 +225,13 @@ pub fn verify_with_progress(
                 states: AUTO_EXPLICIT_STATES,
                 width: AUTO_NARROW_WIDTH,
             });
-            let (report, wide) = explicit(&model, &compiled, options, trial, progress);
+            let (report, wide) = explicit(model, compiled, options, trial, progress);
             if !wide {
                 return Ok(report);
             }
-            match symbolic(&model, &compiled, options) {
+            match symbolic(model, compiled, options) {
                 Ok(report) => Ok(report),
-                Err(_) => Ok(explicit(&model, &compiled, options, None, progress).0),
+                Err(_) => Ok(explicit(model, compiled, options, None, progress).0),
             }
         }
     }
@@ -400,6 +437,7 @@ fn explicit(
         properties: outcomes,
         findings,
         stats,
+        inexact: Vec::new(),
     };
     (report, graph.wide)
 }
@@ -465,5 +503,6 @@ fn symbolic(
             valuations: valuations(model),
             engine: SearchEngine::Symbolic.word(),
         },
+        inexact: Vec::new(),
     })
 }

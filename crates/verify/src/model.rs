@@ -10,7 +10,8 @@
 //! when it speaks of a machine, and otherwise a whiteboard type.
 
 use crate::arith::{text, zero};
-use crate::domain::{Domains, FreeDomain};
+use crate::domain::{sound_domains, Domains, FreeDomain};
+use crate::outcome::Inexact;
 use crate::property::ValueKind;
 use crate::reasoner::Reasoner;
 use crate::reduce::Storage;
@@ -154,6 +155,9 @@ pub struct Model {
     /// reductions are decided.
     pub storage: Vec<Storage>,
     pub ring_period: Duration,
+    /// Where free values go that their finite domains do not follow ([`crate::flow`]): empty
+    /// when the model's environment is exact for every test the behaviour makes.
+    pub inexact: Vec<Inexact>,
 }
 
 /// What the activities and labels of the behaviour read and write, gathered once.
@@ -258,7 +262,7 @@ impl Model {
             slots: mut all_slots,
             names,
         } = slots;
-        free_environment(
+        let hints = free_environment(
             &mut all_slots,
             behaviour,
             &theory_inputs,
@@ -273,7 +277,7 @@ impl Model {
             .zip(locals_of)
             .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
             .collect();
-        Model {
+        let mut model = Model {
             machines,
             storage: vec![Storage::Stored; all_slots.len()],
             slots: all_slots,
@@ -283,7 +287,23 @@ impl Model {
             values: RefCell::new(Values::default()),
             saw: Vec::new(),
             ring_period: behaviour.ring_period,
+            inexact: Vec::new(),
+        };
+        let files: Vec<String> = behaviour.machines.iter().map(|m| m.file.clone()).collect();
+        let facts = crate::flow::analyse(&model, &files, property_exprs);
+        let (domains, inexact) = sound_domains(&model.slots, &facts, &hints);
+        for (slot, domain) in model.slots.iter_mut().zip(domains) {
+            if slot.free.is_some() {
+                slot.free = domain;
+            }
         }
+        model.inexact = facts.inexact;
+        for i in inexact {
+            if !model.inexact.contains(&i) {
+                model.inexact.push(i);
+            }
+        }
+        model
     }
 
     /// How `name` resolves in machine `m` (`None` for a whiteboard type nobody models: it
@@ -633,14 +653,14 @@ fn free_environment(
     property_exprs: &[&Expr],
     outside: &FxHashSet<String>,
     uses: &Uses,
-) {
+) -> Domains {
     let mut domains = Domains::default();
     for m in &behaviour.machines {
         domains.gather_machine(&m.machine);
     }
     if let Some(script) = &behaviour.script {
         for step in &script.steps {
-            domains.add(&step.atom, Value::Bool(step.value));
+            domains.add(&step.atom, proclaim_experts::script_value(&step.value));
         }
     }
     for inputs in theory_inputs {
@@ -653,7 +673,7 @@ fn free_environment(
     // widen what the environment tries (a property may ask about a value no machine names).
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
-            slot.value_kind = ValueKind::of_values(&domains.domain(&slot.name).values);
+            slot.value_kind = ValueKind::of_values(&domains.hints(&slot.name));
         }
     }
     for e in property_exprs {
@@ -662,8 +682,9 @@ fn free_environment(
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
             if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
-                slot.free = Some(domains.domain(&slot.name));
+                slot.free = Some(domains.placeholder(&slot.name));
             }
         }
     }
+    domains
 }

@@ -38,6 +38,24 @@ impl Stop {
     }
 }
 
+/// A free value that reaches something the model's finite domain of it cannot follow (spec
+/// §6, "Free values"): what the search then claims to be absent may not be.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize)]
+pub struct Inexact {
+    /// The free whiteboard type.
+    pub value: String,
+    /// What happens to it, with the expression.
+    pub why: String,
+    /// Where: file and line, or the property.
+    pub place: String,
+}
+
+impl std::fmt::Display for Inexact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}, at {}", self.value, self.why, self.place)
+    }
+}
+
 /// A whiteboard type or variable and the value it took.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Assignment {
@@ -47,6 +65,10 @@ pub struct Assignment {
     /// The value's truth when it is a truth value (what an impersonator script can set).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub truth: Option<bool>,
+    /// The value as an impersonator script writes it (`-3`, `"kick"`); `None` where a script
+    /// cannot set it (a list, text with a `#` or a line break).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub script: Option<String>,
 }
 
 /// One ringlet of a counterexample.
@@ -156,6 +178,10 @@ pub struct Report {
     pub properties: Vec<PropertyOutcome>,
     pub findings: Vec<Finding>,
     pub stats: SearchStats,
+    /// Why the model's free values are not exact, where they are not: a property that found
+    /// nothing is then incomplete, and no "never" finding is reported.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub inexact: Vec<Inexact>,
 }
 
 impl Report {

@@ -2,8 +2,8 @@
 //! `doorOpen = false` from the start, `at 1.5s doorOpen = true` later), so that
 //! `proclaim run BEHAVIOUR --script FILE --virtual-clock` plays the same environment.
 //!
-//! What it cannot carry, said in the script's own comments: a script sets truth values only
-//! (another value the counterexample needs is listed, not set); a script speaks in time, not
+//! What it cannot carry, said in the script's own comments: a script sets truths, numbers
+//! and text (a list the counterexample needs is listed, not set); a script speaks in time, not
 //! in rounds, so a change the model made in round r is placed in the middle of round r's ring
 //! period (`(r - ½) × ring_period`), and a value a ringlet of round r read in the middle of
 //! round r - 1's, which is where an idle behaviour's round r runs, but a round that follows a
@@ -30,13 +30,13 @@ pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, 
         ring_period.as_millis()
     );
     let mut lines = Vec::new();
-    let mut line = |when: Option<f64>, a: &Assignment, lines: &mut Vec<String>| match a.truth {
-        Some(t) => lines.push(match when {
-            None => format!("{} = {t}", a.name),
-            Some(s) => format!("at {s}s {} = {t}", a.name),
+    let mut line = |when: Option<f64>, a: &Assignment, lines: &mut Vec<String>| match &a.script {
+        Some(v) => lines.push(match when {
+            None => format!("{} = {v}", a.name),
+            Some(s) => format!("at {s}s {} = {v}", a.name),
         }),
         None => notes.push(format!(
-            "`{}` must be {}, which a script cannot set (truth values only)",
+            "`{}` must be {}, which a script cannot set (truths, numbers and one-line text only)",
             a.name, a.value
         )),
     };

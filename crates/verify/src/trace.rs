@@ -8,6 +8,7 @@ use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::values::{ValueId, NEVER};
 use crate::world::SystemState;
 use proclaim_board::Value;
+use proclaim_experts::ScriptValue;
 use rustc_hash::FxHashMap;
 
 fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
@@ -20,7 +21,19 @@ fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
             Some(Value::Bool(b)) => Some(*b),
             _ => None,
         },
+        script: v.and_then(script_value).map(|s| s.to_string()),
     }
+}
+
+/// A value as an impersonator script sets it, where a script can.
+fn script_value(v: &Value) -> Option<ScriptValue> {
+    Some(match v {
+        Value::Bool(b) => ScriptValue::Truth(*b),
+        Value::Int(i) => ScriptValue::Whole(*i),
+        Value::Float(x) if x.is_finite() => ScriptValue::Fraction(*x),
+        Value::Str(s) if !s.contains(['#', '\n']) => ScriptValue::Text(s.clone()),
+        _ => return None,
+    })
 }
 
 /// The path from an initial state to state `id`.

@@ -340,7 +340,10 @@ fn seeded_faults_in_the_microwave_fail_with_a_counterexample() {
         let (script, _) = to_script(trace, std::time::Duration::from_millis(100), fault);
         let parsed = proclaim_experts::parse_script(&script).expect("the script parses");
         assert!(
-            parsed.steps.iter().any(|s| s.atom == "doorOpen" && s.value),
+            parsed
+                .steps
+                .iter()
+                .any(|s| s.atom == "doorOpen" && s.value.truth()),
             "{fault}: the door opens in\n{script}"
         );
     }

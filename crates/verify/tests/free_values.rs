@@ -1,0 +1,164 @@
+//! Free values that flow through variables and arithmetic into labels (spec §6, "Free
+//! values"): controllers of the kinds the Griffith team wrote, in `tests/controllers/`, each
+//! property's verdict checked by hand, and every counterexample or witness replayed in the
+//! real runner on the virtual clock.
+
+use proclaim_behaviour::testing::run_scripted;
+use proclaim_behaviour::{load, Folder};
+use proclaim_verify::{to_script, verify, Options, PropertyKind, PropertySource, Report, Verdict};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+fn controller(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/controllers")
+        .join(name)
+}
+
+fn check(name: &str, kind: PropertyKind, expression: &str) -> Report {
+    check_within(name, kind, expression, Options::default())
+}
+
+fn check_within(name: &str, kind: PropertyKind, expression: &str, options: Options) -> Report {
+    let behaviour = load(name, Arc::new(Folder::new(controller(name))))
+        .unwrap_or_else(|e| panic!("{name} loads: {e:#?}"));
+    let property = PropertySource {
+        name: expression.into(),
+        kind,
+        expression: expression.into(),
+        fair: Vec::new(),
+    };
+    verify(&behaviour, &[property], options).expect("verifies")
+}
+
+/// The property's run written as a script and played by the runner: the states it enters.
+fn replay(name: &str, report: &Report) -> Vec<String> {
+    let trace = report.properties[0].trace.as_ref().expect("a run");
+    let (script, notes) = to_script(trace, Duration::from_millis(100), name);
+    assert!(
+        notes.is_empty(),
+        "{name}: the script reproduces it all:\n{script}"
+    );
+    let run = run_scripted(controller(name), &script, Duration::from_secs(5))
+        .unwrap_or_else(|e| panic!("{name}: the script runs: {e}\n{script}"));
+    run.visits
+        .iter()
+        .map(|v| format!("{}.{}", v.machine, v.state))
+        .collect()
+}
+
+#[test]
+fn a_copied_sighting_keeps_its_sign() {
+    let report = check("cutdown", PropertyKind::Never, "A.RIGHT");
+    let p = &report.properties[0];
+    assert_eq!(p.verdict, Verdict::Fails, "{report:#?}");
+    let trace = p.trace.as_ref().expect("a counterexample");
+    let (script, _) = to_script(trace, Duration::from_millis(100), "cutdown");
+    assert!(
+        script.contains("ballRR = -"),
+        "a negative sighting:\n{script}"
+    );
+    assert!(report.inexact.is_empty(), "{:?}", report.inexact);
+    assert!(replay("cutdown", &report).contains(&"A.RIGHT".to_string()));
+}
+
+#[test]
+fn a_scaled_battery_charge_reaches_the_warning() {
+    let report = check(
+        "battery",
+        PropertyKind::Reachable,
+        "BatteryMonitor.VerbalWarning",
+    );
+    assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
+    assert!(report.inexact.is_empty(), "{:?}", report.inexact);
+    let visits = replay("battery", &report);
+    assert!(
+        visits.contains(&"BatteryMonitor.VerbalWarning".to_string()),
+        "{visits:?}"
+    );
+    // By hand: LOW is entered only below 10 %, but its own ringlet recomputes the charge,
+    // which may have risen since.
+    let report = check(
+        "battery",
+        PropertyKind::Never,
+        "BatteryMonitor.LOW && percent >= 10",
+    );
+    assert_eq!(report.properties[0].verdict, Verdict::Fails);
+    // Exact: nothing the charge can be takes OK straight to the warning.
+    let report = check(
+        "battery",
+        PropertyKind::Never,
+        "BatteryMonitor.VerbalWarning && percent >= 5",
+    );
+    assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
+}
+
+#[test]
+fn sightings_compared_with_each_other_take_every_order() {
+    let report = check("kicker", PropertyKind::Reachable, "Kicker.KICK_LEFT");
+    assert_eq!(report.properties[0].verdict, Verdict::Holds);
+    assert!(replay("kicker", &report).contains(&"Kicker.KICK_LEFT".to_string()));
+    // By hand: the copies are made in WATCH alone and KICK_RIGHT is final, so they stay as
+    // the label saw them.
+    let report = check(
+        "kicker",
+        PropertyKind::Never,
+        "Kicker.KICK_RIGHT && rl >= rr",
+    );
+    assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
+    let report = check(
+        "kicker",
+        PropertyKind::Never,
+        "Kicker.KICK_RIGHT && rr <= 100",
+    );
+    assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
+}
+
+#[test]
+fn free_values_added_together_are_undecided_with_the_reason() {
+    // `total > 1000` is reached by adding; a search that finds no way there must not say
+    // "holds". Here it does find one (a step of `true`, 1, a thousand times), a real run.
+    let report = check("accumulator", PropertyKind::Never, "Sum.FULL");
+    assert_eq!(report.properties[0].verdict, Verdict::Fails);
+    let why = &report.inexact;
+    assert!(
+        why.iter()
+            .any(|i| i.value == "step" && i.why.contains("another free value")),
+        "{why:?}"
+    );
+    assert!(
+        report.findings.is_empty(),
+        "no \"never\" findings: {:?}",
+        report.findings
+    );
+    // What the search cannot reach under its budget is undecided, not "holds".
+    let options = Options {
+        max_states: 5_000,
+        ..Options::default()
+    };
+    let report = check_within(
+        "accumulator",
+        PropertyKind::Never,
+        "Sum.FULL && total <= 1000",
+        options,
+    );
+    assert_eq!(
+        report.properties[0].verdict,
+        Verdict::Incomplete,
+        "{report:#?}"
+    );
+}
+
+#[test]
+fn a_dose_read_twice_can_count_below_zero() {
+    let report = check("pump", PropertyKind::Never, "timeLeft < 0");
+    assert_eq!(report.properties[0].verdict, Verdict::Fails, "{report:#?}");
+    let trace = report.properties[0]
+        .trace
+        .as_ref()
+        .expect("a counterexample");
+    let (script, _) = to_script(trace, Duration::from_millis(100), "pump");
+    // A dose of -1 read on entering RUNNING, after a positive one started it.
+    assert!(script.contains("doseRequested = -"), "{script}");
+}
