@@ -104,6 +104,11 @@ impl Domains {
                 if compares {
                     for (a, b) in [(left, right), (right, left)] {
                         if let (Expr::Name(n), Some(c)) = (&**a, constant(b)) {
+                            if matches!(op, BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge) {
+                                for v in neighbours(&c) {
+                                    self.add(n, v);
+                                }
+                            }
                             self.add(n, c);
                         }
                     }
@@ -141,10 +146,26 @@ impl Domains {
         values
     }
 
-    /// A first domain for `name` that only says the type is free; [`sound_domains`] gives
-    /// the one the search uses.
+    /// The domain of the constants alone: every constant the behaviour compares `name` with
+    /// or gives it, the neighbours of each it orders it against, one other value, and both
+    /// truths where it is used as one. [`sound_domains`] adds the intervals' values to it.
     pub fn placeholder(&self, name: &str) -> FreeDomain {
-        FreeDomain::of(self.hints(name))
+        let seen = self.seen(name);
+        let mut values: Vec<Value> = if seen.iter().all(|v| matches!(v, Value::Bool(_))) {
+            vec![Value::Bool(false), Value::Bool(true)]
+        } else {
+            let mut values = seen.to_vec();
+            values.push(other(seen));
+            values
+        };
+        if self.conditions.contains(name) {
+            for truth in [false, true] {
+                if !values.iter().any(|v| v.truthy() == truth) {
+                    values.push(Value::Bool(truth));
+                }
+            }
+        }
+        FreeDomain::of(values)
     }
 }
 
@@ -205,7 +226,11 @@ pub fn sound_domains(
         let mut hint_values: Vec<Value> = Vec::new();
         for &m in &members {
             tests.extend(facts.predicates[m].iter().map(|p| (m, p)));
-            hint_values.extend(hints.seen(&slots[m].name).iter().cloned());
+            for v in hints.placeholder(&slots[m].name).values {
+                if !hint_values.contains(&v) {
+                    hint_values.push(v);
+                }
+            }
         }
         let group = Group {
             tests: &tests,
@@ -257,62 +282,14 @@ impl Group<'_> {
         }
         let mut points = Vec::new();
         if number {
-            let space = Space::of(self.tests, self.hints);
-            let mut cuts = Vec::new();
-            for (m, p) in self.tests {
-                if matches!(&p.test, Test::Compare(_, Value::Str(_))) {
-                    continue;
-                }
-                if let Some(why) = space.wraps(&p.ops) {
-                    inexact.push(Inexact {
-                        value: slots[*m].name.clone(),
-                        why,
-                        place: "its tests".into(),
-                    });
-                }
-                cuts.extend(space.boundaries(p));
-            }
-            cuts.sort_unstable();
-            cuts.dedup();
-            points.extend(space.representatives(&cuts, self.k));
+            points.extend(self.number_points(slots, inexact));
         }
         if text {
-            for (m, p) in self.tests {
-                if let Test::Compare(op, Value::Str(_)) = &p.test {
-                    if !matches!(op, BinOp::Eq | BinOp::Ne) {
-                        inexact.push(Inexact {
-                            value: slots[*m].name.clone(),
-                            why: format!(
-                                "it is compared with text by `{}`, by text order",
-                                op.symbol()
-                            ),
-                            place: "its tests".into(),
-                        });
-                    }
-                }
-            }
-            let mut texts: Vec<Value> = Vec::new();
-            for c in constants() {
-                if matches!(c, Value::Str(_)) && !texts.contains(c) {
-                    texts.push(c.clone());
-                }
-            }
-            let mut other = "other".to_string();
-            for _ in 0..self.k {
-                while texts.contains(&Value::Str(other.clone())) {
-                    other.push('_');
-                }
-                texts.push(Value::Str(other.clone()));
-            }
-            points.extend(texts);
+            points.extend(self.text_points(slots, inexact));
         }
         if self.tests.iter().any(|(_, p)| p.test == Test::Truth) {
-            // Text is true or false by its words: make sure both truths are there.
-            for truth in [false, true] {
-                if !points.iter().any(|v| v.truthy() == truth) {
-                    points.push(Value::Bool(truth));
-                }
-            }
+            // A type used as a truth may be posted one (a script's `false`, an assignment).
+            points.extend([Value::Bool(false), Value::Bool(true)]);
         }
         // The constants the behaviour gives the type stay (a run that posts them is then a
         // path of the model value for value, as the conformance test follows it); of the
@@ -336,6 +313,66 @@ impl Group<'_> {
             }
         }
         kept.into_iter().map(|(_, v)| v).collect()
+    }
+
+    /// One value of every interval the numeric tests cut (`k` where copies are compared).
+    fn number_points(&self, slots: &[Slot], inexact: &mut Vec<Inexact>) -> Vec<Value> {
+        let space = Space::of(self.tests, self.hints);
+        let mut cuts = Vec::new();
+        for (m, p) in self.tests {
+            if matches!(&p.test, Test::Compare(_, Value::Str(_))) {
+                continue;
+            }
+            if let Some(why) = space.wraps(&p.ops) {
+                inexact.push(Inexact {
+                    value: slots[*m].name.clone(),
+                    why,
+                    place: "its tests".into(),
+                });
+            }
+            cuts.extend(space.boundaries(p));
+        }
+        cuts.sort_unstable();
+        cuts.dedup();
+        space.representatives(&cuts, self.k)
+    }
+
+    /// The text constants and `k` texts equal to none of them.
+    fn text_points(&self, slots: &[Slot], inexact: &mut Vec<Inexact>) -> Vec<Value> {
+        let constants = || {
+            self.tests.iter().filter_map(|(_, p)| match &p.test {
+                Test::Compare(_, c) => Some(c),
+                Test::Truth => None,
+            })
+        };
+        for (m, p) in self.tests {
+            if let Test::Compare(op, Value::Str(_)) = &p.test {
+                if !matches!(op, BinOp::Eq | BinOp::Ne) {
+                    inexact.push(Inexact {
+                        value: slots[*m].name.clone(),
+                        why: format!(
+                            "it is compared with text by `{}`, by text order",
+                            op.symbol()
+                        ),
+                        place: "its tests".into(),
+                    });
+                }
+            }
+        }
+        let mut texts: Vec<Value> = Vec::new();
+        for c in constants() {
+            if matches!(c, Value::Str(_)) && !texts.contains(c) {
+                texts.push(c.clone());
+            }
+        }
+        let mut other = "other".to_string();
+        for _ in 0..self.k {
+            while texts.contains(&Value::Str(other.clone())) {
+                other.push('_');
+            }
+            texts.push(Value::Str(other.clone()));
+        }
+        texts
     }
 }
 
@@ -599,4 +636,30 @@ fn constant(e: &Expr) -> Option<Value> {
         },
         _ => return None,
     })
+}
+
+/// Values just below and above a number an ordering compares with.
+fn neighbours(c: &Value) -> Vec<Value> {
+    match c {
+        Value::Int(i) => vec![Value::Int(i.wrapping_sub(1)), Value::Int(i.wrapping_add(1))],
+        Value::Float(x) => vec![Value::Float(x - 0.5), Value::Float(x + 0.5)],
+        _ => Vec::new(),
+    }
+}
+
+/// A value equal to none of `seen` and of the same kind as most of them.
+fn other(seen: &[Value]) -> Value {
+    if seen.iter().any(|v| matches!(v, Value::Str(_))) {
+        let mut candidate = "other".to_string();
+        while seen.contains(&Value::Str(candidate.clone())) {
+            candidate.push('_');
+        }
+        Value::Str(candidate)
+    } else {
+        let largest = seen
+            .iter()
+            .filter_map(Value::as_f64)
+            .fold(0.0_f64, f64::max);
+        Value::Int(largest as i64 + 1000)
+    }
 }

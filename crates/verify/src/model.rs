@@ -271,14 +271,13 @@ impl Model {
             &uses,
         );
 
-        let machines = behaviour
-            .machines
-            .iter()
-            .zip(locals_of)
-            .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
-            .collect();
         let mut model = Model {
-            machines,
+            machines: behaviour
+                .machines
+                .iter()
+                .zip(locals_of)
+                .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
+                .collect(),
             storage: vec![Storage::Stored; all_slots.len()],
             slots: all_slots,
             theories,
@@ -289,20 +288,7 @@ impl Model {
             ring_period: behaviour.ring_period,
             inexact: Vec::new(),
         };
-        let files: Vec<String> = behaviour.machines.iter().map(|m| m.file.clone()).collect();
-        let facts = crate::flow::analyse(&model, &files, property_exprs);
-        let (domains, inexact) = sound_domains(&model.slots, &facts, &hints);
-        for (slot, domain) in model.slots.iter_mut().zip(domains) {
-            if slot.free.is_some() {
-                slot.free = domain;
-            }
-        }
-        model.inexact = facts.inexact;
-        for i in inexact {
-            if !model.inexact.contains(&i) {
-                model.inexact.push(i);
-            }
-        }
+        sound_free_values(&mut model, behaviour, property_exprs, &hints);
         model
     }
 
@@ -424,6 +410,30 @@ fn machine_model(
         states,
         start,
         locals,
+    }
+}
+
+/// Gives every free slot the domain that keeps each test of its value ([`crate::flow`],
+/// [`sound_domains`]), and notes where none can.
+fn sound_free_values(
+    model: &mut Model,
+    behaviour: &Behaviour,
+    property_exprs: &[&Expr],
+    hints: &Domains,
+) {
+    let files: Vec<String> = behaviour.machines.iter().map(|m| m.file.clone()).collect();
+    let facts = crate::flow::analyse(&model, &files, property_exprs);
+    let (domains, inexact) = sound_domains(&model.slots, &facts, hints);
+    for (slot, domain) in model.slots.iter_mut().zip(domains) {
+        if slot.free.is_some() {
+            slot.free = domain;
+        }
+    }
+    model.inexact = facts.inexact;
+    for i in inexact {
+        if !model.inexact.contains(&i) {
+            model.inexact.push(i);
+        }
     }
 }
 

@@ -6,6 +6,7 @@ mod common {
     pub mod random_behaviour;
 }
 mod conformance;
+mod differential;
 mod free_values;
 mod liveness;
 mod reductions;

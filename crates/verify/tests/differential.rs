@@ -1,0 +1,264 @@
+//! The free values' soundness tested the way it fails (issue 44): random behaviours whose
+//! whole-number inputs flow through variables, arithmetic and comparisons into labels, run on
+//! the interpreter under random scripts of numbers. A run that enters a state or fires a
+//! transition the checker called unreachable (its "never" findings, made only when the
+//! model's free values are exact) is a disagreement, printed with the seed that repeats it.
+
+use crate::common::random_behaviour::Rng;
+use proclaim_behaviour::testing::RoundByRound;
+use proclaim_behaviour::{load, Folder};
+use proclaim_runner::Event;
+use proclaim_verify::{verify, Finding, Options};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Duration;
+
+const INPUTS: [&str; 2] = ["in0", "in1"];
+
+/// A behaviour of one or two machines over the inputs, as files.
+fn generate(seed: u64) -> Vec<(String, String)> {
+    let mut rng = Rng::new(seed);
+    let machines = rng.between(1, 2);
+    let mut files = Vec::new();
+    let mut manifest = String::from("description = \"random numbers\"\n");
+    for m in 0..machines {
+        let name = format!("N{m}");
+        let states = rng.between(2, 4);
+        let mut text = format!("machine {name}\ninitial S0\n");
+        for s in 0..states {
+            let _ = writeln!(text, "state S{s} {{");
+            let statements: Vec<String> = (0..rng.between(0, 2))
+                .map(|_| statement(&mut rng))
+                .collect();
+            if !statements.is_empty() {
+                let section = *rng.pick(&["entry", "internal"]);
+                let _ = writeln!(
+                    text,
+                    "    {section} {{ extern in0; extern in1; {} }}",
+                    statements.join(" ")
+                );
+            }
+            // The last state may be final.
+            let final_state = s + 1 == states && rng.chance(30);
+            if !final_state {
+                for _ in 0..rng.between(1, 2) {
+                    let _ = writeln!(
+                        text,
+                        "    when {} -> S{}",
+                        label(&mut rng),
+                        rng.below(states)
+                    );
+                }
+            }
+            text.push_str("}\n");
+        }
+        let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
+        files.push((format!("{name}.machine"), text));
+    }
+    files.push(("behaviour.toml".into(), manifest));
+    files
+}
+
+fn constant(rng: &mut Rng) -> i64 {
+    *rng.pick(&[-20, -3, -1, 0, 1, 2, 5, 7, 10, 100])
+}
+
+fn statement(rng: &mut Rng) -> String {
+    let v = rng.pick(&["v0", "v1"]);
+    let input = rng.pick(&INPUTS);
+    let c = constant(rng).abs().max(1);
+    let d = constant(rng);
+    match rng.below(5) {
+        0 => format!("{v} = {input};"),
+        1 => format!("{v} = {input} * {c} + {d};"),
+        2 => format!("{v} = {input} / {c};"),
+        3 => format!("{v} = -{input} - {d};"),
+        _ => format!("{v} = {d};"),
+    }
+}
+
+fn label(rng: &mut Rng) -> String {
+    let term = |rng: &mut Rng| -> String {
+        let name = rng.pick(&["v0", "v1", "in0", "in1"]).to_string();
+        let op = rng.pick(&["<", "<=", ">", ">=", "==", "!="]);
+        match rng.below(4) {
+            0 => format!("{name} {op} {}", rng.pick(&["v0", "v1", "in0", "in1"])),
+            1 => format!("{name} - {} {op} {}", constant(rng), constant(rng)),
+            _ => format!("{name} {op} {}", constant(rng)),
+        }
+    };
+    match rng.below(4) {
+        0 => format!("{} && {}", term(rng), term(rng)),
+        1 => format!("{} || {}", term(rng), term(rng)),
+        _ => term(rng),
+    }
+}
+
+/// A script of numbers: each input set at the start and then now and again.
+fn script(rng: &mut Rng) -> String {
+    let mut out = String::new();
+    for input in INPUTS {
+        let _ = writeln!(out, "{input} = {}", value(rng));
+    }
+    for step in 1..=20 {
+        if rng.chance(40) {
+            let _ = writeln!(
+                out,
+                "at {}ms {} = {}",
+                step * 50,
+                rng.pick(&INPUTS),
+                value(rng)
+            );
+        }
+    }
+    out
+}
+
+/// A number near the behaviours' constants, or anywhere.
+fn value(rng: &mut Rng) -> String {
+    let v = if rng.chance(80) {
+        constant(rng) + rng.between(0, 4) as i64 - 2
+    } else {
+        (rng.next_u64() % 2_000_000) as i64 - 1_000_000
+    };
+    // `1` and `0` are truths in a script; `+1` and `+0` the numbers.
+    if v == 0 || v == 1 {
+        format!("+{v}")
+    } else {
+        v.to_string()
+    }
+}
+
+fn folder(seed: u64) -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("differential-{}-{seed}", std::process::id()))
+}
+
+/// What one seed showed: whether the checker claimed anything, and the disagreements.
+struct Outcome {
+    claimed: bool,
+    disagreements: Vec<String>,
+}
+
+fn one(seed: u64, runs: usize) -> Outcome {
+    let files = generate(seed);
+    let dir = folder(seed);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a folder");
+    for (name, text) in &files {
+        std::fs::write(dir.join(name), text).expect("write");
+    }
+    let behaviour = load("random", Arc::new(Folder::new(&dir)))
+        .unwrap_or_else(|e| panic!("seed {seed}: does not load: {e:#?}"));
+    let options = Options {
+        max_states: 200_000,
+        ..Options::default()
+    };
+    let report = verify(&behaviour, &[], options).expect("verifies");
+    let mut never_entered = Vec::new();
+    let mut never_fires = Vec::new();
+    for f in &report.findings {
+        match f {
+            Finding::NeverEntered { machine, state } => {
+                never_entered.push(format!("{machine}.{state}"))
+            }
+            Finding::NeverFires {
+                machine, from, to, ..
+            } => never_fires.push(format!("{machine}: {from} -> {to}")),
+            Finding::Deadlock { .. } => {}
+        }
+    }
+    let claimed = report.stats.complete && report.inexact.is_empty();
+    let mut disagreements = Vec::new();
+    let mut rng = Rng::new(seed ^ 0x5eed);
+    for _ in 0..runs {
+        let script = script(&mut rng);
+        let mut run = RoundByRound::start(&dir, &script)
+            .unwrap_or_else(|e| panic!("seed {seed}: the run starts: {e}\n{script}"));
+        for _ in 0..40 {
+            run.wait(Duration::from_millis(25));
+            run.round();
+        }
+        let names = |id: i64, machine: &str| -> String {
+            let m = &behaviour
+                .machines
+                .iter()
+                .find(|m| m.machine.name == machine);
+            m.and_then(|m| m.machine.state(id))
+                .map_or_else(|| format!("#{id}"), |s| s.name.clone())
+        };
+        for e in &run.events {
+            let seen = match e {
+                Event::Entered { machine, state, .. } => {
+                    let s = format!("{machine}.{state}");
+                    never_entered.contains(&s).then_some(format!("entered {s}"))
+                }
+                Event::Fired {
+                    machine, from, to, ..
+                } => {
+                    let t = format!(
+                        "{machine}: {} -> {}",
+                        names(*from, machine),
+                        names(*to, machine)
+                    );
+                    never_fires.contains(&t).then_some(format!("fired {t}"))
+                }
+                _ => None,
+            };
+            if let Some(what) = seen {
+                let shown: String = files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect();
+                disagreements.push(format!(
+                    "seed {seed}: the run {what}, which verify called unreachable\n{shown}--- script\n{script}"
+                ));
+                break;
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Outcome {
+        claimed,
+        disagreements,
+    }
+}
+
+fn differ(seeds: std::ops::Range<u64>, runs: usize) {
+    let count = seeds.end - seeds.start;
+    let mut claimed = 0;
+    let mut disagreements = Vec::new();
+    for seed in seeds {
+        let o = one(seed, runs);
+        claimed += usize::from(o.claimed);
+        disagreements.extend(o.disagreements);
+    }
+    eprintln!(
+        "{count} behaviours, {claimed} with exact free values (their findings checked), {} disagreements",
+        disagreements.len()
+    );
+    assert!(
+        disagreements.is_empty(),
+        "{}",
+        disagreements[..disagreements.len().min(3)].join("\n")
+    );
+    // The test must keep testing something: most behaviours are exact.
+    assert!(
+        claimed * 2 > count as usize,
+        "only {claimed} of {count} behaviours had exact free values"
+    );
+}
+
+/// Not yet in the suite: a seed's search and runs take too long in a debug build, and its
+/// first full run has not yet been read through (the issue's note says where it stands).
+#[test]
+#[ignore]
+fn runs_never_reach_what_verify_calls_unreachable() {
+    differ(0..500, 2);
+}
+
+/// Before a release (about ten minutes): `cargo nextest run -p proclaim-verify --run-ignored
+/// only -E 'test(ten_thousand)'`.
+#[test]
+#[ignore]
+fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
+    differ(500..10_500, 2);
+}
