@@ -422,7 +422,7 @@ fn sound_free_values(
     hints: &Domains,
 ) {
     let files: Vec<String> = behaviour.machines.iter().map(|m| m.file.clone()).collect();
-    let facts = crate::flow::analyse(&model, &files, property_exprs);
+    let facts = crate::flow::analyse(model, &files, property_exprs);
     let (domains, inexact) = sound_domains(&model.slots, &facts, hints);
     for (slot, domain) in model.slots.iter_mut().zip(domains) {
         if slot.free.is_some() {
