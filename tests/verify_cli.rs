@@ -137,3 +137,65 @@ fn liveness_is_emitted_as_ltl_for_spin() {
         stdout(&o)
     );
 }
+
+/// The cut-down player, as a user meets it: `verify` fails it with a counterexample
+/// whose script posts a negative sighting, `run --script` replays it to RIGHT without a
+/// warning, and a sum of free values is undecided with its reason, in words and in JSON.
+#[test]
+fn a_copied_sighting_fails_with_a_numeric_counterexample_that_replays() {
+    let controllers =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/verify/tests/controllers");
+    let cutdown = controllers.join("cutdown");
+    let script = std::env::temp_dir().join(format!("cutdown-{}.script", std::process::id()));
+    let o = proclaim(&[
+        "verify",
+        cutdown.to_str().unwrap(),
+        "--never",
+        "A.RIGHT",
+        "--counterexample",
+        script.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    assert!(stdout(&o).contains("--never: FAILS"), "{}", stdout(&o));
+    let text = std::fs::read_to_string(&script).expect("the script is written");
+    assert!(text.contains("\nballRR = -"), "{text}");
+    let o = proclaim(&[
+        "run",
+        cutdown.to_str().unwrap(),
+        "--script",
+        script.to_str().unwrap(),
+        "--virtual-clock",
+        "--for",
+        "2s",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("A             → RIGHT"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+
+    let sum = controllers.join("accumulator");
+    let mut args = vec![
+        "verify",
+        sum.to_str().unwrap(),
+        "--never",
+        "Sum.FULL && total < 0",
+    ];
+    args.extend(["--max-states", "2000"]);
+    let o = proclaim(&args);
+    assert_eq!(o.status.code(), Some(3), "{}", stdout(&o));
+    assert!(
+        stdout(&o)
+            .contains("step: `total + step` combines it with another free value, at Sum.machine:"),
+        "{}",
+        stdout(&o)
+    );
+    args.push("--json");
+    let o = proclaim(&args);
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert_eq!(json["report"]["inexact"][0]["value"], "step", "{json}");
+    let _ = std::fs::remove_file(&script);
+    let _ = std::fs::remove_file(script.with_extension("jsonl"));
+}

@@ -416,7 +416,7 @@ fn write_counterexample(
     };
     let rounds = played.steps.iter().map(|s| s.round).max().unwrap_or(0);
     let limit = behaviour.ring_period * (rounds + 10) + std::time::Duration::from_secs(1);
-    let events = run_script(behaviour, &script, limit)?;
+    let events = run_script(behaviour, &script, limit, u64::from(rounds) + 10)?;
     let trace_path = path.with_extension("jsonl");
     let lines: String = events
         .iter()
@@ -439,11 +439,12 @@ fn write_counterexample(
 }
 
 /// Runs the behaviour with `script` answering, on the virtual clock, until every machine is
-/// done or `limit` of virtual time passes; every event.
+/// done, `limit` of virtual time passes or round `last_round` is over; every event.
 fn run_script(
     behaviour: &proclaim_behaviour::Behaviour,
     script: &str,
     limit: std::time::Duration,
+    last_round: u64,
 ) -> Result<Vec<proclaim_runner::Event>, Failure> {
     let script = proclaim_experts::parse_script(script).map_err(|errors| {
         Failure::Argument(format!(
@@ -466,7 +467,7 @@ fn run_script(
         let mut running = proclaim_behaviour::launch(behaviour, &board, options)
             .await
             .map_err(Failure::Start)?;
-        let (events, _) = running.follow(limit).await;
+        let (events, _) = running.follow_rounds(limit, last_round).await;
         running.stop().await;
         Ok(events)
     })

@@ -335,19 +335,31 @@ fn script_warnings_of(
         .as_ref()
         .zip(behaviour.manifest.impersonator.as_ref())
         .map(|(s, i)| (behaviour.files.show(&i.script), s));
+    // A machine's activities read the whiteboard types it binds as `extern` (`rr = ballRR`).
+    let externs: Vec<&str> = behaviour
+        .machines
+        .iter()
+        .flat_map(|m| m.machine.statements())
+        .filter_map(|s| match s {
+            proclaim_fsm::Statement::Extern { name, .. } => Some(name.as_str()),
+            _ => None,
+        })
+        .collect();
     match (script, &manifest_script) {
-        (Some((file, s)), _) => unheard(all, file, s),
-        (None, Some((file, s))) => unheard(all, file, s),
+        (Some((file, s)), _) => unheard(all, &externs, file, s),
+        (None, Some((file, s))) => unheard(all, &externs, file, s),
         (None, None) => Vec::new(),
     }
 }
 
-/// Atoms a script sets that no machine asks and no module reads: a typo, most likely.
-fn unheard(all: &[Module], file: &str, script: &Script) -> Vec<FileDiagnostic> {
+/// Atoms a script sets that no machine asks, binds as `extern` or reads and no module reads:
+/// a typo, most likely.
+fn unheard(all: &[Module], externs: &[&str], file: &str, script: &Script) -> Vec<FileDiagnostic> {
     let heard: Vec<&str> = all
         .iter()
         .flat_map(|m| m.decl.waits_on.iter().chain(&m.decl.reads))
         .map(String::as_str)
+        .chain(externs.iter().copied())
         .collect();
     let mut out = Vec::new();
     let mut said: Vec<&str> = Vec::new();

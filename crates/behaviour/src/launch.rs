@@ -105,9 +105,19 @@ impl Running {
     /// Every event until every top-level machine is in a final state or halted, or `limit`
     /// passes; whether it ended by itself.
     pub async fn follow(&mut self, limit: Duration) -> (Vec<Event>, bool) {
+        self.follow_rounds(limit, u64::MAX).await
+    }
+
+    /// [`Running::follow`], ending too before the first event of a round after `last_round`:
+    /// a behaviour whose rounds follow each other at one moment for ever never lets `limit`
+    /// of virtual time pass.
+    pub async fn follow_rounds(&mut self, limit: Duration, last_round: u64) -> (Vec<Event>, bool) {
         let deadline = tokio::time::Instant::now() + limit;
         let mut events = Vec::new();
         while let Ok(Some(event)) = tokio::time::timeout_at(deadline, self.events.recv()).await {
+            if event.round() > last_round {
+                return (events, false);
+            }
             let over = self.observe(&event);
             events.push(event);
             if over {

@@ -34,22 +34,6 @@ pub enum ScriptValue {
 }
 
 impl ScriptValue {
-    /// The value's truth, as a query's answer gives it: a number is true unless 0, text as
-    /// the whiteboard reads a truth word (`"off"`, `"no"`, `"0"` and the empty text are false).
-    pub fn truth(&self) -> bool {
-        match self {
-            ScriptValue::Truth(b) => *b,
-            ScriptValue::Whole(i) => *i != 0,
-            ScriptValue::Fraction(x) => *x != 0.0,
-            ScriptValue::Text(s) => {
-                let lower = s.trim().to_ascii_lowercase();
-                !(lower.is_empty()
-                    || lower.starts_with(['n', 'f', '-', '0'])
-                    || lower.starts_with("of"))
-            }
-        }
-    }
-
     /// The truth value, when the line set one.
     pub fn as_truth(&self) -> Option<bool> {
         match self {
@@ -299,13 +283,5 @@ mod tests {
             let line = format!("at 1s a = {v}");
             check(&line, Ok(v));
         }
-    }
-
-    #[test]
-    fn truth_of_a_value_is_the_whiteboard_s() {
-        assert!(ScriptValue::Whole(-3).truth());
-        assert!(!ScriptValue::Whole(0).truth());
-        assert!(!ScriptValue::Text("off".into()).truth());
-        assert!(ScriptValue::Text("kick".into()).truth());
     }
 }

@@ -15,7 +15,7 @@
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::outcome::Inexact;
 use proclaim_board::Value;
-use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, VarType, TIME_TESTS};
+use proclaim_fsm::{Action, BinOp, Expr, Statement, StatementKind, UnOp, VarType, TIME_TESTS};
 use proclaim_runner::arith;
 use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use rustc_hash::FxHashSet;
@@ -382,44 +382,35 @@ impl Analysis<'_> {
         }
     }
 
+    /// What a statement does, as [`Statement::kind`] reads it for the runner and the ringlet.
     fn statement(&mut self, at: &At, s: &Statement) {
-        match s {
-            Statement::Declare {
-                name,
-                value: Some(v),
-                ..
-            }
-            | Statement::Assign { name, value: v } => {
-                let flow = self.expr(at, v);
+        match s.kind() {
+            StatementKind::Assign { name, value } => {
+                let flow = self.expr(at, value);
                 self.assign(at, name, flow);
             }
-            Statement::Declare { value: None, .. } | Statement::Extern { .. } => {}
-            Statement::Expr(Expr::Call {
+            StatementKind::Call {
                 function,
                 arguments,
-            }) => self.call_statement(at, function, arguments),
-            Statement::Expr(e) => {
+            } => self.call_statement(at, function, arguments),
+            StatementKind::Evaluate(e) => {
                 self.expr(at, e);
             }
-            Statement::Block(body) => body.iter().for_each(|s| self.statement(at, s)),
-            Statement::For {
-                init,
-                condition,
-                step,
-                body,
-            } => {
-                if let Some(i) = init {
-                    self.statement(at, i);
+            StatementKind::Sequence(body) => body.iter().for_each(|s| self.statement(at, s)),
+            StatementKind::Loop(parts) => {
+                // Flow-insensitive: the parts in any order, any number of times.
+                for part in [parts.init, parts.step, Some(parts.body)]
+                    .into_iter()
+                    .flatten()
+                {
+                    self.statement(at, part);
                 }
-                if let Some(c) = condition {
+                if let Some(c) = parts.condition {
                     let flow = self.expr(at, c);
                     self.truth_use(at, &flow);
                 }
-                if let Some(s) = step {
-                    self.statement(at, s);
-                }
-                self.statement(at, body);
             }
+            StatementKind::Nothing => {}
         }
     }
 

@@ -152,7 +152,7 @@ fn one(seed: u64, runs: usize) -> Outcome {
     let behaviour = load("random", Arc::new(Folder::new(&dir)))
         .unwrap_or_else(|e| panic!("seed {seed}: does not load: {e:#?}"));
     let options = Options {
-        max_states: 200_000,
+        max_states: 20_000,
         ..Options::default()
     };
     let report = verify(&behaviour, &[], options).expect("verifies");
@@ -229,6 +229,9 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     for seed in seeds {
         let o = one(seed, runs);
         claimed += usize::from(o.claimed);
+        for d in &o.disagreements {
+            eprintln!("{d}");
+        }
         disagreements.extend(o.disagreements);
     }
     eprintln!(
