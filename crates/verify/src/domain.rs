@@ -542,7 +542,8 @@ impl Space {
                         let e = match op {
                             BinOp::Add => a + b,
                             BinOp::Sub => a - b,
-                            BinOp::Mul => a.checked_mul(b)?,
+                            // Beyond i128 is beyond i64 too: reported below as wrapping.
+                            BinOp::Mul => a.checked_mul(b).unwrap_or(i128::MAX),
                             BinOp::Div if b == 0 => i128::from(i64::MAX),
                             BinOp::Div => a / b,
                             _ => return None,
@@ -563,7 +564,7 @@ impl Space {
                     // Fractions and conversions do not wrap.
                     _ => return None,
                 };
-                if next != Value::Int(i64::try_from(next_exact).ok()?) {
+                if i64::try_from(next_exact).map_or(true, |e| next != Value::Int(e)) {
                     return Some(format!(
                         "its arithmetic wraps around for {x}, within the whole numbers it may take"
                     ));
@@ -661,5 +662,91 @@ fn other(seen: &[Value]) -> Value {
             .filter_map(Value::as_f64)
             .fold(0.0_f64, f64::max);
         Value::Int(largest as i64 + 1000)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn whole() -> Space {
+        Space::Whole {
+            low: WHOLE.0,
+            high: WHOLE.1,
+        }
+    }
+
+    fn test(ops: Vec<Op>, op: BinOp, c: i64) -> Predicate {
+        Predicate {
+            ops,
+            test: Test::Compare(op, Value::Int(c)),
+        }
+    }
+
+    fn divided_by(c: i64) -> Vec<Op> {
+        vec![Op::Arith {
+            op: BinOp::Div,
+            constant: Value::Int(c),
+            constant_left: false,
+        }]
+    }
+
+    /// The first value of each interval the test cuts, as whole numbers.
+    fn check(p: &Predicate, expect: &[i64]) {
+        let space = whole();
+        let cuts: Vec<Value> = space
+            .boundaries(p)
+            .into_iter()
+            .map(|o| space.value(o))
+            .collect();
+        let expect: Vec<Value> = expect.iter().map(|&i| Value::Int(i)).collect();
+        assert_eq!(cuts, expect, "{p:?}");
+    }
+
+    #[test]
+    fn a_test_cuts_where_the_runners_arithmetic_changes_its_outcome() {
+        check(&test(vec![], BinOp::Lt, 20), &[20, 21]);
+        check(&test(vec![], BinOp::Eq, -3), &[-3, -2]);
+        // Truncating division: every x from -9 to 9 is 0 when divided by 10.
+        check(&test(divided_by(10), BinOp::Lt, 0), &[-9, 10]);
+        check(&test(divided_by(10), BinOp::Lt, 20), &[200, 210]);
+        // Dividing by a negative number turns the order round.
+        check(&test(divided_by(-10), BinOp::Gt, 2), &[-29, -19]);
+        check(
+            &Predicate {
+                ops: vec![Op::Neg],
+                test: Test::Truth,
+            },
+            &[0, 1],
+        );
+    }
+
+    #[test]
+    fn each_interval_has_a_value_and_values_alike_are_one() {
+        let tests = [test(vec![], BinOp::Gt, 0), test(vec![], BinOp::Lt, 0)];
+        let tests: Vec<(SlotId, &Predicate)> = tests.iter().map(|p| (0, p)).collect();
+        let group = Group {
+            tests: &tests,
+            hints: &[],
+            k: 1,
+        };
+        let mut inexact = Vec::new();
+        let values = group.number_points(&[], &mut inexact);
+        // Below, at and above 0: the sign of a copied sighting.
+        assert_eq!(values, [Value::Int(-1), Value::Int(0), Value::Int(1)]);
+        assert!(inexact.is_empty());
+    }
+
+    #[test]
+    fn arithmetic_that_wraps_within_the_range_is_said() {
+        let times = |c| Op::Arith {
+            op: BinOp::Mul,
+            constant: Value::Int(c),
+            constant_left: false,
+        };
+        assert_eq!(whole().wraps(&[times(1000)]), None);
+        assert!(whole()
+            .wraps(&[times(1 << 40)])
+            .is_some_and(|why| why.contains("wraps around")));
     }
 }

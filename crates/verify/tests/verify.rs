@@ -343,7 +343,7 @@ fn seeded_faults_in_the_microwave_fail_with_a_counterexample() {
             parsed
                 .steps
                 .iter()
-                .any(|s| s.atom == "doorOpen" && s.value.truth()),
+                .any(|s| s.atom == "doorOpen" && s.value.as_truth() == Some(true)),
             "{fault}: the door opens in\n{script}"
         );
     }
