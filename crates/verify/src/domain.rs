@@ -5,17 +5,19 @@
 //! [`crate::flow`] finds every test of a free type's value: the value, or a chain of monotone
 //! operations on it (`rr = ballRR`, `Battery_Charge / 10`), compared with a constant or taken
 //! as a truth. Each such test splits the type's values into at most three intervals, whose
-//! ends are found by bisection with the runner's own operators ([`boundaries`]); one value of
-//! every interval, with values whose tests all agree merged, is a domain on which each label,
-//! activity and property takes every truth a real value could give it. Where copies of free
-//! values are compared with each other, each interval holds as many values as places may
-//! hold such a copy at once, so that every order among them is there too. Whole numbers
+//! ends are found by bisection with the runner's own operators (`Space::boundaries`). The
+//! domain is [`Domains::of_constants`] (every constant the behaviour gives the type, kept
+//! whole so that a run posting one is a path of the model value for value) and one value of
+//! every interval not already stood for by a value on which every test agrees: on it each
+//! label, activity and property takes every truth a real value could give it. Where copies
+//! of free values are compared with each other, each interval holds as many values as places
+//! may hold such a copy at once, so that every order among them is there too. Whole numbers
 //! range over C's 32-bit `int` (gufsm's values), widened to take in every constant; a type
 //! the behaviour compares with a fraction ranges over fractions. Every free type may also
 //! still be "never posted" in the initial state (a sensor that has not spoken yet).
 //!
 //! [`Domains`] gathers the constants a behaviour gives each type (what it posts, assigns and
-//! compares): they say what kind of value a type holds, for the properties' kind checks.
+//! compares): they also say what kind of value a type holds, for the properties' kind checks.
 
 use crate::flow::{apply, Facts, Op, Predicate, Test};
 use crate::model::{Slot, SlotId};
@@ -127,29 +129,10 @@ impl Domains {
         self.seen.get(name).map_or(&[], Vec::as_slice)
     }
 
-    /// The constants gathered for `name`, as kinds of value: both truths for a type only
-    /// ever used as one, and a truth beside its constants when it is also used as one (what
-    /// the properties' kind checks read).
-    pub fn hints(&self, name: &str) -> Vec<Value> {
-        let seen = self.seen(name);
-        if seen.iter().all(|v| matches!(v, Value::Bool(_))) {
-            return vec![Value::Bool(false), Value::Bool(true)];
-        }
-        let mut values = seen.to_vec();
-        if self.conditions.contains(name) {
-            for truth in [false, true] {
-                if !values.iter().any(|v| v.truthy() == truth) {
-                    values.push(Value::Bool(truth));
-                }
-            }
-        }
-        values
-    }
-
     /// The domain of the constants alone: every constant the behaviour compares `name` with
     /// or gives it, the neighbours of each it orders it against, one other value, and both
     /// truths where it is used as one. [`sound_domains`] adds the intervals' values to it.
-    pub fn placeholder(&self, name: &str) -> FreeDomain {
+    pub fn of_constants(&self, name: &str) -> FreeDomain {
         let seen = self.seen(name);
         let mut values: Vec<Value> = if seen.iter().all(|v| matches!(v, Value::Bool(_))) {
             vec![Value::Bool(false), Value::Bool(true)]
@@ -226,7 +209,7 @@ pub fn sound_domains(
         let mut hint_values: Vec<Value> = Vec::new();
         for &m in &members {
             tests.extend(facts.predicates[m].iter().map(|p| (m, p)));
-            for v in hints.placeholder(&slots[m].name).values {
+            for v in hints.of_constants(&slots[m].name).values {
                 if !hint_values.contains(&v) {
                     hint_values.push(v);
                 }

@@ -683,7 +683,7 @@ fn free_environment(
     // widen what the environment tries (a property may ask about a value no machine names).
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
-            slot.value_kind = ValueKind::of_values(&domains.hints(&slot.name));
+            slot.value_kind = ValueKind::of_values(&domains.of_constants(&slot.name).values);
         }
     }
     for e in property_exprs {
@@ -692,7 +692,7 @@ fn free_environment(
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
             if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
-                slot.free = Some(domains.placeholder(&slot.name));
+                slot.free = Some(domains.of_constants(&slot.name));
             }
         }
     }
