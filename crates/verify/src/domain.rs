@@ -22,6 +22,7 @@
 use crate::flow::{apply, Facts, Op, Predicate, Test};
 use crate::model::{Slot, SlotId};
 use crate::outcome::Inexact;
+use crate::property::ValueKind;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Machine, Statement};
 use proclaim_runner::arith;
@@ -63,7 +64,11 @@ impl Domains {
         }
         for s in machine.statements() {
             for e in s.expressions() {
-                self.gather_expr(e);
+                // A value copied or posted (`rr = ballRR`) is no truth test of it; a loop's
+                // condition, a `!` or an `&&` inside one is.
+                if !matches!(e, Expr::Name(_)) || matches!(s, Statement::For { .. }) {
+                    self.gather_expr(e);
+                }
             }
             if let Statement::Assign { name, value } = s {
                 if let Some(v) = constant(value) {
@@ -127,6 +132,15 @@ impl Domains {
     /// The constants gathered for `name`, in first-met order.
     pub fn seen(&self, name: &str) -> &[Value] {
         self.seen.get(name).map_or(&[], Vec::as_slice)
+    }
+
+    /// What kind of value `name` holds, as its constants say; a type given no constant and
+    /// never used as a truth may hold anything (`rr = ballRR` says nothing of `ballRR`).
+    pub fn kind(&self, name: &str) -> ValueKind {
+        if self.seen(name).is_empty() && !self.conditions.contains(name) {
+            return ValueKind::Any;
+        }
+        ValueKind::of_values(&self.of_constants(name).values)
     }
 
     /// The domain of the constants alone: every constant the behaviour compares `name` with

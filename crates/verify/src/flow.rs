@@ -360,10 +360,10 @@ impl Analysis<'_> {
                 self.truth_use(&at, &flow);
             }
         }
-        for (t, theory) in model.theories.iter().enumerate() {
+        for theory in &model.theories {
             let at = At {
                 machine: None,
-                place: format!("the inputs of theory {}", model.theories[t].name),
+                place: format!("the inputs of theory {}", theory.name),
             };
             for (_, name) in &theory.inputs {
                 if let Some(Name::Slot(slot)) = name {
@@ -375,7 +375,8 @@ impl Analysis<'_> {
         for e in properties {
             let at = At {
                 machine: None,
-                place: format!("the property `{e}`"),
+                // A property's `Machine.STATE` is parsed with its dot replaced.
+                place: format!("the property `{e}`").replace(crate::property::DOT, "."),
             };
             let flow = self.expr(&at, e);
             self.truth_use(&at, &flow);

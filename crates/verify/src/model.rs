@@ -683,7 +683,7 @@ fn free_environment(
     // widen what the environment tries (a property may ask about a value no machine names).
     for slot in slots.iter_mut() {
         if let SlotKind::Message { .. } = slot.kind {
-            slot.value_kind = ValueKind::of_values(&domains.of_constants(&slot.name).values);
+            slot.value_kind = domains.kind(&slot.name);
         }
     }
     for e in property_exprs {

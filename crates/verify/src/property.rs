@@ -115,7 +115,7 @@ impl ValueKind {
 
 /// `Machine.STATE` is not in the label language; the dot becomes a letter no name can hold
 /// (`ª`, one character, so columns stay the same) before parsing.
-const DOT: char = 'ª';
+pub(crate) const DOT: char = 'ª';
 
 /// Reads a property's expressions (names not yet resolved): `leads_to` needs its `~>`, and
 /// only liveness properties may assume fairness.

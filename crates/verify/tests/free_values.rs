@@ -61,6 +61,17 @@ fn a_copied_sighting_keeps_its_sign() {
     );
     assert!(report.inexact.is_empty(), "{:?}", report.inexact);
     assert!(replay("cutdown", &report).contains(&"A.RIGHT".to_string()));
+    // `ballRR` is only copied, so nothing says it is a truth: a property may compare it with a
+    // number, and its reason names the property.
+    let report = check("cutdown", PropertyKind::Never, "A.RIGHT && ballRR < rr + 1");
+    assert!(
+        report
+            .inexact
+            .iter()
+            .any(|i| i.place == "the property `A.RIGHT && ballRR < rr + 1`"),
+        "{:?}",
+        report.inexact
+    );
 }
 
 #[test]
