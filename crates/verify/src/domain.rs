@@ -209,16 +209,14 @@ pub fn sound_domains(
             .copied()
             .filter(|&m| root(&mut group, m) == leader)
             .collect();
-        let paired = facts.pairs.iter().any(|(a, _)| members.contains(a));
-        let k = if paired {
-            members
-                .iter()
-                .map(|&m| facts.copies[m].max(1))
-                .sum::<usize>()
-                .max(2)
-        } else {
-            1
-        };
+        // Every place compared with another may hold a value of this group at once; one place
+        // compared with itself (`in0 <= in0`) needs no second value.
+        let k = facts
+            .compared_places
+            .iter()
+            .filter(|&&p| facts.copies_in[p].iter().any(|i| members.contains(i)))
+            .count()
+            .max(1);
         let mut tests: Vec<(SlotId, &Predicate)> = Vec::new();
         let mut hint_values: Vec<Value> = Vec::new();
         for &m in &members {

@@ -248,8 +248,11 @@ pub struct Facts {
     /// Free slots whose plain copies are compared with each other (a slot with itself, when
     /// an old copy is compared with its new value).
     pub pairs: Vec<(SlotId, SlotId)>,
-    /// Per slot: how many places may hold a plain copy of its value (itself included).
-    pub copies: Vec<usize>,
+    /// The places (slots) whose plain copies of free values are compared with each other:
+    /// as many values as these hold at once must be distinct within one interval.
+    pub compared_places: Vec<SlotId>,
+    /// Per place: the free slots it may hold a plain copy of.
+    pub copies_in: Vec<Vec<SlotId>>,
     /// Where a free value goes where no finite domain follows it.
     pub inexact: Vec<Inexact>,
 }
@@ -320,12 +323,15 @@ pub fn analyse(model: &Model, files: &[String], properties: &[&Expr]) -> Facts {
     }
     a.record = true;
     a.walk(files, properties);
-    a.facts.copies = (0..model.slots.len())
-        .map(|input| {
-            a.places
+    a.facts.copies_in = a
+        .places
+        .iter()
+        .map(|f| {
+            f.terms
                 .iter()
-                .filter(|f| f.terms.iter().any(|t| t.is_copy() && t.input() == input))
-                .count()
+                .filter(|t| t.is_copy())
+                .map(Term::input)
+                .collect()
         })
         .collect();
     a.facts
@@ -566,7 +572,7 @@ impl Analysis<'_> {
                         Flow::truth()
                     }
                     BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => {
-                        self.compare_use(at, *op, &l, &r, e);
+                        self.compare_use(at, *op, (&l, left), (&r, right), e);
                         Flow::truth()
                     }
                     _ => arithmetic(*op, &l, &r, e),
@@ -638,7 +644,14 @@ impl Analysis<'_> {
 
     /// `l op r`: each side's terms against the other side's constants; plain copies against
     /// each other.
-    fn compare_use(&mut self, at: &At, op: BinOp, l: &Flow, r: &Flow, e: &Expr) {
+    fn compare_use(
+        &mut self,
+        at: &At,
+        op: BinOp,
+        (l, left): (&Flow, &Expr),
+        (r, right): (&Flow, &Expr),
+        e: &Expr,
+    ) {
         if !self.record {
             return;
         }
@@ -675,6 +688,20 @@ impl Analysis<'_> {
                     let pair = (tl.input().min(tr.input()), tl.input().max(tr.input()));
                     if !self.facts.pairs.contains(&pair) {
                         self.facts.pairs.push(pair);
+                    }
+                    // A plain copy is read from a place by name: the places whose values are
+                    // compared with each other.
+                    for side in [left, right] {
+                        let place = match side {
+                            Expr::Name(n) => match self.model.resolve(at.machine, n) {
+                                Some(Name::Slot(slot)) => slot,
+                                _ => continue,
+                            },
+                            _ => continue,
+                        };
+                        if !self.facts.compared_places.contains(&place) {
+                            self.facts.compared_places.push(place);
+                        }
                     }
                 } else {
                     let why = format!("`{e}` compares a computed free value with another");

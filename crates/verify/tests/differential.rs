@@ -60,8 +60,9 @@ fn generate(seed: u64) -> Vec<(String, String)> {
     files
 }
 
+/// Few constants, so that the domains (one value an interval) stay small enough to search.
 fn constant(rng: &mut Rng) -> i64 {
-    *rng.pick(&[-20, -3, -1, 0, 1, 2, 5, 7, 10, 100])
+    *rng.pick(&[-3, 0, 2, 10])
 }
 
 fn statement(rng: &mut Rng) -> String {
@@ -83,7 +84,9 @@ fn label(rng: &mut Rng) -> String {
         let name = rng.pick(&["v0", "v1", "in0", "in1"]).to_string();
         let op = rng.pick(&["<", "<=", ">", ">=", "==", "!="]);
         match rng.below(4) {
-            0 => format!("{name} {op} {}", rng.pick(&["v0", "v1", "in0", "in1"])),
+            // Plain copies compared with each other (a computed value against another is
+            // beyond the domains, and the checker then claims nothing).
+            0 => format!("in0 {op} {}", rng.pick(&["in1", "in0"])),
             1 => format!("{name} - {} {op} {}", constant(rng), constant(rng)),
             _ => format!("{name} {op} {}", constant(rng)),
         }
@@ -152,7 +155,7 @@ fn one(seed: u64, runs: usize) -> Outcome {
     let behaviour = load("random", Arc::new(Folder::new(&dir)))
         .unwrap_or_else(|e| panic!("seed {seed}: does not load: {e:#?}"));
     let options = Options {
-        max_states: 20_000,
+        max_states: 1_000,
         ..Options::default()
     };
     let report = verify(&behaviour, &[], options).expect("verifies");
@@ -164,8 +167,12 @@ fn one(seed: u64, runs: usize) -> Outcome {
                 never_entered.push(format!("{machine}.{state}"))
             }
             Finding::NeverFires {
-                machine, from, to, ..
-            } => never_fires.push(format!("{machine}: {from} -> {to}")),
+                machine,
+                from,
+                to,
+                label,
+                ..
+            } => never_fires.push(format!("{machine}: {from} -> {to} on {label}")),
             Finding::Deadlock { .. } => {}
         }
     }
@@ -195,10 +202,14 @@ fn one(seed: u64, runs: usize) -> Outcome {
                     never_entered.contains(&s).then_some(format!("entered {s}"))
                 }
                 Event::Fired {
-                    machine, from, to, ..
+                    machine,
+                    from,
+                    to,
+                    label,
+                    ..
                 } => {
                     let t = format!(
-                        "{machine}: {} -> {}",
+                        "{machine}: {} -> {} on {label}",
                         names(*from, machine),
                         names(*to, machine)
                     );
@@ -226,7 +237,11 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
     let mut claimed = 0;
     let mut disagreements = Vec::new();
+    let started = std::time::Instant::now();
     for seed in seeds {
+        if seed % 100 == 0 {
+            eprintln!("seed {seed}, {:.0} s in", started.elapsed().as_secs_f64());
+        }
         let o = one(seed, runs);
         claimed += usize::from(o.claimed);
         for d in &o.disagreements {
@@ -250,18 +265,22 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     );
 }
 
-/// Not yet in the suite: a seed's search and runs take too long in a debug build, and its
-/// first full run has not yet been read through (the note says where it stands).
 #[test]
-#[ignore]
 fn runs_never_reach_what_verify_calls_unreachable() {
-    differ(0..500, 2);
+    differ(0..100, 2);
 }
 
-/// Before a release (about ten minutes): `cargo nextest run -p proclaim-verify --run-ignored
-/// only -E 'test(ten_thousand)'`.
+/// Before a release (about three hours in a debug build; `PROCLAIM_SEEDS=200..1200` runs a
+/// part): `cargo nextest run -p proclaim-verify --run-ignored only -E 'test(ten_thousand)'`.
 #[test]
 #[ignore]
 fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
-    differ(500..10_500, 2);
+    let seeds = std::env::var("PROCLAIM_SEEDS")
+        .ok()
+        .and_then(|s| {
+            let (a, b) = s.split_once("..")?;
+            Some(a.parse().ok()?..b.parse().ok()?)
+        })
+        .unwrap_or(100..10_100);
+    differ(seeds, 2);
 }
