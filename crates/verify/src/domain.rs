@@ -10,8 +10,8 @@
 //! whole so that a run posting one is a path of the model value for value) and one value of
 //! every interval not already stood for by a value on which every test agrees: on it each
 //! label, activity and property takes every truth a real value could give it. Where copies
-//! of free values are compared with each other, each interval holds as many values as places
-//! may hold such a copy at once, so that every order among them is there too. Whole numbers
+//! of free values are compared with each other, each interval holds as many values as there
+//! are places so compared, so that every order among them is there too. Whole numbers
 //! range over C's 32-bit `int` (gufsm's values), widened to take in every constant; a type
 //! the behaviour compares with a fraction ranges over fractions. Every free type may also
 //! still be "never posted" in the initial state (a sensor that has not spoken yet).
