@@ -209,14 +209,7 @@ pub fn sound_domains(
             .copied()
             .filter(|&m| root(&mut group, m) == leader)
             .collect();
-        // Every place compared with another may hold a value of this group at once; one place
-        // compared with itself (`in0 <= in0`) needs no second value.
-        let k = facts
-            .compared_places
-            .iter()
-            .filter(|&&p| facts.copies_in[p].iter().any(|i| members.contains(i)))
-            .count()
-            .max(1);
+        let k = values_an_interval(facts, &members);
         let mut tests: Vec<(SlotId, &Predicate)> = Vec::new();
         let mut hint_values: Vec<Value> = Vec::new();
         for &m in &members {
@@ -238,6 +231,32 @@ pub fn sound_domains(
         }
     }
     (domains, inexact)
+}
+
+/// How many values of a group each interval needs: one where no two places' copies of its
+/// values are compared; else one for every place whose copy may be compared, now or after it
+/// is copied on (`b = a; … b < in0`: `a`, `b` and `in0` may hold three values at once, each
+/// to be ordered against the others).
+fn values_an_interval(facts: &Facts, members: &[SlotId]) -> usize {
+    let holds_ours = |p: &SlotId| facts.copies_in[*p].iter().any(|i| members.contains(i));
+    let compared = facts
+        .compared_places
+        .iter()
+        .filter(|p| holds_ours(p))
+        .count();
+    if compared < 2 {
+        return 1;
+    }
+    let mut places: Vec<SlotId> = facts
+        .compared_places
+        .iter()
+        .chain(&facts.copy_sources)
+        .copied()
+        .filter(holds_ours)
+        .collect();
+    places.sort_unstable();
+    places.dedup();
+    places.len()
 }
 
 /// Free types whose values are chosen together, and every test made of them.

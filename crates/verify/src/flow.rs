@@ -248,9 +248,10 @@ pub struct Facts {
     /// Free slots whose plain copies are compared with each other (a slot with itself, when
     /// an old copy is compared with its new value).
     pub pairs: Vec<(SlotId, SlotId)>,
-    /// The places (slots) whose plain copies of free values are compared with each other:
-    /// as many values as these hold at once must be distinct within one interval.
+    /// The places (slots) whose plain copies of free values are compared with each other.
     pub compared_places: Vec<SlotId>,
+    /// The places read by name into another place (`b = a`, `post("T", a)`).
+    pub copy_sources: Vec<SlotId>,
     /// Per place: the free slots it may hold a plain copy of.
     pub copies_in: Vec<Vec<SlotId>>,
     /// Where a free value goes where no finite domain follows it.
@@ -394,6 +395,7 @@ impl Analysis<'_> {
         match s.kind() {
             StatementKind::Assign { name, value } => {
                 let flow = self.expr(at, value);
+                self.copied_from(at, value);
                 self.assign(at, name, flow);
             }
             StatementKind::Call {
@@ -425,7 +427,10 @@ impl Analysis<'_> {
         match builtin(function, arguments) {
             Builtin::Post { to, content } => {
                 let flow = match content {
-                    Content::Value(e) => self.expr(at, e),
+                    Content::Value(e) => {
+                        self.copied_from(at, e);
+                        self.expr(at, e)
+                    }
                     Content::Int(e) => {
                         let f = self.expr(at, e);
                         self.converted(&f, &VarType::Int)
@@ -621,6 +626,20 @@ impl Analysis<'_> {
         }
         out.bound_terms();
         out
+    }
+
+    /// A place read by name into another (`b = a`): an old value it holds may yet be compared.
+    fn copied_from(&mut self, at: &At, value: &Expr) {
+        if !self.record {
+            return;
+        }
+        if let Expr::Name(n) = value {
+            if let Some(Name::Slot(slot)) = self.model.resolve(at.machine, n) {
+                if !self.facts.copy_sources.contains(&slot) {
+                    self.facts.copy_sources.push(slot);
+                }
+            }
+        }
     }
 
     /// `flow` tested as a truth value.
