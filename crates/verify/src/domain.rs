@@ -391,7 +391,7 @@ impl Group<'_> {
 }
 
 /// Whether test `p` holds of value `x`, as the runner computes it.
-pub fn holds(p: &Predicate, x: &Value) -> bool {
+fn holds(p: &Predicate, x: &Value) -> bool {
     let Some(v) = apply(&p.ops, x.clone()) else {
         return false;
     };

@@ -26,7 +26,7 @@ const MAX_CONSTANTS: usize = 16;
 const MAX_TERMS: usize = 16;
 /// Operations a term may pass through before it counts as fed back into itself.
 const MAX_CHAIN: usize = 8;
-/// Walks over the whole behaviour before the join is taken as settled regardless.
+/// Walks over the whole behaviour before what has not settled is made opaque.
 const MAX_PASSES: usize = 1024;
 
 /// One monotone operation of a term's chain.
