@@ -26,14 +26,11 @@ use std::process::ExitCode;
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn main() -> ExitCode {
-    // Like other command-line tools, stop quietly when the reader of our output goes away
-    // (`proclaim replay t.jsonl | head`) instead of failing to print. Sockets are unaffected:
-    // tokio sends with MSG_NOSIGNAL.
-    #[cfg(unix)]
-    // SAFETY: called first thing, before any thread exists; SIG_DFL is a valid disposition.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
+    // SIGPIPE stays ignored (Rust's default), so a child that exits before reading all we give
+    // it (Graphviz refusing a long label, a program expert crashing) is an error we report,
+    // never a signal that kills the robot. Output whose reader went away
+    // (`proclaim replay t.jsonl | head`) still ends quietly: see `quiet_when_stdout_closes`.
+    quiet_when_stdout_closes();
     // Before any thread exists, as it requires.
     #[cfg(feature = "zenoh")]
     proclaim_zenoh::prefer_few_threads();
@@ -46,4 +43,25 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// `print!` and `eprint!` panic when their reader has gone (`proclaim check t.dl 2>&1 | head`);
+/// like other command-line tools, end then without a word, as the SIGPIPE default would, but
+/// only for our own output: every other broken pipe stays an error its caller reports.
+fn quiet_when_stdout_closes() {
+    let report = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or_default();
+        let ours = ["failed printing to stdout", "failed printing to stderr"];
+        if ours.iter().any(|o| message.starts_with(o)) && message.contains("Broken pipe") {
+            // 128 + SIGPIPE, what a shell reports for a reader that left.
+            std::process::exit(141);
+        }
+        report(info)
+    }));
 }

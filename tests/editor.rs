@@ -240,6 +240,11 @@ fn the_editor_follows_the_monitors_access_rules() {
     let right = format!("x-proclaim-token: {token}\r\n");
     let (status, why) = http_with(&local, "POST", "/api/edit/change", add, &right);
     assert_eq!(status, 200, "{why}");
+    // Even with the token, a request another site's page makes changes nothing.
+    let foreign = format!("{right}Origin: http://evil.example\r\n");
+    let (status, why) = http_with(&local, "POST", "/api/edit/change", add, &foreign);
+    assert_eq!(status, 403, "{why}");
+    assert!(why.contains("another site"), "{why}");
     // A label with an error, then Save: refused, the file as it was.
     let bad = Some(
         r#"{"machine":0,"edit":{"kind":"set_label","state":0,"transition":0,"label":"cook &&"}}"#,

@@ -363,9 +363,15 @@ pub(crate) fn http_with(
         .unwrap_or_default();
     let mut stream = std::net::TcpStream::connect(host).expect("the monitor listens");
     let body = body.unwrap_or("");
+    // A test may name the host itself (as a rebound name would).
+    let own_host = if headers.to_ascii_lowercase().contains("host:") {
+        String::new()
+    } else {
+        format!("Host: {host}\r\n")
+    };
     write!(
         stream,
-        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\nContent-Type: application/json\r\n{headers}Content-Length: {}\r\n\r\n{body}",
+        "{method} {path} HTTP/1.1\r\n{own_host}Connection: close\r\nContent-Type: application/json\r\n{headers}Content-Length: {}\r\n\r\n{body}",
         body.len()
     )
     .unwrap();
@@ -437,6 +443,47 @@ fn the_page_api_serves_the_run_and_refuses_bad_requests() {
     );
     assert_eq!(frame["machines"][0]["name"], "Microwave");
     assert_eq!(frame["stepping"]["paused"], false);
+}
+
+#[test]
+fn a_request_from_another_site_changes_nothing() {
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "60s",
+    ]);
+    let posting = Some(r#"{"type":"visitor","value":"42"}"#);
+    let post = |headers: &str| http_with(&url, "POST", "/api/post", posting, headers);
+    // DNS rebinding: a page the operator visits rebinds its own name to 127.0.0.1.
+    let port = url.rsplit(':').next().unwrap().trim_end_matches('/');
+    let (status, why) = post(&format!(
+        "Host: evil.example:{port}\r\nOrigin: http://evil.example:{port}\r\n"
+    ));
+    assert_eq!(status, 403, "{why}");
+    assert!(why.contains("`Host: evil.example:"), "{why}");
+    let (status, why) = post("Origin: http://evil.example\r\n");
+    assert_eq!(status, 403, "{why}");
+    assert!(why.contains("another site"), "{why}");
+    let (status, why) = http_with(
+        &url,
+        "POST",
+        "/api/control",
+        Some(r#"{"action":"pause"}"#),
+        "Origin: null\r\n",
+    );
+    assert_eq!(status, 403, "{why}");
+    let (_, frame) = http(&url, "GET", "/api/frame", None);
+    assert!(
+        !frame.contains("\"monitor\""),
+        "a refused posting reached the board: {frame}"
+    );
+    // The page's own requests carry its own origin, and are taken.
+    let host = url.trim_start_matches("http://").trim_end_matches('/');
+    let (status, why) = post(&format!("Origin: http://{host}\r\n"));
+    assert_eq!(status, 200, "{why}");
 }
 
 #[test]
@@ -626,4 +673,62 @@ fn a_page_on_the_network_needs_its_token_and_a_read_only_page_changes_nothing() 
     let (_, model) = http(local, "GET", "/api/model", None);
     let model: Json = serde_json::from_str(&model).unwrap();
     assert_eq!(model["read_only"], true);
+}
+
+/// A behaviour whose one transition has a label longer than Graphviz takes (16,384 characters
+/// in a quoted string), in a folder of the test's own.
+fn too_long_for_graphviz(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("proclaim-long-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let label = format!("\"{}\" == \"y\"", "x".repeat(100_000));
+    std::fs::write(
+        dir.join("Long.machine"),
+        format!("machine Long\ninitial A\nstate A {{\n    when {label} -> B\n}}\nstate B {{ }}\n"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"Long.machine\"\n",
+    )
+    .unwrap();
+    dir
+}
+
+/// Graphviz stops reading a diagram it refuses; the broken pipe once killed proclaim (SIGPIPE),
+/// so a viewer took the robot down. Now each stays alive and says what Graphviz said.
+#[test]
+fn a_label_too_long_for_graphviz_kills_neither_draw_nor_the_run_nor_the_editor() {
+    let dir = too_long_for_graphviz("alive");
+    let graphviz = on_path("dot").is_some();
+    let svg = dir.join("long.svg");
+    let drawn = crate::proclaim(&["draw", dir.to_str().unwrap(), "-o", svg.to_str().unwrap()]);
+    let said = String::from_utf8_lossy(&drawn.stderr);
+    assert_eq!(drawn.status.code(), Some(0), "{said}");
+    if graphviz {
+        assert!(
+            said.contains("Graphviz failed") && said.contains("16384"),
+            "{said}"
+        );
+        assert!(svg.with_extension("dot").exists());
+    }
+    let (mut run, url) = proclaim_with_monitor(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "60s",
+    ]);
+    let (status, model) = http(&url, "GET", "/api/model", None);
+    assert_eq!(status, 200, "{model}");
+    assert!(model.contains("<svg"), "the page draws the machine itself");
+    assert!(run.0.try_wait().unwrap().is_none(), "the run died");
+    let (mut editor, url) =
+        proclaim_serving(&["edit", dir.to_str().unwrap(), "127.0.0.1:0"], "editor: ");
+    let (status, model) = http(&url, "GET", "/api/edit/model", None);
+    assert_eq!(status, 200, "{model}");
+    assert!(editor.0.try_wait().unwrap().is_none(), "the editor died");
+    assert!(run.0.try_wait().unwrap().is_none(), "the run died");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -117,20 +117,19 @@ fn render(dot: &str, format: &str, output: &Path) -> Result<(), String> {
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| format!("Graphviz's `dot` could not be started ({e})"))?;
-    if let Some(mut stdin) = child.stdin.take() {
-        stdin
-            .write_all(dot.as_bytes())
-            .map_err(|e| format!("Graphviz did not take the diagram ({e})"))?;
-    }
+    // Graphviz may stop reading early (a label over its 16,384-character limit); what it said
+    // on stderr is then the reason, not our broken pipe.
+    let taken = child
+        .stdin
+        .take()
+        .map(|mut stdin| stdin.write_all(dot.as_bytes()));
     let result = child
         .wait_with_output()
         .map_err(|e| format!("Graphviz failed ({e})"))?;
-    if result.status.success() {
-        Ok(())
-    } else {
-        Err(format!(
-            "Graphviz failed: {}",
-            String::from_utf8_lossy(&result.stderr).trim()
-        ))
+    let said = String::from_utf8_lossy(&result.stderr);
+    match taken {
+        _ if !result.status.success() => Err(format!("Graphviz failed: {}", said.trim())),
+        Some(Err(e)) => Err(format!("Graphviz did not take the diagram ({e})")),
+        _ => Ok(()),
     }
 }

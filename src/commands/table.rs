@@ -60,6 +60,8 @@ fn text(table: &Table) -> String {
                 .chain([header[i].len()])
                 .max()
                 .unwrap_or(0)
+                // Padding past this point reads no better, and `format!` panics past u16::MAX.
+                .min(80)
         })
         .collect();
     let split = table.inputs.len();

@@ -43,6 +43,26 @@ fn draw_writes_dot_and_renders_through_graphviz() {
     );
 }
 
+/// A reader that went away (`proclaim draw m | head -c1`) ends proclaim quietly, as the
+/// SIGPIPE default would, though proclaim ignores SIGPIPE so a child's exit cannot kill it.
+#[test]
+fn output_whose_reader_left_ends_quietly() {
+    let t = temp_file(
+        "Quiet.machine",
+        b"machine Quiet\ninitial A\nstate A {\n    when after(1s) -> A\n}\n",
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["draw", t.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(141), "{}", stderr(&out));
+    assert_eq!(stderr(&out), "");
+}
+
 #[test]
 fn import_writes_native_files_that_check_and_import_again_unchanged() {
     let t = temp_file(

@@ -15,13 +15,17 @@ pub struct TraceView {
 }
 
 impl TraceView {
-    /// `width`: the machine-name column's width (the longest name of the behaviour).
+    /// `width`: the machine-name column's width (the longest name of the behaviour), at most
+    /// [`TraceView::WIDEST`]: a longer name runs past the column.
     pub fn new(width: usize) -> TraceView {
         TraceView {
             last_answer: FxHashMap::default(),
-            width,
+            width: width.min(Self::WIDEST),
         }
     }
+
+    /// The widest the name column grows (`format!` panics on widths past u16::MAX).
+    pub const WIDEST: usize = 40;
 
     /// The event as a line, or `None` when it says nothing new.
     pub fn line(&mut self, event: &Event) -> Option<String> {
@@ -134,4 +138,32 @@ pub fn read_trace(text: &str) -> Result<Vec<Event>, BehaviourError> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entered(machine: &str) -> Event {
+        Event::Entered {
+            machine: machine.into(),
+            state: "A".into(),
+            id: 1,
+            round: 0,
+            at: std::time::Duration::from_millis(1500),
+        }
+    }
+
+    #[test]
+    fn names_line_up_and_a_name_longer_than_the_column_runs_past_it() {
+        let mut view = TraceView::new(6);
+        assert_eq!(
+            view.line(&entered("Door")).unwrap(),
+            "   1.500s Door    → A"
+        );
+        let long = "M".repeat(70_000);
+        let mut view = TraceView::new(long.len());
+        let line = view.line(&entered(&long)).unwrap();
+        assert!(line.ends_with(&format!("{long}  → A")), "{}", &line[..40]);
+    }
 }

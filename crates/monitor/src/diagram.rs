@@ -179,19 +179,24 @@ fn quote(text: &str) -> String {
 }
 
 /// Graphviz's SVG without its XML prologue (it goes inside the page), or `None` when `dot` is
-/// not installed or fails.
+/// not installed or fails (what it said is logged: the page then draws the machine itself).
 fn graphviz(dot: &str) -> Option<String> {
     let mut child = Command::new("dot")
         .arg("-Tsvg")
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(Stdio::piped())
         .spawn()
         .ok()?;
-    child.stdin.take()?.write_all(dot.as_bytes()).ok()?;
+    // Graphviz may stop reading early (a label over its 16,384-character limit): a broken pipe
+    // here, and its reason on stderr.
+    let taken = child.stdin.take()?.write_all(dot.as_bytes());
     let output = child.wait_with_output().ok()?;
-    if !output.status.success() {
-        tracing::debug!("Graphviz could not render a diagram; drawing it here");
+    if !output.status.success() || taken.is_err() {
+        tracing::warn!(
+            "Graphviz could not render a diagram ({}); drawing it here",
+            String::from_utf8_lossy(&output.stderr).trim()
+        );
         return None;
     }
     let svg = String::from_utf8(output.stdout).ok()?;

@@ -2,7 +2,7 @@
 //! stream of frames for a live run (server-sent events, at most [`FRAME_GAP`] apart whatever
 //! the posting rate), a frame at any moment of a replay, and the controls.
 
-use crate::access::{Access, TOKEN_HEADER};
+use crate::access::{foreign, Access, TOKEN_HEADER};
 use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
@@ -214,6 +214,10 @@ pub(crate) fn refusal(
     read_only: &'static str,
     needs_token: &'static str,
 ) -> Option<Response> {
+    let given = |name| headers.get(name).and_then(|v| v.to_str().ok());
+    if let Some(why) = foreign(access, given(header::HOST), given(header::ORIGIN)) {
+        return Some((StatusCode::FORBIDDEN, why).into_response());
+    }
     match access {
         Access::Open => None,
         Access::ReadOnly => Some((StatusCode::FORBIDDEN, read_only).into_response()),

@@ -78,7 +78,11 @@ impl Env<'_> {
         Some(
             self.value(argument)
                 .and_then(|v| v.as_f64())
-                .map(|n| Duration::from_secs_f64((n * micros_per_unit).max(0.0) / 1e6)),
+                // Too long for a `Duration` is never.
+                .map(|n| {
+                    Duration::try_from_secs_f64((n * micros_per_unit).max(0.0) / 1e6)
+                        .unwrap_or(Duration::MAX)
+                }),
         )
     }
 }

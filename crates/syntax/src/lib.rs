@@ -27,7 +27,7 @@ lalrpop_util::lalrpop_mod!(
 pub use ast::{Algorithm, Arrow, Item, OutputPart, Query, RuleItem, SourceLiteral};
 pub use dfl::{parse_dfl, parse_dfl_each};
 pub use diagnostic::{render, Diagnostic, Severity};
-pub use lines::{code_lines, parse_duration, LineError, LineErrors};
+pub use lines::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
 pub use located::FileDiagnostic;
 pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};

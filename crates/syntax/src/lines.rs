@@ -63,7 +63,13 @@ pub fn code_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     })
 }
 
-/// Parses a duration written `250ms`, `2s`, `1.5s` or `3` (seconds).
+/// The longest duration a file or an option may write: about 31 years, beyond any run, and
+/// far enough from `Duration`'s and the clocks' limits that adding it to a moment never
+/// overflows.
+pub const LONGEST_DURATION: std::time::Duration = std::time::Duration::from_secs(1_000_000_000);
+
+/// Parses a duration written `250ms`, `2s`, `1.5s` or `3` (seconds), at most
+/// [`LONGEST_DURATION`].
 pub fn parse_duration(text: &str) -> Option<std::time::Duration> {
     let t = text.trim();
     let (number, scale) = if let Some(ms) = t.strip_suffix("ms") {
@@ -76,5 +82,7 @@ pub fn parse_duration(text: &str) -> Option<std::time::Duration> {
         (t, 1.0)
     };
     let value: f64 = number.trim().parse().ok()?;
-    (value.is_finite() && value >= 0.0).then(|| std::time::Duration::from_secs_f64(value * scale))
+    std::time::Duration::try_from_secs_f64(value * scale)
+        .ok()
+        .filter(|d| *d <= LONGEST_DURATION)
 }

@@ -141,7 +141,8 @@ fn when_of(code: &str) -> Result<(When, &str), String> {
         match crate::parse_duration(time) {
             Some(d) => Ok((When::At(d), assignment)),
             None => Err(format!(
-                "`{time}` is not a time; write `at 2s` or `at 500ms`"
+                "`{time}` is not a time up to {}s; write `at 2s` or `at 500ms`",
+                crate::LONGEST_DURATION.as_secs()
             )),
         }
     } else if let Some(rest) = code.strip_prefix("step ") {
@@ -267,6 +268,23 @@ mod tests {
         check("x = inf", Err("is not a value"));
         check("x = NaN", Err("is not a value"));
         check("x == 3", Err("with one `=`"));
+    }
+
+    #[test]
+    fn a_time_too_long_for_any_clock_is_an_error_not_a_panic() {
+        check("at 1000000000s a = yes", Ok(ScriptValue::Truth(true)));
+        for time in [
+            "18446744073709551616s",
+            "1e300s",
+            "1000000001s",
+            "-1s",
+            "NaNs",
+        ] {
+            check(
+                &format!("at {time} a = yes"),
+                Err("is not a time up to 1000000000s"),
+            );
+        }
     }
 
     #[test]

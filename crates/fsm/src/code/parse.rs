@@ -39,10 +39,19 @@ pub fn parse_statements(text: &str) -> Result<Vec<Statement>, CodeError> {
     Ok(out)
 }
 
+/// How deeply code may nest: brackets, operators applied to operators, a chain of one
+/// operator (`a || b || …` is a tree as deep as it is long), blocks in blocks. Every pass
+/// after parsing (printing, evaluating, checking, generating C) walks the tree recursively, on
+/// threads with small stacks; C compilers guarantee 63 levels, people write a handful, and a
+/// mutated or generated file can write 20,000.
+pub const MAX_NESTING: usize = 256;
+
 struct Parser {
     tokens: Vec<(usize, CodeToken, usize)>,
     at: usize,
     end: usize,
+    /// How deep the tree being built is at this point (see [`MAX_NESTING`]).
+    depth: usize,
 }
 
 type Parsed<T> = Result<T, CodeError>;
@@ -57,6 +66,7 @@ impl Parser {
             tokens,
             at: 0,
             end: text.len(),
+            depth: 0,
         })
     }
 
@@ -118,6 +128,28 @@ impl Parser {
         }
     }
 
+    /// Runs `part` one level deeper, refusing to go past [`MAX_NESTING`].
+    fn nested<T>(&mut self, part: impl FnOnce(&mut Self) -> Parsed<T>) -> Parsed<T> {
+        self.too_deep(1)?;
+        self.depth += 1;
+        let parsed = part(self);
+        self.depth -= 1;
+        parsed
+    }
+
+    /// An error if `more` levels below this one would nest past [`MAX_NESTING`].
+    fn too_deep(&self, more: usize) -> Parsed<()> {
+        if self.depth + more <= MAX_NESTING {
+            return Ok(());
+        }
+        Err(CodeError {
+            offset: self.offset(),
+            message: format!(
+                "nested more than {MAX_NESTING} levels deep (brackets, operators, a chain of one operator, or blocks): split it into smaller parts"
+            ),
+        })
+    }
+
     fn name(&mut self) -> Parsed<String> {
         match self.peek() {
             Some(CodeToken::Name(n)) => {
@@ -135,7 +167,12 @@ impl Parser {
 
     /// Operators binding at least as tight as `min`, left to right.
     fn binary(&mut self, min: u8) -> Parsed<Expr> {
+        self.nested(|p| p.binary_chain(min))
+    }
+
+    fn binary_chain(&mut self, min: u8) -> Parsed<Expr> {
         let mut left = self.unary()?;
+        let mut links = 0;
         loop {
             let Some(op) = (match self.peek() {
                 Some(CodeToken::Punct(p)) => BinOp::from_symbol(p),
@@ -146,6 +183,9 @@ impl Parser {
             if op.precedence() < min {
                 return Ok(left);
             }
+            // Each link of the chain puts the tree built so far one level further down.
+            links += 1;
+            self.too_deep(links)?;
             self.at += 1;
             let right = self.binary(op.precedence() + 1)?;
             left = Expr::binary(op, left, right);
@@ -153,6 +193,10 @@ impl Parser {
     }
 
     fn unary(&mut self) -> Parsed<Expr> {
+        self.nested(Self::unary_operand)
+    }
+
+    fn unary_operand(&mut self) -> Parsed<Expr> {
         if self.eat("!") || self.eat("~") {
             return Ok(Expr::negation(self.unary()?));
         }
@@ -248,6 +292,10 @@ impl Parser {
 
     /// One statement; `None` for an empty one (`;`).
     fn statement(&mut self) -> Parsed<Option<Statement>> {
+        self.nested(Self::one_statement)
+    }
+
+    fn one_statement(&mut self) -> Parsed<Option<Statement>> {
         if self.eat(";") {
             return Ok(None);
         }
@@ -442,6 +490,37 @@ mod tests {
             error("f(a b)"),
             "expected `,` or `)` in the arguments of `f(`, found `b` (at column 5)"
         );
+    }
+
+    #[test]
+    fn nesting_past_the_bound_is_an_error_at_its_place_not_a_stack_overflow() {
+        let deep = |open: &str, inner: &str, close: &str, n: usize| {
+            format!("{}{inner}{}", open.repeat(n), close.repeat(n))
+        };
+        let chain = |n: usize| vec!["a"; n].join(" || ");
+        // What people write, and well beyond it, reads.
+        for text in [deep("(", "a", ")", 60), deep("!", "a", "", 100), chain(200)] {
+            assert!(parse_expression(&text).is_ok(), "{text}");
+        }
+        for text in [
+            deep("(", "a", ")", 20_000),
+            deep("!", "a", "", 20_000),
+            deep("-(", "a", ")", 20_000),
+            chain(6_000),
+            deep("f(", "a", ")", 20_000),
+        ] {
+            let err = parse_expression(&text).unwrap_err();
+            assert!(
+                err.message.starts_with("nested more than 256 levels deep"),
+                "{err}"
+            );
+            assert!(err.offset < text.len() / 2, "{err}");
+        }
+        let blocks = deep("{ ", "x = 1;", " }", 20_000);
+        let err = parse_statements(&blocks).unwrap_err();
+        assert!(err.message.starts_with("nested more than"), "{err}");
+        let body = deep("for (;;) ", "x = 1;", "", 20_000);
+        assert!(parse_statements(&body).is_err());
     }
 
     #[test]
