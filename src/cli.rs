@@ -200,6 +200,10 @@ pub enum CliCommand {
         /// Print every problem as JSON (file, line, severity, message)
         #[arg(long)]
         json: bool,
+        /// Warnings fail the check too (exit 1), as errors do: for CI, where a typo in a rule
+        /// (a condition that never holds) must not pass as a warning nobody reads
+        #[arg(long)]
+        deny_warnings: bool,
     },
     /// Verify a behaviour under the round schedule: every run, the environment free, reasoners
     /// answering from their theories (exit 0 all hold, 1 some fails, 3 undecided, 2 bad input)

@@ -1,5 +1,6 @@
 //! `proclaim check`: every problem in every theory, machine file and behaviour, exit 1 when any
-//! is an error.
+//! is an error (or, with `--deny-warnings`, a warning). Each summary line counts what was
+//! printed above it.
 
 use crate::behaviours::{is_behaviour, try_load_behaviour};
 use crate::failure::Failure;
@@ -10,12 +11,26 @@ use proclaim_fsm::{lint, FileDiagnostic, Imported, Severity};
 use proclaim_syntax::render;
 use std::process::ExitCode;
 
-pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
-    let mut errors = 0;
+/// Problems found: errors and warnings.
+#[derive(Clone, Copy, Default)]
+struct Found {
+    errors: usize,
+    warnings: usize,
+}
+
+impl std::ops::AddAssign for Found {
+    fn add_assign(&mut self, other: Found) {
+        self.errors += other.errors;
+        self.warnings += other.warnings;
+    }
+}
+
+pub fn run(theories: &[String], json: bool, deny_warnings: bool) -> Result<ExitCode, Failure> {
+    let mut found = Found::default();
     let mut report = Vec::new();
     for name in theories {
         if is_behaviour(name) {
-            errors += behaviour(name, json, &mut report)?;
+            found += behaviour(name, json, &mut report)?;
             continue;
         }
         if let Some(mut imported) = machine_file(name)? {
@@ -29,72 +44,84 @@ pub fn run(theories: &[String], json: bool) -> Result<ExitCode, Failure> {
                 .flat_map(|m| lint(m, &file))
                 .collect();
             imported.diagnostics.extend(lints);
-            errors += machines(name, &imported, json, &mut report);
+            found += machines(name, &imported, json, &mut report);
             continue;
         }
-        let source = load::read(name)?;
-        let mut checked = check_source(&source.text, source.language);
-        if let Some(theory) = checked.theory.take() {
-            let theory = std::sync::Arc::new(theory);
-            checked
-                .diagnostics
-                .extend(proclaim_cdl::attack_cycle_warnings(
-                    &theory,
-                    proclaim_cdl::SearchLimits::default(),
-                ));
-            checked
-                .diagnostics
-                .sort_by_key(|d| (d.span.start, d.span.end));
-            checked.theory = Some(std::sync::Arc::unwrap_or_clone(theory));
-        }
-        errors += checked.diagnostics.iter().filter(|d| d.is_error()).count();
-        if json {
-            report.extend(
-                checked
-                    .diagnostics
-                    .iter()
-                    .map(|d| ProblemJson::of_theory(d, &source.name, &source.text).value()),
-            );
-        } else {
-            eprint!(
-                "{}",
-                render(&checked.diagnostics, &source.name, &source.text, color())
-            );
-            if let Some(theory) = &checked.theory {
-                println!(
-                    "{}: ok ({}, {}, {}, {}, {})",
-                    source.name,
-                    count(theory.atom_count(), "atom"),
-                    count(theory.rule_count(), "rule"),
-                    count(theory.priorities().len(), "priority"),
-                    count(theory.input_atoms().count(), "input"),
-                    count(theory.outputs().len(), "output")
-                );
-            }
-        }
+        found += theory(name, json, &mut report)?;
     }
+    let denied = if deny_warnings { found.warnings } else { 0 };
     if json {
         println!("{}", serde_json::Value::Array(report));
-    } else if errors > 0 {
+    } else if found.errors > 0 {
+        eprintln!("error: {} found", count(found.errors, "error"));
+    }
+    if denied > 0 && !json {
         eprintln!(
-            "error: {errors} error{} found",
-            if errors == 1 { "" } else { "s" }
+            "error: {} denied (--deny-warnings)",
+            count(denied, "warning")
         );
     }
-    Ok(if errors > 0 {
+    Ok(if found.errors + denied > 0 {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
     })
 }
 
-/// Checks a behaviour as a whole; returns its error count. A behaviour whose files have errors
-/// reports those (it cannot be checked further).
+/// Reports a theory; what it found.
+fn theory(name: &str, json: bool, report: &mut Vec<serde_json::Value>) -> Result<Found, Failure> {
+    let source = load::read(name)?;
+    let mut checked = check_source(&source.text, source.language);
+    if let Some(theory) = checked.theory.take() {
+        let theory = std::sync::Arc::new(theory);
+        checked
+            .diagnostics
+            .extend(proclaim_cdl::attack_cycle_warnings(
+                &theory,
+                proclaim_cdl::SearchLimits::default(),
+            ));
+        checked
+            .diagnostics
+            .sort_by_key(|d| (d.span.start, d.span.end));
+        checked.theory = Some(std::sync::Arc::unwrap_or_clone(theory));
+    }
+    let errors = checked.diagnostics.iter().filter(|d| d.is_error()).count();
+    let warnings = checked.diagnostics.len() - errors;
+    if json {
+        report.extend(
+            checked
+                .diagnostics
+                .iter()
+                .map(|d| ProblemJson::of_theory(d, &source.name, &source.text).value()),
+        );
+    } else {
+        eprint!(
+            "{}",
+            render(&checked.diagnostics, &source.name, &source.text, color())
+        );
+        if let Some(theory) = &checked.theory {
+            println!(
+                "{}: ok ({}, {}, {}, {}, {}; {})",
+                source.name,
+                count(theory.atom_count(), "atom"),
+                count(theory.rule_count(), "rule"),
+                count(theory.priorities().len(), "priority"),
+                count(theory.input_atoms().count(), "input"),
+                count(theory.outputs().len(), "output"),
+                count(warnings, "warning")
+            );
+        }
+    }
+    Ok(Found { errors, warnings })
+}
+
+/// Checks a behaviour as a whole; what it found. A behaviour whose files have errors reports
+/// those (it cannot be checked further).
 fn behaviour(
     name: &str,
     json: bool,
     report: &mut Vec<serde_json::Value>,
-) -> Result<usize, Failure> {
+) -> Result<Found, Failure> {
     let loaded = match try_load_behaviour(name)? {
         Ok(b) => b,
         Err(problems) => {
@@ -105,7 +132,11 @@ fn behaviour(
                     eprint!("{}", d.render(color()));
                 }
             }
-            return Ok(problems.iter().filter(|d| d.is_error()).count().max(1));
+            let errors = problems.iter().filter(|d| d.is_error()).count();
+            return Ok(Found {
+                errors: errors.max(1),
+                warnings: problems.len() - errors,
+            });
         }
     };
     for w in &loaded.warnings {
@@ -120,6 +151,8 @@ fn behaviour(
         .iter()
         .filter(|d| d.severity == Severity::Error)
         .count();
+    // The files' own warnings were printed above too.
+    let warnings = findings.len() - errors + loaded.warnings.len();
     if json {
         report.extend(findings.iter().map(|d| ProblemJson::of_file(d).value()));
     } else {
@@ -138,19 +171,19 @@ fn behaviour(
             count(loaded.theories.len(), "theory"),
             count(loaded.sensors.len(), "sensor"),
             count(errors, "error"),
-            count(findings.len() - errors, "warning")
+            count(warnings, "warning")
         );
     }
-    Ok(errors)
+    Ok(Found { errors, warnings })
 }
 
-/// Reports an imported machine file; returns its error count.
+/// Reports an imported machine file; what it found.
 fn machines(
     name: &str,
     imported: &Imported,
     json: bool,
     report: &mut Vec<serde_json::Value>,
-) -> usize {
+) -> Found {
     let errors = imported
         .diagnostics
         .iter()
@@ -180,7 +213,10 @@ fn machines(
             );
         }
     }
-    errors
+    Found {
+        errors,
+        warnings: imported.diagnostics.len() - errors,
+    }
 }
 
 /// `1 rule`, `2 rules`, `1 priority`, `2 priorities`.

@@ -38,7 +38,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
         CliCommand::Table { theory, format } => table::run(&theory, format),
         CliCommand::Compile(args) => compile::command(args),
         CliCommand::Explain(args) => explain::command(args),
-        CliCommand::Check { theories, json } => check::run(&theories, json),
+        CliCommand::Check {
+            theories,
+            json,
+            deny_warnings,
+        } => check::run(&theories, json, deny_warnings),
         CliCommand::Verify(args) => verify::command(args),
         CliCommand::Draw {
             machine,

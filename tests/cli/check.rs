@@ -22,8 +22,66 @@ fn check_reports_every_error_and_exits_1() {
     check(
         &["check", "offside"],
         0,
-        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 output)\n",
+        "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 output; 0 warnings)\n",
     );
+}
+
+/// A typo in a rule's condition (a first team's goalie) silently disabled the exception: the
+/// warning said so with a did-you-mean, and CI could not fail on it. Each summary counts the
+/// warnings printed above it; `--deny-warnings` fails on them.
+#[test]
+fn a_typo_in_a_rule_is_counted_and_fails_with_deny_warnings() {
+    let dir = temp_file("typo.dl", b"").with_extension("").join("goalie");
+    std::fs::create_dir_all(&dir).unwrap();
+    let theory = dir.join("goalie.dl");
+    std::fs::write(
+        &theory,
+        "input{ballNear}.\ninput{teammateCloser}.\nCome: ballNear => comeOut.\nMate: teamateCloser => ~comeOut.\nMate > Come.\noutput{comeOut}.\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("Goalie.machine"),
+        "machine Goalie\ninitial WAIT\nstate WAIT {\n    when comeOut -> OUT\n}\nstate OUT { }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"Goalie.machine\"\n[[theory]]\nfile = \"goalie.dl\"\n[impersonator]\nscript = \"s.script\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("s.script"),
+        "ballNear = true\nteammateCloser = true\n",
+    )
+    .unwrap();
+    let o = proclaim(&["check", theory.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).ends_with("1 output; 2 warnings)\n"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(
+        stderr(&o).contains("did you mean `teammateCloser`?"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    let printed = stderr(&o).matches("warning: ").count();
+    assert_eq!(printed, 2, "{}", stderr(&o));
+    assert!(
+        stdout(&o).ends_with("0 errors, 2 warnings)\n"),
+        "{}",
+        stdout(&o)
+    );
+    let o = proclaim(&["check", "--deny-warnings", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).ends_with("error: 2 warnings denied (--deny-warnings)\n"),
+        "{}",
+        stderr(&o)
+    );
+    check(&["check", "--deny-warnings", "offside"], 0, "<embedded>/offside.dl: ok (5 atoms, 5 rules, 4 priorities, 4 inputs, 1 output; 0 warnings)\n");
 }
 
 #[test]
