@@ -1184,3 +1184,49 @@ pub(crate) fn construct_cases() -> Vec<Case> {
         },
     ]
 }
+
+/// Machines that go round a cycle of `TRUE` transitions hold time still (a round takes none):
+/// `check` warns of the cycle; the interpreter and the compiled program both halt after the
+/// same number of rounds with no wait, saying why, instead of running for ever at one moment.
+#[test]
+fn a_cycle_that_takes_no_time_is_warned_of_and_halted_interpreted_and_compiled() {
+    let folder = scratch("timeless-behaviour");
+    std::fs::write(
+        folder.join("Loop.machine"),
+        "machine Loop\ninitial A\nstate A {\n    when TRUE -> B\n}\nstate B {\n    when TRUE -> A\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        folder.join("behaviour.toml"),
+        "[[machine]]\nfile = \"Loop.machine\"\n",
+    )
+    .unwrap();
+    let behaviour = folder.to_str().unwrap();
+    let checked = proclaim(&["check", behaviour]);
+    let said = String::from_utf8_lossy(&checked.stderr);
+    assert!(
+        said.contains("A -> B -> A goes round at one moment for ever"),
+        "{said}"
+    );
+    let why = "10000 rounds fired one after another with no wait: the machines go round a cycle that takes no time, so time cannot pass";
+    let run = proclaim(&["run", behaviour, "--virtual-clock", "--for", "60s"]);
+    let out = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(run.status.code(), Some(1), "{out}");
+    assert!(
+        out.contains(&format!("Loop  halted: {why} (in state")),
+        "{out}"
+    );
+    if gcc_missing() {
+        return;
+    }
+    let dir = scratch("timeless");
+    build(behaviour, &dir);
+    let compiled = Command::new(dir.join("behaviour"))
+        .arg("60s")
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&compiled.stderr);
+    assert_eq!(compiled.status.code(), Some(1), "{said}");
+    assert!(said.contains(&format!("halted: {why}")), "{said}");
+}

@@ -482,11 +482,15 @@ static void order_steps(void)
     }
 }
 
+/* The runner's bound on rounds that fire one after another (MOST_ROUNDS_WITHOUT_WAITING). */
+#define MOST_ROUNDS_WITHOUT_WAITING 10000
+
 int main(int argc, char **argv)
 {
     static struct world w;
     size_t i;
     int fired;
+    int without_waiting = 0;
     long long limit = -1;
     if (argc > 2 || (argc == 2 && (limit = duration_ms(argv[1])) < 0)) {
         fprintf(stderr, "usage: %s [DURATION] < SCRIPT   (DURATION: 12s, 500ms: stop then)\n", argv[0]);
@@ -530,6 +534,13 @@ int main(int argc, char **argv)
         fired = behaviour_round(&w);
         if (over || behaviour_finished(&w)) {
             break;
+        }
+        /* As the runner does: rounds that fire one after another hold time still, so past this
+         * many the machines go round a cycle that takes no time (docs/spec/behaviour.md 3.1). */
+        without_waiting = fired ? without_waiting + 1 : 0;
+        if (without_waiting >= MOST_ROUNDS_WITHOUT_WAITING) {
+            fprintf(stderr, "halted: %d rounds fired one after another with no wait: the machines go round a cycle that takes no time, so time cannot pass\n", MOST_ROUNDS_WITHOUT_WAITING);
+            return 1;
         }
         /* A round that fired, or whose own postings changed what a label reads, is followed at once. */
         if (fired || behaviour_news(&w)) {

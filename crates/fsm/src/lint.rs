@@ -1,6 +1,7 @@
 //! What can be seen wrong in one machine without running it: states never reached,
-//! transitions never tried (below a `TRUE`) or never fired (below the same label), text kept as
-//! code that does nothing, and transitions whose label was never read.
+//! transitions never tried (below a `TRUE`) or never fired (below the same label), a cycle that
+//! takes no time (each state's first transition `TRUE`), text kept as code that does nothing,
+//! and transitions whose label was never read.
 
 use crate::label::Label;
 use crate::model::{Action, Machine, StateId};
@@ -70,6 +71,49 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
                     ),
                 ));
             }
+        }
+    }
+    out.extend(timeless_cycles(machine, file));
+    out
+}
+
+/// Each cycle of states whose first transition is `TRUE`: one always fires, the next round
+/// the next, so the machine goes round at one moment for ever and time cannot pass (a run
+/// halts such a machine: `docs/spec/behaviour.md` §3.1). Reported once, at the line of the
+/// cycle's first transition from the lowest state.
+fn timeless_cycles(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
+    let always = |id: StateId| {
+        machine
+            .outgoing(id)
+            .next()
+            .filter(|t| t.label == Label::TRUE)
+    };
+    let name = |id: StateId| machine.state(id).map_or("?", |s| s.name.as_str());
+    let mut reported: Vec<StateId> = Vec::new();
+    let mut out = Vec::new();
+    for start in machine.states.iter().map(|s| s.id) {
+        // Follow the forced moves; a state seen twice closes a cycle.
+        let mut path = vec![start];
+        while let Some(t) = always(*path.last().unwrap_or(&start)) {
+            if let Some(at) = path.iter().position(|s| *s == t.target) {
+                let cycle = &path[at..];
+                let lowest = *cycle.iter().min().unwrap_or(&start);
+                if !reported.contains(&lowest) {
+                    reported.push(lowest);
+                    let names: Vec<&str> =
+                        cycle.iter().chain([&cycle[0]]).map(|s| name(*s)).collect();
+                    out.push(FileDiagnostic::warning(
+                        file,
+                        always(lowest).map_or(0, |t| t.line),
+                        format!(
+                            "{} goes round at one moment for ever: each state's first transition is `TRUE`, so time cannot pass (a run halts the machine)",
+                            names.join(" -> ")
+                        ),
+                    ));
+                }
+                break;
+            }
+            path.push(t.target);
         }
     }
     out

@@ -181,10 +181,10 @@ fn transitions() {
         "machine M\nstate A {\n  entry {\n    x = 1;\n  }\n}\n",
         Edit::AddTransition {
             state: 0,
-            label: "TRUE".into(),
+            label: "after(1s)".into(),
             target: 0,
         },
-        "machine M\nstate A {\n  entry {\n    x = 1;\n  }\n  when TRUE -> A\n}\n",
+        "machine M\nstate A {\n  entry {\n    x = 1;\n  }\n  when after(1s) -> A\n}\n",
     );
     check(
         "machine M\nstate A { }\n",

@@ -200,6 +200,29 @@ fn what_does_nothing_is_said() {
     );
 }
 
+fn lints(text: &str) -> Vec<String> {
+    let imported = parse_machine("m.machine", text);
+    proclaim_fsm::lint(&imported.machines[0], "m.machine")
+        .iter()
+        .map(ToString::to_string)
+        .collect()
+}
+
+#[test]
+fn a_cycle_that_takes_no_time_is_said_once() {
+    assert_eq!(
+        lints("machine M\ninitial S\nstate S {\n  when TRUE -> A\n}\nstate A {\n  when TRUE -> B\n}\nstate B {\n  when TRUE -> A\n}\n"),
+        ["m.machine:7: warning: A -> B -> A goes round at one moment for ever: each state's first transition is `TRUE`, so time cannot pass (a run halts the machine)"]
+    );
+    assert_eq!(
+        lints("machine M\ninitial A\nstate A {\n  when TRUE -> A\n}\n"),
+        ["m.machine:4: warning: A -> A goes round at one moment for ever: each state's first transition is `TRUE`, so time cannot pass (a run halts the machine)"]
+    );
+    // Something tried first, or a time test, lets time pass.
+    assert!(lints("machine M\ninitial A\nstate A {\n  when after(1s) -> B\n}\nstate B {\n  when TRUE -> A\n}\n").is_empty());
+    assert!(lints("machine M\ninitial A\nstate A {\n  when x -> B\n  when TRUE -> B\n}\nstate B {\n  when TRUE -> A\n}\n").is_empty());
+}
+
 fn corpus() -> Option<std::path::PathBuf> {
     Some(corpus_dir()?.join("mipal"))
 }

@@ -357,6 +357,21 @@ impl<'r> RunningMachine<'r> {
         started
     }
 
+    /// Stops the machine for good, saying why in the trace (as `halt_on_timeout` does).
+    pub(crate) fn halt(&mut self, why: &str) {
+        let state = self
+            .machine
+            .state(self.current)
+            .map_or_else(|| "?".to_string(), |s| s.name.clone());
+        self.reporter.emit(|at, round| Event::Halted {
+            machine: self.name.clone(),
+            reason: format!("{why} (in state {state})"),
+            at,
+            round,
+        });
+        self.board.post(&self.name, &self.running_type, false);
+    }
+
     /// Whether the machine's run is over for now: its state has no way out and its OnEntry
     /// has run (§3: it rings no more until a command moves it).
     pub(crate) fn is_done(&self) -> bool {

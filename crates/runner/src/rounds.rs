@@ -86,7 +86,18 @@ pub enum RoundsEnd {
     AllOver,
     /// The feed had nothing more.
     FeedDone,
+    /// [`MOST_ROUNDS_WITHOUT_WAITING`] rounds fired one after another: the machines go round
+    /// a cycle that takes no time, so time could never pass; every machine halted, saying so.
+    NoTimePasses,
 }
+
+/// How many rounds in a row may fire with no wait between them. A round takes no time (§3.1),
+/// so machines that fire round after round hold time still: on the virtual clock a run would
+/// never reach its end, on the real clock it would spin a core. Synchronous languages refuse
+/// such instantaneous loops (Esterel at compile time); here `check` warns of a cycle of
+/// unconditional transitions and a run halts past this many rounds, far more than any
+/// behaviour takes to settle at one moment.
+pub const MOST_ROUNDS_WITHOUT_WAITING: u64 = 10_000;
 
 /// Machines run in rounds of ringlets. Build it, then `run` it on a task of its own (abort the
 /// task to stop it).
@@ -147,20 +158,15 @@ impl Rounds {
             .iter()
             .map(|m| RunningMachine::new(m, board.clone(), self.round.clone()))
             .collect();
-        let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
-        let mut scheduled = ScheduledMachines {
-            over: vec![false; runs.len()],
-            fresh: vec![false; runs.len()],
-            runs,
-            commands: board.subscribe_pattern(Pattern::Any(names)),
-            suppressor: self.machines.iter().find_map(MachineRunner::suppressor),
-        };
+        let suppressor = self.machines.iter().find_map(MachineRunner::suppressor);
+        let mut scheduled = ScheduledMachines::new(runs, &board, suppressor);
         let mut wakeup = RoundWakeup::default();
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
         let mut commanded = true;
         // The moment of the last round: a round at a later one first lets the outside catch up.
         let mut last_moment: Option<tokio::time::Instant> = None;
+        let mut without_waiting = 0;
         loop {
             if let Some(stepper) = &self.stepper {
                 last_step = stepper.wait(last_step).await;
@@ -193,11 +199,15 @@ impl Rounds {
                 continue;
             }
             if fired {
+                if self.time_stands_still(&mut without_waiting, &mut scheduled) {
+                    return RoundsEnd::NoTimePasses;
+                }
                 // Machines whose labels are always true would otherwise never let the experts,
                 // the trace or a stop request have a turn.
                 tokio::task::consume_budget().await;
                 continue;
             }
+            without_waiting = 0;
             if self.stepper.as_ref().is_some_and(Stepper::is_paused) {
                 continue;
             }
@@ -219,6 +229,25 @@ impl Rounds {
             // either.
             tokio::task::consume_budget().await;
         }
+    }
+
+    /// Counts a round that fired; past [`MOST_ROUNDS_WITHOUT_WAITING`] of them in a row, halts
+    /// every machine, saying why, and is true.
+    fn time_stands_still(
+        &self,
+        without_waiting: &mut u64,
+        scheduled: &mut ScheduledMachines<'_>,
+    ) -> bool {
+        // Rounds stepped one at a time wait for whoever steps them.
+        let stepped = self.stepper.as_ref().is_some_and(Stepper::is_paused);
+        *without_waiting = if stepped { 0 } else { *without_waiting + 1 };
+        if *without_waiting < MOST_ROUNDS_WITHOUT_WAITING {
+            return false;
+        }
+        scheduled.halt_all(&format!(
+            "{MOST_ROUNDS_WITHOUT_WAITING} rounds fired one after another with no wait: the machines go round a cycle that takes no time, so time cannot pass"
+        ));
+        true
     }
 
     /// One round: commands from outside obeyed, then a ringlet of every running machine in
@@ -318,6 +347,34 @@ impl Rounds {
         Ringlet {
             seq: board.snapshot().seq,
             ..ringlet
+        }
+    }
+}
+
+impl<'r> ScheduledMachines<'r> {
+    /// `runs` in schedule order, hearing their control commands from now on.
+    fn new(
+        runs: Vec<RunningMachine<'r>>,
+        board: &Whiteboard,
+        suppressor: Option<SharedSuppressor>,
+    ) -> ScheduledMachines<'r> {
+        let names: Vec<String> = runs.iter().map(|r| r.name.clone()).collect();
+        ScheduledMachines {
+            over: vec![false; runs.len()],
+            fresh: vec![false; runs.len()],
+            runs,
+            commands: board.subscribe_pattern(Pattern::Any(names)),
+            suppressor,
+        }
+    }
+
+    /// Halts every machine still running, saying `why`.
+    fn halt_all(&mut self, why: &str) {
+        for (run, over) in self.runs.iter_mut().zip(&mut self.over) {
+            if !*over && run.status == Status::Running {
+                run.halt(why);
+                *over = true;
+            }
         }
     }
 }
