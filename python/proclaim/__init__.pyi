@@ -182,7 +182,11 @@ class Behaviour:
 
     ``hosts`` maps host function names to callables taking the call's argument (int or str) or
     none; ``experts`` maps labels to callables taking the Board and answering True, False or None
-    (no answer). An exception in either raises CallbackError from the call that ran the round (an
+    (no answer), in place of whatever module of the behaviour answered that label: a theory
+    keeps answering its other labels; a sensor wrapper with a label taken is left out whole.
+    ``script`` is an impersonator script (``"at 1s doorOpen = true"``) played in place of the
+    manifest's; left out, the manifest's plays; ``None`` or ``""`` plays none at all.
+    An exception in a host function or an expert raises CallbackError from the call that ran the round (an
     expert's also answers its label False). An expert for a label no machine asks or a host
     function no machine calls raises BehaviourError naming the nearest one they do; a host
     function a machine calls that no callable answers warns (BehaviourWarning).
@@ -198,7 +202,7 @@ class Behaviour:
         folder: Union[str, "os.PathLike[str]"],
         hosts: Optional[Mapping[str, Callable[..., object]]] = None,
         experts: Optional[Mapping[str, Callable[[Board], Optional[bool]]]] = None,
-        script: Optional[str] = None,
+        script: Optional[str] = ...,
         virtual_clock: bool = True,
     ) -> Behaviour: ...
     def step(self) -> List[_Event]:

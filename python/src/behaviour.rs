@@ -253,9 +253,10 @@ impl Behaviour {
     /// Loads the behaviour in `folder` and starts it paused before its first round: its
     /// experts and sensor wrappers registered, its machines waiting. `hosts` maps host function
     /// names (`call beep(3)`) to callables taking the call's argument; `experts` maps labels to
-    /// callables taking the board and answering True, False or None; both replace any module of
-    /// the behaviour answering the same label. `script` is an impersonator script
-    /// (`at 1s doorOpen = true`). With `virtual_clock` (the default) time is virtual: it moves
+    /// callables taking the board and answering True, False or None, each in place of the
+    /// module that answered that label (a theory keeps answering the rest). `script` is an
+    /// impersonator script (`at 1s doorOpen = true`) in place of the manifest's; `None` or ""
+    /// is no script at all. With `virtual_clock` (the default) time is virtual: it moves
     /// by `wait` and `run`, and in `run_until` when nothing else can happen, so a test gives
     /// the same answer every time and a minute takes no real minute. Raises BehaviourError with
     /// every problem of every file when it does not load, and when an expert is given for a
@@ -263,13 +264,14 @@ impl Behaviour {
     /// is); warns (BehaviourWarning) of a host function a machine calls that no callable
     /// answers.
     #[new]
-    #[pyo3(signature = (folder, hosts = None, experts = None, script = None, virtual_clock = true))]
+    // `script`: left out (`Some(None)`), the manifest's; `None` or "", no script at all.
+    #[pyo3(signature = (folder, hosts = None, experts = None, script = Some(None), virtual_clock = true))]
     fn new(
         py: Python<'_>,
         folder: PathBuf,
         hosts: Option<&Bound<'_, PyDict>>,
         experts: Option<&Bound<'_, PyDict>>,
-        script: Option<String>,
+        script: Option<Option<String>>,
         virtual_clock: bool,
     ) -> PyResult<Behaviour> {
         let raised: Raised = Arc::default();
@@ -300,8 +302,14 @@ impl Behaviour {
             );
             host_functions.register(name, host);
         }
-        let script = script.unwrap_or_default();
-        let given_script = proclaim_experts::parse_script(&script).ok();
+        // `None` from Python is no script at all: the empty one.
+        let script: Option<String> = match script {
+            None => Some(String::new()),
+            Some(given) => given,
+        };
+        let given_script = script
+            .as_deref()
+            .and_then(|text| proclaim_experts::parse_script(text).ok());
         let stepping = Stepping {
             script: script.clone(),
             hosts: host_functions,
@@ -317,7 +325,7 @@ impl Behaviour {
             .map_err(|error| errors::behaviour_error(py, &folder, error))?;
         let board = started.board.clone();
         // The script given replaces the manifest's, as in the runner.
-        let script = if script.trim().is_empty() {
+        let script = if script.is_none() {
             manifest_script
         } else {
             given_script

@@ -66,6 +66,28 @@ def test_the_microwave_follows_what_python_posts_round_by_round():
         assert oven.time == 1.0
 
 
+def test_a_python_expert_for_one_label_leaves_the_theory_answering_the_rest():
+    # The theory answers cook and light; Python takes light alone (always dark). The theory
+    # once went silent whole, so cook was never answered and the oven never cooked.
+    with proclaim.Behaviour(MICROWAVE, experts={"light": lambda board: False}) as oven:
+        events = oven.run(5)
+        # The door opens at 1 s with no light: the machine stays IDLE; the minute set at 4 s
+        # is the theory's cook.
+        assert [s for _, s in entered(events)] == ["IDLE", "COOKING"]
+        assert oven.read("Magnetron") == "on"
+
+
+@pytest.mark.parametrize("none", [None, ""])
+def test_script_none_or_empty_plays_no_script_and_left_out_plays_the_manifests(none):
+    with proclaim.Behaviour(MICROWAVE, script=none) as oven:
+        oven.run(10)
+        assert oven.state("Microwave") == "IDLE", "no kitchen script: nobody opens the door"
+        assert oven.read("doorOpen") is None
+    with proclaim.Behaviour(MICROWAVE) as oven:
+        oven.run(10)
+        assert oven.state("Microwave") == "COOKING"
+
+
 def kettle(boiling, beeps, **options):
     """The kettle with Python answering both labels; `beeps` collects the host calls."""
     hosts = {"beep": beeps.append, "alarm": beeps.append}

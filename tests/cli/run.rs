@@ -414,3 +414,63 @@ fn a_label_nobody_answers_is_warned_once_not_at_every_ring() {
         .count();
     assert_eq!(warned, 1, "{}", stderr(&o));
 }
+
+/// A run whose script stands in for the GameController opens no socket for it: with the real
+/// GameController's port taken (here by the test, as by another run or CI job), two such runs
+/// side by side on the virtual clock both play to the end. The receiver once bound 0.0.0.0:3838
+/// first and was left out after.
+#[test]
+fn a_sensor_the_script_stands_in_for_opens_no_socket_and_runs_side_by_side() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("machines");
+    let dir = temp_file("hermetic.script", b"")
+        .with_extension("")
+        .join("game");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        root.join("nao.toml"),
+        dir.parent().unwrap().join("nao.toml"),
+    )
+    .unwrap();
+    for file in ["GameController.machine", "Placer.machine"] {
+        std::fs::copy(root.join("game_controller").join(file), dir.join(file)).unwrap();
+    }
+    // Listening for a real GameController: the receiver would bind 0.0.0.0:3838.
+    let manifest = std::fs::read_to_string(root.join("game_controller/behaviour.toml"))
+        .unwrap()
+        .replace("simulator = true", "simulator = false");
+    std::fs::write(dir.join("behaviour.toml"), manifest).unwrap();
+    let script = temp_file(
+        "hermetic.script",
+        b"at 1s readyReceived = true\nat 2s readyReceived = false\nat 2s setReceived = true\nat 3s setReceived = false\nat 3s playingReceived = true\n",
+    );
+    let _taken = std::net::UdpSocket::bind("0.0.0.0:3838");
+    let args = [
+        "run",
+        dir.to_str().unwrap(),
+        "--virtual-clock",
+        "--for",
+        "5s",
+        "--script",
+        script.to_str().unwrap(),
+    ];
+    let start = || {
+        Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            .args(args)
+            .output()
+    };
+    let (one, two) = std::thread::scope(|s| {
+        let one = s.spawn(start);
+        let two = s.spawn(start);
+        (one.join().unwrap().unwrap(), two.join().unwrap().unwrap())
+    });
+    for o in [one, two] {
+        let out = stdout(&o);
+        assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+        assert!(
+            out.contains("left out gamecontroller: the script impersonates"),
+            "{out}"
+        );
+        assert!(!out.contains("listening for the GameController"), "{out}");
+        assert!(out.contains("GameController  → PLAYING"), "{out}");
+    }
+}

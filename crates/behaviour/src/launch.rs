@@ -6,6 +6,7 @@ use crate::error::BehaviourError;
 use crate::load::Behaviour;
 use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
+use crate::replaced::Replaced;
 use proclaim_board::{Pattern, Suppressor, Whiteboard};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, FunctionExpert, GameControllerReceiver, Impersonator,
@@ -26,9 +27,9 @@ use tokio::task::JoinSet;
 
 #[derive(Clone, Default)]
 pub struct LaunchOptions {
-    /// Answer from this script instead of the manifest's impersonator. Experts and sensor
-    /// wrappers that answer an atom the script names are left out, so the machines cannot
-    /// tell the impersonator from them.
+    /// Answer from this script instead of the manifest's impersonator. Experts give up the
+    /// atoms the script names and sensor wrappers answering one are left out (`replaced.rs`),
+    /// so the machines cannot tell the impersonator from them.
     pub script: Option<Script>,
     /// Never start the GameController simulator (listen for a real GameController).
     pub no_simulator: bool,
@@ -36,15 +37,23 @@ pub struct LaunchOptions {
     pub hosts: Hosts,
     /// Ring only when stepped (`proclaim run --step`).
     pub stepper: Option<Stepper>,
-    /// An impersonator that asks a person (`proclaim run --ask`); experts and sensor wrappers
-    /// answering its atoms are left out, as for a script.
+    /// An impersonator that asks a person (`proclaim run --ask`); its atoms replace the
+    /// behaviour's own, as a script's do.
     pub person: Option<Impersonator>,
     /// Report every ringlet as it starts ([`Running::ringlets`]), for a recording that a
     /// replay can post outside messages back into at the same places.
     pub ringlets: bool,
-    /// Experts of the embedding program (a Python callable per label, say). Modules answering
-    /// an atom one of them answers are left out, the script's impersonator included.
+    /// Experts of the embedding program (a Python callable per label, say). Their atoms
+    /// replace the behaviour's own, as a script's do; the script's impersonator, when it
+    /// answers one of them too, is left out.
     pub experts: Vec<FunctionExpert>,
+}
+
+impl LaunchOptions {
+    /// The script the run plays: the one given (empty: none at all), else the manifest's.
+    pub(crate) fn script_played<'b>(&'b self, behaviour: &'b Behaviour) -> Option<&'b Script> {
+        self.script.as_ref().or(behaviour.script.as_ref())
+    }
 }
 
 /// Machine → its final states (those with no way out).
@@ -163,8 +172,17 @@ pub async fn launch(
         .as_ref()
         .map_or_else(RoundCounter::default, Rounds::counter);
     let mut notes = Vec::new();
-    let mut modules = experts(behaviour, board);
-    let sim_note = sensors(behaviour, board, &options, &mut modules, &mut notes).await?;
+    let replaced = Replaced::of(behaviour, &options);
+    let mut modules = experts(behaviour, board, &replaced, &mut notes);
+    let sim_note = sensors(
+        behaviour,
+        board,
+        &options,
+        &replaced,
+        &mut modules,
+        &mut notes,
+    )
+    .await?;
     // The script's timed steps wait for the machines, so that one timed for the first round's
     // moment comes at that round's start (`docs/spec/behaviour.md` §3.1, between rounds).
     let machines_started = Arc::new(tokio::sync::Notify::new());
@@ -185,15 +203,7 @@ pub async fn launch(
     }
 
     let mut tasks = JoinSet::new();
-    let experts: Vec<String> = modules
-        .iter()
-        .filter(|m| !m.answers.is_empty())
-        .map(|m| m.name.clone())
-        .collect();
-    for m in modules {
-        tasks.spawn(m.task);
-    }
-    wait_registered(board, &experts).await;
+    start_modules(board, modules, &mut tasks).await;
     match rounds {
         Some(rounds) => {
             let board = board.clone();
@@ -242,65 +252,90 @@ fn embedded_experts(
     }
 }
 
-/// A reasoner expert per theory, then the Prolog and program experts.
-fn experts(behaviour: &Behaviour, board: &Whiteboard) -> Vec<Module> {
-    let theories = behaviour.theories.iter().map(|t| {
+/// A reasoner expert per theory, then the Prolog and program experts, each answering what is
+/// not answered from outside.
+fn experts(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    replaced: &Replaced,
+    notes: &mut Vec<String>,
+) -> Vec<Module> {
+    let mut modules = Vec::new();
+    for t in &behaviour.theories {
         let expert =
             ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
-        Module {
-            name: t.name.clone(),
-            answers: expert.declaration().answers,
-            task: Box::pin(expert.run(board.clone())),
+        let answers = replaced.narrow(&t.name, &expert.declaration().answers, notes);
+        if !answers.is_empty() {
+            let expert = expert.answering_only(&answers);
+            modules.push(Module {
+                name: t.name.clone(),
+                answers,
+                task: Box::pin(expert.run(board.clone())),
+            });
         }
-    });
-    let programs = behaviour.programs.iter().map(|p| Module {
-        name: p.name.clone(),
-        answers: p.answers.clone(),
-        task: Box::pin(p.expert(behaviour.files.folder()).run(board.clone())),
-    });
-    theories.chain(programs).collect()
+    }
+    for p in &behaviour.programs {
+        let answers = replaced.narrow(&p.name, &p.answers, notes);
+        if !answers.is_empty() {
+            let program = crate::programs::LoadedProgram {
+                answers: answers.clone(),
+                ..p.clone()
+            };
+            modules.push(Module {
+                name: p.name.clone(),
+                answers,
+                task: Box::pin(program.expert(behaviour.files.folder()).run(board.clone())),
+            });
+        }
+    }
+    modules
 }
 
-/// The sensor wrappers of the manifest; what the GameController simulator will play, if it
+/// The sensor wrappers of the manifest, but those whose labels are answered from outside
+/// (left out before they open a socket); what the GameController simulator will play, if it
 /// plays.
 async fn sensors(
     behaviour: &Behaviour,
     board: &Whiteboard,
     options: &LaunchOptions,
+    replaced: &Replaced,
     modules: &mut Vec<Module>,
     notes: &mut Vec<String>,
 ) -> Result<Option<String>, BehaviourError> {
     let mut sim_note = None;
     for sensor in &behaviour.sensors {
+        let mut wrapper = |name: String, answers: Vec<String>, task: Task| {
+            if !replaced.leaves_out(&name, &answers, notes) {
+                modules.push(Module {
+                    name,
+                    answers,
+                    task,
+                });
+            }
+        };
         match sensor.entry.kind {
             SensorKind::Gamecontroller => {
-                sim_note = gamecontroller(sensor, board, options, modules, notes).await?;
+                let declared = GameControllerReceiver::declaration_for(&ReceiverConfig::default());
+                if !replaced.leaves_out("gamecontroller", &declared.answers, notes) {
+                    sim_note = gamecontroller(sensor, board, options, modules, notes).await?;
+                }
             }
             SensorKind::ChestButton => {
                 let b = ButtonWrapper::chest();
-                modules.push(Module {
-                    name: b.name.clone(),
-                    answers: b.declaration().answers,
-                    task: Box::pin(b.run(board.clone())),
-                });
+                let (name, answers) = (b.name.clone(), b.declaration().answers);
+                wrapper(name, answers, Box::pin(b.run(board.clone())));
             }
             SensorKind::FootBumpers => {
                 for left in [true, false] {
                     let b = ButtonWrapper::foot(left);
-                    modules.push(Module {
-                        name: b.name.clone(),
-                        answers: b.declaration().answers,
-                        task: Box::pin(b.run(board.clone())),
-                    });
+                    let (name, answers) = (b.name.clone(), b.declaration().answers);
+                    wrapper(name, answers, Box::pin(b.run(board.clone())));
                 }
             }
             SensorKind::Fall => {
                 let f = FallWrapper::default();
-                modules.push(Module {
-                    name: f.name.clone(),
-                    answers: f.declaration().answers,
-                    task: Box::pin(f.run(board.clone())),
-                });
+                let (name, answers) = (f.name.clone(), f.declaration().answers);
+                wrapper(name, answers, Box::pin(f.run(board.clone())));
             }
         }
     }
@@ -415,7 +450,7 @@ fn impersonators(
     (modules, machines_started): (&mut Vec<Module>, &Arc<tokio::sync::Notify>),
     notes: &mut Vec<String>,
 ) {
-    let script = options.script.clone().or_else(|| behaviour.script.clone());
+    let script = options.script_played(behaviour).cloned();
     if let Some(person) = &options.person {
         let asked = person.declaration().answers;
         leave_out(modules, &asked, "a person answers", notes);
@@ -581,6 +616,19 @@ fn leave_out(modules: &mut Vec<Module>, atoms: &[String], why: &str, notes: &mut
         notes.push(format!("left out {}: {why} {}", m.name, overlap.join(", ")));
         false
     });
+}
+
+/// Starts every module, and waits until those that answer have registered.
+async fn start_modules(board: &Whiteboard, modules: Vec<Module>, tasks: &mut JoinSet<()>) {
+    let experts: Vec<String> = modules
+        .iter()
+        .filter(|m| !m.answers.is_empty())
+        .map(|m| m.name.clone())
+        .collect();
+    for m in modules {
+        tasks.spawn(m.task);
+    }
+    wait_registered(board, &experts).await;
 }
 
 /// Waits (briefly, bounded) until every expert has registered: they subscribe to queries first,

@@ -21,6 +21,7 @@ mod modules;
 mod program_entries;
 mod programs;
 mod recorded;
+mod replaced;
 mod subsumption;
 mod team;
 pub mod testing;

@@ -164,11 +164,12 @@ pub struct RoundByRound {
 /// How a [`RoundByRound`] is started beyond its folder: who answers and who is called.
 #[derive(Clone, Default)]
 pub struct Stepping {
-    /// An impersonator script (empty: none beyond the manifest's).
-    pub script: String,
+    /// An impersonator script in place of the manifest's (`None`: the manifest's; empty
+    /// text: no script at all).
+    pub script: Option<String>,
     /// Host functions the machines' activities call.
     pub hosts: proclaim_runner::Hosts,
-    /// Experts of the embedding program; modules answering the same atoms are left out.
+    /// Experts of the embedding program, each in place of whatever answered its atoms.
     pub experts: Vec<proclaim_experts::FunctionExpert>,
     /// Time as the wall clock has it, instead of the virtual clock that moves only when the
     /// test waits (or when every task waits during [`RoundByRound::run_for`]).
@@ -182,7 +183,7 @@ impl RoundByRound {
         RoundByRound::start_with(
             folder,
             Stepping {
-                script: script.to_string(),
+                script: (!script.trim().is_empty()).then(|| script.to_string()),
                 ..Stepping::default()
             },
         )
@@ -194,10 +195,9 @@ impl RoundByRound {
         stepping: Stepping,
     ) -> Result<RoundByRound, BehaviourError> {
         let behaviour = load_folder(folder.as_ref())?;
-        let script = if stepping.script.trim().is_empty() {
-            None
-        } else {
-            Some(parse_script(&stepping.script).map_err(BehaviourError::Script)?)
+        let script = match &stepping.script {
+            Some(text) => Some(parse_script(text).map_err(BehaviourError::Script)?),
+            None => None,
         };
         let runtime = if stepping.real_time {
             tokio::runtime::Builder::new_current_thread()

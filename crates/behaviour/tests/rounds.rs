@@ -263,3 +263,35 @@ fn an_embedding_programs_expert_answers_in_place_of_the_theory_through_a_virtual
     assert!(run.is_over());
     assert!(asked.load(std::sync::atomic::Ordering::Relaxed) > 0);
 }
+
+/// An embedding program's expert for one label of a theory replaces exactly that label: the
+/// theory keeps answering its other outputs (it once was silently left out whole, so nothing
+/// it answered reached the machines).
+#[test]
+fn an_expert_for_one_label_leaves_the_theory_answering_the_rest() {
+    use proclaim_behaviour::testing::{RoundByRound, Stepping};
+    use proclaim_experts::FunctionExpert;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/microwave");
+    // The light never comes on, whatever the door does; `cook` is still the theory's.
+    let dark = FunctionExpert::new("lamp test", ["light"], |_, _| Some(false));
+    let mut run = RoundByRound::start_with(
+        &dir,
+        Stepping {
+            experts: vec![dark],
+            ..Stepping::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        run.notes().iter().any(|n| n
+            == "microwave answers the rest of its labels: the embedding program answers light"),
+        "{:?}",
+        run.notes()
+    );
+    // The kitchen script opens the door at 1 s (no light: the machine stays IDLE), shuts it at
+    // 3 s and sets the minute at 4 s: the theory's `cook` starts the magnetron.
+    run.run_for(Duration::from_millis(3500));
+    assert_eq!(run.state_of("Microwave"), Some("IDLE"));
+    run.run_for(Duration::from_secs(1));
+    assert_eq!(run.state_of("Microwave"), Some("COOKING"));
+}

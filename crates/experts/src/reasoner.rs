@@ -93,6 +93,14 @@ impl ReasonerExpert {
         self
     }
 
+    /// The expert answering only those of its outputs in `labels`: another module (the
+    /// embedding program, a script) answers the rest. Its reasoning is unchanged: a conclusion
+    /// that rests on an output it gave up still rests on its own.
+    pub fn answering_only(mut self, labels: &[String]) -> ReasonerExpert {
+        self.outputs.retain(|o| labels.contains(&o.name));
+        self
+    }
+
     /// How many answers were undecided within the search limits so far (shared: it keeps
     /// counting while the expert runs).
     pub fn undecided(&self) -> Arc<AtomicU64> {

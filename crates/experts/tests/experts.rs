@@ -163,7 +163,7 @@ fn script_errors_name_their_lines() {
     assert_eq!(
         lines,
         [
-            "line 1: `soon` is not a time; write `at 2s` or `at 500ms`",
+            "line 1: `soon` is not a time up to 1000000000s; write `at 2s` or `at 500ms`",
             "line 2: `0` is not a step number (1, 2, …)",
             "line 3: expected `atom = value`, found `z true`",
             "line 5: `maybe` is not a value: write true or false (or yes/no, on/off, 1/0), a number, or text in double quotes (`\"maybe\"`)",
