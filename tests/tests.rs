@@ -11,6 +11,7 @@ mod compiled_rust;
 mod compiled_verify;
 mod editor;
 mod monitor;
+mod mutants;
 #[cfg(feature = "zenoh")]
 mod network;
 mod programs;

@@ -3,7 +3,7 @@
 //! behaviours, and theories once their spans are turned into lines), carrying the text of its
 //! line so that it renders with a caret without reading the file again.
 
-use crate::diagnostic::{render, Diagnostic, Severity};
+use crate::diagnostic::{render_line, Diagnostic, Severity};
 use crate::span::{line_column, Span};
 use std::fmt;
 
@@ -54,12 +54,18 @@ impl FileDiagnostic {
     }
 
     /// Placed at `column` of its line, `source`'s line `self.line`.
-    pub fn at_column(mut self, column: usize, source: &str) -> FileDiagnostic {
-        self.column = Some(column);
-        self.source_line = self
+    pub fn at_column(self, column: usize, source: &str) -> FileDiagnostic {
+        let text = self
             .line
-            .and_then(|line| source.lines().nth(line.saturating_sub(1)))
-            .map(Box::from);
+            .and_then(|line| source.lines().nth(line.saturating_sub(1)));
+        self.at_column_of(column, text.unwrap_or_default())
+    }
+
+    /// Placed at `column` of its line, whose text is `line` (no scan of the whole source: a
+    /// file of many problems reports them in time linear in its size).
+    pub fn at_column_of(mut self, column: usize, line: &str) -> FileDiagnostic {
+        self.column = Some(column);
+        self.source_line = self.line.map(|_| Box::from(line));
         self
     }
 
@@ -81,19 +87,18 @@ impl FileDiagnostic {
 
     fn quoted(&self, color: bool) -> Option<String> {
         let (line, column, text) = (self.line?, self.column?, self.source_line.as_deref()?);
-        // The line alone, preceded by empty lines so the renderer numbers it as in the file.
-        let line_start = line.saturating_sub(1);
-        let source = format!("{}{text}", "\n".repeat(line_start));
-        let at = line_start
-            + text
-                .char_indices()
-                .nth(column - 1)
-                .map_or(text.len(), |(i, _)| i);
-        let word = source[at..]
+        if text.len() > crate::diagnostic::LONGEST_QUOTED {
+            return None;
+        }
+        let at = text
+            .char_indices()
+            .nth(column - 1)
+            .map_or(text.len(), |(i, _)| i);
+        let word = text[at..]
             .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-            .unwrap_or(source.len() - at)
+            .unwrap_or(text.len() - at)
             .max(1);
-        let span = Span::new(at, (at + word).min(source.len()));
+        let span = Span::new(at, (at + word).min(text.len()));
         let mut diagnostic = match self.severity {
             Severity::Error => Diagnostic::error(span, self.message.clone()),
             Severity::Warning => Diagnostic::warning(span, self.message.clone()),
@@ -101,7 +106,7 @@ impl FileDiagnostic {
         if let Some(hint) = &self.hint {
             diagnostic = diagnostic.with_hint(hint.to_string());
         }
-        Some(render(&[diagnostic], &self.file, &source, color))
+        Some(render_line(&diagnostic, &self.file, line, text, color))
     }
 }
 

@@ -157,7 +157,13 @@ impl LineIndex<'_> {
             .text
             .get(start..offset.min(self.text.len()))
             .map_or(1, |before| before.chars().count() + 1);
-        FileDiagnostic::error(file, line, message).at_column(column, self.text)
+        let end = self
+            .starts
+            .get(line)
+            .map_or(self.text.len(), |next| next - 1);
+        let text = self.text.get(start..end).unwrap_or_default();
+        let text = text.strip_suffix('\r').unwrap_or(text);
+        FileDiagnostic::error(file, line, message).at_column_of(column, text)
     }
 }
 
@@ -169,14 +175,10 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
     let ids = lowering.number(&parsed);
-    let names = StateNames {
-        ids: ids.clone(),
-        names: parsed
-            .iter()
-            .zip(&ids)
-            .map(|(s, &id)| (s.name.clone(), id))
-            .collect(),
-    };
+    let names = StateNames::new(
+        &ids,
+        parsed.iter().zip(&ids).map(|(s, &id)| (s.name.clone(), id)),
+    );
     let mut states = Vec::new();
     let mut transitions = Vec::new();
     for (s, &id) in parsed.into_iter().zip(&ids) {
@@ -221,26 +223,42 @@ struct Lowering<'a> {
 }
 
 /// The states' ids, and their names, for resolving `-> NAME` and `-> #id`.
+/// States by id and by name, looked up in constant time: a machine of thousands of states
+/// (generated, or a mutant) resolves its transitions in time linear in its size.
 struct StateNames {
-    ids: Vec<StateId>,
-    names: Vec<(String, StateId)>,
+    ids: std::collections::HashSet<StateId>,
+    by_name: std::collections::HashMap<String, Vec<StateId>>,
+    /// In file order, for the nearest name to one that is not there.
+    names: Vec<String>,
 }
 
+/// How many of the states one name names an error lists.
+const LISTED: usize = 5;
+
 impl StateNames {
+    fn new(ids: &[StateId], names: impl Iterator<Item = (String, StateId)>) -> StateNames {
+        let mut by_name: std::collections::HashMap<String, Vec<StateId>> = Default::default();
+        let mut in_order = Vec::new();
+        for (name, id) in names {
+            in_order.push(name.clone());
+            by_name.entry(name).or_default().push(id);
+        }
+        StateNames {
+            ids: ids.iter().copied().collect(),
+            by_name,
+            names: in_order,
+        }
+    }
+
     fn resolve(&self, target: &Ref) -> Result<StateId, String> {
         match target {
             Ref::Id(id) if self.ids.contains(id) => Ok(*id),
             Ref::Id(id) => Err(format!("there is no state #{id}")),
             Ref::Name(name) => {
-                let found: Vec<StateId> = self
-                    .names
-                    .iter()
-                    .filter(|(n, _)| n == name)
-                    .map(|(_, id)| *id)
-                    .collect();
-                match found.as_slice() {
+                let found = self.by_name.get(name).map_or(&[][..], Vec::as_slice);
+                match found {
                     [id] => Ok(*id),
-                    [] => Err(match proclaim_syntax::nearest(self.names.iter().map(|(n, _)| n.as_str()), name) {
+                    [] => Err(match proclaim_syntax::nearest(self.names.iter().map(String::as_str), name) {
                         Some(near) => format!("there is no state named `{name}`; did you mean `{near}`?"),
                         None => format!("there is no state named `{name}`"),
                     }),
@@ -248,7 +266,9 @@ impl StateNames {
                         "`{name}` names {} states ({}); name the one meant by its id, as in `-> #{}`",
                         many.len(),
                         many.iter()
+                            .take(LISTED)
                             .map(|id| format!("#{id}"))
+                            .chain((many.len() > LISTED).then(|| "…".to_string()))
                             .collect::<Vec<_>>()
                             .join(", "),
                         many[0]
