@@ -221,7 +221,9 @@ class Behaviour:
     def time(self) -> float:
         """Seconds the clock has moved since the start."""
     def post(self, type: str, value: _WhiteboardValue) -> None:
-        """Posts ``value`` as ``type`` on the whiteboard, from the module ``python``."""
+        """Posts ``value`` as ``type`` on the whiteboard, from the module ``python``. ValueError
+        for a label the machines ask and another module answers (a theory, the script): the
+        posting would not change its answer; answer it with ``experts=`` instead."""
     def read(self, type: str) -> Optional[_WhiteboardValue]:
         """The latest value of ``type``; None when never posted."""
     @property

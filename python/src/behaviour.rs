@@ -407,8 +407,13 @@ impl Behaviour {
     }
 
     /// Posts `value` (bool, int, float, str, bytes or a list of them) as `type` on the
-    /// whiteboard, from the module `python`.
+    /// whiteboard, from the module `python`. ValueError for a label the machines ask and
+    /// another module answers (the script's impersonator, a theory): its answer is that
+    /// module's, so the posting would change nothing.
     fn post(&self, r#type: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        if let Some(why) = answered_elsewhere(&self.board, r#type) {
+            return Err(pyo3::exceptions::PyValueError::new_err(why));
+        }
         board::post(&self.board, r#type, value)
     }
 
@@ -568,6 +573,22 @@ impl Behaviour {
     fn __repr__(&self) -> String {
         format!("<proclaim.Behaviour {}>", self.folder.display())
     }
+}
+
+/// Why posting `ty` would change nothing, if it would not: the machines only ask it (they
+/// read none of its postings) and some module answers it.
+fn answered_elsewhere(board: &proclaim_board::Whiteboard, ty: &str) -> Option<String> {
+    let registry = board.registry();
+    let modules = registry.modules();
+    let asked = modules.iter().any(|m| m.waits_on.iter().any(|t| t == ty));
+    let read = modules.iter().any(|m| m.reads.iter().any(|t| t == ty));
+    let answerers = registry.answerers(ty);
+    (asked && !read && !answerers.is_empty()).then(|| {
+        format!(
+            "`{ty}` is a label the machines ask and {} answers: a posting would not change its answer; answer it from Python with experts={{\"{ty}\": ...}}, or set it in the script",
+            answerers.join(", ")
+        )
+    })
 }
 
 /// The behaviour in `folder` loaded to check the callables given against it: BehaviourError for

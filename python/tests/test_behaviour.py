@@ -77,6 +77,17 @@ def test_a_python_expert_for_one_label_leaves_the_theory_answering_the_rest():
         assert oven.read("Magnetron") == "on"
 
 
+def test_posting_a_label_another_module_answers_is_an_error_not_ignored():
+    with proclaim.Behaviour(MICROWAVE) as oven:
+        oven.step()
+        # The theory answers cook: a posting of it would change nothing the machine asks.
+        with pytest.raises(ValueError, match="`cook` is a label the machines ask and microwave answers"):
+            oven.post("cook", True)
+        # An input the theory reads from the board is a posting that counts.
+        oven.post("doorOpen", True)
+        assert oven.run_until(lambda b: b.state("Microwave") == "OPEN", rounds=10)
+
+
 @pytest.mark.parametrize("none", [None, ""])
 def test_script_none_or_empty_plays_no_script_and_left_out_plays_the_manifests(none):
     with proclaim.Behaviour(MICROWAVE, script=none) as oven:
