@@ -159,6 +159,29 @@ fn a_copied_sighting_fails_with_a_numeric_counterexample_that_replays() {
     assert!(stdout(&o).contains("--never: FAILS"), "{}", stdout(&o));
     let text = std::fs::read_to_string(&script).expect("the script is written");
     assert!(text.contains("\nballRR = -"), "{text}");
+    // The command printed replays it from anywhere, and ends.
+    let said = stderr(&o);
+    let command = said
+        .split("replay it with `proclaim ")
+        .nth(1)
+        .and_then(|rest| rest.split('`').next())
+        .unwrap_or_else(|| panic!("no replay command in: {said}"));
+    let replayed = std::process::Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(command.split(' '))
+        .current_dir(std::env::temp_dir())
+        .output()
+        .unwrap();
+    assert_eq!(
+        replayed.status.code(),
+        Some(0),
+        "{command}: {}",
+        stderr(&replayed)
+    );
+    assert!(
+        stdout(&replayed).contains("→ RIGHT"),
+        "{}",
+        stdout(&replayed)
+    );
     let o = proclaim(&[
         "run",
         cutdown.to_str().unwrap(),

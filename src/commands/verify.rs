@@ -426,14 +426,21 @@ fn write_counterexample(
         path: trace_path.clone(),
         error,
     })?;
+    // Paths, not names, so the command works from anywhere; an end, so a counterexample that
+    // leaves a machine waiting for ever still stops.
+    let absolute =
+        |p: &std::path::Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let folder = behaviour.files.folder().map_or_else(
+        || behaviour.name.clone(),
+        |f| absolute(f).display().to_string(),
+    );
     eprintln!(
-        "counterexample: {} (an impersonator script for `proclaim run {} --script {} --virtual-clock`) and {}, that run's trace (`proclaim replay --monitor {} --behaviour {}`)",
+        "counterexample: {} (replay it with `proclaim run {folder} --script {} --virtual-clock --for {}ms`) and {}, that run's trace (`proclaim replay --monitor {} --behaviour {folder}`)",
         path.display(),
-        behaviour.name,
-        path.display(),
+        absolute(path).display(),
+        limit.as_millis(),
         trace_path.display(),
-        trace_path.display(),
-        behaviour.name
+        absolute(&trace_path).display(),
     );
     Ok(())
 }
