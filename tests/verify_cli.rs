@@ -222,3 +222,22 @@ fn a_copied_sighting_fails_with_a_numeric_counterexample_that_replays() {
     let _ = std::fs::remove_file(&script);
     let _ = std::fs::remove_file(script.with_extension("jsonl"));
 }
+
+/// `--json` prints a document on stdout whatever happens: bad input is `{"error": …}` with exit
+/// 2 (it printed nothing, so a program reading it found no JSON at all).
+#[test]
+fn json_output_says_what_was_wrong_on_bad_input() {
+    for (behaviour, why) in [
+        (
+            "microwave",
+            "machine Microwave has no state or variable `ZZZ`",
+        ),
+        ("/nonexistent", "no behaviour `/nonexistent`"),
+    ] {
+        let o = proclaim(&["verify", behaviour, "--never", "Microwave.ZZZ", "--json"]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+        assert!(json["error"].as_str().unwrap().contains(why), "{json}");
+        assert_eq!(json["exit"], 2);
+    }
+}

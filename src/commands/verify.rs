@@ -104,13 +104,33 @@ pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
             language,
             args.output.as_deref(),
         ),
-        None => run(
-            &args.behaviour,
-            &asked,
-            options(args.max_states, args.max_memory, &args.without, args.engine),
-            args.json,
-            args.counterexample.as_deref(),
-        ),
+        None => {
+            let ran = run(
+                &args.behaviour,
+                &asked,
+                options(args.max_states, args.max_memory, &args.without, args.engine),
+                args.json,
+                args.counterexample.as_deref(),
+            );
+            match ran {
+                // A program reading `--json` gets a document whatever happened: the error, as
+                // stderr says it too.
+                Err(failure) if args.json => {
+                    let why = match &failure {
+                        Failure::Invalid { what, errors, .. } => {
+                            format!(
+                                "{what} has {errors} error{}",
+                                if *errors == 1 { "" } else { "s" }
+                            )
+                        }
+                        other => other.to_string(),
+                    };
+                    println!("{}", serde_json::json!({ "error": why, "exit": 2 }));
+                    Err(failure)
+                }
+                other => other,
+            }
+        }
     }
 }
 
