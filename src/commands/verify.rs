@@ -300,9 +300,14 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
 /// The search's one line: how much it explored, why it stopped, how fast and how small.
 fn print_search(behaviour: &str, s: &SearchStats, seconds: f64) {
     if s.engine == SearchEngine::Symbolic.word() {
+        // A decision diagram counts past what a machine word holds.
+        let states = if s.states == usize::MAX {
+            format!("more than {}", usize::MAX)
+        } else {
+            s.states.to_string()
+        };
         println!(
-            "{behaviour}: {} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
-            s.states,
+            "{behaviour}: {states} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
             s.transitions,
             s.stopped.describe(),
             seconds,
