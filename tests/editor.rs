@@ -300,6 +300,89 @@ fn the_editor_follows_the_monitors_access_rules() {
     let _ = std::fs::remove_dir_all(dir.parent().unwrap());
 }
 
+/// A machine is checked in its behaviour as it is edited: a label no expert answers (a typo)
+/// is shown as an error, in the box while typed, and Save refuses it once, saving on the
+/// second click (it once said "the machine reads and lints clean" and saved what `run`
+/// refuses).
+#[test]
+fn a_label_the_behaviour_cannot_answer_is_shown_and_saved_only_on_a_second_click() {
+    let dir = std::env::temp_dir().join(format!("proclaim-edit-{}-behaviour", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("Door.machine");
+    std::fs::write(
+        &file,
+        "machine Door\ninitial SHUT\nstate SHUT {\n    when open -> OPEN\n}\nstate OPEN { }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("door.dl"),
+        "input{button}.\nR: button => open.\noutput{open}.\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"Door.machine\"\n[[theory]]\nfile = \"door.dl\"\n",
+    )
+    .unwrap();
+    let (_editor, url) = editor(&dir, &[]);
+    let errors = |model: &Json| -> Vec<String> {
+        model["machines"][0]["diagnostics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|d| d["severity"] == "error")
+            .map(|d| d["message"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let (_, model) = http(&url, "GET", "/api/edit/model", None);
+    assert!(
+        errors(&serde_json::from_str(&model).unwrap()).is_empty(),
+        "{model}"
+    );
+    let typo = r#"{"kind":"set_label","state":0,"transition":0,"label":"opne"}"#;
+    let (status, tried) = http(
+        &url,
+        "POST",
+        "/api/edit/try",
+        Some(&format!(r#"{{"machine":0,"edit":{typo}}}"#)),
+    );
+    assert_eq!(status, 200, "{tried}");
+    let tried: Json = serde_json::from_str(&tried).unwrap();
+    assert!(
+        tried
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|d| d["message"].as_str().unwrap().contains("opne") && !d["in_box"].is_null()),
+        "{tried}"
+    );
+    let (status, answer) = http(
+        &url,
+        "POST",
+        "/api/edit/change",
+        Some(&format!(r#"{{"machine":0,"edit":{typo}}}"#)),
+    );
+    assert_eq!(status, 200, "{answer}");
+    let answer: Json = serde_json::from_str(&answer).unwrap();
+    let shown = errors(&answer["model"]);
+    assert!(shown.iter().any(|m| m.contains("opne")), "{shown:?}");
+    let save = Some(r#"{"machine":0}"#);
+    let (status, answer) = http(&url, "POST", "/api/edit/save", save);
+    assert_eq!(status, 409, "{answer}");
+    assert!(
+        answer.contains("would refuse") && answer.contains("Save again"),
+        "{answer}"
+    );
+    assert!(!std::fs::read_to_string(&file).unwrap().contains("opne"));
+    let (status, answer) = http(&url, "POST", "/api/edit/save", save);
+    assert_eq!(status, 200, "{answer}");
+    assert!(std::fs::read_to_string(&file)
+        .unwrap()
+        .contains("when opne -> OPEN"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A change saved in the editor beside `run --watch --monitor` is picked up by the running
 /// behaviour: the new state is drawn, the new transition (put first) fires, and the page lights
 /// the new state.

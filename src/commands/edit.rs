@@ -43,6 +43,14 @@ pub fn run(behaviour: &str, addr: &str, read_only: bool) -> Result<ExitCode, Fai
             .await
             .map_err(|e| Failure::Argument(format!("the editor could not open: {e}")))?;
         editor.set_access(access.clone());
+        // Each machine checked in its behaviour as it is edited (labels no expert answers).
+        let root = folder.clone();
+        editor.set_check(std::sync::Arc::new(
+            move |path: &std::path::Path, text: &str| {
+                let relative = path.strip_prefix(&root).unwrap_or(path);
+                proclaim_behaviour::check_edited(&root, &relative.to_string_lossy(), text)
+            },
+        ));
         let bound: SocketAddr = editor
             .serve(wanted)
             .await

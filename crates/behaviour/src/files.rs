@@ -69,3 +69,29 @@ impl Files for Embedded {
         format!("<embedded>/{}/{relative}", self.name)
     }
 }
+
+/// A folder on disk with one file's text as an editor holds it, not as saved: the behaviour
+/// checked as it would be once that file is saved.
+pub struct EditedFolder {
+    pub folder: Folder,
+    /// The file's path as the manifest names it.
+    pub relative: String,
+    pub text: String,
+}
+
+impl Files for EditedFolder {
+    fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
+        if relative == self.relative {
+            return Ok(self.text.clone());
+        }
+        self.folder.read(relative)
+    }
+
+    fn show(&self, relative: &str) -> String {
+        self.folder.show(relative)
+    }
+
+    fn folder(&self) -> Option<&Path> {
+        self.folder.folder()
+    }
+}

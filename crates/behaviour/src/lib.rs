@@ -10,6 +10,7 @@
 mod analysis;
 mod deps;
 mod draw;
+mod edited;
 mod error;
 mod files;
 mod launch;
@@ -30,8 +31,9 @@ mod trace;
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use draw::behaviour_to_dot;
+pub use edited::check_edited;
 pub use error::BehaviourError;
-pub use files::{Embedded, Files, Folder};
+pub use files::{EditedFolder, Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
 pub use liveness::{liveness_machines, parse_liveness, Definition, GaiaFormula};
 pub use load::{

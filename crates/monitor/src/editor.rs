@@ -21,7 +21,7 @@ use proclaim_fsm::edit::{
 use proclaim_fsm::{parse_machine, FileDiagnostic};
 use serde::{Deserialize, Serialize};
 use std::net::SocketAddr;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 const EDITOR_HTML: &str = include_str!("../assets/editor.html");
@@ -30,6 +30,11 @@ const MONITOR_CSS: &str = include_str!("../assets/monitor.css");
 
 /// How many edits of one machine can be undone.
 const UNDO_DEPTH: usize = 500;
+
+/// The behaviour-level check of one machine file's text as the editor holds it (its path,
+/// its text): what `proclaim run` would refuse, such as a label no expert answers. Given by
+/// whoever knows the behaviour (`proclaim edit`); the editor alone knows only the machine.
+pub type BehaviourCheck = Arc<dyn Fn(&Path, &str) -> Vec<FileDiagnostic> + Send + Sync>;
 
 /// A machine file the editor opens.
 pub struct EditorFile {
@@ -65,6 +70,10 @@ struct Open {
     /// The last drawing of a text that read as a machine.
     chart: Option<Chart>,
     drawn_text: String,
+    check: Option<BehaviourCheck>,
+    /// A text Save refused once for what the behaviour-level check found: a second Save of it
+    /// saves it anyway.
+    warned: Option<String>,
 }
 
 impl Editor {
@@ -90,6 +99,8 @@ impl Editor {
                     redo: Vec::new(),
                     chart: None,
                     drawn_text: String::new(),
+                    check: None,
+                    warned: None,
                 };
                 open.draw();
                 Mutex::new(open)
@@ -101,6 +112,14 @@ impl Editor {
                 machines,
                 access: Default::default(),
             }),
+        }
+    }
+
+    /// Checks each machine in its behaviour as it is edited, from now on: what it finds is
+    /// shown with the machine's own diagnostics, and Save warns of its errors once.
+    pub fn set_check(&self, check: BehaviourCheck) {
+        for open in &self.shared.machines {
+            open.lock().check = Some(check.clone());
         }
     }
 
@@ -144,10 +163,31 @@ impl Open {
     }
 
     fn diagnostics(&self) -> Vec<FileDiagnostic> {
-        match &self.refusal {
-            Some(_) => Vec::new(),
-            None => check_native(&self.file_name(), &self.text),
+        if self.refusal.is_some() {
+            return Vec::new();
         }
+        let mut found = check_native(&self.file_name(), &self.text);
+        found.extend(self.behaviour_diagnostics(&self.text, &found));
+        found
+    }
+
+    /// What the behaviour-level check finds in `text` beyond `found` (the machine's own); it
+    /// is not asked while the machine itself has errors.
+    fn behaviour_diagnostics(&self, text: &str, found: &[FileDiagnostic]) -> Vec<FileDiagnostic> {
+        let Some(check) = &self.check else {
+            return Vec::new();
+        };
+        if found.iter().any(FileDiagnostic::is_error) {
+            return Vec::new();
+        }
+        check(&self.path, text)
+            .into_iter()
+            .filter(|d| {
+                !found
+                    .iter()
+                    .any(|f| f.line == d.line && f.message == d.message)
+            })
+            .collect()
     }
 
     /// Draws the text when it reads as a machine and changed since the last drawing; a text
@@ -193,8 +233,7 @@ impl Open {
         if let Some(why) = &self.refusal {
             return Err(why.clone());
         }
-        let errors: Vec<FileDiagnostic> = self
-            .diagnostics()
+        let errors: Vec<FileDiagnostic> = check_native(&self.file_name(), &self.text)
             .into_iter()
             .filter(FileDiagnostic::is_error)
             .collect();
@@ -206,6 +245,30 @@ impl Open {
                 first.line.map(|l| format!("line {l}: ")).unwrap_or_default(),
                 first.message
             ));
+        }
+        // Only what this edit brings: a behaviour that was already refused as saved (run with
+        // `--force`, say) is not refused again for it.
+        let before: Vec<String> = self
+            .behaviour_diagnostics(&self.on_disk, &[])
+            .into_iter()
+            .map(|d| d.message)
+            .collect();
+        let refused: Vec<FileDiagnostic> = self
+            .behaviour_diagnostics(&self.text, &[])
+            .into_iter()
+            .filter(|d| d.is_error() && !before.contains(&d.message))
+            .collect();
+        if let Some(first) = refused.first() {
+            if self.warned.as_deref() != Some(self.text.as_str()) {
+                self.warned = Some(self.text.clone());
+                return Err(format!(
+                    "not saved: `proclaim run` would refuse the behaviour with this machine: {} error{} ({}{}); Save again to save it anyway",
+                    refused.len(),
+                    if refused.len() == 1 { "" } else { "s" },
+                    first.line.map(|l| format!("line {l}: ")).unwrap_or_default(),
+                    first.message
+                ));
+            }
         }
         let now = std::fs::read_to_string(&self.path).map_err(|e| format!("not saved: {e}"))?;
         if now != self.on_disk {
@@ -696,7 +759,7 @@ async fn try_edit(
         Ok(edited) => {
             let written = &edited.text[edited.written.clone()];
             let placed = edited.in_written();
-            let diagnostics: Vec<DiagnosticJson> = edited
+            let mut diagnostics: Vec<DiagnosticJson> = edited
                 .diagnostics
                 .iter()
                 .map(|d| DiagnosticJson {
@@ -707,6 +770,16 @@ async fn try_edit(
                     ..DiagnosticJson::of(d)
                 })
                 .collect();
+            // What the behaviour would refuse, in the box when it is on a line the edit wrote.
+            let first_line = edited.text[..edited.written.start].matches('\n').count() + 1;
+            let lines = first_line..=first_line + written.matches('\n').count();
+            let more = open
+                .lock()
+                .behaviour_diagnostics(&edited.text, &edited.diagnostics);
+            diagnostics.extend(more.iter().map(|d| DiagnosticJson {
+                in_box: d.line.filter(|l| lines.contains(l)).map(|_| 0),
+                ..DiagnosticJson::of(d)
+            }));
             Json(diagnostics).into_response()
         }
         Err(e) => (StatusCode::CONFLICT, e.to_string()).into_response(),

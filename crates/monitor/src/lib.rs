@@ -21,7 +21,7 @@ mod server;
 
 pub use access::{new_token, parse_address, Access, TOKEN_HEADER};
 pub use diagram::{node, Chart, ChartState, ChartTransition};
-pub use editor::{Editor, EditorFile};
+pub use editor::{BehaviourCheck, Editor, EditorFile};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
 pub use server::{Monitor, FRAME_GAP};
