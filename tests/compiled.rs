@@ -321,6 +321,39 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
             "{behaviour} to {target}: {stderr}"
         );
     }
+    // An input group is refused at its own line (it pointed at line 1).
+    let keeper = scratch("refused-group");
+    std::fs::write(
+        keeper.join("G.machine"),
+        "machine G\ninitial A\nstate A {\n    when diveLeft -> B\n}\nstate B { }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        keeper.join("g.dl"),
+        "% a keeper\ninput{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\noutput{diveLeft}.\n",
+    )
+    .unwrap();
+    std::fs::write(
+        keeper.join("behaviour.toml"),
+        "[[machine]]\nfile = \"G.machine\"\n[[theory]]\nfile = \"g.dl\"\n",
+    )
+    .unwrap();
+    for target in ["c", "rust"] {
+        let o = proclaim(&[
+            "compile",
+            keeper.to_str().unwrap(),
+            "--target",
+            target,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains("g.dl:2: cannot be compiled: an input group"),
+            "{stderr}"
+        );
+    }
 }
 
 #[test]

@@ -218,6 +218,19 @@ fn period_ms(behaviour: &Behaviour) -> Result<u64, Refusal> {
 
 type PlannedTheories = (Vec<PlannedTheory>, Vec<Output>, Vec<Input>);
 
+/// The line a theory's refusal points at: its first input group's, the one thing a theory
+/// written for a behaviour is refused for, else the first.
+fn refused_line(behaviour: &Behaviour, loaded: &proclaim_behaviour::LoadedTheory) -> usize {
+    let group = loaded.theory.inputs().iter().find(|g| g.atoms.len() > 1);
+    match (group, behaviour.files.read(&loaded.file)) {
+        (Some(group), Ok(text)) => {
+            let at = (group.span.start as usize).min(text.len());
+            text[..at].matches('\n').count() + 1
+        }
+        _ => 1,
+    }
+}
+
 /// Each theory tabulated over true/false/unknown inputs; its outputs and the posting types of
 /// its inputs.
 fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
@@ -228,7 +241,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
     for (t, loaded) in behaviour.theories.iter().enumerate() {
         let file = behaviour.files.show(&loaded.file);
         let compiled = compile(&loaded.theory, loaded.limits, Domain::Ternary)
-            .map_err(|e| refuse(&file, 1, e.to_string()))?;
+            .map_err(|e| refuse(&file, refused_line(behaviour, loaded), e.to_string()))?;
         for (index, atom) in compiled.inputs.iter().enumerate() {
             let ty = loaded
                 .mapping
