@@ -4,24 +4,38 @@
 //! and transitions whose label was never read.
 
 use crate::label::Label;
-use crate::model::{Action, Machine, StateId};
+use crate::model::{Action, Machine, StateId, Transition};
 use proclaim_syntax::FileDiagnostic;
+use std::collections::{HashMap, HashSet};
+
+/// Each state's transitions, highest priority first: looked up once, so a machine of many
+/// states is linted in time linear in its size (`Machine::outgoing` scans every transition).
+type Outgoing<'m> = HashMap<StateId, Vec<&'m Transition>>;
+
+fn outgoing_of(machine: &Machine) -> Outgoing<'_> {
+    let mut outgoing: Outgoing<'_> = HashMap::new();
+    for t in &machine.transitions {
+        outgoing.entry(t.source).or_default().push(t);
+    }
+    outgoing
+}
 
 /// Warnings about `machine`, read from `file`, in state order.
 pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
     let mut out = Vec::new();
-    let reached = reachable(machine);
+    let outgoing = outgoing_of(machine);
+    let reached: HashSet<StateId> = reachable_by(machine, &outgoing).into_iter().collect();
+    let initial = machine
+        .state(machine.initial)
+        .map_or("?", |s| s.name.as_str());
     for state in &machine.states {
         if !reached.contains(&state.id) {
             out.push(FileDiagnostic::warning(
                 file,
                 state.line,
                 format!(
-                    "state {} is never reached from the initial state {}",
+                    "state {} is never reached from the initial state {initial}",
                     state.name,
-                    machine
-                        .state(machine.initial)
-                        .map_or("?", |s| s.name.as_str())
                 ),
             ));
         }
@@ -49,9 +63,9 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
                 format!("the transition on `{}` is not run: {}", u.label, u.reason),
             ));
         }
-        let outgoing: Vec<_> = machine.outgoing(state.id).collect();
-        for (i, t) in outgoing.iter().enumerate() {
-            let above = &outgoing[..i];
+        let leaving = outgoing.get(&state.id).map_or(&[][..], Vec::as_slice);
+        for (i, t) in leaving.iter().enumerate() {
+            let above = &leaving[..i];
             if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
                 out.push(FileDiagnostic::warning(
                     file,
@@ -73,7 +87,7 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
             }
         }
     }
-    out.extend(timeless_cycles(machine, file));
+    out.extend(timeless_cycles(machine, &outgoing, file));
     out
 }
 
@@ -81,53 +95,65 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
 /// the next, so the machine goes round at one moment for ever and time cannot pass (a run
 /// halts such a machine: `docs/spec/behaviour.md` §3.1). Reported once, at the line of the
 /// cycle's first transition from the lowest state.
-fn timeless_cycles(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
+fn timeless_cycles(machine: &Machine, outgoing: &Outgoing<'_>, file: &str) -> Vec<FileDiagnostic> {
     let always = |id: StateId| {
-        machine
-            .outgoing(id)
-            .next()
+        outgoing
+            .get(&id)
+            .and_then(|ts| ts.first().copied())
             .filter(|t| t.label == Label::TRUE)
     };
-    let name = |id: StateId| machine.state(id).map_or("?", |s| s.name.as_str());
-    let mut reported: Vec<StateId> = Vec::new();
+    let names: HashMap<StateId, &str> = machine
+        .states
+        .iter()
+        .map(|s| (s.id, s.name.as_str()))
+        .collect();
+    let name = |id: StateId| names.get(&id).copied().unwrap_or("?");
     let mut out = Vec::new();
+    // States whose forced moves were followed to their end already: each is walked once.
+    let mut done: HashSet<StateId> = HashSet::new();
     for start in machine.states.iter().map(|s| s.id) {
-        // Follow the forced moves; a state seen twice closes a cycle.
+        // Follow the forced moves; a state seen twice on this walk closes a cycle.
         let mut path = vec![start];
-        while let Some(t) = always(*path.last().unwrap_or(&start)) {
-            if let Some(at) = path.iter().position(|s| *s == t.target) {
-                let cycle = &path[at..];
+        let mut on_path: HashMap<StateId, usize> = HashMap::from([(start, 0)]);
+        let mut at = start;
+        while let Some(t) = always(at).filter(|_| !done.contains(&at)) {
+            if let Some(&from) = on_path.get(&t.target) {
+                let cycle = &path[from..];
                 let lowest = *cycle.iter().min().unwrap_or(&start);
-                if !reported.contains(&lowest) {
-                    reported.push(lowest);
-                    let names: Vec<&str> =
-                        cycle.iter().chain([&cycle[0]]).map(|s| name(*s)).collect();
-                    out.push(FileDiagnostic::warning(
-                        file,
-                        always(lowest).map_or(0, |t| t.line),
-                        format!(
-                            "{} goes round at one moment for ever: each state's first transition is `TRUE`, so time cannot pass (a run halts the machine)",
-                            names.join(" -> ")
-                        ),
-                    ));
-                }
+                let names: Vec<&str> = cycle.iter().chain([&cycle[0]]).map(|s| name(*s)).collect();
+                out.push(FileDiagnostic::warning(
+                    file,
+                    always(lowest).map_or(0, |t| t.line),
+                    format!(
+                        "{} goes round at one moment for ever: each state's first transition is `TRUE`, so time cannot pass (a run halts the machine)",
+                        names.join(" -> ")
+                    ),
+                ));
                 break;
             }
+            on_path.insert(t.target, path.len());
             path.push(t.target);
+            at = t.target;
         }
+        done.extend(path);
     }
     out
 }
 
 /// The states reachable from the initial state.
 pub fn reachable(machine: &Machine) -> Vec<StateId> {
+    reachable_by(machine, &outgoing_of(machine))
+}
+
+fn reachable_by(machine: &Machine, outgoing: &Outgoing<'_>) -> Vec<StateId> {
     let mut seen = vec![machine.initial];
+    let mut known: HashSet<StateId> = seen.iter().copied().collect();
     let mut next = 0;
     while next < seen.len() {
         let at = seen[next];
         next += 1;
-        for t in machine.outgoing(at) {
-            if !seen.contains(&t.target) {
+        for t in outgoing.get(&at).into_iter().flatten() {
+            if known.insert(t.target) {
                 seen.push(t.target);
             }
         }

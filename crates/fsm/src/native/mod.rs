@@ -313,13 +313,12 @@ impl Lowering<'_> {
 
     /// Ids as written; the others numbered from 1, skipping those taken.
     fn number(&mut self, parsed: &[StateAst]) -> Vec<StateId> {
-        let mut taken: Vec<StateId> = Vec::new();
+        let mut taken: std::collections::HashSet<StateId> = Default::default();
         for s in parsed {
             if let Some(id) = s.id {
-                if taken.contains(&id) {
+                if !taken.insert(id) {
                     self.error(s.at, format!("state id #{id} is used twice"));
                 }
-                taken.push(id);
             }
         }
         let mut next = 1;
@@ -330,7 +329,7 @@ impl Lowering<'_> {
                     while taken.contains(&next) {
                         next += 1;
                     }
-                    taken.push(next);
+                    taken.insert(next);
                     next
                 })
             })
