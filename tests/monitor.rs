@@ -52,6 +52,18 @@ pub(crate) fn free_port() -> u16 {
 }
 
 /// Starts `proclaim ARGS` and reads its output up to the monitor's URL.
+/// The microwave run for a minute with its page on a free loopback port.
+fn microwave_with_monitor() -> (Running, String) {
+    proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "60s",
+    ])
+}
+
 fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
     proclaim_serving(args, "monitor: ")
 }
@@ -388,14 +400,7 @@ pub(crate) fn http_with(
 
 #[test]
 fn the_page_api_serves_the_run_and_refuses_bad_requests() {
-    let (_run, url) = proclaim_with_monitor(&[
-        "run",
-        "microwave",
-        "--monitor",
-        "127.0.0.1:0",
-        "--for",
-        "60s",
-    ]);
+    let (_run, url) = microwave_with_monitor();
     let (status, page) = http(&url, "GET", "/", None);
     assert_eq!(status, 200);
     assert!(page.contains("<title>proclaim monitor</title>"), "{page}");
@@ -447,14 +452,7 @@ fn the_page_api_serves_the_run_and_refuses_bad_requests() {
 
 #[test]
 fn a_request_from_another_site_changes_nothing() {
-    let (_run, url) = proclaim_with_monitor(&[
-        "run",
-        "microwave",
-        "--monitor",
-        "127.0.0.1:0",
-        "--for",
-        "60s",
-    ]);
+    let (_run, url) = microwave_with_monitor();
     let posting = Some(r#"{"type":"visitor","value":"42"}"#);
     let post = |headers: &str| http_with(&url, "POST", "/api/post", posting, headers);
     // DNS rebinding: a page the operator visits rebinds its own name to 127.0.0.1.

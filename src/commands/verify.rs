@@ -297,15 +297,20 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     }
 }
 
+/// A symbolic state count as said: a decision diagram counts past what a machine word holds,
+/// and the count saturates there.
+fn states_counted(states: usize) -> String {
+    if states == usize::MAX {
+        format!("more than {}", usize::MAX)
+    } else {
+        states.to_string()
+    }
+}
+
 /// The search's one line: how much it explored, why it stopped, how fast and how small.
 fn print_search(behaviour: &str, s: &SearchStats, seconds: f64) {
     if s.engine == SearchEngine::Symbolic.word() {
-        // A decision diagram counts past what a machine word holds.
-        let states = if s.states == usize::MAX {
-            format!("more than {}", usize::MAX)
-        } else {
-            s.states.to_string()
-        };
+        let states = states_counted(s.states);
         println!(
             "{behaviour}: {states} states in {} layers (symbolic), {}, {:.2} s, {:.1} MB of decision diagrams",
             s.transitions,
@@ -503,4 +508,15 @@ fn run_script(
         running.stop().await;
         Ok(events)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_saturated_count_is_said_to_be_more() {
+        assert_eq!(states_counted(5), "5");
+        assert_eq!(states_counted(usize::MAX), "more than 18446744073709551615");
+    }
 }

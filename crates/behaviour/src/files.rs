@@ -72,7 +72,7 @@ impl Files for Embedded {
 
 /// A folder on disk with one file's text as an editor holds it, not as saved: the behaviour
 /// checked as it would be once that file is saved.
-pub struct EditedFolder {
+pub(crate) struct EditedFolder {
     pub folder: Folder,
     /// The file's path as the manifest names it.
     pub relative: String,

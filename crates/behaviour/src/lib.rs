@@ -33,7 +33,7 @@ pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use draw::behaviour_to_dot;
 pub use edited::check_edited;
 pub use error::BehaviourError;
-pub use files::{EditedFolder, Embedded, Files, Folder};
+pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
 pub use liveness::{liveness_machines, parse_liveness, Definition, GaiaFormula};
 pub use load::{
