@@ -322,22 +322,23 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
         );
     }
     // An input group is refused at its own line (it pointed at line 1).
-    let keeper = scratch("refused-group");
-    std::fs::write(
-        keeper.join("G.machine"),
-        "machine G\ninitial A\nstate A {\n    when diveLeft -> B\n}\nstate B { }\n",
-    )
-    .unwrap();
-    std::fs::write(
-        keeper.join("g.dl"),
-        "% a keeper\ninput{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\noutput{diveLeft}.\n",
-    )
-    .unwrap();
-    std::fs::write(
-        keeper.join("behaviour.toml"),
-        "[[machine]]\nfile = \"G.machine\"\n[[theory]]\nfile = \"g.dl\"\n",
-    )
-    .unwrap();
+    let keeper = crate::behaviour_folder(
+        "refused-group",
+        &[
+            (
+                "G.machine",
+                "machine G\ninitial A\nstate A {\n    when diveLeft -> B\n}\nstate B { }\n",
+            ),
+            (
+                "g.dl",
+                "% a keeper\ninput{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\noutput{diveLeft}.\n",
+            ),
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"G.machine\"\n[[theory]]\nfile = \"g.dl\"\n",
+            ),
+        ],
+    );
     for target in ["c", "rust"] {
         let o = proclaim(&[
             "compile",
@@ -1223,17 +1224,13 @@ pub(crate) fn construct_cases() -> Vec<Case> {
 /// same number of rounds with no wait, saying why, instead of running for ever at one moment.
 #[test]
 fn a_cycle_that_takes_no_time_is_warned_of_and_halted_interpreted_and_compiled() {
-    let folder = scratch("timeless-behaviour");
-    std::fs::write(
-        folder.join("Loop.machine"),
-        "machine Loop\ninitial A\nstate A {\n    when TRUE -> B\n}\nstate B {\n    when TRUE -> A\n}\n",
-    )
-    .unwrap();
-    std::fs::write(
-        folder.join("behaviour.toml"),
-        "[[machine]]\nfile = \"Loop.machine\"\n",
-    )
-    .unwrap();
+    let folder = crate::behaviour_folder(
+        "timeless",
+        &[
+            ("Loop.machine", "machine Loop\ninitial A\nstate A {\n    when TRUE -> B\n}\nstate B {\n    when TRUE -> A\n}\n"),
+            ("behaviour.toml", "[[machine]]\nfile = \"Loop.machine\"\n"),
+        ],
+    );
     let behaviour = folder.to_str().unwrap();
     let checked = proclaim(&["check", behaviour]);
     let said = String::from_utf8_lossy(&checked.stderr);

@@ -306,25 +306,15 @@ fn the_editor_follows_the_monitors_access_rules() {
 /// refuses).
 #[test]
 fn a_label_the_behaviour_cannot_answer_is_shown_and_saved_only_on_a_second_click() {
-    let dir = std::env::temp_dir().join(format!("proclaim-edit-{}-behaviour", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::behaviour_folder(
+        "edit-behaviour",
+        &[
+            ("Door.machine", "machine Door\ninitial SHUT\nstate SHUT {\n    when open -> OPEN\n}\nstate OPEN { }\n"),
+            ("door.dl", "input{button}.\nR: button => open.\noutput{open}.\n"),
+            ("behaviour.toml", "[[machine]]\nfile = \"Door.machine\"\n[[theory]]\nfile = \"door.dl\"\n"),
+        ],
+    );
     let file = dir.join("Door.machine");
-    std::fs::write(
-        &file,
-        "machine Door\ninitial SHUT\nstate SHUT {\n    when open -> OPEN\n}\nstate OPEN { }\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("door.dl"),
-        "input{button}.\nR: button => open.\noutput{open}.\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"Door.machine\"\n[[theory]]\nfile = \"door.dl\"\n",
-    )
-    .unwrap();
     let (_editor, url) = editor(&dir, &[]);
     let errors = |model: &Json| -> Vec<String> {
         model["machines"][0]["diagnostics"]

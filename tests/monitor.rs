@@ -675,29 +675,24 @@ fn a_page_on_the_network_needs_its_token_and_a_read_only_page_changes_nothing() 
 
 /// A behaviour whose one transition has a label longer than Graphviz takes (16,384 characters
 /// in a quoted string), in a folder of the test's own.
-fn too_long_for_graphviz(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("proclaim-long-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+fn too_long_for_graphviz() -> std::path::PathBuf {
     let label = format!("\"{}\" == \"y\"", "x".repeat(100_000));
-    std::fs::write(
-        dir.join("Long.machine"),
-        format!("machine Long\ninitial A\nstate A {{\n    when {label} -> B\n}}\nstate B {{ }}\n"),
+    let machine =
+        format!("machine Long\ninitial A\nstate A {{\n    when {label} -> B\n}}\nstate B {{ }}\n");
+    crate::behaviour_folder(
+        "long-label",
+        &[
+            ("Long.machine", &machine),
+            ("behaviour.toml", "[[machine]]\nfile = \"Long.machine\"\n"),
+        ],
     )
-    .unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"Long.machine\"\n",
-    )
-    .unwrap();
-    dir
 }
 
 /// Graphviz stops reading a diagram it refuses; the broken pipe once killed proclaim (SIGPIPE),
 /// so a viewer took the robot down. Now each stays alive and says what Graphviz said.
 #[test]
 fn a_label_too_long_for_graphviz_kills_neither_draw_nor_the_run_nor_the_editor() {
-    let dir = too_long_for_graphviz("alive");
+    let dir = too_long_for_graphviz();
     let graphviz = on_path("dot").is_some();
     let svg = dir.join("long.svg");
     let drawn = crate::proclaim(&["draw", dir.to_str().unwrap(), "-o", svg.to_str().unwrap()]);

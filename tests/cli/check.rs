@@ -31,29 +31,16 @@ fn check_reports_every_error_and_exits_1() {
 /// warnings printed above it; `--deny-warnings` fails on them.
 #[test]
 fn a_typo_in_a_rule_is_counted_and_fails_with_deny_warnings() {
-    let dir = temp_file("typo.dl", b"").with_extension("").join("goalie");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::behaviour_folder(
+        "typo",
+        &[
+            ("goalie.dl", "input{ballNear}.\ninput{teammateCloser}.\nCome: ballNear => comeOut.\nMate: teamateCloser => ~comeOut.\nMate > Come.\noutput{comeOut}.\n"),
+            ("Goalie.machine", "machine Goalie\ninitial WAIT\nstate WAIT {\n    when comeOut -> OUT\n}\nstate OUT { }\n"),
+            ("behaviour.toml", "[[machine]]\nfile = \"Goalie.machine\"\n[[theory]]\nfile = \"goalie.dl\"\n[impersonator]\nscript = \"s.script\"\n"),
+            ("s.script", "ballNear = true\nteammateCloser = true\n"),
+        ],
+    );
     let theory = dir.join("goalie.dl");
-    std::fs::write(
-        &theory,
-        "input{ballNear}.\ninput{teammateCloser}.\nCome: ballNear => comeOut.\nMate: teamateCloser => ~comeOut.\nMate > Come.\noutput{comeOut}.\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("Goalie.machine"),
-        "machine Goalie\ninitial WAIT\nstate WAIT {\n    when comeOut -> OUT\n}\nstate OUT { }\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"Goalie.machine\"\n[[theory]]\nfile = \"goalie.dl\"\n[impersonator]\nscript = \"s.script\"\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("s.script"),
-        "ballNear = true\nteammateCloser = true\n",
-    )
-    .unwrap();
     let o = proclaim(&["check", theory.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(

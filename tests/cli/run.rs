@@ -479,20 +479,13 @@ fn a_sensor_the_script_stands_in_for_opens_no_socket_and_runs_side_by_side() {
 /// converting the seconds to a `Duration`.
 #[test]
 fn a_time_test_too_long_for_any_clock_never_comes_due() {
-    let dir = temp_file("forever.script", b"")
-        .with_extension("")
-        .join("forever");
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("F.machine"),
-        "machine F\ninitial A\nstate A {\n    when after(1e300) -> B\n    when after(1s) -> C\n}\nstate B { }\nstate C { }\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"F.machine\"\n",
-    )
-    .unwrap();
+    let dir = crate::behaviour_folder(
+        "forever",
+        &[
+            ("F.machine", "machine F\ninitial A\nstate A {\n    when after(1e300) -> B\n    when after(1s) -> C\n}\nstate B { }\nstate C { }\n"),
+            ("behaviour.toml", "[[machine]]\nfile = \"F.machine\"\n"),
+        ],
+    );
     let o = crate::proclaim(&[
         "run",
         dir.to_str().unwrap(),
