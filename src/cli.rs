@@ -342,6 +342,11 @@ pub struct CompileArgs {
     /// Search steps allowed inside one attack cycle (default 10,000,000)
     #[arg(long, value_name = "STEPS")]
     pub budget: Option<u64>,
+    /// With `--target rust`: the program can also run on a whiteboard (`--monitor`, `--listen`,
+    /// `--connect`). The project then depends on tokio and, by path, on the crates of the
+    /// source tree this proclaim was built from; without it, on crates.io alone
+    #[arg(long)]
+    pub whiteboard: bool,
 }
 
 /// What `proclaim bench` is told.

@@ -103,18 +103,27 @@ fn random(seed: u64) -> Compiled {
 
 /// Compiles each behaviour into `projects/NAME` and makes the folder one Cargo workspace of
 /// them (each project is its own workspace as written; here they share one lock and build).
+/// The microwave is compiled `--whiteboard`, for the monitor's page, and so depends on this
+/// repository's `proclaim-runtime`: the others' copies of it (the same files) give way to it, as
+/// one lock holds one package of a name. `a_compiled_behaviour_builds_from_crates_io_alone`
+/// builds a copy.
 fn write_projects(behaviours: &[Compiled], projects: &Path) {
     let mut members = Vec::new();
+    let runtime = std::fs::canonicalize("crates/runtime").unwrap();
     for b in behaviours {
         let dir = projects.join(&b.name);
-        let o = proclaim(&[
+        let mut args = vec![
             "compile",
             b.folder.to_str().unwrap(),
             "--target",
             "rust",
             "-o",
             dir.to_str().unwrap(),
-        ]);
+        ];
+        if b.name == "microwave" {
+            args.push("--whiteboard");
+        }
+        let o = proclaim(&args);
         assert!(
             o.status.success(),
             "{}: {}",
@@ -124,8 +133,16 @@ fn write_projects(behaviours: &[Compiled], projects: &Path) {
         let manifest = dir.join("Cargo.toml");
         let text = std::fs::read_to_string(&manifest).unwrap();
         let name = format!("behaviour-{}", b.name);
+        let copy = dir.join("runtime");
+        if copy.exists() {
+            std::fs::remove_dir_all(&copy).unwrap();
+        }
         let text = text
             .replace("[workspace]\n", "")
+            .replace(
+                "{ path = \"runtime\" }",
+                &format!("{{ path = {runtime:?} }}"),
+            )
             .lines()
             .map(|l| {
                 if l.starts_with("name = ") {
@@ -357,6 +374,91 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         &runs,
     );
     bad_options_are_refused_with_what_is_wrong(&programs.join("behaviour-microwave"));
+}
+
+/// A behaviour compiled without `--whiteboard` is a project of crates.io crates alone: every
+/// package it builds from a path is inside it, no file of it names this repository, and no
+/// tokio, board, monitor or runner is among its packages. It builds offline in a folder
+/// outside the repository, writes the interpreter's trace, and says how to get the whiteboard
+/// it was compiled without.
+#[test]
+fn a_compiled_behaviour_builds_from_crates_io_alone() {
+    let project = std::env::temp_dir().join(format!("proclaim-alone-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&project);
+    let o = proclaim(&[
+        "compile",
+        "machines/microwave",
+        "--target",
+        "rust",
+        "-o",
+        project.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let repository = std::fs::canonicalize(".").unwrap();
+    let mut files = vec![project.clone()];
+    while let Some(path) = files.pop() {
+        if path.is_dir() {
+            files.extend(std::fs::read_dir(&path).unwrap().map(|e| e.unwrap().path()));
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            !text.contains(repository.to_str().unwrap()),
+            "{} names the repository",
+            path.display()
+        );
+    }
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let o = Command::new(&cargo)
+        .args(["metadata", "--offline", "--format-version", "1"])
+        .current_dir(&project)
+        .output()
+        .expect("cargo runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let metadata: Json = serde_json::from_slice(&o.stdout).unwrap();
+    let packages = metadata["packages"].as_array().unwrap();
+    for p in packages {
+        let name = p["name"].as_str().unwrap();
+        assert!(
+            ![
+                "tokio",
+                "proclaim-board",
+                "proclaim-monitor",
+                "proclaim-runner"
+            ]
+            .contains(&name),
+            "{name} is built by a behaviour compiled without --whiteboard"
+        );
+        if p["source"].is_null() {
+            let manifest = p["manifest_path"].as_str().unwrap();
+            assert!(
+                Path::new(manifest).starts_with(&project),
+                "{name} is built from {manifest}, outside the project"
+            );
+        }
+    }
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rust-alone");
+    let o = Command::new(&cargo)
+        .args(["build", "--offline", "--quiet"])
+        .current_dir(&project)
+        .env("CARGO_TARGET_DIR", &target)
+        .env("CARGO_PROFILE_DEV_DEBUG", "0")
+        .output()
+        .expect("cargo runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let program = target.join("debug/behaviour-microwave");
+    let runs = scratch("rust-alone-runs");
+    let run = microwave().runs.swap_remove(0);
+    let (interpreted, compiled) = traces(Path::new("machines/microwave"), &program, &runs, &run);
+    assert_same("microwave built alone", &interpreted, &compiled);
+    let o = Command::new(&program).arg("--monitor").output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("compiled without the whiteboard") && stderr.contains("--whiteboard"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&project);
 }
 
 /// Options that do not go together, or a page or board the program cannot have, end the

@@ -646,6 +646,7 @@ fn compiled_with_network(tag: &str, behaviour: &str) -> (std::path::PathBuf, std
         "rust",
         "-o",
         project.to_str().unwrap(),
+        "--whiteboard",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let target = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("rust-network");

@@ -11,6 +11,15 @@ use std::process::ExitCode;
 
 /// `proclaim compile`.
 pub fn command(args: CompileArgs) -> Result<ExitCode, Failure> {
+    let path = Path::new(&args.theory);
+    if path.is_dir() || path.join("behaviour.toml").exists() {
+        return behaviour(&args.theory, args.target, args.whiteboard, &args.out);
+    }
+    if args.whiteboard {
+        return Err(Failure::Argument(
+            "--whiteboard is said of a behaviour compiled with --target rust".into(),
+        ));
+    }
     run(
         &args.theory,
         args.target,
@@ -29,7 +38,7 @@ pub fn run(
 ) -> Result<ExitCode, Failure> {
     let path = Path::new(theory_name);
     if path.is_dir() || path.join("behaviour.toml").exists() {
-        return behaviour(theory_name, target, out);
+        return behaviour(theory_name, target, false, out);
     }
     if target == CompileTarget::Rust {
         return Err(Failure::Argument(
@@ -109,10 +118,20 @@ fn bytes(n: usize) -> String {
 
 /// A behaviour: its machines and theories as freestanding C with the host harness `main.c`, or
 /// as a Cargo project.
-fn behaviour(name: &str, target: CompileTarget, out: &Path) -> Result<ExitCode, Failure> {
+fn behaviour(
+    name: &str,
+    target: CompileTarget,
+    whiteboard: bool,
+    out: &Path,
+) -> Result<ExitCode, Failure> {
     let behaviour = crate::behaviours::load_behaviour(name)?;
     let refused = |refusal: proclaim_compile::Refusal| Failure::Argument(refusal.to_string());
     let (files, what) = match target {
+        CompileTarget::C if whiteboard => {
+            return Err(Failure::Argument(
+                "--whiteboard is said of --target rust: a behaviour compiled to C runs on its host's own board".into(),
+            ))
+        }
         CompileTarget::C => (
             proclaim_compile::compile_behaviour(&behaviour)
                 .map_err(refused)?
@@ -120,16 +139,23 @@ fn behaviour(name: &str, target: CompileTarget, out: &Path) -> Result<ExitCode, 
             "core: behaviour.c and the theories; host harness: main.c",
         ),
         CompileTarget::Rust => {
-            let Some(repository) = proclaim_compile::source_repository() else {
-                return Err(Failure::Argument(
-                    "--target rust depends on proclaim's crates by path, and the source tree this proclaim was built from is not here".into(),
-                ));
+            let repository = match whiteboard {
+                false => None,
+                true => Some(proclaim_compile::source_repository().ok_or_else(|| {
+                    Failure::Argument(
+                        "--whiteboard: the project depends on proclaim's board, monitor and runner by path, and the source tree this proclaim was built from is not here".into(),
+                    )
+                })?),
             };
             (
-                proclaim_compile::compile_behaviour_rust(&behaviour, &repository)
+                proclaim_compile::compile_behaviour_rust(&behaviour, repository.as_deref())
                     .map_err(refused)?
                     .files,
-                "a Cargo project: `cargo run --release -- --script FILE --virtual-clock --trace FILE`",
+                if whiteboard {
+                    "a Cargo project: `cargo run --release -- --script FILE --virtual-clock --trace FILE`, on a whiteboard with `--monitor` (`--features network` for `--listen`, `--connect`)"
+                } else {
+                    "a Cargo project of crates.io crates alone: `cargo run --release -- --script FILE --virtual-clock --trace FILE`"
+                },
             )
         }
     };

@@ -5,7 +5,7 @@ use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
 use proclaim_behaviour::{read_trace, Behaviour};
 use proclaim_monitor::{Access, Chart, Monitor};
-use proclaim_runner::Event;
+use proclaim_runtime::Event;
 use std::net::SocketAddr;
 use std::path::Path;
 use std::process::ExitCode;

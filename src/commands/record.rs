@@ -107,7 +107,7 @@ impl Recorder {
     }
 
     /// Writes one of the machines' events.
-    pub fn event(&self, event: &proclaim_runner::Event) {
+    pub fn event(&self, event: &proclaim_runtime::Event) {
         let _ = self
             .lines
             .send(serde_json::to_string(event).unwrap_or_default());

@@ -482,7 +482,7 @@ fn run_script(
     script: &str,
     limit: std::time::Duration,
     last_round: u64,
-) -> Result<Vec<proclaim_runner::Event>, Failure> {
+) -> Result<Vec<proclaim_runtime::Event>, Failure> {
     let script = proclaim_experts::parse_script(script).map_err(|errors| {
         Failure::Argument(format!(
             "the counterexample's script does not read back: {}",

@@ -21,13 +21,12 @@ fn bench(c: &mut Criterion) {
     group.bench_function("post, no suppressor", |b| {
         b.iter(|| board.post_ranked("Walk", "walk", black_box(value.clone()), 0))
     });
-    let judged =
-        |suppressor: &mut Suppressor, ty: &str, priority: u32, now: Duration| match suppressor
-            .offer("Walk", ty, &value, priority, now)
-        {
+    let judged = |suppressor: &mut Suppressor<Value>, ty: &str, priority: u32, now: Duration| {
+        match suppressor.offer("Walk", ty, &value, priority, now) {
             Visibility::Shown => Some(board.post_ranked("Walk", ty, value.clone(), priority)),
             Visibility::Suppressed { .. } => None,
-        };
+        }
+    };
     let mut suppressor = Suppressor::new([("walk", Duration::from_millis(500))]);
     group.bench_function("post, type not declared", |b| {
         b.iter(|| judged(&mut suppressor, black_box("say"), 0, Duration::ZERO))

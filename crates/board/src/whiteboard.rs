@@ -11,8 +11,7 @@ use crate::value::Value;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// The message type of a query; its content is the atom (the original's name).
-pub const QUERY_TYPE: &str = "updateProofsForOutput";
+pub use proclaim_runtime::QUERY_TYPE;
 
 /// The type an expert posts `true` on when it could not decide `atom` within its limits (and
 /// answered it false), and `false` on once it decides it again: how a page, a log or a machine

@@ -46,7 +46,7 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let compiled = match proclaim_compile::compile_behaviour_rust(&behaviour, &root) {
+    let compiled = match proclaim_compile::compile_behaviour_rust(&behaviour, None) {
         Ok(c) => c,
         Err(refusal) => {
             eprintln!("{refusal}");

@@ -54,21 +54,22 @@ pub struct RustBehaviour {
     pub files: Vec<(String, String)>,
 }
 
-/// Compiles `behaviour` to a Cargo project whose machines are Rust code, depending by path on
-/// the crates of the repository at `repository` for the trace's events and the script's
-/// reading.
+/// Compiles `behaviour` to a Cargo project whose machines are Rust code. It carries its own copy
+/// of `proclaim-runtime` and builds with crates from crates.io alone; given `whiteboard` (the
+/// root of this repository, [`source_repository`]) it can run on a whiteboard too (`--monitor`,
+/// `--listen`, `--connect`), depending by path on that repository's board, monitor and runner.
 pub fn compile_behaviour_rust(
     behaviour: &Behaviour,
-    repository: &std::path::Path,
+    whiteboard: Option<&std::path::Path>,
 ) -> Result<RustBehaviour, Refusal> {
     let plan = plan_behaviour(behaviour, Language::Rust)?;
     Ok(RustBehaviour {
-        files: crate::print_rust::project_files(&plan, repository),
+        files: crate::print_rust::project_files(&plan, whiteboard),
     })
 }
 
 /// The root of the repository this crate was built from, whose crates a compiled Rust
-/// behaviour depends on by path; `None` when it is not on this machine.
+/// behaviour on a whiteboard depends on by path; `None` when it is not on this machine.
 pub fn source_repository() -> Option<std::path::PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     root.join("crates/runner/Cargo.toml")

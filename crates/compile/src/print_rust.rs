@@ -1,14 +1,16 @@
 //! A behaviour's plan printed as a Cargo project: `src/behaviour.rs` (a ringlet a machine, the
-//! round schedule), `src/theories.rs` (a decision diagram a theory), `src/runtime.rs` (values
-//! and the world) and `src/main.rs`, a host taking `proclaim run`'s options for one behaviour.
-//! The trace's events (`proclaim-runner`) and the script's reading (`proclaim-syntax`) are this
-//! repository's crates', by path, so a trace is the interpreter's by construction.
+//! round schedule), `src/theories.rs` (a decision diagram a theory), `src/charts.rs` (the
+//! machines drawn), `src/main.rs` (a host taking `proclaim run`'s options for one behaviour) and
+//! `src/board.rs` (the whiteboard, or its absence). The values, the world and the trace's events
+//! are `proclaim-runtime`'s, copied into `runtime/`, so a trace is the interpreter's by
+//! construction and the project builds with crates from crates.io alone; only a project asked
+//! for a whiteboard depends on this repository's crates, by path.
 
 use crate::plan::{
     Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
 };
 use crate::print_c::{board_of_outputs, board_of_statuses, fill};
-use crate::rust_template::{BODY, RING, RUNTIME};
+use crate::rust_template::{BODY, RING};
 use crate::tabulate::Compiled;
 use proclaim_fsm::control::Command;
 use proclaim_runner::LOOP_LIMIT;
@@ -19,25 +21,42 @@ use std::path::Path;
 const MAIN: &str = include_str!("rust_main.rs.txt");
 /// The whiteboard the host shows the run on (`--monitor`, `--listen`, `--connect`).
 const BOARD: &str = include_str!("rust_board.rs.txt");
+/// The whiteboard's absence, in a project compiled without one.
+const NO_BOARD: &str = include_str!("rust_no_board.rs.txt");
+/// The versions this repository builds with, so a generated project builds with the same.
+const LOCK: &str = include_str!("../../../Cargo.lock");
 
-/// Every file of the Cargo project: path and text. `repository` is this repository's root,
-/// whose crates (`proclaim-runner`, `proclaim-syntax`) the project depends on by path and
-/// whose `Cargo.lock` pins the same versions of theirs.
-pub(crate) fn project_files(plan: &Plan, repository: &Path) -> Vec<(String, String)> {
+/// The manifest of `runtime/`, the copy of `proclaim-runtime` a project carries: its
+/// dependencies as `crates/runtime/Cargo.toml` has them, with the workspace's versions.
+const RUNTIME_MANIFEST: &str = "# proclaim's runtime, copied from its repository (do not edit).\n[package]\nname = \"proclaim-runtime\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nrustc-hash = \"2\"\nserde = { version = \"1\", features = [\"derive\"] }\nserde_json = \"1\"\n";
+
+/// Every file of the Cargo project: path and text. `whiteboard` is this repository's root when
+/// the program is to run on a whiteboard (`--monitor`, `--listen`, `--connect`): its crates
+/// (board, monitor, runner, Zenoh) and its runtime are then dependencies by path. Without it the
+/// project carries its own copy of the runtime and needs nothing from this repository.
+pub(crate) fn project_files(plan: &Plan, whiteboard: Option<&Path>) -> Vec<(String, String)> {
     let mut files = vec![
-        (
-            "Cargo.toml".into(),
-            manifest(plan, &repository.join("crates")),
-        ),
+        ("Cargo.toml".into(), manifest(plan, whiteboard)),
+        ("Cargo.lock".into(), LOCK.into()),
         ("src/main.rs".into(), MAIN.into()),
-        ("src/runtime.rs".into(), RUNTIME.into()),
         ("src/behaviour.rs".into(), behaviour(plan)),
         ("src/theories.rs".into(), theories(plan)),
         ("src/charts.rs".into(), charts(plan)),
-        ("src/board.rs".into(), BOARD.into()),
+        (
+            "src/board.rs".into(),
+            (if whiteboard.is_some() {
+                BOARD
+            } else {
+                NO_BOARD
+            })
+            .into(),
+        ),
     ];
-    if let Ok(lock) = std::fs::read_to_string(repository.join("Cargo.lock")) {
-        files.push(("Cargo.lock".into(), lock));
+    if whiteboard.is_none() {
+        files.push(("runtime/Cargo.toml".into(), RUNTIME_MANIFEST.into()));
+        for (path, text) in proclaim_runtime::SOURCES {
+            files.push((format!("runtime/{path}"), text.to_string()));
+        }
     }
     files
 }
@@ -57,18 +76,34 @@ fn package_name(name: &str) -> String {
     format!("behaviour-{}", tail.trim_matches('-'))
 }
 
-fn manifest(plan: &Plan, crates: &Path) -> String {
-    let path = |krate: &str| format!("{:?}", crates.join(krate).to_string_lossy());
-    format!(
-        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nproclaim-board = {{ path = {} }}\nproclaim-monitor = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\nproclaim-syntax = {{ path = {} }}\nserde_json = \"1\"\ntokio = {{ version = \"1.40\", features = [\"rt-multi-thread\", \"signal\", \"time\", \"sync\"] }}\nproclaim-zenoh = {{ path = {}, optional = true }}\n\n[features]\n# The whiteboard shared with other processes and robots (`--listen`, `--connect`): Zenoh's\n# stack is large, so it is built only when asked for.\nnetwork = [\"dep:proclaim-zenoh\"]\n\n# Its own workspace, wherever it is written.\n[workspace]\n",
+fn manifest(plan: &Plan, whiteboard: Option<&Path>) -> String {
+    let mut out = format!(
+        "# The behaviour `{}` compiled by proclaim (generated: do not edit).\n[package]\nname = \"{}\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nserde_json = \"1\"\n",
         plan.name.replace('\n', " "),
         package_name(&plan.name),
-        path("board"),
-        path("monitor"),
-        path("runner"),
-        path("syntax"),
-        path("zenoh"),
-    )
+    );
+    match whiteboard {
+        None => out.push_str("proclaim-runtime = { path = \"runtime\" }\n"),
+        Some(repository) => {
+            let path = |krate: &str| {
+                format!(
+                    "{:?}",
+                    repository.join("crates").join(krate).to_string_lossy()
+                )
+            };
+            let _ = write!(
+                out,
+                "proclaim-runtime = {{ path = {} }}\nproclaim-board = {{ path = {} }}\nproclaim-monitor = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\ntokio = {{ version = \"1.40\", features = [\"rt-multi-thread\", \"signal\", \"time\", \"sync\"] }}\nproclaim-zenoh = {{ path = {}, optional = true }}\n\n[features]\n# The whiteboard shared with other processes and robots (`--listen`, `--connect`): Zenoh's\n# stack is large, so it is built only when asked for.\nnetwork = [\"dep:proclaim-zenoh\"]\n",
+                path("runtime"),
+                path("board"),
+                path("monitor"),
+                path("runner"),
+                path("zenoh"),
+            );
+        }
+    }
+    out.push_str("\n# Its own workspace, wherever it is written.\n[workspace]\n");
+    out
 }
 
 /// `src/charts.rs`: each machine as `proclaim draw` draws it, for the monitor's page.
@@ -465,7 +500,7 @@ fn truth(v: &Value) -> String {
     format!("truthy({})", value(v))
 }
 
-/// A value's Rust (a `Value`).
+/// A value's Rust (a `Scalar`).
 fn value(v: &Value) -> String {
     match v {
         Value::Bool(b) => format!("v_bool({b})"),

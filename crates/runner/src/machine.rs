@@ -51,7 +51,7 @@ pub struct RunOptions {
 }
 
 /// A behaviour's [`Suppressor`], shared by its machines and its schedule.
-pub type SharedSuppressor = Arc<parking_lot::Mutex<Suppressor>>;
+pub type SharedSuppressor = Arc<parking_lot::Mutex<Suppressor<Value>>>;
 
 impl Default for RunOptions {
     fn default() -> RunOptions {

@@ -13,7 +13,7 @@ use crate::event::Event;
 use crate::machine::{MachineRunner, RingOutcome, RunningMachine, SharedSuppressor, Status};
 use crate::step::Stepper;
 use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
-use serde::{Deserialize, Serialize};
+pub use proclaim_runtime::event::Ringlet;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
@@ -33,25 +33,6 @@ impl RoundCounter {
     pub(crate) fn advance(&self) -> u64 {
         self.0.fetch_add(1, Ordering::Relaxed) + 1
     }
-}
-
-/// A ringlet: the round, the machine's place in the schedule, the board's highest sequence
-/// number as it began and its round's moment (time since the epoch). A message with a sequence
-/// number up to `seq` was on the board before the ringlet began, and one up to `snapshot` was
-/// in what it read; a recording of these is what lets a replay post every outside message
-/// before the same ringlet again.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Ringlet {
-    pub round: u64,
-    pub machine: usize,
-    pub seq: u64,
-    #[serde(rename = "at_us", with = "crate::event::micros")]
-    pub at: Duration,
-    /// The board's highest sequence number in the ringlet's snapshot, once it has run and if it
-    /// read the board (a message that came after the ringlet began but before its snapshot was
-    /// seen by it).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub snapshot: Option<u64>,
 }
 
 /// What paces a schedule from outside instead of its own waiting: a replay of a recorded run,

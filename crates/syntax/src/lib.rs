@@ -12,11 +12,9 @@ mod dfl;
 pub mod diagnostic;
 mod fast_path;
 pub mod lexer;
-mod lines;
 mod located;
 mod nearest;
 mod parse;
-mod script;
 pub mod span;
 
 lalrpop_util::lalrpop_mod!(
@@ -27,11 +25,11 @@ lalrpop_util::lalrpop_mod!(
 pub use ast::{Algorithm, Arrow, Item, OutputPart, Query, RuleItem, SourceLiteral};
 pub use dfl::{parse_dfl, parse_dfl_each};
 pub use diagnostic::{render, Diagnostic, Severity};
-pub use lines::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
 pub use located::FileDiagnostic;
 pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
-pub use script::{parse_script, Script, ScriptStep, ScriptValue, When};
+pub use proclaim_runtime::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
+pub use proclaim_runtime::{parse_script, Script, ScriptStep, ScriptValue, When};
 pub use span::{line_column, Span};
 
 /// The two theory languages.

@@ -2,9 +2,9 @@
 //! hold time, a posting of a higher priority holds the type for that long, and lower-priority
 //! postings meanwhile are suppressed (never seen by readers). When the hold runs out, the newest
 //! lower-priority posting takes over. Pure: the caller gives the time (the schedule's moment, so
-//! a replay decides as the run did) and posts what this allows.
+//! a replay decides as the run did) and posts what this allows. Generic over the posting's value,
+//! which it only keeps: the whiteboard's values on the interpreter, text in a compiled behaviour.
 
-use crate::value::Value;
 use rustc_hash::FxHashMap;
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -13,10 +13,10 @@ use std::time::Duration;
 /// A posting as the suppressor keeps it: who, what, at which priority, when (since the
 /// caller's epoch).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Ranked {
+pub struct Ranked<V> {
     pub module: Arc<str>,
     pub ty: Arc<str>,
-    pub value: Value,
+    pub value: V,
     pub priority: u32,
     pub at: Duration,
 }
@@ -37,18 +37,18 @@ pub enum Visibility {
 /// One suppressed type: its hold, the posting readers see, and the newest posting of each
 /// priority (seen or suppressed), from which a lower one takes over.
 #[derive(Debug)]
-struct Line {
+struct Line<V> {
     ty: Arc<str>,
     hold: Duration,
-    shown: Option<Ranked>,
-    newest: BTreeMap<u32, Ranked>,
+    shown: Option<Ranked<V>>,
+    newest: BTreeMap<u32, Ranked<V>>,
     /// Whether the shown posting stands over some lower-priority posting, which takes over
     /// when its hold runs out.
     subsuming: bool,
 }
 
-impl Line {
-    fn live(&self, posting: &Ranked, now: Duration) -> bool {
+impl<V: Clone> Line<V> {
+    fn live(&self, posting: &Ranked<V>, now: Duration) -> bool {
         now < posting.at + self.hold
     }
 
@@ -61,7 +61,7 @@ impl Line {
     /// priority, the highest whose own hold is still running (it would have held the type,
     /// had nothing been above it), else the newest (a lower layer goes on from where it was,
     /// even if it posted before it was subsumed).
-    fn successor(&self, now: Duration) -> Option<Ranked> {
+    fn successor(&self, now: Duration) -> Option<Ranked<V>> {
         let shown = self.shown.as_ref()?;
         if !self.subsuming || self.live(shown, now) {
             return None;
@@ -76,14 +76,22 @@ impl Line {
 }
 
 /// The suppressed types of one behaviour and what holds each.
-#[derive(Debug, Default)]
-pub struct Suppressor {
-    lines: FxHashMap<Arc<str>, Line>,
+#[derive(Debug)]
+pub struct Suppressor<V> {
+    lines: FxHashMap<Arc<str>, Line<V>>,
 }
 
-impl Suppressor {
+impl<V> Default for Suppressor<V> {
+    fn default() -> Self {
+        Suppressor {
+            lines: FxHashMap::default(),
+        }
+    }
+}
+
+impl<V: Clone> Suppressor<V> {
     /// The types declared suppressed, each with its hold time.
-    pub fn new<'a>(holds: impl IntoIterator<Item = (&'a str, Duration)>) -> Suppressor {
+    pub fn new<'a>(holds: impl IntoIterator<Item = (&'a str, Duration)>) -> Suppressor<V> {
         Suppressor {
             lines: holds
                 .into_iter()
@@ -118,7 +126,7 @@ impl Suppressor {
         &mut self,
         module: &str,
         ty: &str,
-        value: &Value,
+        value: &V,
         priority: u32,
         now: Duration,
     ) -> Visibility {
@@ -155,7 +163,7 @@ impl Suppressor {
     /// out with a lower-priority posting behind it, that posting (`Line::successor`), which
     /// holds in turn for what is left of its own hold, counted from when it was posted. Types
     /// in name order, so the same run posts them in the same order.
-    pub fn release(&mut self, now: Duration) -> Vec<Ranked> {
+    pub fn release(&mut self, now: Duration) -> Vec<Ranked<V>> {
         let mut released = Vec::new();
         for line in self.lines.values_mut() {
             if let Some(successor) = line.successor(now) {
@@ -200,7 +208,7 @@ mod tests {
         for (i, step) in steps.iter().enumerate() {
             match step {
                 Offer(at, who, priority, value, suppressed_by) => {
-                    let verdict = s.offer(who, "walk", &Value::parse(value), *priority, ms(*at));
+                    let verdict = s.offer(who, "walk", value, *priority, ms(*at));
                     let by = match &verdict {
                         Visibility::Shown => None,
                         Visibility::Suppressed { by, .. } => Some(by.to_string()),
@@ -211,16 +219,7 @@ mod tests {
                     let got: Vec<String> = s
                         .release(ms(*at))
                         .iter()
-                        .map(|r| {
-                            format!(
-                                "{}={}",
-                                r.module,
-                                match &r.value {
-                                    Value::Str(s) => s.clone(),
-                                    v => v.to_string(),
-                                }
-                            )
-                        })
+                        .map(|r| format!("{}={}", r.module, r.value))
                         .collect();
                     assert_eq!(got, *expected, "step {i}");
                 }
@@ -303,14 +302,8 @@ mod tests {
     #[test]
     fn a_type_not_declared_is_always_shown_and_never_released() {
         let mut s = Suppressor::new([("walk", ms(500))]);
-        assert_eq!(
-            s.offer("Reflex", "say", &Value::Int(1), 9, ms(0)),
-            Visibility::Shown
-        );
-        assert_eq!(
-            s.offer("Walk", "say", &Value::Int(2), 0, ms(1)),
-            Visibility::Shown
-        );
+        assert_eq!(s.offer("Reflex", "say", &1, 9, ms(0)), Visibility::Shown);
+        assert_eq!(s.offer("Walk", "say", &2, 0, ms(1)), Visibility::Shown);
         assert!(s.release(ms(10_000)).is_empty());
         assert_eq!(s.next_release(), None);
         assert_eq!(s.hold("walk"), Some(ms(500)));
@@ -320,9 +313,9 @@ mod tests {
     #[test]
     fn the_next_release_is_when_a_hold_with_something_behind_it_runs_out() {
         let mut s = Suppressor::new([("walk", ms(500))]);
-        s.offer("Reflex", "walk", &Value::Int(1), 2, ms(100));
+        s.offer("Reflex", "walk", &1, 2, ms(100));
         assert_eq!(s.next_release(), None, "nothing lower waits");
-        s.offer("Walk", "walk", &Value::Int(0), 0, ms(200));
+        s.offer("Walk", "walk", &0, 0, ms(200));
         assert_eq!(s.next_release(), Some(ms(600)));
         s.release(ms(600));
         assert_eq!(s.next_release(), None);

@@ -1,0 +1,32 @@
+//! What a behaviour compiled to Rust runs on, and what it shares with the interpreter: the
+//! trace's events and the recording's ringlets (`event.rs`), subsumption (`suppress.rs`), the
+//! impersonator's script and durations (`script.rs`, `lines.rs`), and the world a compiled
+//! behaviour's machines run in (`world.rs`).
+//!
+//! `proclaim compile --target rust` copies this crate's files into the project it writes, so a
+//! compiled behaviour builds with crates from crates.io alone; the interpreter's crates use the
+//! same files, so both report one trace and read one script by construction. It does no I/O.
+
+pub mod event;
+mod lines;
+mod script;
+pub mod suppress;
+pub mod world;
+
+pub use event::{Answerer, Event, Ringlet};
+pub use lines::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
+pub use script::{parse_script, Script, ScriptStep, ScriptValue, When};
+pub use suppress::{Ranked, Suppressor, Visibility};
+
+/// The message type of a query; its content is the atom (the original's name).
+pub const QUERY_TYPE: &str = "updateProofsForOutput";
+
+/// Every source file of this crate, as a generated project carries it: path and text.
+pub const SOURCES: &[(&str, &str)] = &[
+    ("src/lib.rs", include_str!("lib.rs")),
+    ("src/event.rs", include_str!("event.rs")),
+    ("src/lines.rs", include_str!("lines.rs")),
+    ("src/script.rs", include_str!("script.rs")),
+    ("src/suppress.rs", include_str!("suppress.rs")),
+    ("src/world.rs", include_str!("world.rs")),
+];
