@@ -648,3 +648,35 @@ fn command_code(command: Option<Command>) -> &'static str {
         Some(Command::Reload) | Some(Command::Reread) | None => "COMMAND_UNKNOWN",
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::RUNTIME_MANIFEST;
+
+    /// The names under `[dependencies]` in a manifest.
+    fn dependencies(manifest: &str) -> Vec<String> {
+        let mut names: Vec<String> = manifest
+            .split("[dependencies]")
+            .nth(1)
+            .unwrap_or_default()
+            .lines()
+            .take_while(|l| !l.starts_with('['))
+            .filter_map(|l| l.split(['.', ' ', '=']).next())
+            .filter(|name| !name.is_empty() && !name.starts_with('#'))
+            .map(str::to_string)
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn the_runtimes_copy_depends_on_what_the_runtime_does() {
+        let manifest = concat!(env!("CARGO_MANIFEST_DIR"), "/../runtime/Cargo.toml");
+        let workspace = std::fs::read_to_string(manifest).unwrap();
+        assert_eq!(dependencies(RUNTIME_MANIFEST), dependencies(&workspace));
+        assert_eq!(
+            dependencies(RUNTIME_MANIFEST),
+            ["rustc-hash", "serde", "serde_json"]
+        );
+    }
+}

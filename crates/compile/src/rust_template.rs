@@ -495,6 +495,50 @@ pub fn next_due_ms(w: &World) -> Option<u64> {
 pub fn finished(w: &World) -> bool {
 @tops@    true
 }
+
+/// The behaviour as `proclaim_runtime::host` runs it.
+pub struct Behaviour;
+
+impl proclaim_runtime::host::CompiledBehaviour for Behaviour {
+    const SCRIPT: Option<(&'static str, &'static str)> = SCRIPT;
+    const MACHINE_NAMES: &'static [&'static str] = MACHINE_NAMES;
+    fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
+        init(sink)
+    }
+    fn announce(w: &mut World) {
+        announce(w)
+    }
+    fn modules() -> Vec<&'static str> {
+        modules()
+    }
+    fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
+        round(w, started)
+    }
+    fn outside(w: &mut World, ty: &str, content: &str) -> bool {
+        outside(w, ty, content)
+    }
+    fn news(w: &World) -> bool {
+        news(w)
+    }
+    fn answers(atom: &str) -> bool {
+        answers(atom)
+    }
+    fn supply(w: &mut World, atom: &str) -> bool {
+        supply(w, atom)
+    }
+    fn unscripted_sensor(scripted: &[&str]) -> Option<(&'static str, &'static [&'static str])> {
+        unscripted_sensor(scripted)
+    }
+    fn is_machine(name: &str) -> bool {
+        is_machine(name)
+    }
+    fn next_due_ms(w: &World) -> Option<u64> {
+        next_due_ms(w)
+    }
+    fn finished(w: &World) -> bool {
+        finished(w)
+    }
+}
 "#;
 
 /// One machine's functions (`@m@` is its number).

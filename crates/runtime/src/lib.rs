@@ -1,13 +1,15 @@
 //! What a behaviour compiled to Rust runs on, and what it shares with the interpreter: the
 //! trace's events and the recording's ringlets (`event.rs`), subsumption (`suppress.rs`), the
-//! impersonator's script and durations (`script.rs`, `lines.rs`), and the world a compiled
-//! behaviour's machines run in (`world.rs`).
+//! impersonator's script and durations (`script.rs`, `lines.rs`), the world a compiled
+//! behaviour's machines run in (`world.rs`) and the program around it (`host.rs`).
 //!
 //! `proclaim compile --target rust` copies this crate's files into the project it writes, so a
 //! compiled behaviour builds with crates from crates.io alone; the interpreter's crates use the
-//! same files, so both report one trace and read one script by construction. It does no I/O.
+//! same files, so both report one trace and read one script by construction. Only `host.rs`, a
+//! program's `main`, does I/O (the command line, files, the clock).
 
 pub mod event;
+pub mod host;
 mod lines;
 mod script;
 pub mod suppress;
@@ -25,6 +27,7 @@ pub const QUERY_TYPE: &str = "updateProofsForOutput";
 pub const SOURCES: &[(&str, &str)] = &[
     ("src/lib.rs", include_str!("lib.rs")),
     ("src/event.rs", include_str!("event.rs")),
+    ("src/host.rs", include_str!("host.rs")),
     ("src/lines.rs", include_str!("lines.rs")),
     ("src/script.rs", include_str!("script.rs")),
     ("src/suppress.rs", include_str!("suppress.rs")),
