@@ -152,6 +152,25 @@ struct Module {
     task: Task,
 }
 
+/// The labels `options` answer from outside. A later replacer takes a label from an earlier
+/// one: a person, then the script, then the embedding program.
+fn replaced(behaviour: &Behaviour, options: &LaunchOptions) -> Replaced {
+    let mut replaced = Replaced::default();
+    if let Some(person) = &options.person {
+        replaced.take(person.declaration().answers, "a person answers");
+    }
+    if let Some(script) = options.script_played(behaviour) {
+        replaced.take(script.atoms(), "the script impersonates");
+    }
+    for expert in &options.experts {
+        replaced.take(
+            expert.declaration().answers,
+            "the embedding program answers",
+        );
+    }
+    replaced
+}
+
 /// Starts the behaviour on `board`. Fails only when a socket cannot be opened.
 pub async fn launch(
     behaviour: &Behaviour,
@@ -172,7 +191,7 @@ pub async fn launch(
         .as_ref()
         .map_or_else(RoundCounter::default, Rounds::counter);
     let mut notes = Vec::new();
-    let replaced = Replaced::of(behaviour, &options);
+    let replaced = replaced(behaviour, &options);
     let mut modules = experts(behaviour, board, &replaced, &mut notes);
     let sim_note = sensors(
         behaviour,

@@ -4,8 +4,6 @@
 //! answering the rest; a sensor wrapper any of whose labels is taken is left out whole, before
 //! it opens a socket, since whoever takes its labels stands in for the device.
 
-use crate::launch::LaunchOptions;
-use crate::load::Behaviour;
 use rustc_hash::FxHashMap;
 
 /// Label → who answers it instead (the reason, as a note says it).
@@ -15,26 +13,9 @@ pub(crate) struct Replaced {
 }
 
 impl Replaced {
-    /// The labels `options` answer from outside. A later replacer takes a label from an earlier
-    /// one: a person, then the script, then the embedding program.
-    pub(crate) fn of(behaviour: &Behaviour, options: &LaunchOptions) -> Replaced {
-        let mut replaced = Replaced::default();
-        if let Some(person) = &options.person {
-            replaced.take(person.declaration().answers, "a person answers");
-        }
-        if let Some(script) = options.script_played(behaviour) {
-            replaced.take(script.atoms(), "the script impersonates");
-        }
-        for expert in &options.experts {
-            replaced.take(
-                expert.declaration().answers,
-                "the embedding program answers",
-            );
-        }
-        replaced
-    }
-
-    fn take(&mut self, labels: Vec<String>, why: &'static str) {
+    /// `labels` are answered by someone else: `why` says who (a later call takes a label from
+    /// an earlier one).
+    pub(crate) fn take(&mut self, labels: Vec<String>, why: &'static str) {
         for label in labels {
             self.by.insert(label, why);
         }

@@ -4,8 +4,8 @@
 //! `proclaim_runner::arith`'s meaning written once in each target's runtime; fractions, text held
 //! in variables, whiteboard reads, host functions and sleeps are refused.
 
-use crate::behaviour::{Language, Refusal};
 use crate::plan::{Conversion, Function, Piece, Step, Value};
+use crate::refusal::{Language, Refusal};
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{
     Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,

@@ -9,31 +9,12 @@ use crate::plan::{
     Answer, BoardValue, Condition, Conversion, Drawing, Input, MachinePlan, Output, Plan,
     PlannedTheory, StatePlan, Suppressed, TransitionPlan,
 };
+use crate::refusal::{refuse, Language, Refusal};
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
 use proclaim_fsm::control::running_type;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
 use std::collections::HashMap;
-
-/// Why a behaviour was not compiled: where, and what.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Refusal {
-    pub file: String,
-    pub line: usize,
-    pub what: String,
-}
-
-impl std::fmt::Display for Refusal {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{}:{}: cannot be compiled: {}",
-            self.file, self.line, self.what
-        )
-    }
-}
-
-impl std::error::Error for Refusal {}
 
 /// The files of a compiled behaviour: name (a path relative to the output folder) and text.
 pub struct CBehaviour {
@@ -75,23 +56,6 @@ pub fn source_repository() -> Option<std::path::PathBuf> {
     root.join("crates/runner/Cargo.toml")
         .exists()
         .then(|| root.canonicalize().unwrap_or(root))
-}
-
-/// The language a behaviour is compiled to: what each cannot have is refused in its own words.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Language {
-    /// Freestanding C: no heap, no operating system, no processes, no network.
-    C,
-    /// A Cargo project: a native program, but without a whiteboard of its own.
-    Rust,
-}
-
-fn refuse(file: &str, line: usize, what: String) -> Refusal {
-    Refusal {
-        file: file.to_string(),
-        line,
-        what,
-    }
 }
 
 /// The plan of `behaviour`, or the first thing in it a compiled program cannot have.

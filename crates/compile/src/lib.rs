@@ -23,14 +23,15 @@ mod error;
 mod plan;
 mod print_c;
 mod print_rust;
+mod refusal;
 mod rust_template;
 mod tabulate;
 
 pub use behaviour::{
-    compile_behaviour, compile_behaviour_rust, source_repository, CBehaviour, Refusal,
-    RustBehaviour,
+    compile_behaviour, compile_behaviour_rust, source_repository, CBehaviour, RustBehaviour,
 };
 pub use c::{c_identifier, CSource};
 pub use diagram::{Diagram, Node};
 pub use error::CompileError;
+pub use refusal::Refusal;
 pub use tabulate::{compile, Compiled, Domain, Form, MAX_VARIABLES};

@@ -8,15 +8,18 @@ use crate::eval::Env;
 use crate::eval::Evaluate;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
-use crate::machine::SharedSuppressor;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
 use crate::walk::{Effects, Walk, LOOP_LIMIT};
-use proclaim_board::{Value, Visibility, Whiteboard};
+use proclaim_board::{Suppressor, Value, Visibility, Whiteboard};
 use proclaim_fsm::{Action, Argument, Expr};
 use rustc_hash::FxHashSet;
+use std::sync::Arc;
 use std::time::Duration;
 use tokio::time::Instant;
+
+/// A behaviour's [`Suppressor`], shared by its machines and its schedule.
+pub type SharedSuppressor = Arc<parking_lot::Mutex<Suppressor<Value>>>;
 
 /// What an activity runs with.
 pub(crate) struct ActivityContext<'a> {

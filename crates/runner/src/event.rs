@@ -1,7 +1,7 @@
 //! Where a running machine's events go: the trace's [`Event`]s are `proclaim-runtime`'s, shared
 //! with compiled behaviours; this is the channel and the clock they are reported with.
 
-use crate::rounds::RoundCounter;
+use crate::feed::RoundCounter;
 pub use proclaim_runtime::event::{Answerer, Event};
 use std::time::Duration;
 use tokio::sync::mpsc;

@@ -5,7 +5,7 @@
 use crate::eval::Env;
 use crate::eval::Evaluate;
 use crate::event::Answerer;
-use crate::rounds::QueryHook;
+use crate::feed::QueryHook;
 use crate::variables::Scope;
 use proclaim_board::QueryOutcome;
 use proclaim_fsm::{BinOp, Expr, Label, UnOp, TIME_TESTS};

@@ -1,17 +1,15 @@
 //! One machine running on the whiteboard: its rings, its control commands, its reloads.
 
-use crate::activity::ActivityContext;
+use crate::activity::{ActivityContext, SharedSuppressor};
 use crate::eval::Env;
 use crate::event::{Answerer, Event, Reporter};
+use crate::feed::{QueryHook, RoundCounter};
 use crate::host::Hosts;
 use crate::label::{dependencies, next_time_test, prove, reads_globals, Context};
-use crate::rounds::{QueryHook, RoundCounter};
 use crate::seen::Seen;
 use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
-use proclaim_board::{
-    Kind, Message, ModuleDecl, Pattern, Subscription, Suppressor, Value, Whiteboard,
-};
+use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
 use proclaim_fsm::control::{running_type, Command};
 use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, State, StateId};
 use rustc_hash::FxHashSet;
@@ -49,9 +47,6 @@ pub struct RunOptions {
     /// a machine on a task of its own only has its postings judged.
     pub suppressor: Option<SharedSuppressor>,
 }
-
-/// A behaviour's [`Suppressor`], shared by its machines and its schedule.
-pub type SharedSuppressor = Arc<parking_lot::Mutex<Suppressor<Value>>>;
 
 impl Default for RunOptions {
     fn default() -> RunOptions {

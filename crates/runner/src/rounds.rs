@@ -9,56 +9,16 @@
 //! or the ring period. The same outside postings arriving between the same rounds give the same
 //! trace; one due just as a round is (a script's step timed for that moment) arrives before it.
 
+use crate::activity::SharedSuppressor;
 use crate::event::Event;
-use crate::machine::{MachineRunner, RingOutcome, RunningMachine, SharedSuppressor, Status};
+use crate::feed::{Feed, QueryHook, RoundCounter, SharedFeed};
+use crate::machine::{MachineRunner, RingOutcome, RunningMachine, Status};
 use crate::step::Stepper;
 use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
-pub use proclaim_runtime::event::Ringlet;
-use std::sync::atomic::{AtomicU64, Ordering};
+use proclaim_runtime::Ringlet;
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::mpsc;
-
-/// The number of the round under way (0 before the first), shared by the machines of a
-/// schedule so that every event says which round it happened in.
-#[derive(Clone, Debug, Default)]
-pub struct RoundCounter(Arc<AtomicU64>);
-
-impl RoundCounter {
-    pub fn get(&self) -> u64 {
-        self.0.load(Ordering::Relaxed)
-    }
-
-    /// Starts the next round; its number.
-    pub(crate) fn advance(&self) -> u64 {
-        self.0.fetch_add(1, Ordering::Relaxed) + 1
-    }
-}
-
-/// What paces a schedule from outside instead of its own waiting: a replay of a recorded run,
-/// which posts the recorded outside messages where they came the first time (before a ringlet,
-/// or in it before one of its queries) and moves the (virtual) clock to each ringlet's time.
-pub trait Feed: Send {
-    /// Before each ringlet of a running machine: posts what came before it; the time since the
-    /// epoch to wait for before it starts.
-    fn before(&mut self, ringlet: Ringlet, board: &Whiteboard) -> Option<Duration>;
-    /// Before the `nth` query (from 0) that a ringlet asks an expert: posts what came before it.
-    fn before_query(&mut self, ringlet: Ringlet, nth: usize, board: &Whiteboard) {
-        let _ = (ringlet, nth, board);
-    }
-    /// When a round is over (before the next starts); false ends the run.
-    fn after_round(&mut self, round: u64) -> bool;
-}
-
-/// A feed shared by the schedule and the ringlet it runs (whose queries it hears of).
-pub(crate) type SharedFeed = Arc<parking_lot::Mutex<dyn Feed>>;
-
-/// What a ringlet under a feed tells it of its queries.
-#[derive(Clone)]
-pub(crate) struct QueryHook {
-    pub feed: SharedFeed,
-    pub ringlet: Ringlet,
-}
 
 /// Why a schedule's run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

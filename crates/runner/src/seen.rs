@@ -13,9 +13,9 @@
 //! the expert has changed its mind since (a reasoner whose input moved mid-ringlet), as the
 //! verifier's model reads one world per ringlet.
 
-use crate::event::Answerer;
 use parking_lot::Mutex;
 use proclaim_board::{Message, Snapshot, Value, Whiteboard};
+use proclaim_runtime::Answerer;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::{Arc, OnceLock};
 
