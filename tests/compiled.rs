@@ -321,9 +321,9 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
             "{behaviour} to {target}: {stderr}"
         );
     }
-    // An input group is refused at its own line (it pointed at line 1).
+    // A clause fact is refused at its own line (a theory's refusal pointed at line 1).
     let keeper = crate::behaviour_folder(
-        "refused-group",
+        "refused-clause",
         &[
             (
                 "G.machine",
@@ -331,7 +331,7 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
             ),
             (
                 "g.dl",
-                "% a keeper\ninput{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\noutput{diveLeft}.\n",
+                "% a keeper\ninput{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\n\\/{~ballLeft, ~diveRight}.\noutput{diveLeft}.\n",
             ),
             (
                 "behaviour.toml",
@@ -351,7 +351,7 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{stderr}");
         assert!(
-            stderr.contains("g.dl:2: cannot be compiled: an input group"),
+            stderr.contains("g.dl:4: cannot be compiled: a clause fact"),
             "{stderr}"
         );
     }
@@ -693,6 +693,20 @@ fn construct_trace(name: &str) -> String {
         .collect();
     let folder = behaviour_of(name, &files);
     same_trace(name, &folder, case.script, case.run_for)
+}
+
+/// A theory's input group holds in a compiled program as in the reasoner: setting one atom true
+/// makes the others false (`docs/spec/cdl.md` §1), so the keeper follows the ball to the centre.
+#[test]
+fn an_input_group_moves_as_the_reasoners_session_moves_it() {
+    if gcc_missing() {
+        return;
+    }
+    let trace = construct_trace("group");
+    assert!(
+        trace.contains("\"state\":\"Centre\""),
+        "the keeper follows the ball: {trace}"
+    );
 }
 
 #[test]
@@ -1128,6 +1142,13 @@ pub(crate) struct Case {
     pub run_for: Option<&'static str>,
 }
 
+/// A keeper whose theory reads one input group: the ball is left, centre or right.
+const KEEPER_THEORY: &str = "input{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\nR: ballRight => diveRight.\nC: ballCentre => stay.\nN: ~ballLeft => notLeft.\noutput{diveLeft, diveRight, stay, notLeft}.\n";
+
+/// It moves only as the group's update moves the theory's inputs: the ball seen right makes
+/// it no longer left (`notLeft`), and seen in the centre no longer right.
+const KEEPER: &str = "machine Keeper\ninitial Wait\nstate Wait {\n    when diveLeft -> Left\n}\nstate Left {\n    when diveRight && notLeft -> Right\n}\nstate Right {\n    when stay && !diveRight -> Centre\n}\nstate Centre {\n}\n";
+
 /// The behaviours of the tests above that each hold to one construct: one machine each, the
 /// controlling three, and the blinking two (with and without a theory).
 pub(crate) fn construct_cases() -> Vec<Case> {
@@ -1206,6 +1227,16 @@ pub(crate) fn construct_cases() -> Vec<Case> {
             ],
             script: "doorOpen = false\nat 900ms doorOpen = true\n",
             run_for: Some("3s"),
+        },
+        Case {
+            name: "group",
+            files: vec![
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"Keeper.machine\"\n[[theory]]\nfile = \"keeper.dl\"\n".into()),
+                ("Keeper.machine".into(), KEEPER.into()),
+                ("keeper.dl".into(), KEEPER_THEORY.into()),
+            ],
+            script: "at 100ms ballLeft = true\nat 200ms ballRight = true\nat 400ms ballCentre = true\n",
+            run_for: Some("1s"),
         },
         Case {
             name: "alone",

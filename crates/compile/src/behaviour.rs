@@ -183,13 +183,13 @@ fn period_ms(behaviour: &Behaviour) -> Result<u64, Refusal> {
 
 type PlannedTheories = (Vec<PlannedTheory>, Vec<Output>, Vec<Input>);
 
-/// The line a theory's refusal points at: its first input group's, the one thing a theory
+/// The line a theory's refusal points at: its first clause fact's, the one thing a theory
 /// written for a behaviour is refused for, else the first.
 fn refused_line(behaviour: &Behaviour, loaded: &proclaim_behaviour::LoadedTheory) -> usize {
-    let group = loaded.theory.inputs().iter().find(|g| g.atoms.len() > 1);
-    match (group, behaviour.files.read(&loaded.file)) {
-        (Some(group), Ok(text)) => {
-            let at = (group.span.start as usize).min(text.len());
+    let span = loaded.theory.axioms().iter().find_map(|c| c.span);
+    match (span, behaviour.files.read(&loaded.file)) {
+        (Some(span), Ok(text)) => {
+            let at = (span.start as usize).min(text.len());
             text[..at].matches('\n').count() + 1
         }
         _ => 1,
@@ -216,6 +216,9 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
             inputs.push(Input {
                 ty,
                 variable: offset + 2 * index,
+                group: group_of(&loaded.theory, &compiled.inputs, index)
+                    .map(|other| offset + 2 * other)
+                    .collect(),
             });
         }
         for (index, name) in compiled.outputs.iter().enumerate() {
@@ -260,6 +263,7 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
         inputs.push(Input {
             ty: atom.clone(),
             variable: offset,
+            group: Vec::new(),
         });
         outputs.push(Output {
             name: atom,
@@ -269,6 +273,25 @@ fn plan_theories(behaviour: &Behaviour) -> Result<PlannedTheories, Refusal> {
         offset += 2;
     }
     Ok((theories, outputs, inputs))
+}
+
+/// The places in `inputs` (a compiled theory's, in declaration order) of the other atoms of
+/// input `index`'s group; none for an input of its own.
+fn group_of<'a>(
+    theory: &'a proclaim_cdl::Theory,
+    inputs: &'a [String],
+    index: usize,
+) -> impl Iterator<Item = usize> + 'a {
+    let group = theory.inputs().iter().find(|g| {
+        g.atoms
+            .iter()
+            .any(|&a| theory.atom_name(a) == inputs[index])
+    });
+    group
+        .into_iter()
+        .flat_map(|g| g.atoms.iter())
+        .filter_map(move |&a| inputs.iter().position(|name| name == theory.atom_name(a)))
+        .filter(move |&other| other != index)
 }
 
 /// The manifest's `[impersonator]` script: its file as shown and its text.

@@ -72,12 +72,12 @@ impl Plan {
     }
 
     /// Each posting type that sets inputs, in first-seen order, with the variable pairs it sets.
-    pub fn input_types(&self) -> Vec<(&str, Vec<usize>)> {
-        let mut types: Vec<(&str, Vec<usize>)> = Vec::new();
+    pub fn input_types(&self) -> Vec<(&str, Vec<&Input>)> {
+        let mut types: Vec<(&str, Vec<&Input>)> = Vec::new();
         for input in &self.inputs {
             match types.iter_mut().find(|(ty, _)| *ty == input.ty) {
-                Some((_, variables)) => variables.push(input.variable),
-                None => types.push((&input.ty, vec![input.variable])),
+                Some((_, inputs)) => inputs.push(input),
+                None => types.push((&input.ty, vec![input])),
             }
         }
         types
@@ -178,6 +178,9 @@ pub(crate) struct Input {
     pub ty: String,
     /// Its pair of decision variables (known, true).
     pub variable: usize,
+    /// The variables of the other atoms of its input group: set true, it makes them known and
+    /// false, as the reasoner's session does (`docs/spec/cdl.md` §1).
+    pub group: Vec<usize>,
 }
 
 pub(crate) struct MachinePlan {

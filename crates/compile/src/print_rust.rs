@@ -194,11 +194,22 @@ fn answers_and_inputs(plan: &Plan) -> (String, String) {
         };
     }
     let mut input_cases = String::new();
-    for (ty, variables) in plan.input_types() {
-        let sets: String = variables
-            .iter()
-            .map(|v| format!("            set_input(w, {v}, content);\n"))
-            .collect();
+    for (ty, inputs) in plan.input_types() {
+        let mut sets = String::new();
+        for input in inputs {
+            let v = input.variable;
+            let _ = writeln!(sets, "            set_input(w, {v}, content);");
+            if !input.group.is_empty() {
+                let _ = writeln!(sets, "            if w.input[{v} + 1] {{");
+                for o in &input.group {
+                    let _ = writeln!(
+                        sets,
+                        "                w.input[{o}] = true;\n                w.input[{o} + 1] = false;"
+                    );
+                }
+                sets.push_str("            }\n");
+            }
+        }
         let _ = writeln!(
             input_cases,
             "        {ty:?} => {{\n{sets}            true\n        }}"

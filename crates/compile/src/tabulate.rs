@@ -17,8 +17,9 @@ pub enum Domain {
     /// `assert{}`, contradicting the axioms) are not valid and answer false.
     Boolean,
     /// What a running expert holds: each input true, false or unknown (never posted); two
-    /// variables per input, `known` then `true`. Theories with input groups or clause facts are
-    /// refused here (their inputs' refusals and group updates are not compiled yet).
+    /// variables per input, `known` then `true`. A row holding two atoms of an input group true
+    /// is not valid (setting one true makes the others false, so no run reaches it). Theories
+    /// with clause facts are refused here (their inputs' refusals are not compiled yet).
     Ternary,
 }
 
@@ -113,17 +114,10 @@ pub fn compile(
             limit: MAX_VARIABLES,
         });
     }
-    if domain == Domain::Ternary {
-        if theory.inputs().iter().any(|g| g.atoms.len() > 1) {
-            return Err(CompileError::Unsupported {
-                what: "an input group (input{a, b, ...}) of a theory a behaviour runs".into(),
-            });
-        }
-        if !theory.axioms().is_empty() {
-            return Err(CompileError::Unsupported {
-                what: "a clause fact (axiom) in a theory a behaviour runs".into(),
-            });
-        }
+    if domain == Domain::Ternary && !theory.axioms().is_empty() {
+        return Err(CompileError::Unsupported {
+            what: "a clause fact (axiom) in a theory a behaviour runs".into(),
+        });
     }
     let rows = 1usize << variables;
     let mut columns: Vec<Vec<bool>> = vec![Vec::with_capacity(rows); queries.len() + 1];
