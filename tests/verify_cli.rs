@@ -241,3 +241,35 @@ fn json_output_says_what_was_wrong_on_bad_input() {
         assert_eq!(json["exit"], 2);
     }
 }
+
+/// A label atom the counterexample read before anything posted it (false to the model, as to
+/// the runner) is posted false from the script's start: its replay asks no absent expert, so
+/// it floods no warning, and still fires as the counterexample did.
+#[test]
+fn a_counterexamples_script_sets_what_its_ringlets_read_unposted() {
+    let dir = crate::behaviour_folder(
+        "verify-unposted",
+        &[
+            (
+                "A.machine",
+                "machine A\ninitial S\nstate S {\n    when b -> U\n    when a -> T\n}\nstate T { }\nstate U { }\n",
+            ),
+            ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n"),
+        ],
+    );
+    let script = dir.join("cx.script");
+    let o = proclaim(&[
+        "verify",
+        dir.to_str().unwrap(),
+        "--never",
+        "A.T",
+        "--counterexample",
+        script.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    let text = std::fs::read_to_string(&script).expect("the script is written");
+    assert!(text.contains("b = false  # read, never posted"), "{text}");
+    assert!(!stderr(&o).contains("no module answers"), "{}", stderr(&o));
+    let trace = std::fs::read_to_string(script.with_extension("jsonl")).unwrap();
+    assert!(trace.contains("\"state\":\"T\""), "{trace}");
+}

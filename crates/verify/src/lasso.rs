@@ -45,10 +45,12 @@ pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun)
     let prefix = Trace {
         initially: whole.initially,
         steps: whole.steps[..split].to_vec(),
+        unposted: whole.unposted,
     };
     let cycle = Trace {
         initially: Vec::new(),
         steps: whole.steps[split..].to_vec(),
+        unposted: Vec::new(),
     };
     (prefix, cycle)
 }

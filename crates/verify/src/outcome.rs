@@ -104,6 +104,11 @@ pub struct TraceStep {
 pub struct Trace {
     pub initially: Vec<Assignment>,
     pub steps: Vec<TraceStep>,
+    /// Truth values a ringlet read while nothing had posted them: false to the model, as to the
+    /// runner (no expert answers them). A script posts them false from the start, so its replay
+    /// asks no absent expert.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub unposted: Vec<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -43,6 +43,11 @@ pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, 
     for a in &trace.initially {
         line(None, a, &mut lines);
     }
+    for name in &trace.unposted {
+        lines.push(format!(
+            "{name} = false  # read, never posted: false, as the model read it"
+        ));
+    }
     let period = ring_period.as_secs_f64();
     let mut timers = Vec::new();
     for s in &trace.steps {
@@ -99,6 +104,7 @@ pub fn unroll(prefix: &Trace, cycle: &Trace) -> Trace {
     Trace {
         initially: prefix.initially.clone(),
         steps,
+        unposted: prefix.unposted.clone(),
     }
 }
 

@@ -4,6 +4,7 @@
 use crate::explore::Graph;
 use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
+use crate::property::ValueKind;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::values::{ValueId, NEVER};
 use crate::world::SystemState;
@@ -66,6 +67,7 @@ pub fn trace_of(
         return Trace {
             initially: Vec::new(),
             steps: Vec::new(),
+            unposted: Vec::new(),
         };
     };
     let initially = model
@@ -76,6 +78,7 @@ pub fn trace_of(
     // What a free type chosen when read was last seen to hold: a read is told only where it
     // differs, as the world's moves are.
     let mut last_read: FxHashMap<SlotId, ValueId> = FxHashMap::default();
+    let mut unposted: Vec<String> = Vec::new();
     let stepper = StepGenerator::new(model);
     let mut round = 1;
     let mut steps = Vec::new();
@@ -94,6 +97,15 @@ pub fn trace_of(
         let m = &model.machines[s.machine];
         let state = &m.states[s.from];
         let detail = s.detail.clone().unwrap_or_default();
+        for &(slot, v) in &detail.read {
+            let name = &model.slots[slot].name;
+            if v == NEVER
+                && model.slots[slot].value_kind == ValueKind::Truth
+                && !unposted.contains(name)
+            {
+                unposted.push(name.clone());
+            }
+        }
         steps.push(TraceStep {
             round,
             machine: m.name.clone(),
@@ -125,7 +137,11 @@ pub fn trace_of(
                 .collect(),
         });
     }
-    Trace { initially, steps }
+    Trace {
+        initially,
+        steps,
+        unposted,
+    }
 }
 
 /// A trace as text, one ringlet a line, grouped by round.

@@ -70,10 +70,12 @@ impl Searched<'_, '_> {
         let way_in = Trace {
             initially: whole.initially,
             steps: whole.steps[..split].to_vec(),
+            unposted: whole.unposted,
         };
         let round = Trace {
             initially: Vec::new(),
             steps: whole.steps[split..].to_vec(),
+            unposted: Vec::new(),
         };
         Ok(property_outcome(
             property,
