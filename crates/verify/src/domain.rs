@@ -20,22 +20,13 @@
 //! compares): they also say what kind of value a type holds, for the properties' kind checks.
 
 use crate::flow::{apply, Facts, Op, Predicate, Test};
-use crate::model::{Slot, SlotId};
+use crate::kind::ValueKind;
+use crate::model::{FreeDomain, Slot, SlotId};
 use crate::outcome::Inexact;
-use crate::property::ValueKind;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Machine, Statement};
 use proclaim_runner::arith;
 use rustc_hash::{FxHashMap, FxHashSet};
-
-/// What the environment may set a free type to.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FreeDomain {
-    /// At every snapshot.
-    pub values: Vec<Value>,
-    /// In the initial state: `None` (never posted) and then `values`.
-    pub initial: Vec<Option<Value>>,
-}
 
 /// Constants gathered per type while reading the behaviour.
 #[derive(Debug, Default)]

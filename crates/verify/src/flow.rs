@@ -383,7 +383,7 @@ impl Analysis<'_> {
             let at = At {
                 machine: None,
                 // A property's `Machine.STATE` is parsed with its dot replaced.
-                place: format!("the property `{e}`").replace(crate::property::DOT, "."),
+                place: format!("the property `{e}`").replace(crate::model::DOT, "."),
             };
             let flow = self.expr(&at, e);
             self.truth_use(&at, &flow);

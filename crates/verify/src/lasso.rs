@@ -3,8 +3,8 @@
 //! states into the component where it stays, then a loop inside that component through one
 //! state of every acceptance set and back; both replayed step by step as counterexamples are.
 
+use crate::acceptance::{acceptance_sets, meets, FailingRun};
 use crate::explore::Graph;
-use crate::liveness::{acceptance_sets, meets, FailingRun};
 use crate::model::Model;
 use crate::outcome::Trace;
 use crate::property::Property;

@@ -27,6 +27,8 @@
 
 /// The activity language's operators: the runner's own, so the model computes as the robot does.
 pub use proclaim_runner::arith;
+mod acceptance;
+mod build;
 mod choices;
 mod chunked;
 mod components;
@@ -37,6 +39,7 @@ mod explore;
 mod flow;
 pub mod follow;
 mod found_memo;
+pub mod kind;
 mod lasso;
 mod liveness;
 pub mod model;

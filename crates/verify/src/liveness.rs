@@ -17,13 +17,13 @@
 //! - **Incomplete explorations**: only expanded states (all successors made) take part. A lasso
 //!   among them is a real run, so a failure; otherwise the verdict is incomplete.
 
+use crate::acceptance::{acceptance_sets, meets, FailingRun};
 use crate::components::Components;
 use crate::explore::Graph;
 use crate::lasso;
 use crate::model::Model;
 use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
-use crate::world::{Status, SystemState};
 use proclaim_behaviour::PropertyKind;
 
 /// The verdict of liveness property `property` on `graph`, with its lasso when it fails.
@@ -60,40 +60,6 @@ pub fn property_outcome(
         trace,
         cycle,
     }
-}
-
-/// A failing run found: where it enters the bad states, the bad states (`inside`), and the
-/// component where it stays for ever.
-pub struct FailingRun {
-    /// The state the run starts staying bad from.
-    pub seed: u32,
-    pub inside: Vec<bool>,
-    /// The states of the component the run ends in (one, with no successors, for a run that
-    /// ends).
-    pub component: Vec<u32>,
-}
-
-/// How many acceptance sets a fair run of `property` meets infinitely often: one a machine,
-/// then one a `fair` expression.
-pub fn acceptance_sets(model: &Model, property: &Property) -> usize {
-    model.machines.len() + property.fair_terms().len()
-}
-
-/// Whether `world` is in acceptance set `set` (see [`acceptance_sets`]).
-pub fn meets(model: &Model, property: &Property, world: &SystemState, set: usize) -> bool {
-    let machines = model.machines.len();
-    if set >= machines {
-        return property.fair_holds_in(set - machines, model, world);
-    }
-    let control = &world.machines[set];
-    let tests = model.machines[set].states[usize::from(control.state)]
-        .time_tests
-        .len();
-    let all_due = (1u32 << tests) - 1;
-    control.status != Status::Running
-        || control.just_entered
-        || tests == 0
-        || u32::from(control.time) & all_due == all_due
 }
 
 /// The bad states and where runs start staying in them, then a failing run if there is one.

@@ -1573,7 +1573,7 @@ impl<'m> Writer<'m> {
     }
 
     /// Machine `k` lets time pass in the state now (liveness's acceptance set of the machine,
-    /// [`crate::liveness::meets`]): not running, just entered, every time test of its state
+    /// [`crate::acceptance::meets`]): not running, just entered, every time test of its state
     /// due, or a state with none.
     fn time_passes(&self, k: usize) -> String {
         let mut options = vec![format!("mode[{k}] != 0"), format!("je[{k}]")];

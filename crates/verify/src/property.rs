@@ -8,6 +8,8 @@
 //! sense outside a machine and are refused. Every error names the property and the column.
 
 use crate::error::PropertyError;
+use crate::kind::ValueKind;
+use crate::model::DOT;
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
 use crate::values::ValueId;
@@ -74,48 +76,6 @@ pub(crate) enum Term {
     Binary(BinOp, Box<Term>, Box<Term>),
     Function(String, Vec<Term>),
 }
-
-/// What kind of value a term has, as far as the behaviour's constants tell.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ValueKind {
-    Truth,
-    Number,
-    Text,
-    Any,
-}
-
-impl ValueKind {
-    pub fn of_values<'a>(values: impl IntoIterator<Item = &'a Value>) -> ValueKind {
-        let mut kind = None;
-        for v in values {
-            let k = match v {
-                Value::Bool(_) => ValueKind::Truth,
-                Value::Int(_) | Value::Float(_) => ValueKind::Number,
-                Value::Str(_) => ValueKind::Text,
-                _ => ValueKind::Any,
-            };
-            kind = match kind {
-                None => Some(k),
-                Some(old) if old == k => Some(k),
-                Some(_) => Some(ValueKind::Any),
-            };
-        }
-        kind.unwrap_or(ValueKind::Any)
-    }
-
-    fn describe(self) -> &'static str {
-        match self {
-            ValueKind::Truth => "a truth value",
-            ValueKind::Number => "a number",
-            ValueKind::Text => "text",
-            ValueKind::Any => "a value",
-        }
-    }
-}
-
-/// `Machine.STATE` is not in the label language; the dot becomes a letter no name can hold
-/// (`ª`, one character, so columns stay the same) before parsing.
-pub(crate) const DOT: char = 'ª';
 
 /// Reads a property's expressions (names not yet resolved): `leads_to` needs its `~>`, and
 /// only liveness properties may assume fairness.

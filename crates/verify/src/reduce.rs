@@ -13,7 +13,7 @@
 //! - **Stop when decided** (in `explore.rs`): once every property has found what it looks for
 //!   (a witness, a violation), the rest of the graph cannot change a verdict.
 
-use crate::model::{Model, Name, SlotId};
+use crate::model::{Model, Name, SlotId, Storage};
 use crate::property::{Property, Term};
 use proclaim_fsm::Expr;
 
@@ -42,17 +42,6 @@ impl Reductions {
         cone_of_influence: false,
         stop_when_decided: false,
     };
-}
-
-/// How the search keeps a slot.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Storage {
-    /// In every state (free ones set by the environment after every ringlet).
-    Stored,
-    /// A free type no property names: chosen by each snapshot that reads it, never stored.
-    ChosenWhenRead,
-    /// Nothing reads it: never stored, and writes to it are dropped.
-    Unread,
 }
 
 /// How each slot of `model` is kept under `reductions`, given the properties checked.

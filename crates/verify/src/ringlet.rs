@@ -18,7 +18,7 @@
 //! the snapshot on (as the environment could have set it before either), and a machine reads
 //! back what it posted to it; the choices are walked as a tree ([`Choices`]). A free type may
 //! stay never posted (a silent sensor) until the environment first posts it, and never after:
-//! a stored one by its value, one chosen when read by one bit of the state ([`POSTED`]).
+//! a stored one by its value, one chosen when read by one bit of the state ([`crate::world::POSTED`]).
 //!
 //! Control postings (`Name: On`, `suspend("Name")`) act when the posting ringlet ends, in the
 //! order posted, as the runner obeys them between ringlets: `NameIsRunning` read later in the
@@ -29,11 +29,11 @@
 
 use crate::arith::{self, convert, text};
 use crate::choices::Choices;
+use crate::model::Storage;
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
-use crate::reduce::Storage;
 use crate::values::{ValueId, NEVER};
-use crate::world::{Control, Status, SystemState};
+use crate::world::{Control, Status, SystemState, FIRST_TURN, POSTED};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, TIME_TESTS};
@@ -41,10 +41,6 @@ use proclaim_runner::builtin::{builtin, Builtin, Content};
 use proclaim_runner::walk::{walk_to_end, Effects};
 use proclaim_runner::Evaluate;
 use std::convert::Infallible;
-
-/// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
-/// type chosen when read may still be never posted).
-pub const FIRST_TURN: u8 = u8::MAX;
 
 /// Which of the environment's options a step took: the leaf of its ringlet's choices (time
 /// tests, free types read) and the environment's move after the ringlet (every stored free
@@ -152,7 +148,7 @@ struct ReadDomain {
 }
 
 impl ReadDomain {
-    fn of(values: &mut crate::values::Values, d: &crate::domain::FreeDomain) -> ReadDomain {
+    fn of(values: &mut crate::values::Values, d: &crate::model::FreeDomain) -> ReadDomain {
         ReadDomain {
             values: d.values.iter().map(|v| values.intern(v)).collect(),
             initial: d
@@ -172,10 +168,6 @@ impl ReadDomain {
         }
     }
 }
-
-/// In the state, a free type chosen when read that the environment has posted (before, it
-/// holds [`NEVER`]): what it holds is chosen at each read, but it is never silent again.
-pub(crate) const POSTED: ValueId = ValueId::MAX - 1;
 
 /// The steps of the model.
 pub struct StepGenerator<'m> {

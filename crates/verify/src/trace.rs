@@ -2,9 +2,9 @@
 //! environment's choices spelled out (what it set, which time tests came due), in rounds.
 
 use crate::explore::Graph;
+use crate::kind::ValueKind;
 use crate::model::{Model, SlotId};
 use crate::outcome::{Assignment, Trace, TraceStep};
-use crate::property::ValueKind;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::values::{ValueId, NEVER};
 use crate::world::SystemState;

@@ -2,14 +2,21 @@
 //! packed while stored into a record of bit fields, each as wide as its values need: whose
 //! turn it is, per machine its state number (none for a machine of one state), its time bits
 //! (one a time test of its states) and its flags (just entered, started this round, mode: none
-//! while they never change), then the value number of every slot the search stores ([`crate::reduce::Storage`])
+//! while they never change), then the value number of every slot the search stores ([`crate::model::Storage`])
 //! and of every `saw()`, then one bit a free type chosen when read (posted yet). A value
 //! number wider than its field widens the field; every record of a search has one width.
 
+use crate::model::Storage;
 use crate::model::{Model, SlotId};
-use crate::reduce::Storage;
-use crate::ringlet::POSTED;
 use crate::values::{ValueId, NEVER};
+
+/// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
+/// type chosen when read may still be never posted).
+pub const FIRST_TURN: u8 = u8::MAX;
+
+/// In the state, a free type chosen when read that the environment has posted (before, it
+/// holds [`NEVER`]): what it holds is chosen at each read, but it is never silent again.
+pub(crate) const POSTED: ValueId = ValueId::MAX - 1;
 
 /// A machine's mode, gufsm's `SuspensibleMachine` states.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -523,7 +530,7 @@ mod tests {
             "every value field grew with it, the chosen bit did not"
         );
         let mut first = world(0, 0);
-        first.turn = crate::ringlet::FIRST_TURN;
+        first.turn = crate::world::FIRST_TURN;
         let mut bytes = Vec::new();
         layout
             .pack(&first, &mut bytes)
@@ -543,7 +550,7 @@ mod tests {
             saw: 0,
         };
         let world = SystemState {
-            turn: crate::ringlet::FIRST_TURN,
+            turn: crate::world::FIRST_TURN,
             machines: Vec::new(),
             values: vec![u32::MAX, 1, 1 << 31, 3, 4, 5],
             saw: Vec::new(),

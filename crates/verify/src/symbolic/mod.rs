@@ -26,14 +26,14 @@
 mod liveness;
 
 use crate::model::Model;
+use crate::model::Storage;
 use crate::outcome::{PropertyOutcome, Stop};
 use crate::property::{Property, Term};
-use crate::reduce::Storage;
 use crate::ringlet::{
-    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, POSTED,
-    UNKNOWN,
+    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, UNKNOWN,
 };
 use crate::values::{ValueId, NEVER};
+use crate::world::POSTED;
 use crate::world::{Control, Status, SystemState};
 use biodivine_lib_bdd::{
     Bdd, BddPartialValuation, BddValuation, BddVariable, BddVariableSet, BddVariableSetBuilder,
@@ -117,10 +117,10 @@ fn status_index(s: Status) -> usize {
 
 const STATUSES: [Status; 3] = [Status::Running, Status::Suspended, Status::Dormant];
 
-/// The turn field's value for [`crate::ringlet::FIRST_TURN`]: after every machine's and "past
+/// The turn field's value for [`crate::world::FIRST_TURN`]: after every machine's and "past
 /// the last".
 fn turn_index(model: &Model, turn: u8) -> usize {
-    if turn == crate::ringlet::FIRST_TURN {
+    if turn == crate::world::FIRST_TURN {
         model.machines.len() + 1
     } else {
         usize::from(turn)

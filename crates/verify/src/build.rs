@@ -1,0 +1,499 @@
+//! A loaded behaviour lowered into its model (spec §6): its machines' states, transitions and
+//! time tests; every storage place a run has numbered as a slot; which slots the environment
+//! sets freely, from the finite domains of [`crate::domain`] over [`crate::flow`]'s facts; and
+//! the reasoners whose answers labels ask for. [`Model::build`] is the one entry.
+//!
+//! Names resolve as the runner resolves them (`proclaim_runner`'s `variables.rs`): a name a
+//! machine declares is its own, then externs, then globals (every other name some activity
+//! assigns); any other name is a reasoner's answer when a theory outputs it, `NameIsRunning`
+//! when it speaks of a machine, and otherwise a whiteboard type.
+
+use crate::arith::zero;
+use crate::domain::{sound_domains, Domains};
+use crate::kind::ValueKind;
+use crate::model::{
+    MachineModel, Model, Name, Slot, SlotId, SlotKind, StateModel, Storage, TheoryModel, TimeTest,
+    TransitionModel,
+};
+use crate::reasoner::Reasoner;
+use crate::values::Values;
+use proclaim_behaviour::{modules, Behaviour, ModuleKind};
+use proclaim_board::Value;
+use proclaim_fsm::control::{running_type, Command};
+use proclaim_fsm::{Action, Expr, Machine, Statement, TIME_TESTS};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::cell::RefCell;
+
+/// What the activities and labels of the behaviour read and write, gathered once.
+#[derive(Default)]
+struct Uses {
+    /// Names read by labels and activities that are no variable, in first-use order.
+    read: Vec<String>,
+    /// Types machines post (postings, `post()` with a literal type, extern assignments).
+    written: FxHashSet<String>,
+}
+
+/// The types that get a message slot, in slot order: what machines read, externs, reasoner
+/// inputs, and the types the properties name.
+fn message_types(
+    uses: &Uses,
+    externs: &FxHashSet<String>,
+    theory_inputs: &[Vec<String>],
+    property_exprs: &[&Expr],
+    known_types: &FxHashSet<String>,
+) -> Vec<String> {
+    let mut wanted: Vec<String> = uses.read.clone();
+    let mut sorted_externs: Vec<&String> = externs.iter().collect();
+    sorted_externs.sort();
+    wanted.extend(sorted_externs.into_iter().cloned());
+    for inputs in theory_inputs {
+        wanted.extend(inputs.iter().cloned());
+    }
+    for e in property_exprs {
+        e.visit_names(&mut |n, _| {
+            if known_types.contains(n) {
+                wanted.push(n.to_string());
+            }
+        });
+    }
+    wanted
+}
+
+impl Model {
+    /// The model of `behaviour`. `property_names` are the names the properties read, so a
+    /// type only a property mentions (`Magnetron`, which the machine posts and no machine
+    /// reads) gets a slot; `property_exprs` add the constants they compare with to the
+    /// environment's domains.
+    pub fn build(behaviour: &Behaviour, property_exprs: &[&Expr]) -> Model {
+        let machine_names: Vec<&str> = behaviour
+            .machines
+            .iter()
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        let mut slots = Slots::default();
+        let externs = externs(behaviour);
+        let locals_of = slots.declare_locals(behaviour);
+        slots.declare_globals(behaviour, &locals_of, &externs);
+        let (mut theories, theory_inputs) = slots.reasoners(behaviour);
+        for (i, name) in machine_names.iter().enumerate() {
+            slots
+                .names
+                .entry(running_type(name))
+                .or_insert(Name::Running(i));
+        }
+
+        let mut uses = Uses::default();
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            gather_uses(
+                &m.machine,
+                &locals_of[i],
+                &slots.names,
+                &machine_names,
+                &mut uses,
+            );
+        }
+        let (outside, known_types) = posters(behaviour, &uses, &externs);
+
+        let wanted = message_types(
+            &uses,
+            &externs,
+            &theory_inputs,
+            property_exprs,
+            &known_types,
+        );
+        for ty in wanted {
+            if !slots.names.contains_key(&ty) && !machine_names.contains(&ty.as_str()) {
+                let external = externs.contains(&ty);
+                slots.message(ty, external);
+            }
+        }
+        for (t, inputs) in theory_inputs.iter().enumerate() {
+            theories[t].inputs = inputs
+                .iter()
+                .map(|ty| (ty.clone(), slots.names.get(ty).copied()))
+                .collect();
+        }
+        let Slots {
+            slots: mut all_slots,
+            names,
+        } = slots;
+        let hints = free_environment(
+            &mut all_slots,
+            behaviour,
+            &theory_inputs,
+            property_exprs,
+            &outside,
+            &uses,
+        );
+
+        let mut model = Model {
+            machines: behaviour
+                .machines
+                .iter()
+                .zip(locals_of)
+                .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
+                .collect(),
+            storage: vec![Storage::Stored; all_slots.len()],
+            slots: all_slots,
+            theories,
+            names,
+            known_types,
+            values: RefCell::new(Values::default()),
+            saw: Vec::new(),
+            ring_period: behaviour.ring_period,
+            inexact: Vec::new(),
+        };
+        sound_free_values(&mut model, behaviour, property_exprs, &hints);
+        model
+    }
+}
+
+fn machine_model(
+    machine: &Machine,
+    start: bool,
+    locals: FxHashMap<String, SlotId>,
+) -> MachineModel {
+    let index_of = |id| machine.states.iter().position(|s| s.id == id);
+    let states = machine
+        .states
+        .iter()
+        .map(|s| {
+            let transitions: Vec<TransitionModel> = machine
+                .transitions
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| t.source == s.id)
+                .filter_map(|(index, t)| {
+                    Some(TransitionModel {
+                        index,
+                        target: index_of(t.target)?,
+                        label: t.label.clone(),
+                    })
+                })
+                .collect();
+            let mut time_tests: Vec<TimeTest> = Vec::new();
+            for t in &transitions {
+                for (function, arguments) in t.label.calls() {
+                    let Some((_, unit)) = TIME_TESTS.iter().find(|(f, _)| *f == function) else {
+                        continue;
+                    };
+                    let call = Expr::Call {
+                        function: function.to_string(),
+                        arguments: arguments.to_vec(),
+                    };
+                    if time_tests.iter().any(|t| t.call == call) {
+                        continue;
+                    }
+                    let micros = match arguments {
+                        [Expr::Duration(us)] => Some(*us),
+                        [Expr::Int(n)] => Some((*n).max(0) as u64 * *unit as u64),
+                        [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
+                        _ => None,
+                    };
+                    time_tests.push(TimeTest { call, micros });
+                }
+            }
+            // Constant tests first, shortest first, so "which are due" is a prefix of them.
+            time_tests.sort_by_key(|t| t.micros.map_or(u64::MAX, |m| m));
+            StateModel {
+                name: s.name.clone(),
+                transitions,
+                time_tests,
+            }
+        })
+        .collect();
+    MachineModel {
+        name: machine.name.clone(),
+        initial: index_of(machine.initial).unwrap_or(0),
+        machine: machine.clone(),
+        states,
+        start,
+        locals,
+    }
+}
+
+/// Gives every free slot the domain that keeps each test of its value ([`crate::flow`],
+/// [`sound_domains`]), and notes where none can.
+fn sound_free_values(
+    model: &mut Model,
+    behaviour: &Behaviour,
+    property_exprs: &[&Expr],
+    hints: &Domains,
+) {
+    let files: Vec<String> = behaviour.machines.iter().map(|m| m.file.clone()).collect();
+    let facts = crate::flow::analyse(model, &files, property_exprs);
+    let (domains, inexact) = sound_domains(&model.slots, &facts, hints);
+    for (slot, domain) in model.slots.iter_mut().zip(domains) {
+        if slot.free.is_some() {
+            slot.free = domain;
+        }
+    }
+    model.inexact = facts.inexact;
+    for i in inexact {
+        if !model.inexact.contains(&i) {
+            model.inexact.push(i);
+        }
+    }
+}
+
+/// Records what a machine's labels and activities read (names that are no variable of the
+/// machine) and which types it posts.
+fn gather_uses(
+    machine: &Machine,
+    locals: &FxHashMap<String, SlotId>,
+    names: &FxHashMap<String, Name>,
+    machine_names: &[&str],
+    uses: &mut Uses,
+) {
+    let mut read = |n: &str| {
+        if !locals.contains_key(n)
+            && !machine_names.contains(&n)
+            && !uses.read.iter().any(|r| r == n)
+            && !matches!(
+                names.get(n),
+                Some(Name::Answer { .. } | Name::Running(_) | Name::Slot(_))
+            )
+        {
+            uses.read.push(n.to_string());
+        }
+    };
+    for t in &machine.transitions {
+        t.label.visit_names(&mut |n, _| read(n));
+    }
+    for s in machine.statements() {
+        for e in s.expressions() {
+            e.visit_names(&mut |n, _| read(n));
+        }
+    }
+    for a in machine.actions() {
+        if let Action::Post { ty, .. } = a {
+            if !machine_names.contains(&ty.as_str()) {
+                uses.written.insert(ty.clone());
+            }
+        }
+    }
+    for s in machine.statements() {
+        match s {
+            Statement::Assign { name, .. } if !locals.contains_key(name) => {
+                uses.written.insert(name.clone());
+            }
+            Statement::Expr(Expr::Call {
+                function,
+                arguments,
+            }) if matches!(function.as_str(), "post" | "post_int" | "postv" | "post_v")
+                || Command::from_function(function).is_some() =>
+            {
+                if let Some(Expr::Str(ty)) = arguments.first() {
+                    uses.written.insert(ty.clone());
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The slots being numbered and what each name resolves to, while a model is built.
+#[derive(Default)]
+struct Slots {
+    slots: Vec<Slot>,
+    names: FxHashMap<String, Name>,
+}
+
+impl Slots {
+    /// Each machine's own variables (what it declares); the last declaration's type wins, as
+    /// `Locals::declared` has it.
+    fn declare_locals(&mut self, behaviour: &Behaviour) -> Vec<FxHashMap<String, SlotId>> {
+        let mut locals_of = Vec::new();
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            let mut locals: FxHashMap<String, SlotId> = FxHashMap::default();
+            for s in m.machine.statements() {
+                let Statement::Declare { ty, name, .. } = s else {
+                    continue;
+                };
+                let kind = SlotKind::Local {
+                    machine: i,
+                    ty: ty.clone(),
+                };
+                match locals.get(name) {
+                    Some(&slot) => {
+                        self.slots[slot].kind = kind;
+                        self.slots[slot].initial = Some(zero(ty));
+                    }
+                    None => {
+                        locals.insert(name.clone(), self.slots.len());
+                        self.slots.push(Slot {
+                            name: format!("{}.{name}", m.machine.name),
+                            kind,
+                            initial: Some(zero(ty)),
+                            free: None,
+                            value_kind: ValueKind::Any,
+                        });
+                    }
+                }
+            }
+            locals_of.push(locals);
+        }
+        locals_of
+    }
+
+    /// The behaviour's globals: names an activity assigns that are not the assigning machine's
+    /// own and not extern, starting at 0.
+    fn declare_globals(
+        &mut self,
+        behaviour: &Behaviour,
+        locals_of: &[FxHashMap<String, SlotId>],
+        externs: &FxHashSet<String>,
+    ) {
+        for (i, m) in behaviour.machines.iter().enumerate() {
+            for s in m.machine.statements() {
+                if let Statement::Assign { name, .. } = s {
+                    if !locals_of[i].contains_key(name)
+                        && !externs.contains(name)
+                        && !self.names.contains_key(name)
+                    {
+                        self.names
+                            .insert(name.clone(), Name::Slot(self.slots.len()));
+                        self.slots.push(Slot {
+                            name: name.clone(),
+                            kind: SlotKind::Global,
+                            initial: Some(Value::Int(0)),
+                            free: None,
+                            value_kind: ValueKind::Any,
+                        });
+                    }
+                }
+            }
+        }
+    }
+
+    /// The reasoners: their answers become names; each one's inputs (whiteboard types it
+    /// reads) are returned beside it, to be given slots.
+    fn reasoners(&mut self, behaviour: &Behaviour) -> (Vec<TheoryModel>, Vec<Vec<String>>) {
+        let mut theories = Vec::new();
+        let mut theory_inputs = Vec::new();
+        for t in &behaviour.theories {
+            let reasoner = Reasoner::new(t);
+            let decl = reasoner.declaration();
+            for (o, atom) in decl.answers.iter().enumerate() {
+                self.names.entry(atom.clone()).or_insert(Name::Answer {
+                    theory: theories.len(),
+                    output: o,
+                });
+            }
+            theory_inputs.push(
+                decl.reads
+                    .iter()
+                    .filter(|r| r.as_str() != proclaim_board::QUERY_TYPE)
+                    .cloned()
+                    .collect(),
+            );
+            theories.push(TheoryModel {
+                name: t.name.clone(),
+                inputs: Vec::new(),
+                outputs: decl.answers.clone(),
+                reasoner: RefCell::new(reasoner),
+            });
+        }
+        (theories, theory_inputs)
+    }
+
+    /// A slot for whiteboard type `ty`, never posted at first.
+    fn message(&mut self, ty: String, external: bool) {
+        self.names.insert(ty.clone(), Name::Slot(self.slots.len()));
+        self.slots.push(Slot {
+            kind: SlotKind::Message { external },
+            name: ty,
+            initial: None,
+            free: None,
+            value_kind: ValueKind::Any,
+        });
+    }
+}
+
+/// Every name some machine binds to the whiteboard: such a name is no global anywhere.
+fn externs(behaviour: &Behaviour) -> FxHashSet<String> {
+    let mut externs = FxHashSet::default();
+    for m in &behaviour.machines {
+        for s in m.machine.statements() {
+            if let Statement::Extern { name, .. } = s {
+                externs.insert(name.clone());
+            }
+        }
+    }
+    externs
+}
+
+/// The types something outside the machines and reasoners posts, and every type anything
+/// declares, reads or writes.
+fn posters(
+    behaviour: &Behaviour,
+    uses: &Uses,
+    externs: &FxHashSet<String>,
+) -> (FxHashSet<String>, FxHashSet<String>) {
+    let mut outside: FxHashSet<String> = FxHashSet::default();
+    let mut known_types: FxHashSet<String> = FxHashSet::default();
+    for module in modules(behaviour) {
+        let inside = matches!(
+            module.kind,
+            ModuleKind::Machine { .. } | ModuleKind::Theory { .. }
+        );
+        for ty in module.decl.posts.iter().chain(&module.decl.answers) {
+            known_types.insert(ty.clone());
+            if !inside {
+                outside.insert(ty.clone());
+            }
+        }
+        for ty in module.decl.reads.iter().chain(&module.decl.waits_on) {
+            known_types.insert(ty.clone());
+        }
+    }
+    known_types.extend(uses.read.iter().cloned());
+    known_types.extend(uses.written.iter().cloned());
+    known_types.extend(externs.iter().cloned());
+    (outside, known_types)
+}
+
+/// The environment: a whiteboard type is free when something outside posts it, or when nothing
+/// inside writes it at all (spec §6), and takes the values its domain gathers.
+fn free_environment(
+    slots: &mut [Slot],
+    behaviour: &Behaviour,
+    theory_inputs: &[Vec<String>],
+    property_exprs: &[&Expr],
+    outside: &FxHashSet<String>,
+    uses: &Uses,
+) -> Domains {
+    let mut domains = Domains::default();
+    for m in &behaviour.machines {
+        domains.gather_machine(&m.machine);
+    }
+    if let Some(script) = &behaviour.script {
+        for step in &script.steps {
+            domains.add(&step.atom, proclaim_experts::script_value(&step.value));
+        }
+    }
+    for inputs in theory_inputs {
+        for ty in inputs {
+            domains.add(ty, Value::Bool(false));
+            domains.add(ty, Value::Bool(true));
+        }
+    }
+    // The kind of a type is what the behaviour gives it; the properties' constants then
+    // widen what the environment tries (a property may ask about a value no machine names).
+    for slot in slots.iter_mut() {
+        if let SlotKind::Message { .. } = slot.kind {
+            slot.value_kind = domains.kind(&slot.name);
+        }
+    }
+    for e in property_exprs {
+        domains.gather_expr(e);
+    }
+    for slot in slots.iter_mut() {
+        if let SlotKind::Message { .. } = slot.kind {
+            if outside.contains(&slot.name) || !uses.written.contains(&slot.name) {
+                slot.free = Some(domains.of_constants(&slot.name));
+            }
+        }
+    }
+    domains
+}
