@@ -4,7 +4,7 @@
 
 use crate::c_template::{BODY, HEADER, HELD_TYPES, RING, SUPPRESSION};
 use crate::plan::{
-    Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
+    Answer, Condition, Conversion, Input, MachinePlan, Piece, Plan, StatePlan, Step, Value,
 };
 use proclaim_fsm::control::Command;
 use proclaim_runner::LOOP_LIMIT;
@@ -259,21 +259,15 @@ fn answers_and_inputs(plan: &Plan) -> (String, String) {
     }
     let mut input_cases = String::new();
     for (ty, inputs) in plan.input_types() {
-        let mut sets = String::new();
-        for input in inputs {
-            let v = input.variable;
-            let _ = writeln!(sets, "        set_input(w, {v}, content);");
-            if !input.group.is_empty() {
-                let _ = writeln!(sets, "        if (w->in[{v} + 1]) {{");
-                for o in &input.group {
-                    let _ = writeln!(
-                        sets,
-                        "            w->in[{o}] = 1;\n            w->in[{o} + 1] = 0;"
-                    );
-                }
-                sets.push_str("        }\n");
-            }
-        }
+        let sets = input_updates(
+            &inputs,
+            [
+                "        set_input(w, @v@, content);",
+                "        if (w->in[@v@ + 1]) {",
+                "            w->in[@o@] = 1;\n            w->in[@o@ + 1] = 0;",
+                "        }",
+            ],
+        );
         let _ = writeln!(
             input_cases,
             "    if (same(type, \"{}\")) {{\n{sets}        return 1;\n    }}",
@@ -284,6 +278,26 @@ fn answers_and_inputs(plan: &Plan) -> (String, String) {
 }
 
 /// Every sensor's atoms one after another, and where each sensor's begin (and the last ends).
+/// The statements that apply a posting to `inputs`, in a target's `lines`: each input set from
+/// the content (`@v@` its variables), then for an atom of an input group, when it came true, each
+/// other atom of its group (`@o@`) made known and false, as the reasoner's session does.
+pub(crate) fn input_updates(inputs: &[&Input], lines: [&str; 4]) -> String {
+    let [set, when_true, clear, end] = lines;
+    let mut out = String::new();
+    for input in inputs {
+        let v = input.variable.to_string();
+        let _ = writeln!(out, "{}", set.replace("@v@", &v));
+        if !input.group.is_empty() {
+            let _ = writeln!(out, "{}", when_true.replace("@v@", &v));
+            for o in &input.group {
+                let _ = writeln!(out, "{}", clear.replace("@o@", &o.to_string()));
+            }
+            let _ = writeln!(out, "{end}");
+        }
+    }
+    out
+}
+
 fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
     let sensor_atoms: Vec<&str> = plan
         .sensors

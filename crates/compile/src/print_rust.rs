@@ -9,7 +9,7 @@
 use crate::plan::{
     Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
 };
-use crate::print_c::{board_of_outputs, board_of_statuses, fill};
+use crate::print_c::{board_of_outputs, board_of_statuses, fill, input_updates};
 use crate::rust_template::{BODY, RING};
 use crate::tabulate::Compiled;
 use proclaim_fsm::control::Command;
@@ -195,21 +195,15 @@ fn answers_and_inputs(plan: &Plan) -> (String, String) {
     }
     let mut input_cases = String::new();
     for (ty, inputs) in plan.input_types() {
-        let mut sets = String::new();
-        for input in inputs {
-            let v = input.variable;
-            let _ = writeln!(sets, "            set_input(w, {v}, content);");
-            if !input.group.is_empty() {
-                let _ = writeln!(sets, "            if w.input[{v} + 1] {{");
-                for o in &input.group {
-                    let _ = writeln!(
-                        sets,
-                        "                w.input[{o}] = true;\n                w.input[{o} + 1] = false;"
-                    );
-                }
-                sets.push_str("            }\n");
-            }
-        }
+        let sets = input_updates(
+            &inputs,
+            [
+                "            set_input(w, @v@, content);",
+                "            if w.input[@v@ + 1] {",
+                "                w.input[@o@] = true;\n                w.input[@o@ + 1] = false;",
+                "            }",
+            ],
+        );
         let _ = writeln!(
             input_cases,
             "        {ty:?} => {{\n{sets}            true\n        }}"
