@@ -115,3 +115,29 @@ fn compiling_what_run_refuses_without_force_says_so_and_compiles() {
         "{said}"
     );
 }
+
+/// `--whiteboard` belongs to a behaviour compiled to Rust: said of a theory or of the C target
+/// it is refused with exit 2 and why, and nothing is written.
+#[test]
+fn whiteboard_is_refused_where_it_means_nothing() {
+    let out = std::env::temp_dir().join(format!("proclaim-whiteboard-{}", std::process::id()));
+    let cases: [(&[&str], &str); 2] = [
+        (
+            &["theories/microwave.dl"],
+            "--whiteboard is said of a behaviour compiled with --target rust",
+        ),
+        (
+            &["machines/microwave", "--target", "c"],
+            "--whiteboard is said of --target rust",
+        ),
+    ];
+    for (args, why) in cases {
+        let mut all = vec!["compile"];
+        all.extend_from_slice(args);
+        all.extend(["--whiteboard", "-o", out.to_str().unwrap()]);
+        let o = proclaim(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(why), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+}

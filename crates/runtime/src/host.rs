@@ -580,33 +580,24 @@ fn wait_for_round<B: CompiledBehaviour>(
             return Some(Ended::Finished);
         }
         match wait_until(options.virtual_clock, started, step.or(until), board) {
-            Woke::Due => {
+            None => {
                 w.now_ms = step.or(until).unwrap_or(w.now_ms);
                 if step.is_none() || impersonator.post_due::<B>(w) {
                     return None;
                 }
             }
-            Woke::Heard(module, ty, content, json) => {
+            Some(Heard::Posting(module, ty, content, json)) => {
                 w.now_ms = w.now_ms.max(started.elapsed().as_millis() as u64);
                 if hear::<B>(w, &module, &ty, &content, json) {
                     return None;
                 }
             }
-            Woke::Interrupted => {
+            Some(Heard::Interrupted) => {
                 write(w);
                 return Some(Ended::Interrupted);
             }
         }
     }
-}
-
-/// What ended a wait.
-enum Woke {
-    /// The moment waited for came.
-    Due,
-    /// Another module posted on the whiteboard: its module, type and value.
-    Heard(String, String, String, serde_json::Value),
-    Interrupted,
 }
 
 /// Another module's posting (its text, and its value as JSON) comes into the run as a script's
@@ -630,30 +621,25 @@ fn create(path: Option<&PathBuf>) -> Result<Option<std::fs::File>, String> {
 }
 
 /// On the real clock, sleeps until `at_ms` after the start (none: for as long as it takes),
-/// or until something is heard on the whiteboard; on the virtual one time jumps.
+/// or until something is heard on the whiteboard; on the virtual one time jumps. What was
+/// heard, or none when the moment came.
 fn wait_until(
     virtual_clock: bool,
     started: Instant,
     at_ms: Option<u64>,
     board: Option<&dyn HostBoard>,
-) -> Woke {
+) -> Option<Heard> {
     if virtual_clock {
-        return Woke::Due;
+        return None;
     }
     let at = at_ms.map(|ms| started + Duration::from_millis(ms));
     match board {
-        Some(board) => match board.wait(at) {
-            Some(Heard::Posting(module, ty, content, json)) => {
-                Woke::Heard(module, ty, content, json)
-            }
-            Some(Heard::Interrupted) => Woke::Interrupted,
-            None => Woke::Due,
-        },
+        Some(board) => board.wait(at),
         None => {
             if let Some(at) = at {
                 std::thread::sleep(at.saturating_duration_since(Instant::now()));
             }
-            Woke::Due
+            None
         }
     }
 }
