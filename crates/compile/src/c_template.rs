@@ -1,63 +1,6 @@
 //! The fixed text of a behaviour compiled to C, with `@NAME@` where `print_c.rs` fills in the
 //! behaviour's own parts.
 
-/// One machine's functions (`@m@` is its number).
-pub(crate) const RING: &str = r#"static int ring_@m@(struct world *w)
-{
-    w->ringing = @m@u;
-    w->past_snapshot = 0;
-    if (w->just_entered[@m@]) {
-        w->just_entered[@m@] = 0;
-        w->entered_ms[@m@] = w->now_ms;
-        switch (w->state[@m@]) {
-@entries@        default:
-            break;
-        }
-    }
-    snapshot(w, @m@);
-    extern_snapshot(w, @m@u);
-    w->globals_seen[@m@] = w->globals_changes;
-    switch (w->state[@m@]) {
-@cases@    default:
-        return 0;
-    }
-}
-
-static int reads_@m@(const struct world *w, unsigned k)
-{
-    (void)k;
-    switch (w->state[@m@]) {
-@read_cases@    default:
-        return 0;
-    }
-}
-
-/* Whether the current state's labels read whiteboard variable `e`. */
-static int reads_extern_@m@(const struct world *w, unsigned e)
-{
-    (void)e;
-@extern_return@}
-
-/* Whether the current state's labels read a global. */
-static int reads_globals_@m@(const struct world *w)
-{
-@global_return@}
-
-static int final_@m@(const struct world *w)
-{
-@final_return@}
-
-static uint64_t due_@m@(const struct world *w, uint64_t due)
-{
-    switch (w->state[@m@]) {
-@due_cases@    default:
-        break;
-    }
-    return due;
-}
-
-"#;
-
 /// `behaviour.h` after its sizes: the world, its callbacks and the functions a host calls.
 pub(crate) const HEADER: &str = r#"struct world;
 
@@ -116,7 +59,7 @@ struct world {
     unsigned char just_entered[BEHAVIOUR_MACHINES];
     uint64_t entered_ms[BEHAVIOUR_MACHINES];
     /* Each theory input: known, then true. */
-    unsigned char in[BEHAVIOUR_VARIABLES];
+    unsigned char input[BEHAVIOUR_VARIABLES];
     /* The answers each machine's last ringlet saw. */
     unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
     /* Whether each answer has an answerer: a theory's always, an atom from outside once the
@@ -213,6 +156,9 @@ static const unsigned theory_outputs = @theory_outputs@u;
 static const unsigned outputs = @outputs@u;
 static const unsigned sensors = @sensors@u;
 static const char *const machine_name[@machines@] = {@machine_names@};
+static const long machine_initial[@machines@] = {@initials@};
+/* Whether each machine runs from the start (else it is dormant until started). */
+static const unsigned char machine_starts[@machines@] = {@starts@};
 static const char *const extern_name[@externs_n@] = {@extern_names@};
 static const unsigned externs = @externs@u;
 /* Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted). */
@@ -259,37 +205,23 @@ static void set_input(struct world *w, unsigned v, const char *content)
 {
     int zero;
     if (same(content, "true")) {
-        w->in[v] = 1;
-        w->in[v + 1] = 1;
+        w->input[v] = 1;
+        w->input[v + 1] = 1;
     } else if (same(content, "false")) {
-        w->in[v] = 1;
-        w->in[v + 1] = 0;
+        w->input[v] = 1;
+        w->input[v + 1] = 0;
     } else if (whole_number(content, &zero)) {
-        w->in[v] = 1;
-        w->in[v + 1] = (unsigned char)!zero;
+        w->input[v] = 1;
+        w->input[v + 1] = (unsigned char)!zero;
     } else {
-        w->in[v] = 0;
-        w->in[v + 1] = 0;
+        w->input[v] = 0;
+        w->input[v + 1] = 0;
     }
 }
 
-/* Whether the posting's type is a theory input (then applied). */
-static int apply_input(struct world *w, const char *type, const char *content)
-{
-@input_cases@    (void)w;
-    (void)type;
-    (void)content;
-    return 0;
-}
-
-static int answer(const struct world *w, unsigned k)
-{
-    switch (k) {
-@answer_cases@    default:
-        (void)w;
-        return 0;
-    }
-}
+/* `answer`: each output's answer; `apply_input`: whether a posting's type is a theory input
+ * (then applied). */
+@answers@
 
 static struct value v_bool(int b);
 
@@ -630,15 +562,50 @@ static int apply_extern(struct world *w, const char *type, const char *content)
     return 0;
 }
 
-@code@
-static int final_state(const struct world *w, unsigned m)
+/* A ringlet of machine `m` begins: whether it has just entered its state (then its OnEntry
+ * runs first). */
+static int begin_ringlet(struct world *w, unsigned m)
 {
-    switch (m) {
-@finals@    default:
+    w->ringing = m;
+    w->past_snapshot = 0;
+    if (!w->just_entered[m]) {
         return 0;
     }
+    w->just_entered[m] = 0;
+    w->entered_ms[m] = w->now_ms;
+    return 1;
 }
 
+/* The ringlet's snapshot (`docs/spec/behaviour.md` 3.1), after OnEntry. */
+static void take_snapshot(struct world *w, unsigned m)
+{
+    snapshot(w, m);
+    extern_snapshot(w, m);
+    w->globals_seen[m] = w->globals_changes;
+}
+
+static void report_finished(struct world *w, unsigned m, const char *state)
+{
+    w->cb.finished(w, machine_name[m], state);
+}
+
+static void post_text(struct world *w, unsigned m, const char *type)
+{
+    post(w, m, type, w->text);
+}
+
+static void print_text(struct world *w, unsigned m)
+{
+    w->cb.printed(w, machine_name[m], w->text);
+}
+
+/* The soonest of `due` and `ms` after machine `m` entered its state. */
+static uint64_t due_after(const struct world *w, unsigned m, uint64_t ms, uint64_t due)
+{
+    return min_due(due, w->entered_ms[m] + ms, w->now_ms);
+}
+
+@code@
 void behaviour_init(struct world *w)
 {
     unsigned v, m, k;
@@ -676,6 +643,12 @@ void behaviour_init(struct world *w)
     (void)post_extern;
     (void)ask_posted;
     (void)proved;
+    (void)begin_ringlet;
+    (void)take_snapshot;
+    (void)report_finished;
+    (void)post_text;
+    (void)print_text;
+    (void)due_after;
     w->pending_count = 0;
     (void)v_none;
     w->round = 0;
@@ -689,7 +662,7 @@ void behaviour_init(struct world *w)
     w->globals_changes = 0;
     w->commands_waiting = 0;
     for (v = 0; v < BEHAVIOUR_VARIABLES; v++) {
-        w->in[v] = 0;
+        w->input[v] = 0;
     }
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->entered_ms[m] = 0;
@@ -711,7 +684,13 @@ void behaviour_init(struct world *w)
     for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
         w->supplied[k] = k < theory_outputs;
     }
-@held_init@@var_inits@@inits@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+@held_init@@var_inits@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        w->state[m] = machine_initial[m];
+        w->initial[m] = machine_initial[m];
+        w->just_entered[m] = 1;
+        w->status[m] = machine_starts[m] ? RUNNING : DORMANT;
+    }
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         post_status(w, m);
     }
 }
@@ -727,7 +706,13 @@ int behaviour_round(struct world *w)
 @take_over@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->fresh[m] = 0;
     }
-@rings@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (w->status[m] == RUNNING && !w->fresh[m] && !done(w, m)) {
+            fired |= ring(w, m);
+            obey(w);
+        }
+    }
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         fired |= w->fresh[m];
     }
     return fired;
@@ -742,10 +727,27 @@ int behaviour_outside(struct world *w, const char *type, const char *content)
 
 int behaviour_news(const struct world *w)
 {
-    unsigned k, e;
-    (void)k;
-    (void)e;
-@reads@    return 0;
+    unsigned m, k, e;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (w->status[m] != RUNNING) {
+            continue;
+        }
+        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
+            if (reads(w, m, k) && (w->asked[m][k] || (k < theory_outputs && w->ext_read[m])) &&
+                answer(w, k) != w->seen[m][k]) {
+                return 1;
+            }
+        }
+        if (w->globals_seen[m] != w->globals_changes && reads_globals(w, m)) {
+            return 1;
+        }
+        for (e = 0; e < externs; e++) {
+            if (reads_extern(w, m, e) && extern_news(w, m, e)) {
+                return 1;
+            }
+        }
+    }
+    return 0;
 }
 
 int behaviour_answers(const char *atom)
@@ -802,12 +804,22 @@ uint64_t behaviour_next_due_ms(const struct world *w)
             due = BEHAVIOUR_PERIOD_MS;
         }
     }
-@dues@@release_due@    return due;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (w->status[m] == RUNNING) {
+            due = due_of(w, m, due);
+        }
+    }
+@release_due@    return due;
 }
 
 int behaviour_finished(const struct world *w)
 {
-@tops@    (void)w;
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (machine_starts[m] && !done(w, m)) {
+            return 0;
+        }
+    }
     return 1;
 }
 "#;

@@ -15,16 +15,21 @@
 //! ```
 
 mod activity;
+mod answer_code;
 mod behaviour;
 mod c;
 mod c_template;
+mod code;
 mod diagram;
 mod error;
+mod machine_code;
 mod plan;
 mod print_c;
 mod print_rust;
 mod refusal;
 mod rust_template;
+mod spell_c;
+mod spell_rust;
 mod tabulate;
 
 pub use behaviour::{

@@ -2,11 +2,10 @@
 //! struct, its callbacks), `behaviour.c` (a `ring_M` a machine, the round schedule), a decision
 //! function a theory, and the host harness `main.c`.
 
-use crate::c_template::{BODY, HEADER, HELD_TYPES, RING, SUPPRESSION};
-use crate::plan::{
-    Answer, Condition, Conversion, Input, MachinePlan, Piece, Plan, StatePlan, Step, Value,
-};
-use proclaim_fsm::control::Command;
+use crate::c_template::{BODY, HEADER, HELD_TYPES, SUPPRESSION};
+use crate::machine_code;
+use crate::plan::Plan;
+use crate::spell_c::C;
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::Write;
 
@@ -117,8 +116,6 @@ fn source(plan: &Plan) -> String {
     for theory in &plan.theories {
         let _ = writeln!(c, "#include \"{}.h\"", theory.prefix);
     }
-    let (answer_cases, input_cases) = answers_and_inputs(plan);
-    let schedule = Schedule::of(plan);
     // Only a theory's answers: the impersonator's atoms are the script's to set.
     let answers_body = if plan.theory_outputs() == 0 {
         "    (void)atom;\n    return 0;\n".to_string()
@@ -175,19 +172,20 @@ fn source(plan: &Plan) -> String {
             ("held_init", &held.init),
             ("take_over", &held.take_over),
             ("release_due", &held.release_due),
-            ("input_cases", &input_cases),
-            ("answer_cases", &answer_cases),
+            ("answers", &machine_code::answers(plan, &C)),
             ("runtime", RUNTIME),
             ("loop_limit", &loop_limit),
-            ("code", &schedule.code),
-            ("finals", &schedule.finals),
+            ("code", &machine_code::printed(plan, &C)),
+            (
+                "initials",
+                &numbers(plan.machines.iter().map(|m| m.initial)),
+            ),
+            (
+                "starts",
+                &numbers(plan.machines.iter().map(|m| i64::from(m.start))),
+            ),
             ("var_inits", &var_inits),
-            ("inits", &schedule.inits),
-            ("rings", &schedule.rings),
-            ("reads", &schedule.reads),
             ("answers_body", &answers_body),
-            ("dues", &schedule.dues),
-            ("tops", &schedule.tops),
         ],
     ));
     c
@@ -235,69 +233,7 @@ fn var_inits(plan: &Plan) -> String {
         .collect()
 }
 
-/// The cases of `answer` (a theory's decision function, or an atom from outside's variable)
-/// and of `apply_input` (each type once, setting every variable pair it sets).
-fn answers_and_inputs(plan: &Plan) -> (String, String) {
-    let mut answer_cases = String::new();
-    for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = match o.answer {
-            Answer::Theory {
-                theory,
-                index,
-                offset,
-            } => writeln!(
-                answer_cases,
-                "    case {k}:\n        return {}_answer({index}u, w->in + {offset});",
-                plan.theories[theory].prefix
-            ),
-            Answer::Outside { variable } => writeln!(
-                answer_cases,
-                "    case {k}:\n        return w->in[{}];",
-                variable + 1
-            ),
-        };
-    }
-    let mut input_cases = String::new();
-    for (ty, inputs) in plan.input_types() {
-        let sets = input_updates(
-            &inputs,
-            [
-                "        set_input(w, @v@, content);",
-                "        if (w->in[@v@ + 1]) {",
-                "            w->in[@o@] = 1;\n            w->in[@o@ + 1] = 0;",
-                "        }",
-            ],
-        );
-        let _ = writeln!(
-            input_cases,
-            "    if (same(type, \"{}\")) {{\n{sets}        return 1;\n    }}",
-            esc(ty)
-        );
-    }
-    (answer_cases, input_cases)
-}
-
 /// Every sensor's atoms one after another, and where each sensor's begin (and the last ends).
-/// The statements that apply a posting to `inputs`, in a target's `lines`: each input set from
-/// the content (`@v@` its variables), then for an atom of an input group, when it came true, each
-/// other atom of its group (`@o@`) made known and false, as the reasoner's session does.
-pub(crate) fn input_updates(inputs: &[&Input], lines: [&str; 4]) -> String {
-    let [set, when_true, clear, end] = lines;
-    let mut out = String::new();
-    for input in inputs {
-        let v = input.variable.to_string();
-        let _ = writeln!(out, "{}", set.replace("@v@", &v));
-        if !input.group.is_empty() {
-            let _ = writeln!(out, "{}", when_true.replace("@v@", &v));
-            for o in &input.group {
-                let _ = writeln!(out, "{}", clear.replace("@o@", &o.to_string()));
-            }
-            let _ = writeln!(out, "{end}");
-        }
-    }
-    out
-}
-
 fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
     let sensor_atoms: Vec<&str> = plan
         .sensors
@@ -379,376 +315,6 @@ impl Held {
             take_over: "    take_over(w);\n".into(),
             release_due: "    due = release_due(w, due);\n".into(),
         }
-    }
-}
-
-/// The parts of `behaviour.c` written once a machine.
-struct Schedule {
-    /// Each machine's functions.
-    code: String,
-    /// Its ringlet in the round.
-    rings: String,
-    /// Its news test.
-    reads: String,
-    /// Its next time test due.
-    dues: String,
-    /// Its start.
-    inits: String,
-    finals: String,
-    /// Its part in the behaviour's end.
-    tops: String,
-}
-
-impl Schedule {
-    fn of(plan: &Plan) -> Schedule {
-        let mut s = Schedule {
-            code: String::new(),
-            rings: String::new(),
-            reads: String::new(),
-            dues: String::new(),
-            inits: String::new(),
-            finals: String::new(),
-            tops: String::new(),
-        };
-        for (m, machine) in plan.machines.iter().enumerate() {
-            s.code.push_str(&machine_code(m, machine));
-            let _ = writeln!(s.rings, "    if (w->status[{m}] == RUNNING && !w->fresh[{m}] && !done(w, {m}u)) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if (w->status[{m}] == RUNNING) {{\n        for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {{\n            if (reads_{m}(w, k) && (w->asked[{m}][k] || (k < theory_outputs && w->ext_read[{m}])) && answer(w, k) != w->seen[{m}][k]) {{\n                return 1;\n            }}\n        }}\n        if (w->globals_seen[{m}] != w->globals_changes && reads_globals_{m}(w)) {{\n            return 1;\n        }}\n        for (e = 0; e < externs; e++) {{\n            if (reads_extern_{m}(w, e) && extern_news(w, {m}u, e)) {{\n                return 1;\n            }}\n        }}\n    }}");
-            let _ = writeln!(
-                s.dues,
-                "    if (w->status[{m}] == RUNNING) {{\n        due = due_{m}(w, due);\n    }}"
-            );
-            let _ = writeln!(
-                s.inits,
-                "    w->state[{m}] = {};\n    w->initial[{m}] = {};\n    w->just_entered[{m}] = 1;\n    w->status[{m}] = {};",
-                machine.initial,
-                machine.initial,
-                if machine.start { "RUNNING" } else { "DORMANT" }
-            );
-            let _ = writeln!(s.finals, "    case {m}:\n        return final_{m}(w);");
-            if machine.start {
-                let _ = writeln!(
-                    s.tops,
-                    "    if (!done(w, {m}u)) {{\n        return 0;\n    }}"
-                );
-            }
-        }
-        s
-    }
-}
-
-/// A `switch` on machine `m`'s state returning 1 in `cases`, or 0 without any.
-fn state_test(m: usize, cases: &str) -> String {
-    if cases.is_empty() {
-        "    (void)w;\n    return 0;\n".to_string()
-    } else {
-        format!("    switch (w->state[{m}]) {{\n{cases}        return 1;\n    default:\n        return 0;\n    }}\n")
-    }
-}
-
-/// A `switch` on machine `m`'s state whose `cases` return whether it reads extern `e`.
-fn extern_test(m: usize, cases: &str) -> String {
-    if cases.is_empty() {
-        "    (void)w;\n    return 0;\n".to_string()
-    } else {
-        format!("    switch (w->state[{m}]) {{\n{cases}    default:\n        return 0;\n    }}\n")
-    }
-}
-
-/// Machine `m`'s functions: its ringlet, what its labels read, its final states, its dues.
-fn machine_code(m: usize, machine: &MachinePlan) -> String {
-    let mut entries = String::new();
-    let mut cases = String::new();
-    let mut read_cases = String::new();
-    let mut due_cases = String::new();
-    let mut global_cases = String::new();
-    let mut extern_cases = String::new();
-    let mut final_cases = String::new();
-    for state in &machine.states {
-        let id = state.id;
-        entries.push_str(&entry_case(m, machine, state));
-        cases.push_str(&ring_case(m, machine, state));
-        let read: Vec<String> = state.reads.iter().map(|k| format!("k == {k}u")).collect();
-        let read = if read.is_empty() {
-            "0".into()
-        } else {
-            read.join(" || ")
-        };
-        let _ = writeln!(read_cases, "    case {id}:\n        return {read};");
-        let due: String = state
-            .due_ms
-            .iter()
-            .map(|ms| {
-                format!("        due = min_due(due, w->entered_ms[{m}] + {ms}u, w->now_ms);\n")
-            })
-            .collect();
-        let _ = writeln!(due_cases, "    case {id}:\n{due}        break;");
-        if state.reads_globals {
-            let _ = writeln!(global_cases, "    case {id}:");
-        }
-        if !state.reads_externs.is_empty() {
-            let read: Vec<String> = state
-                .reads_externs
-                .iter()
-                .map(|e| format!("e == {e}u"))
-                .collect();
-            let _ = writeln!(
-                extern_cases,
-                "    case {id}:\n        return {};",
-                read.join(" || ")
-            );
-        }
-        if state.is_final {
-            let _ = writeln!(final_cases, "    case {id}:");
-        }
-    }
-    let m_text = m.to_string();
-    fill(
-        RING,
-        &[
-            ("m", &m_text),
-            ("entries", &entries),
-            ("cases", &cases),
-            ("read_cases", &read_cases),
-            ("global_return", &state_test(m, &global_cases)),
-            ("extern_return", &extern_test(m, &extern_cases)),
-            ("final_return", &state_test(m, &final_cases)),
-            ("due_cases", &due_cases),
-        ],
-    )
-}
-
-/// What entering `state` does: the event, its OnEntry, and a final state's end.
-fn entry_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
-    let mut entry = steps(m, &state.entry);
-    if state.is_final {
-        let _ = writeln!(
-            entry,
-            "            w->cb.finished(w, \"{}\", \"{}\");",
-            esc(&machine.name),
-            esc(&state.name)
-        );
-    }
-    let id = state.id;
-    format!(
-        "        case {id}:\n            w->cb.entered(w, \"{}\", \"{}\", {id});\n{entry}            break;\n",
-        esc(&machine.name),
-        esc(&state.name)
-    )
-}
-
-/// A ringlet in `state`: its transitions tried in order, else its internal activity.
-fn ring_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
-    let id = state.id;
-    let exit = steps(m, &state.exit);
-    let mut body = String::new();
-    for t in &state.transitions {
-        let _ = writeln!(
-            body,
-            "        if (proved(w, {m}u, {})) {{\n            w->cb.fired(w, \"{}\", {id}, {}, \"{}\");\n{exit}            w->state[{m}] = {};\n            w->just_entered[{m}] = 1;\n            return 1;\n        }}",
-            condition(m, &t.condition),
-            esc(&machine.name),
-            t.target,
-            esc(&t.label),
-            t.target
-        );
-    }
-    let internal = steps(m, &state.internal);
-    format!("    case {id}:\n{body}{internal}        return 0;\n")
-}
-
-/// A label's C.
-fn condition(m: usize, c: &Condition) -> String {
-    match c {
-        Condition::Constant(b) => if *b { "1" } else { "0" }.into(),
-        Condition::Ask(k) => format!("ask(w, {m}u, {k}u)"),
-        Condition::AskPosted { number, atom } => {
-            format!("ask_posted(w, {m}u, {number}u, \"{}\")", esc(atom))
-        }
-        Condition::Not(c) => format!("!{}", condition(m, c)),
-        Condition::Both { and, left, right } => format!(
-            "({} {} {})",
-            condition(m, left),
-            if *and { "&&" } else { "||" },
-            condition(m, right)
-        ),
-        Condition::Elapsed(ms) => format!("elapsed_at_least(w, {m}u, {ms}u)"),
-        Condition::Truth(v) => truth(v),
-    }
-}
-
-fn truth(v: &Value) -> String {
-    format!("truthy({})", value(v))
-}
-
-/// A value's C (a `struct value`).
-fn value(v: &Value) -> String {
-    match v {
-        Value::Bool(b) => format!("v_bool({})", u8::from(*b)),
-        Value::Int(i) => format!("v_int({})", int_c(*i)),
-        Value::Slot(slot) => format!("w->var[{slot}]"),
-        Value::Extern(number) => format!("read_extern(w, {number}u)"),
-        Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
-        Value::Logic { and, left, right } => format!(
-            "v_bool({} {} {})",
-            truth(left),
-            if *and { "&&" } else { "||" },
-            truth(right)
-        ),
-        Value::Apply(function, arguments) => {
-            let arguments: Vec<String> = arguments.iter().map(value).collect();
-            format!("{}({})", function.helper(), arguments.join(", "))
-        }
-    }
-}
-
-/// A whole number as a C expression of type `int64_t`.
-fn int_c(i: i64) -> String {
-    if i == i64::MIN {
-        "(-INT64_C(9223372036854775807) - 1)".into()
-    } else {
-        format!("INT64_C({i})")
-    }
-}
-
-fn steps(m: usize, steps: &[Step]) -> String {
-    steps.iter().map(|s| step(m, s, 0)).collect()
-}
-
-fn indent(depth: usize) -> String {
-    " ".repeat(12 + 4 * depth)
-}
-
-/// One step's C, indented for `depth` blocks inside a `case` of `ring_M`.
-fn step(m: usize, s: &Step, depth: usize) -> String {
-    let pad = indent(depth);
-    match s {
-        Step::Post { ty, content } => format!(
-            "{pad}post(w, {m}u, \"{}\", \"{}\");\n",
-            esc(ty),
-            esc(content)
-        ),
-        Step::PostBuilt { ty, pieces } => {
-            let mut out = build_text(pieces, depth);
-            let _ = writeln!(out, "{pad}post(w, {m}u, \"{}\", w->text);", esc(ty));
-            out
-        }
-        Step::Command {
-            ty,
-            word,
-            command,
-            target,
-        } => format!(
-            "{pad}post(w, {m}u, \"{}\", \"{}\");\n{pad}command(w, {target}u, {}, \"{}\");\n",
-            esc(ty),
-            esc(word),
-            command_c(*command),
-            esc(word)
-        ),
-        Step::Print(pieces) => {
-            let mut out = build_text(pieces, depth);
-            let _ = writeln!(out, "{pad}w->cb.printed(w, machine_name[{m}], w->text);");
-            out
-        }
-        Step::PostExtern { number, value: v } => {
-            format!("{pad}post_extern(w, {m}u, {number}u, {});\n", value(v))
-        }
-        Step::Assign {
-            slot,
-            conversion,
-            global,
-            name,
-            value: v,
-        } => format!(
-            "{pad}assign(w, {m}u, {slot}u, {}, {}, \"{}\", {});\n",
-            conversion_c(*conversion),
-            u8::from(*global),
-            esc(name),
-            value(v)
-        ),
-        Step::Block(body) => {
-            let inner: String = body.iter().map(|s| step(m, s, depth + 1)).collect();
-            format!("{pad}{{\n{inner}{pad}}}\n")
-        }
-        Step::Loop { .. } => for_loop(m, s, depth),
-        Step::Nothing => String::new(),
-    }
-}
-
-/// A `for` loop as a C `while`, stopped at the runner's loop limit with its warning.
-fn for_loop(m: usize, s: &Step, depth: usize) -> String {
-    let Step::Loop {
-        number: n,
-        state,
-        init,
-        condition,
-        body,
-        step: next,
-    } = s
-    else {
-        return String::new();
-    };
-    let pad = indent(depth);
-    let inner = indent(depth + 1);
-    let deeper = indent(depth + 2);
-    let mut out = format!("{pad}{{\n{inner}uint32_t rounds_{n} = 0;\n");
-    if let Some(init) = init {
-        out.push_str(&step(m, init, depth + 1));
-    }
-    let condition = condition.as_ref().map_or("1".into(), truth);
-    let _ = writeln!(out, "{inner}while ({condition}) {{");
-    let _ = writeln!(
-        out,
-        "{deeper}if (rounds_{n} == LOOP_LIMIT) {{\n{deeper}    w->cb.warned(w, machine_name[{m}], \"a `for` loop in state {} stopped after {LOOP_LIMIT} rounds\");\n{deeper}    break;\n{deeper}}}\n{deeper}rounds_{n}++;",
-        esc(state)
-    );
-    out.push_str(&step(m, body, depth + 2));
-    if let Some(next) = next {
-        out.push_str(&step(m, next, depth + 2));
-    }
-    let _ = writeln!(out, "{inner}}}\n{pad}}}");
-    out
-}
-
-/// The C that builds `pieces` into `w->text`.
-fn build_text(pieces: &[Piece], depth: usize) -> String {
-    let pad = indent(depth);
-    let mut out = String::new();
-    let _ = writeln!(out, "{pad}text_clear(w);");
-    for piece in pieces {
-        match piece {
-            Piece::Literal(s) if s.is_empty() => {}
-            Piece::Literal(s) => {
-                let _ = writeln!(out, "{pad}text_literal(w, \"{}\");", esc(s));
-            }
-            Piece::Value(v) => {
-                let _ = writeln!(out, "{pad}text_value(w, {});", value(v));
-            }
-            Piece::Whole(v) => {
-                let _ = writeln!(out, "{pad}text_whole(w, {});", value(v));
-            }
-        }
-    }
-    out
-}
-
-fn conversion_c(conversion: Conversion) -> &'static str {
-    match conversion {
-        Conversion::Whole => "CONVERT_WHOLE",
-        Conversion::Truth => "CONVERT_TRUTH",
-        Conversion::Kept => "CONVERT_KEPT",
-    }
-}
-
-/// A sub-machine control command as the C names it.
-fn command_c(command: Option<Command>) -> &'static str {
-    match command {
-        Some(Command::On) => "COMMAND_ON",
-        Some(Command::Off) => "COMMAND_OFF",
-        Some(Command::Suspend) => "COMMAND_SUSPEND",
-        Some(Command::Resume) => "COMMAND_RESUME",
-        Some(Command::Restart) => "COMMAND_RESTART",
-        Some(Command::Reload) | Some(Command::Reread) | None => "COMMAND_UNKNOWN",
     }
 }
 

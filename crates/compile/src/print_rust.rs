@@ -6,13 +6,12 @@
 //! construction and the project builds with crates from crates.io alone; only a project asked
 //! for a whiteboard depends on this repository's crates, by path.
 
-use crate::plan::{
-    Answer, Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value,
-};
-use crate::print_c::{board_of_outputs, board_of_statuses, fill, input_updates};
-use crate::rust_template::{BODY, RING};
+use crate::machine_code;
+use crate::plan::Plan;
+use crate::print_c::{board_of_outputs, board_of_statuses, fill};
+use crate::rust_template::BODY;
+use crate::spell_rust::Rust;
 use crate::tabulate::Compiled;
-use proclaim_fsm::control::Command;
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::Write;
 use std::path::Path;
@@ -173,45 +172,6 @@ fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
     quoted.join(", ")
 }
 
-/// The arms of `answer` (a theory's decision diagram, or an atom from outside's variable) and
-/// of `apply_input` (each type once, setting every variable pair it sets).
-fn answers_and_inputs(plan: &Plan) -> (String, String) {
-    let mut answer_cases = String::new();
-    for (k, o) in plan.outputs.iter().enumerate() {
-        let _ = match o.answer {
-            Answer::Theory {
-                theory,
-                index,
-                offset,
-            } => writeln!(
-                answer_cases,
-                "        {k} => crate::theories::{}({index}, &w.input[{offset}..]),",
-                plan.theories[theory].prefix
-            ),
-            Answer::Outside { variable } => {
-                writeln!(answer_cases, "        {k} => w.input[{}],", variable + 1)
-            }
-        };
-    }
-    let mut input_cases = String::new();
-    for (ty, inputs) in plan.input_types() {
-        let sets = input_updates(
-            &inputs,
-            [
-                "            set_input(w, @v@, content);",
-                "            if w.input[@v@ + 1] {",
-                "                w.input[@o@] = true;\n                w.input[@o@ + 1] = false;",
-                "            }",
-            ],
-        );
-        let _ = writeln!(
-            input_cases,
-            "        {ty:?} => {{\n{sets}            true\n        }}"
-        );
-    }
-    (answer_cases, input_cases)
-}
-
 /// The constants of what comes from outside the machines' code: each machine's priority, the
 /// types under subsumption, the sensors' atoms and the behaviour's own script.
 fn outside_tables(plan: &Plan) -> (String, String, String, String) {
@@ -242,8 +202,6 @@ fn outside_tables(plan: &Plan) -> (String, String, String, String) {
 
 /// `src/behaviour.rs`.
 fn behaviour(plan: &Plan) -> String {
-    let (answer_cases, input_cases) = answers_and_inputs(plan);
-    let schedule = Schedule::of(plan);
     let (priorities, suppressed, sensors, script) = outside_tables(plan);
     let numbers = [
         plan.machines.len().to_string(),
@@ -301,16 +259,17 @@ fn behaviour(plan: &Plan) -> String {
             ("sensors", &sensors),
             ("suppressed_n", &plan.suppressed.len().to_string()),
             ("suppressed", &suppressed),
-            ("input_cases", &input_cases),
-            ("answer_cases", &answer_cases),
-            ("code", &schedule.code),
-            ("finals", &schedule.finals),
+            ("answers", &machine_code::answers(plan, &Rust)),
+            ("code", &machine_code::printed(plan, &Rust)),
+            (
+                "initials",
+                &list(plan.machines.iter().map(|m| m.initial.to_string())),
+            ),
+            (
+                "starts",
+                &list(plan.machines.iter().map(|m| m.start.to_string())),
+            ),
             ("var_inits", &var_inits(plan)),
-            ("inits", &schedule.inits),
-            ("rings", &schedule.rings),
-            ("reads", &schedule.reads),
-            ("dues", &schedule.dues),
-            ("tops", &schedule.tops),
         ],
     )
 }
@@ -329,329 +288,6 @@ fn var_inits(plan: &Plan) -> String {
         })
         .collect();
     starts.join(", ")
-}
-
-/// The parts of `behaviour.rs` written once a machine.
-#[derive(Default)]
-struct Schedule {
-    code: String,
-    rings: String,
-    reads: String,
-    dues: String,
-    inits: String,
-    finals: String,
-    tops: String,
-}
-
-impl Schedule {
-    fn of(plan: &Plan) -> Schedule {
-        let mut s = Schedule::default();
-        for (m, machine) in plan.machines.iter().enumerate() {
-            s.code.push_str(&machine_code(m, machine));
-            let _ = writeln!(s.rings, "    if w.status[{m}] == RUNNING && !w.fresh[{m}] && !done(w, {m}) {{\n        fired |= ring_{m}(w);\n        obey(w);\n    }}");
-            let _ = writeln!(s.reads, "    if w.status[{m}] == RUNNING {{\n        for k in 0..OUTPUTS {{\n            if reads_{m}(w, k) && (w.asked[{m}][k] || (k < THEORY_OUTPUTS && w.ext_read[{m}])) && answer(w, k) != w.seen[{m}][k] {{\n                return true;\n            }}\n        }}\n        if w.globals_seen[{m}] != w.globals_changes && reads_globals_{m}(w) {{\n            return true;\n        }}\n        if (0..EXTERNS).any(|e| reads_extern_{m}(w, e) && !asked_of_expert(w, {m}, e) && w.extern_news({m}, e)) {{\n            return true;\n        }}\n    }}");
-            let _ = writeln!(
-                s.dues,
-                "    if w.status[{m}] == RUNNING {{\n        due = due_{m}(w, due);\n    }}"
-            );
-            let _ = writeln!(
-                s.inits,
-                "    w.state[{m}] = {};\n    w.initial[{m}] = {};\n    w.just_entered[{m}] = true;\n    w.status[{m}] = {};",
-                machine.initial,
-                machine.initial,
-                if machine.start { "RUNNING" } else { "DORMANT" }
-            );
-            let _ = writeln!(s.finals, "        {m} => final_{m}(w),");
-            if machine.start {
-                let _ = writeln!(
-                    s.tops,
-                    "    if !done(w, {m}) {{\n        return false;\n    }}"
-                );
-            }
-        }
-        s
-    }
-}
-
-/// Whether machine `m` is in one of `ids`.
-fn state_test(m: usize, ids: &[i64]) -> String {
-    if ids.is_empty() {
-        "let _ = w;\n    false".into()
-    } else {
-        let ids: Vec<String> = ids.iter().map(i64::to_string).collect();
-        format!("matches!(w.state[{m}], {})", ids.join(" | "))
-    }
-}
-
-/// Machine `m`'s functions: its ringlet, what its labels read, its final states, its dues.
-fn machine_code(m: usize, machine: &MachinePlan) -> String {
-    let mut entries = String::new();
-    let mut cases = String::new();
-    let mut read_cases = String::new();
-    let mut due_cases = String::new();
-    let mut extern_cases = String::new();
-    for state in &machine.states {
-        let id = state.id;
-        if !state.reads_externs.is_empty() {
-            let read: Vec<String> = state
-                .reads_externs
-                .iter()
-                .map(|e| format!("e == {e}"))
-                .collect();
-            let _ = writeln!(extern_cases, "        {id} => {},", read.join(" || "));
-        }
-        entries.push_str(&entry_case(m, machine, state));
-        cases.push_str(&ring_case(m, machine, state));
-        let read: Vec<String> = state.reads.iter().map(|k| format!("k == {k}")).collect();
-        let read = if read.is_empty() {
-            "false".into()
-        } else {
-            read.join(" || ")
-        };
-        let _ = writeln!(read_cases, "        {id} => {read},");
-        let due: String = state
-            .due_ms
-            .iter()
-            .map(|ms| {
-                format!("            let due = min_due(due, w.entered_ms[{m}].wrapping_add({ms}), w.now_ms);\n")
-            })
-            .collect();
-        let _ = writeln!(
-            due_cases,
-            "        {id} => {{\n{due}            due\n        }}"
-        );
-    }
-    let ids = |keep: fn(&StatePlan) -> bool| -> Vec<i64> {
-        machine
-            .states
-            .iter()
-            .filter(|s| keep(s))
-            .map(|s| s.id)
-            .collect()
-    };
-    let m_text = m.to_string();
-    fill(
-        RING,
-        &[
-            ("m", &m_text),
-            ("entries", &entries),
-            ("cases", &cases),
-            ("read_cases", &read_cases),
-            ("extern_cases", &extern_cases),
-            ("global_test", &state_test(m, &ids(|s| s.reads_globals))),
-            ("final_test", &state_test(m, &ids(|s| s.is_final))),
-            ("due_cases", &due_cases),
-        ],
-    )
-}
-
-/// What entering `state` does: the event, its OnEntry, and a final state's end.
-fn entry_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
-    let mut entry = steps(m, &state.entry, 4);
-    if state.is_final {
-        let _ = writeln!(
-            entry,
-            "                report_finished(w, {m}, {:?});",
-            state.name
-        );
-    }
-    format!(
-        "            {id} => {{\n                w.entered({:?}, {:?}, {id});\n{entry}            }}\n",
-        machine.name,
-        state.name,
-        id = state.id
-    )
-}
-
-/// A ringlet in `state`: its transitions tried in order, else its internal activity.
-fn ring_case(m: usize, machine: &MachinePlan, state: &StatePlan) -> String {
-    let id = state.id;
-    let exit = steps(m, &state.exit, 4);
-    let mut body = String::new();
-    for t in &state.transitions {
-        let _ = writeln!(
-            body,
-            "            if proved(w, {m}, |w| {}) {{\n                w.fired({:?}, {id}, {}, {:?});\n{exit}                w.state[{m}] = {};\n                w.just_entered[{m}] = true;\n                return true;\n            }}",
-            condition(m, &t.condition),
-            machine.name,
-            t.target,
-            t.label,
-            t.target
-        );
-    }
-    let internal = steps(m, &state.internal, 3);
-    format!("        {id} => {{\n{body}{internal}            false\n        }}\n")
-}
-
-/// A label's Rust.
-fn condition(m: usize, c: &Condition) -> String {
-    match c {
-        Condition::Constant(b) => b.to_string(),
-        Condition::Ask(k) => format!("ask(w, {m}, {k})"),
-        Condition::AskPosted { number, atom } => format!("ask_posted(w, {m}, {number}, {atom:?})"),
-        Condition::Not(c) => format!("!{}", condition(m, c)),
-        Condition::Both { and, left, right } => format!(
-            "({} {} {})",
-            condition(m, left),
-            if *and { "&&" } else { "||" },
-            condition(m, right)
-        ),
-        Condition::Elapsed(ms) => format!("elapsed_at_least(w, {m}, {ms})"),
-        Condition::Truth(v) => truth(v),
-    }
-}
-
-fn truth(v: &Value) -> String {
-    format!("truthy({})", value(v))
-}
-
-/// A value's Rust (a `Scalar`).
-fn value(v: &Value) -> String {
-    match v {
-        Value::Bool(b) => format!("v_bool({b})"),
-        Value::Int(i) if *i == i64::MIN => "v_int(i64::MIN)".into(),
-        Value::Int(i) => format!("v_int({i})"),
-        Value::Slot(slot) => format!("w.var[{slot}]"),
-        Value::Extern(number) => format!("read_extern(w, {number})"),
-        Value::Not(operand) => format!("v_bool(!{})", truth(operand)),
-        Value::Logic { and, left, right } => format!(
-            "v_bool({} {} {})",
-            truth(left),
-            if *and { "&&" } else { "||" },
-            truth(right)
-        ),
-        Value::Apply(function, arguments) => {
-            let arguments: Vec<String> = arguments.iter().map(value).collect();
-            format!("{}({})", function.helper(), arguments.join(", "))
-        }
-    }
-}
-
-fn steps(m: usize, steps: &[Step], depth: usize) -> String {
-    steps.iter().map(|s| step(m, s, depth)).collect()
-}
-
-/// One step's Rust, indented `depth` levels.
-fn step(m: usize, s: &Step, depth: usize) -> String {
-    let pad = " ".repeat(4 * depth);
-    match s {
-        Step::Post { ty, content } => format!("{pad}post(w, {m}, {ty:?}, {content:?});\n"),
-        Step::PostBuilt { ty, pieces } => {
-            format!(
-                "{}{pad}post_text(w, {m}, {ty:?});\n",
-                build_text(pieces, &pad)
-            )
-        }
-        Step::Command {
-            ty,
-            word,
-            command,
-            target,
-        } => format!(
-            "{pad}post(w, {m}, {ty:?}, {word:?});\n{pad}command(w, {target}, {}, {word:?});\n",
-            command_code(*command)
-        ),
-        Step::Print(pieces) => format!("{}{pad}print_text(w, {m});\n", build_text(pieces, &pad)),
-        Step::PostExtern { number, value: v } => format!(
-            "{pad}let value = {};\n{pad}post_extern(w, {m}, {number}, value);\n",
-            value(v)
-        ),
-        Step::Assign {
-            slot,
-            conversion,
-            global,
-            name,
-            value: v,
-        } => format!(
-            "{pad}let value = {};\n{pad}assign(w, {m}, {slot}, {}, {global}, {name:?}, value);\n",
-            value(v),
-            conversion_code(*conversion)
-        ),
-        Step::Block(body) => format!("{pad}{{\n{}{pad}}}\n", steps(m, body, depth + 1)),
-        Step::Loop { .. } => for_loop(m, s, depth),
-        Step::Nothing => String::new(),
-    }
-}
-
-/// A `for` loop as a `while`, stopped at the runner's loop limit with its warning.
-fn for_loop(m: usize, s: &Step, depth: usize) -> String {
-    let Step::Loop {
-        number: n,
-        state,
-        init,
-        condition,
-        body,
-        step: next,
-    } = s
-    else {
-        return String::new();
-    };
-    let pad = " ".repeat(4 * depth);
-    let inner = " ".repeat(4 * (depth + 1));
-    let deeper = " ".repeat(4 * (depth + 2));
-    let mut out = format!("{pad}{{\n{inner}let mut rounds_{n}: u32 = 0;\n");
-    if let Some(init) = init {
-        out.push_str(&step(m, init, depth + 1));
-    }
-    let condition = condition.as_ref().map_or("true".into(), truth);
-    let warning = format!("a `for` loop in state {state} stopped after {LOOP_LIMIT} rounds");
-    let _ = writeln!(
-        out,
-        "{inner}while {condition} {{\n{deeper}if rounds_{n} == LOOP_LIMIT {{\n{deeper}    w.warned(MACHINE_NAME[{m}], {warning:?});\n{deeper}    break;\n{deeper}}}\n{deeper}rounds_{n} += 1;"
-    );
-    out.push_str(&step(m, body, depth + 2));
-    if let Some(next) = next {
-        out.push_str(&step(m, next, depth + 2));
-    }
-    let _ = writeln!(out, "{inner}}}\n{pad}}}");
-    out
-}
-
-/// The Rust that builds `pieces` into `w.text`.
-fn build_text(pieces: &[Piece], pad: &str) -> String {
-    let mut out = format!("{pad}w.text_clear();\n");
-    for piece in pieces {
-        match piece {
-            Piece::Literal(s) if s.is_empty() => {}
-            Piece::Literal(s) => {
-                let _ = writeln!(out, "{pad}w.text_literal({s:?});");
-            }
-            Piece::Value(v) => {
-                let _ = writeln!(
-                    out,
-                    "{pad}let value = {};\n{pad}w.text_value(value);",
-                    value(v)
-                );
-            }
-            Piece::Whole(v) => {
-                let _ = writeln!(
-                    out,
-                    "{pad}let value = {};\n{pad}w.text_whole(value);",
-                    value(v)
-                );
-            }
-        }
-    }
-    out
-}
-
-fn conversion_code(conversion: Conversion) -> &'static str {
-    match conversion {
-        Conversion::Whole => "CONVERT_WHOLE",
-        Conversion::Truth => "CONVERT_TRUTH",
-        Conversion::Kept => "CONVERT_KEPT",
-    }
-}
-
-fn command_code(command: Option<Command>) -> &'static str {
-    match command {
-        Some(Command::On) => "COMMAND_ON",
-        Some(Command::Off) => "COMMAND_OFF",
-        Some(Command::Suspend) => "COMMAND_SUSPEND",
-        Some(Command::Resume) => "COMMAND_RESUME",
-        Some(Command::Restart) => "COMMAND_RESTART",
-        Some(Command::Reload) | Some(Command::Reread) | None => "COMMAND_UNKNOWN",
-    }
 }
 
 #[cfg(test)]

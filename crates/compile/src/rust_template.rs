@@ -26,6 +26,9 @@ pub const SCRIPT: Option<(&str, &str)> = @script@;
 const SENSORS: [(&str, &[&str]); @sensors_n@] = [@sensors@];
 const OUTPUT_EXPERT: [&str; OUTPUTS] = [@experts@];
 const MACHINE_NAME: [&str; MACHINES] = [@machine_names@];
+const INITIAL: [i64; MACHINES] = [@initials@];
+/// Whether each machine runs from the start (else it is dormant until started).
+const STARTS: [bool; MACHINES] = [@starts@];
 /// The machines' names, in schedule order.
 pub const MACHINE_NAMES: &[&str] = &MACHINE_NAME;
 pub const EXTERNS: usize = @externs@;
@@ -57,17 +60,11 @@ fn set_input(w: &mut World, v: usize, content: &str) {
     w.input[v + 1] = value;
 }
 
-/// Whether the posting's type is a theory input (then applied).
-fn apply_input(w: &mut World, ty: &str, content: &str) -> bool {
-    match ty {
-@input_cases@        _ => false,
-    }
-}
-
-pub fn answer(w: &World, k: usize) -> bool {
-    match k {
-@answer_cases@        _ => false,
-    }
+// `answer`: each output's answer; `apply_input`: whether a posting's type is a theory input
+// (then applied).
+@answers@
+fn same(a: &str, b: &str) -> bool {
+    a == b
 }
 
 fn ask(w: &mut World, m: usize, k: usize) -> bool {
@@ -256,6 +253,32 @@ fn print_text(w: &mut World, m: usize) {
     w.text = text;
 }
 
+/// A ringlet of machine `m` begins: whether it has just entered its state (then its OnEntry
+/// runs first).
+fn begin_ringlet(w: &mut World, m: usize) -> bool {
+    w.ringing = m;
+    w.ringlet_begins(m);
+    w.past_snapshot = false;
+    if !w.just_entered[m] {
+        return false;
+    }
+    w.just_entered[m] = false;
+    w.entered_ms[m] = w.now_ms;
+    true
+}
+
+/// The ringlet's snapshot (`docs/spec/behaviour.md` 3.1), after OnEntry.
+fn take_snapshot(w: &mut World, m: usize) {
+    snapshot(w, m);
+    w.extern_snapshot(m);
+    w.globals_seen[m] = w.globals_changes;
+}
+
+/// The soonest of `due` and `ms` after machine `m` entered its state.
+fn due_after(w: &World, m: usize, ms: u64, due: u64) -> u64 {
+    min_due(due, w.entered_ms[m].wrapping_add(ms), w.now_ms)
+}
+
 fn snapshot(w: &mut World, m: usize) {
     for k in 0..OUTPUTS {
         let value = answer(w, k);
@@ -380,12 +403,6 @@ fn obey(w: &mut World) {
 }
 
 @code@
-fn final_state(w: &World, m: usize) -> bool {
-    match m {
-@finals@        _ => false,
-    }
-}
-
 /// The behaviour at its start, reporting its events to `sink` (none made without one).
 pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
     let mut w = World::new(MACHINES, OUTPUTS, VARIABLES, EXTERNS, sink);
@@ -397,7 +414,13 @@ pub fn init(sink: Option<Box<dyn FnMut(Event)>>) -> World {
         w.suppressor = Some(proclaim_runtime::Suppressor::new(holds));
     }
     w.var = vec![@var_inits@];
-@inits@    for m in 0..MACHINES {
+    for m in 0..MACHINES {
+        w.state[m] = INITIAL[m];
+        w.initial[m] = INITIAL[m];
+        w.just_entered[m] = true;
+        w.status[m] = if STARTS[m] { RUNNING } else { DORMANT };
+    }
+    for m in 0..MACHINES {
         post_status(&mut w, m);
     }
     w
@@ -430,7 +453,13 @@ pub fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool {
     for m in 0..MACHINES {
         w.fresh[m] = false;
     }
-@rings@    fired || w.fresh.iter().any(|f| *f)
+    for m in 0..MACHINES {
+        if w.status[m] == RUNNING && !w.fresh[m] && !done(w, m) {
+            fired |= ring(w, m);
+            obey(w);
+        }
+    }
+    fired || w.fresh.iter().any(|f| *f)
 }
 
 /// A posting from outside the machines (an impersonator, a sensor); whether it is news to a
@@ -442,7 +471,17 @@ pub fn outside(w: &mut World, ty: &str, content: &str) -> bool {
 
 /// Whether an answer a machine's current labels read differs from what its last ringlet saw.
 pub fn news(w: &World) -> bool {
-@reads@    false
+    (0..MACHINES).any(|m| {
+        w.status[m] == RUNNING
+            && ((0..OUTPUTS).any(|k| {
+                reads(w, m, k)
+                    && (w.asked[m][k] || (k < THEORY_OUTPUTS && w.ext_read[m]))
+                    && answer(w, k) != w.seen[m][k]
+            }) || (w.globals_seen[m] != w.globals_changes && reads_globals(w, m))
+                || (0..EXTERNS).any(|e| {
+                    reads_extern(w, m, e) && !asked_of_expert(w, m, e) && w.extern_news(m, e)
+                }))
+    })
 }
 
 /// Whether `atom` is an answer of the behaviour's theories (the script may not set it).
@@ -484,7 +523,12 @@ pub fn next_due_ms(w: &World) -> Option<u64> {
     } else {
         u64::MAX
     };
-@dues@    // A hold running out with a lower posting behind it changes what readers see.
+    for m in 0..MACHINES {
+        if w.status[m] == RUNNING {
+            due = due_of(w, m, due);
+        }
+    }
+    // A hold running out with a lower posting behind it changes what readers see.
     if let Some(release) = w.suppressor.as_ref().and_then(|s| s.next_release()) {
         due = due.min((release.as_millis() as u64).saturating_sub(w.now_ms));
     }
@@ -493,7 +537,7 @@ pub fn next_due_ms(w: &World) -> Option<u64> {
 
 /// Whether every machine that starts with the behaviour is in a final state, its OnEntry run.
 pub fn finished(w: &World) -> bool {
-@tops@    true
+    (0..MACHINES).all(|m| !STARTS[m] || done(w, m))
 }
 
 /// The behaviour as `proclaim_runtime::host` runs it.
@@ -539,54 +583,4 @@ impl proclaim_runtime::host::CompiledBehaviour for Behaviour {
         finished(w)
     }
 }
-"#;
-
-/// One machine's functions (`@m@` is its number).
-pub(crate) const RING: &str = r#"fn ring_@m@(w: &mut World) -> bool {
-    w.ringing = @m@;
-    w.ringlet_begins(@m@);
-    w.past_snapshot = false;
-    if w.just_entered[@m@] {
-        w.just_entered[@m@] = false;
-        w.entered_ms[@m@] = w.now_ms;
-        match w.state[@m@] {
-@entries@            _ => {}
-        }
-    }
-    snapshot(w, @m@);
-    w.extern_snapshot(@m@);
-    w.globals_seen[@m@] = w.globals_changes;
-    match w.state[@m@] {
-@cases@        _ => false,
-    }
-}
-
-fn reads_@m@(w: &World, k: usize) -> bool {
-    match w.state[@m@] {
-@read_cases@        _ => false,
-    }
-}
-
-/// Whether the current state's labels read whiteboard variable `e`.
-fn reads_extern_@m@(w: &World, e: usize) -> bool {
-    match w.state[@m@] {
-@extern_cases@        _ => false,
-    }
-}
-
-/// Whether the current state's labels read a global.
-fn reads_globals_@m@(w: &World) -> bool {
-    @global_test@
-}
-
-fn final_@m@(w: &World) -> bool {
-    @final_test@
-}
-
-fn due_@m@(w: &World, due: u64) -> u64 {
-    match w.state[@m@] {
-@due_cases@        _ => due,
-    }
-}
-
 "#;
