@@ -18,7 +18,6 @@ mod activity;
 mod answer_code;
 mod behaviour;
 mod c;
-mod c_template;
 mod code;
 mod diagram;
 mod error;

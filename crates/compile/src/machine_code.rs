@@ -403,40 +403,48 @@ impl Walk<'_> {
                 condition,
                 body,
                 step,
-            } => {
-                let counter = format!("rounds_{number}");
-                let mut block = vec![Stmt::Counter(counter.clone())];
-                if let Some(init) = init {
-                    self.step(init, &mut block);
-                }
-                let warning =
-                    format!("a `for` loop in state {state} stopped after {LOOP_LIMIT} rounds");
-                let limit = Expr::binary(
-                    Op::Equal,
-                    Expr::Name(counter.clone()),
-                    Expr::Name("LOOP_LIMIT".into()),
-                );
-                let warned = Expr::Report(
-                    "warned",
-                    vec![
-                        Expr::index(Expr::Table("machine_name"), self.machine()),
-                        Expr::Text(warning),
-                    ],
-                );
-                let mut round = vec![
-                    Stmt::If(limit, vec![Stmt::Do(warned), Stmt::Break]),
-                    Stmt::Increment(counter),
-                ];
-                self.step(body, &mut round);
-                if let Some(step) = step {
-                    self.step(step, &mut round);
-                }
-                let test = condition.as_ref().map_or(Expr::Truth(true), truthy);
-                block.push(Stmt::While(test, round));
-                out.push(Stmt::Block(block));
-            }
+            } => out.push(self.for_loop(*number, state, (init, condition), (body, step))),
             Step::Nothing => {}
         }
+    }
+
+    /// A `for` loop as a `while`, stopped at the runner's loop limit with its warning.
+    fn for_loop(
+        &self,
+        number: usize,
+        state: &str,
+        (init, condition): (&Option<Box<Step>>, &Option<Value>),
+        (body, step): (&Step, &Option<Box<Step>>),
+    ) -> Stmt {
+        let counter = format!("rounds_{number}");
+        let mut block = vec![Stmt::Counter(counter.clone())];
+        if let Some(init) = init {
+            self.step(init, &mut block);
+        }
+        let warning = format!("a `for` loop in state {state} stopped after {LOOP_LIMIT} rounds");
+        let limit = Expr::binary(
+            Op::Equal,
+            Expr::Name(counter.clone()),
+            Expr::Name("LOOP_LIMIT".into()),
+        );
+        let warned = Expr::Report(
+            "warned",
+            vec![
+                Expr::index(Expr::Table("machine_name"), self.machine()),
+                Expr::Text(warning),
+            ],
+        );
+        let mut round = vec![
+            Stmt::If(limit, vec![Stmt::Do(warned), Stmt::Break]),
+            Stmt::Increment(counter),
+        ];
+        self.step(body, &mut round);
+        if let Some(step) = step {
+            self.step(step, &mut round);
+        }
+        let test = condition.as_ref().map_or(Expr::Truth(true), truthy);
+        block.push(Stmt::While(test, round));
+        Stmt::Block(block)
     }
 }
 

@@ -1,23 +1,29 @@
-//! A behaviour's plan printed as freestanding C99: `behaviour.h` (the world's values in a
-//! struct, its callbacks), `behaviour.c` (a `ring_M` a machine, the round schedule), a decision
-//! function a theory, and the host harness `main.c`.
+//! A behaviour's plan printed as freestanding C99: `behaviour.h` (its sizes), `behaviour.c` (its
+//! tables, then the runtime, then its own functions: a ringlet a machine, its answers), a
+//! decision function a theory, and the host harness `main.c`. The runtime and the harness are
+//! real C files in `crates/compile/c/`, copied beside them.
 
-use crate::c_template::{BODY, HEADER, HELD_TYPES, SUPPRESSION};
 use crate::machine_code;
 use crate::plan::Plan;
-use crate::spell_c::C;
+use crate::spell_c::{esc, C};
 use proclaim_runner::LOOP_LIMIT;
 use std::fmt::Write;
 
+/// The world, its callbacks and the host's API, for any behaviour's sizes.
+const PROCLAIM_H: &str = include_str!("../c/proclaim.h");
+/// The runtime a behaviour's functions call, included by `behaviour.c` after its tables.
+const RUNTIME_H: &str = include_str!("../c/proclaim_runtime.h");
 /// The host harness: reads an impersonator script on standard input, runs the behaviour on a
 /// virtual clock and writes the trace as `proclaim run --trace` does.
-const HARNESS: &str = include_str!("harness.c");
+const HARNESS: &str = include_str!("../c/harness.c");
 
 /// Every file of the compiled behaviour: name and text.
 pub(crate) fn behaviour_files(plan: &Plan) -> Vec<(String, String)> {
     let mut files = vec![
         ("behaviour.h".to_string(), header(plan)),
         ("behaviour.c".to_string(), source(plan)),
+        ("proclaim.h".to_string(), PROCLAIM_H.to_string()),
+        ("proclaim_runtime.h".to_string(), RUNTIME_H.to_string()),
         ("main.c".to_string(), HARNESS.to_string()),
     ];
     for theory in &plan.theories {
@@ -57,12 +63,13 @@ pub(crate) fn fill(template: &str, values: &[(&str, &str)]) -> String {
     out
 }
 
+/// `behaviour.h`: the behaviour's sizes, then `proclaim.h`.
 fn header(plan: &Plan) -> String {
     let mut h = String::new();
     let _ = writeln!(h, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#ifndef BEHAVIOUR_H\n#define BEHAVIOUR_H\n#include <stdint.h>\n", comment(&plan.name));
     let _ = writeln!(
         h,
-        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_EXTERNS {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_ASKS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n",
+        "#define BEHAVIOUR_MACHINES {}\n#define BEHAVIOUR_OUTPUTS {}\n#define BEHAVIOUR_VARIABLES {}\n#define BEHAVIOUR_VALUES {}\n#define BEHAVIOUR_EXTERNS {}\n#define BEHAVIOUR_TEXT {}\n#define BEHAVIOUR_COMMANDS {}\n#define BEHAVIOUR_ASKS {}\n#define BEHAVIOUR_PERIOD_MS {}u\n#define BEHAVIOUR_LOOP_LIMIT {LOOP_LIMIT}u",
         plan.machines.len().max(1),
         plan.outputs.len().max(1),
         plan.variables().max(1),
@@ -73,30 +80,14 @@ fn header(plan: &Plan) -> String {
         plan.most_asks().max(1),
         plan.period_ms
     );
-    let held = !plan.suppressed.is_empty();
-    if held {
-        let _ = writeln!(
-            h,
-            "#define BEHAVIOUR_SUPPRESSED {}\n#define BEHAVIOUR_LAYERS {}\n#define BEHAVIOUR_HELD_TEXT {}\n",
-            plan.suppressed.len(),
-            plan.layers().len(),
-            plan.longest_posting()
-        );
-    }
-    h.push_str(&fill(
-        HEADER,
-        &[
-            ("held_types", if held { HELD_TYPES } else { "" }),
-            (
-                "held_field",
-                if held {
-                    "    /* Each type under subsumption, in name order. */\n    struct held_line held[BEHAVIOUR_SUPPRESSED];\n"
-                } else {
-                    ""
-                },
-            ),
-        ],
-    ));
+    let _ = writeln!(
+        h,
+        "/* The types under subsumption (the manifest's `[suppress]`), the distinct priorities of\n * the machines, and the longest text a held posting keeps. */\n#define BEHAVIOUR_SUPPRESSED {}\n#define BEHAVIOUR_LAYERS {}\n#define BEHAVIOUR_HELD_TEXT {}\n",
+        plan.suppressed.len(),
+        plan.layers().len().max(1),
+        plan.longest_posting().max(1)
+    );
+    h.push_str("#include \"proclaim.h\"\n\n#endif\n");
     h
 }
 
@@ -110,85 +101,129 @@ fn strings<'a>(texts: impl Iterator<Item = &'a str>) -> String {
     }
 }
 
+/// `behaviour.c`: the tables, the runtime, then the behaviour's own functions.
 fn source(plan: &Plan) -> String {
     let mut c = String::new();
     let _ = writeln!(c, "/* The behaviour `{}` compiled by proclaim (generated: do not edit). */\n#include <stdint.h>\n#include \"behaviour.h\"", comment(&plan.name));
     for theory in &plan.theories {
         let _ = writeln!(c, "#include \"{}.h\"", theory.prefix);
     }
-    // Only a theory's answers: the impersonator's atoms are the script's to set.
-    let answers_body = if plan.theory_outputs() == 0 {
-        "    (void)atom;\n    return 0;\n".to_string()
-    } else {
-        format!("    unsigned k;\n    for (k = 0; k < {}u; k++) {{\n        if (same(atom, output_name[k])) {{\n            return 1;\n        }}\n    }}\n    return 0;\n", plan.theory_outputs())
-    };
-    let var_inits = var_inits(plan);
-    let held = Held::of(plan);
-    let (sensor_atoms, sensor_starts) = sensor_tables(plan);
-    let outputs_n = plan.outputs.len().max(1).to_string();
-    let extern_names = strings(plan.externs.iter().map(|b| b.name.as_str()));
-    let machines = plan.machines.len().max(1).to_string();
-    let loop_limit = LOOP_LIMIT.to_string();
-    c.push_str(&fill(
-        BODY,
-        &[
-            ("outputs_n", &outputs_n),
-            (
-                "output_names",
-                &strings(plan.outputs.iter().map(|o| o.name.as_str())),
-            ),
-            (
-                "experts",
-                &strings(plan.outputs.iter().map(|o| o.expert.as_str())),
-            ),
-            ("machines", &machines),
-            (
-                "machine_names",
-                &strings(plan.machines.iter().map(|m| m.name.as_str())),
-            ),
-            ("priorities", &held.priorities),
-            ("externs_n", &plan.externs.len().max(1).to_string()),
-            ("extern_names", &extern_names),
-            ("externs", &plan.externs.len().to_string()),
-            (
-                "extern_bound",
-                &numbers(plan.externs.iter().map(|b| i64::from(b.bound))),
-            ),
-            ("output_board", &numbers(board_of_outputs(plan))),
-            ("status_board", &numbers(board_of_statuses(plan))),
-            ("theory_outputs", &plan.theory_outputs().to_string()),
-            ("outputs", &plan.outputs.len().to_string()),
-            ("sensors", &plan.sensors.len().to_string()),
-            ("sensors_n", &plan.sensors.len().max(1).to_string()),
-            (
-                "sensor_names",
-                &strings(plan.sensors.iter().map(|(n, _)| n.as_str())),
-            ),
-            ("sensor_atoms_n", &sensor_atoms.len().max(1).to_string()),
-            ("sensor_atoms", &strings(sensor_atoms.iter().copied())),
-            ("sensor_starts", &sensor_starts.join(", ")),
-            ("suppression", &held.suppression),
-            ("held_back", &held.held_back),
-            ("held_init", &held.init),
-            ("take_over", &held.take_over),
-            ("release_due", &held.release_due),
-            ("answers", &machine_code::answers(plan, &C)),
-            ("runtime", RUNTIME),
-            ("loop_limit", &loop_limit),
-            ("code", &machine_code::printed(plan, &C)),
-            (
-                "initials",
-                &numbers(plan.machines.iter().map(|m| m.initial)),
-            ),
-            (
-                "starts",
-                &numbers(plan.machines.iter().map(|m| i64::from(m.start))),
-            ),
-            ("var_inits", &var_inits),
-            ("answers_body", &answers_body),
-        ],
-    ));
+    c.push('\n');
+    tables(plan, &mut c);
+    c.push_str("\n#include \"proclaim_runtime.h\"\n\n");
+    c.push_str(&machine_code::answers(plan, &C));
+    c.push_str(&machine_code::printed(plan, &C));
     c
+}
+
+/// A `static const` array of the behaviour: its element type, name, values (at least one: C
+/// has no empty arrays) and what it says.
+type Table = (&'static str, &'static str, String, &'static str);
+
+/// The tables the runtime reads (`proclaim_runtime.h` names them).
+fn tables(plan: &Plan, c: &mut String) {
+    let _ = writeln!(c, "/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,\n * not literals, so that an empty range is no comparison a compiler warns of. */\nstatic const unsigned theory_outputs = {}u;\nstatic const unsigned outputs = {}u;\nstatic const unsigned sensors = {}u;\nstatic const unsigned externs = {}u;",
+        plan.theory_outputs(), plan.outputs.len(), plan.sensors.len(), plan.externs.len());
+    let mut all = machine_tables(plan);
+    all.extend(board_tables(plan));
+    if !plan.suppressed.is_empty() {
+        all.extend(held_tables(plan));
+    }
+    for (ty, name, values, why) in all {
+        if !why.is_empty() {
+            let _ = writeln!(c, "/* {why} */");
+        }
+        let _ = writeln!(c, "static const {ty} {name}[] = {{{values}}};");
+    }
+}
+
+fn machine_tables(plan: &Plan) -> Vec<Table> {
+    let machines = &plan.machines;
+    vec![
+        ("char *const", "machine_name", strings(machines.iter().map(|m| m.name.as_str())), ""),
+        ("long", "machine_initial", numbers(machines.iter().map(|m| m.initial)), ""),
+        (
+            "unsigned char",
+            "machine_starts",
+            numbers(machines.iter().map(|m| i64::from(m.start))),
+            "Whether each machine runs from the start (else it is dormant until started).",
+        ),
+        (
+            "unsigned long",
+            "machine_priority",
+            numbers(machines.iter().map(|m| i64::from(m.priority))),
+            "Each machine's subsumption layer, which its postings carry.",
+        ),
+        (
+            "int",
+            "status_board",
+            numbers(board_of_statuses(plan)),
+            "The whiteboard value each machine's running state is posted to (`NameIsRunning`), or -1.",
+        ),
+        (
+            "unsigned char",
+            "value_is_bool",
+            numbers(plan.slots.iter().map(|b| i64::from(*b))),
+            "Whether each value slot starts as a truth value (false) rather than a whole 0.",
+        ),
+    ]
+}
+
+/// The outputs, the whiteboard values read and the sensors' atoms.
+fn board_tables(plan: &Plan) -> Vec<Table> {
+    let (outputs, externs) = (&plan.outputs, &plan.externs);
+    let (atoms, starts) = sensor_tables(plan);
+    vec![
+        ("char *const", "output_name", strings(outputs.iter().map(|o| o.name.as_str())), ""),
+        ("char *const", "output_expert", strings(outputs.iter().map(|o| o.expert.as_str())), ""),
+        (
+            "int",
+            "output_board",
+            numbers(board_of_outputs(plan)),
+            "The whiteboard value of each output's atom (-1 for none): an expert's answer is posted there.",
+        ),
+        ("char *const", "extern_name", strings(externs.iter().map(|b| b.name.as_str())), ""),
+        (
+            "unsigned char",
+            "extern_bound",
+            numbers(externs.iter().map(|b| i64::from(b.bound))),
+            "Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted).",
+        ),
+        ("char *const", "sensor_name", strings(plan.sensors.iter().map(|(n, _)| n.as_str())), ""),
+        (
+            "char *const",
+            "sensor_atom",
+            strings(atoms.into_iter()),
+            "Each sensor's atoms, one after another; `sensor_start[s]` is where sensor `s`'s begin.",
+        ),
+        ("unsigned", "sensor_start", starts.join(", "), ""),
+    ]
+}
+
+/// Subsumption's: the types held, for how long, and each machine's layer.
+fn held_tables(plan: &Plan) -> Vec<Table> {
+    let layers = plan.layers();
+    let layer = |p: u32| layers.iter().position(|l| *l == p).unwrap_or(0) as i64;
+    let held_ms: Vec<String> = plan
+        .suppressed
+        .iter()
+        .map(|s| format!("{}u", s.hold_ms))
+        .collect();
+    vec![
+        (
+            "char *const",
+            "held_type",
+            strings(plan.suppressed.iter().map(|s| s.ty.as_str())),
+            "The types under subsumption, in name order, and how long a higher layer's posting holds each.",
+        ),
+        ("uint64_t", "held_ms", held_ms.join(", "), ""),
+        (
+            "unsigned",
+            "machine_layer",
+            numbers(plan.machines.iter().map(|m| layer(m.priority))),
+            "Each machine's rank among the distinct priorities, lowest 0.",
+        ),
+    ]
 }
 
 /// A list of C numbers, or `0` for an empty array's one element.
@@ -221,18 +256,6 @@ pub(crate) fn board_of_statuses(plan: &Plan) -> impl Iterator<Item = i64> + '_ {
     })
 }
 
-/// Each value slot's start: a whole 0, or false.
-fn var_inits(plan: &Plan) -> String {
-    plan.slots
-        .iter()
-        .enumerate()
-        .map(|(slot, is_bool)| {
-            let value = if *is_bool { "v_bool(0)" } else { "v_int(0)" };
-            format!("    w->var[{slot}] = {value};\n")
-        })
-        .collect()
-}
-
 /// Every sensor's atoms one after another, and where each sensor's begin (and the last ends).
 fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
     let sensor_atoms: Vec<&str> = plan
@@ -249,344 +272,6 @@ fn sensor_tables(plan: &Plan) -> (Vec<&str>, Vec<String>) {
     (sensor_atoms, sensor_starts)
 }
 
-/// The parts of `behaviour.c` for subsumption: empty but the priorities for a behaviour
-/// without `[suppress]`.
-struct Held {
-    priorities: String,
-    suppression: String,
-    held_back: String,
-    init: String,
-    take_over: String,
-    release_due: String,
-}
-
-impl Held {
-    fn of(plan: &Plan) -> Held {
-        let priorities: Vec<String> = plan
-            .machines
-            .iter()
-            .map(|m| format!("{}ul", m.priority))
-            .collect();
-        let priorities = if priorities.is_empty() {
-            "0".into()
-        } else {
-            priorities.join(", ")
-        };
-        if plan.suppressed.is_empty() {
-            return Held {
-                priorities,
-                suppression: String::new(),
-                held_back: String::new(),
-                init: String::new(),
-                take_over: String::new(),
-                release_due: String::new(),
-            };
-        }
-        let layers = plan.layers();
-        let machine_layers: Vec<String> = plan
-            .machines
-            .iter()
-            .map(|m| {
-                let layer = layers.iter().position(|p| *p == m.priority).unwrap_or(0);
-                format!("{layer}u")
-            })
-            .collect();
-        let held_ms: Vec<String> = plan
-            .suppressed
-            .iter()
-            .map(|s| format!("{}u", s.hold_ms))
-            .collect();
-        let suppression = fill(
-            SUPPRESSION,
-            &[
-                (
-                    "held_types",
-                    &strings(plan.suppressed.iter().map(|s| s.ty.as_str())),
-                ),
-                ("held_ms", &held_ms.join(", ")),
-                ("machine_layers", &machine_layers.join(", ")),
-            ],
-        );
-        Held {
-            priorities,
-            suppression,
-            held_back: "    if (held_back(w, m, type, content)) {\n        return;\n    }\n".into(),
-            init: "    for (v = 0; v < BEHAVIOUR_SUPPRESSED; v++) {\n        w->held[v].shown.known = 0;\n        w->held[v].subsuming = 0;\n        for (k = 0; k < BEHAVIOUR_LAYERS; k++) {\n            w->held[v].newest[k].known = 0;\n        }\n    }\n".into(),
-            take_over: "    take_over(w);\n".into(),
-            release_due: "    due = release_due(w, due);\n".into(),
-        }
-    }
-}
-
-/// Text as a C string literal's inside.
-pub(crate) fn esc(text: &str) -> String {
-    let mut out = String::new();
-    for c in text.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '?' => out.push_str("\\?"),
-            c if (c as u32) < 0x20 || (c as u32) > 0x7e => {
-                let mut buf = [0u8; 4];
-                for b in c.encode_utf8(&mut buf).bytes() {
-                    let _ = write!(out, "\\{b:03o}");
-                }
-            }
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 fn comment(text: &str) -> String {
     text.replace("*/", "* /")
 }
-
-/// The C helpers compiled activities call: the runner's values and `arith`'s operators on them.
-const RUNTIME: &str = r#"
-/* A value as the runner holds it: a whole number, or a truth value (0 or 1); `none` for a
- * whiteboard value never posted, which arithmetic keeps and a comparison finds false. */
-#define CONVERT_WHOLE 0
-#define CONVERT_TRUTH 1
-#define CONVERT_KEPT 2
-
-static struct value v_int(int64_t i)
-{
-    struct value v;
-    v.i = i;
-    v.is_bool = 0;
-    v.none = 0;
-    return v;
-}
-
-static struct value v_none(void)
-{
-    struct value v = v_int(0);
-    v.none = 1;
-    return v;
-}
-
-/* What an activity makes of a value: no value is a whole 0, as the runner's activities have it. */
-static struct value v_some(struct value v)
-{
-    return v.none ? v_int(0) : v;
-}
-
-static struct value v_bool(int b)
-{
-    struct value v;
-    v.i = b ? 1 : 0;
-    v.is_bool = 1;
-    v.none = 0;
-    return v;
-}
-
-static int truthy(struct value v)
-{
-    return v.i != 0;
-}
-
-/* Wrapping arithmetic, as the runner's `wrapping_add` and kin. */
-static int64_t wrap(uint64_t u)
-{
-    return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)(~u) - 1;
-}
-
-static struct value v_add(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    return v_int(wrap((uint64_t)a.i + (uint64_t)b.i));
-}
-
-static struct value v_sub(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    return v_int(wrap((uint64_t)a.i - (uint64_t)b.i));
-}
-
-static struct value v_mul(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    return v_int(wrap((uint64_t)a.i * (uint64_t)b.i));
-}
-
-/* Dividing by zero gives the largest whole number, as gufsm's INT_MAX. */
-static struct value v_div(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    if (b.i == 0) {
-        return v_int(INT64_MAX);
-    }
-    if (b.i == -1) {
-        return v_int(wrap(0u - (uint64_t)a.i));
-    }
-    return v_int(a.i / b.i);
-}
-
-static struct value v_rem(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    if (b.i == 0) {
-        return v_int(INT64_MAX);
-    }
-    if (b.i == -1) {
-        return v_int(0);
-    }
-    return v_int(a.i % b.i);
-}
-
-static struct value v_neg(struct value a)
-{
-    if (a.none) {
-        return a;
-    }
-    return v_int(wrap(0u - (uint64_t)a.i));
-}
-
-static struct value v_abs(struct value a)
-{
-    return a.i < 0 ? v_neg(a) : a;
-}
-
-static struct value v_eq(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i == b.i);
-}
-
-static struct value v_ne(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i != b.i);
-}
-
-static struct value v_lt(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i < b.i);
-}
-
-static struct value v_le(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i <= b.i);
-}
-
-static struct value v_gt(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i > b.i);
-}
-
-static struct value v_ge(struct value a, struct value b)
-{
-    return v_bool(!a.none && !b.none && a.i >= b.i);
-}
-
-/* The first when it is not greater (min) or not less (max), as the runner picks. */
-static struct value v_min(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    return a.i <= b.i ? a : b;
-}
-
-static struct value v_max(struct value a, struct value b)
-{
-    if (a.none || b.none) {
-        return v_none();
-    }
-    return a.i >= b.i ? a : b;
-}
-
-static struct value convert(int conversion, struct value v)
-{
-    if (conversion == CONVERT_WHOLE) {
-        return v_int(v.i);
-    }
-    if (conversion == CONVERT_TRUTH) {
-        return v_bool(truthy(v));
-    }
-    return v;
-}
-
-/* A value's text, as the trace shows it, into `out` (at least 21 bytes); its length. */
-static unsigned value_text(char *out, struct value v)
-{
-    char digits[20];
-    unsigned n = 0, len = 0;
-    uint64_t u;
-    const char *word;
-    if (v.is_bool) {
-        word = v.i ? "true" : "false";
-        while (word[len] != '\0') {
-            out[len] = word[len];
-            len++;
-        }
-        out[len] = '\0';
-        return len;
-    }
-    u = v.i < 0 ? 0u - (uint64_t)v.i : (uint64_t)v.i;
-    do {
-        digits[n++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u != 0u);
-    if (v.i < 0) {
-        out[len++] = '-';
-    }
-    while (n > 0) {
-        out[len++] = digits[--n];
-    }
-    out[len] = '\0';
-    return len;
-}
-
-static void text_clear(struct world *w)
-{
-    w->text_length = 0;
-    w->text[0] = '\0';
-}
-
-static void text_literal(struct world *w, const char *s)
-{
-    while (*s != '\0') {
-        w->text[w->text_length++] = *s++;
-    }
-    w->text[w->text_length] = '\0';
-}
-
-static void text_value(struct world *w, struct value v)
-{
-    w->text_length += value_text(w->text + w->text_length, v);
-}
-
-static void text_whole(struct world *w, struct value v)
-{
-    text_value(w, v_int(v.i));
-}
-
-/* An assignment as the runner makes it: converted to the variable's type, reported when the
- * value changed; a global's change is news to the labels that read globals. */
-static void assign(struct world *w, unsigned m, unsigned slot, int conversion, int global,
-                   const char *name, struct value v)
-{
-    char shown[24];
-    v = convert(conversion, v_some(v));
-    if (w->var[slot].i == v.i && w->var[slot].is_bool == v.is_bool) {
-        return;
-    }
-    w->var[slot] = v;
-    if (global) {
-        w->globals_changes++;
-    }
-    (void)value_text(shown, v);
-    w->cb.assigned(w, machine_name[m], name, shown);
-}
-"#;

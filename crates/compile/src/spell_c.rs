@@ -2,7 +2,7 @@
 //! `switch` with `break`, and each parameter marked used for `-Wall -Wextra -Werror`.
 
 use crate::code::{Expr, Function, Spelling, Type};
-use crate::print_c::esc;
+use std::fmt::Write;
 
 pub(crate) struct C;
 
@@ -138,4 +138,25 @@ impl Spelling for C {
     fn arm_breaks(&self) -> bool {
         true
     }
+}
+
+/// Text as a C string literal's inside.
+pub(crate) fn esc(text: &str) -> String {
+    let mut out = String::new();
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '?' => out.push_str("\\?"),
+            c if (c as u32) < 0x20 || (c as u32) > 0x7e => {
+                let mut buf = [0u8; 4];
+                for b in c.encode_utf8(&mut buf).bytes() {
+                    let _ = write!(out, "\\{b:03o}");
+                }
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }

@@ -1,174 +1,29 @@
-//! The fixed text of a behaviour compiled to C, with `@NAME@` where `print_c.rs` fills in the
-//! behaviour's own parts.
+/* proclaim's runtime for a compiled behaviour: a ringlet's steps (asking, proving, posting,
+ * assigning, commanding sub-machines), the snapshot, subsumption and the round schedule, as the
+ * interpreter has them (`docs/spec/behaviour.md`). Its functions are `static`: `behaviour.c`
+ * defines the behaviour's tables (below), includes this file, then defines the behaviour's own
+ * functions (declared here), so a program holds no symbol of it but the `behaviour_` API.
+ * Copied by `proclaim compile` (do not edit the copy).
+ *
+ * The tables `behaviour.c` defines before including it: output_name, output_expert,
+ * theory_outputs, outputs, sensors, machine_name, machine_initial, machine_starts, extern_name,
+ * externs, extern_bound, output_board, status_board, machine_priority, value_is_bool,
+ * sensor_name, sensor_atom, sensor_start; with subsumption also held_type, held_ms and
+ * machine_layer. */
+#ifndef PROCLAIM_RUNTIME_H
+#define PROCLAIM_RUNTIME_H
 
-/// `behaviour.h` after its sizes: the world, its callbacks and the functions a host calls.
-pub(crate) const HEADER: &str = r#"struct world;
-
-/* What the behaviour tells its host: postings, and the events of `proclaim run --trace`. */
-struct world_callbacks {
-    /* `priority` is the poster's subsumption layer (the manifest's `priority`, 0 by default). */
-    void (*post)(struct world *w, const char *machine, const char *type, const char *content,
-                 unsigned long priority);
-    /* A posting to a type under subsumption that no reader saw: `by`'s posting, of the higher
-     * `by_priority`, holds the type until `until_ms`. */
-    void (*suppressed)(struct world *w, const char *machine, const char *type, const char *content,
-                       unsigned long priority, const char *by, unsigned long by_priority,
-                       uint64_t until_ms);
-    /* A hold ran out and this lower posting, made at `posted_ms`, is what readers see now. */
-    void (*took_over)(struct world *w, const char *machine, const char *type, const char *content,
-                      unsigned long priority, uint64_t posted_ms);
-    void (*entered)(struct world *w, const char *machine, const char *state, long id);
-    void (*finished)(struct world *w, const char *machine, const char *state);
-    /* An expert was asked `atom` and answered `value`, which it posts (may be NULL): the
-     * impersonator's answer to an atom its script has not posted yet is the first the trace
-     * shows of it. */
-    void (*queried)(struct world *w, const char *atom, int value);
-    /* The answers a transition's label read, once the label is proved (as the runner reports
-     * them). `expert` is NULL when no expert answers the atom (one from outside the host does not
-     * supply, or one nobody answers); then `poster` is the module whose posting of the atom the
-     * machine read (a machine's `NameIsRunning`: that machine), or NULL when nothing was posted. */
-    void (*answered)(struct world *w, const char *machine, const char *atom, int value, const char *expert,
-                     const char *poster);
-    void (*fired)(struct world *w, const char *machine, long from, long to, const char *label);
-    /* A variable's value changed (its text as the trace shows it). */
-    void (*assigned)(struct world *w, const char *machine, const char *variable, const char *value);
-    void (*printed)(struct world *w, const char *machine, const char *text);
-    /* A machine obeys a control command (`On`, `Off`, `suspend`, `resume`, `restart`). */
-    void (*control)(struct world *w, const char *machine, const char *command);
-    void (*warned)(struct world *w, const char *machine, const char *message);
-    /* At the start of each round, before its ringlets: post what came from outside by now. */
-    void (*round_started)(struct world *w);
-};
-
-/* A variable's value as the runner holds it: a whole number, or a truth value (0 or 1); or
- * none, a whiteboard value never posted. */
-struct value {
-    int64_t i;
-    unsigned char is_bool;
-    unsigned char none;
-};
-
-@held_types@/* The whiteboard's values the behaviour reads and its machines' states. */
-struct world {
-    struct world_callbacks cb;
-    void *user;
-    /* The user's millisecond counter: set before each behaviour_round. */
-    uint64_t now_ms;
-    uint64_t round;
-    long state[BEHAVIOUR_MACHINES];
-    unsigned char just_entered[BEHAVIOUR_MACHINES];
-    uint64_t entered_ms[BEHAVIOUR_MACHINES];
-    /* Each theory input: known, then true. */
-    unsigned char input[BEHAVIOUR_VARIABLES];
-    /* The answers each machine's last ringlet saw. */
-    unsigned char seen[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
-    /* Whether each answer has an answerer: a theory's always, an atom from outside once the
-     * host supplies it. */
-    unsigned char supplied[BEHAVIOUR_OUTPUTS];
-    /* The answers each machine's last ringlet asked (a label's `&&` and `||` ask no further than
-     * they need): an atom from outside is news only to a machine that asked it. */
-    unsigned char asked[BEHAVIOUR_MACHINES][BEHAVIOUR_OUTPUTS];
-    long initial[BEHAVIOUR_MACHINES];
-    /* Running, suspended or dormant; started in this round (it rings from the next). */
-    unsigned char status[BEHAVIOUR_MACHINES];
-    unsigned char fresh[BEHAVIOUR_MACHINES];
-    /* Each machine's own variables, then the behaviour's globals. */
-    struct value var[BEHAVIOUR_VALUES];
-    /* Each whiteboard value the machines read: the board's newest value, whether any was posted
-     * (one never posted reads as a whole 0 when bound with `extern`, else as none), and who
-     * posted it. */
-    struct value ext[BEHAVIOUR_EXTERNS];
-    unsigned char ext_known[BEHAVIOUR_EXTERNS];
-    const char *ext_by[BEHAVIOUR_EXTERNS];
-    /* As each machine's last ringlet saw them: the board at its snapshot, the values it posted
-     * itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
-     * board finds nothing new in a posting). */
-    struct value ext_seen[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    unsigned char ext_seen_known[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    const char *ext_seen_by[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    /* The atoms nobody answers that each machine's last ringlet asked, read from these values,
-     * and what it read: news is then a posting whose truth differs. */
-    unsigned char asked_posted[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    unsigned char asked_answer[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    struct value ext_own[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    unsigned char ext_owned[BEHAVIOUR_MACHINES][BEHAVIOUR_EXTERNS];
-    unsigned char ext_read[BEHAVIOUR_MACHINES];
-    /* The machine whose ringlet runs, and whether that ringlet is past its snapshot. */
-    unsigned ringing;
-    unsigned char past_snapshot;
-    /* Changes of globals so far, and as each machine's last ringlet saw them. */
-    uint64_t globals_changes;
-    uint64_t globals_seen[BEHAVIOUR_MACHINES];
-    /* Control commands posted to each machine, obeyed when the ringlet that posted them ends. */
-    unsigned char command[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
-    const char *command_word[BEHAVIOUR_MACHINES][BEHAVIOUR_COMMANDS];
-    unsigned command_count[BEHAVIOUR_MACHINES];
-    /* The answers the label being proved has read, reported once it is proved. */
-    struct pending_answer {
-        const char *atom;
-        const char *expert;
-        const char *poster;
-        int value;
-    } pending[BEHAVIOUR_ASKS];
-    unsigned pending_count;
-    /* Whether a command waits (so a ringlet that posted none costs no look at every machine). */
-    unsigned char commands_waiting;
-    /* The text a posting or a print is built in. */
-    char text[BEHAVIOUR_TEXT];
-    unsigned text_length;
-@held_field@};
-
-void behaviour_init(struct world *w);
-/* One round: a ringlet of every machine in manifest order; 1 when one fired (the next round follows at once). */
-int behaviour_round(struct world *w);
-/* A posting from outside the machines (an impersonator, a sensor); 1 when it is news to a machine's labels. */
-int behaviour_outside(struct world *w, const char *type, const char *content);
-/* 1 when an answer a machine's current labels read differs from what its last ringlet saw. */
-int behaviour_news(const struct world *w);
-/* 1 when `atom` is an answer of the behaviour's theories. */
-int behaviour_answers(const char *atom);
-/* The host answers `atom` from outside (a script or its own sensor sets it): 1 when the
- * behaviour's labels ask it. Unsupplied, such an atom is false and answered by no expert. */
-int behaviour_supply(struct world *w, const char *atom);
-/* Module `s`'s name (a sensor wrapper, a Prolog or program expert), NULL past the last; its atom
- * `i`, NULL past the last. A host supplies one of each module's atoms (the interpreter leaves
- * the module out then). */
-const char *behaviour_sensor_name(unsigned s);
-const char *behaviour_sensor_atom(unsigned s, unsigned i);
-/* 1 when `name` is a machine's (a posting to it is a control command). */
-int behaviour_is_machine(const char *name);
-/* Milliseconds from now_ms until the next round is due without news (a timeout or the ring
- * period); UINT64_MAX while no machine runs (then only news starts a round, as the runner waits). */
-uint64_t behaviour_next_due_ms(const struct world *w);
-/* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
-int behaviour_finished(const struct world *w);
-
-#endif
-"#;
-
-/// `behaviour.c` after its includes.
-pub(crate) const BODY: &str = r#"
-static const char *const output_name[@outputs_n@] = {@output_names@};
-static const char *const output_expert[@outputs_n@] = {@experts@};
-/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,
- * not literals, so that an empty range is no comparison a compiler warns of. */
-static const unsigned theory_outputs = @theory_outputs@u;
-static const unsigned outputs = @outputs@u;
-static const unsigned sensors = @sensors@u;
-static const char *const machine_name[@machines@] = {@machine_names@};
-static const long machine_initial[@machines@] = {@initials@};
-/* Whether each machine runs from the start (else it is dormant until started). */
-static const unsigned char machine_starts[@machines@] = {@starts@};
-static const char *const extern_name[@externs_n@] = {@extern_names@};
-static const unsigned externs = @externs@u;
-/* Whether each whiteboard value is bound with `extern` (read as a whole 0 while unposted). */
-static const unsigned char extern_bound[@externs_n@] = {@extern_bound@};
-/* The whiteboard value of each output's atom (-1 for none): an expert's answer is posted there. */
-static const int output_board[@outputs_n@] = {@output_board@};
-/* The whiteboard value each machine's running state is posted to (`NameIsRunning`), or -1. */
-static const int status_board[@machines@] = {@status_board@};
-/* Each machine's subsumption layer, which its postings carry. */
-static const unsigned long machine_priority[@machines@] = {@priorities@};
+/* The behaviour's own functions, generated into `behaviour.c`: each output's answer, whether a
+ * posting's type sets theory inputs (then set), and each machine's ringlet, what its current
+ * state's labels read, whether that state is final and when its time tests come due. */
+static int answer(const struct world *w, unsigned k);
+static int apply_input(struct world *w, const char *ty, const char *content);
+static int ring(struct world *w, unsigned m);
+static int reads(const struct world *w, unsigned m, unsigned k);
+static int reads_extern(const struct world *w, unsigned m, unsigned e);
+static int reads_globals(const struct world *w, unsigned m);
+static int final_state(const struct world *w, unsigned m);
+static uint64_t due_of(const struct world *w, unsigned m, uint64_t due);
 
 static int same(const char *a, const char *b)
 {
@@ -219,9 +74,6 @@ static void set_input(struct world *w, unsigned v, const char *content)
     }
 }
 
-/* `answer`: each output's answer; `apply_input`: whether a posting's type is a theory input
- * (then applied). */
-@answers@
 
 static struct value v_bool(int b);
 
@@ -273,10 +125,140 @@ static int ask(struct world *w, unsigned m, unsigned k)
     return value;
 }
 
-@suppression@
+#if BEHAVIOUR_SUPPRESSED
+/* Subsumption (Brooks' suppression), as the board's `Suppressor` decides. */
+static int held_live(const struct held_posting *p, unsigned t, uint64_t now)
+{
+    return now < p->at_ms + held_ms[t];
+}
+
+/* Whether some posting of a layer below `layer` is known. */
+static int held_below(const struct held_line *line, unsigned layer)
+{
+    unsigned l;
+    for (l = 0; l < layer; l++) {
+        if (line->newest[l].known) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static void held_keep(struct held_posting *to, unsigned m, uint64_t now, const char *content)
+{
+    unsigned i = 0;
+    to->known = 1;
+    to->machine = m;
+    to->at_ms = now;
+    while (content[i] != '\0' && i + 1 < BEHAVIOUR_HELD_TEXT) {
+        to->text[i] = content[i];
+        i++;
+    }
+    to->text[i] = '\0';
+}
+
+/* Judges machine `m`'s posting: 1 when a higher layer's live posting holds its type (reported
+ * as suppressed, and kept to take over later); 0 when readers see it (and, for a type under
+ * subsumption, it holds the type from now). */
+static int held_back(struct world *w, unsigned m, const char *type, const char *content)
+{
+    unsigned t, layer = machine_layer[m];
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        struct held_line *line = &w->held[t];
+        if (!same(type, held_type[t])) {
+            continue;
+        }
+        held_keep(&line->newest[layer], m, w->now_ms, content);
+        if (line->shown.known && layer < machine_layer[line->shown.machine] &&
+            held_live(&line->shown, t, w->now_ms)) {
+            unsigned by = line->shown.machine;
+            line->subsuming = 1;
+            w->cb.suppressed(w, machine_name[m], type, content, machine_priority[m], machine_name[by],
+                             machine_priority[by], line->shown.at_ms + held_ms[t]);
+            return 1;
+        }
+        line->subsuming = (unsigned char)held_below(line, layer);
+        line->shown = line->newest[layer];
+        return 0;
+    }
+    return 0;
+}
+
+/* The posting that takes over once the shown one's hold has run out: of the lower layers', the
+ * highest whose own hold still runs, else the newest (the higher layer on a tie); or none. */
+static const struct held_posting *held_successor(const struct held_line *line, unsigned t,
+                                                 uint64_t now)
+{
+    const struct held_posting *best = 0;
+    unsigned l, top;
+    if (!line->shown.known || !line->subsuming || held_live(&line->shown, t, now)) {
+        return 0;
+    }
+    top = machine_layer[line->shown.machine];
+    for (l = 0; l < top; l++) {
+        if (line->newest[l].known && held_live(&line->newest[l], t, now)) {
+            best = &line->newest[l];
+        }
+    }
+    if (best != 0) {
+        return best;
+    }
+    for (l = 0; l < top; l++) {
+        if (line->newest[l].known && (best == 0 || line->newest[l].at_ms >= best->at_ms)) {
+            best = &line->newest[l];
+        }
+    }
+    return best;
+}
+
+/* At a round's start: every held type whose hold ran out with a lower posting behind it gets
+ * that posting, in type name order, as the runner's schedule has it. */
+static void take_over(struct world *w)
+{
+    unsigned t;
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        struct held_line *line = &w->held[t];
+        const struct held_posting *next = held_successor(line, t, w->now_ms);
+        unsigned m;
+        if (next == 0) {
+            continue;
+        }
+        line->shown = *next;
+        m = line->shown.machine;
+        line->subsuming = (unsigned char)(held_live(&line->shown, t, w->now_ms) &&
+                                          held_below(line, machine_layer[m]));
+        w->cb.took_over(w, machine_name[m], held_type[t], line->shown.text, machine_priority[m],
+                        line->shown.at_ms);
+        (void)apply_input(w, held_type[t], line->shown.text);
+    }
+}
+
+/* A hold running out with a lower posting behind it changes what readers see: a round then. */
+static uint64_t release_due(const struct world *w, uint64_t due)
+{
+    unsigned t;
+    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
+        const struct held_line *line = &w->held[t];
+        if (line->subsuming && line->shown.known) {
+            uint64_t at = line->shown.at_ms + held_ms[t];
+            uint64_t wait = at > w->now_ms ? at - w->now_ms : 0;
+            if (wait < due) {
+                due = wait;
+            }
+        }
+    }
+    return due;
+}
+#endif
+
 static void post(struct world *w, unsigned m, const char *type, const char *content)
 {
-@held_back@    w->cb.post(w, machine_name[m], type, content, machine_priority[m]);
+#if BEHAVIOUR_SUPPRESSED
+    if (held_back(w, m, type, content)) {
+        return;
+    }
+#endif
+    w->cb.post(w, machine_name[m], type, content, machine_priority[m]);
     (void)apply_input(w, type, content);
 }
 
@@ -303,7 +285,251 @@ static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
     }
     return at - now < due ? at - now : due;
 }
-@runtime@
+/* A value as the runner holds it: a whole number, or a truth value (0 or 1); `none` for a
+ * whiteboard value never posted, which arithmetic keeps and a comparison finds false. */
+#define CONVERT_WHOLE 0
+#define CONVERT_TRUTH 1
+#define CONVERT_KEPT 2
+
+static struct value v_int(int64_t i)
+{
+    struct value v;
+    v.i = i;
+    v.is_bool = 0;
+    v.none = 0;
+    return v;
+}
+
+static struct value v_none(void)
+{
+    struct value v = v_int(0);
+    v.none = 1;
+    return v;
+}
+
+/* What an activity makes of a value: no value is a whole 0, as the runner's activities have it. */
+static struct value v_some(struct value v)
+{
+    return v.none ? v_int(0) : v;
+}
+
+static struct value v_bool(int b)
+{
+    struct value v;
+    v.i = b ? 1 : 0;
+    v.is_bool = 1;
+    v.none = 0;
+    return v;
+}
+
+static int truthy(struct value v)
+{
+    return v.i != 0;
+}
+
+/* Wrapping arithmetic, as the runner's `wrapping_add` and kin. */
+static int64_t wrap(uint64_t u)
+{
+    return u <= (uint64_t)INT64_MAX ? (int64_t)u : -(int64_t)(~u) - 1;
+}
+
+static struct value v_add(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    return v_int(wrap((uint64_t)a.i + (uint64_t)b.i));
+}
+
+static struct value v_sub(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    return v_int(wrap((uint64_t)a.i - (uint64_t)b.i));
+}
+
+static struct value v_mul(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    return v_int(wrap((uint64_t)a.i * (uint64_t)b.i));
+}
+
+/* Dividing by zero gives the largest whole number, as gufsm's INT_MAX. */
+static struct value v_div(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    if (b.i == 0) {
+        return v_int(INT64_MAX);
+    }
+    if (b.i == -1) {
+        return v_int(wrap(0u - (uint64_t)a.i));
+    }
+    return v_int(a.i / b.i);
+}
+
+static struct value v_rem(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    if (b.i == 0) {
+        return v_int(INT64_MAX);
+    }
+    if (b.i == -1) {
+        return v_int(0);
+    }
+    return v_int(a.i % b.i);
+}
+
+static struct value v_neg(struct value a)
+{
+    if (a.none) {
+        return a;
+    }
+    return v_int(wrap(0u - (uint64_t)a.i));
+}
+
+static struct value v_abs(struct value a)
+{
+    return a.i < 0 ? v_neg(a) : a;
+}
+
+static struct value v_eq(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i == b.i);
+}
+
+static struct value v_ne(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i != b.i);
+}
+
+static struct value v_lt(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i < b.i);
+}
+
+static struct value v_le(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i <= b.i);
+}
+
+static struct value v_gt(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i > b.i);
+}
+
+static struct value v_ge(struct value a, struct value b)
+{
+    return v_bool(!a.none && !b.none && a.i >= b.i);
+}
+
+/* The first when it is not greater (min) or not less (max), as the runner picks. */
+static struct value v_min(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    return a.i <= b.i ? a : b;
+}
+
+static struct value v_max(struct value a, struct value b)
+{
+    if (a.none || b.none) {
+        return v_none();
+    }
+    return a.i >= b.i ? a : b;
+}
+
+static struct value convert(int conversion, struct value v)
+{
+    if (conversion == CONVERT_WHOLE) {
+        return v_int(v.i);
+    }
+    if (conversion == CONVERT_TRUTH) {
+        return v_bool(truthy(v));
+    }
+    return v;
+}
+
+/* A value's text, as the trace shows it, into `out` (at least 21 bytes); its length. */
+static unsigned value_text(char *out, struct value v)
+{
+    char digits[20];
+    unsigned n = 0, len = 0;
+    uint64_t u;
+    const char *word;
+    if (v.is_bool) {
+        word = v.i ? "true" : "false";
+        while (word[len] != '\0') {
+            out[len] = word[len];
+            len++;
+        }
+        out[len] = '\0';
+        return len;
+    }
+    u = v.i < 0 ? 0u - (uint64_t)v.i : (uint64_t)v.i;
+    do {
+        digits[n++] = (char)('0' + (int)(u % 10u));
+        u /= 10u;
+    } while (u != 0u);
+    if (v.i < 0) {
+        out[len++] = '-';
+    }
+    while (n > 0) {
+        out[len++] = digits[--n];
+    }
+    out[len] = '\0';
+    return len;
+}
+
+static void text_clear(struct world *w)
+{
+    w->text_length = 0;
+    w->text[0] = '\0';
+}
+
+static void text_literal(struct world *w, const char *s)
+{
+    while (*s != '\0') {
+        w->text[w->text_length++] = *s++;
+    }
+    w->text[w->text_length] = '\0';
+}
+
+static void text_value(struct world *w, struct value v)
+{
+    w->text_length += value_text(w->text + w->text_length, v);
+}
+
+static void text_whole(struct world *w, struct value v)
+{
+    text_value(w, v_int(v.i));
+}
+
+/* An assignment as the runner makes it: converted to the variable's type, reported when the
+ * value changed; a global's change is news to the labels that read globals. */
+static void assign(struct world *w, unsigned m, unsigned slot, int conversion, int global,
+                   const char *name, struct value v)
+{
+    char shown[24];
+    v = convert(conversion, v_some(v));
+    if (w->var[slot].i == v.i && w->var[slot].is_bool == v.is_bool) {
+        return;
+    }
+    w->var[slot] = v;
+    if (global) {
+        w->globals_changes++;
+    }
+    (void)value_text(shown, v);
+    w->cb.assigned(w, machine_name[m], name, shown);
+}
+
 #define RUNNING 0
 #define SUSPENDED 1
 #define DORMANT 2
@@ -313,7 +539,7 @@ static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
 #define COMMAND_SUSPEND 3
 #define COMMAND_RESUME 4
 #define COMMAND_RESTART 5
-#define LOOP_LIMIT @loop_limit@u
+#define LOOP_LIMIT BEHAVIOUR_LOOP_LIMIT
 
 static int final_state(const struct world *w, unsigned m);
 
@@ -605,7 +831,7 @@ static uint64_t due_after(const struct world *w, unsigned m, uint64_t ms, uint64
     return min_due(due, w->entered_ms[m] + ms, w->now_ms);
 }
 
-@code@
+
 void behaviour_init(struct world *w)
 {
     unsigned v, m, k;
@@ -684,7 +910,19 @@ void behaviour_init(struct world *w)
     for (k = 0; k < BEHAVIOUR_OUTPUTS; k++) {
         w->supplied[k] = k < theory_outputs;
     }
-@held_init@@var_inits@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+#if BEHAVIOUR_SUPPRESSED
+    for (v = 0; v < BEHAVIOUR_SUPPRESSED; v++) {
+        w->held[v].shown.known = 0;
+        w->held[v].subsuming = 0;
+        for (k = 0; k < BEHAVIOUR_LAYERS; k++) {
+            w->held[v].newest[k].known = 0;
+        }
+    }
+#endif
+    for (v = 0; v < BEHAVIOUR_VALUES; v++) {
+        w->var[v] = value_is_bool[v] ? v_bool(0) : v_int(0);
+    }
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->state[m] = machine_initial[m];
         w->initial[m] = machine_initial[m];
         w->just_entered[m] = 1;
@@ -703,7 +941,10 @@ int behaviour_round(struct world *w)
     if (w->cb.round_started) {
         w->cb.round_started(w);
     }
-@take_over@    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+#if BEHAVIOUR_SUPPRESSED
+    take_over(w);
+#endif
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->fresh[m] = 0;
     }
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
@@ -752,7 +993,14 @@ int behaviour_news(const struct world *w)
 
 int behaviour_answers(const char *atom)
 {
-@answers_body@}
+    unsigned k;
+    for (k = 0; k < theory_outputs; k++) {
+        if (same(atom, output_name[k])) {
+            return 1;
+        }
+    }
+    return 0;
+}
 
 int behaviour_supply(struct world *w, const char *atom)
 {
@@ -765,11 +1013,6 @@ int behaviour_supply(struct world *w, const char *atom)
     }
     return 0;
 }
-
-static const char *const sensor_name[@sensors_n@] = {@sensor_names@};
-/* Each sensor's atoms, one after another; `sensor_start[s]` is where sensor `s`'s begin. */
-static const char *const sensor_atom[@sensor_atoms_n@] = {@sensor_atoms@};
-static const unsigned sensor_start[@sensors_n@ + 1] = {@sensor_starts@};
 
 const char *behaviour_sensor_name(unsigned s)
 {
@@ -809,7 +1052,10 @@ uint64_t behaviour_next_due_ms(const struct world *w)
             due = due_of(w, m, due);
         }
     }
-@release_due@    return due;
+#if BEHAVIOUR_SUPPRESSED
+    due = release_due(w, due);
+#endif
+    return due;
 }
 
 int behaviour_finished(const struct world *w)
@@ -822,153 +1068,5 @@ int behaviour_finished(const struct world *w)
     }
     return 1;
 }
-"#;
 
-/// `behaviour.h`'s types for subsumption, when the behaviour declares `[suppress]`.
-pub(crate) const HELD_TYPES: &str = r#"/* A posting to a type under subsumption, kept: by whom, when, and its text. */
-struct held_posting {
-    unsigned char known;
-    unsigned machine;
-    uint64_t at_ms;
-    char text[BEHAVIOUR_HELD_TEXT];
-};
-
-/* One type under subsumption: the posting readers see, the newest of each layer (seen or held
- * back), and whether the one seen stands over a lower one that takes over when its hold ends. */
-struct held_line {
-    struct held_posting shown;
-    struct held_posting newest[BEHAVIOUR_LAYERS];
-    unsigned char subsuming;
-};
-
-"#;
-
-/// `behaviour.c`'s subsumption (Brooks' suppression), as the board's `Suppressor` decides.
-pub(crate) const SUPPRESSION: &str = r#"static const char *const held_type[BEHAVIOUR_SUPPRESSED] = {@held_types@};
-static const uint64_t held_ms[BEHAVIOUR_SUPPRESSED] = {@held_ms@};
-/* Each machine's rank among the distinct priorities, lowest 0. */
-static const unsigned machine_layer[BEHAVIOUR_MACHINES] = {@machine_layers@};
-
-static int held_live(const struct held_posting *p, unsigned t, uint64_t now)
-{
-    return now < p->at_ms + held_ms[t];
-}
-
-/* Whether some posting of a layer below `layer` is known. */
-static int held_below(const struct held_line *line, unsigned layer)
-{
-    unsigned l;
-    for (l = 0; l < layer; l++) {
-        if (line->newest[l].known) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
-static void held_keep(struct held_posting *to, unsigned m, uint64_t now, const char *content)
-{
-    unsigned i = 0;
-    to->known = 1;
-    to->machine = m;
-    to->at_ms = now;
-    while (content[i] != '\0' && i + 1 < BEHAVIOUR_HELD_TEXT) {
-        to->text[i] = content[i];
-        i++;
-    }
-    to->text[i] = '\0';
-}
-
-/* Judges machine `m`'s posting: 1 when a higher layer's live posting holds its type (reported
- * as suppressed, and kept to take over later); 0 when readers see it (and, for a type under
- * subsumption, it holds the type from now). */
-static int held_back(struct world *w, unsigned m, const char *type, const char *content)
-{
-    unsigned t, layer = machine_layer[m];
-    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
-        struct held_line *line = &w->held[t];
-        if (!same(type, held_type[t])) {
-            continue;
-        }
-        held_keep(&line->newest[layer], m, w->now_ms, content);
-        if (line->shown.known && layer < machine_layer[line->shown.machine] &&
-            held_live(&line->shown, t, w->now_ms)) {
-            unsigned by = line->shown.machine;
-            line->subsuming = 1;
-            w->cb.suppressed(w, machine_name[m], type, content, machine_priority[m], machine_name[by],
-                             machine_priority[by], line->shown.at_ms + held_ms[t]);
-            return 1;
-        }
-        line->subsuming = (unsigned char)held_below(line, layer);
-        line->shown = line->newest[layer];
-        return 0;
-    }
-    return 0;
-}
-
-/* The posting that takes over once the shown one's hold has run out: of the lower layers', the
- * highest whose own hold still runs, else the newest (the higher layer on a tie); or none. */
-static const struct held_posting *held_successor(const struct held_line *line, unsigned t,
-                                                 uint64_t now)
-{
-    const struct held_posting *best = 0;
-    unsigned l, top;
-    if (!line->shown.known || !line->subsuming || held_live(&line->shown, t, now)) {
-        return 0;
-    }
-    top = machine_layer[line->shown.machine];
-    for (l = 0; l < top; l++) {
-        if (line->newest[l].known && held_live(&line->newest[l], t, now)) {
-            best = &line->newest[l];
-        }
-    }
-    if (best != 0) {
-        return best;
-    }
-    for (l = 0; l < top; l++) {
-        if (line->newest[l].known && (best == 0 || line->newest[l].at_ms >= best->at_ms)) {
-            best = &line->newest[l];
-        }
-    }
-    return best;
-}
-
-/* At a round's start: every held type whose hold ran out with a lower posting behind it gets
- * that posting, in type name order, as the runner's schedule has it. */
-static void take_over(struct world *w)
-{
-    unsigned t;
-    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
-        struct held_line *line = &w->held[t];
-        const struct held_posting *next = held_successor(line, t, w->now_ms);
-        unsigned m;
-        if (next == 0) {
-            continue;
-        }
-        line->shown = *next;
-        m = line->shown.machine;
-        line->subsuming = (unsigned char)(held_live(&line->shown, t, w->now_ms) &&
-                                          held_below(line, machine_layer[m]));
-        w->cb.took_over(w, machine_name[m], held_type[t], line->shown.text, machine_priority[m],
-                        line->shown.at_ms);
-        (void)apply_input(w, held_type[t], line->shown.text);
-    }
-}
-
-/* A hold running out with a lower posting behind it changes what readers see: a round then. */
-static uint64_t release_due(const struct world *w, uint64_t due)
-{
-    unsigned t;
-    for (t = 0; t < BEHAVIOUR_SUPPRESSED; t++) {
-        const struct held_line *line = &w->held[t];
-        if (line->subsuming && line->shown.known) {
-            uint64_t at = line->shown.at_ms + held_ms[t];
-            uint64_t wait = at > w->now_ms ? at - w->now_ms : 0;
-            if (wait < due) {
-                due = wait;
-            }
-        }
-    }
-    return due;
-}
-"#;
+#endif
