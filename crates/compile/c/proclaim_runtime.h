@@ -18,7 +18,7 @@
  * state's labels read, whether that state is final and when its time tests come due. */
 static int answer(const struct world *w, unsigned k);
 static int apply_input(struct world *w, const char *ty, const char *content);
-static int ring(struct world *w, unsigned m);
+static int ring_machines(struct world *w);
 static int reads(const struct world *w, unsigned m, unsigned k);
 static int reads_extern(const struct world *w, unsigned m, unsigned e);
 static int reads_globals(const struct world *w, unsigned m);
@@ -788,6 +788,12 @@ static int apply_extern(struct world *w, const char *type, const char *content)
     return 0;
 }
 
+/* Whether machine `m` rings in this round: running, not started in it, and not over. */
+static int ringlet_due(const struct world *w, unsigned m)
+{
+    return w->status[m] == RUNNING && !w->fresh[m] && !done(w, m);
+}
+
 /* A ringlet of machine `m` begins: whether it has just entered its state (then its OnEntry
  * runs first). */
 static int begin_ringlet(struct world *w, unsigned m)
@@ -870,6 +876,7 @@ void behaviour_init(struct world *w)
     (void)ask_posted;
     (void)proved;
     (void)begin_ringlet;
+    (void)ringlet_due;
     (void)take_snapshot;
     (void)report_finished;
     (void)post_text;
@@ -947,12 +954,7 @@ int behaviour_round(struct world *w)
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->fresh[m] = 0;
     }
-    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
-        if (w->status[m] == RUNNING && !w->fresh[m] && !done(w, m)) {
-            fired |= ring(w, m);
-            obey(w);
-        }
-    }
+    fired = ring_machines(w);
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         fired |= w->fresh[m];
     }

@@ -43,6 +43,8 @@ pub(crate) enum Stmt {
     },
     Return(Expr),
     Break,
+    /// A local variable and its first value.
+    Let(&'static str, Type, Expr),
     /// A loop's round counter, from 0.
     Counter(String),
     Increment(String),
@@ -166,6 +168,8 @@ pub(crate) trait Spelling {
     fn head(&self, f: &Function) -> (String, Vec<String>);
     /// `if` or `while` and its condition, up to the opening brace.
     fn test(&self, keyword: &str, condition: &Expr) -> String;
+    /// A local variable's declaration with its first value.
+    fn local(&self, name: &str, t: Type, value: &Expr) -> String;
     fn counter(&self, name: &str) -> String;
     fn increment(&self, name: &str) -> String;
     /// A call standing as a statement: its lines.
@@ -238,6 +242,7 @@ fn statement(out: &mut String, depth: usize, s: &Stmt, spelling: &dyn Spelling) 
         } => switch(out, depth, (on, arms, otherwise), spelling),
         Stmt::Return(value) => line_at(out, depth, &format!("return {};", spelling.expr(value))),
         Stmt::Break => line_at(out, depth, "break;"),
+        Stmt::Let(name, t, value) => line_at(out, depth, &spelling.local(name, *t, value)),
         Stmt::Counter(name) => line_at(out, depth, &spelling.counter(name)),
         Stmt::Increment(name) => line_at(out, depth, &spelling.increment(name)),
     }

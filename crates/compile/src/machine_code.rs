@@ -41,18 +41,16 @@ fn functions(m: usize, machine: &MachinePlan) -> Vec<Function> {
     ]
 }
 
-/// The functions that hand a machine's number to its own (`ring(w, m)` to `ring_M(w)`, …), so
-/// that the runtime's schedule is one loop over the machines.
+/// The ringlets of every machine in a round, and the functions that hand a machine's number to
+/// its own (`reads(w, m, k)` to `reads_M(w, k)`, …), so that the runtime's news and dues are one
+/// loop over the machines.
 fn dispatch(machines: usize) -> Vec<Function> {
     let m = ("m", Type::Index);
     let to = |name: &str, own: &str, params: Vec<(&'static str, Type)>, returns: Type| {
         dispatcher(machines, (name, own), params, returns)
     };
     vec![
-        Function {
-            writes: true,
-            ..to("ring", "ring", vec![m], Type::Truth)
-        },
+        ring_machines(machines),
         to("reads", "reads", vec![m, ("k", Type::Index)], Type::Truth),
         to(
             "reads_extern",
@@ -64,6 +62,32 @@ fn dispatch(machines: usize) -> Vec<Function> {
         to("final_state", "final", vec![m], Type::Truth),
         to("due_of", "due", vec![m, ("due", Type::Ms)], Type::Ms),
     ]
+}
+
+/// A ringlet of every machine due to ring, in manifest order, each followed by the commands it
+/// posted; whether one fired. Written out machine by machine, not a loop over a switch: each
+/// machine's test and ringlet are then direct calls a compiler can inline.
+fn ring_machines(machines: usize) -> Function {
+    let fired = || Expr::Name("fired".into());
+    let mut body = vec![Stmt::Let("fired", Type::Truth, Expr::Truth(false))];
+    for m in 0..machines {
+        let ring = Expr::call(&format!("ring_{m}"), vec![]);
+        body.push(Stmt::If(
+            Expr::call("ringlet_due", vec![Expr::count(m)]),
+            vec![
+                Stmt::If(ring, vec![Stmt::Set(fired(), Expr::Truth(true))]),
+                Stmt::Do(Expr::call("obey", vec![])),
+            ],
+        ));
+    }
+    body.push(Stmt::Return(fired()));
+    Function {
+        name: "ring_machines".into(),
+        writes: true,
+        params: vec![],
+        returns: Type::Truth,
+        body,
+    }
 }
 
 /// `name(w, m, …)` as machine `m`'s `own_M(w, …)`: false for no machine, or `due` unchanged.

@@ -100,6 +100,10 @@ impl Spelling for C {
         format!("{keyword} ({}) {{", self.bare(condition))
     }
 
+    fn local(&self, name: &str, t: Type, value: &Expr) -> String {
+        format!("{} {name} = {};", type_name(t), self.expr(value))
+    }
+
     fn counter(&self, name: &str) -> String {
         format!("uint32_t {name} = 0;")
     }

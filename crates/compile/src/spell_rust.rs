@@ -88,6 +88,10 @@ impl Spelling for Rust {
         format!("{keyword} {} {{", self.bare(condition))
     }
 
+    fn local(&self, name: &str, t: Type, value: &Expr) -> String {
+        format!("let mut {name}: {} = {};", type_name(t), self.expr(value))
+    }
+
     fn counter(&self, name: &str) -> String {
         format!("let mut {name}: u32 = 0;")
     }
