@@ -150,6 +150,12 @@ fn the_native_format() {
         "machine Counter\ndescription \"counts \\\"beeps\\\"\"\nstate A {\n  entry {\n    int n = 0;\n    Say: hello\n    n = n + 1; post(\"Count\", n);\n    for (i = 0; i < 3; i = i + 1) {\n      postv(\"Beep\", i, n * 2); // a comment\n    }\n    call blink(3)\n    kickOffTeam = !kickOffTeam\n  }\n  when n >= 3 && !stop -> A\n}\n",
         "machine Counter\ndescription \"counts \\\"beeps\\\"\"\ninitial A\n\nstate A {\n    entry {\n        int n = 0;\n        Say: hello\n        n = n + 1;\n        post(\"Count\", n);\n        for (i = 0; i < 3; i = i + 1) { postv(\"Beep\", i, n * 2); }\n        call blink(3)\n        kickOffTeam = !kickOffTeam;\n    }\n    when n >= 3 && ~stop -> A\n}\n",
     );
+    // An expression standing alone that starts with a string keeps its parentheses: written
+    // bare, it would read back as a posting (found by the `machines` fuzz target).
+    native(
+        "machine M\nstate A {\n  entry {\n    (\"stuck\");\n    (\"a\" + 1);\n  }\n}\n",
+        "machine M\ninitial A\n\nstate A {\n    entry {\n        (\"stuck\");\n        (\"a\" + 1);\n    }\n}\n",
+    );
     native(
         "machine M\nstate A {\n  entry {\n    Say: hi\n    x = = 1;\n  }\n}\n",
         "m.machine:5: error: bad statement: expected a name, a number, a string, `(`, `!` or `-`, found `=`\n",

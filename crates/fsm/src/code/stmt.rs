@@ -181,8 +181,15 @@ impl Statement {
                 f.write_str(end)
             }
             Statement::Expr(e) => {
-                e.write(f, "!")?;
-                f.write_str(end)
+                let mut text = String::new();
+                e.write(&mut text, "!")?;
+                // A statement that starts with a string is a posting (`"Type": content`): an
+                // expression that starts with one keeps the parentheses it was written in.
+                if text.starts_with('"') {
+                    write!(f, "({text}){end}")
+                } else {
+                    write!(f, "{text}{end}")
+                }
             }
             Statement::Block(body) => {
                 f.write_str("{")?;
