@@ -136,7 +136,7 @@ fn behaviour(
             proclaim_compile::compile_behaviour(&behaviour)
                 .map_err(refused)?
                 .files,
-            "core: behaviour.c and the theories; host harness: main.c",
+            "core: behaviour.c, which includes proclaim_runtime.h, and the theories; host harness: main.c",
         ),
         CompileTarget::Rust => {
             let repository = match whiteboard {

@@ -163,6 +163,20 @@ impl Expr {
 pub(crate) trait Spelling {
     /// An expression.
     fn expr(&self, e: &Expr) -> String;
+    /// Arguments, separated by commas.
+    fn list(&self, args: &[Expr]) -> String {
+        let shown: Vec<String> = args.iter().map(|a| self.expr(a)).collect();
+        shown.join(", ")
+    }
+    /// A condition, without the parentheses a binary operation carries elsewhere.
+    fn bare(&self, e: &Expr) -> String {
+        match e {
+            Expr::Binary(op, l, r) => {
+                format!("{} {} {}", self.expr(l), op.symbol(), self.expr(r))
+            }
+            e => self.expr(e),
+        }
+    }
     /// A function's first line(s) up to and including its opening brace, and what its body
     /// starts with (C marks each parameter used).
     fn head(&self, f: &Function) -> (String, Vec<String>);

@@ -236,31 +236,33 @@ impl Walk<'_> {
 
     /// Whether the current state's labels ask output `k`.
     fn reads(&self) -> Function {
-        let arms = self
-            .machine
-            .states
-            .iter()
-            .map(|s| {
-                let asked = s.reads.iter().map(|&k| (k, "k"));
-                (vec![s.id], vec![Stmt::Return(any(asked))])
-            })
-            .collect();
-        self.of_state("reads", vec![("k", Type::Index)], arms)
+        self.reading("reads", "k", |s| &s.reads)
     }
 
     /// Whether the current state's labels read whiteboard variable `e`.
     fn reads_externs(&self) -> Function {
+        self.reading("reads_extern", "e", |s| &s.reads_externs)
+    }
+
+    /// Whether parameter `param` is one of the numbers the current state's labels read
+    /// (`read`); false in a state whose labels read none.
+    fn reading(
+        &self,
+        what: &str,
+        param: &'static str,
+        read: fn(&StatePlan) -> &[usize],
+    ) -> Function {
         let arms = self
             .machine
             .states
             .iter()
-            .filter(|s| !s.reads_externs.is_empty())
+            .filter(|s| !read(s).is_empty())
             .map(|s| {
-                let read = s.reads_externs.iter().map(|&e| (e, "e"));
-                (vec![s.id], vec![Stmt::Return(any(read))])
+                let numbers = read(s).iter().map(|&n| (n, param));
+                (vec![s.id], vec![Stmt::Return(any(numbers))])
             })
             .collect();
-        self.of_state("reads_extern", vec![("e", Type::Index)], arms)
+        self.of_state(what, vec![(param, Type::Index)], arms)
     }
 
     /// Whether the machine is in a state that `keep` holds of.

@@ -30,21 +30,6 @@ impl C {
         all.extend(args.iter().map(|a| self.expr(a)));
         format!("{name}({})", all.join(", "))
     }
-
-    fn list(&self, args: &[Expr]) -> String {
-        let shown: Vec<String> = args.iter().map(|a| self.expr(a)).collect();
-        shown.join(", ")
-    }
-
-    /// A condition without the parentheses a binary operation carries elsewhere.
-    fn bare(&self, e: &Expr) -> String {
-        match e {
-            Expr::Binary(op, l, r) => {
-                format!("{} {} {}", self.expr(l), op.symbol(), self.expr(r))
-            }
-            e => self.expr(e),
-        }
-    }
 }
 
 impl Spelling for C {

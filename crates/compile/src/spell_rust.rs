@@ -16,26 +16,11 @@ fn type_name(t: Type) -> &'static str {
 }
 
 impl Rust {
-    fn list(&self, args: &[Expr]) -> String {
-        let shown: Vec<String> = args.iter().map(|a| self.expr(a)).collect();
-        shown.join(", ")
-    }
-
     fn with_world(&self, name: &str, args: &[Expr]) -> String {
         if args.is_empty() {
             format!("{name}(w)")
         } else {
             format!("{name}(w, {})", self.list(args))
-        }
-    }
-
-    /// A condition without the parentheses a binary operation carries elsewhere.
-    fn bare(&self, e: &Expr) -> String {
-        match e {
-            Expr::Binary(op, l, r) => {
-                format!("{} {} {}", self.expr(l), op.symbol(), self.expr(r))
-            }
-            e => self.expr(e),
         }
     }
 }
