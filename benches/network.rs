@@ -43,6 +43,7 @@ fn settings() -> Settings {
     Settings {
         config_file: None,
         low_latency: std::env::var_os("PROCLAIM_BENCH_LOW_LATENCY").is_some(),
+        ..Settings::default()
     }
 }
 
@@ -195,6 +196,7 @@ async fn parent(low_latency: bool) {
     let settings = Settings {
         config_file: None,
         low_latency,
+        ..Settings::default()
     };
     let board = whiteboard(&Role::Listen(endpoint.clone()), "bench", &settings)
         .await

@@ -39,6 +39,27 @@ pub struct Network {
     /// trips, fewer messages per second, no message over 60 KiB
     #[arg(long)]
     pub low_latency: bool,
+    /// How long a process may go unheard before the others count it gone: its types turn
+    /// stale and a teammate drops out of its team (every process of the board should say the
+    /// same) [default: 1s]
+    #[arg(long, value_name = "DURATION", value_parser = parse_lease)]
+    pub lease: Option<Duration>,
+}
+
+/// The shortest and longest `--lease` taken.
+const LEASES: (Duration, Duration) = (Duration::from_millis(200), Duration::from_secs(600));
+
+fn parse_lease(text: &str) -> Result<Duration, String> {
+    let lease = proclaim_experts::parse_duration(text)
+        .ok_or_else(|| format!("`{text}` is not a duration (write 1s, 500ms or 2.5s)"))?;
+    if lease < LEASES.0 || lease > LEASES.1 {
+        return Err(format!(
+            "{text}: a lease is from {}ms to {}s (shorter, a busy robot's keep-alives come late and working links are closed)",
+            LEASES.0.as_millis(),
+            LEASES.1.as_secs()
+        ));
+    }
+    Ok(lease)
 }
 
 impl Network {
@@ -85,6 +106,9 @@ pub struct TeamPlace {
     /// Read only where the whiteboard crosses processes (the `zenoh` feature).
     #[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
     pub shared: Vec<String>,
+    /// How many robots the team has, if the manifest says (checked positive by `check`).
+    #[cfg_attr(not(feature = "zenoh"), allow(dead_code))]
+    pub size: Option<usize>,
 }
 
 impl TeamPlace {
@@ -112,6 +136,11 @@ impl TeamPlace {
             name: team.name.get_ref().clone(),
             member,
             shared: team.shared.iter().map(|s| s.get_ref().clone()).collect(),
+            size: team
+                .size
+                .as_ref()
+                .and_then(|s| usize::try_from(*s.get_ref()).ok())
+                .filter(|&s| s > 0),
         }))
     }
 }
@@ -150,6 +179,7 @@ async fn shared(network: &Network, team: Option<TeamPlace>) -> Result<Whiteboard
                 name: team.name,
                 member: team.member,
                 shared: team.shared,
+                size: team.size,
             };
             proclaim_zenoh::team_whiteboard(&role, network.board_name(), &settings, team).await
         }
@@ -193,6 +223,7 @@ fn settings(network: &Network) -> proclaim_zenoh::Settings {
     proclaim_zenoh::Settings {
         config_file: network.zenoh_config.clone(),
         low_latency: network.low_latency,
+        lease: network.lease,
     }
 }
 

@@ -138,6 +138,7 @@ async fn tls_is_switched_on_through_zenohs_own_configuration() {
         Settings {
             config_file: Some(path),
             low_latency: false,
+            ..Settings::default()
         }
     };
     let file = |f: &str| dir.join(f).display().to_string();
@@ -191,6 +192,7 @@ async fn processes_joining_at_once_all_hear_each_other() {
     let settings = Settings {
         config_file: None,
         low_latency: true,
+        ..Settings::default()
     };
     let first = whiteboard(&Role::Listen(endpoint.clone()), "crowd", &settings)
         .await

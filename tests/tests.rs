@@ -14,6 +14,8 @@ mod monitor;
 mod mutants;
 #[cfg(feature = "zenoh")]
 mod network;
+#[cfg(feature = "zenoh")]
+mod partition;
 mod programs;
 mod properties;
 mod subsumption;

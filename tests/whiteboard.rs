@@ -77,6 +77,7 @@ async fn boards(transport: Transport) -> [Whiteboard; 3] {
             let settings = Settings {
                 config_file: None,
                 low_latency,
+                ..Settings::default()
             };
             let endpoint = crate::network::free_endpoint();
             let holder = whiteboard(&Role::Listen(endpoint.clone()), "suite", &settings)

@@ -307,7 +307,7 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     let no_team: String = manifest
         .lines()
         .filter(|l| {
-            !["[team]", "name = \"blue\"", "member", "shared"]
+            !["[team]", "name = \"blue\"", "member", "shared", "size"]
                 .iter()
                 .any(|s| l.starts_with(s))
         })
@@ -317,13 +317,21 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
         "no-team",
         &[("behaviour.toml", &no_team), ("Player.machine", player)],
     );
+    // The line of SUPPORTER's transition, which reads the team.
+    let when = player
+        .lines()
+        .position(|l| l.contains("-> STRIKER"))
+        .unwrap()
+        + 1;
     let o = proclaim(&["check", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("Player.machine:10: error: label reads the team (`team.argmin(ballDistance)`), but the manifest has no [team]"),
-        "{}",
-        stderr(&o)
-    );
+    for word in ["team.quorum", "team.argmin(ballDistance)"] {
+        assert!(
+            stderr(&o).contains(&format!("Player.machine:{when}: error: label reads the team (`{word}`), but the manifest has no [team]")),
+            "{}",
+            stderr(&o)
+        );
+    }
 
     let misspelt = manifest.replace("[\"ballDistance\", ", "[\"ballDistnce\", ");
     let line = misspelt
@@ -357,7 +365,51 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     let unshared = problem(
         "label reads `team.argmin(ballDistance)`, but `ballDistance` is not shared with the team",
     );
-    assert_eq!(unshared["line"], 10);
+    assert_eq!(unshared["line"], when);
+
+    // A quorum needs the team's size, from 1 robot up, and its name is the team's own.
+    let unsized_team = manifest
+        .lines()
+        .filter(|l| !l.starts_with("size"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let dir = crate::behaviour_folder(
+        "unsized-team",
+        &[
+            ("behaviour.toml", &unsized_team),
+            ("Player.machine", player),
+        ],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains(&format!("Player.machine:{when}: error: label reads `team.quorum`, but [team] does not say how many robots the team has")), "{}", stderr(&o));
+    let size_line = manifest
+        .lines()
+        .position(|l| l.starts_with("size"))
+        .unwrap()
+        + 1;
+    let bad = manifest
+        .replace("size = 3", "size = 0")
+        .replace("\"role\"]", "\"role\", \"quorum\"]");
+    let dir = crate::behaviour_folder(
+        "zero-team",
+        &[("behaviour.toml", &bad), ("Player.machine", player)],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o)
+            .lines()
+            .any(|l| l.contains(&format!("behaviour.toml:{size_line}"))
+                && l.contains("error: [team] size = 0: a team has from 1 to 1000 robots")),
+        "{}",
+        stderr(&o)
+    );
+    assert!(
+        stderr(&o).contains("[team] shared `quorum`: `team.quorum` already says"),
+        "{}",
+        stderr(&o)
+    );
 
     check(
         &["check", "machines/striker"],

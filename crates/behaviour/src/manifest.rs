@@ -45,6 +45,8 @@
 //! member = "robot1"                    # `proclaim run --member robot2` overrides it
 //! shared = ["ballDistance", "role"]    # read on teammates as robot2.ballDistance,
 //!                                      # team.min(ballDistance), team.argmin(…) == me
+//! size = 3                             # optional: how many robots; `team.quorum` is true
+//!                                      # while this one hears a majority of them
 //!
 //! [[property]]                         # checked by `proclaim verify` (spec §6)
 //! name = "door interlock"
@@ -118,6 +120,10 @@ pub struct TeamEntry {
     pub member: Spanned<String>,
     #[serde(default)]
     pub shared: Vec<Spanned<String>>,
+    /// How many robots the team has: with it, `team.quorum` says whether the robot hears a
+    /// majority of them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Spanned<i64>>,
 }
 
 /// `[suppress] walk = { hold = "500ms" }`: how long a posting holds the type against lower

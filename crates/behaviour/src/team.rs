@@ -15,6 +15,11 @@ pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnos
     if let Some(team) = &behaviour.manifest.team {
         out.extend(manifest_findings(behaviour, team, all));
     }
+    let sized = behaviour
+        .manifest
+        .team
+        .as_ref()
+        .is_some_and(|t| t.size.is_some());
     let shared: Vec<&str> = behaviour
         .manifest
         .team
@@ -25,9 +30,11 @@ pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnos
         let file = behaviour.files.show(&loaded.file);
         for t in &loaded.machine.transitions {
             for word in team_words(&t.label) {
-                if let Some(problem) =
-                    label_problem(&word, behaviour.manifest.team.is_some(), &shared)
-                {
+                let problem = match word {
+                    TeamWord::Quorum => quorum_problem(behaviour.manifest.team.is_some(), sized),
+                    word => label_problem(&word, behaviour.manifest.team.is_some(), &shared),
+                };
+                if let Some(problem) = problem {
                     out.push(problem.at(&file, t.line));
                 }
             }
@@ -74,6 +81,22 @@ fn manifest_findings(
             ));
         }
     }
+    if let Some(size) = &team.size {
+        if !(1..=MOST_ROBOTS).contains(size.get_ref()) {
+            let (line, column) = line_column(&text, size.span().start.min(text.len()));
+            out.push(
+                FileDiagnostic::error(
+                    &file,
+                    line,
+                    format!(
+                        "[team] size = {}: a team has from 1 to {MOST_ROBOTS} robots",
+                        size.get_ref()
+                    ),
+                )
+                .at_column(column, &text),
+            );
+        }
+    }
     let posted: Vec<&str> = all
         .iter()
         .flat_map(|m| m.decl.posts.iter().map(String::as_str))
@@ -82,6 +105,8 @@ fn manifest_findings(
         let name = ty.get_ref();
         if name.contains('.') || name.starts_with('@') || name.contains(['/', '*', '$', '?', '#']) {
             out.push(at(ty, format!("[team] shared `{name}` cannot be a shared type's name: no `.`, `/ * $ ? #` or leading `@`")));
+        } else if name == "quorum" {
+            out.push(at(ty, "[team] shared `quorum`: `team.quorum` already says whether the robot hears a majority of its team; share the type under another name".into()));
         } else if !posted.contains(&name.as_str()) {
             let problem = at(
                 ty,
@@ -108,6 +133,23 @@ impl Problem {
     fn at(self, file: &str, line: usize) -> FileDiagnostic {
         FileDiagnostic::error(file, line, self.message).with_hint(self.hint)
     }
+}
+
+/// The most robots a team's `size` may say.
+const MOST_ROBOTS: i64 = 1000;
+
+fn quorum_problem(has_team: bool, sized: bool) -> Option<Problem> {
+    if !has_team {
+        return Some(Problem {
+            message: "label reads the team (`team.quorum`), but the manifest has no [team]".into(),
+            hint: "add [team] with name, member, shared and size to behaviour.toml".into(),
+        });
+    }
+    (!sized).then(|| Problem {
+        message: "label reads `team.quorum`, but [team] does not say how many robots the team has"
+            .into(),
+        hint: "add size = N to [team] in behaviour.toml: the quorum is more than half of N".into(),
+    })
 }
 
 fn label_problem(word: &TeamWord<'_>, has_team: bool, shared: &[&str]) -> Option<Problem> {
@@ -137,6 +179,7 @@ fn label_problem(word: &TeamWord<'_>, has_team: bool, shared: &[&str]) -> Option
             ..
         } => (format!("{function}({ty})"), *ty),
         TeamWord::Member { member, ty } => (format!("{member}.{ty}"), *ty),
+        TeamWord::Quorum => return quorum_problem(has_team, true),
     };
     if !has_team {
         return Some(Problem {

@@ -1,13 +1,18 @@
 //! The local types a team's values are kept under on each robot's own board, the contract
 //! between whoever hears the team (`proclaim-zenoh`) and whoever reads it (labels): a teammate's
 //! value of a shared type as `robot2.ballDistance`, every living member's as one list
-//! `team.ballDistance` of `[member, value]` pairs in member-name order, and the robot's own name
-//! as `me`.
+//! `team.ballDistance` of `[member, value]` pairs in member-name order, the robot's own name
+//! as `me`, and whether it hears a majority of its team as `team.quorum`.
 
 use crate::Value;
 
 /// The type holding this robot's own name in its team.
 pub const ME: &str = "me";
+
+/// The type saying whether this robot hears a majority of its team (itself among them), for a
+/// team whose manifest says its `size`: what a role that must be held by one robot at a time
+/// waits for, since only one side of a split team can hold it.
+pub const QUORUM: &str = "team.quorum";
 
 /// The prefix of the types holding a shared type's values over the living team.
 pub const TEAM: &str = "team";

@@ -137,6 +137,15 @@ pub(crate) struct Activity<'a> {
 }
 
 impl Activity<'_> {
+    /// A label's reading of the team (`what`: an aggregate, a teammate's value, the quorum),
+    /// which no compiled program has.
+    pub fn team_refusal(&self, e: &Expr, what: &str) -> Refusal {
+        self.refuse(match self.target {
+            Language::C => format!("`{e}`: {what} (a freestanding C behaviour has no network to its team's boards)"),
+            Language::Rust => format!("`{e}`: {what} (a compiled Rust behaviour joins no team: its `--listen` or `--connect` whiteboard is not a team's, whose teammates' postings it would aggregate; run it with `proclaim run --member`)"),
+        })
+    }
+
     fn refuse(&self, what: String) -> Refusal {
         Refusal {
             file: self.file.to_string(),
@@ -569,10 +578,7 @@ impl Activity<'_> {
                 };
                 Ok((Value::Apply(f, vec![a, b]), ka.union(kb)))
             }
-            _ if function.starts_with("team.") => Err(self.refuse(match self.target {
-                Language::C => format!("`{e}`: a team aggregate (a freestanding C behaviour has no network to its team's boards)"),
-                Language::Rust => format!("`{e}`: a team aggregate (a compiled Rust behaviour joins no team: its `--listen` or `--connect` whiteboard is not a team's, whose teammates' postings it would aggregate; run it with `proclaim run --member`)"),
-            })),
+            _ if function.starts_with("team.") => Err(self.team_refusal(e, "a team aggregate")),
             _ if arith::is_function(function) => {
                 Err(self.refuse(format!("`{e}` (its value is a fraction: not compiled yet)")))
             }

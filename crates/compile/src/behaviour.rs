@@ -611,6 +611,11 @@ impl Labels<'_> {
             Expr::Name(n) if activity.variables.is_variable(n) => {
                 Condition::Truth(activity.value(label)?.0)
             }
+            Expr::Name(_)
+                if proclaim_fsm::team_words(label) == [proclaim_fsm::TeamWord::Quorum] =>
+            {
+                return Err(activity.team_refusal(label, "the team's quorum"));
+            }
             Expr::Name(n) => {
                 if let Some(k) = self.outputs.iter().position(|o| &o.name == n) {
                     self.read.push(k);

@@ -65,13 +65,20 @@ pub enum TeamWord<'a> {
     },
     /// `robot2.ballDistance` (and `team.ballDistance`, the whole team's pairs).
     Member { member: &'a str, ty: &'a str },
+    /// `team.quorum`: whether the robot hears a majority of its team.
+    Quorum,
 }
+
+/// The name a label reads for whether the robot hears a majority of its team.
+const QUORUM: &str = "team.quorum";
 
 /// Every place `expr` reads the team, left to right.
 pub fn team_words(expr: &Expr) -> Vec<TeamWord<'_>> {
     let mut out = Vec::new();
     expr.visit_names(&mut |name, _| {
-        if let Some((member, ty)) = name.split_once('.') {
+        if name == QUORUM {
+            out.push(TeamWord::Quorum);
+        } else if let Some((member, ty)) = name.split_once('.') {
             out.push(TeamWord::Member { member, ty });
         }
     });
@@ -94,7 +101,7 @@ mod tests {
 
     #[test]
     fn a_label_reads_teammates_and_aggregates() {
-        let label = parse_label("team.argmin(ballDistance) == me && robot2.role != \"striker\" || team.median(x) > 1 || team.min(a + b)").unwrap();
+        let label = parse_label("team.argmin(ballDistance) == me && robot2.role != \"striker\" || team.median(x) > 1 || team.min(a + b) || team.quorum").unwrap();
         assert_eq!(
             team_words(&label),
             vec![
@@ -102,6 +109,7 @@ mod tests {
                     member: "robot2",
                     ty: "role"
                 },
+                TeamWord::Quorum,
                 TeamWord::Aggregate {
                     function: "team.argmin",
                     aggregate: Some(Aggregate::Argmin),

@@ -23,5 +23,5 @@ mod wire;
 pub use board::{post_once, stale_type, team_whiteboard, whiteboard, Team};
 pub use error::NetworkError;
 pub use probe::{bare_receive, ping, BareSender};
-pub use session::{Role, Settings};
+pub use session::{Role, Settings, DEFAULT_LEASE, SHORTEST_LEASE};
 pub use threads::{prefer_few_threads, FEW_THREADS};

@@ -7,6 +7,7 @@
 
 use crate::error::NetworkError;
 use std::path::PathBuf;
+use std::time::Duration;
 
 /// How a process meets the others of a whiteboard (none holds it).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -31,9 +32,29 @@ pub struct Settings {
     /// (`cargo bench --features zenoh --bench network` compares them). No message may exceed
     /// 60 KiB: a larger posting is not sent (logged as an error).
     pub low_latency: bool,
+    /// How long a process may go unheard before the others count it gone: its types turn
+    /// stale, its claims pass on, its team values drop out ([`DEFAULT_LEASE`] unless given).
+    /// Zenoh's link lease: a keep-alive goes every quarter of it, and a link that hears
+    /// nothing for the whole of it is closed (docs/spec/behaviour.md §1.1, "Partitions").
+    pub lease: Option<Duration>,
 }
 
+/// The lease when none is given: a robot cut off its team's Wi-Fi is seen gone within a second,
+/// and a link must lose four keep-alives in a row (each one sent again by TCP) to be closed
+/// while it works. Zenoh's own default, 10 s, left a cut robot striking beside its successor
+/// for all of that.
+pub const DEFAULT_LEASE: Duration = Duration::from_secs(1);
+
+/// The shortest lease taken: below it, a loaded robot's keep-alives come late and links that
+/// work are closed.
+pub const SHORTEST_LEASE: Duration = Duration::from_millis(200);
+
 impl Settings {
+    /// The lease this process announces and holds the others to.
+    pub fn lease(&self) -> Duration {
+        self.lease.unwrap_or(DEFAULT_LEASE).max(SHORTEST_LEASE)
+    }
+
     /// The largest message this transport carries, if it has a limit. The low-latency
     /// transport frames each message alone in one batch (at most 64 KiB with Zenoh's headers).
     pub(crate) fn message_limit(&self) -> Option<usize> {
@@ -113,6 +134,13 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
         "connect/retry",
         "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
     )?;
+    // A link that hears nothing for a lease is closed, so the peer's tokens go (its types turn
+    // stale) while a cut lasts, not after it heals. Dialling keeps Zenoh's 10 s: a peer told of
+    // by gossip is dialled once, and TCP sends a lost SYN again only after 1, 2, 4 s; a shorter
+    // wait left one pair of robots in five unlinked at 10% loss.
+    let lease = settings.lease().as_millis().to_string();
+    set(&mut config, "transport/link/tx/lease", lease)?;
+    set(&mut config, "transport/link/tx/keep_alive", "4".into())?;
     if settings.low_latency {
         set(&mut config, "transport/unicast/lowlatency", "true".into())?;
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
@@ -161,6 +189,21 @@ mod tests {
         assert_eq!(setting(&config, "connect/endpoints"), "[]");
         assert_eq!(setting(&config, "scouting/multicast/enabled"), "false");
         assert_eq!(setting(&config, "transport/unicast/lowlatency"), "false");
+        assert_eq!(setting(&config, "transport/link/tx/lease"), "1000");
+    }
+
+    #[test]
+    fn the_lease_is_the_one_given_and_never_below_the_shortest() {
+        let lease = |ms| {
+            let settings = Settings {
+                lease: Some(Duration::from_millis(ms)),
+                ..Settings::default()
+            };
+            let config = config(&Role::Listen("tcp/127.0.0.1:7447".into()), &settings).unwrap();
+            setting(&config, "transport/link/tx/lease")
+        };
+        assert_eq!(lease(2500), "2500");
+        assert_eq!(lease(5), SHORTEST_LEASE.as_millis().to_string());
     }
 
     #[test]

@@ -69,6 +69,7 @@ async fn the_low_latency_transport_refuses_what_it_cannot_carry_and_says_why() {
     let settings = Settings {
         config_file: None,
         low_latency: true,
+        ..Settings::default()
     };
     let holder = whiteboard(&Role::Listen(endpoint.clone()), "big", &settings)
         .await

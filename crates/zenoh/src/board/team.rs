@@ -8,7 +8,7 @@
 //! schedule's snapshot like any value.
 
 use super::*;
-use proclaim_board::team::{member_type, team_type, team_value, ME};
+use proclaim_board::team::{member_type, team_type, team_value, ME, QUORUM};
 use std::collections::BTreeMap;
 use zenoh::sample::SampleKind;
 
@@ -21,6 +21,9 @@ pub struct Team {
     pub member: String,
     /// The types whose postings the team hears.
     pub shared: Vec<String>,
+    /// How many robots the team has, if said: with it, `team.quorum` says whether this robot
+    /// hears a majority of them (itself among them).
+    pub size: Option<usize>,
 }
 
 /// The module the team's local types are posted by.
@@ -63,10 +66,23 @@ impl TeamKeys {
 struct Heard {
     /// Members whose token is seen (this one always).
     alive: BTreeSet<String>,
+    /// Members that have put a shared type since their token last went (this one always): a
+    /// member counts towards the quorum only once it is alive and has said something, so a
+    /// robot that restarts or comes back from a cut is not counted on before it is heard.
+    heard_from: BTreeSet<String>,
     /// Each type's latest value from each member, in member-name order.
     values: FxHashMap<String, BTreeMap<String, Value>>,
-    /// (member, type) pairs whose member is gone since its value came.
+    /// (member, type) pairs whose member has been gone since its value came: left out of
+    /// `team.<type>` until the member puts the type again, so a robot that comes back (or
+    /// restarts) counts as not yet known rather than with what it said before.
     stale: FxHashSet<(String, String)>,
+}
+
+impl Heard {
+    /// Whether the living members, this one among them, are more than half of a team of `size`.
+    fn quorum(&self, size: usize) -> bool {
+        2 * self.alive.intersection(&self.heard_from).count() > size
+    }
 }
 
 /// The team part of one process on the board.
@@ -85,6 +101,7 @@ impl TeamPart {
             },
             heard: Mutex::new(Heard {
                 alive: BTreeSet::from([team.member.clone()]),
+                heard_from: BTreeSet::from([team.member.clone()]),
                 ..Heard::default()
             }),
             team,
@@ -112,6 +129,7 @@ pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
         unix_now(),
         true,
     );
+    peer.post_quorum(&part.heard.lock());
     let values = {
         let weak = weak.clone();
         let key = part.keys.every_value();
@@ -186,7 +204,7 @@ impl Peer {
         }
     }
 
-    fn on_team_sample(&self, sample: &zenoh::sample::Sample) {
+    fn on_team_sample(self: &Arc<Self>, sample: &zenoh::sample::Sample) {
         let Some(part) = &self.team else { return };
         let Some((member, ty)) = part.keys.parse(sample.key_expr().as_str()) else {
             return;
@@ -196,12 +214,19 @@ impl Peer {
         if member == part.team.member || ty.starts_with('@') {
             return;
         }
-        self.team_heard(member, ty, decode_value(&sample.payload().to_bytes()));
+        if self.team_heard(member, ty, decode_value(&sample.payload().to_bytes())) {
+            // The first word from a teammate that was away: it may have missed what this robot
+            // put when it first heard of it (its subscription not yet known here), and this
+            // robot may strike now that it counts the teammate, so the teammate must know at
+            // once where this robot is.
+            self.tell_the_team_again_soon();
+        }
     }
 
-    /// `member`'s latest value of `ty` is `value`: kept, and said on this replica.
-    fn team_heard(&self, member: &str, ty: &str, value: Value) {
-        let Some(part) = &self.team else { return };
+    /// `member`'s latest value of `ty` is `value`: kept, and said on this replica. True when
+    /// it is the member's first word since it last went.
+    fn team_heard(&self, member: &str, ty: &str, value: Value) -> bool {
+        let Some(part) = &self.team else { return false };
         let mut heard = part.heard.lock();
         heard
             .values
@@ -216,6 +241,11 @@ impl Peer {
                 .post_at(TEAM_MODULE, &stale_type(&own), false.into(), 0, now, true);
         }
         self.post_team_value(&heard, ty);
+        let first = heard.heard_from.insert(member.to_string());
+        if first && heard.alive.contains(member) {
+            self.post_quorum(&heard);
+        }
+        first
     }
 
     /// Posts `team.<ty>` on this replica: the living members' values.
@@ -225,7 +255,10 @@ impl Peer {
         };
         let living = values
             .iter()
-            .filter(|(member, _)| heard.alive.contains(*member))
+            .filter(|(member, _)| {
+                heard.alive.contains(*member)
+                    && !heard.stale.contains(&((*member).clone(), ty.to_string()))
+            })
             .map(|(member, value)| (member.as_str(), value));
         self.board.post_at(
             TEAM_MODULE,
@@ -237,6 +270,16 @@ impl Peer {
         );
     }
 
+    /// Posts `team.quorum` on this replica, for a team whose size is known.
+    fn post_quorum(&self, heard: &Heard) {
+        let Some(size) = self.team.as_ref().and_then(|p| p.team.size) else {
+            return;
+        };
+        let quorum = heard.quorum(size);
+        self.board
+            .post_at(TEAM_MODULE, QUORUM, quorum.into(), 0, unix_now(), true);
+    }
+
     fn member_arrived(self: &Arc<Self>, member: &str) {
         let Some(part) = &self.team else { return };
         {
@@ -244,6 +287,7 @@ impl Peer {
             if !heard.alive.insert(member.to_string()) {
                 return;
             }
+            self.post_quorum(&heard);
             let types: Vec<String> = heard
                 .values
                 .iter()
@@ -254,8 +298,12 @@ impl Peer {
                 self.post_team_value(&heard, &ty);
             }
         }
-        // The newcomer has not heard this robot's values yet: put them again, off Zenoh's
-        // receiving thread.
+        // The newcomer has not heard this robot's values yet.
+        self.tell_the_team_again_soon();
+    }
+
+    /// Puts this robot's shared values again, off Zenoh's receiving thread.
+    fn tell_the_team_again_soon(self: &Arc<Self>) {
         let peer = Arc::clone(self);
         let telling = std::thread::Builder::new()
             .name("proclaim-zenoh-team".into())
@@ -293,10 +341,12 @@ impl Peer {
             return;
         }
         let mut heard = part.heard.lock();
+        heard.heard_from.remove(member);
         if !heard.alive.remove(member) {
             return;
         }
         tracing::info!(member, team = part.team.name, "a teammate is gone");
+        self.post_quorum(&heard);
         let types: Vec<String> = heard
             .values
             .iter()
