@@ -41,7 +41,7 @@ pub struct Network {
     pub low_latency: bool,
     /// How long a process may go unheard before the others count it gone: its types turn
     /// stale and a teammate drops out of its team (every process of the board should say the
-    /// same) [default: 1s]
+    /// same) [default: 1.5s]
     #[arg(long, value_name = "DURATION", value_parser = parse_lease)]
     pub lease: Option<Duration>,
 }

@@ -302,7 +302,7 @@ fn the_compiled_microwave_writes_the_interpreters_trace_byte_for_byte() {
 fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target() {
     let out = scratch("refused");
     let team =
-        "machines/striker/Player.machine:12: cannot be compiled: `team.quorum`: the team's quorum";
+        "machines/striker/Player.machine:13: cannot be compiled: `team.majority(vote)`: a team aggregate";
     for (behaviour, target, expected) in [
         ("machines/striker", "c", format!("{team} (a freestanding C behaviour has no network to its team's boards)")),
         ("machines/striker", "rust", format!("{team} (a compiled Rust behaviour joins no team: its `--listen` or `--connect` whiteboard is not a team's, whose teammates' postings it would aggregate; run it with `proclaim run --member`)")),

@@ -20,7 +20,7 @@ use std::time::{Duration, SystemTime};
 
 /// The lease every robot runs with (`--lease`): how soon a robot that hears nothing of another
 /// counts it gone.
-const LEASE: Duration = Duration::from_secs(1);
+const LEASE: Duration = Duration::from_millis(1500);
 /// The design's bound (spec §1.1): after a cut begins, a robot cut off can strike beside its
 /// successor for at most this long (its lease, then one round).
 const BOUND: Duration = Duration::from_secs(2);
@@ -49,15 +49,17 @@ fn vision(distance: &str) -> String {
 /// Robot `i`'s behaviour: the shipped striker with a vision of its own.
 fn robot_folder(i: usize) -> PathBuf {
     let striker = Path::new(env!("CARGO_MANIFEST_DIR")).join("machines/striker");
-    let player = std::fs::read_to_string(striker.join("Player.machine")).unwrap();
+    let read = |file: &str| std::fs::read_to_string(striker.join(file)).unwrap();
+    let (player, voter) = (read("Player.machine"), read("Voter.machine"));
     let manifest = format!(
-        "[[machine]]\nfile = \"Player.machine\"\n\n[[machine]]\nfile = \"Vision.machine\"\n\n[team]\nname = \"blue\"\nmember = \"robot{i}\"\nshared = [\"ballDistance\", \"role\", \"tick\"]\nsize = 3\n"
+        "[[machine]]\nfile = \"Player.machine\"\n\n[[machine]]\nfile = \"Voter.machine\"\n\n[[machine]]\nfile = \"Vision.machine\"\n\n[team]\nname = \"blue\"\nmember = \"robot{i}\"\nshared = [\"ballDistance\", \"role\", \"vote\", \"tick\"]\nsize = 3\n"
     );
     crate::behaviour_folder(
         &format!("partition-robot{i}"),
         &[
             ("behaviour.toml", manifest.as_str()),
             ("Player.machine", player.as_str()),
+            ("Voter.machine", voter.as_str()),
             ("Vision.machine", vision(DISTANCES[i - 1]).as_str()),
         ],
     )
@@ -231,9 +233,9 @@ fn ms(d: Duration) -> u128 {
 /// What one run measured.
 #[derive(Debug, Default)]
 struct Figures {
-    /// Cut begins → the later of robot2's and robot3's `robot1.tickStale` and robot1's
-    /// `team.quorum` false.
-    detect: Duration,
+    /// Cut begins → each of robot2's and robot3's `robot1.tickStale` and robot1's stepping
+    /// down, those seen before a lease after the heal (none for a cut shorter than the lease).
+    detect: Vec<Duration>,
     /// The longest time with two strikers or more before the heal, and when it began after the
     /// cut.
     overlap: Duration,
@@ -244,12 +246,15 @@ struct Figures {
     heal_overlap: Duration,
     /// The longest time with none, from the team's first settling to the heal.
     leaderless: Duration,
-    /// Heal → both others hear robot1 again (`robot1.tickStale` false).
-    heal: Duration,
-    /// robot1's ticks robot2 missed while robot1's link worked.
+    /// Heal → both others hear robot1 again (`robot1.tickStale` false), when they saw it go.
+    heal: Option<Duration>,
+    /// robot1's ticks robot2 missed while robot1's link worked, from the team's settling.
     lost: usize,
-    /// The longest time with no striker, and with two or more, after robot1 was killed and
-    /// after it restarted (the overlap measured, not bounded, as `heal_overlap`).
+    /// The time with no striker after robot1 was killed: its teammates see the crash when its
+    /// links close, or, if the kernel's reset was lost, when its lease ends.
+    crash_leaderless: Duration,
+    /// The longest time with no striker, and with two or more, after robot1 restarted (the
+    /// overlap measured, not bounded, as `heal_overlap`).
     restart_leaderless: Duration,
     restart_overlap: Duration,
 }
@@ -280,13 +285,16 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
     std::thread::sleep(cut);
     let heal_at = SystemTime::now();
     lan.lose(1, 10).unwrap();
+    // Every link must have come back before the crash, for the heal to be measured: robot1 may
+    // strike again (its voters back) while one teammate still does not hear it.
+    std::thread::sleep(HEAL);
     wait_for_robot1(&roles, SETTLE);
-    std::thread::sleep(Duration::from_secs(1));
 
     let kill_at = SystemTime::now();
     drop(robots.remove(0));
     roles.lock().unwrap().push((SystemTime::now(), 1, false));
     std::thread::sleep(Duration::from_secs(2));
+    let restart_at = SystemTime::now();
     robots.insert(0, start(lan, 1, &folders[0], &record(1, 1), &roles));
     wait_for_robot1(&roles, SETTLE);
     std::thread::sleep(Duration::from_secs(1));
@@ -314,8 +322,9 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
         .map_or(Duration::ZERO, |(_, d)| d);
     figures.leaderless = longest(intervals(&timeline, settled, heal_at, |n| n == 0))
         .map_or(Duration::ZERO, |(_, d)| d);
-    figures.restart_leaderless =
-        longest(intervals(&timeline, kill_at, end, |n| n == 0)).map_or(Duration::ZERO, |(_, d)| d);
+    let none = |from, to| longest(intervals(&timeline, from, to, |n| n == 0));
+    figures.crash_leaderless = none(kill_at, restart_at).map_or(Duration::ZERO, |(_, d)| d);
+    figures.restart_leaderless = none(restart_at, end).map_or(Duration::ZERO, |(_, d)| d);
     figures.restart_overlap =
         longest(intervals(&timeline, kill_at, end, |n| n >= 2)).map_or(Duration::ZERO, |(_, d)| d);
 
@@ -329,13 +338,16 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
             return Err(format!("robot{i} never heard robot{j} before the cut"));
         }
     }
-    let gone = |i: usize, ty: &str| first(&records[i - 1], cut_at, ty, true.into());
+    let seen_until = (heal_at + LEASE).min(kill_at);
+    let before = |at: Option<SystemTime>| at.filter(|at| *at < seen_until);
+    let gone = |i: usize, ty: &str| before(first(&records[i - 1], cut_at, ty, true.into()));
     // robot1's record before its crash may have lost its tail: its own step down is in the
     // trace.
     let stepped_down = timeline
         .iter()
         .find(|(at, s)| *at >= cut_at && !s.contains(&1))
-        .map(|(at, _)| *at);
+        .map(|(at, _)| *at)
+        .filter(|at| *at < seen_until);
     let seen = [
         gone(2, "robot1.tickStale"),
         gone(3, "robot1.tickStale"),
@@ -343,34 +355,42 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
     ];
     figures.detect = seen
         .iter()
-        .map(|at| {
-            at.map_or(Duration::MAX, |at| {
-                at.duration_since(cut_at).unwrap_or_default()
-            })
-        })
-        .max()
-        .unwrap();
+        .flatten()
+        .map(|at| at.duration_since(cut_at).unwrap_or_default())
+        .collect();
+    // Of the teammates that saw robot1 go, the later to hear it again.
     figures.heal = [2, 3]
         .iter()
-        .map(|&i| {
-            first(&records[i - 1], heal_at, "robot1.tickStale", false.into())
-                .map_or(Duration::MAX, |at| {
-                    at.duration_since(heal_at).unwrap_or_default()
-                })
+        .zip(&seen)
+        .filter_map(|(&i, went)| {
+            let went = (*went)?;
+            let back = first(&records[i - 1], went, "robot1.tickStale", false.into());
+            Some(back.map_or(Duration::MAX, |at| {
+                at.duration_since(heal_at).unwrap_or_default()
+            }))
         })
-        .max()
-        .unwrap();
+        .max();
     let ticks: Vec<(SystemTime, i64)> = records[1]
         .iter()
         .filter(|r| r.ty == "robot1.tick")
         .filter_map(|r| Some((r.at, r.value.as_i64()?)))
         .collect();
-    figures.lost = ticks
-        .windows(2)
-        .filter(|w| w[1].0 < cut_at || w[0].0 > heal_at + BOUND)
-        .filter(|w| w[1].0 < kill_at)
-        .map(|w| (w[1].1 - w[0].1 - 1).max(0) as usize)
-        .sum();
+    for w in ticks.windows(2) {
+        // From the team's settling (a joining robot's first puts can go out before its
+        // teammates' subscriptions reach it) to the crash, but for the cut.
+        let working = (w[0].0 > settled && w[1].0 < cut_at) || w[0].0 > heal_at + BOUND;
+        if working && w[1].0 < kill_at && w[1].1 > w[0].1 + 1 {
+            let at = w[1]
+                .0
+                .duration_since(cut_at)
+                .map_or(-1.0, |d| d.as_secs_f64());
+            eprintln!(
+                "robot2 heard robot1's tick {} after {}, {at:.3} s after the cut",
+                w[1].1, w[0].1
+            );
+            figures.lost += (w[1].1 - w[0].1 - 1) as usize;
+        }
+    }
     Ok(figures)
 }
 
@@ -415,29 +435,43 @@ fn check(figures: &Figures, cut: Duration) {
         bounded,
         "two strikers for {overlap} ms, {after} ms after the cut began"
     );
-    let detect = ms(figures.detect);
-    assert!(
-        figures.detect <= BOUND,
-        "robot1 seen gone {detect} ms after the cut"
-    );
+    // A cut longer than the lease by a keep-alive is seen by all three within the bound. (A
+    // shorter one may be seen too: TCP sends what the cut lost again only after a backoff, so
+    // a 1 s cut can silence a link for 1.4 s.)
+    let detect = &figures.detect;
+    if cut > LEASE + LEASE / 4 {
+        let bounded = detect.len() == 3 && detect.iter().all(|d| *d <= BOUND);
+        assert!(
+            bounded,
+            "robot1 seen gone after {detect:?} (bound {} ms)",
+            ms(BOUND)
+        );
+    }
     let none = ms(figures.leaderless);
     assert!(
         figures.leaderless <= LEADERLESS,
         "no striker for {none} ms around the cut"
     );
-    let heal = ms(figures.heal);
-    assert!(
-        figures.heal <= HEAL,
-        "robot1 heard again {heal} ms after the heal"
-    );
+    if let Some(heal) = figures.heal {
+        let heal_ms = ms(heal);
+        assert!(
+            heal <= HEAL,
+            "robot1 heard again {heal_ms} ms after the heal"
+        );
+    }
     assert_eq!(
         figures.lost, 0,
         "robot2 missed ticks of robot1 while its link worked"
     );
+    let none = ms(figures.crash_leaderless);
+    assert!(
+        figures.crash_leaderless <= BOUND,
+        "no striker for {none} ms after a crash"
+    );
     let none = ms(figures.restart_leaderless);
     assert!(
         figures.restart_leaderless <= LEADERLESS,
-        "no striker for {none} ms around a restart"
+        "no striker for {none} ms after a restart"
     );
 }
 

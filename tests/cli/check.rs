@@ -303,7 +303,18 @@ fn check_warns_where_only_a_search_decides_and_of_self_attacking_loops() {
 #[test]
 fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     let player = include_str!("../../machines/striker/Player.machine");
+    let voter = include_str!("../../machines/striker/Voter.machine");
     let manifest = include_str!("../../machines/striker/behaviour.toml");
+    let folder = |tag: &str, manifest: &str| {
+        crate::behaviour_folder(
+            tag,
+            &[
+                ("behaviour.toml", manifest),
+                ("Player.machine", player),
+                ("Voter.machine", voter),
+            ],
+        )
+    };
     let no_team: String = manifest
         .lines()
         .filter(|l| {
@@ -313,36 +324,26 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
         })
         .map(|l| format!("{l}\n"))
         .collect();
-    let dir = crate::behaviour_folder(
-        "no-team",
-        &[("behaviour.toml", &no_team), ("Player.machine", player)],
-    );
-    // The line of SUPPORTER's transition, which reads the team.
-    let when = player
-        .lines()
-        .position(|l| l.contains("-> STRIKER"))
-        .unwrap()
-        + 1;
+    let dir = folder("no-team", &no_team);
+    // The lines of the transitions that read the team.
+    let line_of = |text: &str, what: &str| text.lines().position(|l| l.contains(what)).unwrap() + 1;
+    let (when, votes) = (line_of(player, "-> STRIKER"), line_of(voter, "-> VOTE"));
     let o = proclaim(&["check", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    for word in ["team.quorum", "team.argmin(ballDistance)"] {
+    for (file, line, word) in [
+        ("Player", when, "team.majority(vote)"),
+        ("Voter", votes, "team.argmin(ballDistance)"),
+    ] {
         assert!(
-            stderr(&o).contains(&format!("Player.machine:{when}: error: label reads the team (`{word}`), but the manifest has no [team]")),
+            stderr(&o).contains(&format!("{file}.machine:{line}: error: label reads the team (`{word}`), but the manifest has no [team]")),
             "{}",
             stderr(&o)
         );
     }
 
     let misspelt = manifest.replace("[\"ballDistance\", ", "[\"ballDistnce\", ");
-    let line = misspelt
-        .lines()
-        .position(|l| l.contains("ballDistnce"))
-        .unwrap()
-        + 1;
-    let dir = crate::behaviour_folder(
-        "misspelt-team",
-        &[("behaviour.toml", &misspelt), ("Player.machine", player)],
-    );
+    let line = line_of(&misspelt, "ballDistnce");
+    let dir = folder("misspelt-team", &misspelt);
     let o = proclaim(&["check", dir.to_str().unwrap(), "--json"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
@@ -365,36 +366,34 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     let unshared = problem(
         "label reads `team.argmin(ballDistance)`, but `ballDistance` is not shared with the team",
     );
-    assert_eq!(unshared["line"], when);
+    assert_eq!(unshared["line"], votes);
 
-    // A quorum needs the team's size, from 1 robot up, and its name is the team's own.
-    let unsized_team = manifest
+    // A vote or a quorum needs the team's size, from 1 robot up, and `quorum` is the team's.
+    let unsized_team: String = manifest
         .lines()
         .filter(|l| !l.starts_with("size"))
-        .collect::<Vec<_>>()
-        .join("\n");
-    let dir = crate::behaviour_folder(
-        "unsized-team",
-        &[
-            ("behaviour.toml", &unsized_team),
-            ("Player.machine", player),
-        ],
-    );
-    let o = proclaim(&["check", dir.to_str().unwrap()]);
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = folder("unsized-team", &unsized_team);
+    let o = proclaim(&["check", dir.to_str().unwrap(), "--json"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains(&format!("Player.machine:{when}: error: label reads `team.quorum`, but [team] does not say how many robots the team has")), "{}", stderr(&o));
-    let size_line = manifest
-        .lines()
-        .position(|l| l.starts_with("size"))
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let unsized_problem = v
+        .as_array()
         .unwrap()
-        + 1;
+        .iter()
+        .find(|p| p["message"] == "label reads `team.majority`, but [team] does not say how many robots the team has")
+        .unwrap_or_else(|| panic!("{v}"));
+    assert_eq!(unsized_problem["line"], when);
+    assert!(unsized_problem["hint"]
+        .as_str()
+        .unwrap()
+        .starts_with("add size = N to [team]"));
+    let size_line = line_of(manifest, "size = 3");
     let bad = manifest
         .replace("size = 3", "size = 0")
-        .replace("\"role\"]", "\"role\", \"quorum\"]");
-    let dir = crate::behaviour_folder(
-        "zero-team",
-        &[("behaviour.toml", &bad), ("Player.machine", player)],
-    );
+        .replace("\"vote\"]", "\"vote\", \"quorum\"]");
+    let dir = folder("zero-team", &bad);
     let o = proclaim(&["check", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
@@ -414,7 +413,7 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     check(
         &["check", "machines/striker"],
         0,
-        "machines/striker: ok (1 machine, 0 theories, 0 sensors; 0 errors, 0 warnings)\n",
+        "machines/striker: ok (2 machines, 0 theories, 0 sensors; 0 errors, 0 warnings)\n",
     );
     // A team meets on a shared board, and a member needs a team.
     let o = proclaim(&["run", "machines/striker", "--for", "1s"]);

@@ -30,9 +30,17 @@ pub(crate) fn findings(behaviour: &Behaviour, all: &[Module]) -> Vec<FileDiagnos
         let file = behaviour.files.show(&loaded.file);
         for t in &loaded.machine.transitions {
             for word in team_words(&t.label) {
+                let has_team = behaviour.manifest.team.is_some();
                 let problem = match word {
-                    TeamWord::Quorum => quorum_problem(behaviour.manifest.team.is_some(), sized),
-                    word => label_problem(&word, behaviour.manifest.team.is_some(), &shared),
+                    TeamWord::Quorum => quorum_problem("team.quorum", has_team, sized),
+                    word => label_problem(&word, has_team, &shared).or_else(|| match word {
+                        TeamWord::Aggregate {
+                            function,
+                            aggregate: Some(Aggregate::Majority),
+                            ..
+                        } => quorum_problem(function, has_team, sized),
+                        _ => None,
+                    }),
                 };
                 if let Some(problem) = problem {
                     out.push(problem.at(&file, t.line));
@@ -138,17 +146,20 @@ impl Problem {
 /// The most robots a team's `size` may say.
 const MOST_ROBOTS: i64 = 1000;
 
-fn quorum_problem(has_team: bool, sized: bool) -> Option<Problem> {
+/// `word` (`team.quorum`, `team.majority`) counts against the team's size, which [team] must
+/// say.
+fn quorum_problem(word: &str, has_team: bool, sized: bool) -> Option<Problem> {
     if !has_team {
         return Some(Problem {
-            message: "label reads the team (`team.quorum`), but the manifest has no [team]".into(),
+            message: format!("label reads the team (`{word}`), but the manifest has no [team]"),
             hint: "add [team] with name, member, shared and size to behaviour.toml".into(),
         });
     }
     (!sized).then(|| Problem {
-        message: "label reads `team.quorum`, but [team] does not say how many robots the team has"
-            .into(),
-        hint: "add size = N to [team] in behaviour.toml: the quorum is more than half of N".into(),
+        message: format!(
+            "label reads `{word}`, but [team] does not say how many robots the team has"
+        ),
+        hint: "add size = N to [team] in behaviour.toml: a majority is more than half of N".into(),
     })
 }
 
@@ -179,7 +190,7 @@ fn label_problem(word: &TeamWord<'_>, has_team: bool, shared: &[&str]) -> Option
             ..
         } => (format!("{function}({ty})"), *ty),
         TeamWord::Member { member, ty } => (format!("{member}.{ty}"), *ty),
-        TeamWord::Quorum => return quorum_problem(has_team, true),
+        TeamWord::Quorum => return quorum_problem("team.quorum", has_team, true),
     };
     if !has_team {
         return Some(Problem {

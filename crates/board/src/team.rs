@@ -14,6 +14,10 @@ pub const ME: &str = "me";
 /// waits for, since only one side of a split team can hold it.
 pub const QUORUM: &str = "team.quorum";
 
+/// The type holding the team's size, for a team whose manifest says it (`team.majority` counts
+/// votes against it).
+pub const SIZE: &str = "team.size";
+
 /// The prefix of the types holding a shared type's values over the living team.
 pub const TEAM: &str = "team";
 

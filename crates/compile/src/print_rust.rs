@@ -16,6 +16,10 @@ use proclaim_runner::LOOP_LIMIT;
 use std::fmt::Write;
 use std::path::Path;
 
+/// This repository's cargo configuration, for a project built with its Zenoh crates: their TCP
+/// links must close at once there as here (docs/spec/behaviour.md §1.1, "Partitions").
+const CARGO_CONFIG: &str = include_str!("../../../.cargo/config.toml");
+
 /// The host: reads an impersonator script, runs the behaviour and writes the trace.
 const MAIN: &str = include_str!("rust_main.rs.txt");
 /// The whiteboard the host shows the run on (`--monitor`, `--listen`, `--connect`).
@@ -51,7 +55,9 @@ pub(crate) fn project_files(plan: &Plan, whiteboard: Option<&Path>) -> Vec<(Stri
             .into(),
         ),
     ];
-    if whiteboard.is_none() {
+    if whiteboard.is_some() {
+        files.push((".cargo/config.toml".into(), CARGO_CONFIG.into()));
+    } else {
         files.push(("runtime/Cargo.toml".into(), RUNTIME_MANIFEST.into()));
         for (path, text) in proclaim_runtime::SOURCES {
             files.push((format!("runtime/{path}"), text.to_string()));

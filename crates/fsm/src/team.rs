@@ -1,7 +1,8 @@
 //! The team's words in labels (`docs/spec/behaviour.md` §1, "A team"): a teammate's value of a
 //! shared type (`robot2.ballDistance`), an aggregate over the living team
-//! (`team.min(ballDistance)`, `team.max`, `team.count`, `team.argmin`, `team.argmax`) and the
-//! robot's own name, `me`. What they read is kept on the robot's own board; this is only how a
+//! (`team.min(ballDistance)`, `team.max`, `team.count`, `team.argmin`, `team.argmax`, the vote
+//! `team.majority(vote)`), whether the robot hears a majority (`team.quorum`) and the robot's
+//! own name, `me`. What they read is kept on the robot's own board; this is only how a
 //! label spells them.
 
 use crate::code::Expr;
@@ -17,15 +18,19 @@ pub enum Aggregate {
     Argmin,
     /// The member with the largest value; of equal values, the first member name.
     Argmax,
+    /// Whether more than half of the team's `size` living members' values name this robot
+    /// (`me`): a vote, so that of robots that do not all hear each other at most one wins.
+    Majority,
 }
 
 impl Aggregate {
-    pub const ALL: [Aggregate; 5] = [
+    pub const ALL: [Aggregate; 6] = [
         Aggregate::Min,
         Aggregate::Max,
         Aggregate::Count,
         Aggregate::Argmin,
         Aggregate::Argmax,
+        Aggregate::Majority,
     ];
 
     pub fn name(self) -> &'static str {
@@ -35,6 +40,7 @@ impl Aggregate {
             Aggregate::Count => "count",
             Aggregate::Argmin => "argmin",
             Aggregate::Argmax => "argmax",
+            Aggregate::Majority => "majority",
         }
     }
 

@@ -58,7 +58,13 @@ impl Env<'_> {
         if let Some(aggregate) = proclaim_fsm::Aggregate::of_function(function) {
             let team =
                 crate::team::aggregated_type(function, arguments).and_then(|ty| self.latest(&ty));
-            return crate::team::aggregate(aggregate, team.as_ref().map(|m| &m.value));
+            let me = self.latest(proclaim_board::team::ME);
+            let size = self.latest(proclaim_board::team::SIZE);
+            let asker = crate::team::Asker {
+                me: me.as_ref().map(|m| &m.value),
+                size: size.as_ref().map(|m| &m.value),
+            };
+            return crate::team::aggregate(aggregate, team.as_ref().map(|m| &m.value), asker);
         }
         let values: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
         arith::function(function, &values)

@@ -8,7 +8,7 @@
 //! schedule's snapshot like any value.
 
 use super::*;
-use proclaim_board::team::{member_type, team_type, team_value, ME, QUORUM};
+use proclaim_board::team::{member_type, team_type, team_value, ME, QUORUM, SIZE};
 use std::collections::BTreeMap;
 use zenoh::sample::SampleKind;
 
@@ -72,6 +72,13 @@ struct Heard {
     heard_from: BTreeSet<String>,
     /// Each type's latest value from each member, in member-name order.
     values: FxHashMap<String, BTreeMap<String, Value>>,
+    /// This robot's own number of its latest value of each shared type, from 1 (a put to the
+    /// team carries it as its `seq`, a put again the same number).
+    numbered: FxHashMap<String, u64>,
+    /// The newest number heard of each (member, type), with the process that put it: a value
+    /// put again late (after a newer one) is not taken for the newer. Forgotten when the member
+    /// goes, so a restarted member counting from 1 again is heard.
+    newest: FxHashMap<(String, String), (Option<String>, u64)>,
     /// (member, type) pairs whose member has been gone since its value came: left out of
     /// `team.<type>` until the member puts the type again, so a robot that comes back (or
     /// restarts) counts as not yet known rather than with what it said before.
@@ -112,6 +119,23 @@ impl TeamPart {
     fn shares(&self, ty: &str) -> bool {
         self.team.shared.iter().any(|s| s == ty)
     }
+
+    /// Whether a put of `member`'s `ty` numbered as `meta` says is newer than any heard (and
+    /// now the newest). A put without a number is taken.
+    fn newer(&self, member: &str, ty: &str, meta: Option<&Meta>) -> bool {
+        let Some((process, seq)) = meta.and_then(|m| Some((m.process.clone(), m.seq?))) else {
+            return true;
+        };
+        let mut heard = self.heard.lock();
+        let key = (member.to_string(), ty.to_string());
+        match heard.newest.get(&key) {
+            Some((was, newest)) if *was == process && *newest >= seq => false,
+            _ => {
+                heard.newest.insert(key, (process, seq));
+                true
+            }
+        }
+    }
 }
 
 /// Joins the team: says who this robot is on its own board, follows the others' values and
@@ -129,6 +153,11 @@ pub(super) async fn serve(peer: &Arc<Peer>, weak: &PeerRef) -> Result<Vec<Servin
         unix_now(),
         true,
     );
+    if let Some(size) = part.team.size {
+        let size = Value::Int(size as i64);
+        peer.board
+            .post_at(TEAM_MODULE, SIZE, size, 0, unix_now(), true);
+    }
     peer.post_quorum(&part.heard.lock());
     let values = {
         let weak = weak.clone();
@@ -174,8 +203,13 @@ impl Peer {
         let Some(part) = self.team.as_ref().filter(|p| p.shares(ty)) else {
             return;
         };
-        self.team_heard(&part.team.member, ty, value.clone());
-        self.put_to_team(part, ty, value, meta);
+        let (_, number) = self.team_heard(&part.team.member, ty, value.clone());
+        let meta = Meta {
+            seq: Some(number),
+            process: Some(self.me.clone()),
+            ..meta.clone()
+        };
+        self.put_to_team(part, ty, value, &meta);
     }
 
     fn put_to_team(&self, part: &TeamPart, ty: &str, value: &Value, meta: &Meta) {
@@ -214,7 +248,16 @@ impl Peer {
         if member == part.team.member || ty.starts_with('@') {
             return;
         }
-        if self.team_heard(member, ty, decode_value(&sample.payload().to_bytes())) {
+        let meta = sample
+            .attachment()
+            .and_then(|a| Meta::decode(&a.to_bytes()).ok());
+        if !part.newer(member, ty, meta.as_ref()) {
+            return;
+        }
+        if self
+            .team_heard(member, ty, decode_value(&sample.payload().to_bytes()))
+            .0
+        {
             // The first word from a teammate that was away: it may have missed what this robot
             // put when it first heard of it (its subscription not yet known here), and this
             // robot may strike now that it counts the teammate, so the teammate must know at
@@ -223,11 +266,22 @@ impl Peer {
         }
     }
 
-    /// `member`'s latest value of `ty` is `value`: kept, and said on this replica. True when
-    /// it is the member's first word since it last went.
-    fn team_heard(&self, member: &str, ty: &str, value: Value) -> bool {
-        let Some(part) = &self.team else { return false };
+    /// `member`'s latest value of `ty` is `value`: kept, and said on this replica. Says whether
+    /// it is the member's first word since it last went, and for this robot's own value its
+    /// number (counted under the same lock, so two posters of one type number in the order
+    /// their values are kept).
+    fn team_heard(&self, member: &str, ty: &str, value: Value) -> (bool, u64) {
+        let Some(part) = &self.team else {
+            return (false, 0);
+        };
         let mut heard = part.heard.lock();
+        let number = if member == part.team.member {
+            let number = heard.numbered.entry(ty.to_string()).or_default();
+            *number += 1;
+            *number
+        } else {
+            0
+        };
         heard
             .values
             .entry(ty.to_string())
@@ -245,7 +299,7 @@ impl Peer {
         if first && heard.alive.contains(member) {
             self.post_quorum(&heard);
         }
-        first
+        (first, number)
     }
 
     /// Posts `team.<ty>` on this replica: the living members' values.
@@ -315,22 +369,26 @@ impl Peer {
 
     fn tell_the_team_again(&self) {
         let Some(part) = &self.team else { return };
-        let own: Vec<(String, Value)> = {
+        // Each with the number it was put with: put again after a newer value went out, it is
+        // not taken for the newer.
+        let own: Vec<(String, Value, u64)> = {
             let heard = part.heard.lock();
             part.team
                 .shared
                 .iter()
                 .filter_map(|ty| {
                     let value = heard.values.get(ty)?.get(&part.team.member)?;
-                    Some((ty.clone(), value.clone()))
+                    let number = heard.numbered.get(ty).copied().unwrap_or_default();
+                    Some((ty.clone(), value.clone(), number))
                 })
                 .collect()
         };
-        let meta = Meta {
-            process: Some(self.me.clone()),
-            ..Meta::default()
-        };
-        for (ty, value) in own {
+        for (ty, value, number) in own {
+            let meta = Meta {
+                process: Some(self.me.clone()),
+                seq: Some(number),
+                ..Meta::default()
+            };
             self.put_to_team(part, &ty, &value, &meta);
         }
     }
@@ -342,6 +400,7 @@ impl Peer {
         }
         let mut heard = part.heard.lock();
         heard.heard_from.remove(member);
+        heard.newest.retain(|(m, _), _| m != member);
         if !heard.alive.remove(member) {
             return;
         }
@@ -362,5 +421,56 @@ impl Peer {
                     .post_at(TEAM_MODULE, &stale, true.into(), 0, now, true);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn numbered(process: &str, seq: u64) -> Meta {
+        Meta {
+            process: Some(process.into()),
+            seq: Some(seq),
+            ..Meta::default()
+        }
+    }
+
+    #[test]
+    fn a_value_put_again_late_is_not_taken_for_a_newer_one() {
+        let part = TeamPart::new(Team {
+            name: "blue".into(),
+            member: "robot1".into(),
+            shared: vec!["vote".into()],
+            size: Some(3),
+        });
+        assert!(part.newer("robot2", "vote", Some(&numbered("p", 2))));
+        // Put again (a newcomer was told) after number 2 went out: old news.
+        assert!(!part.newer("robot2", "vote", Some(&numbered("p", 1))));
+        assert!(!part.newer("robot2", "vote", Some(&numbered("p", 2))));
+        assert!(part.newer("robot2", "vote", Some(&numbered("p", 3))));
+        // Numbers are per member and type; a restarted process counts from 1 again, and a put
+        // with no number (not a proclaim process) is taken.
+        assert!(part.newer("robot3", "vote", Some(&numbered("q", 1))));
+        assert!(part.newer("robot2", "vote", Some(&numbered("p2", 1))));
+        assert!(part.newer("robot2", "vote", None));
+    }
+
+    #[test]
+    fn a_quorum_counts_members_alive_and_heard_from() {
+        let mut heard = Heard {
+            alive: BTreeSet::from(["robot1".to_string(), "robot2".to_string()]),
+            heard_from: BTreeSet::from(["robot1".to_string()]),
+            ..Heard::default()
+        };
+        assert!(
+            !heard.quorum(3),
+            "robot2 is alive but has said nothing since it came"
+        );
+        heard.heard_from.insert("robot2".into());
+        assert!(heard.quorum(3));
+        assert!(!heard.quorum(4), "two of four is no majority");
+        heard.alive.remove("robot2");
+        assert!(!heard.quorum(3));
     }
 }
