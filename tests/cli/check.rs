@@ -392,7 +392,7 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
     let size_line = line_of(manifest, "size = 3");
     let bad = manifest
         .replace("size = 3", "size = 0")
-        .replace("\"vote\"]", "\"vote\", \"quorum\"]");
+        .replace("\"vote\"]", "\"vote\", \"quorum\", \"size\"]");
     let dir = folder("zero-team", &bad);
     let o = proclaim(&["check", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
@@ -401,6 +401,11 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
             .lines()
             .any(|l| l.contains(&format!("behaviour.toml:{size_line}"))
                 && l.contains("error: [team] size = 0: a team has from 1 to 1000 robots")),
+        "{}",
+        stderr(&o)
+    );
+    assert!(
+        stderr(&o).contains("[team] shared `size`: `team.size` already says how many robots"),
         "{}",
         stderr(&o)
     );

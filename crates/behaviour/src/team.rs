@@ -113,8 +113,8 @@ fn manifest_findings(
         let name = ty.get_ref();
         if name.contains('.') || name.starts_with('@') || name.contains(['/', '*', '$', '?', '#']) {
             out.push(at(ty, format!("[team] shared `{name}` cannot be a shared type's name: no `.`, `/ * $ ? #` or leading `@`")));
-        } else if name == "quorum" {
-            out.push(at(ty, "[team] shared `quorum`: `team.quorum` already says whether the robot hears a majority of its team; share the type under another name".into()));
+        } else if let Some(what) = TEAM_OWN.iter().find(|(n, _)| n == name).map(|(_, w)| w) {
+            out.push(at(ty, format!("[team] shared `{name}`: `team.{name}` already says {what}; share the type under another name")));
         } else if !posted.contains(&name.as_str()) {
             let problem = at(
                 ty,
@@ -142,6 +142,13 @@ impl Problem {
         FileDiagnostic::error(file, line, self.message).with_hint(self.hint)
     }
 }
+
+/// The team's own words, which a shared type's `team.<type>` would collide with, and what
+/// each says.
+const TEAM_OWN: [(&str, &str); 2] = [
+    ("quorum", "whether the robot hears a majority of its team"),
+    ("size", "how many robots the team has"),
+];
 
 /// The most robots a team's `size` may say.
 const MOST_ROBOTS: i64 = 1000;
