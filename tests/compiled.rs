@@ -322,6 +322,38 @@ fn what_the_slice_cannot_compile_is_refused_with_file_and_line_for_either_target
             "{behaviour} to {target}: {stderr}"
         );
     }
+    // The team's quorum is refused as its aggregates are (it would read a value nobody posts).
+    let quorum = crate::behaviour_folder(
+        "refused-quorum",
+        &[
+            ("Q.machine", "machine Q
+initial A
+state A {
+    when team.quorum -> B
+}
+state B { }
+"),
+            ("behaviour.toml", "[[machine]]\nfile = \"Q.machine\"\n\n[team]\nname = \"blue\"\nmember = \"robot1\"\nsize = 3\n"),
+        ],
+    );
+    let o = proclaim(&[
+        "compile",
+        quorum.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("Q.machine:4: cannot be compiled: `team.quorum`: the team's quorum"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     // A clause fact is refused at its own line (a theory's refusal pointed at line 1).
     let keeper = crate::behaviour_folder(
         "refused-clause",

@@ -259,24 +259,47 @@ struct Figures {
     restart_overlap: Duration,
 }
 
+/// When each step of a run happened.
+struct Moments {
+    settled: SystemTime,
+    cut_at: SystemTime,
+    heal_at: SystemTime,
+    kill_at: SystemTime,
+    restart_at: SystemTime,
+    end: SystemTime,
+}
+
 /// One run: three robots at 10% loss, robot1 cut for `cut`, healed, then killed and restarted.
 /// `Err` says the robots never all linked to each other before the cut (Zenoh dials a peer it
 /// hears of by gossip once; see crates/zenoh's session.rs), so the run measured nothing.
 fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
     let roles: Roles = Arc::default();
     let folders: Vec<PathBuf> = (1..=3).map(robot_folder).collect();
+    let at = play(lan, cut, &roles, &folders);
+    let timeline = strikers(&roles);
+    let mut figures = Figures::default();
+    strikers_over_time(&timeline, &at, &mut figures);
+    let records: Vec<Vec<Recorded>> = (1..=3)
+        .map(|i| recorded(&folders[i - 1].join("record0.jsonl")))
+        .collect();
+    heard_over_time(&records, &timeline, &at, &mut figures)?;
+    Ok(figures)
+}
+
+/// Starts the robots, cuts robot1 off, heals it, kills it and starts it again.
+fn play(lan: &Lan, cut: Duration, roles: &Roles, folders: &[PathBuf]) -> Moments {
     let record = |i: usize, n: usize| folders[i - 1].join(format!("record{n}.jsonl"));
     for i in 1..=3 {
         lan.lose(i, 10).unwrap();
     }
     let mut robots: Vec<Robot> = Vec::new();
     for i in 1..=3 {
-        robots.push(start(lan, i, &folders[i - 1], &record(i, 0), &roles));
+        robots.push(start(lan, i, &folders[i - 1], &record(i, 0), roles));
         if i == 1 {
             std::thread::sleep(Duration::from_millis(500));
         }
     }
-    wait_for_robot1(&roles, SETTLE);
+    wait_for_robot1(roles, SETTLE);
     let settled = SystemTime::now();
     std::thread::sleep(Duration::from_secs(2));
 
@@ -288,23 +311,41 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
     // Every link must have come back before the crash, for the heal to be measured: robot1 may
     // strike again (its voters back) while one teammate still does not hear it.
     std::thread::sleep(HEAL);
-    wait_for_robot1(&roles, SETTLE);
+    wait_for_robot1(roles, SETTLE);
 
     let kill_at = SystemTime::now();
     drop(robots.remove(0));
     roles.lock().unwrap().push((SystemTime::now(), 1, false));
     std::thread::sleep(Duration::from_secs(2));
     let restart_at = SystemTime::now();
-    robots.insert(0, start(lan, 1, &folders[0], &record(1, 1), &roles));
-    wait_for_robot1(&roles, SETTLE);
+    robots.insert(0, start(lan, 1, &folders[0], &record(1, 1), roles));
+    wait_for_robot1(roles, SETTLE);
     std::thread::sleep(Duration::from_secs(1));
     let end = SystemTime::now();
     for robot in robots {
         robot.stop();
     }
+    Moments {
+        settled,
+        cut_at,
+        heal_at,
+        kill_at,
+        restart_at,
+        end,
+    }
+}
 
-    let timeline = strikers(&roles);
-    for (at, s) in &timeline {
+/// Two strikers and none, from each robot's trace.
+fn strikers_over_time(timeline: &[(SystemTime, Vec<usize>)], at: &Moments, figures: &mut Figures) {
+    let Moments {
+        settled,
+        cut_at,
+        heal_at,
+        kill_at,
+        restart_at,
+        end,
+    } = *at;
+    for (at, s) in timeline {
         let since = |t: SystemTime| at.duration_since(t).map_or(-1.0, |d| d.as_secs_f64());
         eprintln!(
             "{:>8.3} s after the cut, {:>8.3} s after the kill: strikers {s:?}",
@@ -313,22 +354,35 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
         );
     }
     let longest = |v: Vec<(SystemTime, Duration)>| v.into_iter().max_by_key(|(_, d)| *d);
-    let mut figures = Figures::default();
-    if let Some((start, d)) = longest(intervals(&timeline, settled, heal_at, |n| n >= 2)) {
+    if let Some((start, d)) = longest(intervals(timeline, settled, heal_at, |n| n >= 2)) {
         figures.overlap = d;
         figures.overlap_after_cut = start.duration_since(cut_at).unwrap_or_default();
     }
-    figures.heal_overlap = longest(intervals(&timeline, heal_at, kill_at, |n| n >= 2))
+    figures.heal_overlap = longest(intervals(timeline, heal_at, kill_at, |n| n >= 2))
         .map_or(Duration::ZERO, |(_, d)| d);
-    figures.leaderless = longest(intervals(&timeline, settled, heal_at, |n| n == 0))
+    figures.leaderless = longest(intervals(timeline, settled, heal_at, |n| n == 0))
         .map_or(Duration::ZERO, |(_, d)| d);
-    let none = |from, to| longest(intervals(&timeline, from, to, |n| n == 0));
+    let none = |from, to| longest(intervals(timeline, from, to, |n| n == 0));
     figures.crash_leaderless = none(kill_at, restart_at).map_or(Duration::ZERO, |(_, d)| d);
     figures.restart_leaderless = none(restart_at, end).map_or(Duration::ZERO, |(_, d)| d);
     figures.restart_overlap =
-        longest(intervals(&timeline, kill_at, end, |n| n >= 2)).map_or(Duration::ZERO, |(_, d)| d);
+        longest(intervals(timeline, kill_at, end, |n| n >= 2)).map_or(Duration::ZERO, |(_, d)| d);
+}
 
-    let records: Vec<Vec<Recorded>> = (1..=3).map(|i| recorded(&record(i, 0))).collect();
+/// Seen gone, heard again and ticks lost, from the robots' records.
+fn heard_over_time(
+    records: &[Vec<Recorded>],
+    timeline: &[(SystemTime, Vec<usize>)],
+    at: &Moments,
+    figures: &mut Figures,
+) -> Result<(), String> {
+    let Moments {
+        settled,
+        cut_at,
+        heal_at,
+        kill_at,
+        ..
+    } = *at;
     for (i, j) in [(2, 3), (3, 2)] {
         let heard = format!("robot{j}.tick");
         if !records[i - 1]
@@ -391,7 +445,7 @@ fn run_team(lan: &Lan, cut: Duration) -> Result<Figures, String> {
             figures.lost += (w[1].1 - w[0].1 - 1) as usize;
         }
     }
-    Ok(figures)
+    Ok(())
 }
 
 /// [`run_team`] again while the robots did not link (at most three times in all).

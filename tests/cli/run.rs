@@ -85,6 +85,15 @@ fn run_refuses_what_it_cannot_run() {
         "{}",
         stderr(&o)
     );
+    // A lease too short closes links that work; one that is no duration says how to write one.
+    for (lease, said) in [
+        ("50ms", "50ms: a lease is from 200ms to 600s"),
+        ("soon", "`soon` is not a duration (write 1s, 500ms or 2.5s)"),
+    ] {
+        let o = proclaim(&["run", "microwave", "--lease", lease, "--listen"]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(said), "{}", stderr(&o));
+    }
     let bad = temp_file("bad.jsonl", b"{\"event\":\"entered\"}\n");
     let o = proclaim(&["replay", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

@@ -39,11 +39,10 @@ pub struct Settings {
     pub lease: Option<Duration>,
 }
 
-/// The lease when none is given: a robot cut off its team's Wi-Fi is seen gone within 1.5 s,
-/// while a link that works but loses 10% of its packets is not closed: TCP sends a lost segment
-/// again after 0.2, 0.6 and 1.4 s, so only four losses in a row stall it past the lease (at 1 s,
-/// three did, and one robot in a team of three lost a working link every minute or so). Zenoh's
-/// own default, 10 s, left a cut robot striking beside its successor for all of that.
+/// The lease when none is given: a robot cut off its team's Wi-Fi is seen gone within it, while
+/// a link that works but loses 10% of its packets is not closed: TCP sends a lost segment again
+/// after 0.2, 0.6 and 1.4 s, so only four losses in a row stall it past 1.5 s (at 1 s, three
+/// do). Zenoh's own default, 10 s, leaves a cut robot striking beside its successor that long.
 pub const DEFAULT_LEASE: Duration = Duration::from_millis(1500);
 
 /// The shortest lease taken: below it, a loaded robot's keep-alives come late and links that
