@@ -80,18 +80,176 @@ function diagnosticsOnLines(first, last) {
   return current().diagnostics.filter((d) => d.line != null && d.line >= first && d.line <= last);
 }
 
+// The diagram's view: zoomed and panned by moving the drawing's viewBox, kept across redraws
+// of one machine (an edit redraws it), fitted again by Fit or on another machine.
+let view = null; // { x, y, w, h } in the drawing's units; null: the whole drawing
+let drawing = null; // the drawing's own viewBox
+const ZOOM_LIMITS = [0.25, 8];
+
+function svgOf() {
+  return $("diagram").querySelector("svg");
+}
+
+function applyView() {
+  const svg = svgOf();
+  if (!svg || !drawing) return;
+  const v = view || drawing;
+  svg.setAttribute("viewBox", `${v.x} ${v.y} ${v.w} ${v.h}`);
+  $("diagram").dataset.zoom = (drawing.w / v.w).toFixed(3);
+  $("diagram").dataset.view = `${v.x.toFixed(1)} ${v.y.toFixed(1)}`;
+}
+
+// Zooms by `factor` about a point of the drawing (its middle when none), within the limits.
+function zoom(factor, at) {
+  if (!drawing) return;
+  const v = view || drawing;
+  const zoomNow = drawing.w / v.w;
+  const next = Math.min(ZOOM_LIMITS[1], Math.max(ZOOM_LIMITS[0], zoomNow * factor));
+  const k = zoomNow / next;
+  const p = at || { x: v.x + v.w / 2, y: v.y + v.h / 2 };
+  view = { x: p.x - (p.x - v.x) * k, y: p.y - (p.y - v.y) * k, w: v.w * k, h: v.h * k };
+  applyView();
+}
+
+function fit() {
+  view = null;
+  applyView();
+}
+
+// A point of the page in the drawing's units.
+function drawingPoint(event) {
+  const svg = svgOf();
+  const m = svg.getScreenCTM();
+  if (!m) return { x: 0, y: 0 };
+  const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(m.inverse());
+  return { x: p.x, y: p.y };
+}
+
+function nodeCentre(g) {
+  const b = g.getBBox();
+  const m = g.getCTM();
+  const svg = svgOf();
+  const root = svg.getCTM();
+  const p = new DOMPoint(b.x + b.width / 2, b.y + b.height / 2).matrixTransform(m).matrixTransform(root.inverse());
+  return { x: p.x, y: p.y };
+}
+
+function nodeUnder(event) {
+  const hit = document.elementFromPoint(event.clientX, event.clientY);
+  const g = hit && hit.closest("#diagram g.node");
+  return g && g.dataset.index !== undefined ? Number(g.dataset.index) : null;
+}
+
+// What a press on the drawing becomes: a click on a state selects it; a drag from a state to a
+// state (or back to itself) draws a transition; a drag on the background pans.
+let gesture = null;
+
+function pressed(event) {
+  if (event.button !== 0) return;
+  const svg = svgOf();
+  const g = event.target.closest("g.node");
+  const node = g && g.dataset.index !== undefined ? Number(g.dataset.index) : null;
+  const editable = !model.read_only && !current().refusal;
+  gesture = {
+    node,
+    // Where a transition would be drawn from; on a machine that cannot be edited, a drag pans.
+    from: editable ? node : null,
+    start: { x: event.clientX, y: event.clientY },
+    last: drawingPoint(event),
+    moved: false,
+    line: null,
+  };
+  svg.setPointerCapture(event.pointerId);
+  event.preventDefault();
+}
+
+function moved(event) {
+  if (!gesture) return;
+  const far = Math.hypot(event.clientX - gesture.start.x, event.clientY - gesture.start.y) > 4;
+  gesture.moved = gesture.moved || far;
+  if (!gesture.moved) return;
+  const svg = svgOf();
+  const p = drawingPoint(event);
+  if (gesture.from === null) {
+    const v = view || drawing;
+    view = { ...v, x: v.x - (p.x - gesture.last.x), y: v.y - (p.y - gesture.last.y) };
+    applyView();
+    return; // the drawing moved under the pointer: where it points is the same place again
+  }
+  if (!gesture.line) {
+    const node = $("diagram").querySelector(`g.node[data-index="${gesture.from}"]`);
+    gesture.origin = nodeCentre(node);
+    gesture.line = document.createElementNS("http://www.w3.org/2000/svg", "line");
+    gesture.line.setAttribute("class", "drawing-transition");
+    svg.appendChild(gesture.line);
+  }
+  const l = gesture.line;
+  l.setAttribute("x1", gesture.origin.x);
+  l.setAttribute("y1", gesture.origin.y);
+  l.setAttribute("x2", p.x);
+  l.setAttribute("y2", p.y);
+}
+
+function released(event) {
+  if (!gesture) return;
+  const done = gesture;
+  gesture = null;
+  if (done.line) done.line.remove();
+  if (!done.moved) {
+    if (done.node !== null) select(done.node);
+    return;
+  }
+  if (done.from === null) return;
+  const to = nodeUnder(event);
+  if (to === null) {
+    status("no transition drawn: let go over the state it leads to", "");
+    return;
+  }
+  connect(done.from, to);
+}
+
+// A transition drawn from `from` to `to`: added at once when its label is typed already,
+// otherwise the label box waits for it.
+function connect(from, to) {
+  select(from);
+  $("new-target").value = String(to);
+  const m = current();
+  if ($("new-label").value.trim() !== "") {
+    addTransition();
+    return;
+  }
+  $("new-label").focus();
+  status(`drawn ${m.states[from].name} → ${m.states[to].name}: type its label and press Enter`, "");
+}
+
 function renderDiagram(m) {
   const holder = $("diagram");
   holder.innerHTML = m.svg;
+  const svg = svgOf();
+  if (!svg) return;
+  const box = svg.viewBox.baseVal;
+  drawing = box && box.width > 0 ? { x: box.x, y: box.y, w: box.width, h: box.height } : null;
+  // The drawing fills its frame (and Fit shows all of it) rather than keeping Graphviz's size.
+  svg.removeAttribute("width");
+  svg.removeAttribute("height");
+  applyView();
   const byNode = new Map(m.states.map((s, i) => [s.node, i]));
   for (const g of holder.querySelectorAll("g.node")) {
     const t = g.querySelector("title");
     const index = t ? byNode.get(t.textContent.trim()) : undefined;
     if (index === undefined) continue;
     g.dataset.state = m.states[index].name;
+    g.dataset.index = String(index);
     if (index === selected) g.classList.add("selected");
-    g.addEventListener("click", () => select(index));
   }
+  svg.addEventListener("pointerdown", pressed);
+  svg.addEventListener("pointermove", moved);
+  svg.addEventListener("pointerup", released);
+  svg.addEventListener("pointercancel", () => { if (gesture && gesture.line) gesture.line.remove(); gesture = null; });
+  svg.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    zoom(e.deltaY < 0 ? 1.2 : 1 / 1.2, drawingPoint(e));
+  }, { passive: false });
 }
 
 function option(value, label) {
@@ -196,6 +354,18 @@ function renderState() {
   }));
 }
 
+function newTransition() {
+  return { kind: "add_transition", state: selected, label: $("new-label").value, target: Number($("new-target").value) };
+}
+
+async function addTransition() {
+  if (await change(newTransition())) {
+    $("new-label").value = "";
+    $("new-label-diag").textContent = "";
+    $("new-label").classList.remove("bad");
+  }
+}
+
 function select(index) {
   selected = index;
   $("new-target").value = "";
@@ -221,6 +391,7 @@ function wire() {
   $("machine").addEventListener("change", () => {
     machine = Number($("machine").value);
     selected = null;
+    view = null;
     render();
   });
   $("undo").addEventListener("click", () => command("/api/edit/undo", ""));
@@ -249,15 +420,10 @@ function wire() {
     box.addEventListener("keydown", (e) => { if (e.key === "Enter" && e.ctrlKey) { e.preventDefault(); applyActivities(); } });
   }
   $("apply-activities").addEventListener("click", applyActivities);
-  const newTransition = () => ({ kind: "add_transition", state: selected, label: $("new-label").value, target: Number($("new-target").value) });
   $("new-label").addEventListener("input", () => tryEdit($("new-label"), newTransition(), $("new-label-diag")));
-  const addTransition = async () => {
-    if (await change(newTransition())) {
-      $("new-label").value = "";
-      $("new-label-diag").textContent = "";
-      $("new-label").classList.remove("bad");
-    }
-  };
+  $("zoom-in").addEventListener("click", () => zoom(1.25));
+  $("zoom-out").addEventListener("click", () => zoom(1 / 1.25));
+  $("zoom-fit").addEventListener("click", fit);
   $("add-transition").addEventListener("click", addTransition);
   $("new-label").addEventListener("keydown", (e) => { if (e.key === "Enter") addTransition(); });
   document.addEventListener("keydown", (e) => {
