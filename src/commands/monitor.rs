@@ -55,36 +55,17 @@ pub async fn open(monitor: &Monitor, addr: &str) -> Result<SocketAddr, Failure> 
     open_with(monitor, addr, |_| Access::Open).await
 }
 
-/// [`open`], with who may change the run decided by the address asked for; a token goes into
-/// the address printed (the only place it is shown).
+/// [`open`], with who may change the run decided by the address asked for.
 async fn open_with(
     monitor: &Monitor,
     addr: &str,
     access: impl FnOnce(SocketAddr) -> Access,
 ) -> Result<SocketAddr, Failure> {
-    let wanted = parse_addr(addr)?;
-    // Decided before the first request can come (the port may change, the address does not).
-    let access = access(wanted);
-    monitor.set_access(access.clone());
-    let bound = match monitor.serve(wanted).await {
-        Ok(bound) => bound,
-        Err(e) if addr == crate::cli::MONITOR_ADDR && e.kind() == std::io::ErrorKind::AddrInUse => {
-            monitor
-                .serve(SocketAddr::new(wanted.ip(), 0))
-                .await
-                .map_err(|e| Failure::Argument(format!("--monitor: cannot listen ({e})")))?
-        }
-        Err(e) => {
-            return Err(Failure::Argument(format!(
-                "--monitor {addr}: cannot listen there ({e})"
-            )))
-        }
-    };
-    match &access {
-        Access::Token(token) => println!("  monitor: http://{bound}/?token={token}"),
-        Access::ReadOnly => println!("  monitor: http://{bound}/ (read-only)"),
-        Access::Open => println!("  monitor: http://{bound}/"),
-    }
+    let (bound, shown) = monitor
+        .serve_asked(addr, crate::cli::MONITOR_ADDR, access)
+        .await
+        .map_err(Failure::Argument)?;
+    println!("  monitor: {shown}");
     Ok(bound)
 }
 

@@ -38,7 +38,7 @@ pub struct RustBehaviour {
 /// Compiles `behaviour` to a Cargo project whose machines are Rust code. It carries its own copy
 /// of `proclaim-runtime` and builds with crates from crates.io alone; given `whiteboard` (the
 /// root of this repository, [`source_repository`]) it can run on a whiteboard too (`--monitor`,
-/// `--listen`, `--connect`), depending by path on that repository's board, monitor and runner.
+/// `--listen`, `--connect`), depending by path on that repository's `proclaim-host-board`.
 pub fn compile_behaviour_rust(
     behaviour: &Behaviour,
     whiteboard: Option<&std::path::Path>,

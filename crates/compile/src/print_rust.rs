@@ -34,8 +34,9 @@ const LOCK: &str = include_str!("../../../Cargo.lock");
 const RUNTIME_MANIFEST: &str = "# proclaim's runtime, copied from its repository (do not edit).\n[package]\nname = \"proclaim-runtime\"\nversion = \"0.1.0\"\nedition = \"2021\"\npublish = false\n\n[dependencies]\nrustc-hash = \"2\"\nserde = { version = \"1\", features = [\"derive\"] }\nserde_json = \"1\"\n";
 
 /// Every file of the Cargo project: path and text. `whiteboard` is this repository's root when
-/// the program is to run on a whiteboard (`--monitor`, `--listen`, `--connect`): its crates
-/// (board, monitor, runner, Zenoh) and its runtime are then dependencies by path. Without it the
+/// the program is to run on a whiteboard (`--monitor`, `--listen`, `--connect`):
+/// `proclaim-host-board` (and through it the board, the monitor, the runner and, with the
+/// `network` feature, Zenoh) and the runtime are then dependencies by path. Without it the
 /// project carries its own copy of the runtime and needs nothing from this repository.
 pub(crate) fn project_files(plan: &Plan, whiteboard: Option<&Path>) -> Vec<(String, String)> {
     let mut files = vec![
@@ -98,12 +99,9 @@ fn manifest(plan: &Plan, whiteboard: Option<&Path>) -> String {
             };
             let _ = write!(
                 out,
-                "proclaim-runtime = {{ path = {} }}\nproclaim-board = {{ path = {} }}\nproclaim-monitor = {{ path = {} }}\nproclaim-runner = {{ path = {} }}\ntokio = {{ version = \"1.40\", features = [\"rt-multi-thread\", \"signal\", \"time\", \"sync\"] }}\nproclaim-zenoh = {{ path = {}, optional = true }}\n\n[features]\n# The whiteboard shared with other processes and robots (`--listen`, `--connect`): Zenoh's\n# stack is large, so it is built only when asked for.\nnetwork = [\"dep:proclaim-zenoh\"]\n",
+                "proclaim-runtime = {{ path = {} }}\nproclaim-host-board = {{ path = {} }}\n\n[features]\n# The whiteboard shared with other processes and robots (`--listen`, `--connect`): Zenoh's\n# stack is large, so it is built only when asked for.\nnetwork = [\"proclaim-host-board/network\"]\n",
                 path("runtime"),
-                path("board"),
-                path("monitor"),
-                path("runner"),
-                path("zenoh"),
+                path("host-board"),
             );
         }
     }

@@ -134,6 +134,42 @@ impl Monitor {
         serve_router(self.router(), addr, "monitor").await
     }
 
+    /// Serves the page where a user asked (`--monitor ADDR`: a port alone or an address), who
+    /// may change the run decided by that address before the first request can come; when
+    /// `asked` is `default` and its port is taken, any free port of the same address (a second
+    /// run beside the first), while an address given is kept to or refused. Returns where it
+    /// listens and what to print (the token, if any, is shown there only); an error names the
+    /// option and why.
+    pub async fn serve_asked(
+        &self,
+        asked: &str,
+        default: &str,
+        access: impl FnOnce(SocketAddr) -> Access,
+    ) -> Result<(SocketAddr, String), String> {
+        let wanted = crate::access::parse_address(asked).ok_or_else(|| {
+            format!(
+                "--monitor {}: not an address to listen on (write 127.0.0.1:7480, or a port alone)",
+                asked.trim()
+            )
+        })?;
+        let access = access(wanted);
+        self.set_access(access.clone());
+        let bound = match self.serve(wanted).await {
+            Ok(bound) => bound,
+            Err(e) if asked == default && e.kind() == std::io::ErrorKind::AddrInUse => self
+                .serve(SocketAddr::new(wanted.ip(), 0))
+                .await
+                .map_err(|e| format!("--monitor: cannot listen ({e})"))?,
+            Err(e) => return Err(format!("--monitor {asked}: cannot listen there ({e})")),
+        };
+        let shown = match &access {
+            Access::Token(token) => format!("http://{bound}/?token={token}"),
+            Access::ReadOnly => format!("http://{bound}/ (read-only)"),
+            Access::Open => format!("http://{bound}/"),
+        };
+        Ok((bound, shown))
+    }
+
     /// The routes, for serving elsewhere (tests, a program embedding the runner).
     pub fn router(&self) -> Router {
         Router::new()
