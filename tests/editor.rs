@@ -310,10 +310,7 @@ async fn the_diagram_zooms_pans_and_fits_and_a_transition_is_drawn_by_dragging()
     let node = |name: &str| format!("#diagram g.node[data-state=\"{name}\"]");
     until(
         &client,
-        &format!(
-            "return document.querySelector('{}') !== null",
-            node("AJAR")
-        ),
+        &format!("return document.querySelector('{}') !== null", node("AJAR")),
         json!(true),
         WAIT,
     )
