@@ -111,7 +111,7 @@ pub fn color() -> bool {
 }
 
 /// One problem as `check --json` reports it; every problem has this one shape,
-/// whichever reader found it (README: "Problems as JSON").
+/// whichever reader found it (the guide's tour of the commands).
 #[derive(serde::Serialize)]
 pub struct ProblemJson<'a> {
     pub file: &'a str,

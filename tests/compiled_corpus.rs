@@ -51,7 +51,7 @@ struct Alone {
 }
 
 /// The corpus machines that import, compile and run alone (found by compiling every one of
-/// them: README, "Deploying a behaviour").
+/// them: the guide, "Deploying a behaviour").
 const ALONE: [Alone; 8] = [
     Alone {
         tag: "vlad-placer",

@@ -131,7 +131,7 @@ async fn a_state_and_a_transition_made_in_the_browser_are_saved_and_undone() {
         WAIT,
     )
     .await;
-    // README's picture: `PROCLAIM_EDITOR_SCREENSHOT=$PWD/docs/editor.png cargo nextest run
+    // The guide's picture: `PROCLAIM_EDITOR_SCREENSHOT=$PWD/docs/book/src/images/editor.png cargo nextest run
     // --test tests -E 'test(a_state_and_a_transition)'`.
     if let Some(path) = std::env::var_os("PROCLAIM_EDITOR_SCREENSHOT") {
         std::fs::write(path, client.screenshot().await.expect("a screenshot")).expect("written");

@@ -232,7 +232,7 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
         second,
     )
     .await;
-    // README's picture: `PROCLAIM_SCREENSHOT=$PWD/docs/monitor.png cargo nextest run -E 'test(a_live_run)'`.
+    // README's picture: `PROCLAIM_SCREENSHOT=$PWD/docs/book/src/images/monitor.png cargo nextest run -E 'test(a_live_run)'`.
     if let Some(path) = std::env::var_os("PROCLAIM_SCREENSHOT") {
         tokio::time::sleep(Duration::from_millis(300)).await;
         std::fs::write(path, client.screenshot().await.expect("a screenshot")).expect("written");

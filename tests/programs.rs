@@ -1,5 +1,5 @@
 //! Behaviours whose labels a Prolog knowledge base or another program answers, through the
-//! `proclaim` binary as README runs them: `run` to the final state, `check`'s located Prolog
+//! `proclaim` binary as the guide runs them: `run` to the final state, `check`'s located Prolog
 //! warnings, `deps` knowing who answers. Each needs SWI-Prolog or python3: skipped without it,
 //! failed without it when `CI` is set (`.ci/run` installs Debian's swi-prolog-nox).
 
@@ -26,7 +26,7 @@ fn present(program: &str) -> bool {
     found
 }
 
-/// README's command line: the referee's off-side rule proved by SWI-Prolog, the flag up and
+/// The guide's command line: the referee's off-side rule proved by SWI-Prolog, the flag up and
 /// down again as the script moves the player and the ball.
 #[test]
 fn the_referee_runs_to_its_final_state_on_prologs_answers() {
@@ -46,7 +46,7 @@ fn the_referee_runs_to_its_final_state_on_prologs_answers() {
     assert!(out.contains("0 timed out"), "{out}");
 }
 
-/// The README's ten-line Python program answers the goalkeeper's `ballNear`.
+/// The guide's ten-line Python program answers the goalkeeper's `ballNear`.
 #[test]
 fn the_keeper_dives_on_the_python_programs_answer() {
     if !present("python3") {
@@ -158,16 +158,16 @@ fn a_missing_prolog_is_a_warning_at_the_knowledge_base() {
     );
 }
 
-/// README's Python expert is `machines/ball/ball.py` word for word, which the tests run.
+/// The guide's Python expert is `machines/ball/ball.py` word for word, which the tests run.
 #[test]
-fn the_readme_shows_the_python_expert_the_tests_run() {
+fn the_guide_shows_the_python_expert_the_tests_run() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(root.join("docs/book/src/experts.md")).unwrap();
     let program = std::fs::read_to_string(root.join("machines/ball/ball.py")).unwrap();
     assert_eq!(program.lines().count(), 10);
     assert!(
         readme.contains(&format!("```python\n{program}```")),
-        "README's example differs from machines/ball/ball.py"
+        "the guide's example differs from machines/ball/ball.py"
     );
 }
 

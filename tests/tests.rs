@@ -4,6 +4,7 @@
 
 mod architecture;
 mod behaviours;
+mod book;
 mod cli;
 mod compiled;
 mod compiled_corpus;

@@ -1,4 +1,4 @@
-# A program expert (README): answers `ballNear` from the whiteboard input `ballDistance`.
+# A program expert (the guide): answers `ballNear` from the whiteboard input `ballDistance`.
 import json, sys
 distance = None
 for line in sys.stdin:

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-/// The exit status when some answer was undecided within the search budget (README).
+/// The exit status when some answer was undecided within the search budget (the guide's tour of the commands).
 const UNDECIDED_EXIT: u8 = 3;
 
 /// A session with the `--budget` given (search steps per attack cycle), or the default.

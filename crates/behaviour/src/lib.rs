@@ -54,7 +54,12 @@ pub use recorded::{
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
 
-/// The README's Rust snippets, compiled (and run) as doctests so they stay true.
+/// The guide's Rust snippets (`docs/book`), compiled (and run) as doctests so they stay true.
 #[cfg(doctest)]
-#[doc = include_str!("../../../README.md")]
-pub struct ReadmeDoctests;
+#[doc = include_str!("../../../docs/book/src/embedding.md")]
+pub struct GuideEmbeddingDoctests;
+
+/// The guide's testing chapter's Rust snippets, compiled as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/book/src/testing.md")]
+pub struct GuideTestingDoctests;

@@ -22,7 +22,7 @@
 //! [[theory]]
 //! file = "microwave.dl"                # a reasoner expert; its outputs are the labels it answers
 //! mapping = "inputs.map"               # optional: input atom → message type
-//! budget = 1000000                     # optional: search steps per attack cycle (README)
+//! budget = 1000000                     # optional: search steps per attack cycle (the guide)
 //!
 //! [[prolog]]                           # a Prolog knowledge base; [[expert]]: any program
 //! file = "offside.pl"                  # (both in program_entries.rs)

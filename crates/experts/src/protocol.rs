@@ -1,5 +1,5 @@
 //! The program expert's protocol: JSON lines between proclaim and the process that answers
-//! labels (README, "Any program as an expert"). proclaim writes [`Request`]s to the process's
+//! labels (the guide, "Any program as an expert"). proclaim writes [`Request`]s to the process's
 //! stdin, one a line; the process writes [`Reply`]s to its stdout, one a line.
 
 use proclaim_board::Value;

@@ -1,5 +1,5 @@
 //! Experts that are other processes, on a live whiteboard with real child processes: the
-//! README's Python program (answers, killed and started again), and the Prolog expert in
+//! the guide's Python program (answers, killed and started again), and the Prolog expert in
 //! SWI-Prolog (the off-side rule in Prolog against offside.dl's truth table, every kind of
 //! Prolog error a located warning and a false answer). The Prolog tests need `swipl` and the
 //! Python one `python3`: each is skipped without them, and fails without them when `CI` is set
