@@ -28,6 +28,10 @@ def join(endpoint):
     config.insert_json5("connect/endpoints", json.dumps([endpoint]))
     config.insert_json5("listen/endpoints", json.dumps(["tcp/127.0.0.1:0"]))
     config.insert_json5("scouting/multicast/enabled", "false")
+    # As proclaim's processes: a link that hears nothing for 1.5 s is closed (Zenoh's 10 s
+    # default keeps a dead peer's link, and its subscriptions, that long).
+    config.insert_json5("transport/link/tx/lease", "1500")
+    config.insert_json5("transport/link/tx/keep_alive", "4")
     return zenoh.open(config)
 
 
