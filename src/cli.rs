@@ -368,6 +368,10 @@ pub struct BenchArgs {
     /// on the same `.dfl` file, as whole processes, best and median of the repeats
     #[arg(long)]
     pub all: bool,
+    /// Time `proclaim check` on each kind of file (theory, machine, Qfsm, script) at the sizes
+    /// given as cases (`1MB 10MB 100MB` unless given), as whole processes: reading is linear
+    #[arg(long, conflicts_with = "all")]
+    pub parse: bool,
 }
 
 /// What `proclaim expert` is told.

@@ -112,6 +112,9 @@ pub struct BenchOptions {
 
 /// `proclaim bench`.
 pub fn command(args: BenchArgs) -> Result<ExitCode, Failure> {
+    if args.parse {
+        return super::bench_parse::run(&args.cases, args.repeat, args.json);
+    }
     let options = BenchOptions {
         quick: args.quick,
         repeat: args.repeat,

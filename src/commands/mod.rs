@@ -2,6 +2,7 @@
 
 mod bench;
 mod bench_all;
+mod bench_parse;
 mod board;
 mod check;
 mod compile;

@@ -132,3 +132,22 @@ fn bench_all_times_every_conclusion_against_one_query() {
     let o = proclaim(&["bench", "--all", "chain:nope"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+/// `bench --parse`: every kind of file a user brings, written at each size and checked whole
+/// (the generated files check clean, or the bench would fail), each size timed once.
+#[test]
+fn bench_parse_times_check_on_each_kind_of_file_at_each_size() {
+    let o = proclaim(&["bench", "--parse", "20KB", "60KB", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let timed: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let timed = timed.as_array().unwrap();
+    assert_eq!(timed.len(), 8, "{timed:?}");
+    for (i, t) in timed.iter().enumerate() {
+        assert!(t["check_ms"].as_f64().unwrap() > 0.0, "{t}");
+        let bytes = t["bytes"].as_u64().unwrap();
+        let wanted = if i % 2 == 0 { 20 << 10 } else { 60 << 10 };
+        assert!(bytes >= wanted * 9 / 10 && bytes <= wanted * 12 / 10, "{t}");
+        assert_eq!(t["against_linear"].is_null(), i % 2 == 0, "{t}");
+    }
+    check(&["bench", "--parse", "1TB"], 2, "");
+}

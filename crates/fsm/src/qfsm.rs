@@ -49,12 +49,8 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
         drafts.out.diagnostics.push(not_xml(file, text));
         return drafts.out;
     }
-    let line_of = |offset: u64| {
-        text[..(offset as usize).min(text.len())]
-            .matches('\n')
-            .count()
-            + 1
-    };
+    let mut lines = LineCounter::default();
+    let mut line_of = |offset: u64| lines.line_of(text, offset as usize);
     let mut reader = Reader::from_str(text);
     loop {
         let position = reader.buffer_position();
@@ -83,6 +79,30 @@ pub fn import_qfsm(file: &str, text: &str, file_name: &str) -> Imported {
     }
     end_of_file(drafts.machine, file, file_name, &mut drafts.out);
     drafts.out
+}
+
+/// The line of each offset the reader reaches, counted on from the last one asked (offsets
+/// grow as the file is read), so numbering every element takes one pass over the text, not
+/// one a element.
+#[derive(Default)]
+struct LineCounter {
+    offset: usize,
+    line: usize,
+}
+
+impl LineCounter {
+    fn line_of(&mut self, text: &str, offset: usize) -> usize {
+        let offset = offset.min(text.len());
+        if offset < self.offset {
+            *self = LineCounter::default();
+        }
+        self.line += text.as_bytes()[self.offset..offset]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        self.offset = offset;
+        self.line + 1
+    }
 }
 
 /// What a Qfsm file has said so far: the machines finished, and the machine, state and
@@ -539,5 +559,24 @@ fn append(
         (Some("inputs"), _, Some(t)) => t.inputs.push_str(text),
         (Some("outputs"), _, Some(t)) => t.outputs.push_str(text),
         _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LineCounter;
+
+    #[test]
+    fn lines_are_counted_on_from_the_last_offset_and_anew_after_a_step_back() {
+        let text = "a\nbb\n\nccc\nd";
+        let naive = |o: usize| text[..o.min(text.len())].matches('\n').count() + 1;
+        let mut lines = LineCounter::default();
+        for offset in [0, 1, 2, 4, 5, 6, 9, 10, 11, 3, 7, 100] {
+            assert_eq!(
+                lines.line_of(text, offset),
+                naive(offset),
+                "offset {offset}"
+            );
+        }
     }
 }
