@@ -32,6 +32,8 @@ pub struct Graph {
     edges: Edges,
     /// The successor lists unpacked, made when a liveness check first asks.
     adjacency: OnceCell<Adjacency>,
+    /// A liveness check will follow the search: the budget keeps room for what it builds.
+    liveness_follows: bool,
     pub complete: bool,
     /// Why the search ended.
     pub stopped: Stop,
@@ -48,6 +50,15 @@ pub struct Graph {
     pub wide: bool,
     /// How many times the layout was widened (records packed before are packed no more).
     generation: usize,
+}
+
+/// What a liveness check builds over a graph of `states` and `edges`, at most: the successor
+/// lists unpacked (4 bytes an edge, 4 a state) and, per state, Tarjan's index, low link and
+/// stack entry and frame (`components.rs`), its component and the marks of what is inside
+/// (`acceptance.rs`, `liveness.rs`).
+pub(crate) fn liveness_bytes(states: usize, edges: usize) -> usize {
+    const PER_STATE: usize = 4 + 4 + 4 + 4 + 24 + 4 + 1 + 1;
+    states * PER_STATE + edges * 4
 }
 
 /// Successor lists with an index, for checks that walk edges in any order: the successors of
@@ -88,10 +99,14 @@ impl Graph {
     /// Bytes the tables would hold, at most, after `states` more states and `edges` more edges
     /// in one more list.
     fn bytes_after(&self, states: usize, edges: usize) -> usize {
-        let adjacency = self
-            .adjacency
-            .get()
-            .map_or(0, |a| 4 * (a.start.capacity() + a.targets.capacity()));
+        let adjacency = match self.adjacency.get() {
+            Some(a) => 4 * (a.start.capacity() + a.targets.capacity()),
+            // Before it is made: the room the liveness check will take, when one follows.
+            None if self.liveness_follows => {
+                liveness_bytes(self.len() + states, self.edges.len() + edges)
+            }
+            None => 0,
+        };
         self.states.bytes_after(states)
             + self.table.bytes_after(states)
             + self.edges.bytes_after(edges)
@@ -245,7 +260,7 @@ fn store_initial(
         if graph.is_full(limits.max_states) {
             return Err(Stop::StateBudget);
         }
-        if graph.bytes_after(1, 0) > limits.max_memory {
+        if graph.bytes_after(1, 0) + model.values.borrow().bytes() > limits.max_memory {
             return Err(Stop::MemoryBudget);
         }
         store.insert(graph, &w, model, properties);
@@ -264,6 +279,7 @@ pub fn explore(
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
+    graph.liveness_follows = properties.iter().any(|p| p.source.kind.is_liveness());
     let mut store = StateInserter::default();
     let decidable = limits.stop_when_decided && all_decidable(properties);
     let stop = |graph: &mut Graph, reason: Stop| {
@@ -384,8 +400,8 @@ impl<'m> Expansion<'m> {
         let range = self.batch.range(id);
         // What the tables would grow to must stay within the memory budget: as if every
         // successor were new.
-        let memos = self.memo.bytes() + self.found.bytes();
-        if graph.bytes_after(range.len(), range.len()) + memos > limits.max_memory {
+        let held = self.memo.bytes() + self.found.bytes() + self.model.values.borrow().bytes();
+        if graph.bytes_after(range.len(), range.len()) + held > limits.max_memory {
             return Err(Stop::MemoryBudget);
         }
         let bytes = graph.layout.bytes();
@@ -423,7 +439,8 @@ impl<'m> Expansion<'m> {
         self.stepper
             .successors(&self.world, false, &mut self.successors);
         let made = self.successors.len();
-        if graph.bytes_after(made, made) > limits.max_memory {
+        let held = self.memo.bytes() + self.found.bytes() + self.model.values.borrow().bytes();
+        if graph.bytes_after(made, made) + held > limits.max_memory {
             return Err(Stop::MemoryBudget);
         }
         for s in &self.successors {
@@ -554,6 +571,7 @@ impl Graph {
             initial: 0,
             edges: Edges::default(),
             adjacency: OnceCell::new(),
+            liveness_follows: false,
             complete: true,
             stopped: Stop::Explored,
             entered: model.per_state(),

@@ -39,6 +39,22 @@ fn key(value: &Value) -> Key {
 pub struct Values {
     all: Vec<Value>,
     ids: FxHashMap<Key, ValueId>,
+    /// Bytes the texts, byte strings and lists hold outside the two tables (twice: the value
+    /// and its key).
+    heap: usize,
+}
+
+/// The bytes a value holds outside itself.
+fn heap_bytes(value: &Value) -> usize {
+    match value {
+        Value::Str(s) => s.len(),
+        Value::Bytes(b) => b.len(),
+        Value::List(l) => l
+            .iter()
+            .map(|v| std::mem::size_of::<Value>() + heap_bytes(v))
+            .sum(),
+        _ => 0,
+    }
 }
 
 impl Values {
@@ -48,6 +64,7 @@ impl Values {
         if let Some(&id) = self.ids.get(&k) {
             return id;
         }
+        self.heap += 2 * heap_bytes(value);
         self.all.push(value.clone());
         let id = self.all.len() as ValueId;
         self.ids.insert(k, id);
@@ -77,6 +94,13 @@ impl Values {
     pub fn is_empty(&self) -> bool {
         self.all.is_empty()
     }
+
+    /// The bytes the values hold (part of what `--max-memory` bounds: a counter's values grow
+    /// with the states), and at most what one more would add when the tables must grow.
+    pub fn bytes(&self) -> usize {
+        let entry = std::mem::size_of::<(Key, ValueId)>() + 1;
+        self.all.capacity() * std::mem::size_of::<Value>() + self.ids.capacity() * entry + self.heap
+    }
 }
 
 #[cfg(test)]
@@ -94,5 +118,21 @@ mod tests {
         assert_eq!(values.intern_option(None), NEVER);
         assert_eq!(values.get(NEVER), None);
         assert_eq!(values.get(b), Some(&Value::Int(1)));
+    }
+
+    #[test]
+    fn the_bytes_grow_with_the_values_and_their_texts() {
+        let mut values = Values::default();
+        let empty = values.bytes();
+        values.intern(&Value::Int(1));
+        let one = values.bytes();
+        assert!(one > empty);
+        for i in 2..1000 {
+            values.intern(&Value::Int(i));
+        }
+        assert!(values.bytes() >= 999 * std::mem::size_of::<Value>());
+        let before = values.bytes();
+        values.intern(&Value::Str("x".repeat(10_000)));
+        assert!(values.bytes() >= before + 20_000);
     }
 }

@@ -449,3 +449,34 @@ fn liveness_costs_little_beside_the_exploration() {
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
+
+/// `--max-memory` bounds what the search holds, the liveness check after it and a counter's
+/// values included: the heap, counted by the test's allocator, grows no further than the budget
+/// (and the model and report beside it, a few kilobytes here) where the whole search would need
+/// four times as much; the property is then undecided. With room for all of it, it holds.
+#[test]
+fn the_memory_budget_holds_the_search_its_values_and_the_liveness_check() {
+    let counter = "machine C\nstate S { entry { int n; } internal { n = (n + 1) % 40000; } \
+                   when FALSE -> S }";
+    let behaviour = behaviour(&[("C", counter)]);
+    let explicit = |max_memory| Options {
+        engine: SearchEngine::Explicit,
+        max_memory,
+        ..Options::default()
+    };
+    let live = [property(PropertyKind::AlwaysEventually, "C.n == 0", &[])];
+    let (roomy, needed) = common::allocated::peak_growth(|| {
+        verify(&behaviour, &live, explicit(1 << 30)).expect("verifies")
+    });
+    assert_eq!(roomy.properties[0].verdict, Verdict::Holds);
+    let budget = needed / 4;
+    let (tight, grown) = common::allocated::peak_growth(|| {
+        verify(&behaviour, &live, explicit(budget)).expect("verifies")
+    });
+    assert!(!tight.stats.complete);
+    assert_eq!(tight.properties[0].verdict, Verdict::Incomplete);
+    assert!(
+        grown <= budget + (64 << 10),
+        "the heap grew by {grown} bytes under a budget of {budget}"
+    );
+}
