@@ -228,9 +228,9 @@ enum ProclaimStatus proclaim_session_prove(struct ProclaimSession *session,
 // `theory` is null or from `proclaim_theory_load` (freed or not).
 struct ProclaimSession *proclaim_session_new(const struct ProclaimTheory *theory);
 
-// Sets an input atom to a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`, `_UNKNOWN`); only
-// what depends on it is re-proved, when next asked. Setting one atom of an input group
-// (`input{a, b, c}`) true sets the others false. Returns `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the
+// Sets the input `atom` to `value`, a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`,
+// `_UNKNOWN`); only what depends on it is re-proved, when next asked. Setting one atom of an
+// input group (`input{a, b, c}`) true sets the others false. Returns `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the
 // theory declares its inputs and this is not one), `INPUT_CONFLICT` (the session is left as it
 // was), or `BAD_ARGUMENT`.
 //
@@ -241,8 +241,8 @@ enum ProclaimStatus proclaim_session_set(struct ProclaimSession *session,
                                          const char *atom,
                                          ProclaimValue value);
 
-// Sets how many goals the search may expand inside one attack cycle before it gives up and
-// answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
+// Sets `steps`, how many goals the search may expand inside one attack cycle before it gives
+// up and answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
 //
 // # Safety
 // `session` is null or from [`proclaim_session_new`] (freed or not).
@@ -301,8 +301,9 @@ struct ProclaimTheory *proclaim_theory_load(const char *text,
                                             size_t len,
                                             struct ProclaimError **error_out);
 
-// [`proclaim_theory_load`], naming the text (a file name) in the errors; a name ending in
-// `.dfl` is read as DFL (SPINdle's syntax), anything else as `.dl`.
+// [`proclaim_theory_load`] of the `len` bytes at `text`, naming them `name` (a file name) in
+// the errors written to `*error_out`; a name ending in `.dfl` is read as DFL (SPINdle's
+// syntax), anything else as `.dl`.
 //
 // # Safety
 // `name` is null or a NUL-terminated string; otherwise as [`proclaim_theory_load`].

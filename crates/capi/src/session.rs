@@ -118,9 +118,9 @@ pub unsafe extern "C" fn proclaim_session_new(
     })
 }
 
-/// Sets an input atom to a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`, `_UNKNOWN`); only
-/// what depends on it is re-proved, when next asked. Setting one atom of an input group
-/// (`input{a, b, c}`) true sets the others false. Returns `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the
+/// Sets the input `atom` to `value`, a `ProclaimValue` (`PROCLAIM_VALUE_TRUE`, `_FALSE`,
+/// `_UNKNOWN`); only what depends on it is re-proved, when next asked. Setting one atom of an
+/// input group (`input{a, b, c}`) true sets the others false. Returns `UNKNOWN_ATOM`, `NOT_AN_INPUT` (the
 /// theory declares its inputs and this is not one), `INPUT_CONFLICT` (the session is left as it
 /// was), or `BAD_ARGUMENT`.
 ///
@@ -149,8 +149,8 @@ pub unsafe extern "C" fn proclaim_session_set(
     })
 }
 
-/// Sets how many goals the search may expand inside one attack cycle before it gives up and
-/// answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
+/// Sets `steps`, how many goals the search may expand inside one attack cycle before it gives
+/// up and answers `PROCLAIM_STATUS_UNDECIDED` (10,000,000 unless set; 0 is a bad argument).
 ///
 /// # Safety
 /// `session` is null or from [`proclaim_session_new`] (freed or not).

@@ -61,8 +61,9 @@ pub unsafe extern "C" fn proclaim_theory_load(
     load(Ok(UNNAMED), text, len, error_out)
 }
 
-/// [`proclaim_theory_load`], naming the text (a file name) in the errors; a name ending in
-/// `.dfl` is read as DFL (SPINdle's syntax), anything else as `.dl`.
+/// [`proclaim_theory_load`] of the `len` bytes at `text`, naming them `name` (a file name) in
+/// the errors written to `*error_out`; a name ending in `.dfl` is read as DFL (SPINdle's
+/// syntax), anything else as `.dl`.
 ///
 /// # Safety
 /// `name` is null or a NUL-terminated string; otherwise as [`proclaim_theory_load`].
