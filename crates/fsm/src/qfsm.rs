@@ -12,6 +12,7 @@ use crate::Imported;
 use proclaim_syntax::{FileDiagnostic, Severity};
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::{Reader, XmlVersion};
+use std::collections::HashSet;
 
 #[derive(Default)]
 struct TransitionDraft {
@@ -30,6 +31,8 @@ struct MachineDraft {
     attribute_name: String,
     initial: Option<String>,
     states: Vec<State>,
+    /// The codes of `states`, so that each state and transition is placed in constant time.
+    codes: HashSet<StateId>,
     transitions: Vec<(i64, usize, Transition)>,
     unread: Vec<UnreadTransition>,
     /// The machine's own description, in the later editors' sectioned form where it has one
@@ -142,6 +145,7 @@ impl<'f> Drafts<'f> {
                     attribute_name: attribute(e, "name").unwrap_or_default(),
                     initial: attribute(e, "initialstate"),
                     states: Vec::new(),
+                    codes: HashSet::new(),
                     transitions: Vec::new(),
                     unread: Vec::new(),
                     description: attribute(e, "description").unwrap_or_default(),
@@ -306,7 +310,7 @@ fn end_state(
             format!("state `{}`: {problem}", name.trim()),
         )
     }));
-    if m.states.iter().any(|s| s.id == id) {
+    if !m.codes.insert(id) {
         diagnostics.push(FileDiagnostic::error(
             file,
             at,
@@ -412,7 +416,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
         .map(str::trim)
         .and_then(|c| c.parse::<StateId>().ok())
     {
-        Some(code) if m.states.iter().any(|s| s.id == code) => code,
+        Some(code) if m.codes.contains(&code) => code,
         Some(code) => {
             out.diagnostics.push(FileDiagnostic::error(
                 file,
@@ -433,7 +437,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
             return;
         }
     };
-    let known = |id: StateId| m.states.iter().any(|s| s.id == id);
+    let known = |id: StateId| m.codes.contains(&id);
     let mut transitions = Vec::new();
     for (priority, order, t) in std::mem::take(&mut m.transitions) {
         if known(t.source) && known(t.target) {

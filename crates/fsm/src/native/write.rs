@@ -1,6 +1,7 @@
 //! Writes a machine in the native format; reading the text back gives the same machine.
 
-use crate::model::{Action, Argument, Machine, State, StateId};
+use crate::model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
+use std::collections::HashMap;
 use std::fmt::Write;
 
 const KEYWORDS: [&str; 10] = [
@@ -30,15 +31,66 @@ pub fn to_native(machine: &Machine) -> String {
     if !machine.description.is_empty() {
         let _ = writeln!(out, "description {}", quoted(&machine.description));
     }
-    let _ = writeln!(out, "initial {}", reference(machine, machine.initial));
+    let index = Index::of(machine);
+    let _ = writeln!(out, "initial {}", index.reference(machine.initial));
     for state in &machine.states {
         out.push('\n');
-        write_state(&mut out, machine, state, implicit_ids);
+        write_state(&mut out, &index, state, implicit_ids);
     }
     out
 }
 
-fn write_state(out: &mut String, machine: &Machine, state: &State, implicit_ids: bool) {
+/// What writing a state looks up, found once for the machine so that a machine of many states
+/// is written in time proportional to its size: each state's transitions (in the machine's
+/// order) and unread ones, and how each state is named.
+struct Index<'m> {
+    outgoing: HashMap<StateId, Vec<&'m Transition>>,
+    unread: HashMap<StateId, Vec<&'m UnreadTransition>>,
+    /// Each state's reference: its name when no other state has it, else its id.
+    references: HashMap<StateId, String>,
+}
+
+impl<'m> Index<'m> {
+    fn of(machine: &'m Machine) -> Index<'m> {
+        let mut outgoing: HashMap<StateId, Vec<&Transition>> = HashMap::new();
+        for t in &machine.transitions {
+            outgoing.entry(t.source).or_default().push(t);
+        }
+        let mut unread: HashMap<StateId, Vec<&UnreadTransition>> = HashMap::new();
+        for u in &machine.unread {
+            unread.entry(u.source).or_default().push(u);
+        }
+        let mut names: HashMap<&str, usize> = HashMap::new();
+        for s in &machine.states {
+            *names.entry(s.name.as_str()).or_default() += 1;
+        }
+        let mut references = HashMap::new();
+        // The first state of an id is the one `Machine::state` finds.
+        for s in machine.states.iter().rev() {
+            let reference = if names[s.name.as_str()] == 1 {
+                name(&s.name)
+            } else {
+                format!("#{}", s.id)
+            };
+            references.insert(s.id, reference);
+        }
+        Index {
+            outgoing,
+            unread,
+            references,
+        }
+    }
+
+    /// A state by name when the name is unique, else by id.
+    fn reference(&self, id: StateId) -> String {
+        self.references
+            .get(&id)
+            .cloned()
+            .unwrap_or_else(|| format!("#{id}"))
+    }
+}
+
+fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids: bool) {
     let _ = write!(out, "state {}", name(&state.name));
     if !implicit_ids {
         let _ = write!(out, " #{}", state.id);
@@ -60,23 +112,18 @@ fn write_state(out: &mut String, machine: &Machine, state: &State, implicit_ids:
         }
         out.push_str("    }\n");
     }
-    for t in machine.outgoing(state.id) {
-        let _ = writeln!(
-            out,
-            "    when {} -> {}",
-            t.label,
-            reference(machine, t.target)
-        );
+    for t in index.outgoing.get(&state.id).into_iter().flatten() {
+        let _ = writeln!(out, "    when {} -> {}", t.label, index.reference(t.target));
     }
     // Kept so nothing of the original is lost; a comment, so the file still reads.
-    for u in machine.unread.iter().filter(|u| u.source == state.id) {
+    for u in index.unread.get(&state.id).into_iter().flatten() {
         let _ = writeln!(
             out,
             "    // not read (line {}: {}): when {} -> {}",
             u.line,
             one_line(&u.reason),
             one_line(&u.label),
-            reference(machine, u.target)
+            index.reference(u.target)
         );
     }
     out.push_str("}\n");
@@ -111,14 +158,6 @@ fn write_action(out: &mut String, action: &Action) {
         Action::Code(code) => {
             let _ = write!(out, "code {}", one_line(code));
         }
-    }
-}
-
-/// A state by name when the name is unique, else by id.
-fn reference(machine: &Machine, id: StateId) -> String {
-    match machine.state(id) {
-        Some(s) if machine.states.iter().filter(|o| o.name == s.name).count() == 1 => name(&s.name),
-        _ => format!("#{id}"),
     }
 }
 
