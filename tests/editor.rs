@@ -220,13 +220,142 @@ async fn a_state_and_a_transition_made_in_the_browser_are_saved_and_undone() {
     let _ = std::fs::remove_dir_all(dir.parent().unwrap());
 }
 
+/// A press on `element` (offset from its centre), moves to each of `to` (an element's centre, or
+/// an offset from where the pointer is), and a release: a drag as a person's mouse makes it.
+async fn drag(
+    client: &Client,
+    element: fantoccini::elements::Element,
+    at: (f64, f64),
+    to: Vec<Result<fantoccini::elements::Element, (f64, f64)>>,
+) {
+    use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
+    let mut actions = MouseActions::new("mouse".into())
+        .then(PointerAction::MoveToElement {
+            element,
+            duration: None,
+            x: at.0,
+            y: at.1,
+        })
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        });
+    for step in to {
+        let duration = Some(Duration::from_millis(100));
+        actions = actions.then(match step {
+            Ok(element) => PointerAction::MoveToElement {
+                element,
+                duration,
+                x: 0.0,
+                y: 0.0,
+            },
+            Err((x, y)) => PointerAction::MoveBy { duration, x, y },
+        });
+    }
+    let actions = actions.then(PointerAction::Up {
+        button: MOUSE_BUTTON_LEFT,
+    });
+    client.perform_actions(actions).await.expect("a drag");
+}
+
+const ZOOM: &str = "return document.getElementById('diagram').dataset.zoom";
+
+/// + twice, a drag from the background's corner (the view moves, the zoom stays), then Fit.
+async fn zoom_pan_and_fit(client: &Client) {
+    assert_eq!(
+        eval(client, ZOOM).await,
+        json!("1.000"),
+        "drawn whole at first"
+    );
+    click(client, "zoom-in").await;
+    click(client, "zoom-in").await;
+    until(client, ZOOM, json!("1.563"), WAIT).await;
+    let view = "return document.getElementById('diagram').dataset.view";
+    let before = eval(client, view).await;
+    let svg = client.find(Locator::Css("#diagram svg")).await.unwrap();
+    let size = eval(
+        client,
+        "const r = document.querySelector('#diagram svg').getBoundingClientRect(); return [r.width, r.height]",
+    )
+    .await;
+    let (w, h) = (size[0].as_f64().unwrap(), size[1].as_f64().unwrap());
+    drag(
+        client,
+        svg,
+        (-w / 2.0 + 6.0, -h / 2.0 + 6.0),
+        vec![Err((80.0, 50.0))],
+    )
+    .await;
+    assert_ne!(eval(client, view).await, before, "the view moved");
+    assert_eq!(eval(client, ZOOM).await, json!("1.563"));
+    click(client, "zoom-fit").await;
+    until(client, ZOOM, json!("1.000"), WAIT).await;
+}
+
+/// The wheel turned away from the reader zooms in where the pointer is.
+async fn wheel_zooms(client: &Client) {
+    use fantoccini::actions::{InputSource, WheelAction, WheelActions};
+    let middle = eval(
+        client,
+        "const r = document.querySelector('#diagram svg').getBoundingClientRect(); return [Math.round(r.x + r.width / 2), Math.round(r.y + r.height / 2)]",
+    )
+    .await;
+    let wheel = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
+        duration: None,
+        x: middle[0].as_i64().unwrap(),
+        y: middle[1].as_i64().unwrap(),
+        delta_x: 0,
+        delta_y: -120,
+    });
+    client.perform_actions(wheel).await.expect("a wheel turn");
+    until(client, ZOOM, json!("1.200"), WAIT).await;
+    click(client, "zoom-fit").await;
+}
+
+/// A new state AJAR, then a drag from it onto IDLE: the label box waits for the label, which
+/// Enter adds; the rubber band is gone after.
+async fn draw_a_transition_by_dragging(client: &Client) {
+    type_into(client, "add-state-name", "AJAR").await;
+    type_into(client, "add-state-name", ENTER).await;
+    let node = |name: &str| format!("#diagram g.node[data-state=\"{name}\"]");
+    until(
+        client,
+        &format!("return document.querySelector('{}') !== null", node("AJAR")),
+        json!(true),
+        WAIT,
+    )
+    .await;
+    let from = client.find(Locator::Css(&node("AJAR"))).await.unwrap();
+    let to = client.find(Locator::Css(&node("IDLE"))).await.unwrap();
+    drag(client, from, (0.0, 0.0), vec![Err((10.0, 0.0)), Ok(to)]).await;
+    status_starts(client, "drawn AJAR → IDLE").await;
+    assert_eq!(
+        eval(client, "return [document.getElementById('state-title').textContent, document.activeElement.id, document.getElementById('new-target').selectedOptions[0].textContent]").await,
+        json!(["AJAR", "new-label", "IDLE"])
+    );
+    type_into(client, "new-label", "~light").await;
+    type_into(client, "new-label", ENTER).await;
+    until(
+        client,
+        "return document.querySelectorAll('#transitions li').length",
+        json!(1),
+        WAIT,
+    )
+    .await;
+    assert_eq!(
+        eval(
+            client,
+            "return document.querySelectorAll('#diagram line.drawing-transition').length"
+        )
+        .await,
+        json!(0),
+        "the rubber band is gone"
+    );
+}
+
 /// The diagram zooms (buttons and wheel), pans (a drag on its background) and fits again; a
 /// transition is drawn by dragging from one state onto another, its label typed after, and saved.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_diagram_zooms_pans_and_fits_and_a_transition_is_drawn_by_dragging() {
-    use fantoccini::actions::{
-        InputSource, MouseActions, PointerAction, WheelAction, WheelActions, MOUSE_BUTTON_LEFT,
-    };
     let Some((_driver, client)) = open_browser().await else {
         return;
     };
@@ -241,139 +370,52 @@ async fn the_diagram_zooms_pans_and_fits_and_a_transition_is_drawn_by_dragging()
         WAIT,
     )
     .await;
-    let zoom = "return document.getElementById('diagram').dataset.zoom";
-    assert_eq!(
-        eval(&client, zoom).await,
-        json!("1.000"),
-        "drawn whole at first"
-    );
-
-    click(&client, "zoom-in").await;
-    click(&client, "zoom-in").await;
-    until(&client, zoom, json!("1.563"), WAIT).await;
-
-    // A drag from the background's corner moves the view; the zoom stays.
-    let view = "return document.getElementById('diagram').dataset.view";
-    let before = eval(&client, view).await;
-    let svg = client.find(Locator::Css("#diagram svg")).await.unwrap();
-    let corner = eval(
-        &client,
-        "const r = document.querySelector('#diagram svg').getBoundingClientRect(); return [r.width, r.height]",
-    )
-    .await;
-    let (w, h) = (corner[0].as_f64().unwrap(), corner[1].as_f64().unwrap());
-    let pan = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveToElement {
-            element: svg.clone(),
-            duration: None,
-            x: -w / 2.0 + 6.0,
-            y: -h / 2.0 + 6.0,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveBy {
-            duration: Some(Duration::from_millis(100)),
-            x: 80.0,
-            y: 50.0,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    client.perform_actions(pan).await.expect("a drag");
-    let after = eval(&client, view).await;
-    assert_ne!(before, after, "the view moved");
-    assert_eq!(eval(&client, zoom).await, json!("1.563"));
-
-    click(&client, "zoom-fit").await;
-    until(&client, zoom, json!("1.000"), WAIT).await;
-    // The wheel turned away from the reader zooms in where the pointer is.
-    let middle = eval(
-        &client,
-        "const r = document.querySelector('#diagram svg').getBoundingClientRect(); return [Math.round(r.x + r.width / 2), Math.round(r.y + r.height / 2)]",
-    )
-    .await;
-    let wheel = WheelActions::new("wheel".into()).then(WheelAction::Scroll {
-        duration: None,
-        x: middle[0].as_i64().unwrap(),
-        y: middle[1].as_i64().unwrap(),
-        delta_x: 0,
-        delta_y: -120,
-    });
-    client.perform_actions(wheel).await.expect("a wheel turn");
-    until(&client, zoom, json!("1.200"), WAIT).await;
-    click(&client, "zoom-fit").await;
-
-    // A state to draw from, then a drag from it onto IDLE: the label box waits for the label.
-    type_into(&client, "add-state-name", "AJAR").await;
-    type_into(&client, "add-state-name", ENTER).await;
-    let node = |name: &str| format!("#diagram g.node[data-state=\"{name}\"]");
-    until(
-        &client,
-        &format!("return document.querySelector('{}') !== null", node("AJAR")),
-        json!(true),
-        WAIT,
-    )
-    .await;
-    let from = client.find(Locator::Css(&node("AJAR"))).await.unwrap();
-    let to = client.find(Locator::Css(&node("IDLE"))).await.unwrap();
-    let drag = MouseActions::new("mouse".into())
-        .then(PointerAction::MoveToElement {
-            element: from,
-            duration: None,
-            x: 0.0,
-            y: 0.0,
-        })
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .then(PointerAction::MoveBy {
-            duration: Some(Duration::from_millis(50)),
-            x: 10.0,
-            y: 0.0,
-        })
-        .then(PointerAction::MoveToElement {
-            element: to,
-            duration: Some(Duration::from_millis(150)),
-            x: 0.0,
-            y: 0.0,
-        })
-        .then(PointerAction::Up {
-            button: MOUSE_BUTTON_LEFT,
-        });
-    client
-        .perform_actions(drag)
-        .await
-        .expect("a drag between states");
-    status_starts(&client, "drawn AJAR → IDLE").await;
-    assert_eq!(
-        eval(&client, "return [document.getElementById('state-title').textContent, document.activeElement.id, document.getElementById('new-target').selectedOptions[0].textContent]").await,
-        json!(["AJAR", "new-label", "IDLE"])
-    );
-    type_into(&client, "new-label", "~light").await;
-    type_into(&client, "new-label", ENTER).await;
-    until(
-        &client,
-        "return document.querySelectorAll('#transitions li').length",
-        json!(1),
-        WAIT,
-    )
-    .await;
-    assert_eq!(
-        eval(
-            &client,
-            "return document.querySelectorAll('#diagram line.drawing-transition').length"
-        )
-        .await,
-        json!(0),
-        "the rubber band is gone"
-    );
+    zoom_pan_and_fit(&client).await;
+    wheel_zooms(&client).await;
+    draw_a_transition_by_dragging(&client).await;
     click(&client, "save").await;
     status_starts(&client, "saved ").await;
     let saved = std::fs::read_to_string(&file).unwrap();
     assert!(
         saved.ends_with("\nstate AJAR {\n    when ~light -> IDLE\n}\n"),
         "{saved}"
+    );
+    client.close().await.unwrap();
+    let _ = std::fs::remove_dir_all(dir.parent().unwrap());
+}
+
+/// On a read-only page a drag from a state draws nothing: it pans the view as a drag on the
+/// background does.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_drag_on_a_read_only_page_pans_and_draws_nothing() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let dir = microwave_copy("drag-read-only");
+    let (_editor, url) = editor(&dir, &["--read-only"]);
+    let url = url.trim_end_matches(" (read-only)");
+    client.goto(url).await.expect("the page opens");
+    until(
+        &client,
+        "return document.body.dataset.ready ?? null",
+        json!("true"),
+        WAIT,
+    )
+    .await;
+    let view = "return document.getElementById('diagram').dataset.view";
+    let before = eval(&client, view).await;
+    let node = "#diagram g.node[data-state=\"IDLE\"]";
+    let from = client.find(Locator::Css(node)).await.unwrap();
+    drag(&client, from, (0.0, 0.0), vec![Err((60.0, 30.0))]).await;
+    assert_ne!(eval(&client, view).await, before, "the view moved");
+    let status = eval(
+        &client,
+        "return document.getElementById('status').textContent",
+    )
+    .await;
+    assert!(
+        status.as_str().unwrap_or_default().starts_with("read-only"),
+        "{status}"
     );
     client.close().await.unwrap();
     let _ = std::fs::remove_dir_all(dir.parent().unwrap());
