@@ -195,3 +195,19 @@ fn quoted(text: &str) -> String {
 fn one_line(text: &str) -> String {
     text.trim().replace(['\n', '\r'], " ")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::to_native;
+    use crate::native::parse_machine;
+
+    /// A name two states share is written as the ids; a unique one by name; each state's
+    /// transitions in the machine's order.
+    #[test]
+    fn states_are_referred_to_by_name_where_unique_and_by_id_where_names_repeat() {
+        let text = "machine M\ninitial #4\n\nstate A #4 {\n    when go -> #5\n    when TRUE -> B\n}\n\nstate A #5 {\n    when stop -> #4\n}\n\nstate B #6 {\n}\n";
+        let read = parse_machine("m.machine", text);
+        assert!(read.diagnostics.is_empty(), "{:?}", read.diagnostics);
+        assert_eq!(to_native(&read.machines[0]), text);
+    }
+}
