@@ -501,7 +501,8 @@ pub struct VerifyArgs {
 pub struct RunArgs {
     pub behaviour: String,
     /// Stop after this long (`30s`, `500ms`); default: when every machine that started is in
-    /// a final state
+    /// a final state or, alone with its script (no page, person, sensor or network), at the
+    /// first round after the script's last step that changes nothing with no time test to come
     #[arg(long = "for", value_name = "DURATION")]
     pub duration: Option<String>,
     /// Also write every event as JSON lines (read back by `proclaim replay`)

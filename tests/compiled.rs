@@ -237,6 +237,11 @@ const BOARD_POSTER: &str = "machine Poster\ninitial P\nstate P {\n    entry {\n 
 const EXTERN_POSTER: &str = "machine P\ninitial A\nstate A {\n    entry {\n        extern e;\n        extern n;\n        n = 5;\n        post(\"n\", n + 2);\n        e = true;\n        e: 0\n        post_int(\"m\", e == 0);\n        g = n;\n    }\n    internal {\n        n = n + 1;\n        g = n * 2;\n    }\n    when n > 9 -> B\n}\nstate B {\n    entry {\n        print_int(n);\n        e = 1;\n        n: 3\n    }\n    when timeout(200ms) -> C\n}\nstate C {\n}\n";
 
 /// The time tests in their units.
+/// A guard penalised at 500 ms that counts to 3 while it waits out a 2 s timeout, then waits
+/// for ever for a word the script never says: a run with no `--for` ends at the first still
+/// round after that, and no sooner.
+const GUARD: &str = "machine Guard\ninitial Ready\nstate Ready {\n    when penalised -> Penalised\n}\nstate Penalised {\n    entry { n = 0; }\n    internal { n = min(n + 1, 3); }\n    when timeout(2s) -> Waiting\n}\nstate Waiting {\n    when ~penalised -> Ready\n}\n";
+
 const TIME: &str = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
 
 #[test]
@@ -1205,6 +1210,16 @@ pub(crate) fn construct_cases() -> Vec<Case> {
         one("loop", "Loop", LOOP, None),
         one("time", "T", TIME, None),
         Case {
+            name: "still",
+            files: vec![
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"Guard.machine\"\n[impersonator]\nscript = \"own.script\"\n".into()),
+                ("Guard.machine".into(), GUARD.into()),
+                ("own.script".into(), "penalised = false\n".into()),
+            ],
+            script: "penalised = false\nat 500ms penalised = true\n",
+            run_for: None,
+        },
+        Case {
             name: "layers",
             files: vec![
                 ("behaviour.toml".into(), LAYERS.into()),
@@ -1281,6 +1296,51 @@ pub(crate) fn construct_cases() -> Vec<Case> {
             run_for: Some("5s"),
         },
     ]
+}
+
+/// A run with no end given, whose only outside is its script, ends at the first round after the
+/// script's last step that changes nothing with no time test to come (`docs/spec/behaviour.md`
+/// §3.1): the interpreter says so, and the compiled program with no duration ends at that round.
+#[test]
+fn a_run_with_no_end_given_ends_at_the_first_still_round_after_its_script() {
+    let files: Vec<(String, String)> = construct_cases()
+        .into_iter()
+        .find(|c| c.name == "still")
+        .unwrap()
+        .files;
+    let files: Vec<(&str, &str)> = files
+        .iter()
+        .map(|(f, t)| (f.as_str(), t.as_str()))
+        .collect();
+    let folder = behaviour_of("still-run", &files);
+    let script = folder.join("penalised.script");
+    std::fs::write(&script, "penalised = false\nat 500ms penalised = true\n").unwrap();
+    let run = proclaim(&[
+        "run",
+        folder.to_str().unwrap(),
+        "--virtual-clock",
+        "--script",
+        script.to_str().unwrap(),
+    ]);
+    let out = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{out}");
+    // The timeout fires at 2.5 s; the round after it (the period's, 2.6 s) is the first still one.
+    assert!(
+        out.contains("2.500s Guard         → Waiting")
+            && out.contains("stopped: the script is over and the machines are still (no change, no time test to come), after 2.600 s"),
+        "{out}"
+    );
+    if gcc_missing() {
+        return;
+    }
+    let trace = construct_trace("still");
+    let last = trace.lines().last().unwrap_or_default();
+    assert!(
+        last.contains("\"at_us\":2600000"),
+        "ends at the still round: {last}"
+    );
+    // `n` counts 1, 2, 3 (its entry's 0 is no change), each a change that keeps the run going.
+    assert_eq!(trace.matches("\"variable\":\"n\"").count(), 3, "{trace}");
 }
 
 /// Machines that go round a cycle of `TRUE` transitions hold time still (a round takes none):

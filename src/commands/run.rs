@@ -9,7 +9,7 @@ use crate::failure::Failure;
 use proclaim_behaviour::{launch, read_trace, Behaviour, LaunchOptions, TraceView};
 use proclaim_board::Whiteboard;
 use proclaim_experts::{parse_duration, parse_script};
-use proclaim_runner::Stepper;
+use proclaim_runner::{RoundsEnd, Stepper};
 use proclaim_runtime::Event;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -106,7 +106,19 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     })
 }
 
-fn launch_options(args: &RunArgs, script: Option<proclaim_experts::Script>) -> LaunchOptions {
+fn launch_options(
+    args: &RunArgs,
+    script: Option<proclaim_experts::Script>,
+    limit: Option<Duration>,
+) -> LaunchOptions {
+    // With no end given and nothing outside but the script, a run that can no longer change
+    // ends (a page, a watched file, a person or the network could still change it).
+    let alone = limit.is_none()
+        && args.monitor.is_none()
+        && !args.watch
+        && !args.step
+        && args.ask.is_empty()
+        && args.network.is_local();
     LaunchOptions {
         script,
         no_simulator: args.no_simulator,
@@ -121,6 +133,7 @@ fn launch_options(args: &RunArgs, script: Option<proclaim_experts::Script>) -> L
         person: person(&args.ask),
         ringlets: args.record.is_some(),
         experts: Vec::new(),
+        end_when_still: alone,
     }
 }
 
@@ -134,7 +147,7 @@ async fn run_on_board(
     trace_file: &mut Option<std::io::BufWriter<std::fs::File>>,
 ) -> Result<bool, Failure> {
     let script_used = script.is_some() || behaviour.script.is_some();
-    let options = launch_options(args, script);
+    let options = launch_options(args, script, limit);
     let stepper = options.stepper.clone();
     let team =
         crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
@@ -337,6 +350,21 @@ impl Live<'_> {
                     }
                 }
                 () = sleep => break format!("ran for {:?}", limit.unwrap_or_default()),
+                Ok(()) = running.end.changed() => {
+                    if *running.end.borrow() != Some(RoundsEnd::Still) {
+                        continue;
+                    }
+                    // The schedule's last events were sent before it ended.
+                    while let Ok(event) = running.events.try_recv() {
+                        self.show(&event);
+                        halted |= matches!(event, Event::Halted { .. });
+                        running.observe(&event);
+                    }
+                    break format!(
+                        "the script is over and the machines are still (no change, no time test to come), after {:.3} s",
+                        started.elapsed().as_secs_f64()
+                    );
+                }
                 _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
                 Some(first) = self.changed.recv() => self.reread(first, board).await,
             }

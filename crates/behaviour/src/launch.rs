@@ -10,11 +10,12 @@ use crate::replaced::Replaced;
 use proclaim_board::{Pattern, Suppressor, Whiteboard};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, FunctionExpert, GameControllerReceiver, Impersonator,
-    ReasonerExpert, ReceiverConfig, Script,
+    ReasonerExpert, ReceiverConfig, Script, When,
 };
 use proclaim_gcsim::{default_game, play, GameEvent, SimConfig};
 use proclaim_runner::{
-    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RunOptions, Shared, Stepper,
+    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RoundsEnd, RunOptions, Shared,
+    Stepper,
 };
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
@@ -47,6 +48,11 @@ pub struct LaunchOptions {
     /// replace the behaviour's own, as a script's do; the script's impersonator, when it
     /// answers one of them too, is left out.
     pub experts: Vec<FunctionExpert>,
+    /// End at the first still round after the script's last step (`RoundsEnd::Still`,
+    /// [`Running::end`]) when nothing else can post: only theories and the script answer (no
+    /// person, sensor, program or embedding expert) and the script has no `step N:` lines. For a
+    /// run with no end given, alone on its board (`proclaim run` with no `--for`).
+    pub end_when_still: bool,
 }
 
 impl LaunchOptions {
@@ -71,6 +77,9 @@ pub struct Running {
     pub round: RoundCounter,
     /// The variables the machines share (globals and externs).
     pub shared: Arc<Shared>,
+    /// How the round schedule ended, once it has (never under `schedule = "concurrent"`): its
+    /// events are in `events` by then.
+    pub end: tokio::sync::watch::Receiver<Option<RoundsEnd>>,
     /// What was started or left out, and where sockets listen, for the person running it.
     pub notes: Vec<String>,
     tasks: JoinSet<()>,
@@ -221,13 +230,18 @@ pub async fn launch(
         notes.extend(sim_note);
     }
 
+    let rounds = match (rounds, silent_from(behaviour, &options, &modules)) {
+        (Some(rounds), Some(from)) => Some(rounds.ends_when_still(from)),
+        (rounds, _) => rounds,
+    };
     let mut tasks = JoinSet::new();
     start_modules(board, modules, &mut tasks).await;
+    let (ended, end) = tokio::sync::watch::channel(None);
     match rounds {
         Some(rounds) => {
             let board = board.clone();
             tasks.spawn(async move {
-                rounds.run(board).await;
+                let _ = ended.send(Some(rounds.run(board).await));
             });
         }
         None => {
@@ -243,6 +257,7 @@ pub async fn launch(
         ringlets,
         round,
         shared,
+        end,
         notes,
         tasks,
         finals,
@@ -250,6 +265,32 @@ pub async fn launch(
         halted: FxHashSet::default(),
         finished: FxHashSet::default(),
     })
+}
+
+/// From when (since the epoch) nothing but the experts' answers can reach the machines, if
+/// `options` ask to end at a still round and only theories and a timed script are started.
+fn silent_from(
+    behaviour: &Behaviour,
+    options: &LaunchOptions,
+    modules: &[Module],
+) -> Option<Duration> {
+    let ours = |m: &Module| {
+        matches!(m.name.as_str(), "impersonator" | "script")
+            || behaviour.theories.iter().any(|t| t.name == m.name)
+    };
+    if !options.end_when_still || options.person.is_some() || !modules.iter().all(ours) {
+        return None;
+    }
+    let steps = options
+        .script_played(behaviour)
+        .map_or(&[][..], |s| &s.steps[..]);
+    steps
+        .iter()
+        .try_fold(Duration::ZERO, |last, step| match step.when {
+            When::Start => Some(last),
+            When::At(at) => Some(last.max(at)),
+            When::Step(_) => None,
+        })
 }
 
 /// The experts the embedding program gives: each takes over the atoms it answers from the

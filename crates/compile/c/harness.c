@@ -1,7 +1,8 @@
 /* The host harness of a behaviour compiled by proclaim: reads an impersonator script on standard
  * input (`name = value` from the start, `at 2s name = value` later), runs the behaviour on a
  * virtual clock and writes its trace as `proclaim run --trace --virtual-clock` does, until every
- * machine is in a final state or, given a time (`main 12s`), until then as `--for 12s` stops. */
+ * machine is in a final state or, given a time (`main 12s`), until then as `--for 12s` stops;
+ * given none, until a still round after the script's last step, as `run` with no `--for` does. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,6 +57,10 @@ static void json_string(const char *s)
  * the trace ends at the event that made it so, as `proclaim run`'s does. */
 static int over;
 
+/* How many of the machines' events so far were changes (all but answers read; not the
+ * impersonator's postings): a round that leaves it as it was changed nothing. */
+static unsigned long changes;
+
 static void tail(struct world *w)
 {
     printf(",\"round\":%llu,\"at_us\":%llu}\n", (unsigned long long)w->round,
@@ -80,6 +85,13 @@ static void on_post(struct world *w, const char *machine, const char *type, cons
     tail(w);
 }
 
+static void on_machine_post(struct world *w, const char *machine, const char *type,
+                            const char *content, unsigned long priority)
+{
+    changes++;
+    on_post(w, machine, type, content, priority);
+}
+
 static void on_suppressed(struct world *w, const char *machine, const char *type,
                           const char *content, unsigned long priority, const char *by,
                           unsigned long by_priority, uint64_t until_ms)
@@ -87,6 +99,7 @@ static void on_suppressed(struct world *w, const char *machine, const char *type
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"suppressed\",\"machine\":");
     json_string(machine);
     printf(",\"type\":");
@@ -106,6 +119,7 @@ static void on_took_over(struct world *w, const char *machine, const char *type,
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"took_over\",\"machine\":");
     json_string(machine);
     printf(",\"type\":");
@@ -122,6 +136,7 @@ static void on_entered(struct world *w, const char *machine, const char *state, 
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"entered\",\"machine\":");
     json_string(machine);
     printf(",\"state\":");
@@ -135,6 +150,7 @@ static void on_finished(struct world *w, const char *machine, const char *state)
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"finished\",\"machine\":");
     json_string(machine);
     printf(",\"state\":");
@@ -182,6 +198,7 @@ static void on_fired(struct world *w, const char *machine, long from, long to, c
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"fired\",\"machine\":");
     json_string(machine);
     printf(",\"from\":%ld,\"to\":%ld,\"label\":", from, to);
@@ -195,6 +212,7 @@ static void on_assigned(struct world *w, const char *machine, const char *variab
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"assigned\",\"machine\":");
     json_string(machine);
     printf(",\"variable\":");
@@ -209,6 +227,7 @@ static void on_printed(struct world *w, const char *machine, const char *text)
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"printed\",\"machine\":");
     json_string(machine);
     printf(",\"text\":");
@@ -221,6 +240,7 @@ static void on_control(struct world *w, const char *machine, const char *command
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"control\",\"machine\":");
     json_string(machine);
     printf(",\"command\":");
@@ -233,6 +253,7 @@ static void on_warned(struct world *w, const char *machine, const char *message)
     if (over) {
         return;
     }
+    changes++;
     printf("{\"event\":\"warned\",\"machine\":");
     json_string(machine);
     printf(",\"message\":");
@@ -491,9 +512,10 @@ int main(int argc, char **argv)
     size_t i;
     int fired;
     int without_waiting = 0;
+    unsigned long before;
     long long limit = -1;
     if (argc > 2 || (argc == 2 && (limit = duration_ms(argv[1])) < 0)) {
-        fprintf(stderr, "usage: %s [DURATION] < SCRIPT   (DURATION: 12s, 500ms: stop then)\n", argv[0]);
+        fprintf(stderr, "usage: %s [DURATION] < SCRIPT   (DURATION: 12s, 500ms: stop then; none: once the script is over and nothing changes)\n", argv[0]);
         return 2;
     }
     if (!read_script()) {
@@ -503,7 +525,7 @@ int main(int argc, char **argv)
     if (!sensors_scripted()) {
         return 2;
     }
-    w.cb.post = on_post;
+    w.cb.post = on_machine_post;
     w.cb.suppressed = on_suppressed;
     w.cb.took_over = on_took_over;
     w.cb.entered = on_entered;
@@ -531,8 +553,16 @@ int main(int argc, char **argv)
         if (limit >= 0 && w.now_ms >= (uint64_t)limit) {
             break;
         }
+        before = changes;
         fired = behaviour_round(&w);
         if (over || behaviour_finished(&w)) {
+            break;
+        }
+        /* Alone with its script and no DURATION, the run ends at the first still round after the
+         * script's last step: no change, no time test to come, so every later round would be the
+         * same (docs/spec/behaviour.md 3.1). */
+        if (limit < 0 && !fired && changes == before && next_step == step_count &&
+            behaviour_next_test_ms(&w) == UINT64_MAX) {
             break;
         }
         /* As the runner does: rounds that fire one after another hold time still, so past this

@@ -166,6 +166,9 @@ int behaviour_is_machine(const char *name);
 /* Milliseconds from now_ms until the next round is due without news (a timeout or the ring
  * period); UINT64_MAX while no machine runs (then only news starts a round, as the runner waits). */
 uint64_t behaviour_next_due_ms(const struct world *w);
+/* Milliseconds from now_ms until a running machine's time test, or a hold with a lower posting
+ * behind it, comes due; UINT64_MAX when nothing waits on the clock. */
+uint64_t behaviour_next_test_ms(const struct world *w);
 /* 1 when every machine that starts with the behaviour is in a final state, its OnEntry run. */
 int behaviour_finished(const struct world *w);
 

@@ -1040,15 +1040,10 @@ int behaviour_is_machine(const char *name)
     return 0;
 }
 
-uint64_t behaviour_next_due_ms(const struct world *w)
+uint64_t behaviour_next_test_ms(const struct world *w)
 {
     uint64_t due = UINT64_MAX;
     unsigned m;
-    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
-        if (w->status[m] == RUNNING) {
-            due = BEHAVIOUR_PERIOD_MS;
-        }
-    }
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         if (w->status[m] == RUNNING) {
             due = due_of(w, m, due);
@@ -1057,6 +1052,18 @@ uint64_t behaviour_next_due_ms(const struct world *w)
 #if BEHAVIOUR_SUPPRESSED
     due = release_due(w, due);
 #endif
+    return due;
+}
+
+uint64_t behaviour_next_due_ms(const struct world *w)
+{
+    uint64_t due = behaviour_next_test_ms(w);
+    unsigned m;
+    for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
+        if (w->status[m] == RUNNING && BEHAVIOUR_PERIOD_MS < due) {
+            due = BEHAVIOUR_PERIOD_MS;
+        }
+    }
     return due;
 }
 

@@ -522,14 +522,10 @@ pub fn is_machine(name: &str) -> bool {
     MACHINE_NAME.contains(&name)
 }
 
-/// Milliseconds from now until the next round is due without news (a timeout or the period);
-/// none while no machine runs (then only news starts a round, as the runner waits).
-pub fn next_due_ms(w: &World) -> Option<u64> {
-    let mut due = if w.status.contains(&RUNNING) {
-        PERIOD_MS
-    } else {
-        u64::MAX
-    };
+/// Milliseconds from now until the soonest time test of a running machine, or hold with a
+/// lower posting behind it, comes due; none when nothing waits on the clock.
+pub fn next_test_ms(w: &World) -> Option<u64> {
+    let mut due = u64::MAX;
     for m in 0..MACHINES {
         if w.status[m] == RUNNING {
             due = due_of(w, m, due);
@@ -540,6 +536,16 @@ pub fn next_due_ms(w: &World) -> Option<u64> {
         due = due.min((release.as_millis() as u64).saturating_sub(w.now_ms));
     }
     (due != u64::MAX).then_some(due)
+}
+
+/// Milliseconds from now until the next round is due without news (a timeout or the period);
+/// none while no machine runs (then only news starts a round, as the runner waits).
+pub fn next_due_ms(w: &World) -> Option<u64> {
+    let period = w.status.contains(&RUNNING).then_some(PERIOD_MS);
+    match (period, next_test_ms(w)) {
+        (Some(period), Some(test)) => Some(period.min(test)),
+        (period, test) => period.or(test),
+    }
 }
 
 /// Whether every machine that starts with the behaviour is in a final state, its OnEntry run.
@@ -585,6 +591,9 @@ impl proclaim_runtime::host::CompiledBehaviour for Behaviour {
     }
     fn next_due_ms(w: &World) -> Option<u64> {
         next_due_ms(w)
+    }
+    fn next_test_ms(w: &World) -> Option<u64> {
+        next_test_ms(w)
     }
     fn finished(w: &World) -> bool {
         finished(w)

@@ -23,8 +23,14 @@ impl Reporter {
         self.epoch.elapsed()
     }
 
-    /// Sends the event made for the time and round now.
+    /// Sends the event made for the time and round now: a change the machine made.
     pub fn emit(&self, event: impl FnOnce(Duration, u64) -> Event) {
+        self.round.changed();
+        self.emit_read(event);
+    }
+
+    /// [`Reporter::emit`] for an answer the machine read, which changes nothing.
+    pub fn emit_read(&self, event: impl FnOnce(Duration, u64) -> Event) {
         if let Some(tx) = &self.sender {
             let _ = tx.send(event(self.now(), self.round.get()));
         }

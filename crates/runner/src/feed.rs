@@ -8,18 +8,35 @@ use std::sync::Arc;
 use std::time::Duration;
 
 /// The number of the round under way (0 before the first), shared by the machines of a
-/// schedule so that every event says which round it happened in.
+/// schedule so that every event says which round it happened in; and how many of their events
+/// were changes ([`proclaim_runtime::Event::is_change`]), so the schedule can tell a still round.
 #[derive(Clone, Debug, Default)]
-pub struct RoundCounter(Arc<AtomicU64>);
+pub struct RoundCounter(Arc<Counts>);
+
+#[derive(Debug, Default)]
+struct Counts {
+    round: AtomicU64,
+    changes: AtomicU64,
+}
 
 impl RoundCounter {
     pub fn get(&self) -> u64 {
-        self.0.load(Ordering::Relaxed)
+        self.0.round.load(Ordering::Relaxed)
     }
 
     /// Starts the next round; its number.
     pub(crate) fn advance(&self) -> u64 {
-        self.0.fetch_add(1, Ordering::Relaxed) + 1
+        self.0.round.fetch_add(1, Ordering::Relaxed) + 1
+    }
+
+    /// A machine reported a change.
+    pub(crate) fn changed(&self) {
+        self.0.changes.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The changes reported so far.
+    pub(crate) fn changes(&self) -> u64 {
+        self.0.changes.load(Ordering::Relaxed)
     }
 }
 

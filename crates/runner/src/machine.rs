@@ -489,7 +489,7 @@ impl<'r> RunningMachine<'r> {
             if by == Answerer::TimedOut && silent.is_none() {
                 silent = Some(atom.clone());
             }
-            self.reporter.emit(|at, round| Event::Answered {
+            self.reporter.emit_read(|at, round| Event::Answered {
                 machine: self.name.clone(),
                 atom,
                 value,
@@ -548,13 +548,18 @@ impl<'r> RunningMachine<'r> {
 
     /// How long until the current state's next time test comes due, at most the ring period.
     pub(crate) fn next_due(&self) -> Duration {
+        let period = self.runner.options.ring_period;
+        self.next_time_test().map_or(period, |due| due.min(period))
+    }
+
+    /// How long until the soonest time test of the current state's labels comes due, if one
+    /// is still to come.
+    pub(crate) fn next_time_test(&self) -> Option<Duration> {
         let mut env = self.env();
         self.machine
             .outgoing(self.current)
             .filter_map(|t| next_time_test(&t.label, &mut env))
             .min()
-            .unwrap_or(self.runner.options.ring_period)
-            .min(self.runner.options.ring_period)
     }
 
     /// Waits until a message a label of the state reads arrives, a global it reads changes,

@@ -19,6 +19,7 @@ use proclaim_runtime::Ringlet;
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::mpsc;
+use tokio::time::Instant;
 
 /// Why a schedule's run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,6 +31,10 @@ pub enum RoundsEnd {
     /// [`MOST_ROUNDS_WITHOUT_WAITING`] rounds fired one after another: the machines go round
     /// a cycle that takes no time, so time could never pass; every machine halted, saying so.
     NoTimePasses,
+    /// The outside had said all it would ([`Rounds::ends_when_still`]) and a round was still:
+    /// no machine fired or changed anything, and no time test or hold was to come due, so
+    /// every later round would be the same.
+    Still,
 }
 
 /// How many rounds in a row may fire with no wait between them. A round takes no time (§3.1),
@@ -48,6 +53,8 @@ pub struct Rounds {
     stepper: Option<Stepper>,
     ticks: Option<mpsc::UnboundedSender<Ringlet>>,
     feed: Option<SharedFeed>,
+    /// From when (since the machines' epoch) nothing outside will post again.
+    silent_from: Option<Duration>,
 }
 
 impl Rounds {
@@ -60,7 +67,16 @@ impl Rounds {
             stepper: None,
             ticks: None,
             feed: None,
+            silent_from: None,
         }
+    }
+
+    /// Ends at the first still round ([`RoundsEnd::Still`]) at or after `silent_from` (since
+    /// the machines' epoch), from when nothing outside the machines will post again but the
+    /// experts answering what they ask (a script over, no person, no sensor).
+    pub fn ends_when_still(mut self, silent_from: Duration) -> Rounds {
+        self.silent_from = Some(silent_from);
+        self
     }
 
     /// One round per step of `stepper` while it is paused.
@@ -121,6 +137,7 @@ impl Rounds {
                 settle(&board).await;
             }
             last_moment = Some(moment);
+            let changes = self.round.changes();
             let fired = self
                 .play_round(&mut scheduled, round, commanded, &board)
                 .await;
@@ -138,6 +155,9 @@ impl Rounds {
                     return RoundsEnd::FeedDone;
                 }
                 continue;
+            }
+            if !fired && self.still(&scheduled, changes, moment) {
+                return RoundsEnd::Still;
             }
             if fired {
                 if self.time_stands_still(&mut without_waiting, &mut scheduled) {
@@ -170,6 +190,25 @@ impl Rounds {
             // either.
             tokio::task::consume_budget().await;
         }
+    }
+
+    /// Whether the round just played at `moment`, which fired nothing, was still and the outside
+    /// silent by then: no change reported since the count was `changes`, and no running
+    /// machine's time test or hold to come due.
+    fn still(&self, scheduled: &ScheduledMachines<'_>, changes: u64, moment: Instant) -> bool {
+        let (Some(from), Some(first)) = (self.silent_from, scheduled.runs.first()) else {
+            return false;
+        };
+        let waiting = |(run, over): (&RunningMachine<'_>, &bool)| {
+            !*over && run.status == Status::Running && run.next_time_test().is_some()
+        };
+        moment.saturating_duration_since(first.reporter.epoch) >= from
+            && self.round.changes() == changes
+            && scheduled
+                .suppressor
+                .as_ref()
+                .is_none_or(|s| s.lock().next_release().is_none())
+            && !scheduled.runs.iter().zip(&scheduled.over).any(waiting)
     }
 
     /// Counts a round that fired; past [`MOST_ROUNDS_WITHOUT_WAITING`] of them in a row, halts

@@ -202,6 +202,13 @@ pub enum Answerer {
 }
 
 impl Event {
+    /// Whether a machine did something a later round could tell from doing nothing: every event
+    /// but an answer read. A round of answers alone, with the outside silent and no time test to
+    /// come, is the same round for ever after (`docs/spec/behaviour.md` §3.1, a still round).
+    pub fn is_change(&self) -> bool {
+        !matches!(self, Event::Answered { .. })
+    }
+
     pub fn machine(&self) -> &str {
         match self {
             Event::Entered { machine, .. }

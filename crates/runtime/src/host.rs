@@ -45,6 +45,8 @@ pub trait CompiledBehaviour {
     fn is_machine(name: &str) -> bool;
     /// Milliseconds until the next round is due, if one is.
     fn next_due_ms(w: &World) -> Option<u64>;
+    /// Milliseconds until a running machine's time test (or a hold) comes due, if one will.
+    fn next_test_ms(w: &World) -> Option<u64>;
     /// Whether every machine that started is in a final state.
     fn finished(w: &World) -> bool;
 }
@@ -307,7 +309,7 @@ impl Impersonator {
         });
         if !step.shown {
             step.shown = true;
-            w.posted("impersonator", &step.name, step.value, 0);
+            w.posted_outside("impersonator", &step.name, step.value);
         }
         B::outside(w, &step.name, step.value)
     }
@@ -458,8 +460,9 @@ enum Ended {
     Interrupted,
 }
 
-/// Rounds until every machine that started is in a final state, or `--for` runs out; `write`
-/// writes the events reported so far. With a whiteboard on the real clock, what other modules
+/// Rounds until every machine that started is in a final state, `--for` runs out, or (alone
+/// with its script) a still round after the script's last step; `write` writes the events
+/// reported so far. With a whiteboard on the real clock, what other modules
 /// post there comes in as the script's postings do.
 fn run<B: CompiledBehaviour>(
     w: &mut World,
@@ -475,6 +478,8 @@ fn run<B: CompiledBehaviour>(
     let mut without_waiting = 0;
     // Only a run on the real clock waits long enough to hear anything.
     let board = board.filter(|_| !options.virtual_clock);
+    // No whiteboard, no page, no `--for`: only the script speaks to the machines.
+    let alone = stepping.is_none() && options.limit_ms.is_none();
     // What the script says from the start is posted before the first round; what it says at
     // 0 ms, as the first round starts.
     while impersonator.next < impersonator.steps.len()
@@ -497,6 +502,7 @@ fn run<B: CompiledBehaviour>(
         if hear_now::<B>(w, board).is_some() {
             return Ok(Ended::Interrupted);
         }
+        let changes = w.changes;
         let fired = B::round(w, |w| {
             impersonator.post_due::<B>(w);
         });
@@ -513,6 +519,13 @@ fn run<B: CompiledBehaviour>(
         if without_waiting >= MOST_ROUNDS_WITHOUT_WAITING {
             write(w);
             return Err(format!("halted: {MOST_ROUNDS_WITHOUT_WAITING} rounds fired one after another with no wait: the machines go round a cycle that takes no time, so time cannot pass"));
+        }
+        // Alone with its script, a run with no end given ends at the first still round after
+        // the script's last step: every round after it would be the same (§3.1).
+        let still = !fired && w.changes == changes && B::next_test_ms(w).is_none();
+        if still && alone && impersonator.next == impersonator.steps.len() {
+            write(w);
+            return Ok(Ended::Finished);
         }
         // A round that fired, or whose own postings changed what a label reads, is followed at once.
         if fired || B::news(w) {

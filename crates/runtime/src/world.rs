@@ -244,6 +244,9 @@ pub struct World {
     pub sink: Option<Box<dyn FnMut(Event)>>,
     /// Set once every machine that started is in a final state: the trace ends there.
     pub over: bool,
+    /// How many of the machines' events so far were changes ([`Event::is_change`]; not the
+    /// impersonator's postings): a round that leaves it as it was changed nothing.
+    pub changes: u64,
     /// What holds each type under subsumption, for a behaviour that declares any.
     pub suppressor: Option<Suppressor<String>>,
     /// Whether each output has an answerer: a theory's always, an atom from outside when the
@@ -349,6 +352,7 @@ impl World {
             text: String::new(),
             sink,
             over: false,
+            changes: 0,
             suppressor: None,
             supplied: vec![false; outputs],
             unposted: Vec::new(),
@@ -423,11 +427,19 @@ impl World {
         }
     }
 
-    /// Reports the event `event` makes of the round and the time now, unless the run is over.
+    /// Reports the event `event` makes of the round and the time now, unless the run is over:
+    /// a machine's change (an answer read is reported by [`World::answered`]).
     pub fn report(&mut self, event: impl FnOnce(u64, Duration) -> Event) {
+        self.report_as(true, event);
+    }
+
+    /// [`World::report`], counted in `changes` if `change` (as [`Event::is_change`] says of
+    /// it: the event is made only for a sink).
+    fn report_as(&mut self, change: bool, event: impl FnOnce(u64, Duration) -> Event) {
         if self.over {
             return;
         }
+        self.changes += u64::from(change);
         let (round, at) = (self.round, Duration::from_millis(self.now_ms));
         if let Some(sink) = self.sink.as_mut() {
             sink(event(round, at));
@@ -440,6 +452,19 @@ impl World {
             ty: ty.to_string(),
             content: content.to_string(),
             priority,
+            round,
+            at,
+        });
+    }
+
+    /// A posting by a module that is not a machine (the impersonator), shown in the trace; no
+    /// change of the machines'.
+    pub fn posted_outside(&mut self, module: &str, ty: &str, content: &str) {
+        self.report_as(false, |round, at| Event::Posted {
+            machine: module.to_string(),
+            ty: ty.to_string(),
+            content: content.to_string(),
+            priority: 0,
             round,
             at,
         });
@@ -514,19 +539,14 @@ impl World {
     pub fn queried(&mut self, atom: &str, value: bool) {
         if let Some(i) = self.unposted.iter().position(|a| a == atom) {
             self.unposted.remove(i);
-            self.posted(
-                "impersonator",
-                atom,
-                if value { "true" } else { "false" },
-                0,
-            );
+            self.posted_outside("impersonator", atom, if value { "true" } else { "false" });
             self.answer_shown.push((atom.to_string(), value));
         }
     }
 
     /// A label's atom read `value`, answered as `by` says.
     pub fn answered(&mut self, machine: &str, atom: &str, value: bool, by: By) {
-        self.report(|round, at| Event::Answered {
+        self.report_as(false, |round, at| Event::Answered {
             machine: machine.to_string(),
             atom: atom.to_string(),
             value,
