@@ -208,8 +208,6 @@ fn outside_tables(plan: &Plan) -> (String, String, String, String) {
 fn behaviour(plan: &Plan) -> String {
     let (priorities, suppressed, sensors, script) = outside_tables(plan);
     let numbers = [
-        plan.machines.len().to_string(),
-        plan.outputs.len().to_string(),
         plan.variables().to_string(),
         plan.period_ms.to_string(),
         plan.answer_timeout_ms.to_string(),
@@ -220,13 +218,11 @@ fn behaviour(plan: &Plan) -> String {
         BODY,
         &[
             ("name", &plan.name.replace('\n', " ")),
-            ("machines", &numbers[0]),
-            ("outputs", &numbers[1]),
-            ("variables", &numbers[2]),
-            ("period_ms", &numbers[3]),
-            ("commands", &numbers[5]),
-            ("loop_limit", &numbers[6]),
-            ("answer_timeout_ms", &numbers[4]),
+            ("inputs", &numbers[0]),
+            ("period_ms", &numbers[1]),
+            ("commands", &numbers[3]),
+            ("loop_limit", &numbers[4]),
+            ("answer_timeout_ms", &numbers[2]),
             (
                 "output_names",
                 &strings(plan.outputs.iter().map(|o| o.name.as_str())),
@@ -240,7 +236,6 @@ fn behaviour(plan: &Plan) -> String {
                 &strings(plan.machines.iter().map(|m| m.name.as_str())),
             ),
             ("priorities", &priorities),
-            ("externs", &plan.externs.len().to_string()),
             (
                 "extern_names",
                 &strings(plan.externs.iter().map(|b| b.name.as_str())),
@@ -259,9 +254,7 @@ fn behaviour(plan: &Plan) -> String {
             ),
             ("theory_outputs", &plan.theory_outputs().to_string()),
             ("script", &script),
-            ("sensors_n", &plan.sensors.len().to_string()),
             ("sensors", &sensors),
-            ("suppressed_n", &plan.suppressed.len().to_string()),
             ("suppressed", &suppressed),
             ("answers", &machine_code::answers(plan, &Rust)),
             ("code", &machine_code::printed(plan, &Rust)),

@@ -17,10 +17,16 @@ fn type_name(t: Type) -> &'static str {
 
 impl Rust {
     fn with_world(&self, name: &str, args: &[Expr]) -> String {
-        if args.is_empty() {
-            format!("{name}(w)")
+        // The runtime's calls that read the behaviour's tables are generic over them.
+        let tables = if proclaim_runtime::calls::GENERIC.contains(&name) {
+            "::<Behaviour>"
         } else {
-            format!("{name}(w, {})", self.list(args))
+            ""
+        };
+        if args.is_empty() {
+            format!("{name}{tables}(w)")
+        } else {
+            format!("{name}{tables}(w, {})", self.list(args))
         }
     }
 }
