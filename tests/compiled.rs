@@ -239,7 +239,8 @@ const EXTERN_POSTER: &str = "machine P\ninitial A\nstate A {\n    entry {\n     
 /// The time tests in their units.
 /// A guard penalised at 500 ms that counts to 3 while it waits out a 2 s timeout, then waits
 /// for ever for a word the script never says: a run with no `--for` ends at the first still
-/// round after that, and no sooner.
+/// round after that, and no sooner. No module declares `penalised`: the run's script answers it,
+/// as the impersonator, in the compiled programs as in the interpreter.
 const GUARD: &str = "machine Guard\ninitial Ready\nstate Ready {\n    when penalised -> Penalised\n}\nstate Penalised {\n    entry { n = 0; }\n    internal { n = min(n + 1, 3); }\n    when timeout(2s) -> Waiting\n}\nstate Waiting {\n    when ~penalised -> Ready\n}\n";
 
 const TIME: &str = "machine T\ninitial A\nstate A {\n    when timeout(300000) -> B\n}\nstate B {\n    when after_ms(250) -> C\n}\nstate C {\n    when after(1) && after_ms(3s) -> D\n}\nstate D {\n    when timeout(2s) -> E\n}\nstate E {\n}\n";
@@ -1212,9 +1213,8 @@ pub(crate) fn construct_cases() -> Vec<Case> {
         Case {
             name: "still",
             files: vec![
-                ("behaviour.toml".into(), "[[machine]]\nfile = \"Guard.machine\"\n[impersonator]\nscript = \"own.script\"\n".into()),
+                ("behaviour.toml".into(), "[[machine]]\nfile = \"Guard.machine\"\n".into()),
                 ("Guard.machine".into(), GUARD.into()),
-                ("own.script".into(), "penalised = false\n".into()),
             ],
             script: "penalised = false\nat 500ms penalised = true\n",
             run_for: None,
@@ -1334,6 +1334,11 @@ fn a_run_with_no_end_given_ends_at_the_first_still_round_after_its_script() {
         return;
     }
     let trace = construct_trace("still");
+    assert!(
+        trace
+            .contains("\"atom\":\"penalised\",\"value\":true,\"by\":{\"expert\":\"impersonator\"}"),
+        "the script answers the atom no module declares: {trace}"
+    );
     let last = trace.lines().last().unwrap_or_default();
     assert!(
         last.contains("\"at_us\":2600000"),

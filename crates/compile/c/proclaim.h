@@ -102,6 +102,11 @@ struct world {
     struct value ext[BEHAVIOUR_EXTERNS];
     unsigned char ext_known[BEHAVIOUR_EXTERNS];
     const char *ext_by[BEHAVIOUR_EXTERNS];
+    /* Each whiteboard value a label asks that the host's script answers as the impersonator
+     * (no module of the behaviour declares the atom; `behaviour_supply` marks it), and the
+     * script's value of it now (false until the script posts one). */
+    unsigned char scripted[BEHAVIOUR_EXTERNS];
+    unsigned char scripted_value[BEHAVIOUR_EXTERNS];
     /* As each machine's last ringlet saw them: the board at its snapshot, the values it posted
      * itself since, and whether it read the snapshot at all (a ringlet that read nothing of the
      * board finds nothing new in a posting). */
@@ -154,7 +159,9 @@ int behaviour_news(const struct world *w);
 /* 1 when `atom` is an answer of the behaviour's theories. */
 int behaviour_answers(const char *atom);
 /* The host answers `atom` from outside (a script or its own sensor sets it): 1 when the
- * behaviour's labels ask it. Unsupplied, such an atom is false and answered by no expert. */
+ * behaviour's labels ask it, or it is a whiteboard value its machines read (a label asking it is
+ * then answered by the impersonator, the script's value, false until the script posts one).
+ * Unsupplied, such an atom is false and answered by no expert. */
 int behaviour_supply(struct world *w, const char *atom);
 /* Module `s`'s name (a sensor wrapper, a Prolog or program expert), NULL past the last; its atom
  * `i`, NULL past the last. A host supplies one of each module's atoms (the interpreter leaves

@@ -721,8 +721,26 @@ static struct value read_extern(struct world *w, unsigned e)
 static int ask_posted(struct world *w, unsigned m, unsigned e, const char *atom)
 {
     const char *by = 0;
-    struct value v = read_board(w, e, &by);
-    int value = !v.none && truthy(v);
+    struct value v;
+    int value;
+    if (w->scripted[e]) {
+        /* The host's script answers it, as the interpreter's impersonator does: the expert
+         * posts its answer. */
+        value = w->scripted_value[e];
+        w->ext[e] = v_bool(value);
+        w->ext_known[e] = 1;
+        w->ext_by[e] = "impersonator";
+        (void)apply_input(w, atom, value ? "true" : "false");
+        if (w->cb.queried) {
+            w->cb.queried(w, atom, value);
+        }
+        w->asked_posted[m][e] = 1;
+        w->asked_answer[m][e] = (unsigned char)value;
+        pend(w, atom, value, "impersonator", 0);
+        return value;
+    }
+    v = read_board(w, e, &by);
+    value = !v.none && truthy(v);
     if (v.none) {
         by = 0;
     }
@@ -782,6 +800,7 @@ static int apply_extern(struct world *w, const char *type, const char *content)
             w->ext[e] = v_bool(same(content, "true"));
             w->ext_known[e] = 1;
             w->ext_by[e] = "impersonator";
+            w->scripted_value[e] = (unsigned char)same(content, "true");
             return 1;
         }
     }
@@ -891,6 +910,8 @@ void behaviour_init(struct world *w)
         w->ext[v] = v_int(0);
         w->ext_known[v] = 0;
         w->ext_by[v] = 0;
+        w->scripted[v] = 0;
+        w->scripted_value[v] = 0;
     }
     w->globals_changes = 0;
     w->commands_waiting = 0;
@@ -1007,9 +1028,18 @@ int behaviour_answers(const char *atom)
 int behaviour_supply(struct world *w, const char *atom)
 {
     unsigned k;
+    unsigned e;
     for (k = theory_outputs; k < outputs; k++) {
         if (same(atom, output_name[k])) {
             w->supplied[k] = 1;
+            return 1;
+        }
+    }
+    /* An atom no module of the behaviour declares, which a label asks of the board: the
+     * script answers it as the impersonator. */
+    for (e = 0; e < externs; e++) {
+        if (same(atom, extern_name[e])) {
+            w->scripted[e] = 1;
             return 1;
         }
     }

@@ -144,6 +144,9 @@ pub fn read_extern<B: Tables>(w: &mut World, e: usize) -> Scalar {
 /// A label atom nobody answers: the runner reads the atom's newest posting as the ringlet sees
 /// it and reports who posted it (a never posted atom is false, answered by nobody).
 pub fn ask_posted<B: Tables>(w: &mut World, m: usize, e: usize, atom: &'static str) -> bool {
+    if let Some(value) = w.scripted[e] {
+        return scripted::<B>(w, (m, e), atom, value);
+    }
     // On a shared whiteboard an expert in another process may answer it, as it answers the
     // runner's query.
     let asked = w
@@ -173,6 +176,25 @@ pub fn ask_posted<B: Tables>(w: &mut World, m: usize, e: usize, atom: &'static s
         None => By::Nobody,
     };
     w.pending.push((atom, value, by));
+    value
+}
+
+/// The host's script answers a label's atom that no module of the behaviour declares, as the
+/// interpreter's impersonator does: asked, it posts its answer.
+fn scripted<B: Tables>(
+    w: &mut World,
+    (m, e): (usize, usize),
+    atom: &'static str,
+    value: bool,
+) -> bool {
+    w.message(B::MACHINE_NAME[m], QUERY_TYPE, || serde_json::json!(atom));
+    w.message("impersonator", atom, || serde_json::Value::Bool(value));
+    w.ext[e] = Some(v_bool(value));
+    w.ext_by[e] = "impersonator";
+    B::apply_input(w, atom, if value { "true" } else { "false" });
+    w.queried(atom, value);
+    w.asked_posted[m][e] = Some(value);
+    w.pending.push((atom, value, By::Expert("impersonator")));
     value
 }
 

@@ -94,12 +94,17 @@ impl<B: Tables> CompiledBehaviour for B {
     }
 
     /// The host answers `atom` from outside (its script sets it): whether it is an atom from
-    /// outside the behaviour's labels ask.
+    /// outside the behaviour's labels ask, or a whiteboard value its machines read (a label
+    /// asking it is then answered by the impersonator, as the interpreter's script answers it).
     fn supply(w: &mut World, atom: &str) -> bool {
         let outside = &B::OUTPUT_NAME[B::THEORY_OUTPUTS..];
-        match outside.iter().position(|o| *o == atom) {
-            Some(k) => {
-                w.supplied[B::THEORY_OUTPUTS + k] = true;
+        if let Some(k) = outside.iter().position(|o| *o == atom) {
+            w.supplied[B::THEORY_OUTPUTS + k] = true;
+            return true;
+        }
+        match B::EXTERN_NAME.iter().position(|name| *name == atom) {
+            Some(e) => {
+                w.scripted[e] = Some(false);
                 true
             }
             None => false,
@@ -169,6 +174,9 @@ fn apply_extern<B: Tables>(w: &mut World, ty: &str, content: &str) -> bool {
         Some(e) => {
             w.ext[e] = Some(crate::world::v_bool(content == "true"));
             w.ext_by[e] = "impersonator";
+            if w.scripted[e].is_some() {
+                w.scripted[e] = Some(content == "true");
+            }
             true
         }
         None => false,

@@ -226,6 +226,10 @@ pub struct World {
     /// The atoms nobody answers that each machine's last ringlet asked, read from these values,
     /// and what it read: news is then a posting whose truth differs.
     pub asked_posted: Vec<Vec<Option<bool>>>,
+    /// Each whiteboard value a label asks that the host's script answers as the impersonator
+    /// (no module of the behaviour declares the atom; the host's `supply` marks it): the
+    /// script's value of it now, false until the script posts one.
+    pub scripted: Vec<Option<bool>>,
     /// The answers the label being proved has read (atom, value, who answered), reported once
     /// it is proved, as the runner reports them.
     pub pending: Vec<(&'static str, bool, By)>,
@@ -342,6 +346,7 @@ impl World {
             ext_own: vec![vec![None; externs]; machines],
             ext_read: vec![false; machines],
             asked_posted: vec![vec![None; externs]; machines],
+            scripted: vec![None; externs],
             pending: Vec::new(),
             ringing: 0,
             past_snapshot: false,
