@@ -308,10 +308,20 @@ pub struct ProveArgs {
 /// What `proclaim explain` is told.
 #[derive(Args, Clone, Debug)]
 pub struct ExplainArgs {
-    /// A .dl or .dfl file, or an embedded theory
+    /// A .dl or .dfl file, or an embedded theory; with `--recording`, the behaviour that ran
     pub theory: String,
-    /// A literal: `offside` or `~offside`
+    /// A literal: `offside` or `~offside`; with `--recording`, a label a machine asked
     pub query: String,
+    /// Explain the answer a run gave: a recording of it (`run --record`), replayed into the
+    /// behaviour's theories up to the query, with the inputs the reasoner held then
+    #[arg(long, value_name = "FILE.jsonl", requires = "round", conflicts_with_all = ["set", "alg"])]
+    pub recording: Option<std::path::PathBuf>,
+    /// With `--recording`: the round whose query of the label to explain
+    #[arg(long, requires = "recording")]
+    pub round: Option<u64>,
+    /// With `--recording`: the machine that asked (default: the round's first to ask)
+    #[arg(long, requires = "recording")]
+    pub machine: Option<String>,
     #[arg(long, value_enum, default_value = "beta")]
     pub alg: AlgArg,
     /// Input values, `atom=true|false|unknown` (repeatable)

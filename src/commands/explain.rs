@@ -10,6 +10,9 @@ use std::process::ExitCode;
 
 /// `proclaim explain`.
 pub fn command(args: ExplainArgs) -> Result<ExitCode, Failure> {
+    if let (Some(recording), Some(round)) = (&args.recording, args.round) {
+        return from_recording(&args, recording, round);
+    }
     run(
         &args.theory,
         &args.query,
@@ -48,6 +51,77 @@ pub fn run(
         for explanation in explanations {
             print!("{explanation}");
         }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `explain BEHAVIOUR LABEL --recording FILE --round N`: the answer the run gave, explained
+/// from the inputs its theory held when the label was asked. A replay that answers otherwise
+/// than the recording is a failure (the recording is of another behaviour, or of a changed one).
+fn from_recording(
+    args: &ExplainArgs,
+    path: &std::path::Path,
+    round: u64,
+) -> Result<ExitCode, Failure> {
+    let behaviour = crate::behaviours::load_behaviour(&args.theory)?;
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let recording = proclaim_behaviour::read_recording(&text)
+        .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
+    let mut held = proclaim_behaviour::held_at(
+        &behaviour,
+        &recording,
+        &args.query,
+        round,
+        args.machine.as_deref(),
+    )
+    .map_err(|e| Failure::Argument(format!("{}: {e}", path.display())))?;
+    let explanation = held.explain(args.depth);
+    let asked = &held.asked;
+    if asked.recorded.is_some_and(|r| r != asked.replayed) {
+        return Err(Failure::Argument(format!(
+            "{}: `{}` was answered {} in round {}, but the theory `{}` answers {} from the recorded inputs: the recording is not of this behaviour as it is now",
+            path.display(),
+            asked.label,
+            asked.recorded.unwrap_or_default(),
+            round,
+            asked.theory,
+            asked.replayed
+        )));
+    }
+    let inputs: Vec<String> = held
+        .inputs()
+        .into_iter()
+        .map(|(ty, v)| match v {
+            Some(v) => format!("{ty} = {v}"),
+            None => format!("{ty} unknown"),
+        })
+        .collect();
+    if args.json {
+        let json = serde_json::json!({
+            "round": asked.round, "machine": asked.machine, "label": asked.label,
+            "theory": asked.theory, "answer": asked.replayed,
+            "inputs": held.inputs().into_iter().map(|(ty, v)| serde_json::json!({"type": ty, "value": v})).collect::<Vec<_>>(),
+            "explanation": to_json(&explanation),
+        });
+        println!("{json}");
+    } else {
+        println!(
+            "round {}: {} asked `{}`; the theory `{}` answered {}, its inputs then: {}",
+            asked.round,
+            asked.machine,
+            asked.label,
+            asked.theory,
+            asked.replayed,
+            if inputs.is_empty() {
+                "none".to_string()
+            } else {
+                inputs.join(", ")
+            }
+        );
+        print!("{explanation}");
     }
     Ok(ExitCode::SUCCESS)
 }

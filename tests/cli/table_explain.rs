@@ -1,6 +1,6 @@
 //! `table` and `explain`: a theory's answers for every input, and why an answer is what it is.
 
-use super::{check, stderr, stdout};
+use super::{check, stderr, stdout, temp_file};
 use crate::proclaim;
 
 #[test]
@@ -72,4 +72,110 @@ fn explain_json_names_goals_rules_and_their_roles() {
         ]
     );
     assert_eq!(root["because"][1]["beaten_by"], "Exposed");
+}
+
+/// A recorded run's every answer of a theory, replayed from the recording's messages into the
+/// behaviour's theories, is the answer the run gave (the microwave on its kitchen script to the
+/// end, and the keeper whose theory reads an input group); `explain --recording` explains one
+/// from the inputs the reasoner held then, and says where a label was asked when it was not.
+#[test]
+fn explain_from_a_recording_gives_the_runs_answer_and_why() {
+    let keeper = crate::behaviour_folder(
+        "why-keeper",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Keeper.machine\"\n[[theory]]\nfile = \"keeper.dl\"\n"),
+            ("Keeper.machine", "machine Keeper\ninitial Wait\nstate Wait {\n    when diveLeft -> Left\n}\nstate Left {\n    when diveRight && notLeft -> Right\n}\nstate Right {\n}\n"),
+            ("keeper.dl", "input{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\nR: ballRight => diveRight.\nN: ~ballLeft => notLeft.\noutput{diveLeft, diveRight, notLeft}.\n"),
+        ],
+    );
+    let keeper_script = temp_file(
+        "keeper.script",
+        b"at 300ms ballLeft = true\nat 700ms ballRight = true\n",
+    );
+    let runs = [
+        ("microwave".to_string(), None, "70s"),
+        (
+            keeper.to_str().unwrap().to_string(),
+            Some(keeper_script),
+            "2s",
+        ),
+    ];
+    for (n, (behaviour, script, run_for)) in runs.iter().enumerate() {
+        let recording = temp_file(&format!("why-{n}.jsonl"), b"");
+        let mut args = vec!["run", behaviour, "--virtual-clock", "--for", run_for];
+        args.extend(["--record", recording.to_str().unwrap()]);
+        if let Some(script) = script {
+            args.extend(["--script", script.to_str().unwrap()]);
+        }
+        let run = proclaim(&args);
+        assert!(run.status.success(), "{behaviour}: {}", stderr(&run));
+        let folder = match behaviour.as_str() {
+            "microwave" => "machines/microwave",
+            other => other,
+        };
+        let files = std::sync::Arc::new(proclaim_behaviour::Folder::new(folder));
+        let loaded = proclaim_behaviour::load(folder, files).unwrap();
+        let text = std::fs::read_to_string(&recording).unwrap();
+        let read = proclaim_behaviour::read_recording(&text).unwrap();
+        let asked = proclaim_behaviour::theory_answers(&loaded, &read);
+        assert!(asked.iter().any(|a| a.replayed) && asked.iter().any(|a| !a.replayed));
+        for a in &asked {
+            assert_eq!(a.recorded, Some(a.replayed), "{behaviour}: {a:?}");
+        }
+        let first_true = asked.iter().find(|a| a.replayed).unwrap();
+        let round = first_true.round.to_string();
+        let o = proclaim(&[
+            "explain",
+            behaviour,
+            &first_true.label,
+            "--recording",
+            recording.to_str().unwrap(),
+            "--round",
+            &round,
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let said = stdout(&o);
+        let head = format!(
+            "round {round}: {} asked `{}`; the theory `{}` answered true, its inputs then: ",
+            first_true.machine, first_true.label, first_true.theory
+        );
+        assert!(said.starts_with(&head), "{said}");
+        assert!(
+            said.contains(&format!("+β {}", first_true.label))
+                || said.contains(&format!("+beta {}", first_true.label)),
+            "{said}"
+        );
+    }
+    let recording = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-cli-{}", std::process::id()))
+        .join("why-1.jsonl");
+    let o = proclaim(&[
+        "explain",
+        keeper.to_str().unwrap(),
+        "diveRight",
+        "--recording",
+        recording.to_str().unwrap(),
+        "--round",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("`diveRight` was not asked in round 1; it was in rounds"),
+        "{}",
+        stderr(&o)
+    );
+    let o = proclaim(&[
+        "explain",
+        keeper.to_str().unwrap(),
+        "stay",
+        "--recording",
+        recording.to_str().unwrap(),
+        "--round",
+        "1",
+    ]);
+    assert!(
+        stderr(&o).contains("`stay` is no output of the behaviour's theories (keeper)"),
+        "{}",
+        stderr(&o)
+    );
 }

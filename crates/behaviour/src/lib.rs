@@ -27,6 +27,7 @@ mod subsumption;
 mod team;
 pub mod testing;
 mod trace;
+mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
@@ -53,6 +54,7 @@ pub use recorded::{
 };
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
+pub use why::{held_at, theory_answers, Held, TheoryAnswer, WhyError};
 
 /// The guide's Rust snippets (`docs/book`), compiled (and run) as doctests so they stay true.
 #[cfg(doctest)]

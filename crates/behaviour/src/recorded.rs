@@ -28,18 +28,18 @@ type Answers = FxHashMap<String, VecDeque<Value>>;
 
 /// A message as the recording keeps it.
 #[derive(Clone, Debug, PartialEq)]
-struct Recorded {
-    seq: u64,
-    module: String,
-    ty: String,
-    value: Value,
+pub(crate) struct Recorded {
+    pub seq: u64,
+    pub module: String,
+    pub ty: String,
+    pub value: Value,
 }
 
 /// A recording read back.
 #[derive(Clone, Debug, Default)]
 pub struct Recording {
-    messages: Vec<Recorded>,
-    ringlets: Vec<Ringlet>,
+    pub(crate) messages: Vec<Recorded>,
+    pub(crate) ringlets: Vec<Ringlet>,
     events: Vec<Event>,
 }
 

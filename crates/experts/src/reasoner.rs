@@ -3,7 +3,7 @@
 //! each with the algorithm its `output{}` names.
 
 use proclaim_board::{undecided_type, ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
-use proclaim_cdl::{Algorithm, Atom, Engine, Lit, SearchLimits, Session, Theory};
+use proclaim_cdl::{Algorithm, Atom, Engine, Explanation, Lit, SearchLimits, Session, Theory};
 use rustc_hash::FxHashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
@@ -177,6 +177,26 @@ impl ReasonerExpert {
     pub fn answer(&mut self, atom: &str) -> Option<bool> {
         let o = self.outputs.iter().position(|o| o.name == atom)?;
         Some(self.decide(o))
+    }
+
+    /// Why output `atom` is answered as it is now: its algorithm's proof (or failure) of it,
+    /// `depth` levels down; `None` when this expert does not own it.
+    pub fn explain(&mut self, atom: &str, depth: usize) -> Option<Explanation> {
+        let o = self.outputs.iter().position(|o| o.name == atom)?;
+        let (algorithm, lit) = (self.outputs[o].algorithm, self.outputs[o].lit);
+        Some(self.session.explain(algorithm, lit, depth))
+    }
+
+    /// Each input as the expert holds it now: its message type and value (`None`: unknown),
+    /// in the order of the types' names.
+    pub fn inputs_held(&self) -> Vec<(String, Option<bool>)> {
+        let mut held: Vec<(String, Option<bool>)> = self
+            .inputs
+            .iter()
+            .map(|(ty, atom)| (ty.clone(), self.session.input(*atom)))
+            .collect();
+        held.sort();
+        held
     }
 
     /// Registers, posts the initial outputs, then follows its inputs and answers queries until
