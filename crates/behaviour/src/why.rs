@@ -177,11 +177,10 @@ fn replay(
             // Who answered is who posted the label next (a script may answer a theory's label
             // in its place); a run that ended first leaves it to the theory that declares it.
             let answer = messages[i + 1..].iter().find(|a| a.ty == label);
-            let owns = |e: &Option<ReasonerExpert>, t: usize| match answer {
-                Some(a) => a.module == behaviour.theories[t].name,
-                None => e
-                    .as_ref()
-                    .is_some_and(|e| e.declaration().answers.contains(&label)),
+            let owns = |e: &Option<ReasonerExpert>, t: usize| {
+                e.as_ref()
+                    .is_some_and(|e| e.declaration().answers.contains(&label))
+                    && answer.is_none_or(|a| a.module == behaviour.theories[t].name)
             };
             let Some(t) = (0..experts.len()).find(|t| owns(&experts[*t], *t)) else {
                 continue;
