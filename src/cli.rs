@@ -167,6 +167,13 @@ pub enum CliCommand {
         /// Recordings, or folders of them (every `.jsonl` inside)
         #[arg(required = true)]
         recordings: Vec<PathBuf>,
+        /// Also say what the recordings exercised, and what they never did: states entered,
+        /// transitions fired, theory rules applied, priorities that decided an answer
+        #[arg(long)]
+        coverage: bool,
+        /// With `--coverage`: the coverage as JSON on standard output
+        #[arg(long, requires = "coverage")]
+        json: bool,
     },
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay(ReplayArgs),

@@ -72,7 +72,9 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
         CliCommand::Test {
             behaviour,
             recordings,
-        } => test::run(&behaviour, &recordings),
+            coverage,
+            json,
+        } => test::run(&behaviour, &recordings, test::TestReport { coverage, json }),
         CliCommand::Replay(args) => replay(args),
         CliCommand::Deps(args) => deps::command(args),
         CliCommand::Liveness { file, output } => liveness::run(&file, &output),

@@ -9,7 +9,18 @@ use proclaim_behaviour::{read_recording, replay_recording, ReplayOutcome};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-pub fn run(behaviour: &str, recordings: &[PathBuf]) -> Result<ExitCode, Failure> {
+/// What to say besides each replay's outcome.
+pub struct TestReport {
+    /// What the recordings exercised (`--coverage`), as JSON (`--json`) or text.
+    pub coverage: bool,
+    pub json: bool,
+}
+
+pub fn run(
+    behaviour: &str,
+    recordings: &[PathBuf],
+    report: TestReport,
+) -> Result<ExitCode, Failure> {
     let behaviour = load_behaviour(behaviour)?;
     let files = recording_files(recordings)?;
     if files.is_empty() {
@@ -18,6 +29,7 @@ pub fn run(behaviour: &str, recordings: &[PathBuf]) -> Result<ExitCode, Failure>
         ));
     }
     let mut failed = 0;
+    let mut read = Vec::new();
     for path in &files {
         let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
             path: path.clone(),
@@ -26,24 +38,65 @@ pub fn run(behaviour: &str, recordings: &[PathBuf]) -> Result<ExitCode, Failure>
         let recording = read_recording(&text)
             .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
         match replay_recording(&behaviour, &recording).map_err(Failure::Runtime)? {
-            ReplayOutcome::Same { rounds, events } => {
-                println!(
+            // Under `--json` standard output is the coverage alone.
+            ReplayOutcome::Same { rounds, events } => say(
+                report.json,
+                format!(
                     "ok    {} ({rounds} rounds, {events} events as recorded)",
                     path.display()
-                );
-            }
+                ),
+            ),
             ReplayOutcome::Differs(difference) => {
                 failed += 1;
-                println!("FAIL  {}: {difference}", path.display());
+                say(
+                    report.json,
+                    format!("FAIL  {}: {difference}", path.display()),
+                );
             }
         }
+        if report.coverage {
+            read.push(recording);
+        }
     }
-    println!("{} passed, {failed} failed", files.len() - failed);
+    say(
+        report.json,
+        format!("{} passed, {failed} failed", files.len() - failed),
+    );
+    if report.coverage {
+        print_coverage(
+            &proclaim_behaviour::coverage(&behaviour, &read),
+            report.json,
+        );
+    }
     Ok(if failed == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
     })
+}
+
+/// A line of the replays' outcome: on standard output, or on standard error when that is JSON.
+fn say(json: bool, line: String) {
+    if json {
+        eprintln!("{line}");
+    } else {
+        println!("{line}");
+    }
+}
+
+/// What the recordings exercised, kind by kind, and what they never did.
+fn print_coverage(coverage: &proclaim_behaviour::Coverage, json: bool) {
+    if json {
+        println!("{}", serde_json::to_string(coverage).unwrap_or_default());
+        return;
+    }
+    println!("coverage:");
+    for (kind, done, of, never) in coverage.summary() {
+        println!("  {kind}: {done} of {of}");
+        for what in never {
+            println!("    never: {what}");
+        }
+    }
 }
 
 /// The files named, and the `.jsonl` files of the folders named, in name order.

@@ -159,3 +159,70 @@ fn the_built_in_behaviours_recorded_replay_the_same() {
         );
     }
 }
+
+/// `test --coverage` says what recordings never exercised: the microwave's own kitchen script
+/// never opens the door while cooking, so the priority `DoorCut > Timer` never decides an answer
+/// and COOKING -> OPEN never fires; a second recording that opens the door mid-minute covers both.
+#[test]
+fn test_coverage_names_the_priority_no_recording_exercised() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-coverage-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let kitchen = dir.join("kitchen.jsonl");
+    let record = |path: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["run", "microwave", "--virtual-clock", "--for", "70s"];
+        args.extend(["--record", path.to_str().unwrap()]);
+        args.extend(extra);
+        let run = proclaim(&args);
+        assert!(run.status.success(), "{}", stderr(&run));
+    };
+    record(&kitchen, &[]);
+    let o = proclaim(&["test", "microwave", kitchen.to_str().unwrap(), "--coverage"]);
+    let said = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{said}{}", stderr(&o));
+    for line in [
+        "  priorities deciding an answer: 2 of 4\n",
+        "    never: microwave: DoorCut > Timer\n",
+        "    never: Microwave: COOKING -> OPEN (~cook && light)\n",
+    ] {
+        assert!(said.contains(line), "{line:?} in\n{said}");
+    }
+    let door = dir.join("door.jsonl");
+    let script = dir.join("door.script");
+    std::fs::write(
+        &script,
+        "doorOpen = false\ntimeLeft = false\nat 1s timeLeft = true\nat 10s doorOpen = true\n",
+    )
+    .unwrap();
+    record(&door, &["--script", script.to_str().unwrap()]);
+    let o = proclaim(&[
+        "test",
+        "microwave",
+        dir.to_str().unwrap(),
+        "--coverage",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("2 passed, 0 failed"), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let exercised = |kind: &str, what: &str| {
+        json[kind]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["what"] == what)
+            .unwrap_or_else(|| panic!("{what} in {json}"))["exercised"]
+            .as_bool()
+            .unwrap()
+    };
+    assert!(exercised("priorities", "microwave: DoorCut > Timer"));
+    assert!(exercised(
+        "transitions",
+        "Microwave: COOKING -> OPEN (~cook && light)"
+    ));
+    assert!(!exercised(
+        "transitions",
+        "Microwave: OPEN -> COOKING (cook)"
+    ));
+}

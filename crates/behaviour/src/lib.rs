@@ -8,6 +8,7 @@
 //! sockets its sensors need; it does not watch files or print: the binary does.
 
 mod analysis;
+mod coverage;
 mod deps;
 mod draw;
 mod edited;
@@ -30,6 +31,7 @@ mod trace;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
+pub use coverage::{coverage, Coverage, Covered};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use draw::behaviour_to_dot;
 pub use edited::check_edited;

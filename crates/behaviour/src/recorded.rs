@@ -40,7 +40,7 @@ pub(crate) struct Recorded {
 pub struct Recording {
     pub(crate) messages: Vec<Recorded>,
     pub(crate) ringlets: Vec<Ringlet>,
-    events: Vec<Event>,
+    pub(crate) events: Vec<Event>,
 }
 
 /// Why a recording cannot be read.

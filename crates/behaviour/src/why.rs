@@ -160,7 +160,7 @@ fn expert(t: &crate::loaded::LoadedTheory) -> ReasonerExpert {
 /// Replays the recording's messages into an expert of each theory; at each query of one of
 /// their outputs, tells `seen` what was asked and offers the answering expert (taken out of
 /// the replay when `seen` takes it); stops once `seen` is true.
-fn replay(
+pub(crate) fn replay(
     behaviour: &Behaviour,
     recording: &Recording,
     seen: &mut dyn FnMut(&TheoryAnswer, &mut Option<ReasonerExpert>) -> bool,
