@@ -162,19 +162,7 @@ pub enum CliCommand {
     /// virtual clock, and compare its machines' states, postings, answers and variables with
     /// each recording round by round: exit 0 when all are the same, 1 naming the first
     /// difference of each that is not
-    Test {
-        behaviour: String,
-        /// Recordings, or folders of them (every `.jsonl` inside)
-        #[arg(required = true)]
-        recordings: Vec<PathBuf>,
-        /// Also say what the recordings exercised, and what they never did: states entered,
-        /// transitions fired, theory rules applied, priorities that decided an answer
-        #[arg(long)]
-        coverage: bool,
-        /// With `--coverage`: the coverage as JSON on standard output
-        #[arg(long, requires = "coverage")]
-        json: bool,
-    },
+    Test(TestArgs),
     /// Print a trace written by `proclaim run --trace` as the live trace was
     Replay(ReplayArgs),
     /// Draw a behaviour's module dependencies: for one module, the experts it queries above it
@@ -340,6 +328,27 @@ pub struct ExplainArgs {
     /// Print the explanation as JSON (each node: its goal, rule, status and reasons)
     #[arg(long)]
     pub json: bool,
+}
+
+/// What `proclaim test` is told.
+#[derive(Args, Clone, Debug)]
+pub struct TestArgs {
+    /// The behaviour the recordings are of
+    pub behaviour: String,
+    /// Recordings, or folders of them (every `.jsonl` inside)
+    #[arg(required = true)]
+    pub recordings: Vec<PathBuf>,
+    /// Also say what the recordings exercised, and what they never did: states entered,
+    /// transitions fired, theory rules applied, priorities that decided an answer
+    #[arg(long)]
+    pub coverage: bool,
+    /// With `--coverage`: the coverage as JSON on standard output
+    #[arg(long, requires = "coverage")]
+    pub json: bool,
+    /// Accept a deliberate change: a recording that differs is recorded again on the
+    /// behaviour as it is now (its outside replayed), and the rounds that changed are shown
+    #[arg(long)]
+    pub update: bool,
 }
 
 /// What `proclaim compile` is told.

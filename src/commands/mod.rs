@@ -69,12 +69,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
             network,
         } => board::watch(&pattern, &network, duration.as_deref()),
         CliCommand::Ping { count, network } => board::ping(count, &network),
-        CliCommand::Test {
-            behaviour,
-            recordings,
-            coverage,
-            json,
-        } => test::run(&behaviour, &recordings, test::TestReport { coverage, json }),
+        CliCommand::Test(args) => test::command(args),
         CliCommand::Replay(args) => replay(args),
         CliCommand::Deps(args) => deps::command(args),
         CliCommand::Liveness { file, output } => liveness::run(&file, &output),

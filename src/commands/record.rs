@@ -4,7 +4,7 @@
 //! `proclaim replay` (the messages) and `proclaim test` (all three).
 
 use crate::failure::Failure;
-use proclaim_board::{Message, Pattern, Whiteboard};
+use proclaim_board::{Pattern, Whiteboard};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -43,14 +43,14 @@ pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
             tokio::select! {
                 biased;
                 message = all.next() => match message {
-                    Some(m) => write(&line(&m), true),
+                    Some(m) => write(&proclaim_behaviour::message_line(&m), true),
                     None => break,
                 },
                 Some(text) = other.recv() => write(&text, false),
                 _ = &mut stopped => {
                     // What is already queued belongs to the run too.
                     while let Some(m) = all.try_next() {
-                        write(&line(&m), true);
+                        write(&proclaim_behaviour::message_line(&m), true);
                     }
                     while let Ok(text) = other.try_recv() {
                         write(&text, false);
@@ -122,22 +122,6 @@ impl Recorder {
         let _ = self.stop.send(());
         (self.task.await.unwrap_or(0), self.path)
     }
-}
-
-/// One message as a JSON line.
-pub fn line(m: &Message) -> String {
-    let mut line = serde_json::json!({
-        "seq": m.seq,
-        "at_us": m.time.as_micros() as u64,
-        "module": &*m.module,
-        "type": &*m.ty,
-        "value": m.value.to_json(),
-    });
-    // A subsumption layer's priority; absent at 0, so other recordings read as they did.
-    if m.priority != 0 {
-        line["priority"] = serde_json::json!(m.priority);
-    }
-    line.to_string()
 }
 
 /// A recorded message as `replay` prints it, or `None` when the line is not one.

@@ -9,11 +9,23 @@ use proclaim_behaviour::{read_recording, replay_recording, ReplayOutcome};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// `proclaim test`.
+pub fn command(args: crate::cli::TestArgs) -> Result<ExitCode, Failure> {
+    let report = TestReport {
+        coverage: args.coverage,
+        json: args.json,
+        update: args.update,
+    };
+    run(&args.behaviour, &args.recordings, report)
+}
+
 /// What to say besides each replay's outcome.
 pub struct TestReport {
     /// What the recordings exercised (`--coverage`), as JSON (`--json`) or text.
     pub coverage: bool,
     pub json: bool,
+    /// Record again each recording that differs (`--update`).
+    pub update: bool,
 }
 
 pub fn run(
@@ -46,6 +58,15 @@ pub fn run(
                     path.display()
                 ),
             ),
+            ReplayOutcome::Differs(_) if report.update => {
+                let again = proclaim_behaviour::rerecord(&behaviour, &recording)
+                    .map_err(Failure::Runtime)?;
+                std::fs::write(path, &again.text).map_err(|error| Failure::Write {
+                    path: path.clone(),
+                    error,
+                })?;
+                say(report.json, updated(path, &again.changed));
+            }
             ReplayOutcome::Differs(difference) => {
                 failed += 1;
                 say(
@@ -74,6 +95,32 @@ pub fn run(
         ExitCode::from(1)
     })
 }
+
+/// What `--update` accepted: the recording written again, and the first rounds that changed.
+fn updated(path: &Path, changed: &[proclaim_behaviour::RoundChange]) -> String {
+    let mut text = format!(
+        "updated {}: recorded again, {} round{} changed",
+        path.display(),
+        changed.len(),
+        if changed.len() == 1 { "" } else { "s" }
+    );
+    for change in changed.iter().take(SHOWN_CHANGES) {
+        text.push_str(&format!("\n  round {}:", change.round));
+        for line in change.was.iter().filter(|l| !change.now.contains(l)) {
+            text.push_str(&format!("\n    - {line}"));
+        }
+        for line in change.now.iter().filter(|l| !change.was.contains(l)) {
+            text.push_str(&format!("\n    + {line}"));
+        }
+    }
+    if changed.len() > SHOWN_CHANGES {
+        text.push_str(&format!("\n  … and {} more", changed.len() - SHOWN_CHANGES));
+    }
+    text
+}
+
+/// How many changed rounds `--update` shows.
+const SHOWN_CHANGES: usize = 5;
 
 /// A line of the replays' outcome: on standard output, or on standard error when that is JSON.
 fn say(json: bool, line: String) {

@@ -226,3 +226,63 @@ fn test_coverage_names_the_priority_no_recording_exercised() {
         "Microwave: OPEN -> COOKING (cook)"
     ));
 }
+
+/// `test --update` accepts a deliberate change: a recording that the changed behaviour no longer
+/// matches is recorded again on it (the same outside replayed), the changed round is shown, and
+/// the new recording then passes; one that still matches is left alone.
+#[test]
+fn test_update_records_a_deliberate_change_again_and_shows_the_round() {
+    let theory = std::fs::read_to_string("theories/microwave.dl").unwrap();
+    let machine = std::fs::read_to_string("machines/microwave/Microwave.machine").unwrap();
+    let kitchen = std::fs::read_to_string("machines/microwave/kitchen.script").unwrap();
+    let manifest = std::fs::read_to_string("machines/microwave/behaviour.toml")
+        .unwrap()
+        .replace("../../theories/microwave.dl", "microwave.dl");
+    let files = [
+        ("behaviour.toml", manifest.as_str()),
+        ("Microwave.machine", machine.as_str()),
+        ("microwave.dl", theory.as_str()),
+        ("kitchen.script", kitchen.as_str()),
+    ];
+    let folder = crate::behaviour_folder("update", &files);
+    let behaviour = folder.to_str().unwrap();
+    let recording = folder.join("kitchen.jsonl");
+    let run = proclaim(&[
+        "run",
+        behaviour,
+        "--virtual-clock",
+        "--for",
+        "70s",
+        "--record",
+        recording.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let recorded = recording.to_str().unwrap();
+    let o = proclaim(&["test", behaviour, recorded, "--update"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert!(stdout(&o).starts_with("ok "), "unchanged: {}", stdout(&o));
+    // Cooking (the last state to light the oven) now lights it brighter.
+    let at = machine.rfind("Light: on").unwrap();
+    let changed = format!("{}Light: bright{}", &machine[..at], &machine[at + 9..]);
+    std::fs::write(folder.join("Microwave.machine"), changed).unwrap();
+    let o = proclaim(&["test", behaviour, recorded]);
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    let o = proclaim(&["test", behaviour, recorded, "--update"]);
+    let said = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{said}{}", stderr(&o));
+    assert!(
+        said.contains(": recorded again, 1 round changed\n"),
+        "{said}"
+    );
+    assert!(
+        said.contains("    - 4.000s Microwave  posts Light: on\n    + 4.000s Microwave  posts Light: bright\n"),
+        "{said}"
+    );
+    let o = proclaim(&["test", behaviour, recorded]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "the new recording passes: {}",
+        stdout(&o)
+    );
+}

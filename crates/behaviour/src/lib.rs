@@ -24,6 +24,7 @@ mod program_entries;
 mod programs;
 mod recorded;
 mod replaced;
+mod rerecord;
 mod subsumption;
 mod team;
 pub mod testing;
@@ -51,9 +52,10 @@ pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
 pub use recorded::{
-    read_recording, replay_recording, ringlet_line, Difference, Recording, RecordingError,
-    ReplayOutcome,
+    message_line, read_recording, replay_recording, ringlet_line, Difference, Recording,
+    RecordingError, ReplayOutcome,
 };
+pub use rerecord::{rerecord, Rerecorded, RoundChange};
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
 pub use why::{held_at, theory_answers, Held, TheoryAnswer, WhyError};

@@ -9,7 +9,7 @@
 use crate::launch::machine_runners;
 use crate::load::Behaviour;
 use crate::LaunchOptions;
-use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
+use proclaim_board::{Message, ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_experts::ReasonerExpert;
 use proclaim_runner::{Event, Feed, Ringlet, Rounds};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -70,6 +70,22 @@ impl std::error::Error for RecordingError {}
 /// One line of a recording as `run --record` writes it.
 pub fn ringlet_line(ringlet: &Ringlet) -> String {
     serde_json::json!({ "ringlet": ringlet }).to_string()
+}
+
+/// A whiteboard message as a recording's line: `seq`, `at_us`, `module`, `type`, `value`, and a
+/// subsumption layer's `priority` when it is not 0 (so older recordings read as they did).
+pub fn message_line(m: &Message) -> String {
+    let mut line = serde_json::json!({
+        "seq": m.seq,
+        "at_us": m.time.as_micros() as u64,
+        "module": &*m.module,
+        "type": &*m.ty,
+        "value": m.value.to_json(),
+    });
+    if m.priority != 0 {
+        line["priority"] = serde_json::json!(m.priority);
+    }
+    line.to_string()
 }
 
 /// Reads a recording: message lines (`seq`, `module`, `type`, `value`), ringlet lines
@@ -214,12 +230,19 @@ pub fn replay_recording(
         .enable_all()
         .start_paused(true)
         .build()?;
-    let found = runtime.block_on(replay(behaviour, recording));
+    let board = Whiteboard::local();
+    let found = runtime.block_on(replay(behaviour, recording, board, |_| {}));
     Ok(compare(behaviour, recording, &found))
 }
 
-async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
-    let board = Whiteboard::local();
+/// The recording's outside posted again on `board`, the behaviour's machines and theories
+/// running on it in rounds (`rounds` sees the schedule before it starts); the machines' events.
+pub(crate) async fn replay(
+    behaviour: &Behaviour,
+    recording: &Recording,
+    board: Whiteboard,
+    rounds: impl FnOnce(&mut Rounds),
+) -> Vec<Event> {
     let inside: FxHashSet<String> = behaviour
         .machines
         .iter()
@@ -251,7 +274,9 @@ async fn replay(behaviour: &Behaviour, recording: &Recording) -> Vec<Event> {
     let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch, &shared);
     drop(tx);
     let feed = RecordedFeed::new(recording, outside);
-    Rounds::new(runners).fed_by(feed).run(board.clone()).await;
+    let mut schedule = Rounds::new(runners).fed_by(feed);
+    rounds(&mut schedule);
+    schedule.run(board.clone()).await;
     tasks.abort_all();
     let mut found = Vec::new();
     while let Ok(event) = events.try_recv() {

@@ -323,9 +323,11 @@ impl Rounds {
                 ringlet,
             });
         }
-        // What the feed posted counts as before the ringlet too.
+        // What the feed posted counts as before the ringlet too, and it rings at the moment
+        // the feed moved it to.
         Ringlet {
             seq: board.snapshot().seq,
+            at: round_time.saturating_duration_since(run.reporter.epoch),
             ..ringlet
         }
     }
