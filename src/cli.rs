@@ -305,7 +305,8 @@ pub struct ProveArgs {
 pub struct ExplainArgs {
     /// A .dl or .dfl file, or an embedded theory; with `--recording`, the behaviour that ran
     pub theory: String,
-    /// A literal: `offside` or `~offside`; with `--recording`, a label a machine asked
+    /// A literal: `offside` or `~offside`; with `--recording`, a label a machine asked, or a
+    /// machine (which of its transitions fired in that round, and why the others did not)
     pub query: String,
     /// Explain the answer a run gave: a recording of it (`run --record`), replayed into the
     /// behaviour's theories up to the query, with the inputs the reasoner held then

@@ -70,6 +70,20 @@ fn from_recording(
     })?;
     let recording = proclaim_behaviour::read_recording(&text)
         .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
+    if behaviour
+        .machines
+        .iter()
+        .any(|m| m.machine.name == args.query)
+    {
+        let tried = proclaim_behaviour::tried(&behaviour, &recording, &args.query, round)
+            .map_err(|e| Failure::Argument(format!("{}: {e}", path.display())))?;
+        if args.json {
+            println!("{}", serde_json::to_string(&tried).unwrap_or_default());
+        } else {
+            print!("{tried}");
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     let mut held = proclaim_behaviour::held_at(
         &behaviour,
         &recording,

@@ -146,9 +146,39 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
             "{said}"
         );
     }
-    let recording = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-cli-{}", std::process::id()))
-        .join("why-1.jsonl");
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-cli-{}", std::process::id()));
+    // A machine named instead of a label: which transition fired in the round and why the
+    // others did not (the microwave's kitchen run: OPEN -> COOKING on `cook` at 3 s).
+    let microwave = dir.join("why-0.jsonl");
+    let text = std::fs::read_to_string(&microwave).unwrap();
+    let fired = text
+        .lines()
+        .find(|l| l.contains("\"event\":\"fired\"") && l.contains("\"label\":\"cook\""))
+        .unwrap();
+    let round: serde_json::Value = serde_json::from_str(fired).unwrap();
+    let round = round["round"].to_string();
+    let o = proclaim(&[
+        "explain",
+        "microwave",
+        "Microwave",
+        "--recording",
+        microwave.to_str().unwrap(),
+        "--round",
+        &round,
+    ]);
+    let said = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{said}{}", stderr(&o));
+    assert!(
+        said.starts_with(&format!("round {round}: Microwave rang in ")),
+        "{said}"
+    );
+    assert!(
+        said.contains("  its labels read: cook = true (microwave)"),
+        "{said}"
+    );
+    assert!(said.contains("-> COOKING when cook: fired\n"), "{said}");
+    let recording = dir.join("why-1.jsonl");
     let o = proclaim(&[
         "explain",
         keeper.to_str().unwrap(),

@@ -29,6 +29,7 @@ mod subsumption;
 mod team;
 pub mod testing;
 mod trace;
+mod tried;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
@@ -58,6 +59,7 @@ pub use recorded::{
 pub use rerecord::{rerecord, Rerecorded, RoundChange};
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
+pub use tried::{tried, Outcome, Tried, TriedError};
 pub use why::{held_at, theory_answers, Held, TheoryAnswer, WhyError};
 
 /// The guide's Rust snippets (`docs/book`), compiled (and run) as doctests so they stay true.

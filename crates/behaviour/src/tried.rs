@@ -1,0 +1,179 @@
+//! Why a machine did or did not move in a recorded round (`proclaim explain B MACHINE
+//! --recording F --round N`): the state its ringlet ran in, the answers its labels read, and
+//! its transitions in priority order: the one that fired, those before it (their labels did not
+//! hold), those after it (never tried).
+
+use crate::load::Behaviour;
+use crate::recorded::Recording;
+use proclaim_runner::{Answerer, Event};
+use std::fmt;
+
+/// A machine's ringlet of one recorded round.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Tried {
+    pub machine: String,
+    pub round: u64,
+    pub state: String,
+    /// When the state was entered: round and microseconds since the start.
+    pub entered: (u64, u64),
+    /// Each answer its labels read, as the trace shows it: `atom = value (who)`.
+    pub read: Vec<String>,
+    /// Its state's transitions in priority order: target, label, and how each came out.
+    pub transitions: Vec<(String, String, Outcome)>,
+}
+
+/// How one transition of the state came out in the ringlet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    Fired,
+    /// Its label did not hold.
+    DidNotHold,
+    /// One before it fired.
+    NotTried,
+}
+
+/// Why a machine's round cannot be shown.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TriedError {
+    NoMachine(String),
+    /// It took no ringlet in that round (not running, or the run had ended).
+    DidNotRing {
+        machine: String,
+        round: u64,
+    },
+}
+
+impl fmt::Display for TriedError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TriedError::NoMachine(name) => write!(f, "the behaviour has no machine `{name}`"),
+            TriedError::DidNotRing { machine, round } => write!(
+                f,
+                "{machine} took no ringlet in round {round} (it was not running, or the run had ended)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for TriedError {}
+
+/// `machine`'s ringlet in `round` of the recorded run.
+pub fn tried(
+    behaviour: &Behaviour,
+    recording: &Recording,
+    machine: &str,
+    round: u64,
+) -> Result<Tried, TriedError> {
+    let place = behaviour
+        .machines
+        .iter()
+        .position(|m| m.machine.name == machine)
+        .ok_or_else(|| TriedError::NoMachine(machine.to_string()))?;
+    let rang = recording
+        .ringlets
+        .iter()
+        .any(|r| r.round == round && r.machine == place);
+    let did_not_ring = || TriedError::DidNotRing {
+        machine: machine.to_string(),
+        round,
+    };
+    let model = &behaviour.machines[place].machine;
+    let ours = recording.events.iter().filter(|e| e.machine() == machine);
+    let entered = ours
+        .clone()
+        .filter(|e| e.round() <= round)
+        .filter_map(|e| match e {
+            Event::Entered { id, round, at, .. } => Some((*id, *round, at.as_micros() as u64)),
+            _ => None,
+        })
+        .next_back();
+    let (Some((state, entered_round, entered_at)), true) = (entered, rang) else {
+        return Err(did_not_ring());
+    };
+    let mut read = Vec::new();
+    let mut fired = None;
+    for e in ours.filter(|e| e.round() == round) {
+        match e {
+            Event::Answered {
+                atom, value, by, ..
+            } => read.push(format!("{atom} = {value} ({})", answerer(by))),
+            Event::Fired { to, label, .. } => fired = Some((*to, label.clone())),
+            _ => {}
+        }
+    }
+    let name = |id| {
+        model
+            .states
+            .iter()
+            .find(|s| s.id == id)
+            .map_or("?".to_string(), |s| s.name.clone())
+    };
+    let mut outcome = Outcome::DidNotHold;
+    let transitions = model
+        .transitions
+        .iter()
+        .filter(|t| t.source == state)
+        .map(|t| {
+            let label = t.label.to_string();
+            let this = if outcome == Outcome::NotTried {
+                Outcome::NotTried
+            } else if fired.as_ref() == Some(&(t.target, label.clone())) {
+                outcome = Outcome::NotTried;
+                Outcome::Fired
+            } else {
+                Outcome::DidNotHold
+            };
+            (name(t.target), label, this)
+        })
+        .collect();
+    Ok(Tried {
+        machine: machine.to_string(),
+        round,
+        state: name(state),
+        entered: (entered_round, entered_at),
+        read,
+        transitions,
+    })
+}
+
+/// Who gave an answer, as the trace says it.
+fn answerer(by: &Answerer) -> String {
+    match by {
+        Answerer::Expert(who) => who.clone(),
+        Answerer::Posted(who) => format!("as posted by {who}"),
+        Answerer::TimedOut => "no answer in time".into(),
+        Answerer::NoExpert => "no expert answers it".into(),
+    }
+}
+
+impl fmt::Display for Tried {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (round, at) = self.entered;
+        writeln!(
+            f,
+            "round {}: {} rang in {} (entered in round {round}, at {:.3} s)",
+            self.round,
+            self.machine,
+            self.state,
+            at as f64 / 1e6
+        )?;
+        if self.read.is_empty() {
+            writeln!(f, "  its labels read no answer")?;
+        } else {
+            writeln!(f, "  its labels read: {}", self.read.join(", "))?;
+        }
+        for (n, (to, label, outcome)) in self.transitions.iter().enumerate() {
+            let how = match outcome {
+                Outcome::Fired => "fired",
+                Outcome::DidNotHold => "did not hold",
+                Outcome::NotTried => "not tried (one before it fired)",
+            };
+            writeln!(f, "  {}. -> {to} when {label}: {how}", n + 1)?;
+        }
+        if !self.transitions.iter().any(|t| t.2 == Outcome::Fired) {
+            writeln!(f, "  none fired: its Internal ran")?;
+        }
+        Ok(())
+    }
+}
