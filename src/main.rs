@@ -8,6 +8,7 @@ mod cli;
 mod commands;
 mod embedded;
 mod failure;
+mod interrupt;
 mod load;
 mod logs;
 mod machines;

@@ -146,6 +146,7 @@ async fn run_on_board(
     limit: Option<Duration>,
     trace_file: &mut Option<std::io::BufWriter<std::fs::File>>,
 ) -> Result<bool, Failure> {
+    let mut interrupt = crate::interrupt::Interrupt::new();
     let script_used = script.is_some() || behaviour.script.is_some();
     let options = launch_options(args, script, limit);
     let stepper = options.stepper.clone();
@@ -198,6 +199,7 @@ async fn run_on_board(
         monitor: monitor.clone(),
         behaviour,
         recorder: recorder.as_ref(),
+        interrupt: &mut interrupt,
     };
     let (why, halted) = live.follow(&board, &mut running, limit).await;
     let stats = board.stats();
@@ -214,7 +216,7 @@ async fn run_on_board(
     if monitor.is_some() && why != "interrupted" {
         // The page shows where everything ended until the person is done looking.
         println!("  the monitor page stays open; Ctrl-C to close it");
-        let _ = tokio::signal::ctrl_c().await;
+        interrupt.next().await;
     }
     Ok(halted)
 }
@@ -316,6 +318,8 @@ struct Live<'t> {
     behaviour: &'t Behaviour,
     /// `--record`: the events go into the recording too.
     recorder: Option<&'t record::Recorder>,
+    /// Ctrl-C, heard from before the run started.
+    interrupt: &'t mut crate::interrupt::Interrupt,
 }
 
 impl Live<'_> {
@@ -365,7 +369,7 @@ impl Live<'_> {
                         started.elapsed().as_secs_f64()
                     );
                 }
-                _ = tokio::signal::ctrl_c() => break "interrupted".to_string(),
+                () = self.interrupt.next() => break "interrupted".to_string(),
                 Some(first) = self.changed.recv() => self.reread(first, board).await,
             }
         };
