@@ -9,6 +9,7 @@ use crate::recorded::Recording;
 use proclaim_board::{Value, QUERY_TYPE};
 use proclaim_cdl::Explanation;
 use proclaim_experts::ReasonerExpert;
+use rustc_hash::FxHashSet;
 use std::fmt;
 
 /// A label a machine asked a theory of the behaviour in a recorded run.
@@ -167,6 +168,12 @@ pub(crate) fn replay(
 ) {
     let mut experts: Vec<Option<ReasonerExpert>> =
         behaviour.theories.iter().map(|t| Some(expert(t))).collect();
+    // What each theory answers, looked up at every query.
+    let answers: Vec<FxHashSet<String>> = experts
+        .iter()
+        .flatten()
+        .map(|e| e.declaration().answers.into_iter().collect())
+        .collect();
     let messages = &recording.messages;
     for (i, m) in messages.iter().enumerate() {
         if m.ty == QUERY_TYPE {
@@ -177,12 +184,12 @@ pub(crate) fn replay(
             // Who answered is who posted the label next (a script may answer a theory's label
             // in its place); a run that ended first leaves it to the theory that declares it.
             let answer = messages[i + 1..].iter().find(|a| a.ty == label);
-            let owns = |e: &Option<ReasonerExpert>, t: usize| {
-                e.as_ref()
-                    .is_some_and(|e| e.declaration().answers.contains(&label))
-                    && answer.is_none_or(|a| a.module == behaviour.theories[t].name)
+            let owns = |t: &usize| {
+                experts[*t].is_some()
+                    && answers[*t].contains(&label)
+                    && answer.is_none_or(|a| a.module == behaviour.theories[*t].name)
             };
-            let Some(t) = (0..experts.len()).find(|t| owns(&experts[*t], *t)) else {
+            let Some(t) = (0..experts.len()).find(owns) else {
                 continue;
             };
             let theory = behaviour.theories[t].name.clone();
