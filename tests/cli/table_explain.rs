@@ -177,7 +177,10 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         said.contains("  its labels read: cook = true (microwave)"),
         "{said}"
     );
-    assert!(said.contains("-> COOKING when cook: fired\n"), "{said}");
+    assert!(
+        said.contains("-> COOKING when cook: fired (cook = true)\n"),
+        "{said}"
+    );
     let recording = dir.join("why-1.jsonl");
     let o = proclaim(&[
         "explain",

@@ -59,7 +59,7 @@ pub use recorded::{
 pub use rerecord::{rerecord, Rerecorded, RoundChange};
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
-pub use tried::{tried, Outcome, Tried, TriedError};
+pub use tried::{tried, Outcome, Tried, TriedError, TriedTransition};
 pub use why::{held_at, theory_answers, Held, TheoryAnswer, WhyError};
 
 /// The guide's Rust snippets (`docs/book`), compiled (and run) as doctests so they stay true.

@@ -18,8 +18,18 @@ pub struct Tried {
     pub entered: (u64, u64),
     /// Each answer its labels read, as the trace shows it: `atom = value (who)`.
     pub read: Vec<String>,
-    /// Its state's transitions in priority order: target, label, and how each came out.
-    pub transitions: Vec<(String, String, Outcome)>,
+    /// Its state's transitions in priority order.
+    pub transitions: Vec<TriedTransition>,
+}
+
+/// One transition of the state in the ringlet.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct TriedTransition {
+    pub to: String,
+    pub label: String,
+    pub outcome: Outcome,
+    /// What its label's propositions read in the ringlet (`atom = value`), those it asked.
+    pub read: Vec<String>,
 }
 
 /// How one transition of the state came out in the ringlet.
@@ -92,49 +102,70 @@ pub fn tried(
         return Err(did_not_ring());
     };
     let mut read = Vec::new();
+    let mut values: Vec<(&str, bool)> = Vec::new();
     let mut fired = None;
     for e in ours.filter(|e| e.round() == round) {
         match e {
             Event::Answered {
                 atom, value, by, ..
-            } => read.push(format!("{atom} = {value} ({})", answerer(by))),
+            } => {
+                read.push(format!("{atom} = {value} ({})", answerer(by)));
+                values.push((atom, *value));
+            }
             Event::Fired { to, label, .. } => fired = Some((*to, label.clone())),
             _ => {}
         }
     }
-    let name = |id| {
-        model
-            .states
-            .iter()
-            .find(|s| s.id == id)
-            .map_or("?".to_string(), |s| s.name.clone())
-    };
-    let mut outcome = Outcome::DidNotHold;
-    let transitions = model
-        .transitions
-        .iter()
-        .filter(|t| t.source == state)
-        .map(|t| {
-            let label = t.label.to_string();
-            let this = if outcome == Outcome::NotTried {
-                Outcome::NotTried
-            } else if fired.as_ref() == Some(&(t.target, label.clone())) {
-                outcome = Outcome::NotTried;
-                Outcome::Fired
-            } else {
-                Outcome::DidNotHold
-            };
-            (name(t.target), label, this)
-        })
-        .collect();
+    let transitions = outcomes(model, state, fired, &values);
     Ok(Tried {
         machine: machine.to_string(),
         round,
-        state: name(state),
+        state: state_name(model, state),
         entered: (entered_round, entered_at),
         read,
         transitions,
     })
+}
+
+/// A state's name (`?` for a number the machine does not have).
+fn state_name(model: &proclaim_fsm::Machine, id: i64) -> String {
+    let state = model.states.iter().find(|s| s.id == id);
+    state.map_or("?".to_string(), |s| s.name.clone())
+}
+
+/// The state's transitions in priority order: the one that `fired` (target, label), those
+/// before it, whose labels did not hold, those after it, never tried; and what each label's
+/// propositions read (`values`).
+fn outcomes(
+    model: &proclaim_fsm::Machine,
+    state: i64,
+    fired: Option<(i64, String)>,
+    values: &[(&str, bool)],
+) -> Vec<TriedTransition> {
+    let mut outcome = Outcome::DidNotHold;
+    let from = model.transitions.iter().filter(|t| t.source == state);
+    from.map(|t| {
+        let label = t.label.to_string();
+        let this = if outcome == Outcome::NotTried {
+            Outcome::NotTried
+        } else if fired.as_ref() == Some(&(t.target, label.clone())) {
+            outcome = Outcome::NotTried;
+            Outcome::Fired
+        } else {
+            Outcome::DidNotHold
+        };
+        let asked = t.label.condition_names().into_iter().filter_map(|n| {
+            let value = values.iter().find(|(atom, _)| *atom == n)?.1;
+            Some(format!("{n} = {value}"))
+        });
+        TriedTransition {
+            to: state_name(model, t.target),
+            label,
+            outcome: this,
+            read: asked.collect(),
+        }
+    })
+    .collect()
 }
 
 /// Who gave an answer, as the trace says it.
@@ -163,15 +194,19 @@ impl fmt::Display for Tried {
         } else {
             writeln!(f, "  its labels read: {}", self.read.join(", "))?;
         }
-        for (n, (to, label, outcome)) in self.transitions.iter().enumerate() {
-            let how = match outcome {
+        for (n, t) in self.transitions.iter().enumerate() {
+            let how = match t.outcome {
                 Outcome::Fired => "fired",
                 Outcome::DidNotHold => "did not hold",
                 Outcome::NotTried => "not tried (one before it fired)",
             };
-            writeln!(f, "  {}. -> {to} when {label}: {how}", n + 1)?;
+            let read = match (t.outcome, t.read.is_empty()) {
+                (Outcome::NotTried, _) | (_, true) => String::new(),
+                _ => format!(" ({})", t.read.join(", ")),
+            };
+            writeln!(f, "  {}. -> {} when {}: {how}{read}", n + 1, t.to, t.label)?;
         }
-        if !self.transitions.iter().any(|t| t.2 == Outcome::Fired) {
+        if !self.transitions.iter().any(|t| t.outcome == Outcome::Fired) {
             writeln!(f, "  none fired: its Internal ran")?;
         }
         Ok(())
