@@ -94,14 +94,16 @@ fn ring_door(w: &mut World) -> bool {
     false
 }
 
-/// The door's world, and the events it reports as the trace's JSON names them.
+/// The door's world, and the events it reports as the trace's JSON names them, with a
+/// star for each that [`Event::is_change`] calls a change.
 fn door() -> (World, Rc<RefCell<Vec<String>>>) {
     let events = Rc::new(RefCell::new(Vec::new()));
     let kept = events.clone();
     let sink = Box::new(move |e: Event| {
         let json = serde_json::to_value(&e).unwrap();
-        kept.borrow_mut()
-            .push(json["event"].as_str().unwrap().to_string());
+        let name = json["event"].as_str().unwrap();
+        let star = if e.is_change() { "*" } else { "" };
+        kept.borrow_mut().push(format!("{name}{star}"));
     });
     (Door::init(Some(sink)), events)
 }
@@ -111,7 +113,7 @@ fn the_door_opens_when_told_as_the_schedule_rings_it() {
     let (mut w, events) = door();
     assert!(Door::supply(&mut w, "open") && !Door::supply(&mut w, "shut"));
     assert!(!Door::round(&mut w, |_| {}), "nothing told yet");
-    assert_eq!(*events.borrow(), ["entered", "answered"]);
+    assert_eq!(*events.borrow(), ["entered*", "answered"]);
     assert!(!Door::news(&w));
     assert!(Door::outside(&mut w, "open", "true"), "news to the label");
     assert!(Door::round(&mut w, |_| {}));
@@ -119,7 +121,13 @@ fn the_door_opens_when_told_as_the_schedule_rings_it() {
     assert!(!Door::round(&mut w, |_| {}));
     assert!(Door::finished(&w));
     let tail: Vec<String> = events.borrow()[2..].to_vec();
-    assert_eq!(tail, ["answered", "fired", "posted", "entered", "finished"]);
+    assert_eq!(
+        tail,
+        ["answered", "fired*", "posted*", "entered*", "finished*"]
+    );
+    // The world counts the changes the events say they are.
+    let starred = events.borrow().iter().filter(|e| e.ends_with('*')).count();
+    assert_eq!(w.changes, starred as u64);
 }
 
 #[test]
