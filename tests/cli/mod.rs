@@ -25,6 +25,15 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// `proclaim run BEHAVIOUR --virtual-clock --for FOR --record PATH EXTRA…`, which must succeed.
+fn record_run(behaviour: &str, run_for: &str, path: &std::path::Path, extra: &[&str]) {
+    let mut args = vec!["run", behaviour, "--virtual-clock", "--for", run_for];
+    args.extend(["--record", path.to_str().unwrap()]);
+    args.extend(extra);
+    let run = crate::proclaim(&args);
+    assert!(run.status.success(), "{behaviour}: {}", stderr(&run));
+}
+
 fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("proclaim-cli-{}", std::process::id()));

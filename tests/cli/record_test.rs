@@ -1,6 +1,6 @@
 //! `run --record`, `replay` and `test`: a run's whiteboard kept, printed, replayed as a test.
 
-use super::{stderr, stdout, temp_file};
+use super::{record_run, stderr, stdout, temp_file};
 use crate::proclaim;
 
 #[test]
@@ -170,13 +170,8 @@ fn test_coverage_names_the_priority_no_recording_exercised() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let kitchen = dir.join("kitchen.jsonl");
-    let record = |path: &std::path::Path, extra: &[&str]| {
-        let mut args = vec!["run", "microwave", "--virtual-clock", "--for", "70s"];
-        args.extend(["--record", path.to_str().unwrap()]);
-        args.extend(extra);
-        let run = proclaim(&args);
-        assert!(run.status.success(), "{}", stderr(&run));
-    };
+    let record =
+        |path: &std::path::Path, extra: &[&str]| record_run("microwave", "70s", path, extra);
     record(&kitchen, &[]);
     let o = proclaim(&["test", "microwave", kitchen.to_str().unwrap(), "--coverage"]);
     let said = stdout(&o);
@@ -247,16 +242,7 @@ fn test_update_records_a_deliberate_change_again_and_shows_the_round() {
     let folder = crate::behaviour_folder("update", &files);
     let behaviour = folder.to_str().unwrap();
     let recording = folder.join("kitchen.jsonl");
-    let run = proclaim(&[
-        "run",
-        behaviour,
-        "--virtual-clock",
-        "--for",
-        "70s",
-        "--record",
-        recording.to_str().unwrap(),
-    ]);
-    assert!(run.status.success(), "{}", stderr(&run));
+    record_run(behaviour, "70s", &recording, &[]);
     let recorded = recording.to_str().unwrap();
     let o = proclaim(&["test", behaviour, recorded, "--update"]);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));

@@ -1,6 +1,6 @@
 //! `table` and `explain`: a theory's answers for every input, and why an answer is what it is.
 
-use super::{check, stderr, stdout, temp_file};
+use super::{check, record_run, stderr, stdout, temp_file};
 use crate::proclaim;
 
 #[test]
@@ -102,13 +102,9 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
     ];
     for (n, (behaviour, script, run_for)) in runs.iter().enumerate() {
         let recording = temp_file(&format!("why-{n}.jsonl"), b"");
-        let mut args = vec!["run", behaviour, "--virtual-clock", "--for", run_for];
-        args.extend(["--record", recording.to_str().unwrap()]);
-        if let Some(script) = script {
-            args.extend(["--script", script.to_str().unwrap()]);
-        }
-        let run = proclaim(&args);
-        assert!(run.status.success(), "{behaviour}: {}", stderr(&run));
+        let script = script.as_ref().map(|s| s.to_str().unwrap());
+        let extra: Vec<&str> = script.into_iter().flat_map(|s| ["--script", s]).collect();
+        record_run(behaviour, run_for, &recording, &extra);
         let folder = match behaviour.as_str() {
             "microwave" => "machines/microwave",
             other => other,
@@ -124,15 +120,7 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         }
         let first_true = asked.iter().find(|a| a.replayed).unwrap();
         let round = first_true.round.to_string();
-        let o = proclaim(&[
-            "explain",
-            behaviour,
-            &first_true.label,
-            "--recording",
-            recording.to_str().unwrap(),
-            "--round",
-            &round,
-        ]);
+        let o = explain_recorded(behaviour, &first_true.label, &recording, &round);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
         let said = stdout(&o);
         let head = format!(
@@ -141,15 +129,14 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         );
         assert!(said.starts_with(&head), "{said}");
         assert!(
-            said.contains(&format!("+β {}", first_true.label))
-                || said.contains(&format!("+beta {}", first_true.label)),
+            said.contains(&format!("\n+beta {}\n", first_true.label)),
             "{said}"
         );
     }
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("proclaim-cli-{}", std::process::id()));
     // A machine named instead of a label: which transition fired in the round and why the
-    // others did not (the microwave's kitchen run: OPEN -> COOKING on `cook` at 3 s).
+    // others did not (the microwave's kitchen run, the round it first cooks).
     let microwave = dir.join("why-0.jsonl");
     let text = std::fs::read_to_string(&microwave).unwrap();
     let fired = text
@@ -158,15 +145,7 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         .unwrap();
     let round: serde_json::Value = serde_json::from_str(fired).unwrap();
     let round = round["round"].to_string();
-    let o = proclaim(&[
-        "explain",
-        "microwave",
-        "Microwave",
-        "--recording",
-        microwave.to_str().unwrap(),
-        "--round",
-        &round,
-    ]);
+    let o = explain_recorded("microwave", "Microwave", &microwave, &round);
     let said = stdout(&o);
     assert_eq!(o.status.code(), Some(0), "{said}{}", stderr(&o));
     assert!(
@@ -182,33 +161,36 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         "{said}"
     );
     let recording = dir.join("why-1.jsonl");
-    let o = proclaim(&[
-        "explain",
-        keeper.to_str().unwrap(),
-        "diveRight",
-        "--recording",
-        recording.to_str().unwrap(),
-        "--round",
-        "1",
-    ]);
+    let o = explain_recorded(keeper.to_str().unwrap(), "diveRight", &recording, "1");
     assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o).contains("`diveRight` was not asked in round 1; it was in rounds"),
         "{}",
         stderr(&o)
     );
-    let o = proclaim(&[
-        "explain",
-        keeper.to_str().unwrap(),
-        "stay",
-        "--recording",
-        recording.to_str().unwrap(),
-        "--round",
-        "1",
-    ]);
+    let o = explain_recorded(keeper.to_str().unwrap(), "stay", &recording, "1");
     assert!(
         stderr(&o).contains("`stay` is no output of the behaviour's theories (keeper)"),
         "{}",
         stderr(&o)
     );
+}
+
+/// `proclaim explain BEHAVIOUR QUERY --recording RECORDING --round ROUND`.
+fn explain_recorded(
+    behaviour: &str,
+    query: &str,
+    recording: &std::path::Path,
+    round: &str,
+) -> std::process::Output {
+    let recording = recording.to_str().unwrap();
+    proclaim(&[
+        "explain",
+        behaviour,
+        query,
+        "--recording",
+        recording,
+        "--round",
+        round,
+    ])
 }
