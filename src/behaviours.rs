@@ -69,10 +69,18 @@ pub fn resolve(name: &str) -> Result<Found, Failure> {
                 manifest: MANIFEST.to_string(),
             })
         }
-        None => Err(Failure::Argument(format!(
-            "no behaviour `{name}`: not a folder with a {MANIFEST}, not machines/{name}, and not a built-in one ({})",
-            embedded::behaviour_names()
-        ))),
+        None => {
+            // A path is looked for as itself only.
+            let shipped = if name.contains(['/', '\\']) {
+                String::new()
+            } else {
+                format!(" not machines/{name},")
+            };
+            Err(Failure::Argument(format!(
+                "no behaviour `{name}`: not a folder with a {MANIFEST},{shipped} and not a built-in one ({})",
+                embedded::behaviour_names()
+            )))
+        }
     }
 }
 

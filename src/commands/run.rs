@@ -200,6 +200,7 @@ async fn run_on_board(
         behaviour,
         recorder: recorder.as_ref(),
         interrupt: &mut interrupt,
+        scripted: script_used,
     };
     let (why, halted) = live.follow(&board, &mut running, limit).await;
     let stats = board.stats();
@@ -320,6 +321,8 @@ struct Live<'t> {
     recorder: Option<&'t record::Recorder>,
     /// Ctrl-C, heard from before the run started.
     interrupt: &'t mut crate::interrupt::Interrupt,
+    /// Whether a script plays (what a run that ends still says is over).
+    scripted: bool,
 }
 
 impl Live<'_> {
@@ -364,8 +367,13 @@ impl Live<'_> {
                         halted |= matches!(event, Event::Halted { .. });
                         running.observe(&event);
                     }
+                    let outside = if self.scripted {
+                        "the script is over"
+                    } else {
+                        "nothing outside posts"
+                    };
                     break format!(
-                        "the script is over and the machines are still (no change, no time test to come), after {:.3} s",
+                        "{outside} and the machines are still (no change, no time test to come), after {:.3} s",
                         started.elapsed().as_secs_f64()
                     );
                 }

@@ -78,6 +78,14 @@ fn run_refuses_what_it_cannot_run() {
         "{}",
         stderr(&o)
     );
+    // A path is looked for as itself, not under machines/.
+    let o = proclaim(&["run", "no/such/folder"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("no behaviour `no/such/folder`: not a folder with a behaviour.toml, and not a built-in one"),
+        "{}",
+        stderr(&o)
+    );
     let o = proclaim(&["run", "microwave", "--for", "soon"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
@@ -504,4 +512,32 @@ fn a_time_test_too_long_for_any_clock_never_comes_due() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("F  → C"), "{}", stdout(&o));
+}
+
+/// With no script and nothing else outside, a run with no `--for` ends at its first still
+/// round and says that nothing outside posts (`docs/spec/behaviour.md` §3.1).
+#[test]
+fn a_run_alone_with_no_script_ends_when_its_machines_are_still() {
+    let folder = crate::behaviour_folder(
+        "alone-still",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Wait.machine\"\n"),
+            (
+                "Wait.machine",
+                "machine Wait\ninitial W\nstate W {\n    when go -> Done\n}\nstate Done {\n}\n",
+            ),
+        ],
+    );
+    let o = proclaim(&[
+        "run",
+        folder.to_str().unwrap(),
+        "--virtual-clock",
+        "--force",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("stopped: nothing outside posts and the machines are still (no change, no time test to come), after 0.100 s"),
+        "{}",
+        stdout(&o)
+    );
 }
