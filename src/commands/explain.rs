@@ -105,6 +105,27 @@ fn from_recording(
             asked.replayed
         )));
     }
+    print_held(&held, &explanation, args.json);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A recorded answer explained: what was asked, the theory's inputs then, and the tree (or
+/// all of it as JSON).
+fn print_held(held: &proclaim_behaviour::Held, explanation: &Explanation, json: bool) {
+    let asked = &held.asked;
+    if json {
+        let inputs = held.inputs().into_iter();
+        let inputs: Vec<_> = inputs
+            .map(|(ty, v)| serde_json::json!({"type": ty, "value": v}))
+            .collect();
+        let json = serde_json::json!({
+            "round": asked.round, "machine": asked.machine, "label": asked.label,
+            "theory": asked.theory, "answer": asked.replayed, "inputs": inputs,
+            "explanation": to_json(explanation),
+        });
+        println!("{json}");
+        return;
+    }
     let inputs: Vec<String> = held
         .inputs()
         .into_iter()
@@ -113,31 +134,16 @@ fn from_recording(
             None => format!("{ty} unknown"),
         })
         .collect();
-    if args.json {
-        let json = serde_json::json!({
-            "round": asked.round, "machine": asked.machine, "label": asked.label,
-            "theory": asked.theory, "answer": asked.replayed,
-            "inputs": held.inputs().into_iter().map(|(ty, v)| serde_json::json!({"type": ty, "value": v})).collect::<Vec<_>>(),
-            "explanation": to_json(&explanation),
-        });
-        println!("{json}");
+    let inputs = if inputs.is_empty() {
+        "none".to_string()
     } else {
-        println!(
-            "round {}: {} asked `{}`; the theory `{}` answered {}, its inputs then: {}",
-            asked.round,
-            asked.machine,
-            asked.label,
-            asked.theory,
-            asked.replayed,
-            if inputs.is_empty() {
-                "none".to_string()
-            } else {
-                inputs.join(", ")
-            }
-        );
-        print!("{explanation}");
-    }
-    Ok(ExitCode::SUCCESS)
+        inputs.join(", ")
+    };
+    println!(
+        "round {}: {} asked `{}`; the theory `{}` answered {}, its inputs then: {inputs}",
+        asked.round, asked.machine, asked.label, asked.theory, asked.replayed
+    );
+    print!("{explanation}");
 }
 
 /// A node: its text, what it is about (`goal` with algorithm, literal and whether proved; or

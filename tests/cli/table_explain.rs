@@ -132,6 +132,22 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
             said.contains(&format!("\n+beta {}\n", first_true.label)),
             "{said}"
         );
+        let recorded = recording.to_str().unwrap();
+        let args = [
+            "explain",
+            behaviour,
+            &first_true.label,
+            "--recording",
+            recorded,
+        ];
+        let o = proclaim(&[&args[..], &["--round", &round, "--json"]].concat());
+        let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(json["answer"], true, "{json}");
+        assert_eq!(json["explanation"]["goal"]["proved"], true, "{json}");
+        assert!(
+            json["inputs"].as_array().is_some_and(|i| !i.is_empty()),
+            "{json}"
+        );
     }
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("proclaim-cli-{}", std::process::id()));
