@@ -346,7 +346,14 @@ impl Live<'_> {
             };
             tokio::select! {
                 event = running.events.recv() => {
-                    let Some(event) = event else { break "every machine stopped".to_string() };
+                    let Some(event) = event else {
+                        // A schedule drops its event senders before it says how it ended.
+                        let end = running.end.wait_for(Option::is_some).await;
+                        if matches!(end.as_deref(), Ok(Some(RoundsEnd::Still))) {
+                            break self.still(started);
+                        }
+                        break "every machine stopped".to_string();
+                    };
                     self.show(&event);
                     halted |= matches!(event, Event::Halted { .. });
                     if running.observe(&event) {
@@ -367,21 +374,26 @@ impl Live<'_> {
                         halted |= matches!(event, Event::Halted { .. });
                         running.observe(&event);
                     }
-                    let outside = if self.scripted {
-                        "the script is over"
-                    } else {
-                        "nothing outside posts"
-                    };
-                    break format!(
-                        "{outside} and the machines are still (no change, no time test to come), after {:.3} s",
-                        started.elapsed().as_secs_f64()
-                    );
+                    break self.still(started);
                 }
                 () = self.interrupt.next() => break "interrupted".to_string(),
                 Some(first) = self.changed.recv() => self.reread(first, board).await,
             }
         };
         (why, halted)
+    }
+
+    /// Why a run that ended at a still round stopped.
+    fn still(&self, started: tokio::time::Instant) -> String {
+        let outside = if self.scripted {
+            "the script is over"
+        } else {
+            "nothing outside posts"
+        };
+        format!(
+            "{outside} and the machines are still (no change, no time test to come), after {:.3} s",
+            started.elapsed().as_secs_f64()
+        )
     }
 
     fn show(&mut self, event: &Event) {
