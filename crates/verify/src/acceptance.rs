@@ -2,8 +2,8 @@
 //! acceptance sets (one a machine that must get its turn, one a `fair` expression), shared by
 //! the search (`liveness.rs`) and the drawing of its lasso (`lasso.rs`).
 
-use crate::model::Model;
 use crate::property::Property;
+use crate::search::Search;
 use crate::world::{Status, SystemState};
 
 /// A failing run found: where it enters the bad states, the bad states (`inside`), and the
@@ -19,12 +19,12 @@ pub struct FailingRun {
 
 /// How many acceptance sets a fair run of `property` meets infinitely often: one a machine,
 /// then one a `fair` expression.
-pub fn acceptance_sets(model: &Model, property: &Property) -> usize {
+pub fn acceptance_sets(model: &Search, property: &Property) -> usize {
     model.machines.len() + property.fair_terms().len()
 }
 
 /// Whether `world` is in acceptance set `set` (see [`acceptance_sets`]).
-pub fn meets(model: &Model, property: &Property, world: &SystemState, set: usize) -> bool {
+pub fn meets(model: &Search, property: &Property, world: &SystemState, set: usize) -> bool {
     let machines = model.machines.len();
     if set >= machines {
         return property.fair_holds_in(set - machines, model, world);

@@ -15,14 +15,12 @@ use crate::model::{
     MachineModel, Model, Name, Slot, SlotId, SlotKind, StateModel, Storage, TheoryModel, TimeTest,
     TransitionModel,
 };
-use crate::reasoner::Reasoner;
-use crate::values::Values;
+use crate::reasoner::ReasonerSeed;
 use proclaim_behaviour::{modules, Behaviour, ModuleKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::{running_type, Command};
 use proclaim_fsm::{Action, Expr, Machine, Statement, TIME_TESTS};
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::cell::RefCell;
 
 /// What the activities and labels of the behaviour read and write, gathered once.
 #[derive(Default)]
@@ -138,7 +136,6 @@ impl Model {
             theories,
             names,
             known_types,
-            values: RefCell::new(Values::default()),
             saw: Vec::new(),
             ring_period: behaviour.ring_period,
             inexact: Vec::new(),
@@ -372,8 +369,8 @@ impl Slots {
         let mut theories = Vec::new();
         let mut theory_inputs = Vec::new();
         for t in &behaviour.theories {
-            let reasoner = Reasoner::new(t);
-            let decl = reasoner.declaration();
+            let reasoner = ReasonerSeed::new(t);
+            let decl = reasoner.start().declaration();
             for (o, atom) in decl.answers.iter().enumerate() {
                 self.names.entry(atom.clone()).or_insert(Name::Answer {
                     theory: theories.len(),
@@ -391,7 +388,7 @@ impl Slots {
                 name: t.name.clone(),
                 inputs: Vec::new(),
                 outputs: decl.answers.clone(),
-                reasoner: RefCell::new(reasoner),
+                reasoner,
             });
         }
         (theories, theory_inputs)

@@ -10,10 +10,10 @@
 use crate::chunked::Records;
 use crate::edges::{Edge, Edges};
 use crate::found_memo::FoundMemo;
-use crate::model::Model;
 use crate::outcome::Stop;
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator, Successor};
+use crate::search::Search;
 use crate::state_table::{self, StateTable, MAX_STATES};
 use crate::step_memo::{Step, StepMemo};
 use crate::world::{Layout, Status, SystemState, TooNarrow};
@@ -123,7 +123,7 @@ impl Graph {
 
     /// The path to `id`: the index of its initial world and the choices after it. Each step's
     /// choice is found by making its parent's successors again.
-    pub fn path(&self, model: &Model, id: u32) -> (usize, Vec<(u32, Choice)>) {
+    pub fn path(&self, model: &Search, id: u32) -> (usize, Vec<(u32, Choice)>) {
         let mut states = vec![id];
         while let Some(parent) = states.last().and_then(|&at| self.parent(at)) {
             states.push(parent);
@@ -153,7 +153,7 @@ impl Graph {
 
     /// The first state (so the nearest) from which no transition can ever fire again while a
     /// running machine is not in a final state; only meaningful when the graph is complete.
-    pub fn deadlock(&self, model: &Model) -> Option<u32> {
+    pub fn deadlock(&self, model: &Search) -> Option<u32> {
         let n = self.len();
         // Reverse edges, counting-sorted.
         let mut start = vec![0u32; n + 1];
@@ -190,7 +190,7 @@ impl Graph {
 
 /// The running machines of `world` that are not in a final state (one just entered will
 /// finish without firing anything).
-pub fn waiting(model: &Model, world: &SystemState) -> Vec<usize> {
+pub fn waiting(model: &Search, world: &SystemState) -> Vec<usize> {
     world
         .machines
         .iter()
@@ -252,7 +252,7 @@ fn all_decidable(properties: &[Property]) -> bool {
 fn store_initial(
     graph: &mut Graph,
     store: &mut StateInserter,
-    model: &Model,
+    model: &Search,
     properties: &[Property],
     limits: Limits,
 ) -> Result<(), Stop> {
@@ -273,7 +273,7 @@ fn store_initial(
 /// checks `properties` on every state as it is found.
 /// `progress` hears how far it got every [`PROGRESS_EVERY`] states expanded.
 pub fn explore(
-    model: &Model,
+    model: &Search,
     properties: &[Property],
     mut limits: Limits,
     progress: &mut dyn FnMut(Progress),
@@ -334,7 +334,7 @@ pub fn explore(
 /// What expanding states needs besides the graph: the step generator and its memos, the
 /// batch of successors made ahead, and buffers reused state after state.
 struct Expansion<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     properties: &'m [Property],
     stepper: StepGenerator<'m>,
     memo: StepMemo<'m>,
@@ -350,7 +350,7 @@ struct Expansion<'m> {
 
 impl<'m> Expansion<'m> {
     fn new(
-        model: &'m Model,
+        model: &'m Search<'m>,
         properties: &'m [Property],
         graph: &Graph,
         store: StateInserter,
@@ -549,7 +549,7 @@ impl Graph {
     /// position in priority order) as fired; whether one did.
     fn mark_fired(
         &mut self,
-        model: &Model,
+        model: &Search,
         machine: usize,
         from: usize,
         fired: Option<usize>,
@@ -562,7 +562,7 @@ impl Graph {
     }
 
     /// No states yet, and nothing entered, fired or found.
-    fn empty(model: &Model, properties: usize) -> Graph {
+    fn empty(model: &Search, properties: usize) -> Graph {
         let layout = Layout::new(model);
         Graph {
             states: Records::new(layout.bytes()),
@@ -655,7 +655,7 @@ impl StateInserter {
         &mut self,
         graph: &mut Graph,
         world: &SystemState,
-        model: &Model,
+        model: &Search,
         properties: &[Property],
     ) -> (u32, bool) {
         loop {
@@ -679,7 +679,7 @@ impl StateInserter {
         graph: &mut Graph,
         id: u32,
         world: &SystemState,
-        model: &Model,
+        model: &Search,
         properties: &[Property],
     ) {
         for (k, c) in world.machines.iter().enumerate() {
@@ -761,7 +761,7 @@ mod tests {
     use std::sync::Arc;
 
     /// Properties that read each machine's states and every global.
-    fn properties(model: &Model) -> Vec<PropertySource> {
+    fn properties(model: &crate::model::Model) -> Vec<PropertySource> {
         let mut out = Vec::new();
         let mut add = |kind: PropertyKind, expression: String| {
             out.push(PropertySource {
@@ -785,7 +785,7 @@ mod tests {
     }
 
     /// The whole graph as data: every record, successor list and mark, in order.
-    fn picture(model: &Model, graph: &Graph) -> String {
+    fn picture(model: &Search, graph: &Graph) -> String {
         let records: Vec<&[u8]> = (0..graph.len() as u32)
             .map(|id| graph.bytes_of(id))
             .collect();
@@ -833,7 +833,7 @@ mod tests {
             let (plain, _) = crate::prepare(&behaviour, &[]).expect("it models");
             let asked = properties(&plain);
             for reductions in [Reductions::default(), Reductions::NONE] {
-                // Each search on a model of its own, as a search numbers the values it meets.
+                // Each search numbers the values it meets.
                 let picture_of = |memo| {
                     let (mut model, compiled) =
                         crate::prepare(&behaviour, &asked).expect("it models");
@@ -845,8 +845,9 @@ mod tests {
                         trial: None,
                         memo,
                     };
-                    let graph = explore(&model, &compiled, limits, &mut |_| {});
-                    (picture(&model, &graph), graph.len())
+                    let search = Search::new(&model);
+                    let graph = explore(&search, &compiled, limits, &mut |_| {});
+                    (picture(&search, &graph), graph.len())
                 };
                 let (with, states) = picture_of(true);
                 let (without, _) = picture_of(false);

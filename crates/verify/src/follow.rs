@@ -19,6 +19,7 @@
 use crate::arith::text;
 use crate::model::{Model, Name, SlotId};
 use crate::ringlet::{initial_worlds, StepGenerator, Successor};
+use crate::search::Search;
 use crate::world::{Status, SystemState};
 use proclaim_fsm::control::Command;
 use proclaim_runner::Event;
@@ -106,6 +107,7 @@ impl Observed {
 /// Follows `events` (a run of the behaviour `model` was built from, as the runner reports it,
 /// every event in the order it came) in the model.
 pub fn follow(model: &Model, events: &[Event]) -> Result<Followed, Mismatch> {
+    let model = &Search::new(model);
     let rounds = ringlets(model, events)?;
     let last = rounds.keys().next_back().copied().unwrap_or(0);
     let stepper = StepGenerator::new(model);
@@ -164,7 +166,7 @@ fn obeyed(status: Status, command: &str) -> Status {
 }
 
 /// The trace cut into rounds of ringlets, each round's in the order they rang.
-fn ringlets(model: &Model, events: &[Event]) -> Result<BTreeMap<u64, Vec<Observed>>, Mismatch> {
+fn ringlets(model: &Search, events: &[Event]) -> Result<BTreeMap<u64, Vec<Observed>>, Mismatch> {
     let mut rounds: BTreeMap<u64, Vec<Observed>> = BTreeMap::new();
     for event in events {
         // Events of other modules (the impersonator's postings) are the environment's.
@@ -252,7 +254,7 @@ fn describe(event: &Event) -> String {
 /// those that match `observed` in order; the worlds at the round's end, or why none are.
 /// `modes[j]`: every machine's mode once the first `j` ringlets seen have rung.
 fn step_round(
-    model: &Model,
+    model: &Search,
     stepper: &StepGenerator<'_>,
     worlds: Vec<SystemState>,
     observed: &[Observed],
@@ -325,7 +327,7 @@ fn step_round(
 /// Whether the model's step `s` from `before` did what the runner's ringlet `seen` showed
 /// (`None`: a ringlet with no events), leaving every machine in the mode `modes` says.
 fn fits(
-    model: &Model,
+    model: &Search,
     before: &SystemState,
     s: &Successor,
     seen: Option<&Observed>,
@@ -373,7 +375,7 @@ fn fits(
 
 /// Whether the model fired what the runner fired, from machine `s.machine`'s current state.
 fn fits_firing(
-    model: &Model,
+    model: &Search,
     s: &Successor,
     seen: Option<&Observed>,
     at: &str,
@@ -410,7 +412,7 @@ fn fits_firing(
 
 /// Whether the model's step wrote what the runner's ringlet wrote, and nothing else.
 fn fits_writes(
-    model: &Model,
+    model: &Search,
     before: &SystemState,
     s: &Successor,
     seen: Option<&Observed>,

@@ -3,8 +3,9 @@
 //! machines' controls for the first, the fields a property's expression names for the second.
 //! Most new states then need no unpacking.
 
-use crate::model::{Model, Name};
+use crate::model::Name;
 use crate::property::{Property, Term};
+use crate::search::Search;
 use crate::world::{Layout, Status, SystemState};
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -12,7 +13,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 const MAX_KEYS: usize = 1 << 16;
 
 pub(crate) struct FoundMemo<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     properties: &'m [Property],
     /// Every machine's control.
     controls: u128,
@@ -23,7 +24,11 @@ pub(crate) struct FoundMemo<'m> {
 }
 
 impl<'m> FoundMemo<'m> {
-    pub fn new(model: &'m Model, properties: &'m [Property], layout: &Layout) -> FoundMemo<'m> {
+    pub fn new(
+        model: &'m Search<'m>,
+        properties: &'m [Property],
+        layout: &Layout,
+    ) -> FoundMemo<'m> {
         let mut memo = FoundMemo {
             model,
             properties,
@@ -134,7 +139,7 @@ impl<'m> FoundMemo<'m> {
 }
 
 /// The bits of a record `term` reads.
-fn term_mask(model: &Model, layout: &Layout, term: &Term) -> u128 {
+fn term_mask(model: &Search, layout: &Layout, term: &Term) -> u128 {
     match term {
         Term::Const(_) => 0,
         Term::Slot(slot) => layout.slot_mask(*slot),
@@ -153,7 +158,7 @@ fn term_mask(model: &Model, layout: &Layout, term: &Term) -> u128 {
 }
 
 /// The bits of a record a reasoner's inputs read.
-fn theory_mask(model: &Model, layout: &Layout, theory: usize, asked: &mut [bool]) -> u128 {
+fn theory_mask(model: &Search, layout: &Layout, theory: usize, asked: &mut [bool]) -> u128 {
     if std::mem::replace(&mut asked[theory], true) {
         return 0;
     }

@@ -5,17 +5,22 @@
 
 use crate::acceptance::{acceptance_sets, meets, FailingRun};
 use crate::explore::Graph;
-use crate::model::Model;
 use crate::outcome::Trace;
 use crate::property::Property;
 use crate::ringlet::StepGenerator;
+use crate::search::Search;
 use crate::trace;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::VecDeque;
 
 /// The lasso of `run`: the way in (from an initial state) and the loop (no steps when the
 /// run ends in a state where no machine can ring).
-pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun) -> (Trace, Trace) {
+pub fn draw(
+    model: &Search,
+    graph: &Graph,
+    property: &Property,
+    run: &FailingRun,
+) -> (Trace, Trace) {
     let component: FxHashSet<u32> = run.component.iter().copied().collect();
     let in_component = |v: u32| component.contains(&v);
     let (initial, mut steps) = graph.path(model, run.seed);
@@ -58,7 +63,7 @@ pub fn draw(model: &Model, graph: &Graph, property: &Property, run: &FailingRun)
 /// From `start` (in the component) through a state of every acceptance set and back to
 /// `start`, inside the component; the states after `start`, ending with it.
 fn cycle(
-    model: &Model,
+    model: &Search,
     graph: &Graph,
     property: &Property,
     start: u32,

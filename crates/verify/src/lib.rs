@@ -55,6 +55,7 @@ mod reasoner;
 pub mod reduce;
 pub mod ringlet;
 mod script;
+pub mod search;
 mod state_table;
 mod step_memo;
 mod symbolic;
@@ -77,6 +78,7 @@ pub use script::{lasso_script, to_script, unroll, LOOP_REPEATS};
 pub use trace::render;
 
 use proclaim_behaviour::Behaviour;
+use search::Search;
 
 /// Which engine explores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -380,14 +382,6 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
     findings
 }
 
-fn valuations(model: &Model) -> usize {
-    model
-        .theories
-        .iter()
-        .map(|t| t.reasoner.borrow().valuations())
-        .sum()
-}
-
 /// The explicit search's report, and whether it stopped at its `trial` (the graph is wide).
 fn explicit(
     model: &Model,
@@ -396,6 +390,8 @@ fn explicit(
     trial: Option<explore::Trial>,
     progress: &mut dyn FnMut(Progress),
 ) -> (Report, bool) {
+    let search = Search::new(model);
+    let model = &search;
     let limits = explore::Limits {
         trial,
         ..options.limits()
@@ -432,8 +428,8 @@ fn explicit(
         bytes_per_state: graph.bytes_per_state(),
         packed_bytes_per_state: graph.packed_bytes_per_state() as f64,
         depth: graph.depth,
-        values: model.values.borrow().len(),
-        valuations: valuations(model),
+        values: model.values_met(),
+        valuations: model.valuations(),
         engine: SearchEngine::Explicit.word(),
     };
     let report = Report {
@@ -446,7 +442,7 @@ fn explicit(
 }
 
 /// `Machine.State` of each running machine of `world` not in a final state.
-fn waiting_names(model: &Model, world: &world::SystemState) -> Vec<String> {
+fn waiting_names(model: &Search, world: &world::SystemState) -> Vec<String> {
     explore::waiting(model, world)
         .into_iter()
         .map(|k| {
@@ -463,6 +459,8 @@ fn symbolic(
     properties: &[Property],
     options: Options,
 ) -> Result<Report, symbolic::Declined> {
+    let search = Search::new(model);
+    let model = &search;
     let found = symbolic::check(model, properties, options.max_memory)?;
     let complete = found.stopped == Stop::Explored;
     let outcomes = properties
@@ -502,8 +500,8 @@ fn symbolic(
             bytes_per_state: found.bytes as f64 / states.max(1) as f64,
             packed_bytes_per_state: 0.0,
             depth: found.steps,
-            values: model.values.borrow().len(),
-            valuations: valuations(model),
+            values: model.values_met(),
+            valuations: model.valuations(),
             engine: SearchEngine::Symbolic.word(),
         },
         inexact: Vec::new(),

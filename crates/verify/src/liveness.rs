@@ -21,13 +21,13 @@ use crate::acceptance::{acceptance_sets, meets, FailingRun};
 use crate::components::Components;
 use crate::explore::Graph;
 use crate::lasso;
-use crate::model::Model;
 use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
+use crate::search::Search;
 use proclaim_behaviour::PropertyKind;
 
 /// The verdict of liveness property `property` on `graph`, with its lasso when it fails.
-pub fn outcome(model: &Model, graph: &Graph, property: &Property) -> PropertyOutcome {
+pub fn outcome(model: &Search, graph: &Graph, property: &Property) -> PropertyOutcome {
     let found = failing_run(model, graph, property);
     let verdict = match (&found, graph.complete) {
         (Some(_), _) => Verdict::Fails,
@@ -63,7 +63,7 @@ pub fn property_outcome(
 }
 
 /// The bad states and where runs start staying in them, then a failing run if there is one.
-fn failing_run(model: &Model, graph: &Graph, property: &Property) -> Option<FailingRun> {
+fn failing_run(model: &Search, graph: &Graph, property: &Property) -> Option<FailingRun> {
     let kind = property.source.kind;
     let mut inside = vec![false; graph.len()];
     let mut seeds = Vec::new();
@@ -127,7 +127,7 @@ fn failing_run(model: &Model, graph: &Graph, property: &Property) -> Option<Fail
 
 /// Whether the states of a component meet every acceptance set between them.
 fn meets_every_set(
-    model: &Model,
+    model: &Search,
     graph: &Graph,
     property: &Property,
     members: &[u32],

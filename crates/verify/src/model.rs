@@ -12,14 +12,12 @@
 use crate::arith::text;
 use crate::kind::ValueKind;
 use crate::outcome::Inexact;
-use crate::reasoner::Reasoner;
-use crate::values::Values;
+use crate::reasoner::ReasonerSeed;
 
 use proclaim_board::Value;
 
 use proclaim_fsm::{Expr, Machine};
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::cell::RefCell;
 use std::time::Duration;
 
 /// `Machine.STATE` is not in the label language; the dot becomes a letter no name can hold
@@ -136,7 +134,7 @@ pub struct TheoryModel {
     /// nothing models (it stays unknown to the theory).
     pub inputs: Vec<(String, Option<Name>)>,
     pub outputs: Vec<String>,
-    pub(crate) reasoner: RefCell<Reasoner>,
+    pub(crate) reasoner: ReasonerSeed,
 }
 
 /// What the environment may set a free type to.
@@ -168,8 +166,6 @@ pub struct Model {
     /// Every whiteboard type a machine or an outside module posts, reads or answers: the
     /// names a property may use besides slots.
     pub known_types: FxHashSet<String>,
-    /// Values met so far (the packed state stores their numbers).
-    pub values: RefCell<Values>,
     /// What a property's `saw(Machine, name)` keeps: per machine, the name read at its last
     /// snapshot. Added by the properties before exploring.
     pub saw: Vec<(usize, Expr)>,

@@ -38,9 +38,10 @@
 //! first mode (`-DBFS`), which refuses hidden variables, is not available; depth first it is.
 
 use crate::arith::{self, text};
-use crate::model::{Model, Name, SlotKind};
+use crate::model::{Name, SlotKind};
 use crate::property::{Property, Term};
 use crate::reasoner::{input, Input};
+use crate::search::Search;
 use crate::values::{ValueId, NEVER};
 use crate::{explore, prepare, Options, PropertySource, Reductions, Verdict, VerifyError};
 use proclaim_behaviour::{Behaviour, PropertyKind};
@@ -144,6 +145,7 @@ pub fn to_promela(
 ) -> Result<Promela, EmitError> {
     let (model, compiled) = prepare(behaviour, properties)?;
     crate::check_stored_free(&model)?;
+    let model = Search::new(&model);
     // The values are numbered from the machines' ringlets to a fixpoint, with no search; only
     // where a slot's values keep growing (a counter) does a bounded search number them.
     let values_complete = crate::symbolic::number_values(&model).is_ok()
@@ -268,7 +270,7 @@ enum Entry {
 
 /// Writes one pass of the Promela text.
 struct Writer<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     out: String,
     depth: usize,
     tables: Vec<Table>,
@@ -289,7 +291,7 @@ struct Writer<'m> {
 }
 
 impl<'m> Writer<'m> {
-    fn new(model: &'m Model, queue: usize) -> Writer<'m> {
+    fn new(model: &'m Search<'m>, queue: usize) -> Writer<'m> {
         Writer {
             model,
             out: String::new(),
@@ -1339,7 +1341,7 @@ impl<'m> Writer<'m> {
                         }
                     })
                     .collect();
-                let answers = theory.reasoner.borrow_mut().answers(&valuation).to_vec();
+                let answers = self.model.reasoner(t).answers(&valuation).to_vec();
                 for (o, a) in answers.iter().enumerate() {
                     if *a {
                         let _ = write!(fill, "ans{t}_{o}[{index}] = 1; ");

@@ -12,6 +12,7 @@ use crate::kind::ValueKind;
 use crate::model::DOT;
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
+use crate::search::Search;
 use crate::values::ValueId;
 use crate::world::{Status, SystemState};
 use proclaim_behaviour::PropertyKind;
@@ -207,23 +208,23 @@ impl Property {
     }
 
     /// Whether the property's expression (`leads_to`'s P) is true in `world`.
-    pub fn holds_in(&self, model: &Model, world: &SystemState) -> bool {
+    pub fn holds_in(&self, model: &Search, world: &SystemState) -> bool {
         truth(&self.term, model, world)
     }
 
     /// Whether `leads_to`'s Q is true in `world` (false for the other kinds).
-    pub fn then_holds_in(&self, model: &Model, world: &SystemState) -> bool {
+    pub fn then_holds_in(&self, model: &Search, world: &SystemState) -> bool {
         self.then.as_ref().is_some_and(|t| truth(t, model, world))
     }
 
     /// Whether fairness assumption `i` is true in `world`.
-    pub fn fair_holds_in(&self, i: usize, model: &Model, world: &SystemState) -> bool {
+    pub fn fair_holds_in(&self, i: usize, model: &Search, world: &SystemState) -> bool {
         truth(&self.fair[i], model, world)
     }
 
     /// Whether `world` is what the property looks for: a violation of `never`/`always`, a
     /// witness of `reachable`; never for a liveness property, which no single state settles.
-    pub fn is_target(&self, model: &Model, world: &SystemState) -> bool {
+    pub fn is_target(&self, model: &Search, world: &SystemState) -> bool {
         match self.source.kind {
             PropertyKind::Never | PropertyKind::Reachable => self.holds_in(model, world),
             PropertyKind::Always => !self.holds_in(model, world),
@@ -497,7 +498,7 @@ fn column_of(text: &str, at: &Expr) -> usize {
 }
 
 /// A term's value in `world`.
-fn value(term: &Term, model: &Model, world: &SystemState) -> Option<Value> {
+fn value(term: &Term, model: &Search, world: &SystemState) -> Option<Value> {
     match term {
         Term::Const(v) => Some(v.clone()),
         Term::Slot(slot) => slot_value(model, &world.values, *slot),
@@ -530,11 +531,11 @@ fn value(term: &Term, model: &Model, world: &SystemState) -> Option<Value> {
     }
 }
 
-fn truth(term: &Term, model: &Model, world: &SystemState) -> bool {
+fn truth(term: &Term, model: &Search, world: &SystemState) -> bool {
     value(term, model, world).is_some_and(|v| v.truthy())
 }
 
-fn slot_value(model: &Model, values: &[ValueId], slot: SlotId) -> Option<Value> {
+fn slot_value(model: &Search, values: &[ValueId], slot: SlotId) -> Option<Value> {
     match model.values.borrow().get(values[slot]).cloned() {
         None if model.slots[slot].kind == (SlotKind::Message { external: true }) => {
             Some(Value::Int(0))
@@ -543,7 +544,7 @@ fn slot_value(model: &Model, values: &[ValueId], slot: SlotId) -> Option<Value> 
     }
 }
 
-fn answer(model: &Model, world: &SystemState, theory: usize, output: usize, depth: usize) -> bool {
+fn answer(model: &Search, world: &SystemState, theory: usize, output: usize, depth: usize) -> bool {
     let t = &model.theories[theory];
     let inputs: Vec<Input> = t
         .inputs
@@ -557,7 +558,7 @@ fn answer(model: &Model, world: &SystemState, theory: usize, output: usize, dept
             _ => Input::Unknown,
         })
         .collect();
-    t.reasoner.borrow_mut().answers(&inputs)[output]
+    model.reasoner(theory).answers(&inputs)[output]
 }
 
 #[cfg(test)]

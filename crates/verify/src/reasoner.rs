@@ -24,10 +24,30 @@ pub struct Reasoner {
     outputs: Vec<String>,
 }
 
-impl Reasoner {
-    pub fn new(theory: &LoadedTheory) -> Reasoner {
-        let expert = ReasonerExpert::new(&theory.name, theory.theory.clone(), &theory.mapping)
-            .with_limits(theory.limits);
+/// What the model keeps of a theory to start a [`Reasoner`] for each search: the model stays a
+/// frozen value, and each search proves and caches its own answers.
+pub struct ReasonerSeed {
+    expert: Box<dyn Fn() -> ReasonerExpert + Send + Sync>,
+}
+
+impl ReasonerSeed {
+    pub fn new(theory: &LoadedTheory) -> ReasonerSeed {
+        let (name, theory, mapping, limits) = (
+            theory.name.clone(),
+            theory.theory.clone(),
+            theory.mapping.clone(),
+            theory.limits,
+        );
+        ReasonerSeed {
+            expert: Box::new(move || {
+                ReasonerExpert::new(&name, theory.clone(), &mapping).with_limits(limits)
+            }),
+        }
+    }
+
+    /// A reasoner with nothing proved yet.
+    pub fn start(&self) -> Reasoner {
+        let expert = (self.expert)();
         let decl = expert.declaration();
         Reasoner {
             expert,
@@ -41,7 +61,9 @@ impl Reasoner {
             outputs: decl.answers,
         }
     }
+}
 
+impl Reasoner {
     pub fn declaration(&self) -> ModuleDecl {
         self.expert.declaration()
     }

@@ -30,8 +30,9 @@
 use crate::arith::{self, convert, text};
 use crate::choices::Choices;
 use crate::model::Storage;
-use crate::model::{Model, Name, SlotId, SlotKind};
+use crate::model::{Name, SlotId, SlotKind};
 use crate::reasoner::{input, Input};
+use crate::search::Search;
 use crate::values::{ValueId, NEVER};
 use crate::world::{Control, Status, SystemState, FIRST_TURN, POSTED};
 use proclaim_board::Value;
@@ -80,7 +81,7 @@ pub struct Successor {
 /// The initial worlds: every machine at its initial state (running or dormant as the manifest
 /// says), variables at zero, every stored free type at each value of its initial domain (in
 /// mixed radix, the first free slot the fastest).
-pub fn initial_worlds(model: &Model) -> impl Iterator<Item = SystemState> + '_ {
+pub fn initial_worlds<'a>(model: &'a Search) -> impl Iterator<Item = SystemState> + 'a {
     let base = SystemState {
         turn: FIRST_TURN,
         machines: model
@@ -171,7 +172,7 @@ impl ReadDomain {
 
 /// The steps of the model.
 pub struct StepGenerator<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     /// Stored free slots and their domains as value numbers.
     free: Vec<(SlotId, ReadDomain)>,
     /// Per slot: its domain when it is chosen when read (empty otherwise).
@@ -179,7 +180,7 @@ pub struct StepGenerator<'m> {
 }
 
 impl<'m> StepGenerator<'m> {
-    pub fn new(model: &'m Model) -> StepGenerator<'m> {
+    pub fn new(model: &'m Search<'m>) -> StepGenerator<'m> {
         let mut values = model.values.borrow_mut();
         let free = model
             .stored_free_slots()
@@ -678,7 +679,7 @@ impl ControlWrites {
 /// Applies a control command to machine `k` as gufsm's `SuspensibleMachine` (and the runner)
 /// does; a machine that starts is "fresh": it rings from the next round on. Returns what it
 /// wrote.
-fn control(model: &Model, world: &mut SystemState, k: usize, command: Command) -> ControlWrites {
+fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) -> ControlWrites {
     let initial = model.machines[k].initial as u16;
     let c = &mut world.machines[k];
     let all = ControlWrites {
@@ -728,7 +729,7 @@ fn control(model: &Model, world: &mut SystemState, k: usize, command: Command) -
 /// One ringlet's interpreter: runs activities and evaluates expressions for machine `machine`
 /// over a world.
 struct RingletInterpreter<'a, 'c> {
-    model: &'a Model,
+    model: &'a Search<'a>,
     world: &'a mut SystemState,
     machine: usize,
     /// Whiteboard values as the snapshot took them (from the snapshot to the ringlet's end).
@@ -847,7 +848,7 @@ impl RingletInterpreter<'_, '_> {
                 _ => Input::Unknown,
             })
             .collect();
-        t.reasoner.borrow_mut().answers(&inputs)[output]
+        self.model.reasoner(theory).answers(&inputs)[output]
     }
 
     /// Whether a time test of the current state is due; a time test that no label of the

@@ -12,8 +12,9 @@
 //! computes the type it posts to is never memoised, nor one whose step was seen writing outside
 //! what it names; in debug builds every replayed step is made again and compared.
 
-use crate::model::{Model, Name, SlotId};
+use crate::model::{Name, SlotId};
 use crate::ringlet::{StepGenerator, Successor};
+use crate::search::Search;
 use crate::world::{Layout, TooNarrow};
 use proclaim_fsm::{Action, Expr, Statement};
 use proclaim_runner::builtin::{builtin, Builtin, Target};
@@ -65,7 +66,7 @@ struct Leaf {
 }
 
 pub(crate) struct StepMemo<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     /// Per machine, per state: its footprint, `None` where its code computes a posting's type.
     footprints: Vec<Vec<Option<Footprint>>>,
     /// The footprints as bits of the current layout.
@@ -87,7 +88,7 @@ pub(crate) struct StepMemo<'m> {
 }
 
 impl<'m> StepMemo<'m> {
-    pub fn new(model: &'m Model, layout: &Layout) -> StepMemo<'m> {
+    pub fn new(model: &'m Search<'m>, layout: &Layout) -> StepMemo<'m> {
         let footprints = (0..model.machines.len())
             .map(|k| {
                 (0..model.machines[k].states.len())
@@ -281,7 +282,7 @@ impl<'m> StepMemo<'m> {
 
 /// What machine `k`'s ringlet in state `s` names, or `None` where it computes the type it posts
 /// to.
-fn footprint(model: &Model, k: usize, s: usize) -> Option<Footprint> {
+fn footprint(model: &Search, k: usize, s: usize) -> Option<Footprint> {
     let mut gather = Gather {
         model,
         machine: k,
@@ -312,7 +313,7 @@ fn footprint(model: &Model, k: usize, s: usize) -> Option<Footprint> {
 
 /// Every name one machine state's code holds, resolved as its ringlet could resolve it.
 struct Gather<'m> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     machine: usize,
     footprint: Footprint,
     /// Reasoners whose inputs are already gathered.

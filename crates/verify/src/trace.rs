@@ -3,16 +3,17 @@
 
 use crate::explore::Graph;
 use crate::kind::ValueKind;
-use crate::model::{Model, SlotId};
+use crate::model::SlotId;
 use crate::outcome::{Assignment, Trace, TraceStep};
 use crate::ringlet::{initial_worlds, Choice, StepGenerator};
+use crate::search::Search;
 use crate::values::{ValueId, NEVER};
 use crate::world::SystemState;
 use proclaim_board::Value;
 use proclaim_experts::ScriptValue;
 use rustc_hash::FxHashMap;
 
-fn assignment(model: &Model, slot: SlotId, value: ValueId) -> Assignment {
+fn assignment(model: &Search, slot: SlotId, value: ValueId) -> Assignment {
     let values = model.values.borrow();
     let v = values.get(value);
     Assignment {
@@ -38,7 +39,7 @@ fn script_value(v: &Value) -> Option<ScriptValue> {
 }
 
 /// The path from an initial state to state `id`.
-pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
+pub fn trace(model: &Search, graph: &Graph, id: u32) -> Trace {
     let (initial, path) = graph.path(model, id);
     let steps = path
         .into_iter()
@@ -47,7 +48,7 @@ pub fn trace(model: &Model, graph: &Graph, id: u32) -> Trace {
 }
 
 /// The path from initial world `initial` taking, from each state, the step of its choice.
-pub fn replay(model: &Model, graph: &Graph, initial: usize, path: &[(u32, Choice)]) -> Trace {
+pub fn replay(model: &Search, graph: &Graph, initial: usize, path: &[(u32, Choice)]) -> Trace {
     trace_of(
         model,
         initial,
@@ -59,7 +60,7 @@ pub fn replay(model: &Model, graph: &Graph, initial: usize, path: &[(u32, Choice
 /// The path from initial world number `initial` through `path`: each world a step starts from
 /// and the choice it took there.
 pub fn trace_of(
-    model: &Model,
+    model: &Search,
     initial: usize,
     path: impl IntoIterator<Item = (SystemState, Choice)>,
 ) -> Trace {

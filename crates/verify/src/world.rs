@@ -6,8 +6,9 @@
 //! and of every `saw()`, then one bit a free type chosen when read (posted yet). A value
 //! number wider than its field widens the field; every record of a search has one width.
 
+use crate::model::SlotId;
 use crate::model::Storage;
-use crate::model::{Model, SlotId};
+use crate::search::Search;
 use crate::values::{ValueId, NEVER};
 
 /// The `turn` of an initial world: machine 0 rings next, and no ringlet has run yet (a free
@@ -89,7 +90,7 @@ pub(crate) fn bits_for(max: u64) -> u8 {
 }
 
 impl Layout {
-    pub fn new(model: &Model) -> Layout {
+    pub fn new(model: &Search) -> Layout {
         let stored: Vec<SlotId> = (0..model.slots.len())
             .filter(|&slot| model.storage[slot] == Storage::Stored)
             .collect();

@@ -25,13 +25,13 @@
 
 mod liveness;
 
-use crate::model::Model;
 use crate::model::Storage;
 use crate::outcome::{PropertyOutcome, Stop};
 use crate::property::{Property, Term};
 use crate::ringlet::{
     initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, UNKNOWN,
 };
+use crate::search::Search;
 use crate::values::{ValueId, NEVER};
 use crate::world::POSTED;
 use crate::world::{Control, Status, SystemState};
@@ -46,7 +46,7 @@ const MAX_VALUES: usize = 256;
 /// of what it reads, cut short where a label is decided early).
 const MAX_LEAVES: usize = 4096;
 
-fn too_many_leaves(model: &Model, k: usize) -> Declined {
+fn too_many_leaves(model: &Search, k: usize) -> Declined {
     Declined(format!(
         "a ringlet of {} reads more than {MAX_LEAVES} combinations of values",
         model.machines[k].name
@@ -119,7 +119,7 @@ const STATUSES: [Status; 3] = [Status::Running, Status::Suspended, Status::Dorma
 
 /// The turn field's value for [`crate::world::FIRST_TURN`]: after every machine's and "past
 /// the last".
-fn turn_index(model: &Model, turn: u8) -> usize {
+fn turn_index(model: &Search, turn: u8) -> usize {
     if turn == crate::world::FIRST_TURN {
         model.machines.len() + 1
     } else {
@@ -132,7 +132,7 @@ impl Encoding {
     /// control, the slots it is the first to write and its `saw()` values, then the slots no
     /// machine writes. A slot beside its writer keeps the diagrams of "a sensor and the
     /// variable it mirrors" small.
-    fn new(model: &Model, domains: Domains) -> Self {
+    fn new(model: &Search, domains: Domains) -> Self {
         let mut builder = BddVariableSetBuilder::new();
         let mut count = 0usize;
         let mut field = |builder: &mut BddVariableSetBuilder, values: usize| {
@@ -199,7 +199,7 @@ impl Encoding {
     }
 
     /// The cube of one whole world.
-    fn world(&self, model: &Model, w: &SystemState) -> BddPartialValuation {
+    fn world(&self, model: &Search, w: &SystemState) -> BddPartialValuation {
         let mut cube = BddPartialValuation::empty();
         self.turn.set(turn_index(model, w.turn), &mut cube);
         for (m, c) in w.machines.iter().enumerate() {
@@ -232,7 +232,7 @@ impl Encoding {
     }
 
     /// Whether world `w` is in `set`.
-    fn contains(&self, model: &Model, set: &Bdd, w: &SystemState) -> bool {
+    fn contains(&self, model: &Search, set: &Bdd, w: &SystemState) -> bool {
         self.holds(w) && set.eval_in(&self.full_valuation(&self.world(model, w)))
     }
 
@@ -289,7 +289,7 @@ pub struct SymbolicOutcome {
 /// the initial worlds and the first ringlets, then whatever a ringlet of any machine writes
 /// from values already numbered, to a fixpoint (as [`check`] finds its fields' values).
 /// Declines where a slot's values keep growing.
-pub fn number_values(model: &Model) -> Result<(), Declined> {
+pub fn number_values(model: &Search) -> Result<(), Declined> {
     let stepper = StepGenerator::new(model);
     let first = first_ringlets(model, &stepper);
     value_domains(model, &stepper, &first.initial, &first.steps).map(|_| ())
@@ -307,7 +307,7 @@ struct FirstRinglets {
     fires: Vec<bool>,
 }
 
-fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
+fn first_ringlets(model: &Search, stepper: &StepGenerator<'_>) -> FirstRinglets {
     let initial: Vec<SystemState> = initial_worlds(model).collect();
     let mut first = FirstRinglets {
         steps: Vec::new(),
@@ -339,7 +339,7 @@ fn first_ringlets(model: &Model, stepper: &StepGenerator<'_>) -> FirstRinglets {
 /// Per property, the first initial world it looks for, if any (layers 0 and 1 are the explicit
 /// stepper's).
 fn initial_targets(
-    model: &Model,
+    model: &Search,
     properties: &[Property],
     initial: &[SystemState],
 ) -> Vec<Option<Path>> {
@@ -353,7 +353,7 @@ fn initial_targets(
 }
 
 /// Why the engine does not take this model, if it does not.
-fn declines(model: &Model) -> Result<(), Declined> {
+fn declines(model: &Search) -> Result<(), Declined> {
     if let Some((slot, _)) = model.stored_free_slots().next() {
         return Err(Declined(format!(
             "a property names the free type `{}`",
@@ -365,7 +365,7 @@ fn declines(model: &Model) -> Result<(), Declined> {
 
 /// Checks `properties` of `model` symbolically, or says why it does not.
 pub fn check(
-    model: &Model,
+    model: &Search,
     properties: &[Property],
     max_memory: usize,
 ) -> Result<SymbolicOutcome, Declined> {
@@ -454,7 +454,7 @@ pub fn check(
 /// What a finished search keeps to answer with paths: the model, its steps as the explicit
 /// stepper and as diagrams, and the first ringlets (the explicit stepper's).
 struct Searched<'a, 'm> {
-    model: &'m Model,
+    model: &'m Search<'m>,
     stepper: &'a StepGenerator<'m>,
     enc: &'a Encoding,
     steps: &'a [Step],
@@ -521,7 +521,7 @@ impl Searched<'_, '_> {
 }
 
 /// The states where some running machine is not in a final state.
-fn waiting_set(model: &Model, enc: &Encoding) -> Bdd {
+fn waiting_set(model: &Search, enc: &Encoding) -> Bdd {
     let field_is = |f: &Field, i: usize| {
         let mut cube = BddPartialValuation::empty();
         f.set(i, &mut cube);
@@ -545,7 +545,7 @@ fn waiting_set(model: &Model, enc: &Encoding) -> Bdd {
 /// The states of the initial worlds, and those of the first ringlets' successors not among
 /// them (the first layer the symbolic search grows).
 fn first_layers(
-    model: &Model,
+    model: &Search,
     enc: &Encoding,
     initial: &[SystemState],
     first_steps: &[Vec<(SystemState, Choice)>],
@@ -565,7 +565,7 @@ fn first_layers(
 /// Marks every state some machine is in within `reached`, and every transition some step from
 /// `reached` fires.
 fn mark_entered_and_fired(
-    model: &Model,
+    model: &Search,
     enc: &Encoding,
     guards: &Guards,
     steps: &[Step],
@@ -623,7 +623,7 @@ fn first_state(enc: &Encoding, k: usize, needs: &Bdd) -> usize {
 /// first ringlets, then whatever a ringlet of any machine can write from values already known,
 /// to a fixpoint.
 fn value_domains(
-    model: &Model,
+    model: &Search,
     stepper: &StepGenerator<'_>,
     initial: &[SystemState],
     first_steps: &[Vec<(SystemState, Choice)>],
@@ -706,7 +706,7 @@ fn value_domains(
 
 /// Declines domains grown past [`MAX_VALUES`].
 fn too_many_values(
-    model: &Model,
+    model: &Search,
     domains: &[Vec<ValueId>],
     saw_domains: &[Vec<ValueId>],
 ) -> Result<(), Declined> {
@@ -734,7 +734,7 @@ struct Domains {
 
 /// Every control machine `k` may ring from: each state, just entered (no time due) or not
 /// (each set of due time tests that can be), running and not started this round.
-fn controls(model: &Model, k: usize) -> Vec<Control> {
+fn controls(model: &Search, k: usize) -> Vec<Control> {
     let mut out = Vec::new();
     for (s, state) in model.machines[k].states.iter().enumerate() {
         let base = Control {
@@ -760,7 +760,7 @@ fn controls(model: &Model, k: usize) -> Vec<Control> {
 
 /// Every leaf of every machine's ringlet, as cubes and writes.
 fn steps_of(
-    model: &Model,
+    model: &Search,
     stepper: &StepGenerator<'_>,
     enc: &Encoding,
 ) -> Result<Vec<Step>, Declined> {
@@ -780,7 +780,7 @@ fn steps_of(
     Ok(steps)
 }
 
-fn step_of(model: &Model, enc: &Encoding, k: usize, before: &Control, leaf: &OpenLeaf) -> Step {
+fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &OpenLeaf) -> Step {
     let mut needs = BddPartialValuation::empty();
     enc.set_control(k, before, &mut needs);
     let mut read_values: Vec<(usize, ValueId)> = Vec::new();
@@ -858,7 +858,7 @@ struct Guards {
 }
 
 impl Guards {
-    fn new(model: &Model, enc: &Encoding) -> Guards {
+    fn new(model: &Search, enc: &Encoding) -> Guards {
         let n = model.machines.len();
         let field_is = |f: &Field, i: usize| {
             let mut cube = BddPartialValuation::empty();
@@ -1031,7 +1031,7 @@ impl Searched<'_, '_> {
 
 /// The states a property looks for, over the fields its expression reads: every combination
 /// of their values evaluated as the explicit search evaluates it.
-fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd, Declined> {
+fn target_set(model: &Search, enc: &Encoding, property: &Property) -> Result<Bdd, Declined> {
     if property.source.kind.is_liveness() {
         return Ok(enc.vars.mk_false());
     }
@@ -1044,7 +1044,7 @@ fn target_set(model: &Model, enc: &Encoding, property: &Property) -> Result<Bdd,
 /// every combination of their values evaluated as the explicit search evaluates it. `name`
 /// (the property's) says which property reads too many.
 fn set_where(
-    model: &Model,
+    model: &Search,
     enc: &Encoding,
     term: &Term,
     name: &str,
@@ -1123,7 +1123,7 @@ enum Component {
     Control(usize),
 }
 
-fn components(model: &Model, term: &Term, out: &mut Vec<Component>, depth: usize) {
+fn components(model: &Search, term: &Term, out: &mut Vec<Component>, depth: usize) {
     match term {
         Term::Const(_) => {}
         Term::Slot(slot) => out.push(Component::Slot(*slot)),

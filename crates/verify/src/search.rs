@@ -1,0 +1,70 @@
+//! One search of a frozen [`Model`]: what a search grows as it goes (the values it meets, each
+//! theory's proved answers) kept beside the model, so the model is a value that several
+//! searches, on several threads, read at once.
+
+use crate::model::Model;
+use crate::reasoner::Reasoner;
+use crate::values::Values;
+use std::cell::{RefCell, RefMut};
+use std::ops::Deref;
+
+pub struct Search<'m> {
+    model: &'m Model,
+    /// Values met so far (the packed states store their numbers): each search numbers its own.
+    pub values: RefCell<Values>,
+    reasoners: Vec<RefCell<Reasoner>>,
+}
+
+impl<'m> Search<'m> {
+    pub fn new(model: &'m Model) -> Search<'m> {
+        Search {
+            model,
+            values: RefCell::new(Values::default()),
+            reasoners: model
+                .theories
+                .iter()
+                .map(|t| RefCell::new(t.reasoner.start()))
+                .collect(),
+        }
+    }
+
+    /// The frozen model searched.
+    pub fn model(&self) -> &'m Model {
+        self.model
+    }
+
+    /// Theory `theory`'s reasoner, as this search has proved it so far.
+    pub fn reasoner(&self, theory: usize) -> RefMut<'_, Reasoner> {
+        self.reasoners[theory].borrow_mut()
+    }
+
+    /// How many values this search has met.
+    pub fn values_met(&self) -> usize {
+        self.values.borrow().len()
+    }
+
+    /// How many input valuations this search's reasoners proved.
+    pub fn valuations(&self) -> usize {
+        self.reasoners.iter().map(|r| r.borrow().valuations()).sum()
+    }
+}
+
+impl Deref for Search<'_> {
+    type Target = Model;
+
+    fn deref(&self) -> &Model {
+        self.model
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The model is a frozen value: searches on other threads may read it at once.
+    #[test]
+    fn the_model_is_shared_between_threads() {
+        fn shared<T: Send + Sync>() {}
+        shared::<Model>();
+    }
+}
