@@ -505,7 +505,8 @@ pub struct VerifyArgs {
     #[arg(long, value_enum, value_name = "REDUCTION")]
     pub without: Vec<ReductionName>,
     /// Which engine explores: explicit states, sets of states as decision diagrams, or
-    /// the explicit one first and the symbolic one where it does not decide soon
+    /// the explicit one first and, where it does not decide soon, both at once (the first
+    /// answer wins)
     #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
     pub engine: EngineName,
     /// Print the report as JSON

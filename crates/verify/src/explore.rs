@@ -46,8 +46,8 @@ pub struct Graph {
     /// Breadth-first layers reached: the states at the greatest distance from an initial one
     /// are this many steps away.
     pub depth: usize,
-    /// The search stopped at its [`Trial`]: the graph is wide.
-    pub wide: bool,
+    /// The search stopped because a racing engine answered first ([`crate::race`]).
+    pub overtaken: bool,
     /// How many times the layout was widened (records packed before are packed no more).
     generation: usize,
 }
@@ -221,20 +221,17 @@ pub struct Limits {
     pub max_memory: usize,
     /// Stop once every property has found what it looks for.
     pub stop_when_decided: bool,
-    /// Where the automatic engine choice looks at the graph: see [`Trial`].
-    pub trial: Option<Trial>,
+    /// Once this many states are stored undecided, a racing symbolic engine may start
+    /// ([`crate::race`]).
+    pub rival_after: usize,
     /// Make successors through the step memo (`step_memo.rs`) where records fit it; off only
     /// to check that it changes nothing.
     pub memo: bool,
 }
 
-/// Once `states` are stored, the search stops ([`Graph::wide`]) if its layers hold `width`
-/// states or more on average, and goes on otherwise: a narrow, deep graph suits this search.
-#[derive(Clone, Copy, Debug)]
-pub struct Trial {
-    pub states: usize,
-    pub width: usize,
-}
+/// How often (in states expanded) the search asks whether a racing engine has answered, and
+/// says what it holds.
+const RACE_EVERY: usize = 1024;
 
 /// Whether a search can stop once every property is decided: every property is a safety one
 /// (a liveness property needs the whole graph).
@@ -275,7 +272,7 @@ fn store_initial(
 pub fn explore(
     model: &Search,
     properties: &[Property],
-    mut limits: Limits,
+    limits: Limits,
     progress: &mut dyn FnMut(Progress),
 ) -> Graph {
     let mut graph = Graph::empty(model, properties.len());
@@ -304,13 +301,16 @@ pub fn explore(
             stop(&mut graph, Stop::Decided);
             break;
         }
-        if let Some(trial) = limits.trial.filter(|t| graph.len() >= t.states) {
-            if graph.len() / graph.depth.max(1) >= trial.width {
-                graph.wide = true;
+        if graph.len() >= limits.rival_after {
+            model.call_rival();
+        }
+        if next % RACE_EVERY == 0 {
+            if model.overtaken() {
+                graph.overtaken = true;
                 stop(&mut graph, Stop::StateBudget);
                 break;
             }
-            limits.trial = None;
+            model.hold(graph.bytes() + expansion.memos_bytes());
         }
         if graph.is_full(limits.max_states) {
             stop(&mut graph, Stop::StateBudget);
@@ -391,6 +391,21 @@ impl<'m> Expansion<'m> {
         Ok(())
     }
 
+    /// Bytes the memos and the values met hold, besides the graph's tables.
+    fn memos_bytes(&self) -> usize {
+        self.memo.bytes() + self.found.bytes() + self.model.values.borrow().bytes()
+    }
+
+    /// Whether the tables, grown by `made` successors as if every one were new, stay within
+    /// the memory budget (less what a rival engine holds); says what they hold now.
+    fn within_budget(&self, graph: &Graph, limits: &Limits, made: usize) -> Result<(), Stop> {
+        let held = self.memos_bytes();
+        if graph.bytes_after(made, made) + held > self.model.memory_budget(limits.max_memory) {
+            return Err(Stop::MemoryBudget);
+        }
+        Ok(())
+    }
+
     /// State `id`'s successors from the batch, stored as they are packed.
     fn store_packed(&mut self, graph: &mut Graph, limits: &Limits, id: usize) -> Result<(), Stop> {
         if self.found_generation != graph.generation {
@@ -400,10 +415,7 @@ impl<'m> Expansion<'m> {
         let range = self.batch.range(id);
         // What the tables would grow to must stay within the memory budget: as if every
         // successor were new.
-        let held = self.memo.bytes() + self.found.bytes() + self.model.values.borrow().bytes();
-        if graph.bytes_after(range.len(), range.len()) + held > limits.max_memory {
-            return Err(Stop::MemoryBudget);
-        }
+        self.within_budget(graph, limits, range.len())?;
         let bytes = graph.layout.bytes();
         let steps = self.batch.steps[range.clone()].iter();
         for (step, &hash) in steps.zip(&self.batch.hashes[range]) {
@@ -439,10 +451,7 @@ impl<'m> Expansion<'m> {
         self.stepper
             .successors(&self.world, false, &mut self.successors);
         let made = self.successors.len();
-        let held = self.memo.bytes() + self.found.bytes() + self.model.values.borrow().bytes();
-        if graph.bytes_after(made, made) + held > limits.max_memory {
-            return Err(Stop::MemoryBudget);
-        }
+        self.within_budget(graph, limits, made)?;
         for s in &self.successors {
             let (target, new) = self
                 .store
@@ -578,7 +587,7 @@ impl Graph {
             fired: model.per_transition(),
             targets: vec![None; properties],
             depth: 0,
-            wide: false,
+            overtaken: false,
             generation: 0,
         }
     }
@@ -800,7 +809,7 @@ mod tests {
             graph.depth,
             graph.complete,
             graph.deadlock(model),
-            graph.wide,
+            graph.overtaken,
         )
     }
 
@@ -842,7 +851,7 @@ mod tests {
                         max_states: 5_000,
                         max_memory: 1 << 30,
                         stop_when_decided: reductions.stop_when_decided,
-                        trial: None,
+                        rival_after: usize::MAX,
                         memo,
                     };
                     let search = Search::new(&model);

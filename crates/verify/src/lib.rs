@@ -46,6 +46,7 @@ pub mod model;
 mod outcome;
 pub mod promela;
 pub mod property;
+mod race;
 /// The conformance test's random behaviours, for the tests of the search's memos.
 #[cfg(test)]
 #[path = "../tests/common/random_behaviour.rs"]
@@ -83,9 +84,9 @@ use search::Search;
 /// Which engine explores.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SearchEngine {
-    /// The explicit search for its first [`AUTO_EXPLICIT_STATES`] states; where that decides
-    /// nothing, the graph is not deep and narrow ([`AUTO_NARROW_WIDTH`]) and the behaviour suits
-    /// it, the symbolic engine; else the explicit search on.
+    /// The explicit search alone for its first [`AUTO_EXPLICIT_STATES`] states; where that
+    /// decides nothing, the symbolic engine beside it on a second thread, the first to decide
+    /// answering (`race.rs`).
     #[default]
     Auto,
     /// States one by one (`explore.rs`).
@@ -104,15 +105,9 @@ impl SearchEngine {
     }
 }
 
-/// How many states the automatic choice lets the explicit search store before it turns to
-/// the symbolic engine.
-pub const AUTO_EXPLICIT_STATES: usize = 200_000;
-
-/// The automatic choice keeps the explicit search when its first states spread over layers of
-/// fewer than this many states on average: the symbolic engine pays one image a layer, the
-/// explicit search one ringlet a state, and below this width the explicit search was the faster
-/// on every family of `cargo bench -p proclaim-verify --bench families`.
-pub const AUTO_NARROW_WIDTH: usize = 1000;
+/// How many states the automatic choice lets the explicit search store alone before the
+/// symbolic engine starts beside it.
+pub const AUTO_EXPLICIT_STATES: usize = 20_000;
 
 /// How far to explore, and how.
 #[derive(Clone, Copy, Debug)]
@@ -143,7 +138,7 @@ impl Options {
             max_states: self.max_states,
             max_memory: self.max_memory,
             stop_when_decided: self.reductions.stop_when_decided,
-            trial: None,
+            rival_after: usize::MAX,
             memo: true,
         }
     }
@@ -220,26 +215,62 @@ fn search(
 ) -> Result<Report, VerifyError> {
     let (model, compiled) = (model, compiled);
     match options.engine {
-        SearchEngine::Explicit => Ok(explicit(model, compiled, options, None, progress).0),
-        SearchEngine::Symbolic => symbolic(model, compiled, options)
-            .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
-        SearchEngine::Auto => {
-            // A deep, narrow graph (counters stepping through their values) would take the
-            // symbolic engine one image a layer: the explicit search goes on with it.
-            let trial = (options.max_states > AUTO_EXPLICIT_STATES).then_some(explore::Trial {
-                states: AUTO_EXPLICIT_STATES,
-                width: AUTO_NARROW_WIDTH,
-            });
-            let (report, wide) = explicit(model, compiled, options, trial, progress);
-            if !wide {
-                return Ok(report);
-            }
-            match symbolic(model, compiled, options) {
-                Ok(report) => Ok(report),
-                Err(_) => Ok(explicit(model, compiled, options, None, progress).0),
-            }
+        SearchEngine::Explicit => {
+            Ok(explicit(&Search::new(model), compiled, options.limits(), progress).0)
         }
+        SearchEngine::Symbolic => symbolic(&Search::new(model), compiled, options)
+            .map_err(|declined| VerifyError::SymbolicDeclined(declined.0)),
+        SearchEngine::Auto => Ok(race(model, compiled, options, progress)),
     }
+}
+
+/// The explicit search alone on a small graph; beyond its first [`AUTO_EXPLICIT_STATES`]
+/// states undecided, or after it ran out of memory, the symbolic engine beside it, the first
+/// to decide answering ([`race`]). Where neither decides, the explicit search's report.
+fn race(
+    model: &Model,
+    compiled: &[Property],
+    options: Options,
+    progress: &mut dyn FnMut(Progress),
+) -> Report {
+    let race = race::Race::new(options.max_memory);
+    std::thread::scope(|scope| {
+        let rival = scope.spawn(|| {
+            if !race.wait_for_start() {
+                return None;
+            }
+            let search = Search::racing(model, &race, race::Side::Symbolic);
+            let report = symbolic(&search, compiled, options).ok();
+            let decided = report.as_ref().is_some_and(decided);
+            race.finish(race::Side::Symbolic, decided);
+            report.filter(|_| decided)
+        });
+        let search = Search::racing(model, &race, race::Side::Explicit);
+        let limits = explore::Limits {
+            rival_after: AUTO_EXPLICIT_STATES,
+            ..options.limits()
+        };
+        let (explicit, overtaken) = explicit(&search, compiled, limits, progress);
+        let explicit_decided = !overtaken && decided(&explicit);
+        if !overtaken && explicit.stats.stopped == Stop::StateBudget {
+            // `--max-states` bounds the search asked for: no engine starts after it.
+            race.no_rival();
+        }
+        race.finish(race::Side::Explicit, explicit_decided);
+        let symbolic = rival
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        // Where both decided, the explicit search's report, as without the race.
+        match symbolic {
+            Some(report) if !explicit_decided => report,
+            _ => explicit,
+        }
+    })
+}
+
+/// Whether a report's search reached its end or settled every property.
+fn decided(report: &Report) -> bool {
+    matches!(report.stats.stopped, Stop::Explored | Stop::Decided)
 }
 
 /// The model of `behaviour` and its properties compiled against it: what [`verify`] explores
@@ -382,20 +413,13 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
     findings
 }
 
-/// The explicit search's report, and whether it stopped at its `trial` (the graph is wide).
+/// The explicit search's report, and whether a racing engine answered first.
 fn explicit(
-    model: &Model,
+    model: &Search,
     properties: &[Property],
-    options: Options,
-    trial: Option<explore::Trial>,
+    limits: explore::Limits,
     progress: &mut dyn FnMut(Progress),
 ) -> (Report, bool) {
-    let search = Search::new(model);
-    let model = &search;
-    let limits = explore::Limits {
-        trial,
-        ..options.limits()
-    };
     let graph = explore::explore(model, properties, limits, progress);
     let outcomes = properties
         .iter()
@@ -438,7 +462,7 @@ fn explicit(
         stats,
         inexact: Vec::new(),
     };
-    (report, graph.wide)
+    (report, graph.overtaken)
 }
 
 /// `Machine.State` of each running machine of `world` not in a final state.
@@ -455,12 +479,10 @@ fn waiting_names(model: &Search, world: &world::SystemState) -> Vec<String> {
 
 /// The symbolic engine's report.
 fn symbolic(
-    model: &Model,
+    model: &Search,
     properties: &[Property],
     options: Options,
 ) -> Result<Report, symbolic::Declined> {
-    let search = Search::new(model);
-    let model = &search;
     let found = symbolic::check(model, properties, options.max_memory)?;
     let complete = found.stopped == Stop::Explored;
     let outcomes = properties

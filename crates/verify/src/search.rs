@@ -1,8 +1,10 @@
 //! One search of a frozen [`Model`]: what a search grows as it goes (the values it meets, each
 //! theory's proved answers) kept beside the model, so the model is a value that several
-//! searches, on several threads, read at once.
+//! searches, on several threads, read at once. A search in a [`Race`] also hears from it what
+//! memory it may take and whether the other engine has already answered.
 
 use crate::model::Model;
+use crate::race::{Race, Side};
 use crate::reasoner::Reasoner;
 use crate::values::Values;
 use std::cell::{RefCell, RefMut};
@@ -13,6 +15,7 @@ pub struct Search<'m> {
     /// Values met so far (the packed states store their numbers): each search numbers its own.
     pub values: RefCell<Values>,
     reasoners: Vec<RefCell<Reasoner>>,
+    race: Option<(&'m Race, Side)>,
 }
 
 impl<'m> Search<'m> {
@@ -25,6 +28,50 @@ impl<'m> Search<'m> {
                 .iter()
                 .map(|t| RefCell::new(t.reasoner.start()))
                 .collect(),
+            race: None,
+        }
+    }
+
+    /// A search that races another engine's on the same model.
+    pub fn racing(model: &'m Model, race: &'m Race, side: Side) -> Search<'m> {
+        Search {
+            race: Some((race, side)),
+            ..Search::new(model)
+        }
+    }
+
+    /// The bytes this search may hold: `max`, less what a rival holds.
+    pub fn memory_budget(&self, max: usize) -> usize {
+        self.race
+            .map_or(max, |(race, side)| race.budget(side).min(max))
+    }
+
+    /// This search holds `bytes` now (its rival counts them against the budget).
+    pub fn hold(&self, bytes: usize) {
+        if let Some((race, side)) = self.race {
+            race.hold(side, bytes);
+        }
+    }
+
+    /// Whether a rival has answered: this search's work can change nothing.
+    pub fn overtaken(&self) -> bool {
+        self.race.is_some_and(|(race, _)| race.is_over())
+    }
+
+    /// Goes on unless a rival has answered (the symbolic engine then declines).
+    pub fn go_on(&self) -> Result<(), crate::symbolic::Declined> {
+        if self.overtaken() {
+            return Err(crate::symbolic::Declined(
+                "the explicit search answered first".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The explicit search has not decided in its first states: a rival may start.
+    pub fn call_rival(&self) {
+        if let Some((race, _)) = self.race {
+            race.start_symbolic();
         }
     }
 

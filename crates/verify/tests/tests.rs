@@ -15,6 +15,7 @@ mod conformance;
 mod differential;
 mod free_values;
 mod liveness;
+mod race;
 mod reductions;
 mod spin;
 mod verify;

@@ -50,6 +50,19 @@ impl Searched<'_, '_> {
         layers: &[Bdd],
         reached: &Bdd,
     ) -> Result<PropertyOutcome, Declined> {
+        let outcome = self.decide(property, layers, reached);
+        // Once a rival has answered every preimage is empty (`before`), so the fixed points
+        // end at once and nothing found after that stands.
+        self.model.go_on()?;
+        outcome
+    }
+
+    fn decide(
+        &self,
+        property: &Property,
+        layers: &[Bdd],
+        reached: &Bdd,
+    ) -> Result<PropertyOutcome, Declined> {
         let sets = self.fair_sets(property, reached)?;
         let stay = sets.fair.or(&sets.ended);
         let to_stay = self.rings(&stay, &sets.bad);
@@ -166,6 +179,9 @@ impl Searched<'_, '_> {
 
     /// Every state of `within` with a successor in `set`.
     fn before(&self, set: &Bdd, within: &Bdd) -> Bdd {
+        if self.model.overtaken() {
+            return self.enc.vars.mk_false();
+        }
         preimage(self.enc, self.steps, self.guards, set, within)
     }
 

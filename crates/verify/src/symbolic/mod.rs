@@ -423,6 +423,7 @@ pub fn check(
             outcome.stopped = Stop::Decided;
             break;
         }
+        model.go_on()?;
         let next = image(&enc, &steps, &guards, &layer).and_not(&reached);
         if next.is_false() {
             break;
@@ -432,7 +433,8 @@ pub fn check(
         layer = next;
         let nodes: usize = layers.iter().map(Bdd::size).sum::<usize>() + reached.size();
         outcome.bytes = nodes * 12;
-        if outcome.bytes > max_memory {
+        model.hold(outcome.bytes);
+        if outcome.bytes > model.memory_budget(max_memory) {
             outcome.stopped = Stop::MemoryBudget;
             break;
         }
