@@ -58,16 +58,6 @@ impl<'m> Search<'m> {
         self.race.is_some_and(|(race, _)| race.is_over())
     }
 
-    /// Goes on unless a rival has answered (the symbolic engine then declines).
-    pub fn go_on(&self) -> Result<(), crate::symbolic::Declined> {
-        if self.overtaken() {
-            return Err(crate::symbolic::Declined(
-                "the explicit search answered first".into(),
-            ));
-        }
-        Ok(())
-    }
-
     /// The explicit search has not decided in its first states: a rival may start.
     pub fn call_rival(&self) {
         if let Some((race, _)) = self.race {

@@ -53,7 +53,7 @@ impl Searched<'_, '_> {
         let outcome = self.decide(property, layers, reached);
         // Once a rival has answered every preimage is empty (`before`), so the fixed points
         // end at once and nothing found after that stands.
-        self.model.go_on()?;
+        super::go_on(self.model)?;
         outcome
     }
 

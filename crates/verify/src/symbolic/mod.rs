@@ -423,7 +423,6 @@ pub fn check(
             outcome.stopped = Stop::Decided;
             break;
         }
-        model.go_on()?;
         let next = image(&enc, &steps, &guards, &layer).and_not(&reached);
         if next.is_false() {
             break;
@@ -433,8 +432,7 @@ pub fn check(
         layer = next;
         let nodes: usize = layers.iter().map(Bdd::size).sum::<usize>() + reached.size();
         outcome.bytes = nodes * 12;
-        model.hold(outcome.bytes);
-        if outcome.bytes > model.memory_budget(max_memory) {
+        if !within_budget(model, outcome.bytes, max_memory)? {
             outcome.stopped = Stop::MemoryBudget;
             break;
         }
@@ -451,6 +449,22 @@ pub fn check(
         }
     }
     Ok(outcome)
+}
+
+/// Goes on unless a racing engine has answered ([`crate::race`]): then this one declines.
+fn go_on(model: &Search) -> Result<(), Declined> {
+    if model.overtaken() {
+        return Err(Declined("the explicit search answered first".into()));
+    }
+    Ok(())
+}
+
+/// Whether diagrams of `bytes` are within the budget (less what a racing engine holds, which
+/// hears of them); declines once the racing engine has answered.
+fn within_budget(model: &Search, bytes: usize, max_memory: usize) -> Result<bool, Declined> {
+    go_on(model)?;
+    model.hold(bytes);
+    Ok(bytes <= model.memory_budget(max_memory))
 }
 
 /// What a finished search keeps to answer with paths: the model, its steps as the explicit
