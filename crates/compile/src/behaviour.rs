@@ -13,6 +13,7 @@ use crate::refusal::{refuse, Language, Refusal};
 use crate::tabulate::{compile, Domain};
 use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
 use proclaim_fsm::control::running_type;
+use proclaim_fsm::names::Names;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
 use std::collections::HashMap;
 
@@ -67,10 +68,11 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         .filter(|o| matches!(o.answer, Answer::Outside { .. }))
         .count();
     let sensors = sensor_atoms(behaviour);
-    let mut externs = plan_externs(behaviour, &outputs)?;
-    let (slots, own, globals) = plan_slots(behaviour, &externs)?;
+    let names = Names::of(behaviour.machines.iter().map(|m| &m.machine));
+    let mut externs = plan_externs(behaviour, &names, &outputs)?;
+    let (slots, own, globals) = plan_slots(behaviour, &names)?;
     plan_board_reads(behaviour, &own, &globals, &outputs, &mut externs);
-    let names: Vec<String> = behaviour
+    let machine_names: Vec<String> = behaviour
         .machines
         .iter()
         .map(|m| m.machine.name.clone())
@@ -94,7 +96,7 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
                     .collect(),
                 globals: globals.clone(),
             },
-            machines: &names,
+            machines: &machine_names,
             inputs: &input_types,
             outputs: &outputs,
             target,
@@ -317,11 +319,14 @@ fn sensor_atoms(behaviour: &Behaviour) -> Vec<(String, Vec<String>)> {
         .collect()
 }
 
-/// The behaviour's whiteboard variables (every name a machine binds with `extern`), in the
-/// order first bound; one that is also a theory's answer, a machine's name or a type under
-/// subsumption is refused where it is bound (a compiled program keeps those apart).
-fn plan_externs(behaviour: &Behaviour, outputs: &[Output]) -> Result<Vec<BoardValue>, Refusal> {
-    let mut externs: Vec<BoardValue> = Vec::new();
+/// The behaviour's whiteboard variables ([`Names::externs`]); one that is also a theory's
+/// answer, a machine's name or a type under subsumption is refused where it is bound (a
+/// compiled program keeps those apart).
+fn plan_externs(
+    behaviour: &Behaviour,
+    names: &Names,
+    outputs: &[Output],
+) -> Result<Vec<BoardValue>, Refusal> {
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
@@ -333,17 +338,18 @@ fn plan_externs(behaviour: &Behaviour, outputs: &[Output]) -> Result<Vec<BoardVa
                     let what = format!("`extern {name}`, which is also {clash} (a compiled behaviour keeps a whiteboard variable's value apart from those)");
                     return Err(refuse(&file, state.line, what));
                 }
-                if !externs.iter().any(|b| &b.name == name) {
-                    externs.push(BoardValue {
-                        name: name.clone(),
-                        bound: true,
-                        status_of: None,
-                    });
-                }
             }
         }
     }
-    Ok(externs)
+    Ok(names
+        .externs
+        .iter()
+        .map(|name| BoardValue {
+            name: name.clone(),
+            bound: true,
+            status_of: None,
+        })
+        .collect())
 }
 
 /// What a whiteboard type read as a value is besides, that a compiled program keeps apart: a
@@ -424,51 +430,44 @@ type Slots = (
     HashMap<String, Variable>,
 );
 
-/// Slots: each machine's own variables (declared anywhere in it), then the globals (names a
-/// machine assigns without declaring them or binding them to the whiteboard), as
-/// `proclaim_runner::Shared` and `Locals` read.
-fn plan_slots(behaviour: &Behaviour, externs: &[BoardValue]) -> Result<Slots, Refusal> {
-    let mut slots: Vec<bool> = Vec::new();
-    let mut own: Vec<HashMap<String, Variable>> = Vec::new();
+/// Slots: each machine's own variables, then the globals ([`Names`]). An own variable starts
+/// as its first declared type and converts to its last; a type no target has is refused
+/// where it is declared.
+fn plan_slots(behaviour: &Behaviour, names: &Names) -> Result<Slots, Refusal> {
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
-        let mut mine: HashMap<String, Variable> = HashMap::new();
         for state in &loaded.machine.states {
             for s in state_statements(state) {
-                let Statement::Declare { ty, name, .. } = s else {
-                    continue;
-                };
-                let conversion = conversion(ty).map_err(|what| refuse(&file, state.line, what))?;
-                match mine.get_mut(name) {
-                    // The type declared last converts; the first gave the starting value.
-                    Some(v) => v.conversion = conversion,
-                    None => {
-                        let slot = slots.len();
-                        mine.insert(name.clone(), Variable { slot, conversion });
-                        slots.push(conversion == Conversion::Truth);
-                    }
+                if let Statement::Declare { ty, .. } = s {
+                    conversion(ty).map_err(|what| refuse(&file, state.line, what))?;
                 }
             }
+        }
+    }
+    // Every declared type converts: one that does not was refused above.
+    let converts = |ty| conversion(ty).unwrap_or(Conversion::Kept);
+    let mut slots: Vec<bool> = Vec::new();
+    let mut own: Vec<HashMap<String, Variable>> = Vec::new();
+    for variables in &names.own {
+        let mut mine: HashMap<String, Variable> = HashMap::new();
+        for v in variables {
+            let variable = Variable {
+                slot: slots.len(),
+                conversion: converts(&v.last),
+            };
+            mine.insert(v.name.clone(), variable);
+            slots.push(converts(&v.first) == Conversion::Truth);
         }
         own.push(mine);
     }
     let mut globals: HashMap<String, Variable> = HashMap::new();
-    for (m, loaded) in behaviour.machines.iter().enumerate() {
-        for s in loaded.machine.statements() {
-            if let Statement::Assign { name, .. } = s {
-                if !own[m].contains_key(name)
-                    && !externs.iter().any(|b| &b.name == name)
-                    && !globals.contains_key(name)
-                {
-                    let variable = Variable {
-                        slot: slots.len(),
-                        conversion: Conversion::Kept,
-                    };
-                    globals.insert(name.clone(), variable);
-                    slots.push(false);
-                }
-            }
-        }
+    for name in &names.globals {
+        let variable = Variable {
+            slot: slots.len(),
+            conversion: Conversion::Kept,
+        };
+        globals.insert(name.clone(), variable);
+        slots.push(false);
     }
     Ok((slots, own, globals))
 }

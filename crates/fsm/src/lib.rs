@@ -14,6 +14,7 @@ mod format;
 mod label;
 mod lint;
 mod model;
+pub mod names;
 mod native;
 mod qfsm;
 mod sections;

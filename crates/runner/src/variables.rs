@@ -8,7 +8,7 @@
 use crate::arith::{convert, zero};
 use parking_lot::RwLock;
 use proclaim_board::Value;
-use proclaim_fsm::{Machine, Statement, VarType};
+use proclaim_fsm::{names, Machine, VarType};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 use tokio::sync::watch;
@@ -49,23 +49,17 @@ impl Shared {
 
     fn add_externs(&self, machine: &Machine) {
         let mut externs = self.externs.write();
-        for s in machine.statements() {
-            if let Statement::Extern { name, .. } = s {
-                externs.insert(name.clone());
-            }
+        for name in names::externs_of(machine) {
+            externs.insert(name.to_string());
         }
     }
 
     fn add_globals(&self, machine: &Machine) {
-        let own = Locals::declared(machine);
+        let own = names::own_variables(machine);
         let externs = self.externs.read();
         let mut globals = self.globals.write();
-        for s in machine.statements() {
-            if let Statement::Assign { name, .. } = s {
-                if !own.types.contains_key(name) && !externs.contains(name) {
-                    globals.entry(name.clone()).or_insert(Value::Int(0));
-                }
-            }
+        for name in names::globals_of(machine, &own, |n| externs.contains(n)) {
+            globals.entry(name.to_string()).or_insert(Value::Int(0));
         }
     }
 
@@ -139,14 +133,9 @@ impl Locals {
     /// the machine, wherever the declaration stood).
     pub fn declared(machine: &Machine) -> Locals {
         let mut locals = Locals::default();
-        for s in machine.statements() {
-            if let Statement::Declare { ty, name, .. } = s {
-                locals
-                    .values
-                    .entry(name.clone())
-                    .or_insert_with(|| zero(ty));
-                locals.types.insert(name.clone(), ty.clone());
-            }
+        for own in names::own_variables(machine) {
+            locals.values.insert(own.name.clone(), zero(&own.first));
+            locals.types.insert(own.name, own.last);
         }
         locals
     }

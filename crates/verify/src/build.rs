@@ -3,9 +3,9 @@
 //! sets freely, from the finite domains of [`crate::domain`] over [`crate::flow`]'s facts; and
 //! the reasoners whose answers labels ask for. [`Model::build`] is the one entry.
 //!
-//! Names resolve as the runner resolves them (`proclaim_runner`'s `variables.rs`): a name a
-//! machine declares is its own, then externs, then globals (every other name some activity
-//! assigns); any other name is a reasoner's answer when a theory outputs it, `NameIsRunning`
+//! Names resolve as `proclaim_fsm::names` decides for every reader: a name a machine declares
+//! is its own, then externs, then globals (every other name some activity assigns); any other
+//! name is a reasoner's answer when a theory outputs it, `NameIsRunning`
 //! when it speaks of a machine, and otherwise a whiteboard type.
 
 use crate::arith::zero;
@@ -19,6 +19,7 @@ use crate::reasoner::ReasonerSeed;
 use proclaim_behaviour::{modules, Behaviour, ModuleKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::{running_type, Command};
+use proclaim_fsm::names::Names;
 use proclaim_fsm::{Action, Expr, Machine, Statement, TIME_TESTS};
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -69,9 +70,10 @@ impl Model {
             .map(|m| m.machine.name.as_str())
             .collect();
         let mut slots = Slots::default();
-        let externs = externs(behaviour);
-        let locals_of = slots.declare_locals(behaviour);
-        slots.declare_globals(behaviour, &locals_of, &externs);
+        let names = Names::of(behaviour.machines.iter().map(|m| &m.machine));
+        let externs: FxHashSet<String> = names.externs.iter().cloned().collect();
+        let locals_of = slots.declare_locals(behaviour, &names);
+        slots.declare_globals(&names);
         let (mut theories, theory_inputs) = slots.reasoners(behaviour);
         for (i, name) in machine_names.iter().enumerate() {
             slots
@@ -297,69 +299,46 @@ struct Slots {
 }
 
 impl Slots {
-    /// Each machine's own variables (what it declares); the last declaration's type wins, as
-    /// `Locals::declared` has it.
-    fn declare_locals(&mut self, behaviour: &Behaviour) -> Vec<FxHashMap<String, SlotId>> {
+    /// Each machine's own variables ([`Names::own`]): each starts at its first declared
+    /// type's zero and converts to its last.
+    fn declare_locals(
+        &mut self,
+        behaviour: &Behaviour,
+        names: &Names,
+    ) -> Vec<FxHashMap<String, SlotId>> {
         let mut locals_of = Vec::new();
-        for (i, m) in behaviour.machines.iter().enumerate() {
+        for (i, (m, own)) in behaviour.machines.iter().zip(&names.own).enumerate() {
             let mut locals: FxHashMap<String, SlotId> = FxHashMap::default();
-            for s in m.machine.statements() {
-                let Statement::Declare { ty, name, .. } = s else {
-                    continue;
-                };
-                let kind = SlotKind::Local {
-                    machine: i,
-                    ty: ty.clone(),
-                };
-                match locals.get(name) {
-                    Some(&slot) => {
-                        self.slots[slot].kind = kind;
-                        self.slots[slot].initial = Some(zero(ty));
-                    }
-                    None => {
-                        locals.insert(name.clone(), self.slots.len());
-                        self.slots.push(Slot {
-                            name: format!("{}.{name}", m.machine.name),
-                            kind,
-                            initial: Some(zero(ty)),
-                            free: None,
-                            value_kind: ValueKind::Any,
-                        });
-                    }
-                }
+            for variable in own {
+                locals.insert(variable.name.clone(), self.slots.len());
+                self.slots.push(Slot {
+                    name: format!("{}.{}", m.machine.name, variable.name),
+                    kind: SlotKind::Local {
+                        machine: i,
+                        ty: variable.last.clone(),
+                    },
+                    initial: Some(zero(&variable.first)),
+                    free: None,
+                    value_kind: ValueKind::Any,
+                });
             }
             locals_of.push(locals);
         }
         locals_of
     }
 
-    /// The behaviour's globals: names an activity assigns that are not the assigning machine's
-    /// own and not extern, starting at 0.
-    fn declare_globals(
-        &mut self,
-        behaviour: &Behaviour,
-        locals_of: &[FxHashMap<String, SlotId>],
-        externs: &FxHashSet<String>,
-    ) {
-        for (i, m) in behaviour.machines.iter().enumerate() {
-            for s in m.machine.statements() {
-                if let Statement::Assign { name, .. } = s {
-                    if !locals_of[i].contains_key(name)
-                        && !externs.contains(name)
-                        && !self.names.contains_key(name)
-                    {
-                        self.names
-                            .insert(name.clone(), Name::Slot(self.slots.len()));
-                        self.slots.push(Slot {
-                            name: name.clone(),
-                            kind: SlotKind::Global,
-                            initial: Some(Value::Int(0)),
-                            free: None,
-                            value_kind: ValueKind::Any,
-                        });
-                    }
-                }
-            }
+    /// The behaviour's globals ([`Names::globals`]), starting at 0.
+    fn declare_globals(&mut self, names: &Names) {
+        for name in &names.globals {
+            self.names
+                .insert(name.clone(), Name::Slot(self.slots.len()));
+            self.slots.push(Slot {
+                name: name.clone(),
+                kind: SlotKind::Global,
+                initial: Some(Value::Int(0)),
+                free: None,
+                value_kind: ValueKind::Any,
+            });
         }
     }
 
@@ -405,19 +384,6 @@ impl Slots {
             value_kind: ValueKind::Any,
         });
     }
-}
-
-/// Every name some machine binds to the whiteboard: such a name is no global anywhere.
-fn externs(behaviour: &Behaviour) -> FxHashSet<String> {
-    let mut externs = FxHashSet::default();
-    for m in &behaviour.machines {
-        for s in m.machine.statements() {
-            if let Statement::Extern { name, .. } = s {
-                externs.insert(name.clone());
-            }
-        }
-    }
-    externs
 }
 
 /// The types something outside the machines and reasoners posts, and every type anything
