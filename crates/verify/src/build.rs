@@ -460,3 +460,46 @@ fn free_environment(
     }
     domains
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proclaim_behaviour::{load, Embedded};
+    use proclaim_fsm::VarType;
+    use std::sync::Arc;
+
+    /// A variable declared twice starts at its first type's zero and converts to its last,
+    /// as the runner has it (`proclaim_fsm::names`).
+    #[test]
+    fn a_variable_declared_twice_starts_as_first_declared() {
+        let files = Embedded {
+            name: "twice",
+            files: &[
+                ("behaviour.toml", "[[machine]]\nfile = \"D.machine\"\n"),
+                (
+                    "D.machine",
+                    "machine D\ninitial S\nstate S {\n    entry { int n; bool n; g = 1; }\n}\n",
+                ),
+            ],
+        };
+        let behaviour = load("twice", Arc::new(files)).expect("loads");
+        let model = Model::build(&behaviour, &[]);
+        let n = model.resolve(Some(0), "n").expect("n is D's own");
+        let Name::Slot(n) = n else {
+            panic!("n is a variable: {n:?}");
+        };
+        assert_eq!(model.slots[n].initial, Some(Value::Int(0)));
+        assert!(
+            matches!(
+                &model.slots[n].kind,
+                SlotKind::Local {
+                    ty: VarType::Bool,
+                    ..
+                }
+            ),
+            "{:?}",
+            model.slots[n].kind
+        );
+        assert_eq!(model.resolve(Some(0), "g"), model.resolve(None, "g"));
+    }
+}
