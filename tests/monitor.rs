@@ -275,6 +275,12 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
 
 /// The microwave behaviour run for ten virtual seconds, its trace written to a file of its own.
 fn microwave_trace(tag: &str) -> std::path::PathBuf {
+    behaviour_trace("microwave", "10s", tag)
+}
+
+/// A shipped behaviour run on the virtual clock for `length`, its trace written to a file of
+/// its own.
+fn behaviour_trace(behaviour: &str, length: &str, tag: &str) -> std::path::PathBuf {
     let trace = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "proclaim-monitor-{tag}-{}.jsonl",
         std::process::id()
@@ -282,10 +288,10 @@ fn microwave_trace(tag: &str) -> std::path::PathBuf {
     let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args([
             "run",
-            "microwave",
+            behaviour,
             "--virtual-clock",
             "--for",
-            "10s",
+            length,
             "--trace",
         ])
         .arg(&trace)
@@ -348,6 +354,34 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
         "return document.querySelectorAll('#board tbody tr').length",
         json!(0),
         second,
+    )
+    .await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
+
+/// The page lists an assignment with its variable and value (the press's controller counts
+/// how long it waited).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_events_list_says_which_variable_an_activity_set_and_to_what() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = behaviour_trace("press", "5s", "assigned");
+    let (_replay, url) = proclaim_with_monitor(&[
+        "replay",
+        trace.to_str().unwrap(),
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "press",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    until(
+        &client,
+        "return [...document.querySelectorAll('#events li.assigned')].some((li) => /Controller set (waited|motor|low) = -?[0-9]+$/.test(li.textContent))",
+        json!(true),
+        5 * Duration::from_secs(1),
     )
     .await;
     let _ = client.close().await;

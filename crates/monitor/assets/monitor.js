@@ -128,6 +128,7 @@ function describe(e) {
     case "posted": return `${e.machine} posted ${e.type}: ${e.content}` + (e.priority ? ` @${e.priority}` : "");
     case "suppressed": return `${e.machine} suppressed ${e.type}: ${e.content} @${e.priority} (held by ${e.by} @${e.by_priority} until ${seconds(e.until_us)} s)`;
     case "took_over": return `${e.machine} took over ${e.type}: ${e.content} @${e.priority} (the hold above ran out)`;
+    case "assigned": return `${e.machine} set ${e.variable} = ${e.value}`;
     case "control": return `${e.machine} told ${e.command}`;
     case "finished": return `${e.machine} finished in ${e.state}`;
     case "halted": return `${e.machine} halted: ${e.reason}`;
