@@ -302,21 +302,28 @@ pub struct ProveArgs {
 
 /// What `proclaim explain` is told.
 #[derive(Args, Clone, Debug)]
+#[command(group(clap::ArgGroup::new("ran").args(["recording", "trace"])))]
 pub struct ExplainArgs {
-    /// A .dl or .dfl file, or an embedded theory; with `--recording`, the behaviour that ran
+    /// A .dl or .dfl file, or an embedded theory; with `--recording` or `--trace`, the
+    /// behaviour that ran
     pub theory: String,
-    /// A literal: `offside` or `~offside`; with `--recording`, a label a machine asked, or a
-    /// machine (which of its transitions fired in that round, and why the others did not)
+    /// A literal: `offside` or `~offside`; with `--recording` or `--trace`, a label a machine
+    /// asked, or a machine (which of its transitions fired in that round, and why the others
+    /// did not)
     pub query: String,
     /// Explain the answer a run gave: a recording of it (`run --record`), replayed into the
     /// behaviour's theories up to the query, with the inputs the reasoner held then
     #[arg(long, value_name = "FILE.jsonl", requires = "round", conflicts_with_all = ["set", "alg"])]
     pub recording: Option<std::path::PathBuf>,
-    /// With `--recording`: the round whose query of the label to explain
-    #[arg(long, requires = "recording")]
+    /// The same from a run's trace (`run --trace`), whose postings are kept as text
+    #[arg(long, value_name = "FILE.jsonl", requires = "round", conflicts_with_all = ["set", "alg"])]
+    pub trace: Option<std::path::PathBuf>,
+    /// With `--recording` or `--trace`: the round whose query of the label to explain
+    #[arg(long, requires = "ran")]
     pub round: Option<u64>,
-    /// With `--recording`: the machine that asked (default: the round's first to ask)
-    #[arg(long, requires = "recording")]
+    /// With `--recording` or `--trace`: the machine that asked (default: the round's first to
+    /// ask)
+    #[arg(long, requires = "ran")]
     pub machine: Option<String>,
     #[arg(long, value_enum, default_value = "beta")]
     pub alg: AlgArg,

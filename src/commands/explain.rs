@@ -10,8 +10,8 @@ use std::process::ExitCode;
 
 /// `proclaim explain`.
 pub fn command(args: ExplainArgs) -> Result<ExitCode, Failure> {
-    if let (Some(recording), Some(round)) = (&args.recording, args.round) {
-        return from_recording(&args, recording, round);
+    if let Some(round) = args.round {
+        return from_run(&args, round);
     }
     run(
         &args.theory,
@@ -55,21 +55,14 @@ pub fn run(
     Ok(ExitCode::SUCCESS)
 }
 
-/// `explain BEHAVIOUR LABEL --recording FILE --round N`: the answer the run gave, explained
-/// from the inputs its theory held when the label was asked. A replay that answers otherwise
-/// than the recording is a failure (the recording is of another behaviour, or of a changed one).
-fn from_recording(
-    args: &ExplainArgs,
-    path: &std::path::Path,
-    round: u64,
-) -> Result<ExitCode, Failure> {
+/// `explain BEHAVIOUR LABEL --recording FILE --round N` (or `--trace FILE`): the answer the
+/// run gave, explained from the inputs its theory held when the label was asked. A replay that
+/// answers otherwise than the run is a failure (the run is of another behaviour, or of a
+/// changed one, or a trace's text lost a value).
+fn from_run(args: &ExplainArgs, round: u64) -> Result<ExitCode, Failure> {
     let behaviour = crate::behaviours::load_behaviour(&args.theory)?;
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let recording = proclaim_behaviour::read_recording(&text)
-        .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
+    let (path, recording) = read_run(args, &behaviour)?;
+    let path = path.as_path();
     if behaviour
         .machines
         .iter()
@@ -96,17 +89,54 @@ fn from_recording(
     let asked = &held.asked;
     if asked.recorded.is_some_and(|r| r != asked.replayed) {
         return Err(Failure::Argument(format!(
-            "{}: `{}` was answered {} in round {}, but the theory `{}` answers {} from the recorded inputs: the recording is not of this behaviour as it is now",
+            "{}: `{}` was answered {} in round {}, but the theory `{}` answers {} from the recorded inputs: the {} is not of this behaviour as it is now{}",
             path.display(),
             asked.label,
             asked.recorded.unwrap_or_default(),
             round,
             asked.theory,
-            asked.replayed
+            asked.replayed,
+            if args.trace.is_some() { "trace" } else { "recording" },
+            if args.trace.is_some() {
+                ", or a posting's value was lost as text (a recording, `run --record`, keeps it)"
+            } else {
+                ""
+            },
         )));
     }
     print_held(&held, &explanation, args.json);
     Ok(ExitCode::SUCCESS)
+}
+
+/// The run `--recording` or `--trace` names, as a recording, and its path.
+fn read_run(
+    args: &ExplainArgs,
+    behaviour: &proclaim_behaviour::Behaviour,
+) -> Result<(std::path::PathBuf, proclaim_behaviour::Recording), Failure> {
+    let path = args.recording.as_ref().or(args.trace.as_ref());
+    let Some(path) = path else {
+        return Err(Failure::Argument(
+            "--round explains a run: give --recording FILE or --trace FILE".into(),
+        ));
+    };
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    let recording = if args.trace.is_some() {
+        let events = proclaim_behaviour::read_trace(&text)
+            .map_err(|e| Failure::Argument(format!("{}: not a trace: {e}", path.display())))?;
+        let machines: Vec<&str> = behaviour
+            .machines
+            .iter()
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        proclaim_behaviour::Recording::from_trace(events, &machines)
+    } else {
+        proclaim_behaviour::read_recording(&text)
+            .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?
+    };
+    Ok((path.clone(), recording))
 }
 
 /// A recorded answer explained: what was asked, the theory's inputs then, and the tree (or

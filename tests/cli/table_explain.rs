@@ -80,18 +80,8 @@ fn explain_json_names_goals_rules_and_their_roles() {
 /// from the inputs the reasoner held then, and says where a label was asked when it was not.
 #[test]
 fn explain_from_a_recording_gives_the_runs_answer_and_why() {
-    let keeper = crate::behaviour_folder(
-        "why-keeper",
-        &[
-            ("behaviour.toml", "[[machine]]\nfile = \"Keeper.machine\"\n[[theory]]\nfile = \"keeper.dl\"\n"),
-            ("Keeper.machine", "machine Keeper\ninitial Wait\nstate Wait {\n    when diveLeft -> Left\n}\nstate Left {\n    when diveRight && notLeft -> Right\n}\nstate Right {\n}\n"),
-            ("keeper.dl", "input{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\nR: ballRight => diveRight.\nN: ~ballLeft => notLeft.\noutput{diveLeft, diveRight, notLeft}.\n"),
-        ],
-    );
-    let keeper_script = temp_file(
-        "keeper.script",
-        b"at 300ms ballLeft = true\nat 700ms ballRight = true\n",
-    );
+    let keeper = crate::behaviour_folder("why-keeper", KEEPER);
+    let keeper_script = temp_file("keeper.script", KEEPER_SCRIPT);
     let runs = [
         ("microwave".to_string(), None, "70s"),
         (
@@ -190,6 +180,70 @@ fn explain_from_a_recording_gives_the_runs_answer_and_why() {
         "{}",
         stderr(&o)
     );
+}
+
+/// A goalkeeper whose theory reads an input group, and a script that plays a ball to each side.
+const KEEPER: &[(&str, &str)] = &[
+    ("behaviour.toml", "[[machine]]\nfile = \"Keeper.machine\"\n[[theory]]\nfile = \"keeper.dl\"\n"),
+    ("Keeper.machine", "machine Keeper\ninitial Wait\nstate Wait {\n    when diveLeft -> Left\n}\nstate Left {\n    when diveRight && notLeft -> Right\n}\nstate Right {\n}\n"),
+    ("keeper.dl", "input{ballLeft, ballCentre, ballRight}.\nL: ballLeft => diveLeft.\nR: ballRight => diveRight.\nN: ~ballLeft => notLeft.\noutput{diveLeft, diveRight, notLeft}.\n"),
+];
+const KEEPER_SCRIPT: &[u8] = b"at 300ms ballLeft = true\nat 700ms ballRight = true\n";
+
+/// A run's trace explains its answers as its recording does: every theory answer of the
+/// microwave's kitchen run and of the keeper's replays from the trace as the run gave it, in
+/// the same rounds, and `explain --trace` prints what `explain --recording` prints.
+#[test]
+fn explain_from_a_trace_gives_what_the_recording_gives() {
+    let keeper = crate::behaviour_folder("why-trace-keeper", KEEPER);
+    let keeper_script = temp_file("trace-keeper.script", KEEPER_SCRIPT);
+    let keeper_script = keeper_script.to_str().unwrap();
+    let runs = [
+        ("microwave", "machines/microwave", "70s", vec![]),
+        (
+            keeper.to_str().unwrap(),
+            keeper.to_str().unwrap(),
+            "2s",
+            vec!["--script", keeper_script],
+        ),
+    ];
+    for (n, (behaviour, folder, run_for, script)) in runs.iter().enumerate() {
+        let recording = temp_file(&format!("why-trace-{n}.recording.jsonl"), b"");
+        let trace = temp_file(&format!("why-trace-{n}.jsonl"), b"");
+        let mut extra = script.clone();
+        extra.extend(["--trace", trace.to_str().unwrap()]);
+        record_run(behaviour, run_for, &recording, &extra);
+        let files = std::sync::Arc::new(proclaim_behaviour::Folder::new(folder));
+        let loaded = proclaim_behaviour::load(folder, files).unwrap();
+        let machines: Vec<&str> = loaded
+            .machines
+            .iter()
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        let read =
+            proclaim_behaviour::read_recording(&std::fs::read_to_string(&recording).unwrap())
+                .unwrap();
+        let events =
+            proclaim_behaviour::read_trace(&std::fs::read_to_string(&trace).unwrap()).unwrap();
+        let traced = proclaim_behaviour::Recording::from_trace(events, &machines);
+        let from_recording = proclaim_behaviour::theory_answers(&loaded, &read);
+        let from_trace = proclaim_behaviour::theory_answers(&loaded, &traced);
+        assert!(!from_trace.is_empty(), "{behaviour}");
+        assert_eq!(from_trace, from_recording, "{behaviour}");
+        for a in &from_trace {
+            assert_eq!(a.recorded, Some(a.replayed), "{behaviour}: {a:?}");
+        }
+        let first_true = from_trace.iter().find(|a| a.replayed).unwrap();
+        let round = first_true.round.to_string();
+        let recorded = explain_recorded(behaviour, &first_true.label, &recording, &round);
+        let args = ["explain", behaviour, &first_true.label, "--round", &round];
+        let traced = proclaim(&[&args[..], &["--trace", trace.to_str().unwrap()]].concat());
+        assert_eq!(traced.status.code(), Some(0), "{}", stderr(&traced));
+        assert_eq!(stdout(&traced), stdout(&recorded));
+    }
+    // `--round` explains a run: it needs one.
+    let o = proclaim(&["explain", "microwave", "cook", "--round", "3"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
 }
 
 /// `proclaim explain BEHAVIOUR QUERY --recording RECORDING --round ROUND`.

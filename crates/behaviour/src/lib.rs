@@ -14,6 +14,7 @@ mod draw;
 mod edited;
 mod error;
 mod files;
+mod from_trace;
 mod launch;
 mod liveness;
 mod load;
