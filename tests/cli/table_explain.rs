@@ -246,6 +246,65 @@ fn explain_from_a_trace_gives_what_the_recording_gives() {
     assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
 }
 
+/// Why a transition over variables did not fire: the machine view says what the variable and
+/// the whiteboard value its label compares held then (a copied sighting, as a Griffith player
+/// kept one).
+#[test]
+fn explain_a_machine_says_what_the_variables_its_labels_compare_held() {
+    let player = crate::behaviour_folder(
+        "why-variables",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n"),
+            (
+                "A.machine",
+                "machine A\ninitial S\nstate S {\n    internal { extern ballRR; rr = ballRR; }\n    when rr > 3 -> LEFT\n    when rr < 0 && ballRR < -1 -> RIGHT\n}\nstate LEFT { }\nstate RIGHT { }\n",
+            ),
+        ],
+    );
+    let script = temp_file(
+        "why-variables.script",
+        b"at 0ms ballRR = 2.5\nat 250ms ballRR = -3\n",
+    );
+    let recording = temp_file("why-variables.jsonl", b"");
+    let player = player.to_str().unwrap();
+    record_run(
+        player,
+        "1s",
+        &recording,
+        &["--script", script.to_str().unwrap()],
+    );
+    let text = std::fs::read_to_string(&recording).unwrap();
+    let fired = text
+        .lines()
+        .find(|l| l.contains("\"event\":\"fired\""))
+        .expect("A fires");
+    let fired: serde_json::Value = serde_json::from_str(fired).unwrap();
+    let round = fired["round"].as_u64().unwrap();
+    let o = explain_recorded(player, "A", &recording, &round.to_string());
+    let said = stdout(&o);
+    assert!(
+        said.contains("1. -> LEFT when rr > 3: did not hold (rr = -3)\n"),
+        "{said}"
+    );
+    assert!(
+        said.contains("2. -> RIGHT when rr < 0 && ballRR < -1: fired (rr = -3, ballRR = -3)\n"),
+        "{said}"
+    );
+    // A round before the ball went right: neither label held, on 2.5.
+    let o = explain_recorded(player, "A", &recording, "2");
+    let said = stdout(&o);
+    assert!(
+        said.contains("1. -> LEFT when rr > 3: did not hold (rr = 2.5)\n"),
+        "{said}"
+    );
+    assert!(
+        said.contains(
+            "2. -> RIGHT when rr < 0 && ballRR < -1: did not hold (rr = 2.5, ballRR = 2.5)\n"
+        ),
+        "{said}"
+    );
+}
+
 /// `proclaim explain BEHAVIOUR QUERY --recording RECORDING --round ROUND`.
 fn explain_recorded(
     behaviour: &str,

@@ -5,6 +5,9 @@
 
 use crate::load::Behaviour;
 use crate::recorded::Recording;
+use proclaim_board::Value;
+use proclaim_fsm::names::Resolved;
+use proclaim_runner::arith::{text, zero};
 use proclaim_runner::{Answerer, Event};
 use std::fmt;
 
@@ -116,7 +119,8 @@ pub fn tried(
             _ => {}
         }
     }
-    let transitions = outcomes(model, state, fired, &values);
+    let held = held_by_names(behaviour, recording, place, round, state, &values);
+    let transitions = outcomes(model, state, fired, &values, &held);
     Ok(Tried {
         machine: machine.to_string(),
         round,
@@ -141,6 +145,7 @@ fn outcomes(
     state: i64,
     fired: Option<(i64, String)>,
     values: &[(&str, bool)],
+    held: &[(String, String)],
 ) -> Vec<TriedTransition> {
     let mut outcome = Outcome::DidNotHold;
     let from = model.transitions.iter().filter(|t| t.source == state);
@@ -154,8 +159,11 @@ fn outcomes(
         } else {
             Outcome::DidNotHold
         };
-        let asked = t.label.condition_names().into_iter().filter_map(|n| {
-            let value = values.iter().find(|(atom, _)| *atom == n)?.1;
+        let asked = label_names(&t.label).into_iter().filter_map(|n| {
+            if let Some((_, value)) = values.iter().find(|(atom, _)| *atom == n) {
+                return Some(format!("{n} = {value}"));
+            }
+            let (_, value) = held.iter().find(|(name, _)| name == n)?;
             Some(format!("{n} = {value}"))
         });
         TriedTransition {
@@ -166,6 +174,80 @@ fn outcomes(
         }
     })
     .collect()
+}
+
+/// Every name a label reads, as a condition or in a comparison, left to right, once each.
+fn label_names(label: &proclaim_fsm::Label) -> Vec<&str> {
+    let mut names = Vec::new();
+    label.visit_names(&mut |name, _| {
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    });
+    names
+}
+
+/// What the names the state's labels read, and no expert answered, held when the labels were
+/// tried: a variable its last assignment (the machine's own, or any machine's for a global),
+/// or its starting value; anything else the whiteboard's last posting of that type, as the
+/// run's events say (text), or "never posted". The labels are tried after OnEntry and before Internal:
+/// the ringlet's events count up to its first answer or firing (all of them when it has
+/// neither).
+fn held_by_names(
+    behaviour: &Behaviour,
+    recording: &Recording,
+    place: usize,
+    round: u64,
+    state: i64,
+    answered: &[(&str, bool)],
+) -> Vec<(String, String)> {
+    let machines = behaviour.machines.iter().map(|m| &m.machine);
+    let names = proclaim_fsm::names::Names::of(machines);
+    let model = &behaviour.machines[place].machine;
+    let machine = model.name.as_str();
+    let events = &recording.events;
+    let ours = |e: &Event| e.machine() == machine && e.round() == round;
+    let tried = |e: &Event| ours(e) && matches!(e, Event::Answered { .. } | Event::Fired { .. });
+    let later = || events.iter().position(|e| e.round() > round);
+    let cut = events.iter().position(tried).unwrap_or_else(|| {
+        let last = events.iter().rposition(ours).map(|last| last + 1);
+        last.or_else(later).unwrap_or(events.len())
+    });
+    let before = &events[..cut];
+    let from = model.transitions.iter().filter(|t| t.source == state);
+    let mut held: Vec<(String, String)> = Vec::new();
+    for name in from.flat_map(|t| label_names(&t.label)) {
+        if answered.iter().any(|(a, _)| *a == name) || held.iter().any(|(n, _)| n == name) {
+            continue;
+        }
+        let value = match names.resolve(place, name) {
+            resolved @ (Resolved::Own | Resolved::Global) => {
+                let own = resolved == Resolved::Own;
+                let set = before.iter().rev().find_map(|e| match e {
+                    Event::Assigned {
+                        machine: m,
+                        variable,
+                        value,
+                        ..
+                    } if variable == name && (!own || m == machine) => Some(value.clone()),
+                    _ => None,
+                });
+                // Never assigned: as declared (a global starts at 0).
+                let first = names.own[place].iter().find(|o| o.name == name);
+                let zero = first.map_or(Value::Int(0), |o| zero(&o.first));
+                set.unwrap_or_else(|| text(&zero))
+            }
+            Resolved::Extern | Resolved::Other => {
+                let posted = before.iter().rev().find_map(|e| match e {
+                    Event::Posted { ty, content, .. } if ty == name => Some(content.clone()),
+                    _ => None,
+                });
+                posted.unwrap_or_else(|| "never posted".into())
+            }
+        };
+        held.push((name.to_string(), value));
+    }
+    held
 }
 
 /// Who gave an answer, as the trace says it.
