@@ -388,6 +388,97 @@ async fn the_events_list_says_which_variable_an_activity_set_and_to_what() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// A click on an answer in the events list shows why the machine read it: the inputs its
+/// theory held then and the proof tree, as `explain --trace` prints them.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_click_on_an_answer_shows_why_the_theory_gave_it() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = microwave_trace("why");
+    let trace_arg = trace.to_str().unwrap();
+    let (_replay, url) = proclaim_with_monitor(&[
+        "replay",
+        trace_arg,
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "microwave",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    let second = Duration::from_secs(1);
+    until(&client, STATE, json!("COOKING"), 5 * second).await;
+    let clicked = "const li = [...document.querySelectorAll('#events li.explainable')].pop(); if (!li) return null; li.click(); return li.textContent.replace(/^[0-9.]+ +/, '')";
+    let answer = eval(&client, clicked).await;
+    let answer = answer
+        .as_str()
+        .expect("the list shows an expert's answer")
+        .to_string();
+    // `Microwave cook = true`: the machine, the label and the value the page showed.
+    let (machine, rest) = answer.split_once(' ').unwrap();
+    let (label, value) = rest.split_once(" = ").unwrap();
+    let said = format!(
+        "{machine} asked `{label}`; the theory `microwave` answered {value}, its inputs then: "
+    );
+    until(
+        &client,
+        &format!(
+            "return document.getElementById('why').textContent.includes({})",
+            json!(said)
+        ),
+        json!(true),
+        5 * second,
+    )
+    .await;
+    let why = eval(&client, "return document.getElementById('why').textContent").await;
+    assert!(
+        why.as_str().unwrap().contains(&format!("beta {label}")),
+        "{why}"
+    );
+    let _ = client.close().await;
+    // A live run's page explains from the events it has seen (no browser needed).
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--for",
+        "20s",
+    ]);
+    let deadline = std::time::Instant::now() + 10 * second;
+    loop {
+        let (status, body) = http(
+            &url,
+            "GET",
+            "/api/explain?round=2&machine=Microwave&label=cook",
+            None,
+        );
+        if status == 200 {
+            assert!(
+                body.starts_with(
+                    "round 2: Microwave asked `cook`; the theory `microwave` answered false"
+                ),
+                "{body}"
+            );
+            break;
+        }
+        assert!(std::time::Instant::now() < deadline, "{status}: {body}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let (status, body) = http(
+        &url,
+        "GET",
+        "/api/explain?round=2&machine=Microwave&label=bake",
+        None,
+    );
+    assert_eq!(status, 422, "{body}");
+    assert!(
+        body.contains("`bake` is no output of the behaviour's theories"),
+        "{body}"
+    );
+    let _ = std::fs::remove_file(&trace);
+}
+
 /// One HTTP/1.1 request over a plain socket: the status code and the body.
 pub(crate) fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
     http_with(url, method, path, body, "")

@@ -156,6 +156,12 @@ fn print_held(held: &proclaim_behaviour::Held, explanation: &Explanation, json: 
         println!("{json}");
         return;
     }
+    print!("{}", held_text(held, explanation));
+}
+
+/// A recorded answer as a person reads it: what was asked, the theory's inputs then, the tree.
+fn held_text(held: &proclaim_behaviour::Held, explanation: &Explanation) -> String {
+    let asked = &held.asked;
     let inputs: Vec<String> = held
         .inputs()
         .into_iter()
@@ -169,11 +175,39 @@ fn print_held(held: &proclaim_behaviour::Held, explanation: &Explanation, json: 
     } else {
         inputs.join(", ")
     };
-    println!(
-        "round {}: {} asked `{}`; the theory `{}` answered {}, its inputs then: {inputs}",
+    format!(
+        "round {}: {} asked `{}`; the theory `{}` answered {}, its inputs then: {inputs}\n{explanation}",
         asked.round, asked.machine, asked.label, asked.theory, asked.replayed
-    );
-    print!("{explanation}");
+    )
+}
+
+/// Why `asked.machine` read `asked.label` as it did in `asked.round` of a run whose events so
+/// far are `events` (the monitor's click on an answer): the text `explain --trace` prints, or
+/// why there is none.
+pub fn answer_in_events(
+    behaviour: &proclaim_behaviour::Behaviour,
+    events: &[proclaim_runtime::Event],
+    asked: &proclaim_monitor::AnswerAsked,
+) -> Result<String, String> {
+    let machines: Vec<&str> = behaviour
+        .machines
+        .iter()
+        .map(|m| m.machine.name.as_str())
+        .collect();
+    let recording = proclaim_behaviour::Recording::from_trace(events.to_vec(), &machines);
+    let (label, round) = (asked.label.as_str(), asked.round);
+    let machine = Some(asked.machine.as_str());
+    let mut held = proclaim_behaviour::held_at(behaviour, &recording, label, round, machine)
+        .map_err(|e| e.to_string())?;
+    let explanation = held.explain(1);
+    let answered = &held.asked;
+    if answered.recorded.is_some_and(|r| r != answered.replayed) {
+        return Err(format!(
+            "`{label}` was answered {} in round {round}, but the theory `{}` answers {} from the inputs the run's postings give (the behaviour changed, or a posting's value was lost as text)",
+            !answered.replayed, answered.theory, answered.replayed
+        ));
+    }
+    Ok(held_text(&held, &explanation))
 }
 
 /// A node: its text, what it is about (`goal` with algorithm, literal and whether proved; or

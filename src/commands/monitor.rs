@@ -4,11 +4,12 @@
 use crate::behaviours::load_behaviour;
 use crate::failure::Failure;
 use proclaim_behaviour::{read_trace, Behaviour};
-use proclaim_monitor::{Access, Chart, Monitor};
+use proclaim_monitor::{Access, Chart, Explainer, Monitor};
 use proclaim_runtime::Event;
 use std::net::SocketAddr;
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 /// `7480`, `127.0.0.1:7480`, `[::1]:7480` or `0.0.0.0:8080`.
 pub fn parse_addr(text: &str) -> Result<SocketAddr, Failure> {
@@ -30,9 +31,11 @@ pub fn charts(behaviour: &Behaviour) -> Vec<Chart> {
 }
 
 /// The page of a running behaviour on `board`, served at `addr`; `stepper` (the one its
-/// machines were launched with) makes its pause and step buttons work.
+/// machines were launched with) makes its pause and step buttons work; `named` (the behaviour
+/// as the command line named it) is read again to explain an answer clicked on.
 pub async fn live(
     behaviour: &Behaviour,
+    named: &str,
     board: &proclaim_board::Whiteboard,
     stepper: Option<proclaim_runner::Stepper>,
     addr: &str,
@@ -44,9 +47,20 @@ pub async fn live(
         board.clone(),
         stepper,
     );
+    monitor.set_explainer(explainer(named));
     let access = move |bound: SocketAddr| Access::for_address(bound, read_only);
     open_with(&monitor, addr, access).await?;
     Ok(monitor)
+}
+
+/// Why a machine read an answer, for the page: the behaviour `named` read again (so the
+/// explanation is of the theories as they are), the run's events read as a trace.
+fn explainer(named: &str) -> Explainer {
+    let named = named.to_string();
+    Arc::new(move |events, asked| {
+        let behaviour = load_behaviour(&named).map_err(|e| e.to_string())?;
+        super::explain::answer_in_events(&behaviour, events, asked)
+    })
 }
 
 /// Serves the page and says where. The default port, when taken, gives way to any free one
@@ -109,6 +123,9 @@ pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitC
     let runtime = super::runtime::runtime(super::runtime::Shape::OneThread)?;
     runtime.block_on(async {
         let monitor = Monitor::replay(name, charts, events);
+        if let Some(named) = behaviour {
+            monitor.set_explainer(explainer(named));
+        }
         println!("replaying {} ({count} events)", trace.display());
         open(&monitor, addr).await?;
         println!("  Ctrl-C to stop");

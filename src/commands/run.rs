@@ -177,6 +177,7 @@ async fn run_on_board(
         Some(addr) => Some(
             super::monitor::live(
                 behaviour,
+                &args.behaviour,
                 &board,
                 stepper.clone(),
                 addr,

@@ -146,9 +146,27 @@ function renderEvents(frame) {
   list.start = first;
   list.replaceChildren(...frame.events.map((e) => {
     const li = text("li", (e.at_us !== undefined ? seconds(e.at_us) + "  " : "") + describe(e), e.event);
+    if (e.event === "answered" && e.by && e.by.expert) {
+      li.classList.add("explainable");
+      li.addEventListener("click", () => explainAnswer(e));
+    }
     return li;
   }));
   list.scrollTop = list.scrollHeight;
+}
+
+// Why a machine read an answer: the proof tree from the inputs its theory held then.
+async function explainAnswer(e) {
+  const why = $("why");
+  const query = new URLSearchParams({ round: e.round, machine: e.machine, label: e.atom });
+  why.hidden = false;
+  why.textContent = "…";
+  try {
+    const response = await fetch("/api/explain?" + query);
+    why.textContent = await response.text();
+  } catch (error) {
+    why.textContent = `could not ask: ${error}`;
+  }
 }
 
 let lastFrame = null;

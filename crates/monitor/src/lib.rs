@@ -1,7 +1,8 @@
 //! A running behaviour as a picture in the browser (`proclaim run --monitor`, `proclaim replay
 //! --monitor`): every machine's diagram with its current state lit and the transition that
 //! just fired marked, the whiteboard as a live table, the labels' answers, pause / one ring /
-//! resume, posting from the page, and for a replay a slider over every moment.
+//! resume, posting from the page, for a replay a slider over every moment, and why a machine
+//! read the answer it did (a click on it, through an [`Explainer`] the program gives).
 //!
 //! The page costs the behaviour nothing it needs: machines never wait on it. Events are folded
 //! into a bounded [`Picture`] by whoever reads the run's events; the whiteboard is read as an
@@ -18,6 +19,7 @@ mod editor;
 mod picture;
 mod replay;
 mod server;
+mod why;
 
 pub use access::{new_token, parse_address, Access, TOKEN_HEADER};
 pub use diagram::{node, Chart, ChartState, ChartTransition};
@@ -25,3 +27,4 @@ pub use editor::{BehaviourCheck, Editor, EditorFile};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
 pub use server::{Monitor, FRAME_GAP};
+pub use why::{AnswerAsked, Explainer};

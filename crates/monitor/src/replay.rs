@@ -21,6 +21,11 @@ pub struct Timeline {
 }
 
 impl Timeline {
+    /// The trace's events.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
     /// The machines' postings and their experts' answers are what the board held.
     pub fn new(charts: &[Chart], events: Vec<Event>) -> Timeline {
         let board = LocalBoard::new();

@@ -6,6 +6,7 @@ use crate::access::{foreign, Access, TOKEN_HEADER};
 use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
+use crate::why::{AnswerAsked, Explainer};
 use axum::extract::{Query, State};
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
@@ -48,6 +49,10 @@ struct Shared {
     version: watch::Sender<u64>,
     source: Source,
     access: RwLock<Access>,
+    /// Why a machine read an answer, when the program can say ([`Monitor::set_explainer`]).
+    explainer: RwLock<Option<Explainer>>,
+    /// A live run's events, kept once there is an explainer to hand them to.
+    history: Mutex<Vec<Event>>,
 }
 
 enum Source {
@@ -94,6 +99,8 @@ impl Monitor {
                 version: watch::channel(0).0,
                 source,
                 access: Default::default(),
+                explainer: RwLock::new(None),
+                history: Mutex::new(Vec::new()),
             }),
         }
     }
@@ -103,9 +110,18 @@ impl Monitor {
         *self.shared.access.write() = access;
     }
 
+    /// Lets the page ask why a machine read an answer (a click on it): `explainer` is handed
+    /// the run's events (a live run's are kept from now on) and what was asked.
+    pub fn set_explainer(&self, explainer: Explainer) {
+        *self.shared.explainer.write() = Some(explainer);
+    }
+
     /// Folds an event of the live run in. Cheap, and never waits on a page.
     pub fn observe(&self, event: &Event) {
         self.shared.picture().observe(event);
+        if self.shared.explainer.read().is_some() {
+            self.shared.history.lock().push(event.clone());
+        }
         self.shared.changed();
     }
 
@@ -190,6 +206,7 @@ impl Monitor {
             .route("/api/frames", get(frames))
             .route("/api/control", post(control))
             .route("/api/post", post(post_message))
+            .route("/api/explain", get(explain))
             .with_state(self.shared.clone())
     }
 }
@@ -321,6 +338,25 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         read_only: shared.access() == Access::ReadOnly,
     })
     .into_response()
+}
+
+/// Why a machine read an answer: the explainer's text, or why there is none.
+async fn explain(State(shared): State<Arc<Shared>>, Query(asked): Query<AnswerAsked>) -> Response {
+    let Some(explainer) = shared.explainer.read().clone() else {
+        let why = "this page cannot explain answers (give the behaviour: `--behaviour`)";
+        return (StatusCode::NOT_IMPLEMENTED, why).into_response();
+    };
+    let explained = match &shared.source {
+        Source::Replay(timeline) => explainer(timeline.events(), &asked),
+        Source::Live { .. } => {
+            let history = shared.history.lock().clone();
+            explainer(&history, &asked)
+        }
+    };
+    match explained {
+        Ok(text) => text.into_response(),
+        Err(why) => (StatusCode::UNPROCESSABLE_ENTITY, why).into_response(),
+    }
 }
 
 #[derive(Deserialize)]
