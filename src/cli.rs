@@ -353,6 +353,10 @@ pub struct TestArgs {
     /// With `--coverage`: the coverage as JSON on standard output
     #[arg(long, requires = "coverage")]
     pub json: bool,
+    /// With `--coverage`: draw the machines in the browser (at 127.0.0.1:7480 unless given),
+    /// what the recordings never exercised dashed in red, until Ctrl-C
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = MONITOR_ADDR, requires = "coverage", conflicts_with = "json")]
+    pub monitor: Option<String>,
     /// Accept a deliberate change: a recording that differs is recorded again on the
     /// behaviour as it is now (its outside replayed), and the rounds that changed are shown
     #[arg(long)]

@@ -479,6 +479,53 @@ async fn a_click_on_an_answer_shows_why_the_theory_gave_it() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// `test --coverage --monitor` draws the machines with what the recordings never exercised
+/// dashed in red: the kitchen run never cooks from OPEN, nor leaves COOKING but by its timeout.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_coverage_page_marks_the_transition_no_recording_fired() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let recording = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "proclaim-monitor-coverage-{}.jsonl",
+        std::process::id()
+    ));
+    let ran = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args([
+            "run",
+            "microwave",
+            "--virtual-clock",
+            "--for",
+            "70s",
+            "--record",
+        ])
+        .arg(&recording)
+        .output()
+        .expect("proclaim runs");
+    assert!(
+        ran.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let (_page, url) = proclaim_with_monitor(&[
+        "test",
+        "microwave",
+        recording.to_str().unwrap(),
+        "--coverage",
+        "--monitor",
+        "127.0.0.1:0",
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    let never = "return [...document.querySelectorAll('[data-machine=\"Microwave\"] g.edge.never title')].map((t) => t.textContent).sort().join(' ')";
+    let expected = json!("s2->s3 s3->s1 s3->s2");
+    until(&client, never, expected, 5 * Duration::from_secs(1)).await;
+    let states =
+        "return document.querySelectorAll('[data-machine=\"Microwave\"] g.node.never').length";
+    assert_eq!(eval(&client, states).await, json!(0));
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&recording);
+}
+
 /// One HTTP/1.1 request over a plain socket: the status code and the body.
 pub(crate) fn http(url: &str, method: &str, path: &str, body: Option<&str>) -> (u16, String) {
     http_with(url, method, path, body, "")

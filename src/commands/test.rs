@@ -15,6 +15,7 @@ pub fn command(args: crate::cli::TestArgs) -> Result<ExitCode, Failure> {
         coverage: args.coverage,
         json: args.json,
         update: args.update,
+        monitor: args.monitor,
     };
     run(&args.behaviour, &args.recordings, report)
 }
@@ -26,6 +27,8 @@ pub struct TestReport {
     pub json: bool,
     /// Record again each recording that differs (`--update`).
     pub update: bool,
+    /// Where to draw the coverage in the browser (`--coverage --monitor`).
+    pub monitor: Option<String>,
 }
 
 pub fn run(
@@ -83,16 +86,48 @@ pub fn run(
         report.json,
         format!("{} passed, {failed} failed", files.len() - failed),
     );
-    if report.coverage {
-        print_coverage(
-            &proclaim_behaviour::coverage(&behaviour, &read),
-            report.json,
-        );
-    }
-    Ok(if failed == 0 {
+    let exit = if failed == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
+    };
+    if report.coverage {
+        let coverage = proclaim_behaviour::coverage(&behaviour, &read);
+        print_coverage(&coverage, report.json);
+        if let Some(addr) = &report.monitor {
+            show_coverage(&behaviour, &coverage, addr)?;
+        }
+    }
+    Ok(exit)
+}
+
+/// The machines drawn in the browser with what the recordings never exercised marked, until
+/// Ctrl-C.
+fn show_coverage(
+    behaviour: &proclaim_behaviour::Behaviour,
+    coverage: &proclaim_behaviour::Coverage,
+    addr: &str,
+) -> Result<(), Failure> {
+    let never = coverage.states.iter().chain(&coverage.transitions);
+    let uncovered = never
+        .filter(|c| !c.exercised)
+        .filter_map(|c| c.place.clone())
+        .map(|p| proclaim_monitor::Uncovered {
+            machine: p.machine,
+            state: p.state,
+            target: p.target,
+            label: p.label,
+        })
+        .collect();
+    let charts = super::monitor::charts(behaviour);
+    let runtime = super::runtime::runtime(super::runtime::Shape::OneThread)?;
+    runtime.block_on(async {
+        let monitor = proclaim_monitor::Monitor::replay(behaviour.name.clone(), charts, Vec::new());
+        monitor.set_uncovered(uncovered);
+        super::monitor::open(&monitor, addr).await?;
+        println!("  Ctrl-C to stop");
+        let _ = tokio::signal::ctrl_c().await;
+        Ok(())
     })
 }
 

@@ -21,6 +21,21 @@ pub struct Covered {
     /// `Machine.State`, `Machine: FROM -> TO (label)`, `theory: Rule`, `theory: Winner > Loser`.
     pub what: String,
     pub exercised: bool,
+    /// A state's or a transition's place in its machine (what a diagram colours).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub place: Option<CoveredPlace>,
+}
+
+/// Where a state or a transition is in its machine: the state (a transition's source), and a
+/// transition's target and label.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct CoveredPlace {
+    pub machine: String,
+    pub state: i64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target: Option<i64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
 }
 
 /// What the recordings exercised, by kind, each in the behaviour's order.
@@ -108,6 +123,12 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
             coverage.states.push(Covered {
                 what: format!("{name}.{}", s.name),
                 exercised: done.entered.contains(&(name.clone(), s.id)),
+                place: Some(CoveredPlace {
+                    machine: name.clone(),
+                    state: s.id,
+                    target: None,
+                    label: None,
+                }),
             });
         }
         let state = |id| {
@@ -127,7 +148,13 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
                 ),
                 exercised: done
                     .fired
-                    .contains(&(name.clone(), t.source, t.target, label)),
+                    .contains(&(name.clone(), t.source, t.target, label.clone())),
+                place: Some(CoveredPlace {
+                    machine: name.clone(),
+                    state: t.source,
+                    target: Some(t.target),
+                    label: Some(label),
+                }),
             });
         }
     }
@@ -138,6 +165,7 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
             coverage.rules.push(Covered {
                 exercised: done.applied.contains(&(t.name.clone(), rule.clone())),
                 what: format!("{}: {rule}", t.name),
+                place: None,
             });
         }
         for &(winner, loser) in theory.priorities() {
@@ -149,6 +177,7 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
             coverage.priorities.push(Covered {
                 what: format!("{}: {} > {}", t.name, pair.1, pair.2),
                 exercised: done.decided.contains(&pair),
+                place: None,
             });
         }
     }

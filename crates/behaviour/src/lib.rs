@@ -34,7 +34,7 @@ mod tried;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
-pub use coverage::{coverage, Coverage, Covered};
+pub use coverage::{coverage, Coverage, Covered, CoveredPlace};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use draw::behaviour_to_dot;
 pub use edited::check_edited;

@@ -50,6 +50,25 @@ function drawMachines() {
     const nodeOf = new Map(chart.states.map((s) => [s.id, s.node]));
     drawn.set(chart.name, { section, nodes, edges, nodeOf, current: null, fired: [] });
   }
+  markUncovered();
+}
+
+// What recordings never exercised (`proclaim test --coverage --monitor`): states never
+// entered and transitions never fired, drawn dashed in red.
+function markUncovered() {
+  for (const u of model.uncovered || []) {
+    const d = drawn.get(u.machine);
+    if (!d) continue;
+    if (u.target === null || u.target === undefined) {
+      const g = d.nodes.get(d.nodeOf.get(u.state));
+      if (g) g.classList.add("never");
+      continue;
+    }
+    const between = d.edges.get(d.nodeOf.get(u.state) + "->" + d.nodeOf.get(u.target)) || [];
+    for (const g of between) {
+      if (between.length === 1 || g.textContent.includes(u.label)) g.classList.add("never");
+    }
+  }
 }
 
 function renderMachine(m) {

@@ -26,5 +26,5 @@ pub use diagram::{node, Chart, ChartState, ChartTransition};
 pub use editor::{BehaviourCheck, Editor, EditorFile};
 pub use picture::{Frame, Picture, BOARD_ROWS, LABELS, RECENT};
 pub use replay::Timeline;
-pub use server::{Monitor, FRAME_GAP};
+pub use server::{Monitor, Uncovered, FRAME_GAP};
 pub use why::{AnswerAsked, Explainer};

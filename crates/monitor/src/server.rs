@@ -53,6 +53,18 @@ struct Shared {
     explainer: RwLock<Option<Explainer>>,
     /// A live run's events, kept once there is an explainer to hand them to.
     history: Mutex<Vec<Event>>,
+    /// What recordings never exercised (`proclaim test --coverage --monitor`): drawn apart.
+    uncovered: RwLock<Vec<Uncovered>>,
+}
+
+/// A state never entered (no `target`), or a transition never fired, by the recordings a
+/// page shows the coverage of.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct Uncovered {
+    pub machine: String,
+    pub state: i64,
+    pub target: Option<i64>,
+    pub label: Option<String>,
 }
 
 enum Source {
@@ -101,6 +113,7 @@ impl Monitor {
                 access: Default::default(),
                 explainer: RwLock::new(None),
                 history: Mutex::new(Vec::new()),
+                uncovered: RwLock::new(Vec::new()),
             }),
         }
     }
@@ -114,6 +127,13 @@ impl Monitor {
     /// the run's events (a live run's are kept from now on) and what was asked.
     pub fn set_explainer(&self, explainer: Explainer) {
         *self.shared.explainer.write() = Some(explainer);
+    }
+
+    /// Draws what recordings never exercised apart (states never entered, transitions never
+    /// fired).
+    pub fn set_uncovered(&self, uncovered: Vec<Uncovered>) {
+        *self.shared.uncovered.write() = uncovered;
+        self.shared.changed();
     }
 
     /// Folds an event of the live run in. Cheap, and never waits on a page.
@@ -320,6 +340,8 @@ struct Model<'s> {
     can_step: bool,
     /// Whether the page shows no controls at all.
     read_only: bool,
+    /// What recordings never exercised, drawn apart.
+    uncovered: Vec<Uncovered>,
 }
 
 async fn model(State(shared): State<Arc<Shared>>) -> Response {
@@ -336,6 +358,7 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         times,
         can_step,
         read_only: shared.access() == Access::ReadOnly,
+        uncovered: shared.uncovered.read().clone(),
     })
     .into_response()
 }
