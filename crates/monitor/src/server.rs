@@ -6,7 +6,7 @@ use crate::access::{foreign, Access, TOKEN_HEADER};
 use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
-use crate::why::{AnswerAsked, Explainer};
+use crate::why::{AnswerAsked, Explainer, History};
 use axum::extract::{Query, State};
 use axum::http::{header, HeaderMap, StatusCode};
 use axum::response::sse::{Event as SseEvent, KeepAlive, Sse};
@@ -52,7 +52,7 @@ struct Shared {
     /// Why a machine read an answer, when the program can say ([`Monitor::set_explainer`]).
     explainer: RwLock<Option<Explainer>>,
     /// A live run's events, kept once there is an explainer to hand them to.
-    history: Mutex<Vec<Event>>,
+    history: Mutex<History>,
     /// What recordings never exercised (`proclaim test --coverage --monitor`): drawn apart.
     uncovered: RwLock<Vec<Uncovered>>,
 }
@@ -112,7 +112,7 @@ impl Monitor {
                 source,
                 access: Default::default(),
                 explainer: RwLock::new(None),
-                history: Mutex::new(Vec::new()),
+                history: Mutex::new(History::default()),
                 uncovered: RwLock::new(Vec::new()),
             }),
         }
@@ -372,8 +372,8 @@ async fn explain(State(shared): State<Arc<Shared>>, Query(asked): Query<AnswerAs
     let explained = match &shared.source {
         Source::Replay(timeline) => explainer(timeline.events(), &asked),
         Source::Live { .. } => {
-            let history = shared.history.lock().clone();
-            explainer(&history, &asked)
+            let events = shared.history.lock().events();
+            explainer(&events, &asked)
         }
     };
     match explained {
