@@ -273,6 +273,21 @@ async fn a_live_run_lights_its_states_steps_and_takes_postings_from_the_page() {
     let _ = std::fs::remove_file(&script);
 }
 
+/// `trace` replayed on a page that draws `behaviour`, open in `client`.
+async fn replay_page(client: &Client, trace: &std::path::Path, behaviour: &str) -> Running {
+    let trace = trace.to_str().unwrap();
+    let (replay, url) = proclaim_with_monitor(&[
+        "replay",
+        trace,
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        behaviour,
+    ]);
+    client.goto(&url).await.expect("the page opens");
+    replay
+}
+
 /// The microwave behaviour run for ten virtual seconds, its trace written to a file of its own.
 fn microwave_trace(tag: &str) -> std::path::PathBuf {
     behaviour_trace("microwave", "10s", tag)
@@ -311,7 +326,6 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
         return;
     };
     let trace = microwave_trace("slider");
-    let trace_arg = trace.to_str().unwrap();
     let events: Vec<Json> = std::fs::read_to_string(&trace)
         .unwrap()
         .lines()
@@ -328,15 +342,7 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
             .iter()
             .position(|e| e["event"] == "posted" && e["type"] == "Light")
             .expect("OPEN switches the light on");
-    let (_replay, url) = proclaim_with_monitor(&[
-        "replay",
-        trace_arg,
-        "--monitor",
-        "127.0.0.1:0",
-        "--behaviour",
-        "microwave",
-    ]);
-    client.goto(&url).await.expect("the page opens");
+    let _replay = replay_page(&client, &trace, "microwave").await;
     let second = Duration::from_secs(1);
     // It opens at the end of the run.
     until(&client, STATE, json!("COOKING"), 5 * second).await;
@@ -368,15 +374,7 @@ async fn the_events_list_says_which_variable_an_activity_set_and_to_what() {
         return;
     };
     let trace = behaviour_trace("press", "5s", "assigned");
-    let (_replay, url) = proclaim_with_monitor(&[
-        "replay",
-        trace.to_str().unwrap(),
-        "--monitor",
-        "127.0.0.1:0",
-        "--behaviour",
-        "press",
-    ]);
-    client.goto(&url).await.expect("the page opens");
+    let _replay = replay_page(&client, &trace, "press").await;
     until(
         &client,
         "return [...document.querySelectorAll('#events li.assigned')].some((li) => /Controller set (waited|motor|low) = -?[0-9]+$/.test(li.textContent))",
@@ -396,16 +394,7 @@ async fn a_click_on_an_answer_shows_why_the_theory_gave_it() {
         return;
     };
     let trace = microwave_trace("why");
-    let trace_arg = trace.to_str().unwrap();
-    let (_replay, url) = proclaim_with_monitor(&[
-        "replay",
-        trace_arg,
-        "--monitor",
-        "127.0.0.1:0",
-        "--behaviour",
-        "microwave",
-    ]);
-    client.goto(&url).await.expect("the page opens");
+    let _replay = replay_page(&client, &trace, "microwave").await;
     let second = Duration::from_secs(1);
     until(&client, STATE, json!("COOKING"), 5 * second).await;
     let clicked = "const li = [...document.querySelectorAll('#events li.explainable')].pop(); if (!li) return null; li.click(); return li.textContent.replace(/^[0-9.]+ +/, '')";
