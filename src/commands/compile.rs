@@ -11,8 +11,7 @@ use std::process::ExitCode;
 
 /// `proclaim compile`.
 pub fn command(args: CompileArgs) -> Result<ExitCode, Failure> {
-    let path = Path::new(&args.theory);
-    if path.is_dir() || path.join("behaviour.toml").exists() {
+    if names_behaviour(&args.theory, args.target) {
         return behaviour(&args.theory, args.target, args.whiteboard, &args.out);
     }
     if args.whiteboard {
@@ -36,8 +35,7 @@ pub fn run(
     unknown_inputs: bool,
     budget: Option<u64>,
 ) -> Result<ExitCode, Failure> {
-    let path = Path::new(theory_name);
-    if path.is_dir() || path.join("behaviour.toml").exists() {
+    if names_behaviour(theory_name, target) {
         return behaviour(theory_name, target, false, out);
     }
     if target == CompileTarget::Rust {
@@ -118,6 +116,16 @@ fn bytes(n: usize) -> String {
 
 /// A behaviour: its machines and theories as freestanding C with the host harness `main.c`, or
 /// as a Cargo project.
+/// Whether `name` is a behaviour's: a folder, a manifest's; or, for `--target rust` (a theory
+/// compiles to C only), any name but a file's, so `microwave` is the built-in behaviour there
+/// and the built-in theory for C.
+fn names_behaviour(name: &str, target: CompileTarget) -> bool {
+    let path = Path::new(name);
+    path.is_dir()
+        || path.join("behaviour.toml").exists()
+        || target == CompileTarget::Rust && !path.is_file()
+}
+
 fn behaviour(
     name: &str,
     target: CompileTarget,

@@ -49,7 +49,7 @@ fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
     // A theory has no Rust target: said so, exit 2.
     let o = proclaim(&[
         "compile",
-        "microwave",
+        "theories/microwave.dl",
         "--target",
         "rust",
         "-o",
@@ -58,6 +58,37 @@ fn compile_writes_a_theory_as_freestanding_c_and_refuses_what_it_cannot() {
     assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o).contains("--target rust compiles a behaviour (a folder)"),
+        "{}",
+        stderr(&o)
+    );
+    // So a name there is a behaviour's: `microwave` is the built-in behaviour (the built-in
+    // theory under --target c).
+    let project = out.join("microwave-rs");
+    let o = proclaim(&[
+        "compile",
+        "microwave",
+        "--target",
+        "rust",
+        "-o",
+        project.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let manifest = std::fs::read_to_string(project.join("Cargo.toml")).unwrap();
+    assert!(
+        manifest.contains("name = \"behaviour-microwave\""),
+        "{manifest}"
+    );
+    let o = proclaim(&[
+        "compile",
+        "nosuch",
+        "--target",
+        "rust",
+        "-o",
+        project.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("no behaviour `nosuch`"),
         "{}",
         stderr(&o)
     );
