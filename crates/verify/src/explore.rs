@@ -46,7 +46,7 @@ pub struct Graph {
     /// Breadth-first layers reached: the states at the greatest distance from an initial one
     /// are this many steps away.
     pub depth: usize,
-    /// The search stopped because a racing engine answered first ([`crate::race`]).
+    /// The search stopped because a racing engine answered first (`race.rs`).
     pub overtaken: bool,
     /// How many times the layout was widened (records packed before are packed no more).
     generation: usize,
@@ -222,7 +222,7 @@ pub struct Limits {
     /// Stop once every property has found what it looks for.
     pub stop_when_decided: bool,
     /// Once this many states are stored undecided, a racing symbolic engine may start
-    /// ([`crate::race`]).
+    /// (`race.rs`).
     pub rival_after: usize,
     /// Make successors through the step memo (`step_memo.rs`) where records fit it; off only
     /// to check that it changes nothing.

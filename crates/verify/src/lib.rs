@@ -226,7 +226,7 @@ fn search(
 
 /// The explicit search alone on a small graph; beyond its first [`AUTO_EXPLICIT_STATES`]
 /// states undecided, or after it ran out of memory, the symbolic engine beside it, the first
-/// to decide answering ([`race`]). Where neither decides, the explicit search's report.
+/// to decide answering (`race.rs`). Where neither decides, the explicit search's report.
 fn race(
     model: &Model,
     compiled: &[Property],

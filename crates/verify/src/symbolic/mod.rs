@@ -451,7 +451,7 @@ pub fn check(
     Ok(outcome)
 }
 
-/// Goes on unless a racing engine has answered ([`crate::race`]): then this one declines.
+/// Goes on unless a racing engine has answered (`race.rs`): then this one declines.
 fn go_on(model: &Search) -> Result<(), Declined> {
     if model.overtaken() {
         return Err(Declined("the explicit search answered first".into()));
