@@ -1,6 +1,7 @@
 //! The automatic engine choice as a race on one frozen model: the explicit search runs alone
 //! while the graph is small; once it has stored [`crate::AUTO_EXPLICIT_STATES`] states undecided,
-//! or stopped undecided, the symbolic engine starts on a second thread beside it. The first
+//! or ran out of memory, the symbolic engine starts on a second thread beside it (none starts
+//! after a search that stopped at `--max-states`, a bound the user set). The first
 //! engine to decide answers and the other stops at its next step. The two share `--max-memory`:
 //! each says what it holds, and each counts what the other holds against the budget.
 //!
