@@ -3,7 +3,7 @@
 //! what was posted, in the order it happened, and every answer a machine read with who gave
 //! it; from those this rebuilds the board's messages: each posting, and for each answer of an
 //! expert the query and the expert's posting of it. What a trace loses: a posting's value is
-//! kept as text (read back as a truth, a whole number, a fraction or text, in that order), and
+//! kept as text (read back by `Value::parse`: a truth, a whole number, a fraction or text), and
 //! a ringlet that neither posted nor read anything leaves no line.
 
 use crate::recorded::{Recorded, Recording};
@@ -50,7 +50,7 @@ impl Recording {
                     content,
                     ..
                 } => {
-                    push(&mut recording, machine, ty, value_of(content));
+                    push(&mut recording, machine, ty, Value::parse(content));
                 }
                 Event::Answered {
                     machine,
@@ -72,35 +72,5 @@ impl Recording {
         }
         recording.events = events;
         recording
-    }
-}
-
-/// A posting's text read back as the value it most likely was.
-fn value_of(content: &str) -> Value {
-    match content {
-        "true" => return Value::Bool(true),
-        "false" => return Value::Bool(false),
-        _ => {}
-    }
-    if let Ok(i) = content.parse::<i64>() {
-        return Value::Int(i);
-    }
-    match content.parse::<f64>() {
-        Ok(x) if x.is_finite() => Value::Float(x),
-        _ => Value::Str(content.to_string()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_postings_text_reads_back_as_the_value_it_most_likely_was() {
-        assert_eq!(value_of("true"), Value::Bool(true));
-        assert_eq!(value_of("-3"), Value::Int(-3));
-        assert_eq!(value_of("0.5"), Value::Float(0.5));
-        assert_eq!(value_of("off"), Value::Str("off".into()));
-        assert_eq!(value_of("inf"), Value::Str("inf".into()));
     }
 }
