@@ -830,6 +830,56 @@ mod tests {
         }
     }
 
+    /// A search whose rival has already answered stops at once: the explicit one saying it
+    /// was overtaken, the symbolic one declining; the same searches in a race still undecided
+    /// go on to their end.
+    #[test]
+    fn a_search_overtaken_by_its_rival_stops_and_says_so() {
+        use crate::race::{Race, Side};
+        // The first random behaviour the symbolic engine takes.
+        let (model, compiled) = (0..50)
+            .find_map(|seed| {
+                let generated = random_behaviour::generate(seed);
+                let files = Generated(generated.files.clone());
+                let behaviour = load("random", Arc::new(files)).expect("it loads");
+                let (mut model, compiled) = crate::prepare(&behaviour, &[]).expect("it models");
+                model.storage = reduce::storage(&model, &compiled, Reductions::default());
+                let taken = crate::symbolic::check(&Search::new(&model), &compiled, 1 << 30);
+                taken.is_ok().then_some((model, compiled))
+            })
+            .expect("a random behaviour the symbolic engine takes");
+        let limits = Limits {
+            max_states: 100_000,
+            max_memory: 1 << 30,
+            stop_when_decided: true,
+            rival_after: usize::MAX,
+            memo: true,
+        };
+        let race = Race::new(1 << 30);
+        let whole = explore(
+            &Search::racing(&model, &race, Side::Explicit),
+            &compiled,
+            limits,
+            &mut |_| {},
+        );
+        assert!(whole.complete && !whole.overtaken);
+        race.finish(Side::Symbolic, true);
+        let cut = explore(
+            &Search::racing(&model, &race, Side::Explicit),
+            &compiled,
+            limits,
+            &mut |_| {},
+        );
+        assert!(cut.overtaken && !cut.complete);
+        assert!(cut.len() < whole.len(), "{} of {}", cut.len(), whole.len());
+        let search = Search::racing(&model, &race, Side::Symbolic);
+        let declined = crate::symbolic::check(&search, &compiled, 1 << 30).err();
+        assert_eq!(
+            declined.map(|d| d.0),
+            Some("the explicit search answered first".to_string())
+        );
+    }
+
     /// The step memo and the found-state memo change nothing the search finds, on the random
     /// behaviours of the conformance test, every reduction on and off.
     #[test]

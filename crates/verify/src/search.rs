@@ -65,11 +65,6 @@ impl<'m> Search<'m> {
         }
     }
 
-    /// The frozen model searched.
-    pub fn model(&self) -> &'m Model {
-        self.model
-    }
-
     /// Theory `theory`'s reasoner, as this search has proved it so far.
     pub fn reasoner(&self, theory: usize) -> RefMut<'_, Reasoner> {
         self.reasoners[theory].borrow_mut()
