@@ -23,6 +23,9 @@ use crate::world::{Status, SystemState};
 use biodivine_lib_bdd::{Bdd, BddPartialValuation};
 use proclaim_behaviour::PropertyKind;
 
+/// A way through the states: each state and the choice that left it.
+type Steps = Vec<(SystemState, Choice)>;
+
 /// How many times a loop may start again further on before the engine gives the property up
 /// (each time is a step down the fair states' components, which are finitely many).
 const MAX_LOOP_STARTS: usize = 256;
@@ -323,18 +326,20 @@ impl Searched<'_, '_> {
 
     /// The shortest way of at least one step from `from` to `to` through `within`, found by
     /// images of the frontier (cheap while the frontier is small) and then walked back to
-    /// front by the explicit stepper.
+    /// front by the explicit stepper. Where there is none, `Err` holds the way to a state of
+    /// the farthest frontier (empty if `from` has no successor not met before): a loop that
+    /// cannot close here starts again there, far on rather than one step on.
     fn way(
         &self,
         from: &SystemState,
         to: &SystemState,
         within: &Bdd,
-    ) -> Option<Vec<(SystemState, Choice)>> {
+    ) -> Result<Steps, (Steps, SystemState)> {
         let (model, enc) = (self.model, self.enc);
         let target = enc.mk(&enc.world(model, to));
         let mut frontiers = vec![enc.mk(&enc.world(model, from))];
         let mut seen = frontiers[0].clone();
-        loop {
+        let found = loop {
             let next = image(
                 enc,
                 self.steps,
@@ -343,17 +348,28 @@ impl Searched<'_, '_> {
             )
             .and(within);
             if !next.and(&target).is_false() {
-                break;
+                break true;
             }
             let new = next.and_not(&seen);
             if new.is_false() {
-                return None;
+                break false;
             }
             seen = seen.or(&new);
             frontiers.push(new);
-        }
-        // Back from `to`: the states of each frontier that lead on to it.
-        let mut leads = vec![target];
+        };
+        let end = if found {
+            target
+        } else {
+            let farthest = frontiers.pop().and_then(|f| f.sat_witness());
+            match farthest {
+                Some(state) if !frontiers.is_empty() => {
+                    enc.vars.mk_conjunctive_clause(&state.into())
+                }
+                _ => return Err((Vec::new(), from.clone())),
+            }
+        };
+        // Back from the end: the states of each frontier that lead on to it.
+        let mut leads = vec![end];
         for frontier in frontiers[1..].iter().rev() {
             leads.push(self.before(&leads[leads.len() - 1], frontier));
         }
@@ -364,13 +380,21 @@ impl Searched<'_, '_> {
         for lead in &leads {
             successors.clear();
             self.stepper.successors(&at, false, &mut successors);
-            let s = successors
+            let Some(s) = successors
                 .iter()
-                .find(|s| enc.contains(model, lead, &s.world))?;
+                .find(|s| enc.contains(model, lead, &s.world))
+            else {
+                // The stepper's ringlets are the diagrams' steps (see `walk`).
+                return Err((Vec::new(), from.clone()));
+            };
             way.push((at.clone(), s.choice));
             at = s.world.clone();
         }
-        Some(way)
+        if found {
+            Ok(way)
+        } else {
+            Err((way, at))
+        }
     }
 
     /// A loop from `at` (a fair-cycle state) through a state of every acceptance set and back,
@@ -409,13 +433,20 @@ impl Searched<'_, '_> {
                 }
             }
             if cycle.is_empty() || here != start {
-                if let Some(way) = self.way(&here, &start, &sets.fair) {
-                    cycle.extend(way);
-                    return Ok(cycle);
-                }
+                let (on, end) = match self.way(&here, &start, &sets.fair) {
+                    Ok(way) => {
+                        cycle.extend(way);
+                        return Ok(cycle);
+                    }
+                    Err(on) => on,
+                };
                 // No way back: `start` is a fair state runs pass through, not one they return
-                // to. The loop starts again further on.
-                if cycle.is_empty() {
+                // to. The loop starts again further on: at the farthest state from here, or
+                // one step on where every state after this one was met already.
+                if !on.is_empty() {
+                    cycle.extend(on);
+                    here = end;
+                } else if cycle.is_empty() {
                     let mut successors: Vec<Successor> = Vec::new();
                     self.stepper.successors(&here, false, &mut successors);
                     let on = successors

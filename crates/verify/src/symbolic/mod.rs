@@ -254,11 +254,23 @@ impl Encoding {
 /// One leaf of machine `k`'s ringlet, as the engine applies it.
 struct Step {
     machine: usize,
+    /// Which of the machine's controls it starts from: the steps of one control stand together
+    /// (`steps_of`), and the image meets the set with that control once for all of them.
+    control: usize,
+    /// The states with that control: the cube of the machine's control alone.
+    control_set: Bdd,
     /// The cube it needs: the machine's control and what it read.
     needs: Bdd,
     /// The fields it writes, and their values.
     writes: BddPartialValuation,
     written: Vec<BddVariable>,
+    /// The image of a state set under the step, in three operations on diagrams no larger
+    /// than the set: `needs` as assignments (the set restricted to them), the written fields it
+    /// does not read (forgotten), and the cube of what it needs and does not write with what
+    /// it writes (met).
+    reads: Vec<(BddVariable, bool)>,
+    forgets: Vec<BddVariable>,
+    after: Bdd,
     fired: Option<usize>,
 }
 
@@ -783,13 +795,18 @@ fn steps_of(
     let mut steps = Vec::new();
     let mut leaves: Vec<OpenLeaf> = Vec::new();
     for k in 0..model.machines.len() {
-        for control in controls(model, k) {
+        for (c, control) in controls(model, k).into_iter().enumerate() {
             leaves.clear();
             if !stepper.open_leaves(k, control, &enc.domains, MAX_LEAVES, &mut leaves) {
                 return Err(too_many_leaves(model, k));
             }
+            let mut cube = BddPartialValuation::empty();
+            enc.set_control(k, &control, &mut cube);
+            let control_set = enc.mk(&cube);
             for leaf in &leaves {
-                steps.push(step_of(model, enc, k, &control, leaf));
+                let mut step = step_of(model, enc, k, &control, leaf);
+                (step.control, step.control_set) = (c, control_set.clone());
+                steps.push(step);
             }
         }
     }
@@ -848,19 +865,54 @@ fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &Op
             &mut writes,
         );
     }
-    let written = enc
+    let written: Vec<BddVariable> = enc
         .vars
         .variables()
         .into_iter()
         .filter(|v| writes.get_value(*v).is_some())
         .collect();
+    let (reads, forgets, after) = taken_apart(enc, &needs, &writes, &written);
     Step {
         machine: k,
+        // `steps_of` numbers the controls.
+        control: 0,
+        control_set: enc.vars.mk_true(),
         needs: enc.mk(&needs),
         writes,
         written,
+        reads,
+        forgets,
+        after,
         fired: leaf.fired,
     }
+}
+
+/// A step's `needs` and `writes` as the image applies them ([`Step::reads`]).
+fn taken_apart(
+    enc: &Encoding,
+    needs: &BddPartialValuation,
+    writes: &BddPartialValuation,
+    written: &[BddVariable],
+) -> (Vec<(BddVariable, bool)>, Vec<BddVariable>, Bdd) {
+    let reads = enc
+        .vars
+        .variables()
+        .into_iter()
+        .filter_map(|v| Some((v, needs.get_value(v)?)))
+        .collect();
+    let forgets = written
+        .iter()
+        .copied()
+        .filter(|v| needs.get_value(*v).is_none())
+        .collect();
+    let mut after = needs.clone();
+    for v in written {
+        after.unset_value(*v);
+        if let Some(value) = writes.get_value(*v) {
+            after.set_value(*v, value);
+        }
+    }
+    (reads, forgets, enc.mk(&after))
 }
 
 /// The schedule as sets: where machine `k` rings next without and with a new round begun.
@@ -946,24 +998,48 @@ impl Guards {
     }
 }
 
-/// Every state one ringlet leads to from `set`.
+/// Every state one ringlet leads to from `set`. The set is met with a machine's control once
+/// for all the steps from that control, and the steps' images are joined pairwise, so no
+/// operation but the last works on the whole image.
 fn image(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
     let ringing = ringing_sets(guards, set);
-    let mut out = enc.vars.mk_false();
+    let mut parts = Vec::new();
+    let mut here: Vec<Bdd> = Vec::new();
+    let mut group = None;
     for step in steps {
-        for from in &ringing[step.machine] {
-            if from.is_false() {
-                continue;
-            }
-            let applied = from.and(&step.needs);
+        if group != Some((step.machine, step.control)) {
+            group = Some((step.machine, step.control));
+            here = ringing[step.machine]
+                .iter()
+                .map(|from| from.and(&step.control_set))
+                .filter(|from| !from.is_false())
+                .collect();
+        }
+        for from in &here {
+            // (from ∧ needs) with the written fields forgotten and set, taken apart: needs is a
+            // cube, so meeting it is restricting to it and putting its literals back.
+            let applied = from.restrict(&step.reads);
             if applied.is_false() {
                 continue;
             }
-            let after = applied.exists(&step.written).and(&enc.mk(&step.writes));
-            out = out.or(&after);
+            parts.push(applied.exists(&step.forgets).and(&step.after));
         }
     }
-    out
+    union(parts).unwrap_or_else(|| enc.vars.mk_false())
+}
+
+/// The union of `parts`, joined in pairs so that each join meets diagrams of like size.
+fn union(mut parts: Vec<Bdd>) -> Option<Bdd> {
+    while parts.len() > 1 {
+        let mut joined = Vec::with_capacity(parts.len().div_ceil(2));
+        let mut pairs = parts.chunks_exact(2);
+        for pair in &mut pairs {
+            joined.push(pair[0].or(&pair[1]));
+        }
+        joined.extend(pairs.remainder().iter().cloned());
+        parts = joined;
+    }
+    parts.pop()
 }
 
 /// Every state of `within` from which one ringlet leads into `set`. `within` is met first, so
@@ -979,10 +1055,19 @@ fn preimage<'s>(
     let wrapped: Vec<Bdd> = guards.next_wrapped.iter().map(|g| g.and(within)).collect();
     // From a new round: the fresh bits were cleared first, whatever they were.
     let cleared: Vec<(BddVariable, bool)> = guards.fresh_vars.iter().map(|v| (*v, false)).collect();
-    let mut out = enc.vars.mk_false();
+    let mut parts = Vec::new();
+    // Where each of the machine's ringlets may start, met with its control once for all the
+    // steps from that control (they stand together).
+    let mut group = None;
+    let (mut direct_here, mut wrapped_here) = (enc.vars.mk_false(), enc.vars.mk_false());
     for step in steps {
         let k = step.machine;
-        if direct[k].is_false() && wrapped[k].is_false() {
+        if group != Some((k, step.control)) {
+            group = Some((k, step.control));
+            direct_here = direct[k].and(&step.control_set);
+            wrapped_here = wrapped[k].and(&step.control_set.restrict(&cleared));
+        }
+        if direct_here.is_false() && wrapped_here.is_false() {
             continue;
         }
         let assignments: Vec<(BddVariable, bool)> = step
@@ -994,17 +1079,17 @@ fn preimage<'s>(
         if after.is_false() {
             continue;
         }
-        let here = step.needs.and(&direct[k]);
+        let here = direct_here.and(&step.needs);
         if !here.is_false() {
-            out = out.or(&here.and(&after));
+            parts.push(here.and(&after));
         }
         // What the ringlet needs and reads, of the state with its fresh bits cleared.
-        let from_round = step.needs.restrict(&cleared).and(&wrapped[k]);
+        let from_round = wrapped_here.and(&step.needs.restrict(&cleared));
         if !from_round.is_false() {
-            out = out.or(&from_round.and(&after.restrict(&cleared)));
+            parts.push(from_round.and(&after.restrict(&cleared)));
         }
     }
-    out
+    union(parts).unwrap_or_else(|| enc.vars.mk_false())
 }
 
 impl Searched<'_, '_> {
