@@ -432,3 +432,58 @@ fn check_refuses_a_team_label_without_a_team_and_a_shared_type_nobody_posts() {
         stderr(&o)
     );
 }
+
+/// `[ranges]`: a range that cannot be read is an error at its value, one for a type no
+/// machine reads a warning at its key with a near name; a run warns where a posting from
+/// outside leaves its range, once per value, and not of a machine's own posting.
+#[test]
+fn declared_ranges_are_checked_and_a_run_says_where_the_world_left_one() {
+    let machine = "machine Pump\ninitial IDLE\nstate IDLE {\n    entry { extern dose; }\n    when dose > 0 -> RUN\n}\nstate RUN {\n    entry { dose = 12; }\n    when dose <= 0 -> IDLE\n}\n";
+    let dir = crate::behaviour_folder(
+        "ranges",
+        &[
+            ("Pump.machine", machine),
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"Pump.machine\"\n[impersonator]\nscript = \"s.script\"\n[ranges]\ndose = \"0..9\"\n",
+            ),
+            ("s.script", "dose = 3\nat 0.2s dose = 40\nat 0.3s dose = 40\nat 0.4s dose = -1\n"),
+        ],
+    );
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = proclaim(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--virtual-clock",
+        "--for",
+        "1s",
+    ]);
+    let out = stdout(&o);
+    let warned: Vec<&str> = out.lines().filter(|l| l.contains("warning:")).collect();
+    assert_eq!(warned.len(), 2, "{out}");
+    assert!(
+        warned[0].contains("impersonator")
+            && warned[0].contains("posted dose = 40, outside its declared range 0..9"),
+        "{out}"
+    );
+    assert!(warned[1].contains("dose = -1"), "{out}");
+
+    let manifest = dir.join("behaviour.toml");
+    std::fs::write(
+        &manifest,
+        "[[machine]]\nfile = \"Pump.machine\"\n[ranges]\ndose = \"9..0\"\ndoze = \"0..1\"\n",
+    )
+    .unwrap();
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("range of `dose`: \"9..0\" is empty") && err.contains("behaviour.toml:4:8"),
+        "{err}"
+    );
+    assert!(
+        err.contains("`ranges` names `doze`, which no machine of the behaviour reads or binds with `extern`; did you mean `dose`?"),
+        "{err}"
+    );
+}

@@ -346,6 +346,20 @@ fn smallest_manifest(
             })
             .map(|(ty, entry)| (ty.clone(), entry.clone()))
             .collect(),
+        // The ranges of the types the machines it keeps read or bind (the others warn).
+        ranges: manifest
+            .ranges
+            .iter()
+            .filter(|(ty, _)| {
+                let ty = ty.get_ref();
+                modules.iter().any(|m| {
+                    let d = &m.decl;
+                    wanted.contains(&d.name)
+                        && (d.reads.contains(ty) || d.waits_on.contains(ty) || d.posts.contains(ty))
+                })
+            })
+            .map(|(ty, range)| (ty.clone(), range.clone()))
+            .collect(),
         ..Manifest::default()
     };
     (smallest.prolog, smallest.programs) =

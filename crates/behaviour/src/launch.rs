@@ -234,6 +234,7 @@ pub async fn launch(
         (Some(rounds), Some(from)) => Some(rounds.ends_when_still(from)),
         (rounds, _) => rounds,
     };
+    modules.extend(range_watch(behaviour, board, (&tx, epoch, &round)));
     let mut tasks = JoinSet::new();
     start_modules(board, modules, &mut tasks).await;
     let (ended, end) = tokio::sync::watch::channel(None);
@@ -630,6 +631,35 @@ pub(crate) fn finals_and_top(behaviour: &Behaviour) -> (Finals, Positions) {
         }
     }
     (finals, top)
+}
+
+/// The watch that holds the run to the manifest's `[ranges]`, if it declares any.
+fn range_watch(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    (tx, epoch, round): (
+        &mpsc::UnboundedSender<Event>,
+        tokio::time::Instant,
+        &RoundCounter,
+    ),
+) -> Option<Module> {
+    if behaviour.ranges.is_empty() {
+        return None;
+    }
+    let types = behaviour.ranges.iter().map(|r| r.ty.clone()).collect();
+    let machines = behaviour.machines.iter().map(|m| m.machine.name.clone());
+    Some(Module {
+        name: "ranges".into(),
+        answers: Vec::new(),
+        task: Box::pin(crate::range_watch::watch(
+            board.subscribe_pattern(Pattern::Any(types)),
+            behaviour.ranges.clone(),
+            machines.collect(),
+            tx.clone(),
+            epoch,
+            round.clone(),
+        )),
+    })
 }
 
 /// Turns the impersonator's postings into trace events, each value once when it changes (it

@@ -23,6 +23,8 @@ mod manifest;
 mod modules;
 mod program_entries;
 mod programs;
+mod range_watch;
+mod ranges;
 mod recorded;
 mod replaced;
 mod rerecord;
@@ -53,6 +55,7 @@ pub use manifest::{
 pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
+pub use ranges::{parse_range, DeclaredRange, MAX_RANGE_VALUES};
 pub use recorded::{
     message_line, read_recording, replay_recording, ringlet_line, Difference, Recording,
     RecordingError, ReplayOutcome,

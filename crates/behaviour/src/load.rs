@@ -79,6 +79,14 @@ pub fn load_manifest(
         &mut problems.found,
     );
 
+    let ranges = crate::ranges::check(
+        &manifest,
+        &manifest_file,
+        &manifest_text,
+        &machines.iter().map(|m| &m.machine).collect::<Vec<_>>(),
+        &mut problems.found,
+    );
+
     let errors = problems.found.iter().any(FileDiagnostic::is_error);
     let mut all = problems.found;
     all.extend(problems.theory_warnings);
@@ -99,6 +107,7 @@ pub fn load_manifest(
         run_for,
         outside,
         suppress,
+        ranges,
         warnings,
         files,
     })

@@ -31,6 +31,8 @@ pub struct Behaviour {
     pub outside: Vec<ModuleEntry>,
     /// The types under subsumption with their hold times (the manifest's `[suppress]`).
     pub suppress: Vec<(String, Duration)>,
+    /// The manifest's `[ranges]`: whole numbers the world posts to a type.
+    pub ranges: Vec<crate::ranges::DeclaredRange>,
     /// Warnings of its files, each with its place.
     pub warnings: Vec<FileDiagnostic>,
     pub files: Arc<dyn Files>,

@@ -48,6 +48,9 @@
 //! size = 3                             # optional: how many robots; `team.quorum` is true
 //!                                      # while this one hears a majority of them
 //!
+//! [ranges]                             # optional: what the world posts to a type is a whole
+//! doseEntered = "0..100"               # number of this range; verify tries each one
+//!
 //! [[property]]                         # checked by `proclaim verify` (spec §6)
 //! name = "door interlock"
 //! never = 'Magnetron == "on" && saw(Microwave, doorOpen)'   # or always = …, reachable = …
@@ -108,6 +111,10 @@ pub struct Manifest {
     /// against lower ones (`subsumption.rs` checks the entries against the machines).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub suppress: BTreeMap<Spanned<String>, SuppressEntry>,
+    /// Types posted from outside the machines that take only whole numbers of a range
+    /// (`ranges.rs` reads and checks them).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub ranges: BTreeMap<Spanned<String>, Spanned<String>>,
 }
 
 /// `[team] name = "blue"`, `member = "robot1"`, `shared = ["ballDistance", "role"]`: the

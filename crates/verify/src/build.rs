@@ -10,13 +10,14 @@
 
 use crate::arith::zero;
 use crate::domain::{sound_domains, Domains};
+use crate::flow::Facts;
 use crate::kind::ValueKind;
 use crate::model::{
-    MachineModel, Model, Name, Slot, SlotId, SlotKind, StateModel, Storage, TheoryModel, TimeTest,
-    TransitionModel,
+    FreeDomain, MachineModel, Model, Name, Slot, SlotId, SlotKind, StateModel, Storage,
+    TheoryModel, TimeTest, TransitionModel,
 };
 use crate::reasoner::ReasonerSeed;
-use proclaim_behaviour::{modules, Behaviour, ModuleKind};
+use proclaim_behaviour::{modules, Behaviour, DeclaredRange, ModuleKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::{running_type, Command};
 use proclaim_fsm::names::Names;
@@ -227,12 +228,52 @@ fn sound_free_values(
             slot.free = domain;
         }
     }
+    let exact = exact_ranges(&mut model.slots, &facts, &behaviour.ranges);
     model.inexact = facts.inexact;
     for i in inexact {
         if !model.inexact.contains(&i) {
             model.inexact.push(i);
         }
     }
+    model.inexact.retain(|i| !exact.contains(&i.value));
+}
+
+/// Gives every free type with a declared range each value of it (and "never posted"), where
+/// it is compared with no free type that has none: then every value the world may post is in
+/// the model, whatever the behaviour does with it. Returns the types made exact.
+fn exact_ranges(slots: &mut [Slot], facts: &Facts, ranges: &[DeclaredRange]) -> Vec<String> {
+    let range_of: Vec<Option<&DeclaredRange>> = slots
+        .iter()
+        .map(|s| ranges.iter().find(|r| r.ty == s.name))
+        .collect();
+    let declared = |slot: SlotId| range_of[slot];
+    // A declared type whose copies are compared with an undeclared one's keeps the intervals
+    // they share: its own values alone would not order the other's.
+    let mut shared_with_undeclared: Vec<SlotId> = Vec::new();
+    let mut grown = true;
+    while grown {
+        grown = false;
+        for &(a, b) in &facts.pairs {
+            for (x, y) in [(a, b), (b, a)] {
+                let taints = declared(y).is_none() || shared_with_undeclared.contains(&y);
+                if taints && !shared_with_undeclared.contains(&x) {
+                    shared_with_undeclared.push(x);
+                    grown = true;
+                }
+            }
+        }
+    }
+    let mut exact = Vec::new();
+    for (id, slot) in slots.iter_mut().enumerate() {
+        if slot.free.is_none() || shared_with_undeclared.contains(&id) {
+            continue;
+        }
+        if let Some(range) = declared(id) {
+            exact.push(slot.name.clone());
+            slot.free = Some(FreeDomain::of(range.values().collect()));
+        }
+    }
+    exact
 }
 
 /// Records what a machine's labels and activities read (names that are no variable of the
@@ -501,5 +542,43 @@ mod tests {
             model.slots[n].kind
         );
         assert_eq!(model.resolve(Some(0), "g"), model.resolve(None, "g"));
+    }
+
+    /// The domain `[ranges]` gives a free type: every value of the range, unless its copies
+    /// are compared with those of a type that has no range (then both keep their intervals).
+    #[test]
+    fn a_declared_range_is_every_value_unless_compared_with_an_undeclared_type() {
+        let domain = |ranges: &str| {
+            let manifest = format!("[[machine]]\nfile = \"K.machine\"\n[ranges]\n{ranges}");
+            let files: &'static [(&str, &str)] = Box::leak(Box::new([
+                ("behaviour.toml", &*Box::leak(manifest.into_boxed_str())),
+                (
+                    "K.machine",
+                    "machine K\ninitial W\nstate W {\n    internal { extern a; extern b; x = a; y = b; }\n    when x > y && x > 3 -> KICK\n}\nstate KICK { }\n",
+                ),
+            ]));
+            let files = Embedded {
+                name: "kick",
+                files,
+            };
+            let behaviour = load("kick", Arc::new(files)).expect("loads");
+            let model = Model::build(&behaviour, &[]);
+            let values = |name: &str| {
+                let Some(Name::Slot(slot)) = model.resolve(None, name) else {
+                    panic!("{name} is a slot");
+                };
+                model.slots[slot].free.clone().expect("free").values
+            };
+            (values("a"), values("b"))
+        };
+        let every = |low: i64, high: i64| (low..=high).map(Value::Int).collect::<Vec<_>>();
+        let (a, b) = domain("a = \"0..5\"\nb = \"-2..2\"\n");
+        assert_eq!((a, b), (every(0, 5), every(-2, 2)));
+        let (a, _) = domain("a = \"0..5\"\n");
+        assert_ne!(
+            a,
+            every(0, 5),
+            "b has no range: a keeps the intervals it shares with b"
+        );
     }
 }

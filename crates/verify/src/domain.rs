@@ -158,7 +158,7 @@ impl Domains {
 }
 
 impl FreeDomain {
-    fn of(values: Vec<Value>) -> FreeDomain {
+    pub(crate) fn of(values: Vec<Value>) -> FreeDomain {
         let initial = std::iter::once(None)
             .chain(values.iter().cloned().map(Some))
             .collect();

@@ -213,7 +213,7 @@ fn a_game_controller_of_eight_machines_is_decided() {
 /// Eight machines of an infusion pump's kind (`controllers/infusion`): keypad, dose entry,
 /// the pump counting the accepted dose down, two sensors, a battery, an alarm, a display.
 #[test]
-fn an_infusion_pump_of_eight_machines_is_decided_or_says_why_not() {
+fn an_infusion_pump_of_eight_machines_is_decided_with_its_declared_range() {
     let name = "infusion";
     let report = check(name, PropertyKind::Reachable, "Pump.DONE");
     assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
@@ -221,10 +221,25 @@ fn an_infusion_pump_of_eight_machines_is_decided_or_says_why_not() {
     // The display lights a ringlet after the pump starts and darkens a ringlet after it stops.
     let report = check(name, PropertyKind::Never, "Display.LIT && Pump.IDLE");
     assert_eq!(report.properties[0].verdict, Verdict::Fails, "{report:#?}");
-    // The dose is accepted only between 1 and 60, so by hand the count never goes below
-    // zero; but the count feeds itself, and the checker's domains do not follow a guard, so
-    // it must not say "holds": it names the value, the reason and the place.
-    let report = check(name, PropertyKind::Never, "timeLeft < 0");
+    // By hand: a dose is accepted only from 1 to 8 and copied once, and the count stops at
+    // zero. The manifest declares the dose field's range (0..9), so every dose is in the model
+    // and the count, which feeds on itself, is followed exactly.
+    for never in ["timeLeft < 0", "Pump.RUNNING && dose > 8"] {
+        let report = check(name, PropertyKind::Never, never);
+        assert_eq!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
+        assert!(report.inexact.is_empty(), "{:?}", report.inexact);
+    }
+    // Without the range no finite domain follows the count: not "holds", but the value, the
+    // reason and the place.
+    let mut behaviour = load(name, Arc::new(Folder::new(controller(name)))).expect("loads");
+    behaviour.ranges.clear();
+    let property = PropertySource {
+        name: "timeLeft < 0".into(),
+        kind: PropertyKind::Never,
+        expression: "timeLeft < 0".into(),
+        fair: Vec::new(),
+    };
+    let report = verify(&behaviour, &[property], Options::default()).expect("verifies");
     assert_ne!(report.properties[0].verdict, Verdict::Holds, "{report:#?}");
     assert!(
         report.inexact.iter().any(|i| i.value == "doseEntered"

@@ -1,0 +1,45 @@
+//! Holds a run to the manifest's `[ranges]`: a posting from outside the machines (a script, a
+//! sensor, another process) that leaves its type's declared range is a warning in the trace,
+//! once per type and value, since what `verify` proved of the behaviour assumed the range.
+
+use crate::ranges::DeclaredRange;
+use proclaim_board::Subscription;
+use proclaim_runner::{Event, RoundCounter};
+use rustc_hash::FxHashSet;
+use tokio::sync::mpsc;
+
+/// Watches `postings` (of the declared types) until the run ends; `machines` are the
+/// behaviour's own, whose postings are computed, not assumed.
+pub(crate) async fn watch(
+    mut postings: Subscription,
+    ranges: Vec<DeclaredRange>,
+    machines: Vec<String>,
+    trace: mpsc::UnboundedSender<Event>,
+    epoch: tokio::time::Instant,
+    round: RoundCounter,
+) {
+    let mut said: FxHashSet<(String, String)> = FxHashSet::default();
+    while let Some(m) = postings.next().await {
+        if machines.iter().any(|name| **name == *m.module) {
+            continue;
+        }
+        let Some(range) = ranges.iter().find(|r| *r.ty == *m.ty) else {
+            continue;
+        };
+        if range.contains(&m.value) || !said.insert((m.ty.to_string(), m.value.to_string())) {
+            continue;
+        }
+        let event = Event::Warned {
+            machine: m.module.to_string(),
+            message: format!(
+                "posted {} = {}, outside its declared range {range} (the manifest's [ranges]): what `verify` proved assumed it",
+                m.ty, m.value
+            ),
+            at: epoch.elapsed(),
+            round: round.get(),
+        };
+        if trace.send(event).is_err() {
+            return;
+        }
+    }
+}
