@@ -1,5 +1,6 @@
 //! The verifier's engines and SPIN side by side, in one run, on the families of behaviours the
-//! checker is measured on (`sensors N`, the 8-machine `press`, `minepump`, `odometer N K`):
+//! checker is measured on (`sensors N`, the 8-machine `press`, `minepump`, `odometer N K`, and
+//! the 8-machine `gamecontroller` and `infusion` of `tests/controllers`):
 //! for each behaviour and engine, the verdicts, the states it stored, the time and the memory
 //! it held, under the default budget. SPIN is run on `--emit promela`'s text (`spin -a`,
 //! `gcc -O2 -DSAFETY`, one `pan -N` per property, its search time apart from its build time)
@@ -115,6 +116,52 @@ fn cases(wanted: &BTreeSet<String>) -> Vec<Case> {
                 properties: vec![property(PropertyKind::Never, &format!("g0 >= {k}"))],
             });
         }
+    }
+    // A copy: each case's folder is the bench's to write in and remove.
+    let controller = |name: &str| {
+        let from = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/controllers")
+            .join(name);
+        let dir = scratch(name);
+        for file in std::fs::read_dir(&from).expect("the controller's folder") {
+            let file = file.expect("a file").path();
+            std::fs::copy(&file, dir.join(file.file_name().expect("a name"))).expect("copied");
+        }
+        dir
+    };
+    if wants("gamecontroller") {
+        cases.push(Case {
+            family: "gamecontroller",
+            size: "8 machines".into(),
+            dir: controller("gamecontroller"),
+            properties: vec![
+                property(PropertyKind::Reachable, "GameController.PLAYING"),
+                property(
+                    PropertyKind::Never,
+                    "GameController.PLAYING && LeftFootControlIsRunning",
+                ),
+                property(
+                    PropertyKind::Never,
+                    "GameController.INITIAL && RobotPositionIsRunning",
+                ),
+                property(
+                    PropertyKind::Never,
+                    "GameController.FINISHED && fallen == 1",
+                ),
+            ],
+        });
+    }
+    if wants("infusion") {
+        cases.push(Case {
+            family: "infusion",
+            size: "8 machines".into(),
+            dir: controller("infusion"),
+            properties: vec![
+                property(PropertyKind::Reachable, "Pump.DONE"),
+                property(PropertyKind::Never, "timeLeft < 0"),
+                property(PropertyKind::Never, "Pump.RUNNING && dose > 8"),
+            ],
+        });
     }
     cases
 }
