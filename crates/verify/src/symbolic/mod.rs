@@ -264,10 +264,13 @@ struct Step {
     /// The fields it writes, and their values.
     writes: BddPartialValuation,
     written: Vec<BddVariable>,
-    /// The image of a state set under the step, in three operations on diagrams no larger
-    /// than the set: `needs` as assignments (the set restricted to them), the written fields it
-    /// does not read (forgotten), and the cube of what it needs and does not write with what
-    /// it writes (met).
+    /// What it writes as a set, met with after the written fields are forgotten.
+    written_set: Bdd,
+    /// Where `needs` is one cube (one leaf), the image of a state set under the step in three
+    /// operations on diagrams no larger than the set: `needs` as assignments (the set
+    /// restricted to them; empty for a step of several leaves), the written fields it does not
+    /// read (forgotten), and the cube of what it needs and does not write with what it writes
+    /// (met).
     reads: Vec<(BddVariable, bool)>,
     forgets: Vec<BddVariable>,
     after: Bdd,
@@ -792,7 +795,7 @@ fn steps_of(
     stepper: &StepGenerator<'_>,
     enc: &Encoding,
 ) -> Result<Vec<Step>, Declined> {
-    let mut steps = Vec::new();
+    let mut steps: Vec<Step> = Vec::new();
     let mut leaves: Vec<OpenLeaf> = Vec::new();
     for k in 0..model.machines.len() {
         for (c, control) in controls(model, k).into_iter().enumerate() {
@@ -803,10 +806,19 @@ fn steps_of(
             let mut cube = BddPartialValuation::empty();
             enc.set_control(k, &control, &mut cube);
             let control_set = enc.mk(&cube);
+            // Leaves that write the same and fire the same transition are one step whose
+            // needs are theirs joined: one image instead of many.
+            let from = steps.len();
             for leaf in &leaves {
                 let mut step = step_of(model, enc, k, &control, leaf);
                 (step.control, step.control_set) = (c, control_set.clone());
-                steps.push(step);
+                match steps[from..].iter_mut().find(|s| s.same_effect(&step)) {
+                    Some(same) => {
+                        same.needs = same.needs.or(&step.needs);
+                        same.reads.clear();
+                    }
+                    None => steps.push(step),
+                }
             }
         }
     }
@@ -878,12 +890,43 @@ fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &Op
         control: 0,
         control_set: enc.vars.mk_true(),
         needs: enc.mk(&needs),
+        written_set: enc.mk(&writes),
         writes,
         written,
         reads,
         forgets,
         after,
         fired: leaf.fired,
+    }
+}
+
+impl Step {
+    /// Whether `other`, of the same machine and control, writes what this writes and fires
+    /// the same transition.
+    fn same_effect(&self, other: &Step) -> bool {
+        self.fired == other.fired
+            && self.written == other.written
+            && self
+                .written
+                .iter()
+                .all(|v| self.writes.get_value(*v) == other.writes.get_value(*v))
+    }
+
+    /// The states one ringlet along this step leads to from `from`.
+    fn image(&self, from: &Bdd) -> Bdd {
+        if self.reads.is_empty() {
+            return from
+                .and(&self.needs)
+                .exists(&self.written)
+                .and(&self.written_set);
+        }
+        // (from ∧ needs) with the written fields forgotten and set, taken apart: needs is a
+        // cube, so meeting it is restricting to it and putting its literals back.
+        let applied = from.restrict(&self.reads);
+        if applied.is_false() {
+            return applied;
+        }
+        applied.exists(&self.forgets).and(&self.after)
     }
 }
 
@@ -1016,13 +1059,10 @@ fn image(enc: &Encoding, steps: &[Step], guards: &Guards, set: &Bdd) -> Bdd {
                 .collect();
         }
         for from in &here {
-            // (from ∧ needs) with the written fields forgotten and set, taken apart: needs is a
-            // cube, so meeting it is restricting to it and putting its literals back.
-            let applied = from.restrict(&step.reads);
-            if applied.is_false() {
-                continue;
+            let after = step.image(from);
+            if !after.is_false() {
+                parts.push(after);
             }
-            parts.push(applied.exists(&step.forgets).and(&step.after));
         }
     }
     union(parts).unwrap_or_else(|| enc.vars.mk_false())
@@ -1051,6 +1091,60 @@ fn preimage<'s>(
     set: &Bdd,
     within: &Bdd,
 ) -> Bdd {
+    if set.size() < within.size() {
+        preimage_of_small(enc, steps, guards, set, within)
+    } else {
+        preimage_within_small(enc, steps, guards, set, within)
+    }
+}
+
+/// [`preimage`] where `set` is the smaller: each step's predecessors of `set` alone (small
+/// diagrams throughout), met with the schedule and `within` once per machine at the end.
+fn preimage_of_small<'s>(
+    enc: &Encoding,
+    steps: impl IntoIterator<Item = &'s Step>,
+    guards: &Guards,
+    set: &Bdd,
+    within: &Bdd,
+) -> Bdd {
+    let cleared: Vec<(BddVariable, bool)> = guards.fresh_vars.iter().map(|v| (*v, false)).collect();
+    let machines = guards.next.len();
+    let (mut direct, mut wrapped) = (vec![Vec::new(); machines], vec![Vec::new(); machines]);
+    for step in steps {
+        let assignments: Vec<(BddVariable, bool)> = step
+            .written
+            .iter()
+            .filter_map(|v| Some((*v, step.writes.get_value(*v)?)))
+            .collect();
+        let after = set.restrict(&assignments);
+        if after.is_false() {
+            continue;
+        }
+        direct[step.machine].push(step.needs.and(&after));
+        // From a new round: the fresh bits were cleared first, whatever they were.
+        wrapped[step.machine].push(step.needs.restrict(&cleared).and(&after.restrict(&cleared)));
+    }
+    let mut parts = Vec::new();
+    for (k, (direct, wrapped)) in direct.into_iter().zip(wrapped).enumerate() {
+        if let Some(d) = union(direct) {
+            parts.push(d.and(&guards.next[k]).and(within));
+        }
+        if let Some(w) = union(wrapped) {
+            parts.push(w.and(&guards.next_wrapped[k]).and(within));
+        }
+    }
+    union(parts).unwrap_or_else(|| enc.vars.mk_false())
+}
+
+/// [`preimage`] where `within` is the smaller: the schedule and `within` met with each
+/// machine's control once, and `set` cut down to a step's writes only where it may start.
+fn preimage_within_small<'s>(
+    enc: &Encoding,
+    steps: impl IntoIterator<Item = &'s Step>,
+    guards: &Guards,
+    set: &Bdd,
+    within: &Bdd,
+) -> Bdd {
     let direct: Vec<Bdd> = guards.next.iter().map(|g| g.and(within)).collect();
     let wrapped: Vec<Bdd> = guards.next_wrapped.iter().map(|g| g.and(within)).collect();
     // From a new round: the fresh bits were cleared first, whatever they were.
@@ -1070,6 +1164,14 @@ fn preimage<'s>(
         if direct_here.is_false() && wrapped_here.is_false() {
             continue;
         }
+        // Where the step may start (what the ringlet needs and reads; from a new round, of the
+        // state with its fresh bits cleared): small where `within` is, so it goes first, and
+        // `set` is cut down to what the step writes only where the step may start at all.
+        let here = direct_here.and(&step.needs);
+        let from_round = wrapped_here.and(&step.needs.restrict(&cleared));
+        if here.is_false() && from_round.is_false() {
+            continue;
+        }
         let assignments: Vec<(BddVariable, bool)> = step
             .written
             .iter()
@@ -1079,12 +1181,9 @@ fn preimage<'s>(
         if after.is_false() {
             continue;
         }
-        let here = direct_here.and(&step.needs);
         if !here.is_false() {
             parts.push(here.and(&after));
         }
-        // What the ringlet needs and reads, of the state with its fresh bits cleared.
-        let from_round = wrapped_here.and(&step.needs.restrict(&cleared));
         if !from_round.is_false() {
             parts.push(from_round.and(&after.restrict(&cleared)));
         }
