@@ -3,6 +3,8 @@
 //! the interpreter under random scripts of numbers. A run that enters a state or fires a
 //! transition the checker called unreachable (its "never" findings, made only when the
 //! model's free values are exact) is a disagreement, printed with the seed that repeats it.
+//! Some behaviours declare `in0`'s range (`[ranges]`), and their scripts keep to it: the
+//! checker then tries every value of it, and must still never claim what a run refutes.
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
@@ -16,8 +18,12 @@ use std::time::Duration;
 
 const INPUTS: [&str; 2] = ["in0", "in1"];
 
-/// A behaviour of one or two machines over the inputs, as files.
-fn generate(seed: u64) -> Vec<(String, String)> {
+/// A range some behaviours declare for `in0`, taking in every constant but `10`.
+const RANGE: (i64, i64) = (-4, 3);
+
+/// A behaviour of one or two machines over the inputs, as files, and whether it declares
+/// [`RANGE`] for `in0`.
+fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
     let mut rng = Rng::new(seed);
     let machines = rng.between(1, 2);
     let mut files = Vec::new();
@@ -56,8 +62,12 @@ fn generate(seed: u64) -> Vec<(String, String)> {
         let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
         files.push((format!("{name}.machine"), text));
     }
+    let ranged = rng.chance(30);
+    if ranged {
+        let _ = writeln!(manifest, "[ranges]\nin0 = \"{}..{}\"", RANGE.0, RANGE.1);
+    }
     files.push(("behaviour.toml".into(), manifest));
-    files
+    (files, ranged)
 }
 
 /// Few constants, so that the domains (one value an interval) stay small enough to search.
@@ -98,21 +108,25 @@ fn label(rng: &mut Rng) -> String {
     }
 }
 
-/// A script of numbers: each input set at the start and then now and again.
-fn script(rng: &mut Rng) -> String {
+/// A script of numbers: each input set at the start and then now and again (`in0` within
+/// [`RANGE`] where the behaviour declares it).
+fn script(rng: &mut Rng, ranged: bool) -> String {
     let mut out = String::new();
+    let value_of = |rng: &mut Rng, input: &str| {
+        if ranged && input == "in0" {
+            let v = RANGE.0 + rng.between(0, (RANGE.1 - RANGE.0) as usize) as i64;
+            number(v)
+        } else {
+            value(rng)
+        }
+    };
     for input in INPUTS {
-        let _ = writeln!(out, "{input} = {}", value(rng));
+        let _ = writeln!(out, "{input} = {}", value_of(rng, input));
     }
     for step in 1..=20 {
         if rng.chance(40) {
-            let _ = writeln!(
-                out,
-                "at {}ms {} = {}",
-                step * 50,
-                rng.pick(&INPUTS),
-                value(rng)
-            );
+            let input = *rng.pick(&INPUTS);
+            let _ = writeln!(out, "at {}ms {input} = {}", step * 50, value_of(rng, input));
         }
     }
     out
@@ -125,7 +139,11 @@ fn value(rng: &mut Rng) -> String {
     } else {
         (rng.next_u64() % 2_000_000) as i64 - 1_000_000
     };
-    // `1` and `0` are truths in a script; `+1` and `+0` the numbers.
+    number(v)
+}
+
+/// A number as a script writes it: `1` and `0` are truths there, `+1` and `+0` the numbers.
+fn number(v: i64) -> String {
     if v == 0 || v == 1 {
         format!("+{v}")
     } else {
@@ -141,11 +159,13 @@ fn folder(seed: u64) -> PathBuf {
 /// What one seed showed: whether the checker claimed anything, and the disagreements.
 struct Outcome {
     claimed: bool,
+    /// Claimed of a behaviour that declares a range.
+    ranged: bool,
     disagreements: Vec<String>,
 }
 
 fn one(seed: u64, runs: usize) -> Outcome {
-    let files = generate(seed);
+    let (files, ranged) = generate(seed);
     let dir = folder(seed);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("a folder");
@@ -180,7 +200,7 @@ fn one(seed: u64, runs: usize) -> Outcome {
     let mut disagreements = Vec::new();
     let mut rng = Rng::new(seed ^ 0x5eed);
     for _ in 0..runs {
-        let script = script(&mut rng);
+        let script = script(&mut rng, ranged);
         let mut run = RoundByRound::start(&dir, &script)
             .unwrap_or_else(|e| panic!("seed {seed}: the run starts: {e}\n{script}"));
         for _ in 0..40 {
@@ -229,13 +249,14 @@ fn one(seed: u64, runs: usize) -> Outcome {
     let _ = std::fs::remove_dir_all(&dir);
     Outcome {
         claimed,
+        ranged: claimed && ranged,
         disagreements,
     }
 }
 
 fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
-    let mut claimed = 0;
+    let (mut claimed, mut ranged) = (0, 0);
     let mut disagreements = Vec::new();
     let started = std::time::Instant::now();
     for seed in seeds {
@@ -244,13 +265,14 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
         }
         let o = one(seed, runs);
         claimed += usize::from(o.claimed);
+        ranged += usize::from(o.ranged);
         for d in &o.disagreements {
             eprintln!("{d}");
         }
         disagreements.extend(o.disagreements);
     }
     eprintln!(
-        "{count} behaviours, {claimed} with exact free values (their findings checked), {} disagreements",
+        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range), {} disagreements",
         disagreements.len()
     );
     assert!(
@@ -262,6 +284,10 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     assert!(
         claimed * 2 > count as usize,
         "only {claimed} of {count} behaviours had exact free values"
+    );
+    assert!(
+        ranged * 10 > count as usize,
+        "only {ranged} of {count} behaviours were exact by a declared range"
     );
 }
 
