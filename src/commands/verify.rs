@@ -339,6 +339,7 @@ fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
         Verdict::Incomplete => match s.stopped {
             proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
             proclaim_verify::Stop::StateBudget => "undecided (state budget)",
+            proclaim_verify::Stop::ChoiceBudget => "undecided (choice budget)",
             _ if inexact => "undecided (free values not exact: below)",
             _ => "undecided",
         },

@@ -387,6 +387,9 @@ impl<'m> Expansion<'m> {
         } else {
             self.store_unpacked(graph, limits, id)?;
         }
+        if self.stepper.overflowed() {
+            return Err(Stop::ChoiceBudget);
+        }
         graph.edges.push(self.list.iter().copied());
         Ok(())
     }

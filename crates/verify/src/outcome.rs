@@ -24,6 +24,9 @@ pub enum Stop {
     StateBudget,
     /// The states stored reached `--max-memory` bytes.
     MemoryBudget,
+    /// One state had more successors than the search takes of one state (its ringlet reads
+    /// free values whose combinations multiply past it).
+    ChoiceBudget,
 }
 
 impl Stop {
@@ -34,6 +37,9 @@ impl Stop {
             Stop::Decided => "stopped once every property was decided",
             Stop::StateBudget => "the state budget ran out (--max-states)",
             Stop::MemoryBudget => "the memory budget ran out (--max-memory)",
+            Stop::ChoiceBudget => {
+                "a ringlet reads more combinations of free values than one state's successors may hold"
+            }
         }
     }
 }

@@ -173,6 +173,9 @@ impl ReadDomain {
 /// The steps of the model.
 pub struct StepGenerator<'m> {
     model: &'m Search<'m>,
+    /// Set once a state had more successors than [`MAX_SUCCESSORS`] (the search must then stop
+    /// and say so: the list it got is cut short).
+    overflowed: std::cell::Cell<bool>,
     /// Stored free slots and their domains as value numbers.
     free: Vec<(SlotId, ReadDomain)>,
     /// Per slot: its domain when it is chosen when read (empty otherwise).
@@ -194,6 +197,7 @@ impl<'m> StepGenerator<'m> {
         }
         StepGenerator {
             model,
+            overflowed: std::cell::Cell::new(false),
             free,
             read_domains,
         }
@@ -255,14 +259,25 @@ impl<'m> StepGenerator<'m> {
         };
         let mut choices = Choices::default();
         let mut leaf = 0u64;
+        let before = out.len();
         loop {
             let ringlet = self.ringlet(&start, k, wrapped, &mut choices, leaf, detail);
             self.environment_moves(&ringlet, detail, out);
             leaf += 1;
+            if out.len() - before > MAX_SUCCESSORS {
+                self.overflowed.set(true);
+                break;
+            }
             if !choices.advance() {
                 break;
             }
         }
+    }
+
+    /// Whether some state had more successors than [`MAX_SUCCESSORS`]: what was made of it
+    /// is cut short, so no absence may be claimed.
+    pub(crate) fn overflowed(&self) -> bool {
+        self.overflowed.get()
     }
 
     /// Machine `k`'s ringlet from `start` along the current path of `choices`.
@@ -575,6 +590,10 @@ struct Chosen<'c> {
 
 /// A stored slot's value not known before a ringlet of the symbolic engine runs.
 pub(crate) const UNKNOWN: ValueId = ValueId::MAX;
+
+/// At most this many successors of one state (a ringlet whose reads of free values multiply
+/// past it would hold the search on one state for ever, in ever more memory).
+pub(crate) const MAX_SUCCESSORS: usize = 100_000;
 
 /// What a ringlet on an open world found out by reading.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

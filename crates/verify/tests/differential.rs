@@ -10,7 +10,7 @@ use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
 use proclaim_behaviour::{load, Folder};
 use proclaim_runner::Event;
-use proclaim_verify::{verify, Finding, Options};
+use proclaim_verify::{verify, Finding, Options, Stop};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -309,4 +309,33 @@ fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
         })
         .unwrap_or(100..10_100);
     differ(seeds, 2);
+}
+
+/// Seed 588's second machine reads both inputs, compared with each other and copied, in its
+/// OnEntry and again from its snapshot: millions of combinations for one state. The search
+/// stops there and says why (it once held on to that one state for ever, in ever more memory).
+#[test]
+fn a_ringlet_of_too_many_combinations_stops_the_search_and_says_why() {
+    let (files, _) = generate(588);
+    let dir = folder(588);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a folder");
+    for (name, text) in &files {
+        std::fs::write(dir.join(name), text).expect("write");
+    }
+    let behaviour = load("random", Arc::new(Folder::new(&dir))).expect("loads");
+    let options = Options {
+        max_states: 1_000,
+        ..Options::default()
+    };
+    let report = verify(&behaviour, &[], options).expect("verifies");
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        report.stats.stopped,
+        Stop::ChoiceBudget,
+        "{:?}",
+        report.stats
+    );
+    assert!(!report.stats.complete);
+    assert!(report.findings.is_empty(), "{:?}", report.findings);
 }

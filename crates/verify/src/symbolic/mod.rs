@@ -306,7 +306,7 @@ pub struct SymbolicOutcome {
 /// Declines where a slot's values keep growing.
 pub fn number_values(model: &Search) -> Result<(), Declined> {
     let stepper = StepGenerator::new(model);
-    let first = first_ringlets(model, &stepper);
+    let first = first_ringlets(model, &stepper)?;
     value_domains(model, &stepper, &first.initial, &first.steps).map(|_| ())
 }
 
@@ -322,7 +322,7 @@ struct FirstRinglets {
     fires: Vec<bool>,
 }
 
-fn first_ringlets(model: &Search, stepper: &StepGenerator<'_>) -> FirstRinglets {
+fn first_ringlets(model: &Search, stepper: &StepGenerator<'_>) -> Result<FirstRinglets, Declined> {
     let initial: Vec<SystemState> = initial_worlds(model).collect();
     let mut first = FirstRinglets {
         steps: Vec::new(),
@@ -347,8 +347,14 @@ fn first_ringlets(model: &Search, stepper: &StepGenerator<'_>) -> FirstRinglets 
             .steps
             .push(successors.drain(..).map(|s| (s.world, s.choice)).collect());
     }
+    if stepper.overflowed() {
+        return Err(Declined(format!(
+            "a first ringlet has more than {} successors",
+            crate::ringlet::MAX_SUCCESSORS
+        )));
+    }
     first.initial = initial;
-    first
+    Ok(first)
 }
 
 /// Per property, the first initial world it looks for, if any (layers 0 and 1 are the explicit
@@ -391,7 +397,7 @@ pub fn check(
         steps: first_steps,
         fired: first_fired,
         fires: initial_fires,
-    } = first_ringlets(model, &stepper);
+    } = first_ringlets(model, &stepper)?;
     let domains = value_domains(model, &stepper, &initial, &first_steps)?;
     let enc = Encoding::new(model, domains);
     let steps = steps_of(model, &stepper, &enc)?;
