@@ -55,7 +55,7 @@ pub use manifest::{
 pub use modules::{modules, Module, ModuleKind};
 pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
-pub use ranges::{parse_range, DeclaredRange, MAX_RANGE_VALUES};
+pub use ranges::DeclaredRange;
 pub use recorded::{
     message_line, read_recording, replay_recording, ringlet_line, Difference, Recording,
     RecordingError, ReplayOutcome,

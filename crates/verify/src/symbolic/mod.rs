@@ -918,6 +918,14 @@ impl Step {
                 .all(|v| self.writes.get_value(*v) == other.writes.get_value(*v))
     }
 
+    /// What it writes, as the assignments a set is restricted to (a preimage's "after").
+    fn written_values(&self) -> Vec<(BddVariable, bool)> {
+        self.written
+            .iter()
+            .filter_map(|v| Some((*v, self.writes.get_value(*v)?)))
+            .collect()
+    }
+
     /// The states one ringlet along this step leads to from `from`.
     fn image(&self, from: &Bdd) -> Bdd {
         if self.reads.is_empty() {
@@ -1117,12 +1125,7 @@ fn preimage_of_small<'s>(
     let machines = guards.next.len();
     let (mut direct, mut wrapped) = (vec![Vec::new(); machines], vec![Vec::new(); machines]);
     for step in steps {
-        let assignments: Vec<(BddVariable, bool)> = step
-            .written
-            .iter()
-            .filter_map(|v| Some((*v, step.writes.get_value(*v)?)))
-            .collect();
-        let after = set.restrict(&assignments);
+        let after = set.restrict(&step.written_values());
         if after.is_false() {
             continue;
         }
@@ -1178,12 +1181,7 @@ fn preimage_within_small<'s>(
         if here.is_false() && from_round.is_false() {
             continue;
         }
-        let assignments: Vec<(BddVariable, bool)> = step
-            .written
-            .iter()
-            .filter_map(|v| Some((*v, step.writes.get_value(*v)?)))
-            .collect();
-        let after = set.restrict(&assignments);
+        let after = set.restrict(&step.written_values());
         if after.is_false() {
             continue;
         }
