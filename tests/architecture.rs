@@ -8,6 +8,7 @@
 
 mod file_circles;
 mod function_length;
+mod ringlet_meaning;
 mod rust_code;
 mod type_names;
 

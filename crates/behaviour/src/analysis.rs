@@ -8,6 +8,7 @@ use crate::manifest::{Schedule, MANIFEST};
 use crate::modules::{modules, Module, ModuleKind};
 use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
+use proclaim_lower::RingletPlan;
 use proclaim_runner::{machine_of_running_type, Command};
 
 pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
@@ -115,11 +116,10 @@ impl CrossModuleCheck<'_> {
             }
         }
         for state in &m.states {
-            for action in state
-                .on_entry
-                .iter()
-                .chain(&state.on_exit)
-                .chain(&state.internal)
+            for action in RingletPlan::of_state(m, state)
+                .activities()
+                .into_iter()
+                .flatten()
             {
                 let Action::Post { ty, content } = action else {
                     continue;

@@ -13,6 +13,7 @@ use proclaim_experts::{
     ReasonerExpert, ReceiverConfig, Script, When,
 };
 use proclaim_gcsim::{default_game, play, GameEvent, SimConfig};
+use proclaim_lower::RingletPlan;
 use proclaim_runner::{
     Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RoundsEnd, RunOptions, Shared,
     Stepper,
@@ -622,7 +623,7 @@ pub(crate) fn finals_and_top(behaviour: &Behaviour) -> (Finals, Positions) {
         let dead_ends: FxHashSet<i64> = m
             .states
             .iter()
-            .filter(|s| m.outgoing(s.id).next().is_none())
+            .filter(|s| RingletPlan::of_state(m, s).is_final())
             .map(|s| s.id)
             .collect();
         finals.insert(m.name.clone(), dead_ends);

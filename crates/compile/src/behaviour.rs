@@ -15,6 +15,7 @@ use proclaim_behaviour::{Behaviour, Schedule, MANIFEST};
 use proclaim_fsm::control::running_type;
 use proclaim_fsm::names::Names;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, UnOp, TIME_TESTS};
+use proclaim_lower::RingletPlan;
 use std::collections::HashMap;
 
 /// The files of a compiled behaviour: name (a path relative to the output folder) and text.
@@ -330,7 +331,7 @@ fn plan_externs(
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
-            for s in state_statements(state) {
+            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
                 let Statement::Extern { name, .. } = s else {
                     continue;
                 };
@@ -411,7 +412,7 @@ fn plan_board_reads(
             });
         };
         for state in &loaded.machine.states {
-            for s in state_statements(state) {
+            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
                 for e in s.expressions() {
                     e.visit_names(&mut |name, _| read(name, false));
                 }
@@ -437,7 +438,7 @@ fn plan_slots(behaviour: &Behaviour, names: &Names) -> Result<Slots, Refusal> {
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
-            for s in state_statements(state) {
+            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
                 if let Statement::Declare { ty, .. } = s {
                     conversion(ty).map_err(|what| refuse(&file, state.line, what))?;
                 }
@@ -539,9 +540,23 @@ fn plan_state(
         loops: &mut counters.loops,
         commands: &mut counters.commands,
     };
-    let entry = activity.actions(&state.on_entry)?;
-    let exit = activity.actions(&state.on_exit)?;
-    let internal = activity.actions(&state.internal)?;
+    let plan = RingletPlan::of_state(machine, state);
+    let entry = activity.actions(plan.arriving())?;
+    // Arms that leave by the same activity share its planned steps.
+    let mut leaving: Vec<&[Action]> = Vec::new();
+    let mut leavings = Vec::new();
+    let mut leaves = Vec::new();
+    for arm in plan.arms() {
+        match leaving.iter().position(|l| std::ptr::eq(*l, arm.leaving())) {
+            Some(planned) => leaves.push(planned),
+            None => {
+                leaves.push(leavings.len());
+                leavings.push(activity.actions(arm.leaving())?);
+                leaving.push(arm.leaving());
+            }
+        }
+    }
+    let staying = activity.actions(plan.staying())?;
     let mut labels = Labels {
         outputs: seen.outputs,
         read: Vec::new(),
@@ -550,12 +565,14 @@ fn plan_state(
         reads_externs: Vec::new(),
     };
     let mut transitions = Vec::new();
-    for t in machine.outgoing(state.id) {
+    for (arm, leaving) in plan.arms().zip(leaves) {
+        let t = arm.transition;
         activity.line = t.line;
         transitions.push(TransitionPlan {
             condition: labels.condition(&t.label, &mut activity)?,
             target: t.target,
             label: t.label.to_string(),
+            leaving,
         });
     }
     let Labels {
@@ -573,9 +590,9 @@ fn plan_state(
         id: state.id,
         name: state.name.clone(),
         entry,
-        exit,
-        internal,
-        is_final: transitions.is_empty(),
+        leavings,
+        staying,
+        is_final: plan.is_final(),
         transitions,
         reads: read,
         due_ms: due,
@@ -689,14 +706,9 @@ impl Labels<'_> {
 }
 
 /// The statements of a state's activities, those inside blocks and loops included.
-fn state_statements(state: &proclaim_fsm::State) -> Vec<&Statement> {
+fn state_statements<'m>(plan: &RingletPlan<'m>) -> Vec<&'m Statement> {
     let mut out = Vec::new();
-    for action in state
-        .on_entry
-        .iter()
-        .chain(&state.on_exit)
-        .chain(&state.internal)
-    {
+    for action in plan.activities().into_iter().flatten() {
         if let Action::Statement(s) = action {
             s.visit(&mut |inner| out.push(inner));
         }

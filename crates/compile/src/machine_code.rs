@@ -5,7 +5,7 @@
 use crate::code::{print, Expr, Function, Op, Spelling, Stmt, Type};
 use crate::plan::{Condition, Conversion, MachinePlan, Piece, Plan, StatePlan, Step, Value};
 use proclaim_fsm::control::Command;
-use proclaim_runner::LOOP_LIMIT;
+use proclaim_lower::LOOP_LIMIT;
 
 /// Every machine's functions, and those that hand a machine's number to its own, as
 /// `spelling` writes them.
@@ -216,7 +216,7 @@ impl Walk<'_> {
                     Expr::Text(t.label.clone()),
                 ],
             ))];
-            self.steps(&state.exit, &mut fire);
+            self.steps(&state.leavings[t.leaving], &mut fire);
             fire.extend([
                 Stmt::Set(self.state(), Expr::Number(t.target)),
                 Stmt::Set(
@@ -229,7 +229,7 @@ impl Walk<'_> {
             let proved = Expr::call("proved", vec![self.machine(), label]);
             body.push(Stmt::If(proved, fire));
         }
-        self.steps(&state.internal, &mut body);
+        self.steps(&state.staying, &mut body);
         body.push(Stmt::Return(Expr::Truth(false)));
         body
     }

@@ -138,7 +138,8 @@ impl Plan {
         }
         let mut longest = self.longest_text;
         for state in self.machines.iter().flat_map(|m| &m.states) {
-            for s in state.entry.iter().chain(&state.exit).chain(&state.internal) {
+            let leavings = state.leavings.iter().flatten();
+            for s in state.entry.iter().chain(leavings).chain(&state.staying) {
                 walk(s, &mut longest);
             }
         }
@@ -205,8 +206,9 @@ pub(crate) struct StatePlan {
     pub id: i64,
     pub name: String,
     pub entry: Vec<Step>,
-    pub exit: Vec<Step>,
-    pub internal: Vec<Step>,
+    /// What its transitions run as they fire, each once ([`TransitionPlan::leaving`]).
+    pub leavings: Vec<Vec<Step>>,
+    pub staying: Vec<Step>,
     /// Tried top to bottom; the first whose condition holds fires.
     pub transitions: Vec<TransitionPlan>,
     /// No way out: the machine's run is over here.
@@ -226,6 +228,8 @@ pub(crate) struct TransitionPlan {
     pub target: i64,
     /// The label as written, for the trace.
     pub label: String,
+    /// What it runs as it fires: its state's `leavings[leaving]`.
+    pub leaving: usize,
 }
 
 /// A label as the runner proves it.
@@ -369,7 +373,7 @@ pub(crate) enum Step {
         value: Value,
     },
     Block(Vec<Step>),
-    /// A `for` loop, stopped after `proclaim_runner::LOOP_LIMIT` rounds with a warning.
+    /// A `for` loop, stopped after `proclaim_lower::LOOP_LIMIT` rounds with a warning.
     Loop {
         /// Numbers the loop's counter, unique in the behaviour.
         number: usize,

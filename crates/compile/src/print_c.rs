@@ -6,7 +6,7 @@
 use crate::machine_code;
 use crate::plan::Plan;
 use crate::spell_c::{esc, C};
-use proclaim_runner::LOOP_LIMIT;
+use proclaim_lower::LOOP_LIMIT;
 use std::fmt::Write;
 
 /// The world, its callbacks and the host's API, for any behaviour's sizes.

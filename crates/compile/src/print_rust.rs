@@ -12,7 +12,7 @@ use crate::print_c::{board_of_outputs, board_of_statuses, fill};
 use crate::rust_template::BODY;
 use crate::spell_rust::Rust;
 use crate::tabulate::Compiled;
-use proclaim_runner::LOOP_LIMIT;
+use proclaim_lower::LOOP_LIMIT;
 use std::fmt::Write;
 use std::path::Path;
 

@@ -23,7 +23,6 @@ mod seen;
 mod step;
 mod team;
 mod variables;
-pub mod walk;
 
 pub use activity::SharedSuppressor;
 pub use eval::Evaluate;
@@ -36,4 +35,3 @@ pub use proclaim_runtime::Ringlet;
 pub use rounds::{Rounds, RoundsEnd};
 pub use step::Stepper;
 pub use variables::{Locals, Shared};
-pub use walk::LOOP_LIMIT;

@@ -11,7 +11,8 @@ use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
 use proclaim_fsm::control::{running_type, Command};
-use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, State, StateId};
+use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
+use proclaim_lower::{Arm, Next, RingletPlan, RingletRun};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 use std::time::Duration;
@@ -370,7 +371,8 @@ impl<'r> RunningMachine<'r> {
     /// Whether the machine's run is over for now: its state has no way out and its OnEntry
     /// has run (§3: it rings no more until a command moves it).
     pub(crate) fn is_done(&self) -> bool {
-        !self.just_entered && self.machine.outgoing(self.current).next().is_none()
+        !self.just_entered
+            && RingletPlan::of(&self.machine, self.current).is_none_or(|plan| plan.is_final())
     }
 
     /// One ringlet (§3.1): OnEntry if just entered, then the snapshot, the transitions in
@@ -383,82 +385,82 @@ impl<'r> RunningMachine<'r> {
 
     async fn ringlet(&mut self) -> RingOutcome {
         let machine = self.machine.clone();
-        let Some(state) = machine.state(self.current) else {
+        let Some(plan) = RingletPlan::of(&machine, self.current) else {
             return RingOutcome::Over;
         };
+        let state = plan.state();
         // Changes of globals from here on wake the wait after this ring.
         self.globals_changed.borrow_and_update();
-        if self.just_entered {
-            self.enter(state).await;
-        }
-        self.seen.take();
-        self.globals_seen = *self.globals_changed.borrow();
-        self.asked.clear();
-        self.queries = 0;
-        let mut fired = None;
-        for t in machine.outgoing(self.current) {
-            let mut answered = Vec::new();
-            let proved = {
-                let mut cx = Context {
-                    env: Env {
-                        board: &self.board,
-                        seen: &self.seen,
-                        locals: &self.locals,
-                        shared: &self.shared,
-                        in_state: self.now().saturating_duration_since(self.entered_at),
-                    },
-                    module: &self.name,
-                    answer_timeout: self.runner.options.answer_timeout,
-                    answered: &mut answered,
-                    hook: self.query_hook.as_ref(),
-                    queries: &mut self.queries,
-                };
-                prove(&t.label, &mut cx).await
-            };
-            if let Some(atom) = self.report_answers(answered) {
-                self.reporter.emit(|at, round| Event::Halted {
-                    machine: self.name.clone(),
-                    reason: format!(
-                        "no expert answered `{atom}` within {:?} (in state {})",
-                        self.runner.options.answer_timeout, state.name
-                    ),
-                    at,
-                    round,
-                });
-                self.board.post(&self.name, &self.running_type, false);
-                return RingOutcome::Over;
-            }
-            if proved {
-                fired = Some(t);
-                break;
-            }
-        }
-        match fired {
-            Some(t) => {
-                let (from, to, label) = (self.current, t.target, t.label.to_string());
-                tracing::debug!(from = %state.name, to, %label, "transition fired");
-                self.reporter.emit(|at, round| Event::Fired {
-                    machine: self.name.clone(),
-                    from,
-                    to,
-                    label,
-                    at,
-                    round,
-                });
-                self.act(&state.name, &state.on_exit).await;
-                self.current = t.target;
-                self.just_entered = true;
-                RingOutcome::Moved
-            }
-            None => {
-                self.act(&state.name, &state.internal).await;
-                RingOutcome::Stayed
+        let mut run = RingletRun::new(plan, self.just_entered);
+        loop {
+            match run.next_step() {
+                Next::Arrive(actions) => self.arrive(&plan, actions).await,
+                Next::Snapshot => {
+                    self.seen.take();
+                    self.globals_seen = *self.globals_changed.borrow();
+                    self.asked.clear();
+                    self.queries = 0;
+                }
+                Next::Try(arm) => {
+                    let mut answered = Vec::new();
+                    let proved = {
+                        let mut cx = Context {
+                            env: Env {
+                                board: &self.board,
+                                seen: &self.seen,
+                                locals: &self.locals,
+                                shared: &self.shared,
+                                in_state: self.now().saturating_duration_since(self.entered_at),
+                            },
+                            module: &self.name,
+                            answer_timeout: self.runner.options.answer_timeout,
+                            answered: &mut answered,
+                            hook: self.query_hook.as_ref(),
+                            queries: &mut self.queries,
+                        };
+                        prove(arm.label(), &mut cx).await
+                    };
+                    if let Some(atom) = self.report_answers(answered) {
+                        self.reporter.emit(|at, round| Event::Halted {
+                            machine: self.name.clone(),
+                            reason: format!(
+                                "no expert answered `{atom}` within {:?} (in state {})",
+                                self.runner.options.answer_timeout, state.name
+                            ),
+                            at,
+                            round,
+                        });
+                        self.board.post(&self.name, &self.running_type, false);
+                        return RingOutcome::Over;
+                    }
+                    run.proved(proved);
+                }
+                Next::Leave(arm) => {
+                    let (from, to, label) = (self.current, arm.target(), arm.label().to_string());
+                    tracing::debug!(from = %state.name, to, %label, "transition fired");
+                    self.reporter.emit(|at, round| Event::Fired {
+                        machine: self.name.clone(),
+                        from,
+                        to,
+                        label,
+                        at,
+                        round,
+                    });
+                    self.act(&state.name, arm.leaving()).await;
+                    self.current = arm.target();
+                    self.just_entered = true;
+                }
+                Next::Stay(actions) => self.act(&state.name, actions).await,
+                Next::Done(Some(_)) => return RingOutcome::Moved,
+                Next::Done(None) => return RingOutcome::Stayed,
             }
         }
     }
 
-    /// Arriving in `state`: its OnEntry, and the end of the run for a state with no way out.
-    async fn enter(&mut self, state: &State) {
+    /// Arriving in `plan`'s state: its arrival activities, and the end of the run for a state
+    /// with no way out.
+    async fn arrive(&mut self, plan: &RingletPlan<'_>, actions: &[Action]) {
+        let state = plan.state();
         self.just_entered = false;
         self.entered_at = self.now();
         let id = self.current;
@@ -469,8 +471,8 @@ impl<'r> RunningMachine<'r> {
             at,
             round,
         });
-        self.act(&state.name, &state.on_entry).await;
-        if self.machine.outgoing(self.current).next().is_none() {
+        self.act(&state.name, actions).await;
+        if plan.is_final() {
             self.reporter.emit(|at, round| Event::Finished {
                 machine: self.name.clone(),
                 state: state.name.clone(),
@@ -522,6 +524,13 @@ impl<'r> RunningMachine<'r> {
         .await
     }
 
+    /// The current state's transitions, in the order its ringlet tries them.
+    fn arms(&self) -> impl Iterator<Item = Arm<'_>> + '_ {
+        RingletPlan::of(&self.machine, self.current)
+            .into_iter()
+            .flat_map(|plan| plan.arms())
+    }
+
     /// What the current state's labels read: the message types (its own name among them, for
     /// control commands) and whether they read a global. Worked out once per state.
     pub(crate) fn reads(&mut self) -> (&[String], bool) {
@@ -536,9 +545,9 @@ impl<'r> RunningMachine<'r> {
                 locals: &self.locals,
                 shared: &self.shared,
             };
-            for t in self.machine.outgoing(self.current) {
-                dependencies(&t.label, scope, &mut types);
-                globals |= reads_globals(&t.label, scope);
+            for arm in self.arms() {
+                dependencies(arm.label(), scope, &mut types);
+                globals |= reads_globals(arm.label(), scope);
             }
             self.reads = Some((self.current, types, globals));
         }
@@ -556,9 +565,8 @@ impl<'r> RunningMachine<'r> {
     /// is still to come.
     pub(crate) fn next_time_test(&self) -> Option<Duration> {
         let mut env = self.env();
-        self.machine
-            .outgoing(self.current)
-            .filter_map(|t| next_time_test(&t.label, &mut env))
+        self.arms()
+            .filter_map(|arm| next_time_test(arm.label(), &mut env))
             .min()
     }
 

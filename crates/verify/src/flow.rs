@@ -16,6 +16,7 @@ use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::outcome::Inexact;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, StatementKind, UnOp, VarType, TIME_TESTS};
+use proclaim_lower::RingletPlan;
 use proclaim_runner::arith;
 use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use rustc_hash::FxHashSet;
@@ -348,7 +349,8 @@ impl Analysis<'_> {
                     machine: Some(k),
                     place: format!("{file}:{} (state {})", s.line, s.name),
                 };
-                for action in s.on_entry.iter().chain(&s.on_exit).chain(&s.internal) {
+                let activities = RingletPlan::of_state(&m.machine, s).activities();
+                for action in activities.into_iter().flatten() {
                     match action {
                         Action::Post { ty, content } => {
                             self.post(&at, ty, &Flow::constant(Value::parse(content)))

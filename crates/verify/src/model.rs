@@ -96,6 +96,12 @@ impl StateModel {
     pub fn is_final(&self) -> bool {
         self.transitions.is_empty()
     }
+
+    /// Where the ringlet's `arm` is among [`StateModel::transitions`]; `None` for one the model
+    /// leaves out (its target is no state).
+    pub fn modelled(&self, arm: proclaim_lower::Arm<'_>) -> Option<usize> {
+        self.transitions.iter().position(|t| t.index == arm.number)
+    }
 }
 
 #[derive(Debug)]

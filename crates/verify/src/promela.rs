@@ -50,8 +50,8 @@ use proclaim_fsm::control::Command;
 use proclaim_fsm::{
     Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
 };
+use proclaim_lower::{RingletPlan, LOOP_LIMIT};
 use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
-use proclaim_runner::LOOP_LIMIT;
 use std::fmt::{self, Write};
 
 /// Why a behaviour cannot be written as Promela.
@@ -1123,12 +1123,13 @@ impl<'m> Writer<'m> {
             self.line(&format!(":: ringing == {} && je[{k}] ->", k + 1));
             self.depth += 1;
             self.line("if");
-            for (s, state) in model.machines[k].machine.states.iter().enumerate() {
+            let machine = &model.machines[k].machine;
+            for (s, state) in machine.states.iter().enumerate() {
                 self.state = s;
                 self.line(&format!(":: st[{k}] == {s} ->"));
                 self.depth += 1;
                 self.noting = true;
-                self.run(&state.on_entry)?;
+                self.run(RingletPlan::of_state(machine, state).arriving())?;
                 self.noting = false;
                 self.line("skip;");
                 self.depth -= 1;
@@ -1471,14 +1472,17 @@ impl<'m> Writer<'m> {
                         self.line(&format!("saw{j} = {};", v.code()));
                     }
                 }
-                let fsm_state = &m.machine.states[s];
+                let plan = RingletPlan::of_state(&m.machine, &m.machine.states[s]);
                 let mut opened = 0;
-                for t in &state.transitions {
+                for arm in plan.arms() {
+                    let Some(t) = state.modelled(arm).map(|t| &state.transitions[t]) else {
+                        continue;
+                    };
                     let holds = self.truth(&t.label)?;
                     self.line("if");
                     self.line(&format!(":: {holds} ->"));
                     self.depth += 1;
-                    self.run(&fsm_state.on_exit)?;
+                    self.run(arm.leaving())?;
                     self.line(&format!(
                         "st[{k}] = {}; je[{k}] = 1; due[{k}] = 0;",
                         t.target
@@ -1488,7 +1492,7 @@ impl<'m> Writer<'m> {
                     self.depth += 1;
                     opened += 1;
                 }
-                self.run(&fsm_state.internal)?;
+                self.run(plan.staying())?;
                 self.line("skip;");
                 for _ in 0..opened {
                     self.depth -= 1;

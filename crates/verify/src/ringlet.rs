@@ -38,8 +38,8 @@ use crate::world::{Control, Status, SystemState, FIRST_TURN, POSTED};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, TIME_TESTS};
+use proclaim_lower::{walk_to_end, Effects, Next, RingletPlan, RingletRun};
 use proclaim_runner::builtin::{builtin, Builtin, Content};
-use proclaim_runner::walk::{walk_to_end, Effects};
 use proclaim_runner::Evaluate;
 use std::convert::Infallible;
 
@@ -295,7 +295,8 @@ impl<'m> StepGenerator<'m> {
             .0
     }
 
-    /// [`StepGenerator::ringlet`], on an open world when `open` is given (handed back after).
+    /// [`StepGenerator::ringlet`], on an open world when `open` is given (handed back after):
+    /// the steps [`RingletRun`] gives, each done on the model.
     #[allow(clippy::too_many_arguments)]
     fn ringlet_on<'c>(
         &'c self,
@@ -317,10 +318,80 @@ impl<'m> StepGenerator<'m> {
             log: detail.then(Vec::new),
             open,
         };
-        let (mut w, touched, deferred) = self.on_entry(start.clone(), k, &mut chosen);
-        chosen.entry = std::mem::take(&mut chosen.now);
+        let mut exec = RingletInterpreter {
+            model: self.model,
+            world: start.clone(),
+            machine: k,
+            snapshot: None,
+            touched: None,
+            deferred: Vec::new(),
+            chosen: &mut chosen,
+        };
+        let transitions = &machine.states[from].transitions;
+        let modelled = |arm| machine.states[from].modelled(arm);
+        let plan = RingletPlan::of_state(&machine.machine, &machine.machine.states[from]);
+        let mut run = RingletRun::new(plan, start.machines[k].just_entered);
+        let mut snapshot = Snapshot::default();
+        let mut fired = None;
+        let fired = loop {
+            match run.next_step() {
+                Next::Arrive(actions) => {
+                    exec.touched = Some(Vec::new());
+                    exec.run(actions);
+                    exec.world.machines[k].just_entered = false;
+                }
+                Next::Snapshot => snapshot = self.snapshot(&mut exec, detail),
+                Next::Try(arm) => {
+                    let holds = modelled(arm).is_some_and(|t| exec.truth(&transitions[t].label));
+                    run.proved(holds);
+                }
+                Next::Leave(arm) => {
+                    exec.run(arm.leaving());
+                    let t = modelled(arm).expect("only a modelled transition is proved");
+                    let c = &mut exec.world.machines[k];
+                    c.state = transitions[t].target as u16;
+                    c.just_entered = true;
+                    c.time = 0;
+                    fired = Some(t);
+                }
+                Next::Stay(actions) => exec.run(actions),
+                Next::Done(_) => break fired,
+            }
+        };
+        for (target, command) in std::mem::take(&mut exec.deferred) {
+            exec.obey(target, command);
+        }
+        let mut world = exec.world;
+        world.turn = (k + 1) as u8;
+        let ringlet = Ringlet {
+            world,
+            machine: k,
+            wrapped,
+            from,
+            fired,
+            leaf,
+            timers: snapshot.timers,
+            at_snapshot: snapshot.values,
+            read: chosen.log.unwrap_or_default(),
+        };
+        (ringlet, chosen.open)
+    }
 
-        let tests = &machine.states[from].time_tests;
+    /// The ringlet's snapshot, after its arrival: the time tests that come due and the values
+    /// of the stored free types its arrival read or posted, as the choice's branch makes them;
+    /// then what the machine `saw`.
+    fn snapshot(&self, exec: &mut RingletInterpreter<'_, '_>, detail: bool) -> Snapshot {
+        let k = exec.machine;
+        let mut touched = exec.touched.take().unwrap_or_default();
+        touched.retain(|s| {
+            self.model.slots[*s].free.is_some() && self.model.storage[*s] == Storage::Stored
+        });
+        touched.sort_unstable();
+        touched.dedup();
+        exec.chosen.entry = std::mem::take(&mut exec.chosen.now);
+        let w = &mut exec.world;
+        let from = usize::from(w.machines[k].state);
+        let tests = &self.model.machines[k].states[from].time_tests;
         let masks = time_masks(tests, w.machines[k].time);
         let touched_domains: Vec<&[ValueId]> = touched
             .iter()
@@ -328,40 +399,33 @@ impl<'m> StepGenerator<'m> {
             .collect();
         let snapshot_count =
             masks.len() * touched_domains.iter().map(|d| d.len()).product::<usize>();
-        let mut index = chosen.choices.branch(snapshot_count);
+        let mut index = exec.chosen.choices.branch(snapshot_count);
         let mask = masks[index % masks.len()];
         index /= masks.len();
         let old_mask = w.machines[k].time;
         w.machines[k].time = mask;
-        let mut at_snapshot = Vec::new();
+        let mut taken = Snapshot::default();
         for (slot, domain) in touched.iter().zip(&touched_domains) {
             let n = domain.len();
             let v = rotated(domain, w.values[*slot], index % n);
             index /= n;
             if detail {
-                at_snapshot.push((*slot, v));
+                taken.values.push((*slot, v));
             }
             w.values[*slot] = v;
         }
-        let fired = self.rest_of_ringlet(&mut w, k, deferred, &mut chosen);
-        let ringlet = Ringlet {
-            world: w,
-            machine: k,
-            wrapped,
-            from,
-            fired,
-            leaf,
-            timers: if detail {
-                (0..tests.len())
-                    .filter(|i| mask & !old_mask & (1 << i) != 0)
-                    .collect()
-            } else {
-                Vec::new()
-            },
-            at_snapshot,
-            read: chosen.log.unwrap_or_default(),
-        };
-        (ringlet, chosen.open)
+        if detail {
+            taken.timers = (0..tests.len())
+                .filter(|i| mask & !old_mask & (1 << i) != 0)
+                .collect();
+        }
+        exec.snapshot = Some(exec.world.values.clone());
+        for (j, e) in self.model.saw_of(k) {
+            let v = exec.value(e);
+            let id = self.model.values.borrow_mut().intern_option(v.as_ref());
+            exec.world.saw[j] = id;
+        }
+        taken
     }
 
     /// Every leaf of machine `k`'s ringlet from `control` on an open world whose stored slots
@@ -426,92 +490,6 @@ impl<'m> StepGenerator<'m> {
         }
     }
 
-    /// Machine `k`'s OnEntry, where it has just entered its state: the world after it, the
-    /// stored free types it read or posted (sorted), and the commands it posted (to which
-    /// machine).
-    fn on_entry(
-        &self,
-        start: SystemState,
-        k: usize,
-        chosen: &mut Chosen<'_>,
-    ) -> (SystemState, Vec<SlotId>, Vec<(usize, Command)>) {
-        let mut entered = start;
-        let mut touched: Vec<SlotId> = Vec::new();
-        let mut deferred = Vec::new();
-        if entered.machines[k].just_entered {
-            let state =
-                &self.model.machines[k].machine.states[usize::from(entered.machines[k].state)];
-            let mut exec = RingletInterpreter {
-                model: self.model,
-                world: &mut entered,
-                machine: k,
-                snapshot: None,
-                touched: Some(Vec::new()),
-                deferred: Vec::new(),
-                chosen,
-            };
-            exec.run(&state.on_entry);
-            touched = exec.touched.take().unwrap_or_default();
-            deferred = std::mem::take(&mut exec.deferred);
-            entered.machines[k].just_entered = false;
-        }
-        touched.retain(|s| {
-            self.model.slots[*s].free.is_some() && self.model.storage[*s] == Storage::Stored
-        });
-        touched.sort_unstable();
-        touched.dedup();
-        (entered, touched, deferred)
-    }
-
-    /// The rest of machine `k`'s ringlet on its snapshot `w`: what it `saw`, the first
-    /// transition whose label holds (then OnExit and the move) or else Internal, then the
-    /// commands it posted, obeyed as the ringlet ends. Returns the transition that fired.
-    fn rest_of_ringlet(
-        &self,
-        w: &mut SystemState,
-        k: usize,
-        deferred: Vec<(usize, Command)>,
-        chosen: &mut Chosen<'_>,
-    ) -> Option<usize> {
-        let machine = &self.model.machines[k];
-        let from = usize::from(w.machines[k].state);
-        let state = &machine.machine.states[from];
-        let snapshot: Vec<ValueId> = w.values.clone();
-        let mut exec = RingletInterpreter {
-            model: self.model,
-            world: w,
-            machine: k,
-            snapshot: Some(snapshot),
-            touched: None,
-            deferred,
-            chosen,
-        };
-        for (j, e) in self.model.saw_of(k) {
-            let v = exec.value(e);
-            let id = self.model.values.borrow_mut().intern_option(v.as_ref());
-            exec.world.saw[j] = id;
-        }
-        let fired = machine.states[from]
-            .transitions
-            .iter()
-            .position(|t| exec.truth(&t.label));
-        match fired {
-            Some(t) => {
-                exec.run(&state.on_exit);
-                let c = &mut exec.world.machines[k];
-                c.state = machine.states[from].transitions[t].target as u16;
-                c.just_entered = true;
-                c.time = 0;
-            }
-            None => exec.run(&state.internal),
-        }
-        for (target, command) in std::mem::take(&mut exec.deferred) {
-            exec.obey(target, command);
-        }
-        w.turn = (k + 1) as u8;
-        fired
-    }
-
     /// After a ringlet, one successor for every value each stored free type may take.
     fn environment_moves(&self, ringlet: &Ringlet, detail: bool, out: &mut Vec<Successor>) {
         let w = &ringlet.world;
@@ -570,6 +548,14 @@ struct Ringlet {
     at_snapshot: Vec<(SlotId, ValueId)>,
     /// With detail only: the free types chosen where they were read.
     read: Vec<(SlotId, ValueId)>,
+}
+
+/// What a ringlet's snapshot chose, kept with detail only: the time tests that came due and
+/// the values the stored free types had.
+#[derive(Default)]
+struct Snapshot {
+    timers: Vec<usize>,
+    values: Vec<(SlotId, ValueId)>,
 }
 
 /// The free types a ringlet chooses where it reads them: each phase (OnEntry, then from the
@@ -749,7 +735,7 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
 /// over a world.
 struct RingletInterpreter<'a, 'c> {
     model: &'a Search<'a>,
-    world: &'a mut SystemState,
+    world: SystemState,
     machine: usize,
     /// Whiteboard values as the snapshot took them (from the snapshot to the ringlet's end).
     snapshot: Option<Vec<ValueId>>,
@@ -831,7 +817,7 @@ impl RingletInterpreter<'_, '_> {
         if target != self.machine {
             self.status_of(target);
         }
-        let writes = control(self.model, self.world, target, command);
+        let writes = control(self.model, &mut self.world, target, command);
         if let Some(open) = &mut self.chosen.open {
             if target != self.machine {
                 open.control_writes[target].add(writes);

@@ -17,6 +17,7 @@ use crate::ringlet::{StepGenerator, Successor};
 use crate::search::Search;
 use crate::world::{Layout, TooNarrow};
 use proclaim_fsm::{Action, Expr, Statement};
+use proclaim_lower::RingletPlan;
 use proclaim_runner::builtin::{builtin, Builtin, Target};
 use rustc_hash::FxHashMap;
 
@@ -290,8 +291,8 @@ fn footprint(model: &Search, k: usize, s: usize) -> Option<Footprint> {
         theories: vec![false; model.theories.len()],
         computed_type: false,
     };
-    let state = &model.machines[k].machine.states[s];
-    for actions in [&state.on_entry, &state.on_exit, &state.internal] {
+    let machine = &model.machines[k].machine;
+    for actions in RingletPlan::of_state(machine, &machine.states[s]).activities() {
         gather.actions(actions);
     }
     for t in &model.machines[k].states[s].transitions {
