@@ -7,7 +7,7 @@ use crate::load::Behaviour;
 use crate::recorded::Recording;
 use proclaim_board::Value;
 use proclaim_fsm::names::Resolved;
-use proclaim_runner::arith::{text, zero};
+use proclaim_lower::arith::{text, zero};
 use proclaim_runner::{Answerer, Event};
 use std::fmt;
 

@@ -1,7 +1,7 @@
 //! The activity language planned as steps: expressions over a machine's own variables and the
-//! behaviour's globals, statements, the built-ins decoded by `proclaim_runner::builtin`, and the
+//! behaviour's globals, statements, the built-ins decoded by `proclaim_lower::builtin`, and the
 //! texts a posting carries. Values are the runner's `Int` and `Bool`, with
-//! `proclaim_runner::arith`'s meaning written once in each target's runtime; fractions, text held
+//! `proclaim_lower::arith`'s meaning written once in each target's runtime; fractions, text held
 //! in variables, whiteboard reads, host functions and sleeps are refused.
 
 use crate::plan::{Conversion, Function, Piece, Step, Value};
@@ -10,8 +10,8 @@ use proclaim_fsm::control::Command;
 use proclaim_fsm::{
     Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
 };
-use proclaim_runner::arith;
-use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
+use proclaim_lower::arith;
+use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
 use std::collections::HashMap;
 
 /// What a variable of the behaviour is: its slot and how assignment converts.

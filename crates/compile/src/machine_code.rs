@@ -512,7 +512,7 @@ fn truthy(v: &Value) -> Expr {
     Expr::Pure("truthy", vec![value(v)])
 }
 
-/// A value, as the runner's `arith` computes it.
+/// A value, as `proclaim-lower`'s `arith` computes it.
 fn value(v: &Value) -> Expr {
     match v {
         Value::Bool(b) => Expr::Pure("v_bool", vec![Expr::Truth(*b)]),

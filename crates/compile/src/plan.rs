@@ -276,7 +276,7 @@ pub(crate) enum Value {
     Apply(Function, Vec<Value>),
 }
 
-/// The runner's `arith` operators and functions on values.
+/// `proclaim-lower`'s `arith` operators and functions on values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Function {
     Eq,

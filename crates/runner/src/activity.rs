@@ -2,16 +2,16 @@
 //! built-in functions gufsm gave its machines (`post`, `postv`, `suspend`, `say`, `print`,
 //! `msleep`, …).
 
-use crate::arith::text;
-use crate::builtin::{builtin, Builtin, Content};
 use crate::eval::Env;
-use crate::eval::Evaluate;
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
 use crate::seen::Seen;
 use crate::variables::{Locals, Shared};
 use proclaim_board::{Suppressor, Value, Visibility, Whiteboard};
 use proclaim_fsm::{Action, Argument, Expr};
+use proclaim_lower::arith::text;
+use proclaim_lower::builtin::{builtin, Builtin, Content};
+use proclaim_lower::Evaluate;
 use proclaim_lower::{Effects, Walk, LOOP_LIMIT};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;

@@ -3,12 +3,12 @@
 //! comparisons, the time tests) is computed on the spot, with no round trip.
 
 use crate::eval::Env;
-use crate::eval::Evaluate;
 use crate::event::Answerer;
 use crate::feed::QueryHook;
 use crate::variables::Scope;
 use proclaim_board::QueryOutcome;
 use proclaim_fsm::{BinOp, Expr, Label, UnOp, TIME_TESTS};
+use proclaim_lower::Evaluate;
 use std::future::Future;
 use std::pin::Pin;
 use std::time::Duration;

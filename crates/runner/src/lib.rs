@@ -10,8 +10,6 @@
 //! [`Event`]s, data a trace can record. No file I/O of its own: loaders come from the caller.
 
 mod activity;
-pub mod arith;
-pub mod builtin;
 mod eval;
 mod event;
 mod feed;
@@ -25,7 +23,6 @@ mod team;
 mod variables;
 
 pub use activity::SharedSuppressor;
-pub use eval::Evaluate;
 pub use event::{Answerer, Event};
 pub use feed::{Feed, RoundCounter};
 pub use host::{HostFunction, Hosts};

@@ -386,7 +386,7 @@ fn take_over(
     let now = round_time.saturating_duration_since(run.reporter.epoch);
     let released = suppressor.lock().release(now);
     for posting in released {
-        let content = crate::arith::text(&posting.value);
+        let content = proclaim_lower::arith::text(&posting.value);
         board.post_ranked(
             &posting.module,
             &posting.ty,

@@ -2,10 +2,10 @@
 //! the `team.<type>` value on the robot's own board: the living members' latest values, in
 //! member-name order, so a tie goes to the first name on every robot alike.
 
-use crate::arith::compare;
 use proclaim_board::team::{team_members, team_type};
 use proclaim_board::Value;
 use proclaim_fsm::{Aggregate, Expr};
+use proclaim_lower::arith::compare;
 use std::cmp::Ordering;
 
 /// The type a team aggregate call reads, when `function` is one and its argument a type name.

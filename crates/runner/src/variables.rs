@@ -5,10 +5,10 @@
 //! gufsm kept the three in one table per machine vector (`M<id>$$name`, `E$$name`, `name`);
 //! lookups go in that order: own, extern, global.
 
-use crate::arith::{convert, zero};
 use parking_lot::RwLock;
 use proclaim_board::Value;
 use proclaim_fsm::{names, Machine, VarType};
+use proclaim_lower::arith::{convert, zero};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 use tokio::sync::watch;

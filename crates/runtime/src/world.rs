@@ -1,5 +1,5 @@
 //! The world a behaviour compiled to Rust runs in: values as the runner holds them
-//! (`proclaim_runner::arith`'s operators on them), every machine's state and the board's values
+//! (`proclaim_lower::arith`'s operators on them), every machine's state and the board's values
 //! it reads, and the reports of the trace's events and of a recording. The generated
 //! `behaviour.rs` is written against it.
 

@@ -25,7 +25,7 @@ use crate::model::{FreeDomain, Slot, SlotId};
 use crate::outcome::Inexact;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Machine, Statement};
-use proclaim_runner::arith;
+use proclaim_lower::arith;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Constants gathered per type while reading the behaviour.

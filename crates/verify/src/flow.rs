@@ -16,9 +16,9 @@ use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::outcome::Inexact;
 use proclaim_board::Value;
 use proclaim_fsm::{Action, BinOp, Expr, Statement, StatementKind, UnOp, VarType, TIME_TESTS};
+use proclaim_lower::arith;
+use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
 use proclaim_lower::RingletPlan;
-use proclaim_runner::arith;
-use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use rustc_hash::FxHashSet;
 
 /// Constants a place may hold before it counts as "computed at run time".

@@ -22,7 +22,7 @@ use crate::ringlet::{initial_worlds, StepGenerator, Successor};
 use crate::search::Search;
 use crate::world::{Status, SystemState};
 use proclaim_fsm::control::Command;
-use proclaim_runner::Event;
+use proclaim_runtime::Event;
 use rustc_hash::FxHashMap;
 use std::collections::BTreeMap;
 use std::fmt;

@@ -26,7 +26,7 @@
 //!   hang. Nothing here reads files or prints: the command line does.
 
 /// The activity language's operators: the runner's own, so the model computes as the robot does.
-pub use proclaim_runner::arith;
+pub use proclaim_lower::arith;
 mod acceptance;
 mod build;
 mod choices;

@@ -4,7 +4,7 @@
 //! numbered slot; which slots the environment sets freely and from which finite domain; and
 //! the reasoners whose answers labels ask for.
 //!
-//! Names resolve as the runner resolves them (`proclaim_runner`'s `variables.rs`): a name a
+//! Names resolve as the runner resolves them (`proclaim-runner`'s `variables.rs`): a name a
 //! machine declares is its own, then externs, then globals (every other name some activity
 //! assigns); any other name is a reasoner's answer when a theory outputs it, `NameIsRunning`
 //! when it speaks of a machine, and otherwise a whiteboard type.

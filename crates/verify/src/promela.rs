@@ -50,8 +50,8 @@ use proclaim_fsm::control::Command;
 use proclaim_fsm::{
     Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
 };
+use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
 use proclaim_lower::{RingletPlan, LOOP_LIMIT};
-use proclaim_runner::builtin::{builtin, Builtin, Content, Target};
 use std::fmt::{self, Write};
 
 /// Why a behaviour cannot be written as Promela.

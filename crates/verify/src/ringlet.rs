@@ -38,9 +38,9 @@ use crate::world::{Control, Status, SystemState, FIRST_TURN, POSTED};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
 use proclaim_fsm::{Action, Expr, TIME_TESTS};
+use proclaim_lower::builtin::{builtin, Builtin, Content};
+use proclaim_lower::Evaluate;
 use proclaim_lower::{walk_to_end, Effects, Next, RingletPlan, RingletRun};
-use proclaim_runner::builtin::{builtin, Builtin, Content};
-use proclaim_runner::Evaluate;
 use std::convert::Infallible;
 
 /// Which of the environment's options a step took: the leaf of its ringlet's choices (time
@@ -746,7 +746,7 @@ struct RingletInterpreter<'a, 'c> {
     chosen: &'a mut Chosen<'c>,
 }
 
-/// The runner's walk over an expression, on the model: names resolve to slots and answers, a
+/// `proclaim-lower`'s walk over an expression, on the model: names resolve to slots and answers, a
 /// time test is due where the step's choice made it so.
 impl Evaluate for RingletInterpreter<'_, '_> {
     fn read(&mut self, name: &str) -> Option<Value> {

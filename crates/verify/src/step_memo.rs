@@ -17,8 +17,8 @@ use crate::ringlet::{StepGenerator, Successor};
 use crate::search::Search;
 use crate::world::{Layout, TooNarrow};
 use proclaim_fsm::{Action, Expr, Statement};
+use proclaim_lower::builtin::{builtin, Builtin, Target};
 use proclaim_lower::RingletPlan;
-use proclaim_runner::builtin::{builtin, Builtin, Target};
 use rustc_hash::FxHashMap;
 
 /// The most successors the memo keeps before it starts afresh (so its memory stays bounded).
