@@ -329,6 +329,40 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
     );
 }
 
+/// A first team's goalkeeper: the keeper sets a global the dive reads. Checked whole, nothing
+/// is wrong; `deps --launch Dive` leaves the keeper out, and there `check` says the dive's
+/// labels read a value nothing gives (the launch ran and chose a side at once, silently).
+#[test]
+fn a_value_a_label_reads_that_nothing_gives_is_a_warning() {
+    let dive = "machine Dive\ninitial START\nstate START {\n    when side == 0 -> LEFT\n    when side == 1 -> RIGHT\n}\nstate LEFT { }\nstate RIGHT { }\n";
+    let keeper = "machine Keeper\ninitial WAIT\nstate WAIT {\n    entry { side = 1; }\n    when TRUE -> DIVE\n}\nstate DIVE {\n    entry {\n        Dive: On\n    }\n}\n";
+    let findings = |dir: &std::path::Path| -> Vec<String> {
+        let behaviour = load("keeper", Arc::new(Folder::new(dir))).unwrap();
+        proclaim_behaviour::check_behaviour(&behaviour)
+            .iter()
+            .map(|d| d.to_string().replace(&format!("{}/", dir.display()), ""))
+            .collect()
+    };
+    let whole = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"Keeper.machine\"\n\n[[machine]]\nfile = \"Dive.machine\"\nstart = false\n",
+        ),
+        ("Keeper.machine", keeper),
+        ("Dive.machine", dive),
+    ]);
+    assert_eq!(findings(&whole), Vec::<String>::new());
+    let b = load("keeper", Arc::new(Folder::new(&whole))).unwrap();
+    let modules = proclaim_behaviour::modules(&b);
+    let launch =
+        proclaim_behaviour::launch_manifest(&b, &modules, "Dive", &str::to_string).unwrap();
+    let alone = temp_behaviour(&[("Dive.machine", dive), ("behaviour.toml", &launch)]);
+    assert_eq!(
+        findings(&alone),
+        ["Dive.machine:4: warning: a label reads `side`, which nothing in this behaviour posts, assigns or answers, so a comparison with it never holds (was the machine that sets it left out? a script, or a module the manifest's [[module]] names, may post it)"]
+    );
+}
+
 fn repo_behaviour(name: &str) -> proclaim_behaviour::Behaviour {
     load(name, Arc::new(Folder::new(behaviour_dir(name)))).expect("loads")
 }

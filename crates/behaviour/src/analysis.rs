@@ -115,6 +115,7 @@ impl CrossModuleCheck<'_> {
                 ));
             }
         }
+        out.extend(self.values_nobody_gives(loaded, &file));
         for state in &m.states {
             for action in RingletPlan::of_state(m, state)
                 .activities()
@@ -148,6 +149,44 @@ impl CrossModuleCheck<'_> {
                     )
                 });
             }
+        }
+        out
+    }
+
+    /// The whiteboard values `loaded`'s labels compare that no module posts, no machine
+    /// assigns and no one answers: such a value is never there, so the comparison never holds.
+    /// (The global a launch manifest left its setter out of reads as one.)
+    fn values_nobody_gives(&self, loaded: &LoadedMachine, file: &str) -> Vec<FileDiagnostic> {
+        let m = &loaded.machine;
+        let Some(me) = self.all.iter().find(|x| x.decl.name == m.name) else {
+            return Vec::new();
+        };
+        let team = self.behaviour.manifest.team.iter().flat_map(|t| &t.shared);
+        let team: Vec<&str> = team.map(|s| s.get_ref().as_str()).collect();
+        let mut out = Vec::new();
+        for ty in me.decl.reads.iter().filter(|ty| **ty != m.name) {
+            let given = self.answered(ty)
+                || self.is_machine(ty)
+                || machine_of_running_type(ty).is_some_and(|n| self.is_machine(n))
+                // A teammate's value or the team's (`robot2.x`, `team.x`) is team.rs's to check.
+                || ty.contains('.')
+                || team.contains(&ty.as_str())
+                || self.all.iter().any(|x| x.decl.posts.iter().any(|p| p == ty));
+            if given {
+                continue;
+            }
+            let mut named = false;
+            let line = m.transitions.iter().find(|t| {
+                t.label.visit_names(&mut |name, _| named |= name == ty);
+                named
+            });
+            out.push(FileDiagnostic::warning(
+                file,
+                line.map_or(1, |t| t.line),
+                format!(
+                    "a label reads `{ty}`, which nothing in this behaviour posts, assigns or answers, so a comparison with it never holds (was the machine that sets it left out? a script, or a module the manifest's [[module]] names, may post it)"
+                ),
+            ));
         }
         out
     }
