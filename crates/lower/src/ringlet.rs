@@ -110,7 +110,8 @@ impl<'m> Arm<'m> {
         self.transition.target
     }
 
-    /// What runs when this transition fires, before the machine moves to its target.
+    /// What runs when this transition fires, before the machine moves to its target: its
+    /// state's OnExit.
     pub fn leaving(&self) -> &'m [Action] {
         &self.state.on_exit
     }

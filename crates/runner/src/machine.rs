@@ -401,60 +401,70 @@ impl<'r> RunningMachine<'r> {
                     self.asked.clear();
                     self.queries = 0;
                 }
-                Next::Try(arm) => {
-                    let mut answered = Vec::new();
-                    let proved = {
-                        let mut cx = Context {
-                            env: Env {
-                                board: &self.board,
-                                seen: &self.seen,
-                                locals: &self.locals,
-                                shared: &self.shared,
-                                in_state: self.now().saturating_duration_since(self.entered_at),
-                            },
-                            module: &self.name,
-                            answer_timeout: self.runner.options.answer_timeout,
-                            answered: &mut answered,
-                            hook: self.query_hook.as_ref(),
-                            queries: &mut self.queries,
-                        };
-                        prove(arm.label(), &mut cx).await
-                    };
-                    if let Some(atom) = self.report_answers(answered) {
-                        self.reporter.emit(|at, round| Event::Halted {
-                            machine: self.name.clone(),
-                            reason: format!(
-                                "no expert answered `{atom}` within {:?} (in state {})",
-                                self.runner.options.answer_timeout, state.name
-                            ),
-                            at,
-                            round,
-                        });
-                        self.board.post(&self.name, &self.running_type, false);
-                        return RingOutcome::Over;
-                    }
-                    run.proved(proved);
-                }
-                Next::Leave(arm) => {
-                    let (from, to, label) = (self.current, arm.target(), arm.label().to_string());
-                    tracing::debug!(from = %state.name, to, %label, "transition fired");
-                    self.reporter.emit(|at, round| Event::Fired {
-                        machine: self.name.clone(),
-                        from,
-                        to,
-                        label,
-                        at,
-                        round,
-                    });
-                    self.act(&state.name, arm.leaving()).await;
-                    self.current = arm.target();
-                    self.just_entered = true;
-                }
+                Next::Try(arm) => match self.prove(arm, &state.name).await {
+                    Some(proved) => run.proved(proved),
+                    None => return RingOutcome::Over,
+                },
+                Next::Leave(arm) => self.leave(arm, &state.name).await,
                 Next::Stay(actions) => self.act(&state.name, actions).await,
                 Next::Done(Some(_)) => return RingOutcome::Moved,
                 Next::Done(None) => return RingOutcome::Stayed,
             }
         }
+    }
+
+    /// Whether `arm`'s label is proved; `None` when the machine halts because no expert
+    /// answered in time (and was asked to halt then).
+    async fn prove(&mut self, arm: Arm<'_>, state: &str) -> Option<bool> {
+        let mut answered = Vec::new();
+        let proved = {
+            let mut cx = Context {
+                env: Env {
+                    board: &self.board,
+                    seen: &self.seen,
+                    locals: &self.locals,
+                    shared: &self.shared,
+                    in_state: self.now().saturating_duration_since(self.entered_at),
+                },
+                module: &self.name,
+                answer_timeout: self.runner.options.answer_timeout,
+                answered: &mut answered,
+                hook: self.query_hook.as_ref(),
+                queries: &mut self.queries,
+            };
+            prove(arm.label(), &mut cx).await
+        };
+        let Some(atom) = self.report_answers(answered) else {
+            return Some(proved);
+        };
+        self.reporter.emit(|at, round| Event::Halted {
+            machine: self.name.clone(),
+            reason: format!(
+                "no expert answered `{atom}` within {:?} (in state {state})",
+                self.runner.options.answer_timeout
+            ),
+            at,
+            round,
+        });
+        self.board.post(&self.name, &self.running_type, false);
+        None
+    }
+
+    /// `arm` fired: the event, what it runs leaving, and the move to its target.
+    async fn leave(&mut self, arm: Arm<'_>, state: &str) {
+        let (from, to, label) = (self.current, arm.target(), arm.label().to_string());
+        tracing::debug!(from = %state, to, %label, "transition fired");
+        self.reporter.emit(|at, round| Event::Fired {
+            machine: self.name.clone(),
+            from,
+            to,
+            label,
+            at,
+            round,
+        });
+        self.act(state, arm.leaving()).await;
+        self.current = arm.target();
+        self.just_entered = true;
     }
 
     /// Arriving in `plan`'s state: its arrival activities, and the end of the run for a state

@@ -333,7 +333,7 @@ impl<'m> StepGenerator<'m> {
         let mut run = RingletRun::new(plan, start.machines[k].just_entered);
         let mut snapshot = Snapshot::default();
         let mut fired = None;
-        let fired = loop {
+        loop {
             match run.next_step() {
                 Next::Arrive(actions) => {
                     exec.touched = Some(Vec::new());
@@ -347,17 +347,19 @@ impl<'m> StepGenerator<'m> {
                 }
                 Next::Leave(arm) => {
                     exec.run(arm.leaving());
-                    let t = modelled(arm).expect("only a modelled transition is proved");
-                    let c = &mut exec.world.machines[k];
-                    c.state = transitions[t].target as u16;
-                    c.just_entered = true;
-                    c.time = 0;
-                    fired = Some(t);
+                    // Only a modelled transition is proved (above).
+                    if let Some(t) = modelled(arm) {
+                        let c = &mut exec.world.machines[k];
+                        c.state = transitions[t].target as u16;
+                        c.just_entered = true;
+                        c.time = 0;
+                        fired = Some(t);
+                    }
                 }
                 Next::Stay(actions) => exec.run(actions),
-                Next::Done(_) => break fired,
+                Next::Done(_) => break,
             }
-        };
+        }
         for (target, command) in std::mem::take(&mut exec.deferred) {
             exec.obey(target, command);
         }
