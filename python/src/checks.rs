@@ -7,6 +7,7 @@
 
 use proclaim_behaviour::LoadedMachine;
 use proclaim_fsm::{Action, Command, Expr, Statement, BUILTIN_FUNCTIONS};
+use proclaim_lower::RingletPlan;
 use proclaim_runner::Shared;
 use std::collections::BTreeMap;
 
@@ -58,12 +59,8 @@ fn called(machines: &[LoadedMachine]) -> BTreeMap<String, (String, usize)> {
     let mut out = BTreeMap::new();
     for loaded in machines {
         for state in &loaded.machine.states {
-            let actions = state
-                .on_entry
-                .iter()
-                .chain(&state.on_exit)
-                .chain(&state.internal);
-            for action in actions {
+            let plan = RingletPlan::of_state(&loaded.machine, state);
+            for action in plan.activities().into_iter().flatten() {
                 let mut functions = Vec::new();
                 match action {
                     Action::Call { function, .. } => functions.push(function.as_str()),

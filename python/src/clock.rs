@@ -10,7 +10,7 @@ use proclaim_behaviour::testing::RoundByRound;
 use proclaim_board::Value;
 use proclaim_experts::{Script, When};
 use proclaim_fsm::{Argument, Expr, Machine, TIME_TESTS};
-use proclaim_lower::Evaluate;
+use proclaim_lower::{Evaluate, RingletPlan};
 use proclaim_runner::Event;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -155,9 +155,9 @@ impl Clock {
                 running,
                 machine: name,
             };
-            machine
-                .outgoing(state.id)
-                .flat_map(|t| t.label.calls())
+            RingletPlan::of_state(machine, state)
+                .arms()
+                .flat_map(|arm| arm.label().calls())
                 .filter_map(|(function, arguments)| {
                     let (_, micros_per_unit) = TIME_TESTS.iter().find(|(f, _)| *f == function)?;
                     let limit = match arguments {
