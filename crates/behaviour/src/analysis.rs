@@ -116,6 +116,20 @@ impl CrossModuleCheck<'_> {
             }
         }
         out.extend(self.values_nobody_gives(loaded, &file));
+        out.extend(self.postings_nobody_hears(loaded, &file, &mut reported));
+        out
+    }
+
+    /// The postings of `loaded`'s activities that no module reads (`reported`: the types
+    /// already reported, each once).
+    fn postings_nobody_hears(
+        &self,
+        loaded: &LoadedMachine,
+        file: &str,
+        reported: &mut Vec<String>,
+    ) -> Vec<FileDiagnostic> {
+        let m = &loaded.machine;
+        let mut out = Vec::new();
         for state in &m.states {
             for action in RingletPlan::of_state(m, state)
                 .activities()
@@ -133,7 +147,7 @@ impl CrossModuleCheck<'_> {
                 // nobody hears may be for a module outside the behaviour.
                 out.push(if Command::parse(content).is_some() {
                     FileDiagnostic::error(
-                        &file,
+                        file,
                         state.line,
                         format!(
                             "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
@@ -141,7 +155,7 @@ impl CrossModuleCheck<'_> {
                     )
                 } else {
                     FileDiagnostic::warning(
-                        &file,
+                        file,
                         state.line,
                         format!(
                             "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary)"

@@ -7,7 +7,7 @@ use crate::activity::{conversion, Activity, Variable, Variables};
 use crate::c::c_identifier;
 use crate::plan::{
     Answer, BoardValue, Condition, Conversion, Drawing, Input, MachinePlan, Output, Plan,
-    PlannedTheory, StatePlan, Suppressed, TransitionPlan,
+    PlannedTheory, StatePlan, Step, Suppressed, TransitionPlan,
 };
 use crate::refusal::{refuse, Language, Refusal};
 use crate::tabulate::{compile, Domain};
@@ -331,7 +331,7 @@ fn plan_externs(
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
-            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
+            for s in state_statements(&loaded.machine, state) {
                 let Statement::Extern { name, .. } = s else {
                     continue;
                 };
@@ -412,7 +412,7 @@ fn plan_board_reads(
             });
         };
         for state in &loaded.machine.states {
-            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
+            for s in state_statements(&loaded.machine, state) {
                 for e in s.expressions() {
                     e.visit_names(&mut |name, _| read(name, false));
                 }
@@ -438,7 +438,7 @@ fn plan_slots(behaviour: &Behaviour, names: &Names) -> Result<Slots, Refusal> {
     for loaded in &behaviour.machines {
         let file = behaviour.files.show(&loaded.file);
         for state in &loaded.machine.states {
-            for s in state_statements(&RingletPlan::of_state(&loaded.machine, state)) {
+            for s in state_statements(&loaded.machine, state) {
                 if let Statement::Declare { ty, .. } = s {
                     conversion(ty).map_err(|what| refuse(&file, state.line, what))?;
                 }
@@ -542,20 +542,7 @@ fn plan_state(
     };
     let plan = RingletPlan::of_state(machine, state);
     let entry = activity.actions(plan.arriving())?;
-    // Arms that leave by the same activity share its planned steps.
-    let mut leaving: Vec<&[Action]> = Vec::new();
-    let mut leavings = Vec::new();
-    let mut leaves = Vec::new();
-    for arm in plan.arms() {
-        match leaving.iter().position(|l| std::ptr::eq(*l, arm.leaving())) {
-            Some(planned) => leaves.push(planned),
-            None => {
-                leaves.push(leavings.len());
-                leavings.push(activity.actions(arm.leaving())?);
-                leaving.push(arm.leaving());
-            }
-        }
-    }
+    let (leavings, leaves) = plan_leavings(&plan, &mut activity)?;
     let staying = activity.actions(plan.staying())?;
     let mut labels = Labels {
         outputs: seen.outputs,
@@ -599,6 +586,28 @@ fn plan_state(
         reads_globals,
         reads_externs,
     })
+}
+
+/// What `plan`'s arms run as they fire, each activity planned once (arms that leave by the
+/// same activity share its steps), and the place of each arm's among them.
+fn plan_leavings(
+    plan: &RingletPlan<'_>,
+    activity: &mut Activity<'_>,
+) -> Result<(Vec<Vec<Step>>, Vec<usize>), Refusal> {
+    let mut planned: Vec<&[Action]> = Vec::new();
+    let mut leavings = Vec::new();
+    let mut leaves = Vec::new();
+    for arm in plan.arms() {
+        match planned.iter().position(|l| std::ptr::eq(*l, arm.leaving())) {
+            Some(at) => leaves.push(at),
+            None => {
+                leaves.push(leavings.len());
+                leavings.push(activity.actions(arm.leaving())?);
+                planned.push(arm.leaving());
+            }
+        }
+    }
+    Ok((leavings, leaves))
 }
 
 /// What a state's labels read, gathered as they are planned: the theory outputs they ask, the
@@ -706,9 +715,13 @@ impl Labels<'_> {
 }
 
 /// The statements of a state's activities, those inside blocks and loops included.
-fn state_statements<'m>(plan: &RingletPlan<'m>) -> Vec<&'m Statement> {
+fn state_statements<'m>(
+    machine: &'m proclaim_fsm::Machine,
+    state: &'m proclaim_fsm::State,
+) -> Vec<&'m Statement> {
     let mut out = Vec::new();
-    for action in plan.activities().into_iter().flatten() {
+    let activities = RingletPlan::of_state(machine, state).activities();
+    for action in activities.into_iter().flatten() {
         if let Action::Statement(s) = action {
             s.visit(&mut |inner| out.push(inner));
         }

@@ -1462,66 +1462,15 @@ impl<'m> Writer<'m> {
             self.line(&format!(":: ringing == {} ->", k + 1));
             self.depth += 1;
             self.line("if");
-            for (s, state) in m.states.iter().enumerate() {
+            for s in 0..m.states.len() {
                 self.state = s;
                 self.line(&format!(":: st[{k}] == {s} ->"));
                 self.depth += 1;
-                for (j, (seer, e)) in model.saw.iter().enumerate() {
-                    if *seer == k {
-                        let v = self.value(e)?;
-                        self.line(&format!("saw{j} = {};", v.code()));
-                    }
-                }
-                let plan = RingletPlan::of_state(&m.machine, &m.machine.states[s]);
-                let mut opened = 0;
-                for arm in plan.arms() {
-                    let Some(t) = state.modelled(arm).map(|t| &state.transitions[t]) else {
-                        continue;
-                    };
-                    let holds = self.truth(&t.label)?;
-                    self.line("if");
-                    self.line(&format!(":: {holds} ->"));
-                    self.depth += 1;
-                    self.run(arm.leaving())?;
-                    self.line(&format!(
-                        "st[{k}] = {}; je[{k}] = 1; due[{k}] = 0;",
-                        t.target
-                    ));
-                    self.depth -= 1;
-                    self.line(":: else ->");
-                    self.depth += 1;
-                    opened += 1;
-                }
-                self.run(plan.staying())?;
-                self.line("skip;");
-                for _ in 0..opened {
-                    self.depth -= 1;
-                    self.line("fi;");
-                }
+                self.state_ringlet(k, s)?;
                 self.depth -= 1;
             }
             self.line("fi;");
-            for i in 0..self.queue {
-                let options: Vec<String> = Command::ALL
-                    .iter()
-                    .map(|c| (command_code(*c), *c))
-                    .map(|(code, c)| {
-                        let saved = std::mem::take(&mut self.out);
-                        let depth = std::mem::replace(&mut self.depth, 0);
-                        self.control(k, c);
-                        self.depth = depth;
-                        let body = std::mem::replace(&mut self.out, saved);
-                        format!(":: defer[{i}] == {code} -> {}", body.replace('\n', " "))
-                    })
-                    .collect();
-                self.line(&format!(
-                    "if {} :: else -> skip; fi; defer[{i}] = 0;",
-                    options.join(" ")
-                ));
-            }
-            if self.queue > 0 {
-                self.line("ndefer = 0;");
-            }
+            self.obey_deferred(k);
             self.line(&format!("turn = {};", k + 1));
             self.depth -= 1;
         }
@@ -1530,6 +1479,71 @@ impl<'m> Writer<'m> {
         self.depth -= 1;
         self.line("};");
         Ok(())
+    }
+
+    /// Machine `k`'s ringlet in state `s` from its snapshot: `saw()`, then each arm of its
+    /// [`RingletPlan`] in order (what it runs leaving, the target entered), else staying.
+    fn state_ringlet(&mut self, k: usize, s: usize) -> Result<(), EmitError> {
+        let model = self.model;
+        let (m, state) = (&model.machines[k], &model.machines[k].states[s]);
+        for (j, (seer, e)) in model.saw.iter().enumerate() {
+            if *seer == k {
+                let v = self.value(e)?;
+                self.line(&format!("saw{j} = {};", v.code()));
+            }
+        }
+        let plan = RingletPlan::of_state(&m.machine, &m.machine.states[s]);
+        let mut opened = 0;
+        for arm in plan.arms() {
+            let Some(t) = state.modelled(arm).map(|t| &state.transitions[t]) else {
+                continue;
+            };
+            let holds = self.truth(&t.label)?;
+            self.line("if");
+            self.line(&format!(":: {holds} ->"));
+            self.depth += 1;
+            self.run(arm.leaving())?;
+            self.line(&format!(
+                "st[{k}] = {}; je[{k}] = 1; due[{k}] = 0;",
+                t.target
+            ));
+            self.depth -= 1;
+            self.line(":: else ->");
+            self.depth += 1;
+            opened += 1;
+        }
+        self.run(plan.staying())?;
+        self.line("skip;");
+        for _ in 0..opened {
+            self.depth -= 1;
+            self.line("fi;");
+        }
+        Ok(())
+    }
+
+    /// The commands machine `k`'s ringlet posted, obeyed as it ends.
+    fn obey_deferred(&mut self, k: usize) {
+        for i in 0..self.queue {
+            let options: Vec<String> = Command::ALL
+                .iter()
+                .map(|c| (command_code(*c), *c))
+                .map(|(code, c)| {
+                    let saved = std::mem::take(&mut self.out);
+                    let depth = std::mem::replace(&mut self.depth, 0);
+                    self.control(k, c);
+                    self.depth = depth;
+                    let body = std::mem::replace(&mut self.out, saved);
+                    format!(":: defer[{i}] == {code} -> {}", body.replace('\n', " "))
+                })
+                .collect();
+            self.line(&format!(
+                "if {} :: else -> skip; fi; defer[{i}] = 0;",
+                options.join(" ")
+            ));
+        }
+        if self.queue > 0 {
+            self.line("ndefer = 0;");
+        }
     }
 
     /// The end of a step: `ringing` cleared, each property's hit bit, and no variable beyond

@@ -308,7 +308,6 @@ impl<'m> StepGenerator<'m> {
         detail: bool,
         open: Option<Open<'c>>,
     ) -> (Ringlet, Option<Open<'c>>) {
-        let machine = &self.model.machines[k];
         let from = usize::from(start.machines[k].state);
         let mut chosen = Chosen {
             choices,
@@ -327,39 +326,7 @@ impl<'m> StepGenerator<'m> {
             deferred: Vec::new(),
             chosen: &mut chosen,
         };
-        let transitions = &machine.states[from].transitions;
-        let modelled = |arm| machine.states[from].modelled(arm);
-        let plan = RingletPlan::of_state(&machine.machine, &machine.machine.states[from]);
-        let mut run = RingletRun::new(plan, start.machines[k].just_entered);
-        let mut snapshot = Snapshot::default();
-        let mut fired = None;
-        loop {
-            match run.next_step() {
-                Next::Arrive(actions) => {
-                    exec.touched = Some(Vec::new());
-                    exec.run(actions);
-                    exec.world.machines[k].just_entered = false;
-                }
-                Next::Snapshot => snapshot = self.snapshot(&mut exec, detail),
-                Next::Try(arm) => {
-                    let holds = modelled(arm).is_some_and(|t| exec.truth(&transitions[t].label));
-                    run.proved(holds);
-                }
-                Next::Leave(arm) => {
-                    exec.run(arm.leaving());
-                    // Only a modelled transition is proved (above).
-                    if let Some(t) = modelled(arm) {
-                        let c = &mut exec.world.machines[k];
-                        c.state = transitions[t].target as u16;
-                        c.just_entered = true;
-                        c.time = 0;
-                        fired = Some(t);
-                    }
-                }
-                Next::Stay(actions) => exec.run(actions),
-                Next::Done(_) => break,
-            }
-        }
+        let (fired, snapshot) = self.steps(&mut exec, from, detail);
         for (target, command) in std::mem::take(&mut exec.deferred) {
             exec.obey(target, command);
         }
@@ -377,6 +344,52 @@ impl<'m> StepGenerator<'m> {
             read: chosen.log.unwrap_or_default(),
         };
         (ringlet, chosen.open)
+    }
+
+    /// The steps [`RingletRun`] gives for the ringing machine's state `from`, each done on
+    /// `exec`'s world: the transition that fired (its place in the model's), and what the
+    /// snapshot chose.
+    fn steps(
+        &self,
+        exec: &mut RingletInterpreter<'_, '_>,
+        from: usize,
+        detail: bool,
+    ) -> (Option<usize>, Snapshot) {
+        let k = exec.machine;
+        let machine = &self.model.machines[k];
+        let state = &machine.states[from];
+        let plan = RingletPlan::of_state(&machine.machine, &machine.machine.states[from]);
+        let mut run = RingletRun::new(plan, exec.world.machines[k].just_entered);
+        let mut snapshot = Snapshot::default();
+        let mut fired = None;
+        loop {
+            match run.next_step() {
+                Next::Arrive(actions) => {
+                    exec.touched = Some(Vec::new());
+                    exec.run(actions);
+                    exec.world.machines[k].just_entered = false;
+                }
+                Next::Snapshot => snapshot = self.snapshot(exec, detail),
+                Next::Try(arm) => {
+                    let modelled = state.modelled(arm);
+                    let holds = modelled.is_some_and(|t| exec.truth(&state.transitions[t].label));
+                    run.proved(holds);
+                }
+                Next::Leave(arm) => {
+                    exec.run(arm.leaving());
+                    // Only a modelled transition is proved (above).
+                    if let Some(t) = state.modelled(arm) {
+                        let c = &mut exec.world.machines[k];
+                        c.state = state.transitions[t].target as u16;
+                        c.just_entered = true;
+                        c.time = 0;
+                        fired = Some(t);
+                    }
+                }
+                Next::Stay(actions) => exec.run(actions),
+                Next::Done(_) => return (fired, snapshot),
+            }
+        }
     }
 
     /// The ringlet's snapshot, after its arrival: the time tests that come due and the values
