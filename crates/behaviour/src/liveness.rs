@@ -282,6 +282,8 @@ impl Draft {
             target,
             label,
             line: 0,
+            leaving: None,
+            composite: None,
         });
     }
 

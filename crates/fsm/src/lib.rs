@@ -30,7 +30,9 @@ pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use lint::{lint, reachable};
-pub use model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
+pub use model::{
+    Action, Argument, Composite, Machine, State, StateId, Transition, UnreadTransition,
+};
 pub use native::{parse_machine, to_native, EXTENSION};
 
 /// Editing native machine files in place: each edit a text patch at the reader's spans, so

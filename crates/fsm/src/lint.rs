@@ -25,11 +25,19 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
     let mut out = Vec::new();
     let outgoing = outgoing_of(machine);
     let reached: HashSet<StateId> = reachable_by(machine, &outgoing).into_iter().collect();
+    // A nested state lowers to a flat state for each way into it (`native/chart.rs`): it is
+    // reached when one of them is, and what is wrong with it is said once.
+    let reached_as_written: HashSet<(&str, usize)> = machine
+        .states
+        .iter()
+        .filter(|s| reached.contains(&s.id))
+        .map(|s| (s.name.as_str(), s.line))
+        .collect();
     let initial = machine
         .state(machine.initial)
         .map_or("?", |s| s.name.as_str());
     for state in &machine.states {
-        if !reached.contains(&state.id) {
+        if !reached_as_written.contains(&(state.name.as_str(), state.line)) {
             out.push(FileDiagnostic::warning(
                 file,
                 state.line,
@@ -66,6 +74,11 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
         let leaving = outgoing.get(&state.id).map_or(&[][..], Vec::as_slice);
         for (i, t) in leaving.iter().enumerate() {
             let above = &leaving[..i];
+            // A composite's transition is copied to each state inside it: shadowed in one of
+            // them, it may still fire from the others.
+            if t.composite.is_some() {
+                continue;
+            }
             if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
                 out.push(FileDiagnostic::warning(
                     file,
@@ -88,6 +101,8 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
         }
     }
     out.extend(timeless_cycles(machine, &outgoing, file));
+    let mut said = HashSet::new();
+    out.retain(|d| said.insert((d.line, d.message.clone())));
     out
 }
 

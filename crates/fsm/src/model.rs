@@ -20,6 +20,21 @@ pub struct Machine {
     /// Transitions of the original file whose label could not be read: not run, but kept so
     /// that an import can write them down (as comments) instead of losing them.
     pub unread: Vec<UnreadTransition>,
+    /// The composite states of a machine written with nested states, outermost first. Its
+    /// `states` are then the flat states it lowers to (`native/chart.rs`), each named by its
+    /// path (`PLAY.SEARCH`); empty for a flat machine.
+    pub composites: Vec<Composite>,
+}
+
+/// A state that holds states (`docs/spec/behaviour.md` §3.2), kept after lowering for what
+/// shows the nesting (`draw`'s clusters) and for naming a transition written on it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Composite {
+    /// Its path, as the names of the states inside it begin (`PLAY`, `PLAY.DIVE`).
+    pub name: String,
+    /// The composite it is in, an index into `Machine::composites`.
+    pub parent: Option<usize>,
+    pub line: usize,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -60,6 +75,20 @@ impl Machine {
     pub fn outgoing(&self, id: StateId) -> impl Iterator<Item = &Transition> + '_ {
         self.transitions.iter().filter(move |t| t.source == id)
     }
+
+    /// The composite directly holding the flat state `state` (an index into `composites`).
+    pub fn composite_of(&self, state: &State) -> Option<usize> {
+        let (outer, _) = state.name.rsplit_once('.')?;
+        self.composites.iter().position(|c| c.name == outer)
+    }
+
+    /// Where `transition` was written: its source state, or the composite holding it.
+    pub fn written_on(&self, transition: &Transition) -> Option<&str> {
+        match transition.composite {
+            Some(c) => self.composites.get(c).map(|c| c.name.as_str()),
+            None => self.state(transition.source).map(|s| s.name.as_str()),
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -79,6 +108,13 @@ pub struct Transition {
     pub target: StateId,
     pub label: Label,
     pub line: usize,
+    /// What runs as it fires when that is not its source's OnExit: leaving a nested state by
+    /// a transition to outside its composite runs the composites' OnExits too (§3.2).
+    pub leaving: Option<Vec<Action>>,
+    /// The composite it was written on (an index into `Machine::composites`), when it was
+    /// not written on its source: lowering copies a composite's transitions to every state
+    /// inside it.
+    pub composite: Option<usize>,
 }
 
 /// One thing an activity does.

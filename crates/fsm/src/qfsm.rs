@@ -389,6 +389,8 @@ fn end_transition(
             target,
             label,
             line: t.line,
+            leaving: None,
+            composite: None,
         },
     ));
 }
@@ -472,6 +474,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
         transitions: transitions.into_iter().map(|(_, _, t)| t).collect(),
         initial,
         unread: m.unread,
+        composites: Vec::new(),
         description: notes.join("\n"),
     });
 }

@@ -198,6 +198,8 @@ fn t_line(
             target,
             label,
             line,
+            leaving: None,
+            composite: None,
         }),
         Err(e) => {
             diagnostics.push(FileDiagnostic::error(

@@ -111,9 +111,13 @@ impl<'m> Arm<'m> {
     }
 
     /// What runs when this transition fires, before the machine moves to its target: its
-    /// state's OnExit.
+    /// state's OnExit, or, for a nested state's transition that leaves its composites too,
+    /// their OnExits after it, innermost first (§3.2).
     pub fn leaving(&self) -> &'m [Action] {
-        &self.state.on_exit
+        self.transition
+            .leaving
+            .as_deref()
+            .unwrap_or(&self.state.on_exit)
     }
 }
 

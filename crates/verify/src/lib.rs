@@ -381,36 +381,62 @@ fn outcome(
     }
 }
 
-/// The states never entered and the transitions that never fire, of a complete search.
+/// The states never entered and the transitions that never fire, of a complete search. A
+/// nested state lowers to a flat state for each way into it, and a composite's transition to a
+/// copy for each state inside it (`docs/spec/behaviour.md` §3.2): each is said of what was
+/// written, once, and only when no flat state or copy of it was entered or fired.
 fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> Vec<Finding> {
     let mut findings = Vec::new();
     for (k, m) in model.machines.iter().enumerate() {
-        for (s, state) in m.states.iter().enumerate() {
-            if !entered[k][s] {
-                findings.push(Finding::NeverEntered {
-                    machine: m.name.clone(),
-                    state: state.name.clone(),
-                });
-            }
+        let states = m.machine.states.iter().zip(&entered[k]);
+        for state in once_each(states.map(|(s, &e)| ((s.name.clone(), s.line), e))) {
+            findings.push(Finding::NeverEntered {
+                machine: m.name.clone(),
+                state: state.0,
+            });
         }
-        for (i, t) in m.machine.transitions.iter().enumerate() {
-            if !fired[k][i] {
-                let name = |id| {
-                    m.machine
-                        .state(id)
-                        .map_or_else(|| format!("#{id}"), |s| s.name.clone())
-                };
-                findings.push(Finding::NeverFires {
-                    machine: m.name.clone(),
-                    from: name(t.source),
-                    to: name(t.target),
-                    label: t.label.to_string(),
-                    line: t.line,
-                });
-            }
+        let name = |id| {
+            m.machine
+                .state(id)
+                .map_or_else(|| format!("#{id}"), |s| s.name.clone())
+        };
+        let transitions = m.machine.transitions.iter().zip(&fired[k]).map(|(t, &f)| {
+            let from = match t.composite {
+                Some(_) => m
+                    .machine
+                    .written_on(t)
+                    .map_or_else(|| name(t.source), str::to_string),
+                None => name(t.source),
+            };
+            ((from, name(t.target), t.label.to_string(), t.line), f)
+        });
+        for (from, to, label, line) in once_each(transitions) {
+            findings.push(Finding::NeverFires {
+                machine: m.name.clone(),
+                from,
+                to,
+                label,
+                line,
+            });
         }
     }
     findings
+}
+
+/// The keys none of whose items happened, each once, in the order first met.
+fn once_each<K: Eq + std::hash::Hash + Clone>(items: impl Iterator<Item = (K, bool)>) -> Vec<K> {
+    let mut order: Vec<K> = Vec::new();
+    let mut happened: std::collections::HashMap<K, bool> = Default::default();
+    for (key, did) in items {
+        match happened.get_mut(&key) {
+            Some(any) => *any |= did,
+            None => {
+                order.push(key.clone());
+                happened.insert(key, did);
+            }
+        }
+    }
+    order.into_iter().filter(|k| !happened[k]).collect()
 }
 
 /// The explicit search's report, and whether a racing engine answered first.

@@ -118,10 +118,6 @@ pub struct MachineModel {
 }
 
 impl MachineModel {
-    pub fn state_index(&self, name: &str) -> Option<usize> {
-        self.states.iter().position(|s| s.name == name)
-    }
-
     /// The most time tests any one state has: the bits of the machine's time field in either
     /// engine's state (a bit a test, set once it came due).
     pub fn most_time_tests(&self) -> usize {

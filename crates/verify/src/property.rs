@@ -412,14 +412,21 @@ impl Compiler<'_> {
                 return Err(self.error(e, format!("`{machine}` is no machine of the behaviour")));
             };
             let mm = &self.model.machines[m];
-            if let Some(s) = mm.state_index(part) {
-                return Ok((
-                    Term::InState {
-                        machine: m,
-                        state: s as u16,
-                    },
-                    ValueKind::Truth,
-                ));
+            // A nested state is every flat state it lowers to, and a composite every state
+            // inside it (`docs/spec/behaviour.md` §3.2).
+            let part = &part.replace(DOT, ".");
+            let inside = format!("{part}.");
+            let states = mm
+                .states
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.name == *part || s.name.starts_with(&inside))
+                .map(|(s, _)| Term::InState {
+                    machine: m,
+                    state: s as u16,
+                });
+            if let Some(any) = states.reduce(|a, b| Term::Or(Box::new(a), Box::new(b))) {
+                return Ok((any, ValueKind::Truth));
             }
             if let Some(&slot) = mm.locals.get(part) {
                 return Ok((Term::Slot(slot), self.slot_kind(slot)));

@@ -27,6 +27,8 @@ struct Coverage {
     firings: usize,
     commands: usize,
     answers_of_theories: usize,
+    /// Arrivals in a state nested in a composite one (its name a path).
+    nested_arrivals: usize,
     widest: usize,
 }
 
@@ -81,6 +83,9 @@ fn conform(seeds: std::ops::Range<u64>) {
                     match e {
                         Event::Fired { .. } => coverage.firings += 1,
                         Event::Control { .. } => coverage.commands += 1,
+                        Event::Entered { state, .. } if state.contains('.') => {
+                            coverage.nested_arrivals += 1
+                        }
                         Event::Answered {
                             by: proclaim_runner::Answerer::Expert(who),
                             ..
@@ -114,7 +119,7 @@ fn conform(seeds: std::ops::Range<u64>) {
     }
     assert!(coverage.firings > coverage.runs, "{coverage:?}");
     assert!(
-        coverage.commands > 0 && coverage.answers_of_theories > 0,
+        coverage.commands > 0 && coverage.answers_of_theories > 0 && coverage.nested_arrivals > 0,
         "{coverage:?}"
     );
 }

@@ -49,6 +49,10 @@ pub enum Member {
         target_at: usize,
         at: usize,
     },
+    /// A composite state's first sub-state: `initial NAME` inside its block.
+    Initial(Ref, usize),
+    /// A sub-state: the state holding it is composite.
+    State(StateAst),
 }
 
 /// An action as read: complete, or a statement still to be parsed.

@@ -72,8 +72,11 @@ pub struct MachineLexer<'a> {
     at: usize,
     /// Tokens already cut that come before anything else (a label's `->`).
     pending: Vec<(usize, MachineToken<'a>, usize)>,
-    /// How many `{` are open: 2 and more is inside an activity.
-    depth: usize,
+    /// The `{` still open, innermost last: `true` for an activity's (`entry {`), whose items
+    /// are cut as postings and statements, `false` for a state's body.
+    open: Vec<bool>,
+    /// The last word was `entry`, `exit` or `internal`: the next `{` opens an activity.
+    activity_next: bool,
     /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
     plain_until: usize,
 }
@@ -84,7 +87,8 @@ impl<'a> MachineLexer<'a> {
             text,
             at: 0,
             pending: Vec::new(),
-            depth: 0,
+            open: Vec::new(),
+            activity_next: false,
             plain_until: 0,
         }
     }
@@ -130,21 +134,25 @@ impl<'a> MachineLexer<'a> {
         let start = self.at;
         let rest = self.rest();
         let c = rest.chars().next()?;
-        if self.depth >= 2 && self.at >= self.plain_until {
+        let in_activity = self.open.last() == Some(&true);
+        if in_activity && self.at >= self.plain_until {
             if let Some(token) = self.activity_item(c) {
                 return Some(Ok(token));
             }
+        }
+        if c != '{' {
+            self.activity_next = false;
         }
         let one = |tok| Some(Ok((start, tok, start + 1)));
         match c {
             '{' => {
                 self.at += 1;
-                self.depth += 1;
+                self.open.push(std::mem::take(&mut self.activity_next));
                 one(MachineToken::LBrace)
             }
             '}' => {
                 self.at += 1;
-                self.depth = self.depth.saturating_sub(1);
+                self.open.pop();
                 one(MachineToken::RBrace)
             }
             '(' => {
@@ -209,12 +217,17 @@ impl<'a> MachineLexer<'a> {
         self.at += len;
         let tok = match word {
             "machine" => MachineToken::Machine,
-            "description" if self.depth == 0 => MachineToken::Description,
+            "description" if self.open.is_empty() => MachineToken::Description,
             "initial" => MachineToken::Initial,
             "state" => MachineToken::State,
-            "entry" => MachineToken::Entry,
-            "exit" => MachineToken::Exit,
-            "internal" => MachineToken::Internal,
+            "entry" | "exit" | "internal" => {
+                self.activity_next = true;
+                match word {
+                    "entry" => MachineToken::Entry,
+                    "exit" => MachineToken::Exit,
+                    _ => MachineToken::Internal,
+                }
+            }
             "call" => MachineToken::Call,
             "code" => {
                 let text = self.line_text(MachineToken::Text);

@@ -33,6 +33,7 @@
 //! a transition names its target by id (`-> #14`).
 
 mod ast;
+mod chart;
 mod edit;
 mod edit_error;
 mod lexer;
@@ -41,6 +42,7 @@ mod write;
 
 use crate::code::parse_statements;
 use crate::label::parse_label;
+use crate::label::Label;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
 use ast::{ActionAst, FileAst, Member, Ref, StateAst, TopItem};
@@ -174,6 +176,27 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         diagnostics: Vec::new(),
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
+    let nested = parsed
+        .iter()
+        .any(|s| s.members.iter().any(|m| matches!(m, Member::State(_))));
+    if nested {
+        let machines = chart::lower_chart(&mut lowering, parsed, initial_ref)
+            .map(|chart| Machine {
+                name: ast.name,
+                description,
+                states: chart.states,
+                transitions: chart.transitions,
+                initial: chart.initial,
+                unread: Vec::new(),
+                composites: chart.composites,
+            })
+            .into_iter()
+            .collect();
+        return Imported {
+            machines,
+            diagnostics: lowering.diagnostics,
+        };
+    }
     let ids = lowering.number(&parsed);
     let names = StateNames::new(
         &ids,
@@ -202,6 +225,7 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
             transitions,
             initial,
             unread: Vec::new(),
+            composites: Vec::new(),
         }],
         None if states.is_empty() => {
             lowering.error(ast.name_at, format!("machine `{}` has no states", ast.name));
@@ -336,7 +360,7 @@ impl Lowering<'_> {
             .collect()
     }
 
-    /// One state, its transitions added to `transitions`.
+    /// One state of a flat machine, its transitions added to `transitions`.
     fn state(
         &mut self,
         s: StateAst,
@@ -344,16 +368,28 @@ impl Lowering<'_> {
         names: &StateNames,
         transitions: &mut Vec<Transition>,
     ) -> State {
-        let mut state = State {
+        let line = self.lines.line(s.at);
+        let body = self.body(&s.name, s.members);
+        for when in body.whens {
+            if let Some(t) = self.transition(id, when, names) {
+                transitions.push(t);
+            }
+        }
+        State {
             id,
             name: s.name,
-            on_entry: Vec::new(),
-            on_exit: Vec::new(),
-            internal: Vec::new(),
-            line: self.lines.line(s.at),
-        };
+            on_entry: body.entry,
+            on_exit: body.exit,
+            internal: body.internal,
+            line,
+        }
+    }
+
+    /// What a state's block holds, each activity once.
+    fn body(&mut self, name: &str, members: Vec<Member>) -> Body {
+        let mut body = Body::default();
         let mut seen: Vec<Section> = Vec::new();
-        for member in s.members {
+        for member in members {
             match member {
                 Member::Activity {
                     section,
@@ -364,17 +400,16 @@ impl Lowering<'_> {
                         self.error(
                             at,
                             format!(
-                                "state `{}` has two {} blocks; put their items in one",
-                                state.name,
+                                "state `{name}` has two {} blocks; put their items in one",
                                 section_name(section)
                             ),
                         );
                     }
                     seen.push(section);
                     let list = match section {
-                        Section::Entry => &mut state.on_entry,
-                        Section::Exit => &mut state.on_exit,
-                        Section::Internal => &mut state.internal,
+                        Section::Entry => &mut body.entry,
+                        Section::Exit => &mut body.exit,
+                        Section::Internal => &mut body.internal,
                     };
                     self.actions(actions, list);
                 }
@@ -384,21 +419,30 @@ impl Lowering<'_> {
                     target,
                     target_at,
                     at,
-                } => {
-                    let when = When {
-                        label,
-                        label_at,
-                        target,
-                        target_at,
-                        at,
-                    };
-                    if let Some(t) = self.transition(id, when, names) {
-                        transitions.push(t);
+                } => body.whens.push(When {
+                    label,
+                    label_at,
+                    target,
+                    target_at,
+                    at,
+                }),
+                Member::Initial(target, at) => {
+                    if body.initial.is_some() {
+                        self.error(at, format!("state `{name}` names its initial state twice"));
+                    } else {
+                        body.initial = Some((target, at));
                     }
                 }
+                Member::State(inner) => body.states.push(inner),
             }
         }
-        state
+        if let (Some((_, at)), true) = (&body.initial, body.states.is_empty()) {
+            self.error(
+                *at,
+                format!("state `{name}` holds no states, so it has no initial state to name"),
+            );
+        }
+        body
     }
 
     fn actions(&mut self, actions: Vec<(ActionAst, usize)>, list: &mut Vec<Action>) {
@@ -419,6 +463,25 @@ impl Lowering<'_> {
         when: When,
         names: &StateNames,
     ) -> Option<Transition> {
+        let label = self.label(&when)?;
+        match names.resolve(&when.target) {
+            Ok(target) => Some(Transition {
+                source,
+                target,
+                label,
+                line: self.lines.line(when.at),
+                leaving: None,
+                composite: None,
+            }),
+            Err(message) => {
+                self.error(when.target_at, message);
+                None
+            }
+        }
+    }
+
+    /// A transition's label, or `None` once the reason it cannot be read is reported.
+    fn label(&mut self, when: &When) -> Option<Label> {
         if when.label.is_empty() {
             self.error(
                 when.at,
@@ -427,29 +490,28 @@ impl Lowering<'_> {
             );
             return None;
         }
-        let label = match parse_label(&when.label) {
-            Ok(l) => l,
+        match parse_label(&when.label) {
+            Ok(l) => Some(l),
             Err(e) => {
                 self.error(
                     when.label_at + e.offset,
                     format!("bad label: {}", e.message),
                 );
-                return None;
-            }
-        };
-        match names.resolve(&when.target) {
-            Ok(target) => Some(Transition {
-                source,
-                target,
-                label,
-                line: self.lines.line(when.at),
-            }),
-            Err(message) => {
-                self.error(when.target_at, message);
                 None
             }
         }
     }
+}
+
+/// A state's block as read: its activities, transitions, and for a composite its states.
+#[derive(Default)]
+struct Body {
+    entry: Vec<Action>,
+    exit: Vec<Action>,
+    internal: Vec<Action>,
+    whens: Vec<When>,
+    initial: Option<(Ref, usize)>,
+    states: Vec<StateAst>,
 }
 
 /// A `when LABEL -> TARGET` as parsed, with where each part was written.

@@ -2,8 +2,10 @@
 //! machines of two to five states over free boolean inputs (which a script sets), globals,
 //! externs and a posted type with small constant values, a local counter, time tests,
 //! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
-//! labels ask; then a script for the run and when to run each round. Everything is a function
-//! of the seed, so a failure names the seed that repeats it.
+//! labels ask, sometimes with states nested in composite states (two deep at most, with their
+//! own activities, transitions and `when done`); then a script for the run and when to run
+//! each round. Everything is a function of the seed, so a failure names the seed that repeats
+//! it.
 
 use std::fmt::Write;
 use std::path::Path;
@@ -90,6 +92,9 @@ struct Names {
 
 pub fn generate(seed: u64) -> RandomBehaviour {
     let mut rng = Rng::new(seed);
+    // Nesting draws from a sequence of its own, so that the flat machines of a seed are
+    // what they were before nesting was drawn.
+    let mut shape = Rng::new(seed ^ 0x5EED_C4A2_0000_0000);
     let names = Names {
         machines: rng.between(1, 4),
         inputs: rng.between(1, 3),
@@ -101,7 +106,7 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     let mut files = Vec::new();
     let mut manifest = String::new();
     for m in 0..names.machines {
-        let text = machine(&mut rng, &names, m);
+        let text = machine(&mut rng, &mut shape, &names, m);
         files.push((format!("M{m}.machine"), text));
         let _ = writeln!(manifest, "[[machine]]\nfile = \"M{m}.machine\"");
         // The first machine always runs; the others are sometimes sub-machines.
@@ -125,11 +130,12 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     }
 }
 
-fn machine(rng: &mut Rng, names: &Names, m: usize) -> String {
+fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
     let states = rng.between(2, 5);
     let counter = rng.chance(30);
-    let mut out = format!("machine M{m}\n");
+    let mut blocks = Vec::new();
     for s in 0..states {
+        let mut out = String::new();
         let _ = writeln!(out, "state S{s} {{");
         let mut entry = String::new();
         if s == 0 {
@@ -172,8 +178,83 @@ fn machine(rng: &mut Rng, names: &Names, m: usize) -> String {
             let _ = writeln!(out, "    when {label} -> S{}", rng.below(states));
         }
         let _ = writeln!(out, "}}");
+        blocks.push((format!("S{s}"), out));
+    }
+    let nest = Nest {
+        names,
+        m,
+        counter,
+        states,
+    };
+    let blocks = nest.wrap(shape, blocks, 0);
+    let mut out = format!("machine M{m}\n");
+    for (_, block) in blocks {
+        out.push_str(&block);
     }
     out
+}
+
+/// What a composite state of machine `m` may speak of.
+struct Nest<'n> {
+    names: &'n Names,
+    m: usize,
+    counter: bool,
+    states: usize,
+}
+
+impl Nest<'_> {
+    /// Now and then, some neighbouring states (name, text) put into a composite state of their
+    /// own, and at the first depth some of those again.
+    fn wrap(
+        &self,
+        shape: &mut Rng,
+        mut blocks: Vec<(String, String)>,
+        depth: usize,
+    ) -> Vec<(String, String)> {
+        if blocks.len() < 2 || depth > 1 || !shape.chance(if depth == 0 { 35 } else { 40 }) {
+            return blocks;
+        }
+        let from = shape.below(blocks.len() - 1);
+        let to = shape.between(from + 1, blocks.len());
+        let inner: Vec<_> = blocks.drain(from..to).collect();
+        let inner = self.wrap(shape, inner, depth + 1);
+        let name = format!("C{}", depth);
+        let mut out = format!("state {name} {{\n");
+        for section in ["entry", "exit", "internal"] {
+            let text = activity(shape, self.names, self.m, self.counter);
+            if !text.is_empty() {
+                let _ = writeln!(out, "    {section} {{\n{text}    }}");
+            }
+        }
+        if shape.chance(50) {
+            let _ = writeln!(out, "    initial {}", shape.pick(&inner).0);
+        }
+        for _ in 0..shape.below(3) {
+            let target = if shape.chance(15) {
+                name.clone()
+            } else {
+                format!("S{}", shape.below(self.states))
+            };
+            let label = if shape.chance(30) {
+                "done".to_string()
+            } else {
+                // A composite's transition may not test the time (§3.2).
+                loop {
+                    let label = label(shape, self.names, self.counter, 2);
+                    if !label.contains("timeout(") && !label.contains("after") {
+                        break label;
+                    }
+                }
+            };
+            let _ = writeln!(out, "    when {label} -> {target}");
+        }
+        for (_, block) in inner {
+            out.push_str(&block);
+        }
+        out.push_str("}\n");
+        blocks.insert(from, (name, out));
+        blocks
+    }
 }
 
 /// Zero to three actions, one a line.

@@ -1,0 +1,582 @@
+//! Nested states lowered to flat ones (`docs/spec/behaviour.md` §3.2): a flat state for each
+//! atomic state and set of states a move into it enters, each composite's transitions copied to
+//! every state inside it with what firing them leaves, so that every back end runs a chart as
+//! the flat machine it already runs and their traces agree by construction.
+
+use super::ast::{Ref, StateAst};
+use super::{Lowering, When};
+use crate::code::Expr;
+use crate::label::{Label, TIME_TESTS};
+use crate::model::{Action, Composite, State, StateId, Transition};
+use std::collections::{HashMap, HashSet, VecDeque};
+
+/// What a chart lowers to.
+pub(super) struct Chart {
+    pub states: Vec<State>,
+    pub transitions: Vec<Transition>,
+    pub initial: StateId,
+    pub composites: Vec<Composite>,
+}
+
+/// Lowers the states of a file in which some state holds states; `None` when nothing could be
+/// made of it (every reason is reported).
+pub(super) fn lower_chart(
+    lowering: &mut Lowering<'_>,
+    parsed: Vec<StateAst>,
+    initial: Option<(Ref, usize)>,
+) -> Option<Chart> {
+    let mut tree = Tree::default();
+    for s in parsed {
+        let top = tree.add(lowering, s, None);
+        tree.top.push(top);
+    }
+    tree.check_names(lowering);
+    tree.resolve_all(lowering);
+    let start = match initial {
+        Some((target, at)) => match tree.resolve(None, &target) {
+            Ok(node) => node,
+            Err(message) => {
+                lowering.error(at, message);
+                return None;
+            }
+        },
+        None => *tree.top.first()?,
+    };
+    let mut flat = Flattening::new(&tree);
+    let outermost = tree.outermost(start);
+    let first = flat.variant(tree.descend(start), outermost);
+    flat.run();
+    Some(flat.finish(first))
+}
+
+/// A state as written, composite or atomic.
+struct Node {
+    name: String,
+    /// `PLAY.SEARCH`: the flat states' names.
+    path: String,
+    parent: Option<usize>,
+    children: Vec<usize>,
+    id: Option<StateId>,
+    at: usize,
+    line: usize,
+    entry: Vec<Action>,
+    exit: Vec<Action>,
+    internal: Vec<Action>,
+    initial: Option<(Ref, usize)>,
+    whens: Vec<When>,
+}
+
+/// A transition as written, its target found.
+struct Written {
+    label: Label,
+    /// `when done`: fires from the composite's final sub-states only.
+    done: bool,
+    target: usize,
+    line: usize,
+}
+
+/// The states as written, in file order (a composite before the states it holds).
+#[derive(Default)]
+struct Tree {
+    nodes: Vec<Node>,
+    top: Vec<usize>,
+    /// Each node's transitions, in priority order; those that could not be read are reported
+    /// and left out.
+    written: Vec<Vec<Written>>,
+    /// Each composite's `initial`, found among its states (else its first).
+    first: Vec<Option<usize>>,
+}
+
+impl Tree {
+    fn add(&mut self, lowering: &mut Lowering<'_>, s: StateAst, parent: Option<usize>) -> usize {
+        if s.name.contains('.') {
+            lowering.error(
+                s.at,
+                format!(
+                    "`{}`: a state's name cannot hold `.` where states nest, since `.` \
+                     separates a path (`PLAY.SEARCH`)",
+                    s.name
+                ),
+            );
+        }
+        let path = match parent {
+            Some(p) => format!("{}.{}", self.nodes[p].path, s.name),
+            None => s.name.clone(),
+        };
+        let line = lowering.lines.line(s.at);
+        let body = lowering.body(&s.name, s.members);
+        let index = self.nodes.len();
+        self.nodes.push(Node {
+            name: s.name,
+            path,
+            parent,
+            children: Vec::new(),
+            id: s.id,
+            at: s.at,
+            line,
+            entry: body.entry,
+            exit: body.exit,
+            internal: body.internal,
+            initial: body.initial,
+            whens: body.whens,
+        });
+        for inner in body.states {
+            let child = self.add(lowering, inner, Some(index));
+            self.nodes[index].children.push(child);
+        }
+        index
+    }
+
+    /// Names must tell siblings apart, and ids every state.
+    fn check_names(&self, lowering: &mut Lowering<'_>) {
+        let mut ids = HashSet::new();
+        for node in &self.nodes {
+            if let Some(id) = node.id {
+                if !ids.insert(id) {
+                    lowering.error(node.at, format!("state id #{id} is used twice"));
+                }
+            }
+        }
+        let scopes = std::iter::once((None, &self.top))
+            .chain((0..self.nodes.len()).map(|n| (Some(n), &self.nodes[n].children)));
+        for (owner, scope) in scopes {
+            let mut seen = HashSet::new();
+            for &child in scope {
+                let node = &self.nodes[child];
+                if !seen.insert(node.name.as_str()) {
+                    let place = owner.map_or("at the top of the machine".to_string(), |o| {
+                        format!("in `{}`", self.nodes[o].path)
+                    });
+                    lowering.error(
+                        node.at,
+                        format!("two states are named `{}` {place}", node.name),
+                    );
+                }
+            }
+        }
+    }
+
+    /// Reads every transition and every composite's `initial`.
+    fn resolve_all(&mut self, lowering: &mut Lowering<'_>) {
+        for n in 0..self.nodes.len() {
+            let first = self.initial_of(lowering, n);
+            self.first.push(first);
+            let whens = std::mem::take(&mut self.nodes[n].whens);
+            let written = whens
+                .into_iter()
+                .filter_map(|when| self.written(lowering, n, when))
+                .collect();
+            self.written.push(written);
+        }
+    }
+
+    fn initial_of(&self, lowering: &mut Lowering<'_>, n: usize) -> Option<usize> {
+        let node = &self.nodes[n];
+        let (target, at) = node.initial.as_ref()?;
+        let found = match target {
+            Ref::Name(path) => self.down(Some(n), path),
+            Ref::Id(_) => self.resolve(Some(n), target),
+        };
+        match found {
+            Ok(child) if self.nodes[child].parent == Some(n) => Some(child),
+            Ok(other) => {
+                lowering.error(
+                    *at,
+                    format!(
+                        "the initial state of `{}` must be one of its own states, not `{}`",
+                        node.path, self.nodes[other].path
+                    ),
+                );
+                None
+            }
+            Err(message) => {
+                lowering.error(*at, message);
+                None
+            }
+        }
+    }
+
+    fn written(&self, lowering: &mut Lowering<'_>, n: usize, when: When) -> Option<Written> {
+        let label = lowering.label(&when)?;
+        let node = &self.nodes[n];
+        let done = label == Expr::Name("done".into());
+        if done && node.children.is_empty() {
+            lowering.error(
+                when.label_at,
+                format!(
+                    "`when done` belongs to a state that holds states (it fires once the one \
+                     it is in is final); `{}` holds none",
+                    node.path
+                ),
+            );
+            return None;
+        }
+        let timed = label
+            .calls()
+            .iter()
+            .any(|(f, _)| TIME_TESTS.iter().any(|(t, _)| t == f));
+        if timed && !node.children.is_empty() {
+            lowering.error(
+                when.label_at,
+                format!(
+                    "a time test on the transition of `{}`, which holds states, would count \
+                     from its entry whatever happens inside it: not built yet; test the time \
+                     on the states inside it",
+                    node.path
+                ),
+            );
+            return None;
+        }
+        match self.resolve(Some(n), &when.target) {
+            Ok(target) => Some(Written {
+                label,
+                done,
+                target,
+                line: lowering.lines.line(when.at),
+            }),
+            Err(message) => {
+                lowering.error(when.target_at, message);
+                None
+            }
+        }
+    }
+
+    /// The states directly in `owner` (`None`: the machine's own).
+    fn scope(&self, owner: Option<usize>) -> &[usize] {
+        match owner {
+            Some(o) => &self.nodes[o].children,
+            None => &self.top,
+        }
+    }
+
+    /// The state `path` names from inside `owner`: its first part one of `owner`'s states.
+    fn down(&self, owner: Option<usize>, path: &str) -> Result<usize, String> {
+        let mut at = owner;
+        for part in path.split('.') {
+            let found = self
+                .scope(at)
+                .iter()
+                .copied()
+                .find(|&c| self.nodes[c].name == part);
+            match found {
+                Some(next) => at = Some(next),
+                None => {
+                    return Err(match at {
+                        Some(o) => {
+                            format!("`{}` holds no state named `{part}`", self.nodes[o].path)
+                        }
+                        None => self.unknown(part),
+                    })
+                }
+            }
+        }
+        at.ok_or_else(|| self.unknown(path))
+    }
+
+    /// The state a transition of `from` (or the machine's `initial`, from `None`) names: a
+    /// path whose first part is a sibling of `from`, else a state around it, outwards, else
+    /// the one state anywhere whose path ends so.
+    fn resolve(&self, from: Option<usize>, target: &Ref) -> Result<usize, String> {
+        let path = match target {
+            Ref::Id(id) => {
+                return self
+                    .nodes
+                    .iter()
+                    .position(|n| n.id == Some(*id))
+                    .ok_or_else(|| format!("there is no state #{id}"))
+            }
+            Ref::Name(path) => path,
+        };
+        let first = path.split('.').next().unwrap_or_default();
+        let mut owner = from.and_then(|f| self.nodes[f].parent);
+        loop {
+            if self
+                .scope(owner)
+                .iter()
+                .any(|&c| self.nodes[c].name == first)
+            {
+                return self.down(owner, path);
+            }
+            match owner {
+                Some(o) => owner = self.nodes[o].parent,
+                None => break,
+            }
+        }
+        // Deeper in: as SCXML's ids, a name that is one state's alone names it from anywhere.
+        let named: Vec<usize> = (0..self.nodes.len())
+            .filter(|&n| {
+                self.nodes[n].path == *path || self.nodes[n].path.ends_with(&format!(".{path}"))
+            })
+            .collect();
+        match named.as_slice() {
+            [one] => Ok(*one),
+            [] => Err(self.unknown(path)),
+            many => Err(format!(
+                "`{path}` could be {}: write the path of the one meant",
+                many.iter()
+                    .map(|&n| format!("`{}`", self.nodes[n].path))
+                    .collect::<Vec<_>>()
+                    .join(" or ")
+            )),
+        }
+    }
+
+    fn unknown(&self, name: &str) -> String {
+        match proclaim_syntax::nearest(self.nodes.iter().map(|n| n.path.as_str()), name) {
+            Some(near) => format!("there is no state named `{name}`; did you mean `{near}`?"),
+            None => format!("there is no state named `{name}`"),
+        }
+    }
+
+    /// The atomic state entering `node` ends in: down through each composite's initial.
+    fn descend(&self, mut node: usize) -> usize {
+        while let Some(&child) = self.nodes[node].children.first() {
+            node = self.first[node].unwrap_or(child);
+        }
+        node
+    }
+
+    /// `node` and the states around it, innermost first.
+    fn chain(&self, node: usize) -> impl Iterator<Item = usize> + '_ {
+        std::iter::successors(Some(node), |&n| self.nodes[n].parent)
+    }
+
+    fn outermost(&self, node: usize) -> usize {
+        self.chain(node).last().unwrap_or(node)
+    }
+
+    /// The innermost state around both `source` and `target` but neither of them (`None`:
+    /// the machine): what a transition between them leaves stays below it (§3.2).
+    fn domain(&self, source: usize, target: usize) -> Option<usize> {
+        let around: HashSet<usize> = self.chain(target).skip(1).collect();
+        self.chain(source).skip(1).find(|n| around.contains(n))
+    }
+}
+
+/// One flat state: an atomic state entered from `top` down.
+struct Flat {
+    atomic: usize,
+    top: usize,
+    id: StateId,
+    arms: Vec<FlatArm>,
+}
+
+struct FlatArm {
+    label: Label,
+    /// The flat state it enters (an index into `Flattening::flats`).
+    target: usize,
+    line: usize,
+    leaving: Option<Vec<Action>>,
+    /// The composite it was written on, when not on the atomic state itself.
+    written_on: Option<usize>,
+}
+
+/// Flat states made as transitions reach them, from the initial one.
+struct Flattening<'t> {
+    tree: &'t Tree,
+    flats: Vec<Flat>,
+    variants: HashMap<(usize, usize), usize>,
+    queue: VecDeque<usize>,
+    /// Each atomic state's id: as written, else numbered; a further flat state of the same
+    /// atomic state takes a fresh one.
+    ids: Vec<Option<StateId>>,
+    taken: HashSet<StateId>,
+    next: StateId,
+}
+
+impl<'t> Flattening<'t> {
+    fn new(tree: &'t Tree) -> Flattening<'t> {
+        let taken: HashSet<StateId> = tree.nodes.iter().filter_map(|n| n.id).collect();
+        let mut flattening = Flattening {
+            tree,
+            flats: Vec::new(),
+            variants: HashMap::new(),
+            queue: VecDeque::new(),
+            ids: Vec::new(),
+            taken,
+            next: 1,
+        };
+        for n in 0..tree.nodes.len() {
+            let node = &tree.nodes[n];
+            let id = match (node.id, node.children.is_empty()) {
+                (Some(id), _) => Some(id),
+                (None, true) => Some(flattening.fresh()),
+                (None, false) => None,
+            };
+            flattening.ids.push(id);
+        }
+        flattening
+    }
+
+    fn fresh(&mut self) -> StateId {
+        while self.taken.contains(&self.next) {
+            self.next += 1;
+        }
+        self.taken.insert(self.next);
+        self.next
+    }
+
+    /// The flat state of `atomic` entered from `top` down. Entries that run nothing are not
+    /// told apart, so a chart whose composites have no OnEntry gets one flat state per atomic
+    /// state.
+    fn variant(&mut self, atomic: usize, top: usize) -> usize {
+        let tree = self.tree;
+        let entered: Vec<usize> = tree.chain(atomic).take_while(|&n| n != top).collect();
+        let top = std::iter::once(top)
+            .chain(entered.into_iter().rev())
+            .find(|&n| n == atomic || !tree.nodes[n].entry.is_empty())
+            .unwrap_or(atomic);
+        if let Some(&flat) = self.variants.get(&(atomic, top)) {
+            return flat;
+        }
+        let first = !self.flats.iter().any(|f| f.atomic == atomic);
+        let id = match (first, self.ids[atomic]) {
+            (true, Some(id)) => id,
+            _ => self.fresh(),
+        };
+        self.flats.push(Flat {
+            atomic,
+            top,
+            id,
+            arms: Vec::new(),
+        });
+        let flat = self.flats.len() - 1;
+        self.variants.insert((atomic, top), flat);
+        self.queue.push_back(flat);
+        flat
+    }
+
+    /// Makes every flat state a transition reaches, then one for each atomic state none
+    /// reached (so that `check` and `verify` can say it is never entered).
+    fn run(&mut self) {
+        let tree = self.tree;
+        loop {
+            while let Some(flat) = self.queue.pop_front() {
+                let arms = self.arms(self.flats[flat].atomic);
+                self.flats[flat].arms = arms;
+            }
+            let missed = (0..tree.nodes.len()).find(|&n| {
+                tree.nodes[n].children.is_empty() && !self.flats.iter().any(|f| f.atomic == n)
+            });
+            match missed {
+                Some(n) => {
+                    self.variant(n, tree.outermost(n));
+                }
+                None => return,
+            }
+        }
+    }
+
+    /// The transitions tried in `atomic`: its own, then those of each state around it,
+    /// outwards (the more deeply nested source wins, as in SCXML).
+    fn arms(&mut self, atomic: usize) -> Vec<FlatArm> {
+        let tree = self.tree;
+        let final_state = tree.written[atomic].is_empty();
+        let mut arms = Vec::new();
+        for source in tree.chain(atomic) {
+            for w in &tree.written[source] {
+                if w.done && !(final_state && tree.nodes[atomic].parent == Some(source)) {
+                    continue;
+                }
+                let domain = tree.domain(source, w.target);
+                let top = tree
+                    .chain(w.target)
+                    .find(|&n| tree.nodes[n].parent == domain)
+                    .unwrap_or(w.target);
+                let target = self.variant(tree.descend(w.target), top);
+                let left: Vec<usize> = tree
+                    .chain(atomic)
+                    .take_while(|&n| Some(n) != domain)
+                    .collect();
+                let more = left[1..].iter().any(|&n| !tree.nodes[n].exit.is_empty());
+                let leaving = more.then(|| {
+                    left.iter()
+                        .flat_map(|&n| tree.nodes[n].exit.iter().cloned())
+                        .collect()
+                });
+                arms.push(FlatArm {
+                    label: if w.done { Label::TRUE } else { w.label.clone() },
+                    target,
+                    line: w.line,
+                    leaving,
+                    written_on: (source != atomic).then_some(source),
+                });
+            }
+        }
+        arms
+    }
+
+    fn finish(mut self, initial: usize) -> Chart {
+        let tree = self.tree;
+        let composites_of: Vec<Option<usize>> = {
+            let mut next = 0;
+            tree.nodes
+                .iter()
+                .map(|n| {
+                    (!n.children.is_empty()).then(|| {
+                        next += 1;
+                        next - 1
+                    })
+                })
+                .collect()
+        };
+        let composites = tree
+            .nodes
+            .iter()
+            .filter(|n| !n.children.is_empty())
+            .map(|n| Composite {
+                name: n.path.clone(),
+                parent: n.parent.and_then(|p| composites_of[p]),
+                line: n.line,
+            })
+            .collect();
+        let mut order: Vec<usize> = (0..self.flats.len()).collect();
+        order.sort_by_key(|&f| self.flats[f].atomic);
+        let ids: Vec<StateId> = self.flats.iter().map(|f| f.id).collect();
+        let mut states = Vec::new();
+        let mut transitions = Vec::new();
+        for &f in &order {
+            let flat = &mut self.flats[f];
+            states.push(flat_state(tree, flat));
+            for arm in std::mem::take(&mut flat.arms) {
+                transitions.push(Transition {
+                    source: flat.id,
+                    target: ids[arm.target],
+                    label: arm.label,
+                    line: arm.line,
+                    leaving: arm.leaving,
+                    composite: arm.written_on.and_then(|n| composites_of[n]),
+                });
+            }
+        }
+        Chart {
+            states,
+            transitions,
+            initial: ids[initial],
+            composites,
+        }
+    }
+}
+
+/// The flat state: arriving runs the OnEntry of each state entered, outermost first; staying
+/// runs the Internal of each state the machine is in, outermost first; its own OnExit is the
+/// atomic state's (transitions that leave more carry their own).
+fn flat_state(tree: &Tree, flat: &Flat) -> State {
+    let node = &tree.nodes[flat.atomic];
+    let mut around: Vec<usize> = tree.chain(flat.atomic).collect();
+    around.reverse();
+    let entered = around.iter().skip_while(|&&n| n != flat.top);
+    State {
+        id: flat.id,
+        name: node.path.clone(),
+        on_entry: entered
+            .flat_map(|&n| tree.nodes[n].entry.iter().cloned())
+            .collect(),
+        on_exit: node.exit.clone(),
+        internal: around
+            .iter()
+            .flat_map(|&n| tree.nodes[n].internal.iter().cloned())
+            .collect(),
+        line: node.line,
+    }
+}

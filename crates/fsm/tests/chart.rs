@@ -1,0 +1,242 @@
+//! Nested states as the flat machine they lower to (`docs/spec/behaviour.md` §3.2): each test
+//! a chart and the flat states, arrivals, arms and leavings written out.
+
+use proclaim_fsm::{parse_machine, Action, Machine};
+
+/// Posts only, so that what runs reads as the order it runs in.
+fn said(actions: &[Action]) -> String {
+    let words: Vec<String> = actions
+        .iter()
+        .map(|a| match a {
+            Action::Post { ty, content } if content.is_empty() => ty.clone(),
+            Action::Post { ty, content } => format!("{ty}:{content}"),
+            other => format!("{other:?}"),
+        })
+        .collect();
+    words.join(" ")
+}
+
+fn written(machine: &Machine) -> String {
+    let name = |id| {
+        machine
+            .state(id)
+            .map_or("?".to_string(), |s| format!("{}#{id}", s.name))
+    };
+    let mut out = format!("initial {}\n", name(machine.initial));
+    for s in &machine.states {
+        out += &format!(
+            "{}#{} entry[{}] exit[{}] internal[{}]\n",
+            s.name,
+            s.id,
+            said(&s.on_entry),
+            said(&s.on_exit),
+            said(&s.internal)
+        );
+        for t in machine.outgoing(s.id) {
+            let leaving = t
+                .leaving
+                .as_deref()
+                .map_or(String::new(), |l| format!(" leaving[{}]", said(l)));
+            let on = t.composite.map_or(String::new(), |c| {
+                format!(" of {}", machine.composites[c].name)
+            });
+            out += &format!("  {} -> {}{leaving}{on}\n", t.label, name(t.target));
+        }
+    }
+    out
+}
+
+fn check(text: &str, expect: &str) {
+    let read = parse_machine("M.machine", text);
+    let got = if read.has_errors() {
+        let errors: Vec<String> = read
+            .diagnostics
+            .iter()
+            .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+            .collect();
+        errors.join("\n") + "\n"
+    } else {
+        written(&read.machines[0])
+    };
+    assert_eq!(got, expect, "\n{got}");
+}
+
+#[test]
+fn a_composite_transition_is_tried_after_its_states_own_and_leaves_them_innermost_first() {
+    check(
+        "machine M
+state PLAY {
+    exit {
+        PlayOff:
+    }
+    when gameOver -> FINISHED
+    state SEARCH {
+        exit {
+            SearchOff:
+        }
+        when seen -> KICK
+    }
+    state KICK { when kicked -> SEARCH }
+}
+state FINISHED { }
+",
+        "initial PLAY.SEARCH#1
+PLAY.SEARCH#1 entry[] exit[SearchOff] internal[]
+  seen -> PLAY.KICK#2
+  gameOver -> FINISHED#3 leaving[SearchOff PlayOff] of PLAY
+PLAY.KICK#2 entry[] exit[] internal[]
+  kicked -> PLAY.SEARCH#1
+  gameOver -> FINISHED#3 leaving[PlayOff] of PLAY
+FINISHED#3 entry[] exit[] internal[]
+",
+    );
+}
+
+#[test]
+fn a_move_inside_a_composite_does_not_enter_it_again_but_one_from_outside_does() {
+    check(
+        "machine M
+initial IDLE
+state IDLE { when go -> PLAY }
+state PLAY {
+    entry {
+        PlayOn:
+    }
+    internal {
+        Playing:
+    }
+    initial KICK
+    when stop -> IDLE
+    state SEARCH {
+        entry {
+            Search:
+        }
+        internal {
+            Looking:
+        }
+        when seen -> KICK
+    }
+    state KICK {
+        entry {
+            Kick:
+        }
+        when kicked -> SEARCH
+        when again -> PLAY
+    }
+}
+",
+        "initial IDLE#1
+IDLE#1 entry[] exit[] internal[]
+  go -> PLAY.KICK#3
+PLAY.SEARCH#2 entry[Search] exit[] internal[Playing Looking]
+  seen -> PLAY.KICK#4
+  stop -> IDLE#1 of PLAY
+PLAY.KICK#3 entry[PlayOn Kick] exit[] internal[Playing]
+  kicked -> PLAY.SEARCH#2
+  again -> PLAY.KICK#3
+  stop -> IDLE#1 of PLAY
+PLAY.KICK#4 entry[Kick] exit[] internal[Playing]
+  kicked -> PLAY.SEARCH#2
+  again -> PLAY.KICK#3
+  stop -> IDLE#1 of PLAY
+",
+    );
+}
+
+#[test]
+fn done_fires_from_a_final_state_of_its_composite_only() {
+    check(
+        "machine M
+state DIVE {
+    exit {
+        Up:
+    }
+    when done -> GUARD
+    when hurt -> GUARD
+    state FALL { when landed -> LIE }
+    state LIE { }
+}
+state GUARD { when ball -> DIVE }
+",
+        "initial DIVE.FALL#1
+DIVE.FALL#1 entry[] exit[] internal[]
+  landed -> DIVE.LIE#2
+  hurt -> GUARD#3 leaving[Up] of DIVE
+DIVE.LIE#2 entry[] exit[] internal[]
+  TRUE -> GUARD#3 leaving[Up] of DIVE
+  hurt -> GUARD#3 leaving[Up] of DIVE
+GUARD#3 entry[] exit[] internal[]
+  ball -> DIVE.FALL#1
+",
+    );
+}
+
+#[test]
+fn targets_are_found_beside_the_source_then_outwards_or_by_path() {
+    check(
+        "machine M
+state A {
+    state X { when p -> Y }
+    state Y { when q -> B.X }
+}
+state B {
+    state X { when r -> A }
+    state Z { when s -> Y }
+}
+",
+        "initial A.X#1
+A.X#1 entry[] exit[] internal[]
+  p -> A.Y#2
+A.Y#2 entry[] exit[] internal[]
+  q -> B.X#3
+B.X#3 entry[] exit[] internal[]
+  r -> A.X#1
+B.Z#4 entry[] exit[] internal[]
+  s -> A.Y#2
+",
+    );
+}
+
+#[test]
+fn what_cannot_be_lowered_is_refused_at_its_place() {
+    check(
+        "machine M
+state A {
+    when done -> B
+    when after(2s) -> B
+    initial Z
+    state X { when done -> B }
+    state X { when p -> SEARCH }
+}
+state B { state SEARCH { } state S.T { } }
+state C { state SEARCH { } }
+",
+        "9: `S.T`: a state's name cannot hold `.` where states nest, since `.` separates a path (`PLAY.SEARCH`)
+7: two states are named `X` in `A`
+5: `A` holds no state named `Z`
+4: a time test on the transition of `A`, which holds states, would count from its entry whatever happens inside it: not built yet; test the time on the states inside it
+6: `when done` belongs to a state that holds states (it fires once the one it is in is final); `A.X` holds none
+7: `SEARCH` could be `B.SEARCH` or `C.SEARCH`: write the path of the one meant
+",
+    );
+}
+
+#[test]
+fn a_flat_file_reads_as_it_always_did() {
+    check(
+        "machine M
+state A {
+    exit {
+        Off:
+    }
+    when p -> B
+}
+state B { }
+",
+        "initial A#1
+A#1 entry[] exit[Off] internal[]
+  p -> B#2
+B#2 entry[] exit[] internal[]
+",
+    );
+}
