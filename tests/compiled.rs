@@ -610,6 +610,53 @@ pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
     runs
 }
 
+/// The keeper's runs (`machines/keeper`, a dive of nested states): its own match, and seeded
+/// ones in which the ball, its side and the referee's penalty come at any millisecond, rounds'
+/// moments included, so that a penalty meets every step of the dive.
+pub(crate) fn keeper_runs() -> Vec<(String, String, Option<String>)> {
+    let own = std::fs::read_to_string("machines/keeper/match.script").unwrap();
+    let mut runs = vec![("keeper-own".to_string(), own, Some("7s".to_string()))];
+    let atoms = ["ballComing", "ballLeft", "penalized"];
+    let mut seed = 0x5eed_0048_4b50;
+    for n in 0..8 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
+        let ball = seeded_moment(&mut next, 0, 2_000);
+        script.push_str(&format!("at {ball}ms ballComing = true\n"));
+        for _ in 0..2 + next(8) {
+            let at = seeded_moment(&mut next, 0, 5_000);
+            let atom = atoms[next(3) as usize];
+            let value = next(2) == 0;
+            script.push_str(&format!("at {at}ms {atom} = {value}\n"));
+        }
+        let run_for = format!("{}ms", 1_000 + next(5_000));
+        runs.push((format!("keeper-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+#[test]
+fn the_keepers_nested_dive_compiles_to_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let dir = scratch("keeper");
+    build("machines/keeper", &dir);
+    let runs = keeper_runs();
+    let mut dived = 0;
+    for (name, script, run_for) in &runs {
+        let (interpreted, compiled) =
+            traces("machines/keeper", &dir, name, script, run_for.as_deref());
+        dived += usize::from(interpreted.contains("DIVE.AIM"));
+        assert_same(name, &interpreted, &compiled);
+    }
+    assert!(
+        dived * 2 > runs.len(),
+        "most runs dived ({dived} of {})",
+        runs.len()
+    );
+}
+
 /// The GameController behaviour's runs, its sensors' atoms from the script: a whole game with
 /// a penalty and the chest button, one where the script sets only some atoms (the rest no
 /// expert answers), and seeded games of any order at any millisecond, stopped at any time.

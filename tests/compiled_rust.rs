@@ -262,6 +262,11 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         runs: subsumption_runs(),
     });
     behaviours.push(Compiled {
+        name: "keeper".into(),
+        folder: "machines/keeper".into(),
+        runs: super::compiled::keeper_runs(),
+    });
+    behaviours.push(Compiled {
         name: "game_controller".into(),
         folder: "machines/game_controller".into(),
         runs: game_controller_runs(),

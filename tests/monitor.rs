@@ -366,6 +366,42 @@ async fn a_replayed_trace_shows_any_moment_with_its_slider() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// A nested state is lit inside its composite's cluster: the keeper's dive (`machines/keeper`)
+/// replayed at the moment it fell to the left.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_nested_state_is_lit_inside_its_composites_cluster() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = behaviour_trace("keeper", "7s", "nested");
+    let events: Vec<Json> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let left = 1 + events
+        .iter()
+        .position(|e| e["event"] == "entered" && e["state"] == "DIVE.LEFT")
+        .expect("the keeper dived to the left");
+    let _replay = replay_page(&client, &trace, "keeper").await;
+    let second = Duration::from_secs(1);
+    let state = "return document.querySelector('[data-machine=\"Keeper\"]')?.dataset.state ?? null";
+    until(&client, state, json!("GUARD"), 5 * second).await;
+    eval(
+        &client,
+        &format!("const s = document.getElementById('slider'); s.value = '{left}'; s.dispatchEvent(new Event('input')); return true"),
+    )
+    .await;
+    until(&client, state, json!("DIVE.LEFT"), 3 * second).await;
+    let lit_in = "const n = document.querySelector('[data-machine=\"Keeper\"] g.node.current'); \
+        const c = n?.closest('svg')?.querySelector('g.cluster'); \
+        return n ? [n.querySelector('title').textContent, c?.querySelector('title')?.textContent ?? null, \
+        c ? c.getBBox().x <= n.getBBox().x && n.getBBox().x + n.getBBox().width <= c.getBBox().x + c.getBBox().width : null] : null";
+    until(&client, lit_in, json!(["s3", "cluster_c0", true]), second).await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
+
 /// The page lists an assignment with its variable and value (the press's controller counts
 /// how long it waited).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -272,6 +272,7 @@ impl Draft {
             on_exit: Vec::new(),
             internal: Vec::new(),
             line: 0,
+            arrives_through: 0,
         });
         id
     }

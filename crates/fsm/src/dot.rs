@@ -3,7 +3,10 @@
 //! linked to it.
 
 use crate::control::Command;
-use crate::model::{Action, Argument, Machine};
+use crate::dot_text::{escape, node, show};
+use crate::model::{Action, Machine, State};
+
+pub use crate::dot_text::quote;
 use std::fmt::Write;
 
 /// DOT text for one machine. Deterministic, so it can be compared in tests and diffed.
@@ -45,6 +48,15 @@ pub fn body(
     indent: &str,
 ) -> Vec<(String, String)> {
     let id = |state: i64| format!("{prefix}s{}", node(state));
+    if !machine.composites.is_empty() {
+        crate::dot_chart::chart_body(out, machine, prefix, indent);
+        let mut started = Vec::new();
+        for state in &machine.states {
+            started.extend(starts(state).map(|machine| (id(state.id), machine)));
+        }
+        started.dedup();
+        return started;
+    }
     let _ = writeln!(out, "{indent}{prefix}start [shape=point, width=0.15];");
     let _ = writeln!(out, "{indent}{prefix}start -> {};", id(machine.initial));
     let mut started = Vec::new();
@@ -69,17 +81,7 @@ pub fn body(
             "{indent}{} [label=\"{label}\"{peripheries}];",
             id(state.id)
         );
-        for action in &state.on_entry {
-            if let Action::Post { ty, content } = action {
-                // Spelled exactly: `Light: on` is a lamp's state, not a command.
-                if [Command::On, Command::Restart]
-                    .iter()
-                    .any(|c| c.word() == content)
-                {
-                    started.push((id(state.id), ty.clone()));
-                }
-            }
-        }
+        started.extend(starts(state).map(|machine| (id(state.id), machine)));
     }
     for state in &machine.states {
         for (priority, t) in machine.outgoing(state.id).enumerate() {
@@ -96,46 +98,17 @@ pub fn body(
     started
 }
 
-/// State ids may be negative; node names may not start with `-`.
-fn node(id: i64) -> String {
-    if id < 0 {
-        format!("m{}", -id)
-    } else {
-        id.to_string()
-    }
-}
-
-fn show(action: &Action) -> String {
-    match action {
-        Action::Post { ty, content } => format!("{ty}: {content}"),
-        Action::Call {
-            function,
-            argument: None,
-        } => format!("{function}()"),
-        Action::Call {
-            function,
-            argument: Some(Argument::Int(i)),
-        } => format!("{function}({i})"),
-        Action::Call {
-            function,
-            argument: Some(Argument::Str(s)),
-        } => format!("{function}(\"{s}\")"),
-        Action::Call {
-            function,
-            argument: Some(Argument::Word(w)),
-        } => format!("{function}({w})"),
-        Action::Statement(statement) => statement.to_string(),
-        Action::Code(code) => format!("code: {code}"),
-    }
-}
-
-fn escape(text: &str) -> String {
-    text.replace('\\', "\\\\")
-        .replace('"', "\\\"")
-        .replace('\n', " ")
-}
-
-/// A DOT string literal.
-pub fn quote(text: &str) -> String {
-    format!("\"{}\"", escape(text))
+/// The machines a state's arrival starts.
+fn starts(state: &State) -> impl Iterator<Item = String> + '_ {
+    state.on_entry.iter().filter_map(|action| match action {
+        // Spelled exactly: `Light: on` is a lamp's state, not a command.
+        Action::Post { ty, content }
+            if [Command::On, Command::Restart]
+                .iter()
+                .any(|c| c.word() == content) =>
+        {
+            Some(ty.clone())
+        }
+        _ => None,
+    })
 }

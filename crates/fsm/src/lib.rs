@@ -10,6 +10,8 @@ mod activity;
 pub mod code;
 pub mod control;
 pub mod dot;
+mod dot_chart;
+mod dot_text;
 mod format;
 mod label;
 mod lint;

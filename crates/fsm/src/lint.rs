@@ -72,37 +72,44 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
             ));
         }
         let leaving = outgoing.get(&state.id).map_or(&[][..], Vec::as_slice);
-        for (i, t) in leaving.iter().enumerate() {
-            let above = &leaving[..i];
-            // A composite's transition is copied to each state inside it: shadowed in one of
-            // them, it may still fire from the others.
-            if t.composite.is_some() {
-                continue;
-            }
-            if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
-                out.push(FileDiagnostic::warning(
-                    file,
-                    t.line,
-                    format!(
-                        "`{}` is never tried: `TRUE` above it (line {}) always fires first",
-                        t.label, always.line
-                    ),
-                ));
-            } else if let Some(same) = above.iter().find(|a| a.label == t.label) {
-                out.push(FileDiagnostic::warning(
-                    file,
-                    t.line,
-                    format!(
-                        "`{}` never fires: the same label above it (line {}) is tried first",
-                        t.label, same.line
-                    ),
-                ));
-            }
-        }
+        out.extend(shadowed(leaving, file));
     }
     out.extend(timeless_cycles(machine, &outgoing, file));
     let mut said = HashSet::new();
     out.retain(|d| said.insert((d.line, d.message.clone())));
+    out
+}
+
+/// The transitions of one state that a label above them always beats.
+fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
+    let mut out = Vec::new();
+    for (i, t) in leaving.iter().enumerate() {
+        let above = &leaving[..i];
+        // A composite's transition is copied to each state inside it: shadowed in one of
+        // them, it may still fire from the others.
+        if t.composite.is_some() {
+            continue;
+        }
+        if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
+            out.push(FileDiagnostic::warning(
+                file,
+                t.line,
+                format!(
+                    "`{}` is never tried: `TRUE` above it (line {}) always fires first",
+                    t.label, always.line
+                ),
+            ));
+        } else if let Some(same) = above.iter().find(|a| a.label == t.label) {
+            out.push(FileDiagnostic::warning(
+                file,
+                t.line,
+                format!(
+                    "`{}` never fires: the same label above it (line {}) is tried first",
+                    t.label, same.line
+                ),
+            ));
+        }
+    }
     out
 }
 

@@ -28,13 +28,17 @@ pub struct Machine {
 
 /// A state that holds states (`docs/spec/behaviour.md` §3.2), kept after lowering for what
 /// shows the nesting (`draw`'s clusters) and for naming a transition written on it.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Composite {
     /// Its path, as the names of the states inside it begin (`PLAY`, `PLAY.DIVE`).
     pub name: String,
     /// The composite it is in, an index into `Machine::composites`.
     pub parent: Option<usize>,
     pub line: usize,
+    /// Its own activities, as written: lowering runs them as part of the flat states'.
+    pub on_entry: Vec<Action>,
+    pub on_exit: Vec<Action>,
+    pub internal: Vec<Action>,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -100,6 +104,9 @@ pub struct State {
     pub internal: Vec<Action>,
     /// Where it was written (1-based), for diagnostics.
     pub line: usize,
+    /// How many of the composite states around it a move into this flat state enters too
+    /// (§3.2): its OnEntry runs theirs, outermost first, before its own. 0 in a flat machine.
+    pub arrives_through: usize,
 }
 
 #[derive(Clone, Debug, PartialEq)]

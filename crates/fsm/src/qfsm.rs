@@ -325,6 +325,7 @@ fn end_state(
         on_exit,
         internal,
         line: at,
+        arrives_through: 0,
     });
 }
 

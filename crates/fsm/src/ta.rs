@@ -136,6 +136,7 @@ fn a_line(
         // Internal text can hold more `/`-ended chunks (`…/ C++: f(1);/ C++: g;`): separators too.
         internal: read(&internal.replace('/', ";")),
         line,
+        arrives_through: 0,
     })
 }
 

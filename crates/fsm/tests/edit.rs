@@ -340,6 +340,11 @@ fn an_unreadable_file_is_not_edited() {
         Edit::AddState { name: "B".into() },
         "error: the file does not read as a machine (line 4: unexpected `}`; expected `->`); fix it in a text editor first\n",
     );
+    check(
+        "machine M\nstate A {\n    state B { }\n}\n",
+        Edit::AddState { name: "C".into() },
+        "error: the machine nests states (line 2), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)\n",
+    );
 }
 
 /// Every shipped machine, opened and saved unchanged, and with every label, activity and name
@@ -365,7 +370,12 @@ fn every_shipped_machine_round_trips() {
     for path in files {
         let text = std::fs::read_to_string(&path).unwrap();
         let file = path.display().to_string();
-        let (states, _) = view_native(&text).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let (states, _) = match view_native(&text) {
+            Ok(view) => view,
+            // The editor refuses a chart, saying so (`an_unreadable_file_is_not_edited`).
+            Err(proclaim_fsm::edit::EditError::Nested { .. }) => continue,
+            Err(e) => panic!("{file}: {e}"),
+        };
         let mut edits = Vec::new();
         for (i, s) in states.iter().enumerate() {
             edits.push(Edit::RenameState {
@@ -437,7 +447,11 @@ fn every_edit_everywhere_reads_back() {
                 continue;
             }
             let text = std::fs::read_to_string(&path).unwrap();
-            let (states, _) = view_native(&text).unwrap();
+            let (states, _) = match view_native(&text) {
+                Ok(view) => view,
+                Err(proclaim_fsm::edit::EditError::Nested { .. }) => continue,
+                Err(e) => panic!("{}: {e}", path.display()),
+            };
             let mut edits = vec![Edit::AddState { name: "NEW".into() }];
             for (i, s) in states.iter().enumerate() {
                 let n = s.transitions.len();

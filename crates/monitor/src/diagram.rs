@@ -155,13 +155,40 @@ impl Chart {
             drawn_by: "graphviz",
         };
         match graphviz(dot) {
-            Some(svg) => chart.svg = svg,
+            Some(svg) => {
+                chart.svg = svg;
+                chart.drawn_once();
+            }
             None => {
                 chart.svg = built_in(&chart);
                 chart.drawn_by = "built-in";
             }
         }
         chart
+    }
+}
+
+impl Chart {
+    /// A nested state lowers to a flat state for each way into it, and `proclaim draw` draws
+    /// it once, as the first (`dot_chart.rs`): the others light that node.
+    fn drawn_once(&mut self) {
+        let drawn = |node: &str| self.svg.contains(&format!("<title>{node}</title>"));
+        let nodes: Vec<String> = self
+            .states
+            .iter()
+            .map(|s| {
+                if drawn(&s.node) {
+                    return s.node.clone();
+                }
+                self.states
+                    .iter()
+                    .find(|other| other.name == s.name && drawn(&other.node))
+                    .map_or_else(|| s.node.clone(), |other| other.node.clone())
+            })
+            .collect();
+        for (state, node) in self.states.iter_mut().zip(nodes) {
+            state.node = node;
+        }
     }
 }
 
@@ -305,6 +332,41 @@ fn escape(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// PLAY.KICK is entered from outside PLAY (running PLAY's entry) and from SEARCH: two flat
+    /// states, one node, which both light.
+    #[test]
+    fn every_flat_state_of_a_nested_state_lights_its_one_node() {
+        let text = "machine M\ninitial IDLE\nstate IDLE {\n    when go -> PLAY\n}\nstate PLAY {\n    entry {\n        On: x\n    }\n    initial KICK\n    state SEARCH {\n        when seen -> KICK\n    }\n    state KICK {\n        when kicked -> SEARCH\n    }\n}\n";
+        let read = proclaim_fsm::parse_machine("M.machine", text);
+        assert!(!read.has_errors(), "{:?}", read.diagnostics);
+        let machine = &read.machines[0];
+        let kicks: Vec<i64> = machine
+            .states
+            .iter()
+            .filter(|s| s.name == "PLAY.KICK")
+            .map(|s| s.id)
+            .collect();
+        assert_eq!(kicks.len(), 2, "{machine:?}");
+        let chart = Chart::of_machine(machine, true);
+        if chart.drawn_by != "graphviz" {
+            eprintln!("skipped: Graphviz is not installed");
+            return;
+        }
+        let nodes: Vec<&str> = chart
+            .states
+            .iter()
+            .filter(|s| s.name == "PLAY.KICK")
+            .map(|s| s.node.as_str())
+            .collect();
+        assert_eq!(nodes, [node(kicks[0]), node(kicks[0])]);
+        for state in &chart.states {
+            assert!(chart
+                .svg
+                .contains(&format!("<title>{}</title>", state.node)));
+        }
+        assert!(chart.svg.contains("<title>cluster_c0</title>"));
+    }
 
     #[test]
     fn the_built_in_layout_titles_states_and_transitions_as_graphviz_does() {

@@ -303,6 +303,62 @@ fn spin_agrees_with_the_checker_on_a_press_whose_sensor_jams() {
     );
 }
 
+/// The keeper's properties (`machines/keeper`): a penalty from any step of the nested dive
+/// runs the dive's exit, and every dive ends.
+fn keeper_properties() -> [PropertySource; 2] {
+    [
+        property(
+            PropertyKind::Never,
+            "Keeper.PENALIZED && (NaoMotionPlayer == \"diveLeft\" || NaoMotionPlayer == \"diveRight\")",
+        ),
+        property(PropertyKind::LeadsTo, "Keeper.DIVE ~> !Keeper.DIVE"),
+    ]
+}
+
+/// The keeper in a fresh folder, its dive's exit taken out when `getting_up` is false.
+fn keeper(case: &str, getting_up: bool) -> PathBuf {
+    let source = repo().join("machines/keeper");
+    let dir = scratch(&format!("{case}-behaviour"));
+    std::fs::copy(source.join("match.script"), dir.join("match.script")).expect("copy");
+    // Its dictionary (`../nao.toml`) says who listens, which no verdict depends on.
+    let manifest = std::fs::read_to_string(source.join("behaviour.toml")).expect("manifest");
+    let manifest: String = manifest
+        .lines()
+        .filter(|l| !l.starts_with("dictionary"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    let machine = std::fs::read_to_string(source.join("Keeper.machine")).expect("keeper");
+    let written = if getting_up {
+        machine
+    } else {
+        let exit = "    exit {\n        NaoMotionPlayer: getUp\n    }\n";
+        assert!(machine.contains(exit), "the fault is seeded");
+        machine.replace(exit, "")
+    };
+    std::fs::write(dir.join("Keeper.machine"), written).expect("write");
+    dir
+}
+
+#[test]
+fn spin_agrees_with_the_checker_on_the_keepers_nested_dive() {
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(
+        both("keeper", &keeper("keeper", true), &keeper_properties()),
+        [Verdict::Holds, Verdict::Holds]
+    );
+    assert_eq!(
+        both(
+            "keeper-lying",
+            &keeper("keeper-lying", false),
+            &keeper_properties()
+        ),
+        [Verdict::Fails, Verdict::Holds]
+    );
+}
+
 /// `odometer N K` (`tests/common/odometer.rs`, the bench's family too), in a fresh folder.
 fn odometer(n: usize, k: usize) -> PathBuf {
     let dir = scratch(&format!("odometer-{n}-{k}-behaviour"));

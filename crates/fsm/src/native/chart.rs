@@ -528,6 +528,9 @@ impl<'t> Flattening<'t> {
                 name: n.path.clone(),
                 parent: n.parent.and_then(|p| composites_of[p]),
                 line: n.line,
+                on_entry: n.entry.clone(),
+                on_exit: n.exit.clone(),
+                internal: n.internal.clone(),
             })
             .collect();
         let mut order: Vec<usize> = (0..self.flats.len()).collect();
@@ -565,11 +568,16 @@ fn flat_state(tree: &Tree, flat: &Flat) -> State {
     let node = &tree.nodes[flat.atomic];
     let mut around: Vec<usize> = tree.chain(flat.atomic).collect();
     around.reverse();
-    let entered = around.iter().skip_while(|&&n| n != flat.top);
+    let entered: Vec<usize> = around
+        .iter()
+        .copied()
+        .skip_while(|&n| n != flat.top)
+        .collect();
     State {
         id: flat.id,
         name: node.path.clone(),
         on_entry: entered
+            .iter()
             .flat_map(|&n| tree.nodes[n].entry.iter().cloned())
             .collect(),
         on_exit: node.exit.clone(),
@@ -578,5 +586,6 @@ fn flat_state(tree: &Tree, flat: &Flat) -> State {
             .flat_map(|&n| tree.nodes[n].internal.iter().cloned())
             .collect(),
         line: node.line,
+        arrives_through: entered.len().saturating_sub(1),
     }
 }

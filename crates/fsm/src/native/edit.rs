@@ -216,9 +216,17 @@ pub fn view_native(text: &str) -> Result<(Vec<StateView>, Option<usize>), EditEr
 }
 
 fn read(text: &str) -> Result<Outline, EditError> {
-    Outline::read(text).map_err(|e| EditError::DoesNotParse {
-        line: LineIndex::new(text).line(e.at),
-        message: e.message,
+    Outline::read(text).map_err(|e| {
+        let read = super::parse_machine("", text);
+        match read.machines.first().and_then(|m| m.composites.first()) {
+            Some(composite) => EditError::Nested {
+                line: composite.line,
+            },
+            None => EditError::DoesNotParse {
+                line: LineIndex::new(text).line(e.at),
+                message: e.message,
+            },
+        }
     })
 }
 

@@ -14,6 +14,10 @@ pub enum EditError {
     NotNative {
         format: String,
     },
+    /// A state holding states, which the edits do not place yet.
+    Nested {
+        line: usize,
+    },
     NoSuchState {
         state: usize,
         count: usize,
@@ -53,6 +57,10 @@ impl fmt::Display for EditError {
             EditError::DoesNotParse { line, message } => write!(
                 f,
                 "the file does not read as a machine (line {line}: {message}); fix it in a text editor first"
+            ),
+            EditError::Nested { line } => write!(
+                f,
+                "the machine nests states (line {line}), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)"
             ),
             EditError::NotNative { format } => write!(
                 f,

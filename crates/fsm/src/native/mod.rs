@@ -382,6 +382,7 @@ impl Lowering<'_> {
             on_exit: body.exit,
             internal: body.internal,
             line,
+            arrives_through: 0,
         }
     }
 

@@ -1,0 +1,173 @@
+//! A machine with nested states drawn as it was written: each composite state a cluster
+//! holding its states, each state once (not once per flat state it lowers to), a composite's
+//! transition drawn once from its cluster's edge.
+
+use crate::dot_text::{escape, node, quote, show};
+use crate::model::{Action, Machine, State, StateId};
+use std::collections::HashMap;
+use std::fmt::Write;
+
+/// The states, clusters and transitions of a machine whose `composites` are not empty; node
+/// names prefixed as `dot::body`'s.
+pub(crate) fn chart_body(out: &mut String, machine: &Machine, prefix: &str, indent: &str) {
+    let drawing = Drawing::new(machine, prefix);
+    let _ = writeln!(out, "{indent}compound=true;");
+    let _ = writeln!(out, "{indent}{prefix}start [shape=point, width=0.15];");
+    let _ = writeln!(
+        out,
+        "{indent}{prefix}start -> {};",
+        drawing.node(machine.initial)
+    );
+    drawing.cluster(out, None, indent);
+    drawing.edges(out, indent);
+}
+
+struct Drawing<'m> {
+    machine: &'m Machine,
+    prefix: &'m str,
+    /// Each state as written: the first flat state of its name and line.
+    written: Vec<&'m State>,
+    /// Every flat state's written one, by id.
+    node_of: HashMap<StateId, StateId>,
+}
+
+impl<'m> Drawing<'m> {
+    fn new(machine: &'m Machine, prefix: &'m str) -> Drawing<'m> {
+        let mut written: Vec<&State> = Vec::new();
+        let mut node_of = HashMap::new();
+        for state in &machine.states {
+            let first = written
+                .iter()
+                .find(|w| w.name == state.name && w.line == state.line);
+            let id = match first {
+                Some(w) => w.id,
+                None => {
+                    written.push(state);
+                    state.id
+                }
+            };
+            node_of.insert(state.id, id);
+        }
+        Drawing {
+            machine,
+            prefix,
+            written,
+            node_of,
+        }
+    }
+
+    fn node(&self, flat: StateId) -> String {
+        let id = self.node_of.get(&flat).copied().unwrap_or(flat);
+        format!("{}s{}", self.prefix, node(id))
+    }
+
+    fn cluster_name(&self, composite: usize) -> String {
+        format!("cluster_{}c{composite}", self.prefix)
+    }
+
+    /// The composites around `state`, innermost first.
+    fn around(&self, state: &State) -> Vec<usize> {
+        let composites = &self.machine.composites;
+        let inner = self.machine.composite_of(state);
+        std::iter::successors(inner, |&c| composites[c].parent).collect()
+    }
+
+    /// The states and clusters directly in `within` (`None`: the machine), clusters nested.
+    fn cluster(&self, out: &mut String, within: Option<usize>, indent: &str) {
+        for state in &self.written {
+            if self.machine.composite_of(state) == within {
+                self.state(out, state, indent);
+            }
+        }
+        for (c, composite) in self.machine.composites.iter().enumerate() {
+            if composite.parent != within {
+                continue;
+            }
+            let short = composite.name.rsplit('.').next().unwrap_or(&composite.name);
+            let mut label = format!("{}\\l", escape(short));
+            activities(
+                &mut label,
+                &composite.on_entry,
+                &composite.on_exit,
+                &composite.internal,
+            );
+            let _ = writeln!(out, "{indent}subgraph {} {{", quote(&self.cluster_name(c)));
+            let inner = format!("{indent}  ");
+            let _ = writeln!(
+                out,
+                "{inner}label=\"{label}\"; labeljust=l; style=rounded; fontname=\"Helvetica\"; fontsize=10;"
+            );
+            self.cluster(out, Some(c), &inner);
+            let _ = writeln!(out, "{indent}}}");
+        }
+    }
+
+    /// A state with its own activities (a flat state's hold its composites' too).
+    fn state(&self, out: &mut String, state: &State, indent: &str) {
+        let composites = &self.machine.composites;
+        let around = self.around(state);
+        let entered: usize = around[..state.arrives_through.min(around.len())]
+            .iter()
+            .map(|&c| composites[c].on_entry.len())
+            .sum();
+        let staying: usize = around.iter().map(|&c| composites[c].internal.len()).sum();
+        let short = state.name.rsplit('.').next().unwrap_or(&state.name);
+        let mut label = format!("{} ({})\\n", escape(short), state.id);
+        activities(
+            &mut label,
+            state.on_entry.get(entered..).unwrap_or_default(),
+            &state.on_exit,
+            state.internal.get(staying..).unwrap_or_default(),
+        );
+        let peripheries = if self.node_of.get(&self.machine.initial) == Some(&state.id) {
+            ", peripheries=2"
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            out,
+            "{indent}{} [label=\"{label}\"{peripheries}];",
+            self.node(state.id)
+        );
+    }
+
+    /// Each transition once as written: a state's own from its node, numbered among them; a
+    /// composite's from its cluster's edge, numbered among the composite's.
+    fn edges(&self, out: &mut String, indent: &str) {
+        let mut drawn: Vec<(String, usize, String)> = Vec::new();
+        let mut numbers: HashMap<String, Vec<usize>> = HashMap::new();
+        for t in &self.machine.transitions {
+            let from = match t.composite {
+                Some(c) => self.cluster_name(c),
+                None => self.node(t.source),
+            };
+            let key = (from.clone(), t.line, t.label.to_string());
+            if drawn.contains(&key) {
+                continue;
+            }
+            drawn.push(key);
+            let lines = numbers.entry(from.clone()).or_default();
+            lines.push(t.line);
+            let tail = match t.composite {
+                Some(_) => format!(", ltail={}", quote(&from)),
+                None => String::new(),
+            };
+            let _ = writeln!(
+                out,
+                "{indent}{} -> {} [label=\"{}: {}\"{tail}];",
+                self.node(t.source),
+                self.node(t.target),
+                lines.len(),
+                escape(&t.label.to_string())
+            );
+        }
+    }
+}
+
+fn activities(label: &mut String, entry: &[Action], exit: &[Action], internal: &[Action]) {
+    for (section, actions) in [("entry", entry), ("exit", exit), ("internal", internal)] {
+        for action in actions {
+            let _ = write!(label, "{section}: {}\\l", escape(&show(action)));
+        }
+    }
+}
