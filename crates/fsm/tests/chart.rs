@@ -198,6 +198,38 @@ B.Z#4 entry[] exit[] internal[]
 }
 
 #[test]
+fn a_history_resumes_where_its_composite_was_left() {
+    check(
+        "machine M
+state PLAY {
+    exit {
+        PlayOff:
+    }
+    when whistle -> PAUSE
+    state SEARCH { when seen -> KICK }
+    state KICK { }
+}
+state PAUSE {
+    when resume -> PLAY.history
+    when restart -> PLAY
+}
+",
+        "initial PLAY.SEARCH#1
+PLAY.SEARCH#1 entry[Statement(Declare { ty: Int, name: \"PLAY_history\", value: None })] exit[] internal[]
+  seen -> PLAY.KICK#2
+  whistle -> PAUSE#3 leaving[Statement(Assign { name: \"PLAY_history\", value: Int(1) }) PlayOff] of PLAY
+PLAY.KICK#2 entry[] exit[] internal[]
+  whistle -> PAUSE#3 leaving[Statement(Assign { name: \"PLAY_history\", value: Int(2) }) PlayOff] of PLAY
+PAUSE#3 entry[] exit[] internal[]
+  PLAY_history == 1 && resume -> PLAY.SEARCH#1
+  PLAY_history == 2 && resume -> PLAY.KICK#2
+  resume -> PLAY.SEARCH#1
+  restart -> PLAY.SEARCH#1
+",
+    );
+}
+
+#[test]
 fn what_cannot_be_lowered_is_refused_at_its_place() {
     check(
         "machine M
@@ -208,15 +240,17 @@ state A {
     state X { when done -> B }
     state X { when p -> SEARCH }
 }
-state B { state SEARCH { } state S.T { } }
-state C { state SEARCH { } }
+state B { state SEARCH { } state S.T { } state history { } }
+state C { state SEARCH { } when p -> B.SEARCH.history }
 ",
         "9: `S.T`: a state's name cannot hold `.` where states nest, since `.` separates a path (`PLAY.SEARCH`)
+9: `history` names a composite's history where states nest (`-> PLAY.history`): call the state something else
 7: two states are named `X` in `A`
 5: `A` holds no state named `Z`
 4: a time test on the transition of `A`, which holds states, would count from its entry whatever happens inside it: not built yet; test the time on the states inside it
 6: `when done` belongs to a state that holds states (it fires once the one it is in is final); `A.X` holds none
 7: `SEARCH` could be `B.SEARCH` or `C.SEARCH`: write the path of the one meant
+10: `B.SEARCH` holds no states, so it has no history to resume
 ",
     );
 }

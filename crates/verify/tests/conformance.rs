@@ -29,6 +29,8 @@ struct Coverage {
     answers_of_theories: usize,
     /// Arrivals in a state nested in a composite one (its name a path).
     nested_arrivals: usize,
+    /// Firings that resumed a composite's history.
+    resumed: usize,
     widest: usize,
 }
 
@@ -81,7 +83,10 @@ fn conform(seeds: std::ops::Range<u64>) {
                 coverage.widest = coverage.widest.max(followed.widest);
                 for e in &events {
                     match e {
-                        Event::Fired { .. } => coverage.firings += 1,
+                        Event::Fired { label, .. } => {
+                            coverage.firings += 1;
+                            coverage.resumed += usize::from(label.contains("_history =="));
+                        }
                         Event::Control { .. } => coverage.commands += 1,
                         Event::Entered { state, .. } if state.contains('.') => {
                             coverage.nested_arrivals += 1
@@ -119,7 +124,10 @@ fn conform(seeds: std::ops::Range<u64>) {
     }
     assert!(coverage.firings > coverage.runs, "{coverage:?}");
     assert!(
-        coverage.commands > 0 && coverage.answers_of_theories > 0 && coverage.nested_arrivals > 0,
+        coverage.commands > 0
+            && coverage.answers_of_theories > 0
+            && coverage.nested_arrivals > 0
+            && coverage.resumed > 0,
         "{coverage:?}"
     );
 }

@@ -5,7 +5,7 @@
 
 use super::ast::{Ref, StateAst};
 use super::{Lowering, When};
-use crate::code::Expr;
+use crate::code::{BinOp, Expr, Statement, VarType};
 use crate::label::{Label, TIME_TESTS};
 use crate::model::{Action, Composite, State, StateId, Transition};
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -72,7 +72,33 @@ struct Written {
     /// `when done`: fires from the composite's final sub-states only.
     done: bool,
     target: usize,
+    /// `-> P.history` or `-> P.deep_history`: `target` is P, entered where it was left.
+    history: Option<History>,
     line: usize,
+}
+
+/// Which history a transition resumes (§3.2): the sub-state of the composite last active, or
+/// the whole configuration inside it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum History {
+    Shallow,
+    Deep,
+}
+
+impl History {
+    /// The path segment that names it after its composite's path.
+    fn word(self) -> &'static str {
+        match self {
+            History::Shallow => "history",
+            History::Deep => "deep_history",
+        }
+    }
+
+    /// The machine variable lowering keeps it in: named after the composite's path, so that a
+    /// trace's assignments say which.
+    fn variable(self, path: &str) -> String {
+        format!("{}_{}", path.replace('.', "_"), self.word())
+    }
 }
 
 /// The states as written, in file order (a composite before the states it holds).
@@ -85,10 +111,25 @@ struct Tree {
     written: Vec<Vec<Written>>,
     /// Each composite's `initial`, found among its states (else its first).
     first: Vec<Option<usize>>,
+    /// The histories some transition resumes: only these are kept.
+    histories: Vec<(usize, History)>,
 }
 
 impl Tree {
     fn add(&mut self, lowering: &mut Lowering<'_>, s: StateAst, parent: Option<usize>) -> usize {
+        if [History::Shallow, History::Deep]
+            .iter()
+            .any(|h| h.word() == s.name)
+        {
+            lowering.error(
+                s.at,
+                format!(
+                    "`{}` names a composite's history where states nest (`-> PLAY.{}`): \
+                     call the state something else",
+                    s.name, s.name
+                ),
+            );
+        }
         if s.name.contains('.') {
             lowering.error(
                 s.at,
@@ -162,10 +203,17 @@ impl Tree {
             let first = self.initial_of(lowering, n);
             self.first.push(first);
             let whens = std::mem::take(&mut self.nodes[n].whens);
-            let written = whens
+            let written: Vec<Written> = whens
                 .into_iter()
                 .filter_map(|when| self.written(lowering, n, when))
                 .collect();
+            for w in &written {
+                if let Some(h) = w.history {
+                    if !self.histories.contains(&(w.target, h)) {
+                        self.histories.push((w.target, h));
+                    }
+                }
+            }
             self.written.push(written);
         }
     }
@@ -227,11 +275,34 @@ impl Tree {
             );
             return None;
         }
-        match self.resolve(Some(n), &when.target) {
+        let (target, history) = match &when.target {
+            Ref::Name(path) => {
+                let history = [History::Shallow, History::Deep]
+                    .into_iter()
+                    .find(|h| path.rsplit('.').next() == Some(h.word()));
+                match (history, path.rsplit_once('.')) {
+                    (Some(h), Some((composite, _))) => (Ref::Name(composite.to_string()), Some(h)),
+                    _ => (when.target.clone(), None),
+                }
+            }
+            Ref::Id(_) => (when.target.clone(), None),
+        };
+        match self.resolve(Some(n), &target) {
+            Ok(target) if history.is_some() && self.nodes[target].children.is_empty() => {
+                lowering.error(
+                    when.target_at,
+                    format!(
+                        "`{}` holds no states, so it has no history to resume",
+                        self.nodes[target].path
+                    ),
+                );
+                None
+            }
             Ok(target) => Some(Written {
                 label,
                 done,
                 target,
+                history,
                 line: lowering.lines.line(when.at),
             }),
             Err(message) => {
@@ -334,6 +405,18 @@ impl Tree {
             node = self.first[node].unwrap_or(child);
         }
         node
+    }
+
+    /// The states a history of `composite` may resume, in the order its variable numbers
+    /// them from 1: its own states (shallow), or every atomic state inside it (deep).
+    fn resumed(&self, composite: usize, history: History) -> Vec<usize> {
+        match history {
+            History::Shallow => self.nodes[composite].children.clone(),
+            History::Deep => (composite..self.nodes.len())
+                .filter(|&n| self.nodes[n].children.is_empty())
+                .filter(|&n| self.chain(n).any(|a| a == composite))
+                .collect(),
+        }
     }
 
     /// `node` and the states around it, innermost first.
@@ -483,27 +566,75 @@ impl<'t> Flattening<'t> {
                     .chain(w.target)
                     .find(|&n| tree.nodes[n].parent == domain)
                     .unwrap_or(w.target);
-                let target = self.variant(tree.descend(w.target), top);
                 let left: Vec<usize> = tree
                     .chain(atomic)
                     .take_while(|&n| Some(n) != domain)
                     .collect();
-                let more = left[1..].iter().any(|&n| !tree.nodes[n].exit.is_empty());
-                let leaving = more.then(|| {
-                    left.iter()
-                        .flat_map(|&n| tree.nodes[n].exit.iter().cloned())
-                        .collect()
-                });
-                arms.push(FlatArm {
-                    label: if w.done { Label::TRUE } else { w.label.clone() },
+                let leaving = self.leaving(atomic, &left);
+                let label = if w.done { Label::TRUE } else { w.label.clone() };
+                let written_on = (source != atomic).then_some(source);
+                let arm = |label: Label, target: usize| FlatArm {
+                    label,
                     target,
                     line: w.line,
-                    leaving,
-                    written_on: (source != atomic).then_some(source),
-                });
+                    leaving: leaving.clone(),
+                    written_on,
+                };
+                // A history resumes where the composite was left: an arm for each place it
+                // may have been left at, tested first, then its initial for never.
+                if let Some(history) = w.history {
+                    let variable = history.variable(&tree.nodes[w.target].path);
+                    for (k, resumed) in tree.resumed(w.target, history).into_iter().enumerate() {
+                        let was = Expr::Binary {
+                            op: BinOp::Eq,
+                            left: Box::new(Expr::Name(variable.clone())),
+                            right: Box::new(Expr::Int(k as i64 + 1)),
+                        };
+                        let label = Expr::Binary {
+                            op: BinOp::And,
+                            left: Box::new(was),
+                            right: Box::new(label.clone()),
+                        };
+                        let target = self.variant(tree.descend(resumed), top);
+                        arms.push(arm(label, target));
+                    }
+                }
+                let target = self.variant(tree.descend(w.target), top);
+                arms.push(arm(label, target));
             }
         }
         arms
+    }
+
+    /// What leaving `atomic` and the states around it in `left` (innermost first) runs: where
+    /// each composite with a history was left is noted first (SCXML notes it before any exit
+    /// runs), then their OnExits, innermost first. `None` when that is `atomic`'s own OnExit.
+    fn leaving(&self, atomic: usize, left: &[usize]) -> Option<Vec<Action>> {
+        let tree = self.tree;
+        let mut noted = Vec::new();
+        for &(composite, history) in &tree.histories {
+            if !left.contains(&composite) {
+                continue;
+            }
+            let at = tree
+                .resumed(composite, history)
+                .iter()
+                .position(|&n| tree.chain(atomic).any(|a| a == n))
+                .map_or(0, |k| k as i64 + 1);
+            noted.push(Action::Statement(Statement::Assign {
+                name: history.variable(&tree.nodes[composite].path),
+                value: Expr::Int(at),
+            }));
+        }
+        let more = left[1..].iter().any(|&n| !tree.nodes[n].exit.is_empty());
+        if noted.is_empty() && !more {
+            return None;
+        }
+        noted.extend(
+            left.iter()
+                .flat_map(|&n| tree.nodes[n].exit.iter().cloned()),
+        );
+        Some(noted)
     }
 
     fn finish(mut self, initial: usize) -> Chart {
@@ -551,6 +682,17 @@ impl<'t> Flattening<'t> {
                     composite: arm.written_on.and_then(|n| composites_of[n]),
                 });
             }
+        }
+        // Each history's variable is the machine's own, declared where it starts (a
+        // declaration runs nothing: the variable is there, 0, from the first ringlet).
+        if let Some(first) = states.iter_mut().find(|s| s.id == ids[initial]) {
+            first.on_entry.extend(tree.histories.iter().map(|&(c, h)| {
+                Action::Statement(Statement::Declare {
+                    ty: VarType::Int,
+                    name: h.variable(&tree.nodes[c].path),
+                    value: None,
+                })
+            }));
         }
         Chart {
             states,

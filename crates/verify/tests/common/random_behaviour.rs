@@ -3,7 +3,8 @@
 //! externs and a posted type with small constant values, a local counter, time tests,
 //! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
 //! labels ask, sometimes with states nested in composite states (two deep at most, with their
-//! own activities, transitions and `when done`); then a script for the run and when to run
+//! own activities, transitions and `when done`, and states beside them that resume their
+//! history); then a script for the run and when to run
 //! each round. Everything is a function of the seed, so a failure names the seed that repeats
 //! it.
 
@@ -252,6 +253,19 @@ impl Nest<'_> {
             out.push_str(&block);
         }
         out.push_str("}\n");
+        // Now and then a state beside it comes back into it where it was left.
+        if !blocks.is_empty() && shape.chance(50) {
+            let beside = shape.below(blocks.len());
+            let history = if shape.chance(50) {
+                "history"
+            } else {
+                "deep_history"
+            };
+            let label = label(shape, self.names, self.counter, 1);
+            let block = &mut blocks[beside].1;
+            let close = block.rfind('}').unwrap_or(block.len());
+            block.insert_str(close, &format!("    when {label} -> {name}.{history}\n"));
+        }
         blocks.insert(from, (name, out));
         blocks
     }
