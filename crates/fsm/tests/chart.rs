@@ -230,6 +230,60 @@ PAUSE#3 entry[] exit[] internal[]
 }
 
 #[test]
+fn a_transitions_own_actions_run_after_what_it_leaves() {
+    check(
+        "machine M
+state A {
+    exit {
+        AOff:
+    }
+    when p -> B {
+        Moved: 1
+    }
+    when q -> B
+}
+state B { }
+",
+        "initial A#1
+A#1 entry[] exit[AOff] internal[]
+  p -> B#2 leaving[AOff Moved:1]
+  q -> B#2
+B#2 entry[] exit[] internal[]
+",
+    );
+    check(
+        "machine M
+state P {
+    exit {
+        POff:
+    }
+    when stop -> Q {
+        Stopped:
+    }
+    state A {
+        exit {
+            AOff:
+        }
+        when p -> B {
+            Moved:
+        }
+    }
+    state B { }
+}
+state Q { }
+",
+        "initial P.A#1
+P.A#1 entry[] exit[AOff] internal[]
+  p -> P.B#2 leaving[AOff Moved]
+  stop -> Q#3 leaving[AOff POff Stopped] of P
+P.B#2 entry[] exit[] internal[]
+  stop -> Q#3 leaving[POff Stopped] of P
+Q#3 entry[] exit[] internal[]
+",
+    );
+}
+
+#[test]
 fn what_cannot_be_lowered_is_refused_at_its_place() {
     check(
         "machine M

@@ -48,6 +48,8 @@ pub enum Member {
         target: Ref,
         target_at: usize,
         at: usize,
+        /// What it runs as it fires, after what leaving runs (`when p -> B { … }`).
+        actions: Vec<(ActionAst, usize)>,
     },
     /// A composite state's first sub-state: `initial NAME` inside its block.
     Initial(Ref, usize),

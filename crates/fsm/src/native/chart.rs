@@ -75,6 +75,8 @@ struct Written {
     /// `-> P.history` or `-> P.deep_history`: `target` is P, entered where it was left.
     history: Option<History>,
     line: usize,
+    /// Its own actions: they run as it fires, after the OnExits.
+    actions: Vec<Action>,
 }
 
 /// Which history a transition resumes (§3.2): the sub-state of the composite last active, or
@@ -304,6 +306,7 @@ impl Tree {
                 target,
                 history,
                 line: lowering.lines.line(when.at),
+                actions: when.actions,
             }),
             Err(message) => {
                 lowering.error(when.target_at, message);
@@ -570,7 +573,11 @@ impl<'t> Flattening<'t> {
                     .chain(atomic)
                     .take_while(|&n| Some(n) != domain)
                     .collect();
-                let leaving = self.leaving(atomic, &left);
+                let mut leaving = self.leaving(atomic, &left);
+                if !w.actions.is_empty() {
+                    let exits = leaving.unwrap_or_else(|| tree.nodes[atomic].exit.clone());
+                    leaving = Some(exits.into_iter().chain(w.actions.iter().cloned()).collect());
+                }
                 let label = if w.done { Label::TRUE } else { w.label.clone() };
                 let written_on = (source != atomic).then_some(source);
                 let arm = |label: Label, target: usize| FlatArm {

@@ -217,13 +217,19 @@ pub fn view_native(text: &str) -> Result<(Vec<StateView>, Option<usize>), EditEr
 
 fn read(text: &str) -> Result<Outline, EditError> {
     Outline::read(text).map_err(|e| {
+        let line = LineIndex::new(text).line(e.at);
         let read = super::parse_machine("", text);
-        match read.machines.first().and_then(|m| m.composites.first()) {
-            Some(composite) => EditError::Nested {
-                line: composite.line,
+        match read.machines.first().filter(|_| !read.has_errors()) {
+            Some(m) if !m.composites.is_empty() => EditError::Unsupported {
+                line: m.composites[0].line,
+                what: "nests states",
+            },
+            Some(_) => EditError::Unsupported {
+                line,
+                what: "gives a transition actions of its own",
             },
             None => EditError::DoesNotParse {
-                line: LineIndex::new(text).line(e.at),
+                line,
                 message: e.message,
             },
         }

@@ -14,9 +14,10 @@ pub enum EditError {
     NotNative {
         format: String,
     },
-    /// A state holding states, which the edits do not place yet.
-    Nested {
+    /// A valid file that uses what the edits do not place yet: `what` it is.
+    Unsupported {
         line: usize,
+        what: &'static str,
     },
     NoSuchState {
         state: usize,
@@ -58,9 +59,9 @@ impl fmt::Display for EditError {
                 f,
                 "the file does not read as a machine (line {line}: {message}); fix it in a text editor first"
             ),
-            EditError::Nested { line } => write!(
+            EditError::Unsupported { line, what } => write!(
                 f,
-                "the machine nests states (line {line}), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)"
+                "the machine {what} (line {line}), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)"
             ),
             EditError::NotNative { format } => write!(
                 f,

@@ -75,8 +75,11 @@ pub struct MachineLexer<'a> {
     /// The `{` still open, innermost last: `true` for an activity's (`entry {`), whose items
     /// are cut as postings and statements, `false` for a state's body.
     open: Vec<bool>,
-    /// The last word was `entry`, `exit` or `internal`: the next `{` opens an activity.
+    /// The last word was `entry`, `exit` or `internal`, or a transition's target: the next `{`
+    /// opens an activity.
     activity_next: bool,
+    /// A `when`'s `->` was cut: the next word or number is its target.
+    target_next: bool,
     /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
     plain_until: usize,
 }
@@ -89,6 +92,7 @@ impl<'a> MachineLexer<'a> {
             pending: Vec::new(),
             open: Vec::new(),
             activity_next: false,
+            target_next: false,
             plain_until: 0,
         }
     }
@@ -196,6 +200,7 @@ impl<'a> MachineLexer<'a> {
             .find(|c: char| !c.is_ascii_digit())
             .map_or(rest.len(), |n| n + 1);
         self.at += len;
+        self.activity_next = std::mem::take(&mut self.target_next);
         match rest[..len].parse() {
             Ok(n) => Ok((start, MachineToken::Int(n), start + len)),
             Err(_) => Err(LexError {
@@ -239,7 +244,10 @@ impl<'a> MachineLexer<'a> {
                 self.pending.extend(label);
                 MachineToken::When
             }
-            _ => MachineToken::Word(word),
+            _ => {
+                self.activity_next = std::mem::take(&mut self.target_next);
+                MachineToken::Word(word)
+            }
         };
         (start, tok, start + len)
     }
@@ -285,6 +293,7 @@ impl<'a> MachineLexer<'a> {
                 let label = raw.trim();
                 let arrow_at = self.at + arrow;
                 self.at = arrow_at + 2;
+                self.target_next = true;
                 vec![
                     (arrow_at, MachineToken::Arrow, arrow_at + 2),
                     (start, MachineToken::LabelText(label), start + label.len()),

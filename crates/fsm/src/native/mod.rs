@@ -371,7 +371,10 @@ impl Lowering<'_> {
         let line = self.lines.line(s.at);
         let body = self.body(&s.name, s.members);
         for when in body.whens {
-            if let Some(t) = self.transition(id, when, names) {
+            if let Some(mut t) = self.transition(id, &when, names) {
+                if !when.actions.is_empty() {
+                    t.leaving = Some(body.exit.iter().chain(&when.actions).cloned().collect());
+                }
                 transitions.push(t);
             }
         }
@@ -420,13 +423,19 @@ impl Lowering<'_> {
                     target,
                     target_at,
                     at,
-                } => body.whens.push(When {
-                    label,
-                    label_at,
-                    target,
-                    target_at,
-                    at,
-                }),
+                    actions,
+                } => {
+                    let mut own = Vec::new();
+                    self.actions(actions, &mut own);
+                    body.whens.push(When {
+                        label,
+                        label_at,
+                        target,
+                        target_at,
+                        at,
+                        actions: own,
+                    });
+                }
                 Member::Initial(target, at) => {
                     if body.initial.is_some() {
                         self.error(at, format!("state `{name}` names its initial state twice"));
@@ -461,10 +470,10 @@ impl Lowering<'_> {
     fn transition(
         &mut self,
         source: StateId,
-        when: When,
+        when: &When,
         names: &StateNames,
     ) -> Option<Transition> {
-        let label = self.label(&when)?;
+        let label = self.label(when)?;
         match names.resolve(&when.target) {
             Ok(target) => Some(Transition {
                 source,
@@ -522,6 +531,8 @@ struct When {
     target: Ref,
     target_at: usize,
     at: usize,
+    /// Its own actions: they run as it fires, after its source's OnExit.
+    actions: Vec<Action>,
 }
 
 fn section_name(section: Section) -> &'static str {

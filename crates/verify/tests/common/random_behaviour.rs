@@ -4,7 +4,7 @@
 //! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
 //! labels ask, sometimes with states nested in composite states (two deep at most, with their
 //! own activities, transitions and `when done`, and states beside them that resume their
-//! history); then a script for the run and when to run
+//! history), and transitions with actions of their own; then a script for the run and when to run
 //! each round. Everything is a function of the seed, so a failure names the seed that repeats
 //! it.
 
@@ -176,7 +176,9 @@ fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
         };
         for _ in 0..transitions {
             let label = label(rng, names, counter, 2);
-            let _ = writeln!(out, "    when {label} -> S{}", rng.below(states));
+            let target = rng.below(states);
+            let actions = own_actions(shape, names, m, counter);
+            let _ = writeln!(out, "    when {label} -> S{target}{actions}");
         }
         let _ = writeln!(out, "}}");
         blocks.push((format!("S{s}"), out));
@@ -247,7 +249,8 @@ impl Nest<'_> {
                     }
                 }
             };
-            let _ = writeln!(out, "    when {label} -> {target}");
+            let actions = own_actions(shape, self.names, self.m, self.counter);
+            let _ = writeln!(out, "    when {label} -> {target}{actions}");
         }
         for (_, block) in inner {
             out.push_str(&block);
@@ -269,6 +272,18 @@ impl Nest<'_> {
         blocks.insert(from, (name, out));
         blocks
     }
+}
+
+/// Now and then, a transition's own actions (` { … }`, run as it fires), else nothing.
+fn own_actions(shape: &mut Rng, names: &Names, m: usize, counter: bool) -> String {
+    if !shape.chance(15) {
+        return String::new();
+    }
+    let actions = activity(shape, names, m, counter);
+    if actions.is_empty() {
+        return String::new();
+    }
+    format!(" {{\n{actions}    }}")
 }
 
 /// Zero to three actions, one a line.
