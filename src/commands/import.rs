@@ -1,9 +1,9 @@
-//! `proclaim import`: machines from T/A pairs, Qfsm files (or native files) written as native
-//! `.machine` files, one per machine.
+//! `proclaim import`: machines from T/A pairs, Qfsm files, SCXML documents (or native files)
+//! written as native `.machine` files, one per machine.
 
 use crate::failure::Failure;
 use crate::machines::machine_file;
-use proclaim_fsm::{to_native, Severity, EXTENSION};
+use proclaim_fsm::{import_scxml, machine_format, to_native, MachineFormat, Severity, EXTENSION};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -19,13 +19,16 @@ pub fn run(files: &[String], dir: &Path) -> Result<ExitCode, Failure> {
     for file in files {
         let Some(imported) = machine_file(file)? else {
             return Err(Failure::Argument(format!(
-                "{file} is not a machine file (a Qfsm .fsm file, a native .machine file, or TName.txt / AName.txt of a T/A pair)"
+                "{file} is not a machine file (a Qfsm .fsm file, an SCXML .scxml document, a native .machine file, or TName.txt / AName.txt of a T/A pair)"
             )));
         };
         for d in &imported.diagnostics {
             eprintln!("{d}");
             errors |= d.severity == Severity::Error;
         }
+        // A chart (an SCXML document, a native file that nests states) is written as its
+        // states were written, not as the flat states it lowers to.
+        let written_as = as_written(file);
         for machine in &imported.machines {
             let stem = file_stem(&machine.name);
             if let Some((_, first)) = written.iter().find(|(s, _)| *s == stem) {
@@ -37,10 +40,18 @@ pub fn run(files: &[String], dir: &Path) -> Result<ExitCode, Failure> {
                 continue;
             }
             let path = dir.join(format!("{stem}.{EXTENSION}"));
-            let text = format!(
-                "// Imported from {file} by `proclaim import`.\n{}",
-                to_native(machine)
-            );
+            let text = match &written_as {
+                Some(text) if imported.machines.len() == 1 => text.clone(),
+                _ if !machine.composites.is_empty() => {
+                    eprintln!("error: {file}: machine `{}` nests states, which only its own file can say; not written", machine.name);
+                    errors = true;
+                    continue;
+                }
+                _ => format!(
+                    "// Imported from {file} by `proclaim import`.\n{}",
+                    to_native(machine)
+                ),
+            };
             std::fs::write(&path, text).map_err(|error| Failure::Write {
                 path: path.clone(),
                 error,
@@ -54,6 +65,22 @@ pub fn run(files: &[String], dir: &Path) -> Result<ExitCode, Failure> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The native text of a file that says its machine as written: an SCXML document's mapping,
+/// or a native file itself; `None` for the formats `to_native` writes.
+fn as_written(file: &str) -> Option<String> {
+    let path = Path::new(file);
+    let text = std::fs::read_to_string(path).ok()?;
+    match machine_format(path)? {
+        MachineFormat::Scxml { stem } => import_scxml(file, &text, &stem).native,
+        MachineFormat::Native => {
+            let read = proclaim_fsm::parse_machine(file, &text);
+            let chart = read.machines.iter().any(|m| !m.composites.is_empty());
+            chart.then_some(text)
+        }
+        _ => None,
+    }
 }
 
 /// A machine's name as a file name: letters, digits, `_`, `-` and `.` kept, the rest `_`.

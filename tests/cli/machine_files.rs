@@ -63,6 +63,72 @@ fn output_whose_reader_left_ends_quietly() {
     assert_eq!(stderr(&out), "");
 }
 
+/// An SCXML document imports as a native file that nests states, which `check` reads and
+/// imports again unchanged; a document that does not map is refused at its element's line.
+#[test]
+fn import_maps_an_scxml_document_onto_nested_states_or_says_where_it_cannot() {
+    let doc = temp_file(
+        "lamp.scxml",
+        br#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="off" name="Lamp">
+  <state id="off"><transition event="press" target="on"/></state>
+  <state id="on" initial="dim">
+    <onexit><raise event="clicked"/></onexit>
+    <transition event="press" target="off"/>
+    <state id="dim"><transition event="turn" target="bright"/></state>
+    <state id="bright"/>
+  </state>
+</scxml>
+"#,
+    );
+    let out = doc.with_file_name("lamp-imported");
+    let o = proclaim(&["import", doc.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let file = out.join("Lamp.machine");
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        text.contains("state on { // SCXML line 3\n    exit {\n        post(\"clicked\", TRUE);"),
+        "{text}"
+    );
+    check(
+        &["check", file.to_str().unwrap()],
+        0,
+        &format!(
+            "{}: ok (1 machine, 3 states, 4 transitions, 0 warnings)\n",
+            file.display()
+        ),
+    );
+    let again = doc.with_file_name("lamp-again");
+    let o = proclaim(&[
+        "import",
+        file.to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(again.join("Lamp.machine")).unwrap(),
+        text
+    );
+
+    let parallel = temp_file(
+        "both.scxml",
+        b"<scxml xmlns=\"http://www.w3.org/2005/07/scxml\">\n  <parallel id=\"p\"/>\n</scxml>\n",
+    );
+    let o = proclaim(&[
+        "import",
+        parallel.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o)
+            .contains("both.scxml:2: error: <parallel>: orthogonal regions are not built yet"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 #[test]
 fn import_writes_native_files_that_check_and_import_again_unchanged() {
     let t = temp_file(

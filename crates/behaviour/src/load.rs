@@ -8,8 +8,8 @@ use crate::manifest::{
 use proclaim_cdl::{check_source, Language};
 use proclaim_experts::{parse_duration, parse_mapping, parse_script};
 use proclaim_fsm::{
-    import_qfsm, import_ta, machine_format, parse_machine, Imported, Machine, MachineFormat,
-    Severity,
+    import_qfsm, import_scxml, import_ta, machine_format, parse_machine, Imported, Machine,
+    MachineFormat, Severity,
 };
 use proclaim_gcsim::parse_game;
 use proclaim_runner::Loader;
@@ -319,8 +319,8 @@ fn stem(file: &str) -> String {
         .to_string()
 }
 
-/// The machines of one file: native `.machine`, Qfsm `.fsm`, or either file of a T/A pair
-/// (`TName.txt` / `AName.txt`, its partner beside it).
+/// The machines of one file: native `.machine`, Qfsm `.fsm`, SCXML `.scxml`, or either file of
+/// a T/A pair (`TName.txt` / `AName.txt`, its partner beside it).
 pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
     let shown = files.show(relative);
     let unreadable = |diagnostic: FileDiagnostic| Imported {
@@ -337,6 +337,10 @@ pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
             Ok(text) => import_qfsm(&shown, &text, &stem),
             Err(e) => unreadable(e),
         },
+        Some(MachineFormat::Scxml { stem }) => match read(relative) {
+            Ok(text) => import_scxml(&shown, &text, &stem).imported,
+            Err(e) => unreadable(e),
+        },
         Some(MachineFormat::TablePair { t, a, name }) => {
             let (t, a) = (t.to_string_lossy(), a.to_string_lossy());
             match (read(&t), read(&a)) {
@@ -347,7 +351,7 @@ pub fn read_machines(files: &dyn Files, relative: &str) -> Imported {
             }
         }
         None => unreadable(FileDiagnostic::in_file(&shown, format!(
-            "`{relative}` is not a machine file (a native .machine file, a Qfsm .fsm file, or TName.txt / AName.txt of a T/A pair)"
+            "`{relative}` is not a machine file (a native .machine file, a Qfsm .fsm file, an SCXML .scxml document, or TName.txt / AName.txt of a T/A pair)"
         ))),
     }
 }

@@ -10,6 +10,8 @@ pub enum MachineFormat {
     Native,
     /// A Qfsm `.fsm` file; its machine is named after the file (`stem`).
     Qfsm { stem: String },
+    /// An SCXML document (`.scxml`); its machine is named by its `name`, else after the file.
+    Scxml { stem: String },
     /// Either file of a T/A pair (`TName.txt`, `AName.txt`): both paths and the machine's name.
     TablePair {
         t: PathBuf,
@@ -32,6 +34,10 @@ pub fn machine_format(path: &Path) -> Option<MachineFormat> {
     if extension == "fsm" {
         let stem = path.file_stem()?.to_str()?.to_string();
         return Some(MachineFormat::Qfsm { stem });
+    }
+    if extension == "scxml" {
+        let stem = path.file_stem()?.to_str()?.to_string();
+        return Some(MachineFormat::Scxml { stem });
     }
     if extension != "txt" {
         return None;

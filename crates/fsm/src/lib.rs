@@ -19,6 +19,7 @@ mod model;
 pub mod names;
 mod native;
 mod qfsm;
+mod scxml;
 mod sections;
 mod ta;
 mod team;
@@ -47,6 +48,7 @@ pub mod edit {
 }
 pub use proclaim_syntax::{FileDiagnostic, Severity};
 pub use qfsm::import_qfsm;
+pub use scxml::{import_scxml, ImportedScxml};
 pub use ta::{import_ta, partner_of};
 pub use team::{team_words, Aggregate, TeamWord};
 

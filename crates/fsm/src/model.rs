@@ -53,14 +53,22 @@ pub struct UnreadTransition {
 }
 
 impl Machine {
-    /// Every action of every state, in file order.
+    /// Every action that can run, in file order: every state's, then what transitions run
+    /// as they fire that their states do not (a transition's own actions; a nested state's
+    /// composites' OnExits), which the lowered transitions carry; an action may come twice.
     pub fn actions(&self) -> impl Iterator<Item = &Action> + '_ {
         self.states
             .iter()
             .flat_map(|s| s.on_entry.iter().chain(&s.on_exit).chain(&s.internal))
+            .chain(
+                self.transitions
+                    .iter()
+                    .flat_map(|t| t.leaving.iter().flatten()),
+            )
     }
 
-    /// Every statement of every activity, nested ones included, outermost first.
+    /// Every statement that can run ([`Machine::actions`]), nested ones included, outermost
+    /// first.
     pub fn statements(&self) -> Vec<&Statement> {
         let mut out = Vec::new();
         for action in self.actions() {

@@ -3,3 +3,4 @@
 mod chart;
 mod edit;
 mod machines;
+mod scxml;

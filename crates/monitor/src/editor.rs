@@ -369,6 +369,14 @@ fn read_any(path: &std::path::Path) -> Option<proclaim_fsm::Machine> {
                 .into_iter()
                 .next()
         }
+        proclaim_fsm::MachineFormat::Scxml { stem } => {
+            let text = std::fs::read_to_string(path).ok()?;
+            proclaim_fsm::import_scxml(&file, &text, &stem)
+                .imported
+                .machines
+                .into_iter()
+                .next()
+        }
         proclaim_fsm::MachineFormat::TablePair { t, a, name } => {
             let t_text = std::fs::read_to_string(&t).ok()?;
             let a_text = std::fs::read_to_string(&a).ok()?;

@@ -121,6 +121,9 @@ pub fn editable(path: &Path) -> Result<(), EditError> {
         Some(MachineFormat::Qfsm { .. }) => Err(EditError::NotNative {
             format: "Qfsm".into(),
         }),
+        Some(MachineFormat::Scxml { .. }) => Err(EditError::NotNative {
+            format: "SCXML".into(),
+        }),
         Some(MachineFormat::TablePair { .. }) => Err(EditError::NotNative {
             format: "T/A table".into(),
         }),

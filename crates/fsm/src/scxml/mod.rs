@@ -1,0 +1,595 @@
+//! SCXML (the W3C statechart format Qt, Apache Commons SCXML and AS2FM read) mapped onto the
+//! native format, nested states and histories included (`docs/spec/behaviour.md` §4): what
+//! maps is written as a `.machine` text, what does not is refused with its element and line.
+//! An event is a label atom (the proposition that it happened) and a `cond` is conjoined to
+//! it; `<raise>` and `<send>` post the event, true, to the whiteboard.
+
+mod tree;
+
+use crate::code::{parse_expression, parse_statements};
+use crate::Imported;
+use proclaim_syntax::FileDiagnostic;
+use std::collections::HashMap;
+use std::fmt::Write;
+use tree::Element;
+
+/// What reading an SCXML document gave: the machine and every refusal, and the native text it
+/// was read through (what `proclaim import` writes), when the document mapped.
+#[derive(Debug, Default)]
+pub struct ImportedScxml {
+    pub imported: Imported,
+    pub native: Option<String>,
+}
+
+/// Reads an SCXML document; its machine is named by its `name` attribute, else `stem`.
+pub fn import_scxml(file: &str, text: &str, stem: &str) -> ImportedScxml {
+    let root = match tree::read(text) {
+        Ok(root) => root,
+        Err((line, message)) => return refused(vec![FileDiagnostic::error(file, line, message)]),
+    };
+    if root.name == "ascxml" {
+        let message = "<ascxml>: AS2FM's abstract SCXML, whose ROS interfaces do not map; convert it to plain SCXML first".to_string();
+        return refused(vec![FileDiagnostic::error(file, root.line, message)]);
+    }
+    if root.name != "scxml" {
+        let message = format!("the root element is <{}>, not <scxml>", root.name);
+        return refused(vec![FileDiagnostic::error(file, root.line, message)]);
+    }
+    let mut mapping = Mapping {
+        file,
+        refusals: Vec::new(),
+        names: HashMap::new(),
+        histories: HashMap::new(),
+        data: Vec::new(),
+    };
+    mapping.name_states(&root, "");
+    let native = mapping.document(&root, stem);
+    if !mapping.refusals.is_empty() {
+        return refused(mapping.refusals);
+    }
+    let mut imported = crate::parse_machine(file, &native);
+    for machine in &mut imported.machines {
+        lines_of_the_document(machine, &native);
+    }
+    // The native text is this importer's own: a problem in it is reported at the document.
+    for d in &mut imported.diagnostics {
+        d.message = format!("{} (in the native form the SCXML maps to)", d.message);
+        d.line = Some(1);
+        d.column = None;
+    }
+    ImportedScxml {
+        imported,
+        native: Some(native),
+    }
+}
+
+fn refused(diagnostics: Vec<FileDiagnostic>) -> ImportedScxml {
+    ImportedScxml {
+        imported: Imported {
+            machines: Vec::new(),
+            diagnostics,
+        },
+        native: None,
+    }
+}
+
+struct Mapping<'a> {
+    file: &'a str,
+    refusals: Vec<FileDiagnostic>,
+    /// Each state's id and the path it has in the native text.
+    names: HashMap<String, String>,
+    /// Each `<history>`'s id and the target that resumes it (`PLAY.history`).
+    histories: HashMap<String, String>,
+    /// The data model: (name, type, first value written), in document order.
+    data: Vec<(String, &'static str, String)>,
+}
+
+const STATES: [&str; 3] = ["state", "final", "parallel"];
+
+impl Mapping<'_> {
+    fn refuse(&mut self, line: usize, message: String) {
+        self.refusals
+            .push(FileDiagnostic::error(self.file, line, message));
+    }
+
+    /// A native name for an SCXML id: letters, digits and `_` (the rest become `_`).
+    fn word(id: &str) -> String {
+        let mut word: String = id
+            .chars()
+            .map(|c| {
+                if c.is_alphanumeric() || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        if !word.starts_with(|c: char| c.is_alphabetic() || c == '_') {
+            word.insert_str(0, "s_");
+        }
+        if word == "history" || word == "deep_history" {
+            word.push('_');
+        }
+        word
+    }
+
+    /// Every state's path and every history's target, before anything refers to them.
+    fn name_states(&mut self, parent: &Element, path: &str) {
+        for (n, child) in parent.children.iter().enumerate() {
+            if child.name == "history" {
+                let deep = child.attribute("type") == Some("deep");
+                let id = child.attribute("id").unwrap_or_default().to_string();
+                let word = if deep { "deep_history" } else { "history" };
+                self.histories.insert(id, format!("{path}.{word}"));
+                continue;
+            }
+            if !STATES.contains(&child.name.as_str()) {
+                continue;
+            }
+            let id = child
+                .attribute("id")
+                .map_or_else(|| format!("{}_{n}", child.name), str::to_string);
+            let word = Self::word(&id);
+            let own = if path.is_empty() {
+                word
+            } else {
+                format!("{path}.{word}")
+            };
+            if self.names.insert(id.clone(), own.clone()).is_some() {
+                self.refuse(child.line, format!("two states have the id `{id}`"));
+            }
+            self.name_states(child, &own);
+        }
+    }
+
+    fn document(&mut self, root: &Element, stem: &str) -> String {
+        if let Some(model) = root.attribute("datamodel") {
+            if !matches!(model, "null" | "ecmascript") {
+                self.refuse(
+                    root.line,
+                    format!("the `{model}` data model: only `null` and a small ECMAScript one (numbers, truths, operators) map"),
+                );
+            }
+        }
+        let name = Self::word(root.attribute("name").unwrap_or(stem));
+        let mut body = String::new();
+        for child in &root.children {
+            match child.name.as_str() {
+                "datamodel" => self.datamodel(child),
+                "state" | "final" | "parallel" => self.state(child, &mut body, 0),
+                other => self.unmapped(child, other, "the document"),
+            }
+        }
+        let initial = match root.attribute("initial") {
+            Some(ids) => self.target(ids, root.line),
+            None => None,
+        };
+        let mut out = format!(
+            "// Read from {}, an SCXML document (`proclaim import` maps it; docs/spec/behaviour.md §4).\nmachine {name}\n",
+            self.file
+        );
+        if self.data.is_empty() {
+            if let Some(initial) = initial {
+                let _ = writeln!(out, "initial {initial}");
+            }
+        } else {
+            // The data model is declared, and its first values set, by a state that moves on
+            // at once: the document's `initial` is the one it moves to.
+            let first = initial.or_else(|| self.first_state(root));
+            out.push_str("initial DATAMODEL_START\n\nstate DATAMODEL_START {\n    entry {\n");
+            for (name, ty, value) in &self.data {
+                let _ = writeln!(out, "        {ty} {name}{value};");
+            }
+            let _ = writeln!(
+                out,
+                "    }}\n    when TRUE -> {}\n}}",
+                first.unwrap_or_default()
+            );
+        }
+        out.push_str(&body);
+        out
+    }
+
+    fn first_state(&self, root: &Element) -> Option<String> {
+        let first = root
+            .children
+            .iter()
+            .find(|c| STATES.contains(&c.name.as_str()))?;
+        let id = first.attribute("id")?;
+        self.names.get(id).cloned()
+    }
+
+    fn datamodel(&mut self, model: &Element) {
+        for data in &model.children {
+            if data.name != "data" {
+                self.unmapped(data, &data.name, "a data model");
+                continue;
+            }
+            let id = data.attribute("id").unwrap_or_default();
+            if data.attribute("src").is_some() || !data.text.is_empty() {
+                self.refuse(data.line, format!("data `{id}`: a value from `src` or written inside the element does not map; give it as `expr`"));
+                continue;
+            }
+            let expr = data.attribute("expr").unwrap_or("").trim();
+            let ty = match (data.attribute("type").unwrap_or(""), expr) {
+                (t, _) if t.starts_with("bool") => "bool",
+                (t, _) if t.starts_with("float") || t.starts_with("double") => "float",
+                (t, _) if t.starts_with("int") || t.starts_with("uint") => "int",
+                ("", "true" | "false") => "bool",
+                ("", e) if e.contains('.') => "float",
+                ("", _) => "int",
+                (other, _) => {
+                    self.refuse(
+                        data.line,
+                        format!(
+                            "data `{id}`: the type `{other}` does not map (numbers and truths do)"
+                        ),
+                    );
+                    continue;
+                }
+            };
+            let value = match expr {
+                "" | "0" | "0.0" | "false" => String::new(),
+                e => match self.expression(e, data.line) {
+                    Some(e) => format!(" = {e}"),
+                    None => continue,
+                },
+            };
+            self.data.push((Self::word(id), ty, value));
+        }
+    }
+
+    /// A state (or final state) and everything in it, written at `depth`.
+    fn state(&mut self, element: &Element, out: &mut String, depth: usize) {
+        if element.name == "parallel" {
+            self.refuse(
+                element.line,
+                "<parallel>: orthogonal regions are not built yet (docs/spec/behaviour.md §3.2)"
+                    .into(),
+            );
+            return;
+        }
+        let pad = "    ".repeat(depth);
+        let id = element.attribute("id").unwrap_or_default();
+        let path = self.names.get(id).cloned().unwrap_or_default();
+        let name = path.rsplit('.').next().unwrap_or(&path).to_string();
+        let _ = writeln!(out, "\n{pad}state {name} {{ {}", at(element.line));
+        let mut inner = String::new();
+        let mut whens = String::new();
+        for child in &element.children {
+            match child.name.as_str() {
+                "onentry" | "onexit" => {
+                    let section = if child.name == "onentry" {
+                        "entry"
+                    } else {
+                        "exit"
+                    };
+                    let actions = self.content(child, depth + 2);
+                    let _ = write!(out, "{pad}    {section} {{\n{actions}{pad}    }}\n");
+                }
+                "transition" => self.transition(child, &mut whens, depth + 1),
+                "initial" => self.initial(child, &path, &mut whens, depth + 1),
+                "state" | "final" | "parallel" => self.state(child, &mut inner, depth + 1),
+                "history" => self.history(child, element),
+                "datamodel" => self.datamodel(child),
+                "donedata" => self.refuse(
+                    child.line,
+                    "<donedata>: a final state's data does not map".into(),
+                ),
+                other => self.unmapped(child, other, "a state"),
+            }
+        }
+        if let Some(first) = element.attribute("initial") {
+            if let Some(target) = self.target(first, element.line) {
+                let _ = writeln!(
+                    out,
+                    "{pad}    initial {} {}",
+                    relative(&target, &path),
+                    at(element.line)
+                );
+            }
+        }
+        out.push_str(&whens);
+        out.push_str(&inner);
+        let _ = writeln!(out, "{pad}}}");
+    }
+
+    fn initial(&mut self, element: &Element, path: &str, out: &mut String, depth: usize) {
+        let pad = "    ".repeat(depth);
+        let transition = element.children.iter().find(|c| c.name == "transition");
+        match transition.and_then(|t| t.attribute("target").map(|ids| (t, ids))) {
+            Some((t, ids)) if t.children.is_empty() => {
+                if let Some(target) = self.target(ids, t.line) {
+                    let _ = writeln!(
+                        out,
+                        "{pad}initial {} {}",
+                        relative(&target, path),
+                        at(t.line)
+                    );
+                }
+            }
+            _ => self.refuse(
+                element.line,
+                "<initial>: only a transition with a target and no content maps".into(),
+            ),
+        }
+    }
+
+    fn history(&mut self, element: &Element, composite: &Element) {
+        let default = element
+            .children
+            .iter()
+            .find(|c| c.name == "transition")
+            .and_then(|t| t.attribute("target"));
+        let first = composite.attribute("initial").or_else(|| {
+            composite
+                .children
+                .iter()
+                .find(|c| c.name == "initial")
+                .and_then(|i| i.children.first())
+                .and_then(|t| t.attribute("target"))
+        });
+        if default.is_some() && default != first {
+            self.refuse(element.line, "<history>: a default other than its state's initial does not map (a history resumes at the initial the first time)".into());
+        }
+    }
+
+    /// `when LABEL -> TARGET { actions }`.
+    fn transition(&mut self, element: &Element, out: &mut String, depth: usize) {
+        let pad = "    ".repeat(depth);
+        let line = element.line;
+        if element.attribute("type") == Some("internal") {
+            self.refuse(line, "<transition type=\"internal\">: only external transitions map (a transition leaves and enters its states)".into());
+            return;
+        }
+        let Some(ids) = element.attribute("target") else {
+            self.refuse(line, "<transition> without a target (it would act and stay): not in the native format yet; an `internal` activity runs when nothing fires".into());
+            return;
+        };
+        let Some(target) = self.target(ids, line) else {
+            return;
+        };
+        let mut label = Vec::new();
+        if let Some(events) = element.attribute("event") {
+            let names: Vec<String> = events.split_whitespace().map(event).collect();
+            if events.contains('*') {
+                self.refuse(
+                    line,
+                    format!(
+                        "event `{events}`: a wildcard does not map: an event is one label atom"
+                    ),
+                );
+                return;
+            }
+            match names.as_slice() {
+                [] => {}
+                [one] => label.push(one.clone()),
+                many => label.push(format!("({})", many.join(" || "))),
+            }
+        }
+        if let Some(cond) = element.attribute("cond") {
+            let Some(cond) = self.expression(cond, line) else {
+                return;
+            };
+            label.push(format!("({cond})"));
+        }
+        let label = if label.is_empty() {
+            "TRUE".to_string()
+        } else {
+            label.join(" && ")
+        };
+        let actions = self.content(element, depth + 1);
+        let at = at(line);
+        if actions.is_empty() {
+            let _ = writeln!(out, "{pad}when {label} -> {target} {at}");
+        } else {
+            let _ = write!(
+                out,
+                "{pad}when {label} -> {target} {{ {at}\n{actions}{pad}}}\n"
+            );
+        }
+    }
+
+    /// Executable content, one native action a line.
+    fn content(&mut self, block: &Element, depth: usize) -> String {
+        let pad = "    ".repeat(depth);
+        let mut out = String::new();
+        for e in &block.children {
+            let line = match e.name.as_str() {
+                "assign" => self.assign(e),
+                "raise" | "send" => self.send(e),
+                "log" => match e.attribute("expr") {
+                    Some(expr) => self
+                        .expression(expr, e.line)
+                        .map(|x| format!("print({x});")),
+                    None => continue,
+                },
+                other => {
+                    self.unmapped(e, other, "executable content");
+                    None
+                }
+            };
+            if let Some(line) = line {
+                let _ = writeln!(out, "{pad}{line}");
+            }
+        }
+        out
+    }
+
+    fn assign(&mut self, e: &Element) -> Option<String> {
+        let location = e.attribute("location").unwrap_or_default();
+        if !location.chars().all(|c| c.is_alphanumeric() || c == '_') || location.is_empty() {
+            self.refuse(
+                e.line,
+                format!("<assign location=\"{location}\">: only a plain variable maps"),
+            );
+            return None;
+        }
+        let Some(expr) = e.attribute("expr") else {
+            self.refuse(
+                e.line,
+                "<assign> without `expr`: a value written inside it does not map".into(),
+            );
+            return None;
+        };
+        let expr = self.expression(expr, e.line)?;
+        let statement = format!("{} = {expr};", Self::word(location));
+        match parse_statements(&statement) {
+            Ok(_) => Some(statement),
+            Err(err) => {
+                self.refuse(
+                    e.line,
+                    format!("<assign>: `{statement}` does not read: {}", err.message),
+                );
+                None
+            }
+        }
+    }
+
+    fn send(&mut self, e: &Element) -> Option<String> {
+        let what = format!("<{}>", e.name);
+        if !e.children.is_empty() {
+            self.refuse(e.line, format!("{what} with parameters or content: an event carries no data here (it is a proposition)"));
+            return None;
+        }
+        for unmapped in [
+            "target",
+            "targetexpr",
+            "type",
+            "delay",
+            "delayexpr",
+            "eventexpr",
+            "namelist",
+            "idlocation",
+        ] {
+            if let Some(value) = e.attribute(unmapped) {
+                if !(unmapped == "target" && value == "#_internal") {
+                    self.refuse(e.line, format!("{what} {unmapped}=\"{value}\": only an event posted to the behaviour's whiteboard maps"));
+                    return None;
+                }
+            }
+        }
+        match e.attribute("event") {
+            Some(name) => Some(format!("post(\"{}\", TRUE);", event(name))),
+            None => {
+                self.refuse(e.line, format!("{what} without `event`"));
+                None
+            }
+        }
+    }
+
+    /// A native expression for an ECMAScript one of the small subset that maps.
+    fn expression(&mut self, text: &str, line: usize) -> Option<String> {
+        for (what, why) in [
+            (
+                "_event",
+                "an event's data (`_event`): events carry none here",
+            ),
+            ("In(", "`In(…)`: name the state as a property does instead"),
+            ("function", "a function"),
+        ] {
+            if text.contains(what) {
+                self.refuse(line, format!("`{text}`: {why}"));
+                return None;
+            }
+        }
+        let mapped = text
+            .replace("===", "==")
+            .replace("!==", "!=")
+            .replace('\'', "\"");
+        match parse_expression(&mapped) {
+            Ok(e) => Some(e.to_string()),
+            Err(err) => {
+                self.refuse(
+                    line,
+                    format!("`{text}` does not read as an expression: {}", err.message),
+                );
+                None
+            }
+        }
+    }
+
+    /// The native target of a `target` attribute: a state's path or a history's.
+    fn target(&mut self, ids: &str, line: usize) -> Option<String> {
+        let ids: Vec<&str> = ids.split_whitespace().collect();
+        let [id] = ids.as_slice() else {
+            self.refuse(
+                line,
+                format!(
+                    "target \"{}\": several targets enter regions, which are not built yet",
+                    ids.join(" ")
+                ),
+            );
+            return None;
+        };
+        if let Some(history) = self.histories.get(*id) {
+            return Some(history.clone());
+        }
+        match self.names.get(*id) {
+            Some(path) => Some(path.clone()),
+            None => {
+                self.refuse(line, format!("no state has the id `{id}`"));
+                None
+            }
+        }
+    }
+
+    fn unmapped(&mut self, e: &Element, name: &str, inside: &str) {
+        if e.foreign {
+            return;
+        }
+        let why = match name {
+            "script" => "a script: only the small expression data model maps",
+            "invoke" => "invoking another machine: use a sub-machine started by a posting",
+            "if" | "elseif" | "else" | "foreach" => "control flow in executable content: the activity language has `for` but no `if` yet",
+            "cancel" => "cancelling a delayed send: sends are not delayed here",
+            _ => "not an SCXML element proclaim maps",
+        };
+        self.refuse(e.line, format!("<{name}> in {inside}: {why}"));
+    }
+}
+
+/// The comment that ties a native line to the document's: `check`, `verify` and traces then
+/// say the document's line ([`lines_of_the_document`]).
+fn at(line: usize) -> String {
+    format!("{MARK}{line}")
+}
+
+const MARK: &str = "// SCXML line ";
+
+/// The machine's lines made the document's, from the native text's marks.
+fn lines_of_the_document(machine: &mut crate::Machine, native: &str) {
+    let mut last = 1;
+    let document: Vec<usize> = native
+        .lines()
+        .map(|l| {
+            if let Some(n) = l.rsplit_once(MARK).and_then(|(_, n)| n.trim().parse().ok()) {
+                last = n;
+            }
+            last
+        })
+        .collect();
+    let of = |line: usize| document.get(line.wrapping_sub(1)).copied().unwrap_or(line);
+    for s in &mut machine.states {
+        s.line = of(s.line);
+    }
+    for t in &mut machine.transitions {
+        t.line = of(t.line);
+    }
+    for c in &mut machine.composites {
+        c.line = of(c.line);
+    }
+}
+
+/// An event name as a label atom: `a.b-c` is `a_b_c`.
+fn event(name: &str) -> String {
+    Mapping::word(name)
+}
+
+/// A path written from inside `within` when it lies inside it (`initial` names a state of its
+/// own composite).
+fn relative(path: &str, within: &str) -> String {
+    path.strip_prefix(&format!("{within}."))
+        .unwrap_or(path)
+        .to_string()
+}
