@@ -187,6 +187,17 @@ pub enum CliCommand {
         #[arg(short, long, value_name = "DIR")]
         output: PathBuf,
     },
+    /// Write a native .machine file in another format (SCXML), nesting and histories kept; what the format cannot say is refused at its line (exit 1)
+    Export {
+        /// A native .machine file
+        file: PathBuf,
+        /// The format to write
+        #[arg(long, value_enum, default_value = "scxml")]
+        format: ExportFormat,
+        /// Where to write (standard output if not given)
+        #[arg(short, long, value_name = "FILE")]
+        output: Option<PathBuf>,
+    },
     /// Check theories, machines (native .machine, T/A pairs, Qfsm .fsm) and behaviours, and report every problem (exit 1 on errors)
     Check {
         /// Theories (.dl, .dfl), machines (.machine, .fsm, TName.txt / AName.txt) or behaviours
@@ -666,4 +677,11 @@ pub enum EngineName {
     Auto,
     Explicit,
     Symbolic,
+}
+
+/// The formats `proclaim export` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExportFormat {
+    /// W3C SCXML, as `proclaim import` reads it back.
+    Scxml,
 }

@@ -101,3 +101,36 @@ fn file_stem(name: &str) -> String {
         stem
     }
 }
+
+/// `proclaim export`: a native machine file written as SCXML, to `output` or standard output;
+/// what SCXML cannot say is reported at its line and nothing is written (exit 1).
+pub fn export(file: &Path, output: Option<&Path>) -> Result<ExitCode, Failure> {
+    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+        path: file.to_path_buf(),
+        error,
+    })?;
+    if machine_format(file) != Some(MachineFormat::Native) {
+        return Err(Failure::Argument(format!(
+            "{}: only a native .machine file is exported (`proclaim import` writes one from the other formats)",
+            file.display()
+        )));
+    }
+    match proclaim_fsm::to_scxml(&file.display().to_string(), &text) {
+        Ok(scxml) => {
+            match output {
+                Some(path) => std::fs::write(path, scxml).map_err(|error| Failure::Write {
+                    path: path.to_path_buf(),
+                    error,
+                })?,
+                None => print!("{scxml}"),
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(refusals) => {
+            for d in refusals {
+                eprintln!("{d}");
+            }
+            Ok(ExitCode::from(1))
+        }
+    }
+}

@@ -74,6 +74,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, Failure> {
         CliCommand::Deps(args) => deps::command(args),
         CliCommand::Liveness { file, output } => liveness::run(&file, &output),
         CliCommand::Import { files, output } => import::run(&files, &output),
+        CliCommand::Export {
+            file,
+            format: _,
+            output,
+        } => import::export(&file, output.as_deref()),
         CliCommand::Gen(args) => gen::command(args),
         CliCommand::Bench(args) => bench::command(args),
         CliCommand::BenchRun { file, expect } => bench::run_one(&file, &expect),

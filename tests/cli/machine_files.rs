@@ -110,6 +110,31 @@ fn import_maps_an_scxml_document_onto_nested_states_or_says_where_it_cannot() {
         text
     );
 
+    // Exported as SCXML, it reads back as the same chart.
+    let exported = doc.with_file_name("lamp-exported.scxml");
+    let o = proclaim(&[
+        "export",
+        file.to_str().unwrap(),
+        "-o",
+        exported.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let scxml = std::fs::read_to_string(&exported).unwrap();
+    assert!(
+        scxml.contains("<state id=\"on\" initial=\"dim\">"),
+        "{scxml}"
+    );
+    check(
+        &["check", exported.to_str().unwrap()],
+        0,
+        &format!(
+            "{}: ok (1 machine, 3 states, 4 transitions, 0 warnings)\n",
+            exported.display()
+        ),
+    );
+    let o = proclaim(&["export", doc.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+
     let parallel = temp_file(
         "both.scxml",
         b"<scxml xmlns=\"http://www.w3.org/2005/07/scxml\">\n  <parallel id=\"p\"/>\n</scxml>\n",

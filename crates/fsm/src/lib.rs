@@ -36,7 +36,7 @@ pub use lint::{lint, reachable};
 pub use model::{
     Action, Argument, Composite, Machine, State, StateId, Transition, UnreadTransition,
 };
-pub use native::{parse_machine, to_native, EXTENSION};
+pub use native::{parse_machine, to_native, to_scxml, EXTENSION};
 
 /// Editing native machine files in place: each edit a text patch at the reader's spans, so
 /// what it does not touch stays byte for byte as written.

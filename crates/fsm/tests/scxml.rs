@@ -2,7 +2,7 @@
 //! maps to, or its refusals; and real documents written by others, each read or refused with a
 //! reason, never a panic (`PROCLAIM_SCXML_CORPUS` names their folder; skipped without it).
 
-use proclaim_fsm::{import_scxml, parse_machine};
+use proclaim_fsm::{import_scxml, parse_machine, to_scxml, Machine};
 use std::collections::BTreeMap;
 
 /// `expect` is the native text, or each refusal as `line: message`.
@@ -148,6 +148,97 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
     check(
         "<scxml",
         "1: malformed XML: syntax error: tag not closed: `>` not found before end of input\n",
+    );
+}
+
+/// A machine with every line number taken out: what two readings of one machine share.
+fn without_lines(mut m: Machine) -> Machine {
+    m.states.iter_mut().for_each(|s| s.line = 0);
+    m.transitions.iter_mut().for_each(|t| t.line = 0);
+    m.composites.iter_mut().for_each(|c| c.line = 0);
+    m
+}
+
+/// native → SCXML → native is the same machine, nesting, histories, `done`, the data model
+/// and transition content included.
+#[test]
+fn a_chart_written_as_scxml_reads_back_as_the_same_machine() {
+    let native = r#"machine Keeper
+initial DATAMODEL_START
+
+state DATAMODEL_START {
+    entry {
+        int dives;
+        int limit = 3;
+    }
+    when TRUE -> GUARD
+}
+
+state GUARD {
+    when ballComing && dives < limit -> DIVE {
+        dives = dives + 1;
+    }
+    when resume -> DIVE.history
+}
+
+state DIVE {
+    entry {
+        post("diving", TRUE);
+    }
+    exit {
+        print("up " + dives);
+    }
+    initial AIM
+    when penalized -> GUARD
+    when done -> GUARD
+    when !(a || b) && !c -> DIVE.deep_history
+
+    state AIM {
+        when ballLeft -> LEFT
+        when TRUE -> LIE
+    }
+
+    state LEFT {
+        when x - (y - 1) > 2 -> LIE
+    }
+
+    state LIE {
+    }
+}
+"#;
+    let written = parse_machine("Keeper.machine", native);
+    assert!(!written.has_errors(), "{:?}", written.diagnostics);
+    let scxml = to_scxml("Keeper.machine", native).unwrap_or_else(|e| panic!("{e:?}"));
+    let read = import_scxml("Keeper.scxml", &scxml, "Keeper");
+    assert!(
+        !read.imported.has_errors(),
+        "{:?}\n{scxml}",
+        read.imported.diagnostics
+    );
+    assert_eq!(
+        without_lines(read.imported.machines[0].clone()),
+        without_lines(written.machines[0].clone()),
+        "\n{scxml}\n{}",
+        read.native.unwrap_or_default()
+    );
+}
+
+#[test]
+fn what_scxml_cannot_say_is_refused_at_its_line() {
+    let native = "machine M\nstate A {\n    internal {\n        n = n + 1;\n    }\n    entry {\n        Say: hi\n    }\n    when after(2s) -> B\n    when p -> #2\n}\nstate B #2 { }\n";
+    let refusals: Vec<String> = to_scxml("M.machine", native)
+        .expect_err("refused")
+        .iter()
+        .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+        .collect();
+    assert_eq!(
+        refusals,
+        [
+            "3: state `A`: an internal activity (run each ringlet nothing fires) has no SCXML form",
+            "7: the posting `Say: …`: its content has no SCXML form (an SCXML event carries none here); `post(\"Say\", TRUE);` raises it",
+            "9: `after(2s)`: a time test has no SCXML condition (SCXML times with delayed sends)",
+            "10: `#2`: name the state; SCXML has no numbered states",
+        ]
     );
 }
 

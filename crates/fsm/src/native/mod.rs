@@ -38,6 +38,7 @@ mod edit;
 mod edit_error;
 mod lexer;
 mod outline;
+mod to_scxml;
 mod write;
 
 use crate::code::parse_statements;
@@ -56,6 +57,7 @@ pub use edit::{
     TransitionView,
 };
 pub use edit_error::EditError;
+pub use to_scxml::to_scxml;
 pub use write::to_native;
 
 lalrpop_util::lalrpop_mod!(

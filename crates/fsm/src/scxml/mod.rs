@@ -267,7 +267,7 @@ impl Mapping<'_> {
                     let actions = self.content(child, depth + 2);
                     let _ = write!(out, "{pad}    {section} {{\n{actions}{pad}    }}\n");
                 }
-                "transition" => self.transition(child, &mut whens, depth + 1),
+                "transition" => self.transition(child, id, &mut whens, depth + 1),
                 "initial" => self.initial(child, &path, &mut whens, depth + 1),
                 "state" | "final" | "parallel" => self.state(child, &mut inner, depth + 1),
                 "history" => self.history(child, element),
@@ -335,7 +335,7 @@ impl Mapping<'_> {
     }
 
     /// `when LABEL -> TARGET { actions }`.
-    fn transition(&mut self, element: &Element, out: &mut String, depth: usize) {
+    fn transition(&mut self, element: &Element, owner: &str, out: &mut String, depth: usize) {
         let pad = "    ".repeat(depth);
         let line = element.line;
         if element.attribute("type") == Some("internal") {
@@ -350,7 +350,11 @@ impl Mapping<'_> {
             return;
         };
         let mut label = Vec::new();
-        if let Some(events) = element.attribute("event") {
+        let completion = format!("done.state.{owner}");
+        if element.attribute("event") == Some(completion.as_str()) {
+            // The state's own completion: its sub-state is final (§3.2's `done`).
+            label.push("done".to_string());
+        } else if let Some(events) = element.attribute("event") {
             let names: Vec<String> = events.split_whitespace().map(event).collect();
             if events.contains('*') {
                 self.refuse(

@@ -1,0 +1,418 @@
+//! A native machine written as SCXML, from its states as written (nesting, histories and
+//! transition content kept), the inverse of `scxml/`'s mapping: what that mapping reads back
+//! is the same machine. What SCXML cannot say is refused at its line.
+
+use super::ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
+use super::{LineIndex, MachineLexer};
+use crate::code::{parse_statements, BinOp, Expr, Statement};
+use crate::model::Action;
+use proclaim_syntax::FileDiagnostic;
+use std::collections::{HashMap, HashSet};
+use std::fmt::Write;
+
+/// The SCXML document of the native machine `text`, or why it cannot be written.
+pub fn to_scxml(file: &str, text: &str) -> Result<String, Vec<FileDiagnostic>> {
+    let read = super::parse_machine(file, text);
+    if read.has_errors() {
+        return Err(read.diagnostics);
+    }
+    let lines = LineIndex::new(text);
+    let ast = super::grammar::FileParser::new()
+        .parse(MachineLexer::new(text))
+        .map_err(|_| vec![FileDiagnostic::error(file, 1, "the file does not read")])?;
+    let mut writer = Writer {
+        file,
+        lines: &lines,
+        refusals: Vec::new(),
+        histories: HashSet::new(),
+        data: Vec::new(),
+    };
+    let out = writer.document(ast);
+    if writer.refusals.is_empty() {
+        Ok(out)
+    } else {
+        Err(writer.refusals)
+    }
+}
+
+struct Writer<'a> {
+    file: &'a str,
+    lines: &'a LineIndex<'a>,
+    refusals: Vec<FileDiagnostic>,
+    /// The composites some transition resumes, with `deep`.
+    histories: HashSet<(String, bool)>,
+    /// `<data>` items: (name, first value).
+    data: Vec<(String, String)>,
+}
+
+impl Writer<'_> {
+    fn refuse(&mut self, at: usize, message: String) {
+        let line = self.lines.line(at);
+        self.refusals
+            .push(FileDiagnostic::error(self.file, line, message));
+    }
+
+    fn document(&mut self, ast: FileAst) -> String {
+        let mut initial = None;
+        let mut states = Vec::new();
+        for item in ast.items {
+            match item {
+                TopItem::Initial(target, at) => initial = self.id(&target, at),
+                TopItem::Description(..) => {}
+                TopItem::State(s) => states.push(s),
+            }
+        }
+        // A first state that only declares the data and moves on at once is the data model
+        // (what reading SCXML writes).
+        if let Some(first) = states.first() {
+            if first.name == "DATAMODEL_START" {
+                let start = states.remove(0);
+                initial = self.data_start(start);
+            }
+        }
+        let mut names = HashMap::new();
+        for s in &states {
+            self.name_all(s, &mut names);
+        }
+        self.note_histories(&states);
+        let mut body = String::new();
+        for s in states {
+            self.state(s, &mut body, 1);
+        }
+        let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+        let _ = write!(
+            out,
+            "<scxml xmlns=\"http://www.w3.org/2005/07/scxml\" version=\"1.0\" datamodel=\"ecmascript\" name=\"{}\"",
+            attr(&ast.name)
+        );
+        if let Some(initial) = initial {
+            let _ = write!(out, " initial=\"{}\"", attr(&initial));
+        }
+        out.push_str(">\n");
+        if !self.data.is_empty() {
+            out.push_str("  <datamodel>\n");
+            for (name, value) in &self.data {
+                let _ = writeln!(
+                    out,
+                    "    <data id=\"{}\" expr=\"{}\"/>",
+                    attr(name),
+                    attr(value)
+                );
+            }
+            out.push_str("  </datamodel>\n");
+        }
+        out.push_str(&body);
+        out.push_str("</scxml>\n");
+        out
+    }
+
+    /// SCXML's ids are the document's: every state's name must be its own.
+    fn name_all(&mut self, s: &StateAst, seen: &mut HashMap<String, usize>) {
+        if seen.insert(s.name.clone(), s.at).is_some() {
+            self.refuse(
+                s.at,
+                format!(
+                    "a second state named `{}`: SCXML's ids are unique in a document",
+                    s.name
+                ),
+            );
+        }
+        for m in &s.members {
+            if let Member::State(inner) = m {
+                self.name_all(inner, seen);
+            }
+        }
+    }
+
+    fn note_histories(&mut self, states: &[StateAst]) {
+        for s in states {
+            for m in &s.members {
+                match m {
+                    Member::When {
+                        target: Ref::Name(path),
+                        ..
+                    } => {
+                        if let Some((composite, word)) = path.rsplit_once('.') {
+                            let composite = composite.rsplit('.').next().unwrap_or(composite);
+                            match word {
+                                "history" => self.histories.insert((composite.into(), false)),
+                                "deep_history" => self.histories.insert((composite.into(), true)),
+                                _ => false,
+                            };
+                        }
+                    }
+                    Member::State(inner) => self.note_histories(std::slice::from_ref(inner)),
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    fn data_start(&mut self, start: StateAst) -> Option<String> {
+        let mut next = None;
+        for m in start.members {
+            match m {
+                Member::Activity {
+                    section: Section::Entry,
+                    actions,
+                    ..
+                } => {
+                    for (action, at) in actions {
+                        let ActionAst::Statement(text) = action else {
+                            self.refuse(at, "the data model's first state may only declare".into());
+                            continue;
+                        };
+                        for s in parse_statements(&text).unwrap_or_default() {
+                            match s {
+                                Statement::Declare { name, value, .. } => {
+                                    let value = value.map_or("0".to_string(), |v| script(&v));
+                                    self.data.push((name, value));
+                                }
+                                _ => self.refuse(
+                                    at,
+                                    "the data model's first state may only declare".into(),
+                                ),
+                            }
+                        }
+                    }
+                }
+                Member::When {
+                    target, target_at, ..
+                } => next = self.id(&target, target_at),
+                _ => self.refuse(
+                    start.at,
+                    "the data model's first state may only declare and move on".into(),
+                ),
+            }
+        }
+        next
+    }
+
+    fn state(&mut self, s: StateAst, out: &mut String, depth: usize) {
+        let pad = "  ".repeat(depth);
+        let holds = s.members.iter().any(|m| matches!(m, Member::State(_)));
+        let moves = s.members.iter().any(|m| matches!(m, Member::When { .. }));
+        let element = if holds || moves { "state" } else { "final" };
+        let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
+        let mut inner = String::new();
+        for m in s.members {
+            match m {
+                Member::Initial(target, at) => {
+                    if let Some(id) = self.id(&target, at) {
+                        let _ = write!(out, " initial=\"{}\"", attr(&id));
+                    }
+                }
+                Member::Activity {
+                    section: Section::Internal,
+                    at,
+                    ..
+                } => self.refuse(at, format!("state `{}`: an internal activity (run each ringlet nothing fires) has no SCXML form", s.name)),
+                Member::Activity {
+                    section, actions, ..
+                } => {
+                    let tag = if section == Section::Entry { "onentry" } else { "onexit" };
+                    let content = self.content(actions, depth + 2);
+                    let _ = write!(inner, "{pad}  <{tag}>\n{content}{pad}  </{tag}>\n");
+                }
+                Member::When {
+                    label,
+                    label_at,
+                    target,
+                    target_at,
+                    actions,
+                    ..
+                } => {
+                    let Some(target) = self.id(&target, target_at) else {
+                        continue;
+                    };
+                    let condition = match label.trim() {
+                        "done" if holds => format!(" event=\"done.state.{}\"", attr(&s.name)),
+                        "TRUE" | "true" | "" => String::new(),
+                        text => match self.condition(text, label_at) {
+                            Some(c) => format!(" cond=\"{}\"", attr(&c)),
+                            None => continue,
+                        },
+                    };
+                    let content = self.content(actions, depth + 2);
+                    let open = format!("{pad}  <transition{condition} target=\"{}\"", attr(&target));
+                    if content.is_empty() {
+                        let _ = writeln!(inner, "{open}/>");
+                    } else {
+                        let _ = write!(inner, "{open}>\n{content}{pad}  </transition>\n");
+                    }
+                }
+                Member::State(child) => self.state(child, &mut inner, depth + 1),
+            }
+        }
+        for deep in [false, true] {
+            if self.histories.contains(&(s.name.clone(), deep)) {
+                let kind = if deep { "deep" } else { "shallow" };
+                let _ = writeln!(
+                    inner,
+                    "{pad}  <history id=\"{}_{}\" type=\"{kind}\"/>",
+                    attr(&s.name),
+                    if deep { "deep_history" } else { "history" }
+                );
+            }
+        }
+        if inner.is_empty() {
+            out.push_str("/>\n");
+        } else {
+            let _ = write!(out, ">\n{inner}{pad}</{element}>\n");
+        }
+    }
+
+    /// A target's SCXML id: the last part of its path, or a history's own id.
+    fn id(&mut self, target: &Ref, at: usize) -> Option<String> {
+        match target {
+            Ref::Id(id) => {
+                self.refuse(
+                    at,
+                    format!("`#{id}`: name the state; SCXML has no numbered states"),
+                );
+                None
+            }
+            Ref::Name(path) => {
+                let mut parts: Vec<&str> = path.split('.').collect();
+                let last = parts.pop().unwrap_or_default();
+                Some(match (last, parts.last()) {
+                    ("history" | "deep_history", Some(composite)) => format!("{composite}_{last}"),
+                    _ => last.to_string(),
+                })
+            }
+        }
+    }
+
+    fn condition(&mut self, label: &str, at: usize) -> Option<String> {
+        match crate::label::parse_label(label) {
+            Ok(e) => {
+                let timed = e
+                    .calls()
+                    .iter()
+                    .any(|(f, _)| crate::label::TIME_TESTS.iter().any(|(t, _)| t == f));
+                if timed {
+                    self.refuse(at, format!("`{label}`: a time test has no SCXML condition (SCXML times with delayed sends)"));
+                    return None;
+                }
+                Some(script(&e))
+            }
+            Err(e) => {
+                self.refuse(at, format!("`{label}`: {}", e.message));
+                None
+            }
+        }
+    }
+
+    /// Activity items as executable content, one element a line.
+    fn content(&mut self, actions: Vec<(ActionAst, usize)>, depth: usize) -> String {
+        let pad = "  ".repeat(depth);
+        let mut out = String::new();
+        for (action, at) in actions {
+            let text = match action {
+                ActionAst::Statement(text) => text,
+                ActionAst::Done(Action::Post { ty, .. }) => {
+                    self.refuse(at, format!("the posting `{ty}: …`: its content has no SCXML form (an SCXML event carries none here); `post(\"{ty}\", TRUE);` raises it"));
+                    continue;
+                }
+                ActionAst::Done(_) => {
+                    self.refuse(at, "a host call or kept code has no SCXML form".into());
+                    continue;
+                }
+            };
+            for s in parse_statements(&text).unwrap_or_default() {
+                if let Statement::Declare {
+                    name, value: None, ..
+                } = &s
+                {
+                    self.data.push((name.clone(), "0".into()));
+                    continue;
+                }
+                match self.element(&s) {
+                    Some(element) => {
+                        let _ = writeln!(out, "{pad}{element}");
+                    }
+                    None => self.refuse(at, format!("`{s}`: only assignments, `post(\"event\", TRUE)` and `print(…)` have SCXML forms")),
+                }
+            }
+        }
+        out
+    }
+
+    fn element(&self, s: &Statement) -> Option<String> {
+        match s {
+            Statement::Assign { name, value } => Some(format!(
+                "<assign location=\"{}\" expr=\"{}\"/>",
+                attr(name),
+                attr(&script(value))
+            )),
+            Statement::Expr(Expr::Call {
+                function,
+                arguments,
+            }) => match (function.as_str(), arguments.as_slice()) {
+                ("post", [Expr::Str(event), Expr::Bool(true)]) => {
+                    Some(format!("<raise event=\"{}\"/>", attr(event)))
+                }
+                ("print", [e]) => Some(format!("<log expr=\"{}\"/>", attr(&script(e)))),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+}
+
+/// An expression as ECMAScript: `!` for not, `'…'` strings.
+fn script(e: &Expr) -> String {
+    match e {
+        Expr::Unary {
+            op: crate::code::UnOp::Not,
+            operand,
+        } => format!("!{}", wrapped(operand)),
+        Expr::Binary { op, left, right } => {
+            // The right side binds as tightly as its operator only in brackets: `a - (b - c)`.
+            let side = |x: &Expr, right: bool| match x {
+                Expr::Binary { op: inner, .. }
+                    if precedence(*inner) < precedence(*op)
+                        || (right && precedence(*inner) == precedence(*op)) =>
+                {
+                    format!("({})", script(x))
+                }
+                _ => script(x),
+            };
+            format!(
+                "{} {} {}",
+                side(left, false),
+                op.symbol(),
+                side(right, true)
+            )
+        }
+        Expr::Str(s) => format!("'{s}'"),
+        Expr::Bool(b) => b.to_string(),
+        other => other.to_string(),
+    }
+}
+
+fn wrapped(e: &Expr) -> String {
+    match e {
+        Expr::Binary { .. } => format!("({})", script(e)),
+        _ => script(e),
+    }
+}
+
+fn precedence(op: BinOp) -> u8 {
+    match op {
+        BinOp::Or => 1,
+        BinOp::And => 2,
+        BinOp::Eq | BinOp::Ne => 3,
+        BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => 4,
+        BinOp::Add | BinOp::Sub => 5,
+        BinOp::Mul | BinOp::Div | BinOp::Rem => 6,
+    }
+}
+
+/// Text as an XML attribute's value.
+fn attr(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
