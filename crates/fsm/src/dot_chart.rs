@@ -3,7 +3,7 @@
 //! transition drawn once from its cluster's edge.
 
 use crate::dot_text::{escape, node, quote, show};
-use crate::model::{Action, Machine, State, StateId};
+use crate::model::{Action, Machine, State, StateId, Transition};
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -134,30 +134,39 @@ impl<'m> Drawing<'m> {
     /// Each transition once as written: a state's own from its node, numbered among them; a
     /// composite's from its cluster's edge, numbered among the composite's.
     fn edges(&self, out: &mut String, indent: &str) {
-        let mut drawn: Vec<(String, usize, String)> = Vec::new();
-        let mut numbers: HashMap<String, Vec<usize>> = HashMap::new();
-        for t in &self.machine.transitions {
+        // One written transition lowers to several (a copy a state, an arm a place a history
+        // resumes): each is drawn once, as its last, which for a history is the one that
+        // carries the label as written.
+        let written = |t: &Transition| {
             let from = match t.composite {
                 Some(c) => self.cluster_name(c),
                 None => self.node(t.source),
             };
-            let key = (from.clone(), t.line, t.label.to_string());
-            if drawn.contains(&key) {
-                continue;
+            (from, t.line)
+        };
+        let mut last: HashMap<(String, usize), &Transition> = HashMap::new();
+        let mut order: Vec<(String, usize)> = Vec::new();
+        for t in &self.machine.transitions {
+            let key = written(t);
+            if last.insert(key.clone(), t).is_none() {
+                order.push(key);
             }
-            drawn.push(key);
-            let lines = numbers.entry(from.clone()).or_default();
-            lines.push(t.line);
+        }
+        let mut numbers: HashMap<&str, usize> = HashMap::new();
+        for key in &order {
+            let t = last[key];
+            let from = key.0.as_str();
+            let number = numbers.entry(from).or_default();
+            *number += 1;
             let tail = match t.composite {
-                Some(_) => format!(", ltail={}", quote(&from)),
+                Some(_) => format!(", ltail={}", quote(from)),
                 None => String::new(),
             };
             let _ = writeln!(
                 out,
-                "{indent}{} -> {} [label=\"{}: {}\"{tail}];",
+                "{indent}{} -> {} [label=\"{number}: {}\"{tail}];",
                 self.node(t.source),
                 self.node(t.target),
-                lines.len(),
                 escape(&t.label.to_string())
             );
         }

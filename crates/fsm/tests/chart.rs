@@ -207,7 +207,7 @@ state PLAY {
     }
     when whistle -> PAUSE
     state SEARCH { when seen -> KICK }
-    state KICK { }
+    state KICK { when again -> PLAY.history }
 }
 state PAUSE {
     when resume -> PLAY.history
@@ -219,6 +219,7 @@ PLAY.SEARCH#1 entry[Statement(Declare { ty: Int, name: \"PLAY_history\", value: 
   seen -> PLAY.KICK#2
   whistle -> PAUSE#3 leaving[Statement(Assign { name: \"PLAY_history\", value: Int(1) }) PlayOff] of PLAY
 PLAY.KICK#2 entry[] exit[] internal[]
+  again -> PLAY.KICK#2 leaving[Statement(Assign { name: \"PLAY_history\", value: Int(2) }) PlayOff]
   whistle -> PAUSE#3 leaving[Statement(Assign { name: \"PLAY_history\", value: Int(2) }) PlayOff] of PLAY
 PAUSE#3 entry[] exit[] internal[]
   PLAY_history == 1 && resume -> PLAY.SEARCH#1
@@ -296,15 +297,18 @@ state A {
 }
 state B { state SEARCH { } state S.T { } state history { } }
 state C { state SEARCH { } when p -> B.SEARCH.history }
+state D { when done -> C  state E { when p -> E } }
 ",
         "9: `S.T`: a state's name cannot hold `.` where states nest, since `.` separates a path (`PLAY.SEARCH`)
 9: `history` names a composite's history where states nest (`-> PLAY.history`): call the state something else
 7: two states are named `X` in `A`
 5: `A` holds no state named `Z`
+3: `when done` on `A` never fires: no state directly in it is final (has no transition of its own)
 4: a time test on the transition of `A`, which holds states, would count from its entry whatever happens inside it: not built yet; test the time on the states inside it
 6: `when done` belongs to a state that holds states (it fires once the one it is in is final); `A.X` holds none
 7: `SEARCH` could be `B.SEARCH` or `C.SEARCH`: write the path of the one meant
 10: `B.SEARCH` holds no states, so it has no history to resume
+11: `when done` on `D` never fires: no state directly in it is final (has no transition of its own)
 ",
     );
 }

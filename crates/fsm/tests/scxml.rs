@@ -146,6 +146,25 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
 ",
     );
     check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml">
+  <state id="p" initial="deep">
+    <state id="q"><state id="deep"/></state>
+    <transition event="done.state.p" cond="x" target="p"/>
+  </state>
+  <state><transition target="p"/></state>
+  <state id="r">
+    <state id="idle"/>
+    <transition event="done.state.r" target="p"/>
+  </state>
+  <state id="s"><transition cond="malfunction &gt; 0 &amp;&amp; x != 'it&quot;s'" target="s"/></state>
+</scxml>"#,
+        "4: `done.state.p` with a `cond`: `done` stands alone
+2: initial `deep`: only one of the state's own states maps (not a deeper one or a history)
+6: <state> without an `id`: give it one (it names the state)
+8: <state id=\"idle\"> has no transition, so it would be final here, which SCXML's is not, and `r` waits for its completion: write it as <final>
+",
+    );
+    check(
         "<scxml",
         "1: malformed XML: syntax error: tag not closed: `>` not found before end of input\n",
     );
@@ -170,6 +189,8 @@ state DATAMODEL_START {
     entry {
         int dives;
         int limit = 3;
+        bool tired;
+        float speed = 1.5;
     }
     when TRUE -> GUARD
 }
@@ -187,6 +208,7 @@ state DIVE {
     }
     exit {
         print("up " + dives);
+        print("say \"hi\", it's\ttime");
     }
     initial AIM
     when penalized -> GUARD

@@ -97,9 +97,13 @@ impl History {
     }
 
     /// The machine variable lowering keeps it in: named after the composite's path, so that a
-    /// trace's assignments say which.
+    /// trace's assignments say which (letters, digits and `_`; see [`Tree::name_histories`]).
     fn variable(self, path: &str) -> String {
-        format!("{}_{}", path.replace('.', "_"), self.word())
+        let path: String = path
+            .chars()
+            .map(|c| if c.is_alphanumeric() { c } else { '_' })
+            .collect();
+        format!("{path}_{}", self.word())
     }
 }
 
@@ -115,6 +119,8 @@ struct Tree {
     first: Vec<Option<usize>>,
     /// The histories some transition resumes: only these are kept.
     histories: Vec<(usize, History)>,
+    /// Each kept history's variable, told apart from every other name of the machine.
+    variables: Vec<String>,
 }
 
 impl Tree {
@@ -218,6 +224,33 @@ impl Tree {
             }
             self.written.push(written);
         }
+        self.name_histories();
+    }
+
+    /// A variable for each history: `PLAY_history`, with a number after it where two paths
+    /// would give one name (`A.B` and `A_B`).
+    fn name_histories(&mut self) {
+        for &(composite, history) in &self.histories {
+            let base = history.variable(&self.nodes[composite].path);
+            let mut name = base.clone();
+            let mut n = 1;
+            while self.variables.contains(&name) {
+                n += 1;
+                name = format!("{base}{n}");
+            }
+            self.variables.push(name);
+        }
+    }
+
+    /// The variable of `composite`'s `history`.
+    fn variable(&self, composite: usize, history: History) -> String {
+        let at = self
+            .histories
+            .iter()
+            .position(|&h| h == (composite, history));
+        at.and_then(|k| self.variables.get(k))
+            .cloned()
+            .unwrap_or_else(|| history.variable(&self.nodes[composite].path))
     }
 
     fn initial_of(&self, lowering: &mut Lowering<'_>, n: usize) -> Option<usize> {
@@ -260,6 +293,20 @@ impl Tree {
                 ),
             );
             return None;
+        }
+        if done
+            && !node
+                .children
+                .iter()
+                .any(|&c| self.nodes[c].children.is_empty() && self.nodes[c].whens.is_empty())
+        {
+            lowering.warn(
+                when.label_at,
+                format!(
+                    "`when done` on `{}` never fires: no state directly in it is final (has no transition of its own)",
+                    node.path
+                ),
+            );
         }
         let timed = label
             .calls()
@@ -589,8 +636,20 @@ impl<'t> Flattening<'t> {
                 };
                 // A history resumes where the composite was left: an arm for each place it
                 // may have been left at, tested first, then its initial for never.
+                if let (Some(history), true) = (w.history, left.contains(&w.target)) {
+                    // Leaving the composite notes where this very move leaves it: that is where
+                    // it comes back to.
+                    let resumed = tree.resumed(w.target, history);
+                    let here = resumed
+                        .iter()
+                        .find(|&&n| tree.chain(atomic).any(|a| a == n));
+                    let back = here.map_or(w.target, |&n| n);
+                    let target = self.variant(tree.descend(back), top);
+                    arms.push(arm(label, target));
+                    continue;
+                }
                 if let Some(history) = w.history {
-                    let variable = history.variable(&tree.nodes[w.target].path);
+                    let variable = tree.variable(w.target, history);
                     for (k, resumed) in tree.resumed(w.target, history).into_iter().enumerate() {
                         let was = Expr::Binary {
                             op: BinOp::Eq,
@@ -629,7 +688,7 @@ impl<'t> Flattening<'t> {
                 .position(|&n| tree.chain(atomic).any(|a| a == n))
                 .map_or(0, |k| k as i64 + 1);
             noted.push(Action::Statement(Statement::Assign {
-                name: history.variable(&tree.nodes[composite].path),
+                name: tree.variable(composite, history),
                 value: Expr::Int(at),
             }));
         }
@@ -696,7 +755,7 @@ impl<'t> Flattening<'t> {
             first.on_entry.extend(tree.histories.iter().map(|&(c, h)| {
                 Action::Statement(Statement::Declare {
                     ty: VarType::Int,
-                    name: h.variable(&tree.nodes[c].path),
+                    name: tree.variable(c, h),
                     value: None,
                 })
             }));

@@ -311,6 +311,12 @@ impl Lowering<'_> {
             .push(self.lines.error(self.file, at, message));
     }
 
+    fn warn(&mut self, at: usize, message: String) {
+        let mut d = self.lines.error(self.file, at, message);
+        d.severity = proclaim_syntax::Severity::Warning;
+        self.diagnostics.push(d);
+    }
+
     /// The description, the initial state as written, and the states, each said once.
     fn header(&mut self, items: Vec<TopItem>) -> (String, Option<(Ref, usize)>, Vec<StateAst>) {
         let mut initial_ref = None;

@@ -41,8 +41,8 @@ struct Writer<'a> {
     refusals: Vec<FileDiagnostic>,
     /// The composites some transition resumes, with `deep`.
     histories: HashSet<(String, bool)>,
-    /// `<data>` items: (name, first value).
-    data: Vec<(String, String)>,
+    /// `<data>` items: (name, type, first value).
+    data: Vec<(String, &'static str, String)>,
 }
 
 impl Writer<'_> {
@@ -91,10 +91,10 @@ impl Writer<'_> {
         out.push_str(">\n");
         if !self.data.is_empty() {
             out.push_str("  <datamodel>\n");
-            for (name, value) in &self.data {
+            for (name, ty, value) in &self.data {
                 let _ = writeln!(
                     out,
-                    "    <data id=\"{}\" expr=\"{}\"/>",
+                    "    <data id=\"{}\" type=\"{ty}\" expr=\"{}\"/>",
                     attr(name),
                     attr(value)
                 );
@@ -164,9 +164,9 @@ impl Writer<'_> {
                         };
                         for s in parse_statements(&text).unwrap_or_default() {
                             match s {
-                                Statement::Declare { name, value, .. } => {
+                                Statement::Declare { name, value, ty } => {
                                     let value = value.map_or("0".to_string(), |v| script(&v));
-                                    self.data.push((name, value));
+                                    self.declare(name, &ty, value, at);
                                 }
                                 _ => self.refuse(
                                     at,
@@ -186,6 +186,24 @@ impl Writer<'_> {
             }
         }
         next
+    }
+
+    /// A `<data>` item: a number or a truth.
+    fn declare(&mut self, name: String, ty: &crate::code::VarType, value: String, at: usize) {
+        use crate::code::VarType;
+        let ty = match ty {
+            VarType::Int | VarType::Char => "int32",
+            VarType::Bool => "bool",
+            VarType::Float | VarType::Double => "float64",
+            VarType::Named(other) => {
+                self.refuse(
+                    at,
+                    format!("`{other} {name}`: SCXML data here is a number or a truth"),
+                );
+                return;
+            }
+        };
+        self.data.push((name, ty, value));
     }
 
     fn state(&mut self, s: StateAst, out: &mut String, depth: usize) {
@@ -321,10 +339,12 @@ impl Writer<'_> {
             };
             for s in parse_statements(&text).unwrap_or_default() {
                 if let Statement::Declare {
-                    name, value: None, ..
+                    name,
+                    value: None,
+                    ty,
                 } = &s
                 {
-                    self.data.push((name.clone(), "0".into()));
+                    self.declare(name.clone(), ty, "0".into(), at);
                     continue;
                 }
                 match self.element(&s) {
@@ -385,7 +405,7 @@ fn script(e: &Expr) -> String {
                 side(right, true)
             )
         }
-        Expr::Str(s) => format!("'{s}'"),
+        Expr::Str(s) => format!("{s:?}"),
         Expr::Bool(b) => b.to_string(),
         other => other.to_string(),
     }
@@ -409,10 +429,14 @@ fn precedence(op: BinOp) -> u8 {
     }
 }
 
-/// Text as an XML attribute's value.
+/// Text as an XML attribute's value (tabs and line breaks as references, which attribute
+/// normalisation keeps).
 fn attr(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
+        .replace('\t', "&#9;")
+        .replace('\n', "&#10;")
+        .replace('\r', "&#13;")
 }

@@ -250,7 +250,14 @@ impl Mapping<'_> {
             return;
         }
         let pad = "    ".repeat(depth);
-        let id = element.attribute("id").unwrap_or_default();
+        let Some(id) = element.attribute("id") else {
+            let what = &element.name;
+            self.refuse(
+                element.line,
+                format!("<{what}> without an `id`: give it one (it names the state)"),
+            );
+            return;
+        };
         let path = self.names.get(id).cloned().unwrap_or_default();
         let name = path.rsplit('.').next().unwrap_or(&path).to_string();
         let _ = writeln!(out, "\n{pad}state {name} {{ {}", at(element.line));
@@ -280,15 +287,11 @@ impl Mapping<'_> {
             }
         }
         if let Some(first) = element.attribute("initial") {
-            if let Some(target) = self.target(first, element.line) {
-                let _ = writeln!(
-                    out,
-                    "{pad}    initial {} {}",
-                    relative(&target, &path),
-                    at(element.line)
-                );
+            if let Some(target) = self.own_state(first, &path, element.line) {
+                let _ = writeln!(out, "{pad}    initial {target} {}", at(element.line));
             }
         }
+        self.never_final(element, id);
         out.push_str(&whens);
         out.push_str(&inner);
         let _ = writeln!(out, "{pad}}}");
@@ -299,13 +302,8 @@ impl Mapping<'_> {
         let transition = element.children.iter().find(|c| c.name == "transition");
         match transition.and_then(|t| t.attribute("target").map(|ids| (t, ids))) {
             Some((t, ids)) if t.children.is_empty() => {
-                if let Some(target) = self.target(ids, t.line) {
-                    let _ = writeln!(
-                        out,
-                        "{pad}initial {} {}",
-                        relative(&target, path),
-                        at(t.line)
-                    );
+                if let Some(target) = self.own_state(ids, path, t.line) {
+                    let _ = writeln!(out, "{pad}initial {target} {}", at(t.line));
                 }
             }
             _ => self.refuse(
@@ -353,6 +351,13 @@ impl Mapping<'_> {
         let completion = format!("done.state.{owner}");
         if element.attribute("event") == Some(completion.as_str()) {
             // The state's own completion: its sub-state is final (§3.2's `done`).
+            if element.attribute("cond").is_some() {
+                self.refuse(
+                    line,
+                    format!("`{completion}` with a `cond`: `done` stands alone"),
+                );
+                return;
+            }
             label.push("done".to_string());
         } else if let Some(events) = element.attribute("event") {
             let names: Vec<String> = events.split_whitespace().map(event).collect();
@@ -489,18 +494,15 @@ impl Mapping<'_> {
                 "_event",
                 "an event's data (`_event`): events carry none here",
             ),
-            ("In(", "`In(…)`: name the state as a property does instead"),
+            ("In", "`In(…)`: name the state as a property does instead"),
             ("function", "a function"),
         ] {
-            if text.contains(what) {
+            if mentions(text, what) {
                 self.refuse(line, format!("`{text}`: {why}"));
                 return None;
             }
         }
-        let mapped = text
-            .replace("===", "==")
-            .replace("!==", "!=")
-            .replace('\'', "\"");
+        let mapped = double_quoted(&text.replace("===", "==").replace("!==", "!="));
         match parse_expression(&mapped) {
             Ok(e) => Some(e.to_string()),
             Err(err) => {
@@ -509,6 +511,45 @@ impl Mapping<'_> {
                     format!("`{text}` does not read as an expression: {}", err.message),
                 );
                 None
+            }
+        }
+    }
+
+    /// An `initial`'s state, which must be one of `path`'s own (a deeper one, or a history,
+    /// has no native form yet).
+    fn own_state(&mut self, ids: &str, path: &str, line: usize) -> Option<String> {
+        let target = self.target(ids, line)?;
+        let own = relative(&target, path);
+        if own.contains('.') || own == target || own == "history" || own == "deep_history" {
+            self.refuse(line, format!("initial `{ids}`: only one of the state's own states maps (not a deeper one or a history)"));
+            return None;
+        }
+        Some(own)
+    }
+
+    /// A `<state>` with no transition is final here (§3.2), which SCXML's is not: that differs
+    /// only where its composite `id` waits for its completion, which is refused.
+    fn never_final(&mut self, element: &Element, id: &str) {
+        let completion = format!("done.state.{id}");
+        let waits = element
+            .children
+            .iter()
+            .any(|t| t.name == "transition" && t.attribute("event") == Some(completion.as_str()));
+        if !waits {
+            return;
+        }
+        let moves = |c: &Element| {
+            c.children.iter().any(|t| {
+                matches!(
+                    t.name.as_str(),
+                    "transition" | "state" | "parallel" | "final"
+                )
+            })
+        };
+        for c in &element.children {
+            if c.name == "state" && !moves(c) {
+                let which = c.attribute("id").unwrap_or_default().to_string();
+                self.refuse(c.line, format!("<state id=\"{which}\"> has no transition, so it would be final here, which SCXML's is not, and `{id}` waits for its completion: write it as <final>"));
             }
         }
     }
@@ -583,6 +624,43 @@ fn lines_of_the_document(machine: &mut crate::Machine, native: &str) {
     for c in &mut machine.composites {
         c.line = of(c.line);
     }
+}
+
+/// Whether `text` names `word` as a whole identifier (`In(` but not `Index(`, `_event` but not
+/// `my_event`).
+fn mentions(text: &str, word: &str) -> bool {
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    text.match_indices(word).any(|(at, _)| {
+        let before = text[..at].chars().next_back();
+        let after = text[at + word.len()..].chars().next();
+        !before.is_some_and(ident) && !after.is_some_and(ident)
+    })
+}
+
+/// ECMAScript's single-quoted strings as the activity language's double-quoted ones.
+fn double_quoted(text: &str) -> String {
+    let mut out = String::new();
+    let mut quote: Option<char> = None;
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        match (quote, c) {
+            (None, '\'' | '"') => {
+                quote = Some(c);
+                out.push('"');
+            }
+            (Some(q), c) if c == q => {
+                quote = None;
+                out.push('"');
+            }
+            (Some(_), '\\') => {
+                out.push('\\');
+                out.extend(chars.next());
+            }
+            (Some('\''), '"') => out.push_str("\\\""),
+            (_, c) => out.push(c),
+        }
+    }
+    out
 }
 
 /// An event name as a label atom: `a.b-c` is `a_b_c`.
