@@ -233,10 +233,12 @@ impl Nest<'_> {
             let _ = writeln!(out, "    initial {}", shape.pick(&inner).0);
         }
         for _ in 0..shape.below(3) {
-            let target = if shape.chance(15) {
-                name.clone()
-            } else {
-                format!("S{}", shape.below(self.states))
+            // Back into itself: at its initial, or (from inside) where this move leaves it.
+            let target = match shape.below(20) {
+                0..=2 => name.clone(),
+                3 => format!("{name}.history"),
+                4 => format!("{name}.deep_history"),
+                _ => format!("S{}", shape.below(self.states)),
             };
             let label = if shape.chance(30) {
                 "done".to_string()
