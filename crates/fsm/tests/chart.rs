@@ -1,7 +1,7 @@
 //! Nested states as the flat machine they lower to (`docs/spec/behaviour.md` §3.2): each test
 //! a chart and the flat states, arrivals, arms and leavings written out.
 
-use proclaim_fsm::{parse_machine, Action, Machine};
+use proclaim_fsm::{parse_machine, to_native, Action, Machine};
 
 /// Posts only, so that what runs reads as the order it runs in.
 fn said(actions: &[Action]) -> String {
@@ -282,6 +282,24 @@ P.B#2 entry[] exit[] internal[]
 Q#3 entry[] exit[] internal[]
 ",
     );
+}
+
+/// A flat machine's transition actions survive being written again (`proclaim import` of a
+/// native file).
+#[test]
+fn a_transitions_own_actions_are_written_back() {
+    let text = "machine M\nstate A {\n    exit {\n        Off: now\n    }\n    when p -> B {\n        n = n + 1;\n    }\n}\nstate B {\n}\n";
+    let read = parse_machine("M.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let written = to_native(&read.machines[0]);
+    assert!(
+        written.contains("when p -> B {\n        n = n + 1;\n    }"),
+        "{written}"
+    );
+    let again = parse_machine("M.machine", &written);
+    let leaving = |m: &Machine| m.transitions[0].leaving.clone();
+    assert_eq!(leaving(&again.machines[0]), leaving(&read.machines[0]));
+    assert_eq!(to_native(&again.machines[0]), written);
 }
 
 #[test]

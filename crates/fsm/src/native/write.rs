@@ -1,4 +1,5 @@
-//! Writes a machine in the native format; reading the text back gives the same machine.
+//! Writes a flat machine in the native format; reading the text back gives the same machine
+//! (a machine that nests states is written by its own file, or as SCXML by `to_scxml`).
 
 use crate::model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
 use std::collections::HashMap;
@@ -113,7 +114,26 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
         out.push_str("    }\n");
     }
     for t in index.outgoing.get(&state.id).into_iter().flatten() {
-        let _ = writeln!(out, "    when {} -> {}", t.label, index.reference(t.target));
+        let _ = write!(out, "    when {} -> {}", t.label, index.reference(t.target));
+        // A transition's own actions follow its state's OnExit in what it runs leaving (a
+        // chart's lowered transitions, which leave more, are written by their own file).
+        let own = t
+            .leaving
+            .as_deref()
+            .and_then(|leaving| leaving.strip_prefix(state.on_exit.as_slice()))
+            .filter(|own| !own.is_empty());
+        match own {
+            Some(own) => {
+                out.push_str(" {\n");
+                for action in own {
+                    out.push_str("        ");
+                    write_action(out, action);
+                    out.push('\n');
+                }
+                out.push_str("    }\n");
+            }
+            None => out.push('\n'),
+        }
     }
     // Kept so nothing of the original is lost; a comment, so the file still reads.
     for u in index.unread.get(&state.id).into_iter().flatten() {
