@@ -222,6 +222,48 @@ fn test_coverage_names_the_priority_no_recording_exercised() {
     ));
 }
 
+/// A chart's coverage is of what was written: the keeper's match enters every step of its
+/// nested dive and fires the dive's penalty, which lowering copies to each step; each is
+/// listed once, exercised when any copy was.
+#[test]
+fn test_coverage_of_a_chart_lists_each_written_state_and_transition_once() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-coverage-chart-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let recording = dir.join("match.jsonl");
+    record_run("machines/keeper", "7s", &recording, &[]);
+    let o = proclaim(&[
+        "test",
+        "machines/keeper",
+        recording.to_str().unwrap(),
+        "--coverage",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let listed = |kind: &str, what: &str| -> Vec<bool> {
+        json[kind]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["what"] == what)
+            .map(|c| c["exercised"].as_bool().unwrap())
+            .collect()
+    };
+    assert_eq!(listed("states", "Keeper.DIVE.RIGHT"), [true], "{json}");
+    assert_eq!(
+        listed("transitions", "Keeper: DIVE -> PENALIZED (penalized)"),
+        [true],
+        "{json}"
+    );
+    assert_eq!(
+        listed("transitions", "Keeper: GUARD -> PENALIZED (penalized)"),
+        [false],
+        "{json}"
+    );
+}
+
 /// `test --update` accepts a deliberate change: a recording that the changed behaviour no longer
 /// matches is recorded again on it (the same outside replayed), the changed round is shown, and
 /// the new recording then passes; one that still matches is left alone.

@@ -118,45 +118,7 @@ fn theories_did(behaviour: &Behaviour, recording: &Recording, done: &mut Exercis
 fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
     let mut coverage = Coverage::default();
     for m in &behaviour.machines {
-        let name = &m.machine.name;
-        for s in &m.machine.states {
-            coverage.states.push(Covered {
-                what: format!("{name}.{}", s.name),
-                exercised: done.entered.contains(&(name.clone(), s.id)),
-                place: Some(CoveredPlace {
-                    machine: name.clone(),
-                    state: s.id,
-                    target: None,
-                    label: None,
-                }),
-            });
-        }
-        let state = |id| {
-            m.machine
-                .states
-                .iter()
-                .find(|s| s.id == id)
-                .map_or("?", |s| &s.name)
-        };
-        for t in &m.machine.transitions {
-            let label = t.label.to_string();
-            coverage.transitions.push(Covered {
-                what: format!(
-                    "{name}: {} -> {} ({label})",
-                    state(t.source),
-                    state(t.target)
-                ),
-                exercised: done
-                    .fired
-                    .contains(&(name.clone(), t.source, t.target, label.clone())),
-                place: Some(CoveredPlace {
-                    machine: name.clone(),
-                    state: t.source,
-                    target: Some(t.target),
-                    label: Some(label),
-                }),
-            });
-        }
+        machine_listed(&m.machine, done, &mut coverage);
     }
     for t in &behaviour.theories {
         let theory = &t.theory;
@@ -182,6 +144,70 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
         }
     }
     coverage
+}
+
+/// A machine's states and transitions as written, each once: a nested state lowers to a flat
+/// state for each way into it and a composite's transition to a copy for each state inside it
+/// (`docs/spec/behaviour.md` §3.2), and what was written is exercised when any of them was.
+fn machine_listed(machine: &proclaim_fsm::Machine, done: &Exercised, coverage: &mut Coverage) {
+    let name = &machine.name;
+    let mut states: Vec<((&str, usize), Covered)> = Vec::new();
+    for s in &machine.states {
+        let entered = done.entered.contains(&(name.clone(), s.id));
+        match states
+            .iter_mut()
+            .find(|(k, _)| *k == (s.name.as_str(), s.line))
+        {
+            Some((_, c)) => c.exercised |= entered,
+            None => states.push((
+                (s.name.as_str(), s.line),
+                Covered {
+                    what: format!("{name}.{}", s.name),
+                    exercised: entered,
+                    place: Some(CoveredPlace {
+                        machine: name.clone(),
+                        state: s.id,
+                        target: None,
+                        label: None,
+                    }),
+                },
+            )),
+        }
+    }
+    coverage.states.extend(states.into_iter().map(|(_, c)| c));
+    let state = |id| machine.state(id).map_or("?", |s| s.name.as_str());
+    let mut transitions: Vec<(String, usize, Covered)> = Vec::new();
+    for t in &machine.transitions {
+        let label = t.label.to_string();
+        let from = machine.written_on(t).unwrap_or("?");
+        let what = format!("{name}: {from} -> {} ({label})", state(t.target));
+        let fired = done
+            .fired
+            .contains(&(name.clone(), t.source, t.target, label.clone()));
+        match transitions
+            .iter_mut()
+            .find(|(w, l, _)| *w == what && *l == t.line)
+        {
+            Some((_, _, c)) => c.exercised |= fired,
+            None => transitions.push((
+                what.clone(),
+                t.line,
+                Covered {
+                    what,
+                    exercised: fired,
+                    place: Some(CoveredPlace {
+                        machine: name.clone(),
+                        state: t.source,
+                        target: Some(t.target),
+                        label: Some(label),
+                    }),
+                },
+            )),
+        }
+    }
+    coverage
+        .transitions
+        .extend(transitions.into_iter().map(|(_, _, c)| c));
 }
 
 /// The rules an explanation shows applying: their bodies held (a supporter, a strict chain, an
