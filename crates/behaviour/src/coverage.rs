@@ -9,7 +9,7 @@ use crate::recorded::Recording;
 use crate::why::replay;
 use proclaim_cdl::{About, Explanation};
 use proclaim_runner::Event;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// How deep an answer's explanation is followed for the rules under it (each literal is
 /// explained once, so a theory's chains end well before this).
@@ -151,32 +151,29 @@ fn listed(behaviour: &Behaviour, done: &Exercised) -> Coverage {
 /// (`docs/spec/behaviour.md` §3.2), and what was written is exercised when any of them was.
 fn machine_listed(machine: &proclaim_fsm::Machine, done: &Exercised, coverage: &mut Coverage) {
     let name = &machine.name;
-    let mut states: Vec<((&str, usize), Covered)> = Vec::new();
+    // Each as written, at its place in the list; the flat copies after it mark it.
+    let mut state_at: FxHashMap<(&str, usize), usize> = FxHashMap::default();
     for s in &machine.states {
         let entered = done.entered.contains(&(name.clone(), s.id));
-        match states
-            .iter_mut()
-            .find(|(k, _)| *k == (s.name.as_str(), s.line))
-        {
-            Some((_, c)) => c.exercised |= entered,
-            None => states.push((
-                (s.name.as_str(), s.line),
-                Covered {
+        let at = *state_at
+            .entry((s.name.as_str(), s.line))
+            .or_insert_with(|| {
+                coverage.states.push(Covered {
                     what: format!("{name}.{}", s.name),
-                    exercised: entered,
+                    exercised: false,
                     place: Some(CoveredPlace {
                         machine: name.clone(),
                         state: s.id,
                         target: None,
                         label: None,
                     }),
-                },
-            )),
-        }
+                });
+                coverage.states.len() - 1
+            });
+        coverage.states[at].exercised |= entered;
     }
-    coverage.states.extend(states.into_iter().map(|(_, c)| c));
     let state = |id| machine.state(id).map_or("?", |s| s.name.as_str());
-    let mut transitions: Vec<(String, usize, Covered)> = Vec::new();
+    let mut transition_at: FxHashMap<(String, usize), usize> = FxHashMap::default();
     for t in &machine.transitions {
         let label = t.label.to_string();
         let from = machine.written_on(t).unwrap_or("?");
@@ -184,30 +181,23 @@ fn machine_listed(machine: &proclaim_fsm::Machine, done: &Exercised, coverage: &
         let fired = done
             .fired
             .contains(&(name.clone(), t.source, t.target, label.clone()));
-        match transitions
-            .iter_mut()
-            .find(|(w, l, _)| *w == what && *l == t.line)
-        {
-            Some((_, _, c)) => c.exercised |= fired,
-            None => transitions.push((
-                what.clone(),
-                t.line,
-                Covered {
+        let at = *transition_at
+            .entry((what.clone(), t.line))
+            .or_insert_with(|| {
+                coverage.transitions.push(Covered {
                     what,
-                    exercised: fired,
+                    exercised: false,
                     place: Some(CoveredPlace {
                         machine: name.clone(),
                         state: t.source,
                         target: Some(t.target),
                         label: Some(label),
                     }),
-                },
-            )),
-        }
+                });
+                coverage.transitions.len() - 1
+            });
+        coverage.transitions[at].exercised |= fired;
     }
-    coverage
-        .transitions
-        .extend(transitions.into_iter().map(|(_, _, c)| c));
 }
 
 /// The rules an explanation shows applying: their bodies held (a supporter, a strict chain, an

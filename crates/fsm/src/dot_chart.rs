@@ -34,18 +34,15 @@ struct Drawing<'m> {
 impl<'m> Drawing<'m> {
     fn new(machine: &'m Machine, prefix: &'m str) -> Drawing<'m> {
         let mut written: Vec<&State> = Vec::new();
+        let mut first: HashMap<(&str, usize), StateId> = HashMap::new();
         let mut node_of = HashMap::new();
         for state in &machine.states {
-            let first = written
-                .iter()
-                .find(|w| w.name == state.name && w.line == state.line);
-            let id = match first {
-                Some(w) => w.id,
-                None => {
+            let id = *first
+                .entry((state.name.as_str(), state.line))
+                .or_insert_with(|| {
                     written.push(state);
                     state.id
-                }
-            };
+                });
             node_of.insert(state.id, id);
         }
         Drawing {

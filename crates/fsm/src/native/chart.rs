@@ -242,6 +242,34 @@ impl Tree {
         }
     }
 
+    /// Where leaving `composite` from `atomic` leaves it, as its `history`'s variable numbers
+    /// places (0: nowhere, `atomic` is not inside it).
+    fn place(&self, composite: usize, history: History, atomic: usize) -> i64 {
+        let inside = match history {
+            // The state of `composite`'s own on the way out.
+            History::Shallow => self
+                .chain(atomic)
+                .find(|&n| self.nodes[n].parent == Some(composite)),
+            History::Deep => Some(atomic).filter(|_| self.chain(atomic).any(|n| n == composite)),
+        };
+        let Some(inside) = inside else {
+            return 0;
+        };
+        match history {
+            History::Shallow => self.nodes[composite]
+                .children
+                .iter()
+                .position(|&c| c == inside)
+                .map_or(0, |k| k as i64 + 1),
+            // Atomic states in file order: those inside `composite` before this one, plus one.
+            History::Deep => {
+                1 + (composite..inside)
+                    .filter(|&n| self.nodes[n].children.is_empty())
+                    .count() as i64
+            }
+        }
+    }
+
     /// The variable of `composite`'s `history`.
     fn variable(&self, composite: usize, history: History) -> String {
         let at = self
@@ -513,6 +541,8 @@ struct Flattening<'t> {
     /// Each atomic state's id: as written, else numbered; a further flat state of the same
     /// atomic state takes a fresh one.
     ids: Vec<Option<StateId>>,
+    /// Whether each atomic state has a flat state yet.
+    made: Vec<bool>,
     taken: HashSet<StateId>,
     next: StateId,
 }
@@ -526,6 +556,7 @@ impl<'t> Flattening<'t> {
             variants: HashMap::new(),
             queue: VecDeque::new(),
             ids: Vec::new(),
+            made: vec![false; tree.nodes.len()],
             taken,
             next: 1,
         };
@@ -562,11 +593,12 @@ impl<'t> Flattening<'t> {
         if let Some(&flat) = self.variants.get(&(atomic, top)) {
             return flat;
         }
-        let first = !self.flats.iter().any(|f| f.atomic == atomic);
-        let id = match (first, self.ids[atomic]) {
-            (true, Some(id)) => id,
-            _ => self.fresh(),
+        // The first flat state of an atomic state takes its id; the others fresh ones.
+        let id = match self.ids[atomic].take() {
+            Some(id) => id,
+            None => self.fresh(),
         };
+        self.made[atomic] = true;
         self.flats.push(Flat {
             atomic,
             top,
@@ -583,16 +615,17 @@ impl<'t> Flattening<'t> {
     /// reached (so that `check` and `verify` can say it is never entered).
     fn run(&mut self) {
         let tree = self.tree;
+        let mut from = 0;
         loop {
             while let Some(flat) = self.queue.pop_front() {
                 let arms = self.arms(self.flats[flat].atomic);
                 self.flats[flat].arms = arms;
             }
-            let missed = (0..tree.nodes.len()).find(|&n| {
-                tree.nodes[n].children.is_empty() && !self.flats.iter().any(|f| f.atomic == n)
-            });
+            let missed = (from..tree.nodes.len())
+                .find(|&n| tree.nodes[n].children.is_empty() && !self.made[n]);
             match missed {
                 Some(n) => {
+                    from = n + 1;
                     self.variant(n, tree.outermost(n));
                 }
                 None => return,
@@ -682,11 +715,7 @@ impl<'t> Flattening<'t> {
             if !left.contains(&composite) {
                 continue;
             }
-            let at = tree
-                .resumed(composite, history)
-                .iter()
-                .position(|&n| tree.chain(atomic).any(|a| a == n))
-                .map_or(0, |k| k as i64 + 1);
+            let at = tree.place(composite, history, atomic);
             noted.push(Action::Statement(Statement::Assign {
                 name: tree.variable(composite, history),
                 value: Expr::Int(at),
