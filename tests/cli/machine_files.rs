@@ -81,8 +81,7 @@ fn import_maps_an_scxml_document_onto_nested_states_or_says_where_it_cannot() {
 "#,
     );
     let out = doc.with_file_name("lamp-imported");
-    let o = proclaim(&["import", doc.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    import_ok(&doc, &out);
     let file = out.join("Lamp.machine");
     let text = std::fs::read_to_string(&file).unwrap();
     assert!(
@@ -98,13 +97,7 @@ fn import_maps_an_scxml_document_onto_nested_states_or_says_where_it_cannot() {
         ),
     );
     let again = doc.with_file_name("lamp-again");
-    let o = proclaim(&[
-        "import",
-        file.to_str().unwrap(),
-        "-o",
-        again.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    import_ok(&file, &again);
     assert_eq!(
         std::fs::read_to_string(again.join("Lamp.machine")).unwrap(),
         text
@@ -165,8 +158,7 @@ fn import_writes_native_files_that_check_and_import_again_unchanged() {
         b"2\tOn|OnEntry LEDS: Chest On;/ OnExit LEDS: Chest Off;/\n1\tOff|OnEntry C++: msleep(100);/\n",
     );
     let out = t.with_file_name("imported");
-    let o = proclaim(&["import", t.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    import_ok(&t, &out);
     let file = out.join("Blink.machine");
     let first = std::fs::read_to_string(&file).unwrap();
     assert!(
@@ -184,13 +176,7 @@ fn import_writes_native_files_that_check_and_import_again_unchanged() {
     );
     // Importing the native file again writes the same machine.
     let again = t.with_file_name("again");
-    let o = proclaim(&[
-        "import",
-        file.to_str().unwrap(),
-        "-o",
-        again.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    import_ok(&file, &again);
     let second = std::fs::read_to_string(again.join("Blink.machine")).unwrap();
     let body = |text: &str| text.lines().skip(1).collect::<Vec<_>>().join("\n");
     assert_eq!(body(&second), body(&first));
@@ -369,4 +355,16 @@ fn deps_launch_writes_a_manifest_that_runs_from_where_it_is_written() {
         "{}",
         stdout(&o)
     );
+}
+
+/// `proclaim import FILE -o DIR`, which must succeed.
+#[track_caller]
+fn import_ok(file: &std::path::Path, dir: &std::path::Path) {
+    let o = proclaim(&[
+        "import",
+        file.to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }

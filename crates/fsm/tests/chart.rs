@@ -350,3 +350,22 @@ B#2 entry[] exit[] internal[]
 ",
     );
 }
+
+/// A file nesting deeper than any chart is refused at the place, not read until the stack ends.
+#[test]
+fn nesting_past_its_bound_is_refused_at_its_line() {
+    let depth = 100_000;
+    let mut text = String::from("machine M\n");
+    for i in 0..depth {
+        text.push_str(&format!("state S{i} {{\n"));
+    }
+    text.push_str(&"}\n".repeat(depth));
+    let read = parse_machine("M.machine", &text);
+    assert!(read.machines.is_empty());
+    let said: Vec<String> = read
+        .diagnostics
+        .iter()
+        .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+        .collect();
+    assert_eq!(said, ["258: blocks nest deeper than 256"]);
+}

@@ -170,6 +170,19 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
     );
 }
 
+/// A document nesting deeper than any chart is refused, not walked until the stack ends.
+#[test]
+fn elements_nesting_past_their_bound_are_refused() {
+    let depth = 100_000;
+    let mut text = String::from("<scxml xmlns=\"http://www.w3.org/2005/07/scxml\">\n");
+    for i in 0..depth {
+        text.push_str(&format!("<state id=\"s{i}\">\n"));
+    }
+    text.push_str(&"</state>\n".repeat(depth));
+    text.push_str("</scxml>\n");
+    check(&text, "257: elements nest deeper than 256\n");
+}
+
 /// A machine with every line number taken out: what two readings of one machine share.
 fn without_lines(mut m: Machine) -> Machine {
     m.states.iter_mut().for_each(|s| s.line = 0);

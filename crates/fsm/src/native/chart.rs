@@ -645,10 +645,6 @@ impl<'t> Flattening<'t> {
                     continue;
                 }
                 let domain = tree.domain(source, w.target);
-                let top = tree
-                    .chain(w.target)
-                    .find(|&n| tree.nodes[n].parent == domain)
-                    .unwrap_or(w.target);
                 let left: Vec<usize> = tree
                     .chain(atomic)
                     .take_while(|&n| Some(n) != domain)
@@ -658,50 +654,68 @@ impl<'t> Flattening<'t> {
                     let exits = leaving.unwrap_or_else(|| tree.nodes[atomic].exit.clone());
                     leaving = Some(exits.into_iter().chain(w.actions.iter().cloned()).collect());
                 }
-                let label = if w.done { Label::TRUE } else { w.label.clone() };
                 let written_on = (source != atomic).then_some(source);
-                let arm = |label: Label, target: usize| FlatArm {
-                    label,
-                    target,
-                    line: w.line,
-                    leaving: leaving.clone(),
-                    written_on,
-                };
-                // A history resumes where the composite was left: an arm for each place it
-                // may have been left at, tested first, then its initial for never.
-                if let (Some(history), true) = (w.history, left.contains(&w.target)) {
-                    // Leaving the composite notes where this very move leaves it: that is where
-                    // it comes back to.
-                    let resumed = tree.resumed(w.target, history);
-                    let here = resumed
-                        .iter()
-                        .find(|&&n| tree.chain(atomic).any(|a| a == n));
-                    let back = here.map_or(w.target, |&n| n);
-                    let target = self.variant(tree.descend(back), top);
-                    arms.push(arm(label, target));
-                    continue;
+                for (label, target) in self.targets(atomic, w, domain, &left) {
+                    arms.push(FlatArm {
+                        label,
+                        target,
+                        line: w.line,
+                        leaving: leaving.clone(),
+                        written_on,
+                    });
                 }
-                if let Some(history) = w.history {
-                    let variable = tree.variable(w.target, history);
-                    for (k, resumed) in tree.resumed(w.target, history).into_iter().enumerate() {
-                        let was = Expr::Binary {
-                            op: BinOp::Eq,
-                            left: Box::new(Expr::Name(variable.clone())),
-                            right: Box::new(Expr::Int(k as i64 + 1)),
-                        };
-                        let label = Expr::Binary {
-                            op: BinOp::And,
-                            left: Box::new(was),
-                            right: Box::new(label.clone()),
-                        };
-                        let target = self.variant(tree.descend(resumed), top);
-                        arms.push(arm(label, target));
-                    }
-                }
-                let target = self.variant(tree.descend(w.target), top);
-                arms.push(arm(label, target));
             }
         }
+        arms
+    }
+
+    /// The label and flat target of each arm a transition written as `w` lowers to, tried in
+    /// this order, when it fires from `atomic`, leaving the states in `left` and entering below
+    /// `domain`.
+    fn targets(
+        &mut self,
+        atomic: usize,
+        w: &Written,
+        domain: Option<usize>,
+        left: &[usize],
+    ) -> Vec<(Label, usize)> {
+        let tree = self.tree;
+        let top = tree
+            .chain(w.target)
+            .find(|&n| tree.nodes[n].parent == domain)
+            .unwrap_or(w.target);
+        let label = if w.done { Label::TRUE } else { w.label.clone() };
+        let mut arms = Vec::new();
+        match w.history {
+            // Leaving the composite notes where this very move leaves it: it comes back there.
+            Some(history) if left.contains(&w.target) => {
+                let place = tree.place(w.target, history, atomic);
+                let resumed = tree.resumed(w.target, history);
+                let back = usize::try_from(place - 1).map_or(w.target, |k| resumed[k]);
+                arms.push((label, self.variant(tree.descend(back), top)));
+                return arms;
+            }
+            // An arm for each place it may have been left at, tested first; then the written
+            // one, to the initial, for never.
+            Some(history) => {
+                let variable = tree.variable(w.target, history);
+                for (k, resumed) in tree.resumed(w.target, history).into_iter().enumerate() {
+                    let was = Expr::Binary {
+                        op: BinOp::Eq,
+                        left: Box::new(Expr::Name(variable.clone())),
+                        right: Box::new(Expr::Int(k as i64 + 1)),
+                    };
+                    let label = Expr::Binary {
+                        op: BinOp::And,
+                        left: Box::new(was),
+                        right: Box::new(label.clone()),
+                    };
+                    arms.push((label, self.variant(tree.descend(resumed), top)));
+                }
+            }
+            None => {}
+        }
+        arms.push((label, self.variant(tree.descend(w.target), top)));
         arms
     }
 

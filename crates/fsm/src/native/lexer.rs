@@ -67,6 +67,11 @@ pub(crate) use crate::code::LexError;
 
 pub type Spanned<'a> = Result<(usize, MachineToken<'a>, usize), LexError>;
 
+/// How deep blocks may nest (states in states, with their activities): far past any machine a
+/// person writes, and short of what reading and dropping a tree that deep would take of a
+/// thread's stack.
+const MAX_DEPTH: usize = 256;
+
 pub struct MachineLexer<'a> {
     text: &'a str,
     at: usize,
@@ -149,6 +154,13 @@ impl<'a> MachineLexer<'a> {
         }
         let one = |tok| Some(Ok((start, tok, start + 1)));
         match c {
+            '{' if self.open.len() >= MAX_DEPTH => {
+                self.at += 1;
+                Some(Err(LexError {
+                    at: start,
+                    message: format!("blocks nest deeper than {MAX_DEPTH}"),
+                }))
+            }
             '{' => {
                 self.at += 1;
                 self.open.push(std::mem::take(&mut self.activity_next));

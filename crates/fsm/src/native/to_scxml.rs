@@ -4,7 +4,7 @@
 
 use super::ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
 use super::{LineIndex, MachineLexer};
-use crate::code::{parse_statements, BinOp, Expr, Statement};
+use crate::code::{parse_statements, Expr, Statement};
 use crate::model::Action;
 use proclaim_syntax::FileDiagnostic;
 use std::collections::{HashMap, HashSet};
@@ -240,24 +240,9 @@ impl Writer<'_> {
                     actions,
                     ..
                 } => {
-                    let Some(target) = self.id(&target, target_at) else {
-                        continue;
-                    };
-                    let condition = match label.trim() {
-                        "done" if holds => format!(" event=\"done.state.{}\"", attr(&s.name)),
-                        "TRUE" | "true" | "" => String::new(),
-                        text => match self.condition(text, label_at) {
-                            Some(c) => format!(" cond=\"{}\"", attr(&c)),
-                            None => continue,
-                        },
-                    };
-                    let content = self.content(actions, depth + 2);
-                    let open = format!("{pad}  <transition{condition} target=\"{}\"", attr(&target));
-                    if content.is_empty() {
-                        let _ = writeln!(inner, "{open}/>");
-                    } else {
-                        let _ = write!(inner, "{open}>\n{content}{pad}  </transition>\n");
-                    }
+                    let done = holds.then_some(s.name.as_str());
+                    let when = (label.as_str(), label_at, &target, target_at);
+                    self.transition(when, done, actions, &mut inner, depth + 1);
                 }
                 Member::State(child) => self.state(child, &mut inner, depth + 1),
             }
@@ -277,6 +262,37 @@ impl Writer<'_> {
             out.push_str("/>\n");
         } else {
             let _ = write!(out, ">\n{inner}{pad}</{element}>\n");
+        }
+    }
+
+    /// `when LABEL -> TARGET { … }` as a `<transition>`: the label a `cond`, or the completion
+    /// event of the composite `done` names when the label is `done`.
+    fn transition(
+        &mut self,
+        (label, label_at, target, target_at): (&str, usize, &Ref, usize),
+        done: Option<&str>,
+        actions: Vec<(ActionAst, usize)>,
+        out: &mut String,
+        depth: usize,
+    ) {
+        let pad = "  ".repeat(depth);
+        let Some(target) = self.id(target, target_at) else {
+            return;
+        };
+        let condition = match (label.trim(), done) {
+            ("done", Some(state)) => format!(" event=\"done.state.{}\"", attr(state)),
+            ("TRUE" | "true" | "", _) => String::new(),
+            (text, _) => match self.condition(text, label_at) {
+                Some(c) => format!(" cond=\"{}\"", attr(&c)),
+                None => return,
+            },
+        };
+        let content = self.content(actions, depth + 1);
+        let open = format!("{pad}<transition{condition} target=\"{}\"", attr(&target));
+        if content.is_empty() {
+            let _ = writeln!(out, "{open}/>");
+        } else {
+            let _ = write!(out, "{open}>\n{content}{pad}</transition>\n");
         }
     }
 
@@ -391,8 +407,8 @@ fn script(e: &Expr) -> String {
             // The right side binds as tightly as its operator only in brackets: `a - (b - c)`.
             let side = |x: &Expr, right: bool| match x {
                 Expr::Binary { op: inner, .. }
-                    if precedence(*inner) < precedence(*op)
-                        || (right && precedence(*inner) == precedence(*op)) =>
+                    if inner.precedence() < op.precedence()
+                        || (right && inner.precedence() == op.precedence()) =>
                 {
                     format!("({})", script(x))
                 }
@@ -415,17 +431,6 @@ fn wrapped(e: &Expr) -> String {
     match e {
         Expr::Binary { .. } => format!("({})", script(e)),
         _ => script(e),
-    }
-}
-
-fn precedence(op: BinOp) -> u8 {
-    match op {
-        BinOp::Or => 1,
-        BinOp::And => 2,
-        BinOp::Eq | BinOp::Ne => 3,
-        BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => 4,
-        BinOp::Add | BinOp::Sub => 5,
-        BinOp::Mul | BinOp::Div | BinOp::Rem => 6,
     }
 }
 

@@ -28,6 +28,10 @@ impl Element {
     }
 }
 
+/// How deep elements may nest: far past any chart, short of what walking a tree that deep would
+/// take of a thread's stack.
+const MAX_DEPTH: usize = 256;
+
 /// The document's root element, or the line and reason it does not read as XML.
 pub fn read(text: &str) -> Result<Element, (usize, String)> {
     let line_of = |offset: u64| {
@@ -48,6 +52,10 @@ pub fn read(text: &str) -> Result<Element, (usize, String)> {
             )
         })?;
         match event {
+            Event::Start(_) if open.len() > MAX_DEPTH => {
+                let message = format!("elements nest deeper than {MAX_DEPTH}");
+                return Err((line_of(position), message));
+            }
             Event::Start(e) => open.push(element(&e, line_of(position))),
             Event::Empty(e) => {
                 let done = element(&e, line_of(position));
