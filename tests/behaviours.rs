@@ -285,7 +285,7 @@ fn a_broken_behaviour_reports_every_problem_with_file_and_line() {
     )]);
     let errors = load("typo", Arc::new(Folder::new(&dir))).err().unwrap();
     assert!(
-        errors[0].to_string().ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`, `priority`"),
+        errors[0].to_string().ends_with("behaviour.toml:3: error: unknown field `strat`, expected one of `file`, `start`, `name`, `priority`, `params`"),
         "{errors:#?}"
     );
 }
@@ -360,6 +360,88 @@ fn a_value_a_label_reads_that_nothing_gives_is_a_warning() {
     assert_eq!(
         findings(&alone),
         ["Dive.machine:4: warning: a label reads `side`, which nothing in this behaviour posts, assigns or answers, so a comparison with it never holds (was the machine that sets it left out? a script, or a module the manifest's [[module]] names, may post it)"]
+    );
+}
+
+/// The same goalkeeper with the side a parameter of the dive: a start that leaves it out, and
+/// a manifest that starts the dive without it, are refused, saying where; `deps --launch Dive`
+/// writes the parameter into the manifest, saying who gives it in the whole behaviour.
+#[test]
+fn a_parameter_nothing_gives_is_refused_and_deps_launch_carries_it() {
+    let dive = "machine Dive\nparam side: int\noutcome fell\ninitial START\nstate START {\n    when side == 0 -> LEFT\n    when side == 1 -> RIGHT\n}\nstate LEFT {\n    outcome fell\n}\nstate RIGHT {\n    outcome fell\n}\n";
+    let keeper = |start: &str| {
+        format!("machine Keeper\ninitial WAIT\nstate WAIT {{\n    when TRUE -> DIVE\n}}\nstate DIVE {{\n    entry {{\n        {start}\n    }}\n    when Dive.fell -> WAIT\n}}\n")
+    };
+    let manifest = |dive_starts: &str| {
+        format!("[[machine]]\nfile = \"Keeper.machine\"\n\n[[machine]]\nfile = \"Dive.machine\"\n{dive_starts}")
+    };
+    let errors = |dir: &std::path::Path| -> Vec<String> {
+        match load("keeper", Arc::new(Folder::new(dir))) {
+            Ok(_) => Vec::new(),
+            Err(found) => found
+                .iter()
+                .map(|d| d.to_string().replace(&format!("{}/", dir.display()), ""))
+                .collect(),
+        }
+    };
+    let forgot = temp_behaviour(&[
+        ("behaviour.toml", &manifest("start = false\n")),
+        ("Keeper.machine", &keeper("Dive: On")),
+        ("Dive.machine", dive),
+    ]);
+    assert_eq!(
+        errors(&forgot),
+        ["Keeper.machine:6: error: `Dive` takes side: start it with `Dive: On(side = …)`"]
+    );
+    let launched = temp_behaviour(&[
+        ("behaviour.toml", &manifest("")),
+        ("Keeper.machine", &keeper("Dive: On(side = 1)")),
+        ("Dive.machine", dive),
+    ]);
+    assert_eq!(
+        errors(&launched),
+        ["behaviour.toml: error: `Dive` starts with the behaviour and takes side: give them in its `[[machine]]` entry (`params = { side = … }`), or start it from a machine with `start = false`"]
+    );
+    let whole = temp_behaviour(&[
+        ("behaviour.toml", &manifest("start = false\n")),
+        ("Keeper.machine", &keeper("Dive: On(side = 1)")),
+        ("Dive.machine", dive),
+    ]);
+    let b = load("keeper", Arc::new(Folder::new(&whole))).unwrap();
+    assert!(proclaim_behaviour::check_behaviour(&b).is_empty());
+    let machines: Vec<(&proclaim_fsm::Machine, bool)> =
+        b.machines.iter().map(|m| (&m.machine, m.start)).collect();
+    let dot = proclaim_behaviour::behaviour_to_dot("keeper", &machines);
+    assert!(dot.contains("label=\"Dive(side: int) → fell\""), "{dot}");
+    assert!(dot.contains("label=\"starts (side)\""), "{dot}");
+    let modules = proclaim_behaviour::modules(&b);
+    let launch =
+        proclaim_behaviour::launch_manifest(&b, &modules, "Dive", &str::to_string).unwrap();
+    assert!(
+        launch.contains("# In the whole behaviour, Keeper gives them as it starts Dive."),
+        "{launch}"
+    );
+    assert!(launch.contains("[machine.params]\nside = 0\n"), "{launch}");
+    let alone = temp_behaviour(&[("Dive.machine", dive), ("behaviour.toml", &launch)]);
+    assert_eq!(errors(&alone), Vec::<String>::new());
+    // Read anew while running: the keeper's start is lowered again; a dive whose parameters
+    // changed is refused, since the keeper was linked to the old ones.
+    std::fs::write(
+        whole.join("Keeper.machine"),
+        keeper("Dive: restart(side = 0)"),
+    )
+    .unwrap();
+    let reread = (b.machines[0].loader)().expect("the keeper reads again");
+    assert!(reread
+        .statements()
+        .iter()
+        .any(|s| s.to_string() == "Dive_side = 0;"));
+    let wider = dive.replace("param side: int\n", "param side: int\nparam power: int\n");
+    std::fs::write(whole.join("Dive.machine"), wider).unwrap();
+    let refused = (b.machines[1].loader)().unwrap_err();
+    assert!(
+        refused[0].to_string().ends_with("`Dive`'s parameters or outcomes changed: the machines that start it were read with the old ones, so run the behaviour again"),
+        "{refused:?}"
     );
 }
 

@@ -64,6 +64,7 @@ pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
             start: *start,
             name: None,
             priority: 0,
+            params: Default::default(),
         });
     }
     let manifest = manifest.to_toml(&format!(

@@ -4,7 +4,9 @@
 
 use crate::error::BehaviourError;
 use crate::load::Behaviour;
-use crate::manifest::{ImpersonatorEntry, MachineEntry, Manifest, Simulator, TheoryEntry};
+use crate::manifest::{
+    ImpersonatorEntry, MachineEntry, Manifest, ParamValue, Simulator, TheoryEntry,
+};
 use crate::modules::{Module, ModuleKind};
 use std::fmt::Write;
 use std::time::Duration;
@@ -272,9 +274,70 @@ pub fn launch_manifest(
     let wanted = started_from(behaviour, modules, centre);
     let needed = serving(modules, &wanted);
     let smallest = smallest_manifest(behaviour, modules, centre, &wanted, &needed, place);
-    Ok(smallest.to_toml(&format!(
+    let mut comment = format!(
         "The smallest behaviour that runs {centre}: written by `proclaim deps --launch {centre}`."
-    )))
+    );
+    let params = behaviour
+        .machines
+        .iter()
+        .find(|m| m.machine.name == centre)
+        .map_or(&[][..], |m| &m.machine.interface.params[..]);
+    if !params.is_empty() {
+        let names: Vec<&str> = params.iter().map(|p| p.name.as_str()).collect();
+        let globals: Vec<String> = names
+            .iter()
+            .map(|p| proclaim_fsm::global_of(centre, p))
+            .collect();
+        let starters: Vec<&str> = behaviour
+            .machines
+            .iter()
+            .filter(|m| {
+                m.machine.statements().iter().any(|s| {
+                    matches!(s, proclaim_fsm::Statement::Assign { name, .. } if globals.contains(name))
+                })
+            })
+            .map(|m| m.machine.name.as_str())
+            .collect();
+        let _ = write!(
+            comment,
+            "\n{centre}'s parameters ({}) are given below as placeholders (0): choose them.",
+            names.join(", ")
+        );
+        if !starters.is_empty() {
+            let _ = write!(
+                comment,
+                "\nIn the whole behaviour, {} gives them as it starts {centre}.",
+                starters.join(" and ")
+            );
+        }
+    }
+    Ok(smallest.to_toml(&comment))
+}
+
+/// The parameters of the machine launched on its own (`centre`), each the zero of its type: in
+/// the whole behaviour, whoever starts it gives them (the manifest's comment says who).
+fn placeholders(
+    machine: &proclaim_fsm::Machine,
+    centre: &str,
+) -> std::collections::BTreeMap<String, ParamValue> {
+    if machine.name != centre {
+        return Default::default();
+    }
+    machine
+        .interface
+        .params
+        .iter()
+        .map(|p| {
+            let zero = match p.ty {
+                proclaim_fsm::VarType::Bool => ParamValue::Truth(false),
+                proclaim_fsm::VarType::Float | proclaim_fsm::VarType::Double => {
+                    ParamValue::Fraction(0.0)
+                }
+                _ => ParamValue::Whole(0),
+            };
+            (p.name.clone(), zero)
+        })
+        .collect()
 }
 
 /// The behaviour's manifest cut down to the `wanted` machines (only `centre` starting) and the
@@ -302,6 +365,7 @@ fn smallest_manifest(
                 start: m.machine.name == centre,
                 name: None,
                 priority: m.priority,
+                params: placeholders(&m.machine, centre),
             })
             .collect(),
         theories: manifest

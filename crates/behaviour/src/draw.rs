@@ -8,6 +8,25 @@ use std::fmt::Write;
 /// DOT text for the machines of a behaviour, each in its own box (sub-machines, those not
 /// started at first, dashed), a state that starts a sub-machine linked to that machine's box.
 /// A machine started that the behaviour does not have is drawn red.
+/// A machine's name with what a start gives it and how it can end: `Dive(side: int) → landed`.
+fn signature(machine: &Machine) -> String {
+    let interface = &machine.interface;
+    let mut out = machine.name.clone();
+    if !interface.params.is_empty() {
+        let params: Vec<String> = interface
+            .params
+            .iter()
+            .map(|p| format!("{}: {}", p.name, p.ty.name()))
+            .collect();
+        out += &format!("({})", params.join(", "));
+    }
+    if !interface.outcomes.is_empty() {
+        let outcomes: Vec<&str> = interface.outcomes.iter().map(|o| o.name.as_str()).collect();
+        out += &format!(" → {}", outcomes.join(" | "));
+    }
+    out
+}
+
 pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "digraph {} {{", quote(name));
@@ -19,7 +38,7 @@ pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
         let _ = writeln!(
             out,
             "    label={}; fontname=\"Helvetica\"; style={};",
-            quote(&machine.name),
+            quote(&signature(machine)),
             if *start { "solid" } else { "dashed" }
         );
         let started = body(&mut out, machine, &format!("m{i}_"), "    ");
@@ -30,9 +49,21 @@ pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
     for (from, target) in &links {
         match machines.iter().position(|(m, _)| m.name == *target) {
             Some(k) => {
+                let params: Vec<&str> = machines[k]
+                    .0
+                    .interface
+                    .params
+                    .iter()
+                    .map(|p| p.name.as_str())
+                    .collect();
+                let label = match params.as_slice() {
+                    [] => "starts".to_string(),
+                    given => format!("starts ({})", given.join(", ")),
+                };
                 let _ = writeln!(
                     out,
-                    "  {from} -> m{k}_start [lhead=cluster_{k}, style=dashed, arrowhead=odot, label=\"starts\"];"
+                    "  {from} -> m{k}_start [lhead=cluster_{k}, style=dashed, arrowhead=odot, label={}];",
+                    quote(&label)
                 );
             }
             None => {

@@ -16,6 +16,7 @@ mod error;
 mod files;
 mod from_trace;
 mod launch;
+mod linking;
 mod liveness;
 mod load;
 mod loaded;

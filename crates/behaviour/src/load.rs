@@ -192,6 +192,7 @@ fn load_machines(
     problems: &mut Problems,
 ) -> Vec<LoadedMachine> {
     let mut machines: Vec<LoadedMachine> = Vec::new();
+    let mut entries = Vec::new();
     for entry in &manifest.machines {
         let loader = machine_loader(files.clone(), entry.file.clone(), entry.name.clone());
         let imported = read_machines(files.as_ref(), &entry.file);
@@ -214,6 +215,7 @@ fn load_machines(
                     priority: entry.priority,
                     loader,
                 });
+                entries.push(entry);
             }
             Ok(None) => {}
             Err(message) => problems.error(message),
@@ -225,6 +227,13 @@ fn load_machines(
             "every machine has `start = false`; nothing would run",
         ));
     }
+    crate::linking::link_loaded(
+        &mut machines,
+        &entries,
+        &|file| files.show(file),
+        manifest_file,
+        &mut problems.found,
+    );
     machines
 }
 

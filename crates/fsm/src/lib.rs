@@ -13,7 +13,9 @@ pub mod dot;
 mod dot_chart;
 mod dot_text;
 mod format;
+mod interface;
 mod label;
+mod link;
 mod lint;
 mod model;
 pub mod names;
@@ -31,7 +33,9 @@ pub use code::{BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType};
 pub use control::{finished_type, machine_of_running_type, running_type, Command};
 pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};
+pub use interface::{global_of, start_of, DeclaredOutcome, Interface, Param, Start};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};
+pub use link::{link, Launch, LinkProblem};
 pub use lint::{lint, reachable};
 pub use model::{
     Action, Argument, Composite, Machine, State, StateId, Transition, UnreadTransition,

@@ -1,6 +1,7 @@
 //! The machine model: states with three activities, transitions in priority order, labels.
 
 use crate::code::Statement;
+use crate::interface::Interface;
 use crate::label::Label;
 
 /// A state's identifier as written in its file (T/A ids, Qfsm codes). Names may repeat; ids do
@@ -24,6 +25,9 @@ pub struct Machine {
     /// `states` are then the flat states it lowers to (`native/chart.rs`), each named by its
     /// path (`PLAY.SEARCH`); empty for a flat machine.
     pub composites: Vec<Composite>,
+    /// The parameters a start gives it and the outcomes its final states announce (§3.3),
+    /// as declared; its own code already reads and sets them as the globals they become.
+    pub interface: Interface,
 }
 
 /// A state that holds states (`docs/spec/behaviour.md` §3.2), kept after lowering for what

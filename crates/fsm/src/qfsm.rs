@@ -476,6 +476,7 @@ fn finish(mut m: MachineDraft, file: &str, file_name: &str, out: &mut Imported) 
         initial,
         unread: m.unread,
         composites: Vec::new(),
+        interface: Default::default(),
         description: notes.join("\n"),
     });
 }

@@ -2,5 +2,6 @@
 
 mod chart;
 mod edit;
+mod interface;
 mod machines;
 mod scxml;

@@ -304,22 +304,27 @@ fn spin_agrees_with_the_checker_on_a_press_whose_sensor_jams() {
 }
 
 /// The keeper's properties (`machines/keeper`): a penalty from any step of the nested dive
-/// runs the dive's exit, and every dive ends.
-fn keeper_properties() -> [PropertySource; 2] {
+/// runs the dive's exit, every dive ends, and the dive sub-machine falls to the side the
+/// keeper gave it as a parameter.
+fn keeper_properties() -> [PropertySource; 3] {
     [
         property(
             PropertyKind::Never,
             "Keeper.PENALIZED && (NaoMotionPlayer == \"diveLeft\" || NaoMotionPlayer == \"diveRight\")",
         ),
         property(PropertyKind::LeadsTo, "Keeper.DIVE ~> !Keeper.DIVE"),
+        property(PropertyKind::Never, "Keeper.DIVE.LEFT && Dive.RIGHT"),
     ]
 }
 
-/// The keeper in a fresh folder, its dive's exit taken out when `getting_up` is false.
+/// The keeper in a fresh folder, its dive's exit (stopping the dive sub-machine, getting up)
+/// taken out when `getting_up` is false.
 fn keeper(case: &str, getting_up: bool) -> PathBuf {
     let source = repo().join("machines/keeper");
     let dir = scratch(&format!("{case}-behaviour"));
-    std::fs::copy(source.join("match.script"), dir.join("match.script")).expect("copy");
+    for file in ["match.script", "Dive.machine"] {
+        std::fs::copy(source.join(file), dir.join(file)).expect("copy");
+    }
     // Its dictionary (`../nao.toml`) says who listens, which no verdict depends on.
     let manifest = std::fs::read_to_string(source.join("behaviour.toml")).expect("manifest");
     let manifest: String = manifest
@@ -332,7 +337,7 @@ fn keeper(case: &str, getting_up: bool) -> PathBuf {
     let written = if getting_up {
         machine
     } else {
-        let exit = "    exit {\n        NaoMotionPlayer: getUp\n    }\n";
+        let exit = "    exit {\n        Dive: Off\n        NaoMotionPlayer: getUp\n    }\n";
         assert!(machine.contains(exit), "the fault is seeded");
         machine.replace(exit, "")
     };
@@ -347,7 +352,7 @@ fn spin_agrees_with_the_checker_on_the_keepers_nested_dive() {
     }
     assert_eq!(
         both("keeper", &keeper("keeper", true), &keeper_properties()),
-        [Verdict::Holds, Verdict::Holds]
+        [Verdict::Holds, Verdict::Holds, Verdict::Holds]
     );
     assert_eq!(
         both(
@@ -355,7 +360,7 @@ fn spin_agrees_with_the_checker_on_the_keepers_nested_dive() {
             &keeper("keeper-lying", false),
             &keeper_properties()
         ),
-        [Verdict::Fails, Verdict::Holds]
+        [Verdict::Fails, Verdict::Holds, Verdict::Fails]
     );
 }
 

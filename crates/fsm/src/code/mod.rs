@@ -10,6 +10,7 @@
 
 mod expr;
 mod parse;
+mod rename;
 mod stmt;
 mod token;
 

@@ -29,7 +29,8 @@ impl VarType {
         })
     }
 
-    fn name(&self) -> &str {
+    /// The type as written.
+    pub fn name(&self) -> &str {
         match self {
             VarType::Int => "int",
             VarType::Bool => "bool",

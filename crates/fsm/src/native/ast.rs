@@ -11,6 +11,10 @@ pub struct FileAst {
 pub enum TopItem {
     Initial(Ref, usize),
     Description(String, usize),
+    /// `param side: int`: the text after `param`.
+    Param(String, usize),
+    /// `outcome saved, missed`: the text after `outcome`.
+    Outcome(String, usize),
     State(StateAst),
 }
 
@@ -53,6 +57,8 @@ pub enum Member {
     },
     /// A composite state's first sub-state: `initial NAME` inside its block.
     Initial(Ref, usize),
+    /// `outcome saved`: the state is final and announces this outcome of its machine.
+    Outcome(String, usize),
     /// A sub-state: the state holding it is composite.
     State(StateAst),
 }

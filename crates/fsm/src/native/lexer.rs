@@ -16,6 +16,11 @@ pub enum MachineToken<'a> {
     When,
     Call,
     Code,
+    /// `param`, at the top of a file; the rest of its line comes as a [`MachineToken::Text`].
+    Param,
+    /// `outcome`, at the top of a file or in a state; the rest of its line comes as a
+    /// [`MachineToken::Text`].
+    Outcome,
     Word(&'a str),
     Str(String),
     Int(i64),
@@ -46,6 +51,8 @@ impl std::fmt::Display for MachineToken<'_> {
             MachineToken::When => f.write_str("`when`"),
             MachineToken::Call => f.write_str("`call`"),
             MachineToken::Code => f.write_str("`code`"),
+            MachineToken::Param => f.write_str("`param`"),
+            MachineToken::Outcome => f.write_str("`outcome`"),
             MachineToken::Word(w) => write!(f, "`{w}`"),
             MachineToken::Str(s) => write!(f, "{s:?}"),
             MachineToken::Int(i) => write!(f, "`{i}`"),
@@ -87,6 +94,9 @@ pub struct MachineLexer<'a> {
     target_next: bool,
     /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
     plain_until: usize,
+    /// The last word was `machine`, `state` or `initial`: the next word is a name, never a
+    /// keyword (so a state may be called `outcome`).
+    name_next: bool,
 }
 
 impl<'a> MachineLexer<'a> {
@@ -99,6 +109,7 @@ impl<'a> MachineLexer<'a> {
             activity_next: false,
             target_next: false,
             plain_until: 0,
+            name_next: false,
         }
     }
 
@@ -232,11 +243,28 @@ impl<'a> MachineLexer<'a> {
             .unwrap_or(rest.len());
         let word = &rest[..len];
         self.at += len;
+        let named = std::mem::take(&mut self.name_next) || self.target_next;
+        // Where a state's body or the file's top expects an item, not inside an activity.
+        let item = !named && self.open.last() != Some(&true);
         let tok = match word {
-            "machine" => MachineToken::Machine,
+            "machine" | "initial" | "state" => {
+                self.name_next = true;
+                match word {
+                    "machine" => MachineToken::Machine,
+                    "initial" => MachineToken::Initial,
+                    _ => MachineToken::State,
+                }
+            }
             "description" if self.open.is_empty() => MachineToken::Description,
-            "initial" => MachineToken::Initial,
-            "state" => MachineToken::State,
+            "param" | "outcome" if item && (word == "outcome" || self.open.is_empty()) => {
+                let text = self.line_text(MachineToken::Text);
+                self.pending.push(text);
+                if word == "param" {
+                    MachineToken::Param
+                } else {
+                    MachineToken::Outcome
+                }
+            }
             "entry" | "exit" | "internal" => {
                 self.activity_next = true;
                 match word {

@@ -36,6 +36,7 @@ mod ast;
 mod chart;
 mod edit;
 mod edit_error;
+mod interface;
 mod lexer;
 mod outline;
 mod to_scxml;
@@ -176,6 +177,8 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         file,
         lines,
         diagnostics: Vec::new(),
+        machine: ast.name.clone(),
+        interface: Default::default(),
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
     let nested = parsed
@@ -183,14 +186,19 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         .any(|s| s.members.iter().any(|m| matches!(m, Member::State(_))));
     if nested {
         let machines = chart::lower_chart(&mut lowering, parsed, initial_ref)
-            .map(|chart| Machine {
-                name: ast.name,
-                description,
-                states: chart.states,
-                transitions: chart.transitions,
-                initial: chart.initial,
-                unread: Vec::new(),
-                composites: chart.composites,
+            .map(|chart| {
+                let mut machine = Machine {
+                    name: ast.name,
+                    description,
+                    states: chart.states,
+                    transitions: chart.transitions,
+                    initial: chart.initial,
+                    unread: Vec::new(),
+                    composites: chart.composites,
+                    interface: Default::default(),
+                };
+                lowering.lower_params(&mut machine);
+                machine
             })
             .into_iter()
             .collect();
@@ -220,15 +228,20 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         None => states.first().map(|s| s.id),
     };
     let machines = match initial {
-        Some(initial) => vec![Machine {
-            name: ast.name,
-            description,
-            states,
-            transitions,
-            initial,
-            unread: Vec::new(),
-            composites: Vec::new(),
-        }],
+        Some(initial) => {
+            let mut machine = Machine {
+                name: ast.name,
+                description,
+                states,
+                transitions,
+                initial,
+                unread: Vec::new(),
+                composites: Vec::new(),
+                interface: Default::default(),
+            };
+            lowering.lower_params(&mut machine);
+            vec![machine]
+        }
         None if states.is_empty() => {
             lowering.error(ast.name_at, format!("machine `{}` has no states", ast.name));
             Vec::new()
@@ -246,6 +259,10 @@ struct Lowering<'a> {
     file: &'a str,
     lines: &'a LineIndex<'a>,
     diagnostics: Vec<FileDiagnostic>,
+    /// The machine's name: the globals its parameters and outcomes become are named after it.
+    machine: String,
+    /// Its parameters and outcomes, read from the top of the file before its states.
+    interface: crate::interface::Interface,
 }
 
 /// The states' ids, and their names, for resolving `-> NAME` and `-> #id`.
@@ -311,6 +328,11 @@ impl Lowering<'_> {
             .push(self.lines.error(self.file, at, message));
     }
 
+    fn error_at_line(&mut self, line: usize, message: String) {
+        self.diagnostics
+            .push(FileDiagnostic::error(self.file, line, message));
+    }
+
     fn warn(&mut self, at: usize, message: String) {
         let mut d = self.lines.error(self.file, at, message);
         d.severity = proclaim_syntax::Severity::Warning;
@@ -337,6 +359,8 @@ impl Lowering<'_> {
                         initial_ref = Some((target, at));
                     }
                 }
+                TopItem::Param(text, at) => self.param(&text, at),
+                TopItem::Outcome(text, at) => self.outcomes(&text, at),
                 TopItem::State(s) => parsed.push(s),
             }
         }
@@ -401,6 +425,7 @@ impl Lowering<'_> {
     fn body(&mut self, name: &str, members: Vec<Member>) -> Body {
         let mut body = Body::default();
         let mut seen: Vec<Section> = Vec::new();
+        let mut outcome: Option<(String, usize)> = None;
         for member in members {
             match member {
                 Member::Activity {
@@ -452,7 +477,17 @@ impl Lowering<'_> {
                     }
                 }
                 Member::State(inner) => body.states.push(inner),
+                Member::Outcome(text, at) => {
+                    if outcome.is_some() {
+                        self.error(at, format!("state `{name}` announces two outcomes"));
+                    } else {
+                        outcome = Some((text, at));
+                    }
+                }
             }
+        }
+        if let Some(outcome) = outcome {
+            self.announce(name, outcome, &mut body);
         }
         if let (Some((_, at)), true) = (&body.initial, body.states.is_empty()) {
             self.error(
@@ -466,7 +501,12 @@ impl Lowering<'_> {
     fn actions(&mut self, actions: Vec<(ActionAst, usize)>, list: &mut Vec<Action>) {
         for (action, at) in actions {
             match action {
-                ActionAst::Done(action) => list.push(action),
+                ActionAst::Done(action) => {
+                    if let Action::Post { content, .. } = &action {
+                        self.check_start(content, at);
+                    }
+                    list.push(action);
+                }
                 ActionAst::Statement(text) => match parse_statements(&text) {
                     Ok(statements) => list.extend(statements.into_iter().map(Action::Statement)),
                     Err(e) => self.error(at + e.offset, format!("bad statement: {}", e.message)),

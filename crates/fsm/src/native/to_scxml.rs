@@ -59,6 +59,8 @@ impl Writer<'_> {
             match item {
                 TopItem::Initial(target, at) => initial = self.id(&target, at),
                 TopItem::Description(..) => {}
+                TopItem::Param(text, at) => self.refuse(at, format!("`param {text}`: a machine's parameters (given by whoever starts it) are not written to SCXML yet")),
+                TopItem::Outcome(text, at) => self.refuse(at, format!("`outcome {text}`: a machine's outcomes are not written to SCXML yet")),
                 TopItem::State(s) => states.push(s),
             }
         }
@@ -245,6 +247,7 @@ impl Writer<'_> {
                     self.transition(when, done, actions, &mut inner, depth + 1);
                 }
                 Member::State(child) => self.state(child, &mut inner, depth + 1),
+                Member::Outcome(text, at) => self.refuse(at, format!("state `{}`: `outcome {text}` is not written to SCXML yet", s.name)),
             }
         }
         for deep in [false, true] {

@@ -1,11 +1,13 @@
 //! Writes a flat machine in the native format; reading the text back gives the same machine
 //! (a machine that nests states is written by its own file, or as SCXML by `to_scxml`).
 
+use crate::code::{Expr, Statement};
+use crate::interface::global_of;
 use crate::model::{Action, Argument, Machine, State, StateId, Transition, UnreadTransition};
 use std::collections::HashMap;
 use std::fmt::Write;
 
-const KEYWORDS: [&str; 10] = [
+const KEYWORDS: [&str; 12] = [
     "machine",
     "description",
     "initial",
@@ -16,12 +18,21 @@ const KEYWORDS: [&str; 10] = [
     "when",
     "call",
     "code",
+    "param",
+    "outcome",
 ];
 
 /// The machine as a native file. Ids are written only when they are not the ones the reader
 /// would give (1, 2, 3… in order), so hand-written machines stay free of them and imported
 /// ones keep their original ids.
 pub fn to_native(machine: &Machine) -> String {
+    let written;
+    let machine = if machine.interface.is_empty() {
+        machine
+    } else {
+        written = as_written(machine);
+        &written
+    };
     let mut out = String::new();
     let implicit_ids = machine
         .states
@@ -31,6 +42,18 @@ pub fn to_native(machine: &Machine) -> String {
     let _ = writeln!(out, "machine {}", name(&machine.name));
     if !machine.description.is_empty() {
         let _ = writeln!(out, "description {}", quoted(&machine.description));
+    }
+    for p in &machine.interface.params {
+        let _ = writeln!(out, "param {}: {}", p.name, p.ty.name());
+    }
+    if !machine.interface.outcomes.is_empty() {
+        let names: Vec<&str> = machine
+            .interface
+            .outcomes
+            .iter()
+            .map(|o| o.name.as_str())
+            .collect();
+        let _ = writeln!(out, "outcome {}", names.join(", "));
     }
     let index = Index::of(machine);
     let _ = writeln!(out, "initial {}", index.reference(machine.initial));
@@ -49,6 +72,8 @@ struct Index<'m> {
     unread: HashMap<StateId, Vec<&'m UnreadTransition>>,
     /// Each state's reference: its name when no other state has it, else its id.
     references: HashMap<StateId, String>,
+    /// The final states that announce an outcome: the last of their OnEntry sets its global.
+    announced: HashMap<StateId, &'m str>,
 }
 
 impl<'m> Index<'m> {
@@ -75,10 +100,26 @@ impl<'m> Index<'m> {
             };
             references.insert(s.id, reference);
         }
+        let announced = machine
+            .states
+            .iter()
+            .filter(|s| !outgoing.contains_key(&s.id))
+            .filter_map(|s| {
+                let o = machine.interface.outcomes.iter().find(|o| {
+                    s.on_entry.last()
+                        == Some(&Action::Statement(Statement::Assign {
+                            name: global_of(&machine.name, &o.name),
+                            value: Expr::Int(1),
+                        }))
+                })?;
+                Some((s.id, o.name.as_str()))
+            })
+            .collect();
         Index {
             outgoing,
             unread,
             references,
+            announced,
         }
     }
 
@@ -91,16 +132,54 @@ impl<'m> Index<'m> {
     }
 }
 
+/// The machine with its parameters read by their names again, as its file says them.
+fn as_written(machine: &Machine) -> Machine {
+    let mut machine = machine.clone();
+    let params: Vec<(String, String)> = machine
+        .interface
+        .params
+        .iter()
+        .map(|p| (global_of(&machine.name, &p.name), p.name.clone()))
+        .collect();
+    let mut to = |n: &str| params.iter().find(|(g, _)| g == n).map(|(_, p)| p.clone());
+    for state in &mut machine.states {
+        for action in state
+            .on_entry
+            .iter_mut()
+            .chain(&mut state.on_exit)
+            .chain(&mut state.internal)
+        {
+            if let Action::Statement(s) = action {
+                s.rename(&mut to);
+            }
+        }
+    }
+    for t in &mut machine.transitions {
+        t.label.rename(&mut to);
+        for action in t.leaving.iter_mut().flatten() {
+            if let Action::Statement(s) = action {
+                s.rename(&mut to);
+            }
+        }
+    }
+    machine
+}
+
 fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids: bool) {
     let _ = write!(out, "state {}", name(&state.name));
     if !implicit_ids {
         let _ = write!(out, " #{}", state.id);
     }
     out.push_str(" {\n");
+    let mut entry = state.on_entry.as_slice();
+    let announced = index.announced.get(&state.id);
+    if announced.is_some() {
+        entry = &entry[..entry.len() - 1];
+    }
     for (section, actions) in [
-        ("entry", &state.on_entry),
-        ("exit", &state.on_exit),
-        ("internal", &state.internal),
+        ("entry", entry),
+        ("exit", state.on_exit.as_slice()),
+        ("internal", state.internal.as_slice()),
     ] {
         if actions.is_empty() {
             continue;
@@ -134,6 +213,9 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
             }
             None => out.push('\n'),
         }
+    }
+    if let Some(outcome) = announced {
+        let _ = writeln!(out, "    outcome {outcome}");
     }
     // Kept so nothing of the original is lost; a comment, so the file still reads.
     for u in index.unread.get(&state.id).into_iter().flatten() {

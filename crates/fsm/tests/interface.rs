@@ -1,0 +1,262 @@
+//! Parameters and outcomes: what a machine's file declares and its own lowering
+//! (`native/interface.rs`), then what linking the machines of a behaviour makes of starts and
+//! of labels reading outcomes (`link.rs`), each as `check(input, expect)`.
+
+use proclaim_fsm::{link, parse_machine, to_native, Expr, Launch, Machine};
+
+const DIVE: &str = "machine Dive\nparam side: int\noutcome saved, conceded\ninitial AIM\n\nstate AIM {\n    when side < 0 -> LEFT\n    when TRUE -> RIGHT\n}\n\nstate LEFT {\n    entry {\n        post(\"Motion\", side);\n    }\n    when held -> SAVED\n    when TRUE -> GONE\n}\n\nstate RIGHT {\n}\n\nstate SAVED {\n    outcome saved\n}\n\nstate GONE {\n    entry {\n        Say: goal\n    }\n    outcome conceded\n}\n";
+
+/// Reads one machine file: `expect` is its diagnostics, one a line, or (none) the lowered
+/// machine's states: each state's OnEntry and labels as they run.
+fn check(input: &str, expect: &str) {
+    let read = parse_machine("m.machine", input);
+    let got = if read.diagnostics.is_empty() {
+        lowered(&read.machines[0])
+    } else {
+        read.diagnostics
+            .iter()
+            .map(|d| d.to_string() + "\n")
+            .collect()
+    };
+    assert_eq!(got, expect, "input:\n{input}");
+}
+
+fn lowered(m: &Machine) -> String {
+    let mut out = String::new();
+    for s in &m.states {
+        let entry: Vec<String> = s.on_entry.iter().map(action).collect();
+        out += &format!("{}: [{}]", s.name, entry.join(" "));
+        for t in m.outgoing(s.id) {
+            out += &format!(
+                " {} ->{}",
+                t.label,
+                m.state(t.target).map_or("?", |t| &t.name)
+            );
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn action(a: &proclaim_fsm::Action) -> String {
+    match a {
+        proclaim_fsm::Action::Post { ty, content } => format!("{ty}: {content};"),
+        proclaim_fsm::Action::Statement(s) => s.to_string(),
+        other => format!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_machine_reads_its_parameters_and_announces_its_outcomes_as_globals() {
+    check(
+        DIVE,
+        "AIM: [] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
+         LEFT: [post(\"Motion\", Dive_side);] held ->SAVED TRUE ->GONE\n\
+         RIGHT: []\n\
+         SAVED: [Dive_saved = 1;]\n\
+         GONE: [Say: goal; Dive_conceded = 1;]\n",
+    );
+}
+
+#[test]
+fn what_a_file_cannot_declare_is_refused_where_it_is_written() {
+    let m = |top: &str, body: &str| format!("machine Dive\n{top}\nstate A {{\n{body}\n}}\n");
+    check(
+        &m("param side", ""),
+        "m.machine:2: error: `param side`: a parameter is `param NAME: TYPE`, as in `param side: int`\n",
+    );
+    check(
+        &m("param side: vector", ""),
+        "m.machine:2: error: `vector` is no type a parameter can have: int, bool, char, float or double\n",
+    );
+    check(
+        &m("param side: int\nparam side: int", ""),
+        "m.machine:3: error: parameter `side` is declared twice\n",
+    );
+    check(
+        &m("outcome saved, 2x", ""),
+        "m.machine:2: error: `2x` cannot name an outcome: letters, digits and `_`, not first a digit (`outcome saved, missed`)\n",
+    );
+    check(
+        &m("outcome saved", "    outcome savd"),
+        "m.machine:4: error: `savd` is not an outcome of this machine; did you mean `saved`?\n",
+    );
+    check(
+        &m("outcome saved", "    when TRUE -> A\n    outcome saved"),
+        "m.machine:5: error: state `A` announces outcome `saved`, so it is final: it can have no transitions and hold no states\n",
+    );
+    check(
+        &m("param side: int", "    entry {\n        side = 2;\n    }"),
+        "m.machine:3: error: `side` is a parameter of `Dive`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = side;`)\n",
+    );
+    check(
+        &m("", "    entry {\n        Kick: On(power == 3)\n    }"),
+        "m.machine:5: error: `power == 3`: an argument is `name = value`\n",
+    );
+    // `outcome` and `param` are names where a name is wanted.
+    check(
+        "machine M\ninitial outcome\nstate outcome {\n    when param -> param\n}\nstate param {\n}\n",
+        "outcome: [] param ->param\nparam: []\n",
+    );
+}
+
+#[test]
+fn a_machine_with_parameters_and_outcomes_is_written_as_it_was_read() {
+    let read = parse_machine("m.machine", DIVE);
+    assert!(read.diagnostics.is_empty(), "{:?}", read.diagnostics);
+    let text = to_native(&read.machines[0]);
+    assert_eq!(text, DIVE);
+}
+
+/// A machine's text, whether it starts with the behaviour, and the manifest's parameters.
+type Entry<'a> = (&'a str, bool, &'a [(&'a str, i64)]);
+
+/// Links `machines`: the problems, one a line, then each machine's states as they run.
+fn linked(machines: &[Entry<'_>], expect: &str) {
+    let mut read: Vec<Machine> = machines
+        .iter()
+        .map(|(text, _, _)| {
+            let r = parse_machine("m.machine", text);
+            assert!(r.diagnostics.is_empty(), "{:?}", r.diagnostics);
+            r.machines[0].clone()
+        })
+        .collect();
+    let launches: Vec<Launch> = machines
+        .iter()
+        .map(|(_, start, params)| Launch {
+            start: *start,
+            params: params
+                .iter()
+                .map(|(n, v)| (n.to_string(), Expr::Int(*v)))
+                .collect(),
+        })
+        .collect();
+    let problems = link(&mut read, &launches);
+    let mut got: String = problems
+        .iter()
+        .map(|p| {
+            format!(
+                "{} line {:?}: {}\n",
+                read[p.machine].name, p.line, p.message
+            )
+        })
+        .collect();
+    for m in &read {
+        got += &format!("-- {}\n{}", m.name, lowered(m));
+    }
+    assert_eq!(got, expect);
+}
+
+const KEEPER: &str = "machine Keeper\nstate GUARD {\n    entry {\n        Dive: restart(side = -1)\n    }\n    when Dive.saved -> CHEER\n}\nstate CHEER {\n}\n";
+
+#[test]
+fn a_start_gives_the_parameters_and_clears_the_outcomes_and_a_label_reads_one() {
+    let dive = DIVE;
+    linked(
+        &[(KEEPER, true, &[]), (dive, false, &[])],
+        "-- Keeper\n\
+         GUARD: [Dive_side = -1; Dive_saved = 0; Dive_conceded = 0; Dive: restart;] Dive_saved ->CHEER\n\
+         CHEER: []\n\
+         -- Dive\n\
+         AIM: [] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
+         LEFT: [post(\"Motion\", Dive_side);] held ->SAVED TRUE ->GONE\n\
+         RIGHT: []\n\
+         SAVED: [Dive_saved = 1;]\n\
+         GONE: [Say: goal; Dive_conceded = 1;]\n",
+    );
+}
+
+#[test]
+fn what_does_not_fit_between_machines_is_said_where() {
+    let only = |keeper: &str, dive_starts: bool, params: &[(&str, i64)]| {
+        let mut read = vec![
+            parse_machine("k", keeper).machines[0].clone(),
+            parse_machine("d", DIVE).machines[0].clone(),
+        ];
+        let launches = [
+            Launch {
+                start: true,
+                params: Vec::new(),
+            },
+            Launch {
+                start: dive_starts,
+                params: params
+                    .iter()
+                    .map(|(n, v)| (n.to_string(), Expr::Int(*v)))
+                    .collect(),
+            },
+        ];
+        link(&mut read, &launches)
+            .into_iter()
+            .map(|p| format!("{:?}: {}", p.line, p.message))
+            .collect::<Vec<_>>()
+    };
+    let keeper = |entry: &str, label: &str| {
+        format!("machine Keeper\nstate GUARD {{\n    entry {{\n        {entry}\n    }}\n    when {label} -> GUARD\n}}\n")
+    };
+    assert_eq!(
+        only(&keeper("Dive: On", "Dive.saved"), false, &[]),
+        ["Some(2): `Dive` takes side: start it with `Dive: On(side = …)`"]
+    );
+    assert_eq!(
+        only(&keeper("Dive: On(sde = 1)", "Dive.savd"), false, &[]),
+        [
+            "Some(2): `Dive` has no parameter `sde`; did you mean `side`?",
+            "Some(2): `Dive` takes side: start it with `Dive: On(side = …)`",
+            "Some(6): `Dive.savd`: `Dive` has no outcome `savd`; did you mean `Dive.saved`?",
+        ]
+    );
+    assert_eq!(
+        only(&keeper("Dive: suspend(side = 1)", "TRUE"), false, &[]),
+        ["Some(2): `Dive: suspend(side = 1)`: only `On` and `restart` start a machine, so only they take arguments"]
+    );
+    assert_eq!(
+        only(&keeper("start(\"Dive\");", "TRUE"), false, &[]),
+        ["Some(2): `Dive` takes parameters, which a statement cannot give: start it on a line of its own, `Dive: On(side = …)`"]
+    );
+    assert_eq!(
+        only(&keeper("Dive_side = 3;", "TRUE"), false, &[]),
+        ["None: `Keeper` sets `Dive_side`, the global that `Dive`'s `side` becomes: call the variable something else"]
+    );
+    assert_eq!(
+        only(&keeper("x = 1;", "TRUE"), true, &[]),
+        ["None: `Dive` starts with the behaviour and takes side: give them in its `[[machine]]` entry (`params = { side = … }`), or start it from a machine with `start = false`"]
+    );
+    assert_eq!(
+        only(&keeper("Dive: On(side = 1)", "TRUE"), true, &[("side", 2)]),
+        ["None: `Dive` is given its parameters by the manifest and by a machine that starts it: give them in one place"]
+    );
+    assert_eq!(
+        only(&keeper("x = 1;", "TRUE"), false, &[("side", 2), ("power", 1)]),
+        [
+            "None: the manifest gives `Dive` a parameter `power` it does not declare",
+            "None: the manifest gives `Dive` parameters but starts it with `start = false`: whoever starts it gives them (`Dive: On(…)`)",
+        ]
+    );
+}
+
+#[test]
+fn the_manifests_parameters_are_set_first_as_a_launched_machine_starts() {
+    linked(
+        &[(DIVE, true, &[("side", 1)])],
+        "-- Dive\n\
+         AIM: [Dive_side = 1;] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
+         LEFT: [post(\"Motion\", Dive_side);] held ->SAVED TRUE ->GONE\n\
+         RIGHT: []\n\
+         SAVED: [Dive_saved = 1;]\n\
+         GONE: [Say: goal; Dive_conceded = 1;]\n",
+    );
+}
+
+#[test]
+fn a_machine_with_outcomes_only_started_by_a_statement_has_them_cleared_first() {
+    let flag = "machine Flag\noutcome up\nstate RAISE {\n    outcome up\n}\n";
+    let caller = "machine Caller\nstate GO {\n    entry {\n        start(\"Flag\");\n    }\n    when Flag.up -> GO\n}\n";
+    linked(
+        &[(caller, true, &[]), (flag, false, &[])],
+        "-- Caller\n\
+         GO: [{ Flag_up = 0; start(\"Flag\"); }] Flag_up ->GO\n\
+         -- Flag\n\
+         RAISE: [Flag_up = 1;]\n",
+    );
+}
