@@ -386,16 +386,16 @@ fn a_parameter_nothing_gives_is_refused_and_deps_launch_carries_it() {
     };
     let forgot = temp_behaviour(&[
         ("behaviour.toml", &manifest("start = false\n")),
-        ("Keeper.machine", &keeper("Dive: On")),
+        ("Keeper.machine", &keeper("Dive: restart")),
         ("Dive.machine", dive),
     ]);
     assert_eq!(
         errors(&forgot),
-        ["Keeper.machine:6: error: `Dive` takes side: start it with `Dive: On(side = …)`"]
+        ["Keeper.machine:6: error: `Dive` takes side: start it with `Dive: restart(side = …)`"]
     );
     let launched = temp_behaviour(&[
         ("behaviour.toml", &manifest("")),
-        ("Keeper.machine", &keeper("Dive: On(side = 1)")),
+        ("Keeper.machine", &keeper("Dive: restart(side = 1)")),
         ("Dive.machine", dive),
     ]);
     assert_eq!(
@@ -404,7 +404,7 @@ fn a_parameter_nothing_gives_is_refused_and_deps_launch_carries_it() {
     );
     let whole = temp_behaviour(&[
         ("behaviour.toml", &manifest("start = false\n")),
-        ("Keeper.machine", &keeper("Dive: On(side = 1)")),
+        ("Keeper.machine", &keeper("Dive: restart(side = 1)")),
         ("Dive.machine", dive),
     ]);
     let b = load("keeper", Arc::new(Folder::new(&whole))).unwrap();

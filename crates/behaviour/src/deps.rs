@@ -4,9 +4,7 @@
 
 use crate::error::BehaviourError;
 use crate::load::Behaviour;
-use crate::manifest::{
-    ImpersonatorEntry, MachineEntry, Manifest, ParamValue, Simulator, TheoryEntry,
-};
+use crate::manifest::{ImpersonatorEntry, MachineEntry, Manifest, Simulator, TheoryEntry};
 use crate::modules::{Module, ModuleKind};
 use std::fmt::Write;
 use std::time::Duration;
@@ -291,6 +289,7 @@ pub fn launch_manifest(
         let starters: Vec<&str> = behaviour
             .machines
             .iter()
+            .filter(|m| m.machine.name != centre)
             .filter(|m| {
                 m.machine.statements().iter().any(|s| {
                     matches!(s, proclaim_fsm::Statement::Assign { name, .. } if globals.contains(name))
@@ -319,7 +318,7 @@ pub fn launch_manifest(
 fn placeholders(
     machine: &proclaim_fsm::Machine,
     centre: &str,
-) -> std::collections::BTreeMap<String, ParamValue> {
+) -> std::collections::BTreeMap<String, toml::Value> {
     if machine.name != centre {
         return Default::default();
     }
@@ -329,11 +328,11 @@ fn placeholders(
         .iter()
         .map(|p| {
             let zero = match p.ty {
-                proclaim_fsm::VarType::Bool => ParamValue::Truth(false),
+                proclaim_fsm::VarType::Bool => toml::Value::Boolean(false),
                 proclaim_fsm::VarType::Float | proclaim_fsm::VarType::Double => {
-                    ParamValue::Fraction(0.0)
+                    toml::Value::Float(0.0)
                 }
-                _ => ParamValue::Whole(0),
+                _ => toml::Value::Integer(0),
             };
             (p.name.clone(), zero)
         })

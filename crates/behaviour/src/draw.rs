@@ -5,9 +5,6 @@ use proclaim_fsm::dot::{body, header, quote};
 use proclaim_fsm::Machine;
 use std::fmt::Write;
 
-/// DOT text for the machines of a behaviour, each in its own box (sub-machines, those not
-/// started at first, dashed), a state that starts a sub-machine linked to that machine's box.
-/// A machine started that the behaviour does not have is drawn red.
 /// A machine's name with what a start gives it and how it can end: `Dive(side: int) → landed`.
 fn signature(machine: &Machine) -> String {
     let interface = &machine.interface;
@@ -27,6 +24,9 @@ fn signature(machine: &Machine) -> String {
     out
 }
 
+/// DOT text for the machines of a behaviour, each in its own box (sub-machines, those not
+/// started at first, dashed), a state that starts a sub-machine linked to that machine's box.
+/// A machine started that the behaviour does not have is drawn red.
 pub fn behaviour_to_dot(name: &str, machines: &[(&Machine, bool)]) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "digraph {} {{", quote(name));

@@ -4,7 +4,7 @@
 
 use crate::loaded::LoadedMachine;
 use crate::manifest::MachineEntry;
-use proclaim_fsm::{link, Launch, LinkProblem, Machine};
+use proclaim_fsm::{link, Expr, Launch, LinkProblem, Machine};
 use proclaim_syntax::FileDiagnostic;
 use std::sync::Arc;
 
@@ -32,7 +32,16 @@ pub(crate) fn link_loaded(
             params: e
                 .params
                 .iter()
-                .map(|(n, v)| (n.clone(), v.expr()))
+                .filter_map(|(n, v)| match value(v) {
+                    Some(v) => Some((n.clone(), v)),
+                    None => {
+                        problems.push(FileDiagnostic::in_file(
+                            manifest,
+                            format!("`{}`'s parameter `{n} = {v}`: a parameter's value is a whole number, a fraction, a truth or a text", e.file),
+                        ));
+                        None
+                    }
+                })
                 .collect(),
         })
         .collect();
@@ -58,6 +67,17 @@ pub(crate) fn link_loaded(
         let linking = linking.clone();
         m.loader = Arc::new(move || linking.relink(i, read()?));
     }
+}
+
+/// A manifest's value as the activity language writes it, if it is one a parameter can take.
+fn value(v: &toml::Value) -> Option<Expr> {
+    Some(match v {
+        toml::Value::Integer(i) => Expr::Int(*i),
+        toml::Value::Float(x) => Expr::Float(*x),
+        toml::Value::Boolean(b) => Expr::Bool(*b),
+        toml::Value::String(s) => Expr::Str(s.clone()),
+        _ => return None,
+    })
 }
 
 impl Linking {

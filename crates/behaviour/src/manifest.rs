@@ -208,29 +208,7 @@ pub struct MachineEntry {
     /// The parameters of a machine that starts with the behaviour (`params = { side = 1 }`);
     /// a machine another one starts is given them by that start (`Dive: On(side = 1)`).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
-    pub params: BTreeMap<String, ParamValue>,
-}
-
-/// A parameter's value as the manifest writes it.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
-#[serde(untagged)]
-pub enum ParamValue {
-    Truth(bool),
-    Whole(i64),
-    Fraction(f64),
-    Text(String),
-}
-
-impl ParamValue {
-    /// The value as an expression of the activity language.
-    pub fn expr(&self) -> proclaim_fsm::Expr {
-        match self {
-            ParamValue::Truth(b) => proclaim_fsm::Expr::Bool(*b),
-            ParamValue::Whole(i) => proclaim_fsm::Expr::Int(*i),
-            ParamValue::Fraction(x) => proclaim_fsm::Expr::Float(*x),
-            ParamValue::Text(t) => proclaim_fsm::Expr::Str(t.clone()),
-        }
-    }
+    pub params: BTreeMap<String, toml::Value>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]

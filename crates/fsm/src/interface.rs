@@ -3,8 +3,7 @@
 //! global of the behaviour named after the machine, so every back end runs them as the
 //! globals it already runs.
 
-use crate::code::{parse_expression, Expr, VarType};
-use crate::control::Command;
+use crate::code::{Expr, VarType};
 
 /// A machine's parameters and outcomes, as declared (`param side: int`, `outcome saved`).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -54,133 +53,36 @@ impl Interface {
 }
 
 /// The global a parameter or an outcome of `machine` is kept in: `Dive_side`, `Dive_saved`.
-/// Not `Dive.side`: a dotted name reads a team member's value (§5).
+/// Not `Dive.side`: a dotted name reads a teammate's value (`robot2.ballDistance`).
 pub fn global_of(machine: &str, name: &str) -> String {
     format!("{machine}_{name}")
 }
 
-/// A control command as posted with its arguments: `On(side = 1, power = kick + 1)`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Start {
-    pub command: Command,
-    pub arguments: Vec<(String, Expr)>,
+/// Letters, digits and `_`, not first a digit: a parameter's, an outcome's or an argument's name.
+pub(crate) fn is_name(text: &str) -> bool {
+    text.starts_with(|c: char| c.is_alphabetic() || c == '_')
+        && text.chars().all(|c| c.is_alphanumeric() || c == '_')
 }
 
-/// Reads a posting's content as a command with arguments: `None` when it is not one (no
-/// `(` after a command word: plain content, or a command alone), else the command or why its
-/// arguments cannot be read.
-pub fn start_of(content: &str) -> Option<Result<Start, String>> {
-    let (word, rest) = content.split_once('(')?;
-    let command = Command::parse(word)?;
-    let Some(inner) = rest.trim_end().strip_suffix(')') else {
-        return Some(Err(format!(
-            "`{content}`: the arguments of `{word}` end with `)`",
-            word = word.trim()
-        )));
-    };
-    let mut arguments: Vec<(String, Expr)> = Vec::new();
-    for part in split_arguments(inner)
-        .into_iter()
-        .filter(|p| !p.trim().is_empty())
-    {
-        let Some((name, value)) = split_assignment(part) else {
-            return Some(Err(format!(
-                "`{}`: an argument is `name = value`",
-                part.trim()
-            )));
-        };
-        if value.trim().is_empty() {
-            return Some(Err(format!("`{name} =` gives `{name}` no value")));
+/// Whether `value`, when it is a constant, is one a parameter of type `ty` can hold; an
+/// expression is the caller's to get right, as any assignment's is.
+pub fn fits(ty: &VarType, value: &Expr) -> bool {
+    match (ty, value) {
+        (VarType::Named(_), _) => true,
+        (VarType::Int | VarType::Char, Expr::Int(_)) => true,
+        (VarType::Bool, Expr::Bool(_)) => true,
+        (VarType::Float | VarType::Double, Expr::Int(_) | Expr::Float(_)) => true,
+        (VarType::Char, Expr::Str(s)) => s.chars().count() == 1,
+        (_, Expr::Int(_) | Expr::Float(_) | Expr::Bool(_) | Expr::Str(_) | Expr::Duration(_)) => {
+            false
         }
-        let value = match parse_expression(value) {
-            Ok(v) => v,
-            Err(e) => return Some(Err(format!("`{}`: {}", value.trim(), e.message))),
-        };
-        if arguments.iter().any(|(n, _)| *n == name) {
-            return Some(Err(format!("`{name}` is given twice")));
+        // A negative constant is written `-1`.
+        (_, Expr::Unary { operand, .. }) if matches!(**operand, Expr::Int(_) | Expr::Float(_)) => {
+            matches!(
+                ty,
+                VarType::Int | VarType::Char | VarType::Float | VarType::Double
+            )
         }
-        arguments.push((name, value));
-    }
-    Some(Ok(Start { command, arguments }))
-}
-
-/// The arguments between commas outside parentheses and quotes.
-fn split_arguments(text: &str) -> Vec<&str> {
-    let (mut parts, mut depth, mut quoted, mut from) = (Vec::new(), 0i32, false, 0);
-    let mut escaped = false;
-    for (i, c) in text.char_indices() {
-        match c {
-            _ if escaped => escaped = false,
-            '\\' if quoted => escaped = true,
-            '"' => quoted = !quoted,
-            '(' if !quoted => depth += 1,
-            ')' if !quoted => depth -= 1,
-            ',' if !quoted && depth == 0 => {
-                parts.push(&text[from..i]);
-                from = i + 1;
-            }
-            _ => {}
-        }
-    }
-    parts.push(&text[from..]);
-    parts
-}
-
-/// `name = value`: the name (a plain identifier) and the value's text.
-fn split_assignment(part: &str) -> Option<(String, &str)> {
-    let at = part.find('=')?;
-    if part[at + 1..].starts_with('=') {
-        return None;
-    }
-    let name = part[..at].trim();
-    let plain = name.starts_with(|c: char| c.is_alphabetic() || c == '_')
-        && name.chars().all(|c| c.is_alphanumeric() || c == '_');
-    plain.then(|| (name.to_string(), &part[at + 1..]))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn check(content: &str, expect: &str) {
-        let got = match start_of(content) {
-            None => "not a start".to_string(),
-            Some(Err(e)) => format!("error: {e}"),
-            Some(Ok(s)) => {
-                let args: Vec<String> = s
-                    .arguments
-                    .iter()
-                    .map(|(n, v)| format!("{n} := {v}"))
-                    .collect();
-                format!("{} {}", s.command, args.join("; "))
-            }
-        };
-        assert_eq!(got, expect, "{content}");
-    }
-
-    #[test]
-    fn a_start_reads_its_arguments_and_says_what_is_wrong_with_them() {
-        check("On", "not a start");
-        check("ChestBoard Red (blink)", "not a start");
-        check("On(side = 1)", "On side := 1");
-        check(
-            "restart(side = f(a, b), name = \"x, (y\")",
-            "restart side := f(a, b); name := \"x, (y\"",
-        );
-        check("On()", "On ");
-        check(
-            "On(side == 1)",
-            "error: `side == 1`: an argument is `name = value`",
-        );
-        check("On(side = )", "error: `side =` gives `side` no value");
-        check(
-            "On(side = 1 +)",
-            "error: `1 +`: expected a name, a number, a string, `(`, `!` or `-`, found the end",
-        );
-        check(
-            "On(side = 1",
-            "error: `On(side = 1`: the arguments of `On` end with `)`",
-        );
-        check("On(a = 1, a = 2)", "error: `a` is given twice");
+        _ => true,
     }
 }

@@ -23,6 +23,7 @@ mod native;
 mod qfsm;
 mod scxml;
 mod sections;
+mod start;
 mod ta;
 mod team;
 
@@ -33,7 +34,7 @@ pub use code::{BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType};
 pub use control::{finished_type, machine_of_running_type, running_type, Command};
 pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};
-pub use interface::{global_of, start_of, DeclaredOutcome, Interface, Param, Start};
+pub use interface::{fits, global_of, DeclaredOutcome, Interface, Param};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};
 pub use link::{link, Launch, LinkProblem};
 pub use lint::{lint, reachable};
@@ -41,6 +42,7 @@ pub use model::{
     Action, Argument, Composite, Machine, State, StateId, Transition, UnreadTransition,
 };
 pub use native::{parse_machine, to_native, to_scxml, EXTENSION};
+pub use start::{start_of, Start};
 
 /// Editing native machine files in place: each edit a text patch at the reader's spans, so
 /// what it does not touch stays byte for byte as written.

@@ -1,15 +1,17 @@
 //! Machines that start one another with arguments and wait on their outcomes, linked across
 //! the machines of a behaviour (`docs/spec/behaviour.md` §3.3): what a machine's file alone
-//! cannot say, lowered to the globals every back end already runs. A start `Dive: On(side =
-//! x)` becomes `Dive_side = x;` for each parameter, `Dive_saved = 0;` for each outcome (a
-//! machine started again has no outcome yet, even before its first ringlet), then the command;
-//! a label's `Dive.saved` reads `Dive_saved`; the manifest's parameters of a machine that
-//! starts with the behaviour are set first of its initial state's OnEntry.
+//! cannot say, lowered to the globals every back end already runs. A start `Dive:
+//! restart(side = x)` becomes `Dive_side = x;` for each parameter, `Dive_landed = 0;` for each
+//! outcome (a machine started again has no outcome yet, even before its first ringlet), then
+//! the command; a label's `Dive.landed` reads `Dive_landed`; a machine with outcomes clears
+//! them as it first starts, and the manifest's parameters of a machine that starts with the
+//! behaviour are set then, on arrival in its initial state.
 
 use crate::code::{Expr, Statement};
 use crate::control::Command;
-use crate::interface::{global_of, start_of, Interface};
-use crate::model::{Action, Machine};
+use crate::interface::{fits, global_of, Interface};
+use crate::model::{Action, Machine, StateId};
+use crate::start::{start_of, Start};
 
 /// How the manifest starts a machine: with the behaviour or not, and the parameters it gives.
 #[derive(Clone, Debug, Default)]
@@ -20,38 +22,40 @@ pub struct Launch {
 
 /// Why machines do not fit together: in `machine` (an index into what [`link`] was given), at
 /// `line` of its file, or of the manifest where `line` is `None`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct LinkProblem {
     pub machine: usize,
     pub line: Option<usize>,
     pub message: String,
 }
 
-/// Lowers every start of a machine with parameters or outcomes, every label reading an
-/// outcome and the manifest's parameters, and says what does not fit; `launches[i]` is how
-/// the manifest starts `machines[i]`.
+/// Lowers every start of a machine of the behaviour, every read of an outcome and the
+/// manifest's parameters, and says what does not fit; `launches[i]` is how the manifest starts
+/// `machines[i]`.
 pub fn link(machines: &mut [Machine], launches: &[Launch]) -> Vec<LinkProblem> {
     let interfaces: Vec<(String, Interface)> = machines
         .iter()
         .map(|m| (m.name.clone(), m.interface.clone()))
         .collect();
-    if interfaces.iter().all(|(_, i)| i.is_empty()) {
-        return Vec::new();
-    }
     let mut linker = Linker {
         interfaces: &interfaces,
         problems: Vec::new(),
         given: vec![false; machines.len()],
+        caller: String::new(),
     };
     for (i, machine) in machines.iter_mut().enumerate() {
         linker.clashes(i, machine);
+        linker.caller = machine.name.clone();
         linker.machine(i, machine);
     }
     for (i, machine) in machines.iter_mut().enumerate() {
         let launch = launches.get(i).cloned().unwrap_or_default();
         linker.launch(i, machine, &launch);
     }
-    linker.problems
+    let mut problems = linker.problems;
+    problems.sort();
+    problems.dedup();
+    problems
 }
 
 struct Linker<'i> {
@@ -59,6 +63,8 @@ struct Linker<'i> {
     problems: Vec<LinkProblem>,
     /// Whether some machine starts each one with arguments.
     given: Vec<bool>,
+    /// The machine being linked: an argument reads its parameters as its globals.
+    caller: String,
 }
 
 impl Linker<'_> {
@@ -75,27 +81,22 @@ impl Linker<'_> {
         Some((i, &self.interfaces[i].1))
     }
 
-    /// A global that a parameter or outcome becomes, set by a machine's own code elsewhere.
+    /// A global that another machine's parameter or outcome becomes, set by this one's code.
     fn clashes(&mut self, i: usize, machine: &Machine) {
-        let mut set = Vec::new();
-        for s in machine.statements() {
-            if let Statement::Assign { name, .. } | Statement::Declare { name, .. } = s {
-                set.push(name.clone());
-            }
-        }
         for (j, (owner, interface)) in self.interfaces.iter().enumerate() {
-            if j == i {
-                continue;
-            }
             let names = interface.params.iter().map(|p| &p.name);
             for name in names.chain(interface.outcomes.iter().map(|o| &o.name)) {
                 let global = global_of(owner, name);
-                if set.contains(&global) {
-                    self.problems.push(LinkProblem {
-                        machine: i,
-                        line: None,
-                        message: format!("`{}` sets `{global}`, the global that `{owner}`'s `{name}` becomes: call the variable something else", machine.name),
-                    });
+                let setter = machine.states.iter().find(|s| {
+                    s.on_entry
+                        .iter()
+                        .chain(&s.on_exit)
+                        .chain(&s.internal)
+                        .any(|a| sets(a, &global))
+                });
+                if let (true, Some(state)) = (j != i, setter) {
+                    let message = format!("`{}` sets `{global}`, the global that `{owner}`'s `{name}` becomes: call the variable something else", machine.name);
+                    self.problem(i, Some(state.line), message);
                 }
             }
         }
@@ -119,9 +120,19 @@ impl Linker<'_> {
                 self.problem(i, Some(line), message);
             }
         }
+        // A chart's composites keep their activities as written for what draws them: lowered
+        // the same way, so they stay the flat states' leading parts; their problems are the
+        // flat states' already.
+        let reported = self.problems.len();
+        for c in &mut machine.composites {
+            for list in [&mut c.on_entry, &mut c.on_exit, &mut c.internal] {
+                self.actions(i, c.line, list);
+            }
+        }
+        self.problems.truncate(reported);
     }
 
-    /// A name `Dive.saved` where `Dive` is a machine of the behaviour: its outcome's global.
+    /// A name `Dive.landed` where `Dive` is a machine of the behaviour: its outcome's global.
     fn outcome(&self, name: &str, wrong: &mut Vec<String>) -> Option<String> {
         let (owner, outcome) = name.split_once('.')?;
         let (_, interface) = self.interface(owner)?;
@@ -130,7 +141,7 @@ impl Linker<'_> {
         }
         let names: Vec<&str> = interface.outcomes.iter().map(|o| o.name.as_str()).collect();
         wrong.push(match names.as_slice() {
-            [] => format!("`{name}`: machine `{owner}` announces no outcomes (a state announces one with `outcome NAME`)"),
+            [] => format!("`{name}`: machine `{owner}` announces no outcomes (a final state announces one with `outcome NAME`)"),
             _ => match proclaim_syntax::nearest(names.iter().copied(), outcome) {
                 Some(near) => format!("`{name}`: `{owner}` has no outcome `{outcome}`; did you mean `{owner}.{near}`?"),
                 None => format!("`{name}`: `{owner}` has no outcome `{outcome}` (its outcomes: {})", names.join(", ")),
@@ -162,7 +173,7 @@ impl Linker<'_> {
         *list = out;
     }
 
-    /// A posting to machine `j`: a start gives its parameters and clears its outcomes.
+    /// A posting to machine `j`: a command, alone or with arguments.
     fn post(
         &mut self,
         i: usize,
@@ -173,10 +184,12 @@ impl Linker<'_> {
     ) -> Vec<Action> {
         let start = match start_of(&content) {
             Some(Ok(start)) => start,
-            // Reported where the file was read.
-            Some(Err(_)) => return vec![Action::Post { ty, content }],
+            Some(Err(message)) => {
+                self.problem(i, Some(line), format!("`{ty}: {content}`: {message}"));
+                return vec![Action::Post { ty, content }];
+            }
             None => match Command::parse(&content) {
-                Some(command) => crate::interface::Start {
+                Some(command) => Start {
                     command,
                     arguments: Vec::new(),
                 },
@@ -184,70 +197,109 @@ impl Linker<'_> {
             },
         };
         let interface = &self.interfaces[j].1;
-        let starts = matches!(start.command, Command::On | Command::Restart);
-        // What is posted: the command alone (as written, when it was written alone).
-        let word = if start.arguments.is_empty() {
-            content.clone()
-        } else {
-            start.command.word().to_string()
-        };
-        if !starts || (interface.is_empty() && start.arguments.is_empty()) {
-            if !start.arguments.is_empty() {
-                self.problem(i, Some(line), format!("`{ty}: {content}`: only `On` and `restart` start a machine, so only they take arguments"));
+        let written_alone = start.arguments.is_empty() && !content.contains('(');
+        if start.command != Command::Restart || interface.is_empty() {
+            let message = match start.command {
+                Command::On | Command::Restart if !interface.is_empty() => Some(format!("`{ty}` takes parameters or announces outcomes: start it with `{ty}: restart(…)` (`On` does nothing to a machine already running, which would then run with other arguments, or keep an outcome its caller waits on)")),
+                _ if !start.arguments.is_empty() && interface.params.is_empty() => Some(format!("`{ty}: {content}`: `{ty}` takes no parameters")),
+                _ if !start.arguments.is_empty() => Some(format!("`{ty}: {content}`: only `restart` gives a machine its parameters")),
+                _ => None,
+            };
+            if let Some(message) = message {
+                self.problem(i, Some(line), message);
             }
+            // The command alone, as written when it was written alone.
+            let word = if written_alone {
+                content
+            } else {
+                start.command.word().to_string()
+            };
             return vec![Action::Post { ty, content: word }];
         }
-        let mut out = Vec::new();
+        let mut out = self.arguments(i, line, j, &start);
+        let interface = &self.interfaces[j].1;
+        for o in &interface.outcomes {
+            out.push(assign(global_of(&ty, &o.name), Expr::Int(0)));
+        }
+        out.push(Action::Post {
+            ty,
+            content: start.command.word().to_string(),
+        });
+        out
+    }
+
+    /// The assignments a restart of machine `j` makes of its arguments, each read as the
+    /// starting machine reads its code, in the order the parameters were declared; what is
+    /// missing, unknown or of the wrong kind is a problem.
+    fn arguments(&mut self, i: usize, line: usize, j: usize, start: &Start) -> Vec<Action> {
+        let (ty, interface) = (&self.interfaces[j].0, &self.interfaces[j].1);
         let mut problems = Vec::new();
-        for (name, _) in &start.arguments {
-            if interface.param(name).is_none() {
-                let names = interface.params.iter().map(|p| p.name.as_str());
-                problems.push(match proclaim_syntax::nearest(names, name) {
-                    Some(near) => {
-                        format!("`{ty}` has no parameter `{name}`; did you mean `{near}`?")
-                    }
-                    None if interface.params.is_empty() => {
-                        format!("`{ty}` takes no parameters, so `{name}` cannot be given")
-                    }
-                    None => format!("`{ty}` has no parameter `{name}`"),
-                });
+        for (name, value) in &start.arguments {
+            match interface.param(name) {
+                Some(p) if !fits(&p.ty, value) => problems.push(format!(
+                    "`{ty}`'s `{name}` is {}, which `{value}` is not",
+                    p.ty.name()
+                )),
+                Some(_) => {}
+                None => problems.push(
+                    match proclaim_syntax::nearest(
+                        interface.params.iter().map(|p| p.name.as_str()),
+                        name,
+                    ) {
+                        Some(near) => {
+                            format!("`{ty}` has no parameter `{name}`; did you mean `{near}`?")
+                        }
+                        None => format!("`{ty}` has no parameter `{name}`"),
+                    },
+                ),
             }
         }
         let missing: Vec<&str> = interface
             .params
             .iter()
-            .filter(|p| !start.arguments.iter().any(|(n, _)| *n == p.name))
             .map(|p| p.name.as_str())
+            .filter(|p| !start.arguments.iter().any(|(n, _)| n == p))
             .collect();
         if !missing.is_empty() {
             let list: Vec<String> = missing.iter().map(|p| format!("{p} = …")).collect();
             problems.push(format!(
-                "`{ty}` takes {}: start it with `{ty}: {}({})`",
+                "`{ty}` takes {}: start it with `{ty}: restart({})`",
                 missing.join(", "),
-                start.command,
                 list.join(", ")
             ));
         }
-        for message in problems {
-            self.problem(i, Some(line), message);
+        let mut out = Vec::new();
+        for p in &interface.params {
+            if let Some((_, value)) = start.arguments.iter().find(|(n, _)| *n == p.name) {
+                let mut value = value.clone();
+                let mut wrong = Vec::new();
+                value.rename(&mut |n| self.read(n, &mut wrong));
+                problems.extend(wrong);
+                out.push(assign(global_of(ty, &p.name), value));
+            }
         }
         if !start.arguments.is_empty() {
             self.given[j] = true;
         }
-        for p in &interface.params {
-            if let Some((_, value)) = start.arguments.iter().find(|(n, _)| *n == p.name) {
-                out.push(assign(global_of(&ty, &p.name), value.clone()));
-            }
+        for message in problems {
+            self.problem(i, Some(line), message);
         }
-        for o in &interface.outcomes {
-            out.push(assign(global_of(&ty, &o.name), Expr::Int(0)));
-        }
-        out.push(Action::Post { ty, content: word });
         out
     }
 
-    /// A start of a machine with an interface inside a statement (`start("Dive");`): its
-    /// outcomes are cleared just before; it cannot give parameters.
+    /// A name an argument reads: the starting machine's own parameter, or an outcome.
+    fn read(&self, name: &str, wrong: &mut Vec<String>) -> Option<String> {
+        let own = self
+            .interface(&self.caller)
+            .is_some_and(|(_, i)| i.param(name).is_some());
+        if own {
+            return Some(global_of(&self.caller, name));
+        }
+        self.outcome(name, wrong)
+    }
+
+    /// A command to a machine inside a statement (`restart("Dive");`, `post("Dive", "On")`):
+    /// cleared outcomes before a restart; what a statement cannot give is a problem.
     fn statement(&mut self, i: usize, line: usize, s: &mut Statement) {
         match s {
             Statement::Block(body) => body.iter_mut().for_each(|s| self.statement(i, line, s)),
@@ -256,52 +308,94 @@ impl Linker<'_> {
                 function,
                 arguments,
             }) => {
-                let Some(target) = started(function, arguments) else {
+                let Some((target, word)) = commanded(function, arguments) else {
                     return;
                 };
                 let Some((_, interface)) = self.interface(&target) else {
                     return;
                 };
-                if !interface.params.is_empty() {
-                    let params: Vec<String> = interface
-                        .params
-                        .iter()
-                        .map(|p| format!("{} = …", p.name))
-                        .collect();
-                    let message = format!("`{target}` takes parameters, which a statement cannot give: start it on a line of its own, `{target}: On({})`", params.join(", "));
+                let message = match start_of(&word) {
+                    Some(_) => Some(format!("`{target}`: arguments are given on a line of its own, `{target}: restart(…)`, not by a statement")),
+                    None if interface.is_empty() => None,
+                    None => match Command::parse(&word) {
+                        Some(Command::On) => Some(format!("`{target}` takes parameters or announces outcomes: start it with `{target}: restart(…)` (`On` does nothing to a machine already running)")),
+                        Some(Command::Restart) if !interface.params.is_empty() => Some(format!("`{target}` takes parameters, which a statement cannot give: restart it on a line of its own, `{target}: restart(…)`")),
+                        _ => None,
+                    },
+                };
+                if let Some(message) = message {
                     self.problem(i, Some(line), message);
                     return;
                 }
-                let mut block: Vec<Statement> = interface
-                    .outcomes
-                    .iter()
-                    .map(|o| Statement::Assign {
-                        name: global_of(&target, &o.name),
-                        value: Expr::Int(0),
-                    })
-                    .collect();
-                block.push(s.clone());
-                *s = Statement::Block(block);
+                if Command::parse(&word) == Some(Command::Restart) && !interface.outcomes.is_empty()
+                {
+                    let mut block: Vec<Statement> = interface
+                        .outcomes
+                        .iter()
+                        .map(|o| Statement::Assign {
+                            name: global_of(&target, &o.name),
+                            value: Expr::Int(0),
+                        })
+                        .collect();
+                    block.push(s.clone());
+                    *s = Statement::Block(block);
+                }
             }
             _ => {}
         }
     }
+}
 
+/// The machine a call commands and the word it posts: `restart("Dive")` → `restart`,
+/// `post("Dive", "On")` → `On`.
+fn commanded(function: &str, arguments: &[Expr]) -> Option<(String, String)> {
+    match (function, arguments) {
+        (f, [Expr::Str(m)]) => Some((m.clone(), Command::from_function(f)?.word().to_string())),
+        ("post", [Expr::Str(m), Expr::Str(word)]) => Some((m.clone(), word.clone())),
+        _ => None,
+    }
+}
+
+/// Whether an action (a statement in it, however deep) sets `name`.
+fn sets(action: &Action, name: &str) -> bool {
+    let Action::Statement(s) = action else {
+        return false;
+    };
+    let mut found = false;
+    s.visit(&mut |inner| {
+        if let Statement::Assign { name: n, .. } | Statement::Declare { name: n, .. } = inner {
+            found |= n == name;
+        }
+    });
+    found
+}
+
+fn assign(name: String, value: Expr) -> Action {
+    Action::Statement(Statement::Assign { name, value })
+}
+
+impl Linker<'_> {
     /// The manifest's parameters of machine `i`: every one for a machine that starts with the
-    /// behaviour, none for one that does not; set first of its initial state's OnEntry.
+    /// behaviour, none for one that does not. Set on arrival in its initial state, with its
+    /// outcomes cleared (so each is a global from the start, 0 until announced).
     fn launch(&mut self, i: usize, machine: &mut Machine, launch: &Launch) {
         let interface = &self.interfaces[i].1;
         let name = machine.name.clone();
         let mut problems = Vec::new();
-        for (p, _) in &launch.params {
-            if interface.param(p).is_none() {
-                problems.push(format!(
+        for (p, value) in &launch.params {
+            match interface.param(p) {
+                None => problems.push(format!(
                     "the manifest gives `{name}` a parameter `{p}` it does not declare"
-                ));
+                )),
+                Some(param) if !fits(&param.ty, value) => problems.push(format!(
+                    "the manifest gives `{name}`'s `{p}` {value}, which is no {}",
+                    param.ty.name()
+                )),
+                Some(_) => {}
             }
         }
         if !launch.start && !launch.params.is_empty() {
-            problems.push(format!("the manifest gives `{name}` parameters but starts it with `start = false`: whoever starts it gives them (`{name}: On(…)`)"));
+            problems.push(format!("the manifest gives `{name}` parameters but starts it with `start = false`: whoever starts it gives them (`{name}: restart(…)`)"));
         }
         if launch.start && !launch.params.is_empty() && self.given[i] {
             problems.push(format!("`{name}` is given its parameters by the manifest and by a machine that starts it: give them in one place"));
@@ -309,8 +403,8 @@ impl Linker<'_> {
         let missing: Vec<&str> = interface
             .params
             .iter()
-            .filter(|p| !launch.params.iter().any(|(n, _)| *n == p.name))
             .map(|p| p.name.as_str())
+            .filter(|p| !launch.params.iter().any(|(n, _)| n == p))
             .collect();
         if launch.start && !missing.is_empty() {
             let list: Vec<String> = missing.iter().map(|p| format!("{p} = …")).collect();
@@ -319,45 +413,42 @@ impl Linker<'_> {
         for message in problems {
             self.problem(i, None, message);
         }
-        if !launch.start {
-            return;
+        let mut sets: Vec<Action> = Vec::new();
+        if launch.start {
+            for p in &interface.params {
+                if let Some((_, value)) = launch.params.iter().find(|(n, _)| *n == p.name) {
+                    sets.push(assign(global_of(&name, &p.name), value.clone()));
+                }
+            }
         }
-        let sets: Vec<Action> = interface
-            .params
-            .iter()
-            .filter_map(|p| {
-                let (_, value) = launch.params.iter().find(|(n, _)| *n == p.name)?;
-                Some(assign(global_of(&name, &p.name), value.clone()))
-            })
-            .collect();
-        let initial = machine.initial;
-        if let Some(state) = machine.states.iter_mut().find(|s| s.id == initial) {
-            state.on_entry.splice(0..0, sets);
+        for o in &interface.outcomes {
+            sets.push(assign(global_of(&name, &o.name), Expr::Int(0)));
         }
+        arrive_with(machine, machine.initial, sets);
     }
 }
 
-fn assign(name: String, value: Expr) -> Action {
-    Action::Statement(Statement::Assign { name, value })
-}
-
-/// The machine a call starts from its initial state, if it starts one: `start("Dive")`,
-/// `restart("Dive")`, `post("Dive", "On")`.
-fn started(function: &str, arguments: &[Expr]) -> Option<String> {
-    match (function, arguments) {
-        (f, [Expr::Str(m)])
-            if matches!(
-                Command::from_function(f),
-                Some(Command::On | Command::Restart)
-            ) =>
-        {
-            Some(m.clone())
-        }
-        ("post", [Expr::Str(m), Expr::Str(word)])
-            if matches!(Command::parse(word), Some(Command::On | Command::Restart)) =>
-        {
-            Some(m.clone())
-        }
-        _ => None,
+/// Puts `sets` into the OnEntry of flat state `id` after what the composites it arrives
+/// through run (so a chart's drawing still tells theirs from its own).
+fn arrive_with(machine: &mut Machine, id: StateId, sets: Vec<Action>) {
+    if sets.is_empty() {
+        return;
     }
+    let Some(at) = machine.states.iter().position(|s| s.id == id) else {
+        return;
+    };
+    let mut around = Vec::new();
+    let mut inside = machine.composite_of(&machine.states[at]);
+    while let Some(c) = inside {
+        around.push(c);
+        inside = machine.composites[c].parent;
+    }
+    let entered = machine.states[at].arrives_through.min(around.len());
+    let lead: usize = around[..entered]
+        .iter()
+        .map(|&c| machine.composites[c].on_entry.len())
+        .sum();
+    let entry = &mut machine.states[at].on_entry;
+    let lead = lead.min(entry.len());
+    entry.splice(lead..lead, sets);
 }

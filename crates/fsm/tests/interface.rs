@@ -6,15 +6,20 @@ use proclaim_fsm::{link, parse_machine, to_native, Expr, Launch, Machine};
 
 const DIVE: &str = "machine Dive\nparam side: int\noutcome saved, conceded\ninitial AIM\n\nstate AIM {\n    when side < 0 -> LEFT\n    when TRUE -> RIGHT\n}\n\nstate LEFT {\n    entry {\n        post(\"Motion\", side);\n    }\n    when held -> SAVED\n    when TRUE -> GONE\n}\n\nstate RIGHT {\n}\n\nstate SAVED {\n    outcome saved\n}\n\nstate GONE {\n    entry {\n        Say: goal\n    }\n    outcome conceded\n}\n";
 
-/// Reads one machine file: `expect` is its diagnostics, one a line, or (none) the lowered
-/// machine's states: each state's OnEntry and labels as they run.
+/// Reads one machine file: `expect` is its errors, one a line (else its warnings), or (none)
+/// the lowered machine's states: each state's OnEntry and labels as they run.
 fn check(input: &str, expect: &str) {
     let read = parse_machine("m.machine", input);
+    let errors = read
+        .diagnostics
+        .iter()
+        .any(|d| d.severity == proclaim_fsm::Severity::Error);
     let got = if read.diagnostics.is_empty() {
         lowered(&read.machines[0])
     } else {
         read.diagnostics
             .iter()
+            .filter(|d| !errors || d.severity == proclaim_fsm::Severity::Error)
             .map(|d| d.to_string() + "\n")
             .collect()
     };
@@ -71,7 +76,7 @@ fn what_a_file_cannot_declare_is_refused_where_it_is_written() {
     );
     check(
         &m("param side: int\nparam side: int", ""),
-        "m.machine:3: error: parameter `side` is declared twice\n",
+        "m.machine:3: error: `side` is declared twice (a parameter and an outcome become one global, `Dive_side`)\n",
     );
     check(
         &m("outcome saved, 2x", ""),
@@ -87,11 +92,26 @@ fn what_a_file_cannot_declare_is_refused_where_it_is_written() {
     );
     check(
         &m("param side: int", "    entry {\n        side = 2;\n    }"),
-        "m.machine:3: error: `side` is a parameter of `Dive`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = side;`)\n",
+        "m.machine:5: error: `side` is a parameter of `Dive`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = side;`)\n",
     );
     check(
-        &m("", "    entry {\n        Kick: On(power == 3)\n    }"),
-        "m.machine:5: error: `power == 3`: an argument is `name = value`\n",
+        &m("param side: int\noutcome up", "    entry {\n        Dive_side = 2;\n        Dive_up = 1;\n    }"),
+        "m.machine:6: error: `Dive_side` is what parameter `side` becomes: whoever starts `Dive` sets it\n\
+         m.machine:7: error: `Dive_up` is outcome `up`: a final state announces it (`outcome up`), nothing sets it\n",
+    );
+    // A declaration ends at a comment or at its state's `}`; a posting that only looks like a
+    // start is a posting.
+    check(
+        "machine Dive\nparam side: int // which way\noutcome down // lying\nstate A { outcome down }\n",
+        "A: [Dive_down = 1;]\n",
+    );
+    check(
+        "machine M\nstate A {\n    entry {\n        LEDS: On(red)\n    }\n}\n",
+        "A: [LEDS: On(red);]\n",
+    );
+    check(
+        "machine Dive\noutcome up, down\nstate A { outcome up }\n",
+        "m.machine:2: warning: outcome `down` is announced by no state (a final state says `outcome down`), so whoever waits on it waits for ever\n",
     );
     // `outcome` and `param` are names where a name is wanted.
     check(
@@ -158,7 +178,7 @@ fn a_start_gives_the_parameters_and_clears_the_outcomes_and_a_label_reads_one() 
          GUARD: [Dive_side = -1; Dive_saved = 0; Dive_conceded = 0; Dive: restart;] Dive_saved ->CHEER\n\
          CHEER: []\n\
          -- Dive\n\
-         AIM: [] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
+         AIM: [Dive_saved = 0; Dive_conceded = 0;] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
          LEFT: [post(\"Motion\", Dive_side);] held ->SAVED TRUE ->GONE\n\
          RIGHT: []\n\
          SAVED: [Dive_saved = 1;]\n\
@@ -191,47 +211,89 @@ fn what_does_not_fit_between_machines_is_said_where() {
             .map(|p| format!("{:?}: {}", p.line, p.message))
             .collect::<Vec<_>>()
     };
-    let keeper = |entry: &str, label: &str| {
+    let keeper = |entry: &str, label: &str| -> String {
         format!("machine Keeper\nstate GUARD {{\n    entry {{\n        {entry}\n    }}\n    when {label} -> GUARD\n}}\n")
     };
+    let on = "`Dive` takes parameters or announces outcomes: start it with `Dive: restart(…)` (`On` does nothing to a machine already running, which would then run with other arguments, or keep an outcome its caller waits on)";
     assert_eq!(
-        only(&keeper("Dive: On", "Dive.saved"), false, &[]),
-        ["Some(2): `Dive` takes side: start it with `Dive: On(side = …)`"]
+        only(&keeper("Dive: On(side = 1)", "TRUE"), false, &[]),
+        [format!("Some(2): {on}")]
     );
     assert_eq!(
-        only(&keeper("Dive: On(sde = 1)", "Dive.savd"), false, &[]),
+        only(&keeper("Dive: restart", "Dive.saved"), false, &[]),
+        ["Some(2): `Dive` takes side: start it with `Dive: restart(side = …)`"]
+    );
+    assert_eq!(
+        only(&keeper("Dive: restart(sde = 1)", "Dive.savd"), false, &[]),
         [
             "Some(2): `Dive` has no parameter `sde`; did you mean `side`?",
-            "Some(2): `Dive` takes side: start it with `Dive: On(side = …)`",
+            "Some(2): `Dive` takes side: start it with `Dive: restart(side = …)`",
             "Some(6): `Dive.savd`: `Dive` has no outcome `savd`; did you mean `Dive.saved`?",
         ]
     );
     assert_eq!(
+        only(
+            &keeper("Dive: restart(side = \"left\")", "TRUE"),
+            false,
+            &[]
+        ),
+        ["Some(2): `Dive`'s `side` is int, which `\"left\"` is not"]
+    );
+    assert_eq!(
+        only(&keeper("Dive: restart(side = 1", "TRUE"), false, &[]),
+        ["Some(2): `Dive: restart(side = 1`: `restart(side = 1`: the arguments of `restart` end with `)`"]
+    );
+    assert_eq!(
         only(&keeper("Dive: suspend(side = 1)", "TRUE"), false, &[]),
-        ["Some(2): `Dive: suspend(side = 1)`: only `On` and `restart` start a machine, so only they take arguments"]
+        ["Some(2): `Dive: suspend(side = 1)`: only `restart` gives a machine its parameters"]
+    );
+    assert_eq!(
+        only(&keeper("restart(\"Dive\");", "TRUE"), false, &[]),
+        ["Some(2): `Dive` takes parameters, which a statement cannot give: restart it on a line of its own, `Dive: restart(…)`"]
+    );
+    assert_eq!(
+        only(&keeper("post(\"Dive\", \"restart(side = 1)\");", "TRUE"), false, &[]),
+        ["Some(2): `Dive`: arguments are given on a line of its own, `Dive: restart(…)`, not by a statement"]
     );
     assert_eq!(
         only(&keeper("start(\"Dive\");", "TRUE"), false, &[]),
-        ["Some(2): `Dive` takes parameters, which a statement cannot give: start it on a line of its own, `Dive: On(side = …)`"]
+        ["Some(2): `Dive` takes parameters or announces outcomes: start it with `Dive: restart(…)` (`On` does nothing to a machine already running)"]
+    );
+    assert_eq!(
+        only(&keeper("Keeper: restart(x = 1)", "TRUE"), false, &[]),
+        ["Some(2): `Keeper: restart(x = 1)`: `Keeper` takes no parameters"]
     );
     assert_eq!(
         only(&keeper("Dive_side = 3;", "TRUE"), false, &[]),
-        ["None: `Keeper` sets `Dive_side`, the global that `Dive`'s `side` becomes: call the variable something else"]
+        ["Some(2): `Keeper` sets `Dive_side`, the global that `Dive`'s `side` becomes: call the variable something else"]
     );
     assert_eq!(
         only(&keeper("x = 1;", "TRUE"), true, &[]),
         ["None: `Dive` starts with the behaviour and takes side: give them in its `[[machine]]` entry (`params = { side = … }`), or start it from a machine with `start = false`"]
     );
     assert_eq!(
-        only(&keeper("Dive: On(side = 1)", "TRUE"), true, &[("side", 2)]),
+        only(&keeper("Dive: restart(side = 1)", "TRUE"), true, &[("side", 2)]),
         ["None: `Dive` is given its parameters by the manifest and by a machine that starts it: give them in one place"]
     );
     assert_eq!(
         only(&keeper("x = 1;", "TRUE"), false, &[("side", 2), ("power", 1)]),
         [
             "None: the manifest gives `Dive` a parameter `power` it does not declare",
-            "None: the manifest gives `Dive` parameters but starts it with `start = false`: whoever starts it gives them (`Dive: On(…)`)",
+            "None: the manifest gives `Dive` parameters but starts it with `start = false`: whoever starts it gives them (`Dive: restart(…)`)",
         ]
+    );
+}
+
+/// An argument reads the starting machine's own parameters and outcomes as the globals they
+/// are: a machine that restarts itself with what it was given passes it on.
+#[test]
+fn an_argument_reads_the_callers_parameters_as_its_code_does() {
+    let relay = "machine Relay\nparam k: int\noutcome up\nstate A {\n    entry {\n        Relay: restart(k = k + 1)\n    }\n    when Relay.up -> B\n}\nstate B {\n    outcome up\n}\n";
+    linked(
+        &[(relay, false, &[])],
+        "-- Relay\n\
+         A: [Relay_up = 0; Relay_k = Relay_k + 1; Relay_up = 0; Relay: restart;] Relay_up ->B\n\
+         B: [Relay_up = 1;]\n",
     );
 }
 
@@ -240,7 +302,7 @@ fn the_manifests_parameters_are_set_first_as_a_launched_machine_starts() {
     linked(
         &[(DIVE, true, &[("side", 1)])],
         "-- Dive\n\
-         AIM: [Dive_side = 1;] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
+         AIM: [Dive_side = 1; Dive_saved = 0; Dive_conceded = 0;] Dive_side < 0 ->LEFT TRUE ->RIGHT\n\
          LEFT: [post(\"Motion\", Dive_side);] held ->SAVED TRUE ->GONE\n\
          RIGHT: []\n\
          SAVED: [Dive_saved = 1;]\n\
@@ -249,14 +311,14 @@ fn the_manifests_parameters_are_set_first_as_a_launched_machine_starts() {
 }
 
 #[test]
-fn a_machine_with_outcomes_only_started_by_a_statement_has_them_cleared_first() {
+fn a_machine_with_outcomes_only_restarted_by_a_statement_has_them_cleared_first() {
     let flag = "machine Flag\noutcome up\nstate RAISE {\n    outcome up\n}\n";
-    let caller = "machine Caller\nstate GO {\n    entry {\n        start(\"Flag\");\n    }\n    when Flag.up -> GO\n}\n";
+    let caller = "machine Caller\nstate GO {\n    entry {\n        restart(\"Flag\");\n    }\n    when Flag.up -> GO\n}\n";
     linked(
         &[(caller, true, &[]), (flag, false, &[])],
         "-- Caller\n\
-         GO: [{ Flag_up = 0; start(\"Flag\"); }] Flag_up ->GO\n\
+         GO: [{ Flag_up = 0; restart(\"Flag\"); }] Flag_up ->GO\n\
          -- Flag\n\
-         RAISE: [Flag_up = 1;]\n",
+         RAISE: [Flag_up = 0; Flag_up = 1;]\n",
     );
 }

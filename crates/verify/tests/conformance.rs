@@ -31,6 +31,9 @@ struct Coverage {
     nested_arrivals: usize,
     /// Firings that resumed a composite's history.
     resumed: usize,
+    /// Parameters given by a start (§3.3), and firings on a machine's outcome.
+    arguments: usize,
+    on_outcomes: usize,
     widest: usize,
 }
 
@@ -89,6 +92,10 @@ fn conform(seeds: std::ops::Range<u64>) {
                         Event::Fired { label, .. } => {
                             coverage.firings += 1;
                             coverage.resumed += usize::from(label.contains("_history =="));
+                            coverage.on_outcomes += usize::from(label.contains("_done"));
+                        }
+                        Event::Assigned { variable, .. } if variable.ends_with("_p") => {
+                            coverage.arguments += 1
                         }
                         Event::Control { .. } => coverage.commands += 1,
                         Event::Entered { state, .. } if state.contains('.') => {
@@ -130,7 +137,9 @@ fn conform(seeds: std::ops::Range<u64>) {
         coverage.commands > 0
             && coverage.answers_of_theories > 0
             && coverage.nested_arrivals > 0
-            && coverage.resumed > 0,
+            && coverage.resumed > 0
+            && coverage.arguments > 0
+            && coverage.on_outcomes > 0,
         "{coverage:?}"
     );
 }

@@ -6,8 +6,9 @@
 
 use super::{Body, Lowering};
 use crate::code::{Expr, Statement, VarType};
-use crate::interface::{global_of, start_of, DeclaredOutcome, Param};
+use crate::interface::{global_of, is_name, DeclaredOutcome, Param};
 use crate::model::{Action, Machine};
+use proclaim_syntax::FileDiagnostic;
 
 impl Lowering<'_> {
     /// `param NAME: TYPE`.
@@ -38,8 +39,8 @@ impl Lowering<'_> {
             );
             return;
         };
-        if self.interface.param(name).is_some() {
-            self.error(at, format!("parameter `{name}` is declared twice"));
+        if self.interface.param(name).is_some() || self.interface.outcome(name).is_some() {
+            self.error(at, format!("`{name}` is declared twice (a parameter and an outcome become one global, `{}`)", global_of(&self.machine, name)));
             return;
         }
         let line = self.lines.line(at);
@@ -94,22 +95,60 @@ impl Lowering<'_> {
             name: global_of(&self.machine, &name),
             value: Expr::Int(1),
         }));
+        self.announced.push(name);
     }
 
-    /// A posting with arguments (`Dive: On(side = 1)`) must read as a command and its
-    /// arguments; which machine takes them is the behaviour's to say.
-    pub(super) fn check_start(&mut self, content: &str, at: usize) {
-        if let Some(Err(message)) = start_of(content) {
+    /// A statement of the machine may not set or declare a parameter (whoever starts the
+    /// machine sets it), nor the global a parameter or an outcome becomes (an outcome is set by
+    /// the state announcing it).
+    pub(super) fn check_sets(&mut self, statements: &[Statement], at: usize) {
+        let mut wrong = Vec::new();
+        for statement in statements {
+            statement.visit(&mut |s| {
+                if let Statement::Assign { name, .. } | Statement::Declare { name, .. } = s {
+                    wrong.extend(self.set_by_whom(name));
+                }
+            });
+        }
+        for message in wrong {
             self.error(at, message);
         }
     }
 
-    /// The machine reads its parameters as the globals they are: refused where it declares
-    /// one of their names or sets one.
+    fn set_by_whom(&self, name: &str) -> Option<String> {
+        let machine = &self.machine;
+        if let Some(p) = self.interface.param(name) {
+            return Some(format!("`{}` is a parameter of `{machine}`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = {};`)", p.name, p.name));
+        }
+        let param = self
+            .interface
+            .params
+            .iter()
+            .find(|p| global_of(machine, &p.name) == name);
+        if let Some(p) = param {
+            return Some(format!(
+                "`{name}` is what parameter `{}` becomes: whoever starts `{machine}` sets it",
+                p.name
+            ));
+        }
+        let outcome = self
+            .interface
+            .outcomes
+            .iter()
+            .find(|o| global_of(machine, &o.name) == name);
+        outcome.map(|o| format!("`{name}` is outcome `{}`: a final state announces it (`outcome {}`), nothing sets it", o.name, o.name))
+    }
+
+    /// The machine reads its parameters as the globals they are.
     pub(super) fn lower_params(&mut self, machine: &mut Machine) {
         machine.interface = std::mem::take(&mut self.interface);
-        if machine.interface.params.is_empty() {
-            return;
+        for o in &machine.interface.outcomes {
+            if !self.announced.contains(&o.name) {
+                let message = format!("outcome `{}` is announced by no state (a final state says `outcome {}`), so whoever waits on it waits for ever", o.name, o.name);
+                let mut d = FileDiagnostic::error(self.file, o.line, message);
+                d.severity = proclaim_syntax::Severity::Warning;
+                self.diagnostics.push(d);
+            }
         }
         let params: Vec<String> = machine
             .interface
@@ -117,47 +156,37 @@ impl Lowering<'_> {
             .iter()
             .map(|p| p.name.clone())
             .collect();
+        if params.is_empty() {
+            return;
+        }
         let name = machine.name.clone();
         let mut to = |n: &str| params.iter().any(|p| p == n).then(|| global_of(&name, n));
-        let mut misuse = Vec::new();
-        for state in &mut machine.states {
-            for action in state
-                .on_entry
-                .iter_mut()
-                .chain(&mut state.on_exit)
-                .chain(&mut state.internal)
-            {
+        let rename = |actions: &mut Vec<Action>, to: &mut dyn FnMut(&str) -> Option<String>| {
+            for action in actions {
                 if let Action::Statement(s) = action {
-                    s.visit(&mut |inner| {
-                        if let Statement::Assign { name: n, .. }
-                        | Statement::Declare { name: n, .. } = inner
-                        {
-                            if params.contains(n) {
-                                misuse.push((state.line, n.clone()));
-                            }
-                        }
-                    });
-                    s.rename(&mut to);
+                    s.rename(&mut |n| to(n));
                 }
+            }
+        };
+        for state in &mut machine.states {
+            for list in [&mut state.on_entry, &mut state.on_exit, &mut state.internal] {
+                rename(list, &mut to);
+            }
+        }
+        for composite in &mut machine.composites {
+            for list in [
+                &mut composite.on_entry,
+                &mut composite.on_exit,
+                &mut composite.internal,
+            ] {
+                rename(list, &mut to);
             }
         }
         for t in &mut machine.transitions {
             t.label.rename(&mut to);
-            for action in t.leaving.iter_mut().flatten() {
-                if let Action::Statement(s) = action {
-                    s.rename(&mut to);
-                }
+            if let Some(list) = &mut t.leaving {
+                rename(list, &mut to);
             }
         }
-        misuse.sort();
-        misuse.dedup();
-        for (line, n) in misuse {
-            self.error_at_line(line, format!("`{n}` is a parameter of `{name}`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = {n};`)"));
-        }
     }
-}
-
-fn is_name(text: &str) -> bool {
-    text.starts_with(|c: char| c.is_alphabetic() || c == '_')
-        && text.chars().all(|c| c.is_alphanumeric() || c == '_')
 }

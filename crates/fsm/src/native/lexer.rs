@@ -233,6 +233,18 @@ impl<'a> MachineLexer<'a> {
         }
     }
 
+    /// What follows `param` or `outcome`: the rest of the line up to a comment or a `}` (names
+    /// and types hold neither), so `state LANDED { outcome landed }` reads on one line.
+    fn declaration_text(&mut self) -> (usize, MachineToken<'a>, usize) {
+        let rest = self.rest();
+        let line = &rest[..rest.find(['\n', '}']).unwrap_or(rest.len())];
+        let line = &line[..line.find("//").unwrap_or(line.len())];
+        let start = self.at + (line.len() - line.trim_start().len());
+        let text = line.trim();
+        self.at += line.len();
+        (start, MachineToken::Text(text), start + text.len())
+    }
+
     /// A keyword or a word from the letter at `self.at`; after `code` and `when`, the raw text
     /// that follows them is cut too and waits in `pending`.
     fn word(&mut self) -> (usize, MachineToken<'a>, usize) {
@@ -257,7 +269,7 @@ impl<'a> MachineLexer<'a> {
             }
             "description" if self.open.is_empty() => MachineToken::Description,
             "param" | "outcome" if item && (word == "outcome" || self.open.is_empty()) => {
-                let text = self.line_text(MachineToken::Text);
+                let text = self.declaration_text();
                 self.pending.push(text);
                 if word == "param" {
                     MachineToken::Param

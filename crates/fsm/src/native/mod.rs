@@ -179,6 +179,7 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         diagnostics: Vec::new(),
         machine: ast.name.clone(),
         interface: Default::default(),
+        announced: Vec::new(),
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
     let nested = parsed
@@ -263,6 +264,8 @@ struct Lowering<'a> {
     machine: String,
     /// Its parameters and outcomes, read from the top of the file before its states.
     interface: crate::interface::Interface,
+    /// The outcomes some state announces.
+    announced: Vec<String>,
 }
 
 /// The states' ids, and their names, for resolving `-> NAME` and `-> #id`.
@@ -326,11 +329,6 @@ impl Lowering<'_> {
     fn error(&mut self, at: usize, message: String) {
         self.diagnostics
             .push(self.lines.error(self.file, at, message));
-    }
-
-    fn error_at_line(&mut self, line: usize, message: String) {
-        self.diagnostics
-            .push(FileDiagnostic::error(self.file, line, message));
     }
 
     fn warn(&mut self, at: usize, message: String) {
@@ -501,14 +499,12 @@ impl Lowering<'_> {
     fn actions(&mut self, actions: Vec<(ActionAst, usize)>, list: &mut Vec<Action>) {
         for (action, at) in actions {
             match action {
-                ActionAst::Done(action) => {
-                    if let Action::Post { content, .. } = &action {
-                        self.check_start(content, at);
-                    }
-                    list.push(action);
-                }
+                ActionAst::Done(action) => list.push(action),
                 ActionAst::Statement(text) => match parse_statements(&text) {
-                    Ok(statements) => list.extend(statements.into_iter().map(Action::Statement)),
+                    Ok(statements) => {
+                        self.check_sets(&statements, at);
+                        list.extend(statements.into_iter().map(Action::Statement));
+                    }
                     Err(e) => self.error(at + e.offset, format!("bad statement: {}", e.message)),
                 },
             }

@@ -4,8 +4,9 @@
 //! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
 //! labels ask, sometimes with states nested in composite states (two deep at most, with their
 //! own activities, transitions and `when done`, and states beside them that resume their
-//! history), and transitions with actions of their own; then a script for the run and when to run
-//! each round. Everything is a function of the seed, so a failure names the seed that repeats
+//! history), transitions with actions of their own, and sub-machines that take a parameter `p`
+//! from whoever starts them or announce an outcome `done` that labels wait on; then a script for
+//! the run and when to run each round. Everything is a function of the seed, so a failure names the seed that repeats
 //! it.
 
 use std::fmt::Write;
@@ -82,6 +83,12 @@ impl RandomBehaviour {
 /// What the machines of one behaviour may speak of.
 struct Names {
     machines: usize,
+    /// Which machines take the parameter `p` (§3.3): never the first, which always runs.
+    params: Vec<bool>,
+    /// Which machines announce the outcome `done` in their final states.
+    outcomes: Vec<bool>,
+    /// Parameters and outcomes draw from a sequence of their own, as nesting does.
+    iface: std::cell::RefCell<Rng>,
     inputs: usize,
     globals: usize,
     externs: usize,
@@ -96,8 +103,13 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     // Nesting draws from a sequence of its own, so that the flat machines of a seed are
     // what they were before nesting was drawn.
     let mut shape = Rng::new(seed ^ 0x5EED_C4A2_0000_0000);
+    let mut iface = Rng::new(seed ^ 0x0A7C_0000_1F00_0000);
+    let machines = rng.between(1, 4);
     let names = Names {
-        machines: rng.between(1, 4),
+        machines,
+        params: (0..machines).map(|m| m > 0 && iface.chance(35)).collect(),
+        outcomes: (0..machines).map(|_| iface.chance(35)).collect(),
+        iface: std::cell::RefCell::new(iface),
         inputs: rng.between(1, 3),
         globals: rng.between(0, 2),
         externs: rng.between(0, 1),
@@ -110,8 +122,9 @@ pub fn generate(seed: u64) -> RandomBehaviour {
         let text = machine(&mut rng, &mut shape, &names, m);
         files.push((format!("M{m}.machine"), text));
         let _ = writeln!(manifest, "[[machine]]\nfile = \"M{m}.machine\"");
-        // The first machine always runs; the others are sometimes sub-machines.
-        if m > 0 && rng.chance(40) {
+        // The first machine always runs; the others are sometimes sub-machines, always when
+        // a start gives them a parameter.
+        if m > 0 && (rng.chance(40) || names.params[m]) {
             let _ = writeln!(manifest, "start = false");
         }
     }
@@ -180,6 +193,7 @@ fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
             let actions = own_actions(shape, names, m, counter);
             let _ = writeln!(out, "    when {label} -> S{target}{actions}");
         }
+        out.push_str(&interface_lines(names, m, s, transitions, states));
         let _ = writeln!(out, "}}");
         blocks.push((format!("S{s}"), out));
     }
@@ -191,8 +205,42 @@ fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
     };
     let blocks = nest.wrap(shape, blocks, 0);
     let mut out = format!("machine M{m}\n");
+    if names.params[m] {
+        out.push_str("param p: int\n");
+    }
+    if names.outcomes[m] {
+        out.push_str("outcome done\n");
+    }
     for (_, block) in blocks {
         out.push_str(&block);
+    }
+    out
+}
+
+/// What a state `s` of machine `m` with `transitions` of its own adds for parameters and
+/// outcomes (§3.3): a final state announces `done`, the first state now and then tests `p`,
+/// and a state now and then waits on a machine's outcome.
+fn interface_lines(names: &Names, m: usize, s: usize, transitions: usize, states: usize) -> String {
+    let mut iface = names.iface.borrow_mut();
+    let mut out = String::new();
+    if transitions == 0 {
+        if names.outcomes[m] {
+            out.push_str("    outcome done\n");
+        }
+        return out;
+    }
+    if s == 0 && names.params[m] && iface.chance(70) {
+        let _ = writeln!(
+            out,
+            "    when p == {} -> S{}",
+            iface.below(3),
+            iface.below(states)
+        );
+    }
+    let announcing: Vec<usize> = (0..names.machines).filter(|&t| names.outcomes[t]).collect();
+    if !announcing.is_empty() && iface.chance(45) {
+        let t = *iface.pick(&announcing);
+        let _ = writeln!(out, "    when M{t}.done -> S{}", iface.below(states));
     }
     out
 }
@@ -268,6 +316,8 @@ impl Nest<'_> {
             };
             let label = label(shape, self.names, self.counter, 1);
             let block = &mut blocks[beside].1;
+            // A state with a way out is final no more: it announces no outcome.
+            *block = block.replace("    outcome done\n", "");
             let close = block.rfind('}').unwrap_or(block.len());
             block.insert_str(close, &format!("    when {label} -> {name}.{history}\n"));
         }
@@ -321,15 +371,37 @@ fn control(rng: &mut Rng, names: &Names, m: usize) -> String {
     } else {
         m
     };
-    if rng.chance(30) {
-        format!(
-            "M{target}: {}",
-            rng.pick(&["On", "Off", "suspend", "resume", "restart"])
-        )
+    let (posted, call) = if rng.chance(30) {
+        let word = *rng.pick(&["On", "Off", "suspend", "resume", "restart"]);
+        (Some(word), format!("M{target}: {word}"))
     } else {
         let call = rng.pick(&["start", "stop", "suspend", "resume", "restart"]);
-        format!("{call}(\"M{target}\");")
+        (None, format!("{call}(\"M{target}\");"))
+    };
+    if !names.params[target] && !names.outcomes[target] {
+        return call;
     }
+    // A machine with a parameter or an outcome is started by `restart`, given its parameter on
+    // a line of its own (§3.3).
+    let starts = match posted {
+        Some(word) => ["On", "restart"].contains(&word),
+        None => call.starts_with("start(") || call.starts_with("restart("),
+    };
+    if !starts {
+        return call;
+    }
+    if !names.params[target] {
+        return match posted {
+            Some(_) => format!("M{target}: restart"),
+            None => format!("restart(\"M{target}\");"),
+        };
+    }
+    let mut iface = names.iface.borrow_mut();
+    let value = match iface.below(3) {
+        0 if names.globals > 0 => format!("(g{} + 1) % 3", iface.below(names.globals)),
+        _ => iface.below(3).to_string(),
+    };
+    format!("M{target}: restart(p = {value})")
 }
 
 fn label(rng: &mut Rng, names: &Names, counter: bool, depth: usize) -> String {
