@@ -100,14 +100,14 @@ impl Linking {
         }
         let mut machines = self.stubs.clone();
         machines[i] = machine;
-        let found = link(&mut machines, &self.launches);
-        let mine: Vec<FileDiagnostic> = found
+        // The others are stubs with nothing to lower: a problem found with one of them is this
+        // machine's doing (a restart with arguments of a machine the manifest gives them).
+        let found: Vec<FileDiagnostic> = link(&mut machines, &self.launches)
             .iter()
-            .filter(|p| p.machine == i)
             .map(|p| self.diagnostic(p))
             .collect();
-        if !mine.is_empty() {
-            return Err(mine);
+        if !found.is_empty() {
+            return Err(found);
         }
         Ok(machines.swap_remove(i))
     }

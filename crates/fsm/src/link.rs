@@ -164,8 +164,16 @@ impl Linker<'_> {
                     for message in wrong {
                         self.problem(i, Some(line), message);
                     }
+                    let call = matches!(s, Statement::Expr(_));
                     self.statement(i, line, &mut s);
-                    out.push(Action::Statement(s));
+                    match s {
+                        // A command on a line of its own stays one: the compiled targets
+                        // queue a fixed number of commands, so none may sit in a block.
+                        Statement::Block(body) if call => {
+                            out.extend(body.into_iter().map(Action::Statement));
+                        }
+                        s => out.push(Action::Statement(s)),
+                    }
                 }
                 other => out.push(other),
             }

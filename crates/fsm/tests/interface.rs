@@ -317,7 +317,7 @@ fn a_machine_with_outcomes_only_restarted_by_a_statement_has_them_cleared_first(
     linked(
         &[(caller, true, &[]), (flag, false, &[])],
         "-- Caller\n\
-         GO: [{ Flag_up = 0; restart(\"Flag\"); }] Flag_up ->GO\n\
+         GO: [Flag_up = 0; restart(\"Flag\");] Flag_up ->GO\n\
          -- Flag\n\
          RAISE: [Flag_up = 0; Flag_up = 1;]\n",
     );
