@@ -2,7 +2,9 @@
 //! holding its states, each state once (not once per flat state it lowers to), a composite's
 //! transition drawn once from its cluster's edge.
 
+use crate::code::Statement;
 use crate::dot_text::{escape, node, quote, show};
+use crate::interface::global_of;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use std::collections::HashMap;
 use std::fmt::Write;
@@ -108,11 +110,23 @@ impl<'m> Drawing<'m> {
             .map(|&c| composites[c].on_entry.len())
             .sum();
         let staying: usize = around.iter().map(|&c| composites[c].internal.len()).sum();
+        // The manifest's parameters, set first of the initial state's arrival (`link.rs`),
+        // come before its composites' part and are drawn as its own.
+        let params: Vec<String> = (self.machine.interface.params.iter())
+            .map(|p| global_of(&self.machine.name, &p.name))
+            .collect();
+        let lead = (state.on_entry.iter())
+            .take_while(|a| matches!(a, Action::Statement(Statement::Assign { name, .. }) if params.contains(name)))
+            .count();
+        let own: Vec<Action> = (state.on_entry[..lead].iter())
+            .chain(state.on_entry.get(lead + entered..).unwrap_or_default())
+            .cloned()
+            .collect();
         let short = state.name.rsplit('.').next().unwrap_or(&state.name);
         let mut label = format!("{} ({})\\n", escape(short), state.id);
         activities(
             &mut label,
-            state.on_entry.get(entered..).unwrap_or_default(),
+            &own,
             &state.on_exit,
             state.internal.get(staying..).unwrap_or_default(),
         );

@@ -4,8 +4,8 @@
 //! restart(side = x)` becomes `Dive_side = x;` for each parameter, `Dive_landed = 0;` for each
 //! outcome (a machine started again has no outcome yet, even before its first ringlet), then
 //! the command; a label's `Dive.landed` reads `Dive_landed`; a machine with outcomes clears
-//! them as it first starts, and the manifest's parameters of a machine that starts with the
-//! behaviour are set then, on arrival in its initial state.
+//! them on arrival in its initial state, and the manifest's parameters of a machine that
+//! starts with the behaviour are set first of that arrival.
 
 use crate::code::{Expr, Statement};
 use crate::control::Command;
@@ -384,8 +384,9 @@ fn assign(name: String, value: Expr) -> Action {
 
 impl Linker<'_> {
     /// The manifest's parameters of machine `i`: every one for a machine that starts with the
-    /// behaviour, none for one that does not. Set on arrival in its initial state, with its
-    /// outcomes cleared (so each is a global from the start, 0 until announced).
+    /// behaviour, none for one that does not, set first of the arrival in its initial state;
+    /// that arrival clears its outcomes too (so each is a global from the start, 0 until
+    /// announced).
     fn launch(&mut self, i: usize, machine: &mut Machine, launch: &Launch) {
         let interface = &self.interfaces[i].1;
         let name = machine.name.clone();
@@ -421,18 +422,27 @@ impl Linker<'_> {
         for message in problems {
             self.problem(i, None, message);
         }
-        let mut sets: Vec<Action> = Vec::new();
+        let clears: Vec<Action> = interface
+            .outcomes
+            .iter()
+            .map(|o| assign(global_of(&name, &o.name), Expr::Int(0)))
+            .collect();
+        arrive_with(machine, machine.initial, clears);
+        // The parameters before anything of the machine runs, its composites' OnEntry too.
         if launch.start {
-            for p in &interface.params {
-                if let Some((_, value)) = launch.params.iter().find(|(n, _)| *n == p.name) {
-                    sets.push(assign(global_of(&name, &p.name), value.clone()));
-                }
+            let sets: Vec<Action> = interface
+                .params
+                .iter()
+                .filter_map(|p| {
+                    let (_, value) = launch.params.iter().find(|(n, _)| *n == p.name)?;
+                    Some(assign(global_of(&name, &p.name), value.clone()))
+                })
+                .collect();
+            let initial = machine.initial;
+            if let Some(state) = machine.states.iter_mut().find(|s| s.id == initial) {
+                state.on_entry.splice(0..0, sets);
             }
         }
-        for o in &interface.outcomes {
-            sets.push(assign(global_of(&name, &o.name), Expr::Int(0)));
-        }
-        arrive_with(machine, machine.initial, sets);
     }
 }
 

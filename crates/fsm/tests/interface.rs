@@ -322,3 +322,21 @@ fn a_machine_with_outcomes_only_restarted_by_a_statement_has_them_cleared_first(
          RAISE: [Flag_up = 0; Flag_up = 1;]\n",
     );
 }
+
+/// In a chart, the manifest's parameters are set before the composites' OnEntry (which may read
+/// them), and the outcomes cleared after it, before the initial state's own.
+#[test]
+fn a_launched_charts_parameters_come_before_its_composites_entry() {
+    let a = "machine A\nparam k: int\noutcome up\ninitial P\nstate P {\n    entry {\n        B: restart(n = k)\n    }\n    when B.fine -> Q\n    state X {\n        entry {\n            Log: in X\n        }\n        when TRUE -> Y\n    }\n    state Y {\n        outcome up\n    }\n}\nstate Q {\n}\n";
+    let b = "machine B\nparam n: int\noutcome fine\nstate S {\n    when n > 0 -> T\n}\nstate T {\n    outcome fine\n}\n";
+    linked(
+        &[(a, true, &[("k", 2)]), (b, false, &[])],
+        "-- A\n\
+         P.X: [A_k = 2; B_n = A_k; B_fine = 0; B: restart; A_up = 0; Log: in X;] TRUE ->P.Y B_fine ->Q\n\
+         P.Y: [A_up = 1;] B_fine ->Q\n\
+         Q: []\n\
+         -- B\n\
+         S: [B_fine = 0;] B_n > 0 ->T\n\
+         T: [B_fine = 1;]\n",
+    );
+}
