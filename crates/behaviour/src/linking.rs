@@ -91,6 +91,13 @@ impl Linking {
     /// Machine `i` read anew, linked to the others as they were loaded. Its parameters and
     /// outcomes must be as they were: the machines that start it were linked to those.
     fn relink(&self, i: usize, machine: Machine) -> Result<Machine, Vec<FileDiagnostic>> {
+        if machine.name != self.stubs[i].name {
+            let message = format!(
+                "the file now names its machine `{}`, not `{}`: the other machines start and read it by its old name, so run the behaviour again",
+                machine.name, self.stubs[i].name
+            );
+            return Err(vec![FileDiagnostic::in_file(&self.shown[i], message)]);
+        }
         if !machine.interface.same_as(&self.stubs[i].interface) {
             let message = format!(
                 "`{}`'s parameters or outcomes changed: the machines that start it were read with the old ones, so run the behaviour again",

@@ -9,7 +9,7 @@
 
 use crate::code::{Expr, Statement};
 use crate::control::Command;
-use crate::interface::{fits, global_of, Interface};
+use crate::interface::{fits, global_of, is_name, Interface};
 use crate::model::{Action, Machine, StateId};
 use crate::start::{start_of, Start};
 
@@ -43,6 +43,7 @@ pub fn link(machines: &mut [Machine], launches: &[Launch]) -> Vec<LinkProblem> {
         given: vec![false; machines.len()],
         caller: String::new(),
     };
+    linker.names();
     for (i, machine) in machines.iter_mut().enumerate() {
         linker.clashes(i, machine);
         linker.caller = machine.name.clone();
@@ -81,22 +82,53 @@ impl Linker<'_> {
         Some((i, &self.interfaces[i].1))
     }
 
+    /// Each parameter and outcome its own global: two of one name (`Dive`'s `left_side` and
+    /// `Dive_left`'s `side`), or a machine whose name is no identifier, cannot be lowered.
+    fn names(&mut self) {
+        let mut seen: Vec<(String, String)> = Vec::new();
+        for (i, (owner, interface)) in self.interfaces.iter().enumerate() {
+            let declared = (interface.params.iter().map(|p| (&p.name, p.line)))
+                .chain(interface.outcomes.iter().map(|o| (&o.name, o.line)));
+            for (name, line) in declared {
+                let global = global_of(owner, name);
+                let message = if !is_name(owner) {
+                    format!("`{owner}` declares parameters or outcomes, which need a machine named by letters, digits and `_` (they become globals such as `{global}`)")
+                } else if let Some((_, theirs)) = seen.iter().find(|(g, _)| *g == global) {
+                    format!("`{owner}`'s `{name}` and {theirs} both become the global `{global}`: rename one")
+                } else {
+                    seen.push((global, format!("`{owner}`'s `{name}`")));
+                    continue;
+                };
+                self.problems.push(LinkProblem {
+                    machine: i,
+                    line: Some(line),
+                    message,
+                });
+            }
+        }
+    }
+
     /// A global that another machine's parameter or outcome becomes, set by this one's code.
     fn clashes(&mut self, i: usize, machine: &Machine) {
         for (j, (owner, interface)) in self.interfaces.iter().enumerate() {
             let names = interface.params.iter().map(|p| &p.name);
             for name in names.chain(interface.outcomes.iter().map(|o| &o.name)) {
                 let global = global_of(owner, name);
-                let setter = machine.states.iter().find(|s| {
+                let in_state = machine.states.iter().find(|s| {
                     s.on_entry
                         .iter()
                         .chain(&s.on_exit)
                         .chain(&s.internal)
                         .any(|a| sets(a, &global))
                 });
-                if let (true, Some(state)) = (j != i, setter) {
+                let in_transition = machine
+                    .transitions
+                    .iter()
+                    .find(|t| t.leaving.iter().flatten().any(|a| sets(a, &global)));
+                let line = in_state.map(|s| s.line).or(in_transition.map(|t| t.line));
+                if let (true, Some(line)) = (j != i, line) {
                     let message = format!("`{}` sets `{global}`, the global that `{owner}`'s `{name}` becomes: call the variable something else", machine.name);
-                    self.problem(i, Some(state.line), message);
+                    self.problem(i, Some(line), message);
                 }
             }
         }
@@ -160,6 +192,14 @@ impl Linker<'_> {
                 },
                 Action::Statement(mut s) => {
                     let mut wrong = Vec::new();
+                    s.visit(&mut |inner| {
+                        if let Statement::Assign { name, .. } = inner {
+                            let outcome = name.split_once('.').filter(|(m, _)| self.interface(m).is_some());
+                            if let Some((m, o)) = outcome {
+                                wrong.push(format!("`{name} = …`: `{m}`'s outcome `{o}` is announced by its final states (`outcome {o}`), never set"));
+                            }
+                        }
+                    });
                     s.rename(&mut |n| self.outcome(n, &mut wrong));
                     for message in wrong {
                         self.problem(i, Some(line), message);
@@ -193,7 +233,7 @@ impl Linker<'_> {
         let start = match start_of(&content) {
             Some(Ok(start)) => start,
             Some(Err(message)) => {
-                self.problem(i, Some(line), format!("`{ty}: {content}`: {message}"));
+                self.problem(i, Some(line), format!("`{ty}: …`: {message}"));
                 return vec![Action::Post { ty, content }];
             }
             None => match Command::parse(&content) {
@@ -277,13 +317,27 @@ impl Linker<'_> {
             ));
         }
         let mut out = Vec::new();
+        let mut assigned: Vec<String> = Vec::new();
         for p in &interface.params {
             if let Some((_, value)) = start.arguments.iter().find(|(n, _)| *n == p.name) {
                 let mut value = value.clone();
                 let mut wrong = Vec::new();
                 value.rename(&mut |n| self.read(n, &mut wrong));
                 problems.extend(wrong);
-                out.push(assign(global_of(ty, &p.name), value));
+                // The arguments are assigned one after another: one may not read a parameter
+                // an earlier one has just set (a machine restarting itself, `b = a, a = b`).
+                let mut early = Vec::new();
+                value.visit_names(&mut |n, _| {
+                    if assigned.iter().any(|a| a == n) {
+                        early.push(n.to_string());
+                    }
+                });
+                if !early.is_empty() {
+                    problems.push(format!("`{ty}: restart(…)`: the argument for `{}` reads `{}`, which an argument before it has already set: copy them to variables of the machine's own first", p.name, early.join("`, `")));
+                }
+                let global = global_of(ty, &p.name);
+                out.push(assign(global.clone(), value));
+                assigned.push(global);
             }
         }
         if !start.arguments.is_empty() {
@@ -427,20 +481,27 @@ impl Linker<'_> {
             .iter()
             .map(|o| assign(global_of(&name, &o.name), Expr::Int(0)))
             .collect();
-        arrive_with(machine, machine.initial, clears);
-        // The parameters before anything of the machine runs, its composites' OnEntry too.
-        if launch.start {
-            let sets: Vec<Action> = interface
-                .params
-                .iter()
-                .filter_map(|p| {
-                    let (_, value) = launch.params.iter().find(|(n, _)| *n == p.name)?;
-                    Some(assign(global_of(&name, &p.name), value.clone()))
-                })
-                .collect();
-            let initial = machine.initial;
-            if let Some(state) = machine.states.iter_mut().find(|s| s.id == initial) {
-                state.on_entry.splice(0..0, sets);
+        let sets: Vec<Action> = interface
+            .params
+            .iter()
+            .filter(|_| launch.start)
+            .filter_map(|p| {
+                let (_, value) = launch.params.iter().find(|(n, _)| *n == p.name)?;
+                Some(assign(global_of(&name, &p.name), value.clone()))
+            })
+            .collect();
+        // Every way into the initial state is an arrival in it (a chart has a flat state for
+        // each set of composites a move enters, all of one name).
+        let initial = machine.state(machine.initial).map(|s| s.name.clone());
+        let ways: Vec<StateId> = (machine.states.iter())
+            .filter(|s| Some(&s.name) == initial.as_ref())
+            .map(|s| s.id)
+            .collect();
+        for id in ways {
+            arrive_with(machine, id, clears.clone());
+            // The parameters before anything of the machine runs, its composites' OnEntry too.
+            if let Some(state) = machine.states.iter_mut().find(|s| s.id == id) {
+                state.on_entry.splice(0..0, sets.iter().cloned());
             }
         }
     }

@@ -113,6 +113,19 @@ fn what_a_file_cannot_declare_is_refused_where_it_is_written() {
         "machine Dive\noutcome up, down\nstate A { outcome up }\n",
         "m.machine:2: warning: outcome `down` is announced by no state (a final state says `outcome down`), so whoever waits on it waits for ever\n",
     );
+    check(
+        &m("param true: bool\noutcome", ""),
+        "m.machine:2: error: `true` cannot name a parameter: letters, digits and `_`, not first a digit, and no truth value\n\
+         m.machine:3: error: `outcome` names the outcomes a final state can announce: `outcome saved, missed`\n",
+    );
+    check(
+        &m("outcome up, down", "    outcome up, down"),
+        "m.machine:4: error: state `A` announces one outcome, by its name (`outcome landed`)\n",
+    );
+    check(
+        &m("param side: int", "    entry {\n        extern side;\n    }"),
+        "m.machine:5: error: `side` is a parameter of `Dive`: whoever starts it sets it, so the machine cannot set or declare it (copy it to a variable of its own: `int s; s = side;`)\n",
+    );
     // `outcome` and `param` are names where a name is wanted.
     check(
         "machine M\ninitial outcome\nstate outcome {\n    when param -> param\n}\nstate param {\n}\n",
@@ -241,7 +254,7 @@ fn what_does_not_fit_between_machines_is_said_where() {
     );
     assert_eq!(
         only(&keeper("Dive: restart(side = 1", "TRUE"), false, &[]),
-        ["Some(2): `Dive: restart(side = 1`: `restart(side = 1`: the arguments of `restart` end with `)`"]
+        ["Some(2): `Dive: …`: `restart(side = 1`: the arguments of `restart` end with `)`"]
     );
     assert_eq!(
         only(&keeper("Dive: suspend(side = 1)", "TRUE"), false, &[]),
@@ -338,5 +351,109 @@ fn a_launched_charts_parameters_come_before_its_composites_entry() {
          -- B\n\
          S: [B_fine = 0;] B_n > 0 ->T\n\
          T: [B_fine = 1;]\n",
+    );
+}
+
+/// What the first review's second round found: an outcome set by hand (through its dotted name,
+/// or its global in a transition's own actions), two parameters lowered to one global, and a
+/// machine restarting itself with arguments that read what an earlier one set.
+#[test]
+fn outcomes_are_only_announced_and_globals_are_each_ones_own() {
+    let problems = |texts: &[&str]| -> Vec<String> {
+        let mut read: Vec<Machine> = texts
+            .iter()
+            .map(|t| {
+                let r = parse_machine("m", t);
+                assert!(!r.has_errors(), "{:?}", r.diagnostics);
+                r.machines[0].clone()
+            })
+            .collect();
+        let launches = vec![
+            Launch {
+                start: true,
+                params: Vec::new()
+            };
+            read.len()
+        ];
+        link(&mut read, &launches)
+            .into_iter()
+            .map(|p| format!("{} {:?}: {}", read[p.machine].name, p.line, p.message))
+            .collect()
+    };
+    let flag = "machine Flag\noutcome up\nstate A {\n    outcome up\n}\n";
+    assert_eq!(
+        problems(&[flag, "machine C\nstate S {\n    entry {\n        Flag.up = 1;\n    }\n}\n"]),
+        ["C Some(2): `Flag.up = …`: `Flag`'s outcome `up` is announced by its final states (`outcome up`), never set"]
+    );
+    assert_eq!(
+        problems(&[flag, "machine C\nstate S {\n    when go -> S {\n        Flag_up = 1;\n    }\n}\n"]),
+        ["C Some(3): `C` sets `Flag_up`, the global that `Flag`'s `up` becomes: call the variable something else"]
+    );
+    assert_eq!(
+        problems(&[
+            "machine Dive\nparam left_side: int\nstate A {\n}\n",
+            "machine Dive_left\nparam side: int\nstate A {\n}\n",
+        ]),
+        [
+            "Dive None: `Dive` starts with the behaviour and takes left_side: give them in its `[[machine]]` entry (`params = { left_side = … }`), or start it from a machine with `start = false`",
+            "Dive_left None: `Dive_left` starts with the behaviour and takes side: give them in its `[[machine]]` entry (`params = { side = … }`), or start it from a machine with `start = false`",
+            "Dive_left Some(2): `Dive_left`'s `side` and `Dive`'s `left_side` both become the global `Dive_left_side`: rename one",
+        ]
+    );
+    let swap = "machine S\nparam a: int\nparam b: int\nstate A {\n    entry {\n        S: restart(a = b, b = a)\n    }\n}\n";
+    let found = problems(&[swap]);
+    assert!(
+        found.contains(&"S Some(4): `S: restart(…)`: the argument for `b` reads `S_a`, which an argument before it has already set: copy them to variables of the machine's own first".to_string()),
+        "{found:?}"
+    );
+}
+
+/// Every way into a chart's initial state clears its outcomes (a flat state for each set of
+/// composites a move enters): back at A from M beside it, which enters no composite, as from
+/// outside G, which enters G again.
+#[test]
+fn every_arrival_in_the_initial_state_clears_the_outcomes() {
+    let dive = "machine Dive\noutcome landed\ninitial G\nstate G {\n    entry {\n        int n = 0;\n    }\n    initial A\n    when again -> B\n    state A {\n        when go -> L\n        when turn -> M\n    }\n    state M {\n        when back -> A\n    }\n    state L {\n        outcome landed\n    }\n}\nstate B {\n    when back -> A\n}\n";
+    let mut read = vec![parse_machine("m", dive).machines[0].clone()];
+    assert!(link(
+        &mut read,
+        &[Launch {
+            start: true,
+            params: Vec::new()
+        }]
+    )
+    .is_empty());
+    let arrivals: Vec<String> = read[0]
+        .states
+        .iter()
+        .filter(|s| s.name == "G.A")
+        .map(|s| s.on_entry.iter().map(action).collect::<Vec<_>>().join(" "))
+        .collect();
+    assert_eq!(
+        arrivals,
+        ["int n = 0; Dive_landed = 0;", "Dive_landed = 0;"]
+    );
+}
+
+/// The editor edits a machine with parameters and outcomes, and refuses to give a state that
+/// announces an outcome a transition, saying why.
+#[test]
+fn the_editor_keeps_a_final_state_that_announces_an_outcome_final() {
+    use proclaim_fsm::edit::{edit_native, view_native, Edit};
+    let (states, _) = view_native(DIVE).expect("the dive is edited");
+    let saved = states.iter().position(|s| s.name == "SAVED").unwrap();
+    let refused = edit_native(
+        "Dive.machine",
+        DIVE,
+        &Edit::AddTransition {
+            state: saved,
+            label: "again".into(),
+            target: 0,
+        },
+    )
+    .unwrap_err();
+    assert_eq!(
+        refused.to_string(),
+        "state SAVED announces outcome `saved`, so it is final: take `outcome saved` out of it before giving it a transition"
     );
 }

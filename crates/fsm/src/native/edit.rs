@@ -303,7 +303,16 @@ impl Patcher<'_> {
                 state,
                 label,
                 target,
-            } => self.add_transition(*state, label, *target),
+            } => {
+                let s = self.state(*state)?;
+                if let Some(outcome) = &s.outcome {
+                    return Err(EditError::Announces {
+                        state: s.name.clone(),
+                        outcome: outcome.clone(),
+                    });
+                }
+                self.add_transition(*state, label, *target)
+            }
             Edit::DeleteTransition { state, transition } => {
                 let w = self.when(*state, *transition)?;
                 Ok(vec![primary(

@@ -45,6 +45,11 @@ pub enum EditError {
     Initial {
         state: String,
     },
+    /// A state that announces an outcome is final: it cannot be given a transition.
+    Announces {
+        state: String,
+        outcome: String,
+    },
     /// A label or activity that cannot be written where it goes (a line break in a label).
     BadText {
         what: &'static str,
@@ -96,6 +101,10 @@ impl fmt::Display for EditError {
                 "state {state} is the initial state; make another state initial before deleting it"
             ),
             EditError::BadText { what, why } => write!(f, "the {what} cannot be written: {why}"),
+            EditError::Announces { state, outcome } => write!(
+                f,
+                "state {state} announces outcome `{outcome}`, so it is final: take `outcome {outcome}` out of it before giving it a transition"
+            ),
         }
     }
 }

@@ -10,6 +10,9 @@ use crate::interface::{global_of, is_name, DeclaredOutcome, Param};
 use crate::model::{Action, Machine};
 use proclaim_syntax::FileDiagnostic;
 
+/// Names the activity language reads as truth values, never a parameter's or an outcome's.
+const LITERALS: [&str; 4] = ["true", "false", "TRUE", "FALSE"];
+
 impl Lowering<'_> {
     /// `param NAME: TYPE`.
     pub(super) fn param(&mut self, text: &str, at: usize) {
@@ -23,11 +26,11 @@ impl Lowering<'_> {
             return;
         };
         let (name, ty) = (name.trim(), ty.trim());
-        if !is_name(name) {
+        if !is_name(name) || LITERALS.contains(&name) {
             self.error(
                 at,
                 format!(
-                    "`{name}` cannot name a parameter: letters, digits and `_`, not first a digit"
+                    "`{name}` cannot name a parameter: letters, digits and `_`, not first a digit, and no truth value"
                 ),
             );
             return;
@@ -54,8 +57,14 @@ impl Lowering<'_> {
     /// `outcome NAME, NAME…`.
     pub(super) fn outcomes(&mut self, text: &str, at: usize) {
         let line = self.lines.line(at);
+        if text.trim().is_empty() {
+            let message =
+                "`outcome` names the outcomes a final state can announce: `outcome saved, missed`";
+            self.error(at, message.into());
+            return;
+        }
         for name in text.split(',').map(str::trim) {
-            if !is_name(name) {
+            if !is_name(name) || LITERALS.contains(&name) {
                 self.error(at, format!("`{name}` cannot name an outcome: letters, digits and `_`, not first a digit (`outcome saved, missed`)"));
             } else if self.interface.outcome(name).is_some() || self.interface.param(name).is_some()
             {
@@ -72,6 +81,12 @@ impl Lowering<'_> {
     /// A state's `outcome NAME`: it must be final and the outcome declared; entering it sets
     /// the outcome's global, last of its OnEntry.
     pub(super) fn announce(&mut self, state: &str, (name, at): (String, usize), body: &mut Body) {
+        if name.contains(',') || name.is_empty() {
+            let message =
+                format!("state `{state}` announces one outcome, by its name (`outcome landed`)");
+            self.error(at, message);
+            return;
+        }
         if !body.whens.is_empty() || !body.states.is_empty() {
             self.error(at, format!("state `{state}` announces outcome `{name}`, so it is final: it can have no transitions and hold no states"));
             return;
@@ -105,7 +120,10 @@ impl Lowering<'_> {
         let mut wrong = Vec::new();
         for statement in statements {
             statement.visit(&mut |s| {
-                if let Statement::Assign { name, .. } | Statement::Declare { name, .. } = s {
+                if let Statement::Assign { name, .. }
+                | Statement::Declare { name, .. }
+                | Statement::Extern { name, .. } = s
+                {
                     wrong.extend(self.set_by_whom(name));
                 }
             });

@@ -36,6 +36,8 @@ pub struct StateAt {
     pub close: usize,
     pub activities: Vec<ActivityAt>,
     pub whens: Vec<WhenAt>,
+    /// The outcome it announces (`outcome landed`): it is final.
+    pub outcome: Option<String>,
 }
 
 #[derive(Clone, Debug)]
@@ -179,6 +181,10 @@ impl<'t> Reader<'t> {
                     }
                 }
                 MachineToken::State => outline.states.push(self.state(token.0)?),
+                // A declaration is left as written: no edit touches it.
+                MachineToken::Param | MachineToken::Outcome => {
+                    self.take("what is declared")?;
+                }
                 _ => return Self::unexpected(&token, "`initial`, `description` or `state`"),
             }
         }
@@ -240,6 +246,7 @@ impl<'t> Reader<'t> {
             close: 0,
             activities: Vec::new(),
             whens: Vec::new(),
+            outcome: None,
         };
         loop {
             let token = self.take("`}`")?;
@@ -260,6 +267,12 @@ impl<'t> Reader<'t> {
                         label: label.0..label.2,
                         target,
                     });
+                    continue;
+                }
+                MachineToken::Outcome => {
+                    if let MachineToken::Text(name) = self.take("the outcome")?.1 {
+                        state.outcome = Some(name.to_string());
+                    }
                     continue;
                 }
                 MachineToken::Entry => Section::Entry,
