@@ -18,8 +18,7 @@ fn signature(machine: &Machine) -> String {
         out += &format!("({})", params.join(", "));
     }
     if !interface.outcomes.is_empty() {
-        let outcomes: Vec<&str> = interface.outcomes.iter().map(|o| o.name.as_str()).collect();
-        out += &format!(" → {}", outcomes.join(" | "));
+        out += &format!(" → {}", interface.outcome_names().join(" | "));
     }
     out
 }

@@ -38,6 +38,17 @@ impl Interface {
         self.outcomes.iter().find(|o| o.name == name)
     }
 
+    pub fn outcome_names(&self) -> Vec<&str> {
+        self.outcomes.iter().map(|o| o.name.as_str()).collect()
+    }
+
+    /// The parameters `given` leaves out, in declared order.
+    pub fn missing_from(&self, given: &[(String, Expr)]) -> Vec<&str> {
+        (self.params.iter().map(|p| p.name.as_str()))
+            .filter(|p| !given.iter().any(|(n, _)| n == p))
+            .collect()
+    }
+
     /// The same parameters (names and types) and outcomes, wherever they were written.
     pub fn same_as(&self, other: &Interface) -> bool {
         let params = |i: &Interface| -> Vec<(String, VarType)> {

@@ -171,7 +171,7 @@ impl Linker<'_> {
         if interface.outcome(outcome).is_some() {
             return Some(global_of(owner, outcome));
         }
-        let names: Vec<&str> = interface.outcomes.iter().map(|o| o.name.as_str()).collect();
+        let names = interface.outcome_names();
         wrong.push(match names.as_slice() {
             [] => format!("`{name}`: machine `{owner}` announces no outcomes (a final state announces one with `outcome NAME`)"),
             _ => match proclaim_syntax::nearest(names.iter().copied(), outcome) {
@@ -302,12 +302,7 @@ impl Linker<'_> {
                 ),
             }
         }
-        let missing: Vec<&str> = interface
-            .params
-            .iter()
-            .map(|p| p.name.as_str())
-            .filter(|p| !start.arguments.iter().any(|(n, _)| n == p))
-            .collect();
+        let missing = interface.missing_from(&start.arguments);
         if !missing.is_empty() {
             let list: Vec<String> = missing.iter().map(|p| format!("{p} = …")).collect();
             problems.push(format!(
@@ -463,12 +458,7 @@ impl Linker<'_> {
         if launch.start && !launch.params.is_empty() && self.given[i] {
             problems.push(format!("`{name}` is given its parameters by the manifest and by a machine that starts it: give them in one place"));
         }
-        let missing: Vec<&str> = interface
-            .params
-            .iter()
-            .map(|p| p.name.as_str())
-            .filter(|p| !launch.params.iter().any(|(n, _)| n == p))
-            .collect();
+        let missing = interface.missing_from(&launch.params);
         if launch.start && !missing.is_empty() {
             let list: Vec<String> = missing.iter().map(|p| format!("{p} = …")).collect();
             problems.push(format!("`{name}` starts with the behaviour and takes {}: give them in its `[[machine]]` entry (`params = {{ {} }}`), or start it from a machine with `start = false`", missing.join(", "), list.join(", ")));

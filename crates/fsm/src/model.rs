@@ -162,3 +162,27 @@ pub enum Argument {
     /// An identifier or anything else, as written.
     Word(String),
 }
+
+impl Machine {
+    /// Replaces every name its code reads or assigns (`Statement::rename`), wherever the code
+    /// runs: its states', its composites' (as written, for what draws them) and its
+    /// transitions' (labels and what they run as they fire).
+    pub(crate) fn rename(&mut self, to: &mut impl FnMut(&str) -> Option<String>) {
+        let mut lists: Vec<&mut Vec<Action>> = Vec::new();
+        for s in &mut self.states {
+            lists.extend([&mut s.on_entry, &mut s.on_exit, &mut s.internal]);
+        }
+        for c in &mut self.composites {
+            lists.extend([&mut c.on_entry, &mut c.on_exit, &mut c.internal]);
+        }
+        for t in &mut self.transitions {
+            t.label.rename(to);
+            lists.extend(t.leaving.as_mut());
+        }
+        for action in lists.into_iter().flatten() {
+            if let Action::Statement(s) = action {
+                s.rename(to);
+            }
+        }
+    }
+}

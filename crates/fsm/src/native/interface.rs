@@ -92,12 +92,7 @@ impl Lowering<'_> {
             return;
         }
         if self.interface.outcome(&name).is_none() {
-            let declared: Vec<&str> = self
-                .interface
-                .outcomes
-                .iter()
-                .map(|o| o.name.as_str())
-                .collect();
+            let declared = self.interface.outcome_names();
             let message = match proclaim_syntax::nearest(declared.iter().copied(), &name) {
                 Some(near) => format!("`{name}` is not an outcome of this machine; did you mean `{near}`?"),
                 None if declared.is_empty() => format!("`{name}` is not an outcome of this machine: declare it at the top (`outcome {name}`)"),
@@ -178,33 +173,6 @@ impl Lowering<'_> {
             return;
         }
         let name = machine.name.clone();
-        let mut to = |n: &str| params.iter().any(|p| p == n).then(|| global_of(&name, n));
-        let rename = |actions: &mut Vec<Action>, to: &mut dyn FnMut(&str) -> Option<String>| {
-            for action in actions {
-                if let Action::Statement(s) = action {
-                    s.rename(&mut |n| to(n));
-                }
-            }
-        };
-        for state in &mut machine.states {
-            for list in [&mut state.on_entry, &mut state.on_exit, &mut state.internal] {
-                rename(list, &mut to);
-            }
-        }
-        for composite in &mut machine.composites {
-            for list in [
-                &mut composite.on_entry,
-                &mut composite.on_exit,
-                &mut composite.internal,
-            ] {
-                rename(list, &mut to);
-            }
-        }
-        for t in &mut machine.transitions {
-            t.label.rename(&mut to);
-            if let Some(list) = &mut t.leaving {
-                rename(list, &mut to);
-            }
-        }
+        machine.rename(&mut |n| params.iter().any(|p| p == n).then(|| global_of(&name, n)));
     }
 }

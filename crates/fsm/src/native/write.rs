@@ -47,13 +47,11 @@ pub fn to_native(machine: &Machine) -> String {
         let _ = writeln!(out, "param {}: {}", p.name, p.ty.name());
     }
     if !machine.interface.outcomes.is_empty() {
-        let names: Vec<&str> = machine
-            .interface
-            .outcomes
-            .iter()
-            .map(|o| o.name.as_str())
-            .collect();
-        let _ = writeln!(out, "outcome {}", names.join(", "));
+        let _ = writeln!(
+            out,
+            "outcome {}",
+            machine.interface.outcome_names().join(", ")
+        );
     }
     let index = Index::of(machine);
     let _ = writeln!(out, "initial {}", index.reference(machine.initial));
@@ -141,27 +139,7 @@ fn as_written(machine: &Machine) -> Machine {
         .iter()
         .map(|p| (global_of(&machine.name, &p.name), p.name.clone()))
         .collect();
-    let mut to = |n: &str| params.iter().find(|(g, _)| g == n).map(|(_, p)| p.clone());
-    for state in &mut machine.states {
-        for action in state
-            .on_entry
-            .iter_mut()
-            .chain(&mut state.on_exit)
-            .chain(&mut state.internal)
-        {
-            if let Action::Statement(s) = action {
-                s.rename(&mut to);
-            }
-        }
-    }
-    for t in &mut machine.transitions {
-        t.label.rename(&mut to);
-        for action in t.leaving.iter_mut().flatten() {
-            if let Action::Statement(s) = action {
-                s.rename(&mut to);
-            }
-        }
-    }
+    machine.rename(&mut |n| params.iter().find(|(g, _)| g == n).map(|(_, p)| p.clone()));
     machine
 }
 
