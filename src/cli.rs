@@ -606,6 +606,23 @@ pub struct RunArgs {
     /// run as several robots)
     #[arg(long, value_name = "NAME")]
     pub member: Option<String>,
+    /// Write the whole run down (machines, whiteboard, theories, the script's place) at the
+    /// start of the first round at or after ROUND that begins at a moment of its own, for
+    /// `--resume`; a list takes several
+    #[arg(long, value_name = "ROUND", value_delimiter = ',')]
+    pub checkpoint_at: Vec<u64>,
+    /// Write a checkpoint every N rounds, each named with its round (`checkpoint.r200.json`)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub checkpoint_every: Option<u64>,
+    /// Where checkpoints go (default: checkpoint.json)
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint_file: Option<PathBuf>,
+    /// Take the run up where a checkpoint left it: the round it was taken at is played next,
+    /// the trace and its times go on from there, and `--for` counts from the run's start. The
+    /// behaviour's machines may have changed since, as long as they still fit (a state or a
+    /// variable's type gone is refused, saying which)
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["record", "ask", "step", "watch"])]
+    pub resume: Option<PathBuf>,
     #[command(flatten)]
     pub network: Network,
 }

@@ -5,6 +5,7 @@
 mod architecture;
 mod behaviours;
 mod book;
+mod checkpoints;
 mod cli;
 mod compiled;
 mod compiled_corpus;

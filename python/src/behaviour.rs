@@ -319,6 +319,7 @@ impl Behaviour {
                 vec![expert(labels, list.clone(), raised.clone())]
             },
             real_time: !virtual_clock,
+            ..Stepping::default()
         };
         let started = py
             .detach(|| RoundByRound::start_with(&folder, stepping))

@@ -5,6 +5,7 @@ mod bench_all;
 mod bench_parse;
 mod board;
 mod check;
+mod checkpoint;
 mod compile;
 mod conclusions;
 mod deps;

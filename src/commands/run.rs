@@ -2,7 +2,7 @@
 //! JSON-lines trace for programs (and `proclaim replay`), and file watching that rereads a
 //! machine when its file changes.
 
-use super::record;
+use super::{checkpoint, record};
 use crate::behaviours::load_behaviour;
 use crate::cli::RunArgs;
 use crate::failure::Failure;
@@ -110,7 +110,7 @@ fn launch_options(
     args: &RunArgs,
     script: Option<proclaim_experts::Script>,
     limit: Option<Duration>,
-) -> LaunchOptions {
+) -> Result<LaunchOptions, Failure> {
     // With no end given and nothing outside but the script, a run that can no longer change
     // ends (a page, a watched file, a person or the network could still change it).
     let alone = limit.is_none()
@@ -119,7 +119,7 @@ fn launch_options(
         && !args.step
         && args.ask.is_empty()
         && args.network.is_local();
-    LaunchOptions {
+    Ok(LaunchOptions {
         script,
         no_simulator: args.no_simulator,
         halt_on_timeout: args.halt_on_timeout,
@@ -134,7 +134,9 @@ fn launch_options(
         ringlets: args.record.is_some(),
         experts: Vec::new(),
         end_when_still: alone,
-    }
+        checkpoints: checkpoint::plan(args).map(|(plan, _)| plan),
+        resume: args.resume.as_deref().map(checkpoint::read).transpose()?,
+    })
 }
 
 /// Launches the behaviour on its whiteboard and follows it (or steps it) to the end; whether
@@ -148,7 +150,7 @@ async fn run_on_board(
 ) -> Result<bool, Failure> {
     let mut interrupt = crate::interrupt::Interrupt::new();
     let script_used = script.is_some() || behaviour.script.is_some();
-    let options = launch_options(args, script, limit);
+    let options = launch_options(args, script, limit)?;
     let stepper = options.stepper.clone();
     let team =
         crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
@@ -202,6 +204,7 @@ async fn run_on_board(
         recorder: recorder.as_ref(),
         interrupt: &mut interrupt,
         scripted: script_used,
+        checkpoints: checkpoint::plan(args).map(|(_, files)| files),
     };
     let (why, halted) = live.follow(&board, &mut running, limit).await;
     let stats = board.stats();
@@ -221,6 +224,16 @@ async fn run_on_board(
         interrupt.next().await;
     }
     Ok(halted)
+}
+
+/// The next checkpoint taken, if checkpoints are asked for (never otherwise).
+async fn next_checkpoint(
+    taken: &mut Option<tokio::sync::mpsc::UnboundedReceiver<proclaim_behaviour::Checkpoint>>,
+) -> Option<proclaim_behaviour::Checkpoint> {
+    match taken {
+        Some(rx) => rx.recv().await,
+        None => std::future::pending().await,
+    }
 }
 
 fn read_script(path: &Path) -> Result<proclaim_experts::Script, Failure> {
@@ -324,6 +337,8 @@ struct Live<'t> {
     interrupt: &'t mut crate::interrupt::Interrupt,
     /// Whether a script plays (what a run that ends still says is over).
     scripted: bool,
+    /// Where the checkpoints asked for are written.
+    checkpoints: Option<checkpoint::CheckpointFiles>,
 }
 
 impl Live<'_> {
@@ -335,8 +350,10 @@ impl Live<'_> {
         running: &mut proclaim_behaviour::Running,
         limit: Option<Duration>,
     ) -> (String, bool) {
-        let deadline = limit.map(|d| tokio::time::Instant::now() + d);
-        let started = tokio::time::Instant::now();
+        // A resumed run began before it was taken up: its limit and times count from then.
+        let started = running.epoch;
+        let deadline = limit.map(|d| started + d);
+        let mut taken = running.checkpoints.take();
         let mut halted = false;
         let why = loop {
             let sleep = async {
@@ -379,9 +396,36 @@ impl Live<'_> {
                 }
                 () = self.interrupt.next() => break "interrupted".to_string(),
                 Some(first) = self.changed.recv() => self.reread(first, board).await,
+                Some(checkpoint) = next_checkpoint(&mut taken) => self.keep(&checkpoint),
             }
         };
+        // Checkpoints taken before the end are written, however the run ended.
+        while let Some(checkpoint) = taken.as_mut().and_then(|rx| rx.try_recv().ok()) {
+            self.keep(&checkpoint);
+        }
+        if self.checkpoints.as_ref().is_some_and(|f| f.written() == 0) {
+            println!(
+                "  no checkpoint was written: the run ended at round {}, before the first asked for",
+                running.round.get()
+            );
+        }
         (why, halted)
+    }
+
+    /// Writes a checkpoint taken, saying where (or why it could not).
+    fn keep(&mut self, checkpoint: &proclaim_behaviour::Checkpoint) {
+        let Some(files) = &mut self.checkpoints else {
+            return;
+        };
+        match files.write(checkpoint) {
+            Ok(path) => println!(
+                "  checkpoint at round {} ({:.3} s): {}",
+                checkpoint.round,
+                checkpoint.at().as_secs_f64(),
+                path.display()
+            ),
+            Err(failure) => eprintln!("warning: {failure}"),
+        }
     }
 
     /// Why a run that ended at a still round stopped.

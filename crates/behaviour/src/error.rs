@@ -16,6 +16,10 @@ pub enum BehaviourError {
     Runtime(std::io::Error),
     /// A line of a JSON-lines trace is no event.
     TraceLine { line: usize, error: String },
+    /// A checkpoint was asked of a run whose state is not all its own.
+    Checkpoint(String),
+    /// A checkpoint does not fit the behaviour taking it up: each reason.
+    Resume(Vec<String>),
     /// The behaviour has no module (or machine) of that name.
     NoSuch {
         kind: &'static str,
@@ -39,6 +43,10 @@ impl fmt::Display for BehaviourError {
             BehaviourError::Runtime(error) => write!(f, "no async runtime: {error}"),
             BehaviourError::TraceLine { line, error } => {
                 write!(f, "line {line}: not a trace event: {error}")
+            }
+            BehaviourError::Checkpoint(why) => write!(f, "no checkpoint can be taken: {why}"),
+            BehaviourError::Resume(why) => {
+                write!(f, "the checkpoint cannot be taken up: {}", why.join("; "))
             }
             BehaviourError::NoSuch { kind, name, known } => {
                 let plural = if *kind == "module" {

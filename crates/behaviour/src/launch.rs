@@ -2,6 +2,7 @@
 //! label has its expert before the first ring), then the machines; their events merged into one
 //! trace.
 
+use crate::checkpoint::{self, Checkpoint, CheckpointPlan, Kept};
 use crate::error::BehaviourError;
 use crate::load::Behaviour;
 use crate::manifest::Schedule;
@@ -22,6 +23,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
 use std::net::SocketAddr;
 use std::pin::Pin;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::mpsc;
@@ -54,6 +56,10 @@ pub struct LaunchOptions {
     /// person, sensor, program or embedding expert) and the script has no `step N:` lines. For a
     /// run with no end given, alone on its board (`proclaim run` with no `--for`).
     pub end_when_still: bool,
+    /// Write the run down as this says ([`Running::checkpoints`] receives each checkpoint).
+    pub checkpoints: Option<CheckpointPlan>,
+    /// Take the run up where this checkpoint left it.
+    pub resume: Option<Arc<Checkpoint>>,
 }
 
 impl LaunchOptions {
@@ -83,6 +89,10 @@ pub struct Running {
     pub end: tokio::sync::watch::Receiver<Option<RoundsEnd>>,
     /// What was started or left out, and where sockets listen, for the person running it.
     pub notes: Vec<String>,
+    /// The moment the run's times count from (a resumed run's began before it was taken up).
+    pub epoch: tokio::time::Instant,
+    /// The checkpoints asked for ([`LaunchOptions::checkpoints`]), as they are taken.
+    pub checkpoints: Option<mpsc::UnboundedReceiver<Checkpoint>>,
     tasks: JoinSet<()>,
     finals: Finals,
     top: Positions,
@@ -146,6 +156,30 @@ impl Running {
         (events, false)
     }
 
+    /// Where a run taken up from `checkpoint` is: which top-level machines are in which
+    /// state, which finished and which halted (what its events would have said).
+    fn taken_up(&mut self, checkpoint: &Checkpoint) {
+        for machine in &checkpoint.schedule.machines {
+            let name = &machine.name;
+            if machine.over {
+                self.halted.insert(name.clone());
+            }
+            if machine.just_entered {
+                continue;
+            }
+            if let Some(at) = self.top.get_mut(name) {
+                *at = Some(machine.state_id);
+            }
+            if self
+                .finals
+                .get(name)
+                .is_some_and(|f| f.contains(&machine.state_id))
+            {
+                self.finished.insert(name.clone());
+            }
+        }
+    }
+
     /// Stops everything it started.
     pub async fn stop(mut self) {
         self.tasks.abort_all();
@@ -181,61 +215,48 @@ fn replaced(behaviour: &Behaviour, options: &LaunchOptions) -> Replaced {
     replaced
 }
 
-/// Starts the behaviour on `board`. Fails only when a socket cannot be opened.
+/// Starts the behaviour on `board` (taken up from a checkpoint when `options` say). Fails when
+/// a socket cannot be opened, or a checkpoint cannot be taken or taken up.
 pub async fn launch(
     behaviour: &Behaviour,
     board: &Whiteboard,
     options: LaunchOptions,
 ) -> Result<Running, BehaviourError> {
+    let resume = options.resume.clone();
     // The trace's times count from here, as the impersonator's script times do, so `at 1s`
-    // shows as 1.000 s.
-    let epoch = tokio::time::Instant::now();
+    // shows as 1.000 s; a resumed run's from where its checkpoint's did.
+    let epoch = match resume.as_deref() {
+        Some(c) => checkpoint::take_up(c, options.script_played(behaviour), board)?,
+        None => tokio::time::Instant::now(),
+    };
+    let mut kept = Kept::new(options.checkpoints.is_some(), resume.clone());
     let (tx, events) = mpsc::unbounded_channel();
     let shared = behaviour.shared_variables();
-    let mut rounds = rounds_of(behaviour, &options, &tx, epoch, &shared);
-    let ringlets = rounds
-        .as_mut()
-        .filter(|_| options.ringlets)
-        .map(Rounds::ringlets);
+    let rounds = rounds_of(behaviour, &options, &tx, epoch, &shared);
     let round = rounds
         .as_ref()
         .map_or_else(RoundCounter::default, Rounds::counter);
     let mut notes = Vec::new();
-    let replaced = replaced(behaviour, &options);
-    let mut modules = experts(behaviour, board, &replaced, &mut notes);
-    let sim_note = sensors(
-        behaviour,
-        board,
-        &options,
-        &replaced,
-        &mut modules,
-        &mut notes,
-    )
-    .await?;
-    // The script's timed steps wait for the machines, so that one timed for the first round's
-    // moment comes at that round's start (`docs/spec/behaviour.md` §3.1, between rounds).
-    let machines_started = Arc::new(tokio::sync::Notify::new());
-    impersonators(
+    let (modules, machines_started) = modules(
         behaviour,
         board,
         &options,
         (&tx, epoch, &round),
-        (&mut modules, &machines_started),
-        &mut notes,
-    );
-    embedded_experts(board, &options, &mut modules, &mut notes);
-    // A simulator with no receiver left to listen plays to nobody.
-    if !modules.iter().any(|m| m.name == "gamecontroller") {
-        modules.retain(|m| m.name != "gc-sim");
-    } else {
-        notes.extend(sim_note);
-    }
-
-    let rounds = match (rounds, silent_from(behaviour, &options, &modules)) {
+        (&mut kept, &mut notes),
+    )
+    .await?;
+    kept.refuse_unheld(behaviour, modules.iter().map(|m| m.name.as_str()))?;
+    let silent = silent_from(behaviour, &options, &modules);
+    let (mut rounds, checkpoints) =
+        kept.schedule(rounds, behaviour, &options, board, &mut notes)?;
+    let ringlets = rounds
+        .as_mut()
+        .filter(|_| options.ringlets)
+        .map(Rounds::ringlets);
+    let rounds = match (rounds, silent) {
         (Some(rounds), Some(from)) => Some(rounds.ends_when_still(from)),
         (rounds, _) => rounds,
     };
-    modules.extend(range_watch(behaviour, board, (&tx, epoch, &round)));
     let mut tasks = JoinSet::new();
     start_modules(board, modules, &mut tasks).await;
     let (ended, end) = tokio::sync::watch::channel(None);
@@ -254,19 +275,63 @@ pub async fn launch(
     }
     machines_started.notify_one();
     let (finals, top) = finals_and_top(behaviour);
-    Ok(Running {
+    let mut running = Running {
         events,
         ringlets,
         round,
         shared,
         end,
         notes,
+        epoch,
+        checkpoints,
         tasks,
         finals,
         top,
         halted: FxHashSet::default(),
         finished: FxHashSet::default(),
-    })
+    };
+    if let Some(c) = resume {
+        running.taken_up(&c);
+    }
+    Ok(running)
+}
+
+/// Every module but the machines, each answering what nobody answers from outside; and what
+/// holds the script's timed steps back until the machines have started.
+async fn modules(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    options: &LaunchOptions,
+    trace: (
+        &mpsc::UnboundedSender<Event>,
+        tokio::time::Instant,
+        &RoundCounter,
+    ),
+    (kept, notes): (&mut Kept, &mut Vec<String>),
+) -> Result<(Vec<Module>, Arc<tokio::sync::Notify>), BehaviourError> {
+    let replaced = replaced(behaviour, options);
+    let mut modules = experts(behaviour, board, &replaced, notes, kept);
+    let sim_note = sensors(behaviour, board, options, &replaced, &mut modules, notes).await?;
+    // The script's timed steps wait for the machines, so that one timed for the first round's
+    // moment comes at that round's start (`docs/spec/behaviour.md` §3.1, between rounds).
+    let machines_started = Arc::new(tokio::sync::Notify::new());
+    impersonators(
+        behaviour,
+        board,
+        options,
+        trace,
+        (&mut modules, &machines_started, kept),
+        notes,
+    );
+    embedded_experts(board, options, &mut modules, notes);
+    // A simulator with no receiver left to listen plays to nobody.
+    if !modules.iter().any(|m| m.name == "gamecontroller") {
+        modules.retain(|m| m.name != "gc-sim");
+    } else {
+        notes.extend(sim_note);
+    }
+    modules.extend(range_watch(behaviour, board, trace, kept));
+    Ok((modules, machines_started))
 }
 
 /// From when (since the epoch) nothing but the experts' answers can reach the machines, if
@@ -321,6 +386,7 @@ fn experts(
     board: &Whiteboard,
     replaced: &Replaced,
     notes: &mut Vec<String>,
+    kept: &mut Kept,
 ) -> Vec<Module> {
     let mut modules = Vec::new();
     for t in &behaviour.theories {
@@ -328,7 +394,7 @@ fn experts(
             ReasonerExpert::new(&t.name, t.theory.clone(), &t.mapping).with_limits(t.limits);
         let answers = replaced.narrow(&t.name, &expert.declaration().answers, notes);
         if !answers.is_empty() {
-            let expert = expert.answering_only(&answers);
+            let expert = kept.theory(&t.name, expert.answering_only(&answers));
             modules.push(Module {
                 name: t.name.clone(),
                 answers,
@@ -509,7 +575,7 @@ fn impersonators(
         tokio::time::Instant,
         &RoundCounter,
     ),
-    (modules, machines_started): (&mut Vec<Module>, &Arc<tokio::sync::Notify>),
+    (modules, machines_started, kept): (&mut Vec<Module>, &Arc<tokio::sync::Notify>, &mut Kept),
     notes: &mut Vec<String>,
 ) {
     let script = options.script_played(behaviour).cloned();
@@ -537,13 +603,19 @@ fn impersonators(
                 imp.set(atom, false);
             }
         }
+        // Taken up from a checkpoint, every atom is what the script had said by then.
+        let imp = kept.script(&script, imp, epoch);
         // What the script sets shows in the trace (a theory's inputs change no machine's state,
         // yet explain why an answer changed).
         let said = board.subscribe_pattern(Pattern::Any(scripted.clone()));
+        let shown = (
+            kept.script_shown(board, &scripted),
+            kept.follower(&scripted, board),
+        );
         modules.push(Module {
             name: "script".into(),
             answers: Vec::new(),
-            task: Box::pin(show_script(said, tx.clone(), epoch, round.clone())),
+            task: Box::pin(show_script(said, shown, tx.clone(), epoch, round.clone())),
         });
         modules.push(Module {
             name: "impersonator".into(),
@@ -643,11 +715,13 @@ fn range_watch(
         tokio::time::Instant,
         &RoundCounter,
     ),
+    kept: &mut Kept,
 ) -> Option<Module> {
     if behaviour.ranges.is_empty() {
         return None;
     }
-    let types = behaviour.ranges.iter().map(|r| r.ty.clone()).collect();
+    let types: Vec<String> = behaviour.ranges.iter().map(|r| r.ty.clone()).collect();
+    let handled = kept.follower(&types, board);
     let machines = behaviour.machines.iter().map(|m| m.machine.name.clone());
     Some(Module {
         name: "ranges".into(),
@@ -656,23 +730,23 @@ fn range_watch(
             board.subscribe_pattern(Pattern::Any(types)),
             behaviour.ranges.clone(),
             machines.collect(),
-            tx.clone(),
-            epoch,
-            round.clone(),
+            (kept.range_warnings(), handled),
+            (tx.clone(), epoch, round.clone()),
         )),
     })
 }
 
-/// Turns the impersonator's postings into trace events, each value once when it changes (it
-/// also posts its answer to every query, which is no news).
+/// Turns the impersonator's postings into trace events, each value once when it changes from
+/// what was `last` shown (it also posts its answer to every query, which is no news).
 async fn show_script(
     mut said: proclaim_board::Subscription,
+    (mut last, handled): (FxHashMap<String, proclaim_board::Value>, Arc<AtomicU64>),
     trace: mpsc::UnboundedSender<Event>,
     epoch: tokio::time::Instant,
     round: RoundCounter,
 ) {
-    let mut last: FxHashMap<String, proclaim_board::Value> = FxHashMap::default();
     while let Some(m) = said.next().await {
+        handled.store(m.seq, Ordering::Relaxed);
         if &*m.module != "impersonator" || last.get(&*m.ty) == Some(&m.value) {
             continue;
         }

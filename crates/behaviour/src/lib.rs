@@ -8,6 +8,7 @@
 //! sockets its sensors need; it does not watch files or print: the binary does.
 
 mod analysis;
+mod checkpoint;
 mod coverage;
 mod deps;
 mod draw;
@@ -37,6 +38,10 @@ mod tried;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
+pub use checkpoint::{
+    Checkpoint, CheckpointPlan, RangeWarning, ScriptImage, TheoryImage, CHECKPOINT_FORMAT,
+    CHECKPOINT_VERSION,
+};
 pub use coverage::{coverage, Coverage, Covered, CoveredPlace};
 pub use deps::{launch_manifest, module_diagram, overall_diagram};
 pub use draw::behaviour_to_dot;

@@ -14,6 +14,7 @@
 //! # }
 //! ```
 
+use crate::checkpoint::{Checkpoint, CheckpointPlan};
 use crate::error::BehaviourError;
 use crate::files::Folder;
 use crate::launch::{launch, LaunchOptions};
@@ -174,6 +175,12 @@ pub struct Stepping {
     /// Time as the wall clock has it, instead of the virtual clock that moves only when the
     /// test waits (or when every task waits during [`RoundByRound::run_for`]).
     pub real_time: bool,
+    /// Write a checkpoint at the first round at or after this one where one can be taken
+    /// ([`RoundByRound::checkpoint`] has it; `docs/spec/behaviour.md` §3.4).
+    pub checkpoint_at: Option<u64>,
+    /// Take the run up where this checkpoint left it: the first [`RoundByRound::round`] plays
+    /// the checkpoint's round.
+    pub resume: Option<Checkpoint>,
 }
 
 impl RoundByRound {
@@ -214,6 +221,11 @@ impl RoundByRound {
             stepper: Some(stepper.clone()),
             hosts: stepping.hosts,
             experts: stepping.experts,
+            checkpoints: stepping.checkpoint_at.map(|at| CheckpointPlan {
+                at: vec![at],
+                every: None,
+            }),
+            resume: stepping.resume.map(Arc::new),
             ..LaunchOptions::default()
         };
         let running = runtime.block_on(launch(&behaviour, &board, options))?;
@@ -327,5 +339,10 @@ impl RoundByRound {
     /// The round the schedule is in.
     pub fn rounds(&self) -> u64 {
         self.running.round.get()
+    }
+
+    /// The checkpoint asked for ([`Stepping::checkpoint_at`]), once it has been taken.
+    pub fn checkpoint(&mut self) -> Option<Checkpoint> {
+        self.running.checkpoints.as_mut()?.try_recv().ok()
     }
 }

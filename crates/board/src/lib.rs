@@ -6,12 +6,14 @@
 //! [`Whiteboard`] is the handle modules hold; it talks to a [`Transport`]. [`LocalBoard`] is the
 //! in-process transport every test runs against; a networked one plugs in behind the same trait.
 
+mod image;
 mod json;
 mod local;
 mod message;
 mod pattern;
 mod registry;
 mod snapshot;
+mod stats;
 mod subscribers;
 
 pub mod team;
@@ -19,12 +21,14 @@ mod transport;
 mod value;
 mod whiteboard;
 
+pub use image::{nanos, BoardImage, KindName, MessageImage, TypeImage};
 pub use local::{LocalBoard, Retention};
 pub use message::{Kind, Message};
 pub use pattern::Pattern;
 pub use proclaim_runtime::{Ranked, Suppressor, Visibility};
 pub use registry::{ModuleDecl, Registry};
 pub use snapshot::{BoardRow, Snapshot};
-pub use transport::{BoxFuture, Stats, Subscription, Transport};
+pub use stats::Stats;
+pub use transport::{BoxFuture, Subscription, Transport};
 pub use value::Value;
 pub use whiteboard::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};

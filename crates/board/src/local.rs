@@ -1,16 +1,19 @@
 //! The in-process transport: one lock around the message table, a `Notify` per type for waiters
 //! and a bounded queue per subscriber. The default, and what every test runs against.
 
+use crate::image::{nanos, BoardImage};
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
 use crate::snapshot::{Slot, Snapshot, Table};
+use crate::stats::Stats;
 use crate::subscribers::Subscribers;
-use crate::transport::{BoxFuture, Stats, Subscription, Transport};
+use crate::transport::{BoxFuture, Subscription, Transport};
 use crate::value::Value;
 use parking_lot::{Mutex, MutexGuard};
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
+use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::{mpsc, Notify};
@@ -87,6 +90,9 @@ impl Inner {
 pub struct LocalBoard {
     inner: Mutex<Inner>,
     start: Instant,
+    /// Nanoseconds added to the time since `start`: a board restored from a checkpoint goes on
+    /// with the clock it had.
+    shift: AtomicU64,
     retention: Retention,
 }
 
@@ -99,6 +105,7 @@ impl LocalBoard {
         LocalBoard {
             inner: Mutex::new(Inner::default()),
             start: Instant::now(),
+            shift: AtomicU64::new(0),
             retention,
         }
     }
@@ -354,6 +361,25 @@ impl Transport for LocalBoard {
 
     fn now(&self) -> Duration {
         Instant::now().saturating_duration_since(self.start)
+            + Duration::from_nanos(self.shift.load(AtomicOrdering::Relaxed))
+    }
+
+    fn restore(&self, image: &BoardImage) -> Result<(), String> {
+        let snapshot = image.snapshot();
+        let mut inner = self.lock();
+        if inner.seq > 0 {
+            return Err(format!(
+                "the board already holds {} messages: a checkpoint is restored before anything is posted",
+                inner.seq
+            ));
+        }
+        inner.seq = snapshot.seq;
+        inner.table = snapshot.table;
+        inner.stats = image.stats();
+        let since = Instant::now().saturating_duration_since(self.start);
+        let shift = Duration::from_nanos(image.time_ns).saturating_sub(since);
+        self.shift.store(nanos(shift), AtomicOrdering::Relaxed);
+        Ok(())
     }
 
     /// Consistent (taken under the lock) and read without it.

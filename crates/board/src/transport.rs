@@ -1,10 +1,12 @@
 //! The boundary between modules and where messages travel: in-process here, over a network
 //! later, without touching the modules.
 
+use crate::image::BoardImage;
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
 use crate::snapshot::Snapshot;
+use crate::stats::Stats;
 use crate::value::Value;
 use std::future::Future;
 use std::pin::Pin;
@@ -32,21 +34,6 @@ impl Subscription {
     pub fn try_next(&mut self) -> Option<Message> {
         self.rx.try_recv().ok()
     }
-}
-
-/// Counters kept on every path.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Stats {
-    pub posts: u64,
-    /// Messages a subscriber's full queue could not take.
-    pub drops: u64,
-    pub queries: u64,
-    /// Queries no answer arrived for in time.
-    pub timeouts: u64,
-    /// Queries for atoms no registered module answers.
-    pub unanswerable: u64,
-    /// Subscriptions the board holds now (dropped ones linger until pruned, boundedly).
-    pub subscribers: usize,
 }
 
 /// What a whiteboard transport does. Every method is cheap and never blocks a thread; the waits
@@ -83,4 +70,11 @@ pub trait Transport: Send + Sync + 'static {
     fn now(&self) -> Duration;
     /// The whole board as it is now, in O(1) (a persistent table shared with the live one).
     fn snapshot(&self) -> Snapshot;
+    /// Takes `image` as the whole board, its sequence numbers, clock and counts (a run resumed
+    /// from a checkpoint), before anything is posted. A board shared with other processes
+    /// cannot: they hold their own copies.
+    fn restore(&self, image: &BoardImage) -> Result<(), String> {
+        let _ = image;
+        Err("only an in-process board can be restored from a checkpoint".into())
+    }
 }

@@ -1,12 +1,14 @@
 //! The handle modules hold, and the query protocol of behaviour.md §2: post a query for an atom,
 //! wait for its expert's answer, time out as false.
 
+use crate::image::BoardImage;
 use crate::local::LocalBoard;
 use crate::message::{Kind, Message};
 use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
 use crate::snapshot::Snapshot;
-use crate::transport::{Stats, Subscription, Transport};
+use crate::stats::Stats;
+use crate::transport::{Subscription, Transport};
 use crate::value::Value;
 use std::sync::Arc;
 use std::time::Duration;
@@ -149,6 +151,12 @@ impl Whiteboard {
 
     pub fn now(&self) -> Duration {
         self.transport.now()
+    }
+
+    /// The board becomes `image` (a run resumed from a checkpoint): only before anything is
+    /// posted, and only in process.
+    pub fn restore(&self, image: &BoardImage) -> Result<(), String> {
+        self.transport.restore(image)
     }
 
     /// Asks for a proclamation of `atom` and waits at most `timeout` for it. A query for an atom

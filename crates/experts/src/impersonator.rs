@@ -5,6 +5,7 @@ use parking_lot::Mutex;
 use proclaim_board::{ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_syntax::{Script, ScriptValue, When};
 use rustc_hash::FxHashMap;
+use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use tokio::io::{AsyncBufRead, AsyncBufReadExt, AsyncWrite, AsyncWriteExt};
 use tracing::Instrument;
@@ -13,6 +14,30 @@ type Person = (
     Box<dyn AsyncBufRead + Unpin + Send>,
     Box<dyn AsyncWrite + Unpin + Send>,
 );
+
+/// Where a script's impersonator is: the queries it answered (its `step N:` lines count them),
+/// the timed steps it played, and the answer it holds for each atom. A run's checkpoint keeps it.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ScriptPosition {
+    pub step: u64,
+    pub timed_played: usize,
+    pub answers: Vec<HeldAnswer>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HeldAnswer {
+    pub atom: String,
+    pub value: serde_json::Value,
+}
+
+/// What the serving task counts, readable through any clone.
+#[derive(Clone, Copy, Debug, Default)]
+struct Counted {
+    step: u64,
+    timed_played: usize,
+    /// The sequence number of the last query it handled (or of the board when it subscribed).
+    handled: u64,
+}
 
 /// A clonable handle: clones share the answers, so a test can change them while it runs.
 #[derive(Clone)]
@@ -25,6 +50,10 @@ pub struct Impersonator {
     board: Arc<Mutex<Option<Whiteboard>>>,
     /// When given, the script's timed steps wait until it is notified (the machines started).
     timed_after: Option<Arc<tokio::sync::Notify>>,
+    counted: Arc<Mutex<Counted>>,
+    /// Taken up from a checkpoint: the moment the script's times count from, and the script's
+    /// start played already.
+    resumed_at: Option<tokio::time::Instant>,
 }
 
 impl Impersonator {
@@ -48,6 +77,55 @@ impl Impersonator {
             person: Arc::default(),
             board: Arc::default(),
             timed_after: None,
+            counted: Arc::default(),
+            resumed_at: None,
+        }
+    }
+
+    /// Where the script is (read it between two steps of the machines).
+    pub fn position(&self) -> ScriptPosition {
+        let counted = *self.counted.lock();
+        let mut answers: Vec<HeldAnswer> = self
+            .answers
+            .lock()
+            .iter()
+            .map(|(atom, value)| HeldAnswer {
+                atom: atom.clone(),
+                value: value.to_json(),
+            })
+            .collect();
+        answers.sort_by(|a, b| a.atom.cmp(&b.atom));
+        ScriptPosition {
+            step: counted.step,
+            timed_played: counted.timed_played,
+            answers,
+        }
+    }
+
+    /// The sequence number of the last query it handled: a query above it is still to be
+    /// answered.
+    pub fn handled(&self) -> u64 {
+        self.counted.lock().handled
+    }
+
+    /// Takes up the script at `position`, its times counted from `start` (the run's epoch):
+    /// the start's steps and the timed steps played are not played again.
+    pub fn resumed(self, position: &ScriptPosition, start: tokio::time::Instant) -> Impersonator {
+        {
+            let mut answers = self.answers.lock();
+            answers.clear();
+            for held in &position.answers {
+                answers.insert(held.atom.clone(), Value::from_json(&held.value));
+            }
+        }
+        *self.counted.lock() = Counted {
+            step: position.step,
+            timed_played: position.timed_played,
+            handled: 0,
+        };
+        Impersonator {
+            resumed_at: Some(start),
+            ..self
         }
     }
 
@@ -110,12 +188,19 @@ impl Impersonator {
 
     async fn serve(self, board: Whiteboard) {
         let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
+        self.counted.lock().handled = board.snapshot().seq;
         board.register(self.declaration());
         *self.board.lock() = Some(board.clone());
-        for step in self.script.steps.iter().filter(|s| s.when == When::Start) {
+        let start_steps = self.script.steps.iter().filter(|s| s.when == When::Start);
+        for step in start_steps.filter(|_| self.resumed_at.is_none()) {
             self.set_value(&step.atom, value_of(&step.value));
         }
-        let start = tokio::time::Instant::now();
+        let start = self.resumed_at.unwrap_or_else(tokio::time::Instant::now);
+        let Counted {
+            mut step,
+            timed_played,
+            ..
+        } = *self.counted.lock();
         let mut timed: Vec<_> = self
             .script
             .steps
@@ -126,8 +211,7 @@ impl Impersonator {
             })
             .collect();
         timed.sort_by_key(|(t, _, _)| *t);
-        let mut timed = timed.into_iter().peekable();
-        let mut step = 0u64;
+        let mut timed = timed.into_iter().skip(timed_played).peekable();
         let mut held = self.timed_after.clone();
         loop {
             let next_time = timed.peek().map(|(t, _, _)| start + *t);
@@ -144,12 +228,14 @@ impl Impersonator {
                     _ = tokio::time::sleep_until(at) => {
                         let (_, atom, value) = timed.next().expect("peeked");
                         self.set_value(&atom, value);
+                        self.counted.lock().timed_played += 1;
                         continue;
                     }
                 },
                 (None, _) => queries.next().await,
             };
             let Some(query) = query else { return };
+            self.counted.lock().handled = query.seq;
             let Value::Str(atom) = &query.value else {
                 continue;
             };
@@ -157,6 +243,7 @@ impl Impersonator {
                 continue;
             }
             step += 1;
+            self.counted.lock().step = step;
             for s in self
                 .script
                 .steps

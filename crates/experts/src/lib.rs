@@ -30,7 +30,7 @@ mod reasoner;
 pub use buttons::{ButtonWrapper, FallWrapper};
 pub use function::{AnswerFunction, FunctionExpert};
 pub use gamecontroller::{GameControllerReceiver, ReceiverConfig, ReceiverCounters};
-pub use impersonator::{value_of as script_value, Impersonator};
+pub use impersonator::{value_of as script_value, HeldAnswer, Impersonator, ScriptPosition};
 pub use mapping::parse_mapping;
 pub use proclaim_syntax::{parse_duration, LineError, LineErrors};
 pub use proclaim_syntax::{parse_script, Script, ScriptStep, ScriptValue, When};
@@ -38,4 +38,4 @@ pub use program::{Backoff, ProgramCounters, ProgramExpert};
 pub use prolog::{
     check_knowledge_base, find_program, find_swipl, prolog_expert, KnowledgeBase, PrologError,
 };
-pub use reasoner::ReasonerExpert;
+pub use reasoner::{HeldInput, LastAnswer, ReasonerExpert, ReasonerMemory};

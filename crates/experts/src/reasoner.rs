@@ -2,9 +2,11 @@
 //! messages (of the same name unless mapped), its declared outputs are the atoms it answers,
 //! each with the algorithm its `output{}` names.
 
+use parking_lot::Mutex;
 use proclaim_board::{undecided_type, ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_cdl::{Algorithm, Atom, Engine, Explanation, Lit, SearchLimits, Session, Theory};
 use rustc_hash::FxHashMap;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use tracing::Instrument;
@@ -18,6 +20,34 @@ struct OutputSlot {
     undecided: bool,
 }
 
+/// What a reasoner expert holds between two messages: each input as it was applied and each
+/// output's last answer (whose change it posts unasked). A run's checkpoint keeps it, so the
+/// expert taken up from it posts what the uninterrupted one would have.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ReasonerMemory {
+    /// The sequence number of the last message it handled (of those it follows: its inputs and
+    /// queries); one of those above it is still to be handled.
+    pub handled: u64,
+    pub inputs: Vec<HeldInput>,
+    pub outputs: Vec<LastAnswer>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HeldInput {
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// `None`: unknown.
+    pub value: Option<bool>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LastAnswer {
+    pub name: String,
+    /// `None`: never answered yet.
+    pub last: Option<bool>,
+    pub undecided: bool,
+}
+
 pub struct ReasonerExpert {
     name: String,
     session: Session,
@@ -28,6 +58,10 @@ pub struct ReasonerExpert {
     undecided: Arc<AtomicU64>,
     /// Outputs that became undecided or decided again since last posted (`NameUndecided`).
     undecided_changes: Vec<(String, bool)>,
+    /// Kept up to date after every message, when someone asked ([`ReasonerExpert::remembered`]).
+    memory: Option<Arc<Mutex<ReasonerMemory>>>,
+    /// Taken up from a checkpoint: the board's inputs were applied already.
+    resumed: bool,
 }
 
 impl ReasonerExpert {
@@ -83,6 +117,62 @@ impl ReasonerExpert {
             outputs,
             undecided: Arc::default(),
             undecided_changes: Vec::new(),
+            memory: None,
+            resumed: false,
+        }
+    }
+
+    /// What the expert holds, kept up to date while it runs (read it between two steps of
+    /// the machines, when it has nothing left to do).
+    pub fn remembered(&mut self) -> Arc<Mutex<ReasonerMemory>> {
+        let memory = Arc::new(Mutex::new(self.memory(0)));
+        self.memory = Some(memory.clone());
+        memory
+    }
+
+    fn memory(&self, handled: u64) -> ReasonerMemory {
+        ReasonerMemory {
+            handled,
+            inputs: self
+                .inputs_held()
+                .into_iter()
+                .map(|(ty, value)| HeldInput { ty, value })
+                .collect(),
+            outputs: self
+                .outputs
+                .iter()
+                .map(|o| LastAnswer {
+                    name: o.name.clone(),
+                    last: o.last,
+                    undecided: o.undecided,
+                })
+                .collect(),
+        }
+    }
+
+    /// Takes up where `memory` left off: its inputs applied, its outputs' last answers known
+    /// (an output it does not name is posted at the start, as a new expert's are).
+    pub fn resumed(mut self, memory: &ReasonerMemory) -> ReasonerExpert {
+        for input in &memory.inputs {
+            if let Some(&atom) = self.inputs.get(&input.ty) {
+                if let Err(conflict) = self.session.set_input(atom, input.value) {
+                    tracing::warn!(expert = %self.name, %conflict, "input refused");
+                }
+            }
+        }
+        for kept in &memory.outputs {
+            if let Some(o) = self.outputs.iter_mut().find(|o| o.name == kept.name) {
+                o.last = kept.last;
+                o.undecided = kept.undecided;
+            }
+        }
+        self.resumed = true;
+        self
+    }
+
+    fn remember(&self, handled: u64) {
+        if let Some(memory) = &self.memory {
+            *memory.lock() = self.memory(handled);
         }
     }
 
@@ -217,11 +307,14 @@ impl ReasonerExpert {
         let mut types: Vec<String> = self.inputs.keys().cloned().collect();
         types.push(QUERY_TYPE.to_string());
         let mut messages = board.subscribe_pattern(Pattern::Any(types));
+        let subscribed = board.snapshot().seq;
         board.register(self.declaration());
-        // Inputs posted before the expert started count too.
+        // Inputs posted before the expert started count too (taken up from a checkpoint, they
+        // were applied as they came).
         let current: Vec<(String, Value)> = self
             .inputs
             .keys()
+            .filter(|_| !self.resumed)
             .filter_map(|ty| board.latest(ty).map(|m| (ty.clone(), m.value)))
             .collect();
         for (ty, value) in current {
@@ -232,6 +325,7 @@ impl ReasonerExpert {
         for (name, v) in initial {
             board.post(&self.name, &name, v);
         }
+        self.remember(subscribed);
         while let Some(m) = messages.next().await {
             if &*m.ty == QUERY_TYPE {
                 if let Value::Str(atom) = &m.value {
@@ -248,6 +342,7 @@ impl ReasonerExpert {
                     board.post(&self.name, &name, v);
                 }
             }
+            self.remember(m.seq);
         }
     }
 }

@@ -29,6 +29,11 @@ impl RoundCounter {
         self.0.round.fetch_add(1, Ordering::Relaxed) + 1
     }
 
+    /// Goes on from round `round` (a schedule taken up from a checkpoint).
+    pub(crate) fn set(&self, round: u64) {
+        self.0.round.store(round, Ordering::Relaxed);
+    }
+
     /// A machine reported a change.
     pub(crate) fn changed(&self) {
         self.0.changes.fetch_add(1, Ordering::Relaxed);

@@ -10,6 +10,7 @@
 //! [`Event`]s, data a trace can record. No file I/O of its own: loaders come from the caller.
 
 mod activity;
+mod checkpoint;
 mod eval;
 mod event;
 mod feed;
@@ -23,6 +24,10 @@ mod team;
 mod variables;
 
 pub use activity::SharedSuppressor;
+pub use checkpoint::{
+    AskedImage, Checkpoints, Fit, HoldImage, MachineImage, RankedImage, RoundsImage, SeenImage,
+    StatusName, VariableImage,
+};
 pub use event::{Answerer, Event};
 pub use feed::{Feed, RoundCounter};
 pub use host::{HostFunction, Hosts};

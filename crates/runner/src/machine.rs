@@ -130,12 +130,17 @@ impl MachineRunner {
         declaration(&self.machine, &self.machine.name, &shared)
     }
 
+    /// The machine it runs (as it was given: a reload changes the running copy only).
+    pub fn machine(&self) -> &Machine {
+        &self.machine
+    }
+
     /// The behaviour's suppressor, which the schedule asks between ringlets what takes over.
     pub(crate) fn suppressor(&self) -> Option<SharedSuppressor> {
         self.options.suppressor.clone()
     }
 
-    fn shared(&self) -> Arc<Shared> {
+    pub(crate) fn shared(&self) -> Arc<Shared> {
         self.options
             .shared
             .clone()
@@ -150,7 +155,7 @@ impl MachineRunner {
 
     async fn serve(self, board: Whiteboard) {
         // On its own task, a machine's rounds are its own ringlets.
-        let mut run = RunningMachine::new(&self, board, RoundCounter::default());
+        let mut run = RunningMachine::new(&self, board, RoundCounter::default(), true);
         // A command taken while waiting, applied on the next turn of the loop.
         let mut woken_by: Option<Message> = None;
         loop {
@@ -209,18 +214,18 @@ pub(crate) struct RunningMachine<'r> {
     pub(crate) name: String,
     running_type: String,
     /// Shared with the ring that runs it, so a ring borrows no copy of its state.
-    machine: Arc<Machine>,
+    pub(crate) machine: Arc<Machine>,
     pub(crate) status: Status,
-    current: StateId,
-    just_entered: bool,
-    entered_at: Instant,
+    pub(crate) current: StateId,
+    pub(crate) just_entered: bool,
+    pub(crate) entered_at: Instant,
     /// The round's moment, while a round schedule runs one (time tests and times in state
     /// are read against it, so every machine of a round sees one time); the clock otherwise.
     pub(crate) round_time: Option<Instant>,
-    locals: Locals,
-    shared: Arc<Shared>,
+    pub(crate) locals: Locals,
+    pub(crate) shared: Arc<Shared>,
     pub(crate) globals_changed: watch::Receiver<u64>,
-    unknown: FxHashSet<String>,
+    pub(crate) unknown: FxHashSet<String>,
     pub(crate) reporter: Reporter,
     /// What this ringlet reads of the board (its snapshot once OnEntry has run).
     pub(crate) seen: Seen,
@@ -241,10 +246,13 @@ pub(crate) struct RunningMachine<'r> {
 }
 
 impl<'r> RunningMachine<'r> {
+    /// The machine at its start, saying on the board whether it runs; a machine taken up
+    /// from a checkpoint (`announce` false) finds that on the board already.
     pub(crate) fn new(
         runner: &'r MachineRunner,
         board: Whiteboard,
         round: RoundCounter,
+        announce: bool,
     ) -> RunningMachine<'r> {
         let name = runner.machine.name.clone();
         let shared = runner.shared();
@@ -256,7 +264,9 @@ impl<'r> RunningMachine<'r> {
             Status::Dormant
         };
         let running_type = running_type(&name);
-        board.post(&name, &running_type, status == Status::Running);
+        if announce {
+            board.post(&name, &running_type, status == Status::Running);
+        }
         RunningMachine {
             runner,
             name,

@@ -10,11 +10,12 @@
 //! trace; one due just as a round is (a script's step timed for that moment) arrives before it.
 
 use crate::activity::SharedSuppressor;
+use crate::checkpoint::{Checkpoints, HoldImage, RoundsImage, SharedCheckpoints};
 use crate::event::Event;
 use crate::feed::{Feed, QueryHook, RoundCounter, SharedFeed};
 use crate::machine::{MachineRunner, RingOutcome, RunningMachine, Status};
 use crate::step::Stepper;
-use proclaim_board::{Message, Pattern, Snapshot, Subscription, Whiteboard};
+use proclaim_board::{nanos, Message, Pattern, Snapshot, Subscription, Value, Whiteboard};
 use proclaim_runtime::Ringlet;
 use std::sync::Arc;
 use std::time::Duration;
@@ -55,6 +56,9 @@ pub struct Rounds {
     feed: Option<SharedFeed>,
     /// From when (since the machines' epoch) nothing outside will post again.
     silent_from: Option<Duration>,
+    checkpoints: Option<SharedCheckpoints>,
+    /// Where the schedule takes up, instead of every machine's start.
+    resume: Option<RoundsImage>,
 }
 
 impl Rounds {
@@ -68,7 +72,30 @@ impl Rounds {
             ticks: None,
             feed: None,
             silent_from: None,
+            checkpoints: None,
+            resume: None,
         }
+    }
+
+    /// Written down when `checkpoints` say, at the start of a round.
+    pub fn checkpointed(mut self, checkpoints: Checkpoints) -> Rounds {
+        self.checkpoints = Some(Arc::new(parking_lot::Mutex::new(checkpoints)));
+        self
+    }
+
+    /// Takes up where `image` left off: its round is the first played, every machine where
+    /// the image has it. Refused with why when the machines no longer fit it; what changed but
+    /// fits is in the notes.
+    pub fn resumed_from(
+        mut self,
+        image: RoundsImage,
+    ) -> Result<(Rounds, Vec<String>), Vec<String>> {
+        let fit = image.fit(&self.machines);
+        if !fit.refused.is_empty() {
+            return Err(fit.refused);
+        }
+        self.resume = Some(image);
+        Ok((self, fit.notes))
     }
 
     /// Ends at the first still round ([`RoundsEnd::Still`]) at or after `silent_from` (since
@@ -109,14 +136,32 @@ impl Rounds {
         tracing::Instrument::instrument(self.serve(board), span).await
     }
 
-    async fn serve(self, board: Whiteboard) -> RoundsEnd {
+    /// The machines at their start, or where the checkpoint resumed has them.
+    fn scheduled(&self, board: &Whiteboard) -> ScheduledMachines<'_> {
+        if let (Some(image), Some(first)) = (&self.resume, self.machines.first()) {
+            let globals = image.globals.iter();
+            let globals = globals.map(|g| (g.name.clone(), Value::from_json(&g.value)));
+            first
+                .shared()
+                .restore(globals.collect(), image.global_changes);
+            self.round.set(image.round.saturating_sub(1));
+        }
+        let announce = self.resume.is_none();
         let runs: Vec<RunningMachine<'_>> = self
             .machines
             .iter()
-            .map(|m| RunningMachine::new(m, board.clone(), self.round.clone()))
+            .map(|m| RunningMachine::new(m, board.clone(), self.round.clone(), announce))
             .collect();
         let suppressor = self.machines.iter().find_map(MachineRunner::suppressor);
-        let mut scheduled = ScheduledMachines::new(runs, &board, suppressor);
+        let mut scheduled = ScheduledMachines::new(runs, board, suppressor);
+        if let Some(image) = &self.resume {
+            scheduled.restore(image);
+        }
+        scheduled
+    }
+
+    async fn serve(self, board: Whiteboard) -> RoundsEnd {
+        let mut scheduled = self.scheduled(&board);
         let mut wakeup = RoundWakeup::default();
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
@@ -135,6 +180,11 @@ impl Rounds {
                 // the round's first snapshot and belongs to this round, whichever task the
                 // clock woke first.
                 settle(&board).await;
+            }
+            if let Some(checkpoints) = &self.checkpoints {
+                checkpoints
+                    .lock()
+                    .offer(round, || scheduled.image(round, moment));
             }
             last_moment = Some(moment);
             let changes = self.round.changes();
@@ -347,6 +397,39 @@ impl<'r> ScheduledMachines<'r> {
             runs,
             commands: board.subscribe_pattern(Pattern::Any(names)),
             suppressor,
+        }
+    }
+
+    /// The schedule at the start of `round`, at `moment`.
+    fn image(&mut self, round: u64, moment: Instant) -> RoundsImage {
+        let epoch = self.runs.first().map_or(moment, |r| r.reporter.epoch);
+        let (globals, global_changes) = self
+            .runs
+            .first()
+            .map(|r| r.shared.image())
+            .unwrap_or_default();
+        let machines = self.runs.iter_mut().zip(&self.over);
+        let holds = self.suppressor.as_ref().map(|s| s.lock().holdings());
+        RoundsImage {
+            round,
+            at_ns: nanos(moment.saturating_duration_since(epoch)),
+            global_changes,
+            globals,
+            machines: machines.map(|(run, over)| run.image(*over)).collect(),
+            holds: holds.iter().flatten().map(HoldImage::of).collect(),
+        }
+    }
+
+    /// Every machine where `image` (which fits them) has it.
+    fn restore(&mut self, image: &RoundsImage) {
+        let machines = self.runs.iter_mut().zip(&mut self.over);
+        for ((run, over), kept) in machines.zip(&image.machines) {
+            run.restore(kept);
+            *over = kept.over;
+        }
+        if let Some(suppressor) = &self.suppressor {
+            let holdings = image.holds.iter().map(HoldImage::holding);
+            suppressor.lock().hold_as(holdings.collect());
         }
     }
 

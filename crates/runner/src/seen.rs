@@ -47,6 +47,29 @@ impl Seen {
         self.held = false;
     }
 
+    /// Between two ringlets, as a checkpoint left it: the last snapshot (if the ringlet took
+    /// one) and what the machine posted itself in it.
+    pub fn between_ringlets(snapshot: Option<Snapshot>, own: FxHashMap<String, Message>) -> Seen {
+        let seen = Seen {
+            own,
+            ..Seen::default()
+        };
+        if let Some(snapshot) = snapshot {
+            let _ = seen.snapshot.set(snapshot);
+        }
+        seen
+    }
+
+    /// The last ringlet's snapshot, if it took one.
+    pub fn last_snapshot(&self) -> Option<&Snapshot> {
+        self.snapshot.get()
+    }
+
+    /// What the last ringlet posted itself, by type.
+    pub fn own(&self) -> impl Iterator<Item = (&str, &Message)> + '_ {
+        self.own.iter().map(|(ty, m)| (ty.as_str(), m))
+    }
+
     /// The board's sequence number when the last ringlet took its snapshot, if it took one.
     pub fn seq(&self) -> Option<u64> {
         self.snapshot.get().map(|s| s.seq)

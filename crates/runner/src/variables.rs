@@ -99,6 +99,20 @@ impl Shared {
     pub(crate) fn changes(&self) -> watch::Receiver<u64> {
         self.changes.subscribe()
     }
+
+    /// Every global and its value, and how many times one changed (a checkpoint's).
+    pub(crate) fn globals_and_changes(&self) -> (Vec<(String, Value)>, u64) {
+        let globals = self.globals.read();
+        let all = globals.iter().map(|(n, v)| (n.clone(), v.clone()));
+        (all.collect(), *self.changes.borrow())
+    }
+
+    /// Globals and the count of changes as a checkpoint holds them; globals it does not name
+    /// keep their values.
+    pub(crate) fn restore(&self, globals: Vec<(String, Value)>, changes: u64) {
+        self.globals.write().extend(globals);
+        self.changes.send_replace(changes);
+    }
 }
 
 /// The names a machine's expressions see: its own variables and those of its behaviour.
@@ -157,6 +171,16 @@ impl Locals {
 
     pub fn contains(&self, name: &str) -> bool {
         self.types.contains_key(name)
+    }
+
+    /// A declared variable's type, as written.
+    pub(crate) fn type_of(&self, name: &str) -> Option<&str> {
+        self.types.get(name).map(VarType::name)
+    }
+
+    /// Every declared variable's name.
+    pub(crate) fn names(&self) -> Vec<String> {
+        self.types.keys().cloned().collect()
     }
 
     /// Sets a declared variable, converting the value to its type as C would (`int n = 2.7`

@@ -23,7 +23,7 @@ pub mod world;
 pub use event::{Answerer, Event, Ringlet};
 pub use lines::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
 pub use script::{parse_script, Script, ScriptStep, ScriptValue, When};
-pub use suppress::{Ranked, Suppressor, Visibility};
+pub use suppress::{Holding, Ranked, Suppressor, Visibility};
 pub use tables::Tables;
 
 /// The message type of a query; its content is the atom (the original's name).

@@ -75,6 +75,16 @@ impl<V: Clone> Line<V> {
     }
 }
 
+/// One suppressed type's holding as it stands (what a checkpoint keeps): the posting readers
+/// see, the newest posting of each priority, and whether the one shown stands over a lower one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Holding<V> {
+    pub ty: Arc<str>,
+    pub shown: Option<Ranked<V>>,
+    pub newest: Vec<Ranked<V>>,
+    pub subsuming: bool,
+}
+
 /// The suppressed types of one behaviour and what holds each.
 #[derive(Debug)]
 pub struct Suppressor<V> {
@@ -174,6 +184,38 @@ impl<V: Clone> Suppressor<V> {
         }
         released.sort_by(|a, b| a.ty.cmp(&b.ty));
         released
+    }
+
+    /// Every suppressed type's holding, in name order.
+    pub fn holdings(&self) -> Vec<Holding<V>> {
+        let mut all: Vec<Holding<V>> = self
+            .lines
+            .values()
+            .map(|line| Holding {
+                ty: line.ty.clone(),
+                shown: line.shown.clone(),
+                newest: line.newest.values().cloned().collect(),
+                subsuming: line.subsuming,
+            })
+            .collect();
+        all.sort_by(|a, b| a.ty.cmp(&b.ty));
+        all
+    }
+
+    /// Holds each type as `holdings` say (a run taken up from a checkpoint); a type no longer
+    /// declared suppressed is left out, and its hold time is the one declared now.
+    pub fn hold_as(&mut self, holdings: Vec<Holding<V>>) {
+        for holding in holdings {
+            if let Some(line) = self.lines.get_mut(&holding.ty) {
+                line.shown = holding.shown;
+                line.newest = holding
+                    .newest
+                    .into_iter()
+                    .map(|r| (r.priority, r))
+                    .collect();
+                line.subsuming = holding.subsuming;
+            }
+        }
     }
 
     /// The earliest moment some type's hold runs out with a lower posting waiting behind it

@@ -11,6 +11,7 @@ mod common {
 #[global_allocator]
 static ALLOCATED: common::allocated::Counting = common::allocated::Counting;
 
+mod checkpoints;
 mod conformance;
 mod differential;
 mod free_values;
