@@ -42,8 +42,8 @@ impl CheckpointFiles {
         self.written
     }
 
-    /// Writes `checkpoint`; the file it went to.
-    pub fn write(&mut self, checkpoint: &Checkpoint) -> Result<PathBuf, Failure> {
+    /// Writes `checkpoint`; the file it went to and its size in bytes.
+    pub fn write(&mut self, checkpoint: &Checkpoint) -> Result<(PathBuf, usize), Failure> {
         let path = if self.one {
             self.path.clone()
         } else {
@@ -59,10 +59,11 @@ impl CheckpointFiles {
             path: path.clone(),
             error,
         };
-        std::fs::write(&partial, checkpoint.to_text()).map_err(failed)?;
+        let text = checkpoint.to_text();
+        std::fs::write(&partial, &text).map_err(failed)?;
         std::fs::rename(&partial, &path).map_err(failed)?;
         self.written += 1;
-        Ok(path)
+        Ok((path, text.len()))
     }
 }
 

@@ -417,12 +417,14 @@ impl Live<'_> {
         let Some(files) = &mut self.checkpoints else {
             return;
         };
+        let started = std::time::Instant::now();
         match files.write(checkpoint) {
-            Ok(path) => println!(
-                "  checkpoint at round {} ({:.3} s): {}",
+            Ok((path, bytes)) => println!(
+                "  checkpoint at round {} ({:.3} s): {} ({bytes} bytes, written in {:.1} ms)",
                 checkpoint.round,
                 checkpoint.at().as_secs_f64(),
-                path.display()
+                path.display(),
+                started.elapsed().as_secs_f64() * 1e3
             ),
             Err(failure) => eprintln!("warning: {failure}"),
         }
