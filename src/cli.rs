@@ -607,11 +607,12 @@ pub struct RunArgs {
     #[arg(long, value_name = "NAME")]
     pub member: Option<String>,
     /// Write the whole run down (machines, whiteboard, theories, the script's place) at the
-    /// start of the first round at or after ROUND that begins at a moment of its own, for
-    /// `--resume`; a list takes several
+    /// start of the first round at or after ROUND where every theory and the script have
+    /// handled what was posted to them, for `--resume`; a list takes several
     #[arg(long, value_name = "ROUND", value_delimiter = ',')]
     pub checkpoint_at: Vec<u64>,
-    /// Write a checkpoint every N rounds, each named with its round (`checkpoint.r200.json`)
+    /// Write a checkpoint every N rounds, each named with the round it was taken at
+    /// (`checkpoint.r200.json`)
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub checkpoint_every: Option<u64>,
     /// Where checkpoints go (default: checkpoint.json)

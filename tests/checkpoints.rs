@@ -189,6 +189,23 @@ fn a_checkpoint_the_behaviour_no_longer_fits_is_refused_saying_why_and_one_that_
 }
 
 #[test]
+fn a_checkpoint_file_with_no_checkpoint_asked_is_refused() {
+    let out = proclaim(&[
+        "run",
+        "press",
+        "--virtual-clock",
+        "--checkpoint-file",
+        "c.json",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--checkpoint-file says where checkpoints go"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn a_run_whose_state_is_not_all_its_own_is_refused_a_checkpoint_by_name() {
     let out = proclaim(&[
         "run",

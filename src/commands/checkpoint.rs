@@ -5,6 +5,7 @@
 use crate::cli::RunArgs;
 use crate::failure::Failure;
 use proclaim_behaviour::{Checkpoint, CheckpointPlan};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -13,7 +14,24 @@ use std::sync::Arc;
 pub struct CheckpointFiles {
     path: PathBuf,
     one: bool,
-    written: usize,
+    taken: usize,
+}
+
+/// Whether `args` ask for checkpoints in a way that can be kept: a file says where they go,
+/// not that one is taken; a board shared with other processes holds what no file can.
+pub fn refuse_unasked(args: &RunArgs) -> Result<(), Failure> {
+    let asked = !args.checkpoint_at.is_empty() || args.checkpoint_every.is_some();
+    if args.checkpoint_file.is_some() && !asked {
+        return Err(Failure::Argument(
+            "--checkpoint-file says where checkpoints go; ask for one with --checkpoint-at ROUND or --checkpoint-every N".into(),
+        ));
+    }
+    if asked && !args.network.is_local() {
+        return Err(Failure::Argument(
+            "--checkpoint-at, --checkpoint-every: a board shared with other processes is theirs too, and no file can hold it; checkpoint a run on a board of its own".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// What `args` ask: the plan and where its checkpoints go, if any are asked.
@@ -31,19 +49,20 @@ pub fn plan(args: &RunArgs) -> Option<(CheckpointPlan, CheckpointFiles)> {
             .clone()
             .unwrap_or_else(|| PathBuf::from("checkpoint.json")),
         one: args.checkpoint_at.len() == 1 && args.checkpoint_every.is_none(),
-        written: 0,
+        taken: 0,
     };
     Some((plan, files))
 }
 
 impl CheckpointFiles {
-    /// How many were written.
-    pub fn written(&self) -> usize {
-        self.written
+    /// How many the run took (each written, or warned of when it could not be).
+    pub fn taken(&self) -> usize {
+        self.taken
     }
 
     /// Writes `checkpoint`; the file it went to and its size in bytes.
     pub fn write(&mut self, checkpoint: &Checkpoint) -> Result<(PathBuf, usize), Failure> {
+        self.taken += 1;
         let path = if self.one {
             self.path.clone()
         } else {
@@ -54,15 +73,25 @@ impl CheckpointFiles {
             };
             self.path.with_file_name(name)
         };
-        let partial = path.with_extension("partial");
+        // Written beside it under a name of its own and renamed over it once whole and on disk,
+        // so a crash leaves the last checkpoint or this one, never half of one.
+        let mut partial = path.clone().into_os_string();
+        partial.push(".partial");
+        let partial = PathBuf::from(partial);
         let failed = |error| Failure::Write {
-            path: path.clone(),
+            path: partial.clone(),
             error,
         };
-        let text = checkpoint.to_text();
-        std::fs::write(&partial, &text).map_err(failed)?;
-        std::fs::rename(&partial, &path).map_err(failed)?;
-        self.written += 1;
+        let text = checkpoint
+            .to_text()
+            .map_err(|e| failed(std::io::Error::other(e)))?;
+        let mut file = std::fs::File::create(&partial).map_err(failed)?;
+        file.write_all(text.as_bytes()).map_err(failed)?;
+        file.sync_all().map_err(failed)?;
+        std::fs::rename(&partial, &path).map_err(|error| Failure::Write {
+            path: path.clone(),
+            error,
+        })?;
         Ok((path, text.len()))
     }
 }

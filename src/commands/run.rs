@@ -68,6 +68,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
         Some(path) => Some(read_script(path)?),
     };
     refuse_unchecked(&behaviour, script.as_ref(), &args)?;
+    checkpoint::refuse_unasked(&args)?;
     if args.virtual_clock {
         refuse_processes_on_virtual_clock(&behaviour, script.as_ref())?;
     }
@@ -403,9 +404,9 @@ impl Live<'_> {
         while let Some(checkpoint) = taken.as_mut().and_then(|rx| rx.try_recv().ok()) {
             self.keep(&checkpoint);
         }
-        if self.checkpoints.as_ref().is_some_and(|f| f.written() == 0) {
+        if self.checkpoints.as_ref().is_some_and(|f| f.taken() == 0) {
             println!(
-                "  no checkpoint was written: the run ended at round {}, before the first asked for",
+                "  no checkpoint was taken: the run ended at round {}, before one asked for could be",
                 running.round.get()
             );
         }

@@ -56,7 +56,7 @@ pub struct TheoryImage {
 /// The script being played, and where it was.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ScriptImage {
-    /// The script's steps, to tell it from another (a fingerprint of them).
+    /// How many steps it has, and a fingerprint of what they say, to tell it from another.
     pub steps: usize,
     pub fingerprint: String,
     #[serde(flatten)]
@@ -96,25 +96,57 @@ impl Checkpoint {
                 version.map_or_else(|| "none".to_string(), |v| v.to_string())
             ));
         }
-        serde_json::from_value(json).map_err(|e| format!("a checkpoint, but {e}"))
+        let checkpoint: Checkpoint =
+            serde_json::from_value(json).map_err(|e| format!("a checkpoint, but {e}"))?;
+        // Far beyond any run, and a count that could not go on.
+        if checkpoint.round == 0 || checkpoint.round > 1 << 53 {
+            return Err(format!(
+                "a checkpoint at round {}, which no run reaches",
+                checkpoint.round
+            ));
+        }
+        Ok(checkpoint)
     }
 
     /// The file's text: one line of JSON.
-    pub fn to_text(&self) -> String {
-        let mut text = serde_json::to_string(self).unwrap_or_default();
+    pub fn to_text(&self) -> Result<String, String> {
+        let mut text = serde_json::to_string(self).map_err(|e| e.to_string())?;
         text.push('\n');
-        text
+        Ok(text)
     }
 
     /// The moment it was taken, since the run began.
     pub fn at(&self) -> Duration {
         Duration::from_nanos(self.at_ns)
     }
+
+    /// What of it `behaviour` does not take up, each said: another behaviour's name, a theory
+    /// it no longer has (what that theory held is dropped).
+    fn misfits(&self, behaviour: &Behaviour) -> Vec<String> {
+        let mut said = Vec::new();
+        if self.behaviour != behaviour.name {
+            said.push(format!(
+                "the checkpoint was taken of `{}`, and this is `{}`",
+                self.behaviour, behaviour.name
+            ));
+        }
+        for theory in &self.theories {
+            if !behaviour.theories.iter().any(|t| t.name == theory.name) {
+                said.push(format!(
+                    "the theory `{}` is no longer in the behaviour; what it held is dropped",
+                    theory.name
+                ));
+            }
+        }
+        said
+    }
 }
 
-/// A script's fingerprint: its steps as this build writes them, hashed (FNV-1a).
+/// A script's fingerprint: what its steps say (not where they stand in the file) as this build
+/// writes them, hashed (FNV-1a).
 fn fingerprint(script: &Script) -> String {
-    let text = format!("{:?}", script.steps);
+    let said = script.steps.iter().map(|s| (&s.when, &s.atom, &s.value));
+    let text = format!("{:?}", said.collect::<Vec<_>>());
     let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     });
@@ -214,7 +246,11 @@ impl Kept {
     /// Whether every module the run holds has handled everything posted to it: nothing of
     /// theirs is between two steps, so the board and their images are the whole of it.
     fn settled(&self, board: &Whiteboard) -> bool {
-        let snapshot = board.snapshot();
+        self.settled_on(&board.snapshot())
+    }
+
+    /// [`Kept::settled`] as to the board `snapshot` holds.
+    fn settled_on(&self, snapshot: &proclaim_board::Snapshot) -> bool {
         self.follows.iter().all(|(types, handled)| {
             let handled = handled();
             types
@@ -280,22 +316,41 @@ impl Kept {
                 "the machines run concurrently (the manifest's schedule = \"concurrent\"), with no rounds to write a checkpoint between".into(),
             ));
         };
+        let mut after = 0;
         if let Some(c) = &self.resume {
             let (resumed, changed) = rounds
                 .resumed_from(c.schedule.clone())
                 .map_err(BehaviourError::Resume)?;
             rounds = resumed;
             notes.extend(changed.into_iter().map(|n| format!("taken up: {n}")));
+            notes.extend(
+                c.misfits(behaviour)
+                    .into_iter()
+                    .map(|n| format!("taken up: {n}")),
+            );
+            after = c.round;
         }
         let Some(plan) = &options.checkpoints else {
             return Ok((Some(rounds), None));
         };
         let (checkpoints, taken) = Arc::new(self).checkpoints(plan, &behaviour.name, board);
-        Ok((Some(rounds.checkpointed(checkpoints)), Some(taken)))
+        Ok((
+            Some(rounds.checkpointed(checkpoints.after(after))),
+            Some(taken),
+        ))
     }
 
-    /// The whole run at `schedule`'s round.
-    fn checkpoint(&self, behaviour: &str, schedule: RoundsImage, board: &Whiteboard) -> Checkpoint {
+    /// The whole run at `schedule`'s round: the board first, then what each module holds,
+    /// then whether each had handled all of that board (on the real clock a module may have
+    /// moved on meanwhile; then none is taken, and the next round tries again).
+    fn checkpoint(
+        &self,
+        behaviour: &str,
+        schedule: RoundsImage,
+        board: &Whiteboard,
+    ) -> Option<Checkpoint> {
+        let snapshot = board.snapshot();
+        let image = snapshot.image(board.stats());
         let theories = self.theories.iter().map(|(name, memory)| TheoryImage {
             name: name.clone(),
             memory: memory.lock().clone(),
@@ -303,13 +358,13 @@ impl Kept {
         let mut range_warnings: Vec<RangeWarning> =
             self.range_warnings.lock().iter().cloned().collect();
         range_warnings.sort_by(|a, b| (&a.ty, &a.value).cmp(&(&b.ty, &b.value)));
-        Checkpoint {
+        let checkpoint = Checkpoint {
             format: CHECKPOINT_FORMAT.into(),
             version: CHECKPOINT_VERSION,
             behaviour: behaviour.to_string(),
             round: schedule.round,
             at_ns: schedule.at_ns,
-            board: board.snapshot().image(board.stats()),
+            board: image,
             theories: theories.collect(),
             script: self.script.as_ref().map(|(imp, image)| ScriptImage {
                 position: imp.position(),
@@ -317,7 +372,8 @@ impl Kept {
             }),
             range_warnings,
             schedule,
-        }
+        };
+        self.settled_on(&snapshot).then_some(checkpoint)
     }
 
     /// The schedule's checkpoints as `plan` says, each sent whole (board and experts read at
@@ -333,7 +389,12 @@ impl Kept {
         let (kept, seen) = (self.clone(), board.clone());
         let ready = move || kept.settled(&seen);
         let take = move |schedule: RoundsImage| {
-            let _ = tx.send(self.checkpoint(&behaviour, schedule, &board));
+            let Some(taken) = self.checkpoint(&behaviour, schedule, &board) else {
+                return false;
+            };
+            // A run whose receiver is gone has nobody to write checkpoints for.
+            let _ = tx.send(taken);
+            true
         };
         (
             Checkpoints::new(plan.at.clone(), plan.every, ready, take),

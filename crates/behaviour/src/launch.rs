@@ -158,23 +158,21 @@ impl Running {
 
     /// Where a run taken up from `checkpoint` is: which top-level machines are in which
     /// state, which finished and which halted (what its events would have said).
-    fn taken_up(&mut self, checkpoint: &Checkpoint) {
-        for machine in &checkpoint.schedule.machines {
-            let name = &machine.name;
-            if machine.over {
+    fn taken_up(&mut self, checkpoint: &Checkpoint, behaviour: &Behaviour) {
+        for kept in &checkpoint.schedule.machines {
+            let name = &kept.name;
+            if kept.over {
                 self.halted.insert(name.clone());
             }
-            if machine.just_entered {
+            let machine = behaviour.machines.iter().find(|m| m.machine.name == *name);
+            let state = machine.and_then(|m| kept.state_in(&m.machine));
+            let Some(state) = state.filter(|_| !kept.just_entered) else {
                 continue;
-            }
+            };
             if let Some(at) = self.top.get_mut(name) {
-                *at = Some(machine.state_id);
+                *at = Some(state);
             }
-            if self
-                .finals
-                .get(name)
-                .is_some_and(|f| f.contains(&machine.state_id))
-            {
+            if self.finals.get(name).is_some_and(|f| f.contains(&state)) {
                 self.finished.insert(name.clone());
             }
         }
@@ -291,7 +289,7 @@ pub async fn launch(
         finished: FxHashSet::default(),
     };
     if let Some(c) = resume {
-        running.taken_up(&c);
+        running.taken_up(&c, behaviour);
     }
     Ok(running)
 }

@@ -227,8 +227,10 @@ impl Impersonator {
                     q = queries.next() => q,
                     _ = tokio::time::sleep_until(at) => {
                         let (_, atom, value) = timed.next().expect("peeked");
+                        // Posted and counted as one: whoever reads the position sees both.
+                        let mut counted = self.counted.lock();
                         self.set_value(&atom, value);
-                        self.counted.lock().timed_played += 1;
+                        counted.timed_played += 1;
                         continue;
                     }
                 },

@@ -24,6 +24,13 @@ pub struct RoundsImage {
     pub round: u64,
     /// Its moment: nanoseconds since the run's epoch.
     pub at_ns: u64,
+    /// Whether the round goes on at the moment of the one before (rounds that fire one after
+    /// another at one moment), and how many have so far: a schedule counts them to halt
+    /// machines that never let time pass (`MOST_ROUNDS_WITHOUT_WAITING`).
+    #[serde(default)]
+    pub same_moment: bool,
+    #[serde(default)]
+    pub rounds_without_waiting: u64,
     /// How many times a global changed (a machine's `globals_seen` is one of these counts).
     pub global_changes: u64,
     pub globals: Vec<VariableImage>,
@@ -165,19 +172,20 @@ pub struct Checkpoints {
     every: Option<u64>,
     next_every: u64,
     ready: Box<dyn Fn() -> bool + Send>,
-    take: Box<dyn FnMut(RoundsImage) + Send>,
+    take: Box<dyn FnMut(RoundsImage) -> bool + Send>,
 }
 
 impl Checkpoints {
     /// At the first round at or after each of `at`, and of each multiple of `every`, at whose
     /// start `ready` says everything outside the machines has handled all that was posted to it
     /// (an expert yet to read an input the last round posted holds state a checkpoint cannot
-    /// see); each image to `take`, at once.
+    /// see); each image to `take`, at once, which says whether it took it (looking again at
+    /// everything together, it may find a module still busy: the next round is tried).
     pub fn new(
         mut at: Vec<u64>,
         every: Option<u64>,
         ready: impl Fn() -> bool + Send + 'static,
-        take: impl FnMut(RoundsImage) + Send + 'static,
+        take: impl FnMut(RoundsImage) -> bool + Send + 'static,
     ) -> Checkpoints {
         at.sort_unstable();
         let every = every.filter(|n| *n > 0);
@@ -190,6 +198,15 @@ impl Checkpoints {
         }
     }
 
+    /// Counted on from `round`, where a run was taken up: the checkpoint it came from is not
+    /// written again.
+    pub fn after(mut self, round: u64) -> Checkpoints {
+        if let Some(every) = self.every {
+            self.next_every = (round / every).saturating_add(1).saturating_mul(every);
+        }
+        self
+    }
+
     /// Whether a checkpoint is asked for at `round`.
     fn due(&self, round: u64) -> bool {
         self.at.first().is_some_and(|r| *r <= round) || round >= self.next_every
@@ -199,14 +216,13 @@ impl Checkpoints {
     fn taken(&mut self, round: u64) {
         self.at.retain(|r| *r > round);
         if let Some(every) = self.every.filter(|_| round >= self.next_every) {
-            self.next_every = (round / every + 1).saturating_mul(every);
+            self.next_every = (round / every).saturating_add(1).saturating_mul(every);
         }
     }
 
     /// Writes the schedule down at `round` if a checkpoint is due and can be taken.
     pub(crate) fn offer(&mut self, round: u64, image: impl FnOnce() -> RoundsImage) {
-        if self.due(round) && (self.ready)() {
-            (self.take)(image());
+        if self.due(round) && (self.ready)() && (self.take)(image()) {
             self.taken(round);
         }
     }
@@ -242,8 +258,14 @@ impl RoundsImage {
 }
 
 impl MachineImage {
+    /// The state this image names in `machine`: by name when the name is unique, else by id.
+    pub fn state_in(&self, machine: &Machine) -> Option<i64> {
+        state_of(machine, &self.state, self.state_id)
+    }
+
     fn fit(&self, machine: &Machine, fit: &mut Fit) {
-        if state_of(machine, &self.state, self.state_id).is_none() {
+        // A machine whose state vanished rings no more: where it was does not matter.
+        if !self.over && self.state_in(machine).is_none() {
             fit.refused.push(format!(
                 "{} is in state {} in the checkpoint, which the machine no longer has",
                 self.name, self.state
@@ -445,30 +467,59 @@ pub(crate) type SharedCheckpoints = Arc<Mutex<Checkpoints>>;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::{AtomicU64, Ordering};
 
     #[test]
     fn checkpoints_come_at_the_first_round_at_or_after_each_asked_that_is_ready() {
+        // Round 20 finds a module busy (`ready` false) and round 21 one the take turns down.
+        let now = Arc::new(AtomicU64::new(0));
         let taken = Arc::new(Mutex::new(Vec::new()));
-        let into = taken.clone();
-        let ready = |round: u64| round != 20;
+        let (seen, into) = (now.clone(), taken.clone());
         let mut c = Checkpoints::new(
             vec![5, 3],
             Some(10),
-            || true,
-            move |i: RoundsImage| into.lock().push(i.round),
+            move || seen.load(Ordering::Relaxed) != 20,
+            move |i: RoundsImage| {
+                let keep = i.round != 21;
+                if keep {
+                    into.lock().push(i.round);
+                }
+                keep
+            },
         );
         for round in [1, 2, 4, 6, 9, 12, 19, 20, 21, 22, 35] {
-            if ready(round) {
-                c.offer(round, || image(round));
-            }
+            now.store(round, Ordering::Relaxed);
+            c.offer(round, || image(round));
         }
-        assert_eq!(*taken.lock(), [4, 6, 12, 21, 35]);
+        assert_eq!(*taken.lock(), [4, 6, 12, 22, 35]);
+    }
+
+    #[test]
+    fn a_schedule_taken_up_counts_its_checkpoints_on_from_there() {
+        let taken = Arc::new(Mutex::new(Vec::new()));
+        let into = taken.clone();
+        let mut c = Checkpoints::new(
+            Vec::new(),
+            Some(100),
+            || true,
+            move |i: RoundsImage| {
+                into.lock().push(i.round);
+                true
+            },
+        )
+        .after(500);
+        for round in [500, 501, 599, 600, 650, 700] {
+            c.offer(round, || image(round));
+        }
+        assert_eq!(*taken.lock(), [600, 700]);
     }
 
     fn image(round: u64) -> RoundsImage {
         RoundsImage {
             round,
             at_ns: 0,
+            same_moment: false,
+            rounds_without_waiting: 0,
             global_changes: 0,
             globals: Vec::new(),
             machines: Vec::new(),

@@ -160,15 +160,27 @@ impl Rounds {
         scheduled
     }
 
+    /// Where a schedule taken up in the middle of rounds at one moment goes on from: that
+    /// moment, and the count of rounds fired at it; a schedule starting has neither.
+    fn moment_taken_up(&self) -> (Option<Instant>, u64) {
+        match &self.resume {
+            Some(image) if image.same_moment => {
+                (Some(Instant::now()), image.rounds_without_waiting)
+            }
+            Some(image) => (None, image.rounds_without_waiting),
+            None => (None, 0),
+        }
+    }
+
     async fn serve(self, board: Whiteboard) -> RoundsEnd {
         let mut scheduled = self.scheduled(&board);
         let mut wakeup = RoundWakeup::default();
         let mut last_step = 0;
         // Commands posted before the schedule subscribed are obeyed before the first round.
         let mut commanded = true;
-        // The moment of the last round: a round at a later one first lets the outside catch up.
-        let mut last_moment: Option<tokio::time::Instant> = None;
-        let mut without_waiting = 0;
+        // The moment of the last round (a round at a later one first lets the outside catch
+        // up), and how many rounds in a row fired at it.
+        let (mut last_moment, mut without_waiting) = self.moment_taken_up();
         loop {
             if let Some(stepper) = &self.stepper {
                 last_step = stepper.wait(last_step).await;
@@ -182,9 +194,9 @@ impl Rounds {
                 settle(&board).await;
             }
             if let Some(checkpoints) = &self.checkpoints {
-                checkpoints
-                    .lock()
-                    .offer(round, || scheduled.image(round, moment));
+                let same = (last_moment == Some(moment), without_waiting);
+                let image = || scheduled.image(round, moment, same);
+                checkpoints.lock().offer(round, image);
             }
             last_moment = Some(moment);
             let changes = self.round.changes();
@@ -400,8 +412,9 @@ impl<'r> ScheduledMachines<'r> {
         }
     }
 
-    /// The schedule at the start of `round`, at `moment`.
-    fn image(&mut self, round: u64, moment: Instant) -> RoundsImage {
+    /// The schedule at the start of `round`, at `moment`, and whether that goes on from the
+    /// round before's moment (after how many rounds at it).
+    fn image(&mut self, round: u64, moment: Instant, (same, rounds): (bool, u64)) -> RoundsImage {
         let epoch = self.runs.first().map_or(moment, |r| r.reporter.epoch);
         let (globals, global_changes) = self
             .runs
@@ -413,6 +426,8 @@ impl<'r> ScheduledMachines<'r> {
         RoundsImage {
             round,
             at_ns: nanos(moment.saturating_duration_since(epoch)),
+            same_moment: same,
+            rounds_without_waiting: rounds,
             global_changes,
             globals,
             machines: machines.map(|(run, over)| run.image(*over)).collect(),

@@ -68,7 +68,8 @@ fn taken_up(seed: u64) -> Result<bool, String> {
         return Ok(false);
     };
     let round = checkpoint.round;
-    let read = Checkpoint::read(&checkpoint.to_text()).map_err(story)?;
+    let text = checkpoint.to_text().map_err(story)?;
+    let read = Checkpoint::read(&text).map_err(story)?;
     assert_eq!(
         read, checkpoint,
         "seed {seed}: a checkpoint reads back as written"
@@ -81,8 +82,12 @@ fn taken_up(seed: u64) -> Result<bool, String> {
     let (rest, _) = play(&dir, &generated, first, resumed).map_err(story)?;
     let _ = std::fs::remove_dir_all(&dir);
     let (whole, rest) = (lines(&whole), lines(&rest));
+    // The rest is the whole run's after the checkpoint: nothing of a later round before it.
+    let after = |l: &String| round_of(l) > round;
     match whole.len().checked_sub(rest.len()) {
-        Some(split) if whole[split..] == rest[..] => Ok(true),
+        Some(split) if whole[split..] == rest[..] && !whole[..split].iter().any(after) => {
+            Ok(true)
+        }
         _ => Err(story(format!(
             "taken up at round {round}, the run went on otherwise:\nthe first run after it:\n{}\ntaken up:\n{}",
             whole.iter().filter(|l| round_of(l) >= round).cloned().collect::<Vec<_>>().join("\n"),
