@@ -165,8 +165,25 @@ impl Running {
                 self.halted.insert(name.clone());
             }
             let machine = behaviour.machines.iter().find(|m| m.machine.name == *name);
-            let state = machine.and_then(|m| kept.state_in(&m.machine));
-            let Some(state) = state.filter(|_| !kept.just_entered) else {
+            let (Some(machine), Some(entered)) = (machine, &kept.last_entered) else {
+                continue;
+            };
+            // The state its last `Entered` event named: by name, or the current one's id when
+            // the name repeats.
+            let named: Vec<i64> = machine
+                .machine
+                .states
+                .iter()
+                .filter(|s| s.name == *entered)
+                .map(|s| s.id)
+                .collect();
+            let state = match named.as_slice() {
+                [only] => Some(*only),
+                _ => kept
+                    .state_in(&machine.machine)
+                    .filter(|_| kept.state == *entered),
+            };
+            let Some(state) = state else {
                 continue;
             };
             if let Some(at) = self.top.get_mut(name) {

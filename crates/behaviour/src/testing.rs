@@ -179,7 +179,10 @@ pub struct Stepping {
     /// ([`RoundByRound::checkpoint`] has it; `docs/spec/behaviour.md` §3.4).
     pub checkpoint_at: Option<u64>,
     /// Take the run up where this checkpoint left it: the first [`RoundByRound::round`] plays
-    /// the checkpoint's round.
+    /// the checkpoint's round. Stepped with `round` and `wait` it goes on as the run did
+    /// (tested on random behaviours); [`RoundByRound::run_for`] after it is not held to that
+    /// yet: letting the microwave run free after a resume waited one ring period where the
+    /// uninterrupted run did not.
     pub resume: Option<Checkpoint>,
 }
 
@@ -228,8 +231,9 @@ impl RoundByRound {
             resume: stepping.resume.map(Arc::new),
             ..LaunchOptions::default()
         };
+        let resumed = options.resume.clone();
         let running = runtime.block_on(launch(&behaviour, &board, options))?;
-        Ok(RoundByRound {
+        let mut run = RoundByRound {
             runtime,
             running,
             stepper,
@@ -243,7 +247,26 @@ impl RoundByRound {
             answer_timeout: behaviour.answer_timeout,
             events: Vec::new(),
             board,
-        })
+        };
+        if let Some(checkpoint) = resumed {
+            run.taken_up(&checkpoint);
+        }
+        Ok(run)
+    }
+
+    /// Where each machine is and what its variables hold, as the checkpoint taken up says
+    /// (what its events would have said).
+    fn taken_up(&mut self, checkpoint: &Checkpoint) {
+        for machine in &checkpoint.schedule.machines {
+            if let Some(state) = &machine.last_entered {
+                self.states.insert(machine.name.clone(), state.clone());
+            }
+            for v in &machine.locals {
+                let value = proclaim_board::Value::from_json(&v.value).to_string();
+                self.locals
+                    .insert((machine.name.clone(), v.name.clone()), value);
+            }
+        }
     }
 
     /// Runs one round; its events.

@@ -295,3 +295,47 @@ fn an_expert_for_one_label_leaves_the_theory_answering_the_rest() {
     run.run_for(Duration::from_secs(1));
     assert_eq!(run.state_of("Microwave"), Some("COOKING"));
 }
+
+#[test]
+fn a_press_stepped_and_taken_up_from_a_checkpoint_reads_and_goes_on_as_it_was() {
+    use proclaim_behaviour::testing::{RoundByRound, Stepping};
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/press");
+    let asked = Stepping {
+        script: Some(String::new()),
+        checkpoint_at: Some(3),
+        ..Stepping::default()
+    };
+    let mut first = RoundByRound::start_with(&dir, asked).unwrap();
+    first.round();
+    first.round();
+    let before: Vec<(String, Option<String>)> = first
+        .states()
+        .into_iter()
+        .map(|(m, s)| (m.to_string(), s.map(str::to_string)))
+        .collect();
+    let low = first.variable("Controller", "low");
+    first.round();
+    let checkpoint = first.checkpoint().expect("taken at the start of round 3");
+    assert_eq!(checkpoint.round, 3);
+    let resumed = Stepping {
+        script: Some(String::new()),
+        resume: Some(checkpoint),
+        ..Stepping::default()
+    };
+    let mut second = RoundByRound::start_with(&dir, resumed).unwrap();
+    let taken_up: Vec<(String, Option<String>)> = second
+        .states()
+        .into_iter()
+        .map(|(m, s)| (m.to_string(), s.map(str::to_string)))
+        .collect();
+    assert_eq!(taken_up, before, "where each machine was at the checkpoint");
+    assert_eq!(second.variable("Controller", "low"), low);
+    let went_on = second.round().to_vec();
+    let first_round_three: Vec<Event> = first
+        .events
+        .iter()
+        .filter(|e| e.round() == 3)
+        .cloned()
+        .collect();
+    assert_eq!(went_on, first_round_three);
+}

@@ -127,6 +127,9 @@ pub struct MachineImage {
     pub just_entered: bool,
     /// When it entered its state: nanoseconds since the run's epoch.
     pub entered_ns: u64,
+    /// The state it last arrived in (where a machine about to enter another was).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub last_entered: Option<String>,
     pub locals: Vec<VariableImage>,
     pub seen: SeenImage,
     /// The atoms its last ringlet asked, and their answers.
@@ -333,6 +336,7 @@ impl RunningMachine<'_> {
             state_id: self.current,
             just_entered: self.just_entered,
             entered_ns: nanos(self.entered_at.saturating_duration_since(epoch)),
+            last_entered: self.last_entered.clone(),
             locals: self.locals.image(),
             seen: self.seen.image(&types),
             asked: self
@@ -360,6 +364,7 @@ impl RunningMachine<'_> {
         }
         self.just_entered = image.just_entered;
         self.entered_at = self.reporter.epoch + Duration::from_nanos(image.entered_ns);
+        self.last_entered.clone_from(&image.last_entered);
         for v in &image.locals {
             self.locals.set(&v.name, Value::from_json(&v.value));
         }

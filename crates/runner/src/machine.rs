@@ -219,6 +219,8 @@ pub(crate) struct RunningMachine<'r> {
     pub(crate) current: StateId,
     pub(crate) just_entered: bool,
     pub(crate) entered_at: Instant,
+    /// The state it last arrived in (its OnEntry run), by name: what its events last said.
+    pub(crate) last_entered: Option<String>,
     /// The round's moment, while a round schedule runs one (time tests and times in state
     /// are read against it, so every machine of a round sees one time); the clock otherwise.
     pub(crate) round_time: Option<Instant>,
@@ -276,6 +278,7 @@ impl<'r> RunningMachine<'r> {
             current: runner.machine.initial,
             just_entered: true,
             entered_at: Instant::now(),
+            last_entered: None,
             round_time: None,
             locals: Locals::declared(&runner.machine),
             globals_changed: shared.changes(),
@@ -483,6 +486,7 @@ impl<'r> RunningMachine<'r> {
         let state = plan.state();
         self.just_entered = false;
         self.entered_at = self.now();
+        self.last_entered = Some(state.name.clone());
         let id = self.current;
         self.reporter.emit(|at, round| Event::Entered {
             machine: self.name.clone(),
