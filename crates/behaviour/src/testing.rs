@@ -179,10 +179,8 @@ pub struct Stepping {
     /// ([`RoundByRound::checkpoint`] has it; `docs/spec/behaviour.md` §3.4).
     pub checkpoint_at: Option<u64>,
     /// Take the run up where this checkpoint left it: the first [`RoundByRound::round`] plays
-    /// the checkpoint's round. Stepped with `round` and `wait` it goes on as the run did
-    /// (tested on random behaviours); [`RoundByRound::run_for`] after it is not held to that
-    /// yet: letting the microwave run free after a resume waited one ring period where the
-    /// uninterrupted run did not.
+    /// the checkpoint's round; stepped, waited and let run free as the run it came from was,
+    /// it goes on as that run did.
     pub resume: Option<Checkpoint>,
 }
 

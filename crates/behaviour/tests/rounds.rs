@@ -339,3 +339,41 @@ fn a_press_stepped_and_taken_up_from_a_checkpoint_reads_and_goes_on_as_it_was() 
         .collect();
     assert_eq!(went_on, first_round_three);
 }
+
+#[test]
+fn the_microwave_taken_up_and_let_run_free_goes_on_as_it_did() {
+    use proclaim_behaviour::testing::{RoundByRound, Stepping};
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../machines/microwave");
+    let asked = Stepping {
+        checkpoint_at: Some(6),
+        ..Stepping::default()
+    };
+    let mut first = RoundByRound::start_with(&dir, asked).unwrap();
+    first.round();
+    first.wait(Duration::from_secs(3));
+    let mut checkpoint = None;
+    while checkpoint.is_none() && first.rounds() < 100 {
+        first.round();
+        checkpoint = first.checkpoint();
+    }
+    let checkpoint = checkpoint.expect("taken within a hundred rounds");
+    first.run_for(Duration::from_secs(70));
+    let lines = |events: &[Event]| -> Vec<String> {
+        events
+            .iter()
+            .map(|e| serde_json::to_string(e).unwrap())
+            .collect()
+    };
+    let whole = lines(&first.events);
+    let resumed = Stepping {
+        resume: Some(checkpoint),
+        ..Stepping::default()
+    };
+    let mut second = RoundByRound::start_with(&dir, resumed).unwrap();
+    second.round();
+    second.run_for(Duration::from_secs(70));
+    let rest = lines(&second.events);
+    assert!(second.is_over(), "the minute cooked to its end");
+    let split = whole.len() - rest.len();
+    assert_eq!(whole[split..], rest[..]);
+}
