@@ -175,6 +175,15 @@ fn a_checkpoint_the_behaviour_no_longer_fits_is_refused_saying_why_and_one_that_
     );
     assert!(printed.contains("finished in Done"), "{printed}");
 
+    // A header edited by hand that no longer says what the schedule holds.
+    let written = std::fs::read_to_string(&file).unwrap();
+    let edited = written.replacen("\"round\":10,", "\"round\":11,", 1);
+    assert_ne!(edited, written, "the header's round is written first");
+    std::fs::write(&file, edited).unwrap();
+    let (code, printed) = resume(COUNTER);
+    assert_eq!(code, Some(2), "{printed}");
+    assert!(printed.contains("its header says round 11 at"), "{printed}");
+
     std::fs::write(
         &file,
         "{\"format\": \"proclaim checkpoint\", \"version\": 99}",

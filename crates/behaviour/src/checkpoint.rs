@@ -105,6 +105,14 @@ impl Checkpoint {
                 checkpoint.round
             ));
         }
+        // The header a person reads and the schedule the run takes up must say one thing.
+        let schedule = &checkpoint.schedule;
+        if (schedule.round, schedule.at_ns) != (checkpoint.round, checkpoint.at_ns) {
+            return Err(format!(
+                "its header says round {} at {} ns and its schedule round {} at {} ns",
+                checkpoint.round, checkpoint.at_ns, schedule.round, schedule.at_ns
+            ));
+        }
         Ok(checkpoint)
     }
 
