@@ -195,6 +195,13 @@ class Behaviour:
     ``wait`` and ``run`` move the clock; ``run_until`` moves it to the next thing due (a
     ``timeout``/``after`` of a machine's state, a script's timed line) whenever a round moves no
     machine, so it reaches a state behind timeouts by itself. ``time`` says where the clock is.
+
+    ``checkpoint_at=N`` writes the run down before round N (``checkpoint()`` has it once that
+    round ran); ``resume=`` a checkpoint's text starts where it left off: its first step plays
+    round N, and stepped, waited and run as the first was, it goes on as that run did. Text
+    that is no checkpoint is a ValueError; a behaviour it no longer fits (a machine gone, a
+    state renamed) raises BehaviourError saying why. A Python expert keeps its state in
+    Python, out of a checkpoint's reach: asking for one with ``experts=`` is a BehaviourError.
     """
 
     def __new__(
@@ -204,7 +211,12 @@ class Behaviour:
         experts: Optional[Mapping[str, Callable[[Board], Optional[bool]]]] = None,
         script: Optional[str] = ...,
         virtual_clock: bool = True,
+        checkpoint_at: Optional[int] = None,
+        resume: Optional[str] = None,
     ) -> Behaviour: ...
+    def checkpoint(self) -> Optional[str]:
+        """The checkpoint ``checkpoint_at`` asked for, as text (the JSON ``proclaim run
+        --checkpoint-file`` writes), once taken; None before."""
     def step(self) -> List[_Event]:
         """One round: every running machine one ringlet, at the moment the clock is at (time
         does not move); its events."""

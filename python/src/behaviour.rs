@@ -28,7 +28,6 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex, TryLockError};
 use std::time::Duration;
 
-
 /// Exceptions raised by callables while the behaviour ran, oldest first, each with what raised.
 type Raised = Arc<Mutex<Vec<(String, PyErr)>>>;
 
@@ -49,6 +48,8 @@ fn callable(py: Python<'_>, callables: &Callables, index: usize) -> Option<Py<Py
 struct Driven {
     run: RoundByRound,
     clock: Clock,
+    /// The checkpoint asked for (`checkpoint_at`), as text, once taken.
+    checkpoint: Option<String>,
 }
 
 /// A behaviour (a folder with a `behaviour.toml`) started paused before its first round.
@@ -262,10 +263,13 @@ impl Behaviour {
     /// every problem of every file when it does not load, and when an expert is given for a
     /// label no machine asks or a host function no machine calls (with the nearest name that
     /// is); warns (BehaviourWarning) of a host function a machine calls that no callable
-    /// answers.
+    /// answers. `checkpoint_at=N` writes the run down before round N (`checkpoint()`);
+    /// `resume=` a checkpoint's text takes the run up where it left it (ValueError for text
+    /// that is not one; BehaviourError for a behaviour it no longer fits, saying why).
     #[new]
     // `script`: left out (`Some(None)`), the manifest's; `None` or "", no script at all.
-    #[pyo3(signature = (folder, hosts = None, experts = None, script = Some(None), virtual_clock = true))]
+    #[pyo3(signature = (folder, hosts = None, experts = None, script = Some(None), virtual_clock = true, checkpoint_at = None, resume = None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         folder: PathBuf,
@@ -273,7 +277,21 @@ impl Behaviour {
         experts: Option<&Bound<'_, PyDict>>,
         script: Option<Option<String>>,
         virtual_clock: bool,
+        checkpoint_at: Option<u64>,
+        resume: Option<&str>,
     ) -> PyResult<Behaviour> {
+        let resume = resume
+            .map(|text| {
+                proclaim_behaviour::Checkpoint::read(text).map_err(|why| {
+                    PyValueError::new_err(format!("resume= is not a checkpoint to take up: {why}"))
+                })
+            })
+            .transpose()?;
+        if checkpoint_at == Some(0) {
+            return Err(PyValueError::new_err(
+                "checkpoint_at=0: rounds count from 1; give the round to write the run down before",
+            ));
+        }
         let raised: Raised = Arc::default();
         let mut given = Vec::new();
         let mut host_functions = Hosts::default();
@@ -319,7 +337,8 @@ impl Behaviour {
                 vec![expert(labels, list.clone(), raised.clone())]
             },
             real_time: !virtual_clock,
-            ..Stepping::default()
+            checkpoint_at,
+            resume: resume.clone(),
         };
         let started = py
             .detach(|| RoundByRound::start_with(&folder, stepping))
@@ -331,11 +350,15 @@ impl Behaviour {
         } else {
             given_script
         };
-        let clock = Clock::new(machines, script.as_ref(), calls, virtual_clock);
+        let mut clock = Clock::new(machines, script.as_ref(), calls, virtual_clock);
+        if let Some(checkpoint) = &resume {
+            clock.taken_up(checkpoint);
+        }
         let behaviour = Behaviour {
             running: Mutex::new(Some(Driven {
                 run: started,
                 clock,
+                checkpoint: None,
             })),
             board,
             raised,
@@ -508,6 +531,33 @@ impl Behaviour {
     #[getter]
     fn rounds(&self) -> PyResult<u64> {
         self.with(|running| Ok(running.run.rounds()))
+    }
+
+    /// The checkpoint asked for with `checkpoint_at=N`, as text (one line of JSON, the form
+    /// `proclaim run --checkpoint-file` writes), once it has been taken; None before. It holds
+    /// the run as it stood before round N (or the first round after it where every expert had
+    /// answered everything posted), and is taken when that round runs; a behaviour made with
+    /// `resume=` the text plays that round at its first step and goes on as this one did.
+    fn checkpoint(&self) -> PyResult<Option<String>> {
+        let mut guard = match self.running.try_lock() {
+            Ok(guard) => guard,
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
+            Err(TryLockError::WouldBlock) => {
+                return Err(PyRuntimeError::new_err(
+                    "the behaviour is running a round; ask for its checkpoint between rounds",
+                ))
+            }
+        };
+        let driven = guard
+            .as_mut()
+            .ok_or_else(|| PyValueError::new_err("the behaviour is closed"))?;
+        if driven.checkpoint.is_none() {
+            if let Some(taken) = driven.run.checkpoint() {
+                let text = taken.to_text().map_err(errors::Error::new_err)?;
+                driven.checkpoint = Some(text);
+            }
+        }
+        Ok(driven.checkpoint.clone())
     }
 
     /// Stops every module and machine now; later calls raise ValueError. Closing twice is

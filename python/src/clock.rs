@@ -7,6 +7,7 @@
 //! report, are put among the events here.
 
 use proclaim_behaviour::testing::RoundByRound;
+use proclaim_behaviour::Checkpoint;
 use proclaim_board::Value;
 use proclaim_experts::{Script, When};
 use proclaim_fsm::{Argument, Expr, Machine, TIME_TESTS};
@@ -116,6 +117,18 @@ impl Clock {
         }
     }
 
+    /// Where a run taken up from `checkpoint` left the clock: at its moment, each machine in the
+    /// state it last entered since the moment it entered it.
+    pub(crate) fn taken_up(&mut self, checkpoint: &Checkpoint) {
+        self.now = Duration::from_nanos(checkpoint.at_ns);
+        for machine in &checkpoint.schedule.machines {
+            if machine.last_entered.as_deref() == Some(machine.state.as_str()) {
+                let entered = Duration::from_nanos(machine.entered_ns);
+                self.entered_at.insert(machine.name.clone(), entered);
+            }
+        }
+    }
+
     /// Reads the runner's new events (when machines entered their states; time passed in a
     /// round) and places the host calls made meanwhile after them; whether a machine moved.
     fn observe(&mut self, running: &RoundByRound) -> bool {
@@ -212,9 +225,12 @@ impl Clock {
 
     /// Lets `time` pass with no round run.
     pub(crate) fn wait(&mut self, running: &mut RoundByRound, time: Duration) {
+        // Events the wait brought (a script's line posted meanwhile) are no later than its end:
+        // the clock is where it was plus the wait, not the last of them plus the wait.
+        let until = self.now + time;
         running.wait(time);
         self.observe(running);
-        self.now += time;
+        self.now = self.now.max(until);
     }
 
     /// How far the virtual clock has moved since the start.

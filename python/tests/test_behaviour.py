@@ -3,6 +3,7 @@ state, the kettle of tests/kettle with Python host functions and experts answeri
 exceptions in callables, bad folders, the virtual clock."""
 
 import gc
+import json
 import threading
 import time
 import weakref
@@ -309,3 +310,73 @@ def test_a_behaviour_whose_callable_refers_back_to_it_is_collected():
     gone = cycle()
     gc.collect()
     assert gone() is None, "the behaviour and its callable were left in a cycle"
+
+
+def after_round(events, first):
+    return [e for e in events if e["round"] >= first]
+
+
+def test_a_checkpoint_taken_up_by_a_new_behaviour_goes_on_as_the_run_it_came_from():
+    with proclaim.Behaviour(MICROWAVE, checkpoint_at=6) as first:
+        first.step()
+        first.wait(3)
+        while first.checkpoint() is None:
+            assert first.rounds < 100, "the checkpoint asked for is taken"
+            first.step()
+        text = first.checkpoint()
+        at = json.loads(text)["round"]
+        assert first.rounds == at, "taken when the round it holds the run before runs"
+        first.run(70)
+        whole = after_round(first.events, at)
+        assert first.state("Microwave") == "DONE"
+        with proclaim.Behaviour(MICROWAVE, resume=text) as second:
+            assert second.time == 3.0, "the clock is where the checkpoint left it"
+            assert second.state("Microwave") == "IDLE"
+            assert second.rounds == at - 1
+            second.step()
+            second.run(70)
+            assert second.events == whole
+            assert (second.time, second.rounds) == (first.time, first.rounds)
+            assert second.read("Beeper") == first.read("Beeper") == "beep beep beep"
+
+
+def test_run_until_from_a_checkpoint_waits_for_what_was_due_as_the_first_run_did():
+    # Taken while cooking: run_until must know when COOKING was entered to wait for its minute.
+    with proclaim.Behaviour(MICROWAVE, checkpoint_at=40) as first:
+        assert first.run_until(lambda b: b.state("Microwave") == "COOKING")
+        assert first.rounds < 40
+        while first.checkpoint() is None:
+            first.step()
+        text = first.checkpoint()
+        at = json.loads(text)["round"]
+        assert first.state("Microwave") == "COOKING"
+        assert first.run_until(lambda b: b.finished)
+        with proclaim.Behaviour(MICROWAVE, resume=text) as second:
+            second.step()
+            assert second.run_until(lambda b: b.finished)
+            assert second.events == after_round(first.events, at)
+            assert second.time == first.time == 64.0
+
+
+def test_wait_moves_the_clock_by_its_time_when_the_script_posted_meanwhile():
+    with proclaim.Behaviour(MICROWAVE) as oven:
+        oven.step()
+        oven.wait(3)
+        assert oven.time == 3.0, "the kitchen script posted at 1 s; the wait still ends at 3 s"
+        oven.wait(0.5)
+        assert oven.time == 3.5
+
+
+def test_what_is_no_checkpoint_or_no_longer_fits_is_refused_saying_why():
+    with pytest.raises(ValueError, match="resume= is not a checkpoint to take up"):
+        proclaim.Behaviour(MICROWAVE, resume="{}")
+    with pytest.raises(ValueError, match="rounds count from 1"):
+        proclaim.Behaviour(MICROWAVE, checkpoint_at=0)
+    with proclaim.Behaviour(MICROWAVE, checkpoint_at=1) as oven:
+        oven.step()
+        text = oven.checkpoint()
+    with pytest.raises(proclaim.BehaviourError, match="cannot be taken up: the checkpoint plays a script"):
+        proclaim.Behaviour(KETTLE, resume=text)
+    # A Python expert keeps what it knows in Python, where no checkpoint can reach it.
+    with pytest.raises(proclaim.BehaviourError, match="embedding program"):
+        proclaim.Behaviour(MICROWAVE, experts={"light": lambda board: False}, checkpoint_at=2)
