@@ -624,6 +624,15 @@ pub struct RunArgs {
     /// variable's type gone is refused, saying which)
     #[arg(long, value_name = "FILE", conflicts_with_all = ["record", "ask", "step", "watch"])]
     pub resume: Option<PathBuf>,
+    /// Go back into a recording (`--record`) and branch off it: its run is replayed up to the
+    /// start of round `--at` as `proclaim test` replays it, then goes on live from there (paused,
+    /// under `--monitor`, for a person to post and run on); `--record` makes the branch a
+    /// recording of its own, naming its parent and round, that `proclaim test` replays
+    #[arg(long, value_name = "RECORDING", requires = "at", conflicts_with_all = ["script", "resume", "ask", "step", "watch", "checkpoint_at", "checkpoint_every"])]
+    pub branch: Option<PathBuf>,
+    /// The round of `--branch`'s recording the branch starts at (2 or later)
+    #[arg(long, value_name = "ROUND", requires = "branch")]
+    pub at: Option<u64>,
     #[command(flatten)]
     pub network: Network,
 }

@@ -64,7 +64,7 @@ fn microwave_with_monitor() -> (Running, String) {
     ])
 }
 
-fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
+pub(crate) fn proclaim_with_monitor(args: &[&str]) -> (Running, String) {
     proclaim_serving(args, "monitor: ")
 }
 

@@ -5,6 +5,7 @@
 mod architecture;
 mod behaviours;
 mod book;
+mod branches;
 mod checkpoints;
 mod cli;
 mod compiled;

@@ -23,12 +23,19 @@ pub struct Recorder {
 }
 
 /// Subscribes to everything on `board` and writes it to `path` until told to finish.
-pub fn start(board: &Whiteboard, path: &Path) -> Result<Recorder, Failure> {
+/// A branch's record (`header`) starts with the line naming its parent and round.
+pub fn start(board: &Whiteboard, path: &Path, header: Option<&str>) -> Result<Recorder, Failure> {
     let file = std::fs::File::create(path).map_err(|error| Failure::Write {
         path: path.to_path_buf(),
         error,
     })?;
     let mut out = std::io::BufWriter::new(file);
+    if let Some(header) = header {
+        writeln!(out, "{header}").map_err(|error| Failure::Write {
+            path: path.to_path_buf(),
+            error,
+        })?;
+    }
     let mut all = board.subscribe_pattern(Pattern::All);
     let (stop, mut stopped) = tokio::sync::oneshot::channel();
     let (lines, mut other) = tokio::sync::mpsc::unbounded_channel::<String>();
@@ -155,7 +162,7 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("last-round.jsonl");
         let board = Whiteboard::local();
-        let Ok(mut recorder) = start(&board, &path) else {
+        let Ok(mut recorder) = start(&board, &path, None) else {
             panic!("cannot write {}", path.display());
         };
         let (ringlets, heard) = tokio::sync::mpsc::unbounded_channel();

@@ -14,6 +14,7 @@ use proclaim_runtime::Event;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Duration;
 
 /// What `check` finds stops a run, unless `--force` (or `--step`, where a person answers what
@@ -137,7 +138,30 @@ fn launch_options(
         end_when_still: alone,
         checkpoints: checkpoint::plan(args).map(|(plan, _)| plan),
         resume: args.resume.as_deref().map(checkpoint::read).transpose()?,
+        branch: branch(args)?.map(Arc::new),
     })
+}
+
+/// The branch `--branch` and `--at` ask for.
+fn branch(args: &RunArgs) -> Result<Option<proclaim_behaviour::Branch>, Failure> {
+    let (Some(path), Some(round)) = (&args.branch, args.at) else {
+        return Ok(None);
+    };
+    if !args.network.is_local() {
+        return Err(Failure::Argument(
+            "--branch replays a recording onto a board of its own; it cannot share one".into(),
+        ));
+    }
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.clone(),
+        error,
+    })?;
+    let recording = proclaim_behaviour::read_recording(&text)
+        .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
+    let parent = path.display().to_string();
+    proclaim_behaviour::Branch::new(recording, parent, round)
+        .map(Some)
+        .map_err(|why| Failure::Argument(format!("--branch {}: {why}", path.display())))
 }
 
 /// Launches the behaviour on its whiteboard and follows it (or steps it) to the end; whether
@@ -152,6 +176,7 @@ async fn run_on_board(
     let mut interrupt = crate::interrupt::Interrupt::new();
     let script_used = script.is_some() || behaviour.script.is_some();
     let options = launch_options(args, script, limit)?;
+    let header = options.branch.as_ref().map(|b| b.header());
     let stepper = options.stepper.clone();
     let team =
         crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
@@ -165,7 +190,7 @@ async fn run_on_board(
     }
     // Subscribed before anything starts, so the record misses nothing.
     let mut recorder = match &args.record {
-        Some(path) => Some(record::start(&board, path)?),
+        Some(path) => Some(record::start(&board, path, header.as_deref())?),
         None => None,
     };
     let mut running = launch(behaviour, &board, options)

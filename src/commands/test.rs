@@ -57,8 +57,12 @@ pub fn run(
             ReplayOutcome::Same { rounds, events } => say(
                 report.json,
                 format!(
-                    "ok    {} ({rounds} rounds, {events} events as recorded)",
-                    path.display()
+                    "ok    {} ({}{rounds} rounds, {events} events as recorded)",
+                    path.display(),
+                    recording.branch.as_ref().map_or(String::new(), |b| format!(
+                        "branch of {} at round {}, ",
+                        b.parent, b.round
+                    ))
                 ),
             ),
             ReplayOutcome::Differs(_) if report.update => {

@@ -20,6 +20,8 @@ pub enum BehaviourError {
     Checkpoint(String),
     /// A checkpoint does not fit the behaviour taking it up: each reason.
     Resume(Vec<String>),
+    /// A recording cannot be branched where asked, or not on this run.
+    Branch(String),
     /// The behaviour has no module (or machine) of that name.
     NoSuch {
         kind: &'static str,
@@ -48,6 +50,7 @@ impl fmt::Display for BehaviourError {
             BehaviourError::Resume(why) => {
                 write!(f, "the checkpoint cannot be taken up: {}", why.join("; "))
             }
+            BehaviourError::Branch(why) => write!(f, "no branch: {why}"),
             BehaviourError::NoSuch { kind, name, known } => {
                 let plural = if *kind == "module" {
                     "the behaviour has"

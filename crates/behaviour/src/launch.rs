@@ -2,6 +2,7 @@
 //! label has its expert before the first ring), then the machines; their events merged into one
 //! trace.
 
+use crate::branch::Branch;
 use crate::checkpoint::{self, Checkpoint, CheckpointPlan, Kept};
 use crate::error::BehaviourError;
 use crate::load::Behaviour;
@@ -60,6 +61,10 @@ pub struct LaunchOptions {
     pub checkpoints: Option<CheckpointPlan>,
     /// Take the run up where this checkpoint left it.
     pub resume: Option<Arc<Checkpoint>>,
+    /// Replay this recording up to the branch's round, then go on live from there: what came
+    /// from outside is the recording's until then (the modules that posted it are left out),
+    /// and paused there when stepped.
+    pub branch: Option<Arc<Branch>>,
 }
 
 impl LaunchOptions {
@@ -247,7 +252,10 @@ pub async fn launch(
     let mut kept = Kept::new(options.checkpoints.is_some(), resume.clone());
     let (tx, events) = mpsc::unbounded_channel();
     let shared = behaviour.shared_variables();
-    let rounds = rounds_of(behaviour, &options, &tx, epoch, &shared);
+    let mut rounds = rounds_of(behaviour, &options, &tx, epoch, &shared);
+    if let Some(branch) = &options.branch {
+        rounds = branch.feeding(rounds, behaviour)?;
+    }
     let round = rounds
         .as_ref()
         .map_or_else(RoundCounter::default, Rounds::counter);
@@ -346,7 +354,44 @@ async fn modules(
         notes.extend(sim_note);
     }
     modules.extend(range_watch(behaviour, board, trace, kept));
+    if let Some(branch) = &options.branch {
+        branched(behaviour, board, branch, &mut modules, notes);
+    }
     Ok((modules, machines_started))
+}
+
+/// A branch's modules: the theories, and the recording for what came from outside before the
+/// branch's round (a sensor, the script, a person or a program posted it then; after it, only
+/// whoever posts to the board does).
+fn branched(
+    behaviour: &Behaviour,
+    board: &Whiteboard,
+    branch: &Branch,
+    modules: &mut Vec<Module>,
+    notes: &mut Vec<String>,
+) {
+    let round = branch.of.round;
+    modules.retain(|m| {
+        let ours = m.name == "ranges" || behaviour.theories.iter().any(|t| t.name == m.name);
+        if !ours {
+            notes.push(format!(
+                "left out {}: the recording says what came from outside until round {round}",
+                m.name
+            ));
+        }
+        ours
+    });
+    if let Some((atoms, task)) = branch.answers(behaviour, board) {
+        notes.push(format!(
+            "the recording answers {} until round {round}; then nothing does",
+            atoms.join(", ")
+        ));
+        modules.push(Module {
+            name: "recording".into(),
+            answers: atoms,
+            task: Box::pin(task),
+        });
+    }
 }
 
 /// From when (since the epoch) nothing but the experts' answers can reach the machines, if

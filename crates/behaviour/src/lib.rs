@@ -8,6 +8,7 @@
 //! sockets its sensors need; it does not watch files or print: the binary does.
 
 mod analysis;
+mod branch;
 mod checkpoint;
 mod coverage;
 mod deps;
@@ -38,6 +39,7 @@ mod tried;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
+pub use branch::{Branch, BranchOf};
 pub use checkpoint::{
     Checkpoint, CheckpointPlan, RangeWarning, ScriptImage, TheoryImage, CHECKPOINT_FORMAT,
     CHECKPOINT_VERSION,

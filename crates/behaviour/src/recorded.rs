@@ -6,6 +6,7 @@
 //! outside experts answered is answered again, query by query. The machines' states, postings,
 //! answers and variables are then compared with the recording, round by round.
 
+use crate::branch::BranchOf;
 use crate::launch::machine_runners;
 use crate::load::Behaviour;
 use crate::LaunchOptions;
@@ -22,9 +23,9 @@ use tokio::sync::mpsc;
 /// its ringlet or k + 1 before the ringlet's query k.
 type Place = (u64, usize, usize);
 /// The outside messages to post again, each at the place of the first ringlet that saw it.
-type Outside = Vec<(Place, Recorded)>;
+pub(crate) type Outside = Vec<(Place, Recorded)>;
 /// What outside experts answered, atom by atom, in the order they answered.
-type Answers = FxHashMap<String, VecDeque<Value>>;
+pub(crate) type Answers = FxHashMap<String, VecDeque<Value>>;
 
 /// A message as the recording keeps it.
 #[derive(Clone, Debug, PartialEq)]
@@ -41,6 +42,8 @@ pub struct Recording {
     pub(crate) messages: Vec<Recorded>,
     pub(crate) ringlets: Vec<Ringlet>,
     pub(crate) events: Vec<Event>,
+    /// The recording and round it branched from, when it is a branch.
+    pub branch: Option<BranchOf>,
 }
 
 /// Why a recording cannot be read.
@@ -99,7 +102,11 @@ pub fn read_recording(text: &str) -> Result<Recording, RecordingError> {
         let bad = |why: String| RecordingError::BadLine { line: i + 1, why };
         let json: serde_json::Value =
             serde_json::from_str(line).map_err(|e| bad(format!("not JSON: {e}")))?;
-        if let Some(ringlet) = json.get("ringlet") {
+        if let Some(branch) = json.get("branch") {
+            let branch = serde_json::from_value(branch.clone())
+                .map_err(|e| bad(format!("not a branch's parent and round: {e}")))?;
+            recording.branch = Some(branch);
+        } else if let Some(ringlet) = json.get("ringlet") {
             let ringlet = serde_json::from_value(ringlet.clone())
                 .map_err(|e| bad(format!("not a ringlet: {e}")))?;
             recording.ringlets.push(ringlet);
@@ -254,7 +261,7 @@ pub(crate) async fn replay(
         .iter()
         .map(|m| m.machine.name.clone())
         .collect();
-    let (outside, answers) = split_outside(recording, &inside, &machines);
+    let (outside, answers) = split_outside(recording, &inside, &machines, None);
     let mut tasks = tokio::task::JoinSet::new();
     for t in &behaviour.theories {
         let expert =
@@ -289,10 +296,11 @@ pub(crate) async fn replay(
 /// query of a ringlet it came before: a message may arrive while a ringlet waits for an
 /// answer), and the outside experts' answers, atom by atom in the order they were given.
 /// `machines` names the schedule's machines in order (a ringlet names its machine by place).
-fn split_outside(
+pub(crate) fn split_outside(
     recording: &Recording,
     inside: &FxHashSet<String>,
     machines: &[String],
+    before_round: Option<u64>,
 ) -> (Outside, Answers) {
     let ringlets = &recording.ringlets;
     // The ringlet a sequence number falls in: the last that started before it.
@@ -337,6 +345,18 @@ fn split_outside(
         if inside.contains(&m.module) {
             continue;
         }
+        let place = place_of(m.seq);
+        // A branch takes only what came before its round, the rest being the future it
+        // replaces: an answer by the round of the ringlet that asked, a message by the round
+        // that saw it first.
+        let round = if answers_a_query {
+            within(m.seq).map(|i| ringlets[i].round)
+        } else {
+            place.map(|p| p.0)
+        };
+        if before_round.is_some_and(|cut| round.is_none_or(|r| r >= cut)) {
+            continue;
+        }
         if answers_a_query {
             answers
                 .entry(m.ty.clone())
@@ -344,7 +364,7 @@ fn split_outside(
                 .push_back(m.value.clone());
             continue;
         }
-        if let Some(place) = place_of(m.seq) {
+        if let Some(place) = place {
             outside.push((place, m.clone()));
         }
     }
@@ -352,7 +372,7 @@ fn split_outside(
 }
 
 /// Answers each query for an atom an outside expert answered with the next recorded answer.
-async fn answer_as_recorded(board: Whiteboard, mut answers: Answers) {
+pub(crate) async fn answer_as_recorded(board: Whiteboard, mut answers: Answers) {
     let mut queries = board.subscribe_pattern(Pattern::Type(QUERY_TYPE.to_string()));
     board.register(ModuleDecl::new("recording").answers(answers.keys().cloned()));
     while let Some(query) = queries.next().await {
@@ -368,7 +388,7 @@ async fn answer_as_recorded(board: Whiteboard, mut answers: Answers) {
 /// Paces the replay by the recording: before each ringlet, the clock goes to the recorded
 /// ringlet's time and the outside messages that came before it are posted; before each query,
 /// those that came before that query.
-struct RecordedFeed {
+pub(crate) struct RecordedFeed {
     /// The recorded ringlets by place (round, machine) and their times since the epoch.
     times: Vec<((u64, usize), Duration)>,
     outside: Outside,
@@ -377,10 +397,16 @@ struct RecordedFeed {
 }
 
 impl RecordedFeed {
-    fn new(recording: &Recording, mut outside: Outside) -> RecordedFeed {
+    fn new(recording: &Recording, outside: Outside) -> RecordedFeed {
+        RecordedFeed::until(recording, outside, u64::MAX)
+    }
+
+    /// Paces the rounds before `round` alone (a branch's replayed part).
+    pub(crate) fn until(recording: &Recording, mut outside: Outside, round: u64) -> RecordedFeed {
         let mut times: Vec<_> = recording
             .ringlets
             .iter()
+            .filter(|r| r.round < round)
             .map(|r| ((r.round, r.machine), r.at))
             .collect();
         times.sort_unstable();
@@ -516,8 +542,9 @@ mod tests {
             messages,
             ringlets,
             events: Vec::new(),
+            branch: None,
         };
-        let (outside, _) = split_outside(&recording, &FxHashSet::default(), &["A".into()]);
+        let (outside, _) = split_outside(&recording, &FxHashSet::default(), &["A".into()], None);
         outside
             .into_iter()
             .map(|(place, m)| (m.seq, place))
@@ -539,5 +566,50 @@ mod tests {
     fn without_a_snapshot_a_message_after_a_ringlet_began_comes_before_the_next() {
         let ringlets = vec![ringlet(1, 0, 10, None), ringlet(2, 0, 14, None)];
         assert_eq!(places(ringlets, vec![message(11, "b")]), [(11, (2, 0, 0))]);
+    }
+
+    #[test]
+    fn a_branch_takes_what_came_from_outside_before_its_round_and_no_later() {
+        let ringlets = vec![
+            ringlet(1, 0, 10, None),
+            ringlet(2, 0, 20, None),
+            ringlet(3, 0, 30, None),
+        ];
+        // a before round 1; b between rounds 1 and 2, for round 2 to see; c for round 3.
+        let mut messages = vec![message(9, "a"), message(15, "b"), message(25, "c")];
+        // An outside expert's answer to round 1's ringlet, and one to round 3's.
+        let query = |seq: u64| Recorded {
+            seq,
+            module: "A".into(),
+            ty: QUERY_TYPE.into(),
+            value: Value::Str("x".into()),
+        };
+        let answer = |seq: u64, value: bool| Recorded {
+            value: Value::Bool(value),
+            ..message(seq, "x")
+        };
+        messages.extend([query(11), answer(12, true), query(31), answer(32, false)]);
+        let recording = Recording {
+            messages,
+            ringlets,
+            events: Vec::new(),
+            branch: None,
+        };
+        let inside = FxHashSet::default();
+        let (outside, answers) = split_outside(&recording, &inside, &["A".into()], Some(2));
+        let posted: Vec<u64> = outside.iter().map(|(_, m)| m.seq).collect();
+        assert_eq!(
+            posted,
+            [9],
+            "what round 2 would have seen is the branch's to decide"
+        );
+        assert_eq!(
+            answers["x"],
+            [Value::Bool(true)],
+            "round 3's answer is the future"
+        );
+        let (outside, answers) = split_outside(&recording, &inside, &["A".into()], None);
+        assert_eq!(outside.len(), 3);
+        assert_eq!(answers["x"], [Value::Bool(true), Value::Bool(false)]);
     }
 }

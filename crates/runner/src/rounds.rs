@@ -54,6 +54,10 @@ pub struct Rounds {
     stepper: Option<Stepper>,
     ticks: Option<mpsc::UnboundedSender<Ringlet>>,
     feed: Option<SharedFeed>,
+    /// When the feed is done, the run goes on live (a branch of a recording), paused if stepped.
+    live_after_feed: bool,
+    /// The feed is done and the run went on live.
+    gone_live: std::sync::atomic::AtomicBool,
     /// From when (since the machines' epoch) nothing outside will post again.
     silent_from: Option<Duration>,
     checkpoints: Option<SharedCheckpoints>,
@@ -71,6 +75,8 @@ impl Rounds {
             stepper: None,
             ticks: None,
             feed: None,
+            live_after_feed: false,
+            gone_live: std::sync::atomic::AtomicBool::new(false),
             silent_from: None,
             checkpoints: None,
             resume: None,
@@ -128,6 +134,14 @@ impl Rounds {
         self
     }
 
+    /// Paced by `feed` until it is done, then live: waiting for news as an unfed schedule does,
+    /// and paused first when stepped, so a person takes over where the replay left off (a
+    /// branch of a recording).
+    pub fn fed_then_live(mut self, feed: impl Feed + 'static) -> Rounds {
+        self.live_after_feed = true;
+        self.fed_by(feed)
+    }
+
     /// Every ringlet as it starts, from now on (what a recording keeps).
     pub fn ringlets(&mut self) -> mpsc::UnboundedReceiver<Ringlet> {
         let (tx, rx) = mpsc::unbounded_channel();
@@ -174,6 +188,12 @@ impl Rounds {
         }
     }
 
+    /// The feed pacing the schedule, while it does.
+    fn feed(&self) -> Option<&SharedFeed> {
+        let live = self.gone_live.load(std::sync::atomic::Ordering::Relaxed);
+        self.feed.as_ref().filter(|_| !live)
+    }
+
     async fn serve(self, board: Whiteboard) -> RoundsEnd {
         let mut scheduled = self.scheduled(&board);
         let mut wakeup = RoundWakeup::default();
@@ -189,7 +209,7 @@ impl Rounds {
             }
             let round = self.round.advance();
             let moment = tokio::time::Instant::now();
-            if self.feed.is_none() && last_moment != Some(moment) {
+            if self.feed().is_none() && last_moment != Some(moment) {
                 // What was due at this moment (a script's step timed for it) is posted before
                 // the round's first snapshot and belongs to this round, whichever task the
                 // clock woke first.
@@ -214,9 +234,17 @@ impl Rounds {
                 return RoundsEnd::AllOver;
             }
             commanded = false;
-            if let Some(feed) = &self.feed {
-                if !feed.lock().after_round(round) {
+            if let Some(feed) = self.feed() {
+                let more = feed.lock().after_round(round);
+                if !more && !self.live_after_feed {
                     return RoundsEnd::FeedDone;
+                }
+                if !more {
+                    self.gone_live
+                        .store(true, std::sync::atomic::Ordering::Relaxed);
+                    if let Some(stepper) = &self.stepper {
+                        stepper.pause();
+                    }
                 }
                 continue;
             }
@@ -324,7 +352,7 @@ impl Rounds {
             {
                 continue;
             }
-            if self.feed.is_some() || self.ticks.is_some() {
+            if self.feed().is_some() || self.ticks.is_some() {
                 let ringlet = Ringlet {
                     round,
                     machine,
@@ -376,7 +404,7 @@ impl Rounds {
         round_time: &mut tokio::time::Instant,
         board: &Whiteboard,
     ) -> Ringlet {
-        if let Some(feed) = &self.feed {
+        if let Some(feed) = self.feed() {
             let wait = feed.lock().before(ringlet, board);
             if let Some(at) = wait {
                 *round_time = run.reporter.epoch + at;
@@ -386,6 +414,9 @@ impl Rounds {
                 feed: feed.clone(),
                 ringlet,
             });
+        } else {
+            // Gone live after a feed: its queries are the machine's own now.
+            run.query_hook = None;
         }
         // What the feed posted counts as before the ringlet too, and it rings at the moment
         // the feed moved it to.

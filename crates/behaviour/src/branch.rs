@@ -1,0 +1,103 @@
+//! A branch of a recording (`proclaim run --branch REC --at ROUND`, `docs/spec/behaviour.md`
+//! §3.5): the recorded run replayed up to a round as `proclaim test` replays it, then live from
+//! there, so a person (or nothing) changes what the world does next; recorded, the branch is a
+//! recording of its own that names its parent and round.
+
+use crate::recorded::{answer_as_recorded, split_outside, RecordedFeed, Recording};
+use crate::{Behaviour, BehaviourError};
+use proclaim_board::Whiteboard;
+use proclaim_runner::Rounds;
+use rustc_hash::FxHashSet;
+use serde::{Deserialize, Serialize};
+use std::future::Future;
+
+/// Where a branch came from: the recording and the round it left it at.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct BranchOf {
+    pub parent: String,
+    pub round: u64,
+}
+
+/// A recording to replay up to `of.round`, and go on live from.
+#[derive(Clone, Debug)]
+pub struct Branch {
+    pub recording: Recording,
+    pub of: BranchOf,
+}
+
+impl Branch {
+    /// The branch of `recording` (read from `parent`) at the start of `round`: refused, saying
+    /// why, before its first round (there is nothing to replay) or after the round after its
+    /// last.
+    pub fn new(recording: Recording, parent: String, round: u64) -> Result<Branch, String> {
+        let last = recording
+            .ringlets
+            .iter()
+            .map(|r| r.round)
+            .max()
+            .unwrap_or(0);
+        if round < 2 || round > last + 1 {
+            return Err(format!(
+                "round {round} is not in the recording: it goes from round 1 to round {last}, and a branch starts at round 2 to {} (round 1 is a run of its own)",
+                last + 1
+            ));
+        }
+        Ok(Branch {
+            recording,
+            of: BranchOf { parent, round },
+        })
+    }
+
+    /// The first line of the branch's own recording.
+    pub fn header(&self) -> String {
+        serde_json::json!({ "branch": self.of }).to_string()
+    }
+
+    /// The schedule fed by the recording until the branch's round, then live.
+    pub(crate) fn feeding(
+        &self,
+        rounds: Option<Rounds>,
+        behaviour: &Behaviour,
+    ) -> Result<Option<Rounds>, BehaviourError> {
+        let Some(rounds) = rounds else {
+            return Err(BehaviourError::Branch(
+                "the machines run concurrently (the manifest's schedule = \"concurrent\"), with no rounds to branch at".into(),
+            ));
+        };
+        let (outside, _) = self.outside(behaviour);
+        let feed = RecordedFeed::until(&self.recording, outside, self.of.round);
+        Ok(Some(rounds.fed_then_live(feed)))
+    }
+
+    /// What answers the atoms that outside experts answered before the branch's round, query
+    /// by query as they did; none when they answered nothing.
+    pub(crate) fn answers(
+        &self,
+        behaviour: &Behaviour,
+        board: &Whiteboard,
+    ) -> Option<(Vec<String>, impl Future<Output = ()> + Send + 'static)> {
+        let (_, answers) = self.outside(behaviour);
+        if answers.is_empty() {
+            return None;
+        }
+        let atoms = answers.keys().cloned().collect();
+        Some((atoms, answer_as_recorded(board.clone(), answers)))
+    }
+
+    fn outside(
+        &self,
+        behaviour: &Behaviour,
+    ) -> (crate::recorded::Outside, crate::recorded::Answers) {
+        let machines: Vec<String> = behaviour
+            .machines
+            .iter()
+            .map(|m| m.machine.name.clone())
+            .collect();
+        let inside: FxHashSet<String> = machines
+            .iter()
+            .cloned()
+            .chain(behaviour.theories.iter().map(|t| t.name.clone()))
+            .collect();
+        split_outside(&self.recording, &inside, &machines, Some(self.of.round))
+    }
+}

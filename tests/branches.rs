@@ -1,0 +1,210 @@
+//! Branches of a recording (`proclaim run --branch REC --at ROUND`, `docs/spec/behaviour.md`
+//! §3.5): the recorded run replayed up to a round, then live; a person at the monitor changes
+//! what happens next, and the branch, recorded, is a test `proclaim test` passes.
+
+use crate::monitor::{http, proclaim_with_monitor};
+use crate::proclaim;
+use serde_json::Value as Json;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-branch-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn arg(path: &Path) -> &str {
+    path.to_str().unwrap()
+}
+
+/// The microwave's kitchen script on the virtual clock, recorded and traced.
+fn recorded_microwave(dir: &Path) -> (PathBuf, Vec<Json>) {
+    let (record, trace) = (dir.join("kitchen.jsonl"), dir.join("kitchen.trace"));
+    let out = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--record",
+        arg(&record),
+        "--trace",
+        arg(&trace),
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    (record, events(&trace))
+}
+
+fn events(trace: &Path) -> Vec<Json> {
+    let text = std::fs::read_to_string(trace).unwrap();
+    text.lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+/// The microwave's own events before `round` (the script's postings show in a run that plays
+/// it; a branch replays them from the recording instead).
+fn before_round(events: &[Json], round: u64) -> Vec<&Json> {
+    let round_of = |e: &&Json| e["round"].as_u64().unwrap_or(0);
+    let ours = |e: &&Json| e["machine"] == "Microwave";
+    events
+        .iter()
+        .filter(ours)
+        .filter(|e| round_of(e) < round)
+        .collect()
+}
+
+/// The round the microwave entered `state` in.
+fn entered(events: &[Json], state: &str) -> u64 {
+    events
+        .iter()
+        .find(|e| e["event"] == "entered" && e["state"] == state)
+        .and_then(|e| e["round"].as_u64())
+        .unwrap_or_else(|| panic!("never entered {state}"))
+}
+
+#[test]
+fn a_branch_plays_its_recording_up_to_its_round_and_is_a_recording_proclaim_test_replays() {
+    let dir = scratch("alone");
+    let (record, kitchen) = recorded_microwave(&dir);
+    // Before the button is pressed: the branch has no script to press it.
+    let round = entered(&kitchen, "COOKING") - 1;
+    let (branch, trace) = (dir.join("branch.jsonl"), dir.join("branch.trace"));
+    let at = round.to_string();
+    let out = proclaim(&[
+        "run",
+        "microwave",
+        "--virtual-clock",
+        "--branch",
+        arg(&record),
+        "--at",
+        &at,
+        "--record",
+        arg(&branch),
+        "--trace",
+        arg(&trace),
+    ]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{said}");
+    assert!(
+        said.contains(&format!(
+            "left out impersonator: the recording says what came from outside until round {round}"
+        )),
+        "{said}"
+    );
+    let branched = events(&trace);
+    assert_eq!(
+        before_round(&branched, round),
+        before_round(&kitchen, round),
+        "the rounds before the branch are the recording's"
+    );
+    assert!(
+        !branched.iter().any(|e| e["state"] == "COOKING"),
+        "after the branch nobody presses the button"
+    );
+    let first = std::fs::read_to_string(&branch).unwrap();
+    let header: Json = serde_json::from_str(first.lines().next().unwrap()).unwrap();
+    assert_eq!(header["branch"]["round"], round);
+    assert_eq!(header["branch"]["parent"], arg(&record));
+    let test = proclaim(&["test", "microwave", arg(&branch)]);
+    let said = String::from_utf8_lossy(&test.stdout);
+    assert!(test.status.success(), "{said}");
+    assert!(said.contains("branch of"), "{said}");
+}
+
+#[test]
+fn a_branch_outside_its_recording_is_refused_saying_why() {
+    let dir = scratch("refused");
+    let (record, kitchen) = recorded_microwave(&dir);
+    let last = kitchen
+        .iter()
+        .filter_map(|e| e["round"].as_u64())
+        .max()
+        .unwrap();
+    for (at, why) in [
+        ("1".to_string(), "round 1 is a run of its own"),
+        ((last + 2).to_string(), "is not in the recording"),
+    ] {
+        let out = proclaim(&["run", "microwave", "--branch", arg(&record), "--at", &at]);
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && said.contains(why), "{said}");
+    }
+    let out = proclaim(&["run", "microwave", "--branch", arg(&record)]);
+    assert!(!out.status.success(), "--branch needs --at");
+    let out = proclaim(&["run", "microwave", "--branch", arg(&dir), "--at", "3"]);
+    assert!(!out.status.success(), "a folder is no recording");
+}
+
+/// Polls the page's frame until `check` holds, failing with the last frame.
+fn until(url: &str, what: &str, check: impl Fn(&Json) -> bool) -> Json {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    loop {
+        let (_, frame) = http(url, "GET", "/api/frame", None);
+        let frame: Json = serde_json::from_str(&frame).unwrap_or_default();
+        if check(&frame) {
+            return frame;
+        }
+        assert!(Instant::now() < deadline, "{what} never came: {frame}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn a_person_opens_the_door_in_a_branch_while_it_cooks_and_the_branch_is_kept_as_a_test() {
+    let dir = scratch("person");
+    let (record, kitchen) = recorded_microwave(&dir);
+    let round = entered(&kitchen, "COOKING") + 3;
+    let branch = dir.join("opened.jsonl");
+    let at = round.to_string();
+    let (mut run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--branch",
+        arg(&record),
+        "--at",
+        &at,
+        "--monitor",
+        "127.0.0.1:0",
+        "--record",
+        arg(&branch),
+        "--for",
+        "30s",
+    ]);
+    let frame = until(&url, "the pause at the branch", |f| {
+        f["stepping"]["paused"] == true
+    });
+    assert_eq!(frame["machines"][0]["state_name"], "COOKING", "{frame}");
+    let (status, _) = http(
+        &url,
+        "POST",
+        "/api/post",
+        Some(r#"{"type":"doorOpen","value":"true"}"#),
+    );
+    assert_eq!(status, 200);
+    let (status, _) = http(&url, "POST", "/api/control", Some(r#"{"action":"resume"}"#));
+    assert_eq!(status, 204);
+    until(&url, "the door's interlock", |f| {
+        f["machines"][0]["state_name"] == "OPEN"
+    });
+    // Ctrl-C ends the run as a person ends it, the recording written whole.
+    let pid = run.0.id().to_string();
+    let _ = std::process::Command::new("kill")
+        .args(["-INT", &pid])
+        .status();
+    let _ = run.0.wait();
+    let test = proclaim(&["test", "microwave", arg(&branch)]);
+    let said = String::from_utf8_lossy(&test.stdout);
+    assert!(test.status.success(), "{said}");
+    let original = proclaim(&["test", "microwave", arg(&record)]);
+    assert!(original.status.success());
+    let kept = std::fs::read_to_string(&branch).unwrap();
+    assert!(
+        kept.contains(r#""module":"monitor""#),
+        "the person's posting is in it"
+    );
+    assert!(
+        !kept.contains("beep beep beep"),
+        "the branch never cooked to the end"
+    );
+}
