@@ -2,9 +2,11 @@
 //! §3.5): the recorded run replayed up to a round, then live; a person at the monitor changes
 //! what happens next, and the branch, recorded, is a test `proclaim test` passes.
 
-use crate::monitor::{http, proclaim_with_monitor};
+use crate::monitor::{
+    click, eval, http, open_browser, proclaim_with_monitor, type_into, until as page_until, STATE,
+};
 use crate::proclaim;
-use serde_json::Value as Json;
+use serde_json::{json, Value as Json};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -22,11 +24,18 @@ fn arg(path: &Path) -> &str {
 
 /// The microwave's kitchen script on the virtual clock, recorded and traced.
 fn recorded_microwave(dir: &Path) -> (PathBuf, Vec<Json>) {
+    recorded_microwave_for(dir, "90s")
+}
+
+/// [`recorded_microwave`] for `length` (the minute's timeout comes at 64 s).
+fn recorded_microwave_for(dir: &Path, length: &str) -> (PathBuf, Vec<Json>) {
     let (record, trace) = (dir.join("kitchen.jsonl"), dir.join("kitchen.trace"));
     let out = proclaim(&[
         "run",
         "microwave",
         "--virtual-clock",
+        "--for",
+        length,
         "--record",
         arg(&record),
         "--trace",
@@ -134,6 +143,12 @@ fn a_branch_outside_its_recording_is_refused_saying_why() {
     assert!(!out.status.success(), "--branch needs --at");
     let out = proclaim(&["run", "microwave", "--branch", arg(&dir), "--at", "3"]);
     assert!(!out.status.success(), "a folder is no recording");
+    let out = proclaim(&["replay", arg(&record), "--monitor", "127.0.0.1:0"]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && said.contains("give its `--behaviour` to replay it here"),
+        "{said}"
+    );
 }
 
 /// Polls the page's frame until `check` holds, failing with the last frame.
@@ -207,4 +222,130 @@ fn a_person_opens_the_door_in_a_branch_while_it_cooks_and_the_branch_is_kept_as_
         !kept.contains("beep beep beep"),
         "the branch never cooked to the end"
     );
+}
+
+const PAUSED: &str = "return document.getElementById('status').dataset.paused ?? null";
+
+/// The done-when of issue 49's second item: in the browser, go back ten rounds in a recording,
+/// post a value, run on, stop, and `proclaim test` passes on the branch.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn in_the_browser_a_recording_is_branched_ten_rounds_back_changed_and_kept_as_a_test() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let dir = scratch("browser");
+    // Ended while it cooks: ten rounds back, the minute's timeout is far off (on the real clock
+    // a branch's time runs from when it goes live, paused or not).
+    let (record, _) = recorded_microwave_for(&dir, "30s");
+    // The replay's slider goes over the recording's events.
+    let recorded: Vec<Json> = std::fs::read_to_string(&record)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str::<Json>(l).unwrap())
+        .filter(|l| l.get("event").is_some())
+        .collect();
+    let last = recorded
+        .iter()
+        .filter_map(|e| e["round"].as_u64())
+        .max()
+        .unwrap();
+    let back = last - 10;
+    let at = 1 + recorded
+        .iter()
+        .rposition(|e| e["round"].as_u64().is_some_and(|r| r <= back))
+        .unwrap();
+    let (replay, url) = proclaim_with_monitor(&[
+        "replay",
+        arg(&record),
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "microwave",
+    ]);
+    // However the test ends, Ctrl-C ends the replay and the branches it started.
+    let _replay = Interrupted(replay);
+    client.goto(&url).await.expect("the page opens");
+    let second = Duration::from_secs(1);
+    page_until(&client, STATE, json!("COOKING"), 5 * second).await;
+    let slide = format!("const s = document.getElementById('slider'); s.value = '{at}'; s.dispatchEvent(new Event('input')); return true");
+    eval(&client, &slide).await;
+    page_until(&client, STATE, json!("COOKING"), 3 * second).await;
+    let label = "return document.getElementById('branch').textContent";
+    let want = format!("Branch at round {}", back + 1);
+    page_until(&client, label, json!(want), second).await;
+    click(&client, "branch").await;
+    // The branch's own page, paused where the recording was left.
+    page_until(
+        &client,
+        "return location.hash.startsWith('#branch=')",
+        json!(true),
+        20 * second,
+    )
+    .await;
+    page_until(&client, PAUSED, json!("true"), 10 * second).await;
+    page_until(&client, STATE, json!("COOKING"), 3 * second).await;
+    let file = eval(
+        &client,
+        "return decodeURIComponent(location.hash.slice('#branch='.length))",
+    )
+    .await;
+    let file = PathBuf::from(file.as_str().unwrap());
+    assert_eq!(
+        file,
+        dir.join(format!("kitchen.branch-r{}.jsonl", back + 1))
+    );
+    type_into(&client, "post-type", "doorOpen").await;
+    type_into(&client, "post-value", "true").await;
+    click(&client, "post-send").await;
+    click(&client, "resume").await;
+    page_until(&client, STATE, json!("OPEN"), 5 * second).await;
+    click(&client, "stop").await;
+    page_until(
+        &client,
+        "return document.body.dataset.stopped ?? null",
+        json!("true"),
+        3 * second,
+    )
+    .await;
+    // The branch's run writes its recording out as it stops.
+    let deadline = Instant::now() + 10 * second;
+    let test = loop {
+        let test = proclaim(&["test", "microwave", arg(&file)]);
+        if test.status.success() || Instant::now() > deadline {
+            break test;
+        }
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    };
+    let said = String::from_utf8_lossy(&test.stdout);
+    assert!(test.status.success(), "{said}");
+    assert!(
+        said.contains(&format!("branch of {} at round {}", arg(&record), back + 1)),
+        "{said}"
+    );
+    let kept = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        kept.contains(r#""module":"monitor""#),
+        "the posting from the page is in it"
+    );
+    assert!(
+        !kept.contains("beep beep beep"),
+        "the door opened before the minute was up"
+    );
+    let _ = client.close().await;
+}
+
+/// A process sent Ctrl-C when dropped, then waited for.
+struct Interrupted(crate::monitor::Running);
+
+impl Drop for Interrupted {
+    fn drop(&mut self) {
+        let child = &mut (self.0).0;
+        let _ = std::process::Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status();
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while Instant::now() < deadline && matches!(child.try_wait(), Ok(None)) {
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
 }

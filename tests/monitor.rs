@@ -183,7 +183,7 @@ pub(crate) async fn until(client: &Client, script: &str, want: Json, within: Dur
     }
 }
 
-const STATE: &str =
+pub(crate) const STATE: &str =
     "return document.querySelector('[data-machine=\"Microwave\"]')?.dataset.state ?? null";
 const LIT: &str = "return document.querySelector('[data-machine=\"Microwave\"] g.node.current title')?.textContent ?? null";
 const FIRED: &str = "return document.querySelector('[data-machine=\"Microwave\"] g.edge.fired title')?.textContent ?? null";
@@ -613,7 +613,7 @@ fn the_page_api_serves_the_run_and_refuses_bad_requests() {
     let (status, why) = http(&url, "POST", "/api/control", Some(r#"{"action":"jump"}"#));
     assert_eq!(
         (status, why.as_str()),
-        (400, "unknown action `jump`: pause, step or resume")
+        (400, "unknown action `jump`: pause, step, resume or stop")
     );
     let (status, why) = http(
         &url,

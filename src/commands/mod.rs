@@ -4,6 +4,7 @@ mod bench;
 mod bench_all;
 mod bench_parse;
 mod board;
+mod branch;
 mod check;
 mod checkpoint;
 mod compile;

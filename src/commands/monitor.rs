@@ -93,19 +93,28 @@ pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitC
         .lines()
         .find(|l| !l.trim().is_empty())
         .and_then(|l| serde_json::from_str(l).ok());
-    if first.is_some_and(|f| f.get("seq").is_some() && f.get("event").is_none()) {
+    let recorded = first.is_some_and(|f| {
+        (f.get("seq").is_some() || f.get("branch").is_some()) && f.get("event").is_none()
+    });
+    // A recording replayed with its behaviour can be branched off at any round.
+    let branchable = recorded && behaviour.is_some();
+    if recorded && !branchable {
         return Err(Failure::Argument(format!(
-            "{} is a `--record` file of whiteboard messages; the monitor replays traces written by `proclaim run --trace` (print this one with `proclaim replay {}`)",
+            "{} is a `--record` file of whiteboard messages: give its `--behaviour` to replay it here (and branch off it), or print it with `proclaim replay {}`",
             trace.display(),
             trace.display()
         )));
     }
-    let events = read_trace(&text).map_err(|e| {
-        Failure::Argument(format!(
-            "{}: {e} (the monitor replays traces written by `proclaim run --trace`)",
-            trace.display()
-        ))
-    })?;
+    let events = if branchable {
+        super::branch::read(trace)?.events().to_vec()
+    } else {
+        read_trace(&text).map_err(|e| {
+            Failure::Argument(format!(
+                "{}: {e} (the monitor replays traces written by `proclaim run --trace`)",
+                trace.display()
+            ))
+        })?
+    };
     let (name, charts) = match behaviour {
         Some(b) => {
             let behaviour = load_behaviour(b)?;
@@ -127,9 +136,16 @@ pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitC
             monitor.set_explainer(explainer(named));
         }
         println!("replaying {} ({count} events)", trace.display());
-        open(&monitor, addr).await?;
+        let page = open(&monitor, addr).await?;
+        let started = super::branch::Started::default();
+        if let Some(named) = behaviour.filter(|_| branchable) {
+            let brancher = super::branch::brancher(named, trace, page, started.clone());
+            monitor.set_brancher(brancher);
+            println!("  branch off any round from the page");
+        }
         println!("  Ctrl-C to stop");
         let _ = tokio::signal::ctrl_c().await;
+        started.stop_all();
         Ok(ExitCode::SUCCESS)
     })
 }

@@ -138,30 +138,8 @@ fn launch_options(
         end_when_still: alone,
         checkpoints: checkpoint::plan(args).map(|(plan, _)| plan),
         resume: args.resume.as_deref().map(checkpoint::read).transpose()?,
-        branch: branch(args)?.map(Arc::new),
+        branch: super::branch::asked(args)?.map(Arc::new),
     })
-}
-
-/// The branch `--branch` and `--at` ask for.
-fn branch(args: &RunArgs) -> Result<Option<proclaim_behaviour::Branch>, Failure> {
-    let (Some(path), Some(round)) = (&args.branch, args.at) else {
-        return Ok(None);
-    };
-    if !args.network.is_local() {
-        return Err(Failure::Argument(
-            "--branch replays a recording onto a board of its own; it cannot share one".into(),
-        ));
-    }
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-        path: path.clone(),
-        error,
-    })?;
-    let recording = proclaim_behaviour::read_recording(&text)
-        .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
-    let parent = path.display().to_string();
-    proclaim_behaviour::Branch::new(recording, parent, round)
-        .map(Some)
-        .map_err(|why| Failure::Argument(format!("--branch {}: {why}", path.display())))
 }
 
 /// Launches the behaviour on its whiteboard and follows it (or steps it) to the end; whether
@@ -177,6 +155,13 @@ async fn run_on_board(
     let script_used = script.is_some() || behaviour.script.is_some();
     let options = launch_options(args, script, limit)?;
     let header = options.branch.as_ref().map(|b| b.header());
+    if let Some(branch) = options.branch.as_ref().filter(|_| !args.virtual_clock) {
+        let live = branch.live.clone();
+        tokio::spawn(async move {
+            live.notified().await;
+            tokio::time::resume();
+        });
+    }
     let stepper = options.stepper.clone();
     let team =
         crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
@@ -221,8 +206,14 @@ async fn run_on_board(
         running.stop().await;
         return Ok(false);
     }
+    // The page's Stop button ends the run as Ctrl-C does (a branch's recording is kept whole).
+    let stop = Arc::new(tokio::sync::Notify::new());
+    if let Some(monitor) = monitor.as_ref().filter(|_| !args.monitor_read_only) {
+        monitor.set_stopper(stop.clone());
+    }
     let live = Live {
         view,
+        stop,
         trace_file,
         changed: watch(behaviour, args.watch),
         monitor: monitor.clone(),
@@ -298,7 +289,9 @@ fn runtime(args: &RunArgs) -> Result<tokio::runtime::Runtime, Failure> {
             "--virtual-clock runs on a board of its own: it cannot --listen or --connect".into(),
         ));
     }
-    super::runtime::runtime(if args.virtual_clock {
+    // A branch replays on the paused clock, so going back a minute takes no minute; on the
+    // real clock it lets time run from the branch's round on (`went_live`).
+    super::runtime::runtime(if args.virtual_clock || args.branch.is_some() {
         super::runtime::Shape::VirtualClock
     } else {
         super::runtime::Shape::TwoThreads
@@ -361,6 +354,8 @@ struct Live<'t> {
     recorder: Option<&'t record::Recorder>,
     /// Ctrl-C, heard from before the run started.
     interrupt: &'t mut crate::interrupt::Interrupt,
+    /// The page's Stop button.
+    stop: Arc<tokio::sync::Notify>,
     /// Whether a script plays (what a run that ends still says is over).
     scripted: bool,
     /// Where the checkpoints asked for are written.
@@ -421,6 +416,7 @@ impl Live<'_> {
                     break self.still(started);
                 }
                 () = self.interrupt.next() => break "interrupted".to_string(),
+                () = self.stop.notified() => break "stopped from the page".to_string(),
                 Some(first) = self.changed.recv() => self.reread(first, board).await,
                 Some(checkpoint) = next_checkpoint(&mut taken) => self.keep(&checkpoint),
             }

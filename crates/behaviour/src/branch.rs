@@ -10,6 +10,7 @@ use proclaim_runner::Rounds;
 use rustc_hash::FxHashSet;
 use serde::{Deserialize, Serialize};
 use std::future::Future;
+use std::sync::Arc;
 
 /// Where a branch came from: the recording and the round it left it at.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -23,6 +24,9 @@ pub struct BranchOf {
 pub struct Branch {
     pub recording: Recording,
     pub of: BranchOf,
+    /// Told when the replay is over and the run goes on live: a run that replayed on the
+    /// paused clock lets real time run from there.
+    pub live: Arc<tokio::sync::Notify>,
 }
 
 impl Branch {
@@ -45,6 +49,7 @@ impl Branch {
         Ok(Branch {
             recording,
             of: BranchOf { parent, round },
+            live: Arc::default(),
         })
     }
 
@@ -66,7 +71,7 @@ impl Branch {
         };
         let (outside, _) = self.outside(behaviour);
         let feed = RecordedFeed::until(&self.recording, outside, self.of.round);
-        Ok(Some(rounds.fed_then_live(feed)))
+        Ok(Some(rounds.fed_then_live(feed, self.live.clone())))
     }
 
     /// What answers the atoms that outside experts answered before the branch's round, query

@@ -46,6 +46,13 @@ pub struct Recording {
     pub branch: Option<BranchOf>,
 }
 
+impl Recording {
+    /// The machines' events, as the run's trace has them.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+}
+
 /// Why a recording cannot be read.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RecordingError {

@@ -248,6 +248,26 @@ function live() {
       $(action).addEventListener("click", () => send("/api/control", { action }).catch((e) => { $("status").textContent = e.message; }));
     }
   }
+  // A branch's page (the replay page sent us here) says where the branch is recorded.
+  const recordedIn = new URLSearchParams(location.hash.slice(1)).get("branch");
+  if (recordedIn) {
+    $("branch-info").hidden = false;
+    $("branch-info").textContent = `a branch, paused where it left its recording; recorded in ${recordedIn}`;
+  }
+  if (model.can_stop) {
+    $("controls").hidden = false;
+    $("stop").hidden = false;
+    $("stop").addEventListener("click", async () => {
+      try {
+        await send("/api/control", { action: "stop" });
+        $("stop").disabled = true;
+        if (recordedIn) $("branch-info").textContent = `stopped; ${recordedIn} is kept: \`proclaim test\` replays it`;
+        document.body.dataset.stopped = "true";
+      } catch (e) {
+        $("status").textContent = e.message;
+      }
+    });
+  }
   $("post").addEventListener("submit", async (event) => {
     event.preventDefault();
     const type = $("post-type").value.trim();
@@ -272,6 +292,40 @@ function live() {
   };
 }
 
+// The round a branch from the moment after `at` events starts: the one after the last shown.
+function roundAfter(at) {
+  const rounds = model.rounds;
+  const last = Math.min(at, rounds.length) - 1;
+  return last < 0 ? 1 : rounds[last] + 1;
+}
+
+// "Branch here": the recording replayed to the round the slider shows, live from there on a
+// page of its own, which this page goes to.
+function labelBranch(at) {
+  const round = roundAfter(at);
+  $("branch").textContent = `Branch at round ${round}`;
+  $("branch").dataset.round = String(round);
+}
+
+function branching(slider) {
+  const button = $("branch");
+  button.hidden = false;
+  slider.addEventListener("input", () => labelBranch(Number(slider.value)));
+  labelBranch(Number(slider.value));
+  button.addEventListener("click", async () => {
+    button.disabled = true;
+    $("status").textContent = `starting a branch at round ${button.dataset.round}…`;
+    try {
+      const response = await send("/api/branch", { at: Number(slider.value) });
+      const { url, file } = await response.json();
+      location.href = `${url}#branch=${encodeURIComponent(file)}`;
+    } catch (e) {
+      $("status").textContent = e.message;
+      button.disabled = false;
+    }
+  });
+}
+
 function replay() {
   const slider = $("slider");
   const times = model.times;
@@ -290,11 +344,13 @@ function replay() {
       const frame = await (await fetch(`/api/frame?at=${now}`)).json();
       render(frame);
       $("moment").textContent = `event ${now} of ${times.length - 1} · ${seconds(times[now])} s`;
+      if (model.can_branch) labelBranch(now);
       $("status").textContent = "replay";
     }
     busy = false;
   }
   slider.addEventListener("input", () => show(Number(slider.value)));
+  if (model.can_branch) branching(slider);
   let playing = null;
   $("play").addEventListener("click", () => {
     if (playing) {

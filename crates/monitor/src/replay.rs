@@ -114,6 +114,11 @@ impl Timeline {
             .collect()
     }
 
+    /// The round of each event.
+    pub fn rounds(&self) -> Vec<u64> {
+        self.events.iter().map(Event::round).collect()
+    }
+
     /// The machines and the board after the first `at` events.
     pub fn at(&self, at: usize) -> (Picture, Snapshot) {
         let at = at.min(self.events.len());

@@ -3,6 +3,7 @@
 //! the posting rate), a frame at any moment of a replay, and the controls.
 
 use crate::access::{foreign, Access, TOKEN_HEADER};
+use crate::branch::{round_after, BranchAsked, Brancher};
 use crate::diagram::Chart;
 use crate::picture::Picture;
 use crate::replay::Timeline;
@@ -55,6 +56,10 @@ struct Shared {
     history: Mutex<History>,
     /// What recordings never exercised (`proclaim test --coverage --monitor`): drawn apart.
     uncovered: RwLock<Vec<Uncovered>>,
+    /// Starts a branch of a replayed recording ([`Monitor::set_brancher`]).
+    brancher: RwLock<Option<Brancher>>,
+    /// Told to stop a live run from the page ([`Monitor::set_stopper`]).
+    stopper: RwLock<Option<Arc<tokio::sync::Notify>>>,
 }
 
 /// A state never entered (no `target`), or a transition never fired, by the recordings a
@@ -114,6 +119,8 @@ impl Monitor {
                 explainer: RwLock::new(None),
                 history: Mutex::new(History::default()),
                 uncovered: RwLock::new(Vec::new()),
+                brancher: RwLock::new(None),
+                stopper: RwLock::new(None),
             }),
         }
     }
@@ -127,6 +134,16 @@ impl Monitor {
     /// the run's events (a live run's are kept from now on) and what was asked.
     pub fn set_explainer(&self, explainer: Explainer) {
         *self.shared.explainer.write() = Some(explainer);
+    }
+
+    /// Lets a replay's page branch off the recording at the round its slider shows.
+    pub fn set_brancher(&self, brancher: Brancher) {
+        *self.shared.brancher.write() = Some(brancher);
+    }
+
+    /// Lets a live page stop the run (its Stop button): `stop` is told.
+    pub fn set_stopper(&self, stop: Arc<tokio::sync::Notify>) {
+        *self.shared.stopper.write() = Some(stop);
     }
 
     /// Draws what recordings never exercised apart (states never entered, transitions never
@@ -227,6 +244,7 @@ impl Monitor {
             .route("/api/control", post(control))
             .route("/api/post", post(post_message))
             .route("/api/explain", get(explain))
+            .route("/api/branch", post(branch))
             .with_state(self.shared.clone())
     }
 }
@@ -336,8 +354,14 @@ struct Model<'s> {
     charts_version: u64,
     /// Replays: how many events, and the time of each (microseconds).
     times: Option<Vec<u64>>,
+    /// Replays: the round of each event.
+    rounds: Option<Vec<u64>>,
+    /// Replays: whether the page can branch off the recording.
+    can_branch: bool,
     /// Live runs: whether the page can pause and step.
     can_step: bool,
+    /// Live runs: whether the page can stop the run.
+    can_stop: bool,
     /// Whether the page shows no controls at all.
     read_only: bool,
     /// What recordings never exercised, drawn apart.
@@ -345,10 +369,17 @@ struct Model<'s> {
 }
 
 async fn model(State(shared): State<Arc<Shared>>) -> Response {
-    let (mode, times, can_step) = match &shared.source {
-        Source::Live { stepper, .. } => ("live", None, stepper.is_some()),
-        Source::Replay(timeline) => ("replay", Some(timeline.times()), false),
+    let (mode, times, rounds, can_step) = match &shared.source {
+        Source::Live { stepper, .. } => ("live", None, None, stepper.is_some()),
+        Source::Replay(timeline) => (
+            "replay",
+            Some(timeline.times()),
+            Some(timeline.rounds()),
+            false,
+        ),
     };
+    let can_branch = rounds.is_some() && shared.brancher.read().is_some();
+    let can_stop = times.is_none() && shared.stopper.read().is_some();
     let charts = shared.charts.lock().clone();
     Json(Model {
         name: &shared.name,
@@ -356,7 +387,10 @@ async fn model(State(shared): State<Arc<Shared>>) -> Response {
         charts: &charts,
         charts_version: shared.charts_version(),
         times,
+        rounds,
+        can_branch,
         can_step,
+        can_stop,
         read_only: shared.access() == Access::ReadOnly,
         uncovered: shared.uncovered.read().clone(),
     })
@@ -466,6 +500,14 @@ async fn control(
     if let Some(refused) = shared.refusal(&headers) {
         return refused;
     }
+    if request.action == "stop" {
+        let Some(stop) = shared.stopper.read().clone() else {
+            let why = "this run cannot be stopped from the page";
+            return (StatusCode::CONFLICT, why).into_response();
+        };
+        stop.notify_one();
+        return StatusCode::NO_CONTENT.into_response();
+    }
     let Source::Live {
         stepper: Some(stepper),
         ..
@@ -482,7 +524,7 @@ async fn control(
         other => {
             return (
                 StatusCode::BAD_REQUEST,
-                format!("unknown action `{other}`: pause, step or resume"),
+                format!("unknown action `{other}`: pause, step, resume or stop"),
             )
                 .into_response()
         }
@@ -491,6 +533,37 @@ async fn control(
     // Tell the frame streams at once: the buttons show the new mode without waiting.
     shared.changed();
     StatusCode::NO_CONTENT.into_response()
+}
+
+/// A branch of the replayed recording at the round after the last event the slider shows:
+/// where its page is and what file records it.
+async fn branch(
+    State(shared): State<Arc<Shared>>,
+    headers: HeaderMap,
+    Json(asked): Json<BranchAsked>,
+) -> Response {
+    if let Some(refused) = shared.refusal(&headers) {
+        return refused;
+    }
+    let Source::Replay(timeline) = &shared.source else {
+        let why = "a live run is not branched: replay its recording (`proclaim replay FILE --monitor --behaviour B`)";
+        return (StatusCode::CONFLICT, why).into_response();
+    };
+    let Some(brancher) = shared.brancher.read().clone() else {
+        let why = "this page cannot branch: replay a `--record` file with its `--behaviour`";
+        return (StatusCode::NOT_IMPLEMENTED, why).into_response();
+    };
+    let round = round_after(&timeline.rounds(), asked.at);
+    // Starting a run may take a moment (a process, its page); the page's server goes on.
+    match tokio::task::spawn_blocking(move || brancher(round)).await {
+        Ok(Ok(branched)) => Json(branched).into_response(),
+        Ok(Err(why)) => (StatusCode::UNPROCESSABLE_ENTITY, why).into_response(),
+        Err(_) => (
+            StatusCode::INTERNAL_SERVER_ERROR,
+            "the branch could not start",
+        )
+            .into_response(),
+    }
 }
 
 #[derive(Deserialize)]

@@ -54,8 +54,9 @@ pub struct Rounds {
     stepper: Option<Stepper>,
     ticks: Option<mpsc::UnboundedSender<Ringlet>>,
     feed: Option<SharedFeed>,
-    /// When the feed is done, the run goes on live (a branch of a recording), paused if stepped.
-    live_after_feed: bool,
+    /// When the feed is done, the run goes on live (a branch of a recording), paused if stepped,
+    /// and says so here.
+    live_after_feed: Option<Arc<tokio::sync::Notify>>,
     /// The feed is done and the run went on live.
     gone_live: std::sync::atomic::AtomicBool,
     /// From when (since the machines' epoch) nothing outside will post again.
@@ -75,7 +76,7 @@ impl Rounds {
             stepper: None,
             ticks: None,
             feed: None,
-            live_after_feed: false,
+            live_after_feed: None,
             gone_live: std::sync::atomic::AtomicBool::new(false),
             silent_from: None,
             checkpoints: None,
@@ -136,9 +137,13 @@ impl Rounds {
 
     /// Paced by `feed` until it is done, then live: waiting for news as an unfed schedule does,
     /// and paused first when stepped, so a person takes over where the replay left off (a
-    /// branch of a recording).
-    pub fn fed_then_live(mut self, feed: impl Feed + 'static) -> Rounds {
-        self.live_after_feed = true;
+    /// branch of a recording); `live` is told when it goes live.
+    pub fn fed_then_live(
+        mut self,
+        feed: impl Feed + 'static,
+        live: Arc<tokio::sync::Notify>,
+    ) -> Rounds {
+        self.live_after_feed = Some(live);
         self.fed_by(feed)
     }
 
@@ -236,14 +241,16 @@ impl Rounds {
             commanded = false;
             if let Some(feed) = self.feed() {
                 let more = feed.lock().after_round(round);
-                if !more && !self.live_after_feed {
-                    return RoundsEnd::FeedDone;
-                }
-                if !more {
-                    self.gone_live
-                        .store(true, std::sync::atomic::Ordering::Relaxed);
-                    if let Some(stepper) = &self.stepper {
-                        stepper.pause();
+                match &self.live_after_feed {
+                    _ if more => {}
+                    None => return RoundsEnd::FeedDone,
+                    Some(live) => {
+                        self.gone_live
+                            .store(true, std::sync::atomic::Ordering::Relaxed);
+                        if let Some(stepper) = &self.stepper {
+                            stepper.pause();
+                        }
+                        live.notify_one();
                     }
                 }
                 continue;

@@ -1,0 +1,154 @@
+//! Branches of a recording from the command line (`docs/spec/behaviour.md` §3.5): `run
+//! --branch REC --at ROUND` reads the recording it goes back into, and the replay page of a
+//! recording (`replay REC --monitor --behaviour B`) starts each branch asked of it as a `run
+//! --branch` process of its own, with a page of its own and a recording of its own.
+
+use crate::cli::RunArgs;
+use crate::failure::Failure;
+use proclaim_behaviour::{read_recording, Branch, Recording};
+use proclaim_monitor::{Branched, Brancher};
+use std::io::{BufRead, BufReader, Read};
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+
+/// The recording in `path`, or why it is none.
+pub fn read(path: &Path) -> Result<Recording, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    read_recording(&text)
+        .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))
+}
+
+/// The branch `--branch` and `--at` ask for.
+pub fn asked(args: &RunArgs) -> Result<Option<Branch>, Failure> {
+    let (Some(path), Some(round)) = (&args.branch, args.at) else {
+        return Ok(None);
+    };
+    if !args.network.is_local() {
+        return Err(Failure::Argument(
+            "--branch replays a recording onto a board of its own; it cannot share one".into(),
+        ));
+    }
+    let parent = path.display().to_string();
+    Branch::new(read(path)?, parent, round)
+        .map(Some)
+        .map_err(|why| Failure::Argument(format!("--branch {}: {why}", path.display())))
+}
+
+/// The branches started from a replay page, stopped with it.
+#[derive(Clone, Default)]
+pub struct Started(Arc<Mutex<Vec<Child>>>);
+
+impl Started {
+    /// Ends every branch still running.
+    pub fn stop_all(&self) {
+        let children = match self.0.lock() {
+            Ok(mut children) => std::mem::take(&mut *children),
+            Err(_) => return,
+        };
+        for mut child in children {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
+}
+
+/// Starts branches of the recording at `record` of the behaviour `named`, each a `proclaim run
+/// --branch` with its page on the replay page's host and its recording beside the parent.
+pub fn brancher(named: &str, record: &Path, page: SocketAddr, started: Started) -> Brancher {
+    let (named, record) = (named.to_string(), record.to_path_buf());
+    Arc::new(move |round| {
+        let file = free_name(&record, round);
+        let program = std::env::current_exe().map_err(|e| format!("no program to run: {e}"))?;
+        let mut child = Command::new(program)
+            .args(["run", &named, "--branch"])
+            .arg(&record)
+            .args(["--at", &round.to_string(), "--monitor"])
+            .arg(SocketAddr::new(page.ip(), 0).to_string())
+            .arg("--record")
+            .arg(&file)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| format!("the branch did not start: {e}"))?;
+        let url = page_of(&mut child)?;
+        if let Ok(mut children) = started.0.lock() {
+            children.push(child);
+        }
+        Ok(Branched {
+            url,
+            file: file.display().to_string(),
+        })
+    })
+}
+
+/// The branch's page, from the line its run prints; what it said on error when it ended
+/// before printing one. The rest of its output is read (and dropped) so it never blocks.
+fn page_of(child: &mut Child) -> Result<String, String> {
+    let stdout = child.stdout.take().ok_or("the branch has no output")?;
+    let mut lines = BufReader::new(stdout).lines();
+    let url = lines
+        .by_ref()
+        .map_while(Result::ok)
+        .find_map(|line| line.trim().strip_prefix("monitor: ").map(str::to_string));
+    let stderr = child.stderr.take();
+    let Some(url) = url else {
+        let mut said = String::new();
+        if let Some(mut stderr) = stderr {
+            let _ = stderr.read_to_string(&mut said);
+        }
+        let _ = child.wait();
+        return Err(said.trim().to_string());
+    };
+    std::thread::spawn(move || lines.for_each(drop));
+    if let Some(stderr) = stderr {
+        std::thread::spawn(move || BufReader::new(stderr).lines().for_each(drop));
+    }
+    Ok(url)
+}
+
+/// `kitchen.branch-r40.jsonl` beside `kitchen.jsonl`, or `…-r40-2.jsonl` and on when taken.
+fn free_name(record: &Path, round: u64) -> PathBuf {
+    let stem = record
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "recording".into());
+    let named = |n: u32| {
+        let tail = if n < 2 {
+            String::new()
+        } else {
+            format!("-{n}")
+        };
+        record.with_file_name(format!("{stem}.branch-r{round}{tail}.jsonl"))
+    };
+    (1..)
+        .map(named)
+        .find(|path| !path.exists())
+        .unwrap_or_else(|| named(1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_branch_is_recorded_beside_its_parent_under_a_name_not_taken() {
+        let dir =
+            std::env::temp_dir().join(format!("proclaim-branch-names-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let record = dir.join("kitchen.jsonl");
+        let first = free_name(&record, 40);
+        assert_eq!(first, dir.join("kitchen.branch-r40.jsonl"));
+        std::fs::write(&first, "").unwrap();
+        assert_eq!(
+            free_name(&record, 40),
+            dir.join("kitchen.branch-r40-2.jsonl")
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
