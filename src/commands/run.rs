@@ -108,6 +108,42 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     })
 }
 
+/// The run's whiteboard: its own, or one shared with the network (said where and as whom).
+async fn whiteboard(behaviour: &Behaviour, args: &RunArgs) -> Result<Whiteboard, Failure> {
+    let team =
+        crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
+    let network = args.network.for_team(team.as_ref());
+    let board = crate::network::behaviour_whiteboard(&network, team.clone()).await?;
+    if !network.is_local() {
+        println!("  {}", network.describe());
+    }
+    if let Some(team) = team {
+        println!("  {} of team `{}`", team.member, team.name);
+    }
+    Ok(board)
+}
+
+/// A branch replayed on the paused clock lets real time run once `live` says it went live.
+fn real_time_from(live: Arc<tokio::sync::Notify>) {
+    tokio::spawn(async move {
+        live.notified().await;
+        tokio::time::resume();
+    });
+}
+
+/// What the page's Stop button tells: the run ends as at Ctrl-C (a branch's recording kept
+/// whole).
+fn stop_button(
+    monitor: Option<&proclaim_monitor::Monitor>,
+    args: &RunArgs,
+) -> Arc<tokio::sync::Notify> {
+    let stop = Arc::new(tokio::sync::Notify::new());
+    if let Some(monitor) = monitor.filter(|_| !args.monitor_read_only) {
+        monitor.set_stopper(stop.clone());
+    }
+    stop
+}
+
 fn launch_options(
     args: &RunArgs,
     script: Option<proclaim_experts::Script>,
@@ -156,23 +192,10 @@ async fn run_on_board(
     let options = launch_options(args, script, limit)?;
     let header = options.branch.as_ref().map(|b| b.header());
     if let Some(branch) = options.branch.as_ref().filter(|_| !args.virtual_clock) {
-        let live = branch.live.clone();
-        tokio::spawn(async move {
-            live.notified().await;
-            tokio::time::resume();
-        });
+        real_time_from(branch.live.clone());
     }
     let stepper = options.stepper.clone();
-    let team =
-        crate::network::TeamPlace::of(behaviour.manifest.team.as_ref(), args.member.as_deref())?;
-    let network = args.network.for_team(team.as_ref());
-    let board = crate::network::behaviour_whiteboard(&network, team.clone()).await?;
-    if !network.is_local() {
-        println!("  {}", network.describe());
-    }
-    if let Some(team) = team {
-        println!("  {} of team `{}`", team.member, team.name);
-    }
+    let board = whiteboard(behaviour, args).await?;
     // Subscribed before anything starts, so the record misses nothing.
     let mut recorder = match &args.record {
         Some(path) => Some(record::start(&board, path, header.as_deref())?),
@@ -206,14 +229,9 @@ async fn run_on_board(
         running.stop().await;
         return Ok(false);
     }
-    // The page's Stop button ends the run as Ctrl-C does (a branch's recording is kept whole).
-    let stop = Arc::new(tokio::sync::Notify::new());
-    if let Some(monitor) = monitor.as_ref().filter(|_| !args.monitor_read_only) {
-        monitor.set_stopper(stop.clone());
-    }
     let live = Live {
         view,
-        stop,
+        stop: stop_button(monitor.as_ref(), args),
         trace_file,
         changed: watch(behaviour, args.watch),
         monitor: monitor.clone(),

@@ -3,21 +3,13 @@
 //! there, so a person (or nothing) changes what the world does next; recorded, the branch is a
 //! recording of its own that names its parent and round.
 
-use crate::recorded::{answer_as_recorded, split_outside, RecordedFeed, Recording};
+use crate::recorded::{answer_as_recorded, split_outside, BranchOf, RecordedFeed, Recording};
 use crate::{Behaviour, BehaviourError};
 use proclaim_board::Whiteboard;
 use proclaim_runner::Rounds;
 use rustc_hash::FxHashSet;
-use serde::{Deserialize, Serialize};
 use std::future::Future;
 use std::sync::Arc;
-
-/// Where a branch came from: the recording and the round it left it at.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct BranchOf {
-    pub parent: String,
-    pub round: u64,
-}
 
 /// A recording to replay up to `of.round`, and go on live from.
 #[derive(Clone, Debug)]

@@ -9,17 +9,15 @@ use crate::load::Behaviour;
 use crate::manifest::Schedule;
 use crate::manifest::{SensorKind, Simulator};
 use crate::replaced::Replaced;
-use proclaim_board::{Pattern, Suppressor, Whiteboard};
+use crate::runners::{machine_runners, Driving};
+use proclaim_board::{Pattern, Whiteboard};
 use proclaim_experts::{
     ButtonWrapper, FallWrapper, FunctionExpert, GameControllerReceiver, Impersonator,
     ReasonerExpert, ReceiverConfig, Script, When,
 };
 use proclaim_gcsim::{default_game, play, GameEvent, SimConfig};
 use proclaim_lower::RingletPlan;
-use proclaim_runner::{
-    Event, Hosts, MachineRunner, Ringlet, RoundCounter, Rounds, RoundsEnd, RunOptions, Shared,
-    Stepper,
-};
+use proclaim_runner::{Event, Hosts, Ringlet, RoundCounter, Rounds, RoundsEnd, Shared, Stepper};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::future::Future;
 use std::net::SocketAddr;
@@ -68,6 +66,15 @@ pub struct LaunchOptions {
 }
 
 impl LaunchOptions {
+    /// What the machines' runners take of these options.
+    pub(crate) fn driving(&self) -> Driving<'_> {
+        Driving {
+            hosts: &self.hosts,
+            halt_on_timeout: self.halt_on_timeout,
+            stepper: self.stepper.as_ref(),
+        }
+    }
+
     /// The script the run plays: the one given (empty: none at all), else the manifest's.
     pub(crate) fn script_played<'b>(&'b self, behaviour: &'b Behaviour) -> Option<&'b Script> {
         self.script.as_ref().or(behaviour.script.as_ref())
@@ -291,7 +298,7 @@ pub async fn launch(
             });
         }
         None => {
-            for runner in machine_runners(behaviour, &options, &tx, epoch, &shared) {
+            for runner in machine_runners(behaviour, options.driving(), &tx, epoch, &shared) {
                 tasks.spawn(runner.run(board.clone()));
             }
         }
@@ -696,54 +703,17 @@ fn rounds_of(
     if behaviour.manifest.schedule == Schedule::Concurrent {
         return None;
     }
-    let rounds = Rounds::new(machine_runners(behaviour, options, tx, epoch, shared));
+    let rounds = Rounds::new(machine_runners(
+        behaviour,
+        options.driving(),
+        tx,
+        epoch,
+        shared,
+    ));
     Some(match &options.stepper {
         Some(stepper) => rounds.stepped_by(stepper.clone()),
         None => rounds,
     })
-}
-
-/// A runner for every machine, in manifest order, sharing the behaviour's variables and
-/// epoch, with its events into `tx`.
-pub(crate) fn machine_runners(
-    behaviour: &Behaviour,
-    options: &LaunchOptions,
-    tx: &mpsc::UnboundedSender<Event>,
-    epoch: tokio::time::Instant,
-    shared: &Arc<Shared>,
-) -> Vec<MachineRunner> {
-    // One per run: what holds each suppressed type is the run's own.
-    let suppressor = (!behaviour.suppress.is_empty()).then(|| {
-        let holds = behaviour
-            .suppress
-            .iter()
-            .map(|(ty, hold)| (ty.as_str(), *hold));
-        Arc::new(parking_lot::Mutex::new(Suppressor::new(holds)))
-    });
-    behaviour
-        .machines
-        .iter()
-        .map(|loaded| {
-            let mut runner = MachineRunner::new(
-                loaded.machine.clone(),
-                options.hosts.clone(),
-                RunOptions {
-                    ring_period: behaviour.ring_period,
-                    answer_timeout: behaviour.answer_timeout,
-                    start_running: loaded.start,
-                    halt_on_timeout: options.halt_on_timeout,
-                    stepper: options.stepper.clone(),
-                    shared: Some(shared.clone()),
-                    epoch: Some(epoch),
-                    priority: loaded.priority,
-                    suppressor: suppressor.clone(),
-                },
-            )
-            .with_loader(loaded.loader.clone());
-            runner.events_into(tx.clone());
-            runner
-        })
-        .collect()
 }
 
 /// Each machine's final states, and the machines running from the start.

@@ -31,6 +31,7 @@ mod ranges;
 mod recorded;
 mod replaced;
 mod rerecord;
+mod runners;
 mod subsumption;
 mod team;
 pub mod testing;
@@ -39,7 +40,7 @@ mod tried;
 mod why;
 
 pub use analysis::{check_behaviour, check_behaviour_with, script_warnings};
-pub use branch::{Branch, BranchOf};
+pub use branch::Branch;
 pub use checkpoint::{
     Checkpoint, CheckpointPlan, RangeWarning, ScriptImage, TheoryImage, CHECKPOINT_FORMAT,
     CHECKPOINT_VERSION,
@@ -65,7 +66,7 @@ pub use program_entries::{ProgramEntry, PrologEntry};
 pub use programs::{LoadedProgram, ProgramKind};
 pub use ranges::DeclaredRange;
 pub use recorded::{
-    message_line, read_recording, replay_recording, ringlet_line, Difference, Recording,
+    message_line, read_recording, replay_recording, ringlet_line, BranchOf, Difference, Recording,
     RecordingError, ReplayOutcome,
 };
 pub use rerecord::{rerecord, Rerecorded, RoundChange};

@@ -6,14 +6,13 @@
 //! outside experts answered is answered again, query by query. The machines' states, postings,
 //! answers and variables are then compared with the recording, round by round.
 
-use crate::branch::BranchOf;
-use crate::launch::machine_runners;
 use crate::load::Behaviour;
-use crate::LaunchOptions;
+use crate::runners::{machine_runners, Driving};
 use proclaim_board::{Message, ModuleDecl, Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_experts::ReasonerExpert;
 use proclaim_runner::{Event, Feed, Ringlet, Rounds};
 use rustc_hash::{FxHashMap, FxHashSet};
+use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 use std::fmt;
 use std::time::Duration;
@@ -34,6 +33,13 @@ pub(crate) struct Recorded {
     pub module: String,
     pub ty: String,
     pub value: Value,
+}
+
+/// Where a branch came from: the recording and the round it left it at.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct BranchOf {
+    pub parent: String,
+    pub round: u64,
 }
 
 /// A recording read back.
@@ -285,7 +291,13 @@ pub(crate) async fn replay(
     let epoch = tokio::time::Instant::now();
     let (tx, mut events) = mpsc::unbounded_channel();
     let shared = behaviour.shared_variables();
-    let runners = machine_runners(behaviour, &LaunchOptions::default(), &tx, epoch, &shared);
+    let hosts = proclaim_runner::Hosts::default();
+    let driving = Driving {
+        hosts: &hosts,
+        halt_on_timeout: false,
+        stepper: None,
+    };
+    let runners = machine_runners(behaviour, driving, &tx, epoch, &shared);
     drop(tx);
     let feed = RecordedFeed::new(recording, outside);
     let mut schedule = Rounds::new(runners).fed_by(feed);

@@ -239,19 +239,9 @@ impl Rounds {
                 return RoundsEnd::AllOver;
             }
             commanded = false;
-            if let Some(feed) = self.feed() {
-                let more = feed.lock().after_round(round);
-                match &self.live_after_feed {
-                    _ if more => {}
-                    None => return RoundsEnd::FeedDone,
-                    Some(live) => {
-                        self.gone_live
-                            .store(true, std::sync::atomic::Ordering::Relaxed);
-                        if let Some(stepper) = &self.stepper {
-                            stepper.pause();
-                        }
-                        live.notify_one();
-                    }
+            if self.feed().is_some() {
+                if let Some(end) = self.after_fed_round(round) {
+                    return end;
                 }
                 continue;
             }
@@ -289,6 +279,27 @@ impl Rounds {
             // either.
             tokio::task::consume_budget().await;
         }
+    }
+
+    /// After a round the feed paced: how the run ends when the feed is done and nothing goes
+    /// on live; a branch goes on live instead (paused, when stepped).
+    fn after_fed_round(&self, round: u64) -> Option<RoundsEnd> {
+        let more = self
+            .feed()
+            .is_some_and(|feed| feed.lock().after_round(round));
+        if more {
+            return None;
+        }
+        let Some(live) = &self.live_after_feed else {
+            return Some(RoundsEnd::FeedDone);
+        };
+        self.gone_live
+            .store(true, std::sync::atomic::Ordering::Relaxed);
+        if let Some(stepper) = &self.stepper {
+            stepper.pause();
+        }
+        live.notify_one();
+        None
     }
 
     /// Whether the round just played at `moment`, which fired nothing, was still and the outside
