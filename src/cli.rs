@@ -602,6 +602,10 @@ pub struct RunArgs {
     /// The monitor page shows the run and has no controls: nobody can pause, step or post
     #[arg(long, requires = "monitor")]
     pub monitor_read_only: bool,
+    /// Start paused before the first round: the page's Step and Resume start it (a
+    /// counterexample's script, say, walked through round by round, changed on the way)
+    #[arg(long, requires = "monitor", conflicts_with = "monitor_read_only")]
+    pub paused: bool,
     /// This robot's name in its team, in place of the manifest's `[team] member` (one behaviour
     /// run as several robots)
     #[arg(long, value_name = "NAME")]

@@ -151,6 +151,31 @@ fn a_branch_outside_its_recording_is_refused_saying_why() {
     );
 }
 
+#[test]
+fn a_run_under_the_monitor_can_start_paused_before_its_first_round() {
+    let (_run, url) = proclaim_with_monitor(&[
+        "run",
+        "microwave",
+        "--monitor",
+        "127.0.0.1:0",
+        "--paused",
+        "--for",
+        "30s",
+    ]);
+    let entered = |f: &Json| {
+        let events = f["events"].as_array().cloned().unwrap_or_default();
+        events.iter().any(|e| e["event"] == "entered")
+    };
+    until(&url, "the page", |f| f["stepping"]["paused"] == true);
+    std::thread::sleep(Duration::from_millis(300));
+    let (_, frame) = http(&url, "GET", "/api/frame", None);
+    let frame: Json = serde_json::from_str(&frame).unwrap();
+    assert!(!entered(&frame), "no round ran: {frame}");
+    let (status, _) = http(&url, "POST", "/api/control", Some(r#"{"action":"step"}"#));
+    assert_eq!(status, 204);
+    until(&url, "the first round", entered);
+}
+
 /// Polls the page's frame until `check` holds, failing with the last frame.
 fn until(url: &str, what: &str, check: impl Fn(&Json) -> bool) -> Json {
     let deadline = Instant::now() + Duration::from_secs(30);

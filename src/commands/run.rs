@@ -166,7 +166,14 @@ fn launch_options(
         stepper: if args.step {
             Some(Stepper::default())
         } else {
-            args.monitor.as_ref().map(|_| Stepper::free())
+            let stepper = || {
+                if args.paused {
+                    Stepper::default()
+                } else {
+                    Stepper::free()
+                }
+            };
+            args.monitor.as_ref().map(|_| stepper())
         },
         person: person(&args.ask),
         ringlets: args.record.is_some(),

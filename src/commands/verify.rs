@@ -466,7 +466,7 @@ fn write_counterexample(
         |f| absolute(f).display().to_string(),
     );
     eprintln!(
-        "counterexample: {} (replay it with `proclaim run {folder} --script {} --virtual-clock --for {}ms`) and {}, that run's trace (`proclaim replay --monitor {} --behaviour {folder}`)",
+        "counterexample: {} (replay it with `proclaim run {folder} --script {} --virtual-clock --for {}ms`, or walk it live from its first round with `--monitor --paused`) and {}, that run's trace (`proclaim replay --monitor {} --behaviour {folder}`)",
         path.display(),
         absolute(path).display(),
         limit.as_millis(),
