@@ -1,15 +1,17 @@
 //! What reaches a compiled run from outside while it waits: other modules' postings on its
-//! whiteboard (not its own, not queries) and Ctrl-C, in the order they come.
+//! whiteboard (not its own, not queries) and Ctrl-C (or the page's Stop), in the order they come.
 
 use proclaim_board::{Pattern, Value, Whiteboard, QUERY_TYPE};
 use proclaim_runtime::host::Heard;
-use std::sync::mpsc;
+use std::sync::{mpsc, Arc};
 
-/// Starts listening on `runtime`; what is heard comes out of the receiver.
+/// Starts listening on `runtime`; what is heard comes out of the receiver. `stop` (the page's
+/// Stop button) ends the run as Ctrl-C does.
 pub(crate) fn hear(
     runtime: &tokio::runtime::Runtime,
     board: &Whiteboard,
     ours: Vec<&'static str>,
+    stop: Arc<tokio::sync::Notify>,
 ) -> mpsc::Receiver<Heard> {
     let (tell, heard) = mpsc::channel();
     let mut all = board.subscribe_pattern(Pattern::All);
@@ -35,9 +37,15 @@ pub(crate) fn hear(
         }
     });
     runtime.spawn(async move {
-        if tokio::signal::ctrl_c().await.is_ok() {
-            let _ = tell.send(Heard::Interrupted);
+        tokio::select! {
+            interrupted = tokio::signal::ctrl_c() => {
+                if interrupted.is_err() {
+                    return;
+                }
+            }
+            () = stop.notified() => {}
         }
+        let _ = tell.send(Heard::Interrupted);
     });
     heard
 }

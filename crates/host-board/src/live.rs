@@ -12,6 +12,7 @@ use proclaim_runtime::Event;
 use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::sync::mpsc;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The run's whiteboard, its page, and what is heard there.
@@ -46,11 +47,15 @@ impl LiveBoard {
             .build()
             .map_err(|e| format!("no runtime for the whiteboard ({e})"))?;
         let board = runtime.block_on(whiteboard(place))?;
-        let heard = hear(&runtime, &board, ours);
+        let stop = Arc::new(tokio::sync::Notify::new());
+        let heard = hear(&runtime, &board, ours, stop.clone());
         let stepper = place.monitor.as_ref().map(|_| Stepper::free());
         let (monitor, page) = match &place.monitor {
             Some(asked) => {
                 let monitor = Monitor::live(name, charts(), board.clone(), stepper.clone());
+                if !place.read_only {
+                    monitor.set_stopper(stop);
+                }
                 let read_only = place.read_only;
                 let (bound, shown) =
                     runtime.block_on(monitor.serve_asked(asked, MONITOR_ADDR, |wanted| {
