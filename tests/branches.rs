@@ -123,6 +123,89 @@ fn a_branch_plays_its_recording_up_to_its_round_and_is_a_recording_proclaim_test
 }
 
 #[test]
+fn a_branch_whose_recording_answered_labels_ends_when_still_and_reads_back() {
+    // The keeper's script answers labels the machines ask: after the branch's round nothing
+    // answers them, and a branch alone with its theories ends at a still round.
+    let dir = scratch("still");
+    let keeper = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/keeper");
+    let record = dir.join("keeper.jsonl");
+    let out = proclaim(&[
+        "run",
+        keeper,
+        "--virtual-clock",
+        "--for",
+        "20s",
+        "--record",
+        arg(&record),
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let branch = dir.join("half.jsonl");
+    let out = within(
+        Duration::from_secs(60),
+        &[
+            "run",
+            keeper,
+            "--virtual-clock",
+            "--branch",
+            arg(&record),
+            "--at",
+            "100",
+            "--record",
+            arg(&branch),
+        ],
+    );
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{said}");
+    assert!(said.contains("the recording answers"), "{said}");
+    assert!(said.contains("stopped: nothing outside posts and the machines are still"), "{said}");
+    // Printed as any recording is, its first line naming the parent skipped.
+    let out = proclaim(&["replay", arg(&branch)]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Recorded again, a branch still names its parent.
+    let out = proclaim(&["test", keeper, arg(&branch), "--update"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let first = std::fs::read_to_string(&branch).unwrap();
+    assert!(first.starts_with(r#"{"branch":"#), "{}", &first[..80]);
+}
+
+/// `proclaim ARGS`, failing the test if it has not ended within `limit`.
+fn within(limit: Duration, args: &[&str]) -> std::process::Output {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Read as it comes, so a full pipe never holds the run up.
+    let mut stdout = child.stdout.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut text = Vec::new();
+        let _ = std::io::Read::read_to_end(&mut stdout, &mut text);
+        text
+    });
+    let deadline = Instant::now() + limit;
+    while matches!(child.try_wait(), Ok(None)) {
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            panic!("`proclaim {}` did not end within {limit:?}", args.join(" "));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let mut out = child.wait_with_output().unwrap();
+    out.stdout = reader.join().unwrap();
+    out
+}
+
+#[test]
 fn a_branch_outside_its_recording_is_refused_saying_why() {
     let dir = scratch("refused");
     let (record, kitchen) = recorded_microwave(&dir);
@@ -132,8 +215,11 @@ fn a_branch_outside_its_recording_is_refused_saying_why() {
         .max()
         .unwrap();
     for (at, why) in [
-        ("1".to_string(), "round 1 is a run of its own"),
-        ((last + 2).to_string(), "is not in the recording"),
+        ("1".to_string(), "a branch starts at round 2 or later"),
+        (
+            (last + 2).to_string(),
+            "is past the recording, whose last round is",
+        ),
     ] {
         let out = proclaim(&["run", "microwave", "--branch", arg(&record), "--at", &at]);
         let said = String::from_utf8_lossy(&out.stderr);
@@ -174,6 +260,50 @@ fn a_run_under_the_monitor_can_start_paused_before_its_first_round() {
     let (status, _) = http(&url, "POST", "/api/control", Some(r#"{"action":"step"}"#));
     assert_eq!(status, 204);
     until(&url, "the first round", entered);
+}
+
+#[test]
+fn the_replay_page_starts_a_branch_and_its_page_stops_it_with_the_recording_whole() {
+    let dir = scratch("api");
+    let (record, _) = recorded_microwave_for(&dir, "30s");
+    let (replay, url) = proclaim_with_monitor(&[
+        "replay",
+        arg(&record),
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "microwave",
+    ]);
+    let _replay = Interrupted(replay);
+    let (_, model) = http(&url, "GET", "/api/model", None);
+    let model: Json = serde_json::from_str(&model).unwrap();
+    assert_eq!(model["can_branch"], true);
+    let (status, why) = http(&url, "POST", "/api/branch", Some(r#"{"at":0}"#));
+    assert_eq!(status, 422, "{why}");
+    assert!(why.contains("round 2 or later"), "{why}");
+    let (status, branched) = http(&url, "POST", "/api/branch", Some(r#"{"at":100}"#));
+    assert_eq!(status, 200, "{branched}");
+    let branched: Json = serde_json::from_str(&branched).unwrap();
+    let page = branched["url"].as_str().unwrap();
+    let file = PathBuf::from(branched["file"].as_str().unwrap());
+    until(page, "the pause at the branch", |f| {
+        f["stepping"]["paused"] == true
+    });
+    let (status, _) = http(page, "POST", "/api/control", Some(r#"{"action":"stop"}"#));
+    assert_eq!(status, 204);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let test = loop {
+        let test = proclaim(&["test", "microwave", arg(&file)]);
+        if test.status.success() || Instant::now() > deadline {
+            break test;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert!(
+        test.status.success(),
+        "{}",
+        String::from_utf8_lossy(&test.stdout)
+    );
 }
 
 /// Polls the page's frame until `check` holds, failing with the last frame.

@@ -33,7 +33,9 @@ pub fn asked(args: &RunArgs) -> Result<Option<Branch>, Failure> {
             "--branch replays a recording onto a board of its own; it cannot share one".into(),
         ));
     }
-    let parent = path.display().to_string();
+    // Named whole, so the branch's parent is found from wherever the branch is read.
+    let parent = std::fs::canonicalize(path).unwrap_or_else(|_| path.clone());
+    let parent = parent.display().to_string();
     Branch::new(read(path)?, parent, round)
         .map(Some)
         .map_err(|why| Failure::Argument(format!("--branch {}: {why}", path.display())))
@@ -44,24 +46,53 @@ pub fn asked(args: &RunArgs) -> Result<Option<Branch>, Failure> {
 pub struct Started(Arc<Mutex<Vec<Child>>>);
 
 impl Started {
-    /// Ends every branch still running.
+    /// Ends every branch still running as Ctrl-C would, so each writes its recording out;
+    /// one that has not ended within a few seconds is killed.
     pub fn stop_all(&self) {
         let children = match self.0.lock() {
             Ok(mut children) => std::mem::take(&mut *children),
             Err(_) => return,
         };
+        for child in &children {
+            interrupt(child);
+        }
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
         for mut child in children {
+            while std::time::Instant::now() < deadline && matches!(child.try_wait(), Ok(None)) {
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
             let _ = child.kill();
             let _ = child.wait();
         }
     }
 }
 
+/// Ctrl-C to a branch's run.
+#[cfg(unix)]
+fn interrupt(child: &Child) {
+    if let Ok(pid) = libc::pid_t::try_from(child.id()) {
+        // SAFETY: kill(2) touches no memory of ours; the pid is a child we started and have not
+        // waited for, so it names no other process.
+        unsafe {
+            libc::kill(pid, libc::SIGINT);
+        }
+    }
+}
+
+#[cfg(not(unix))]
+fn interrupt(_child: &Child) {}
+
 /// Starts branches of the recording at `record` of the behaviour `named`, each a `proclaim run
 /// --branch` with its page on the replay page's host and its recording beside the parent.
 pub fn brancher(named: &str, record: &Path, page: SocketAddr, started: Started) -> Brancher {
     let (named, record) = (named.to_string(), record.to_path_buf());
     Arc::new(move |round| {
+        // One branch starts at a time: each gets a file of its own, and the ended are let go.
+        let mut children = started
+            .0
+            .lock()
+            .map_err(|_| "the branches' list is unusable")?;
+        children.retain_mut(|c| matches!(c.try_wait(), Ok(None)));
         let file = free_name(&record, round);
         let program = std::env::current_exe().map_err(|e| format!("no program to run: {e}"))?;
         let mut child = Command::new(program)
@@ -77,9 +108,7 @@ pub fn brancher(named: &str, record: &Path, page: SocketAddr, started: Started) 
             .spawn()
             .map_err(|e| format!("the branch did not start: {e}"))?;
         let url = page_of(&mut child)?;
-        if let Ok(mut children) = started.0.lock() {
-            children.push(child);
-        }
+        children.push(child);
         Ok(Branched {
             url,
             file: file.display().to_string(),

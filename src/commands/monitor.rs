@@ -136,7 +136,9 @@ pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitC
             monitor.set_explainer(explainer(named));
         }
         println!("replaying {} ({count} events)", trace.display());
-        let page = open(&monitor, addr).await?;
+        // Off loopback, only the page's own address (with its token) may branch: a branch
+        // starts a process and writes a file.
+        let page = open_with(&monitor, addr, |bound| Access::for_address(bound, false)).await?;
         let started = super::branch::Started::default();
         if let Some(named) = behaviour.filter(|_| branchable) {
             let brancher = super::branch::brancher(named, trace, page, started.clone());

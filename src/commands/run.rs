@@ -195,7 +195,8 @@ async fn run_on_board(
     trace_file: &mut Option<std::io::BufWriter<std::fs::File>>,
 ) -> Result<bool, Failure> {
     let mut interrupt = crate::interrupt::Interrupt::new();
-    let script_used = script.is_some() || behaviour.script.is_some();
+    // A branch plays no script: its recording says what came from outside.
+    let script_used = (script.is_some() || behaviour.script.is_some()) && args.branch.is_none();
     let options = launch_options(args, script, limit)?;
     let header = options.branch.as_ref().map(|b| b.header());
     if let Some(branch) = options.branch.as_ref().filter(|_| !args.virtual_clock) {
@@ -634,11 +635,15 @@ fn read_record(text: &str) -> Option<Result<Vec<(Duration, String)>, usize>> {
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty());
     let first: serde_json::Value = serde_json::from_str(lines.clone().next()?.1).ok()?;
-    first.get("seq").or_else(|| first.get("ringlet"))?;
+    first
+        .get("seq")
+        .or_else(|| first.get("ringlet"))
+        .or_else(|| first.get("branch"))?;
     Some(lines.try_fold(Vec::new(), |mut out, (i, l)| {
         let value: serde_json::Value = serde_json::from_str(l).map_err(|_| i + 1)?;
-        // The ringlets and events are for `proclaim test`.
-        if value.get("ringlet").is_some() || value.get("event").is_some() {
+        // The ringlets and events are for `proclaim test`, a branch's parent for the reader.
+        let skipped = ["ringlet", "event", "branch"];
+        if skipped.iter().any(|k| value.get(k).is_some()) {
             return Ok(out);
         }
         let shown = record::shown(&value).ok_or(i + 1)?;

@@ -32,9 +32,14 @@ impl Branch {
             .map(|r| r.round)
             .max()
             .unwrap_or(0);
-        if round < 2 || round > last + 1 {
+        if round < 2 {
             return Err(format!(
-                "round {round} is not in the recording: it goes from round 1 to round {last}, and a branch starts at round 2 to {} (round 1 is a run of its own)",
+                "a branch starts at round 2 or later: before round {round} there is nothing to go back to (run the behaviour without --branch)"
+            ));
+        }
+        if round > last + 1 {
+            return Err(format!(
+                "round {round} is past the recording, whose last round is {last}: a branch starts at round 2 to {}",
                 last + 1
             ));
         }
@@ -47,7 +52,7 @@ impl Branch {
 
     /// The first line of the branch's own recording.
     pub fn header(&self) -> String {
-        serde_json::json!({ "branch": self.of }).to_string()
+        self.of.header()
     }
 
     /// The schedule fed by the recording until the branch's round, then live.

@@ -341,7 +341,20 @@ async fn modules(
 ) -> Result<(Vec<Module>, Arc<tokio::sync::Notify>), BehaviourError> {
     let replaced = replaced(behaviour, options);
     let mut modules = experts(behaviour, board, &replaced, notes, kept);
-    let sim_note = sensors(behaviour, board, options, &replaced, &mut modules, notes).await?;
+    // A branch's outside is its recording: no sensor is even opened (one may listen on a port
+    // the robot holds).
+    let sim_note = match &options.branch {
+        None => sensors(behaviour, board, options, &replaced, &mut modules, notes).await?,
+        Some(branch) => {
+            if !behaviour.sensors.is_empty() {
+                notes.push(format!(
+                    "left out the sensor wrappers: the recording says what came from outside until round {}",
+                    branch.of.round
+                ));
+            }
+            None
+        }
+    };
     // The script's timed steps wait for the machines, so that one timed for the first round's
     // moment comes at that round's start (`docs/spec/behaviour.md` §3.1, between rounds).
     let machines_started = Arc::new(tokio::sync::Notify::new());
@@ -408,16 +421,18 @@ fn silent_from(
     options: &LaunchOptions,
     modules: &[Module],
 ) -> Option<Duration> {
+    // A branch's recording answers only what the branch replays.
     let ours = |m: &Module| {
-        matches!(m.name.as_str(), "impersonator" | "script")
+        matches!(m.name.as_str(), "impersonator" | "script" | "recording")
             || behaviour.theories.iter().any(|t| t.name == m.name)
     };
     if !options.end_when_still || options.person.is_some() || !modules.iter().all(ours) {
         return None;
     }
-    let steps = options
+    let played = options
         .script_played(behaviour)
-        .map_or(&[][..], |s| &s.steps[..]);
+        .filter(|_| options.branch.is_none());
+    let steps = played.map_or(&[][..], |s| &s.steps[..]);
     steps
         .iter()
         .try_fold(Duration::ZERO, |last, step| match step.when {

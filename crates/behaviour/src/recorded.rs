@@ -42,6 +42,13 @@ pub struct BranchOf {
     pub round: u64,
 }
 
+impl BranchOf {
+    /// The line a branch's recording starts with.
+    pub fn header(&self) -> String {
+        serde_json::json!({ "branch": self }).to_string()
+    }
+}
+
 /// A recording read back.
 #[derive(Clone, Debug, Default)]
 pub struct Recording {

@@ -52,7 +52,11 @@ pub fn rerecord(behaviour: &Behaviour, recording: &Recording) -> std::io::Result
         }
         (messages, ringlets, events)
     });
-    let mut text = String::new();
+    // A branch recorded again is still the branch of its parent.
+    let mut text = match &recording.branch {
+        Some(of) => of.header() + "\n",
+        None => String::new(),
+    };
     let lines = messages.iter().map(message_line);
     let lines = lines.chain(ringlets.iter().map(ringlet_line));
     let lines = lines.chain(

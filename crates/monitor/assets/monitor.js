@@ -301,10 +301,13 @@ function roundAfter(at) {
 
 // "Branch here": the recording replayed to the round the slider shows, live from there on a
 // page of its own, which this page goes to.
+// Round 1 is the run's start: there is nothing to go back to before it.
 function labelBranch(at) {
   const round = roundAfter(at);
-  $("branch").textContent = `Branch at round ${round}`;
-  $("branch").dataset.round = String(round);
+  const button = $("branch");
+  button.disabled = round < 2;
+  button.textContent = round < 2 ? "Branch (from round 2 on)" : `Branch at round ${round}`;
+  button.dataset.round = String(round);
 }
 
 function branching(slider) {
@@ -321,7 +324,7 @@ function branching(slider) {
       location.href = `${url}#branch=${encodeURIComponent(file)}`;
     } catch (e) {
       $("status").textContent = e.message;
-      button.disabled = false;
+      labelBranch(Number(slider.value));
     }
   });
 }

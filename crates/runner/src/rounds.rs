@@ -370,6 +370,10 @@ impl Rounds {
             {
                 continue;
             }
+            if self.feed().is_none() {
+                // Gone live after a feed: its queries are the machine's own now.
+                run.query_hook = None;
+            }
             if self.feed().is_some() || self.ticks.is_some() {
                 let ringlet = Ringlet {
                     round,
@@ -432,9 +436,6 @@ impl Rounds {
                 feed: feed.clone(),
                 ringlet,
             });
-        } else {
-            // Gone live after a feed: its queries are the machine's own now.
-            run.query_hook = None;
         }
         // What the feed posted counts as before the ringlet too, and it rings at the moment
         // the feed moved it to.
