@@ -157,7 +157,10 @@ fn a_branch_whose_recording_answered_labels_ends_when_still_and_reads_back() {
     let said = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{said}");
     assert!(said.contains("the recording answers"), "{said}");
-    assert!(said.contains("stopped: nothing outside posts and the machines are still"), "{said}");
+    assert!(
+        said.contains("stopped: nothing outside posts and the machines are still"),
+        "{said}"
+    );
     // Printed as any recording is, its first line naming the parent skipped.
     let out = proclaim(&["replay", arg(&branch)]);
     assert!(

@@ -37,10 +37,10 @@ impl Branch {
                 "a branch starts at round 2 or later: before round {round} there is nothing to go back to (run the behaviour without --branch)"
             ));
         }
-        if round > last + 1 {
+        if round > last.saturating_add(1) {
             return Err(format!(
                 "round {round} is past the recording, whose last round is {last}: a branch starts at round 2 to {}",
-                last + 1
+                last.saturating_add(1)
             ));
         }
         Ok(Branch {
@@ -101,5 +101,28 @@ impl Branch {
             .chain(behaviour.theories.iter().map(|t| t.name.clone()))
             .collect();
         split_outside(&self.recording, &inside, &machines, Some(self.of.round))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::read_recording;
+
+    fn recording(last_round: u64) -> Recording {
+        let line =
+            format!(r#"{{"ringlet":{{"at_us":0,"machine":0,"round":{last_round},"seq":1}}}}"#);
+        read_recording(&line).unwrap()
+    }
+
+    #[test]
+    fn a_branch_starts_from_round_two_to_the_round_after_the_last() {
+        let refused = |last, round| Branch::new(recording(last), "r".into(), round).err();
+        assert!(refused(5, 1).unwrap().contains("round 2 or later"));
+        assert_eq!(refused(5, 2), None);
+        assert_eq!(refused(5, 6), None);
+        assert!(refused(5, 7).unwrap().contains("whose last round is 5"));
+        // A recording that claims the last round there is cannot make the check overflow.
+        assert_eq!(refused(u64::MAX, u64::MAX), None);
     }
 }
