@@ -209,6 +209,61 @@ fn within(limit: Duration, args: &[&str]) -> std::process::Output {
 }
 
 #[test]
+fn a_branch_of_a_behaviour_changed_since_its_recording_says_where_it_no_longer_replays() {
+    let dir = scratch("changed");
+    let (record, _) = recorded_microwave(&dir);
+    // The microwave with its light brighter: the same folder layout, one word changed.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let changed = dir.join("machines/bright");
+    std::fs::create_dir_all(&changed).unwrap();
+    std::fs::create_dir_all(dir.join("theories")).unwrap();
+    for file in ["behaviour.toml", "kitchen.script"] {
+        std::fs::copy(
+            root.join("machines/microwave").join(file),
+            changed.join(file),
+        )
+        .unwrap();
+    }
+    let machine = std::fs::read_to_string(root.join("machines/microwave/Microwave.machine"));
+    let machine = machine.unwrap().replace("Light: on", "Light: bright");
+    std::fs::write(changed.join("Microwave.machine"), machine).unwrap();
+    std::fs::copy(
+        root.join("theories/microwave.dl"),
+        dir.join("theories/microwave.dl"),
+    )
+    .unwrap();
+    let branch = |behaviour: &Path| {
+        let out = proclaim(&[
+            "run",
+            arg(behaviour),
+            "--virtual-clock",
+            "--branch",
+            arg(&record),
+            "--at",
+            "30",
+        ]);
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let said = branch(&changed);
+    assert!(
+        said.starts_with(
+            "note: the behaviour no longer does what the recording did before round 30: round "
+        ),
+        "{said}"
+    );
+    assert!(
+        said.contains("expected posts Light: on, found posts Light: bright"),
+        "{said}"
+    );
+    let said = branch(&root.join("machines/microwave"));
+    assert!(
+        !said.contains("note:"),
+        "the same behaviour replays as recorded: {said}"
+    );
+}
+
+#[test]
 fn a_branch_outside_its_recording_is_refused_saying_why() {
     let dir = scratch("refused");
     let (record, kitchen) = recorded_microwave(&dir);
@@ -287,6 +342,11 @@ fn the_replay_page_starts_a_branch_and_its_page_stops_it_with_the_recording_whol
     let (status, branched) = http(&url, "POST", "/api/branch", Some(r#"{"at":100}"#));
     assert_eq!(status, 200, "{branched}");
     let branched: Json = serde_json::from_str(&branched).unwrap();
+    assert_eq!(
+        branched["notes"],
+        serde_json::json!([]),
+        "the same behaviour: no note"
+    );
     let page = branched["url"].as_str().unwrap();
     let file = PathBuf::from(branched["file"].as_str().unwrap());
     until(page, "the pause at the branch", |f| {

@@ -5,7 +5,7 @@
 
 use crate::cli::RunArgs;
 use crate::failure::Failure;
-use proclaim_behaviour::{read_recording, Branch, Recording};
+use proclaim_behaviour::{read_recording, Behaviour, Branch, Recording};
 use proclaim_monitor::{Branched, Brancher};
 use std::io::{BufRead, BufReader, Read};
 use std::net::SocketAddr;
@@ -40,6 +40,25 @@ pub fn asked(args: &RunArgs) -> Result<Option<Branch>, Failure> {
         .map(Some)
         .map_err(|why| Failure::Argument(format!("--branch {}: {why}", path.display())))
 }
+
+/// Says so when the behaviour, changed since the recording was made, does not replay it up to
+/// the branch's round: the branch starts from where the behaviour is, not where the recording
+/// was (a page that started the branch shows the note).
+pub fn say_if_replayed_differently(behaviour: &Behaviour, args: &RunArgs) -> Result<(), Failure> {
+    let Some(branch) = asked(args)? else {
+        return Ok(());
+    };
+    if let Some(d) = branch
+        .replayed_differently(behaviour)
+        .map_err(Failure::Runtime)?
+    {
+        println!("{NOTE}the behaviour no longer does what the recording did before round {}: {d}; the branch starts where the behaviour is now", branch.of.round);
+    }
+    Ok(())
+}
+
+/// How a branch's run starts a note a page that started it shows.
+const NOTE: &str = "note: ";
 
 /// The branches started from a replay page, stopped with it.
 #[derive(Clone, Default)]
@@ -107,24 +126,28 @@ pub fn brancher(named: &str, record: &Path, page: SocketAddr, started: Started) 
             .stderr(Stdio::piped())
             .spawn()
             .map_err(|e| format!("the branch did not start: {e}"))?;
-        let url = page_of(&mut child)?;
+        let (url, notes) = page_of(&mut child)?;
         children.push(child);
         Ok(Branched {
             url,
             file: file.display().to_string(),
+            notes,
         })
     })
 }
 
-/// The branch's page, from the line its run prints; what it said on error when it ended
-/// before printing one. The rest of its output is read (and dropped) so it never blocks.
-fn page_of(child: &mut Child) -> Result<String, String> {
+/// The branch's page, from the line its run prints, and the notes it printed before it; what
+/// it said on error when it ended before printing one. The rest of its output is read (and dropped) so it never blocks.
+fn page_of(child: &mut Child) -> Result<(String, Vec<String>), String> {
     let stdout = child.stdout.take().ok_or("the branch has no output")?;
     let mut lines = BufReader::new(stdout).lines();
-    let url = lines
-        .by_ref()
-        .map_while(Result::ok)
-        .find_map(|line| line.trim().strip_prefix("monitor: ").map(str::to_string));
+    let mut notes = Vec::new();
+    let url = lines.by_ref().map_while(Result::ok).find_map(|line| {
+        if let Some(note) = line.strip_prefix(NOTE) {
+            notes.push(note.to_string());
+        }
+        line.trim().strip_prefix("monitor: ").map(str::to_string)
+    });
     let stderr = child.stderr.take();
     let Some(url) = url else {
         let mut said = String::new();
@@ -138,7 +161,7 @@ fn page_of(child: &mut Child) -> Result<String, String> {
     if let Some(stderr) = stderr {
         std::thread::spawn(move || BufReader::new(stderr).lines().for_each(drop));
     }
-    Ok(url)
+    Ok((url, notes))
 }
 
 /// `kitchen.branch-r40.jsonl` beside `kitchen.jsonl`, or `…-r40-2.jsonl` and on when taken.

@@ -70,6 +70,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode, Failure> {
     };
     refuse_unchecked(&behaviour, script.as_ref(), &args)?;
     checkpoint::refuse_unasked(&args)?;
+    super::branch::say_if_replayed_differently(&behaviour, &args)?;
     if args.virtual_clock {
         refuse_processes_on_virtual_clock(&behaviour, script.as_ref())?;
     }

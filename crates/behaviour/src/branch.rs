@@ -3,7 +3,10 @@
 //! there, so a person (or nothing) changes what the world does next; recorded, the branch is a
 //! recording of its own that names its parent and round.
 
-use crate::recorded::{answer_as_recorded, split_outside, BranchOf, RecordedFeed, Recording};
+use crate::recorded::{
+    answer_as_recorded, replay_recording, split_outside, BranchOf, Difference, RecordedFeed,
+    Recording, ReplayOutcome,
+};
 use crate::{Behaviour, BehaviourError};
 use proclaim_board::Whiteboard;
 use proclaim_runner::Rounds;
@@ -47,6 +50,32 @@ impl Branch {
             recording,
             of: BranchOf { parent, round },
             live: Arc::default(),
+        })
+    }
+
+    /// Where the behaviour as it is now, replayed up to the branch's round, does not do what
+    /// the recording did: the branch then starts where the behaviour is now, not where the
+    /// recording was. Call it from a plain thread (it replays on a clock of its own).
+    pub fn replayed_differently(
+        &self,
+        behaviour: &Behaviour,
+    ) -> Result<Option<Difference>, std::io::Error> {
+        let cut = self.of.round;
+        let before = Recording {
+            messages: self.recording.messages.clone(),
+            ringlets: (self.recording.ringlets.iter())
+                .filter(|r| r.round < cut)
+                .cloned()
+                .collect(),
+            events: (self.recording.events.iter())
+                .filter(|e| e.round() < cut)
+                .cloned()
+                .collect(),
+            branch: None,
+        };
+        Ok(match replay_recording(behaviour, &before)? {
+            ReplayOutcome::Same { .. } => None,
+            ReplayOutcome::Differs(difference) => Some(difference),
         })
     }
 

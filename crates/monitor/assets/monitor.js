@@ -249,10 +249,16 @@ function live() {
     }
   }
   // A branch's page (the replay page sent us here) says where the branch is recorded.
-  const recordedIn = new URLSearchParams(location.hash.slice(1)).get("branch");
+  const given = new URLSearchParams(location.hash.slice(1));
+  const recordedIn = given.get("branch");
   if (recordedIn) {
     $("branch-info").hidden = false;
     $("branch-info").textContent = `a branch, paused where it left its recording; recorded in ${recordedIn}`;
+    // The behaviour changed since the recording: the branch is not where the recording was.
+    if (given.get("notes")) {
+      $("branch-info").textContent += ` · ${given.get("notes")}`;
+      $("branch-info").classList.add("lost");
+    }
   }
   if (model.can_stop) {
     $("controls").hidden = false;
@@ -320,8 +326,9 @@ function branching(slider) {
     $("status").textContent = `starting a branch at round ${button.dataset.round}…`;
     try {
       const response = await send("/api/branch", { at: Number(slider.value) });
-      const { url, file } = await response.json();
-      location.href = `${url}#branch=${encodeURIComponent(file)}`;
+      const { url, file, notes } = await response.json();
+      const said = notes.length ? `&notes=${encodeURIComponent(notes.join(" "))}` : "";
+      location.href = `${url}#branch=${encodeURIComponent(file)}${said}`;
     } catch (e) {
       $("status").textContent = e.message;
       labelBranch(Number(slider.value));

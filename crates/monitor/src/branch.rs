@@ -19,6 +19,8 @@ pub struct Branched {
     pub url: String,
     /// The recording it writes, a test once it is stopped.
     pub file: String,
+    /// What the branch said as it started (the behaviour no longer replays the recording).
+    pub notes: Vec<String>,
 }
 
 /// What the page asks: a branch where the slider is, after the first `at` events.
