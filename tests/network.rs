@@ -545,6 +545,81 @@ fn a_board_of_four_processes_outlives_each_of_them_killed_in_turn() {
     assert_no_tick_missed(&ticks(&watched));
 }
 
+/// The checkpoint of the latest round among `dir`'s `cp.rROUND.json` files.
+fn latest_checkpoint(dir: &std::path::Path) -> std::path::PathBuf {
+    let round = |p: &std::path::Path| -> Option<u64> {
+        let name = p.file_name()?.to_str()?;
+        name.strip_prefix("cp.r")?
+            .strip_suffix(".json")?
+            .parse()
+            .ok()
+    };
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| round(p).is_some())
+        .max_by_key(|p| round(p))
+        .expect("a checkpoint was written")
+}
+
+/// Issue 49's crash recovery on a team's board: a process killed and taken up from its last
+/// checkpoint goes on where it was, and the others see its values come back and its count go
+/// on, not a process starting over.
+#[test]
+fn a_process_killed_and_taken_up_from_its_checkpoint_goes_on_on_the_shared_board() {
+    let endpoint = free_endpoint();
+    let sensor = behaviour("resume-sensor", "Sensor", SENSOR);
+    let dir = std::path::PathBuf::from(&sensor);
+    let file = dir.join("cp.json");
+    // A teammate holds the endpoint; a watcher sees what the others see.
+    let keeper = behaviour("resume-keeper", "Keeper", &follower("Keeper"));
+    let mut keeper = proclaim(&["run", &keeper, "--listen", &endpoint, "--for", "120s"]);
+    let keeper_out = lines(&mut keeper);
+    wait_line(&keeper_out, "listening on", PATIENCE);
+    // Read on, so a full pipe never holds up the process the others connect through.
+    std::thread::spawn(move || keeper_out.iter().for_each(drop));
+    let mut watch = proclaim(&["watch", "*", "--connect", &endpoint, "--for", "120s"]);
+    let watch_out = lines(&mut watch);
+    let every = |extra: &[&str]| {
+        let mut args = vec!["run", &sensor, "--connect", &endpoint, "--for", "120s"];
+        args.extend_from_slice(extra);
+        args.iter().map(|a| a.to_string()).collect::<Vec<_>>()
+    };
+    let first = every(&[
+        "--checkpoint-every",
+        "2",
+        "--checkpoint-file",
+        file.to_str().unwrap(),
+    ]);
+    let mut run = proclaim(&first.iter().map(String::as_str).collect::<Vec<_>>());
+    let mut watched = wait_line(&watch_out, "tick = 12", PATIENCE);
+    kill(&mut run);
+    watched.extend(wait_line(&watch_out, "tickStale = true", PATIENCE));
+    let before = ticks(&watched).last().copied().unwrap();
+    let checkpoint = latest_checkpoint(&dir);
+    let taken_up = every(&["--resume", checkpoint.to_str().unwrap()]);
+    let _run = proclaim(&taken_up.iter().map(String::as_str).collect::<Vec<_>>());
+    // Its values are its own again, and it counts on from its checkpoint, not from 1.
+    let after = wait_line(&watch_out, &format!("tick = {}", before + 3), PATIENCE);
+    assert!(
+        after.iter().any(|l| l.contains("ballSeenStale = false")),
+        "{after:?}"
+    );
+    assert!(
+        after.iter().any(|l| l.contains("tickStale = false")),
+        "{after:?}"
+    );
+    let counted = ticks(&after);
+    assert!(
+        counted.iter().all(|t| *t + 3 > before),
+        "it went back only as far as its checkpoint, at most a round or two: {before} then {counted:?}"
+    );
+    assert!(
+        counted.windows(2).all(|w| w[1] == w[0] + 1 || w[1] <= w[0]),
+        "{counted:?}"
+    );
+}
+
 /// Reads a robot's lines until none comes for half a second (ten seconds at most): the state
 /// its `Player` machine is in then, `state` if it did not move.
 fn settled_player(rx: &std::sync::mpsc::Receiver<String>, mut state: String) -> String {

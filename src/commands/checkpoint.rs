@@ -18,17 +18,12 @@ pub struct CheckpointFiles {
 }
 
 /// Whether `args` ask for checkpoints in a way that can be kept: a file says where they go,
-/// not that one is taken; a board shared with other processes holds what no file can.
+/// not that one is taken.
 pub fn refuse_unasked(args: &RunArgs) -> Result<(), Failure> {
     let asked = !args.checkpoint_at.is_empty() || args.checkpoint_every.is_some();
     if args.checkpoint_file.is_some() && !asked {
         return Err(Failure::Argument(
             "--checkpoint-file says where checkpoints go; ask for one with --checkpoint-at ROUND or --checkpoint-every N".into(),
-        ));
-    }
-    if asked && !args.network.is_local() {
-        return Err(Failure::Argument(
-            "--checkpoint-at, --checkpoint-every: a board shared with other processes is theirs too, and no file can hold it; checkpoint a run on a board of its own".into(),
         ));
     }
     Ok(())

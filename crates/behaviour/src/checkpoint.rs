@@ -9,7 +9,7 @@
 use crate::error::BehaviourError;
 use crate::{Behaviour, LaunchOptions};
 use parking_lot::Mutex;
-use proclaim_board::{BoardImage, Value, Whiteboard};
+use proclaim_board::{BoardImage, KindName, Restored, Value, Whiteboard};
 use proclaim_experts::{Impersonator, ReasonerMemory, Script, ScriptPosition};
 use proclaim_runner::{Checkpoints, Rounds, RoundsImage};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -424,6 +424,7 @@ pub(crate) fn take_up(
     checkpoint: &Checkpoint,
     script: Option<&Script>,
     board: &Whiteboard,
+    ours: &[String],
 ) -> Result<tokio::time::Instant, BehaviourError> {
     let refused = |why: String| BehaviourError::Resume(vec![why]);
     let kept = checkpoint.script.as_ref();
@@ -445,6 +446,22 @@ pub(crate) fn take_up(
             checkpoint.at()
         ))
     })?;
-    board.restore(&checkpoint.board).map_err(refused)?;
+    if board.restore(&checkpoint.board).map_err(refused)? == Restored::Numbering {
+        reclaim(checkpoint, board, ours);
+    }
     Ok(epoch)
+}
+
+/// On a shared board, this process's state types go on holding what it had posted: the others
+/// marked them stale when the process that posted them went, and a current value is posted
+/// again by whoever owns it (signals and data, which are events, are not posted twice).
+fn reclaim(checkpoint: &Checkpoint, board: &Whiteboard, ours: &[String]) {
+    for ty in &checkpoint.board.types {
+        let Some(latest) = ty.latest.as_ref().filter(|m| ours.contains(&m.module)) else {
+            continue;
+        };
+        if ty.kind == KindName::State {
+            board.post(&latest.module, &ty.ty, Value::from_json(&latest.value));
+        }
+    }
 }

@@ -253,7 +253,9 @@ pub async fn launch(
     // The trace's times count from here, as the impersonator's script times do, so `at 1s`
     // shows as 1.000 s; a resumed run's from where its checkpoint's did.
     let epoch = match resume.as_deref() {
-        Some(c) => checkpoint::take_up(c, options.script_played(behaviour), board)?,
+        Some(c) => {
+            checkpoint::take_up(c, options.script_played(behaviour), board, &ours(behaviour))?
+        }
         None => tokio::time::Instant::now(),
     };
     let mut kept = Kept::new(options.checkpoints.is_some(), resume.clone());
@@ -324,6 +326,17 @@ pub async fn launch(
         running.taken_up(&c, behaviour);
     }
     Ok(running)
+}
+
+/// The modules of this run whose postings a checkpoint's board holds as its own: the machines,
+/// the theories and the script's impersonator.
+fn ours(behaviour: &Behaviour) -> Vec<String> {
+    let machines = behaviour.machines.iter().map(|m| m.machine.name.clone());
+    let theories = behaviour.theories.iter().map(|t| t.name.clone());
+    machines
+        .chain(theories)
+        .chain(["impersonator".to_string()])
+        .collect()
 }
 
 /// Every module but the machines, each answering what nobody answers from outside; and what

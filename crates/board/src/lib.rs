@@ -29,6 +29,6 @@ pub use proclaim_runtime::{Ranked, Suppressor, Visibility};
 pub use registry::{ModuleDecl, Registry};
 pub use snapshot::{BoardRow, Snapshot};
 pub use stats::Stats;
-pub use transport::{BoxFuture, Subscription, Transport};
+pub use transport::{BoxFuture, Restored, Subscription, Transport};
 pub use value::Value;
 pub use whiteboard::{undecided_type, QueryOutcome, Whiteboard, QUERY_TYPE};

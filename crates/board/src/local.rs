@@ -8,7 +8,7 @@ use crate::registry::{ModuleDecl, Registry};
 use crate::snapshot::{Slot, Snapshot, Table};
 use crate::stats::Stats;
 use crate::subscribers::Subscribers;
-use crate::transport::{BoxFuture, Subscription, Transport};
+use crate::transport::{BoxFuture, Restored, Subscription, Transport};
 use crate::value::Value;
 use parking_lot::{Mutex, MutexGuard};
 use rustc_hash::FxHashMap;
@@ -97,6 +97,13 @@ pub struct LocalBoard {
 }
 
 impl LocalBoard {
+    /// Numbers what comes next after `seq` (a replica of a shared board taken up from a
+    /// checkpoint, whose machines tell news by the numbers they saw).
+    pub fn number_after(&self, seq: u64) {
+        let mut inner = self.lock();
+        inner.seq = inner.seq.max(seq);
+    }
+
     pub fn new() -> LocalBoard {
         LocalBoard::with_retention(Retention::default())
     }
@@ -364,7 +371,7 @@ impl Transport for LocalBoard {
             + Duration::from_nanos(self.shift.load(AtomicOrdering::Relaxed))
     }
 
-    fn restore(&self, image: &BoardImage) -> Result<(), String> {
+    fn restore(&self, image: &BoardImage) -> Result<Restored, String> {
         let snapshot = image.snapshot();
         let mut inner = self.lock();
         if inner.seq > 0 {
@@ -379,7 +386,7 @@ impl Transport for LocalBoard {
         let since = Instant::now().saturating_duration_since(self.start);
         let shift = Duration::from_nanos(image.time_ns).saturating_sub(since);
         self.shift.store(nanos(shift), AtomicOrdering::Relaxed);
-        Ok(())
+        Ok(Restored::Whole)
     }
 
     /// Consistent (taken under the lock) and read without it.

@@ -70,11 +70,22 @@ pub trait Transport: Send + Sync + 'static {
     fn now(&self) -> Duration;
     /// The whole board as it is now, in O(1) (a persistent table shared with the live one).
     fn snapshot(&self) -> Snapshot;
-    /// Takes `image` as the whole board, its sequence numbers, clock and counts (a run resumed
-    /// from a checkpoint), before anything is posted. A board shared with other processes
-    /// cannot: they hold their own copies.
-    fn restore(&self, image: &BoardImage) -> Result<(), String> {
+    /// Takes `image` up (a run resumed from a checkpoint), before anything is posted: an
+    /// in-process board becomes it whole (messages, sequence numbers, clock and counts); a
+    /// board shared with other processes keeps what they hold, and only numbers on after the
+    /// image's last message.
+    fn restore(&self, image: &BoardImage) -> Result<Restored, String> {
         let _ = image;
-        Err("only an in-process board can be restored from a checkpoint".into())
+        Err("this board cannot take up a checkpoint".into())
     }
+}
+
+/// What a board did with a checkpoint's image ([`Transport::restore`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Restored {
+    /// The board is the image.
+    Whole,
+    /// The board is shared: what is current is what the other processes hold; this process's
+    /// postings are numbered after the image's.
+    Numbering,
 }

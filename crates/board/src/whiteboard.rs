@@ -8,7 +8,7 @@ use crate::pattern::Pattern;
 use crate::registry::{ModuleDecl, Registry};
 use crate::snapshot::Snapshot;
 use crate::stats::Stats;
-use crate::transport::{Subscription, Transport};
+use crate::transport::{Restored, Subscription, Transport};
 use crate::value::Value;
 use std::sync::Arc;
 use std::time::Duration;
@@ -153,9 +153,9 @@ impl Whiteboard {
         self.transport.now()
     }
 
-    /// The board becomes `image` (a run resumed from a checkpoint): only before anything is
-    /// posted, and only in process.
-    pub fn restore(&self, image: &BoardImage) -> Result<(), String> {
+    /// Takes `image` up (a run resumed from a checkpoint) before anything is posted: whole in
+    /// process; a shared board keeps what the others hold ([`Transport::restore`]).
+    pub fn restore(&self, image: &BoardImage) -> Result<Restored, String> {
         self.transport.restore(image)
     }
 

@@ -13,8 +13,8 @@ use crate::session::{open, Role, Settings};
 use crate::wire::{decode_value, encode_value, unix_now, Meta, WireDecl, WireKind, ANONYMOUS};
 use parking_lot::Mutex;
 use proclaim_board::{
-    BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Stats, Subscription,
-    Transport, Value, Whiteboard,
+    BoxFuture, Kind, LocalBoard, Message, ModuleDecl, Pattern, Registry, Restored, Stats,
+    Subscription, Transport, Value, Whiteboard,
 };
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::{BTreeSet, VecDeque};
@@ -512,6 +512,14 @@ impl Transport for Peer {
 
     fn snapshot(&self) -> proclaim_board::Snapshot {
         self.board.snapshot()
+    }
+
+    /// A process taken up from a checkpoint joins as any process does: what is current is what
+    /// the others hold (caught up as it joined). Its replica numbers on after the checkpoint's,
+    /// so its machines tell news by the numbers they saw.
+    fn restore(&self, image: &proclaim_board::BoardImage) -> Result<Restored, String> {
+        self.board.number_after(image.seq);
+        Ok(Restored::Numbering)
     }
 }
 
