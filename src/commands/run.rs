@@ -317,7 +317,7 @@ fn runtime(args: &RunArgs) -> Result<tokio::runtime::Runtime, Failure> {
         ));
     }
     // A branch replays on the paused clock, so going back a minute takes no minute; on the
-    // real clock it lets time run from the branch's round on (`went_live`).
+    // real clock it lets time run from the branch's round on (`Branch::live`), on one thread.
     super::runtime::runtime(if args.virtual_clock || args.branch.is_some() {
         super::runtime::Shape::VirtualClock
     } else {
