@@ -40,7 +40,7 @@ pub fn link(machines: &mut [Machine], launches: &[Launch]) -> Vec<LinkProblem> {
     let mut linker = Linker {
         interfaces: &interfaces,
         problems: Vec::new(),
-        given: vec![false; machines.len()],
+        given: vec![None; machines.len()],
         caller: String::new(),
     };
     linker.names();
@@ -62,8 +62,8 @@ pub fn link(machines: &mut [Machine], launches: &[Launch]) -> Vec<LinkProblem> {
 struct Linker<'i> {
     interfaces: &'i [(String, Interface)],
     problems: Vec<LinkProblem>,
-    /// Whether some machine starts each one with arguments.
-    given: Vec<bool>,
+    /// The first machine that starts each one with arguments, if one does.
+    given: Vec<Option<String>>,
     /// The machine being linked: an argument reads its parameters as its globals.
     caller: String,
 }
@@ -335,8 +335,8 @@ impl Linker<'_> {
                 assigned.push(global);
             }
         }
-        if !start.arguments.is_empty() {
-            self.given[j] = true;
+        if !start.arguments.is_empty() && self.given[j].is_none() {
+            self.given[j] = Some(self.caller.clone());
         }
         for message in problems {
             self.problem(i, Some(line), message);
@@ -455,8 +455,11 @@ impl Linker<'_> {
         if !launch.start && !launch.params.is_empty() {
             problems.push(format!("the manifest gives `{name}` parameters but starts it with `start = false`: whoever starts it gives them (`{name}: restart(…)`)"));
         }
-        if launch.start && !launch.params.is_empty() && self.given[i] {
-            problems.push(format!("`{name}` is given its parameters by the manifest and by a machine that starts it: give them in one place"));
+        if let Some(starter) = self.given[i]
+            .as_ref()
+            .filter(|_| launch.start && !launch.params.is_empty())
+        {
+            problems.push(format!("`{name}` is given its parameters by the manifest and by `{starter}`, which starts it: give them in one place"));
         }
         let missing = interface.missing_from(&launch.params);
         if launch.start && !missing.is_empty() {

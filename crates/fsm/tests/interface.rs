@@ -286,7 +286,7 @@ fn what_does_not_fit_between_machines_is_said_where() {
     );
     assert_eq!(
         only(&keeper("Dive: restart(side = 1)", "TRUE"), true, &[("side", 2)]),
-        ["None: `Dive` is given its parameters by the manifest and by a machine that starts it: give them in one place"]
+        ["None: `Dive` is given its parameters by the manifest and by `Keeper`, which starts it: give them in one place"]
     );
     assert_eq!(
         only(&keeper("x = 1;", "TRUE"), false, &[("side", 2), ("power", 1)]),
