@@ -369,3 +369,25 @@ fn nesting_past_its_bound_is_refused_at_its_line() {
         .collect();
     assert_eq!(said, ["258: blocks nest deeper than 256"]);
 }
+
+#[test]
+fn a_historys_variable_never_takes_the_name_a_parameter_becomes() {
+    // `Dive`'s parameter `history` is the global `Dive_history`; so would be the history of its
+    // composite `Dive`, which must be told apart from it.
+    let text = "machine Dive
+param history: int
+state Dive {
+    when stop -> REST
+    state LOW { when h > history -> HIGH }
+    state HIGH { }
+}
+state REST {
+    when resume -> Dive.history
+}
+";
+    let read = parse_machine("Dive.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let got = written(&read.machines[0]);
+    assert!(got.contains("\"Dive_history2\""), "{got}");
+    assert!(got.contains("h > Dive_history"), "the parameter is still read: {got}");
+}

@@ -6,6 +6,7 @@
 use super::ast::{Ref, StateAst};
 use super::{Lowering, When};
 use crate::code::{BinOp, Expr, Statement, VarType};
+use crate::interface::global_of;
 use crate::label::{Label, TIME_TESTS};
 use crate::model::{Action, Composite, State, StateId, Transition};
 use std::collections::{HashMap, HashSet, VecDeque};
@@ -26,6 +27,10 @@ pub(super) fn lower_chart(
     initial: Option<(Ref, usize)>,
 ) -> Option<Chart> {
     let mut tree = Tree::default();
+    let interface = &lowering.interface;
+    let names = (interface.params.iter().map(|p| &p.name))
+        .chain(interface.outcomes.iter().map(|o| &o.name));
+    tree.reserved = names.map(|n| global_of(&lowering.machine, n)).collect();
     for s in parsed {
         let top = tree.add(lowering, s, None);
         tree.top.push(top);
@@ -121,6 +126,9 @@ struct Tree {
     histories: Vec<(usize, History)>,
     /// Each kept history's variable, told apart from every other name of the machine.
     variables: Vec<String>,
+    /// Names a history's variable must not take: the globals the machine's parameters and
+    /// outcomes become (`Dive_history` for a parameter `history` of `Dive`).
+    reserved: Vec<String>,
 }
 
 impl Tree {
@@ -234,7 +242,7 @@ impl Tree {
             let base = history.variable(&self.nodes[composite].path);
             let mut name = base.clone();
             let mut n = 1;
-            while self.variables.contains(&name) {
+            while self.variables.contains(&name) || self.reserved.contains(&name) {
                 n += 1;
                 name = format!("{base}{n}");
             }
