@@ -324,15 +324,7 @@ fn a_run_under_the_monitor_can_start_paused_before_its_first_round() {
 fn the_replay_page_starts_a_branch_and_its_page_stops_it_with_the_recording_whole() {
     let dir = scratch("api");
     let (record, _) = recorded_microwave_for(&dir, "30s");
-    let (replay, url) = proclaim_with_monitor(&[
-        "replay",
-        arg(&record),
-        "--monitor",
-        "127.0.0.1:0",
-        "--behaviour",
-        "microwave",
-    ]);
-    let _replay = Interrupted(replay);
+    let (_replay, url) = microwave_replay_page(&record);
     let (_, model) = http(&url, "GET", "/api/model", None);
     let model: Json = serde_json::from_str(&model).unwrap();
     assert_eq!(model["can_branch"], true);
@@ -354,14 +346,7 @@ fn the_replay_page_starts_a_branch_and_its_page_stops_it_with_the_recording_whol
     });
     let (status, _) = http(page, "POST", "/api/control", Some(r#"{"action":"stop"}"#));
     assert_eq!(status, 204);
-    let deadline = Instant::now() + Duration::from_secs(10);
-    let test = loop {
-        let test = proclaim(&["test", "microwave", arg(&file)]);
-        if test.status.success() || Instant::now() > deadline {
-            break test;
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    };
+    let test = tested_once_written(&file);
     assert!(
         test.status.success(),
         "{}",
@@ -472,16 +457,7 @@ async fn in_the_browser_a_recording_is_branched_ten_rounds_back_changed_and_kept
         .iter()
         .rposition(|e| e["round"].as_u64().is_some_and(|r| r <= back))
         .unwrap();
-    let (replay, url) = proclaim_with_monitor(&[
-        "replay",
-        arg(&record),
-        "--monitor",
-        "127.0.0.1:0",
-        "--behaviour",
-        "microwave",
-    ]);
-    // However the test ends, Ctrl-C ends the replay and the branches it started.
-    let _replay = Interrupted(replay);
+    let (_replay, url) = microwave_replay_page(&record);
     client.goto(&url).await.expect("the page opens");
     let second = Duration::from_secs(1);
     page_until(&client, STATE, json!("COOKING"), 5 * second).await;
@@ -525,15 +501,7 @@ async fn in_the_browser_a_recording_is_branched_ten_rounds_back_changed_and_kept
         3 * second,
     )
     .await;
-    // The branch's run writes its recording out as it stops.
-    let deadline = Instant::now() + 10 * second;
-    let test = loop {
-        let test = proclaim(&["test", "microwave", arg(&file)]);
-        if test.status.success() || Instant::now() > deadline {
-            break test;
-        }
-        tokio::time::sleep(Duration::from_millis(200)).await;
-    };
+    let test = tested_once_written(&file);
     let said = String::from_utf8_lossy(&test.stdout);
     assert!(test.status.success(), "{said}");
     assert!(
@@ -550,6 +518,33 @@ async fn in_the_browser_a_recording_is_branched_ten_rounds_back_changed_and_kept
         "the door opened before the minute was up"
     );
     let _ = client.close().await;
+}
+
+/// The replay page of `record` with the microwave behaviour, and its address; Ctrl-C ends it
+/// (and the branches it started) however the test ends.
+fn microwave_replay_page(record: &Path) -> (Interrupted, String) {
+    let (replay, url) = proclaim_with_monitor(&[
+        "replay",
+        arg(record),
+        "--monitor",
+        "127.0.0.1:0",
+        "--behaviour",
+        "microwave",
+    ]);
+    (Interrupted(replay), url)
+}
+
+/// `proclaim test microwave FILE`, tried again for up to ten seconds: a branch's run writes
+/// its recording out as it stops.
+fn tested_once_written(file: &Path) -> std::process::Output {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let test = proclaim(&["test", "microwave", arg(file)]);
+        if test.status.success() || Instant::now() > deadline {
+            return test;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
 }
 
 /// A process sent Ctrl-C when dropped, then waited for.

@@ -389,5 +389,8 @@ state REST {
     assert!(!read.has_errors(), "{:?}", read.diagnostics);
     let got = written(&read.machines[0]);
     assert!(got.contains("\"Dive_history2\""), "{got}");
-    assert!(got.contains("h > Dive_history"), "the parameter is still read: {got}");
+    assert!(
+        got.contains("h > Dive_history"),
+        "the parameter is still read: {got}"
+    );
 }
