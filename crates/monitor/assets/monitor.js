@@ -305,8 +305,6 @@ function roundAfter(at) {
   return last < 0 ? 1 : rounds[last] + 1;
 }
 
-// "Branch here": the recording replayed to the round the slider shows, live from there on a
-// page of its own, which this page goes to.
 // Round 1 is the run's start: there is nothing to go back to before it.
 function labelBranch(at) {
   const round = roundAfter(at);
@@ -316,6 +314,8 @@ function labelBranch(at) {
   button.dataset.round = String(round);
 }
 
+// "Branch here": the recording replayed to the round the slider shows, live from there on a
+// page of its own, which this page goes to.
 function branching(slider) {
   const button = $("branch");
   button.hidden = false;
