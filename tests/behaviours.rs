@@ -409,6 +409,23 @@ fn a_parameter_nothing_gives_is_refused_and_deps_launch_carries_it() {
     ]);
     let b = load("keeper", Arc::new(Folder::new(&whole))).unwrap();
     assert!(proclaim_behaviour::check_behaviour(&b).is_empty());
+    // Each label runs the globals and is shown as written.
+    let shown = |m: usize| -> Vec<(String, String)> {
+        let ts = &b.machines[m].machine.transitions;
+        ts.iter()
+            .map(|t| (t.label.to_string(), t.shown().to_string()))
+            .collect()
+    };
+    assert!(
+        shown(0).contains(&("Dive_fell".into(), "Dive.fell".into())),
+        "{:?}",
+        shown(0)
+    );
+    assert!(
+        shown(1).contains(&("Dive_side == 1".into(), "side == 1".into())),
+        "{:?}",
+        shown(1)
+    );
     let machines: Vec<(&proclaim_fsm::Machine, bool)> =
         b.machines.iter().map(|m| (&m.machine, m.start)).collect();
     let dot = proclaim_behaviour::behaviour_to_dot("keeper", &machines);

@@ -175,7 +175,7 @@ fn machine_listed(machine: &proclaim_fsm::Machine, done: &Exercised, coverage: &
     let state = |id| machine.state(id).map_or("?", |s| s.name.as_str());
     let mut transition_at: FxHashMap<(String, usize), usize> = FxHashMap::default();
     for t in &machine.transitions {
-        let label = t.label.to_string();
+        let label = t.shown().to_string();
         let from = machine.written_on(t).unwrap_or("?");
         let what = format!("{name}: {from} -> {} ({label})", state(t.target));
         let fired = done

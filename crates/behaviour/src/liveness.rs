@@ -285,6 +285,7 @@ impl Draft {
             line: 0,
             leaving: None,
             composite: None,
+            written: None,
         });
     }
 

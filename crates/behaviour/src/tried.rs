@@ -150,7 +150,7 @@ fn outcomes(
     let mut outcome = Outcome::DidNotHold;
     let from = model.transitions.iter().filter(|t| t.source == state);
     from.map(|t| {
-        let label = t.label.to_string();
+        let label = t.shown().to_string();
         let this = if outcome == Outcome::NotTried {
             Outcome::NotTried
         } else if fired.as_ref() == Some(&(t.target, label.clone())) {

@@ -515,7 +515,7 @@ fn plan_machine(
             transitions: machine
                 .transitions
                 .iter()
-                .map(|t| (t.source, t.target, t.label.to_string()))
+                .map(|t| (t.source, t.target, t.shown().to_string()))
                 .collect(),
             dot: proclaim_fsm::to_dot(machine),
         },
@@ -558,7 +558,7 @@ fn plan_state(
         transitions.push(TransitionPlan {
             condition: labels.condition(&t.label, &mut activity)?,
             target: t.target,
-            label: t.label.to_string(),
+            label: t.shown().to_string(),
             leaving,
         });
     }

@@ -91,7 +91,7 @@ pub fn body(
                 id(t.source),
                 id(t.target),
                 priority + 1,
-                escape(&t.label.to_string())
+                escape(&t.shown().to_string())
             );
         }
     }

@@ -178,7 +178,7 @@ impl<'m> Drawing<'m> {
                 "{indent}{} -> {} [label=\"{number}: {}\"{tail}];",
                 self.node(t.source),
                 self.node(t.target),
-                escape(&t.label.to_string())
+                escape(&t.shown().to_string())
             );
         }
     }

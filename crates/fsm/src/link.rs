@@ -147,7 +147,7 @@ impl Linker<'_> {
                 self.actions(i, line, list);
             }
             let mut wrong = Vec::new();
-            t.label.rename(&mut |n| self.outcome(n, &mut wrong));
+            t.rename_label(&mut |n| self.outcome(n, &mut wrong));
             for message in wrong {
                 self.problem(i, Some(line), message);
             }

@@ -96,7 +96,8 @@ fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
                 t.line,
                 format!(
                     "`{}` is never tried: `TRUE` above it (line {}) always fires first",
-                    t.label, always.line
+                    t.shown(),
+                    always.line
                 ),
             ));
         } else if let Some(same) = above.iter().find(|a| a.label == t.label) {
@@ -105,7 +106,8 @@ fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
                 t.line,
                 format!(
                     "`{}` never fires: the same label above it (line {}) is tried first",
-                    t.label, same.line
+                    t.shown(),
+                    same.line
                 ),
             ));
         }

@@ -134,6 +134,30 @@ pub struct Transition {
     /// not written on its source: lowering copies a composite's transitions to every state
     /// inside it.
     pub composite: Option<usize>,
+    /// The label as its file wrote it, when lowering changed it (a chart's `when done`, a
+    /// history's arms, a parameter or an outcome read as its global): what traces, drawings
+    /// and findings show, so a user reads what they wrote. `label` is what every back end runs.
+    pub written: Option<Label>,
+}
+
+impl Transition {
+    /// The label to show: as written.
+    pub fn shown(&self) -> &Label {
+        self.written.as_ref().unwrap_or(&self.label)
+    }
+
+    /// Renames the names its label reads, keeping what was written first; a label renamed
+    /// back to how it was written (the native writer's parameters) has nothing else to show.
+    pub(crate) fn rename_label(&mut self, to: &mut impl FnMut(&str) -> Option<String>) {
+        let before = self.label.clone();
+        self.label.rename(to);
+        if self.label != before && self.written.is_none() {
+            self.written = Some(before);
+        }
+        if self.written.as_ref() == Some(&self.label) {
+            self.written = None;
+        }
+    }
 }
 
 /// One thing an activity does.
@@ -176,7 +200,7 @@ impl Machine {
             lists.extend([&mut c.on_entry, &mut c.on_exit, &mut c.internal]);
         }
         for t in &mut self.transitions {
-            t.label.rename(to);
+            t.rename_label(to);
             lists.extend(t.leaving.as_mut());
         }
         for action in lists.into_iter().flatten() {

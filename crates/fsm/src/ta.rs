@@ -201,6 +201,7 @@ fn t_line(
             line,
             leaving: None,
             composite: None,
+            written: None,
         }),
         Err(e) => {
             diagnostics.push(FileDiagnostic::error(

@@ -394,3 +394,36 @@ state REST {
         "the parameter is still read: {got}"
     );
 }
+
+#[test]
+fn a_label_lowering_changed_is_shown_as_written() {
+    let text = "machine Dive
+param side: int
+outcome landed
+state FALL {
+    when done -> REST
+    when stop -> REST
+    state LOW { when side < 0 -> OUT }
+    state OUT { }
+}
+state REST {
+    when resume -> FALL.history
+}
+";
+    let read = parse_machine("Dive.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let shown: Vec<(String, String)> = read.machines[0]
+        .transitions
+        .iter()
+        .map(|t| (t.label.to_string(), t.shown().to_string()))
+        .collect();
+    let has = |run: &str, seen: &str| shown.iter().any(|(l, s)| l == run && s == seen);
+    assert!(has("Dive_side < 0", "side < 0"), "{shown:?}");
+    assert!(has("TRUE", "done"), "{shown:?}");
+    assert!(has("FALL_history == 1 && resume", "resume"), "{shown:?}");
+    // What lowering left alone has nothing else to show.
+    assert!(read.machines[0]
+        .transitions
+        .iter()
+        .any(|t| t.written.is_none() && t.label.to_string() == "stop"));
+}

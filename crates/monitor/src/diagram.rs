@@ -56,7 +56,7 @@ impl Chart {
             .map(|t| ChartTransition {
                 from: t.source,
                 to: t.target,
-                label: t.label.to_string(),
+                label: t.shown().to_string(),
             })
             .collect();
         Chart::drawn(

@@ -465,7 +465,8 @@ impl<'r> RunningMachine<'r> {
 
     /// `arm` fired: the event, what it runs leaving, and the move to its target.
     async fn leave(&mut self, arm: Arm<'_>, state: &str) {
-        let (from, to, label) = (self.current, arm.target(), arm.label().to_string());
+        let (from, to) = (self.current, arm.target());
+        let label = arm.transition.shown().to_string();
         tracing::debug!(from = %state, to, %label, "transition fired");
         self.reporter.emit(|at, round| Event::Fired {
             machine: self.name.clone(),

@@ -388,17 +388,18 @@ fn fits_firing(
         (Some(i), Some((from, to, label))) => {
             let t = &state.transitions[i];
             let id = |index: usize| machine.machine.states[index].id;
-            if id(s.from) != *from || id(t.target) != *to || t.label.to_string() != *label {
+            let shown = machine.shown(t);
+            if id(s.from) != *from || id(t.target) != *to || shown.to_string() != *label {
                 return Err(format!(
-                    "{at}: the model fires `{}` to {}, the runner #{from} → #{to} on `{label}`",
-                    t.label, machine.states[t.target].name
+                    "{at}: the model fires `{shown}` to {}, the runner #{from} → #{to} on `{label}`",
+                    machine.states[t.target].name
                 ));
             }
         }
         (Some(i), None) => {
             return Err(format!(
                 "{at}: the model fires `{}`, the runner fired nothing",
-                state.transitions[i].label
+                machine.shown(&state.transitions[i])
             ))
         }
         (None, Some((_, _, label))) => {

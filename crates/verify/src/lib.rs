@@ -408,7 +408,7 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
                     .map_or_else(|| name(t.source), str::to_string),
                 None => name(t.source),
             };
-            ((from, name(t.target), t.label.to_string(), t.line), f)
+            ((from, name(t.target), t.shown().to_string(), t.line), f)
         });
         for (from, to, label, line) in once_each(transitions) {
             findings.push(Finding::NeverFires {

@@ -16,7 +16,7 @@ use crate::reasoner::ReasonerSeed;
 
 use proclaim_board::Value;
 
-use proclaim_fsm::{Expr, Machine};
+use proclaim_fsm::{Expr, Label, Machine};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::time::Duration;
 
@@ -118,6 +118,11 @@ pub struct MachineModel {
 }
 
 impl MachineModel {
+    /// The label of `t` as its file wrote it, for traces and messages.
+    pub fn shown(&self, t: &TransitionModel) -> &Label {
+        self.machine.transitions[t.index].shown()
+    }
+
     /// The most time tests any one state has: the bits of the machine's time field in either
     /// engine's state (a bit a test, set once it came due).
     pub fn most_time_tests(&self) -> usize {

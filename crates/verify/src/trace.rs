@@ -114,7 +114,7 @@ pub fn trace_of(
             to: s
                 .fired
                 .map(|t| m.states[state.transitions[t].target].name.clone()),
-            label: s.fired.map(|t| state.transitions[t].label.to_string()),
+            label: s.fired.map(|t| m.shown(&state.transitions[t]).to_string()),
             timers: detail
                 .timers
                 .iter()

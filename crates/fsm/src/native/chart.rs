@@ -532,6 +532,8 @@ struct Flat {
 
 struct FlatArm {
     label: Label,
+    /// The label as written, when the arm's is not (`done`, a history's place).
+    written: Option<Label>,
     /// The flat state it enters (an index into `Flattening::flats`).
     target: usize,
     line: usize,
@@ -665,6 +667,7 @@ impl<'t> Flattening<'t> {
                 let written_on = (source != atomic).then_some(source);
                 for (label, target) in self.targets(atomic, w, domain, &left) {
                     arms.push(FlatArm {
+                        written: (label != w.label).then(|| w.label.clone()),
                         label,
                         target,
                         line: w.line,
@@ -797,6 +800,7 @@ impl<'t> Flattening<'t> {
                     line: arm.line,
                     leaving: arm.leaving,
                     composite: arm.written_on.and_then(|n| composites_of[n]),
+                    written: arm.written,
                 });
             }
         }

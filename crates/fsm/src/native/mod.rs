@@ -526,6 +526,7 @@ impl Lowering<'_> {
                 line: self.lines.line(when.at),
                 leaving: None,
                 composite: None,
+                written: None,
             }),
             Err(message) => {
                 self.error(when.target_at, message);
