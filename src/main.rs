@@ -4,6 +4,7 @@
 //! undecided within the search budget.
 
 mod behaviours;
+mod bounded;
 mod cli;
 mod commands;
 mod embedded;

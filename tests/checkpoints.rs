@@ -234,3 +234,39 @@ fn a_run_whose_state_is_not_all_its_own_is_refused_a_checkpoint_by_name() {
         "{stderr}"
     );
 }
+
+/// A recording, a trace or a checkpoint past a gigabyte (a wrong path, a disk image) is
+/// refused before it is read, saying what it should have been; the file here is sparse, so
+/// the test takes no disk.
+#[test]
+fn a_file_larger_than_a_recording_trace_or_checkpoint_can_be_is_refused_unread() {
+    let dir = scratch("huge");
+    let huge = dir.join("huge.jsonl");
+    let file = std::fs::File::create(&huge).unwrap();
+    file.set_len((1 << 30) + 1).unwrap();
+    let huge = huge.to_str().unwrap();
+    let cases: [(&[&str], &str); 4] = [
+        (&["test", "microwave", huge], "a recording"),
+        (
+            &["run", "microwave", "--branch", huge, "--at", "3"],
+            "a recording",
+        ),
+        (&["replay", huge], "a trace or a recording"),
+        (
+            &["run", "microwave", "--virtual-clock", "--resume", huge],
+            "a checkpoint",
+        ),
+    ];
+    for (args, what) in cases {
+        let out = proclaim(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(&format!(
+                "huge.jsonl: 1073741825 bytes, more than {what} here can be (1073741824 at most)"
+            )),
+            "{args:?}: {stderr}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -15,10 +15,7 @@ use std::sync::{Arc, Mutex};
 
 /// The recording in `path`, or why it is none.
 pub fn read(path: &Path) -> Result<Recording, Failure> {
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-        path: path.to_path_buf(),
-        error,
-    })?;
+    let text = crate::bounded::read_text(path, "a recording")?;
     read_recording(&text)
         .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))
 }

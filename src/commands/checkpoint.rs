@@ -91,24 +91,9 @@ impl CheckpointFiles {
     }
 }
 
-/// The largest checkpoint file read back: far above what a thousand machines write, and below
-/// what would exhaust a robot's memory when a wrong file is given.
-const LARGEST: u64 = 1 << 30;
-
 /// The checkpoint a run takes up (`--resume FILE`).
 pub fn read(path: &Path) -> Result<Arc<Checkpoint>, Failure> {
-    let failed = |error| Failure::Read {
-        path: path.to_path_buf(),
-        error,
-    };
-    let size = std::fs::metadata(path).map_err(failed)?.len();
-    if size > LARGEST {
-        return Err(Failure::Argument(format!(
-            "--resume {}: {size} bytes, more than a checkpoint holds ({LARGEST} at most)",
-            path.display()
-        )));
-    }
-    let text = std::fs::read_to_string(path).map_err(failed)?;
+    let text = crate::bounded::read_text(path, "a checkpoint")?;
     Checkpoint::read(&text)
         .map(Arc::new)
         .map_err(|why| Failure::Argument(format!("--resume {}: {why}", path.display())))

@@ -85,10 +85,7 @@ async fn open_with(
 
 /// `proclaim replay TRACE --monitor`: the trace at any of its moments, until Ctrl-C.
 pub fn replay(trace: &Path, addr: &str, behaviour: Option<&str>) -> Result<ExitCode, Failure> {
-    let text = std::fs::read_to_string(trace).map_err(|error| Failure::Read {
-        path: trace.to_path_buf(),
-        error,
-    })?;
+    let text = crate::bounded::read_text(trace, "a trace or a recording")?;
     let first: Option<serde_json::Value> = text
         .lines()
         .find(|l| !l.trim().is_empty())

@@ -681,10 +681,7 @@ impl Pace {
 /// `proclaim replay`: a JSON-lines trace or a `--record` file printed as the live trace was, at
 /// `speed` times its real pace (`None`: at once).
 pub fn replay(file: &Path, speed: Option<f64>) -> Result<ExitCode, Failure> {
-    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
-        path: file.to_path_buf(),
-        error,
-    })?;
+    let text = crate::bounded::read_text(file, "a trace or a recording")?;
     if speed.is_some_and(|s| !(s.is_finite() && s > 0.0)) {
         return Err(Failure::Argument(
             "--speed must be a positive number".into(),

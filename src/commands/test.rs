@@ -46,10 +46,7 @@ pub fn run(
     let mut failed = 0;
     let mut read = Vec::new();
     for path in &files {
-        let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
-            path: path.clone(),
-            error,
-        })?;
+        let text = crate::bounded::read_text(path, "a recording")?;
         let recording = read_recording(&text)
             .map_err(|e| Failure::Argument(format!("{}: not a recording: {e}", path.display())))?;
         match replay_recording(&behaviour, &recording).map_err(Failure::Runtime)? {
