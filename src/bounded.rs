@@ -21,6 +21,7 @@ pub fn read_text(path: &Path, what: &'static str) -> Result<String, Failure> {
             path: path.to_path_buf(),
             what,
             size,
+            limit: LARGEST,
         });
     }
     std::fs::read_to_string(path).map_err(failed)

@@ -11,11 +11,12 @@ pub enum Failure {
         path: PathBuf,
         error: std::io::Error,
     },
-    /// The file is larger than `what` it should be can be ([`crate::bounded::LARGEST`]).
+    /// The file is larger than `what` it should be can be here (`limit` bytes).
     TooLarge {
         path: PathBuf,
         what: &'static str,
         size: u64,
+        limit: u64,
     },
     /// The output could not be written.
     Write {
@@ -63,11 +64,15 @@ impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Failure::Read { path, error } => write!(f, "cannot read {}: {error}", path.display()),
-            Failure::TooLarge { path, what, size } => write!(
+            Failure::TooLarge {
+                path,
+                what,
+                size,
+                limit,
+            } => write!(
                 f,
-                "{}: {size} bytes, more than {what} here can be ({} at most)",
-                path.display(),
-                crate::bounded::LARGEST
+                "{}: {size} bytes, more than {what} here can be ({limit} at most)",
+                path.display()
             ),
             Failure::Write { path, error } => write!(f, "cannot write {}: {error}", path.display()),
             Failure::Invalid { what, errors, .. } => write!(f, "{what} has {errors} errors"),
