@@ -329,6 +329,29 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
     );
 }
 
+/// A composite's OnEntry runs in each flat state inside it: a posting in it that nobody hears
+/// is said once, at the composite that wrote it.
+#[test]
+fn a_composites_posting_nobody_hears_is_said_once_where_it_is_written() {
+    let dir = temp_behaviour(&[
+        ("behaviour.toml", "[[machine]]\nfile = \"Main.machine\"\n"),
+        (
+            "Main.machine",
+            "machine Main\ninitial PLAY\nstate PLAY {\n  entry {\n    Ghost: On\n  }\n  state A { when TRUE -> B }\n  state B { when TRUE -> A }\n}\n",
+        ),
+    ]);
+    let behaviour = load("chart", Arc::new(Folder::new(&dir))).unwrap();
+    let findings: Vec<String> = proclaim_behaviour::check_behaviour(&behaviour)
+        .iter()
+        .map(|d| d.to_string().replace(&format!("{}/", dir.display()), ""))
+        .filter(|d| d.contains("Ghost"))
+        .collect();
+    assert_eq!(
+        findings,
+        ["Main.machine:3: error: `Ghost: On` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)"]
+    );
+}
+
 /// A first team's goalkeeper: the keeper sets a global the dive reads. Checked whole, nothing
 /// is wrong; `deps --launch Dive` leaves the keeper out, and there `check` says the dive's
 /// labels read a value nothing gives (the launch ran and chose a side at once, silently).

@@ -143,12 +143,13 @@ impl CrossModuleCheck<'_> {
                     continue;
                 }
                 reported.push(ty.clone());
+                let line = m.line_of(state, action);
                 // A control word to nobody is a machine that is missing; any other posting
                 // nobody hears may be for a module outside the behaviour.
                 out.push(if Command::parse(content).is_some() {
                     FileDiagnostic::error(
                         file,
-                        state.line,
+                        line,
                         format!(
                             "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
                         ),
@@ -156,7 +157,7 @@ impl CrossModuleCheck<'_> {
                 } else {
                     FileDiagnostic::warning(
                         file,
-                        state.line,
+                        line,
                         format!(
                             "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary)"
                         ),

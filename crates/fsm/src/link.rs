@@ -42,6 +42,7 @@ pub fn link(machines: &mut [Machine], launches: &[Launch]) -> Vec<LinkProblem> {
         problems: Vec::new(),
         given: vec![None; machines.len()],
         caller: String::new(),
+        quiet: false,
     };
     linker.names();
     for (i, machine) in machines.iter_mut().enumerate() {
@@ -66,10 +67,16 @@ struct Linker<'i> {
     given: Vec<Option<String>>,
     /// The machine being linked: an argument reads its parameters as its globals.
     caller: String,
+    /// Lowering a composite's activity again in a flat state that runs it: its problems were
+    /// said once, at the composite.
+    quiet: bool,
 }
 
 impl Linker<'_> {
     fn problem(&mut self, machine: usize, line: Option<usize>, message: String) {
+        if self.quiet {
+            return;
+        }
         self.problems.push(LinkProblem {
             machine,
             line,
@@ -135,16 +142,50 @@ impl Linker<'_> {
     }
 
     fn machine(&mut self, i: usize, machine: &mut Machine) {
-        for state in &mut machine.states {
-            let line = state.line;
-            for list in [&mut state.on_entry, &mut state.on_exit, &mut state.internal] {
-                self.actions(i, line, list);
+        // A chart's composites keep their activities as written for what draws them: lowered
+        // the same way, so they stay the flat states' leading parts, and their problems said
+        // there, once, not in each flat state that runs them (found before either is lowered).
+        let written: Vec<[Vec<bool>; 3]> = machine
+            .states
+            .iter()
+            .map(|s| {
+                [&s.on_entry, &s.on_exit, &s.internal].map(|list| {
+                    let from = |a| machine.composite_writing(s, a).is_some();
+                    list.iter().map(from).collect()
+                })
+            })
+            .collect();
+        // What a transition runs leaving is its source's and its composites' OnExits, said
+        // there, and its own actions.
+        let leaving: Vec<Vec<bool>> = machine
+            .transitions
+            .iter()
+            .map(|t| {
+                let source = machine.state(t.source);
+                let exits = |a: &Action| {
+                    source.is_some_and(|s| {
+                        s.on_exit.contains(a) || machine.composite_writing(s, a).is_some()
+                    })
+                };
+                t.leaving.iter().flatten().map(exits).collect()
+            })
+            .collect();
+        for c in &mut machine.composites {
+            for list in [&mut c.on_entry, &mut c.on_exit, &mut c.internal] {
+                self.actions(i, c.line, list, &[]);
             }
         }
-        for t in &mut machine.transitions {
+        for (state, quiet) in machine.states.iter_mut().zip(&written) {
+            let line = state.line;
+            let lists = [&mut state.on_entry, &mut state.on_exit, &mut state.internal];
+            for (list, quiet) in lists.into_iter().zip(quiet) {
+                self.actions(i, line, list, quiet);
+            }
+        }
+        for (t, quiet) in machine.transitions.iter_mut().zip(&leaving) {
             let line = t.line;
             if let Some(list) = &mut t.leaving {
-                self.actions(i, line, list);
+                self.actions(i, line, list, quiet);
             }
             let mut wrong = Vec::new();
             t.rename_label(&mut |n| self.outcome(n, &mut wrong));
@@ -152,16 +193,6 @@ impl Linker<'_> {
                 self.problem(i, Some(line), message);
             }
         }
-        // A chart's composites keep their activities as written for what draws them: lowered
-        // the same way, so they stay the flat states' leading parts; their problems are the
-        // flat states' already.
-        let reported = self.problems.len();
-        for c in &mut machine.composites {
-            for list in [&mut c.on_entry, &mut c.on_exit, &mut c.internal] {
-                self.actions(i, c.line, list);
-            }
-        }
-        self.problems.truncate(reported);
     }
 
     /// A name `Dive.landed` where `Dive` is a machine of the behaviour: its outcome's global.
@@ -182,9 +213,11 @@ impl Linker<'_> {
         None
     }
 
-    fn actions(&mut self, i: usize, line: usize, list: &mut Vec<Action>) {
+    /// Lowers `list`, its problems said at `line`, but not for the actions `quiet` marks.
+    fn actions(&mut self, i: usize, line: usize, list: &mut Vec<Action>, quiet: &[bool]) {
         let mut out = Vec::with_capacity(list.len());
-        for action in std::mem::take(list) {
+        for (k, action) in std::mem::take(list).into_iter().enumerate() {
+            self.quiet = quiet.get(k).copied().unwrap_or(false);
             match action {
                 Action::Post { ty, content } => match self.interface(&ty) {
                     Some((j, _)) => out.extend(self.post(i, line, j, ty, content)),
@@ -218,6 +251,7 @@ impl Linker<'_> {
                 other => out.push(other),
             }
         }
+        self.quiet = false;
         *list = out;
     }
 

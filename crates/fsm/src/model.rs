@@ -98,6 +98,26 @@ impl Machine {
         self.composites.iter().position(|c| c.name == outer)
     }
 
+    /// The composite that wrote `action`, which the flat state `state` runs: the innermost
+    /// around it whose activities hold it as written; `None` when the state's own file text did.
+    pub fn composite_writing(&self, state: &State, action: &Action) -> Option<&Composite> {
+        let mut around = self.composite_of(state);
+        while let Some(c) = around.and_then(|c| self.composites.get(c)) {
+            let lists = [&c.on_entry, &c.on_exit, &c.internal];
+            if lists.iter().any(|list| list.contains(action)) {
+                return Some(c);
+            }
+            around = c.parent;
+        }
+        None
+    }
+
+    /// The line that wrote `action`, which the flat state `state` runs.
+    pub fn line_of(&self, state: &State, action: &Action) -> usize {
+        self.composite_writing(state, action)
+            .map_or(state.line, |c| c.line)
+    }
+
     /// Where `transition` was written: its source state, or the composite holding it.
     pub fn written_on(&self, transition: &Transition) -> Option<&str> {
         match transition.composite {

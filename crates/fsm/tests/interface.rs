@@ -457,3 +457,46 @@ fn the_editor_keeps_a_final_state_that_announces_an_outcome_final() {
         "state SAVED announces outcome `saved`, so it is final: take `outcome saved` out of it before giving it a transition"
     );
 }
+
+/// A composite's activity runs in every flat state inside it (and its OnExit in every
+/// transition leaving it): what is wrong in it is said once, at the composite.
+#[test]
+fn what_is_wrong_in_a_composites_activity_is_said_once_where_it_is_written() {
+    let keeper = "machine Keeper
+initial PLAY
+state PLAY {
+    entry {
+        Dive: restart(power = 2)
+    }
+    exit {
+        Dive: suspend(side = 1)
+    }
+    when stop -> OUT
+    state A { when a -> B }
+    state B { when b -> A }
+}
+state OUT {
+    when go -> PLAY.B
+}
+";
+    let mut read = vec![
+        parse_machine("k", keeper).machines[0].clone(),
+        parse_machine("d", DIVE).machines[0].clone(),
+    ];
+    let launches = [true, false].map(|start| Launch {
+        start,
+        params: Vec::new(),
+    });
+    let problems: Vec<String> = link(&mut read, &launches)
+        .into_iter()
+        .map(|p| format!("{:?}: {}", p.line, p.message))
+        .collect();
+    assert_eq!(
+        problems,
+        [
+            "Some(3): `Dive: suspend(side = 1)`: only `restart` gives a machine its parameters",
+            "Some(3): `Dive` has no parameter `power`",
+            "Some(3): `Dive` takes side: start it with `Dive: restart(side = …)`",
+        ]
+    );
+}
