@@ -169,16 +169,35 @@ impl<'m> Drawing<'m> {
             let from = key.0.as_str();
             let number = numbers.entry(from).or_default();
             *number += 1;
-            let tail = match t.composite {
-                Some(_) => format!(", ltail={}", quote(from)),
-                None => String::new(),
+            let label = format!("{number}: {}", escape(&t.shown().to_string()));
+            let (source, target) = (self.node(t.source), self.node(t.target));
+            let Some(c) = t.composite else {
+                let _ = writeln!(out, "{indent}{source} -> {target} [label=\"{label}\"];");
+                continue;
             };
+            let cluster = quote(from);
+            let within = self.machine.state(t.target).is_some_and(|s| {
+                let path = &self.machine.composites[c].name;
+                s.name
+                    .strip_prefix(path.as_str())
+                    .is_some_and(|r| r.starts_with('.'))
+            });
+            if !within {
+                let _ = writeln!(
+                    out,
+                    "{indent}{source} -> {target} [label=\"{label}\", ltail={cluster}];"
+                );
+                continue;
+            }
+            // Leaving the composite and entering it again (SCXML's external transition):
+            // out of its edge to a point outside it and back in, since an edge from a
+            // cluster to a state inside it is drawn by Graphviz as if between the states.
+            let point = format!("{from}_back{}", t.line);
             let _ = writeln!(
                 out,
-                "{indent}{} -> {} [label=\"{number}: {}\"{tail}];",
-                self.node(t.source),
-                self.node(t.target),
-                escape(&t.shown().to_string())
+                "{indent}{point} [shape=point, width=0.05];\n\
+                 {indent}{source} -> {point} [label=\"{label}\", ltail={cluster}, arrowhead=none];\n\
+                 {indent}{point} -> {target};"
             );
         }
     }

@@ -427,3 +427,37 @@ state REST {
         .iter()
         .any(|t| t.written.is_none() && t.label.to_string() == "stop"));
 }
+
+/// A composite's transition back into itself is drawn out of its cluster's edge to a point
+/// and in again, not as an edge between two states inside it (which Graphviz would draw, and
+/// warn of, since the head is inside the tail's cluster).
+#[test]
+fn a_composite_entered_again_by_its_own_transition_is_drawn_leaving_it() {
+    let text = "machine M
+initial PLAY
+state PLAY {
+    when again -> PLAY
+    state A { when a -> B }
+    state B { when b -> A }
+}
+";
+    let read = parse_machine("M.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let dot = proclaim_fsm::to_dot(&read.machines[0]);
+    let edges: Vec<&str> = dot
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.contains("->"))
+        .collect();
+    assert!(
+        edges.contains(
+            &"s2 -> cluster_c0_back4 [label=\"1: again\", ltail=\"cluster_c0\", arrowhead=none];"
+        ),
+        "{dot}"
+    );
+    assert!(edges.contains(&"cluster_c0_back4 -> s1;"), "{dot}");
+    assert!(
+        dot.contains("cluster_c0_back4 [shape=point, width=0.05];"),
+        "{dot}"
+    );
+}

@@ -47,10 +47,25 @@ function drawMachines() {
       if (!edges.has(key)) edges.set(key, []);
       edges.get(key).push(g);
     }
+    joinBacks(edges);
     const nodeOf = new Map(chart.states.map((s) => [s.id, s.node]));
     drawn.set(chart.name, { section, nodes, edges, nodeOf, current: null, fired: [] });
   }
   markUncovered();
+}
+
+// A composite's transition back into itself is drawn out of its edge to a point (`…_backLINE`)
+// and in again: its two halves are one edge between the states, lit together.
+function joinBacks(edges) {
+  for (const [key, out] of [...edges]) {
+    const [from, point] = key.split("->");
+    if (!point.includes("_back")) continue;
+    for (const [other, back] of [...edges]) {
+      if (!other.startsWith(point + "->")) continue;
+      const whole = from + "->" + other.slice(point.length + 2);
+      edges.set(whole, (edges.get(whole) || []).concat(out, back));
+    }
+  }
 }
 
 // What recordings never exercised (`proclaim test --coverage --monitor`): states never
