@@ -1,7 +1,8 @@
-//! A mutation fuzzer of every shipped file kind (theory, machine, manifest, script; Qfsm and T/A
+//! A mutation fuzzer of every file kind a user gives proclaim (theory, machine, manifest, script;
+//! the recording, trace and checkpoint a run writes, made once by a run of the microwave; Qfsm
 //! files from the shared corpus when it is there): each mutant is given to the commands that
-//! read it, as a user would (`check`, `draw`, `run --virtual-clock`), and none may panic, abort
-//! or run for more than ten seconds. A few hundred mutants in the suite; ten thousand in an
+//! read it, as a user would (`check`, `draw`, `run --virtual-clock`, `test`, `replay`, `run
+//! --branch`, `run --resume`), and none may panic, abort or run for more than ten seconds. A few hundred mutants in the suite; ten thousand in an
 //! ignored test, run before a release (`PROCLAIM_MUTANTS=N` sets how many).
 
 use std::path::{Path, PathBuf};
@@ -71,16 +72,39 @@ const INSERTS: &[&str] = &[
 ];
 
 /// One file kind: the files it is taken from, and the commands that read it (`{}` is the
-/// mutated file's path, `{dir}` its behaviour's folder).
+/// mutated file's path, `{dir}` its behaviour's folder, `{microwave}` the worker's copy of the
+/// microwave).
 struct Kind {
     name: &'static str,
     files: Vec<PathBuf>,
     commands: &'static [&'static [&'static str]],
 }
 
-fn kinds(root: &Path) -> Vec<Kind> {
+fn kinds(root: &Path, made: &Made) -> Vec<Kind> {
     let under = |dir: &str, ends: &str| under_dir(&root.join(dir), ends);
     const RUN: &[&str] = &["run", "{dir}", "--virtual-clock", "--for", "2s", "--quiet"];
+    const BRANCH: &[&str] = &[
+        "run",
+        "{microwave}",
+        "--branch",
+        "{}",
+        "--at",
+        "5",
+        "--virtual-clock",
+        "--for",
+        "2s",
+        "--quiet",
+    ];
+    const RESUME: &[&str] = &[
+        "run",
+        "{microwave}",
+        "--virtual-clock",
+        "--resume",
+        "{}",
+        "--for",
+        "2s",
+        "--quiet",
+    ];
     let mut kinds = vec![
         Kind {
             name: "theory",
@@ -102,6 +126,21 @@ fn kinds(root: &Path) -> Vec<Kind> {
             files: under("machines", ".script"),
             commands: &[RUN],
         },
+        Kind {
+            name: "recording",
+            files: vec![made.recording.clone()],
+            commands: &[&["test", "{microwave}", "{}"], &["replay", "{}"], BRANCH],
+        },
+        Kind {
+            name: "trace",
+            files: vec![made.trace.clone()],
+            commands: &[&["replay", "{}"]],
+        },
+        Kind {
+            name: "checkpoint",
+            files: vec![made.checkpoint.clone()],
+            commands: &[RESUME],
+        },
     ];
     if let Some(corpus) = crate::corpus_dir() {
         let mipal = corpus.join("mipal");
@@ -112,6 +151,42 @@ fn kinds(root: &Path) -> Vec<Kind> {
         });
     }
     kinds
+}
+
+/// What a run writes, made once by a run of the shipped microwave: the files its mutants
+/// start from.
+struct Made {
+    recording: PathBuf,
+    trace: PathBuf,
+    checkpoint: PathBuf,
+}
+
+fn made(root: &Path) -> Made {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("proclaim-mutants-made-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a folder");
+    let made = Made {
+        recording: dir.join("kitchen.jsonl"),
+        trace: dir.join("trace.jsonl"),
+        checkpoint: dir.join("checkpoint.json"),
+    };
+    let microwave = root.join("machines/microwave");
+    let path = |p: &Path| p.to_string_lossy().into_owned();
+    let out = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", &path(&microwave), "--virtual-clock", "--quiet"])
+        .args(["--record", &path(&made.recording)])
+        .args(["--trace", &path(&made.trace)])
+        .args(["--checkpoint-at", "20"])
+        .args(["--checkpoint-file", &path(&made.checkpoint)])
+        .output()
+        .expect("the binary runs");
+    assert!(
+        out.status.success() && made.checkpoint.exists(),
+        "the microwave's run: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    made
 }
 
 fn under_dir(dir: &Path, ends: &str) -> Vec<PathBuf> {
@@ -268,9 +343,10 @@ fn workspace(root: &Path, worker: usize) -> PathBuf {
 /// `count` mutants over every kind, on two workers; the crashes found.
 fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let kinds = kinds(root);
+    let made = made(root);
+    let kinds = kinds(root, &made);
     let workers = 2;
-    std::thread::scope(|s| {
+    let crashes = std::thread::scope(|s| {
         let handles: Vec<_> = (0..workers)
             .map(|worker| {
                 let kinds = &kinds;
@@ -291,7 +367,11 @@ fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
             .into_iter()
             .flat_map(|h| h.join().expect("a worker ends"))
             .collect()
-    })
+    });
+    if let Some(dir) = made.recording.parent() {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    crashes
 }
 
 /// Mutant `seed`: a file of one kind, mutated where the workspace holds it, given to each of
@@ -303,11 +383,12 @@ fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> 
         return Vec::new();
     };
     let text = std::fs::read(original).expect("a shipped file reads");
-    // A file of the repository is mutated in the workspace; a corpus file beside it.
+    // A file of the repository is mutated in the workspace; a corpus file or one a run made
+    // beside it.
     let relative = original
         .strip_prefix(root)
         .ok()
-        .filter(|r| !r.starts_with(".."));
+        .filter(|r| r.starts_with("machines") || r.starts_with("theories"));
     let target = match relative {
         Some(relative) => dir.join(relative),
         None => dir.join(format!(
@@ -324,6 +405,10 @@ fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> 
             .map(|a| match *a {
                 "{}" => target.to_string_lossy().into_owned(),
                 "{dir}" => folder.to_string_lossy().into_owned(),
+                "{microwave}" => dir
+                    .join("machines/microwave")
+                    .to_string_lossy()
+                    .into_owned(),
                 other => other.to_string(),
             })
             .collect();
