@@ -211,8 +211,9 @@ impl Behaviour {
         Ok(out)
     }
 
-    fn with<T>(&self, body: impl FnOnce(&Driven) -> PyResult<T>) -> PyResult<T> {
-        let guard = match self.running.try_lock() {
+    /// Runs `body` on the behaviour between rounds (to read it, or to keep what it read).
+    fn with<T>(&self, body: impl FnOnce(&mut Driven) -> PyResult<T>) -> PyResult<T> {
+        let mut guard = match self.running.try_lock() {
             Ok(guard) => guard,
             Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
             Err(TryLockError::WouldBlock) => {
@@ -222,7 +223,7 @@ impl Behaviour {
             }
         };
         let running = guard
-            .as_ref()
+            .as_mut()
             .ok_or_else(|| PyValueError::new_err("the behaviour is closed"))?;
         body(running)
     }
@@ -539,25 +540,15 @@ impl Behaviour {
     /// answered everything posted), and is taken when that round runs; a behaviour made with
     /// `resume=` the text plays that round at its first step and goes on as this one did.
     fn checkpoint(&self) -> PyResult<Option<String>> {
-        let mut guard = match self.running.try_lock() {
-            Ok(guard) => guard,
-            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner(),
-            Err(TryLockError::WouldBlock) => {
-                return Err(PyRuntimeError::new_err(
-                    "the behaviour is running a round; ask for its checkpoint between rounds",
-                ))
+        self.with(|driven| {
+            if driven.checkpoint.is_none() {
+                if let Some(taken) = driven.run.checkpoint() {
+                    let text = taken.to_text().map_err(errors::Error::new_err)?;
+                    driven.checkpoint = Some(text);
+                }
             }
-        };
-        let driven = guard
-            .as_mut()
-            .ok_or_else(|| PyValueError::new_err("the behaviour is closed"))?;
-        if driven.checkpoint.is_none() {
-            if let Some(taken) = driven.run.checkpoint() {
-                let text = taken.to_text().map_err(errors::Error::new_err)?;
-                driven.checkpoint = Some(text);
-            }
-        }
-        Ok(driven.checkpoint.clone())
+            Ok(driven.checkpoint.clone())
+        })
     }
 
     /// Stops every module and machine now; later calls raise ValueError. Closing twice is
