@@ -575,13 +575,13 @@ fn skeleton(formulas: &str) -> (PathBuf, Vec<String>) {
     assert!(warnings.is_empty(), "{warnings:?}");
     let mut files: Vec<(String, String)> = machines
         .iter()
-        .map(|(m, _)| (format!("{}.machine", m.name), proclaim_fsm::to_native(m)))
+        .map(|m| (format!("{}.machine", m.name), m.text.clone()))
         .collect();
     let mut manifest = String::new();
-    for (m, start) in &machines {
+    for m in &machines {
         manifest.push_str(&format!(
-            "[[machine]]\nfile = \"{}.machine\"\nstart = {start}\n",
-            m.name
+            "[[machine]]\nfile = \"{}.machine\"\nstart = {}\n",
+            m.name, m.start
         ));
     }
     files.push(("behaviour.toml".into(), manifest));
@@ -649,7 +649,7 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
         ..Default::default()
     };
     let mut running = launch(&b, &board, options).await.unwrap();
-    let mut entered = Vec::new();
+    let (mut entered, mut fired) = (Vec::new(), Vec::new());
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while let Ok(Some(e)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
         if let proclaim_runner::Event::Entered {
@@ -657,6 +657,9 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
         } = &e
         {
             entered.push(format!("{:.1}s {machine} {state}", at.as_secs_f64()));
+        }
+        if let proclaim_runner::Event::Fired { machine, label, .. } = &e {
+            fired.push(format!("{machine}: {label}"));
         }
         if running.observe(&e) {
             break;
@@ -677,10 +680,48 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
             "2.0s center_for_2 End",
         ]
     );
+    // Each role ends announcing `finished`, which the protocol waits on.
+    assert!(
+        fired.contains(
+            &"attack: center.finished && center_for.finished && center_for_2.finished".into()
+        ),
+        "{fired:?}"
+    );
+}
+
+/// The Kouretes paper's robot formula (a player takes the center or the center-for role) with
+/// a parallel part beside it: the defined activity is a state holding its choice, the parallel
+/// branches are sub-machines announcing `finished`, and `check` finds only the open labels.
+#[test]
+fn a_defined_activity_is_a_nested_state_and_a_parallel_part_waits_on_outcomes() {
+    let (dir, files) = skeleton("Striker = (Attack || Track)+\nAttack = center | center-for\n");
     assert_eq!(
-        board.truth("centerIsRunning"),
-        Some(false),
-        "a finished role turns itself off"
+        files,
+        [
+            "Striker.machine",
+            "Attack.machine",
+            "Track.machine",
+            "behaviour.toml"
+        ]
+    );
+    let b = load("striker", Arc::new(Folder::new(&dir))).unwrap();
+    let attack = &b.machines[1].machine;
+    assert_eq!(attack.composites.len(), 1, "{attack:?}");
+    assert_eq!(attack.composites[0].name, "Attack");
+    let found: Vec<String> = proclaim_behaviour::check_behaviour(&b)
+        .iter()
+        .map(|d| d.message.clone())
+        .collect();
+    assert_eq!(
+        found,
+        [
+            "label `againAttack` is answered by no expert and posted by no module",
+            "label `choosecenter` is answered by no expert and posted by no module",
+            "label `choosecenter_for` is answered by no expert and posted by no module",
+            "label `centerDone` is answered by no expert and posted by no module",
+            "label `center_forDone` is answered by no expert and posted by no module",
+            "label `TrackDone` is answered by no expert and posted by no module",
+        ]
     );
 }
 

@@ -3,7 +3,7 @@
 
 use crate::failure::Failure;
 use proclaim_behaviour::{liveness_machines, parse_liveness, MachineEntry, Manifest};
-use proclaim_fsm::{to_native, Severity, EXTENSION};
+use proclaim_fsm::{Severity, EXTENSION};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -50,18 +50,18 @@ pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
         description: Some(format!("{} (from liveness formulas)", defs[0].name)),
         ..Manifest::default()
     };
-    for (machine, start) in &machines {
+    for machine in &machines {
         let path = dir.join(format!("{}.{EXTENSION}", machine.name));
         let text = format!(
             "// Generated from {shown} by `proclaim liveness`. Each basic activity's state calls a\n\
              // host function of its name; each open label says when to move on.\n{}",
-            to_native(machine)
+            machine.text
         );
         write(&path, &text)?;
         println!("{}", path.display());
         manifest.machines.push(MachineEntry {
             file: format!("{}.{EXTENSION}", machine.name),
-            start: *start,
+            start: machine.start,
             name: None,
             priority: 0,
             params: Default::default(),

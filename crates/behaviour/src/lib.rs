@@ -32,6 +32,7 @@ mod recorded;
 mod replaced;
 mod rerecord;
 mod runners;
+mod skeleton;
 mod subsumption;
 mod team;
 pub mod testing;
@@ -52,7 +53,7 @@ pub use edited::check_edited;
 pub use error::BehaviourError;
 pub use files::{Embedded, Files, Folder};
 pub use launch::{launch, LaunchOptions, Running};
-pub use liveness::{liveness_machines, parse_liveness, Definition, GaiaFormula};
+pub use liveness::{parse_liveness, Definition, GaiaFormula};
 pub use load::{
     load, load_manifest, read_machines, Behaviour, LoadedMachine, LoadedSensor, LoadedTheory,
 };
@@ -70,6 +71,7 @@ pub use recorded::{
     RecordingError, ReplayOutcome,
 };
 pub use rerecord::{rerecord, Rerecorded, RoundChange};
+pub use skeleton::{liveness_machines, Skeleton};
 pub use team::name_error as team_name_error;
 pub use trace::{read_trace, TraceView};
 pub use tried::{tried, Outcome, Tried, TriedError, TriedTransition};
