@@ -140,7 +140,7 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
 5: target \"a b\": several targets enter regions, which are not built yet
 6: <transition> without a target (it would act and stay): not in the native format yet; an `internal` activity runs when nothing fires
 7: `_event.data > 1`: an event's data (`_event`): events carry none here
-8: <send> delay=\"1s\": only an event posted to the behaviour's whiteboard maps
+8: <send event=\"e\"> with a delay: only a send on entering a state maps (it times that state)
 8: <if> in executable content: control flow in executable content: the activity language has `for` but no `if` yet
 10: <invoke> in a state: invoking another machine: use a sub-machine started by a posting
 ",
@@ -158,8 +158,8 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
   </state>
   <state id="s"><transition cond="malfunction &gt; 0 &amp;&amp; x != 'it&quot;s'" target="s"/></state>
 </scxml>"#,
-        "4: `done.state.p` with a `cond`: `done` stands alone
-2: initial `deep`: only one of the state's own states maps (not a deeper one or a history)
+        "2: initial `deep`: only one of the state's own states maps (not a deeper one or a history)
+4: `done.state.p` with a `cond`: `done` stands alone
 6: <state> without an `id`: give it one (it names the state)
 8: <state id=\"idle\"> has no transition, so it would be final here, which SCXML's is not, and `r` waits for its completion: write it as <final>
 ",
@@ -234,7 +234,12 @@ state DIVE {
     }
 
     state LEFT {
+        entry {
+            print("left");
+        }
         when x - (y - 1) > 2 -> LIE
+        when after(2) -> LIE
+        when after_ms(300) -> AIM
     }
 
     state LIE {
@@ -260,7 +265,7 @@ state DIVE {
 
 #[test]
 fn what_scxml_cannot_say_is_refused_at_its_line() {
-    let native = "machine M\nstate A {\n    internal {\n        n = n + 1;\n    }\n    entry {\n        Say: hi\n    }\n    when after(2s) -> B\n    when p -> #2\n}\nstate B #2 { }\n";
+    let native = "machine M\nstate A {\n    internal {\n        n = n + 1;\n    }\n    entry {\n        Say: hi\n    }\n    when after(2s) && p -> B\n    when p -> #2\n}\nstate B #2 { }\n";
     let refusals: Vec<String> = to_scxml("M.machine", native)
         .expect_err("refused")
         .iter()
@@ -271,7 +276,7 @@ fn what_scxml_cannot_say_is_refused_at_its_line() {
         [
             "3: state `A`: an internal activity (run each ringlet nothing fires) has no SCXML form",
             "7: the posting `Say: …`: its content has no SCXML form (an SCXML event carries none here); `post(\"Say\", TRUE);` raises it",
-            "9: `after(2s)`: a time test has no SCXML condition (SCXML times with delayed sends)",
+            "9: `after(2s) && p`: a time test has no SCXML condition (SCXML times a state with a delayed send, which a transition then waits on alone)",
             "10: `#2`: name the state; SCXML has no numbered states",
         ]
     );
@@ -332,4 +337,66 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
         eprintln!("  {n:5}  {reason}");
     }
     assert!(read + refused > 0, "{dir:?} holds no documents");
+}
+
+/// SCXML times a state with a delayed send on entering it and a transition on its event: that
+/// is a time test. A delayed send that does more than that is refused, saying why.
+#[test]
+fn a_delayed_send_that_times_its_state_is_a_time_test() {
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" version="1.0" initial="waiting" name="Kick">
+  <state id="waiting">
+    <onentry><send event="waited" delay="1.5s" id="t"/></onentry>
+    <onexit><cancel sendid="t"/></onexit>
+    <transition event="ball" target="kicking"/>
+    <transition event="waited give_up" target="done"/>
+  </state>
+  <state id="kicking">
+    <onentry><send event="kicked" delay="300ms"/></onentry>
+    <transition event="kicked" target="done"/>
+  </state>
+  <final id="done"/>
+</scxml>"#,
+        r#"machine Kick
+initial waiting
+
+state waiting { // SCXML line 2
+    when ball -> kicking // SCXML line 5
+    when (after_ms(1500) || give_up) -> done // SCXML line 6
+}
+
+state kicking { // SCXML line 8
+    when after_ms(300) -> done // SCXML line 10
+}
+
+state done { // SCXML line 12
+}
+"#,
+    );
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="a">
+  <state id="a">
+    <onentry><send event="t" delay="2s"/><send event="u" delay="soon"/><send event="v" delay="1s"/></onentry>
+    <transition event="t" cond="x &gt; 1" target="b"/>
+    <transition event="u" target="b"/>
+    <transition event="v" target="b"/>
+  </state>
+  <state id="b">
+    <onentry><send event="w" delay="1s"/><raise event="w"/></onentry>
+    <transition event="w" target="c"/>
+    <transition event="v" target="a"/>
+  </state>
+  <state id="c">
+    <onentry><send event="z" delay="1s"/></onentry>
+    <transition event="z" target="a"/>
+    <state id="c1"/>
+  </state>
+</scxml>"#,
+        "3: <send event=\"t\"> with a delay: the transition on line 4 has a `cond`: SCXML drops the event if it is false then, while a time test stays true
+3: <send event=\"u\"> with a delay: delay=\"soon\" is no duration (write `2s` or `500ms`, a whole number of milliseconds)
+3: <send event=\"v\"> with a delay: `b` (line 11) waits on `v` too; only the state that sends it may
+9: <send event=\"w\"> with a delay: `w` is also sent or raised at once; only an event the delay alone sends reads as a time test
+14: <send event=\"z\"> with a delay: `c` holds states, and a time test on a composite's transition is not built yet (docs/spec/behaviour.md §3.2)
+",
+    );
 }

@@ -1,6 +1,8 @@
 //! A native machine written as SCXML, from its states as written (nesting, histories and
 //! transition content kept), the inverse of `scxml/`'s mapping: what that mapping reads back
-//! is the same machine. What SCXML cannot say is refused at its line.
+//! is the same machine. A state's time test alone on a transition is SCXML's way to time it: a
+//! delayed send on entering, cancelled on leaving, and a transition on its event. What SCXML
+//! cannot say is refused at its line.
 
 use super::ast::{ActionAst, FileAst, Member, Ref, Section, StateAst, TopItem};
 use super::{LineIndex, MachineLexer};
@@ -214,7 +216,49 @@ impl Writer<'_> {
         let moves = s.members.iter().any(|m| matches!(m, Member::When { .. }));
         let element = if holds || moves { "state" } else { "final" };
         let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
+        let timers = if holds { Vec::new() } else { timers(&s) };
+        let (sends, cancels): (String, String) = timers
+            .iter()
+            .map(|(_, event, delay)| {
+                let e = attr(event);
+                (
+                    format!("{pad}    <send event=\"{e}\" delay=\"{delay}\" id=\"{e}\"/>\n"),
+                    format!("{pad}    <cancel sendid=\"{e}\"/>\n"),
+                )
+            })
+            .unzip();
+        let entered = s.members.iter().any(|m| {
+            matches!(
+                m,
+                Member::Activity {
+                    section: Section::Entry,
+                    ..
+                }
+            )
+        });
+        let left = s.members.iter().any(|m| {
+            matches!(
+                m,
+                Member::Activity {
+                    section: Section::Exit,
+                    ..
+                }
+            )
+        });
         let mut inner = String::new();
+        // A state with timers and no exit activity of its own cancels them in one of its own,
+        // written after its entry.
+        let fresh_exit = if left || cancels.is_empty() {
+            String::new()
+        } else {
+            format!("{pad}  <onexit>\n{cancels}{pad}  </onexit>\n")
+        };
+        if !entered && !sends.is_empty() {
+            let _ = write!(
+                inner,
+                "{pad}  <onentry>\n{sends}{pad}  </onentry>\n{fresh_exit}"
+            );
+        }
         for m in s.members {
             match m {
                 Member::Initial(target, at) => {
@@ -230,9 +274,15 @@ impl Writer<'_> {
                 Member::Activity {
                     section, actions, ..
                 } => {
-                    let tag = if section == Section::Entry { "onentry" } else { "onexit" };
+                    let (tag, timed) = match section {
+                        Section::Entry => ("onentry", &sends),
+                        _ => ("onexit", &cancels),
+                    };
                     let content = self.content(actions, depth + 2);
-                    let _ = write!(inner, "{pad}  <{tag}>\n{content}{pad}  </{tag}>\n");
+                    let _ = write!(inner, "{pad}  <{tag}>\n{timed}{content}{pad}  </{tag}>\n");
+                    if section == Section::Entry {
+                        inner.push_str(&fresh_exit);
+                    }
                 }
                 Member::When {
                     label,
@@ -243,8 +293,11 @@ impl Writer<'_> {
                     ..
                 } => {
                     let done = holds.then_some(s.name.as_str());
-                    let when = (label.as_str(), label_at, &target, target_at);
-                    self.transition(when, done, actions, &mut inner, depth + 1);
+                    let timer = timers.iter().find(|(l, _, _)| *l == label.trim());
+                    let label = timer.map_or(label.as_str(), |(_, event, _)| event.as_str());
+                    let when = (label, label_at, &target, target_at);
+                    let event = timer.is_some();
+                    self.transition(when, (done, event), actions, &mut inner, depth + 1);
                 }
                 Member::State(child) => self.state(child, &mut inner, depth + 1),
                 Member::Outcome(text, at) => self.refuse(at, format!("state `{}`: `outcome {text}` is not written to SCXML yet", s.name)),
@@ -273,7 +326,7 @@ impl Writer<'_> {
     fn transition(
         &mut self,
         (label, label_at, target, target_at): (&str, usize, &Ref, usize),
-        done: Option<&str>,
+        (done, event): (Option<&str>, bool),
         actions: Vec<(ActionAst, usize)>,
         out: &mut String,
         depth: usize,
@@ -283,6 +336,7 @@ impl Writer<'_> {
             return;
         };
         let condition = match (label.trim(), done) {
+            (timer, _) if event => format!(" event=\"{}\"", attr(timer)),
             ("done", Some(state)) => format!(" event=\"done.state.{}\"", attr(state)),
             ("TRUE" | "true" | "", _) => String::new(),
             (text, _) => match self.condition(text, label_at) {
@@ -328,7 +382,7 @@ impl Writer<'_> {
                     .iter()
                     .any(|(f, _)| crate::label::TIME_TESTS.iter().any(|(t, _)| t == f));
                 if timed {
-                    self.refuse(at, format!("`{label}`: a time test has no SCXML condition (SCXML times with delayed sends)"));
+                    self.refuse(at, format!("`{label}`: a time test has no SCXML condition (SCXML times a state with a delayed send, which a transition then waits on alone)"));
                     return None;
                 }
                 Some(script(&e))
@@ -400,6 +454,47 @@ impl Writer<'_> {
 }
 
 /// An expression as ECMAScript: `!` for not, `'…'` strings.
+/// The transitions of the atomic state `s` whose label is a time test alone, with a constant
+/// duration in whole milliseconds: (the label as written, the event its delayed send raises,
+/// the delay as SCXML writes it: `2s`, `1500ms`).
+fn timers(s: &StateAst) -> Vec<(String, String, String)> {
+    let mut out: Vec<(String, String, String)> = Vec::new();
+    for m in &s.members {
+        let Member::When { label, .. } = m else {
+            continue;
+        };
+        let Ok(Expr::Call {
+            function,
+            arguments,
+        }) = crate::label::parse_label(label)
+        else {
+            continue;
+        };
+        let Some((_, unit)) = crate::label::TIME_TESTS
+            .iter()
+            .find(|(f, _)| *f == function)
+        else {
+            continue;
+        };
+        // Written back as it reads again: `after(2)` as `2s`, `after_ms(300)` as `300ms`.
+        let delay = match (function.as_str(), arguments.as_slice()) {
+            ("after", [Expr::Int(n)]) if *n >= 0 => format!("{n}s"),
+            ("after_ms", [Expr::Int(n)]) if *n >= 0 => format!("{n}ms"),
+            (_, [Expr::Duration(us)]) if us % 1000 == 0 => format!("{}ms", us / 1000),
+            (_, [Expr::Int(n)]) if *n >= 0 && (*n as u64 * *unit as u64) % 1000 == 0 => {
+                format!("{}ms", *n as u64 * *unit as u64 / 1000)
+            }
+            _ => continue,
+        };
+        if out.iter().any(|(l, _, _)| l == label.trim()) {
+            continue;
+        }
+        let event = format!("{}.after_{delay}", s.name);
+        out.push((label.trim().to_string(), event, delay));
+    }
+    out
+}
+
 fn script(e: &Expr) -> String {
     match e {
         Expr::Unary {

@@ -2,8 +2,10 @@
 //! native format, nested states and histories included (`docs/spec/behaviour.md` §4): what
 //! maps is written as a `.machine` text, what does not is refused with its element and line.
 //! An event is a label atom (the proposition that it happened) and a `cond` is conjoined to
-//! it; `<raise>` and `<send>` post the event, true, to the whiteboard.
+//! it; `<raise>` and `<send>` post the event, true, to the whiteboard, but a delayed send that
+//! times the state sending it is that state's time test (`delayed.rs`).
 
+mod delayed;
 mod tree;
 
 use crate::code::{parse_expression, parse_statements};
@@ -41,10 +43,17 @@ pub fn import_scxml(file: &str, text: &str, stem: &str) -> ImportedScxml {
         names: HashMap::new(),
         histories: HashMap::new(),
         data: Vec::new(),
+        timers: HashMap::new(),
     };
     mapping.name_states(&root, "");
+    let (timers, refusals) = delayed::timers(&root);
+    mapping.timers = timers;
+    for (line, why) in refusals {
+        mapping.refuse(line, why);
+    }
     let native = mapping.document(&root, stem);
     if !mapping.refusals.is_empty() {
+        mapping.refusals.sort_by_key(|d| d.line);
         return refused(mapping.refusals);
     }
     let mut imported = crate::parse_machine(file, &native);
@@ -82,6 +91,8 @@ struct Mapping<'a> {
     histories: HashMap<String, String>,
     /// The data model: (name, type, first value written), in document order.
     data: Vec<(String, &'static str, String)>,
+    /// The delayed sends that time their state, by event.
+    timers: HashMap<String, delayed::Timer>,
 }
 
 const STATES: [&str; 3] = ["state", "final", "parallel"];
@@ -272,7 +283,9 @@ impl Mapping<'_> {
                         "exit"
                     };
                     let actions = self.content(child, depth + 2);
-                    let _ = write!(out, "{pad}    {section} {{\n{actions}{pad}    }}\n");
+                    if !actions.is_empty() {
+                        let _ = write!(out, "{pad}    {section} {{\n{actions}{pad}    }}\n");
+                    }
                 }
                 "transition" => self.transition(child, id, &mut whens, depth + 1),
                 "initial" => self.initial(child, &path, &mut whens, depth + 1),
@@ -360,7 +373,14 @@ impl Mapping<'_> {
             }
             label.push("done".to_string());
         } else if let Some(events) = element.attribute("event") {
-            let names: Vec<String> = events.split_whitespace().map(event).collect();
+            let names: Vec<String> = events
+                .split_whitespace()
+                .map(|e| {
+                    self.timers
+                        .get(e)
+                        .map_or_else(|| event(e), |t| t.label.clone())
+                })
+                .collect();
             if events.contains('*') {
                 self.refuse(
                     line,
@@ -407,6 +427,8 @@ impl Mapping<'_> {
             let line = match e.name.as_str() {
                 "assign" => self.assign(e),
                 "raise" | "send" => self.send(e),
+                // Cancelling a timer on leaving its state: the time test ends with the state.
+                "cancel" if self.cancels_a_timer(e) => None,
                 "log" => match e.attribute("expr") {
                     Some(expr) => self
                         .expression(expr, e.line)
@@ -456,6 +478,10 @@ impl Mapping<'_> {
     }
 
     fn send(&mut self, e: &Element) -> Option<String> {
+        // A delayed send is its state's time test, or refused already (`delayed.rs`).
+        if e.attribute("delay").is_some() {
+            return None;
+        }
         let what = format!("<{}>", e.name);
         if !e.children.is_empty() {
             self.refuse(e.line, format!("{what} with parameters or content: an event carries no data here (it is a proposition)"));
@@ -465,7 +491,6 @@ impl Mapping<'_> {
             "target",
             "targetexpr",
             "type",
-            "delay",
             "delayexpr",
             "eventexpr",
             "namelist",
@@ -579,6 +604,11 @@ impl Mapping<'_> {
         }
     }
 
+    fn cancels_a_timer(&self, e: &Element) -> bool {
+        let id = e.attribute("sendid");
+        id.is_some() && self.timers.values().any(|t| t.id.as_deref() == id)
+    }
+
     fn unmapped(&mut self, e: &Element, name: &str, inside: &str) {
         if e.foreign {
             return;
@@ -587,7 +617,7 @@ impl Mapping<'_> {
             "script" => "a script: only the small expression data model maps",
             "invoke" => "invoking another machine: use a sub-machine started by a posting",
             "if" | "elseif" | "else" | "foreach" => "control flow in executable content: the activity language has `for` but no `if` yet",
-            "cancel" => "cancelling a delayed send: sends are not delayed here",
+            "cancel" => "cancelling a send other than the delayed one that times a state (name it by `sendid`)",
             _ => "not an SCXML element proclaim maps",
         };
         self.refuse(e.line, format!("<{name}> in {inside}: {why}"));
