@@ -3,26 +3,38 @@
 //! error that says so, not in the process taking all the machine's memory.
 
 use crate::failure::Failure;
+use std::io::Read;
 use std::path::Path;
 
 /// The largest recording, trace or checkpoint read: far beyond a long match's (hours of
 /// rounds), well within what parsing it takes in memory.
 pub const LARGEST: u64 = 1 << 30;
 
-/// The text of `path`, `what` it should be naming it in the refusal.
+/// The text of `path`, `what` it should be naming it in the refusal. The bound holds for what
+/// is read, not what the file says it holds: a device or a pipe (`/dev/zero`) says 0.
 pub fn read_text(path: &Path, what: &'static str) -> Result<String, Failure> {
     let failed = |error| Failure::Read {
         path: path.to_path_buf(),
         error,
     };
-    let size = std::fs::metadata(path).map_err(failed)?.len();
-    if size > LARGEST {
-        return Err(Failure::TooLarge {
-            path: path.to_path_buf(),
-            what,
-            size,
-            limit: LARGEST,
-        });
+    let too_large = |size| Failure::TooLarge {
+        path: path.to_path_buf(),
+        what,
+        size,
+        limit: LARGEST,
+    };
+    let file = std::fs::File::open(path).map_err(failed)?;
+    let said = file.metadata().map_err(failed)?.len();
+    if said > LARGEST {
+        return Err(too_large(said));
     }
-    std::fs::read_to_string(path).map_err(failed)
+    let mut bytes = Vec::new();
+    file.take(LARGEST + 1)
+        .read_to_end(&mut bytes)
+        .map_err(failed)?;
+    if bytes.len() as u64 > LARGEST {
+        return Err(too_large(bytes.len() as u64));
+    }
+    String::from_utf8(bytes)
+        .map_err(|e| failed(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
 }
