@@ -160,6 +160,40 @@ fn the_built_in_behaviours_recorded_replay_the_same() {
     }
 }
 
+/// A recording made when traces showed the lowered label (`Dive_side < 0`, `Dive_landed`,
+/// `TRUE` for `done`) still replays: the comparison reads it as written now.
+#[test]
+fn a_recording_with_the_lowered_labels_of_before_still_replays() {
+    let recording = temp_file("keeper-lowered.jsonl", b"");
+    let run = proclaim(&[
+        "run",
+        "keeper",
+        "--virtual-clock",
+        "--for",
+        "10s",
+        "--record",
+        recording.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = std::fs::read_to_string(&recording).unwrap();
+    let older = text
+        .replace(r#""label":"side < 0""#, r#""label":"Dive_side < 0""#)
+        .replace(r#""label":"Dive.landed""#, r#""label":"Dive_landed""#);
+    assert_ne!(
+        older, text,
+        "the keeper fires on its parameter and the dive's outcome"
+    );
+    std::fs::write(&recording, older).unwrap();
+    let test = proclaim(&["test", "keeper", recording.to_str().unwrap()]);
+    assert_eq!(
+        test.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&test),
+        stderr(&test)
+    );
+}
+
 /// `test --coverage` says what recordings never exercised: the microwave's own kitchen script
 /// never opens the door while cooking, so the priority `DoorCut > Timer` never decides an answer
 /// and COOKING -> OPEN never fires; a second recording that opens the door mid-minute covers both.

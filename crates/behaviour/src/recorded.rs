@@ -190,6 +190,29 @@ pub enum ReplayOutcome {
     Differs(Difference),
 }
 
+/// A firing recorded before labels were shown as written (`Dive_side < 0` for `side < 0`),
+/// as the replay shows it now, so such a recording still replays.
+fn as_written(behaviour: &Behaviour, event: &Event) -> Option<String> {
+    let Event::Fired {
+        machine,
+        from,
+        to,
+        label,
+        ..
+    } = event
+    else {
+        return None;
+    };
+    let m = behaviour
+        .machines
+        .iter()
+        .find(|m| m.machine.name == *machine)?;
+    let t = m.machine.transitions.iter().find(|t| {
+        t.source == *from && t.target == *to && t.written.is_some() && t.label.to_string() == *label
+    })?;
+    Some(format!("fires {from} -> {to} on {}", t.shown()))
+}
+
 /// One event as the comparison sees it: its round, its machine and what happened, without
 /// times or who answered.
 fn observable(event: &Event) -> Option<(u64, &str, String)> {
@@ -491,7 +514,10 @@ fn compare(behaviour: &Behaviour, recording: &Recording, found: &[Event]) -> Rep
         .events
         .iter()
         .filter(ours)
-        .filter_map(observable)
+        .filter_map(|e| {
+            let (round, machine, what) = observable(e)?;
+            Some((round, machine, as_written(behaviour, e).unwrap_or(what)))
+        })
         .collect();
     let got: Vec<_> = found.iter().filter(ours).filter_map(observable).collect();
     for (i, want) in expected.iter().enumerate() {
