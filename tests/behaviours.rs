@@ -910,3 +910,27 @@ fn a_theory_entry_sets_its_experts_search_budget() {
         proclaim_cdl::SearchLimits::default()
     );
 }
+
+/// Whatever the formulas name their activities, the skeleton reads back: names a generated
+/// state would repeat (`Kick . Kick . Kick2`, `Choose2`) are numbered on, and words the format
+/// keeps (`entry`, `done`) are written with `_` after them.
+#[test]
+fn a_skeleton_reads_back_whatever_its_activities_are_named() {
+    for formulas in [
+        "B = Kick . Kick . Kick2\n",
+        "B = (Choose2 | x) . Repeat2 . End . End2+\n",
+        "B = entry . done . (when | state)* . history\n",
+        "B = P . P\nP = PEnd . (Q || Q)\nQ = a | a\n",
+    ] {
+        let (dir, _) = skeleton(formulas);
+        let b = load("skeleton", Arc::new(Folder::new(&dir)))
+            .unwrap_or_else(|e| panic!("{formulas}: {e:?}"));
+        let errors: Vec<String> = proclaim_behaviour::check_behaviour(&b)
+            .iter()
+            .filter(|d| d.severity == proclaim_fsm::Severity::Error)
+            .map(|d| d.message.clone())
+            .filter(|m| !m.ends_with("is answered by no expert and posted by no module"))
+            .collect();
+        assert!(errors.is_empty(), "{formulas}: {errors:?}");
+    }
+}

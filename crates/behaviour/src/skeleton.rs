@@ -56,22 +56,26 @@ impl Draft {
     }
 
     /// A state named `base`, or `base2`, `base3`… when taken anywhere in the machine (so a
-    /// target's name finds one state wherever it is).
+    /// target's name finds one state wherever it is), by this base or another (`Kick2`).
     fn state(&mut self, base: &str, entry: Vec<String>) -> usize {
-        let n = match self.counters.iter_mut().find(|(b, _)| b == base) {
-            Some((_, n)) => {
-                *n += 1;
-                *n
-            }
+        let at = match self.counters.iter().position(|(b, _)| b == base) {
+            Some(at) => at,
             None => {
-                self.counters.push((base.to_string(), 1));
-                1
+                self.counters.push((base.to_string(), 0));
+                self.counters.len() - 1
             }
         };
-        let name = if n == 1 {
-            base.to_string()
-        } else {
-            format!("{base}{n}")
+        let name = loop {
+            self.counters[at].1 += 1;
+            let n = self.counters[at].1;
+            let name = if n == 1 {
+                base.to_string()
+            } else {
+                format!("{base}{n}")
+            };
+            if self.nodes.iter().all(|node| node.name != name) {
+                break name;
+            }
         };
         self.nodes.push(Node {
             name,
@@ -148,9 +152,34 @@ impl Draft {
     }
 }
 
-/// A name usable as a state, machine and message type: `center-for` → `center_for`.
+/// Words a native file or a chart keeps for itself, which an activity's state cannot be named.
+const RESERVED: [&str; 15] = [
+    "machine",
+    "description",
+    "initial",
+    "state",
+    "entry",
+    "exit",
+    "internal",
+    "when",
+    "call",
+    "code",
+    "param",
+    "outcome",
+    "done",
+    "history",
+    "deep_history",
+];
+
+/// A name usable as a state, machine and message type: `center-for` → `center_for`, and a
+/// reserved word with `_` after it (`entry_`).
 fn ident(name: &str) -> String {
-    name.replace('-', "_")
+    let id = name.replace('-', "_");
+    if RESERVED.contains(&id.as_str()) {
+        id + "_"
+    } else {
+        id
+    }
 }
 
 /// The first activity a formula names (to name the choice that leads to it).
