@@ -40,9 +40,60 @@ struct Coverage {
 /// Runs the behaviour of `seed` and follows its trace in the model; the events, or the whole
 /// story of a mismatch.
 /// A run followed in the model: what the model made of it, the runner's events and how many
-/// of its firings resumed a history (a trace shows the label as written, so only the lowered
-/// machine can tell).
+/// of its firings resumed a history ([`resumes`]).
 type Conformed = (Followed, Vec<Event>, usize);
+
+/// How many firings of `events` resumed a history: an arm `X_history == K && …` fired while
+/// the run's last assignment to `X_history` was K (a trace shows the label as written, and the
+/// arm for "never left" may go to the same state on it).
+fn resumes(behaviour: &proclaim_behaviour::Behaviour, events: &[Event]) -> usize {
+    let mut values: std::collections::HashMap<(&str, &str), &str> = Default::default();
+    let mut resumed = 0;
+    for e in events {
+        match e {
+            Event::Assigned {
+                machine,
+                variable,
+                value,
+                ..
+            } => {
+                values.insert((machine, variable), value);
+            }
+            Event::Fired {
+                machine,
+                from,
+                to,
+                label,
+                ..
+            } => {
+                let Some(m) = behaviour
+                    .machines
+                    .iter()
+                    .find(|m| m.machine.name == *machine)
+                else {
+                    continue;
+                };
+                let resume = (m.machine.transitions.iter())
+                    .filter(|t| t.source == *from && t.target == *to)
+                    .filter(|t| t.shown().to_string() == *label)
+                    .filter_map(|t| {
+                        let lowered = t.label.to_string();
+                        let (variable, rest) = lowered.split_once(" == ")?;
+                        let place = rest.split_whitespace().next()?.to_string();
+                        variable
+                            .ends_with("_history")
+                            .then(|| (variable.to_string(), place))
+                    })
+                    .any(|(variable, place)| {
+                        values.get(&(machine.as_str(), variable.as_str())) == Some(&place.as_str())
+                    });
+                resumed += usize::from(resume);
+            }
+            _ => {}
+        }
+    }
+    resumed
+}
 
 fn run_one(seed: u64) -> Result<Conformed, String> {
     run_generated(seed, &generate(seed))
@@ -61,28 +112,7 @@ fn run_generated(seed: u64, generated: &RandomBehaviour) -> Result<Conformed, St
     let events = play(&dir, generated).map_err(|e| format!("seed {seed}: {e}"))?;
     let outcome = follow(&model, &events);
     let _ = std::fs::remove_dir_all(&dir);
-    let resumed = events
-        .iter()
-        .filter(|e| {
-            let Event::Fired {
-                machine, from, to, ..
-            } = e
-            else {
-                return false;
-            };
-            let loaded = behaviour
-                .machines
-                .iter()
-                .find(|m| m.machine.name == *machine);
-            loaded.is_some_and(|m| {
-                m.machine.transitions.iter().any(|t| {
-                    t.source == *from
-                        && t.target == *to
-                        && t.label.to_string().contains("_history ==")
-                })
-            })
-        })
-        .count();
+    let resumed = resumes(&behaviour, &events);
     match outcome {
         Ok(followed) => Ok((followed, events, resumed)),
         Err(mismatch) => Err(format!(
