@@ -161,9 +161,12 @@ struct Made {
     checkpoint: PathBuf,
 }
 
-fn made(root: &Path) -> Made {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-mutants-made-{}", std::process::id()));
+/// Made in a folder of this run's own (`tag`: two fuzz runs of one process may overlap).
+fn made(root: &Path, tag: u64) -> Made {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "proclaim-mutants-made-{}-{tag}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("a folder");
     let made = Made {
@@ -326,9 +329,11 @@ fn try_command(args: &[String], seed: u64, mutant: &Path) -> Option<Crash> {
 
 /// Every kind's files copied to a folder of this worker's own, as the repository lays them out
 /// (behaviours find their theories by relative path).
-fn workspace(root: &Path, worker: usize) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-mutants-{}-{worker}", std::process::id()));
+fn workspace(root: &Path, worker: usize, tag: u64) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "proclaim-mutants-{}-{tag}-{worker}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     for top in ["machines", "theories"] {
         for file in walk(&root.join(top)) {
@@ -343,7 +348,7 @@ fn workspace(root: &Path, worker: usize) -> PathBuf {
 /// `count` mutants over every kind, on two workers; the crashes found.
 fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let made = made(root);
+    let made = made(root, first_seed);
     let kinds = kinds(root, &made);
     let workers = 2;
     let crashes = std::thread::scope(|s| {
@@ -351,7 +356,7 @@ fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
             .map(|worker| {
                 let kinds = &kinds;
                 s.spawn(move || {
-                    let dir = workspace(root, worker);
+                    let dir = workspace(root, worker, first_seed);
                     let mut crashes = Vec::new();
                     let seeds = (first_seed..first_seed + count)
                         .filter(|s| *s as usize % workers == worker);

@@ -79,12 +79,6 @@ pub fn running_type(machine: &str) -> String {
     format!("{machine}IsRunning")
 }
 
-/// The type a machine compiled from a liveness formula posts when its formula is met
-/// (`TestBehaviorFinished: true`).
-pub fn finished_type(machine: &str) -> String {
-    format!("{machine}Finished")
-}
-
 /// The machine a `NameIsRunning` type speaks of.
 pub fn machine_of_running_type(ty: &str) -> Option<&str> {
     ty.strip_suffix("IsRunning").filter(|m| !m.is_empty())

@@ -31,7 +31,7 @@ pub use activity::{
     parse_description, parse_gufsm_activities, parse_ta_items, Description, BUILTIN_FUNCTIONS,
 };
 pub use code::{BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType};
-pub use control::{finished_type, machine_of_running_type, running_type, Command};
+pub use control::{machine_of_running_type, running_type, Command};
 pub use dot::to_dot;
 pub use format::{machine_format, MachineFormat};
 pub use interface::{fits, global_of, DeclaredOutcome, Interface, Param};

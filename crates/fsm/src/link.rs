@@ -10,7 +10,7 @@
 use crate::code::{Expr, Statement};
 use crate::control::Command;
 use crate::interface::{fits, global_of, is_name, Interface};
-use crate::model::{Action, Machine, StateId};
+use crate::model::{Action, ActivityOf, Machine, StateId};
 use crate::start::{start_of, Start};
 
 /// How the manifest starts a machine: with the behaviour or not, and the parameters it gives.
@@ -149,8 +149,13 @@ impl Linker<'_> {
             .states
             .iter()
             .map(|s| {
-                [&s.on_entry, &s.on_exit, &s.internal].map(|list| {
-                    let from = |a| machine.composite_writing(s, a).is_some();
+                let sections: [(&Vec<Action>, ActivityOf); 3] = [
+                    (&s.on_entry, |c| &c.on_entry),
+                    (&s.on_exit, |c| &c.on_exit),
+                    (&s.internal, |c| &c.internal),
+                ];
+                sections.map(|(list, section)| {
+                    let from = |a| machine.composite_writing(s, a, section).is_some();
                     list.iter().map(from).collect()
                 })
             })
@@ -164,7 +169,8 @@ impl Linker<'_> {
                 let source = machine.state(t.source);
                 let exits = |a: &Action| {
                     source.is_some_and(|s| {
-                        s.on_exit.contains(a) || machine.composite_writing(s, a).is_some()
+                        s.on_exit.contains(a)
+                            || machine.composite_writing(s, a, |c| &c.on_exit).is_some()
                     })
                 };
                 t.leaving.iter().flatten().map(exits).collect()

@@ -98,13 +98,18 @@ impl Machine {
         self.composites.iter().position(|c| c.name == outer)
     }
 
-    /// The composite that wrote `action`, which the flat state `state` runs: the innermost
-    /// around it whose activities hold it as written; `None` when the state's own file text did.
-    pub fn composite_writing(&self, state: &State, action: &Action) -> Option<&Composite> {
+    /// The composite that wrote `action`, which the flat state `state` runs in the activity
+    /// `section` picks (a composite's OnEntry for an arrival): the innermost around it whose
+    /// activity holds it as written; `None` when the state's own text did.
+    pub fn composite_writing(
+        &self,
+        state: &State,
+        action: &Action,
+        section: ActivityOf,
+    ) -> Option<&Composite> {
         let mut around = self.composite_of(state);
         while let Some(c) = around.and_then(|c| self.composites.get(c)) {
-            let lists = [&c.on_entry, &c.on_exit, &c.internal];
-            if lists.iter().any(|list| list.contains(action)) {
+            if section(c).contains(action) {
                 return Some(c);
             }
             around = c.parent;
@@ -112,10 +117,14 @@ impl Machine {
         None
     }
 
-    /// The line that wrote `action`, which the flat state `state` runs.
+    /// The line that wrote `action`, which the flat state `state` runs in one of its
+    /// activities.
     pub fn line_of(&self, state: &State, action: &Action) -> usize {
-        self.composite_writing(state, action)
-            .map_or(state.line, |c| c.line)
+        let sections: [ActivityOf; 3] = [|c| &c.on_entry, |c| &c.on_exit, |c| &c.internal];
+        let mut written = sections
+            .iter()
+            .filter_map(|&section| self.composite_writing(state, action, section));
+        written.next().map_or(state.line, |c| c.line)
     }
 
     /// Where `transition` was written: its source state, or the composite holding it.
@@ -126,6 +135,9 @@ impl Machine {
         }
     }
 }
+
+/// One of a composite's activities: its OnEntry, OnExit or Internal.
+pub type ActivityOf = fn(&Composite) -> &[Action];
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct State {

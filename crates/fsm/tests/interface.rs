@@ -459,7 +459,8 @@ fn the_editor_keeps_a_final_state_that_announces_an_outcome_final() {
 }
 
 /// A composite's activity runs in every flat state inside it (and its OnExit in every
-/// transition leaving it): what is wrong in it is said once, at the composite.
+/// transition leaving it): what is wrong in it is said once, at the composite; the same text
+/// in a state's own activity of another kind is the state's.
 #[test]
 fn what_is_wrong_in_a_composites_activity_is_said_once_where_it_is_written() {
     let keeper = "machine Keeper
@@ -473,7 +474,12 @@ state PLAY {
     }
     when stop -> OUT
     state A { when a -> B }
-    state B { when b -> A }
+    state B {
+        entry {
+            Dive: suspend(side = 1)
+        }
+        when b -> A
+    }
 }
 state OUT {
     when go -> PLAY.B
@@ -497,6 +503,8 @@ state OUT {
             "Some(3): `Dive: suspend(side = 1)`: only `restart` gives a machine its parameters",
             "Some(3): `Dive` has no parameter `power`",
             "Some(3): `Dive` takes side: start it with `Dive: restart(side = …)`",
+            // B's own entry says what PLAY's exit says: it is B's, said at B.
+            "Some(12): `Dive: suspend(side = 1)`: only `restart` gives a machine its parameters",
         ]
     );
 }

@@ -217,48 +217,8 @@ impl Writer<'_> {
         let element = if holds || moves { "state" } else { "final" };
         let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
         let timers = if holds { Vec::new() } else { timers(&s) };
-        let (sends, cancels): (String, String) = timers
-            .iter()
-            .map(|(_, event, delay)| {
-                let e = attr(event);
-                (
-                    format!("{pad}    <send event=\"{e}\" delay=\"{delay}\" id=\"{e}\"/>\n"),
-                    format!("{pad}    <cancel sendid=\"{e}\"/>\n"),
-                )
-            })
-            .unzip();
-        let entered = s.members.iter().any(|m| {
-            matches!(
-                m,
-                Member::Activity {
-                    section: Section::Entry,
-                    ..
-                }
-            )
-        });
-        let left = s.members.iter().any(|m| {
-            matches!(
-                m,
-                Member::Activity {
-                    section: Section::Exit,
-                    ..
-                }
-            )
-        });
-        let mut inner = String::new();
-        // A state with timers and no exit activity of its own cancels them in one of its own,
-        // written after its entry.
-        let fresh_exit = if left || cancels.is_empty() {
-            String::new()
-        } else {
-            format!("{pad}  <onexit>\n{cancels}{pad}  </onexit>\n")
-        };
-        if !entered && !sends.is_empty() {
-            let _ = write!(
-                inner,
-                "{pad}  <onentry>\n{sends}{pad}  </onentry>\n{fresh_exit}"
-            );
-        }
+        let timed = Timed::of(&s, &timers, &pad);
+        let mut inner = timed.before.clone();
         for m in s.members {
             match m {
                 Member::Initial(target, at) => {
@@ -274,14 +234,14 @@ impl Writer<'_> {
                 Member::Activity {
                     section, actions, ..
                 } => {
-                    let (tag, timed) = match section {
-                        Section::Entry => ("onentry", &sends),
-                        _ => ("onexit", &cancels),
+                    let (tag, first) = match section {
+                        Section::Entry => ("onentry", &timed.sends),
+                        _ => ("onexit", &timed.cancels),
                     };
                     let content = self.content(actions, depth + 2);
-                    let _ = write!(inner, "{pad}  <{tag}>\n{timed}{content}{pad}  </{tag}>\n");
+                    let _ = write!(inner, "{pad}  <{tag}>\n{first}{content}{pad}  </{tag}>\n");
                     if section == Section::Entry {
-                        inner.push_str(&fresh_exit);
+                        inner.push_str(&timed.fresh_exit);
                     }
                 }
                 Member::When {
@@ -454,6 +414,54 @@ impl Writer<'_> {
 }
 
 /// An expression as ECMAScript: `!` for not, `'…'` strings.
+/// What a state's timers add to its SCXML: a send each on entering, a cancel each on
+/// leaving, in the state's own `<onentry>` and `<onexit>` or in ones of their own.
+struct Timed {
+    sends: String,
+    cancels: String,
+    /// What goes first inside the state: the timers' own `<onentry>` (and `<onexit>`) when
+    /// the state has no entry activity.
+    before: String,
+    /// The timers' own `<onexit>`, after the state's entry, when it has no exit activity.
+    fresh_exit: String,
+}
+
+impl Timed {
+    fn of(s: &StateAst, timers: &[(String, String, String)], pad: &str) -> Timed {
+        let (sends, cancels): (String, String) = timers
+            .iter()
+            .map(|(_, event, delay)| {
+                let e = attr(event);
+                (
+                    format!("{pad}    <send event=\"{e}\" delay=\"{delay}\" id=\"{e}\"/>\n"),
+                    format!("{pad}    <cancel sendid=\"{e}\"/>\n"),
+                )
+            })
+            .unzip();
+        let has = |wanted: Section| {
+            s.members
+                .iter()
+                .any(|m| matches!(m, Member::Activity { section, .. } if *section == wanted))
+        };
+        let fresh_exit = if has(Section::Exit) || cancels.is_empty() {
+            String::new()
+        } else {
+            format!("{pad}  <onexit>\n{cancels}{pad}  </onexit>\n")
+        };
+        let before = if has(Section::Entry) || sends.is_empty() {
+            String::new()
+        } else {
+            format!("{pad}  <onentry>\n{sends}{pad}  </onentry>\n{fresh_exit}")
+        };
+        Timed {
+            sends,
+            cancels,
+            before,
+            fresh_exit,
+        }
+    }
+}
+
 /// The transitions of the atomic state `s` whose label is a time test alone, with a constant
 /// duration in whole milliseconds: (the label as written, the event its delayed send raises,
 /// the delay as SCXML writes it: `2s`, `1500ms`).
