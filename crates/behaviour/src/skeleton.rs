@@ -152,30 +152,15 @@ impl Draft {
     }
 }
 
-/// Words a native file or a chart keeps for itself, which an activity's state cannot be named.
-const RESERVED: [&str; 15] = [
-    "machine",
-    "description",
-    "initial",
-    "state",
-    "entry",
-    "exit",
-    "internal",
-    "when",
-    "call",
-    "code",
-    "param",
-    "outcome",
-    "done",
-    "history",
-    "deep_history",
-];
+/// Words a chart keeps for itself beside the native format's own ([`proclaim_fsm::KEYWORDS`]):
+/// no activity's state can be named one.
+const CHART_WORDS: [&str; 3] = ["done", "history", "deep_history"];
 
 /// A name usable as a state, machine and message type: `center-for` → `center_for`, and a
 /// reserved word with `_` after it (`entry_`).
 fn ident(name: &str) -> String {
     let id = name.replace('-', "_");
-    if RESERVED.contains(&id.as_str()) {
+    if proclaim_fsm::KEYWORDS.contains(&id.as_str()) || CHART_WORDS.contains(&id.as_str()) {
         id + "_"
     } else {
         id

@@ -41,7 +41,7 @@ pub use lint::{lint, reachable};
 pub use model::{
     Action, Argument, Composite, Machine, State, StateId, Transition, UnreadTransition,
 };
-pub use native::{parse_machine, to_native, to_scxml, EXTENSION};
+pub use native::{parse_machine, to_native, to_scxml, EXTENSION, KEYWORDS};
 pub use start::{start_of, Start};
 
 /// Editing native machine files in place: each edit a text patch at the reader's spans, so

@@ -59,7 +59,7 @@ pub use edit::{
 };
 pub use edit_error::EditError;
 pub use to_scxml::to_scxml;
-pub use write::to_native;
+pub use write::{to_native, KEYWORDS};
 
 lalrpop_util::lalrpop_mod!(
     #[allow(clippy::all, clippy::pedantic, unused)]

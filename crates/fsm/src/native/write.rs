@@ -7,7 +7,8 @@ use crate::model::{Action, Argument, Machine, State, StateId, Transition, Unread
 use std::collections::HashMap;
 use std::fmt::Write;
 
-const KEYWORDS: [&str; 12] = [
+/// The words the native format keeps for itself: a name that is one is written quoted.
+pub const KEYWORDS: [&str; 12] = [
     "machine",
     "description",
     "initial",

@@ -89,20 +89,8 @@ fn timer(
             return Err(format!("the transition on line {} has a `cond`: SCXML drops the event if it is false then, while a time test stays true", t.line));
         }
     }
-    for unmapped in [
-        "target",
-        "targetexpr",
-        "type",
-        "delayexpr",
-        "eventexpr",
-        "namelist",
-        "idlocation",
-    ] {
-        if let Some(value) = send.attribute(unmapped) {
-            if !(unmapped == "target" && value == "#_internal") {
-                return Err(format!("{unmapped}=\"{value}\" does not map"));
-            }
-        }
+    if let Some((unmapped, value)) = super::unmapped_send(send) {
+        return Err(format!("{unmapped}=\"{value}\" does not map"));
     }
     if !send.children.is_empty() {
         return Err("parameters or content: an event carries no data here".into());

@@ -487,21 +487,9 @@ impl Mapping<'_> {
             self.refuse(e.line, format!("{what} with parameters or content: an event carries no data here (it is a proposition)"));
             return None;
         }
-        for unmapped in [
-            "target",
-            "targetexpr",
-            "type",
-            "delayexpr",
-            "eventexpr",
-            "namelist",
-            "idlocation",
-        ] {
-            if let Some(value) = e.attribute(unmapped) {
-                if !(unmapped == "target" && value == "#_internal") {
-                    self.refuse(e.line, format!("{what} {unmapped}=\"{value}\": only an event posted to the behaviour's whiteboard maps"));
-                    return None;
-                }
-            }
+        if let Some((unmapped, value)) = unmapped_send(e) {
+            self.refuse(e.line, format!("{what} {unmapped}=\"{value}\": only an event posted to the behaviour's whiteboard maps"));
+            return None;
         }
         match e.attribute("event") {
             Some(name) => Some(format!("post(\"{}\", TRUE);", event(name))),
@@ -691,6 +679,25 @@ fn double_quoted(text: &str) -> String {
         }
     }
     out
+}
+
+/// The first attribute of a `<send>` that says more than "post this event here" (a target
+/// other than the document itself, a type, an event or delay computed at run time), with its
+/// value.
+fn unmapped_send(e: &Element) -> Option<(&'static str, &str)> {
+    let unmapped = [
+        "target",
+        "targetexpr",
+        "type",
+        "delayexpr",
+        "eventexpr",
+        "namelist",
+        "idlocation",
+    ];
+    unmapped.into_iter().find_map(|name| {
+        let value = e.attribute(name)?;
+        (!(name == "target" && value == "#_internal")).then_some((name, value))
+    })
 }
 
 /// An event name as a label atom: `a.b-c` is `a_b_c`.
