@@ -402,6 +402,52 @@ async fn a_nested_state_is_lit_inside_its_composites_cluster() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// A composite's transition back into itself is drawn out of its cluster to a point and in
+/// again; when it fires, both halves are lit.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_composite_entered_again_lights_both_halves_of_its_edge() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let machine = "machine M\ninitial PLAY\nstate PLAY {\n    entry {\n        int n;\n        n = n + 1;\n    }\n    when again && n < 2 -> PLAY\n    state A { when a -> B }\n    state B { when b -> A }\n}\n";
+    let folder = crate::behaviour_folder(
+        "monitor-back",
+        &[
+            ("M.machine", machine),
+            (
+                "run.script",
+                "a = false\nagain = false\nb = false\nat 1s a = true\nat 2s again = true\n",
+            ),
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"M.machine\"\n[impersonator]\nscript = \"run.script\"\n",
+            ),
+        ],
+    );
+    let trace = behaviour_trace(folder.to_str().unwrap(), "3s", "back");
+    let events: Vec<Json> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let again = 1 + events
+        .iter()
+        .position(|e| e["event"] == "fired" && e["label"] == "again && n < 2")
+        .expect("PLAY was entered again");
+    let _replay = replay_page(&client, &trace, folder.to_str().unwrap()).await;
+    let second = Duration::from_secs(1);
+    let halves = "return [...document.querySelectorAll('[data-machine=\"M\"] g.edge')].filter((g) => g.querySelector('title')?.textContent.includes('_back')).map((g) => g.classList.contains('fired'))";
+    until(&client, halves, json!([false, false]), 5 * second).await;
+    eval(
+        &client,
+        &format!("const s = document.getElementById('slider'); s.value = '{again}'; s.dispatchEvent(new Event('input')); return true"),
+    )
+    .await;
+    until(&client, halves, json!([true, true]), 3 * second).await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
+
 /// The page lists an assignment with its variable and value (the press's controller counts
 /// how long it waited).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
