@@ -161,7 +161,7 @@ fn the_built_in_behaviours_recorded_replay_the_same() {
 }
 
 /// A recording made when traces showed the lowered label (`Dive_side < 0`, `Dive_landed`,
-/// `TRUE` for `done`) still replays: the comparison reads it as written now.
+/// `TRUE` for `done`) still replays, and covers what it covered: both read it as written now.
 #[test]
 fn a_recording_with_the_lowered_labels_of_before_still_replays() {
     let recording = temp_file("keeper-lowered.jsonl", b"");
@@ -175,6 +175,12 @@ fn a_recording_with_the_lowered_labels_of_before_still_replays() {
         recording.to_str().unwrap(),
     ]);
     assert!(run.status.success(), "{}", stderr(&run));
+    let coverage = || {
+        let o = proclaim(&["test", "keeper", recording.to_str().unwrap(), "--coverage"]);
+        let out = stdout(&o);
+        out[out.find("coverage:").expect("a coverage report")..].to_string()
+    };
+    let now = coverage();
     let text = std::fs::read_to_string(&recording).unwrap();
     let older = text
         .replace(r#""label":"side < 0""#, r#""label":"Dive_side < 0""#)
@@ -192,6 +198,7 @@ fn a_recording_with_the_lowered_labels_of_before_still_replays() {
         stdout(&test),
         stderr(&test)
     );
+    assert_eq!(coverage(), now);
 }
 
 /// `test --coverage` says what recordings never exercised: the microwave's own kitchen script

@@ -5,7 +5,7 @@
 //! they never did: a recording that passes says nothing about what it never exercised.
 
 use crate::load::Behaviour;
-use crate::recorded::Recording;
+use crate::recorded::{written_label, Recording};
 use crate::why::replay;
 use proclaim_cdl::{About, Explanation};
 use proclaim_runner::Event;
@@ -62,14 +62,14 @@ struct Exercised {
 pub fn coverage(behaviour: &Behaviour, recordings: &[Recording]) -> Coverage {
     let mut done = Exercised::default();
     for recording in recordings {
-        machines_did(recording, &mut done);
+        machines_did(behaviour, recording, &mut done);
         theories_did(behaviour, recording, &mut done);
     }
     listed(behaviour, &done)
 }
 
 /// The states the recording's machines entered and the transitions they fired.
-fn machines_did(recording: &Recording, done: &mut Exercised) {
+fn machines_did(behaviour: &Behaviour, recording: &Recording, done: &mut Exercised) {
     for event in &recording.events {
         match event {
             Event::Entered { machine, id, .. } => {
@@ -82,8 +82,9 @@ fn machines_did(recording: &Recording, done: &mut Exercised) {
                 label,
                 ..
             } => {
-                done.fired
-                    .insert((machine.clone(), *from, *to, label.clone()));
+                // An older recording's lowered label counts as the label as written.
+                let label = written_label(behaviour, event).unwrap_or_else(|| label.clone());
+                done.fired.insert((machine.clone(), *from, *to, label));
             }
             _ => {}
         }

@@ -193,6 +193,16 @@ pub enum ReplayOutcome {
 /// A firing recorded before labels were shown as written (`Dive_side < 0` for `side < 0`),
 /// as the replay shows it now, so such a recording still replays.
 fn as_written(behaviour: &Behaviour, event: &Event) -> Option<String> {
+    let Event::Fired { from, to, .. } = event else {
+        return None;
+    };
+    let label = written_label(behaviour, event)?;
+    Some(format!("fires {from} -> {to} on {label}"))
+}
+
+/// The label as written of a firing recorded with its lowered label (a recording made before
+/// traces showed labels as written); `None` for any other event.
+pub(crate) fn written_label(behaviour: &Behaviour, event: &Event) -> Option<String> {
     let Event::Fired {
         machine,
         from,
@@ -210,7 +220,7 @@ fn as_written(behaviour: &Behaviour, event: &Event) -> Option<String> {
     let t = m.machine.transitions.iter().find(|t| {
         t.source == *from && t.target == *to && t.written.is_some() && t.label.to_string() == *label
     })?;
-    Some(format!("fires {from} -> {to} on {}", t.shown()))
+    Some(t.shown().to_string())
 }
 
 /// One event as the comparison sees it: its round, its machine and what happened, without
