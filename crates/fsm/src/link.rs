@@ -144,38 +144,8 @@ impl Linker<'_> {
     fn machine(&mut self, i: usize, machine: &mut Machine) {
         // A chart's composites keep their activities as written for what draws them: lowered
         // the same way, so they stay the flat states' leading parts, and their problems said
-        // there, once, not in each flat state that runs them (found before either is lowered).
-        let written: Vec<[Vec<bool>; 3]> = machine
-            .states
-            .iter()
-            .map(|s| {
-                let sections: [(&Vec<Action>, ActivityOf); 3] = [
-                    (&s.on_entry, |c| &c.on_entry),
-                    (&s.on_exit, |c| &c.on_exit),
-                    (&s.internal, |c| &c.internal),
-                ];
-                sections.map(|(list, section)| {
-                    let from = |a| machine.composite_writing(s, a, section).is_some();
-                    list.iter().map(from).collect()
-                })
-            })
-            .collect();
-        // What a transition runs leaving is its source's and its composites' OnExits, said
-        // there, and its own actions.
-        let leaving: Vec<Vec<bool>> = machine
-            .transitions
-            .iter()
-            .map(|t| {
-                let source = machine.state(t.source);
-                let exits = |a: &Action| {
-                    source.is_some_and(|s| {
-                        s.on_exit.contains(a)
-                            || machine.composite_writing(s, a, |c| &c.on_exit).is_some()
-                    })
-                };
-                t.leaving.iter().flatten().map(exits).collect()
-            })
-            .collect();
+        // there, once, not in each flat state that runs them.
+        let Copies { written, leaving } = copies(machine);
         for c in &mut machine.composites {
             for list in [&mut c.on_entry, &mut c.on_exit, &mut c.internal] {
                 self.actions(i, c.line, list, &[]);
@@ -563,4 +533,45 @@ fn arrive_with(machine: &mut Machine, id: StateId, sets: Vec<Action>) {
     let entry = &mut machine.states[at].on_entry;
     let lead = lead.min(entry.len());
     entry.splice(lead..lead, sets);
+}
+
+/// Which actions of each flat state's activities (entry, exit, internal) and of each
+/// transition's leaving are copies of what a composite wrote (or, leaving, of the source's
+/// OnExit), found before anything is lowered.
+struct Copies {
+    written: Vec<[Vec<bool>; 3]>,
+    leaving: Vec<Vec<bool>>,
+}
+
+fn copies(machine: &Machine) -> Copies {
+    let written = machine
+        .states
+        .iter()
+        .map(|s| {
+            let sections: [(&Vec<Action>, ActivityOf); 3] = [
+                (&s.on_entry, |c| &c.on_entry),
+                (&s.on_exit, |c| &c.on_exit),
+                (&s.internal, |c| &c.internal),
+            ];
+            sections.map(|(list, section)| {
+                let from = |a| machine.composite_writing(s, a, section).is_some();
+                list.iter().map(from).collect()
+            })
+        })
+        .collect();
+    let leaving = machine
+        .transitions
+        .iter()
+        .map(|t| {
+            let source = machine.state(t.source);
+            let exits = |a: &Action| {
+                source.is_some_and(|s| {
+                    s.on_exit.contains(a)
+                        || machine.composite_writing(s, a, |c| &c.on_exit).is_some()
+                })
+            };
+            t.leaving.iter().flatten().map(exits).collect()
+        })
+        .collect();
+    Copies { written, leaving }
 }

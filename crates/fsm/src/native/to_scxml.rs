@@ -216,8 +216,7 @@ impl Writer<'_> {
         let moves = s.members.iter().any(|m| matches!(m, Member::When { .. }));
         let element = if holds || moves { "state" } else { "final" };
         let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
-        let timers = if holds { Vec::new() } else { timers(&s) };
-        let timed = Timed::of(&s, &timers, &pad);
+        let timed = Timed::of(&s, if holds { Vec::new() } else { timers(&s) }, &pad);
         let mut inner = timed.before.clone();
         for m in s.members {
             match m {
@@ -234,15 +233,8 @@ impl Writer<'_> {
                 Member::Activity {
                     section, actions, ..
                 } => {
-                    let (tag, first) = match section {
-                        Section::Entry => ("onentry", &timed.sends),
-                        _ => ("onexit", &timed.cancels),
-                    };
                     let content = self.content(actions, depth + 2);
-                    let _ = write!(inner, "{pad}  <{tag}>\n{first}{content}{pad}  </{tag}>\n");
-                    if section == Section::Entry {
-                        inner.push_str(&timed.fresh_exit);
-                    }
+                    inner.push_str(&timed.activity(section, &content, &pad));
                 }
                 Member::When {
                     label,
@@ -253,32 +245,38 @@ impl Writer<'_> {
                     ..
                 } => {
                     let done = holds.then_some(s.name.as_str());
-                    let timer = timers.iter().find(|(l, _, _)| *l == label.trim());
-                    let label = timer.map_or(label.as_str(), |(_, event, _)| event.as_str());
-                    let when = (label, label_at, &target, target_at);
-                    let event = timer.is_some();
-                    self.transition(when, (done, event), actions, &mut inner, depth + 1);
+                    let event = timed.event(&label);
+                    let when = (event.unwrap_or(&label), label_at, &target, target_at);
+                    let timer = event.is_some();
+                    self.transition(when, (done, timer), actions, &mut inner, depth + 1);
                 }
                 Member::State(child) => self.state(child, &mut inner, depth + 1),
                 Member::Outcome(text, at) => self.refuse(at, format!("state `{}`: `outcome {text}` is not written to SCXML yet", s.name)),
             }
         }
-        for deep in [false, true] {
-            if self.histories.contains(&(s.name.clone(), deep)) {
-                let kind = if deep { "deep" } else { "shallow" };
-                let _ = writeln!(
-                    inner,
-                    "{pad}  <history id=\"{}_{}\" type=\"{kind}\"/>",
-                    attr(&s.name),
-                    if deep { "deep_history" } else { "history" }
-                );
-            }
-        }
+        inner.push_str(&self.histories_of(&s.name, &pad));
         if inner.is_empty() {
             out.push_str("/>\n");
         } else {
             let _ = write!(out, ">\n{inner}{pad}</{element}>\n");
         }
+    }
+
+    /// The `<history>` elements of the state `name` that some transition resumes.
+    fn histories_of(&self, name: &str, pad: &str) -> String {
+        let mut out = String::new();
+        for deep in [false, true] {
+            if self.histories.contains(&(name.to_string(), deep)) {
+                let kind = if deep { "deep" } else { "shallow" };
+                let _ = writeln!(
+                    out,
+                    "{pad}  <history id=\"{}_{}\" type=\"{kind}\"/>",
+                    attr(name),
+                    if deep { "deep_history" } else { "history" }
+                );
+            }
+        }
+        out
     }
 
     /// `when LABEL -> TARGET { … }` as a `<transition>`: the label a `cond`, or the completion
@@ -417,6 +415,8 @@ impl Writer<'_> {
 /// What a state's timers add to its SCXML: a send each on entering, a cancel each on
 /// leaving, in the state's own `<onentry>` and `<onexit>` or in ones of their own.
 struct Timed {
+    /// (the label as written, its event, its delay) of each timer.
+    timers: Vec<(String, String, String)>,
     sends: String,
     cancels: String,
     /// What goes first inside the state: the timers' own `<onentry>` (and `<onexit>`) when
@@ -427,7 +427,7 @@ struct Timed {
 }
 
 impl Timed {
-    fn of(s: &StateAst, timers: &[(String, String, String)], pad: &str) -> Timed {
+    fn of(s: &StateAst, timers: Vec<(String, String, String)>, pad: &str) -> Timed {
         let (sends, cancels): (String, String) = timers
             .iter()
             .map(|(_, event, delay)| {
@@ -454,11 +454,32 @@ impl Timed {
             format!("{pad}  <onentry>\n{sends}{pad}  </onentry>\n{fresh_exit}")
         };
         Timed {
+            timers,
             sends,
             cancels,
             before,
             fresh_exit,
         }
+    }
+
+    /// The event a transition labelled `label` waits on, when its label is a timer's.
+    fn event(&self, label: &str) -> Option<&str> {
+        let timer = self.timers.iter().find(|(l, _, _)| l == label.trim());
+        timer.map(|(_, event, _)| event.as_str())
+    }
+
+    /// The state's own entry or exit activity (`content`), the timers' sends or cancels
+    /// first; after the entry, the timers' own `<onexit>` when the state has none.
+    fn activity(&self, section: Section, content: &str, pad: &str) -> String {
+        let (tag, first) = match section {
+            Section::Entry => ("onentry", &self.sends),
+            _ => ("onexit", &self.cancels),
+        };
+        let mut out = format!("{pad}  <{tag}>\n{first}{content}{pad}  </{tag}>\n");
+        if section == Section::Entry {
+            out.push_str(&self.fresh_exit);
+        }
+        out
     }
 }
 
