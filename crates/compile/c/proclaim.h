@@ -80,6 +80,10 @@ struct world {
     long state[BEHAVIOUR_MACHINES];
     unsigned char just_entered[BEHAVIOUR_MACHINES];
     uint64_t entered_ms[BEHAVIOUR_MACHINES];
+    /* When each composite state was entered, and whether a move into it waits for its
+     * machine's next ringlet to arrive (its time starts then, as its state's does). */
+    uint64_t composite_ms[BEHAVIOUR_COMPOSITES];
+    unsigned char composite_entering[BEHAVIOUR_COMPOSITES];
     /* Each theory input: known, then true. */
     unsigned char input[BEHAVIOUR_VARIABLES];
     /* The answers each machine's last ringlet saw. */

@@ -276,6 +276,29 @@ static int elapsed_at_least(const struct world *w, unsigned m, uint64_t ms)
     return w->now_ms - w->entered_ms[m] >= ms;
 }
 
+/* Whether its machine has been in composite state `c` at least `ms`. */
+static int composite_elapsed(const struct world *w, unsigned c, uint64_t ms)
+{
+    return w->now_ms - w->composite_ms[c] >= ms;
+}
+
+/* A move enters composite state `c`: its time starts when the move arrives. */
+static void enter_composite(struct world *w, unsigned c)
+{
+    w->composite_entering[c] = 1;
+}
+
+/* Machine `m` enters its state as from outside: every composite around it is entered again. */
+static void enter_composites(struct world *w, unsigned m)
+{
+    unsigned c;
+    for (c = 0; c < composites; c++) {
+        if (composite_machine[c] == m) {
+            w->composite_entering[c] = 1;
+        }
+    }
+}
+
 /* A time test still to come due shortens the wait; one already past (its label false for
  * another reason) does not, as the runner's `next_time_test` has it. */
 static uint64_t min_due(uint64_t due, uint64_t at, uint64_t now)
@@ -581,6 +604,9 @@ static int control(struct world *w, unsigned m, unsigned char code, const char *
     int started;
     w->cb.control(w, machine_name[m], word);
     started = obey_command(w, m, code);
+    if (started) {
+        enter_composites(w, m);
+    }
     if (was_running != (w->status[m] == RUNNING)) {
         post_status(w, m);
     }
@@ -817,6 +843,7 @@ static int ringlet_due(const struct world *w, unsigned m)
  * runs first). */
 static int begin_ringlet(struct world *w, unsigned m)
 {
+    unsigned c;
     w->ringing = m;
     w->past_snapshot = 0;
     if (!w->just_entered[m]) {
@@ -824,6 +851,12 @@ static int begin_ringlet(struct world *w, unsigned m)
     }
     w->just_entered[m] = 0;
     w->entered_ms[m] = w->now_ms;
+    for (c = 0; c < composites; c++) {
+        if (composite_machine[c] == m && w->composite_entering[c]) {
+            w->composite_entering[c] = 0;
+            w->composite_ms[c] = w->now_ms;
+        }
+    }
     return 1;
 }
 
@@ -856,6 +889,12 @@ static uint64_t due_after(const struct world *w, unsigned m, uint64_t ms, uint64
     return min_due(due, w->entered_ms[m] + ms, w->now_ms);
 }
 
+/* The soonest of `due` and `ms` after composite state `c` was entered. */
+static uint64_t composite_due_after(const struct world *w, unsigned c, uint64_t ms, uint64_t due)
+{
+    return min_due(due, w->composite_ms[c] + ms, w->now_ms);
+}
+
 
 void behaviour_init(struct world *w)
 {
@@ -864,6 +903,9 @@ void behaviour_init(struct world *w)
     (void)ask;
     (void)set_input;
     (void)elapsed_at_least;
+    (void)composite_elapsed;
+    (void)enter_composite;
+    (void)composite_due_after;
     (void)min_due;
     (void)v_int;
     (void)v_bool;
@@ -949,6 +991,10 @@ void behaviour_init(struct world *w)
 #endif
     for (v = 0; v < BEHAVIOUR_VALUES; v++) {
         w->var[v] = value_is_bool[v] ? v_bool(0) : v_int(0);
+    }
+    for (k = 0; k < BEHAVIOUR_COMPOSITES; k++) {
+        w->composite_ms[k] = 0;
+        w->composite_entering[k] = 1;
     }
     for (m = 0; m < BEHAVIOUR_MACHINES; m++) {
         w->state[m] = machine_initial[m];

@@ -83,6 +83,7 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         longest_text: 1,
         loops: 0,
         commands: 0,
+        composites: Vec::new(),
     };
     let mut machines = Vec::new();
     for (m, loaded) in behaviour.machines.iter().enumerate() {
@@ -102,7 +103,11 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
             outputs: &outputs,
             target,
         };
-        machines.push(plan_machine(loaded, &seen, &mut counters)?);
+        let composites_from = counters.composites.len();
+        counters
+            .composites
+            .extend(loaded.machine.composites.iter().map(|_| m));
+        machines.push(plan_machine(loaded, &seen, composites_from, &mut counters)?);
     }
     let period_ms = period_ms(behaviour)?;
     let suppressed = plan_suppressed(behaviour)?;
@@ -122,6 +127,7 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         longest_text: counters.longest_text,
         commands: counters.commands,
         suppressed,
+        composites: counters.composites,
     })
 }
 
@@ -488,11 +494,15 @@ struct Counters {
     longest_text: usize,
     loops: usize,
     commands: usize,
+    /// Each composite state's machine, numbered across the behaviour.
+    composites: Vec<usize>,
 }
 
+/// Machine `loaded`, whose composite states are numbered from `composites_from`.
 fn plan_machine(
     loaded: &proclaim_behaviour::LoadedMachine,
     seen: &Seen<'_>,
+    composites_from: usize,
     counters: &mut Counters,
 ) -> Result<MachinePlan, Refusal> {
     let machine = &loaded.machine;
@@ -503,7 +513,7 @@ fn plan_machine(
     let states = machine
         .states
         .iter()
-        .map(|state| plan_state(machine, state, seen, counters))
+        .map(|state| plan_state(machine, state, seen, composites_from, counters))
         .collect::<Result<_, _>>()?;
     Ok(MachinePlan {
         name: machine.name.clone(),
@@ -526,6 +536,7 @@ fn plan_state(
     machine: &proclaim_fsm::Machine,
     state: &proclaim_fsm::State,
     seen: &Seen<'_>,
+    composites_from: usize,
     counters: &mut Counters,
 ) -> Result<StatePlan, Refusal> {
     let mut activity = Activity {
@@ -548,6 +559,7 @@ fn plan_state(
         outputs: seen.outputs,
         read: Vec::new(),
         due: Vec::new(),
+        clock: None,
         reads_globals: false,
         reads_externs: Vec::new(),
     };
@@ -555,11 +567,13 @@ fn plan_state(
     for (arm, leaving) in plan.arms().zip(leaves) {
         let t = arm.transition;
         activity.line = t.line;
+        labels.clock = t.composite.map(|c| composites_from + c);
         transitions.push(TransitionPlan {
             condition: labels.condition(&t.label, &mut activity)?,
             target: t.target,
             label: t.shown().to_string(),
             leaving,
+            enters: t.enters.iter().map(|c| composites_from + c).collect(),
         });
     }
     let Labels {
@@ -616,7 +630,9 @@ fn plan_leavings(
 struct Labels<'a> {
     outputs: &'a [Output],
     read: Vec<usize>,
-    due: Vec<u64>,
+    due: Vec<(u64, Option<usize>)>,
+    /// The composite the label being planned counts its time tests from.
+    clock: Option<usize>,
     reads_globals: bool,
     reads_externs: Vec<usize>,
 }
@@ -698,8 +714,11 @@ impl Labels<'_> {
         let Some(micros) = micros.filter(|us| us % 1000 == 0) else {
             return Err(refuse(activity.file, activity.line, format!("`{label}` (only a constant time in whole milliseconds: a target's clock counts milliseconds)")));
         };
-        self.due.push(micros / 1000);
-        Ok(Condition::Elapsed(micros / 1000))
+        self.due.push((micros / 1000, self.clock));
+        Ok(Condition::Elapsed {
+            ms: micros / 1000,
+            composite: self.clock,
+        })
     }
 
     fn note_globals(&mut self, label: &Expr, activity: &Activity<'_>) {

@@ -217,6 +217,11 @@ impl Walk<'_> {
                 ],
             ))];
             self.steps(&state.leavings[t.leaving], &mut fire);
+            fire.extend(
+                t.enters
+                    .iter()
+                    .map(|&c| Stmt::Do(Expr::call("enter_composite", vec![Expr::count(c)]))),
+            );
             fire.extend([
                 Stmt::Set(self.state(), Expr::Number(t.target)),
                 Stmt::Set(
@@ -313,9 +318,13 @@ impl Walk<'_> {
                 let body = s
                     .due_ms
                     .iter()
-                    .map(|&ms| {
-                        let after = vec![self.machine(), Expr::Count(ms), due()];
-                        Stmt::Set(due(), Expr::call("due_after", after))
+                    .map(|&(ms, composite)| {
+                        let after = match composite {
+                            None => ("due_after", self.machine()),
+                            Some(c) => ("composite_due_after", Expr::count(c)),
+                        };
+                        let args = vec![after.1, Expr::Count(ms), due()];
+                        Stmt::Set(due(), Expr::call(after.0, args))
                     })
                     .collect();
                 (vec![s.id], body)
@@ -356,9 +365,14 @@ impl Walk<'_> {
                 self.condition(left),
                 self.condition(right),
             ),
-            Condition::Elapsed(ms) => {
-                Expr::call("elapsed_at_least", vec![self.machine(), Expr::Count(*ms)])
-            }
+            Condition::Elapsed {
+                ms,
+                composite: None,
+            } => Expr::call("elapsed_at_least", vec![self.machine(), Expr::Count(*ms)]),
+            Condition::Elapsed {
+                ms,
+                composite: Some(c),
+            } => Expr::call("composite_elapsed", vec![Expr::count(*c), Expr::Count(*ms)]),
             Condition::Truth(v) => truthy(v),
         }
     }

@@ -41,6 +41,9 @@ pub(crate) struct Plan {
     pub commands: usize,
     /// The types under subsumption (the manifest's `[suppress]`), in name order.
     pub suppressed: Vec<Suppressed>,
+    /// The composite states of every machine's chart, numbered across the behaviour: the
+    /// machine each is in (its time tests count from its entry, `docs/spec/behaviour.md` §3.2).
+    pub composites: Vec<usize>,
 }
 
 /// A whiteboard type the machines read as a value: its newest posting, of a whole number or a
@@ -106,7 +109,7 @@ impl Plan {
                 Condition::Ask(_) | Condition::AskPosted { .. } => 1,
                 Condition::Not(c) => asks(c),
                 Condition::Both { left, right, .. } => asks(left) + asks(right),
-                Condition::Constant(_) | Condition::Elapsed(_) | Condition::Truth(_) => 0,
+                Condition::Constant(_) | Condition::Elapsed { .. } | Condition::Truth(_) => 0,
             }
         }
         self.machines
@@ -215,8 +218,9 @@ pub(crate) struct StatePlan {
     pub is_final: bool,
     /// The outputs its labels ask, sorted, each once.
     pub reads: Vec<usize>,
-    /// The milliseconds after entry at which its time tests come due, in label order.
-    pub due_ms: Vec<u64>,
+    /// The milliseconds after entry at which its time tests come due, in label order, each
+    /// with the composite it counts from (none: from the state's entry).
+    pub due_ms: Vec<(u64, Option<usize>)>,
     /// Whether its labels read a global.
     pub reads_globals: bool,
     /// The whiteboard variables its labels read, each once.
@@ -230,6 +234,8 @@ pub(crate) struct TransitionPlan {
     pub label: String,
     /// What it runs as it fires: its state's `leavings[leaving]`.
     pub leaving: usize,
+    /// The composites it enters ([`Plan::composites`]), whose time tests count from then.
+    pub enters: Vec<usize>,
 }
 
 /// A label as the runner proves it.
@@ -249,8 +255,11 @@ pub(crate) enum Condition {
         left: Box<Condition>,
         right: Box<Condition>,
     },
-    /// At least this many milliseconds in the state.
-    Elapsed(u64),
+    /// At least this many milliseconds in the state, or in a composite ([`Plan::composites`]).
+    Elapsed {
+        ms: u64,
+        composite: Option<usize>,
+    },
     /// A value's truth.
     Truth(Value),
 }

@@ -82,6 +82,11 @@ fn header(plan: &Plan) -> String {
     );
     let _ = writeln!(
         h,
+        "/* The composite states of the machines' charts, across the behaviour. */\n#define BEHAVIOUR_COMPOSITES {}",
+        plan.composites.len().max(1)
+    );
+    let _ = writeln!(
+        h,
         "/* The types under subsumption (the manifest's `[suppress]`), the distinct priorities of\n * the machines, and the longest text a held posting keeps. */\n#define BEHAVIOUR_SUPPRESSED {}\n#define BEHAVIOUR_LAYERS {}\n#define BEHAVIOUR_HELD_TEXT {}\n",
         plan.suppressed.len(),
         plan.layers().len().max(1),
@@ -122,8 +127,8 @@ type Table = (&'static str, &'static str, String, &'static str);
 
 /// The tables the runtime reads (`proclaim_runtime.h` names them).
 fn tables(plan: &Plan, c: &mut String) {
-    let _ = writeln!(c, "/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,\n * not literals, so that an empty range is no comparison a compiler warns of. */\nstatic const unsigned theory_outputs = {}u;\nstatic const unsigned outputs = {}u;\nstatic const unsigned sensors = {}u;\nstatic const unsigned externs = {}u;",
-        plan.theory_outputs(), plan.outputs.len(), plan.sensors.len(), plan.externs.len());
+    let _ = writeln!(c, "/* The answers a theory gives come first; the atoms from outside follow. Counts as variables,\n * not literals, so that an empty range is no comparison a compiler warns of. */\nstatic const unsigned theory_outputs = {}u;\nstatic const unsigned outputs = {}u;\nstatic const unsigned sensors = {}u;\nstatic const unsigned externs = {}u;\nstatic const unsigned composites = {}u;",
+        plan.theory_outputs(), plan.outputs.len(), plan.sensors.len(), plan.externs.len(), plan.composites.len());
     let mut all = machine_tables(plan);
     all.extend(board_tables(plan));
     if !plan.suppressed.is_empty() {
@@ -165,6 +170,12 @@ fn machine_tables(plan: &Plan) -> Vec<Table> {
             "value_is_bool",
             numbers(plan.slots.iter().map(|b| i64::from(*b))),
             "Whether each value slot starts as a truth value (false) rather than a whole 0.",
+        ),
+        (
+            "unsigned",
+            "composite_machine",
+            numbers(plan.composites.iter().map(|&m| m as i64)),
+            "The machine each composite state is in: its transitions' time tests count from its entry.",
         ),
     ]
 }

@@ -267,6 +267,10 @@ fn behaviour(plan: &Plan) -> String {
                 &list(plan.machines.iter().map(|m| m.start.to_string())),
             ),
             ("var_inits", &var_inits(plan)),
+            (
+                "composite_machine",
+                &list(plan.composites.iter().map(ToString::to_string)),
+            ),
         ],
     )
 }

@@ -36,6 +36,7 @@ impl proclaim_runtime::Tables for Behaviour {
     const PERIOD_MS: u64 = @period_ms@;
     const COMMANDS: usize = @commands@;
     const ANSWER_TIMEOUT_MS: u64 = @answer_timeout_ms@;
+    const COMPOSITE_MACHINE: &'static [usize] = &[@composite_machine@];
 
     fn var_inits() -> Vec<Scalar> {
         vec![@var_inits@]

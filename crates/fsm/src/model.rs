@@ -57,6 +57,25 @@ pub struct UnreadTransition {
 }
 
 impl Machine {
+    /// The composites an arrival into flat state `state` entered (indices into
+    /// [`Machine::composites`], outermost first): the innermost `arrives_through` of those
+    /// around it. Lowering keeps apart the arrivals that enter a composite whose transitions
+    /// test the time, so for those this is exact (`native/chart.rs`).
+    pub fn arrival_enters(&self, state: &State) -> Vec<usize> {
+        let mut around: Vec<usize> = (0..self.composites.len())
+            .filter(|&c| {
+                let name = &self.composites[c].name;
+                state
+                    .name
+                    .strip_prefix(name.as_str())
+                    .is_some_and(|rest| rest.starts_with('.'))
+            })
+            .collect();
+        around.sort_by_key(|&c| self.composites[c].name.len());
+        let skip = around.len().saturating_sub(state.arrives_through);
+        around.split_off(skip)
+    }
+
     /// Every action that can run, in file order: every state's, then what transitions run
     /// as they fire that their states do not (a transition's own actions; a nested state's
     /// composites' OnExits), which the lowered transitions carry; an action may come twice.
@@ -166,6 +185,10 @@ pub struct Transition {
     /// not written on its source: lowering copies a composite's transitions to every state
     /// inside it.
     pub composite: Option<usize>,
+    /// The composites this move enters (indices into `Machine::composites`, outermost first):
+    /// a time test on a composite's transition counts from the composite's entry, which the
+    /// moves between the states inside it do not restart (§3.2). Empty for a flat machine.
+    pub enters: Vec<usize>,
     /// The label as its file wrote it, when lowering changed it (a chart's `when done`, a
     /// history's arms, a parameter or an outcome read as its global): what traces, drawings
     /// and findings show, so a user reads what they wrote. `label` is what every back end runs.

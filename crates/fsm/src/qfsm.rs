@@ -392,6 +392,7 @@ fn end_transition(
             line: t.line,
             leaving: None,
             composite: None,
+            enters: Vec::new(),
             written: None,
         },
     ));

@@ -201,6 +201,7 @@ fn t_line(
             line,
             leaving: None,
             composite: None,
+            enters: Vec::new(),
             written: None,
         }),
         Err(e) => {

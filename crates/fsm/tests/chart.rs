@@ -308,7 +308,7 @@ fn what_cannot_be_lowered_is_refused_at_its_place() {
         "machine M
 state A {
     when done -> B
-    when after(2s) -> B
+    when p -> B
     initial Z
     state X { when done -> B }
     state X { when p -> SEARCH }
@@ -322,7 +322,6 @@ state D { when done -> C  state E { when p -> E } }
 7: two states are named `X` in `A`
 5: `A` holds no state named `Z`
 3: `when done` on `A` never fires: no state directly in it is final (has no transition of its own)
-4: a time test on the transition of `A`, which holds states, would count from its entry whatever happens inside it: not built yet; test the time on the states inside it
 6: `when done` belongs to a state that holds states (it fires once the one it is in is final); `A.X` holds none
 7: `SEARCH` could be `B.SEARCH` or `C.SEARCH`: write the path of the one meant
 10: `B.SEARCH` holds no states, so it has no history to resume
@@ -460,4 +459,80 @@ state PLAY {
         dot.contains("cluster_c0_back4 [shape=point, width=0.05];"),
         "{dot}"
     );
+}
+
+/// Each flat state with what its arrival entered, and each arm with the composites it enters.
+fn clocks(machine: &Machine) -> String {
+    let composites = |list: &[usize]| {
+        let names: Vec<&str> = list
+            .iter()
+            .map(|&c| machine.composites[c].name.as_str())
+            .collect();
+        names.join(" ")
+    };
+    let mut out = String::new();
+    for s in &machine.states {
+        out += &format!(
+            "{}#{} arrived into [{}]\n",
+            s.name,
+            s.id,
+            composites(&machine.arrival_enters(s))
+        );
+        for t in machine.outgoing(s.id) {
+            let target = machine.state(t.target).map_or("?", |s| s.name.as_str());
+            out += &format!(
+                "  {} -> {target}#{} enters [{}]\n",
+                t.label,
+                t.target,
+                composites(&t.enters)
+            );
+        }
+    }
+    out
+}
+
+#[test]
+fn a_composites_time_test_counts_from_its_entry_which_moves_inside_it_keep() {
+    let read = parse_machine(
+        "M.machine",
+        "machine M
+initial PLAY
+state PLAY {
+    when after(5s) -> REST
+    when p -> PLAY
+    state A { when after_ms(100) -> B }
+    state B {
+        when after_ms(100) -> A
+        when q -> PLAY.history
+    }
+}
+state REST { when p -> PLAY.B }
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    // The arrivals that enter PLAY are kept apart from those that move inside it: only they
+    // start its time. B's move to PLAY's history leaves PLAY and enters it again, back at B.
+    let expect = "PLAY.A#1 arrived into [PLAY]
+  after_ms(100) -> PLAY.B#2 enters []
+  after(5s) -> REST#3 enters []
+  p -> PLAY.A#1 enters [PLAY]
+PLAY.A#4 arrived into []
+  after_ms(100) -> PLAY.B#2 enters []
+  after(5s) -> REST#3 enters []
+  p -> PLAY.A#1 enters [PLAY]
+PLAY.B#2 arrived into []
+  after_ms(100) -> PLAY.A#4 enters []
+  q -> PLAY.B#5 enters [PLAY]
+  after(5s) -> REST#3 enters []
+  p -> PLAY.A#1 enters [PLAY]
+PLAY.B#5 arrived into [PLAY]
+  after_ms(100) -> PLAY.A#4 enters []
+  q -> PLAY.B#5 enters [PLAY]
+  after(5s) -> REST#3 enters []
+  p -> PLAY.A#1 enters [PLAY]
+REST#3 arrived into []
+  p -> PLAY.B#5 enters [PLAY]
+";
+    let got = clocks(&read.machines[0]);
+    assert_eq!(got, expect, "\n{got}");
 }

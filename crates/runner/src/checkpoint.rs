@@ -127,6 +127,9 @@ pub struct MachineImage {
     pub just_entered: bool,
     /// When it entered its state: nanoseconds since the run's epoch.
     pub entered_ns: u64,
+    /// When it entered each composite state of a chart, which its time tests count from.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub composites: Vec<CompositeImage>,
     /// The state it last arrived in (where a machine about to enter another was).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub last_entered: Option<String>,
@@ -152,6 +155,15 @@ pub struct SeenImage {
     pub read: Vec<TypeImage>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub own: Vec<TypeImage>,
+}
+
+/// When a machine entered one of its composite states, by path: nanoseconds since the run's
+/// epoch, none while the move into it has not arrived.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CompositeImage {
+    pub name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub entered_ns: Option<u64>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -336,6 +348,16 @@ impl RunningMachine<'_> {
             state_id: self.current,
             just_entered: self.just_entered,
             entered_ns: nanos(self.entered_at.saturating_duration_since(epoch)),
+            composites: self
+                .machine
+                .composites
+                .iter()
+                .zip(&self.composites_entered)
+                .map(|(c, entered)| CompositeImage {
+                    name: c.name.clone(),
+                    entered_ns: entered.map(|at| nanos(at.saturating_duration_since(epoch))),
+                })
+                .collect(),
             last_entered: self.last_entered.clone(),
             locals: self.locals.image(),
             seen: self.seen.image(&types),
@@ -364,6 +386,21 @@ impl RunningMachine<'_> {
         }
         self.just_entered = image.just_entered;
         self.entered_at = self.reporter.epoch + Duration::from_nanos(image.entered_ns);
+        // A composite the checkpoint does not name counts from its state's entry.
+        for (c, entered) in self
+            .machine
+            .composites
+            .iter()
+            .zip(&mut self.composites_entered)
+        {
+            let named = image.composites.iter().find(|i| i.name == c.name);
+            *entered = match named {
+                Some(i) => i
+                    .entered_ns
+                    .map(|ns| self.reporter.epoch + Duration::from_nanos(ns)),
+                None => Some(self.entered_at),
+            };
+        }
         self.last_entered.clone_from(&image.last_entered);
         for v in &image.locals {
             self.locals.set(&v.name, Value::from_json(&v.value));

@@ -25,8 +25,8 @@ mod variables;
 
 pub use activity::SharedSuppressor;
 pub use checkpoint::{
-    AskedImage, Checkpoints, Fit, HoldImage, MachineImage, RankedImage, RoundsImage, SeenImage,
-    StatusName, VariableImage,
+    AskedImage, Checkpoints, CompositeImage, Fit, HoldImage, MachineImage, RankedImage,
+    RoundsImage, SeenImage, StatusName, VariableImage,
 };
 pub use event::{Answerer, Event};
 pub use feed::{Feed, RoundCounter};

@@ -11,7 +11,7 @@ use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
 use proclaim_fsm::control::{running_type, Command};
-use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
+use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId, Transition};
 use proclaim_lower::{Arm, Next, RingletPlan, RingletRun};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
@@ -182,9 +182,15 @@ impl MachineRunner {
             }
             run.reporter.round.advance();
             match run.ring().await {
-                RingOutcome::Over => return,
+                RingOutcome::Over => {
+                    if let Some(stepper) = &self.options.stepper {
+                        stepper.note_due(&run.name, None);
+                    }
+                    return;
+                }
                 RingOutcome::Moved => {
                     if let Some(stepper) = &self.options.stepper {
+                        stepper.note_due(&run.name, run.due_at());
                         stepper.ring_done(&run.name, run.last_step);
                     }
                     // A machine whose labels are all true at once (over variables, `TRUE`)
@@ -194,6 +200,7 @@ impl MachineRunner {
                 }
                 RingOutcome::Stayed => match &self.options.stepper {
                     Some(stepper) => {
+                        stepper.note_due(&run.name, run.due_at());
                         stepper.ring_done(&run.name, run.last_step);
                         if !stepper.is_paused() {
                             run.wait_between_rings().await;
@@ -219,6 +226,9 @@ pub(crate) struct RunningMachine<'r> {
     pub(crate) current: StateId,
     pub(crate) just_entered: bool,
     pub(crate) entered_at: Instant,
+    /// When it entered each composite state (`Machine::composites`), which the time tests of
+    /// that composite's transitions count from; `None` while a move into it has not arrived.
+    pub(crate) composites_entered: Vec<Option<Instant>>,
     /// The state it last arrived in (its OnEntry run), by name: what its events last said.
     pub(crate) last_entered: Option<String>,
     /// The round's moment, while a round schedule runs one (time tests and times in state
@@ -278,6 +288,7 @@ impl<'r> RunningMachine<'r> {
             current: runner.machine.initial,
             just_entered: true,
             entered_at: Instant::now(),
+            composites_entered: vec![None; runner.machine.composites.len()],
             last_entered: None,
             round_time: None,
             locals: Locals::declared(&runner.machine),
@@ -301,14 +312,25 @@ impl<'r> RunningMachine<'r> {
         }
     }
 
-    fn env(&self) -> Env<'_> {
+    /// What `transition`'s label reads: its time tests count from the entry of the state
+    /// it was written on.
+    fn env(&self, transition: &Transition) -> Env<'_> {
         Env {
             board: &self.board,
             seen: &self.seen,
             locals: &self.locals,
             shared: &self.shared,
-            in_state: self.now().saturating_duration_since(self.entered_at),
+            in_state: self.in_state(transition.composite),
         }
+    }
+
+    /// How long it has been in its state, or in `composite` (entered with its state when the
+    /// move into it has not arrived yet).
+    fn in_state(&self, composite: Option<usize>) -> Duration {
+        let entered = composite
+            .and_then(|c| self.composites_entered.get(c).copied().flatten())
+            .unwrap_or(self.entered_at);
+        self.now().saturating_duration_since(entered)
     }
 
     /// Now, as the machine's time tests read it.
@@ -355,6 +377,10 @@ impl<'r> RunningMachine<'r> {
             (Command::Reload | Command::Reread, _) => {
                 self.reload(command == Command::Reread);
             }
+        }
+        if started {
+            // Into its state as from outside: every composite around it is entered again.
+            self.composites_entered.fill(None);
         }
         if (was == Status::Running) != (self.status == Status::Running) {
             self.board.post(
@@ -437,7 +463,7 @@ impl<'r> RunningMachine<'r> {
                     seen: &self.seen,
                     locals: &self.locals,
                     shared: &self.shared,
-                    in_state: self.now().saturating_duration_since(self.entered_at),
+                    in_state: self.in_state(arm.transition.composite),
                 },
                 module: &self.name,
                 answer_timeout: self.runner.options.answer_timeout,
@@ -479,6 +505,11 @@ impl<'r> RunningMachine<'r> {
         self.act(state, arm.leaving()).await;
         self.current = arm.target();
         self.just_entered = true;
+        for &c in &arm.transition.enters {
+            if let Some(entered) = self.composites_entered.get_mut(c) {
+                *entered = None;
+            }
+        }
     }
 
     /// Arriving in `plan`'s state: its arrival activities, and the end of the run for a state
@@ -487,6 +518,9 @@ impl<'r> RunningMachine<'r> {
         let state = plan.state();
         self.just_entered = false;
         self.entered_at = self.now();
+        for entered in &mut self.composites_entered {
+            entered.get_or_insert(self.entered_at);
+        }
         self.last_entered = Some(state.name.clone());
         let id = self.current;
         self.reporter.emit(|at, round| Event::Entered {
@@ -589,10 +623,17 @@ impl<'r> RunningMachine<'r> {
     /// How long until the soonest time test of the current state's labels comes due, if one
     /// is still to come.
     pub(crate) fn next_time_test(&self) -> Option<Duration> {
-        let mut env = self.env();
         self.arms()
-            .filter_map(|arm| next_time_test(arm.label(), &mut env))
+            .filter_map(|arm| next_time_test(arm.label(), &mut self.env(arm.transition)))
             .min()
+    }
+
+    /// When the current state's next time test comes due, if it runs and one is still to come.
+    pub(crate) fn due_at(&self) -> Option<Instant> {
+        let due = self
+            .next_time_test()
+            .filter(|_| self.status == Status::Running)?;
+        Some(self.now() + due)
     }
 
     /// Waits until a message a label of the state reads arrives, a global it reads changes,
@@ -666,6 +707,25 @@ impl<'r> RunningMachine<'r> {
                 self.just_entered = true;
             }
         }
+        // Each composite keeps its entry by name (a machine started afresh enters them all
+        // again); one the new machine adds counts from its state's entry.
+        let entered: Vec<Option<Instant>> = new
+            .composites
+            .iter()
+            .map(|c| {
+                let old = self
+                    .machine
+                    .composites
+                    .iter()
+                    .position(|o| o.name == c.name);
+                match old.and_then(|o| self.composites_entered.get(o)) {
+                    _ if kept.is_none() => None,
+                    Some(entered) => *entered,
+                    None => Some(self.entered_at),
+                }
+            })
+            .collect();
+        self.composites_entered = entered;
         self.shared.register(&new);
         self.locals = self.locals.reloaded(&new);
         self.machine = Arc::new(new);

@@ -231,7 +231,8 @@ impl Rounds {
                 .play_round(&mut scheduled, round, commanded, &board)
                 .await;
             if let Some(stepper) = &self.stepper {
-                for run in &scheduled.runs {
+                for (run, over) in scheduled.runs.iter().zip(&scheduled.over) {
+                    stepper.note_due(&run.name, run.due_at().filter(|_| !*over));
                     stepper.ring_done(&run.name, last_step);
                 }
             }

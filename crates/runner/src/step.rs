@@ -13,6 +13,9 @@ struct Clock {
     free: bool,
 }
 
+/// A machine and when its state's next time test comes due (none: it waits on none).
+type Due = (String, Option<tokio::time::Instant>);
+
 /// Shared by every machine of a behaviour and by whoever steps them. Clones share the count.
 #[derive(Clone)]
 pub struct Stepper {
@@ -20,6 +23,8 @@ pub struct Stepper {
     /// Machine → the last step whose ring it finished.
     done: Arc<Mutex<Vec<(String, u64)>>>,
     finished: Arc<Notify>,
+    /// Machine → when its state's next time test comes due, as its last ring left it.
+    dues: Arc<Mutex<Vec<Due>>>,
 }
 
 impl std::fmt::Debug for Stepper {
@@ -36,6 +41,7 @@ impl Default for Stepper {
             step: Arc::new(watch::channel(Clock::default()).0),
             done: Arc::default(),
             finished: Arc::default(),
+            dues: Arc::default(),
         }
     }
 }
@@ -130,6 +136,21 @@ impl Stepper {
     pub fn may_ring(&self, last: u64) -> Option<u64> {
         let clock = *self.step.borrow();
         (clock.free || clock.step > last).then(|| clock.step.max(last))
+    }
+
+    /// When `machine`'s next time test comes due (none: it waits on none), as its last ring
+    /// left it: what a host that moves a virtual clock itself moves it to.
+    pub fn note_due(&self, machine: &str, due: Option<tokio::time::Instant>) {
+        let mut dues = self.dues.lock();
+        match dues.iter_mut().find(|(n, _)| n == machine) {
+            Some(entry) => entry.1 = due,
+            None => dues.push((machine.to_string(), due)),
+        }
+    }
+
+    /// The soonest time test of any machine still to come due ([`Stepper::note_due`]).
+    pub fn soonest_due(&self) -> Option<tokio::time::Instant> {
+        self.dues.lock().iter().filter_map(|(_, due)| *due).min()
     }
 
     /// `machine` finished its ring of `step` (what the page's step waits for).

@@ -17,6 +17,7 @@ pub const GENERIC: &[&str] = &[
     "ask",
     "ask_posted",
     "assign",
+    "begin_ringlet",
     "command",
     "obey",
     "post",
@@ -262,7 +263,7 @@ pub fn ringlet_due<B: Tables>(w: &World, m: usize) -> bool {
 /// A ringlet of machine `m` begins: whether it has just entered its state (then its OnEntry
 /// runs first).
 #[inline(always)]
-pub fn begin_ringlet(w: &mut World, m: usize) -> bool {
+pub fn begin_ringlet<B: Tables>(w: &mut World, m: usize) -> bool {
     w.ringing = m;
     w.ringlet_begins(m);
     w.past_snapshot = false;
@@ -271,7 +272,22 @@ pub fn begin_ringlet(w: &mut World, m: usize) -> bool {
     }
     w.just_entered[m] = false;
     w.entered_ms[m] = w.now_ms;
+    for (c, _) in B::COMPOSITE_MACHINE
+        .iter()
+        .enumerate()
+        .filter(|(_, &of)| of == m)
+    {
+        if std::mem::take(&mut w.composite_entering[c]) {
+            w.composite_ms[c] = w.now_ms;
+        }
+    }
     true
+}
+
+/// A move enters composite state `c`: its time starts when the move arrives.
+#[inline(always)]
+pub fn enter_composite(w: &mut World, c: usize) {
+    w.composite_entering[c] = true;
 }
 
 /// The ringlet's snapshot (`docs/spec/behaviour.md` 3.1), after OnEntry.
@@ -295,6 +311,18 @@ pub fn due_after(w: &World, m: usize, ms: u64, due: u64) -> u64 {
 #[inline]
 pub fn elapsed_at_least(w: &World, m: usize, ms: u64) -> bool {
     w.now_ms.wrapping_sub(w.entered_ms[m]) >= ms
+}
+
+/// The soonest of `due` and `ms` after composite state `c` was entered.
+#[inline]
+pub fn composite_due_after(w: &World, c: usize, ms: u64, due: u64) -> u64 {
+    min_due(due, w.composite_ms[c].wrapping_add(ms), w.now_ms)
+}
+
+/// Whether its machine has been in composite state `c` at least `ms`.
+#[inline]
+pub fn composite_elapsed(w: &World, c: usize, ms: u64) -> bool {
+    w.now_ms.wrapping_sub(w.composite_ms[c]) >= ms
 }
 
 /// An assignment as the runner makes it: converted to the variable's type, reported when the
@@ -368,6 +396,16 @@ fn control<B: Tables>(w: &mut World, m: usize, code: u8, word: &str) -> bool {
     let was_running = w.status[m] == RUNNING;
     w.control(B::MACHINE_NAME[m], word);
     let started = obey_command(w, m, code);
+    if started {
+        // Into its state as from outside: every composite around it is entered again.
+        for (c, _) in B::COMPOSITE_MACHINE
+            .iter()
+            .enumerate()
+            .filter(|(_, &of)| of == m)
+        {
+            w.composite_entering[c] = true;
+        }
+    }
     if was_running != (w.status[m] == RUNNING) {
         post_status::<B>(w, m);
     }

@@ -25,6 +25,8 @@ impl<B: Tables> CompiledBehaviour for B {
             w.suppressor = Some(crate::Suppressor::new(holds));
         }
         w.var = B::var_inits();
+        w.composite_ms = vec![0; B::COMPOSITE_MACHINE.len()];
+        w.composite_entering = vec![true; B::COMPOSITE_MACHINE.len()];
         for m in 0..machines {
             w.state[m] = B::INITIAL[m];
             w.initial[m] = B::INITIAL[m];

@@ -44,6 +44,9 @@ pub trait Tables: 'static {
     const COMMANDS: usize;
     /// How long a query to an expert in another process waits, in milliseconds.
     const ANSWER_TIMEOUT_MS: u64;
+    /// The composite states of the machines' charts, numbered across the behaviour: the
+    /// machine each is in. The time tests of a composite's transitions count from its entry.
+    const COMPOSITE_MACHINE: &'static [usize] = &[];
 
     /// Each value slot's start: the machines' variables, then the globals.
     fn var_inits() -> Vec<Scalar>;

@@ -198,6 +198,11 @@ pub struct World {
     pub state: Vec<i64>,
     pub just_entered: Vec<bool>,
     pub entered_ms: Vec<u64>,
+    /// When each composite state ([`crate::Tables::COMPOSITE_MACHINE`]) was entered, and
+    /// whether a move into it waits for its machine's next ringlet to arrive (its time starts
+    /// then, as its state's does).
+    pub composite_ms: Vec<u64>,
+    pub composite_entering: Vec<bool>,
     /// Each theory input: known, then true.
     pub input: Vec<bool>,
     /// The answers each machine's last ringlet saw.
@@ -332,6 +337,8 @@ impl World {
             state: vec![0; machines],
             just_entered: vec![false; machines],
             entered_ms: vec![0; machines],
+            composite_ms: Vec::new(),
+            composite_entering: Vec::new(),
             input: vec![false; variables],
             seen: vec![vec![false; outputs]; machines],
             asked: vec![vec![false; outputs]; machines],

@@ -72,7 +72,7 @@ impl Tables for Door {
 
 /// Shut, it opens on `open || timeout(5s)`, posting the light on; Open is final.
 fn ring_door(w: &mut World) -> bool {
-    if begin_ringlet(w, 0) {
+    if begin_ringlet::<Door>(w, 0) {
         let (id, name) = (w.state[0], ["Shut", "Open"][w.state[0] as usize - 1]);
         w.entered("Door", name, id);
         if id == 2 {

@@ -168,6 +168,7 @@ fn machine_model(
                         index,
                         target: index_of(t.target)?,
                         label: t.label.clone(),
+                        clock: t.composite,
                     })
                 })
                 .collect();
@@ -181,7 +182,10 @@ fn machine_model(
                         function: function.to_string(),
                         arguments: arguments.to_vec(),
                     };
-                    if time_tests.iter().any(|t| t.call == call) {
+                    if time_tests
+                        .iter()
+                        .any(|u| u.call == call && u.clock == t.clock)
+                    {
                         continue;
                     }
                     let micros = match arguments {
@@ -190,18 +194,30 @@ fn machine_model(
                         [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
                         _ => None,
                     };
-                    time_tests.push(TimeTest { call, micros });
+                    time_tests.push(TimeTest {
+                        call,
+                        micros,
+                        clock: t.clock,
+                    });
                 }
             }
-            // Constant tests first, shortest first, so "which are due" is a prefix of them.
-            time_tests.sort_by_key(|t| t.micros.map_or(u64::MAX, |m| m));
+            // By clock; in each, constant tests first, shortest first, so "which are due" is
+            // a prefix of them.
+            time_tests.sort_by_key(|t| (t.clock, t.micros.map_or(u64::MAX, |m| m)));
             StateModel {
                 name: s.name.clone(),
                 transitions,
                 time_tests,
+                arrival_enters: machine.arrival_enters(s),
             }
         })
-        .collect();
+        .collect::<Vec<StateModel>>();
+    let mut clocks = vec![None];
+    for t in states.iter().flat_map(|s| &s.time_tests) {
+        if !clocks.contains(&t.clock) {
+            clocks.push(t.clock);
+        }
+    }
     MachineModel {
         name: machine.name.clone(),
         initial: index_of(machine.initial).unwrap_or(0),
@@ -209,6 +225,7 @@ fn machine_model(
         states,
         start,
         locals,
+        clocks,
     }
 }
 

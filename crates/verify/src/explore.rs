@@ -798,9 +798,9 @@ mod tests {
 
     /// The whole graph as data: every record, successor list and mark, in order.
     fn picture(model: &Search, graph: &Graph) -> String {
-        let records: Vec<&[u8]> = (0..graph.len() as u32)
-            .map(|id| graph.bytes_of(id))
-            .collect();
+        // The worlds, not their packing: a search with the memo makes a batch of successors
+        // ahead and may widen a field for a state it then never stores.
+        let records: Vec<SystemState> = (0..graph.len() as u32).map(|id| graph.world(id)).collect();
         let lists: Vec<Vec<u32>> = (0..graph.expanded() as u32)
             .map(|id| graph.successors_of(id).collect())
             .collect();

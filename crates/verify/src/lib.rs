@@ -12,8 +12,10 @@
 //!   round: a property must be able to see the world between two machines' ringlets (the door
 //!   opening while the pump waits its turn), and counterexamples then say who moved.
 //! - Time: a state's `timeout`/`after`/`after_ms` tests may come due at any snapshot after it
-//!   was entered (constant ones in order of duration) and stay due until it is left: every
-//!   real run is a path of the model, so a `never` that holds here holds in every run.
+//!   was entered (a composite's transition's after the composite was: the moves inside it keep
+//!   them; constant ones of one clock in order of duration, none of a positive duration in the
+//!   ringlet that started its clock) and stay due until it is left: every real run is a path
+//!   of the model, so a `never` that holds here holds in every run.
 //! - [`explore`]: breadth-first, states packed into a byte arena ([`world`]), a hash table of
 //!   state numbers, parents for the shortest path. Our own search rather than `stateright`'s:
 //!   its checkers keep each state as a Rust value (here a `Vec` per machine and slot: ten times

@@ -70,9 +70,12 @@ pub struct Slot {
 #[derive(Clone, Debug)]
 pub struct TimeTest {
     pub call: Expr,
-    /// Its duration when the argument is a constant; tests with one come true in order of
-    /// duration (a state cannot be 2 s old and not 1 s old).
+    /// Its duration when the argument is a constant; tests of one clock with one come true in
+    /// order of duration (a state cannot be 2 s old and not 1 s old).
     pub micros: Option<u64>,
+    /// What it counts from: the entry of the state, or of the composite (an index into
+    /// `Machine::composites`) whose transition it is on, which moves inside it keep (§3.2).
+    pub clock: Option<usize>,
 }
 
 #[derive(Clone, Debug)]
@@ -81,6 +84,8 @@ pub struct TransitionModel {
     pub index: usize,
     pub target: usize,
     pub label: Expr,
+    /// What its time tests count from ([`TimeTest::clock`]).
+    pub clock: Option<usize>,
 }
 
 #[derive(Clone, Debug)]
@@ -89,9 +94,26 @@ pub struct StateModel {
     /// Outgoing transitions in priority order.
     pub transitions: Vec<TransitionModel>,
     pub time_tests: Vec<TimeTest>,
+    /// The composites an arrival into it entered ([`Machine::arrival_enters`]): their time
+    /// starts with its own.
+    pub arrival_enters: Vec<usize>,
 }
 
 impl StateModel {
+    /// The bits of its time tests that count from `clock`.
+    pub fn clock_mask(&self, clock: Option<usize>) -> u16 {
+        self.time_tests
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.clock == clock)
+            .fold(0, |mask, (i, _)| mask | (1 << i))
+    }
+
+    /// Whether arriving in it starts `clock`: its own, or a composite the arrival entered.
+    pub fn arrival_starts(&self, clock: Option<usize>) -> bool {
+        clock.is_none_or(|c| self.arrival_enters.contains(&c))
+    }
+
     /// A state with no way out: its machine's run ends once its OnEntry has run.
     pub fn is_final(&self) -> bool {
         self.transitions.is_empty()
@@ -115,6 +137,9 @@ pub struct MachineModel {
     pub start: bool,
     /// The machine's own variables.
     pub locals: FxHashMap<String, SlotId>,
+    /// What its time tests count from: its states' entries (first, always), then each
+    /// composite whose transitions test the time ([`TimeTest::clock`]).
+    pub clocks: Vec<Option<usize>>,
 }
 
 impl MachineModel {

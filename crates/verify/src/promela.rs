@@ -23,7 +23,8 @@
 //!   runs OnExit or Internal and the machine's commands to itself; then the environment sets
 //!   every free type (`if` choices); a last `d_step` evaluates the properties (`hit<i>`).
 //! - **Liveness properties** are `ltl` claims over bits set at the end of a step (`lp<i>`,
-//!   `lq<i>`, `fair<i>_<j>`, and `acc[k]`: machine k lets time pass, see [`crate::liveness`]),
+//!   `lq<i>`, `fair<i>_<j>`, and `acc[k]`: a clock of a machine lets time pass, see
+//!   [`crate::acceptance`]),
 //!   which keep their value through the next step's parts, so SPIN's extra states only repeat
 //!   a checker state (LTL without next cannot tell). The fairness is the antecedent:
 //!   `([]<> acc[0] && …) -> <> lp<i>`; once no machine can ring every acceptance bit is set
@@ -279,6 +280,8 @@ struct Writer<'m> {
     /// The machine whose code is written, and its state.
     machine: usize,
     state: usize,
+    /// Writing a label: what its time tests count from ([`crate::model::TimeTest::clock`]).
+    clock: Option<usize>,
     /// Writing an OnEntry: reads and posts of free types are noted.
     noting: bool,
     /// Inside a `for` loop.
@@ -300,6 +303,7 @@ impl<'m> Writer<'m> {
             temps: 0,
             machine: 0,
             state: 0,
+            clock: None,
             noting: false,
             in_loop: 0,
             self_posts: 0,
@@ -605,7 +609,10 @@ impl<'m> Writer<'m> {
     fn time_due(&self, call: &Expr) -> String {
         let k = self.machine;
         let tests = &self.model.machines[k].states[self.state].time_tests;
-        match tests.iter().position(|t| t.call == *call) {
+        match tests
+            .iter()
+            .position(|t| t.clock == self.clock && t.call == *call)
+        {
             Some(i) => format!("((due[{k}] >> {i}) & 1)"),
             None => "0".into(),
         }
@@ -1025,7 +1032,7 @@ impl<'m> Writer<'m> {
             let _ = writeln!(
                 text,
                 "ltl p{i} {{ {} }} /* {} {} */",
-                ltl(i, p, self.model.machines.len()),
+                ltl(i, p, crate::acceptance::clock_sets(self.model)),
                 p.source.kind.word(),
                 comment(&p.source.name)
             );
@@ -1135,10 +1142,10 @@ impl<'m> Writer<'m> {
                 self.depth -= 1;
             }
             self.line("fi;");
-            self.line(&format!("je[{k}] = 0;"));
+            self.line(&format!("je[{k}] = 0; arrived = 1;"));
             self.depth -= 1;
         }
-        self.line(":: else -> skip;");
+        self.line(":: else -> arrived = 0;");
         self.line("fi;");
         Ok(())
     }
@@ -1234,8 +1241,11 @@ impl<'m> Writer<'m> {
                 self.queue
             );
         }
-        property_declarations(w, properties, n);
-        let _ = writeln!(w, "\nhidden byte sel;\nhidden byte wrapped;");
+        property_declarations(w, properties, crate::acceptance::clock_sets(model));
+        let _ = writeln!(
+            w,
+            "\nhidden byte sel;\nhidden byte wrapped;\nhidden byte arrived; /* the ringing machine ran its OnEntry this step */"
+        );
         for i in 0..self.temps {
             let _ = writeln!(w, "hidden int t{i};");
         }
@@ -1405,12 +1415,11 @@ impl<'m> Writer<'m> {
         self.depth += 1;
         self.line("if");
         for (k, m) in model.machines.iter().enumerate() {
-            let timed: Vec<(usize, Vec<u16>)> = m
+            let timed: Vec<(usize, &crate::model::StateModel)> = m
                 .states
                 .iter()
                 .enumerate()
                 .filter(|(_, s)| !s.time_tests.is_empty())
-                .map(|(i, s)| (i, crate::ringlet::time_masks(&s.time_tests, 0)))
                 .collect();
             if timed.is_empty() {
                 continue;
@@ -1418,15 +1427,29 @@ impl<'m> Writer<'m> {
             self.line(&format!(":: ringing == {} ->", k + 1));
             self.depth += 1;
             self.line("if");
-            for (s, masks) in timed {
-                let options: Vec<String> = masks
-                    .iter()
-                    .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
-                    .collect();
-                self.line(&format!(
-                    ":: st[{k}] == {s} -> if {} fi;",
+            for (s, state) in timed {
+                let masks = crate::ringlet::time_masks(&state.time_tests, 0);
+                let options = |keep: &dyn Fn(u16) -> bool| {
+                    let options: Vec<String> = masks
+                        .iter()
+                        .filter(|&&m| keep(m))
+                        .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
+                        .collect();
                     options.join(" ")
-                ));
+                };
+                // A ringlet that arrived: its clocks just started, their tests not yet due.
+                let fresh = crate::ringlet::fresh_time(state);
+                if fresh == 0 {
+                    self.line(&format!(
+                        ":: st[{k}] == {s} -> if {} fi;",
+                        options(&|_| true)
+                    ));
+                } else {
+                    let arrival = options(&|m| m & fresh == 0);
+                    self.line(&format!(":: st[{k}] == {s} && arrived -> if {arrival} fi;"));
+                    let later = options(&|_| true);
+                    self.line(&format!(":: st[{k}] == {s} && !arrived -> if {later} fi;"));
+                }
             }
             self.line(":: else -> skip;");
             self.line("fi;");
@@ -1498,13 +1521,30 @@ impl<'m> Writer<'m> {
             let Some(t) = state.modelled(arm).map(|t| &state.transitions[t]) else {
                 continue;
             };
-            let holds = self.truth(&t.label)?;
+            self.clock = t.clock;
+            let holds = self.truth(&t.label);
+            self.clock = None;
+            let holds = holds?;
             self.line("if");
             self.line(&format!(":: {holds} ->"));
             self.depth += 1;
             self.run(arm.leaving())?;
+            // The due tests of a composite the move stays in stay due, at their new places.
+            let kept = crate::ringlet::kept_time_bits(
+                &state.time_tests,
+                &m.states[t.target].time_tests,
+                &arm.transition.enters,
+            );
+            let due = match kept.as_slice() {
+                [] => "0".to_string(),
+                kept => kept
+                    .iter()
+                    .map(|(i, j)| format!("(((due[{k}] >> {i}) & 1) << {j})"))
+                    .collect::<Vec<_>>()
+                    .join(" | "),
+            };
             self.line(&format!(
-                "st[{k}] = {}; je[{k}] = 1; due[{k}] = 0;",
+                "st[{k}] = {}; je[{k}] = 1; due[{k}] = {due};",
                 t.target
             ));
             self.depth -= 1;
@@ -1577,9 +1617,13 @@ impl<'m> Writer<'m> {
             self.line(&format!("hit{i} = ({hit} -> 1 : 0);"));
         }
         if properties.iter().any(|p| p.source.kind.is_liveness()) {
-            for k in 0..model.machines.len() {
-                let due = self.time_passes(k);
-                self.line(&format!("acc[{k}] = ({due} -> 1 : 0);"));
+            let mut set = 0;
+            for (k, m) in model.machines.iter().enumerate() {
+                for &clock in &m.clocks {
+                    let due = self.time_passes(k, clock);
+                    self.line(&format!("acc[{set}] = ({due} -> 1 : 0);"));
+                    set += 1;
+                }
             }
         }
         let mut vars: Vec<String> = (0..model.slots.len()).map(|i| format!("s{i}")).collect();
@@ -1592,17 +1636,20 @@ impl<'m> Writer<'m> {
         self.line("};");
     }
 
-    /// Machine `k` lets time pass in the state now (liveness's acceptance set of the machine,
-    /// [`crate::acceptance::meets`]): not running, just entered, every time test of its state
-    /// due, or a state with none.
-    fn time_passes(&self, k: usize) -> String {
-        let mut options = vec![format!("mode[{k}] != 0"), format!("je[{k}]")];
+    /// Machine `k` lets the time of `clock` pass in the state now (liveness's acceptance set
+    /// of that clock, [`crate::acceptance::time_passes`]): not running, the clock just started,
+    /// or every test of it in its state due (a state with none among them).
+    fn time_passes(&self, k: usize, clock: Option<usize>) -> String {
+        let mut options = vec![format!("mode[{k}] != 0")];
         for (s, state) in self.model.machines[k].states.iter().enumerate() {
-            let tests = state.time_tests.len();
-            options.push(if tests == 0 {
+            let mask = state.clock_mask(clock);
+            if state.arrival_starts(clock) {
+                options.push(format!("(st[{k}] == {s} && je[{k}])"));
+            }
+            options.push(if mask == 0 {
                 format!("st[{k}] == {s}")
             } else {
-                format!("(st[{k}] == {s} && due[{k}] == {})", (1u32 << tests) - 1)
+                format!("(st[{k}] == {s} && (due[{k}] & {mask}) == {mask})")
             });
         }
         format!("({})", options.join(" || "))
@@ -1615,7 +1662,7 @@ impl<'m> Writer<'m> {
         if !properties.iter().any(|p| p.source.kind.is_liveness()) {
             return;
         }
-        let mut bits: Vec<String> = (0..self.model.machines.len())
+        let mut bits: Vec<String> = (0..crate::acceptance::clock_sets(self.model))
             .map(|k| format!("acc[{k}] = 1;"))
             .collect();
         for (i, p) in properties.iter().enumerate() {
@@ -1628,9 +1675,9 @@ impl<'m> Writer<'m> {
 
 /// Property `i`'s `ltl` formula: `[] !hit<i>` for a safety property; for a liveness property
 /// its formula over the step-end bits (`lp`, `lq`) under the fairness of time (`acc<k>`, one a
-/// machine) and of its `fair` assumptions, as an antecedent: only fair runs count.
-fn ltl(i: usize, property: &Property, machines: usize) -> String {
-    let mut fair: Vec<String> = (0..machines).map(|k| format!("[]<> acc[{k}]")).collect();
+/// clock of a machine) and of its `fair` assumptions, as an antecedent: only fair runs count.
+fn ltl(i: usize, property: &Property, clocks: usize) -> String {
+    let mut fair: Vec<String> = (0..clocks).map(|k| format!("[]<> acc[{k}]")).collect();
     fair.extend((0..property.fair_terms().len()).map(|j| format!("[]<> fair{i}_{j}")));
     let assuming = |goal: String| {
         if fair.is_empty() {
@@ -1698,7 +1745,7 @@ fn property_declarations(w: &mut String, properties: &[Property], n: usize) {
     if properties.iter().any(|p| p.source.kind.is_liveness()) {
         let _ = writeln!(
             w,
-            "bit acc[{n}]; /* liveness: the machine lets time pass now */"
+            "bit acc[{n}]; /* liveness: a clock of a machine lets time pass now */"
         );
     }
 }

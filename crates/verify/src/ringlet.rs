@@ -4,7 +4,8 @@
 //! A step: find the next running machine in manifest order from `turn` (passing the end starts
 //! a new round: machines started during the last one may now ring); if its state was just
 //! entered, run OnEntry; take the **snapshot**: the time tests of the state that are not yet
-//! due may come due (constant ones in order of duration), and a free type that OnEntry read or
+//! due may come due (constant ones of a clock in order of duration, none of a positive
+//! duration whose clock this arrival started), and a free type that OnEntry read or
 //! posted may change (the world may move between OnEntry and the snapshot); remember what the
 //! properties' `saw()` read; try the transitions in priority order (labels a reasoner answers
 //! are its answers on the snapshot's inputs, whiteboard values read from here on are the
@@ -325,6 +326,7 @@ impl<'m> StepGenerator<'m> {
             touched: None,
             deferred: Vec::new(),
             chosen: &mut chosen,
+            clock: None,
         };
         let (fired, snapshot) = self.steps(&mut exec, from, detail);
         for (target, command) in std::mem::take(&mut exec.deferred) {
@@ -362,27 +364,39 @@ impl<'m> StepGenerator<'m> {
         let mut run = RingletRun::new(plan, exec.world.machines[k].just_entered);
         let mut snapshot = Snapshot::default();
         let mut fired = None;
+        let mut arrived = false;
         loop {
             match run.next_step() {
                 Next::Arrive(actions) => {
                     exec.touched = Some(Vec::new());
                     exec.run(actions);
                     exec.world.machines[k].just_entered = false;
+                    arrived = true;
                 }
-                Next::Snapshot => snapshot = self.snapshot(exec, detail),
+                Next::Snapshot => snapshot = self.snapshot(exec, detail, arrived),
                 Next::Try(arm) => {
                     let modelled = state.modelled(arm);
-                    let holds = modelled.is_some_and(|t| exec.truth(&state.transitions[t].label));
+                    let holds = modelled.is_some_and(|t| {
+                        exec.clock = state.transitions[t].clock;
+                        exec.truth(&state.transitions[t].label)
+                    });
+                    exec.clock = None;
                     run.proved(holds);
                 }
                 Next::Leave(arm) => {
                     exec.run(arm.leaving());
                     // Only a modelled transition is proved (above).
                     if let Some(t) = state.modelled(arm) {
+                        let target = state.transitions[t].target;
                         let c = &mut exec.world.machines[k];
-                        c.state = state.transitions[t].target as u16;
+                        c.time = kept_time(
+                            &state.time_tests,
+                            c.time,
+                            &machine.states[target].time_tests,
+                            &arm.transition.enters,
+                        );
+                        c.state = target as u16;
                         c.just_entered = true;
-                        c.time = 0;
                         fired = Some(t);
                     }
                 }
@@ -392,10 +406,15 @@ impl<'m> StepGenerator<'m> {
         }
     }
 
-    /// The ringlet's snapshot, after its arrival: the time tests that come due and the values
-    /// of the stored free types its arrival read or posted, as the choice's branch makes them;
-    /// then what the machine `saw`.
-    fn snapshot(&self, exec: &mut RingletInterpreter<'_, '_>, detail: bool) -> Snapshot {
+    /// The ringlet's snapshot, after its arrival (when `arrived`): the time tests that come due
+    /// and the values of the stored free types its arrival read or posted, as the choice's
+    /// branch makes them; then what the machine `saw`.
+    fn snapshot(
+        &self,
+        exec: &mut RingletInterpreter<'_, '_>,
+        detail: bool,
+        arrived: bool,
+    ) -> Snapshot {
         let k = exec.machine;
         let mut touched = exec.touched.take().unwrap_or_default();
         touched.retain(|s| {
@@ -406,8 +425,13 @@ impl<'m> StepGenerator<'m> {
         exec.chosen.entry = std::mem::take(&mut exec.chosen.now);
         let w = &mut exec.world;
         let from = usize::from(w.machines[k].state);
-        let tests = &self.model.machines[k].states[from].time_tests;
-        let masks = time_masks(tests, w.machines[k].time);
+        let state = &self.model.machines[k].states[from];
+        let tests = &state.time_tests;
+        let mut masks = time_masks(tests, w.machines[k].time);
+        if arrived {
+            let (fresh, due) = (fresh_time(state), w.machines[k].time);
+            masks.retain(|m| m & fresh & !due == 0);
+        }
         let touched_domains: Vec<&[ValueId]> = touched
             .iter()
             .map(|s| self.domain(*s, w.values[*s]))
@@ -662,19 +686,78 @@ fn rotated(domain: &[ValueId], current: ValueId, i: usize) -> ValueId {
 }
 
 /// The time bits a state's tests may have at a snapshot, given those already due: a due test
-/// stays due, and constant tests (first in the list, shortest first) come due in order.
+/// stays due, and the constant tests of one clock (first in its part of the list, shortest
+/// first) come due in order.
 pub(crate) fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16> {
     let n = tests.len();
-    let constant = tests.iter().take_while(|t| t.micros.is_some()).count();
+    // Each clock's part of the list: where it starts and how many constant tests it begins with.
+    let mut parts: Vec<(usize, usize)> = Vec::new();
+    for (i, t) in tests.iter().enumerate() {
+        if i == 0 || tests[i - 1].clock != t.clock {
+            parts.push((i, 0));
+        }
+        if let Some(part) = parts
+            .last_mut()
+            .filter(|p| i - p.0 == p.1 && t.micros.is_some())
+        {
+            part.1 += 1;
+        }
+    }
     let all = (1u32 << n) - 1;
     (0..=all)
         .map(|m| m as u16)
         .filter(|m| m & due == due)
         .filter(|m| {
-            let prefix = m & ((1u32 << constant) - 1) as u16;
-            prefix & (prefix.wrapping_add(1)) == 0
+            parts.iter().all(|&(start, constant)| {
+                let prefix = (u32::from(*m) >> start) & ((1u32 << constant) - 1);
+                prefix & (prefix + 1) == 0
+            })
         })
         .collect()
+}
+
+/// The time tests of a state that are never due at the snapshot of a ringlet that arrived in
+/// it: those of a positive constant duration whose clock the arrival started (its own, or a
+/// composite it entered), since the round's moment is the arrival's (§3.1).
+pub(crate) fn fresh_time(state: &crate::model::StateModel) -> u16 {
+    state
+        .time_tests
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.micros.is_some_and(|us| us > 0) && state.arrival_starts(t.clock))
+        .fold(0, |fresh, (i, _)| fresh | (1 << i))
+}
+
+/// Which due time tests of a state a move keeps, as (bit in `from`'s tests, bit in `to`'s):
+/// those of a composite it stays in, which it does not enter again.
+pub(crate) fn kept_time_bits(
+    from: &[crate::model::TimeTest],
+    to: &[crate::model::TimeTest],
+    enters: &[usize],
+) -> Vec<(usize, usize)> {
+    from.iter()
+        .enumerate()
+        .filter(|(_, t)| t.clock.is_some_and(|c| !enters.contains(&c)))
+        .filter_map(|(i, t)| {
+            let j = to
+                .iter()
+                .position(|u| u.clock == t.clock && u.call == t.call)?;
+            Some((i, j))
+        })
+        .collect()
+}
+
+/// The time bits after a move from a state whose tests had `due`: see [`kept_time_bits`].
+fn kept_time(
+    from: &[crate::model::TimeTest],
+    due: u16,
+    to: &[crate::model::TimeTest],
+    enters: &[usize],
+) -> u16 {
+    kept_time_bits(from, to, enters)
+        .into_iter()
+        .filter(|(i, _)| due & (1 << i) != 0)
+        .fold(0, |kept, (_, j)| kept | (1 << j))
 }
 
 /// Which fields of a machine's control a command wrote.
@@ -759,6 +842,8 @@ struct RingletInterpreter<'a, 'c> {
     /// Commands posted (target machine, command), obeyed when the ringlet ends.
     deferred: Vec<(usize, Command)>,
     chosen: &'a mut Chosen<'c>,
+    /// While a label is proved: what its time tests count from ([`crate::model::TimeTest::clock`]).
+    clock: Option<usize>,
 }
 
 /// `proclaim-lower`'s walk over an expression, on the model: names resolve to slots and answers, a
@@ -871,8 +956,9 @@ impl RingletInterpreter<'_, '_> {
         self.model.reasoner(theory).answers(&inputs)[output]
     }
 
-    /// Whether a time test of the current state is due; a time test that no label of the
-    /// state has (one in an activity) is never due.
+    /// Whether a time test of the current state is due, counted from the clock of the label
+    /// being proved; a time test that no label of the state has (one in an activity) is never
+    /// due.
     fn time_due(&self, function: &str, arguments: &[Expr]) -> bool {
         let c = &self.world.machines[self.machine];
         let state = &self.model.machines[self.machine].states[usize::from(c.state)];
@@ -880,7 +966,7 @@ impl RingletInterpreter<'_, '_> {
         state
             .time_tests
             .iter()
-            .position(|t| this_call(&t.call))
+            .position(|t| t.clock == self.clock && this_call(&t.call))
             .is_some_and(|i| c.time & (1 << i) != 0)
     }
 
@@ -1043,14 +1129,20 @@ mod tests {
     use crate::model::TimeTest;
 
     fn tests(micros: &[Option<u64>]) -> Vec<TimeTest> {
-        micros
+        clocked(&micros.iter().map(|&m| (None, m)).collect::<Vec<_>>())
+    }
+
+    /// Tests counted from the given clocks, each `timeout(its duration)`.
+    fn clocked(tests: &[(Option<usize>, Option<u64>)]) -> Vec<TimeTest> {
+        tests
             .iter()
-            .map(|&m| TimeTest {
+            .map(|&(clock, m)| TimeTest {
                 call: Expr::Call {
                     function: "timeout".into(),
-                    arguments: vec![],
+                    arguments: vec![m.map_or(Expr::Name("n".into()), |m| Expr::Int(m as i64))],
                 },
                 micros: m,
+                clock,
             })
             .collect()
     }
@@ -1065,5 +1157,28 @@ mod tests {
         // A test whose duration is computed is free of the others.
         assert_eq!(time_masks(&tests(&[Some(1), None]), 0), vec![0, 1, 2, 3]);
         assert_eq!(time_masks(&tests(&[Some(1), None]), 2), vec![2, 3]);
+    }
+
+    #[test]
+    fn each_clock_orders_its_own_tests_and_a_move_keeps_those_of_a_composite_it_stays_in() {
+        // The state's 2 s test, then its composite's 1 s and 3 s: the composite's 3 s test
+        // waits for its 1 s one, not for the state's.
+        let inside = clocked(&[(None, Some(2)), (Some(0), Some(1)), (Some(0), Some(3))]);
+        assert_eq!(
+            time_masks(&inside, 0),
+            vec![0, 1, 2, 3, 6, 7],
+            "the composite's tests come due in their order, free of the state's"
+        );
+        // Its sibling in the composite has a test of its own and the composite's two.
+        let sibling = clocked(&[(None, Some(5)), (Some(0), Some(1)), (Some(0), Some(3))]);
+        assert_eq!(kept_time_bits(&inside, &sibling, &[]), vec![(1, 1), (2, 2)]);
+        assert_eq!(kept_time(&inside, 0b111, &sibling, &[]), 0b110);
+        assert_eq!(
+            kept_time(&inside, 0b111, &sibling, &[0]),
+            0,
+            "entering the composite again restarts its clock"
+        );
+        // Out of the composite: nothing of it is kept.
+        assert_eq!(kept_time(&inside, 0b111, &tests(&[Some(1)]), &[]), 0);
     }
 }

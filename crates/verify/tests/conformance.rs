@@ -31,6 +31,8 @@ struct Coverage {
     nested_arrivals: usize,
     /// Firings that resumed a composite's history.
     resumed: usize,
+    /// Firings of a composite's transition that tests the time (counted from its entry).
+    composite_time: usize,
     /// Parameters given by a start (§3.3), and firings on a machine's outcome.
     arguments: usize,
     on_outcomes: usize,
@@ -39,9 +41,34 @@ struct Coverage {
 
 /// Runs the behaviour of `seed` and follows its trace in the model; the events, or the whole
 /// story of a mismatch.
-/// A run followed in the model: what the model made of it, the runner's events and how many
-/// of its firings resumed a history ([`resumes`]).
-type Conformed = (Followed, Vec<Event>, usize);
+/// A run followed in the model: what the model made of it, the runner's events, how many of
+/// its firings resumed a history ([`resumes`]) and how many were a composite's time tests
+/// ([`composite_time_firings`]).
+type Conformed = (Followed, Vec<Event>, usize, usize);
+
+/// How many firings of `events` were of a composite's transition whose label tests the time.
+fn composite_time_firings(behaviour: &proclaim_behaviour::Behaviour, events: &[Event]) -> usize {
+    let timed = |t: &&proclaim_fsm::Transition| {
+        t.composite.is_some()
+            && (t.label.calls().iter())
+                .any(|(f, _)| proclaim_fsm::TIME_TESTS.iter().any(|(time, _)| time == f))
+    };
+    let fired = |machine: &str, from: i64, to: i64, label: &str| {
+        behaviour
+            .machines
+            .iter()
+            .filter(|m| m.machine.name == machine)
+            .flat_map(|m| &m.machine.transitions)
+            .filter(timed)
+            .any(|t| t.source == from && t.target == to && t.shown().to_string() == label)
+    };
+    events
+        .iter()
+        .filter(|e| {
+            matches!(e, Event::Fired { machine, from, to, label, .. } if fired(machine, *from, *to, label))
+        })
+        .count()
+}
 
 /// How many firings of `events` resumed a history: an arm `X_history == K && …` fired while
 /// the run's last assignment to `X_history` was K (a trace shows the label as written, and the
@@ -113,8 +140,9 @@ fn run_generated(seed: u64, generated: &RandomBehaviour) -> Result<Conformed, St
     let outcome = follow(&model, &events);
     let _ = std::fs::remove_dir_all(&dir);
     let resumed = resumes(&behaviour, &events);
+    let timed = composite_time_firings(&behaviour, &events);
     match outcome {
-        Ok(followed) => Ok((followed, events, resumed)),
+        Ok(followed) => Ok((followed, events, resumed, timed)),
         Err(mismatch) => Err(format!(
             "seed {seed}: the run is no path of the model\n{mismatch}\n{}",
             generated.show()
@@ -140,9 +168,10 @@ fn conform(seeds: std::ops::Range<u64>) {
     let mut mismatches = Vec::new();
     for seed in seeds {
         match run_one(seed) {
-            Ok((followed, events, resumed)) => {
+            Ok((followed, events, resumed, timed)) => {
                 coverage.runs += 1;
                 coverage.resumed += resumed;
+                coverage.composite_time += timed;
                 coverage.ringlets += followed.ringlets;
                 coverage.widest = coverage.widest.max(followed.widest);
                 for e in &events {
@@ -196,6 +225,7 @@ fn conform(seeds: std::ops::Range<u64>) {
             && coverage.answers_of_theories > 0
             && coverage.nested_arrivals > 0
             && coverage.resumed > 0
+            && coverage.composite_time > 0
             && coverage.arguments > 0
             && coverage.on_outcomes > 0,
         "{coverage:?}"

@@ -123,13 +123,15 @@ fn a_timeout_comes_due_because_time_passes() {
         "Holds: eventually M.DONE\nHolds: always_eventually M.DONE",
     );
     // With `go` never set the machine waits for ever, but only a run where the timeout has
-    // come due counts: the lasso lets it come due before it loops.
+    // come due counts: the lasso lets it come due before it loops, and not in the ringlet
+    // that arrived (no time has passed in the state then).
     let m = "machine M\nstate WAIT { when go && timeout(1s) -> DONE }\nstate DONE { }";
     check(
         &[("M", m)],
         &[property(PropertyKind::Eventually, "M.DONE", &[])],
-        "Fails: eventually M.DONE\n  round 1\n    M: WAIT stays; due: timeout(1s); reads go = false\n  \
-         loop:\n  round 2\n    M: WAIT stays",
+        "Fails: eventually M.DONE\n  round 1\n    M: WAIT stays\n  \
+         round 2\n    M: WAIT stays; due: timeout(1s); reads go = false\n  \
+         loop:\n  round 3\n    M: WAIT stays",
     );
 }
 

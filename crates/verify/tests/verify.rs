@@ -166,13 +166,15 @@ fn a_machine_started_in_a_round_rings_from_the_next() {
 #[test]
 fn the_environment_is_free_and_time_only_passes() {
     // `button` is nobody's: the world sets it at will. The timeout may come due at any
-    // snapshot, so WAIT can end either way; a priority shadows the second `button` label.
+    // snapshot after the one of the ringlet that arrived (no time has passed in WAIT then), so
+    // WAIT can end either way; a priority shadows the second `button` label.
     let m = "machine M\nstate WAIT { when button -> PRESSED\n when timeout(2s) -> LATE\n \
              when button && timeout(1s) -> NEVER }\nstate PRESSED { }\nstate LATE { }\nstate NEVER { }";
     check(
         &[("M", m)],
         &[reachable("M.LATE"), never("M.NEVER")],
-        "Holds: reachable M.LATE\n  round 1\n    M: WAIT -> LATE (when timeout(2s)); due: timeout(1s), timeout(2s)\n\
+        "Holds: reachable M.LATE\n  round 1\n    M: WAIT stays\n  \
+         round 2\n    M: WAIT -> LATE (when timeout(2s)); due: timeout(1s), timeout(2s)\n\
          Holds: never M.NEVER\n\
          never entered: M.NEVER\n\
          never fires: M.WAIT -> NEVER",

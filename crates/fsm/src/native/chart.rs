@@ -344,22 +344,6 @@ impl Tree {
                 ),
             );
         }
-        let timed = label
-            .calls()
-            .iter()
-            .any(|(f, _)| TIME_TESTS.iter().any(|(t, _)| t == f));
-        if timed && !node.children.is_empty() {
-            lowering.error(
-                when.label_at,
-                format!(
-                    "a time test on the transition of `{}`, which holds states, would count \
-                     from its entry whatever happens inside it: not built yet; test the time \
-                     on the states inside it",
-                    node.path
-                ),
-            );
-            return None;
-        }
         let (target, history) = match &when.target {
             Ref::Name(path) => {
                 let history = [History::Shallow, History::Deep]
@@ -510,6 +494,28 @@ impl Tree {
         std::iter::successors(Some(node), |&n| self.nodes[n].parent)
     }
 
+    /// The composites a move below `domain` into `atomic` enters, outermost first.
+    fn entered(&self, atomic: usize, domain: Option<usize>) -> Vec<usize> {
+        let mut entered: Vec<usize> = self
+            .chain(atomic)
+            .take_while(|&n| Some(n) != domain)
+            .filter(|&n| !self.nodes[n].children.is_empty())
+            .collect();
+        entered.reverse();
+        entered
+    }
+
+    /// Whether a transition written on `node` tests the time: a composite's then counts from
+    /// its entry, so the arrivals that enter it are told apart from those that do not.
+    fn timed(&self, node: usize) -> bool {
+        self.written[node].iter().any(|w| {
+            w.label
+                .calls()
+                .iter()
+                .any(|(f, _)| TIME_TESTS.iter().any(|(t, _)| t == f))
+        })
+    }
+
     fn outermost(&self, node: usize) -> usize {
         self.chain(node).last().unwrap_or(node)
     }
@@ -540,6 +546,8 @@ struct FlatArm {
     leaving: Option<Vec<Action>>,
     /// The composite it was written on, when not on the atomic state itself.
     written_on: Option<usize>,
+    /// The composites it enters, outermost first.
+    enters: Vec<usize>,
 }
 
 /// Flat states made as transitions reach them, from the initial one.
@@ -590,15 +598,15 @@ impl<'t> Flattening<'t> {
         self.next
     }
 
-    /// The flat state of `atomic` entered from `top` down. Entries that run nothing are not
-    /// told apart, so a chart whose composites have no OnEntry gets one flat state per atomic
-    /// state.
+    /// The flat state of `atomic` entered from `top` down. Entries that run nothing and
+    /// start no composite's time are not told apart, so a chart whose composites have no
+    /// OnEntry and test no time gets one flat state per atomic state.
     fn variant(&mut self, atomic: usize, top: usize) -> usize {
         let tree = self.tree;
         let entered: Vec<usize> = tree.chain(atomic).take_while(|&n| n != top).collect();
         let top = std::iter::once(top)
             .chain(entered.into_iter().rev())
-            .find(|&n| n == atomic || !tree.nodes[n].entry.is_empty())
+            .find(|&n| n == atomic || !tree.nodes[n].entry.is_empty() || tree.timed(n))
             .unwrap_or(atomic);
         if let Some(&flat) = self.variants.get(&(atomic, top)) {
             return flat;
@@ -666,6 +674,7 @@ impl<'t> Flattening<'t> {
                 }
                 let written_on = (source != atomic).then_some(source);
                 for (label, target) in self.targets(atomic, w, domain, &left) {
+                    let enters = tree.entered(self.flats[target].atomic, domain);
                     arms.push(FlatArm {
                         written: (label != w.label).then(|| w.label.clone()),
                         label,
@@ -673,6 +682,7 @@ impl<'t> Flattening<'t> {
                         line: w.line,
                         leaving: leaving.clone(),
                         written_on,
+                        enters,
                     });
                 }
             }
@@ -800,6 +810,11 @@ impl<'t> Flattening<'t> {
                     line: arm.line,
                     leaving: arm.leaving,
                     composite: arm.written_on.and_then(|n| composites_of[n]),
+                    enters: arm
+                        .enters
+                        .iter()
+                        .filter_map(|&n| composites_of[n])
+                        .collect(),
                     written: arm.written,
                 });
             }

@@ -526,6 +526,7 @@ impl Lowering<'_> {
                 line: self.lines.line(when.at),
                 leaving: None,
                 composite: None,
+                enters: Vec::new(),
                 written: None,
             }),
             Err(message) => {

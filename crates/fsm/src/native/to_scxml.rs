@@ -216,7 +216,7 @@ impl Writer<'_> {
         let moves = s.members.iter().any(|m| matches!(m, Member::When { .. }));
         let element = if holds || moves { "state" } else { "final" };
         let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
-        let timed = Timed::of(&s, if holds { Vec::new() } else { timers(&s) }, &pad);
+        let timed = Timed::of(&s, timers(&s), &pad);
         let mut inner = timed.before.clone();
         for m in s.members {
             match m {

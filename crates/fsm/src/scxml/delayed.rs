@@ -60,7 +60,6 @@ fn timer(
     u: &Uses<'_>,
 ) -> Result<Timer, String> {
     let state = owner.ok_or("only a send on entering a state maps (it times that state)")?;
-    let id = state.attribute("id").unwrap_or_default();
     if u.delayed.len() > 1 {
         return Err(format!(
             "`{event}` is sent with a delay {} times; only one send times a state",
@@ -69,13 +68,6 @@ fn timer(
     }
     if u.posted > 0 {
         return Err(format!("`{event}` is also sent or raised at once; only an event the delay alone sends reads as a time test"));
-    }
-    if state
-        .children
-        .iter()
-        .any(|c| super::STATES.contains(&c.name.as_str()))
-    {
-        return Err(format!("`{id}` holds states, and a time test on a composite's transition is not built yet (docs/spec/behaviour.md §3.2)"));
     }
     for (t, on) in &u.transitions {
         if !std::ptr::eq(*on, state) {

@@ -148,8 +148,9 @@ impl Searched<'_, '_> {
         })
     }
 
-    /// One acceptance set a machine (it is not running, its state was just entered, every
-    /// time test of its state is due, or its state has none), then one a `fair` expression.
+    /// One acceptance set a clock of each machine (it is not running, or the clock just
+    /// started, or every test of it in the machine's state is due, or there is none:
+    /// [`crate::acceptance::time_passes`]), then one a `fair` expression.
     fn acceptance(&self, property: &Property) -> Result<Vec<Bdd>, Declined> {
         let (model, enc) = (self.model, self.enc);
         let field_is = |f: &Field, i: usize| {
@@ -161,16 +162,26 @@ impl Searched<'_, '_> {
         for (k, m) in model.machines.iter().enumerate() {
             let f = &enc.machines[k];
             let running = field_is(&f.status, super::status_index(Status::Running));
-            let mut met = running.not().or(&field_is(&f.just_entered, 1));
-            for (s, state) in m.states.iter().enumerate() {
-                let mut cube = BddPartialValuation::empty();
-                f.state.set(s, &mut cube);
-                for bit in f.time.bits.iter().take(state.time_tests.len()) {
-                    cube.set_value(*bit, true);
+            for &clock in &m.clocks {
+                let mut met = running.not();
+                for (s, state) in m.states.iter().enumerate() {
+                    let mut cube = BddPartialValuation::empty();
+                    f.state.set(s, &mut cube);
+                    if state.arrival_starts(clock) {
+                        let mut entered = cube.clone();
+                        f.just_entered.set(1, &mut entered);
+                        met = met.or(&enc.mk(&entered));
+                    }
+                    let mask = state.clock_mask(clock);
+                    for (i, bit) in f.time.bits.iter().enumerate() {
+                        if mask & (1 << i) != 0 {
+                            cube.set_value(*bit, true);
+                        }
+                    }
+                    met = met.or(&enc.mk(&cube));
                 }
-                met = met.or(&enc.mk(&cube));
+                sets.push(met);
             }
-            sets.push(met);
         }
         for (i, term) in property.fair_terms().iter().enumerate() {
             sets.push(set_where(model, enc, term, &property.source.name, &|w| {

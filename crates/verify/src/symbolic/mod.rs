@@ -769,7 +769,8 @@ struct Domains {
     writer: Vec<Option<usize>>,
 }
 
-/// Every control machine `k` may ring from: each state, just entered (no time due) or not
+/// Every control machine `k` may ring from: each state, just entered (none of the time tests
+/// of the clocks its arrival started due; those of a composite it stayed in may be) or not
 /// (each set of due time tests that can be), running and not started this round.
 fn controls(model: &Search, k: usize) -> Vec<Control> {
     let mut out = Vec::new();
@@ -781,15 +782,25 @@ fn controls(model: &Search, k: usize) -> Vec<Control> {
             fresh: false,
             time: 0,
         };
-        out.push(base);
+        let started: u16 = state
+            .time_tests
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| state.arrival_starts(t.clock))
+            .fold(0, |started, (i, _)| started | (1 << i));
+        let masks = time_masks(&state.time_tests, 0);
+        out.extend(
+            masks
+                .iter()
+                .filter(|&&time| time & started == 0)
+                .map(|&time| Control { time, ..base }),
+        );
         if !state.is_final() {
-            for time in time_masks(&state.time_tests, 0) {
-                out.push(Control {
-                    just_entered: false,
-                    time,
-                    ..base
-                });
-            }
+            out.extend(masks.into_iter().map(|time| Control {
+                just_entered: false,
+                time,
+                ..base
+            }));
         }
     }
     out
