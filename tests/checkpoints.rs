@@ -7,7 +7,14 @@ use crate::proclaim;
 use std::path::{Path, PathBuf};
 
 /// The shipped behaviours that run alone on the virtual clock (no program, sensor or team).
-const SHIPPED: [&str; 5] = ["keeper", "microwave", "press", "shootout", "subsumption"];
+const SHIPPED: [&str; 6] = [
+    "keeper",
+    "microwave",
+    "press",
+    "search",
+    "shootout",
+    "subsumption",
+];
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -94,6 +101,41 @@ fn every_shipped_behaviour_taken_up_from_a_checkpoint_plays_the_rest_of_its_run_
             );
         }
     }
+}
+
+/// The search (`machines/search`) taken up at every round: a checkpoint taken while the head
+/// turns inside the search keeps when the search began, which its give-up counts from.
+#[test]
+fn a_composite_timed_as_a_whole_taken_up_at_any_round_gives_up_when_the_whole_run_did() {
+    let dir = scratch("search-every-round");
+    let (whole, _) = run("search", &dir.join("whole.jsonl"), &[]);
+    let last = whole.last().map_or(1, |l| round_of(l));
+    let mut inside = 0;
+    for at in 1..=last {
+        let file = dir.join(format!("at{at}.json"));
+        let file_arg = file.to_str().unwrap();
+        let at_arg = at.to_string();
+        run(
+            "search",
+            &dir.join(format!("written{at}.jsonl")),
+            &["--checkpoint-at", &at_arg, "--checkpoint-file", file_arg],
+        );
+        let Ok(text) = std::fs::read_to_string(&file) else {
+            continue;
+        };
+        inside += usize::from(text.contains("\"composites\"") && text.contains("LOOK."));
+        let (rest, printed) = run(
+            "search",
+            &dir.join(format!("rest{at}.jsonl")),
+            &["--resume", file_arg],
+        );
+        assert_eq!(
+            whole[whole.len() - rest.len()..],
+            rest[..],
+            "the search taken up at round {at}:\n{printed}"
+        );
+    }
+    assert!(inside > 3, "checkpoints taken inside the search: {inside}");
 }
 
 /// A counter that goes round a loop on a timeout, so a run has many rounds at many moments.

@@ -657,6 +657,48 @@ fn the_keepers_nested_dive_compiles_to_the_interpreters_trace() {
     );
 }
 
+/// The search's runs (`machines/search`, a composite whose 3 s count from its entry): its own
+/// ball, and seeded ones in which the ball comes and goes at any millisecond, rounds' moments
+/// included, so that it meets every turn of the head and the search's give-up.
+pub(crate) fn search_runs() -> Vec<(String, String, Option<String>)> {
+    let own = std::fs::read_to_string("machines/search/ball.script").unwrap();
+    let mut runs = vec![("search-own".to_string(), own, Some("8s".to_string()))];
+    let mut seed = 0x5eed_0048_5ea4;
+    for n in 0..8 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script = String::from("ballSeen = false\n");
+        for _ in 0..1 + next(6) {
+            let at = seeded_moment(&mut next, 0, 9_000);
+            script.push_str(&format!("at {at}ms ballSeen = {}\n", next(2) == 0));
+        }
+        let run_for = format!("{}ms", 2_000 + next(8_000));
+        runs.push((format!("search-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+#[test]
+fn the_searchs_composite_time_test_compiles_to_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let dir = scratch("search");
+    build("machines/search", &dir);
+    let runs = search_runs();
+    let mut gave_up = 0;
+    for (name, script, run_for) in &runs {
+        let (interpreted, compiled) =
+            traces("machines/search", &dir, name, script, run_for.as_deref());
+        gave_up += usize::from(interpreted.contains("\"GIVE_UP\""));
+        assert_same(name, &interpreted, &compiled);
+    }
+    assert!(
+        gave_up * 2 > runs.len(),
+        "most runs gave a search up ({gave_up} of {})",
+        runs.len()
+    );
+}
+
 /// The GameController behaviour's runs, its sensors' atoms from the script: a whole game with
 /// a penalty and the chest button, one where the script sets only some atoms (the rest no
 /// expert answers), and seeded games of any order at any millisecond, stopped at any time.

@@ -267,6 +267,11 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         runs: super::compiled::keeper_runs(),
     });
     behaviours.push(Compiled {
+        name: "search".into(),
+        folder: "machines/search".into(),
+        runs: super::compiled::search_runs(),
+    });
+    behaviours.push(Compiled {
         name: "game_controller".into(),
         folder: "machines/game_controller".into(),
         runs: game_controller_runs(),

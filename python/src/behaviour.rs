@@ -307,8 +307,7 @@ impl Behaviour {
         }
         let (names, functions): (Vec<String>, Vec<Py<PyAny>>) = given.into_iter().unzip();
         let expert_labels: Vec<String> = labels.iter().map(|(label, _)| label.clone()).collect();
-        let (machines, manifest_script) =
-            checked(py, &folder, &expert_labels, &names[..host_count])?;
+        let manifest_script = checked(py, &folder, &expert_labels, &names[..host_count])?;
         let list: Callables = Arc::new(Mutex::new(functions));
         let calls: Calls = Arc::default();
         for (index, name) in names.iter().enumerate().take(host_count) {
@@ -351,7 +350,7 @@ impl Behaviour {
         } else {
             given_script
         };
-        let mut clock = Clock::new(machines, script.as_ref(), calls, virtual_clock);
+        let mut clock = Clock::new(script.as_ref(), calls, virtual_clock);
         if let Some(checkpoint) = &resume {
             clock.taken_up(checkpoint);
         }
@@ -635,21 +634,21 @@ fn answered_elsewhere(board: &proclaim_board::Whiteboard, ty: &str) -> Option<St
 
 /// The behaviour in `folder` loaded to check the callables given against it: BehaviourError for
 /// an expert no machine asks for or a host function no machine calls, a BehaviourWarning for a
-/// host function called that no callable answers. Its machines and script, for the clock; none
-/// when it does not load (starting it then raises the load's errors).
+/// host function called that no callable answers. Its script, for the clock; none when it does
+/// not load (starting it then raises the load's errors).
 fn checked(
     py: Python<'_>,
     folder: &std::path::Path,
     experts: &[String],
     hosts: &[String],
-) -> PyResult<(Vec<proclaim_fsm::Machine>, Option<proclaim_experts::Script>)> {
+) -> PyResult<Option<proclaim_experts::Script>> {
     let name = folder
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or("behaviour");
     let files = Arc::new(proclaim_behaviour::Folder::new(folder));
     let Ok(behaviour) = proclaim_behaviour::load(name, files) else {
-        return Ok((Vec::new(), None));
+        return Ok(None);
     };
     let findings = checks::check(
         &behaviour.machines,
@@ -678,7 +677,5 @@ fn checked(
         error.value(py).setattr("problems", problems)?;
         return Err(error);
     }
-    let script = behaviour.script.clone();
-    let machines = behaviour.machines.into_iter().map(|m| m.machine).collect();
-    Ok((machines, script))
+    Ok(behaviour.script)
 }

@@ -8,12 +8,9 @@
 
 use proclaim_behaviour::testing::RoundByRound;
 use proclaim_behaviour::Checkpoint;
-use proclaim_board::Value;
 use proclaim_experts::{Script, When};
-use proclaim_fsm::{Argument, Expr, Machine, TIME_TESTS};
-use proclaim_lower::{Evaluate, RingletPlan};
+use proclaim_fsm::Argument;
 use proclaim_runner::Event;
-use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -33,17 +30,14 @@ pub(crate) enum Logged<'a> {
     Called(&'a HostCall, u64),
 }
 
-/// What the clock knows of a behaviour besides the runner: its machines' transitions, the
-/// script's times, when each machine entered its state, and where the host calls go.
+/// What the clock knows of a behaviour besides the runner: the script's times and where the
+/// host calls go.
 pub(crate) struct Clock {
-    machines: HashMap<String, Machine>,
     /// Times (since the start) the script posts at, soonest first.
     script_times: Vec<Duration>,
     /// How far the virtual clock has moved since the start.
     now: Duration,
-    /// Machine → when it entered the state it is in.
-    entered_at: HashMap<String, Duration>,
-    /// How many of the runner's events have been read into `entered_at` and `now`.
+    /// How many of the runner's events have been read into `now`.
     seen: usize,
     calls: Calls,
     /// Whether the clock is virtual: on the wall clock a step does not wait for what is due.
@@ -69,30 +63,8 @@ fn moved(event: &Event) -> bool {
     )
 }
 
-/// A time test's argument read as the runner reads it, the machine's variables and the
-/// behaviour's globals by their values now; functions are not called.
-struct Limits<'r> {
-    running: &'r RoundByRound,
-    machine: &'r str,
-}
-
-impl Evaluate for Limits<'_> {
-    fn read(&mut self, name: &str) -> Option<Value> {
-        self.running.variable(self.machine, name)
-    }
-
-    fn call(&mut self, _function: &str, _arguments: &[Expr]) -> Option<Value> {
-        None
-    }
-}
-
 impl Clock {
-    pub(crate) fn new(
-        machines: Vec<Machine>,
-        script: Option<&Script>,
-        calls: Calls,
-        virtual_clock: bool,
-    ) -> Clock {
+    pub(crate) fn new(script: Option<&Script>, calls: Calls, virtual_clock: bool) -> Clock {
         let mut script_times: Vec<Duration> = script
             .map(|s| {
                 s.steps
@@ -106,10 +78,8 @@ impl Clock {
             .unwrap_or_default();
         script_times.sort();
         Clock {
-            machines: machines.into_iter().map(|m| (m.name.clone(), m)).collect(),
             script_times,
             now: Duration::ZERO,
-            entered_at: HashMap::new(),
             seen: 0,
             calls,
             virtual_clock,
@@ -117,27 +87,17 @@ impl Clock {
         }
     }
 
-    /// Where a run taken up from `checkpoint` left the clock: at its moment, each machine in the
-    /// state it last entered since the moment it entered it.
+    /// Where a run taken up from `checkpoint` left the clock: at its moment (the machines'
+    /// entries, which their time tests count from, are the runner's).
     pub(crate) fn taken_up(&mut self, checkpoint: &Checkpoint) {
         self.now = Duration::from_nanos(checkpoint.at_ns);
-        for machine in &checkpoint.schedule.machines {
-            if machine.last_entered.as_deref() == Some(machine.state.as_str()) {
-                let entered = Duration::from_nanos(machine.entered_ns);
-                self.entered_at.insert(machine.name.clone(), entered);
-            }
-        }
     }
 
-    /// Reads the runner's new events (when machines entered their states; time passed in a
-    /// round) and places the host calls made meanwhile after them; whether a machine moved.
+    /// Reads the runner's new events (time passed in a round) and places the host calls made meanwhile after them; whether a machine moved.
     fn observe(&mut self, running: &RoundByRound) -> bool {
         let mut any_moved = false;
         for event in &running.events[self.seen..] {
             any_moved |= moved(event);
-            if let Event::Entered { machine, at, .. } = event {
-                self.entered_at.insert(machine.clone(), *at);
-            }
             if let Some(at) = event.at() {
                 self.now = self.now.max(at);
             }
@@ -154,38 +114,11 @@ impl Clock {
     }
 
     /// The next moment after now something is due: a time test of a machine's current state
-    /// coming true, or the script's next timed line.
+    /// coming true (as the runner has it: a composite's counts from the composite's entry), or
+    /// the script's next timed line.
     fn next_due(&self, running: &RoundByRound) -> Option<Duration> {
         let script = self.script_times.iter().copied().find(|t| *t > self.now);
-        let machines = running.states().into_iter().filter_map(|(name, state)| {
-            let machine = self.machines.get(name)?;
-            let state = machine
-                .states
-                .iter()
-                .find(|s| Some(s.name.as_str()) == state)?;
-            let entered = *self.entered_at.get(name)?;
-            let mut limits = Limits {
-                running,
-                machine: name,
-            };
-            RingletPlan::of_state(machine, state)
-                .arms()
-                .flat_map(|arm| arm.label().calls())
-                .filter_map(|(function, arguments)| {
-                    let (_, micros_per_unit) = TIME_TESTS.iter().find(|(f, _)| *f == function)?;
-                    let limit = match arguments {
-                        [Expr::Duration(us)] => Duration::from_micros(*us),
-                        [argument] => {
-                            let n = limits.value(argument)?.as_f64()? * micros_per_unit;
-                            Duration::try_from_secs_f64(n.max(0.0) / 1e6).ok()?
-                        }
-                        _ => return None,
-                    };
-                    Some(entered + limit)
-                })
-                .filter(|due| *due > self.now)
-                .min()
-        });
+        let machines = running.next_time_test().filter(|due| *due > self.now);
         script.into_iter().chain(machines).min()
     }
 

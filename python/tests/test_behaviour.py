@@ -15,6 +15,7 @@ import proclaim
 
 ROOT = Path(__file__).resolve().parents[2]
 MICROWAVE = ROOT / "machines" / "microwave"
+SEARCH = ROOT / "machines" / "search"
 KETTLE = Path(__file__).resolve().parent / "kettle"
 
 
@@ -356,6 +357,16 @@ def test_run_until_from_a_checkpoint_waits_for_what_was_due_as_the_first_run_did
             assert second.run_until(lambda b: b.finished)
             assert second.events == after_round(first.events, at)
             assert second.time == first.time == 64.0
+
+
+def test_run_until_waits_for_a_composites_time_counted_from_its_entry_not_its_last_turn():
+    # The search (entered at 1.5 s, when the ball is lost) turns the head every 400 ms, and
+    # gives up 3 s after it began, whatever the turns: run_until moves the clock to that moment.
+    with proclaim.Behaviour(SEARCH) as striker:
+        assert striker.run_until(lambda b: b.state("Search") == "GIVE_UP")
+        gave_up = [e for e in striker.events if e["event"] == "entered" and e["state"] == "GIVE_UP"]
+        assert [e["at_us"] for e in gave_up] == [4_500_000]
+        assert striker.time == 4.5
 
 
 def test_wait_moves_the_clock_by_its_time_when_the_script_posted_meanwhile():

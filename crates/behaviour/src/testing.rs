@@ -357,6 +357,13 @@ impl RoundByRound {
         }
     }
 
+    /// When the soonest time test of a machine's current state comes due, since the run's
+    /// start, as the machines' last rings left them (none: no machine waits on one).
+    pub fn next_time_test(&self) -> Option<Duration> {
+        let due = self.stepper.soonest_due()?;
+        Some(due.saturating_duration_since(self.running.epoch))
+    }
+
     /// The round the schedule is in.
     pub fn rounds(&self) -> u64 {
         self.running.round.get()

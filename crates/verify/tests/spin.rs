@@ -364,6 +364,66 @@ fn spin_agrees_with_the_checker_on_the_keepers_nested_dive() {
     );
 }
 
+/// The search's properties (`machines/search`): a search that sees nothing gives up, every
+/// search ends, and the kick comes after the walk.
+fn search_properties() -> [PropertySource; 3] {
+    [
+        property(PropertyKind::Reachable, "Search.GIVE_UP"),
+        property(PropertyKind::LeadsTo, "Search.LOOK ~> !Search.LOOK"),
+        property(PropertyKind::Never, "Search.KICK && NaoWalk != \"forward\""),
+    ]
+}
+
+/// The search in a fresh folder; with `per_turn`, its 3 s written on each turn of the head
+/// instead of on the search, so that every turn starts them again.
+fn search(case: &str, per_turn: bool) -> PathBuf {
+    let source = repo().join("machines/search");
+    let dir = scratch(&format!("{case}-behaviour"));
+    std::fs::copy(source.join("ball.script"), dir.join("ball.script")).expect("copy");
+    let manifest = std::fs::read_to_string(source.join("behaviour.toml")).expect("manifest");
+    let manifest: String = manifest
+        .lines()
+        .filter(|l| !l.starts_with("dictionary"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    let machine = std::fs::read_to_string(source.join("Search.machine")).expect("search");
+    let written = if per_turn {
+        let on_search = "    when after(3s) -> GIVE_UP\n";
+        assert!(machine.contains(on_search), "the fault is seeded");
+        machine.replace(on_search, "").replace(
+            "        when after_ms(400)",
+            "        when after(3s) -> GIVE_UP\n        when after_ms(400)",
+        )
+    } else {
+        machine
+    };
+    std::fs::write(dir.join("Search.machine"), written).expect("write");
+    dir
+}
+
+/// A time test on a composite counts from its entry: the search gives up, and every search
+/// ends. Written on the turns instead, the 3 s start again with each turn: a search may go on
+/// for ever (it gives up only where a turn lasts 3 s, as a robot stalled that long would).
+#[test]
+fn spin_agrees_with_the_checker_on_a_search_timed_as_a_whole() {
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(
+        both("search", &search("search", false), &search_properties()),
+        [Verdict::Holds, Verdict::Holds, Verdict::Holds]
+    );
+    assert_eq!(
+        both(
+            "search-per-turn",
+            &search("search-per-turn", true),
+            &search_properties()
+        ),
+        [Verdict::Holds, Verdict::Fails, Verdict::Holds]
+    );
+}
+
 /// `odometer N K` (`tests/common/odometer.rs`, the bench's family too), in a fresh folder.
 fn odometer(n: usize, k: usize) -> PathBuf {
     let dir = scratch(&format!("odometer-{n}-{k}-behaviour"));
