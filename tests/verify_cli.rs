@@ -273,3 +273,30 @@ fn a_counterexamples_script_sets_what_its_ringlets_read_unposted() {
     let trace = std::fs::read_to_string(script.with_extension("jsonl")).unwrap();
     assert!(trace.contains("\"state\":\"T\""), "{trace}");
 }
+
+/// A behaviour whose machines race (`schedule = "concurrent"`) is verified as it runs in
+/// rounds, and `verify` says so on its error stream (its report, and `--json`, stay as they
+/// are); one in rounds gets no such warning.
+#[test]
+fn a_concurrent_behaviour_is_verified_as_rounds_and_told_so() {
+    let machine = "machine M\nstate A { when after(1s) -> B }\nstate B { }\n";
+    let manifest = |schedule: &str| format!("{schedule}[[machine]]\nfile = \"M.machine\"\n");
+    for (schedule, warned) in [("schedule = \"concurrent\"\n", true), ("", false)] {
+        let dir = crate::behaviour_folder(
+            &format!("verify-schedule-{warned}"),
+            &[
+                ("M.machine", machine),
+                ("behaviour.toml", &manifest(schedule)),
+            ],
+        );
+        let o = proclaim(&["verify", dir.to_str().unwrap(), "--reachable", "M.B"]);
+        assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+        assert!(stdout(&o).contains("--reachable: holds"), "{}", stdout(&o));
+        assert_eq!(
+            stderr(&o).contains("verify models the round schedule"),
+            warned,
+            "{}",
+            stderr(&o)
+        );
+    }
+}

@@ -175,8 +175,15 @@ fn default_memory_budget() -> usize {
 }
 
 /// The behaviour, unless it is a robot of a team: the model has no teammates, so every label
-/// reading the team would be wrongly never true.
+/// reading the team would be wrongly never true. One whose machines race each other is
+/// modelled as it runs in rounds, which is said.
 fn modelled(behaviour: Behaviour) -> Result<Behaviour, Failure> {
+    if behaviour.manifest.schedule == proclaim_behaviour::Schedule::Concurrent {
+        eprintln!(
+            "warning: `{}` runs its machines concurrently (schedule = \"concurrent\"); verify models the round schedule (docs/spec/behaviour.md §3.1), so what it says holds of the behaviour run in rounds",
+            behaviour.name
+        );
+    }
     match &behaviour.manifest.team {
         Some(team) => Err(Failure::Argument(format!(
             "`{}` is a robot of team `{}`: verify does not model a team's values yet",

@@ -386,7 +386,9 @@ impl RunningMachine<'_> {
         }
         self.just_entered = image.just_entered;
         self.entered_at = self.reporter.epoch + Duration::from_nanos(image.entered_ns);
-        // A composite the checkpoint does not name counts from its state's entry.
+        // A composite the checkpoint does not name counts from its state's entry (from the
+        // arrival, when a move into the state has not arrived yet).
+        let unnamed = (!self.just_entered).then_some(self.entered_at);
         for (c, entered) in self
             .machine
             .composites
@@ -398,7 +400,7 @@ impl RunningMachine<'_> {
                 Some(i) => i
                     .entered_ns
                     .map(|ns| self.reporter.epoch + Duration::from_nanos(ns)),
-                None => Some(self.entered_at),
+                None => unnamed,
             };
         }
         self.last_entered.clone_from(&image.last_entered);

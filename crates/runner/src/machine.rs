@@ -628,11 +628,11 @@ impl<'r> RunningMachine<'r> {
             .min()
     }
 
-    /// When the current state's next time test comes due, if it runs and one is still to come.
+    /// When the current state's next time test comes due, if it runs, has arrived in its
+    /// state (a move's time starts when it arrives) and one is still to come.
     pub(crate) fn due_at(&self) -> Option<Instant> {
-        let due = self
-            .next_time_test()
-            .filter(|_| self.status == Status::Running)?;
+        let running = self.status == Status::Running && !self.just_entered;
+        let due = self.next_time_test().filter(|_| running)?;
         Some(self.now() + due)
     }
 
@@ -708,7 +708,9 @@ impl<'r> RunningMachine<'r> {
             }
         }
         // Each composite keeps its entry by name (a machine started afresh enters them all
-        // again); one the new machine adds counts from its state's entry.
+        // again); one the new machine adds counts from its state's entry (from the arrival,
+        // when a move into the state has not arrived yet).
+        let added = (!self.just_entered).then_some(self.entered_at);
         let entered: Vec<Option<Instant>> = new
             .composites
             .iter()
@@ -721,7 +723,7 @@ impl<'r> RunningMachine<'r> {
                 match old.and_then(|o| self.composites_entered.get(o)) {
                     _ if kept.is_none() => None,
                     Some(entered) => *entered,
-                    None => Some(self.entered_at),
+                    None => added,
                 }
             })
             .collect();

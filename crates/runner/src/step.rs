@@ -138,8 +138,9 @@ impl Stepper {
         (clock.free || clock.step > last).then(|| clock.step.max(last))
     }
 
-    /// When `machine`'s next time test comes due (none: it waits on none), as its last ring
-    /// left it: what a host that moves a virtual clock itself moves it to.
+    /// When `machine`'s next time test comes due (none: it waits on none, or has moved and
+    /// not yet arrived, so it rings next round anyway), as its last ring left it: what a host
+    /// that moves a virtual clock itself moves it to.
     pub fn note_due(&self, machine: &str, due: Option<tokio::time::Instant>) {
         let mut dues = self.dues.lock();
         match dues.iter_mut().find(|(n, _)| n == machine) {

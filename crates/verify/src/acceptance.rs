@@ -1,6 +1,6 @@
 //! What a fair run must visit for ever, and the failing run a liveness search finds: the
-//! acceptance sets (one a machine that must get its turn, one a `fair` expression), shared by
-//! the search (`liveness.rs`) and the drawing of its lasso (`lasso.rs`).
+//! acceptance sets (one a clock of each machine whose time must pass, one a `fair`
+//! expression), shared by the search (`liveness.rs`) and the drawing of its lasso (`lasso.rs`).
 
 use crate::property::Property;
 use crate::search::Search;

@@ -148,6 +148,15 @@ impl MachineModel {
         self.machine.transitions[t.index].shown()
     }
 
+    /// A time test as traces show it: its call, and the composite it counts from when it is
+    /// not its state's own (`after(3s) since LOOK`).
+    pub fn time_test_shown(&self, test: &TimeTest) -> String {
+        match test.clock.and_then(|c| self.machine.composites.get(c)) {
+            Some(composite) => format!("{} since {}", test.call, composite.name),
+            None => test.call.to_string(),
+        }
+    }
+
     /// The most time tests any one state has: the bits of the machine's time field in either
     /// engine's state (a bit a test, set once it came due).
     pub fn most_time_tests(&self) -> usize {

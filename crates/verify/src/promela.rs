@@ -1244,7 +1244,7 @@ impl<'m> Writer<'m> {
         property_declarations(w, properties, crate::acceptance::clock_sets(model));
         let _ = writeln!(
             w,
-            "\nhidden byte sel;\nhidden byte wrapped;\nhidden byte arrived; /* the ringing machine ran its OnEntry this step */"
+            "\nhidden byte sel;\nhidden byte wrapped;\nbit arrived; /* the ringing machine ran its OnEntry in this step (read past a state\n              SPIN stores, so not hidden; 0 between steps) */"
         );
         for i in 0..self.temps {
             let _ = writeln!(w, "hidden int t{i};");
@@ -1592,7 +1592,7 @@ impl<'m> Writer<'m> {
         let model = self.model;
         self.line("d_step {");
         self.depth += 1;
-        self.line("ringing = 0;");
+        self.line("ringing = 0; arrived = 0;");
         self.noting = false;
         for (i, p) in properties.iter().enumerate() {
             let holds = self.term_truth(p.term());

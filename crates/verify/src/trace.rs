@@ -118,7 +118,7 @@ pub fn trace_of(
             timers: detail
                 .timers
                 .iter()
-                .map(|&i| state.time_tests[i].call.to_string())
+                .map(|&i| m.time_test_shown(&state.time_tests[i]))
                 .collect(),
             at_snapshot: detail
                 .at_snapshot

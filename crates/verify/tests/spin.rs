@@ -261,6 +261,37 @@ fn spin_agrees_with_the_checker_on_a_minute_that_never_ends() {
     );
 }
 
+/// No time has passed in a state at the snapshot of the ringlet that arrived in it, so its
+/// `after(1s)` cannot fire there: A's Internal has set `y` to 2 first. Safety properties alone,
+/// so nothing but the step's own bits tells an arrival from a later ringlet in SPIN's states.
+#[test]
+fn spin_agrees_with_the_checker_that_no_time_passes_before_an_arrivals_snapshot() {
+    if !tools_present() {
+        return;
+    }
+    let dir = scratch("arrival-behaviour");
+    let machine = "machine M\ninitial C\nstate C { when TRUE -> A }\n\
+                   state A {\n    entry { y = 1; }\n    internal { y = 2; }\n    when after(1s) -> B\n}\n\
+                   state B { }\n";
+    std::fs::write(dir.join("M.machine"), machine).expect("write");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .expect("write");
+    assert_eq!(
+        both(
+            "arrival",
+            &dir,
+            &[
+                property(PropertyKind::Never, "M.B && y == 1"),
+                property(PropertyKind::Reachable, "M.B && y == 2"),
+            ]
+        ),
+        [Verdict::Holds, Verdict::Holds]
+    );
+}
+
 /// The press's properties: never stuck, done reachable and eventually done.
 fn press_properties() -> [PropertySource; 3] {
     [
