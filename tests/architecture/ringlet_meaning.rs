@@ -1,7 +1,9 @@
 //! A ringlet's meaning is written once, in `proclaim-lower`'s `ringlet.rs`: no other library
 //! crate (nor the Python package) reads a state's activities (`on_entry`, `on_exit`,
 //! `internal`) or its transitions' order (`Machine::outgoing`) by itself, so a change to what
-//! a ringlet runs (a statechart's exits) is made in one place and every back end follows.
+//! a ringlet runs (a statechart's exits) is made in one place and every back end follows; and
+//! none matches on a statement's kinds (`StatementKind`) but the two that say what they are
+//! (`proclaim-lower`'s walk that runs them and its reader for the back ends that print them).
 
 use super::rust_code::{code_only, library_files};
 use std::path::Path;
@@ -75,5 +77,32 @@ fn the_scan_tells_a_field_read_from_a_name_that_only_begins_alike() {
     assert_eq!(
         reads("f.rs", code),
         ["f.rs:1: let a = state.on_exit;", "f.rs:4: m.outgoing(id)"]
+    );
+}
+
+#[test]
+fn only_the_lowered_form_matches_on_the_kinds_of_statement() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut found = Vec::new();
+    let mut lowered_matches = false;
+    for (krate, path, text) in library_files(root) {
+        let file = path.strip_prefix(root).unwrap().display().to_string();
+        let hits: Vec<String> = code_only(&text)
+            .lines()
+            .enumerate()
+            .filter(|(_, line)| line.contains("StatementKind::"))
+            .map(|(n, line)| format!("{file}:{}: {}", n + 1, line.trim()))
+            .collect();
+        if OWNERS.contains(&krate.as_str()) {
+            lowered_matches |= krate == "lower" && !hits.is_empty();
+        } else {
+            found.extend(hits);
+        }
+    }
+    assert!(lowered_matches, "the scan finds the lowered form's own match");
+    assert!(
+        found.is_empty(),
+        "meet statements through proclaim_lower::read_statement (a StatementReader) instead:\n{}",
+        found.join("\n")
     );
 }

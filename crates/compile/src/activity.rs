@@ -7,11 +7,10 @@
 use crate::plan::{Conversion, Function, Piece, Step, Value};
 use crate::refusal::{Language, Refusal};
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{
-    Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
-};
+use proclaim_fsm::{Action, BinOp, Expr, ForLoop, Statement, UnOp, VarType, TIME_TESTS};
 use proclaim_lower::arith;
 use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
+use proclaim_lower::{read_statement, StatementReader};
 use std::collections::HashMap;
 
 /// What a variable of the behaviour is: its slot and how assignment converts.
@@ -134,6 +133,46 @@ pub(crate) struct Activity<'a> {
     pub loops: &'a mut usize,
     /// Counts the places that post a control command: no ringlet queues more than that.
     pub commands: &'a mut usize,
+}
+
+/// A statement planned as the step it runs as, `depth` blocks deep: each kind met where
+/// [`proclaim_lower::read`] meets it.
+struct Planned<'p, 'a> {
+    activity: &'p mut Activity<'a>,
+    depth: usize,
+}
+
+impl StatementReader for Planned<'_, '_> {
+    type Read = Result<Step, Refusal>;
+
+    fn assign(&mut self, name: &str, value: &Expr) -> Self::Read {
+        self.activity.assignment(name, value)
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Self::Read {
+        self.activity.call(function, arguments, self.depth)
+    }
+
+    // An expression standing alone has no effect (nothing in one has a side effect).
+    fn evaluate(&mut self, _expr: &Expr) -> Self::Read {
+        Ok(Step::Nothing)
+    }
+
+    fn sequence(&mut self, body: &[Statement]) -> Self::Read {
+        let steps = body
+            .iter()
+            .map(|s| self.activity.statement(s, self.depth + 1))
+            .collect::<Result<_, _>>()?;
+        Ok(Step::Block(steps))
+    }
+
+    fn for_loop(&mut self, parts: ForLoop<'_>) -> Self::Read {
+        self.activity.for_loop(parts, self.depth)
+    }
+
+    fn nothing(&mut self) -> Self::Read {
+        Ok(Step::Nothing)
+    }
 }
 
 impl Activity<'_> {
@@ -298,40 +337,34 @@ impl Activity<'_> {
         if let Statement::Extern { .. } = statement {
             return Ok(Step::Nothing);
         }
-        Ok(match statement.kind() {
-            StatementKind::Assign { name, value } => {
-                if let Some(number) = self.variables.extern_number(name) {
-                    // Assigning a whiteboard variable posts the value, unconverted.
-                    let (value, _) = self.value(value)?;
-                    return Ok(Step::PostExtern { number, value });
-                }
-                let Some((variable, global)) = self.variables.lookup(name) else {
-                    return Err(self.refuse(format!(
-                        "the assignment to `{name}`, which is no variable here"
-                    )));
-                };
-                let (slot, conversion) = (variable.slot, variable.conversion);
-                let (value, _) = self.value(value)?;
-                Step::Assign {
-                    slot,
-                    conversion,
-                    global,
-                    name: name.to_string(),
-                    value,
-                }
-            }
-            // An expression standing alone has no effect (nothing in one has a side effect).
-            StatementKind::Nothing | StatementKind::Evaluate(_) => Step::Nothing,
-            StatementKind::Call {
-                function,
-                arguments,
-            } => self.call(function, arguments, depth)?,
-            StatementKind::Sequence(body) => Step::Block(
-                body.iter()
-                    .map(|s| self.statement(s, depth + 1))
-                    .collect::<Result<_, _>>()?,
-            ),
-            StatementKind::Loop(parts) => self.for_loop(parts, depth)?,
+        read_statement(
+            &mut Planned {
+                activity: self,
+                depth,
+            },
+            statement,
+        )
+    }
+
+    /// An assignment: to a whiteboard variable it posts the value, unconverted.
+    fn assignment(&mut self, name: &str, value: &Expr) -> Result<Step, Refusal> {
+        if let Some(number) = self.variables.extern_number(name) {
+            let (value, _) = self.value(value)?;
+            return Ok(Step::PostExtern { number, value });
+        }
+        let Some((variable, global)) = self.variables.lookup(name) else {
+            return Err(self.refuse(format!(
+                "the assignment to `{name}`, which is no variable here"
+            )));
+        };
+        let (slot, conversion) = (variable.slot, variable.conversion);
+        let (value, _) = self.value(value)?;
+        Ok(Step::Assign {
+            slot,
+            conversion,
+            global,
+            name: name.to_string(),
+            value,
         })
     }
 

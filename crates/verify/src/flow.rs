@@ -15,10 +15,10 @@
 use crate::model::{Model, Name, SlotId, SlotKind};
 use crate::outcome::Inexact;
 use proclaim_board::Value;
-use proclaim_fsm::{Action, BinOp, Expr, Statement, StatementKind, UnOp, VarType, TIME_TESTS};
+use proclaim_fsm::{Action, BinOp, Expr, ForLoop, Statement, UnOp, VarType, TIME_TESTS};
 use proclaim_lower::arith;
 use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
-use proclaim_lower::RingletPlan;
+use proclaim_lower::{read_statement, RingletPlan, StatementReader};
 use rustc_hash::FxHashSet;
 
 /// Constants a place may hold before it counts as "computed at run time".
@@ -339,6 +339,52 @@ pub fn analyse(model: &Model, files: &[String], properties: &[&Expr]) -> Facts {
     a.facts
 }
 
+/// A statement's flow of values at one place: each kind met where [`proclaim_lower::read`]
+/// meets it.
+struct FlowOf<'f, 'm, 'a> {
+    analysis: &'f mut Analysis<'m>,
+    at: &'a At,
+}
+
+impl StatementReader for FlowOf<'_, '_, '_> {
+    type Read = ();
+
+    fn assign(&mut self, name: &str, value: &Expr) {
+        let flow = self.analysis.expr(self.at, value);
+        self.analysis.copied_from(self.at, value);
+        self.analysis.assign(self.at, name, flow);
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) {
+        self.analysis.call_statement(self.at, function, arguments);
+    }
+
+    fn evaluate(&mut self, expr: &Expr) {
+        self.analysis.expr(self.at, expr);
+    }
+
+    fn sequence(&mut self, body: &[Statement]) {
+        body.iter()
+            .for_each(|s| self.analysis.statement(self.at, s));
+    }
+
+    fn for_loop(&mut self, parts: ForLoop<'_>) {
+        // Flow-insensitive: the parts in any order, any number of times.
+        for part in [parts.init, parts.step, Some(parts.body)]
+            .into_iter()
+            .flatten()
+        {
+            self.analysis.statement(self.at, part);
+        }
+        if let Some(c) = parts.condition {
+            let flow = self.analysis.expr(self.at, c);
+            self.analysis.truth_use(self.at, &flow);
+        }
+    }
+
+    fn nothing(&mut self) {}
+}
+
 impl Analysis<'_> {
     fn walk(&mut self, files: &[String], properties: &[&Expr]) {
         let model = self.model;
@@ -392,37 +438,9 @@ impl Analysis<'_> {
         }
     }
 
-    /// What a statement does, as [`Statement::kind`] reads it for the runner and the ringlet.
+    /// What a statement does, as [`proclaim_lower::read`] meets its kinds.
     fn statement(&mut self, at: &At, s: &Statement) {
-        match s.kind() {
-            StatementKind::Assign { name, value } => {
-                let flow = self.expr(at, value);
-                self.copied_from(at, value);
-                self.assign(at, name, flow);
-            }
-            StatementKind::Call {
-                function,
-                arguments,
-            } => self.call_statement(at, function, arguments),
-            StatementKind::Evaluate(e) => {
-                self.expr(at, e);
-            }
-            StatementKind::Sequence(body) => body.iter().for_each(|s| self.statement(at, s)),
-            StatementKind::Loop(parts) => {
-                // Flow-insensitive: the parts in any order, any number of times.
-                for part in [parts.init, parts.step, Some(parts.body)]
-                    .into_iter()
-                    .flatten()
-                {
-                    self.statement(at, part);
-                }
-                if let Some(c) = parts.condition {
-                    let flow = self.expr(at, c);
-                    self.truth_use(at, &flow);
-                }
-            }
-            StatementKind::Nothing => {}
-        }
+        read_statement(&mut FlowOf { analysis: self, at }, s);
     }
 
     fn call_statement(&mut self, at: &At, function: &str, arguments: &[Expr]) {

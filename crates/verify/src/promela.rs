@@ -48,11 +48,9 @@ use crate::{explore, prepare, Options, PropertySource, Reductions, Verdict, Veri
 use proclaim_behaviour::{Behaviour, PropertyKind};
 use proclaim_board::Value;
 use proclaim_fsm::control::Command;
-use proclaim_fsm::{
-    Action, BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType, TIME_TESTS,
-};
+use proclaim_fsm::{Action, BinOp, Expr, ForLoop, Statement, UnOp, VarType, TIME_TESTS};
 use proclaim_lower::builtin::{builtin, Builtin, Content, Target};
-use proclaim_lower::{RingletPlan, LOOP_LIMIT};
+use proclaim_lower::{read_statement, RingletPlan, StatementReader, LOOP_LIMIT};
 use std::fmt::{self, Write};
 
 /// Why a behaviour cannot be written as Promela.
@@ -685,28 +683,7 @@ impl<'m> Writer<'m> {
     }
 
     fn exec(&mut self, statement: &Statement) -> Result<(), EmitError> {
-        match statement.kind() {
-            StatementKind::Assign { name, value } => {
-                let v = self.value(value)?;
-                let v = self.or_zero(v);
-                self.assign(name, v)?;
-            }
-            StatementKind::Call {
-                function,
-                arguments,
-            } => self.call(function, arguments)?,
-            StatementKind::Evaluate(expr) => {
-                self.value(expr)?;
-            }
-            StatementKind::Sequence(body) => {
-                for s in body {
-                    self.exec(s)?;
-                }
-            }
-            StatementKind::Loop(parts) => self.for_loop(parts)?,
-            StatementKind::Nothing => {}
-        }
-        Ok(())
+        read_statement(&mut Exec(self), statement)
     }
 
     /// A `for` loop as a Promela `do`, stopped at the runner's [`LOOP_LIMIT`].
@@ -1670,6 +1647,39 @@ impl<'m> Writer<'m> {
         }
         // `break` may not jump into a d_step: an atomic sequence instead.
         self.line(&format!("atomic {{ {} }}", bits.join(" ")));
+    }
+}
+
+/// A statement as the Promela it runs as, each kind met where [`proclaim_lower::read`] meets it.
+struct Exec<'w, 'm>(&'w mut Writer<'m>);
+
+impl StatementReader for Exec<'_, '_> {
+    type Read = Result<(), EmitError>;
+
+    fn assign(&mut self, name: &str, value: &Expr) -> Self::Read {
+        let v = self.0.value(value)?;
+        let v = self.0.or_zero(v);
+        self.0.assign(name, v)
+    }
+
+    fn call(&mut self, function: &str, arguments: &[Expr]) -> Self::Read {
+        self.0.call(function, arguments)
+    }
+
+    fn evaluate(&mut self, expr: &Expr) -> Self::Read {
+        self.0.value(expr).map(|_| ())
+    }
+
+    fn sequence(&mut self, body: &[Statement]) -> Self::Read {
+        body.iter().try_for_each(|s| self.0.exec(s))
+    }
+
+    fn for_loop(&mut self, parts: ForLoop<'_>) -> Self::Read {
+        self.0.for_loop(parts)
+    }
+
+    fn nothing(&mut self) -> Self::Read {
+        Ok(())
     }
 }
 
