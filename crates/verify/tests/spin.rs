@@ -348,15 +348,21 @@ fn keeper_properties() -> [PropertySource; 3] {
     ]
 }
 
-/// The keeper in a fresh folder, its dive's exit (stopping the dive sub-machine, getting up)
-/// taken out when `getting_up` is false.
-fn keeper(case: &str, getting_up: bool) -> PathBuf {
-    let source = repo().join("machines/keeper");
+/// Shipped behaviour `name` in a fresh folder for `case`, with its files `copied` as they are
+/// and its machine file `machine` as `edit` writes it. Its dictionary (`../nao.toml`) says who
+/// listens, which no verdict depends on, so the manifest is copied without it.
+fn shipped_copy(
+    case: &str,
+    name: &str,
+    copied: &[&str],
+    machine: &str,
+    edit: impl FnOnce(String) -> String,
+) -> PathBuf {
+    let source = repo().join("machines").join(name);
     let dir = scratch(&format!("{case}-behaviour"));
-    for file in ["match.script", "Dive.machine"] {
+    for file in copied {
         std::fs::copy(source.join(file), dir.join(file)).expect("copy");
     }
-    // Its dictionary (`../nao.toml`) says who listens, which no verdict depends on.
     let manifest = std::fs::read_to_string(source.join("behaviour.toml")).expect("manifest");
     let manifest: String = manifest
         .lines()
@@ -364,16 +370,23 @@ fn keeper(case: &str, getting_up: bool) -> PathBuf {
         .map(|l| format!("{l}\n"))
         .collect();
     std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
-    let machine = std::fs::read_to_string(source.join("Keeper.machine")).expect("keeper");
-    let written = if getting_up {
-        machine
-    } else {
+    let text = std::fs::read_to_string(source.join(machine)).expect("machine");
+    std::fs::write(dir.join(machine), edit(text)).expect("write");
+    dir
+}
+
+/// The keeper in a fresh folder, its dive's exit (stopping the dive sub-machine, getting up)
+/// taken out when `getting_up` is false.
+fn keeper(case: &str, getting_up: bool) -> PathBuf {
+    let copied = ["match.script", "Dive.machine"];
+    shipped_copy(case, "keeper", &copied, "Keeper.machine", |machine| {
+        if getting_up {
+            return machine;
+        }
         let exit = "    exit {\n        Dive: Off\n        NaoMotionPlayer: getUp\n    }\n";
         assert!(machine.contains(exit), "the fault is seeded");
         machine.replace(exit, "")
-    };
-    std::fs::write(dir.join("Keeper.machine"), written).expect("write");
-    dir
+    })
 }
 
 #[test]
@@ -408,29 +421,23 @@ fn search_properties() -> [PropertySource; 3] {
 /// The search in a fresh folder; with `per_turn`, its 3 s written on each turn of the head
 /// instead of on the search, so that every turn starts them again.
 fn search(case: &str, per_turn: bool) -> PathBuf {
-    let source = repo().join("machines/search");
-    let dir = scratch(&format!("{case}-behaviour"));
-    std::fs::copy(source.join("ball.script"), dir.join("ball.script")).expect("copy");
-    let manifest = std::fs::read_to_string(source.join("behaviour.toml")).expect("manifest");
-    let manifest: String = manifest
-        .lines()
-        .filter(|l| !l.starts_with("dictionary"))
-        .map(|l| format!("{l}\n"))
-        .collect();
-    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
-    let machine = std::fs::read_to_string(source.join("Search.machine")).expect("search");
-    let written = if per_turn {
-        let on_search = "    when after(3s) -> GIVE_UP\n";
-        assert!(machine.contains(on_search), "the fault is seeded");
-        machine.replace(on_search, "").replace(
-            "        when after_ms(400)",
-            "        when after(3s) -> GIVE_UP\n        when after_ms(400)",
-        )
-    } else {
-        machine
-    };
-    std::fs::write(dir.join("Search.machine"), written).expect("write");
-    dir
+    shipped_copy(
+        case,
+        "search",
+        &["ball.script"],
+        "Search.machine",
+        |machine| {
+            if !per_turn {
+                return machine;
+            }
+            let on_search = "    when after(3s) -> GIVE_UP\n";
+            assert!(machine.contains(on_search), "the fault is seeded");
+            machine.replace(on_search, "").replace(
+                "        when after_ms(400)",
+                "        when after(3s) -> GIVE_UP\n        when after_ms(400)",
+            )
+        },
+    )
 }
 
 /// A time test on a composite counts from its entry: the search gives up, and every search
