@@ -99,7 +99,10 @@ fn only_the_lowered_form_matches_on_the_kinds_of_statement() {
             found.extend(hits);
         }
     }
-    assert!(lowered_matches, "the scan finds the lowered form's own match");
+    assert!(
+        lowered_matches,
+        "the scan finds the lowered form's own match"
+    );
     assert!(
         found.is_empty(),
         "meet statements through proclaim_lower::read_statement (a StatementReader) instead:\n{}",
