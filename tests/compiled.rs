@@ -635,21 +635,33 @@ pub(crate) fn keeper_runs() -> Vec<(String, String, Option<String>)> {
     runs
 }
 
+/// Builds shipped behaviour `behaviour` to C in a scratch folder `tag`, holds each of `runs`
+/// to the interpreter's trace byte for byte, and says in how many the interpreted trace holds
+/// `reached` (so a test can tell its runs went where they are for).
+fn runs_agree(
+    behaviour: &str,
+    tag: &str,
+    runs: &[(String, String, Option<String>)],
+    reached: &str,
+) -> usize {
+    let dir = scratch(tag);
+    build(behaviour, &dir);
+    let mut count = 0;
+    for (name, script, run_for) in runs {
+        let (interpreted, compiled) = traces(behaviour, &dir, name, script, run_for.as_deref());
+        count += usize::from(interpreted.contains(reached));
+        assert_same(name, &interpreted, &compiled);
+    }
+    count
+}
+
 #[test]
 fn the_keepers_nested_dive_compiles_to_the_interpreters_trace() {
     if gcc_missing() {
         return;
     }
-    let dir = scratch("keeper");
-    build("machines/keeper", &dir);
     let runs = keeper_runs();
-    let mut dived = 0;
-    for (name, script, run_for) in &runs {
-        let (interpreted, compiled) =
-            traces("machines/keeper", &dir, name, script, run_for.as_deref());
-        dived += usize::from(interpreted.contains("DIVE.AIM"));
-        assert_same(name, &interpreted, &compiled);
-    }
+    let dived = runs_agree("machines/keeper", "keeper", &runs, "DIVE.AIM");
     assert!(
         dived * 2 > runs.len(),
         "most runs dived ({dived} of {})",
@@ -682,16 +694,8 @@ fn the_searchs_composite_time_test_compiles_to_the_interpreters_trace() {
     if gcc_missing() {
         return;
     }
-    let dir = scratch("search");
-    build("machines/search", &dir);
     let runs = search_runs();
-    let mut gave_up = 0;
-    for (name, script, run_for) in &runs {
-        let (interpreted, compiled) =
-            traces("machines/search", &dir, name, script, run_for.as_deref());
-        gave_up += usize::from(interpreted.contains("\"GIVE_UP\""));
-        assert_same(name, &interpreted, &compiled);
-    }
+    let gave_up = runs_agree("machines/search", "search", &runs, "\"GIVE_UP\"");
     assert!(
         gave_up * 2 > runs.len(),
         "most runs gave a search up ({gave_up} of {})",

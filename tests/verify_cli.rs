@@ -300,3 +300,17 @@ fn a_concurrent_behaviour_is_verified_as_rounds_and_told_so() {
         );
     }
 }
+
+/// A counterexample says which clock a due time test counts from: the search's 3 s are LOOK's
+/// (`machines/search`), not the head's current turn's.
+#[test]
+fn a_composites_due_time_test_is_shown_with_its_composite() {
+    let o = proclaim(&["verify", "machines/search", "--never", "Search.GIVE_UP"]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    assert!(
+        stdout(&o)
+            .contains("Search: LOOK.LEFT -> GIVE_UP (when after(3s)); due: after(3s) since LOOK"),
+        "{}",
+        stdout(&o)
+    );
+}

@@ -377,3 +377,42 @@ fn the_microwave_taken_up_and_let_run_free_goes_on_as_it_did() {
     let split = whole.len() - rest.len();
     assert_eq!(whole[split..], rest[..]);
 }
+
+/// A stepped run says when its next time test comes due, as the runner counts it: in B, which
+/// waits 2 s, the composite PLAY's 500 ms (counted from PLAY's entry at 0, not B's at 300 ms)
+/// come first. What a host moving its own virtual clock (the Python package's) moves it to.
+#[test]
+fn a_stepped_run_says_when_a_composites_time_test_comes_due() {
+    let dir = std::env::temp_dir().join(format!("proclaim-next-due-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let machine = "machine M\ninitial PLAY\nstate PLAY {\n    when after_ms(500) -> OUT\n    \
+                   state A { when after_ms(300) -> B }\n    state B { when after(2s) -> A }\n}\n\
+                   state OUT { }\n";
+    std::fs::write(dir.join("M.machine"), machine).unwrap();
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .unwrap();
+    let mut run = proclaim_behaviour::testing::RoundByRound::start(&dir, "").expect("it starts");
+    assert_eq!(run.next_time_test(), None, "nothing rang yet");
+    run.round();
+    assert_eq!(run.state_of("M"), Some("PLAY.A"));
+    assert_eq!(run.next_time_test(), Some(Duration::from_millis(300)));
+    run.wait(Duration::from_millis(300));
+    run.round();
+    assert_eq!(
+        run.next_time_test(),
+        None,
+        "A's 300 ms fired: it moves, and rings next round anyway"
+    );
+    run.round();
+    assert_eq!(run.state_of("M"), Some("PLAY.B"));
+    assert_eq!(run.next_time_test(), Some(Duration::from_millis(500)));
+    run.wait(Duration::from_millis(200));
+    run.round();
+    run.round();
+    assert_eq!(run.state_of("M"), Some("OUT"));
+    assert_eq!(run.next_time_test(), None, "over");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -660,6 +660,25 @@ impl<'r> RunningMachine<'r> {
         }
     }
 
+    /// When it entered each composite of `new`, read in place of its machine: each keeps its
+    /// entry by path when the state is `kept` (started afresh, it enters them all again); one
+    /// the new machine adds counts from its state's entry (from the arrival, when a move into
+    /// the state has not arrived yet).
+    fn composites_reloaded(&self, new: &Machine, kept: bool) -> Vec<Option<Instant>> {
+        let added = (!self.just_entered).then_some(self.entered_at);
+        new.composites
+            .iter()
+            .map(|c| {
+                let old = (self.machine.composites.iter()).position(|o| o.name == c.name);
+                match old.and_then(|o| self.composites_entered.get(o)) {
+                    _ if !kept => None,
+                    Some(entered) => *entered,
+                    None => added,
+                }
+            })
+            .collect()
+    }
+
     /// Reads the machine again. `reread` keeps the current state when the new machine still
     /// has it (by name when the name is unique, else by id); otherwise the machine starts again
     /// from its initial state. Variables it still declares keep their values. A failure changes
@@ -707,27 +726,7 @@ impl<'r> RunningMachine<'r> {
                 self.just_entered = true;
             }
         }
-        // Each composite keeps its entry by name (a machine started afresh enters them all
-        // again); one the new machine adds counts from its state's entry (from the arrival,
-        // when a move into the state has not arrived yet).
-        let added = (!self.just_entered).then_some(self.entered_at);
-        let entered: Vec<Option<Instant>> = new
-            .composites
-            .iter()
-            .map(|c| {
-                let old = self
-                    .machine
-                    .composites
-                    .iter()
-                    .position(|o| o.name == c.name);
-                match old.and_then(|o| self.composites_entered.get(o)) {
-                    _ if kept.is_none() => None,
-                    Some(entered) => *entered,
-                    None => added,
-                }
-            })
-            .collect();
-        self.composites_entered = entered;
+        self.composites_entered = self.composites_reloaded(&new, kept.is_some());
         self.shared.register(&new);
         self.locals = self.locals.reloaded(&new);
         self.machine = Arc::new(new);

@@ -311,6 +311,52 @@ async fn reload_and_reread_replace_a_running_machine_and_a_bad_file_changes_noth
     );
 }
 
+/// A composite's time counts from its entry, and a reread that keeps the machine's state keeps
+/// that entry (by the composite's path): the play ends 2 s after it began, whatever the turns
+/// inside it and the reread at 1.2 s did.
+#[tokio::test(start_paused = true)]
+async fn a_reread_keeps_when_a_composite_was_entered() {
+    let version = |said: &str| {
+        format!(
+            "machine M\ninitial PLAY\nstate PLAY {{\n when after(2s) -> OUT\n \
+             state A {{ when after_ms(300) -> B }}\n state B {{ when after_ms(300) -> A }}\n}}\n\
+             state OUT {{\n entry {{\n  Say: {said}\n }}\n}}\n"
+        )
+    };
+    let file = std::sync::Arc::new(std::sync::Mutex::new(version("v1")));
+    let source = file.clone();
+    let loader: proclaim_runner::Loader = std::sync::Arc::new(move || {
+        let imported = proclaim_fsm::parse_machine("m.machine", &source.lock().unwrap());
+        match imported.machines.into_iter().next() {
+            Some(m) if imported.diagnostics.is_empty() => Ok(m),
+            _ => Err(imported.diagnostics),
+        }
+    });
+    let board = Whiteboard::local();
+    let mut runner = MachineRunner::new(
+        native(&version("v1")),
+        Hosts::default(),
+        RunOptions::default(),
+    )
+    .with_loader(loader);
+    let mut events = runner.events();
+    tokio::spawn(runner.run(board.clone()));
+    tokio::time::sleep(Duration::from_millis(1200)).await;
+    *file.lock().unwrap() = version("v2");
+    board.post("ops", "M", "reread");
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    let got = compact(&mut events);
+    let out: Vec<&String> = got
+        .iter()
+        .filter(|e| e.contains("OUT") || e.contains("Say"))
+        .collect();
+    assert_eq!(out, ["2000ms enter OUT", "2000ms post Say: v2"], "{got:#?}");
+    assert!(
+        got.contains(&"1200ms reloaded in PLAY.B".to_string()),
+        "{got:#?}"
+    );
+}
+
 #[tokio::test(start_paused = true)]
 async fn halt_on_timeout_stops_the_machine_and_says_why() {
     let board = Whiteboard::local();

@@ -272,16 +272,17 @@ pub fn begin_ringlet<B: Tables>(w: &mut World, m: usize) -> bool {
     }
     w.just_entered[m] = false;
     w.entered_ms[m] = w.now_ms;
-    for (c, _) in B::COMPOSITE_MACHINE
-        .iter()
-        .enumerate()
-        .filter(|(_, &of)| of == m)
-    {
+    for c in composites_of::<B>(m) {
         if std::mem::take(&mut w.composite_entering[c]) {
             w.composite_ms[c] = w.now_ms;
         }
     }
     true
+}
+
+/// The composite states of machine `m`'s chart ([`Tables::COMPOSITE_MACHINE`]).
+fn composites_of<B: Tables>(m: usize) -> impl Iterator<Item = usize> {
+    (0..B::COMPOSITE_MACHINE.len()).filter(move |&c| B::COMPOSITE_MACHINE[c] == m)
 }
 
 /// A move enters composite state `c`: its time starts when the move arrives.
@@ -398,11 +399,7 @@ fn control<B: Tables>(w: &mut World, m: usize, code: u8, word: &str) -> bool {
     let started = obey_command(w, m, code);
     if started {
         // Into its state as from outside: every composite around it is entered again.
-        for (c, _) in B::COMPOSITE_MACHINE
-            .iter()
-            .enumerate()
-            .filter(|(_, &of)| of == m)
-        {
+        for c in composites_of::<B>(m) {
             w.composite_entering[c] = true;
         }
     }

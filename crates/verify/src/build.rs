@@ -172,38 +172,7 @@ fn machine_model(
                     })
                 })
                 .collect();
-            let mut time_tests: Vec<TimeTest> = Vec::new();
-            for t in &transitions {
-                for (function, arguments) in t.label.calls() {
-                    let Some((_, unit)) = TIME_TESTS.iter().find(|(f, _)| *f == function) else {
-                        continue;
-                    };
-                    let call = Expr::Call {
-                        function: function.to_string(),
-                        arguments: arguments.to_vec(),
-                    };
-                    if time_tests
-                        .iter()
-                        .any(|u| u.call == call && u.clock == t.clock)
-                    {
-                        continue;
-                    }
-                    let micros = match arguments {
-                        [Expr::Duration(us)] => Some(*us),
-                        [Expr::Int(n)] => Some((*n).max(0) as u64 * *unit as u64),
-                        [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
-                        _ => None,
-                    };
-                    time_tests.push(TimeTest {
-                        call,
-                        micros,
-                        clock: t.clock,
-                    });
-                }
-            }
-            // By clock; in each, constant tests first, shortest first, so "which are due" is
-            // a prefix of them.
-            time_tests.sort_by_key(|t| (t.clock, t.micros.map_or(u64::MAX, |m| m)));
+            let time_tests = time_tests_of(&transitions);
             StateModel {
                 name: s.name.clone(),
                 transitions,
@@ -227,6 +196,42 @@ fn machine_model(
         locals,
         clocks,
     }
+}
+
+/// The time tests of a state's labels, each once a clock: by clock, and in each constant tests
+/// first, shortest first, so that "which are due" is a prefix of them.
+fn time_tests_of(transitions: &[TransitionModel]) -> Vec<TimeTest> {
+    let mut time_tests: Vec<TimeTest> = Vec::new();
+    for t in transitions {
+        for (function, arguments) in t.label.calls() {
+            let Some((_, unit)) = TIME_TESTS.iter().find(|(f, _)| *f == function) else {
+                continue;
+            };
+            let call = Expr::Call {
+                function: function.to_string(),
+                arguments: arguments.to_vec(),
+            };
+            if time_tests
+                .iter()
+                .any(|u| u.call == call && u.clock == t.clock)
+            {
+                continue;
+            }
+            let micros = match arguments {
+                [Expr::Duration(us)] => Some(*us),
+                [Expr::Int(n)] => Some((*n).max(0) as u64 * *unit as u64),
+                [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
+                _ => None,
+            };
+            time_tests.push(TimeTest {
+                call,
+                micros,
+                clock: t.clock,
+            });
+        }
+    }
+    time_tests.sort_by_key(|t| (t.clock, t.micros.map_or(u64::MAX, |m| m)));
+    time_tests
 }
 
 /// Gives every free slot the domain that keeps each test of its value ([`crate::flow`],

@@ -102,10 +102,15 @@ pub struct StateModel {
 impl StateModel {
     /// The bits of its time tests that count from `clock`.
     pub fn clock_mask(&self, clock: Option<usize>) -> u16 {
+        self.time_mask(|t| t.clock == clock)
+    }
+
+    /// The bits of its time tests that `keep` holds of.
+    pub fn time_mask(&self, keep: impl Fn(&TimeTest) -> bool) -> u16 {
         self.time_tests
             .iter()
             .enumerate()
-            .filter(|(_, t)| t.clock == clock)
+            .filter(|(_, t)| keep(t))
             .fold(0, |mask, (i, _)| mask | (1 << i))
     }
 

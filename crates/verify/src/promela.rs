@@ -1405,27 +1405,8 @@ impl<'m> Writer<'m> {
             self.depth += 1;
             self.line("if");
             for (s, state) in timed {
-                let masks = crate::ringlet::time_masks(&state.time_tests, 0);
-                let options = |keep: &dyn Fn(u16) -> bool| {
-                    let options: Vec<String> = masks
-                        .iter()
-                        .filter(|&&m| keep(m))
-                        .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
-                        .collect();
-                    options.join(" ")
-                };
-                // A ringlet that arrived: its clocks just started, their tests not yet due.
-                let fresh = crate::ringlet::fresh_time(state);
-                if fresh == 0 {
-                    self.line(&format!(
-                        ":: st[{k}] == {s} -> if {} fi;",
-                        options(&|_| true)
-                    ));
-                } else {
-                    let arrival = options(&|m| m & fresh == 0);
-                    self.line(&format!(":: st[{k}] == {s} && arrived -> if {arrival} fi;"));
-                    let later = options(&|_| true);
-                    self.line(&format!(":: st[{k}] == {s} && !arrived -> if {later} fi;"));
+                for line in due_choices(k, s, state) {
+                    self.line(&line);
                 }
             }
             self.line(":: else -> skip;");
@@ -1681,6 +1662,38 @@ impl StatementReader for Exec<'_, '_> {
     fn nothing(&mut self) -> Self::Read {
         Ok(())
     }
+}
+
+/// The `if` options of machine `k` in state `s` at its snapshot: the sets of its time tests that
+/// may be due ([`crate::ringlet::time_masks`]); in a ringlet that arrived, none whose clock that
+/// arrival started ([`crate::ringlet::fresh_time`]).
+fn due_choices(k: usize, s: usize, state: &crate::model::StateModel) -> Vec<String> {
+    let masks = crate::ringlet::time_masks(&state.time_tests, 0);
+    let options = |keep: &dyn Fn(u16) -> bool| {
+        let options: Vec<String> = masks
+            .iter()
+            .filter(|&&m| keep(m))
+            .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
+            .collect();
+        options.join(" ")
+    };
+    let fresh = crate::ringlet::fresh_time(state);
+    if fresh == 0 {
+        return vec![format!(
+            ":: st[{k}] == {s} -> if {} fi;",
+            options(&|_| true)
+        )];
+    }
+    vec![
+        format!(
+            ":: st[{k}] == {s} && arrived -> if {} fi;",
+            options(&|m| m & fresh == 0)
+        ),
+        format!(
+            ":: st[{k}] == {s} && !arrived -> if {} fi;",
+            options(&|_| true)
+        ),
+    ]
 }
 
 /// Property `i`'s `ltl` formula: `[] !hit<i>` for a safety property; for a liveness property

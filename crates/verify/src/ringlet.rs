@@ -720,12 +720,7 @@ pub(crate) fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16>
 /// it: those of a positive constant duration whose clock the arrival started (its own, or a
 /// composite it entered), since the round's moment is the arrival's (§3.1).
 pub(crate) fn fresh_time(state: &crate::model::StateModel) -> u16 {
-    state
-        .time_tests
-        .iter()
-        .enumerate()
-        .filter(|(_, t)| t.micros.is_some_and(|us| us > 0) && state.arrival_starts(t.clock))
-        .fold(0, |fresh, (i, _)| fresh | (1 << i))
+    state.time_mask(|t| t.micros.is_some_and(|us| us > 0) && state.arrival_starts(t.clock))
 }
 
 /// Which due time tests of a state a move keeps, as (bit in `from`'s tests, bit in `to`'s):

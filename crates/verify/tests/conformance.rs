@@ -39,12 +39,33 @@ struct Coverage {
     widest: usize,
 }
 
-/// Runs the behaviour of `seed` and follows its trace in the model; the events, or the whole
-/// story of a mismatch.
 /// A run followed in the model: what the model made of it, the runner's events, how many of
 /// its firings resumed a history ([`resumes`]) and how many were a composite's time tests
 /// ([`composite_time_firings`]).
 type Conformed = (Followed, Vec<Event>, usize, usize);
+
+/// The transitions a firing of the trace may be: its machine's, between its states, its label
+/// as shown (a history's arms to one state show one label).
+fn fired_as<'b>(
+    behaviour: &'b proclaim_behaviour::Behaviour,
+    event: &Event,
+) -> Vec<&'b proclaim_fsm::Transition> {
+    let Event::Fired {
+        machine,
+        from,
+        to,
+        label,
+        ..
+    } = event
+    else {
+        return Vec::new();
+    };
+    (behaviour.machines.iter())
+        .filter(|m| m.machine.name == *machine)
+        .flat_map(|m| &m.machine.transitions)
+        .filter(|t| t.source == *from && t.target == *to && t.shown().to_string() == *label)
+        .collect()
+}
 
 /// How many firings of `events` were of a composite's transition whose label tests the time.
 fn composite_time_firings(behaviour: &proclaim_behaviour::Behaviour, events: &[Event]) -> usize {
@@ -53,20 +74,9 @@ fn composite_time_firings(behaviour: &proclaim_behaviour::Behaviour, events: &[E
             && (t.label.calls().iter())
                 .any(|(f, _)| proclaim_fsm::TIME_TESTS.iter().any(|(time, _)| time == f))
     };
-    let fired = |machine: &str, from: i64, to: i64, label: &str| {
-        behaviour
-            .machines
-            .iter()
-            .filter(|m| m.machine.name == machine)
-            .flat_map(|m| &m.machine.transitions)
-            .filter(timed)
-            .any(|t| t.source == from && t.target == to && t.shown().to_string() == label)
-    };
     events
         .iter()
-        .filter(|e| {
-            matches!(e, Event::Fired { machine, from, to, label, .. } if fired(machine, *from, *to, label))
-        })
+        .filter(|e| fired_as(behaviour, e).iter().any(&timed))
         .count()
 }
 
@@ -77,51 +87,38 @@ fn resumes(behaviour: &proclaim_behaviour::Behaviour, events: &[Event]) -> usize
     let mut values: std::collections::HashMap<(&str, &str), &str> = Default::default();
     let mut resumed = 0;
     for e in events {
-        match e {
-            Event::Assigned {
-                machine,
-                variable,
-                value,
-                ..
-            } => {
-                values.insert((machine, variable), value);
-            }
-            Event::Fired {
-                machine,
-                from,
-                to,
-                label,
-                ..
-            } => {
-                let Some(m) = behaviour
-                    .machines
-                    .iter()
-                    .find(|m| m.machine.name == *machine)
-                else {
-                    continue;
-                };
-                let resume = (m.machine.transitions.iter())
-                    .filter(|t| t.source == *from && t.target == *to)
-                    .filter(|t| t.shown().to_string() == *label)
-                    .filter_map(|t| {
-                        let lowered = t.label.to_string();
-                        let (variable, rest) = lowered.split_once(" == ")?;
-                        let place = rest.split_whitespace().next()?.to_string();
-                        variable
-                            .ends_with("_history")
-                            .then(|| (variable.to_string(), place))
-                    })
-                    .any(|(variable, place)| {
-                        values.get(&(machine.as_str(), variable.as_str())) == Some(&place.as_str())
-                    });
-                resumed += usize::from(resume);
-            }
-            _ => {}
+        if let Event::Assigned {
+            machine,
+            variable,
+            value,
+            ..
+        } = e
+        {
+            values.insert((machine, variable), value);
         }
+        let Event::Fired { machine, .. } = e else {
+            continue;
+        };
+        let resume = fired_as(behaviour, e)
+            .into_iter()
+            .filter_map(|t| {
+                let lowered = t.label.to_string();
+                let (variable, rest) = lowered.split_once(" == ")?;
+                let place = rest.split_whitespace().next()?.to_string();
+                variable
+                    .ends_with("_history")
+                    .then(|| (variable.to_string(), place))
+            })
+            .any(|(variable, place)| {
+                values.get(&(machine.as_str(), variable.as_str())) == Some(&place.as_str())
+            });
+        resumed += usize::from(resume);
     }
     resumed
 }
 
+/// Runs the behaviour of `seed` and follows its trace in the model; the events, or the whole
+/// story of a mismatch.
 fn run_one(seed: u64) -> Result<Conformed, String> {
     run_generated(seed, &generate(seed))
 }

@@ -782,12 +782,7 @@ fn controls(model: &Search, k: usize) -> Vec<Control> {
             fresh: false,
             time: 0,
         };
-        let started: u16 = state
-            .time_tests
-            .iter()
-            .enumerate()
-            .filter(|(_, t)| state.arrival_starts(t.clock))
-            .fold(0, |started, (i, _)| started | (1 << i));
+        let started = state.time_mask(|t| state.arrival_starts(t.clock));
         let masks = time_masks(&state.time_tests, 0);
         out.extend(
             masks
