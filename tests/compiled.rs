@@ -892,6 +892,31 @@ fn whiteboard_values_read_by_name_alone_are_the_runners_including_none_and_who_p
     }
 }
 
+/// Whole numbers come from outside as a sensor posts them (here the script's, in C through
+/// `behaviour_outside`): the kicker copies a bearing into a variable and compares the copy, as
+/// the interpreter does, and a bearing beyond the manifest's `[ranges]` is warned of once per
+/// value, in the interpreter's words (issue 44: a compiled behaviour read them as truths).
+#[test]
+fn whole_numbers_from_outside_are_read_and_held_to_the_declared_range_as_the_runner_does() {
+    if gcc_missing() {
+        return;
+    }
+    let trace = construct_trace("outside");
+    for (what, expected) in [
+        ("a copied bearing turns left", "\"label\":\"rr > 5\""),
+        ("and right", "\"label\":\"rr < -5\""),
+        (
+            "a bearing beyond the range is warned of",
+            "posted ballRR = -80, outside its declared range -50..50 (the manifest's [ranges])",
+        ),
+        ("another one too", "posted ballRR = 90, outside"),
+        ("`+1` is the number", "\"content\":\"1\""),
+    ] {
+        assert!(trace.contains(expected), "{what}: {trace}");
+    }
+    assert_eq!(trace.matches("ballRR = -80, outside").count(), 1, "{trace}");
+}
+
 #[test]
 fn arithmetic_is_the_runners_wrapping_c_arithmetic() {
     if gcc_missing() {
@@ -1387,6 +1412,18 @@ pub(crate) fn construct_cases() -> Vec<Case> {
             ],
             script: "",
             run_for: Some("5s"),
+        },
+        Case {
+            name: "outside",
+            files: ["behaviour.toml", "Kicker.machine", "sightings.script"]
+                .iter()
+                .map(|f| {
+                    let text = std::fs::read_to_string(format!("tests/outside/{f}")).unwrap();
+                    (f.to_string(), text)
+                })
+                .collect(),
+            script: include_str!("outside/sightings.script"),
+            run_for: Some("1200ms"),
         },
     ]
 }

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <ctype.h>
+#include <errno.h>
 #include "behaviour.h"
 
 #define MAX_STEPS 4096
@@ -20,7 +21,8 @@ struct step {
      * was shown with this value (see `show_answer`). */
     const char *answer_shown;
     char name[128];
-    const char *value;
+    /* A truth word or a whole number, as the trace shows it. */
+    char value[24];
 };
 
 static struct step steps[MAX_STEPS];
@@ -307,7 +309,7 @@ static int impersonate(struct world *w, struct step *s)
     for (i = 0; i < step_count && &steps[i] != s; i++) {
         if (steps[i].shown && strcmp(steps[i].name, s->name) == 0) {
             steps[i].shown = 0;
-            if (steps[i].value == s->value) {
+            if (strcmp(steps[i].value, s->value) == 0) {
                 s->shown = 1;
             }
         }
@@ -386,6 +388,29 @@ static const char *truth(const char *word)
     return NULL;
 }
 
+/* A script's value as a compiled behaviour holds it, into `out` as the trace shows it: a truth
+ * word (`yes` is `true`), or a whole number within 64 bits (`+5` is `5`); 0 for anything else. */
+static int script_value(const char *word, char *out, size_t size)
+{
+    const char *t = truth(word), *digits = word + (*word == '-' || *word == '+');
+    char *end;
+    long long whole;
+    if (t != NULL) {
+        snprintf(out, size, "%s", t);
+        return 1;
+    }
+    if (!isdigit((unsigned char)*digits)) {
+        return 0;
+    }
+    errno = 0;
+    whole = strtoll(word, &end, 10);
+    if (*end != '\0' || errno == ERANGE) {
+        return 0;
+    }
+    snprintf(out, size, "%lld", whole);
+    return 1;
+}
+
 static int read_script(void)
 {
     char line[1024];
@@ -436,9 +461,8 @@ static int read_script(void)
         *eq = '\0';
         name = trim(code);
         value = trim(eq + 1);
-        s.value = truth(value);
-        if (*name == '\0' || strlen(name) >= sizeof s.name || s.value == NULL) {
-            fprintf(stderr, "stdin:%d: expected `atom = true|false` (numbers and text in a script are not supported by a compiled behaviour)\n", number);
+        if (*name == '\0' || strlen(name) >= sizeof s.name || !script_value(value, s.value, sizeof s.value)) {
+            fprintf(stderr, "stdin:%d: expected `atom = true|false` or a whole number (fractions and text in a script are not supported by a compiled behaviour)\n", number);
             return 0;
         }
         strcpy(s.name, name);

@@ -147,6 +147,15 @@ struct world {
     /* The text a posting or a print is built in. */
     char text[BEHAVIOUR_TEXT];
     unsigned text_length;
+#if BEHAVIOUR_RANGES
+    /* The values from outside already said to leave each declared range (the manifest's
+     * `[ranges]`), said once each as the runner says them: at most BEHAVIOUR_RANGE_MEMORY a
+     * type, since C has no heap (past that the next value is said with "and later values are
+     * not said", then none), and whether a text was said. */
+    int64_t range_said[BEHAVIOUR_RANGES][BEHAVIOUR_RANGE_MEMORY];
+    unsigned char range_said_count[BEHAVIOUR_RANGES];
+    unsigned char range_text_said[BEHAVIOUR_RANGES];
+#endif
 #if BEHAVIOUR_SUPPRESSED
     /* Each type under subsumption, in name order. */
     struct held_line held[BEHAVIOUR_SUPPRESSED];
@@ -156,7 +165,10 @@ struct world {
 void behaviour_init(struct world *w);
 /* One round: a ringlet of every machine in manifest order; 1 when one fired (the next round follows at once). */
 int behaviour_round(struct world *w);
-/* A posting from outside the machines (an impersonator, a sensor); 1 when it is news to a machine's labels. */
+/* A posting from outside the machines (an impersonator, a sensor); 1 when it is news to a machine's
+ * labels. `content` is a truth value (`true`, `false`) or a whole number (`-5`); a variable the
+ * machines bind with `extern` keeps its value on anything else, and the `warned` callback says so,
+ * as it does of a value that leaves the type's declared range (the manifest's `[ranges]`). */
 int behaviour_outside(struct world *w, const char *type, const char *content);
 /* 1 when an answer a machine's current labels read differs from what its last ringlet saw. */
 int behaviour_news(const struct world *w);

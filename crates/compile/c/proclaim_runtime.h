@@ -818,12 +818,73 @@ static int extern_news(const struct world *w, unsigned m, unsigned e)
 }
 
 /* A posting from outside to a whiteboard variable's type (a script's truth word): whether it was one. */
+/* A value from outside as a compiled behaviour holds it: a truth value, or a whole number (an
+ * optional `-`, then digits, within 64 bits) as the runner reads a posting's; 0 for anything
+ * else (text, a fraction), which it cannot hold. */
+static int outside_value(const char *content, struct value *v)
+{
+    const char *c = content;
+    uint64_t magnitude = 0u, limit;
+    int negative = *c == '-';
+    if (same(content, "true") || same(content, "false")) {
+        *v = v_bool(same(content, "true"));
+        return 1;
+    }
+    c += negative;
+    limit = negative ? (uint64_t)INT64_MAX + 1u : (uint64_t)INT64_MAX;
+    if (*c == '\0') {
+        return 0;
+    }
+    for (; *c != '\0'; c++) {
+        if (*c < '0' || *c > '9' || magnitude > (limit - (uint64_t)(*c - '0')) / 10u) {
+            return 0;
+        }
+        magnitude = magnitude * 10u + (uint64_t)(*c - '0');
+    }
+    *v = v_int(negative ? (int64_t)(0u - magnitude) : (int64_t)magnitude);
+    return 1;
+}
+
+/* A warning of the impersonator's, as the runner's: `before`, the posting, then `after`, in a
+ * bounded buffer (a host's text may be long: it is cut at 64 characters). */
+static void warn_posting(struct world *w, const char *before, const char *type, const char *content,
+                         const char *after)
+{
+    char message[400];
+    unsigned n = 0, k;
+    const char *parts[4];
+    parts[0] = before;
+    parts[1] = type;
+    parts[2] = " = ";
+    parts[3] = content;
+    for (k = 0; k < 4u; k++) {
+        const char *c = parts[k];
+        unsigned cut = k == 1u || k == 3u ? 64u : 100u;
+        for (; *c != '\0' && cut > 0u; c++, cut--) {
+            message[n++] = *c;
+        }
+    }
+    for (; *after != '\0' && n < sizeof message - 1u; after++) {
+        message[n++] = *after;
+    }
+    message[n] = '\0';
+    w->cb.warned(w, "impersonator", message);
+}
+
+/* A posting from outside to a whiteboard variable's type: 1 when it was one. A value the compiled
+ * behaviour cannot hold is a warning, and the variable keeps its value. */
 static int apply_extern(struct world *w, const char *type, const char *content)
 {
     unsigned e;
+    struct value v;
     for (e = 0; e < externs; e++) {
         if (same(type, extern_name[e])) {
-            w->ext[e] = v_bool(same(content, "true"));
+            if (!outside_value(content, &v)) {
+                warn_posting(w, "posted ", type, content,
+                             ", which a compiled behaviour cannot hold (it holds whole numbers and truth values): the variable keeps its value");
+                return 0;
+            }
+            w->ext[e] = v;
             w->ext_known[e] = 1;
             w->ext_by[e] = "impersonator";
             w->scripted_value[e] = (unsigned char)same(content, "true");
@@ -831,6 +892,62 @@ static int apply_extern(struct world *w, const char *type, const char *content)
         }
     }
     return 0;
+}
+
+#if BEHAVIOUR_RANGES
+/* Whether range `r` has said `v` already; else notes it (and 1 once its memory is full). */
+static int range_said(struct world *w, unsigned r, struct value v, int *full)
+{
+    unsigned k, count = w->range_said_count[r];
+    *full = 0;
+    for (k = 0; k < count && k < BEHAVIOUR_RANGE_MEMORY; k++) {
+        if (w->range_said[r][k] == v.i) {
+            return 1;
+        }
+    }
+    if (count > BEHAVIOUR_RANGE_MEMORY) {
+        return 1;
+    }
+    if (count == BEHAVIOUR_RANGE_MEMORY) {
+        *full = 1;
+    } else {
+        w->range_said[r][count] = v.i;
+    }
+    w->range_said_count[r] = (unsigned char)(count + 1u);
+    return 0;
+}
+#endif
+
+/* Holds a posting from outside to its type's declared range: one that leaves it is a warning,
+ * once per type and value, as the runner's (what `verify` proved assumed the range). */
+static void hold_to_range(struct world *w, const char *type, const char *content)
+{
+#if BEHAVIOUR_RANGES
+    unsigned r;
+    int full = 0;
+    struct value v;
+    for (r = 0; r < BEHAVIOUR_RANGES; r++) {
+        if (!same(type, range_type[r])) {
+            continue;
+        }
+        if (!outside_value(content, &v)) {
+            if (w->range_text_said[r]) {
+                return;
+            }
+            w->range_text_said[r] = 1;
+        } else if ((v.i >= range_low[r] && v.i <= range_high[r]) || range_said(w, r, v, &full)) {
+            return;
+        }
+        warn_posting(w, "posted ", type, content,
+                     full ? ", outside its declared range (the manifest's [ranges]): what `verify` proved assumed it; and later values are not said"
+                          : range_shown[r]);
+        return;
+    }
+#else
+    (void)w;
+    (void)type;
+    (void)content;
+#endif
 }
 
 /* Whether machine `m` rings in this round: running, not started in it, and not over. */
@@ -1030,7 +1147,9 @@ int behaviour_round(struct world *w)
 
 int behaviour_outside(struct world *w, const char *type, const char *content)
 {
-    int applied = apply_input(w, type, content);
+    int applied;
+    hold_to_range(w, type, content);
+    applied = apply_input(w, type, content);
     applied |= apply_extern(w, type, content);
     return applied && behaviour_news(w);
 }

@@ -128,6 +128,9 @@ pub(crate) fn plan_behaviour(behaviour: &Behaviour, target: Language) -> Result<
         commands: counters.commands,
         suppressed,
         composites: counters.composites,
+        ranges: (behaviour.ranges.iter())
+            .map(|r| (r.ty.clone(), r.low, r.high))
+            .collect(),
     })
 }
 

@@ -44,6 +44,9 @@ pub(crate) struct Plan {
     /// The composite states of every machine's chart, numbered across the behaviour: the
     /// machine each is in (its time tests count from its entry, `docs/spec/behaviour.md` §3.2).
     pub composites: Vec<usize>,
+    /// The manifest's `[ranges]`: each type's lowest and highest whole number from outside,
+    /// which what `verify` proved assumed (a posting that leaves one is a warning).
+    pub ranges: Vec<(String, i64, i64)>,
 }
 
 /// A whiteboard type the machines read as a value: its newest posting, of a whole number or a

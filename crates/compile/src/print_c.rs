@@ -92,6 +92,11 @@ fn header(plan: &Plan) -> String {
         plan.layers().len().max(1),
         plan.longest_posting().max(1)
     );
+    let _ = writeln!(
+        h,
+        "/* The types with a declared range (the manifest's `[ranges]`), and how many values outside\n * it a type's warnings remember. */\n#define BEHAVIOUR_RANGES {}\n#define BEHAVIOUR_RANGE_MEMORY {RANGE_MEMORY}\n",
+        plan.ranges.len()
+    );
     h.push_str("#include \"proclaim.h\"\n\n#endif\n");
     h
 }
@@ -133,6 +138,9 @@ fn tables(plan: &Plan, c: &mut String) {
     all.extend(board_tables(plan));
     if !plan.suppressed.is_empty() {
         all.extend(held_tables(plan));
+    }
+    if !plan.ranges.is_empty() {
+        all.extend(range_tables(plan));
     }
     for (ty, name, values, why) in all {
         if !why.is_empty() {
@@ -209,6 +217,41 @@ fn board_tables(plan: &Plan) -> Vec<Table> {
         ),
         ("unsigned", "sensor_start", starts.join(", "), ""),
     ]
+}
+
+/// How many values outside a declared range a compiled C behaviour remembers a type, to say
+/// each once (it has no heap).
+const RANGE_MEMORY: usize = 16;
+
+/// The declared ranges: each type, its ends, and the end of its warning as the runner words it.
+fn range_tables(plan: &Plan) -> Vec<Table> {
+    let shown = plan.ranges.iter().map(|(_, low, high)| {
+        format!(", outside its declared range {low}..{high} (the manifest's [ranges]): what `verify` proved assumed it")
+    });
+    let shown: Vec<String> = shown.collect();
+    vec![
+        (
+            "char *const",
+            "range_type",
+            strings(plan.ranges.iter().map(|(ty, _, _)| ty.as_str())),
+            "The types with a declared range, their lowest and highest whole numbers, and the end of the warning when a posting from outside leaves one.",
+        ),
+        ("int64_t", "range_low", list(plan.ranges.iter().map(|r| int64(r.1))), ""),
+        ("int64_t", "range_high", list(plan.ranges.iter().map(|r| int64(r.2))), ""),
+        ("char *const", "range_shown", strings(shown.iter().map(String::as_str)), ""),
+    ]
+}
+
+/// A 64-bit whole number as a C constant (the lowest has no literal of its own).
+fn int64(i: i64) -> String {
+    match i {
+        i64::MIN => "(-INT64_MAX - 1)".into(),
+        _ => format!("INT64_C({i})"),
+    }
+}
+
+fn list(items: impl Iterator<Item = String>) -> String {
+    items.collect::<Vec<_>>().join(", ")
 }
 
 /// Subsumption's: the types held, for how long, and each machine's layer.

@@ -271,6 +271,14 @@ fn behaviour(plan: &Plan) -> String {
                 "composite_machine",
                 &list(plan.composites.iter().map(ToString::to_string)),
             ),
+            (
+                "ranges",
+                &list(
+                    plan.ranges
+                        .iter()
+                        .map(|(ty, low, high)| format!("({ty:?}, {low}, {high})")),
+                ),
+            ),
         ],
     )
 }

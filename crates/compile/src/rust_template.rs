@@ -37,6 +37,7 @@ impl proclaim_runtime::Tables for Behaviour {
     const COMMANDS: usize = @commands@;
     const ANSWER_TIMEOUT_MS: u64 = @answer_timeout_ms@;
     const COMPOSITE_MACHINE: &'static [usize] = &[@composite_machine@];
+    const RANGES: &'static [(&'static str, i64, i64)] = &[@ranges@];
 
     fn var_inits() -> Vec<Scalar> {
         vec![@var_inits@]

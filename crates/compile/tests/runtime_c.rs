@@ -30,16 +30,24 @@ fn the_runtime_and_harness_compile_alone_and_run_a_behaviour_written_by_hand() {
     let c = Path::new(env!("CARGO_MANIFEST_DIR")).join("c");
     let behaviour = c.join("check").join("behaviour.c");
     let harness = c.join("harness.c");
-    for suppressed in ["0", "1"] {
-        let dir = scratch(&format!("runtime-c-{suppressed}"));
+    for (suppressed, ranges) in [("0", "0"), ("1", "0"), ("0", "1")] {
+        let dir = scratch(&format!("runtime-c-{suppressed}-{ranges}"));
         let define = format!("-DBEHAVIOUR_SUPPRESSED={suppressed}");
+        let ranged = format!("-DBEHAVIOUR_RANGES={ranges}");
         let strict = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
         let mut core = strict.to_vec();
-        core.extend(["-ffreestanding", &define, "-c", "-o", "behaviour.o"]);
+        core.extend([
+            "-ffreestanding",
+            &define,
+            &ranged,
+            "-c",
+            "-o",
+            "behaviour.o",
+        ]);
         core.push(behaviour.to_str().unwrap());
         gcc(&dir, &core);
         let mut host = strict.to_vec();
-        host.extend([&define, "-o", "door", "behaviour.o"]);
+        host.extend([&define, &ranged, "-o", "door", "behaviour.o"]);
         host.push(harness.to_str().unwrap());
         gcc(&dir, &host);
         let mut run = Command::new(dir.join("door"))
@@ -48,11 +56,14 @@ fn the_runtime_and_harness_compile_alone_and_run_a_behaviour_written_by_hand() {
             .spawn()
             .unwrap();
         use std::io::Write;
-        run.stdin
-            .take()
-            .unwrap()
-            .write_all(b"open = false\n")
-            .unwrap();
+        // With a range of 0..1 that remembers two values: 7 is said once, 8 too, 9 with the
+        // note that later values are not said, and 10 not at all; 1 lies inside.
+        let script: &[u8] = if ranges == "1" {
+            b"open = false\nLight = 7\nLight = 7\nLight = 8\nLight = 9\nLight = 10\nLight = +1\n"
+        } else {
+            b"open = false\n"
+        };
+        run.stdin.take().unwrap().write_all(script).unwrap();
         let out = run.wait_with_output().unwrap();
         assert!(out.status.success());
         let trace = String::from_utf8(out.stdout).unwrap();
@@ -66,15 +77,27 @@ fn the_runtime_and_harness_compile_alone_and_run_a_behaviour_written_by_hand() {
                     .next()
                     .unwrap()
             })
+            .filter(|e| *e != "warned")
             .collect();
-        assert_eq!(
-            events,
-            ["posted", "entered", "posted", "finished"],
-            "{trace}"
-        );
+        let posted_first = if ranges == "1" { 6 } else { 1 };
+        let mut expected = vec!["posted"; posted_first];
+        expected.extend(["entered", "posted", "finished"]);
+        assert_eq!(events, expected, "{trace}");
         assert!(
             trace.contains("\"type\":\"Light\",\"content\":\"on\""),
             "{trace}"
         );
+        let warned: Vec<&str> = trace.lines().filter(|l| l.contains("warned")).collect();
+        if ranges == "1" {
+            assert_eq!(warned.len(), 3, "{trace}");
+            assert!(warned[0].contains("posted Light = 7, outside its declared range 0..1"));
+            assert!(warned[1].contains("posted Light = 8, outside"));
+            assert!(
+                warned[2].contains("posted Light = 9, outside")
+                    && warned[2].contains("later values are not said")
+            );
+        } else {
+            assert!(warned.is_empty(), "{trace}");
+        }
     }
 }

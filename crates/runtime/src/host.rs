@@ -11,7 +11,7 @@
 //! [`CompiledBehaviour`].
 
 use crate::world::{self as runtime, Elsewhere, World};
-use crate::{parse_duration, parse_script, Event, When};
+use crate::{parse_duration, parse_script, Event, ScriptValue, When};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -32,8 +32,9 @@ pub trait CompiledBehaviour {
     fn modules() -> Vec<&'static str>;
     /// One round after `started`; whether a machine fired.
     fn round(w: &mut World, started: impl FnOnce(&mut World)) -> bool;
-    /// A posting from outside; whether it is news to a machine's labels.
-    fn outside(w: &mut World, ty: &str, content: &str) -> bool;
+    /// A posting by `module`, from outside the machines; whether it is news to a machine's
+    /// labels.
+    fn outside(w: &mut World, module: &str, ty: &str, content: &str) -> bool;
     /// Whether the machines' own postings changed what a label reads.
     fn news(w: &World) -> bool;
     /// Whether `atom` is a theory's answer.
@@ -214,7 +215,8 @@ struct Step {
     /// This step's value is the last the trace showed for its type.
     shown: bool,
     name: String,
-    value: &'static str,
+    /// A truth word or a whole number, as the trace shows it.
+    value: String,
 }
 
 /// The script `--script` names, else the behaviour's own (`[impersonator]`), as `proclaim run`
@@ -256,10 +258,10 @@ fn read_script<B: CompiledBehaviour>(shown: &str, text: &str) -> Result<Vec<Step
         if B::is_machine(&s.atom) {
             return Err(format!("{shown}:{line}: `{}` is a machine: control commands from a script are not supported by a compiled behaviour", s.atom));
         }
-        let value = match s.value.as_truth() {
-            Some(true) => "true",
-            Some(false) => "false",
-            None => return Err(format!("{shown}:{line}: `{} = {}`: numbers and text in a script are not supported by a compiled behaviour (truth values only)", s.atom, s.value)),
+        let value = match s.value {
+            ScriptValue::Truth(b) => b.to_string(),
+            ScriptValue::Whole(i) => i.to_string(),
+            _ => return Err(format!("{shown}:{line}: `{} = {}`: fractions and text in a script are not supported by a compiled behaviour (truth values and whole numbers)", s.atom, s.value)),
         };
         steps.push(Step {
             at_ms,
@@ -303,15 +305,16 @@ impl Impersonator {
             }
         }
         let step = &mut self.steps[i];
-        let value = step.value == "true";
-        w.message("impersonator", &step.name, || {
-            serde_json::Value::Bool(value)
+        let value = crate::schedule::outside_value(&step.value);
+        w.message("impersonator", &step.name, || match value {
+            Some(v) if v.is_bool => serde_json::Value::Bool(v.i != 0),
+            _ => serde_json::Value::from(value.map_or(0, |v| v.i)),
         });
         if !step.shown {
             step.shown = true;
-            w.posted_outside("impersonator", &step.name, step.value);
+            w.posted_outside("impersonator", &step.name, &step.value);
         }
-        B::outside(w, &step.name, step.value)
+        B::outside(w, "impersonator", &step.name, &step.value)
     }
 
     /// Posts the steps due by now; whether one was news.
@@ -624,7 +627,7 @@ fn hear<B: CompiledBehaviour>(
 ) -> bool {
     w.unposted.retain(|a| a != ty);
     w.recorded(module, ty, json);
-    B::outside(w, ty, content)
+    B::outside(w, module, ty, content)
 }
 
 /// The file `path` names, created (none without a path).

@@ -6,7 +6,7 @@ use crate::calls::{asked_of_expert, finished, post_status};
 use crate::event::Event;
 use crate::host::CompiledBehaviour;
 use crate::tables::Tables;
-use crate::world::{World, DORMANT, RUNNING};
+use crate::world::{v_bool, v_int, Scalar, World, DORMANT, RUNNING};
 
 impl<B: Tables> CompiledBehaviour for B {
     const SCRIPT: Option<(&'static str, &'static str)> = B::SCRIPT;
@@ -68,11 +68,12 @@ impl<B: Tables> CompiledBehaviour for B {
         fired || w.fresh.iter().any(|f| *f)
     }
 
-    /// A posting from outside the machines (an impersonator, a sensor); whether it is news to
-    /// a machine's labels.
-    fn outside(w: &mut World, ty: &str, content: &str) -> bool {
+    /// A posting from outside the machines (an impersonator, a sensor, another process);
+    /// whether it is news to a machine's labels.
+    fn outside(w: &mut World, module: &str, ty: &str, content: &str) -> bool {
+        hold_to_range::<B>(w, module, ty, content);
         let applied = B::apply_input(w, ty, content);
-        (apply_extern::<B>(w, ty, content) || applied) && Self::news(w)
+        (apply_extern::<B>(w, module, ty, content) || applied) && Self::news(w)
     }
 
     /// Whether an answer a machine's current labels read differs from what its last ringlet
@@ -169,20 +170,56 @@ fn answer_news<B: Tables>(w: &World, m: usize) -> bool {
     })
 }
 
-/// A posting from outside to a whiteboard variable's type (a script's truth word): whether it
-/// was one.
-fn apply_extern<B: Tables>(w: &mut World, ty: &str, content: &str) -> bool {
-    match B::EXTERN_NAME.iter().position(|name| *name == ty) {
-        Some(e) => {
-            w.ext[e] = Some(crate::world::v_bool(content == "true"));
-            w.ext_by[e] = "impersonator";
-            if w.scripted[e].is_some() {
-                w.scripted[e] = Some(content == "true");
-            }
-            true
-        }
-        None => false,
+/// A value from outside as a compiled behaviour holds it: a truth value or a whole number
+/// (`-5`), as the runner reads a posting's; none for text or a fraction, which it cannot hold.
+pub fn outside_value(content: &str) -> Option<Scalar> {
+    match content {
+        "true" => Some(v_bool(true)),
+        "false" => Some(v_bool(false)),
+        _ => content.parse::<i64>().ok().map(v_int),
     }
+}
+
+/// A posting from outside to a whiteboard variable's type: whether it was one. A value the
+/// compiled behaviour cannot hold is a warning, and the variable keeps its value.
+fn apply_extern<B: Tables>(w: &mut World, module: &str, ty: &str, content: &str) -> bool {
+    let Some(e) = B::EXTERN_NAME.iter().position(|name| *name == ty) else {
+        return false;
+    };
+    let Some(value) = outside_value(content) else {
+        w.warned(
+            module,
+            &format!(
+                "posted {ty} = {content}, which a compiled behaviour cannot hold (it holds whole numbers and truth values): {ty} keeps its value"
+            ),
+        );
+        return false;
+    };
+    w.ext[e] = Some(value);
+    w.ext_by[e] = "impersonator";
+    if w.scripted[e].is_some() {
+        w.scripted[e] = Some(content == "true");
+    }
+    true
+}
+
+/// Holds a posting from outside to its type's declared range (the manifest's `[ranges]`): one
+/// that leaves it is a warning, once per type and value, as the runner's (`verify` proved what
+/// it proved assuming the range).
+fn hold_to_range<B: Tables>(w: &mut World, module: &str, ty: &str, content: &str) {
+    let Some(&(_, low, high)) = B::RANGES.iter().find(|(t, _, _)| *t == ty) else {
+        return;
+    };
+    let inside = outside_value(content).is_some_and(|v| (low..=high).contains(&v.i));
+    if inside || !w.range_said.insert((ty.to_string(), content.to_string())) {
+        return;
+    }
+    w.warned(
+        module,
+        &format!(
+            "posted {ty} = {content}, outside its declared range {low}..{high} (the manifest's [ranges]): what `verify` proved assumed it"
+        ),
+    );
 }
 
 /// At a round's start: every held type whose hold ran out with a lower posting behind it gets

@@ -47,6 +47,9 @@ pub trait Tables: 'static {
     /// The composite states of the machines' charts, numbered across the behaviour: the
     /// machine each is in. The time tests of a composite's transitions count from its entry.
     const COMPOSITE_MACHINE: &'static [usize] = &[];
+    /// The manifest's `[ranges]`: the whole numbers (lowest, highest) the world posts to each
+    /// type, which what `verify` proved assumed.
+    const RANGES: &'static [(&'static str, i64, i64)] = &[];
 
     /// Each value slot's start: the machines' variables, then the globals.
     fn var_inits() -> Vec<Scalar>;

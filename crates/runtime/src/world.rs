@@ -203,6 +203,9 @@ pub struct World {
     /// then, as its state's does).
     pub composite_ms: Vec<u64>,
     pub composite_entering: Vec<bool>,
+    /// The values from outside already said to leave their type's declared range, by type
+    /// and value (said once each, as the runner says them).
+    pub range_said: std::collections::HashSet<(String, String)>,
     /// Each theory input: known, then true.
     pub input: Vec<bool>,
     /// The answers each machine's last ringlet saw.
@@ -339,6 +342,7 @@ impl World {
             entered_ms: vec![0; machines],
             composite_ms: Vec::new(),
             composite_entering: Vec::new(),
+            range_said: std::collections::HashSet::new(),
             input: vec![false; variables],
             seen: vec![vec![false; outputs]; machines],
             asked: vec![vec![false; outputs]; machines],

@@ -21,8 +21,8 @@ impl Tables for Door {
     const OUTPUT_EXPERT: &'static [&'static str] = &["impersonator"];
     const THEORY_OUTPUTS: usize = 0;
     const OUTPUT_BOARD: &'static [Option<usize>] = &[None];
-    const EXTERN_NAME: &'static [&'static str] = &[];
-    const EXTERN_BOUND: &'static [bool] = &[];
+    const EXTERN_NAME: &'static [&'static str] = &["ballRR"];
+    const EXTERN_BOUND: &'static [bool] = &[true];
     const SUPPRESSED: &'static [(&'static str, u64)] = &[];
     const SENSORS: &'static [(&'static str, &'static [&'static str])] = &[];
     const SCRIPT: Option<(&'static str, &'static str)> = None;
@@ -30,6 +30,7 @@ impl Tables for Door {
     const PERIOD_MS: u64 = 100;
     const COMMANDS: usize = 1;
     const ANSWER_TIMEOUT_MS: u64 = 100;
+    const RANGES: &'static [(&'static str, i64, i64)] = &[("ballRR", -50, 50)];
 
     fn var_inits() -> Vec<Scalar> {
         Vec::new()
@@ -115,7 +116,10 @@ fn the_door_opens_when_told_as_the_schedule_rings_it() {
     assert!(!Door::round(&mut w, |_| {}), "nothing told yet");
     assert_eq!(*events.borrow(), ["entered*", "answered"]);
     assert!(!Door::news(&w));
-    assert!(Door::outside(&mut w, "open", "true"), "news to the label");
+    assert!(
+        Door::outside(&mut w, "impersonator", "open", "true"),
+        "news to the label"
+    );
     assert!(Door::round(&mut w, |_| {}));
     assert!(!Door::finished(&w), "Open's OnEntry has not run");
     assert!(!Door::round(&mut w, |_| {}));
@@ -154,4 +158,47 @@ fn a_timeout_comes_due_from_the_states_entry_and_only_a_change_is_counted() {
         "a final state waits on no clock"
     );
     assert_eq!(Door::next_due_ms(&w), Some(100));
+}
+
+/// A value from outside is a truth or a whole number, as the runner reads a posting's; what a
+/// compiled behaviour cannot hold (text, a fraction) is said and changes nothing, and a value
+/// beyond the declared range is said once per value, in the runner's words.
+#[test]
+fn numbers_from_outside_are_held_and_what_cannot_be_is_said() {
+    let warned = Rc::new(RefCell::new(Vec::new()));
+    let kept = warned.clone();
+    let sink = Box::new(move |e: Event| {
+        if let Event::Warned {
+            machine, message, ..
+        } = e
+        {
+            kept.borrow_mut().push(format!("{machine}: {message}"));
+        }
+    });
+    let mut w = Door::init(Some(sink));
+    Door::outside(&mut w, "sensor", "ballRR", "-12");
+    assert_eq!(w.ext[0].map(|v| (v.i, v.is_bool)), Some((-12, false)));
+    Door::outside(&mut w, "sensor", "ballRR", "true");
+    assert_eq!(w.ext[0].map(|v| (v.i, v.is_bool)), Some((1, true)));
+    assert!(warned.borrow().is_empty(), "{:?}", warned.borrow());
+    for text in ["left", "1.5", "99999999999999999999"] {
+        assert!(!Door::outside(&mut w, "sensor", "ballRR", text));
+        assert_eq!(w.ext[0].map(|v| v.i), Some(1), "{text} changes nothing");
+    }
+    Door::outside(&mut w, "sensor", "ballRR", "80");
+    Door::outside(&mut w, "sensor", "ballRR", "80");
+    Door::outside(&mut w, "sensor", "ballRR", "-80");
+    assert_eq!(w.ext[0].map(|v| v.i), Some(-80), "the value is still read");
+    let warned = warned.borrow();
+    assert_eq!(warned.len(), 8, "{warned:?}");
+    assert!(
+        warned[1]
+            .starts_with("sensor: posted ballRR = left, which a compiled behaviour cannot hold"),
+        "{warned:?}"
+    );
+    assert!(warned[6] == "sensor: posted ballRR = 80, outside its declared range -50..50 (the manifest's [ranges]): what `verify` proved assumed it", "{warned:?}");
+    assert!(
+        warned[7].contains("posted ballRR = -80, outside"),
+        "{warned:?}"
+    );
 }

@@ -30,6 +30,12 @@ static const char *const held_type[] = {"Light"};
 static const uint64_t held_ms[] = {500u};
 static const unsigned machine_layer[] = {0u};
 #endif
+#if BEHAVIOUR_RANGES
+static const char *const range_type[] = {"Light"};
+static const int64_t range_low[] = {INT64_C(0)};
+static const int64_t range_high[] = {INT64_C(1)};
+static const char *const range_shown[] = {", outside its declared range 0..1 (the manifest's [ranges]): what `verify` proved assumed it"};
+#endif
 
 #include "proclaim_runtime.h"
 

@@ -1,7 +1,7 @@
 /* The sizes of a behaviour written by hand (`behaviour.c` beside it): the smallest the runtime
  * serves, so that a unit test (`crates/compile/tests/runtime_c.rs`) compiles `proclaim.h`,
  * `proclaim_runtime.h` and `harness.c` alone, with and without subsumption
- * (`-DBEHAVIOUR_SUPPRESSED=1`), as strictly as a generated behaviour is compiled. */
+ * (`-DBEHAVIOUR_SUPPRESSED=1`) and a declared range (`-DBEHAVIOUR_RANGES=1`), as strictly as a generated behaviour is compiled. */
 #ifndef BEHAVIOUR_H
 #define BEHAVIOUR_H
 #include <stdint.h>
@@ -22,6 +22,11 @@
 #endif
 #define BEHAVIOUR_LAYERS 1
 #define BEHAVIOUR_HELD_TEXT 16
+/* With `-DBEHAVIOUR_RANGES=1`, `Light` has a declared range whose warnings remember two values. */
+#ifndef BEHAVIOUR_RANGES
+#define BEHAVIOUR_RANGES 0
+#endif
+#define BEHAVIOUR_RANGE_MEMORY 2
 
 #include "proclaim.h"
 
