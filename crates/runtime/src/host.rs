@@ -305,7 +305,7 @@ impl Impersonator {
             }
         }
         let step = &mut self.steps[i];
-        let value = crate::schedule::outside_value(&step.value);
+        let value = runtime::outside_value(&step.value);
         w.message("impersonator", &step.name, || match value {
             Some(v) if v.is_bool => serde_json::Value::Bool(v.i != 0),
             _ => serde_json::Value::from(value.map_or(0, |v| v.i)),

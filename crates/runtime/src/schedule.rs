@@ -6,7 +6,7 @@ use crate::calls::{asked_of_expert, finished, post_status};
 use crate::event::Event;
 use crate::host::CompiledBehaviour;
 use crate::tables::Tables;
-use crate::world::{v_bool, v_int, Scalar, World, DORMANT, RUNNING};
+use crate::world::{outside_value, World, DORMANT, RUNNING};
 
 impl<B: Tables> CompiledBehaviour for B {
     const SCRIPT: Option<(&'static str, &'static str)> = B::SCRIPT;
@@ -168,16 +168,6 @@ fn answer_news<B: Tables>(w: &World, m: usize) -> bool {
             && (w.asked[m][k] || (k < B::THEORY_OUTPUTS && w.ext_read[m]))
             && B::answer(w, k) != w.seen[m][k]
     })
-}
-
-/// A value from outside as a compiled behaviour holds it: a truth value or a whole number
-/// (`-5`), as the runner reads a posting's; none for text or a fraction, which it cannot hold.
-pub fn outside_value(content: &str) -> Option<Scalar> {
-    match content {
-        "true" => Some(v_bool(true)),
-        "false" => Some(v_bool(false)),
-        _ => content.parse::<i64>().ok().map(v_int),
-    }
 }
 
 /// A posting from outside to a whiteboard variable's type: whether it was one. A value the

@@ -49,6 +49,16 @@ pub fn v_some(v: Scalar) -> Scalar {
     }
 }
 
+/// A value from outside as a compiled behaviour holds it: a truth value or a whole number
+/// (`-5`), as the runner reads a posting's; none for text or a fraction, which it cannot hold.
+pub fn outside_value(content: &str) -> Option<Scalar> {
+    match content {
+        "true" => Some(v_bool(true)),
+        "false" => Some(v_bool(false)),
+        _ => content.parse::<i64>().ok().map(v_int),
+    }
+}
+
 pub fn truthy(v: Scalar) -> bool {
     v.i != 0
 }
