@@ -534,6 +534,7 @@ impl Activity<'_> {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => self.call_value(e, function, arguments)?,
         })
     }

@@ -562,7 +562,7 @@ fn plan_state(
         outputs: seen.outputs,
         read: Vec::new(),
         due: Vec::new(),
-        clock: None,
+        composites_from,
         reads_globals: false,
         reads_externs: Vec::new(),
     };
@@ -570,7 +570,6 @@ fn plan_state(
     for (arm, leaving) in plan.arms().zip(leaves) {
         let t = arm.transition;
         activity.line = t.line;
-        labels.clock = t.composite.map(|c| composites_from + c);
         transitions.push(TransitionPlan {
             condition: labels.condition(&t.label, &mut activity)?,
             target: t.target,
@@ -634,8 +633,9 @@ struct Labels<'a> {
     outputs: &'a [Output],
     read: Vec<usize>,
     due: Vec<(u64, Option<usize>)>,
-    /// The composite the label being planned counts its time tests from.
-    clock: Option<usize>,
+    /// Where the machine's composites begin among the behaviour's: a time test's clock (the
+    /// machine's composite) is numbered across the behaviour.
+    composites_from: usize,
     reads_globals: bool,
     reads_externs: Vec<usize>,
 }
@@ -689,8 +689,10 @@ impl Labels<'_> {
             Expr::Call {
                 function,
                 arguments,
+                clock,
             } if arguments.len() == 1 && TIME_TESTS.iter().any(|(t, _)| t == function) => {
-                self.time_test(label, function, &arguments[0], activity)?
+                let clock = clock.map(|c| self.composites_from + c);
+                self.time_test(label, function, &arguments[0], clock, activity)?
             }
             other => Condition::Truth(activity.value(other)?.0),
         })
@@ -702,6 +704,7 @@ impl Labels<'_> {
         label: &Expr,
         function: &str,
         argument: &Expr,
+        clock: Option<usize>,
         activity: &Activity<'_>,
     ) -> Result<Condition, Refusal> {
         // The µs one unit of the argument stands for (1 for timeout, 1000 for after_ms).
@@ -717,10 +720,10 @@ impl Labels<'_> {
         let Some(micros) = micros.filter(|us| us % 1000 == 0) else {
             return Err(refuse(activity.file, activity.line, format!("`{label}` (only a constant time in whole milliseconds: a target's clock counts milliseconds)")));
         };
-        self.due.push((micros / 1000, self.clock));
+        self.due.push((micros / 1000, clock));
         Ok(Condition::Elapsed {
             ms: micros / 1000,
-            composite: self.clock,
+            composite: clock,
         })
     }
 

@@ -263,6 +263,7 @@ fn action(statement: Statement) -> Action {
     let Statement::Expr(Expr::Call {
         function,
         arguments,
+        ..
     }) = &statement
     else {
         return Action::Statement(statement);

@@ -4,6 +4,7 @@
 //! `after(s)` and `after_ms(ms)` (time since the state was entered); a robot of a team also reads
 //! its teammates (`robot2.ballDistance`, `team.argmin(ballDistance) == me`: `team.rs`).
 
+pub use crate::code::TIME_TESTS;
 use crate::code::{parse_expression, CodeError, Expr};
 
 /// A label is an expression whose value is read as true or false.
@@ -11,10 +12,6 @@ pub type Label = Expr;
 
 /// Where and why a label did not parse (`offset` in bytes into the label).
 pub type LabelError = CodeError;
-
-/// The functions a label may call to test the time spent in the state, with the number of
-/// microseconds one unit of their argument stands for.
-pub const TIME_TESTS: [(&str, f64); 3] = [("timeout", 1.0), ("after_ms", 1e3), ("after", 1e6)];
 
 /// Parses a label. An empty label is `TRUE` (Qfsm writes no inputs for an unconditional
 /// transition).

@@ -374,6 +374,7 @@ impl Linker<'_> {
             Statement::Expr(Expr::Call {
                 function,
                 arguments,
+                ..
             }) => {
                 let Some((target, word)) = commanded(function, arguments) else {
                     return;

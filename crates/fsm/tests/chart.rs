@@ -480,8 +480,16 @@ fn clocks(machine: &Machine) -> String {
         );
         for t in machine.outgoing(s.id) {
             let target = machine.state(t.target).map_or("?", |s| s.name.as_str());
+            // Each time test's clock, as lowering gave it: a composite's entry, or the state's.
+            let since: Vec<&str> = (t.label.time_tests().iter())
+                .map(|&(_, _, clock)| clock.map_or("state", |c| &machine.composites[c].name))
+                .collect();
+            let since = match since.is_empty() {
+                true => String::new(),
+                false => format!(" since {}", since.join(" ")),
+            };
             out += &format!(
-                "  {} -> {target}#{} enters [{}]\n",
+                "  {}{since} -> {target}#{} enters [{}]\n",
                 t.label,
                 t.target,
                 composites(&t.enters)
@@ -513,22 +521,22 @@ state REST { when p -> PLAY.B }
     // The arrivals that enter PLAY are kept apart from those that move inside it: only they
     // start its time. B's move to PLAY's history leaves PLAY and enters it again, back at B.
     let expect = "PLAY.A#1 arrived into [PLAY]
-  after_ms(100) -> PLAY.B#2 enters []
-  after(5s) -> REST#3 enters []
+  after_ms(100) since state -> PLAY.B#2 enters []
+  after(5s) since PLAY -> REST#3 enters []
   p -> PLAY.A#1 enters [PLAY]
 PLAY.A#4 arrived into []
-  after_ms(100) -> PLAY.B#2 enters []
-  after(5s) -> REST#3 enters []
+  after_ms(100) since state -> PLAY.B#2 enters []
+  after(5s) since PLAY -> REST#3 enters []
   p -> PLAY.A#1 enters [PLAY]
 PLAY.B#2 arrived into []
-  after_ms(100) -> PLAY.A#4 enters []
+  after_ms(100) since state -> PLAY.A#4 enters []
   q -> PLAY.B#5 enters [PLAY]
-  after(5s) -> REST#3 enters []
+  after(5s) since PLAY -> REST#3 enters []
   p -> PLAY.A#1 enters [PLAY]
 PLAY.B#5 arrived into [PLAY]
-  after_ms(100) -> PLAY.A#4 enters []
+  after_ms(100) since state -> PLAY.A#4 enters []
   q -> PLAY.B#5 enters [PLAY]
-  after(5s) -> REST#3 enters []
+  after(5s) since PLAY -> REST#3 enters []
   p -> PLAY.A#1 enters [PLAY]
 REST#3 arrived into []
   p -> PLAY.B#5 enters [PLAY]

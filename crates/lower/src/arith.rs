@@ -239,6 +239,7 @@ mod tests {
             Expr::Call {
                 function: f,
                 arguments,
+                ..
             } => function(f, &arguments.iter().map(eval).collect::<Vec<_>>()),
             _ => None,
         }

@@ -133,6 +133,7 @@ mod tests {
             Ok(Expr::Call {
                 function,
                 arguments,
+                ..
             }) => (function, arguments),
             other => panic!("{source} is not a call: {other:?}"),
         }

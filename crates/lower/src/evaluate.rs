@@ -13,8 +13,8 @@ pub trait Evaluate {
     fn read(&mut self, name: &str) -> Option<Value>;
 
     /// A function's value; `None` for one that gives no value (a host function, or a
-    /// built-in statement such as `post`).
-    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value>;
+    /// built-in statement such as `post`). A time test reads `clock` (see [`Expr::Call`]).
+    fn call(&mut self, function: &str, arguments: &[Expr], clock: Option<usize>) -> Option<Value>;
 
     /// The value of an expression, with C's arithmetic (`crate::arith`).
     fn value(&mut self, expr: &Expr) -> Option<Value> {
@@ -45,7 +45,8 @@ pub trait Evaluate {
             Expr::Call {
                 function,
                 arguments,
-            } => self.call(function, arguments),
+                clock,
+            } => self.call(function, arguments, *clock),
         }
     }
 

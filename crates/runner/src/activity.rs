@@ -2,7 +2,7 @@
 //! built-in functions gufsm gave its machines (`post`, `postv`, `suspend`, `say`, `print`,
 //! `msleep`, …).
 
-use crate::eval::Env;
+use crate::eval::{Clocks, Env};
 use crate::event::{Event, Reporter};
 use crate::host::Hosts;
 use crate::seen::Seen;
@@ -68,7 +68,12 @@ impl ActivityContext<'_> {
             seen: self.seen,
             locals: self.locals,
             shared: self.shared,
-            in_state: self.now.saturating_duration_since(self.entered_at),
+            // An activity's time test (one the checker never makes due) reads its state's.
+            clocks: Clocks {
+                now: self.now,
+                entered_at: self.entered_at,
+                composites: &[],
+            },
         }
     }
 
@@ -231,7 +236,7 @@ impl Effects for ActivityContext<'_> {
                 amount,
                 ms_per_unit,
             } => return Some(self.value(amount).as_f64().unwrap_or(0.0) * ms_per_unit),
-            Builtin::Other if self.env().call(function, arguments).is_some() => {}
+            Builtin::Other if self.env().call(function, arguments, None).is_some() => {}
             Builtin::Other => {
                 let argument = arguments.first().map(|a| match self.value(a) {
                     Value::Int(i) => Argument::Int(i),

@@ -9,6 +9,7 @@ use proclaim_board::{Value, Whiteboard};
 use proclaim_fsm::{Expr, TIME_TESTS};
 use proclaim_lower::{arith, Evaluate};
 use std::time::Duration;
+use tokio::time::Instant;
 
 /// What names mean where an expression runs.
 pub(crate) struct Env<'a> {
@@ -17,8 +18,29 @@ pub(crate) struct Env<'a> {
     pub seen: &'a Seen,
     pub locals: &'a Locals,
     pub shared: &'a Shared,
-    /// Time since the machine entered its current state (for `timeout`, `after`, `after_ms`).
-    pub in_state: Duration,
+    /// What the time tests (`timeout`, `after`, `after_ms`) count from.
+    pub clocks: Clocks<'a>,
+}
+
+/// How long the machine has been in its state and in each composite around it: a time test
+/// reads the clock lowering gave it ([`Expr::Call`]'s `clock`).
+#[derive(Clone, Copy)]
+pub(crate) struct Clocks<'a> {
+    pub now: Instant,
+    /// The arrival in its current state.
+    pub entered_at: Instant,
+    /// Each composite's entry (`None` until the move into it arrives: then its state's).
+    pub composites: &'a [Option<Instant>],
+}
+
+impl Clocks<'_> {
+    /// How long since `clock` started.
+    pub fn elapsed(&self, clock: Option<usize>) -> Duration {
+        let entered = clock
+            .and_then(|c| self.composites.get(c).copied().flatten())
+            .unwrap_or(self.entered_at);
+        self.now.saturating_duration_since(entered)
+    }
 }
 
 impl Env<'_> {
@@ -51,9 +73,15 @@ impl Env<'_> {
 
     /// The functions an expression may use; `None` for one that gives no value (a host
     /// function or an activity built-in such as `post`, which only statements run).
-    fn function(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
+    fn function(
+        &mut self,
+        function: &str,
+        arguments: &[Expr],
+        clock: Option<usize>,
+    ) -> Option<Value> {
         if let Some(limit) = self.time_limit(function, arguments) {
-            return Some(Value::Bool(limit.is_some_and(|l| self.in_state >= l)));
+            let elapsed = self.clocks.elapsed(clock);
+            return Some(Value::Bool(limit.is_some_and(|l| elapsed >= l)));
         }
         if let Some(aggregate) = proclaim_fsm::Aggregate::of_function(function) {
             let team =
@@ -98,8 +126,8 @@ impl Evaluate for Env<'_> {
         Env::read(self, name)
     }
 
-    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
-        self.function(function, arguments)
+    fn call(&mut self, function: &str, arguments: &[Expr], clock: Option<usize>) -> Option<Value> {
+        self.function(function, arguments, clock)
     }
 }
 
@@ -120,12 +148,17 @@ mod tests {
         board.post("team", "me", "robot2");
         let shared = Shared::for_machines([]);
         shared.set_global("g", Value::Int(7));
+        let entered_at = Instant::now();
         let mut env = Env {
             board: &board,
             seen: &Seen::default(),
             locals: &Locals::default(),
             shared: &shared,
-            in_state: Duration::from_millis(1500),
+            clocks: Clocks {
+                now: entered_at + Duration::from_millis(1500),
+                entered_at,
+                composites: &[],
+            },
         };
         env.value(&parse_label(text).expect("parses"))
     }

@@ -7,7 +7,7 @@ use crate::event::Answerer;
 use crate::feed::QueryHook;
 use crate::variables::Scope;
 use proclaim_board::QueryOutcome;
-use proclaim_fsm::{BinOp, Expr, Label, UnOp, TIME_TESTS};
+use proclaim_fsm::{BinOp, Expr, Label, UnOp};
 use proclaim_lower::Evaluate;
 use std::future::Future;
 use std::pin::Pin;
@@ -118,13 +118,13 @@ pub(crate) fn reads_globals(label: &Label, scope: Scope<'_>) -> bool {
 /// How long the label's time tests (`timeout`, `after`, `after_ms`) still need, the soonest
 /// first; none when it has none still to come.
 pub(crate) fn next_time_test(label: &Label, env: &mut Env<'_>) -> Option<Duration> {
-    let in_state = env.in_state;
     label
-        .calls()
+        .time_tests()
         .into_iter()
-        .filter(|(f, _)| TIME_TESTS.iter().any(|(t, _)| t == f))
-        .filter_map(|(f, arguments)| env.time_limit(f, arguments).flatten())
-        .filter(|due| *due > in_state)
-        .map(|due| due - in_state)
+        .filter_map(|(f, arguments, clock)| {
+            let due = env.time_limit(f, arguments).flatten()?;
+            let elapsed = env.clocks.elapsed(clock);
+            (due > elapsed).then(|| due - elapsed)
+        })
         .min()
 }

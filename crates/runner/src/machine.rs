@@ -1,7 +1,7 @@
 //! One machine running on the whiteboard: its rings, its control commands, its reloads.
 
 use crate::activity::{ActivityContext, SharedSuppressor};
-use crate::eval::Env;
+use crate::eval::{Clocks, Env};
 use crate::event::{Answerer, Event, Reporter};
 use crate::feed::{QueryHook, RoundCounter};
 use crate::host::Hosts;
@@ -11,7 +11,7 @@ use crate::step::Stepper;
 use crate::variables::{Locals, Scope, Shared};
 use proclaim_board::{Kind, Message, ModuleDecl, Pattern, Subscription, Value, Whiteboard};
 use proclaim_fsm::control::{running_type, Command};
-use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId, Transition};
+use proclaim_fsm::{Action, FileDiagnostic, Label, Machine, StateId};
 use proclaim_lower::{Arm, Next, RingletPlan, RingletRun};
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
@@ -312,25 +312,25 @@ impl<'r> RunningMachine<'r> {
         }
     }
 
-    /// What `transition`'s label reads: its time tests count from the entry of the state
-    /// it was written on.
-    fn env(&self, transition: &Transition) -> Env<'_> {
+    /// What a label reads: each time test counts on its own clock.
+    fn env(&self) -> Env<'_> {
         Env {
             board: &self.board,
             seen: &self.seen,
             locals: &self.locals,
             shared: &self.shared,
-            in_state: self.in_state(transition.composite),
+            clocks: self.clocks(),
         }
     }
 
-    /// How long it has been in its state, or in `composite` (entered with its state when the
-    /// move into it has not arrived yet).
-    fn in_state(&self, composite: Option<usize>) -> Duration {
-        let entered = composite
-            .and_then(|c| self.composites_entered.get(c).copied().flatten())
-            .unwrap_or(self.entered_at);
-        self.now().saturating_duration_since(entered)
+    /// Its state's arrival and its composites' entries (a composite entered with its state
+    /// when the move into it has not arrived yet).
+    fn clocks(&self) -> Clocks<'_> {
+        Clocks {
+            now: self.now(),
+            entered_at: self.entered_at,
+            composites: &self.composites_entered,
+        }
     }
 
     /// Now, as the machine's time tests read it.
@@ -463,7 +463,11 @@ impl<'r> RunningMachine<'r> {
                     seen: &self.seen,
                     locals: &self.locals,
                     shared: &self.shared,
-                    in_state: self.in_state(arm.transition.composite),
+                    clocks: Clocks {
+                        now: self.round_time.unwrap_or_else(Instant::now),
+                        entered_at: self.entered_at,
+                        composites: &self.composites_entered,
+                    },
                 },
                 module: &self.name,
                 answer_timeout: self.runner.options.answer_timeout,
@@ -624,7 +628,7 @@ impl<'r> RunningMachine<'r> {
     /// is still to come.
     pub(crate) fn next_time_test(&self) -> Option<Duration> {
         self.arms()
-            .filter_map(|arm| next_time_test(arm.label(), &mut self.env(arm.transition)))
+            .filter_map(|arm| next_time_test(arm.label(), &mut self.env()))
             .min()
     }
 

@@ -168,7 +168,6 @@ fn machine_model(
                         index,
                         target: index_of(t.target)?,
                         label: t.label.clone(),
-                        clock: t.composite,
                     })
                 })
                 .collect();
@@ -203,30 +202,29 @@ fn machine_model(
 fn time_tests_of(transitions: &[TransitionModel]) -> Vec<TimeTest> {
     let mut time_tests: Vec<TimeTest> = Vec::new();
     for t in transitions {
-        for (function, arguments) in t.label.calls() {
-            let Some((_, unit)) = TIME_TESTS.iter().find(|(f, _)| *f == function) else {
-                continue;
-            };
+        for (function, arguments, clock) in t.label.time_tests() {
             let call = Expr::Call {
                 function: function.to_string(),
                 arguments: arguments.to_vec(),
+                clock,
             };
-            if time_tests
-                .iter()
-                .any(|u| u.call == call && u.clock == t.clock)
-            {
+            if time_tests.iter().any(|u| u.call == call) {
                 continue;
             }
+            let unit = TIME_TESTS
+                .iter()
+                .find(|(f, _)| *f == function)
+                .map_or(1.0, |(_, unit)| *unit);
             let micros = match arguments {
                 [Expr::Duration(us)] => Some(*us),
-                [Expr::Int(n)] => Some((*n).max(0) as u64 * *unit as u64),
+                [Expr::Int(n)] => Some((*n).max(0) as u64 * unit as u64),
                 [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
                 _ => None,
             };
             time_tests.push(TimeTest {
                 call,
                 micros,
-                clock: t.clock,
+                clock,
             });
         }
     }
@@ -342,6 +340,7 @@ fn gather_uses(
             Statement::Expr(Expr::Call {
                 function,
                 arguments,
+                ..
             }) if matches!(function.as_str(), "post" | "post_int" | "postv" | "post_v")
                 || Command::from_function(function).is_some() =>
             {

@@ -69,6 +69,7 @@ impl Domains {
             if let Statement::Expr(Expr::Call {
                 function,
                 arguments,
+                ..
             }) = s
             {
                 if let ("post" | "post_int", [Expr::Str(ty), value]) =

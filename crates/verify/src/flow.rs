@@ -606,6 +606,7 @@ impl Analysis<'_> {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => self.call(at, function, arguments, e),
         }
     }

@@ -69,12 +69,14 @@ pub struct Slot {
 /// A time test of a state's labels: `timeout(3s)`, `after(2)`, `after_ms(n)`.
 #[derive(Clone, Debug)]
 pub struct TimeTest {
+    /// The call as lowered: its clock included, so one test is one call.
     pub call: Expr,
     /// Its duration when the argument is a constant; tests of one clock with one come true in
     /// order of duration (a state cannot be 2 s old and not 1 s old).
     pub micros: Option<u64>,
-    /// What it counts from: the entry of the state, or of the composite (an index into
-    /// `Machine::composites`) whose transition it is on, which moves inside it keep (§3.2).
+    /// What it counts from (the call's clock): the entry of the state, or of the composite (an
+    /// index into `Machine::composites`) whose transition it is on, which moves inside it
+    /// keep (§3.2).
     pub clock: Option<usize>,
 }
 
@@ -84,8 +86,6 @@ pub struct TransitionModel {
     pub index: usize,
     pub target: usize,
     pub label: Expr,
-    /// What its time tests count from ([`TimeTest::clock`]).
-    pub clock: Option<usize>,
 }
 
 #[derive(Clone, Debug)]

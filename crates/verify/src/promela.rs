@@ -278,8 +278,6 @@ struct Writer<'m> {
     /// The machine whose code is written, and its state.
     machine: usize,
     state: usize,
-    /// Writing a label: what its time tests count from ([`crate::model::TimeTest::clock`]).
-    clock: Option<usize>,
     /// Writing an OnEntry: reads and posts of free types are noted.
     noting: bool,
     /// Inside a `for` loop.
@@ -301,7 +299,6 @@ impl<'m> Writer<'m> {
             temps: 0,
             machine: 0,
             state: 0,
-            clock: None,
             noting: false,
             in_loop: 0,
             self_posts: 0,
@@ -565,6 +562,7 @@ impl<'m> Writer<'m> {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => {
                 if TIME_TESTS.iter().any(|(f, _)| f == function) {
                     let t = self.time_due(e);
@@ -607,10 +605,7 @@ impl<'m> Writer<'m> {
     fn time_due(&self, call: &Expr) -> String {
         let k = self.machine;
         let tests = &self.model.machines[k].states[self.state].time_tests;
-        match tests
-            .iter()
-            .position(|t| t.clock == self.clock && t.call == *call)
-        {
+        match tests.iter().position(|t| t.call == *call) {
             Some(i) => format!("((due[{k}] >> {i}) & 1)"),
             None => "0".into(),
         }
@@ -1479,10 +1474,7 @@ impl<'m> Writer<'m> {
             let Some(t) = state.modelled(arm).map(|t| &state.transitions[t]) else {
                 continue;
             };
-            self.clock = t.clock;
-            let holds = self.truth(&t.label);
-            self.clock = None;
-            let holds = holds?;
+            let holds = self.truth(&t.label)?;
             self.line("if");
             self.line(&format!(":: {holds} ->"));
             self.depth += 1;

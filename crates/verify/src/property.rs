@@ -335,6 +335,7 @@ impl Compiler<'_> {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => self.call(e, function, arguments)?,
         })
     }

@@ -326,7 +326,6 @@ impl<'m> StepGenerator<'m> {
             touched: None,
             deferred: Vec::new(),
             chosen: &mut chosen,
-            clock: None,
         };
         let (fired, snapshot) = self.steps(&mut exec, from, detail);
         for (target, command) in std::mem::take(&mut exec.deferred) {
@@ -376,11 +375,7 @@ impl<'m> StepGenerator<'m> {
                 Next::Snapshot => snapshot = self.snapshot(exec, detail, arrived),
                 Next::Try(arm) => {
                     let modelled = state.modelled(arm);
-                    let holds = modelled.is_some_and(|t| {
-                        exec.clock = state.transitions[t].clock;
-                        exec.truth(&state.transitions[t].label)
-                    });
-                    exec.clock = None;
+                    let holds = modelled.is_some_and(|t| exec.truth(&state.transitions[t].label));
                     run.proved(holds);
                 }
                 Next::Leave(arm) => {
@@ -734,9 +729,7 @@ pub(crate) fn kept_time_bits(
         .enumerate()
         .filter(|(_, t)| t.clock.is_some_and(|c| !enters.contains(&c)))
         .filter_map(|(i, t)| {
-            let j = to
-                .iter()
-                .position(|u| u.clock == t.clock && u.call == t.call)?;
+            let j = to.iter().position(|u| u.call == t.call)?;
             Some((i, j))
         })
         .collect()
@@ -837,8 +830,6 @@ struct RingletInterpreter<'a, 'c> {
     /// Commands posted (target machine, command), obeyed when the ringlet ends.
     deferred: Vec<(usize, Command)>,
     chosen: &'a mut Chosen<'c>,
-    /// While a label is proved: what its time tests count from ([`crate::model::TimeTest::clock`]).
-    clock: Option<usize>,
 }
 
 /// `proclaim-lower`'s walk over an expression, on the model: names resolve to slots and answers, a
@@ -849,9 +840,9 @@ impl Evaluate for RingletInterpreter<'_, '_> {
         self.name_value(resolved)
     }
 
-    fn call(&mut self, function: &str, arguments: &[Expr]) -> Option<Value> {
+    fn call(&mut self, function: &str, arguments: &[Expr], clock: Option<usize>) -> Option<Value> {
         if TIME_TESTS.iter().any(|(f, _)| *f == function) {
-            return Some(Value::Bool(self.time_due(function, arguments)));
+            return Some(Value::Bool(self.time_due(function, arguments, clock)));
         }
         let args: Vec<Option<Value>> = arguments.iter().map(|a| self.value(a)).collect();
         arith::function(function, &args)
@@ -951,17 +942,16 @@ impl RingletInterpreter<'_, '_> {
         self.model.reasoner(theory).answers(&inputs)[output]
     }
 
-    /// Whether a time test of the current state is due, counted from the clock of the label
-    /// being proved; a time test that no label of the state has (one in an activity) is never
-    /// due.
-    fn time_due(&self, function: &str, arguments: &[Expr]) -> bool {
+    /// Whether a time test of the current state is due, counted on its clock; a time test
+    /// that no label of the state has (one in an activity) is never due.
+    fn time_due(&self, function: &str, arguments: &[Expr], clock: Option<usize>) -> bool {
         let c = &self.world.machines[self.machine];
         let state = &self.model.machines[self.machine].states[usize::from(c.state)];
-        let this_call = |call: &Expr| matches!(call, Expr::Call { function: f, arguments: a } if f == function && a == arguments);
+        let this_call = |call: &Expr| matches!(call, Expr::Call { function: f, arguments: a, clock: k } if f == function && a == arguments && *k == clock);
         state
             .time_tests
             .iter()
-            .position(|t| t.clock == self.clock && this_call(&t.call))
+            .position(|t| this_call(&t.call))
             .is_some_and(|i| c.time & (1 << i) != 0)
     }
 
@@ -1135,6 +1125,7 @@ mod tests {
                 call: Expr::Call {
                     function: "timeout".into(),
                     arguments: vec![m.map_or(Expr::Name("n".into()), |m| Expr::Int(m as i64))],
+                    clock,
                 },
                 micros: m,
                 clock,

@@ -364,6 +364,7 @@ impl Gather<'_> {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => {
                 if let Builtin::Post { to, .. } = builtin(function, arguments) {
                     match to {

@@ -2,6 +2,10 @@
 
 use std::fmt;
 
+/// The functions a label may call to test the time spent in the state, with the number of
+/// microseconds one unit of their argument stands for.
+pub const TIME_TESTS: [(&str, f64); 3] = [("timeout", 1.0), ("after_ms", 1e3), ("after", 1e6)];
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum Expr {
     Bool(bool),
@@ -26,6 +30,12 @@ pub enum Expr {
     Call {
         function: String,
         arguments: Vec<Expr>,
+        /// For a time test (`timeout`, `after`, `after_ms`) of a lowered label, the clock it
+        /// reads: the composite whose entry it counts from (an index into
+        /// `Machine::composites`), or `None` for the arrival in its flat state. Parsing gives
+        /// `None`; lowering sets the rest (`docs/spec/behaviour.md` §3.2), and every back end
+        /// reads it. Never written back as text.
+        clock: Option<usize>,
     },
 }
 
@@ -170,6 +180,61 @@ impl Expr {
         }
     }
 
+    /// Every time test in the expression (`timeout`, `after`, `after_ms`), outermost first:
+    /// its function, its arguments and the clock it reads.
+    pub fn time_tests(&self) -> Vec<(&str, &[Expr], Option<usize>)> {
+        let mut out = Vec::new();
+        self.visit_exprs(&mut |e| {
+            if let Expr::Call {
+                function,
+                arguments,
+                clock,
+            } = e
+            {
+                if TIME_TESTS.iter().any(|(t, _)| t == function) {
+                    out.push((function.as_str(), arguments.as_slice(), *clock));
+                }
+            }
+        });
+        out
+    }
+
+    /// Sets the clock of every time test in the expression (see [`Expr::Call`]'s `clock`).
+    pub fn set_time_clocks(&mut self, to: Option<usize>) {
+        match self {
+            Expr::Call {
+                function,
+                arguments,
+                clock,
+            } => {
+                if TIME_TESTS.iter().any(|(t, _)| t == function) {
+                    *clock = to;
+                }
+                arguments.iter_mut().for_each(|a| a.set_time_clocks(to));
+            }
+            Expr::Unary { operand, .. } => operand.set_time_clocks(to),
+            Expr::Binary { left, right, .. } => {
+                left.set_time_clocks(to);
+                right.set_time_clocks(to);
+            }
+            _ => {}
+        }
+    }
+
+    /// Calls `f` on the expression and every expression inside it, outermost first.
+    fn visit_exprs<'a>(&'a self, f: &mut impl FnMut(&'a Expr)) {
+        f(self);
+        match self {
+            Expr::Call { arguments, .. } => arguments.iter().for_each(|a| a.visit_exprs(f)),
+            Expr::Unary { operand, .. } => operand.visit_exprs(f),
+            Expr::Binary { left, right, .. } => {
+                left.visit_exprs(f);
+                right.visit_exprs(f);
+            }
+            _ => {}
+        }
+    }
+
     /// Every call in the expression, outermost first.
     pub fn calls(&self) -> Vec<(&str, &[Expr])> {
         let mut out = Vec::new();
@@ -182,6 +247,7 @@ impl Expr {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => {
                 f(function, arguments);
                 arguments.iter().for_each(|a| a.visit_calls(f));
@@ -244,6 +310,7 @@ impl Expr {
             Expr::Call {
                 function,
                 arguments,
+                ..
             } => {
                 write!(f, "{function}(")?;
                 for (i, a) in arguments.iter().enumerate() {

@@ -16,6 +16,6 @@ mod token;
 
 pub(crate) use token::LexError;
 
-pub use expr::{BinOp, Expr, UnOp};
+pub use expr::{BinOp, Expr, UnOp, TIME_TESTS};
 pub use parse::{parse_expression, parse_statements, CodeError};
 pub use stmt::{ForLoop, Statement, StatementKind, VarType};

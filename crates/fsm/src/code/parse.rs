@@ -270,6 +270,7 @@ impl Parser {
                     return Ok(Expr::Call {
                         function: n,
                         arguments,
+                        clock: None,
                     });
                 }
                 Ok(match n.as_str() {

@@ -118,6 +118,7 @@ impl Statement {
             Statement::Expr(Expr::Call {
                 function,
                 arguments,
+                ..
             }) => StatementKind::Call {
                 function,
                 arguments,

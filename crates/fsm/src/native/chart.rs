@@ -802,14 +802,18 @@ impl<'t> Flattening<'t> {
         for &f in &order {
             let flat = &mut self.flats[f];
             states.push(flat_state(tree, flat));
-            for arm in std::mem::take(&mut flat.arms) {
+            for mut arm in std::mem::take(&mut flat.arms) {
+                // A time test counts from the entry of the state its transition was written
+                // on: a composite's, else its flat state's arrival.
+                let written_on = arm.written_on.and_then(|n| composites_of[n]);
+                arm.label.set_time_clocks(written_on);
                 transitions.push(Transition {
                     source: flat.id,
                     target: ids[arm.target],
                     label: arm.label,
                     line: arm.line,
                     leaving: arm.leaving,
-                    composite: arm.written_on.and_then(|n| composites_of[n]),
+                    composite: written_on,
                     enters: arm
                         .enters
                         .iter()

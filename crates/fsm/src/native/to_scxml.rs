@@ -399,6 +399,7 @@ impl Writer<'_> {
             Statement::Expr(Expr::Call {
                 function,
                 arguments,
+                ..
             }) => match (function.as_str(), arguments.as_slice()) {
                 ("post", [Expr::Str(event), Expr::Bool(true)]) => {
                     Some(format!("<raise event=\"{}\"/>", attr(event)))
@@ -495,6 +496,7 @@ fn timers(s: &StateAst) -> Vec<(String, String, String)> {
         let Ok(Expr::Call {
             function,
             arguments,
+            ..
         }) = crate::label::parse_label(label)
         else {
             continue;
