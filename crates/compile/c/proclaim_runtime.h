@@ -819,7 +819,7 @@ static int extern_news(const struct world *w, unsigned m, unsigned e)
 
 /* A posting from outside to a whiteboard variable's type (a script's truth word): whether it was one. */
 /* A value from outside as a compiled behaviour holds it: a truth value, or a whole number (an
- * optional `-`, then digits, within 64 bits) as the runner reads a posting's; 0 for anything
+ * optional sign, then digits, within 64 bits) as the runner reads a posting's; 0 for anything
  * else (text, a fraction), which it cannot hold. */
 static int outside_value(const char *content, struct value *v)
 {
@@ -830,7 +830,7 @@ static int outside_value(const char *content, struct value *v)
         *v = v_bool(same(content, "true"));
         return 1;
     }
-    c += negative;
+    c += negative || *c == '+';
     limit = negative ? (uint64_t)INT64_MAX + 1u : (uint64_t)INT64_MAX;
     if (*c == '\0') {
         return 0;
@@ -868,7 +868,10 @@ static void warn_posting(struct world *w, const char *before, const char *type, 
         message[n++] = *after;
     }
     message[n] = '\0';
-    w->cb.warned(w, "impersonator", message);
+    /* A host written before the runtime warned may have left `warned` unset. */
+    if (w->cb.warned != 0) {
+        w->cb.warned(w, "impersonator", message);
+    }
 }
 
 /* A posting from outside to a whiteboard variable's type: 1 when it was one. A value the compiled
