@@ -43,6 +43,9 @@ pub struct Composite {
     pub on_entry: Vec<Action>,
     pub on_exit: Vec<Action>,
     pub internal: Vec<Action>,
+    /// An atomic state in a region whose transitions test the time, kept only for its clock
+    /// (the other regions' moves do not restart it): it holds no states and draws as none.
+    pub atomic: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -57,23 +60,11 @@ pub struct UnreadTransition {
 }
 
 impl Machine {
-    /// The composites an arrival into flat state `state` entered (indices into
-    /// [`Machine::composites`], outermost first): the innermost `arrives_through` of those
-    /// around it. Lowering keeps apart the arrivals that enter a composite whose transitions
-    /// test the time, so for those this is exact (`native/chart.rs`).
+    /// The clocks an arrival into flat state `state` started (indices into
+    /// [`Machine::composites`], outermost first): exact for every clock a time test reads,
+    /// since lowering keeps apart the arrivals that start one (`native/flatten.rs`).
     pub fn arrival_enters(&self, state: &State) -> Vec<usize> {
-        let mut around: Vec<usize> = (0..self.composites.len())
-            .filter(|&c| {
-                let name = &self.composites[c].name;
-                state
-                    .name
-                    .strip_prefix(name.as_str())
-                    .is_some_and(|rest| rest.starts_with('.'))
-            })
-            .collect();
-        around.sort_by_key(|&c| self.composites[c].name.len());
-        let skip = around.len().saturating_sub(state.arrives_through);
-        around.split_off(skip)
+        state.arrival_clocks.clone()
     }
 
     /// Every action that can run, in file order: every state's, then what transitions run
@@ -170,6 +161,10 @@ pub struct State {
     /// How many of the composite states around it a move into this flat state enters too
     /// (§3.2): its OnEntry runs theirs, outermost first, before its own. 0 in a flat machine.
     pub arrives_through: usize,
+    /// The clocks (indices into [`Machine::composites`]) an arrival into it starts: the
+    /// composites it entered whose entry matters, and a region's atomic states that test the
+    /// time. Empty in a flat machine.
+    pub arrival_clocks: Vec<usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]

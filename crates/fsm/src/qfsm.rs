@@ -326,6 +326,7 @@ fn end_state(
         internal,
         line: at,
         arrives_through: 0,
+        arrival_clocks: Vec::new(),
     });
 }
 

@@ -137,6 +137,7 @@ fn a_line(
         internal: read(&internal.replace('/', ";")),
         line,
         arrives_through: 0,
+        arrival_clocks: Vec::new(),
     })
 }
 

@@ -544,3 +544,65 @@ REST#3 arrived into []
     let got = clocks(&read.machines[0]);
     assert_eq!(got, expect, "\n{got}");
 }
+
+/// A parallel state's regions run side by side (`docs/spec/behaviour.md` §3.2): a flat state
+/// for each pair of their states, whose arms are the combinations of what each region selects,
+/// the first region's first; a transition that leaves the parallel state fires alone and is
+/// preempted by an earlier region's move; each turn of the head keeps its own clock, which the
+/// body's moves do not restart.
+#[test]
+fn regions_lower_to_the_combinations_of_their_choices() {
+    let read = parse_machine(
+        "Striker.machine",
+        "machine Striker
+initial PLAY
+parallel PLAY {
+    when gameOver -> DONE
+    state HEAD {
+        state LEFT { when after_ms(400) -> RIGHT }
+        state RIGHT { when after_ms(400) -> LEFT }
+    }
+    state BODY {
+        state SEARCH { when ballSeen -> KICK }
+        state KICK { when kicked -> DONE }
+    }
+}
+state DONE { }
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let got = clocks(&read.machines[0]);
+    let expect = "PLAY.HEAD.LEFT, PLAY.BODY.SEARCH#6 arrived into [PLAY.HEAD.LEFT]
+  after_ms(400) && ballSeen since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  after_ms(400) since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.SEARCH#8 enters [PLAY.HEAD.RIGHT]
+  ballSeen -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#9 enters []
+  gameOver -> DONE#5 enters []
+PLAY.HEAD.LEFT, PLAY.BODY.KICK#9 arrived into []
+  after_ms(400) && kicked since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  after_ms(400) since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  kicked -> DONE#5 enters []
+  gameOver -> DONE#5 enters []
+PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 arrived into [PLAY.HEAD.LEFT]
+  after_ms(400) && kicked since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  after_ms(400) since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  kicked -> DONE#5 enters []
+  gameOver -> DONE#5 enters []
+PLAY.HEAD.RIGHT, PLAY.BODY.SEARCH#8 arrived into [PLAY.HEAD.RIGHT]
+  after_ms(400) && ballSeen since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  after_ms(400) since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.SEARCH#6 enters [PLAY.HEAD.LEFT]
+  ballSeen -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#11 enters []
+  gameOver -> DONE#5 enters []
+PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 arrived into [PLAY.HEAD.RIGHT]
+  after_ms(400) && kicked since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  after_ms(400) since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  kicked -> DONE#5 enters []
+  gameOver -> DONE#5 enters []
+PLAY.HEAD.RIGHT, PLAY.BODY.KICK#11 arrived into []
+  after_ms(400) && kicked since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  after_ms(400) since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  kicked -> DONE#5 enters []
+  gameOver -> DONE#5 enters []
+DONE#5 arrived into []
+";
+    assert_eq!(got, expect, "\n{got}");
+}

@@ -30,6 +30,8 @@ pub struct StateAst {
     pub id: Option<i64>,
     pub at: usize,
     pub members: Vec<Member>,
+    /// `parallel NAME { … }`: the states it holds are regions, all active while it is.
+    pub parallel: bool,
 }
 
 /// Which of a state's three activities.

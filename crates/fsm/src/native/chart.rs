@@ -4,15 +4,16 @@
 //! the flat machine it already runs and their traces agree by construction.
 
 use super::ast::{Ref, StateAst};
+use super::flatten::Flattening;
 use super::{Lowering, When};
-use crate::code::{BinOp, Expr, Statement, VarType};
+use crate::code::Expr;
 use crate::interface::global_of;
 use crate::label::{Label, TIME_TESTS};
 use crate::model::{Action, Composite, State, StateId, Transition};
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::HashSet;
 
 /// What a chart lowers to.
-pub(super) struct Chart {
+pub(crate) struct Chart {
     pub states: Vec<State>,
     pub transitions: Vec<Transition>,
     pub initial: StateId,
@@ -48,46 +49,57 @@ pub(super) fn lower_chart(
         None => *tree.top.first()?,
     };
     let mut flat = Flattening::new(&tree);
-    let outermost = tree.outermost(start);
-    let first = flat.variant(tree.descend(start), outermost);
+    let first = flat.enter(&[], None, start);
     flat.run();
+    if let Some(at) = flat.too_many {
+        lowering.error(
+            at,
+            format!(
+                "its regions' transitions make more than {} combinations in one state: split it",
+                super::flatten::MOST_ARMS
+            ),
+        );
+        return None;
+    }
     Some(flat.finish(first))
 }
 
 /// A state as written, composite or atomic.
-struct Node {
-    name: String,
+pub(super) struct Node {
+    pub name: String,
     /// `PLAY.SEARCH`: the flat states' names.
-    path: String,
-    parent: Option<usize>,
-    children: Vec<usize>,
-    id: Option<StateId>,
-    at: usize,
-    line: usize,
-    entry: Vec<Action>,
-    exit: Vec<Action>,
-    internal: Vec<Action>,
+    pub path: String,
+    pub parent: Option<usize>,
+    pub children: Vec<usize>,
+    pub id: Option<StateId>,
+    pub at: usize,
+    pub line: usize,
+    pub entry: Vec<Action>,
+    pub exit: Vec<Action>,
+    pub internal: Vec<Action>,
     initial: Option<(Ref, usize)>,
     whens: Vec<When>,
+    /// `parallel`: the states it holds are regions, all active while it is.
+    pub parallel: bool,
 }
 
 /// A transition as written, its target found.
-struct Written {
-    label: Label,
+pub(super) struct Written {
+    pub label: Label,
     /// `when done`: fires from the composite's final sub-states only.
-    done: bool,
-    target: usize,
+    pub done: bool,
+    pub target: usize,
     /// `-> P.history` or `-> P.deep_history`: `target` is P, entered where it was left.
-    history: Option<History>,
-    line: usize,
+    pub history: Option<History>,
+    pub line: usize,
     /// Its own actions: they run as it fires, after the OnExits.
-    actions: Vec<Action>,
+    pub actions: Vec<Action>,
 }
 
 /// Which history a transition resumes (§3.2): the sub-state of the composite last active, or
 /// the whole configuration inside it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum History {
+pub(super) enum History {
     Shallow,
     Deep,
 }
@@ -114,16 +126,16 @@ impl History {
 
 /// The states as written, in file order (a composite before the states it holds).
 #[derive(Default)]
-struct Tree {
-    nodes: Vec<Node>,
+pub(super) struct Tree {
+    pub nodes: Vec<Node>,
     top: Vec<usize>,
     /// Each node's transitions, in priority order; those that could not be read are reported
     /// and left out.
-    written: Vec<Vec<Written>>,
+    pub written: Vec<Vec<Written>>,
     /// Each composite's `initial`, found among its states (else its first).
     first: Vec<Option<usize>>,
     /// The histories some transition resumes: only these are kept.
-    histories: Vec<(usize, History)>,
+    pub histories: Vec<(usize, History)>,
     /// Each kept history's variable, told apart from every other name of the machine.
     variables: Vec<String>,
     /// Names a history's variable must not take: the globals the machine's parameters and
@@ -161,7 +173,20 @@ impl Tree {
             None => s.name.clone(),
         };
         let line = lowering.lines.line(s.at);
+        let parallel = s.parallel;
         let body = lowering.body(&s.name, s.members);
+        if parallel && body.states.is_empty() {
+            lowering.error(
+                s.at,
+                format!("parallel state `{path}` holds no regions: write a state in it for each"),
+            );
+        }
+        if let (true, Some((_, at))) = (parallel, &body.initial) {
+            lowering.error(
+                *at,
+                format!("`{path}` is parallel: every region in it is entered, so it has no `initial`"),
+            );
+        }
         let index = self.nodes.len();
         self.nodes.push(Node {
             name: s.name,
@@ -174,8 +199,9 @@ impl Tree {
             entry: body.entry,
             exit: body.exit,
             internal: body.internal,
-            initial: body.initial,
+            initial: body.initial.filter(|_| !parallel),
             whens: body.whens,
+            parallel,
         });
         for inner in body.states {
             let child = self.add(lowering, inner, Some(index));
@@ -252,7 +278,7 @@ impl Tree {
 
     /// Where leaving `composite` from `atomic` leaves it, as its `history`'s variable numbers
     /// places (0: nowhere, `atomic` is not inside it).
-    fn place(&self, composite: usize, history: History, atomic: usize) -> i64 {
+    pub(super) fn place(&self, composite: usize, history: History, atomic: usize) -> i64 {
         let inside = match history {
             // The state of `composite`'s own on the way out.
             History::Shallow => self
@@ -279,7 +305,7 @@ impl Tree {
     }
 
     /// The variable of `composite`'s `history`.
-    fn variable(&self, composite: usize, history: History) -> String {
+    pub(super) fn variable(&self, composite: usize, history: History) -> String {
         let at = self
             .histories
             .iter()
@@ -331,6 +357,7 @@ impl Tree {
             return None;
         }
         if done
+            && !node.parallel
             && !node
                 .children
                 .iter()
@@ -362,6 +389,16 @@ impl Tree {
                     when.target_at,
                     format!(
                         "`{}` holds no states, so it has no history to resume",
+                        self.nodes[target].path
+                    ),
+                );
+                None
+            }
+            Ok(target) if history.is_some() && self.holds_regions(target) => {
+                lowering.error(
+                    when.target_at,
+                    format!(
+                        "`{}` holds parallel states: a history across regions is not built yet",
                         self.nodes[target].path
                     ),
                 );
@@ -469,17 +506,9 @@ impl Tree {
         }
     }
 
-    /// The atomic state entering `node` ends in: down through each composite's initial.
-    fn descend(&self, mut node: usize) -> usize {
-        while let Some(&child) = self.nodes[node].children.first() {
-            node = self.first[node].unwrap_or(child);
-        }
-        node
-    }
-
     /// The states a history of `composite` may resume, in the order its variable numbers
     /// them from 1: its own states (shallow), or every atomic state inside it (deep).
-    fn resumed(&self, composite: usize, history: History) -> Vec<usize> {
+    pub(super) fn resumed(&self, composite: usize, history: History) -> Vec<usize> {
         match history {
             History::Shallow => self.nodes[composite].children.clone(),
             History::Deep => (composite..self.nodes.len())
@@ -490,24 +519,13 @@ impl Tree {
     }
 
     /// `node` and the states around it, innermost first.
-    fn chain(&self, node: usize) -> impl Iterator<Item = usize> + '_ {
+    pub(super) fn chain(&self, node: usize) -> impl Iterator<Item = usize> + '_ {
         std::iter::successors(Some(node), |&n| self.nodes[n].parent)
-    }
-
-    /// The composites a move below `domain` into `atomic` enters, outermost first.
-    fn entered(&self, atomic: usize, domain: Option<usize>) -> Vec<usize> {
-        let mut entered: Vec<usize> = self
-            .chain(atomic)
-            .take_while(|&n| Some(n) != domain)
-            .filter(|&n| !self.nodes[n].children.is_empty())
-            .collect();
-        entered.reverse();
-        entered
     }
 
     /// Whether a transition written on `node` tests the time: a composite's then counts from
     /// its entry, so the arrivals that enter it are told apart from those that do not.
-    fn timed(&self, node: usize) -> bool {
+    pub(super) fn timed(&self, node: usize) -> bool {
         self.written[node].iter().any(|w| {
             w.label
                 .calls()
@@ -516,358 +534,113 @@ impl Tree {
         })
     }
 
-    fn outermost(&self, node: usize) -> usize {
+    pub(super) fn outermost(&self, node: usize) -> usize {
         self.chain(node).last().unwrap_or(node)
     }
 
-    /// The innermost state around both `source` and `target` but neither of them (`None`:
-    /// the machine): what a transition between them leaves stays below it (§3.2).
-    fn domain(&self, source: usize, target: usize) -> Option<usize> {
+    /// The innermost state around both `source` and `target` but neither of them, and not
+    /// parallel (`None`: the machine): what a transition between them leaves stays below it
+    /// (§3.2). A parallel state is never one, so a move between its regions leaves it.
+    pub(super) fn domain(&self, source: usize, target: usize) -> Option<usize> {
         let around: HashSet<usize> = self.chain(target).skip(1).collect();
-        self.chain(source).skip(1).find(|n| around.contains(n))
-    }
-}
-
-/// One flat state: an atomic state entered from `top` down.
-struct Flat {
-    atomic: usize,
-    top: usize,
-    id: StateId,
-    arms: Vec<FlatArm>,
-}
-
-struct FlatArm {
-    label: Label,
-    /// The label as written, when the arm's is not (`done`, a history's place).
-    written: Option<Label>,
-    /// The flat state it enters (an index into `Flattening::flats`).
-    target: usize,
-    line: usize,
-    leaving: Option<Vec<Action>>,
-    /// The composite it was written on, when not on the atomic state itself.
-    written_on: Option<usize>,
-    /// The composites it enters, outermost first.
-    enters: Vec<usize>,
-}
-
-/// Flat states made as transitions reach them, from the initial one.
-struct Flattening<'t> {
-    tree: &'t Tree,
-    flats: Vec<Flat>,
-    variants: HashMap<(usize, usize), usize>,
-    queue: VecDeque<usize>,
-    /// Each atomic state's id: as written, else numbered; a further flat state of the same
-    /// atomic state takes a fresh one.
-    ids: Vec<Option<StateId>>,
-    /// Whether each atomic state has a flat state yet.
-    made: Vec<bool>,
-    taken: HashSet<StateId>,
-    next: StateId,
-}
-
-impl<'t> Flattening<'t> {
-    fn new(tree: &'t Tree) -> Flattening<'t> {
-        let taken: HashSet<StateId> = tree.nodes.iter().filter_map(|n| n.id).collect();
-        let mut flattening = Flattening {
-            tree,
-            flats: Vec::new(),
-            variants: HashMap::new(),
-            queue: VecDeque::new(),
-            ids: Vec::new(),
-            made: vec![false; tree.nodes.len()],
-            taken,
-            next: 1,
-        };
-        for n in 0..tree.nodes.len() {
-            let node = &tree.nodes[n];
-            let id = match (node.id, node.children.is_empty()) {
-                (Some(id), _) => Some(id),
-                (None, true) => Some(flattening.fresh()),
-                (None, false) => None,
-            };
-            flattening.ids.push(id);
-        }
-        flattening
+        self.chain(source)
+            .skip(1)
+            .find(|&n| around.contains(&n) && !self.nodes[n].parallel)
     }
 
-    fn fresh(&mut self) -> StateId {
-        while self.taken.contains(&self.next) {
-            self.next += 1;
-        }
-        self.taken.insert(self.next);
-        self.next
+    /// Whether `node` is parallel or holds a parallel state.
+    fn holds_regions(&self, node: usize) -> bool {
+        (node..self.nodes.len())
+            .any(|n| self.nodes[n].parallel && self.chain(n).any(|a| a == node))
     }
 
-    /// The flat state of `atomic` entered from `top` down. Entries that run nothing and
-    /// start no composite's time are not told apart, so a chart whose composites have no
-    /// OnEntry and test no time gets one flat state per atomic state.
-    fn variant(&mut self, atomic: usize, top: usize) -> usize {
-        let tree = self.tree;
-        let entered: Vec<usize> = tree.chain(atomic).take_while(|&n| n != top).collect();
-        let top = std::iter::once(top)
-            .chain(entered.into_iter().rev())
-            .find(|&n| n == atomic || !tree.nodes[n].entry.is_empty() || tree.timed(n))
-            .unwrap_or(atomic);
-        if let Some(&flat) = self.variants.get(&(atomic, top)) {
-            return flat;
-        }
-        // The first flat state of an atomic state takes its id; the others fresh ones.
-        let id = match self.ids[atomic].take() {
-            Some(id) => id,
-            None => self.fresh(),
-        };
-        self.made[atomic] = true;
-        self.flats.push(Flat {
-            atomic,
-            top,
-            id,
-            arms: Vec::new(),
-        });
-        let flat = self.flats.len() - 1;
-        self.variants.insert((atomic, top), flat);
-        self.queue.push_back(flat);
-        flat
+    /// Whether `node` is an atomic state in a region whose transitions test the time: it keeps
+    /// a clock of its own, which the other regions' moves do not restart.
+    pub(super) fn region_clock(&self, node: usize) -> bool {
+        self.nodes[node].children.is_empty()
+            && self.chain(node).skip(1).any(|n| self.nodes[n].parallel)
+            && self.timed(node)
     }
 
-    /// Makes every flat state a transition reaches, then one for each atomic state none
-    /// reached (so that `check` and `verify` can say it is never entered).
-    fn run(&mut self) {
-        let tree = self.tree;
-        let mut from = 0;
-        loop {
-            while let Some(flat) = self.queue.pop_front() {
-                let arms = self.arms(self.flats[flat].atomic);
-                self.flats[flat].arms = arms;
-            }
-            let missed = (from..tree.nodes.len())
-                .find(|&n| tree.nodes[n].children.is_empty() && !self.made[n]);
-            match missed {
-                Some(n) => {
-                    from = n + 1;
-                    self.variant(n, tree.outermost(n));
-                }
-                None => return,
-            }
-        }
-    }
-
-    /// The transitions tried in `atomic`: its own, then those of each state around it,
-    /// outwards (the more deeply nested source wins, as in SCXML).
-    fn arms(&mut self, atomic: usize) -> Vec<FlatArm> {
-        let tree = self.tree;
-        let final_state = tree.written[atomic].is_empty();
-        let mut arms = Vec::new();
-        for source in tree.chain(atomic) {
-            for w in &tree.written[source] {
-                if w.done && !(final_state && tree.nodes[atomic].parent == Some(source)) {
-                    continue;
-                }
-                let domain = tree.domain(source, w.target);
-                let left: Vec<usize> = tree
-                    .chain(atomic)
-                    .take_while(|&n| Some(n) != domain)
-                    .collect();
-                let mut leaving = self.leaving(atomic, &left);
-                if !w.actions.is_empty() {
-                    let exits = leaving.unwrap_or_else(|| tree.nodes[atomic].exit.clone());
-                    leaving = Some(exits.into_iter().chain(w.actions.iter().cloned()).collect());
-                }
-                let written_on = (source != atomic).then_some(source);
-                for (label, target) in self.targets(atomic, w, domain, &left) {
-                    let enters = tree.entered(self.flats[target].atomic, domain);
-                    arms.push(FlatArm {
-                        written: (label != w.label).then(|| w.label.clone()),
-                        label,
-                        target,
-                        line: w.line,
-                        leaving: leaving.clone(),
-                        written_on,
-                        enters,
-                    });
-                }
-            }
-        }
-        arms
-    }
-
-    /// The label and flat target of each arm a transition written as `w` lowers to, tried in
-    /// this order, when it fires from `atomic`, leaving the states in `left` and entering below
-    /// `domain`.
-    fn targets(
-        &mut self,
-        atomic: usize,
-        w: &Written,
-        domain: Option<usize>,
-        left: &[usize],
-    ) -> Vec<(Label, usize)> {
-        let tree = self.tree;
-        let top = tree
-            .chain(w.target)
-            .find(|&n| tree.nodes[n].parent == domain)
-            .unwrap_or(w.target);
-        let label = if w.done { Label::TRUE } else { w.label.clone() };
-        let mut arms = Vec::new();
-        match w.history {
-            // Leaving the composite notes where this very move leaves it: it comes back there.
-            Some(history) if left.contains(&w.target) => {
-                let place = tree.place(w.target, history, atomic);
-                let resumed = tree.resumed(w.target, history);
-                let back = usize::try_from(place - 1).map_or(w.target, |k| resumed[k]);
-                arms.push((label, self.variant(tree.descend(back), top)));
-                return arms;
-            }
-            // An arm for each place it may have been left at, tested first; then the written
-            // one, to the initial, for never.
-            Some(history) => {
-                let variable = tree.variable(w.target, history);
-                for (k, resumed) in tree.resumed(w.target, history).into_iter().enumerate() {
-                    let was = Expr::Binary {
-                        op: BinOp::Eq,
-                        left: Box::new(Expr::Name(variable.clone())),
-                        right: Box::new(Expr::Int(k as i64 + 1)),
-                    };
-                    let label = Expr::Binary {
-                        op: BinOp::And,
-                        left: Box::new(was),
-                        right: Box::new(label.clone()),
-                    };
-                    arms.push((label, self.variant(tree.descend(resumed), top)));
-                }
-            }
-            None => {}
-        }
-        arms.push((label, self.variant(tree.descend(w.target), top)));
-        arms
-    }
-
-    /// What leaving `atomic` and the states around it in `left` (innermost first) runs: where
-    /// each composite with a history was left is noted first (SCXML notes it before any exit
-    /// runs), then their OnExits, innermost first. `None` when that is `atomic`'s own OnExit.
-    fn leaving(&self, atomic: usize, left: &[usize]) -> Option<Vec<Action>> {
-        let tree = self.tree;
-        let mut noted = Vec::new();
-        for &(composite, history) in &tree.histories {
-            if !left.contains(&composite) {
-                continue;
-            }
-            let at = tree.place(composite, history, atomic);
-            noted.push(Action::Statement(Statement::Assign {
-                name: tree.variable(composite, history),
-                value: Expr::Int(at),
-            }));
-        }
-        let more = left[1..].iter().any(|&n| !tree.nodes[n].exit.is_empty());
-        if noted.is_empty() && !more {
-            return None;
-        }
-        noted.extend(
-            left.iter()
-                .flat_map(|&n| tree.nodes[n].exit.iter().cloned()),
-        );
-        Some(noted)
-    }
-
-    fn finish(mut self, initial: usize) -> Chart {
-        let tree = self.tree;
-        let composites_of: Vec<Option<usize>> = {
-            let mut next = 0;
-            tree.nodes
-                .iter()
-                .map(|n| {
-                    (!n.children.is_empty()).then(|| {
-                        next += 1;
-                        next - 1
-                    })
-                })
-                .collect()
-        };
-        let composites = tree
-            .nodes
-            .iter()
-            .filter(|n| !n.children.is_empty())
-            .map(|n| Composite {
-                name: n.path.clone(),
-                parent: n.parent.and_then(|p| composites_of[p]),
-                line: n.line,
-                on_entry: n.entry.clone(),
-                on_exit: n.exit.clone(),
-                internal: n.internal.clone(),
-            })
+    /// The states a move below `domain` to `target` enters, in file order: those around
+    /// `target` below `domain`, the other regions of each parallel state among them at their
+    /// initial, and `target` and its initial states down.
+    pub(super) fn entering(&self, domain: Option<usize>, target: usize) -> Vec<usize> {
+        let path: Vec<usize> = self
+            .chain(target)
+            .take_while(|&n| Some(n) != domain)
             .collect();
-        let mut order: Vec<usize> = (0..self.flats.len()).collect();
-        order.sort_by_key(|&f| self.flats[f].atomic);
-        let ids: Vec<StateId> = self.flats.iter().map(|f| f.id).collect();
-        let mut states = Vec::new();
-        let mut transitions = Vec::new();
-        for &f in &order {
-            let flat = &mut self.flats[f];
-            states.push(flat_state(tree, flat));
-            for mut arm in std::mem::take(&mut flat.arms) {
-                // A time test counts from the entry of the state its transition was written
-                // on: a composite's, else its flat state's arrival.
-                let written_on = arm.written_on.and_then(|n| composites_of[n]);
-                arm.label.set_time_clocks(written_on);
-                transitions.push(Transition {
-                    source: flat.id,
-                    target: ids[arm.target],
-                    label: arm.label,
-                    line: arm.line,
-                    leaving: arm.leaving,
-                    composite: written_on,
-                    enters: arm
-                        .enters
-                        .iter()
-                        .filter_map(|&n| composites_of[n])
-                        .collect(),
-                    written: arm.written,
-                });
+        let mut out = path.clone();
+        for &n in path.iter().skip(1) {
+            if self.nodes[n].parallel {
+                for &region in &self.nodes[n].children {
+                    if !path.contains(&region) {
+                        out.push(region);
+                        self.default_below(region, &mut out);
+                    }
+                }
             }
         }
-        // Each history's variable is the machine's own, declared where it starts (a
-        // declaration runs nothing: the variable is there, 0, from the first ringlet).
-        if let Some(first) = states.iter_mut().find(|s| s.id == ids[initial]) {
-            first.on_entry.extend(tree.histories.iter().map(|&(c, h)| {
-                Action::Statement(Statement::Declare {
-                    ty: VarType::Int,
-                    name: tree.variable(c, h),
-                    value: None,
-                })
-            }));
-        }
-        Chart {
-            states,
-            transitions,
-            initial: ids[initial],
-            composites,
+        self.default_below(target, &mut out);
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// What entering `node` enters below it: its initial state down, or every region.
+    fn default_below(&self, node: usize, out: &mut Vec<usize>) {
+        let n = &self.nodes[node];
+        let inner: Vec<usize> = match (n.parallel, n.children.first()) {
+            (_, None) => return,
+            (true, Some(_)) => n.children.clone(),
+            (false, Some(&first)) => vec![self.first[node].unwrap_or(first)],
+        };
+        for child in inner {
+            out.push(child);
+            self.default_below(child, out);
         }
     }
-}
 
-/// The flat state: arriving runs the OnEntry of each state entered, outermost first; staying
-/// runs the Internal of each state the machine is in, outermost first; its own OnExit is the
-/// atomic state's (transitions that leave more carry their own).
-fn flat_state(tree: &Tree, flat: &Flat) -> State {
-    let node = &tree.nodes[flat.atomic];
-    let mut around: Vec<usize> = tree.chain(flat.atomic).collect();
-    around.reverse();
-    let entered: Vec<usize> = around
-        .iter()
-        .copied()
-        .skip_while(|&n| n != flat.top)
-        .collect();
-    State {
-        id: flat.id,
-        name: node.path.clone(),
-        on_entry: entered
+    /// The active states strictly inside `domain` (`None`: every active state) when the
+    /// atomic states `atomics` are, in file order.
+    pub(super) fn active_inside(&self, atomics: &[usize], domain: Option<usize>) -> Vec<usize> {
+        let inside = |a: usize| domain.is_none_or(|d| self.chain(a).any(|n| n == d));
+        let mut out: Vec<usize> = atomics
             .iter()
-            .flat_map(|&n| tree.nodes[n].entry.iter().cloned())
-            .collect(),
-        on_exit: node.exit.clone(),
-        internal: around
+            .filter(|&&a| inside(a))
+            .flat_map(|&a| self.chain(a).take_while(move |&n| Some(n) != domain))
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The state directly in `node` that is active when `atomics` are.
+    pub(super) fn active_child(&self, atomics: &[usize], node: usize) -> Option<usize> {
+        let a = self.atomic_inside(atomics, node)?;
+        self.chain(a).find(|&n| self.nodes[n].parent == Some(node))
+    }
+
+    /// The active atomic state inside `node` (the first, where it holds regions).
+    pub(super) fn atomic_inside(&self, atomics: &[usize], node: usize) -> Option<usize> {
+        atomics
             .iter()
-            .flat_map(|&n| tree.nodes[n].internal.iter().cloned())
-            .collect(),
-        line: node.line,
-        arrives_through: entered.len().saturating_sub(1),
+            .copied()
+            .find(|&a| self.chain(a).any(|n| n == node))
+    }
+
+    /// Whether `node`'s `when done` fires when `atomics` are active: its active state is final,
+    /// or, for a parallel state, every region is (§3.2).
+    pub(super) fn done_in(&self, atomics: &[usize], node: usize) -> bool {
+        let n = &self.nodes[node];
+        if n.children.is_empty() {
+            return self.written[node].is_empty();
+        }
+        if n.parallel {
+            return n.children.iter().all(|&r| self.done_in(atomics, r));
+        }
+        self.active_child(atomics, node).is_some_and(|c| {
+            self.nodes[c].children.is_empty() && self.written[c].is_empty()
+        })
     }
 }

@@ -10,6 +10,8 @@ pub enum MachineToken<'a> {
     Description,
     Initial,
     State,
+    /// `parallel`, where a state may begin: a state whose states are regions.
+    Parallel,
     Entry,
     Exit,
     Internal,
@@ -45,6 +47,7 @@ impl std::fmt::Display for MachineToken<'_> {
             MachineToken::Description => f.write_str("`description`"),
             MachineToken::Initial => f.write_str("`initial`"),
             MachineToken::State => f.write_str("`state`"),
+            MachineToken::Parallel => f.write_str("`parallel`"),
             MachineToken::Entry => f.write_str("`entry`"),
             MachineToken::Exit => f.write_str("`exit`"),
             MachineToken::Internal => f.write_str("`internal`"),
@@ -266,6 +269,10 @@ impl<'a> MachineLexer<'a> {
                     "initial" => MachineToken::Initial,
                     _ => MachineToken::State,
                 }
+            }
+            "parallel" if item => {
+                self.name_next = true;
+                MachineToken::Parallel
             }
             "description" if self.open.is_empty() => MachineToken::Description,
             "param" | "outcome" if item && (word == "outcome" || self.open.is_empty()) => {

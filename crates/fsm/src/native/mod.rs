@@ -36,6 +36,7 @@ mod ast;
 mod chart;
 mod edit;
 mod edit_error;
+mod flatten;
 mod interface;
 mod lexer;
 mod outline;
@@ -184,7 +185,7 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
     let (description, initial_ref, parsed) = lowering.header(ast.items);
     let nested = parsed
         .iter()
-        .any(|s| s.members.iter().any(|m| matches!(m, Member::State(_))));
+        .any(|s| s.parallel || s.members.iter().any(|m| matches!(m, Member::State(_))));
     if nested {
         let machines = chart::lower_chart(&mut lowering, parsed, initial_ref)
             .map(|chart| {
@@ -416,6 +417,7 @@ impl Lowering<'_> {
             internal: body.internal,
             line,
             arrives_through: 0,
+            arrival_clocks: Vec::new(),
         }
     }
 
