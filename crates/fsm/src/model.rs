@@ -67,6 +67,26 @@ impl Machine {
         state.arrival_clocks.clone()
     }
 
+    /// The paths of the atomic states flat state `state` is: its name, or in a chart one for
+    /// each region of a parallel state (`PLAY.HEAD.LEFT, PLAY.BODY.SEARCH`, §3.2).
+    pub fn atomic_paths<'s>(&self, state: &'s State) -> Vec<&'s str> {
+        match self.composites.is_empty() {
+            true => vec![state.name.as_str()],
+            false => state.name.split(", ").collect(),
+        }
+    }
+
+    /// Whether the machine in flat state `state` is in the state `path` names: one of its
+    /// atomic states, or in a chart a state around one.
+    pub fn state_is_in(&self, state: &State, path: &str) -> bool {
+        state.name == path
+            || self.atomic_paths(state).into_iter().any(|p| {
+                p == path
+                    || p.strip_prefix(path)
+                        .is_some_and(|rest| rest.starts_with('.'))
+            })
+    }
+
     /// Every action that can run, in file order: every state's, then what transitions run
     /// as they fire that their states do not (a transition's own actions; a nested state's
     /// composites' OnExits), which the lowered transitions carry; an action may come twice.

@@ -390,8 +390,19 @@ fn outcome(
 fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> Vec<Finding> {
     let mut findings = Vec::new();
     for (k, m) in model.machines.iter().enumerate() {
-        let states = m.machine.states.iter().zip(&entered[k]);
-        for state in once_each(states.map(|(s, &e)| ((s.name.clone(), s.line), e))) {
+        // Each atomic state as written: a flat state of regions is one of each region's.
+        let chart = !m.machine.composites.is_empty();
+        let states = m
+            .machine
+            .states
+            .iter()
+            .zip(&entered[k])
+            .flat_map(|(s, &e)| {
+                let line = if chart { 0 } else { s.line };
+                let paths = m.machine.atomic_paths(s);
+                paths.into_iter().map(move |p| ((p.to_string(), line), e))
+            });
+        for state in once_each(states) {
             findings.push(Finding::NeverEntered {
                 machine: m.name.clone(),
                 state: state.0,

@@ -416,12 +416,17 @@ impl Compiler<'_> {
             // A nested state is every flat state it lowers to, and a composite every state
             // inside it (`docs/spec/behaviour.md` §3.2).
             let part = &part.replace(DOT, ".");
-            let inside = format!("{part}.");
+            let flat = &mm.machine.states;
             let states = mm
                 .states
                 .iter()
                 .enumerate()
-                .filter(|(_, s)| s.name == *part || s.name.starts_with(&inside))
+                .filter(|(i, s)| {
+                    s.name == *part
+                        || flat
+                            .get(*i)
+                            .is_some_and(|f| mm.machine.state_is_in(f, part))
+                })
                 .map(|(s, _)| Term::InState {
                     machine: m,
                     state: s as u16,

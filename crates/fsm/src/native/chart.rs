@@ -184,7 +184,9 @@ impl Tree {
         if let (true, Some((_, at))) = (parallel, &body.initial) {
             lowering.error(
                 *at,
-                format!("`{path}` is parallel: every region in it is entered, so it has no `initial`"),
+                format!(
+                    "`{path}` is parallel: every region in it is entered, so it has no `initial`"
+                ),
             );
         }
         let index = self.nodes.len();
@@ -550,8 +552,7 @@ impl Tree {
 
     /// Whether `node` is parallel or holds a parallel state.
     fn holds_regions(&self, node: usize) -> bool {
-        (node..self.nodes.len())
-            .any(|n| self.nodes[n].parallel && self.chain(n).any(|a| a == node))
+        (node..self.nodes.len()).any(|n| self.nodes[n].parallel && self.chain(n).any(|a| a == node))
     }
 
     /// Whether `node` is an atomic state in a region whose transitions test the time: it keeps
@@ -639,8 +640,7 @@ impl Tree {
         if n.parallel {
             return n.children.iter().all(|&r| self.done_in(atomics, r));
         }
-        self.active_child(atomics, node).is_some_and(|c| {
-            self.nodes[c].children.is_empty() && self.written[c].is_empty()
-        })
+        self.active_child(atomics, node)
+            .is_some_and(|c| self.nodes[c].children.is_empty() && self.written[c].is_empty())
     }
 }

@@ -406,7 +406,12 @@ impl<'t> Flattening<'t> {
     /// before any exit runs), then their OnExits in reverse file order (innermost first, later
     /// regions first), then each transition's own actions. `None` when that is the one atomic
     /// state's own OnExit.
-    fn leaving(&self, atomics: &[usize], left: &[usize], fires: &[Fire<'_>]) -> Option<Vec<Action>> {
+    fn leaving(
+        &self,
+        atomics: &[usize],
+        left: &[usize],
+        fires: &[Fire<'_>],
+    ) -> Option<Vec<Action>> {
         let tree = self.tree;
         let mut noted = Vec::new();
         for &(composite, history) in &tree.histories {
