@@ -31,6 +31,18 @@ pub fn to_dot(machine: &Machine) -> String {
     out
 }
 
+/// The nodes [`to_dot`] draws each state of `machine` as, by its id: one, or for a state of a
+/// parallel state's regions one a region, the first standing for the state (`docs/spec/behaviour.md`
+/// §3.2). What lights a state on a page lights these.
+pub fn drawn_nodes(machine: &Machine) -> Vec<(i64, Vec<String>)> {
+    if machine.composites.is_empty() {
+        return (machine.states.iter())
+            .map(|s| (s.id, vec![format!("s{}", node(s.id))]))
+            .collect();
+    }
+    crate::dot_chart::state_nodes(machine, "")
+}
+
 /// The graph attributes every diagram starts with (left to right, rounded boxes).
 pub fn header(out: &mut String) {
     out.push_str(
@@ -50,9 +62,11 @@ pub fn body(
     let id = |state: i64| format!("{prefix}s{}", node(state));
     if !machine.composites.is_empty() {
         crate::dot_chart::chart_body(out, machine, prefix, indent);
+        let nodes = crate::dot_chart::state_nodes(machine, prefix);
         let mut started = Vec::new();
-        for state in &machine.states {
-            started.extend(starts(state).map(|machine| (id(state.id), machine)));
+        for (state, (_, drawn)) in machine.states.iter().zip(&nodes) {
+            let from = drawn.first().cloned().unwrap_or_else(|| id(state.id));
+            started.extend(starts(state).map(|machine| (from.clone(), machine)));
         }
         started.dedup();
         return started;

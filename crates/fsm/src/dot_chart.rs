@@ -24,6 +24,17 @@ pub(crate) fn chart_body(out: &mut String, machine: &Machine, prefix: &str, inde
     drawing.edges(out, indent);
 }
 
+/// The nodes `chart_body` draws each flat state as: one, or one a region of a parallel state
+/// (§3.2), the first standing for the state (what a fired transition is drawn from and to).
+pub(crate) fn state_nodes(machine: &Machine, prefix: &str) -> Vec<(StateId, Vec<String>)> {
+    let drawing = Drawing::new(machine, prefix);
+    machine
+        .states
+        .iter()
+        .map(|s| (s.id, drawing.nodes(s)))
+        .collect()
+}
+
 struct Drawing<'m> {
     machine: &'m Machine,
     prefix: &'m str,
@@ -38,7 +49,15 @@ impl<'m> Drawing<'m> {
         let mut written: Vec<&State> = Vec::new();
         let mut first: HashMap<(&str, usize), StateId> = HashMap::new();
         let mut node_of = HashMap::new();
-        for state in &machine.states {
+        let region = |s: &State| {
+            let paths = machine.atomic_paths(s);
+            paths.len() > 1
+                || machine
+                    .composites
+                    .iter()
+                    .any(|c| c.atomic && c.name == s.name)
+        };
+        for state in machine.states.iter().filter(|s| !region(s)) {
             let id = *first
                 .entry((state.name.as_str(), state.line))
                 .or_insert_with(|| {
@@ -56,8 +75,55 @@ impl<'m> Drawing<'m> {
     }
 
     fn node(&self, flat: StateId) -> String {
-        let id = self.node_of.get(&flat).copied().unwrap_or(flat);
-        format!("{}s{}", self.prefix, node(id))
+        match self.machine.state(flat) {
+            Some(s) => self.nodes(s).swap_remove(0),
+            None => format!("{}s{}", self.prefix, node(flat)),
+        }
+    }
+
+    /// The nodes a flat state is drawn as: its atomic states', each region's as written.
+    fn nodes(&self, state: &State) -> Vec<String> {
+        let paths = self.machine.atomic_paths(state);
+        paths
+            .into_iter()
+            .map(|path| match self.atomic(path) {
+                Some(c) => format!("{}a{c}", self.prefix),
+                None => {
+                    let id = self.node_of.get(&state.id).copied().unwrap_or(state.id);
+                    format!("{}s{}", self.prefix, node(id))
+                }
+            })
+            .collect()
+    }
+
+    /// The atomic state of a region `path` names (an index into the composites).
+    fn atomic(&self, path: &str) -> Option<usize> {
+        (self.machine.composites.iter()).position(|c| c.atomic && c.name == path)
+    }
+
+    /// The node a transition is drawn to: the state it enters that its source was not in (a
+    /// region's move), else its target's.
+    fn target_node(&self, t: &Transition) -> String {
+        let (Some(from), Some(to)) = (self.machine.state(t.source), self.machine.state(t.target))
+        else {
+            return self.node(t.target);
+        };
+        let before = self.machine.atomic_paths(from);
+        let entered = self.machine.atomic_paths(to);
+        match entered.iter().find(|p| !before.contains(p)) {
+            Some(path) if entered.len() > 1 => match self.atomic(path) {
+                Some(c) => format!("{}a{c}", self.prefix),
+                None => self.node(t.target),
+            },
+            _ => self.node(t.target),
+        }
+    }
+
+    /// The nodes the initial state is drawn as.
+    fn nodes_of_initial(&self) -> Vec<String> {
+        self.machine
+            .state(self.machine.initial)
+            .map_or_else(Vec::new, |s| self.nodes(s))
     }
 
     fn cluster_name(&self, composite: usize) -> String {
@@ -83,6 +149,32 @@ impl<'m> Drawing<'m> {
                 continue;
             }
             let short = composite.name.rsplit('.').next().unwrap_or(&composite.name);
+            if composite.atomic {
+                let mut label = format!("{}\\n", escape(short));
+                activities(
+                    &mut label,
+                    &composite.on_entry,
+                    &composite.on_exit,
+                    &composite.internal,
+                );
+                let initial = self
+                    .nodes_of_initial()
+                    .contains(&format!("{}a{c}", self.prefix));
+                let peripheries = if initial { ", peripheries=2" } else { "" };
+                let _ = writeln!(
+                    out,
+                    "{indent}{}a{c} [label=\"{label}\"{peripheries}];",
+                    self.prefix
+                );
+                continue;
+            }
+            // A region of a parallel state is drawn dashed, as UML separates regions.
+            let region = within.is_some_and(|p| self.machine.composites[p].parallel);
+            let style = if region {
+                "\"rounded,dashed\""
+            } else {
+                "rounded"
+            };
             let mut label = format!("{}\\l", escape(short));
             activities(
                 &mut label,
@@ -94,7 +186,7 @@ impl<'m> Drawing<'m> {
             let inner = format!("{indent}  ");
             let _ = writeln!(
                 out,
-                "{inner}label=\"{label}\"; labeljust=l; style=rounded; fontname=\"Helvetica\"; fontsize=10;"
+                "{inner}label=\"{label}\"; labeljust=l; style={style}; fontname=\"Helvetica\"; fontsize=10;"
             );
             self.cluster(out, Some(c), &inner);
             let _ = writeln!(out, "{indent}}}");
@@ -150,6 +242,7 @@ impl<'m> Drawing<'m> {
         // carries the label as written.
         let written = |t: &Transition| {
             let from = match t.composite {
+                Some(c) if self.machine.composites[c].atomic => format!("{}a{c}", self.prefix),
                 Some(c) => self.cluster_name(c),
                 None => self.node(t.source),
             };
@@ -170,17 +263,20 @@ impl<'m> Drawing<'m> {
             let number = numbers.entry(from).or_default();
             *number += 1;
             let label = format!("{number}: {}", escape(&t.shown().to_string()));
-            let (source, target) = (self.node(t.source), self.node(t.target));
-            let Some(c) = t.composite else {
+            let (source, target) = (self.node(t.source), self.target_node(t));
+            let cluster_of = t.composite.filter(|&c| !self.machine.composites[c].atomic);
+            let source = match t.composite {
+                Some(c) if cluster_of.is_none() => format!("{}a{c}", self.prefix),
+                _ => source,
+            };
+            let Some(c) = cluster_of else {
                 let _ = writeln!(out, "{indent}{source} -> {target} [label=\"{label}\"];");
                 continue;
             };
             let cluster = quote(from);
             let within = self.machine.state(t.target).is_some_and(|s| {
                 let path = &self.machine.composites[c].name;
-                s.name
-                    .strip_prefix(path.as_str())
-                    .is_some_and(|r| r.starts_with('.'))
+                self.machine.state_is_in(s, path) && s.name != *path
             });
             if !within {
                 let _ = writeln!(

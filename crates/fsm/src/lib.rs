@@ -32,7 +32,7 @@ pub use activity::{
 };
 pub use code::{BinOp, Expr, ForLoop, Statement, StatementKind, UnOp, VarType};
 pub use control::{machine_of_running_type, running_type, Command};
-pub use dot::to_dot;
+pub use dot::{drawn_nodes, to_dot};
 pub use format::{machine_format, MachineFormat};
 pub use interface::{fits, global_of, DeclaredOutcome, Interface, Param};
 pub use label::{parse_label, Label, LabelError, TIME_TESTS};

@@ -43,9 +43,11 @@ pub struct Composite {
     pub on_entry: Vec<Action>,
     pub on_exit: Vec<Action>,
     pub internal: Vec<Action>,
-    /// An atomic state in a region whose transitions test the time, kept only for its clock
-    /// (the other regions' moves do not restart it): it holds no states and draws as none.
+    /// An atomic state of a region, kept as written and for its clock (the other regions'
+    /// moves do not restart it): it holds no states, and draws as a state.
     pub atomic: bool,
+    /// A parallel state: the states directly in it are regions.
+    pub parallel: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -49,7 +49,9 @@ function drawMachines() {
     }
     joinBacks(edges);
     const nodeOf = new Map(chart.states.map((s) => [s.id, s.node]));
-    drawn.set(chart.name, { section, nodes, edges, nodeOf, current: null, fired: [] });
+    // A state of a parallel state's regions is drawn as one node a region: all of them light.
+    const allOf = new Map(chart.states.map((s) => [s.id, [s.node].concat(s.also || [])]));
+    drawn.set(chart.name, { section, nodes, edges, nodeOf, allOf, current: null, lit: [], fired: [] });
   }
   markUncovered();
 }
@@ -95,19 +97,27 @@ function renderMachine(m) {
   d.section.querySelector(".mode").textContent = m.mode + (m.halted ? ": " + m.halted : "");
   d.section.querySelector(".state-name").textContent = m.state_name || "";
   d.section.querySelector(".fired").textContent = m.fired ? "after " + m.fired.label : "";
-  const node = m.state === null ? null : d.nodeOf.get(m.state);
-  if (d.current !== node) {
-    if (d.current && d.nodes.get(d.current)) d.nodes.get(d.current).classList.remove("current");
-    if (node && d.nodes.get(node)) d.nodes.get(node).classList.add("current");
-    d.current = node;
+  if (d.current !== m.state) {
+    for (const g of d.lit) g.classList.remove("current");
+    d.lit = (m.state === null ? [] : d.allOf.get(m.state) || []).map((n) => d.nodes.get(n)).filter((g) => g);
+    for (const g of d.lit) g.classList.add("current");
+    d.current = m.state;
   }
   for (const g of d.fired) g.classList.remove("fired");
   d.fired = [];
   if (m.fired) {
-    const key = d.nodeOf.get(m.fired.from) + "->" + d.nodeOf.get(m.fired.to);
-    for (const g of d.edges.get(key) || []) {
-      g.classList.add("fired");
-      d.fired.push(g);
+    const from = d.allOf.get(m.fired.from) || [];
+    const to = d.allOf.get(m.fired.to) || [];
+    let keys = [d.nodeOf.get(m.fired.from) + "->" + d.nodeOf.get(m.fired.to)];
+    // A move of regions: each region's node that changed, from its old node.
+    if (from.length > 1 || to.length > 1) {
+      keys = from.flatMap((a) => to.filter((b) => !from.includes(b)).map((b) => a + "->" + b));
+    }
+    for (const key of keys) {
+      for (const g of d.edges.get(key) || []) {
+        g.classList.add("fired");
+        d.fired.push(g);
+      }
     }
   }
 }

@@ -29,6 +29,10 @@ pub struct ChartState {
     pub name: String,
     /// Its group's title in the SVG.
     pub node: String,
+    /// The other nodes lit with it: a state of a parallel state's regions is drawn as one
+    /// state a region (`docs/spec/behaviour.md` §3.2).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub also: Vec<String>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -41,13 +45,19 @@ pub struct ChartTransition {
 impl Chart {
     /// A machine as `proclaim draw` draws it.
     pub fn of_machine(machine: &Machine, start: bool) -> Chart {
+        let drawn = proclaim_fsm::drawn_nodes(machine);
         let states = machine
             .states
             .iter()
-            .map(|s| ChartState {
-                id: s.id,
-                name: s.name.clone(),
-                node: node(s.id),
+            .zip(drawn)
+            .map(|(s, (_, mut nodes))| {
+                let regions = nodes.len() > 1 || nodes.first().is_some_and(|n| n.starts_with('a'));
+                ChartState {
+                    id: s.id,
+                    name: s.name.clone(),
+                    node: if regions { nodes.remove(0) } else { node(s.id) },
+                    also: if regions { nodes } else { Vec::new() },
+                }
             })
             .collect();
         let transitions = machine
@@ -85,6 +95,7 @@ impl Chart {
                 id: *id,
                 name: name.to_string(),
                 node: node(*id),
+                also: Vec::new(),
             })
             .collect();
         let transitions = transitions
@@ -112,6 +123,7 @@ impl Chart {
                 id,
                 name,
                 node: node(id),
+                also: Vec::new(),
             })
             .collect();
         let transitions: Vec<ChartTransition> = transitions

@@ -29,6 +29,8 @@ struct Coverage {
     answers_of_theories: usize,
     /// Arrivals in a state nested in a composite one (its name a path).
     nested_arrivals: usize,
+    /// Arrivals in a state of a parallel state's regions (one atomic state a region).
+    region_arrivals: usize,
     /// Firings that resumed a composite's history.
     resumed: usize,
     /// Firings of a composite's transition that tests the time (counted from its entry).
@@ -182,6 +184,9 @@ fn conform(seeds: std::ops::Range<u64>) {
                             coverage.arguments += 1
                         }
                         Event::Control { .. } => coverage.commands += 1,
+                        Event::Entered { state, .. } if state.contains(", ") => {
+                            coverage.region_arrivals += 1
+                        }
                         Event::Entered { state, .. } if state.contains('.') => {
                             coverage.nested_arrivals += 1
                         }
@@ -221,6 +226,7 @@ fn conform(seeds: std::ops::Range<u64>) {
         coverage.commands > 0
             && coverage.answers_of_theories > 0
             && coverage.nested_arrivals > 0
+            && coverage.region_arrivals > 0
             && coverage.resumed > 0
             && coverage.composite_time > 0
             && coverage.arguments > 0

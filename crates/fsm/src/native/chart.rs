@@ -555,12 +555,12 @@ impl Tree {
         (node..self.nodes.len()).any(|n| self.nodes[n].parallel && self.chain(n).any(|a| a == node))
     }
 
-    /// Whether `node` is an atomic state in a region whose transitions test the time: it keeps
-    /// a clock of its own, which the other regions' moves do not restart.
-    pub(super) fn region_clock(&self, node: usize) -> bool {
+    /// Whether `node` is an atomic state in a region: a flat state is one of each region's,
+    /// so it is kept as written (for drawing) with a clock of its own, which the other
+    /// regions' moves do not restart.
+    pub(super) fn in_region(&self, node: usize) -> bool {
         self.nodes[node].children.is_empty()
             && self.chain(node).skip(1).any(|n| self.nodes[n].parallel)
-            && self.timed(node)
     }
 
     /// The states a move below `domain` to `target` enters, in file order: those around

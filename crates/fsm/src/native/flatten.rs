@@ -73,8 +73,8 @@ pub(super) struct Flattening<'t> {
     made: Vec<bool>,
     taken: HashSet<StateId>,
     next: StateId,
-    /// The states whose time a clock keeps: composites, and the atomic states in a region
-    /// whose transitions test the time. Their place is their index in `Chart::composites`.
+    /// The states whose time a clock keeps: composites, and the atomic states of regions.
+    /// Their place is their index in `Chart::composites`.
     clocks: Vec<Option<usize>>,
     /// A state whose combinations pass [`MOST_ARMS`]: its line.
     pub too_many: Option<usize>,
@@ -86,7 +86,7 @@ impl<'t> Flattening<'t> {
         let mut clocks = Vec::new();
         let mut next_clock = 0;
         for n in 0..tree.nodes.len() {
-            let holds = !tree.nodes[n].children.is_empty() || tree.region_clock(n);
+            let holds = !tree.nodes[n].children.is_empty() || tree.in_region(n);
             clocks.push(holds.then(|| {
                 next_clock += 1;
                 next_clock - 1
@@ -458,6 +458,7 @@ impl<'t> Flattening<'t> {
                     on_exit: node.exit.clone(),
                     internal: node.internal.clone(),
                     atomic: node.children.is_empty(),
+                    parallel: node.parallel,
                 }
             })
             .collect();

@@ -214,7 +214,11 @@ impl Writer<'_> {
         let pad = "  ".repeat(depth);
         let holds = s.members.iter().any(|m| matches!(m, Member::State(_)));
         let moves = s.members.iter().any(|m| matches!(m, Member::When { .. }));
-        let element = if holds || moves { "state" } else { "final" };
+        let element = match (s.parallel, holds || moves) {
+            (true, _) => "parallel",
+            (false, true) => "state",
+            (false, false) => "final",
+        };
         let _ = write!(out, "{pad}<{element} id=\"{}\"", attr(&s.name));
         let timed = Timed::of(&s, timers(&s), &pad);
         let mut inner = timed.before.clone();

@@ -252,14 +252,6 @@ impl Mapping<'_> {
 
     /// A state (or final state) and everything in it, written at `depth`.
     fn state(&mut self, element: &Element, out: &mut String, depth: usize) {
-        if element.name == "parallel" {
-            self.refuse(
-                element.line,
-                "<parallel>: orthogonal regions are not built yet (docs/spec/behaviour.md §3.2)"
-                    .into(),
-            );
-            return;
-        }
         let pad = "    ".repeat(depth);
         let Some(id) = element.attribute("id") else {
             let what = &element.name;
@@ -271,7 +263,13 @@ impl Mapping<'_> {
         };
         let path = self.names.get(id).cloned().unwrap_or_default();
         let name = path.rsplit('.').next().unwrap_or(&path).to_string();
-        let _ = writeln!(out, "\n{pad}state {name} {{ {}", at(element.line));
+        // A `<parallel>`'s children are its regions (§3.2).
+        let keyword = if element.name == "parallel" {
+            "parallel"
+        } else {
+            "state"
+        };
+        let _ = writeln!(out, "\n{pad}{keyword} {name} {{ {}", at(element.line));
         let mut inner = String::new();
         let mut whens = String::new();
         for child in &element.children {

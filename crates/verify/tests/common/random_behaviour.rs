@@ -4,7 +4,8 @@
 //! sub-machine control and final states, sometimes with a small `.dl` theory whose answers the
 //! labels ask, sometimes with states nested in composite states (two deep at most, with their
 //! own activities, transitions and `when done`, and states beside them that resume their
-//! history), transitions with actions of their own, and sub-machines that take a parameter `p`
+//! history), now and then side by side as the regions of a parallel state, transitions with
+//! actions of their own, and sub-machines that take a parameter `p`
 //! from whoever starts them or announce an outcome `done` that labels wait on; then a script for
 //! the run and when to run each round. Everything is a function of the seed, so a failure names the seed that repeats
 //! it.
@@ -104,6 +105,8 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     // what they were before nesting was drawn.
     let mut shape = Rng::new(seed ^ 0x5EED_C4A2_0000_0000);
     let mut iface = Rng::new(seed ^ 0x0A7C_0000_1F00_0000);
+    // Regions too, so that the behaviours of a seed are what they were before regions.
+    let mut regions = Rng::new(seed ^ 0x9A2A_11E1_0000_0000);
     let machines = rng.between(1, 4);
     let names = Names {
         machines,
@@ -119,7 +122,7 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     let mut files = Vec::new();
     let mut manifest = String::new();
     for m in 0..names.machines {
-        let text = machine(&mut rng, &mut shape, &names, m);
+        let text = machine(&mut rng, (&mut shape, &mut regions), &names, m);
         files.push((format!("M{m}.machine"), text));
         let _ = writeln!(manifest, "[[machine]]\nfile = \"M{m}.machine\"");
         // The first machine always runs; the others are sometimes sub-machines, always when
@@ -144,7 +147,12 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     }
 }
 
-fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
+fn machine(
+    rng: &mut Rng,
+    (shape, regions): (&mut Rng, &mut Rng),
+    names: &Names,
+    m: usize,
+) -> String {
     let states = rng.between(2, 5);
     let counter = rng.chance(30);
     let mut blocks = Vec::new();
@@ -204,6 +212,7 @@ fn machine(rng: &mut Rng, shape: &mut Rng, names: &Names, m: usize) -> String {
         states,
     };
     let blocks = nest.wrap(shape, blocks, 0);
+    let blocks = nest.parallel(regions, blocks);
     let mut out = format!("machine M{m}\n");
     if names.params[m] {
         out.push_str("param p: int\n");
@@ -254,6 +263,50 @@ struct Nest<'n> {
 }
 
 impl Nest<'_> {
+    /// Now and then, two or three neighbouring states of the top put side by side as the
+    /// regions of a parallel state (§3.2), which has activities and transitions of its own.
+    fn parallel(&self, rng: &mut Rng, mut blocks: Vec<(String, String)>) -> Vec<(String, String)> {
+        let atomic = |b: &(String, String)| b.0.starts_with('S');
+        let starts: Vec<usize> = (0..blocks.len().saturating_sub(1))
+            .filter(|&i| atomic(&blocks[i]) && atomic(&blocks[i + 1]))
+            .collect();
+        if starts.is_empty() || !rng.chance(30) {
+            return blocks;
+        }
+        let from = *rng.pick(&starts);
+        let mut to = from + 2;
+        if to < blocks.len() && atomic(&blocks[to]) && rng.chance(40) {
+            to += 1;
+        }
+        let regions: Vec<_> = blocks.drain(from..to).collect();
+        let mut out = "parallel P0 {\n".to_string();
+        for section in ["entry", "exit", "internal"] {
+            let text = activity(rng, self.names, self.m, self.counter);
+            if !text.is_empty() {
+                let _ = writeln!(out, "    {section} {{\n{text}    }}");
+            }
+        }
+        for _ in 0..rng.below(3) {
+            let target = match rng.below(6) {
+                0 => "P0".to_string(),
+                _ => format!("S{}", rng.below(self.states)),
+            };
+            let label = if rng.chance(35) {
+                "done".to_string()
+            } else {
+                label(rng, self.names, self.counter, 2)
+            };
+            let actions = own_actions(rng, self.names, self.m, self.counter);
+            let _ = writeln!(out, "    when {label} -> {target}{actions}");
+        }
+        for (_, block) in regions {
+            out.push_str(&block);
+        }
+        out.push_str("}\n");
+        blocks.insert(from, ("P0".into(), out));
+        blocks
+    }
+
     /// Now and then, some neighbouring states (name, text) put into a composite state of their
     /// own, and at the first depth some of those again.
     fn wrap(
