@@ -614,20 +614,19 @@ fn liveness_formulas_of_the_test_behaviour_become_a_skeleton_machine() {
     );
 }
 
+/// KSE's attack protocol (`attack = center || center-for || center-for`) is one machine with a
+/// parallel state (an AND-state, §3.2): its roles run side by side as regions and it ends when
+/// every role has.
 #[tokio::test(start_paused = true)]
 async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_done() {
     let (dir, files) = skeleton("attack = center || center-for || center-for\n");
-    assert_eq!(
-        files,
-        [
-            "attack.machine",
-            "center.machine",
-            "center_for.machine",
-            "center_for_2.machine",
-            "behaviour.toml"
-        ]
-    );
+    assert_eq!(files, ["attack.machine", "behaviour.toml"]);
     let b = load("attack", Arc::new(Folder::new(&dir))).unwrap();
+    let text = std::fs::read_to_string(dir.join("attack.machine")).unwrap();
+    assert!(
+        text.contains("parallel Parallel {\n    when done -> End"),
+        "{text}"
+    );
     let open: Vec<String> = proclaim_behaviour::check_behaviour(&b)
         .iter()
         .map(|d| d.message.clone())
@@ -636,7 +635,6 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
         open,
         [
             "label `centerDone` is answered by no expert and posted by no module",
-            "label `center_forDone` is answered by no expert and posted by no module",
             "label `center_forDone` is answered by no expert and posted by no module",
         ]
     );
@@ -652,75 +650,83 @@ async fn the_attack_protocol_starts_its_roles_together_and_ends_when_all_are_don
     let (mut entered, mut fired) = (Vec::new(), Vec::new());
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while let Ok(Some(e)) = tokio::time::timeout_at(deadline, running.events.recv()).await {
-        if let proclaim_runner::Event::Entered {
-            machine, state, at, ..
-        } = &e
-        {
-            entered.push(format!("{:.1}s {machine} {state}", at.as_secs_f64()));
+        if let proclaim_runner::Event::Entered { state, at, .. } = &e {
+            entered.push(format!("{:.1}s {state}", at.as_secs_f64()));
         }
-        if let proclaim_runner::Event::Fired { machine, label, .. } = &e {
-            fired.push(format!("{machine}: {label}"));
+        if let proclaim_runner::Event::Fired { label, .. } = &e {
+            fired.push(label.clone());
         }
         if running.observe(&e) {
             break;
         }
     }
     running.stop().await;
-    entered.sort();
+    let roles = |c: &str, f: &str, f2: &str| {
+        format!("Parallel.centerBranch.{c}, Parallel.center_forBranch.{f}, Parallel.center_forBranch2.{f2}")
+    };
     assert_eq!(
         entered,
         [
-            "0.0s attack Parallel",
-            "0.0s center center",
-            "0.0s center_for center_for",
-            "0.0s center_for_2 center_for",
-            "1.0s center End",
-            "2.0s attack End",
-            "2.0s center_for End",
-            "2.0s center_for_2 End",
+            format!("0.0s {}", roles("center", "center_for", "center_for2")),
+            format!(
+                "1.0s {}",
+                roles("centerBranchEnd", "center_for", "center_for2")
+            ),
+            format!(
+                "2.0s {}",
+                roles(
+                    "centerBranchEnd",
+                    "center_forBranchEnd",
+                    "center_forBranchEnd2"
+                )
+            ),
+            "2.0s End".to_string(),
         ]
     );
-    // Each role ends announcing `finished`, which the protocol waits on.
-    assert!(
-        fired.contains(
-            &"attack: center.finished && center_for.finished && center_for_2.finished".into()
-        ),
+    // The two center-for roles end in one ringlet, then the protocol is done.
+    assert_eq!(
+        fired,
+        ["centerDone", "center_forDone && center_forDone", "done"],
         "{fired:?}"
     );
 }
 
 /// The Kouretes paper's robot formula (a player takes the center or the center-for role) with
-/// a parallel part beside it: the defined activity is a state holding its choice, the parallel
-/// branches are sub-machines announcing `finished`, and `check` finds only the open labels.
+/// a parallel part beside it: the defined activity is a state holding its choice, inside a
+/// region of the parallel state the `||` is, and `check` finds only the open labels.
 #[test]
-fn a_defined_activity_is_a_nested_state_and_a_parallel_part_waits_on_outcomes() {
+fn a_defined_activity_is_a_nested_state_inside_a_region_of_the_parallel_part() {
     let (dir, files) = skeleton("Striker = (Attack || Track)+\nAttack = center | center-for\n");
+    assert_eq!(files, ["Striker.machine", "behaviour.toml"]);
+    let b = load("striker", Arc::new(Folder::new(&dir))).unwrap();
+    let striker = &b.machines[0].machine;
+    let composites: Vec<(&str, bool)> = (striker.composites.iter())
+        .filter(|c| !c.atomic)
+        .map(|c| (c.name.as_str(), c.parallel))
+        .collect();
     assert_eq!(
-        files,
+        composites,
         [
-            "Striker.machine",
-            "Attack.machine",
-            "Track.machine",
-            "behaviour.toml"
+            ("Parallel", true),
+            ("Parallel.AttackBranch", false),
+            ("Parallel.AttackBranch.Attack", false),
+            ("Parallel.TrackBranch", false),
         ]
     );
-    let b = load("striker", Arc::new(Folder::new(&dir))).unwrap();
-    let attack = &b.machines[1].machine;
-    assert_eq!(attack.composites.len(), 1, "{attack:?}");
-    assert_eq!(attack.composites[0].name, "Attack");
-    let found: Vec<String> = proclaim_behaviour::check_behaviour(&b)
+    let mut found: Vec<String> = proclaim_behaviour::check_behaviour(&b)
         .iter()
         .map(|d| d.message.clone())
         .collect();
+    found.sort();
     assert_eq!(
         found,
         [
+            "label `TrackDone` is answered by no expert and posted by no module",
             "label `againAttack` is answered by no expert and posted by no module",
-            "label `choosecenter` is answered by no expert and posted by no module",
-            "label `choosecenter_for` is answered by no expert and posted by no module",
             "label `centerDone` is answered by no expert and posted by no module",
             "label `center_forDone` is answered by no expert and posted by no module",
-            "label `TrackDone` is answered by no expert and posted by no module",
+            "label `choosecenter_for` is answered by no expert and posted by no module",
+            "label `choosecenter` is answered by no expert and posted by no module",
         ]
     );
 }

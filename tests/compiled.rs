@@ -703,6 +703,43 @@ fn the_searchs_composite_time_test_compiles_to_the_interpreters_trace() {
     );
 }
 
+/// The tracker's runs (a head and legs side by side, `docs/spec/behaviour.md` §3.2): its own
+/// script, and seeded ones of the ball seen, lost and near at any millisecond.
+pub(crate) fn tracker_runs() -> Vec<(String, String, Option<String>)> {
+    let own = std::fs::read_to_string("machines/tracker/ball.script").unwrap();
+    let mut runs = vec![("tracker-own".to_string(), own, Some("5s".to_string()))];
+    let mut seed = 0x5eed_0048_7a4c;
+    for n in 0..8 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script = String::from("ballSeen = false\nballNear = false\ngameOver = false\n");
+        for _ in 0..1 + next(8) {
+            let at = seeded_moment(&mut next, 0, 6_000);
+            let atom = ["ballSeen", "ballNear", "ballSeen", "gameOver"][next(4) as usize];
+            script.push_str(&format!("at {at}ms {atom} = {}\n", next(3) != 0));
+        }
+        let run_for = format!("{}ms", 2_000 + next(6_000));
+        runs.push((format!("tracker-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+/// Regions lower to the flat form every target reads, so a compiled head and legs side by
+/// side write the interpreter's trace byte for byte.
+#[test]
+fn the_trackers_regions_compile_to_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let runs = tracker_runs();
+    let both = runs_agree(
+        "machines/tracker",
+        "tracker",
+        &runs,
+        "\"PLAY.HEAD.TRACK, PLAY.LEGS.WALK\"",
+    );
+    assert!(both > 0, "some run walked while tracking");
+}
+
 /// The GameController behaviour's runs, its sensors' atoms from the script: a whole game with
 /// a penalty and the chest button, one where the script sets only some atoms (the rest no
 /// expert answers), and seeded games of any order at any millisecond, stopped at any time.

@@ -402,6 +402,61 @@ async fn a_nested_state_is_lit_inside_its_composites_cluster() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// A state of a parallel state's regions lights one node a region, each inside its region's
+/// cluster, and a move of both regions lights both edges: the tracker (`machines/tracker`)
+/// replayed at the moment its head and legs both moved on seeing the ball.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_state_of_regions_lights_a_node_in_every_region() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = behaviour_trace("tracker", "5s", "regions");
+    let events: Vec<Json> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let both = 1 + events
+        .iter()
+        .position(|e| e["event"] == "entered" && e["state"] == "PLAY.HEAD.TRACK, PLAY.LEGS.WALK")
+        .expect("the head and the legs both moved");
+    let _replay = replay_page(&client, &trace, "tracker").await;
+    let second = Duration::from_secs(1);
+    let state =
+        "return document.querySelector('[data-machine=\"Striker\"]')?.dataset.state ?? null";
+    // The replay opens at the run's end.
+    until(&client, state, json!("CHEER"), 5 * second).await;
+    eval(
+        &client,
+        &format!("const s = document.getElementById('slider'); s.value = '{both}'; s.dispatchEvent(new Event('input')); return true"),
+    )
+    .await;
+    until(
+        &client,
+        state,
+        json!("PLAY.HEAD.TRACK, PLAY.LEGS.WALK"),
+        3 * second,
+    )
+    .await;
+    // Each lit node and the label of the cluster around it: a head's state in HEAD, a leg's in LEGS.
+    let lit = "return [...document.querySelectorAll('[data-machine=\"Striker\"] g.node.current')].map((n) => \
+        [n.querySelector('text')?.textContent, [...n.closest('svg').querySelectorAll('g.cluster')] \
+        .filter((c) => { const b = c.getBBox(), m = n.getBBox(); return b.x <= m.x && m.x + m.width <= b.x + b.width && b.y <= m.y && m.y + m.height <= b.y + b.height; }) \
+        .map((c) => c.querySelector('text')?.textContent).pop()])";
+    until(
+        &client,
+        lit,
+        json!([["TRACK", "HEAD"], ["WALK", "LEGS"]]),
+        second,
+    )
+    .await;
+    let fired =
+        "return [...document.querySelectorAll('[data-machine=\"Striker\"] g.edge.fired')].length";
+    until(&client, fired, json!(2), second).await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
+
 /// A composite's transition back into itself is drawn out of its cluster to a point and in
 /// again; when it fires, both halves are lit.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -314,3 +314,34 @@ fn a_composites_due_time_test_is_shown_with_its_composite() {
         stdout(&o)
     );
 }
+
+/// A head and legs side by side (`machines/tracker`, §3.2): its properties over both regions
+/// hold, every kick ends (each region's time its own), no transition as written is reported
+/// never to fire for the combinations that cannot happen, and a counterexample names a move of
+/// both regions in one ringlet with each region's clock.
+#[test]
+fn regions_verify_over_both_and_a_joined_move_shows_each_clock() {
+    let o = proclaim(&["verify", "machines/tracker"]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    assert_eq!(stdout(&o).matches(": holds").count(), 3, "{}", stdout(&o));
+    assert!(!stderr(&o).contains("never fires"), "{}", stderr(&o));
+    let o = proclaim(&[
+        "verify",
+        "machines/tracker",
+        "--leads-to",
+        "Striker.PLAY.LEGS.KICK ~> !Striker.PLAY.LEGS.KICK",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let o = proclaim(&[
+        "verify",
+        "machines/tracker",
+        "--never",
+        "Striker.PLAY.HEAD.SCAN_RIGHT && Striker.PLAY.LEGS.KICKED",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    assert!(
+        stdout(&o).contains("(when after_ms(400) && after(1s)); due: after_ms(400) since PLAY.HEAD.SCAN_LEFT, after(1s) since PLAY.LEGS.KICK"),
+        "{}",
+        stdout(&o)
+    );
+}

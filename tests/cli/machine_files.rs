@@ -140,8 +140,9 @@ fn import_maps_an_scxml_document_onto_nested_states_or_says_where_it_cannot() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
-        stderr(&o)
-            .contains("both.scxml:2: error: <parallel>: orthogonal regions are not built yet"),
+        stderr(&o).contains(
+            "both.scxml:2: error: <parallel> holding no states: it has no regions to run"
+        ),
         "{}",
         stderr(&o)
     );

@@ -94,7 +94,9 @@ impl CrossModuleCheck<'_> {
         let file = self.behaviour.files.show(&loaded.file);
         let mut out = lint(m, &file);
         let mut reported: Vec<String> = Vec::new();
-        for t in &m.transitions {
+        // An arm that joins regions' labels says each atom at the first transition's line:
+        // every atom is also in the arm of its own transition alone, at its own line.
+        for t in m.transitions.iter().filter(|t| t.joined.is_empty()) {
             for atom in proclaim_runner::asked(&t.label, m, &self.shared) {
                 let own_status = machine_of_running_type(atom).is_some_and(|n| self.is_machine(n));
                 // A teammate's value (`robot2.ballSeen`) is the team's to check (team.rs).

@@ -1,25 +1,22 @@
 //! Liveness formulas written as a skeleton behaviour of statecharts, as the Kouretes tool
 //! draws them: an activity that has a formula of its own is a state holding that formula's
 //! states (left by `when done` once its last one is reached), a basic activity a state calling
-//! the host function of its name, and each branch of a `||` a sub-machine announcing the
-//! outcome `finished`, started together and waited for together. The choices the formulas
-//! leave open are labels nobody answers yet (`choosePlay`, `SitDownAndStareDone`,
-//! `againPlay`), which `proclaim check` lists.
+//! the host function of its name, and a `||` a parallel state whose regions run its branches
+//! side by side, left by `when done` once every branch has ended (an AND-state,
+//! `docs/spec/behaviour.md` §3.2). The choices the formulas leave open are labels nobody
+//! answers yet (`choosePlay`, `SitDownAndStareDone`, `againPlay`), which `proclaim check`
+//! lists.
 
 use crate::liveness::{Definition, GaiaFormula};
-use proclaim_fsm::{BinOp, FileDiagnostic, Label};
+use proclaim_fsm::{FileDiagnostic, Label};
 use std::fmt::Write;
-
-/// The outcome a branch of a `||` announces when it has run its formula.
-pub const FINISHED: &str = "finished";
 
 /// One machine of the skeleton, as the text of its native file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Skeleton {
     pub name: String,
     pub text: String,
-    /// Whether it starts with the behaviour (the first formula's machine) or is a branch of a
-    /// `||`, started by the state that runs it.
+    /// Whether it starts with the behaviour (the first formula's machine does).
     pub start: bool,
 }
 
@@ -31,14 +28,13 @@ struct Node {
     whens: Vec<(Label, usize)>,
     /// The state it holds that is entered first, for a state holding states.
     initial: Option<usize>,
-    outcome: Option<&'static str>,
+    /// A parallel state: the states it holds are regions, all entered with it.
+    parallel: bool,
 }
 
 /// A machine being drawn up: its states, and where new ones go.
 struct Draft {
     name: String,
-    /// The outcomes it announces (a branch of a `||`: `finished`).
-    outcomes: Vec<&'static str>,
     nodes: Vec<Node>,
     counters: Vec<(String, usize)>,
     into: Option<usize>,
@@ -48,7 +44,6 @@ impl Draft {
     fn new(name: &str) -> Draft {
         Draft {
             name: name.to_string(),
-            outcomes: Vec::new(),
             nodes: Vec::new(),
             counters: Vec::new(),
             into: None,
@@ -83,7 +78,7 @@ impl Draft {
             entry,
             whens: Vec::new(),
             initial: None,
-            outcome: None,
+            parallel: false,
         });
         self.nodes.len() - 1
     }
@@ -96,9 +91,6 @@ impl Draft {
     /// transitions reach them from the one entered first.
     fn text(&self, initial: usize) -> String {
         let mut out = format!("machine {}\n", self.name);
-        if !self.outcomes.is_empty() {
-            let _ = writeln!(out, "outcome {}", self.outcomes.join(", "));
-        }
         let _ = writeln!(out, "initial {}", self.nodes[initial].name);
         self.level(&mut out, None, Some(initial), "");
         out
@@ -127,7 +119,8 @@ impl Draft {
 
     fn write_state(&self, out: &mut String, n: usize, indent: &str) {
         let node = &self.nodes[n];
-        let _ = writeln!(out, "\n{indent}state {} {{", node.name);
+        let keyword = if node.parallel { "parallel" } else { "state" };
+        let _ = writeln!(out, "\n{indent}{keyword} {} {{", node.name);
         let inner = format!("{indent}    ");
         if let Some(initial) = node.initial {
             let _ = writeln!(out, "{inner}initial {}", self.nodes[initial].name);
@@ -139,13 +132,10 @@ impl Draft {
             }
             let _ = writeln!(out, "{inner}}}");
         }
-        if let Some(outcome) = node.outcome {
-            let _ = writeln!(out, "{inner}outcome {outcome}");
-        }
         for (label, target) in &node.whens {
             let _ = writeln!(out, "{inner}when {label} -> {}", self.nodes[*target].name);
         }
-        if node.initial.is_some() {
+        if node.initial.is_some() || node.parallel {
             self.level(out, Some(n), node.initial, &inner);
         }
         let _ = writeln!(out, "{indent}}}");
@@ -183,26 +173,12 @@ fn first_activity(f: &GaiaFormula) -> String {
 
 struct Generator<'a> {
     defs: &'a [Definition],
-    /// The branches' machines, finished.
-    machines: Vec<Skeleton>,
-    taken: Vec<String>,
     expanding: Vec<String>,
     diagnostics: Vec<FileDiagnostic>,
     file: String,
 }
 
 impl Generator<'_> {
-    fn machine_name(&mut self, base: &str) -> String {
-        let mut name = ident(base);
-        let mut n = 1;
-        while self.taken.contains(&name) {
-            n += 1;
-            name = format!("{}_{n}", ident(base));
-        }
-        self.taken.push(name.clone());
-        name
-    }
-
     /// Draws `f`'s states into `draft`, every way out leading to `next`; returns the state
     /// where `f` begins.
     fn compile(&mut self, draft: &mut Draft, f: &GaiaFormula, next: usize) -> usize {
@@ -296,44 +272,31 @@ impl Generator<'_> {
         c
     }
 
-    /// A state starting one sub-machine per branch and waiting until each has announced
-    /// `finished` (a restart clears it, so a branch run again is waited for again).
+    /// A parallel state with a region a branch, each running its branch once to a final
+    /// state, left by `when done` once every region has (§3.2).
     fn parallel(&mut self, draft: &mut Draft, branches: &[GaiaFormula], next: usize) -> usize {
-        let mut entry = Vec::new();
-        let mut finished = Vec::new();
+        let p = draft.state("Parallel", Vec::new());
+        draft.nodes[p].parallel = true;
+        let around = draft.into.replace(p);
         for (k, branch) in branches.iter().enumerate() {
             let base = match branch {
-                GaiaFormula::Activity(a) => a.clone(),
-                _ => format!("{}Branch{}", draft.name, k + 1),
+                GaiaFormula::Activity(a) => format!("{}Branch", ident(a)),
+                _ => format!("Branch{}", k + 1),
             };
-            let name = self.machine_name(&base);
-            self.branch_machine(&name, branch);
-            entry.push(format!("{name}: restart"));
-            finished.push(Label::Name(format!("{name}.{FINISHED}")));
+            let region = draft.state(&base, Vec::new());
+            let outside = draft.into.replace(region);
+            let end = draft.state(&format!("{base}End"), Vec::new());
+            let start = self.compile(draft, branch, end);
+            draft.into = outside;
+            draft.nodes[region].initial = Some(start);
         }
-        let p = draft.state("Parallel", entry);
-        let all = Label::fold(BinOp::And, finished).unwrap_or(Label::TRUE);
-        draft.go(p, all, next);
+        draft.into = around;
+        draft.go(p, Label::Name("done".into()), next);
         p
-    }
-
-    /// A sub-machine running `f` once, then announcing `finished` in its final state.
-    fn branch_machine(&mut self, name: &str, f: &GaiaFormula) {
-        let mut draft = Draft::new(name);
-        draft.outcomes.push(FINISHED);
-        let end = draft.state("End", Vec::new());
-        draft.nodes[end].outcome = Some(FINISHED);
-        let start = self.compile(&mut draft, f, end);
-        self.machines.push(Skeleton {
-            name: name.to_string(),
-            text: draft.text(start),
-            start: false,
-        });
     }
 }
 
-/// The skeleton behaviour of the formulas: the first formula's machine (started at once) first,
-/// then one dormant machine for each branch of a `||`.
+/// The skeleton behaviour of the formulas: one machine, the first formula's, started at once.
 pub fn liveness_machines(file: &str, defs: &[Definition]) -> (Vec<Skeleton>, Vec<FileDiagnostic>) {
     let Some(root) = defs.first() else {
         return (
@@ -347,22 +310,19 @@ pub fn liveness_machines(file: &str, defs: &[Definition]) -> (Vec<Skeleton>, Vec
     };
     let mut g = Generator {
         defs,
-        machines: Vec::new(),
-        taken: Vec::new(),
         expanding: vec![root.name.clone()],
         diagnostics: Vec::new(),
         file: file.to_string(),
     };
-    let name = g.machine_name(&root.name);
+    let name = ident(&root.name);
     let mut draft = Draft::new(&name);
     let end = draft.state("End", Vec::new());
     let start = g.compile(&mut draft, &root.formula, end);
-    let mut machines = vec![Skeleton {
+    let machines = vec![Skeleton {
         name,
         text: draft.text(start),
         start: true,
     }];
-    machines.append(&mut g.machines);
     for d in &defs[1..] {
         let used = g.expanding.contains(&d.name)
             || defs

@@ -210,6 +210,11 @@ pub struct Transition {
     /// history's arms, a parameter or an outcome read as its global): what traces, drawings
     /// and findings show, so a user reads what they wrote. `label` is what every back end runs.
     pub written: Option<Label>,
+    /// The other transitions as written whose labels this one joins to its own, in a state of
+    /// a parallel state's regions (§3.2): each one's composite (as `composite`), its line, and
+    /// whether this arm fires it (a later region's move out of the parallel state is
+    /// preempted). Empty elsewhere: then the whole label is the transition's on `line`.
+    pub joined: Vec<(Option<usize>, usize, bool)>,
 }
 
 impl Transition {

@@ -395,6 +395,7 @@ fn end_transition(
             composite: None,
             enters: Vec::new(),
             written: None,
+            joined: Vec::new(),
         },
     ));
 }

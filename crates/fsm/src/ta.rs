@@ -204,6 +204,7 @@ fn t_line(
             composite: None,
             enters: Vec::new(),
             written: None,
+            joined: Vec::new(),
         }),
         Err(e) => {
             diagnostics.push(FileDiagnostic::error(

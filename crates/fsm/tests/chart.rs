@@ -573,9 +573,9 @@ state DONE { }
     assert!(!read.has_errors(), "{:?}", read.diagnostics);
     let got = clocks(&read.machines[0]);
     let expect = "PLAY.HEAD.LEFT, PLAY.BODY.SEARCH#6 arrived into [PLAY.HEAD.LEFT]
-  after_ms(400) && ballSeen since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
+  after_ms(400) && ballSeen since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT PLAY.BODY.KICK]
   after_ms(400) since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.SEARCH#8 enters [PLAY.HEAD.RIGHT]
-  ballSeen -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#9 enters []
+  ballSeen -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#9 enters [PLAY.BODY.KICK]
   gameOver -> DONE#5 enters []
 PLAY.HEAD.LEFT, PLAY.BODY.KICK#9 arrived into []
   after_ms(400) && kicked since PLAY.HEAD.LEFT -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 enters [PLAY.HEAD.RIGHT]
@@ -588,9 +588,9 @@ PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 arrived into [PLAY.HEAD.LEFT]
   kicked -> DONE#5 enters []
   gameOver -> DONE#5 enters []
 PLAY.HEAD.RIGHT, PLAY.BODY.SEARCH#8 arrived into [PLAY.HEAD.RIGHT]
-  after_ms(400) && ballSeen since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
+  after_ms(400) && ballSeen since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT PLAY.BODY.KICK]
   after_ms(400) since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.SEARCH#6 enters [PLAY.HEAD.LEFT]
-  ballSeen -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#11 enters []
+  ballSeen -> PLAY.HEAD.RIGHT, PLAY.BODY.KICK#11 enters [PLAY.BODY.KICK]
   gameOver -> DONE#5 enters []
 PLAY.HEAD.RIGHT, PLAY.BODY.KICK#7 arrived into [PLAY.HEAD.RIGHT]
   after_ms(400) && kicked since PLAY.HEAD.RIGHT -> PLAY.HEAD.LEFT, PLAY.BODY.KICK#10 enters [PLAY.HEAD.LEFT]
@@ -605,4 +605,49 @@ PLAY.HEAD.RIGHT, PLAY.BODY.KICK#11 arrived into []
 DONE#5 arrived into []
 ";
     assert_eq!(got, expect, "\n{got}");
+}
+
+/// Regions are drawn as written (§3.2): each a dashed cluster holding its states, each state
+/// once, a region's transition between its own states, the parallel state's from its cluster;
+/// a state of every region lights together (`drawn_nodes`).
+#[test]
+fn regions_are_drawn_as_dashed_clusters_of_their_states() {
+    let read = parse_machine(
+        "Striker.machine",
+        "machine Striker
+initial PLAY
+parallel PLAY {
+    when gameOver -> DONE
+    state HEAD {
+        state LEFT { when after_ms(400) -> RIGHT }
+        state RIGHT { when after_ms(400) -> LEFT }
+    }
+    state BODY {
+        state SEARCH { when ballSeen -> KICK }
+        state KICK { }
+    }
+}
+state DONE { }
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let machine = &read.machines[0];
+    let dot = proclaim_fsm::to_dot(machine);
+    for expected in [
+        "label=\"HEAD\\l\"; labeljust=l; style=\"rounded,dashed\"",
+        "a2 [label=\"LEFT\\n\", peripheries=2];",
+        "a5 [label=\"SEARCH\\n\", peripheries=2];",
+        "a2 -> a3 [label=\"1: after_ms(400)\"];",
+        "a3 -> a2 [label=\"1: after_ms(400)\"];",
+        "a5 -> a6 [label=\"1: ballSeen\"];",
+        "ltail=\"cluster_c0\"",
+    ] {
+        assert!(dot.contains(expected), "{expected}\n{dot}");
+    }
+    // Each written state once, and no flat state of the product drawn as a node of its own.
+    assert_eq!(dot.matches("[label=\"LEFT").count(), 1, "{dot}");
+    assert!(!dot.contains("SEARCH ("), "{dot}");
+    let nodes = proclaim_fsm::drawn_nodes(machine);
+    let initial = nodes.iter().find(|(id, _)| *id == machine.initial).unwrap();
+    assert_eq!(initial.1, ["a2", "a5"]);
 }

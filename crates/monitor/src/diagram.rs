@@ -391,11 +391,13 @@ mod tests {
                     id: 0,
                     name: "IDLE".into(),
                     node: node(0),
+                    also: Vec::new(),
                 },
                 ChartState {
                     id: -2,
                     name: "A<B".into(),
                     node: node(-2),
+                    also: Vec::new(),
                 },
             ],
             transitions: vec![ChartTransition {
@@ -436,6 +438,7 @@ mod tests {
                     id,
                     name: format!("S{id}"),
                     node: node(id),
+                    also: Vec::new(),
                 })
                 .collect(),
             transitions,

@@ -432,6 +432,7 @@ mod tests {
                     id: i as i64,
                     name: n.to_string(),
                     node: node(i as i64),
+                    also: Vec::new(),
                 })
                 .collect(),
             transitions: Vec::new(),

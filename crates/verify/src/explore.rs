@@ -784,8 +784,11 @@ mod tests {
             })
         };
         for m in &model.machines {
-            for s in &m.states {
-                add(PropertyKind::Reachable, format!("{}.{}", m.name, s.name));
+            // A state of regions is one of each region's (§3.2).
+            for s in &m.machine.states {
+                let paths = m.machine.atomic_paths(s).into_iter();
+                let each: Vec<String> = paths.map(|p| format!("{}.{p}", m.name)).collect();
+                add(PropertyKind::Reachable, each.join(" && "));
             }
         }
         for slot in &model.slots {

@@ -413,16 +413,45 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
                 .state(id)
                 .map_or_else(|| format!("#{id}"), |s| s.name.clone())
         };
-        let transitions = m.machine.transitions.iter().zip(&fired[k]).map(|(t, &f)| {
-            let from = match t.composite {
-                Some(_) => m
-                    .machine
-                    .written_on(t)
-                    .map_or_else(|| name(t.source), str::to_string),
-                None => name(t.source),
+        // Where a transition was written: its composite (or a region's state), else its state.
+        let from_of = |composite: Option<usize>, source| {
+            composite
+                .and_then(|c| m.machine.composites.get(c))
+                .map_or_else(|| name(source), |c| c.name.clone())
+        };
+        // A transition as written fired if any arm that fires it did, joined with another
+        // region's or alone; it is shown as its arm that fires it alone shows it.
+        let mut credited: std::collections::HashSet<(String, usize)> = Default::default();
+        for (t, &f) in m.machine.transitions.iter().zip(&fired[k]) {
+            if f {
+                for &(c, line, fires) in &t.joined {
+                    if fires {
+                        credited.insert((from_of(c, t.source), line));
+                    }
+                }
+            }
+        }
+        // In a state of regions, where a transition goes is the state it enters that its
+        // source was not in (its region's), however the other regions stand.
+        let regions = m.machine.composites.iter().any(|c| c.parallel);
+        let to_of = |t: &proclaim_fsm::Transition| {
+            let (Some(a), Some(b)) = (m.machine.state(t.source), m.machine.state(t.target)) else {
+                return name(t.target);
             };
-            ((from, name(t.target), t.shown().to_string(), t.line), f)
-        });
+            let before = m.machine.atomic_paths(a);
+            let after = m.machine.atomic_paths(b);
+            match after.iter().find(|p| !before.contains(p)) {
+                Some(p) if regions => p.to_string(),
+                _ => name(t.target),
+            }
+        };
+        let transitions = (m.machine.transitions.iter().zip(&fired[k]))
+            .filter(|(t, _)| t.joined.is_empty())
+            .map(|(t, &f)| {
+                let from = from_of(t.composite, t.source);
+                let fired = f || credited.contains(&(from.clone(), t.line));
+                ((from, to_of(t), t.shown().to_string(), t.line), fired)
+            });
         for (from, to, label, line) in once_each(transitions) {
             findings.push(Finding::NeverFires {
                 machine: m.name.clone(),

@@ -1426,34 +1426,31 @@ impl<'m> Writer<'m> {
     }
 
     /// From the snapshot to the ringlet's end: `saw()`, the first transition that holds (its
-    /// OnExit, the target entered) or Internal, the commands to itself, the next turn.
+    /// OnExit, the target entered) or Internal, the commands to itself, the next turn. One
+    /// indivisible step a machine's state, each its own `d_step` (its first statement the
+    /// guard): SPIN refuses one `d_step` too long, and a state of regions has many arms.
     fn rest_of_ringlet(&mut self) -> Result<(), EmitError> {
         let model = self.model;
-        self.line("d_step {");
-        self.depth += 1;
         self.line("if");
         for (k, m) in model.machines.iter().enumerate() {
             self.machine = k;
             self.self_posts = 0;
-            self.line(&format!(":: ringing == {} ->", k + 1));
-            self.depth += 1;
-            self.line("if");
             for s in 0..m.states.len() {
                 self.state = s;
-                self.line(&format!(":: st[{k}] == {s} ->"));
+                self.line(&format!(
+                    ":: d_step {{ ringing == {} && st[{k}] == {s} ->",
+                    k + 1
+                ));
                 self.depth += 1;
                 self.state_ringlet(k, s)?;
+                self.obey_deferred(k);
+                self.line(&format!("turn = {};", k + 1));
                 self.depth -= 1;
+                self.line("};");
             }
-            self.line("fi;");
-            self.obey_deferred(k);
-            self.line(&format!("turn = {};", k + 1));
-            self.depth -= 1;
         }
         self.line(":: else -> skip;");
         self.line("fi;");
-        self.depth -= 1;
-        self.line("};");
         Ok(())
     }
 

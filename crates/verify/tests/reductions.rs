@@ -30,8 +30,11 @@ fn properties(behaviour: &Behaviour, extra: &[(PropertyKind, &str)]) -> Vec<Prop
     let mut all = manifest_properties(behaviour);
     for m in &behaviour.machines {
         for s in &m.machine.states {
+            // A state of regions is one of each region's (§3.2).
+            let paths = m.machine.atomic_paths(s).into_iter();
+            let each: Vec<String> = paths.map(|p| format!("{}.{p}", m.machine.name)).collect();
             for kind in [PropertyKind::Reachable, PropertyKind::Never] {
-                let expression = format!("{}.{}", m.machine.name, s.name);
+                let expression = each.join(" && ");
                 all.push(PropertySource {
                     name: format!("{} {expression}", kind.word()),
                     kind,

@@ -549,3 +549,61 @@ fn odometer_states_per_second_of_verify_and_spin() {
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
+
+/// Safety only: SPIN's liveness search of this model takes minutes (the checker's, below in
+/// `verify_cli`, a fraction of a second).
+fn tracker_properties() -> [PropertySource; 3] {
+    [
+        property(PropertyKind::Reachable, "Striker.CHEER"),
+        property(
+            PropertyKind::Never,
+            "Striker.PLAY.LEGS.WALK && (Striker.PLAY.HEAD.SCAN_LEFT || Striker.PLAY.HEAD.SCAN_RIGHT)",
+        ),
+        property(PropertyKind::Reachable, "Striker.PLAY.LEGS.KICK"),
+    ]
+}
+
+/// The tracker in a fresh folder; with `turn_first`, a scanning head tries its turn before the
+/// ball, so it may turn away from a ball the legs walk to.
+fn tracker(case: &str, turn_first: bool) -> PathBuf {
+    shipped_copy(
+        case,
+        "tracker",
+        &["ball.script"],
+        "Striker.machine",
+        |machine| {
+            if !turn_first {
+                return machine;
+            }
+            let seen = "            when ballSeen -> TRACK\n";
+            let left = "            when after_ms(400) -> SCAN_RIGHT\n";
+            assert!(
+                machine.contains(&format!("{seen}{left}")),
+                "the fault is seeded"
+            );
+            machine.replace(&format!("{seen}{left}"), &format!("{left}{seen}"))
+        },
+    )
+}
+
+/// Regions read one snapshot (§3.2): the legs walk only while the head tracks the ball, a
+/// property over both regions that the checker and SPIN both find to hold, and both find broken
+/// once a scanning head turns before it looks at the ball.
+#[test]
+fn spin_agrees_with_the_checker_on_a_head_and_legs_side_by_side() {
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(
+        both("tracker", &tracker("tracker", false), &tracker_properties()),
+        [Verdict::Holds, Verdict::Holds, Verdict::Holds]
+    );
+    assert_eq!(
+        both(
+            "tracker-turn-first",
+            &tracker("tracker-turn-first", true),
+            &tracker_properties()
+        ),
+        [Verdict::Holds, Verdict::Fails, Verdict::Holds]
+    );
+}

@@ -34,6 +34,9 @@ struct FlatArm {
     written_on: Option<usize>,
     /// The clock holders it enters, outermost first.
     enters: Vec<usize>,
+    /// The other transitions whose labels it joins: where each was written, its line, and
+    /// whether it fires (a later region's move out of the parallel state is preempted).
+    joined: Vec<(Option<usize>, usize, bool)>,
 }
 
 /// One transition a state selects: written on `source`, to `target` (where a history arm
@@ -51,6 +54,9 @@ struct Condition {
     label: Label,
     unclocked: Label,
     written: Label,
+    /// The state the transition was written on, and its line.
+    source: usize,
+    line: usize,
 }
 
 /// What the active states select when the labels of its conditions hold, and what fires.
@@ -243,6 +249,8 @@ impl<'t> Flattening<'t> {
                         label: clocked,
                         unclocked: label,
                         written: w.label.clone(),
+                        source: node,
+                        line: w.line,
                     }],
                     fires: vec![Fire {
                         source: node,
@@ -349,6 +357,13 @@ impl<'t> Flattening<'t> {
                 .iter()
                 .copied()
                 .filter(|&n| self.clocks[n].is_some())
+                .collect(),
+            joined: (choice.conditions.iter().skip(1))
+                .map(|c| {
+                    let fires = (choice.fires.iter())
+                        .any(|f| f.source == c.source && f.written.line == c.line);
+                    (Some(c.source), c.line, fires)
+                })
                 .collect(),
         }
     }
@@ -480,6 +495,9 @@ impl<'t> Flattening<'t> {
                     composite: arm.written_on.and_then(|n| self.clocks[n]),
                     enters: arm.enters.iter().filter_map(|&n| self.clocks[n]).collect(),
                     written: arm.written,
+                    joined: (arm.joined.iter())
+                        .map(|&(n, line, fires)| (n.and_then(|n| self.clocks[n]), line, fires))
+                        .collect(),
                 });
             }
         }

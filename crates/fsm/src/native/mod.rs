@@ -530,6 +530,7 @@ impl Lowering<'_> {
                 composite: None,
                 enters: Vec::new(),
                 written: None,
+                joined: Vec::new(),
             }),
             Err(message) => {
                 self.error(when.target_at, message);

@@ -252,6 +252,17 @@ impl Mapping<'_> {
 
     /// A state (or final state) and everything in it, written at `depth`.
     fn state(&mut self, element: &Element, out: &mut String, depth: usize) {
+        let regions = element
+            .children
+            .iter()
+            .filter(|c| STATES.contains(&c.name.as_str()));
+        if element.name == "parallel" && regions.count() == 0 {
+            self.refuse(
+                element.line,
+                "<parallel> holding no states: it has no regions to run".into(),
+            );
+            return;
+        }
         let pad = "    ".repeat(depth);
         let Some(id) = element.attribute("id") else {
             let what = &element.name;
@@ -572,7 +583,7 @@ impl Mapping<'_> {
             self.refuse(
                 line,
                 format!(
-                    "target \"{}\": several targets enter regions, which are not built yet",
+                    "target \"{}\": several targets (one a region) do not map yet: target one state, and the other regions enter at their initial",
                     ids.join(" ")
                 ),
             );
