@@ -1,7 +1,8 @@
-//! Nested states lowered to flat ones (`docs/spec/behaviour.md` §3.2): a flat state for each
-//! atomic state and set of states a move into it enters, each composite's transitions copied to
-//! every state inside it with what firing them leaves, so that every back end runs a chart as
-//! the flat machine it already runs and their traces agree by construction.
+//! A chart read as written (`docs/spec/behaviour.md` §3.2): its states as a tree, each
+//! transition's target and history found, names checked; and the walks over that tree that
+//! lowering needs (what a move enters and leaves, which state is active, when `done` holds).
+//! `flatten.rs` lowers it to the flat machine every back end already runs, so their traces
+//! agree by construction.
 
 use super::ast::{Ref, StateAst};
 use super::flatten::Flattening;

@@ -446,7 +446,7 @@ impl<'t> Flattening<'t> {
         let single = atomics.len() == 1;
         let more = left
             .iter()
-            .any(|&n| !(single && n == atomics[0]) && !tree.nodes[n].exit.is_empty());
+            .any(|&n| (!single || n != atomics[0]) && !tree.nodes[n].exit.is_empty());
         if noted.is_empty() && own.is_empty() && single && !more {
             return None;
         }
