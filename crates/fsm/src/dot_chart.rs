@@ -110,11 +110,14 @@ impl<'m> Drawing<'m> {
         };
         let before = self.machine.atomic_paths(from);
         let entered = self.machine.atomic_paths(to);
-        match entered.iter().find(|p| !before.contains(p)) {
-            Some(path) if entered.len() > 1 => match self.atomic(path) {
+        let own = t.composite.filter(|&c| self.machine.composites[c].atomic);
+        match (entered.iter().find(|p| !before.contains(p)), own) {
+            (Some(path), _) if entered.len() > 1 => match self.atomic(path) {
                 Some(c) => format!("{}a{c}", self.prefix),
                 None => self.node(t.target),
             },
+            // A region's move back into its own state: drawn back to it.
+            (None, Some(c)) if entered.len() > 1 => format!("{}a{c}", self.prefix),
             _ => self.node(t.target),
         }
     }

@@ -651,3 +651,57 @@ state DONE { }
     let initial = nodes.iter().find(|(id, _)| *id == machine.initial).unwrap();
     assert_eq!(initial.1, ["a2", "a5"]);
 }
+
+/// What a review of regions found: a move to its own region's history leaves the parallel
+/// state, so it fires alone (never two states of one region); a region's move back into its
+/// own state is drawn back to it; a state whose regions' combinations pass 4,096 is refused.
+#[test]
+fn a_regions_history_leaves_alone_a_loop_is_drawn_home_and_too_many_arms_are_refused() {
+    let read = parse_machine(
+        "M.machine",
+        "machine M
+parallel P {
+    state R {
+        state r1 { when x -> R.history }
+        state r2 { when z -> r1 }
+    }
+    state S {
+        state s1 {
+            when y -> s2
+            when tick -> s1
+        }
+        state s2 { when w -> s1 }
+    }
+}
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let machine = &read.machines[0];
+    for s in &machine.states {
+        let in_s = machine
+            .atomic_paths(s)
+            .iter()
+            .filter(|p| p.starts_with("P.S."))
+            .count();
+        assert!(in_s <= 1, "{} is two states of one region", s.name);
+    }
+    let dot = proclaim_fsm::to_dot(machine);
+    assert!(dot.contains("a5 -> a5 [label=\"2: tick\"];"), "{dot}");
+
+    let many: String = (0..17).map(|i| format!("when x{i} -> X2\n")).collect();
+    let region = |r: &str| format!("state {r} {{ state X1 {{ {many} }} state X2 {{ }} }}\n");
+    let text = format!(
+        "machine M\nparallel P {{\n{}{}{}}}\n",
+        region("A"),
+        region("B"),
+        region("C")
+    );
+    let read = parse_machine("M.machine", &text);
+    let refused: Vec<String> = read.diagnostics.iter().map(|d| d.message.clone()).collect();
+    assert!(
+        refused
+            .iter()
+            .any(|m| m.contains("more than 4096 combinations in one state")),
+        "{refused:?}"
+    );
+}

@@ -423,7 +423,8 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
         // region's or alone; it is shown as its arm that fires it alone shows it.
         let mut credited: std::collections::HashSet<(String, usize)> = Default::default();
         for (t, &f) in m.machine.transitions.iter().zip(&fired[k]) {
-            if f {
+            if f && !t.joined.is_empty() {
+                credited.insert((from_of(t.composite, t.source), t.line));
                 for &(c, line, fires) in &t.joined {
                     if fires {
                         credited.insert((from_of(c, t.source), line));

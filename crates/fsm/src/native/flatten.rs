@@ -280,6 +280,11 @@ impl<'t> Flattening<'t> {
                 }
                 let mut combos = vec![x.clone()];
                 for later in &per_region[a + 1..] {
+                    // Bounded before the combinations are made, not after.
+                    if combos.len() * (later.len() + 1) + out.len() > MOST_ARMS {
+                        self.too_many.get_or_insert(tree.nodes[parallel].at);
+                        return out;
+                    }
                     let mut next = Vec::new();
                     for combo in &combos {
                         for y in later {
@@ -293,13 +298,13 @@ impl<'t> Flattening<'t> {
                         // None of this region's holds: the order says so, no label needed.
                         next.push(combo.clone());
                     }
-                    if next.len() > MOST_ARMS {
-                        self.too_many.get_or_insert(tree.nodes[parallel].at);
-                        next.truncate(MOST_ARMS);
-                    }
                     combos = next;
                 }
                 out.extend(combos);
+                if out.len() > MOST_ARMS {
+                    self.too_many.get_or_insert(tree.nodes[parallel].at);
+                    return out;
+                }
             }
         }
         out
@@ -307,8 +312,10 @@ impl<'t> Flattening<'t> {
 
     /// Whether what `choice` fires leaves `parallel` (its domain is around it).
     fn leaves(&self, choice: &Choice<'_>, parallel: usize) -> bool {
+        // The domain of the transition as written: a move to a history resumes a state inside
+        // its target, but leaves what the written target's domain says.
         choice.fires.iter().any(|f| {
-            let domain = self.tree.domain(f.source, f.target);
+            let domain = self.tree.domain(f.source, f.written.target);
             !domain.is_some_and(|d| self.tree.chain(d).any(|n| n == parallel) && d != parallel)
         })
     }
