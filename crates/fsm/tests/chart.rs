@@ -545,16 +545,8 @@ REST#3 arrived into []
     assert_eq!(got, expect, "\n{got}");
 }
 
-/// A parallel state's regions run side by side (`docs/spec/behaviour.md` §3.2): a flat state
-/// for each pair of their states, whose arms are the combinations of what each region selects,
-/// the first region's first; a transition that leaves the parallel state fires alone and is
-/// preempted by an earlier region's move; each turn of the head keeps its own clock, which the
-/// body's moves do not restart.
-#[test]
-fn regions_lower_to_the_combinations_of_their_choices() {
-    let read = parse_machine(
-        "Striker.machine",
-        "machine Striker
+/// A striker whose head turns beside a body that searches and kicks: two regions.
+const STRIKER: &str = "machine Striker
 initial PLAY
 parallel PLAY {
     when gameOver -> DONE
@@ -568,8 +560,16 @@ parallel PLAY {
     }
 }
 state DONE { }
-",
-    );
+";
+
+/// A parallel state's regions run side by side (`docs/spec/behaviour.md` §3.2): a flat state
+/// for each pair of their states, whose arms are the combinations of what each region selects,
+/// the first region's first; a transition that leaves the parallel state fires alone and is
+/// preempted by an earlier region's move; each turn of the head keeps its own clock, which the
+/// body's moves do not restart.
+#[test]
+fn regions_lower_to_the_combinations_of_their_choices() {
+    let read = parse_machine("Striker.machine", STRIKER);
     assert!(!read.has_errors(), "{:?}", read.diagnostics);
     let got = clocks(&read.machines[0]);
     let expect = "PLAY.HEAD.LEFT, PLAY.BODY.SEARCH#6 arrived into [PLAY.HEAD.LEFT]
@@ -612,24 +612,7 @@ DONE#5 arrived into []
 /// a state of every region lights together (`drawn_nodes`).
 #[test]
 fn regions_are_drawn_as_dashed_clusters_of_their_states() {
-    let read = parse_machine(
-        "Striker.machine",
-        "machine Striker
-initial PLAY
-parallel PLAY {
-    when gameOver -> DONE
-    state HEAD {
-        state LEFT { when after_ms(400) -> RIGHT }
-        state RIGHT { when after_ms(400) -> LEFT }
-    }
-    state BODY {
-        state SEARCH { when ballSeen -> KICK }
-        state KICK { }
-    }
-}
-state DONE { }
-",
-    );
+    let read = parse_machine("Striker.machine", STRIKER);
     assert!(!read.has_errors(), "{:?}", read.diagnostics);
     let machine = &read.machines[0];
     let dot = proclaim_fsm::to_dot(machine);
