@@ -62,14 +62,7 @@ pub fn body(
     let id = |state: i64| format!("{prefix}s{}", node(state));
     if !machine.composites.is_empty() {
         crate::dot_chart::chart_body(out, machine, prefix, indent);
-        let nodes = crate::dot_chart::state_nodes(machine, prefix);
-        let mut started = Vec::new();
-        for (state, (_, drawn)) in machine.states.iter().zip(&nodes) {
-            let from = drawn.first().cloned().unwrap_or_else(|| id(state.id));
-            started.extend(starts(state).map(|machine| (from.clone(), machine)));
-        }
-        started.dedup();
-        return started;
+        return crate::dot_chart::start_nodes(machine, prefix, |s| starts(s).collect());
     }
     let _ = writeln!(out, "{indent}{prefix}start [shape=point, width=0.15];");
     let _ = writeln!(out, "{indent}{prefix}start -> {};", id(machine.initial));
@@ -95,7 +88,7 @@ pub fn body(
             "{indent}{} [label=\"{label}\"{peripheries}];",
             id(state.id)
         );
-        started.extend(starts(state).map(|machine| (id(state.id), machine)));
+        started.extend(starts(state).map(|(_, machine)| (id(state.id), machine)));
     }
     for state in &machine.states {
         for (priority, t) in machine.outgoing(state.id).enumerate() {
@@ -112,8 +105,8 @@ pub fn body(
     started
 }
 
-/// The machines a state's arrival starts.
-fn starts(state: &State) -> impl Iterator<Item = String> + '_ {
+/// The machines a state's arrival starts, each with the posting that starts it.
+fn starts(state: &State) -> impl Iterator<Item = (&Action, String)> + '_ {
     state.on_entry.iter().filter_map(|action| match action {
         // Spelled exactly: `Light: on` is a lamp's state, not a command.
         Action::Post { ty, content }
@@ -121,7 +114,7 @@ fn starts(state: &State) -> impl Iterator<Item = String> + '_ {
                 .iter()
                 .any(|c| c.word() == content) =>
         {
-            Some(ty.clone())
+            Some((action, ty.clone()))
         }
         _ => None,
     })

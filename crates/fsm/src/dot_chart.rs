@@ -35,6 +35,32 @@ pub(crate) fn state_nodes(machine: &Machine, prefix: &str) -> Vec<(StateId, Vec<
         .collect()
 }
 
+/// Each state's posted start, as `starting` finds them in a flat state's OnEntry, and the node
+/// it is drawn from: the state as written that posts it (a region's state, or one inside the
+/// composite that does), so a start is not drawn from another region's state.
+pub(crate) fn start_nodes<'s>(
+    machine: &'s Machine,
+    prefix: &str,
+    starting: impl Fn(&'s State) -> Vec<(&'s Action, String)>,
+) -> Vec<(String, String)> {
+    let drawing = Drawing::new(machine, prefix);
+    let mut started = Vec::new();
+    for state in &machine.states {
+        for (action, started_machine) in starting(state) {
+            let writer = machine.composite_writing(state, action, |c| &c.on_entry);
+            let at = writer.and_then(|w| {
+                let c = machine.composites.iter().position(|c| std::ptr::eq(c, w))?;
+                Some(drawing.node_inside(state, c))
+            });
+            let from = at.unwrap_or_else(|| drawing.node(state.id));
+            if !started.contains(&(from.clone(), started_machine.clone())) {
+                started.push((from, started_machine));
+            }
+        }
+    }
+    started
+}
+
 struct Drawing<'m> {
     machine: &'m Machine,
     prefix: &'m str,
@@ -94,6 +120,23 @@ impl<'m> Drawing<'m> {
                 }
             })
             .collect()
+    }
+
+    /// The node of flat state `state` in composite `c`: a region's state itself, else the
+    /// first of the state's nodes inside it.
+    fn node_inside(&self, state: &State, c: usize) -> String {
+        let composite = &self.machine.composites[c];
+        if composite.atomic {
+            return format!("{}a{c}", self.prefix);
+        }
+        let inside = |path: &str| {
+            (path.strip_prefix(composite.name.as_str())).is_some_and(|rest| rest.starts_with('.'))
+        };
+        let paths = self.machine.atomic_paths(state);
+        match paths.iter().position(|p| inside(p)) {
+            Some(i) => self.nodes(state).swap_remove(i),
+            None => self.node(state.id),
+        }
     }
 
     /// The atomic state of a region `path` names (an index into the composites).
@@ -266,11 +309,13 @@ impl<'m> Drawing<'m> {
             let number = numbers.entry(from).or_default();
             *number += 1;
             let label = format!("{number}: {}", escape(&t.shown().to_string()));
-            let (source, target) = (self.node(t.source), self.target_node(t));
+            let target = self.target_node(t);
             let cluster_of = t.composite.filter(|&c| !self.machine.composites[c].atomic);
-            let source = match t.composite {
-                Some(c) if cluster_of.is_none() => format!("{}a{c}", self.prefix),
-                _ => source,
+            // A composite's transition leaves from a node inside its cluster (Graphviz clips
+            // the edge there), never from another region's state.
+            let source = match (t.composite, self.machine.state(t.source)) {
+                (Some(c), Some(state)) => self.node_inside(state, c),
+                _ => self.node(t.source),
             };
             let Some(c) = cluster_of else {
                 let _ = writeln!(out, "{indent}{source} -> {target} [label=\"{label}\"];");

@@ -132,21 +132,26 @@ impl Machine {
 
     /// The composite that wrote `action`, which the flat state `state` runs in the activity
     /// `section` picks (a composite's OnEntry for an arrival): the innermost around it whose
-    /// activity holds it as written; `None` when the state's own text did.
+    /// activity holds it as written; `None` when the state's own text did. A state of regions
+    /// is looked for in each region's state (each kept as a composite) and around it.
     pub fn composite_writing(
         &self,
         state: &State,
         action: &Action,
         section: ActivityOf,
     ) -> Option<&Composite> {
-        let mut around = self.composite_of(state);
-        while let Some(c) = around.and_then(|c| self.composites.get(c)) {
-            if section(c).contains(action) {
-                return Some(c);
+        self.atomic_paths(state).into_iter().find_map(|path| {
+            let named = |name: &str| self.composites.iter().position(|c| c.name == name);
+            let mut around =
+                named(path).or_else(|| path.rsplit_once('.').and_then(|(outer, _)| named(outer)));
+            while let Some(c) = around.and_then(|c| self.composites.get(c)) {
+                if section(c).contains(action) {
+                    return Some(c);
+                }
+                around = c.parent;
             }
-            around = c.parent;
-        }
-        None
+            None
+        })
     }
 
     /// The line that wrote `action`, which the flat state `state` runs in one of its

@@ -688,3 +688,88 @@ parallel P {
         "{refused:?}"
     );
 }
+
+/// A state inside a region keeps no id of its own at run time (it runs as combinations with
+/// the other regions' states), so an id written on it is said to name it in the file only;
+/// the reference `-> #5` still reaches it.
+#[test]
+fn an_id_written_inside_a_region_is_said_to_name_it_in_the_file_only() {
+    let read = parse_machine(
+        "M.machine",
+        "machine M
+parallel P {
+    state R {
+        state r1 #5 { when x -> r2 }
+        state r2 { when y -> #5 }
+    }
+    state S { state s1 { } }
+}
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let said: Vec<String> = (read.diagnostics.iter())
+        .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+        .collect();
+    assert_eq!(
+        said,
+        [
+            "4: `#5` names `P.R.r1` in this file only: a state inside a region runs as one of its \
+          combinations with the other regions' states, which are numbered afresh, so a trace \
+          will not show #5"
+        ]
+    );
+    let machine = &read.machines[0];
+    let back = machine
+        .transitions
+        .iter()
+        .find(|t| t.label.to_string() == "y");
+    let target = back
+        .and_then(|t| machine.state(t.target))
+        .expect("the move back");
+    assert_eq!(machine.atomic_paths(target), ["P.R.r1", "P.S.s1"]);
+}
+
+/// A composite inside a region is drawn leaving from a node inside its own cluster, and a
+/// sub-machine a region's state starts is drawn started from that state, not from whichever
+/// region's state comes first in the combination.
+#[test]
+fn a_composite_in_a_region_leaves_its_own_cluster_and_a_regions_start_is_drawn_from_it() {
+    let read = parse_machine(
+        "M.machine",
+        "machine M
+parallel P {
+    state H {
+        state look { when seen -> track }
+        state track { }
+    }
+    state B {
+        state guard { when coming -> DIVE }
+        state DIVE {
+            when done -> guard
+            state aim { when go -> fall }
+            state fall {
+                entry {
+                    Dive: restart
+                }
+            }
+        }
+    }
+}
+",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let machine = &read.machines[0];
+    let mut dot = String::new();
+    let started = proclaim_fsm::dot::body(&mut dot, machine, "", "");
+    let node = |name: &str| {
+        let line = dot
+            .lines()
+            .find(|l| l.contains(&format!("[label=\"{name}\\n")));
+        line.and_then(|l| l.split_whitespace().next())
+            .expect(name)
+            .to_string()
+    };
+    let done = format!("{} -> {} [label=\"1: done\"", node("fall"), node("guard"));
+    assert!(dot.contains(&done), "{done}\n{dot}");
+    assert_eq!(started, [(node("fall"), "Dive".to_string())], "{dot}");
+}

@@ -62,6 +62,18 @@ pub(super) fn lower_chart(
         );
         return None;
     }
+    for (n, id) in flat.ids_not_kept() {
+        let node = &tree.nodes[n];
+        lowering.warn(
+            node.at,
+            format!(
+                "`#{id}` names `{}` in this file only: a state inside a region runs as one of \
+                 its combinations with the other regions' states, which are numbered afresh, \
+                 so a trace will not show #{id}",
+                node.path
+            ),
+        );
+    }
     Some(flat.finish(first))
 }
 

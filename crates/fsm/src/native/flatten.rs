@@ -466,6 +466,15 @@ impl<'t> Flattening<'t> {
         Some(noted)
     }
 
+    /// The atomic states whose written id no flat state took: those inside regions, whose flat
+    /// states are each a combination of one state from every region.
+    pub(super) fn ids_not_kept(&self) -> Vec<(usize, StateId)> {
+        (0..self.tree.nodes.len())
+            .filter(|&n| self.tree.nodes[n].children.is_empty())
+            .filter_map(|n| Some((n, self.tree.nodes[n].id.filter(|_| self.ids[n].is_some())?)))
+            .collect()
+    }
+
     pub(super) fn finish(mut self, initial: usize) -> Chart {
         let tree = self.tree;
         let composites: Vec<Composite> = (0..tree.nodes.len())
