@@ -641,3 +641,35 @@ fn corpus_dir() -> Option<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.is_dir().then_some(dir)
 }
+
+/// A word where a name is due is a name, keyword or not: SCXML documents call states `initial`
+/// and `entry`, and a quoted name or an id ends the wait for one.
+#[test]
+fn a_keyword_where_a_name_is_due_is_a_name() {
+    let text = "machine M
+initial initial
+state initial {
+    when go -> entry
+}
+state entry {
+    when TRUE -> state
+}
+state \"state\" #7 {
+    entry {
+        Say: hi
+    }
+}
+";
+    let read = proclaim_fsm::parse_machine("M.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let m = &read.machines[0];
+    let names: Vec<&str> = m.states.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["initial", "entry", "state"]);
+    assert_eq!(m.state(m.initial).map(|s| s.name.as_str()), Some("initial"));
+    assert_eq!(
+        m.states[2].on_entry.len(),
+        1,
+        "the quoted name's body still reads"
+    );
+    assert_eq!(m.transitions[1].target, 7);
+}

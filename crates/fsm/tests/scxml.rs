@@ -120,6 +120,16 @@ state count { // SCXML line 3
     );
 }
 
+/// A document of no states (Qt's parser tests have one) is refused where it starts, rather than
+/// mapped to a machine that cannot be read.
+#[test]
+fn a_document_of_no_states_is_refused_at_its_root() {
+    check(
+        "<scxml>\n</scxml>",
+        "1: <scxml> holds no state: a machine needs one to start in\n",
+    );
+}
+
 #[test]
 fn what_does_not_map_is_refused_with_its_element_and_line() {
     check(
@@ -298,6 +308,8 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
         return;
     };
     let (mut read, mut refused) = (0, 0);
+    // Of the documents with a `<parallel>`: how many read, how many were refused.
+    let (mut parallel_read, mut parallel_refused) = (0, 0);
     let mut reasons: BTreeMap<String, usize> = BTreeMap::new();
     for entry in entries.flatten() {
         let path = entry.path();
@@ -306,10 +318,12 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
         };
         let file = path.display().to_string();
         let imported = import_scxml(&file, &text, "d");
+        let parallel = text.contains("<parallel");
         match &imported.native {
             Some(_) if !imported.imported.has_errors() => {
                 assert_eq!(imported.imported.machines.len(), 1, "{file}");
                 read += 1;
+                parallel_read += usize::from(parallel);
             }
             Some(_) => panic!(
                 "{file}: the native form of what mapped does not read: {:?}",
@@ -317,6 +331,7 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
             ),
             None => {
                 refused += 1;
+                parallel_refused += usize::from(parallel);
                 let diagnostics = &imported.imported.diagnostics;
                 assert!(!diagnostics.is_empty(), "{file}: refused without a reason");
                 for d in diagnostics {
@@ -337,6 +352,7 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
     let mut by_count: Vec<_> = reasons.into_iter().collect();
     by_count.sort_by_key(|b| std::cmp::Reverse(b.1));
     eprintln!("{read} read, {refused} refused; the most frequent reasons:");
+    eprintln!("  (with a <parallel>: {parallel_read} read, {parallel_refused} refused)");
     for (reason, n) in by_count.iter().take(15) {
         eprintln!("  {n:5}  {reason}");
     }

@@ -97,8 +97,8 @@ pub struct MachineLexer<'a> {
     target_next: bool,
     /// Up to here, tokens are cut as anywhere else (the rest of a `call` line).
     plain_until: usize,
-    /// The last word was `machine`, `state` or `initial`: the next word is a name, never a
-    /// keyword (so a state may be called `outcome`).
+    /// The last word was `machine`, `state`, `parallel` or `initial`: the next word is a name,
+    /// never a keyword (so a state may be called `outcome` or `initial`).
     name_next: bool,
 }
 
@@ -165,6 +165,10 @@ impl<'a> MachineLexer<'a> {
         }
         if c != '{' {
             self.activity_next = false;
+        }
+        // A name is a word: anything else (a quoted name, an id) ends the wait for one.
+        if !(c.is_alphabetic() || c == '_') {
+            self.name_next = false;
         }
         let one = |tok| Some(Ok((start, tok, start + 1)));
         match c {
@@ -262,6 +266,12 @@ impl<'a> MachineLexer<'a> {
         // Where a state's body or the file's top expects an item, not inside an activity.
         let item = !named && self.open.last() != Some(&true);
         let tok = match word {
+            // A name, whatever word it is: a state may be called `initial` or `entry` (SCXML
+            // documents have both) and be the target of a move.
+            _ if named => {
+                self.activity_next = std::mem::take(&mut self.target_next);
+                MachineToken::Word(word)
+            }
             "machine" | "initial" | "state" => {
                 self.name_next = true;
                 match word {

@@ -171,6 +171,14 @@ impl Mapping<'_> {
                 other => self.unmapped(child, other, "the document"),
             }
         }
+        let holds_state = (root.children.iter())
+            .any(|c| matches!(c.name.as_str(), "state" | "final" | "parallel"));
+        if !holds_state {
+            self.refuse(
+                root.line,
+                "<scxml> holds no state: a machine needs one to start in".to_string(),
+            );
+        }
         let initial = match root.attribute("initial") {
             Some(ids) => self.target(ids, root.line),
             None => None,
