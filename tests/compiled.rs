@@ -740,6 +740,51 @@ fn the_trackers_regions_compile_to_the_interpreters_trace() {
     assert!(both > 0, "some run walked while tracking");
 }
 
+/// The whole goalkeeper's runs (`machines/goalkeeper`: a head region beside a body region
+/// whose dive nests and starts a sub-machine): its own match, and seeded ones in which the
+/// ball is seen, comes and leaves and the referee penalizes at any millisecond.
+pub(crate) fn goalkeeper_runs() -> Vec<(String, String, Option<String>)> {
+    let own = std::fs::read_to_string("machines/goalkeeper/match.script").unwrap();
+    let mut runs = vec![("goalkeeper-own".to_string(), own, Some("7s".to_string()))];
+    let atoms = ["ballSeen", "ballComing", "ballLeft", "penalized"];
+    let mut seed = 0x5eed_0048_9c4b;
+    for n in 0..8 {
+        let mut next = |below: u64| splitmix(&mut seed) % below;
+        let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
+        let ball = seeded_moment(&mut next, 0, 2_000);
+        script.push_str(&format!("at {ball}ms ballComing = true\n"));
+        for _ in 0..2 + next(8) {
+            let at = seeded_moment(&mut next, 0, 5_000);
+            let atom = atoms[next(4) as usize];
+            script.push_str(&format!("at {at}ms {atom} = {}\n", next(2) == 0));
+        }
+        let run_for = format!("{}ms", 1_000 + next(5_000));
+        runs.push((format!("goalkeeper-random{n}"), script, Some(run_for)));
+    }
+    runs
+}
+
+/// A dive nested in one region beside a head in another, its fall a sub-machine given its
+/// side: compiled, it writes the interpreter's trace byte for byte.
+#[test]
+fn the_whole_goalkeepers_regions_and_dive_compile_to_the_interpreters_trace() {
+    if gcc_missing() {
+        return;
+    }
+    let runs = goalkeeper_runs();
+    let braced = runs_agree(
+        "machines/goalkeeper",
+        "goalkeeper",
+        &runs,
+        "\"PLAY.HEAD.BRACE, PLAY.BODY.DIVE.",
+    );
+    assert!(
+        braced * 2 > runs.len(),
+        "most runs braced the head in a dive ({braced} of {})",
+        runs.len()
+    );
+}
+
 /// The GameController behaviour's runs, its sensors' atoms from the script: a whole game with
 /// a penalty and the chest button, one where the script sets only some atoms (the rest no
 /// expert answers), and seeded games of any order at any millisecond, stopped at any time.

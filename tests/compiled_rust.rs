@@ -277,6 +277,11 @@ fn behaviours_compiled_to_rust_write_the_interpreters_trace_byte_for_byte() {
         runs: super::compiled::tracker_runs(),
     });
     behaviours.push(Compiled {
+        name: "goalkeeper".into(),
+        folder: "machines/goalkeeper".into(),
+        runs: super::compiled::goalkeeper_runs(),
+    });
+    behaviours.push(Compiled {
         name: "game_controller".into(),
         folder: "machines/game_controller".into(),
         runs: game_controller_runs(),

@@ -457,6 +457,58 @@ async fn a_state_of_regions_lights_a_node_in_every_region() {
     let _ = std::fs::remove_file(&trace);
 }
 
+/// The whole goalkeeper (`machines/goalkeeper`) replayed at the moment its head braced beside
+/// its dive to the left: one node lit in the head's region, and one in the dive's cluster, which
+/// is itself inside the body's region.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_nested_state_in_a_region_is_lit_inside_both_clusters() {
+    let Some((_driver, client)) = open_browser().await else {
+        return;
+    };
+    let trace = behaviour_trace("goalkeeper", "7s", "goalkeeper");
+    let events: Vec<Json> = std::fs::read_to_string(&trace)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let braced = "PLAY.HEAD.BRACE, PLAY.BODY.DIVE.LEFT";
+    let at = 1 + events
+        .iter()
+        .position(|e| e["event"] == "entered" && e["state"] == braced)
+        .expect("the head braced while the keeper dived to the left");
+    let _replay = replay_page(&client, &trace, "goalkeeper").await;
+    let second = Duration::from_secs(1);
+    let state =
+        "return document.querySelector('[data-machine=\"Goalkeeper\"]')?.dataset.state ?? null";
+    until(
+        &client,
+        state,
+        json!("PLAY.HEAD.TRACK, PLAY.BODY.GUARD"),
+        5 * second,
+    )
+    .await;
+    eval(
+        &client,
+        &format!("const s = document.getElementById('slider'); s.value = '{at}'; s.dispatchEvent(new Event('input')); return true"),
+    )
+    .await;
+    until(&client, state, json!(braced), 3 * second).await;
+    // Each lit node and the first line of every cluster around it, outermost first.
+    let lit = "return [...document.querySelectorAll('[data-machine=\"Goalkeeper\"] g.node.current')].map((n) => \
+        [n.querySelector('text')?.textContent, ...[...n.closest('svg').querySelectorAll('g.cluster')] \
+        .filter((c) => { const b = c.getBBox(), m = n.getBBox(); return b.x <= m.x && m.x + m.width <= b.x + b.width && b.y <= m.y && m.y + m.height <= b.y + b.height; }) \
+        .map((c) => c.querySelector('text')?.textContent)])";
+    until(
+        &client,
+        lit,
+        json!([["BRACE", "PLAY", "HEAD"], ["LEFT", "PLAY", "BODY", "DIVE"]]),
+        second,
+    )
+    .await;
+    let _ = client.close().await;
+    let _ = std::fs::remove_file(&trace);
+}
+
 /// A composite's transition back into itself is drawn out of its cluster to a point and in
 /// again; when it fires, both halves are lit.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -346,6 +346,49 @@ fn regions_verify_over_both_and_a_joined_move_shows_each_clock() {
     );
 }
 
+/// The whole goalkeeper (`machines/goalkeeper`): a dive nested in the body's region beside the
+/// head's, its fall a sub-machine given its side. Its four properties hold on both engines
+/// (one over both regions, one over the sub-machine's state); a counterexample to "the keeper
+/// never lies with its dive landed" replays in the runner to the head braced beside it.
+#[test]
+fn the_whole_goalkeeper_verifies_on_both_engines_and_its_counterexample_replays() {
+    for engine in ["explicit", "symbolic"] {
+        let o = proclaim(&["verify", "machines/goalkeeper", "--engine", engine]);
+        assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+        assert_eq!(stdout(&o).matches(": holds").count(), 4, "{}", stdout(&o));
+        for finding in ["never fires", "never entered"] {
+            assert!(!stdout(&o).contains(finding), "{}", stdout(&o));
+        }
+    }
+    let script = std::env::temp_dir().join(format!("goalkeeper-{}.script", std::process::id()));
+    let o = proclaim(&[
+        "verify",
+        "machines/goalkeeper",
+        "--never",
+        "Goalkeeper.PLAY.BODY.DIVE.LIE && Dive.LANDED",
+        "--counterexample",
+        script.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    let o = proclaim(&[
+        "run",
+        "machines/goalkeeper",
+        "--script",
+        script.to_str().unwrap(),
+        "--virtual-clock",
+        "--for",
+        "3s",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("→ PLAY.HEAD.BRACE, PLAY.BODY.DIVE.LIE"),
+        "{}",
+        stdout(&o)
+    );
+    let _ = std::fs::remove_file(&script);
+    let _ = std::fs::remove_file(script.with_extension("jsonl"));
+}
+
 /// Two regions that move on one label together only ever fire their joined arm: neither
 /// transition is reported never to fire (a review found the first one was).
 #[test]

@@ -608,3 +608,87 @@ fn spin_agrees_with_the_checker_on_a_head_and_legs_side_by_side() {
         [Verdict::Holds, Verdict::Fails, Verdict::Holds]
     );
 }
+
+/// The whole goalkeeper's properties (`machines/goalkeeper`): one over both regions (the head
+/// braces while the body lies after a dive) and the keeper's three, from inside the body's
+/// region.
+fn goalkeeper_properties() -> [PropertySource; 4] {
+    [
+        property(
+            PropertyKind::Never,
+            "Goalkeeper.PLAY.BODY.DIVE.LIE && !Goalkeeper.PLAY.HEAD.BRACE",
+        ),
+        property(
+            PropertyKind::Never,
+            "Goalkeeper.PENALIZED && (NaoMotionPlayer == \"diveLeft\" || NaoMotionPlayer == \"diveRight\")",
+        ),
+        property(
+            PropertyKind::LeadsTo,
+            "Goalkeeper.PLAY.BODY.DIVE ~> !Goalkeeper.PLAY.BODY.DIVE",
+        ),
+        property(
+            PropertyKind::Never,
+            "Goalkeeper.PLAY.BODY.DIVE.LEFT && Dive.RIGHT",
+        ),
+    ]
+}
+
+/// The goalkeeper in a fresh folder with the keeper's dive beside it; with `blind`, a head
+/// tracking the ball does not see the body dive, so it may look away while the keeper lies.
+fn goalkeeper(case: &str, blind: bool) -> PathBuf {
+    let dir = shipped_copy(
+        case,
+        "goalkeeper",
+        &["match.script"],
+        "Goalkeeper.machine",
+        |machine| {
+            if !blind {
+                return machine;
+            }
+            let track = "                NaoHeadMoveTo: ball\n            }\n";
+            let sees = "            when diving -> BRACE\n";
+            assert!(
+                machine.contains(&format!("{track}{sees}")),
+                "the fault is seeded"
+            );
+            machine.replace(&format!("{track}{sees}"), track)
+        },
+    );
+    let dive = repo().join("machines/keeper/Dive.machine");
+    std::fs::copy(dive, dir.join("Dive.machine")).expect("copy");
+    let manifest = std::fs::read_to_string(dir.join("behaviour.toml")).expect("manifest");
+    let manifest = manifest.replace("../keeper/Dive.machine", "Dive.machine");
+    std::fs::write(dir.join("behaviour.toml"), manifest).expect("write");
+    dir
+}
+
+/// A nested dive (a sub-machine with a parameter and an outcome) in one region and a head in
+/// the other: the checker and SPIN both find the property over both regions to hold, and both
+/// find it broken once the tracking head stops looking at the dive.
+#[test]
+fn spin_agrees_with_the_checker_on_the_whole_goalkeeper() {
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(
+        both(
+            "goalkeeper",
+            &goalkeeper("goalkeeper", false),
+            &goalkeeper_properties()
+        ),
+        [Verdict::Holds; 4]
+    );
+    assert_eq!(
+        both(
+            "goalkeeper-blind",
+            &goalkeeper("goalkeeper-blind", true),
+            &goalkeeper_properties()
+        ),
+        [
+            Verdict::Fails,
+            Verdict::Holds,
+            Verdict::Holds,
+            Verdict::Holds
+        ]
+    );
+}
