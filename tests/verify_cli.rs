@@ -389,6 +389,25 @@ fn the_whole_goalkeeper_verifies_on_both_engines_and_its_counterexample_replays(
     let _ = std::fs::remove_file(script.with_extension("jsonl"));
 }
 
+/// A region's move back into its own state is one transition however the other regions stand:
+/// it fires beside `a1`, so its combination with `a2`, which is never entered, does not make
+/// it "never fires" (the differential test's seed 167 found it reported so).
+#[test]
+fn a_regions_move_back_into_its_own_state_is_one_finding_whatever_the_others_stand_in() {
+    let machine = "machine M\nparallel P {\n    state A {\n        state a1 { }\n        state a2 { }\n    }\n    state B {\n        state b1 { when tick -> b1 }\n    }\n}\n";
+    let dir = crate::behaviour_folder(
+        "region-loop-findings",
+        &[
+            ("M.machine", machine),
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+        ],
+    );
+    let o = proclaim(&["verify", dir.to_str().unwrap()]);
+    let said = format!("{}{}", stdout(&o), stderr(&o));
+    assert!(said.contains("M.P.A.a2 is never entered"), "{said}");
+    assert!(!said.contains("never fires"), "{said}");
+}
+
 /// Two regions that move on one label together only ever fire their joined arm: neither
 /// transition is reported never to fire (a review found the first one was).
 #[test]

@@ -433,7 +433,8 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
             }
         }
         // In a state of regions, where a transition goes is the state it enters that its
-        // source was not in (its region's), however the other regions stand.
+        // source was not in (its region's), or its own for a move back into it, however the
+        // other regions stand.
         let regions = m.machine.composites.iter().any(|c| c.parallel);
         let to_of = |t: &proclaim_fsm::Transition| {
             let (Some(a), Some(b)) = (m.machine.state(t.source), m.machine.state(t.target)) else {
@@ -441,8 +442,13 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
             };
             let before = m.machine.atomic_paths(a);
             let after = m.machine.atomic_paths(b);
+            let own = t.composite.and_then(|c| m.machine.composites.get(c));
             match after.iter().find(|p| !before.contains(p)) {
                 Some(p) if regions => p.to_string(),
+                // A region's move back into its own state, whatever the others stand in.
+                None if regions => own
+                    .filter(|c| c.atomic)
+                    .map_or_else(|| name(t.target), |c| c.name.clone()),
                 _ => name(t.target),
             }
         };
