@@ -773,3 +773,48 @@ parallel P {
     assert!(dot.contains(&done), "{done}\n{dot}");
     assert_eq!(started, [(node("fall"), "Dive".to_string())], "{dot}");
 }
+
+/// `in(STATE)` asks whether the machine is in a state (SCXML's `In`): each flat state decides
+/// it, so a region can wait on another's state and no back end reads the call. A name is
+/// looked up as a target is; one that names no state is refused at the label.
+#[test]
+fn in_state_is_decided_by_each_flat_state() {
+    check(
+        "machine M
+parallel P {
+    state A {
+        state a1 { when go -> a2 }
+        state a2 { when back -> a1 }
+    }
+    state B {
+        state b1 { when in(a2) -> b2 }
+        state b2 { when !in(P.A.a2) && tick -> b1 }
+    }
+}
+",
+        "initial P.A.a1, P.B.b1#5
+P.A.a1, P.B.b1#5 entry[] exit[] internal[]
+  go && FALSE -> P.A.a2, P.B.b2#6 leaving[] of P.A.a1
+  go -> P.A.a2, P.B.b1#7 leaving[] of P.A.a1
+  FALSE -> P.A.a1, P.B.b2#8 leaving[] of P.B.b1
+P.A.a1, P.B.b2#8 entry[] exit[] internal[]
+  go && tick -> P.A.a2, P.B.b1#7 leaving[] of P.A.a1
+  go -> P.A.a2, P.B.b2#6 leaving[] of P.A.a1
+  tick -> P.A.a1, P.B.b1#5 leaving[] of P.B.b2
+P.A.a2, P.B.b1#7 entry[] exit[] internal[]
+  back && TRUE -> P.A.a1, P.B.b2#8 leaving[] of P.A.a2
+  back -> P.A.a1, P.B.b1#5 leaving[] of P.A.a2
+  TRUE -> P.A.a2, P.B.b2#6 leaving[] of P.B.b1
+P.A.a2, P.B.b2#6 entry[] exit[] internal[]
+  back && FALSE -> P.A.a1, P.B.b1#5 leaving[] of P.A.a2
+  back -> P.A.a1, P.B.b2#8 leaving[] of P.A.a2
+  FALSE -> P.A.a2, P.B.b1#7 leaving[] of P.B.b2
+",
+    );
+    check(
+        "machine M\nstate X {\n    when in(Z) -> X\n    when in(X, X) -> X\n}\n",
+        "3: `in(Z)`: there is no state named `Z`
+4: `in(…)` takes one state, by its name or path: `in(PLAY.HEAD.TRACK)`
+",
+    );
+}

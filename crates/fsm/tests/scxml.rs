@@ -472,3 +472,55 @@ state STOP {
         read.native.unwrap_or_default()
     );
 }
+
+/// SCXML's `In('id')` is the native `in(STATE)` both ways: a region waiting on another's state
+/// reads back as the same machine, and an id that names no state is refused at its line.
+#[test]
+fn in_reads_and_writes_as_the_native_in() {
+    let native = "machine M
+parallel P {
+    state A {
+        state a1 {
+            when go -> a2
+        }
+        state a2 {
+            when back -> a1
+        }
+    }
+    state B {
+        state b1 {
+            when in(a2) -> b2
+        }
+        state b2 {
+            when !in(P.A.a2) && tick -> b1
+        }
+    }
+}
+";
+    let written = parse_machine("M.machine", native);
+    assert!(!written.has_errors(), "{:?}", written.diagnostics);
+    let scxml = to_scxml("M.machine", native).unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(scxml.contains("cond=\"In(&quot;a2&quot;)\""), "{scxml}");
+    let read = import_scxml("M.scxml", &scxml, "M");
+    assert!(
+        !read.imported.has_errors(),
+        "{:?}\n{scxml}",
+        read.imported.diagnostics
+    );
+    assert_eq!(
+        without_lines(read.imported.machines[0].clone()),
+        without_lines(written.machines[0].clone()),
+        "\n{scxml}\n{}",
+        read.native.unwrap_or_default()
+    );
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="a">
+  <state id="a">
+    <transition cond="In('b')" target="b"/>
+    <transition cond="In('nowhere')" target="b"/>
+  </state>
+  <state id="b"/>
+</scxml>"#,
+        "4: `In('nowhere')`: `In(\"nowhere\")` names no state of the document (it takes one state's id, quoted)\n",
+    );
+}

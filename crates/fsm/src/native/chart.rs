@@ -13,6 +13,10 @@ use crate::label::{Label, TIME_TESTS};
 use crate::model::{Action, Composite, State, StateId, Transition};
 use std::collections::HashSet;
 
+/// `in(STATE)` in a label: whether the machine is in that state (SCXML's `In`), which the
+/// flat state a transition is lowered in decides, so no back end reads it.
+pub(super) const IN_STATE: &str = "in";
+
 /// What a chart lowers to.
 pub(crate) struct Chart {
     pub states: Vec<State>,
@@ -357,7 +361,37 @@ impl Tree {
     }
 
     fn written(&self, lowering: &mut Lowering<'_>, n: usize, when: When) -> Option<Written> {
-        let label = lowering.label(&when)?;
+        let mut label = lowering.label(&when)?;
+        let mut unresolved = Vec::new();
+        label.replace_calls(&mut |function, arguments| {
+            if function != IN_STATE {
+                return None;
+            }
+            let [Expr::Name(path)] = arguments else {
+                unresolved.push(format!(
+                    "`{IN_STATE}(…)` takes one state, by its name or path: `{IN_STATE}(PLAY.HEAD.TRACK)`"
+                ));
+                return Some(Expr::Bool(false));
+            };
+            // Its path in full: the flat state it is lowered in says whether it is active.
+            Some(match self.resolve(Some(n), &Ref::Name(path.clone())) {
+                Ok(state) => Expr::Call {
+                    function: IN_STATE.into(),
+                    arguments: vec![Expr::Name(self.nodes[state].path.clone())],
+                    clock: None,
+                },
+                Err(message) => {
+                    unresolved.push(format!("`{IN_STATE}({path})`: {message}"));
+                    Expr::Bool(false)
+                }
+            })
+        });
+        if !unresolved.is_empty() {
+            for message in unresolved {
+                lowering.error(when.label_at, message);
+            }
+            return None;
+        }
         let node = &self.nodes[n];
         let done = label == Expr::Name("done".into());
         if done && node.children.is_empty() {

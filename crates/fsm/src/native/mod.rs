@@ -183,9 +183,12 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         announced: Vec::new(),
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
-    let nested = parsed
-        .iter()
-        .any(|s| s.parallel || s.members.iter().any(|m| matches!(m, Member::State(_))));
+    // A label that asks which state the machine is in (`in(A)`) is decided state by state,
+    // as a chart's lowering does.
+    let asks_state = |m: &Member| matches!(m, Member::When { label, .. } if names_in_state(label));
+    let nested = parsed.iter().any(|s| {
+        s.parallel || (s.members.iter()).any(|m| matches!(m, Member::State(_)) || asks_state(m))
+    });
     if nested {
         let machines = chart::lower_chart(&mut lowering, parsed, initial_ref)
             .map(|chart| {
@@ -254,6 +257,16 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         machines,
         diagnostics: lowering.diagnostics,
     }
+}
+
+/// Whether a label's text calls `in(…)` (a word `in` right before a parenthesis).
+fn names_in_state(label: &str) -> bool {
+    label.match_indices(chart::IN_STATE).any(|(at, word)| {
+        let before = label[..at].chars().next_back();
+        let after = label[at + word.len()..].trim_start();
+        !before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '.')
+            && after.starts_with('(')
+    })
 }
 
 /// The syntax tree of one file becoming its machine, with every problem found on the way.

@@ -347,6 +347,16 @@ impl Writer<'_> {
                     self.refuse(at, format!("`{label}`: a time test has no SCXML condition (SCXML times a state with a delayed send, which a transition then waits on alone)"));
                     return None;
                 }
+                // `in(PATH)` is SCXML's `In('id')`; a state's id is its name here.
+                let mut e = e;
+                e.replace_calls(&mut |function, arguments| match (function, arguments) {
+                    (super::chart::IN_STATE, [Expr::Name(path)]) => Some(Expr::Call {
+                        function: "In".into(),
+                        arguments: vec![Expr::Str(path.rsplit('.').next().unwrap_or(path).into())],
+                        clock: None,
+                    }),
+                    _ => None,
+                });
                 Some(script(&e))
             }
             Err(e) => {

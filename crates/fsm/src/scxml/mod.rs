@@ -8,7 +8,7 @@
 mod delayed;
 mod tree;
 
-use crate::code::{parse_expression, parse_statements};
+use crate::code::{parse_expression, parse_statements, Expr};
 use crate::Imported;
 use proclaim_syntax::FileDiagnostic;
 use std::collections::HashMap;
@@ -524,7 +524,6 @@ impl Mapping<'_> {
                 "_event",
                 "an event's data (`_event`): events carry none here",
             ),
-            ("In", "`In(…)`: name the state as a property does instead"),
             ("function", "a function"),
         ] {
             if mentions(text, what) {
@@ -534,7 +533,38 @@ impl Mapping<'_> {
         }
         let mapped = double_quoted(&text.replace("===", "==").replace("!==", "!="));
         match parse_expression(&mapped) {
-            Ok(e) => Some(e.to_string()),
+            Ok(mut e) => {
+                // `In('s')`: the native `in(PATH)` of the state that id names.
+                let mut unknown = Vec::new();
+                e.replace_calls(&mut |function, arguments| {
+                    if function != "In" {
+                        return None;
+                    }
+                    let path = match arguments {
+                        [Expr::Str(id)] => self.names.get(id).cloned(),
+                        _ => None,
+                    };
+                    if path.is_none() {
+                        unknown.push(
+                            arguments
+                                .iter()
+                                .map(ToString::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", "),
+                        );
+                    }
+                    Some(Expr::Call {
+                        function: "in".into(),
+                        arguments: vec![Expr::Name(path.unwrap_or_default())],
+                        clock: None,
+                    })
+                });
+                if let Some(which) = unknown.first() {
+                    self.refuse(line, format!("`{text}`: `In({which})` names no state of the document (it takes one state's id, quoted)"));
+                    return None;
+                }
+                Some(e.to_string())
+            }
             Err(err) => {
                 self.refuse(
                     line,
