@@ -653,18 +653,23 @@ state initial {
 }
 state entry {
     when TRUE -> state
+    when back -> \"B C\"
+    when stop -> \"entry\" {
+        print(\"x\");
+    }
 }
 state \"state\" #7 {
     entry {
         Say: hi
     }
 }
+state \"B C\" { }
 ";
     let read = proclaim_fsm::parse_machine("M.machine", text);
     assert!(!read.has_errors(), "{:?}", read.diagnostics);
     let m = &read.machines[0];
     let names: Vec<&str> = m.states.iter().map(|s| s.name.as_str()).collect();
-    assert_eq!(names, ["initial", "entry", "state"]);
+    assert_eq!(names, ["initial", "entry", "state", "B C"]);
     assert_eq!(m.state(m.initial).map(|s| s.name.as_str()), Some("initial"));
     assert_eq!(
         m.states[2].on_entry.len(),
@@ -672,4 +677,10 @@ state \"state\" #7 {
         "the quoted name's body still reads"
     );
     assert_eq!(m.transitions[1].target, 7);
+    let actions = m.transitions[3].leaving.as_ref().map(Vec::len);
+    assert_eq!(actions, Some(1), "a quoted target's actions read");
+    // What the writer makes of it (keywords and spaces quoted) reads back the same.
+    let again = proclaim_fsm::parse_machine("M.machine", &proclaim_fsm::to_native(m));
+    assert!(!again.has_errors(), "{:?}", again.diagnostics);
+    assert_eq!(again.machines[0].states.len(), 4);
 }

@@ -374,6 +374,8 @@ impl<'a> MachineLexer<'a> {
 
     fn string(&mut self) -> Spanned<'a> {
         let start = self.at;
+        // A quoted target is a target as a word is: what follows is its actions or an item.
+        self.activity_next = std::mem::take(&mut self.target_next);
         let mut out = String::new();
         let mut chars = self.rest()[1..].char_indices();
         while let Some((i, c)) = chars.next() {
