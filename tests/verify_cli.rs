@@ -406,6 +406,20 @@ fn a_regions_move_back_into_its_own_state_is_one_finding_whatever_the_others_sta
     let said = format!("{}{}", stdout(&o), stderr(&o));
     assert!(said.contains("M.P.A.a2 is never entered"), "{said}");
     assert!(!said.contains("never fires"), "{said}");
+    // A composite's move back into itself, which `in` keeps from firing beside `b2` (a review's
+    // case): one finding or none, never one a combination.
+    let machine = "machine M\nparallel P {\n    state A {\n        state D {\n            when again && in(B.b1) -> D\n            state d1 { when go -> d2 }\n            state d2 { }\n        }\n    }\n    state B {\n        state b1 { when flip && !again -> b2 }\n        state b2 { }\n    }\n}\n";
+    let dir = crate::behaviour_folder(
+        "composite-loop-findings",
+        &[
+            ("M.machine", machine),
+            ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+        ],
+    );
+    let o = proclaim(&["verify", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let said = format!("{}{}", stdout(&o), stderr(&o));
+    assert!(!said.contains("never fires"), "{said}");
 }
 
 /// Two regions that move on one label together only ever fire their joined arm: neither

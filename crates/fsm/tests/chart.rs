@@ -811,10 +811,21 @@ P.A.a2, P.B.b2#6 entry[] exit[] internal[]
   FALSE -> P.A.a2, P.B.b1#7 leaving[] of P.B.b2
 ",
     );
+    // In a flat machine `in(S)` is whether S is the very state; `||` and `!` fold too.
+    check(
+        "machine M\nstate X {\n    when in(X) || go -> Y\n}\nstate Y {\n    when !in(X) && in(Y) -> X\n    when in(X) || go -> X\n}\n",
+        "initial X#1
+X#1 entry[] exit[] internal[]
+  TRUE -> Y#2
+Y#2 entry[] exit[] internal[]
+  TRUE -> X#1
+  go -> X#1
+",
+    );
     check(
         "machine M\nstate X {\n    when in(Z) -> X\n    when in(X, X) -> X\n}\n",
         "3: `in(Z)`: there is no state named `Z`
-4: `in(…)` takes one state, by its name or path: `in(PLAY.HEAD.TRACK)`
+4: `in(X, X)`: `in(…)` takes one state, by its name or path: `in(PLAY.HEAD.TRACK)`
 ",
     );
 }

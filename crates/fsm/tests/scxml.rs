@@ -357,6 +357,10 @@ fn real_scxml_documents_are_read_or_refused_with_a_reason() {
         eprintln!("  {n:5}  {reason}");
     }
     assert!(read + refused > 0, "{dir:?} holds no documents");
+    assert!(
+        parallel_read + parallel_refused == 0 || parallel_read > 0,
+        "no document with a <parallel> read"
+    );
 }
 
 /// SCXML times a state with a delayed send on entering it and a transition on its event: that
@@ -489,7 +493,7 @@ parallel P {
     }
     state B {
         state b1 {
-            when in(a2) -> b2
+            when in(P.A.a2) -> b2
         }
         state b2 {
             when !in(P.A.a2) && tick -> b1

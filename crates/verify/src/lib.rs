@@ -452,14 +452,25 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
                 _ => name(t.target),
             }
         };
+        // In a state of regions a transition as written is one finding wherever its arms go
+        // (a composite's move back into itself goes to each combination it was in): it is
+        // shown going where its first arm goes.
+        let mut first_to: std::collections::HashMap<(String, usize), String> = Default::default();
         let transitions = (m.machine.transitions.iter().zip(&fired[k]))
             .filter(|(t, _)| t.joined.is_empty())
             .map(|(t, &f)| {
                 let from = from_of(t.composite, t.source);
                 let fired = f || credited.contains(&(from.clone(), t.line));
-                ((from, to_of(t), t.shown().to_string(), t.line), fired)
-            });
-        for (from, to, label, line) in once_each(transitions) {
+                let to = match regions {
+                    true => (first_to.entry((from.clone(), t.line)))
+                        .or_insert_with(|| to_of(t))
+                        .clone(),
+                    false => to_of(t),
+                };
+                ((from, to, t.shown().to_string(), t.line), fired)
+            })
+            .collect::<Vec<_>>();
+        for (from, to, label, line) in once_each(transitions.into_iter()) {
             findings.push(Finding::NeverFires {
                 machine: m.name.clone(),
                 from,

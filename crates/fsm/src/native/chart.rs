@@ -17,6 +17,10 @@ use std::collections::HashSet;
 /// flat state a transition is lowered in decides, so no back end reads it.
 pub(super) const IN_STATE: &str = "in";
 
+pub(super) fn in_state_usage() -> String {
+    format!("`{IN_STATE}(…)` takes one state, by its name or path: `{IN_STATE}(PLAY.HEAD.TRACK)`")
+}
+
 /// What a chart lowers to.
 pub(crate) struct Chart {
     pub states: Vec<State>,
@@ -361,35 +365,28 @@ impl Tree {
     }
 
     fn written(&self, lowering: &mut Lowering<'_>, n: usize, when: When) -> Option<Written> {
-        let mut label = lowering.label(&when)?;
-        let mut unresolved = Vec::new();
-        label.replace_calls(&mut |function, arguments| {
+        let label = lowering.label(&when)?;
+        // `in(S)` names a state as a target does; each flat state decides it (`flatten.rs`).
+        let mut unresolved = None;
+        label.clone().replace_calls(&mut |function, arguments| {
             if function != IN_STATE {
                 return None;
             }
-            let [Expr::Name(path)] = arguments else {
-                unresolved.push(format!(
-                    "`{IN_STATE}(…)` takes one state, by its name or path: `{IN_STATE}(PLAY.HEAD.TRACK)`"
-                ));
-                return Some(Expr::Bool(false));
+            let state = match arguments {
+                [Expr::Name(path)] => self.resolve(Some(n), &Ref::Name(path.clone())),
+                _ => Err(in_state_usage()),
             };
-            // Its path in full: the flat state it is lowered in says whether it is active.
-            Some(match self.resolve(Some(n), &Ref::Name(path.clone())) {
-                Ok(state) => Expr::Call {
-                    function: IN_STATE.into(),
-                    arguments: vec![Expr::Name(self.nodes[state].path.clone())],
-                    clock: None,
-                },
-                Err(message) => {
-                    unresolved.push(format!("`{IN_STATE}({path})`: {message}"));
-                    Expr::Bool(false)
-                }
-            })
-        });
-        if !unresolved.is_empty() {
-            for message in unresolved {
-                lowering.error(when.label_at, message);
+            if let Err(message) = state {
+                let shown = arguments
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>();
+                unresolved.get_or_insert(format!("`{IN_STATE}({})`: {message}", shown.join(", ")));
             }
+            Some(Expr::Bool(false))
+        });
+        if let Some(message) = unresolved {
+            lowering.error(when.label_at, message);
             return None;
         }
         let node = &self.nodes[n];
@@ -503,7 +500,7 @@ impl Tree {
     /// The state a transition of `from` (or the machine's `initial`, from `None`) names: a
     /// path whose first part is a sibling of `from`, else a state around it, outwards, else
     /// the one state anywhere whose path ends so.
-    fn resolve(&self, from: Option<usize>, target: &Ref) -> Result<usize, String> {
+    pub(super) fn resolve(&self, from: Option<usize>, target: &Ref) -> Result<usize, String> {
         let path = match target {
             Ref::Id(id) => {
                 return self

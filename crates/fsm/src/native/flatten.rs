@@ -3,6 +3,7 @@
 //! parallel state) and set of states a move into it enters, its arms every combination of what
 //! its regions select, in the order the schedule tries them.
 
+use super::ast::Ref;
 use super::chart::{Chart, Tree, Written, IN_STATE};
 use crate::code::{BinOp, Expr, Statement, VarType};
 use crate::label::Label;
@@ -386,7 +387,7 @@ impl<'t> Flattening<'t> {
     fn targets(&self, atomics: &[usize], source: usize, w: &Written) -> Vec<(Label, usize)> {
         let tree = self.tree;
         let label = if w.done { Label::TRUE } else { w.label.clone() };
-        let label = in_states(tree, atomics, label);
+        let label = in_states(tree, atomics, source, label);
         let domain = tree.domain(source, w.target);
         let left = tree.active_inside(atomics, domain);
         let mut arms = Vec::new();
@@ -538,10 +539,10 @@ impl<'t> Flattening<'t> {
     }
 }
 
-/// `a && b && …`; `TRUE` for none.
-/// `label` with each `in(PATH)` the truth it has in the flat state of `atomics`: whether one of
-/// them is the state `PATH` names or inside it.
-fn in_states(tree: &Tree, atomics: &[usize], mut label: Label) -> Label {
+/// `label`, written on `source`, with each `in(S)` the truth it has in the flat state of
+/// `atomics`: whether one of them is the state `S` names (as a target from `source` would) or
+/// inside it. `chart.rs` refused every `in` that names no state.
+fn in_states(tree: &Tree, atomics: &[usize], source: usize, mut label: Label) -> Label {
     let mut folded = false;
     label.replace_calls(&mut |function, arguments| {
         let [Expr::Name(path)] = arguments else {
@@ -550,7 +551,7 @@ fn in_states(tree: &Tree, atomics: &[usize], mut label: Label) -> Label {
         if function != IN_STATE {
             return None;
         }
-        let state = tree.nodes.iter().position(|n| n.path == *path)?;
+        let state = tree.resolve(Some(source), &Ref::Name(path.clone())).ok()?;
         folded = true;
         let active = atomics.iter().any(|&a| tree.chain(a).any(|c| c == state));
         Some(Expr::Bool(active))
@@ -562,6 +563,7 @@ fn in_states(tree: &Tree, atomics: &[usize], mut label: Label) -> Label {
     }
 }
 
+/// `a && b && …`; `TRUE` for none.
 fn join(labels: impl Iterator<Item = Label>) -> Label {
     labels
         .reduce(|a, b| Expr::Binary {

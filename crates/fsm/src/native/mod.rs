@@ -43,7 +43,7 @@ mod outline;
 mod to_scxml;
 mod write;
 
-use crate::code::parse_statements;
+use crate::code::{parse_statements, Expr};
 use crate::label::parse_label;
 use crate::label::Label;
 use crate::model::{Action, Machine, State, StateId, Transition};
@@ -183,12 +183,9 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         announced: Vec::new(),
     };
     let (description, initial_ref, parsed) = lowering.header(ast.items);
-    // A label that asks which state the machine is in (`in(A)`) is decided state by state,
-    // as a chart's lowering does.
-    let asks_state = |m: &Member| matches!(m, Member::When { label, .. } if names_in_state(label));
-    let nested = parsed.iter().any(|s| {
-        s.parallel || (s.members.iter()).any(|m| matches!(m, Member::State(_)) || asks_state(m))
-    });
+    let nested = parsed
+        .iter()
+        .any(|s| s.parallel || s.members.iter().any(|m| matches!(m, Member::State(_))));
     if nested {
         let machines = chart::lower_chart(&mut lowering, parsed, initial_ref)
             .map(|chart| {
@@ -257,16 +254,6 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         machines,
         diagnostics: lowering.diagnostics,
     }
-}
-
-/// Whether a label's text calls `in(…)` (a word `in` right before a parenthesis).
-fn names_in_state(label: &str) -> bool {
-    label.match_indices(chart::IN_STATE).any(|(at, word)| {
-        let before = label[..at].chars().next_back();
-        let after = label[at + word.len()..].trim_start();
-        !before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '.')
-            && after.starts_with('(')
-    })
 }
 
 /// The syntax tree of one file becoming its machine, with every problem found on the way.
@@ -518,11 +505,30 @@ impl Lowering<'_> {
                 ActionAst::Statement(text) => match parse_statements(&text) {
                     Ok(statements) => {
                         self.check_sets(&statements, at);
+                        self.no_in_state(&statements, at);
                         list.extend(statements.into_iter().map(Action::Statement));
                     }
                     Err(e) => self.error(at + e.offset, format!("bad statement: {}", e.message)),
                 },
             }
+        }
+    }
+
+    /// `in(S)` is decided where a label is lowered; an activity runs in whatever flat state
+    /// arrives or leaves, so it has no one answer there.
+    fn no_in_state(&mut self, statements: &[crate::code::Statement], at: usize) {
+        let mut found = false;
+        for statement in statements {
+            statement.visit(&mut |s| {
+                let calls = s.expressions().into_iter().flat_map(Expr::calls);
+                found |= calls.into_iter().any(|(f, _)| f == chart::IN_STATE);
+            });
+        }
+        if found {
+            self.error(
+                at,
+                format!("`{}(…)` asks which state the machine is in, in a label only (`when {}(HEAD.TRACK) -> …`); an activity cannot", chart::IN_STATE, chart::IN_STATE),
+            );
         }
     }
 
@@ -532,17 +538,53 @@ impl Lowering<'_> {
         when: &When,
         names: &StateNames,
     ) -> Option<Transition> {
-        let label = self.label(when)?;
+        let written = self.label(when)?;
+        // `in(S)` in a flat machine: whether S is this very state.
+        let mut unresolved = None;
+        let mut label = written.clone();
+        label.replace_calls(&mut |function, arguments| {
+            if function != chart::IN_STATE {
+                return None;
+            }
+            let state = match arguments {
+                [Expr::Name(name)] => names.resolve(&Ref::Name(name.clone())),
+                _ => Err(chart::in_state_usage()),
+            };
+            match state {
+                Ok(state) => Some(Expr::Bool(state == source)),
+                Err(message) => {
+                    let shown = arguments
+                        .iter()
+                        .map(ToString::to_string)
+                        .collect::<Vec<_>>();
+                    unresolved.get_or_insert(format!(
+                        "`{}({})`: {message}",
+                        chart::IN_STATE,
+                        shown.join(", ")
+                    ));
+                    Some(Expr::Bool(false))
+                }
+            }
+        });
+        if let Some(message) = unresolved {
+            self.error(when.label_at, message);
+            return None;
+        }
+        let changed = label != written;
         match names.resolve(&when.target) {
             Ok(target) => Some(Transition {
                 source,
                 target,
-                label,
+                label: if changed {
+                    label.folded_truths()
+                } else {
+                    label
+                },
                 line: self.lines.line(when.at),
                 leaving: None,
                 composite: None,
                 enters: Vec::new(),
-                written: None,
+                written: changed.then_some(written),
                 joined: Vec::new(),
             }),
             Err(message) => {

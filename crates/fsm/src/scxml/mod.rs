@@ -249,7 +249,7 @@ impl Mapping<'_> {
             };
             let value = match expr {
                 "" | "0" | "0.0" | "false" => String::new(),
-                e => match self.expression(e, data.line) {
+                e => match self.expression(e, data.line, false) {
                     Some(e) => format!(" = {e}"),
                     None => continue,
                 },
@@ -414,7 +414,7 @@ impl Mapping<'_> {
             }
         }
         if let Some(cond) = element.attribute("cond") {
-            let Some(cond) = self.expression(cond, line) else {
+            let Some(cond) = self.expression(cond, line, true) else {
                 return;
             };
             label.push(format!("({cond})"));
@@ -448,7 +448,7 @@ impl Mapping<'_> {
                 "cancel" if self.cancels_a_timer(e) => None,
                 "log" => match e.attribute("expr") {
                     Some(expr) => self
-                        .expression(expr, e.line)
+                        .expression(expr, e.line, false)
                         .map(|x| format!("print({x});")),
                     None => continue,
                 },
@@ -480,7 +480,7 @@ impl Mapping<'_> {
             );
             return None;
         };
-        let expr = self.expression(expr, e.line)?;
+        let expr = self.expression(expr, e.line, false)?;
         let statement = format!("{} = {expr};", Self::word(location));
         match parse_statements(&statement) {
             Ok(_) => Some(statement),
@@ -517,8 +517,16 @@ impl Mapping<'_> {
         }
     }
 
-    /// A native expression for an ECMAScript one of the small subset that maps.
-    fn expression(&mut self, text: &str, line: usize) -> Option<String> {
+    /// A native expression for an ECMAScript one of the small subset that maps; `In(…)` maps
+    /// in a `cond` only (a label's `in`).
+    fn expression(&mut self, text: &str, line: usize, cond: bool) -> Option<String> {
+        if !cond && mentions(text, "In") {
+            self.refuse(
+                line,
+                format!("`{text}`: `In(…)` maps in a transition's `cond` only"),
+            );
+            return None;
+        }
         for (what, why) in [
             (
                 "_event",
