@@ -4,7 +4,9 @@
 //! transition the checker called unreachable (its "never" findings, made only when the
 //! model's free values are exact) is a disagreement, printed with the seed that repeats it.
 //! Some behaviours declare `in0`'s range (`[ranges]`), and their scripts keep to it: the
-//! checker then tries every value of it, and must still never claim what a run refutes.
+//! checker then tries every value of it, and must still never claim what a run refutes. Some
+//! machines are charts whose two regions share the variables (§3.2): a run's state of regions
+//! is held to each of its regions' states, and a joint move to every transition it joins.
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
@@ -25,11 +27,19 @@ const RANGE: (i64, i64) = (-4, 3);
 /// [`RANGE`] for `in0`.
 fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
     let mut rng = Rng::new(seed);
+    // Whether a machine is a chart with regions, drawn apart so that a seed whose machines
+    // are all flat makes the machines it always made.
+    let mut charts = Rng::new(seed ^ 0xc4a2_7500);
     let machines = rng.between(1, 2);
     let mut files = Vec::new();
     let mut manifest = String::from("description = \"random numbers\"\n");
     for m in 0..machines {
         let name = format!("N{m}");
+        if charts.chance(30) {
+            let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
+            files.push((format!("{name}.machine"), chart(&mut rng, &name)));
+            continue;
+        }
         let states = rng.between(2, 4);
         let mut text = format!("machine {name}\ninitial S0\n");
         for s in 0..states {
@@ -68,6 +78,62 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
     }
     files.push(("behaviour.toml".into(), manifest));
     (files, ranged)
+}
+
+/// A machine with a parallel state of two regions (§3.2) beside a plain state: the regions
+/// share the machine's variables, each region's states compute and test them (and now and
+/// again wait on the other's state with `in`), the parallel state's own transitions leave
+/// both, and `done` fires once both regions are final.
+fn chart(rng: &mut Rng, name: &str) -> String {
+    let activity = |rng: &mut Rng, indent: &str| -> String {
+        let statements: Vec<String> = (0..rng.between(0, 2)).map(|_| statement(rng)).collect();
+        if statements.is_empty() {
+            return String::new();
+        }
+        let section = *rng.pick(&["entry", "internal"]);
+        let body = statements.join(" ");
+        format!("{indent}{section} {{ extern in0; extern in1; {body} }}\n")
+    };
+    let mut text = format!("machine {name}\ninitial {}\n", rng.pick(&["P", "Q"]));
+    // No activity of P's own: each read of a free value multiplies what one ringlet of both
+    // regions must try, and the regions' states read enough.
+    text.push_str("parallel P {\n");
+    if rng.chance(50) {
+        let _ = writeln!(text, "    when {} -> Q", label(rng));
+    }
+    if rng.chance(40) {
+        text.push_str("    when done -> Q\n");
+    }
+    for region in ["A", "B"] {
+        let _ = writeln!(text, "    state {region} {{");
+        let states = rng.between(2, 3);
+        for s in 0..states {
+            let _ = writeln!(text, "        state {region}{s} {{");
+            if rng.chance(50) {
+                text.push_str(&activity(rng, "            "));
+            }
+            // The last state may be final, for `done`.
+            if !(s + 1 == states && rng.chance(40)) {
+                for _ in 0..rng.between(1, 2) {
+                    let target = rng.below(states);
+                    let mut label = label(rng);
+                    // Now and again it waits on the other region's state.
+                    if rng.chance(25) {
+                        let other = if region == "A" { "B" } else { "A" };
+                        let not = if rng.chance(50) { "!" } else { "" };
+                        label = format!("{label} && {not}in({other}{})", rng.below(2));
+                    }
+                    let _ = writeln!(text, "            when {label} -> {region}{target}");
+                }
+            }
+            text.push_str("        }\n");
+        }
+        text.push_str("    }\n");
+    }
+    text.push_str("}\nstate Q {\n");
+    text.push_str(&activity(rng, "    "));
+    let _ = writeln!(text, "    when {} -> P\n}}", label(rng));
+    text
 }
 
 /// Few constants, so that the domains (one value an interval) stay small enough to search.
@@ -161,6 +227,8 @@ struct Outcome {
     claimed: bool,
     /// Claimed of a behaviour that declares a range.
     ranged: bool,
+    /// Claimed of a behaviour with a chart of regions.
+    charted: bool,
     disagreements: Vec<String>,
 }
 
@@ -210,6 +278,19 @@ fn one(seed: u64, runs: usize) -> Outcome {
     };
     let said = never_fires.clone();
     never_fires.retain(|t| said.iter().filter(|s| *s == t).count() == alike(t));
+    // In a chart, a transition as written is known by where it was written and its line, and a
+    // flat transition that fires credits every written one it joins (`lib.rs`'s findings).
+    let never_lines: Vec<(String, String, usize)> = (report.findings.iter())
+        .filter_map(|f| match f {
+            Finding::NeverFires {
+                machine,
+                from,
+                line,
+                ..
+            } if *line > 0 => Some((machine.clone(), from.clone(), *line)),
+            _ => None,
+        })
+        .collect();
     let claimed = report.stats.complete && report.inexact.is_empty();
     let mut disagreements = Vec::new();
     let mut rng = Rng::new(seed ^ 0x5eed);
@@ -221,6 +302,13 @@ fn one(seed: u64, runs: usize) -> Outcome {
             run.wait(Duration::from_millis(25));
             run.round();
         }
+        let chart_of = |machine: &str| {
+            let m = behaviour
+                .machines
+                .iter()
+                .find(|m| m.machine.name == machine);
+            m.map(|m| &m.machine).filter(|m| !m.composites.is_empty())
+        };
         let names = |id: i64, machine: &str| -> String {
             let m = &behaviour
                 .machines
@@ -231,9 +319,46 @@ fn one(seed: u64, runs: usize) -> Outcome {
         };
         for e in &run.events {
             let seen = match e {
-                Event::Entered { machine, state, .. } => {
-                    let s = format!("{machine}.{state}");
-                    never_entered.contains(&s).then_some(format!("entered {s}"))
+                Event::Entered { machine, state, .. } => (state.split(", "))
+                    .map(|atomic| format!("{machine}.{atomic}"))
+                    .find(|s| never_entered.contains(s))
+                    .map(|s| format!("entered {s}")),
+                Event::Fired {
+                    machine,
+                    from,
+                    to,
+                    label,
+                    ..
+                } if chart_of(machine).is_some() => {
+                    let m = chart_of(machine).expect("a chart");
+                    let arms: Vec<_> = (m.transitions.iter())
+                        .filter(|t| t.source == *from && t.target == *to)
+                        .filter(|t| t.shown().to_string() == *label)
+                        .collect();
+                    let written = |c: Option<usize>, source| {
+                        let composite = c.and_then(|c| m.composites.get(c));
+                        composite.map_or_else(|| names(source, machine), |c| c.name.clone())
+                    };
+                    // Several arms alike: the event cannot tell which fired.
+                    let credited: Vec<(String, usize)> = match arms.as_slice() {
+                        [t] => std::iter::once((written(t.composite, t.source), t.line))
+                            .chain(
+                                t.joined
+                                    .iter()
+                                    .filter(|j| j.2)
+                                    .map(|&(c, line, _)| (written(c, t.source), line)),
+                            )
+                            .collect(),
+                        _ => Vec::new(),
+                    };
+                    credited
+                        .into_iter()
+                        .find(|(w, line)| {
+                            never_lines.contains(&(machine.clone(), w.clone(), *line))
+                        })
+                        .map(|(w, line)| {
+                            format!("fired {machine}: the transition of {w} at line {line}")
+                        })
                 }
                 Event::Fired {
                     machine,
@@ -261,16 +386,18 @@ fn one(seed: u64, runs: usize) -> Outcome {
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
+    let charted = (behaviour.machines.iter()).any(|m| !m.machine.composites.is_empty());
     Outcome {
         claimed,
         ranged: claimed && ranged,
+        charted: claimed && charted,
         disagreements,
     }
 }
 
 fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
-    let (mut claimed, mut ranged) = (0, 0);
+    let (mut claimed, mut ranged, mut charted) = (0, 0, 0);
     let mut disagreements = Vec::new();
     let started = std::time::Instant::now();
     for seed in seeds {
@@ -280,13 +407,14 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
         let o = one(seed, runs);
         claimed += usize::from(o.claimed);
         ranged += usize::from(o.ranged);
+        charted += usize::from(o.charted);
         for d in &o.disagreements {
             eprintln!("{d}");
         }
         disagreements.extend(o.disagreements);
     }
     eprintln!(
-        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range), {} disagreements",
+        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range, {charted} with regions), {} disagreements",
         disagreements.len()
     );
     assert!(
@@ -302,6 +430,10 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     assert!(
         ranged * 10 > count as usize,
         "only {ranged} of {count} behaviours were exact by a declared range"
+    );
+    assert!(
+        charted * 10 > count as usize,
+        "only {charted} of {count} behaviours with regions were exact"
     );
 }
 
