@@ -432,26 +432,8 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
                 }
             }
         }
-        // In a state of regions, where a transition goes is the state it enters that its
-        // source was not in (its region's), or its own for a move back into it, however the
-        // other regions stand.
         let regions = m.machine.composites.iter().any(|c| c.parallel);
-        let to_of = |t: &proclaim_fsm::Transition| {
-            let (Some(a), Some(b)) = (m.machine.state(t.source), m.machine.state(t.target)) else {
-                return name(t.target);
-            };
-            let before = m.machine.atomic_paths(a);
-            let after = m.machine.atomic_paths(b);
-            let own = t.composite.and_then(|c| m.machine.composites.get(c));
-            match after.iter().find(|p| !before.contains(p)) {
-                Some(p) if regions => p.to_string(),
-                // A region's move back into its own state, whatever the others stand in.
-                None if regions => own
-                    .filter(|c| c.atomic)
-                    .map_or_else(|| name(t.target), |c| c.name.clone()),
-                _ => name(t.target),
-            }
-        };
+        let to_of = |t: &proclaim_fsm::Transition| shown_target(&m.machine, t, regions);
         // In a state of regions a transition as written is one finding wherever its arms go
         // (a composite's move back into itself goes to each combination it was in): it is
         // shown going where its first arm goes.
@@ -481,6 +463,34 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
         }
     }
     findings
+}
+
+/// Where a never-fires finding says transition `t` goes: in a state of regions, the state it
+/// enters that its source was not in (its region's), or its own for a move back into it,
+/// however the other regions stand; else its target.
+fn shown_target(
+    machine: &proclaim_fsm::Machine,
+    t: &proclaim_fsm::Transition,
+    regions: bool,
+) -> String {
+    let name = |id| {
+        machine
+            .state(id)
+            .map_or_else(|| format!("#{id}"), |s| s.name.clone())
+    };
+    let (Some(a), Some(b)) = (machine.state(t.source), machine.state(t.target)) else {
+        return name(t.target);
+    };
+    let before = machine.atomic_paths(a);
+    let after = machine.atomic_paths(b);
+    let own = t.composite.and_then(|c| machine.composites.get(c));
+    match after.iter().find(|p| !before.contains(p)) {
+        Some(p) if regions => p.to_string(),
+        None if regions => own
+            .filter(|c| c.atomic)
+            .map_or_else(|| name(t.target), |c| c.name.clone()),
+        _ => name(t.target),
+    }
 }
 
 /// The keys none of whose items happened, each once, in the order first met.

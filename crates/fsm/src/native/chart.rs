@@ -364,9 +364,15 @@ impl Tree {
         }
     }
 
-    fn written(&self, lowering: &mut Lowering<'_>, n: usize, when: When) -> Option<Written> {
-        let label = lowering.label(&when)?;
-        // `in(S)` names a state as a target does; each flat state decides it (`flatten.rs`).
+    /// Whether every `in(S)` of `label`, written on `n`, names a state as a target does (each
+    /// flat state then decides it, `flatten.rs`); what does not is reported.
+    fn in_states_named(
+        &self,
+        lowering: &mut Lowering<'_>,
+        n: usize,
+        when: &When,
+        label: &Label,
+    ) -> bool {
         let mut unresolved = None;
         label.clone().replace_calls(&mut |function, arguments| {
             if function != IN_STATE {
@@ -385,8 +391,18 @@ impl Tree {
             }
             Some(Expr::Bool(false))
         });
-        if let Some(message) = unresolved {
-            lowering.error(when.label_at, message);
+        match unresolved {
+            Some(message) => {
+                lowering.error(when.label_at, message);
+                false
+            }
+            None => true,
+        }
+    }
+
+    fn written(&self, lowering: &mut Lowering<'_>, n: usize, when: When) -> Option<Written> {
+        let label = lowering.label(&when)?;
+        if !self.in_states_named(lowering, n, &when, &label) {
             return None;
         }
         let node = &self.nodes[n];
