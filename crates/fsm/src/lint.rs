@@ -90,13 +90,22 @@ fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
         if t.composite.is_some() {
             continue;
         }
-        if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
+        if t.label == Label::Bool(false) && t.written.is_some() {
+            // What lowering decided, as an `in(S)` of another state is in a flat machine.
+            out.push(FileDiagnostic::warning(
+                file,
+                t.line,
+                format!("`{}` never fires: it is false in this state", t.shown()),
+            ));
+        } else if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
+            // Shown as written: `in(S)` of its own state is always true there too.
             out.push(FileDiagnostic::warning(
                 file,
                 t.line,
                 format!(
-                    "`{}` is never tried: `TRUE` above it (line {}) always fires first",
+                    "`{}` is never tried: `{}` above it (line {}) always fires first",
                     t.shown(),
+                    always.shown(),
                     always.line
                 ),
             ));

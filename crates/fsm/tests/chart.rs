@@ -829,3 +829,25 @@ Y#2 entry[] exit[] internal[]
 ",
     );
 }
+
+/// What `in(S)` lowers to is said as written: an `in` of the state itself shadows what is below
+/// it, and one of another state never fires there.
+#[test]
+fn check_says_what_in_decided_as_written() {
+    let read = parse_machine(
+        "F.machine",
+        "machine F\nstate X {\n    when in(X) -> Y\n    when go -> Y\n}\nstate Y {\n    when in(X) -> X\n    when back -> X\n}\n",
+    );
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let said: Vec<String> = proclaim_fsm::lint(&read.machines[0], "F.machine")
+        .iter()
+        .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+        .collect();
+    assert_eq!(
+        said,
+        [
+            "4: `go` is never tried: `in(X)` above it (line 3) always fires first",
+            "7: `in(X)` never fires: it is false in this state",
+        ]
+    );
+}
