@@ -526,3 +526,26 @@ fn every_edit_everywhere_reads_back() {
         }
     }
 }
+
+/// A label's `in(S)` names S as a transition does: renaming S renames it there too, and S
+/// cannot be deleted while a label asks it.
+#[test]
+fn a_state_a_label_asks_in_is_renamed_there_and_kept() {
+    let text = "machine M\nstate A {\n    when go && !in( B ) -> B\n    when stop -> C\n}\nstate B {\n    when in(B) || within(B) -> A\n}\nstate C {\n    when !in(B) && tick -> C\n}\n";
+    check(
+        text,
+        Edit::RenameState {
+            state: 1,
+            to: "SEEN".into(),
+        },
+        // `within(B)` is a host function's call, not `in`.
+        &text
+            .replace("B", "SEEN")
+            .replace("within(SEEN)", "within(B)"),
+    );
+    check(
+        &text.replace("go && !in( B ) -> B", "go -> C"),
+        Edit::DeleteState { state: 1 },
+        "error: state B cannot be deleted while transitions lead to it: from B (line 7), from C (line 10); delete or retarget them first\n",
+    );
+}

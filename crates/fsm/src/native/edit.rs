@@ -465,8 +465,45 @@ impl Patcher<'_> {
             for r in refs.filter(|r| by_name(&r.reference)) {
                 patches.push(patch(r.span.clone(), written.clone()));
             }
+            for (span, named, _) in self.in_references() {
+                if named == s.name {
+                    patches.push(patch(span, written.clone()));
+                }
+            }
         }
         Ok(patches)
+    }
+
+    /// Each `in(NAME)` in a label: the name's span, the name, and where its `when` starts.
+    fn in_references(&self) -> Vec<(Range<usize>, String, usize)> {
+        let mut out = Vec::new();
+        for w in self.outline.states.iter().flat_map(|o| &o.whens) {
+            let label = &self.text[w.label.clone()];
+            for (at, _) in label.match_indices("in") {
+                let word_before = label[..at]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '.');
+                let rest = &label[at + 2..];
+                let Some(inside) = rest.trim_start().strip_prefix('(') else {
+                    continue;
+                };
+                let Some(close) = inside.find(')') else {
+                    continue;
+                };
+                let named = inside[..close].trim();
+                if word_before || named.is_empty() {
+                    continue;
+                }
+                let start = w.label.start
+                    + at
+                    + 2
+                    + (rest.len() - inside.len())
+                    + (inside.len() - inside.trim_start().len());
+                out.push((start..start + named.len(), named.to_string(), w.start));
+            }
+        }
+        out
     }
 
     fn delete_state(&self, state: usize) -> Result<Vec<Patch>, EditError> {
@@ -490,6 +527,19 @@ impl Patcher<'_> {
             .filter(|(_, w)| self.outline.resolve(&w.target.reference) == Some(state))
             .map(|(o, w)| (o.name.clone(), self.line_of(w.start)))
             .collect();
+        // A label that asks `in(S)` of it needs it as much as a transition to it does.
+        let asked: Vec<(String, usize)> = (self.in_references().into_iter())
+            .filter(|(_, named, _)| self.outline.resolve(&Ref::Name(named.clone())) == Some(state))
+            .filter_map(|(_, _, at)| {
+                let o = self
+                    .outline
+                    .states
+                    .iter()
+                    .find(|o| o.whens.iter().any(|w| w.start == at))?;
+                Some((o.name.clone(), self.line_of(at)))
+            })
+            .collect();
+        let by: Vec<(String, usize)> = by.into_iter().chain(asked).collect();
         if !by.is_empty() {
             return Err(EditError::Targeted {
                 state: s.name.clone(),
