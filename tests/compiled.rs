@@ -614,10 +614,16 @@ pub(crate) fn subsumption_runs() -> Vec<(String, String, Option<String>)> {
 /// ones in which the ball, its side and the referee's penalty come at any millisecond, rounds'
 /// moments included, so that a penalty meets every step of the dive.
 pub(crate) fn keeper_runs() -> Vec<(String, String, Option<String>)> {
-    let own = std::fs::read_to_string("machines/keeper/match.script").unwrap();
-    let mut runs = vec![("keeper-own".to_string(), own, Some("7s".to_string()))];
     let atoms = ["ballComing", "ballLeft", "penalized"];
-    let mut seed = 0x5eed_0048_4b50;
+    match_runs("keeper", &atoms, 0x5eed_0048_4b50)
+}
+
+/// Runs of a keeper-shaped behaviour `name`: its own `match.script` for 7 s, and eight seeded
+/// ones: every atom false, the ball coming within 2 s, then 2 to 9 of `atoms` set at any
+/// millisecond of 5 s, each run stopped between 1 and 6 s.
+fn match_runs(name: &str, atoms: &[&str], mut seed: u64) -> Vec<(String, String, Option<String>)> {
+    let own = std::fs::read_to_string(format!("machines/{name}/match.script")).unwrap();
+    let mut runs = vec![(format!("{name}-own"), own, Some("7s".to_string()))];
     for n in 0..8 {
         let mut next = |below: u64| splitmix(&mut seed) % below;
         let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
@@ -625,12 +631,12 @@ pub(crate) fn keeper_runs() -> Vec<(String, String, Option<String>)> {
         script.push_str(&format!("at {ball}ms ballComing = true\n"));
         for _ in 0..2 + next(8) {
             let at = seeded_moment(&mut next, 0, 5_000);
-            let atom = atoms[next(3) as usize];
+            let atom = atoms[next(atoms.len() as u64) as usize];
             let value = next(2) == 0;
             script.push_str(&format!("at {at}ms {atom} = {value}\n"));
         }
         let run_for = format!("{}ms", 1_000 + next(5_000));
-        runs.push((format!("keeper-random{n}"), script, Some(run_for)));
+        runs.push((format!("{name}-random{n}"), script, Some(run_for)));
     }
     runs
 }
@@ -744,24 +750,8 @@ fn the_trackers_regions_compile_to_the_interpreters_trace() {
 /// whose dive nests and starts a sub-machine): its own match, and seeded ones in which the
 /// ball is seen, comes and leaves and the referee penalizes at any millisecond.
 pub(crate) fn goalkeeper_runs() -> Vec<(String, String, Option<String>)> {
-    let own = std::fs::read_to_string("machines/goalkeeper/match.script").unwrap();
-    let mut runs = vec![("goalkeeper-own".to_string(), own, Some("7s".to_string()))];
     let atoms = ["ballSeen", "ballComing", "ballLeft", "penalized"];
-    let mut seed = 0x5eed_0048_9c4b;
-    for n in 0..8 {
-        let mut next = |below: u64| splitmix(&mut seed) % below;
-        let mut script: String = atoms.iter().map(|a| format!("{a} = false\n")).collect();
-        let ball = seeded_moment(&mut next, 0, 2_000);
-        script.push_str(&format!("at {ball}ms ballComing = true\n"));
-        for _ in 0..2 + next(8) {
-            let at = seeded_moment(&mut next, 0, 5_000);
-            let atom = atoms[next(4) as usize];
-            script.push_str(&format!("at {at}ms {atom} = {}\n", next(2) == 0));
-        }
-        let run_for = format!("{}ms", 1_000 + next(5_000));
-        runs.push((format!("goalkeeper-random{n}"), script, Some(run_for)));
-    }
-    runs
+    match_runs("goalkeeper", &atoms, 0x5eed_0048_9c4b)
 }
 
 /// A dive nested in one region beside a head in another, its fall a sub-machine given its

@@ -424,6 +424,28 @@ state done { // SCXML line 12
     );
 }
 
+/// Native text of machine `name` written as SCXML (which must hold `shows`) and imported
+/// again: the same machine, lines aside.
+#[track_caller]
+fn reads_back_the_same(name: &str, native: &str, shows: &str) {
+    let written = parse_machine(&format!("{name}.machine"), native);
+    assert!(!written.has_errors(), "{:?}", written.diagnostics);
+    let scxml = to_scxml(&format!("{name}.machine"), native).unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(scxml.contains(shows), "{scxml}");
+    let read = import_scxml(&format!("{name}.scxml"), &scxml, name);
+    assert!(
+        !read.imported.has_errors(),
+        "{:?}\n{scxml}",
+        read.imported.diagnostics
+    );
+    assert_eq!(
+        without_lines(read.imported.machines[0].clone()),
+        without_lines(written.machines[0].clone()),
+        "\n{scxml}\n{}",
+        read.native.unwrap_or_default()
+    );
+}
+
 /// A parallel state is SCXML's `<parallel>` both ways (`docs/spec/behaviour.md` §3.2): its
 /// regions, their own clocks and its `done` read back as the same machine.
 #[test]
@@ -459,22 +481,7 @@ parallel PLAY {
 state STOP {
 }
 "#;
-    let written = parse_machine("Striker.machine", native);
-    assert!(!written.has_errors(), "{:?}", written.diagnostics);
-    let scxml = to_scxml("Striker.machine", native).unwrap_or_else(|e| panic!("{e:?}"));
-    assert!(scxml.contains("<parallel id=\"PLAY\">"), "{scxml}");
-    let read = import_scxml("Striker.scxml", &scxml, "Striker");
-    assert!(
-        !read.imported.has_errors(),
-        "{:?}\n{scxml}",
-        read.imported.diagnostics
-    );
-    assert_eq!(
-        without_lines(read.imported.machines[0].clone()),
-        without_lines(written.machines[0].clone()),
-        "\n{scxml}\n{}",
-        read.native.unwrap_or_default()
-    );
+    reads_back_the_same("Striker", native, "<parallel id=\"PLAY\">");
 }
 
 /// SCXML's `In('id')` is the native `in(STATE)` both ways: a region waiting on another's state
@@ -501,22 +508,7 @@ parallel P {
     }
 }
 ";
-    let written = parse_machine("M.machine", native);
-    assert!(!written.has_errors(), "{:?}", written.diagnostics);
-    let scxml = to_scxml("M.machine", native).unwrap_or_else(|e| panic!("{e:?}"));
-    assert!(scxml.contains("cond=\"In(&quot;a2&quot;)\""), "{scxml}");
-    let read = import_scxml("M.scxml", &scxml, "M");
-    assert!(
-        !read.imported.has_errors(),
-        "{:?}\n{scxml}",
-        read.imported.diagnostics
-    );
-    assert_eq!(
-        without_lines(read.imported.machines[0].clone()),
-        without_lines(written.machines[0].clone()),
-        "\n{scxml}\n{}",
-        read.native.unwrap_or_default()
-    );
+    reads_back_the_same("M", native, "cond=\"In(&quot;a2&quot;)\"");
     check(
         r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="a">
   <state id="a">
