@@ -541,3 +541,54 @@ fn a_run_alone_with_no_script_ends_when_its_machines_are_still() {
         stdout(&o)
     );
 }
+
+/// A transition without a target acts and stays (§3.2): it fires three times at the moment `go`
+/// comes, running only its own actions (the state's OnEntry ran once and its OnExit runs once,
+/// when it leaves), and the state's time test counts on from its entry: it leaves at 0.3 s,
+/// not 0.3 s after the last firing.
+#[test]
+fn a_transition_that_stays_acts_without_leaving_and_its_state_keeps_its_clock() {
+    let dir = crate::behaviour_folder(
+        "stays",
+        &[
+            (
+                "behaviour.toml",
+                "[[machine]]\nfile = \"C.machine\"\n\n[impersonator]\nscript = \"go.script\"\n",
+            ),
+            ("go.script", "go = false\nat 0.1s go = true\n"),
+            (
+                "C.machine",
+                "machine C\ninitial COUNT\nstate COUNT {\n  entry {\n    int n;\n    Entered: yes\n  }\n  exit {\n    Left: yes\n  }\n  when n < 3 && go {\n    n = n + 1;\n  }\n  when after_ms(300) -> DONE\n}\nstate DONE {\n}\n",
+            ),
+        ],
+    );
+    let o = proclaim(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--virtual-clock",
+        "--for",
+        "2s",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let machine: Vec<String> = out
+        .lines()
+        .filter(|l| l.contains(" C ") && !l.contains(" = "))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect();
+    assert_eq!(
+        machine,
+        [
+            "0.000s C → COUNT",
+            "0.000s C posts Entered: yes",
+            "0.100s C fires on n < 3 && go",
+            "0.100s C fires on n < 3 && go",
+            "0.100s C fires on n < 3 && go",
+            "0.300s C fires on after_ms(300)",
+            "0.300s C posts Left: yes",
+            "0.300s C → DONE",
+            "0.300s C finished in DONE",
+        ],
+        "{out}"
+    );
+}

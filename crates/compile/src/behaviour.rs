@@ -576,6 +576,7 @@ fn plan_state(
             label: t.shown().to_string(),
             leaving,
             enters: t.enters.iter().map(|c| composites_from + c).collect(),
+            stays: arm.stays(),
         });
     }
     let Labels {

@@ -217,19 +217,22 @@ impl Walk<'_> {
                 ],
             ))];
             self.steps(&state.leavings[t.leaving], &mut fire);
-            fire.extend(
-                t.enters
-                    .iter()
-                    .map(|&c| Stmt::Do(Expr::call("enter_composite", vec![Expr::count(c)]))),
-            );
-            fire.extend([
-                Stmt::Set(self.state(), Expr::Number(t.target)),
-                Stmt::Set(
-                    Expr::index(Expr::World("just_entered"), self.machine()),
-                    Expr::Truth(true),
-                ),
-                Stmt::Return(Expr::Truth(true)),
-            ]);
+            // One that stays moves nowhere: its state is not entered again.
+            if !t.stays {
+                fire.extend(
+                    t.enters
+                        .iter()
+                        .map(|&c| Stmt::Do(Expr::call("enter_composite", vec![Expr::count(c)]))),
+                );
+                fire.extend([
+                    Stmt::Set(self.state(), Expr::Number(t.target)),
+                    Stmt::Set(
+                        Expr::index(Expr::World("just_entered"), self.machine()),
+                        Expr::Truth(true),
+                    ),
+                ]);
+            }
+            fire.push(Stmt::Return(Expr::Truth(true)));
             let label = Expr::Label(Box::new(self.condition(&t.condition)));
             let proved = Expr::call("proved", vec![self.machine(), label]);
             body.push(Stmt::If(proved, fire));

@@ -239,6 +239,8 @@ pub(crate) struct TransitionPlan {
     pub leaving: usize,
     /// The composites it enters ([`Plan::composites`]), whose time tests count from then.
     pub enters: Vec<usize>,
+    /// It fires without moving (`Arm::stays`): its state is not entered again.
+    pub stays: bool,
 }
 
 /// A label as the runner proves it.

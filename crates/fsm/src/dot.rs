@@ -3,7 +3,7 @@
 //! linked to it.
 
 use crate::control::Command;
-use crate::dot_text::{escape, node, show};
+use crate::dot_text::{escape, node, show, stays_marks};
 use crate::model::{Action, Machine, State};
 
 pub use crate::dot_text::quote;
@@ -92,13 +92,14 @@ pub fn body(
     }
     for state in &machine.states {
         for (priority, t) in machine.outgoing(state.id).enumerate() {
+            let (said, style) = stays_marks(t);
             let _ = writeln!(
                 out,
-                "{indent}{} -> {} [label=\"{}: {}\"];",
+                "{indent}{} -> {} [label=\"{}: {}{said}\"{style}];",
                 id(t.source),
                 id(t.target),
                 priority + 1,
-                escape(&t.shown().to_string())
+                escape(&t.shown().to_string()),
             );
         }
     }

@@ -308,7 +308,8 @@ impl<'m> Drawing<'m> {
             let from = key.0.as_str();
             let number = numbers.entry(from).or_default();
             *number += 1;
-            let label = format!("{number}: {}", escape(&t.shown().to_string()));
+            let (said, style) = crate::dot_text::stays_marks(t);
+            let label = format!("{number}: {}{said}", escape(&t.shown().to_string()));
             let target = self.target_node(t);
             let cluster_of = t.composite.filter(|&c| !self.machine.composites[c].atomic);
             // A composite's transition leaves from a node inside its cluster (Graphviz clips
@@ -317,8 +318,12 @@ impl<'m> Drawing<'m> {
                 (Some(c), Some(state)) => self.node_inside(state, c),
                 _ => self.node(t.source),
             };
-            let Some(c) = cluster_of else {
-                let _ = writeln!(out, "{indent}{source} -> {target} [label=\"{label}\"];");
+            // One that stays loops on the state it fires in, wherever it was written.
+            let Some(c) = cluster_of.filter(|_| !t.stays) else {
+                let _ = writeln!(
+                    out,
+                    "{indent}{source} -> {target} [label=\"{label}\"{style}];"
+                );
                 continue;
             };
             let cluster = quote(from);

@@ -1,7 +1,7 @@
 //! The words of a DOT diagram that `dot` and `dot_chart` both write: node names, quoted and
-//! escaped text, an action as one line.
+//! escaped text, an action as one line, how a transition that stays is marked.
 
-use crate::model::{Action, Argument};
+use crate::model::{Action, Argument, Transition};
 
 /// State ids may be negative; node names may not start with `-`.
 pub(crate) fn node(id: i64) -> String {
@@ -45,4 +45,14 @@ pub(crate) fn escape(text: &str) -> String {
 /// A DOT string literal.
 pub fn quote(text: &str) -> String {
     format!("\"{}\"", escape(text))
+}
+
+/// How a transition that stays is told from one that leaves its state and enters it again: a
+/// dashed loop, said in its label too. What to add to its label, and to its attributes.
+pub(crate) fn stays_marks(t: &Transition) -> (&'static str, &'static str) {
+    if t.stays {
+        (" (stays)", ", style=dashed")
+    } else {
+        ("", "")
+    }
 }

@@ -220,6 +220,10 @@ pub struct Transition {
     /// whether this arm fires it (a later region's move out of the parallel state is
     /// preempted). Empty elsewhere: then the whole label is the transition's on `line`.
     pub joined: Vec<(Option<usize>, usize, bool)>,
+    /// It fires without moving (SCXML's transition without a target): `leaving` (its own
+    /// actions, no OnExit) runs, and the machine stays in its state, which is `target`: no
+    /// OnEntry runs after it and no clock starts again (§3.2).
+    pub stays: bool,
 }
 
 impl Transition {

@@ -396,6 +396,7 @@ fn end_transition(
             enters: Vec::new(),
             written: None,
             joined: Vec::new(),
+            stays: false,
         },
     ));
 }

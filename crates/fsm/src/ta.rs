@@ -205,6 +205,7 @@ fn t_line(
             enters: Vec::new(),
             written: None,
             joined: Vec::new(),
+            stays: false,
         }),
         Err(e) => {
             diagnostics.push(FileDiagnostic::error(

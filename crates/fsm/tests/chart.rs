@@ -40,7 +40,8 @@ fn written(machine: &Machine) -> String {
             let on = t.composite.map_or(String::new(), |c| {
                 format!(" of {}", machine.composites[c].name)
             });
-            out += &format!("  {} -> {}{leaving}{on}\n", t.label, name(t.target));
+            let stays = if t.stays { " stays" } else { "" };
+            out += &format!("  {} -> {}{leaving}{on}{stays}\n", t.label, name(t.target));
         }
     }
     out
@@ -282,6 +283,115 @@ P.B#2 entry[] exit[] internal[]
 Q#3 entry[] exit[] internal[]
 ",
     );
+}
+
+/// A transition without a target acts and stays (§3.2): its own actions run, no OnExit and,
+/// after it, no OnEntry. Written on a composite, it stays in whichever state inside fired it;
+/// in a region, it fires beside another region's move, which alone enters anything; when all
+/// that fires stays, the machine stays in its very flat state.
+#[test]
+fn a_transition_without_a_target_runs_its_own_actions_and_stays() {
+    check(
+        "machine M
+state A {
+    exit {
+        AOff:
+    }
+    when p {
+        Counted:
+    }
+    when q { }
+    when r -> B
+}
+state B { }
+",
+        "initial A#1
+A#1 entry[] exit[AOff] internal[]
+  p -> A#1 leaving[Counted] stays
+  q -> A#1 leaving[] stays
+  r -> B#2
+B#2 entry[] exit[] internal[]
+",
+    );
+    check(
+        "machine M
+state P {
+    exit {
+        POff:
+    }
+    when tick {
+        Ticked:
+    }
+    state A {
+        when p -> B
+    }
+    state B { }
+}
+",
+        "initial P.A#1
+P.A#1 entry[] exit[] internal[]
+  p -> P.B#2
+  tick -> P.A#1 leaving[Ticked] of P stays
+P.B#2 entry[] exit[] internal[]
+  tick -> P.B#2 leaving[Ticked] of P stays
+",
+    );
+    check(
+        "machine M
+parallel P {
+    state L {
+        state L0 {
+            entry {
+                L0On:
+            }
+            when a {
+                Counted:
+            }
+        }
+    }
+    state R {
+        state R0 {
+            when b -> R1
+        }
+        state R1 {
+            entry {
+                R1On:
+            }
+        }
+    }
+}
+",
+        "initial P.L.L0, P.R.R0#4
+P.L.L0, P.R.R0#4 entry[L0On] exit[] internal[]
+  a && b -> P.L.L0, P.R.R1#5 leaving[Counted] of P.L.L0
+  a -> P.L.L0, P.R.R0#4 leaving[Counted] of P.L.L0 stays
+  b -> P.L.L0, P.R.R1#5 leaving[] of P.R.R0
+P.L.L0, P.R.R1#5 entry[R1On] exit[] internal[]
+  a -> P.L.L0, P.R.R1#5 leaving[Counted] of P.L.L0 stays
+",
+    );
+}
+
+/// A transition that stays is written back as it was written, with its block.
+#[test]
+fn a_transition_that_stays_is_written_back() {
+    let text = "machine M\nstate A {\n    exit {\n        Off: now\n    }\n    when p {\n        n = n + 1;\n    }\n    when q { }\n    when r -> A\n}\n";
+    let read = parse_machine("M.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let written = to_native(&read.machines[0]);
+    assert!(
+        written
+            .contains("    when p {\n        n = n + 1;\n    }\n    when q { }\n    when r -> A\n"),
+        "{written}"
+    );
+    let again = parse_machine("M.machine", &written);
+    let what = |m: &Machine| -> Vec<_> {
+        (m.transitions.iter())
+            .map(|t| (t.target, t.stays, t.leaving.clone()))
+            .collect()
+    };
+    assert_eq!(what(&again.machines[0]), what(&read.machines[0]));
+    assert_eq!(to_native(&again.machines[0]), written);
 }
 
 /// A flat machine's transition actions survive being written again (`proclaim import` of a

@@ -174,7 +174,7 @@ fn the_native_format() {
     );
     native(
         "machine M\nstate A {\n  when a\n}\n",
-        "m.machine:4: error: unexpected `}`; expected `->`\n",
+        "m.machine:4: error: unexpected `}`; expected one of `{`, `->`\n",
     );
     native(
         "machine M\nstate A #2 {}\nstate B #2 {}\n",

@@ -120,6 +120,64 @@ state count { // SCXML line 3
     );
 }
 
+/// A transition without a target acts and stays: SCXML's and the native `when LABEL { … }`
+/// (`docs/spec/behaviour.md` §3.2) are one, both ways.
+#[test]
+fn a_transition_without_a_target_reads_and_writes_as_one_that_stays() {
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="count" datamodel="ecmascript">
+  <datamodel><data id="n" expr="0"/></datamodel>
+  <state id="count">
+    <transition cond="n &lt; 3"><assign location="n" expr="n + 1"/></transition>
+    <transition event="tick" type="internal"/>
+    <transition cond="n == 3" target="done"/>
+  </state>
+  <final id="done"/>
+</scxml>"#,
+        r#"machine d
+initial DATAMODEL_START
+
+state DATAMODEL_START {
+    entry {
+        int n;
+    }
+    when TRUE -> count
+}
+
+state count { // SCXML line 3
+    when (n < 3) { // SCXML line 4
+        n = n + 1;
+    }
+    when tick { // SCXML line 5
+    }
+    when (n == 3) -> done // SCXML line 6
+}
+
+state done { // SCXML line 8
+}
+"#,
+    );
+    let native = "machine M
+initial DATAMODEL_START
+state DATAMODEL_START {
+    entry {
+        int n;
+    }
+    when TRUE -> count
+}
+state count {
+    when n < 3 {
+        n = n + 1;
+    }
+    when tick { }
+    when n == 3 -> done
+}
+state done {
+}
+";
+    reads_back_the_same("M", native, "<transition cond=\"n &lt; 3\">");
+}
+
 /// A document of no states (Qt's parser tests have one) is refused where it starts, rather than
 /// mapped to a machine that cannot be read.
 #[test]
@@ -148,7 +206,7 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
 2: <parallel> holding no states: it has no regions to run
 4: event `go.*`: a wildcard does not map: an event is one label atom
 5: target \"a b\": several targets (one a region) do not map yet: target one state, and the other regions enter at their initial
-6: <transition> without a target (it would act and stay): not in the native format yet; an `internal` activity runs when nothing fires
+6: <script> in executable content: a script: only the small expression data model maps
 7: `_event.data > 1`: an event's data (`_event`): events carry none here
 8: <send event=\"e\"> with a delay: only a send on entering a state maps (it times that state)
 8: <if> in executable content: control flow in executable content: the activity language has `for` but no `if` yet

@@ -112,12 +112,20 @@ impl<'m> Arm<'m> {
 
     /// What runs when this transition fires, before the machine moves to its target: its
     /// state's OnExit, or, for a nested state's transition that leaves its composites too,
-    /// their OnExits after it, innermost first (§3.2).
+    /// their OnExits after it, innermost first (§3.2); for one that stays, its own actions.
     pub fn leaving(&self) -> &'m [Action] {
-        self.transition
-            .leaving
-            .as_deref()
-            .unwrap_or(&self.state.on_exit)
+        match &self.transition.leaving {
+            Some(leaving) => leaving,
+            None if self.stays() => &[],
+            None => &self.state.on_exit,
+        }
+    }
+
+    /// Whether it fires without moving (`when p { … }`, §3.2): after [`Arm::leaving`] the
+    /// machine is where it was, not just entered (no OnEntry runs next) and with every clock
+    /// still counting from where it started.
+    pub fn stays(&self) -> bool {
+        self.transition.stays
     }
 }
 
@@ -130,7 +138,8 @@ pub enum Next<'m> {
     Snapshot,
     /// Prove this arm's label, then say whether it held ([`RingletRun::proved`]).
     Try(Arm<'m>),
-    /// The arm's label held: run what [`Arm::leaving`] gives and move to its target.
+    /// The arm's label held: run what [`Arm::leaving`] gives and move to its target (or, when
+    /// [`Arm::stays`], stay as the machine is).
     Leave(Arm<'m>),
     /// No label held: run these activities and stay.
     Stay(&'m [Action]),
@@ -294,6 +303,21 @@ state B { }
                 "done Some(1)",
             ],
         );
+    }
+
+    #[test]
+    fn a_transition_that_stays_runs_its_own_actions_and_not_the_exit() {
+        let text = "machine M\nstate A {\n    exit { x = 2; }\n    when p {\n        x = 5;\n        y = 6;\n    }\n    when q -> A\n}\n";
+        let read = parse_machine("M.machine", text);
+        assert!(read.diagnostics.is_empty(), "{:?}", read.diagnostics);
+        let machine = &read.machines[0];
+        let plan = RingletPlan::of(machine, machine.initial).expect("A is a state");
+        let said: Vec<(bool, usize)> = plan
+            .arms()
+            .map(|a| (a.stays(), a.leaving().len()))
+            .collect();
+        assert_eq!(said, [(true, 2), (false, 1)]);
+        assert!(!plan.is_final());
     }
 
     #[test]

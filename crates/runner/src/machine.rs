@@ -493,7 +493,8 @@ impl<'r> RunningMachine<'r> {
         None
     }
 
-    /// `arm` fired: the event, what it runs leaving, and the move to its target.
+    /// `arm` fired: the event, what it runs leaving, and the move to its target (none for one
+    /// that stays).
     async fn leave(&mut self, arm: Arm<'_>, state: &str) {
         let (from, to) = (self.current, arm.target());
         let label = arm.transition.shown().to_string();
@@ -507,6 +508,9 @@ impl<'r> RunningMachine<'r> {
             round,
         });
         self.act(state, arm.leaving()).await;
+        if arm.stays() {
+            return;
+        }
         self.current = arm.target();
         self.just_entered = true;
         for &c in &arm.transition.enters {

@@ -84,7 +84,8 @@ pub struct TraceStep {
     pub round: u32,
     pub machine: String,
     pub from: String,
-    /// The state it moved to, when a transition fired.
+    /// The state it moved to, when a transition fired and moved (one that stays has a label
+    /// and no `to`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub to: Option<String>,
     /// The label of the transition that fired.

@@ -1476,6 +1476,15 @@ impl<'m> Writer<'m> {
             self.line(&format!(":: {holds} ->"));
             self.depth += 1;
             self.run(arm.leaving())?;
+            if arm.stays() {
+                // Not entered again: state, arrival and due tests are as they were.
+                self.line("skip;");
+                self.depth -= 1;
+                self.line(":: else ->");
+                self.depth += 1;
+                opened += 1;
+                continue;
+            }
             // The due tests of a composite the move stays in stay due, at their new places.
             let kept = crate::ringlet::kept_time_bits(
                 &state.time_tests,

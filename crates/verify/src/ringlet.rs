@@ -382,6 +382,11 @@ impl<'m> StepGenerator<'m> {
                     exec.run(arm.leaving());
                     // Only a modelled transition is proved (above).
                     if let Some(t) = state.modelled(arm) {
+                        fired = Some(t);
+                        // It stays as it is: not entered again, its due tests still due.
+                        if arm.stays() {
+                            continue;
+                        }
                         let target = state.transitions[t].target;
                         let c = &mut exec.world.machines[k];
                         c.time = kept_time(
@@ -392,7 +397,6 @@ impl<'m> StepGenerator<'m> {
                         );
                         c.state = target as u16;
                         c.just_entered = true;
-                        fired = Some(t);
                     }
                 }
                 Next::Stay(actions) => exec.run(actions),

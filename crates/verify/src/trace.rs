@@ -111,9 +111,7 @@ pub fn trace_of(
             round,
             machine: m.name.clone(),
             from: state.name.clone(),
-            to: s
-                .fired
-                .map(|t| m.states[state.transitions[t].target].name.clone()),
+            to: s.fired.and_then(|t| moved_to(m, &state.transitions[t])),
             label: s.fired.map(|t| m.shown(&state.transitions[t]).to_string()),
             timers: detail
                 .timers
@@ -166,6 +164,7 @@ pub fn render(trace: &Trace) -> String {
         let mut line = format!("    {}: {}", s.machine, s.from);
         match (&s.to, &s.label) {
             (Some(to), Some(label)) => line.push_str(&format!(" -> {to} (when {label})")),
+            (None, Some(label)) => line.push_str(&format!(" acts and stays (when {label})")),
             _ => line.push_str(" stays"),
         }
         if !s.timers.is_empty() {
@@ -184,4 +183,9 @@ pub fn render(trace: &Trace) -> String {
         out.push('\n');
     }
     out
+}
+
+/// The state a fired transition moved to; `None` for one that stays (§3.2).
+fn moved_to(m: &crate::model::MachineModel, t: &crate::model::TransitionModel) -> Option<String> {
+    (!m.machine.transitions[t.index].stays).then(|| m.states[t.target].name.clone())
 }

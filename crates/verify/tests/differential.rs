@@ -30,6 +30,8 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
     // Whether a machine is a chart with regions, drawn apart so that a seed whose machines
     // are all flat makes the machines it always made.
     let mut charts = Rng::new(seed ^ 0xc4a2_7500);
+    // Whether a transition stays, and what it computes, drawn apart for the same reason.
+    let mut stays = Rng::new(seed ^ 0x57a7_5000);
     let machines = rng.between(1, 2);
     let mut files = Vec::new();
     let mut manifest = String::from("description = \"random numbers\"\n");
@@ -37,7 +39,10 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
         let name = format!("N{m}");
         if charts.chance(30) {
             let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
-            files.push((format!("{name}.machine"), chart(&mut rng, &name)));
+            files.push((
+                format!("{name}.machine"),
+                chart(&mut rng, &mut stays, &name),
+            ));
             continue;
         }
         let states = rng.between(2, 4);
@@ -59,12 +64,10 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
             let final_state = s + 1 == states && rng.chance(30);
             if !final_state {
                 for _ in 0..rng.between(1, 2) {
-                    let _ = writeln!(
-                        text,
-                        "    when {} -> S{}",
-                        label(&mut rng),
-                        rng.below(states)
-                    );
+                    let label = label(&mut rng);
+                    let target = format!("S{}", rng.below(states));
+                    let rest = arrow(&mut stays, &target);
+                    let _ = writeln!(text, "    when {label}{rest}");
                 }
             }
             text.push_str("}\n");
@@ -84,7 +87,7 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
 /// share the machine's variables, each region's states compute and test them (and now and
 /// again wait on the other's state with `in`), the parallel state's own transitions leave
 /// both, and `done` fires once both regions are final.
-fn chart(rng: &mut Rng, name: &str) -> String {
+fn chart(rng: &mut Rng, stays: &mut Rng, name: &str) -> String {
     let activity = |rng: &mut Rng, indent: &str| -> String {
         let statements: Vec<String> = (0..rng.between(0, 2)).map(|_| statement(rng)).collect();
         if statements.is_empty() {
@@ -115,7 +118,7 @@ fn chart(rng: &mut Rng, name: &str) -> String {
             // The last state may be final, for `done`.
             if !(s + 1 == states && rng.chance(40)) {
                 for _ in 0..rng.between(1, 2) {
-                    let target = rng.below(states);
+                    let target = format!("{region}{}", rng.below(states));
                     let mut label = label(rng);
                     // Now and again it waits on the other region's state.
                     if rng.chance(25) {
@@ -123,7 +126,8 @@ fn chart(rng: &mut Rng, name: &str) -> String {
                         let not = if rng.chance(50) { "!" } else { "" };
                         label = format!("{label} && {not}in({other}{})", rng.below(2));
                     }
-                    let _ = writeln!(text, "            when {label} -> {region}{target}");
+                    let rest = arrow(stays, &target);
+                    let _ = writeln!(text, "            when {label}{rest}");
                 }
             }
             text.push_str("        }\n");
@@ -134,6 +138,15 @@ fn chart(rng: &mut Rng, name: &str) -> String {
     text.push_str(&activity(rng, "    "));
     let _ = writeln!(text, "    when {} -> P\n}}", label(rng));
     text
+}
+
+/// What follows a transition's label: ` -> TARGET`, or now and then (as `stays` draws) a
+/// statement in a block and no target: it computes and stays (§3.2).
+fn arrow(stays: &mut Rng, target: &str) -> String {
+    if stays.chance(15) {
+        return format!(" {{ extern in0; extern in1; {} }}", statement(stays));
+    }
+    format!(" -> {target}")
 }
 
 /// Few constants, so that the domains (one value an interval) stay small enough to search.

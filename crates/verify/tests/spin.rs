@@ -6,7 +6,9 @@
 use crate::common;
 
 use proclaim_behaviour::{load, Folder};
-use proclaim_verify::{to_promela, verify, Options, PropertyKind, PropertySource, Stop, Verdict};
+use proclaim_verify::{
+    to_promela, verify, Options, PropertyKind, PropertySource, SearchEngine, Stop, Verdict,
+};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
@@ -290,6 +292,45 @@ fn spin_agrees_with_the_checker_that_no_time_passes_before_an_arrivals_snapshot(
         ),
         [Verdict::Holds, Verdict::Holds]
     );
+}
+
+/// A transition that stays (§3.2) runs its own actions only and keeps the state's clock: A is
+/// entered once however often it fires (an entry flips `entries`), its OnExit has not run
+/// while in A, its count stops at 2, and either may come first, two counts or the timeout.
+/// SPIN and both of the checker's engines agree.
+#[test]
+fn spin_and_both_engines_agree_on_a_transition_that_stays() {
+    let dir = scratch("stays-behaviour");
+    let machine = "machine M\ninitial A\nstate A {\n    entry {\n        int n;\n        int entries;\n        entries = 1 - entries;\n    }\n    exit {\n        y = 1;\n    }\n    when n < 2 && go {\n        n = n + 1;\n    }\n    when after(1s) -> B\n}\nstate B { }\n";
+    std::fs::write(dir.join("M.machine"), machine).expect("write");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .expect("write");
+    let properties = [
+        property(PropertyKind::Never, "M.B && M.entries != 1"),
+        property(PropertyKind::Never, "M.A && y == 1"),
+        property(PropertyKind::Never, "M.n > 2"),
+        property(PropertyKind::Reachable, "M.B && M.n == 2"),
+        property(PropertyKind::Reachable, "M.A && M.n == 2"),
+        property(PropertyKind::Eventually, "M.B"),
+    ];
+    let expected = [Verdict::Holds; 6];
+    let behaviour = load("stays", Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, &properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both("stays", &dir, &properties), expected);
 }
 
 /// The press's properties: never stuck, done reachable and eventually done.

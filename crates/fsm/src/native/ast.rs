@@ -51,7 +51,8 @@ pub enum Member {
     When {
         label: String,
         label_at: usize,
-        target: Ref,
+        /// `None` for one that stays (`when p { … }`, SCXML's transition without a target).
+        target: Option<Ref>,
         target_at: usize,
         at: usize,
         /// What it runs as it fires, after what leaving runs (`when p -> B { … }`).

@@ -115,6 +115,9 @@ pub(super) struct Written {
     pub line: usize,
     /// Its own actions: they run as it fires, after the OnExits.
     pub actions: Vec<Action>,
+    /// It has no target (`when p { … }`): it leaves and enters nothing, and `target` is the
+    /// state it was written on.
+    pub stays: bool,
 }
 
 /// Which history a transition resumes (§3.2): the sub-state of the composite last active, or
@@ -433,22 +436,47 @@ impl Tree {
                 ),
             );
         }
+        // No target: it stays, in the state it was written on.
         let (target, history) = match &when.target {
+            Some(written) => self.target(lowering, n, written, when.target_at)?,
+            None => (n, None),
+        };
+        Some(Written {
+            label,
+            done,
+            target,
+            history,
+            line: lowering.lines.line(when.at),
+            actions: when.actions,
+            stays: when.target.is_none(),
+        })
+    }
+
+    /// The state a transition written on `n` names as its target (at `at`), and the history it
+    /// resumes there (`-> P.history`); `None` once why not is reported.
+    fn target(
+        &self,
+        lowering: &mut Lowering<'_>,
+        n: usize,
+        written: &Ref,
+        at: usize,
+    ) -> Option<(usize, Option<History>)> {
+        let (target, history) = match written {
             Ref::Name(path) => {
                 let history = [History::Shallow, History::Deep]
                     .into_iter()
                     .find(|h| path.rsplit('.').next() == Some(h.word()));
                 match (history, path.rsplit_once('.')) {
                     (Some(h), Some((composite, _))) => (Ref::Name(composite.to_string()), Some(h)),
-                    _ => (when.target.clone(), None),
+                    _ => (written.clone(), None),
                 }
             }
-            Ref::Id(_) => (when.target.clone(), None),
+            Ref::Id(_) => (written.clone(), None),
         };
         match self.resolve(Some(n), &target) {
             Ok(target) if history.is_some() && self.nodes[target].children.is_empty() => {
                 lowering.error(
-                    when.target_at,
+                    at,
                     format!(
                         "`{}` holds no states, so it has no history to resume",
                         self.nodes[target].path
@@ -458,7 +486,7 @@ impl Tree {
             }
             Ok(target) if history.is_some() && self.holds_regions(target) => {
                 lowering.error(
-                    when.target_at,
+                    at,
                     format!(
                         "`{}` holds parallel states: a history across regions is not built yet",
                         self.nodes[target].path
@@ -466,16 +494,9 @@ impl Tree {
                 );
                 None
             }
-            Ok(target) => Some(Written {
-                label,
-                done,
-                target,
-                history,
-                line: lowering.lines.line(when.at),
-                actions: when.actions,
-            }),
+            Ok(target) => Some((target, history)),
             Err(message) => {
-                lowering.error(when.target_at, message);
+                lowering.error(at, message);
                 None
             }
         }

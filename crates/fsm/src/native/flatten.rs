@@ -38,6 +38,9 @@ struct FlatArm {
     /// The other transitions whose labels it joins: where each was written, its line, and
     /// whether it fires (a later region's move out of the parallel state is preempted).
     joined: Vec<(Option<usize>, usize, bool)>,
+    /// Every transition it fires stays (has no target): it does not move, and `target` is the
+    /// flat state it fires in.
+    stays: bool,
 }
 
 /// One transition a state selects: written on `source`, to `target` (where a history arm
@@ -195,7 +198,7 @@ impl<'t> Flattening<'t> {
         loop {
             while let Some(flat) = self.queue.pop_front() {
                 let atomics = self.flats[flat].atomics.clone();
-                let arms = self.arms(&atomics);
+                let arms = self.arms(flat, &atomics);
                 self.flats[flat].arms = arms;
             }
             let missed = (from..tree.nodes.len())
@@ -212,7 +215,7 @@ impl<'t> Flattening<'t> {
 
     /// The arms of the flat state of `atomics`: every combination of what its states select,
     /// in the order they are tried (§3.2).
-    fn arms(&mut self, atomics: &[usize]) -> Vec<FlatArm> {
+    fn arms(&mut self, flat: usize, atomics: &[usize]) -> Vec<FlatArm> {
         let tree = self.tree;
         let Some(&first) = atomics.first() else {
             return Vec::new();
@@ -221,7 +224,7 @@ impl<'t> Flattening<'t> {
         let choices = self.choices(atomics, top);
         let mut arms = Vec::new();
         for choice in choices {
-            arms.push(self.arm(atomics, choice));
+            arms.push(self.arm(flat, atomics, choice));
         }
         arms
     }
@@ -315,19 +318,22 @@ impl<'t> Flattening<'t> {
     fn leaves(&self, choice: &Choice<'_>, parallel: usize) -> bool {
         // The domain of the transition as written: a move to a history resumes a state inside
         // its target, but leaves what the written target's domain says.
-        choice.fires.iter().any(|f| {
+        choice.fires.iter().filter(|f| !f.written.stays).any(|f| {
             let domain = self.tree.domain(f.source, f.written.target);
             !domain.is_some_and(|d| self.tree.chain(d).any(|n| n == parallel) && d != parallel)
         })
     }
 
-    /// The flat arm of `choice` fired in the flat state of `atomics`.
-    fn arm(&mut self, atomics: &[usize], choice: Choice<'t>) -> FlatArm {
+    /// The flat arm of `choice` fired in `flat`, the flat state of `atomics`.
+    fn arm(&mut self, flat: usize, atomics: &[usize], choice: Choice<'t>) -> FlatArm {
         let tree = self.tree;
         let mut left: Vec<usize> = Vec::new();
         let mut kept: Vec<usize> = atomics.to_vec();
         let mut entered: Vec<usize> = Vec::new();
-        for f in &choice.fires {
+        // A transition that stays leaves and enters nothing; when all it fires stay, the
+        // machine stays in this very flat state, not arriving again.
+        let stays = choice.fires.iter().all(|f| f.written.stays);
+        for f in choice.fires.iter().filter(|f| !f.written.stays) {
             let domain = tree.domain(f.source, f.written.target);
             let active = tree.active_inside(atomics, domain);
             left.extend(active.iter().copied());
@@ -347,8 +353,18 @@ impl<'t> Flattening<'t> {
         );
         next.sort_unstable();
         next.dedup();
-        let target = self.variant(next, &entered);
+        let target = if stays {
+            flat
+        } else {
+            self.variant(next, &entered)
+        };
         let leaving = self.leaving(atomics, &left, &choice.fires);
+        // `None` would run the state's OnExit, which a transition that stays does not leave.
+        let leaving = if stays {
+            Some(leaving.unwrap_or_default())
+        } else {
+            leaving
+        };
         let unclocked = join(choice.conditions.iter().map(|c| c.unclocked.clone()));
         let written = join(choice.conditions.iter().map(|c| c.written.clone()));
         let first = choice.fires.first();
@@ -373,6 +389,7 @@ impl<'t> Flattening<'t> {
                     (Some(c.source), c.line, fires)
                 })
                 .collect(),
+            stays,
         }
     }
 
@@ -516,6 +533,7 @@ impl<'t> Flattening<'t> {
                     joined: (arm.joined.iter())
                         .map(|&(n, line, fires)| (n.and_then(|n| self.clocks[n]), line, fires))
                         .collect(),
+                    stays: arm.stays,
                 });
             }
         }

@@ -350,8 +350,9 @@ impl<'a> MachineLexer<'a> {
         Some((start, MachineToken::Statement(text), start + text.len()))
     }
 
-    /// The label after `when`, up to `->` on the same line; the tokens come back in reverse
-    /// order (they are popped from `pending`).
+    /// The label after `when`, up to `->` on the same line, or up to the `{` that opens the
+    /// actions of a transition that stays; the tokens come back in reverse order (they are
+    /// popped from `pending`).
     fn label(&mut self) -> Vec<(usize, MachineToken<'a>, usize)> {
         let rest = self.rest();
         let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
@@ -368,7 +369,18 @@ impl<'a> MachineLexer<'a> {
                     (start, MachineToken::LabelText(label), start + label.len()),
                 ]
             }
-            None => vec![self.line_text(MachineToken::LabelText)],
+            // `when p { … }`: a transition that stays, its actions in the block.
+            None => match block_start(line) {
+                Some(brace) => {
+                    let raw = &line[..brace];
+                    let start = self.at + (raw.len() - raw.trim_start().len());
+                    let label = raw.trim();
+                    self.at += brace;
+                    self.activity_next = true;
+                    vec![(start, MachineToken::LabelText(label), start + label.len())]
+                }
+                None => vec![self.line_text(MachineToken::LabelText)],
+            },
         }
     }
 
@@ -401,6 +413,22 @@ impl<'a> MachineLexer<'a> {
             message: "string has no closing `\"` on its line".into(),
         })
     }
+}
+
+/// Where a label's line opens a block, outside any quoted text: a label never holds a `{`.
+fn block_start(line: &str) -> Option<usize> {
+    let mut quoted = false;
+    let mut escaped = false;
+    for (i, c) in line.char_indices() {
+        match c {
+            _ if escaped => escaped = false,
+            '\\' if quoted => escaped = true,
+            '"' => quoted = !quoted,
+            '{' if !quoted => return Some(i),
+            _ => {}
+        }
+    }
+    None
 }
 
 impl<'a> Iterator for MachineLexer<'a> {

@@ -403,7 +403,10 @@ impl Lowering<'_> {
         let body = self.body(&s.name, s.members);
         for when in body.whens {
             if let Some(mut t) = self.transition(id, &when, names) {
-                if !when.actions.is_empty() {
+                if t.stays {
+                    // It leaves nothing: its own actions are all it runs.
+                    t.leaving = Some(when.actions.clone());
+                } else if !when.actions.is_empty() {
                     t.leaving = Some(body.exit.iter().chain(&when.actions).cloned().collect());
                 }
                 transitions.push(t);
@@ -571,7 +574,11 @@ impl Lowering<'_> {
             return None;
         }
         let changed = label != written;
-        match names.resolve(&when.target) {
+        let resolved = match &when.target {
+            Some(target) => names.resolve(target),
+            None => Ok(source),
+        };
+        match resolved {
             Ok(target) => Some(Transition {
                 source,
                 target,
@@ -586,6 +593,7 @@ impl Lowering<'_> {
                 enters: Vec::new(),
                 written: changed.then_some(written),
                 joined: Vec::new(),
+                stays: when.target.is_none(),
             }),
             Err(message) => {
                 self.error(when.target_at, message);
@@ -628,11 +636,12 @@ struct Body {
     states: Vec<StateAst>,
 }
 
-/// A `when LABEL -> TARGET` as parsed, with where each part was written.
+/// A `when LABEL -> TARGET` (or `when LABEL { … }`, which stays) as parsed, with where each
+/// part was written.
 struct When {
     label: String,
     label_at: usize,
-    target: Ref,
+    target: Option<Ref>,
     target_at: usize,
     at: usize,
     /// Its own actions: they run as it fires, after its source's OnExit.

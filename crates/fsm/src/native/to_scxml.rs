@@ -133,7 +133,7 @@ impl Writer<'_> {
             for m in &s.members {
                 match m {
                     Member::When {
-                        target: Ref::Name(path),
+                        target: Some(Ref::Name(path)),
                         ..
                     } => {
                         if let Some((composite, word)) = path.rsplit_once('.') {
@@ -181,7 +181,9 @@ impl Writer<'_> {
                     }
                 }
                 Member::When {
-                    target, target_at, ..
+                    target: Some(target),
+                    target_at,
+                    ..
                 } => next = self.id(&target, target_at),
                 _ => self.refuse(
                     start.at,
@@ -283,19 +285,25 @@ impl Writer<'_> {
         out
     }
 
-    /// `when LABEL -> TARGET { … }` as a `<transition>`: the label a `cond`, or the completion
-    /// event of the composite `done` names when the label is `done`.
+    /// `when LABEL -> TARGET { … }` as a `<transition>`, and `when LABEL { … }` (it stays) as
+    /// one without a target: the label a `cond`, or the completion event of the composite
+    /// `done` names when the label is `done`.
     fn transition(
         &mut self,
-        (label, label_at, target, target_at): (&str, usize, &Ref, usize),
+        (label, label_at, target, target_at): (&str, usize, &Option<Ref>, usize),
         (done, event): (Option<&str>, bool),
         actions: Vec<(ActionAst, usize)>,
         out: &mut String,
         depth: usize,
     ) {
         let pad = "  ".repeat(depth);
-        let Some(target) = self.id(target, target_at) else {
-            return;
+        // A transition that stays is SCXML's without a target.
+        let target = match target {
+            Some(target) => match self.id(target, target_at) {
+                Some(id) => format!(" target=\"{}\"", attr(&id)),
+                None => return,
+            },
+            None => String::new(),
         };
         let condition = match (label.trim(), done) {
             (timer, _) if event => format!(" event=\"{}\"", attr(timer)),
@@ -307,7 +315,7 @@ impl Writer<'_> {
             },
         };
         let content = self.content(actions, depth + 1);
-        let open = format!("{pad}<transition{condition} target=\"{}\"", attr(&target));
+        let open = format!("{pad}<transition{condition}{target}");
         if content.is_empty() {
             let _ = writeln!(out, "{open}/>");
         } else {

@@ -172,6 +172,19 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
         out.push_str("    }\n");
     }
     for t in index.outgoing.get(&state.id).into_iter().flatten() {
+        // One that stays runs its own actions alone, and always has its block.
+        if t.stays {
+            let _ = write!(out, "    when {} {{", t.label);
+            let own = t.leaving.as_deref().unwrap_or_default();
+            out.push_str(if own.is_empty() { "" } else { "\n" });
+            for action in own {
+                out.push_str("        ");
+                write_action(out, action);
+                out.push('\n');
+            }
+            out.push_str(if own.is_empty() { " }\n" } else { "    }\n" });
+            continue;
+        }
         let _ = write!(out, "    when {} -> {}", t.label, index.reference(t.target));
         // A transition's own actions follow its state's OnExit in what it runs leaving (a
         // chart's lowered transitions, which leave more, are written by their own file).

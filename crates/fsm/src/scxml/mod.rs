@@ -366,16 +366,19 @@ impl Mapping<'_> {
     fn transition(&mut self, element: &Element, owner: &str, out: &mut String, depth: usize) {
         let pad = "    ".repeat(depth);
         let line = element.line;
-        if element.attribute("type") == Some("internal") {
-            self.refuse(line, "<transition type=\"internal\">: only external transitions map (a transition leaves and enters its states)".into());
+        let ids = element.attribute("target");
+        // Without a target, internal and external are one: it acts and stays.
+        if element.attribute("type") == Some("internal") && ids.is_some() {
+            self.refuse(line, "<transition type=\"internal\"> with a target: only external transitions map (a transition leaves and enters its states)".into());
             return;
         }
-        let Some(ids) = element.attribute("target") else {
-            self.refuse(line, "<transition> without a target (it would act and stay): not in the native format yet; an `internal` activity runs when nothing fires".into());
-            return;
-        };
-        let Some(target) = self.target(ids, line) else {
-            return;
+        // `-> TARGET`, or nothing for one that stays (`when p { … }`).
+        let arrow = match ids {
+            Some(ids) => match self.target(ids, line) {
+                Some(target) => format!(" -> {target}"),
+                None => return,
+            },
+            None => String::new(),
         };
         let mut label = Vec::new();
         let completion = format!("done.state.{owner}");
@@ -426,13 +429,10 @@ impl Mapping<'_> {
         };
         let actions = self.content(element, depth + 1);
         let at = at(line);
-        if actions.is_empty() {
-            let _ = writeln!(out, "{pad}when {label} -> {target} {at}");
+        if actions.is_empty() && !arrow.is_empty() {
+            let _ = writeln!(out, "{pad}when {label}{arrow} {at}");
         } else {
-            let _ = write!(
-                out,
-                "{pad}when {label} -> {target} {{ {at}\n{actions}{pad}}}\n"
-            );
+            let _ = write!(out, "{pad}when {label}{arrow} {{ {at}\n{actions}{pad}}}\n");
         }
     }
 

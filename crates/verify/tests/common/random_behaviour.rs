@@ -198,8 +198,8 @@ fn machine(
         for _ in 0..transitions {
             let label = label(rng, names, counter, 2);
             let target = rng.below(states);
-            let actions = own_actions(shape, names, m, counter);
-            let _ = writeln!(out, "    when {label} -> S{target}{actions}");
+            let rest = arrow(shape, &format!("S{target}"), names, m, counter);
+            let _ = writeln!(out, "    when {label}{rest}");
         }
         out.push_str(&interface_lines(names, m, s, transitions, states));
         let _ = writeln!(out, "}}");
@@ -296,8 +296,8 @@ impl Nest<'_> {
             } else {
                 label(rng, self.names, self.counter, 2)
             };
-            let actions = own_actions(rng, self.names, self.m, self.counter);
-            let _ = writeln!(out, "    when {label} -> {target}{actions}");
+            let rest = arrow(rng, &target, self.names, self.m, self.counter);
+            let _ = writeln!(out, "    when {label}{rest}");
         }
         for (_, block) in regions {
             out.push_str(&block);
@@ -347,8 +347,8 @@ impl Nest<'_> {
             } else {
                 label(shape, self.names, self.counter, 2)
             };
-            let actions = own_actions(shape, self.names, self.m, self.counter);
-            let _ = writeln!(out, "    when {label} -> {target}{actions}");
+            let rest = arrow(shape, &target, self.names, self.m, self.counter);
+            let _ = writeln!(out, "    when {label}{rest}");
         }
         for (_, block) in inner {
             out.push_str(&block);
@@ -375,6 +375,16 @@ impl Nest<'_> {
 }
 
 /// Now and then, a transition's own actions (` { … }`, run as it fires), else nothing.
+/// What follows a transition's label: ` -> TARGET` and now and then its own actions, or now and
+/// then no target and a block of actions: it acts and stays (§3.2).
+fn arrow(shape: &mut Rng, target: &str, names: &Names, m: usize, counter: bool) -> String {
+    if shape.chance(12) {
+        let actions = activity(shape, names, m, counter);
+        return format!(" {{\n{actions}    }}");
+    }
+    format!(" -> {target}{}", own_actions(shape, names, m, counter))
+}
+
 fn own_actions(shape: &mut Rng, names: &Names, m: usize, counter: bool) -> String {
     if !shape.chance(15) {
         return String::new();
