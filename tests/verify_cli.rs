@@ -422,6 +422,36 @@ fn a_regions_move_back_into_its_own_state_is_one_finding_whatever_the_others_sta
     assert!(!said.contains("never fires"), "{said}");
 }
 
+/// A composite's transition that stays is one finding, whichever state inside it fires from
+/// (each copy stays where it fired): one that fires from one of them is never said not to fire,
+/// and one that fires from none is said once (a review found a finding a copy).
+#[test]
+fn a_composites_transition_that_stays_is_one_finding_wherever_it_fires() {
+    let machine = |label: &str| {
+        format!("machine M\nstate P {{\n    when {label} {{\n        n = 1;\n    }}\n    state A {{ when go -> B }}\n    state B {{ when back -> A }}\n}}\n")
+    };
+    let said = |tag: &str, label: &str| {
+        let dir = crate::behaviour_folder(
+            tag,
+            &[
+                ("M.machine", machine(label).as_str()),
+                ("behaviour.toml", "[[machine]]\nfile = \"M.machine\"\n"),
+            ],
+        );
+        let o = proclaim(&["verify", dir.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+        format!("{}{}", stdout(&o), stderr(&o))
+    };
+    let once = said("stays-findings", "tick && in(A)");
+    assert!(!once.contains("never fires"), "{once}");
+    let never = said("stays-never-findings", "tick && in(A) && in(B)");
+    assert_eq!(never.matches("never fires").count(), 1, "{never}");
+    assert!(
+        never.contains("the transition P -> P (when tick && in(A) && in(B), line 3) never fires"),
+        "{never}"
+    );
+}
+
 /// Two regions that move on one label together only ever fire their joined arm: neither
 /// transition is reported never to fire (a review found the first one was).
 #[test]

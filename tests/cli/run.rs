@@ -545,7 +545,7 @@ fn a_run_alone_with_no_script_ends_when_its_machines_are_still() {
 /// A transition without a target acts and stays (§3.2): it fires three times at the moment `go`
 /// comes, running only its own actions (the state's OnEntry ran once and its OnExit runs once,
 /// when it leaves), and the state's time test counts on from its entry: it leaves at 0.3 s,
-/// not 0.3 s after the last firing.
+/// not 0.3 s after the last firing. `explain` says which stayed.
 #[test]
 fn a_transition_that_stays_acts_without_leaving_and_its_state_keeps_its_clock() {
     let dir = crate::behaviour_folder(
@@ -562,12 +562,15 @@ fn a_transition_that_stays_acts_without_leaving_and_its_state_keeps_its_clock() 
             ),
         ],
     );
+    let recording = dir.join("run.jsonl");
     let o = proclaim(&[
         "run",
         dir.to_str().unwrap(),
         "--virtual-clock",
         "--for",
         "2s",
+        "--record",
+        recording.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
@@ -590,5 +593,21 @@ fn a_transition_that_stays_acts_without_leaving_and_its_state_keeps_its_clock() 
             "0.300s C finished in DONE",
         ],
         "{out}"
+    );
+    // `explain` says it stayed, in the first round it fired (round 2, at 0.1 s).
+    let o = proclaim(&[
+        "explain",
+        dir.to_str().unwrap(),
+        "C",
+        "--recording",
+        recording.to_str().unwrap(),
+        "--round",
+        "2",
+    ]);
+    let said = stdout(&o);
+    assert!(
+        said.contains("  1. stays when n < 3 && go: fired (n = 0, go = true)\n  2. -> DONE when after_ms(300): not tried"),
+        "{said}{}",
+        stderr(&o)
     );
 }

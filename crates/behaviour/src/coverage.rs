@@ -178,7 +178,9 @@ fn machine_listed(machine: &proclaim_fsm::Machine, done: &Exercised, coverage: &
     for t in &machine.transitions {
         let label = t.shown().to_string();
         let from = machine.written_on(t).unwrap_or("?");
-        let what = format!("{name}: {from} -> {} ({label})", state(t.target));
+        // One that stays goes back to where it was written, for each copy of it alike.
+        let to = if t.stays { from } else { state(t.target) };
+        let what = format!("{name}: {from} -> {to} ({label})");
         let fired = done
             .fired
             .contains(&(name.clone(), t.source, t.target, label.clone()));

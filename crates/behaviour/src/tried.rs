@@ -29,6 +29,9 @@ pub struct Tried {
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct TriedTransition {
     pub to: String,
+    /// It has no target: it acts and stays (`to` is its own state).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub stays: bool,
     pub label: String,
     pub outcome: Outcome,
     /// What its label's propositions read in the ringlet (`atom = value`), those it asked.
@@ -168,6 +171,7 @@ fn outcomes(
         });
         TriedTransition {
             to: state_name(model, t.target),
+            stays: t.stays,
             label,
             outcome: this,
             read: asked.collect(),
@@ -286,7 +290,11 @@ impl fmt::Display for Tried {
                 (Outcome::NotTried, _) | (_, true) => String::new(),
                 _ => format!(" ({})", t.read.join(", ")),
             };
-            writeln!(f, "  {}. -> {} when {}: {how}{read}", n + 1, t.to, t.label)?;
+            let goes = match t.stays {
+                true => "stays".to_string(),
+                false => format!("-> {}", t.to),
+            };
+            writeln!(f, "  {}. {goes} when {}: {how}{read}", n + 1, t.label)?;
         }
         if !self.transitions.iter().any(|t| t.outcome == Outcome::Fired) {
             writeln!(f, "  none fired: its Internal ran")?;

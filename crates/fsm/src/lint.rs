@@ -75,6 +75,7 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
         out.extend(shadowed(leaving, file));
     }
     out.extend(timeless_cycles(machine, &outgoing, file));
+    out.extend(endless_stays(machine, &outgoing, file));
     let mut said = HashSet::new();
     out.retain(|d| said.insert((d.line, d.message.clone())));
     out
@@ -169,6 +170,34 @@ fn timeless_cycles(machine: &Machine, outgoing: &Outgoing<'_>, file: &str) -> Ve
             at = t.target;
         }
         done.extend(path);
+    }
+    out
+}
+
+/// Each transition that stays whose label reads nothing that can change while it stays (only
+/// constants, time tests and `in`): once it fires, the round after follows at once and finds
+/// it true again, at the same moment, for ever (§3.2). A first transition `TRUE` is
+/// [`timeless_cycles`]'s to report.
+fn endless_stays(machine: &Machine, outgoing: &Outgoing<'_>, file: &str) -> Vec<FileDiagnostic> {
+    let mut out = Vec::new();
+    for t in machine.transitions.iter().filter(|t| t.stays) {
+        let mut reads = false;
+        t.label.visit_names(&mut |_, _| reads = true);
+        let first = outgoing
+            .get(&t.source)
+            .and_then(|ts| ts.first())
+            .is_some_and(|f| std::ptr::eq(*f, t));
+        if reads || (first && t.label == Label::TRUE) {
+            continue;
+        }
+        out.push(FileDiagnostic::warning(
+            file,
+            t.line,
+            format!(
+                "`when {} {{ … }}` stays and reads nothing that changes while it stays: once it fires it fires in every round, at one moment, so time cannot pass (a run halts the machine); give it a target or a label that turns false",
+                t.shown()
+            ),
+        ));
     }
     out
 }

@@ -370,6 +370,37 @@ P.L.L0, P.R.R1#5 entry[R1On] exit[] internal[]
   a -> P.L.L0, P.R.R1#5 leaving[Counted] of P.L.L0 stays
 ",
     );
+    // SCXML's conflict rule: one that stays leaves nothing, so it conflicts with no move and
+    // fires beside another region's move out of the parallel state, before it or after it.
+    let beside = |first: &str, second: &str| {
+        format!("machine M\nparallel P {{\n    state L {{\n        state L0 {{\n            {first}\n        }}\n    }}\n    state R {{\n        state R0 {{\n            {second}\n        }}\n    }}\n}}\nstate Q {{ }}\n")
+    };
+    check(
+        &beside(
+            "when a {\n                Counted:\n            }",
+            "when b -> Q",
+        ),
+        "initial P.L.L0, P.R.R0#4
+P.L.L0, P.R.R0#4 entry[] exit[] internal[]
+  a && b -> Q#3 leaving[Counted] of P.L.L0
+  a -> P.L.L0, P.R.R0#4 leaving[Counted] of P.L.L0 stays
+  b -> Q#3 leaving[] of P.R.R0
+Q#3 entry[] exit[] internal[]
+",
+    );
+    check(
+        &beside(
+            "when b -> Q",
+            "when a {\n                Counted:\n            }",
+        ),
+        "initial P.L.L0, P.R.R0#4
+P.L.L0, P.R.R0#4 entry[] exit[] internal[]
+  b && a -> Q#3 leaving[Counted] of P.L.L0
+  b -> Q#3 leaving[] of P.L.L0
+  a -> P.L.L0, P.R.R0#4 leaving[Counted] of P.R.R0 stays
+Q#3 entry[] exit[] internal[]
+",
+    );
 }
 
 /// A transition that stays is written back as it was written, with its block.

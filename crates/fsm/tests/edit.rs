@@ -350,6 +350,11 @@ fn an_unreadable_file_is_not_edited() {
         Edit::AddState { name: "C".into() },
         "error: the machine gives a transition actions of its own (line 3), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)\n",
     );
+    check(
+        "machine M\nstate A {\n    when p -> A\n    when q { }\n}\n",
+        Edit::AddState { name: "C".into() },
+        "error: the machine has a transition that stays (no target) (line 4), which the editor does not edit yet: change the file in a text editor (`proclaim check` reads it)\n",
+    );
 }
 
 /// Every shipped machine, opened and saved unchanged, and with every label, activity and name

@@ -190,6 +190,16 @@ fn the_native_format() {
     );
 }
 
+/// Where a transition's label ends: at its `->` or at the `{` of one that stays, whichever
+/// comes first outside quoted text, and a block that stays may open on the next line.
+#[test]
+fn a_label_ends_at_its_arrow_or_at_the_block_of_one_that_stays() {
+    native(
+        "machine M\nstate A {\n  when s == \"a->b\" -> B\n  when p { s = \"x -> y\"; }\n  when q\n  {\n    n = n + 1;\n  }\n  when s == \"{\" -> B\n}\nstate B { }\n",
+        "machine M\ninitial A\n\nstate A {\n    when s == \"a->b\" -> B\n    when p {\n        s = \"x -> y\";\n    }\n    when q {\n        n = n + 1;\n    }\n    when s == \"{\" -> B\n}\n\nstate B {\n}\n",
+    );
+}
+
 #[test]
 fn what_does_nothing_is_said() {
     let imported = parse_machine(
@@ -212,6 +222,24 @@ fn lints(text: &str) -> Vec<String> {
         .iter()
         .map(ToString::to_string)
         .collect()
+}
+
+/// A transition that stays on a label nothing can turn false while it stays (time alone, a
+/// constant, `in` of its own state) fires in every round at one moment once it fires; one that
+/// reads a name may turn false. `when done` without a target is refused.
+#[test]
+fn a_transition_that_stays_on_time_alone_is_said_to_fire_for_ever() {
+    assert_eq!(
+        lints("machine M\nstate A {\n  when p -> A\n  when after(2s) {\n    n = n + 1;\n  }\n  when go && after(1s) { }\n  when TRUE { }\n}\n"),
+        [
+            "m.machine:4: warning: `when after(2s) { … }` stays and reads nothing that changes while it stays: once it fires it fires in every round, at one moment, so time cannot pass (a run halts the machine); give it a target or a label that turns false",
+            "m.machine:8: warning: `when TRUE { … }` stays and reads nothing that changes while it stays: once it fires it fires in every round, at one moment, so time cannot pass (a run halts the machine); give it a target or a label that turns false",
+        ]
+    );
+    native(
+        "machine M\nstate P {\n  when done { }\n  state A { }\n}\n",
+        "m.machine:3: error: `when done` needs a target: `done` stays true in a final state, so one that stays would fire in every round\n",
+    );
 }
 
 #[test]

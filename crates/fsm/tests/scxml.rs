@@ -176,6 +176,20 @@ state done {
 }
 ";
     reads_back_the_same("M", native, "<transition cond=\"n &lt; 3\">");
+    // SCXML raises a timer's event and a completion once; their labels here stay true.
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="p">
+  <state id="p">
+    <onentry><send event="t" delay="1s" id="i"/></onentry>
+    <transition event="t"><log expr="1"/></transition>
+    <transition event="done.state.p"/>
+    <final id="a"/>
+  </state>
+</scxml>"#,
+        "4: <transition event=\"t\"> without a target: SCXML raises it once, but its label here stays true in the state, so it would fire in every round
+5: <transition event=\"done.state.p\"> without a target: SCXML raises it once, but its label here stays true in the state, so it would fire in every round
+",
+    );
 }
 
 /// A document of no states (Qt's parser tests have one) is refused where it starts, rather than
@@ -351,6 +365,16 @@ fn what_scxml_cannot_say_is_refused_at_its_line() {
             "9: `after(2s) && p`: a time test has no SCXML condition (SCXML times a state with a delayed send, which a transition then waits on alone)",
             "10: `#2`: name the state; SCXML has no numbered states",
         ]
+    );
+    let stays = "machine M\nstate A {\n    when after(2s) {\n        n = 1;\n    }\n}\n";
+    let refusals: Vec<String> = to_scxml("M.machine", stays)
+        .expect_err("refused")
+        .iter()
+        .map(|d| format!("{}: {}", d.line.unwrap_or(0), d.message))
+        .collect();
+    assert_eq!(
+        refusals,
+        ["3: a transition that stays on a time test: SCXML raises its event once, where this label stays true in the state"]
     );
 }
 

@@ -444,6 +444,8 @@ fn never_findings(model: &Model, entered: &[Vec<bool>], fired: &[Vec<bool>]) -> 
                 let from = from_of(t.composite, t.source);
                 let fired = f || credited.contains(&(from.clone(), t.line));
                 let to = match regions {
+                    // One that stays is one finding, wherever its copies are.
+                    _ if t.stays => from.clone(),
                     true => (first_to.entry((from.clone(), t.line)))
                         .or_insert_with(|| to_of(t))
                         .clone(),

@@ -436,6 +436,13 @@ impl Tree {
                 ),
             );
         }
+        if done && when.target.is_none() {
+            lowering.error(
+                when.label_at,
+                "`when done` needs a target: `done` stays true in a final state, so one that stays would fire in every round".into(),
+            );
+            return None;
+        }
         // No target: it stays, in the state it was written on.
         let (target, history) = match &when.target {
             Some(written) => self.target(lowering, n, written, when.target_at)?,

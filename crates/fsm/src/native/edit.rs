@@ -227,6 +227,10 @@ fn read(text: &str) -> Result<Outline, EditError> {
                 line: m.composites[0].line,
                 what: "nests states",
             },
+            Some(m) if m.transitions.iter().any(|t| t.stays) => EditError::Unsupported {
+                line: (m.transitions.iter().find(|t| t.stays)).map_or(line, |t| t.line),
+                what: "has a transition that stays (no target)",
+            },
             Some(_) => EditError::Unsupported {
                 line,
                 what: "gives a transition actions of its own",

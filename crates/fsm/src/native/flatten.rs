@@ -267,23 +267,28 @@ impl<'t> Flattening<'t> {
         out
     }
 
-    /// The regions of `parallel` combined: the first region whose choice holds fires it; one
-    /// that leaves `parallel` fires alone, else each later region's that stays in its region
-    /// fires with it (a later one that leaves is preempted), SCXML's conflict rule.
+    /// The regions of `parallel` combined: the first region whose choice holds fires it; each
+    /// later region's fires with it as SCXML's conflict rule says in document order
+    /// ([`Flattening::firing`]). A move out of `parallel` fires alone when no later region has
+    /// a transition that stays, since nothing else could fire beside it.
     fn combined(&mut self, atomics: &[usize], parallel: usize) -> Vec<Choice<'t>> {
         let tree = self.tree;
         let regions = tree.nodes[parallel].children.clone();
         let per_region: Vec<Vec<Choice<'t>>> =
             regions.iter().map(|&r| self.choices(atomics, r)).collect();
+        let stays = |choices: &[Choice<'_>]| {
+            (choices.iter().flat_map(|c| &c.fires)).any(|f| f.written.stays)
+        };
         let mut out = Vec::new();
         for (a, choices) in per_region.iter().enumerate() {
+            let rest = &per_region[a + 1..];
             for x in choices {
-                if self.leaves(x, parallel) {
+                if self.leaves(x, parallel) && !rest.iter().any(|r| stays(r)) {
                     out.push(x.clone());
                     continue;
                 }
                 let mut combos = vec![x.clone()];
-                for later in &per_region[a + 1..] {
+                for later in rest {
                     // Bounded before the combinations are made, not after.
                     if combos.len() * (later.len() + 1) + out.len() > MOST_ARMS {
                         self.too_many.get_or_insert(tree.nodes[parallel].at);
@@ -291,12 +296,15 @@ impl<'t> Flattening<'t> {
                     }
                     let mut next = Vec::new();
                     for combo in &combos {
+                        // Past a move out of `parallel`, only what stays can fire.
+                        if self.leaves(combo, parallel) && !stays(later) {
+                            next.push(combo.clone());
+                            continue;
+                        }
                         for y in later {
                             let mut joined = combo.clone();
                             joined.conditions.extend(y.conditions.iter().cloned());
-                            if !self.leaves(y, parallel) {
-                                joined.fires.extend(y.fires.iter().cloned());
-                            }
+                            joined.fires.extend(self.firing(combo, y, parallel));
                             next.push(joined);
                         }
                         // None of this region's holds: the order says so, no label needed.
@@ -314,14 +322,37 @@ impl<'t> Flattening<'t> {
         out
     }
 
+    /// What of `y`, a later region's choice, fires beside what `combo` fires (SCXML's rule:
+    /// two conflict when both leave a state, and the earlier wins): what stays always (it
+    /// leaves nothing); a move out of `parallel` when nothing moved before it; a move inside
+    /// its region unless a move out of `parallel` fired before it.
+    fn firing(&self, combo: &Choice<'t>, y: &Choice<'t>, parallel: usize) -> Vec<Fire<'t>> {
+        let left = self.leaves(combo, parallel);
+        let moved = combo.fires.iter().any(|f| !f.written.stays);
+        (y.fires.iter())
+            .filter(|f| {
+                f.written.stays
+                    || match self.fire_leaves(f, parallel) {
+                        true => !moved,
+                        false => !left,
+                    }
+            })
+            .cloned()
+            .collect()
+    }
+
     /// Whether what `choice` fires leaves `parallel` (its domain is around it).
     fn leaves(&self, choice: &Choice<'_>, parallel: usize) -> bool {
+        choice.fires.iter().any(|f| self.fire_leaves(f, parallel))
+    }
+
+    /// Whether `fire` leaves `parallel`: it moves, and its domain is around `parallel`.
+    fn fire_leaves(&self, fire: &Fire<'_>, parallel: usize) -> bool {
         // The domain of the transition as written: a move to a history resumes a state inside
         // its target, but leaves what the written target's domain says.
-        choice.fires.iter().filter(|f| !f.written.stays).any(|f| {
-            let domain = self.tree.domain(f.source, f.written.target);
-            !domain.is_some_and(|d| self.tree.chain(d).any(|n| n == parallel) && d != parallel)
-        })
+        let domain = self.tree.domain(fire.source, fire.written.target);
+        !fire.written.stays
+            && !domain.is_some_and(|d| self.tree.chain(d).any(|n| n == parallel) && d != parallel)
     }
 
     /// The flat arm of `choice` fired in `flat`, the flat state of `atomics`.

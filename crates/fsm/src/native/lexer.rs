@@ -356,31 +356,25 @@ impl<'a> MachineLexer<'a> {
     fn label(&mut self) -> Vec<(usize, MachineToken<'a>, usize)> {
         let rest = self.rest();
         let line = &rest[..rest.find('\n').unwrap_or(rest.len())];
-        match line.find("->") {
-            Some(arrow) => {
-                let raw = &line[..arrow];
-                let start = self.at + (raw.len() - raw.trim_start().len());
-                let label = raw.trim();
-                let arrow_at = self.at + arrow;
-                self.at = arrow_at + 2;
-                self.target_next = true;
-                vec![
-                    (arrow_at, MachineToken::Arrow, arrow_at + 2),
-                    (start, MachineToken::LabelText(label), start + label.len()),
-                ]
-            }
+        let Some((end, arrow)) = label_end(line) else {
+            // A block may open on the next line: `when p` then `{ … }`, which stays.
+            self.activity_next = true;
+            return vec![self.line_text(MachineToken::LabelText)];
+        };
+        let raw = &line[..end];
+        let start = self.at + (raw.len() - raw.trim_start().len());
+        let label = raw.trim();
+        let label = (start, MachineToken::LabelText(label), start + label.len());
+        let end_at = self.at + end;
+        if arrow {
+            self.at = end_at + 2;
+            self.target_next = true;
+            vec![(end_at, MachineToken::Arrow, end_at + 2), label]
+        } else {
             // `when p { … }`: a transition that stays, its actions in the block.
-            None => match block_start(line) {
-                Some(brace) => {
-                    let raw = &line[..brace];
-                    let start = self.at + (raw.len() - raw.trim_start().len());
-                    let label = raw.trim();
-                    self.at += brace;
-                    self.activity_next = true;
-                    vec![(start, MachineToken::LabelText(label), start + label.len())]
-                }
-                None => vec![self.line_text(MachineToken::LabelText)],
-            },
+            self.at = end_at;
+            self.activity_next = true;
+            vec![label]
         }
     }
 
@@ -415,17 +409,21 @@ impl<'a> MachineLexer<'a> {
     }
 }
 
-/// Where a label's line opens a block, outside any quoted text: a label never holds a `{`.
-fn block_start(line: &str) -> Option<usize> {
-    let mut quoted = false;
+/// Where a label's line ends the label, outside quoted text: at its `->` (true) or at the `{`
+/// of a transition that stays (false), whichever comes first; a label holds neither.
+fn label_end(line: &str) -> Option<(usize, bool)> {
+    let mut quote: Option<char> = None;
     let mut escaped = false;
     for (i, c) in line.char_indices() {
-        match c {
+        match (quote, c) {
             _ if escaped => escaped = false,
-            '\\' if quoted => escaped = true,
-            '"' => quoted = !quoted,
-            '{' if !quoted => return Some(i),
-            _ => {}
+            (Some(_), '\\') => escaped = true,
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, '"' | '\'') => quote = Some(c),
+            (None, '{') => return Some((i, false)),
+            (None, '-') if line[i..].starts_with("->") => return Some((i, true)),
+            (None, _) => {}
         }
     }
     None

@@ -297,6 +297,18 @@ impl Writer<'_> {
         depth: usize,
     ) {
         let pad = "  ".repeat(depth);
+        // Its label stays true while it stays; the event SCXML would wait on comes once.
+        let once = event || (label.trim() == "done" && done.is_some());
+        if target.is_none() && once {
+            self.refuse(
+                label_at,
+                format!(
+                    "a transition that stays on {}: SCXML raises its event once, where this label stays true in the state",
+                    if event { "a time test" } else { "`done`" }
+                ),
+            );
+            return;
+        }
         // A transition that stays is SCXML's without a target.
         let target = match target {
             Some(target) => match self.id(target, target_at) {

@@ -382,6 +382,14 @@ impl Mapping<'_> {
         };
         let mut label = Vec::new();
         let completion = format!("done.state.{owner}");
+        // SCXML raises these once; their labels here stay true while the machine stays.
+        let once = (element.attribute("event").into_iter())
+            .flat_map(str::split_whitespace)
+            .find(|e| *e == completion || self.timers.contains_key(*e));
+        if let (Some(once), true) = (once, arrow.is_empty()) {
+            self.refuse(line, format!("<transition event=\"{once}\"> without a target: SCXML raises it once, but its label here stays true in the state, so it would fire in every round"));
+            return;
+        }
         if element.attribute("event") == Some(completion.as_str()) {
             // The state's own completion: its sub-state is final (§3.2's `done`).
             if element.attribute("cond").is_some() {

@@ -90,6 +90,9 @@ struct Names {
     outcomes: Vec<bool>,
     /// Parameters and outcomes draw from a sequence of their own, as nesting does.
     iface: std::cell::RefCell<Rng>,
+    /// Which transitions stay (no target, §3.2), and what they do: a sequence of their own
+    /// too, so that a seed's machines are what they were before, but for those.
+    stays: std::cell::RefCell<Rng>,
     inputs: usize,
     globals: usize,
     externs: usize,
@@ -107,12 +110,14 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     let mut iface = Rng::new(seed ^ 0x0A7C_0000_1F00_0000);
     // Regions too, so that the behaviours of a seed are what they were before regions.
     let mut regions = Rng::new(seed ^ 0x9A2A_11E1_0000_0000);
+    let stays = Rng::new(seed ^ 0x57A7_5000_0000_0000);
     let machines = rng.between(1, 4);
     let names = Names {
         machines,
         params: (0..machines).map(|m| m > 0 && iface.chance(35)).collect(),
         outcomes: (0..machines).map(|_| iface.chance(35)).collect(),
         iface: std::cell::RefCell::new(iface),
+        stays: std::cell::RefCell::new(stays),
         inputs: rng.between(1, 3),
         globals: rng.between(0, 2),
         externs: rng.between(0, 1),
@@ -198,7 +203,9 @@ fn machine(
         for _ in 0..transitions {
             let label = label(rng, names, counter, 2);
             let target = rng.below(states);
-            let rest = arrow(shape, &format!("S{target}"), names, m, counter);
+            let actions = own_actions(shape, names, m, counter);
+            let target = format!("S{target}");
+            let rest = arrow(names, m, counter, &label, (&target, &actions));
             let _ = writeln!(out, "    when {label}{rest}");
         }
         out.push_str(&interface_lines(names, m, s, transitions, states));
@@ -296,7 +303,14 @@ impl Nest<'_> {
             } else {
                 label(rng, self.names, self.counter, 2)
             };
-            let rest = arrow(rng, &target, self.names, self.m, self.counter);
+            let actions = own_actions(rng, self.names, self.m, self.counter);
+            let rest = arrow(
+                self.names,
+                self.m,
+                self.counter,
+                &label,
+                (&target, &actions),
+            );
             let _ = writeln!(out, "    when {label}{rest}");
         }
         for (_, block) in regions {
@@ -347,7 +361,14 @@ impl Nest<'_> {
             } else {
                 label(shape, self.names, self.counter, 2)
             };
-            let rest = arrow(shape, &target, self.names, self.m, self.counter);
+            let actions = own_actions(shape, self.names, self.m, self.counter);
+            let rest = arrow(
+                self.names,
+                self.m,
+                self.counter,
+                &label,
+                (&target, &actions),
+            );
             let _ = writeln!(out, "    when {label}{rest}");
         }
         for (_, block) in inner {
@@ -375,14 +396,22 @@ impl Nest<'_> {
 }
 
 /// Now and then, a transition's own actions (` { … }`, run as it fires), else nothing.
-/// What follows a transition's label: ` -> TARGET` and now and then its own actions, or now and
-/// then no target and a block of actions: it acts and stays (§3.2).
-fn arrow(shape: &mut Rng, target: &str, names: &Names, m: usize, counter: bool) -> String {
-    if shape.chance(12) {
-        let actions = activity(shape, names, m, counter);
-        return format!(" {{\n{actions}    }}");
+/// What follows a transition's label, drawn as before (` -> TARGET` and its own `actions`); now
+/// and then, as `Names::stays` draws, no target and a block of actions instead: it acts and
+/// stays (§3.2). Never for `done`, which stays true.
+fn arrow(
+    names: &Names,
+    m: usize,
+    counter: bool,
+    label: &str,
+    (target, actions): (&str, &str),
+) -> String {
+    let mut stays = names.stays.borrow_mut();
+    if label == "done" || !stays.chance(12) {
+        return format!(" -> {target}{actions}");
     }
-    format!(" -> {target}{}", own_actions(shape, names, m, counter))
+    let block = activity(&mut stays, names, m, counter);
+    format!(" {{\n{block}    }}")
 }
 
 fn own_actions(shape: &mut Rng, names: &Names, m: usize, counter: bool) -> String {
