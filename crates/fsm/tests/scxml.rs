@@ -332,21 +332,7 @@ state DIVE {
     }
 }
 "#;
-    let written = parse_machine("Keeper.machine", native);
-    assert!(!written.has_errors(), "{:?}", written.diagnostics);
-    let scxml = to_scxml("Keeper.machine", native).unwrap_or_else(|e| panic!("{e:?}"));
-    let read = import_scxml("Keeper.scxml", &scxml, "Keeper");
-    assert!(
-        !read.imported.has_errors(),
-        "{:?}\n{scxml}",
-        read.imported.diagnostics
-    );
-    assert_eq!(
-        without_lines(read.imported.machines[0].clone()),
-        without_lines(written.machines[0].clone()),
-        "\n{scxml}\n{}",
-        read.native.unwrap_or_default()
-    );
+    reads_back_the_same("Keeper", native, "<history");
 }
 
 #[test]

@@ -175,14 +175,10 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
         // One that stays runs its own actions alone, and always has its block.
         if t.stays {
             let _ = write!(out, "    when {} {{", t.label);
-            let own = t.leaving.as_deref().unwrap_or_default();
-            out.push_str(if own.is_empty() { "" } else { "\n" });
-            for action in own {
-                out.push_str("        ");
-                write_action(out, action);
-                out.push('\n');
+            match t.leaving.as_deref().unwrap_or_default() {
+                [] => out.push_str(" }\n"),
+                own => write_block_body(out, own),
             }
-            out.push_str(if own.is_empty() { " }\n" } else { "    }\n" });
             continue;
         }
         let _ = write!(out, "    when {} -> {}", t.label, index.reference(t.target));
@@ -195,13 +191,8 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
             .filter(|own| !own.is_empty());
         match own {
             Some(own) => {
-                out.push_str(" {\n");
-                for action in own {
-                    out.push_str("        ");
-                    write_action(out, action);
-                    out.push('\n');
-                }
-                out.push_str("    }\n");
+                out.push_str(" {");
+                write_block_body(out, own);
             }
             None => out.push('\n'),
         }
@@ -221,6 +212,17 @@ fn write_state(out: &mut String, index: &Index<'_>, state: &State, implicit_ids:
         );
     }
     out.push_str("}\n");
+}
+
+/// A transition's actions after its `{`, one a line, and the `}` that closes them.
+fn write_block_body(out: &mut String, actions: &[Action]) {
+    out.push('\n');
+    for action in actions {
+        out.push_str("        ");
+        write_action(out, action);
+        out.push('\n');
+    }
+    out.push_str("    }\n");
 }
 
 fn write_action(out: &mut String, action: &Action) {

@@ -298,20 +298,7 @@ impl Nest<'_> {
                 0 => "P0".to_string(),
                 _ => format!("S{}", rng.below(self.states)),
             };
-            let label = if rng.chance(35) {
-                "done".to_string()
-            } else {
-                label(rng, self.names, self.counter, 2)
-            };
-            let actions = own_actions(rng, self.names, self.m, self.counter);
-            let rest = arrow(
-                self.names,
-                self.m,
-                self.counter,
-                &label,
-                (&target, &actions),
-            );
-            let _ = writeln!(out, "    when {label}{rest}");
+            out.push_str(&self.transition(rng, &target, 35));
         }
         for (_, block) in regions {
             out.push_str(&block);
@@ -319,6 +306,20 @@ impl Nest<'_> {
         out.push_str("}\n");
         blocks.insert(from, ("P0".into(), out));
         blocks
+    }
+
+    /// A transition of a state that holds states, to `target`: labelled `done` in
+    /// `done_percent` of the draws, else a random label; with its own actions, or now and then
+    /// staying instead ([`arrow`]).
+    fn transition(&self, rng: &mut Rng, target: &str, done_percent: usize) -> String {
+        let label = if rng.chance(done_percent) {
+            "done".to_string()
+        } else {
+            label(rng, self.names, self.counter, 2)
+        };
+        let actions = own_actions(rng, self.names, self.m, self.counter);
+        let rest = arrow(self.names, self.m, self.counter, &label, (target, &actions));
+        format!("    when {label}{rest}\n")
     }
 
     /// Now and then, some neighbouring states (name, text) put into a composite state of their
@@ -356,20 +357,7 @@ impl Nest<'_> {
                 _ => format!("S{}", shape.below(self.states)),
             };
             // A composite's time test counts from its entry, whatever moves inside it (§3.2).
-            let label = if shape.chance(30) {
-                "done".to_string()
-            } else {
-                label(shape, self.names, self.counter, 2)
-            };
-            let actions = own_actions(shape, self.names, self.m, self.counter);
-            let rest = arrow(
-                self.names,
-                self.m,
-                self.counter,
-                &label,
-                (&target, &actions),
-            );
-            let _ = writeln!(out, "    when {label}{rest}");
+            out.push_str(&self.transition(shape, &target, 30));
         }
         for (_, block) in inner {
             out.push_str(&block);
