@@ -6,7 +6,8 @@
 //! Some behaviours declare `in0`'s range (`[ranges]`), and their scripts keep to it: the
 //! checker then tries every value of it, and must still never claim what a run refutes. Some
 //! machines are charts whose two regions share the variables (§3.2): a run's state of regions
-//! is held to each of its regions' states, and a joint move to every transition it joins.
+//! is held to each of its regions' states, and a joint move to every transition it joins; a
+//! region's first state may hold states of its own, entered, left and completed inside it.
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
@@ -32,6 +33,8 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
     let mut charts = Rng::new(seed ^ 0xc4a2_7500);
     // Whether a transition stays, and what it computes, drawn apart for the same reason.
     let mut stays = Rng::new(seed ^ 0x57a7_5000);
+    // Whether a region's first state holds states, and what they are, apart again.
+    let mut nests = Rng::new(seed ^ 0x4e57_0000);
     let machines = rng.between(1, 2);
     let mut files = Vec::new();
     let mut manifest = String::from("description = \"random numbers\"\n");
@@ -41,7 +44,7 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
             let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
             files.push((
                 format!("{name}.machine"),
-                chart(&mut rng, &mut stays, &name),
+                chart(&mut rng, (&mut stays, &mut nests), &name),
             ));
             continue;
         }
@@ -85,18 +88,10 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
 
 /// A machine with a parallel state of two regions (§3.2) beside a plain state: the regions
 /// share the machine's variables, each region's states compute and test them (and now and
-/// again wait on the other's state with `in`), the parallel state's own transitions leave
-/// both, and `done` fires once both regions are final.
-fn chart(rng: &mut Rng, stays: &mut Rng, name: &str) -> String {
-    let activity = |rng: &mut Rng, indent: &str| -> String {
-        let statements: Vec<String> = (0..rng.between(0, 2)).map(|_| statement(rng)).collect();
-        if statements.is_empty() {
-            return String::new();
-        }
-        let section = *rng.pick(&["entry", "internal"]);
-        let body = statements.join(" ");
-        format!("{indent}{section} {{ extern in0; extern in1; {body} }}\n")
-    };
+/// again wait on the other's state with `in`), a region's first state may hold states of its
+/// own, the parallel state's own transitions leave both, and `done` fires once both regions
+/// are final.
+fn chart(rng: &mut Rng, (stays, nests): (&mut Rng, &mut Rng), name: &str) -> String {
     let mut text = format!("machine {name}\ninitial {}\n", rng.pick(&["P", "Q"]));
     // No activity of P's own: each read of a free value multiplies what one ringlet of both
     // regions must try, and the regions' states read enough.
@@ -114,6 +109,9 @@ fn chart(rng: &mut Rng, stays: &mut Rng, name: &str) -> String {
             let _ = writeln!(text, "        state {region}{s} {{");
             if rng.chance(50) {
                 text.push_str(&activity(rng, "            "));
+            }
+            if s == 0 && nests.chance(25) {
+                nested(nests, stays, &format!("{region}{s}"), states, &mut text);
             }
             // The last state may be final, for `done`.
             if !(s + 1 == states && rng.chance(40)) {
@@ -138,6 +136,52 @@ fn chart(rng: &mut Rng, stays: &mut Rng, name: &str) -> String {
     text.push_str(&activity(rng, "    "));
     let _ = writeln!(text, "    when {} -> P\n}}", label(rng));
     text
+}
+
+/// An OnEntry or Internal of up to two statements, or nothing.
+fn activity(rng: &mut Rng, indent: &str) -> String {
+    let statements: Vec<String> = (0..rng.between(0, 2)).map(|_| statement(rng)).collect();
+    if statements.is_empty() {
+        return String::new();
+    }
+    let section = *rng.pick(&["entry", "internal"]);
+    let body = statements.join(" ");
+    format!("{indent}{section} {{ extern in0; extern in1; {body} }}\n")
+}
+
+/// The states that region state `outer` holds (§3.2): two or three, the first entered, each
+/// computing now and then, moving among themselves or out to a state of the region (one of
+/// `region_states`, leaving `outer`), the last perhaps final, for `outer`'s `done`.
+fn nested(rng: &mut Rng, stays: &mut Rng, outer: &str, region_states: usize, text: &mut String) {
+    let region = &outer[..1];
+    let inner = rng.between(2, 3);
+    // Every read of an input here multiplies what one ringlet of both regions must try.
+    let last_final = rng.chance(40);
+    if last_final {
+        let _ = writeln!(
+            text,
+            "            when done -> {region}{}",
+            rng.below(region_states)
+        );
+    }
+    for i in 0..inner {
+        let _ = writeln!(text, "            state {outer}n{i} {{");
+        if rng.chance(25) {
+            text.push_str(&activity(rng, "                "));
+        }
+        if !(i + 1 == inner && last_final) {
+            for _ in 0..rng.between(1, 2) {
+                let target = if rng.chance(20) {
+                    format!("{region}{}", rng.below(region_states))
+                } else {
+                    format!("{outer}n{}", rng.below(inner))
+                };
+                let rest = arrow(stays, &target);
+                let _ = writeln!(text, "                when {}{rest}", label(rng));
+            }
+        }
+        text.push_str("            }\n");
+    }
 }
 
 /// What follows a transition's label: ` -> TARGET`, or now and then (as `stays` draws) a
@@ -242,6 +286,8 @@ struct Outcome {
     ranged: bool,
     /// Claimed of a behaviour with a chart of regions.
     charted: bool,
+    /// Claimed of a behaviour whose region holds a state that holds states.
+    nested: bool,
     disagreements: Vec<String>,
 }
 
@@ -400,17 +446,20 @@ fn one(seed: u64, runs: usize) -> Outcome {
     }
     let _ = std::fs::remove_dir_all(&dir);
     let charted = (behaviour.machines.iter()).any(|m| !m.machine.composites.is_empty());
+    // `nested` names the states a region's state holds `A0n0`, `A0n1`, ...
+    let nested = files.iter().any(|(_, text)| text.contains("0n0 {"));
     Outcome {
         claimed,
         ranged: claimed && ranged,
         charted: claimed && charted,
+        nested: claimed && nested,
         disagreements,
     }
 }
 
 fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
-    let (mut claimed, mut ranged, mut charted) = (0, 0, 0);
+    let (mut claimed, mut ranged, mut charted, mut nested) = (0, 0, 0, 0);
     let mut disagreements = Vec::new();
     let started = std::time::Instant::now();
     for seed in seeds {
@@ -421,13 +470,14 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
         claimed += usize::from(o.claimed);
         ranged += usize::from(o.ranged);
         charted += usize::from(o.charted);
+        nested += usize::from(o.nested);
         for d in &o.disagreements {
             eprintln!("{d}");
         }
         disagreements.extend(o.disagreements);
     }
     eprintln!(
-        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range, {charted} with regions), {} disagreements",
+        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range, {charted} with regions, {nested} of them holding nested states), {} disagreements",
         disagreements.len()
     );
     assert!(
@@ -447,6 +497,10 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     assert!(
         charted * 10 > count as usize,
         "only {charted} of {count} behaviours with regions were exact"
+    );
+    assert!(
+        nested * 25 > count as usize,
+        "only {nested} of {count} behaviours with nested states in a region were exact"
     );
 }
 
