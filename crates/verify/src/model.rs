@@ -97,6 +97,10 @@ pub struct StateModel {
     /// The composites an arrival into it entered ([`Machine::arrival_enters`]): their time
     /// starts with its own.
     pub arrival_enters: Vec<usize>,
+    /// Pairs `(later, earlier)` of its constant time tests on two clocks, where the clock of
+    /// `earlier` started no later than that of `later` and `earlier`'s duration is no longer:
+    /// at any moment `later` is due only if `earlier` is ([`crate::ringlet::due_masks`]).
+    pub time_order: Vec<(u8, u8)>,
 }
 
 impl StateModel {

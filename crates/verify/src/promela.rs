@@ -1663,10 +1663,10 @@ impl StatementReader for Exec<'_, '_> {
 }
 
 /// The `if` options of machine `k` in state `s` at its snapshot: the sets of its time tests that
-/// may be due ([`crate::ringlet::time_masks`]); in a ringlet that arrived, none whose clock that
+/// may be due ([`crate::ringlet::due_masks`]); in a ringlet that arrived, none whose clock that
 /// arrival started ([`crate::ringlet::fresh_time`]).
 fn due_choices(k: usize, s: usize, state: &crate::model::StateModel) -> Vec<String> {
-    let masks = crate::ringlet::time_masks(&state.time_tests, 0);
+    let masks = crate::ringlet::due_masks(state, 0);
     let options = |keep: &dyn Fn(u16) -> bool| {
         let options: Vec<String> = masks
             .iter()

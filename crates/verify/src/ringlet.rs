@@ -426,7 +426,7 @@ impl<'m> StepGenerator<'m> {
         let from = usize::from(w.machines[k].state);
         let state = &self.model.machines[k].states[from];
         let tests = &state.time_tests;
-        let mut masks = time_masks(tests, w.machines[k].time);
+        let mut masks = due_masks(state, w.machines[k].time);
         if arrived {
             let (fresh, due) = (fresh_time(state), w.machines[k].time);
             masks.retain(|m| m & fresh & !due == 0);
@@ -713,6 +713,18 @@ pub(crate) fn time_masks(tests: &[crate::model::TimeTest], due: u16) -> Vec<u16>
             })
         })
         .collect()
+}
+
+/// The sets of `state`'s time tests that may be due at a snapshot, given those already `due`:
+/// [`time_masks`], and across clocks [`crate::model::StateModel::time_order`]. Never empty:
+/// every test due is one of them, whatever `due` was.
+pub(crate) fn due_masks(state: &crate::model::StateModel, due: u16) -> Vec<u16> {
+    let masks = time_masks(&state.time_tests, due);
+    let ordered = |m: &u16| {
+        (state.time_order.iter())
+            .all(|&(later, earlier)| m & (1 << later) == 0 || m & (1 << earlier) != 0)
+    };
+    masks.into_iter().filter(ordered).collect()
 }
 
 /// The time tests of a state that are never due at the snapshot of a ringlet that arrived in

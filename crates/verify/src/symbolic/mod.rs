@@ -29,7 +29,7 @@ use crate::model::Storage;
 use crate::outcome::{PropertyOutcome, Stop};
 use crate::property::{Property, Term};
 use crate::ringlet::{
-    initial_worlds, time_masks, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, UNKNOWN,
+    due_masks, initial_worlds, Choice, ControlWrites, OpenLeaf, OpenRead, StepGenerator, UNKNOWN,
 };
 use crate::search::Search;
 use crate::values::{ValueId, NEVER};
@@ -783,7 +783,7 @@ fn controls(model: &Search, k: usize) -> Vec<Control> {
             time: 0,
         };
         let started = state.time_mask(|t| state.arrival_starts(t.clock));
-        let masks = time_masks(&state.time_tests, 0);
+        let masks = due_masks(state, 0);
         out.extend(
             masks
                 .iter()
