@@ -40,6 +40,10 @@ pub struct ChartTransition {
     pub from: i64,
     pub to: i64,
     pub label: String,
+    /// It acts and stays (`when p { … }`, §3.2): drawn as a dashed loop, as `proclaim draw`
+    /// draws it, not as a move out and in again.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub stays: bool,
 }
 
 impl Chart {
@@ -67,6 +71,7 @@ impl Chart {
                 from: t.source,
                 to: t.target,
                 label: t.shown().to_string(),
+                stays: t.stays,
             })
             .collect();
         Chart::drawn(
@@ -104,6 +109,7 @@ impl Chart {
                 from: *from,
                 to: *to,
                 label: label.to_string(),
+                stays: false,
             })
             .collect();
         Chart::drawn(name, start, initial, states, transitions, dot)
@@ -128,7 +134,12 @@ impl Chart {
             .collect();
         let transitions: Vec<ChartTransition> = transitions
             .into_iter()
-            .map(|(from, to, label)| ChartTransition { from, to, label })
+            .map(|(from, to, label)| ChartTransition {
+                from,
+                to,
+                label,
+                stays: false,
+            })
             .collect();
         let mut dot = format!("digraph {} {{\n  rankdir=LR;\n", quote(&name));
         dot.push_str("  node [shape=box, style=rounded, fontname=\"Helvetica\", fontsize=10];\n");
@@ -269,9 +280,13 @@ fn built_in(chart: &Chart) -> String {
         } else {
             ((x1 + x2) / 2, (y1 + y2) / 2 - bend)
         };
+        let (dashes, said) = match t.stays {
+            true => (" stroke-dasharray=\"5,3\"", " (stays)"),
+            false => ("", ""),
+        };
         let _ = writeln!(
             svg,
-            "<g class=\"edge\"><title>{}-&gt;{}</title><path fill=\"none\" stroke=\"black\" d=\"M{x1},{y1} Q{cx},{cy} {x2},{y2}\"/><text x=\"{cx}\" y=\"{cy}\" font-size=\"9\" font-family=\"Helvetica\" text-anchor=\"middle\">{}</text></g>",
+            "<g class=\"edge\"><title>{}-&gt;{}</title><path fill=\"none\" stroke=\"black\"{dashes} d=\"M{x1},{y1} Q{cx},{cy} {x2},{y2}\"/><text x=\"{cx}\" y=\"{cy}\" font-size=\"9\" font-family=\"Helvetica\" text-anchor=\"middle\">{}{said}</text></g>",
             node(t.from),
             node(t.to),
             escape(&t.label)
@@ -400,11 +415,20 @@ mod tests {
                     also: Vec::new(),
                 },
             ],
-            transitions: vec![ChartTransition {
-                from: 0,
-                to: -2,
-                label: "x && y".into(),
-            }],
+            transitions: vec![
+                ChartTransition {
+                    from: 0,
+                    to: -2,
+                    label: "x && y".into(),
+                    stays: false,
+                },
+                ChartTransition {
+                    from: -2,
+                    to: -2,
+                    label: "z".into(),
+                    stays: true,
+                },
+            ],
             svg: String::new(),
             drawn_by: "built-in",
         };
@@ -416,6 +440,21 @@ mod tests {
             svg.contains("A&lt;B") && svg.contains("x &amp;&amp; y"),
             "{svg}"
         );
+        // A transition that stays is a dashed loop that says so; a move is drawn whole.
+        let edge = |title: &str| {
+            let at = svg.find(&format!("<title>{title}</title>")).expect(title);
+            svg[at..]
+                .split("</g>")
+                .next()
+                .unwrap_or_default()
+                .to_string()
+        };
+        let stays = edge("sm2-&gt;sm2");
+        assert!(
+            stays.contains("stroke-dasharray") && stays.contains("z (stays)"),
+            "{svg}"
+        );
+        assert!(!edge("s0-&gt;sm2").contains("stroke-dasharray"), "{svg}");
     }
 
     #[test]
@@ -427,6 +466,7 @@ mod tests {
                 from,
                 to,
                 label: "x".into(),
+                stays: false,
             })
             .collect();
         let chart = Chart {
