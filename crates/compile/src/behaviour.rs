@@ -528,7 +528,7 @@ fn plan_machine(
             transitions: machine
                 .transitions
                 .iter()
-                .map(|t| (t.source, t.target, t.shown().to_string()))
+                .map(|t| (t.source, t.target, t.shown().to_string(), t.stays))
                 .collect(),
             dot: proclaim_fsm::to_dot(machine),
         },

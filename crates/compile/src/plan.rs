@@ -204,7 +204,8 @@ pub(crate) struct MachinePlan {
 }
 
 pub(crate) struct Drawing {
-    pub transitions: Vec<(i64, i64, String)>,
+    /// Each transition's source, target, label and whether it stays (`when p { … }`).
+    pub transitions: Vec<(i64, i64, String, bool)>,
     pub dot: String,
 }
 

@@ -91,7 +91,7 @@ impl Chart {
         start: bool,
         initial: i64,
         states: &[(i64, &str)],
-        transitions: &[(i64, i64, &str)],
+        transitions: &[(i64, i64, &str, bool)],
         dot: &str,
     ) -> Chart {
         let states = states
@@ -105,11 +105,11 @@ impl Chart {
             .collect();
         let transitions = transitions
             .iter()
-            .map(|(from, to, label)| ChartTransition {
-                from: *from,
-                to: *to,
+            .map(|&(from, to, label, stays)| ChartTransition {
+                from,
+                to,
                 label: label.to_string(),
-                stays: false,
+                stays,
             })
             .collect();
         Chart::drawn(name, start, initial, states, transitions, dot)

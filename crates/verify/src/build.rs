@@ -217,10 +217,16 @@ fn time_tests_of(transitions: &[TransitionModel]) -> Vec<TimeTest> {
                 .iter()
                 .find(|(f, _)| *f == function)
                 .map_or(1.0, |(_, unit)| *unit);
+            // Exact or not at all: the durations order the tests, so one rounded (a fraction
+            // of a microsecond) or wrapped (past u64) would order two wrongly; such a test is
+            // left free, as a computed one is.
             let micros = match arguments {
                 [Expr::Duration(us)] => Some(*us),
-                [Expr::Int(n)] => Some((*n).max(0) as u64 * unit as u64),
-                [Expr::Float(x)] => Some((x * unit).max(0.0) as u64),
+                [Expr::Int(n)] => ((*n).max(0) as u64).checked_mul(unit as u64),
+                [Expr::Float(x)] => {
+                    let us = (x * unit).max(0.0);
+                    (us.fract() == 0.0 && us < u64::MAX as f64).then_some(us as u64)
+                }
                 _ => None,
             };
             time_tests.push(TimeTest {

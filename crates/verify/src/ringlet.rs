@@ -389,12 +389,13 @@ impl<'m> StepGenerator<'m> {
                         }
                         let target = state.transitions[t].target;
                         let c = &mut exec.world.machines[k];
-                        c.time = kept_time(
+                        let kept = kept_time(
                             &state.time_tests,
                             c.time,
                             &machine.states[target].time_tests,
                             &arm.transition.enters,
                         );
+                        c.time = implied_time(&machine.states[target], kept);
                         c.state = target as u16;
                         c.just_entered = true;
                     }
@@ -725,6 +726,39 @@ pub(crate) fn due_masks(state: &crate::model::StateModel, due: u16) -> Vec<u16> 
             .all(|&(later, earlier)| m & (1 << later) == 0 || m & (1 << earlier) != 0)
     };
     masks.into_iter().filter(ordered).collect()
+}
+
+/// `due` with every test of `state` it implies due as well: a constant test no longer than a
+/// due one of its clock, and the earlier of each pair of
+/// [`crate::model::StateModel::time_order`] whose later is due. Those are due in every run, so
+/// a move that keeps a composite's due tests into a state whose labels test more of its clocks
+/// (an `in()` the state left folded away) arrives with them, and every set of due tests a
+/// world holds is one [`due_masks`] lists (the symbolic engine's steps are made from those).
+pub(crate) fn implied_time(state: &crate::model::StateModel, due: u16) -> u16 {
+    let tests = &state.time_tests;
+    let mut closed = due;
+    loop {
+        let mut next = closed;
+        for (j, t) in tests.iter().enumerate() {
+            let Some(d) = t.micros.filter(|_| closed & (1 << j) != 0) else {
+                continue;
+            };
+            for (i, u) in tests.iter().enumerate() {
+                if u.clock == t.clock && u.micros.is_some_and(|c| c <= d) {
+                    next |= 1 << i;
+                }
+            }
+        }
+        for &(later, earlier) in &state.time_order {
+            if next & (1 << later) != 0 {
+                next |= 1 << earlier;
+            }
+        }
+        if next == closed {
+            return closed;
+        }
+        closed = next;
+    }
 }
 
 /// The time tests of a state that are never due at the snapshot of a ringlet that arrived in

@@ -111,7 +111,7 @@ fn chart(rng: &mut Rng, (stays, nests): (&mut Rng, &mut Rng), name: &str) -> Str
                 text.push_str(&activity(rng, "            "));
             }
             if s == 0 && nests.chance(25) {
-                nested(nests, stays, &format!("{region}{s}"), states, &mut text);
+                nested(nests, &format!("{region}{s}"), states, &mut text);
             }
             // The last state may be final, for `done`.
             if !(s + 1 == states && rng.chance(40)) {
@@ -151,8 +151,9 @@ fn activity(rng: &mut Rng, indent: &str) -> String {
 
 /// The states that region state `outer` holds (§3.2): two or three, the first entered, each
 /// computing now and then, moving among themselves or out to a state of the region (one of
-/// `region_states`, leaving `outer`), the last perhaps final, for `outer`'s `done`.
-fn nested(rng: &mut Rng, stays: &mut Rng, outer: &str, region_states: usize, text: &mut String) {
+/// `region_states`, leaving `outer`), the last perhaps final, for `outer`'s `done`. Everything,
+/// its transitions that stay too, is drawn from `rng` alone, the nests' own sequence.
+fn nested(rng: &mut Rng, outer: &str, region_states: usize, text: &mut String) {
     let region = &outer[..1];
     let inner = rng.between(2, 3);
     // Every read of an input here multiplies what one ringlet of both regions must try.
@@ -176,7 +177,7 @@ fn nested(rng: &mut Rng, stays: &mut Rng, outer: &str, region_states: usize, tex
                 } else {
                     format!("{outer}n{}", rng.below(inner))
                 };
-                let rest = arrow(stays, &target);
+                let rest = arrow(rng, &target);
                 let _ = writeln!(text, "                when {}{rest}", label(rng));
             }
         }

@@ -369,6 +369,47 @@ fn spin_and_both_engines_agree_that_a_composite_is_no_younger_than_its_states() 
     assert_eq!(both("older", &dir, &properties), expected);
 }
 
+/// A move inside a composite keeps its due tests into a state whose labels test more of its
+/// clocks (an `in()` folded away where the move came from): the tests those imply are due on
+/// arrival too. In M, Q's 2 s imply P's 1 s; in N, Q's 2 s imply its own 1 s. Each inner move
+/// is tried first and fires when its 2 s are up, so M ends in Y and N in X. A symbolic engine
+/// that made steps only from the sets of due tests a snapshot may choose had none from
+/// there, and called Y and X unreachable.
+#[test]
+fn spin_and_both_engines_agree_on_the_tests_a_kept_clock_implies() {
+    let dir = scratch("implied-time");
+    let m = "machine M\ninitial P\nstate P {\n    when in(P.Q.B) && after(1s) -> X\n    state Q {\n        when after(2s) -> Y\n        state A {\n            when after(2s) -> B\n        }\n        state B { }\n    }\n}\nstate X { }\nstate Y { }\n";
+    let n = "machine N\ninitial Q\nstate Q {\n    when in(Q.B) && after(1s) -> X\n    when after(2s) -> Y\n    state A {\n        when after(2s) -> B\n    }\n    state B { }\n}\nstate X { }\nstate Y { }\n";
+    std::fs::write(dir.join("M.machine"), m).expect("write");
+    std::fs::write(dir.join("N.machine"), n).expect("write");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n[[machine]]\nfile = \"N.machine\"\n",
+    )
+    .expect("write");
+    let properties = [
+        property(PropertyKind::Reachable, "M.Y"),
+        property(PropertyKind::Never, "M.X"),
+        property(PropertyKind::Reachable, "N.X"),
+        property(PropertyKind::Never, "N.Y"),
+    ];
+    let expected = [Verdict::Holds; 4];
+    let behaviour = load("implied", Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, &properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both("implied", &dir, &properties), expected);
+}
+
 /// The press's properties: never stuck, done reachable and eventually done.
 fn press_properties() -> [PropertySource; 3] {
     [
