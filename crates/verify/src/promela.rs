@@ -931,7 +931,10 @@ impl<'m> Writer<'m> {
                 "if :: mode[{j}] == 0 -> mode[{j}] = 1; :: else -> skip; fi;"
             )),
             Command::Off => self.line(&format!("mode[{j}] = 2;")),
-            Command::Reload | Command::Reread => {}
+            Command::Reload => {
+                self.line(&format!("st[{j}] = {initial}; je[{j}] = 1; due[{j}] = 0;"))
+            }
+            Command::Reread => {}
         }
     }
 

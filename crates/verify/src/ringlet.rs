@@ -863,7 +863,18 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
             c.status = Status::Dormant;
             status
         }
-        (Command::Reload | Command::Reread, _) => ControlWrites::default(),
+        // The file read again is the one checked: `reload` starts the machine again at its
+        // initial state, running or not, its variables kept; `reread` keeps its state.
+        (Command::Reload, _) => {
+            c.state = initial;
+            c.just_entered = true;
+            c.time = 0;
+            ControlWrites {
+                status: false,
+                ..all
+            }
+        }
+        (Command::Reread, _) => ControlWrites::default(),
     }
 }
 

@@ -410,6 +410,40 @@ fn spin_and_both_engines_agree_on_the_tests_a_kept_clock_implies() {
     assert_eq!(both("implied", &dir, &properties), expected);
 }
 
+/// `reload` reads the machine's file again and starts it at its initial state (the file
+/// checked is the one read again): M's second visit to A flips `visits` back, which a model
+/// that took the command for nothing never reached.
+#[test]
+fn spin_and_both_engines_agree_that_a_reload_starts_the_machine_again() {
+    let dir = scratch("reload");
+    let machine = "machine M\ninitial A\nstate A {\n    entry {\n        int visits;\n        visits = 1 - visits;\n    }\n    when TRUE -> B\n}\nstate B {\n    entry {\n        M: reload\n    }\n    when visits == 7 -> A\n}\n";
+    std::fs::write(dir.join("M.machine"), machine).expect("write");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .expect("write");
+    let properties = [
+        property(PropertyKind::Reachable, "M.B && M.visits == 0"),
+        property(PropertyKind::AlwaysEventually, "M.A"),
+    ];
+    let expected = [Verdict::Holds; 2];
+    let behaviour = load("reload", Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, &properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both("reload", &dir, &properties), expected);
+}
+
 /// The press's properties: never stuck, done reachable and eventually done.
 fn press_properties() -> [PropertySource; 3] {
     [
