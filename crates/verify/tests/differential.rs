@@ -156,7 +156,6 @@ fn activity(rng: &mut Rng, indent: &str) -> String {
 fn nested(rng: &mut Rng, outer: &str, region_states: usize, text: &mut String) {
     let region = &outer[..1];
     let inner = rng.between(2, 3);
-    // Every read of an input here multiplies what one ringlet of both regions must try.
     let last_final = rng.chance(40);
     if last_final {
         let _ = writeln!(
@@ -167,6 +166,8 @@ fn nested(rng: &mut Rng, outer: &str, region_states: usize, text: &mut String) {
     }
     for i in 0..inner {
         let _ = writeln!(text, "            state {outer}n{i} {{");
+        // Seldom: every read of an input here multiplies what one ringlet of both regions
+        // must try.
         if rng.chance(25) {
             text.push_str(&activity(rng, "                "));
         }
