@@ -1488,17 +1488,23 @@ impl<'m> Writer<'m> {
                 opened += 1;
                 continue;
             }
-            // The due tests of a composite the move stays in stay due, at their new places.
+            // The due tests of a composite the move stays in stay due, at their new places,
+            // with those each implies there (`ringlet::implied_time`: one due test's
+            // implications are the same whatever else is due, so they are joined bit by bit).
+            let target = &m.states[t.target];
             let kept = crate::ringlet::kept_time_bits(
                 &state.time_tests,
-                &m.states[t.target].time_tests,
+                &target.time_tests,
                 &arm.transition.enters,
             );
             let due = match kept.as_slice() {
                 [] => "0".to_string(),
                 kept => kept
                     .iter()
-                    .map(|(i, j)| format!("(((due[{k}] >> {i}) & 1) << {j})"))
+                    .map(|&(i, j)| {
+                        let implied = crate::ringlet::implied_time(target, 1 << j);
+                        format!("(((due[{k}] >> {i}) & 1) * {implied})")
+                    })
                     .collect::<Vec<_>>()
                     .join(" | "),
             };

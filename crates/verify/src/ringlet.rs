@@ -24,8 +24,8 @@
 //! Control postings (`Name: On`, `suspend("Name")`) act when the posting ringlet ends, in the
 //! order posted, as the runner obeys them between ringlets: `NameIsRunning` read later in the
 //! same ringlet is still the old mode (a machine started this round rings from the next).
-//! `reload` and `reread`
-//! change nothing: files do not change while a behaviour is verified. Host functions, `say`,
+//! A `reload` reads the same file again (files do not change while a behaviour is verified):
+//! the machine enters its initial state again; a `reread` changes nothing. Host functions, `say`,
 //! `print` and the sleeps have no effect on what machines read, and are skipped.
 
 use crate::arith::{self, convert, text};
@@ -803,8 +803,10 @@ fn kept_time(
 pub(crate) struct ControlWrites {
     /// Its mode.
     pub status: bool,
-    /// Just entered, started this round and the time bits (it starts or enters again).
+    /// Just entered and the time bits (it starts or enters again).
     pub entry: bool,
+    /// Started this round (it starts: a reload enters again without starting).
+    pub fresh: bool,
     /// Its state (it starts afresh).
     pub state: bool,
 }
@@ -813,6 +815,7 @@ impl ControlWrites {
     fn add(&mut self, other: ControlWrites) {
         self.status |= other.status;
         self.entry |= other.entry;
+        self.fresh |= other.fresh;
         self.state |= other.state;
     }
 }
@@ -826,6 +829,7 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
     let all = ControlWrites {
         status: true,
         entry: true,
+        fresh: true,
         state: true,
     };
     let status = ControlWrites {
@@ -870,8 +874,9 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
             c.just_entered = true;
             c.time = 0;
             ControlWrites {
-                status: false,
-                ..all
+                entry: true,
+                state: true,
+                ..ControlWrites::default()
             }
         }
         (Command::Reread, _) => ControlWrites::default(),

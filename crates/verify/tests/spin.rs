@@ -444,6 +444,76 @@ fn spin_and_both_engines_agree_that_a_reload_starts_the_machine_again() {
     assert_eq!(both("reload", &dir, &properties), expected);
 }
 
+/// A machine started and reloaded in one round rings from the next, as one only started
+/// does: B, started by A and reloaded by C before its turn, first rings after A's second
+/// ringlet. (The symbolic engine once took the reload for a start of its own that cleared
+/// "started this round", and let B ring at once.)
+#[test]
+fn spin_and_both_engines_agree_that_a_reload_does_not_start_a_machine_early() {
+    let dir = scratch("started-and-reloaded");
+    let files = [
+        ("A.machine", "machine A\ninitial A0\nstate A0 {\n    entry {\n        B: On\n    }\n    when TRUE -> A1\n}\nstate A1 {\n    when TRUE -> A2\n}\nstate A2 { }\n"),
+        ("C.machine", "machine C\ninitial C0\nstate C0 {\n    entry {\n        B: reload\n    }\n}\n"),
+        ("B.machine", "machine B\ninitial S\nstate S {\n    entry {\n        int rang;\n        rang = 1;\n    }\n}\n"),
+        ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"C.machine\"\n[[machine]]\nfile = \"B.machine\"\nstart = false\n"),
+    ];
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).expect("write");
+    }
+    let properties = [
+        property(PropertyKind::Never, "B.rang == 1 && A.A1"),
+        property(PropertyKind::Reachable, "B.rang == 1"),
+    ];
+    let expected = [Verdict::Holds; 2];
+    let behaviour = load("started-and-reloaded", Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, &properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both("started-and-reloaded", &dir, &properties), expected);
+}
+
+/// Time passes on every clock in a fair run, as the due tests at the end of each step say:
+/// after a move inside Q, once Q's 5 s are up so are P's 1 s and 2 s (P is no younger), in
+/// whichever of A and B the machine is. A run that never sees `stop` never reaches X, and it
+/// is fair. (SPIN's model once kept only the moved tests, saw P's time never pass, found no
+/// fair run, and said `eventually M.X` held.)
+#[test]
+fn spin_and_both_engines_agree_that_time_passes_on_a_clock_a_kept_one_implies() {
+    let dir = scratch("implied-fairness");
+    let machine = "machine M\ninitial P\nstate P {\n    when go && in(P.Q.A) && after(1s) -> Z\n    when go && in(P.Q.B) && after(2s) -> Z\n    state Q {\n        when after(5s) && stop -> X\n        state A {\n            when TRUE -> B\n        }\n        state B {\n            when TRUE -> A\n        }\n    }\n}\nstate X { }\nstate Z { }\n";
+    std::fs::write(dir.join("M.machine"), machine).expect("write");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"M.machine\"\n",
+    )
+    .expect("write");
+    let properties = [property(PropertyKind::Eventually, "M.X")];
+    let expected = [Verdict::Fails];
+    let behaviour = load("implied-fairness", Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, &properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both("implied-fairness", &dir, &properties), expected);
+}
+
 /// The press's properties: never stuck, done reachable and eventually done.
 fn press_properties() -> [PropertySource; 3] {
     [

@@ -868,8 +868,10 @@ fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &Op
         }
         if w.entry {
             f.just_entered.set(usize::from(c.just_entered), &mut writes);
-            f.fresh.set(usize::from(c.fresh), &mut writes);
             f.time.set(usize::from(c.time), &mut writes);
+        }
+        if w.fresh {
+            f.fresh.set(usize::from(c.fresh), &mut writes);
         }
         if w.state {
             f.state.set(usize::from(c.state), &mut writes);
