@@ -294,20 +294,34 @@ fn spin_agrees_with_the_checker_that_no_time_passes_before_an_arrivals_snapshot(
     );
 }
 
+/// The behaviour in `tests/agree/CASE`: both of the checker's engines give `expected` for
+/// `properties`, and so does SPIN where it is installed.
+fn agree(case: &str, properties: &[PropertySource], expected: &[Verdict]) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/agree")
+        .join(case);
+    let behaviour = load(case, Arc::new(Folder::new(&dir))).expect("loads");
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{case}: {engine:?}");
+    }
+    if !tools_present() {
+        return;
+    }
+    assert_eq!(both(case, &dir, properties), expected, "{case}: SPIN");
+}
+
 /// A transition that stays (§3.2) runs its own actions only and keeps the state's clock: A is
 /// entered once however often it fires (an entry flips `entries`), its OnExit has not run
 /// while in A, its count stops at 2, and either may come first, two counts or the timeout.
 /// SPIN and both of the checker's engines agree.
 #[test]
 fn spin_and_both_engines_agree_on_a_transition_that_stays() {
-    let dir = scratch("stays-behaviour");
-    let machine = "machine M\ninitial A\nstate A {\n    entry {\n        int n;\n        int entries;\n        entries = 1 - entries;\n    }\n    exit {\n        y = 1;\n    }\n    when n < 2 && go {\n        n = n + 1;\n    }\n    when after(1s) -> B\n}\nstate B { }\n";
-    std::fs::write(dir.join("M.machine"), machine).expect("write");
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .expect("write");
     let properties = [
         property(PropertyKind::Never, "M.B && M.entries != 1"),
         property(PropertyKind::Never, "M.A && y == 1"),
@@ -316,21 +330,7 @@ fn spin_and_both_engines_agree_on_a_transition_that_stays() {
         property(PropertyKind::Reachable, "M.A && M.n == 2"),
         property(PropertyKind::Eventually, "M.B"),
     ];
-    let expected = [Verdict::Holds; 6];
-    let behaviour = load("stays", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("stays", &dir, &properties), expected);
+    agree("stays", &properties, &[Verdict::Holds; 6]);
 }
 
 /// A composite is entered no later than the states inside it (§6, time): when P's 3 s are
@@ -339,34 +339,12 @@ fn spin_and_both_engines_agree_on_a_transition_that_stays() {
 /// each other would leave from A. SPIN and both of the checker's engines agree.
 #[test]
 fn spin_and_both_engines_agree_that_a_composite_is_no_younger_than_its_states() {
-    let dir = scratch("older-composite");
-    let machine = "machine M\ninitial P\nstate P {\n    when after(3s) -> LATE\n    state A {\n        when after(1s) -> B\n    }\n    state B {\n        entry {\n            int passed;\n            passed = 1;\n        }\n    }\n}\nstate LATE { }\n";
-    std::fs::write(dir.join("M.machine"), machine).expect("write");
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .expect("write");
     let properties = [
         property(PropertyKind::Never, "M.LATE && M.passed != 1"),
         property(PropertyKind::Reachable, "M.LATE"),
         property(PropertyKind::Eventually, "M.LATE"),
     ];
-    let expected = [Verdict::Holds; 3];
-    let behaviour = load("older", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("older", &dir, &properties), expected);
+    agree("older-composite", &properties, &[Verdict::Holds; 3]);
 }
 
 /// A move inside a composite keeps its due tests into a state whose labels test more of its
@@ -377,37 +355,13 @@ fn spin_and_both_engines_agree_that_a_composite_is_no_younger_than_its_states() 
 /// there, and called Y and X unreachable.
 #[test]
 fn spin_and_both_engines_agree_on_the_tests_a_kept_clock_implies() {
-    let dir = scratch("implied-time");
-    let m = "machine M\ninitial P\nstate P {\n    when in(P.Q.B) && after(1s) -> X\n    state Q {\n        when after(2s) -> Y\n        state A {\n            when after(2s) -> B\n        }\n        state B { }\n    }\n}\nstate X { }\nstate Y { }\n";
-    let n = "machine N\ninitial Q\nstate Q {\n    when in(Q.B) && after(1s) -> X\n    when after(2s) -> Y\n    state A {\n        when after(2s) -> B\n    }\n    state B { }\n}\nstate X { }\nstate Y { }\n";
-    std::fs::write(dir.join("M.machine"), m).expect("write");
-    std::fs::write(dir.join("N.machine"), n).expect("write");
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n[[machine]]\nfile = \"N.machine\"\n",
-    )
-    .expect("write");
     let properties = [
         property(PropertyKind::Reachable, "M.Y"),
         property(PropertyKind::Never, "M.X"),
         property(PropertyKind::Reachable, "N.X"),
         property(PropertyKind::Never, "N.Y"),
     ];
-    let expected = [Verdict::Holds; 4];
-    let behaviour = load("implied", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("implied", &dir, &properties), expected);
+    agree("implied-time", &properties, &[Verdict::Holds; 4]);
 }
 
 /// `reload` reads the machine's file again and starts it at its initial state (the file
@@ -415,33 +369,11 @@ fn spin_and_both_engines_agree_on_the_tests_a_kept_clock_implies() {
 /// that took the command for nothing never reached.
 #[test]
 fn spin_and_both_engines_agree_that_a_reload_starts_the_machine_again() {
-    let dir = scratch("reload");
-    let machine = "machine M\ninitial A\nstate A {\n    entry {\n        int visits;\n        visits = 1 - visits;\n    }\n    when TRUE -> B\n}\nstate B {\n    entry {\n        M: reload\n    }\n    when visits == 7 -> A\n}\n";
-    std::fs::write(dir.join("M.machine"), machine).expect("write");
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .expect("write");
     let properties = [
         property(PropertyKind::Reachable, "M.B && M.visits == 0"),
         property(PropertyKind::AlwaysEventually, "M.A"),
     ];
-    let expected = [Verdict::Holds; 2];
-    let behaviour = load("reload", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("reload", &dir, &properties), expected);
+    agree("reload", &properties, &[Verdict::Holds; 2]);
 }
 
 /// A machine started and reloaded in one round rings from the next, as one only started
@@ -450,35 +382,11 @@ fn spin_and_both_engines_agree_that_a_reload_starts_the_machine_again() {
 /// "started this round", and let B ring at once.)
 #[test]
 fn spin_and_both_engines_agree_that_a_reload_does_not_start_a_machine_early() {
-    let dir = scratch("started-and-reloaded");
-    let files = [
-        ("A.machine", "machine A\ninitial A0\nstate A0 {\n    entry {\n        B: On\n    }\n    when TRUE -> A1\n}\nstate A1 {\n    when TRUE -> A2\n}\nstate A2 { }\n"),
-        ("C.machine", "machine C\ninitial C0\nstate C0 {\n    entry {\n        B: reload\n    }\n}\n"),
-        ("B.machine", "machine B\ninitial S\nstate S {\n    entry {\n        int rang;\n        rang = 1;\n    }\n}\n"),
-        ("behaviour.toml", "[[machine]]\nfile = \"A.machine\"\n[[machine]]\nfile = \"C.machine\"\n[[machine]]\nfile = \"B.machine\"\nstart = false\n"),
-    ];
-    for (name, text) in files {
-        std::fs::write(dir.join(name), text).expect("write");
-    }
     let properties = [
         property(PropertyKind::Never, "B.rang == 1 && A.A1"),
         property(PropertyKind::Reachable, "B.rang == 1"),
     ];
-    let expected = [Verdict::Holds; 2];
-    let behaviour = load("started-and-reloaded", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("started-and-reloaded", &dir, &properties), expected);
+    agree("started-and-reloaded", &properties, &[Verdict::Holds; 2]);
 }
 
 /// Time passes on every clock in a fair run, as the due tests at the end of each step say:
@@ -488,30 +396,8 @@ fn spin_and_both_engines_agree_that_a_reload_does_not_start_a_machine_early() {
 /// fair run, and said `eventually M.X` held.)
 #[test]
 fn spin_and_both_engines_agree_that_time_passes_on_a_clock_a_kept_one_implies() {
-    let dir = scratch("implied-fairness");
-    let machine = "machine M\ninitial P\nstate P {\n    when go && in(P.Q.A) && after(1s) -> Z\n    when go && in(P.Q.B) && after(2s) -> Z\n    state Q {\n        when after(5s) && stop -> X\n        state A {\n            when TRUE -> B\n        }\n        state B {\n            when TRUE -> A\n        }\n    }\n}\nstate X { }\nstate Z { }\n";
-    std::fs::write(dir.join("M.machine"), machine).expect("write");
-    std::fs::write(
-        dir.join("behaviour.toml"),
-        "[[machine]]\nfile = \"M.machine\"\n",
-    )
-    .expect("write");
     let properties = [property(PropertyKind::Eventually, "M.X")];
-    let expected = [Verdict::Fails];
-    let behaviour = load("implied-fairness", Arc::new(Folder::new(&dir))).expect("loads");
-    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
-        let options = Options {
-            engine,
-            ..Options::default()
-        };
-        let report = verify(&behaviour, &properties, options).expect("verifies");
-        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
-        assert_eq!(verdicts, expected, "{engine:?}");
-    }
-    if !tools_present() {
-        return;
-    }
-    assert_eq!(both("implied-fairness", &dir, &properties), expected);
+    agree("implied-fairness", &properties, &[Verdict::Fails]);
 }
 
 /// The press's properties: never stuck, done reachable and eventually done.
