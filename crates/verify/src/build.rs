@@ -127,13 +127,12 @@ impl Model {
             &uses,
         );
 
+        let machines = machine_models(behaviour, locals_of);
+        let clock_ranks = crate::clocks::ranks(&machines);
         let mut model = Model {
-            machines: behaviour
-                .machines
-                .iter()
-                .zip(locals_of)
-                .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
-                .collect(),
+            clock_durations: crate::clocks::durations(&machines, &clock_ranks),
+            clock_ranks,
+            machines,
             storage: vec![Storage::Stored; all_slots.len()],
             slots: all_slots,
             theories,
@@ -146,6 +145,17 @@ impl Model {
         sound_free_values(&mut model, behaviour, property_exprs, &hints);
         model
     }
+}
+
+/// Every machine's model, in manifest order, each with its own variables.
+fn machine_models(
+    behaviour: &Behaviour,
+    locals_of: Vec<FxHashMap<String, SlotId>>,
+) -> Vec<MachineModel> {
+    (behaviour.machines.iter())
+        .zip(locals_of)
+        .map(|(m, locals)| machine_model(&m.machine, m.start, locals))
+        .collect()
 }
 
 fn machine_model(

@@ -33,6 +33,7 @@ mod acceptance;
 mod build;
 mod choices;
 mod chunked;
+mod clocks;
 mod components;
 pub mod domain;
 mod edges;
@@ -47,6 +48,7 @@ mod liveness;
 pub mod model;
 mod outcome;
 pub mod promela;
+mod promela_clocks;
 pub mod property;
 mod race;
 /// The conformance test's random behaviours, for the tests of the search's memos.

@@ -223,6 +223,11 @@ pub struct Model {
     /// reductions are decided.
     pub storage: Vec<Storage>,
     pub ring_period: Duration,
+    /// Per machine, its rank among those whose clocks are ordered against each other's
+    /// ([`crate::clocks::ranks`]).
+    pub clock_ranks: Vec<Option<u8>>,
+    /// Their constant durations ([`crate::clocks::durations`]).
+    pub clock_durations: Vec<u64>,
     /// Where free values go that their finite domains do not follow ([`crate::flow`]): empty
     /// when the model's environment is exact for every test the behaviour makes.
     pub inexact: Vec<Inexact>,

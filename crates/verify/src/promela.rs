@@ -3,7 +3,8 @@
 //! value numbers.
 //!
 //! - **State.** Per machine its state, mode (0 running, 1 suspended, 2 dormant), just-entered
-//!   and started-this-round bits and due time bits (arrays `st`, `mode`, `je`, `fresh`, `due`);
+//!   and started-this-round bits and due time bits (arrays `st`, `mode`, `je`, `fresh`, `due`),
+//!   and where machines' clocks are ordered what orders them (`promela_clocks.rs`);
 //!   `turn`; every slot (`s<i>`) and every `saw()` value (`saw<i>`) as a **value number** of the
 //!   model's [`crate::values::Values`] (0 never posted); that is [`crate::world::SystemState`] field by
 //!   field.
@@ -1113,6 +1114,9 @@ impl<'m> Writer<'m> {
                 self.noting = true;
                 self.run(RingletPlan::of_state(machine, state).arriving())?;
                 self.noting = false;
+                if let Some(clocks) = crate::promela_clocks::arrival(model, k, s) {
+                    self.line(&clocks);
+                }
                 self.line("skip;");
                 self.depth -= 1;
             }
@@ -1189,6 +1193,9 @@ impl<'m> Writer<'m> {
             w,
             "short due[{n}]; /* bit i: the state's time test i is due */"
         );
+        if crate::promela_clocks::any(model) {
+            let _ = writeln!(w, "{}", crate::promela_clocks::declarations(model));
+        }
         for (i, s) in model.slots.iter().enumerate() {
             let what = match &s.kind {
                 SlotKind::Local { .. } => "variable",
@@ -1356,7 +1363,8 @@ impl<'m> Writer<'m> {
         let n = model.machines.len();
         self.line("ringing = 0; sel = turn; wrapped = 0;");
         self.line("do");
-        let clear: String = (0..n).map(|k| format!(" fresh[{k}] = 0;")).collect();
+        let mut clear: String = (0..n).map(|k| format!(" fresh[{k}] = 0;")).collect();
+        clear.push_str(&crate::promela_clocks::new_round(model));
         self.line(&format!(
             ":: sel >= {n} -> if :: wrapped -> break; :: else -> sel = 0; wrapped = 1;{clear} fi;"
         ));
@@ -1403,7 +1411,7 @@ impl<'m> Writer<'m> {
             self.depth += 1;
             self.line("if");
             for (s, state) in timed {
-                for line in due_choices(k, s, state) {
+                for line in due_choices(model, k, s, state) {
                     self.line(&line);
                 }
             }
@@ -1508,6 +1516,9 @@ impl<'m> Writer<'m> {
                     .collect::<Vec<_>>()
                     .join(" | "),
             };
+            if let Some(left) = crate::promela_clocks::leaving(model, k, state) {
+                self.line(&left);
+            }
             self.line(&format!(
                 "st[{k}] = {}; je[{k}] = 1; due[{k}] = {due};",
                 t.target
@@ -1672,15 +1683,25 @@ impl StatementReader for Exec<'_, '_> {
 }
 
 /// The `if` options of machine `k` in state `s` at its snapshot: the sets of its time tests that
-/// may be due ([`crate::ringlet::due_masks`]); in a ringlet that arrived, none whose clock that
+/// may be due ([`crate::ringlet::due_masks`]) as the other machines' clocks allow
+/// ([`crate::promela_clocks::agrees`]); in a ringlet that arrived, none whose clock that
 /// arrival started ([`crate::ringlet::fresh_time`]).
-fn due_choices(k: usize, s: usize, state: &crate::model::StateModel) -> Vec<String> {
+fn due_choices(
+    model: &Search,
+    k: usize,
+    s: usize,
+    state: &crate::model::StateModel,
+) -> Vec<String> {
     let masks = crate::ringlet::due_masks(state, 0);
     let options = |keep: &dyn Fn(u16) -> bool| {
         let options: Vec<String> = masks
             .iter()
             .filter(|&&m| keep(m))
-            .map(|m| format!(":: (due[{k}] | {m}) == {m} -> due[{k}] = {m};"))
+            .map(|&m| {
+                let clocks = crate::promela_clocks::agrees(model, k, state, m)
+                    .map_or(String::new(), |c| format!(" && {c}"));
+                format!(":: (due[{k}] | {m}) == {m}{clocks} -> due[{k}] = {m};")
+            })
             .collect();
         options.join(" ")
     };

@@ -98,6 +98,10 @@ pub fn initial_worlds<'a>(model: &'a Search) -> impl Iterator<Item = SystemState
                 just_entered: true,
                 fresh: false,
                 time: 0,
+                arrived: false,
+                order: 0,
+                left_due: 0,
+                left_wait: 0,
             })
             .collect(),
         values: {
@@ -232,6 +236,8 @@ impl<'m> StepGenerator<'m> {
                 wrapped = true;
                 for c in &mut w.machines {
                     c.fresh = false;
+                    c.arrived = false;
+                    (c.left_due, c.left_wait) = (0, 0);
                 }
             }
             if self.can_ring(&w, k) {
@@ -340,6 +346,7 @@ impl<'m> StepGenerator<'m> {
             from,
             fired,
             leaf,
+            due: snapshot.due,
             timers: snapshot.timers,
             at_snapshot: snapshot.values,
             read: chosen.log.unwrap_or_default(),
@@ -371,6 +378,17 @@ impl<'m> StepGenerator<'m> {
                     exec.run(actions);
                     exec.world.machines[k].just_entered = false;
                     arrived = true;
+                    // On an open world the other machines' bits are unknown: the symbolic
+                    // engine writes this arrival itself (`symbolic/clocks.rs`).
+                    if exec.chosen.open.is_none() {
+                        let model = self.model;
+                        crate::clocks::arrive(
+                            &model.machines,
+                            &model.clock_ranks,
+                            &mut exec.world,
+                            k,
+                        );
+                    }
                 }
                 Next::Snapshot => snapshot = self.snapshot(exec, detail, arrived),
                 Next::Try(arm) => {
@@ -389,6 +407,11 @@ impl<'m> StepGenerator<'m> {
                         }
                         let target = state.transitions[t].target;
                         let c = &mut exec.world.machines[k];
+                        if crate::clocks::heard_later(&self.model.clock_ranks, k) {
+                            let durations = &self.model.clock_durations;
+                            (c.left_due, c.left_wait) =
+                                crate::clocks::left(durations, state, c.time);
+                        }
                         let kept = kept_time(
                             &state.time_tests,
                             c.time,
@@ -432,6 +455,31 @@ impl<'m> StepGenerator<'m> {
             let (fresh, due) = (fresh_time(state), w.machines[k].time);
             masks.retain(|m| m & fresh & !due == 0);
         }
+        // The other machines' clocks, where the world is known (on an open one, the symbolic
+        // engine meets each leaf with the same rule as a diagram). Every real moment agrees
+        // with itself, so some set of due tests always agrees.
+        if exec.chosen.open.is_none() {
+            let model = self.model;
+            let agrees = |m: &u16| {
+                crate::clocks::agrees(
+                    &model.machines,
+                    &model.clock_ranks,
+                    &model.clock_durations,
+                    w,
+                    k,
+                    *m,
+                )
+            };
+            if masks.iter().any(agrees) {
+                masks.retain(agrees);
+            } else {
+                debug_assert!(
+                    false,
+                    "no due tests of {} agree with the other clocks",
+                    model.machines[k].name
+                );
+            }
+        }
         let touched_domains: Vec<&[ValueId]> = touched
             .iter()
             .map(|s| self.domain(*s, w.values[*s]))
@@ -443,7 +491,10 @@ impl<'m> StepGenerator<'m> {
         index /= masks.len();
         let old_mask = w.machines[k].time;
         w.machines[k].time = mask;
-        let mut taken = Snapshot::default();
+        let mut taken = Snapshot {
+            due: mask,
+            ..Snapshot::default()
+        };
         for (slot, domain) in touched.iter().zip(&touched_domains) {
             let n = domain.len();
             let v = rotated(domain, w.values[*slot], index % n);
@@ -485,6 +536,10 @@ impl<'m> StepGenerator<'m> {
             just_entered: false,
             fresh: false,
             time: 0,
+            arrived: false,
+            order: 0,
+            left_due: 0,
+            left_wait: 0,
         };
         let mut start = SystemState {
             turn: k as u8,
@@ -518,6 +573,7 @@ impl<'m> StepGenerator<'m> {
                     after: ringlet.world,
                     control_writes: open.control_writes,
                     fired: ringlet.fired,
+                    due: ringlet.due,
                 });
             }
             if out.len() >= limit {
@@ -581,6 +637,8 @@ struct Ringlet {
     from: usize,
     fired: Option<usize>,
     leaf: u64,
+    /// The time tests due at its snapshot.
+    due: u16,
     /// With detail only: the time tests that came due.
     timers: Vec<usize>,
     /// With detail only: the values the stored free types had at the snapshot.
@@ -589,10 +647,12 @@ struct Ringlet {
     read: Vec<(SlotId, ValueId)>,
 }
 
-/// What a ringlet's snapshot chose, kept with detail only: the time tests that came due and
-/// the values the stored free types had.
+/// What a ringlet's snapshot chose: the time tests due, and with detail only those that came
+/// due and the values the stored free types had.
 #[derive(Default)]
 struct Snapshot {
+    /// The time tests due at it.
+    due: u16,
     timers: Vec<usize>,
     values: Vec<(SlotId, ValueId)>,
 }
@@ -646,6 +706,8 @@ pub(crate) struct OpenLeaf {
     pub after: SystemState,
     pub control_writes: Vec<ControlWrites>,
     pub fired: Option<usize>,
+    /// The time tests due at its snapshot.
+    pub due: u16,
 }
 
 impl Chosen<'_> {
@@ -845,6 +907,11 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
                 just_entered: true,
                 fresh: true,
                 time: 0,
+                // Unread until its arrival writes them again (`clocks.rs`).
+                arrived: c.arrived,
+                order: c.order,
+                left_due: c.left_due,
+                left_wait: c.left_wait,
             };
             all
         }

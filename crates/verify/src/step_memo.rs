@@ -76,7 +76,7 @@ pub(crate) struct StepMemo<'m> {
     state_fields: Vec<(u32, u128)>,
     /// Whose turn it is and every machine's control: what decides who rings next.
     schedule_mask: u128,
-    /// Every machine's "started this round" flag.
+    /// Every machine's "started this round" flag and the clock flags a new round clears.
     all_fresh: u128,
     /// Who rings next (and whether a new round begins), by the bits that decide it.
     schedule: FxHashMap<u128, Option<(u32, bool)>>,
@@ -150,7 +150,8 @@ impl<'m> StepMemo<'m> {
         self.state_fields = (0..machines).map(|k| layout.state_field(k)).collect();
         self.schedule_mask =
             (0..machines).fold(layout.turn_mask(), |m, k| m | layout.control_mask(k));
-        self.all_fresh = (0..machines).fold(0, |m, k| m | layout.fresh_mask(k));
+        self.all_fresh =
+            (0..machines).fold(0, |m, k| m | layout.fresh_mask(k) | layout.round_mask(k));
         self.schedule.clear();
         self.forget();
     }
@@ -305,6 +306,11 @@ fn footprint(model: &Search, k: usize, s: usize) -> Option<Footprint> {
         return None;
     }
     let mut footprint = gather.footprint;
+    // Its arrival and snapshot read and write the others' clock bits (`clocks.rs`).
+    if model.clock_ranks[k].is_some() {
+        (footprint.machines)
+            .extend((0..model.machines.len()).filter(|&j| model.clock_ranks[j].is_some()));
+    }
     footprint.slots.sort_unstable();
     footprint.slots.dedup();
     footprint.machines.sort_unstable();

@@ -1,10 +1,11 @@
 //! A state of the model and its packed form. Unpacked ([`SystemState`]) while a ringlet runs;
 //! packed while stored into a record of bit fields, each as wide as its values need: whose
 //! turn it is, per machine its state number (none for a machine of one state), its time bits
-//! (one a time test of its states) and its flags (just entered, started this round, mode: none
-//! while they never change), then the value number of every slot the search stores ([`crate::model::Storage`])
-//! and of every `saw()`, then one bit a free type chosen when read (posted yet). A value
-//! number wider than its field widens the field; every record of a search has one width.
+//! (one a time test of its states) and its flags (just entered, started this round, mode, and
+//! the bits that order machines' clocks, [`crate::clocks`]: none while they never change),
+//! then the value number of every slot the search stores ([`crate::model::Storage`]) and of
+//! every `saw()`, then one bit a free type chosen when read (posted yet). A value number wider
+//! than its field widens the field; every record of a search has one width.
 
 use crate::model::SlotId;
 use crate::model::Storage;
@@ -40,6 +41,17 @@ pub struct Control {
     pub fresh: bool,
     /// Which of the current state's time tests are due (bit i: its i-th test).
     pub time: u16,
+    /// It arrived in a state whose clocks are ordered during the current round
+    /// ([`crate::clocks`]).
+    pub arrived: bool,
+    /// Bit `r`: its last arrival was no later than that of the machine of clock rank `r`
+    /// ([`crate::clocks`]).
+    pub order: u8,
+    /// Having left its state in the current round: the longest of the tests then due on the
+    /// clocks its arrival had started, and the shortest not due, numbered from 1 in the
+    /// model's clock durations (0: none; [`crate::clocks::left`]).
+    pub left_due: u8,
+    pub left_wait: u8,
 }
 
 /// The whole model's state, unpacked: whose turn it is, every machine's control, every slot's
@@ -195,6 +207,15 @@ impl Layout {
         }
     }
 
+    /// The bits of machine `k`'s flags a new round clears besides "started this round":
+    /// [`Control::arrived`], [`Control::left_due`] and [`Control::left_wait`], those its flags
+    /// field has.
+    pub fn round_mask(&self, k: usize) -> u128 {
+        let field = 3 + 3 * k;
+        let cleared: u128 = 1 << 4 | 0xffff << 13;
+        (cleared & ((1u128 << self.widths[field]) - 1)) << self.field_start(field)
+    }
+
     /// The bits a record keeps of `slot`: its value number when stored, its one bit when
     /// chosen when read, none when unread.
     pub fn slot_mask(&self, slot: SlotId) -> u128 {
@@ -277,7 +298,13 @@ impl Layout {
                 Status::Dormant => 2,
             };
             // The flags that change most often in the low bits, so a field stays narrow.
-            put(u64::from(c.just_entered) | u64::from(c.fresh) << 1 | status << 2)?;
+            put(u64::from(c.just_entered)
+                | u64::from(c.fresh) << 1
+                | status << 2
+                | u64::from(c.arrived) << 4
+                | u64::from(c.order) << 5
+                | u64::from(c.left_due) << 13
+                | u64::from(c.left_wait) << 21)?;
         }
         for &slot in &self.stored {
             put(u64::from(world.values[slot]))?;
@@ -339,7 +366,7 @@ impl Layout {
             let flags = next();
             world.machines.push(Control {
                 state,
-                status: match flags >> 2 {
+                status: match flags >> 2 & 3 {
                     0 => Status::Running,
                     1 => Status::Suspended,
                     _ => Status::Dormant,
@@ -347,6 +374,10 @@ impl Layout {
                 just_entered: flags & 1 != 0,
                 fresh: flags & 2 != 0,
                 time,
+                arrived: flags & 16 != 0,
+                order: (flags >> 5) as u8,
+                left_due: (flags >> 13) as u8,
+                left_wait: (flags >> 21) as u8,
             });
         }
         world.values.clear();
@@ -486,6 +517,10 @@ mod tests {
                     just_entered: true,
                     fresh: false,
                     time,
+                    arrived: false,
+                    order: 0,
+                    left_due: 0,
+                    left_wait: 0,
                 },
                 Control {
                     state: 300,
@@ -493,6 +528,10 @@ mod tests {
                     just_entered: false,
                     fresh: true,
                     time: 0,
+                    arrived: false,
+                    order: 0,
+                    left_due: 0,
+                    left_wait: 0,
                 },
                 Control {
                     state: 0,
@@ -500,6 +539,10 @@ mod tests {
                     just_entered: true,
                     fresh: true,
                     time: 0,
+                    arrived: false,
+                    order: 0,
+                    left_due: 0,
+                    left_wait: 0,
                 },
             ],
             values: vec![value, 7, 3, if time > 0 { POSTED } else { NEVER }],

@@ -39,12 +39,14 @@ struct Coverage {
     arguments: usize,
     on_outcomes: usize,
     widest: usize,
+    /// Runs of a behaviour that orders the clocks of two machines or more (§6, time).
+    ordered_clocks: usize,
 }
 
 /// A run followed in the model: what the model made of it, the runner's events, how many of
-/// its firings resumed a history ([`resumes`]) and how many were a composite's time tests
-/// ([`composite_time_firings`]).
-type Conformed = (Followed, Vec<Event>, usize, usize);
+/// its firings resumed a history ([`resumes`]), how many were a composite's time tests
+/// ([`composite_time_firings`]) and whether the model orders two machines' clocks.
+type Conformed = (Followed, Vec<Event>, usize, usize, bool);
 
 /// The transitions a firing of the trace may be: its machine's, between its states, its label
 /// as shown (a history's arms to one state show one label).
@@ -140,8 +142,9 @@ fn run_generated(seed: u64, generated: &RandomBehaviour) -> Result<Conformed, St
     let _ = std::fs::remove_dir_all(&dir);
     let resumed = resumes(&behaviour, &events);
     let timed = composite_time_firings(&behaviour, &events);
+    let ordered = model.clock_ranks.iter().flatten().count() >= 2;
     match outcome {
-        Ok(followed) => Ok((followed, events, resumed, timed)),
+        Ok(followed) => Ok((followed, events, resumed, timed, ordered)),
         Err(mismatch) => Err(format!(
             "seed {seed}: the run is no path of the model\n{mismatch}\n{}",
             generated.show()
@@ -167,8 +170,9 @@ fn conform(seeds: std::ops::Range<u64>) {
     let mut mismatches = Vec::new();
     for seed in seeds {
         match run_one(seed) {
-            Ok((followed, events, resumed, timed)) => {
+            Ok((followed, events, resumed, timed, ordered)) => {
                 coverage.runs += 1;
+                coverage.ordered_clocks += usize::from(ordered);
                 coverage.resumed += resumed;
                 coverage.composite_time += timed;
                 coverage.ringlets += followed.ringlets;
@@ -230,7 +234,8 @@ fn conform(seeds: std::ops::Range<u64>) {
             && coverage.resumed > 0
             && coverage.composite_time > 0
             && coverage.arguments > 0
-            && coverage.on_outcomes > 0,
+            && coverage.on_outcomes > 0
+            && coverage.ordered_clocks > 0,
         "{coverage:?}"
     );
 }

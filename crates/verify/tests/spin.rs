@@ -800,3 +800,50 @@ fn spin_agrees_with_the_checker_on_the_whole_goalkeeper() {
         ]
     );
 }
+
+/// Clocks of different machines are ordered (§6, time): Quick's half second and Slow's three
+/// start in the first round, so Slow's three are never up while Quick's half is not, and
+/// Quick, listed first, has left A when Slow leaves S. Time still passes in fair runs (the
+/// order leaves some): one that never sets `late` to 2 is a counterexample.
+#[test]
+fn spin_and_both_engines_agree_that_a_half_second_comes_before_three_of_another_machine() {
+    let properties = [
+        property(PropertyKind::Never, "Slow.LATE && Quick.A"),
+        property(PropertyKind::Never, "late == 1 && Quick.A"),
+        property(PropertyKind::Reachable, "Slow.LATE"),
+        property(PropertyKind::Eventually, "Slow.LATE"),
+        property(PropertyKind::Eventually, "late == 2"),
+    ];
+    let mut expected = [Verdict::Holds; 5];
+    expected[4] = Verdict::Fails;
+    agree("machine-clocks", &properties, &expected);
+}
+
+/// Slow listed first: in the round whose moment has Slow's three seconds up, Slow leaves S
+/// before Quick rings, so a snapshot between the two ringlets sees Slow in LATE and Quick in
+/// A (a real run does too). Quick leaves A in that round all the same (Slow kept what it left
+/// with for the round), so Slow's entry into LATE, in the next round, never meets Quick in A.
+#[test]
+fn spin_and_both_engines_agree_on_machines_clocks_listed_the_other_way() {
+    let properties = [
+        property(PropertyKind::Never, "Slow.LATE && Quick.A"),
+        property(PropertyKind::Never, "late == 1 && Quick.A"),
+        property(PropertyKind::Eventually, "Slow.LATE"),
+    ];
+    let expected = [Verdict::Fails, Verdict::Holds, Verdict::Holds];
+    agree("machine-clocks-reversed", &properties, &expected);
+}
+
+/// Two machines whose clocks are ordered, for ever: time passes on both in fair runs, so each
+/// comes back to its second state; a fair run may have Pong's half second up at the moment
+/// Ping's second is, every time, and never see Ping in A with Pong in D.
+#[test]
+fn spin_and_both_engines_agree_on_a_ping_and_a_pong() {
+    let properties = [
+        property(PropertyKind::AlwaysEventually, "Ping.B"),
+        property(PropertyKind::AlwaysEventually, "Pong.D"),
+        property(PropertyKind::Eventually, "Ping.A && Pong.D"),
+    ];
+    let expected = [Verdict::Holds, Verdict::Holds, Verdict::Fails];
+    agree("ping-pong", &properties, &expected);
+}

@@ -6,13 +6,16 @@
 //! - **Its steps are the explicit search's ringlets.** Each machine's ringlet is run by
 //!   `ringlet.rs` itself on an *open* world (its own control known, every stored slot and
 //!   every other machine's mode chosen where first read), once per leaf of its choices: a leaf
-//!   is a cube of what was read and the constants it wrote. The image of a set under a leaf is
-//!   that set and the cube, the written fields forgotten and set; no relation over primed
-//!   variables is built, and no second meaning of a ringlet is written.
+//!   is a cube of what was read and the constants it wrote, met with what the other machines'
+//!   clocks allow of its due tests (`clocks.rs`, the one rule the open world cannot read). The
+//!   image of a set under a leaf is that set and the cube, the written fields forgotten and
+//!   set; no relation over primed variables is built, and no second meaning of a ringlet is
+//!   written.
 //! - **Fields** are the packed state's: whose turn, each machine's state, mode, just-entered,
-//!   started-this-round and time bits, every stored slot and `saw()` value as the index of its
-//!   value among those it can hold, and a bit for each free type chosen when read (posted yet). Those values are found first by the same ringlets, to a
-//!   fixpoint; a slot whose values keep growing (a counter) makes the engine decline.
+//!   started-this-round, time and clock-order bits, every stored slot and `saw()` value as the
+//!   index of its value among those it can hold, and a bit for each free type chosen when read
+//!   (posted yet). Those values are found first by the same ringlets, to a fixpoint; a slot
+//!   whose values keep growing (a counter) makes the engine decline.
 //! - **The first ringlet** (where a free type may still be never posted) is taken by the
 //!   explicit stepper: the search starts from its successors.
 //! - **Breadth first by layers**, so the first layer that meets what a property looks for
@@ -23,6 +26,7 @@
 //! - It declines (and `auto` explores explicitly) where a free type is stored (a property
 //!   names it) or where a slot's values are unbounded.
 
+mod clocks;
 mod liveness;
 
 use crate::model::Storage;
@@ -87,6 +91,13 @@ struct ControlFields {
     just_entered: Field,
     fresh: Field,
     time: Field,
+    /// [`Control::arrived`] and [`Control::order`] (`clocks.rs`): no bits for a machine whose
+    /// clocks are not ordered (nor, the first, for the last that is: none reads it).
+    arrived: Field,
+    order: Field,
+    /// [`Control::left_due`] and [`Control::left_wait`]: no bits where nothing reads them.
+    left_due: Field,
+    left_wait: Field,
 }
 
 /// Every component of a world as fields, and the values each stored one can hold.
@@ -148,14 +159,22 @@ impl Encoding {
         let mut machines = Vec::new();
         let mut slots: Vec<Option<Field>> = vec![None; model.slots.len()];
         let mut saw: Vec<Option<Field>> = vec![None; model.saw.len()];
+        let ordered = model.clock_ranks.iter().flatten().count();
+        let durations = model.clock_durations.len() + 1;
         for (k, m) in model.machines.iter().enumerate() {
             let tests = m.most_time_tests();
+            let ranked = model.clock_ranks[k].is_some();
+            let heard = crate::clocks::heard_later(&model.clock_ranks, k);
             machines.push(ControlFields {
                 state: field(&mut builder, m.states.len()),
                 status: field(&mut builder, 3),
                 just_entered: field(&mut builder, 2),
                 fresh: field(&mut builder, 2),
                 time: field(&mut builder, 1 << tests),
+                arrived: field(&mut builder, if heard { 2 } else { 1 }),
+                order: field(&mut builder, if ranked { 1 << ordered } else { 1 }),
+                left_due: field(&mut builder, if heard { durations } else { 1 }),
+                left_wait: field(&mut builder, if heard { durations } else { 1 }),
             });
             for slot in 0..model.slots.len() {
                 if model.storage[slot] != Storage::Unread && domains.writer[slot] == Some(k) {
@@ -190,12 +209,23 @@ impl Encoding {
     }
 
     fn set_control(&self, m: usize, c: &Control, cube: &mut BddPartialValuation) {
+        self.set_ringing_control(m, c, cube);
+        let f = &self.machines[m];
+        f.arrived.set(usize::from(c.arrived), cube);
+        f.order.set(usize::from(c.order), cube);
+    }
+
+    /// The control a ringlet of machine `m` starts from as its steps know it: all but its
+    /// clock-order bits, which are the world's ([`clocks`]).
+    fn set_ringing_control(&self, m: usize, c: &Control, cube: &mut BddPartialValuation) {
         let f = &self.machines[m];
         f.state.set(usize::from(c.state), cube);
         f.status.set(status_index(c.status), cube);
         f.just_entered.set(usize::from(c.just_entered), cube);
         f.fresh.set(usize::from(c.fresh), cube);
         f.time.set(usize::from(c.time), cube);
+        f.left_due.set(usize::from(c.left_due), cube);
+        f.left_wait.set(usize::from(c.left_wait), cube);
     }
 
     /// The cube of one whole world.
@@ -274,6 +304,9 @@ struct Step {
     reads: Vec<(BddVariable, bool)>,
     forgets: Vec<BddVariable>,
     after: Bdd,
+    /// What the other machines' clocks allow of its due tests ([`clocks::guard`]), `needs`
+    /// met with it: restricted to `reads`, for the image of one leaf.
+    guard: Option<Bdd>,
     fired: Option<usize>,
 }
 
@@ -781,6 +814,10 @@ fn controls(model: &Search, k: usize) -> Vec<Control> {
             just_entered: true,
             fresh: false,
             time: 0,
+            arrived: false,
+            order: 0,
+            left_due: 0,
+            left_wait: 0,
         };
         let started = state.time_mask(|t| state.arrival_starts(t.clock));
         let masks = due_masks(state, 0);
@@ -816,20 +853,33 @@ fn steps_of(
                 return Err(too_many_leaves(model, k));
             }
             let mut cube = BddPartialValuation::empty();
-            enc.set_control(k, &control, &mut cube);
+            enc.set_ringing_control(k, &control, &mut cube);
             let control_set = enc.mk(&cube);
             // Leaves that write the same and fire the same transition are one step whose
             // needs are theirs joined: one image instead of many.
             let from = steps.len();
+            let arrivals = clocks::arrivals(model, k, &control);
+            // Leaves of one control share few sets of due tests: one guard each.
+            let mut guards: Vec<((u16, usize), Bdd)> = Vec::new();
             for leaf in &leaves {
-                let mut step = step_of(model, enc, k, &control, leaf);
-                (step.control, step.control_set) = (c, control_set.clone());
-                match steps[from..].iter_mut().find(|s| s.same_effect(&step)) {
-                    Some(same) => {
-                        same.needs = same.needs.or(&step.needs);
-                        same.reads.clear();
+                for (a, copied) in arrivals.iter().enumerate() {
+                    let guard = match guards.iter().find(|(key, _)| *key == (leaf.due, a)) {
+                        Some((_, guard)) => guard.clone(),
+                        None => {
+                            let guard = clocks::guard(model, enc, k, &control, leaf.due, copied);
+                            guards.push(((leaf.due, a), guard.clone()));
+                            guard
+                        }
+                    };
+                    let mut step = step_of(model, enc, k, &control, leaf, copied, &guard);
+                    (step.control, step.control_set) = (c, control_set.clone());
+                    match steps[from..].iter_mut().find(|s| s.same_effect(&step)) {
+                        Some(same) => {
+                            same.needs = same.needs.or(&step.needs);
+                            same.reads.clear();
+                        }
+                        None => steps.push(step),
                     }
-                    None => steps.push(step),
                 }
             }
         }
@@ -837,9 +887,20 @@ fn steps_of(
     Ok(steps)
 }
 
-fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &OpenLeaf) -> Step {
+/// The step of one leaf of machine `k`'s ringlet from `before`, and of one set of the flags
+/// its arrival copies (`copied`, [`clocks::arrivals`]), whose due tests the other machines'
+/// clocks allow where `guard` holds ([`clocks::guard`]).
+fn step_of(
+    model: &Search,
+    enc: &Encoding,
+    k: usize,
+    before: &Control,
+    leaf: &OpenLeaf,
+    copied: &[(usize, bool)],
+    guard: &Bdd,
+) -> Step {
     let mut needs = BddPartialValuation::empty();
-    enc.set_control(k, before, &mut needs);
+    enc.set_ringing_control(k, before, &mut needs);
     let mut read_values: Vec<(usize, ValueId)> = Vec::new();
     for read in &leaf.reads {
         match *read {
@@ -891,6 +952,7 @@ fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &Op
             &mut writes,
         );
     }
+    clocks::needs_and_writes(model, enc, k, before, copied, &mut needs, &mut writes);
     let written: Vec<BddVariable> = enc
         .vars
         .variables()
@@ -903,7 +965,8 @@ fn step_of(model: &Search, enc: &Encoding, k: usize, before: &Control, leaf: &Op
         // `steps_of` numbers the controls.
         control: 0,
         control_set: enc.vars.mk_true(),
-        needs: enc.mk(&needs),
+        needs: enc.mk(&needs).and(guard),
+        guard: (!guard.is_true()).then(|| guard.restrict(&reads)),
         written_set: enc.mk(&writes),
         writes,
         written,
@@ -944,7 +1007,10 @@ impl Step {
         }
         // (from ∧ needs) with the written fields forgotten and set, taken apart: needs is a
         // cube, so meeting it is restricting to it and putting its literals back.
-        let applied = from.restrict(&self.reads);
+        let mut applied = from.restrict(&self.reads);
+        if let Some(guard) = &self.guard {
+            applied = applied.and(guard);
+        }
         if applied.is_false() {
             return applied;
         }
@@ -1044,10 +1110,17 @@ impl Guards {
             }
             next_wrapped.push(wrapped.and(&can_ring_wrapped[k]));
         }
+        // A new round clears "started this round" and what the clocks keep for a round.
         let fresh_vars: Vec<BddVariable> = enc
             .machines
             .iter()
-            .flat_map(|f| f.fresh.bits.clone())
+            .flat_map(|f| {
+                (f.fresh.bits.iter())
+                    .chain(&f.arrived.bits)
+                    .chain(&f.left_due.bits)
+                    .chain(&f.left_wait.bits)
+                    .copied()
+            })
             .collect();
         let mut none_fresh = BddPartialValuation::empty();
         for v in &fresh_vars {
@@ -1287,6 +1360,10 @@ fn set_where(
                 just_entered: false,
                 fresh: false,
                 time: 0,
+                arrived: false,
+                order: 0,
+                left_due: 0,
+                left_wait: 0,
             };
             model.machines.len()
         ],
