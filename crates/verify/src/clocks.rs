@@ -8,13 +8,16 @@
 //! [`Control::order`], bit `r` set where its last arrival was no later than that of the machine
 //! of rank `r`, and [`Control::arrived`], that it arrived in this round (a new round clears it),
 //! so that two arrivals of one round are known to share their moment. An arrival writes only
-//! its own machine's row and column, so nothing else need be read to keep them: see
-//! [`arrive`]. Bits of a machine that is not running, or whose state's OnEntry has not run, are
-//! never read ([`agrees`]): they are rewritten before they can be.
+//! its own machine's row and column, reading the others' `arrived` ([`arrive`]). A command
+//! leaves them as they are: they are facts about the machine's last arrival and this round's
+//! moment, true until its next arrival, whatever its mode.
 //!
 //! A machine that leaves its state forgets its due tests; the others that ring after it in
 //! the same round (the same moment) still need them, so it keeps until the round ends what
-//! they imply, [`Control::left_due`] and [`Control::left_wait`] ([`left`]).
+//! they imply, [`Control::left_due`] and [`Control::left_wait`] ([`left`]). At a snapshot
+//! ([`agrees`]) another machine is compared by what it left with, if it left its state in
+//! this round, else by its due tests if it is running and has arrived in its state, else not
+//! at all.
 //!
 //! The explicit engine and SPIN's model read these rules as they step; the symbolic engine
 //! writes [`agrees`] as a diagram over the other machines' fields from [`implied`].
@@ -26,9 +29,14 @@ use crate::world::{Control, Status, SystemState};
 /// machine's clocks are unordered against the others' (a sound loss, and a bounded state).
 pub(crate) const MAX_ORDERED: usize = 8;
 
+/// At most this many constant durations among them, numbered from 1 in a byte; past that no
+/// machine's clocks are ordered.
+const MAX_DURATIONS: usize = u8::MAX as usize;
+
 /// Each machine's rank among those whose clocks are ordered: the machines with a constant time
 /// test, in manifest order, the first [`MAX_ORDERED`] of them; none where only one has one
-/// (there is nothing to order it against, and the state keeps nothing for it).
+/// (there is nothing to order it against, and the state keeps nothing for it) or where they
+/// have more than [`MAX_DURATIONS`] durations.
 pub(crate) fn ranks(machines: &[MachineModel]) -> Vec<Option<u8>> {
     let mut next = 0u8;
     let ranks: Vec<Option<u8>> = machines
@@ -42,8 +50,8 @@ pub(crate) fn ranks(machines: &[MachineModel]) -> Vec<Option<u8>> {
         })
         .collect();
     match next {
-        0 | 1 => vec![None; machines.len()],
-        _ => ranks,
+        2.. if durations(machines, &ranks).len() <= MAX_DURATIONS => ranks,
+        _ => vec![None; machines.len()],
     }
 }
 
@@ -64,8 +72,6 @@ pub(crate) fn durations(machines: &[MachineModel], ranks: &[Option<u8>]) -> Vec<
         .collect();
     all.sort_unstable();
     all.dedup();
-    // Numbered in a byte, from 1: past that, the longest are taken as never due (a sound loss).
-    all.truncate(usize::from(u8::MAX) - 1);
     all
 }
 

@@ -5,7 +5,8 @@
 //! a new round: machines started during the last one may now ring); if its state was just
 //! entered, run OnEntry; take the **snapshot**: the time tests of the state that are not yet
 //! due may come due (constant ones of a clock in order of duration, none of a positive
-//! duration whose clock this arrival started), and a free type that OnEntry read or
+//! duration whose clock this arrival started, as the other machines' clocks allow:
+//! [`crate::clocks`]), and a free type that OnEntry read or
 //! posted may change (the world may move between OnEntry and the snapshot); remember what the
 //! properties' `saw()` read; try the transitions in priority order (labels a reasoner answers
 //! are its answers on the snapshot's inputs, whiteboard values read from here on are the
@@ -907,7 +908,8 @@ fn control(model: &Search, world: &mut SystemState, k: usize, command: Command) 
                 just_entered: true,
                 fresh: true,
                 time: 0,
-                // Unread until its arrival writes them again (`clocks.rs`).
+                // Facts about its last arrival and this round, true until it arrives again
+                // (`clocks.rs`).
                 arrived: c.arrived,
                 order: c.order,
                 left_due: c.left_due,

@@ -5,9 +5,10 @@
 //!
 //! What a step can read is found from the text, once a machine state: the ringing machine's
 //! control, every slot its state's activities, labels and `saw()`s name (with the inputs of the
-//! reasoners they ask), the control of every machine they name (a mode read, a command), and
-//! every stored free type (the environment moves from its value). Its successors are then the
-//! record with those bits and the ones it writes (whose turn, `saw()`, "started this round" on a
+//! reasoners they ask), the control of every machine they name (a mode read, a command), every
+//! machine whose clocks are ordered against its own (`clocks.rs`), and every stored free type
+//! (the environment moves from its value). Its successors are then the record with those bits
+//! and the ones it writes (whose turn, `saw()`, "started this round" and the clock flags on a
 //! new round) replaced, leaf by leaf, in the order the ringlet made them. A state whose code
 //! computes the type it posts to is never memoised, nor one whose step was seen writing outside
 //! what it names; in debug builds every replayed step is made again and compared.
@@ -44,8 +45,8 @@ struct Footprint {
 }
 
 /// A machine state's footprint as bits of a record: what the step's successors depend on
-/// (`key`) and what they may differ in (`write`, besides the "started this round" flags a new
-/// round clears).
+/// (`key`) and what they may differ in (`write`, besides the "started this round" and clock
+/// flags a new round clears).
 #[derive(Clone, Copy, Debug)]
 struct Masks {
     key: u128,

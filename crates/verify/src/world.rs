@@ -73,7 +73,7 @@ pub struct SystemState {
 /// fit makes [`Layout::pack`] say which field must widen.
 #[derive(Clone, Debug)]
 pub struct Layout {
-    /// Per field, in packing order: turn; per machine its state, time bits and four flags;
+    /// Per field, in packing order: turn; per machine its state, time bits and flags;
     /// every stored slot's value number; every `saw()` value number; a bit per chosen slot.
     widths: Vec<u8>,
     /// The sum of the widths.

@@ -835,8 +835,9 @@ fn spin_and_both_engines_agree_on_machines_clocks_listed_the_other_way() {
 }
 
 /// Two machines whose clocks are ordered, for ever: time passes on both in fair runs, so each
-/// comes back to its second state; a fair run may have Pong's half second up at the moment
-/// Ping's second is, every time, and never see Ping in A with Pong in D.
+/// comes back to its second state. A fair run need never see Ping in A with Pong in D: Pong
+/// arrives in C a round after Ping arrives in B, and its half second there is up only in the
+/// round Ping leaves A (Pong's clock is the younger, so nothing forces it sooner).
 #[test]
 fn spin_and_both_engines_agree_on_a_ping_and_a_pong() {
     let properties = [

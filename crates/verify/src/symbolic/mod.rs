@@ -859,6 +859,9 @@ fn steps_of(
             // needs are theirs joined: one image instead of many.
             let from = steps.len();
             let arrivals = clocks::arrivals(model, k, &control);
+            if leaves.len() * arrivals.len() > MAX_LEAVES {
+                return Err(too_many_leaves(model, k));
+            }
             // Leaves of one control share few sets of due tests: one guard each.
             let mut guards: Vec<((u16, usize), Bdd)> = Vec::new();
             for leaf in &leaves {
