@@ -531,6 +531,11 @@ pub struct VerifyArgs {
     /// answer wins)
     #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
     pub engine: EngineName,
+    /// Order the clocks of different machines: no counterexample in which one machine's
+    /// longer timeout is up before another's shorter one started no later (more states: the
+    /// order of the machines' arrivals)
+    #[arg(long)]
+    pub clock_order: bool,
     /// Print the report as JSON
     #[arg(long)]
     pub json: bool,

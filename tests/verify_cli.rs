@@ -473,3 +473,34 @@ fn a_transition_that_only_fires_joined_with_another_regions_is_not_reported_neve
     assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
     assert!(!stdout(&o).contains("never fires"), "{}", stdout(&o));
 }
+
+/// Quick's half second and Slow's three start in one round. Unordered (the default), the
+/// model lets Slow leave S with Quick still in A, and the report says the counterexample may
+/// be one no run shows; `--clock-order` orders the two clocks and the property holds.
+#[test]
+fn clocks_of_different_machines_are_ordered_when_asked_and_said_unordered_otherwise() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("crates/verify/tests/agree/machine-clocks");
+    let dir = dir.to_str().expect("a path in UTF-8");
+    let never = ["verify", dir, "--never", "Slow.LATE && Quick.A"];
+    let o = proclaim(&never);
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("--never: FAILS"), "{out}");
+    assert!(
+        out.contains("note: the clocks of Quick, Slow were checked unordered"),
+        "{out}"
+    );
+    let mut ordered = never.to_vec();
+    ordered.push("--clock-order");
+    let o = proclaim(&ordered);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("--never: holds"), "{out}");
+    assert!(!out.contains("unordered"), "{out}");
+    // SPIN's model is the ordered one too.
+    ordered.extend(["--emit", "promela"]);
+    let o = proclaim(&ordered);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("byte ord["), "{}", stdout(&o));
+}

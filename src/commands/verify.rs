@@ -100,7 +100,11 @@ pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
         Some(language) => emit(
             &args.behaviour,
             &asked,
-            args.max_states,
+            Options {
+                max_states: args.max_states,
+                clock_order: args.clock_order,
+                ..Options::default()
+            },
             language,
             args.output.as_deref(),
         ),
@@ -108,7 +112,10 @@ pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
             let ran = run(
                 &args.behaviour,
                 &asked,
-                options(args.max_states, args.max_memory, &args.without, args.engine),
+                Options {
+                    clock_order: args.clock_order,
+                    ..options(args.max_states, args.max_memory, &args.without, args.engine)
+                },
                 args.json,
                 args.counterexample.as_deref(),
             );
@@ -153,6 +160,7 @@ pub fn options(
     Options {
         max_states,
         max_memory: max_memory.unwrap_or_else(default_memory_budget),
+        clock_order: false,
         reductions,
         engine: match engine {
             EngineName::Auto => SearchEngine::Auto,
@@ -248,7 +256,7 @@ pub fn run(
 pub fn emit(
     behaviour: &str,
     asked: &Asked,
-    max_states: usize,
+    options: Options,
     language: EmitFormat,
     output: Option<&Path>,
 ) -> Result<ExitCode, Failure> {
@@ -256,10 +264,6 @@ pub fn emit(
     let properties = asked.properties(&loaded)?;
     let text = match language {
         EmitFormat::Promela => {
-            let options = Options {
-                max_states,
-                ..Options::default()
-            };
             let promela = to_promela(&loaded, &properties, options)
                 .map_err(|e| Failure::Argument(e.to_string()))?;
             for c in &promela.claims {
@@ -295,6 +299,15 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     }
     for f in &report.findings {
         print_finding(f);
+    }
+    // A run the model found may need a longer test of one machine due before a shorter one of
+    // another: say so where a verdict rests on such a run.
+    let found_a_run = (report.properties.iter()).any(|p| p.trace.is_some());
+    if found_a_run && !report.unordered_clocks.is_empty() {
+        println!(
+            "note: the clocks of {} were checked unordered against each other, so a run found may need one machine's longer timeout up before another's shorter one started no later, which no real run shows; --clock-order orders them (more states)",
+            report.unordered_clocks.join(", ")
+        );
     }
     if !report.inexact.is_empty() {
         println!("undecided where nothing was found: the model's values of these free types are not exact, so what it never reached a real run may reach (states never entered and transitions that never fire are not reported):");

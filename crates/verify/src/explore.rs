@@ -849,7 +849,8 @@ mod tests {
                 let generated = random_behaviour::generate(seed);
                 let files = Generated(generated.files.clone());
                 let behaviour = load("random", Arc::new(files)).expect("it loads");
-                let (mut model, compiled) = crate::prepare(&behaviour, &[]).expect("it models");
+                let (mut model, compiled) =
+                    crate::prepare(&behaviour, &[], true).expect("it models");
                 model.storage = reduce::storage(&model, &compiled, Reductions::default());
                 let taken = crate::symbolic::check(&Search::new(&model), &compiled, 1 << 30);
                 taken
@@ -898,13 +899,13 @@ mod tests {
             let generated = random_behaviour::generate(seed);
             let files = Generated(generated.files.clone());
             let behaviour = load("random", Arc::new(files)).expect("it loads");
-            let (plain, _) = crate::prepare(&behaviour, &[]).expect("it models");
+            let (plain, _) = crate::prepare(&behaviour, &[], true).expect("it models");
             let asked = properties(&plain);
             for reductions in [Reductions::default(), Reductions::NONE] {
                 // Each search numbers the values it meets.
                 let picture_of = |memo| {
                     let (mut model, compiled) =
-                        crate::prepare(&behaviour, &asked).expect("it models");
+                        crate::prepare(&behaviour, &asked, true).expect("it models");
                     model.storage = reduce::storage(&model, &compiled, reductions);
                     let limits = Limits {
                         max_states: 5_000,

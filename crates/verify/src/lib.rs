@@ -123,6 +123,10 @@ pub struct Options {
     pub max_memory: usize,
     pub reductions: Reductions,
     pub engine: SearchEngine,
+    /// Order the clocks of different machines (§6, time; `clocks.rs`): no counterexample that
+    /// needs one machine's longer test due before another's shorter one started no later, at
+    /// the price of states (the order of the machines' arrivals).
+    pub clock_order: bool,
 }
 
 impl Default for Options {
@@ -132,6 +136,7 @@ impl Default for Options {
             max_memory: 2 << 30,
             reductions: Reductions::default(),
             engine: SearchEngine::Auto,
+            clock_order: false,
         }
     }
 }
@@ -180,10 +185,17 @@ pub fn verify_with_progress(
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Report, VerifyError> {
-    let (mut model, compiled) = prepare(behaviour, properties)?;
+    let (mut model, compiled) = prepare(behaviour, properties, options.clock_order)?;
     model.storage = reduce::storage(&model, &compiled, options.reductions);
     check_stored_free(&model)?;
-    let report = search(&model, &compiled, options, progress)?;
+    let mut report = search(&model, &compiled, options, progress)?;
+    if !options.clock_order {
+        let ranks = clocks::ranks(&model.machines);
+        report.unordered_clocks = (model.machines.iter().zip(ranks))
+            .filter(|(_, r)| r.is_some())
+            .map(|(m, _)| m.name.clone())
+            .collect();
+    }
     Ok(undecided_where_inexact(report, &model))
 }
 
@@ -282,6 +294,7 @@ fn decided(report: &Report) -> bool {
 pub(crate) fn prepare(
     behaviour: &Behaviour,
     properties: &[PropertySource],
+    clock_order: bool,
 ) -> Result<(Model, Vec<Property>), VerifyError> {
     if !behaviour.suppress.is_empty() {
         let types = behaviour
@@ -301,6 +314,9 @@ pub(crate) fn prepare(
     }
     let exprs: Vec<&proclaim_fsm::Expr> = parsed.iter().flat_map(|(_, e)| e.exprs()).collect();
     let mut model = Model::build(behaviour, &exprs);
+    if !clock_order {
+        model.unorder_clocks();
+    }
     let mut compiled = Vec::new();
     for (source, expr) in &parsed {
         match Property::compile(&mut model, source, expr) {
@@ -561,6 +577,7 @@ fn explicit(
         findings,
         stats,
         inexact: Vec::new(),
+        unordered_clocks: Vec::new(),
     };
     (report, graph.overtaken)
 }
@@ -627,5 +644,6 @@ fn symbolic(
             engine: SearchEngine::Symbolic.word(),
         },
         inexact: Vec::new(),
+        unordered_clocks: Vec::new(),
     })
 }

@@ -234,6 +234,13 @@ pub struct Model {
 }
 
 impl Model {
+    /// Leaves the clocks of different machines unordered ([`crate::Options::clock_order`]
+    /// off): no machine has a rank, and the state keeps nothing for them.
+    pub fn unorder_clocks(&mut self) {
+        self.clock_ranks = vec![None; self.machines.len()];
+        self.clock_durations.clear();
+    }
+
     /// The `saw()` expressions machine `machine`'s labels hold, with their indices in `saw`.
     pub fn saw_of(&self, machine: usize) -> impl Iterator<Item = (usize, &Expr)> {
         self.saw

@@ -194,6 +194,11 @@ pub struct Report {
     /// nothing is then incomplete, and no "never" finding is reported.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub inexact: Vec<Inexact>,
+    /// The machines whose clocks were checked unordered against each other's (two or more
+    /// with constant time tests, [`crate::Options::clock_order`] off): a counterexample may
+    /// then need one's longer test due before another's shorter one, which no run shows.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub unordered_clocks: Vec<String>,
 }
 
 impl Report {

@@ -143,7 +143,7 @@ pub fn to_promela(
     properties: &[PropertySource],
     options: Options,
 ) -> Result<Promela, EmitError> {
-    let (model, compiled) = prepare(behaviour, properties)?;
+    let (model, compiled) = prepare(behaviour, properties, options.clock_order)?;
     crate::check_stored_free(&model)?;
     let model = Search::new(&model);
     // The values are numbered from the machines' ringlets to a fixpoint, with no search; only
