@@ -531,9 +531,10 @@ pub struct VerifyArgs {
     /// answer wins)
     #[arg(long, value_enum, value_name = "ENGINE", default_value = "auto")]
     pub engine: EngineName,
-    /// Order the clocks of different machines: no counterexample in which one machine's
-    /// longer timeout is up before another's shorter one started no later (more states: the
-    /// order of the machines' arrivals)
+    /// Check every property with the clocks of different machines ordered (no run in which
+    /// one machine's longer timeout is up before another's shorter one started no later),
+    /// with the engine given; without it, only the verdicts a run decided are checked again
+    /// ordered, by the explicit engine within the budget (the order costs states)
     #[arg(long)]
     pub clock_order: bool,
     /// Print the report as JSON

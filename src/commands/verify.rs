@@ -289,6 +289,13 @@ pub fn emit(
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     print_search(behaviour, &report.stats, seconds);
+    if let Some(s) = &report.clocks_ordered {
+        println!(
+            "  the verdicts a run decided, checked again with the clocks of different machines ordered: {} states, {}",
+            s.states,
+            s.stopped.describe()
+        );
+    }
     if report.properties.is_empty() {
         println!(
             "no properties: give --never, --always, --reachable, --eventually, --leads-to or --always-eventually, or [[property]] in the manifest"
@@ -301,11 +308,10 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
         print_finding(f);
     }
     // A run the model found may need a longer test of one machine due before a shorter one of
-    // another: say so where a verdict rests on such a run.
-    let found_a_run = (report.properties.iter()).any(|p| p.trace.is_some());
-    if found_a_run && !report.unordered_clocks.is_empty() {
+    // another, where checking it again with the clocks ordered did not decide.
+    if !report.unordered_clocks.is_empty() {
         println!(
-            "note: the clocks of {} were checked unordered against each other, so a run found may need one machine's longer timeout up before another's shorter one started no later, which no real run shows; --clock-order orders them (more states)",
+            "note: the clocks of {} were taken unordered against each other by a verdict a run decided, and checking it again with them ordered ran out of budget: the run may need one machine's longer timeout up before another's shorter one started no later, which no real run shows (--clock-order checks every property ordered, with the engine and budget given)",
             report.unordered_clocks.join(", ")
         );
     }

@@ -194,11 +194,16 @@ pub struct Report {
     /// nothing is then incomplete, and no "never" finding is reported.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub inexact: Vec<Inexact>,
-    /// The machines whose clocks were checked unordered against each other's (two or more
-    /// with constant time tests, [`crate::Options::clock_order`] off): a counterexample may
-    /// then need one's longer test due before another's shorter one, which no run shows.
+    /// The machines whose clocks were taken unordered against each other's (two or more with
+    /// constant time tests, [`crate::Options::clock_order`] off) by a verdict a run decided
+    /// that the ordered check did not decide again: its run may need one's longer test due
+    /// before another's shorter one, which no real run shows.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unordered_clocks: Vec<String>,
+    /// The search that checked again, with the clocks of different machines ordered, the
+    /// verdicts a run decided (`refine.rs`), where there was one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clocks_ordered: Option<SearchStats>,
 }
 
 impl Report {

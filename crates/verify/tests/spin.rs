@@ -306,7 +306,8 @@ fn spin_agrees_with_the_checker_that_no_time_passes_before_an_arrivals_snapshot(
 
 /// The behaviour in `tests/agree/CASE`: both of the checker's engines give `expected` for
 /// `properties` with the clocks of different machines ordered (`Options::clock_order`), and
-/// so does SPIN where it is installed.
+/// unordered with the verdicts a run decided checked again ordered, and so does SPIN where it
+/// is installed.
 fn agree(case: &str, properties: &[PropertySource], expected: &[Verdict]) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/agree")
@@ -321,6 +322,14 @@ fn agree(case: &str, properties: &[PropertySource], expected: &[Verdict]) {
         let report = verify(&behaviour, properties, options).expect("verifies");
         let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
         assert_eq!(verdicts, expected, "{case}: {engine:?}");
+        // Unordered first, the verdicts a run decided checked again ordered: the same.
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = verify(&behaviour, properties, options).expect("verifies");
+        let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
+        assert_eq!(verdicts, expected, "{case}: {engine:?}, checked again");
     }
     if !tools_present() {
         return;

@@ -92,7 +92,7 @@ struct ControlFields {
     fresh: Field,
     time: Field,
     /// [`Control::arrived`] and [`Control::order`] (`clocks.rs`): no bits for a machine whose
-    /// clocks are not ordered (nor, the first, for the last that is: none reads it).
+    /// clocks are not ordered, and no `arrived` for the last that is (none reads it).
     arrived: Field,
     order: Field,
     /// [`Control::left_due`] and [`Control::left_wait`]: no bits where nothing reads them.
