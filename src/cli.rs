@@ -534,7 +534,8 @@ pub struct VerifyArgs {
     /// Check every property with the clocks of different machines ordered (no run in which
     /// one machine's longer timeout is up before another's shorter one started no later),
     /// with the engine given; without it, only the verdicts a run decided are checked again
-    /// ordered, by the explicit engine within the budget (the order costs states)
+    /// ordered, by the explicit engine with a budget as large (the order costs states).
+    /// --emit writes the ordered model either way
     #[arg(long)]
     pub clock_order: bool,
     /// Print the report as JSON

@@ -102,7 +102,6 @@ pub fn command(args: VerifyArgs) -> Result<ExitCode, Failure> {
             &asked,
             Options {
                 max_states: args.max_states,
-                clock_order: args.clock_order,
                 ..Options::default()
             },
             language,
@@ -288,12 +287,15 @@ pub fn emit(
 }
 
 fn print_report(behaviour: &str, report: &Report, seconds: f64) {
-    print_search(behaviour, &report.stats, seconds);
-    if let Some(s) = &report.clocks_ordered {
+    let again = report.clocks_ordered.as_ref();
+    let first = seconds - again.map_or(0.0, |a| a.seconds);
+    print_search(behaviour, &report.stats, first.max(0.0));
+    if let Some(a) = again {
         println!(
-            "  the verdicts a run decided, checked again with the clocks of different machines ordered: {} states, {}",
-            s.states,
-            s.stopped.describe()
+            "  the verdicts a run decided, checked again with the clocks of different machines ordered: {} states, {}, {:.2} s",
+            a.stats.states,
+            a.stats.stopped.describe(),
+            a.seconds
         );
     }
     if report.properties.is_empty() {
@@ -311,7 +313,7 @@ fn print_report(behaviour: &str, report: &Report, seconds: f64) {
     // another, where checking it again with the clocks ordered did not decide.
     if !report.unordered_clocks.is_empty() {
         println!(
-            "note: the clocks of {} were taken unordered against each other by a verdict a run decided, and checking it again with them ordered ran out of budget: the run may need one machine's longer timeout up before another's shorter one started no later, which no real run shows (--clock-order checks every property ordered, with the engine and budget given)",
+            "note: the search took the clocks of {} unordered against each other, and a run it found (a verdict's, undecided above, or a deadlock's) was not confirmed with them ordered: it may need one machine's longer timeout up before another's shorter one started no later, which no real run shows (--clock-order checks every property ordered, with the engine and budget given)",
             report.unordered_clocks.join(", ")
         );
     }
@@ -362,6 +364,9 @@ fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
     let verdict = match p.verdict {
         Verdict::Holds => "holds",
         Verdict::Fails => "FAILS",
+        Verdict::Incomplete if p.unconfirmed => {
+            "undecided (its run not confirmed with the clocks of different machines ordered: below)"
+        }
         Verdict::Incomplete => match s.stopped {
             proclaim_verify::Stop::MemoryBudget => "undecided (memory budget)",
             proclaim_verify::Stop::StateBudget => "undecided (state budget)",

@@ -128,6 +128,7 @@ pub struct Options {
     /// run that needs one machine's longer test due before another's shorter one started no
     /// later, at the price of states (the order of the machines' arrivals). Off, the search is
     /// unordered and the verdicts a run decided are checked again ordered (`refine.rs`).
+    /// [`to_promela`] writes the ordered model either way.
     pub clock_order: bool,
 }
 
@@ -187,18 +188,22 @@ pub fn verify_with_progress(
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Report, VerifyError> {
-    let (mut model, compiled) = prepare(behaviour, properties, options.clock_order)?;
-    model.storage = reduce::storage(&model, &compiled, options.reductions);
-    check_stored_free(&model)?;
-    let report = search(&model, &compiled, options, progress)?;
-    let report = undecided_where_inexact(report, &model);
-    if options.clock_order {
-        return Ok(report);
-    }
-    let ordered = (model.machines.iter().zip(clocks::ranks(&model.machines)))
-        .filter(|(_, r)| r.is_some())
-        .map(|(m, _)| m.name.clone())
-        .collect();
+    // The first search's model is let go before a second one is built.
+    let (report, ordered) = {
+        let (mut model, compiled) = prepare(behaviour, properties, options.clock_order)?;
+        model.storage = reduce::storage(&model, &compiled, options.reductions);
+        check_stored_free(&model)?;
+        let report = search(&model, &compiled, options, progress)?;
+        let report = undecided_where_inexact(report, &model);
+        if options.clock_order {
+            return Ok(report);
+        }
+        let ordered = (model.machines.iter().zip(clocks::ranks(&model.machines)))
+            .filter(|(_, r)| r.is_some())
+            .map(|(m, _)| m.name.clone())
+            .collect();
+        (report, ordered)
+    };
     let mut again = |properties: &[PropertySource], options| {
         verify_with_progress(behaviour, properties, options, progress)
     };
@@ -404,6 +409,7 @@ fn outcome(
         verdict: verdict(property.source.kind, found, complete),
         trace,
         cycle: None,
+        unconfirmed: false,
     }
 }
 

@@ -59,6 +59,7 @@ pub fn property_outcome(
         verdict,
         trace,
         cycle,
+        unconfirmed: false,
     }
 }
 

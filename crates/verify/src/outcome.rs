@@ -138,6 +138,11 @@ pub struct PropertyOutcome {
     /// more, which stays so for ever.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cycle: Option<Trace>,
+    /// Undecided because the run that decided it, with the clocks of different machines
+    /// unordered, was not confirmed with them ordered (`refine.rs`): it may need one
+    /// machine's longer timeout up before another's shorter one, which no real run shows.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub unconfirmed: bool,
 }
 
 /// What the exploration noticed whatever the properties say (spec §6's built-in checks).
@@ -195,15 +200,21 @@ pub struct Report {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub inexact: Vec<Inexact>,
     /// The machines whose clocks were taken unordered against each other's (two or more with
-    /// constant time tests, [`crate::Options::clock_order`] off) by a verdict a run decided
-    /// that the ordered check did not decide again: its run may need one's longer test due
-    /// before another's shorter one, which no real run shows.
+    /// constant time tests, [`crate::Options::clock_order`] off), where that leaves a property
+    /// undecided ([`PropertyOutcome::unconfirmed`]) or a deadlock found unchecked.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unordered_clocks: Vec<String>,
     /// The search that checked again, with the clocks of different machines ordered, the
     /// verdicts a run decided (`refine.rs`), where there was one.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub clocks_ordered: Option<SearchStats>,
+    pub clocks_ordered: Option<OrderedCheck>,
+}
+
+/// The second search of `refine.rs`: how far it went and how long it took.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OrderedCheck {
+    pub stats: SearchStats,
+    pub seconds: f64,
 }
 
 impl Report {

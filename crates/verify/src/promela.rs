@@ -143,7 +143,9 @@ pub fn to_promela(
     properties: &[PropertySource],
     options: Options,
 ) -> Result<Promela, EmitError> {
-    let (model, compiled) = prepare(behaviour, properties, options.clock_order)?;
+    // The ordered model: what verify's verdicts are of, once those a run decided are checked
+    // again ordered (`refine.rs`); SPIN searches it whole.
+    let (model, compiled) = prepare(behaviour, properties, true)?;
     crate::check_stored_free(&model)?;
     let model = Search::new(&model);
     // The values are numbered from the machines' ringlets to a fixpoint, with no search; only

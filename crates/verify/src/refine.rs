@@ -3,15 +3,17 @@
 //! witness it finds may need one machine's longer timeout up before another's shorter one,
 //! which no run shows; ordered, it is exact in that but may be far larger. So the search is
 //! unordered first, and only where a verdict rests on a run (a `never`/`always` or liveness
-//! property that fails, a `reachable` that holds) is that property checked again ordered,
-//! by the explicit engine within the same budget. A verdict found there replaces the first;
-//! where none is found the first stands, and the report names the machines whose clocks it
-//! took unordered. A verdict that rests on an absence stands as it is: the ordered model's
-//! runs are some of the unordered one's.
+//! property that fails, a `reachable` that holds) is that property checked again ordered, by
+//! the explicit engine with a budget as large. A verdict found there replaces the first; where
+//! none is, the property is undecided ([`PropertyOutcome::unconfirmed`]), since its run may
+//! be none a robot makes. A verdict that rests on an absence stands as it is: the ordered
+//! model's runs are some of the unordered one's. A deadlock found is not checked again: the
+//! report names the machines whose clocks its run took unordered.
 
-use crate::outcome::{Report, Verdict};
+use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Verdict};
 use crate::property::PropertySource;
 use crate::{Options, SearchEngine, VerifyError};
+use std::time::Instant;
 
 /// A check of some properties with some options: [`crate::verify_with_progress`].
 pub(crate) type Check<'c> =
@@ -27,32 +29,54 @@ pub(crate) fn check_ordered(
     options: Options,
     check: &mut Check<'_>,
 ) -> Result<Report, VerifyError> {
-    let rests: Vec<usize> = (report.properties.iter().enumerate())
-        .filter(|(_, p)| p.trace.is_some() && p.verdict != Verdict::Incomplete)
-        .map(|(i, _)| i)
-        .collect();
-    if ordered.is_empty() || rests.is_empty() {
+    if ordered.is_empty() {
         return Ok(report);
     }
-    let again: Vec<PropertySource> = rests.iter().map(|&i| properties[i].clone()).collect();
-    let options = Options {
-        clock_order: true,
-        // Bounded by the budget: the ordered model may be far larger than the first.
-        engine: SearchEngine::Explicit,
-        ..options
-    };
-    let second = check(&again, options)?;
-    let mut unconfirmed = false;
-    for (&i, outcome) in rests.iter().zip(second.properties) {
-        debug_assert_eq!(report.properties[i].name, outcome.name);
-        match outcome.verdict {
-            Verdict::Holds | Verdict::Fails => report.properties[i] = outcome,
-            _ => unconfirmed = true,
+    let rests: Vec<usize> = (report.properties.iter().enumerate())
+        .filter(|(_, p)| p.trace.is_some() || p.cycle.is_some())
+        .map(|(i, _)| i)
+        .collect();
+    let deadlock = (report.findings.iter()).any(|f| matches!(f, Finding::Deadlock { .. }));
+    let mut unconfirmed = deadlock;
+    if !rests.is_empty() {
+        let again: Vec<PropertySource> = rests.iter().map(|&i| properties[i].clone()).collect();
+        let options = Options {
+            clock_order: true,
+            // Bounded by the budget: the ordered model may be far larger than the first.
+            engine: SearchEngine::Explicit,
+            ..options
+        };
+        let started = Instant::now();
+        let second = check(&again, options)?;
+        let seconds = started.elapsed().as_secs_f64();
+        for (&i, outcome) in rests.iter().zip(second.properties) {
+            debug_assert_eq!(report.properties[i].name, outcome.name);
+            report.properties[i] = match outcome.verdict {
+                Verdict::Holds | Verdict::Fails => outcome,
+                Verdict::Incomplete => {
+                    unconfirmed = true;
+                    undecided(outcome)
+                }
+            };
         }
+        report.clocks_ordered = Some(OrderedCheck {
+            stats: second.stats,
+            seconds,
+        });
     }
     if unconfirmed {
         report.unordered_clocks = ordered;
     }
-    report.clocks_ordered = Some(second.stats);
     Ok(report)
+}
+
+/// A property the ordered check left undecided, its unordered run not confirmed.
+fn undecided(outcome: PropertyOutcome) -> PropertyOutcome {
+    PropertyOutcome {
+        verdict: Verdict::Incomplete,
+        trace: None,
+        cycle: None,
+        unconfirmed: true,
+        ..outcome
+    }
 }

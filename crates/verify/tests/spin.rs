@@ -330,6 +330,7 @@ fn agree(case: &str, properties: &[PropertySource], expected: &[Verdict]) {
         let report = verify(&behaviour, properties, options).expect("verifies");
         let verdicts: Vec<Verdict> = report.properties.iter().map(|p| p.verdict).collect();
         assert_eq!(verdicts, expected, "{case}: {engine:?}, checked again");
+        assert!(report.unordered_clocks.is_empty(), "{case}: {engine:?}");
     }
     if !tools_present() {
         return;
