@@ -75,31 +75,35 @@ pub(crate) fn durations(machines: &[MachineModel], ranks: &[Option<u8>]) -> Vec<
     all
 }
 
+/// Of `state`'s constant tests with `due` due: the longest due on a clock its arrival started
+/// and the shortest not due. What a machine leaving with them keeps for the round ([`left`]),
+/// and what a machine ringing after it is compared with by them.
+pub(crate) fn bounds(state: &StateModel, due: u16) -> (Option<u64>, Option<u64>) {
+    let tests = || state.time_tests.iter().enumerate();
+    let longest_due = tests()
+        .filter(|(i, t)| due & (1 << i) != 0 && state.arrival_starts(t.clock))
+        .filter_map(|(_, t)| t.micros)
+        .max();
+    let shortest_waiting = tests()
+        .filter(|(i, _)| due & (1 << i) == 0)
+        .filter_map(|(_, t)| t.micros)
+        .min();
+    (longest_due, shortest_waiting)
+}
+
+/// Duration `d`'s number in `durations`, from 1 (0: none, or not among them).
+pub(crate) fn number(durations: &[u64], d: Option<u64>) -> u8 {
+    d.and_then(|d| durations.iter().position(|&e| e == d))
+        .map_or(0, |i| i as u8 + 1)
+}
+
 /// What a machine leaving `state` with `due` due at its snapshot keeps for the rest of the
-/// round: the longest of its due constant tests whose clock its arrival started (the others'
-/// tests no longer are due: those of a machine that arrived no later) and the shortest of its
-/// constant tests not due (a test of one that arrived no earlier is not due unless shorter),
-/// each as its number in `durations` from 1, 0 for none.
+/// round, its [`bounds`] numbered in `durations`: the longest due (the others' tests no longer
+/// are due, those of a machine that arrived no later) and the shortest not due (a test of one
+/// that arrived no earlier is not due unless shorter).
 pub(crate) fn left(durations: &[u64], state: &StateModel, due: u16) -> (u8, u8) {
-    let number = |d: u64| {
-        durations
-            .iter()
-            .position(|&e| e == d)
-            .map_or(0, |i| i as u8 + 1)
-    };
-    let tests = state.time_tests.iter().enumerate();
-    let (mut longest, mut shortest) = (0, 0);
-    for (i, t) in tests {
-        let Some(d) = t.micros else { continue };
-        if due & (1 << i) != 0 {
-            if state.arrival_starts(t.clock) {
-                longest = longest.max(number(d));
-            }
-        } else if number(d) != 0 && (shortest == 0 || number(d) < shortest) {
-            shortest = number(d);
-        }
-    }
-    (longest, shortest)
+    let (longest, shortest) = bounds(state, due);
+    (number(durations, longest), number(durations, shortest))
 }
 
 /// Whether an arrival into `state` takes part in the order: it has a constant time test.
@@ -210,19 +214,14 @@ fn agrees_with_left(
     theirs_older: bool,
 ) -> bool {
     let duration = |n: u8| durations.get(usize::from(n).wrapping_sub(1)).copied();
-    let tests = || state.time_tests.iter().enumerate();
-    let due = |i: usize| mask & (1 << i) != 0;
-    let implied_held = match duration(other.left_due).filter(|_| mine_older) {
-        Some(longest) => tests().all(|(i, t)| t.micros.is_none_or(|d| d > longest) || due(i)),
-        None => true,
-    };
-    let implying_held = match duration(other.left_wait).filter(|_| theirs_older) {
-        Some(shortest) => tests().all(|(i, t)| {
-            !due(i) || !state.arrival_starts(t.clock) || t.micros.is_none_or(|d| d < shortest)
-        }),
-        None => true,
-    };
-    implied_held && implying_held
+    let (longest_due, shortest_waiting) = bounds(state, mask);
+    // A test of mine no longer than its longest due one is due; one of my arrival's no
+    // shorter than its shortest not due is not.
+    let implied_broken = mine_older
+        && duration(other.left_due).is_some_and(|d| shortest_waiting.is_some_and(|w| w <= d));
+    let implying_broken = theirs_older
+        && duration(other.left_wait).is_some_and(|w| longest_due.is_some_and(|d| d >= w));
+    !implied_broken && !implying_broken
 }
 
 #[cfg(test)]

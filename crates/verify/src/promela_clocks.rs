@@ -6,7 +6,7 @@
 //! ([`crate::world::Control::arrived`]), `ord` (its row of [`crate::world::Control::order`]),
 //! `ldue` and `lwait` (what it left with, [`crate::clocks::left`]).
 
-use crate::clocks::{heard_later, implied, ordered};
+use crate::clocks::{bounds, heard_later, implied, number, ordered};
 use crate::model::StateModel;
 use crate::search::Search;
 
@@ -70,11 +70,7 @@ pub(crate) fn leaving(model: &Search, k: usize, state: &StateModel) -> Option<St
     if !heard_later(&model.clock_ranks, k) {
         return None;
     }
-    let number = |d: u64| {
-        (model.clock_durations.iter())
-            .position(|&e| e == d)
-            .map_or(0, |i| i + 1)
-    };
+    let number = |d| number(&model.clock_durations, Some(d));
     let constant: Vec<(usize, u64)> = (state.time_tests.iter().enumerate())
         .filter_map(|(i, t)| Some((i, t.micros?)))
         .collect();
@@ -169,20 +165,8 @@ fn left_broken(
     mine_older: &str,
     theirs_older: &str,
 ) -> Option<String> {
-    let number = |d: u64| {
-        (model.clock_durations.iter())
-            .position(|&e| e == d)
-            .map_or(0, |i| i + 1)
-    };
-    let tests = || state.time_tests.iter().enumerate();
-    let not_due = tests()
-        .filter(|(i, _)| mask & (1 << i) == 0)
-        .filter_map(|(_, t)| t.micros)
-        .min();
-    let due = tests()
-        .filter(|(i, t)| mask & (1 << i) != 0 && state.arrival_starts(t.clock))
-        .filter_map(|(_, t)| t.micros)
-        .max();
+    let number = |d| number(&model.clock_durations, Some(d));
+    let (due, not_due) = bounds(state, mask);
     let mut any = Vec::new();
     if let Some(d) = not_due {
         any.push(format!("({mine_older} && ldue[{j}] >= {})", number(d)));

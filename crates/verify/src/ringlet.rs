@@ -456,30 +456,9 @@ impl<'m> StepGenerator<'m> {
             let (fresh, due) = (fresh_time(state), w.machines[k].time);
             masks.retain(|m| m & fresh & !due == 0);
         }
-        // The other machines' clocks, where the world is known (on an open one, the symbolic
-        // engine meets each leaf with the same rule as a diagram). Every real moment agrees
-        // with itself, so some set of due tests always agrees.
+        // On an open world the symbolic engine meets each leaf with the same rule as a diagram.
         if exec.chosen.open.is_none() {
-            let model = self.model;
-            let agrees = |m: &u16| {
-                crate::clocks::agrees(
-                    &model.machines,
-                    &model.clock_ranks,
-                    &model.clock_durations,
-                    w,
-                    k,
-                    *m,
-                )
-            };
-            if masks.iter().any(agrees) {
-                masks.retain(agrees);
-            } else {
-                debug_assert!(
-                    false,
-                    "no due tests of {} agree with the other clocks",
-                    model.machines[k].name
-                );
-            }
+            self.agreeing(w, k, &mut masks);
         }
         let touched_domains: Vec<&[ValueId]> = touched
             .iter()
@@ -517,6 +496,23 @@ impl<'m> StepGenerator<'m> {
             exec.world.saw[j] = id;
         }
         taken
+    }
+
+    /// `masks` of machine `k` cut to those the other machines' clocks in `w` allow
+    /// ([`crate::clocks::agrees`]). Every real moment agrees with itself, so some set of due
+    /// tests always agrees.
+    fn agreeing(&self, w: &SystemState, k: usize, masks: &mut Vec<u16>) {
+        let model = self.model;
+        let agrees = |m: &u16| {
+            let durations = &model.clock_durations;
+            crate::clocks::agrees(&model.machines, &model.clock_ranks, durations, w, k, *m)
+        };
+        if masks.iter().any(agrees) {
+            masks.retain(agrees);
+        } else {
+            let name = &model.machines[k].name;
+            debug_assert!(false, "no due tests of {name} agree with the other clocks");
+        }
     }
 
     /// Every leaf of machine `k`'s ringlet from `control` on an open world whose stored slots

@@ -5,7 +5,7 @@
 //! [`crate::clocks::agrees`] as a diagram over the world before the step.
 
 use super::{Encoding, Field};
-use crate::clocks::{heard_later, implied, ordered};
+use crate::clocks::{bounds, heard_later, implied, ordered};
 use crate::search::Search;
 use crate::world::Control;
 use biodivine_lib_bdd::{Bdd, BddPartialValuation};
@@ -106,26 +106,8 @@ pub(super) fn guard(
                 vars.mk_var(theirs.order.bits[usize::from(rank)]),
             ),
         };
-        let mut broken = vars.mk_false();
-        for (t, other) in model.machines[j].states.iter().enumerate() {
-            let due = |bit: usize| vars.mk_var(theirs.time.bits[bit]);
-            let mut here = vars.mk_false();
-            for (y, x) in implied(state, other) {
-                if mask & (1 << x) == 0 {
-                    here = here.or(&mine_older.and(&due(y)));
-                }
-            }
-            if j < k {
-                for (y, x) in implied(other, state) {
-                    if mask & (1 << y) != 0 {
-                        here = here.or(&theirs_older.and(&due(x).not()));
-                    }
-                }
-            }
-            if !here.is_false() {
-                broken = broken.or(&is(&theirs.state, t).and(&here));
-            }
-        }
+        let older = (&mine_older, &theirs_older);
+        let broken = settled_broken(model, enc, (k, j), state, mask, older);
         let settled = is(&theirs.status, 0).and(&is(&theirs.just_entered, 0));
         let left = left_broken(model, enc, j, state, mask, &mine_older, &theirs_older);
         let moved = is(&theirs.left_due, 0).and(&is(&theirs.left_wait, 0)).not();
@@ -149,15 +131,7 @@ fn left_broken(
     mine_older: &Bdd,
     theirs_older: &Bdd,
 ) -> Bdd {
-    let tests = || state.time_tests.iter().enumerate();
-    let not_due = tests()
-        .filter(|(i, _)| mask & (1 << i) == 0)
-        .filter_map(|(_, t)| t.micros)
-        .min();
-    let due = tests()
-        .filter(|(i, t)| mask & (1 << i) != 0 && state.arrival_starts(t.clock))
-        .filter_map(|(_, t)| t.micros)
-        .max();
+    let (due, not_due) = bounds(state, mask);
     let theirs = &enc.machines[j];
     let numbered = |f: &Field, keep: &dyn Fn(u64) -> bool| {
         let mut any = enc.vars.mk_false();
@@ -178,6 +152,44 @@ fn left_broken(
     if let Some(longest_due) = due {
         let shorter = numbered(&theirs.left_wait, &|d| d <= longest_due);
         broken = broken.or(&theirs_older.and(&shorter));
+    }
+    broken
+}
+
+/// Where `mask` of machine `k` in `state` breaks the rule against machine `j` in its state: a
+/// due test of `j`'s arrival implies one of `k` not in `mask`, when `k`'s machine is the
+/// older; or (`j` rang before `k`) one in `mask` implies one of `j` not due, when `j`'s is.
+fn settled_broken(
+    model: &Search,
+    enc: &Encoding,
+    (k, j): (usize, usize),
+    state: &crate::model::StateModel,
+    mask: u16,
+    (mine_older, theirs_older): (&Bdd, &Bdd),
+) -> Bdd {
+    let vars = &enc.vars;
+    let theirs = &enc.machines[j];
+    let due = |bit: usize| vars.mk_var(theirs.time.bits[bit]);
+    let mut broken = vars.mk_false();
+    for (t, other) in model.machines[j].states.iter().enumerate() {
+        let mut here = vars.mk_false();
+        for (y, x) in implied(state, other) {
+            if mask & (1 << x) == 0 {
+                here = here.or(&mine_older.and(&due(y)));
+            }
+        }
+        if j < k {
+            for (y, x) in implied(other, state) {
+                if mask & (1 << y) != 0 {
+                    here = here.or(&theirs_older.and(&due(x).not()));
+                }
+            }
+        }
+        if !here.is_false() {
+            let mut cube = BddPartialValuation::empty();
+            theirs.state.set(t, &mut cube);
+            broken = broken.or(&enc.mk(&cube).and(&here));
+        }
     }
     broken
 }
