@@ -362,6 +362,8 @@ fn print_search(behaviour: &str, s: &SearchStats, seconds: f64) {
 /// A property's verdict, and the run that shows it when there is one.
 fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
     let verdict = match p.verdict {
+        Verdict::Holds if p.followed => "holds (its run, found with the clocks of different machines unordered, followed with them ordered)",
+        Verdict::Fails if p.followed => "FAILS (its run, found with the clocks of different machines unordered, followed with them ordered)",
         Verdict::Holds => "holds",
         Verdict::Fails => "FAILS",
         Verdict::Incomplete if p.unconfirmed => {
@@ -406,10 +408,12 @@ fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
         return;
     }
     if let Some(trace) = &p.trace {
-        let what = if p.kind == "reachable" {
-            "the shortest way there"
-        } else {
-            "shortest counterexample"
+        // A run followed is the first model's shortest, not the ordered one's.
+        let what = match (p.kind == "reachable", p.followed) {
+            (true, false) => "the shortest way there",
+            (true, true) => "a way there",
+            (false, false) => "shortest counterexample",
+            (false, true) => "a counterexample",
         };
         println!("  {what}, by rounds:");
         print!("{}", render(trace));

@@ -46,18 +46,7 @@ pub fn draw(
         }
     }
     let whole = trace::replay(model, graph, initial, &steps);
-    let split = (to_seed + prefix_states - 1).min(whole.steps.len());
-    let prefix = Trace {
-        initially: whole.initially,
-        steps: whole.steps[..split].to_vec(),
-        unposted: whole.unposted,
-    };
-    let cycle = Trace {
-        initially: Vec::new(),
-        steps: whole.steps[split..].to_vec(),
-        unposted: Vec::new(),
-    };
-    (prefix, cycle)
+    whole.split(to_seed + prefix_states - 1)
 }
 
 /// From `start` (in the component) through a state of every acceptance set and back to

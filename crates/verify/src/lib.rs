@@ -35,6 +35,7 @@ mod choices;
 mod chunked;
 mod clocks;
 mod components;
+mod confirm;
 pub mod domain;
 mod edges;
 mod error;
@@ -62,6 +63,7 @@ mod refine;
 pub mod ringlet;
 mod script;
 pub mod search;
+mod seen;
 mod state_table;
 mod step_memo;
 mod symbolic;
@@ -73,8 +75,8 @@ pub use error::{PropertyError, VerifyError};
 pub use explore::Progress;
 pub use model::Model;
 pub use outcome::{
-    Assignment, Finding, Inexact, PropertyOutcome, Report, SearchStats, Stop, Trace, TraceStep,
-    Verdict,
+    Assignment, Finding, Inexact, PropertyOutcome, Report, Run, SearchStats, Stop, Trace,
+    TraceStep, Verdict,
 };
 pub use proclaim_behaviour::PropertyKind;
 pub use promela::{to_promela, Claim, EmitError, Promela};
@@ -188,14 +190,30 @@ pub fn verify_with_progress(
     options: Options,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Report, VerifyError> {
+    checked(behaviour, properties, options, progress, &[])
+}
+
+/// [`verify_with_progress`], where each property the search leaves undecided is decided by
+/// its run in `found` if that run follows through the model (`confirm.rs`).
+fn checked(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+    options: Options,
+    progress: &mut dyn FnMut(Progress),
+    found: &[Option<confirm::Found>],
+) -> Result<Report, VerifyError> {
     // The first search's model is let go before a second one is built.
     let (report, ordered) = {
         let (mut model, compiled) = prepare(behaviour, properties, options.clock_order)?;
         model.storage = reduce::storage(&model, &compiled, options.reductions);
         check_stored_free(&model)?;
         let report = search(&model, &compiled, options, progress)?;
-        let report = undecided_where_inexact(report, &model);
+        let mut report = undecided_where_inexact(report, &model);
         if options.clock_order {
+            if !found.is_empty() {
+                let search = Search::new(&model);
+                confirm::confirm(&search, &compiled, &mut report.properties, found);
+            }
             return Ok(report);
         }
         let ordered = (model.machines.iter().zip(clocks::ranks(&model.machines)))
@@ -204,8 +222,8 @@ pub fn verify_with_progress(
             .collect();
         (report, ordered)
     };
-    let mut again = |properties: &[PropertySource], options| {
-        verify_with_progress(behaviour, properties, options, progress)
+    let mut again = |properties: &[PropertySource], options, found: &[Option<confirm::Found>]| {
+        checked(behaviour, properties, options, progress, found)
     };
     refine::check_ordered(report, properties, ordered, options, &mut again)
 }
@@ -410,6 +428,7 @@ fn outcome(
         trace,
         cycle: None,
         unconfirmed: false,
+        followed: false,
     }
 }
 

@@ -60,6 +60,7 @@ pub fn property_outcome(
         trace,
         cycle,
         unconfirmed: false,
+        followed: false,
     }
 }
 

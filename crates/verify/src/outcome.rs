@@ -1,6 +1,7 @@
 //! What verification finds, as data: each property's verdict with its shortest counterexample
 //! (or witness), the built-in findings, and the size of the exploration.
 
+pub use crate::seen::Run;
 use serde::Serialize;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -116,6 +117,32 @@ pub struct Trace {
     /// asks no absent expert.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unposted: Vec<String>,
+    /// The worlds the steps pass through, as a second model can follow them (`confirm.rs`).
+    #[serde(skip)]
+    pub run: Run,
+}
+
+impl Trace {
+    /// The first `at` steps, and the rest with rounds numbered on (a lasso's way in and its
+    /// loop, cut from one replayed run).
+    pub(crate) fn split(self, at: usize) -> (Trace, Trace) {
+        let at = at.min(self.steps.len());
+        let (way_in, rest) = self.steps.split_at(at);
+        let (run_in, run_rest) = self.run.split(at);
+        let first = Trace {
+            initially: self.initially,
+            steps: way_in.to_vec(),
+            unposted: self.unposted,
+            run: run_in,
+        };
+        let then = Trace {
+            initially: Vec::new(),
+            steps: rest.to_vec(),
+            unposted: Vec::new(),
+            run: run_rest,
+        };
+        (first, then)
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -143,6 +170,11 @@ pub struct PropertyOutcome {
     /// machine's longer timeout up before another's shorter one, which no real run shows.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub unconfirmed: bool,
+    /// Decided by following the run the unordered search found through the ordered model,
+    /// where the ordered search ran out (`confirm.rs`): the run is real, but not the shortest
+    /// one with the clocks ordered.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub followed: bool,
 }
 
 /// What the exploration noticed whatever the properties say (spec §6's built-in checks).

@@ -10,14 +10,16 @@
 //! model's runs are some of the unordered one's. A deadlock found is not checked again: the
 //! report names the machines whose clocks its run took unordered.
 
+use crate::confirm::Found;
 use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Verdict};
 use crate::property::PropertySource;
 use crate::{Options, SearchEngine, VerifyError};
 use std::time::Instant;
 
-/// A check of some properties with some options: [`crate::verify_with_progress`].
+/// A check of some properties with some options, deciding those it leaves undecided by
+/// their runs where they follow through its model (`confirm.rs`).
 pub(crate) type Check<'c> =
-    dyn FnMut(&[PropertySource], Options) -> Result<Report, VerifyError> + 'c;
+    dyn FnMut(&[PropertySource], Options, &[Option<Found>]) -> Result<Report, VerifyError> + 'c;
 
 /// `report`, of `properties` checked with clocks unordered where `ordered` names the
 /// machines that would be ordered (none: nothing to check again), with the verdicts a run
@@ -40,6 +42,9 @@ pub(crate) fn check_ordered(
     let mut unconfirmed = deadlock;
     if !rests.is_empty() {
         let again: Vec<PropertySource> = rests.iter().map(|&i| properties[i].clone()).collect();
+        let found: Vec<Option<Found>> = (rests.iter())
+            .map(|&i| Found::of(&report.properties[i]))
+            .collect();
         let options = Options {
             clock_order: true,
             // Bounded by the budget: the ordered model may be far larger than the first.
@@ -47,7 +52,7 @@ pub(crate) fn check_ordered(
             ..options
         };
         let started = Instant::now();
-        let second = check(&again, options)?;
+        let second = check(&again, options, &found)?;
         let seconds = started.elapsed().as_secs_f64();
         for (&i, outcome) in rests.iter().zip(second.properties) {
             debug_assert_eq!(report.properties[i].name, outcome.name);

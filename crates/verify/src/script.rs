@@ -105,6 +105,7 @@ pub fn unroll(prefix: &Trace, cycle: &Trace) -> Trace {
         initially: prefix.initially.clone(),
         steps,
         unposted: prefix.unposted.clone(),
+        run: Default::default(),
     }
 }
 

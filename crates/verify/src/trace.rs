@@ -4,11 +4,14 @@
 use crate::explore::Graph;
 use crate::kind::ValueKind;
 use crate::model::SlotId;
+use crate::model::Storage;
 use crate::outcome::{Assignment, Trace, TraceStep};
-use crate::ringlet::{initial_worlds, Choice, StepGenerator};
+use crate::ringlet::{initial_worlds, Choice, Detail, StepGenerator, Successor};
 use crate::search::Search;
+use crate::seen::{Run, Seen, Shown};
 use crate::values::{ValueId, NEVER};
 use crate::world::SystemState;
+use crate::world::POSTED;
 use proclaim_board::Value;
 use proclaim_experts::ScriptValue;
 use rustc_hash::FxHashMap;
@@ -69,6 +72,7 @@ pub fn trace_of(
             initially: Vec::new(),
             steps: Vec::new(),
             unposted: Vec::new(),
+            run: Run::default(),
         };
     };
     let initially = model
@@ -84,6 +88,8 @@ pub fn trace_of(
     let mut round = 1;
     let mut steps = Vec::new();
     let mut successors = Vec::new();
+    let mut run = Run::default();
+    run.push(seen(model, &first));
     for (world, choice) in path {
         successors.clear();
         stepper.successors(&world, true, &mut successors);
@@ -95,8 +101,7 @@ pub fn trace_of(
         if s.wrapped {
             round += 1;
         }
-        let m = &model.machines[s.machine];
-        let state = &m.states[s.from];
+        run.push(seen(model, &s.world));
         let detail = s.detail.clone().unwrap_or_default();
         for &(slot, v) in &detail.read {
             let name = &model.slots[slot].name;
@@ -107,39 +112,47 @@ pub fn trace_of(
                 unposted.push(name.clone());
             }
         }
-        steps.push(TraceStep {
-            round,
-            machine: m.name.clone(),
-            from: state.name.clone(),
-            to: s.fired.and_then(|t| moved_to(m, &state.transitions[t])),
-            label: s.fired.map(|t| m.shown(&state.transitions[t]).to_string()),
-            timers: detail
-                .timers
-                .iter()
-                .map(|&i| m.time_test_shown(&state.time_tests[i]))
-                .collect(),
-            at_snapshot: detail
-                .at_snapshot
-                .iter()
-                .map(|&(slot, v)| assignment(model, slot, v))
-                .collect(),
-            read: detail
-                .read
-                .iter()
-                .filter(|&&(slot, v)| last_read.insert(slot, v).unwrap_or(NEVER) != v)
-                .map(|&(slot, v)| assignment(model, slot, v))
-                .collect(),
-            environment: detail
-                .environment
-                .iter()
-                .map(|&(slot, v)| assignment(model, slot, v))
-                .collect(),
-        });
+        steps.push(step(model, s, round, &detail, &mut last_read));
     }
     Trace {
         initially,
         steps,
         unposted,
+        run,
+    }
+}
+
+/// Step `s` of round `round` for people, with what the environment did (`detail`); a read is
+/// told where it differs from `last_read`, which it updates.
+fn step(
+    model: &Search,
+    s: &Successor,
+    round: u32,
+    detail: &Detail,
+    last_read: &mut FxHashMap<SlotId, ValueId>,
+) -> TraceStep {
+    let m = &model.machines[s.machine];
+    let state = &m.states[s.from];
+    let shown = |list: &[(SlotId, ValueId)]| -> Vec<Assignment> {
+        (list.iter())
+            .map(|&(slot, v)| assignment(model, slot, v))
+            .collect()
+    };
+    TraceStep {
+        round,
+        machine: m.name.clone(),
+        from: state.name.clone(),
+        to: s.fired.and_then(|t| moved_to(m, &state.transitions[t])),
+        label: s.fired.map(|t| m.shown(&state.transitions[t]).to_string()),
+        timers: (detail.timers.iter())
+            .map(|&i| m.time_test_shown(&state.time_tests[i]))
+            .collect(),
+        at_snapshot: shown(&detail.at_snapshot),
+        read: (detail.read.iter())
+            .filter(|&&(slot, v)| last_read.insert(slot, v).unwrap_or(NEVER) != v)
+            .map(|&(slot, v)| assignment(model, slot, v))
+            .collect(),
+        environment: shown(&detail.environment),
     }
 }
 
@@ -188,4 +201,27 @@ pub fn render(trace: &Trace) -> String {
 /// The state a fired transition moved to; `None` for one that stays (§3.2).
 fn moved_to(m: &crate::model::MachineModel, t: &crate::model::TransitionModel) -> Option<String> {
     (!m.machine.transitions[t.index].stays).then(|| m.states[t.target].name.clone())
+}
+
+/// What `world` shows of the behaviour, by value ([`Seen`]).
+pub(crate) fn seen(model: &Search, world: &SystemState) -> Seen {
+    let values = model.values.borrow();
+    let shown = |id: ValueId| match id {
+        NEVER => Shown::Never,
+        POSTED => Shown::Posted,
+        id => values.get(id).cloned().map_or(Shown::Never, Shown::Is),
+    };
+    Seen {
+        turn: world.turn,
+        machines: (world.machines.iter())
+            .map(|c| (c.state, c.status as u8, c.just_entered, c.fresh, c.time))
+            .collect(),
+        values: (world.values.iter().enumerate())
+            .map(|(slot, &id)| match model.storage[slot] {
+                Storage::Stored => shown(id),
+                _ => Shown::Unstored,
+            })
+            .collect(),
+        saw: world.saw.iter().map(|&id| shown(id)).collect(),
+    }
 }

@@ -21,7 +21,7 @@ pub const FIRST_TURN: u8 = u8::MAX;
 pub(crate) const POSTED: ValueId = ValueId::MAX - 1;
 
 /// A machine's mode, gufsm's `SuspensibleMachine` states.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Status {
     Running,
     /// Parked by `suspend`; `resume` enters its state again.
@@ -30,7 +30,7 @@ pub enum Status {
     Dormant,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Control {
     /// Index into the machine's states.
     pub state: u16,
@@ -56,7 +56,7 @@ pub struct Control {
 
 /// The whole model's state, unpacked: whose turn it is, every machine's control, every slot's
 /// value and what each `saw()` kept.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct SystemState {
     /// The machine whose turn is next, or the first to consider after it (the runnable one
     /// at or after it, wrapping to a new round).
@@ -179,10 +179,13 @@ impl Layout {
         self.widths[..field].iter().map(|&w| u32::from(w)).sum()
     }
 
-    /// The bits of `field` in a record read as a little-endian `u128`.
+    /// The bits of `field` in a record read as a little-endian `u128`; none for a field
+    /// that ends past its 128 bits (a layout widened past a register, whose masks the memos
+    /// make anew but no longer use).
     fn field_mask(&self, field: usize) -> u128 {
-        match self.widths.get(field) {
-            Some(&w) if w > 0 => ((1u128 << w) - 1) << self.field_start(field),
+        let start = self.field_start(field);
+        match self.widths.get(field).map(|&w| u32::from(w)) {
+            Some(w) if w > 0 && start + w <= 128 => (u128::MAX >> (128 - w)) << start,
             _ => 0,
         }
     }

@@ -14,6 +14,7 @@ static ALLOCATED: common::allocated::Counting = common::allocated::Counting;
 mod checkpoints;
 mod conformance;
 mod differential;
+mod followed;
 mod free_values;
 mod liveness;
 mod race;

@@ -15,7 +15,7 @@
 
 use super::{image, preimage, set_where, Declined, Field, Path, Searched};
 use crate::liveness::property_outcome;
-use crate::outcome::{PropertyOutcome, Trace, Verdict};
+use crate::outcome::{PropertyOutcome, Verdict};
 use crate::property::Property;
 use crate::ringlet::{Choice, Successor};
 use crate::trace::trace_of;
@@ -82,17 +82,7 @@ impl Searched<'_, '_> {
         };
         let split = prefix.len();
         let whole = trace_of(self.model, initial, prefix.into_iter().chain(cycle));
-        let split = split.min(whole.steps.len());
-        let way_in = Trace {
-            initially: whole.initially,
-            steps: whole.steps[..split].to_vec(),
-            unposted: whole.unposted,
-        };
-        let round = Trace {
-            initially: Vec::new(),
-            steps: whole.steps[split..].to_vec(),
-            unposted: Vec::new(),
-        };
+        let (way_in, round) = whole.split(split);
         Ok(property_outcome(
             property,
             Verdict::Fails,
