@@ -11,11 +11,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 fn scratch(tag: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-branch-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::fresh_folder(&format!("proclaim-branch-{tag}"))
 }
 
 fn arg(path: &Path) -> &str {

@@ -17,11 +17,7 @@ const SHIPPED: [&str; 6] = [
 ];
 
 fn scratch(tag: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-checkpoint-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::fresh_folder(&format!("proclaim-checkpoint-{tag}"))
 }
 
 /// `proclaim run BEHAVIOUR --virtual-clock --for 90s --trace TRACE` with `extra`; the trace's

@@ -42,13 +42,46 @@ pub fn corpus_dir() -> Option<std::path::PathBuf> {
     dir.is_dir().then_some(dir)
 }
 
+/// A fresh, empty folder `NAME-PID` in Cargo's scratch folder for tests ([`own_folder`]).
+#[allow(dead_code)]
+pub fn fresh_folder(name: &str) -> std::path::PathBuf {
+    let dir = own_folder(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The folder `NAME-PID` in Cargo's scratch folder for tests, this test process's own, made if
+/// missing. Folders of the same name that test processes now ended left are removed first, so
+/// the last run's are there to look into and a developer's disk does not fill run by run.
+/// (Where `/proc` cannot say which processes live, nothing is removed.)
+#[allow(dead_code)]
+pub fn own_folder(name: &str) -> std::path::PathBuf {
+    let root = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let me = std::process::id();
+    let ended = |pid: u32| {
+        pid != me
+            && std::path::Path::new("/proc/self").exists()
+            && !std::path::Path::new(&format!("/proc/{pid}")).exists()
+    };
+    for entry in std::fs::read_dir(root).into_iter().flatten().flatten() {
+        let file = entry.file_name();
+        let pid =
+            (file.to_str()).and_then(|f| f.strip_prefix(name)?.strip_prefix('-')?.parse().ok());
+        if pid.is_some_and(ended) {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
+    let dir = root.join(format!("{name}-{me}"));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// A fresh folder holding a behaviour's files (`behaviour.toml` and its machines), unique to
 /// this test process and `tag`.
 #[allow(dead_code)]
 pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_folder(&format!("proclaim-{tag}"));
     for (name, text) in files {
         std::fs::write(dir.join(name), text).unwrap();
     }

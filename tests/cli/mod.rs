@@ -35,10 +35,7 @@ fn record_run(behaviour: &str, run_for: &str, path: &std::path::Path, extra: &[&
 }
 
 fn temp_file(name: &str, text: &[u8]) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("proclaim-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
+    let path = crate::own_folder("proclaim-cli").join(name);
     std::fs::File::create(&path)
         .unwrap()
         .write_all(text)

@@ -119,12 +119,18 @@ struct Node {
     /// Its parent's place in the step before, and the choice taken there; for the first step,
     /// the number of the initial world.
     from: Result<(usize, Choice), usize>,
+    /// Transitions fired on the way by machines with ordered clocks, which a loose fit lets
+    /// do what they like: of the ways to a world, the one with fewest is kept, so that a
+    /// counterexample shows what its verdict needs and not every timeout the run let fire.
+    fired: u32,
 }
 
 /// The worlds of each step of the run so far.
 struct Layers<'a> {
     model: &'a Search<'a>,
     fit: Fit,
+    /// The machines whose clocks are ordered.
+    ordered: Vec<bool>,
     stepper: StepGenerator<'a>,
     layers: Vec<Vec<Node>>,
 }
@@ -137,11 +143,15 @@ impl<'a> Layers<'a> {
             .map(|(i, world)| Node {
                 world,
                 from: Err(i),
+                fired: 0,
             })
             .collect();
         (!layer.is_empty()).then(|| Layers {
             model,
             fit,
+            ordered: (clocks::ranks(&model.machines).iter())
+                .map(Option::is_some)
+                .collect(),
             stepper: StepGenerator::new(model),
             layers: vec![layer],
         })
@@ -150,19 +160,32 @@ impl<'a> Layers<'a> {
     /// One step on, to the worlds that show `next`; `false` where none does, or too many.
     fn step(&mut self, next: &Seen) -> bool {
         let last = self.layers.last().expect("a first layer");
-        let mut layer = Vec::new();
-        let mut met = FxHashSet::default();
+        let mut layer: Vec<Node> = Vec::new();
+        let mut met: FxHashMap<SystemState, usize> = FxHashMap::default();
         let mut successors = Vec::new();
         for (at, node) in last.iter().enumerate() {
             successors.clear();
             self.stepper.successors(&node.world, false, &mut successors);
             for s in successors.drain(..) {
-                let fits = self.fit.fits(&seen(self.model, &s.world), next);
-                if fits && met.insert(s.world.clone()) {
-                    layer.push(Node {
-                        world: s.world,
-                        from: Ok((at, s.choice)),
-                    });
+                if !self.fit.fits(&seen(self.model, &s.world), next) {
+                    continue;
+                }
+                let fired = node.fired + u32::from(self.ordered[s.machine] && s.fired.is_some());
+                let from = Ok((at, s.choice));
+                match met.get(&s.world) {
+                    Some(&i) if layer[i].fired > fired => {
+                        layer[i].from = from;
+                        layer[i].fired = fired;
+                    }
+                    Some(_) => {}
+                    None => {
+                        met.insert(s.world.clone(), layer.len());
+                        layer.push(Node {
+                            world: s.world,
+                            from,
+                            fired,
+                        });
+                    }
                 }
             }
             if layer.len() > MOST_WORLDS {
@@ -221,7 +244,10 @@ fn follow_way(model: &Search, property: &Property, way: &Run) -> Option<Trace> {
         return None;
     }
     let last = layers.layers.len() - 1;
-    let at = (layers.layers[last].iter()).position(|n| property.is_target(model, &n.world))?;
+    let at = (layers.layers[last].iter().enumerate())
+        .filter(|(_, n)| property.is_target(model, &n.world))
+        .min_by_key(|(_, n)| n.fired)?
+        .0;
     Some(layers.trace(last, at, Vec::new()).0)
 }
 

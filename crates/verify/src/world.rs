@@ -67,6 +67,11 @@ pub struct SystemState {
     pub saw: Vec<ValueId>,
 }
 
+/// The lowest `bits` bits set (all of them from 128 on).
+fn low_bits(bits: u32) -> u128 {
+    u128::MAX.checked_shr(128 - bits.min(128)).unwrap_or(0)
+}
+
 /// Field widths in bits. A machine's state number and time bits are as wide as the model says
 /// they can need; its flags start with no bits and value numbers as wide as the values the
 /// text names, and each is as wide as what the search has met needed: a value that does not
@@ -185,7 +190,7 @@ impl Layout {
     fn field_mask(&self, field: usize) -> u128 {
         let start = self.field_start(field);
         match self.widths.get(field).map(|&w| u32::from(w)) {
-            Some(w) if w > 0 && start + w <= 128 => (u128::MAX >> (128 - w)) << start,
+            Some(w) if start + w <= 128 => low_bits(w).checked_shl(start).unwrap_or(0),
             _ => 0,
         }
     }
@@ -204,7 +209,8 @@ impl Layout {
     pub fn fresh_mask(&self, k: usize) -> u128 {
         let field = 3 + 3 * k;
         if self.widths[field] >= 2 {
-            1u128 << (self.field_start(field) + 1)
+            // None past a register's bits, as for every mask here.
+            1u128.checked_shl(self.field_start(field) + 1).unwrap_or(0)
         } else {
             0
         }
@@ -216,7 +222,8 @@ impl Layout {
     pub fn round_mask(&self, k: usize) -> u128 {
         let field = 3 + 3 * k;
         let cleared: u128 = 1 << 4 | 0xffff << 13;
-        (cleared & ((1u128 << self.widths[field]) - 1)) << self.field_start(field)
+        let mine = cleared & low_bits(u32::from(self.widths[field]));
+        mine.checked_shl(self.field_start(field)).unwrap_or(0)
     }
 
     /// The bits a record keeps of `slot`: its value number when stored, its one bit when
@@ -551,6 +558,30 @@ mod tests {
             values: vec![value, 7, 3, if time > 0 { POSTED } else { NEVER }],
             saw: vec![value],
         }
+    }
+
+    #[test]
+    fn a_layout_widened_past_a_register_has_masks_only_inside_its_bits() {
+        let mut layout = layout();
+        // Three slots of 32 bits and a bit: 130 bits in all, the last two fields past 128.
+        for field in 10..13 {
+            layout = layout.widened(TooNarrow { field, bits: 32 });
+        }
+        assert!(!layout.fits_register());
+        assert_eq!(layout.field_mask(0), 0b11);
+        assert_eq!(layout.slot_mask(0), u128::from(u32::MAX) << 33);
+        assert_eq!(layout.saw_mask(0), 0, "bits 97 to 129 pass the register");
+        assert_eq!(layout.slot_mask(3), 0, "bit 129 passes the register");
+        // Every mask of every machine is made, none overflowing a shift.
+        for k in 0..3 {
+            let _ = (
+                layout.control_mask(k),
+                layout.fresh_mask(k),
+                layout.round_mask(k),
+            );
+        }
+        assert_eq!(low_bits(0), 0);
+        assert_eq!(low_bits(128), u128::MAX);
     }
 
     #[test]
