@@ -572,6 +572,19 @@ fn clocks_of_different_machines_are_ordered_where_a_run_decides_a_verdict() {
     assert_eq!(p["followed"], true, "{p}");
     let looped = p["cycle"]["steps"].as_array().expect("a loop");
     assert!(!looped.is_empty(), "{p}");
+    // Each machine ends the loop in the state it started it in.
+    let (mut first, mut last) = (serde_json::Map::new(), serde_json::Map::new());
+    for s in looped {
+        let machine = s["machine"].as_str().expect("a machine").to_string();
+        first.entry(machine.clone()).or_insert(s["from"].clone());
+        let to = if s["to"].is_null() {
+            &s["from"]
+        } else {
+            &s["to"]
+        };
+        last.insert(machine, to.clone());
+    }
+    assert_eq!(first, last, "{p}");
     assert!(
         (looped.iter()).all(|s| s["machine"] != "Button" || s["from"] == "HELD"),
         "{p}"

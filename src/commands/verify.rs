@@ -408,7 +408,7 @@ fn print_property(p: &PropertyOutcome, s: &SearchStats, inexact: bool) {
         return;
     }
     if let Some(trace) = &p.trace {
-        // A run followed is the first model's shortest, not the ordered one's.
+        // A run followed through the ordered model is one it has, not its shortest.
         let what = match (p.kind == "reachable", p.followed) {
             (true, false) => "the shortest way there",
             (true, true) => "a way there",

@@ -7,63 +7,22 @@
 //! ordered clocks did (the run's may have taken a longer timeout before a shorter one), and a
 //! world at its end that is the property's target decides it. A lasso is followed exactly (its
 //! loop's verdict rests on every machine), round its loop until a set of worlds at the loop's
-//! start comes back, which makes a loop of ordered worlds. A run not followed decides nothing.
+//! start comes back, which makes a loop of ordered worlds. A run not followed, or one that
+//! would hold more worlds than the search's budget, decides nothing.
 
 use crate::clocks;
 use crate::outcome::{PropertyOutcome, Trace, Verdict};
 use crate::property::Property;
 use crate::ringlet::{initial_worlds, Choice, StepGenerator};
 use crate::search::Search;
-use crate::seen::{Run, Seen};
-use crate::trace::{seen, trace_of};
-use crate::world::SystemState;
+use crate::seen::{Names, Run, Seen, Shown};
+use crate::trace::{names, seen, trace_of};
+use crate::world::{Control, SystemState};
 use proclaim_behaviour::PropertyKind;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// The most worlds one step of a run is matched by; past it the run is not followed.
-const MOST_WORLDS: usize = 1 << 16;
-
 /// How often a lasso's loop is followed round before its start's worlds must have come back.
 const MOST_LAPS: usize = 64;
-
-/// Which parts of a world the follower holds to the run's.
-enum Fit {
-    Exact,
-    /// The machines whose clocks are not ordered (`true`), the free slots (`true`), the turn.
-    Loose {
-        machines: Vec<bool>,
-        slots: Vec<bool>,
-    },
-}
-
-impl Fit {
-    fn loose(model: &Search) -> Fit {
-        let mut slots = vec![false; model.slots.len()];
-        for (slot, _) in model.free_slots() {
-            slots[slot] = true;
-        }
-        Fit::Loose {
-            machines: (clocks::ranks(&model.machines).iter())
-                .map(Option::is_none)
-                .collect(),
-            slots,
-        }
-    }
-
-    /// Whether world `got` of the ordered model fits world `run` of the run.
-    fn fits(&self, got: &Seen, run: &Seen) -> bool {
-        let Fit::Loose { machines, slots } = self else {
-            return got == run;
-        };
-        fn held<T: PartialEq>(got: &[T], run: &[T], held: &[bool]) -> bool {
-            got.len() == run.len()
-                && (got.iter().zip(run).zip(held)).all(|((a, b), &held)| !held || a == b)
-        }
-        got.turn == run.turn
-            && held(&got.machines, &run.machines, machines)
-            && held(&got.values, &run.values, slots)
-    }
-}
 
 /// The runs the unordered search found, a property each: its way (or its way in) and its loop.
 #[derive(Clone, Debug, Default)]
@@ -83,23 +42,24 @@ impl Found {
 }
 
 /// Each undecided property of `outcomes` (checked in `model` as `properties`) whose `found`
-/// run follows through the model, decided by that run.
+/// run follows through the model, decided by that run; no more worlds held at once than
+/// `budget` states of the search would take.
 pub(crate) fn confirm(
     model: &Search,
     properties: &[Property],
     outcomes: &mut [PropertyOutcome],
     found: &[Option<Found>],
+    budget: (usize, usize),
 ) {
     for ((outcome, property), found) in outcomes.iter_mut().zip(properties).zip(found) {
         let Some(found) = found else { continue };
-        if outcome.verdict != Verdict::Incomplete || found.way.0.is_empty() {
+        if outcome.verdict != Verdict::Incomplete || found.way.worlds.is_empty() {
             continue;
         }
         let followed = match &found.cycle {
-            None => follow_way(model, property, &found.way).map(|trace| (trace, None)),
-            Some(cycle) => {
-                follow_lasso(model, &found.way, cycle).map(|(way_in, round)| (way_in, Some(round)))
-            }
+            None => follow_way(model, property, &found.way, budget).map(|trace| (trace, None)),
+            Some(cycle) => follow_lasso(model, &found.way, cycle, budget)
+                .map(|(way_in, round)| (way_in, Some(round))),
         };
         if let Some((trace, cycle)) = followed {
             outcome.verdict = match property.source.kind {
@@ -113,12 +73,64 @@ pub(crate) fn confirm(
     }
 }
 
-/// An ordered world that shows a world of the run, and how it was reached.
+/// Which parts of a world the follower holds to the run's, and where each of the model's slots
+/// and `saw()`s is in the run's (the run's model may have been built for more properties).
+struct Fit {
+    /// Per machine, whether it is held (all of them when following exactly).
+    machines: Vec<bool>,
+    /// Per slot, whether it is held, and where it is in the run.
+    slots: Vec<(bool, Option<usize>)>,
+    /// Per `saw()`, where it is in the run; `None` when they are not held.
+    saw: Option<Vec<Option<usize>>>,
+}
+
+impl Fit {
+    fn new(model: &Search, run: &Names, exact: bool) -> Fit {
+        let at = |names: &[String], name: &String| names.iter().position(|n| n == name);
+        let here = names(model);
+        let ranks = clocks::ranks(&model.machines);
+        let free: FxHashSet<usize> = model.free_slots().map(|(slot, _)| slot).collect();
+        Fit {
+            machines: ranks.iter().map(|r| exact || r.is_none()).collect(),
+            slots: (here.slots.iter().enumerate())
+                .map(|(slot, n)| (exact || free.contains(&slot), at(&run.slots, n)))
+                .collect(),
+            saw: exact.then(|| here.saw.iter().map(|n| at(&run.saw, n)).collect()),
+        }
+    }
+
+    /// Whether world `got` of this model fits world `run` of the run.
+    fn fits(&self, got: &Seen, run: &Seen) -> bool {
+        // A value this model does not keep fits any; one it keeps must be the run's too.
+        let value = |v: &Shown, at: Option<usize>, run: &[Shown]| {
+            *v == Shown::Unstored || at.and_then(|i| run.get(i)).is_some_and(|w| v.agrees(w))
+        };
+        got.turn == run.turn
+            && got.machines.len() == run.machines.len()
+            && (got.machines.iter().zip(&run.machines).zip(&self.machines))
+                .all(|((a, b), &held)| !held || a == b)
+            && (got.values.iter().zip(&self.slots))
+                .all(|(v, &(held, at))| !held || value(v, at, &run.values))
+            && self
+                .saw
+                .as_ref()
+                .is_none_or(|saw| (got.saw.iter().zip(saw)).all(|(v, &at)| value(v, at, &run.saw)))
+    }
+}
+
+/// How an ordered world of a step was reached.
+#[derive(Clone, Copy)]
+enum Came {
+    /// The initial world of this number.
+    Initial(usize),
+    /// From node `parent` of the step before, by `choice`.
+    Step { parent: usize, choice: Choice },
+}
+
+/// An ordered world that fits a world of the run.
 struct Node {
     world: SystemState,
-    /// Its parent's place in the step before, and the choice taken there; for the first step,
-    /// the number of the initial world.
-    from: Result<(usize, Choice), usize>,
+    came: Came,
     /// Transitions fired on the way by machines with ordered clocks, which a loose fit lets
     /// do what they like: of the ways to a world, the one with fewest is kept, so that a
     /// counterexample shows what its verdict needs and not every timeout the run let fire.
@@ -133,19 +145,35 @@ struct Layers<'a> {
     ordered: Vec<bool>,
     stepper: StepGenerator<'a>,
     layers: Vec<Vec<Node>>,
+    /// Worlds held in all layers, and the most that may be.
+    held: usize,
+    most: usize,
 }
 
 impl<'a> Layers<'a> {
-    /// The initial worlds that show `first`.
-    fn start(model: &'a Search<'a>, fit: Fit, first: &Seen) -> Option<Layers<'a>> {
+    /// The initial worlds that fit the run's first, with at most as many worlds held in all
+    /// as `budget` (states, bytes) of the search would store.
+    fn start(
+        model: &'a Search<'a>,
+        run: &Run,
+        exact: bool,
+        budget: (usize, usize),
+    ) -> Option<Self> {
+        let fit = Fit::new(model, &run.names, exact);
+        let first = run.worlds.first()?;
         let layer: Vec<Node> = (initial_worlds(model).enumerate())
             .filter(|(_, w)| fit.fits(&seen(model, w), first))
             .map(|(i, world)| Node {
                 world,
-                from: Err(i),
+                came: Came::Initial(i),
                 fired: 0,
             })
             .collect();
+        // A node's world, and its key in a step's table of worlds met.
+        let bytes = 2
+            * (std::mem::size_of::<Node>()
+                + model.machines.len() * std::mem::size_of::<Control>()
+                + 4 * (model.slots.len() + model.saw.len()));
         (!layer.is_empty()).then(|| Layers {
             model,
             fit,
@@ -153,11 +181,13 @@ impl<'a> Layers<'a> {
                 .map(Option::is_some)
                 .collect(),
             stepper: StepGenerator::new(model),
+            held: layer.len(),
+            most: budget.0.min(budget.1 / bytes),
             layers: vec![layer],
         })
     }
 
-    /// One step on, to the worlds that show `next`; `false` where none does, or too many.
+    /// One step on, to the worlds that fit `next`; `false` where none does, or too many.
     fn step(&mut self, next: &Seen) -> bool {
         let last = self.layers.last().expect("a first layer");
         let mut layer: Vec<Node> = Vec::new();
@@ -171,10 +201,13 @@ impl<'a> Layers<'a> {
                     continue;
                 }
                 let fired = node.fired + u32::from(self.ordered[s.machine] && s.fired.is_some());
-                let from = Ok((at, s.choice));
+                let came = Came::Step {
+                    parent: at,
+                    choice: s.choice,
+                };
                 match met.get(&s.world) {
                     Some(&i) if layer[i].fired > fired => {
-                        layer[i].from = from;
+                        layer[i].came = came;
                         layer[i].fired = fired;
                     }
                     Some(_) => {}
@@ -182,16 +215,17 @@ impl<'a> Layers<'a> {
                         met.insert(s.world.clone(), layer.len());
                         layer.push(Node {
                             world: s.world,
-                            from,
+                            came,
                             fired,
                         });
                     }
                 }
             }
-            if layer.len() > MOST_WORLDS {
+            if self.held + layer.len() > self.most {
                 return false;
             }
         }
+        self.held += layer.len();
         let going = !layer.is_empty();
         self.layers.push(layer);
         going
@@ -208,7 +242,7 @@ impl<'a> Layers<'a> {
         let (mut layer, mut at) = (layer, at);
         let mut steps = Vec::new();
         while layer > down_to {
-            let Ok((parent, choice)) = self.layers[layer][at].from else {
+            let Came::Step { parent, choice } = self.layers[layer][at].came else {
                 unreachable!("only the first layer's worlds are initial");
             };
             layer -= 1;
@@ -219,15 +253,39 @@ impl<'a> Layers<'a> {
         (at, steps)
     }
 
-    /// The way from an initial world to node `at` of layer `layer`, as a trace.
-    fn trace(&self, layer: usize, at: usize, then: Vec<(SystemState, Choice)>) -> (Trace, usize) {
+    /// The way from an initial world to node `at` of layer `layer`, then `then`, replayed as a
+    /// trace, and where `then` starts in it; `None` if the replay does not go all the way.
+    fn trace(
+        &self,
+        layer: usize,
+        at: usize,
+        then: Vec<(SystemState, Choice)>,
+    ) -> Option<(Trace, usize)> {
         let (first, mut steps) = self.way(layer, at, 0);
-        let Err(initial) = self.layers[0][first].from else {
+        let Came::Initial(initial) = self.layers[0][first].came else {
             unreachable!("the first layer's worlds are initial");
         };
         let split = steps.len();
+        let last = match then.last() {
+            Some((world, choice)) => self.after(world, *choice)?,
+            None => self.layers[layer][at].world.clone(),
+        };
         steps.extend(then);
-        (trace_of(self.model, initial, steps), split)
+        let length = steps.len();
+        let trace = trace_of(self.model, initial, steps);
+        // A replay that stops short would be a bug in the model; then the run decides nothing.
+        let whole = trace.steps.len() == length
+            && trace.run.worlds.last() == Some(&seen(self.model, &last));
+        whole.then_some((trace, split))
+    }
+
+    /// The world step `choice` leads to from `world`.
+    fn after(&self, world: &SystemState, choice: Choice) -> Option<SystemState> {
+        let mut successors = Vec::new();
+        self.stepper.successors(world, false, &mut successors);
+        (successors.into_iter())
+            .find(|s| s.choice == choice)
+            .map(|s| s.world)
     }
 
     fn worlds(&self, layer: usize) -> FxHashMap<&SystemState, usize> {
@@ -238,9 +296,14 @@ impl<'a> Layers<'a> {
 }
 
 /// A counterexample or witness: `way` followed loosely to a world that is `property`'s target.
-fn follow_way(model: &Search, property: &Property, way: &Run) -> Option<Trace> {
-    let mut layers = Layers::start(model, Fit::loose(model), way.0.first()?)?;
-    if !layers.follow(&way.0) {
+fn follow_way(
+    model: &Search,
+    property: &Property,
+    way: &Run,
+    budget: (usize, usize),
+) -> Option<Trace> {
+    let mut layers = Layers::start(model, way, false, budget)?;
+    if !layers.follow(&way.worlds) {
         return None;
     }
     let last = layers.layers.len() - 1;
@@ -248,28 +311,37 @@ fn follow_way(model: &Search, property: &Property, way: &Run) -> Option<Trace> {
         .filter(|(_, n)| property.is_target(model, &n.world))
         .min_by_key(|(_, n)| n.fired)?
         .0;
-    Some(layers.trace(last, at, Vec::new()).0)
+    Some(layers.trace(last, at, Vec::new())?.0)
 }
 
 /// A lasso: `way` followed to the loop's start, then round `cycle` until the worlds at its
 /// start are a set met at an earlier lap. Every world of that set was reached from one of it
 /// by some laps, so walking back from one lands on a world met again: the ordered loop.
-fn follow_lasso(model: &Search, way: &Run, cycle: &Run) -> Option<(Trace, Trace)> {
-    let mut layers = Layers::start(model, Fit::Exact, way.0.first()?)?;
-    if !layers.follow(&way.0) {
+fn follow_lasso(
+    model: &Search,
+    way: &Run,
+    cycle: &Run,
+    budget: (usize, usize),
+) -> Option<(Trace, Trace)> {
+    // A lasso whose loop does not start where its way ends, or does not close, decides nothing.
+    let (entry, start_of_loop) = (way.worlds.last()?, cycle.worlds.first());
+    if start_of_loop.is_some_and(|s| s != entry) || cycle.worlds.last() != start_of_loop {
+        return None;
+    }
+    let mut layers = Layers::start(model, way, true, budget)?;
+    if !layers.follow(&way.worlds) {
         return None;
     }
     let start = layers.layers.len() - 1;
-    if cycle.0.len() < 2 {
+    if cycle.worlds.len() < 2 {
         // The run ends where no machine can ring; so must the ordered one.
-        let stepper = StepGenerator::new(model);
         let mut next = Vec::new();
         let at = (layers.layers[start].iter()).position(|n| {
             next.clear();
-            stepper.successors(&n.world, false, &mut next);
+            layers.stepper.successors(&n.world, false, &mut next);
             next.is_empty()
         })?;
-        let (way_in, _) = layers.trace(start, at, Vec::new());
+        let (way_in, _) = layers.trace(start, at, Vec::new())?;
         let stays = Trace {
             initially: Vec::new(),
             steps: Vec::new(),
@@ -278,13 +350,13 @@ fn follow_lasso(model: &Search, way: &Run, cycle: &Run) -> Option<(Trace, Trace)
         };
         return Some((way_in, stays));
     }
-    let lap = cycle.0.len() - 1;
+    let lap = cycle.worlds.len() - 1;
     let set = |layers: &Layers, at: usize| -> FxHashSet<SystemState> {
         layers.layers[at].iter().map(|n| n.world.clone()).collect()
     };
     let mut starts = vec![set(&layers, start)];
     for laps in 1..=MOST_LAPS {
-        if !layers.follow(&cycle.0) {
+        if !layers.follow(&cycle.worlds) {
             return None;
         }
         let now = set(&layers, start + laps * lap);
@@ -292,17 +364,13 @@ fn follow_lasso(model: &Search, way: &Run, cycle: &Run) -> Option<(Trace, Trace)
             starts.push(now);
             continue;
         };
-        return Some(close_loop(
-            &layers,
-            start + earlier * lap,
-            start + laps * lap,
-        ));
+        return close_loop(&layers, start + earlier * lap, start + laps * lap);
     }
     None
 }
 
 /// With the worlds of layers `from` and `to` one set, the loop through them and the way to it.
-fn close_loop(layers: &Layers, from: usize, to: usize) -> (Trace, Trace) {
+fn close_loop(layers: &Layers, from: usize, to: usize) -> Option<(Trace, Trace)> {
     let at_to = layers.worlds(to);
     // Walking back from a world of `to` to `from` lands on a world of the set again.
     let mut met: Vec<&SystemState> = Vec::new();
@@ -318,14 +386,15 @@ fn close_loop(layers: &Layers, from: usize, to: usize) -> (Trace, Trace) {
         backs.push(steps);
         at = at_to[&layers.layers[from][landed].world];
     };
-    // met[k+1] leads to met[k] by backs[k]: from met[last] (= met[repeat]'s world) forward.
+    // met[k+1] leads to met[k] by backs[k], so from met[repeat] (the last one walked back to)
+    // forward through them in reverse.
     let loop_steps: Vec<(SystemState, Choice)> =
         backs[repeat..].iter().rev().flatten().cloned().collect();
     let from_at = layers.worlds(from)[met[repeat]];
-    let (whole, split) = layers.trace(from, from_at, loop_steps);
-    debug_assert!(
-        whole.run.0.get(split) == whole.run.0.last(),
-        "the loop ends where it starts"
-    );
-    whole.split(split)
+    let (whole, split) = layers.trace(from, from_at, loop_steps)?;
+    // The loop ends where it starts.
+    if whole.run.worlds.get(split) != whole.run.worlds.last() {
+        return None;
+    }
+    Some(whole.split(split))
 }

@@ -212,7 +212,8 @@ fn checked(
         if options.clock_order {
             if !found.is_empty() {
                 let search = Search::new(&model);
-                confirm::confirm(&search, &compiled, &mut report.properties, found);
+                let budget = (options.max_states, options.max_memory);
+                confirm::confirm(&search, &compiled, &mut report.properties, found, budget);
             }
             return Ok(report);
         }

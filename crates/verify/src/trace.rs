@@ -8,8 +8,8 @@ use crate::model::Storage;
 use crate::outcome::{Assignment, Trace, TraceStep};
 use crate::ringlet::{initial_worlds, Choice, Detail, StepGenerator, Successor};
 use crate::search::Search;
-use crate::seen::{Run, Seen, Shown};
-use crate::values::{ValueId, NEVER};
+use crate::seen::{Names, Run, Seen, Shown};
+use crate::values::{key, ValueId, NEVER};
 use crate::world::SystemState;
 use crate::world::POSTED;
 use proclaim_board::Value;
@@ -88,7 +88,7 @@ pub fn trace_of(
     let mut round = 1;
     let mut steps = Vec::new();
     let mut successors = Vec::new();
-    let mut run = Run::default();
+    let mut run = Run::new(names(model));
     run.push(seen(model, &first));
     for (world, choice) in path {
         successors.clear();
@@ -206,10 +206,10 @@ fn moved_to(m: &crate::model::MachineModel, t: &crate::model::TransitionModel) -
 /// What `world` shows of the behaviour, by value ([`Seen`]).
 pub(crate) fn seen(model: &Search, world: &SystemState) -> Seen {
     let values = model.values.borrow();
-    let shown = |id: ValueId| match id {
-        NEVER => Shown::Never,
-        POSTED => Shown::Posted,
-        id => values.get(id).cloned().map_or(Shown::Never, Shown::Is),
+    let shown = |id: ValueId| match (id, values.get(id)) {
+        (POSTED, _) => Shown::Posted,
+        (_, None) => Shown::Never,
+        (_, Some(v)) => Shown::Is(key(v)),
     };
     Seen {
         turn: world.turn,
@@ -223,5 +223,15 @@ pub(crate) fn seen(model: &Search, world: &SystemState) -> Seen {
             })
             .collect(),
         saw: world.saw.iter().map(|&id| shown(id)).collect(),
+    }
+}
+
+/// The names of `model`'s slots and `saw()`s, which a [`Run`] of it keeps.
+pub(crate) fn names(model: &Search) -> Names {
+    Names {
+        slots: model.slots.iter().map(|s| s.name.clone()).collect(),
+        saw: (model.saw.iter())
+            .map(|(k, name)| format!("{}: {name}", model.machines[*k].name))
+            .collect(),
     }
 }

@@ -14,7 +14,7 @@ pub const NEVER: ValueId = 0;
 /// `Value` holds an `f64`, so it is neither `Eq` nor `Hash`; this is its exact, hashable twin
 /// (a float by its bits: `0.0` and `-0.0` are different values, as they print differently).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
-enum Key {
+pub(crate) enum Key {
     Bool(bool),
     Int(i64),
     Float(u64),
@@ -23,7 +23,7 @@ enum Key {
     List(Vec<Key>),
 }
 
-fn key(value: &Value) -> Key {
+pub(crate) fn key(value: &Value) -> Key {
     match value {
         Value::Bool(b) => Key::Bool(*b),
         Value::Int(i) => Key::Int(*i),
