@@ -73,6 +73,12 @@ pub(crate) fn confirm(
     }
 }
 
+/// Whether `run` follows exactly through the model to its end, with no more worlds held at
+/// once than `budget` states of the search would take.
+pub(crate) fn follows(model: &Search, run: &Run, budget: (usize, usize)) -> bool {
+    Layers::start(model, run, true, budget).is_some_and(|mut layers| layers.follow(&run.worlds))
+}
+
 /// Which parts of a world the follower holds to the run's, and where each of the model's slots
 /// and `saw()`s is in the run's (the run's model may have been built for more properties).
 struct Fit {

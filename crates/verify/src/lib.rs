@@ -226,7 +226,20 @@ fn checked(
     let mut again = |properties: &[PropertySource], options, found: &[Option<confirm::Found>]| {
         checked(behaviour, properties, options, progress, found)
     };
-    refine::check_ordered(report, properties, ordered, options, &mut again)
+    let mut follows = |run: &Run| {
+        let (mut model, compiled) = prepare(behaviour, properties, true)?;
+        model.storage = reduce::storage(&model, &compiled, options.reductions);
+        let budget = (options.max_states, options.max_memory);
+        Ok(confirm::follows(&Search::new(&model), run, budget))
+    };
+    refine::check_ordered(
+        report,
+        properties,
+        ordered,
+        options,
+        &mut again,
+        &mut follows,
+    )
 }
 
 /// What a search claims is absent (a `never` that holds, a state never entered) is only

@@ -5,13 +5,14 @@
 //! unordered first, and only where a verdict rests on a run (a `never`/`always` or liveness
 //! property that fails, a `reachable` that holds) is that property checked again ordered, by
 //! the explicit engine with a budget as large. A verdict found there replaces the first; where
-//! none is, the property is undecided ([`PropertyOutcome::unconfirmed`]), since its run may
-//! be none a robot makes. A verdict that rests on an absence stands as it is: the ordered
-//! model's runs are some of the unordered one's. A deadlock found is not checked again: the
-//! report names the machines whose clocks its run took unordered.
+//! that search runs out, the run itself is followed through the ordered model (`confirm.rs`);
+//! where neither decides, the property is undecided ([`PropertyOutcome::unconfirmed`]), since
+//! its run may be none a robot makes. A verdict that rests on an absence stands as it is: the
+//! ordered model's runs are some of the unordered one's. A deadlock's run is followed; where
+//! it does not follow, the report names the machines whose clocks it took unordered.
 
 use crate::confirm::Found;
-use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Verdict};
+use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Run, Verdict};
 use crate::property::PropertySource;
 use crate::{Options, SearchEngine, VerifyError};
 use std::time::Instant;
@@ -21,15 +22,20 @@ use std::time::Instant;
 pub(crate) type Check<'c> =
     dyn FnMut(&[PropertySource], Options, &[Option<Found>]) -> Result<Report, VerifyError> + 'c;
 
+/// Whether a run follows exactly through the ordered model (`confirm.rs`).
+pub(crate) type Follows<'c> = dyn FnMut(&Run) -> Result<bool, VerifyError> + 'c;
+
 /// `report`, of `properties` checked with clocks unordered where `ordered` names the
 /// machines that would be ordered (none: nothing to check again), with the verdicts a run
-/// decided checked again by `check` (the properties and options it is given).
+/// decided checked again by `check` (the properties and options it is given), and a
+/// deadlock's run followed by `follows`.
 pub(crate) fn check_ordered(
     mut report: Report,
     properties: &[PropertySource],
     ordered: Vec<String>,
     options: Options,
     check: &mut Check<'_>,
+    follows: &mut Follows<'_>,
 ) -> Result<Report, VerifyError> {
     if ordered.is_empty() {
         return Ok(report);
@@ -38,8 +44,17 @@ pub(crate) fn check_ordered(
         .filter(|(_, p)| p.trace.is_some() || p.cycle.is_some())
         .map(|(i, _)| i)
         .collect();
-    let deadlock = (report.findings.iter()).any(|f| matches!(f, Finding::Deadlock { .. }));
-    let mut unconfirmed = deadlock;
+    // A world no transition leaves, with the clocks unordered, is one with them ordered too
+    // (the ordered model's steps are some of the unordered one's): only the way to it needs
+    // following, exactly.
+    let deadlock = (report.findings.iter()).find_map(|f| match f {
+        Finding::Deadlock { trace, .. } => Some(&trace.run),
+        _ => None,
+    });
+    let mut unconfirmed = match deadlock {
+        Some(run) => !follows(run)?,
+        None => false,
+    };
     if !rests.is_empty() {
         let again: Vec<PropertySource> = rests.iter().map(|&i| properties[i].clone()).collect();
         let found: Vec<Option<Found>> = (rests.iter())
