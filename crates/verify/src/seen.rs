@@ -60,6 +60,11 @@ impl Run {
         }
     }
 
+    /// Whether the run ends in the world it starts in, as a lasso's loop must (no step: yes).
+    pub fn closes(&self) -> bool {
+        self.worlds.first() == self.worlds.last()
+    }
+
     pub(crate) fn push(&mut self, seen: Seen) {
         self.worlds.push(seen);
     }

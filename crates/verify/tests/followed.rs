@@ -22,18 +22,6 @@ struct Tally {
     lassos: usize,
 }
 
-/// Whether a loop leaves every machine where it found it: each machine's first step starts
-/// in the state its last step ends in.
-fn closes(cycle: &proclaim_verify::Trace) -> bool {
-    let mut first: std::collections::BTreeMap<&str, &str> = Default::default();
-    let mut last: std::collections::BTreeMap<&str, &str> = Default::default();
-    for s in &cycle.steps {
-        first.entry(&s.machine).or_insert(&s.from);
-        last.insert(&s.machine, s.to.as_deref().unwrap_or(&s.from));
-    }
-    first == last
-}
-
 fn properties(behaviour: &proclaim_behaviour::Behaviour) -> Vec<PropertySource> {
     let mut out = Vec::new();
     for m in &behaviour.machines {
@@ -126,7 +114,7 @@ fn compare(
             match &p.cycle {
                 Some(cycle) => {
                     assert!(
-                        closes(cycle),
+                        cycle.run.closes(),
                         "seed {seed}: {}'s loop does not close\n{shown}",
                         p.name
                     );
