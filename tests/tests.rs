@@ -52,9 +52,10 @@ pub fn fresh_folder(name: &str) -> std::path::PathBuf {
 }
 
 /// The folder `NAME-PID` in Cargo's scratch folder for tests, this test process's own, made if
-/// missing. Folders of the same name that test processes now ended left are removed first, so
-/// the last run's are there to look into and a developer's disk does not fill run by run.
-/// (Where `/proc` cannot say which processes live, nothing is removed.)
+/// missing. Folders of the same name that test processes now ended left, untouched for ten
+/// minutes, are removed first, so the last run's are there to look into and a developer's disk
+/// does not fill run by run. (Where `/proc` cannot say which processes live, nothing is
+/// removed; the ten minutes spare a process `/proc` does not show, in another PID namespace.)
 #[allow(dead_code)]
 pub fn own_folder(name: &str) -> std::path::PathBuf {
     let root = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
@@ -68,7 +69,10 @@ pub fn own_folder(name: &str) -> std::path::PathBuf {
         let file = entry.file_name();
         let pid =
             (file.to_str()).and_then(|f| f.strip_prefix(name)?.strip_prefix('-')?.parse().ok());
-        if pid.is_some_and(ended) {
+        let idle = (entry.metadata().and_then(|m| m.modified()).ok())
+            .and_then(|t| t.elapsed().ok())
+            .is_some_and(|d| d > std::time::Duration::from_secs(600));
+        if idle && pid.is_some_and(ended) {
             let _ = std::fs::remove_dir_all(entry.path());
         }
     }
@@ -81,7 +85,7 @@ pub fn own_folder(name: &str) -> std::path::PathBuf {
 /// this test process and `tag`.
 #[allow(dead_code)]
 pub fn behaviour_folder(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
-    let dir = fresh_folder(&format!("proclaim-{tag}"));
+    let dir = own_folder(&format!("proclaim-{tag}"));
     for (name, text) in files {
         std::fs::write(dir.join(name), text).unwrap();
     }

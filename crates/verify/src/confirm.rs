@@ -24,6 +24,11 @@ use rustc_hash::{FxHashMap, FxHashSet};
 /// How often a lasso's loop is followed round before its start's worlds must have come back.
 const MOST_LAPS: usize = 64;
 
+/// The most worlds a step of a loose follow keeps, those with fewest firings of machines with
+/// ordered clocks first: a loose follow needs one way, not every one, and the machines it
+/// lets do what they like would otherwise multiply its worlds.
+const BEAM: usize = 256;
+
 /// The runs the unordered search found, a property each: its way (or its way in) and its loop.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Found {
@@ -73,15 +78,21 @@ pub(crate) fn confirm(
     }
 }
 
-/// Whether `run` follows exactly through the model to its end, with no more worlds held at
-/// once than `budget` states of the search would take.
-pub(crate) fn follows(model: &Search, run: &Run, budget: (usize, usize)) -> bool {
-    Layers::start(model, run, true, budget).is_some_and(|mut layers| layers.follow(&run.worlds))
+/// A deadlock's `run` followed loosely to a world that shows its last exactly, as the trace of
+/// that ordered run; with no more worlds held at once than `budget` states of the search would
+/// take.
+pub(crate) fn deadlock(model: &Search, run: &Run, budget: (usize, usize)) -> Option<Trace> {
+    let last = run.worlds.last()?;
+    let exact = Fit::new(model, &run.names, true);
+    loosely_to(model, run, budget, |w| exact.fits(&seen(model, w), last))
 }
 
 /// Which parts of a world the follower holds to the run's, and where each of the model's slots
 /// and `saw()`s is in the run's (the run's model may have been built for more properties).
 struct Fit {
+    /// Whether every part is held, the turn too: else the turn is not, since a machine not held
+    /// may ring where the run's did not, or not ring where it did.
+    exact: bool,
     /// Per machine, whether it is held (all of them when following exactly).
     machines: Vec<bool>,
     /// Per slot, whether it is held, and where it is in the run.
@@ -92,16 +103,33 @@ struct Fit {
 
 impl Fit {
     fn new(model: &Search, run: &Names, exact: bool) -> Fit {
-        let at = |names: &[String], name: &String| names.iter().position(|n| n == name);
         let here = names(model);
+        // Two slots may share a name (a machine's `Pump.level` and a global written so): the
+        // same names in the same order map by place, else a repeated name maps to nothing.
+        let same = here == *run;
+        let at = |names: &[String], name: &String| {
+            let mut places = (names.iter().enumerate()).filter(|(_, n)| *n == name);
+            match (places.next(), places.next()) {
+                (Some((i, _)), None) => Some(i),
+                _ => None,
+            }
+        };
         let ranks = clocks::ranks(&model.machines);
         let free: FxHashSet<usize> = model.free_slots().map(|(slot, _)| slot).collect();
         Fit {
+            exact,
             machines: ranks.iter().map(|r| exact || r.is_none()).collect(),
             slots: (here.slots.iter().enumerate())
-                .map(|(slot, n)| (exact || free.contains(&slot), at(&run.slots, n)))
+                .map(|(slot, n)| {
+                    let place = if same { Some(slot) } else { at(&run.slots, n) };
+                    (exact || free.contains(&slot), place)
+                })
                 .collect(),
-            saw: exact.then(|| here.saw.iter().map(|n| at(&run.saw, n)).collect()),
+            saw: exact.then(|| {
+                (here.saw.iter().enumerate())
+                    .map(|(j, n)| if same { Some(j) } else { at(&run.saw, n) })
+                    .collect()
+            }),
         }
     }
 
@@ -111,7 +139,7 @@ impl Fit {
         let value = |v: &Shown, at: Option<usize>, run: &[Shown]| {
             *v == Shown::Unstored || at.and_then(|i| run.get(i)).is_some_and(|w| v.agrees(w))
         };
-        got.turn == run.turn
+        (!self.exact || got.turn == run.turn)
             && got.machines.len() == run.machines.len()
             && (got.machines.iter().zip(&run.machines).zip(&self.machines))
                 .all(|((a, b), &held)| !held || a == b)
@@ -124,13 +152,51 @@ impl Fit {
     }
 }
 
+/// Steps of a way, each the world it starts from and its choice.
+type Steps = Vec<(SystemState, Choice)>;
+
 /// How an ordered world of a step was reached.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 enum Came {
     /// The initial world of this number.
     Initial(usize),
-    /// From node `parent` of the step before, by `choice`.
-    Step { parent: usize, choice: Choice },
+    /// From node `parent` of the step before, by these steps (each the world it starts from
+    /// and its choice): one when following exactly, else the steps of machines not held that
+    /// the schedule puts before the run's next step, and that step.
+    Steps { parent: usize, steps: Steps },
+}
+
+/// A world on the way from a node of the last layer, by `steps` (the last of `machine`), with
+/// `fired` so far.
+struct Going {
+    parent: usize,
+    steps: Steps,
+    machine: usize,
+    world: SystemState,
+    fired: u32,
+}
+
+/// `g` in `layer`, unless a way to its world with no more firings is there already.
+fn keep(layer: &mut Vec<Node>, met: &mut FxHashMap<SystemState, usize>, g: Going) {
+    let came = Came::Steps {
+        parent: g.parent,
+        steps: g.steps,
+    };
+    match met.get(&g.world) {
+        Some(&i) if layer[i].fired > g.fired => {
+            layer[i].came = came;
+            layer[i].fired = g.fired;
+        }
+        Some(_) => {}
+        None => {
+            met.insert(g.world.clone(), layer.len());
+            layer.push(Node {
+                world: g.world,
+                came,
+                fired: g.fired,
+            });
+        }
+    }
 }
 
 /// An ordered world that fits a world of the run.
@@ -193,43 +259,75 @@ impl<'a> Layers<'a> {
         })
     }
 
-    /// One step on, to the worlds that fit `next`; `false` where none does, or too many.
-    fn step(&mut self, next: &Seen) -> bool {
+    /// The last layer's worlds, as the start of ways on.
+    fn going(&self) -> Vec<Going> {
         let last = self.layers.last().expect("a first layer");
+        (last.iter().enumerate())
+            .map(|(parent, n)| Going {
+                parent,
+                steps: Vec::new(),
+                machine: usize::MAX,
+                world: n.world.clone(),
+                fired: n.fired,
+            })
+            .collect()
+    }
+
+    /// The worlds `going` leads to by one step each, of a machine `by` allows; their firings of
+    /// machines with ordered clocks counted.
+    fn on(&self, going: Vec<Going>, by: impl Fn(usize) -> bool, out: &mut Vec<Going>) {
+        let mut successors = Vec::new();
+        for g in going {
+            successors.clear();
+            self.stepper.successors(&g.world, false, &mut successors);
+            for s in successors.drain(..).filter(|s| by(s.machine)) {
+                let mut steps = g.steps.clone();
+                steps.push((g.world.clone(), s.choice));
+                out.push(Going {
+                    parent: g.parent,
+                    steps,
+                    machine: s.machine,
+                    world: s.world,
+                    fired: g.fired + u32::from(self.ordered[s.machine] && s.fired.is_some()),
+                });
+            }
+        }
+    }
+
+    /// One step on, to the worlds that fit `next`: any step when following exactly (`by`
+    /// none), else a step of machine `by` after the steps of machines not held that the
+    /// schedule puts before it (fewer than there are machines). `false` where no world fits,
+    /// or the worlds would pass the budget.
+    fn step(&mut self, next: &Seen, by: Option<usize>) -> bool {
         let mut layer: Vec<Node> = Vec::new();
         let mut met: FxHashMap<SystemState, usize> = FxHashMap::default();
-        let mut successors = Vec::new();
-        for (at, node) in last.iter().enumerate() {
-            successors.clear();
-            self.stepper.successors(&node.world, false, &mut successors);
-            for s in successors.drain(..) {
-                if !self.fit.fits(&seen(self.model, &s.world), next) {
-                    continue;
-                }
-                let fired = node.fired + u32::from(self.ordered[s.machine] && s.fired.is_some());
-                let came = Came::Step {
-                    parent: at,
-                    choice: s.choice,
-                };
-                match met.get(&s.world) {
-                    Some(&i) if layer[i].fired > fired => {
-                        layer[i].came = came;
-                        layer[i].fired = fired;
+        let mut between: FxHashSet<SystemState> = FxHashSet::default();
+        let mut going = self.going();
+        let depth = if by.is_some() {
+            self.model.machines.len()
+        } else {
+            0
+        };
+        for _ in 0..=depth {
+            let mut stepped = Vec::new();
+            self.on(going, |_| true, &mut stepped);
+            going = Vec::new();
+            for g in stepped {
+                if by.is_none_or(|m| m == g.machine) {
+                    if self.fit.fits(&seen(self.model, &g.world), next) {
+                        keep(&mut layer, &mut met, g);
                     }
-                    Some(_) => {}
-                    None => {
-                        met.insert(s.world.clone(), layer.len());
-                        layer.push(Node {
-                            world: s.world,
-                            came,
-                            fired,
-                        });
-                    }
+                } else if !self.fit.machines[g.machine] && between.insert(g.world.clone()) {
+                    going.push(g);
                 }
             }
-            if self.held + layer.len() > self.most {
+            if self.held + layer.len() > self.most || between.len() > self.most {
                 return false;
             }
+        }
+        if by.is_some() && layer.len() > BEAM {
+            layer.sort_by_key(|n| n.fired);
+            layer.truncate(BEAM);
         }
         self.held += layer.len();
         let going = !layer.is_empty();
@@ -237,36 +335,70 @@ impl<'a> Layers<'a> {
         going
     }
 
-    /// Follows `run` after its first world.
+    /// Follows `run` after its first world, exactly.
     fn follow(&mut self, run: &[Seen]) -> bool {
-        run.iter().skip(1).all(|next| self.step(next))
+        run.iter().skip(1).all(|next| self.step(next, None))
+    }
+
+    /// Follows `run` loosely: each step of a machine held, after those of the others the
+    /// schedule puts before it.
+    fn follow_loosely(&mut self, run: &Run) -> bool {
+        let held = self.fit.machines.clone();
+        (run.rang.iter().zip(&run.worlds[1..]))
+            .filter(|(&m, _)| held[m])
+            .all(|(&m, next)| self.step(next, Some(m)))
+    }
+
+    /// A world that is a target: of the last layer, or one that at most `depth`
+    /// steps of machines not held lead to; the one with fewest firings of machines with
+    /// ordered clocks, then the nearest. Its node in the last layer, and the steps from it.
+    fn target(
+        &self,
+        is_target: impl Fn(&SystemState) -> bool,
+        depth: usize,
+    ) -> Option<(usize, Steps)> {
+        let mut best: Option<(u32, usize, Steps)> = None;
+        let mut between: FxHashSet<SystemState> = FxHashSet::default();
+        let mut going = self.going();
+        for d in 0..=depth {
+            for g in &going {
+                let better = best.as_ref().is_none_or(|b| g.fired < b.0);
+                if better && is_target(&g.world) {
+                    best = Some((g.fired, g.parent, g.steps.clone()));
+                }
+            }
+            if d == depth || between.len() > self.most {
+                break;
+            }
+            let mut stepped = Vec::new();
+            self.on(going, |k| !self.fit.machines[k], &mut stepped);
+            going = (stepped.into_iter())
+                .filter(|g| between.insert(g.world.clone()))
+                .collect();
+        }
+        best.map(|(_, at, steps)| (at, steps))
     }
 
     /// The way to node `at` of layer `layer` from the layer `down_to`'s node it came from:
     /// that node, and each step's world and choice.
-    fn way(&self, layer: usize, at: usize, down_to: usize) -> (usize, Vec<(SystemState, Choice)>) {
+    fn way(&self, layer: usize, at: usize, down_to: usize) -> (usize, Steps) {
         let (mut layer, mut at) = (layer, at);
-        let mut steps = Vec::new();
+        let mut chunks = Vec::new();
         while layer > down_to {
-            let Came::Step { parent, choice } = self.layers[layer][at].came else {
+            let Came::Steps { parent, steps } = &self.layers[layer][at].came else {
                 unreachable!("only the first layer's worlds are initial");
             };
+            chunks.push(steps);
             layer -= 1;
-            at = parent;
-            steps.push((self.layers[layer][at].world.clone(), choice));
+            at = *parent;
         }
-        steps.reverse();
+        let steps = chunks.into_iter().rev().flatten().cloned().collect();
         (at, steps)
     }
 
     /// The way from an initial world to node `at` of layer `layer`, then `then`, replayed as a
     /// trace, and where `then` starts in it; `None` if the replay does not go all the way.
-    fn trace(
-        &self,
-        layer: usize,
-        at: usize,
-        then: Vec<(SystemState, Choice)>,
-    ) -> Option<(Trace, usize)> {
+    fn trace(&self, layer: usize, at: usize, then: Steps) -> Option<(Trace, usize)> {
         let (first, mut steps) = self.way(layer, at, 0);
         let Came::Initial(initial) = self.layers[0][first].came else {
             unreachable!("the first layer's worlds are initial");
@@ -301,23 +433,35 @@ impl<'a> Layers<'a> {
     }
 }
 
-/// A counterexample or witness: `way` followed loosely to a world that is `property`'s target.
+/// A counterexample or witness: `way` followed loosely, then on by steps of machines not held
+/// (as many as the run took after its last step of one held, and one a machine more) to a
+/// world that is `property`'s target.
 fn follow_way(
     model: &Search,
     property: &Property,
     way: &Run,
     budget: (usize, usize),
 ) -> Option<Trace> {
+    loosely_to(model, way, budget, |w| property.is_target(model, w))
+}
+
+/// `way` followed loosely, then on by steps of machines not held (as many as the run took
+/// after its last step of one held, and one a machine more) to a world `is_target` takes.
+fn loosely_to(
+    model: &Search,
+    way: &Run,
+    budget: (usize, usize),
+    is_target: impl Fn(&SystemState) -> bool,
+) -> Option<Trace> {
     let mut layers = Layers::start(model, way, false, budget)?;
-    if !layers.follow(&way.worlds) {
+    if !layers.follow_loosely(way) {
         return None;
     }
-    let last = layers.layers.len() - 1;
-    let at = (layers.layers[last].iter().enumerate())
-        .filter(|(_, n)| property.is_target(model, &n.world))
-        .min_by_key(|(_, n)| n.fired)?
-        .0;
-    Some(layers.trace(last, at, Vec::new())?.0)
+    let after = (way.rang.iter().rev())
+        .take_while(|&&m| !layers.fit.machines[m])
+        .count();
+    let (at, then) = layers.target(is_target, after + model.machines.len())?;
+    Some(layers.trace(layers.layers.len() - 1, at, then)?.0)
 }
 
 /// A lasso: `way` followed to the loop's start, then round `cycle` until the worlds at its
@@ -380,7 +524,7 @@ fn close_loop(layers: &Layers, from: usize, to: usize) -> Option<(Trace, Trace)>
     let at_to = layers.worlds(to);
     // Walking back from a world of `to` to `from` lands on a world of the set again.
     let mut met: Vec<&SystemState> = Vec::new();
-    let mut backs: Vec<Vec<(SystemState, Choice)>> = Vec::new();
+    let mut backs: Vec<Steps> = Vec::new();
     let mut at = 0;
     let repeat = loop {
         let world = &layers.layers[to][at].world;
@@ -394,8 +538,7 @@ fn close_loop(layers: &Layers, from: usize, to: usize) -> Option<(Trace, Trace)>
     };
     // met[k+1] leads to met[k] by backs[k], so from met[repeat] (the last one walked back to)
     // forward through them in reverse.
-    let loop_steps: Vec<(SystemState, Choice)> =
-        backs[repeat..].iter().rev().flatten().cloned().collect();
+    let loop_steps: Steps = backs[repeat..].iter().rev().flatten().cloned().collect();
     let from_at = layers.worlds(from)[met[repeat]];
     let (whole, split) = layers.trace(from, from_at, loop_steps)?;
     // The loop ends where it starts.

@@ -230,7 +230,7 @@ fn checked(
         let (mut model, compiled) = prepare(behaviour, properties, true)?;
         model.storage = reduce::storage(&model, &compiled, options.reductions);
         let budget = (options.max_states, options.max_memory);
-        Ok(confirm::follows(&Search::new(&model), run, budget))
+        Ok(confirm::deadlock(&Search::new(&model), run, budget))
     };
     refine::check_ordered(
         report,

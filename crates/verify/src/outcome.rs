@@ -243,7 +243,7 @@ pub struct Report {
     pub inexact: Vec<Inexact>,
     /// The machines whose clocks were taken unordered against each other's (two or more with
     /// constant time tests, [`crate::Options::clock_order`] off), where that leaves a property
-    /// undecided ([`PropertyOutcome::unconfirmed`]) or a deadlock found unchecked.
+    /// undecided ([`PropertyOutcome::unconfirmed`]) or a deadlock found unconfirmed.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unordered_clocks: Vec<String>,
     /// The search that checked again, with the clocks of different machines ordered, the

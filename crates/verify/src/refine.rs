@@ -12,7 +12,7 @@
 //! it does not follow, the report names the machines whose clocks it took unordered.
 
 use crate::confirm::Found;
-use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Run, Verdict};
+use crate::outcome::{Finding, OrderedCheck, PropertyOutcome, Report, Run, Trace, Verdict};
 use crate::property::PropertySource;
 use crate::{Options, SearchEngine, VerifyError};
 use std::time::Instant;
@@ -22,8 +22,8 @@ use std::time::Instant;
 pub(crate) type Check<'c> =
     dyn FnMut(&[PropertySource], Options, &[Option<Found>]) -> Result<Report, VerifyError> + 'c;
 
-/// Whether a run follows exactly through the ordered model (`confirm.rs`).
-pub(crate) type Follows<'c> = dyn FnMut(&Run) -> Result<bool, VerifyError> + 'c;
+/// A deadlock's run followed through the ordered model, as that model's trace (`confirm.rs`).
+pub(crate) type Follows<'c> = dyn FnMut(&Run) -> Result<Option<Trace>, VerifyError> + 'c;
 
 /// `report`, of `properties` checked with clocks unordered where `ordered` names the
 /// machines that would be ordered (none: nothing to check again), with the verdicts a run
@@ -44,17 +44,18 @@ pub(crate) fn check_ordered(
         .filter(|(_, p)| p.trace.is_some() || p.cycle.is_some())
         .map(|(i, _)| i)
         .collect();
-    // A world no transition leaves, with the clocks unordered, is one with them ordered too
-    // (the ordered model's steps are some of the unordered one's): only the way to it needs
-    // following, exactly.
-    let deadlock = (report.findings.iter()).find_map(|f| match f {
-        Finding::Deadlock { trace, .. } => Some(&trace.run),
-        _ => None,
-    });
-    let mut unconfirmed = match deadlock {
-        Some(run) => !follows(run)?,
-        None => false,
-    };
+    // A world from which no transition can ever fire again, with the clocks unordered, is one
+    // with them ordered too (its ordered steps are some of its unordered ones): only the way to
+    // it needs following.
+    let mut unconfirmed = false;
+    for finding in &mut report.findings {
+        if let Finding::Deadlock { trace, .. } = finding {
+            match follows(&trace.run)? {
+                Some(ordered) => *trace = ordered,
+                None => unconfirmed = true,
+            }
+        }
+    }
     if !rests.is_empty() {
         let again: Vec<PropertySource> = rests.iter().map(|&i| properties[i].clone()).collect();
         let found: Vec<Option<Found>> = (rests.iter())

@@ -49,6 +49,8 @@ pub(crate) struct Names {
 #[derive(Clone, Debug, Default)]
 pub struct Run {
     pub(crate) worlds: Vec<Seen>,
+    /// The machine each step rang.
+    pub(crate) rang: Vec<usize>,
     pub(crate) names: Arc<Names>,
 }
 
@@ -56,6 +58,7 @@ impl Run {
     pub(crate) fn new(names: Names) -> Run {
         Run {
             worlds: Vec::new(),
+            rang: Vec::new(),
             names: Arc::new(names),
         }
     }
@@ -65,27 +68,34 @@ impl Run {
         self.worlds.first() == self.worlds.last()
     }
 
-    pub(crate) fn push(&mut self, seen: Seen) {
+    /// The world the run starts in.
+    pub(crate) fn start(&mut self, seen: Seen) {
+        self.worlds.push(seen);
+    }
+
+    /// A step of `machine` to the world `seen`.
+    pub(crate) fn push(&mut self, machine: usize, seen: Seen) {
+        self.rang.push(machine);
         self.worlds.push(seen);
     }
 
     /// The worlds up to step `at`'s start, and those from it on (that world in both).
     pub(crate) fn split(self, at: usize) -> (Run, Run) {
-        let names = self.names;
-        let mut first = self.worlds;
-        let rest = first.get(at..).map(<[Seen]>::to_vec).unwrap_or_default();
-        first.truncate(at + 1);
+        let mut worlds = self.worlds;
+        let mut rang = self.rang;
         let rest = Run {
-            worlds: rest,
-            names: names.clone(),
+            worlds: worlds.get(at..).map(<[Seen]>::to_vec).unwrap_or_default(),
+            rang: rang.get(at..).map(<[usize]>::to_vec).unwrap_or_default(),
+            names: self.names.clone(),
         };
-        (
-            Run {
-                worlds: first,
-                names,
-            },
-            rest,
-        )
+        worlds.truncate(at + 1);
+        rang.truncate(at);
+        let first = Run {
+            worlds,
+            rang,
+            names: self.names,
+        };
+        (first, rest)
     }
 }
 
@@ -105,10 +115,12 @@ mod tests {
     #[test]
     fn a_run_split_at_a_step_keeps_that_steps_world_on_both_sides() {
         let mut run = Run::default();
-        (0..4).for_each(|t| run.push(world(t)));
+        run.start(world(0));
+        (1..4).for_each(|t| run.push(usize::from(t), world(t)));
         let (first, rest) = run.clone().split(2);
         assert_eq!(first.worlds, vec![world(0), world(1), world(2)]);
         assert_eq!(rest.worlds, vec![world(2), world(3)]);
+        assert_eq!((first.rang, rest.rang), (vec![1, 2], vec![3]));
         let (all, none) = run.split(7);
         assert_eq!((all.worlds.len(), none.worlds.len()), (4, 0));
     }

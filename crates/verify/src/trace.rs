@@ -89,7 +89,7 @@ pub fn trace_of(
     let mut steps = Vec::new();
     let mut successors = Vec::new();
     let mut run = Run::new(names(model));
-    run.push(seen(model, &first));
+    run.start(seen(model, &first));
     for (world, choice) in path {
         successors.clear();
         stepper.successors(&world, true, &mut successors);
@@ -101,7 +101,7 @@ pub fn trace_of(
         if s.wrapped {
             round += 1;
         }
-        run.push(seen(model, &s.world));
+        run.push(s.machine, seen(model, &s.world));
         let detail = s.detail.clone().unwrap_or_default();
         for &(slot, v) in &detail.read {
             let name = &model.slots[slot].name;
@@ -219,7 +219,10 @@ pub(crate) fn seen(model: &Search, world: &SystemState) -> Seen {
         values: (world.values.iter().enumerate())
             .map(|(slot, &id)| match model.storage[slot] {
                 Storage::Stored => shown(id),
-                _ => Shown::Unstored,
+                // Only whether it was posted yet: what it holds is chosen where it is read.
+                Storage::ChosenWhenRead if id == NEVER => Shown::Never,
+                Storage::ChosenWhenRead => Shown::Posted,
+                Storage::Unread => Shown::Unstored,
             })
             .collect(),
         saw: world.saw.iter().map(|&id| shown(id)).collect(),
