@@ -1,14 +1,19 @@
 //! A run found with the clocks of different machines unordered, followed through the model with
-//! them ordered (§6, time; `refine.rs`), for a property whose ordered search ran out: the
-//! ordered model may be far too large to search, but a run of the first model is one path to
-//! follow. The follower keeps the *set* of ordered worlds that fit the run's worlds, step by
-//! step. A counterexample or witness is followed loosely: every ordered world whose machines
-//! without ordered clocks, free values and turn are the run's, whatever the machines with
-//! ordered clocks did (the run's may have taken a longer timeout before a shorter one), and a
-//! world at its end that is the property's target decides it. A lasso is followed exactly (its
-//! loop's verdict rests on every machine), round its loop until a set of worlds at the loop's
-//! start comes back, which makes a loop of ordered worlds. A run not followed, or one that
-//! would hold more worlds than the search's budget, decides nothing.
+//! them ordered (§6, time; `refine.rs`), for a property whose ordered search ran out, or for a
+//! deadlock found: the ordered model may be far too large to search, but a run of the first
+//! model is one path to follow. The follower keeps the *set* of ordered worlds that fit the
+//! run's, step by step, each reached by real steps of the ordered model.
+//! - A counterexample or witness is followed loosely: each step of a machine without ordered
+//!   clocks is held to the run's (that machine, the others without, the free values), while the
+//!   machines with ordered clocks ring or not as the schedule has them; a world at the end that
+//!   is the property's target decides it, the way with fewest firings of those machines shown.
+//! - A deadlock likewise, to a world that shows the run's last exactly: from it no transition
+//!   can ever fire again unordered, so none can ordered (its steps are some of those).
+//! - A lasso is followed exactly (its loop's verdict rests on every machine), round its loop
+//!   until a set of worlds at the loop's start comes back, which makes a loop of ordered worlds.
+//!
+//! A run not followed, or one that would hold more worlds than the search's budget, decides
+//! nothing.
 
 use crate::clocks;
 use crate::outcome::{PropertyOutcome, Trace, Verdict};
@@ -107,12 +112,15 @@ impl Fit {
         // Two slots may share a name (a machine's `Pump.level` and a global written so): the
         // same names in the same order map by place, else a repeated name maps to nothing.
         let same = here == *run;
-        let at = |names: &[String], name: &String| {
+        let once = |names: &[String], name: &String| {
             let mut places = (names.iter().enumerate()).filter(|(_, n)| *n == name);
             match (places.next(), places.next()) {
                 (Some((i, _)), None) => Some(i),
                 _ => None,
             }
+        };
+        let at = |mine: &[String], theirs: &[String], name: &String| {
+            once(mine, name).and(once(theirs, name))
         };
         let ranks = clocks::ranks(&model.machines);
         let free: FxHashSet<usize> = model.free_slots().map(|(slot, _)| slot).collect();
@@ -121,13 +129,23 @@ impl Fit {
             machines: ranks.iter().map(|r| exact || r.is_none()).collect(),
             slots: (here.slots.iter().enumerate())
                 .map(|(slot, n)| {
-                    let place = if same { Some(slot) } else { at(&run.slots, n) };
+                    let place = if same {
+                        Some(slot)
+                    } else {
+                        at(&here.slots, &run.slots, n)
+                    };
                     (exact || free.contains(&slot), place)
                 })
                 .collect(),
             saw: exact.then(|| {
                 (here.saw.iter().enumerate())
-                    .map(|(j, n)| if same { Some(j) } else { at(&run.saw, n) })
+                    .map(|(j, n)| {
+                        if same {
+                            Some(j)
+                        } else {
+                            at(&here.saw, &run.saw, n)
+                        }
+                    })
                     .collect()
             }),
         }
