@@ -529,6 +529,11 @@ fn follow_lasso(
         }
         let now = set(&layers, start + laps * lap);
         let Some(earlier) = starts.iter().position(|s| *s == now) else {
+            // The sets kept to compare are worlds held too.
+            layers.held += now.len();
+            if layers.held > layers.most {
+                return None;
+            }
             starts.push(now);
             continue;
         };
