@@ -109,45 +109,15 @@ struct Fit {
 impl Fit {
     fn new(model: &Search, run: &Names, exact: bool) -> Fit {
         let here = names(model);
-        // Two slots may share a name (a machine's `Pump.level` and a global written so): the
-        // same names in the same order map by place, else a repeated name maps to nothing.
-        let same = here == *run;
-        let once = |names: &[String], name: &String| {
-            let mut places = (names.iter().enumerate()).filter(|(_, n)| *n == name);
-            match (places.next(), places.next()) {
-                (Some((i, _)), None) => Some(i),
-                _ => None,
-            }
-        };
-        let at = |mine: &[String], theirs: &[String], name: &String| {
-            once(mine, name).and(once(theirs, name))
-        };
         let ranks = clocks::ranks(&model.machines);
         let free: FxHashSet<usize> = model.free_slots().map(|(slot, _)| slot).collect();
         Fit {
             exact,
             machines: ranks.iter().map(|r| exact || r.is_none()).collect(),
-            slots: (here.slots.iter().enumerate())
-                .map(|(slot, n)| {
-                    let place = if same {
-                        Some(slot)
-                    } else {
-                        at(&here.slots, &run.slots, n)
-                    };
-                    (exact || free.contains(&slot), place)
-                })
+            slots: (places(&here.slots, &run.slots).into_iter().enumerate())
+                .map(|(slot, place)| (exact || free.contains(&slot), place))
                 .collect(),
-            saw: exact.then(|| {
-                (here.saw.iter().enumerate())
-                    .map(|(j, n)| {
-                        if same {
-                            Some(j)
-                        } else {
-                            at(&here.saw, &run.saw, n)
-                        }
-                    })
-                    .collect()
-            }),
+            saw: exact.then(|| places(&here.saw, &run.saw)),
         }
     }
 
@@ -172,6 +142,25 @@ impl Fit {
 
 /// Steps of a way, each the world it starts from and its choice.
 type Steps = Vec<(SystemState, Choice)>;
+
+/// Where each of `mine` is in `theirs`. Two slots may share a name (a machine's `Pump.level`
+/// and a global written so): the same names in the same order map by place, else a name
+/// repeated on either side maps to nothing.
+fn places(mine: &[String], theirs: &[String]) -> Vec<Option<usize>> {
+    if mine == theirs {
+        return (0..mine.len()).map(Some).collect();
+    }
+    let once = |names: &[String], name: &String| {
+        let mut at = (names.iter().enumerate()).filter(|(_, n)| *n == name);
+        match (at.next(), at.next()) {
+            (Some((i, _)), None) => Some(i),
+            _ => None,
+        }
+    };
+    (mine.iter())
+        .map(|name| once(mine, name).and(once(theirs, name)))
+        .collect()
+}
 
 /// How an ordered world of a step was reached.
 #[derive(Clone)]
@@ -502,21 +491,7 @@ fn follow_lasso(
     }
     let start = layers.layers.len() - 1;
     if cycle.worlds.len() < 2 {
-        // The run ends where no machine can ring; so must the ordered one.
-        let mut next = Vec::new();
-        let at = (layers.layers[start].iter()).position(|n| {
-            next.clear();
-            layers.stepper.successors(&n.world, false, &mut next);
-            next.is_empty()
-        })?;
-        let (way_in, _) = layers.trace(start, at, Vec::new())?;
-        let stays = Trace {
-            initially: Vec::new(),
-            steps: Vec::new(),
-            unposted: Vec::new(),
-            run: Run::default(),
-        };
-        return Some((way_in, stays));
+        return ended(&layers);
     }
     let lap = cycle.worlds.len() - 1;
     let set = |layers: &Layers, at: usize| -> FxHashSet<SystemState> {
@@ -540,6 +515,26 @@ fn follow_lasso(
         return close_loop(&layers, start + earlier * lap, start + laps * lap);
     }
     None
+}
+
+/// A lasso whose run ends where no machine can ring: the way to a world of the last layer where
+/// none can either, and a loop of no steps.
+fn ended(layers: &Layers) -> Option<(Trace, Trace)> {
+    let last = layers.layers.len() - 1;
+    let mut next = Vec::new();
+    let at = (layers.layers[last].iter()).position(|n| {
+        next.clear();
+        layers.stepper.successors(&n.world, false, &mut next);
+        next.is_empty()
+    })?;
+    let (way_in, _) = layers.trace(last, at, Vec::new())?;
+    let stays = Trace {
+        initially: Vec::new(),
+        steps: Vec::new(),
+        unposted: Vec::new(),
+        run: Run::default(),
+    };
+    Some((way_in, stays))
 }
 
 /// With the worlds of layers `from` and `to` one set, the loop through them and the way to it.

@@ -226,12 +226,7 @@ fn checked(
     let mut again = |properties: &[PropertySource], options, found: &[Option<confirm::Found>]| {
         checked(behaviour, properties, options, progress, found)
     };
-    let mut follows = |run: &Run| {
-        let (mut model, compiled) = prepare(behaviour, properties, true)?;
-        model.storage = reduce::storage(&model, &compiled, options.reductions);
-        let budget = (options.max_states, options.max_memory);
-        Ok(confirm::deadlock(&Search::new(&model), run, budget))
-    };
+    let mut follows = |run: &Run| deadlock_followed(behaviour, properties, options, run);
     refine::check_ordered(
         report,
         properties,
@@ -240,6 +235,20 @@ fn checked(
         &mut again,
         &mut follows,
     )
+}
+
+/// A deadlock's `run`, found with the clocks of different machines unordered, followed
+/// through the model of `behaviour` and `properties` with them ordered (`confirm.rs`).
+fn deadlock_followed(
+    behaviour: &Behaviour,
+    properties: &[PropertySource],
+    options: Options,
+    run: &Run,
+) -> Result<Option<Trace>, VerifyError> {
+    let (mut model, compiled) = prepare(behaviour, properties, true)?;
+    model.storage = reduce::storage(&model, &compiled, options.reductions);
+    let budget = (options.max_states, options.max_memory);
+    Ok(confirm::deadlock(&Search::new(&model), run, budget))
 }
 
 /// What a search claims is absent (a `never` that holds, a state never entered) is only
