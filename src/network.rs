@@ -1,6 +1,7 @@
 //! Which whiteboard a command uses: the in-process one, or one shared over Zenoh when the
-//! command is told to `--listen` (for the others to connect to), `--connect` (to one that
-//! listens) or `--scout` (to find the others by multicast); no process holds a shared board. A
+//! command is told to `--listen` (for the others to connect to, and with `--peer` to dial its
+//! teammates), `--connect` (to one that listens) or `--scout` (to find the others by
+//! multicast); no process holds a shared board. A
 //! behaviour whose manifest has a `[team]` joins its team there too. Without the `zenoh` cargo
 //! feature the options are still understood and say how to get it.
 
@@ -23,6 +24,12 @@ pub struct Network {
     /// every other)
     #[arg(long, value_name = "ENDPOINT", conflicts_with = "listen")]
     pub connect: Option<String>,
+    /// With --listen: a teammate's endpoint (repeat for each; the robot's own, its --listen,
+    /// is skipped, so every robot can be given the same list). Each pair dials the other, and
+    /// dials again every 100 ms while it is away, so a link that comes back after a
+    /// cut is used within about a second
+    #[arg(long, value_name = "ENDPOINT", requires = "listen")]
+    pub peer: Vec<String>,
     /// Share the whiteboard with the processes this one finds on the local network by Zenoh's
     /// multicast scouting, with no endpoint given (each listens on a free port of every
     /// interface)
@@ -86,6 +93,10 @@ impl Network {
     pub fn describe(&self) -> String {
         let board = self.board_name();
         match (&self.listen, &self.connect) {
+            (Some(e), _) if !self.peer.is_empty() => format!(
+                "on whiteboard `{board}`, listening on {e}, linking to {} as they come",
+                self.peer.join(", ")
+            ),
             (Some(e), _) => format!("on whiteboard `{board}`, listening on {e}"),
             (_, Some(e)) => format!("on whiteboard `{board}`, connected to {e}"),
             _ if self.scout => format!("on whiteboard `{board}`, found by multicast scouting"),
@@ -211,6 +222,10 @@ pub async fn post_once(
 #[cfg(feature = "zenoh")]
 fn role(network: &Network) -> proclaim_zenoh::Role {
     match (&network.listen, &network.connect) {
+        (Some(e), _) if !network.peer.is_empty() => proclaim_zenoh::Role::Mesh {
+            listen: e.clone(),
+            peers: network.peer.clone(),
+        },
         (Some(e), _) => proclaim_zenoh::Role::Listen(e.clone()),
         (_, Some(e)) => proclaim_zenoh::Role::Connect(e.clone()),
         _ if network.scout => proclaim_zenoh::Role::Scout,

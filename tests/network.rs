@@ -688,6 +688,73 @@ fn a_team_elects_the_closest_robot_striker_and_the_next_closest_when_it_dies() {
     assert_eq!(settled_player(robot3_out, "SUPPORTER".into()), "SUPPORTER");
 }
 
+/// Robots given each other's endpoints (`--peer`, the same list for all) link in whatever order
+/// they start, the first going on alone, and a robot that dies and starts again is dialled
+/// back: the striker is elected, handed over, and taken back.
+#[test]
+fn a_team_given_each_others_endpoints_links_in_any_order_and_takes_a_restarted_robot_back() {
+    let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
+    let endpoints: Vec<String> = (0..3).map(|_| free_endpoint()).collect();
+    let robot = |i: usize| {
+        let member = format!("robot{}", i + 1);
+        let mut args = vec!["run", striker, "--member", &member, "--for", "120s"];
+        args.extend(["--listen", &endpoints[i]]);
+        for e in &endpoints {
+            args.extend(["--peer", e.as_str()]);
+        }
+        let mut process = proclaim(&args);
+        let out = lines(&mut process);
+        let said = wait_line(&out, &format!("{member} of team `blue`"), PATIENCE);
+        assert!(said.iter().any(|l| l.contains("linking to")), "{said:?}");
+        (process, out)
+    };
+    // robot3 first, alone: it goes on, and dials the others until they come.
+    let mut robots = vec![robot(2), robot(0), robot(1)];
+    robots.rotate_right(2);
+    let vision = |i: usize, distance: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            .args(["post", "ballDistance", distance])
+            .args(["--board", &format!("robot{}", i + 1)])
+            .args(["--connect", &endpoints[i]])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    for (i, distance) in ["0.8", "1.5", "2.5"].into_iter().enumerate() {
+        vision(i, distance);
+    }
+    wait_line(&robots[0].1, "Player  → STRIKER", PATIENCE);
+    assert_eq!(
+        settled_player(&robots[1].1, "SUPPORTER".into()),
+        "SUPPORTER"
+    );
+    assert_eq!(
+        settled_player(&robots[2].1, "SUPPORTER".into()),
+        "SUPPORTER"
+    );
+
+    // robot1 dies: robot2 strikes. robot1 starts again on its endpoint: the others dial it
+    // back (and it them), it says its distance anew, and takes the role again.
+    kill(&mut robots[0].0);
+    wait_line(&robots[1].1, "Player  → STRIKER", PATIENCE);
+    robots[0] = robot(0);
+    vision(0, "0.8");
+    wait_line(&robots[0].1, "Player  → STRIKER", PATIENCE);
+    wait_line(&robots[1].1, "Player  → SUPPORTER", PATIENCE);
+}
+
+#[test]
+fn a_peer_without_an_endpoint_of_its_own_is_refused() {
+    let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", striker, "--peer", "tcp/127.0.0.1:7447"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(said.contains("--listen"), "{said}");
+}
+
 #[test]
 fn processes_started_with_scout_find_each_other_with_no_endpoint() {
     // A board of this test's own, so other processes scouting on the network do not mix in.

@@ -4,6 +4,8 @@
 //! rest (certificates, access control) from Zenoh's own configuration file when one is given.
 //! A process that connects also listens, on a port of its own beside it, so that the others,
 //! told of it by Zenoh's gossip, link to it directly: postings go straight from poster to reader.
+//! The robots of a team given each other's endpoints ([`Role::Mesh`]) dial each other and dial
+//! again for as long as one is away, so a pair cut apart links again soon after its link works.
 
 use crate::error::NetworkError;
 use std::path::PathBuf;
@@ -16,6 +18,12 @@ pub enum Role {
     Listen(String),
     /// Connects to the process listening on this endpoint, and through it meets the rest.
     Connect(String),
+    /// Listens on `listen` and links to every process of `peers` (the team's endpoints; this
+    /// process's own, `listen` itself, is skipped, so every robot can be given one list). Each
+    /// pair is dialled from both ends, and a link that closes is dialled again every
+    /// [`MESH_RETRY`] with a fresh connection, however long the other is away. A process that
+    /// starts before the others goes on alone.
+    Mesh { listen: String, peers: Vec<String> },
     /// Finds the others on the local network by Zenoh's multicast scouting (UDP to
     /// 224.0.0.224:7446 unless Zenoh's configuration file says otherwise), and listens on a free
     /// port of every interface for them to link to.
@@ -45,6 +53,13 @@ pub struct Settings {
 /// do). Zenoh's own default, 10 s, leaves a cut robot striking beside its successor that long.
 pub const DEFAULT_LEASE: Duration = Duration::from_millis(1500);
 
+/// How often a process of a [`Role::Mesh`] dials a peer it is not linked to, and how long one
+/// dial may take: a dial whose SYN was lost is given up and made again, rather than left to
+/// TCP, which sends a lost SYN again only after 1, 2 and 4 s. A pair that was cut apart is
+/// linked again within about one dial and one wait of its link working (two at 10% loss).
+pub const MESH_RETRY: Duration = Duration::from_millis(100);
+const MESH_DIAL: Duration = Duration::from_millis(300);
+
 /// The shortest lease taken: below it, a loaded robot's keep-alives come late and links that
 /// work are closed.
 pub const SHORTEST_LEASE: Duration = Duration::from_millis(200);
@@ -72,6 +87,9 @@ pub(crate) async fn open(role: &Role, settings: &Settings) -> Result<zenoh::Sess
             Role::Connect(endpoint) => {
                 NetworkError::zenoh(format!("cannot reach a whiteboard at {endpoint}"), e)
             }
+            Role::Mesh { listen, .. } => {
+                NetworkError::zenoh(format!("cannot listen on {listen}"), e)
+            }
             Role::Scout => NetworkError::zenoh("cannot scout for a whiteboard", e),
         })
 }
@@ -89,6 +107,7 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
     let (listen, connect) = match role {
         Role::Listen(e) => (vec![e.clone()], Vec::new()),
         Role::Connect(e) => (beside(e).into_iter().collect(), vec![e.clone()]),
+        Role::Mesh { listen, peers } => (vec![listen.clone()], dialled(listen, peers, settings)),
         Role::Scout => (vec!["tcp/0.0.0.0:0".to_string()], Vec::new()),
     };
     for e in listen.iter().chain(&connect) {
@@ -125,19 +144,39 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
             "{peer: {to_peer: \"greater-zid\"}}".into(),
         )?;
     }
-    // A process joining must find the board, or say so, not wait for ever.
-    set(&mut config, "connect/exit_on_failure", "true".into())?;
-    set(&mut config, "connect/timeout_ms", "5000".into())?;
-    // A process that was away (the listening one restarted) is linked again within a second.
-    set(
-        &mut config,
-        "connect/retry",
-        "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
-    )?;
+    if let Role::Mesh { .. } = role {
+        // A robot up before its teammates goes on alone, and dials them until they come. Each
+        // dial is short and made again soon: Zenoh's connector does so for the endpoints
+        // configured, for as long as a peer is away, and gossip never dials those. The one-off
+        // dial of a process told of by gossip (a watcher's laptop) gets the same short wait, so
+        // at 10% loss about one in five fails and leaves that pair unlinked until the mesh
+        // changes; the watcher's own dial, if its id is the greater, waits the usual 10 s.
+        set(&mut config, "connect/exit_on_failure", "false".into())?;
+        let retry = MESH_RETRY.as_millis();
+        set(
+            &mut config,
+            "connect/retry",
+            format!(
+                "{{period_init_ms: {retry}, period_max_ms: {retry}, period_increase_factor: 1}}"
+            ),
+        )?;
+        let dial = MESH_DIAL.as_millis().to_string();
+        set(&mut config, "transport/unicast/open_timeout", dial)?;
+    } else {
+        // A process joining must find the board, or say so, not wait for ever.
+        set(&mut config, "connect/exit_on_failure", "true".into())?;
+        set(&mut config, "connect/timeout_ms", "5000".into())?;
+        // A process that was away (the listening one restarted) is linked again within a second.
+        set(
+            &mut config,
+            "connect/retry",
+            "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
+        )?;
+    }
     // A link that hears nothing for a lease is closed, so the peer's tokens go (its types turn
-    // stale) while a cut lasts, not after it heals. Dialling keeps Zenoh's 10 s: a peer told of
-    // by gossip is dialled once, and TCP sends a lost SYN again only after 1, 2, 4 s; a shorter
-    // wait left one pair of robots in five unlinked at 10% loss.
+    // stale) while a cut lasts, not after it heals. Dialling outside a mesh keeps Zenoh's 10 s:
+    // a peer told of by gossip is dialled once, and TCP sends a lost SYN again only after 1, 2,
+    // 4 s; a shorter wait left one pair of robots in five unlinked at 10% loss.
     let lease = settings.lease().as_millis().to_string();
     set(&mut config, "transport/link/tx/lease", lease)?;
     set(&mut config, "transport/link/tx/keep_alive", "4".into())?;
@@ -146,6 +185,23 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
     }
     Ok(config)
+}
+
+/// The peers of a mesh that a process listening on `listen` dials: every one but itself. The
+/// universal transport takes a link from each end of a pair (one inbound and one outbound
+/// link), so both ends dial and whichever gets through first links the pair. The low-latency
+/// transport takes one link a pair and tears the pair down at a second, so there only the end
+/// whose endpoint sorts greater dials.
+fn dialled(listen: &str, peers: &[String], settings: &Settings) -> Vec<String> {
+    let mut dialled: Vec<String> = peers
+        .iter()
+        .filter(|p| p.as_str() != listen)
+        .filter(|p| !settings.low_latency || p.as_str() < listen)
+        .cloned()
+        .collect();
+    dialled.sort();
+    dialled.dedup();
+    dialled
 }
 
 /// Where a process connecting to `endpoint` listens for the others: a free port on loopback when
@@ -221,6 +277,54 @@ mod tests {
             Some("tcp/127.0.0.1:0")
         );
         assert_eq!(beside("tls/10.0.0.2:7447"), None);
+    }
+
+    #[test]
+    fn a_mesh_dials_every_peer_but_itself_again_and_again_with_short_dials() {
+        let peers: Vec<String> = [
+            "tcp/10.0.0.3:7447",
+            "tcp/10.0.0.1:7447",
+            "tcp/10.0.0.2:7447",
+        ]
+        .map(String::from)
+        .into();
+        let role = |settings: &Settings| {
+            let role = Role::Mesh {
+                listen: "tcp/10.0.0.2:7447".into(),
+                peers: peers.clone(),
+            };
+            config(&role, settings).unwrap()
+        };
+        let config = role(&Settings::default());
+        assert_eq!(
+            setting(&config, "listen/endpoints"),
+            r#"["tcp/10.0.0.2:7447"]"#
+        );
+        assert_eq!(
+            setting(&config, "connect/endpoints"),
+            r#"["tcp/10.0.0.1:7447","tcp/10.0.0.3:7447"]"#
+        );
+        // The first robot up goes on alone and keeps dialling, a dial at a time.
+        assert_eq!(setting(&config, "connect/exit_on_failure"), "false");
+        assert!(setting(&config, "connect/retry").contains("\"period_max_ms\":100"));
+        assert_eq!(setting(&config, "transport/unicast/open_timeout"), "300");
+        // Low latency takes one link a pair: only the greater endpoint dials.
+        let low = role(&Settings {
+            low_latency: true,
+            ..Settings::default()
+        });
+        assert_eq!(
+            setting(&low, "connect/endpoints"),
+            r#"["tcp/10.0.0.1:7447"]"#
+        );
+        // Outside a mesh, a joiner must find the board and each dial waits out TCP's resends.
+        let joiner = config_of(&Role::Connect("tcp/10.0.0.1:7447".into()));
+        assert_eq!(setting(&joiner, "connect/exit_on_failure"), "true");
+        assert_eq!(setting(&joiner, "transport/unicast/open_timeout"), "10000");
+    }
+
+    fn config_of(role: &Role) -> zenoh::Config {
+        config(role, &Settings::default()).unwrap()
     }
 
     #[test]

@@ -12,8 +12,8 @@ const SETTLED: Duration = Duration::from_millis(250);
 /// How long a joining process waits for the mesh at most before it goes on with what it has.
 const MESH_PATIENCE: Duration = Duration::from_secs(3);
 
-/// How long a scouting process looks for others before it goes on alone (Zenoh scouts every
-/// few hundred milliseconds).
+/// How long a scouting process, or one of a mesh, looks for others before it goes on alone
+/// (Zenoh scouts every few hundred milliseconds; a mesh dials every 100 ms).
 const SCOUTING_PATIENCE: Duration = Duration::from_secs(1);
 
 /// Waits, as `role` needs, until this process is linked to the others it can find.
@@ -21,6 +21,10 @@ pub(super) async fn meet(session: &zenoh::Session, role: &Role) -> Result<(), Ne
     match role {
         Role::Listen(_) => Ok(()),
         Role::Connect(endpoint) => wait_for_the_mesh(session, endpoint, MESH_PATIENCE, true).await,
+        // A robot up before its teammates goes on alone; its dials go on.
+        Role::Mesh { listen, .. } => {
+            wait_for_the_mesh(session, listen, SCOUTING_PATIENCE, false).await
+        }
         // The first robot on the network finds nobody, and is a board of its own until others
         // come.
         Role::Scout => {
