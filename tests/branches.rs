@@ -556,3 +556,53 @@ impl Drop for Interrupted {
         }
     }
 }
+
+/// A run killed mid-way keeps its recording up to about the moment it died: the record is
+/// written out whenever nothing more is waiting, not left in a buffer (an 8 KiB one held the
+/// last seconds of a robot that crashed, when the record mattered most).
+#[test]
+fn a_killed_runs_recording_holds_what_came_before_the_kill() {
+    let ticker = "machine Ticker\ninitial A\nstate A {\n  entry {\n    int n;\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(50ms) -> B\n}\nstate B {\n  entry {\n    n = n + 1;\n    post(\"tick\", n);\n  }\n  when timeout(50ms) -> A\n}\n";
+    let dir = crate::behaviour_folder(
+        "killed-record",
+        &[
+            ("behaviour.toml", "[[machine]]\nfile = \"Ticker.machine\"\n"),
+            ("Ticker.machine", ticker),
+        ],
+    );
+    let record = dir.join("record.jsonl");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", arg(&dir), "--for", "60s", "--record", arg(&record)])
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the binary runs");
+    // The trace says each entry as it happens (a line at a time); each entry posts a tick.
+    let out = child.stdout.take().unwrap();
+    let entered = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let counter = std::sync::Arc::clone(&entered);
+    std::thread::spawn(move || {
+        use std::io::BufRead;
+        for line in std::io::BufReader::new(out).lines().map_while(Result::ok) {
+            if line.contains("Ticker  → ") {
+                counter.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            }
+        }
+    });
+    std::thread::sleep(Duration::from_millis(1500));
+    child.kill().expect("killed");
+    let said = entered.load(std::sync::atomic::Ordering::SeqCst);
+    let _ = child.wait();
+    let text = std::fs::read_to_string(&record).unwrap_or_default();
+    let ticks = (text.lines())
+        .filter(|l| l.starts_with("{\"at_us\"") && l.contains("\"type\":\"tick\""))
+        .count();
+    // What the trace had said before the kill is in the record, but for a tick or two in
+    // flight.
+    assert!(said >= 10, "the trace said {said} entries");
+    assert!(
+        ticks + 2 >= said,
+        "{ticks} ticks kept of a killed run whose trace had said {said} entries:\n{text}"
+    );
+}

@@ -709,7 +709,7 @@ fn a_team_given_each_others_endpoints_links_in_any_order_and_takes_a_restarted_r
         (process, out)
     };
     // robot3 first, alone: it goes on, and dials the others until they come.
-    let mut robots = vec![robot(2), robot(0), robot(1)];
+    let mut robots = [robot(2), robot(0), robot(1)];
     robots.rotate_right(2);
     let vision = |i: usize, distance: &str| {
         let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))

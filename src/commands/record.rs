@@ -41,26 +41,38 @@ pub fn start(board: &Whiteboard, path: &Path, header: Option<&str>) -> Result<Re
     let (lines, mut other) = tokio::sync::mpsc::unbounded_channel::<String>();
     let task = tokio::spawn(async move {
         let mut written = 0u64;
-        let mut write = |text: &str, message: bool| {
+        let mut write = |out: &mut std::io::BufWriter<std::fs::File>, text: &str, message: bool| {
             if writeln!(out, "{text}").is_ok() && message {
                 written += 1;
             }
         };
         loop {
+            // Messages before other lines, as they come; whenever nothing more is waiting,
+            // what came is written out, so a process killed loses at most what it was writing,
+            // not a buffer's worth of its last seconds.
+            if let Some(m) = all.try_next() {
+                write(&mut out, &proclaim_behaviour::message_line(&m), true);
+                continue;
+            }
+            if let Ok(text) = other.try_recv() {
+                write(&mut out, &text, false);
+                continue;
+            }
+            let _ = out.flush();
             tokio::select! {
                 biased;
                 message = all.next() => match message {
-                    Some(m) => write(&proclaim_behaviour::message_line(&m), true),
+                    Some(m) => write(&mut out, &proclaim_behaviour::message_line(&m), true),
                     None => break,
                 },
-                Some(text) = other.recv() => write(&text, false),
+                Some(text) = other.recv() => write(&mut out, &text, false),
                 _ = &mut stopped => {
                     // What is already queued belongs to the run too.
                     while let Some(m) = all.try_next() {
-                        write(&proclaim_behaviour::message_line(&m), true);
+                        write(&mut out, &proclaim_behaviour::message_line(&m), true);
                     }
                     while let Ok(text) = other.try_recv() {
-                        write(&text, false);
+                        write(&mut out, &text, false);
                     }
                     break;
                 }
