@@ -245,7 +245,8 @@ struct Figures {
     heal_overlap: Duration,
     /// The longest time with none, from the team's first settling to the heal.
     leaderless: Duration,
-    /// Heal → both others hear robot1 again (`robot1.tickStale` false), when they saw it go.
+    /// Heal → both others hear robot1 again (`robot1.tickStale` false), and robot1 hears both
+    /// of them again, each side counting those it saw go.
     heal: Option<Duration>,
     /// robot1's ticks robot2 missed while robot1's link worked, from the team's settling.
     lost: usize,
@@ -411,17 +412,22 @@ fn heard_over_time(
         .flatten()
         .map(|at| at.duration_since(cut_at).unwrap_or_default())
         .collect();
-    // Of the teammates that saw robot1 go, the later to hear it again.
-    figures.heal = [2, 3]
-        .iter()
-        .zip(&seen)
-        .filter_map(|(&i, went)| {
-            let went = (*went)?;
-            let back = first(&records[i - 1], went, "robot1.tickStale", false.into());
-            Some(back.map_or(Duration::MAX, |at| {
-                at.duration_since(heal_at).unwrap_or_default()
-            }))
-        })
+    // Of the teammates that saw robot1 go, the later to hear it again; and robot1, of the
+    // teammates it saw go, the later it hears again: every value converged.
+    let back = |i: usize, went: Option<SystemTime>, ty: &str| {
+        let went = went?;
+        let back = first(&records[i - 1], went, ty, false.into());
+        Some(back.map_or(Duration::MAX, |at| {
+            at.duration_since(heal_at).unwrap_or_default()
+        }))
+    };
+    let teammates = [2, 3].iter().zip(&seen[..2]);
+    let robot1 = [2, 3].map(|j| {
+        let ty = format!("robot{j}.tickStale");
+        (ty.clone(), before(first(&records[0], cut_at, &ty, true.into())))
+    });
+    figures.heal = (teammates.filter_map(|(&i, went)| back(i, *went, "robot1.tickStale")))
+        .chain(robot1.iter().filter_map(|(ty, went)| back(1, *went, ty)))
         .max();
     let ticks: Vec<(SystemTime, i64)> = records[1]
         .iter()
