@@ -24,12 +24,16 @@ pub struct Network {
     /// every other)
     #[arg(long, value_name = "ENDPOINT", conflicts_with = "listen")]
     pub connect: Option<String>,
-    /// With --listen: a teammate's endpoint (repeat for each; the robot's own, its --listen,
-    /// is skipped, so every robot can be given the same list). Each pair dials the other, and
-    /// dials again every 100 ms while it is away, so a link that comes back after a
-    /// cut is used within about a second
+    /// With --listen ADDRESS (the robot's own, not 0.0.0.0): a teammate's endpoint (repeat for
+    /// each; the robot's own is skipped, so every robot can be given the same list). Each pair
+    /// dials the other, and again every 100 ms while it is away, so a link that comes back
+    /// after a cut is used within about a second
     #[arg(long, value_name = "ENDPOINT", requires = "listen")]
     pub peer: Vec<String>,
+    /// With --peer: how long one dial of a teammate may take before it is made again (three
+    /// round trips must fit: give more on a network of long round trips) [default: 500ms]
+    #[arg(long, value_name = "DURATION", value_parser = parse_dial, requires = "peer")]
+    pub dial: Option<Duration>,
     /// Share the whiteboard with the processes this one finds on the local network by Zenoh's
     /// multicast scouting, with no endpoint given (each listens on a free port of every
     /// interface)
@@ -69,6 +73,22 @@ fn parse_lease(text: &str) -> Result<Duration, String> {
     Ok(lease)
 }
 
+/// The shortest and longest `--dial` taken.
+const DIALS: (Duration, Duration) = (Duration::from_millis(100), Duration::from_secs(10));
+
+fn parse_dial(text: &str) -> Result<Duration, String> {
+    let dial = proclaim_experts::parse_duration(text)
+        .ok_or_else(|| format!("`{text}` is not a duration (write 500ms or 1s)"))?;
+    if dial < DIALS.0 || dial > DIALS.1 {
+        return Err(format!(
+            "{text}: a dial is from {}ms to {}s",
+            DIALS.0.as_millis(),
+            DIALS.1.as_secs()
+        ));
+    }
+    Ok(dial)
+}
+
 impl Network {
     pub fn is_local(&self) -> bool {
         self.listen.is_none() && self.connect.is_none() && !self.scout
@@ -93,10 +113,16 @@ impl Network {
     pub fn describe(&self) -> String {
         let board = self.board_name();
         match (&self.listen, &self.connect) {
-            (Some(e), _) if !self.peer.is_empty() => format!(
-                "on whiteboard `{board}`, listening on {e}, linking to {} as they come",
-                self.peer.join(", ")
-            ),
+            (Some(e), _) if !self.peer.is_empty() => {
+                let others: Vec<&str> = (self.peer.iter())
+                    .filter(|p| *p != e)
+                    .map(String::as_str)
+                    .collect();
+                format!(
+                    "on whiteboard `{board}`, listening on {e}, linking to {} as they come",
+                    others.join(", ")
+                )
+            }
             (Some(e), _) => format!("on whiteboard `{board}`, listening on {e}"),
             (_, Some(e)) => format!("on whiteboard `{board}`, connected to {e}"),
             _ if self.scout => format!("on whiteboard `{board}`, found by multicast scouting"),
@@ -239,6 +265,7 @@ fn settings(network: &Network) -> proclaim_zenoh::Settings {
         config_file: network.zenoh_config.clone(),
         low_latency: network.low_latency,
         lease: network.lease,
+        dial: network.dial,
     }
 }
 

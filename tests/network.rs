@@ -690,24 +690,26 @@ fn a_team_elects_the_closest_robot_striker_and_the_next_closest_when_it_dies() {
 
 /// Robots given each other's endpoints (`--peer`, the same list for all) link in whatever order
 /// they start, the first going on alone, and a robot that dies and starts again is dialled
-/// back: the striker is elected, handed over, and taken back.
+/// back by the others: the striker is elected, handed over, and taken back.
 #[test]
 fn a_team_given_each_others_endpoints_links_in_any_order_and_takes_a_restarted_robot_back() {
     let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
     let endpoints: Vec<String> = (0..3).map(|_| free_endpoint()).collect();
-    let robot = |i: usize| {
+    let robot_with = |i: usize, peers: &[String]| {
         let member = format!("robot{}", i + 1);
         let mut args = vec!["run", striker, "--member", &member, "--for", "120s"];
         args.extend(["--listen", &endpoints[i]]);
-        for e in &endpoints {
+        for e in peers {
             args.extend(["--peer", e.as_str()]);
         }
         let mut process = proclaim(&args);
         let out = lines(&mut process);
         let said = wait_line(&out, &format!("{member} of team `blue`"), PATIENCE);
-        assert!(said.iter().any(|l| l.contains("linking to")), "{said:?}");
+        let listed = said.iter().any(|l| l.contains("linking to"));
+        assert_eq!(listed, !peers.is_empty(), "{said:?}");
         (process, out)
     };
+    let robot = |i: usize| robot_with(i, &endpoints);
     // robot3 first, alone: it goes on, and dials the others until they come.
     let mut robots = [robot(2), robot(0), robot(1)];
     robots.rotate_right(2);
@@ -733,26 +735,35 @@ fn a_team_given_each_others_endpoints_links_in_any_order_and_takes_a_restarted_r
         "SUPPORTER"
     );
 
-    // robot1 dies: robot2 strikes. robot1 starts again on its endpoint: the others dial it
-    // back (and it them), it says its distance anew, and takes the role again.
+    // robot1 dies: robot2 strikes. robot1 starts again on its endpoint, given no peers this
+    // time, so only the others' dials bring it back; it says its distance anew and takes the
+    // role again.
     kill(&mut robots[0].0);
     wait_line(&robots[1].1, "Player  → STRIKER", PATIENCE);
-    robots[0] = robot(0);
+    robots[0] = robot_with(0, &[]);
     vision(0, "0.8");
     wait_line(&robots[0].1, "Player  → STRIKER", PATIENCE);
     wait_line(&robots[1].1, "Player  → SUPPORTER", PATIENCE);
 }
 
 #[test]
-fn a_peer_without_an_endpoint_of_its_own_is_refused() {
+fn a_peer_without_an_address_of_its_own_is_refused() {
     let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
-    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
-        .args(["run", striker, "--peer", "tcp/127.0.0.1:7447"])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    let said = String::from_utf8_lossy(&o.stderr);
+    let refused = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            .args(["run", striker, "--for", "1s"])
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let said = refused(&["--peer", "tcp/127.0.0.1:7447"]);
     assert!(said.contains("--listen"), "{said}");
+    // Listening everywhere, it would find no own address in the list and dial itself.
+    let everywhere = free_endpoint().replace("127.0.0.1", "0.0.0.0");
+    let said = refused(&["--listen", &everywhere, "--peer", "tcp/127.0.0.1:7447"]);
+    assert!(said.contains("own address"), "{said}");
 }
 
 #[test]

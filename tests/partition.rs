@@ -29,7 +29,9 @@ const BOUND: Duration = Duration::from_secs(2);
 const HANDOVER: Duration = Duration::from_millis(100);
 /// After a cut heals, the others hear the cut robot again within this: each end of a pair
 /// dials the other every 100 ms with a fresh connection (`--peer`), so the link is back
-/// within a dial or two of working, and the cut robot's token and values follow it.
+/// within a dial or two of working, and the cut robot's token and values follow it. (After a
+/// cut shorter than the lease the links close only when the lease runs out, after the heal,
+/// and part of this goes on that wait.)
 const HEAL: Duration = Duration::from_secs(1);
 /// The team is never without a striker for longer, at a cut (the two sides' leases end up to
 /// a keep-alive apart) or a restart.
@@ -395,8 +397,7 @@ fn heard_over_time(
     let seen_until = (heal_at + LEASE).min(kill_at);
     let before = |at: Option<SystemTime>| at.filter(|at| *at < seen_until);
     let gone = |i: usize, ty: &str| before(first(&records[i - 1], cut_at, ty, true.into()));
-    // robot1's record before its crash may have lost its tail: its own step down is in the
-    // trace.
+    // robot1's own step down is read from its trace, where it is said as it happens.
     let stepped_down = timeline
         .iter()
         .find(|(at, s)| *at >= cut_at && !s.contains(&1))
@@ -424,7 +425,10 @@ fn heard_over_time(
     let teammates = [2, 3].iter().zip(&seen[..2]);
     let robot1 = [2, 3].map(|j| {
         let ty = format!("robot{j}.tickStale");
-        (ty.clone(), before(first(&records[0], cut_at, &ty, true.into())))
+        (
+            ty.clone(),
+            before(first(&records[0], cut_at, &ty, true.into())),
+        )
     });
     figures.heal = (teammates.filter_map(|(&i, went)| back(i, *went, "robot1.tickStale")))
         .chain(robot1.iter().filter_map(|(ty, went)| back(1, *went, ty)))

@@ -30,6 +30,7 @@ async fn shared(place: &Place) -> Result<Whiteboard, String> {
         config_file: None,
         low_latency: false,
         lease: None,
+        dial: None,
     };
     let board = proclaim_zenoh::whiteboard(&role, name, &settings)
         .await

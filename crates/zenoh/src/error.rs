@@ -10,6 +10,9 @@ pub enum NetworkError {
     Config { path: PathBuf, cause: String },
     /// An endpoint not written as Zenoh's `tcp/HOST:PORT`.
     Endpoint(String),
+    /// A process of a mesh listening on every address (`tcp/0.0.0.0:7447`): it cannot tell
+    /// itself among its peers, and would dial itself.
+    MeshListen(String),
     /// Zenoh refused a setting or a call: what was being done, and Zenoh's word.
     Zenoh { doing: String, cause: String },
     /// No whiteboard answered at the endpoint in time.
@@ -42,6 +45,10 @@ impl fmt::Display for NetworkError {
             NetworkError::Endpoint(e) => write!(
                 f,
                 "`{e}` is not a Zenoh endpoint; write it as tcp/HOST:PORT (tcp/127.0.0.1:7447)"
+            ),
+            NetworkError::MeshListen(e) => write!(
+                f,
+                "with --peer, --listen names this robot's own address as its teammates dial it (tcp/10.0.5.1:7447), not `{e}`: the robot finds itself in the list by it"
             ),
             NetworkError::Zenoh { doing, cause } => write!(f, "{doing}: {cause}"),
             NetworkError::NoBoard { board, endpoint } => {

@@ -45,6 +45,10 @@ pub struct Settings {
     /// Zenoh's link lease: a keep-alive goes every quarter of it, and a link that hears
     /// nothing for the whole of it is closed (docs/spec/behaviour.md §1.1, "Partitions").
     pub lease: Option<Duration>,
+    /// How long one dial of a [`Role::Mesh`] may take before it is made again
+    /// ([`DEFAULT_DIAL`] unless given): longer on a network of long round trips, whose dials
+    /// would otherwise never finish.
+    pub dial: Option<Duration>,
 }
 
 /// The lease when none is given: a robot cut off its team's Wi-Fi is seen gone within it, while
@@ -53,12 +57,15 @@ pub struct Settings {
 /// do). Zenoh's own default, 10 s, leaves a cut robot striking beside its successor that long.
 pub const DEFAULT_LEASE: Duration = Duration::from_millis(1500);
 
-/// How often a process of a [`Role::Mesh`] dials a peer it is not linked to, and how long one
-/// dial may take: a dial whose SYN was lost is given up and made again, rather than left to
-/// TCP, which sends a lost SYN again only after 1, 2 and 4 s. A pair that was cut apart is
-/// linked again within about one dial and one wait of its link working (two at 10% loss).
+/// How often a process of a [`Role::Mesh`] dials a peer it is not linked to. A dial whose SYN
+/// was lost is given up after [`Settings::dial`] and made again, rather than left to TCP, which
+/// sends a lost SYN again only after 1, 2 and 4 s: a pair that was cut apart is linked again
+/// within about one dial and one wait of its link working.
 pub const MESH_RETRY: Duration = Duration::from_millis(100);
-const MESH_DIAL: Duration = Duration::from_millis(300);
+
+/// How long a dial of a mesh may take when not told ([`Settings::dial`]): a TCP connection and
+/// Zenoh's two exchanges, three round trips, so links of round trips up to about 150 ms.
+pub const DEFAULT_DIAL: Duration = Duration::from_millis(500);
 
 /// The shortest lease taken: below it, a loaded robot's keep-alives come late and links that
 /// work are closed.
@@ -68,6 +75,11 @@ impl Settings {
     /// The lease this process announces and holds the others to.
     pub fn lease(&self) -> Duration {
         self.lease.unwrap_or(DEFAULT_LEASE).max(SHORTEST_LEASE)
+    }
+
+    /// How long one dial of a mesh may take.
+    pub fn dial(&self) -> Duration {
+        self.dial.unwrap_or(DEFAULT_DIAL)
     }
 
     /// The largest message this transport carries, if it has a limit. The low-latency
@@ -115,6 +127,11 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
             return Err(NetworkError::Endpoint(e.clone()));
         }
     }
+    if let Role::Mesh { listen, .. } = role {
+        if every_address(listen) {
+            return Err(NetworkError::MeshListen(listen.clone()));
+        }
+    }
     let set = |config: &mut zenoh::Config, key: &str, value: String| {
         config
             .insert_json5(key, &value)
@@ -148,8 +165,8 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
         // A robot up before its teammates goes on alone, and dials them until they come. Each
         // dial is short and made again soon: Zenoh's connector does so for the endpoints
         // configured, for as long as a peer is away, and gossip never dials those. The one-off
-        // dial of a process told of by gossip (a watcher's laptop) gets the same short wait, so
-        // at 10% loss about one in five fails and leaves that pair unlinked until the mesh
+        // dial of a process told of by gossip (a watcher's laptop) gets the same short wait,
+        // with no TCP resend inside it, so a lost SYN leaves that pair unlinked until the mesh
         // changes; the watcher's own dial, if its id is the greater, waits the usual 10 s.
         set(&mut config, "connect/exit_on_failure", "false".into())?;
         let retry = MESH_RETRY.as_millis();
@@ -160,7 +177,7 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
                 "{{period_init_ms: {retry}, period_max_ms: {retry}, period_increase_factor: 1}}"
             ),
         )?;
-        let dial = MESH_DIAL.as_millis().to_string();
+        let dial = settings.dial().as_millis().to_string();
         set(&mut config, "transport/unicast/open_timeout", dial)?;
     } else {
         // A process joining must find the board, or say so, not wait for ever.
@@ -176,7 +193,7 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
     // A link that hears nothing for a lease is closed, so the peer's tokens go (its types turn
     // stale) while a cut lasts, not after it heals. Dialling outside a mesh keeps Zenoh's 10 s:
     // a peer told of by gossip is dialled once, and TCP sends a lost SYN again only after 1, 2,
-    // 4 s; a shorter wait left one pair of robots in five unlinked at 10% loss.
+    // 4 s, so a shorter wait leaves pairs unlinked at a lossy link (docs/spec §1.1).
     let lease = settings.lease().as_millis().to_string();
     set(&mut config, "transport/link/tx/lease", lease)?;
     set(&mut config, "transport/link/tx/keep_alive", "4".into())?;
@@ -202,6 +219,16 @@ fn dialled(listen: &str, peers: &[String], settings: &Settings) -> Vec<String> {
     dialled.sort();
     dialled.dedup();
     dialled
+}
+
+/// Whether `endpoint` listens on every address of the machine (`tcp/0.0.0.0:7447`,
+/// `tcp/[::]:7447`).
+fn every_address(endpoint: &str) -> bool {
+    let address = endpoint.split_once('/').map_or(endpoint, |(_, a)| a);
+    let host = address.rsplit_once(':').map_or(address, |(h, _)| h);
+    let host = host.trim_start_matches('[').trim_end_matches(']');
+    host.parse::<std::net::IpAddr>()
+        .is_ok_and(|ip| ip.is_unspecified())
 }
 
 /// Where a process connecting to `endpoint` listens for the others: a free port on loopback when
@@ -307,7 +334,7 @@ mod tests {
         // The first robot up goes on alone and keeps dialling, a dial at a time.
         assert_eq!(setting(&config, "connect/exit_on_failure"), "false");
         assert!(setting(&config, "connect/retry").contains("\"period_max_ms\":100"));
-        assert_eq!(setting(&config, "transport/unicast/open_timeout"), "300");
+        assert_eq!(setting(&config, "transport/unicast/open_timeout"), "500");
         // Low latency takes one link a pair: only the greater endpoint dials.
         let low = role(&Settings {
             low_latency: true,
@@ -317,6 +344,21 @@ mod tests {
             setting(&low, "connect/endpoints"),
             r#"["tcp/10.0.0.1:7447"]"#
         );
+        // A robot listening on every address cannot tell itself in the list.
+        let everywhere = Role::Mesh {
+            listen: "tcp/0.0.0.0:7447".into(),
+            peers: peers.clone(),
+        };
+        let error = super::config(&everywhere, &Settings::default()).unwrap_err();
+        assert!(matches!(&error, NetworkError::MeshListen(_)), "{error}");
+        assert!(every_address("tcp/[::]:7447"));
+        assert!(!every_address("tcp/10.0.0.2:7447"));
+        // A network of long round trips is given longer dials.
+        let slow = role(&Settings {
+            dial: Some(Duration::from_secs(2)),
+            ..Settings::default()
+        });
+        assert_eq!(setting(&slow, "transport/unicast/open_timeout"), "2000");
         // Outside a mesh, a joiner must find the board and each dial waits out TCP's resends.
         let joiner = config_of(&Role::Connect("tcp/10.0.0.1:7447".into()));
         assert_eq!(setting(&joiner, "connect/exit_on_failure"), "true");
