@@ -590,13 +590,20 @@ fn a_killed_runs_recording_holds_what_came_before_the_kill() {
             }
         }
     });
-    std::thread::sleep(Duration::from_millis(1500));
+    let said = || entered.load(std::sync::atomic::Ordering::SeqCst);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while said() < 10 && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(20));
+    }
     child.kill().expect("killed");
-    let said = entered.load(std::sync::atomic::Ordering::SeqCst);
+    let said = said();
     let _ = child.wait();
     let text = std::fs::read_to_string(&record).unwrap_or_default();
+    // The record's messages (not its ringlets or events) of type `tick`.
     let ticks = (text.lines())
-        .filter(|l| l.starts_with("{\"at_us\"") && l.contains("\"type\":\"tick\""))
+        .filter_map(|l| serde_json::from_str::<Json>(l).ok())
+        .filter(|m| m.get("type").and_then(Json::as_str) == Some("tick"))
+        .filter(|m| m.get("event").is_none())
         .count();
     // What the trace had said before the kill is in the record, but for a tick or two in
     // flight.

@@ -46,18 +46,26 @@ pub fn start(board: &Whiteboard, path: &Path, header: Option<&str>) -> Result<Re
                 written += 1;
             }
         };
+        // Taken without waiting, at most this many before the task writes out and waits like
+        // any other (taking without waiting spends none of tokio's budget).
+        const BATCH: usize = 256;
+        let mut taken = 0;
         loop {
             // Messages before other lines, as they come; whenever nothing more is waiting,
             // what came is written out, so a process killed loses at most what it was writing,
             // not a buffer's worth of its last seconds.
-            if let Some(m) = all.try_next() {
-                write(&mut out, &proclaim_behaviour::message_line(&m), true);
-                continue;
+            if taken < BATCH {
+                taken += 1;
+                if let Some(m) = all.try_next() {
+                    write(&mut out, &proclaim_behaviour::message_line(&m), true);
+                    continue;
+                }
+                if let Ok(text) = other.try_recv() {
+                    write(&mut out, &text, false);
+                    continue;
+                }
             }
-            if let Ok(text) = other.try_recv() {
-                write(&mut out, &text, false);
-                continue;
-            }
+            taken = 0;
             let _ = out.flush();
             tokio::select! {
                 biased;
