@@ -162,6 +162,9 @@ struct Checker<'s> {
     body_spans: Vec<Span>,
     /// Labels of rules that did not parse: priorities naming them are not reported again.
     broken_labels: rustc_hash::FxHashSet<&'s str>,
+    /// Each label in lower case, to the first in order of the labels written so: made at the
+    /// first unknown label a priority names, so a theory of many is hinted in linear time.
+    similar: std::cell::OnceCell<FxHashMap<String, String>>,
     /// The priorities, resolved once every label is known: each is where its labels end in
     /// `priority_labels` (every priority's labels one after another, so a million priorities
     /// are two arrays rather than a million small ones) and its span.
@@ -203,6 +206,7 @@ impl<'s> Checker<'s> {
             input_spans: FxHashMap::default(),
             body_spans: Vec::new(),
             broken_labels: Default::default(),
+            similar: std::cell::OnceCell::new(),
             priorities: Vec::new(),
             priority_labels: Vec::new(),
             name_span: None,
@@ -611,12 +615,17 @@ impl<'s> Checker<'s> {
     }
 
     fn similar_label(&self, text: &str) -> Option<String> {
-        self.labels
-            .ids()
-            .filter_map(|r| self.theory.label(r))
-            .filter(|l| l.eq_ignore_ascii_case(text))
-            .min()
-            .map(str::to_string)
+        let similar = self.similar.get_or_init(|| {
+            let mut similar: FxHashMap<String, String> = FxHashMap::default();
+            for label in self.labels.ids().filter_map(|r| self.theory.label(r)) {
+                let least = similar.entry(label.to_ascii_lowercase()).or_default();
+                if least.is_empty() || label < least.as_str() {
+                    *least = label.to_string();
+                }
+            }
+            similar
+        });
+        similar.get(&text.to_ascii_lowercase()).cloned()
     }
 
     /// Tarjan over the priority graph; every strongly connected component with more than one
@@ -697,21 +706,20 @@ impl<'s> Checker<'s> {
     }
 
     fn check_filters_name_inputs(&mut self) {
-        let inputs: Vec<Atom> = self.theory.input_atoms().collect();
+        // Every atom a rule, fact or input names, marked once: a theory of many outputs is
+        // checked in linear time.
+        let theory = &self.theory;
+        let mut named = vec![false; theory.atom_count()];
+        let axioms = theory.axioms.iter().flat_map(|c| c.lits.iter());
+        for l in theory.heads.iter().chain(&theory.bodies).chain(axioms) {
+            named[l.atom().0 as usize] = true;
+        }
+        for a in theory.input_atoms() {
+            named[a.0 as usize] = true;
+        }
         for output in &self.theory.outputs {
             let atom = output.lit.atom();
-            let used = self
-                .theory
-                .heads
-                .iter()
-                .chain(self.theory.bodies.iter())
-                .any(|l| l.atom() == atom)
-                || self
-                    .theory
-                    .axioms
-                    .iter()
-                    .any(|c| c.lits.iter().any(|l| l.atom() == atom))
-                || inputs.contains(&atom);
+            let used = named.get(atom.0 as usize).copied().unwrap_or(false);
             if !used {
                 self.diagnostics.push(
                     Diagnostic::warning(

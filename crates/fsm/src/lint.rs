@@ -84,8 +84,20 @@ pub fn lint(machine: &Machine, file: &str) -> Vec<FileDiagnostic> {
 /// The transitions of one state that a label above them always beats.
 fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
     let mut out = Vec::new();
-    for (i, t) in leaving.iter().enumerate() {
-        let above = &leaving[..i];
+    // What is above each transition, kept as it goes so a state of many transitions is linted
+    // in linear time: the first `TRUE`, and the first of each label (by its text, then equal).
+    let mut first_true: Option<&Transition> = None;
+    let mut labels: HashMap<String, Vec<&Transition>> = HashMap::new();
+    for t in leaving {
+        let text = t.label.to_string();
+        let same = (labels.get(&text).into_iter().flatten()).find(|a| a.label == t.label);
+        let same = same.copied();
+        if first_true.is_none() && t.label == Label::TRUE {
+            first_true = Some(t);
+        }
+        if same.is_none() {
+            labels.entry(text).or_default().push(t);
+        }
         // A composite's transition is copied to each state inside it: shadowed in one of
         // them, it may still fire from the others.
         if t.composite.is_some() {
@@ -98,7 +110,7 @@ fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
                 t.line,
                 format!("`{}` never fires: it is false in this state", t.shown()),
             ));
-        } else if let Some(always) = above.iter().find(|a| a.label == Label::TRUE) {
+        } else if let Some(always) = first_true.filter(|a| !std::ptr::eq(*a, *t)) {
             // Shown as written: `in(S)` of its own state is always true there too.
             out.push(FileDiagnostic::warning(
                 file,
@@ -110,7 +122,7 @@ fn shadowed(leaving: &[&Transition], file: &str) -> Vec<FileDiagnostic> {
                     always.line
                 ),
             ));
-        } else if let Some(same) = above.iter().find(|a| a.label == t.label) {
+        } else if let Some(same) = same {
             out.push(FileDiagnostic::warning(
                 file,
                 t.line,

@@ -126,20 +126,20 @@ fn friendly(terminal: &str) -> String {
     }
 }
 
-struct LineIndex<'t> {
+pub(crate) struct LineIndex<'t> {
     text: &'t str,
     starts: Vec<usize>,
 }
 
 impl LineIndex<'_> {
-    fn new(text: &str) -> LineIndex<'_> {
+    pub(crate) fn new(text: &str) -> LineIndex<'_> {
         let mut starts = vec![0];
         starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         LineIndex { text, starts }
     }
 
     /// 1-based.
-    fn line(&self, offset: usize) -> usize {
+    pub(crate) fn line(&self, offset: usize) -> usize {
         self.starts.partition_point(|&s| s <= offset)
     }
 

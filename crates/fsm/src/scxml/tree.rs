@@ -34,13 +34,9 @@ const MAX_DEPTH: usize = 256;
 
 /// The document's root element, or the line and reason it does not read as XML.
 pub fn read(text: &str) -> Result<Element, (usize, String)> {
-    let line_of = |offset: u64| {
-        let offset = (offset as usize).min(text.len());
-        1 + text.as_bytes()[..offset]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-    };
+    // Every element asks its line: looked up, not counted from the start each time.
+    let lines = crate::native::LineIndex::new(text);
+    let line_of = |offset: u64| lines.line((offset as usize).min(text.len()));
     let mut reader = Reader::from_str(text);
     let mut open: Vec<Element> = vec![Element::default()];
     loop {
