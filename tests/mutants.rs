@@ -1,9 +1,11 @@
-//! A mutation fuzzer of every file kind a user gives proclaim (theory, machine, manifest, script;
-//! the recording, trace and checkpoint a run writes, made once by a run of the microwave; Qfsm
-//! files from the shared corpus when it is there): each mutant is given to the commands that
-//! read it, as a user would (`check`, `draw`, `run --virtual-clock`, `test`, `replay`, `run
-//! --branch`, `run --resume`), and none may panic, abort or run for more than ten seconds. A few hundred mutants in the suite; ten thousand in an
-//! ignored test, run before a release (`PROCLAIM_MUTANTS=N` sets how many).
+//! A mutation fuzzer of every file kind a user gives proclaim (theory, machine, manifest, script,
+//! T/A pair, SCXML document; the recording, trace and checkpoint a run writes, made once by a
+//! run of the microwave; Qfsm files from the shared corpus when it is there): each mutant is
+//! given to the commands that read it, as a user would (`check`, `draw`, `import`, `run
+//! --virtual-clock`, `test`, `replay`, `run --branch`, `run --resume`), and none may panic,
+//! abort or run for more than ten seconds. A few hundred mutants in the suite; ten thousand in
+//! an ignored test, run before a release with `--release` (`PROCLAIM_MUTANTS=N` sets how many),
+//! where one mutant in forty is also grown to between 1 and 10 MB.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -11,6 +13,17 @@ use std::time::{Duration, Instant};
 
 /// How long one command may take on one mutant.
 const LIMIT: Duration = Duration::from_secs(10);
+
+/// How long one command may take on a mutant of `bytes`: [`LIMIT`], and in a debug build
+/// (many times slower than the release users run) three seconds more a megabyte, so a grown
+/// mutant is held to linear time there; run with `--release` to hold every one to [`LIMIT`].
+fn limit(bytes: u64) -> Duration {
+    if cfg!(debug_assertions) {
+        LIMIT + Duration::from_secs(3 * (bytes >> 20))
+    } else {
+        LIMIT
+    }
+}
 
 /// Text that parsers meet at their edges: deep nesting, numbers past every width, long names,
 /// the format's own punctuation, bytes that are no text.
@@ -105,6 +118,7 @@ fn kinds(root: &Path, made: &Made) -> Vec<Kind> {
         "2s",
         "--quiet",
     ];
+    const IMPORT: &[&str] = &["import", "{}", "--output", "{dir}/imported"];
     let mut kinds = vec![
         Kind {
             name: "theory",
@@ -141,6 +155,19 @@ fn kinds(root: &Path, made: &Made) -> Vec<Kind> {
             files: vec![made.checkpoint.clone()],
             commands: &[RESUME],
         },
+        // Either file of the pair, its partner beside it.
+        Kind {
+            name: "T/A",
+            files: under_dir(&root.join("tests/ta-kicker"), ".txt"),
+            commands: &[&["check", "{}"], &["draw", "{}"]],
+        },
+        Kind {
+            name: "scxml",
+            files: (made.scxml.iter().cloned())
+                .chain(under_dir(&root.join("tests/scxml-keeper"), ".scxml"))
+                .collect(),
+            commands: &[&["check", "{}"], &["draw", "{}"], IMPORT],
+        },
     ];
     if let Some(corpus) = crate::corpus_dir() {
         let mipal = corpus.join("mipal");
@@ -159,6 +186,8 @@ struct Made {
     recording: PathBuf,
     trace: PathBuf,
     checkpoint: PathBuf,
+    /// The shipped machines `proclaim export` writes as SCXML.
+    scxml: Vec<PathBuf>,
 }
 
 /// Made in a folder of this run's own (`tag`: two fuzz runs of one process may overlap).
@@ -169,10 +198,11 @@ fn made(root: &Path, tag: u64) -> Made {
     ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("a folder");
-    let made = Made {
+    let mut made = Made {
         recording: dir.join("kitchen.jsonl"),
         trace: dir.join("trace.jsonl"),
         checkpoint: dir.join("checkpoint.json"),
+        scxml: Vec::new(),
     };
     let microwave = root.join("machines/microwave");
     let path = |p: &Path| p.to_string_lossy().into_owned();
@@ -188,6 +218,20 @@ fn made(root: &Path, tag: u64) -> Made {
         out.status.success() && made.checkpoint.exists(),
         "the microwave's run: {}",
         String::from_utf8_lossy(&out.stderr)
+    );
+    for machine in under_dir(&root.join("machines"), ".machine") {
+        let to = dir.join(machine.with_extension("scxml").file_name().expect("a name"));
+        let exported = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+            .args(["export", &path(&machine), "--output", &path(&to)])
+            .output()
+            .expect("the binary runs");
+        if exported.status.success() {
+            made.scxml.push(to);
+        }
+    }
+    assert!(
+        !made.scxml.is_empty(),
+        "no shipped machine exports to SCXML"
     );
     made
 }
@@ -231,8 +275,22 @@ impl Rng {
 }
 
 /// `text` mutated one to four times: bytes flipped, cut, repeated, or an edge case inserted
-/// (now and then many times over, for depth and size).
-fn mutate(text: &[u8], rng: &mut Rng) -> Vec<u8> {
+/// (now and then many times over, for depth and size); if `grow`, one time in forty then
+/// grown to between 1 and 10 MB by a piece of it repeated.
+fn mutate(text: &[u8], rng: &mut Rng, grow: bool) -> Vec<u8> {
+    let mut out = mutated(text, rng);
+    if grow && rng.below(40) == 0 && !out.is_empty() {
+        let size = (1 + rng.below(10)) << 20;
+        let at = rng.below(out.len());
+        let end = (at + 1 + rng.below(4096)).min(out.len());
+        let piece = out[at..end].to_vec();
+        let times = size.saturating_sub(out.len()) / piece.len() + 1;
+        out.splice(end..end, piece.repeat(times));
+    }
+    out
+}
+
+fn mutated(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     let mut out = text.to_vec();
     for _ in 0..1 + rng.below(4) {
         let at = rng.below(out.len() + 1);
@@ -278,6 +336,7 @@ struct Crash {
 
 /// Runs `args` on the mutant; a crash if it panicked, died of a signal or took too long.
 fn try_command(args: &[String], seed: u64, mutant: &Path) -> Option<Crash> {
+    let limit = limit(std::fs::metadata(mutant).map_or(0, |m| m.len()));
     let started = Instant::now();
     let mut child = Command::new(env!("CARGO_BIN_EXE_proclaim"))
         .args(args)
@@ -298,7 +357,7 @@ fn try_command(args: &[String], seed: u64, mutant: &Path) -> Option<Crash> {
         if let Some(status) = child.try_wait().expect("the run is watched") {
             break Some(status);
         }
-        if started.elapsed() > LIMIT {
+        if started.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
             break None;
@@ -314,7 +373,7 @@ fn try_command(args: &[String], seed: u64, mutant: &Path) -> Option<Crash> {
         })
     };
     let Some(status) = status else {
-        return crash(format!("still running after {LIMIT:?}"));
+        return crash(format!("still running after {limit:?}"));
     };
     if let Some(at) = said.find("panicked at") {
         let line = said[at..].lines().take(2).collect::<Vec<_>>().join(" ");
@@ -345,8 +404,8 @@ fn workspace(root: &Path, worker: usize, tag: u64) -> PathBuf {
     dir
 }
 
-/// `count` mutants over every kind, on two workers; the crashes found.
-fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
+/// `count` mutants over every kind, on two workers, some `grow`n large; the crashes found.
+fn fuzz(count: u64, first_seed: u64, grow: bool) -> Vec<Crash> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let made = made(root, first_seed);
     let kinds = kinds(root, &made);
@@ -361,7 +420,7 @@ fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
                     let seeds = (first_seed..first_seed + count)
                         .filter(|s| *s as usize % workers == worker);
                     for seed in seeds {
-                        crashes.extend(one_mutant(kinds, root, &dir, seed));
+                        crashes.extend(one_mutant(kinds, root, &dir, seed, grow));
                     }
                     let _ = std::fs::remove_dir_all(&dir);
                     crashes
@@ -381,7 +440,7 @@ fn fuzz(count: u64, first_seed: u64) -> Vec<Crash> {
 
 /// Mutant `seed`: a file of one kind, mutated where the workspace holds it, given to each of
 /// its commands, then put back.
-fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> {
+fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64, grow: bool) -> Vec<Crash> {
     let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     let kind = &kinds[rng.below(kinds.len())];
     let Some(original) = kind.files.get(rng.below(kind.files.len())) else {
@@ -396,12 +455,19 @@ fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> 
         .filter(|r| r.starts_with("machines") || r.starts_with("theories"));
     let target = match relative {
         Some(relative) => dir.join(relative),
-        None => dir.join(format!(
-            "corpus-{}",
-            original.file_name().unwrap().to_string_lossy()
-        )),
+        None => dir.join("outside").join(original.file_name().unwrap()),
     };
-    std::fs::write(&target, mutate(&text, &mut rng)).expect("the mutant is written");
+    std::fs::create_dir_all(target.parent().expect("a folder")).expect("a folder");
+    // A T/A file is read with its partner beside it.
+    let partner = (kind.name == "T/A")
+        .then(|| ta_partner(original))
+        .flatten()
+        .map(|p| {
+            let to = target.with_file_name(p.file_name().unwrap());
+            std::fs::copy(&p, &to).expect("the partner is copied");
+            to
+        });
+    std::fs::write(&target, mutate(&text, &mut rng, grow)).expect("the mutant is written");
     let folder = target.parent().expect("a folder").to_path_buf();
     let mut crashes = Vec::new();
     for command in kind.commands {
@@ -409,25 +475,24 @@ fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> 
             .iter()
             .map(|a| match *a {
                 "{}" => target.to_string_lossy().into_owned(),
-                "{dir}" => folder.to_string_lossy().into_owned(),
                 "{microwave}" => dir
                     .join("machines/microwave")
                     .to_string_lossy()
                     .into_owned(),
-                other => other.to_string(),
+                other => other.replace("{dir}", &folder.to_string_lossy()),
             })
             .collect();
         if let Some(mut crash) = try_command(&args, seed, &target) {
-            // Kept for whoever reads the failure, beside the workspaces (which go).
+            // Kept for whoever reads the failure, beside the workspaces (which go), under its
+            // own name in a folder of its seed's, a T/A file with its partner.
             let kept = Path::new(env!("CARGO_TARGET_TMPDIR"))
                 .join("proclaim-mutants-kept")
-                .join(format!(
-                    "{seed}-{}",
-                    target.file_name().unwrap().to_string_lossy()
-                ));
-            let _ = std::fs::create_dir_all(kept.parent().expect("a folder"));
-            let _ = std::fs::copy(&target, &kept);
-            crash.mutant = kept;
+                .join(seed.to_string());
+            let _ = std::fs::create_dir_all(&kept);
+            for file in std::iter::once(&target).chain(&partner) {
+                let _ = std::fs::copy(file, kept.join(file.file_name().unwrap()));
+            }
+            crash.mutant = kept.join(target.file_name().unwrap());
             crash.what = format!("{} ({} mutant)", crash.what, kind.name);
             crashes.push(crash);
         }
@@ -437,7 +502,21 @@ fn one_mutant(kinds: &[Kind], root: &Path, dir: &Path, seed: u64) -> Vec<Crash> 
     } else {
         let _ = std::fs::remove_file(&target);
     }
+    if let Some(partner) = partner {
+        let _ = std::fs::remove_file(partner);
+    }
     crashes
+}
+
+/// The other file of a T/A pair (`TKicker.txt` for `AKicker.txt`), if it is there.
+fn ta_partner(file: &Path) -> Option<PathBuf> {
+    let name = file.file_name()?.to_str()?;
+    let other = match name.split_at_checked(1)? {
+        ("T", rest) => format!("A{rest}"),
+        ("A", rest) => format!("T{rest}"),
+        _ => return None,
+    };
+    Some(file.with_file_name(other)).filter(|p| p.exists())
 }
 
 fn report(crashes: &[Crash]) -> String {
@@ -450,7 +529,7 @@ fn report(crashes: &[Crash]) -> String {
 
 #[test]
 fn mutants_of_every_file_kind_neither_panic_nor_abort_nor_hang() {
-    let crashes = fuzz(200, 1);
+    let crashes = fuzz(200, 1, false);
     assert!(crashes.is_empty(), "{}", report(&crashes));
 }
 
@@ -461,6 +540,6 @@ fn ten_thousand_mutants_neither_panic_nor_abort_nor_hang() {
         .ok()
         .and_then(|n| n.parse().ok())
         .unwrap_or(10_000);
-    let crashes = fuzz(count, 1_000_000);
+    let crashes = fuzz(count, 1_000_000, true);
     assert!(crashes.is_empty(), "{}", report(&crashes));
 }
