@@ -309,7 +309,8 @@ fn one(seed: u64, runs: usize) -> Outcome {
         clock_order: true,
         ..Options::default()
     };
-    let report = verify(&behaviour, &[], options).expect("verifies");
+    let report = verify(&behaviour, &[], options)
+        .unwrap_or_else(|e| panic!("seed {seed}: verify fails: {e}"));
     let mut never_entered = Vec::new();
     let mut never_fires = Vec::new();
     for f in &report.findings {
@@ -461,16 +462,51 @@ fn one(seed: u64, runs: usize) -> Outcome {
     }
 }
 
+/// Every seed's outcome, in seed order, the seeds shared out over one thread per core. A seed
+/// that panics stops every thread at once, and the test fails naming it.
+fn outcomes(seeds: std::ops::Range<u64>, runs: usize) -> Vec<Outcome> {
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+    let next = AtomicU64::new(seeds.start);
+    let stop = AtomicBool::new(false);
+    let done = std::sync::Mutex::new(Vec::new());
+    let panicked = std::sync::Mutex::new(Vec::new());
+    let started = std::time::Instant::now();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| loop {
+                let seed = next.fetch_add(1, Ordering::Relaxed);
+                if seed >= seeds.end || stop.load(Ordering::Relaxed) {
+                    return;
+                }
+                if seed % 100 == 0 {
+                    eprintln!("seed {seed}, {:.0} s in", started.elapsed().as_secs_f64());
+                }
+                match std::panic::catch_unwind(|| one(seed, runs)) {
+                    Ok(o) => done.lock().unwrap().push((seed, o)),
+                    Err(_) => {
+                        stop.store(true, Ordering::Relaxed);
+                        panicked.lock().unwrap().push(seed);
+                    }
+                }
+            });
+        }
+    });
+    let panicked = panicked.into_inner().unwrap();
+    assert!(
+        panicked.is_empty(),
+        "seeds {panicked:?} panicked (their messages are above)"
+    );
+    let mut done = done.into_inner().unwrap();
+    done.sort_by_key(|(seed, _)| *seed);
+    done.into_iter().map(|(_, o)| o).collect()
+}
+
 fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
     let (mut claimed, mut ranged, mut charted, mut nested) = (0, 0, 0, 0);
     let mut disagreements = Vec::new();
-    let started = std::time::Instant::now();
-    for seed in seeds {
-        if seed % 100 == 0 {
-            eprintln!("seed {seed}, {:.0} s in", started.elapsed().as_secs_f64());
-        }
-        let o = one(seed, runs);
+    for o in outcomes(seeds, runs) {
         claimed += usize::from(o.claimed);
         ranged += usize::from(o.ranged);
         charted += usize::from(o.charted);
@@ -510,11 +546,12 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
 
 #[test]
 fn runs_never_reach_what_verify_calls_unreachable() {
-    differ(0..100, 2);
+    differ(0..500, 2);
 }
 
-/// Before a release (about three hours in a debug build; `PROCLAIM_SEEDS=200..1200` runs a
-/// part): `cargo nextest run -p proclaim-verify --run-ignored only -E 'test(ten_thousand)'`.
+/// Before a release (the seeds after the suite's; `PROCLAIM_SEEDS=500..1500` runs a part;
+/// `--release` takes a fraction of a debug build's hours): `cargo nextest run -p
+/// proclaim-verify --run-ignored only -E 'test(ten_thousand)'`.
 #[test]
 #[ignore]
 fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
@@ -524,7 +561,7 @@ fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
             let (a, b) = s.split_once("..")?;
             Some(a.parse().ok()?..b.parse().ok()?)
         })
-        .unwrap_or(100..10_100);
+        .unwrap_or(500..10_500);
     differ(seeds, 2);
 }
 
