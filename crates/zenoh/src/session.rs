@@ -132,11 +132,6 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
             return Err(NetworkError::MeshListen(listen.clone()));
         }
     }
-    let set = |config: &mut zenoh::Config, key: &str, value: String| {
-        config
-            .insert_json5(key, &value)
-            .map_err(|e| NetworkError::zenoh(format!("Zenoh refused {key} = {value}"), e))
-    };
     set(&mut config, "mode", "\"peer\"".into())?;
     // A process connecting over TLS listens where the configuration file says, if anywhere.
     if !listen.is_empty() || settings.config_file.is_none() {
@@ -161,35 +156,7 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
             "{peer: {to_peer: \"greater-zid\"}}".into(),
         )?;
     }
-    if let Role::Mesh { .. } = role {
-        // A robot up before its teammates goes on alone, and dials them until they come. Each
-        // dial is short and made again soon: Zenoh's connector does so for the endpoints
-        // configured, for as long as a peer is away, and gossip never dials those. The one-off
-        // dial of a process told of by gossip (a watcher's laptop) gets the same short wait,
-        // with no TCP resend inside it, so a lost SYN leaves that pair unlinked until the mesh
-        // changes; the watcher's own dial, if its id is the greater, waits the usual 10 s.
-        set(&mut config, "connect/exit_on_failure", "false".into())?;
-        let retry = MESH_RETRY.as_millis();
-        set(
-            &mut config,
-            "connect/retry",
-            format!(
-                "{{period_init_ms: {retry}, period_max_ms: {retry}, period_increase_factor: 1}}"
-            ),
-        )?;
-        let dial = settings.dial().as_millis().to_string();
-        set(&mut config, "transport/unicast/open_timeout", dial)?;
-    } else {
-        // A process joining must find the board, or say so, not wait for ever.
-        set(&mut config, "connect/exit_on_failure", "true".into())?;
-        set(&mut config, "connect/timeout_ms", "5000".into())?;
-        // A process that was away (the listening one restarted) is linked again within a second.
-        set(
-            &mut config,
-            "connect/retry",
-            "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
-        )?;
-    }
+    dialling(&mut config, role, settings)?;
     // A link that hears nothing for a lease is closed, so the peer's tokens go (its types turn
     // stale) while a cut lasts, not after it heals. Dialling outside a mesh keeps Zenoh's 10 s:
     // a peer told of by gossip is dialled once, and TCP sends a lost SYN again only after 1, 2,
@@ -202,6 +169,51 @@ fn config(role: &Role, settings: &Settings) -> Result<zenoh::Config, NetworkErro
         set(&mut config, "transport/unicast/qos/enabled", "false".into())?;
     }
     Ok(config)
+}
+
+/// How `role` dials: a mesh again and again with short dials, a joiner until it finds the board.
+fn dialling(
+    config: &mut zenoh::Config,
+    role: &Role,
+    settings: &Settings,
+) -> Result<(), NetworkError> {
+    if let Role::Mesh { .. } = role {
+        // A robot up before its teammates goes on alone, and dials them until they come. Each
+        // dial is short and made again soon: Zenoh's connector does so for the endpoints
+        // configured, for as long as a peer is away, and gossip never dials those. The one-off
+        // dial of a process told of by gossip (a watcher's laptop) gets the same short wait,
+        // with no TCP resend inside it, so a lost SYN leaves that pair unlinked until the mesh
+        // changes; the watcher's own dial, if its id is the greater, waits the usual 10 s.
+        set(config, "connect/exit_on_failure", "false".into())?;
+        let retry = MESH_RETRY.as_millis();
+        set(
+            config,
+            "connect/retry",
+            format!(
+                "{{period_init_ms: {retry}, period_max_ms: {retry}, period_increase_factor: 1}}"
+            ),
+        )?;
+        let dial = settings.dial().as_millis().to_string();
+        set(config, "transport/unicast/open_timeout", dial)?;
+    } else {
+        // A process joining must find the board, or say so, not wait for ever.
+        set(config, "connect/exit_on_failure", "true".into())?;
+        set(config, "connect/timeout_ms", "5000".into())?;
+        // A process that was away (the listening one restarted) is linked again within a second.
+        set(
+            config,
+            "connect/retry",
+            "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}".into(),
+        )?;
+    }
+    Ok(())
+}
+
+/// Writes one of Zenoh's settings, or says which Zenoh refused.
+fn set(config: &mut zenoh::Config, key: &str, value: String) -> Result<(), NetworkError> {
+    config
+        .insert_json5(key, &value)
+        .map_err(|e| NetworkError::zenoh(format!("Zenoh refused {key} = {value}"), e))
 }
 
 /// The peers of a mesh that a process listening on `listen` dials: every one but itself. The
