@@ -61,32 +61,39 @@ pub struct Network {
 const LEASES: (Duration, Duration) = (Duration::from_millis(200), Duration::from_secs(600));
 
 fn parse_lease(text: &str) -> Result<Duration, String> {
-    let lease = proclaim_experts::parse_duration(text)
-        .ok_or_else(|| format!("`{text}` is not a duration (write 1s, 500ms or 2.5s)"))?;
-    if lease < LEASES.0 || lease > LEASES.1 {
-        return Err(format!(
-            "{text}: a lease is from {}ms to {}s (shorter, a busy robot's keep-alives come late and working links are closed)",
-            LEASES.0.as_millis(),
-            LEASES.1.as_secs()
-        ));
-    }
-    Ok(lease)
+    duration_within(
+        text,
+        LEASES,
+        "a lease",
+        " (shorter, a busy robot's keep-alives come late and working links are closed)",
+    )
 }
 
 /// The shortest and longest `--dial` taken.
 const DIALS: (Duration, Duration) = (Duration::from_millis(100), Duration::from_secs(10));
 
 fn parse_dial(text: &str) -> Result<Duration, String> {
-    let dial = proclaim_experts::parse_duration(text)
-        .ok_or_else(|| format!("`{text}` is not a duration (write 500ms or 1s)"))?;
-    if dial < DIALS.0 || dial > DIALS.1 {
+    duration_within(text, DIALS, "a dial", "")
+}
+
+/// `text` as a duration within `(shortest, longest)`, or what is wrong with it: `what` named,
+/// `why` the bounds are what they are.
+fn duration_within(
+    text: &str,
+    (shortest, longest): (Duration, Duration),
+    what: &str,
+    why: &str,
+) -> Result<Duration, String> {
+    let duration = proclaim_experts::parse_duration(text)
+        .ok_or_else(|| format!("`{text}` is not a duration (write 1s, 500ms or 2.5s)"))?;
+    if duration < shortest || duration > longest {
         return Err(format!(
-            "{text}: a dial is from {}ms to {}s",
-            DIALS.0.as_millis(),
-            DIALS.1.as_secs()
+            "{text}: {what} is from {}ms to {}s{why}",
+            shortest.as_millis(),
+            longest.as_secs()
         ));
     }
-    Ok(dial)
+    Ok(duration)
 }
 
 impl Network {
@@ -307,4 +314,25 @@ fn without_zenoh() -> Failure {
     Failure::Network(
         "this proclaim was built without the whiteboard across processes; build it with `cargo build --release --features zenoh`".into(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lease_or_a_dial_out_of_its_bounds_is_refused_saying_them() {
+        assert_eq!(parse_dial("2s"), Ok(Duration::from_secs(2)));
+        assert_eq!(
+            parse_dial("50ms").unwrap_err(),
+            "50ms: a dial is from 100ms to 10s"
+        );
+        assert!(parse_dial("soon").unwrap_err().contains("not a duration"));
+        assert_eq!(parse_lease("1s"), Ok(Duration::from_secs(1)));
+        let error = parse_lease("100ms").unwrap_err();
+        assert!(
+            error.starts_with("100ms: a lease is from 200ms to 600s (shorter"),
+            "{error}"
+        );
+    }
 }
