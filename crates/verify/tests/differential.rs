@@ -8,12 +8,18 @@
 //! machines are charts whose two regions share the variables (§3.2): a run's state of regions
 //! is held to each of its regions' states, and a joint move to every transition it joins; a
 //! region's first state may hold states of its own, entered, left and completed inside it.
+//! Some machines read a text input too (`texts.rs`). Each behaviour also gets two properties
+//! (`claims.rs`), checked by each engine in turn: a run may not break what verify says holds,
+//! and where verify found a run, its script played by the runner shows it.
+
+mod claims;
+mod texts;
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
 use proclaim_behaviour::{load, Folder};
 use proclaim_runner::Event;
-use proclaim_verify::{verify, Finding, Options, Stop};
+use proclaim_verify::{verify, Finding, Options, Stop, VerifyError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -77,6 +83,11 @@ fn generate(seed: u64) -> (Vec<(String, String)>, bool) {
         }
         let _ = writeln!(manifest, "[[machine]]\nfile = \"{name}.machine\"");
         files.push((format!("{name}.machine"), text));
+    }
+    // Text, drawn apart again, over each machine as written.
+    let mut words = Rng::new(seed ^ 0x7e47_0000);
+    for (_, text) in &mut files {
+        *text = texts::with_text(text, &mut words);
     }
     let ranged = rng.chance(30);
     if ranged {
@@ -290,6 +301,12 @@ struct Outcome {
     charted: bool,
     /// Claimed of a behaviour whose region holds a state that holds states.
     nested: bool,
+    /// Claimed of a behaviour that reads text.
+    texts: bool,
+    /// Properties verify said no run makes true, held to the runs.
+    absent: usize,
+    /// Runs verify found for a property, shown again by the runner.
+    replayed: usize,
     disagreements: Vec<String>,
 }
 
@@ -356,15 +373,54 @@ fn one(seed: u64, runs: usize) -> Outcome {
         })
         .collect();
     let claimed = report.stats.complete && report.inexact.is_empty();
+    let claims = claims::draw(seed, &files);
+    let sources: Vec<_> = claims
+        .iter()
+        .enumerate()
+        .map(|(i, c)| c.source(i))
+        .collect();
+    let engine = claims::engine(seed);
+    // The symbolic engine may decline a behaviour (too many combinations in a ringlet): then
+    // it claims nothing.
+    let checked = match verify(&behaviour, &sources, Options { engine, ..options }) {
+        Ok(report) => report.properties,
+        Err(VerifyError::SymbolicDeclined(_)) => Vec::new(),
+        Err(e) => panic!("seed {seed}: verify fails on {sources:?}: {e}"),
+    };
+    let verdicts = || claims.iter().zip(&checked);
+    let absent: Vec<&claims::Claim> = verdicts()
+        .filter(|(c, o)| c.absent(o))
+        .map(|(c, _)| c)
+        .collect();
+    let machines: Vec<String> = (behaviour.machines.iter())
+        .map(|m| m.machine.name.clone())
+        .collect();
+    let shown: String = files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect();
     let mut disagreements = Vec::new();
     let mut rng = Rng::new(seed ^ 0x5eed);
+    let mut words = Rng::new(seed ^ 0x7e47_5eed);
+    let text = files.iter().any(|(_, t)| t.contains("in2"));
     for _ in 0..runs {
-        let script = script(&mut rng, ranged);
+        let mut script = script(&mut rng, ranged);
+        if text {
+            script.push_str(&texts::script(&mut words));
+        }
         let mut run = RoundByRound::start(&dir, &script)
             .unwrap_or_else(|e| panic!("seed {seed}: the run starts: {e}\n{script}"));
-        for _ in 0..40 {
+        let mut broken = None;
+        for round in 1..=40 {
             run.wait(Duration::from_millis(25));
             run.round();
+            if broken.is_none() {
+                let made = absent.iter().find(|c| c.holds_in(&run, &machines));
+                broken = made.map(|c| (c.describe(), round));
+            }
+        }
+        if let Some((claim, round)) = broken {
+            disagreements.push(format!(
+                "seed {seed}: the run made `{claim}` true after round {round}, which verify ({}) said no run does\n{shown}--- script\n{script}",
+                engine.word()
+            ));
         }
         let chart_of = |machine: &str| {
             let m = behaviour
@@ -441,12 +497,23 @@ fn one(seed: u64, runs: usize) -> Outcome {
                 _ => None,
             };
             if let Some(what) = seen {
-                let shown: String = files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect();
                 disagreements.push(format!(
                     "seed {seed}: the run {what}, which verify called unreachable\n{shown}--- script\n{script}"
                 ));
                 break;
             }
+        }
+    }
+    let mut replayed = 0;
+    for (claim, outcome) in verdicts() {
+        match claim.replays(outcome, &dir, &machines) {
+            None => {}
+            Some(Ok(())) => replayed += 1,
+            Some(Err(why)) => disagreements.push(format!(
+                "seed {seed}: verify ({}) found a run for `{}`, but {why}\n{shown}",
+                engine.word(),
+                claim.describe()
+            )),
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -458,6 +525,9 @@ fn one(seed: u64, runs: usize) -> Outcome {
         ranged: claimed && ranged,
         charted: claimed && charted,
         nested: claimed && nested,
+        texts: claimed && text,
+        absent: absent.len(),
+        replayed,
         disagreements,
     }
 }
@@ -505,8 +575,12 @@ fn outcomes(seeds: std::ops::Range<u64>, runs: usize) -> Vec<Outcome> {
 fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     let count = seeds.end - seeds.start;
     let (mut claimed, mut ranged, mut charted, mut nested) = (0, 0, 0, 0);
+    let (mut texts, mut absent, mut replayed) = (0, 0, 0);
     let mut disagreements = Vec::new();
     for o in outcomes(seeds, runs) {
+        texts += usize::from(o.texts);
+        absent += o.absent;
+        replayed += o.replayed;
         claimed += usize::from(o.claimed);
         ranged += usize::from(o.ranged);
         charted += usize::from(o.charted);
@@ -517,7 +591,7 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
         disagreements.extend(o.disagreements);
     }
     eprintln!(
-        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range, {charted} with regions, {nested} of them holding nested states), {} disagreements",
+        "{count} behaviours, {claimed} with exact free values (their findings checked; {ranged} with a declared range, {charted} with regions, {nested} of them holding nested states, {texts} reading text); {absent} properties verify called never true held to the runs, {replayed} runs verify found replayed; {} disagreements",
         disagreements.len()
     );
     assert!(
@@ -541,6 +615,18 @@ fn differ(seeds: std::ops::Range<u64>, runs: usize) {
     assert!(
         nested * 25 > count as usize,
         "only {nested} of {count} behaviours with nested states in a region were exact"
+    );
+    assert!(
+        texts * 10 > count as usize,
+        "only {texts} of {count} behaviours that read text were exact"
+    );
+    assert!(
+        absent * 4 > count as usize,
+        "only {absent} properties of {count} behaviours were called never true"
+    );
+    assert!(
+        replayed * 4 > count as usize,
+        "only {replayed} runs verify found for {count} behaviours could be replayed"
     );
 }
 

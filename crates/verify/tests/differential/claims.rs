@@ -1,0 +1,228 @@
+//! Properties drawn for a random behaviour (issue 44), and what runs say of verify's verdicts
+//! on them: a run may never make true a `never` verify said holds, nor reach a `reachable`
+//! verify said fails; a counterexample or witness, written as a script and played by the
+//! runner, must show what it claims. A property is a conjunction of a machine's state and the
+//! globals' values, so a run can read its truth between rounds.
+
+use crate::common::random_behaviour::Rng;
+use proclaim_behaviour::testing::RoundByRound;
+use proclaim_board::Value;
+use proclaim_verify::{
+    to_script, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Verdict,
+};
+use std::cmp::Ordering;
+use std::time::Duration;
+
+/// A property drawn, as written and as a run reads it.
+pub(super) struct Claim {
+    kind: PropertyKind,
+    text: String,
+    atoms: Vec<Atom>,
+}
+
+enum Atom {
+    /// The machine is in the state (a top-level one: a flat machine's, or a chart's plain `Q`).
+    In { machine: String, state: String },
+    /// A global compared with a constant (an unset one is the number 0, as to the model).
+    Compare {
+        global: String,
+        op: &'static str,
+        value: Value,
+    },
+}
+
+/// The engine a seed's properties are checked with: every engine in turn, so that the
+/// symbolic engine's verdicts are held to runs as the explicit search's are.
+pub(super) fn engine(seed: u64) -> SearchEngine {
+    match seed % 3 {
+        0 => SearchEngine::Auto,
+        1 => SearchEngine::Explicit,
+        _ => SearchEngine::Symbolic,
+    }
+}
+
+/// Two properties over the behaviour's `files`: `never` or `reachable`, each a conjunction of
+/// one or two of a machine's state and a global (set somewhere) compared with a constant.
+pub(super) fn draw(seed: u64, files: &[(String, String)]) -> Vec<Claim> {
+    let mut rng = Rng::new(seed ^ 0xc1a1_3000);
+    let mut states = Vec::new();
+    for (_, text) in files {
+        let Some(machine) = text.lines().find_map(|l| l.strip_prefix("machine ")) else {
+            continue;
+        };
+        for line in text.lines() {
+            if let Some(state) = line
+                .strip_prefix("state ")
+                .and_then(|s| s.strip_suffix(" {"))
+            {
+                states.push((machine.to_string(), state.to_string()));
+            }
+        }
+    }
+    let all: String = files.iter().map(|(_, t)| t.as_str()).collect();
+    let globals: Vec<&str> = ["v0", "v1", "t0"]
+        .into_iter()
+        .filter(|g| all.contains(&format!("{g} = ")))
+        .collect();
+    (0..2)
+        .map(|_| {
+            let kind = if rng.chance(65) {
+                PropertyKind::Never
+            } else {
+                PropertyKind::Reachable
+            };
+            let atoms: Vec<Atom> = (0..rng.between(1, 2))
+                .map(|_| atom(&mut rng, &states, &globals))
+                .collect();
+            let text = atoms
+                .iter()
+                .map(Atom::text)
+                .collect::<Vec<_>>()
+                .join(" && ");
+            Claim { kind, text, atoms }
+        })
+        .collect()
+}
+
+fn atom(rng: &mut Rng, states: &[(String, String)], globals: &[&str]) -> Atom {
+    if globals.is_empty() || rng.chance(50) {
+        let (machine, state) = rng.pick(states).clone();
+        return Atom::In { machine, state };
+    }
+    let global = rng.pick(globals).to_string();
+    if global == "t0" {
+        let value = Value::Str(rng.pick(&["go", "stop", ""]).to_string());
+        let op = *rng.pick(&["==", "!="]);
+        return Atom::Compare { global, op, value };
+    }
+    let value = Value::Int(*rng.pick(&[-3, 0, 2, 10]));
+    let op = *rng.pick(&["<", "<=", ">", ">=", "==", "!="]);
+    Atom::Compare { global, op, value }
+}
+
+impl Atom {
+    fn text(&self) -> String {
+        match self {
+            Atom::In { machine, state } => format!("{machine}.{state}"),
+            Atom::Compare {
+                global,
+                op,
+                value: Value::Str(s),
+            } => format!("{global} {op} \"{s}\""),
+            Atom::Compare { global, op, value } => format!("{global} {op} {value}"),
+        }
+    }
+
+    fn holds_in(&self, run: &RoundByRound, machines: &[String]) -> bool {
+        match self {
+            Atom::In { machine, state } => run
+                .state_of(machine)
+                .is_some_and(|s| s.split(", ").any(|atomic| atomic == state)),
+            Atom::Compare { global, op, value } => {
+                let now = machines
+                    .first()
+                    .and_then(|m| run.variable(m, global))
+                    .unwrap_or(Value::Int(0));
+                compare(&now, op, value)
+            }
+        }
+    }
+}
+
+/// `a op b` as the runner's operators take it for what the behaviours hold: whole numbers
+/// ordered, text equal or not, different kinds unequal.
+fn compare(a: &Value, op: &str, b: &Value) -> bool {
+    let order = match (a, b) {
+        (Value::Int(x), Value::Int(y)) => Some(x.cmp(y)),
+        (Value::Str(x), Value::Str(y)) => Some(x.cmp(y)),
+        _ => None,
+    };
+    match (op, order) {
+        ("==", o) => o == Some(Ordering::Equal),
+        ("!=", o) => o != Some(Ordering::Equal),
+        ("<", Some(o)) => o == Ordering::Less,
+        ("<=", Some(o)) => o != Ordering::Greater,
+        (">", Some(o)) => o == Ordering::Greater,
+        (">=", Some(o)) => o != Ordering::Less,
+        _ => false,
+    }
+}
+
+impl Claim {
+    pub(super) fn source(&self, i: usize) -> PropertySource {
+        PropertySource {
+            name: format!("p{i}"),
+            kind: self.kind,
+            expression: self.text.clone(),
+            fair: Vec::new(),
+        }
+    }
+
+    pub(super) fn holds_in(&self, run: &RoundByRound, machines: &[String]) -> bool {
+        self.atoms.iter().all(|a| a.holds_in(run, machines))
+    }
+
+    /// Whether verify said no run makes it true: a `never` that holds, a `reachable` that
+    /// fails.
+    pub(super) fn absent(&self, outcome: &PropertyOutcome) -> bool {
+        matches!(
+            (self.kind, outcome.verdict),
+            (PropertyKind::Never, Verdict::Holds) | (PropertyKind::Reachable, Verdict::Fails)
+        )
+    }
+
+    pub(super) fn describe(&self) -> String {
+        let kind = match self.kind {
+            PropertyKind::Never => "never",
+            _ => "reachable",
+        };
+        format!("{kind} {}", self.text)
+    }
+
+    /// Plays the run verify found for it (a `never`'s counterexample, a `reachable`'s
+    /// witness) in the runner, one round every `PERIOD` as the script assumes: `None` when
+    /// no script can say that run (more than one machine, whose ringlets a change may fall
+    /// between; a change inside a ringlet; a value no script sets), else whether a round
+    /// ended with it true.
+    pub(super) fn replays(
+        &self,
+        outcome: &PropertyOutcome,
+        dir: &std::path::Path,
+        machines: &[String],
+    ) -> Option<Result<(), String>> {
+        let found = matches!(
+            (self.kind, outcome.verdict),
+            (PropertyKind::Never, Verdict::Fails) | (PropertyKind::Reachable, Verdict::Holds)
+        );
+        let trace = outcome.trace.as_ref().filter(|_| found)?;
+        if machines.len() > 1 || trace.steps.iter().any(|s| !s.at_snapshot.is_empty()) {
+            return None;
+        }
+        const PERIOD: Duration = Duration::from_millis(25);
+        let (script, notes) = to_script(trace, PERIOD, "replay");
+        if !notes.is_empty() {
+            return None;
+        }
+        let mut run = match RoundByRound::start(dir, &script) {
+            Ok(run) => run,
+            Err(e) => return Some(Err(format!("the script does not start: {e}\n{script}"))),
+        };
+        let rounds = trace.steps.last().map_or(0, |s| s.round) + 2;
+        let mut shown = self.holds_in(&run, machines);
+        for _ in 0..rounds {
+            if shown {
+                break;
+            }
+            run.round();
+            shown = self.holds_in(&run, machines);
+            run.wait(PERIOD);
+        }
+        Some(if shown {
+            Ok(())
+        } else {
+            Err(format!(
+                "the runner, played its script, never made it true\n--- script\n{script}"
+            ))
+        })
+    }
+}
