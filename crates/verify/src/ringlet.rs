@@ -63,6 +63,9 @@ pub struct Detail {
     pub at_snapshot: Vec<(SlotId, ValueId)>,
     /// Free types chosen where the ringlet read them, in the order it read them.
     pub read: Vec<(SlotId, ValueId)>,
+    /// Free types chosen where read that the ringlet posted itself: a later read of the value
+    /// they held before is a change the environment made, to be told again.
+    pub posted: Vec<(SlotId, ValueId)>,
     /// Stored free types that changed after the ringlet.
     pub environment: Vec<(SlotId, ValueId)>,
 }
@@ -323,6 +326,7 @@ impl<'m> StepGenerator<'m> {
             now: Vec::new(),
             entry: Vec::new(),
             log: detail.then(Vec::new),
+            posted: detail.then(Vec::new),
             open,
         };
         let mut exec = RingletInterpreter {
@@ -351,6 +355,7 @@ impl<'m> StepGenerator<'m> {
             timers: snapshot.timers,
             at_snapshot: snapshot.values,
             read: chosen.log.unwrap_or_default(),
+            posted: chosen.posted.unwrap_or_default(),
         };
         (ringlet, chosen.open)
     }
@@ -618,6 +623,7 @@ impl<'m> StepGenerator<'m> {
                     timers: ringlet.timers.clone(),
                     at_snapshot: ringlet.at_snapshot.clone(),
                     read: ringlet.read.clone(),
+                    posted: ringlet.posted.clone(),
                     environment: changed,
                 }),
             });
@@ -642,6 +648,8 @@ struct Ringlet {
     at_snapshot: Vec<(SlotId, ValueId)>,
     /// With detail only: the free types chosen where they were read.
     read: Vec<(SlotId, ValueId)>,
+    /// With detail only: what it posted to them.
+    posted: Vec<(SlotId, ValueId)>,
 }
 
 /// What a ringlet's snapshot chose: the time tests due, and with detail only those that came
@@ -666,6 +674,8 @@ struct Chosen<'c> {
     entry: Vec<(SlotId, ValueId)>,
     /// With detail: every value chosen, in order.
     log: Option<Vec<(SlotId, ValueId)>>,
+    /// With detail: every value the ringlet posted to a type chosen where read.
+    posted: Option<Vec<(SlotId, ValueId)>>,
     /// Where the ringlet runs on a world only partly known.
     open: Option<Open<'c>>,
 }
@@ -732,6 +742,9 @@ impl Chosen<'_> {
         match self.now.iter_mut().find(|(s, _)| *s == slot) {
             Some(entry) => entry.1 = value,
             None => self.now.push((slot, value)),
+        }
+        if let Some(posted) = &mut self.posted {
+            posted.push((slot, value));
         }
     }
 }

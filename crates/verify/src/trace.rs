@@ -113,6 +113,11 @@ pub fn trace_of(
             }
         }
         steps.push(step(model, s, round, &detail, &mut last_read));
+        // What the machine posted is what the type holds next: a read of the value before is
+        // the world's change again, and must be told (its script sets it again).
+        for &(slot, v) in &detail.posted {
+            last_read.insert(slot, v);
+        }
     }
     Trace {
         initially,

@@ -5,7 +5,9 @@
 
 use proclaim_behaviour::testing::run_scripted;
 use proclaim_behaviour::{load, Folder};
-use proclaim_verify::{to_script, verify, Options, PropertyKind, PropertySource, Report, Verdict};
+use proclaim_verify::{
+    to_script, verify, Options, PropertyKind, PropertySource, Report, SearchEngine, Verdict,
+};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
@@ -46,6 +48,32 @@ fn replay(name: &str, report: &Report) -> Vec<String> {
         .iter()
         .map(|v| format!("{}.{}", v.machine, v.state))
         .collect()
+}
+
+/// A free value read, overwritten by the machine's own posting, and read again as it was: the
+/// second read is the world's change and is told, so the script sets it again and replays.
+#[test]
+fn a_value_read_again_after_the_machine_overwrote_it_is_told() {
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = check_within("overwritten", PropertyKind::Never, "A.BAD", options);
+        let p = &report.properties[0];
+        assert_eq!(p.verdict, Verdict::Fails, "{report:#?}");
+        let reads: Vec<Vec<String>> = (p.trace.as_ref().expect("a counterexample").steps)
+            .iter()
+            .map(|s| {
+                s.read
+                    .iter()
+                    .map(|a| format!("{} = {}", a.name, a.value))
+                    .collect()
+            })
+            .collect();
+        assert_eq!(reads, [vec!["level = 1"], vec!["level = 1"]], "{engine:?}");
+        assert!(replay("overwritten", &report).contains(&"A.BAD".to_string()));
+    }
 }
 
 #[test]
