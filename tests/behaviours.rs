@@ -299,7 +299,7 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
         ),
         (
             "Main.machine",
-            "machine Main\nstate A {\n  entry {\n    Helper: On\n    Ghost: On\n    LEDS: red\n    Beep: twice\n  }\n  when TRUE -> B\n  when cook -> B\n  when mystery -> B\n}\nstate B {\n  when ~HelperIsRunning -> A\n  when ~HelperIsRunning -> B\n}\nstate Lost {\n}\n",
+            "machine Main\nstate A {\n  entry {\n    Helper: On\n    Helpr: On\n    Ghost: restart\n    LEDS: red\n    Beep: twice\n    sensors_postJoints: On\n  }\n  when TRUE -> B\n  when cook -> B\n  when mystery -> B\n}\nstate B {\n  when ~HelperIsRunning -> A\n  when ~HelperIsRunning -> B\n}\nstate Lost {\n}\n",
         ),
         ("Helper.machine", "machine Helper\nstate H {\n}\n"),
         (
@@ -315,13 +315,15 @@ fn check_finds_what_only_the_whole_behaviour_shows() {
     assert_eq!(
         findings,
         [
-            "Main.machine:10: warning: `cook` is never tried: `TRUE` above it (line 9) always fires first",
-            "Main.machine:11: warning: `mystery` is never tried: `TRUE` above it (line 9) always fires first",
-            "Main.machine:15: warning: `~HelperIsRunning` never fires: the same label above it (line 14) is tried first",
-            "Main.machine:17: warning: state Lost is never reached from the initial state A",
-            "Main.machine:11: error: label `mystery` is answered by no expert and posted by no module",
-            "Main.machine:2: error: `Ghost: On` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)",
+            "Main.machine:12: warning: `cook` is never tried: `TRUE` above it (line 11) always fires first",
+            "Main.machine:13: warning: `mystery` is never tried: `TRUE` above it (line 11) always fires first",
+            "Main.machine:17: warning: `~HelperIsRunning` never fires: the same label above it (line 16) is tried first",
+            "Main.machine:19: warning: state Lost is never reached from the initial state A",
+            "Main.machine:13: error: label `mystery` is answered by no expert and posted by no module",
+            "Main.machine:2: error: `Helpr: On` controls a machine `Helpr` the behaviour does not have (did you mean `Helper`?)",
+            "Main.machine:2: error: `Ghost: restart` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)",
             "Main.machine:2: warning: nobody listens to `Beep` postings (name the module that does in the manifest's [[module]] or dictionary)",
+            "Main.machine:2: warning: nobody listens to `sensors_postJoints` postings (name the module that does in the manifest's [[module]] or dictionary; `sensors_postJoints: On` is a plain posting, no machine is named `sensors_postJoints`)",
             "t.dl:8: warning: output `light` of theory t is queried by no machine",
             "t.dl:1: warning: input `door` of theory t is posted by no module",
             "t.dl:2: warning: input `timer` of theory t is posted by no module",
@@ -337,7 +339,7 @@ fn a_composites_posting_nobody_hears_is_said_once_where_it_is_written() {
         ("behaviour.toml", "[[machine]]\nfile = \"Main.machine\"\n"),
         (
             "Main.machine",
-            "machine Main\ninitial PLAY\nstate PLAY {\n  entry {\n    Ghost: On\n  }\n  state A { when TRUE -> B }\n  state B { when TRUE -> A }\n}\n",
+            "machine Main\ninitial PLAY\nstate PLAY {\n  entry {\n    Ghost: suspend\n  }\n  state A { when TRUE -> B }\n  state B { when TRUE -> A }\n}\n",
         ),
     ]);
     let behaviour = load("chart", Arc::new(Folder::new(&dir))).unwrap();
@@ -348,7 +350,35 @@ fn a_composites_posting_nobody_hears_is_said_once_where_it_is_written() {
         .collect();
     assert_eq!(
         findings,
-        ["Main.machine:3: error: `Ghost: On` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)"]
+        ["Main.machine:3: error: `Ghost: suspend` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)"]
+    );
+}
+
+/// The Griffith team's head tracker posts `sensors_postJoints: On` and `SpeechOutput: On` to
+/// the robot's own modules, not to machines: `check` says nobody in the behaviour listens
+/// (a warning), not that a machine is missing (it once refused the file).
+#[test]
+fn a_control_word_to_a_sensor_wrapper_is_a_plain_posting() {
+    let Some(corpus) = crate::corpus_dir() else {
+        eprintln!("skipped: ../shared/corpus is absent");
+        return;
+    };
+    let file = "SMHeadBallTrackerFair.fsm";
+    let text = std::fs::read_to_string(corpus.join("mipal/machines").join(file)).unwrap();
+    let manifest = format!("[[machine]]\nfile = \"{file}\"\n");
+    let dir = temp_behaviour(&[("behaviour.toml", &manifest), (file, &text)]);
+    let behaviour = load("tracker", Arc::new(Folder::new(&dir))).unwrap();
+    let findings: Vec<String> = proclaim_behaviour::check_behaviour(&behaviour)
+        .iter()
+        .map(|d| d.to_string())
+        .filter(|d| d.contains("`sensors_postJoints`") || d.contains("`SpeechOutput`"))
+        .collect();
+    assert_eq!(findings.len(), 2, "{findings:#?}");
+    assert!(
+        findings
+            .iter()
+            .all(|d| d.contains("warning: nobody listens") && d.contains("a plain posting")),
+        "{findings:#?}"
     );
 }
 

@@ -10,6 +10,7 @@ use proclaim_experts::Script;
 use proclaim_fsm::{lint, Action, FileDiagnostic};
 use proclaim_lower::RingletPlan;
 use proclaim_runner::{machine_of_running_type, Command};
+use proclaim_syntax::nearest;
 
 pub fn check_behaviour(behaviour: &Behaviour) -> Vec<FileDiagnostic> {
     check_behaviour_with(behaviour, None, &[])
@@ -146,28 +147,57 @@ impl CrossModuleCheck<'_> {
                 }
                 reported.push(ty.clone());
                 let line = m.line_of(state, action);
-                // A control word to nobody is a machine that is missing; any other posting
-                // nobody hears may be for a module outside the behaviour.
-                out.push(if Command::parse(content).is_some() {
-                    FileDiagnostic::error(
-                        file,
-                        line,
-                        format!(
-                            "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have (and no module reads `{ty}`)"
-                        ),
-                    )
-                } else {
-                    FileDiagnostic::warning(
-                        file,
-                        line,
-                        format!(
-                            "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary)"
-                        ),
-                    )
-                });
+                out.push(self.posting_nobody_hears(file, line, ty, content));
             }
         }
         out
+    }
+
+    /// A posting of `ty: content` that no machine or module hears. Only a machine obeys
+    /// `suspend` or `restart`, so one sent to nobody is a machine missing; but `On` and `Off`
+    /// are what a lamp, a speech module or a sensor wrapper is told too (the Griffith machines
+    /// post `sensors_postJoints: On`), and the runner hands them to the board as any posting:
+    /// a machine is missing only where one is a letter away. Anything else may be for a module
+    /// outside the behaviour.
+    fn posting_nobody_hears(
+        &self,
+        file: &str,
+        line: usize,
+        ty: &str,
+        content: &str,
+    ) -> FileDiagnostic {
+        let machines = self.behaviour.machines.iter();
+        let near = nearest(machines.map(|m| m.machine.name.as_str()), ty);
+        let missing = match Command::parse(content) {
+            Some(Command::On | Command::Off) => near.is_some(),
+            Some(_) => true,
+            None => false,
+        };
+        if !missing {
+            let plain = if Command::parse(content).is_some() {
+                format!("; `{ty}: {content}` is a plain posting, no machine is named `{ty}`")
+            } else {
+                String::new()
+            };
+            return FileDiagnostic::warning(
+                file,
+                line,
+                format!(
+                    "nobody listens to `{ty}` postings (name the module that does in the manifest's [[module]] or dictionary{plain})"
+                ),
+            );
+        }
+        let hint = near.map_or_else(
+            || format!("and no module reads `{ty}`"),
+            |near| format!("did you mean `{near}`?"),
+        );
+        FileDiagnostic::error(
+            file,
+            line,
+            format!(
+                "`{ty}: {content}` controls a machine `{ty}` the behaviour does not have ({hint})"
+            ),
+        )
     }
 
     /// The whiteboard values `loaded`'s labels compare that no module posts, no machine
