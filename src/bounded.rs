@@ -3,7 +3,7 @@
 //! error that says so, not in the process taking all the machine's memory.
 
 use crate::failure::Failure;
-use std::io::Read;
+use proclaim_syntax::Unread;
 use std::path::Path;
 
 /// The largest recording, trace or checkpoint read: far beyond a long match's (hours of
@@ -23,18 +23,10 @@ pub fn read_text(path: &Path, what: &'static str) -> Result<String, Failure> {
         size,
         limit: LARGEST,
     };
-    let file = std::fs::File::open(path).map_err(failed)?;
-    let said = file.metadata().map_err(failed)?.len();
-    if said > LARGEST {
-        return Err(too_large(said));
-    }
-    let mut bytes = Vec::new();
-    file.take(LARGEST + 1)
-        .read_to_end(&mut bytes)
-        .map_err(failed)?;
-    if bytes.len() as u64 > LARGEST {
-        return Err(too_large(bytes.len() as u64));
-    }
+    let bytes = proclaim_syntax::read_within(path, LARGEST).map_err(|unread| match unread {
+        Unread::Io(error) => failed(error),
+        Unread::TooLarge(size) => too_large(size),
+    })?;
     String::from_utf8(bytes)
         .map_err(|e| failed(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
 }

@@ -5,6 +5,7 @@ use crate::embedded;
 use crate::failure::Failure;
 use proclaim_cdl::{check_source, Diagnostic, Language, Theory};
 use proclaim_syntax::{line_column, render, FileDiagnostic, Severity};
+use proclaim_syntax::{read_within, too_large, Unread, MAX_SOURCE_BYTES};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -26,18 +27,22 @@ pub fn read(theory: &str) -> Result<Source, Failure> {
             });
         }
     }
-    let bytes = std::fs::read(path).map_err(|error| Failure::Read {
+    let bytes = read_within(path, MAX_SOURCE_BYTES).map_err(|unread| Failure::Read {
         path: PathBuf::from(theory),
-        error: if error.kind() == std::io::ErrorKind::NotFound {
-            std::io::Error::new(
-                error.kind(),
-                format!(
-                    "no such file (and no embedded theory of that name: {})",
-                    embedded::names()
-                ),
-            )
-        } else {
-            error
+        error: match unread {
+            Unread::Io(error) if error.kind() == std::io::ErrorKind::NotFound => {
+                std::io::Error::new(
+                    error.kind(),
+                    format!(
+                        "no such file (and no embedded theory of that name: {})",
+                        embedded::names()
+                    ),
+                )
+            }
+            Unread::Io(error) => error,
+            Unread::TooLarge(size) => {
+                std::io::Error::new(std::io::ErrorKind::InvalidData, too_large(size))
+            }
         },
     })?;
     let text = String::from_utf8(bytes).map_err(|e| Failure::Read {
@@ -91,7 +96,7 @@ pub fn line_file<T>(
     what: &'static str,
     parse: impl FnOnce(&str) -> Result<T, proclaim_experts::LineErrors>,
 ) -> Result<T, Failure> {
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(path).map_err(|error| Failure::Read {
         path: path.to_path_buf(),
         error,
     })?;

@@ -305,7 +305,7 @@ fn child(
 pub fn run_one(file: &Path, expect: &[String]) -> Result<ExitCode, Failure> {
     let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
     let start = Instant::now();
-    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(file).map_err(|error| Failure::Read {
         path: file.to_path_buf(),
         error,
     })?;

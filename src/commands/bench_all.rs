@@ -146,7 +146,7 @@ fn summary(mut ms: Vec<f64>) -> Timing {
 
 /// The query for a file of the user's: its first atom.
 fn first_atom(file: &PathBuf) -> Result<String, Failure> {
-    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(file).map_err(|error| Failure::Read {
         path: file.clone(),
         error,
     })?;

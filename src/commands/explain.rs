@@ -119,7 +119,7 @@ fn read_run(
             "--round explains a run: give --recording FILE or --trace FILE".into(),
         ));
     };
-    let text = std::fs::read_to_string(path).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(path).map_err(|error| Failure::Read {
         path: path.to_path_buf(),
         error,
     })?;

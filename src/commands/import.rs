@@ -71,7 +71,7 @@ pub fn run(files: &[String], dir: &Path) -> Result<ExitCode, Failure> {
 /// or a native file itself; `None` for the formats `to_native` writes.
 fn as_written(file: &str) -> Option<String> {
     let path = Path::new(file);
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = proclaim_syntax::read_source(path).ok()?;
     match machine_format(path)? {
         MachineFormat::Scxml { stem } => import_scxml(file, &text, &stem).native,
         MachineFormat::Native => {
@@ -105,7 +105,7 @@ fn file_stem(name: &str) -> String {
 /// `proclaim export`: a native machine file written as SCXML, to `output` or standard output;
 /// what SCXML cannot say is reported at its line and nothing is written (exit 1).
 pub fn export(file: &Path, output: Option<&Path>) -> Result<ExitCode, Failure> {
-    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(file).map_err(|error| Failure::Read {
         path: file.to_path_buf(),
         error,
     })?;

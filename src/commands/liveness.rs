@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 pub fn run(file: &Path, dir: &Path) -> Result<ExitCode, Failure> {
-    let text = std::fs::read_to_string(file).map_err(|error| Failure::Read {
+    let text = proclaim_syntax::read_source(file).map_err(|error| Failure::Read {
         path: file.to_path_buf(),
         error,
     })?;

@@ -82,6 +82,46 @@ fn a_hundred_megabytes_of_garbage_is_refused_cleanly() {
     garbage_is_refused_cleanly(100 << 20);
 }
 
+/// A source past the bound every reader holds (`MAX_SOURCE_BYTES`) is refused before a byte is
+/// read, naming the file, its size and the bound: a theory named alone, and a machine of a
+/// behaviour. (Sparse files: the test takes no disk.)
+#[test]
+fn a_source_larger_than_the_bound_is_refused_before_it_is_read() {
+    let size = proclaim_syntax::MAX_SOURCE_BYTES + (44 << 20);
+    let theory = temp_file("huge.dl", b"");
+    std::fs::File::options()
+        .write(true)
+        .open(&theory)
+        .and_then(|f| f.set_len(size))
+        .unwrap();
+    let o = proclaim(&["check", theory.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("huge.dl")
+            && stderr(&o).contains("the file is 300 MiB, over the 256 MiB a source file may be"),
+        "{}",
+        stderr(&o)
+    );
+    let dir = crate::fresh_folder("huge-machine");
+    std::fs::write(
+        dir.join("behaviour.toml"),
+        "[[machine]]\nfile = \"Big.machine\"\n",
+    )
+    .unwrap();
+    std::fs::File::create(dir.join("Big.machine"))
+        .and_then(|f| f.set_len(size))
+        .unwrap();
+    let o = proclaim(&["check", dir.to_str().unwrap()]);
+    assert_ne!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("Big.machine") && stderr(&o).contains("over the 256 MiB"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_file(theory).unwrap();
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 /// `size` bytes of garbage are refused with problems (not all shown), a binary file as not UTF-8.
 fn garbage_is_refused_cleanly(size: usize) {
     // Printable garbage with some structure-like characters, so the parser works for it.

@@ -31,7 +31,7 @@ impl Folder {
 
 impl Files for Folder {
     fn read(&self, relative: &str) -> Result<String, FileDiagnostic> {
-        std::fs::read_to_string(self.root.join(relative)).map_err(|e| {
+        proclaim_syntax::read_source(self.root.join(relative)).map_err(|e| {
             FileDiagnostic::in_file(&self.show(relative), format!("cannot read it: {e}"))
         })
     }

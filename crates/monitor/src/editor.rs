@@ -82,7 +82,7 @@ impl Editor {
         let machines = files
             .into_iter()
             .map(|f| {
-                let (text, mut refusal) = match std::fs::read_to_string(&f.path) {
+                let (text, mut refusal) = match proclaim_syntax::read_source(&f.path) {
                     Ok(text) => (text, None),
                     Err(e) => (String::new(), Some(format!("cannot read it: {e}"))),
                 };
@@ -270,7 +270,8 @@ impl Open {
                 ));
             }
         }
-        let now = std::fs::read_to_string(&self.path).map_err(|e| format!("not saved: {e}"))?;
+        let now =
+            proclaim_syntax::read_source(&self.path).map_err(|e| format!("not saved: {e}"))?;
         if now != self.on_disk {
             return Err(format!(
                 "not saved: {} changed on disk since the editor read it; reopen the editor to edit the new text",
@@ -363,14 +364,14 @@ fn read_any(path: &std::path::Path) -> Option<proclaim_fsm::Machine> {
     match proclaim_fsm::machine_format(path)? {
         proclaim_fsm::MachineFormat::Native => None,
         proclaim_fsm::MachineFormat::Qfsm { stem } => {
-            let text = std::fs::read_to_string(path).ok()?;
+            let text = proclaim_syntax::read_source(path).ok()?;
             proclaim_fsm::import_qfsm(&file, &text, &stem)
                 .machines
                 .into_iter()
                 .next()
         }
         proclaim_fsm::MachineFormat::Scxml { stem } => {
-            let text = std::fs::read_to_string(path).ok()?;
+            let text = proclaim_syntax::read_source(path).ok()?;
             proclaim_fsm::import_scxml(&file, &text, &stem)
                 .imported
                 .machines
@@ -378,8 +379,8 @@ fn read_any(path: &std::path::Path) -> Option<proclaim_fsm::Machine> {
                 .next()
         }
         proclaim_fsm::MachineFormat::TablePair { t, a, name } => {
-            let t_text = std::fs::read_to_string(&t).ok()?;
-            let a_text = std::fs::read_to_string(&a).ok()?;
+            let t_text = proclaim_syntax::read_source(&t).ok()?;
+            let a_text = proclaim_syntax::read_source(&a).ok()?;
             proclaim_fsm::import_ta(
                 &name,
                 &t.display().to_string(),
