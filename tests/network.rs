@@ -746,6 +746,30 @@ fn a_team_given_each_others_endpoints_links_in_any_order_and_takes_a_restarted_r
     wait_line(&robots[1].1, "Player  → SUPPORTER", PATIENCE);
 }
 
+/// The first robot of a mesh up runs alone at once and quietly: no warning that its teammates
+/// were not there yet (Zenoh's own wait for them once said so on every lone start).
+#[test]
+fn a_robot_alone_in_its_mesh_starts_at_once_and_says_nothing_amiss() {
+    let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");
+    let (own, other) = (free_endpoint(), free_endpoint());
+    let o = Command::new(env!("CARGO_BIN_EXE_proclaim"))
+        .args(["run", striker, "--member", "robot1", "--for", "1s"])
+        .args(["--listen", &own, "--peer", &own, "--peer", &other])
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let (out, err) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert!(o.status.success(), "{err}");
+    assert!(
+        out.contains(&format!("linking to {other} as they come")),
+        "{out}"
+    );
+    assert!(!err.contains("WARN") && !err.contains("Scouting"), "{err}");
+}
+
 #[test]
 fn a_peer_without_an_address_of_its_own_is_refused() {
     let striker = concat!(env!("CARGO_MANIFEST_DIR"), "/machines/striker");

@@ -195,6 +195,13 @@ fn dialling(
         )?;
         let dial = settings.dial().as_millis().to_string();
         set(config, "transport/unicast/open_timeout", dial)?;
+        // Nor does opening wait for the teammates: the members' meeting (`members.rs`) waits
+        // for them itself, and Zenoh's own wait only warns that they were not up.
+        set(
+            config,
+            "open/return_conditions/connect_scouted",
+            "false".into(),
+        )?;
     } else {
         // A process joining must find the board, or say so, not wait for ever.
         set(config, "connect/exit_on_failure", "true".into())?;
