@@ -231,6 +231,73 @@ PAUSE#3 entry[] exit[] internal[]
     );
 }
 
+/// A shallow history of a state that holds a parallel state resumes its own state: left from
+/// inside the parallel state, it comes back to it with every region at its initial (SCXML's
+/// shallow history); the history of the parallel state itself is entering it. A deep history
+/// there (a state in each region at once) is refused, saying what works.
+#[test]
+fn a_shallow_history_around_regions_resumes_the_parallel_state_whole() {
+    check(
+        "machine M
+state GAME {
+    when whistle -> PAUSE
+    state READY { when go -> PLAY }
+    parallel PLAY {
+        state HEAD {
+            state LOOK { when seen -> TRACK }
+            state TRACK { }
+        }
+        state BODY {
+            state WALK { when near -> KICK }
+            state KICK { }
+        }
+    }
+}
+state PAUSE {
+    when resume -> GAME.history
+    when again -> GAME.PLAY.history
+}
+",
+        "initial GAME.READY#1
+GAME.READY#1 entry[Statement(Declare { ty: Int, name: \"GAME_history\", value: None })] exit[] internal[]
+  go -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_history\", value: Int(1) })] of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7 entry[] exit[] internal[]
+  seen && near -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.HEAD.LOOK
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#9 leaving[] of GAME.PLAY.HEAD.LOOK
+  near -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#10 leaving[] of GAME.PLAY.BODY.WALK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_history\", value: Int(2) })] of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#10 entry[] exit[] internal[]
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.HEAD.LOOK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_history\", value: Int(2) })] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#9 entry[] exit[] internal[]
+  near -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.BODY.WALK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_history\", value: Int(2) })] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 entry[] exit[] internal[]
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_history\", value: Int(2) })] of GAME
+PAUSE#6 entry[] exit[] internal[]
+  GAME_history == 1 && resume -> GAME.READY#1
+  GAME_history == 2 && resume -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
+  resume -> GAME.READY#1
+  again -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
+",
+    );
+    check(
+        "machine M
+state GAME {
+    when whistle -> PAUSE
+    state READY { }
+    parallel PLAY {
+        state HEAD { }
+        state BODY { }
+    }
+}
+state PAUSE { when resume -> GAME.deep_history }
+",
+        "10: `GAME` holds parallel states: a deep history would resume a state in each region at once, which is not built yet (`GAME.history` resumes its own state)\n",
+    );
+}
+
 #[test]
 fn a_transitions_own_actions_run_after_what_it_leaves() {
     check(

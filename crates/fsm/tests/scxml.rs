@@ -252,6 +252,43 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
     );
 }
 
+/// A shallow history of a state holding a `<parallel>` maps (it resumes the parallel state
+/// whole); a deep one, which would resume a state in each region, is refused at its element.
+#[test]
+fn a_history_around_a_parallel_state_maps_when_shallow() {
+    let document = |kind: &str| {
+        format!(
+            r#"<scxml xmlns="http://www.w3.org/2005/07/scxml">
+  <state id="game">
+    <history id="h" type="{kind}"/>
+    <transition event="whistle" target="pause"/>
+    <state id="ready"><transition event="go" target="play"/></state>
+    <parallel id="play">
+      <state id="head"/>
+      <state id="body"/>
+    </parallel>
+  </state>
+  <state id="pause"><transition event="resume" target="h"/></state>
+</scxml>"#
+        )
+    };
+    let read = import_scxml("d.scxml", &document("shallow"), "d");
+    assert!(
+        !read.imported.has_errors(),
+        "{:?}",
+        read.imported.diagnostics
+    );
+    assert!(
+        (read.native.as_deref().unwrap_or_default()).contains("when resume -> game.history"),
+        "{:?}",
+        read.native
+    );
+    check(
+        &document("deep"),
+        "3: <history type=\"deep\"> of a state that is or holds a <parallel>: it would resume a state in each region at once, which does not map yet (a shallow one does)\n",
+    );
+}
+
 /// A document nesting deeper than any chart is refused, not walked until the stack ends.
 #[test]
 fn elements_nesting_past_their_bound_are_refused() {

@@ -205,9 +205,7 @@ mod tests {
             run: Default::default(),
         };
         let (written, said) = to_script(&trace, Duration::from_millis(100), "t");
-        let lines: Vec<&str> = (written.lines())
-            .filter(|l| !l.starts_with('#'))
-            .collect();
+        let lines: Vec<&str> = (written.lines()).filter(|l| !l.starts_with('#')).collect();
         assert_eq!(lines.join("\n"), script);
         assert_eq!(said, notes);
     }

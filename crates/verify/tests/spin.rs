@@ -406,6 +406,27 @@ fn spin_and_both_engines_agree_that_a_reload_starts_the_machine_again() {
     agree("reload", &properties, &[Verdict::Holds; 2]);
 }
 
+/// A shallow history of a state that holds a parallel state resumes the parallel state whole:
+/// READY is never entered once the history says PLAY was left, the pause is reached with it
+/// so, and after resuming both regions move on from their initial states; `again` (the
+/// parallel state's own history) enters PLAY even when the history says READY.
+#[test]
+fn spin_and_both_engines_agree_on_a_shallow_history_around_regions() {
+    let properties = [
+        property(PropertyKind::Never, "M.GAME.READY && M.GAME_history == 2"),
+        property(
+            PropertyKind::Reachable,
+            "M.GAME.PLAY.HEAD.TRACK && M.GAME_history == 1",
+        ),
+        property(PropertyKind::Reachable, "M.PAUSE && M.GAME_history == 2"),
+        property(
+            PropertyKind::Reachable,
+            "M.GAME.PLAY.HEAD.TRACK && M.GAME.PLAY.BODY.KICK && M.GAME_history == 2",
+        ),
+    ];
+    agree("history-around-regions", &properties, &[Verdict::Holds; 4]);
+}
+
 /// A machine started and reloaded in one round rings from the next, as one only started
 /// does: B, started by A and reloaded by C before its turn, first rings after A's second
 /// ringlet. (The symbolic engine once took the reload for a start of its own that cleared

@@ -491,12 +491,19 @@ impl Tree {
                 );
                 None
             }
-            Ok(target) if history.is_some() && self.holds_regions(target) => {
+            // Every region of a parallel state is active while it is: resuming them all at
+            // their initial (SCXML's shallow history) is entering it.
+            Ok(target) if history == Some(History::Shallow) && self.nodes[target].parallel => {
+                Some((target, None))
+            }
+            // A shallow history of a state around a parallel one resumes its own state, the
+            // parallel one entered as usual; a deep one would resume a state in each region.
+            Ok(target) if history == Some(History::Deep) && self.holds_regions(target) => {
                 lowering.error(
                     at,
                     format!(
-                        "`{}` holds parallel states: a history across regions is not built yet",
-                        self.nodes[target].path
+                        "`{}` holds parallel states: a deep history would resume a state in each region at once, which is not built yet (`{}.history` resumes its own state)",
+                        self.nodes[target].path, self.nodes[target].path
                     ),
                 );
                 None
