@@ -298,6 +298,84 @@ state PAUSE { when resume -> GAME.deep_history }
     );
 }
 
+/// Several targets (SCXML's `target="a b"`) enter a state in each of several regions at once:
+/// the regions they name at those states, any other region at its initial. A move from inside
+/// the parallel state to states of two of its regions leaves it and enters it again. Targets
+/// that could not be active together, or a history among them, are refused where written.
+#[test]
+fn several_targets_enter_a_state_in_each_region() {
+    check(
+        "machine M
+state READY {
+    when go -> PLAY.HEAD.TRACK, PLAY.BODY.KICK
+    when half -> PLAY.BODY.KICK
+}
+parallel PLAY {
+    exit {
+        PlayOff:
+    }
+    when whistle -> READY
+    state HEAD {
+        state LOOK { when seen -> TRACK }
+        state TRACK { when lost -> HEAD.LOOK, BODY.WALK }
+    }
+    state BODY {
+        state WALK { when near -> KICK }
+        state KICK { }
+    }
+}
+",
+        "initial READY#1
+READY#1 entry[] exit[] internal[]
+  go -> PLAY.HEAD.TRACK, PLAY.BODY.KICK#6
+  half -> PLAY.HEAD.LOOK, PLAY.BODY.KICK#7
+PLAY.HEAD.LOOK, PLAY.BODY.WALK#8 entry[] exit[] internal[]
+  seen && near -> PLAY.HEAD.TRACK, PLAY.BODY.KICK#6 leaving[] of PLAY.HEAD.LOOK
+  seen -> PLAY.HEAD.TRACK, PLAY.BODY.WALK#9 leaving[] of PLAY.HEAD.LOOK
+  near -> PLAY.HEAD.LOOK, PLAY.BODY.KICK#7 leaving[] of PLAY.BODY.WALK
+  whistle -> READY#1 leaving[PlayOff] of PLAY
+PLAY.HEAD.LOOK, PLAY.BODY.KICK#7 entry[] exit[] internal[]
+  seen -> PLAY.HEAD.TRACK, PLAY.BODY.KICK#6 leaving[] of PLAY.HEAD.LOOK
+  whistle -> READY#1 leaving[PlayOff] of PLAY
+PLAY.HEAD.TRACK, PLAY.BODY.WALK#9 entry[] exit[] internal[]
+  lost -> PLAY.HEAD.LOOK, PLAY.BODY.WALK#8 leaving[PlayOff] of PLAY.HEAD.TRACK
+  near -> PLAY.HEAD.TRACK, PLAY.BODY.KICK#6 leaving[] of PLAY.BODY.WALK
+  whistle -> READY#1 leaving[PlayOff] of PLAY
+PLAY.HEAD.TRACK, PLAY.BODY.KICK#6 entry[] exit[] internal[]
+  lost -> PLAY.HEAD.LOOK, PLAY.BODY.WALK#8 leaving[PlayOff] of PLAY.HEAD.TRACK
+  whistle -> READY#1 leaving[PlayOff] of PLAY
+",
+    );
+    check(
+        "machine M
+state READY {
+    when a -> PLAY.HEAD.LOOK, PLAY.HEAD.TRACK
+    when b -> PLAY.HEAD, PLAY.HEAD.LOOK
+    when c -> PLAY.HEAD.LOOK, PLAY.BODY.history
+    when d -> PLAY.HEAD.LOOK, NOWHERE
+}
+parallel PLAY {
+    state HEAD {
+        state LOOK { }
+        state TRACK { }
+    }
+    state BODY {
+        state WALK { }
+    }
+}
+",
+        "3: `PLAY.HEAD.LOOK` and `PLAY.HEAD.TRACK` are not in different regions of a parallel state: several targets enter one state in each region
+4: `PLAY.HEAD` and `PLAY.HEAD.LOOK` are not in different regions of a parallel state: several targets enter one state in each region
+5: a history is a target of its own: it resumes one state, and another target cannot join it
+6: there is no state named `NOWHERE`
+",
+    );
+    check(
+        "machine M\nstate A { when go -> B, C }\nstate B { }\nstate C { }\n",
+        "2: several targets enter a state in each region of a parallel state, and this machine has none: name one target\n",
+    );
+}
+
 #[test]
 fn a_transitions_own_actions_run_after_what_it_leaves() {
     check(

@@ -166,7 +166,7 @@ fn the_native_format() {
     );
     native(
         "machine M\nstate A {\n  when a -> A\n",
-        "m.machine:4: error: the file ends too early; expected one of `initial`, `state`, `parallel`, `entry`, `exit`, `internal`, `when`, `outcome`, `{`, `}`\n",
+        "m.machine:4: error: the file ends too early; expected one of `initial`, `state`, `parallel`, `entry`, `exit`, `internal`, `when`, `outcome`, `{`, `}`, `,`\n",
     );
     native(
         "machine M\nstate A {\n  entry { call }\n}\n",

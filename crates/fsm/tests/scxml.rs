@@ -219,7 +219,7 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
         "1: the `xpath` data model: only `null` and a small ECMAScript one (numbers, truths, operators) map
 2: <parallel> holding no states: it has no regions to run
 4: event `go.*`: a wildcard does not map: an event is one label atom
-5: target \"a b\": several targets (one a region) do not map yet: target one state, and the other regions enter at their initial
+5: target \"a b\": `a` and `b` are not in different regions of a <parallel>, so they are no configuration
 6: <script> in executable content: a script: only the small expression data model maps
 7: `_event.data > 1`: an event's data (`_event`): events carry none here
 8: <send event=\"e\"> with a delay: only a send on entering a state maps (it times that state)
@@ -587,6 +587,54 @@ state STOP {
 }
 "#;
     reads_back_the_same("Striker", native, "<parallel id=\"PLAY\">");
+}
+
+/// Several targets (`-> PLAY.HEAD.TRACK, PLAY.BODY.KICK`) are SCXML's `target="TRACK KICK"`
+/// both ways, and read back as the same machine; targets that are no configuration, or a
+/// history among several, are refused at the transition.
+#[test]
+fn several_targets_read_and_write_as_scxmls_target_list() {
+    let native = "machine M
+initial READY
+
+state READY {
+    when go -> PLAY.HEAD.TRACK, PLAY.BODY.KICK
+}
+
+parallel PLAY {
+    state HEAD {
+        state LOOK {
+            when seen -> TRACK
+        }
+        state TRACK {
+            when lost -> HEAD.LOOK, BODY.WALK
+        }
+    }
+
+    state BODY {
+        state WALK {
+        }
+        state KICK {
+        }
+    }
+}
+";
+    reads_back_the_same("M", native, "target=\"TRACK KICK\"");
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml">
+  <state id="ready">
+    <transition event="a" target="look track"/>
+    <transition event="b" target="look h"/>
+  </state>
+  <parallel id="play">
+    <state id="head"><history id="h"/><state id="look"/><state id="track"/></state>
+    <state id="body"><state id="walk"/></state>
+  </parallel>
+</scxml>"#,
+        "3: target \"look track\": `play.head.look` and `play.head.track` are not in different regions of a <parallel>, so they are no configuration
+4: target \"look h\": a history among several targets does not map (a history resumes one state of its own)
+",
+    );
 }
 
 /// SCXML's `In('id')` is the native `in(STATE)` both ways: a region waiting on another's state

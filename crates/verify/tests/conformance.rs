@@ -41,12 +41,15 @@ struct Coverage {
     widest: usize,
     /// Runs of a behaviour that orders the clocks of two machines or more (§6, time).
     ordered_clocks: usize,
+    /// Firings of a transition into two regions at once (several targets).
+    into_regions: usize,
 }
 
 /// A run followed in the model: what the model made of it, the runner's events, how many of
 /// its firings resumed a history ([`resumes`]), how many were a composite's time tests
-/// ([`composite_time_firings`]) and whether the model orders two machines' clocks.
-type Conformed = (Followed, Vec<Event>, usize, usize, bool);
+/// ([`composite_time_firings`]), whether the model orders two machines' clocks, and how many
+/// firings entered two regions at once ([`into_regions`]).
+type Conformed = (Followed, Vec<Event>, usize, usize, bool, usize);
 
 /// The transitions a firing of the trace may be: its machine's, between its states, its label
 /// as shown (a history's arms to one state show one label).
@@ -81,6 +84,31 @@ fn composite_time_firings(behaviour: &proclaim_behaviour::Behaviour, events: &[E
     events
         .iter()
         .filter(|e| fired_as(behaviour, e).iter().any(&timed))
+        .count()
+}
+
+/// How many firings of `events` were of a transition written with several targets (`-> P0.S1,
+/// P0.S2`): its line in the machine's file says so.
+fn into_regions(
+    behaviour: &proclaim_behaviour::Behaviour,
+    generated: &RandomBehaviour,
+    events: &[Event],
+) -> usize {
+    let written = |machine: &str, line: usize| {
+        let file = format!("{machine}.machine");
+        let text = generated.files.iter().find(|(name, _)| *name == file);
+        text.and_then(|(_, t)| t.lines().nth(line.checked_sub(1)?))
+            .is_some_and(|l| l.contains(", P0."))
+    };
+    (events.iter())
+        .filter(|e| {
+            let Event::Fired { machine, .. } = e else {
+                return false;
+            };
+            fired_as(behaviour, e)
+                .iter()
+                .any(|t| written(machine, t.line))
+        })
         .count()
 }
 
@@ -143,8 +171,9 @@ fn run_generated(seed: u64, generated: &RandomBehaviour) -> Result<Conformed, St
     let resumed = resumes(&behaviour, &events);
     let timed = composite_time_firings(&behaviour, &events);
     let ordered = model.clock_ranks.iter().flatten().count() >= 2;
+    let regions = into_regions(&behaviour, generated, &events);
     match outcome {
-        Ok(followed) => Ok((followed, events, resumed, timed, ordered)),
+        Ok(followed) => Ok((followed, events, resumed, timed, ordered, regions)),
         Err(mismatch) => Err(format!(
             "seed {seed}: the run is no path of the model\n{mismatch}\n{}",
             generated.show()
@@ -170,8 +199,9 @@ fn conform(seeds: std::ops::Range<u64>) {
     let mut mismatches = Vec::new();
     for seed in seeds {
         match run_one(seed) {
-            Ok((followed, events, resumed, timed, ordered)) => {
+            Ok((followed, events, resumed, timed, ordered, regions)) => {
                 coverage.runs += 1;
+                coverage.into_regions += regions;
                 coverage.ordered_clocks += usize::from(ordered);
                 coverage.resumed += resumed;
                 coverage.composite_time += timed;
@@ -235,7 +265,8 @@ fn conform(seeds: std::ops::Range<u64>) {
             && coverage.composite_time > 0
             && coverage.arguments > 0
             && coverage.on_outcomes > 0
-            && coverage.ordered_clocks > 0,
+            && coverage.ordered_clocks > 0
+            && coverage.into_regions > 0,
         "{coverage:?}"
     );
 }

@@ -54,6 +54,9 @@ pub enum Member {
         /// `None` for one that stays (`when p { … }`, SCXML's transition without a target).
         target: Option<Ref>,
         target_at: usize,
+        /// Further targets, each with where it is written (`-> P.A.X, P.B.Y`: a state in each
+        /// of several regions, entered together).
+        also: Vec<(Ref, usize)>,
         at: usize,
         /// What it runs as it fires, after what leaving runs (`when p -> B { … }`).
         actions: Vec<(ActionAst, usize)>,

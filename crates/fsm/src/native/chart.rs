@@ -110,6 +110,9 @@ pub(super) struct Written {
     /// `when done`: fires from the composite's final sub-states only.
     pub done: bool,
     pub target: usize,
+    /// Further targets (`-> P.A.X, P.B.Y`): with `target`, a state in each of several regions,
+    /// entered together (SCXML's `target="X Y"`).
+    pub also: Vec<usize>,
     /// `-> P.history` or `-> P.deep_history`: `target` is P, entered where it was left.
     pub history: Option<History>,
     pub line: usize,
@@ -118,6 +121,15 @@ pub(super) struct Written {
     /// It has no target (`when p { … }`): it leaves and enters nothing, and `target` is the
     /// state it was written on.
     pub stays: bool,
+}
+
+impl Written {
+    /// Every state it names as a target, the first first.
+    pub fn targets(&self) -> Vec<usize> {
+        std::iter::once(self.target)
+            .chain(self.also.iter().copied())
+            .collect()
+    }
 }
 
 /// Which history a transition resumes (§3.2): the sub-state of the composite last active, or
@@ -448,15 +460,58 @@ impl Tree {
             Some(written) => self.target(lowering, n, written, when.target_at)?,
             None => (n, None),
         };
+        let also = self.further_targets(lowering, n, &when, target, history)?;
         Some(Written {
             label,
             done,
             target,
+            also,
             history,
             line: lowering.lines.line(when.at),
             actions: when.actions,
             stays: when.target.is_none(),
         })
+    }
+
+    /// The further targets of a transition written on `n` whose first is `first`: each a state
+    /// in another region of a parallel state than every other target (SCXML: together they are
+    /// a configuration), none a history; `None` once why not is reported.
+    fn further_targets(
+        &self,
+        lowering: &mut Lowering<'_>,
+        n: usize,
+        when: &When,
+        first: usize,
+        history: Option<History>,
+    ) -> Option<Vec<usize>> {
+        let mut all = vec![first];
+        for (written, at) in &when.also {
+            let (target, resumes) = self.target(lowering, n, written, *at)?;
+            if history.is_some() || resumes.is_some() {
+                lowering.error(*at, "a history is a target of its own: it resumes one state, and another target cannot join it".into());
+                return None;
+            }
+            if let Some(&other) = all.iter().find(|&&o| !self.apart_in_regions(o, target)) {
+                lowering.error(
+                    *at,
+                    format!(
+                        "`{}` and `{}` are not in different regions of a parallel state: several targets enter one state in each region",
+                        self.nodes[other].path, self.nodes[target].path
+                    ),
+                );
+                return None;
+            }
+            all.push(target);
+        }
+        Some(all.split_off(1))
+    }
+
+    /// Whether `a` and `b` may be active together as targets: neither holds the other, and the
+    /// innermost state around both is parallel (they are in two of its regions).
+    fn apart_in_regions(&self, a: usize, b: usize) -> bool {
+        let around_a: HashSet<usize> = self.chain(a).collect();
+        let common = self.chain(b).find(|n| around_a.contains(n));
+        common.is_some_and(|c| c != a && c != b && self.nodes[c].parallel)
     }
 
     /// The state a transition written on `n` names as its target (at `at`), and the history it
@@ -635,14 +690,16 @@ impl Tree {
         self.chain(node).last().unwrap_or(node)
     }
 
-    /// The innermost state around both `source` and `target` but neither of them, and not
-    /// parallel (`None`: the machine): what a transition between them leaves stays below it
-    /// (§3.2). A parallel state is never one, so a move between its regions leaves it.
-    pub(super) fn domain(&self, source: usize, target: usize) -> Option<usize> {
-        let around: HashSet<usize> = self.chain(target).skip(1).collect();
+    /// The innermost state around `source` and every one of `targets` but none of them, and
+    /// not parallel (`None`: the machine): what a transition between them leaves stays below
+    /// it (§3.2). A parallel state is never one, so a move between its regions leaves it.
+    pub(super) fn domain(&self, source: usize, targets: &[usize]) -> Option<usize> {
+        let around: Vec<HashSet<usize>> = (targets.iter())
+            .map(|&t| self.chain(t).skip(1).collect())
+            .collect();
         self.chain(source)
             .skip(1)
-            .find(|&n| around.contains(&n) && !self.nodes[n].parallel)
+            .find(|&n| around.iter().all(|a| a.contains(&n)) && !self.nodes[n].parallel)
     }
 
     /// Whether `node` is parallel or holds a parallel state.
@@ -658,16 +715,18 @@ impl Tree {
             && self.chain(node).skip(1).any(|n| self.nodes[n].parallel)
     }
 
-    /// The states a move below `domain` to `target` enters, in file order: those around
-    /// `target` below `domain`, the other regions of each parallel state among them at their
-    /// initial, and `target` and its initial states down.
-    pub(super) fn entering(&self, domain: Option<usize>, target: usize) -> Vec<usize> {
-        let path: Vec<usize> = self
-            .chain(target)
-            .take_while(|&n| Some(n) != domain)
+    /// The states a move below `domain` to `targets` (one state, or one in each of several
+    /// regions) enters, in file order: those around each target below `domain`, the other
+    /// regions of each parallel state among them (those no target is in) at their initial, and
+    /// each target and its initial states down.
+    pub(super) fn entering(&self, domain: Option<usize>, targets: &[usize]) -> Vec<usize> {
+        let mut path: Vec<usize> = (targets.iter())
+            .flat_map(|&t| self.chain(t).take_while(move |&n| Some(n) != domain))
             .collect();
+        path.sort_unstable();
+        path.dedup();
         let mut out = path.clone();
-        for &n in path.iter().skip(1) {
+        for &n in path.iter().filter(|n| !targets.contains(n)) {
             if self.nodes[n].parallel {
                 for &region in &self.nodes[n].children {
                     if !path.contains(&region) {
@@ -677,7 +736,9 @@ impl Tree {
                 }
             }
         }
-        self.default_below(target, &mut out);
+        for &t in targets {
+            self.default_below(t, &mut out);
+        }
         out.sort_unstable();
         out.dedup();
         out

@@ -137,7 +137,7 @@ impl<'t> Flattening<'t> {
     /// The flat state entering `target` from `domain` leads to, the atomic states in `kept`
     /// staying as they are.
     pub(super) fn enter(&mut self, kept: &[usize], domain: Option<usize>, target: usize) -> usize {
-        let entered = self.tree.entering(domain, target);
+        let entered = self.tree.entering(domain, &[target]);
         let mut atomics: Vec<usize> = kept.to_vec();
         atomics.extend(
             entered
@@ -350,7 +350,7 @@ impl<'t> Flattening<'t> {
     fn fire_leaves(&self, fire: &Fire<'_>, parallel: usize) -> bool {
         // The domain of the transition as written: a move to a history resumes a state inside
         // its target, but leaves what the written target's domain says.
-        let domain = self.tree.domain(fire.source, fire.written.target);
+        let domain = self.tree.domain(fire.source, &fire.written.targets());
         !fire.written.stays
             && !domain.is_some_and(|d| self.tree.chain(d).any(|n| n == parallel) && d != parallel)
     }
@@ -365,11 +365,14 @@ impl<'t> Flattening<'t> {
         // machine stays in this very flat state, not arriving again.
         let stays = choice.fires.iter().all(|f| f.written.stays);
         for f in choice.fires.iter().filter(|f| !f.written.stays) {
-            let domain = tree.domain(f.source, f.written.target);
+            let domain = tree.domain(f.source, &f.written.targets());
             let active = tree.active_inside(atomics, domain);
             left.extend(active.iter().copied());
             kept.retain(|a| !active.contains(a));
-            entered.extend(tree.entering(domain, f.target));
+            // A history resumes at `f.target`; several targets are never a history's.
+            let mut targets = vec![f.target];
+            targets.extend(f.written.also.iter().copied());
+            entered.extend(tree.entering(domain, &targets));
         }
         left.sort_unstable();
         left.dedup();
@@ -436,7 +439,7 @@ impl<'t> Flattening<'t> {
         let tree = self.tree;
         let label = if w.done { Label::TRUE } else { w.label.clone() };
         let label = in_states(tree, atomics, source, label);
-        let domain = tree.domain(source, w.target);
+        let domain = tree.domain(source, &w.targets());
         let left = tree.active_inside(atomics, domain);
         let mut arms = Vec::new();
         match w.history {

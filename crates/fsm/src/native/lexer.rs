@@ -32,6 +32,8 @@ pub enum MachineToken<'a> {
     LParen,
     RParen,
     Arrow,
+    /// Between the targets of a transition that enters a state in each of several regions.
+    Comma,
     /// The rest of a line after `:` or `code`, trimmed.
     Text(&'a str),
     /// A label as written between `when` and `->`.
@@ -65,6 +67,7 @@ impl std::fmt::Display for MachineToken<'_> {
             MachineToken::LParen => f.write_str("`(`"),
             MachineToken::RParen => f.write_str("`)`"),
             MachineToken::Arrow => f.write_str("`->`"),
+            MachineToken::Comma => f.write_str("`,`"),
             MachineToken::Text(t) => write!(f, "`: {t}`"),
             MachineToken::LabelText(t) => write!(f, "label `{t}`"),
             MachineToken::Statement(t) => write!(f, "statement `{t}`"),
@@ -208,6 +211,12 @@ impl<'a> MachineLexer<'a> {
             '-' if rest.starts_with("->") => {
                 self.at += 2;
                 Some(Ok((start, MachineToken::Arrow, start + 2)))
+            }
+            // `-> A, B`: another target follows, a name as the first was.
+            ',' => {
+                self.at += 1;
+                self.target_next = true;
+                one(MachineToken::Comma)
             }
             '"' => Some(self.string()),
             c if c.is_ascii_digit() || c == '-' => Some(self.number()),

@@ -458,6 +458,7 @@ impl Lowering<'_> {
                     label_at,
                     target,
                     target_at,
+                    also,
                     at,
                     actions,
                 } => {
@@ -468,6 +469,7 @@ impl Lowering<'_> {
                         label_at,
                         target,
                         target_at,
+                        also,
                         at,
                         actions: own,
                     });
@@ -573,6 +575,13 @@ impl Lowering<'_> {
             self.error(when.label_at, message);
             return None;
         }
+        if let Some((_, at)) = when.also.first() {
+            self.error(
+                *at,
+                "several targets enter a state in each region of a parallel state, and this machine has none: name one target".into(),
+            );
+            return None;
+        }
         let changed = label != written;
         let resolved = match &when.target {
             Some(target) => names.resolve(target),
@@ -643,6 +652,8 @@ struct When {
     label_at: usize,
     target: Option<Ref>,
     target_at: usize,
+    /// Further targets (`-> P.A.X, P.B.Y`), each where it is written.
+    also: Vec<(Ref, usize)>,
     at: usize,
     /// Its own actions: they run as it fires, after its source's OnExit.
     actions: Vec<Action>,

@@ -12,6 +12,16 @@ use proclaim_syntax::FileDiagnostic;
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write;
 
+/// A transition as written: its label (or the event standing for it) and its targets, each
+/// where it is written.
+struct Arrow<'a> {
+    label: &'a str,
+    label_at: usize,
+    target: &'a Option<Ref>,
+    target_at: usize,
+    also: &'a [(Ref, usize)],
+}
+
 /// The SCXML document of the native machine `text`, or why it cannot be written.
 pub fn to_scxml(file: &str, text: &str) -> Result<String, Vec<FileDiagnostic>> {
     let read = super::parse_machine(file, text);
@@ -247,12 +257,19 @@ impl Writer<'_> {
                     label_at,
                     target,
                     target_at,
+                    also,
                     actions,
                     ..
                 } => {
                     let done = holds.then_some(s.name.as_str());
                     let event = timed.event(&label);
-                    let when = (event.unwrap_or(&label), label_at, &target, target_at);
+                    let when = Arrow {
+                        label: event.unwrap_or(&label),
+                        label_at,
+                        target: &target,
+                        target_at,
+                        also: &also,
+                    };
                     let timer = event.is_some();
                     self.transition(when, (done, timer), actions, &mut inner, depth + 1);
                 }
@@ -285,12 +302,18 @@ impl Writer<'_> {
         out
     }
 
-    /// `when LABEL -> TARGET { … }` as a `<transition>`, and `when LABEL { … }` (it stays) as
-    /// one without a target: the label a `cond`, or the completion event of the composite
-    /// `done` names when the label is `done`.
+    /// `when LABEL -> TARGET { … }` as a `<transition>` (`-> A, B` as `target="A B"`), and `when LABEL { … }` (it stays) as one without a target:
+    /// the label a `cond`, or the completion event of the composite `done` names when the label
+    /// is `done`.
     fn transition(
         &mut self,
-        (label, label_at, target, target_at): (&str, usize, &Option<Ref>, usize),
+        Arrow {
+            label,
+            label_at,
+            target,
+            target_at,
+            also,
+        }: Arrow<'_>,
         (done, event): (Option<&str>, bool),
         actions: Vec<(ActionAst, usize)>,
         out: &mut String,
@@ -311,10 +334,14 @@ impl Writer<'_> {
         }
         // A transition that stays is SCXML's without a target.
         let target = match target {
-            Some(target) => match self.id(target, target_at) {
-                Some(id) => format!(" target=\"{}\"", attr(&id)),
-                None => return,
-            },
+            Some(target) => {
+                let mut ids = vec![self.id(target, target_at)];
+                ids.extend(also.iter().map(|(r, at)| self.id(r, *at)));
+                let Some(ids) = ids.into_iter().collect::<Option<Vec<String>>>() else {
+                    return;
+                };
+                format!(" target=\"{}\"", attr(&ids.join(" ")))
+            }
             None => String::new(),
         };
         let condition = match (label.trim(), done) {

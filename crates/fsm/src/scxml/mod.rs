@@ -42,6 +42,7 @@ pub fn import_scxml(file: &str, text: &str, stem: &str) -> ImportedScxml {
         refusals: Vec::new(),
         names: HashMap::new(),
         histories: HashMap::new(),
+        parallels: Default::default(),
         data: Vec::new(),
         timers: HashMap::new(),
     };
@@ -89,6 +90,8 @@ struct Mapping<'a> {
     names: HashMap<String, String>,
     /// Each `<history>`'s id and the target that resumes it (`PLAY.history`).
     histories: HashMap<String, String>,
+    /// The paths of the `<parallel>` states.
+    parallels: std::collections::HashSet<String>,
     /// The data model: (name, type, first value written), in document order.
     data: Vec<(String, &'static str, String)>,
     /// The delayed sends that time their state, by event.
@@ -148,6 +151,9 @@ impl Mapping<'_> {
             };
             if self.names.insert(id.clone(), own.clone()).is_some() {
                 self.refuse(child.line, format!("two states have the id `{id}`"));
+            }
+            if child.name == "parallel" {
+                self.parallels.insert(own.clone());
             }
             self.name_states(child, &own);
         }
@@ -633,29 +639,40 @@ impl Mapping<'_> {
         }
     }
 
-    /// The native target of a `target` attribute: a state's path or a history's.
+    /// The native target of a `target` attribute: a state's path or a history's; several
+    /// states (`target="a b"`, one in each of several regions) as `a, b`.
     fn target(&mut self, ids: &str, line: usize) -> Option<String> {
         let ids: Vec<&str> = ids.split_whitespace().collect();
-        let [id] = ids.as_slice() else {
-            self.refuse(
-                line,
-                format!(
-                    "target \"{}\": several targets (one a region) do not map yet: target one state, and the other regions enter at their initial",
-                    ids.join(" ")
-                ),
-            );
-            return None;
-        };
-        if let Some(history) = self.histories.get(*id) {
-            return Some(history.clone());
-        }
-        match self.names.get(*id) {
-            Some(path) => Some(path.clone()),
-            None => {
-                self.refuse(line, format!("no state has the id `{id}`"));
-                None
+        if let [id] = ids.as_slice() {
+            if let Some(history) = self.histories.get(*id) {
+                return Some(history.clone());
             }
         }
+        let mut paths: Vec<String> = Vec::new();
+        for id in &ids {
+            if self.histories.contains_key(*id) {
+                self.refuse(line, format!("target \"{}\": a history among several targets does not map (a history resumes one state of its own)", ids.join(" ")));
+                return None;
+            }
+            let Some(path) = self.names.get(*id).cloned() else {
+                self.refuse(line, format!("no state has the id `{id}`"));
+                return None;
+            };
+            if let Some(other) = paths.iter().find(|o| !self.apart_in_regions(o, &path)) {
+                self.refuse(line, format!("target \"{}\": `{other}` and `{path}` are not in different regions of a <parallel>, so they are no configuration", ids.join(" ")));
+                return None;
+            }
+            paths.push(path);
+        }
+        Some(paths.join(", "))
+    }
+
+    /// Whether the states at paths `a` and `b` lie in different regions of a `<parallel>`:
+    /// neither holds the other, and the innermost state around both is parallel.
+    fn apart_in_regions(&self, a: &str, b: &str) -> bool {
+        let (a, b): (Vec<&str>, Vec<&str>) = (a.split('.').collect(), b.split('.').collect());
+        let common = a.iter().zip(&b).take_while(|(x, y)| x == y).count();
+        common < a.len().min(b.len()) && self.parallels.contains(&a[..common].join("."))
     }
 
     fn cancels_a_timer(&self, e: &Element) -> bool {

@@ -5,7 +5,8 @@
 //! labels ask, sometimes with states nested in composite states (two deep at most, with their
 //! own activities, transitions and `when done`, and states beside them that resume their
 //! history), now and then side by side as the regions of a parallel state, transitions with
-//! actions of their own, and sub-machines that take a parameter `p`
+//! actions of their own, transitions into two regions at once, and sub-machines that take a
+//! parameter `p`
 //! from whoever starts them or announce an outcome `done` that labels wait on; then a script for
 //! the run and when to run each round. Everything is a function of the seed, so a failure names the seed that repeats
 //! it.
@@ -93,6 +94,9 @@ struct Names {
     /// Which transitions stay (no target, §3.2), and what they do: a sequence of their own
     /// too, so that a seed's machines are what they were before, but for those.
     stays: std::cell::RefCell<Rng>,
+    /// Which transitions enter two regions of a parallel state at named states (several
+    /// targets, §3.2): a sequence of its own again.
+    targets: std::cell::RefCell<Rng>,
     inputs: usize,
     globals: usize,
     externs: usize,
@@ -111,6 +115,7 @@ pub fn generate(seed: u64) -> RandomBehaviour {
     // Regions too, so that the behaviours of a seed are what they were before regions.
     let mut regions = Rng::new(seed ^ 0x9A2A_11E1_0000_0000);
     let stays = Rng::new(seed ^ 0x57A7_5000_0000_0000);
+    let targets = Rng::new(seed ^ 0x7A26_E750_0000_0000);
     let machines = rng.between(1, 4);
     let names = Names {
         machines,
@@ -118,6 +123,7 @@ pub fn generate(seed: u64) -> RandomBehaviour {
         outcomes: (0..machines).map(|_| iface.chance(35)).collect(),
         iface: std::cell::RefCell::new(iface),
         stays: std::cell::RefCell::new(stays),
+        targets: std::cell::RefCell::new(targets),
         inputs: rng.between(1, 3),
         globals: rng.between(0, 2),
         externs: rng.between(0, 1),
@@ -300,12 +306,34 @@ impl Nest<'_> {
             };
             out.push_str(&self.transition(rng, &target, 35));
         }
+        let named: Vec<String> = regions.iter().map(|(name, _)| name.clone()).collect();
         for (_, block) in regions {
             out.push_str(&block);
         }
         out.push_str("}\n");
         blocks.insert(from, ("P0".into(), out));
+        self.entering_two_regions(&mut blocks, &named);
         blocks
+    }
+
+    /// Now and then, a transition to two of the parallel state's `regions` at once (several
+    /// targets, §3.2), written on the parallel state itself (it leaves it and enters it again)
+    /// or on a state beside it; a third region, if any, enters at its initial.
+    fn entering_two_regions(&self, blocks: &mut [(String, String)], regions: &[String]) {
+        let mut rng = self.names.targets.borrow_mut();
+        if !rng.chance(40) {
+            return;
+        }
+        let first = rng.below(regions.len() - 1);
+        let second = rng.between(first + 1, regions.len() - 1);
+        let (a, b) = (&regions[first], &regions[second]);
+        let label = label(&mut rng, self.names, self.counter, 1);
+        let on = rng.below(blocks.len());
+        let block = &mut blocks[on].1;
+        // A state with a way out is final no more: it announces no outcome.
+        *block = block.replace("    outcome done\n", "");
+        let close = block.rfind('}').unwrap_or(block.len());
+        block.insert_str(close, &format!("    when {label} -> P0.{a}, P0.{b}\n"));
     }
 
     /// A transition of a state that holds states, to `target`: labelled `done` in
