@@ -635,6 +635,15 @@ parallel PLAY {
 4: target \"look h\": a history among several targets does not map (a history resumes one state of its own)
 ",
     );
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml" initial="look walk">
+  <parallel id="play">
+    <state id="head"><state id="look"/></state>
+    <state id="body"><state id="walk"/></state>
+  </parallel>
+</scxml>"#,
+        "1: initial `look walk`: several initial states do not map yet: name one, and the other regions enter at their initial\n",
+    );
 }
 
 /// SCXML's `In('id')` is the native `in(STATE)` both ways: a region waiting on another's state

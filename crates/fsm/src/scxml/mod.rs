@@ -186,7 +186,7 @@ impl Mapping<'_> {
             );
         }
         let initial = match root.attribute("initial") {
-            Some(ids) => self.target(ids, root.line),
+            Some(ids) => self.initial_target(ids, root.line),
             None => None,
         };
         let mut out = format!(
@@ -603,7 +603,7 @@ impl Mapping<'_> {
     /// An `initial`'s state, which must be one of `path`'s own (a deeper one, or a history,
     /// has no native form yet).
     fn own_state(&mut self, ids: &str, path: &str, line: usize) -> Option<String> {
-        let target = self.target(ids, line)?;
+        let target = self.initial_target(ids, line)?;
         let own = relative(&target, path);
         if own.contains('.') || own == target || own == "history" || own == "deep_history" {
             self.refuse(line, format!("initial `{ids}`: only one of the state's own states maps (not a deeper one or a history)"));
@@ -665,6 +665,15 @@ impl Mapping<'_> {
             paths.push(path);
         }
         Some(paths.join(", "))
+    }
+
+    /// The state an `initial` names: one state (several, a configuration, do not map yet).
+    fn initial_target(&mut self, ids: &str, line: usize) -> Option<String> {
+        if ids.split_whitespace().nth(1).is_some() {
+            self.refuse(line, format!("initial `{ids}`: several initial states do not map yet: name one, and the other regions enter at their initial"));
+            return None;
+        }
+        self.target(ids, line)
     }
 
     /// Whether the states at paths `a` and `b` lie in different regions of a `<parallel>`:
