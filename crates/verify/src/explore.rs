@@ -387,10 +387,13 @@ impl<'m> Expansion<'m> {
         } else {
             self.store_unpacked(graph, limits, id)?;
         }
+        // The successors made before the choice budget ran out are stored, and a property may
+        // have found one of them: their edges are kept so that its path has its parent (it
+        // was once told as an initial state, with an empty counterexample).
+        graph.edges.push(self.list.iter().copied());
         if self.stepper.overflowed() {
             return Err(Stop::ChoiceBudget);
         }
-        graph.edges.push(self.list.iter().copied());
         Ok(())
     }
 

@@ -6,7 +6,7 @@
 use proclaim_behaviour::testing::run_scripted;
 use proclaim_behaviour::{load, Folder};
 use proclaim_verify::{
-    to_script, verify, Options, PropertyKind, PropertySource, Report, SearchEngine, Verdict,
+    to_script, verify, Options, PropertyKind, PropertySource, Report, SearchEngine, Stop, Verdict,
 };
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -48,6 +48,36 @@ fn replay(name: &str, report: &Report) -> Vec<String> {
         .iter()
         .map(|v| format!("{}.{}", v.machine, v.state))
         .collect()
+}
+
+/// A search the choice budget stops keeps the paths to what it stored before: the
+/// counterexample it found says how (it was once empty, as if the initial state broke the
+/// property, which no run shows: the differential test's replay found it).
+#[test]
+fn a_search_stopped_by_the_choice_budget_shows_the_run_it_found() {
+    let options = Options {
+        engine: SearchEngine::Explicit,
+        ..Options::default()
+    };
+    let report = check_within("overflowing", PropertyKind::Never, "v1 == 10", options);
+    assert_eq!(
+        report.stats.stopped,
+        Stop::ChoiceBudget,
+        "{:?}",
+        report.stats
+    );
+    let p = &report.properties[0];
+    assert_eq!(p.verdict, Verdict::Fails, "{report:#?}");
+    let steps = &p.trace.as_ref().expect("a counterexample").steps;
+    assert_eq!(steps.len(), 1, "{steps:#?}");
+    assert_eq!((steps[0].machine.as_str(), steps[0].round), ("N0", 1));
+    assert!(
+        steps[0]
+            .read
+            .iter()
+            .any(|a| a.name == "in0" && a.value == "-7"),
+        "{steps:#?}"
+    );
 }
 
 /// A free value read, overwritten by the machine's own posting, and read again as it was: the
