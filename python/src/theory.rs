@@ -48,7 +48,18 @@ pub(crate) fn load(py: Python<'_>, text: &str, name: &str) -> PyResult<Theory> {
 #[pyfunction]
 pub(crate) fn load_file(py: Python<'_>, path: PathBuf) -> PyResult<Theory> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(&path).map_err(|error| errors::os_error(py, error, &name))?;
+    // Within the bound every source is read within; past it, an OSError saying the size.
+    let bytes = proclaim_syntax::read_within(&path, proclaim_syntax::MAX_SOURCE_BYTES)
+        .map_err(|unread| {
+            let error = match unread {
+                proclaim_syntax::Unread::Io(e) => e,
+                proclaim_syntax::Unread::TooLarge(size) => std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    proclaim_syntax::too_large(size),
+                ),
+            };
+            errors::os_error(py, error, &name)
+        })?;
     match std::str::from_utf8(&bytes) {
         Ok(source) => loaded(py, &name, source),
         Err(bad) => {

@@ -119,10 +119,7 @@ fn read_run(
             "--round explains a run: give --recording FILE or --trace FILE".into(),
         ));
     };
-    let text = proclaim_syntax::read_source(path).map_err(|error| Failure::Read {
-        path: path.to_path_buf(),
-        error,
-    })?;
+    let text = crate::bounded::read_text(path, "a recording or a trace")?;
     let recording = if args.trace.is_some() {
         let events = proclaim_behaviour::read_trace(&text)
             .map_err(|e| Failure::Argument(format!("{}: not a trace: {e}", path.display())))?;

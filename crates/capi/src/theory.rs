@@ -90,10 +90,18 @@ pub unsafe extern "C" fn proclaim_theory_load_file(
     error_out: *mut *mut ProclaimError,
 ) -> *mut ProclaimTheory {
     let name = nul_terminated(path);
-    let read = name.map(|path| (path, std::fs::read(path)));
+    // Within the bound every source is read within, which says its size where it is larger.
+    let read = name.map(|path| {
+        let bytes = proclaim_syntax::read_within(path, proclaim_syntax::MAX_SOURCE_BYTES);
+        (path, bytes)
+    });
     match read {
         Ok((path, Ok(bytes))) => load(Ok(path), bytes.as_ptr().cast(), bytes.len(), error_out),
         Ok((path, Err(why))) => {
+            let why = match why {
+                proclaim_syntax::Unread::Io(e) => e.to_string(),
+                proclaim_syntax::Unread::TooLarge(size) => proclaim_syntax::too_large(size),
+            };
             let error = ProclaimError::boxed(path, None, &format!("{path} cannot be read: {why}"));
             hand_out(std::ptr::null_mut(), error, error_out)
         }

@@ -353,6 +353,7 @@ state READY {
     when b -> PLAY.HEAD, PLAY.HEAD.LOOK
     when c -> PLAY.HEAD.LOOK, PLAY.BODY.history
     when d -> PLAY.HEAD.LOOK, NOWHERE
+    when e -> PLAY.history, PLAY.HEAD.LOOK
 }
 parallel PLAY {
     state HEAD {
@@ -368,6 +369,7 @@ parallel PLAY {
 4: `PLAY.HEAD` and `PLAY.HEAD.LOOK` are not in different regions of a parallel state: several targets enter one state in each region
 5: a history is a target of its own: it resumes one state, and another target cannot join it
 6: there is no state named `NOWHERE`
+7: a history is a target of its own: it resumes one state, and another target cannot join it
 ",
     );
     check(

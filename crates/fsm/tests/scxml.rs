@@ -625,6 +625,7 @@ parallel PLAY {
   <state id="ready">
     <transition event="a" target="look track"/>
     <transition event="b" target="look h"/>
+    <transition event="c" target=" "/>
   </state>
   <parallel id="play">
     <state id="head"><history id="h"/><state id="look"/><state id="track"/></state>
@@ -633,6 +634,7 @@ parallel PLAY {
 </scxml>"#,
         "3: target \"look track\": `play.head.look` and `play.head.track` are not in different regions of a <parallel>, so they are no configuration
 4: target \"look h\": a history among several targets does not map (a history resumes one state of its own)
+5: an empty `target` (or `initial`): name a state, or leave the attribute out for a transition that stays
 ",
     );
     check(

@@ -63,9 +63,10 @@ pub struct Detail {
     pub at_snapshot: Vec<(SlotId, ValueId)>,
     /// Free types chosen where the ringlet read them, in the order it read them.
     pub read: Vec<(SlotId, ValueId)>,
-    /// Free types chosen where read that the ringlet posted itself: a later read of the value
-    /// they held before is a change the environment made, to be told again.
-    pub posted: Vec<(SlotId, ValueId)>,
+    /// Free types chosen where read that the ringlet posted itself, each after how many of
+    /// `read`: a later read of the value they held before is a change the environment made,
+    /// to be told again.
+    pub posted: Vec<(usize, SlotId, ValueId)>,
     /// Stored free types that changed after the ringlet.
     pub environment: Vec<(SlotId, ValueId)>,
 }
@@ -484,7 +485,9 @@ impl<'m> StepGenerator<'m> {
             let n = domain.len();
             let v = rotated(domain, w.values[*slot], index % n);
             index /= n;
-            if detail {
+            // Only what changed: the first choice leaves a value as it was, and a script
+            // would be told it cannot say a change that did not happen.
+            if detail && v != w.values[*slot] {
                 taken.values.push((*slot, v));
             }
             w.values[*slot] = v;
@@ -648,8 +651,8 @@ struct Ringlet {
     at_snapshot: Vec<(SlotId, ValueId)>,
     /// With detail only: the free types chosen where they were read.
     read: Vec<(SlotId, ValueId)>,
-    /// With detail only: what it posted to them.
-    posted: Vec<(SlotId, ValueId)>,
+    /// With detail only: what it posted to them, each after how many reads.
+    posted: Vec<(usize, SlotId, ValueId)>,
 }
 
 /// What a ringlet's snapshot chose: the time tests due, and with detail only those that came
@@ -674,8 +677,9 @@ struct Chosen<'c> {
     entry: Vec<(SlotId, ValueId)>,
     /// With detail: every value chosen, in order.
     log: Option<Vec<(SlotId, ValueId)>>,
-    /// With detail: every value the ringlet posted to a type chosen where read.
-    posted: Option<Vec<(SlotId, ValueId)>>,
+    /// With detail: every value the ringlet posted to a type chosen where read, each after
+    /// how many of `log`.
+    posted: Option<Vec<(usize, SlotId, ValueId)>>,
     /// Where the ringlet runs on a world only partly known.
     open: Option<Open<'c>>,
 }
@@ -744,7 +748,8 @@ impl Chosen<'_> {
             None => self.now.push((slot, value)),
         }
         if let Some(posted) = &mut self.posted {
-            posted.push((slot, value));
+            let reads = self.log.as_ref().map_or(0, Vec::len);
+            posted.push((reads, slot, value));
         }
     }
 }

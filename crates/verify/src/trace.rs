@@ -113,11 +113,6 @@ pub fn trace_of(
             }
         }
         steps.push(step(model, s, round, &detail, &mut last_read));
-        // What the machine posted is what the type holds next: a read of the value before is
-        // the world's change again, and must be told (its script sets it again).
-        for &(slot, v) in &detail.posted {
-            last_read.insert(slot, v);
-        }
     }
     Trace {
         initially,
@@ -143,6 +138,9 @@ fn step(
             .map(|&(slot, v)| assignment(model, slot, v))
             .collect()
     };
+    let (read, inside) = reads_told(detail, last_read);
+    let mut at_snapshot = detail.at_snapshot.clone();
+    at_snapshot.extend(inside);
     TraceStep {
         round,
         machine: m.name.clone(),
@@ -152,13 +150,42 @@ fn step(
         timers: (detail.timers.iter())
             .map(|&i| m.time_test_shown(&state.time_tests[i]))
             .collect(),
-        at_snapshot: shown(&detail.at_snapshot),
-        read: (detail.read.iter())
-            .filter(|&&(slot, v)| last_read.insert(slot, v).unwrap_or(NEVER) != v)
-            .map(|&(slot, v)| assignment(model, slot, v))
-            .collect(),
+        at_snapshot: shown(&at_snapshot),
+        read: shown(&read),
         environment: shown(&detail.environment),
     }
+}
+
+/// A free type and the value a ringlet read of it.
+type Read = (SlotId, ValueId);
+
+/// The reads of a ringlet to tell, in the order made, with what the machine posted between
+/// them (`detail.posted`) taken as what the type holds next: a read that differs from what was
+/// last read or posted is the world's change. One that follows the machine's own posting in
+/// this very ringlet changed inside it, where no moment of the clock is (second list).
+fn reads_told(
+    detail: &Detail,
+    last_read: &mut FxHashMap<SlotId, ValueId>,
+) -> (Vec<Read>, Vec<Read>) {
+    let (mut told, mut inside) = (Vec::new(), Vec::new());
+    let mut own: Vec<SlotId> = Vec::new();
+    let mut posts = detail.posted.iter().peekable();
+    for (i, &(slot, v)) in detail.read.iter().enumerate() {
+        while let Some(&(_, posted, value)) = posts.next_if(|p| p.0 <= i) {
+            last_read.insert(posted, value);
+            own.push(posted);
+        }
+        if last_read.insert(slot, v).unwrap_or(NEVER) != v {
+            match own.contains(&slot) {
+                true => inside.push((slot, v)),
+                false => told.push((slot, v)),
+            }
+        }
+    }
+    for &(_, posted, value) in posts {
+        last_read.insert(posted, value);
+    }
+    (told, inside)
 }
 
 /// A trace as text, one ringlet a line, grouped by round.

@@ -50,6 +50,34 @@ fn replay(name: &str, report: &Report) -> Vec<String> {
         .collect()
 }
 
+/// A free value the machine posts on entering T and reads again at T's snapshot: the run
+/// needs the knob to turn it back inside that one ringlet, which no script can say, and the
+/// script's notes say so (its read was once dropped as unchanged, silently).
+#[test]
+fn a_value_changed_after_the_machines_own_posting_in_one_ringlet_is_noted() {
+    for engine in [SearchEngine::Explicit, SearchEngine::Symbolic] {
+        let options = Options {
+            engine,
+            ..Options::default()
+        };
+        let report = check_within(
+            "overwritten-on-entry",
+            PropertyKind::Never,
+            "A.BAD",
+            options,
+        );
+        let p = &report.properties[0];
+        assert_eq!(p.verdict, Verdict::Fails, "{report:#?}");
+        let trace = p.trace.as_ref().expect("a counterexample");
+        let (script, notes) = to_script(trace, Duration::from_millis(100), "t");
+        assert_eq!(
+            notes,
+            ["`level` = 1 between A's OnEntry and its snapshot in round 2: set after that round"],
+            "{engine:?}\n{script}"
+        );
+    }
+}
+
 /// A search the choice budget stops keeps the paths to what it stored before: the
 /// counterexample it found says how (it was once empty, as if the initial state broke the
 /// property, which no run shows: the differential test's replay found it).

@@ -460,7 +460,7 @@ impl Tree {
             Some(written) => self.target(lowering, n, written, when.target_at)?,
             None => (n, None),
         };
-        let also = self.further_targets(lowering, n, &when, target, history)?;
+        let also = self.further_targets(lowering, n, &when, target)?;
         Some(Written {
             label,
             done,
@@ -475,22 +475,33 @@ impl Tree {
 
     /// The further targets of a transition written on `n` whose first is `first`: each a state
     /// in another region of a parallel state than every other target (SCXML: together they are
-    /// a configuration), none a history; `None` once why not is reported.
+    /// a configuration), none a history as written (not even a parallel state's, which is
+    /// entering it); `None` once why not is reported.
     fn further_targets(
         &self,
         lowering: &mut Lowering<'_>,
         n: usize,
         when: &When,
         first: usize,
-        history: Option<History>,
     ) -> Option<Vec<usize>> {
+        let names_history = |r: &Ref| {
+            matches!(r, Ref::Name(path) if [History::Shallow, History::Deep]
+                .iter()
+                .any(|h| path.rsplit('.').next() == Some(h.word())))
+        };
+        let first_written = when.target.as_ref().filter(|_| !when.also.is_empty());
+        if first_written.is_some_and(names_history) {
+            let at = when.target_at;
+            lowering.error(at, "a history is a target of its own: it resumes one state, and another target cannot join it".into());
+            return None;
+        }
         let mut all = vec![first];
         for (written, at) in &when.also {
-            let (target, resumes) = self.target(lowering, n, written, *at)?;
-            if history.is_some() || resumes.is_some() {
+            if names_history(written) {
                 lowering.error(*at, "a history is a target of its own: it resumes one state, and another target cannot join it".into());
                 return None;
             }
+            let (target, _) = self.target(lowering, n, written, *at)?;
             if let Some(&other) = all.iter().find(|&&o| !self.apart_in_regions(o, target)) {
                 lowering.error(
                     *at,

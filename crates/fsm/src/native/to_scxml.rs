@@ -193,8 +193,9 @@ impl Writer<'_> {
                 Member::When {
                     target: Some(target),
                     target_at,
+                    also,
                     ..
-                } => next = self.id(&target, target_at),
+                } if also.is_empty() => next = self.id(&target, target_at),
                 _ => self.refuse(
                     start.at,
                     "the data model's first state may only declare and move on".into(),

@@ -643,6 +643,10 @@ impl Mapping<'_> {
     /// states (`target="a b"`, one in each of several regions) as `a, b`.
     fn target(&mut self, ids: &str, line: usize) -> Option<String> {
         let ids: Vec<&str> = ids.split_whitespace().collect();
+        if ids.is_empty() {
+            self.refuse(line, "an empty `target` (or `initial`): name a state, or leave the attribute out for a transition that stays".into());
+            return None;
+        }
         if let [id] = ids.as_slice() {
             if let Some(history) = self.histories.get(*id) {
                 return Some(history.clone());

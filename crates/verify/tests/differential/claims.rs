@@ -181,9 +181,9 @@ impl Claim {
 
     /// Plays the run verify found for it (a `never`'s counterexample, a `reachable`'s
     /// witness) in the runner, one round every `PERIOD` as the script assumes: `None` where
-    /// the script says it does not reproduce the run (its notes), or where a round's end is not
-    /// where the run shows it (more than one machine: it may hold between two ringlets of a
-    /// round only), else whether a round ended with it true.
+    /// the script says it does not reproduce the run (its notes), or where the run ends between
+    /// two machines' ringlets of a round (a run is read between rounds), else whether a round
+    /// ended with it true.
     pub(super) fn replays(
         &self,
         outcome: &PropertyOutcome,
@@ -194,8 +194,12 @@ impl Claim {
             (self.kind, outcome.verdict),
             (PropertyKind::Never, Verdict::Fails) | (PropertyKind::Reachable, Verdict::Holds)
         );
-        let trace = outcome.trace.as_ref().filter(|_| found)?;
-        if machines.len() > 1 {
+        // A run of no step would be shown before the runner did anything.
+        let trace = (outcome.trace.as_ref()).filter(|t| found && !t.steps.is_empty())?;
+        // A round's end is where the run can read it: the run verify found must end with the
+        // last machine's ringlet (every machine rang in its last round, in manifest order).
+        let last = trace.steps.last().map(|s| s.machine.as_str());
+        if last.is_some_and(|m| machines.last().map(String::as_str) != Some(m)) {
             return None;
         }
         const PERIOD: Duration = Duration::from_millis(25);
@@ -208,13 +212,13 @@ impl Claim {
             Err(e) => return Some(Err(format!("the script does not start: {e}\n{script}"))),
         };
         let rounds = trace.steps.last().map_or(0, |s| s.round) + 2;
-        let mut shown = self.holds_in(&run, machines);
+        let mut shown = false;
         for _ in 0..rounds {
+            run.round();
+            shown = self.holds_in(&run, machines);
             if shown {
                 break;
             }
-            run.round();
-            shown = self.holds_in(&run, machines);
             run.wait(PERIOD);
         }
         Some(if shown {
