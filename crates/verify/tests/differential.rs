@@ -392,9 +392,6 @@ fn one(seed: u64, runs: usize) -> Outcome {
         .filter(|(c, o)| c.absent(o))
         .map(|(c, _)| c)
         .collect();
-    let machines: Vec<String> = (behaviour.machines.iter())
-        .map(|m| m.machine.name.clone())
-        .collect();
     let shown: String = files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect();
     let mut disagreements = Vec::new();
     let mut rng = Rng::new(seed ^ 0x5eed);
@@ -412,7 +409,7 @@ fn one(seed: u64, runs: usize) -> Outcome {
             run.wait(Duration::from_millis(25));
             run.round();
             if broken.is_none() {
-                let made = absent.iter().find(|c| c.holds_in(&run, &machines));
+                let made = absent.iter().find(|c| c.holds_in(&run, &behaviour));
                 broken = made.map(|c| (c.describe(), round));
             }
         }
@@ -506,7 +503,7 @@ fn one(seed: u64, runs: usize) -> Outcome {
     }
     let mut replayed = 0;
     for (claim, outcome) in verdicts() {
-        match claim.replays(outcome, &dir, &machines) {
+        match claim.replays(outcome, &dir, &behaviour) {
             None => {}
             Some(Ok(())) => replayed += 1,
             Some(Err(why)) => disagreements.push(format!(

@@ -6,7 +6,9 @@
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
+use proclaim_behaviour::Behaviour;
 use proclaim_board::Value;
+use proclaim_runner::Event;
 use proclaim_verify::{
     to_script, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Verdict,
 };
@@ -113,20 +115,37 @@ impl Atom {
         }
     }
 
-    fn holds_in(&self, run: &RoundByRound, machines: &[String]) -> bool {
+    fn holds_in(&self, run: &RoundByRound, behaviour: &Behaviour) -> bool {
         match self {
-            Atom::In { machine, state } => run
-                .state_of(machine)
+            Atom::In { machine, state } => current_state(run, behaviour, machine)
                 .is_some_and(|s| s.split(", ").any(|atomic| atomic == state)),
             Atom::Compare { global, op, value } => {
-                let now = machines
-                    .first()
-                    .and_then(|m| run.variable(m, global))
+                let now = (behaviour.machines.first())
+                    .and_then(|m| run.variable(&m.machine.name, global))
                     .unwrap_or(Value::Int(0));
                 compare(&now, op, value)
             }
         }
     }
+}
+
+/// The state `machine` is in, as a property means it: the target of the transition that last
+/// fired, from the moment it fired (the runner says it entered only when its OnEntry runs, at
+/// the machine's next ringlet), else the state it last entered.
+fn current_state(run: &RoundByRound, behaviour: &Behaviour, machine: &str) -> Option<String> {
+    let m = behaviour
+        .machines
+        .iter()
+        .find(|m| m.machine.name == machine)?;
+    run.events.iter().rev().find_map(|e| match e {
+        Event::Fired { machine: x, to, .. } if x == machine => {
+            m.machine.state(*to).map(|s| s.name.clone())
+        }
+        Event::Entered {
+            machine: x, state, ..
+        } if x == machine => Some(state.clone()),
+        _ => None,
+    })
 }
 
 /// `a op b` as the runner's operators take it for what the behaviours hold: whole numbers
@@ -158,8 +177,8 @@ impl Claim {
         }
     }
 
-    pub(super) fn holds_in(&self, run: &RoundByRound, machines: &[String]) -> bool {
-        self.atoms.iter().all(|a| a.holds_in(run, machines))
+    pub(super) fn holds_in(&self, run: &RoundByRound, behaviour: &Behaviour) -> bool {
+        self.atoms.iter().all(|a| a.holds_in(run, behaviour))
     }
 
     /// Whether verify said no run makes it true: a `never` that holds, a `reachable` that
@@ -188,7 +207,7 @@ impl Claim {
         &self,
         outcome: &PropertyOutcome,
         dir: &std::path::Path,
-        machines: &[String],
+        behaviour: &Behaviour,
     ) -> Option<Result<(), String>> {
         let found = matches!(
             (self.kind, outcome.verdict),
@@ -199,7 +218,8 @@ impl Claim {
         // A round's end is where the run can read it: the run verify found must end with the
         // last machine's ringlet (every machine rang in its last round, in manifest order).
         let last = trace.steps.last().map(|s| s.machine.as_str());
-        if last.is_some_and(|m| machines.last().map(String::as_str) != Some(m)) {
+        let final_machine = behaviour.machines.last().map(|m| m.machine.name.as_str());
+        if last.is_some_and(|m| final_machine != Some(m)) {
             return None;
         }
         const PERIOD: Duration = Duration::from_millis(25);
@@ -215,7 +235,7 @@ impl Claim {
         let mut shown = false;
         for _ in 0..rounds {
             run.round();
-            shown = self.holds_in(&run, machines);
+            shown = self.holds_in(&run, behaviour);
             if shown {
                 break;
             }
