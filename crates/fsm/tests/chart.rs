@@ -233,8 +233,7 @@ PAUSE#3 entry[] exit[] internal[]
 
 /// A shallow history of a state that holds a parallel state resumes its own state: left from
 /// inside the parallel state, it comes back to it with every region at its initial (SCXML's
-/// shallow history); the history of the parallel state itself is entering it. A deep history
-/// there (a state in each region at once) is refused, saying what works.
+/// shallow history); the history of the parallel state itself is entering it.
 #[test]
 fn a_shallow_history_around_regions_resumes_the_parallel_state_whole() {
     check(
@@ -282,19 +281,65 @@ PAUSE#6 entry[] exit[] internal[]
   again -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
 ",
     );
+}
+
+/// A deep history around regions notes the configuration it was left in, one atomic state in
+/// each region (in file order: READY, then each combination of HEAD's and BODY's), and
+/// resumes it whole, as several targets do; one past 4,096 configurations is refused.
+#[test]
+fn a_deep_history_around_regions_resumes_the_configuration_it_left() {
     check(
         "machine M
 state GAME {
     when whistle -> PAUSE
-    state READY { }
+    state READY { when go -> PLAY }
     parallel PLAY {
-        state HEAD { }
-        state BODY { }
+        state HEAD {
+            state LOOK { when seen -> TRACK }
+            state TRACK { }
+        }
+        state BODY {
+            state WALK { when near -> KICK }
+            state KICK { }
+        }
     }
 }
 state PAUSE { when resume -> GAME.deep_history }
 ",
-        "10: `GAME` holds parallel states: a deep history would resume a state in each region at once, which is not built yet (`GAME.history` resumes its own state)\n",
+        "initial GAME.READY#1
+GAME.READY#1 entry[Statement(Declare { ty: Int, name: \"GAME_deep_history\", value: None })] exit[] internal[]
+  go -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_deep_history\", value: Int(1) })] of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7 entry[] exit[] internal[]
+  seen && near -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.HEAD.LOOK
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#9 leaving[] of GAME.PLAY.HEAD.LOOK
+  near -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#10 leaving[] of GAME.PLAY.BODY.WALK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_deep_history\", value: Int(2) })] of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#10 entry[] exit[] internal[]
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.HEAD.LOOK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_deep_history\", value: Int(3) })] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#9 entry[] exit[] internal[]
+  near -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.BODY.WALK
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_deep_history\", value: Int(4) })] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 entry[] exit[] internal[]
+  whistle -> PAUSE#6 leaving[Statement(Assign { name: \"GAME_deep_history\", value: Int(5) })] of GAME
+PAUSE#6 entry[] exit[] internal[]
+  GAME_deep_history == 1 && resume -> GAME.READY#1
+  GAME_deep_history == 2 && resume -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#7
+  GAME_deep_history == 3 && resume -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#10
+  GAME_deep_history == 4 && resume -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#9
+  GAME_deep_history == 5 && resume -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8
+  resume -> GAME.READY#1
+",
+    );
+    let regions: String = (0..13)
+        .map(|r| format!("        state R{r} {{ state X{r} {{ }} state Y{r} {{ }} }}\n"))
+        .collect();
+    check(
+        &format!(
+            "machine M\nstate GAME {{\n    when whistle -> PAUSE\n    parallel PLAY {{\n{regions}    }}\n}}\nstate PAUSE {{ when resume -> GAME.deep_history }}\n"
+        ),
+        "20: `GAME` holds more than 4096 configurations of states for a deep history to resume: resume its own state (`GAME.history`)\n",
     );
 }
 

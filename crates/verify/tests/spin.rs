@@ -427,6 +427,23 @@ fn spin_and_both_engines_agree_on_a_shallow_history_around_regions() {
     agree("history-around-regions", &properties, &[Verdict::Holds; 4]);
 }
 
+/// A deep history of a state that holds a parallel state resumes the configuration it was
+/// left in: left at TRACK and WALK (place 4), it comes back to both, never to LOOK (no move
+/// leads back there) nor to READY; left at READY, back to READY.
+#[test]
+fn spin_and_both_engines_agree_on_a_deep_history_around_regions() {
+    let properties = [
+        property(PropertyKind::Never, "M.GAME.READY && M.GAME_deep_history >= 2"),
+        property(PropertyKind::Never, "M.GAME.PLAY.HEAD.LOOK && M.GAME_deep_history == 4"),
+        property(
+            PropertyKind::Reachable,
+            "M.GAME.PLAY.HEAD.TRACK && M.GAME.PLAY.BODY.WALK && M.GAME_deep_history == 4",
+        ),
+        property(PropertyKind::Reachable, "M.GAME.READY && M.GAME_deep_history == 1"),
+    ];
+    agree("deep-history-around-regions", &properties, &[Verdict::Holds; 4]);
+}
+
 /// A machine started and reloaded in one round rings from the next, as one only started
 /// does: B, started by A and reloaded by C before its turn, first rings after A's second
 /// ringlet. (The symbolic engine once took the reload for a start of its own that cleared

@@ -104,6 +104,10 @@ pub(super) struct Node {
     pub parallel: bool,
 }
 
+/// The most places a deep history may note: the configurations of the states inside its
+/// composite (one atomic state in each region), as many as a state's arms may be.
+pub(super) const MOST_CONFIGURATIONS: usize = super::flatten::MOST_ARMS;
+
 /// A transition as written, its target found.
 pub(super) struct Written {
     pub label: Label,
@@ -314,32 +318,26 @@ impl Tree {
         }
     }
 
-    /// Where leaving `composite` from `atomic` leaves it, as its `history`'s variable numbers
-    /// places (0: nowhere, `atomic` is not inside it).
-    pub(super) fn place(&self, composite: usize, history: History, atomic: usize) -> i64 {
-        let inside = match history {
-            // The state of `composite`'s own on the way out.
-            History::Shallow => self
-                .chain(atomic)
-                .find(|&n| self.nodes[n].parent == Some(composite)),
-            History::Deep => Some(atomic).filter(|_| self.chain(atomic).any(|n| n == composite)),
+    /// Where leaving `composite` from the atomic states `atomics` leaves it, as its
+    /// `history`'s variable numbers places (0: nowhere, none of them is inside it): the state
+    /// of its own they are in (shallow), or the configuration of them inside it (deep).
+    pub(super) fn place(&self, composite: usize, history: History, atomics: &[usize]) -> i64 {
+        let inside: Vec<usize> = (atomics.iter().copied())
+            .filter(|&a| self.chain(a).any(|n| n == composite))
+            .collect();
+        let place = match history {
+            History::Shallow => inside.first().and_then(|&a| {
+                let own = self
+                    .chain(a)
+                    .find(|&n| self.nodes[n].parent == Some(composite))?;
+                self.nodes[composite]
+                    .children
+                    .iter()
+                    .position(|&c| c == own)
+            }),
+            History::Deep => (self.resumed(composite, history).iter()).position(|c| *c == inside),
         };
-        let Some(inside) = inside else {
-            return 0;
-        };
-        match history {
-            History::Shallow => self.nodes[composite]
-                .children
-                .iter()
-                .position(|&c| c == inside)
-                .map_or(0, |k| k as i64 + 1),
-            // Atomic states in file order: those inside `composite` before this one, plus one.
-            History::Deep => {
-                1 + (composite..inside)
-                    .filter(|&n| self.nodes[n].children.is_empty())
-                    .count() as i64
-            }
-        }
+        place.map_or(0, |k| k as i64 + 1)
     }
 
     /// The variable of `composite`'s `history`.
@@ -562,13 +560,16 @@ impl Tree {
             Ok(target) if history == Some(History::Shallow) && self.nodes[target].parallel => {
                 Some((target, None))
             }
-            // A shallow history of a state around a parallel one resumes its own state, the
-            // parallel one entered as usual; a deep one would resume a state in each region.
-            Ok(target) if history == Some(History::Deep) && self.holds_regions(target) => {
+            // A deep history around regions notes a configuration, one state in each: a
+            // variable of a place each, bounded.
+            Ok(target)
+                if history == Some(History::Deep)
+                    && self.resumed(target, History::Deep).len() > MOST_CONFIGURATIONS =>
+            {
                 lowering.error(
                     at,
                     format!(
-                        "`{}` holds parallel states: a deep history would resume a state in each region at once, which is not built yet (`{}.history` resumes its own state)",
+                        "`{}` holds more than {MOST_CONFIGURATIONS} configurations of states for a deep history to resume: resume its own state (`{}.history`)",
                         self.nodes[target].path, self.nodes[target].path
                     ),
                 );
@@ -669,16 +670,43 @@ impl Tree {
         }
     }
 
-    /// The states a history of `composite` may resume, in the order its variable numbers
-    /// them from 1: its own states (shallow), or every atomic state inside it (deep).
-    pub(super) fn resumed(&self, composite: usize, history: History) -> Vec<usize> {
+    /// The places a history of `composite` may resume, in the order its variable numbers them
+    /// from 1, each the states entered together: its own states (shallow); every atomic state
+    /// inside it (deep), or, where it holds regions, every configuration of them (one atomic
+    /// state in each region), in file order.
+    pub(super) fn resumed(&self, composite: usize, history: History) -> Vec<Vec<usize>> {
         match history {
-            History::Shallow => self.nodes[composite].children.clone(),
-            History::Deep => (composite..self.nodes.len())
-                .filter(|&n| self.nodes[n].children.is_empty())
-                .filter(|&n| self.chain(n).any(|a| a == composite))
+            History::Shallow => (self.nodes[composite].children.iter())
+                .map(|&c| vec![c])
                 .collect(),
+            History::Deep => {
+                let mut configurations = self.configurations(composite);
+                configurations.truncate(MOST_CONFIGURATIONS + 1);
+                configurations
+            }
         }
+    }
+
+    /// Every configuration of atomic states inside `node` (itself, when atomic), in file
+    /// order; cut short once past [`MOST_CONFIGURATIONS`].
+    fn configurations(&self, node: usize) -> Vec<Vec<usize>> {
+        let n = &self.nodes[node];
+        if n.children.is_empty() {
+            return vec![vec![node]];
+        }
+        if !n.parallel {
+            let each = n.children.iter().flat_map(|&c| self.configurations(c));
+            return each.take(MOST_CONFIGURATIONS + 1).collect();
+        }
+        let mut out: Vec<Vec<usize>> = vec![Vec::new()];
+        for &region in &n.children {
+            let each = self.configurations(region);
+            out = (out.iter())
+                .flat_map(|prefix| each.iter().map(move |c| [prefix.as_slice(), c].concat()))
+                .take(MOST_CONFIGURATIONS + 1)
+                .collect();
+        }
+        out
     }
 
     /// `node` and the states around it, innermost first.
@@ -711,11 +739,6 @@ impl Tree {
         self.chain(source)
             .skip(1)
             .find(|&n| around.iter().all(|a| a.contains(&n)) && !self.nodes[n].parallel)
-    }
-
-    /// Whether `node` is parallel or holds a parallel state.
-    fn holds_regions(&self, node: usize) -> bool {
-        (node..self.nodes.len()).any(|n| self.nodes[n].parallel && self.chain(n).any(|a| a == node))
     }
 
     /// Whether `node` is an atomic state in a region: a flat state is one of each region's,

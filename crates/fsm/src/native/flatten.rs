@@ -43,13 +43,13 @@ struct FlatArm {
     stays: bool,
 }
 
-/// One transition a state selects: written on `source`, to `target` (where a history arm
-/// resumes).
+/// One transition a state selects: written on `source`, to `targets` (the states entered
+/// together: its written targets, or where a history arm resumes).
 #[derive(Clone)]
 struct Fire<'t> {
     source: usize,
     written: &'t Written,
-    target: usize,
+    targets: Vec<usize>,
 }
 
 /// One condition of an arm: its label as lowered (each time test on its clock), and as written.
@@ -245,7 +245,7 @@ impl<'t> Flattening<'t> {
             if w.done && !tree.done_in(atomics, node) {
                 continue;
             }
-            for (label, target) in self.targets(atomics, node, w) {
+            for (label, targets) in self.targets(atomics, node, w) {
                 let mut clocked = label.clone();
                 clocked.set_time_clocks(self.clocks_of(node));
                 out.push(Choice {
@@ -259,7 +259,7 @@ impl<'t> Flattening<'t> {
                     fires: vec![Fire {
                         source: node,
                         written: w,
-                        target,
+                        targets,
                     }],
                 });
             }
@@ -369,10 +369,7 @@ impl<'t> Flattening<'t> {
             let active = tree.active_inside(atomics, domain);
             left.extend(active.iter().copied());
             kept.retain(|a| !active.contains(a));
-            // A history resumes at `f.target`; several targets are never a history's.
-            let mut targets = vec![f.target];
-            targets.extend(f.written.also.iter().copied());
-            entered.extend(tree.entering(domain, &targets));
+            entered.extend(tree.entering(domain, &f.targets));
         }
         left.sort_unstable();
         left.dedup();
@@ -433,9 +430,9 @@ impl<'t> Flattening<'t> {
         self.clocks[node]
     }
 
-    /// The label and target of each arm a transition written as `w` on `source` lowers to,
+    /// The label and targets of each arm a transition written as `w` on `source` lowers to,
     /// tried in this order, in the flat state of `atomics`.
-    fn targets(&self, atomics: &[usize], source: usize, w: &Written) -> Vec<(Label, usize)> {
+    fn targets(&self, atomics: &[usize], source: usize, w: &Written) -> Vec<(Label, Vec<usize>)> {
         let tree = self.tree;
         let label = if w.done { Label::TRUE } else { w.label.clone() };
         let label = in_states(tree, atomics, source, label);
@@ -445,10 +442,10 @@ impl<'t> Flattening<'t> {
         match w.history {
             // Leaving the composite notes where this very move leaves it: it comes back there.
             Some(history) if left.iter().any(|&n| tree.chain(n).any(|c| c == w.target)) => {
-                let atomic = tree.atomic_inside(atomics, w.target).unwrap_or(w.target);
-                let place = tree.place(w.target, history, atomic);
+                let place = tree.place(w.target, history, atomics);
                 let resumed = tree.resumed(w.target, history);
-                let back = usize::try_from(place - 1).map_or(w.target, |k| resumed[k]);
+                let back = usize::try_from(place - 1)
+                    .map_or_else(|_| vec![w.target], |k| resumed[k].clone());
                 arms.push((label, back));
                 return arms;
             }
@@ -472,7 +469,7 @@ impl<'t> Flattening<'t> {
             }
             None => {}
         }
-        arms.push((label, w.target));
+        arms.push((label, w.targets()));
         arms
     }
 
@@ -493,10 +490,9 @@ impl<'t> Flattening<'t> {
             if !left.contains(&composite) {
                 continue;
             }
-            let atomic = tree.atomic_inside(atomics, composite).unwrap_or(composite);
             noted.push(Action::Statement(Statement::Assign {
                 name: tree.variable(composite, history),
-                value: Expr::Int(tree.place(composite, history, atomic)),
+                value: Expr::Int(tree.place(composite, history, atomics)),
             }));
         }
         let own: Vec<Action> = fires

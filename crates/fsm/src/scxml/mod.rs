@@ -366,9 +366,6 @@ impl Mapping<'_> {
         if default.is_some() && default != first {
             self.refuse(element.line, "<history>: a default other than its state's initial does not map (a history resumes at the initial the first time)".into());
         }
-        if element.attribute("type") == Some("deep") && holds_parallel(composite) {
-            self.refuse(element.line, "<history type=\"deep\"> of a state that is or holds a <parallel>: it would resume a state in each region at once, which does not map yet (a shallow one does)".into());
-        }
     }
 
     /// `when LABEL -> TARGET { actions }`.
@@ -807,9 +804,4 @@ fn relative(path: &str, within: &str) -> String {
     path.strip_prefix(&format!("{within}."))
         .unwrap_or(path)
         .to_string()
-}
-
-/// Whether `element` is a `<parallel>` or holds one, at any depth.
-fn holds_parallel(element: &Element) -> bool {
-    element.name == "parallel" || element.children.iter().any(holds_parallel)
 }
