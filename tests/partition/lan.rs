@@ -54,13 +54,6 @@ impl Lan {
             lan.inside(i, "ip", &["addr", "add", &address, "dev", "eth0"])?;
             lan.inside(i, "ip", &["link", "set", "eth0", "up"])?;
             lan.inside(i, "ip", &["link", "set", "lo", "up"])?;
-            // As a team's robots are asked to (spec §1.1, "Healing"): TCP resends a thin
-            // stream's segments at a steady pace, so a short cut does not outlast a lease.
-            lan.inside(
-                i,
-                "sysctl",
-                &["-q", "-w", "net.ipv4.tcp_thin_linear_timeouts=1"],
-            )?;
             lan.inside(i, "nft", &["add", "table", "inet", "fault"])?;
             for (chain, hook) in [("in", "input"), ("out", "output")] {
                 let spec = format!("{{ type filter hook {hook} priority 0; }}");
