@@ -11,7 +11,7 @@ use crate::code::Expr;
 use crate::interface::global_of;
 use crate::label::{Label, TIME_TESTS};
 use crate::model::{Action, Composite, State, StateId, Transition};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// `in(STATE)` in a label: whether the machine is in that state (SCXML's `In`), which the
 /// flat state a transition is lowered in decides, so no back end reads it.
@@ -178,6 +178,9 @@ pub(super) struct Tree {
     pub histories: Vec<(usize, History)>,
     /// Each kept history's variable, told apart from every other name of the machine.
     variables: Vec<String>,
+    /// Each kept deep history's places by their states, so that noting one on every way out
+    /// does not list them all again.
+    places: Vec<HashMap<Vec<usize>, usize>>,
     /// Names a history's variable must not take: the globals the machine's parameters and
     /// outcomes become (`Dive_history` for a parameter `history` of `Dive`).
     reserved: Vec<String>,
@@ -316,6 +319,15 @@ impl Tree {
             }
             self.variables.push(name);
         }
+        self.places = (self.histories.iter())
+            .map(|&(composite, history)| match history {
+                History::Shallow => HashMap::new(),
+                History::Deep => (self.resumed(composite, history).into_iter())
+                    .enumerate()
+                    .map(|(k, states)| (states, k))
+                    .collect(),
+            })
+            .collect();
     }
 
     /// Where leaving `composite` from the atomic states `atomics` leaves it, as its
@@ -335,7 +347,13 @@ impl Tree {
                     .iter()
                     .position(|&c| c == own)
             }),
-            History::Deep => (self.resumed(composite, history).iter()).position(|c| *c == inside),
+            History::Deep => {
+                let kept = self.histories.iter().position(|&h| h == (composite, history));
+                match kept.and_then(|k| self.places.get(k)) {
+                    Some(places) => places.get(&inside).copied(),
+                    None => (self.resumed(composite, history).iter()).position(|c| *c == inside),
+                }
+            }
         };
         place.map_or(0, |k| k as i64 + 1)
     }
