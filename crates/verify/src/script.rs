@@ -108,7 +108,7 @@ fn set(lines: &mut Vec<Line>, notes: &mut Vec<String>, when: Option<f64>, a: &As
     let clash = lines.iter().find(|(w, n, _)| *w == when && *n == a.name);
     if let Some((_, _, other)) = clash.filter(|(_, _, other)| other != v) {
         notes.push(format!(
-            "`{}` must be {other} and then {v} at one moment (two ringlets of a round read it differently), and a script sets one value at a time",
+            "`{}` must be {other} and then {v} at one moment of the script (two ringlets of a round read it differently), which sets one value at a time",
             a.name
         ));
     }
@@ -229,7 +229,7 @@ mod tests {
              at 0.25s knob = 2",
             &[
                 "`knob` = 1 after A's ringlet, before the next machine's in round 2: set after that round",
-                "`level` must be 3 and then 4 at one moment (two ringlets of a round read it differently), and a script sets one value at a time",
+                "`level` must be 3 and then 4 at one moment of the script (two ringlets of a round read it differently), which sets one value at a time",
                 "`dial` = 7 between B's OnEntry and its snapshot in round 2: set after that round",
             ],
         );
