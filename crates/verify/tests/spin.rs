@@ -433,15 +433,28 @@ fn spin_and_both_engines_agree_on_a_shallow_history_around_regions() {
 #[test]
 fn spin_and_both_engines_agree_on_a_deep_history_around_regions() {
     let properties = [
-        property(PropertyKind::Never, "M.GAME.READY && M.GAME_deep_history >= 2"),
-        property(PropertyKind::Never, "M.GAME.PLAY.HEAD.LOOK && M.GAME_deep_history == 4"),
+        property(
+            PropertyKind::Never,
+            "M.GAME.READY && M.GAME_deep_history >= 2",
+        ),
+        property(
+            PropertyKind::Never,
+            "M.GAME.PLAY.HEAD.LOOK && M.GAME_deep_history == 4",
+        ),
         property(
             PropertyKind::Reachable,
             "M.GAME.PLAY.HEAD.TRACK && M.GAME.PLAY.BODY.WALK && M.GAME_deep_history == 4",
         ),
-        property(PropertyKind::Reachable, "M.GAME.READY && M.GAME_deep_history == 1"),
+        property(
+            PropertyKind::Reachable,
+            "M.GAME.READY && M.GAME_deep_history == 1",
+        ),
     ];
-    agree("deep-history-around-regions", &properties, &[Verdict::Holds; 4]);
+    agree(
+        "deep-history-around-regions",
+        &properties,
+        &[Verdict::Holds; 4],
+    );
 }
 
 /// A machine started and reloaded in one round rings from the next, as one only started

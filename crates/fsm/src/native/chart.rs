@@ -348,7 +348,10 @@ impl Tree {
                     .position(|&c| c == own)
             }),
             History::Deep => {
-                let kept = self.histories.iter().position(|&h| h == (composite, history));
+                let kept = self
+                    .histories
+                    .iter()
+                    .position(|&h| h == (composite, history));
                 match kept.and_then(|k| self.places.get(k)) {
                     Some(places) => places.get(&inside).copied(),
                     None => (self.resumed(composite, history).iter()).position(|c| *c == inside),
