@@ -102,6 +102,10 @@ pub struct TraceStep {
     /// Free types the world changed between the machine's OnEntry and its snapshot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub at_snapshot: Vec<Assignment>,
+    /// Free types this ringlet read otherwise than an earlier ringlet of its round did: the
+    /// world changed them between two machines' ringlets of one round.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub between: Vec<Assignment>,
     /// Free types the world changed after the ringlet (seen by the next snapshot).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub environment: Vec<Assignment>,

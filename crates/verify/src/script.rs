@@ -49,6 +49,13 @@ pub fn to_script(trace: &Trace, ring_period: Duration, title: &str) -> (String, 
         for a in &s.read {
             set(&mut lines, &mut notes, (s.round > 1).then_some(before), a);
         }
+        for a in &s.between {
+            notes.push(format!(
+                "`{}` = {} read by {} otherwise than by an earlier ringlet of round {}: set before that round",
+                a.name, a.value, s.machine, s.round
+            ));
+            set(&mut lines, &mut notes, (s.round > 1).then_some(before), a);
+        }
         // Every ringlet of a round runs at the round's moment: a change inside one, or
         // between two, has no moment of its own, and falls after the round.
         for a in &s.at_snapshot {
@@ -193,6 +200,7 @@ mod tests {
             timers: Vec::new(),
             read: Vec::new(),
             at_snapshot: Vec::new(),
+            between: Vec::new(),
             environment: Vec::new(),
         }
     }

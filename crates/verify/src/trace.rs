@@ -83,6 +83,8 @@ pub fn trace_of(
     // What a free type chosen when read was last seen to hold: a read is told only where it
     // differs, as the world's moves are.
     let mut last_read: FxHashMap<SlotId, ValueId> = FxHashMap::default();
+    // What the ringlets of this round read so far, by type.
+    let mut this_round: FxHashMap<SlotId, ValueId> = FxHashMap::default();
     let mut unposted: Vec<String> = Vec::new();
     let stepper = StepGenerator::new(model);
     let mut round = 1;
@@ -100,6 +102,7 @@ pub fn trace_of(
         };
         if s.wrapped {
             round += 1;
+            this_round.clear();
         }
         run.push(s.machine, seen(model, &s.world));
         let detail = s.detail.clone().unwrap_or_default();
@@ -112,7 +115,8 @@ pub fn trace_of(
                 unposted.push(name.clone());
             }
         }
-        steps.push(step(model, s, round, &detail, &mut last_read));
+        let reads = (&mut last_read, &mut this_round);
+        steps.push(step(model, s, round, &detail, reads));
     }
     Trace {
         initially,
@@ -129,7 +133,10 @@ fn step(
     s: &Successor,
     round: u32,
     detail: &Detail,
-    last_read: &mut FxHashMap<SlotId, ValueId>,
+    (last_read, this_round): (
+        &mut FxHashMap<SlotId, ValueId>,
+        &mut FxHashMap<SlotId, ValueId>,
+    ),
 ) -> TraceStep {
     let m = &model.machines[s.machine];
     let state = &m.states[s.from];
@@ -138,7 +145,11 @@ fn step(
             .map(|&(slot, v)| assignment(model, slot, v))
             .collect()
     };
-    let (read, inside) = reads_told(detail, last_read);
+    let Told {
+        read,
+        inside,
+        between,
+    } = reads_told(detail, last_read, this_round);
     let mut at_snapshot = detail.at_snapshot.clone();
     at_snapshot.extend(inside);
     TraceStep {
@@ -151,6 +162,7 @@ fn step(
             .map(|&i| m.time_test_shown(&state.time_tests[i]))
             .collect(),
         at_snapshot: shown(&at_snapshot),
+        between: shown(&between),
         read: shown(&read),
         environment: shown(&detail.environment),
     }
@@ -159,33 +171,58 @@ fn step(
 /// A free type and the value a ringlet read of it.
 type Read = (SlotId, ValueId);
 
+/// A ringlet's reads as a trace tells them.
+struct Told {
+    /// Changes the world made since the last read or posting: a script sets them before the
+    /// round.
+    read: Vec<Read>,
+    /// Changes inside the ringlet (after what it read or posted before): no moment of the
+    /// clock is there.
+    inside: Vec<Read>,
+    /// Read otherwise than by an earlier ringlet of this round: changed between two.
+    between: Vec<Read>,
+}
+
 /// The reads of a ringlet to tell, in the order made, with what the machine posted between
 /// them (`detail.posted`) taken as what the type holds next: a read that differs from what was
-/// last read or posted is the world's change. One that follows the machine's own posting in
-/// this very ringlet changed inside it, where no moment of the clock is (second list).
+/// last read or posted is the world's change. One that differs from what this very ringlet
+/// read or posted before (its OnEntry read one value, its snapshot another) changed inside
+/// the ringlet; one that differs from what an earlier ringlet of its round read, between the
+/// two (`this_round`). A script can say neither.
 fn reads_told(
     detail: &Detail,
     last_read: &mut FxHashMap<SlotId, ValueId>,
-) -> (Vec<Read>, Vec<Read>) {
-    let (mut told, mut inside) = (Vec::new(), Vec::new());
-    let mut own: Vec<SlotId> = Vec::new();
+    this_round: &mut FxHashMap<SlotId, ValueId>,
+) -> Told {
+    let mut told = Told {
+        read: Vec::new(),
+        inside: Vec::new(),
+        between: Vec::new(),
+    };
+    // What this ringlet has read or posted so far, by type.
+    let mut here: FxHashMap<SlotId, ValueId> = FxHashMap::default();
     let mut posts = detail.posted.iter().peekable();
     for (i, &(slot, v)) in detail.read.iter().enumerate() {
         while let Some(&(_, posted, value)) = posts.next_if(|p| p.0 <= i) {
             last_read.insert(posted, value);
-            own.push(posted);
+            here.insert(posted, value);
         }
-        if last_read.insert(slot, v).unwrap_or(NEVER) != v {
-            match own.contains(&slot) {
-                true => inside.push((slot, v)),
-                false => told.push((slot, v)),
-            }
+        let before = last_read.insert(slot, v).unwrap_or(NEVER);
+        let earlier = this_round.get(&slot).copied();
+        match here.insert(slot, v) {
+            Some(mine) if mine != v => told.inside.push((slot, v)),
+            None if earlier.is_some_and(|e| e != v) => told.between.push((slot, v)),
+            _ if before != v => told.read.push((slot, v)),
+            _ => {}
         }
     }
     for &(_, posted, value) in posts {
         last_read.insert(posted, value);
+        here.insert(posted, value);
     }
-    (told, inside)
+    // What this ringlet leaves a type at is what the next ringlet of the round meets.
+    this_round.extend(here);
+    told
 }
 
 /// A trace as text, one ringlet a line, grouped by round.
@@ -217,6 +254,9 @@ pub fn render(trace: &Trace) -> String {
         }
         if !s.read.is_empty() {
             line.push_str(&format!("; reads {}", show(&s.read)));
+        }
+        if !s.between.is_empty() {
+            line.push_str(&format!("; since the last ringlet: {}", show(&s.between)));
         }
         if !s.at_snapshot.is_empty() {
             line.push_str(&format!("; before its snapshot: {}", show(&s.at_snapshot)));

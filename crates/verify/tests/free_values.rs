@@ -100,8 +100,10 @@ fn a_search_stopped_by_the_choice_budget_shows_the_run_it_found() {
     assert_eq!(steps.len(), 1, "{steps:#?}");
     assert_eq!((steps[0].machine.as_str(), steps[0].round), ("N0", 1));
     assert!(
+        // OnEntry read `in0` unposted (`v1 = in0`), and the snapshot as -7: a change inside
+        // the ringlet, told as one.
         steps[0]
-            .read
+            .at_snapshot
             .iter()
             .any(|a| a.name == "in0" && a.value == "-7"),
         "{steps:#?}"

@@ -8,11 +8,11 @@ use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
 use proclaim_behaviour::Behaviour;
 use proclaim_board::Value;
+use proclaim_fsm::BinOp;
 use proclaim_runner::Event;
 use proclaim_verify::{
-    to_script, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Verdict,
+    arith, to_script, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Verdict,
 };
-use std::cmp::Ordering;
 use std::time::Duration;
 
 /// A property drawn, as written and as a run reads it.
@@ -148,23 +148,18 @@ fn current_state(run: &RoundByRound, behaviour: &Behaviour, machine: &str) -> Op
     })
 }
 
-/// `a op b` as the runner's operators take it for what the behaviours hold: whole numbers
-/// ordered, text equal or not, different kinds unequal.
+/// `a op b` as the runner's own operators take it (`arith`, which the model shares): numbers
+/// by value, a truth as 0 or 1, text by text.
 fn compare(a: &Value, op: &str, b: &Value) -> bool {
-    let order = match (a, b) {
-        (Value::Int(x), Value::Int(y)) => Some(x.cmp(y)),
-        (Value::Str(x), Value::Str(y)) => Some(x.cmp(y)),
-        _ => None,
+    let op = match op {
+        "<" => BinOp::Lt,
+        "<=" => BinOp::Le,
+        ">" => BinOp::Gt,
+        ">=" => BinOp::Ge,
+        "==" => BinOp::Eq,
+        _ => BinOp::Ne,
     };
-    match (op, order) {
-        ("==", o) => o == Some(Ordering::Equal),
-        ("!=", o) => o != Some(Ordering::Equal),
-        ("<", Some(o)) => o == Ordering::Less,
-        ("<=", Some(o)) => o != Ordering::Greater,
-        (">", Some(o)) => o == Ordering::Greater,
-        (">=", Some(o)) => o != Ordering::Less,
-        _ => false,
-    }
+    arith::binary(op, Some(a.clone()), Some(b.clone())) == Some(Value::Bool(true))
 }
 
 impl Claim {
