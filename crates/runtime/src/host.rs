@@ -225,7 +225,7 @@ fn script_steps<B: CompiledBehaviour>(path: Option<&PathBuf>) -> Result<Vec<Step
     match (path, B::SCRIPT) {
         (Some(path), _) => {
             let shown = path.display().to_string();
-            let text = std::fs::read_to_string(path).map_err(|e| format!("{shown}: {e}"))?;
+            let text = crate::read_source(path).map_err(|e| format!("{shown}: {e}"))?;
             read_script::<B>(&shown, &text)
         }
         (None, Some((file, text))) => read_script::<B>(file, text),

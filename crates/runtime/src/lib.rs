@@ -8,7 +8,8 @@
 //! `proclaim compile --target rust` copies this crate's files into the project it writes, so a
 //! compiled behaviour builds with crates from crates.io alone; the interpreter's crates use the
 //! same files, so both report one trace and read one script by construction. Only `host.rs`, a
-//! program's `main`, does I/O (the command line, files, the clock).
+//! program's `main`, does I/O (the command line, files, the clock), and `source.rs`, which
+//! reads a file whole within a bound for every reader above.
 
 pub mod calls;
 pub mod event;
@@ -16,6 +17,7 @@ pub mod host;
 mod lines;
 mod schedule;
 mod script;
+mod source;
 pub mod suppress;
 pub mod tables;
 pub mod world;
@@ -23,6 +25,7 @@ pub mod world;
 pub use event::{Answerer, Event, Ringlet};
 pub use lines::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
 pub use script::{parse_script, Script, ScriptStep, ScriptValue, When};
+pub use source::{read_source, read_within, too_large, Unread, MAX_SOURCE_BYTES};
 pub use suppress::{Holding, Ranked, Suppressor, Visibility};
 pub use tables::Tables;
 
@@ -38,6 +41,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("src/lines.rs", include_str!("lines.rs")),
     ("src/schedule.rs", include_str!("schedule.rs")),
     ("src/script.rs", include_str!("script.rs")),
+    ("src/source.rs", include_str!("source.rs")),
     ("src/suppress.rs", include_str!("suppress.rs")),
     ("src/tables.rs", include_str!("tables.rs")),
     ("src/world.rs", include_str!("world.rs")),

@@ -2,8 +2,8 @@
 //! input/output statements) and SPINdle's `.dfl`, parsed to one syntax tree with diagnostics.
 //!
 //! Also the small line formats every crate reads: durations and the impersonator's script
-//! (`script.rs`), which a compiled behaviour reads too; and every source file is read through
-//! `source.rs`, which holds it to a bound.
+//! (`script.rs`), which a compiled behaviour reads too, and the bounded reader of every source
+//! file (`proclaim-runtime`'s `source.rs`), re-exported.
 //!
 //! Parsing never fails: it returns the statements that parsed and a diagnostic for each problem.
 //! This crate knows nothing of meaning (labels, priorities, consistency): see `proclaim-cdl`.
@@ -16,7 +16,6 @@ pub mod lexer;
 mod located;
 mod nearest;
 mod parse;
-mod source;
 pub mod span;
 
 lalrpop_util::lalrpop_mod!(
@@ -32,7 +31,7 @@ pub use nearest::nearest;
 pub use parse::{parse_dl, parse_dl_each, parse_query, NameTok, ParsedTheory, UserError};
 pub use proclaim_runtime::{code_lines, parse_duration, LineError, LineErrors, LONGEST_DURATION};
 pub use proclaim_runtime::{parse_script, Script, ScriptStep, ScriptValue, When};
-pub use source::{read_source, read_within, too_large, Unread, MAX_SOURCE_BYTES};
+pub use proclaim_runtime::{read_source, read_within, too_large, Unread, MAX_SOURCE_BYTES};
 pub use span::{line_column, Span};
 
 /// The two theory languages.

@@ -1,4 +1,5 @@
-//! A source file read whole, within a bound. Every reader holds a file's text and the tree it
+//! A source file read whole, within a bound (the one file of this crate besides `host.rs` that
+//! does I/O). Every reader holds a file's text and the tree it
 //! builds from it in memory at once, many times the file's size, so a file past the bound is
 //! refused before it is read, saying how large it is and what the bound is. The bound holds
 //! for what is read, not only for what the file says it holds: a pipe or a device
