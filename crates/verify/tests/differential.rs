@@ -14,16 +14,17 @@
 
 mod claims;
 mod texts;
+mod unreachable;
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
-use proclaim_behaviour::{load, Folder};
-use proclaim_runner::Event;
-use proclaim_verify::{verify, Finding, Options, Stop, VerifyError};
+use proclaim_behaviour::{load, Behaviour, Folder};
+use proclaim_verify::{verify, Options, PropertyOutcome, SearchEngine, Stop, VerifyError};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Duration;
+use unreachable::Unreachable;
 
 const INPUTS: [&str; 2] = ["in0", "in1"];
 
@@ -313,13 +314,7 @@ struct Outcome {
 fn one(seed: u64, runs: usize) -> Outcome {
     let (files, ranged) = generate(seed);
     let dir = folder(seed);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a folder");
-    for (name, text) in &files {
-        std::fs::write(dir.join(name), text).expect("write");
-    }
-    let behaviour = load("random", Arc::new(Folder::new(&dir)))
-        .unwrap_or_else(|e| panic!("seed {seed}: does not load: {e:#?}"));
+    let behaviour = written(&dir, &files, seed);
     // With the clocks of different machines ordered: the finer model claims more absences.
     let options = Options {
         max_states: 1_000,
@@ -328,71 +323,22 @@ fn one(seed: u64, runs: usize) -> Outcome {
     };
     let report = verify(&behaviour, &[], options)
         .unwrap_or_else(|e| panic!("seed {seed}: verify fails: {e}"));
-    let mut never_entered = Vec::new();
-    let mut never_fires = Vec::new();
-    for f in &report.findings {
-        match f {
-            Finding::NeverEntered { machine, state } => {
-                never_entered.push(format!("{machine}.{state}"))
-            }
-            Finding::NeverFires {
-                machine,
-                from,
-                to,
-                label,
-                ..
-            } => never_fires.push(format!("{machine}: {from} -> {to} on {label}")),
-            Finding::Deadlock { .. } => {}
-        }
-    }
-    // A run's event names a transition by its states and label alone: where one of several
-    // alike may fire (a label written twice), the event cannot tell which, so none is held.
-    let alike = |t: &String| {
-        let written = behaviour.machines.iter().flat_map(|m| {
-            let name = |id| m.machine.state(id).map_or("", |s| s.name.as_str());
-            m.machine.transitions.iter().map(move |x| {
-                let (from, to) = (name(x.source), name(x.target));
-                format!("{}: {from} -> {to} on {}", m.machine.name, x.label)
-            })
-        });
-        written.filter(|w| w == t).count()
-    };
-    let said = never_fires.clone();
-    never_fires.retain(|t| said.iter().filter(|s| *s == t).count() == alike(t));
-    // In a chart, a transition as written is known by where it was written and its line, and a
-    // flat transition that fires credits every written one it joins (`lib.rs`'s findings).
-    let never_lines: Vec<(String, String, usize)> = (report.findings.iter())
-        .filter_map(|f| match f {
-            Finding::NeverFires {
-                machine,
-                from,
-                line,
-                ..
-            } if *line > 0 => Some((machine.clone(), from.clone(), *line)),
-            _ => None,
-        })
-        .collect();
     let claimed = report.stats.complete && report.inexact.is_empty();
     let claims = claims::draw(seed, &files);
-    let sources: Vec<_> = claims
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c.source(i))
-        .collect();
     let engine = claims::engine(seed);
-    // The symbolic engine may decline a behaviour (too many combinations in a ringlet): then
-    // it claims nothing.
-    let checked = match verify(&behaviour, &sources, Options { engine, ..options }) {
-        Ok(report) => report.properties,
-        Err(VerifyError::SymbolicDeclined(_)) => Vec::new(),
-        Err(e) => panic!("seed {seed}: verify fails on {sources:?}: {e}"),
-    };
+    let checked = properties(&behaviour, &claims, Options { engine, ..options }, seed);
     let verdicts = || claims.iter().zip(&checked);
-    let absent: Vec<&claims::Claim> = verdicts()
-        .filter(|(c, o)| c.absent(o))
-        .map(|(c, _)| c)
-        .collect();
-    let shown: String = files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect();
+    let judge = Judge {
+        seed,
+        engine,
+        shown: files.iter().map(|(n, t)| format!("--- {n}\n{t}")).collect(),
+        behaviour: &behaviour,
+        unreachable: Unreachable::of(&report, &behaviour),
+        absent: verdicts()
+            .filter(|(c, o)| c.absent(o))
+            .map(|(c, _)| c)
+            .collect(),
+    };
     let mut disagreements = Vec::new();
     let mut rng = Rng::new(seed ^ 0x5eed);
     let mut words = Rng::new(seed ^ 0x7e47_5eed);
@@ -402,115 +348,14 @@ fn one(seed: u64, runs: usize) -> Outcome {
         if text {
             script.push_str(&texts::script(&mut words));
         }
-        let mut run = RoundByRound::start(&dir, &script)
-            .unwrap_or_else(|e| panic!("seed {seed}: the run starts: {e}\n{script}"));
-        let mut broken = None;
-        for round in 1..=40 {
-            run.wait(Duration::from_millis(25));
-            run.round();
-            if broken.is_none() {
-                let made = absent.iter().find(|c| c.holds_in(&run, &behaviour));
-                broken = made.map(|c| (c.describe(), round));
-            }
-        }
-        if let Some((claim, round)) = broken {
-            disagreements.push(format!(
-                "seed {seed}: the run made `{claim}` true after round {round}, which verify ({}) said no run does\n{shown}--- script\n{script}",
-                engine.word()
-            ));
-        }
-        let chart_of = |machine: &str| {
-            let m = behaviour
-                .machines
-                .iter()
-                .find(|m| m.machine.name == machine);
-            m.map(|m| &m.machine).filter(|m| !m.composites.is_empty())
-        };
-        let names = |id: i64, machine: &str| -> String {
-            let m = &behaviour
-                .machines
-                .iter()
-                .find(|m| m.machine.name == machine);
-            m.and_then(|m| m.machine.state(id))
-                .map_or_else(|| format!("#{id}"), |s| s.name.clone())
-        };
-        for e in &run.events {
-            let seen = match e {
-                Event::Entered { machine, state, .. } => (state.split(", "))
-                    .map(|atomic| format!("{machine}.{atomic}"))
-                    .find(|s| never_entered.contains(s))
-                    .map(|s| format!("entered {s}")),
-                Event::Fired {
-                    machine,
-                    from,
-                    to,
-                    label,
-                    ..
-                } if chart_of(machine).is_some() => {
-                    let m = chart_of(machine).expect("a chart");
-                    let arms: Vec<_> = (m.transitions.iter())
-                        .filter(|t| t.source == *from && t.target == *to)
-                        .filter(|t| t.shown().to_string() == *label)
-                        .collect();
-                    let written = |c: Option<usize>, source| {
-                        let composite = c.and_then(|c| m.composites.get(c));
-                        composite.map_or_else(|| names(source, machine), |c| c.name.clone())
-                    };
-                    // Several arms alike: the event cannot tell which fired.
-                    let credited: Vec<(String, usize)> = match arms.as_slice() {
-                        [t] => std::iter::once((written(t.composite, t.source), t.line))
-                            .chain(
-                                t.joined
-                                    .iter()
-                                    .filter(|j| j.2)
-                                    .map(|&(c, line, _)| (written(c, t.source), line)),
-                            )
-                            .collect(),
-                        _ => Vec::new(),
-                    };
-                    credited
-                        .into_iter()
-                        .find(|(w, line)| {
-                            never_lines.contains(&(machine.clone(), w.clone(), *line))
-                        })
-                        .map(|(w, line)| {
-                            format!("fired {machine}: the transition of {w} at line {line}")
-                        })
-                }
-                Event::Fired {
-                    machine,
-                    from,
-                    to,
-                    label,
-                    ..
-                } => {
-                    let t = format!(
-                        "{machine}: {} -> {} on {label}",
-                        names(*from, machine),
-                        names(*to, machine)
-                    );
-                    never_fires.contains(&t).then_some(format!("fired {t}"))
-                }
-                _ => None,
-            };
-            if let Some(what) = seen {
-                disagreements.push(format!(
-                    "seed {seed}: the run {what}, which verify called unreachable\n{shown}--- script\n{script}"
-                ));
-                break;
-            }
-        }
+        disagreements.extend(judge.run(&dir, &script));
     }
     let mut replayed = 0;
     for (claim, outcome) in verdicts() {
-        match claim.replays(outcome, &dir, &behaviour) {
+        match judge.replay(claim, outcome, &dir) {
             None => {}
             Some(Ok(())) => replayed += 1,
-            Some(Err(why)) => disagreements.push(format!(
-                "seed {seed}: verify ({}) found a run for `{}`, but {why}\n{shown}",
-                engine.word(),
-                claim.describe()
-            )),
+            Some(Err(disagreement)) => disagreements.push(disagreement),
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -523,9 +368,104 @@ fn one(seed: u64, runs: usize) -> Outcome {
         charted: claimed && charted,
         nested: claimed && nested,
         texts: claimed && text,
-        absent: absent.len(),
+        absent: judge.absent.len(),
         replayed,
         disagreements,
+    }
+}
+
+/// The behaviour's files written to a fresh folder, and loaded from it.
+fn written(dir: &Path, files: &[(String, String)], seed: u64) -> Behaviour {
+    let _ = std::fs::remove_dir_all(dir);
+    std::fs::create_dir_all(dir).expect("a folder");
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).expect("write");
+    }
+    load("random", Arc::new(Folder::new(dir)))
+        .unwrap_or_else(|e| panic!("seed {seed}: does not load: {e:#?}"))
+}
+
+/// The drawn properties' outcomes, in the order drawn, by the seed's engine.
+fn properties(
+    behaviour: &Behaviour,
+    claims: &[claims::Claim],
+    options: Options,
+    seed: u64,
+) -> Vec<PropertyOutcome> {
+    let sources: Vec<_> = (claims.iter().enumerate())
+        .map(|(i, c)| c.source(i))
+        .collect();
+    // The symbolic engine may decline a behaviour (too many combinations in a ringlet): then
+    // it claims nothing.
+    match verify(behaviour, &sources, options) {
+        Ok(report) => report.properties,
+        Err(VerifyError::SymbolicDeclined(_)) => Vec::new(),
+        Err(e) => panic!("seed {seed}: verify fails on {sources:?}: {e}"),
+    }
+}
+
+/// What verify said of one behaviour, held to the runs of it.
+struct Judge<'a> {
+    seed: u64,
+    engine: SearchEngine,
+    /// The behaviour's files, printed with a disagreement.
+    shown: String,
+    behaviour: &'a Behaviour,
+    unreachable: Unreachable,
+    /// The properties verify said no run makes true.
+    absent: Vec<&'a claims::Claim>,
+}
+
+impl Judge<'_> {
+    /// The disagreements of one run of the script: forty rounds, read after each.
+    fn run(&self, dir: &Path, script: &str) -> Vec<String> {
+        let (seed, shown) = (self.seed, &self.shown);
+        let mut run = RoundByRound::start(dir, script)
+            .unwrap_or_else(|e| panic!("seed {seed}: the run starts: {e}\n{script}"));
+        let mut broken = None;
+        for round in 1..=40 {
+            run.wait(Duration::from_millis(25));
+            run.round();
+            if broken.is_none() {
+                let made = (self.absent.iter()).find(|c| c.holds_in(&run, self.behaviour));
+                broken = made.map(|c| (c.describe(), round));
+            }
+        }
+        let mut disagreements = Vec::new();
+        if let Some((claim, round)) = broken {
+            disagreements.push(format!(
+                "seed {seed}: the run made `{claim}` true after round {round}, which verify ({}) said no run does\n{shown}--- script\n{script}",
+                self.engine.word()
+            ));
+        }
+        let reached =
+            (run.events.iter()).find_map(|e| self.unreachable.reached_by(e, self.behaviour));
+        if let Some(what) = reached {
+            disagreements.push(format!(
+                "seed {seed}: the run {what}, which verify called unreachable\n{shown}--- script\n{script}"
+            ));
+        }
+        disagreements
+    }
+
+    /// Where verify found a run for the claim, whether the runner shows it (`None`: no run
+    /// found, or one its script says it cannot carry).
+    fn replay(
+        &self,
+        claim: &claims::Claim,
+        outcome: &PropertyOutcome,
+        dir: &Path,
+    ) -> Option<Result<(), String>> {
+        let replayed = claim.replays(outcome, dir, self.behaviour)?;
+        Some(replayed.map_err(|why| {
+            format!(
+                "seed {}: verify ({}) found a run for `{}`, but {why}\n{}",
+                self.seed,
+                self.engine.word(),
+                claim.describe(),
+                self.shown
+            )
+        }))
     }
 }
 
@@ -655,12 +595,7 @@ fn runs_never_reach_what_verify_calls_unreachable_ten_thousand() {
 fn a_ringlet_of_too_many_combinations_stops_the_search_and_says_why() {
     let (files, _) = generate(588);
     let dir = folder(588);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a folder");
-    for (name, text) in &files {
-        std::fs::write(dir.join(name), text).expect("write");
-    }
-    let behaviour = load("random", Arc::new(Folder::new(&dir))).expect("loads");
+    let behaviour = written(&dir, &files, 588);
     let options = Options {
         max_states: 1_000,
         ..Options::default()
