@@ -382,6 +382,47 @@ fn a_control_word_to_a_sensor_wrapper_is_a_plain_posting() {
     );
 }
 
+/// A posting written as a statement, `post("Ghost", "suspend")` or `suspend("Ghost")`, alone
+/// or inside a loop, is held to the behaviour as `Ghost: suspend` is (`check` once did not see
+/// a statement's posting at all).
+#[test]
+fn a_posting_written_as_a_statement_is_checked_as_one() {
+    let main = "machine Main\ninitial A\nstate A {\n  entry { post(\"sensors_postJoints\", \"On\"); post(\"Helpr\", \"On\"); }\n  when TRUE -> B\n}\nstate B {\n  entry { int i; for (i = 0; i < 2; i = i + 1) { suspend(\"Ghost\"); post(\"Beep\", i); } }\n}\n";
+    let dir = temp_behaviour(&[
+        (
+            "behaviour.toml",
+            "[[machine]]\nfile = \"Main.machine\"\n\n[[machine]]\nfile = \"Helper.machine\"\nstart = false\n",
+        ),
+        ("Main.machine", main),
+        ("Helper.machine", "machine Helper\nstate H {\n}\n"),
+    ]);
+    let behaviour = load("statements", Arc::new(Folder::new(&dir))).unwrap();
+    let findings: Vec<String> = proclaim_behaviour::check_behaviour(&behaviour)
+        .iter()
+        .map(|d| d.to_string().replace(&format!("{}/", dir.display()), ""))
+        .collect();
+    assert_eq!(
+        findings,
+        [
+            "Main.machine:3: warning: nobody listens to `sensors_postJoints` postings (name the module that does in the manifest's [[module]] or dictionary; `sensors_postJoints: On` is a plain posting, no machine is named `sensors_postJoints`)",
+            "Main.machine:3: error: `Helpr: On` controls a machine `Helpr` the behaviour does not have (did you mean `Helper`?)",
+            "Main.machine:7: error: `Ghost: suspend` controls a machine `Ghost` the behaviour does not have (and no module reads `Ghost`)",
+            "Helper.machine:1: warning: sub-machine `Helper` has `start = false` and no module posts `Helper: On`, so it never runs",
+        ]
+    );
+    // Started by a statement in a loop, the helper runs.
+    let started = main.replace("post(\"Beep\", i);", "restart(\"Helper\");");
+    std::fs::write(dir.join("Main.machine"), started).unwrap();
+    let behaviour = load("statements", Arc::new(Folder::new(&dir))).unwrap();
+    let findings = proclaim_behaviour::check_behaviour(&behaviour);
+    assert!(
+        findings
+            .iter()
+            .all(|d| !d.to_string().contains("never runs")),
+        "{findings:#?}"
+    );
+}
+
 /// A first team's goalkeeper: the keeper sets a global the dive reads. Checked whole, nothing
 /// is wrong; `deps --launch Dive` leaves the keeper out, and there `check` says the dive's
 /// labels read a value nothing gives (the launch ran and chose a side at once, silently).

@@ -7,7 +7,7 @@ use crate::load::{Behaviour, LoadedMachine};
 use crate::manifest::{Schedule, MANIFEST};
 use crate::modules::{modules, Module, ModuleKind};
 use proclaim_experts::Script;
-use proclaim_fsm::{lint, Action, FileDiagnostic};
+use proclaim_fsm::{lint, FileDiagnostic};
 use proclaim_lower::RingletPlan;
 use proclaim_runner::{machine_of_running_type, Command};
 use proclaim_syntax::nearest;
@@ -139,15 +139,14 @@ impl CrossModuleCheck<'_> {
                 .into_iter()
                 .flatten()
             {
-                let Action::Post { ty, content } = action else {
-                    continue;
-                };
-                if reported.iter().any(|r| r == ty) || self.is_machine(ty) || self.read_by(ty) {
-                    continue;
+                for (ty, content) in action.literal_postings() {
+                    if reported.contains(&ty) || self.is_machine(&ty) || self.read_by(&ty) {
+                        continue;
+                    }
+                    let line = m.line_of(state, action);
+                    out.push(self.posting_nobody_hears(file, line, &ty, &content));
+                    reported.push(ty);
                 }
-                reported.push(ty.clone());
-                let line = m.line_of(state, action);
-                out.push(self.posting_nobody_hears(file, line, ty, content));
             }
         }
         out

@@ -302,6 +302,34 @@ fn action(statement: Statement) -> Action {
     }
 }
 
+impl Action {
+    /// The postings of literal type and content the action makes, however deep in a block or
+    /// loop (`post("Say", "hi")`, `suspend("Dive")` is `Dive: suspend`): what `check` holds to
+    /// the behaviour's machines and modules, whichever format the activity was written in.
+    pub fn literal_postings(&self) -> Vec<(String, String)> {
+        let mut found = Vec::new();
+        match self {
+            Action::Post { ty, content } => found.push((ty.clone(), content.clone())),
+            Action::Statement(s) => statement_postings(s, &mut found),
+            Action::Call { .. } | Action::Code(_) => {}
+        }
+        found
+    }
+}
+
+fn statement_postings(statement: &Statement, found: &mut Vec<(String, String)>) {
+    match statement {
+        Statement::Block(body) => body.iter().for_each(|s| statement_postings(s, found)),
+        Statement::For { body, .. } => statement_postings(body, found),
+        Statement::Expr(Expr::Call { .. }) => {
+            if let Action::Post { ty, content } = action(statement.clone()) {
+                found.push((ty, content));
+            }
+        }
+        _ => {}
+    }
+}
+
 /// Functions the interpreter itself provides to activities (see the runner), beside the
 /// sub-machine controls (`Command::from_function`); a call of any other name is a host
 /// function.

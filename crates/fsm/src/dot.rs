@@ -106,17 +106,17 @@ pub fn body(
     started
 }
 
-/// The machines a state's arrival starts, each with the posting that starts it.
+/// The machines a state's arrival starts, each with the action that posts the start (a
+/// `Type: word` line, or a statement however deep: `restart("Dive")`).
 fn starts(state: &State) -> impl Iterator<Item = (&Action, String)> + '_ {
-    state.on_entry.iter().filter_map(|action| match action {
+    state.on_entry.iter().flat_map(|action| {
         // Spelled exactly: `Light: on` is a lamp's state, not a command.
-        Action::Post { ty, content }
-            if [Command::On, Command::Restart]
+        let starting = |(_, word): &(String, String)| {
+            [Command::On, Command::Restart]
                 .iter()
-                .any(|c| c.word() == content) =>
-        {
-            Some((action, ty.clone()))
-        }
-        _ => None,
+                .any(|c| c.word() == word)
+        };
+        let postings = action.literal_postings().into_iter();
+        postings.filter(starting).map(move |(ty, _)| (action, ty))
     })
 }

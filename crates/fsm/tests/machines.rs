@@ -664,6 +664,25 @@ fn a_machine_as_dot() {
     );
 }
 
+/// A start written as a statement, alone or in a loop, is drawn as a start (it once was drawn
+/// only when written `Dive: restart`).
+#[test]
+fn a_start_written_as_a_statement_is_drawn() {
+    let text = "machine M\ninitial A\nstate A {\n  entry { restart(\"Dive\"); int i; for (i = 0; i < 2; i = i + 1) { post(\"Kick\", \"On\"); post(\"Light\", \"on\"); } }\n}\n";
+    let read = parse_machine("M.machine", text);
+    assert!(read.diagnostics.is_empty(), "{:?}", read.diagnostics);
+    let dot = proclaim_fsm::to_dot(&read.machines[0]);
+    let starts: Vec<&str> = dot.lines().filter(|l| l.contains("\"starts\"")).collect();
+    assert_eq!(
+        starts,
+        [
+            r#"  s1 -> "Dive" [style=dashed, arrowhead=odot, label="starts"];"#,
+            r#"  s1 -> "Kick" [style=dashed, arrowhead=odot, label="starts"];"#,
+        ],
+        "{dot}"
+    );
+}
+
 /// The shared corpus (`../shared/corpus` from the repository's root), when present beside it.
 fn corpus_dir() -> Option<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");

@@ -770,9 +770,10 @@ pub fn declaration(m: &Machine, name: &str, shared: &Shared) -> ModuleDecl {
             list.push(ty.to_string());
         }
     };
+    // A control word written as a statement (`restart("Dive")`) posts the machine's type too.
     for a in m.actions() {
-        if let Action::Post { ty, .. } = a {
-            add(&mut posts, ty);
+        for (ty, _) in a.literal_postings() {
+            add(&mut posts, &ty);
         }
     }
     for s in m.statements() {
