@@ -1,7 +1,7 @@
 //! `run --record`: every whiteboard message as one JSON line (`seq`, `at_us`, `module`, `type`,
-//! `value`), written while the behaviour runs, with every ringlet as it started
-//! (`{"ringlet": …}`) and the machines' events (`{"event": …}`) between them: read back by
-//! `proclaim replay` (the messages) and `proclaim test` (all three).
+//! `value`), written while the behaviour runs, with every ringlet once it has run, or as the
+//! run stopped inside it (`{"ringlet": …}`), and the machines' events (`{"event": …}`) between
+//! them: read back by `proclaim replay` (the messages) and `proclaim test` (all three).
 
 use crate::failure::Failure;
 use proclaim_board::{Pattern, Whiteboard};

@@ -43,7 +43,7 @@ pub struct LaunchOptions {
     /// An impersonator that asks a person (`proclaim run --ask`); its atoms replace the
     /// behaviour's own, as a script's do.
     pub person: Option<Impersonator>,
-    /// Report every ringlet as it starts ([`Running::ringlets`]), for a recording that a
+    /// Report every ringlet (where and when it began, sent once it has run) ([`Running::ringlets`]), for a recording that a
     /// replay can post outside messages back into at the same places.
     pub ringlets: bool,
     /// Experts of the embedding program (a Python callable per label, say). Their atoms
@@ -89,7 +89,7 @@ type Positions = FxHashMap<String, Option<i64>>;
 /// A behaviour running: its trace, and what it takes for it to be over.
 pub struct Running {
     pub events: mpsc::UnboundedReceiver<Event>,
-    /// Every ringlet as it starts, when asked for ([`LaunchOptions::ringlets`]) and the
+    /// Every ringlet, once it has run, when asked for ([`LaunchOptions::ringlets`]) and the
     /// machines run in rounds.
     pub ringlets: Option<mpsc::UnboundedReceiver<Ringlet>>,
     /// The round under way (0 under `schedule = "concurrent"`).

@@ -1,5 +1,5 @@
 //! A recorded run as a regression test (`proclaim test`): the recording of `run --record` holds
-//! every whiteboard message, every ringlet as it started and the machines' events. Replayed, the
+//! every whiteboard message, every ringlet (where and when it began) and the machines' events. Replayed, the
 //! behaviour's machines and theories run again on the virtual clock under the round schedule,
 //! and everything that came from outside them (sensor wrappers, the impersonator, a person, the
 //! network, the monitor) is posted again before the ringlet it came before the first time; what
@@ -470,8 +470,15 @@ impl RecordedFeed {
             .collect();
         times.sort_unstable();
         outside.sort_by_key(|(place, m)| (*place, m.seq));
+        // A run stopped inside a ringlet once left that round's events without its ringlet
+        // (the schedule now sends it as it stops): the round is played all the same.
+        let evented = (recording.events.iter())
+            .filter_map(|e| Some(observable(e)?.0))
+            .filter(|&r| r < round)
+            .max();
+        let paced = times.last().map(|((round, _), _)| *round);
         RecordedFeed {
-            last_round: times.last().map_or(0, |((round, _), _)| *round),
+            last_round: paced.max(evented).unwrap_or(0),
             times,
             outside,
             posted: 0,
@@ -621,6 +628,33 @@ mod tests {
         assert_eq!(
             places(ringlets, messages),
             [(9, (1, 0, 0)), (11, (1, 0, 0)), (13, (2, 0, 0))]
+        );
+    }
+
+    /// A recording made before a stopped ringlet was sent as it stopped: round 3 has an event
+    /// but no ringlet, and its replay plays round 3 all the same (it once ended a round short).
+    #[test]
+    fn a_round_with_events_but_no_ringlet_is_played() {
+        let entered = Event::Entered {
+            machine: "A".into(),
+            state: "OPEN".into(),
+            id: 1,
+            round: 3,
+            at: Duration::ZERO,
+        };
+        let recording = Recording {
+            messages: Vec::new(),
+            ringlets: vec![ringlet(1, 0, 10, None), ringlet(2, 0, 14, None)],
+            events: vec![entered],
+            branch: None,
+        };
+        let mut feed = RecordedFeed::new(&recording, Vec::new());
+        assert!(feed.after_round(2), "round 3 is played");
+        assert!(!feed.after_round(3));
+        let mut branch = RecordedFeed::until(&recording, Vec::new(), 3);
+        assert!(
+            !branch.after_round(2),
+            "a branch at round 3 plays to round 2"
         );
     }
 

@@ -147,7 +147,8 @@ impl Rounds {
         self.fed_by(feed)
     }
 
-    /// Every ringlet as it starts, from now on (what a recording keeps).
+    /// Every ringlet, from now on, sent once it has run, or as the schedule stops inside it
+    /// (what a recording keeps).
     pub fn ringlets(&mut self) -> mpsc::UnboundedReceiver<Ringlet> {
         let (tx, rx) = mpsc::unbounded_channel();
         self.ticks = Some(tx);
@@ -361,7 +362,7 @@ impl Rounds {
         scheduled.obey_commands(board, commanded, Moment::BeforeRound);
         let mut fired = false;
         // The ringlet under way, recorded once it has run (with its snapshot).
-        let mut began: Option<Ringlet> = None;
+        let mut began: Option<Underway> = None;
         for machine in 0..scheduled.runs.len() {
             let run = &mut scheduled.runs[machine];
             if scheduled.over[machine]
@@ -383,10 +384,13 @@ impl Rounds {
                     at: round_time.saturating_duration_since(run.reporter.epoch),
                     snapshot: None,
                 };
-                began = Some(
-                    self.before_ringlet(run, ringlet, &mut round_time, board)
-                        .await,
-                );
+                let ringlet = self
+                    .before_ringlet(run, ringlet, &mut round_time, board)
+                    .await;
+                began = (self.ticks.clone()).map(|ticks| Underway {
+                    ticks,
+                    ringlet: Some(ringlet),
+                });
             }
             run.round_time = Some(round_time);
             if let Some(suppressor) = &scheduled.suppressor {
@@ -394,12 +398,8 @@ impl Rounds {
             }
             let span = tracing::info_span!("machine", name = %run.name);
             let ring = tracing::Instrument::instrument(run.ring(), span).await;
-            if let (Some(ticks), Some(ringlet)) = (&self.ticks, began.take()) {
-                let snapshot = run.seen.seq();
-                let _ = ticks.send(Ringlet {
-                    snapshot,
-                    ..ringlet
-                });
+            if let Some(underway) = began.take() {
+                underway.ran(run.seen.seq());
             }
             // Between rounds, waits are reckoned from the clock.
             run.round_time = None;
@@ -755,5 +755,33 @@ async fn sleep_until(deadline: Option<tokio::time::Instant>) {
     match deadline {
         Some(at) => tokio::time::sleep_until(at).await,
         None => std::future::pending().await,
+    }
+}
+
+/// A ringlet under way, on its way to the recording. It is sent once it has run, with its
+/// snapshot; a run stopped inside it (Ctrl-C, the page's Stop, `--for`) drops the schedule
+/// there, and it is sent then without one: the recording holds every round it holds events of,
+/// so its replay plays that round too.
+struct Underway {
+    ticks: mpsc::UnboundedSender<Ringlet>,
+    ringlet: Option<Ringlet>,
+}
+
+impl Underway {
+    fn ran(mut self, snapshot: Option<u64>) {
+        if let Some(ringlet) = self.ringlet.take() {
+            let _ = self.ticks.send(Ringlet {
+                snapshot,
+                ..ringlet
+            });
+        }
+    }
+}
+
+impl Drop for Underway {
+    fn drop(&mut self) {
+        if let Some(ringlet) = self.ringlet.take() {
+            let _ = self.ticks.send(ringlet);
+        }
     }
 }

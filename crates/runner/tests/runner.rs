@@ -429,6 +429,36 @@ async fn a_posting_due_at_a_rounds_moment_is_on_the_board_before_that_round_begi
     }
 }
 
+/// A run stopped inside a ringlet (Ctrl-C, the page's Stop) drops the schedule there: the
+/// ringlet under way is recorded all the same, so a recording holding that round's events
+/// holds the round, and its replay plays it (it once ended a round short).
+#[tokio::test(start_paused = true)]
+async fn a_ringlet_the_run_stops_inside_is_recorded() {
+    let machine = native(
+        "machine M\ninitial A\nstate A {\n    when TRUE -> B\n}\nstate B {\n    entry { msleep(10000); }\n}\n",
+    );
+    let mut runner = MachineRunner::new(machine, Hosts::default(), RunOptions::default());
+    let mut events = runner.events();
+    let mut rounds = proclaim_runner::Rounds::new(vec![runner]);
+    let mut ringlets = rounds.ringlets();
+    let schedule = tokio::spawn(rounds.run(Whiteboard::local()));
+    // Round 2's ringlet enters B and sleeps in its OnEntry; the run stops there.
+    tokio::time::sleep(Duration::from_secs(1)).await;
+    schedule.abort();
+    let _ = schedule.await;
+    let entered: Vec<u64> = std::iter::from_fn(|| events.try_recv().ok())
+        .filter_map(|e| match e {
+            Event::Entered { state, round, .. } if state == "B" => Some(round),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(entered, [2]);
+    let recorded: Vec<u64> = std::iter::from_fn(|| ringlets.try_recv().ok())
+        .map(|r| r.round)
+        .collect();
+    assert_eq!(recorded, [1, 2]);
+}
+
 /// The ringlets of `machines` in one round schedule on a paused clock, watched by a task of
 /// their thread until `last` holds of one (that one included) or a hundred thousand have begun;
 /// `None` when the watching task got no turn within 30 s of real time (the schedule left every
