@@ -43,8 +43,8 @@ pub struct LaunchOptions {
     /// An impersonator that asks a person (`proclaim run --ask`); its atoms replace the
     /// behaviour's own, as a script's do.
     pub person: Option<Impersonator>,
-    /// Report every ringlet (where and when it began, sent once it has run) ([`Running::ringlets`]), for a recording that a
-    /// replay can post outside messages back into at the same places.
+    /// Report every ringlet, where and when it began, once it has run ([`Running::ringlets`]):
+    /// a recording that a replay can post outside messages back into at the same places.
     pub ringlets: bool,
     /// Experts of the embedding program (a Python callable per label, say). Their atoms
     /// replace the behaviour's own, as a script's do; the script's impersonator, when it

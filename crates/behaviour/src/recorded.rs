@@ -1,8 +1,8 @@
 //! A recorded run as a regression test (`proclaim test`): the recording of `run --record` holds
-//! every whiteboard message, every ringlet (where and when it began) and the machines' events. Replayed, the
-//! behaviour's machines and theories run again on the virtual clock under the round schedule,
-//! and everything that came from outside them (sensor wrappers, the impersonator, a person, the
-//! network, the monitor) is posted again before the ringlet it came before the first time; what
+//! every whiteboard message, every ringlet (where and when it began) and the machines' events.
+//! Replayed, the behaviour's machines and theories run again on the virtual clock under the
+//! round schedule, and everything that came from outside them (sensor wrappers, the
+//! impersonator, a person, the network, the monitor) is posted again before the ringlet it came before the first time; what
 //! outside experts answered is answered again, query by query. The machines' states, postings,
 //! answers and variables are then compared with the recording, round by round.
 
