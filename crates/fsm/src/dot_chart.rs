@@ -165,6 +165,25 @@ impl<'m> Drawing<'m> {
         }
     }
 
+    /// The node of each of the targets a transition names: the region's state the flat
+    /// target holds at or inside the written one.
+    fn target_nodes(&self, t: &Transition) -> Vec<String> {
+        let entered =
+            (self.machine.state(t.target)).map_or_else(Vec::new, |s| self.machine.atomic_paths(s));
+        let node = |written: &String| {
+            let inside = entered.iter().find(|p| {
+                *p == written
+                    || p.strip_prefix(written.as_str())
+                        .is_some_and(|rest| rest.starts_with('.'))
+            });
+            match inside.and_then(|p| self.atomic(p)) {
+                Some(c) => format!("{}a{c}", self.prefix),
+                None => self.node(t.target),
+            }
+        };
+        t.targets.iter().map(node).collect()
+    }
+
     /// The nodes the initial state is drawn as.
     fn nodes_of_initial(&self) -> Vec<String> {
         self.machine
@@ -318,6 +337,21 @@ impl<'m> Drawing<'m> {
                 (Some(c), Some(state)) => self.node_inside(state, c),
                 _ => self.node(t.source),
             };
+            // Several targets: out to a fork, and from it into each (a state in each region).
+            if !t.targets.is_empty() {
+                let fork = format!("{from}_fork{}", t.line);
+                let tail =
+                    cluster_of.map_or_else(String::new, |_| format!(", ltail={}", quote(from)));
+                let _ = writeln!(
+                    out,
+                    "{indent}{fork} [shape=point, width=0.05];\n\
+                     {indent}{source} -> {fork} [label=\"{label}\"{tail}, arrowhead=none];"
+                );
+                for node in self.target_nodes(t) {
+                    let _ = writeln!(out, "{indent}{fork} -> {node};");
+                }
+                continue;
+            }
             // One that stays loops on the state it fires in, wherever it was written.
             let Some(c) = cluster_of.filter(|_| !t.stays) else {
                 let _ = writeln!(

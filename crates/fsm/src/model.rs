@@ -224,6 +224,9 @@ pub struct Transition {
     /// actions, no OnExit) runs, and the machine stays in its state, which is `target`: no
     /// OnEntry runs after it and no clock starts again (§3.2).
     pub stays: bool,
+    /// Its targets as written by path, where it names several (`-> P.A.X, P.B.Y`): `target` is
+    /// the configuration they enter together, and a drawing shows each. Empty for one target.
+    pub targets: Vec<String>,
 }
 
 impl Transition {

@@ -397,6 +397,7 @@ fn end_transition(
             written: None,
             joined: Vec::new(),
             stays: false,
+            targets: Vec::new(),
         },
     ));
 }

@@ -206,6 +206,7 @@ fn t_line(
             written: None,
             joined: Vec::new(),
             stays: false,
+            targets: Vec::new(),
         }),
         Err(e) => {
             diagnostics.push(FileDiagnostic::error(

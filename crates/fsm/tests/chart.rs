@@ -794,6 +794,59 @@ state PLAY {
     );
 }
 
+/// A transition with several targets is drawn to a fork and from it into each target (it was
+/// drawn into one of them alone).
+#[test]
+fn several_targets_are_drawn_forking_into_each() {
+    let text = "machine M
+state READY {
+    when go -> PLAY.HEAD.TRACK, PLAY.BODY.KICK
+}
+parallel PLAY {
+    when whistle -> READY
+    state HEAD {
+        state LOOK { when seen -> TRACK }
+        state TRACK { when lost -> HEAD.LOOK, BODY.WALK }
+    }
+    state BODY {
+        state WALK { when near -> KICK }
+        state KICK { }
+    }
+}
+";
+    let read = parse_machine("M.machine", text);
+    assert!(!read.has_errors(), "{:?}", read.diagnostics);
+    let machine = &read.machines[0];
+    let dot = proclaim_fsm::to_dot(machine);
+    let node = |path: &str| {
+        let c = (machine.composites.iter())
+            .position(|c| c.atomic && c.name == path)
+            .unwrap_or_else(|| panic!("{path} is a region's state"));
+        format!("a{c}")
+    };
+    let forks: Vec<&str> = dot
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.contains("_fork"))
+        .collect();
+    let (track, kick) = (node("PLAY.HEAD.TRACK"), node("PLAY.BODY.KICK"));
+    let (look, walk) = (node("PLAY.HEAD.LOOK"), node("PLAY.BODY.WALK"));
+    assert_eq!(
+        forks,
+        [
+            "s1_fork3 [shape=point, width=0.05];".to_string(),
+            "s1 -> s1_fork3 [label=\"1: go\", arrowhead=none];".to_string(),
+            format!("s1_fork3 -> {track};"),
+            format!("s1_fork3 -> {kick};"),
+            format!("{track}_fork9 [shape=point, width=0.05];"),
+            format!("{track} -> {track}_fork9 [label=\"1: lost\", arrowhead=none];"),
+            format!("{track}_fork9 -> {look};"),
+            format!("{track}_fork9 -> {walk};"),
+        ],
+        "{dot}"
+    );
+}
+
 /// Each flat state with what its arrival entered, and each arm with the composites it enters.
 fn clocks(machine: &Machine) -> String {
     let composites = |list: &[usize]| {

@@ -41,6 +41,8 @@ struct FlatArm {
     /// Every transition it fires stays (has no target): it does not move, and `target` is the
     /// flat state it fires in.
     stays: bool,
+    /// The first transition's targets as written, by path, where it names several.
+    targets: Vec<String>,
 }
 
 /// One transition a state selects: written on `source`, to `targets` (the states entered
@@ -421,6 +423,13 @@ impl<'t> Flattening<'t> {
                 })
                 .collect(),
             stays,
+            targets: first
+                .filter(|f| !f.written.also.is_empty())
+                .map_or_else(Vec::new, |f| {
+                    (f.written.targets().into_iter())
+                        .map(|n| tree.nodes[n].path.clone())
+                        .collect()
+                }),
         }
     }
 
@@ -564,6 +573,7 @@ impl<'t> Flattening<'t> {
                         .map(|&(n, line, fires)| (n.and_then(|n| self.clocks[n]), line, fires))
                         .collect(),
                     stays: arm.stays,
+                    targets: arm.targets,
                 });
             }
         }

@@ -603,6 +603,7 @@ impl Lowering<'_> {
                 written: changed.then_some(written),
                 joined: Vec::new(),
                 stays: when.target.is_none(),
+                targets: Vec::new(),
             }),
             Err(message) => {
                 self.error(when.target_at, message);
