@@ -165,6 +165,32 @@ impl<'m> Drawing<'m> {
         }
     }
 
+    /// A transition with several targets: out of `from` (a cluster's edge, or the node
+    /// `source`) to a fork, and from it into each (a state in each region).
+    fn forked(
+        &self,
+        t: &Transition,
+        (from, cluster): (&str, bool),
+        source: &str,
+        label: &str,
+        indent: &str,
+    ) -> String {
+        let fork = format!("{from}_fork{}", t.line);
+        let tail = if cluster {
+            format!(", ltail={}", quote(from))
+        } else {
+            String::new()
+        };
+        let mut out = format!(
+            "{indent}{fork} [shape=point, width=0.05];\n\
+             {indent}{source} -> {fork} [label=\"{label}\"{tail}, arrowhead=none];\n"
+        );
+        for node in self.target_nodes(t) {
+            let _ = writeln!(out, "{indent}{fork} -> {node};");
+        }
+        out
+    }
+
     /// The node of each of the targets a transition names: the region's state the flat
     /// target holds at or inside the written one.
     fn target_nodes(&self, t: &Transition) -> Vec<String> {
@@ -337,19 +363,9 @@ impl<'m> Drawing<'m> {
                 (Some(c), Some(state)) => self.node_inside(state, c),
                 _ => self.node(t.source),
             };
-            // Several targets: out to a fork, and from it into each (a state in each region).
             if !t.targets.is_empty() {
-                let fork = format!("{from}_fork{}", t.line);
-                let tail =
-                    cluster_of.map_or_else(String::new, |_| format!(", ltail={}", quote(from)));
-                let _ = writeln!(
-                    out,
-                    "{indent}{fork} [shape=point, width=0.05];\n\
-                     {indent}{source} -> {fork} [label=\"{label}\"{tail}, arrowhead=none];"
-                );
-                for node in self.target_nodes(t) {
-                    let _ = writeln!(out, "{indent}{fork} -> {node};");
-                }
+                let from_cluster = cluster_of.is_some();
+                out.push_str(&self.forked(t, (from, from_cluster), &source, &label, indent));
                 continue;
             }
             // One that stays loops on the state it fires in, wherever it was written.

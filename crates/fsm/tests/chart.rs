@@ -794,6 +794,94 @@ state PLAY {
     );
 }
 
+/// An `initial` may name a state deeper inside its composite, or one in each of several
+/// regions (SCXML's `initial="a b"`): entering the composite enters the states around each,
+/// and the regions none is in at their initial.
+#[test]
+fn an_initial_names_a_deeper_state_or_one_in_each_region() {
+    check(
+        "machine M
+initial PLAY.HEAD.TRACK, PLAY.BODY.KICK
+parallel PLAY {
+    state HEAD {
+        state LOOK { when seen -> TRACK }
+        state TRACK { }
+    }
+    state BODY {
+        state WALK { }
+        state KICK { when far -> WALK }
+    }
+}
+",
+        "initial PLAY.HEAD.TRACK, PLAY.BODY.KICK#5
+PLAY.HEAD.LOOK, PLAY.BODY.WALK#7 entry[] exit[] internal[]
+  seen -> PLAY.HEAD.TRACK, PLAY.BODY.WALK#6 leaving[] of PLAY.HEAD.LOOK
+PLAY.HEAD.TRACK, PLAY.BODY.WALK#6 entry[] exit[] internal[]
+PLAY.HEAD.TRACK, PLAY.BODY.KICK#5 entry[] exit[] internal[]
+  far -> PLAY.HEAD.TRACK, PLAY.BODY.WALK#6 leaving[] of PLAY.BODY.KICK
+",
+    );
+    check(
+        "machine M
+state GAME {
+    initial PLAY.BODY.KICK
+    when whistle -> GAME
+    state READY { when go -> PLAY }
+    parallel PLAY {
+        state HEAD {
+            state LOOK { when seen -> TRACK }
+            state TRACK { }
+        }
+        state BODY {
+            state WALK { }
+            state KICK { when far -> WALK }
+        }
+    }
+}
+",
+        "initial GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6
+GAME.READY#1 entry[] exit[] internal[]
+  go -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#9
+  whistle -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#9 entry[] exit[] internal[]
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#7 leaving[] of GAME.PLAY.HEAD.LOOK
+  whistle -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 leaving[] of GAME
+GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 entry[] exit[] internal[]
+  seen && far -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#7 leaving[] of GAME.PLAY.HEAD.LOOK
+  seen -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 leaving[] of GAME.PLAY.HEAD.LOOK
+  far -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.WALK#9 leaving[] of GAME.PLAY.BODY.KICK
+  whistle -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 leaving[] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#7 entry[] exit[] internal[]
+  whistle -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 leaving[] of GAME
+GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK#8 entry[] exit[] internal[]
+  far -> GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.WALK#7 leaving[] of GAME.PLAY.BODY.KICK
+  whistle -> GAME.PLAY.HEAD.LOOK, GAME.PLAY.BODY.KICK#6 leaving[] of GAME
+",
+    );
+    check(
+        "machine M
+initial PLAY.HEAD.TRACK, PLAY.HEAD.LOOK
+state READY {
+    initial #40
+    state SET { }
+}
+parallel PLAY {
+    state HEAD {
+        state LOOK #40 { }
+        state TRACK { }
+    }
+}
+",
+        "4: the initial state of `READY` must be a state inside it, not `PLAY.HEAD.LOOK`
+2: `PLAY.HEAD.TRACK` and `PLAY.HEAD.LOOK` are not in different regions of a parallel state: several initial states enter one state in each region
+",
+    );
+    check(
+        "machine M\ninitial A, B\nstate A { }\nstate B { }\n",
+        "2: several initial states enter a state in each region of a parallel state, and this machine has none: name one\n",
+    );
+}
+
 /// A transition with several targets is drawn to a fork and from it into each target (it was
 /// drawn into one of them alone).
 #[test]

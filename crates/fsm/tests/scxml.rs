@@ -240,8 +240,7 @@ fn what_does_not_map_is_refused_with_its_element_and_line() {
   </state>
   <state id="s"><transition cond="malfunction &gt; 0 &amp;&amp; x != 'it&quot;s'" target="s"/></state>
 </scxml>"#,
-        "2: initial `deep`: only one of the state's own states maps (not a deeper one or a history)
-4: `done.state.p` with a `cond`: `done` stands alone
+        "4: `done.state.p` with a `cond`: `done` stands alone
 6: <state> without an `id`: give it one (it names the state)
 8: <state id=\"idle\"> has no transition, so it would be final here, which SCXML's is not, and `r` waits for its completion: write it as <final>
 ",
@@ -549,6 +548,47 @@ fn reads_back_the_same(name: &str, native: &str, shows: &str) {
     );
 }
 
+/// An `initial` naming a deeper state, or one in each region, is SCXML's `initial` both ways.
+#[test]
+fn deep_and_several_initials_read_back_as_the_same_machine() {
+    let game = "machine Game
+initial GAME
+
+state GAME {
+    initial PLAY.BODY.KICK
+    state READY {
+        when go -> PLAY
+    }
+    parallel PLAY {
+        state HEAD {
+            state LOOK {
+                when seen -> TRACK
+            }
+            state TRACK {
+                when lost -> READY
+            }
+        }
+        state BODY {
+            state WALK {
+                when near -> KICK
+            }
+            state KICK {
+                when far -> WALK
+            }
+        }
+    }
+}
+";
+    reads_back_the_same("Game", game, r#"<state id="GAME" initial="KICK">"#);
+    let several = game
+        .replace(
+            "initial GAME\n",
+            "initial GAME.PLAY.HEAD.TRACK, GAME.PLAY.BODY.KICK\n",
+        )
+        .replace("    initial PLAY.BODY.KICK\n", "");
+    reads_back_the_same("Game", &several, r#"initial="TRACK KICK""#);
+}
+
 /// A parallel state is SCXML's `<parallel>` both ways (`docs/spec/behaviour.md` §3.2): its
 /// regions, their own clocks and its `done` read back as the same machine.
 #[test]
@@ -642,7 +682,83 @@ parallel PLAY {
     <state id="body"><state id="walk"/></state>
   </parallel>
 </scxml>"#,
-        "1: initial `look walk`: several initial states do not map yet: name one, and the other regions enter at their initial\n",
+        "machine d
+initial play.head.look, play.body.walk
+
+parallel play { // SCXML line 2
+
+    state head { // SCXML line 3
+
+        state look { // SCXML line 3
+        }
+    }
+
+    state body { // SCXML line 4
+
+        state walk { // SCXML line 4
+        }
+    }
+}
+",
+    );
+    // A state's `initial` naming a deeper state, and one in each region.
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml">
+  <state id="game" initial="kick">
+    <state id="ready"><transition event="go" target="play"/></state>
+    <parallel id="play">
+      <state id="head"><state id="look"/><state id="track"/></state>
+      <state id="body"><state id="walk"/><state id="kick"/></state>
+    </parallel>
+  </state>
+</scxml>"#,
+        "machine d
+
+state game { // SCXML line 2
+    initial play.body.kick // SCXML line 2
+
+    state ready { // SCXML line 3
+        when go -> game.play // SCXML line 3
+    }
+
+    parallel play { // SCXML line 4
+
+        state head { // SCXML line 5
+
+            state look { // SCXML line 5
+            }
+
+            state track { // SCXML line 5
+            }
+        }
+
+        state body { // SCXML line 6
+
+            state walk { // SCXML line 6
+            }
+
+            state kick { // SCXML line 6
+            }
+        }
+    }
+}
+",
+    );
+    check(
+        r#"<scxml xmlns="http://www.w3.org/2005/07/scxml">
+  <state id="other" initial="a b">
+    <state id="a"/><state id="b"/>
+    <transition event="h" target="other_h"/>
+    <history id="other_h"/>
+  </state>
+  <state id="third" initial="third_h">
+    <state id="c"/>
+    <history id="third_h"/>
+  </state>
+</scxml>"#,
+        "2: target \"a b\": `other.a` and `other.b` are not in different regions of a <parallel>, so they are no configuration
+7: initial `third_h`: a history as an initial state does not map (name the state it would resume the first time)
+",
     );
 }
 

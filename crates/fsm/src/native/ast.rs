@@ -9,7 +9,9 @@ pub struct FileAst {
 }
 
 pub enum TopItem {
-    Initial(Ref, usize),
+    /// `initial A`, or `initial P.A.X, P.B.Y` (a state in each of several regions): each state
+    /// where it is written, the first at the keyword.
+    Initial(Vec<(Ref, usize)>),
     Description(String, usize),
     /// `param side: int`: the text after `param`.
     Param(String, usize),
@@ -61,8 +63,10 @@ pub enum Member {
         /// What it runs as it fires, after what leaving runs (`when p -> B { … }`).
         actions: Vec<(ActionAst, usize)>,
     },
-    /// A composite state's first sub-state: `initial NAME` inside its block.
-    Initial(Ref, usize),
+    /// A composite state's first sub-state, `initial NAME` inside its block: one of its own, a
+    /// deeper one (`initial HEAD.TRACK`), or one in each of several regions (`initial
+    /// PLAY.HEAD.TRACK, PLAY.BODY.KICK`); each where it is written, the first at the keyword.
+    Initial(Vec<(Ref, usize)>),
     /// `outcome saved`: the state is final and announces this outcome of its machine.
     Outcome(String, usize),
     /// A sub-state: the state holding it is composite.
@@ -73,4 +77,12 @@ pub enum Member {
 pub enum ActionAst {
     Done(Action),
     Statement(String),
+}
+
+/// An `initial`'s states as parsed (the first, and each further one after the position of
+/// its comma), each with where it is written, the first at the keyword `at`.
+pub fn initials(at: usize, (first, also): (Ref, Vec<(usize, Ref)>)) -> Vec<(Ref, usize)> {
+    std::iter::once((first, at))
+        .chain(also.into_iter().map(|(at, r)| (r, at)))
+        .collect()
 }

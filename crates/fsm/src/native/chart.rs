@@ -34,7 +34,7 @@ pub(crate) struct Chart {
 pub(super) fn lower_chart(
     lowering: &mut Lowering<'_>,
     parsed: Vec<StateAst>,
-    initial: Option<(Ref, usize)>,
+    initial: Option<Vec<(Ref, usize)>>,
 ) -> Option<Chart> {
     let mut tree = Tree::default();
     let interface = &lowering.interface;
@@ -48,17 +48,11 @@ pub(super) fn lower_chart(
     tree.check_names(lowering);
     tree.resolve_all(lowering);
     let start = match initial {
-        Some((target, at)) => match tree.resolve(None, &target) {
-            Ok(node) => node,
-            Err(message) => {
-                lowering.error(at, message);
-                return None;
-            }
-        },
-        None => *tree.top.first()?,
+        Some(written) => tree.initials(lowering, None, &written)?,
+        None => vec![*tree.top.first()?],
     };
     let mut flat = Flattening::new(&tree);
-    let first = flat.enter(&[], None, start);
+    let first = flat.enter(&[], None, &start);
     flat.run();
     if let Some(at) = flat.too_many {
         lowering.error(
@@ -98,7 +92,8 @@ pub(super) struct Node {
     pub entry: Vec<Action>,
     pub exit: Vec<Action>,
     pub internal: Vec<Action>,
-    initial: Option<(Ref, usize)>,
+    /// The states `initial` names, each where it is written.
+    initial: Option<Vec<(Ref, usize)>>,
     whens: Vec<When>,
     /// `parallel`: the states it holds are regions, all active while it is.
     pub parallel: bool,
@@ -172,8 +167,9 @@ pub(super) struct Tree {
     /// Each node's transitions, in priority order; those that could not be read are reported
     /// and left out.
     pub written: Vec<Vec<Written>>,
-    /// Each composite's `initial`, found among its states (else its first).
-    first: Vec<Option<usize>>,
+    /// The states each composite's `initial` names (else it enters its first): one of its
+    /// own, a deeper one, or one in each of several regions.
+    first: Vec<Option<Vec<usize>>>,
     /// The histories some transition resumes: only these are kept.
     pub histories: Vec<(usize, History)>,
     /// Each kept history's variable, told apart from every other name of the machine.
@@ -224,9 +220,9 @@ impl Tree {
                 format!("parallel state `{path}` holds no regions: write a state in it for each"),
             );
         }
-        if let (true, Some((_, at))) = (parallel, &body.initial) {
+        if let (true, Some(initial)) = (parallel, &body.initial) {
             lowering.error(
-                *at,
+                initial[0].1,
                 format!(
                     "`{path}` is parallel: every region in it is entered, so it has no `initial`"
                 ),
@@ -372,30 +368,56 @@ impl Tree {
             .unwrap_or_else(|| history.variable(&self.nodes[composite].path))
     }
 
-    fn initial_of(&self, lowering: &mut Lowering<'_>, n: usize) -> Option<usize> {
-        let node = &self.nodes[n];
-        let (target, at) = node.initial.as_ref()?;
-        let found = match target {
-            Ref::Name(path) => self.down(Some(n), path),
-            Ref::Id(_) => self.resolve(Some(n), target),
-        };
-        match found {
-            Ok(child) if self.nodes[child].parent == Some(n) => Some(child),
-            Ok(other) => {
+    fn initial_of(&self, lowering: &mut Lowering<'_>, n: usize) -> Option<Vec<usize>> {
+        let written = self.nodes[n].initial.as_ref()?;
+        self.initials(lowering, Some(n), written)
+    }
+
+    /// The states an `initial` of `owner` (the machine's, for `None`) names: each inside it,
+    /// and several only one in each of several regions (SCXML's `initial="a b"`); `None` once
+    /// why not is reported.
+    pub(super) fn initials(
+        &self,
+        lowering: &mut Lowering<'_>,
+        owner: Option<usize>,
+        written: &[(Ref, usize)],
+    ) -> Option<Vec<usize>> {
+        let mut found: Vec<usize> = Vec::new();
+        for (target, at) in written {
+            let resolved = match (owner, target) {
+                (Some(n), Ref::Name(path)) => self.down(Some(n), path),
+                _ => self.resolve(owner, target),
+            };
+            let state = match resolved {
+                Ok(state) => state,
+                Err(message) => {
+                    lowering.error(*at, message);
+                    return None;
+                }
+            };
+            if let Some(n) = owner.filter(|&n| !self.chain(state).skip(1).any(|c| c == n)) {
+                let (path, other) = (&self.nodes[n].path, &self.nodes[state].path);
                 lowering.error(
                     *at,
                     format!(
-                        "the initial state of `{}` must be one of its own states, not `{}`",
-                        node.path, self.nodes[other].path
+                        "the initial state of `{path}` must be a state inside it, not `{other}`"
                     ),
                 );
-                None
+                return None;
             }
-            Err(message) => {
-                lowering.error(*at, message);
-                None
+            if let Some(&other) = found.iter().find(|&&o| !self.apart_in_regions(o, state)) {
+                lowering.error(
+                    *at,
+                    format!(
+                        "`{}` and `{}` are not in different regions of a parallel state: several initial states enter one state in each region",
+                        self.nodes[other].path, self.nodes[state].path
+                    ),
+                );
+                return None;
             }
+            found.push(state);
         }
+        Some(found)
     }
 
     /// Whether every `in(S)` of `label`, written on `n`, names a state as a target does (each
@@ -802,10 +824,16 @@ impl Tree {
     /// What entering `node` enters below it: its initial state down, or every region.
     fn default_below(&self, node: usize, out: &mut Vec<usize>) {
         let n = &self.nodes[node];
-        let inner: Vec<usize> = match (n.parallel, n.children.first()) {
-            (_, None) => return,
-            (true, Some(_)) => n.children.clone(),
-            (false, Some(&first)) => vec![self.first[node].unwrap_or(first)],
+        let named = self.first.get(node).and_then(Option::as_ref);
+        let inner: Vec<usize> = match (n.parallel, n.children.first(), named) {
+            (_, None, _) => return,
+            (true, Some(_), _) => n.children.clone(),
+            // Its `initial`: the states around each it names below it are entered too.
+            (false, Some(_), Some(named)) => {
+                out.extend(self.entering(Some(node), named));
+                return;
+            }
+            (false, Some(&first), None) => vec![first],
         };
         for child in inner {
             out.push(child);

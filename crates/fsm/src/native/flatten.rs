@@ -138,8 +138,13 @@ impl<'t> Flattening<'t> {
 
     /// The flat state entering `target` from `domain` leads to, the atomic states in `kept`
     /// staying as they are.
-    pub(super) fn enter(&mut self, kept: &[usize], domain: Option<usize>, target: usize) -> usize {
-        let entered = self.tree.entering(domain, &[target]);
+    pub(super) fn enter(
+        &mut self,
+        kept: &[usize],
+        domain: Option<usize>,
+        targets: &[usize],
+    ) -> usize {
+        let entered = self.tree.entering(domain, targets);
         let mut atomics: Vec<usize> = kept.to_vec();
         atomics.extend(
             entered
@@ -208,7 +213,7 @@ impl<'t> Flattening<'t> {
             match missed {
                 Some(n) => {
                     from = n + 1;
-                    self.enter(&[], None, n);
+                    self.enter(&[], None, &[n]);
                 }
                 None => return,
             }

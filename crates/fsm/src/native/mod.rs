@@ -220,13 +220,7 @@ fn lower(file: &str, lines: &LineIndex<'_>, ast: FileAst) -> Imported {
         states.push(lowering.state(s, id, &names, &mut transitions));
     }
     let initial = match initial_ref {
-        Some((target, at)) => match names.resolve(&target) {
-            Ok(id) => Some(id),
-            Err(message) => {
-                lowering.error(at, message);
-                None
-            }
-        },
+        Some(written) => lowering.flat_initial(written, &names),
         None => states.first().map(|s| s.id),
     };
     let machines = match initial {
@@ -327,6 +321,22 @@ impl StateNames {
 }
 
 impl Lowering<'_> {
+    /// The state a flat machine's `initial` names: one (several are a configuration of
+    /// regions, which it has none of).
+    fn flat_initial(&mut self, written: Vec<(Ref, usize)>, names: &StateNames) -> Option<StateId> {
+        if let Some((_, at)) = written.get(1) {
+            self.error(*at, "several initial states enter a state in each region of a parallel state, and this machine has none: name one".into());
+        }
+        let (target, at) = written.into_iter().next()?;
+        match names.resolve(&target) {
+            Ok(id) => Some(id),
+            Err(message) => {
+                self.error(at, message);
+                None
+            }
+        }
+    }
+
     fn error(&mut self, at: usize, message: String) {
         self.diagnostics
             .push(self.lines.error(self.file, at, message));
@@ -339,7 +349,10 @@ impl Lowering<'_> {
     }
 
     /// The description, the initial state as written, and the states, each said once.
-    fn header(&mut self, items: Vec<TopItem>) -> (String, Option<(Ref, usize)>, Vec<StateAst>) {
+    fn header(
+        &mut self,
+        items: Vec<TopItem>,
+    ) -> (String, Option<Vec<(Ref, usize)>>, Vec<StateAst>) {
         let mut initial_ref = None;
         let mut description = String::new();
         let mut parsed = Vec::new();
@@ -351,11 +364,11 @@ impl Lowering<'_> {
                     }
                     description = text;
                 }
-                TopItem::Initial(target, at) => {
+                TopItem::Initial(targets) => {
                     if initial_ref.is_some() {
-                        self.error(at, "the initial state is given twice".into());
+                        self.error(targets[0].1, "the initial state is given twice".into());
                     } else {
-                        initial_ref = Some((target, at));
+                        initial_ref = Some(targets);
                     }
                 }
                 TopItem::Param(text, at) => self.param(&text, at),
@@ -474,11 +487,12 @@ impl Lowering<'_> {
                         actions: own,
                     });
                 }
-                Member::Initial(target, at) => {
+                Member::Initial(targets) => {
                     if body.initial.is_some() {
+                        let at = targets[0].1;
                         self.error(at, format!("state `{name}` names its initial state twice"));
                     } else {
-                        body.initial = Some((target, at));
+                        body.initial = Some(targets);
                     }
                 }
                 Member::State(inner) => body.states.push(inner),
@@ -494,9 +508,9 @@ impl Lowering<'_> {
         if let Some(outcome) = outcome {
             self.announce(name, outcome, &mut body);
         }
-        if let (Some((_, at)), true) = (&body.initial, body.states.is_empty()) {
+        if let (Some(initial), true) = (&body.initial, body.states.is_empty()) {
             self.error(
-                *at,
+                initial[0].1,
                 format!("state `{name}` holds no states, so it has no initial state to name"),
             );
         }
@@ -642,7 +656,8 @@ struct Body {
     exit: Vec<Action>,
     internal: Vec<Action>,
     whens: Vec<When>,
-    initial: Option<(Ref, usize)>,
+    /// The states `initial` names, each where it is written.
+    initial: Option<Vec<(Ref, usize)>>,
     states: Vec<StateAst>,
 }
 

@@ -69,7 +69,7 @@ impl Writer<'_> {
         let mut states = Vec::new();
         for item in ast.items {
             match item {
-                TopItem::Initial(target, at) => initial = self.id(&target, at),
+                TopItem::Initial(targets) => initial = self.ids(&targets),
                 TopItem::Description(..) => {}
                 TopItem::Param(text, at) => self.refuse(at, format!("`param {text}`: a machine's parameters (given by whoever starts it) are not written to SCXML yet")),
                 TopItem::Outcome(text, at) => self.refuse(at, format!("`outcome {text}`: a machine's outcomes are not written to SCXML yet")),
@@ -237,8 +237,8 @@ impl Writer<'_> {
         let mut inner = timed.before.clone();
         for m in s.members {
             match m {
-                Member::Initial(target, at) => {
-                    if let Some(id) = self.id(&target, at) {
+                Member::Initial(targets) => {
+                    if let Some(id) = self.ids(&targets) {
                         let _ = write!(out, " initial=\"{}\"", attr(&id));
                     }
                 }
@@ -364,6 +364,14 @@ impl Writer<'_> {
     }
 
     /// A target's SCXML id: the last part of its path, or a history's own id.
+    /// Several states' ids, as `initial="a b"` names a configuration.
+    fn ids(&mut self, targets: &[(Ref, usize)]) -> Option<String> {
+        let ids: Option<Vec<String>> = (targets.iter())
+            .map(|(target, at)| self.id(target, *at))
+            .collect();
+        Some(ids?.join(" "))
+    }
+
     fn id(&mut self, target: &Ref, at: usize) -> Option<String> {
         match target {
             Ref::Id(id) => {

@@ -597,16 +597,23 @@ impl Mapping<'_> {
         }
     }
 
-    /// An `initial`'s state, which must be one of `path`'s own (a deeper one, or a history,
-    /// has no native form yet).
+    /// An `initial`'s states, written from inside `path`: each a state inside it (a deeper one
+    /// too), several one in each of several regions; a history has no native form here.
     fn own_state(&mut self, ids: &str, path: &str, line: usize) -> Option<String> {
-        let target = self.initial_target(ids, line)?;
-        let own = relative(&target, path);
-        if own.contains('.') || own == target || own == "history" || own == "deep_history" {
-            self.refuse(line, format!("initial `{ids}`: only one of the state's own states maps (not a deeper one or a history)"));
-            return None;
+        let targets = self.initial_target(ids, line)?;
+        let mut own = Vec::new();
+        for target in targets.split(", ") {
+            let inside = relative(target, path);
+            let history = ["history", "deep_history"]
+                .iter()
+                .any(|h| inside.rsplit('.').next() == Some(h));
+            if inside == target || history {
+                self.refuse(line, format!("initial `{ids}`: only states inside `{path}` map (not a history, or a state outside it)"));
+                return None;
+            }
+            own.push(inside);
         }
-        Some(own)
+        Some(own.join(", "))
     }
 
     /// A `<state>` with no transition is final here (§3.2), which SCXML's is not: that differs
@@ -668,13 +675,15 @@ impl Mapping<'_> {
         Some(paths.join(", "))
     }
 
-    /// The state an `initial` names: one state (several, a configuration, do not map yet).
+    /// The states an `initial` names: one, or one in each of several regions (`a, b`); not a
+    /// history.
     fn initial_target(&mut self, ids: &str, line: usize) -> Option<String> {
-        if ids.split_whitespace().nth(1).is_some() {
-            self.refuse(line, format!("initial `{ids}`: several initial states do not map yet: name one, and the other regions enter at their initial"));
+        let targets = self.target(ids, line)?;
+        if self.histories.values().any(|h| *h == targets) {
+            self.refuse(line, format!("initial `{ids}`: a history as an initial state does not map (name the state it would resume the first time)"));
             return None;
         }
-        self.target(ids, line)
+        Some(targets)
     }
 
     /// Whether the states at paths `a` and `b` lie in different regions of a `<parallel>`:
