@@ -11,7 +11,7 @@ pub struct FileAst {
 pub enum TopItem {
     /// `initial A`, or `initial P.A.X, P.B.Y` (a state in each of several regions): each state
     /// where it is written, the first at the keyword.
-    Initial(Vec<(Ref, usize)>),
+    Initial(Initials),
     Description(String, usize),
     /// `param side: int`: the text after `param`.
     Param(String, usize),
@@ -66,7 +66,7 @@ pub enum Member {
     /// A composite state's first sub-state, `initial NAME` inside its block: one of its own, a
     /// deeper one (`initial HEAD.TRACK`), or one in each of several regions (`initial
     /// PLAY.HEAD.TRACK, PLAY.BODY.KICK`); each where it is written, the first at the keyword.
-    Initial(Vec<(Ref, usize)>),
+    Initial(Initials),
     /// `outcome saved`: the state is final and announces this outcome of its machine.
     Outcome(String, usize),
     /// A sub-state: the state holding it is composite.
@@ -79,9 +79,12 @@ pub enum ActionAst {
     Statement(String),
 }
 
+/// The states an `initial` names, each with where it is written.
+pub type Initials = Vec<(Ref, usize)>;
+
 /// An `initial`'s states as parsed (the first, and each further one after the position of
 /// its comma), each with where it is written, the first at the keyword `at`.
-pub fn initials(at: usize, (first, also): (Ref, Vec<(usize, Ref)>)) -> Vec<(Ref, usize)> {
+pub fn initials(at: usize, (first, also): (Ref, Vec<(usize, Ref)>)) -> Initials {
     std::iter::once((first, at))
         .chain(also.into_iter().map(|(at, r)| (r, at)))
         .collect()

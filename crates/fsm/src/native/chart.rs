@@ -4,7 +4,7 @@
 //! `flatten.rs` lowers it to the flat machine every back end already runs, so their traces
 //! agree by construction.
 
-use super::ast::{Ref, StateAst};
+use super::ast::{Initials, Ref, StateAst};
 use super::flatten::Flattening;
 use super::{Lowering, When};
 use crate::code::Expr;
@@ -34,7 +34,7 @@ pub(crate) struct Chart {
 pub(super) fn lower_chart(
     lowering: &mut Lowering<'_>,
     parsed: Vec<StateAst>,
-    initial: Option<Vec<(Ref, usize)>>,
+    initial: Option<Initials>,
 ) -> Option<Chart> {
     let mut tree = Tree::default();
     let interface = &lowering.interface;
@@ -93,7 +93,7 @@ pub(super) struct Node {
     pub exit: Vec<Action>,
     pub internal: Vec<Action>,
     /// The states `initial` names, each where it is written.
-    initial: Option<Vec<(Ref, usize)>>,
+    initial: Option<Initials>,
     whens: Vec<When>,
     /// `parallel`: the states it holds are regions, all active while it is.
     pub parallel: bool,

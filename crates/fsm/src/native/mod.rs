@@ -48,7 +48,7 @@ use crate::label::parse_label;
 use crate::label::Label;
 use crate::model::{Action, Machine, State, StateId, Transition};
 use crate::Imported;
-use ast::{ActionAst, FileAst, Member, Ref, StateAst, TopItem};
+use ast::{ActionAst, FileAst, Initials, Member, Ref, StateAst, TopItem};
 use lalrpop_util::ParseError;
 use lexer::{LexError, MachineLexer, MachineToken};
 use proclaim_syntax::FileDiagnostic;
@@ -323,7 +323,7 @@ impl StateNames {
 impl Lowering<'_> {
     /// The state a flat machine's `initial` names: one (several are a configuration of
     /// regions, which it has none of).
-    fn flat_initial(&mut self, written: Vec<(Ref, usize)>, names: &StateNames) -> Option<StateId> {
+    fn flat_initial(&mut self, written: Initials, names: &StateNames) -> Option<StateId> {
         if let Some((_, at)) = written.get(1) {
             self.error(*at, "several initial states enter a state in each region of a parallel state, and this machine has none: name one".into());
         }
@@ -349,10 +349,7 @@ impl Lowering<'_> {
     }
 
     /// The description, the initial state as written, and the states, each said once.
-    fn header(
-        &mut self,
-        items: Vec<TopItem>,
-    ) -> (String, Option<Vec<(Ref, usize)>>, Vec<StateAst>) {
+    fn header(&mut self, items: Vec<TopItem>) -> (String, Option<Initials>, Vec<StateAst>) {
         let mut initial_ref = None;
         let mut description = String::new();
         let mut parsed = Vec::new();
@@ -657,7 +654,7 @@ struct Body {
     internal: Vec<Action>,
     whens: Vec<When>,
     /// The states `initial` names, each where it is written.
-    initial: Option<Vec<(Ref, usize)>>,
+    initial: Option<Initials>,
     states: Vec<StateAst>,
 }
 
