@@ -1,8 +1,10 @@
 //! Properties drawn for a random behaviour (issue 44), and what runs say of verify's verdicts
 //! on them: a run may never make true a `never` verify said holds, nor reach a `reachable`
 //! verify said fails; a counterexample or witness, written as a script and played by the
-//! runner, must show what it claims. A property is a conjunction of a machine's state and the
-//! globals' values, so a run can read its truth between rounds.
+//! runner, must show what it claims; and a lasso verify found for an `always_eventually`, its
+//! way in followed by its loop played again and again, never makes the property true in the
+//! loop. A property is a conjunction of a machine's state and the globals' values, so a run can
+//! read its truth between rounds.
 
 use crate::common::random_behaviour::Rng;
 use proclaim_behaviour::testing::RoundByRound;
@@ -11,7 +13,8 @@ use proclaim_board::Value;
 use proclaim_fsm::BinOp;
 use proclaim_runner::Event;
 use proclaim_verify::{
-    arith, to_script, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Verdict,
+    arith, to_script, unroll, PropertyKind, PropertyOutcome, PropertySource, SearchEngine, Trace,
+    Verdict,
 };
 use std::time::Duration;
 
@@ -44,8 +47,10 @@ pub(super) fn engine(seed: u64) -> SearchEngine {
 }
 
 /// Two properties over the behaviour's `files`: `never` or `reachable`, each a conjunction of
-/// one or two of a machine's state and a global (set somewhere) compared with a constant.
-pub(super) fn draw(seed: u64, files: &[(String, String)]) -> Vec<Claim> {
+/// one or two of a machine's state and a global (set somewhere) compared with a constant; for
+/// one seed in two, where `liveness` asks for it, an `always_eventually` of one such atom too
+/// (drawn from a sequence of its own, so the first two are what they were before it).
+pub(super) fn draw(seed: u64, files: &[(String, String)], liveness: bool) -> Vec<Claim> {
     let mut rng = Rng::new(seed ^ 0xc1a1_3000);
     let mut states = Vec::new();
     for (_, text) in files {
@@ -66,6 +71,16 @@ pub(super) fn draw(seed: u64, files: &[(String, String)]) -> Vec<Claim> {
         .into_iter()
         .filter(|g| all.contains(&format!("{g} = ")))
         .collect();
+    let mut live = Rng::new(seed ^ 0x11fe_5eed);
+    let liveness = (liveness && live.chance(50)).then(|| {
+        let atom = atom(&mut live, &states, &globals);
+        let text = atom.text();
+        Claim {
+            kind: PropertyKind::AlwaysEventually,
+            text,
+            atoms: vec![atom],
+        }
+    });
     (0..2)
         .map(|_| {
             let kind = if rng.chance(65) {
@@ -83,6 +98,7 @@ pub(super) fn draw(seed: u64, files: &[(String, String)]) -> Vec<Claim> {
                 .join(" && ");
             Claim { kind, text, atoms }
         })
+        .chain(liveness)
         .collect()
 }
 
@@ -185,9 +201,15 @@ impl Claim {
         )
     }
 
+    /// An `always_eventually`: its run found is a lasso.
+    pub(super) fn is_liveness(&self) -> bool {
+        self.kind == PropertyKind::AlwaysEventually
+    }
+
     pub(super) fn describe(&self) -> String {
         let kind = match self.kind {
             PropertyKind::Never => "never",
+            PropertyKind::AlwaysEventually => "always_eventually",
             _ => "reachable",
         };
         format!("{kind} {}", self.text)
@@ -204,6 +226,9 @@ impl Claim {
         dir: &std::path::Path,
         behaviour: &Behaviour,
     ) -> Option<Result<(), String>> {
+        if self.kind == PropertyKind::AlwaysEventually {
+            return self.replays_lasso(outcome, dir, behaviour);
+        }
         let found = matches!(
             (self.kind, outcome.verdict),
             (PropertyKind::Never, Verdict::Fails) | (PropertyKind::Reachable, Verdict::Holds)
@@ -243,5 +268,53 @@ impl Claim {
                 "the runner, played its script, never made it true\n--- script\n{script}"
             ))
         })
+    }
+}
+
+impl Claim {
+    /// Plays the lasso verify found for an `always_eventually` that fails: its way in, then its
+    /// loop `LOOP_REPEATS` times. Every round that ends in the loop must end with the property
+    /// false, as every state of the loop has it. `None` where the script says it does not
+    /// reproduce the run, where the way in or the loop ends between two machines' ringlets,
+    /// or where the run ends where no machine can ring.
+    fn replays_lasso(
+        &self,
+        outcome: &PropertyOutcome,
+        dir: &std::path::Path,
+        behaviour: &Behaviour,
+    ) -> Option<Result<(), String>> {
+        if outcome.verdict != Verdict::Fails {
+            return None;
+        }
+        let (prefix, cycle) = (outcome.trace.as_ref()?, outcome.cycle.as_ref()?);
+        let final_machine = behaviour.machines.last().map(|m| m.machine.name.as_str());
+        let at_a_rounds_end =
+            |t: &Trace| (t.steps.last()).is_none_or(|s| Some(s.machine.as_str()) == final_machine);
+        if cycle.steps.is_empty() || !at_a_rounds_end(prefix) || !at_a_rounds_end(cycle) {
+            return None;
+        }
+        const PERIOD: Duration = Duration::from_millis(25);
+        let unrolled = unroll(prefix, cycle);
+        let (script, notes) = to_script(&unrolled, PERIOD, "replay");
+        if !notes.is_empty() {
+            return None;
+        }
+        let mut run = match RoundByRound::start(dir, &script) {
+            Ok(run) => run,
+            Err(e) => return Some(Err(format!("the script does not start: {e}\n{script}"))),
+        };
+        // The loop starts where the way in ends (the initial state, for none).
+        let from = prefix.steps.last().map_or(0, |s| s.round);
+        let last = unrolled.steps.last().map_or(0, |s| s.round);
+        for round in 1..=last {
+            run.round();
+            if round >= from && self.holds_in(&run, behaviour) {
+                return Some(Err(format!(
+                    "the runner, played its lasso, made it true after round {round}, in the loop (from round {from}) where verify said it never is\n--- script\n{script}"
+                )));
+            }
+            run.wait(PERIOD);
+        }
+        Some(Ok(()))
     }
 }
